@@ -1,0 +1,155 @@
+//! Diagnostics: what every phase reports, and their rendering through codespan-reporting.
+//!
+//! Codes are stable and grouped by phase: NC1xx reading and parsing (NC100–NC119 shared
+//! reading, NC120–NC159 Sinumerik, NC160–NC199 FANUC), NC2xx validation and structure
+//! (NC200–NC229 Sinumerik, NC230–NC259 FANUC), NC3xx unsupported on a target, NC4xx
+//! evaluation, NC5xx divergence. The full list is in `docs/diagnostics.md`.
+
+use crate::span::{FileId, SourceDb, Span};
+use codespan_reporting::diagnostic as cs;
+use codespan_reporting::term;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Note,
+    Warning,
+    Error,
+}
+
+/// A place in a file that a diagnostic points at.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    pub file: FileId,
+    pub span: Span,
+    pub message: String,
+    pub primary: bool,
+}
+
+/// One problem (or remark) found in a program.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    pub code: &'static str,
+    pub message: String,
+    pub labels: Vec<Label>,
+    /// Hints and explanations, shown after the source excerpt.
+    pub notes: Vec<String>,
+}
+
+impl Diagnostic {
+    pub fn new(severity: Severity, code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            severity,
+            code,
+            message: message.into(),
+            labels: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    pub fn error(code: &'static str, message: impl Into<String>) -> Self {
+        Self::new(Severity::Error, code, message)
+    }
+
+    pub fn warning(code: &'static str, message: impl Into<String>) -> Self {
+        Self::new(Severity::Warning, code, message)
+    }
+
+    /// The main place: where the problem is.
+    pub fn primary(mut self, file: FileId, span: Span, message: impl Into<String>) -> Self {
+        self.labels.push(Label {
+            file,
+            span,
+            message: message.into(),
+            primary: true,
+        });
+        self
+    }
+
+    /// A related place (the opening `WHILE` of an unmatched `ENDWHILE`, the other label…).
+    pub fn secondary(mut self, file: FileId, span: Span, message: impl Into<String>) -> Self {
+        self.labels.push(Label {
+            file,
+            span,
+            message: message.into(),
+            primary: false,
+        });
+        self
+    }
+
+    pub fn note(mut self, note: impl Into<String>) -> Self {
+        self.notes.push(note.into());
+        self
+    }
+
+    /// `hint: …` note, the conventional suggestion of what to write instead.
+    pub fn hint(mut self, hint: impl AsRef<str>) -> Self {
+        self.notes.push(format!("hint: {}", hint.as_ref()));
+        self
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+
+    fn to_codespan(&self) -> cs::Diagnostic<FileId> {
+        let sev = match self.severity {
+            Severity::Error => cs::Severity::Error,
+            Severity::Warning => cs::Severity::Warning,
+            Severity::Note => cs::Severity::Note,
+        };
+        cs::Diagnostic::new(sev)
+            .with_code(self.code)
+            .with_message(self.message.clone())
+            .with_labels(
+                self.labels
+                    .iter()
+                    .map(|l| {
+                        let style = if l.primary {
+                            cs::LabelStyle::Primary
+                        } else {
+                            cs::LabelStyle::Secondary
+                        };
+                        cs::Label::new(style, l.file, l.span.range())
+                            .with_message(l.message.clone())
+                    })
+                    .collect(),
+            )
+            .with_notes(self.notes.clone())
+    }
+}
+
+/// True when any diagnostic is an error.
+pub fn has_errors(diags: &[Diagnostic]) -> bool {
+    diags.iter().any(Diagnostic::is_error)
+}
+
+/// Renders diagnostics as codespan-reporting text (file, line, column, excerpt, notes).
+pub fn render(db: &SourceDb, diags: &[Diagnostic]) -> String {
+    let config = term::Config::default();
+    let mut out = String::new();
+    for d in diags {
+        let mut one = String::new();
+        // Rendering can only fail on a label outside its file; fall back to a plain line
+        // rather than lose the diagnostic.
+        if term::emit_to_string(&mut one, &config, db, &d.to_codespan()).is_ok() {
+            out.push_str(&one);
+        } else {
+            out.push_str(&format!(
+                "{}[{}]: {}\n",
+                sev_word(d.severity),
+                d.code,
+                d.message
+            ));
+        }
+    }
+    out
+}
+
+fn sev_word(s: Severity) -> &'static str {
+    match s {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+        Severity::Note => "note",
+    }
+}

@@ -1,0 +1,138 @@
+//! The dialects: what is spelled differently lives here, one module per control with the
+//! same small surface (`parse`, later `emit`), and the [`Semantics`] flags they share.
+
+pub mod fanuc;
+pub mod semantics;
+pub mod sinumerik;
+
+pub use semantics::Semantics;
+
+use crate::diag::Diagnostic;
+use crate::ir::Unit;
+use crate::span::{FileId, SourceFile};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Dialect {
+    Sinumerik,
+    Fanuc,
+}
+
+impl Dialect {
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::Sinumerik => "sinumerik",
+            Dialect::Fanuc => "fanuc",
+        }
+    }
+
+    /// Parses a dialect name as the CLI accepts it (`siemens` is an alias).
+    pub fn from_name(s: &str) -> Option<Dialect> {
+        match s.to_ascii_lowercase().as_str() {
+            "sinumerik" | "siemens" => Some(Dialect::Sinumerik),
+            "fanuc" => Some(Dialect::Fanuc),
+            _ => None,
+        }
+    }
+
+    /// The dialect a file extension implies: `.mpf/.spf` Siemens, `.nc/.tap` FANUC.
+    pub fn from_extension(ext: &str) -> Option<Dialect> {
+        match ext.to_ascii_lowercase().as_str() {
+            "mpf" | "spf" => Some(Dialect::Sinumerik),
+            "nc" | "tap" | "fnc" | "cnc" => Some(Dialect::Fanuc),
+            _ => None,
+        }
+    }
+
+    /// Guesses the dialect from the text when the extension does not tell: `#` variables,
+    /// `O` numbers and `[ ]` expressions are FANUC; `R` parameters with `=`, `DEF`, `GOTOF`,
+    /// `;` comments are Siemens.
+    pub fn sniff(text: &str) -> Dialect {
+        let mut fanuc = 0i32;
+        let mut siemens = 0i32;
+        for line in text.lines().take(400) {
+            let t = line.trim_start().to_ascii_uppercase();
+            if t.starts_with('%') && t.contains("_N_") {
+                siemens += 5;
+            }
+            if t.starts_with('O') && t[1..].chars().next().is_some_and(|c| c.is_ascii_digit()) {
+                fanuc += 3;
+            }
+            fanuc += t.matches('#').count() as i32
+                + t.matches("GOTO")
+                    .filter(|_| !t.contains("GOTOF") && !t.contains("GOTOB"))
+                    .count() as i32;
+            siemens += [
+                "DEF ", "GOTOF", "GOTOB", "ENDIF", "ENDWHILE", "PROC ", "MSG(", "==", "<>",
+                "ENDFOR", "ENDLOOP",
+            ]
+            .iter()
+            .filter(|k| t.contains(*k))
+            .count() as i32
+                * 2;
+            if t.contains(';') && !t.trim_end().ends_with(';') {
+                siemens += 1;
+            }
+            if t.contains('R') && t.contains('=') && !t.contains('#') {
+                siemens += 1;
+            }
+        }
+        if fanuc > siemens {
+            Dialect::Fanuc
+        } else {
+            Dialect::Sinumerik
+        }
+    }
+}
+
+/// Options that change how programs are read.
+#[derive(Clone, Debug)]
+pub struct ParseOptions {
+    pub semantics: Semantics,
+}
+
+impl ParseOptions {
+    pub fn for_dialect(d: Dialect) -> Self {
+        ParseOptions {
+            semantics: Semantics::default_for(d),
+        }
+    }
+}
+
+/// The result of parsing one file: the unit (as much as could be read) and every
+/// diagnostic. The unit is only meaningful for later phases when there is no error.
+#[derive(Clone, Debug)]
+pub struct Parsed {
+    pub unit: Unit,
+    pub diags: Vec<Diagnostic>,
+}
+
+/// Parses one file in the given dialect.
+/// A file that is binary data is rejected as a whole (NC101) before any grammar sees it.
+pub fn parse(src: &SourceFile, file: FileId, dialect: Dialect, opts: &ParseOptions) -> Parsed {
+    if let Some(at) = crate::read::binary_garbage(&src.text) {
+        let end = src.text[at as usize..]
+            .chars()
+            .next()
+            .map_or(at, |c| at + c.len_utf8() as u32);
+        let d = Diagnostic::error("NC101", "this file is binary data, not an NC program")
+            .primary(
+                file,
+                crate::span::Span::new(at, end),
+                "control character in program text",
+            )
+            .note("NC programs are text; NUL bytes and control characters are not allowed")
+            .hint("check that the right file was given, and that it was transferred in text mode");
+        return Parsed {
+            unit: Unit {
+                dialect,
+                file,
+                programs: vec![],
+            },
+            diags: vec![d],
+        };
+    }
+    match dialect {
+        Dialect::Sinumerik => sinumerik::parse(src, file, opts),
+        Dialect::Fanuc => fanuc::parse(src, file, opts),
+    }
+}

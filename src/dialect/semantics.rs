@@ -1,0 +1,68 @@
+//! The facts where the two controls differ, as documented flags in one place. Parsers,
+//! passes and the evaluator read them from here instead of hard-coding a dialect's rule.
+
+use super::Dialect;
+
+/// How a control behaves, per dialect and machine configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Semantics {
+    /// FANUC has a vacant ("null") value distinct from 0; Siemens does not.
+    pub has_vacant: bool,
+    /// FANUC: an address value written without a decimal point is in least input
+    /// increments (`X10` = 0.010 mm on IS-B metric). Siemens: always in units.
+    pub increment_scaling: bool,
+    /// Least input increment in mm for dimensional words without a decimal point
+    /// (IS-B metric 0.001). Ignored when `increment_scaling` is false.
+    pub least_increment_mm: f64,
+    /// FANUC parameter 3401#0 DPI: calculator-type input (`X10` = 10 mm).
+    pub calculator_input: bool,
+    /// FANUC parameter 6004#0 NAT: false gives ATAN 0..360 and ASIN 270..90.
+    pub nat: bool,
+    /// Siemens relative-equality tolerance for comparisons (1e-12); 0 for exact.
+    pub cmp_tolerance: f64,
+    /// Highest R parameter number plus one (828D default 300, MD28050).
+    pub r_param_count: u32,
+    /// FANUC bracket nesting limit (5, alarm 118).
+    pub max_bracket_depth: u32,
+    /// Nested DO loops per program level (FANUC 3).
+    pub max_loop_nesting: u32,
+    /// Call nesting limit: FANUC 4 macro levels (G65/G66), Siemens 15 program levels below main.
+    pub max_call_depth: u32,
+    /// FANUC M98 nesting (independent of G65 levels).
+    pub max_subprogram_depth: u32,
+}
+
+impl Semantics {
+    /// The default profile of each control (FANUC 0i/16i-class IS-B metric mill with NAT=0;
+    /// Siemens 828D).
+    pub fn default_for(dialect: Dialect) -> Semantics {
+        match dialect {
+            Dialect::Fanuc => Semantics {
+                has_vacant: true,
+                increment_scaling: true,
+                least_increment_mm: 0.001,
+                calculator_input: false,
+                nat: false,
+                cmp_tolerance: 0.0,
+                r_param_count: 0,
+                max_bracket_depth: 5,
+                max_loop_nesting: 3,
+                max_call_depth: 4,
+                max_subprogram_depth: 10,
+            },
+            Dialect::Sinumerik => Semantics {
+                has_vacant: false,
+                increment_scaling: false,
+                least_increment_mm: 0.001,
+                calculator_input: true,
+                nat: false,
+                cmp_tolerance: 1e-12,
+                r_param_count: 300,
+                max_bracket_depth: u32::MAX,
+                max_loop_nesting: u32::MAX,
+                max_call_depth: 15,
+                max_subprogram_depth: 15,
+            },
+        }
+    }
+}

@@ -1,0 +1,59 @@
+//! The typed IR shared by both dialects: meaning, not spelling.
+//!
+//! A parsed file is a [`Unit`] of one or more [`Program`]s (FANUC files may hold several
+//! `O` programs). A program is a tree of [`Stmt`]s whose leaves are NC [`Block`]s.
+//! Every node carries a [`Span`](crate::span::Span) into the decoded source text.
+
+pub mod dump;
+pub mod expr;
+pub mod stmt;
+pub mod visit;
+
+pub use expr::*;
+pub use stmt::*;
+
+use crate::dialect::Dialect;
+use crate::span::{FileId, Span};
+
+/// Everything parsed from one file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unit {
+    pub dialect: Dialect,
+    pub file: FileId,
+    pub programs: Vec<Program>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ProgName {
+    /// FANUC `O1234`.
+    Number(u32),
+    /// Siemens `PROC NAME` or the name from a `%_N_NAME_MPF` header, upper case.
+    Name(String),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    /// `None` for a Siemens main program without header, or a FANUC file without `O`.
+    pub name: Option<ProgName>,
+    /// The block that names the program (`O1234 (TITLE)`, `PROC NAME(…)`), if any.
+    pub head: Option<BlockMeta>,
+    /// Siemens `PROC` formal parameters, in order.
+    pub params: Vec<Param>,
+    /// Siemens `PROC … SAVE`: modal G functions are restored on return.
+    pub save: bool,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+/// A Siemens `PROC` formal parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// Upper case.
+    pub name: String,
+    pub ty: DataType,
+    /// `VAR`: passed by reference.
+    pub by_ref: bool,
+    /// Array dimensions (`VAR REAL A[3]`); empty for scalars.
+    pub dims: Vec<u32>,
+    pub span: Span,
+}

@@ -1,0 +1,357 @@
+//! Blocks, their items, and the structured statements the structurer builds from them.
+
+use super::expr::{Expr, VarRef};
+use crate::span::Span;
+
+/// What every block has besides its contents: number, label, skip, comments.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BlockMeta {
+    /// The whole block, line end excluded (FANUC trailing `;` included).
+    pub span: Span,
+    /// Block skip: `/` is `Some(0)`, `/3` is `Some(3)`.
+    pub skip: Option<u8>,
+    /// Sequence number `N123` (FANUC leading N; Siemens `N…` or main block `:…`).
+    pub number: Option<SeqNo>,
+    /// Siemens jump label `NAME:`.
+    pub label: Option<Label>,
+    /// Comments in text order: FANUC `( … )` (any position), Siemens `; …` (end of line).
+    pub comments: Vec<Comment>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeqNo {
+    pub value: u32,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// Upper case (labels are case-insensitive).
+    pub name: String,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comment {
+    /// The text between the delimiters, exactly as in the file (any script, any encoding
+    /// after decoding).
+    pub text: String,
+    pub span: Span,
+}
+
+/// One NC block: metadata and the ordered items written in it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Block {
+    pub meta: BlockMeta,
+    pub items: Vec<Item>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Item {
+    pub kind: ItemKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ItemKind {
+    /// `#1=…` (FANUC), `R1=…`, `NAME=…`, `A[1,2]=…` (Siemens).
+    Assign { target: VarRef, value: Expr },
+    /// An NC address word: `G1`, `X10.`, `X=R1+2`, `T="DRILL"`, `CR=5`, `X#1`, `M#5`.
+    Word(Word),
+    /// FANUC `GOTO n`, `IF[c]GOTO n`; Siemens `GOTOF L`, `IF c GOTOB N5`.
+    Goto(Goto),
+    /// FANUC `IF[cond]THEN stmt`: exactly one macro statement, run when `cond` holds.
+    IfThen { cond: Expr, then: Box<Item> },
+    /// Siemens `CASE (e) OF 1 GOTOF A 2 GOTOF B DEFAULT GOTOF C`.
+    Case(Case),
+    /// Any subprogram or macro call (see [`CallKind`]).
+    Call(Call),
+    /// FANUC `G67`, Siemens `MCALL` with no name: cancel the modal call.
+    ModalCallOff,
+    /// FANUC `M99` (optionally `M99 Pn`: continue at Nn of the caller), Siemens `RET`, `M17`.
+    Return { to: Option<Expr> },
+    /// FANUC `M30`/`M02`, Siemens `M30`/`M2`: end of program.
+    End { code: EndCode },
+    /// Siemens `DEF type name[dims]=init, …`.
+    Def(Def),
+    /// FANUC `#3000=n(TEXT)` (shows alarm 3000+n), Siemens `SETAL(n)`.
+    Alarm {
+        style: AlarmStyle,
+        number: Expr,
+        text: Option<String>,
+    },
+    /// FANUC `#3006=n(TEXT)`: stop with a message; cycle start continues.
+    StopMessage { text: Option<String> },
+    /// Siemens `MSG("…")` (a message, no stop); `MSG()` clears (`text == None`).
+    Message { text: Option<Expr> },
+    /// Siemens `STOPRE`: preprocessing stop.
+    Stopre,
+    /// A FANUC parameter write between `G10 L50` and `G11`: `N<param> [P<axis>] [Q<bit>] R<value>`.
+    ParamWrite {
+        number: Expr,
+        axis: Option<Expr>,
+        bit: Option<Expr>,
+        value: Expr,
+    },
+    /// Siemens program-section repetition `REPEAT A [B] P=n` / `REPEATB A P=n`.
+    RepeatSection {
+        start: Label,
+        end: Option<Label>,
+        count: Option<Expr>,
+        single: bool,
+    },
+    /// Siemens frame instruction with axis words: `TRANS X10`, `ATRANS …`, `ROT Z45`, bare `TRANS`.
+    Frame { op: String, words: Vec<Word> },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EndCode {
+    M30,
+    M2,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AlarmStyle {
+    /// FANUC `#3000=n`: alarm number shown is 3000+n.
+    FanucMacro,
+    /// Siemens `SETAL(n)`: alarm number n.
+    Setal,
+}
+
+/// An address: a single letter (the common case, no allocation) or a longer name (`CR`,
+/// `AR`, `SPOS`, `ELX`, `I1`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Addr {
+    Letter(u8),
+    Name(Box<str>),
+}
+
+impl Addr {
+    pub fn as_str(&self) -> &str {
+        match self {
+            // Letters are upper-case ASCII by construction.
+            Addr::Letter(b) => std::str::from_utf8(std::slice::from_ref(b)).unwrap_or("?"),
+            Addr::Name(s) => s,
+        }
+    }
+
+    pub fn is(&self, letter: u8) -> bool {
+        *self == Addr::Letter(letter)
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Word {
+    pub addr: Addr,
+    pub value: WordValue,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum WordValue {
+    /// A constant or expression (`X10`, `X=R1*2`, `X[#1+2]`, `X#1`, `X-#1`).
+    Expr(Expr),
+    /// Siemens `X=AC(…)`: absolute for this word only.
+    Ac(Expr),
+    /// Siemens `X=IC(…)`: incremental for this word only.
+    Ic(Expr),
+}
+
+/// How a jump searches for its target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Search {
+    /// Siemens `GOTOF`: toward the program end.
+    Forward,
+    /// Siemens `GOTOB`: toward the program start.
+    Backward,
+    /// Siemens `GOTO`/`GOTOC`: forward first, then backward.
+    ForwardThenBackward,
+    /// FANUC `GOTO`: forward to the end, then from the top.
+    ForwardThenWrap,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Target {
+    /// Siemens label.
+    Label(Label),
+    /// A sequence number `N10` (Siemens) or `10` (FANUC `GOTO10`).
+    Number(SeqNo),
+    /// FANUC `GOTO#1`, `GOTO[expr]`; Siemens label held in a STRING variable.
+    Computed(Expr),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Goto {
+    pub search: Search,
+    pub target: Target,
+    /// `IF cond GOTO…`.
+    pub cond: Option<Expr>,
+    /// Siemens `GOTOC`: a missing target continues with the next block instead of an alarm.
+    pub missing_continues: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    pub selector: Expr,
+    pub arms: Vec<CaseArm>,
+    pub default: Option<Goto>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaseArm {
+    pub value: Expr,
+    pub goto: Goto,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CallKind {
+    /// FANUC `G65 P… L… args`: new local level.
+    G65,
+    /// FANUC `G66 P… L… args`: modal call after every move until `G67`.
+    G66,
+    /// FANUC `M98 P… L…` (or packed `P68003`): no new local level.
+    M98,
+    /// Siemens call by name: `CONTOUR`, `CONTOUR(5.5,,R3)`, `CYCLE81(…)`, `WORKPIECE(…)`.
+    Named,
+    /// Siemens `L123` (leading zeros significant: the name keeps them).
+    LNumber,
+    /// Siemens `MCALL NAME`: modal call after every path-motion block.
+    Mcall,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum CallTarget {
+    /// FANUC program number (`P9010`).
+    Number(u32),
+    /// Siemens program name, upper case (`CONTOUR`, `L0123`).
+    Name(String),
+    /// FANUC `P#1`.
+    Computed(Expr),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Arg {
+    /// Siemens positional argument.
+    Value(Expr),
+    /// Siemens omitted argument (`CONTOUR(5.5,,R3)`): the callee sees 0.
+    Omitted(Span),
+    /// FANUC argument letter, with the local variable it fills (spec I/II resolved by the
+    /// parser: `A` → 1, the second `I` → 7, …).
+    Letter { letter: u8, var: u8, value: Expr },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Call {
+    pub kind: CallKind,
+    pub target: CallTarget,
+    pub args: Vec<Arg>,
+    /// FANUC `L`, Siemens `P`: how many times to run the callee.
+    pub repeat: Option<Expr>,
+}
+
+/// Siemens data types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DataType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[n]`.
+    String(u16),
+    Axis,
+    Frame,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Def {
+    pub ty: DataType,
+    pub vars: Vec<DefVar>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct DefVar {
+    /// Upper case (names are case-insensitive).
+    pub name: String,
+    /// Array dimensions (`[10,3]`), empty for scalars.
+    pub dims: Vec<u32>,
+    /// Initial value(s): one for a scalar; for arrays the `SET(…)` list with omitted entries
+    /// as `None`, or `REP(v[,n])` expanded to its explicit form by the parser.
+    pub init: Option<Init>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Init {
+    Value(Expr),
+    /// `SET(a, , c)`.
+    Set(Vec<Option<Expr>>),
+    /// `REP(v)` (all) or `REP(v, n)` (first n).
+    Rep {
+        value: Expr,
+        count: Option<Expr>,
+    },
+}
+
+/// A statement of the program tree: a plain block, or a structure built from several blocks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stmt {
+    pub kind: StmtKind,
+    /// From the first block of the construct to its last.
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum StmtKind {
+    Block(Block),
+    /// Siemens `IF c … [ELSE …] ENDIF`.
+    If {
+        head: BlockMeta,
+        cond: Expr,
+        then_body: Vec<Stmt>,
+        else_part: Option<ElsePart>,
+        end: BlockMeta,
+    },
+    /// Siemens `WHILE c … ENDWHILE`.
+    While {
+        head: BlockMeta,
+        cond: Expr,
+        body: Vec<Stmt>,
+        end: BlockMeta,
+    },
+    /// Siemens `LOOP … ENDLOOP`.
+    Loop {
+        head: BlockMeta,
+        body: Vec<Stmt>,
+        end: BlockMeta,
+    },
+    /// Siemens `FOR v = a TO b … ENDFOR`.
+    For {
+        head: BlockMeta,
+        var: VarRef,
+        from: Expr,
+        to: Expr,
+        body: Vec<Stmt>,
+        end: BlockMeta,
+    },
+    /// Siemens `REPEAT … UNTIL c`.
+    Repeat {
+        head: BlockMeta,
+        body: Vec<Stmt>,
+        end: BlockMeta,
+        until: Expr,
+    },
+    /// FANUC `WHILE[c]DOm … ENDm`, or bare `DOm … ENDm` (`cond == None`: endless).
+    Do {
+        head: BlockMeta,
+        id: u8,
+        cond: Option<Expr>,
+        body: Vec<Stmt>,
+        end: BlockMeta,
+    },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElsePart {
+    pub head: BlockMeta,
+    pub body: Vec<Stmt>,
+}

@@ -1,0 +1,260 @@
+//! Walking the IR: the span-nesting check every corpus file must pass, and helpers to
+//! visit statements and expressions in source order.
+
+use super::*;
+
+/// Calls `f` on every statement of `body`, depth first, in source order.
+pub fn walk_stmts<'a>(body: &'a [Stmt], f: &mut dyn FnMut(&'a Stmt)) {
+    for s in body {
+        f(s);
+        for child in child_bodies(&s.kind) {
+            walk_stmts(child, f);
+        }
+    }
+}
+
+/// The nested statement lists of a structured statement.
+pub fn child_bodies(kind: &StmtKind) -> Vec<&[Stmt]> {
+    match kind {
+        StmtKind::Block(_) => vec![],
+        StmtKind::If {
+            then_body,
+            else_part,
+            ..
+        } => {
+            let mut v = vec![then_body.as_slice()];
+            if let Some(e) = else_part {
+                v.push(e.body.as_slice());
+            }
+            v
+        }
+        StmtKind::While { body, .. }
+        | StmtKind::Loop { body, .. }
+        | StmtKind::For { body, .. }
+        | StmtKind::Repeat { body, .. }
+        | StmtKind::Do { body, .. } => vec![body.as_slice()],
+    }
+}
+
+/// The block metadata (head, else, end) of a statement, in source order.
+pub fn metas(kind: &StmtKind) -> Vec<&BlockMeta> {
+    match kind {
+        StmtKind::Block(b) => vec![&b.meta],
+        StmtKind::If {
+            head,
+            else_part,
+            end,
+            ..
+        } => {
+            let mut v = vec![head];
+            if let Some(e) = else_part {
+                v.push(&e.head);
+            }
+            v.push(end);
+            v
+        }
+        StmtKind::While { head, end, .. }
+        | StmtKind::Loop { head, end, .. }
+        | StmtKind::For { head, end, .. }
+        | StmtKind::Repeat { head, end, .. }
+        | StmtKind::Do { head, end, .. } => vec![head, end],
+    }
+}
+
+/// Expressions written directly in an item (not those of nested items).
+pub fn item_exprs(item: &Item) -> Vec<&Expr> {
+    fn word(w: &Word) -> &Expr {
+        match &w.value {
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => e,
+        }
+    }
+    fn goto<'a>(g: &'a Goto, v: &mut Vec<&'a Expr>) {
+        if let Some(c) = &g.cond {
+            v.push(c);
+        }
+        if let Target::Computed(e) = &g.target {
+            v.push(e);
+        }
+    }
+    let mut v: Vec<&Expr> = Vec::new();
+    match &item.kind {
+        ItemKind::Assign { target, value } => {
+            v.extend(target.children());
+            v.push(value);
+        }
+        ItemKind::Word(w) => v.push(word(w)),
+        ItemKind::Goto(g) => goto(g, &mut v),
+        ItemKind::IfThen { cond, .. } => v.push(cond),
+        ItemKind::Case(c) => {
+            v.push(&c.selector);
+            for a in &c.arms {
+                v.push(&a.value);
+                goto(&a.goto, &mut v);
+            }
+            if let Some(d) = &c.default {
+                goto(d, &mut v);
+            }
+        }
+        ItemKind::Call(c) => {
+            if let CallTarget::Computed(e) = &c.target {
+                v.push(e);
+            }
+            for a in &c.args {
+                match a {
+                    Arg::Value(e) | Arg::Letter { value: e, .. } => v.push(e),
+                    Arg::Omitted(_) => {}
+                }
+            }
+            if let Some(r) = &c.repeat {
+                v.push(r);
+            }
+        }
+        ItemKind::Return { to } => v.extend(to.iter()),
+        ItemKind::Def(d) => {
+            for var in &d.vars {
+                match &var.init {
+                    Some(Init::Value(e)) => v.push(e),
+                    Some(Init::Set(list)) => v.extend(list.iter().flatten()),
+                    Some(Init::Rep { value, count }) => {
+                        v.push(value);
+                        v.extend(count.iter());
+                    }
+                    None => {}
+                }
+            }
+        }
+        ItemKind::Alarm { number, .. } => v.push(number),
+        ItemKind::Message { text } => v.extend(text.iter()),
+        ItemKind::ParamWrite {
+            number,
+            axis,
+            bit,
+            value,
+        } => {
+            v.push(number);
+            v.extend(axis.iter());
+            v.extend(bit.iter());
+            v.push(value);
+        }
+        ItemKind::RepeatSection { count, .. } => v.extend(count.iter()),
+        ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
+        ItemKind::ModalCallOff
+        | ItemKind::End { .. }
+        | ItemKind::StopMessage { .. }
+        | ItemKind::Stopre => {}
+    }
+    v
+}
+
+/// Checks that every span lies inside the file (`0..len`) and inside its parent's span.
+/// Returns one line per violation; empty means the unit is well-formed.
+pub fn check_spans(unit: &Unit, len: u32) -> Vec<String> {
+    let mut problems = Vec::new();
+    let file = Span::new(0, len);
+    for p in &unit.programs {
+        inside(&mut problems, file, p.span, "program");
+        if let Some(h) = &p.head {
+            meta_spans(&mut problems, p.span, h);
+        }
+        for prm in &p.params {
+            inside(&mut problems, p.span, prm.span, "param");
+        }
+        body_spans(&mut problems, p.span, &p.body);
+    }
+    problems
+}
+
+fn inside(problems: &mut Vec<String>, parent: Span, child: Span, what: &str) {
+    if child.lo > child.hi || !parent.contains(child) {
+        problems.push(format!(
+            "{what} span {}..{} not inside {}..{}",
+            child.lo, child.hi, parent.lo, parent.hi
+        ));
+    }
+}
+
+fn meta_spans(problems: &mut Vec<String>, parent: Span, m: &BlockMeta) {
+    inside(problems, parent, m.span, "block");
+    if let Some(n) = &m.number {
+        inside(problems, m.span, n.span, "number");
+    }
+    if let Some(l) = &m.label {
+        inside(problems, m.span, l.span, "label");
+    }
+    for c in &m.comments {
+        inside(problems, m.span, c.span, "comment");
+    }
+}
+
+fn body_spans(problems: &mut Vec<String>, parent: Span, body: &[Stmt]) {
+    for s in body {
+        inside(problems, parent, s.span, "statement");
+        for m in metas(&s.kind) {
+            meta_spans(problems, s.span, m);
+        }
+        match &s.kind {
+            StmtKind::Block(b) => {
+                for it in &b.items {
+                    item_spans(problems, b.meta.span, it);
+                }
+            }
+            StmtKind::If { head, cond, .. } | StmtKind::While { head, cond, .. } => {
+                expr_spans(problems, head.span, cond)
+            }
+            StmtKind::For {
+                head,
+                var,
+                from,
+                to,
+                ..
+            } => {
+                inside(problems, head.span, var.span, "variable");
+                expr_spans(problems, head.span, from);
+                expr_spans(problems, head.span, to);
+            }
+            StmtKind::Repeat { end, until, .. } => expr_spans(problems, end.span, until),
+            StmtKind::Do { head, cond, .. } => {
+                if let Some(c) = cond {
+                    expr_spans(problems, head.span, c);
+                }
+            }
+            StmtKind::Loop { .. } => {}
+        }
+        for child in child_bodies(&s.kind) {
+            body_spans(problems, s.span, child);
+        }
+    }
+}
+
+fn item_spans(problems: &mut Vec<String>, parent: Span, it: &Item) {
+    inside(problems, parent, it.span, "item");
+    match &it.kind {
+        ItemKind::Assign { target, .. } => inside(problems, it.span, target.span, "variable"),
+        ItemKind::Word(w) => inside(problems, it.span, w.span, "word"),
+        ItemKind::IfThen { then, .. } => item_spans(problems, it.span, then),
+        ItemKind::Def(d) => {
+            for v in &d.vars {
+                inside(problems, it.span, v.span, "declaration");
+            }
+        }
+        ItemKind::Frame { words, .. } => {
+            for w in words {
+                inside(problems, it.span, w.span, "word");
+            }
+        }
+        _ => {}
+    }
+    for e in item_exprs(it) {
+        expr_spans(problems, it.span, e);
+    }
+}
+
+fn expr_spans(problems: &mut Vec<String>, parent: Span, e: &Expr) {
+    inside(problems, parent, e.span, "expression");
+    if let ExprKind::Var(v) = &e.kind {
+        inside(problems, e.span, v.span, "variable");
+    }
+    for c in e.children() {
+        expr_spans(problems, e.span, c);
+    }
+}

@@ -1,0 +1,95 @@
+//! The `nctrans` command line: the only code that prints. Parses arguments, calls the
+//! library, renders diagnostics with codespan-reporting.
+
+use clap::{Parser, Subcommand};
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::span::SourceDb;
+use nctrans::{diag, ir};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "nctrans",
+    version,
+    about = "Translate CNC macro programs between Siemens Sinumerik and FANUC Macro B, verified by running both"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Parse a program and print its IR as a stable text dump.
+    Parse {
+        file: PathBuf,
+        /// Source dialect (default: from the extension, .mpf/.spf or .nc/.tap, else the content).
+        #[arg(long, value_parser = parse_dialect)]
+        from: Option<Dialect>,
+        #[command(flatten)]
+        input: InputOpts,
+    },
+}
+
+#[derive(clap::Args)]
+struct InputOpts {
+    /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …); detected when omitted.
+    #[arg(long, value_parser = parse_encoding)]
+    encoding: Option<&'static encoding_rs::Encoding>,
+}
+
+fn parse_dialect(s: &str) -> Result<Dialect, String> {
+    Dialect::from_name(s)
+        .ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
+}
+
+fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
+    encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| {
+        format!("unknown encoding '{s}' (try utf-8, gbk, shift_jis, windows-1250, iso-8859-1)")
+    })
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Parse { file, from, input } => cmd_parse(&file, from, &input),
+    }
+}
+
+fn read_file(path: &PathBuf) -> Result<Vec<u8>, ExitCode> {
+    std::fs::read(path).map_err(|e| {
+        eprintln!("error: cannot read {}: {e}", path.display());
+        ExitCode::from(2)
+    })
+}
+
+fn cmd_parse(path: &PathBuf, from: Option<Dialect>, input: &InputOpts) -> ExitCode {
+    let bytes = match read_file(path) {
+        Ok(b) => b,
+        Err(code) => return code,
+    };
+    let mut db = SourceDb::new();
+    let name = path.display().to_string();
+    let loaded = nctrans::load(&mut db, &name, &bytes, input.encoding);
+    let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
+    let parsed = nctrans::parse(
+        &db,
+        loaded.file,
+        dialect,
+        &ParseOptions::for_dialect(dialect),
+    );
+    eprint!("{}", diag::render(&db, &parsed.diags));
+    if diag::has_errors(&parsed.diags) {
+        return ExitCode::from(1);
+    }
+    let mut out = std::io::stdout().lock();
+    if out
+        .write_all(ir::dump::dump(&parsed.unit).as_bytes())
+        .is_err()
+    {
+        return ExitCode::from(2);
+    }
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,457 @@
+//! Reading: bytes to text (any encoding, losslessly), text to blocks (any line end), and
+//! the normalisation of full-width and look-alike characters with warnings that point at
+//! the original text.
+
+use crate::diag::Diagnostic;
+use crate::span::{FileId, Span};
+use encoding_rs::Encoding;
+use std::borrow::Cow;
+
+/// The line ending a file uses, remembered so output can match it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineEnding {
+    Lf,
+    CrLf,
+    Cr,
+}
+
+impl LineEnding {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LineEnding::Lf => "\n",
+            LineEnding::CrLf => "\r\n",
+            LineEnding::Cr => "\r",
+        }
+    }
+}
+
+/// A decoded file.
+#[derive(Clone, Debug)]
+pub struct Decoded {
+    pub text: String,
+    pub encoding: &'static Encoding,
+    /// The file started with a UTF-8 byte-order mark (dropped from `text`).
+    pub bom: bool,
+    pub line_ending: LineEnding,
+}
+
+/// Decodes a file. `forced` is `--encoding`; otherwise UTF-8 when the bytes are valid
+/// UTF-8, else the legacy encoding chardetng guesses (GBK, Shift-JIS, windows-1250, …).
+/// If the guess cannot decode every byte, windows-1252 is used, which maps every byte to a
+/// character and back, so no comment byte is ever lost.
+pub fn decode(bytes: &[u8], forced: Option<&'static Encoding>) -> Decoded {
+    let (bom, body) = match bytes.strip_prefix(b"\xEF\xBB\xBF") {
+        Some(rest) => (true, rest),
+        None => (false, bytes),
+    };
+    let encoding = match forced {
+        Some(e) => e,
+        None if std::str::from_utf8(body).is_ok() => encoding_rs::UTF_8,
+        None => {
+            let mut det = chardetng::EncodingDetector::new(chardetng::Iso2022JpDetection::Deny);
+            det.feed(body, true);
+            det.guess(None, chardetng::Utf8Detection::Deny)
+        }
+    };
+    let (text, encoding) = match encoding.decode_without_bom_handling_and_without_replacement(body)
+    {
+        Some(t) if round_trips(&t, encoding, body) => (t.into_owned(), encoding),
+        _ => {
+            let (t, _) = encoding_rs::WINDOWS_1252.decode_without_bom_handling(body);
+            (t.into_owned(), encoding_rs::WINDOWS_1252)
+        }
+    };
+    let line_ending = detect_line_ending(&text);
+    Decoded {
+        text,
+        encoding,
+        bom,
+        line_ending,
+    }
+}
+
+/// Some legacy codecs decode two byte sequences to the same character; only accept an
+/// encoding that gives back the exact bytes.
+fn round_trips(text: &str, enc: &'static Encoding, bytes: &[u8]) -> bool {
+    if enc == encoding_rs::UTF_8 {
+        return true;
+    }
+    let (back, _, unmappable) = enc.encode(text);
+    !unmappable && back.as_ref() == bytes
+}
+
+/// Encodes text for output in the file's original encoding.
+pub fn encode(text: &str, enc: &'static Encoding, bom: bool) -> Vec<u8> {
+    let (bytes, _, _) = enc.encode(text);
+    let mut out = Vec::with_capacity(bytes.len() + 3);
+    if bom && enc == encoding_rs::UTF_8 {
+        out.extend_from_slice(b"\xEF\xBB\xBF");
+    }
+    out.extend_from_slice(&bytes);
+    out
+}
+
+/// The line ending used first in the text (LF when there is none).
+pub fn detect_line_ending(text: &str) -> LineEnding {
+    let b = text.as_bytes();
+    match b.iter().position(|&c| c == b'\n' || c == b'\r') {
+        Some(i) if b[i] == b'\r' && b.get(i + 1) == Some(&b'\n') => LineEnding::CrLf,
+        Some(i) if b[i] == b'\r' => LineEnding::Cr,
+        _ => LineEnding::Lf,
+    }
+}
+
+/// Whether the text looks like binary data rather than a program (NUL bytes, or many
+/// control characters). Returns the offset of the first offending character.
+pub fn binary_garbage(text: &str) -> Option<u32> {
+    let mut controls = 0usize;
+    let mut first = None;
+    for (i, c) in text.char_indices() {
+        let bad =
+            c == '\0' || (c.is_control() && !matches!(c, '\n' | '\r' | '\t' | '\x0c' | '\x1a'));
+        if bad {
+            controls += 1;
+            first.get_or_insert(i as u32);
+            if c == '\0' {
+                return first;
+            }
+        }
+    }
+    let chars = text.len().max(1);
+    if controls * 20 > chars || controls > 64 {
+        first
+    } else {
+        None
+    }
+}
+
+/// One physical line of the file: a block before dialect-specific splitting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RawBlock<'a> {
+    /// The line without its line end.
+    pub text: &'a str,
+    /// Byte offset of `text` in the file.
+    pub start: u32,
+    /// 1-based line number.
+    pub line: u32,
+}
+
+/// Splits text into lines on LF, CR LF and lone CR.
+pub fn blocks(text: &str) -> Blocks<'_> {
+    Blocks {
+        text,
+        pos: 0,
+        line: 0,
+    }
+}
+
+pub struct Blocks<'a> {
+    text: &'a str,
+    pos: usize,
+    line: u32,
+}
+
+impl<'a> Iterator for Blocks<'a> {
+    type Item = RawBlock<'a>;
+
+    fn next(&mut self) -> Option<RawBlock<'a>> {
+        if self.pos >= self.text.len() {
+            return None;
+        }
+        let rest = &self.text.as_bytes()[self.pos..];
+        let end = rest
+            .iter()
+            .position(|&c| c == b'\n' || c == b'\r')
+            .unwrap_or(rest.len());
+        let start = self.pos;
+        let mut next = start + end;
+        if next < self.text.len() {
+            next += if rest[end] == b'\r' && rest.get(end + 1) == Some(&b'\n') {
+                2
+            } else {
+                1
+            };
+        }
+        self.pos = next;
+        self.line += 1;
+        Some(RawBlock {
+            text: &self.text[start..start + end],
+            start: start as u32,
+            line: self.line,
+        })
+    }
+}
+
+/// How a dialect writes comments, so normalisation leaves comment text untouched.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CommentStyle {
+    /// Siemens: `;` to the end of the line; `"…"` strings are also left alone.
+    Semicolon,
+    /// FANUC: `( … )`.
+    Parens,
+}
+
+/// A block ready for the grammar: ASCII-normalised text and the way back to the original.
+#[derive(Clone, Debug)]
+pub struct Normalised<'a> {
+    pub text: Cow<'a, str>,
+    /// Byte offset in the file of the start of the raw block.
+    pub start: u32,
+    /// For a changed block: the file offset of every byte of `text` (plus one past the end).
+    map: Option<Vec<u32>>,
+    /// Full-width characters replaced, as file spans (merged runs).
+    pub full_width: Vec<Span>,
+    /// Letter O read as digit 0 in a G word (`GO`, `G0O`), as file spans.
+    pub letter_o: Vec<Span>,
+}
+
+impl Normalised<'_> {
+    /// File offset of byte `pos` of the normalised text.
+    pub fn offset(&self, pos: usize) -> u32 {
+        match &self.map {
+            Some(m) => m[pos.min(m.len() - 1)],
+            None => self.start + pos as u32,
+        }
+    }
+
+    /// File span of the normalised byte range `lo..hi`.
+    pub fn span(&self, lo: usize, hi: usize) -> Span {
+        if hi > lo {
+            // The end is one past the last byte: map the last byte and step over it, so a
+            // full-width character ends where it ends in the file.
+            let last = self.offset(hi - 1);
+            let width = match &self.map {
+                Some(m) => m.get(hi).copied().unwrap_or(last + 1).max(last + 1) - last,
+                None => 1,
+            };
+            Span::new(self.offset(lo), last + width)
+        } else {
+            let o = self.offset(lo);
+            Span::new(o, o)
+        }
+    }
+
+    /// Warnings for what normalisation changed (NC110 full-width, NC111 letter O).
+    pub fn warnings(&self, file: FileId) -> Vec<Diagnostic> {
+        let mut v = Vec::new();
+        if let (Some(first), Some(last)) = (self.full_width.first(), self.full_width.last()) {
+            v.push(
+                Diagnostic::warning("NC110", "full-width characters read as ASCII")
+                    .primary(file, first.to(*last), "written in full-width form")
+                    .note("no control accepts full-width characters; they were read as their ASCII forms")
+                    .hint("retype the block in ASCII (half-width) characters"),
+            );
+        }
+        for s in &self.letter_o {
+            v.push(
+                Diagnostic::warning("NC111", "letter O in a G word read as digit 0")
+                    .primary(file, *s, "letter O here")
+                    .hint("write the digit zero: G0, G00"),
+            );
+        }
+        v
+    }
+}
+
+/// Normalises one block: full-width ASCII forms (U+FF01..U+FF5E) and the ideographic space
+/// become ASCII outside comments and strings; a letter O inside a G word becomes 0.
+pub fn normalise<'a>(raw: &RawBlock<'a>, style: CommentStyle) -> Normalised<'a> {
+    let needs_width = raw
+        .text
+        .chars()
+        .any(|c| ('\u{FF01}'..='\u{FF5E}').contains(&c) || c == '\u{3000}');
+    let mut n = Normalised {
+        text: Cow::Borrowed(raw.text),
+        start: raw.start,
+        map: None,
+        full_width: vec![],
+        letter_o: vec![],
+    };
+    if needs_width {
+        let mut out = String::with_capacity(raw.text.len());
+        let mut map = Vec::with_capacity(raw.text.len() + 1);
+        let mut state = Zone::Code;
+        for (i, c) in raw.text.char_indices() {
+            let off = raw.start + i as u32;
+            let ascii = match c {
+                '\u{FF01}'..='\u{FF5E}' => char::from_u32(c as u32 - 0xFEE0),
+                '\u{3000}' => Some(' '),
+                _ => None,
+            };
+            // Delimiters count in either form; contents of comments and strings stay as written.
+            let seen = ascii.unwrap_or(c);
+            let convert = match state {
+                Zone::Code => true,
+                Zone::Paren => seen == ')',
+                Zone::Quote => seen == '"',
+                Zone::Line => false,
+            };
+            let ch = match (convert, ascii) {
+                (true, Some(a)) => {
+                    push_merged(&mut n.full_width, Span::new(off, off + c.len_utf8() as u32));
+                    a
+                }
+                _ => c,
+            };
+            state = next_zone(state, ch, convert, style);
+            for _ in 0..ch.len_utf8() {
+                map.push(off);
+            }
+            out.push(ch);
+        }
+        map.push(raw.start + raw.text.len() as u32);
+        if !n.full_width.is_empty() {
+            n.text = Cow::Owned(out);
+            n.map = Some(map);
+        }
+    }
+    fix_letter_o(&mut n, style);
+    n
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Zone {
+    Code,
+    Paren,
+    Quote,
+    Line,
+}
+
+fn next_zone(state: Zone, ch: char, converted: bool, style: CommentStyle) -> Zone {
+    match (state, ch, style) {
+        (Zone::Code, '(', CommentStyle::Parens) => Zone::Paren,
+        (Zone::Code, ';', CommentStyle::Semicolon) => Zone::Line,
+        (Zone::Code, '"', CommentStyle::Semicolon) => Zone::Quote,
+        (Zone::Paren, ')', _) if converted => Zone::Code,
+        (Zone::Quote, '"', _) if converted => Zone::Code,
+        (s, _, _) => s,
+    }
+}
+
+fn push_merged(spans: &mut Vec<Span>, s: Span) {
+    match spans.last_mut() {
+        Some(last) if last.hi == s.lo => last.hi = s.hi,
+        _ => spans.push(s),
+    }
+}
+
+/// `GO X…`, `GO1`, `G0O`: a G followed by digits and letter O's (at least one O), standing
+/// alone as a word. `GOTO`, `GOTOF` and names like `GOAL` are left alone (a letter follows).
+fn fix_letter_o(n: &mut Normalised<'_>, style: CommentStyle) {
+    let bytes = n.text.as_bytes();
+    let mut hits: Vec<(usize, usize)> = Vec::new();
+    let mut zone = Zone::Code;
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i];
+        if zone != Zone::Code {
+            zone = next_zone(zone, c as char, true, style);
+            i += 1;
+            continue;
+        }
+        let prev_word = i > 0
+            && (bytes[i - 1].is_ascii_alphanumeric()
+                || bytes[i - 1] == b'_'
+                || bytes[i - 1] == b'$');
+        if (c == b'G' || c == b'g') && !prev_word {
+            let mut j = i + 1;
+            let mut has_o = false;
+            while j < bytes.len()
+                && (bytes[j].is_ascii_digit() || bytes[j] == b'O' || bytes[j] == b'o')
+            {
+                has_o |= !bytes[j].is_ascii_digit();
+                j += 1;
+            }
+            let ends = j == bytes.len() || !(bytes[j].is_ascii_alphabetic() || bytes[j] == b'_');
+            if has_o && ends {
+                hits.push((i + 1, j));
+            }
+            i = j.max(i + 1);
+            continue;
+        }
+        zone = next_zone(zone, c as char, true, style);
+        i += 1;
+    }
+    if hits.is_empty() {
+        return;
+    }
+    let mut text = n.text.to_string().into_bytes();
+    for &(lo, hi) in &hits {
+        for b in &mut text[lo..hi] {
+            if *b == b'O' || *b == b'o' {
+                *b = b'0';
+            }
+        }
+        let s = n.span(lo, hi);
+        n.letter_o.push(s);
+    }
+    // Only ASCII letters were replaced by ASCII digits: still valid UTF-8.
+    n.text = Cow::Owned(String::from_utf8(text).unwrap_or_default());
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn raw(s: &str) -> RawBlock<'_> {
+        RawBlock {
+            text: s,
+            start: 10,
+            line: 1,
+        }
+    }
+
+    #[test]
+    fn splits_every_line_end() {
+        let v: Vec<_> = blocks("a\r\nb\rc\n\nd")
+            .map(|b| (b.text, b.start, b.line))
+            .collect();
+        assert_eq!(
+            v,
+            vec![
+                ("a", 0, 1),
+                ("b", 3, 2),
+                ("c", 5, 3),
+                ("", 7, 4),
+                ("d", 8, 5)
+            ]
+        );
+    }
+
+    #[test]
+    fn full_width_is_normalised_with_spans_into_the_original() {
+        let n = normalise(&raw("Ｎ１ Ｇ０１ Ｘ９０．０"), CommentStyle::Semicolon);
+        assert_eq!(n.text, "N1 G01 X90.0");
+        assert_eq!(n.span(3, 6), Span::new(10 + 7, 10 + 16));
+        assert_eq!(n.full_width.len(), 3);
+    }
+
+    #[test]
+    fn comments_keep_full_width_text() {
+        let n = normalise(&raw("G1 X1 ；注释，（一）"), CommentStyle::Semicolon);
+        assert_eq!(n.text, "G1 X1 ;注释，（一）");
+        let n = normalise(&raw("G1（注释，Ａ）X1"), CommentStyle::Parens);
+        assert_eq!(n.text, "G1(注释，Ａ)X1");
+    }
+
+    #[test]
+    fn letter_o_in_g_word() {
+        let n = normalise(&raw("GO X[#1+#2]"), CommentStyle::Parens);
+        assert_eq!(n.text, "G0 X[#1+#2]");
+        assert_eq!(n.letter_o, vec![Span::new(11, 12)]);
+        let n = normalise(&raw("GOTO10 (GO HOME)"), CommentStyle::Parens);
+        assert_eq!(n.text, "GOTO10 (GO HOME)");
+        assert!(n.letter_o.is_empty());
+    }
+
+    #[test]
+    fn legacy_encodings_round_trip() {
+        let (gbk, _, _) = encoding_rs::GBK.encode("N10 G1 X1 ;加工中心程序");
+        let d = decode(&gbk, None);
+        assert!(d.text.contains("加工"), "{}", d.text);
+        assert_eq!(encode(&d.text, d.encoding, d.bom), gbk.as_ref());
+        let latin = b"N10 X1 ; \xe9t\xe9 \x81\x8d";
+        let d = decode(latin, None);
+        assert_eq!(encode(&d.text, d.encoding, d.bom), latin);
+    }
+}
