@@ -41,14 +41,12 @@ struct InputOpts {
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
-    Dialect::from_name(s)
-        .ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
+    Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
 }
 
 fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
-    encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| {
-        format!("unknown encoding '{s}' (try utf-8, gbk, shift_jis, windows-1250, iso-8859-1)")
-    })
+    encoding_rs::Encoding::for_label(s.as_bytes())
+        .ok_or_else(|| format!("unknown encoding '{s}' (try utf-8, gbk, shift_jis, windows-1250, iso-8859-1)"))
 }
 
 fn main() -> ExitCode {
@@ -74,21 +72,13 @@ fn cmd_parse(path: &PathBuf, from: Option<Dialect>, input: &InputOpts) -> ExitCo
     let name = path.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(
-        &db,
-        loaded.file,
-        dialect,
-        &ParseOptions::for_dialect(dialect),
-    );
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return ExitCode::from(1);
     }
     let mut out = std::io::stdout().lock();
-    if out
-        .write_all(ir::dump::dump(&parsed.unit).as_bytes())
-        .is_err()
-    {
+    if out.write_all(ir::dump::dump(&parsed.unit).as_bytes()).is_err() {
         return ExitCode::from(2);
     }
     ExitCode::SUCCESS
