@@ -235,3 +235,13 @@ fn expr_spans(problems: &mut Vec<String>, parent: Span, e: &Expr) {
         expr_spans(problems, e.span, c);
     }
 }
+
+/// Number of source blocks a unit holds (structure heads, ELSE and ends count as blocks).
+pub fn count_blocks(unit: &Unit) -> usize {
+    let mut n = 0;
+    for p in &unit.programs {
+        n += usize::from(p.head.is_some());
+        walk_stmts(&p.body, &mut |s| n += metas(&s.kind).len());
+    }
+    n
+}
