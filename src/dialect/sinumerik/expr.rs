@@ -53,48 +53,91 @@ fn combine(op: Op, a: Expr, b: Expr) -> Expr {
     Expr::new(kind, span)
 }
 
-fn reduce(vals: &mut Vec<Expr>, ops: &mut Vec<(Op, u8)>) {
-    if let (Some((op, _)), Some(b), Some(a)) = (ops.pop(), vals.pop(), vals.pop()) {
-        vals.push(combine(op, a, b));
+/// The deepest expression tree the reader builds. Later phases walk (and `Drop` frees) the
+/// tree recursively, so its depth is bounded here, where it is built.
+pub const MAX_EXPR_DEPTH: u32 = 256;
+
+fn reduce(vals: &mut Vec<(Expr, u32)>, ops: &mut Vec<(Op, u8)>) -> u32 {
+    if let (Some((op, _)), Some((b, db)), Some((a, da))) = (ops.pop(), vals.pop(), vals.pop()) {
+        let d = 1 + da.max(db);
+        vals.push((combine(op, a, b), d));
+        return d;
     }
+    0
+}
+
+/// Depth of an expression tree, without recursion.
+fn depth(e: &Expr) -> u32 {
+    let mut max = 0;
+    let mut stack = vec![(e, 1u32)];
+    while let Some((x, d)) = stack.pop() {
+        max = max.max(d);
+        for c in x.children() {
+            stack.push((c, d + 1));
+        }
+    }
+    max
 }
 
 impl Lower<'_, '_> {
     /// An `expr` pair → IR, by operator precedence (shunting-yard, left-associative).
     pub fn expr(&mut self, p: Pair<'_, Rule>) -> Expr {
         let whole = self.span(&p);
-        let mut vals: Vec<Expr> = Vec::new();
+        let mut vals: Vec<(Expr, u32)> = Vec::new();
         let mut ops: Vec<(Op, u8)> = Vec::new();
-        let mut prefixes: Vec<(UnOp, Option<u32>)> = Vec::new();
+        let mut prefixes: Vec<(UnOp, u32)> = Vec::new();
+        let mut deepest = 0;
         for q in p.into_inner() {
             let rule = q.as_rule();
             if let Some((op, prec)) = infix(rule) {
                 while ops.last().is_some_and(|&(_, top)| top >= prec) {
-                    reduce(&mut vals, &mut ops);
+                    deepest = deepest.max(reduce(&mut vals, &mut ops));
                 }
                 ops.push((op, prec));
-                continue;
-            }
-            match rule {
-                Rule::op_not => prefixes.push((UnOp::Not, Some(self.span(&q).lo))),
-                Rule::op_bnot => prefixes.push((UnOp::BitNot, Some(self.span(&q).lo))),
-                Rule::op_neg => prefixes.push((UnOp::Neg, Some(self.span(&q).lo))),
-                Rule::op_plus => {}
-                _ => {
-                    let mut e = self.operand(q);
-                    // Innermost prefix first: `NOT -x` is `NOT (-x)`.
-                    while let Some((op, lo)) = prefixes.pop() {
-                        let span = Span::new(lo.unwrap_or(e.span.lo), e.span.hi);
-                        e = Expr::new(ExprKind::Unary(op, Box::new(e)), span);
+            } else {
+                match rule {
+                    Rule::op_not => prefixes.push((UnOp::Not, self.span(&q).lo)),
+                    Rule::op_bnot => prefixes.push((UnOp::BitNot, self.span(&q).lo)),
+                    Rule::op_neg => prefixes.push((UnOp::Neg, self.span(&q).lo)),
+                    Rule::op_plus => {}
+                    _ => {
+                        let mut e = self.operand(q);
+                        let mut d = depth(&e);
+                        // Innermost prefix first: `NOT -x` is `NOT (-x)`.
+                        while let Some((op, lo)) = prefixes.pop() {
+                            if d > MAX_EXPR_DEPTH {
+                                break;
+                            }
+                            let span = Span::new(lo, e.span.hi);
+                            e = Expr::new(ExprKind::Unary(op, Box::new(e)), span);
+                            d += 1;
+                        }
+                        deepest = deepest.max(d);
+                        vals.push((e, d));
                     }
-                    vals.push(e);
                 }
+            }
+            if deepest > MAX_EXPR_DEPTH || vals.len() > MAX_EXPR_DEPTH as usize {
+                self.error(
+                    Diagnostic::error("NC130", format!("expression nested deeper than {MAX_EXPR_DEPTH} operations"))
+                        .primary(self.file(), whole, "too long to evaluate in one expression")
+                        .hint("split the calculation into several assignments with intermediate R parameters"),
+                );
+                return Expr::num(0.0, false, whole);
             }
         }
         while !ops.is_empty() {
-            reduce(&mut vals, &mut ops);
+            deepest = deepest.max(reduce(&mut vals, &mut ops));
         }
-        vals.pop().unwrap_or_else(|| Expr::num(0.0, false, whole))
+        if deepest > MAX_EXPR_DEPTH {
+            self.error(
+                Diagnostic::error("NC130", format!("expression nested deeper than {MAX_EXPR_DEPTH} operations"))
+                    .primary(self.file(), whole, "too long to evaluate in one expression")
+                    .hint("split the calculation into several assignments with intermediate R parameters"),
+            );
+            return Expr::num(0.0, false, whole);
+        }
+        vals.pop().map_or_else(|| Expr::num(0.0, false, whole), |(e, _)| e)
     }
 
     /// One operand pair → IR.

@@ -69,7 +69,7 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
         match SinumerikParser::parse(Rule::block, text) {
             Ok(mut pairs) => {
                 if let Some(block) = pairs.next() {
-                    let mut lower = Lower { norm: &norm, st: &mut st, failed: false };
+                    let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
                     if let Some(line) = lower.block(block, whole) {
                         lines.push(line);
                     }
@@ -79,7 +79,7 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
                 st.diags.push(errors::syntax(&e, &norm, file));
                 // A broken IF/WHILE/…/ENDIF line still opens or closes its structure, so
                 // that one bad block does not also give an "END without opener" error.
-                if let Some(kind) = structure::keyword_only(text) {
+                if let Some(kind) = structure::keyword_only(text, whole) {
                     lines.push(structure::Line {
                         meta: BlockMeta { span: whole, ..Default::default() },
                         kind,
@@ -123,7 +123,7 @@ fn block_dump(text: &str, fast_path: bool) -> Option<String> {
     } else {
         let mut st = FileState { file: 0, diags: Vec::new(), r_count: 300, declared: Default::default() };
         let mut pairs = SinumerikParser::parse(Rule::block, &norm.text).ok()?;
-        let mut lower = Lower { norm: &norm, st: &mut st, failed: false };
+        let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
         let line = lower.block(pairs.next()?, whole)?;
         if !st.diags.is_empty() {
             return None;

@@ -26,6 +26,8 @@ pub struct Lower<'n, 'a> {
     pub st: &'n mut FileState,
     /// An error was already reported for this block (one bad block, one error).
     pub failed: bool,
+    /// The whole block: the span of stand-in values after an error.
+    pub whole: Span,
 }
 
 impl Lower<'_, '_> {
@@ -137,7 +139,7 @@ impl Lower<'_, '_> {
             let e = it.find(|q| q.as_rule() == Rule::expr);
             match e {
                 Some(e) => me.expr(e),
-                None => Expr::num(0.0, false, Span::default()),
+                None => Expr::num(0.0, false, me.whole),
             }
         };
         match rule {
@@ -165,7 +167,7 @@ impl Lower<'_, '_> {
             Rule::for_line => {
                 let var = match inner.find(|q| q.as_rule() == Rule::for_var).and_then(|v| v.into_inner().next()) {
                     Some(v) => self.simple_var(&v),
-                    None => VarRef { kind: VarKind::R(0), span: Span::default() },
+                    None => VarRef { kind: VarKind::R(0), span: self.whole },
                 };
                 let from = next_expr(self, &mut inner);
                 let to = next_expr(self, &mut inner);
@@ -174,7 +176,7 @@ impl Lower<'_, '_> {
             Rule::proc_stmt => LineKind::Proc(self.proc_head(inner)),
             Rule::repeat_section | Rule::case_stmt | Rule::def_stmt => {
                 // A whole-block statement that is still an ordinary item.
-                let item = self.item_of(rule, inner, Span::default());
+                let item = self.item_of(rule, inner);
                 LineKind::Plain(item.into_iter().collect())
             }
             Rule::items => LineKind::Plain(self.items(inner)),
@@ -182,7 +184,7 @@ impl Lower<'_, '_> {
         }
     }
 
-    fn item_of(&mut self, rule: Rule, inner: pest::iterators::Pairs<'_, Rule>, _at: Span) -> Option<Item> {
+    fn item_of(&mut self, rule: Rule, inner: pest::iterators::Pairs<'_, Rule>) -> Option<Item> {
         // Re-wrap: the span of a whole-block statement is the span of its children.
         let pairs: Vec<Pair<'_, Rule>> = inner.collect();
         let (lo, hi) = match (pairs.first(), pairs.last()) {
@@ -451,7 +453,7 @@ impl Lower<'_, '_> {
                     Target::Label(Label { name, span })
                 }
             }
-            None => Target::Label(Label { name: String::new(), span: Span::default() }),
+            None => Target::Label(Label { name: String::new(), span: self.whole }),
         };
         Goto { search, target, cond: None, missing_continues }
     }

@@ -104,7 +104,14 @@ impl Open {
 
     /// The finished statement, closed by `end` (and `until` for REPEAT).
     fn close(self, end: BlockMeta, until: Option<Expr>) -> Stmt {
-        let span = self.head.span.to(end.span);
+        // Also covers the body when an unclosed structure is closed at its own head.
+        let mut span = self.head.span.to(end.span);
+        for st in self.body.last().into_iter().chain(self.else_part.as_ref().and_then(|e| e.body.last())) {
+            span = span.to(st.span);
+        }
+        if let Some(e) = &self.else_part {
+            span = span.to(e.head.span);
+        }
         let zero = || Expr::num(0.0, false, self.head.span);
         let kind = match self.kind {
             Kind::If => StmtKind::If(Box::new(IfStmt {
@@ -139,7 +146,7 @@ impl Open {
 
 /// For a block the grammar rejected: the structure keyword it starts with, as a stand-in line
 /// (conditions replaced by 0). `IF … GOTO…` and `REPEAT label` are not structures.
-pub fn keyword_only(text: &str) -> Option<LineKind> {
+pub fn keyword_only(text: &str, whole: Span) -> Option<LineKind> {
     let upper = text.trim_start_matches([' ', '\t', '/']).to_ascii_uppercase();
     let mut t = upper.as_str();
     // Skip a block number; a label on a control block is its own error.
@@ -151,12 +158,12 @@ pub fn keyword_only(text: &str) -> Option<LineKind> {
     }
     let word: String = t.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
     let rest = t[word.len()..].trim_start();
-    let zero = || Expr::num(0.0, false, Span::default());
+    let zero = || Expr::num(0.0, false, whole);
     Some(match word.as_str() {
         "IF" if !upper.contains("GOTO") => LineKind::If(zero()),
         "WHILE" => LineKind::While(zero()),
         "LOOP" => LineKind::Loop,
-        "FOR" => LineKind::For { var: VarRef { kind: VarKind::R(0), span: Span::default() }, from: zero(), to: zero() },
+        "FOR" => LineKind::For { var: VarRef { kind: VarKind::R(0), span: whole }, from: zero(), to: zero() },
         "REPEAT" if rest.is_empty() || rest.starts_with(';') => LineKind::Repeat,
         "ENDIF" => LineKind::EndIf,
         "ELSE" => LineKind::Else,
