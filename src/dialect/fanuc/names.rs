@@ -105,6 +105,10 @@ pub fn hint_for(found: Option<char>, expected: &[&str], in_brackets: bool) -> (S
             "`=` is not a comparison".into(),
             "compare with EQ, e.g. `IF[#1 EQ 5]GOTO10`".into(),
         ),
+        Some(')') => (
+            "`)` without an open comment".into(),
+            "comments do not nest: `(A (B) C)` ends at the first `)`; remove the inner parentheses".into(),
+        ),
         Some(c) if !c.is_ascii() => (
             "not a FANUC character".into(),
             "put text in a comment `( … )`; outside comments a block holds only address words and macro statements".into(),

@@ -375,7 +375,12 @@ fn grammar_error(seg: &Seg<'_>, e: &pest::error::Error<Rule>) -> Diagnostic {
     let found = seg.text[pos..].chars().next();
     let after_hash = seg.text[..pos].trim_end().ends_with('#');
     let mut words: Vec<&'static str> = Vec::new();
-    for r in &expected {
+    // Between parts every block-level alternative is possible; say so in one phrase.
+    if expected.contains(&Rule::EOI) {
+        words.push("another address word, a macro statement or the end of the block");
+    }
+    let per_rule = if words.is_empty() { &expected[..] } else { &[] };
+    for r in per_rule {
         let w = names::describe(*r, after_hash);
         if !words.contains(&w) {
             words.push(w);
@@ -391,10 +396,34 @@ fn grammar_error(seg: &Seg<'_>, e: &pest::error::Error<Rule>) -> Diagnostic {
     };
     let width = found.map_or(0, char::len_utf8);
     let in_brackets = seg.text[..pos].matches('[').count() > seg.text[..pos].matches(']').count();
-    let (label, hint) = names::hint_for(found, &words, in_brackets);
-    Diagnostic::error("NC160", format!("expected {what}, found {found_text}"))
+    let outside = rel_op_outside(seg.text, pos, in_brackets);
+    let message = match &outside {
+        Some(op) => format!("comparison `{op}` outside brackets"),
+        None => format!("expected {what}, found {found_text}"),
+    };
+    let (label, hint) = match outside {
+        Some(op) => (
+            format!("`{op}` outside brackets"),
+            format!(
+                "a comparison is written in brackets and used only by IF/WHILE: `IF[#1 {op} 3]GOTO10`"
+            ),
+        ),
+        None => names::hint_for(found, &words, in_brackets),
+    };
+    Diagnostic::error("NC160", message)
         .primary(seg.file, seg.span(pos, pos + width), label)
         .hint(hint)
+}
+
+/// `#1=#2 EQ 3`: the grammar read `E` as an address; the real problem is the comparison.
+fn rel_op_outside(text: &str, pos: usize, in_brackets: bool) -> Option<String> {
+    if in_brackets || pos == 0 {
+        return None;
+    }
+    let two = text.get(pos - 1..pos + 1)?.to_ascii_uppercase();
+    ["EQ", "NE", "GT", "GE", "LT", "LE"]
+        .contains(&two.as_str())
+        .then_some(two)
 }
 
 fn join_or(words: &[&str]) -> String {

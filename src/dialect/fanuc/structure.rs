@@ -154,17 +154,27 @@ pub fn build(
                         push(&mut stack, &mut top, plain(meta));
                         continue;
                     }
-                    let mut d = Diagnostic::error("NC234", format!("END{id} without DO{id}"))
-                        .primary(file, id_span, format!("no open DO{id}"));
-                    d = match stack.last() {
-                        Some(o) => d
-                            .secondary(file, o.id_span, format!("the open loop is DO{}", o.id))
-                            .hint(format!("END{id} must match the innermost open DO; write END{}", o.id)),
-                        None => d.hint(format!(
-                            "add `WHILE[…]DO{id}` (or `DO{id}`) before this block, or delete END{id}"
-                        )),
-                    };
-                    diags.push(d);
+                    if let Some(o) = stack.pop() {
+                        // END2 while DO1 is the open loop: report once and let it close DO1.
+                        diags.push(
+                            Diagnostic::error("NC231", format!("END{id} closes DO{}", o.id))
+                                .primary(file, id_span, format!("END{id} here"))
+                                .secondary(file, o.id_span, format!("the open loop is DO{}", o.id))
+                                .note("END must carry the number of the innermost open DO")
+                                .hint(format!("write END{}", o.id)),
+                        );
+                        let s = close(o, meta);
+                        push(&mut stack, &mut top, s);
+                        continue;
+                    }
+                    diags.push(
+                        Diagnostic::error("NC234", format!("END{id} without DO{id}"))
+                            .primary(file, id_span, format!("no open DO{id}"))
+                            .note("every ENDm closes the loop opened by the nearest `WHILE[…]DOm` or `DOm` before it")
+                            .hint(format!(
+                                "add `WHILE[…]DO{id}` (or `DO{id}`) before this block, or delete END{id}"
+                            )),
+                    );
                     push(&mut stack, &mut top, plain(meta));
                     continue;
                 };
