@@ -72,11 +72,7 @@ impl ArgResolver {
 }
 
 fn cover(words: &[&RawWord]) -> Span {
-    words
-        .iter()
-        .map(|w| w.span)
-        .reduce(Span::to)
-        .unwrap_or_default()
+    words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default()
 }
 
 /// A program number written after `P`: a literal (`P9010`) or a variable/expression.
@@ -94,12 +90,7 @@ fn target(seg: &Seg<'_>, p: &RawWord, what: &str) -> Result<CallTarget, Diagnost
 }
 
 /// `G65`/`G66 P… [L…] args`: every word of the block except the G code itself belongs to the call.
-pub fn macro_call(
-    seg: &Seg<'_>,
-    kind: CallKind,
-    g: &RawWord,
-    others: &[&RawWord],
-) -> Result<Item, Diagnostic> {
+pub fn macro_call(seg: &Seg<'_>, kind: CallKind, g: &RawWord, others: &[&RawWord]) -> Result<Item, Diagnostic> {
     let what = if kind == CallKind::G66 { "G66" } else { "G65" };
     let mut prog = None;
     let mut repeat = None;
@@ -118,24 +109,17 @@ pub fn macro_call(
                 })?;
                 let Some(var) = var else {
                     let l = letter as char;
-                    return Err(Diagnostic::error(
-                        "NC174",
-                        format!("`{l}` cannot be a {what} argument"),
-                    )
-                    .primary(seg.file, w.span, "not an argument letter")
-                    .secondary(seg.file, g.span, format!("{what} call"))
-                    .note("G, L, N, O and P cannot pass arguments (P and L only once: program and repeat count)")
-                    .hint(if letter == b'G' {
-                        format!("put other G codes in their own block before the {what} block")
-                    } else {
-                        "pass this value with another letter, or in a common variable".to_string()
-                    }));
+                    return Err(Diagnostic::error("NC174", format!("`{l}` cannot be a {what} argument"))
+                        .primary(seg.file, w.span, "not an argument letter")
+                        .secondary(seg.file, g.span, format!("{what} call"))
+                        .note("G, L, N, O and P cannot pass arguments (P and L only once: program and repeat count)")
+                        .hint(if letter == b'G' {
+                            format!("put other G codes in their own block before the {what} block")
+                        } else {
+                            "pass this value with another letter, or in a common variable".to_string()
+                        }));
                 };
-                args.push(Arg::Letter {
-                    letter,
-                    var,
-                    value: w.value.clone(),
-                });
+                args.push(Arg::Letter { letter, var, value: w.value.clone() });
             }
         }
     }
@@ -146,15 +130,7 @@ pub fn macro_call(
     };
     let mut all: Vec<&RawWord> = vec![g];
     all.extend_from_slice(others);
-    Ok(Item {
-        kind: ItemKind::Call(Call {
-            kind,
-            target,
-            args,
-            repeat,
-        }),
-        span: cover(&all),
-    })
+    Ok(Item { kind: ItemKind::Call(Box::new(Call { kind, target, args, repeat })), span: cover(&all) })
 }
 
 /// `M98 P… [L…]`, with the packed form `P68003` (= O8003 six times) when no `L` is written.
@@ -171,10 +147,7 @@ pub fn m98(seg: &Seg<'_>, m: &RawWord, p: Option<&RawWord>, l: Option<&RawWord>)
             let split = lit.hi - 4;
             let count = v / 10_000;
             repeat = Some(Expr::new(
-                ExprKind::Num(crate::ir::Number {
-                    value: count as f64,
-                    point: false,
-                }),
+                ExprKind::Num(crate::ir::Number { value: count as f64, point: false }),
                 seg.span(lit.lo, split),
             ));
             CallTarget::Number((v % 10_000) as u32)
@@ -184,12 +157,7 @@ pub fn m98(seg: &Seg<'_>, m: &RawWord, p: Option<&RawWord>, l: Option<&RawWord>)
     let mut all = vec![m, p];
     all.extend(l);
     Ok(Item {
-        kind: ItemKind::Call(Call {
-            kind: CallKind::M98,
-            target,
-            args: vec![],
-            repeat,
-        }),
+        kind: ItemKind::Call(Box::new(Call { kind: CallKind::M98, target, args: vec![], repeat })),
         span: cover(&all),
     })
 }
@@ -200,10 +168,7 @@ mod tests {
 
     fn resolve(letters: &str) -> Vec<Option<u8>> {
         let mut r = ArgResolver::new();
-        letters
-            .bytes()
-            .map(|l| r.var(l).ok().flatten())
-            .collect()
+        letters.bytes().map(|l| r.var(l).ok().flatten()).collect()
     }
 
     #[test]

@@ -7,8 +7,8 @@ use super::{args, macro_a};
 use crate::diag::Diagnostic;
 use crate::dialect::ParseOptions;
 use crate::ir::{
-    AlarmStyle, Block, BlockMeta, CallKind, Comment, EndCode, Expr, ExprKind, Goto, Item, ItemKind,
-    Search, SeqNo, VarKind, VarRef,
+    AlarmStyle, Block, BlockMeta, CallKind, Comment, EndCode, Expr, ExprKind, Goto, Item, ItemKind, ParamWrite, Search,
+    SeqNo, VarKind, VarRef,
 };
 use crate::span::{FileId, Span};
 
@@ -27,7 +27,10 @@ pub struct BlockCx<'s, 'a> {
 #[derive(Clone, Debug)]
 pub enum Line {
     /// `O1234` / `:1234`: a new program starts.
-    Program { number: u32, meta: BlockMeta },
+    Program {
+        number: u32,
+        meta: BlockMeta,
+    },
     Block(Block),
     /// `WHILE[c]DOm` (`cond` set) or `DOm`.
     DoHead {
@@ -37,15 +40,17 @@ pub enum Line {
         cond: Option<Expr>,
     },
     /// `ENDm`.
-    DoEnd { meta: BlockMeta, id: u64, id_span: Span },
+    DoEnd {
+        meta: BlockMeta,
+        id: u64,
+        id_span: Span,
+    },
 }
 
 impl Line {
     pub fn meta(&self) -> &BlockMeta {
         match self {
-            Line::Program { meta, .. }
-            | Line::DoHead { meta, .. }
-            | Line::DoEnd { meta, .. } => meta,
+            Line::Program { meta, .. } | Line::DoHead { meta, .. } | Line::DoEnd { meta, .. } => meta,
             Line::Block(b) => &b.meta,
         }
     }
@@ -62,11 +67,7 @@ fn is_m(w: &RawWord, code: u64) -> bool {
 /// Builds one block. Errors are returned as the block's single diagnostic.
 pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic> {
     let seg = cx.seg;
-    let mut meta = BlockMeta {
-        span: cx.span,
-        skip: parts.skip,
-        ..BlockMeta::default()
-    };
+    let mut meta = BlockMeta { span: cx.span, skip: parts.skip, ..BlockMeta::default() };
     let mut comments: Vec<Comment> = Vec::new();
     let mut rest: Vec<Part> = Vec::with_capacity(parts.parts.len());
     for p in parts.parts {
@@ -97,10 +98,7 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
     let params = cx.param_mode && !has_g11;
     // The leading N is the sequence number; inside G10 L50 only when another N follows
     // (`N160 N6200 R…`), since there `N` alone is the parameter number.
-    let n_words = rest
-        .iter()
-        .filter(|p| matches!(p, Part::Word(w) if w.letter == b'N'))
-        .count();
+    let n_words = rest.iter().filter(|p| matches!(p, Part::Word(w) if w.letter == b'N')).count();
     if let Some(Part::Word(w)) = rest.first() {
         if w.letter == b'N' && (!params || n_words >= 2) {
             meta.number = Some(seq_no(seg, w)?);
@@ -129,75 +127,51 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
             Part::Word(w) => words.push(w),
             Part::ColonProg { span, .. } => return Err(misplaced_program(cx.file, span)),
             Part::Comment(_) => {}
-            Part::Assign {
-                target,
-                value,
-                span,
-            } => {
+            Part::Assign { target, value, span } => {
                 note_statement(span, false)?;
                 items.push(assign(cx, target, value, span, &mut comments)?);
             }
             Part::Goto { target, span } => {
                 note_statement(span, true)?;
                 items.push(Item {
-                    kind: ItemKind::Goto(Goto {
+                    kind: ItemKind::Goto(Box::new(Goto {
                         search: Search::ForwardThenWrap,
                         target,
                         cond: None,
                         missing_continues: false,
-                    }),
+                    })),
                     span,
                 });
             }
             Part::If { cond, then, span } => {
                 note_statement(span, false)?;
                 let kind = match *then {
-                    Part::Goto { target, .. } => ItemKind::Goto(Goto {
+                    Part::Goto { target, .. } => ItemKind::Goto(Box::new(Goto {
                         search: Search::ForwardThenWrap,
                         target,
                         cond: Some(cond),
                         missing_continues: false,
-                    }),
-                    Part::Assign {
-                        target,
-                        value,
-                        span: s,
-                    } => ItemKind::IfThen {
-                        cond,
-                        then: Box::new(assign(cx, target, value, s, &mut comments)?),
-                    },
+                    })),
+                    Part::Assign { target, value, span: s } => {
+                        ItemKind::IfThen { cond, then: Box::new(assign(cx, target, value, s, &mut comments)?) }
+                    }
                     other => return Err(misplaced(cx.file, part_span(&other))),
                 };
                 items.push(Item { kind, span });
             }
-            Part::While {
-                cond,
-                id,
-                id_span,
-                span,
-            } => {
+            Part::While { cond, id, id_span, span } => {
                 if !only {
                     return Err(not_alone(cx.file, span, "WHILE"));
                 }
                 meta.comments = comments;
-                return Ok(Line::DoHead {
-                    meta,
-                    id,
-                    id_span,
-                    cond: Some(cond),
-                });
+                return Ok(Line::DoHead { meta, id, id_span, cond: Some(cond) });
             }
             Part::Do { id, id_span, span } => {
                 if !only {
                     return Err(not_alone(cx.file, span, "DO"));
                 }
                 meta.comments = comments;
-                return Ok(Line::DoHead {
-                    meta,
-                    id,
-                    id_span,
-                    cond: None,
-                });
+                return Ok(Line::DoHead { meta, id, id_span, cond: None });
             }
             Part::End { id, id_span, span } => {
                 if !only {
@@ -210,35 +184,23 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
     }
 
     if !words.is_empty() {
-        let (word_items, is_macro) = if params {
-            (vec![param_write(cx, &words)?], false)
-        } else {
-            nc_words(cx, &words)?
-        };
-        let wspan = words
-            .iter()
-            .map(|w| w.span)
-            .reduce(Span::to)
-            .unwrap_or_default();
+        let (word_items, is_macro) =
+            if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &words)? };
+        let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
         if is_macro {
             note_statement(wspan, false)?;
         } else if let Some((s, plain_goto)) = statement {
             if !plain_goto {
-                return Err(Diagnostic::error(
-                    "NC167",
-                    "a macro statement and NC words in one block",
-                )
-                .primary(cx.file, s, "macro statement")
-                .secondary(cx.file, wspan, "NC words")
-                .note("FANUC executes a block as either one macro statement or NC words, not both")
-                .hint("put the macro statement and the NC words in separate blocks"));
+                return Err(Diagnostic::error("NC167", "a macro statement and NC words in one block")
+                    .primary(cx.file, s, "macro statement")
+                    .secondary(cx.file, wspan, "NC words")
+                    .note("FANUC executes a block as either one macro statement or NC words, not both")
+                    .hint("put the macro statement and the NC words in separate blocks"));
             }
         }
         items.extend(word_items);
         items.sort_by_key(|i| i.span.lo);
-        if words.iter().any(|w| is_g(w, 10))
-            && words.iter().any(|w| w.letter == b'L' && w.int() == Some(50))
-        {
+        if words.iter().any(|w| is_g(w, 10)) && words.iter().any(|w| w.letter == b'L' && w.int() == Some(50)) {
             cx.param_mode = true;
         }
         if has_g11 {
@@ -305,20 +267,14 @@ fn not_alone(file: FileId, span: Span, what: &str) -> Diagnostic {
 
 fn seq_no(seg: &Seg<'_>, w: &RawWord) -> Result<SeqNo, Diagnostic> {
     match w.int() {
-        Some(n) if (1..=99_999).contains(&n) => Ok(SeqNo {
-            value: n as u32,
-            span: w.span,
-        }),
+        Some(n) if (1..=99_999).contains(&n) => Ok(SeqNo { value: n as u32, span: w.span }),
         Some(0) => Err(Diagnostic::error("NC168", "N0 is not a sequence number")
             .primary(seg.file, w.span, "N0")
             .note("sequence numbers run from 1 to 99999; N0 must not be used")
             .hint("number the block from 1, e.g. `N1`, or remove the N word")),
-        _ if w.lit.is_none() => Err(Diagnostic::error(
-            "NC168",
-            "a sequence number cannot come from a variable",
-        )
-        .primary(seg.file, w.span, "N with a variable or expression")
-        .hint("write the number itself, e.g. `N100`; to jump to a computed number use `GOTO#1`")),
+        _ if w.lit.is_none() => Err(Diagnostic::error("NC168", "a sequence number cannot come from a variable")
+            .primary(seg.file, w.span, "N with a variable or expression")
+            .hint("write the number itself, e.g. `N100`; to jump to a computed number use `GOTO#1`")),
         _ => Err(Diagnostic::error("NC168", "not a sequence number")
             .primary(seg.file, w.span, "whole number 1..99999 expected")
             .hint("write N with up to five digits and no decimal point, e.g. `N100`")),
@@ -344,15 +300,11 @@ fn assign(
                 .note("#0 is the null variable: it can be read (as vacant) but never written")
                 .hint("to make a variable vacant write `#1=#0`; to store a value use another variable"));
         }
-        VarKind::Hash(3000) => ItemKind::Alarm {
-            style: AlarmStyle::FanucMacro,
-            number: value,
-            text: take_text(span.hi),
-        },
-        VarKind::Hash(3006) => ItemKind::StopMessage {
-            text: take_text(span.hi),
-        },
-        _ => ItemKind::Assign { target, value },
+        VarKind::Hash(3000) => {
+            ItemKind::Alarm { style: AlarmStyle::FanucMacro, number: value, text: take_text(span.hi) }
+        }
+        VarKind::Hash(3006) => ItemKind::StopMessage { text: take_text(span.hi) },
+        _ => ItemKind::Assign { target: Box::new(target), value },
     };
     Ok(Item { kind, span })
 }
@@ -363,30 +315,19 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
     let seg = cx.seg;
     if let Some(gi) = words.iter().position(|w| is_g(w, 65) || is_g(w, 66)) {
         let g = &words[gi];
-        let others: Vec<&RawWord> = words
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != gi)
-            .map(|(_, w)| w)
-            .collect();
+        let others: Vec<&RawWord> = words.iter().enumerate().filter(|(i, _)| *i != gi).map(|(_, w)| w).collect();
         let h = others.iter().position(|w| w.letter == b'H');
         let p = others.iter().position(|w| w.letter == b'P');
         let macro_a = is_g(g, 65)
             && match (h, p) {
                 (Some(_), None) => true,
-                (Some(h), Some(p)) => {
-                    h < p || matches!(others[p].value.kind, ExprKind::Var(_))
-                }
+                (Some(h), Some(p)) => h < p || matches!(others[p].value.kind, ExprKind::Var(_)),
                 _ => false,
             };
         let item = if macro_a {
             macro_a::lower(seg, g, &others)?
         } else {
-            let kind = if is_g(g, 65) {
-                CallKind::G65
-            } else {
-                CallKind::G66
-            };
+            let kind = if is_g(g, 65) { CallKind::G65 } else { CallKind::G66 };
             args::macro_call(seg, kind, g, &others)?
         };
         return Ok((vec![item], true));
@@ -415,12 +356,7 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
                     used[k] = true;
                     span = span.to(words[k].span);
                 }
-                items.push(Item {
-                    kind: ItemKind::Return {
-                        to: p.map(|k| words[k].value.clone()),
-                    },
-                    span,
-                });
+                items.push(Item { kind: ItemKind::Return { to: p.map(|k| words[k].value.clone()) }, span });
                 continue;
             }
             let code = if is_m(w, 30) {
@@ -431,18 +367,12 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
                 None
             };
             if let Some(code) = code {
-                items.push(Item {
-                    kind: ItemKind::End { code },
-                    span: w.span,
-                });
+                items.push(Item { kind: ItemKind::End { code }, span: w.span });
                 continue;
             }
         }
         if is_g(w, 67) {
-            items.push(Item {
-                kind: ItemKind::ModalCallOff,
-                span: w.span,
-            });
+            items.push(Item { kind: ItemKind::ModalCallOff, span: w.span });
             continue;
         }
         if w.letter == b'N' {
@@ -470,31 +400,19 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
 fn param_write(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<Item, Diagnostic> {
     let get = |l: u8| words.iter().find(|w| w.letter == l).map(|w| w.value.clone());
     if let Some(w) = words.iter().find(|w| !matches!(w.letter, b'N' | b'P' | b'Q' | b'R')) {
-        return Err(Diagnostic::error(
-            "NC181",
-            format!("`{}` in parameter-write mode", w.letter as char),
-        )
-        .primary(cx.file, w.span, "only N, P, Q and R are read here")
-        .note("between `G10 L50` and `G11` every block is `N<parameter> [P<axis>] [Q<bit>] R<value>`")
-        .hint("end parameter-write mode with `G11` before other commands"));
+        return Err(Diagnostic::error("NC181", format!("`{}` in parameter-write mode", w.letter as char))
+            .primary(cx.file, w.span, "only N, P, Q and R are read here")
+            .note("between `G10 L50` and `G11` every block is `N<parameter> [P<axis>] [Q<bit>] R<value>`")
+            .hint("end parameter-write mode with `G11` before other commands"));
     }
-    let span = words
-        .iter()
-        .map(|w| w.span)
-        .reduce(Span::to)
-        .unwrap_or(cx.span);
+    let span = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or(cx.span);
     let (Some(number), Some(value)) = (get(b'N'), get(b'R')) else {
         return Err(Diagnostic::error("NC181", "a parameter write needs N and R")
             .primary(cx.file, span, "incomplete parameter write")
             .hint("write `N<parameter number> R<value>`, e.g. `N6200 R11000000`"));
     };
     Ok(Item {
-        kind: ItemKind::ParamWrite {
-            number,
-            axis: get(b'P'),
-            bit: get(b'Q'),
-            value,
-        },
+        kind: ItemKind::ParamWrite(Box::new(ParamWrite { number, axis: get(b'P'), bit: get(b'Q'), value })),
         span,
     })
 }

@@ -29,10 +29,7 @@ impl ExprCx<'_, '_> {
 
 /// Whether an expression is a condition (a comparison, or conditions joined logically).
 pub fn is_cond(e: &Expr) -> bool {
-    matches!(
-        e.kind,
-        ExprKind::Cmp(..) | ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, _, _)
-    )
+    matches!(e.kind, ExprKind::Cmp(..) | ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, _, _))
 }
 
 /// An expression used as a value (assignment, address, argument, index).
@@ -126,10 +123,7 @@ fn cond(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
         }
     }
     let span = lhs.span.to(rhs.span);
-    Ok(Expr::new(
-        ExprKind::Cmp(cmp, Tolerance::Exact, Box::new(lhs), Box::new(rhs)),
-        span,
-    ))
+    Ok(Expr::new(ExprKind::Cmp(cmp, Tolerance::Exact, Box::new(lhs), Box::new(rhs)), span))
 }
 
 /// `factor (op factor)*` with two precedence levels, left associative.
@@ -253,7 +247,7 @@ fn variable_expr(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnos
     let v = variable_ref(cx, p)?;
     Ok(match v.kind {
         VarKind::Hash(0) => Expr::new(ExprKind::Vacant, v.span),
-        _ => Expr::new(ExprKind::Var(v.clone()), v.span),
+        _ => Expr::new(ExprKind::Var(Box::new(v.clone())), v.span),
     })
 }
 
@@ -265,20 +259,14 @@ pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Di
     };
     if inner.as_rule() == Rule::bracket {
         let e = value(cx, inner)?;
-        return Ok(VarRef {
-            kind: VarKind::HashIndirect(Box::new(e)),
-            span,
-        });
+        return Ok(VarRef { kind: VarKind::HashIndirect(Box::new(e)), span });
     }
     let n = inner.as_str().parse::<u32>().map_err(|_| {
         cx.err("NC177", "variable number too large", span, "no such variable")
             .hint("FANUC variable numbers have at most 8 digits")
     })?;
     check_var_number(cx.seg, n, span)?;
-    Ok(VarRef {
-        kind: VarKind::Hash(n),
-        span,
-    })
+    Ok(VarRef { kind: VarKind::Hash(n), span })
 }
 
 /// Numbers between the local and common ranges do not exist on any FANUC control.

@@ -68,12 +68,7 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
             letter: letter.to_ascii_uppercase(),
             value: Expr::num(value, point, seg.span(vstart, i)),
             span: seg.span(start, i),
-            lit: Some(Lit {
-                lo,
-                hi: i,
-                point,
-                signed: neg.is_some(),
-            }),
+            lit: Some(Lit { lo, hi: i, point, signed: neg.is_some() }),
         }));
     }
 }

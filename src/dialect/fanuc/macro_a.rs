@@ -5,8 +5,7 @@
 use super::parse::{RawWord, Seg};
 use crate::diag::Diagnostic;
 use crate::ir::{
-    AlarmStyle, BinOp, CmpOp, Expr, ExprKind, Func, Goto, Item, ItemKind, Search, SeqNo,
-    Target, Tolerance, VarKind,
+    AlarmStyle, BinOp, CmpOp, Expr, ExprKind, Func, Goto, Item, ItemKind, Search, SeqNo, Target, Tolerance, VarKind,
 };
 use crate::span::Span;
 
@@ -26,13 +25,10 @@ pub fn lower(seg: &Seg<'_>, g: &RawWord, others: &[&RawWord]) -> Result<Item, Di
     let span = others.iter().fold(g.span, |s, w| s.to(w.span));
     for w in others {
         if !matches!(w.letter, b'H' | b'P' | b'Q' | b'R') {
-            return Err(Diagnostic::error(
-                "NC175",
-                format!("`{}` is not a Macro A operand", w.letter as char),
-            )
-            .primary(seg.file, w.span, "unexpected in a G65 H block")
-            .note("a Macro A block is `G65 Hm P#i Q#j R#k`")
-            .hint("put other words in a separate block"));
+            return Err(Diagnostic::error("NC175", format!("`{}` is not a Macro A operand", w.letter as char))
+                .primary(seg.file, w.span, "unexpected in a G65 H block")
+                .note("a Macro A block is `G65 Hm P#i Q#j R#k`")
+                .hint("put other words in a separate block"));
         }
     }
     let code = match h.int() {
@@ -51,10 +47,7 @@ pub fn lower(seg: &Seg<'_>, g: &RawWord, others: &[&RawWord]) -> Result<Item, Di
     if (80..=86).contains(&code) {
         let p = find(b'P').ok_or_else(|| missing_p(seg, span, code))?;
         let target = match p.int() {
-            Some(n) if (1..=99_999).contains(&n) => Target::Number(SeqNo {
-                value: n as u32,
-                span: p.value.span,
-            }),
+            Some(n) if (1..=99_999).contains(&n) => Target::Number(SeqNo { value: n as u32, span: p.value.span }),
             _ if p.lit.is_none() => Target::Computed(p.value.clone()),
             _ => {
                 return Err(Diagnostic::error("NC173", "the jump target must be a sequence number 1..99999")
@@ -75,18 +68,15 @@ pub fn lower(seg: &Seg<'_>, g: &RawWord, others: &[&RawWord]) -> Result<Item, Di
                 _ => CmpOp::Le,
             };
             let s = q.span.to(r.span);
-            Some(Expr::new(
-                ExprKind::Cmp(op, Tolerance::Exact, Box::new(q), Box::new(r)),
-                s,
-            ))
+            Some(Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(q), Box::new(r)), s))
         };
         return Ok(Item {
-            kind: ItemKind::Goto(Goto {
+            kind: ItemKind::Goto(Box::new(Goto {
                 search: Search::ForwardThenWrap,
                 target,
                 cond,
                 missing_continues: false,
-            }),
+            })),
             span,
         });
     }
@@ -162,11 +152,7 @@ pub fn lower(seg: &Seg<'_>, g: &RawWord, others: &[&RawWord]) -> Result<Item, Di
         }
         27 => {
             let (a, b) = (q()?, r()?);
-            let sum = bin(
-                BinOp::Add,
-                bin(BinOp::Mul, a.clone(), a),
-                bin(BinOp::Mul, b.clone(), b),
-            );
+            let sum = bin(BinOp::Add, bin(BinOp::Mul, a.clone(), a), bin(BinOp::Mul, b.clone(), b));
             let s = sum.span;
             call(Func::Sqrt, vec![sum], s)
         }
@@ -183,20 +169,17 @@ pub fn lower(seg: &Seg<'_>, g: &RawWord, others: &[&RawWord]) -> Result<Item, Di
         }
         _ => return Err(unknown(seg, h)),
     };
-    Ok(Item {
-        kind: ItemKind::Assign { target, value },
-        span,
-    })
+    Ok(Item { kind: ItemKind::Assign { target, value }, span })
 }
 
 fn missing_p(seg: &Seg<'_>, span: Span, code: u8) -> Diagnostic {
-    Diagnostic::error("NC175", format!("G65 H{code:02} needs P"))
-        .primary(seg.file, span, "P missing")
-        .hint(if (80..=86).contains(&code) {
+    Diagnostic::error("NC175", format!("G65 H{code:02} needs P")).primary(seg.file, span, "P missing").hint(
+        if (80..=86).contains(&code) {
             format!("write the target sequence number: `G65 H{code} P100`")
         } else {
             format!("write the result variable: `G65 H{code:02} P#101 Q#102 R#103`")
-        })
+        },
+    )
 }
 
 fn unknown(seg: &Seg<'_>, h: &RawWord) -> Diagnostic {

@@ -89,11 +89,7 @@ impl Reader<'_> {
         self.diags.extend(norm.warnings(self.file));
         if norm.text.trim_start().starts_with('%') {
             let has_content = self.programs.iter().any(|p| !p.is_empty());
-            self.tape = if self.tape == Tape::None && !has_content {
-                Tape::Open
-            } else {
-                Tape::Closed
-            };
+            self.tape = if self.tape == Tape::None && !has_content { Tape::Open } else { Tape::Closed };
             return;
         }
         for (lo, hi, end) in scan::segments(&norm.text) {
@@ -104,12 +100,7 @@ impl Reader<'_> {
     /// One block: `norm.text[lo..hi]` (trimmed, without `;`); `end` is one past the `;`
     /// when the block was terminated by one.
     fn segment(&mut self, norm: &Normalised<'_>, lo: usize, hi: usize, end: usize) {
-        let seg = parse::Seg {
-            norm,
-            base: lo,
-            text: &norm.text[lo..hi],
-            file: self.file,
-        };
+        let seg = parse::Seg { norm, base: lo, text: &norm.text[lo..hi], file: self.file };
         let span = norm.span(lo, end);
         if self.programs.is_empty() {
             self.programs.push(ProgramLines::new(None, None, span));
@@ -126,8 +117,7 @@ impl Reader<'_> {
             Err(d) => {
                 self.diags.push(d);
                 // Keep the block's N number known, so a GOTO to it is not reported as well.
-                if let (Some(n), Some(p)) = (scan::leading_number(seg.text), self.programs.last_mut())
-                {
+                if let (Some(n), Some(p)) = (scan::leading_number(seg.text), self.programs.last_mut()) {
                     p.note_number(n);
                 }
                 return;
@@ -136,13 +126,7 @@ impl Reader<'_> {
         let Some(prog) = self.programs.last_mut() else {
             return;
         };
-        let mut cx = BlockCx {
-            file: self.file,
-            seg: &seg,
-            span,
-            param_mode: prog.param_mode,
-            opts: self.opts,
-        };
+        let mut cx = BlockCx { file: self.file, seg: &seg, span, param_mode: prog.param_mode, opts: self.opts };
         match block::build(&mut cx, parts) {
             Err(d) => {
                 self.diags.push(d);
@@ -170,8 +154,7 @@ impl Reader<'_> {
             }
             _ => {
                 let span = meta.span;
-                self.programs
-                    .push(ProgramLines::new(name, Some(meta), span));
+                self.programs.push(ProgramLines::new(name, Some(meta), span));
             }
         }
     }
@@ -190,26 +173,13 @@ impl Reader<'_> {
             if p.is_empty() && p.name.is_none() {
                 continue;
             }
-            let (prog, diags) =
-                structure::build(p, self.file, self.opts, &self.ignored_numbers);
+            let (prog, diags) = structure::build(p, self.file, self.opts, &self.ignored_numbers);
             self.diags.extend(diags);
             programs.push(prog);
         }
         // Structure diagnostics come per program; order everything by position so the
         // report reads top to bottom.
-        self.diags.sort_by_key(|d| {
-            d.labels
-                .iter()
-                .find(|l| l.primary)
-                .map_or(u32::MAX, |l| l.span.lo)
-        });
-        Parsed {
-            unit: Unit {
-                dialect: Dialect::Fanuc,
-                file: self.file,
-                programs,
-            },
-            diags: self.diags,
-        }
+        self.diags.sort_by_key(|d| d.labels.iter().find(|l| l.primary).map_or(u32::MAX, |l| l.span.lo));
+        Parsed { unit: Unit { dialect: Dialect::Fanuc, file: self.file, programs }, diags: self.diags }
     }
 }

@@ -33,8 +33,7 @@ pub fn function(name: &str) -> Option<FuncSpec> {
     Some(FuncSpec { func, arity })
 }
 
-pub const FUNCTION_LIST: &str =
-    "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP BIN BCD POW ADP";
+pub const FUNCTION_LIST: &str = "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP BIN BCD POW ADP";
 
 /// A suggestion for an unknown function name (Siemens spellings are a common cause).
 pub fn function_hint(name: &str) -> String {

@@ -58,9 +58,7 @@ impl RawWord {
     /// The value as a non-negative integer literal written without a point.
     pub fn int(&self) -> Option<u64> {
         match (self.lit, &self.value.kind) {
-            (Some(l), ExprKind::Num(n)) if !l.point && !l.signed && n.value >= 0.0 => {
-                Some(n.value as u64)
-            }
+            (Some(l), ExprKind::Num(n)) if !l.point && !l.signed && n.value >= 0.0 => Some(n.value as u64),
             _ => None,
         }
     }
@@ -76,15 +74,42 @@ impl RawWord {
 pub enum Part {
     Comment(Comment),
     /// ISO `:1234` program number.
-    ColonProg { number: u64, span: Span },
+    ColonProg {
+        number: u64,
+        span: Span,
+    },
     Word(RawWord),
-    Assign { target: VarRef, value: Expr, span: Span },
-    Goto { target: Target, span: Span },
+    Assign {
+        target: VarRef,
+        value: Expr,
+        span: Span,
+    },
+    Goto {
+        target: Target,
+        span: Span,
+    },
     /// `IF[c]GOTO n` (`then` is a `Goto`) or `IF[c]THEN #i=…` (`then` is an `Assign`).
-    If { cond: Expr, then: Box<Part>, span: Span },
-    While { cond: Expr, id: u64, id_span: Span, span: Span },
-    Do { id: u64, id_span: Span, span: Span },
-    End { id: u64, id_span: Span, span: Span },
+    If {
+        cond: Expr,
+        then: Box<Part>,
+        span: Span,
+    },
+    While {
+        cond: Expr,
+        id: u64,
+        id_span: Span,
+        span: Span,
+    },
+    Do {
+        id: u64,
+        id_span: Span,
+        span: Span,
+    },
+    End {
+        id: u64,
+        id_span: Span,
+        span: Span,
+    },
 }
 
 /// A parsed block: optional skip and its parts.
@@ -117,34 +142,20 @@ pub fn parse_block(seg: &Seg<'_>, opts: &ParseOptions) -> Result<Parts, Diagnost
 
 /// For tests: the parts the grammar gives for one line of text (no fast path).
 pub fn parse_grammar_for_test(text: &str) -> Result<Parts, String> {
-    with_seg(text, |seg, opts| {
-        parse_block(seg, opts).map_err(|d| d.message)
-    })
+    with_seg(text, |seg, opts| parse_block(seg, opts).map_err(|d| d.message))
 }
 
 /// Runs `f` on a one-block segment of `text`, for tests of the two parsing paths.
 pub(super) fn with_seg<R>(text: &str, f: impl FnOnce(&Seg<'_>, &ParseOptions) -> R) -> R {
-    let raw = crate::read::RawBlock {
-        text,
-        start: 0,
-        line: 1,
-    };
+    let raw = crate::read::RawBlock { text, start: 0, line: 1 };
     let norm = crate::read::normalise(&raw, crate::read::CommentStyle::Parens);
-    let seg = Seg {
-        norm: &norm,
-        base: 0,
-        text: &norm.text,
-        file: 0,
-    };
+    let seg = Seg { norm: &norm, base: 0, text: &norm.text, file: 0 };
     let opts = ParseOptions::for_dialect(crate::dialect::Dialect::Fanuc);
     f(&seg, &opts)
 }
 
 pub fn skip_level(s: &str) -> u8 {
-    s.as_bytes()
-        .get(1)
-        .filter(|c| c.is_ascii_digit())
-        .map_or(0, |c| c - b'0')
+    s.as_bytes().get(1).filter(|c| c.is_ascii_digit()).map_or(0, |c| c - b'0')
 }
 
 fn span_of(seg: &Seg<'_>, p: &Pair<'_, Rule>) -> Span {
@@ -157,10 +168,7 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
     let span = span_of(seg, &p);
     match p.as_rule() {
         Rule::comment => {
-            let text = p
-                .into_inner()
-                .next()
-                .map_or(String::new(), |t| t.as_str().to_string());
+            let text = p.into_inner().next().map_or(String::new(), |t| t.as_str().to_string());
             Ok(Part::Comment(Comment { text, span }))
         }
         Rule::colon_prog => {
@@ -191,11 +199,7 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
                 }
                 None => return Err(internal(seg, span)),
             };
-            Ok(Part::If {
-                cond,
-                then: Box::new(then),
-                span,
-            })
+            Ok(Part::If { cond, then: Box::new(then), span })
         }
         Rule::while_stmt => {
             let mut it = p.into_inner();
@@ -206,23 +210,14 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
             };
             let _do = it.next();
             let (id, id_span) = loop_id(seg, it.next(), span)?;
-            Ok(Part::While {
-                cond,
-                id,
-                id_span,
-                span,
-            })
+            Ok(Part::While { cond, id, id_span, span })
         }
         Rule::do_stmt | Rule::end_stmt => {
             let is_do = p.as_rule() == Rule::do_stmt;
             let mut it = p.into_inner();
             let _kw = it.next();
             let (id, id_span) = loop_id(seg, it.next(), span)?;
-            Ok(if is_do {
-                Part::Do { id, id_span, span }
-            } else {
-                Part::End { id, id_span, span }
-            })
+            Ok(if is_do { Part::Do { id, id_span, span } } else { Part::End { id, id_span, span } })
         }
         _ => Err(internal(seg, span)),
     }
@@ -235,11 +230,7 @@ fn internal(seg: &Seg<'_>, span: Span) -> Diagnostic {
         .hint("please report this block")
 }
 
-fn loop_id(
-    seg: &Seg<'_>,
-    p: Option<Pair<'_, Rule>>,
-    span: Span,
-) -> Result<(u64, Span), Diagnostic> {
+fn loop_id(seg: &Seg<'_>, p: Option<Pair<'_, Rule>>, span: Span) -> Result<(u64, Span), Diagnostic> {
     let p = p.ok_or_else(|| internal(seg, span))?;
     let s = span_of(seg, &p);
     // Absurdly long numbers saturate; the structurer reports anything outside 1..3.
@@ -266,11 +257,7 @@ fn assign(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<Part, Di
         Some(e) => expr::value(cx, e)?,
         None => return Err(internal(cx.seg, span)),
     };
-    Ok(Part::Assign {
-        target,
-        value,
-        span,
-    })
+    Ok(Part::Assign { target, value, span })
 }
 
 fn goto(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<Part, Diagnostic> {
@@ -283,18 +270,12 @@ fn goto(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<Part, Diag
         Rule::unsigned => {
             let s = t.as_str();
             match s.parse::<u32>() {
-                Ok(n) if (1..=99999).contains(&n) => Target::Number(SeqNo {
-                    value: n,
-                    span: tspan,
-                }),
+                Ok(n) if (1..=99999).contains(&n) => Target::Number(SeqNo { value: n, span: tspan }),
                 _ => {
-                    return Err(Diagnostic::error(
-                        "NC173",
-                        format!("`GOTO {s}`: a sequence number is 1 to 99999"),
-                    )
-                    .primary(seg.file, tspan, "not a sequence number")
-                    .note("the target of GOTO is a whole number 1..99999 (alarm 128 otherwise)")
-                    .hint("write the N number of the target block without a decimal point, e.g. `GOTO100`"))
+                    return Err(Diagnostic::error("NC173", format!("`GOTO {s}`: a sequence number is 1 to 99999"))
+                        .primary(seg.file, tspan, "not a sequence number")
+                        .note("the target of GOTO is a whole number 1..99999 (alarm 128 otherwise)")
+                        .hint("write the N number of the target block without a decimal point, e.g. `GOTO100`"))
                 }
             }
         }
@@ -329,36 +310,20 @@ fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, D
             letter,
             value: Expr::num(value, n.point, vspan),
             span,
-            lit: Some(Lit {
-                lo,
-                hi,
-                point: n.point,
-                signed: neg.is_some(),
-            }),
+            lit: Some(Lit { lo, hi, point: n.point, signed: neg.is_some() }),
         });
     }
     let inner = expr::value(cx, body)?;
     let value = match neg {
-        Some(true) => Expr::new(
-            ExprKind::Unary(crate::ir::UnOp::Neg, Box::new(inner)),
-            vspan,
-        ),
+        Some(true) => Expr::new(ExprKind::Unary(crate::ir::UnOp::Neg, Box::new(inner)), vspan),
         _ => Expr { span: vspan, ..inner },
     };
-    Ok(RawWord {
-        letter,
-        value,
-        span,
-        lit: None,
-    })
+    Ok(RawWord { letter, value, span, lit: None })
 }
 
 /// Reads a literal matched by `unsigned` (digits with an optional point).
 pub fn literal(s: &str) -> Number {
-    Number {
-        value: s.parse::<f64>().unwrap_or(0.0),
-        point: s.contains('.'),
-    }
+    Number { value: s.parse::<f64>().unwrap_or(0.0), point: s.contains('.') }
 }
 
 /// Turns a pest failure into one diagnostic saying what was expected at the failing column.
@@ -404,15 +369,11 @@ fn grammar_error(seg: &Seg<'_>, e: &pest::error::Error<Rule>) -> Diagnostic {
     let (label, hint) = match outside {
         Some(op) => (
             format!("`{op}` outside brackets"),
-            format!(
-                "a comparison is written in brackets and used only by IF/WHILE: `IF[#1 {op} 3]GOTO10`"
-            ),
+            format!("a comparison is written in brackets and used only by IF/WHILE: `IF[#1 {op} 3]GOTO10`"),
         ),
         None => names::hint_for(found, &words, in_brackets),
     };
-    Diagnostic::error("NC160", message)
-        .primary(seg.file, seg.span(pos, pos + width), label)
-        .hint(hint)
+    Diagnostic::error("NC160", message).primary(seg.file, seg.span(pos, pos + width), label).hint(hint)
 }
 
 /// `#1=#2 EQ 3`: the grammar read `E` as an address; the real problem is the comparison.
@@ -421,9 +382,7 @@ fn rel_op_outside(text: &str, pos: usize, in_brackets: bool) -> Option<String> {
         return None;
     }
     let two = text.get(pos - 1..pos + 1)?.to_ascii_uppercase();
-    ["EQ", "NE", "GT", "GE", "LT", "LE"]
-        .contains(&two.as_str())
-        .then_some(two)
+    ["EQ", "NE", "GT", "GE", "LT", "LE"].contains(&two.as_str()).then_some(two)
 }
 
 fn join_or(words: &[&str]) -> String {

@@ -52,9 +52,7 @@ fn push_trimmed(text: &str, lo: usize, hi: usize, end: usize, out: &mut Vec<(usi
 /// GOTO checks quiet about blocks that failed to parse or were ignored.
 pub fn leading_number(text: &str) -> Option<u32> {
     let t = text.trim_start();
-    let t = t.strip_prefix('/').map_or(t, |r| {
-        r.trim_start_matches(|c: char| c.is_ascii_digit())
-    });
+    let t = t.strip_prefix('/').map_or(t, |r| r.trim_start_matches(|c: char| c.is_ascii_digit()));
     let t = t.trim_start();
     let rest = t.strip_prefix(['N', 'n'])?.trim_start();
     let digits: &str = &rest[..rest.find(|c: char| !c.is_ascii_digit()).unwrap_or(rest.len())];
@@ -83,20 +81,13 @@ pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
             b'[' => {
                 depth += 1;
                 if depth > max {
-                    return Err(Diagnostic::error(
-                        "NC163",
-                        format!("brackets nested more than {max} deep"),
-                    )
-                    .primary(seg.file, seg.span(i, i + 1), format!("bracket level {depth}"))
-                    .secondary(
-                        seg.file,
-                        seg.span(open[0], open[0] + 1),
-                        "outermost bracket",
-                    )
-                    .note(format!(
-                        "the control allows {max} levels of `[ ]`, function brackets included (alarm 118)"
-                    ))
-                    .hint("compute part of the expression into a variable first, e.g. `#100=[…]`"));
+                    return Err(Diagnostic::error("NC163", format!("brackets nested more than {max} deep"))
+                        .primary(seg.file, seg.span(i, i + 1), format!("bracket level {depth}"))
+                        .secondary(seg.file, seg.span(open[0], open[0] + 1), "outermost bracket")
+                        .note(format!(
+                            "the control allows {max} levels of `[ ]`, function brackets included (alarm 118)"
+                        ))
+                        .hint("compute part of the expression into a variable first, e.g. `#100=[…]`"));
                 }
                 open.push(i);
             }
@@ -139,7 +130,9 @@ pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
                     format!("`{}` is not a FANUC comparison", &seg.text[i..i + width]),
                 )
                 .primary(seg.file, seg.span(i, i + width), format!("`{sym}` here"))
-                .note("FANUC conditions use the two-letter operators EQ NE GT GE LT LE; `<`, `>` and `=` are not allowed")
+                .note(
+                    "FANUC conditions use the two-letter operators EQ NE GT GE LT LE; `<`, `>` and `=` are not allowed",
+                )
                 .hint(format!("write `{word}`, e.g. `IF[#1 {word} 10]GOTO100`")));
             }
             _ => {}

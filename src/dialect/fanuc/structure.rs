@@ -5,8 +5,8 @@
 use super::block::Line;
 use crate::diag::Diagnostic;
 use crate::dialect::ParseOptions;
-use crate::ir::{BlockMeta, Expr, ItemKind, ProgName, Program, Stmt, StmtKind, Target};
 use crate::ir::visit::{metas, walk_stmts};
+use crate::ir::{BlockMeta, DoStmt, Expr, ItemKind, ProgName, Program, Stmt, StmtKind, Target};
 use crate::span::{FileId, Span};
 use std::collections::HashSet;
 
@@ -24,14 +24,7 @@ pub struct ProgramLines {
 
 impl ProgramLines {
     pub fn new(name: Option<ProgName>, head: Option<BlockMeta>, span: Span) -> Self {
-        ProgramLines {
-            name,
-            head,
-            span,
-            lines: Vec::new(),
-            param_mode: false,
-            known: Vec::new(),
-        }
+        ProgramLines { name, head, span, lines: Vec::new(), param_mode: false, known: Vec::new() }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -93,13 +86,13 @@ pub fn build(
     fn close(o: Open, end: BlockMeta) -> Stmt {
         Stmt {
             span: o.meta.span.to(end.span),
-            kind: StmtKind::Do {
+            kind: StmtKind::Do(Box::new(DoStmt {
                 head: o.meta,
                 id: o.id.min(255) as u8,
                 cond: o.cond,
                 body: o.body,
                 end,
-            },
+            })),
         }
     }
 
@@ -107,22 +100,10 @@ pub fn build(
         match line {
             Line::Block(b) => {
                 let span = b.meta.span;
-                push(
-                    &mut stack,
-                    &mut top,
-                    Stmt {
-                        kind: StmtKind::Block(b),
-                        span,
-                    },
-                );
+                push(&mut stack, &mut top, Stmt { kind: StmtKind::Block(b), span });
             }
             Line::Program { .. } => {}
-            Line::DoHead {
-                meta,
-                id,
-                id_span,
-                cond,
-            } => {
+            Line::DoHead { meta, id, id_span, cond } => {
                 if !(1..=3).contains(&id) {
                     diags.push(
                         Diagnostic::error("NC230", format!("DO{id}: loop numbers are 1, 2 and 3"))
@@ -139,13 +120,7 @@ pub fn build(
                             .hint("move the inner loop into a macro called with G65, or use IF…GOTO"),
                     );
                 }
-                stack.push(Open {
-                    meta,
-                    id,
-                    id_span,
-                    cond,
-                    body: Vec::new(),
-                });
+                stack.push(Open { meta, id, id_span, cond, body: Vec::new() });
             }
             Line::DoEnd { meta, id, id_span } => {
                 let Some(pos) = stack.iter().rposition(|o| o.id == id) else {
@@ -171,9 +146,7 @@ pub fn build(
                         Diagnostic::error("NC234", format!("END{id} without DO{id}"))
                             .primary(file, id_span, format!("no open DO{id}"))
                             .note("every ENDm closes the loop opened by the nearest `WHILE[…]DOm` or `DOm` before it")
-                            .hint(format!(
-                                "add `WHILE[…]DO{id}` (or `DO{id}`) before this block, or delete END{id}"
-                            )),
+                            .hint(format!("add `WHILE[…]DO{id}` (or `DO{id}`) before this block, or delete END{id}")),
                     );
                     push(&mut stack, &mut top, plain(meta));
                     continue;
@@ -225,35 +198,16 @@ pub fn build(
     for s in &top {
         span = span.to(s.span);
     }
-    (
-        Program {
-            name: p.name,
-            head: p.head,
-            params: vec![],
-            save: false,
-            body: top,
-            span,
-        },
-        diags,
-    )
+    (Program { name: p.name, head: p.head, params: vec![], save: false, body: top, span }, diags)
 }
 
 fn plain(meta: BlockMeta) -> Stmt {
     let span = meta.span;
-    Stmt {
-        kind: StmtKind::Block(crate::ir::Block { meta, items: vec![] }),
-        span,
-    }
+    Stmt { kind: StmtKind::Block(crate::ir::Block { meta, items: vec![] }), span }
 }
 
 /// Every literal `GOTO n` needs a block `Nn` in the same program.
-fn check_gotos(
-    body: &[Stmt],
-    known: &[u32],
-    file: FileId,
-    ignored: &[(u32, Span)],
-    diags: &mut Vec<Diagnostic>,
-) {
+fn check_gotos(body: &[Stmt], known: &[u32], file: FileId, ignored: &[(u32, Span)], diags: &mut Vec<Diagnostic>) {
     let mut numbers: HashSet<u32> = known.iter().copied().collect();
     let mut targets = Vec::new();
     walk_stmts(body, &mut |s| {
@@ -276,8 +230,11 @@ fn check_gotos(
         if numbers.contains(&t.value) {
             continue;
         }
-        let mut d = Diagnostic::error("NC236", format!("no block N{} in this program", t.value))
-            .primary(file, t.span, "jump target not found");
+        let mut d = Diagnostic::error("NC236", format!("no block N{} in this program", t.value)).primary(
+            file,
+            t.span,
+            "jump target not found",
+        );
         if let Some((_, s)) = ignored.iter().find(|(n, _)| *n == t.value) {
             d = d
                 .secondary(file, *s, "this block is after the closing `%`")
