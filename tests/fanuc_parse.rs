@@ -216,3 +216,10 @@ fn grammar_errors_say_what_was_expected() {
     let (_, r) = parse("IF[#1 = 2]GOTO5\nN5\n");
     assert!(r.contains("compare with EQ"), "{r}");
 }
+
+#[test]
+fn a_bracketed_constant_in_an_address_counts_as_having_a_point() {
+    let a = ir("G0 X[1] Y1 Z[1+1]\n");
+    assert!(a.contains("word X 1.\n") && a.contains("word Y 1\n"), "{a}");
+    assert!(a.contains("word Z (+ 1 1)\n"), "{a}");
+}
