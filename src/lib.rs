@@ -5,6 +5,7 @@
 //! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
 
 pub mod batch;
+pub mod config;
 pub mod diag;
 pub mod dialect;
 pub mod ir;
