@@ -6,6 +6,7 @@
 
 pub mod diag;
 pub mod dialect;
+pub mod eval;
 pub mod ir;
 pub mod read;
 pub mod span;
