@@ -38,13 +38,7 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     pub fn new(severity: Severity, code: &'static str, message: impl Into<String>) -> Self {
-        Diagnostic {
-            severity,
-            code,
-            message: message.into(),
-            labels: Vec::new(),
-            notes: Vec::new(),
-        }
+        Diagnostic { severity, code, message: message.into(), labels: Vec::new(), notes: Vec::new() }
     }
 
     pub fn error(code: &'static str, message: impl Into<String>) -> Self {
@@ -57,23 +51,13 @@ impl Diagnostic {
 
     /// The main place: where the problem is.
     pub fn primary(mut self, file: FileId, span: Span, message: impl Into<String>) -> Self {
-        self.labels.push(Label {
-            file,
-            span,
-            message: message.into(),
-            primary: true,
-        });
+        self.labels.push(Label { file, span, message: message.into(), primary: true });
         self
     }
 
     /// A related place (the opening `WHILE` of an unmatched `ENDWHILE`, the other label…).
     pub fn secondary(mut self, file: FileId, span: Span, message: impl Into<String>) -> Self {
-        self.labels.push(Label {
-            file,
-            span,
-            message: message.into(),
-            primary: false,
-        });
+        self.labels.push(Label { file, span, message: message.into(), primary: false });
         self
     }
 
@@ -105,13 +89,8 @@ impl Diagnostic {
                 self.labels
                     .iter()
                     .map(|l| {
-                        let style = if l.primary {
-                            cs::LabelStyle::Primary
-                        } else {
-                            cs::LabelStyle::Secondary
-                        };
-                        cs::Label::new(style, l.file, l.span.range())
-                            .with_message(l.message.clone())
+                        let style = if l.primary { cs::LabelStyle::Primary } else { cs::LabelStyle::Secondary };
+                        cs::Label::new(style, l.file, l.span.range()).with_message(l.message.clone())
                     })
                     .collect(),
             )
@@ -135,12 +114,7 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic]) -> String {
         if term::emit_to_string(&mut one, &config, db, &d.to_codespan()).is_ok() {
             out.push_str(&one);
         } else {
-            out.push_str(&format!(
-                "{}[{}]: {}\n",
-                sev_word(d.severity),
-                d.code,
-                d.message
-            ));
+            out.push_str(&format!("{}[{}]: {}\n", sev_word(d.severity), d.code, d.message));
         }
     }
     out

@@ -24,20 +24,10 @@ pub struct Loaded {
 }
 
 /// Decodes `bytes` (see [`read::decode`]) and adds the text to `db` under `name`.
-pub fn load(
-    db: &mut SourceDb,
-    name: &str,
-    bytes: &[u8],
-    encoding: Option<&'static encoding_rs::Encoding>,
-) -> Loaded {
+pub fn load(db: &mut SourceDb, name: &str, bytes: &[u8], encoding: Option<&'static encoding_rs::Encoding>) -> Loaded {
     let d = read::decode(bytes, encoding);
     let file = db.add(name, d.text);
-    Loaded {
-        file,
-        encoding: d.encoding,
-        bom: d.bom,
-        line_ending: d.line_ending,
-    }
+    Loaded { file, encoding: d.encoding, bom: d.bom, line_ending: d.line_ending }
 }
 
 /// The dialect of a file: from its extension, else from its content.

@@ -28,6 +28,9 @@ enum Command {
         /// Source dialect (default: from the extension, .mpf/.spf or .nc/.tap, else the content).
         #[arg(long, value_parser = parse_dialect)]
         from: Option<Dialect>,
+        /// Print only a one-line summary (programs, blocks, diagnostics) instead of the IR.
+        #[arg(long)]
+        summary: bool,
         #[command(flatten)]
         input: InputOpts,
     },
@@ -41,20 +44,18 @@ struct InputOpts {
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
-    Dialect::from_name(s)
-        .ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
+    Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
 }
 
 fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
-    encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| {
-        format!("unknown encoding '{s}' (try utf-8, gbk, shift_jis, windows-1250, iso-8859-1)")
-    })
+    encoding_rs::Encoding::for_label(s.as_bytes())
+        .ok_or_else(|| format!("unknown encoding '{s}' (try utf-8, gbk, shift_jis, windows-1250, iso-8859-1)"))
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Parse { file, from, input } => cmd_parse(&file, from, &input),
+        Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
     }
 }
 
@@ -65,7 +66,7 @@ fn read_file(path: &PathBuf) -> Result<Vec<u8>, ExitCode> {
     })
 }
 
-fn cmd_parse(path: &PathBuf, from: Option<Dialect>, input: &InputOpts) -> ExitCode {
+fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &InputOpts) -> ExitCode {
     let bytes = match read_file(path) {
         Ok(b) => b,
         Err(code) => return code,
@@ -74,21 +75,24 @@ fn cmd_parse(path: &PathBuf, from: Option<Dialect>, input: &InputOpts) -> ExitCo
     let name = path.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(
-        &db,
-        loaded.file,
-        dialect,
-        &ParseOptions::for_dialect(dialect),
-    );
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return ExitCode::from(1);
     }
+    let text = if summary {
+        format!(
+            "{}: {} program(s), {} blocks, {} warning(s)\n",
+            name,
+            parsed.unit.programs.len(),
+            ir::visit::count_blocks(&parsed.unit),
+            parsed.diags.len()
+        )
+    } else {
+        ir::dump::dump(&parsed.unit)
+    };
     let mut out = std::io::stdout().lock();
-    if out
-        .write_all(ir::dump::dump(&parsed.unit).as_bytes())
-        .is_err()
-    {
+    if out.write_all(text.as_bytes()).is_err() {
         return ExitCode::from(2);
     }
     ExitCode::SUCCESS

@@ -53,8 +53,7 @@ pub fn decode(bytes: &[u8], forced: Option<&'static Encoding>) -> Decoded {
             det.guess(None, chardetng::Utf8Detection::Deny)
         }
     };
-    let (text, encoding) = match encoding.decode_without_bom_handling_and_without_replacement(body)
-    {
+    let (text, encoding) = match encoding.decode_without_bom_handling_and_without_replacement(body) {
         Some(t) if round_trips(&t, encoding, body) => (t.into_owned(), encoding),
         _ => {
             let (t, _) = encoding_rs::WINDOWS_1252.decode_without_bom_handling(body);
@@ -62,12 +61,7 @@ pub fn decode(bytes: &[u8], forced: Option<&'static Encoding>) -> Decoded {
         }
     };
     let line_ending = detect_line_ending(&text);
-    Decoded {
-        text,
-        encoding,
-        bom,
-        line_ending,
-    }
+    Decoded { text, encoding, bom, line_ending }
 }
 
 /// Some legacy codecs decode two byte sequences to the same character; only accept an
@@ -107,8 +101,7 @@ pub fn binary_garbage(text: &str) -> Option<u32> {
     let mut controls = 0usize;
     let mut first = None;
     for (i, c) in text.char_indices() {
-        let bad =
-            c == '\0' || (c.is_control() && !matches!(c, '\n' | '\r' | '\t' | '\x0c' | '\x1a'));
+        let bad = c == '\0' || (c.is_control() && !matches!(c, '\n' | '\r' | '\t' | '\x0c' | '\x1a'));
         if bad {
             controls += 1;
             first.get_or_insert(i as u32);
@@ -138,11 +131,7 @@ pub struct RawBlock<'a> {
 
 /// Splits text into lines on LF, CR LF and lone CR.
 pub fn blocks(text: &str) -> Blocks<'_> {
-    Blocks {
-        text,
-        pos: 0,
-        line: 0,
-    }
+    Blocks { text, pos: 0, line: 0 }
 }
 
 pub struct Blocks<'a> {
@@ -159,26 +148,15 @@ impl<'a> Iterator for Blocks<'a> {
             return None;
         }
         let rest = &self.text.as_bytes()[self.pos..];
-        let end = rest
-            .iter()
-            .position(|&c| c == b'\n' || c == b'\r')
-            .unwrap_or(rest.len());
+        let end = rest.iter().position(|&c| c == b'\n' || c == b'\r').unwrap_or(rest.len());
         let start = self.pos;
         let mut next = start + end;
         if next < self.text.len() {
-            next += if rest[end] == b'\r' && rest.get(end + 1) == Some(&b'\n') {
-                2
-            } else {
-                1
-            };
+            next += if rest[end] == b'\r' && rest.get(end + 1) == Some(&b'\n') { 2 } else { 1 };
         }
         self.pos = next;
         self.line += 1;
-        Some(RawBlock {
-            text: &self.text[start..start + end],
-            start: start as u32,
-            line: self.line,
-        })
+        Some(RawBlock { text: &self.text[start..start + end], start: start as u32, line: self.line })
     }
 }
 
@@ -256,17 +234,9 @@ impl Normalised<'_> {
 /// Normalises one block: full-width ASCII forms (U+FF01..U+FF5E) and the ideographic space
 /// become ASCII outside comments and strings; a letter O inside a G word becomes 0.
 pub fn normalise<'a>(raw: &RawBlock<'a>, style: CommentStyle) -> Normalised<'a> {
-    let needs_width = raw
-        .text
-        .chars()
-        .any(|c| ('\u{FF01}'..='\u{FF5E}').contains(&c) || c == '\u{3000}');
-    let mut n = Normalised {
-        text: Cow::Borrowed(raw.text),
-        start: raw.start,
-        map: None,
-        full_width: vec![],
-        letter_o: vec![],
-    };
+    let needs_width = raw.text.chars().any(|c| ('\u{FF01}'..='\u{FF5E}').contains(&c) || c == '\u{3000}');
+    let mut n =
+        Normalised { text: Cow::Borrowed(raw.text), start: raw.start, map: None, full_width: vec![], letter_o: vec![] };
     if needs_width {
         let mut out = String::with_capacity(raw.text.len());
         let mut map = Vec::with_capacity(raw.text.len() + 1);
@@ -349,16 +319,11 @@ fn fix_letter_o(n: &mut Normalised<'_>, style: CommentStyle) {
             i += 1;
             continue;
         }
-        let prev_word = i > 0
-            && (bytes[i - 1].is_ascii_alphanumeric()
-                || bytes[i - 1] == b'_'
-                || bytes[i - 1] == b'$');
+        let prev_word = i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_' || bytes[i - 1] == b'$');
         if (c == b'G' || c == b'g') && !prev_word {
             let mut j = i + 1;
             let mut has_o = false;
-            while j < bytes.len()
-                && (bytes[j].is_ascii_digit() || bytes[j] == b'O' || bytes[j] == b'o')
-            {
+            while j < bytes.len() && (bytes[j].is_ascii_digit() || bytes[j] == b'O' || bytes[j] == b'o') {
                 has_o |= !bytes[j].is_ascii_digit();
                 j += 1;
             }
@@ -394,28 +359,13 @@ mod tests {
     use super::*;
 
     fn raw(s: &str) -> RawBlock<'_> {
-        RawBlock {
-            text: s,
-            start: 10,
-            line: 1,
-        }
+        RawBlock { text: s, start: 10, line: 1 }
     }
 
     #[test]
     fn splits_every_line_end() {
-        let v: Vec<_> = blocks("a\r\nb\rc\n\nd")
-            .map(|b| (b.text, b.start, b.line))
-            .collect();
-        assert_eq!(
-            v,
-            vec![
-                ("a", 0, 1),
-                ("b", 3, 2),
-                ("c", 5, 3),
-                ("", 7, 4),
-                ("d", 8, 5)
-            ]
-        );
+        let v: Vec<_> = blocks("a\r\nb\rc\n\nd").map(|b| (b.text, b.start, b.line)).collect();
+        assert_eq!(v, vec![("a", 0, 1), ("b", 3, 2), ("c", 5, 3), ("", 7, 4), ("d", 8, 5)]);
     }
 
     #[test]

@@ -58,16 +58,11 @@ impl Dialect {
                 fanuc += 3;
             }
             fanuc += t.matches('#').count() as i32
-                + t.matches("GOTO")
-                    .filter(|_| !t.contains("GOTOF") && !t.contains("GOTOB"))
-                    .count() as i32;
-            siemens += [
-                "DEF ", "GOTOF", "GOTOB", "ENDIF", "ENDWHILE", "PROC ", "MSG(", "==", "<>",
-                "ENDFOR", "ENDLOOP",
-            ]
-            .iter()
-            .filter(|k| t.contains(*k))
-            .count() as i32
+                + t.matches("GOTO").filter(|_| !t.contains("GOTOF") && !t.contains("GOTOB")).count() as i32;
+            siemens += ["DEF ", "GOTOF", "GOTOB", "ENDIF", "ENDWHILE", "PROC ", "MSG(", "==", "<>", "ENDFOR", "ENDLOOP"]
+                .iter()
+                .filter(|k| t.contains(*k))
+                .count() as i32
                 * 2;
             if t.contains(';') && !t.trim_end().ends_with(';') {
                 siemens += 1;
@@ -92,9 +87,7 @@ pub struct ParseOptions {
 
 impl ParseOptions {
     pub fn for_dialect(d: Dialect) -> Self {
-        ParseOptions {
-            semantics: Semantics::default_for(d),
-        }
+        ParseOptions { semantics: Semantics::default_for(d) }
     }
 }
 
@@ -110,26 +103,12 @@ pub struct Parsed {
 /// A file that is binary data is rejected as a whole (NC101) before any grammar sees it.
 pub fn parse(src: &SourceFile, file: FileId, dialect: Dialect, opts: &ParseOptions) -> Parsed {
     if let Some(at) = crate::read::binary_garbage(&src.text) {
-        let end = src.text[at as usize..]
-            .chars()
-            .next()
-            .map_or(at, |c| at + c.len_utf8() as u32);
+        let end = src.text[at as usize..].chars().next().map_or(at, |c| at + c.len_utf8() as u32);
         let d = Diagnostic::error("NC101", "this file is binary data, not an NC program")
-            .primary(
-                file,
-                crate::span::Span::new(at, end),
-                "control character in program text",
-            )
+            .primary(file, crate::span::Span::new(at, end), "control character in program text")
             .note("NC programs are text; NUL bytes and control characters are not allowed")
             .hint("check that the right file was given, and that it was transferred in text mode");
-        return Parsed {
-            unit: Unit {
-                dialect,
-                file,
-                programs: vec![],
-            },
-            diags: vec![d],
-        };
+        return Parsed { unit: Unit { dialect, file, programs: vec![] }, diags: vec![d] };
     }
     match dialect {
         Dialect::Sinumerik => sinumerik::parse(src, file, opts),

@@ -8,10 +8,7 @@ use std::fmt::Write;
 
 /// Dumps a whole unit.
 pub fn dump(unit: &Unit) -> String {
-    let mut d = Dumper {
-        out: String::new(),
-        depth: 0,
-    };
+    let mut d = Dumper { out: String::new(), depth: 0 };
     d.line(format!("unit {}", unit.dialect.name()));
     d.depth += 1;
     for p in &unit.programs {
@@ -46,11 +43,7 @@ impl Dumper {
             Some(ProgName::Name(s)) => s.clone(),
             None => "-".into(),
         };
-        self.line(format!(
-            "program {name}{} {}",
-            if p.save { " save" } else { "" },
-            sp(p.span)
-        ));
+        self.line(format!("program {name}{} {}", if p.save { " save" } else { "" }, sp(p.span)));
         self.nested(|d| {
             if let Some(h) = &p.head {
                 d.line(format!("head {}", meta(h)));
@@ -58,12 +51,7 @@ impl Dumper {
             for prm in &p.params {
                 let dims = dims(&prm.dims);
                 let by = if prm.by_ref { "var " } else { "" };
-                d.line(format!(
-                    "param {by}{} {}{dims} {}",
-                    ty(prm.ty),
-                    prm.name,
-                    sp(prm.span)
-                ));
+                d.line(format!("param {by}{} {}{dims} {}", ty(prm.ty), prm.name, sp(prm.span)));
             }
             d.body(&p.body);
         });
@@ -85,88 +73,47 @@ impl Dumper {
                     }
                 });
             }
-            StmtKind::If {
-                head,
-                cond,
-                then_body,
-                else_part,
-                end,
-            } => {
-                self.line(format!(
-                    "if {} {} head {}",
-                    expr(cond),
-                    sp(s.span),
-                    meta(head)
-                ));
-                self.nested(|d| d.body(then_body));
-                if let Some(e) = else_part {
+            StmtKind::If(i) => {
+                self.line(format!("if {} {} head {}", expr(&i.cond), sp(s.span), meta(&i.head)));
+                self.nested(|d| d.body(&i.then_body));
+                if let Some(e) = &i.else_part {
                     self.line(format!("else {}", meta(&e.head)));
                     self.nested(|d| d.body(&e.body));
                 }
-                self.line(format!("endif {}", meta(end)));
+                self.line(format!("endif {}", meta(&i.end)));
             }
-            StmtKind::While {
-                head,
-                cond,
-                body,
-                end,
-            } => {
-                self.line(format!(
-                    "while {} {} head {}",
-                    expr(cond),
-                    sp(s.span),
-                    meta(head)
-                ));
-                self.nested(|d| d.body(body));
-                self.line(format!("endwhile {}", meta(end)));
+            StmtKind::While(w) => {
+                self.line(format!("while {} {} head {}", expr(&w.cond), sp(s.span), meta(&w.head)));
+                self.nested(|d| d.body(&w.body));
+                self.line(format!("endwhile {}", meta(&w.end)));
             }
-            StmtKind::Loop { head, body, end } => {
-                self.line(format!("loop {} head {}", sp(s.span), meta(head)));
-                self.nested(|d| d.body(body));
-                self.line(format!("endloop {}", meta(end)));
+            StmtKind::Loop(l) => {
+                self.line(format!("loop {} head {}", sp(s.span), meta(&l.head)));
+                self.nested(|d| d.body(&l.body));
+                self.line(format!("endloop {}", meta(&l.end)));
             }
-            StmtKind::For {
-                head,
-                var: v,
-                from,
-                to,
-                body,
-                end,
-            } => {
+            StmtKind::For(f) => {
                 self.line(format!(
                     "for {} = {} to {} {} head {}",
-                    var(v),
-                    expr(from),
-                    expr(to),
+                    var(&f.var),
+                    expr(&f.from),
+                    expr(&f.to),
                     sp(s.span),
-                    meta(head)
+                    meta(&f.head)
                 ));
-                self.nested(|d| d.body(body));
-                self.line(format!("endfor {}", meta(end)));
+                self.nested(|d| d.body(&f.body));
+                self.line(format!("endfor {}", meta(&f.end)));
             }
-            StmtKind::Repeat {
-                head,
-                body,
-                end,
-                until,
-            } => {
-                self.line(format!("repeat {} head {}", sp(s.span), meta(head)));
-                self.nested(|d| d.body(body));
-                self.line(format!("until {} {}", expr(until), meta(end)));
+            StmtKind::Repeat(r) => {
+                self.line(format!("repeat {} head {}", sp(s.span), meta(&r.head)));
+                self.nested(|d| d.body(&r.body));
+                self.line(format!("until {} {}", expr(&r.until), meta(&r.end)));
             }
-            StmtKind::Do {
-                head,
-                id,
-                cond,
-                body,
-                end,
-            } => {
-                let c = cond
-                    .as_ref()
-                    .map_or("forever".to_string(), |c| format!("while {}", expr(c)));
-                self.line(format!("do{id} {c} {} head {}", sp(s.span), meta(head)));
-                self.nested(|d| d.body(body));
-                self.line(format!("end{id} {}", meta(end)));
+            StmtKind::Do(d) => {
+                let c = d.cond.as_ref().map_or("forever".to_string(), |c| format!("while {}", expr(c)));
+                self.line(format!("do{} {c} {} head {}", d.id, sp(s.span), meta(&d.head)));
+                self.nested(|dd| dd.body(&d.body));
+                self.line(format!("end{} {}", d.id, meta(&d.end)));
             }
         }
     }
@@ -205,11 +152,7 @@ impl Dumper {
                 let vars: Vec<String> = def.vars.iter().map(defvar).collect();
                 format!("def {} {}", ty(def.ty), vars.join(", "))
             }
-            ItemKind::Alarm {
-                style,
-                number,
-                text,
-            } => {
+            ItemKind::Alarm { style, number, text } => {
                 let st = match style {
                     AlarmStyle::FanucMacro => "fanuc-3000",
                     AlarmStyle::Setal => "setal",
@@ -222,43 +165,31 @@ impl Dumper {
                 None => "message clear".into(),
             },
             ItemKind::Stopre => "stopre".into(),
-            ItemKind::ParamWrite {
-                number,
-                axis,
-                bit,
-                value,
-            } => {
-                let mut s = format!("param-write n={}", expr(number));
-                if let Some(a) = axis {
+            ItemKind::ParamWrite(p) => {
+                let mut s = format!("param-write n={}", expr(&p.number));
+                if let Some(a) = &p.axis {
                     let _ = write!(s, " p={}", expr(a));
                 }
-                if let Some(b) = bit {
+                if let Some(b) = &p.bit {
                     let _ = write!(s, " q={}", expr(b));
                 }
-                let _ = write!(s, " r={}", expr(value));
+                let _ = write!(s, " r={}", expr(&p.value));
                 s
             }
-            ItemKind::RepeatSection {
-                start,
-                end,
-                count,
-                single,
-            } => {
-                let kw = if *single { "repeatb" } else { "repeat-section" };
-                let mut s = format!("{kw} {}", start.name);
-                if let Some(e) = end {
+            ItemKind::RepeatSection(r) => {
+                let kw = if r.single { "repeatb" } else { "repeat-section" };
+                let mut s = format!("{kw} {}", r.start.name);
+                if let Some(e) = &r.end {
                     let _ = write!(s, " .. {}", e.name);
                 }
-                if let Some(c) = count {
+                if let Some(c) = &r.count {
                     let _ = write!(s, " times {}", expr(c));
                 }
                 s
             }
             ItemKind::Frame { op, words } => {
                 let ws: Vec<String> = words.iter().map(word).collect();
-                format!("frame {op} {}", ws.join(" "))
-                    .trim_end()
-                    .to_string()
+                format!("frame {op} {}", ws.join(" ")).trim_end().to_string()
             }
         };
         self.line(format!("{text} {at}"));
@@ -266,8 +197,7 @@ impl Dumper {
 }
 
 fn opt_text(t: &Option<String>) -> String {
-    t.as_ref()
-        .map_or(String::new(), |t| format!(" {}", quote(t)))
+    t.as_ref().map_or(String::new(), |t| format!(" {}", quote(t)))
 }
 
 fn sp(s: Span) -> String {
@@ -323,16 +253,11 @@ fn defvar(v: &DefVar) -> String {
             let _ = write!(s, " = {}", expr(e));
         }
         Some(Init::Set(list)) => {
-            let items: Vec<String> = list
-                .iter()
-                .map(|e| e.as_ref().map_or("_".into(), expr))
-                .collect();
+            let items: Vec<String> = list.iter().map(|e| e.as_ref().map_or("_".into(), expr)).collect();
             let _ = write!(s, " = set({})", items.join(", "));
         }
         Some(Init::Rep { value, count }) => {
-            let c = count
-                .as_ref()
-                .map_or(String::new(), |c| format!(", {}", expr(c)));
+            let c = count.as_ref().map_or(String::new(), |c| format!(", {}", expr(c)));
             let _ = write!(s, " = rep({}{c})", expr(value));
         }
         None => {}
@@ -408,11 +333,7 @@ fn call(c: &Call) -> String {
 pub fn num(n: Number) -> String {
     if n.value.fract() == 0.0 && n.value.abs() < 1e15 {
         let i = n.value as i64;
-        let neg = if n.value.is_sign_negative() && i == 0 {
-            "-"
-        } else {
-            ""
-        };
+        let neg = if n.value.is_sign_negative() && i == 0 { "-" } else { "" };
         if n.point {
             format!("{neg}{i}.")
         } else {

@@ -35,7 +35,8 @@ pub enum ExprKind {
     /// A bare identifier used as data: an axis name in `$AA_IW[X]`, a frame component `TR`,
     /// or a label name held as a GOTO target. Resolved by its consumer.
     Ident(String),
-    Var(VarRef),
+    /// Boxed: keeps `Expr` small for the constant-only words of CAM blocks.
+    Var(Box<VarRef>),
     Unary(UnOp, Box<Expr>),
     Binary(BinOp, Box<Expr>, Box<Expr>),
     Cmp(CmpOp, Tolerance, Box<Expr>, Box<Expr>),
@@ -240,10 +241,7 @@ impl Expr {
     }
 
     pub fn num(value: f64, point: bool, span: Span) -> Self {
-        Expr {
-            kind: ExprKind::Num(Number { value, point }),
-            span,
-        }
+        Expr { kind: ExprKind::Num(Number { value, point }), span }
     }
 
     /// Direct sub-expressions, in source order.
@@ -263,9 +261,7 @@ impl VarRef {
         match &self.kind {
             VarKind::Hash(_) | VarKind::R(_) => vec![],
             VarKind::HashIndirect(e) | VarKind::RIndirect(e) => vec![e],
-            VarKind::Named { indices, .. } | VarKind::System { indices, .. } => {
-                indices.iter().collect()
-            }
+            VarKind::Named { indices, .. } | VarKind::System { indices, .. } => indices.iter().collect(),
         }
     }
 }

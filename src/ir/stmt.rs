@@ -55,17 +55,17 @@ pub struct Item {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ItemKind {
     /// `#1=…` (FANUC), `R1=…`, `NAME=…`, `A[1,2]=…` (Siemens).
-    Assign { target: VarRef, value: Expr },
+    Assign { target: Box<VarRef>, value: Expr },
     /// An NC address word: `G1`, `X10.`, `X=R1+2`, `T="DRILL"`, `CR=5`, `X#1`, `M#5`.
     Word(Word),
     /// FANUC `GOTO n`, `IF[c]GOTO n`; Siemens `GOTOF L`, `IF c GOTOB N5`.
-    Goto(Goto),
+    Goto(Box<Goto>),
     /// FANUC `IF[cond]THEN stmt`: exactly one macro statement, run when `cond` holds.
     IfThen { cond: Expr, then: Box<Item> },
     /// Siemens `CASE (e) OF 1 GOTOF A 2 GOTOF B DEFAULT GOTOF C`.
-    Case(Case),
+    Case(Box<Case>),
     /// Any subprogram or macro call (see [`CallKind`]).
-    Call(Call),
+    Call(Box<Call>),
     /// FANUC `G67`, Siemens `MCALL` with no name: cancel the modal call.
     ModalCallOff,
     /// FANUC `M99` (optionally `M99 Pn`: continue at Nn of the caller), Siemens `RET`, `M17`.
@@ -73,13 +73,9 @@ pub enum ItemKind {
     /// FANUC `M30`/`M02`, Siemens `M30`/`M2`: end of program.
     End { code: EndCode },
     /// Siemens `DEF type name[dims]=init, …`.
-    Def(Def),
+    Def(Box<Def>),
     /// FANUC `#3000=n(TEXT)` (shows alarm 3000+n), Siemens `SETAL(n)`.
-    Alarm {
-        style: AlarmStyle,
-        number: Expr,
-        text: Option<String>,
-    },
+    Alarm { style: AlarmStyle, number: Expr, text: Option<String> },
     /// FANUC `#3006=n(TEXT)`: stop with a message; cycle start continues.
     StopMessage { text: Option<String> },
     /// Siemens `MSG("…")` (a message, no stop); `MSG()` clears (`text == None`).
@@ -87,21 +83,29 @@ pub enum ItemKind {
     /// Siemens `STOPRE`: preprocessing stop.
     Stopre,
     /// A FANUC parameter write between `G10 L50` and `G11`: `N<param> [P<axis>] [Q<bit>] R<value>`.
-    ParamWrite {
-        number: Expr,
-        axis: Option<Expr>,
-        bit: Option<Expr>,
-        value: Expr,
-    },
+    ParamWrite(Box<ParamWrite>),
     /// Siemens program-section repetition `REPEAT A [B] P=n` / `REPEATB A P=n`.
-    RepeatSection {
-        start: Label,
-        end: Option<Label>,
-        count: Option<Expr>,
-        single: bool,
-    },
+    RepeatSection(Box<RepeatSection>),
     /// Siemens frame instruction with axis words: `TRANS X10`, `ATRANS …`, `ROT Z45`, bare `TRANS`.
     Frame { op: String, words: Vec<Word> },
+}
+
+/// FANUC `G10 L50` mode: `N<param> [P<axis>] [Q<bit>] R<value>`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamWrite {
+    pub number: Expr,
+    pub axis: Option<Expr>,
+    pub bit: Option<Expr>,
+    pub value: Expr,
+}
+
+/// Siemens `REPEAT start [end] P=count` (`single`: `REPEATB`, the one labelled block).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RepeatSection {
+    pub start: Label,
+    pub end: Option<Label>,
+    pub count: Option<Expr>,
+    pub single: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -300,54 +304,74 @@ pub struct Stmt {
     pub span: Span,
 }
 
+/// Structured statements are boxed so that the common plain block stays small.
 #[derive(Clone, Debug, PartialEq)]
 pub enum StmtKind {
     Block(Block),
     /// Siemens `IF c … [ELSE …] ENDIF`.
-    If {
-        head: BlockMeta,
-        cond: Expr,
-        then_body: Vec<Stmt>,
-        else_part: Option<ElsePart>,
-        end: BlockMeta,
-    },
+    If(Box<IfStmt>),
     /// Siemens `WHILE c … ENDWHILE`.
-    While {
-        head: BlockMeta,
-        cond: Expr,
-        body: Vec<Stmt>,
-        end: BlockMeta,
-    },
+    While(Box<WhileStmt>),
     /// Siemens `LOOP … ENDLOOP`.
-    Loop {
-        head: BlockMeta,
-        body: Vec<Stmt>,
-        end: BlockMeta,
-    },
+    Loop(Box<LoopStmt>),
     /// Siemens `FOR v = a TO b … ENDFOR`.
-    For {
-        head: BlockMeta,
-        var: VarRef,
-        from: Expr,
-        to: Expr,
-        body: Vec<Stmt>,
-        end: BlockMeta,
-    },
+    For(Box<ForStmt>),
     /// Siemens `REPEAT … UNTIL c`.
-    Repeat {
-        head: BlockMeta,
-        body: Vec<Stmt>,
-        end: BlockMeta,
-        until: Expr,
-    },
+    Repeat(Box<RepeatStmt>),
     /// FANUC `WHILE[c]DOm … ENDm`, or bare `DOm … ENDm` (`cond == None`: endless).
-    Do {
-        head: BlockMeta,
-        id: u8,
-        cond: Option<Expr>,
-        body: Vec<Stmt>,
-        end: BlockMeta,
-    },
+    Do(Box<DoStmt>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IfStmt {
+    pub head: BlockMeta,
+    pub cond: Expr,
+    pub then_body: Vec<Stmt>,
+    pub else_part: Option<ElsePart>,
+    pub end: BlockMeta,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct WhileStmt {
+    pub head: BlockMeta,
+    pub cond: Expr,
+    pub body: Vec<Stmt>,
+    pub end: BlockMeta,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoopStmt {
+    pub head: BlockMeta,
+    pub body: Vec<Stmt>,
+    pub end: BlockMeta,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForStmt {
+    pub head: BlockMeta,
+    pub var: VarRef,
+    pub from: Expr,
+    pub to: Expr,
+    pub body: Vec<Stmt>,
+    pub end: BlockMeta,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RepeatStmt {
+    pub head: BlockMeta,
+    pub body: Vec<Stmt>,
+    /// The `UNTIL` block.
+    pub end: BlockMeta,
+    pub until: Expr,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct DoStmt {
+    pub head: BlockMeta,
+    pub id: u8,
+    pub cond: Option<Expr>,
+    pub body: Vec<Stmt>,
+    pub end: BlockMeta,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -17,22 +17,18 @@ pub fn walk_stmts<'a>(body: &'a [Stmt], f: &mut dyn FnMut(&'a Stmt)) {
 pub fn child_bodies(kind: &StmtKind) -> Vec<&[Stmt]> {
     match kind {
         StmtKind::Block(_) => vec![],
-        StmtKind::If {
-            then_body,
-            else_part,
-            ..
-        } => {
-            let mut v = vec![then_body.as_slice()];
-            if let Some(e) = else_part {
+        StmtKind::If(i) => {
+            let mut v = vec![i.then_body.as_slice()];
+            if let Some(e) = &i.else_part {
                 v.push(e.body.as_slice());
             }
             v
         }
-        StmtKind::While { body, .. }
-        | StmtKind::Loop { body, .. }
-        | StmtKind::For { body, .. }
-        | StmtKind::Repeat { body, .. }
-        | StmtKind::Do { body, .. } => vec![body.as_slice()],
+        StmtKind::While(w) => vec![w.body.as_slice()],
+        StmtKind::Loop(l) => vec![l.body.as_slice()],
+        StmtKind::For(f) => vec![f.body.as_slice()],
+        StmtKind::Repeat(r) => vec![r.body.as_slice()],
+        StmtKind::Do(d) => vec![d.body.as_slice()],
     }
 }
 
@@ -40,24 +36,19 @@ pub fn child_bodies(kind: &StmtKind) -> Vec<&[Stmt]> {
 pub fn metas(kind: &StmtKind) -> Vec<&BlockMeta> {
     match kind {
         StmtKind::Block(b) => vec![&b.meta],
-        StmtKind::If {
-            head,
-            else_part,
-            end,
-            ..
-        } => {
-            let mut v = vec![head];
-            if let Some(e) = else_part {
+        StmtKind::If(i) => {
+            let mut v = vec![&i.head];
+            if let Some(e) = &i.else_part {
                 v.push(&e.head);
             }
-            v.push(end);
+            v.push(&i.end);
             v
         }
-        StmtKind::While { head, end, .. }
-        | StmtKind::Loop { head, end, .. }
-        | StmtKind::For { head, end, .. }
-        | StmtKind::Repeat { head, end, .. }
-        | StmtKind::Do { head, end, .. } => vec![head, end],
+        StmtKind::While(w) => vec![&w.head, &w.end],
+        StmtKind::Loop(l) => vec![&l.head, &l.end],
+        StmtKind::For(f) => vec![&f.head, &f.end],
+        StmtKind::Repeat(r) => vec![&r.head, &r.end],
+        StmtKind::Do(d) => vec![&d.head, &d.end],
     }
 }
 
@@ -125,23 +116,15 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         }
         ItemKind::Alarm { number, .. } => v.push(number),
         ItemKind::Message { text } => v.extend(text.iter()),
-        ItemKind::ParamWrite {
-            number,
-            axis,
-            bit,
-            value,
-        } => {
-            v.push(number);
-            v.extend(axis.iter());
-            v.extend(bit.iter());
-            v.push(value);
+        ItemKind::ParamWrite(p) => {
+            v.push(&p.number);
+            v.extend(p.axis.iter());
+            v.extend(p.bit.iter());
+            v.push(&p.value);
         }
-        ItemKind::RepeatSection { count, .. } => v.extend(count.iter()),
+        ItemKind::RepeatSection(r) => v.extend(r.count.iter()),
         ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
-        ItemKind::ModalCallOff
-        | ItemKind::End { .. }
-        | ItemKind::StopMessage { .. }
-        | ItemKind::Stopre => {}
+        ItemKind::ModalCallOff | ItemKind::End { .. } | ItemKind::StopMessage { .. } | ItemKind::Stopre => {}
     }
     v
 }
@@ -166,10 +149,7 @@ pub fn check_spans(unit: &Unit, len: u32) -> Vec<String> {
 
 fn inside(problems: &mut Vec<String>, parent: Span, child: Span, what: &str) {
     if child.lo > child.hi || !parent.contains(child) {
-        problems.push(format!(
-            "{what} span {}..{} not inside {}..{}",
-            child.lo, child.hi, parent.lo, parent.hi
-        ));
+        problems.push(format!("{what} span {}..{} not inside {}..{}", child.lo, child.hi, parent.lo, parent.hi));
     }
 }
 
@@ -198,27 +178,20 @@ fn body_spans(problems: &mut Vec<String>, parent: Span, body: &[Stmt]) {
                     item_spans(problems, b.meta.span, it);
                 }
             }
-            StmtKind::If { head, cond, .. } | StmtKind::While { head, cond, .. } => {
-                expr_spans(problems, head.span, cond)
+            StmtKind::If(i) => expr_spans(problems, i.head.span, &i.cond),
+            StmtKind::While(w) => expr_spans(problems, w.head.span, &w.cond),
+            StmtKind::For(f) => {
+                inside(problems, f.head.span, f.var.span, "variable");
+                expr_spans(problems, f.head.span, &f.from);
+                expr_spans(problems, f.head.span, &f.to);
             }
-            StmtKind::For {
-                head,
-                var,
-                from,
-                to,
-                ..
-            } => {
-                inside(problems, head.span, var.span, "variable");
-                expr_spans(problems, head.span, from);
-                expr_spans(problems, head.span, to);
-            }
-            StmtKind::Repeat { end, until, .. } => expr_spans(problems, end.span, until),
-            StmtKind::Do { head, cond, .. } => {
-                if let Some(c) = cond {
-                    expr_spans(problems, head.span, c);
+            StmtKind::Repeat(r) => expr_spans(problems, r.end.span, &r.until),
+            StmtKind::Do(d) => {
+                if let Some(c) = &d.cond {
+                    expr_spans(problems, d.head.span, c);
                 }
             }
-            StmtKind::Loop { .. } => {}
+            StmtKind::Loop(_) => {}
         }
         for child in child_bodies(&s.kind) {
             body_spans(problems, s.span, child);
@@ -257,4 +230,14 @@ fn expr_spans(problems: &mut Vec<String>, parent: Span, e: &Expr) {
     for c in e.children() {
         expr_spans(problems, e.span, c);
     }
+}
+
+/// Number of source blocks a unit holds (structure heads, ELSE and ends count as blocks).
+pub fn count_blocks(unit: &Unit) -> usize {
+    let mut n = 0;
+    for p in &unit.programs {
+        n += usize::from(p.head.is_some());
+        walk_stmts(&p.body, &mut |s| n += metas(&s.kind).len());
+    }
+    n
 }
