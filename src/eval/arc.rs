@@ -64,10 +64,7 @@ mod tests {
     #[test]
     fn radius_sign_rule() {
         // From (0,0) to (10,0): ccw R5 is a half circle centred at (5,0).
-        assert!(close(
-            centre_from_radius((0.0, 0.0), (10.0, 0.0), 5.0, false).unwrap(),
-            (5.0, 0.0)
-        ));
+        assert!(close(centre_from_radius((0.0, 0.0), (10.0, 0.0), 5.0, false).unwrap(), (5.0, 0.0)));
         // cw, R=10, short arc: centre below the chord (right of travel to +X).
         let c = centre_from_radius((0.0, 0.0), (10.0, 0.0), 10.0, true).unwrap();
         assert!(c.1 < 0.0);

@@ -68,33 +68,20 @@ impl CalleeSource for DirCallees {
         name: &CalleeName,
     ) -> Result<Option<Unit>, Diagnostic> {
         let caller_path = Path::new(&db.get(caller).name).to_path_buf();
-        let dir = caller_path
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or_else(|| Path::new("."));
+        let dir = caller_path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
         let Ok(entries) = std::fs::read_dir(dir) else {
             return Ok(None);
         };
-        let mut files: Vec<std::path::PathBuf> =
-            entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        let mut files: Vec<std::path::PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
         files.sort();
         let stems: Vec<String> = match name {
-            CalleeName::Number(n) => vec![
-                format!("O{n}"),
-                format!("O{n:04}"),
-                format!("{n}"),
-                format!("{n:04}"),
-            ],
+            CalleeName::Number(n) => vec![format!("O{n}"), format!("O{n:04}"), format!("{n}"), format!("{n:04}")],
             CalleeName::Name(s) => vec![s.clone()],
         };
         let hit = stems.iter().find_map(|stem| {
             files.iter().find(|f| {
                 let st = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-                let ext = f
-                    .extension()
-                    .and_then(|s| s.to_str())
-                    .unwrap_or("")
-                    .to_ascii_lowercase();
+                let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
                 st.eq_ignore_ascii_case(stem)
                     && **f != caller_path
                     && match name {
@@ -106,23 +93,15 @@ impl CalleeSource for DirCallees {
         let Some(path) = hit.cloned() else {
             return Ok(None);
         };
-        let bytes = std::fs::read(&path).map_err(|e| {
-            Diagnostic::error("NC401", format!("cannot read {}: {e}", path.display()))
-        })?;
+        let bytes = std::fs::read(&path)
+            .map_err(|e| Diagnostic::error("NC401", format!("cannot read {}: {e}", path.display())))?;
         let loaded = crate::load(db, &path.display().to_string(), &bytes, None);
-        let opts = ParseOptions {
-            semantics: self
-                .semantics
-                .clone()
-                .unwrap_or_else(|| Semantics::default_for(dialect)),
-        };
+        let opts =
+            ParseOptions { semantics: self.semantics.clone().unwrap_or_else(|| Semantics::default_for(dialect)) };
         let parsed = crate::parse(db, loaded.file, dialect, &opts);
         if let Some(first) = parsed.diags.iter().find(|d| d.is_error()) {
             let mut d = first.clone();
-            d.notes.push(format!(
-                "while loading the called program {}",
-                path.display()
-            ));
+            d.notes.push(format!("while loading the called program {}", path.display()));
             return Err(d);
         }
         Ok(Some(parsed.unit))
@@ -156,11 +135,7 @@ fn letter_scaled(letter: u8) -> Option<bool> {
 impl Interp<'_> {
     /// Flattens every program of `unit` and registers it by number/name; `fallback` names
     /// a nameless program (a Siemens file called by its file name).
-    pub fn register_unit(
-        &mut self,
-        unit: &Unit,
-        fallback: Option<&CalleeName>,
-    ) -> Result<Vec<usize>, Diagnostic> {
+    pub fn register_unit(&mut self, unit: &Unit, fallback: Option<&CalleeName>) -> Result<Vec<usize>, Diagnostic> {
         let mut ids = Vec::new();
         for p in &unit.programs {
             let code = Code::flatten(unit.file, p)?;
@@ -203,10 +178,7 @@ impl Interp<'_> {
             return Ok(Some(id));
         }
         let caller = self.file();
-        let found = self
-            .callees
-            .find(self.db, caller, self.dialect, name)
-            .map_err(Fault::error)?;
+        let found = self.callees.find(self.db, caller, self.dialect, name).map_err(Fault::error)?;
         let Some(unit) = found else {
             return Ok(None);
         };
@@ -322,14 +294,7 @@ impl Interp<'_> {
         Ok(out)
     }
 
-    fn push_frame(
-        &mut self,
-        code: usize,
-        kind: FrameKind,
-        repeats: u64,
-        span: Span,
-        modal: bool,
-    ) -> Result<(), Fault> {
+    fn push_frame(&mut self, code: usize, kind: FrameKind, repeats: u64, span: Span, modal: bool) -> Result<(), Fault> {
         let (macros, subs) = self.frames.iter().fold((0u32, 0u32), |(m, s), f| match f.kind {
             FrameKind::Macro => (m + 1, s),
             FrameKind::Sub | FrameKind::Proc => (m, s + 1),
@@ -396,11 +361,7 @@ impl Interp<'_> {
         if args.len() > params.len() {
             return Err(Fault::alarm(
                 self.alarms.bad_index,
-                format!(
-                    "{} arguments passed, the subprogram has {} parameters",
-                    args.len(),
-                    params.len()
-                ),
+                format!("{} arguments passed, the subprogram has {} parameters", args.len(), params.len()),
                 span,
             ));
         }
@@ -425,14 +386,7 @@ impl Interp<'_> {
             };
             let mut data = vec![zero_of(p.ty); len];
             data[0] = v;
-            self.vars.frames[sf].insert(
-                p.name.clone(),
-                Slot::Own {
-                    ty: p.ty,
-                    dims: p.dims.clone(),
-                    data,
-                },
-            );
+            self.vars.frames[sf].insert(p.name.clone(), Slot::Own { ty: p.ty, dims: p.dims.clone(), data });
         }
         Ok(())
     }
@@ -441,11 +395,7 @@ impl Interp<'_> {
         let name = self.target_name(call)?;
         if let CalleeName::Name(s) = &name {
             if SIMULATION_ONLY.contains(&s.as_str()) {
-                self.warn(
-                    "NC406",
-                    format!("{s}(...) only sets up the HMI simulation: no effect on the trace"),
-                    span,
-                );
+                self.warn("NC406", format!("{s}(...) only sets up the HMI simulation: no effect on the trace"), span);
                 return Ok(Flow::Next);
             }
         }
@@ -467,11 +417,7 @@ impl Interp<'_> {
         };
         match call.kind {
             CallKind::G66 | CallKind::Mcall => {
-                let fanuc_args = if self.fanuc {
-                    self.fanuc_args(call)?
-                } else {
-                    vec![]
-                };
+                let fanuc_args = if self.fanuc { self.fanuc_args(call)? } else { vec![] };
                 let sie_args = if self.fanuc { vec![] } else { self.sie_args(call)? };
                 self.modal_call = Some(super::calls::ModalCall {
                     code,
@@ -531,12 +477,7 @@ impl Interp<'_> {
     }
 
     /// A G66/MCALL modal call after a block that moved.
-    pub fn modal_trigger(
-        &mut self,
-        mc: &ModalCall,
-        pc: usize,
-        span: Span,
-    ) -> Result<Flow, Fault> {
+    pub fn modal_trigger(&mut self, mc: &ModalCall, pc: usize, span: Span) -> Result<Flow, Fault> {
         if mc.repeat == 0 {
             return Ok(Flow::Next);
         }
@@ -569,11 +510,7 @@ impl Interp<'_> {
                 let from = self.frames.last().map_or(0, |f| f.pc);
                 return match u32::try_from(n).ok().and_then(|n| code.find_number_from(from + 1, n)) {
                     Some(d) => Ok(Flow::Goto(d)),
-                    None => Err(Fault::alarm(
-                        self.alarms.no_target,
-                        format!("M99 P{n}: N{n} not found"),
-                        span,
-                    )),
+                    None => Err(Fault::alarm(self.alarms.no_target, format!("M99 P{n}: N{n} not found"), span)),
                 };
             }
             let code = if self.fanuc { "M99" } else { "RET" };

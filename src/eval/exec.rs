@@ -12,10 +12,7 @@ use super::vars::{flat_index, Place, Slot, Vars};
 use super::{CalleeSource, Ending, Input, RunOptions};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, Semantics};
-use crate::ir::{
-    Block, EndCode, Expr, ExprKind, Goto, Item, ItemKind, Search, Target, VarKind, VarRef,
-    WordValue,
-};
+use crate::ir::{Block, EndCode, Expr, ExprKind, Goto, Item, ItemKind, Search, Target, VarKind, VarRef, WordValue};
 use crate::span::{FileId, SourceDb, Span};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
@@ -100,16 +97,9 @@ impl<'a> Interp<'a> {
         callees: &'a mut dyn CalleeSource,
         sink: &'a mut dyn TraceSink,
     ) -> Interp<'a> {
-        let sem = opts
-            .semantics
-            .clone()
-            .unwrap_or_else(|| Semantics::default_for(dialect));
+        let sem = opts.semantics.clone().unwrap_or_else(|| Semantics::default_for(dialect));
         let fanuc = dialect == Dialect::Fanuc;
-        let alarms = if fanuc {
-            AlarmNumbers::FANUC
-        } else {
-            AlarmNumbers::SINUMERIK
-        };
+        let alarms = if fanuc { AlarmNumbers::FANUC } else { AlarmNumbers::SINUMERIK };
         let scaling = sem.increment_scaling && !sem.calculator_input;
         let m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         let r_count = sem.r_param_count as usize;
@@ -142,9 +132,7 @@ impl<'a> Interp<'a> {
     }
 
     pub fn file(&self) -> FileId {
-        self.frames
-            .last()
-            .map_or(0, |f| self.codes[f.code].file)
+        self.frames.last().map_or(0, |f| self.codes[f.code].file)
     }
 
     pub fn cx(&self, in_address: bool) -> Cx {
@@ -155,11 +143,7 @@ impl<'a> Interp<'a> {
             rel_tol: self.sem.cmp_tolerance,
             alarms: self.alarms,
             in_address,
-            increment: if self.m.inch {
-                self.sem.least_increment_mm / 10.0
-            } else {
-                self.sem.least_increment_mm
-            },
+            increment: if self.m.inch { self.sem.least_increment_mm / 10.0 } else { self.sem.least_increment_mm },
         }
     }
 
@@ -167,30 +151,16 @@ impl<'a> Interp<'a> {
     pub fn warn(&mut self, code: &'static str, msg: String, span: Span) {
         let file = self.file();
         if self.warned.insert((code, file, span)) {
-            self.diags
-                .push(Diagnostic::warning(code, msg).primary(file, span, "here"));
+            self.diags.push(Diagnostic::warning(code, msg).primary(file, span, "here"));
         }
     }
 
     /// Sends an event, merging a Siemens MSG with the M0/M1 right after it.
     pub fn emit(&mut self, ev: Event, span: Span) {
-        let origin = Origin {
-            file: self.file(),
-            span,
-        };
+        let origin = Origin { file: self.file(), span };
         if let Some((text, o)) = self.pending_msg.take() {
-            if let Event::Stop {
-                optional,
-                message: None,
-            } = ev
-            {
-                self.sink.event(
-                    &Event::Stop {
-                        optional,
-                        message: Some(text),
-                    },
-                    origin,
-                );
+            if let Event::Stop { optional, message: None } = ev {
+                self.sink.event(&Event::Stop { optional, message: Some(text) }, origin);
                 return;
             }
             self.sink.event(&Event::Message { text }, o);
@@ -220,18 +190,10 @@ impl<'a> Interp<'a> {
                 // Past the last block.
                 if self.frames.len() == 1 {
                     let span = code.ops.last().map_or(Span::default(), Op::span);
-                    return Err(Fault::alarm(
-                        0,
-                        "end of the main program reached without M30/M2/M99/RET",
-                        span,
-                    ));
+                    return Err(Fault::alarm(0, "end of the main program reached without M30/M2/M99/RET", span));
                 }
                 let span = code.ops.last().map_or(Span::default(), Op::span);
-                self.warn(
-                    "NC410",
-                    "subprogram ends without M99/M17/RET; returning to the caller".into(),
-                    span,
-                );
+                self.warn("NC410", "subprogram ends without M99/M17/RET; returning to the caller".into(), span);
                 match self.do_return(None, span)? {
                     Flow::Stop(e) => return Ok(e),
                     _ => continue,
@@ -247,10 +209,7 @@ impl<'a> Interp<'a> {
             }
             let flow = self.exec_op(&code, op, pc)?;
             if let Op::Block(_) = op {
-                let origin = Origin {
-                    file: code.file,
-                    span: op.span(),
-                };
+                let origin = Origin { file: code.file, span: op.span() };
                 let pos = self.m.trace_pos();
                 self.sink.block_done(origin, &pos);
             }
@@ -288,25 +247,15 @@ impl<'a> Interp<'a> {
             Op::Test { cond, target, .. } => {
                 let cx = self.cx(false);
                 let v = expr::eval(self, cond, &cx)?;
-                Ok(if v.truthy() {
-                    Flow::Next
-                } else {
-                    Flow::Goto(*target)
-                })
+                Ok(if v.truthy() { Flow::Next } else { Flow::Goto(*target) })
             }
             Op::Jump { target, .. } => Ok(Flow::Goto(*target)),
             Op::Until { cond, target, .. } => {
                 let cx = self.cx(false);
                 let v = expr::eval(self, cond, &cx)?;
-                Ok(if v.truthy() {
-                    Flow::Next
-                } else {
-                    Flow::Goto(*target)
-                })
+                Ok(if v.truthy() { Flow::Next } else { Flow::Goto(*target) })
             }
-            Op::ForHead {
-                var, from, to, exit, ..
-            } => {
+            Op::ForHead { var, from, to, exit, .. } => {
                 let cx = self.cx(false);
                 let v = expr::eval(self, from, &cx)?;
                 self.write_var(var, v)?;
@@ -333,13 +282,7 @@ impl<'a> Interp<'a> {
         let cx = self.cx(false);
         let cur = expr::eval(self, &var_expr(var), &cx)?;
         let end = expr::eval(self, to, &cx)?;
-        Ok(expr::compare(
-            crate::ir::CmpOp::Le,
-            crate::ir::Tolerance::Relative,
-            &cur,
-            &end,
-            &cx,
-        ))
+        Ok(expr::compare(crate::ir::CmpOp::Le, crate::ir::Tolerance::Relative, &cur, &end, &cx))
     }
 
     fn exec_block(&mut self, code: &Rc<Code>, b: &Block, pc: usize) -> Result<Flow, Fault> {
@@ -356,22 +299,18 @@ impl<'a> Interp<'a> {
                         words.push(wv);
                     }
                 }
-                ItemKind::StopMessage { text } => {
-                    stop_message = Some(text.clone().unwrap_or_default())
-                }
+                ItemKind::StopMessage { text } => stop_message = Some(text.clone().unwrap_or_default()),
                 ItemKind::Goto(_)
                 | ItemKind::Case(_)
                 | ItemKind::Call(_)
                 | ItemKind::Return { .. }
                 | ItemKind::End { .. }
-                | ItemKind::RepeatSection { .. } => control.push(item),
+                | ItemKind::RepeatSection(_) => control.push(item),
                 ItemKind::IfThen { cond, then } => {
                     let cx = self.cx(false);
                     if expr::eval(self, cond, &cx)?.truthy() {
                         match &then.kind {
-                            ItemKind::Goto(_) | ItemKind::Call(_) | ItemKind::Return { .. } => {
-                                control.push(then)
-                            }
+                            ItemKind::Goto(_) | ItemKind::Call(_) | ItemKind::Return { .. } => control.push(then),
                             _ => self.exec_simple(then, &mut stop_message)?,
                         }
                     }
@@ -448,11 +387,7 @@ impl<'a> Interp<'a> {
                 self.write_var(target, v)
             }
             ItemKind::Def(def) => self.define(def),
-            ItemKind::Alarm {
-                style,
-                number,
-                text,
-            } => {
+            ItemKind::Alarm { style, number, text } => {
                 let cx = self.cx(false);
                 let n = round_half_away(expr::eval_num(self, number, &cx)?) as i64;
                 let number = match style {
@@ -483,12 +418,8 @@ impl<'a> Interp<'a> {
                 self.modal_call = None;
                 Ok(())
             }
-            ItemKind::ParamWrite { .. } => {
-                self.warn(
-                    "NC405",
-                    "parameter write (G10 L50) has no effect on the trace".into(),
-                    item.span,
-                );
+            ItemKind::ParamWrite(_) => {
+                self.warn("NC405", "parameter write (G10 L50) has no effect on the trace".into(), item.span);
                 Ok(())
             }
             ItemKind::Frame { op, words } => {
@@ -507,7 +438,7 @@ impl<'a> Interp<'a> {
             | ItemKind::Call(_)
             | ItemKind::Return { .. }
             | ItemKind::End { .. }
-            | ItemKind::RepeatSection { .. } => Ok(()),
+            | ItemKind::RepeatSection(_) => Ok(()),
         }
     }
 
@@ -519,13 +450,7 @@ impl<'a> Interp<'a> {
                 let sel = expr::eval(self, &c.selector, &cx)?;
                 for arm in &c.arms {
                     let v = expr::eval(self, &arm.value, &cx)?;
-                    if expr::compare(
-                        crate::ir::CmpOp::Eq,
-                        crate::ir::Tolerance::Relative,
-                        &sel,
-                        &v,
-                        &cx,
-                    ) {
+                    if expr::compare(crate::ir::CmpOp::Eq, crate::ir::Tolerance::Relative, &sel, &v, &cx) {
                         return self.goto(code, &arm.goto, pc, item.span);
                     }
                 }
@@ -547,12 +472,8 @@ impl<'a> Interp<'a> {
                 }
                 Ok(Flow::Stop(self.end(name, item.span)))
             }
-            ItemKind::RepeatSection {
-                start,
-                end,
-                count,
-                single,
-            } => {
+            ItemKind::RepeatSection(rs) => {
+                let crate::ir::RepeatSection { start, end, count, single } = &**rs;
                 let n = match count {
                     Some(e) => {
                         let cx = self.cx(false);
@@ -567,14 +488,11 @@ impl<'a> Interp<'a> {
                         item.span,
                     )
                 };
-                let s = code
-                    .find_label_back(pc, &start.name)
-                    .ok_or_else(|| not_found(&start.name))?;
+                let s = code.find_label_back(pc, &start.name).ok_or_else(|| not_found(&start.name))?;
                 let e = if *single {
                     s
                 } else if let Some(l) = end {
-                    code.find_label_back(pc, &l.name)
-                        .ok_or_else(|| not_found(&l.name))?
+                    code.find_label_back(pc, &l.name).ok_or_else(|| not_found(&l.name))?
                 } else {
                     // The section from the label to the block before REPEAT, which has
                     // just run once: repeat it `n` more times.
@@ -588,12 +506,7 @@ impl<'a> Interp<'a> {
                 }
                 let left = if *single || end.is_some() { n - 1 } else { n - 1 };
                 let fr = self.frames.last_mut().ok_or_else(internal)?;
-                fr.reps.push(Rep {
-                    restart: s,
-                    end: e,
-                    ret: pc + 1,
-                    left,
-                });
+                fr.reps.push(Rep { restart: s, end: e, ret: pc + 1, left });
                 Ok(Flow::Goto(s))
             }
             _ => Ok(Flow::Next),
@@ -663,13 +576,7 @@ impl<'a> Interp<'a> {
             Value::Num(x) => WV::Num(x),
             Value::Str(s) => WV::Str(s),
         };
-        Ok(Some(WordVal {
-            addr: w.addr.as_str().to_ascii_uppercase(),
-            val,
-            mode,
-            bare,
-            span: w.span,
-        }))
+        Ok(Some(WordVal { addr: w.addr.as_str().to_ascii_uppercase(), val, mode, bare, span: w.span }))
     }
 
     // ---- variables ----
@@ -696,11 +603,7 @@ impl<'a> Interp<'a> {
                 let level = &self.vars.levels[lv];
                 let v = level.vals[n as usize];
                 if v.is_none() && level.written & (1u64 << n) == 0 {
-                    self.warn(
-                        "NC404",
-                        format!("#{n} is read but was never set (it is vacant)"),
-                        span,
-                    );
+                    self.warn("NC404", format!("#{n} is read but was never set (it is vacant)"), span);
                 }
                 Ok(v.map_or(Value::Vacant, Value::Num))
             }
@@ -708,20 +611,12 @@ impl<'a> Interp<'a> {
                 let i = n as usize;
                 let v = self.vars.commons[i];
                 if v.is_none() && !self.vars.commons_written[i] {
-                    self.warn(
-                        "NC404",
-                        format!("#{n} is read but was never set (it is vacant)"),
-                        span,
-                    );
+                    self.warn("NC404", format!("#{n} is read but was never set (it is vacant)"), span);
                 }
                 Ok(v.map_or(Value::Vacant, Value::Num))
             }
             n if n >= 1000 => self.fanuc_sys_read(n, span),
-            _ => Err(Fault::alarm(
-                self.alarms.bad_index,
-                format!("variable #{n} does not exist"),
-                span,
-            )),
+            _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
     }
 
@@ -745,11 +640,7 @@ impl<'a> Interp<'a> {
                 Ok(())
             }
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
-            _ => Err(Fault::alarm(
-                self.alarms.bad_index,
-                format!("variable #{n} cannot be written"),
-                span,
-            )),
+            _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
         }
     }
 
@@ -767,11 +658,7 @@ impl<'a> Interp<'a> {
     fn read_r(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
         let i = self.r_index(n, span)?;
         if !self.vars.r_written[i] {
-            self.warn(
-                "NC404",
-                format!("R{n} is read but was never set (it is 0)"),
-                span,
-            );
+            self.warn("NC404", format!("R{n} is read but was never set (it is 0)"), span);
         }
         Ok(Value::Num(self.vars.r[i]))
     }
@@ -792,30 +679,18 @@ impl<'a> Interp<'a> {
         }
         let slot = self.vars.frames[fi].get(name).cloned();
         match slot {
-            Some(Slot::Ref(Place::Named {
-                frame,
-                name: n2,
-                index: None,
-            })) => {
+            Some(Slot::Ref(Place::Named { frame, name: n2, index: None })) => {
                 let dims = match self.vars.frames.get(frame).and_then(|f| f.get(&n2)) {
                     Some(Slot::Own { dims, .. }) => dims.clone(),
                     _ => vec![],
                 };
                 let flat = self.flat(&dims, &idx, name, span)?;
-                Ok(Place::Named {
-                    frame,
-                    name: n2,
-                    index: Some(flat),
-                })
+                Ok(Place::Named { frame, name: n2, index: Some(flat) })
             }
             Some(Slot::Ref(p)) => Ok(p),
             Some(Slot::Own { dims, .. }) => {
                 let flat = self.flat(&dims, &idx, name, span)?;
-                Ok(Place::Named {
-                    frame: fi,
-                    name: name.to_string(),
-                    index: Some(flat),
-                })
+                Ok(Place::Named { frame: fi, name: name.to_string(), index: Some(flat) })
             }
             None => Err(internal()),
         }
@@ -826,26 +701,17 @@ impl<'a> Interp<'a> {
             return Ok(0);
         }
         flat_index(dims, idx).ok_or_else(|| {
-            Fault::alarm(
-                self.alarms.bad_index,
-                format!("index {idx:?} outside the array {name}{dims:?}"),
-                span,
-            )
+            Fault::alarm(self.alarms.bad_index, format!("index {idx:?} outside the array {name}{dims:?}"), span)
         })
     }
 
     fn read_place(&mut self, p: &Place, span: Span) -> Result<Value, Fault> {
         match p {
             Place::R(i) => self.read_r(*i as i64, span),
-            Place::Named { frame, name, index } => {
-                match self.vars.frames.get(*frame).and_then(|f| f.get(name)) {
-                    Some(Slot::Own { data, .. }) => data
-                        .get(index.unwrap_or(0))
-                        .cloned()
-                        .ok_or_else(internal),
-                    _ => Err(internal()),
-                }
-            }
+            Place::Named { frame, name, index } => match self.vars.frames.get(*frame).and_then(|f| f.get(name)) {
+                Some(Slot::Own { data, .. }) => data.get(index.unwrap_or(0)).cloned().ok_or_else(internal),
+                _ => Err(internal()),
+            },
         }
     }
 
@@ -853,9 +719,8 @@ impl<'a> Interp<'a> {
         match p {
             Place::R(i) => {
                 let i = self.r_index(*i as i64, span)?;
-                let x = v.num().ok_or_else(|| {
-                    Fault::alarm(self.alarms.domain, "a string cannot be stored in R", span)
-                })?;
+                let x =
+                    v.num().ok_or_else(|| Fault::alarm(self.alarms.domain, "a string cannot be stored in R", span))?;
                 self.vars.r[i] = x;
                 self.vars.r_written[i] = true;
                 Ok(())
@@ -865,16 +730,12 @@ impl<'a> Interp<'a> {
                 match self.vars.frames.get_mut(*frame).and_then(|f| f.get_mut(name)) {
                     Some(Slot::Own { ty, data, .. }) => {
                         let conv = super::value::convert_for(*ty, v).map_err(|e| match e {
-                            super::value::ConvError::Range(x) => Fault::alarm(
-                                alarms.overflow,
-                                format!("value {x} out of range for {name}"),
-                                span,
-                            ),
-                            super::value::ConvError::Type => Fault::alarm(
-                                alarms.domain,
-                                format!("wrong type of value for {name}"),
-                                span,
-                            ),
+                            super::value::ConvError::Range(x) => {
+                                Fault::alarm(alarms.overflow, format!("value {x} out of range for {name}"), span)
+                            }
+                            super::value::ConvError::Type => {
+                                Fault::alarm(alarms.domain, format!("wrong type of value for {name}"), span)
+                            }
                         })?;
                         let slot = data.get_mut(index.unwrap_or(0)).ok_or_else(internal)?;
                         *slot = conv;
@@ -912,11 +773,7 @@ impl<'a> Interp<'a> {
         for dv in &def.vars {
             let len = dv.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
             if len > 1_000_000 {
-                return Err(Fault::alarm(
-                    self.alarms.bad_index,
-                    format!("array {} too large", dv.name),
-                    dv.span,
-                ));
+                return Err(Fault::alarm(self.alarms.bad_index, format!("array {} too large", dv.name), dv.span));
             }
             let zero = super::vars::zero_of(def.ty);
             let mut data = vec![zero; len];
@@ -962,9 +819,7 @@ impl<'a> Interp<'a> {
                         let v = expr::eval(self, value, &cx)?;
                         let v = conv(v, self)?;
                         let n = match count {
-                            Some(c) => (round_half_away(expr::eval_num(self, c, &cx)?).max(0.0)
-                                as usize)
-                                .min(len),
+                            Some(c) => (round_half_away(expr::eval_num(self, c, &cx)?).max(0.0) as usize).min(len),
                             None => len,
                         };
                         for d in data.iter_mut().take(n) {
@@ -973,14 +828,7 @@ impl<'a> Interp<'a> {
                     }
                 }
             }
-            self.vars.frames[sf].insert(
-                dv.name.clone(),
-                Slot::Own {
-                    ty: def.ty,
-                    dims: dv.dims.clone(),
-                    data,
-                },
-            );
+            self.vars.frames[sf].insert(dv.name.clone(), Slot::Own { ty: def.ty, dims: dv.dims.clone(), data });
         }
         Ok(())
     }
@@ -1001,11 +849,7 @@ impl<'a> Interp<'a> {
                 match self.vars.frame_of(cur, name) {
                     Some(fi) => match self.vars.frames[fi].get(name) {
                         Some(Slot::Ref(p)) => p.clone(),
-                        _ => Place::Named {
-                            frame: fi,
-                            name: name.clone(),
-                            index: None,
-                        },
+                        _ => Place::Named { frame: fi, name: name.clone(), index: None },
                     },
                     None => return Ok(None),
                 }
@@ -1046,7 +890,7 @@ impl Env for Interp<'_> {
 }
 
 fn var_expr(v: &VarRef) -> Expr {
-    Expr::new(ExprKind::Var(v.clone()), v.span)
+    Expr::new(ExprKind::Var(Box::new(v.clone())), v.span)
 }
 
 /// A FANUC literal without a decimal point (`X10`, `X-10`): the decimal-point rule applies.
@@ -1061,8 +905,5 @@ fn is_bare_literal(e: &Expr) -> bool {
 }
 
 pub fn internal() -> Fault {
-    Fault::error(Diagnostic::error(
-        "NC499",
-        "internal evaluator inconsistency (please report this program)",
-    ))
+    Fault::error(Diagnostic::error("NC499", "internal evaluator inconsistency (please report this program)"))
 }

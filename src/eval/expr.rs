@@ -66,12 +66,7 @@ fn num_of(v: &Value, span: Span, cx: &Cx) -> Result<f64, Fault> {
     })
 }
 
-fn eval_depth<E: Env + ?Sized>(
-    env: &mut E,
-    e: &Expr,
-    cx: &Cx,
-    depth: u32,
-) -> Result<Value, Fault> {
+fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Result<Value, Fault> {
     if depth > MAX_EXPR_DEPTH {
         return Err(Fault::error(
             Diagnostic::error("NC411", "expression nested too deeply to evaluate")
@@ -120,8 +115,7 @@ fn eval_depth<E: Env + ?Sized>(
             let mut xs = [0.0f64; 3];
             if args.len() > 3 {
                 return Err(Fault::error(
-                    Diagnostic::error("NC412", "too many arguments for a function")
-                        .primary(cx.file, e.span, "here"),
+                    Diagnostic::error("NC412", "too many arguments for a function").primary(cx.file, e.span, "here"),
                 ));
             }
             for (i, a) in args.iter().enumerate() {
@@ -159,11 +153,7 @@ pub fn checked(x: f64, span: Span, cx: &Cx) -> Result<f64, Fault> {
     // FANUC 16i-class range is ±1e47 (alarm 111); Siemens REAL is IEEE double.
     let limit = if cx.fanuc { 1e47 } else { f64::MAX };
     if !x.is_finite() || x.abs() > limit {
-        return Err(Fault::alarm(
-            cx.alarms.overflow,
-            "calculated data overflow",
-            span,
-        ));
+        return Err(Fault::alarm(cx.alarms.overflow, "calculated data overflow", span));
     }
     Ok(x)
 }
@@ -273,11 +263,7 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
             // FANUC computes TAN as SIN/COS (dialects.md §3.3); at 90° that divides by 0.
             let c = cos_deg(x);
             if c == 0.0 {
-                return Err(Fault::alarm(
-                    cx.alarms.div_zero,
-                    "TAN of an odd multiple of 90 degrees",
-                    span,
-                ));
+                return Err(Fault::alarm(cx.alarms.div_zero, "TAN of an odd multiple of 90 degrees", span));
             }
             sin_deg(x) / c
         }

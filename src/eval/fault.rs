@@ -7,11 +7,7 @@ use crate::span::Span;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Fault {
     /// The control would raise this alarm: an `alarm` event ends the trace.
-    Alarm {
-        number: i64,
-        message: String,
-        span: Span,
-    },
+    Alarm { number: i64, message: String, span: Span },
     /// Something the evaluator does not model or cannot find (NC4xx).
     Error(Box<Diagnostic>),
     /// Step or call-depth limit: the run is inconclusive.
@@ -20,11 +16,7 @@ pub enum Fault {
 
 impl Fault {
     pub fn alarm(number: i64, message: impl Into<String>, span: Span) -> Fault {
-        Fault::Alarm {
-            number,
-            message: message.into(),
-            span,
-        }
+        Fault::Alarm { number, message: message.into(), span }
     }
 
     pub fn error(d: Diagnostic) -> Fault {

@@ -25,21 +25,10 @@ pub enum Op {
     /// `UNTIL cond`: back to `target` while `cond` is false.
     Until { span: Span, cond: Expr, target: usize },
     /// `FOR var = from TO to`: assign, then test `var <= to` (else go to `exit`).
-    ForHead {
-        span: Span,
-        var: VarRef,
-        from: Expr,
-        to: Expr,
-        exit: usize,
-    },
+    ForHead { span: Span, var: VarRef, from: Expr, to: Expr, exit: usize },
     /// `ENDFOR`: `var += 1`, then back to `body` while `var <= to` (`to` evaluated on
     /// every pass: the documented choice).
-    ForEnd {
-        span: Span,
-        var: VarRef,
-        to: Expr,
-        body: usize,
-    },
+    ForEnd { span: Span, var: VarRef, to: Expr, body: usize },
 }
 
 impl Op {
@@ -120,30 +109,12 @@ impl Builder {
             StmtKind::Block(b) => {
                 self.push(&b.meta, Op::Block(b.clone()));
             }
-            StmtKind::If {
-                head,
-                cond,
-                then_body,
-                else_part,
-                end,
-            } => {
-                let test = self.push(
-                    head,
-                    Op::Test {
-                        span: head.span,
-                        cond: cond.clone(),
-                        target: 0,
-                    },
-                );
+            StmtKind::If(st) => {
+                let crate::ir::IfStmt { head, cond, then_body, else_part, end } = &**st;
+                let test = self.push(head, Op::Test { span: head.span, cond: cond.clone(), target: 0 });
                 self.stmts(then_body, d)?;
                 let false_target = if let Some(e) = else_part {
-                    let jump = self.push(
-                        &e.head,
-                        Op::Jump {
-                            span: e.head.span,
-                            target: 0,
-                        },
-                    );
+                    let jump = self.push(&e.head, Op::Jump { span: e.head.span, target: 0 });
                     let else_start = self.ops.len();
                     self.stmts(&e.body, d)?;
                     let end_at = self.push(end, Op::Nop(end.span));
@@ -154,65 +125,23 @@ impl Builder {
                 };
                 set_target(&mut self.ops[test], false_target);
             }
-            StmtKind::While {
-                head,
-                cond,
-                body,
-                end,
-            } => self.test_loop(head, Some(cond), body, end, d)?,
-            StmtKind::Do {
-                head,
-                cond,
-                body,
-                end,
-                ..
-            } => self.test_loop(head, cond.as_ref(), body, end, d)?,
-            StmtKind::Loop { head, body, end } => self.test_loop(head, None, body, end, d)?,
-            StmtKind::Repeat {
-                head,
-                body,
-                end,
-                until,
-            } => {
+            StmtKind::While(w) => self.test_loop(&w.head, Some(&w.cond), &w.body, &w.end, d)?,
+            StmtKind::Do(w) => self.test_loop(&w.head, w.cond.as_ref(), &w.body, &w.end, d)?,
+            StmtKind::Loop(w) => self.test_loop(&w.head, None, &w.body, &w.end, d)?,
+            StmtKind::Repeat(st) => {
+                let crate::ir::RepeatStmt { head, body, end, until } = &**st;
                 let top = self.push(head, Op::Nop(head.span));
                 self.stmts(body, d)?;
-                self.push(
-                    end,
-                    Op::Until {
-                        span: end.span,
-                        cond: until.clone(),
-                        target: top,
-                    },
-                );
+                self.push(end, Op::Until { span: end.span, cond: until.clone(), target: top });
             }
-            StmtKind::For {
-                head,
-                var,
-                from,
-                to,
-                body,
-                end,
-            } => {
+            StmtKind::For(st) => {
+                let crate::ir::ForStmt { head, var, from, to, body, end } = &**st;
                 let h = self.push(
                     head,
-                    Op::ForHead {
-                        span: head.span,
-                        var: var.clone(),
-                        from: from.clone(),
-                        to: to.clone(),
-                        exit: 0,
-                    },
+                    Op::ForHead { span: head.span, var: var.clone(), from: from.clone(), to: to.clone(), exit: 0 },
                 );
                 self.stmts(body, d)?;
-                self.push(
-                    end,
-                    Op::ForEnd {
-                        span: end.span,
-                        var: var.clone(),
-                        to: to.clone(),
-                        body: h + 1,
-                    },
-                );
+                self.push(end, Op::ForEnd { span: end.span, var: var.clone(), to: to.clone(), body: h + 1 });
                 let exit = self.ops.len();
                 if let Op::ForHead { exit: e, .. } = &mut self.ops[h] {
                     *e = exit;
@@ -231,24 +160,11 @@ impl Builder {
         d: u32,
     ) -> Result<(), Diagnostic> {
         let top = match cond {
-            Some(c) => self.push(
-                head,
-                Op::Test {
-                    span: head.span,
-                    cond: c.clone(),
-                    target: 0,
-                },
-            ),
+            Some(c) => self.push(head, Op::Test { span: head.span, cond: c.clone(), target: 0 }),
             None => self.push(head, Op::Nop(head.span)),
         };
         self.stmts(body, d)?;
-        self.push(
-            end,
-            Op::Jump {
-                span: end.span,
-                target: top,
-            },
-        );
+        self.push(end, Op::Jump { span: end.span, target: top });
         let exit = self.ops.len();
         if cond.is_some() {
             set_target(&mut self.ops[top], exit);
@@ -259,9 +175,7 @@ impl Builder {
 
 fn set_target(op: &mut Op, to: usize) {
     match op {
-        Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. } => {
-            *target = to
-        }
+        Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. } => *target = to,
         _ => {}
     }
 }
@@ -278,20 +192,9 @@ fn search_code(s: Search) -> u8 {
 impl Code {
     /// Flattens one program.
     pub fn flatten(file: FileId, prog: &Program) -> Result<Code, Diagnostic> {
-        let mut b = Builder {
-            file,
-            ops: Vec::new(),
-            marks: Vec::new(),
-            labels: HashMap::new(),
-        };
+        let mut b = Builder { file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
         b.stmts(&prog.body, 0)?;
-        Ok(Code {
-            file,
-            ops: b.ops,
-            marks: b.marks,
-            labels: b.labels,
-            memo: RefCell::new(HashMap::new()),
-        })
+        Ok(Code { file, ops: b.ops, marks: b.marks, labels: b.labels, memo: RefCell::new(HashMap::new()) })
     }
 
     /// The interned id of a label name (upper case), if the program has that label.
@@ -336,11 +239,7 @@ impl Code {
     /// then from the top (FANUC `M99 Pn` into the caller).
     pub fn find_number_from(&self, from: usize, n: u32) -> Option<usize> {
         let split = self.marks.partition_point(|m| m.0 < from);
-        self.marks[split..]
-            .iter()
-            .chain(self.marks[..split].iter())
-            .find(|m| m.1 == Some(n))
-            .map(|m| m.0)
+        self.marks[split..].iter().chain(self.marks[..split].iter()).find(|m| m.1 == Some(n)).map(|m| m.0)
     }
 
     /// The op carrying `label`, searched backward from `from` (section repetition).

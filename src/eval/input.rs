@@ -24,17 +24,12 @@ pub struct Input {
 
 /// Parses one `TARGET=VALUE` (`#24=10.`, `R1=-2.5`, `NAME=3`, `TOOL="T1"`, `#1=#0`).
 pub fn parse_input(s: &str) -> Result<Input, String> {
-    let (lhs, rhs) = s
-        .split_once('=')
-        .ok_or_else(|| format!("'{s}': expected TARGET=VALUE, e.g. R1=5 or #24=10."))?;
+    let (lhs, rhs) = s.split_once('=').ok_or_else(|| format!("'{s}': expected TARGET=VALUE, e.g. R1=5 or #24=10."))?;
     let (lhs, rhs) = (lhs.trim(), rhs.trim());
     let up = lhs.to_ascii_uppercase();
     let target = if let Some(n) = up.strip_prefix('#') {
         InputTarget::Hash(n.parse().map_err(|_| format!("'{lhs}': bad variable number"))?)
-    } else if up.len() > 1
-        && up.starts_with('R')
-        && up[1..].bytes().all(|b| b.is_ascii_digit())
-    {
+    } else if up.len() > 1 && up.starts_with('R') && up[1..].bytes().all(|b| b.is_ascii_digit()) {
         InputTarget::R(up[1..].parse().map_err(|_| format!("'{lhs}': bad R number"))?)
     } else if !up.is_empty()
         && up.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
@@ -49,16 +44,9 @@ pub fn parse_input(s: &str) -> Result<Input, String> {
     } else if rhs.len() >= 2 && rhs.starts_with('"') && rhs.ends_with('"') {
         Value::Str(rhs[1..rhs.len() - 1].to_string())
     } else {
-        Value::Num(
-            rhs.parse::<f64>()
-                .map_err(|_| format!("'{rhs}': expected a number"))?,
-        )
+        Value::Num(rhs.parse::<f64>().map_err(|_| format!("'{rhs}': expected a number"))?)
     };
-    Ok(Input {
-        target,
-        value,
-        text: s.to_string(),
-    })
+    Ok(Input { target, value, text: s.to_string() })
 }
 
 /// Inputs written in a file's header comments: lines `; nctrans: set A=1 B=2` or
@@ -98,10 +86,7 @@ mod tests {
     fn parses_targets() {
         assert_eq!(parse_input("R1=5").unwrap().target, InputTarget::R(1));
         assert_eq!(parse_input("#24=10.").unwrap().value, Value::Num(10.0));
-        assert_eq!(
-            parse_input("depth=2").unwrap().target,
-            InputTarget::Name("DEPTH".into())
-        );
+        assert_eq!(parse_input("depth=2").unwrap().target, InputTarget::Name("DEPTH".into()));
         assert_eq!(parse_input("#1=#0").unwrap().value, Value::Vacant);
         assert!(parse_input("R1").is_err());
         assert!(parse_input("R1=x").is_err());

@@ -208,11 +208,7 @@ impl Machine {
         let mut t: Option<(ToolId, Span)> = None;
         let mut block_span = Span::default();
         for w in words {
-            block_span = if block_span == Span::default() {
-                w.span
-            } else {
-                block_span.to(w.span)
-            };
+            block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
                 WV::Num(x) => Some(*x),
                 WV::Str(_) => None,
@@ -228,13 +224,7 @@ impl Machine {
                         w.span,
                     ))
                 }
-                (_, None) => {
-                    return Err(Fault::alarm(
-                        0,
-                        format!("address {a} needs a number, not a string"),
-                        w.span,
-                    ))
-                }
+                (_, None) => return Err(Fault::alarm(0, format!("address {a} needs a number, not a string"), w.span)),
                 ("G", Some(x)) => gs.push((x, w.span)),
                 ("M", Some(x)) => ms.push((round_half_away(x), w.span)),
                 ("I", Some(x)) => ijk[0] = Some((w, x)),
@@ -254,18 +244,14 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
-                ("CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP"
-                | "RP" | "I1" | "J1" | "K1", _) => {
-                    return Err(unsupported(
-                        &format!("{a} (circle/spline/polar motion) is not modelled"),
-                        w.span,
-                    ))
+                (
+                    "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
+                    | "K1",
+                    _,
+                ) => return Err(unsupported(&format!("{a} (circle/spline/polar motion) is not modelled"), w.span)),
+                (a, _) => {
+                    warns.push(("NC405", format!("address {a} has no effect on the trace and is ignored"), w.span))
                 }
-                (a, _) => warns.push((
-                    "NC405",
-                    format!("address {a} has no effect on the trace and is ignored"),
-                    w.span,
-                )),
             }
         }
 
@@ -307,21 +293,17 @@ impl Machine {
                 540..=590 if gi % 10 == 0 && self.fanuc => self.select_offset((gi / 10 - 53) as usize),
                 540..=570 if gi % 10 == 0 => self.select_offset((gi / 10 - 53) as usize),
                 5000 if !self.fanuc => self.select_offset(0),
-                5050..=5990 if !self.fanuc && gi % 10 == 0 => {
-                    self.select_offset((gi / 10 - 500) as usize)
-                }
+                5050..=5990 if !self.fanuc && gi % 10 == 0 => self.select_offset((gi / 10 - 500) as usize),
                 900 => self.absolute = true,
                 910 => self.absolute = false,
                 940 => self.per_rev = false,
                 950 => self.per_rev = true,
                 // Path control, compensation (the trace holds programmed positions), cycle
                 // cancel, exact stop: no effect on the trace.
-                90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800
-                | 6010 | 6020 | 6410 | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => warns.push((
-                    "NC405",
-                    format!("G{} has no effect on the trace", fmt_g(g)),
-                    span,
-                )),
+                90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
+                | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
+                    warns.push(("NC405", format!("G{} has no effect on the trace", fmt_g(g)), span))
+                }
                 280 | 290 | 300 | 920 | 520 | 680 | 160 => {
                     return Err(unsupported(
                         &format!("G{} (reference return / coordinate setting) is not modelled", fmt_g(g)),
@@ -329,17 +311,9 @@ impl Machine {
                     ))
                 }
                 730 | 740 | 760 | 810..=890 if self.fanuc => {
-                    return Err(unsupported(
-                        &format!("canned cycle G{} is not modelled", fmt_g(g)),
-                        span,
-                    ))
+                    return Err(unsupported(&format!("canned cycle G{} is not modelled", fmt_g(g)), span))
                 }
-                _ => {
-                    return Err(unsupported(
-                        &format!("G{} is not modelled by the evaluator", fmt_g(g)),
-                        span,
-                    ))
-                }
+                _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }
         }
 
@@ -389,23 +363,11 @@ impl Machine {
             };
             spindle_cmd = true;
             self.spindle = dir;
-            out.push((
-                Event::Spindle {
-                    rpm: self.speed,
-                    dir,
-                },
-                span,
-            ));
+            out.push((Event::Spindle { rpm: self.speed, dir }, span));
         }
         let has_m5 = ms.iter().any(|m| m.0 == 5.0);
         if !spindle_cmd && !has_m5 && speed_changed && self.spindle != SpindleDir::Stop {
-            out.push((
-                Event::Spindle {
-                    rpm: self.speed,
-                    dir: self.spindle,
-                },
-                s.map_or(block_span, |w| w.0.span),
-            ));
+            out.push((Event::Spindle { rpm: self.speed, dir: self.spindle }, s.map_or(block_span, |w| w.0.span)));
         }
         // 3. coolant on
         for &(m, span) in &ms {
@@ -425,13 +387,7 @@ impl Machine {
         for &(m, span) in &ms {
             if m == 5.0 {
                 self.spindle = SpindleDir::Stop;
-                out.push((
-                    Event::Spindle {
-                        rpm: self.speed,
-                        dir: SpindleDir::Stop,
-                    },
-                    span,
-                ));
+                out.push((Event::Spindle { rpm: self.speed, dir: SpindleDir::Stop }, span));
             }
         }
         for &(m, span) in &ms {
@@ -443,23 +399,11 @@ impl Machine {
         // 6. M0/M1 and #3006
         for &(m, span) in &ms {
             if m == 0.0 || m == 1.0 {
-                out.push((
-                    Event::Stop {
-                        optional: m == 1.0,
-                        message: None,
-                    },
-                    span,
-                ));
+                out.push((Event::Stop { optional: m == 1.0, message: None }, span));
             }
         }
         if let Some(text) = stop_message {
-            out.push((
-                Event::Stop {
-                    optional: false,
-                    message: Some(text),
-                },
-                block_span,
-            ));
+            out.push((Event::Stop { optional: false, message: Some(text) }, block_span));
         }
         for &(m, span) in &ms {
             self.last_m = m;
@@ -501,20 +445,12 @@ impl Machine {
             }
             if let Some((_, revs)) = s {
                 if self.speed <= 0.0 {
-                    return Err(Fault::alarm(
-                        self.alarms.no_feed,
-                        "G4 S (revolutions) with the spindle speed 0",
-                        span,
-                    ));
+                    return Err(Fault::alarm(self.alarms.no_feed, "G4 S (revolutions) with the spindle speed 0", span));
                 }
                 return Ok(revs * 60.0 / self.speed);
             }
         }
-        Err(Fault::alarm(
-            self.alarms.no_feed,
-            "dwell without a time",
-            span,
-        ))
+        Err(Fault::alarm(self.alarms.no_feed, "dwell without a time", span))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -556,11 +492,7 @@ impl Machine {
         }
         let rapid = self.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {
-            return Err(Fault::alarm(
-                self.alarms.no_feed,
-                "feed motion without any feed programmed",
-                span,
-            ));
+            return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
         }
         if !arc_mode {
             for (i, a) in axes.iter().enumerate() {
@@ -569,14 +501,7 @@ impl Machine {
                 }
             }
             self.pos = target;
-            out.push((
-                Event::Move {
-                    rapid,
-                    to: self.trace_pos(),
-                    f: if rapid { None } else { self.feed },
-                },
-                span,
-            ));
+            out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
             return Ok(any_axis);
         }
         let cw = self.motion == Motion::Cw;
@@ -664,11 +589,7 @@ impl Machine {
             Some(2.0) => {
                 let n = p.map_or(0.0, |(_, x)| round_half_away(x));
                 if !(0.0..=6.0).contains(&n) {
-                    return Err(Fault::alarm(
-                        self.alarms.bad_index,
-                        format!("G10 L2 P{n}: no such work offset"),
-                        span,
-                    ));
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L2 P{n}: no such work offset"), span));
                 }
                 for (i, a) in axes.iter().enumerate() {
                     if let Some((w, x)) = a {
@@ -695,12 +616,7 @@ impl Machine {
         let additive = match op {
             "TRANS" => false,
             "ATRANS" => true,
-            _ => {
-                return Err(unsupported(
-                    &format!("frame instruction {op} is not modelled"),
-                    span,
-                ))
-            }
+            _ => return Err(unsupported(&format!("frame instruction {op} is not modelled"), span)),
         };
         if !additive {
             self.trans = [0.0; 9];
@@ -712,12 +628,7 @@ impl Machine {
                     let v = self.length(w, *x, (3..6).contains(&i));
                     self.trans[i] += v;
                 }
-                _ => {
-                    return Err(unsupported(
-                        &format!("{op} with {}", w.addr),
-                        w.span,
-                    ))
-                }
+                _ => return Err(unsupported(&format!("{op} with {}", w.addr), w.span)),
             }
         }
         Ok(())

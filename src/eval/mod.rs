@@ -51,11 +51,7 @@ pub struct RunOptions {
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions {
-            max_steps: DEFAULT_MAX_STEPS,
-            inputs: Vec::new(),
-            semantics: None,
-        }
+        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None }
     }
 }
 
@@ -94,21 +90,11 @@ pub fn run(
     let mut it = Interp::new(dialect, opts, db, callees, sink);
     let ids = match it.register_unit(unit, None) {
         Ok(ids) => ids,
-        Err(d) => {
-            return Outcome {
-                ending: Ending::Error,
-                steps: 0,
-                diags: vec![d],
-            }
-        }
+        Err(d) => return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] },
     };
     let Some(&main) = ids.first() else {
         let d = Diagnostic::error("NC401", "the file holds no program to run");
-        return Outcome {
-            ending: Ending::Error,
-            steps: 0,
-            diags: vec![d],
-        };
+        return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] };
     };
     it.frames.push(Frame {
         code: main,
@@ -124,18 +110,8 @@ pub fn run(
     let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
     let ending = match result {
         Ok(e) => e,
-        Err(Fault::Alarm {
-            number,
-            message,
-            span,
-        }) => {
-            it.emit(
-                Event::Alarm {
-                    number,
-                    message: message.clone(),
-                },
-                span,
-            );
+        Err(Fault::Alarm { number, message, span }) => {
+            it.emit(Event::Alarm { number, message: message.clone() }, span);
             Ending::Alarm { number, message }
         }
         Err(Fault::Limit { reason, span }) => {
@@ -156,11 +132,7 @@ pub fn run(
         }
     };
     it.flush();
-    Outcome {
-        ending,
-        steps: it.steps.min(it.max_steps),
-        diags: std::mem::take(&mut it.diags),
-    }
+    Outcome { ending, steps: it.steps.min(it.max_steps), diags: std::mem::take(&mut it.diags) }
 }
 
 fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fault> {
@@ -176,26 +148,14 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
         let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
         let mut data = vec![vars::zero_of(p.ty); len];
         data[0] = value::convert_for(p.ty, v).unwrap_or_else(|_| vars::zero_of(p.ty));
-        it.vars.frames[0].insert(
-            p.name.clone(),
-            vars::Slot::Own {
-                ty: p.ty,
-                dims: p.dims.clone(),
-                data,
-            },
-        );
+        it.vars.frames[0].insert(p.name.clone(), vars::Slot::Own { ty: p.ty, dims: p.dims.clone(), data });
     }
     let span = Default::default();
     for i in &inputs {
         match (&i.target, dialect) {
-            (InputTarget::Hash(n), Dialect::Fanuc) => {
-                it.write_fanuc(i64::from(*n), i.value.clone(), span)?
-            }
+            (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
             (InputTarget::R(n), Dialect::Sinumerik) => {
-                let r = crate::ir::VarRef {
-                    kind: crate::ir::VarKind::R(*n),
-                    span,
-                };
+                let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };
                 it.write_var(&r, i.value.clone())?
             }
             // Names are applied when the DEF (or PROC parameter) creates them.
@@ -203,11 +163,7 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
             _ => {
                 return Err(Fault::error(Diagnostic::error(
                     "NC407",
-                    format!(
-                        "input {} does not fit a {} program",
-                        i.text,
-                        dialect.name()
-                    ),
+                    format!("input {} does not fit a {} program", i.text, dialect.name()),
                 )))
             }
         }

@@ -13,13 +13,10 @@ use crate::span::Span;
 impl Interp<'_> {
     fn unmodelled(&self, name: &str, span: Span) -> Fault {
         Fault::error(
-            Diagnostic::error(
-                "NC400",
-                format!("system variable {name} is not modelled by the evaluator"),
-            )
-            .primary(self.file(), span, "used here")
-            .note("modelled: see docs/semantics.md, section system variables")
-            .hint("give the value as an input (--set) or replace the variable"),
+            Diagnostic::error("NC400", format!("system variable {name} is not modelled by the evaluator"))
+                .primary(self.file(), span, "used here")
+                .note("modelled: see docs/semantics.md, section system variables")
+                .hint("give the value as an input (--set) or replace the variable"),
         )
     }
 
@@ -46,9 +43,7 @@ impl Interp<'_> {
         let m = &self.m;
         let x = match n {
             3000 | 3006 => return Err(self.unmodelled(&format!("#{n} (write-only)"), span)),
-            3001 | 3002 | 3901 | 3902 => {
-                self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0)
-            }
+            3001 | 3002 | 3901 | 3902 => self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0),
             4001 => match m.motion {
                 super::machine::Motion::Rapid => 0.0,
                 super::machine::Motion::Linear => 1.0,
@@ -120,40 +115,22 @@ impl Interp<'_> {
         match n {
             3000 => Err(Fault::alarm(3000 + round_half_away(v) as i64, "", span)),
             3006 => {
-                self.emit(
-                    Event::Stop {
-                        optional: false,
-                        message: None,
-                    },
-                    span,
-                );
+                self.emit(Event::Stop { optional: false, message: None }, span);
                 Ok(())
             }
             3001 | 3002 | 3901 | 3902 => {
                 if n >= 3901 && v < 0.0 {
-                    return Err(Fault::alarm(
-                        self.alarms.bad_index,
-                        format!("#{n} cannot be negative"),
-                        span,
-                    ));
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("#{n} cannot be negative"), span));
                 }
                 self.sys_store.insert(format!("#{n}"), v);
                 Ok(())
             }
             5001..=5009 | 5021..=5029 | 5041..=5049 | 5061..=5069 | 4001..=4130 => {
-                Err(Fault::alarm(
-                    self.alarms.read_only,
-                    format!("#{n} is read-only"),
-                    span,
-                ))
+                Err(Fault::alarm(self.alarms.read_only, format!("#{n} is read-only"), span))
             }
             n => match Self::offset_var(n) {
                 Some((t, a)) => {
-                    let mm = if self.m.inch && !(3..6).contains(&a) {
-                        v * 25.4
-                    } else {
-                        v
-                    };
+                    let mm = if self.m.inch && !(3..6).contains(&a) { v * 25.4 } else { v };
                     self.m.offsets[t][a] = mm;
                     Ok(())
                 }
@@ -166,9 +143,7 @@ impl Interp<'_> {
         let id = match e.map(|e| &e.kind) {
             Some(ExprKind::Ident(s)) => s.to_ascii_uppercase(),
             Some(ExprKind::Var(v)) => match &v.kind {
-                crate::ir::VarKind::Named { name, indices } if indices.is_empty() => {
-                    name.to_ascii_uppercase()
-                }
+                crate::ir::VarKind::Named { name, indices } if indices.is_empty() => name.to_ascii_uppercase(),
                 _ => String::new(),
             },
             _ => String::new(),
@@ -190,11 +165,7 @@ impl Interp<'_> {
         let cx = self.cx(false);
         let n = round_half_away(expr::eval_num(self, e, &cx)?);
         if !(0.0..100.0).contains(&n) {
-            return Err(Fault::alarm(
-                self.alarms.bad_index,
-                format!("$P_UIFR[{n}] does not exist"),
-                span,
-            ));
+            return Err(Fault::alarm(self.alarms.bad_index, format!("$P_UIFR[{n}] does not exist"), span));
         }
         Ok(n as usize)
     }
@@ -203,9 +174,7 @@ impl Interp<'_> {
         match idx.get(2).map(|e| &e.kind) {
             None => Ok(()),
             Some(ExprKind::Ident(s)) if s.eq_ignore_ascii_case("TR") => Ok(()),
-            Some(ExprKind::Var(v))
-                if matches!(&v.kind, crate::ir::VarKind::Named { name, .. } if name == "TR") =>
-            {
+            Some(ExprKind::Var(v)) if matches!(&v.kind, crate::ir::VarKind::Named { name, .. } if name == "TR") => {
                 Ok(())
             }
             _ => Err(self.unmodelled("$P_UIFR component other than TR", span)),
@@ -230,11 +199,7 @@ impl Interp<'_> {
             }
             "PI" => std::f64::consts::PI,
             "AC_TIME" => {
-                self.warn(
-                    "NC405",
-                    "$AC_TIME reads 0: time is not modelled".into(),
-                    span,
-                );
+                self.warn("NC405", "$AC_TIME reads 0: time is not modelled".into(), span);
                 0.0
             }
             "AC_ACTUAL_PARTS" | "AC_REQUIRED_PARTS" | "AC_TOTAL_PARTS" | "AC_SPECIAL_PARTS" => {
@@ -252,28 +217,16 @@ impl Interp<'_> {
         Ok(Value::Num(x))
     }
 
-    pub fn sie_sys_write(
-        &mut self,
-        name: &str,
-        idx: &[Expr],
-        v: Value,
-        span: Span,
-    ) -> Result<(), Fault> {
+    pub fn sie_sys_write(&mut self, name: &str, idx: &[Expr], v: Value, span: Span) -> Result<(), Fault> {
         let cx = self.cx(false);
-        let x = v.num().ok_or_else(|| {
-            Fault::alarm(self.alarms.domain, format!("${name} needs a number"), span)
-        })?;
+        let x = v.num().ok_or_else(|| Fault::alarm(self.alarms.domain, format!("${name} needs a number"), span))?;
         let _ = cx;
         match name {
             "P_UIFR" => {
                 let f = self.frame_index(idx.first(), span)?;
                 let a = self.axis_arg(idx.get(1), name, span)?;
                 self.uifr_component(idx, span)?;
-                let mm = if self.m.inch && !(3..6).contains(&a) {
-                    x * 25.4
-                } else {
-                    x
-                };
+                let mm = if self.m.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
                 // Written, not active: G54.. must be selected again (dialects.md §7).
                 self.m.offsets[f][a] = mm;
                 Ok(())
@@ -282,12 +235,9 @@ impl Interp<'_> {
                 self.sys_store.insert(name.to_string(), x);
                 Ok(())
             }
-            "AA_IW" | "AA_IM" | "P_EP" | "PI" | "AC_TIME" | "P_F" | "P_S" | "P_TOOLNO"
-            | "P_TOOL" => Err(Fault::alarm(
-                self.alarms.read_only,
-                format!("${name} is read-only"),
-                span,
-            )),
+            "AA_IW" | "AA_IM" | "P_EP" | "PI" | "AC_TIME" | "P_F" | "P_S" | "P_TOOLNO" | "P_TOOL" => {
+                Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span))
+            }
             _ => Err(self.unmodelled(&format!("${name}"), span)),
         }
     }

@@ -210,18 +210,8 @@ pub fn text_line(ev: &Event) -> String {
             axes_text(&mut s, to);
             s.push_str(&format!(" f={}", opt_num(*f)));
         }
-        Event::Arc {
-            cw,
-            plane,
-            to,
-            center,
-            f,
-        } => {
-            s.push_str(&format!(
-                "arc {} {}",
-                if *cw { "cw" } else { "ccw" },
-                plane.name()
-            ));
+        Event::Arc { cw, plane, to, center, f } => {
+            s.push_str(&format!("arc {} {}", if *cw { "cw" } else { "ccw" }, plane.name()));
             axes_text(&mut s, to);
             s.push_str(" center");
             for (i, v) in center {
@@ -234,9 +224,7 @@ pub fn text_line(ev: &Event) -> String {
             ToolId::Number(n) => s.push_str(&format!("tool {}", fmt_num(*n))),
             ToolId::Name(n) => s.push_str(&format!("tool {}", quote(n))),
         },
-        Event::Spindle { rpm, dir } => {
-            s.push_str(&format!("spindle {} {}", dir.name(), fmt_num(*rpm)))
-        }
+        Event::Spindle { rpm, dir } => s.push_str(&format!("spindle {} {}", dir.name(), fmt_num(*rpm))),
         Event::Coolant { on } => s.push_str(if *on { "coolant on" } else { "coolant off" }),
         Event::Stop { optional, message } => {
             s.push_str(if *optional { "stop optional" } else { "stop" });
@@ -246,9 +234,7 @@ pub fn text_line(ev: &Event) -> String {
             }
         }
         Event::Message { text } => s.push_str(&format!("message {}", quote(text))),
-        Event::Alarm { number, message } => {
-            s.push_str(&format!("alarm {} {}", number, quote(message)))
-        }
+        Event::Alarm { number, message } => s.push_str(&format!("alarm {} {}", number, quote(message))),
         Event::End { code, steps } => s.push_str(&format!("end {code} steps={steps}")),
         Event::Limit { steps } => s.push_str(&format!("limit steps={steps}")),
     }
@@ -277,24 +263,11 @@ pub fn json_line(ev: &Event, line: Option<usize>) -> String {
     s.push('"');
     match ev {
         Event::Move { rapid, to, f } => {
-            s.push_str(if *rapid {
-                ",\"mode\":\"rapid\",\"to\":"
-            } else {
-                ",\"mode\":\"linear\",\"to\":"
-            });
+            s.push_str(if *rapid { ",\"mode\":\"rapid\",\"to\":" } else { ",\"mode\":\"linear\",\"to\":" });
             axes_json(&mut s, to);
-            s.push_str(&format!(
-                ",\"f\":{}",
-                f.map_or_else(|| "null".to_string(), fmt_num)
-            ));
+            s.push_str(&format!(",\"f\":{}", f.map_or_else(|| "null".to_string(), fmt_num)));
         }
-        Event::Arc {
-            cw,
-            plane,
-            to,
-            center,
-            f,
-        } => {
+        Event::Arc { cw, plane, to, center, f } => {
             s.push_str(&format!(
                 ",\"dir\":\"{}\",\"plane\":\"{}\",\"to\":",
                 if *cw { "cw" } else { "ccw" },
@@ -310,21 +283,14 @@ pub fn json_line(ev: &Event, line: Option<usize>) -> String {
                 fmt_num(center[1].1)
             ));
             s.push('}');
-            s.push_str(&format!(
-                ",\"f\":{}",
-                f.map_or_else(|| "null".to_string(), fmt_num)
-            ));
+            s.push_str(&format!(",\"f\":{}", f.map_or_else(|| "null".to_string(), fmt_num)));
         }
         Event::Dwell { seconds } => s.push_str(&format!(",\"seconds\":{}", fmt_num(*seconds))),
         Event::Tool { tool } => match tool {
             ToolId::Number(n) => s.push_str(&format!(",\"tool\":{}", fmt_num(*n))),
             ToolId::Name(n) => s.push_str(&format!(",\"tool\":{}", quote(n))),
         },
-        Event::Spindle { rpm, dir } => s.push_str(&format!(
-            ",\"rpm\":{},\"dir\":\"{}\"",
-            fmt_num(*rpm),
-            dir.name()
-        )),
+        Event::Spindle { rpm, dir } => s.push_str(&format!(",\"rpm\":{},\"dir\":\"{}\"", fmt_num(*rpm), dir.name())),
         Event::Coolant { on } => s.push_str(&format!(",\"on\":{on}")),
         Event::Stop { optional, message } => s.push_str(&format!(
             ",\"optional\":{},\"message\":{}",
@@ -332,14 +298,10 @@ pub fn json_line(ev: &Event, line: Option<usize>) -> String {
             message.as_deref().map_or_else(|| "null".to_string(), quote)
         )),
         Event::Message { text } => s.push_str(&format!(",\"text\":{}", quote(text))),
-        Event::Alarm { number, message } => s.push_str(&format!(
-            ",\"number\":{},\"message\":{}",
-            number,
-            quote(message)
-        )),
-        Event::End { code, steps } => {
-            s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}"))
+        Event::Alarm { number, message } => {
+            s.push_str(&format!(",\"number\":{},\"message\":{}", number, quote(message)))
         }
+        Event::End { code, steps } => s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}")),
         Event::Limit { steps } => s.push_str(&format!(",\"steps\":{steps}")),
     }
     if let Some(l) = line {
@@ -367,12 +329,7 @@ pub struct WriterSink<'a, W: Write> {
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink {
-            out,
-            format,
-            line_of,
-            error: None,
-        }
+        WriterSink { out, format, line_of, error: None }
     }
 }
 
@@ -404,27 +361,14 @@ mod tests {
         let mut to = [None; 9];
         to[0] = Some(10.0);
         to[2] = Some(-0.5);
-        let ev = Event::Move {
-            rapid: false,
-            to,
-            f: Some(300.0),
-        };
-        assert_eq!(
-            json_line(&ev, Some(3)),
-            r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#
-        );
+        let ev = Event::Move { rapid: false, to, f: Some(300.0) };
+        assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
         assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
     }
 
     #[test]
     fn json_escapes_messages() {
-        let ev = Event::Stop {
-            optional: false,
-            message: Some("a\"b".into()),
-        };
-        assert_eq!(
-            json_line(&ev, None),
-            r#"{"ev":"stop","optional":false,"message":"a\"b"}"#
-        );
+        let ev = Event::Stop { optional: false, message: Some("a\"b".into()) };
+        assert_eq!(json_line(&ev, None), r#"{"ev":"stop","optional":false,"message":"a\"b"}"#);
     }
 }

@@ -152,15 +152,9 @@ mod tests {
     fn bool_and_char_conversion() {
         assert_eq!(convert_for(DataType::Bool, Value::Num(0.2)), Ok(Value::Num(1.0)));
         assert_eq!(convert_for(DataType::Bool, Value::Num(0.0)), Ok(Value::Num(0.0)));
-        assert_eq!(
-            convert_for(DataType::Char, Value::Str("A".into())),
-            Ok(Value::Num(65.0))
-        );
+        assert_eq!(convert_for(DataType::Char, Value::Str("A".into())), Ok(Value::Num(65.0)));
         assert!(convert_for(DataType::Char, Value::Num(300.0)).is_err());
-        assert_eq!(
-            convert_for(DataType::String(3), Value::Str("ABCDE".into())),
-            Ok(Value::Str("ABC".into()))
-        );
+        assert_eq!(convert_for(DataType::String(3), Value::Str("ABCDE".into())), Ok(Value::Str("ABC".into())));
     }
 
     #[test]

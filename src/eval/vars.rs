@@ -14,10 +14,7 @@ pub struct Level {
 
 impl Default for Level {
     fn default() -> Self {
-        Level {
-            vals: [None; 34],
-            written: 0,
-        }
+        Level { vals: [None; 34], written: 0 }
     }
 }
 
@@ -36,11 +33,7 @@ pub enum Place {
 
 #[derive(Clone, Debug)]
 pub enum Slot {
-    Own {
-        ty: DataType,
-        dims: Vec<u32>,
-        data: Vec<Value>,
-    },
+    Own { ty: DataType, dims: Vec<u32>, data: Vec<Value> },
     Ref(Place),
 }
 
