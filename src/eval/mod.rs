@@ -25,6 +25,8 @@ pub mod vars;
 mod expr_tests;
 #[cfg(test)]
 mod run_tests;
+#[cfg(test)]
+mod test_ir;
 
 pub use calls::{CalleeName, CalleeSource, DirCallees, NoCallees};
 pub use input::{header_inputs, parse_input, Input, InputTarget};
