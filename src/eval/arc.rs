@@ -27,7 +27,7 @@ pub fn centre_from_radius(s: (f64, f64), e: (f64, f64), r: f64, cw: bool) -> Opt
     let (lx, ly) = (-dy / chord, dx / chord);
     // A ccw arc of at most 180° has its centre on the left; cw on the right; a negative
     // radius (more than 180°) swaps the side.
-    let left = (!cw) == (r > 0.0);
+    let left = cw != (r > 0.0);
     let sign = if left { 1.0 } else { -1.0 };
     Some((mx + sign * h * lx, my + sign * h * ly))
 }

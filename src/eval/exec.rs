@@ -207,6 +207,9 @@ impl<'a> Interp<'a> {
                     span: op.span(),
                 });
             }
+            if self.sink.wants_stop() {
+                return Ok(Ending::Stopped);
+            }
             let flow = self.exec_op(&code, op, pc)?;
             if let Op::Block(_) = op {
                 let origin = Origin { file: code.file, span: op.span() };
@@ -504,7 +507,7 @@ impl<'a> Interp<'a> {
                 if n == 0 || e < s {
                     return Ok(Flow::Next);
                 }
-                let left = if *single || end.is_some() { n - 1 } else { n - 1 };
+                let left = n - 1;
                 let fr = self.frames.last_mut().ok_or_else(internal)?;
                 fr.reps.push(Rep { restart: s, end: e, ret: pc + 1, left });
                 Ok(Flow::Goto(s))

@@ -240,8 +240,8 @@ pub fn sin_deg(a: f64) -> f64 {
     let r = a.rem_euclid(360.0);
     match r {
         x if x == 0.0 || x == 180.0 => 0.0,
-        x if x == 90.0 => 1.0,
-        x if x == 270.0 => -1.0,
+        90.0 => 1.0,
+        270.0 => -1.0,
         _ => r.to_radians().sin(),
     }
 }

@@ -146,9 +146,9 @@ impl Machine {
     /// (workpiece zero + active work offset, docs/semantics.md).
     pub fn trace_pos(&self) -> Axes {
         let mut a = [None; 9];
-        for i in 0..9 {
+        for (i, slot) in a.iter_mut().enumerate() {
             if self.seen[i] {
-                a[i] = Some(clean(self.pos[i]));
+                *slot = Some(clean(self.pos[i]));
             }
         }
         a
@@ -331,7 +331,7 @@ impl Machine {
         }
         let mut speed_changed = false;
         if let Some((_, x)) = s {
-            if !(dwell && !self.fanuc) {
+            if !dwell || self.fanuc {
                 let x = if self.fanuc { round_half_away(x) } else { x };
                 speed_changed = x != self.speed;
                 self.speed = x;
@@ -535,7 +535,7 @@ impl Machine {
             let cu = centre_coord(self, u).unwrap_or(s.0);
             let cv = centre_coord(self, v).unwrap_or(s.1);
             if let Some(a) = ar {
-                if !axes[u].is_some() && !axes[v].is_some() {
+                if axes[u].is_none() && axes[v].is_none() {
                     e = arc::end_from_angle(s, (cu, cv), a, cw);
                 }
             }

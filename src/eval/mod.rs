@@ -26,7 +26,7 @@ mod expr_tests;
 #[cfg(test)]
 mod run_tests;
 #[cfg(test)]
-mod test_ir;
+pub(crate) mod test_ir;
 
 pub use calls::{CalleeName, CalleeSource, DirCallees, NoCallees};
 pub use input::{header_inputs, parse_input, Input, InputTarget};
@@ -66,6 +66,8 @@ pub enum Ending {
     Alarm { number: i64, message: String },
     /// `limit` event: inconclusive.
     Limit { reason: String },
+    /// The sink asked to stop early (the checker had seen the divergence).
+    Stopped,
     /// The evaluator could not run the program (the diagnostic is in `diags`); the trace
     /// stops without a final event.
     Error,

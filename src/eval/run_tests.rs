@@ -413,3 +413,19 @@ fn inputs_set_variables() {
     let opts = RunOptions { inputs: vec![super::parse_input("R1=5").unwrap()], ..Default::default() };
     assert_eq!(run_opts(&u, &opts).0[0], "move rapid X=5 f=-");
 }
+
+#[test]
+fn siemens_ac_ic_per_word() {
+    let u = siemens(vec![
+        s(vec![g(90.0), g(0.0), word("X", p(1.0))]),
+        s(vec![word_v("X", WordValue::Ic(p(2.0)))]),
+        s(vec![g(91.0), word_v("X", WordValue::Ac(p(10.0))), word("Y", p(1.0))]),
+        s(vec![word("Y", p(1.0))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(
+        t[..4],
+        ["move rapid X=1 f=-", "move rapid X=3 f=-", "move rapid X=10 Y=1 f=-", "move rapid X=10 Y=2 f=-"]
+    );
+}

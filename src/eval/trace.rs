@@ -145,6 +145,11 @@ pub trait TraceSink {
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
+    /// Polled once per block: `true` ends the run early ([`super::Ending::Stopped`]),
+    /// e.g. when the checker has seen enough.
+    fn wants_stop(&self) -> bool {
+        false
+    }
 }
 
 /// Discards the trace.
