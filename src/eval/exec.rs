@@ -219,17 +219,22 @@ impl<'a> Interp<'a> {
             match flow {
                 Flow::Next => {
                     let fr = self.frames.last_mut().ok_or_else(internal)?;
-                    fr.pc = pc + 1;
-                    // Section repetition end reached?
-                    if let Some(rep) = fr.reps.last_mut() {
-                        if rep.end == pc {
-                            if rep.left > 0 {
-                                rep.left -= 1;
-                                fr.pc = rep.restart;
-                            } else {
-                                fr.pc = rep.ret;
+                    // Section repetition ends: a finished repetition continues after
+                    // its REPEAT block, which may itself end an enclosing section.
+                    let mut done = pc;
+                    loop {
+                        fr.pc = done + 1;
+                        match fr.reps.last_mut() {
+                            Some(rep) if rep.end == done => {
+                                if rep.left > 0 {
+                                    rep.left -= 1;
+                                    fr.pc = rep.restart;
+                                    break;
+                                }
+                                done = rep.ret - 1;
                                 fr.reps.pop();
                             }
+                            _ => break,
                         }
                     }
                 }
@@ -303,6 +308,14 @@ impl<'a> Interp<'a> {
                     }
                 }
                 ItemKind::StopMessage { text } => stop_message = Some(text.clone().unwrap_or_default()),
+                // SUPA: suppress the frames for this block, like G53.
+                ItemKind::Instruction { name } if name == "SUPA" || name == "G153" => words.push(WordVal {
+                    addr: "G".into(),
+                    val: WV::Num(53.0),
+                    mode: AbsInc::Plain,
+                    bare: false,
+                    span: item.span,
+                }),
                 ItemKind::Goto(_)
                 | ItemKind::Case(_)
                 | ItemKind::Call(_)
@@ -417,6 +430,20 @@ impl<'a> Interp<'a> {
                 Ok(())
             }
             ItemKind::Stopre => Ok(()),
+            ItemKind::Instruction { name } => match name.as_str() {
+                "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
+                    Diagnostic::error(
+                        "NC403",
+                        format!("{name} (circle/spline motion) is not modelled by the evaluator"),
+                    )
+                    .primary(self.file(), item.span, "here")
+                    .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
+                )),
+                _ => {
+                    self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
+                    Ok(())
+                }
+            },
             ItemKind::ModalCallOff => {
                 self.modal_call = None;
                 Ok(())
