@@ -101,7 +101,8 @@ impl<'a> Interp<'a> {
         let fanuc = dialect == Dialect::Fanuc;
         let alarms = if fanuc { AlarmNumbers::FANUC } else { AlarmNumbers::SINUMERIK };
         let scaling = sem.increment_scaling && !sem.calculator_input;
-        let m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
+        let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
+        m.incr_travels_offset = sem.incremental_travels_offset;
         let r_count = sem.r_param_count as usize;
         Interp {
             fanuc,

@@ -93,6 +93,10 @@ pub struct Machine {
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
     pub last_m: f64,
     pub last_n: f64,
+    /// Semantics::incremental_travels_offset.
+    pub incr_travels_offset: bool,
+    /// The offset in effect when each axis last moved (for the rule above).
+    pub applied: [f64; 9],
 }
 
 impl Machine {
@@ -124,6 +128,8 @@ impl Machine {
             trans: [0.0; 9],
             last_m: 0.0,
             last_n: 0.0,
+            incr_travels_offset: !fanuc,
+            applied: [0.0; 9],
         }
     }
 
@@ -484,6 +490,8 @@ impl Machine {
             target[i] = if g53 {
                 // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
                 v
+            } else if inc && self.incr_travels_offset {
+                self.pos[i] - self.applied[i] + v + self.active_offset(i)
             } else if inc {
                 self.pos[i] + v
             } else {
@@ -493,6 +501,11 @@ impl Machine {
         let rapid = self.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {
             return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.applied[i] = self.active_offset(i);
+            }
         }
         if !arc_mode {
             for (i, a) in axes.iter().enumerate() {
@@ -563,6 +576,8 @@ impl Machine {
         }
         self.seen[u] = true;
         self.seen[v] = true;
+        self.applied[u] = self.active_offset(u);
+        self.applied[v] = self.active_offset(v);
         self.pos = target;
         out.push((
             Event::Arc {
@@ -613,6 +628,11 @@ impl Machine {
 
     /// Siemens `TRANS`/`ATRANS` with axis words (values in the current unit).
     pub fn frame_op(&mut self, op: &str, words: &[WordVal], span: Span) -> Result<(), Fault> {
+        // A bare absolute frame instruction deletes the whole programmable frame.
+        if words.is_empty() && matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR") {
+            self.trans = [0.0; 9];
+            return Ok(());
+        }
         let additive = match op {
             "TRANS" => false,
             "ATRANS" => true,
