@@ -93,3 +93,18 @@ pub fn run_file(path: &Path, extra: &[&str], max_steps: u64) -> Ran {
 pub fn dialect_dirs() -> [(Dialect, &'static str); 2] {
     [(Dialect::Fanuc, "fanuc"), (Dialect::Sinumerik, "sinumerik")]
 }
+
+/// Writes `text` to a scratch file named `name` (the extension picks the dialect) and
+/// runs it.
+pub fn run_text(name: &str, text: &str, extra: &[&str]) -> Ran {
+    let dir = root().join("target/eval-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("scratch file");
+    run_file(&path, extra, 1_000_000)
+}
+
+/// The trace lines without their `@line` suffix.
+pub fn bare_lines(ran: &Ran) -> Vec<String> {
+    ran.sink.lines.iter().map(|l| l.split("  @").next().unwrap_or("").to_string()).collect()
+}
