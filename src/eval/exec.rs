@@ -142,7 +142,7 @@ impl<'a> Interp<'a> {
             fanuc: self.fanuc,
             nat: self.sem.nat,
             rel_tol: self.sem.cmp_tolerance,
-            alarms: self.alarms,
+            alarms: if self.fanuc { &AlarmNumbers::FANUC } else { &AlarmNumbers::SINUMERIK },
             in_address,
             increment: if self.m.inch { self.sem.least_increment_mm / 10.0 } else { self.sem.least_increment_mm },
         }
@@ -212,7 +212,7 @@ impl<'a> Interp<'a> {
                 return Ok(Ending::Stopped);
             }
             let flow = self.exec_op(&code, op, pc)?;
-            if let Op::Block(_) = op {
+            if matches!(op, Op::Block(_)) && self.sink.wants_blocks() {
                 let origin = Origin { file: code.file, span: op.span() };
                 let pos = self.m.trace_pos();
                 self.sink.block_done(origin, &pos);
@@ -311,7 +311,7 @@ impl<'a> Interp<'a> {
                 ItemKind::StopMessage { text } => stop_message = Some(text.clone().unwrap_or_default()),
                 // SUPA: suppress the frames for this block, like G53.
                 ItemKind::Instruction { name } if name == "SUPA" || name == "G153" => words.push(WordVal {
-                    addr: "G".into(),
+                    addr: std::borrow::Cow::Borrowed("G"),
                     val: WV::Num(53.0),
                     mode: AbsInc::Plain,
                     bare: false,
@@ -607,7 +607,14 @@ impl<'a> Interp<'a> {
             Value::Num(x) => WV::Num(x),
             Value::Str(s) => WV::Str(s),
         };
-        Ok(Some(WordVal { addr: w.addr.as_str().to_ascii_uppercase(), val, mode, bare, span: w.span }))
+        let addr = match &w.addr {
+            crate::ir::Addr::Letter(b) if b.is_ascii_uppercase() => {
+                let i = (b - b'A') as usize;
+                std::borrow::Cow::Borrowed(&LETTERS[i..i + 1])
+            }
+            a => std::borrow::Cow::Owned(a.as_str().to_ascii_uppercase()),
+        };
+        Ok(Some(WordVal { addr, val, mode, bare, span: w.span }))
     }
 
     // ---- variables ----
@@ -934,6 +941,8 @@ fn is_bare_literal(e: &Expr) -> bool {
         _ => false,
     }
 }
+
+const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
 
 pub fn internal() -> Fault {
     Fault::error(Diagnostic::error("NC499", "internal evaluator inconsistency (please report this program)"))

@@ -24,7 +24,7 @@ pub struct Cx {
     pub nat: bool,
     /// Relative tolerance of `Tolerance::Relative` comparisons (Siemens 1e-12).
     pub rel_tol: f64,
-    pub alarms: AlarmNumbers,
+    pub alarms: &'static AlarmNumbers,
     /// Inside an NC address: FANUC `ROUND` rounds to the address increment there.
     pub in_address: bool,
     /// The address increment in the programmed unit (0.001 mm / 0.0001 inch).

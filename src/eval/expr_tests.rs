@@ -25,13 +25,13 @@ fn fanuc() -> Cx {
         fanuc: true,
         nat: false,
         rel_tol: 0.0,
-        alarms: AlarmNumbers::FANUC,
+        alarms: &AlarmNumbers::FANUC,
         in_address: false,
         increment: 0.001,
     }
 }
 fn siemens() -> Cx {
-    Cx { fanuc: false, rel_tol: 1e-12, alarms: AlarmNumbers::SINUMERIK, ..fanuc() }
+    Cx { fanuc: false, rel_tol: 1e-12, alarms: &AlarmNumbers::SINUMERIK, ..fanuc() }
 }
 
 fn ev(cx: &Cx, e: crate::ir::Expr) -> Result<Value, Fault> {

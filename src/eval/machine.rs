@@ -10,8 +10,8 @@ use crate::span::Span;
 /// A word after evaluation of its value.
 #[derive(Clone, Debug)]
 pub struct WordVal {
-    /// Upper-case address (`X`, `CR`, `I1`).
-    pub addr: String,
+    /// Upper-case address (`X`, `CR`, `I1`); letters borrow a static string.
+    pub addr: std::borrow::Cow<'static, str>,
     pub val: WV,
     pub mode: AbsInc,
     /// FANUC: a literal written without a decimal point (the decimal-point rule applies).
@@ -219,7 +219,7 @@ impl Machine {
                 WV::Num(x) => Some(*x),
                 WV::Str(_) => None,
             };
-            let a = w.addr.as_str();
+            let a: &str = &w.addr;
             match (a, num) {
                 ("T", _) => {
                     t = Some((

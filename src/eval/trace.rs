@@ -1,7 +1,6 @@
 //! The canonical trace (shared/spec/trace-format.md): events, their origin, the sink they
 //! stream into, and the text and jsonl writers.
 
-use super::value::fmt_num;
 use crate::span::{FileId, Span};
 use std::io::{self, Write};
 
@@ -145,6 +144,10 @@ pub trait TraceSink {
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
+    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block).
+    fn wants_blocks(&self) -> bool {
+        false
+    }
     /// Polled once per block: `true` ends the run early ([`super::Ending::Stopped`]),
     /// e.g. when the checker has seen enough.
     fn wants_stop(&self) -> bool {
@@ -172,23 +175,50 @@ impl TraceSink for VecSink {
     }
 }
 
+/// Appends a number in the trace's form (see [`fmt_num`]) without allocating.
+pub fn push_num(out: &mut String, x: f64) {
+    use std::fmt::Write;
+    if x.is_finite() && x.fract() == 0.0 && x.abs() < 1e15 {
+        let _ = write!(out, "{}", x as i64);
+        return;
+    }
+    if !x.is_finite() {
+        out.push('0');
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{x:.6}");
+    while out.ends_with('0') {
+        out.pop();
+    }
+    if out.ends_with('.') {
+        out.pop();
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
+}
+
 fn axes_text(out: &mut String, to: &Axes) {
     for (i, v) in to.iter().enumerate() {
         if let Some(x) = v {
             out.push(' ');
             out.push(AXES[i]);
             out.push('=');
-            out.push_str(&fmt_num(*x));
+            push_num(out, *x);
         }
     }
 }
 
-fn opt_num(f: Option<f64>) -> String {
-    f.map_or_else(|| "-".to_string(), fmt_num)
+fn push_opt(out: &mut String, f: Option<f64>, none: &str) {
+    match f {
+        Some(x) => push_num(out, x),
+        None => out.push_str(none),
+    }
 }
 
-fn quote(s: &str) -> String {
-    let mut o = String::with_capacity(s.len() + 2);
+fn push_quoted(o: &mut String, s: &str) {
     o.push('"');
     for c in s.chars() {
         match c {
@@ -202,48 +232,75 @@ fn quote(s: &str) -> String {
         }
     }
     o.push('"');
-    o
 }
 
 /// One event as a line of the text form (no newline). Stable: the corpus traces are
 /// this form.
 pub fn text_line(ev: &Event) -> String {
     let mut s = String::new();
+    write_text(&mut s, ev);
+    s
+}
+
+/// Appends the text form of `ev` to `s`.
+pub fn write_text(s: &mut String, ev: &Event) {
     match ev {
         Event::Move { rapid, to, f } => {
             s.push_str(if *rapid { "move rapid" } else { "move linear" });
-            axes_text(&mut s, to);
-            s.push_str(&format!(" f={}", opt_num(*f)));
+            axes_text(s, to);
+            s.push_str(" f=");
+            push_opt(s, *f, "-");
         }
         Event::Arc { cw, plane, to, center, f } => {
-            s.push_str(&format!("arc {} {}", if *cw { "cw" } else { "ccw" }, plane.name()));
-            axes_text(&mut s, to);
+            s.push_str(if *cw { "arc cw " } else { "arc ccw " });
+            s.push_str(plane.name());
+            axes_text(s, to);
             s.push_str(" center");
             for (i, v) in center {
-                s.push_str(&format!(" {}={}", AXES[*i], fmt_num(*v)));
+                s.push(' ');
+                s.push(AXES[*i]);
+                s.push('=');
+                push_num(s, *v);
             }
-            s.push_str(&format!(" f={}", opt_num(*f)));
+            s.push_str(" f=");
+            push_opt(s, *f, "-");
         }
-        Event::Dwell { seconds } => s.push_str(&format!("dwell {}", fmt_num(*seconds))),
-        Event::Tool { tool } => match tool {
-            ToolId::Number(n) => s.push_str(&format!("tool {}", fmt_num(*n))),
-            ToolId::Name(n) => s.push_str(&format!("tool {}", quote(n))),
-        },
-        Event::Spindle { rpm, dir } => s.push_str(&format!("spindle {} {}", dir.name(), fmt_num(*rpm))),
+        Event::Dwell { seconds } => {
+            s.push_str("dwell ");
+            push_num(s, *seconds);
+        }
+        Event::Tool { tool } => {
+            s.push_str("tool ");
+            match tool {
+                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Name(n) => push_quoted(s, n),
+            }
+        }
+        Event::Spindle { rpm, dir } => {
+            s.push_str("spindle ");
+            s.push_str(dir.name());
+            s.push(' ');
+            push_num(s, *rpm);
+        }
         Event::Coolant { on } => s.push_str(if *on { "coolant on" } else { "coolant off" }),
         Event::Stop { optional, message } => {
             s.push_str(if *optional { "stop optional" } else { "stop" });
             if let Some(m) = message {
                 s.push(' ');
-                s.push_str(&quote(m));
+                push_quoted(s, m);
             }
         }
-        Event::Message { text } => s.push_str(&format!("message {}", quote(text))),
-        Event::Alarm { number, message } => s.push_str(&format!("alarm {} {}", number, quote(message))),
+        Event::Message { text } => {
+            s.push_str("message ");
+            push_quoted(s, text);
+        }
+        Event::Alarm { number, message } => {
+            s.push_str(&format!("alarm {number} "));
+            push_quoted(s, message);
+        }
         Event::End { code, steps } => s.push_str(&format!("end {code} steps={steps}")),
         Event::Limit { steps } => s.push_str(&format!("limit steps={steps}")),
     }
-    s
 }
 
 fn axes_json(out: &mut String, to: &Axes) {
@@ -255,7 +312,10 @@ fn axes_json(out: &mut String, to: &Axes) {
                 out.push(',');
             }
             first = false;
-            out.push_str(&format!("\"{}\":{}", AXES[i], fmt_num(*x)));
+            out.push('"');
+            out.push(AXES[i]);
+            out.push_str("\":");
+            push_num(out, *x);
         }
     }
     out.push('}');
@@ -263,57 +323,81 @@ fn axes_json(out: &mut String, to: &Axes) {
 
 /// One event as a JSON object (no newline); `line` is added when known.
 pub fn json_line(ev: &Event, line: Option<usize>) -> String {
-    let mut s = String::from("{\"ev\":\"");
+    let mut s = String::new();
+    write_json(&mut s, ev, line);
+    s
+}
+
+/// Appends the JSON object of `ev` to `s`.
+pub fn write_json(s: &mut String, ev: &Event, line: Option<usize>) {
+    s.push_str("{\"ev\":\"");
     s.push_str(ev.kind());
     s.push('"');
     match ev {
         Event::Move { rapid, to, f } => {
             s.push_str(if *rapid { ",\"mode\":\"rapid\",\"to\":" } else { ",\"mode\":\"linear\",\"to\":" });
-            axes_json(&mut s, to);
-            s.push_str(&format!(",\"f\":{}", f.map_or_else(|| "null".to_string(), fmt_num)));
+            axes_json(s, to);
+            s.push_str(",\"f\":");
+            push_opt(s, *f, "null");
         }
         Event::Arc { cw, plane, to, center, f } => {
-            s.push_str(&format!(
-                ",\"dir\":\"{}\",\"plane\":\"{}\",\"to\":",
-                if *cw { "cw" } else { "ccw" },
-                plane.name()
-            ));
-            axes_json(&mut s, to);
-            s.push_str(",\"center\":{");
-            s.push_str(&format!(
-                "\"{}\":{},\"{}\":{}",
-                AXES[center[0].0],
-                fmt_num(center[0].1),
-                AXES[center[1].0],
-                fmt_num(center[1].1)
-            ));
-            s.push('}');
-            s.push_str(&format!(",\"f\":{}", f.map_or_else(|| "null".to_string(), fmt_num)));
+            s.push_str(if *cw { ",\"dir\":\"cw\",\"plane\":\"" } else { ",\"dir\":\"ccw\",\"plane\":\"" });
+            s.push_str(plane.name());
+            s.push_str("\",\"to\":");
+            axes_json(s, to);
+            s.push_str(",\"center\":{\"");
+            s.push(AXES[center[0].0]);
+            s.push_str("\":");
+            push_num(s, center[0].1);
+            s.push_str(",\"");
+            s.push(AXES[center[1].0]);
+            s.push_str("\":");
+            push_num(s, center[1].1);
+            s.push_str("},\"f\":");
+            push_opt(s, *f, "null");
         }
-        Event::Dwell { seconds } => s.push_str(&format!(",\"seconds\":{}", fmt_num(*seconds))),
-        Event::Tool { tool } => match tool {
-            ToolId::Number(n) => s.push_str(&format!(",\"tool\":{}", fmt_num(*n))),
-            ToolId::Name(n) => s.push_str(&format!(",\"tool\":{}", quote(n))),
-        },
-        Event::Spindle { rpm, dir } => s.push_str(&format!(",\"rpm\":{},\"dir\":\"{}\"", fmt_num(*rpm), dir.name())),
-        Event::Coolant { on } => s.push_str(&format!(",\"on\":{on}")),
-        Event::Stop { optional, message } => s.push_str(&format!(
-            ",\"optional\":{},\"message\":{}",
-            optional,
-            message.as_deref().map_or_else(|| "null".to_string(), quote)
-        )),
-        Event::Message { text } => s.push_str(&format!(",\"text\":{}", quote(text))),
+        Event::Dwell { seconds } => {
+            s.push_str(",\"seconds\":");
+            push_num(s, *seconds);
+        }
+        Event::Tool { tool } => {
+            s.push_str(",\"tool\":");
+            match tool {
+                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Name(n) => push_quoted(s, n),
+            }
+        }
+        Event::Spindle { rpm, dir } => {
+            s.push_str(",\"rpm\":");
+            push_num(s, *rpm);
+            s.push_str(",\"dir\":\"");
+            s.push_str(dir.name());
+            s.push('"');
+        }
+        Event::Coolant { on } => s.push_str(if *on { ",\"on\":true" } else { ",\"on\":false" }),
+        Event::Stop { optional, message } => {
+            s.push_str(if *optional { ",\"optional\":true,\"message\":" } else { ",\"optional\":false,\"message\":" });
+            match message {
+                Some(m) => push_quoted(s, m),
+                None => s.push_str("null"),
+            }
+        }
+        Event::Message { text } => {
+            s.push_str(",\"text\":");
+            push_quoted(s, text);
+        }
         Event::Alarm { number, message } => {
-            s.push_str(&format!(",\"number\":{},\"message\":{}", number, quote(message)))
+            s.push_str(&format!(",\"number\":{number},\"message\":"));
+            push_quoted(s, message);
         }
         Event::End { code, steps } => s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}")),
         Event::Limit { steps } => s.push_str(&format!(",\"steps\":{steps}")),
     }
     if let Some(l) = line {
-        s.push_str(&format!(",\"line\":{l}"));
+        s.push_str(",\"line\":");
+        push_num(s, l as f64);
     }
     s.push('}');
-    s
 }
 
 /// Output format of a streamed trace.
@@ -330,11 +414,12 @@ pub struct WriterSink<'a, W: Write> {
     pub format: Format,
     pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
     pub error: Option<io::Error>,
+    buf: String,
 }
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink { out, format, line_of, error: None }
+        WriterSink { out, format, line_of, error: None, buf: String::new() }
     }
 }
 
@@ -344,14 +429,19 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
             return;
         }
         let line = (self.line_of)(origin);
-        let r = match self.format {
-            Format::Jsonl => writeln!(self.out, "{}", json_line(ev, line)),
-            Format::Text => match line {
-                Some(l) => writeln!(self.out, "{}  @{}", text_line(ev), l),
-                None => writeln!(self.out, "{}", text_line(ev)),
-            },
-        };
-        if let Err(e) = r {
+        self.buf.clear();
+        match self.format {
+            Format::Jsonl => write_json(&mut self.buf, ev, line),
+            Format::Text => {
+                write_text(&mut self.buf, ev);
+                if let Some(l) = line {
+                    self.buf.push_str("  @");
+                    push_num(&mut self.buf, l as f64);
+                }
+            }
+        }
+        self.buf.push('\n');
+        if let Err(e) = self.out.write_all(self.buf.as_bytes()) {
             self.error = Some(e);
         }
     }

@@ -49,6 +49,14 @@ pub fn round_to(x: f64, inc: f64) -> f64 {
         return x;
     }
     // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
+    let scale = 1.0 / inc;
+    if scale.fract() == 0.0 && scale <= 1e9 {
+        // A decimal increment: dividing the integer count by a power of ten gives the
+        // double nearest to the decimal value, with no noise to clean.
+        let q = ((x * scale) * 1e6).round() / 1e6;
+        let r = q.round() / scale;
+        return if r == 0.0 { 0.0 } else { r };
+    }
     let q = ((x / inc) * 1e6).round() / 1e6;
     let r = q.round() * inc;
     // Clean the binary representation (0.1+0.2 style noise) so that printed values and
@@ -120,6 +128,9 @@ pub fn convert_for(ty: DataType, v: Value) -> Result<Value, ConvError> {
 pub fn fmt_num(x: f64) -> String {
     if !x.is_finite() {
         return "0".to_string();
+    }
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        return (x as i64).to_string();
     }
     let mut s = format!("{:.6}", x);
     if s.contains('.') {

@@ -36,6 +36,9 @@ impl TraceSink for Collect {
         self.lines.push(l);
         self.events.push(ev.clone());
     }
+    fn wants_blocks(&self) -> bool {
+        true
+    }
     fn block_done(&mut self, _origin: Origin, pos: &trace::Axes) {
         self.blocks.push(*pos);
     }
