@@ -1,5 +1,7 @@
 //! The fanuc dialect: parsing (grammar/fanuc.pest) into the IR.
 
+pub mod emit;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::Unit;
