@@ -12,7 +12,8 @@
 //!   (never FANUC bitwise operators); `B_AND/B_OR/B_XOR` → FANUC bitwise `AND/OR/XOR`.
 //! - The relative-equality rule: a Siemens comparison of two values that are not both
 //!   integral (and neither is the constant 0) compares the difference with
-//!   `tol = [ABS[a]+ABS[b]]*0.000001*0.000001` (1e-12, written in FANUC's 8 digits):
+//!   `tol = 1e-12·max(|a|,|b|)`, written `[ABS[a]+ABS[b]+ABS[ABS[a]-ABS[b]]]*0.0000005*0.000001`
+//!   (FANUC has no MAX and at most 8 digits per number), as the evaluator's Siemens rule:
 //!   `a==b` → `ABS[a-b] LE tol`, `a<>b` → `ABS[a-b] GT tol`, `a<b` → `b-a GT tol`,
 //!   `a<=b` → `a-b LE tol`, `a>b` → `a-b GT tol`, `a>=b` → `b-a LE tol`.
 //! - Bracket depth: every expression is fitted into FANUC's 5 bracket levels by moving
@@ -106,16 +107,21 @@ impl Lower<'_> {
                 l.body = self.body(std::mem::take(&mut l.body));
                 out.push(Stmt { kind: StmtKind::Loop(l), span });
             }
-            StmtKind::For(mut f) => {
-                let mut pre = Vec::new();
-                f.var = self.varref(f.var, &mut pre);
-                f.from = self.value(f.from, MAX_DEPTH, &mut pre);
-                // The end value is evaluated once, on entry.
-                let to = self.value(f.to, MAX_DEPTH, &mut pre);
-                f.to = if matches!(to.kind, ExprKind::Num(_)) { to } else { self.spill(to, &mut pre) };
-                f.body = self.body(std::mem::take(&mut f.body));
-                with_pre(out, &mut f.head, pre);
-                out.push(Stmt { kind: StmtKind::For(f), span });
+            StmtKind::For(f) => {
+                // `v=a`, then a WHILE on `v <= b` (b evaluated on every pass, compared with
+                // Siemens' tolerance) whose body ends with `v=v+1` carrying the ENDFOR block.
+                let f = *f;
+                let var = f.var.clone();
+                let init = meta_stmt(f.head, vec![assign_item(&var, f.from, var.span)]);
+                self.stmt(init, out);
+                let v = var_expr(&var);
+                let cond =
+                    Expr::new(ExprKind::Cmp(CmpOp::Le, Tolerance::Relative, Box::new(v.clone()), Box::new(f.to)), span);
+                let mut body = f.body;
+                body.push(meta_stmt(f.end, vec![assign_item(&var, bin(BinOp::Add, v, num(1.0, span)), span)]));
+                let empty = BlockMeta { span, ..BlockMeta::default() };
+                let w = WhileStmt { head: empty.clone(), cond, body, end: empty };
+                self.stmt(Stmt { kind: StmtKind::While(Box::new(w)), span }, out);
             }
             StmtKind::Repeat(mut r) => {
                 r.body = self.body(std::mem::take(&mut r.body));
@@ -405,8 +411,14 @@ impl Lower<'_> {
             ExprKind::Num(n) => num(n.value.abs(), x.span),
             _ => func(Func::Abs, vec![x.clone()], x.span),
         };
-        let eps = num(0.000001, span);
-        let tolx = bin(BinOp::Mul, bin(BinOp::Mul, bin(BinOp::Add, abs(&a), abs(&b)), eps.clone()), eps);
+        // max(|a|,|b|) = (|a| + |b| + ||a|-|b||) / 2; the 1/2 is folded into the constant.
+        let sum = bin(BinOp::Add, abs(&a), abs(&b));
+        let spread = func(Func::Abs, vec![bin(BinOp::Sub, abs(&a), abs(&b))], span);
+        let twice_max = match (&a.kind, &b.kind) {
+            (ExprKind::Num(_), ExprKind::Num(_)) => num(2.0 * a_max(&a, &b), span),
+            _ => bin(BinOp::Add, sum, spread),
+        };
+        let tolx = bin(BinOp::Mul, bin(BinOp::Mul, twice_max, num(0.0000005, span)), num(0.000001, span));
         let diff = |x: &Expr, y: &Expr| bin(BinOp::Sub, x.clone(), y.clone());
         match op {
             CmpOp::Eq => mk(CmpOp::Le, func(Func::Abs, vec![diff(&a, &b)], span), tolx),
@@ -528,6 +540,14 @@ pub fn is_atom(e: &Expr) -> bool {
         }
         _ => false,
     }
+}
+
+fn a_max(a: &Expr, b: &Expr) -> f64 {
+    let v = |e: &Expr| match &e.kind {
+        ExprKind::Num(n) => n.value.abs(),
+        _ => 0.0,
+    };
+    v(a).max(v(b))
 }
 
 fn is_zero(e: &Expr) -> bool {

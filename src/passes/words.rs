@@ -13,6 +13,8 @@ use super::*;
 /// G codes with the same number and meaning on both controls.
 const SAME_G: &[u32] = &[0, 1, 2, 3, 4, 9, 17, 18, 19, 40, 41, 42, 53, 54, 55, 56, 57, 64, 90, 91, 94, 95];
 const AXES: &[u8] = b"XYZABCUVW";
+/// Siemens instructions that only change dynamics (acceleration, feed control): dropped.
+const DYNAMICS_ONLY: &[&str] = &["SOFT", "BRISK", "DRIVE", "FFWON", "FFWOF", "CFC", "CFTCP", "CFIN"];
 /// Calls that only set up the HMI simulation: dropped.
 const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
 
@@ -225,6 +227,18 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 "program-section repetition (REPEAT label P=n)",
                 "rewrite the section as a FOR loop",
             )),
+            ItemKind::Instruction { name } if DYNAMICS_ONLY.contains(&name.as_str()) => ctx.note(
+                "NC323",
+                span,
+                &format!("{name} dropped"),
+                "it changes acceleration or feed control only, not the programmed path",
+            ),
+            ItemKind::Instruction { name } => after.extend(ctx.unsupported(
+                "NC312",
+                span,
+                &format!("instruction {name}"),
+                "no FANUC code has the same meaning",
+            )),
             ItemKind::ModalCallOff => {
                 after.extend(ctx.unsupported("NC318", span, "MCALL cancel", "modal calls are not translated"))
             }
@@ -334,6 +348,7 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                             let msg = format!("tool \"{name}\" has no FANUC tool number");
                             ctx.error("NC301", *span, &msg, &format!("give one with --tool-map {name}=<number>"));
                             ctx.unsupported += 1;
+                            w.value = WordValue::Expr(num(0.0, *span));
                         }
                     }
                 }
