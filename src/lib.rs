@@ -4,8 +4,10 @@
 //! The pipeline (see `docs/architecture.md`): `read` → `dialect::*::parse` (one block at a
 //! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
 
+pub mod check;
 pub mod diag;
 pub mod dialect;
+pub mod eval;
 pub mod ir;
 pub mod passes;
 pub mod read;
