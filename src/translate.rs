@@ -45,6 +45,8 @@ pub struct TranslateOptions {
     pub main_name: String,
     /// File name shown in the header.
     pub source_name: String,
+    /// The main file is a subprogram (`.SPF`) translated on its own.
+    pub main_is_sub: bool,
 }
 
 impl Default for TranslateOptions {
@@ -63,6 +65,7 @@ impl Default for TranslateOptions {
             source: Semantics::default_for(Dialect::Sinumerik),
             main_name: "MAIN".into(),
             source_name: String::new(),
+            main_is_sub: false,
         }
     }
 }
@@ -123,7 +126,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     // Programs: the main one first, then the subprograms by name.
     let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
     if let Some(p) = main.programs.first() {
-        progs.push((p.clone(), main.file, false));
+        progs.push((p.clone(), main.file, opts.main_is_sub));
     }
     let mut sub_progs: Vec<(Program, crate::span::FileId)> =
         subs.iter().flat_map(|u| u.programs.iter().map(|p| (p.clone(), u.file))).collect();
@@ -141,10 +144,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     taken.push(main_no);
     numbers.insert(main_name.clone(), main_no);
     let mut next = FIRST_SUB_NUMBER;
-    for (p, _, is_sub) in &progs {
-        if !is_sub {
-            continue;
-        }
+    for (p, _, _) in progs.iter().skip(1) {
         let name = prog_name(p, "");
         let n = match opts.program_map.get(&name) {
             Some(&n) => n,
@@ -159,8 +159,8 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         numbers.insert(name, n);
     }
     let mut callees = BTreeMap::new();
-    for (p, _, is_sub) in &progs {
-        if *is_sub {
+    for (p, _, _) in progs.iter().skip(1) {
+        {
             let name = prog_name(p, "");
             let number = numbers.get(&name).copied().unwrap_or(FIRST_SUB_NUMBER);
             callees.insert(name, Callee { number, params: p.params.clone() });
@@ -171,7 +171,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
-        let name = if is_sub { prog_name(&p, "") } else { main_name.clone() };
+        let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
         let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
@@ -210,7 +210,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         diags.extend(ctx.diags);
         symbol_map.labels.insert(number, labels);
         collect_alarms(&p.body, &mut symbol_map.alarms);
-        let header = header(&name, &mapped, info.is_sub, opts);
+        let header = header(&name, &mapped, !programs.is_empty(), opts);
         let span = p.span;
         let head_comments = vec![Comment { text: name.clone(), span }];
         let mut body: Vec<Stmt> = header
@@ -319,18 +319,24 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) 
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
-/// Verifies a translation: parses it back as FANUC, then runs both programs and compares
-/// their traces.
+/// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
+/// translation in the evaluator and compares their traces (`check`). The Siemens side is
+/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number, and a
+/// `MSG` that became a comment (FANUC shows no message without stopping) is left out. The
+/// R parameters the translation maps start at 0 on both sides (Siemens' power-on value);
+/// FANUC's would otherwise be vacant.
 pub fn verify(
     db: &mut crate::span::SourceDb,
-    _main: &Unit,
-    _subs: &[&Unit],
+    main: &Unit,
+    subs: &[&Unit],
     t: &Translation,
     out_name: &str,
-    _input: &std::path::Path,
+    max_steps: u64,
 ) -> Verification {
+    use crate::check::{self, Side, Verdict};
+    use crate::eval::{self, NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
-    let rendered = diag::render(db, &parsed.diags);
+    let mut rendered = diag::render(db, &parsed.diags);
     if diag::has_errors(&parsed.diags) {
         return Verification {
             equivalent: false,
@@ -339,11 +345,124 @@ pub fn verify(
             reparsed: None,
         };
     }
-    Verification {
-        equivalent: false,
-        summary: "inconclusive: the output parses as FANUC, but this build has no evaluator to compare the runs".into(),
-        rendered,
-        reparsed: Some(parsed.unit),
+    let source = align_source(main, &t.symbol_map);
+    let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
+    let mut inputs = Vec::new();
+    for m in
+        t.symbol_map.vars.iter().filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+    {
+        if let Ok(i) = eval::parse_input(&format!("#{}=0", m.number)) {
+            inputs.push(i);
+        }
+    }
+    // A subprogram run on its own: Siemens parameters are 0, G65 argument locals vacant.
+    if let Some(p) = main.programs.first() {
+        if let Some(letters) = passes::words::param_letters(p.params.len()) {
+            for (_, var) in letters {
+                if let Ok(i) = eval::parse_input(&format!("#{var}=0")) {
+                    inputs.push(i);
+                }
+            }
+        }
+    }
+    let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
+    let b = Side {
+        unit: parsed.unit.clone(),
+        callees: Box::new(NoCallees),
+        run: RunOptions { max_steps, inputs, ..RunOptions::default() },
+    };
+    let report = check::check(db, a, b);
+    rendered.push_str(&diag::render(&report.db, &report.diags));
+    let (equivalent, summary) = match report.verdict {
+        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
+        Verdict::Diverged { index } => {
+            rendered.push_str(&report.diff);
+            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
+        }
+        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
+        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
+    };
+    Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+}
+
+/// The Siemens programs a translation is compared against, aligned with its symbol map.
+pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
+    let mut u = unit.clone();
+    for p in &mut u.programs {
+        align_body(&mut p.body, map);
+    }
+    u
+}
+
+fn align_body(body: &mut [Stmt], map: &SymbolMap) {
+    for k in 0..body.len() {
+        let stop_follows = match body.get(k + 1).map(|s| &s.kind) {
+            Some(StmtKind::Block(next)) => passes::words::is_lone_m0(next),
+            _ => false,
+        };
+        let s = &mut body[k];
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                let lone_msg = passes::words::msg_text(b).is_some();
+                b.items.retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || (lone_msg && stop_follows));
+                for it in &mut b.items {
+                    if let ItemKind::Word(w) = &mut it.kind {
+                        if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), span }) = &mut w.value {
+                            if let ExprKind::Str(name) = &*kind {
+                                if let Some(&n) = map.tools.get(name) {
+                                    *kind = ExprKind::Num(Number { value: n as f64, point: false });
+                                    let _ = span;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            other => {
+                for child in child_bodies_mut(other) {
+                    align_body(child, map);
+                }
+            }
+        }
+    }
+}
+
+fn child_bodies_mut(kind: &mut StmtKind) -> Vec<&mut Vec<Stmt>> {
+    match kind {
+        StmtKind::Block(_) => vec![],
+        StmtKind::If(i) => {
+            let IfStmt { then_body, else_part, .. } = &mut **i;
+            let mut v = vec![then_body];
+            if let Some(e) = else_part {
+                v.push(&mut e.body);
+            }
+            v
+        }
+        StmtKind::While(w) => vec![&mut w.body],
+        StmtKind::Loop(l) => vec![&mut l.body],
+        StmtKind::For(f) => vec![&mut f.body],
+        StmtKind::Repeat(r) => vec![&mut r.body],
+        StmtKind::Do(d) => vec![&mut d.body],
+    }
+}
+
+/// The Siemens subprograms of a translation, served to the evaluator from memory.
+struct MemCallees(Vec<Unit>);
+
+impl crate::eval::CalleeSource for MemCallees {
+    fn find(
+        &mut self,
+        _db: &mut crate::span::SourceDb,
+        _caller: crate::span::FileId,
+        _dialect: Dialect,
+        name: &crate::eval::CalleeName,
+    ) -> Result<Option<Unit>, Diagnostic> {
+        let crate::eval::CalleeName::Name(n) = name else { return Ok(None) };
+        Ok(self
+            .0
+            .iter()
+            .find(|u| u.programs.first().is_some_and(|p| prog_name(p, "") == n.to_ascii_uppercase()))
+            .cloned())
     }
 }
 

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-#[derive(clap::Args, Debug, Default)]
+#[derive(clap::Args, Debug)]
 pub struct TranslateArgs {
     /// Translate the input to this dialect (fanuc).
     #[arg(long, value_parser = parse_dialect)]
@@ -51,6 +51,9 @@ pub struct TranslateArgs {
     /// The target accepts compound conditions [[a] AND [b]].
     #[arg(long)]
     pub compound_conditions: bool,
+    /// Step limit of each verification run (blocks executed).
+    #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
     /// Encoding of the input; detected when omitted.
     #[arg(long = "input-encoding", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
@@ -154,7 +157,7 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let out_name = a.output.as_ref().map_or("<translation>.nc".to_string(), |p| p.display().to_string());
-    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, input);
+    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, a.max_steps);
     eprint!("{}", v.rendered);
     eprintln!("{}", v.summary);
     if v.equivalent {
@@ -187,6 +190,7 @@ fn options(a: &TranslateArgs, input: &Path, eol: read::LineEnding) -> Result<Tra
         line_ending: eol,
         compound_conditions: a.compound_conditions,
         main_name: stem,
+        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
         source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
         ..TranslateOptions::default()
     })

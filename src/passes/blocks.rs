@@ -3,6 +3,8 @@
 //!
 //! A Siemens block runs its assignments (and DEF initialisations, messages) in text order,
 //! then its NC words as one motion block, then its control item (jump, call, return, end).
+//! A word's value is the one at its place in the text: a word written before an assignment
+//! in the same block is computed into a temporary at that place.
 //! FANUC allows one macro statement per block and no NC words beside an assignment, so each
 //! becomes its own block in that order. The first piece keeps the block number and label (a
 //! jump to the block must run all pieces), every piece keeps the block-skip slash.
@@ -51,11 +53,25 @@ fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>
     let mut words: Vec<Item> = Vec::new();
     let mut tail: Vec<Item> = Vec::new();
     let mut marks: Vec<Stmt> = Vec::new();
-    for it in b.items {
+    let last_assign = b.items.iter().rposition(|i| matches!(i.kind, ItemKind::Assign { .. } | ItemKind::Def(_)));
+    for (k, mut it) in b.items.into_iter().enumerate() {
         match it.kind {
             ItemKind::Def(d) => def_items(ctx, *d, it.span, info, &mut first, &mut marks),
             ItemKind::Assign { .. } | ItemKind::Message { .. } => first.push(it),
-            ItemKind::Word(_) => words.push(it),
+            ItemKind::Word(ref mut w) => {
+                // A word's value is taken where it is written: an assignment later in the
+                // block must not change it, so it is computed before that assignment.
+                if last_assign.is_some_and(|a| a > k) {
+                    if let WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) = &mut w.value {
+                        if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
+                            let t = ctx.temp(e.span);
+                            let v = std::mem::replace(e, var_expr(&t));
+                            first.push(assign_item(&t, v, it.span));
+                        }
+                    }
+                }
+                words.push(it)
+            }
             _ => tail.push(it),
         }
     }

@@ -112,14 +112,14 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
     out
 }
 
-fn msg_text(b: &Block) -> Option<String> {
+pub fn msg_text(b: &Block) -> Option<String> {
     match b.items.as_slice() {
         [Item { kind: ItemKind::Message { text: Some(Expr { kind: ExprKind::Str(t), .. }) }, .. }] => Some(t.clone()),
         _ => None,
     }
 }
 
-fn is_lone_m0(b: &Block) -> bool {
+pub fn is_lone_m0(b: &Block) -> bool {
     b.meta.number.is_none()
         && b.meta.label.is_none()
         && matches!(b.items.as_slice(), [Item { kind: ItemKind::Word(w), .. }]
