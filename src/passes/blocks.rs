@@ -62,12 +62,11 @@ fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>
                 // A word's value is taken where it is written: an assignment later in the
                 // block must not change it, so it is computed before that assignment.
                 if last_assign.is_some_and(|a| a > k) {
-                    if let WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) = &mut w.value {
-                        if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
-                            let t = ctx.temp(e.span);
-                            let v = std::mem::replace(e, var_expr(&t));
-                            first.push(assign_item(&t, v, it.span));
-                        }
+                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e)) = &mut w.value;
+                    if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
+                        let t = ctx.temp(e.span);
+                        let v = std::mem::replace(e, var_expr(&t));
+                        first.push(assign_item(&t, v, it.span));
                     }
                 }
                 words.push(it)
