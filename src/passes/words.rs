@@ -185,9 +185,10 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 ));
             }
             ItemKind::Alarm { style: AlarmStyle::Setal, number, .. } => match &number.kind {
-                ExprKind::Num(n) if n.value >= 0.0 && n.value.fract() == 0.0 => {
+                // User alarms: SETAL(65000+k) ↔ #3000=k (alarm 3000+k), as the checker pairs them.
+                ExprKind::Num(n) if (65000.0..=65999.0).contains(&n.value) && n.value.fract() == 0.0 => {
                     let v = n.value as u64;
-                    let k = if v <= 999 { v } else { v % 1000 };
+                    let k = v - 65000;
                     kept.push(item(
                         ItemKind::Alarm {
                             style: AlarmStyle::FanucMacro,
@@ -200,8 +201,8 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 _ => after.extend(ctx.unsupported(
                     "NC315",
                     number.span,
-                    "SETAL with a computed alarm number",
-                    "write the alarm number as a constant",
+                    "SETAL with a computed number or one outside 65000..65999",
+                    "use a user alarm SETAL(65000+k); it becomes #3000=k",
                 )),
             },
             ItemKind::Stopre => ctx.note(
