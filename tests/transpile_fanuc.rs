@@ -27,7 +27,11 @@ fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
     let mut db = SourceDb::new();
     let file = db.add(name, src);
     let parsed = nctrans::parse(&db, file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
-    assert!(!nctrans::diag::has_errors(&parsed.diags), "{name} does not parse:\n{}", nctrans::diag::render(&db, &parsed.diags));
+    assert!(
+        !nctrans::diag::has_errors(&parsed.diags),
+        "{name} does not parse:\n{}",
+        nctrans::diag::render(&db, &parsed.diags)
+    );
     let t = translate::to_fanuc(&parsed.unit, &[], opts);
     Done { db, unit: parsed.unit, t }
 }
@@ -57,12 +61,19 @@ fn pair(src: &str, expected: &[&str]) {
 fn refused(src: &str, code: &str) {
     let d = translate_src("pair.mpf", src, &TranslateOptions::default());
     assert!(!d.t.ok(), "translated although unsupported:\n{}", d.t.text);
-    assert!(d.t.diags.iter().any(|x| x.code == code), "expected {code}, got {:?}", d.t.diags.iter().map(|x| x.code).collect::<Vec<_>>());
+    assert!(
+        d.t.diags.iter().any(|x| x.code == code),
+        "expected {code}, got {:?}",
+        d.t.diags.iter().map(|x| x.code).collect::<Vec<_>>()
+    );
 }
 
 #[test]
 fn pair_words_and_decimal_points() {
-    pair("S1200 M3\nG1 X1 Y=2*3 Z-0.5 F250\nG4 F1.5\nM30\n", &["S1200 M03", "G01 X1. Y[2.*3.] Z-0.5 F250.", "G04 X1.5", "M30"]);
+    pair(
+        "S1200 M3\nG1 X1 Y=2*3 Z-0.5 F250\nG4 F1.5\nM30\n",
+        &["S1200 M03", "G01 X1. Y[2.*3.] Z-0.5 F250.", "G04 X1.5", "M30"],
+    );
 }
 
 #[test]
@@ -118,7 +129,18 @@ fn pair_atan2_range_is_normalised() {
 fn pair_logical_and_is_not_bitwise() {
     pair(
         "R1=2 R2=1\nR3=R1 AND R2\nG1 X=R3 F100\nM30\n",
-        &["#501=2.", "#502=1.", "#1=0.", "IF [#501 EQ 0.] GOTO 1000", "IF [#502 EQ 0.] GOTO 1000", "#1=1.", "N1000", "#503=#1", "G01 X#503 F100.", "M30"],
+        &[
+            "#501=2.",
+            "#502=1.",
+            "#1=0.",
+            "IF [#501 EQ 0.] GOTO 1000",
+            "IF [#502 EQ 0.] GOTO 1000",
+            "#1=1.",
+            "N1000",
+            "#503=#1",
+            "G01 X#503 F100.",
+            "M30",
+        ],
     );
 }
 
@@ -197,7 +219,12 @@ fn injected_bugs_are_caught() {
     let src = "R1=0 R2=0\nWHILE R1<>1\nR1=R1+0.1\nR2=R2+1\nIF R2>20 GOTOF OUT\nENDWHILE\nOUT: G1 X=R2 F100\nM30\n";
     let mut d = translate_src("bug2.mpf", src, &TranslateOptions::default());
     assert!(verify(&mut d).equivalent);
-    let naive = d.t.text.lines().map(|l| if l.starts_with("WHILE [ABS[#501-1.]") { "WHILE [#501 NE 1.] DO1" } else { l }).collect::<Vec<_>>().join("\n");
+    let naive =
+        d.t.text
+            .lines()
+            .map(|l| if l.starts_with("WHILE [ABS[#501-1.]") { "WHILE [#501 NE 1.] DO1" } else { l })
+            .collect::<Vec<_>>()
+            .join("\n");
     assert_ne!(naive, d.t.text.trim_end());
     d.t.text = naive + "\n";
     assert!(!verify(&mut d).equivalent);
@@ -239,7 +266,8 @@ const REFUSED: &[(&str, &str)] = &[
 #[test]
 fn corpus_translates_and_verifies() {
     let dir = root().join("corpus/in/sinumerik");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir).map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect()).unwrap_or_default();
+    let mut files: Vec<PathBuf> =
+        std::fs::read_dir(&dir).map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect()).unwrap_or_default();
     files.sort();
     let bless = std::env::var_os("NCTRANS_BLESS").is_some_and(|v| v != "0");
     let mut failures = Vec::new();
@@ -250,7 +278,8 @@ fn corpus_translates_and_verifies() {
         let rel = format!("corpus/in/sinumerik/{name}");
         let loaded = nctrans::load(&mut db, &rel, &bytes, None);
         let text = db.get(loaded.file).text.clone();
-        let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+        let parsed =
+            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
         if nctrans::diag::has_errors(&parsed.diags) {
             failures.push(format!("{name}: does not parse"));
             continue;
@@ -306,7 +335,8 @@ fn cead_examples_translate_and_verify() {
         eprintln!("note: {} is absent; CEAD examples skipped", dir.display());
         return;
     };
-    let mut files: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "mpf")).collect();
+    let mut files: Vec<PathBuf> =
+        rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "mpf")).collect();
     files.sort();
     let (mut ok, mut refused, mut failures) = (0, 0, Vec::new());
     for path in files {
@@ -314,7 +344,8 @@ fn cead_examples_translate_and_verify() {
         let mut db = SourceDb::new();
         let loaded = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let text = db.get(loaded.file).text.clone();
-        let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+        let parsed =
+            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
         if nctrans::diag::has_errors(&parsed.diags) {
             refused += 1;
             continue;
