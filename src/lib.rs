@@ -5,12 +5,16 @@
 //! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
 
 pub mod batch;
+pub mod check;
 pub mod config;
 pub mod diag;
 pub mod dialect;
+pub mod eval;
 pub mod ir;
+pub mod passes;
 pub mod read;
 pub mod span;
+pub mod translate;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};
