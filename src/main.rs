@@ -1,7 +1,7 @@
 //! The `nctrans` command line: the only code that prints. Parses arguments, calls the
 //! library, renders diagnostics with codespan-reporting.
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::{diag, ir};
@@ -9,6 +9,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod batch_cli;
 mod translate_cli;
 
 #[derive(Parser)]
@@ -24,6 +25,9 @@ struct Cli {
     /// Translation mode: `nctrans --to fanuc IN [-o OUT] …`.
     #[command(flatten)]
     translate: translate_cli::TranslateArgs,
+    /// Batch mode: a folder in (`nctrans --to fanuc -o out/ programs/`).
+    #[command(flatten)]
+    batch: batch_cli::BatchArgs,
 }
 
 #[derive(Subcommand)]
@@ -72,6 +76,11 @@ enum Command {
         #[command(flatten)]
         input: InputOpts,
     },
+    /// Write a commented project configuration (nctrans.toml) with every key at its default.
+    Init {
+        /// Where to write it (default: ./nctrans.toml); an existing file is never overwritten.
+        path: Option<PathBuf>,
+    },
 }
 
 #[derive(clap::Args)]
@@ -102,8 +111,17 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // The matches are kept so batch mode can tell flags given from defaults (flags win over
+    // nctrans.toml only when given).
+    let matches = Cli::command().get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => e.exit(),
+    };
     let Some(command) = cli.command else {
+        if let Some(code) = batch_cli::run(&cli.translate, &cli.batch, &matches) {
+            return code;
+        }
         return translate_cli::run(&cli.translate).unwrap_or_else(|| {
             eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
             ExitCode::from(2)
@@ -113,6 +131,7 @@ fn main() -> ExitCode {
         Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
         Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
         Command::Check { a, b, from_a, from_b, eval, input } => cmd_check(&a, &b, from_a, from_b, &eval, &input),
+        Command::Init { path } => batch_cli::init(path.as_deref()),
     }
 }
 

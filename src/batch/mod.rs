@@ -9,6 +9,7 @@
 //! is decided before the parallel part, so the output does not depend on thread timing.
 
 pub mod discover;
+pub mod jobs;
 pub mod library;
 pub mod maps;
 pub mod report;
@@ -188,6 +189,8 @@ impl FileOutcome {
 pub struct BatchContext {
     /// The batch's options.
     pub options: BatchOptions,
+    /// Every input file of the batch, in batch order (`InputFile::index`).
+    pub files: Vec<InputFile>,
     /// Every program in the library: who defines it, who calls it and how.
     pub library: Library,
     /// The program, tool and variable maps of the whole batch, fixed before any file runs.

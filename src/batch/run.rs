@@ -153,7 +153,7 @@ pub fn run_batch(
     progress(Progress::Started { total: runnable.len(), skipped });
 
     // 4. Translate in parallel; stage outputs in the workers, commit here in input order.
-    let ctx = BatchContext { options: opts.clone(), library, maps, cancel: cancel.clone() };
+    let ctx = BatchContext { options: opts.clone(), files: files.clone(), library, maps, cancel: cancel.clone() };
     let work = |f: &InputFile| {
         let t0 = Instant::now();
         let outcome = job.run(f, &ctx);
