@@ -215,9 +215,9 @@ impl FileJob for ToFanucJob {
         outcome.used = used;
         outcome.outputs = vec![OutputFile { rel: discover::fanuc_output(&file.rel), bytes }];
         if ctx.options.verify {
-            let key = main.unit.programs.first().and_then(|p| match &p.name {
-                Some(ProgName::Name(n)) => Some(ProgKey::Name(n.to_ascii_uppercase())),
-                _ => Some(ProgKey::Name(opts.main_name.clone())),
+            let key = main.unit.programs.first().map(|p| match &p.name {
+                Some(ProgName::Name(n)) => ProgKey::Name(n.to_ascii_uppercase()),
+                _ => ProgKey::Name(opts.main_name.clone()),
             });
             let vectors = key.map(|k| ctx.library.arg_vectors(&k)).unwrap_or_default();
             let out_name = super::rel_string(&discover::fanuc_output(&file.rel));
