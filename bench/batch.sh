@@ -17,7 +17,7 @@ for j in 1 2; do
     /usr/bin/time -f "%e %M" -o "$work/time$j" ./target/release/nctrans --to fanuc -j "$j" -o "$out" "$work/lib" \
         >"$work/summary$j" 2>/dev/null || true
     read -r secs kb <"$work/time$j"
-    files="$(grep -c '\.nc$' <(cd "$out" && find . -type f) || true)"
+    files="$(grep -ci '\.nc$' <(cd "$out" && find . -type f) || true)"
     echo "-j $j: ${secs} s, $(python3 -c "print(f'{$count/$secs:.0f} files/s, {$blocks/$secs:,.0f} blocks/s, peak RSS {$kb/1024:.0f} MiB')"), $files outputs"
     grep -E "verified|diverged|inconclusive|unsupported" "$work/summary$j" | tr -s ' ' | paste -sd';' -
 done
