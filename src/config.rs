@@ -143,15 +143,16 @@ impl Default for Config {
     }
 }
 
-/// The keys, the flag each one stands for, and what it takes (for errors and `init`).
+/// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
+/// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
 pub const KEYS: [(&str, &str, &str); 27] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
-    ("fanuc.series", "--fanuc-series", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i"),
-    ("fanuc.increment", "--increment", "\"IS-A\", \"IS-B\" or \"IS-C\""),
-    ("fanuc.decimal_point", "--decimal-point", "\"increment\" (X10 = 10 increments) or \"calculator\" (X10 = 10 mm)"),
-    ("fanuc.nat", "--nat", "true or false"),
+    ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i"),
+    ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
+    ("fanuc.decimal_point", "-", "\"increment\" (X10 = 10 increments) or \"calculator\" (X10 = 10 mm)"),
+    ("fanuc.nat", "-", "true or false"),
     ("fanuc.compound_conditions", "--compound-conditions", "true or false"),
-    ("sinumerik.r_parameters", "--r-parameters", "a number from 1 to 32535"),
+    ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
@@ -162,8 +163,8 @@ pub const KEYS: [(&str, &str, &str); 27] = [
     ("translate.number_blocks", "--number-blocks", "a step from 0 (off) to 1000"),
     ("translate.program_number", "--program-number", "an O number from 1 to 99999999"),
     ("input.encoding", "--encoding", "\"auto\" or an encoding label (utf-8, gbk, shift_jis, windows-1250, …)"),
-    ("output.encoding", "--output-encoding", "\"keep\" or an encoding label (utf-8, gbk, …)"),
-    ("output.line_ending", "--line-ending", "\"keep\", \"lf\", \"crlf\" or \"cr\""),
+    ("output.encoding", "-", "\"keep\" or an encoding label (utf-8, gbk, …)"),
+    ("output.line_ending", "-", "\"keep\", \"lf\", \"crlf\" or \"cr\""),
     ("batch.output", "-o", "a folder path"),
     ("batch.jobs", "-j", "a number of threads, 0 for the number of cores"),
     ("batch.force", "--force", "true or false"),
@@ -171,7 +172,7 @@ pub const KEYS: [(&str, &str, &str); 27] = [
     ("batch.report", "--report", "a file path ending in .json or .csv"),
     ("batch.map", "--map", "a map file path (nctrans-map.toml)"),
     ("verify.max_steps", "--max-steps", "a number of blocks from 1 up"),
-    ("verify.set", "--set", "a list like [\"R1=5\", \"#24=10.\"]"),
+    ("verify.set", "-", "a list like [\"R1=5\", \"#24=10.\"]"),
 ];
 
 fn allowed(key: &str) -> &'static str {
@@ -428,19 +429,19 @@ pub const TEMPLATE: &str = r##"# nctrans.toml: the project configuration of nctr
 
 [fanuc]
 # The FANUC control: 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i.
-# The 30i class takes 8-digit program numbers, the others 4. (--fanuc-series)
+# The 30i class takes 8-digit program numbers, the others 4.
 series = "0i-F"
-# Increment system: "IS-A" (0.01 mm), "IS-B" (0.001 mm), "IS-C" (0.0001 mm). (--increment)
+# Increment system: "IS-A" (0.01 mm), "IS-B" (0.001 mm), "IS-C" (0.0001 mm).
 increment = "IS-B"
 # Parameter 3401#0 DPI: "increment" (X10 means 10 increments) or "calculator" (X10 means 10 mm).
 decimal_point = "increment"
-# Parameter 6004#0 NAT: false gives ATAN 0..360 and ASIN 270..90. (--nat)
+# Parameter 6004#0 NAT: false gives ATAN 0..360 and ASIN 270..90.
 nat = false
 # The control accepts [[a] AND [b]] in IF and WHILE (newer controls; check the manual).
 compound_conditions = false
 
 [sinumerik]
-# MD28050: the number of R parameters (828D: 300). (--r-parameters)
+# MD28050: the number of R parameters (828D: 300).
 r_parameters = 300
 
 [variables]
@@ -483,7 +484,7 @@ encoding = "auto"
 [output]
 # "keep" writes each file in its input's encoding, or give a label like "utf-8".
 encoding = "keep"
-# "keep" (like each input), "lf", "crlf" or "cr". (--line-ending)
+# "keep" (like each input), "lf", "crlf" or "cr".
 line_ending = "keep"
 
 [batch]
