@@ -119,3 +119,33 @@ fn fanuc_decimal_point_in_addresses_and_arguments() {
     // G65 arguments without a point: X10 → 0.010, A5 → 0.005, D3 → 3 (integer address).
     assert_eq!(t[2], "move rapid X=0.01 Y=3 Z=123 A=0.005 f=-");
 }
+
+#[test]
+fn siemens_subprogram_parameters_by_value_reference_and_omitted() {
+    let dir = root().join("target/eval-tests/procs");
+    std::fs::create_dir_all(&dir).expect("dir");
+    // VAR parameter written back; omitted parameter is 0; M30 in a subprogram returns;
+    // P2 runs it twice with the same arguments.
+    std::fs::write(
+        dir.join("shift.spf"),
+        "PROC SHIFT(REAL DX, VAR REAL ACC, REAL DY)\nACC=ACC+DX\nG0 X=ACC Y=DY\nM30\n",
+    )
+    .expect("write");
+    std::fs::write(dir.join("Tail.SPF"), "G0 Z5\n").expect("write");
+    std::fs::write(dir.join("MAIN.MPF"), "DEF REAL SUM=1\nSHIFT(2.5, SUM) P2\nG0 Z=SUM\nTAIL\nM30\n").expect("write");
+    let ran = run_file(&dir.join("MAIN.MPF"), &[], 10_000);
+    assert!(ran.parse_errors.is_none(), "{:?}", ran.parse_errors);
+    let t = bare_lines(&ran);
+    assert_eq!(
+        t,
+        vec![
+            "move rapid X=3.5 Y=0 f=-",
+            "move rapid X=6 Y=0 f=-",
+            "move rapid X=6 Y=0 Z=6 f=-",
+            "move rapid X=6 Y=0 Z=5 f=-",
+            "end M30 steps=14"
+        ]
+    );
+    // TAIL ends without M17/RET: an implicit return with a warning.
+    assert!(ran.outcome.diags.iter().any(|d| d.code == "NC410"));
+}

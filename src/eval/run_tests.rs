@@ -429,3 +429,73 @@ fn siemens_ac_ic_per_word() {
         ["move rapid X=1 f=-", "move rapid X=3 f=-", "move rapid X=10 Y=1 f=-", "move rapid X=10 Y=2 f=-"]
     );
 }
+
+#[test]
+fn goto_into_a_loop_body_runs_to_its_end_and_back_to_the_head() {
+    // GOTO 7 jumps into the DO body; END1 goes back to the WHILE head, which tests #1.
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(1), p(5.0))]),
+        s(vec![goto(Search::ForwardThenWrap, num_target(7), None)]),
+        do_(
+            Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(3.0))),
+            vec![blk(vec![g(0.0), word("X", hash(1))]).n(7).stmt()],
+        ),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=5 f=-", "end M30 steps=6"]);
+}
+
+#[test]
+fn siemens_for_end_value_is_evaluated_on_every_pass() {
+    let var_i = VarKind::R(1);
+    let for_ = Stmt {
+        kind: StmtKind::For(Box::new(ForStmt {
+            head: meta(),
+            var: vref(var_i.clone()),
+            from: p(1.0),
+            to: r(2),
+            body: vec![
+                s(vec![g(0.0), word("X", r(1))]),
+                // Lowering the end value inside the loop ends it early.
+                s(vec![assign(VarKind::R(2), p(2.0))]),
+            ],
+            end: meta(),
+        })),
+        span: sp(),
+    };
+    let u = siemens(vec![s(vec![assign(VarKind::R(2), p(10.0))]), for_, s(vec![end()])]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=1 f=-", "move rapid X=2 f=-", "end M30 steps=9"]);
+}
+
+#[test]
+fn g53_ignores_g91() {
+    let u =
+        fanuc(vec![s(vec![g(0.0), word("X", p(10.0))]), s(vec![g(91.0), g(53.0), word("X", p(-1.5))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[1], "move rapid X=-1.5 f=-");
+}
+
+#[test]
+fn incremental_move_after_an_offset_change() {
+    // FANUC: G91 after switching G54 → G55 moves by the increment only.
+    let fan = fanuc(vec![
+        s(vec![g(10.0), word("L", n(2.0)), word("P", n(2.0)), word("X", p(100.0))]),
+        s(vec![g(54.0), g(0.0), word("X", p(1.0))]),
+        s(vec![g(55.0), g(91.0), word("X", p(1.0))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&fan).0[1], "move rapid X=2 f=-");
+    // Siemens (MD42440 = 1): the increment applies to the programmed position, so the
+    // move also travels the new offset.
+    let sie = siemens(vec![
+        s(vec![g(0.0), word("X", p(1.0))]),
+        s(vec![item(ItemKind::Frame {
+            op: "TRANS".into(),
+            words: vec![Word { addr: Addr::Letter(b'X'), value: WordValue::Expr(p(100.0)), span: sp() }],
+        })]),
+        s(vec![word_v("X", WordValue::Ic(p(1.0)))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&sie).0[1], "move rapid X=102 f=-");
+}
