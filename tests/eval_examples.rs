@@ -143,7 +143,7 @@ fn siemens_subprogram_parameters_by_value_reference_and_omitted() {
             "move rapid X=6 Y=0 f=-",
             "move rapid X=6 Y=0 Z=6 f=-",
             "move rapid X=6 Y=0 Z=5 f=-",
-            "end M30 steps=14"
+            "end M30 steps=12"
         ]
     );
     // TAIL ends without M17/RET: an implicit return with a warning.
