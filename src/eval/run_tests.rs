@@ -499,3 +499,11 @@ fn incremental_move_after_an_offset_change() {
     ]);
     assert_eq!(run_u(&sie).0[1], "move rapid X=102 f=-");
 }
+
+#[test]
+fn machine_specific_m_codes_emit_nothing_with_a_warning() {
+    let u = fanuc(vec![s(vec![word("M", n(19.0))]), s(vec![end()])]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t, vec!["end M30 steps=2"]);
+    assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("M19")));
+}
