@@ -809,10 +809,9 @@ impl<'a> Interp<'a> {
     fn define(&mut self, def: &crate::ir::Def) -> Result<(), Fault> {
         let sf = self.cur_sframe();
         for dv in &def.vars {
-            let len = dv.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
-            if len > 1_000_000 {
+            let Some(len) = super::vars::array_len(&dv.dims) else {
                 return Err(Fault::alarm(self.alarms.bad_index, format!("array {} too large", dv.name), dv.span));
-            }
+            };
             let zero = super::vars::zero_of(def.ty);
             let mut data = vec![zero; len];
             let input = if self.frames.len() == 1 {

@@ -149,7 +149,9 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
             .find(|i| matches!(&i.target, InputTarget::Name(n) if *n == p.name))
             .map(|i| i.value.clone())
             .unwrap_or_else(|| vars::zero_of(p.ty));
-        let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+        let len = vars::array_len(&p.dims).ok_or_else(|| {
+            Fault::alarm(it.alarms.bad_index, format!("array parameter {} too large", p.name), Default::default())
+        })?;
         let mut data = vec![vars::zero_of(p.ty); len];
         data[0] = value::convert_for(p.ty, v).unwrap_or_else(|_| vars::zero_of(p.ty));
         it.vars.frames[0].insert(p.name.clone(), vars::Slot::Own { ty: p.ty, dims: p.dims.clone(), data });
