@@ -9,8 +9,10 @@ pub mod diag;
 pub mod dialect;
 pub mod eval;
 pub mod ir;
+pub mod passes;
 pub mod read;
 pub mod span;
+pub mod translate;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

@@ -9,15 +9,21 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod translate_cli;
+
 #[derive(Parser)]
 #[command(
     name = "nctrans",
     version,
     about = "Translate CNC macro programs between Siemens Sinumerik and FANUC Macro B, verified by running both"
 )]
+#[command(args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    /// Translation mode: `nctrans --to fanuc IN [-o OUT] …`.
+    #[command(flatten)]
+    translate: translate_cli::TranslateArgs,
 }
 
 #[derive(Subcommand)]
@@ -97,7 +103,13 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
+    let Some(command) = cli.command else {
+        return translate_cli::run(&cli.translate).unwrap_or_else(|| {
+            eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
+            ExitCode::from(2)
+        });
+    };
+    match command {
         Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
         Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
         Command::Check { a, b, from_a, from_b, eval, input } => cmd_check(&a, &b, from_a, from_b, &eval, &input),

@@ -19,6 +19,8 @@ mod structure;
 #[cfg(test)]
 mod tests;
 
+pub mod emit;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::{BlockMeta, ProgName, Program, Unit};
