@@ -149,3 +149,28 @@ fn siemens_subprogram_parameters_by_value_reference_and_omitted() {
     // TAIL ends without M17/RET: an implicit return with a warning.
     assert!(ran.outcome.diags.iter().any(|d| d.code == "NC410"));
 }
+
+#[test]
+fn siemens_mcall_runs_after_each_move_of_the_calling_level() {
+    let dir = root().join("target/eval-tests/mcall");
+    std::fs::create_dir_all(&dir).expect("dir");
+    // The modal subprogram moves too; its own moves do not call it again.
+    std::fs::write(dir.join("DRILL.SPF"), "PROC DRILL(REAL DEPTH)\nG1 Z=-DEPTH F100\nG0 Z2\nRET\n").expect("write");
+    std::fs::write(dir.join("MAIN.MPF"), "G0 X0 Y0 Z2\nMCALL DRILL(3)\nX10\nY10\nMCALL\nX20\nM30\n").expect("write");
+    let ran = run_file(&dir.join("MAIN.MPF"), &[], 10_000);
+    assert!(ran.parse_errors.is_none(), "{:?}", ran.parse_errors);
+    assert_eq!(
+        bare_lines(&ran),
+        vec![
+            "move rapid X=0 Y=0 Z=2 f=-",
+            "move rapid X=10 Y=0 Z=2 f=-",
+            "move linear X=10 Y=0 Z=-3 f=100",
+            "move rapid X=10 Y=0 Z=2 f=-",
+            "move rapid X=10 Y=10 Z=2 f=-",
+            "move linear X=10 Y=10 Z=-3 f=100",
+            "move rapid X=10 Y=10 Z=2 f=-",
+            "move rapid X=20 Y=10 Z=2 f=-",
+            "end M30 steps=13"
+        ]
+    );
+}
