@@ -115,7 +115,7 @@ pub struct ModalCall {
     pub fanuc_args: Vec<(u8, Option<f64>)>,
     pub sie_args: Vec<Option<Value>>,
     pub repeat: u64,
-    /// The frame depth whose moves trigger it.
+    /// The frame depth that set it (kept for diagnostics; the call is modal at every level).
     pub depth: usize,
 }
 

@@ -365,8 +365,10 @@ impl<'a> Interp<'a> {
         }
         if eff.moved {
             if let Some(mc) = self.modal_call.clone() {
-                let in_modal = self.frames.last().is_some_and(|f| f.modal);
-                if !in_modal && mc.depth == self.frames.len() {
+                // Modal at every program level (M98 subprograms included), except inside
+                // the modal macro itself and what it calls.
+                let in_modal = self.frames.iter().any(|f| f.modal);
+                if !in_modal {
                     return self.modal_trigger(&mc, pc, b.meta.span);
                 }
             }

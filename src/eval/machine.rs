@@ -250,6 +250,8 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
+                // A measuring move runs to its end point (no probe signal is modelled).
+                ("MEAS" | "MEAW", _) => {}
                 (
                     "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
                     | "K1",
