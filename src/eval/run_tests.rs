@@ -507,3 +507,30 @@ fn machine_specific_m_codes_emit_nothing_with_a_warning() {
     assert_eq!(t, vec!["end M30 steps=2"]);
     assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("M19")));
 }
+
+#[test]
+fn g66_is_modal_in_m98_subprograms_but_not_inside_its_macro() {
+    let call = |kind, prog, args: Vec<Arg>| {
+        item(ItemKind::Call(Box::new(Call { kind, target: CallTarget::Number(prog), args, repeat: None })))
+    };
+    let main = program(
+        Some(ProgName::Number(1)),
+        vec![
+            s(vec![call(CallKind::G66, 9100, vec![Arg::Letter { letter: b'Z', var: 26, value: p(-1.0) }])]),
+            s(vec![call(CallKind::M98, 2000, vec![])]),
+            s(vec![item(ItemKind::ModalCallOff)]),
+            s(vec![end()]),
+        ],
+    );
+    let sub = program(
+        Some(ProgName::Number(2000)),
+        vec![s(vec![g(0.0), word("X", p(5.0))]), s(vec![item(ItemKind::Return { to: None })])],
+    );
+    // The modal macro moves too: that move must not call it again.
+    let mac = program(
+        Some(ProgName::Number(9100)),
+        vec![s(vec![g(0.0), word("Z", hash(26))]), s(vec![item(ItemKind::Return { to: None })])],
+    );
+    let (t, _) = run_u(&unit(Dialect::Fanuc, vec![main, sub, mac]));
+    assert_eq!(t, vec!["move rapid X=5 f=-", "move rapid X=5 Z=-1 f=-", "end M30 steps=8"]);
+}
