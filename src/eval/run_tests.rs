@@ -534,3 +534,16 @@ fn g66_is_modal_in_m98_subprograms_but_not_inside_its_macro() {
     let (t, _) = run_u(&unit(Dialect::Fanuc, vec![main, sub, mac]));
     assert_eq!(t, vec!["move rapid X=5 f=-", "move rapid X=5 Z=-1 f=-", "end M30 steps=8"]);
 }
+
+#[test]
+fn fanuc_3003_3004_are_stored_without_effect() {
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(3004), p(3.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(3004))]),
+        s(vec![g(0.0), word("X", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t[0], "move rapid X=3 f=-");
+    assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("#3004")));
+}
