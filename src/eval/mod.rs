@@ -4,10 +4,11 @@
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
 //! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
-//! loop and variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
+//! loop), `access` + `vars` (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
 //! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
 //! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
 
+pub mod access;
 pub mod arc;
 pub mod calls;
 pub mod exec;
