@@ -547,3 +547,26 @@ fn fanuc_3003_3004_are_stored_without_effect() {
     assert_eq!(t[0], "move rapid X=3 f=-");
     assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("#3004")));
 }
+
+#[test]
+fn fanuc_modal_group_variables() {
+    let u = fanuc(vec![
+        s(vec![g(91.0), g(18.0), g(41.0), g(43.0), word("H", n(1.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(4003))]),
+        s(vec![assign(VarKind::Hash(2), hash(4002))]),
+        s(vec![assign(VarKind::Hash(3), hash(4007))]),
+        s(vec![assign(VarKind::Hash(4), hash(4008))]),
+        s(vec![assign(VarKind::Hash(5), hash(4012))]),
+        s(vec![
+            g(90.0),
+            g(0.0),
+            word("X", hash(1)),
+            word("Y", hash(2)),
+            word("Z", hash(3)),
+            word("A", hash(4)),
+            word("B", hash(5)),
+        ]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&u).0[0], "move rapid X=91 Y=18 Z=41 A=43 B=67 f=-");
+}

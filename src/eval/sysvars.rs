@@ -77,6 +77,20 @@ impl Interp<'_> {
                 }
             }
             4014 => 53.0 + m.wo as f64,
+            4007..=4010 | 4015 => {
+                let group = (n - 4000) as u8;
+                match m.group_g.iter().find(|s| s.0 == group) {
+                    Some(s) => s.1 as f64 / 10.0,
+                    None => return Err(self.unmodelled(&format!("#{n}"), span)),
+                }
+            }
+            4012 => {
+                if self.modal_call.is_some() {
+                    66.0
+                } else {
+                    67.0
+                }
+            }
             4107 => m.d,
             4109 => {
                 let f = m.feed.unwrap_or(0.0);
