@@ -93,6 +93,10 @@ pub struct Machine {
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
     pub last_m: f64,
     pub last_n: f64,
+    /// Last G code of FANUC groups without an effect on the trace, for `#4007`.. reads:
+    /// 07 cutter compensation, 08 length compensation, 09 canned cycle, 10 return level,
+    /// 15 path mode (values ×10: 400 = G40).
+    pub group_g: [(u8, i64); 5],
     /// Semantics::incremental_travels_offset.
     pub incr_travels_offset: bool,
     /// The offset in effect when each axis last moved (for the rule above).
@@ -128,6 +132,7 @@ impl Machine {
             trans: [0.0; 9],
             last_m: 0.0,
             last_n: 0.0,
+            group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
         }
@@ -250,6 +255,8 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
+                // A measuring move runs to its end point (no probe signal is modelled).
+                ("MEAS" | "MEAW", _) => {}
                 (
                     "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
                     | "K1",
@@ -308,6 +315,17 @@ impl Machine {
                 // cancel, exact stop: no effect on the trace.
                 90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
                 | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
+                    let group = match gi {
+                        400 | 410 | 420 => Some(7),
+                        430 | 440 | 490 => Some(8),
+                        800 => Some(9),
+                        980 | 990 => Some(10),
+                        610..=640 => Some(15),
+                        _ => None,
+                    };
+                    if let Some(slot) = self.group_g.iter_mut().find(|s| Some(s.0) == group) {
+                        slot.1 = gi;
+                    }
                     warns.push(("NC405", format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
                 280 | 290 | 300 | 920 | 520 | 680 | 160 => {

@@ -4,10 +4,11 @@
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
 //! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
-//! loop and variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
+//! loop), `access` + `vars` (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
 //! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
 //! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
 
+pub mod access;
 pub mod arc;
 pub mod calls;
 pub mod exec;
@@ -149,7 +150,9 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
             .find(|i| matches!(&i.target, InputTarget::Name(n) if *n == p.name))
             .map(|i| i.value.clone())
             .unwrap_or_else(|| vars::zero_of(p.ty));
-        let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+        let len = vars::array_len(&p.dims).ok_or_else(|| {
+            Fault::alarm(it.alarms.bad_index, format!("array parameter {} too large", p.name), Default::default())
+        })?;
         let mut data = vec![vars::zero_of(p.ty); len];
         data[0] = value::convert_for(p.ty, v).unwrap_or_else(|_| vars::zero_of(p.ty));
         it.vars.frames[0].insert(p.name.clone(), vars::Slot::Own { ty: p.ty, dims: p.dims.clone(), data });
