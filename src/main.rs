@@ -92,6 +92,17 @@ struct EvalOpts {
     /// Stop after this many blocks (the run is then inconclusive).
     #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
     max_steps: u64,
+    /// Where a probe move (FANUC G31, Siemens MEAS=/MEAW=) touches, as a fraction of the move
+    /// in (0, 1]; without it every probe move reaches its end point.
+    #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
+    probe_contact: Option<f64>,
+}
+
+fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(f) if f > 0.0 && f <= 1.0 => Ok(f),
+        _ => Err(format!("'{s}' is not a fraction in (0, 1] (e.g. 0.5: the probe touches halfway)")),
+    }
 }
 
 #[derive(clap::Args)]
@@ -211,7 +222,12 @@ fn load_for_run(
         inputs.retain(|h| h.target != i.target);
         inputs.push(i);
     }
-    let opts = nctrans::eval::RunOptions { max_steps: eval.max_steps, inputs, semantics: None };
+    let opts = nctrans::eval::RunOptions {
+        max_steps: eval.max_steps,
+        inputs,
+        semantics: None,
+        probe_contact: eval.probe_contact,
+    };
     Ok((parsed.unit, opts))
 }
 

@@ -342,6 +342,7 @@ impl ToFanucJob {
                 max_steps: self.settings.max_steps,
                 inputs,
                 semantics: Some(sem.clone()),
+                probe_contact: None,
             };
             let source = translate::align_source(main, &t.symbol_map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());

@@ -103,6 +103,7 @@ impl<'a> Interp<'a> {
         let scaling = sem.increment_scaling && !sem.calculator_input;
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         m.incr_travels_offset = sem.incremental_travels_offset;
+        m.probe_contact = opts.probe_contact;
         let r_count = sem.r_param_count as usize;
         Interp {
             fanuc,

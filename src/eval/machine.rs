@@ -101,6 +101,8 @@ pub struct Machine {
     pub incr_travels_offset: bool,
     /// The offset in effect when each axis last moved (for the rule above).
     pub applied: [f64; 9],
+    /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
+    pub probe_contact: Option<f64>,
 }
 
 impl Machine {
@@ -133,6 +135,7 @@ impl Machine {
             last_m: 0.0,
             last_n: 0.0,
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
+            probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
         }
@@ -218,6 +221,7 @@ impl Machine {
         let (mut r, mut ar, mut f, mut s, mut p, mut l) = (None, None, None, None, None, None);
         let mut t: Option<(ToolId, Span)> = None;
         let mut block_span = Span::default();
+        let mut measuring = false;
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -255,8 +259,9 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
-                // A measuring move runs to its end point (no probe signal is modelled).
-                ("MEAS" | "MEAW", _) => {}
+                // A measuring move: runs to its end point unless `probe_contact` says where
+                // the probe touches.
+                ("MEAS" | "MEAW", _) => measuring = true,
                 (
                     "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
                     | "K1",
@@ -269,7 +274,7 @@ impl Machine {
         }
 
         // G codes: modal state first; one-shot meanings remembered.
-        let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, false);
+        let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         for &(g, span) in &gs {
             let gi = (g * 10.0).round() as i64;
             match gi {
@@ -515,6 +520,15 @@ impl Machine {
             } else {
                 v + self.active_offset(i)
             };
+        }
+        if probe {
+            if let Some(frac) = self.probe_contact {
+                // The skip signal stops the move part way; the skip position variables
+                // (#5061+, $AA_MW) read the stopping point, which is the new position.
+                for i in 0..target.len() {
+                    target[i] = self.pos[i] + (target[i] - self.pos[i]) * frac;
+                }
+            }
         }
         let rapid = self.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {

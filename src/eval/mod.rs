@@ -50,11 +50,15 @@ pub struct RunOptions {
     pub inputs: Vec<Input>,
     /// The control profile; `None`: the dialect's default.
     pub semantics: Option<Semantics>,
+    /// Where along every probe move (FANUC `G31`, Siemens `MEAS=`/`MEAW=`) the probe
+    /// touches, as a fraction of the move in (0, 1]; `None`: no contact, the move reaches
+    /// its end point (FANUC then reports the end point in `#5061+`).
+    pub probe_contact: Option<f64>,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None }
+        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None, probe_contact: None }
     }
 }
 

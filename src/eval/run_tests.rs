@@ -570,3 +570,34 @@ fn fanuc_modal_group_variables() {
     ]);
     assert_eq!(run_u(&u).0[0], "move rapid X=91 Y=18 Z=41 A=43 B=67 f=-");
 }
+
+#[test]
+fn probe_moves_reach_the_end_point_unless_a_contact_is_given() {
+    // FANUC G31: the skip position #5061 is where the move stopped.
+    let f = fanuc(vec![
+        s(vec![g(31.0), word("X", p(10.0)), word("F", p(100.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(5061))]),
+        s(vec![g(1.0), word("Y", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&f);
+    assert_eq!(t[0], "move linear X=10 f=100");
+    assert_eq!(t[1], "move linear X=10 Y=10 f=100");
+    let (t, _) = run_opts(&f, &RunOptions { probe_contact: Some(0.25), ..Default::default() });
+    assert_eq!(t[0], "move linear X=2.5 f=100");
+    assert_eq!(t[1], "move linear X=2.5 Y=2.5 f=100");
+    // Siemens MEAS=1: the same rule; $AA_MW reads the stopping point.
+    let aa_mw =
+        var(VarKind::System { name: "AA_MW".into(), indices: vec![Expr::new(ExprKind::Ident("X".into()), sp())] });
+    let u = siemens(vec![
+        s(vec![word("MEAS", n(1.0)), g(1.0), word("X", n(10.0)), word("F", n(100.0))]),
+        s(vec![word("Y", aa_mw)]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[0], "move linear X=10 f=100");
+    assert_eq!(t[1], "move linear X=10 Y=10 f=100");
+    let (t, _) = run_opts(&u, &RunOptions { probe_contact: Some(0.5), ..Default::default() });
+    assert_eq!(t[0], "move linear X=5 f=100");
+    assert_eq!(t[1], "move linear X=5 Y=5 f=100");
+}
