@@ -525,8 +525,8 @@ impl Machine {
             if let Some(frac) = self.probe_contact {
                 // The skip signal stops the move part way; the skip position variables
                 // (#5061+, $AA_MW) read the stopping point, which is the new position.
-                for i in 0..target.len() {
-                    target[i] = self.pos[i] + (target[i] - self.pos[i]) * frac;
+                for (t, from) in target.iter_mut().zip(self.pos) {
+                    *t = from + (*t - from) * frac;
                 }
             }
         }
