@@ -85,7 +85,11 @@ fn streamed_ir_is_the_whole_file_ir_on_every_corpus_program() {
         let utf8 = std::str::from_utf8(&bytes).is_ok() && !bytes.contains(&0);
         for chunk in [1, 2, 5, 4096] {
             let Some(s) = stream_unit(&f, &bytes, dialect, chunk) else {
-                assert!(!utf8 || nctrans::read::binary_garbage(&String::from_utf8_lossy(&bytes)).is_some(), "{}: UTF-8 but not streamable", f.display());
+                assert!(
+                    !utf8 || nctrans::read::binary_garbage(&String::from_utf8_lossy(&bytes)).is_some(),
+                    "{}: UTF-8 but not streamable",
+                    f.display()
+                );
                 continue;
             };
             let errors = nctrans::diag::has_errors(&parsed.diags);
@@ -94,7 +98,12 @@ fn streamed_ir_is_the_whole_file_ir_on_every_corpus_program() {
                 continue;
             }
             assert_eq!(codes(&s.index.diags), codes(&parsed.diags), "{}", f.display());
-            assert_eq!(nctrans::ir::dump::dump(&s.unit), nctrans::ir::dump::dump(&parsed.unit), "{} (chunks of {chunk})", f.display());
+            assert_eq!(
+                nctrans::ir::dump::dump(&s.unit),
+                nctrans::ir::dump::dump(&parsed.unit),
+                "{} (chunks of {chunk})",
+                f.display()
+            );
             assert_eq!(s.index.blocks as usize, nctrans::ir::visit::count_blocks(&parsed.unit), "{}", f.display());
             compared += 1;
         }
@@ -141,7 +150,8 @@ fn both_runs(path: &Path, chunk_ops: usize, max_steps: u64) -> Option<(Vec<Strin
     assert_eq!(format!("{from_header:?}"), format!("{:?}", opts.inputs), "{}", path.display());
     let pager = Rc::new(Pager::new(Arc::new(index)));
     let p2 = Rc::clone(&pager);
-    let mut st = Lines { out: vec![], line_of: Box::new(move |o| (o.file == 0).then(|| p2.line_of(o.span.lo)).flatten()) };
+    let mut st =
+        Lines { out: vec![], line_of: Box::new(move |o| (o.file == 0).then(|| p2.line_of(o.span.lo)).flatten()) };
     let o2 = eval::run_stream(&mut db2, Rc::clone(&pager), &mut eval::DirCallees { semantics: None }, &opts, &mut st);
     assert_eq!(o1.ending, o2.ending, "{}", path.display());
     assert_eq!(o1.steps, o2.steps, "{}", path.display());

@@ -204,9 +204,8 @@ impl Builder {
 }
 
 fn set_target(op: Option<&mut Op>, to: usize) {
-    match op {
-        Some(Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. }) => *target = to,
-        _ => {}
+    if let Some(Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. }) = op {
+        *target = to;
     }
 }
 

@@ -52,7 +52,14 @@ pub struct ProgIndex {
 impl ProgIndex {
     pub fn new() -> ProgIndex {
         ProgIndex {
-            program: Program { name: None, head: None, params: vec![], save: false, body: vec![], span: Span::default() },
+            program: Program {
+                name: None,
+                head: None,
+                params: vec![],
+                save: false,
+                body: vec![],
+                span: Span::default(),
+            },
             chunks: Vec::new(),
             ops: 0,
             labels: Vec::new(),

@@ -16,9 +16,13 @@ pub const MAX_LINE: usize = 16 * 1024 * 1024;
 pub enum NotStreamable {
     Io(io::Error),
     /// A line that is not UTF-8 (legacy encodings are decoded whole).
-    NotUtf8 { line: u32 },
+    NotUtf8 {
+        line: u32,
+    },
     /// A line longer than [`MAX_LINE`].
-    LongLine { line: u32 },
+    LongLine {
+        line: u32,
+    },
     /// NUL bytes or many control characters: binary data (diagnosed by the whole path).
     Binary,
 }
@@ -229,10 +233,17 @@ mod tests {
         let mut text = String::new();
         for i in 0..5000 {
             text.push_str(&"X".repeat(i % 700));
-            text.push_str(if i % 3 == 0 { "\r\n" } else if i % 3 == 1 { "\r" } else { "\n" });
+            text.push_str(if i % 3 == 0 {
+                "\r\n"
+            } else if i % 3 == 1 {
+                "\r"
+            } else {
+                "\n"
+            });
         }
         text.push_str(&"Y".repeat(CHUNK * 3));
-        let want: Vec<_> = crate::read::blocks(&text).map(|b| (b.text.to_string(), u64::from(b.start), b.line)).collect();
+        let want: Vec<_> =
+            crate::read::blocks(&text).map(|b| (b.text.to_string(), u64::from(b.start), b.line)).collect();
         assert_eq!(all(text.as_bytes()), want);
     }
 

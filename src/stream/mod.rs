@@ -167,7 +167,7 @@ pub fn scan(
         let line_end = l.next;
         reader.line(&raw);
         count += 1;
-        if count % 65536 == 0 {
+        if count.is_multiple_of(65536) {
             if let Some(p) = progress.as_mut() {
                 p(Progress { done: line_end, total: size, blocks: progs.iter().map(|p| p.ops as u64).sum() });
             }
@@ -319,4 +319,17 @@ pub fn reread(
 /// A span that marks "somewhere in this file" for diagnostics without text.
 pub fn file_span(ix: &Index) -> Span {
     Span::new(0, ix.text_len.min(u64::from(u32::MAX)) as u32)
+}
+
+/// A check side that runs a streamed file (see `check::check_runners`); its pager is made
+/// on the thread that runs it.
+pub fn runner(
+    ix: std::sync::Arc<Index>,
+    mut callees: Box<dyn crate::eval::CalleeSource + Send>,
+    opts: crate::eval::RunOptions,
+) -> crate::check::Runner {
+    Box::new(move |db, sink| {
+        let pager = std::rc::Rc::new(paged::Pager::new(ix));
+        crate::eval::run_stream(db, pager, callees.as_mut(), &opts, sink)
+    })
 }

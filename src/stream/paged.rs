@@ -35,6 +35,8 @@ impl Page {
     }
 }
 
+type ProgressBox = Box<dyn FnMut(super::Progress)>;
+
 /// Reads pages of one streamed file.
 pub struct Pager {
     ix: Arc<Index>,
@@ -42,11 +44,23 @@ pub struct Pager {
     cache: RefCell<VecDeque<Rc<Page>>>,
     /// Pages read so far (for tests and benchmarks: how much re-reading happened).
     pub reads: RefCell<u64>,
+    progress: RefCell<Option<ProgressBox>>,
 }
 
 impl Pager {
     pub fn new(ix: Arc<Index>) -> Pager {
-        Pager { ix, lines: RefCell::new(None), cache: RefCell::new(VecDeque::new()), reads: RefCell::new(0) }
+        Pager {
+            ix,
+            lines: RefCell::new(None),
+            cache: RefCell::new(VecDeque::new()),
+            reads: RefCell::new(0),
+            progress: RefCell::new(None),
+        }
+    }
+
+    /// Reports each page read: bytes up to the page's end, ops up to its last op.
+    pub fn set_progress(&self, f: Box<dyn FnMut(super::Progress)>) {
+        *self.progress.borrow_mut() = Some(f);
     }
 
     pub fn index(&self) -> &Index {
@@ -96,6 +110,9 @@ impl Pager {
         super::reread(lines, &self.ix, chunk, &mut |s| stmts.push(s), &mut |lo, line| starts.push((lo as u32, line)))
             .map_err(|e: NotStreamable| self.err(e))?;
         let ops = Code::flatten_chunk(self.ix.file, chunk.op_base, &stmts)?;
+        if let Some(p) = self.progress.borrow_mut().as_mut() {
+            p(super::Progress { done: chunk.hi, total: self.ix.size, blocks: (chunk.op_base + chunk.ops) as u64 });
+        }
         if ops.len() != chunk.ops {
             return Err(self.err(format!("chunk at line {} changed since it was first read", chunk.line)));
         }

@@ -57,7 +57,12 @@ impl Reader {
     /// `len`: the length of the file text (the program's span until it is known).
     pub fn new(file: FileId, opts: &ParseOptions, len: u32) -> Reader {
         Reader {
-            st: FileState { file, diags: Vec::new(), r_count: opts.semantics.r_param_count, declared: Default::default() },
+            st: FileState {
+                file,
+                diags: Vec::new(),
+                r_count: opts.semantics.r_param_count,
+                declared: Default::default(),
+            },
             builder: structure::Builder::new(None, len),
             header_seen: false,
             any: false,
