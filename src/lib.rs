@@ -7,8 +7,10 @@
 pub mod diag;
 pub mod dialect;
 pub mod ir;
+pub mod passes;
 pub mod read;
 pub mod span;
+pub mod translate_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

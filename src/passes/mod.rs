@@ -1,0 +1,3 @@
+//! IR→IR lowering passes, one submodule per translation direction.
+
+pub mod to_sinumerik;
