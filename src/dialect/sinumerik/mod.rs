@@ -1,5 +1,7 @@
 //! The sinumerik dialect: parsing (grammar/sinumerik.pest) into the IR.
 
+pub mod emit;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::Unit;
