@@ -187,6 +187,7 @@ impl Dumper {
                 }
                 s
             }
+            ItemKind::Instruction { name } => format!("instruction {name}"),
             ItemKind::Frame { op, words } => {
                 let ws: Vec<String> = words.iter().map(word).collect();
                 format!("frame {op} {}", ws.join(" ")).trim_end().to_string()

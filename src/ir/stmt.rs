@@ -88,6 +88,10 @@ pub enum ItemKind {
     RepeatSection(Box<RepeatSection>),
     /// Siemens frame instruction with axis words: `TRANS X10`, `ATRANS …`, `ROT Z45`, bare `TRANS`.
     Frame { op: String, words: Vec<Word> },
+    /// Siemens named NC instruction written without a value, upper case: interpolation and
+    /// path modes (`CIP`, `BSPLINE`, `SOFT`, `CFC`), spline end conditions (`BNAT`, `ETAN`),
+    /// `SUPA`, `SBLOF`. Like a G function, but named; never a subprogram call.
+    Instruction { name: String },
 }
 
 /// FANUC `G10 L50` mode: `N<param> [P<axis>] [Q<bit>] R<value>`.

@@ -124,7 +124,11 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         }
         ItemKind::RepeatSection(r) => v.extend(r.count.iter()),
         ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
-        ItemKind::ModalCallOff | ItemKind::End { .. } | ItemKind::StopMessage { .. } | ItemKind::Stopre => {}
+        ItemKind::ModalCallOff
+        | ItemKind::Instruction { .. }
+        | ItemKind::End { .. }
+        | ItemKind::StopMessage { .. }
+        | ItemKind::Stopre => {}
     }
     v
 }

@@ -1,18 +1,142 @@
-//! The sinumerik dialect: parsing (grammar/sinumerik.pest) into the IR.
+//! The Sinumerik dialect (828D/840D): reading part programs into the IR.
+//!
+//! One block at a time: each line is normalised (`read::normalise`), tried by the byte-level
+//! fast path for plain motion blocks, else parsed by `grammar/sinumerik.pest` (rule `block`)
+//! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
+//! reading goes on. The structurer (`structure.rs`) then builds the program tree.
+
+mod errors;
+mod expr;
+mod fast;
+mod names;
+mod parse;
+mod structure;
 
 pub mod emit;
 
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
-use crate::ir::Unit;
+use crate::ir::{BlockMeta, Unit};
+use crate::read::{self, CommentStyle};
 use crate::span::{FileId, SourceFile, Span};
+use parse::{FileState, Lower};
+use pest::Parser;
+use structure::Header;
 
-/// Parses one sinumerik file.
-pub fn parse(src: &SourceFile, file: FileId, _opts: &ParseOptions) -> Parsed {
-    let diags = vec![Diagnostic::error("NC100", "the sinumerik reader is being written").primary(
-        file,
-        Span::new(0, src.text.len().min(1) as u32),
-        "not read",
-    )];
-    Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![] }, diags }
+#[derive(pest_derive::Parser)]
+#[grammar = "../grammar/common.pest"]
+#[grammar = "../grammar/sinumerik.pest"]
+pub struct SinumerikParser;
+
+/// Parses one Sinumerik file into a unit with one program.
+pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
+    let mut st =
+        FileState { file, diags: Vec::new(), r_count: opts.semantics.r_param_count, declared: Default::default() };
+    let mut lines = Vec::new();
+    let mut header: Option<Header> = None;
+    let mut any = false;
+    for raw in read::blocks(&src.text) {
+        let norm = read::normalise(&raw, CommentStyle::Semicolon);
+        if !norm.full_width.is_empty() || !norm.letter_o.is_empty() {
+            st.diags.extend(norm.warnings(file));
+        }
+        let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+        let text: &str = &norm.text;
+        let trimmed = text.trim_start_matches([' ', '\t']);
+        if trimmed.is_empty() {
+            continue;
+        }
+        if trimmed.starts_with('%') {
+            if any || header.is_some() {
+                st.diags.push(
+                    Diagnostic::error("NC128", "a `%` line is only allowed as the first line")
+                        .primary(file, whole, "`%` line inside the program")
+                        .hint("the `%_N_NAME_MPF` header starts the file; remove this line"),
+                );
+            } else {
+                header =
+                    Some(Header { name: header_name(trimmed), meta: BlockMeta { span: whole, ..Default::default() } });
+            }
+            continue;
+        }
+        any = true;
+        if let Some(line) = fast::line(&norm, whole) {
+            lines.push(line);
+            continue;
+        }
+        if let Some(d) = errors::too_deep(text, &norm, file) {
+            st.diags.push(d);
+            continue;
+        }
+        match SinumerikParser::parse(Rule::block, text) {
+            Ok(mut pairs) => {
+                if let Some(block) = pairs.next() {
+                    let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
+                    if let Some(line) = lower.block(block, whole) {
+                        lines.push(line);
+                    }
+                }
+            }
+            Err(e) => {
+                st.diags.push(errors::syntax(&e, &norm, file));
+                // A broken IF/WHILE/…/ENDIF line still opens or closes its structure, so
+                // that one bad block does not also give an "END without opener" error.
+                if let Some(kind) = structure::keyword_only(text, whole) {
+                    lines.push(structure::Line {
+                        meta: BlockMeta { span: whole, ..Default::default() },
+                        kind,
+                        kw: whole,
+                    });
+                }
+            }
+        }
+    }
+    let program = structure::build(lines, &mut st, header, src.text.len() as u32);
+    Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] }, diags: st.diags }
+}
+
+/// `%_N_PART1_MPF` → `PART1`; `%_N_SUB_SPF` → `SUB`; other `%` lines give no name.
+fn header_name(line: &str) -> Option<String> {
+    let t = line.trim_end();
+    let body = t.strip_prefix("%_N_").or_else(|| t.strip_prefix("%_n_"))?;
+    let upper = body.to_ascii_uppercase();
+    let name = upper.strip_suffix("_MPF").or_else(|| upper.strip_suffix("_SPF")).unwrap_or(&upper);
+    (!name.is_empty()).then(|| name.to_string())
+}
+
+/// The IR of one block by the grammar alone (no fast path), for tests that compare the two.
+#[doc(hidden)]
+pub fn block_via_grammar(text: &str) -> Option<String> {
+    block_dump(text, false)
+}
+
+/// The IR of one block through the fast path only (`None` when it declines).
+#[doc(hidden)]
+pub fn block_via_fast_path(text: &str) -> Option<String> {
+    block_dump(text, true)
+}
+
+fn block_dump(text: &str, fast_path: bool) -> Option<String> {
+    let raw = read::RawBlock { text, start: 0, line: 1 };
+    let norm = read::normalise(&raw, CommentStyle::Semicolon);
+    let whole = Span::new(0, text.len() as u32);
+    let line = if fast_path {
+        fast::line(&norm, whole)?
+    } else {
+        let mut st = FileState { file: 0, diags: Vec::new(), r_count: 300, declared: Default::default() };
+        let mut pairs = SinumerikParser::parse(Rule::block, &norm.text).ok()?;
+        let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
+        let line = lower.block(pairs.next()?, whole)?;
+        if !st.diags.is_empty() {
+            return None;
+        }
+        line
+    };
+    match line.kind {
+        structure::LineKind::Plain(items) => {
+            let block = crate::ir::Block { meta: line.meta, items };
+            Some(format!("{block:?}"))
+        }
+        _ => None,
+    }
 }

@@ -1,0 +1,6 @@
+%
+O2000
+(ERROR: #0 CANNOT BE WRITTEN)
+#0=1
+M30
+%

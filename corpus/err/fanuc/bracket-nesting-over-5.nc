@@ -1,0 +1,6 @@
+%
+O2000
+(ERROR: SIX LEVELS OF BRACKETS - ALARM 118)
+#1=[[[[[[1]]]]]]
+M30
+%

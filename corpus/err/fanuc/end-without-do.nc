@@ -1,0 +1,8 @@
+%
+O2000
+(ERROR: END1 WITHOUT DO1)
+#1=0
+#1=#1+1
+END1
+M30
+%

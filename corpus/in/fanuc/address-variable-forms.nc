@@ -1,0 +1,14 @@
+%
+O1047
+(ADDRESS VALUES FROM VARIABLES AND EXPRESSIONS: X#1 X-#1 X[#1+#2] X#[#1] Z-[SIN[#1]] M#1 G#1)
+#1=1.
+#2=2.
+#3=3
+#4=1
+#5=5
+G#4 X#1 Y-#2 F100.
+G1 X[#1+#2] Y#[#3] Z-[SIN[#1]]
+M#3
+S#5 M#4
+M30
+%

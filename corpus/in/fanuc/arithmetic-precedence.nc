@@ -1,0 +1,10 @@
+%
+O1009
+(PRECEDENCE: * AND / BIND BEFORE + AND -, LEFT TO RIGHT)
+#1=1+2*3-4/2
+#2=10-4-3
+#3=8/4/2
+#4=-2*3
+G0 X#1 Y#2 Z#3
+M30
+%

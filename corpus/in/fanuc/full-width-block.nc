@@ -1,0 +1,8 @@
+%
+O1062
+(FULL-WIDTH CHARACTERS AS IN CHINESE DOCUMENTS ARE READ AS ASCII WITH WARNING NC110)
+Ｎ１ Ｇ０１ Ｇ９１ Ｘ９０．０ Ｆ３００；
+＃１＝［＃２＋１］；
+Ｇ９０（全角注释）
+M30
+%

@@ -1,0 +1,11 @@
+%
+O1015
+(ATAN[Y]/[X], ATAN[Y,X] AND ONE-ARGUMENT ATAN[T]; / AFTER ATAN[A] IS PART OF THE CALL)
+#1=ATAN[-1.]/[-1.]
+#2=ATAN[1.,-1.]
+#3=ATAN[1.]
+#4=ATAN[1.]/2.
+#5=[ATAN[1.]/[2.]]/2.
+G0 X#1
+M30
+%

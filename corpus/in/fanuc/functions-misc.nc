@@ -1,0 +1,14 @@
+%
+O1017
+(SQRT ABS LN EXP BIN BCD POW ADP)
+#1=SQRT[2.]
+#2=ABS[-3.]
+#3=LN[10.]
+#4=EXP[1.]
+#5=BIN[25]
+#6=BCD[19]
+#7=POW[2.,10.]
+#8=ADP[#24]
+G0 X#1
+M30
+%

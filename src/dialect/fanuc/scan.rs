@@ -1,0 +1,155 @@
+//! Byte-level checks before the grammar: splitting a line at `;` end-of-block marks,
+//! unclosed comments, unbalanced or too deeply nested brackets, `##`, and `<`/`>` in
+//! conditions. Doing these first gives precise messages and bounds the grammar's recursion.
+
+use super::parse::Seg;
+use crate::diag::Diagnostic;
+use crate::dialect::ParseOptions;
+
+/// Hard cap on bracket nesting whatever the profile says, so no input can recurse deeply.
+const HARD_DEPTH: u32 = 32;
+
+/// Splits a normalised line into blocks at `;` outside comments. Yields `(lo, hi, end)`:
+/// the trimmed block text `lo..hi` and `end`, one past its `;` (or `hi` without one).
+/// Empty blocks (a lone `;`) are skipped.
+pub fn segments(text: &str) -> Vec<(usize, usize, usize)> {
+    let b = text.as_bytes();
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut in_comment = false;
+    for (i, &c) in b.iter().enumerate() {
+        match c {
+            b'(' if !in_comment => in_comment = true,
+            b')' if in_comment => in_comment = false,
+            b';' if !in_comment => {
+                push_trimmed(text, start, i, i + 1, &mut out);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    if start < b.len() {
+        push_trimmed(text, start, b.len(), b.len(), &mut out);
+    }
+    out
+}
+
+fn push_trimmed(text: &str, lo: usize, hi: usize, end: usize, out: &mut Vec<(usize, usize, usize)>) {
+    let s = &text[lo..hi];
+    let t = s.trim_start();
+    let lo2 = lo + (s.len() - t.len());
+    let t = t.trim_end();
+    if t.is_empty() {
+        return;
+    }
+    let hi2 = lo2 + t.len();
+    // A `;` that ends the block belongs to its span; otherwise the block ends at its text.
+    let end2 = if end > hi { end } else { hi2 };
+    out.push((lo2, hi2, end2));
+}
+
+/// The `N` number a block starts with (after an optional `/n`), read textually; used to keep
+/// GOTO checks quiet about blocks that failed to parse or were ignored.
+pub fn leading_number(text: &str) -> Option<u32> {
+    let t = text.trim_start();
+    let t = t.strip_prefix('/').map_or(t, |r| r.trim_start_matches(|c: char| c.is_ascii_digit()));
+    let t = t.trim_start();
+    let rest = t.strip_prefix(['N', 'n'])?.trim_start();
+    let digits: &str = &rest[..rest.find(|c: char| !c.is_ascii_digit()).unwrap_or(rest.len())];
+    digits.parse().ok()
+}
+
+/// Checks a block's brackets, comments and operator characters before parsing.
+pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
+    let b = seg.text.as_bytes();
+    let max = opts.semantics.max_bracket_depth.min(HARD_DEPTH);
+    let mut depth: u32 = 0;
+    let mut open: Vec<usize> = Vec::new();
+    let mut comment: Option<usize> = None;
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if comment.is_some() {
+            if c == b')' {
+                comment = None;
+            }
+            i += 1;
+            continue;
+        }
+        match c {
+            b'(' => comment = Some(i),
+            b'[' => {
+                depth += 1;
+                if depth > max {
+                    return Err(Diagnostic::error("NC163", format!("brackets nested more than {max} deep"))
+                        .primary(seg.file, seg.span(i, i + 1), format!("bracket level {depth}"))
+                        .secondary(seg.file, seg.span(open[0], open[0] + 1), "outermost bracket")
+                        .note(format!(
+                            "the control allows {max} levels of `[ ]`, function brackets included (alarm 118)"
+                        ))
+                        .hint("compute part of the expression into a variable first, e.g. `#100=[…]`"));
+                }
+                open.push(i);
+            }
+            b']' => {
+                if open.pop().is_none() {
+                    return Err(Diagnostic::error("NC162", "`]` without a matching `[`")
+                        .primary(seg.file, seg.span(i, i + 1), "nothing to close here")
+                        .hint("delete this `]` or add the missing `[` where the expression starts"));
+                }
+                depth -= 1;
+            }
+            b'#' => {
+                let mut j = i + 1;
+                while j < b.len() && (b[j] == b' ' || b[j] == b'\t') {
+                    j += 1;
+                }
+                if b.get(j) == Some(&b'#') {
+                    return Err(Diagnostic::error("NC164", "`##` is not a FANUC variable")
+                        .primary(seg.file, seg.span(i, j + 1), "a variable number after `#` was expected")
+                        .note("a variable number computed from another variable is written in brackets")
+                        .hint("write `#[#1]` for the variable whose number is the value of #1"));
+                }
+            }
+            b'<' | b'>' | b'!' => {
+                let sym = c as char;
+                let word = match (c, b.get(i + 1)) {
+                    (b'<', Some(b'=')) => "LE",
+                    (b'>', Some(b'=')) => "GE",
+                    (b'<', Some(b'>')) | (b'!', _) => "NE",
+                    (b'<', _) => "LT",
+                    _ => "GT",
+                };
+                let next = b.get(i + 1).copied();
+                let width = match (c, next) {
+                    (b'<', Some(b'=' | b'>')) | (b'>' | b'!', Some(b'=')) => 2,
+                    _ => 1,
+                };
+                return Err(Diagnostic::error(
+                    "NC172",
+                    format!("`{}` is not a FANUC comparison", &seg.text[i..i + width]),
+                )
+                .primary(seg.file, seg.span(i, i + width), format!("`{sym}` here"))
+                .note(
+                    "FANUC conditions use the two-letter operators EQ NE GT GE LT LE; `<`, `>` and `=` are not allowed",
+                )
+                .hint(format!("write `{word}`, e.g. `IF[#1 {word} 10]GOTO100`")));
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    if let Some(at) = comment {
+        return Err(Diagnostic::error("NC161", "comment not closed")
+            .primary(seg.file, seg.span(at, b.len()), "this `(` is never closed")
+            .note("a comment runs from `(` to `)` on the same block; comments cannot span lines")
+            .hint("add `)` at the end of the comment"));
+    }
+    if let Some(&at) = open.last() {
+        return Err(Diagnostic::error("NC162", "`[` without a matching `]`")
+            .primary(seg.file, seg.span(at, at + 1), "this `[` is never closed")
+            .secondary(seg.file, seg.span(b.len(), b.len()), "the block ends here")
+            .hint("add the missing `]` (every `[` needs its `]` in the same block)"));
+    }
+    Ok(())
+}

@@ -1,0 +1,169 @@
+//! Sinumerik names: built-in functions with their arity, the multi-letter addresses and the
+//! named NC instructions the reader knows, and the rule that tells an address word
+//! (`ELX=3`) from an assignment to a user variable (`E_MULTIPLIER=1`).
+
+use crate::ir::Func;
+
+/// A built-in function: its IR operation and how many arguments it takes.
+pub struct Builtin {
+    pub func: Func,
+    pub arity: usize,
+}
+
+/// The arithmetic functions of dialects.md §3.3, by upper-case name.
+pub fn builtin(name: &str) -> Option<Builtin> {
+    let (func, arity) = match name {
+        "SIN" => (Func::Sin, 1),
+        "COS" => (Func::Cos, 1),
+        "TAN" => (Func::Tan, 1),
+        "ASIN" => (Func::Asin, 1),
+        "ACOS" => (Func::Acos, 1),
+        "ATAN2" => (Func::Atan2, 2),
+        "SQRT" => (Func::Sqrt, 1),
+        "ABS" => (Func::Abs, 1),
+        "TRUNC" => (Func::Trunc, 1),
+        "ROUND" => (Func::Round, 1),
+        "ROUNDUP" => (Func::RoundUp, 1),
+        "LN" => (Func::Ln, 1),
+        "EXP" => (Func::Exp, 1),
+        "POT" => (Func::Pot, 1),
+        "MINVAL" => (Func::MinVal, 2),
+        "MAXVAL" => (Func::MaxVal, 2),
+        "BOUND" => (Func::Bound, 3),
+        _ => return None,
+    };
+    Some(Builtin { func, arity })
+}
+
+/// Multi-letter NC addresses that take a value with `=` (dialects.md §6.2, §8): arc radius
+/// and angle, polar coordinates, extra turns, spindle positioning, spline parameters, and
+/// other per-block addresses. Anything not listed is decided by [`is_address_name`].
+const ADDRESSES: &[&str] = &[
+    "CR", "AR", "AP", "RP", "TURN", "SPOS", "SPOSA", "PW", "SD", "PL", "OFFN", "ACC", "FA", "FL", "OVR", "OVRA", "SF",
+    "DC", "ACN", "ACP", "CAC", "CIC", "CDC", "CACP", "CACN", "MEAS", "MEAW", "ANG", "CHR", "CHF", "RND", "RNDM", "FRC",
+    "FRCM", "FAD", "ADIS", "ADISPOS", "STOPFIFO",
+];
+
+/// Whether `NAME=value` (no subscripts) writes an NC address rather than a variable.
+/// Siemens decides by its configuration (declared variables, machine axis names); the
+/// reader decides without it, in this order: a declared name is a variable; a letter
+/// followed by digits (`X1`, `I1`) is a numbered address; a known address is an address; a
+/// name with `_` is a variable (the manual's advice for user names); a short name of up to
+/// three letters (`ELX`) is a machine axis; anything longer is a variable.
+pub fn is_address_name(upper: &str, declared: bool) -> bool {
+    if declared {
+        return false;
+    }
+    let b = upper.as_bytes();
+    let letters = b.iter().take_while(|c| c.is_ascii_alphabetic()).count();
+    let numbered = letters >= 1 && letters < b.len() && b[letters..].iter().all(u8::is_ascii_digit);
+    if numbered && letters <= 3 {
+        return true;
+    }
+    if ADDRESSES.contains(&upper) {
+        return true;
+    }
+    if upper.contains('_') {
+        return false;
+    }
+    b.len() <= 3 && letters == b.len()
+}
+
+/// Named NC instructions written without a value: motion and interpolation modes, spline
+/// conditions, path modes, frame suppression, single-block control. A bare name that is not
+/// listed is a subprogram call.
+const INSTRUCTIONS: &[&str] = &[
+    "CIP",
+    "CT",
+    "ASPLINE",
+    "BSPLINE",
+    "CSPLINE",
+    "POLY",
+    "BAUTO",
+    "BNAT",
+    "BTAN",
+    "EAUTO",
+    "ENAT",
+    "ETAN",
+    "SOFT",
+    "BRISK",
+    "DRIVE",
+    "CFC",
+    "CFTCP",
+    "CFIN",
+    "SUPA",
+    "DIAMON",
+    "DIAMOF",
+    "DIAM90",
+    "SBLOF",
+    "SBLON",
+    "FFWON",
+    "FFWOF",
+    "WALIMON",
+    "WALIMOF",
+    "CUT2D",
+    "CUT2DF",
+    "CUT3DC",
+    "TRAFOOF",
+    "TRANSMIT",
+    "TRACYL",
+    "SPLINEPATH",
+    "UPATH",
+    "SPATH",
+    "CPRECON",
+    "CPRECOF",
+    "ORIWKS",
+    "ORIMKS",
+    "TOFRAME",
+    "TCARR",
+    "PAROT",
+    "PAROTOF",
+    "TOROT",
+    "TOROTOF",
+    "G_GROUP",
+    "RTLION",
+    "RTLIOF",
+    "COMPON",
+    "COMPOF",
+    "COMPCURV",
+    "COMPCAD",
+    "BRISKA",
+    "SOFTA",
+    "DRIVEA",
+    "OFFN",
+    "NORM",
+    "KONT",
+    "KONTC",
+    "KONTT",
+    "DISC",
+    "SPIF1",
+    "SPIF2",
+    "ACTBLOCNO",
+    "DISPLOF",
+    "DISPLON",
+    "PREVENT",
+    "SAVE",
+    "TOFFON",
+    "TOFFOF",
+    "FGROUP",
+];
+
+/// Whether a bare name is a named NC instruction rather than a subprogram call.
+pub fn is_instruction(upper: &str) -> bool {
+    INSTRUCTIONS.contains(&upper)
+}
+
+/// Built-ins whose subscript is an axis (`ACC[E]`, `FA[Y]`, `AX[X1]`): a bare name inside
+/// their brackets is an axis identifier, not a variable.
+pub fn axis_indexed(upper: &str) -> bool {
+    matches!(
+        upper,
+        "ACC" | "AX" | "FA" | "FL" | "OVRA" | "POS" | "POSA" | "SPOS" | "SPOSA" | "FGREF" | "JERKA" | "VELOLIMA"
+    )
+}
+
+/// Whether a name has the shape of an R parameter (`R12`): never a user name.
+pub fn r_number(upper: &str) -> Option<&str> {
+    let digits = upper.strip_prefix('R')?;
+    (!digits.is_empty() && digits.bytes().all(|c| c.is_ascii_digit())).then_some(digits)
+}

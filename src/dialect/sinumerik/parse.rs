@@ -1,0 +1,740 @@
+//! From the pest pairs of one block to a [`Line`]: block metadata plus either the items of an
+//! ordinary block or one control-structure keyword line for the structurer.
+
+use super::names;
+use super::structure::{Line, LineKind, ProcHead};
+use super::Rule;
+use crate::diag::Diagnostic;
+use crate::ir::*;
+use crate::read::Normalised;
+use crate::span::{FileId, Span};
+use pest::iterators::Pair;
+use std::collections::HashMap;
+
+/// What the reader learns from earlier blocks of the same file.
+pub struct FileState {
+    pub file: FileId,
+    pub diags: Vec<Diagnostic>,
+    pub r_count: u32,
+    /// Names declared by DEF or PROC so far (upper case), with their type.
+    pub declared: HashMap<String, DataType>,
+}
+
+/// Converts the pairs of one block; spans go through `norm` back to the file.
+pub struct Lower<'n, 'a> {
+    pub norm: &'n Normalised<'a>,
+    pub st: &'n mut FileState,
+    /// An error was already reported for this block (one bad block, one error).
+    pub failed: bool,
+    /// The whole block: the span of stand-in values after an error.
+    pub whole: Span,
+}
+
+impl Lower<'_, '_> {
+    /// The file span of a pair, without the blanks pest's implicit whitespace leaves at the
+    /// end of a rule (`a ~ b*` keeps the skip before an empty `b*`).
+    pub fn span(&self, p: &Pair<'_, Rule>) -> Span {
+        let s = p.as_span();
+        let end = if p.as_rule() == Rule::comment {
+            s.end()
+        } else {
+            let t = p.as_str();
+            s.start() + t.trim_end_matches(|c: char| c == ' ' || c == '&' || c.is_ascii_control()).len()
+        };
+        self.norm.span(s.start(), end)
+    }
+
+    /// Reports a problem in this block; after the first error, further errors of the same
+    /// block are dropped (they are usually consequences of the first).
+    pub fn error(&mut self, d: Diagnostic) {
+        if d.is_error() {
+            if self.failed {
+                return;
+            }
+            self.failed = true;
+        }
+        self.st.diags.push(d);
+    }
+
+    pub fn file(&self) -> FileId {
+        self.st.file
+    }
+
+    /// The whole `block` pair → a line (`None` for a blank line).
+    pub fn block(&mut self, block: Pair<'_, Rule>, whole: Span) -> Option<Line> {
+        let mut meta = BlockMeta { span: whole, ..Default::default() };
+        let mut kind = None;
+        let mut kw = whole;
+        for p in block.into_inner() {
+            match p.as_rule() {
+                Rule::skip => {
+                    let d = p.as_str().as_bytes().get(1).map_or(0, |c| c - b'0');
+                    meta.skip = Some(d);
+                }
+                Rule::block_no => meta.number = self.seq_no(&p),
+                Rule::label => {
+                    let span = self.span(&p);
+                    let name = p.into_inner().next().map(|n| n.as_str().to_ascii_uppercase()).unwrap_or_default();
+                    self.check_label_name(&name, span);
+                    meta.label = Some(Label { name, span });
+                }
+                Rule::comment => {
+                    let span = self.span(&p);
+                    let text = p.into_inner().next().map(|t| t.as_str().to_string()).unwrap_or_default();
+                    meta.comments.push(Comment { text, span });
+                }
+                Rule::EOI => {}
+                _ => {
+                    if let Some(first) = p.clone().into_inner().next() {
+                        kw = self.span(&first);
+                    }
+                    kind = Some(self.content(p));
+                }
+            }
+        }
+        if kind.is_none()
+            && meta.number.is_none()
+            && meta.label.is_none()
+            && meta.comments.is_empty()
+            && meta.skip.is_none()
+        {
+            return None;
+        }
+        Some(Line { meta, kind: kind.unwrap_or(LineKind::Plain(Vec::new())), kw })
+    }
+
+    fn seq_no(&mut self, p: &Pair<'_, Rule>) -> Option<SeqNo> {
+        let span = self.span(p);
+        let digits = p.as_str().trim_start_matches(['N', 'n', ':']);
+        match digits.parse::<u32>() {
+            Ok(value) => Some(SeqNo { value, span }),
+            Err(_) => {
+                self.error(
+                    Diagnostic::error("NC131", "block number too large")
+                        .primary(self.file(), span, "more than 4294967295")
+                        .hint("use a block number with at most 9 digits"),
+                );
+                None
+            }
+        }
+    }
+
+    fn check_label_name(&mut self, name: &str, span: Span) {
+        let b = name.as_bytes();
+        let ok = b.len() >= 2 && b[..2].iter().all(|c| c.is_ascii_alphabetic() || *c == b'_');
+        if !ok {
+            self.error(
+                Diagnostic::error("NC126", format!("`{name}` is not a valid label name"))
+                    .primary(self.file(), span, "label here")
+                    .note("Sinumerik label names start with two letters or underscores")
+                    .hint(format!("rename the label, e.g. `LBL_{name}:`")),
+            );
+        }
+    }
+
+    fn content(&mut self, p: Pair<'_, Rule>) -> LineKind {
+        let rule = p.as_rule();
+        let mut inner = p.into_inner();
+        let next_expr = |me: &mut Self, it: &mut pest::iterators::Pairs<'_, Rule>| -> Expr {
+            let e = it.find(|q| q.as_rule() == Rule::expr);
+            match e {
+                Some(e) => me.expr(e),
+                None => Expr::num(0.0, false, me.whole),
+            }
+        };
+        match rule {
+            Rule::if_line => {
+                let cond = next_expr(self, &mut inner);
+                match inner.find(|q| q.as_rule() == Rule::goto_stmt) {
+                    Some(g) => {
+                        let span = cond.span.to(self.span(&g));
+                        let mut goto = self.goto(g);
+                        goto.cond = Some(cond);
+                        LineKind::Plain(vec![Item { kind: ItemKind::Goto(Box::new(goto)), span }])
+                    }
+                    None => LineKind::If(cond),
+                }
+            }
+            Rule::else_line => LineKind::Else,
+            Rule::endif_line => LineKind::EndIf,
+            Rule::while_line => LineKind::While(next_expr(self, &mut inner)),
+            Rule::endwhile_line => LineKind::EndWhile,
+            Rule::loop_line => LineKind::Loop,
+            Rule::endloop_line => LineKind::EndLoop,
+            Rule::endfor_line => LineKind::EndFor,
+            Rule::repeat_line => LineKind::Repeat,
+            Rule::until_line => LineKind::Until(next_expr(self, &mut inner)),
+            Rule::for_line => {
+                let var = match inner.find(|q| q.as_rule() == Rule::for_var).and_then(|v| v.into_inner().next()) {
+                    Some(v) => self.simple_var(&v),
+                    None => VarRef { kind: VarKind::R(0), span: self.whole },
+                };
+                let from = next_expr(self, &mut inner);
+                let to = next_expr(self, &mut inner);
+                LineKind::For { var, from, to }
+            }
+            Rule::proc_stmt => LineKind::Proc(self.proc_head(inner)),
+            Rule::repeat_section | Rule::case_stmt | Rule::def_stmt => {
+                // A whole-block statement that is still an ordinary item.
+                let item = self.item_of(rule, inner);
+                LineKind::Plain(item.into_iter().collect())
+            }
+            Rule::items => LineKind::Plain(self.items(inner)),
+            _ => LineKind::Plain(Vec::new()),
+        }
+    }
+
+    fn item_of(&mut self, rule: Rule, inner: pest::iterators::Pairs<'_, Rule>) -> Option<Item> {
+        // Re-wrap: the span of a whole-block statement is the span of its children.
+        let pairs: Vec<Pair<'_, Rule>> = inner.collect();
+        let (lo, hi) = match (pairs.first(), pairs.last()) {
+            (Some(a), Some(b)) => (self.span(a), self.span(b)),
+            _ => return None,
+        };
+        let span = lo.to(hi);
+        let kind = match rule {
+            Rule::repeat_section => self.repeat_section(pairs),
+            Rule::case_stmt => self.case(pairs),
+            Rule::def_stmt => self.def(pairs),
+            _ => return None,
+        }?;
+        Some(Item { kind, span })
+    }
+
+    fn items(&mut self, inner: pest::iterators::Pairs<'_, Rule>) -> Vec<Item> {
+        let mut out: Vec<Item> = Vec::new();
+        for p in inner {
+            let span = self.span(&p);
+            let Some(kind) = self.item(p) else { continue };
+            // `NAME P3`, `L123 P=2`: the P word right after a call is its repeat count.
+            if let (ItemKind::Word(w), Some(prev)) = (&kind, out.last_mut()) {
+                if let ItemKind::Call(c) = &mut prev.kind {
+                    if w.addr.is(b'P') && c.repeat.is_none() && c.kind != CallKind::Mcall {
+                        if let WordValue::Expr(e) = &w.value {
+                            c.repeat = Some(e.clone());
+                            prev.span = prev.span.to(span);
+                            continue;
+                        }
+                    }
+                }
+            }
+            out.push(Item { kind, span });
+        }
+        out
+    }
+
+    fn item(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
+        let span = self.span(&p);
+        match p.as_rule() {
+            Rule::word_const => self.word_const(&p),
+            Rule::goto_stmt => Some(ItemKind::Goto(Box::new(self.goto(p)))),
+            Rule::gotos_stmt => {
+                self.error(
+                    Diagnostic::error("NC150", "GOTOS is not supported yet")
+                        .primary(self.file(), span, "jump to the program start")
+                        .note("the IR has no jump target for \"the first block of the program\"")
+                        .hint("put a label on the first block and write `GOTOB <label>`"),
+                );
+                None
+            }
+            Rule::msg_stmt => {
+                let text = p.into_inner().find(|q| q.as_rule() == Rule::expr).map(|e| self.expr(e));
+                Some(ItemKind::Message { text })
+            }
+            Rule::setal_stmt => {
+                let number = match p.into_inner().find(|q| q.as_rule() == Rule::expr) {
+                    Some(e) => self.expr(e),
+                    None => Expr::num(0.0, false, span),
+                };
+                Some(ItemKind::Alarm { style: AlarmStyle::Setal, number, text: None })
+            }
+            Rule::stopre_stmt => Some(ItemKind::Stopre),
+            Rule::ret_stmt => Some(ItemKind::Return { to: None }),
+            Rule::mcall_stmt => match p.into_inner().nth(1) {
+                None => Some(ItemKind::ModalCallOff),
+                Some(c) => match self.item(c)? {
+                    ItemKind::Call(mut call) => {
+                        call.kind = CallKind::Mcall;
+                        Some(ItemKind::Call(call))
+                    }
+                    _ => {
+                        self.error(
+                            Diagnostic::error("NC137", "MCALL needs a subprogram name")
+                                .primary(self.file(), span, "not a subprogram")
+                                .hint("write `MCALL NAME` to call NAME after every motion block, or `MCALL` alone to cancel"),
+                        );
+                        None
+                    }
+                },
+            },
+            Rule::frame_stmt => {
+                let mut it = p.into_inner();
+                let op = it.next().map(|k| k.as_str().to_ascii_uppercase()).unwrap_or_default();
+                let mut words = Vec::new();
+                for w in it {
+                    let wspan = self.span(&w);
+                    match self.item(w) {
+                        Some(ItemKind::Word(w)) => words.push(w),
+                        Some(_) => self.error(
+                            Diagnostic::error("NC138", format!("{op} takes axis words only"))
+                                .primary(self.file(), wspan, "not an axis word")
+                                .hint(format!(
+                                    "write `{op} X10 Y20` with axis addresses; put other statements in their own block"
+                                )),
+                        ),
+                        None => {}
+                    }
+                }
+                Some(ItemKind::Frame { op, words })
+            }
+            Rule::assign => self.assign(p),
+            Rule::call => {
+                let mut it = p.into_inner();
+                let name = it.next().map(|n| n.as_str().to_ascii_uppercase()).unwrap_or_default();
+                let args = match it.find(|q| q.as_rule() == Rule::arg_list) {
+                    Some(a) => self.args(a),
+                    None => Vec::new(),
+                };
+                if names::builtin(&name).is_some() {
+                    self.error(
+                        Diagnostic::error("NC139", format!("{name} is a function; its value must be used"))
+                            .primary(self.file(), span, "function result not used")
+                            .hint(format!("assign it, e.g. `R1={}`", p_text(&span, self.norm))),
+                    );
+                    return None;
+                }
+                Some(call_named(name, args))
+            }
+            Rule::bare_name => {
+                let name = p.as_str().to_ascii_uppercase();
+                if name.len() == 1 || (name.as_bytes()[0].is_ascii_alphabetic() && is_numbered(&name)) {
+                    self.error(
+                        Diagnostic::error("NC127", format!("address {name} has no value"))
+                            .primary(self.file(), span, "value missing")
+                            .note("Sinumerik never shortens `X0` to `X`; a numbered address needs `=`")
+                            .hint(format!("write a value: `{name}0`, `{name}=R1`")),
+                    );
+                    return None;
+                }
+                if names::is_instruction(&name) {
+                    return Some(ItemKind::Instruction { name });
+                }
+                Some(call_named(name, Vec::new()))
+            }
+            _ => None,
+        }
+    }
+
+    /// `X10`, `G1`, `M30`, `L0123`: letter and constant.
+    pub fn word_const(&mut self, p: &Pair<'_, Rule>) -> Option<ItemKind> {
+        let text = p.as_str();
+        let span = self.span(p);
+        let letter = text.as_bytes()[0].to_ascii_uppercase();
+        let vs = p.as_span();
+        let vspan = self.norm.span(vs.start() + 1, vs.end());
+        let (value, point) = self.number_text(&text[1..], vspan)?;
+        Some(word_item(letter, &text[1..], value, point, span, vspan))
+    }
+
+    /// Parses a signed decimal with optional `EX` exponent. `None` after a diagnostic.
+    pub fn number_text(&mut self, t: &str, span: Span) -> Option<(f64, bool)> {
+        match parse_number(t) {
+            Some(v) => Some(v),
+            None => {
+                self.error(
+                    Diagnostic::error("NC132", "number out of range")
+                        .primary(self.file(), span, "not a finite number")
+                        .hint("Sinumerik REAL values lie within ±1.8e308"),
+                );
+                None
+            }
+        }
+    }
+
+    fn assign(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
+        let mut it = p.into_inner();
+        let target = it.next()?;
+        let tspan = self.span(&target);
+        let value_pair = it.find(|q| matches!(q.as_rule(), Rule::expr | Rule::ac_ic))?;
+        let (value, ac_ic) = self.word_value(value_pair);
+        let mut tin = target.into_inner();
+        let first = tin.next()?;
+        let var = match first.as_rule() {
+            Rule::r_indirect | Rule::sys_var => self.var(first),
+            _ => {
+                let name = first.as_str().to_ascii_uppercase();
+                let subs: Vec<Pair<'_, Rule>> = tin.filter(|q| q.as_rule() == Rule::subscripts).collect();
+                if subs.is_empty() && names::r_number(&name).is_none() {
+                    let declared = self.st.declared.contains_key(&name);
+                    if name.len() == 1 || names::is_address_name(&name, declared) {
+                        let addr =
+                            if name.len() == 1 { Addr::Letter(name.as_bytes()[0]) } else { Addr::Name(name.into()) };
+                        let value = match ac_ic {
+                            None => WordValue::Expr(value),
+                            Some(true) => WordValue::Ac(value),
+                            Some(false) => WordValue::Ic(value),
+                        };
+                        let span = tspan.to(vspan_of(&value));
+                        return Some(special_word(Word { addr, value, span }));
+                    }
+                }
+                let indices = match subs.into_iter().next() {
+                    Some(s) => self.subscripts(s, names::axis_indexed(&name)),
+                    None => Vec::new(),
+                };
+                match names::r_number(&name) {
+                    Some(d) if indices.is_empty() => self.r_param(d, tspan),
+                    _ => VarRef { kind: VarKind::Named { name, indices }, span: tspan },
+                }
+            }
+        };
+        if ac_ic.is_some() {
+            self.error(
+                Diagnostic::error("NC125", "AC(…)/IC(…) only apply to address words")
+                    .primary(self.file(), value.span, "not an address")
+                    .hint("assign the plain value to the variable; use AC/IC on axis words like `X=IC(5)`"),
+            );
+        }
+        Some(ItemKind::Assign { target: Box::new(var), value })
+    }
+
+    /// The value after `=`: an expression, or `AC(e)` (`Some(true)`) / `IC(e)` (`Some(false)`).
+    fn word_value(&mut self, p: Pair<'_, Rule>) -> (Expr, Option<bool>) {
+        if p.as_rule() == Rule::ac_ic {
+            let span = self.span(&p);
+            let mut it = p.into_inner();
+            let ac = it.next().is_some_and(|k| k.as_str().eq_ignore_ascii_case("AC"));
+            let e = match it.find(|q| q.as_rule() == Rule::expr) {
+                Some(e) => self.expr(e),
+                None => Expr::num(0.0, false, span),
+            };
+            return (Expr { span, ..e }, Some(ac));
+        }
+        (self.expr(p), None)
+    }
+
+    pub fn r_param(&mut self, digits: &str, span: Span) -> VarRef {
+        let n = digits.parse::<u32>().unwrap_or(u32::MAX);
+        if n >= self.st.r_count {
+            let last = self.st.r_count.saturating_sub(1);
+            self.error(
+                Diagnostic::error("NC208", format!("R parameter R{digits} does not exist"))
+                    .primary(self.file(), span, format!("the control has R0 to R{last}"))
+                    .note("the number of R parameters is machine data MD28050 (828D default 300)")
+                    .hint(format!("use an R parameter from R0 to R{last}, or a DEF variable")),
+            );
+        }
+        VarRef { kind: VarKind::R(n), span }
+    }
+
+    fn goto(&mut self, p: Pair<'_, Rule>) -> Goto {
+        let mut it = p.into_inner();
+        let kw = it.next().map(|k| k.as_str().to_ascii_uppercase()).unwrap_or_default();
+        let (search, missing_continues) = match kw.as_str() {
+            "GOTOF" => (Search::Forward, false),
+            "GOTOB" => (Search::Backward, false),
+            "GOTOC" => (Search::ForwardThenBackward, true),
+            _ => (Search::ForwardThenBackward, false),
+        };
+        let target = match it.next() {
+            Some(t) if t.as_rule() == Rule::target_number => {
+                let span = self.span(&t);
+                let value = t.as_str().trim_start_matches(['N', 'n']).parse::<u32>().unwrap_or(u32::MAX);
+                Target::Number(SeqNo { value, span })
+            }
+            Some(t) => {
+                let span = self.span(&t);
+                let name = t.as_str().to_ascii_uppercase();
+                if matches!(self.st.declared.get(&name), Some(DataType::String(_))) {
+                    // A STRING variable holding the label name.
+                    let v = VarRef { kind: VarKind::Named { name, indices: vec![] }, span };
+                    Target::Computed(Expr::new(ExprKind::Var(Box::new(v)), span))
+                } else {
+                    Target::Label(Label { name, span })
+                }
+            }
+            None => Target::Label(Label { name: String::new(), span: self.whole }),
+        };
+        Goto { search, target, cond: None, missing_continues }
+    }
+
+    fn repeat_section(&mut self, pairs: Vec<Pair<'_, Rule>>) -> Option<ItemKind> {
+        let single = pairs.first().is_some_and(|k| k.as_rule() == Rule::kw_repeatb);
+        let mut labels = Vec::new();
+        let mut count = None;
+        for p in pairs.into_iter().skip(1) {
+            match p.as_rule() {
+                Rule::label_ref => labels.push(Label { name: p.as_str().to_ascii_uppercase(), span: self.span(&p) }),
+                Rule::p_count => {
+                    let inner = p.into_inner().find(|q| matches!(q.as_rule(), Rule::expr | Rule::word_const))?;
+                    count = Some(if inner.as_rule() == Rule::expr {
+                        self.expr(inner)
+                    } else {
+                        let s = inner.as_span();
+                        let vspan = self.norm.span(s.start() + 1, s.end());
+                        let (v, point) = self.number_text(&inner.as_str()[1..], vspan)?;
+                        Expr::num(v, point, vspan)
+                    });
+                }
+                _ => {}
+            }
+        }
+        let mut labels = labels.into_iter();
+        let start = labels.next()?;
+        Some(ItemKind::RepeatSection(Box::new(RepeatSection { start, end: labels.next(), count, single })))
+    }
+
+    fn case(&mut self, pairs: Vec<Pair<'_, Rule>>) -> Option<ItemKind> {
+        let mut selector = None;
+        let mut arms = Vec::new();
+        let mut default = None;
+        for p in pairs {
+            match p.as_rule() {
+                Rule::expr => selector = Some(self.expr(p)),
+                Rule::case_arm => {
+                    let mut it = p.into_inner();
+                    let v = it.next()?;
+                    let value = self.case_value(v)?;
+                    let goto = self.goto(it.next()?);
+                    arms.push(CaseArm { value, goto });
+                }
+                Rule::case_default => {
+                    let g = p.into_inner().find(|q| q.as_rule() == Rule::goto_stmt)?;
+                    default = Some(self.goto(g));
+                }
+                _ => {}
+            }
+        }
+        Some(ItemKind::Case(Box::new(Case { selector: selector?, arms, default })))
+    }
+
+    fn case_value(&mut self, p: Pair<'_, Rule>) -> Option<Expr> {
+        let span = self.span(&p);
+        let mut neg = false;
+        let mut out = None;
+        for q in p.into_inner() {
+            match q.as_rule() {
+                Rule::op_neg => neg = true,
+                Rule::op_plus => {}
+                _ => out = Some(self.operand(q)),
+            }
+        }
+        let mut e = out?;
+        if neg {
+            if let ExprKind::Num(n) = &mut e.kind {
+                n.value = -n.value;
+            } else {
+                e = Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e)), span);
+            }
+        }
+        e.span = span;
+        Some(e)
+    }
+
+    fn def(&mut self, pairs: Vec<Pair<'_, Rule>>) -> Option<ItemKind> {
+        let mut ty = None;
+        let mut vars = Vec::new();
+        for p in pairs {
+            match p.as_rule() {
+                Rule::def_var => vars.push(self.def_var(p)?),
+                Rule::kw_def | Rule::comma => {}
+                _ => ty = Some(self.data_type(p)?),
+            }
+        }
+        let ty = ty?;
+        for v in &vars {
+            if names::r_number(&v.name).is_some() {
+                self.error(
+                    Diagnostic::warning("NC133", format!("DEF variable {} has the name of an R parameter", v.name))
+                        .primary(self.file(), v.span, "read as R parameter wherever it is used")
+                        .note("Sinumerik names start with two letters; `R12` always means the R parameter")
+                        .hint("give the variable a name like `U_VALUE`"),
+                );
+            }
+            self.st.declared.insert(v.name.clone(), ty);
+        }
+        Some(ItemKind::Def(Box::new(Def { ty, vars })))
+    }
+
+    pub fn data_type(&mut self, p: Pair<'_, Rule>) -> Option<DataType> {
+        Some(match p.as_rule() {
+            Rule::type_real => DataType::Real,
+            Rule::type_int => DataType::Int,
+            Rule::type_bool => DataType::Bool,
+            Rule::type_char => DataType::Char,
+            Rule::type_axis => DataType::Axis,
+            Rule::type_frame => DataType::Frame,
+            Rule::type_string => {
+                let span = self.span(&p);
+                let n = p.into_inner().find(|q| q.as_rule() == Rule::uint).and_then(|u| u.as_str().parse::<u16>().ok());
+                match n {
+                    Some(n) if (1..=200).contains(&n) => DataType::String(n),
+                    _ => {
+                        self.error(
+                            Diagnostic::error("NC134", "STRING length must be 1 to 200")
+                                .primary(self.file(), span, "length out of range")
+                                .hint("write e.g. `STRING[32]`"),
+                        );
+                        return None;
+                    }
+                }
+            }
+            _ => return None,
+        })
+    }
+
+    fn def_var(&mut self, p: Pair<'_, Rule>) -> Option<DefVar> {
+        let span = self.span(&p);
+        let mut name = String::new();
+        let mut dims = Vec::new();
+        let mut init = None;
+        for q in p.into_inner() {
+            match q.as_rule() {
+                Rule::user_name => name = q.as_str().to_ascii_uppercase(),
+                Rule::dims => dims = self.dims(q)?,
+                Rule::def_init => {
+                    let Some(v) = q.into_inner().next() else { continue };
+                    init = Some(match v.as_rule() {
+                        Rule::set_init => {
+                            let list = match v.into_inner().find(|a| a.as_rule() == Rule::arg_list) {
+                                Some(a) => self.args(a),
+                                None => Vec::new(),
+                            };
+                            Init::Set(
+                                list.into_iter()
+                                    .map(|a| match a {
+                                        Arg::Value(e) => Some(e),
+                                        _ => None,
+                                    })
+                                    .collect(),
+                            )
+                        }
+                        Rule::rep_init => {
+                            let mut es = v.into_inner().filter(|a| a.as_rule() == Rule::expr);
+                            let value = self.expr(es.next()?);
+                            let count = es.next().map(|c| self.expr(c));
+                            Init::Rep { value, count }
+                        }
+                        _ => Init::Value(self.expr(v)),
+                    });
+                }
+                _ => {}
+            }
+        }
+        Some(DefVar { name, dims, init, span })
+    }
+
+    pub fn dims(&mut self, p: Pair<'_, Rule>) -> Option<Vec<u32>> {
+        let mut out = Vec::new();
+        for u in p.into_inner().filter(|q| q.as_rule() == Rule::uint) {
+            match u.as_str().parse::<u32>() {
+                Ok(n) if n > 0 => out.push(n),
+                _ => {
+                    let span = self.span(&u);
+                    self.error(
+                        Diagnostic::error("NC135", "array size must be a positive whole number")
+                            .primary(self.file(), span, "invalid size")
+                            .hint("write the number of elements, e.g. `[10]` or `[10,3]`"),
+                    );
+                    return None;
+                }
+            }
+        }
+        Some(out)
+    }
+
+    fn proc_head(&mut self, inner: pest::iterators::Pairs<'_, Rule>) -> ProcHead {
+        let mut head = ProcHead::default();
+        for p in inner {
+            match p.as_rule() {
+                Rule::user_name => head.name = p.as_str().to_ascii_uppercase(),
+                Rule::param => {
+                    let span = self.span(&p);
+                    let mut prm = Param { name: String::new(), ty: DataType::Real, by_ref: false, dims: vec![], span };
+                    for q in p.into_inner() {
+                        match q.as_rule() {
+                            Rule::kw_var => prm.by_ref = true,
+                            Rule::user_name => prm.name = q.as_str().to_ascii_uppercase(),
+                            Rule::dims => prm.dims = self.dims(q).unwrap_or_default(),
+                            _ => {
+                                if let Some(t) = self.data_type(q) {
+                                    prm.ty = t;
+                                }
+                            }
+                        }
+                    }
+                    self.st.declared.insert(prm.name.clone(), prm.ty);
+                    head.params.push(prm);
+                }
+                Rule::proc_attr => head.save |= p.as_str().eq_ignore_ascii_case("SAVE"),
+                _ => {}
+            }
+        }
+        head
+    }
+}
+
+fn p_text(span: &Span, norm: &Normalised<'_>) -> String {
+    // The call as written, for the hint; spans are file offsets, the normalised text starts at `norm.start`.
+    let lo = span.lo.saturating_sub(norm.start) as usize;
+    let hi = span.hi.saturating_sub(norm.start) as usize;
+    norm.text.get(lo..hi).unwrap_or("…").to_string()
+}
+
+fn is_numbered(name: &str) -> bool {
+    let letters = name.bytes().take_while(u8::is_ascii_alphabetic).count();
+    letters < name.len() && name.bytes().skip(letters).all(|c| c.is_ascii_digit())
+}
+
+fn vspan_of(v: &WordValue) -> Span {
+    match v {
+        WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => e.span,
+    }
+}
+
+fn call_named(name: String, args: Vec<Arg>) -> ItemKind {
+    ItemKind::Call(Box::new(Call { kind: CallKind::Named, target: CallTarget::Name(name), args, repeat: None }))
+}
+
+/// Parses `[+-]digits[.digits][EX[+-]digits]` (the exponent makes it count as having a point).
+pub fn parse_number(t: &str) -> Option<(f64, bool)> {
+    let (mant, exp) = match t.find(['E', 'e']) {
+        Some(i) => (&t[..i], Some(&t[i + 2..])),
+        None => (t, None),
+    };
+    let point = mant.contains('.') || exp.is_some();
+    let v: f64 = match exp {
+        Some(e) => format!("{mant}e{e}").parse().ok()?,
+        None => mant.parse().ok()?,
+    };
+    v.is_finite().then_some((v, point))
+}
+
+/// The item for a letter-constant word: `L123` is a call, `M17` a return, `M2`/`M30` the end;
+/// everything else a plain word. Shared with the fast path so both give the same IR.
+pub fn word_item(letter: u8, text: &str, value: f64, point: bool, span: Span, vspan: Span) -> ItemKind {
+    if letter == b'L' && !point && !text.starts_with(['+', '-']) {
+        return ItemKind::Call(Box::new(Call {
+            kind: CallKind::LNumber,
+            target: CallTarget::Name(format!("L{text}")),
+            args: Vec::new(),
+            repeat: None,
+        }));
+    }
+    special_word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(Expr::num(value, point, vspan)), span })
+}
+
+/// `M17` → return, `M2`/`M30` → end of program (also written `M=30`); other words stay words.
+fn special_word(w: Word) -> ItemKind {
+    if w.addr.is(b'M') {
+        if let WordValue::Expr(Expr { kind: ExprKind::Num(Number { value, point: false }), .. }) = &w.value {
+            match *value as i64 {
+                17 if *value == 17.0 => return ItemKind::Return { to: None },
+                2 if *value == 2.0 => return ItemKind::End { code: EndCode::M2 },
+                30 if *value == 30.0 => return ItemKind::End { code: EndCode::M30 },
+                _ => {}
+            }
+        }
+    }
+    ItemKind::Word(w)
+}

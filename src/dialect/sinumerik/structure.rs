@@ -1,0 +1,538 @@
+//! The structurer: assembles the block lines of one file into the program tree
+//! (IF/ELSE/ENDIF, WHILE, LOOP, FOR, REPEAT/UNTIL), without recursion, and checks what needs
+//! the whole program: labels and block numbers as jump targets, duplicate labels, labels and
+//! skips on control-structure blocks, the place of PROC.
+
+use super::parse::FileState;
+use crate::diag::Diagnostic;
+use crate::ir::*;
+use crate::span::Span;
+use std::collections::HashMap;
+
+/// Control structures nested deeper than this are rejected (the IR tree is walked
+/// recursively by later phases, so its depth must stay bounded).
+pub const MAX_NESTING: usize = 64;
+
+/// One block as read by the grammar, before structuring.
+pub struct Line {
+    pub meta: BlockMeta,
+    pub kind: LineKind,
+    /// The keyword of a control line (for diagnostics); the whole block otherwise.
+    pub kw: Span,
+}
+
+pub enum LineKind {
+    Plain(Vec<Item>),
+    If(Expr),
+    Else,
+    EndIf,
+    While(Expr),
+    EndWhile,
+    Loop,
+    EndLoop,
+    For { var: VarRef, from: Expr, to: Expr },
+    EndFor,
+    Repeat,
+    Until(Expr),
+    Proc(ProcHead),
+}
+
+#[derive(Default)]
+pub struct ProcHead {
+    pub name: String,
+    pub params: Vec<Param>,
+    pub save: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    If,
+    While,
+    Loop,
+    For,
+    Repeat,
+}
+
+impl Kind {
+    fn opener(self) -> &'static str {
+        match self {
+            Kind::If => "IF",
+            Kind::While => "WHILE",
+            Kind::Loop => "LOOP",
+            Kind::For => "FOR",
+            Kind::Repeat => "REPEAT",
+        }
+    }
+
+    fn closer(self) -> &'static str {
+        match self {
+            Kind::If => "ENDIF",
+            Kind::While => "ENDWHILE",
+            Kind::Loop => "ENDLOOP",
+            Kind::For => "ENDFOR",
+            Kind::Repeat => "UNTIL",
+        }
+    }
+
+    fn body_word(self) -> &'static str {
+        match self {
+            Kind::If => "the IF body",
+            Kind::Repeat => "the loop body (`UNTIL condition`)",
+            _ => "the loop body",
+        }
+    }
+}
+
+/// An open structure on the stack.
+struct Open {
+    kind: Kind,
+    head: BlockMeta,
+    kw: Span,
+    cond: Option<Expr>,
+    for_var: Option<(VarRef, Expr, Expr)>,
+    body: Vec<Stmt>,
+    else_part: Option<ElsePart>,
+}
+
+impl Open {
+    fn body_mut(&mut self) -> &mut Vec<Stmt> {
+        match &mut self.else_part {
+            Some(e) => &mut e.body,
+            None => &mut self.body,
+        }
+    }
+
+    /// The finished statement, closed by `end` (and `until` for REPEAT).
+    fn close(self, end: BlockMeta, until: Option<Expr>) -> Stmt {
+        // Also covers the body when an unclosed structure is closed at its own head.
+        let mut span = self.head.span.to(end.span);
+        for st in self.body.last().into_iter().chain(self.else_part.as_ref().and_then(|e| e.body.last())) {
+            span = span.to(st.span);
+        }
+        if let Some(e) = &self.else_part {
+            span = span.to(e.head.span);
+        }
+        let zero = || Expr::num(0.0, false, self.head.span);
+        let kind = match self.kind {
+            Kind::If => StmtKind::If(Box::new(IfStmt {
+                cond: self.cond.unwrap_or_else(zero),
+                head: self.head,
+                then_body: self.body,
+                else_part: self.else_part,
+                end,
+            })),
+            Kind::While => StmtKind::While(Box::new(WhileStmt {
+                cond: self.cond.unwrap_or_else(zero),
+                head: self.head,
+                body: self.body,
+                end,
+            })),
+            Kind::Loop => StmtKind::Loop(Box::new(LoopStmt { head: self.head, body: self.body, end })),
+            Kind::For => {
+                let (var, from, to) = match self.for_var {
+                    Some(f) => f,
+                    None => (VarRef { kind: VarKind::R(0), span: self.head.span }, zero(), zero()),
+                };
+                StmtKind::For(Box::new(ForStmt { head: self.head, var, from, to, body: self.body, end }))
+            }
+            Kind::Repeat => {
+                let until = until.unwrap_or_else(|| Expr::num(1.0, false, end.span));
+                StmtKind::Repeat(Box::new(RepeatStmt { head: self.head, body: self.body, end, until }))
+            }
+        };
+        Stmt { kind, span }
+    }
+}
+
+/// For a block the grammar rejected: the structure keyword it starts with, as a stand-in line
+/// (conditions replaced by 0). `IF … GOTO…` and `REPEAT label` are not structures.
+pub fn keyword_only(text: &str, whole: Span) -> Option<LineKind> {
+    let upper = text.trim_start_matches([' ', '\t', '/']).to_ascii_uppercase();
+    let mut t = upper.as_str();
+    // Skip a block number; a label on a control block is its own error.
+    if let Some(rest) = t.strip_prefix('N') {
+        let d = rest.bytes().take_while(u8::is_ascii_digit).count();
+        if d > 0 {
+            t = rest[d..].trim_start();
+        }
+    }
+    let word: String = t.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+    let rest = t[word.len()..].trim_start();
+    let zero = || Expr::num(0.0, false, whole);
+    Some(match word.as_str() {
+        "IF" if !upper.contains("GOTO") => LineKind::If(zero()),
+        "WHILE" => LineKind::While(zero()),
+        "LOOP" => LineKind::Loop,
+        "FOR" => LineKind::For { var: VarRef { kind: VarKind::R(0), span: whole }, from: zero(), to: zero() },
+        "REPEAT" if rest.is_empty() || rest.starts_with(';') => LineKind::Repeat,
+        "ENDIF" => LineKind::EndIf,
+        "ELSE" => LineKind::Else,
+        "ENDWHILE" => LineKind::EndWhile,
+        "ENDLOOP" => LineKind::EndLoop,
+        "ENDFOR" => LineKind::EndFor,
+        "UNTIL" => LineKind::Until(zero()),
+        _ => return None,
+    })
+}
+
+/// The header line `%_N_NAME_MPF`, if the file has one.
+pub struct Header {
+    pub name: Option<String>,
+    pub meta: BlockMeta,
+}
+
+/// Builds the one program of a file from its lines.
+pub fn build(lines: Vec<Line>, st: &mut FileState, header: Option<Header>, len: u32) -> Program {
+    check_targets(&lines, st);
+    let file = st.file;
+    let mut program =
+        Program { name: None, head: None, params: Vec::new(), save: false, body: Vec::new(), span: Span::new(0, len) };
+    if let Some(h) = header {
+        program.name = h.name.map(ProgName::Name);
+        program.head = Some(h.meta);
+    }
+    let mut stack: Vec<Open> = Vec::new();
+    let mut suppressed = 0usize;
+    let mut seen_code = false;
+    let mut deep_reported = false;
+    for line in lines {
+        let Line { meta, kind, kw } = line;
+        let is_control = !matches!(kind, LineKind::Plain(_) | LineKind::Proc(_));
+        if is_control {
+            control_block_checks(&meta, kw, st);
+        }
+        let opener = match &kind {
+            LineKind::If(_) => Some(Kind::If),
+            LineKind::While(_) => Some(Kind::While),
+            LineKind::Loop => Some(Kind::Loop),
+            LineKind::For { .. } => Some(Kind::For),
+            LineKind::Repeat => Some(Kind::Repeat),
+            _ => None,
+        };
+        let closer = match &kind {
+            LineKind::EndIf => Some(Kind::If),
+            LineKind::EndWhile => Some(Kind::While),
+            LineKind::EndLoop => Some(Kind::Loop),
+            LineKind::EndFor => Some(Kind::For),
+            LineKind::Until(_) => Some(Kind::Repeat),
+            _ => None,
+        };
+        if suppressed > 0 {
+            // Inside a structure nested too deep: only count, so the ENDs pair up.
+            if opener.is_some() {
+                suppressed += 1;
+            } else if closer.is_some() {
+                suppressed -= 1;
+            }
+            continue;
+        }
+        if let Some(k) = opener {
+            if stack.len() >= MAX_NESTING {
+                if !deep_reported {
+                    st.diags.push(
+                        Diagnostic::error(
+                            "NC211",
+                            format!("control structures nested deeper than {MAX_NESTING} levels"),
+                        )
+                        .primary(file, kw, format!("{} at nesting level {}", k.opener(), stack.len() + 1))
+                        .hint("move the inner part into a subprogram"),
+                    );
+                    deep_reported = true;
+                }
+                suppressed = 1;
+                continue;
+            }
+            seen_code = true;
+            let mut open =
+                Open { kind: k, head: meta, kw, cond: None, for_var: None, body: Vec::new(), else_part: None };
+            match kind {
+                LineKind::If(c) | LineKind::While(c) => open.cond = Some(c),
+                LineKind::For { var, from, to } => open.for_var = Some((var, from, to)),
+                _ => {}
+            }
+            stack.push(open);
+            continue;
+        }
+        if let Some(k) = closer {
+            seen_code = true;
+            let until = match kind {
+                LineKind::Until(c) => Some(c),
+                _ => None,
+            };
+            close(&mut stack, &mut program.body, k, meta, kw, until, st);
+            continue;
+        }
+        match kind {
+            LineKind::Else => {
+                seen_code = true;
+                match stack.last_mut() {
+                    Some(o) if o.kind == Kind::If && o.else_part.is_none() => {
+                        o.else_part = Some(ElsePart { head: meta, body: Vec::new() });
+                    }
+                    Some(o) if o.kind == Kind::If => {
+                        let first = o.else_part.as_ref().map_or(o.kw, |e| e.head.span);
+                        st.diags.push(
+                            Diagnostic::error("NC209", "second ELSE in one IF")
+                                .primary(file, kw, "second ELSE")
+                                .secondary(file, first, "first ELSE here")
+                                .hint("an IF has at most one ELSE; close the IF with ENDIF first"),
+                        );
+                    }
+                    other => {
+                        let mut d = Diagnostic::error("NC209", "ELSE without IF").primary(file, kw, "no open IF");
+                        if let Some(o) = other {
+                            d = d.secondary(
+                                file,
+                                o.kw,
+                                format!("the innermost open structure is this {}", o.kind.opener()),
+                            );
+                        }
+                        st.diags.push(d.hint("ELSE belongs between `IF condition` and ENDIF"));
+                    }
+                }
+            }
+            LineKind::Proc(p) => {
+                if seen_code {
+                    st.diags.push(
+                        Diagnostic::error("NC129", "PROC must be the first block of the program")
+                            .primary(file, kw, "PROC after other blocks")
+                            .hint("move the PROC line to the top; only comments and the `%_N_…` header may precede it"),
+                    );
+                } else {
+                    program.name = Some(ProgName::Name(p.name));
+                    program.head = Some(meta);
+                    program.params = p.params;
+                    program.save = p.save;
+                }
+                seen_code = true;
+            }
+            LineKind::Plain(items) => {
+                seen_code |= !items.is_empty();
+                let span = meta.span;
+                let stmt = Stmt { kind: StmtKind::Block(Block { meta, items }), span };
+                match stack.last_mut() {
+                    Some(o) => o.body_mut().push(stmt),
+                    None => program.body.push(stmt),
+                }
+            }
+            _ => {}
+        }
+    }
+    // Unterminated structures: report each (outermost first), then close them so the tree is whole.
+    for o in &stack {
+        st.diags.push(
+            Diagnostic::error("NC200", format!("{} is never closed", o.kind.opener()))
+                .primary(file, o.kw, format!("this {} needs {}", o.kind.opener(), o.kind.closer()))
+                .hint(format!("add {} after {}", o.kind.closer(), o.kind.body_word())),
+        );
+    }
+    while let Some(o) = stack.pop() {
+        let end = o.head.clone();
+        let stmt = o.close(end, None);
+        match stack.last_mut() {
+            Some(p) => p.body_mut().push(stmt),
+            None => program.body.push(stmt),
+        }
+    }
+    program
+}
+
+/// Handles an END line (`ENDIF`, `ENDWHILE`, …, `UNTIL`): closes the matching structure or
+/// reports why it cannot.
+fn close(
+    stack: &mut Vec<Open>,
+    root: &mut Vec<Stmt>,
+    k: Kind,
+    meta: BlockMeta,
+    kw: Span,
+    until: Option<Expr>,
+    st: &mut FileState,
+) {
+    let file = st.file;
+    let Some(top) = stack.last() else {
+        st.diags.push(
+            Diagnostic::error("NC201", format!("{} without {}", k.closer(), k.opener()))
+                .primary(file, kw, format!("no open {}", k.opener()))
+                .hint(format!("remove it, or open the structure with {} before", k.opener())),
+        );
+        return;
+    };
+    if top.kind != k {
+        let hint = if stack.iter().any(|o| o.kind == k) {
+            format!("close the inner {} with {} first", top.kind.opener(), top.kind.closer())
+        } else {
+            format!("write {} to close this {}", top.kind.closer(), top.kind.opener())
+        };
+        st.diags.push(
+            Diagnostic::error("NC202", format!("{} cannot close {}", k.closer(), top.kind.opener()))
+                .primary(file, kw, format!("{} here", k.closer()))
+                .secondary(
+                    file,
+                    top.kw,
+                    format!("this {} is still open and needs {}", top.kind.opener(), top.kind.closer()),
+                )
+                .hint(hint),
+        );
+        // Recover: if a matching structure is open further out, close everything up to it;
+        // otherwise take this END as the end of the innermost structure.
+        if !stack.iter().any(|o| o.kind == k) {
+            if let Some(o) = stack.pop() {
+                push(stack, root, o.close(meta, until));
+            }
+            return;
+        }
+        while let Some(o) = stack.pop() {
+            if o.kind == k {
+                push(stack, root, o.close(meta, until));
+                return;
+            }
+            let end = meta.clone();
+            push(stack, root, o.close(end, None));
+        }
+        return;
+    }
+    if let Some(o) = stack.pop() {
+        push(stack, root, o.close(meta, until));
+    }
+}
+
+fn push(stack: &mut [Open], root: &mut Vec<Stmt>, s: Stmt) {
+    match stack.last_mut() {
+        Some(o) => o.body_mut().push(s),
+        None => root.push(s),
+    }
+}
+
+/// A control-structure block may carry neither a label nor a skip (dialects.md §1.2, S16).
+fn control_block_checks(meta: &BlockMeta, kw: Span, st: &mut FileState) {
+    let file = st.file;
+    if let Some(l) = &meta.label {
+        st.diags.push(
+            Diagnostic::error("NC203", "a label is not allowed on a control-structure block")
+                .primary(file, l.span, format!("label {}", l.name))
+                .secondary(file, kw, "control-structure keyword")
+                .note("Sinumerik does not allow jump labels in blocks with IF, ELSE, ENDIF, WHILE, LOOP, FOR, REPEAT, UNTIL")
+                .hint(format!("put `{}:` on a block of its own before this one", l.name)),
+        );
+    }
+    if meta.skip.is_some() {
+        st.diags.push(
+            Diagnostic::error("NC204", "a control-structure block cannot be skipped")
+                .primary(file, meta.span, "block with `/`")
+                .hint("remove the `/`; skip the blocks inside the structure instead"),
+        );
+    }
+}
+
+/// Labels and block numbers: duplicate labels, and every GOTOF/GOTOB/GOTO target must exist
+/// in its search direction (GOTOC may miss). REPEAT section labels must exist.
+fn check_targets(lines: &[Line], st: &mut FileState) {
+    let file = st.file;
+    let mut labels: HashMap<&str, Vec<(usize, Span)>> = HashMap::new();
+    let mut numbers: HashMap<u32, Vec<(usize, Span)>> = HashMap::new();
+    for (i, l) in lines.iter().enumerate() {
+        if let Some(lb) = &l.meta.label {
+            let v = labels.entry(lb.name.as_str()).or_default();
+            if let Some(&(_, first)) = v.first() {
+                st.diags.push(
+                    Diagnostic::error("NC207", format!("label {} is defined twice", lb.name))
+                        .primary(file, lb.span, "second definition")
+                        .secondary(file, first, "first definition")
+                        .hint("give every label a unique name"),
+                );
+            }
+            v.push((i, lb.span));
+        }
+        if let Some(n) = &l.meta.number {
+            numbers.entry(n.value).or_default().push((i, n.span));
+        }
+    }
+    for (i, l) in lines.iter().enumerate() {
+        let LineKind::Plain(items) = &l.kind else { continue };
+        for it in items {
+            match &it.kind {
+                ItemKind::Goto(g) => check_goto(g, i, &labels, &numbers, st),
+                ItemKind::Case(c) => {
+                    for a in &c.arms {
+                        check_goto(&a.goto, i, &labels, &numbers, st);
+                    }
+                    if let Some(d) = &c.default {
+                        check_goto(d, i, &labels, &numbers, st);
+                    }
+                }
+                ItemKind::RepeatSection(r) => {
+                    for lb in std::iter::once(&r.start).chain(r.end.iter()) {
+                        let before = labels.get(lb.name.as_str()).is_some_and(|v| v.iter().any(|&(j, _)| j <= i));
+                        if !before {
+                            st.diags.push(
+                                Diagnostic::error(
+                                    "NC205",
+                                    format!("label {} is not defined before this REPEAT", lb.name),
+                                )
+                                .primary(file, lb.span, "no such label above")
+                                .hint(format!(
+                                    "REPEAT repeats a section above it; put `{}:` on its first block",
+                                    lb.name
+                                )),
+                            );
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+fn check_goto(
+    g: &Goto,
+    at: usize,
+    labels: &HashMap<&str, Vec<(usize, Span)>>,
+    numbers: &HashMap<u32, Vec<(usize, Span)>>,
+    st: &mut FileState,
+) {
+    if g.missing_continues {
+        return;
+    }
+    let file = st.file;
+    let (places, what, span, define) = match &g.target {
+        Target::Label(l) => {
+            (labels.get(l.name.as_str()), format!("label {}", l.name), l.span, format!("`{}:`", l.name))
+        }
+        Target::Number(n) => {
+            (numbers.get(&n.value), format!("block number N{}", n.value), n.span, format!("`N{}`", n.value))
+        }
+        Target::Computed(_) => return,
+    };
+    let places: &[(usize, Span)] = places.map_or(&[], |v| v.as_slice());
+    let found = places.iter().any(|&(j, _)| match g.search {
+        Search::Forward => j >= at,
+        Search::Backward => j <= at,
+        _ => true,
+    });
+    if found {
+        return;
+    }
+    let (kw, dir, other) = match g.search {
+        Search::Forward => ("GOTOF", "forward", "GOTOB"),
+        Search::Backward => ("GOTOB", "backward", "GOTOF"),
+        _ => ("GOTO", "", ""),
+    };
+    let d = match places.first() {
+        Some(&(_, there)) => {
+            Diagnostic::error("NC210", format!("{kw} searches {dir}, but {what} is only on the other side"))
+                .primary(file, span, format!("{what} not found {dir}"))
+                .secondary(file, there, format!("{what} is here"))
+                .hint(format!("jump with {other} (or GOTO, which searches both ways)"))
+        }
+        None => {
+            let code = if matches!(g.target, Target::Label(_)) { "NC205" } else { "NC206" };
+            Diagnostic::error(code, format!("jump to {what}, which does not exist"))
+                .primary(file, span, format!("no {what} in this program"))
+                .hint(format!(
+                    "add {define} at the start of the block to jump to, or use GOTOC to continue when it is missing"
+                ))
+        }
+    };
+    st.diags.push(d);
+}
