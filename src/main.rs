@@ -1,6 +1,8 @@
 //! The `nctrans` command line: the only code that prints. Parses arguments, calls the
 //! library, renders diagnostics with codespan-reporting.
 
+mod cli_sinumerik;
+
 use clap::{Parser, Subcommand};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
@@ -15,9 +17,29 @@ use std::process::ExitCode;
     version,
     about = "Translate CNC macro programs between Siemens Sinumerik and FANUC Macro B, verified by running both"
 )]
+#[command(args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    #[command(flatten)]
+    translate: TranslateArgs,
+}
+
+/// `nctrans --to <dialect> FILE`: translate, then verify by running both.
+#[derive(clap::Args)]
+struct TranslateArgs {
+    /// Target dialect: sinumerik (alias siemens) for a FANUC input.
+    #[arg(long, value_parser = parse_dialect)]
+    to: Option<Dialect>,
+    /// The program to translate.
+    file: Option<PathBuf>,
+    /// Write the output here (a file for the main program, or a directory) instead of stdout.
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    #[command(flatten)]
+    sinumerik: cli_sinumerik::SinumerikArgs,
+    #[command(flatten)]
+    input: InputOpts,
 }
 
 #[derive(Subcommand)]
@@ -55,7 +77,27 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
+        Some(Command::Parse { file, from, summary, input }) => cmd_parse(&file, from, summary, &input),
+        None => cmd_translate(&cli.translate),
+    }
+}
+
+fn cmd_translate(t: &TranslateArgs) -> ExitCode {
+    let (Some(to), Some(file)) = (t.to, &t.file) else {
+        eprintln!("error: give a command (nctrans --help) or translate with: nctrans --to sinumerik FILE");
+        return ExitCode::from(2);
+    };
+    match to {
+        Dialect::Sinumerik => cli_sinumerik::run(&cli_sinumerik::Request {
+            file,
+            out: t.output.as_deref(),
+            encoding: t.input.encoding,
+            args: &t.sinumerik,
+        }),
+        Dialect::Fanuc => {
+            eprintln!("error: --to fanuc is not in this build");
+            ExitCode::from(2)
+        }
     }
 }
 

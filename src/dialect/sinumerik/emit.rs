@@ -228,6 +228,7 @@ impl Writer {
                 s
             }
             ItemKind::ModalCallOff => "MCALL".into(),
+            ItemKind::Instruction { name } => name.clone(),
             ItemKind::Return { to: None } => "RET".into(),
             ItemKind::Return { to: Some(_) } => self.problem(it.span, "a return to a block number"),
             ItemKind::End { code } => match code {

@@ -125,20 +125,18 @@ pub fn direct_locals(body: &[Stmt]) -> (BTreeSet<u32>, bool) {
             expr(e, set);
         }
     }
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        match &s.kind {
-            StmtKind::Block(b) => {
-                for it in &b.items {
-                    item(it, &mut set, &mut writes);
-                }
+    crate::ir::visit::walk_stmts(body, &mut |s| match &s.kind {
+        StmtKind::Block(b) => {
+            for it in &b.items {
+                item(it, &mut set, &mut writes);
             }
-            StmtKind::Do(d) => {
-                if let Some(c) = &d.cond {
-                    expr(c, &mut set);
-                }
-            }
-            _ => {}
         }
+        StmtKind::Do(d) => {
+            if let Some(c) = &d.cond {
+                expr(c, &mut set);
+            }
+        }
+        _ => {}
     });
     (set, writes)
 }
@@ -214,7 +212,9 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             ctx.diags.push(
                 Diagnostic::error("NC352", format!("O{} is called both by M98 and by G65/G66", number.unwrap_or(0)))
                     .primary(file, span, "one of the calls")
-                    .note("M98 shares the caller's locals, G65 gives the macro its own; one Siemens PROC cannot do both")
+                    .note(
+                        "M98 shares the caller's locals, G65 gives the macro its own; one Siemens PROC cannot do both",
+                    )
                     .hint("call the program one way only, or copy it under a second O number"),
             );
         }

@@ -103,18 +103,20 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
         ExprKind::Vacant => Expr::num(0.0, false, span),
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => Expr::num(0.0, false, span),
-            VarKind::Hash(n) => match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
-                Some(k) => var_expr(k, v.span),
-                None => {
-                    marks.extend(ctx.unsupported(
-                        "NC365",
-                        v.span,
-                        &format!("the system variable #{n}"),
-                        "see dialects.md §7 for the variables that have a Siemens counterpart",
-                    ));
-                    Expr::num(0.0, false, span)
+            VarKind::Hash(n) => {
+                match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
+                    Some(k) => var_expr(k, v.span),
+                    None => {
+                        marks.extend(ctx.unsupported(
+                            "NC365",
+                            v.span,
+                            &format!("the system variable #{n}"),
+                            "see dialects.md §7 for the variables that have a Siemens counterpart",
+                        ));
+                        Expr::num(0.0, false, span)
+                    }
                 }
-            },
+            }
             VarKind::HashIndirect(_) => {
                 marks.extend(ctx.unsupported(
                     "NC361",
@@ -250,8 +252,11 @@ fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
     let mut acc: Option<Expr> = None;
     for k in 0..8 {
         let div = from.powi(k);
-        let scaled =
-            if k == 0 { xi.clone() } else { func(Func::Trunc, vec![bin(BinOp::Div, xi.clone(), num(div, span))], span) };
+        let scaled = if k == 0 {
+            xi.clone()
+        } else {
+            func(Func::Trunc, vec![bin(BinOp::Div, xi.clone(), num(div, span))], span)
+        };
         let digit = bin(BinOp::Mod, scaled, num(from, span));
         let term = if k == 0 { digit } else { bin(BinOp::Mul, digit, num(to.powi(k), span)) };
         acc = Some(match acc {

@@ -278,7 +278,12 @@ fn lower_goto(
                     extra.push(plain_block(vec![alarm], span));
                 }
                 Some(c) => {
-                    extra.push(if_stmt(c, vec![plain_block(vec![case], span), plain_block(vec![alarm], span)], None, span));
+                    extra.push(if_stmt(
+                        c,
+                        vec![plain_block(vec![case], span), plain_block(vec![alarm], span)],
+                        None,
+                        span,
+                    ));
                 }
             }
             let _ = ctx;

@@ -325,10 +325,7 @@ pub fn comment_stmt(text: String, span: Span) -> Stmt {
 
 /// A block holding only a label (a GOTO target placed before a structure).
 pub fn label_stmt(name: &str, span: Span) -> Stmt {
-    block_stmt(
-        BlockMeta { span, label: Some(Label { name: name.to_string(), span }), ..BlockMeta::default() },
-        vec![],
-    )
+    block_stmt(BlockMeta { span, label: Some(Label { name: name.to_string(), span }), ..BlockMeta::default() }, vec![])
 }
 
 pub fn if_stmt(cond: Expr, then_body: Vec<Stmt>, else_body: Option<Vec<Stmt>>, span: Span) -> Stmt {
@@ -499,6 +496,7 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
         }
         ItemKind::Message { text: None }
         | ItemKind::ModalCallOff
+        | ItemKind::Instruction { .. }
         | ItemKind::End { .. }
         | ItemKind::StopMessage { .. }
         | ItemKind::Stopre => {}

@@ -35,8 +35,13 @@ fn key(prog: usize, n: u32) -> Option<Key> {
 pub(super) enum Node<'a> {
     Items(&'a [Item]),
     /// `WHILE[c]DOm` (or bare `DOm`); `exit` is the node after the matching `END`.
-    Head { cond: Option<&'a Expr>, exit: usize },
-    End { head: usize },
+    Head {
+        cond: Option<&'a Expr>,
+        exit: usize,
+    },
+    End {
+        head: usize,
+    },
 }
 
 /// The flat node list of a program (in text order) with each node's sequence number.
@@ -414,7 +419,8 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
     let mut an = Analysis { progs: programs, numbers, summaries, seeds: BTreeSet::new(), edges: Vec::new() };
     for (i, (_, p)) in an.progs.iter().enumerate() {
         let flat = flatten(&p.body);
-        let entry = if ctx.progs[i].role == Role::Macro { macro_entry(an.progs, an.numbers[i]) } else { BTreeSet::new() };
+        let entry =
+            if ctx.progs[i].role == Role::Macro { macro_entry(an.progs, an.numbers[i]) } else { BTreeSet::new() };
         let ins = an.dataflow(&flat, entry);
         let mut uses: Vec<(usize, BTreeSet<u32>)> = Vec::new();
         for (j, d) in ins.into_iter().enumerate() {
@@ -678,7 +684,8 @@ fn variants(ctx: &Ctx, items: &[Item], cond: &[usize], span: Span) -> Stmt {
     };
     let flag = local_or_common_flag(ctx, n, items[first].span);
     let with = variants(ctx, items, rest, span);
-    let without_items: Vec<Item> = items.iter().enumerate().filter(|(i, _)| *i != first).map(|(_, it)| it.clone()).collect();
+    let without_items: Vec<Item> =
+        items.iter().enumerate().filter(|(i, _)| *i != first).map(|(_, it)| it.clone()).collect();
     let rest_shifted: Vec<usize> = rest.iter().map(|&i| if i > first { i - 1 } else { i }).collect();
     let without = variants(ctx, &without_items, &rest_shifted, span);
     let mut else_body = vec![without];

@@ -93,10 +93,13 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
         let r = rule.r_start + (n - rule.from);
         if r >= count {
             ctx.diags.push(
-                Diagnostic::error("NC350", format!("--var-map puts #{n} on R{r}, past the last R parameter R{}", count - 1))
-                    .primary(file, span, format!("#{n} used here"))
-                    .note(format!("rule #{}-#{}=R{}", rule.from, rule.to, rule.r_start))
-                    .hint("start the rule at a lower R number or split it"),
+                Diagnostic::error(
+                    "NC350",
+                    format!("--var-map puts #{n} on R{r}, past the last R parameter R{}", count - 1),
+                )
+                .primary(file, span, format!("#{n} used here"))
+                .note(format!("rule #{}-#{}=R{}", rule.from, rule.to, rule.r_start))
+                .hint("start the rule at a lower R number or split it"),
             );
             continue;
         }

@@ -9,7 +9,7 @@
 //!   active D itself); everything else is unsupported.
 //! - `G04 P500` → `G4 F0.5`, `G04 X1.5` → `G4 F1.5`, in a block of its own.
 //! - `R` in an arc block → `CR=`.
-//! - `#3000=n(TEXT)` → `MSG("TEXT")` and `SETAL(65000+n)`; `#3006=n(TEXT)` → `MSG("TEXT")`
+//! - `#3000=n(TEXT)` → `SETAL(65000+n) ; TEXT` (the checker pairs 3000+n with 65000+n); `#3006=n(TEXT)` → `MSG("TEXT")`
 //!   and `M0`.
 //! - System variables per dialects.md §7 (see [`system_var`]); reading an actual position
 //!   puts `STOPRE` in front; writing a work offset re-selects the active offset.
@@ -81,8 +81,8 @@ impl ModalScan {
 /// it is dropped.
 fn map_g(g: u32) -> Option<Option<u32>> {
     Some(match g {
-        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900
-        | 910 | 940 | 950 => Some(g),
+        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910
+        | 940 | 950 => Some(g),
         200 => Some(7000),
         210 => Some(7100),
         580 => Some(5050),
@@ -210,11 +210,17 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
                     Some(v) => int(MACRO_ALARM_BASE + v.round() as i64, number.span),
                     None => bin(BinOp::Add, int(MACRO_ALARM_BASE, number.span), number),
                 };
-                items.push(message(&text, isp));
-                after.push(plain_block(
-                    vec![Item { kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: n, text: None }, span: isp }],
-                    isp,
-                ));
+                // The text rides along as the comment of the SETAL line: a MSG before it would
+                // be an extra message event the FANUC alarm does not have.
+                items.push(Item {
+                    kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: n, text: None },
+                    span: isp,
+                });
+                if let Some(t) = text {
+                    if !b.meta.comments.iter().any(|c| c.text == t) {
+                        b.meta.comments.push(Comment { text: t, span: isp });
+                    }
+                }
             }
             ItemKind::StopMessage { text } => {
                 let text = text.or_else(|| comment_text.clone());

@@ -1,0 +1,266 @@
+//! `nctrans --to sinumerik FILE`: the command-line side of the FANUC → Sinumerik translation
+//! (part of the binary: it prints). Loads the FANUC file and the callees found beside it,
+//! translates, prints or writes the Siemens files, then verifies by running both.
+
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::span::SourceDb;
+use nctrans::translate_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
+use nctrans::{diag, read};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Options of `--to sinumerik`.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct SinumerikArgs {
+    /// FANUC variables onto R parameters, e.g. '#500-#599=R100' (repeatable).
+    #[arg(long = "var-map", value_name = "RULE")]
+    pub var_map: Vec<String>,
+    /// Siemens name of a FANUC program, e.g. 9010=PROBE_X (repeatable).
+    #[arg(long = "program-map", value_name = "N=NAME")]
+    pub program_map: Vec<String>,
+    /// What to do with constructs Sinumerik cannot express: error (default) or warn
+    /// (write a marked comment line; the run still fails).
+    #[arg(long, default_value = "error", value_parser = ["error", "warn"])]
+    pub unsupported: String,
+}
+
+/// Everything the command needs, after argument parsing.
+pub struct Request<'a> {
+    pub file: &'a Path,
+    pub out: Option<&'a Path>,
+    pub encoding: Option<&'static encoding_rs::Encoding>,
+    pub args: &'a SinumerikArgs,
+}
+
+fn options(args: &SinumerikArgs, stem: &str) -> Result<Options, String> {
+    let mut o = Options::default();
+    for r in &args.var_map {
+        o.var_map.push(VarMapRule::parse(r)?);
+    }
+    for m in &args.program_map {
+        let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
+        let n: u32 =
+            n.trim().trim_start_matches(['O', 'o']).parse().map_err(|_| format!("bad program number in '{m}'"))?;
+        let name = name.trim().to_ascii_uppercase();
+        if !valid_name(&name) {
+            return Err(format!(
+                "bad Siemens program name '{name}' (letters, digits and _, the first two letters or _)"
+            ));
+        }
+        o.program_map.insert(n, name);
+    }
+    o.unsupported = if args.unsupported == "warn" { UnsupportedPolicy::Warn } else { UnsupportedPolicy::Error };
+    o.main_name = main_name(stem);
+    Ok(o)
+}
+
+fn valid_name(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2
+        && b.len() <= 31
+        && b[..2].iter().all(|c| c.is_ascii_alphabetic() || *c == b'_')
+        && b.iter().all(|c| c.is_ascii_alphanumeric() || *c == b'_')
+}
+
+/// A Siemens program name from a file stem: upper case, other characters `_`, and `P_` in
+/// front when it would not start with two letters.
+pub fn main_name(stem: &str) -> String {
+    let mut s: String =
+        stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
+    if !valid_name(&s) {
+        s = format!("P_{s}");
+    }
+    s.truncate(31);
+    s
+}
+
+/// Program numbers called in a unit.
+fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
+    let mut set = BTreeSet::new();
+    for p in &unit.programs {
+        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    let mut items = vec![it];
+                    if let ItemKind::IfThen { then, .. } = &it.kind {
+                        items.push(then);
+                    }
+                    for it in items {
+                        if let ItemKind::Call(c) = &it.kind {
+                            if let CallTarget::Number(n) = c.target {
+                                set.insert(n);
+                            }
+                        }
+                    }
+                }
+            }
+        });
+    }
+    set
+}
+
+/// The file beside `dir` that holds FANUC program `n`: `O1234.nc`, `1234.nc`, any case,
+/// `.nc`/`.tap`/no extension.
+pub fn find_callee_file(dir: &Path, n: u32) -> Option<PathBuf> {
+    let stems = [format!("O{n:04}"), format!("{n:04}"), format!("O{n}"), format!("{n}")];
+    let entries = std::fs::read_dir(dir).ok()?;
+    let mut found: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let stem = p.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+            let ext = p.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+            stems.iter().any(|s| s.eq_ignore_ascii_case(&stem)) && matches!(ext.as_str(), "nc" | "tap" | "")
+        })
+        .collect();
+    found.sort();
+    found.into_iter().next()
+}
+
+/// The loaded job: the main unit, the callee units found beside it, and the source DB.
+pub struct Job {
+    pub db: SourceDb,
+    pub units: Vec<Unit>,
+    pub loaded: nctrans::Loaded,
+}
+
+/// Loads `path` and, transitively, the callees it needs that are not in the file itself.
+pub fn load_job(
+    path: &Path,
+    encoding: Option<&'static encoding_rs::Encoding>,
+) -> Result<Job, (SourceDb, Vec<diag::Diagnostic>)> {
+    let mut db = SourceDb::new();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            return Err((db, vec![diag::Diagnostic::error("NC102", format!("cannot read {}: {e}", path.display()))]))
+        }
+    };
+    let name = path.display().to_string();
+    let loaded = nctrans::load(&mut db, &name, &bytes, encoding);
+    let opts = ParseOptions::for_dialect(Dialect::Fanuc);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
+    let mut diags = parsed.diags;
+    let mut units = vec![parsed.unit];
+    let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let mut have: BTreeSet<u32> = BTreeSet::new();
+    let mut tried: BTreeSet<u32> = BTreeSet::new();
+    loop {
+        for u in &units {
+            for p in &u.programs {
+                if let Some(nctrans::ir::ProgName::Number(n)) = &p.name {
+                    have.insert(*n);
+                }
+            }
+        }
+        let want: Vec<u32> = units
+            .iter()
+            .flat_map(called_numbers)
+            .filter(|n| !have.contains(n) && !tried.contains(n))
+            .collect::<BTreeSet<u32>>()
+            .into_iter()
+            .collect();
+        if want.is_empty() {
+            break;
+        }
+        for n in want {
+            tried.insert(n);
+            let Some(p) = find_callee_file(&dir, n) else { continue };
+            let Ok(bytes) = std::fs::read(&p) else { continue };
+            let l = nctrans::load(&mut db, &p.display().to_string(), &bytes, encoding);
+            let parsed = nctrans::parse(&db, l.file, Dialect::Fanuc, &opts);
+            diags.extend(parsed.diags);
+            units.push(parsed.unit);
+        }
+    }
+    if diag::has_errors(&diags) {
+        return Err((db, diags));
+    }
+    // Warnings of reading are shown, not fatal.
+    let _ = diags;
+    Ok(Job { db, units, loaded })
+}
+
+fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
+    read::encode(text, loaded.encoding, loaded.bom)
+}
+
+/// Runs `nctrans --to sinumerik`.
+pub fn run(req: &Request) -> ExitCode {
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+    let opts = match options(req.args, stem) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let job = match load_job(req.file, req.encoding) {
+        Ok(j) => j,
+        Err((db, diags)) => {
+            eprint!("{}", diag::render(&db, &diags));
+            return ExitCode::from(1);
+        }
+    };
+    let units: Vec<&Unit> = job.units.iter().collect();
+    let tr = ts::translate(&units, &opts, job.loaded.line_ending);
+    eprint!("{}", diag::render(&job.db, &tr.diags));
+    if tr.has_errors() {
+        eprintln!("error: translation failed; nothing written");
+        return ExitCode::from(1);
+    }
+    if let Err(code) = write_files(req, &tr, &job.loaded) {
+        return code;
+    }
+    let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
+    let code = ExitCode::SUCCESS;
+    if warned && opts.unsupported == UnsupportedPolicy::Warn {
+        eprintln!("error: unsupported constructs were written as marked comments");
+        return ExitCode::from(1);
+    }
+    code
+}
+
+fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) -> Result<(), ExitCode> {
+    match req.out {
+        None => {
+            let mut out = std::io::stdout().lock();
+            let several = tr.files.len() > 1;
+            for f in &tr.files {
+                let mut text = String::new();
+                if several {
+                    text.push_str(&format!("; ==== {} ====", f.name));
+                    text.push_str(loaded.line_ending.as_str());
+                }
+                text.push_str(&f.text);
+                if out.write_all(&encode(&text, loaded)).is_err() {
+                    return Err(ExitCode::from(2));
+                }
+            }
+        }
+        Some(o) => {
+            // A directory (existing, or written with a trailing slash) takes every file
+            // under its own name; a file path names the main program, subprograms go beside it.
+            let is_dir = o.is_dir() || o.to_string_lossy().ends_with('/');
+            let dir =
+                if is_dir { o.to_path_buf() } else { o.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf) };
+            if is_dir {
+                if let Err(e) = std::fs::create_dir_all(&dir) {
+                    eprintln!("error: cannot create {}: {e}", dir.display());
+                    return Err(ExitCode::from(2));
+                }
+            }
+            for f in &tr.files {
+                let path = if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) };
+                if let Err(e) = std::fs::write(&path, encode(&f.text, loaded)) {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    return Err(ExitCode::from(2));
+                }
+                eprintln!("wrote {}", path.display());
+            }
+        }
+    }
+    Ok(())
+}
