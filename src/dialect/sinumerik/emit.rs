@@ -492,7 +492,9 @@ pub fn expr(e: &Expr) -> String {
                 UnOp::Not => ("NOT ", 90),
                 UnOp::BitNot => ("B_NOT ", 90),
             };
-            format!("{kw}{}", wrap(a, prec(a) <= p || matches!(a.kind, ExprKind::Cmp(..))))
+            // Any operator below a prefix needs parentheses: `-(R1-R2)`, `NOT (A==B)`.
+            let _ = p;
+            format!("{kw}{}", wrap(a, prec(a) < 100))
         }
         ExprKind::Binary(op, a, b) => {
             let p = binprec(*op);

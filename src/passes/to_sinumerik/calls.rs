@@ -8,8 +8,8 @@
 //! - `M98 P3 L2` → `O_0003(LOC1, LOC24, …) P2`: the subprogram shares the caller's locals on
 //!   FANUC, so it takes every local it (or its own M98 callees) uses as a `VAR` parameter and
 //!   the caller passes its own variables by reference.
-//! - `G66` → `MCALL NAME(…)`, `G67` → `MCALL`, `M99` → `RET` (in a main program: a jump back
-//!   to the top, FANUC's endless repetition).
+//! - `G66` → `MCALL NAME(…)`, `G67` → `MCALL`, `M99` → `RET` (also in a main program, where
+//!   the trace spec ends the run on M99 as on RET).
 //! - `G10 L2 Pp X.. Y..` → `$P_UIFR[p,X,TR]=…` (added to the old value under G91) and a
 //!   re-selection of the work offset active at that point so the new value takes effect.
 
@@ -267,33 +267,20 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
 
 /// Lowers calls, returns and offset writes of the current program.
 pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
-    let mut needs_top = false;
     let modal = super::words::ModalScan::new(&body);
-    let mut out = map_bodies(body, &mut |list| {
+    map_bodies(body, &mut |list| {
         let mut out = Vec::with_capacity(list.len());
         for s in list {
             match s.kind {
-                StmtKind::Block(b) => lower_block(ctx, b, s.span, &modal, &mut out, &mut needs_top),
+                StmtKind::Block(b) => lower_block(ctx, b, s.span, &modal, &mut out),
                 kind => out.push(Stmt { kind, span: s.span }),
             }
         }
         out
-    });
-    if needs_top {
-        let span = out.first().map_or(Span::default(), |s| Span::new(s.span.lo, s.span.lo));
-        out.insert(0, label_stmt("NCTRANS_TOP", span));
-    }
-    out
+    })
 }
 
-fn lower_block(
-    ctx: &mut Ctx,
-    mut b: Block,
-    span: Span,
-    modal: &super::words::ModalScan,
-    out: &mut Vec<Stmt>,
-    needs_top: &mut bool,
-) {
+fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::ModalScan, out: &mut Vec<Stmt>) {
     if g_codes(&b.items).contains(&100) {
         lower_g10(ctx, b, span, modal, out);
         return;
@@ -306,12 +293,6 @@ fn lower_block(
                 Err(Some(stmt)) => out.push(stmt),
                 Err(None) => {}
             },
-            ItemKind::Return { to: None } if ctx.plan().role == Role::Main => {
-                *needs_top = true;
-                let target = Target::Label(Label { name: "NCTRANS_TOP".into(), span: it.span });
-                let g = Goto { search: Search::Backward, target, cond: None, missing_continues: false };
-                items.push(Item { kind: ItemKind::Goto(Box::new(g)), span: it.span });
-            }
             ItemKind::Return { to: Some(_) } => {
                 if let Some(st) = ctx.unsupported(
                     "NC354",
@@ -477,6 +458,17 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
     };
     let gs = g_codes(&b.items);
     let incremental = gs.contains(&910) || (!gs.contains(&900) && modal.incremental_at(span.lo));
+    // Modal G codes written in the G10 block (G90/G91 …) stay in force for later blocks.
+    let modal_words: Vec<Item> = b
+        .items
+        .iter()
+        .filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')))
+        .filter(|it| !g_codes(std::slice::from_ref(it)).contains(&100))
+        .cloned()
+        .collect();
+    if !modal_words.is_empty() {
+        out.push(plain_block(modal_words, span));
+    }
     let mut first = true;
     for it in &b.items {
         let ItemKind::Word(w) = &it.kind else { continue };
