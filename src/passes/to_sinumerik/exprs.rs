@@ -22,9 +22,11 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
             let mut local: Vec<Stmt> = Vec::new();
             match &mut s.kind {
                 StmtKind::Block(b) => {
+                    ctx.guard_ok = true;
                     for it in &mut b.items {
                         lower_item(ctx, it, &mut local);
                     }
+                    ctx.guard_ok = false;
                 }
                 StmtKind::If(i) => lower_expr(ctx, &mut i.cond, &mut local),
                 StmtKind::While(w) => lower_expr(ctx, &mut w.cond, &mut local),
@@ -81,17 +83,59 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
                 }
             }
         }
-        VarKind::HashIndirect(_) => {
-            marks.extend(ctx.unsupported(
-                "NC361",
-                span,
-                "an indirect variable `#[…]`",
-                "use the variables by number, or map the range to R parameters and rewrite it as R[…]",
-            ));
-            target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
+        VarKind::HashIndirect(x) => {
+            let mut x = (**x).clone();
+            lower_expr(ctx, &mut x, marks);
+            match runtime_indirect(ctx, x, span, marks) {
+                Some(k) => target.kind = k,
+                None => {
+                    marks.extend(ctx.unsupported(
+                        "NC361",
+                        span,
+                        "an indirect variable `#[…]` whose number is not known before the run",
+                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                    ));
+                    target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
+                }
+            }
         }
         _ => {}
     }
+}
+
+/// FANUC alarm 115 (variable number out of range), as the translation raises it.
+const ALARM_INDEX: i64 = super::gotos::RUNTIME_ALARM_BASE + 115;
+
+/// `#[x]` with an index only known at run time → `R[ROUND(x)]`, when #100..#199 sit on
+/// R100..R199 one to one and nothing else shares those R numbers, no flag is kept for them,
+/// and the access is in a plain block: a guard block in front raises `SETAL(64115)` if the
+/// index leaves #100..#199, so the assumption is checked on every run instead of trusted.
+fn runtime_indirect(ctx: &Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>) -> Option<VarKind> {
+    if !ctx.guard_ok {
+        return None;
+    }
+    let linear = ctx.commons.iter().all(|(&n, &r)| {
+        let inside = (100..=199).contains(&n);
+        let on_block = (100..=199).contains(&r);
+        (inside && r == n) || (!inside && !on_block)
+    });
+    let flagged = ctx.common_flags.iter().any(|(&n, &r)| (100..=199).contains(&n) || (100..=199).contains(&r));
+    if !linear || flagged || ctx.opts.target.r_param_count < 200 {
+        return None;
+    }
+    let idx = func(Func::Round, vec![x], span);
+    let cmp = |op: CmpOp, v: i64| {
+        Expr::new(ExprKind::Cmp(op, Tolerance::Relative, Box::new(idx.clone()), Box::new(int(v, span))), span)
+    };
+    let alarm =
+        Item { kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: int(ALARM_INDEX, span), text: None }, span };
+    marks.push(if_stmt(
+        bin(BinOp::Or, cmp(CmpOp::Lt, 100), cmp(CmpOp::Gt, 199)),
+        vec![plain_block(vec![alarm], span)],
+        None,
+        span,
+    ));
+    Some(VarKind::RIndirect(Box::new(idx)))
 }
 
 fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
@@ -117,15 +161,18 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                     }
                 }
             }
-            VarKind::HashIndirect(_) => {
-                marks.extend(ctx.unsupported(
-                    "NC361",
-                    v.span,
-                    "an indirect variable `#[…]`",
-                    "use the variables by number, or map the range to R parameters and rewrite it as R[…]",
-                ));
-                Expr::num(0.0, false, span)
-            }
+            VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks) {
+                Some(k) => var_expr(k, v.span),
+                None => {
+                    marks.extend(ctx.unsupported(
+                        "NC361",
+                        v.span,
+                        "an indirect variable `#[…]` whose number is not known before the run",
+                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                    ));
+                    Expr::num(0.0, false, span)
+                }
+            },
             kind => var_expr(kind, v.span),
         },
         ExprKind::Binary(op, a, b) => match op {

@@ -2,6 +2,7 @@
 //! share (program roles and names, variable map, vacancy tracking) and small IR builders.
 //!
 //! Order (see [`lower`]):
+//! 0. `indirect::resolve` — `#[expr]` with an index known at translation time → `#n`.
 //! 1. `plan` — program roles (main / G65 macro / M98 subprogram), Siemens names, PROC
 //!    parameters (`calls::plan_programs`), the vacancy analysis (`vacancy::analyse`) and the
 //!    variable map (`varmap::build`).
@@ -19,6 +20,7 @@
 pub mod calls;
 pub mod exprs;
 pub mod gotos;
+pub mod indirect;
 pub mod structures;
 pub mod vacancy;
 pub mod varmap;
@@ -158,6 +160,8 @@ pub struct Ctx<'a> {
     pub cur: usize,
     /// Counter for generated names (labels) within the current program.
     pub gen: u32,
+    /// True while lowering the items of a plain block (a guard block may go in front).
+    pub guard_ok: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -221,6 +225,9 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
+    let resolved: Vec<(FileId, Program)> = programs.iter().map(|(f, p)| (*f, indirect::resolve(p))).collect();
+    let programs: Vec<(FileId, &Program)> = resolved.iter().map(|(f, p)| (*f, p)).collect();
+    let programs = programs.as_slice();
     let mut ctx = Ctx {
         opts,
         progs: Vec::new(),
@@ -229,6 +236,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         diags: Vec::new(),
         cur: 0,
         gen: 0,
+        guard_ok: false,
     };
     calls::plan_programs(&mut ctx, programs);
     let info = vacancy::analyse(&mut ctx, programs);

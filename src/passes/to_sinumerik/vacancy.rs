@@ -92,6 +92,52 @@ pub(super) fn resolve(numbers: &[Option<u32>], from: usize, n: u32) -> Option<us
     (from + 1..len).chain(0..=from.min(len.saturating_sub(1))).find(|&i| numbers[i] == Some(n))
 }
 
+/// Successors of node `i` in a program's control-flow graph (FANUC jump semantics).
+pub(super) fn succs(flat: &Flat, i: usize) -> Vec<usize> {
+    let len = flat.nodes.len();
+    let mut out = Vec::new();
+    match &flat.nodes[i] {
+        Node::Items(items) => {
+            let mut fall = true;
+            for it in items.iter() {
+                match &it.kind {
+                    ItemKind::Goto(g) => {
+                        match &g.target {
+                            Target::Number(n) => out.extend(resolve(&flat.numbers, i, n.value)),
+                            Target::Computed(_) => {
+                                out.extend((0..len).filter(|&j| flat.numbers[j].is_some()));
+                            }
+                            Target::Label(_) => {}
+                        }
+                        if g.cond.is_none() {
+                            fall = false;
+                            break;
+                        }
+                    }
+                    ItemKind::Return { .. } | ItemKind::End { .. } => {
+                        fall = false;
+                        break;
+                    }
+                    _ => {}
+                }
+            }
+            if fall && i + 1 < len {
+                out.push(i + 1);
+            }
+        }
+        Node::Head { cond, exit } => {
+            if i + 1 < len {
+                out.push(i + 1);
+            }
+            if cond.is_some() && *exit < len {
+                out.push(*exit);
+            }
+        }
+        Node::End { head } => out.push(*head),
+    }
+    out
+}
+
 /// Whether `e` can never evaluate to vacant given the definitely-set variables `d`.
 fn nonvacant(e: &Expr, d: &BTreeSet<u32>) -> bool {
     match &e.kind {
@@ -202,48 +248,7 @@ impl Analysis<'_> {
     }
 
     fn succs(&self, flat: &Flat, i: usize) -> Vec<usize> {
-        let len = flat.nodes.len();
-        let mut out = Vec::new();
-        match &flat.nodes[i] {
-            Node::Items(items) => {
-                let mut fall = true;
-                for it in items.iter() {
-                    match &it.kind {
-                        ItemKind::Goto(g) => {
-                            match &g.target {
-                                Target::Number(n) => out.extend(resolve(&flat.numbers, i, n.value)),
-                                Target::Computed(_) => {
-                                    out.extend((0..len).filter(|&j| flat.numbers[j].is_some()));
-                                }
-                                Target::Label(_) => {}
-                            }
-                            if g.cond.is_none() {
-                                fall = false;
-                                break;
-                            }
-                        }
-                        ItemKind::Return { .. } | ItemKind::End { .. } => {
-                            fall = false;
-                            break;
-                        }
-                        _ => {}
-                    }
-                }
-                if fall && i + 1 < len {
-                    out.push(i + 1);
-                }
-            }
-            Node::Head { cond, exit } => {
-                if i + 1 < len {
-                    out.push(i + 1);
-                }
-                if cond.is_some() && *exit < len {
-                    out.push(*exit);
-                }
-            }
-            Node::End { head } => out.push(*head),
-        }
-        out
+        succs(flat, i)
     }
 
     /// Definitely-set variables at the entry of every node (`None`: unreachable).
