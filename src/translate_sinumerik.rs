@@ -136,13 +136,76 @@ fn entry_text(e: &VarEntry) -> String {
     }
 }
 
+/// The Siemens form of a FANUC input line `nctrans: set #24=10. #500=#0`: each variable by
+/// the map, with its is-set flag when it has one (a vacant input is value 0, flag 0).
+fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered) -> String {
+    let mut parts = Vec::new();
+    for part in rest.split_whitespace() {
+        let Some((lhs, rhs)) = part.split_once('=') else {
+            parts.push(part.to_string());
+            continue;
+        };
+        let Some(n) = lhs.trim().strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) else {
+            parts.push(part.to_string());
+            continue;
+        };
+        let vacant = rhs.trim() == "#0";
+        let value = if vacant { "0".to_string() } else { rhs.trim().to_string() };
+        let (name, flag) = match n {
+            1..=33 => (
+                passes::varmap::local_name(plan, n),
+                plan.tracked.contains(&n).then(|| passes::varmap::flag_name(plan, n)),
+            ),
+            100..=999 => match lowered.commons.get(&n) {
+                Some(r) => (format!("R{r}"), lowered.common_flags.get(&n).map(|f| format!("R{f}"))),
+                None => continue, // not used by the program: nothing to set
+            },
+            _ => {
+                parts.push(part.to_string());
+                continue;
+            }
+        };
+        parts.push(format!("{name}={value}"));
+        if let Some(f) = flag {
+            parts.push(format!("{f}={}", u8::from(!vacant)));
+        }
+    }
+    format!("nctrans: set {}", parts.join(" "))
+}
+
+/// Takes the `(nctrans: set …)` comment blocks off the top of a program body (they become
+/// header lines of the output, in Siemens names).
+fn take_inputs(prog: &mut Program) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < prog.body.len() {
+        let StmtKind::Block(b) = &prog.body[i].kind else { break };
+        if !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some() {
+            break;
+        }
+        let sets: Vec<String> = b
+            .meta
+            .comments
+            .iter()
+            .filter_map(|c| c.text.trim().strip_prefix("nctrans: set").map(str::to_string))
+            .collect();
+        if sets.is_empty() {
+            i += 1;
+            continue;
+        }
+        found.extend(sets);
+        prog.body.remove(i);
+    }
+    found
+}
+
 /// Translates FANUC programs to Sinumerik. `units[0]` holds the main program (its first
 /// program); further programs of any unit are the subprograms and macros it may call.
 pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Translation {
     let programs: Vec<(FileId, &Program)> =
         units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
     let lowered = passes::lower(&programs, opts);
-    let mut diags = lowered.diags;
+    let mut diags = lowered.diags.clone();
     let mut symbols = SymbolMap::default();
     for (&n, &r) in &lowered.commons {
         symbols.vars.push(VarEntry {
@@ -161,6 +224,8 @@ pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Tr
     let mut files = Vec::new();
     let mut names: BTreeSet<String> = BTreeSet::new();
     for ((plan, prog), (file, src)) in lowered.programs.iter().zip(&programs) {
+        let mut prog = prog.clone();
+        let inputs: Vec<String> = take_inputs(&mut prog).iter().map(|rest| map_inputs(rest, plan, &lowered)).collect();
         let main = plan.role == Role::Main;
         let ext = if main { "MPF" } else { "SPF" };
         let fname = format!("{}.{ext}", plan.name);
@@ -194,8 +259,10 @@ pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Tr
         if symbols.vars.iter().any(|e| e.flag.is_some()) && header.len() > 1 {
             header.push("  (an is-set flag FALSE means FANUC's vacant; the value is then 0)".to_string());
         }
+        // Inputs first: the evaluator reads only the comment lines at the top.
+        let header: Vec<String> = inputs.into_iter().chain(header).collect();
         let frame = Frame { header: &header, defs: &plan.defs, proc_line: !main };
-        let emitted = emit_program(prog, &frame);
+        let emitted = emit_program(&prog, &frame);
         for (span, what) in &emitted.problems {
             diags.push(
                 Diagnostic::error("NC370", format!("cannot write {what} in Sinumerik syntax"))
