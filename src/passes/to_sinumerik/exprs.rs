@@ -292,11 +292,15 @@ fn lower_func(ctx: &mut Ctx, f: Func, mut args: Vec<Expr>, span: Span, marks: &m
     }
 }
 
-/// Re-weights the base-`from` digits of `TRUNC(x)` by powers of `to` (8 digits): BIN reads
-/// BCD nibbles as decimal digits, BCD writes decimal digits as nibbles.
+/// Re-weights the base-`from` digits of `TRUNC(ABS(x))` by powers of `to` (8 digits): BIN
+/// reads BCD nibbles as decimal digits, BCD writes decimal digits as nibbles. For BIN a
+/// nibble above 9 is FANUC's alarm 111; the result is then divided by
+/// `Π(1-TRUNC(nibble/10))`, which is 1 for valid BCD and 0 otherwise, so the same class of
+/// alarm (arithmetic) stops the Siemens run.
 fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
-    let xi = func(Func::Trunc, vec![x], span);
+    let xi = func(Func::Trunc, vec![func(Func::Abs, vec![x], span)], span);
     let mut acc: Option<Expr> = None;
+    let mut valid: Option<Expr> = None;
     for k in 0..8 {
         let div = from.powi(k);
         let scaled = if k == 0 {
@@ -305,11 +309,26 @@ fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
             func(Func::Trunc, vec![bin(BinOp::Div, xi.clone(), num(div, span))], span)
         };
         let digit = bin(BinOp::Mod, scaled, num(from, span));
+        if from == 16.0 {
+            let ok = bin(
+                BinOp::Sub,
+                int(1, span),
+                func(Func::Trunc, vec![bin(BinOp::Div, digit.clone(), int(10, span))], span),
+            );
+            valid = Some(match valid {
+                None => ok,
+                Some(v) => bin(BinOp::Mul, v, ok),
+            });
+        }
         let term = if k == 0 { digit } else { bin(BinOp::Mul, digit, num(to.powi(k), span)) };
         acc = Some(match acc {
             None => term,
             Some(a) => bin(BinOp::Add, a, term),
         });
     }
-    acc.unwrap_or_else(|| int(0, span))
+    let sum = acc.unwrap_or_else(|| int(0, span));
+    match valid {
+        Some(v) => bin(BinOp::Div, sum, v),
+        None => sum,
+    }
 }
