@@ -2,6 +2,8 @@
 //! (part of the binary: it prints). Loads the FANUC file and the callees found beside it,
 //! translates, prints or writes the Siemens files, then verifies by running both.
 
+use crate::translate_cli::TranslateArgs;
+use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::span::SourceDb;
@@ -12,30 +14,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// Options of `--to sinumerik`.
-#[derive(clap::Args, Debug, Clone, Default)]
-pub struct SinumerikArgs {
-    /// FANUC variables onto R parameters, e.g. '#500-#599=R100' (repeatable).
-    #[arg(long = "var-map", value_name = "RULE")]
-    pub var_map: Vec<String>,
-    /// Siemens name of a FANUC program, e.g. 9010=PROBE_X (repeatable).
-    #[arg(long = "program-map", value_name = "N=NAME")]
-    pub program_map: Vec<String>,
-    /// What to do with constructs Sinumerik cannot express: error (default) or warn
-    /// (write a marked comment line; the run still fails).
-    #[arg(long, default_value = "error", value_parser = ["error", "warn"])]
-    pub unsupported: String,
-}
-
-/// Everything the command needs, after argument parsing.
+/// Where the input is and where the output goes.
 pub struct Request<'a> {
     pub file: &'a Path,
     pub out: Option<&'a Path>,
     pub encoding: Option<&'static encoding_rs::Encoding>,
-    pub args: &'a SinumerikArgs,
 }
 
-fn options(args: &SinumerikArgs, stem: &str) -> Result<Options, String> {
+fn options(args: &TranslateArgs, stem: &str) -> Result<Options, String> {
     let mut o = Options::default();
     for r in &args.var_map {
         o.var_map.push(VarMapRule::parse(r)?);
@@ -187,10 +173,16 @@ fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
     read::encode(text, loaded.encoding, loaded.bom)
 }
 
-/// Runs `nctrans --to sinumerik`.
-pub fn run(req: &Request) -> ExitCode {
+/// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
+/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction).
+pub fn run(args: &TranslateArgs) -> ExitCode {
+    let Some(file) = args.input.as_deref() else {
+        eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
+        return ExitCode::from(2);
+    };
+    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
-    let opts = match options(req.args, stem) {
+    let opts = match options(args, stem) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
@@ -211,11 +203,14 @@ pub fn run(req: &Request) -> ExitCode {
         eprintln!("error: translation failed; nothing written");
         return ExitCode::from(1);
     }
-    if let Err(code) = write_files(req, &tr, &job.loaded) {
+    if let Err(code) = write_files(&req, &tr, &job.loaded) {
         return code;
     }
     let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
-    let code = ExitCode::SUCCESS;
+    let mut code = ExitCode::SUCCESS;
+    if !args.no_verify {
+        code = verify(&job, &tr, &req, args.max_steps);
+    }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {
         eprintln!("error: unsupported constructs were written as marked comments");
         return ExitCode::from(1);
@@ -263,4 +258,38 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
         }
     }
     Ok(())
+}
+
+/// Runs both programs and reports: "equivalent (N events)" and success, or the first
+/// divergence / inconclusive run and failure.
+fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64) -> ExitCode {
+    let out_dir = match req.out {
+        Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
+        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+        None => "<stdout>".to_string(),
+    };
+    let main_unit = &job.units[0];
+    let report = nctrans::verify_sinumerik::verify_with(&job.db, job.loaded.file, main_unit, tr, &out_dir, max_steps);
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    match report.verdict {
+        Verdict::Equivalent { events } => {
+            eprintln!("equivalent ({events} events)");
+            ExitCode::SUCCESS
+        }
+        Verdict::Diverged { .. } => {
+            if !report.diff.is_empty() {
+                eprintln!("{}", report.diff);
+            }
+            eprintln!("error: the translation is not equivalent");
+            ExitCode::from(1)
+        }
+        Verdict::Inconclusive { reason } => {
+            eprintln!("inconclusive: {reason}");
+            ExitCode::from(1)
+        }
+        Verdict::Failed => {
+            eprintln!("error: verification could not run");
+            ExitCode::from(1)
+        }
+    }
 }

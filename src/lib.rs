@@ -4,13 +4,17 @@
 //! The pipeline (see `docs/architecture.md`): `read` → `dialect::*::parse` (one block at a
 //! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
 
+pub mod check;
 pub mod diag;
 pub mod dialect;
+pub mod eval;
 pub mod ir;
 pub mod passes;
 pub mod read;
 pub mod span;
+pub mod translate;
 pub mod translate_sinumerik;
+pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

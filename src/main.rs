@@ -1,8 +1,6 @@
 //! The `nctrans` command line: the only code that prints. Parses arguments, calls the
 //! library, renders diagnostics with codespan-reporting.
 
-mod cli_sinumerik;
-
 use clap::{Parser, Subcommand};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
@@ -10,6 +8,9 @@ use nctrans::{diag, ir};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
+
+mod cli_sinumerik;
+mod translate_cli;
 
 #[derive(Parser)]
 #[command(
@@ -21,25 +22,9 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Translation mode: `nctrans --to fanuc IN [-o OUT] …`.
     #[command(flatten)]
-    translate: TranslateArgs,
-}
-
-/// `nctrans --to <dialect> FILE`: translate, then verify by running both.
-#[derive(clap::Args)]
-struct TranslateArgs {
-    /// Target dialect: sinumerik (alias siemens) for a FANUC input.
-    #[arg(long, value_parser = parse_dialect)]
-    to: Option<Dialect>,
-    /// The program to translate.
-    file: Option<PathBuf>,
-    /// Write the output here (a file for the main program, or a directory) instead of stdout.
-    #[arg(short = 'o', long = "output")]
-    output: Option<PathBuf>,
-    #[command(flatten)]
-    sinumerik: cli_sinumerik::SinumerikArgs,
-    #[command(flatten)]
-    input: InputOpts,
+    translate: translate_cli::TranslateArgs,
 }
 
 #[derive(Subcommand)]
@@ -56,6 +41,49 @@ enum Command {
         #[command(flatten)]
         input: InputOpts,
     },
+    /// Run a program in the bundled evaluator and print its canonical trace.
+    Run {
+        file: PathBuf,
+        /// Source dialect (default: from the extension, else the content).
+        #[arg(long, value_parser = parse_dialect)]
+        from: Option<Dialect>,
+        #[command(flatten)]
+        eval: EvalOpts,
+        /// Trace format: text (one event per line) or jsonl (trace-format.md).
+        #[arg(long, default_value = "text", value_parser = parse_format)]
+        format: nctrans::eval::Format,
+        /// Run without printing the trace (for timing).
+        #[arg(long)]
+        quiet: bool,
+        #[command(flatten)]
+        input: InputOpts,
+    },
+    /// Run two programs (either dialect) and report whether their traces agree.
+    Check {
+        a: PathBuf,
+        b: PathBuf,
+        /// Dialect of A (default: from the extension, else the content).
+        #[arg(long, value_parser = parse_dialect)]
+        from_a: Option<Dialect>,
+        /// Dialect of B.
+        #[arg(long, value_parser = parse_dialect)]
+        from_b: Option<Dialect>,
+        #[command(flatten)]
+        eval: EvalOpts,
+        #[command(flatten)]
+        input: InputOpts,
+    },
+}
+
+#[derive(clap::Args)]
+struct EvalOpts {
+    /// Set a variable before the run: R1=5, '#24=10.', NAME=3 (repeatable; overrides the
+    /// file's `nctrans: set` header lines).
+    #[arg(long = "set", value_name = "VAR=VALUE")]
+    set: Vec<String>,
+    /// Stop after this many blocks (the run is then inconclusive).
+    #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
+    max_steps: u64,
 }
 
 #[derive(clap::Args)]
@@ -76,28 +104,19 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        Some(Command::Parse { file, from, summary, input }) => cmd_parse(&file, from, summary, &input),
-        None => cmd_translate(&cli.translate),
-    }
-}
-
-fn cmd_translate(t: &TranslateArgs) -> ExitCode {
-    let (Some(to), Some(file)) = (t.to, &t.file) else {
-        eprintln!("error: give a command (nctrans --help) or translate with: nctrans --to sinumerik FILE");
-        return ExitCode::from(2);
-    };
-    match to {
-        Dialect::Sinumerik => cli_sinumerik::run(&cli_sinumerik::Request {
-            file,
-            out: t.output.as_deref(),
-            encoding: t.input.encoding,
-            args: &t.sinumerik,
-        }),
-        Dialect::Fanuc => {
-            eprintln!("error: --to fanuc is not in this build");
-            ExitCode::from(2)
+    let Some(command) = cli.command else {
+        if cli.translate.to == Some(Dialect::Sinumerik) {
+            return cli_sinumerik::run(&cli.translate);
         }
+        return translate_cli::run(&cli.translate).unwrap_or_else(|| {
+            eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
+            ExitCode::from(2)
+        });
+    };
+    match command {
+        Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
+        Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
+        Command::Check { a, b, from_a, from_b, eval, input } => cmd_check(&a, &b, from_a, from_b, &eval, &input),
     }
 }
 
@@ -138,4 +157,127 @@ fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &Input
         return ExitCode::from(2);
     }
     ExitCode::SUCCESS
+}
+
+fn parse_format(s: &str) -> Result<nctrans::eval::Format, String> {
+    match s {
+        "text" => Ok(nctrans::eval::Format::Text),
+        "jsonl" => Ok(nctrans::eval::Format::Jsonl),
+        _ => Err(format!("unknown trace format '{s}' (expected text or jsonl)")),
+    }
+}
+
+/// Loads and parses one program for a run; prints its diagnostics.
+fn load_for_run(
+    db: &mut SourceDb,
+    path: &PathBuf,
+    from: Option<Dialect>,
+    eval: &EvalOpts,
+    input: &InputOpts,
+) -> Result<(ir::Unit, nctrans::eval::RunOptions), ExitCode> {
+    let bytes = read_file(path)?;
+    let name = path.display().to_string();
+    let loaded = nctrans::load(db, &name, &bytes, input.encoding);
+    let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
+    let parsed = nctrans::parse(db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    eprint!("{}", diag::render(db, &parsed.diags));
+    if diag::has_errors(&parsed.diags) {
+        return Err(ExitCode::from(1));
+    }
+    let mut inputs = nctrans::eval::header_inputs(&db.get(loaded.file).text).map_err(|e| {
+        eprintln!("error: {name}: bad `nctrans: set` header: {e}");
+        ExitCode::from(2)
+    })?;
+    for s in &eval.set {
+        let i = nctrans::eval::parse_input(s).map_err(|e| {
+            eprintln!("error: --set {e}");
+            ExitCode::from(2)
+        })?;
+        inputs.retain(|h| h.target != i.target);
+        inputs.push(i);
+    }
+    let opts = nctrans::eval::RunOptions { max_steps: eval.max_steps, inputs, semantics: None };
+    Ok((parsed.unit, opts))
+}
+
+fn cmd_run(
+    path: &PathBuf,
+    from: Option<Dialect>,
+    eval: &EvalOpts,
+    format: nctrans::eval::Format,
+    quiet: bool,
+    input: &InputOpts,
+) -> ExitCode {
+    use nctrans::eval::{self, Ending};
+    let mut db = SourceDb::new();
+    let (unit, opts) = match load_for_run(&mut db, path, from, eval, input) {
+        Ok(x) => x,
+        Err(code) => return code,
+    };
+    let main_file = db.get(unit.file).clone();
+    let main_id = unit.file;
+    let line_of = move |o: eval::Origin| (o.file == main_id).then(|| main_file.line_col(o.span.lo).0);
+    let out = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut callees = eval::DirCallees { semantics: None };
+    let (outcome, write_error) = if quiet {
+        (eval::run(&mut db, &unit, &mut callees, &opts, &mut eval::NullSink), None)
+    } else {
+        let mut sink = eval::WriterSink::new(out, format, Box::new(line_of));
+        let o = eval::run(&mut db, &unit, &mut callees, &opts, &mut sink);
+        let err = sink.error.take().or_else(|| sink.out.flush().err());
+        (o, err)
+    };
+    eprint!("{}", diag::render(&db, &outcome.diags));
+    if let Some(e) = write_error {
+        eprintln!("error: writing the trace: {e}");
+        return ExitCode::from(2);
+    }
+    match outcome.ending {
+        Ending::End(_) | Ending::Stopped => ExitCode::SUCCESS,
+        Ending::Error => ExitCode::from(1),
+        Ending::Alarm { .. } => ExitCode::from(3),
+        Ending::Limit { .. } => ExitCode::from(4),
+    }
+}
+
+fn cmd_check(
+    a: &PathBuf,
+    b: &PathBuf,
+    from_a: Option<Dialect>,
+    from_b: Option<Dialect>,
+    eval: &EvalOpts,
+    input: &InputOpts,
+) -> ExitCode {
+    use nctrans::check::{self, Side, Verdict};
+    let mut db = SourceDb::new();
+    let (unit_a, opts_a) = match load_for_run(&mut db, a, from_a, eval, input) {
+        Ok(x) => x,
+        Err(code) => return code,
+    };
+    let (unit_b, opts_b) = match load_for_run(&mut db, b, from_b, eval, input) {
+        Ok(x) => x,
+        Err(code) => return code,
+    };
+    let side = |unit, run| Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run };
+    let report = check::check(&db, side(unit_a, opts_a), side(unit_b, opts_b));
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    match report.verdict {
+        Verdict::Equivalent { events } => {
+            println!("equivalent ({events} trace events agree)");
+            ExitCode::SUCCESS
+        }
+        Verdict::Diverged { index } => {
+            println!("diverged at trace event {}", index + 1);
+            print!("{}", report.diff);
+            ExitCode::from(1)
+        }
+        Verdict::Inconclusive { reason } => {
+            println!("inconclusive: {reason}");
+            ExitCode::from(4)
+        }
+        Verdict::Failed => {
+            println!("failed: a program could not be evaluated");
+            ExitCode::from(1)
+        }
+    }
 }

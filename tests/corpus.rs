@@ -109,6 +109,8 @@ fn accepted_programs_parse_to_the_committed_ir() {
         let ir_dir = format!("corpus/out/ir/{}", d.name());
         let diag_dir = format!("corpus/out/diag/in/{}", d.name());
         let files = inputs(&dir);
+        // The issue asks for the seeds plus at least 30 one-feature cases per dialect.
+        assert!(files.len() >= 30, "{dir} holds only {} programs", files.len());
         for f in &files {
             count += 1;
             let o = parse(f, d);
@@ -140,6 +142,7 @@ fn rejected_programs_give_the_committed_diagnostics() {
         let dir = format!("corpus/err/{}", d.name());
         let out_dir = format!("corpus/out/diag/err/{}", d.name());
         let files = inputs(&dir);
+        assert!(files.len() >= 15, "{dir} holds only {} error cases", files.len());
         for f in &files {
             count += 1;
             let o = parse(f, d);

@@ -66,15 +66,16 @@ fn fast_path_gives_the_grammar_ir_on_generated_blocks() {
     let mut taken = 0;
     for _ in 0..20000 {
         let mut b = String::new();
-        if r.next() % 3 == 0 {
+        if r.next().is_multiple_of(3) {
             b.push_str(&format!("N{} ", r.next() % 100000));
         }
         for _ in 0..(1 + r.next() % 6) {
-            let letter = r.pick(&["G", "X", "Y", "Z", "F", "S", "M", "T", "D", "I", "J", "K", "A", "x", "g", "E", "R", "H"]);
+            let letter =
+                r.pick(&["G", "X", "Y", "Z", "F", "S", "M", "T", "D", "I", "J", "K", "A", "x", "g", "E", "R", "H"]);
             let sep = r.pick(&[" ", " ", "\t", "", "  "]);
             b.push_str(&format!("{letter}{}{sep}", number(&mut r)));
         }
-        if r.next() % 4 == 0 {
+        if r.next().is_multiple_of(4) {
             b.push_str(r.pick(&[";", "; comment", ";注释 X1", " ;"]));
         }
         let grammar = block_via_grammar(&b);
@@ -88,7 +89,20 @@ fn fast_path_gives_the_grammar_ir_on_generated_blocks() {
 
 #[test]
 fn fast_path_declines_what_it_does_not_know() {
-    for b in ["X=1", "X1=10", "G1 X1EX3", "L123", "N10 LABEL: X1", "X1.2.3", "R1=5", "P3", "G1 X", "IF R1 GOTOF A", "X1 [", "/X1"] {
+    for b in [
+        "X=1",
+        "X1=10",
+        "G1 X1EX3",
+        "L123",
+        "N10 LABEL: X1",
+        "X1.2.3",
+        "R1=5",
+        "P3",
+        "G1 X",
+        "IF R1 GOTOF A",
+        "X1 [",
+        "/X1",
+    ] {
         assert_eq!(block_via_fast_path(b), None, "{b}");
     }
 }

@@ -450,3 +450,107 @@ fn corpus_translations_are_committed() {
     // The floor: the cases that translate today. Unsupported ones have precise diagnostics.
     assert!(translated >= 65, "only {translated} corpus programs translate");
 }
+
+// ---- verification: both programs run, traces compared ----
+
+struct Job {
+    db: SourceDb,
+    file: nctrans::span::FileId,
+    unit: nctrans::ir::Unit,
+    tr: Translation,
+}
+
+fn job(rel: &str) -> Job {
+    let bytes = std::fs::read(root().join(rel)).expect("corpus file readable");
+    let mut db = SourceDb::new();
+    let path = root().join(rel).display().to_string();
+    let loaded = nctrans::load(&mut db, &path, &bytes, None);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let tr = translate(&[&parsed.unit], &Options::default(), loaded.line_ending);
+    Job { db, file: loaded.file, unit: parsed.unit, tr }
+}
+
+fn verdict(j: &Job, tr: &Translation) -> (nctrans::check::Verdict, String) {
+    // A million blocks is far more than any corpus program needs; the endless one stops sooner.
+    let rep = nctrans::verify_sinumerik::verify_with(&j.db, j.file, &j.unit, tr, "out", 1_000_000);
+    let text = format!("{}\n{}", nctrans::diag::render(&rep.db, &rep.diags), rep.diff);
+    (rep.verdict, text)
+}
+
+/// Corpus programs that translate but cannot be proven, with the reason.
+const NOT_PROVEN: &[(&str, &str)] = &[(
+    "seed-o9050-system-variable-examples.nc",
+    "the FANUC program itself loops forever: both runs hit the step limit",
+)];
+
+#[test]
+fn every_translated_corpus_program_verifies() {
+    let dir = root().join("corpus/in/fanuc");
+    let mut cases: Vec<String> = std::fs::read_dir(&dir)
+        .expect("corpus/in/fanuc exists")
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    cases.sort();
+    let mut failures = Vec::new();
+    let mut proven = 0;
+    for case in &cases {
+        let j = job(&format!("corpus/in/fanuc/{case}"));
+        if j.tr.has_errors() {
+            continue; // unsupported constructs: their diagnostics are committed
+        }
+        let (v, text) = verdict(&j, &j.tr);
+        match (v, NOT_PROVEN.iter().find(|(c, _)| c == case)) {
+            (nctrans::check::Verdict::Equivalent { .. }, None) => proven += 1,
+            (nctrans::check::Verdict::Inconclusive { .. }, Some(_)) => {}
+            (v, _) => failures.push(format!("{case}: {v:?}\n{text}")),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(proven >= 76, "only {proven} corpus programs proven equivalent");
+}
+
+/// The naive translation of each pitfall case (the text a token-by-token translator would
+/// write) must be caught by the checker: the pitfall cases are only worth something if
+/// they fail the wrong translation.
+#[test]
+fn pitfall_cases_catch_the_naive_translation() {
+    let naive: &[(&str, &str, &str, &str)] = &[
+        ("pitfall-fup-negative.nc", "", "ROUNDUP(LOC1)-TRUNC(LOC1)-ROUNDUP(-LOC1)", "ROUNDUP(LOC1)"),
+        ("pitfall-atan-asin-range.nc", "", "(ATAN2(-1,-1)+360) MOD 360", "ATAN2(-1,-1)"),
+        ("pitfall-bitwise-and.nc", "", "TRUNC(LOC1) B_AND 10", "LOC1 AND 10"),
+        ("pitfall-eq-exact.nc", "", "LOC1-0.3==0", "LOC1==0.3"),
+        ("pitfall-compound-condition.nc", "", "(LOC1-1==0) AND (LOC2-2==0)", "LOC1==1 AND LOC2==2"),
+        ("pitfall-decimal-point.nc", "", "X0.01", "X10"),
+        ("pitfall-dwell-units.nc", "", "G4 F0.5", "G4 F500"),
+        ("pitfall-round-in-address.nc", "", "ROUND(LOC1*1000)/1000", "ROUND(LOC1)"),
+        ("pitfall-units-and-arcs.nc", "", "G700", "G70"),
+        ("pitfall-goto-duplicate-n.nc", "", "GOTOF LBL_10_2", "GOTOB LBL_10"),
+        ("pitfall-m98-shared-locals.nc", "O_2011.SPF", "VAR REAL LOC1", "REAL LOC1"),
+        ("pitfall-vacant-argument.nc", "O_9100.SPF", "IF NOT ARG_Z_SET GOTOF", "IF ARG_Z==0 GOTOF"),
+        ("pitfall-vacant-copy.nc", "", "IF LOC2_SET\n  G0 X1 Y=LOC2\nELSE\n  G0 X1\nENDIF", "G0 X1 Y=LOC2"),
+    ];
+    for (case, file, right, wrong) in naive {
+        let j = job(&format!("corpus/in/fanuc/{case}"));
+        assert!(!j.tr.has_errors(), "{case} translates");
+        let (v, text) = verdict(&j, &j.tr);
+        assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{case}: the translation verifies\n{text}");
+        let mut bad = j.tr.clone();
+        let f = bad
+            .files
+            .iter_mut()
+            .find(|f| if file.is_empty() { f.main } else { f.name == *file })
+            .expect("file of the case");
+        assert!(f.text.contains(right), "{case}: expected `{right}` in\n{}", f.text);
+        f.text = f.text.replace(right, wrong);
+        if *case == "pitfall-goto-duplicate-n.nc" {
+            // The naive jump goes to the first N10, which then needs the label.
+            f.text = f.text.replace("N10 LOC1=LOC1+1", "N10 LBL_10: LOC1=LOC1+1");
+        }
+        let (v, text) = verdict(&j, &bad);
+        assert!(
+            matches!(v, nctrans::check::Verdict::Diverged { .. }),
+            "{case}: the naive translation was not caught ({v:?})\n{text}"
+        );
+    }
+}

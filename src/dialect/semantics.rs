@@ -30,6 +30,12 @@ pub struct Semantics {
     pub max_call_depth: u32,
     /// FANUC M98 nesting (independent of G65 levels).
     pub max_subprogram_depth: u32,
+    /// Siemens MD42440 FRAME_OFFSET_INCR_PROG = 1 (default): the first incremental move
+    /// after a frame / work-offset change also travels the offset change (the increment
+    /// applies to the programmed workpiece position). FANUC: an incremental move travels
+    /// only the increment. Used by the evaluator; the translator must keep it in mind when
+    /// it emits G91 after an offset change.
+    pub incremental_travels_offset: bool,
 }
 
 impl Semantics {
@@ -49,6 +55,7 @@ impl Semantics {
                 max_loop_nesting: 3,
                 max_call_depth: 4,
                 max_subprogram_depth: 10,
+                incremental_travels_offset: false,
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -62,6 +69,7 @@ impl Semantics {
                 max_loop_nesting: u32::MAX,
                 max_call_depth: 15,
                 max_subprogram_depth: 15,
+                incremental_travels_offset: true,
             },
         }
     }

@@ -1,3 +1,255 @@
-//! IR→IR lowering passes, one submodule per translation direction.
+//! Lowering passes: small IR→IR functions chosen per target, listed in order here.
+//! FANUC → Siemens lives in [`to_sinumerik`] (its own order in its `mod.rs`).
+//!
+//! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
+//! [`words`] (address words, calls, messages), [`exprs`] (exact function rewrites, the
+//! relative-equality rule, bracket depth), [`lower_structures`] (IF/WHILE/LOOP/FOR/REPEAT/CASE
+//! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
+//! [`labels`] (labels and N numbers → unique FANUC N numbers). The result is IR that the FANUC
+//! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
+pub mod blocks;
+pub mod exprs;
+pub mod labels;
+pub mod lower_structures;
 pub mod to_sinumerik;
+pub mod varmap;
+pub mod words;
+
+use crate::diag::Diagnostic;
+use crate::ir::*;
+use crate::span::{FileId, Span};
+use std::collections::BTreeMap;
+
+/// What to do with a construct the target cannot express.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum UnsupportedPolicy {
+    /// An NC3xx error; the translation is refused.
+    #[default]
+    Error,
+    /// An NC3xx warning and a visibly marked comment line in the output.
+    Warn,
+}
+
+/// Prefix of the names of temporaries the passes introduce (never a Siemens user name:
+/// names starting with `_` are reserved for Siemens cycles).
+pub const TEMP_PREFIX: &str = "__NCT_T";
+/// Prefix of labels the passes introduce.
+pub const LABEL_PREFIX: &str = "__NCT_L";
+/// The comment text that marks a line standing for an unsupported construct.
+pub const UNSUPPORTED_MARK: &str = "*** NCTRANS UNSUPPORTED:";
+
+/// Facts about one source program the passes share.
+#[derive(Clone, Debug, Default)]
+pub struct ProgInfo {
+    /// Declared type and dimensions of each named variable (DEF and PROC parameters).
+    pub types: BTreeMap<String, (DataType, Vec<u32>)>,
+    /// Program is a subprogram (`PROC`): runs at its own FANUC local level.
+    pub is_sub: bool,
+}
+
+/// A callee the translation knows: its O number and its parameters, in order.
+#[derive(Clone, Debug)]
+pub struct Callee {
+    pub number: u32,
+    pub params: Vec<Param>,
+}
+
+/// State shared by the passes of one translation.
+#[derive(Debug)]
+pub struct Ctx {
+    pub file: FileId,
+    pub policy: UnsupportedPolicy,
+    /// FANUC NAT bit (6004#0) of the target profile: ranges of ATAN/ASIN.
+    pub nat: bool,
+    /// The target accepts `[[a] AND [b]]` compound conditions.
+    pub compound_conditions: bool,
+    /// Tool name → FANUC T number (`--tool-map`).
+    pub tools: BTreeMap<String, u32>,
+    /// Tool names actually used, with their numbers (for the symbol map).
+    pub tools_used: BTreeMap<String, u32>,
+    /// Known callees by upper-case name.
+    pub callees: BTreeMap<String, Callee>,
+    pub diags: Vec<Diagnostic>,
+    /// Number of unsupported constructs met (also under the warn policy).
+    pub unsupported: usize,
+    next_temp: u32,
+    next_label: u32,
+}
+
+impl Ctx {
+    pub fn new(file: FileId, policy: UnsupportedPolicy) -> Self {
+        Ctx {
+            file,
+            policy,
+            nat: false,
+            compound_conditions: false,
+            tools: BTreeMap::new(),
+            tools_used: BTreeMap::new(),
+            callees: BTreeMap::new(),
+            diags: Vec::new(),
+            unsupported: 0,
+            next_temp: 0,
+            next_label: 0,
+        }
+    }
+
+    /// A fresh temporary variable (mapped to a free `#n` by [`varmap`]).
+    pub fn temp(&mut self, span: Span) -> VarRef {
+        self.next_temp += 1;
+        VarRef { kind: VarKind::Named { name: format!("{TEMP_PREFIX}{}", self.next_temp), indices: vec![] }, span }
+    }
+
+    /// A fresh label name.
+    pub fn label(&mut self, span: Span) -> Label {
+        self.next_label += 1;
+        Label { name: format!("{LABEL_PREFIX}{}", self.next_label), span }
+    }
+
+    /// Reports a construct FANUC cannot express (NC300 unless `code` says more) and returns the
+    /// replacement statement: under the warn policy a marked comment line, else nothing.
+    pub fn unsupported(&mut self, code: &'static str, span: Span, what: &str, hint: &str) -> Option<Stmt> {
+        self.unsupported += 1;
+        let msg = format!("{what} cannot be translated to FANUC Macro B");
+        let d = match self.policy {
+            UnsupportedPolicy::Error => Diagnostic::error(code, msg),
+            UnsupportedPolicy::Warn => Diagnostic::warning(code, msg),
+        };
+        let mut d = d.primary(self.file, span, "not expressible on the target");
+        if !hint.is_empty() {
+            d = d.hint(hint);
+        }
+        if self.policy == UnsupportedPolicy::Warn {
+            d = d.note("--unsupported warn: a marked comment line stands in its place and the run fails");
+        }
+        self.diags.push(d);
+        match self.policy {
+            UnsupportedPolicy::Error => None,
+            UnsupportedPolicy::Warn => {
+                let meta = BlockMeta {
+                    span,
+                    comments: vec![Comment { text: format!("{UNSUPPORTED_MARK} {what} ***"), span }],
+                    ..BlockMeta::default()
+                };
+                Some(Stmt { kind: StmtKind::Block(Block { meta, items: vec![] }), span })
+            }
+        }
+    }
+
+    /// A remark on a construct that was translated with a caveat (dropped, or changed form).
+    pub fn note(&mut self, code: &'static str, span: Span, msg: &str, note: &str) {
+        let mut d = Diagnostic::new(crate::diag::Severity::Note, code, msg).primary(self.file, span, "here");
+        if !note.is_empty() {
+            d = d.note(note);
+        }
+        self.diags.push(d);
+    }
+
+    pub fn error(&mut self, code: &'static str, span: Span, msg: &str, hint: &str) {
+        let mut d = Diagnostic::error(code, msg).primary(self.file, span, "here");
+        if !hint.is_empty() {
+            d = d.hint(hint);
+        }
+        self.diags.push(d);
+    }
+}
+
+/// Runs the structural passes (everything before variable mapping) on one program.
+pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
+    blocks::run(ctx, prog, info);
+    words::run(ctx, prog, info);
+    exprs::run(ctx, prog, info);
+    lower_structures::run(ctx, prog);
+}
+
+// ---- small builders shared by the passes ----
+
+pub fn num(v: f64, span: Span) -> Expr {
+    Expr::num(v, v.fract() != 0.0, span)
+}
+
+pub fn var_expr(v: &VarRef) -> Expr {
+    Expr::new(ExprKind::Var(Box::new(v.clone())), v.span)
+}
+
+pub fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
+    let span = a.span.to(b.span);
+    Expr::new(ExprKind::Binary(op, Box::new(a), Box::new(b)), span)
+}
+
+pub fn cmp(op: CmpOp, a: Expr, b: Expr) -> Expr {
+    let span = a.span.to(b.span);
+    Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(a), Box::new(b)), span)
+}
+
+pub fn func(f: Func, args: Vec<Expr>, span: Span) -> Expr {
+    Expr::new(ExprKind::Func(f, args), span)
+}
+
+pub fn item(kind: ItemKind, span: Span) -> Item {
+    Item { kind, span }
+}
+
+pub fn assign_item(target: &VarRef, value: Expr, span: Span) -> Item {
+    item(ItemKind::Assign { target: Box::new(target.clone()), value }, span)
+}
+
+/// A statement holding one block with the given items and a fresh (empty) meta.
+pub fn block_stmt(items: Vec<Item>, span: Span) -> Stmt {
+    let meta = BlockMeta { span, ..BlockMeta::default() };
+    Stmt { kind: StmtKind::Block(Block { meta, items }), span }
+}
+
+pub fn meta_stmt(meta: BlockMeta, items: Vec<Item>) -> Stmt {
+    let span = meta.span;
+    Stmt { kind: StmtKind::Block(Block { meta, items }), span }
+}
+
+/// An empty block carrying `label` (a jump target).
+pub fn label_stmt(label: Label) -> Stmt {
+    let span = label.span;
+    let meta = BlockMeta { span, label: Some(label), ..BlockMeta::default() };
+    Stmt { kind: StmtKind::Block(Block { meta, items: vec![] }), span }
+}
+
+/// A jump to `label` (unique by construction, so the search direction does not matter).
+pub fn goto_item(label: &Label, cond: Option<Expr>, span: Span) -> Item {
+    item(
+        ItemKind::Goto(Box::new(Goto {
+            search: Search::ForwardThenBackward,
+            target: Target::Label(label.clone()),
+            cond,
+            missing_continues: false,
+        })),
+        span,
+    )
+}
+
+/// `IF [cond] THEN target = value`.
+pub fn if_then(cond: Expr, target: &VarRef, value: Expr, span: Span) -> Item {
+    item(ItemKind::IfThen { cond, then: Box::new(assign_item(target, value, span)) }, span)
+}
+
+/// True when a block meta carries something a jump or a reader could need.
+pub fn meta_is_marked(m: &BlockMeta) -> bool {
+    m.number.is_some() || m.label.is_some() || !m.comments.is_empty() || m.skip.is_some()
+}
+
+/// Splits off what makes a block a jump target (number, label) into an empty block, so that
+/// statements inserted before it still run when a jump lands there.
+pub fn take_target(meta: &mut BlockMeta) -> Option<Stmt> {
+    if meta.number.is_none() && meta.label.is_none() {
+        return None;
+    }
+    let m = BlockMeta {
+        span: meta.span,
+        skip: None,
+        number: meta.number.take(),
+        label: meta.label.take(),
+        comments: vec![],
+    };
+    Some(meta_stmt(m, vec![]))
+}
+
+#[cfg(test)]
+pub(crate) mod build;

@@ -19,6 +19,8 @@ mod structure;
 #[cfg(test)]
 mod tests;
 
+pub mod emit;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::{BlockMeta, ProgName, Program, Unit};
@@ -103,7 +105,7 @@ impl Reader<'_> {
         let seg = parse::Seg { norm, base: lo, text: &norm.text[lo..hi], file: self.file };
         let span = norm.span(lo, end);
         if self.programs.is_empty() {
-            self.programs.push(ProgramLines::new(None, None, span));
+            self.programs.push(ProgramLines::new(None, None, span, self.file, self.opts));
         }
         let parsed = match scan::check(&seg, self.opts) {
             Err(d) => Err(d),
@@ -154,7 +156,7 @@ impl Reader<'_> {
             }
             _ => {
                 let span = meta.span;
-                self.programs.push(ProgramLines::new(name, Some(meta), span));
+                self.programs.push(ProgramLines::new(name, Some(meta), span, self.file, self.opts));
             }
         }
     }
@@ -173,7 +175,7 @@ impl Reader<'_> {
             if p.is_empty() && p.name.is_none() {
                 continue;
             }
-            let (prog, diags) = structure::build(p, self.file, self.opts, &self.ignored_numbers);
+            let (prog, diags) = structure::build(p, &self.ignored_numbers);
             self.diags.extend(diags);
             programs.push(prog);
         }

@@ -313,7 +313,14 @@ fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, D
             lit: Some(Lit { lo, hi, point: n.point, signed: neg.is_some() }),
         });
     }
-    let inner = expr::value(cx, body)?;
+    let bracketed = body.as_rule() == Rule::bracket;
+    let mut inner = expr::value(cx, body)?;
+    // `X[1]`: a bracketed constant is a computed value, read in units like `X1.` (open
+    // question 10 of dialects.md; Mitsubishi documents this rule, FANUC is believed to agree).
+    // Marking the point keeps it apart from the increment-scaled `X1`.
+    if let (true, ExprKind::Num(n)) = (bracketed, &mut inner.kind) {
+        n.point = true;
+    }
     let value = match neg {
         Some(true) => Expr::new(ExprKind::Unary(crate::ir::UnOp::Neg, Box::new(inner)), vspan),
         _ => Expr { span: vspan, ..inner },

@@ -32,8 +32,8 @@ pub struct SinumerikParser;
 pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
     let mut st =
         FileState { file, diags: Vec::new(), r_count: opts.semantics.r_param_count, declared: Default::default() };
-    let mut lines = Vec::new();
-    let mut header: Option<Header> = None;
+    let mut builder = structure::Builder::new(None, src.text.len() as u32);
+    let mut header_seen = false;
     let mut any = false;
     for raw in read::blocks(&src.text) {
         let norm = read::normalise(&raw, CommentStyle::Semicolon);
@@ -47,21 +47,24 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
             continue;
         }
         if trimmed.starts_with('%') {
-            if any || header.is_some() {
+            if any || header_seen {
                 st.diags.push(
                     Diagnostic::error("NC128", "a `%` line is only allowed as the first line")
                         .primary(file, whole, "`%` line inside the program")
                         .hint("the `%_N_NAME_MPF` header starts the file; remove this line"),
                 );
             } else {
-                header =
-                    Some(Header { name: header_name(trimmed), meta: BlockMeta { span: whole, ..Default::default() } });
+                header_seen = true;
+                builder.header(Header {
+                    name: header_name(trimmed),
+                    meta: BlockMeta { span: whole, ..Default::default() },
+                });
             }
             continue;
         }
         any = true;
         if let Some(line) = fast::line(&norm, whole) {
-            lines.push(line);
+            builder.push(line, &mut st);
             continue;
         }
         if let Some(d) = errors::too_deep(text, &norm, file) {
@@ -73,7 +76,7 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
                 if let Some(block) = pairs.next() {
                     let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
                     if let Some(line) = lower.block(block, whole) {
-                        lines.push(line);
+                        builder.push(line, &mut st);
                     }
                 }
             }
@@ -82,16 +85,15 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
                 // A broken IF/WHILE/…/ENDIF line still opens or closes its structure, so
                 // that one bad block does not also give an "END without opener" error.
                 if let Some(kind) = structure::keyword_only(text, whole) {
-                    lines.push(structure::Line {
-                        meta: BlockMeta { span: whole, ..Default::default() },
-                        kind,
-                        kw: whole,
-                    });
+                    builder.push(
+                        structure::Line { meta: BlockMeta { span: whole, ..Default::default() }, kind, kw: whole },
+                        &mut st,
+                    );
                 }
             }
         }
     }
-    let program = structure::build(lines, &mut st, header, src.text.len() as u32);
+    let program = builder.finish(&mut st);
     Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] }, diags: st.diags }
 }
 

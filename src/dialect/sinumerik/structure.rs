@@ -182,20 +182,50 @@ pub struct Header {
 }
 
 /// Builds the one program of a file from its lines.
-pub fn build(lines: Vec<Line>, st: &mut FileState, header: Option<Header>, len: u32) -> Program {
-    check_targets(&lines, st);
-    let file = st.file;
-    let mut program =
-        Program { name: None, head: None, params: Vec::new(), save: false, body: Vec::new(), span: Span::new(0, len) };
-    if let Some(h) = header {
-        program.name = h.name.map(ProgName::Name);
-        program.head = Some(h.meta);
+/// Builds the one program of a file, one line at a time (the lines are not kept).
+pub struct Builder {
+    program: Program,
+    stack: Vec<Open>,
+    suppressed: usize,
+    seen_code: bool,
+    deep_reported: bool,
+    targets: Targets,
+}
+
+impl Builder {
+    pub fn new(header: Option<Header>, len: u32) -> Builder {
+        let mut program = Program {
+            name: None,
+            head: None,
+            params: Vec::new(),
+            save: false,
+            body: Vec::new(),
+            span: Span::new(0, len),
+        };
+        if let Some(h) = header {
+            program.name = h.name.map(ProgName::Name);
+            program.head = Some(h.meta);
+        }
+        Builder {
+            program,
+            stack: Vec::new(),
+            suppressed: 0,
+            seen_code: false,
+            deep_reported: false,
+            targets: Targets::default(),
+        }
     }
-    let mut stack: Vec<Open> = Vec::new();
-    let mut suppressed = 0usize;
-    let mut seen_code = false;
-    let mut deep_reported = false;
-    for line in lines {
+
+    /// Sets the `%_N_…` header (it is read before any block).
+    pub fn header(&mut self, h: Header) {
+        self.program.name = h.name.map(ProgName::Name);
+        self.program.head = Some(h.meta);
+    }
+
+    /// Adds the next block of the file.
+    pub fn push(&mut self, line: Line, st: &mut FileState) {
+        let file = st.file;
+        self.targets.record(&line, st);
         let Line { meta, kind, kw } = line;
         let is_control = !matches!(kind, LineKind::Plain(_) | LineKind::Proc(_));
         if is_control {
@@ -217,32 +247,32 @@ pub fn build(lines: Vec<Line>, st: &mut FileState, header: Option<Header>, len: 
             LineKind::Until(_) => Some(Kind::Repeat),
             _ => None,
         };
-        if suppressed > 0 {
+        if self.suppressed > 0 {
             // Inside a structure nested too deep: only count, so the ENDs pair up.
             if opener.is_some() {
-                suppressed += 1;
+                self.suppressed += 1;
             } else if closer.is_some() {
-                suppressed -= 1;
+                self.suppressed -= 1;
             }
-            continue;
+            return;
         }
         if let Some(k) = opener {
-            if stack.len() >= MAX_NESTING {
-                if !deep_reported {
+            if self.stack.len() >= MAX_NESTING {
+                if !self.deep_reported {
                     st.diags.push(
                         Diagnostic::error(
                             "NC211",
                             format!("control structures nested deeper than {MAX_NESTING} levels"),
                         )
-                        .primary(file, kw, format!("{} at nesting level {}", k.opener(), stack.len() + 1))
+                        .primary(file, kw, format!("{} at nesting level {}", k.opener(), self.stack.len() + 1))
                         .hint("move the inner part into a subprogram"),
                     );
-                    deep_reported = true;
+                    self.deep_reported = true;
                 }
-                suppressed = 1;
-                continue;
+                self.suppressed = 1;
+                return;
             }
-            seen_code = true;
+            self.seen_code = true;
             let mut open =
                 Open { kind: k, head: meta, kw, cond: None, for_var: None, body: Vec::new(), else_part: None };
             match kind {
@@ -250,22 +280,22 @@ pub fn build(lines: Vec<Line>, st: &mut FileState, header: Option<Header>, len: 
                 LineKind::For { var, from, to } => open.for_var = Some((var, from, to)),
                 _ => {}
             }
-            stack.push(open);
-            continue;
+            self.stack.push(open);
+            return;
         }
         if let Some(k) = closer {
-            seen_code = true;
+            self.seen_code = true;
             let until = match kind {
                 LineKind::Until(c) => Some(c),
                 _ => None,
             };
-            close(&mut stack, &mut program.body, k, meta, kw, until, st);
-            continue;
+            close(&mut self.stack, &mut self.program.body, k, meta, kw, until, st);
+            return;
         }
         match kind {
             LineKind::Else => {
-                seen_code = true;
-                match stack.last_mut() {
+                self.seen_code = true;
+                match self.stack.last_mut() {
                     Some(o) if o.kind == Kind::If && o.else_part.is_none() => {
                         o.else_part = Some(ElsePart { head: meta, body: Vec::new() });
                     }
@@ -292,49 +322,55 @@ pub fn build(lines: Vec<Line>, st: &mut FileState, header: Option<Header>, len: 
                 }
             }
             LineKind::Proc(p) => {
-                if seen_code {
+                if self.seen_code {
                     st.diags.push(
                         Diagnostic::error("NC129", "PROC must be the first block of the program")
                             .primary(file, kw, "PROC after other blocks")
                             .hint("move the PROC line to the top; only comments and the `%_N_…` header may precede it"),
                     );
                 } else {
-                    program.name = Some(ProgName::Name(p.name));
-                    program.head = Some(meta);
-                    program.params = p.params;
-                    program.save = p.save;
+                    self.program.name = Some(ProgName::Name(p.name));
+                    self.program.head = Some(meta);
+                    self.program.params = p.params;
+                    self.program.save = p.save;
                 }
-                seen_code = true;
+                self.seen_code = true;
             }
             LineKind::Plain(items) => {
-                seen_code |= !items.is_empty();
+                self.seen_code |= !items.is_empty();
                 let span = meta.span;
                 let stmt = Stmt { kind: StmtKind::Block(Block { meta, items }), span };
-                match stack.last_mut() {
+                match self.stack.last_mut() {
                     Some(o) => o.body_mut().push(stmt),
-                    None => program.body.push(stmt),
+                    None => self.program.body.push(stmt),
                 }
             }
             _ => {}
         }
     }
-    // Unterminated structures: report each (outermost first), then close them so the tree is whole.
-    for o in &stack {
-        st.diags.push(
-            Diagnostic::error("NC200", format!("{} is never closed", o.kind.opener()))
-                .primary(file, o.kw, format!("this {} needs {}", o.kind.opener(), o.kind.closer()))
-                .hint(format!("add {} after {}", o.kind.closer(), o.kind.body_word())),
-        );
-    }
-    while let Some(o) = stack.pop() {
-        let end = o.head.clone();
-        let stmt = o.close(end, None);
-        match stack.last_mut() {
-            Some(p) => p.body_mut().push(stmt),
-            None => program.body.push(stmt),
+
+    /// Closes what is still open, checks the jump targets, and returns the program.
+    pub fn finish(mut self, st: &mut FileState) -> Program {
+        let file = st.file;
+        self.targets.check(st);
+        // Unterminated structures: report each (outermost first), then close them so the tree is whole.
+        for o in &self.stack {
+            st.diags.push(
+                Diagnostic::error("NC200", format!("{} is never closed", o.kind.opener()))
+                    .primary(file, o.kw, format!("this {} needs {}", o.kind.opener(), o.kind.closer()))
+                    .hint(format!("add {} after {}", o.kind.closer(), o.kind.body_word())),
+            );
         }
+        while let Some(o) = self.stack.pop() {
+            let end = o.head.clone();
+            let stmt = o.close(end, None);
+            match self.stack.last_mut() {
+                Some(p) => p.body_mut().push(stmt),
+                None => self.program.body.push(stmt),
+            }
+        }
+        self.program
     }
-    program
 }
 
 /// Handles an END line (`ENDIF`, `ENDWHILE`, …, `UNTIL`): closes the matching structure or
@@ -424,61 +460,78 @@ fn control_block_checks(meta: &BlockMeta, kw: Span, st: &mut FileState) {
     }
 }
 
-/// Labels and block numbers: duplicate labels, and every GOTOF/GOTOB/GOTO target must exist
-/// in its search direction (GOTOC may miss). REPEAT section labels must exist.
-fn check_targets(lines: &[Line], st: &mut FileState) {
-    let file = st.file;
-    let mut labels: HashMap<&str, Vec<(usize, Span)>> = HashMap::new();
-    let mut numbers: HashMap<u32, Vec<(usize, Span)>> = HashMap::new();
-    for (i, l) in lines.iter().enumerate() {
+/// Labels, block numbers and jumps seen so far, by block ordinal; checked at the end:
+/// duplicate labels, every GOTOF/GOTOB/GOTO target must exist in its search direction
+/// (GOTOC may miss), REPEAT section labels must exist above.
+#[derive(Default)]
+struct Targets {
+    count: usize,
+    labels: HashMap<String, Vec<(usize, Span)>>,
+    numbers: HashMap<u32, Vec<(usize, Span)>>,
+    jumps: Vec<(usize, Jump)>,
+}
+
+enum Jump {
+    Goto(Goto),
+    Section(Label),
+}
+
+impl Targets {
+    fn record(&mut self, l: &Line, st: &mut FileState) {
+        let i = self.count;
+        self.count += 1;
         if let Some(lb) = &l.meta.label {
-            let v = labels.entry(lb.name.as_str()).or_default();
+            let v = self.labels.entry(lb.name.clone()).or_default();
             if let Some(&(_, first)) = v.first() {
                 st.diags.push(
                     Diagnostic::error("NC207", format!("label {} is defined twice", lb.name))
-                        .primary(file, lb.span, "second definition")
-                        .secondary(file, first, "first definition")
+                        .primary(st.file, lb.span, "second definition")
+                        .secondary(st.file, first, "first definition")
                         .hint("give every label a unique name"),
                 );
             }
             v.push((i, lb.span));
         }
         if let Some(n) = &l.meta.number {
-            numbers.entry(n.value).or_default().push((i, n.span));
+            self.numbers.entry(n.value).or_default().push((i, n.span));
         }
-    }
-    for (i, l) in lines.iter().enumerate() {
-        let LineKind::Plain(items) = &l.kind else { continue };
+        let LineKind::Plain(items) = &l.kind else { return };
         for it in items {
             match &it.kind {
-                ItemKind::Goto(g) => check_goto(g, i, &labels, &numbers, st),
+                ItemKind::Goto(g) => self.jumps.push((i, Jump::Goto((**g).clone()))),
                 ItemKind::Case(c) => {
-                    for a in &c.arms {
-                        check_goto(&a.goto, i, &labels, &numbers, st);
-                    }
-                    if let Some(d) = &c.default {
-                        check_goto(d, i, &labels, &numbers, st);
+                    for g in c.arms.iter().map(|a| &a.goto).chain(c.default.iter()) {
+                        self.jumps.push((i, Jump::Goto(g.clone())));
                     }
                 }
                 ItemKind::RepeatSection(r) => {
                     for lb in std::iter::once(&r.start).chain(r.end.iter()) {
-                        let before = labels.get(lb.name.as_str()).is_some_and(|v| v.iter().any(|&(j, _)| j <= i));
-                        if !before {
-                            st.diags.push(
-                                Diagnostic::error(
-                                    "NC205",
-                                    format!("label {} is not defined before this REPEAT", lb.name),
-                                )
+                        self.jumps.push((i, Jump::Section(lb.clone())));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn check(&self, st: &mut FileState) {
+        let file = st.file;
+        for (i, j) in &self.jumps {
+            match j {
+                Jump::Goto(g) => check_goto(g, *i, &self.labels, &self.numbers, st),
+                Jump::Section(lb) => {
+                    let before = self.labels.get(&lb.name).is_some_and(|v| v.iter().any(|&(j, _)| j <= *i));
+                    if !before {
+                        st.diags.push(
+                            Diagnostic::error("NC205", format!("label {} is not defined before this REPEAT", lb.name))
                                 .primary(file, lb.span, "no such label above")
                                 .hint(format!(
                                     "REPEAT repeats a section above it; put `{}:` on its first block",
                                     lb.name
                                 )),
-                            );
-                        }
+                        );
                     }
                 }
-                _ => {}
             }
         }
     }
@@ -487,7 +540,7 @@ fn check_targets(lines: &[Line], st: &mut FileState) {
 fn check_goto(
     g: &Goto,
     at: usize,
-    labels: &HashMap<&str, Vec<(usize, Span)>>,
+    labels: &HashMap<String, Vec<(usize, Span)>>,
     numbers: &HashMap<u32, Vec<(usize, Span)>>,
     st: &mut FileState,
 ) {
@@ -496,9 +549,7 @@ fn check_goto(
     }
     let file = st.file;
     let (places, what, span, define) = match &g.target {
-        Target::Label(l) => {
-            (labels.get(l.name.as_str()), format!("label {}", l.name), l.span, format!("`{}:`", l.name))
-        }
+        Target::Label(l) => (labels.get(&l.name), format!("label {}", l.name), l.span, format!("`{}:`", l.name)),
         Target::Number(n) => {
             (numbers.get(&n.value), format!("block number N{}", n.value), n.span, format!("`N{}`", n.value))
         }

@@ -1,0 +1,20 @@
+%
+O0001 (ADDRESS-EXPRESSION)
+(NCTRANS: SINUMERIK address-expression.mpf TO FANUC MACRO B)
+(NCTRANS: R0 = #500)
+(NCTRANS: R1 = #501)
+(NCTRANS: R2 = #502)
+(NCTRANS: R3 = #503)
+(NCTRANS: R24 = #524)
+( Address values with = and expressions)
+#500=30.
+#501=10.
+#502=5.
+#524=2.
+#503=1.
+G01 X#501 F[#501*10.]
+G01 X[10.*#524] Y-#502
+G03 I[-[#501+#502]*COS[#500]]
+T#503
+M30
+%

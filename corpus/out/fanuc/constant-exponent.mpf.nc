@@ -1,0 +1,13 @@
+%
+O0001 (CONSTANT-EXPONENT)
+(NCTRANS: SINUMERIK constant-exponent.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+(NCTRANS: R2 = #502)
+(NCTRANS: R3 = #503)
+( Constants with EX exponents)
+#501=187400000.
+#502=-0.0001
+#503=200.
+G01 X#503 F100.
+M30
+%

@@ -1,0 +1,12 @@
+%
+O0001 (GOTO-BACKWARD-NUMBER)
+(NCTRANS: SINUMERIK goto-backward-number.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+( GOTOB to a block number, counted loop)
+#501=0.
+N10 G91 G01 X1. F100.
+#501=#501+1.
+IF [3.-#501 GT [ABS[#501]+3.+ABS[ABS[#501]-3.]]*0.0000005*0.000001] GOTO 10
+G90
+M30
+%

@@ -1,0 +1,12 @@
+%
+O0001 (GOTO-BOTH-DIRECTIONS)
+(NCTRANS: SINUMERIK goto-both-directions.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+( GOTO searches forward first, then backward)
+#501=0.
+N1000 #501=#501+1. (AGAIN:)
+IF [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] GOTO 1000
+GOTO 1001
+X999.
+N1001 M30 (FINISH:)
+%

@@ -1,0 +1,10 @@
+%
+O0001 (GOTO-FORWARD-LABEL)
+(NCTRANS: SINUMERIK goto-forward-label.mpf TO FANUC MACRO B)
+( GOTOF to a label further down)
+G00 X0.
+GOTO 1000
+G01 X100. F100.
+N1000 G00 Z50. (SKIP_PART:)
+M30
+%

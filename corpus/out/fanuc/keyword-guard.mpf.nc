@@ -1,0 +1,15 @@
+%
+O0001 (KEYWORD-GUARD)
+(NCTRANS: SINUMERIK keyword-guard.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+(NCTRANS: HANDLE = #100)
+(NCTRANS: GOTOFX = #101)
+(NCTRANS: RETRACT_Z = #102)
+( Names that contain keywords are names: HANDLE [AND], GOTOFX, R_TOOL, RETRACT_Z)
+#100=1.
+#101=2.
+#102=50.
+#501=#100+#101
+G00 Z#102
+M30
+%

@@ -1,0 +1,1 @@
+%O0001 (LINE-ENDINGS-CR)(NCTRANS: SINUMERIK line-endings-cr.mpf TO FANUC MACRO B)( CR line ends [old Mac style])G00 X0.G01 X10. F100.M30%

@@ -1,0 +1,18 @@
+%
+O0001 (PITFALL-ATAN2-ASIN-RANGE)
+(NCTRANS: SINUMERIK pitfall-atan2-asin-range.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+(NCTRANS: R2 = #502)
+(NCTRANS: R3 = #503)
+(NCTRANS: TEMPORARIES #1 #2)
+( Pitfall 8: ATAN2 gives -180..180 and ASIN -90..90 on Siemens  FANUC NAT=0 gives 0..360 and 270..90)
+#1=ATAN[-1.]/[-1.]
+IF [#1 GT 180.] THEN #1=#1-360.
+#501=#1
+#2=ASIN[-0.5]
+IF [#2 GT 90.] THEN #2=#2-360.
+#502=#2
+#503=ACOS[-0.5]
+G01 X#501 Y#502 Z#503 F100.
+M30
+%

@@ -1,0 +1,14 @@
+%
+O0001 (PITFALL-DUPLICATE-LABELS)
+(NCTRANS: SINUMERIK pitfall-duplicate-labels.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+( Pitfall 14: duplicate N numbers  GOTOB finds the one above, GOTOF the one below)
+#501=0.
+N1000 #501=#501+1.
+G01 X#501 F100.
+IF [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] GOTO 1000
+GOTO 1001
+G01 Y99.
+N1001 G01 Y#501
+M30
+%

@@ -1,0 +1,33 @@
+%
+O0001 (PRECEDENCE-BITWISE-LOGIC)
+(NCTRANS: SINUMERIK precedence-bitwise-logic.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+(NCTRANS: R2 = #502)
+(NCTRANS: R3 = #503)
+(NCTRANS: R4 = #504)
+(NCTRANS: TEMPORARIES #1 #2)
+( B_AND binds tighter than B_XOR, B_OR, AND, XOR, OR  << binds above comparisons)
+#501=1. OR [2. AND 3.]
+#1=0.
+IF [1. NE 0.] GOTO 1000
+IF [0. EQ 0.] GOTO 1001
+IF [0. EQ 0.] GOTO 1001
+N1000
+#1=1.
+N1001
+#502=#1
+#2=0.
+IF [1. NE 0.] GOTO 1002
+IF [1. NE 0.] GOTO 1004
+GOTO 1003
+N1002
+IF [1. EQ 0.] GOTO 1004
+N1003
+IF [1. EQ 0.] GOTO 1005
+N1004
+#2=1.
+N1005
+#503=#2
+#504=[1.+1.] AND 3.
+M30
+%

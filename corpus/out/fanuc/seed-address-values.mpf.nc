@@ -1,0 +1,17 @@
+%
+O0001 (SEED-ADDRESS-VALUES)
+(NCTRANS: SINUMERIK seed-address-values.mpf TO FANUC MACRO B)
+(NCTRANS: R1 = #501)
+(NCTRANS: R2 = #502)
+(NCTRANS: R3 = #503)
+( Seed 000 3.2.2: variable values in addresses [F=R1, X=-R2, T=R3, Y=R2/10])
+#501=500.
+#502=40.
+#503=2.
+G01 X10. F#501
+G00 G90 X-#502
+T#503
+M06
+G00 Y[#502/10.]
+M30
+%

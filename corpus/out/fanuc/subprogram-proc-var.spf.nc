@@ -1,0 +1,13 @@
+%
+O0001 (POCKET)
+(NCTRANS: SINUMERIK subprogram-proc-var.spf TO FANUC MACRO B)
+(NCTRANS: LENGTH [parameter, letter A] = #1)
+(NCTRANS: DEPTH_DONE [parameter, letter B] = #2)
+(NCTRANS: PASSES [parameter, letter C] = #3)
+(NCTRANS: SIZES [parameter, letter D] = #7)
+( PROC with value, reference [VAR] and array parameters, SAVE attribute)
+G91 G01 X#1 F100.
+#2=#3*#7
+G90
+M99
+%

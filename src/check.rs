@@ -1,0 +1,469 @@
+//! Differential execution: runs two programs (either dialect) side by side and compares
+//! their traces event by event with the tolerances of the trace spec. The second program
+//! runs on its own thread and streams its events through a bounded channel, so memory
+//! does not grow with the trace length. The first divergence becomes one diagnostic
+//! (NC500) with a label in each file, plus the two traces around it as a unified diff.
+
+use crate::diag::Diagnostic;
+use crate::eval::trace::text_line;
+use crate::eval::{self, CalleeSource, Ending, Event, Origin, Outcome, RunOptions, TraceSink};
+use crate::ir::Unit;
+use crate::span::{FileId, SourceDb};
+use std::collections::VecDeque;
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+
+/// Absolute tolerance for numbers (trace spec).
+pub const TOLERANCE: f64 = 1e-6;
+/// Events of context shown on each side of a divergence.
+pub const CONTEXT: usize = 3;
+
+/// One program to run.
+pub struct Side {
+    pub unit: Unit,
+    pub callees: Box<dyn CalleeSource + Send>,
+    pub run: RunOptions,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// Same events within tolerance, both ended the same way.
+    Equivalent { events: u64 },
+    /// Event number `index` (0-based) differs.
+    Diverged { index: u64 },
+    /// A run hit a limit: nothing is proven.
+    Inconclusive { reason: String },
+    /// A run could not be evaluated (see the diagnostics).
+    Failed,
+}
+
+pub struct CheckReport {
+    pub verdict: Verdict,
+    /// All files of both runs (callees included), for rendering `diags`.
+    pub db: SourceDb,
+    pub diags: Vec<Diagnostic>,
+    /// The traces around the divergence as a unified diff (empty otherwise).
+    pub diff: String,
+    pub outcome_a: Outcome,
+    pub outcome_b: Outcome,
+}
+
+enum Msg {
+    Ev(Event, Origin),
+}
+
+struct ChannelSink {
+    tx: SyncSender<Msg>,
+    dead: bool,
+}
+
+impl TraceSink for ChannelSink {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        if !self.dead && self.tx.send(Msg::Ev(ev.clone(), origin)).is_err() {
+            self.dead = true;
+        }
+    }
+    fn wants_stop(&self) -> bool {
+        self.dead
+    }
+}
+
+struct Divergence {
+    index: u64,
+    a: Option<(Event, Origin)>,
+    b: Option<(Event, Origin)>,
+}
+
+struct CompareSink {
+    rx: Receiver<Msg>,
+    index: u64,
+    before_a: VecDeque<String>,
+    before_b: VecDeque<String>,
+    after_a: Vec<String>,
+    after_b: Vec<String>,
+    div: Option<Divergence>,
+    limit_seen: bool,
+}
+
+fn num_eq(a: f64, b: f64) -> bool {
+    (a - b).abs() <= TOLERANCE
+}
+
+fn axes_eq(a: &eval::trace::Axes, b: &eval::trace::Axes) -> bool {
+    a.iter().zip(b).all(|(x, y)| match (x, y) {
+        (Some(x), Some(y)) => num_eq(*x, *y),
+        (None, None) => true,
+        _ => false,
+    })
+}
+
+fn opt_eq(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(x), Some(y)) => num_eq(x, y),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+/// The class of a run-time alarm, so that FANUC 112 and Siemens 14051 (both a division
+/// by zero) compare equal; user alarms compare FANUC `#3000=n` (3000+n) with Siemens
+/// `SETAL(65000+n)`.
+fn alarm_class(n: i64) -> Option<String> {
+    Some(match n {
+        111 | 112 | 14051 => "arithmetic".into(),
+        128 | 14080 => "jump target".into(),
+        11 | 10860 => "no feed".into(),
+        20 | 14040 => "arc".into(),
+        115 | 17020 => "index".into(),
+        116 | 14130 => "read-only".into(),
+        0 => "program end".into(),
+        3000..=3999 => format!("user {}", n - 3000),
+        65000..=65999 => format!("user {}", n - 65000),
+        _ => return None,
+    })
+}
+
+/// True when two events agree within the trace spec's tolerance. `steps` of `end` and
+/// alarm texts are not compared (block counts and alarm texts differ between dialects);
+/// `M99`, `RET` and `M17` ends are the same return.
+pub fn same_event(a: &Event, b: &Event) -> bool {
+    use Event::*;
+    match (a, b) {
+        (Move { rapid: r1, to: t1, f: f1 }, Move { rapid: r2, to: t2, f: f2 }) => {
+            r1 == r2 && axes_eq(t1, t2) && opt_eq(*f1, *f2)
+        }
+        (
+            Arc { cw: c1, plane: p1, to: t1, center: k1, f: f1 },
+            Arc { cw: c2, plane: p2, to: t2, center: k2, f: f2 },
+        ) => {
+            c1 == c2
+                && p1 == p2
+                && axes_eq(t1, t2)
+                && k1.iter().zip(k2).all(|(x, y)| x.0 == y.0 && num_eq(x.1, y.1))
+                && opt_eq(*f1, *f2)
+        }
+        (Dwell { seconds: s1 }, Dwell { seconds: s2 }) => num_eq(*s1, *s2),
+        (Tool { tool: t1 }, Tool { tool: t2 }) => match (t1, t2) {
+            (eval::trace::ToolId::Number(x), eval::trace::ToolId::Number(y)) => num_eq(*x, *y),
+            (eval::trace::ToolId::Name(x), eval::trace::ToolId::Name(y)) => x == y,
+            _ => false,
+        },
+        (Spindle { rpm: r1, dir: d1 }, Spindle { rpm: r2, dir: d2 }) => num_eq(*r1, *r2) && d1 == d2,
+        (Coolant { on: o1 }, Coolant { on: o2 }) => o1 == o2,
+        (Stop { optional: o1, message: m1 }, Stop { optional: o2, message: m2 }) => o1 == o2 && m1 == m2,
+        (Message { text: t1 }, Message { text: t2 }) => t1 == t2,
+        (Alarm { number: n1, .. }, Alarm { number: n2, .. }) => {
+            n1 == n2 || (alarm_class(*n1).is_some() && alarm_class(*n1) == alarm_class(*n2))
+        }
+        (End { code: c1, .. }, End { code: c2, .. }) => {
+            let ret = |c: &str| matches!(c, "M99" | "RET" | "M17");
+            c1 == c2 || (ret(c1) && ret(c2))
+        }
+        (Limit { .. }, Limit { .. }) => true,
+        _ => false,
+    }
+}
+
+impl CompareSink {
+    fn push_ring(ring: &mut VecDeque<String>, s: String) {
+        if ring.len() == CONTEXT {
+            ring.pop_front();
+        }
+        ring.push_back(s);
+    }
+
+    fn next_b(&mut self) -> Option<(Event, Origin)> {
+        match self.rx.recv() {
+            Ok(Msg::Ev(e, o)) => Some((e, o)),
+            Err(_) => None,
+        }
+    }
+
+    fn fill_after_b(&mut self) {
+        while self.after_b.len() < CONTEXT {
+            match self.next_b() {
+                Some((e, _)) => self.after_b.push(text_line(&e)),
+                None => break,
+            }
+        }
+    }
+
+    /// After A ended: B must have ended too.
+    fn finish(&mut self) {
+        if self.div.is_some() {
+            return;
+        }
+        if let Some(b) = self.next_b() {
+            if matches!(b.0, Event::Limit { .. }) {
+                self.limit_seen = true;
+                return;
+            }
+            self.div = Some(Divergence { index: self.index, a: None, b: Some(b) });
+            self.fill_after_b();
+        }
+    }
+}
+
+impl TraceSink for CompareSink {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        if self.div.is_some() {
+            if self.after_a.len() < CONTEXT {
+                self.after_a.push(text_line(ev));
+            }
+            return;
+        }
+        if matches!(ev, Event::Limit { .. }) {
+            self.limit_seen = true;
+        }
+        let b = self.next_b();
+        if let Some((Event::Limit { .. }, _)) = &b {
+            self.limit_seen = true;
+        }
+        match b {
+            Some((eb, _)) if same_event(ev, &eb) => {
+                Self::push_ring(&mut self.before_a, text_line(ev));
+                Self::push_ring(&mut self.before_b, text_line(&eb));
+                self.index += 1;
+            }
+            b => {
+                if self.limit_seen {
+                    return;
+                }
+                self.div = Some(Divergence { index: self.index, a: Some((ev.clone(), origin)), b });
+                self.fill_after_b();
+            }
+        }
+    }
+
+    fn wants_stop(&self) -> bool {
+        self.limit_seen || (self.div.is_some() && self.after_a.len() >= CONTEXT)
+    }
+}
+
+/// Runs both programs and compares their traces. `db` holds both main files (and is
+/// cloned for each run); the report's `db` also holds every callee either run loaded.
+pub fn check(db: &SourceDb, a: Side, b: Side) -> CheckReport {
+    let n0 = db.len();
+    let (tx, rx) = sync_channel::<Msg>(1024);
+    let db_b = db.clone();
+    let handle = std::thread::spawn(move || {
+        let mut db_b = db_b;
+        let mut sink = ChannelSink { tx, dead: false };
+        let mut callees = b.callees;
+        let out = eval::run(&mut db_b, &b.unit, callees.as_mut(), &b.run, &mut sink);
+        (out, db_b)
+    });
+    let mut db_a = db.clone();
+    let mut sink = CompareSink {
+        rx,
+        index: 0,
+        before_a: VecDeque::new(),
+        before_b: VecDeque::new(),
+        after_a: Vec::new(),
+        after_b: Vec::new(),
+        div: None,
+        limit_seen: false,
+    };
+    let mut callees_a = a.callees;
+    let outcome_a = eval::run(&mut db_a, &a.unit, callees_a.as_mut(), &a.run, &mut sink);
+    if !matches!(outcome_a.ending, Ending::Stopped) {
+        sink.finish();
+    }
+    let CompareSink { rx, index, before_a, before_b, after_a, after_b, div, limit_seen } = sink;
+    drop(rx);
+    let (outcome_b, db_b) = match handle.join() {
+        Ok(r) => r,
+        Err(_) => (
+            Outcome {
+                ending: Ending::Error,
+                steps: 0,
+                diags: vec![Diagnostic::error("NC502", "the second run failed unexpectedly")],
+            },
+            db.clone(),
+        ),
+    };
+    // Merge the files the B run loaded after the shared ones.
+    let mut merged = db_a;
+    let offset = merged.len();
+    for id in n0..db_b.len() {
+        let f = db_b.get(id);
+        merged.add(f.name.clone(), f.text.clone());
+    }
+    let map_b = |id: FileId| if id >= n0 { id - n0 + offset } else { id };
+    let mut diags = Vec::new();
+    for d in &outcome_a.diags {
+        diags.push(d.clone());
+    }
+    for d in &outcome_b.diags {
+        let mut d = d.clone();
+        for l in &mut d.labels {
+            l.file = map_b(l.file);
+        }
+        diags.push(d);
+    }
+    let failed = matches!(outcome_a.ending, Ending::Error) || matches!(outcome_b.ending, Ending::Error);
+    let limited = limit_seen
+        || matches!(outcome_a.ending, Ending::Limit { .. })
+        || matches!(outcome_b.ending, Ending::Limit { .. });
+    let mut diff = String::new();
+    let verdict = if failed {
+        Verdict::Failed
+    } else if let (Some(dv), false) = (&div, limited) {
+        let shown = |e: &Option<(Event, Origin)>| e.as_ref().map_or("<end of trace>".to_string(), |x| text_line(&x.0));
+        let (ta, tb) = (shown(&dv.a), shown(&dv.b));
+        let mut d = Diagnostic::error(
+            "NC500",
+            format!("the programs diverge at trace event {}: `{ta}` vs `{tb}`", dv.index + 1),
+        );
+        if let Some((_, o)) = &dv.a {
+            d = d.primary(o.file, o.span, format!("first program: {ta}"));
+        }
+        if let Some((_, o)) = &dv.b {
+            let label = format!("second program: {tb}");
+            d = if dv.a.is_some() {
+                d.secondary(map_b(o.file), o.span, label)
+            } else {
+                d.primary(map_b(o.file), o.span, label)
+            };
+        }
+        d = d
+            .note(format!("{} events agreed before this one", dv.index))
+            .hint("compare the two blocks labelled above; the diff below shows the traces around the divergence");
+        diags.push(d);
+        let mut old: Vec<String> = before_a.into_iter().collect();
+        old.push(ta);
+        old.extend(after_a);
+        let mut new: Vec<String> = before_b.into_iter().collect();
+        new.push(tb);
+        new.extend(after_b);
+        let old = old.join("\n") + "\n";
+        let new = new.join("\n") + "\n";
+        let name_a = merged.get(0).name.clone();
+        let name_b = if merged.len() > 1 { merged.get(1).name.clone() } else { "b".into() };
+        diff = similar::TextDiff::from_lines(&old, &new)
+            .unified_diff()
+            .context_radius(CONTEXT)
+            .header(&name_a, &name_b)
+            .to_string();
+        Verdict::Diverged { index: dv.index }
+    } else if limited {
+        let reason = match (&outcome_a.ending, &outcome_b.ending) {
+            (Ending::Limit { reason }, _) | (_, Ending::Limit { reason }) => reason.clone(),
+            _ => "a run stopped at its limit".into(),
+        };
+        diags.push(
+            Diagnostic::warning("NC501", format!("inconclusive: {reason}"))
+                .note("a run that stops at a limit proves nothing; the programs are not reported equal")
+                .hint("raise --max-steps, or give inputs that make the loops finish"),
+        );
+        Verdict::Inconclusive { reason }
+    } else {
+        Verdict::Equivalent { events: index }
+    };
+    CheckReport { verdict, db: merged, diags, diff, outcome_a, outcome_b }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dialect::Dialect;
+    use crate::eval::test_ir::*;
+    use crate::eval::NoCallees;
+    use crate::ir::{BinOp, CmpOp, ProgName, Tolerance, VarKind};
+
+    fn side(unit: Unit) -> Side {
+        Side { unit, callees: Box::new(NoCallees), run: RunOptions::default() }
+    }
+    fn db2() -> SourceDb {
+        let mut db = SourceDb::new();
+        db.add("a.nc", "x\n".repeat(50));
+        db.add("b.mpf", "y\n".repeat(50));
+        db
+    }
+    /// FANUC: #1 = 0; WHILE [#1 LT 5] DO1; #1 = #1 + 1; G1 X#1 F100.; END1; M30
+    fn fanuc_loop(step: f64) -> Unit {
+        let mut u = unit(
+            Dialect::Fanuc,
+            vec![program(
+                Some(ProgName::Number(1)),
+                vec![
+                    s(vec![assign(VarKind::Hash(1), p(0.0))]),
+                    do_(
+                        Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(5.0))),
+                        vec![
+                            s(vec![assign(VarKind::Hash(1), bin(BinOp::Add, hash(1), p(step)))]),
+                            s(vec![word("G", n(1.0)), word("X", hash(1)), word("F", p(100.0))]),
+                        ],
+                    ),
+                    s(vec![end()]),
+                ],
+            )],
+        );
+        u.file = 0;
+        u
+    }
+    /// Siemens: R1=0; WHILE R1<5; R1=R1+1; G1 X=R1 F100; ENDWHILE; M30
+    fn siemens_loop() -> Unit {
+        let mut u = unit(
+            Dialect::Sinumerik,
+            vec![program(
+                None,
+                vec![
+                    s(vec![assign(VarKind::R(1), p(0.0))]),
+                    while_(
+                        cmp(CmpOp::Lt, Tolerance::Relative, r(1), p(5.0)),
+                        vec![
+                            s(vec![assign(VarKind::R(1), bin(BinOp::Add, r(1), p(1.0)))]),
+                            s(vec![word("G", n(1.0)), word("X", r(1)), word("F", p(100.0))]),
+                        ],
+                    ),
+                    s(vec![end()]),
+                ],
+            )],
+        );
+        u.file = 1;
+        u
+    }
+
+    #[test]
+    fn equal_programs_in_two_dialects_are_equivalent() {
+        let r = check(&db2(), side(fanuc_loop(1.0)), side(siemens_loop()));
+        assert_eq!(r.verdict, Verdict::Equivalent { events: 6 });
+        assert!(r.diff.is_empty());
+    }
+
+    #[test]
+    fn an_altered_program_diverges_at_the_right_event() {
+        let r = check(&db2(), side(fanuc_loop(2.0)), side(siemens_loop()));
+        // Steps of 2 move to X=2 first where the Siemens loop moves to X=1.
+        assert_eq!(r.verdict, Verdict::Diverged { index: 0 });
+        let d = r.diags.iter().find(|d| d.code == "NC500").expect("divergence diagnostic");
+        assert!(d.message.contains("`move linear X=2 f=100` vs `move linear X=1 f=100`"), "{}", d.message);
+        assert_eq!(d.labels.len(), 2);
+        assert_eq!((d.labels[0].file, d.labels[1].file), (0, 1));
+        assert!(r.diff.contains("-move linear X=6 f=100"), "{}", r.diff);
+        assert!(r.diff.contains("+move linear X=1 f=100"), "{}", r.diff);
+    }
+
+    #[test]
+    fn a_limit_is_inconclusive_never_equal() {
+        let mut a = side(fanuc_loop(1.0));
+        a.run.max_steps = 5;
+        let mut b = side(siemens_loop());
+        b.run.max_steps = 5;
+        let r = check(&db2(), a, b);
+        assert!(matches!(r.verdict, Verdict::Inconclusive { .. }), "{:?}", r.verdict);
+    }
+
+    #[test]
+    fn runtime_alarms_compare_by_class() {
+        assert!(same_event(
+            &Event::Alarm { number: 112, message: "x".into() },
+            &Event::Alarm { number: 14051, message: "y".into() }
+        ));
+        assert!(!same_event(
+            &Event::Alarm { number: 112, message: "x".into() },
+            &Event::Alarm { number: 14080, message: "x".into() }
+        ));
+        assert!(same_event(&Event::End { code: "M99", steps: 3 }, &Event::End { code: "RET", steps: 9 }));
+    }
+}

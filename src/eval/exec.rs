@@ -1,0 +1,949 @@
+//! The interpreter: runs flattened code frame by frame, one block at a time, through the
+//! one choke point that counts steps and checks limits.
+
+use super::calls::{CalleeName, ModalCall};
+use super::expr::{self, Cx, Env};
+use super::fault::{AlarmNumbers, Fault};
+use super::flow::{Code, Key, Op};
+use super::machine::{AbsInc, Machine, WordVal, WV};
+use super::trace::{Event, Origin, TraceSink};
+use super::value::{round_half_away, Value};
+use super::vars::{flat_index, Place, Slot, Vars};
+use super::{CalleeSource, Ending, Input, RunOptions};
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, Semantics};
+use crate::ir::{Block, EndCode, Expr, ExprKind, Goto, Item, ItemKind, Search, Target, VarKind, VarRef, WordValue};
+use crate::span::{FileId, SourceDb, Span};
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    Main,
+    /// FANUC G65/G66: own local level.
+    Macro,
+    /// FANUC M98: shares the caller's locals.
+    Sub,
+    /// Siemens subprogram.
+    Proc,
+}
+
+/// A section repetition in progress (Siemens `REPEAT`).
+#[derive(Clone, Debug)]
+pub struct Rep {
+    pub restart: usize,
+    pub end: usize,
+    pub ret: usize,
+    pub left: u64,
+}
+
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub code: usize,
+    pub pc: usize,
+    pub level: usize,
+    pub sframe: usize,
+    pub kind: FrameKind,
+    pub repeats_left: u64,
+    pub call_span: Span,
+    pub reps: Vec<Rep>,
+    /// This frame runs a modal (G66/MCALL) call: moves inside it do not trigger it.
+    pub modal: bool,
+}
+
+/// What a block asks the loop to do next.
+pub enum Flow {
+    Next,
+    Goto(usize),
+    /// A frame was pushed or popped: continue with the new top frame.
+    Switched,
+    Stop(Ending),
+}
+
+pub struct Interp<'a> {
+    pub sem: Semantics,
+    pub fanuc: bool,
+    pub dialect: Dialect,
+    pub alarms: AlarmNumbers,
+    pub codes: Vec<Rc<Code>>,
+    /// Program number / name → code index.
+    pub by_number: HashMap<u32, usize>,
+    pub by_name: HashMap<String, usize>,
+    /// Formal parameters per code index.
+    pub params: Vec<Vec<crate::ir::Param>>,
+    pub db: &'a mut SourceDb,
+    pub callees: &'a mut dyn CalleeSource,
+    pub sink: &'a mut dyn TraceSink,
+    pub vars: Vars,
+    pub m: Machine,
+    pub frames: Vec<Frame>,
+    pub steps: u64,
+    pub max_steps: u64,
+    pub diags: Vec<Diagnostic>,
+    warned: HashSet<(&'static str, FileId, Span)>,
+    pending_msg: Option<(String, Origin)>,
+    pub modal_call: Option<ModalCall>,
+    pub inputs: Vec<Input>,
+    out_buf: Vec<(Event, Span)>,
+    warn_buf: Vec<super::machine::Warn>,
+    pub sys_store: HashMap<String, f64>,
+}
+
+impl<'a> Interp<'a> {
+    pub fn new(
+        dialect: Dialect,
+        opts: &RunOptions,
+        db: &'a mut SourceDb,
+        callees: &'a mut dyn CalleeSource,
+        sink: &'a mut dyn TraceSink,
+    ) -> Interp<'a> {
+        let sem = opts.semantics.clone().unwrap_or_else(|| Semantics::default_for(dialect));
+        let fanuc = dialect == Dialect::Fanuc;
+        let alarms = if fanuc { AlarmNumbers::FANUC } else { AlarmNumbers::SINUMERIK };
+        let scaling = sem.increment_scaling && !sem.calculator_input;
+        let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
+        m.incr_travels_offset = sem.incremental_travels_offset;
+        let r_count = sem.r_param_count as usize;
+        Interp {
+            fanuc,
+            dialect,
+            alarms,
+            codes: Vec::new(),
+            by_number: HashMap::new(),
+            by_name: HashMap::new(),
+            params: Vec::new(),
+            db,
+            callees,
+            sink,
+            vars: Vars::new(r_count),
+            m,
+            frames: Vec::new(),
+            steps: 0,
+            max_steps: opts.max_steps,
+            diags: Vec::new(),
+            warned: HashSet::new(),
+            pending_msg: None,
+            modal_call: None,
+            inputs: opts.inputs.clone(),
+            out_buf: Vec::new(),
+            warn_buf: Vec::new(),
+            sys_store: HashMap::new(),
+            sem,
+        }
+    }
+
+    pub fn file(&self) -> FileId {
+        self.frames.last().map_or(0, |f| self.codes[f.code].file)
+    }
+
+    pub fn cx(&self, in_address: bool) -> Cx {
+        Cx {
+            file: self.file(),
+            fanuc: self.fanuc,
+            nat: self.sem.nat,
+            rel_tol: self.sem.cmp_tolerance,
+            alarms: if self.fanuc { &AlarmNumbers::FANUC } else { &AlarmNumbers::SINUMERIK },
+            in_address,
+            increment: if self.m.inch { self.sem.least_increment_mm / 10.0 } else { self.sem.least_increment_mm },
+        }
+    }
+
+    /// A warning, once per place.
+    pub fn warn(&mut self, code: &'static str, msg: String, span: Span) {
+        let file = self.file();
+        if self.warned.insert((code, file, span)) {
+            self.diags.push(Diagnostic::warning(code, msg).primary(file, span, "here"));
+        }
+    }
+
+    /// Sends an event, merging a Siemens MSG with the M0/M1 right after it.
+    pub fn emit(&mut self, ev: Event, span: Span) {
+        let origin = Origin { file: self.file(), span };
+        if let Some((text, o)) = self.pending_msg.take() {
+            if let Event::Stop { optional, message: None } = ev {
+                self.sink.event(&Event::Stop { optional, message: Some(text) }, origin);
+                return;
+            }
+            self.sink.event(&Event::Message { text }, o);
+        }
+        if let Event::Message { text } = ev {
+            self.pending_msg = Some((text, origin));
+            return;
+        }
+        self.sink.event(&ev, origin);
+    }
+
+    pub fn flush(&mut self) {
+        if let Some((text, o)) = self.pending_msg.take() {
+            self.sink.event(&Event::Message { text }, o);
+        }
+    }
+
+    /// The main loop. Returns how the run ended.
+    pub fn run_loop(&mut self) -> Result<Ending, Fault> {
+        loop {
+            let Some(fr) = self.frames.last() else {
+                return Ok(Ending::End("M30"));
+            };
+            let (ci, pc) = (fr.code, fr.pc);
+            let code = Rc::clone(&self.codes[ci]);
+            let Some(op) = code.ops.get(pc) else {
+                // Past the last block.
+                if self.frames.len() == 1 {
+                    let span = code.ops.last().map_or(Span::default(), Op::span);
+                    return Err(Fault::alarm(0, "end of the main program reached without M30/M2/M99/RET", span));
+                }
+                let span = code.ops.last().map_or(Span::default(), Op::span);
+                self.warn("NC410", "subprogram ends without M99/M17/RET; returning to the caller".into(), span);
+                match self.do_return(None, span)? {
+                    Flow::Stop(e) => return Ok(e),
+                    _ => continue,
+                }
+            };
+            // The choke point: every executed block passes here.
+            self.steps += 1;
+            if self.steps > self.max_steps {
+                return Err(Fault::Limit {
+                    reason: format!("step limit of {} blocks reached", self.max_steps),
+                    span: op.span(),
+                });
+            }
+            if self.sink.wants_stop() {
+                return Ok(Ending::Stopped);
+            }
+            let flow = self.exec_op(&code, op, pc)?;
+            if matches!(op, Op::Block(_)) && self.sink.wants_blocks() {
+                let origin = Origin { file: code.file, span: op.span() };
+                let pos = self.m.trace_pos();
+                self.sink.block_done(origin, &pos);
+            }
+            match flow {
+                Flow::Next => {
+                    let fr = self.frames.last_mut().ok_or_else(internal)?;
+                    // Section repetition ends: a finished repetition continues after
+                    // its REPEAT block, which may itself end an enclosing section.
+                    let mut done = pc;
+                    loop {
+                        fr.pc = done + 1;
+                        match fr.reps.last_mut() {
+                            Some(rep) if rep.end == done => {
+                                if rep.left > 0 {
+                                    rep.left -= 1;
+                                    fr.pc = rep.restart;
+                                    break;
+                                }
+                                done = rep.ret - 1;
+                                fr.reps.pop();
+                            }
+                            _ => break,
+                        }
+                    }
+                }
+                Flow::Goto(t) => {
+                    let fr = self.frames.last_mut().ok_or_else(internal)?;
+                    fr.pc = t;
+                }
+                Flow::Switched => {}
+                Flow::Stop(e) => return Ok(e),
+            }
+        }
+    }
+
+    fn exec_op(&mut self, code: &Rc<Code>, op: &Op, pc: usize) -> Result<Flow, Fault> {
+        match op {
+            Op::Block(b) => self.exec_block(code, b, pc),
+            Op::Nop(_) => Ok(Flow::Next),
+            Op::Test { cond, target, .. } => {
+                let cx = self.cx(false);
+                let v = expr::eval(self, cond, &cx)?;
+                Ok(if v.truthy() { Flow::Next } else { Flow::Goto(*target) })
+            }
+            Op::Jump { target, .. } => Ok(Flow::Goto(*target)),
+            Op::Until { cond, target, .. } => {
+                let cx = self.cx(false);
+                let v = expr::eval(self, cond, &cx)?;
+                Ok(if v.truthy() { Flow::Next } else { Flow::Goto(*target) })
+            }
+            Op::ForHead { var, from, to, exit, .. } => {
+                let cx = self.cx(false);
+                let v = expr::eval(self, from, &cx)?;
+                self.write_var(var, v)?;
+                if self.for_continues(var, to)? {
+                    Ok(Flow::Next)
+                } else {
+                    Ok(Flow::Goto(*exit))
+                }
+            }
+            Op::ForEnd { var, to, body, .. } => {
+                let cx = self.cx(false);
+                let cur = expr::eval_num(self, &var_expr(var), &cx)?;
+                self.write_var(var, Value::Num(cur + 1.0))?;
+                if self.for_continues(var, to)? {
+                    Ok(Flow::Goto(*body))
+                } else {
+                    Ok(Flow::Next)
+                }
+            }
+        }
+    }
+
+    fn for_continues(&mut self, var: &VarRef, to: &Expr) -> Result<bool, Fault> {
+        let cx = self.cx(false);
+        let cur = expr::eval(self, &var_expr(var), &cx)?;
+        let end = expr::eval(self, to, &cx)?;
+        Ok(expr::compare(crate::ir::CmpOp::Le, crate::ir::Tolerance::Relative, &cur, &end, &cx))
+    }
+
+    fn exec_block(&mut self, code: &Rc<Code>, b: &Block, pc: usize) -> Result<Flow, Fault> {
+        let mut words: Vec<WordVal> = Vec::new();
+        let mut stop_message: Option<String> = None;
+        let mut control: Vec<&Item> = Vec::new();
+        if let Some(n) = &b.meta.number {
+            self.m.last_n = f64::from(n.value);
+        }
+        for item in &b.items {
+            match &item.kind {
+                ItemKind::Word(w) => {
+                    if let Some(wv) = self.eval_word(w)? {
+                        words.push(wv);
+                    }
+                }
+                ItemKind::StopMessage { text } => stop_message = Some(text.clone().unwrap_or_default()),
+                // SUPA: suppress the frames for this block, like G53.
+                ItemKind::Instruction { name } if name == "SUPA" || name == "G153" => words.push(WordVal {
+                    addr: std::borrow::Cow::Borrowed("G"),
+                    val: WV::Num(53.0),
+                    mode: AbsInc::Plain,
+                    bare: false,
+                    span: item.span,
+                }),
+                ItemKind::Goto(_)
+                | ItemKind::Case(_)
+                | ItemKind::Call(_)
+                | ItemKind::Return { .. }
+                | ItemKind::End { .. }
+                | ItemKind::RepeatSection(_) => control.push(item),
+                ItemKind::IfThen { cond, then } => {
+                    let cx = self.cx(false);
+                    if expr::eval(self, cond, &cx)?.truthy() {
+                        match &then.kind {
+                            ItemKind::Goto(_) | ItemKind::Call(_) | ItemKind::Return { .. } => control.push(then),
+                            _ => self.exec_simple(then, &mut stop_message)?,
+                        }
+                    }
+                }
+                _ => self.exec_simple(item, &mut stop_message)?,
+            }
+        }
+        let has_stop = stop_message.is_some();
+        let mut eff = super::machine::BlockEffect::default();
+        if !words.is_empty() || has_stop {
+            let mut out = std::mem::take(&mut self.out_buf);
+            let mut warns = std::mem::take(&mut self.warn_buf);
+            let r = self.m.apply(&words, stop_message, &mut out, &mut warns);
+            for (code_, msg, span) in warns.drain(..) {
+                self.warn(code_, msg, span);
+            }
+            for (ev, span) in out.drain(..) {
+                self.emit(ev, span);
+            }
+            self.out_buf = out;
+            self.warn_buf = warns;
+            eff = r.map_err(|f| self.fix_file(f))?;
+        }
+        for item in control {
+            let flow = self.exec_control(code, item, pc)?;
+            if !matches!(flow, Flow::Next) {
+                return Ok(flow);
+            }
+        }
+        if let Some(code_) = eff.end {
+            return Ok(Flow::Stop(self.end(code_, b.meta.span)));
+        }
+        if eff.ret {
+            return self.do_return(None, b.meta.span);
+        }
+        if eff.moved {
+            if let Some(mc) = self.modal_call.clone() {
+                let in_modal = self.frames.last().is_some_and(|f| f.modal);
+                if !in_modal && mc.depth == self.frames.len() {
+                    return self.modal_trigger(&mc, pc, b.meta.span);
+                }
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    /// Machine faults carry no file; give them the current one.
+    pub fn fix_file(&self, f: Fault) -> Fault {
+        match f {
+            Fault::Error(mut d) => {
+                let file = self.file();
+                for l in &mut d.labels {
+                    if l.file == usize::MAX {
+                        l.file = file;
+                    }
+                }
+                Fault::Error(d)
+            }
+            other => other,
+        }
+    }
+
+    pub fn end(&mut self, code: &'static str, span: Span) -> Ending {
+        let steps = self.steps;
+        self.emit(Event::End { code, steps }, span);
+        Ending::End(code)
+    }
+
+    fn exec_simple(&mut self, item: &Item, stop_message: &mut Option<String>) -> Result<(), Fault> {
+        match &item.kind {
+            ItemKind::Assign { target, value } => {
+                let cx = self.cx(false);
+                let v = expr::eval(self, value, &cx)?;
+                self.write_var(target, v)
+            }
+            ItemKind::Def(def) => self.define(def),
+            ItemKind::Alarm { style, number, text } => {
+                let cx = self.cx(false);
+                let n = round_half_away(expr::eval_num(self, number, &cx)?) as i64;
+                let number = match style {
+                    crate::ir::AlarmStyle::FanucMacro => 3000 + n,
+                    crate::ir::AlarmStyle::Setal => n,
+                };
+                Err(Fault::alarm(number, text.clone().unwrap_or_default(), item.span))
+            }
+            ItemKind::StopMessage { text } => {
+                *stop_message = Some(text.clone().unwrap_or_default());
+                Ok(())
+            }
+            ItemKind::Message { text } => {
+                if let Some(e) = text {
+                    let cx = self.cx(false);
+                    let v = expr::eval(self, e, &cx)?;
+                    let t = match v {
+                        Value::Str(s) => s,
+                        Value::Num(x) => super::value::fmt_num(x),
+                        Value::Vacant => String::new(),
+                    };
+                    self.emit(Event::Message { text: t }, item.span);
+                }
+                Ok(())
+            }
+            ItemKind::Stopre => Ok(()),
+            ItemKind::Instruction { name } => match name.as_str() {
+                "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
+                    Diagnostic::error(
+                        "NC403",
+                        format!("{name} (circle/spline motion) is not modelled by the evaluator"),
+                    )
+                    .primary(self.file(), item.span, "here")
+                    .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
+                )),
+                _ => {
+                    self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
+                    Ok(())
+                }
+            },
+            ItemKind::ModalCallOff => {
+                self.modal_call = None;
+                Ok(())
+            }
+            ItemKind::ParamWrite(_) => {
+                self.warn("NC405", "parameter write (G10 L50) has no effect on the trace".into(), item.span);
+                Ok(())
+            }
+            ItemKind::Frame { op, words } => {
+                let mut ws = Vec::new();
+                for w in words {
+                    if let Some(v) = self.eval_word(w)? {
+                        ws.push(v);
+                    }
+                }
+                let r = self.m.frame_op(op, &ws, item.span);
+                r.map_err(|f| self.fix_file(f))
+            }
+            ItemKind::IfThen { .. } | ItemKind::Word(_) => Ok(()),
+            ItemKind::Goto(_)
+            | ItemKind::Case(_)
+            | ItemKind::Call(_)
+            | ItemKind::Return { .. }
+            | ItemKind::End { .. }
+            | ItemKind::RepeatSection(_) => Ok(()),
+        }
+    }
+
+    fn exec_control(&mut self, code: &Rc<Code>, item: &Item, pc: usize) -> Result<Flow, Fault> {
+        match &item.kind {
+            ItemKind::Goto(g) => self.goto(code, g, pc, item.span),
+            ItemKind::Case(c) => {
+                let cx = self.cx(false);
+                let sel = expr::eval(self, &c.selector, &cx)?;
+                for arm in &c.arms {
+                    let v = expr::eval(self, &arm.value, &cx)?;
+                    if expr::compare(crate::ir::CmpOp::Eq, crate::ir::Tolerance::Relative, &sel, &v, &cx) {
+                        return self.goto(code, &arm.goto, pc, item.span);
+                    }
+                }
+                match &c.default {
+                    Some(g) => self.goto(code, g, pc, item.span),
+                    None => Ok(Flow::Next),
+                }
+            }
+            ItemKind::Call(call) => self.call(call, pc, item.span),
+            ItemKind::Return { to } => self.do_return(to.as_ref(), item.span),
+            ItemKind::End { code: c } => {
+                let name = match c {
+                    EndCode::M30 => "M30",
+                    EndCode::M2 => "M2",
+                };
+                if !self.fanuc && self.frames.len() > 1 {
+                    // Siemens M2/M30 in a subprogram end the subprogram (like M17).
+                    return self.do_return(None, item.span);
+                }
+                Ok(Flow::Stop(self.end(name, item.span)))
+            }
+            ItemKind::RepeatSection(rs) => {
+                let crate::ir::RepeatSection { start, end, count, single } = &**rs;
+                let n = match count {
+                    Some(e) => {
+                        let cx = self.cx(false);
+                        round_half_away(expr::eval_num(self, e, &cx)?).max(0.0) as u64
+                    }
+                    None => 1,
+                };
+                let not_found = |name: &str| {
+                    Fault::alarm(
+                        self.alarms.no_target,
+                        format!("REPEAT: label {name} not found before this block"),
+                        item.span,
+                    )
+                };
+                let s = code.find_label_back(pc, &start.name).ok_or_else(|| not_found(&start.name))?;
+                let e = if *single {
+                    s
+                } else if let Some(l) = end {
+                    code.find_label_back(pc, &l.name).ok_or_else(|| not_found(&l.name))?
+                } else {
+                    // The section from the label to the block before REPEAT, which has
+                    // just run once: repeat it `n` more times.
+                    if pc == 0 || s >= pc {
+                        return Ok(Flow::Next);
+                    }
+                    pc - 1
+                };
+                if n == 0 || e < s {
+                    return Ok(Flow::Next);
+                }
+                let left = n - 1;
+                let fr = self.frames.last_mut().ok_or_else(internal)?;
+                fr.reps.push(Rep { restart: s, end: e, ret: pc + 1, left });
+                Ok(Flow::Goto(s))
+            }
+            _ => Ok(Flow::Next),
+        }
+    }
+
+    fn goto(&mut self, code: &Rc<Code>, g: &Goto, pc: usize, span: Span) -> Result<Flow, Fault> {
+        if let Some(c) = &g.cond {
+            let cx = self.cx(false);
+            if !expr::eval(self, c, &cx)?.truthy() {
+                return Ok(Flow::Next);
+            }
+        }
+        let (key, shown) = match &g.target {
+            Target::Number(n) => (Some(Key::Number(n.value)), format!("N{}", n.value)),
+            Target::Label(l) => (code.label_id(&l.name).map(Key::Label), l.name.clone()),
+            Target::Computed(e) => {
+                let cx = self.cx(true);
+                match expr::eval(self, e, &cx)? {
+                    Value::Str(s) => {
+                        let up = s.to_ascii_uppercase();
+                        (code.label_id(&up).map(Key::Label), up)
+                    }
+                    v => {
+                        let n = round_half_away(v.num().unwrap_or(0.0));
+                        if !(0.0..=99999.0).contains(&n) {
+                            (None, format!("N{n}"))
+                        } else {
+                            (Some(Key::Number(n as u32)), format!("N{n}"))
+                        }
+                    }
+                }
+            }
+        };
+        let dest = key.and_then(|k| code.find(pc, g.search, k));
+        match dest {
+            Some(d) => Ok(Flow::Goto(d)),
+            None if g.missing_continues => Ok(Flow::Next),
+            None => Err(Fault::alarm(
+                self.alarms.no_target,
+                format!(
+                    "jump target {shown} not found ({})",
+                    match g.search {
+                        Search::Forward => "searched forward",
+                        Search::Backward => "searched backward",
+                        Search::ForwardThenBackward => "searched forward, then backward",
+                        Search::ForwardThenWrap => "searched to the end, then from the top",
+                    }
+                ),
+                span,
+            )),
+        }
+    }
+
+    /// Evaluates a word's value. `None`: the word vanished (FANUC vacant variable).
+    pub fn eval_word(&mut self, w: &crate::ir::Word) -> Result<Option<WordVal>, Fault> {
+        let (e, mode) = match &w.value {
+            WordValue::Expr(e) => (e, AbsInc::Plain),
+            WordValue::Ac(e) => (e, AbsInc::Ac),
+            WordValue::Ic(e) => (e, AbsInc::Ic),
+        };
+        let bare = self.fanuc && is_bare_literal(e);
+        let cx = self.cx(true);
+        let v = expr::eval(self, e, &cx)?;
+        let val = match v {
+            Value::Vacant => return Ok(None),
+            Value::Num(x) => WV::Num(x),
+            Value::Str(s) => WV::Str(s),
+        };
+        let addr = match &w.addr {
+            crate::ir::Addr::Letter(b) if b.is_ascii_uppercase() => {
+                let i = (b - b'A') as usize;
+                std::borrow::Cow::Borrowed(&LETTERS[i..i + 1])
+            }
+            a => std::borrow::Cow::Owned(a.as_str().to_ascii_uppercase()),
+        };
+        Ok(Some(WordVal { addr, val, mode, bare, span: w.span }))
+    }
+
+    // ---- variables ----
+
+    fn cur_level(&self) -> usize {
+        self.frames.last().map_or(0, |f| f.level)
+    }
+
+    fn cur_sframe(&self) -> usize {
+        self.frames.last().map_or(0, |f| f.sframe)
+    }
+
+    fn index_num(&mut self, e: &Expr) -> Result<i64, Fault> {
+        let cx = self.cx(false);
+        let x = expr::eval_num(self, e, &cx)?;
+        Ok(round_half_away(x) as i64)
+    }
+
+    pub fn read_fanuc(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
+        match n {
+            0 => Ok(Value::Vacant),
+            1..=33 => {
+                let lv = self.cur_level();
+                let level = &self.vars.levels[lv];
+                let v = level.vals[n as usize];
+                if v.is_none() && level.written & (1u64 << n) == 0 {
+                    self.warn("NC404", format!("#{n} is read but was never set (it is vacant)"), span);
+                }
+                Ok(v.map_or(Value::Vacant, Value::Num))
+            }
+            100..=999 => {
+                let i = n as usize;
+                let v = self.vars.commons[i];
+                if v.is_none() && !self.vars.commons_written[i] {
+                    self.warn("NC404", format!("#{n} is read but was never set (it is vacant)"), span);
+                }
+                Ok(v.map_or(Value::Vacant, Value::Num))
+            }
+            n if n >= 1000 => self.fanuc_sys_read(n, span),
+            _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
+        }
+    }
+
+    pub fn write_fanuc(&mut self, n: i64, v: Value, span: Span) -> Result<(), Fault> {
+        let x = match v {
+            Value::Vacant => None,
+            Value::Num(x) => Some(x),
+            Value::Str(_) => return Err(Fault::alarm(self.alarms.domain, "string value", span)),
+        };
+        match n {
+            1..=33 => {
+                let lv = self.cur_level();
+                let level = &mut self.vars.levels[lv];
+                level.vals[n as usize] = x;
+                level.written |= 1u64 << n;
+                Ok(())
+            }
+            100..=999 => {
+                self.vars.commons[n as usize] = x;
+                self.vars.commons_written[n as usize] = true;
+                Ok(())
+            }
+            n if n >= 1000 => self.fanuc_sys_write(n, x, span),
+            _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
+        }
+    }
+
+    fn r_index(&mut self, n: i64, span: Span) -> Result<usize, Fault> {
+        if n < 0 || n as usize >= self.vars.r.len() {
+            return Err(Fault::alarm(
+                self.alarms.bad_index,
+                format!("R{n} does not exist (R0..R{})", self.vars.r.len().saturating_sub(1)),
+                span,
+            ));
+        }
+        Ok(n as usize)
+    }
+
+    fn read_r(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
+        let i = self.r_index(n, span)?;
+        if !self.vars.r_written[i] {
+            self.warn("NC404", format!("R{n} is read but was never set (it is 0)"), span);
+        }
+        Ok(Value::Num(self.vars.r[i]))
+    }
+
+    /// Resolves a Siemens named variable to its place (following VAR references).
+    fn place_of(&mut self, name: &str, indices: &[Expr], span: Span) -> Result<Place, Fault> {
+        let cur = self.cur_sframe();
+        let Some(fi) = self.vars.frame_of(cur, name) else {
+            return Err(Fault::error(
+                Diagnostic::error("NC412", format!("variable {name} is not defined"))
+                    .primary(self.file(), span, "used here")
+                    .hint("declare it with DEF at the start of the program"),
+            ));
+        };
+        let mut idx = Vec::with_capacity(indices.len());
+        for e in indices {
+            idx.push(self.index_num(e)?);
+        }
+        let slot = self.vars.frames[fi].get(name).cloned();
+        match slot {
+            Some(Slot::Ref(Place::Named { frame, name: n2, index: None })) => {
+                let dims = match self.vars.frames.get(frame).and_then(|f| f.get(&n2)) {
+                    Some(Slot::Own { dims, .. }) => dims.clone(),
+                    _ => vec![],
+                };
+                let flat = self.flat(&dims, &idx, name, span)?;
+                Ok(Place::Named { frame, name: n2, index: Some(flat) })
+            }
+            Some(Slot::Ref(p)) => Ok(p),
+            Some(Slot::Own { dims, .. }) => {
+                let flat = self.flat(&dims, &idx, name, span)?;
+                Ok(Place::Named { frame: fi, name: name.to_string(), index: Some(flat) })
+            }
+            None => Err(internal()),
+        }
+    }
+
+    fn flat(&self, dims: &[u32], idx: &[i64], name: &str, span: Span) -> Result<usize, Fault> {
+        if dims.is_empty() && idx.is_empty() {
+            return Ok(0);
+        }
+        flat_index(dims, idx).ok_or_else(|| {
+            Fault::alarm(self.alarms.bad_index, format!("index {idx:?} outside the array {name}{dims:?}"), span)
+        })
+    }
+
+    fn read_place(&mut self, p: &Place, span: Span) -> Result<Value, Fault> {
+        match p {
+            Place::R(i) => self.read_r(*i as i64, span),
+            Place::Named { frame, name, index } => match self.vars.frames.get(*frame).and_then(|f| f.get(name)) {
+                Some(Slot::Own { data, .. }) => data.get(index.unwrap_or(0)).cloned().ok_or_else(internal),
+                _ => Err(internal()),
+            },
+        }
+    }
+
+    fn write_place(&mut self, p: &Place, v: Value, span: Span) -> Result<(), Fault> {
+        match p {
+            Place::R(i) => {
+                let i = self.r_index(*i as i64, span)?;
+                let x =
+                    v.num().ok_or_else(|| Fault::alarm(self.alarms.domain, "a string cannot be stored in R", span))?;
+                self.vars.r[i] = x;
+                self.vars.r_written[i] = true;
+                Ok(())
+            }
+            Place::Named { frame, name, index } => {
+                let alarms = self.alarms;
+                match self.vars.frames.get_mut(*frame).and_then(|f| f.get_mut(name)) {
+                    Some(Slot::Own { ty, data, .. }) => {
+                        let conv = super::value::convert_for(*ty, v).map_err(|e| match e {
+                            super::value::ConvError::Range(x) => {
+                                Fault::alarm(alarms.overflow, format!("value {x} out of range for {name}"), span)
+                            }
+                            super::value::ConvError::Type => {
+                                Fault::alarm(alarms.domain, format!("wrong type of value for {name}"), span)
+                            }
+                        })?;
+                        let slot = data.get_mut(index.unwrap_or(0)).ok_or_else(internal)?;
+                        *slot = conv;
+                        Ok(())
+                    }
+                    _ => Err(internal()),
+                }
+            }
+        }
+    }
+
+    pub fn write_var(&mut self, v: &VarRef, val: Value) -> Result<(), Fault> {
+        match &v.kind {
+            VarKind::Hash(n) => self.write_fanuc(i64::from(*n), val, v.span),
+            VarKind::HashIndirect(e) => {
+                let n = self.index_num(e)?;
+                self.write_fanuc(n, val, v.span)
+            }
+            VarKind::R(n) => self.write_place(&Place::R(*n as usize), val, v.span),
+            VarKind::RIndirect(e) => {
+                let n = self.index_num(e)?;
+                let i = self.r_index(n, v.span)?;
+                self.write_place(&Place::R(i), val, v.span)
+            }
+            VarKind::Named { name, indices } => {
+                let p = self.place_of(name, indices, v.span)?;
+                self.write_place(&p, val, v.span)
+            }
+            VarKind::System { name, indices } => self.sie_sys_write(name, indices, val, v.span),
+        }
+    }
+
+    fn define(&mut self, def: &crate::ir::Def) -> Result<(), Fault> {
+        let sf = self.cur_sframe();
+        for dv in &def.vars {
+            let len = dv.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+            if len > 1_000_000 {
+                return Err(Fault::alarm(self.alarms.bad_index, format!("array {} too large", dv.name), dv.span));
+            }
+            let zero = super::vars::zero_of(def.ty);
+            let mut data = vec![zero; len];
+            let input = if self.frames.len() == 1 {
+                self.inputs
+                    .iter()
+                    .find(|i| matches!(&i.target, super::InputTarget::Name(n) if *n == dv.name))
+                    .map(|i| i.value.clone())
+            } else {
+                None
+            };
+            let conv = |v: Value, s: &Self| {
+                super::value::convert_for(def.ty, v)
+                    .map_err(|_| Fault::alarm(s.alarms.domain, format!("bad start value for {}", dv.name), dv.span))
+            };
+            if let Some(v) = input {
+                data[0] = conv(v, self)?;
+            } else if let Some(init) = &dv.init {
+                let cx = self.cx(false);
+                match init {
+                    crate::ir::Init::Value(e) => {
+                        let v = expr::eval(self, e, &cx)?;
+                        let v = conv(v, self)?;
+                        for d in data.iter_mut() {
+                            *d = v.clone();
+                        }
+                        if len > 1 {
+                            // A scalar start value of an array sets the first element only.
+                            for d in data.iter_mut().skip(1) {
+                                *d = super::vars::zero_of(def.ty);
+                            }
+                        }
+                    }
+                    crate::ir::Init::Set(list) => {
+                        for (i, e) in list.iter().enumerate() {
+                            if let (Some(e), true) = (e, i < len) {
+                                let v = expr::eval(self, e, &cx)?;
+                                data[i] = conv(v, self)?;
+                            }
+                        }
+                    }
+                    crate::ir::Init::Rep { value, count } => {
+                        let v = expr::eval(self, value, &cx)?;
+                        let v = conv(v, self)?;
+                        let n = match count {
+                            Some(c) => (round_half_away(expr::eval_num(self, c, &cx)?).max(0.0) as usize).min(len),
+                            None => len,
+                        };
+                        for d in data.iter_mut().take(n) {
+                            *d = v.clone();
+                        }
+                    }
+                }
+            }
+            self.vars.frames[sf].insert(dv.name.clone(), Slot::Own { ty: def.ty, dims: dv.dims.clone(), data });
+        }
+        Ok(())
+    }
+
+    /// A Siemens VAR argument's place in the caller.
+    pub fn place_of_arg(&mut self, e: &Expr) -> Result<Option<Place>, Fault> {
+        let ExprKind::Var(v) = &e.kind else {
+            return Ok(None);
+        };
+        Ok(Some(match &v.kind {
+            VarKind::R(n) => Place::R(*n as usize),
+            VarKind::RIndirect(ix) => {
+                let n = self.index_num(ix)?;
+                Place::R(self.r_index(n, v.span)?)
+            }
+            VarKind::Named { name, indices } if indices.is_empty() => {
+                let cur = self.cur_sframe();
+                match self.vars.frame_of(cur, name) {
+                    Some(fi) => match self.vars.frames[fi].get(name) {
+                        Some(Slot::Ref(p)) => p.clone(),
+                        _ => Place::Named { frame: fi, name: name.clone(), index: None },
+                    },
+                    None => return Ok(None),
+                }
+            }
+            VarKind::Named { name, indices } => self.place_of(name, indices, v.span)?,
+            _ => return Ok(None),
+        }))
+    }
+
+    pub fn note_callee(&mut self, name: &CalleeName) -> String {
+        match name {
+            CalleeName::Number(n) => format!("O{n}"),
+            CalleeName::Name(s) => s.clone(),
+        }
+    }
+}
+
+impl Env for Interp<'_> {
+    fn read(&mut self, var: &VarRef, _cx: &Cx) -> Result<Value, Fault> {
+        match &var.kind {
+            VarKind::Hash(n) => self.read_fanuc(i64::from(*n), var.span),
+            VarKind::HashIndirect(e) => {
+                let n = self.index_num(e)?;
+                self.read_fanuc(n, var.span)
+            }
+            VarKind::R(n) => self.read_r(i64::from(*n), var.span),
+            VarKind::RIndirect(e) => {
+                let n = self.index_num(e)?;
+                self.read_r(n, var.span)
+            }
+            VarKind::Named { name, indices } => {
+                let p = self.place_of(name, indices, var.span)?;
+                self.read_place(&p, var.span)
+            }
+            VarKind::System { name, indices } => self.sie_sys_read(name, indices, var.span),
+        }
+    }
+}
+
+fn var_expr(v: &VarRef) -> Expr {
+    Expr::new(ExprKind::Var(Box::new(v.clone())), v.span)
+}
+
+/// A FANUC literal without a decimal point (`X10`, `X-10`): the decimal-point rule applies.
+fn is_bare_literal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Num(n) => !n.point,
+        ExprKind::Unary(crate::ir::UnOp::Neg, a) => {
+            matches!(&a.kind, ExprKind::Num(n) if !n.point)
+        }
+        _ => false,
+    }
+}
+
+const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+
+pub fn internal() -> Fault {
+    Fault::error(Diagnostic::error("NC499", "internal evaluator inconsistency (please report this program)"))
+}

@@ -1,0 +1,250 @@
+//! Flattening a program's IR tree once into linear code with jump targets, so that GOTO
+//! into and out of structures behaves like the controls' interpretive search, and the
+//! label / N tables that the searches of each [`Search`] kind walk.
+
+use crate::diag::Diagnostic;
+use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
+use crate::span::{FileId, Span};
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// Deepest structure nesting flattened (the parsers limit it far lower).
+const MAX_NESTING: u32 = 256;
+
+/// One executable step. Every op stands for one source block and counts as one step.
+#[derive(Clone, Debug)]
+pub enum Op {
+    /// An NC block.
+    Block(Block),
+    /// A structure block with nothing to do (`LOOP`, `REPEAT`, `ENDIF`, bare `DOm`).
+    Nop(Span),
+    /// `WHILE`/`IF`/`WHILE[..]DOm` head: continue when `cond` holds, else go to `target`.
+    Test { span: Span, cond: Expr, target: usize },
+    /// `ENDWHILE`, `ENDLOOP`, `ENDm`, `ELSE` (end of the then-part): go to `target`.
+    Jump { span: Span, target: usize },
+    /// `UNTIL cond`: back to `target` while `cond` is false.
+    Until { span: Span, cond: Expr, target: usize },
+    /// `FOR var = from TO to`: assign, then test `var <= to` (else go to `exit`).
+    ForHead { span: Span, var: VarRef, from: Expr, to: Expr, exit: usize },
+    /// `ENDFOR`: `var += 1`, then back to `body` while `var <= to` (`to` evaluated on
+    /// every pass: the documented choice).
+    ForEnd { span: Span, var: VarRef, to: Expr, body: usize },
+}
+
+impl Op {
+    pub fn span(&self) -> Span {
+        match self {
+            Op::Block(b) => b.meta.span,
+            Op::Nop(s) => *s,
+            Op::Test { span, .. }
+            | Op::Jump { span, .. }
+            | Op::Until { span, .. }
+            | Op::ForHead { span, .. }
+            | Op::ForEnd { span, .. } => *span,
+        }
+    }
+}
+
+/// What a jump looks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Key {
+    Number(u32),
+    /// Interned label id (see [`Code::label_id`]).
+    Label(u32),
+}
+
+/// A flattened program.
+#[derive(Debug)]
+pub struct Code {
+    pub file: FileId,
+    pub ops: Vec<Op>,
+    /// Op index → the N number and label of its block, for every op that has one.
+    marks: Vec<(usize, Option<u32>, Option<u32>)>,
+    labels: HashMap<String, u32>,
+    /// Resolved jumps: (from, search, key) → destination.
+    memo: RefCell<HashMap<(usize, u8, Key), Option<usize>>>,
+}
+
+struct Builder {
+    file: FileId,
+    ops: Vec<Op>,
+    marks: Vec<(usize, Option<u32>, Option<u32>)>,
+    labels: HashMap<String, u32>,
+}
+
+impl Builder {
+    fn mark(&mut self, meta: &BlockMeta) {
+        let at = self.ops.len();
+        let n = meta.number.as_ref().map(|n| n.value);
+        let l = meta.label.as_ref().map(|l| {
+            let next = self.labels.len() as u32;
+            *self.labels.entry(l.name.clone()).or_insert(next)
+        });
+        if n.is_some() || l.is_some() {
+            self.marks.push((at, n, l));
+        }
+    }
+
+    fn push(&mut self, meta: &BlockMeta, op: Op) -> usize {
+        self.mark(meta);
+        self.ops.push(op);
+        self.ops.len() - 1
+    }
+
+    fn stmts(&mut self, body: &[Stmt], depth: u32) -> Result<(), Diagnostic> {
+        for s in body {
+            self.stmt(s, depth)?;
+        }
+        Ok(())
+    }
+
+    fn stmt(&mut self, s: &Stmt, depth: u32) -> Result<(), Diagnostic> {
+        if depth > MAX_NESTING {
+            return Err(Diagnostic::error("NC411", "control structures nested too deeply")
+                .primary(self.file, s.span, "this structure")
+                .hint("flatten the nesting into jumps or subprograms"));
+        }
+        let d = depth + 1;
+        match &s.kind {
+            StmtKind::Block(b) => {
+                self.push(&b.meta, Op::Block(b.clone()));
+            }
+            StmtKind::If(st) => {
+                let crate::ir::IfStmt { head, cond, then_body, else_part, end } = &**st;
+                let test = self.push(head, Op::Test { span: head.span, cond: cond.clone(), target: 0 });
+                self.stmts(then_body, d)?;
+                let false_target = if let Some(e) = else_part {
+                    let jump = self.push(&e.head, Op::Jump { span: e.head.span, target: 0 });
+                    let else_start = self.ops.len();
+                    self.stmts(&e.body, d)?;
+                    let end_at = self.push(end, Op::Nop(end.span));
+                    set_target(&mut self.ops[jump], end_at);
+                    else_start
+                } else {
+                    self.push(end, Op::Nop(end.span))
+                };
+                set_target(&mut self.ops[test], false_target);
+            }
+            StmtKind::While(w) => self.test_loop(&w.head, Some(&w.cond), &w.body, &w.end, d)?,
+            StmtKind::Do(w) => self.test_loop(&w.head, w.cond.as_ref(), &w.body, &w.end, d)?,
+            StmtKind::Loop(w) => self.test_loop(&w.head, None, &w.body, &w.end, d)?,
+            StmtKind::Repeat(st) => {
+                let crate::ir::RepeatStmt { head, body, end, until } = &**st;
+                let top = self.push(head, Op::Nop(head.span));
+                self.stmts(body, d)?;
+                self.push(end, Op::Until { span: end.span, cond: until.clone(), target: top });
+            }
+            StmtKind::For(st) => {
+                let crate::ir::ForStmt { head, var, from, to, body, end } = &**st;
+                let h = self.push(
+                    head,
+                    Op::ForHead { span: head.span, var: var.clone(), from: from.clone(), to: to.clone(), exit: 0 },
+                );
+                self.stmts(body, d)?;
+                self.push(end, Op::ForEnd { span: end.span, var: var.clone(), to: to.clone(), body: h + 1 });
+                let exit = self.ops.len();
+                if let Op::ForHead { exit: e, .. } = &mut self.ops[h] {
+                    *e = exit;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn test_loop(
+        &mut self,
+        head: &BlockMeta,
+        cond: Option<&Expr>,
+        body: &[Stmt],
+        end: &BlockMeta,
+        d: u32,
+    ) -> Result<(), Diagnostic> {
+        let top = match cond {
+            Some(c) => self.push(head, Op::Test { span: head.span, cond: c.clone(), target: 0 }),
+            None => self.push(head, Op::Nop(head.span)),
+        };
+        self.stmts(body, d)?;
+        self.push(end, Op::Jump { span: end.span, target: top });
+        let exit = self.ops.len();
+        if cond.is_some() {
+            set_target(&mut self.ops[top], exit);
+        }
+        Ok(())
+    }
+}
+
+fn set_target(op: &mut Op, to: usize) {
+    match op {
+        Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. } => *target = to,
+        _ => {}
+    }
+}
+
+fn search_code(s: Search) -> u8 {
+    match s {
+        Search::Forward => 0,
+        Search::Backward => 1,
+        Search::ForwardThenBackward => 2,
+        Search::ForwardThenWrap => 3,
+    }
+}
+
+impl Code {
+    /// Flattens one program.
+    pub fn flatten(file: FileId, prog: &Program) -> Result<Code, Diagnostic> {
+        let mut b = Builder { file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
+        b.stmts(&prog.body, 0)?;
+        Ok(Code { file, ops: b.ops, marks: b.marks, labels: b.labels, memo: RefCell::new(HashMap::new()) })
+    }
+
+    /// The interned id of a label name (upper case), if the program has that label.
+    pub fn label_id(&self, name: &str) -> Option<u32> {
+        self.labels.get(name).copied()
+    }
+
+    fn matches(&self, m: &(usize, Option<u32>, Option<u32>), key: Key) -> bool {
+        match key {
+            Key::Number(n) => m.1 == Some(n),
+            Key::Label(l) => m.2 == Some(l),
+        }
+    }
+
+    /// Finds the destination of a jump from op `from`.
+    /// Forward searches start after the jumping block; backward searches start at it (a
+    /// block may jump to its own label); FANUC wraps to the top and searches up to and
+    /// including the jumping block; the first match in search order wins, which decides
+    /// duplicate numbers and labels.
+    pub fn find(&self, from: usize, search: Search, key: Key) -> Option<usize> {
+        let mk = (from, search_code(search), key);
+        if let Some(hit) = self.memo.borrow().get(&mk) {
+            return *hit;
+        }
+        // Marks are sorted by op index.
+        let split = self.marks.partition_point(|m| m.0 <= from);
+        let fwd = || self.marks[split..].iter().find(|m| self.matches(m, key));
+        let bwd = || self.marks[..split].iter().rev().find(|m| self.matches(m, key));
+        let head = || self.marks[..split].iter().find(|m| self.matches(m, key));
+        let hit = match search {
+            Search::Forward => fwd(),
+            Search::Backward => bwd(),
+            Search::ForwardThenBackward => fwd().or_else(bwd),
+            Search::ForwardThenWrap => fwd().or_else(head),
+        }
+        .map(|m| m.0);
+        self.memo.borrow_mut().insert(mk, hit);
+        hit
+    }
+
+    /// The first op, in program order, carrying sequence number `n` at or after `from`,
+    /// then from the top (FANUC `M99 Pn` into the caller).
+    pub fn find_number_from(&self, from: usize, n: u32) -> Option<usize> {
+        let split = self.marks.partition_point(|m| m.0 < from);
+        self.marks[split..].iter().chain(self.marks[..split].iter()).find(|m| m.1 == Some(n)).map(|m| m.0)
+    }
+
+    /// The op carrying `label`, searched backward from `from` (section repetition).
+    pub fn find_label_back(&self, from: usize, label: &str) -> Option<usize> {
+        let id = self.label_id(label)?;
+        self.find(from, Search::Backward, Key::Label(id))
+    }
+}

@@ -1,0 +1,103 @@
+//! Inputs set before a run: `--set R1=5`, `--set '#24=10.'`, `--set NAME=3`, and the same
+//! as header comment lines in a program: `; nctrans: set R1=5` (Siemens) or
+//! `(nctrans: set #24=10.)` (FANUC), several per line separated by spaces.
+
+use super::value::Value;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum InputTarget {
+    /// FANUC `#n`.
+    Hash(u32),
+    /// Siemens `Rn`.
+    R(u32),
+    /// A Siemens DEF variable or PROC parameter (upper case).
+    Name(String),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Input {
+    pub target: InputTarget,
+    pub value: Value,
+    /// As written, for messages.
+    pub text: String,
+}
+
+/// Parses one `TARGET=VALUE` (`#24=10.`, `R1=-2.5`, `NAME=3`, `TOOL="T1"`, `#1=#0`).
+pub fn parse_input(s: &str) -> Result<Input, String> {
+    let (lhs, rhs) = s.split_once('=').ok_or_else(|| format!("'{s}': expected TARGET=VALUE, e.g. R1=5 or #24=10."))?;
+    let (lhs, rhs) = (lhs.trim(), rhs.trim());
+    let up = lhs.to_ascii_uppercase();
+    let target = if let Some(n) = up.strip_prefix('#') {
+        InputTarget::Hash(n.parse().map_err(|_| format!("'{lhs}': bad variable number"))?)
+    } else if up.len() > 1 && up.starts_with('R') && up[1..].bytes().all(|b| b.is_ascii_digit()) {
+        InputTarget::R(up[1..].parse().map_err(|_| format!("'{lhs}': bad R number"))?)
+    } else if !up.is_empty()
+        && up.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
+        && !up.as_bytes()[0].is_ascii_digit()
+    {
+        InputTarget::Name(up)
+    } else {
+        return Err(format!("'{lhs}': expected #n, Rn or a variable name"));
+    };
+    let value = if rhs == "#0" {
+        Value::Vacant
+    } else if rhs.len() >= 2 && rhs.starts_with('"') && rhs.ends_with('"') {
+        Value::Str(rhs[1..rhs.len() - 1].to_string())
+    } else {
+        Value::Num(rhs.parse::<f64>().map_err(|_| format!("'{rhs}': expected a number"))?)
+    };
+    Ok(Input { target, value, text: s.to_string() })
+}
+
+/// Inputs written in a file's header comments: lines `; nctrans: set A=1 B=2` or
+/// `(nctrans: set #24=10.)`. Only comment lines before the first other line count.
+pub fn header_inputs(text: &str) -> Result<Vec<Input>, String> {
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('%') {
+            continue;
+        }
+        let body = if let Some(r) = t.strip_prefix(';') {
+            r
+        } else if let Some(r) = t.strip_prefix('(') {
+            r.trim_end_matches(';').trim_end().trim_end_matches(')')
+        } else if t.starts_with('O') || t.starts_with("PROC") {
+            // The program's name line may come before its header comments.
+            continue;
+        } else {
+            break;
+        };
+        let body = body.trim();
+        if let Some(rest) = body.strip_prefix("nctrans: set") {
+            for part in rest.split_whitespace() {
+                out.push(parse_input(part)?);
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_targets() {
+        assert_eq!(parse_input("R1=5").unwrap().target, InputTarget::R(1));
+        assert_eq!(parse_input("#24=10.").unwrap().value, Value::Num(10.0));
+        assert_eq!(parse_input("depth=2").unwrap().target, InputTarget::Name("DEPTH".into()));
+        assert_eq!(parse_input("#1=#0").unwrap().value, Value::Vacant);
+        assert!(parse_input("R1").is_err());
+        assert!(parse_input("R1=x").is_err());
+    }
+
+    #[test]
+    fn header_lines() {
+        let t = "%\nO1000 (X)\n(nctrans: set #24=10. #26=-5.)\nG0 X1\n(nctrans: set #1=1)\n";
+        let i = header_inputs(t).unwrap();
+        assert_eq!(i.len(), 2);
+        let t = "; nctrans: set R1=5\n; other\nR2=1\n";
+        assert_eq!(header_inputs(t).unwrap().len(), 1);
+    }
+}

@@ -1,0 +1,678 @@
+//! The machine model: modal state, units, offsets, the decimal-point rule, and turning one
+//! block's evaluated address words into trace events in the order the trace spec fixes.
+
+use super::arc;
+use super::fault::{AlarmNumbers, Fault};
+use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
+use super::value::{round_half_away, round_to};
+use crate::span::Span;
+
+/// A word after evaluation of its value.
+#[derive(Clone, Debug)]
+pub struct WordVal {
+    /// Upper-case address (`X`, `CR`, `I1`); letters borrow a static string.
+    pub addr: std::borrow::Cow<'static, str>,
+    pub val: WV,
+    pub mode: AbsInc,
+    /// FANUC: a literal written without a decimal point (the decimal-point rule applies).
+    pub bare: bool,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum WV {
+    Num(f64),
+    Str(String),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AbsInc {
+    Plain,
+    Ac,
+    Ic,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    Rapid,
+    Linear,
+    Cw,
+    Ccw,
+}
+
+/// What a block asks of the program flow after its NC words ran.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BlockEffect {
+    /// An axis moved (for modal calls).
+    pub moved: bool,
+    /// `M30`/`M2` written as a word.
+    pub end: Option<&'static str>,
+    /// `M99`/`M17` written as a word.
+    pub ret: bool,
+}
+
+/// A warning from the machine model: code, message, span.
+pub type Warn = (&'static str, String, Span);
+
+pub struct Machine {
+    pub fanuc: bool,
+    pub alarms: AlarmNumbers,
+    /// FANUC decimal-point rule active (IS-B, not calculator input).
+    pub scaling: bool,
+    /// Least increment in mm (metric); inch increment is a tenth of it in inches.
+    pub inc_mm: f64,
+    pub motion: Motion,
+    pub plane: Plane,
+    pub absolute: bool,
+    /// Lengths in inch (FANUC G20, Siemens G70/G700).
+    pub inch: bool,
+    /// Feeds in inch/min (FANUC G20, Siemens G700).
+    pub inch_feed: bool,
+    pub per_rev: bool,
+    /// Feed in mm/min (mm/rev under G95).
+    pub feed: Option<f64>,
+    pub speed: f64,
+    pub spindle: SpindleDir,
+    pub tool_sel: Option<ToolId>,
+    pub tool: Option<ToolId>,
+    pub d: f64,
+    pub h: f64,
+    pub coolant: bool,
+    /// Position in the machine frame in mm (workpiece position + active offset).
+    pub pos: [f64; 9],
+    pub seen: [bool; 9],
+    /// Offset tables: FANUC 0 = external, 1..6 = G54..G59; Siemens 0 = G500, 1.. = G54..
+    pub offsets: Vec<[f64; 9]>,
+    /// Selected offset table index (FANUC default G54 = 1; Siemens default G500 = 0).
+    pub wo: usize,
+    /// Siemens: the frame values copied at selection (writing `$P_UIFR` does not
+    /// activate them until G54.. is selected again).
+    pub frame: [f64; 9],
+    /// Siemens programmable offset (`TRANS`/`ATRANS`).
+    pub trans: [f64; 9],
+    /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
+    pub last_m: f64,
+    pub last_n: f64,
+    /// Semantics::incremental_travels_offset.
+    pub incr_travels_offset: bool,
+    /// The offset in effect when each axis last moved (for the rule above).
+    pub applied: [f64; 9],
+}
+
+impl Machine {
+    pub fn new(fanuc: bool, alarms: AlarmNumbers, scaling: bool, inc_mm: f64) -> Machine {
+        Machine {
+            fanuc,
+            alarms,
+            scaling,
+            inc_mm,
+            motion: Motion::Rapid,
+            plane: Plane::XY,
+            absolute: true,
+            inch: false,
+            inch_feed: false,
+            per_rev: false,
+            feed: None,
+            speed: 0.0,
+            spindle: SpindleDir::Stop,
+            tool_sel: None,
+            tool: None,
+            d: 0.0,
+            h: 0.0,
+            coolant: false,
+            pos: [0.0; 9],
+            seen: [false; 9],
+            offsets: vec![[0.0; 9]; 100],
+            wo: if fanuc { 1 } else { 0 },
+            frame: [0.0; 9],
+            trans: [0.0; 9],
+            last_m: 0.0,
+            last_n: 0.0,
+            incr_travels_offset: !fanuc,
+            applied: [0.0; 9],
+        }
+    }
+
+    /// The offset added to a workpiece position to get the machine position.
+    pub fn active_offset(&self, axis: usize) -> f64 {
+        if self.fanuc {
+            // FANUC: external + selected table, live (a `#5221=` write acts at once).
+            self.offsets[0][axis] + self.offsets[self.wo][axis]
+        } else {
+            self.frame[axis] + self.trans[axis]
+        }
+    }
+
+    /// Workpiece-frame position of every axis (for the trace and position variables).
+    pub fn work_pos(&self, axis: usize) -> f64 {
+        self.pos[axis] - self.active_offset(axis)
+    }
+
+    /// The trace position: the machine-frame position of every axis positioned so far
+    /// (workpiece zero + active work offset, docs/semantics.md).
+    pub fn trace_pos(&self) -> Axes {
+        let mut a = [None; 9];
+        for (i, slot) in a.iter_mut().enumerate() {
+            if self.seen[i] {
+                *slot = Some(clean(self.pos[i]));
+            }
+        }
+        a
+    }
+
+    /// Selects offset table `n` (Siemens copies the frame now).
+    pub fn select_offset(&mut self, n: usize) {
+        self.wo = n.min(self.offsets.len() - 1);
+        if !self.fanuc {
+            self.frame = self.offsets[self.wo];
+        }
+    }
+
+    fn inc_in_unit(&self) -> f64 {
+        if self.inch {
+            self.inc_mm / 10.0
+        } else {
+            self.inc_mm
+        }
+    }
+
+    /// A length word's value in mm: decimal-point rule, rounding to the increment, unit.
+    fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
+        let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
+        let v = if w.bare && self.scaling { x * inc } else { x };
+        let v = round_to(v, inc);
+        if self.inch && !rotary {
+            v * 25.4
+        } else {
+            v
+        }
+    }
+
+    fn feed_value(&self, x: f64) -> f64 {
+        if self.inch_feed {
+            x * 25.4
+        } else {
+            x
+        }
+    }
+
+    /// Runs one block's NC words. Events go to `out` in the trace's in-block order.
+    /// `stop_message`: a FANUC `#3006` stop of this block.
+    pub fn apply(
+        &mut self,
+        words: &[WordVal],
+        stop_message: Option<String>,
+        out: &mut Vec<(Event, Span)>,
+        warns: &mut Vec<Warn>,
+    ) -> Result<BlockEffect, Fault> {
+        let mut eff = BlockEffect::default();
+        let mut gs: Vec<(f64, Span)> = Vec::new();
+        let mut ms: Vec<(f64, Span)> = Vec::new();
+        let mut axes: [Option<(&WordVal, f64)>; 9] = [None; 9];
+        let mut ijk: [Option<(&WordVal, f64)>; 3] = [None; 3];
+        let (mut r, mut ar, mut f, mut s, mut p, mut l) = (None, None, None, None, None, None);
+        let mut t: Option<(ToolId, Span)> = None;
+        let mut block_span = Span::default();
+        for w in words {
+            block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
+            let num = match &w.val {
+                WV::Num(x) => Some(*x),
+                WV::Str(_) => None,
+            };
+            let a: &str = &w.addr;
+            match (a, num) {
+                ("T", _) => {
+                    t = Some((
+                        match &w.val {
+                            WV::Str(s) => ToolId::Name(s.clone()),
+                            WV::Num(x) => ToolId::Number(round_half_away(*x)),
+                        },
+                        w.span,
+                    ))
+                }
+                (_, None) => return Err(Fault::alarm(0, format!("address {a} needs a number, not a string"), w.span)),
+                ("G", Some(x)) => gs.push((x, w.span)),
+                ("M", Some(x)) => ms.push((round_half_away(x), w.span)),
+                ("I", Some(x)) => ijk[0] = Some((w, x)),
+                ("J", Some(x)) => ijk[1] = Some((w, x)),
+                ("K", Some(x)) => ijk[2] = Some((w, x)),
+                ("R", Some(x)) if self.fanuc => r = Some((w, x)),
+                ("CR", Some(x)) => r = Some((w, x)),
+                ("AR", Some(x)) => ar = Some(x),
+                ("F", Some(x)) => f = Some((w, x)),
+                ("S", Some(x)) => s = Some((w, x)),
+                ("P", Some(x)) => p = Some((w, x)),
+                ("L", Some(x)) => l = Some(x),
+                ("D", Some(x)) => self.d = round_half_away(x),
+                ("H", Some(x)) => self.h = round_half_away(x),
+                (a, Some(x)) if a.len() == 1 && axis_index(a.as_bytes()[0]).is_some() => {
+                    if let Some(i) = axis_index(a.as_bytes()[0]) {
+                        axes[i] = Some((w, x));
+                    }
+                }
+                (
+                    "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
+                    | "K1",
+                    _,
+                ) => return Err(unsupported(&format!("{a} (circle/spline/polar motion) is not modelled"), w.span)),
+                (a, _) => {
+                    warns.push(("NC405", format!("address {a} has no effect on the trace and is ignored"), w.span))
+                }
+            }
+        }
+
+        // G codes: modal state first; one-shot meanings remembered.
+        let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, false);
+        for &(g, span) in &gs {
+            let gi = (g * 10.0).round() as i64;
+            match gi {
+                0 => self.motion = Motion::Rapid,
+                10 => self.motion = Motion::Linear,
+                20 => self.motion = Motion::Cw,
+                30 => self.motion = Motion::Ccw,
+                40 => dwell = true,
+                100 => g10 = true,
+                110 => {}
+                170 => self.plane = Plane::XY,
+                180 => self.plane = Plane::ZX,
+                190 => self.plane = Plane::YZ,
+                200 if self.fanuc => {
+                    self.inch = true;
+                    self.inch_feed = true;
+                }
+                210 if self.fanuc => {
+                    self.inch = false;
+                    self.inch_feed = false;
+                }
+                700 if !self.fanuc => self.inch = true,
+                710 if !self.fanuc => self.inch = false,
+                7000 if !self.fanuc => {
+                    self.inch = true;
+                    self.inch_feed = true;
+                }
+                7100 if !self.fanuc => {
+                    self.inch = false;
+                    self.inch_feed = false;
+                }
+                310 if self.fanuc => probe = true,
+                530 | 1530 => g53 = true,
+                540..=590 if gi % 10 == 0 && self.fanuc => self.select_offset((gi / 10 - 53) as usize),
+                540..=570 if gi % 10 == 0 => self.select_offset((gi / 10 - 53) as usize),
+                5000 if !self.fanuc => self.select_offset(0),
+                5050..=5990 if !self.fanuc && gi % 10 == 0 => self.select_offset((gi / 10 - 500) as usize),
+                900 => self.absolute = true,
+                910 => self.absolute = false,
+                940 => self.per_rev = false,
+                950 => self.per_rev = true,
+                // Path control, compensation (the trace holds programmed positions), cycle
+                // cancel, exact stop: no effect on the trace.
+                90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
+                | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
+                    warns.push(("NC405", format!("G{} has no effect on the trace", fmt_g(g)), span))
+                }
+                280 | 290 | 300 | 920 | 520 | 680 | 160 => {
+                    return Err(unsupported(
+                        &format!("G{} (reference return / coordinate setting) is not modelled", fmt_g(g)),
+                        span,
+                    ))
+                }
+                730 | 740 | 760 | 810..=890 if self.fanuc => {
+                    return Err(unsupported(&format!("canned cycle G{} is not modelled", fmt_g(g)), span))
+                }
+                _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
+            }
+        }
+
+        if g10 {
+            self.g10(l, p, &axes, warns, block_span)?;
+            return Ok(eff);
+        }
+
+        // F, S, T.
+        // Siemens `G4 F..` is the dwell time, not a feed.
+        if let Some((_, x)) = f {
+            if !dwell {
+                self.feed = Some(self.feed_value(x));
+            }
+        }
+        let mut speed_changed = false;
+        if let Some((_, x)) = s {
+            if !dwell || self.fanuc {
+                let x = if self.fanuc { round_half_away(x) } else { x };
+                speed_changed = x != self.speed;
+                self.speed = x;
+            }
+        }
+        if let Some((id, _)) = t {
+            self.tool_sel = Some(id);
+        }
+
+        // 1. tool change
+        for &(m, span) in &ms {
+            if m == 6.0 {
+                match &self.tool_sel {
+                    Some(id) => {
+                        self.tool = Some(id.clone());
+                        out.push((Event::Tool { tool: id.clone() }, span));
+                    }
+                    None => warns.push(("NC405", "M6 without a selected tool".into(), span)),
+                }
+            }
+        }
+        // 2. spindle start or S change
+        let mut spindle_cmd = false;
+        for &(m, span) in &ms {
+            let dir = match m as i64 {
+                3 => SpindleDir::Cw,
+                4 => SpindleDir::Ccw,
+                _ => continue,
+            };
+            spindle_cmd = true;
+            self.spindle = dir;
+            out.push((Event::Spindle { rpm: self.speed, dir }, span));
+        }
+        let has_m5 = ms.iter().any(|m| m.0 == 5.0);
+        if !spindle_cmd && !has_m5 && speed_changed && self.spindle != SpindleDir::Stop {
+            out.push((Event::Spindle { rpm: self.speed, dir: self.spindle }, s.map_or(block_span, |w| w.0.span)));
+        }
+        // 3. coolant on
+        for &(m, span) in &ms {
+            if m == 7.0 || m == 8.0 {
+                self.coolant = true;
+                out.push((Event::Coolant { on: true }, span));
+            }
+        }
+        // 4. motion or dwell
+        if dwell {
+            let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
+            out.push((Event::Dwell { seconds: secs }, block_span));
+        } else {
+            eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
+        }
+        // 5. spindle stop, coolant off
+        for &(m, span) in &ms {
+            if m == 5.0 {
+                self.spindle = SpindleDir::Stop;
+                out.push((Event::Spindle { rpm: self.speed, dir: SpindleDir::Stop }, span));
+            }
+        }
+        for &(m, span) in &ms {
+            if m == 9.0 {
+                self.coolant = false;
+                out.push((Event::Coolant { on: false }, span));
+            }
+        }
+        // 6. M0/M1 and #3006
+        for &(m, span) in &ms {
+            if m == 0.0 || m == 1.0 {
+                out.push((Event::Stop { optional: m == 1.0, message: None }, span));
+            }
+        }
+        if let Some(text) = stop_message {
+            out.push((Event::Stop { optional: false, message: Some(text) }, block_span));
+        }
+        for &(m, span) in &ms {
+            self.last_m = m;
+            match m as i64 {
+                0 | 1 | 3 | 4 | 5 | 6 | 7 | 8 | 9 => {}
+                30 => eff.end = Some("M30"),
+                2 => eff.end = Some("M2"),
+                99 | 17 => eff.ret = true,
+                _ => warns.push((
+                    "NC405",
+                    format!("M{} is machine-specific and has no meaning here; nothing emitted", m),
+                    span,
+                )),
+            }
+        }
+        Ok(eff)
+    }
+
+    fn dwell_seconds(
+        &self,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        p: Option<(&WordVal, f64)>,
+        f: Option<(&WordVal, f64)>,
+        s: Option<(&WordVal, f64)>,
+        span: Span,
+    ) -> Result<f64, Fault> {
+        if self.fanuc {
+            if let Some((w, x)) = axes[0] {
+                // G04 X: seconds; without a decimal point in increments (X1000 = 1 s).
+                let v = if w.bare && self.scaling { x * 0.001 } else { x };
+                return Ok(round_to(v, 0.001));
+            }
+            if let Some((_, x)) = p {
+                return Ok(round_half_away(x) / 1000.0);
+            }
+        } else {
+            if let Some((_, x)) = f {
+                return Ok(x);
+            }
+            if let Some((_, revs)) = s {
+                if self.speed <= 0.0 {
+                    return Err(Fault::alarm(self.alarms.no_feed, "G4 S (revolutions) with the spindle speed 0", span));
+                }
+                return Ok(revs * 60.0 / self.speed);
+            }
+        }
+        Err(Fault::alarm(self.alarms.no_feed, "dwell without a time", span))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn motion_block(
+        &mut self,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        ijk: &[Option<(&WordVal, f64)>; 3],
+        r: Option<(&WordVal, f64)>,
+        ar: Option<f64>,
+        g53: bool,
+        probe: bool,
+        out: &mut Vec<(Event, Span)>,
+        span: Span,
+    ) -> Result<bool, Fault> {
+        let any_axis = axes.iter().any(Option::is_some);
+        let arc_mode = matches!(self.motion, Motion::Cw | Motion::Ccw) && !g53 && !probe;
+        let any_ijk = ijk.iter().any(Option::is_some);
+        if !any_axis && !(arc_mode && (any_ijk || ar.is_some())) {
+            return Ok(false);
+        }
+        let mut target = self.pos;
+        for (i, a) in axes.iter().enumerate() {
+            let Some((w, x)) = a else { continue };
+            let rotary = (3..6).contains(&i);
+            let v = self.length(w, *x, rotary);
+            let inc = match w.mode {
+                AbsInc::Ac => false,
+                AbsInc::Ic => true,
+                AbsInc::Plain => !self.absolute && !g53,
+            };
+            target[i] = if g53 {
+                // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
+                v
+            } else if inc && self.incr_travels_offset {
+                self.pos[i] - self.applied[i] + v + self.active_offset(i)
+            } else if inc {
+                self.pos[i] + v
+            } else {
+                v + self.active_offset(i)
+            };
+        }
+        let rapid = self.motion == Motion::Rapid && !probe;
+        if !rapid && self.feed.is_none() {
+            return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.applied[i] = self.active_offset(i);
+            }
+        }
+        if !arc_mode {
+            for (i, a) in axes.iter().enumerate() {
+                if a.is_some() {
+                    self.seen[i] = true;
+                }
+            }
+            self.pos = target;
+            out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
+            return Ok(any_axis);
+        }
+        let cw = self.motion == Motion::Cw;
+        let (u, v, _) = self.plane.axes();
+        let s = (self.pos[u], self.pos[v]);
+        let mut e = (target[u], target[v]);
+        let ijk_of = |axis: usize| -> Option<(&WordVal, f64)> {
+            match axis {
+                0 => ijk[0],
+                1 => ijk[1],
+                2 => ijk[2],
+                _ => None,
+            }
+        };
+        let centre_coord = |m: &Machine, axis: usize| -> Option<f64> {
+            ijk_of(axis).map(|(w, x)| {
+                let val = m.length(w, x, false);
+                if w.mode == AbsInc::Ac {
+                    val + m.active_offset(axis)
+                } else {
+                    m.pos[axis] + val
+                }
+            })
+        };
+        let bad_arc = |why: &str| Fault::alarm(self.alarms.arc, why.to_string(), span);
+        let c = if let Some((w, rv)) = r {
+            let rr = self.length(w, rv, false);
+            arc::centre_from_radius(s, e, rr, cw)
+                .ok_or_else(|| bad_arc("arc radius too small for the end point, or no end point"))?
+        } else if any_ijk {
+            let cu = centre_coord(self, u).unwrap_or(s.0);
+            let cv = centre_coord(self, v).unwrap_or(s.1);
+            if let Some(a) = ar {
+                if axes[u].is_none() && axes[v].is_none() {
+                    e = arc::end_from_angle(s, (cu, cv), a, cw);
+                }
+            }
+            (cu, cv)
+        } else if let Some(a) = ar {
+            let rr = arc::radius_from_angle(s, e, a)
+                .ok_or_else(|| bad_arc("AR= needs an end point different from the start"))?;
+            arc::centre_from_radius(s, e, rr, cw).ok_or_else(|| bad_arc("no arc for AR="))?
+        } else {
+            return Err(bad_arc("arc without I/J/K, radius or opening angle"));
+        };
+        let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
+        let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
+        if (rs - re).abs() > 0.01 {
+            return Err(bad_arc(&format!(
+                "arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"
+            )));
+        }
+        target[u] = e.0;
+        target[v] = e.1;
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.seen[i] = true;
+            }
+        }
+        self.seen[u] = true;
+        self.seen[v] = true;
+        self.applied[u] = self.active_offset(u);
+        self.applied[v] = self.active_offset(v);
+        self.pos = target;
+        out.push((
+            Event::Arc {
+                cw,
+                plane: self.plane,
+                to: self.trace_pos(),
+                center: [(u, clean(c.0)), (v, clean(c.1))],
+                f: self.feed,
+            },
+            span,
+        ));
+        Ok(true)
+    }
+
+    fn g10(
+        &mut self,
+        l: Option<f64>,
+        p: Option<(&WordVal, f64)>,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        warns: &mut Vec<Warn>,
+        span: Span,
+    ) -> Result<(), Fault> {
+        match l.map(round_half_away) {
+            Some(2.0) => {
+                let n = p.map_or(0.0, |(_, x)| round_half_away(x));
+                if !(0.0..=6.0).contains(&n) {
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L2 P{n}: no such work offset"), span));
+                }
+                for (i, a) in axes.iter().enumerate() {
+                    if let Some((w, x)) = a {
+                        let v = self.length(w, *x, (3..6).contains(&i));
+                        let slot = &mut self.offsets[n as usize][i];
+                        *slot = if self.absolute { v } else { *slot + v };
+                    }
+                }
+                Ok(())
+            }
+            _ => {
+                warns.push((
+                    "NC405",
+                    "G10 other than L2 (tool or parameter data) has no effect on the trace".into(),
+                    span,
+                ));
+                Ok(())
+            }
+        }
+    }
+
+    /// Siemens `TRANS`/`ATRANS` with axis words (values in the current unit).
+    pub fn frame_op(&mut self, op: &str, words: &[WordVal], span: Span) -> Result<(), Fault> {
+        // A bare absolute frame instruction deletes the whole programmable frame.
+        if words.is_empty() && matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR") {
+            self.trans = [0.0; 9];
+            return Ok(());
+        }
+        let additive = match op {
+            "TRANS" => false,
+            "ATRANS" => true,
+            _ => return Err(unsupported(&format!("frame instruction {op} is not modelled"), span)),
+        };
+        if !additive {
+            self.trans = [0.0; 9];
+        }
+        for w in words {
+            let i = w.addr.as_bytes().first().copied().and_then(axis_index);
+            match (i, &w.val) {
+                (Some(i), WV::Num(x)) if w.addr.len() == 1 => {
+                    let v = self.length(w, *x, (3..6).contains(&i));
+                    self.trans[i] += v;
+                }
+                _ => return Err(unsupported(&format!("{op} with {}", w.addr), w.span)),
+            }
+        }
+        Ok(())
+    }
+}
+
+fn fmt_g(g: f64) -> String {
+    super::value::fmt_num(g)
+}
+
+/// Removes float noise below the trace precision and negative zero.
+fn clean(x: f64) -> f64 {
+    let r = (x * 1e9).round() / 1e9;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+fn unsupported(msg: &str, span: Span) -> Fault {
+    Fault::Error(Box::new(
+        crate::diag::Diagnostic::error("NC403", msg.to_string())
+            .primary(usize::MAX, span, "here")
+            .hint("this construct cannot be proven equivalent; rewrite it with G0/G1/G2/G3 moves"),
+    ))
+}

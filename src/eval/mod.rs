@@ -1,0 +1,176 @@
+//! The bundled evaluator: runs a FANUC or Siemens program with each control's exact
+//! semantics and streams the canonical trace (shared/spec/trace-format.md) into a
+//! [`TraceSink`]. The library never prints; it returns an [`Outcome`].
+//!
+//! Layout: `value` (values and typed conversion), `expr` (operators and functions per
+//! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
+//! loop and variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
+//! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
+//! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
+
+pub mod arc;
+pub mod calls;
+pub mod exec;
+pub mod expr;
+pub mod fault;
+pub mod flow;
+pub mod input;
+pub mod machine;
+pub mod sysvars;
+pub mod trace;
+pub mod value;
+pub mod vars;
+
+#[cfg(test)]
+mod expr_tests;
+#[cfg(test)]
+mod run_tests;
+#[cfg(test)]
+pub(crate) mod test_ir;
+
+pub use calls::{CalleeName, CalleeSource, DirCallees, NoCallees};
+pub use input::{header_inputs, parse_input, Input, InputTarget};
+pub use trace::{Event, Format, NullSink, Origin, TraceSink, VecSink, WriterSink};
+
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, Semantics};
+use crate::ir::Unit;
+use crate::span::SourceDb;
+use exec::{Frame, FrameKind, Interp};
+use fault::Fault;
+
+/// Default step limit (blocks executed).
+pub const DEFAULT_MAX_STEPS: u64 = 10_000_000;
+
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    pub max_steps: u64,
+    /// Variable values set before the run (`--set`, header lines).
+    pub inputs: Vec<Input>,
+    /// The control profile; `None`: the dialect's default.
+    pub semantics: Option<Semantics>,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None }
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Ending {
+    /// `end` event with this code.
+    End(&'static str),
+    /// `alarm` event.
+    Alarm { number: i64, message: String },
+    /// `limit` event: inconclusive.
+    Limit { reason: String },
+    /// The sink asked to stop early (the checker had seen the divergence).
+    Stopped,
+    /// The evaluator could not run the program (the diagnostic is in `diags`); the trace
+    /// stops without a final event.
+    Error,
+}
+
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub ending: Ending,
+    pub steps: u64,
+    /// Warnings (once per place) and, for [`Ending::Error`], the error.
+    pub diags: Vec<Diagnostic>,
+}
+
+/// Runs the first program of `unit` (other programs of the unit are callable by number or
+/// name). Callees outside the unit come from `callees`.
+pub fn run(
+    db: &mut SourceDb,
+    unit: &Unit,
+    callees: &mut dyn CalleeSource,
+    opts: &RunOptions,
+    sink: &mut dyn TraceSink,
+) -> Outcome {
+    let dialect = unit.dialect;
+    let mut it = Interp::new(dialect, opts, db, callees, sink);
+    let ids = match it.register_unit(unit, None) {
+        Ok(ids) => ids,
+        Err(d) => return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] },
+    };
+    let Some(&main) = ids.first() else {
+        let d = Diagnostic::error("NC401", "the file holds no program to run");
+        return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] };
+    };
+    it.frames.push(Frame {
+        code: main,
+        pc: 0,
+        level: 0,
+        sframe: 0,
+        kind: FrameKind::Main,
+        repeats_left: 0,
+        call_span: Default::default(),
+        reps: Vec::new(),
+        modal: false,
+    });
+    let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
+    let ending = match result {
+        Ok(e) => e,
+        Err(Fault::Alarm { number, message, span }) => {
+            it.emit(Event::Alarm { number, message: message.clone() }, span);
+            Ending::Alarm { number, message }
+        }
+        Err(Fault::Limit { reason, span }) => {
+            let steps = it.steps.min(it.max_steps);
+            it.emit(Event::Limit { steps }, span);
+            let file = it.file();
+            it.diags.push(
+                Diagnostic::warning("NC408", format!("run stopped: {reason}"))
+                    .primary(file, span, "stopped here")
+                    .note("a run that hits a limit proves nothing")
+                    .hint("raise --max-steps, or check the program for an endless loop"),
+            );
+            Ending::Limit { reason }
+        }
+        Err(Fault::Error(d)) => {
+            it.diags.push(*d);
+            Ending::Error
+        }
+    };
+    it.flush();
+    Outcome { ending, steps: it.steps.min(it.max_steps), diags: std::mem::take(&mut it.diags) }
+}
+
+fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fault> {
+    let inputs = it.inputs.clone();
+    // A PROC run as the main program: its parameters are inputs (0 when not given).
+    let params = it.params.get(main).cloned().unwrap_or_default();
+    for p in &params {
+        let v = inputs
+            .iter()
+            .find(|i| matches!(&i.target, InputTarget::Name(n) if *n == p.name))
+            .map(|i| i.value.clone())
+            .unwrap_or_else(|| vars::zero_of(p.ty));
+        let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+        let mut data = vec![vars::zero_of(p.ty); len];
+        data[0] = value::convert_for(p.ty, v).unwrap_or_else(|_| vars::zero_of(p.ty));
+        it.vars.frames[0].insert(p.name.clone(), vars::Slot::Own { ty: p.ty, dims: p.dims.clone(), data });
+    }
+    let span = Default::default();
+    for i in &inputs {
+        match (&i.target, dialect) {
+            (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
+            (InputTarget::R(n), Dialect::Sinumerik) => {
+                let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };
+                it.write_var(&r, i.value.clone())?
+            }
+            // Names are applied when the DEF (or PROC parameter) creates them.
+            (InputTarget::Name(_), Dialect::Sinumerik) => {}
+            _ => {
+                return Err(Fault::error(Diagnostic::error(
+                    "NC407",
+                    format!("input {} does not fit a {} program", i.text, dialect.name()),
+                )))
+            }
+        }
+    }
+    Ok(())
+}

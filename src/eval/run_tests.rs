@@ -1,0 +1,431 @@
+//! Runs hand-built IR programs through the whole evaluator: control flow, calls, the
+//! machine model and limits, one test per rule of docs/semantics.md.
+
+use super::test_ir::*;
+use super::trace::text_line;
+use super::{run, Ending, NoCallees, Outcome, RunOptions, VecSink};
+use crate::dialect::{Dialect, Semantics};
+use crate::ir::*;
+use crate::span::SourceDb;
+
+fn run_opts(u: &Unit, opts: &RunOptions) -> (Vec<String>, Outcome) {
+    let mut db = SourceDb::new();
+    db.add("t", "x".repeat(1000));
+    let mut sink = VecSink::default();
+    let out = run(&mut db, u, &mut NoCallees, opts, &mut sink);
+    (sink.events.iter().map(|(e, _)| text_line(e)).collect(), out)
+}
+fn run_u(u: &Unit) -> (Vec<String>, Outcome) {
+    run_opts(u, &RunOptions::default())
+}
+fn fanuc(body: Vec<Stmt>) -> Unit {
+    unit(Dialect::Fanuc, vec![program(Some(ProgName::Number(1)), body)])
+}
+fn siemens(body: Vec<Stmt>) -> Unit {
+    unit(Dialect::Sinumerik, vec![program(None, body)])
+}
+fn g(k: f64) -> Item {
+    word("G", n(k))
+}
+
+#[test]
+fn fanuc_decimal_point_rule() {
+    let u = fanuc(vec![
+        s(vec![g(1.0), word("X", n(10.0)), word("Y", p(10.0)), word("F", n(100.0))]),
+        s(vec![assign(VarKind::Hash(1), n(123.0))]),
+        s(vec![word("X", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[0], "move linear X=0.01 Y=10 f=100");
+    assert_eq!(t[1], "move linear X=123 Y=10 f=100");
+    let mut sem = Semantics::default_for(Dialect::Fanuc);
+    sem.calculator_input = true;
+    let (t, _) = run_opts(&u, &RunOptions { semantics: Some(sem), ..Default::default() });
+    assert_eq!(t[0], "move linear X=10 Y=10 f=100");
+}
+
+#[test]
+fn siemens_numbers_are_units() {
+    let u = siemens(vec![s(vec![g(1.0), word("X", n(10.0)), word("F", n(100.0))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[0], "move linear X=10 f=100");
+}
+
+#[test]
+fn values_round_to_the_increment_and_integer_addresses() {
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(1), p(12.3456)), assign(VarKind::Hash(2), p(1000.5))]),
+        s(vec![word("S", hash(2)), word("M", p(3.0))]),
+        s(vec![g(0.0), word("X", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[0], "spindle cw 1001");
+    assert_eq!(t[1], "move rapid X=12.346 f=-");
+}
+
+#[test]
+fn vacant_variable_drops_the_word() {
+    let u = fanuc(vec![
+        s(vec![g(0.0), word("X", p(100.0)), word("Y", hash(1))]),
+        s(vec![word("Y", hash(1))]),
+        s(vec![word("Y", neg(hash(1)))]),
+        s(vec![end()]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=100 f=-", "end M30 steps=4"]);
+    assert!(out.diags.iter().any(|d| d.code == "NC404" && d.message.contains("#1")));
+}
+
+#[test]
+fn fanuc_goto_searches_forward_then_wraps() {
+    // N1 X1 / GOTO 5 / N5 X2 / N5 X3 / M30 : the first N5 forward wins.
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(100), p(0.0))]),
+        blk(vec![assign(VarKind::Hash(100), bin(BinOp::Add, hash(100), p(1.0)))]).n(5).stmt(),
+        s(vec![goto(
+            Search::ForwardThenWrap,
+            num_target(9),
+            Some(cmp(CmpOp::Ge, Tolerance::Exact, hash(100), p(2.0))),
+        )]),
+        s(vec![goto(Search::ForwardThenWrap, num_target(5), None)]),
+        blk(vec![g(0.0), word("X", p(2.0))]).n(5).stmt(),
+        s(vec![goto(Search::ForwardThenWrap, num_target(6), None)]),
+        blk(vec![word("X", p(3.0))]).n(6).stmt(),
+        s(vec![goto(Search::ForwardThenWrap, num_target(5), None)]),
+        blk(vec![end()]).n(9).stmt(),
+    ]);
+    let (t, _) = run_u(&u);
+    // GOTO 5 from block 3 finds the N5 after it (X2); the GOTO 5 at the end wraps to the
+    // top N5 (the counter reaches 2 and jumps to N9).
+    assert_eq!(t, vec!["move rapid X=2 f=-", "move rapid X=3 f=-", "end M30 steps=11"]);
+}
+
+#[test]
+fn computed_goto_rounds_and_missing_target_alarms() {
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(1), p(4.5))]),
+        s(vec![goto(Search::ForwardThenWrap, Target::Computed(hash(1)), None)]),
+        blk(vec![g(0.0), word("X", p(4.0))]).n(4).stmt(),
+        blk(vec![g(0.0), word("X", p(5.0))]).n(5).stmt(),
+        s(vec![goto(Search::ForwardThenWrap, num_target(77), None)]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t[0], "move rapid X=5 f=-");
+    assert!(t[1].starts_with("alarm 128 "), "{}", t[1]);
+    assert!(matches!(out.ending, Ending::Alarm { number: 128, .. }));
+}
+
+#[test]
+fn siemens_gotob_gotof_and_labels() {
+    let u = siemens(vec![
+        s(vec![assign(VarKind::R(1), p(0.0))]),
+        blk(vec![assign(VarKind::R(1), bin(BinOp::Add, r(1), p(1.0)))]).label("TOP").stmt(),
+        s(vec![goto(Search::Backward, label_target("TOP"), Some(cmp(CmpOp::Lt, Tolerance::Relative, r(1), p(3.0))))]),
+        s(vec![goto(Search::Forward, label_target("FIN"), None)]),
+        s(vec![g(0.0), word("X", p(99.0))]),
+        blk(vec![g(0.0), word("X", r(1))]).label("FIN").stmt(),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=3 f=-", "end M30 steps=10"]);
+}
+
+#[test]
+fn while_do_loop_and_step_count() {
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(1), p(0.0))]),
+        do_(
+            Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(3.0))),
+            vec![
+                s(vec![assign(VarKind::Hash(1), bin(BinOp::Add, hash(1), p(1.0)))]),
+                s(vec![g(1.0), word("X", hash(1)), word("F", p(100.0))]),
+            ],
+        ),
+        s(vec![end()]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t.len(), 4);
+    assert_eq!(t[2], "move linear X=3 f=100");
+    // 1 + 3×(head + 2 + end) + final head + M30
+    assert_eq!(out.steps, 1 + 3 * 4 + 1 + 1);
+}
+
+#[test]
+fn endless_loop_hits_the_step_limit() {
+    let u = fanuc(vec![do_(None, vec![s(vec![g(0.0), word("X", p(1.0))])])]);
+    let (t, out) = run_opts(&u, &RunOptions { max_steps: 100, ..Default::default() });
+    assert_eq!(t.last().map(String::as_str), Some("limit steps=100"));
+    assert!(matches!(out.ending, Ending::Limit { .. }));
+}
+
+#[test]
+fn g65_fresh_locals_args_and_m98_shares_locals() {
+    let call = |kind, prog, args: Vec<Arg>, repeat: Option<Expr>| {
+        item(ItemKind::Call(Box::new(Call { kind, target: CallTarget::Number(prog), args, repeat })))
+    };
+    let main = program(
+        Some(ProgName::Number(1)),
+        vec![
+            s(vec![assign(VarKind::Hash(24), p(7.0))]),
+            s(vec![call(
+                CallKind::G65,
+                9000,
+                vec![Arg::Letter { letter: b'X', var: 24, value: n(10.0) }],
+                Some(n(2.0)),
+            )]),
+            s(vec![g(0.0), word("Y", hash(24))]),
+            s(vec![call(CallKind::M98, 9001, vec![], None)]),
+            s(vec![g(0.0), word("Y", hash(24))]),
+            s(vec![end()]),
+        ],
+    );
+    // O9000: X#24 then #24=#24+1 (second repetition sees 0.011); M99.
+    let m9000 = program(
+        Some(ProgName::Number(9000)),
+        vec![
+            s(vec![g(0.0), word("X", hash(24))]),
+            s(vec![assign(VarKind::Hash(24), bin(BinOp::Add, hash(24), p(0.001)))]),
+            s(vec![item(ItemKind::Return { to: None })]),
+        ],
+    );
+    // O9001 shares the caller's locals: #24 = 8.
+    let m9001 = program(
+        Some(ProgName::Number(9001)),
+        vec![s(vec![assign(VarKind::Hash(24), p(8.0))]), s(vec![item(ItemKind::Return { to: None })])],
+    );
+    let u = unit(Dialect::Fanuc, vec![main, m9000, m9001]);
+    let (t, _) = run_u(&u);
+    assert_eq!(
+        t,
+        vec![
+            "move rapid X=0.01 f=-",
+            "move rapid X=0.011 f=-",
+            "move rapid X=0.011 Y=7 f=-",
+            "move rapid X=0.011 Y=8 f=-",
+            "end M30 steps=14"
+        ]
+    );
+}
+
+#[test]
+fn m99_in_main_ends_the_trace() {
+    let u = fanuc(vec![s(vec![g(0.0), word("X", p(1.0))]), s(vec![item(ItemKind::Return { to: None })])]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t.last().map(String::as_str), Some("end M99 steps=2"));
+}
+
+#[test]
+fn macro_nesting_limit_is_inconclusive() {
+    let call = item(ItemKind::Call(Box::new(Call {
+        kind: CallKind::G65,
+        target: CallTarget::Number(1),
+        args: vec![],
+        repeat: None,
+    })));
+    let u = fanuc(vec![s(vec![call])]);
+    let (t, out) = run_u(&u);
+    assert!(t[0].starts_with("limit"));
+    assert!(matches!(&out.ending, Ending::Limit { reason } if reason.contains("4 levels")));
+}
+
+#[test]
+fn missing_callee_is_an_error_naming_it() {
+    let call = item(ItemKind::Call(Box::new(Call {
+        kind: CallKind::Named,
+        target: CallTarget::Name("CONTOUR".into()),
+        args: vec![],
+        repeat: None,
+    })));
+    let (_, out) = run_u(&siemens(vec![s(vec![call])]));
+    assert_eq!(out.ending, Ending::Error);
+    assert!(out.diags.iter().any(|d| d.code == "NC401" && d.message.contains("CONTOUR")));
+}
+
+#[test]
+fn arcs_radius_sign_and_full_circle() {
+    let u = fanuc(vec![
+        s(vec![g(1.0), word("X", p(0.0)), word("Y", p(0.0)), word("F", p(100.0))]),
+        s(vec![g(2.0), word("X", p(10.0)), word("R", p(-10.0))]),
+        s(vec![g(3.0), word("I", p(-5.0))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[1], "arc cw XY X=10 Y=0 center X=5 Y=8.660254 f=100");
+    assert_eq!(t[2], "arc ccw XY X=10 Y=0 center X=5 Y=0 f=100");
+}
+
+#[test]
+fn feed_motion_without_feed_alarms() {
+    let (t, _) = run_u(&fanuc(vec![s(vec![g(1.0), word("X", p(1.0))])]));
+    assert!(t[0].starts_with("alarm 11 "));
+    let (t, _) = run_u(&siemens(vec![s(vec![g(1.0), word("X", p(1.0))])]));
+    assert!(t[0].starts_with("alarm 10860 "));
+}
+
+#[test]
+fn work_offsets_and_g53() {
+    let u = fanuc(vec![
+        s(vec![g(10.0), word("L", n(2.0)), word("P", n(1.0)), word("X", p(100.0))]),
+        s(vec![g(54.0), g(0.0), word("X", p(5.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(5041))]),
+        s(vec![g(53.0), word("X", p(0.0))]),
+        s(vec![g(0.0), word("Y", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=105 f=-", "move rapid X=0 f=-", "move rapid X=0 Y=5 f=-", "end M30 steps=6"]);
+}
+
+#[test]
+fn siemens_uifr_needs_reselection() {
+    let uifr = VarKind::System {
+        name: "P_UIFR".into(),
+        indices: vec![
+            n(1.0),
+            Expr::new(ExprKind::Ident("X".into()), sp()),
+            Expr::new(ExprKind::Ident("TR".into()), sp()),
+        ],
+    };
+    let u = siemens(vec![
+        s(vec![g(54.0)]),
+        s(vec![assign(uifr, p(50.0))]),
+        s(vec![g(0.0), word("X", p(1.0))]),
+        s(vec![g(54.0), word("X", p(1.0))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[0], "move rapid X=1 f=-");
+    assert_eq!(t[1], "move rapid X=51 f=-");
+}
+
+#[test]
+fn units_inch_feeds() {
+    let u = fanuc(vec![s(vec![g(20.0), g(1.0), word("X", p(1.0)), word("F", p(10.0))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[0], "move linear X=25.4 f=254");
+    let u = siemens(vec![s(vec![g(70.0), g(1.0), word("X", p(1.0)), word("F", p(10.0))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[0], "move linear X=25.4 f=10");
+    let u = siemens(vec![s(vec![g(700.0), g(1.0), word("X", p(1.0)), word("F", p(10.0))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[0], "move linear X=25.4 f=254");
+}
+
+#[test]
+fn dwell_units_per_control() {
+    let u = fanuc(vec![
+        s(vec![g(4.0), word("P", n(500.0))]),
+        s(vec![g(4.0), word("X", n(1500.0))]),
+        s(vec![g(4.0), word("X", p(2.0))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&u).0[..3], ["dwell 0.5", "dwell 1.5", "dwell 2"]);
+    let u = siemens(vec![
+        s(vec![word("S", p(600.0)), word("M", n(3.0))]),
+        s(vec![g(4.0), word("F", p(2.5))]),
+        s(vec![g(4.0), word("S", p(30.0))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&u).0[1..3], ["dwell 2.5", "dwell 3"]);
+}
+
+#[test]
+fn event_order_inside_a_block_and_msg_merge() {
+    let u = siemens(vec![
+        s(vec![word("T", Expr::new(ExprKind::Str("Ball".into()), sp()))]),
+        s(vec![
+            word("M", n(5.0)),
+            word("M", n(9.0)),
+            g(1.0),
+            word("X", p(1.0)),
+            word("F", p(1.0)),
+            word("M", n(6.0)),
+            word("S", p(100.0)),
+            word("M", n(3.0)),
+            word("M", n(8.0)),
+        ]),
+        s(vec![item(ItemKind::Message { text: Some(Expr::new(ExprKind::Str("check".into()), sp())) })]),
+        s(vec![word("M", n(0.0))]),
+        s(vec![item(ItemKind::Message { text: Some(Expr::new(ExprKind::Str("info".into()), sp())) })]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(
+        t,
+        vec![
+            "tool \"Ball\"",
+            "spindle cw 100",
+            "coolant on",
+            "move linear X=1 f=1",
+            "spindle stop 100",
+            "coolant off",
+            "stop \"check\"",
+            "message \"info\"",
+            "end M30 steps=6"
+        ]
+    );
+}
+
+#[test]
+fn siemens_int_variables_round_on_assignment() {
+    let def = item(ItemKind::Def(Box::new(Def {
+        ty: DataType::Int,
+        vars: vec![DefVar { name: "K".into(), dims: vec![], init: Some(Init::Value(p(2.5))), span: sp() }],
+    })));
+    let u = siemens(vec![
+        s(vec![def]),
+        s(vec![g(0.0), word("X", named("K"))]),
+        s(vec![assign(VarKind::Named { name: "K".into(), indices: vec![] }, p(-1.5))]),
+        s(vec![word("X", named("K"))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[..2], ["move rapid X=3 f=-", "move rapid X=-2 f=-"]);
+}
+
+#[test]
+fn unmodelled_system_variable_is_an_error() {
+    let u = fanuc(vec![s(vec![assign(VarKind::Hash(1), hash(2001))]), s(vec![end()])]);
+    let (_, out) = run_u(&u);
+    assert_eq!(out.ending, Ending::Error);
+    assert!(out.diags.iter().any(|d| d.code == "NC400" && d.message.contains("#2001")));
+}
+
+#[test]
+fn fanuc_macro_alarm_and_stop_message() {
+    let u = fanuc(vec![
+        s(vec![item(ItemKind::StopMessage { text: Some("CHECK".into()) })]),
+        s(vec![item(ItemKind::Alarm { style: AlarmStyle::FanucMacro, number: n(1.0), text: Some("NO PROBE".into()) })]),
+        s(vec![end()]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t, vec!["stop \"CHECK\"", "alarm 3001 \"NO PROBE\""]);
+    assert!(matches!(out.ending, Ending::Alarm { number: 3001, .. }));
+}
+
+#[test]
+fn running_off_the_end_of_main_alarms() {
+    let (t, _) = run_u(&siemens(vec![s(vec![g(0.0), word("X", p(1.0))])]));
+    assert!(t[1].starts_with("alarm 0 "));
+}
+
+#[test]
+fn inputs_set_variables() {
+    let u = siemens(vec![s(vec![g(0.0), word("X", r(1))]), s(vec![end()])]);
+    let opts = RunOptions { inputs: vec![super::parse_input("R1=5").unwrap()], ..Default::default() };
+    assert_eq!(run_opts(&u, &opts).0[0], "move rapid X=5 f=-");
+}
+
+#[test]
+fn siemens_ac_ic_per_word() {
+    let u = siemens(vec![
+        s(vec![g(90.0), g(0.0), word("X", p(1.0))]),
+        s(vec![word_v("X", WordValue::Ic(p(2.0)))]),
+        s(vec![g(91.0), word_v("X", WordValue::Ac(p(10.0))), word("Y", p(1.0))]),
+        s(vec![word("Y", p(1.0))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(
+        t[..4],
+        ["move rapid X=1 f=-", "move rapid X=3 f=-", "move rapid X=10 Y=1 f=-", "move rapid X=10 Y=2 f=-"]
+    );
+}

@@ -1,0 +1,244 @@
+//! System variables (dialects.md §7): the common FANUC `#1000+` and Siemens `$` ones.
+//! Reading or writing one that is not modelled is an error naming it, never a silent 0.
+
+use super::exec::Interp;
+use super::expr;
+use super::fault::Fault;
+use super::trace::{axis_index, Event, ToolId};
+use super::value::{round_half_away, Value};
+use crate::diag::Diagnostic;
+use crate::ir::{Expr, ExprKind};
+use crate::span::Span;
+
+impl Interp<'_> {
+    fn unmodelled(&self, name: &str, span: Span) -> Fault {
+        Fault::error(
+            Diagnostic::error("NC400", format!("system variable {name} is not modelled by the evaluator"))
+                .primary(self.file(), span, "used here")
+                .note("modelled: see docs/semantics.md, section system variables")
+                .hint("give the value as an input (--set) or replace the variable"),
+        )
+    }
+
+    /// A position in the current input unit.
+    fn in_unit(&self, mm: f64) -> f64 {
+        if self.m.inch {
+            mm / 25.4
+        } else {
+            mm
+        }
+    }
+
+    /// FANUC offset variable `n` → (table, axis): #5201+ external, #5221+ G54 … #5321+ G59.
+    fn offset_var(n: i64) -> Option<(usize, usize)> {
+        if !(5201..=5329).contains(&n) {
+            return None;
+        }
+        let k = (n - 5201) as usize;
+        let (table, axis) = (k / 20, k % 20);
+        (axis < 9).then_some((table, axis))
+    }
+
+    pub fn fanuc_sys_read(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
+        let m = &self.m;
+        let x = match n {
+            3000 | 3006 => return Err(self.unmodelled(&format!("#{n} (write-only)"), span)),
+            3001 | 3002 | 3901 | 3902 => self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0),
+            4001 => match m.motion {
+                super::machine::Motion::Rapid => 0.0,
+                super::machine::Motion::Linear => 1.0,
+                super::machine::Motion::Cw => 2.0,
+                super::machine::Motion::Ccw => 3.0,
+            },
+            4002 => match m.plane {
+                super::trace::Plane::XY => 17.0,
+                super::trace::Plane::ZX => 18.0,
+                super::trace::Plane::YZ => 19.0,
+            },
+            4003 => {
+                if m.absolute {
+                    90.0
+                } else {
+                    91.0
+                }
+            }
+            4005 => {
+                if m.per_rev {
+                    95.0
+                } else {
+                    94.0
+                }
+            }
+            4006 => {
+                if m.inch {
+                    20.0
+                } else {
+                    21.0
+                }
+            }
+            4014 => 53.0 + m.wo as f64,
+            4107 => m.d,
+            4109 => {
+                let f = m.feed.unwrap_or(0.0);
+                if m.inch_feed {
+                    f / 25.4
+                } else {
+                    f
+                }
+            }
+            4111 => m.h,
+            4113 => m.last_m,
+            4114 => m.last_n,
+            4119 => m.speed,
+            4120 => match &m.tool_sel {
+                Some(ToolId::Number(t)) => *t,
+                _ => 0.0,
+            },
+            5001..=5009 | 5041..=5049 | 5061..=5069 => {
+                let axis = ((n - 1) % 20) as usize;
+                self.in_unit(m.work_pos(axis))
+            }
+            5021..=5029 => {
+                let axis = ((n - 1) % 20) as usize;
+                self.in_unit(m.pos[axis])
+            }
+            n => match Self::offset_var(n) {
+                Some((t, a)) => self.in_unit(m.offsets[t][a]),
+                None => return Err(self.unmodelled(&format!("#{n}"), span)),
+            },
+        };
+        Ok(Value::Num(x))
+    }
+
+    pub fn fanuc_sys_write(&mut self, n: i64, x: Option<f64>, span: Span) -> Result<(), Fault> {
+        let v = x.unwrap_or(0.0);
+        match n {
+            3000 => Err(Fault::alarm(3000 + round_half_away(v) as i64, "", span)),
+            3006 => {
+                self.emit(Event::Stop { optional: false, message: None }, span);
+                Ok(())
+            }
+            3001 | 3002 | 3901 | 3902 => {
+                if n >= 3901 && v < 0.0 {
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("#{n} cannot be negative"), span));
+                }
+                self.sys_store.insert(format!("#{n}"), v);
+                Ok(())
+            }
+            5001..=5009 | 5021..=5029 | 5041..=5049 | 5061..=5069 | 4001..=4130 => {
+                Err(Fault::alarm(self.alarms.read_only, format!("#{n} is read-only"), span))
+            }
+            n => match Self::offset_var(n) {
+                Some((t, a)) => {
+                    let mm = if self.m.inch && !(3..6).contains(&a) { v * 25.4 } else { v };
+                    self.m.offsets[t][a] = mm;
+                    Ok(())
+                }
+                None => Err(self.unmodelled(&format!("#{n}"), span)),
+            },
+        }
+    }
+
+    fn axis_arg(&mut self, e: Option<&Expr>, name: &str, span: Span) -> Result<usize, Fault> {
+        let id = match e.map(|e| &e.kind) {
+            Some(ExprKind::Ident(s)) => s.to_ascii_uppercase(),
+            Some(ExprKind::Var(v)) => match &v.kind {
+                crate::ir::VarKind::Named { name, indices } if indices.is_empty() => name.to_ascii_uppercase(),
+                _ => String::new(),
+            },
+            _ => String::new(),
+        };
+        match (id.len(), id.bytes().next().and_then(axis_index)) {
+            (1, Some(i)) => Ok(i),
+            _ => Err(Fault::error(
+                Diagnostic::error("NC400", format!("${name} needs an axis name as its index"))
+                    .primary(self.file(), span, "here")
+                    .hint("write it as $AA_IW[X]"),
+            )),
+        }
+    }
+
+    fn frame_index(&mut self, e: Option<&Expr>, span: Span) -> Result<usize, Fault> {
+        let Some(e) = e else {
+            return Err(self.unmodelled("$P_UIFR without an index", span));
+        };
+        let cx = self.cx(false);
+        let n = round_half_away(expr::eval_num(self, e, &cx)?);
+        if !(0.0..100.0).contains(&n) {
+            return Err(Fault::alarm(self.alarms.bad_index, format!("$P_UIFR[{n}] does not exist"), span));
+        }
+        Ok(n as usize)
+    }
+
+    fn uifr_component(&self, idx: &[Expr], span: Span) -> Result<(), Fault> {
+        match idx.get(2).map(|e| &e.kind) {
+            None => Ok(()),
+            Some(ExprKind::Ident(s)) if s.eq_ignore_ascii_case("TR") => Ok(()),
+            Some(ExprKind::Var(v)) if matches!(&v.kind, crate::ir::VarKind::Named { name, .. } if name == "TR") => {
+                Ok(())
+            }
+            _ => Err(self.unmodelled("$P_UIFR component other than TR", span)),
+        }
+    }
+
+    pub fn sie_sys_read(&mut self, name: &str, idx: &[Expr], span: Span) -> Result<Value, Fault> {
+        let x = match name {
+            "AA_IW" | "P_EP" | "AA_MW" => {
+                let a = self.axis_arg(idx.first(), name, span)?;
+                self.in_unit(self.m.work_pos(a))
+            }
+            "AA_IM" | "AA_MM" => {
+                let a = self.axis_arg(idx.first(), name, span)?;
+                self.in_unit(self.m.pos[a])
+            }
+            "P_UIFR" => {
+                let f = self.frame_index(idx.first(), span)?;
+                let a = self.axis_arg(idx.get(1), name, span)?;
+                self.uifr_component(idx, span)?;
+                self.in_unit(self.m.offsets[f][a])
+            }
+            "PI" => std::f64::consts::PI,
+            "AC_TIME" => {
+                self.warn("NC405", "$AC_TIME reads 0: time is not modelled".into(), span);
+                0.0
+            }
+            "AC_ACTUAL_PARTS" | "AC_REQUIRED_PARTS" | "AC_TOTAL_PARTS" | "AC_SPECIAL_PARTS" => {
+                self.sys_store.get(name).copied().unwrap_or(0.0)
+            }
+            "P_F" => self.m.feed.unwrap_or(0.0),
+            "P_S" => self.m.speed,
+            "P_TOOLNO" => match &self.m.tool {
+                Some(ToolId::Number(t)) => *t,
+                _ => 0.0,
+            },
+            "P_TOOL" => self.m.d,
+            _ => return Err(self.unmodelled(&format!("${name}"), span)),
+        };
+        Ok(Value::Num(x))
+    }
+
+    pub fn sie_sys_write(&mut self, name: &str, idx: &[Expr], v: Value, span: Span) -> Result<(), Fault> {
+        let cx = self.cx(false);
+        let x = v.num().ok_or_else(|| Fault::alarm(self.alarms.domain, format!("${name} needs a number"), span))?;
+        let _ = cx;
+        match name {
+            "P_UIFR" => {
+                let f = self.frame_index(idx.first(), span)?;
+                let a = self.axis_arg(idx.get(1), name, span)?;
+                self.uifr_component(idx, span)?;
+                let mm = if self.m.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
+                // Written, not active: G54.. must be selected again (dialects.md §7).
+                self.m.offsets[f][a] = mm;
+                Ok(())
+            }
+            "AC_ACTUAL_PARTS" | "AC_REQUIRED_PARTS" | "AC_TOTAL_PARTS" | "AC_SPECIAL_PARTS" => {
+                self.sys_store.insert(name.to_string(), x);
+                Ok(())
+            }
+            "AA_IW" | "AA_IM" | "P_EP" | "PI" | "AC_TIME" | "P_F" | "P_S" | "P_TOOLNO" | "P_TOOL" => {
+                Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span))
+            }
+            _ => Err(self.unmodelled(&format!("${name}"), span)),
+        }
+    }
+}

@@ -1,0 +1,469 @@
+//! The canonical trace (shared/spec/trace-format.md): events, their origin, the sink they
+//! stream into, and the text and jsonl writers.
+
+use crate::span::{FileId, Span};
+use std::io::{self, Write};
+
+/// The axes a trace position may hold, in output order.
+pub const AXES: [char; 9] = ['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'];
+
+/// A position: `None` for an axis never positioned.
+pub type Axes = [Option<f64>; 9];
+
+/// Index of an axis letter in [`AXES`].
+pub fn axis_index(c: u8) -> Option<usize> {
+    AXES.iter().position(|a| *a as u8 == c)
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Plane {
+    XY,
+    ZX,
+    YZ,
+}
+
+impl Plane {
+    pub fn name(self) -> &'static str {
+        match self {
+            Plane::XY => "XY",
+            Plane::ZX => "ZX",
+            Plane::YZ => "YZ",
+        }
+    }
+    /// The two axes of the plane (first, second) and the axis normal to it, in the order
+    /// that keeps the right-hand rule (G18 is Z then X).
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::XY => (0, 1, 2),
+            Plane::ZX => (2, 0, 1),
+            Plane::YZ => (1, 2, 0),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ToolId {
+    Number(f64),
+    Name(String),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpindleDir {
+    Cw,
+    Ccw,
+    Stop,
+}
+
+impl SpindleDir {
+    pub fn name(self) -> &'static str {
+        match self {
+            SpindleDir::Cw => "cw",
+            SpindleDir::Ccw => "ccw",
+            SpindleDir::Stop => "stop",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Event {
+    Move {
+        rapid: bool,
+        to: Axes,
+        f: Option<f64>,
+    },
+    Arc {
+        cw: bool,
+        plane: Plane,
+        to: Axes,
+        /// The two plane axes' centre coordinates, in the plane's axis order.
+        center: [(usize, f64); 2],
+        f: Option<f64>,
+    },
+    Dwell {
+        seconds: f64,
+    },
+    Tool {
+        tool: ToolId,
+    },
+    Spindle {
+        rpm: f64,
+        dir: SpindleDir,
+    },
+    Coolant {
+        on: bool,
+    },
+    Stop {
+        optional: bool,
+        message: Option<String>,
+    },
+    Message {
+        text: String,
+    },
+    Alarm {
+        number: i64,
+        message: String,
+    },
+    End {
+        code: &'static str,
+        steps: u64,
+    },
+    Limit {
+        steps: u64,
+    },
+}
+
+impl Event {
+    /// The event's kind name as written in the trace (`"move"`, `"arc"`, …).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Event::Move { .. } => "move",
+            Event::Arc { .. } => "arc",
+            Event::Dwell { .. } => "dwell",
+            Event::Tool { .. } => "tool",
+            Event::Spindle { .. } => "spindle",
+            Event::Coolant { .. } => "coolant",
+            Event::Stop { .. } => "stop",
+            Event::Message { .. } => "message",
+            Event::Alarm { .. } => "alarm",
+            Event::End { .. } => "end",
+            Event::Limit { .. } => "limit",
+        }
+    }
+}
+
+/// Where an event comes from: never compared, used for diagnostics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Origin {
+    pub file: FileId,
+    pub span: Span,
+}
+
+/// Receives the trace as it is produced; nothing is collected by the evaluator.
+pub trait TraceSink {
+    fn event(&mut self, ev: &Event, origin: Origin);
+    /// Called after every executed block with the current position (workpiece frame,
+    /// millimetres); for per-block comparisons. Default: nothing.
+    fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
+    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block).
+    fn wants_blocks(&self) -> bool {
+        false
+    }
+    /// Polled once per block: `true` ends the run early ([`super::Ending::Stopped`]),
+    /// e.g. when the checker has seen enough.
+    fn wants_stop(&self) -> bool {
+        false
+    }
+}
+
+/// Discards the trace.
+#[derive(Default)]
+pub struct NullSink;
+
+impl TraceSink for NullSink {
+    fn event(&mut self, _ev: &Event, _origin: Origin) {}
+}
+
+/// Collects the trace (tests and the checker's context window; not for long runs).
+#[derive(Default)]
+pub struct VecSink {
+    pub events: Vec<(Event, Origin)>,
+}
+
+impl TraceSink for VecSink {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        self.events.push((ev.clone(), origin));
+    }
+}
+
+/// Appends a number in the trace's form (see [`fmt_num`]) without allocating.
+pub fn push_num(out: &mut String, x: f64) {
+    use std::fmt::Write;
+    if x.is_finite() && x.fract() == 0.0 && x.abs() < 1e15 {
+        let _ = write!(out, "{}", x as i64);
+        return;
+    }
+    if !x.is_finite() {
+        out.push('0');
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{x:.6}");
+    while out.ends_with('0') {
+        out.pop();
+    }
+    if out.ends_with('.') {
+        out.pop();
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
+}
+
+fn axes_text(out: &mut String, to: &Axes) {
+    for (i, v) in to.iter().enumerate() {
+        if let Some(x) = v {
+            out.push(' ');
+            out.push(AXES[i]);
+            out.push('=');
+            push_num(out, *x);
+        }
+    }
+}
+
+fn push_opt(out: &mut String, f: Option<f64>, none: &str) {
+    match f {
+        Some(x) => push_num(out, x),
+        None => out.push_str(none),
+    }
+}
+
+fn push_quoted(o: &mut String, s: &str) {
+    o.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            '\n' => o.push_str("\\n"),
+            '\r' => o.push_str("\\r"),
+            '\t' => o.push_str("\\t"),
+            c if (c as u32) < 0x20 => o.push_str(&format!("\\u{:04x}", c as u32)),
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+}
+
+/// One event as a line of the text form (no newline). Stable: the corpus traces are
+/// this form.
+pub fn text_line(ev: &Event) -> String {
+    let mut s = String::new();
+    write_text(&mut s, ev);
+    s
+}
+
+/// Appends the text form of `ev` to `s`.
+pub fn write_text(s: &mut String, ev: &Event) {
+    match ev {
+        Event::Move { rapid, to, f } => {
+            s.push_str(if *rapid { "move rapid" } else { "move linear" });
+            axes_text(s, to);
+            s.push_str(" f=");
+            push_opt(s, *f, "-");
+        }
+        Event::Arc { cw, plane, to, center, f } => {
+            s.push_str(if *cw { "arc cw " } else { "arc ccw " });
+            s.push_str(plane.name());
+            axes_text(s, to);
+            s.push_str(" center");
+            for (i, v) in center {
+                s.push(' ');
+                s.push(AXES[*i]);
+                s.push('=');
+                push_num(s, *v);
+            }
+            s.push_str(" f=");
+            push_opt(s, *f, "-");
+        }
+        Event::Dwell { seconds } => {
+            s.push_str("dwell ");
+            push_num(s, *seconds);
+        }
+        Event::Tool { tool } => {
+            s.push_str("tool ");
+            match tool {
+                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Name(n) => push_quoted(s, n),
+            }
+        }
+        Event::Spindle { rpm, dir } => {
+            s.push_str("spindle ");
+            s.push_str(dir.name());
+            s.push(' ');
+            push_num(s, *rpm);
+        }
+        Event::Coolant { on } => s.push_str(if *on { "coolant on" } else { "coolant off" }),
+        Event::Stop { optional, message } => {
+            s.push_str(if *optional { "stop optional" } else { "stop" });
+            if let Some(m) = message {
+                s.push(' ');
+                push_quoted(s, m);
+            }
+        }
+        Event::Message { text } => {
+            s.push_str("message ");
+            push_quoted(s, text);
+        }
+        Event::Alarm { number, message } => {
+            s.push_str(&format!("alarm {number} "));
+            push_quoted(s, message);
+        }
+        Event::End { code, steps } => s.push_str(&format!("end {code} steps={steps}")),
+        Event::Limit { steps } => s.push_str(&format!("limit steps={steps}")),
+    }
+}
+
+fn axes_json(out: &mut String, to: &Axes) {
+    out.push('{');
+    let mut first = true;
+    for (i, v) in to.iter().enumerate() {
+        if let Some(x) = v {
+            if !first {
+                out.push(',');
+            }
+            first = false;
+            out.push('"');
+            out.push(AXES[i]);
+            out.push_str("\":");
+            push_num(out, *x);
+        }
+    }
+    out.push('}');
+}
+
+/// One event as a JSON object (no newline); `line` is added when known.
+pub fn json_line(ev: &Event, line: Option<usize>) -> String {
+    let mut s = String::new();
+    write_json(&mut s, ev, line);
+    s
+}
+
+/// Appends the JSON object of `ev` to `s`.
+pub fn write_json(s: &mut String, ev: &Event, line: Option<usize>) {
+    s.push_str("{\"ev\":\"");
+    s.push_str(ev.kind());
+    s.push('"');
+    match ev {
+        Event::Move { rapid, to, f } => {
+            s.push_str(if *rapid { ",\"mode\":\"rapid\",\"to\":" } else { ",\"mode\":\"linear\",\"to\":" });
+            axes_json(s, to);
+            s.push_str(",\"f\":");
+            push_opt(s, *f, "null");
+        }
+        Event::Arc { cw, plane, to, center, f } => {
+            s.push_str(if *cw { ",\"dir\":\"cw\",\"plane\":\"" } else { ",\"dir\":\"ccw\",\"plane\":\"" });
+            s.push_str(plane.name());
+            s.push_str("\",\"to\":");
+            axes_json(s, to);
+            s.push_str(",\"center\":{\"");
+            s.push(AXES[center[0].0]);
+            s.push_str("\":");
+            push_num(s, center[0].1);
+            s.push_str(",\"");
+            s.push(AXES[center[1].0]);
+            s.push_str("\":");
+            push_num(s, center[1].1);
+            s.push_str("},\"f\":");
+            push_opt(s, *f, "null");
+        }
+        Event::Dwell { seconds } => {
+            s.push_str(",\"seconds\":");
+            push_num(s, *seconds);
+        }
+        Event::Tool { tool } => {
+            s.push_str(",\"tool\":");
+            match tool {
+                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Name(n) => push_quoted(s, n),
+            }
+        }
+        Event::Spindle { rpm, dir } => {
+            s.push_str(",\"rpm\":");
+            push_num(s, *rpm);
+            s.push_str(",\"dir\":\"");
+            s.push_str(dir.name());
+            s.push('"');
+        }
+        Event::Coolant { on } => s.push_str(if *on { ",\"on\":true" } else { ",\"on\":false" }),
+        Event::Stop { optional, message } => {
+            s.push_str(if *optional { ",\"optional\":true,\"message\":" } else { ",\"optional\":false,\"message\":" });
+            match message {
+                Some(m) => push_quoted(s, m),
+                None => s.push_str("null"),
+            }
+        }
+        Event::Message { text } => {
+            s.push_str(",\"text\":");
+            push_quoted(s, text);
+        }
+        Event::Alarm { number, message } => {
+            s.push_str(&format!(",\"number\":{number},\"message\":"));
+            push_quoted(s, message);
+        }
+        Event::End { code, steps } => s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}")),
+        Event::Limit { steps } => s.push_str(&format!(",\"steps\":{steps}")),
+    }
+    if let Some(l) = line {
+        s.push_str(",\"line\":");
+        push_num(s, l as f64);
+    }
+    s.push('}');
+}
+
+/// Output format of a streamed trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Text,
+    Jsonl,
+}
+
+/// Writes each event as it arrives. `line_of` maps an origin to a 1-based line (jsonl
+/// `line` field; text form appends `@line`). Write errors are kept and reported once.
+pub struct WriterSink<'a, W: Write> {
+    pub out: W,
+    pub format: Format,
+    pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
+    pub error: Option<io::Error>,
+    buf: String,
+}
+
+impl<'a, W: Write> WriterSink<'a, W> {
+    pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
+        WriterSink { out, format, line_of, error: None, buf: String::new() }
+    }
+}
+
+impl<W: Write> TraceSink for WriterSink<'_, W> {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        if self.error.is_some() {
+            return;
+        }
+        let line = (self.line_of)(origin);
+        self.buf.clear();
+        match self.format {
+            Format::Jsonl => write_json(&mut self.buf, ev, line),
+            Format::Text => {
+                write_text(&mut self.buf, ev);
+                if let Some(l) = line {
+                    self.buf.push_str("  @");
+                    push_num(&mut self.buf, l as f64);
+                }
+            }
+        }
+        self.buf.push('\n');
+        if let Err(e) = self.out.write_all(self.buf.as_bytes()) {
+            self.error = Some(e);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_of_a_move_follows_the_spec() {
+        let mut to = [None; 9];
+        to[0] = Some(10.0);
+        to[2] = Some(-0.5);
+        let ev = Event::Move { rapid: false, to, f: Some(300.0) };
+        assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
+        assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
+    }
+
+    #[test]
+    fn json_escapes_messages() {
+        let ev = Event::Stop { optional: false, message: Some("a\"b".into()) };
+        assert_eq!(json_line(&ev, None), r#"{"ev":"stop","optional":false,"message":"a\"b"}"#);
+    }
+}

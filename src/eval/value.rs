@@ -1,0 +1,185 @@
+//! Run-time values: FANUC `Vacant | Num`, Siemens typed values (numbers, strings), and the
+//! conversions the two controls apply on assignment.
+
+use crate::ir::DataType;
+
+/// A value during evaluation. FANUC values are `Vacant` or `Num`; Siemens values are `Num`
+/// (INT, REAL, BOOL, CHAR all held as f64 after conversion) or `Str`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Vacant,
+    Num(f64),
+    Str(String),
+}
+
+impl Value {
+    /// The numeric reading: vacant reads as 0 everywhere except EQ/NE and copying
+    /// (dialects.md §2.1).
+    pub fn num(&self) -> Option<f64> {
+        match self {
+            Value::Vacant => Some(0.0),
+            Value::Num(x) => Some(*x),
+            Value::Str(_) => None,
+        }
+    }
+
+    pub fn is_vacant(&self) -> bool {
+        matches!(self, Value::Vacant)
+    }
+
+    /// Truth of a condition value: non-zero is true (Siemens: `IF R11`).
+    pub fn truthy(&self) -> bool {
+        match self {
+            Value::Vacant => false,
+            Value::Num(x) => *x != 0.0,
+            Value::Str(s) => !s.is_empty(),
+        }
+    }
+}
+
+/// Half away from zero: the rounding both controls document for ROUND and for integer
+/// addresses (`M#1` with 3.5 → M4, dialects.md §3.3). Ties choice in docs/semantics.md.
+pub fn round_half_away(x: f64) -> f64 {
+    x.round()
+}
+
+/// Rounds `x` to a multiple of `inc` (an address's least increment), ties away from zero.
+pub fn round_to(x: f64, inc: f64) -> f64 {
+    if inc <= 0.0 {
+        return x;
+    }
+    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
+    let scale = 1.0 / inc;
+    if scale.fract() == 0.0 && scale <= 1e9 {
+        // A decimal increment: dividing the integer count by a power of ten gives the
+        // double nearest to the decimal value, with no noise to clean.
+        let q = ((x * scale) * 1e6).round() / 1e6;
+        let r = q.round() / scale;
+        return if r == 0.0 { 0.0 } else { r };
+    }
+    let q = ((x / inc) * 1e6).round() / 1e6;
+    let r = q.round() * inc;
+    // Clean the binary representation (0.1+0.2 style noise) so that printed values and
+    // comparisons stay stable.
+    let digits = (-inc.log10()).ceil().max(0.0) as i32 + 1;
+    let p = 10f64.powi(digits);
+    let cleaned = (r * p).round() / p;
+    if cleaned == 0.0 {
+        0.0
+    } else {
+        cleaned
+    }
+}
+
+/// Why a Siemens typed assignment failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ConvError {
+    /// A number outside the type's range (INT beyond 32 bits, CHAR beyond 0..255).
+    Range(f64),
+    /// A string into a number or the reverse.
+    Type,
+}
+
+/// Converts a value for storage in a Siemens variable of type `ty`.
+/// REAL→INT rounds half away from zero (the documented choice, docs/semantics.md);
+/// any number → BOOL is "non-zero is TRUE".
+pub fn convert_for(ty: DataType, v: Value) -> Result<Value, ConvError> {
+    match ty {
+        DataType::Real | DataType::Axis | DataType::Frame => match v {
+            Value::Str(_) => Err(ConvError::Type),
+            other => Ok(Value::Num(other.num().unwrap_or(0.0))),
+        },
+        DataType::Int => {
+            let x = v.num().ok_or(ConvError::Type)?;
+            let r = round_half_away(x);
+            if !(-2147483648.0..=2147483647.0).contains(&r) {
+                return Err(ConvError::Range(x));
+            }
+            Ok(Value::Num(r))
+        }
+        DataType::Bool => {
+            let x = v.num().ok_or(ConvError::Type)?;
+            Ok(Value::Num(if x != 0.0 { 1.0 } else { 0.0 }))
+        }
+        DataType::Char => match v {
+            Value::Str(s) => Ok(Value::Num(s.bytes().next().map_or(0.0, f64::from))),
+            other => {
+                let r = round_half_away(other.num().unwrap_or(0.0));
+                if !(0.0..=255.0).contains(&r) {
+                    return Err(ConvError::Range(r));
+                }
+                Ok(Value::Num(r))
+            }
+        },
+        DataType::String(n) => {
+            let s = match v {
+                Value::Str(s) => s,
+                Value::Vacant => String::new(),
+                Value::Num(x) => fmt_num(x),
+            };
+            let max = if n == 0 { 200 } else { n as usize };
+            Ok(Value::Str(s.chars().take(max).collect()))
+        }
+    }
+}
+
+/// Formats a number the way the trace does: up to 6 decimals, trailing zeros removed,
+/// never `-0`.
+pub fn fmt_num(x: f64) -> String {
+    if !x.is_finite() {
+        return "0".to_string();
+    }
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        return (x as i64).to_string();
+    }
+    let mut s = format!("{:.6}", x);
+    if s.contains('.') {
+        while s.ends_with('0') {
+            s.pop();
+        }
+        if s.ends_with('.') {
+            s.pop();
+        }
+    }
+    if s == "-0" {
+        s = "0".to_string();
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn int_conversion_rounds_half_away() {
+        assert_eq!(convert_for(DataType::Int, Value::Num(2.5)), Ok(Value::Num(3.0)));
+        assert_eq!(convert_for(DataType::Int, Value::Num(-2.5)), Ok(Value::Num(-3.0)));
+        assert_eq!(convert_for(DataType::Int, Value::Num(2.4)), Ok(Value::Num(2.0)));
+        assert!(convert_for(DataType::Int, Value::Num(3e9)).is_err());
+    }
+
+    #[test]
+    fn bool_and_char_conversion() {
+        assert_eq!(convert_for(DataType::Bool, Value::Num(0.2)), Ok(Value::Num(1.0)));
+        assert_eq!(convert_for(DataType::Bool, Value::Num(0.0)), Ok(Value::Num(0.0)));
+        assert_eq!(convert_for(DataType::Char, Value::Str("A".into())), Ok(Value::Num(65.0)));
+        assert!(convert_for(DataType::Char, Value::Num(300.0)).is_err());
+        assert_eq!(convert_for(DataType::String(3), Value::Str("ABCDE".into())), Ok(Value::Str("ABC".into())));
+    }
+
+    #[test]
+    fn number_format_is_stable() {
+        assert_eq!(fmt_num(10.0), "10");
+        assert_eq!(fmt_num(-0.0000001), "0");
+        assert_eq!(fmt_num(0.1 + 0.2), "0.3");
+        assert_eq!(fmt_num(62.831853071), "62.831853");
+    }
+
+    #[test]
+    fn rounding_to_increment() {
+        assert_eq!(round_to(12.3456, 0.001), 12.346);
+        assert_eq!(round_to(-0.0004, 0.001), 0.0);
+        assert_eq!(round_to(0.0005, 0.001), 0.001);
+    }
+}

@@ -1,0 +1,218 @@
+//! Splits Siemens multi-statement blocks into FANUC one-macro-statement blocks, preserving
+//! order, and turns `DEF` declarations into explicit assignments.
+//!
+//! A Siemens block runs its assignments (and DEF initialisations, messages) in text order,
+//! then its NC words as one motion block, then its control item (jump, call, return, end).
+//! A word's value is the one at its place in the text: a word written before an assignment
+//! in the same block is computed into a temporary at that place.
+//! FANUC allows one macro statement per block and no NC words beside an assignment, so each
+//! becomes its own block in that order. The first piece keeps the block number and label (a
+//! jump to the block must run all pieces), every piece keeps the block-skip slash.
+
+use super::*;
+
+/// Largest array that DEF initialisation writes element by element.
+const MAX_ARRAY: u32 = 1000;
+
+pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
+    for p in &prog.params {
+        info.types.insert(p.name.clone(), (p.ty, p.dims.clone()));
+    }
+    let body = std::mem::take(&mut prog.body);
+    prog.body = split_body(ctx, body, info);
+}
+
+fn split_body(ctx: &mut Ctx, body: Vec<Stmt>, info: &mut ProgInfo) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(body.len());
+    for mut s in body {
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                let b = std::mem::take(b);
+                split_block(ctx, b, info, &mut out);
+                continue;
+            }
+            StmtKind::If(i) => {
+                i.then_body = split_body(ctx, std::mem::take(&mut i.then_body), info);
+                if let Some(e) = &mut i.else_part {
+                    e.body = split_body(ctx, std::mem::take(&mut e.body), info);
+                }
+            }
+            StmtKind::While(w) => w.body = split_body(ctx, std::mem::take(&mut w.body), info),
+            StmtKind::Loop(l) => l.body = split_body(ctx, std::mem::take(&mut l.body), info),
+            StmtKind::For(f) => f.body = split_body(ctx, std::mem::take(&mut f.body), info),
+            StmtKind::Repeat(r) => r.body = split_body(ctx, std::mem::take(&mut r.body), info),
+            StmtKind::Do(d) => d.body = split_body(ctx, std::mem::take(&mut d.body), info),
+        }
+        out.push(s);
+    }
+    out
+}
+
+fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>) {
+    let mut first: Vec<Item> = Vec::new();
+    let mut words: Vec<Item> = Vec::new();
+    let mut tail: Vec<Item> = Vec::new();
+    let mut marks: Vec<Stmt> = Vec::new();
+    let last_assign = b.items.iter().rposition(|i| matches!(i.kind, ItemKind::Assign { .. } | ItemKind::Def(_)));
+    for (k, mut it) in b.items.into_iter().enumerate() {
+        match it.kind {
+            ItemKind::Def(d) => def_items(ctx, *d, it.span, info, &mut first, &mut marks),
+            ItemKind::Assign { .. } | ItemKind::Message { .. } => first.push(it),
+            ItemKind::Word(ref mut w) => {
+                // A word's value is taken where it is written: an assignment later in the
+                // block must not change it, so it is computed before that assignment.
+                if last_assign.is_some_and(|a| a > k) {
+                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e)) = &mut w.value;
+                    if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
+                        let t = ctx.temp(e.span);
+                        let v = std::mem::replace(e, var_expr(&t));
+                        first.push(assign_item(&t, v, it.span));
+                    }
+                }
+                words.push(it)
+            }
+            _ => tail.push(it),
+        }
+    }
+    let mut pieces: Vec<Vec<Item>> = first.into_iter().map(|i| vec![i]).collect();
+    if !words.is_empty() {
+        pieces.push(words);
+    }
+    pieces.extend(tail.into_iter().map(|i| vec![i]));
+    let span = b.meta.span;
+    let skip = b.meta.skip;
+    if pieces.is_empty() {
+        out.push(meta_stmt(b.meta, vec![]));
+        out.extend(marks);
+        return;
+    }
+    let mut meta = Some(b.meta);
+    for items in pieces {
+        let m = meta.take().unwrap_or(BlockMeta { span, skip, ..BlockMeta::default() });
+        out.push(meta_stmt(m, items));
+    }
+    out.extend(marks);
+}
+
+/// `DEF type a=1, b[3]` → `a=1`, `b[0]=0`, `b[1]=0`, `b[2]=0`: Siemens DEF variables start at
+/// their initial value or 0 on every run, FANUC variables keep whatever they held.
+fn def_items(ctx: &mut Ctx, d: Def, span: Span, info: &mut ProgInfo, out: &mut Vec<Item>, marks: &mut Vec<Stmt>) {
+    for v in d.vars {
+        info.types.insert(v.name.clone(), (d.ty, v.dims.clone()));
+        if matches!(d.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
+            let what = format!("DEF {} {}", type_name(d.ty), v.name);
+            let hint = "FANUC variables hold numbers only; rewrite the program without STRING/AXIS/FRAME variables";
+            marks.extend(ctx.unsupported("NC310", v.span, &what, hint));
+            continue;
+        }
+        let total: u32 = v.dims.iter().product::<u32>().max(1);
+        if total > MAX_ARRAY {
+            let what = format!("array {} with {total} elements", v.name);
+            marks.extend(ctx.unsupported("NC310", v.span, &what, "FANUC has at most a few hundred common variables"));
+            continue;
+        }
+        let values: Vec<Expr> = match &v.init {
+            None => vec![num(0.0, v.span); total as usize],
+            Some(Init::Value(e)) => vec![e.clone(); total as usize],
+            Some(Init::Set(list)) => (0..total as usize)
+                .map(|k| list.get(k).cloned().flatten().unwrap_or_else(|| num(0.0, v.span)))
+                .collect(),
+            Some(Init::Rep { value, count }) => {
+                let n = match count.as_ref().map(|c| &c.kind) {
+                    None => total as usize,
+                    Some(ExprKind::Num(n)) => n.value.max(0.0) as usize,
+                    Some(_) => {
+                        let what = format!("REP with a computed count in DEF {}", v.name);
+                        marks.extend(ctx.unsupported("NC310", v.span, &what, "write the count as a constant"));
+                        continue;
+                    }
+                };
+                (0..total as usize).map(|k| if k < n { value.clone() } else { num(0.0, v.span) }).collect()
+            }
+        };
+        for (k, value) in values.into_iter().enumerate() {
+            let indices = element_indices(&v.dims, k as u32, v.span);
+            let target = VarRef { kind: VarKind::Named { name: v.name.clone(), indices }, span: v.span };
+            out.push(assign_item(&target, value, span));
+        }
+    }
+}
+
+/// Row-major subscripts of element `k` of an array with `dims` (empty for a scalar).
+fn element_indices(dims: &[u32], k: u32, span: Span) -> Vec<Expr> {
+    match dims {
+        [] => vec![],
+        [_] => vec![num(k as f64, span)],
+        [_, n2] => vec![num((k / n2.max(&1)) as f64, span), num((k % n2.max(&1)) as f64, span)],
+        _ => {
+            let mut rest = k;
+            let mut idx = vec![0u32; dims.len()];
+            for (i, d) in dims.iter().enumerate().rev() {
+                idx[i] = rest % d.max(&1);
+                rest /= d.max(&1);
+            }
+            idx.into_iter().map(|i| num(i as f64, span)).collect()
+        }
+    }
+}
+
+pub fn type_name(t: DataType) -> String {
+    match t {
+        DataType::Int => "INT".into(),
+        DataType::Real => "REAL".into(),
+        DataType::Bool => "BOOL".into(),
+        DataType::Char => "CHAR".into(),
+        DataType::String(n) => format!("STRING[{n}]"),
+        DataType::Axis => "AXIS".into(),
+        DataType::Frame => "FRAME".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::build::*;
+    use super::*;
+
+    #[test]
+    fn assignments_come_before_words_and_control_after() {
+        let b = Block {
+            meta: BlockMeta { number: Some(SeqNo { value: 10, span: sp() }), ..BlockMeta::default() },
+            items: vec![word_item(b'X', r(1)), assign(rv(1), n(0.0)), assign(rv(4), n(1.0)), ret_item()],
+        };
+        let mut prog = program(vec![Stmt { kind: StmtKind::Block(b), span: sp() }]);
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        run(&mut ctx, &mut prog, &mut ProgInfo::default());
+        let shapes: Vec<String> = prog.body.iter().map(shape).collect();
+        // X=R1 is written before the assignments: its value is taken first, into a temporary.
+        assert_eq!(shapes, ["N10 assign", "- assign", "- assign", "- word", "- return"]);
+    }
+
+    #[test]
+    fn def_initialises_every_element() {
+        let d = Def {
+            ty: DataType::Real,
+            vars: vec![DefVar { name: "A".into(), dims: vec![2, 2], init: None, span: sp() }],
+        };
+        let b = Block { meta: BlockMeta::default(), items: vec![item(ItemKind::Def(Box::new(d)), sp())] };
+        let mut prog = program(vec![Stmt { kind: StmtKind::Block(b), span: sp() }]);
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        let mut info = ProgInfo::default();
+        run(&mut ctx, &mut prog, &mut info);
+        assert_eq!(prog.body.len(), 4);
+        assert_eq!(info.types.get("A"), Some(&(DataType::Real, vec![2, 2])));
+    }
+
+    #[test]
+    fn string_def_is_unsupported() {
+        let d = Def {
+            ty: DataType::String(10),
+            vars: vec![DefVar { name: "S".into(), dims: vec![], init: None, span: sp() }],
+        };
+        let b = Block { meta: BlockMeta::default(), items: vec![item(ItemKind::Def(Box::new(d)), sp())] };
+        let mut prog = program(vec![Stmt { kind: StmtKind::Block(b), span: sp() }]);
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        run(&mut ctx, &mut prog, &mut ProgInfo::default());
+        assert_eq!(ctx.unsupported, 1);
+        assert_eq!(ctx.diags[0].code, "NC310");
+    }
+}

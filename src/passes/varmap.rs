@@ -1,0 +1,524 @@
+//! Variables → FANUC `#n`.
+//!
+//! Defaults: `R n` → `#(500+n)` (retained commons, like R parameters); DEF variables of the main
+//! program → free common variables from `#100` up (then free ones from `#500`); PROC
+//! parameters → the G65 argument locals of their letters; DEF variables of a subprogram and
+//! temporaries → free locals `#1..#33` (one set per call level, like Siemens LUDs), then
+//! commons. `--var-map` rules override (`R0-R99=#100`, `R5=#600`, `NAME=#150`). Every target
+//! is checked: a number outside the commons (`#0`, `#34..#99`, past `#999`, system variables),
+//! two variables on one number, or `R[expr]` without one contiguous R mapping are errors.
+
+use super::words::param_letters;
+use super::*;
+use std::collections::{BTreeSet, HashMap};
+
+/// One `--var-map` rule.
+#[derive(Clone, Debug, PartialEq)]
+pub enum VarRule {
+    /// `Rlo-Rhi=#base`: R n → #(base + n - lo).
+    R { lo: u32, hi: u32, base: u32 },
+    /// `NAME=#n` for a DEF variable (arrays: the first element).
+    Name { name: String, number: u32 },
+}
+
+/// Parses `R0-R99=#100`, `R5=#600`, `NAME=#150`; several separated by commas.
+pub fn parse_rules(s: &str) -> Result<Vec<VarRule>, String> {
+    let mut v = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let (lhs, rhs) = part.split_once('=').ok_or_else(|| format!("'{part}': expected SOURCE=#n"))?;
+        let number: u32 = rhs
+            .trim()
+            .strip_prefix('#')
+            .and_then(|n| n.parse().ok())
+            .ok_or_else(|| format!("'{part}': the target must be written #n"))?;
+        let lhs = lhs.trim().to_ascii_uppercase();
+        let r_num = |t: &str| t.strip_prefix('R').and_then(|n| n.parse::<u32>().ok());
+        if let Some((a, b)) = lhs.split_once('-') {
+            match (r_num(a.trim()), r_num(b.trim())) {
+                (Some(lo), Some(hi)) if lo <= hi => v.push(VarRule::R { lo, hi, base: number }),
+                _ => return Err(format!("'{part}': expected a range Rlo-Rhi")),
+            }
+        } else if let Some(n) = r_num(&lhs) {
+            v.push(VarRule::R { lo: n, hi: n, base: number });
+        } else if lhs.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_') {
+            v.push(VarRule::Name { name: lhs, number });
+        } else {
+            return Err(format!("'{part}': expected Rn, Rlo-Rhi or a variable name"));
+        }
+    }
+    Ok(v)
+}
+
+/// One mapped variable, for the output header and the symbol map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mapped {
+    /// The program it belongs to (`None`: global, R parameters).
+    pub program: Option<String>,
+    /// `R1`, `CNT`, `A[0,1]`, `X (parameter, letter X)`, `temporary`.
+    pub source: String,
+    pub number: u32,
+}
+
+/// A program to map: its body, facts and name.
+pub struct Job<'a> {
+    pub prog: &'a mut Program,
+    pub info: &'a ProgInfo,
+    pub name: String,
+    /// The file the program's spans point into.
+    pub file: crate::span::FileId,
+}
+
+fn common(n: u32) -> bool {
+    (100..=199).contains(&n) || (500..=999).contains(&n)
+}
+
+/// Maps every variable of every program; returns the mapping for the header and symbol map.
+pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> Vec<Mapped> {
+    // Which R parameters and names are used, in order of first use.
+    let mut r_used = BTreeSet::new();
+    let mut r_indirect = None;
+    let mut names: Vec<Vec<(String, Span)>> = Vec::new();
+    for j in jobs.iter_mut() {
+        let mut seen: Vec<(String, Span)> = Vec::new();
+        visit_vars(&mut j.prog.body, &mut |v| match &v.kind {
+            VarKind::R(n) => {
+                r_used.insert(*n);
+            }
+            VarKind::RIndirect(_) => r_indirect = r_indirect.or(Some(v.span)),
+            VarKind::Named { name, .. } if !seen.iter().any(|(s, _)| s == name) => seen.push((name.clone(), v.span)),
+            _ => {}
+        });
+        names.push(seen);
+    }
+    let mut claimed: HashMap<u32, String> = HashMap::new();
+    let mut out = Vec::new();
+    let claim = |ctx: &mut Ctx, n: u32, who: String, span: Span, claimed: &mut HashMap<u32, String>| {
+        if let Some(other) = claimed.get(&n) {
+            let msg = format!("{who} and {other} would both be #{n}");
+            ctx.error("NC302", span, &msg, "change one of them with --var-map");
+            return false;
+        }
+        claimed.insert(n, who);
+        true
+    };
+    // R parameters.
+    let r_target = |n: u32| -> u32 {
+        for r in rules {
+            if let VarRule::R { lo, hi, base } = r {
+                if (*lo..=*hi).contains(&n) {
+                    return base + (n - lo);
+                }
+            }
+        }
+        500 + n
+    };
+    let span0 = Span::default();
+    let r_offset: Option<u32> = match r_indirect {
+        None => None,
+        Some(span) => {
+            let r_rules: Vec<_> = rules.iter().filter(|r| matches!(r, VarRule::R { .. })).collect();
+            match r_rules.as_slice() {
+                [] => Some(500),
+                [VarRule::R { lo: 0, hi, base }] if *hi + 1 >= r_count => Some(*base),
+                _ => {
+                    ctx.error(
+                        "NC302",
+                        span,
+                        "R[expr] needs all R parameters mapped as one contiguous range",
+                        "use a single rule R0-R<last>=#n",
+                    );
+                    None
+                }
+            }
+        }
+    };
+    let r_all: Vec<u32> = match r_offset {
+        Some(_) => (0..r_count).chain(r_used.iter().copied().filter(|n| *n >= r_count)).collect(),
+        None => r_used.iter().copied().collect(),
+    };
+    for n in r_all {
+        let t = r_target(n);
+        let used = r_used.contains(&n);
+        if !common(t) {
+            let why = if t > 999 { "past #999 (system variables)" } else { "not a common variable" };
+            let msg = format!("R{n} would be #{t}, {why}");
+            ctx.error(
+                "NC302",
+                r_indirect.unwrap_or(span0),
+                &msg,
+                "map the R parameters elsewhere with --var-map 'R0-R99=#100'",
+            );
+            continue;
+        }
+        if claim(ctx, t, format!("R{n}"), span0, &mut claimed) && used {
+            out.push(Mapped { program: None, source: format!("R{n}"), number: t });
+        }
+    }
+    if let Some(off) = r_offset {
+        out.push(Mapped { program: None, source: format!("R[i] (all R, #{off}+i)"), number: off });
+    }
+    // Names.
+    let mut next_common = 100u32;
+    let mut alloc_common = |claimed: &HashMap<u32, String>, size: u32| -> Option<u32> {
+        let mut n = next_common;
+        while n + size - 1 <= 999 {
+            let fits = (n..n + size).all(|k| common(k) && !claimed.contains_key(&k));
+            if fits {
+                next_common = n + size;
+                return Some(n);
+            }
+            n += 1;
+        }
+        None
+    };
+    for (j, seen) in jobs.iter_mut().zip(names) {
+        ctx.file = j.file;
+        let mut map: HashMap<String, (u32, Vec<u32>)> = HashMap::new();
+        let mut locals = [false; 34];
+        locals[0] = true;
+        if let Some(letters) = param_letters(j.prog.params.len()) {
+            for (p, (letter, var)) in j.prog.params.iter().zip(letters) {
+                locals[var as usize] = true;
+                map.insert(p.name.clone(), (var as u32, vec![]));
+                let source = format!("{} (parameter, letter {})", p.name, letter as char);
+                out.push(Mapped { program: Some(j.name.clone()), source, number: var as u32 });
+            }
+        }
+        for (name, span) in seen {
+            if map.contains_key(&name) {
+                continue;
+            }
+            let temp = name.starts_with(TEMP_PREFIX);
+            let dims = match j.info.types.get(&name) {
+                Some((_, d)) => d.clone(),
+                None if temp => vec![],
+                None => {
+                    let msg = format!("variable {name} is not declared");
+                    ctx.error("NC341", span, &msg, &format!("declare it: DEF REAL {name}"));
+                    continue;
+                }
+            };
+            let size: u32 = dims.iter().product::<u32>().max(1);
+            let rule = rules.iter().find_map(|r| match r {
+                VarRule::Name { name: n, number } if *n == name => Some(*number),
+                _ => None,
+            });
+            let local_ok = temp || j.info.is_sub;
+            let number = if let Some(n) = rule {
+                let ok = (common(n) && common(n + size - 1)) || (j.info.is_sub && n >= 1 && n + size - 1 <= 33);
+                if !ok {
+                    let msg = format!("{name} would be #{n}, not a common variable");
+                    ctx.error("NC302", span, &msg, "map it to #100..#199 or #500..#999");
+                    continue;
+                }
+                Some(n)
+            } else if local_ok {
+                free_locals(&locals, size).or_else(|| alloc_common(&claimed, size))
+            } else {
+                alloc_common(&claimed, size)
+            };
+            let Some(n) = number else {
+                ctx.error("NC302", span, &format!("no free variables left for {name}"), "free some with --var-map");
+                continue;
+            };
+            if n <= 33 {
+                for k in n..n + size {
+                    locals[k as usize] = true;
+                }
+            } else {
+                let mut ok = true;
+                for k in n..n + size {
+                    ok &= claim(ctx, k, name.clone(), span, &mut claimed);
+                }
+                if !ok {
+                    continue;
+                }
+                if j.info.is_sub && !temp {
+                    ctx.note(
+                        "NC340",
+                        span,
+                        &format!("{name} of {} lives in common variable #{n}", j.name),
+                        "the 33 locals are used up; a recursive or re-entrant call would share it",
+                    );
+                }
+            }
+            map.insert(name.clone(), (n, dims.clone()));
+            let source = if temp {
+                "temporary".to_string()
+            } else if dims.is_empty() {
+                name.clone()
+            } else {
+                format!("{name}[…] ({size} elements)")
+            };
+            out.push(Mapped { program: Some(j.name.clone()), source, number: n });
+        }
+        let types = j.info;
+        let mut errs: Vec<(Span, String)> = Vec::new();
+        visit_vars(&mut j.prog.body, &mut |v| rewrite(v, &map, &r_target, r_offset, types, &mut errs));
+        for (span, msg) in errs {
+            ctx.unsupported(
+                "NC342",
+                span,
+                &msg,
+                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..4,axis,TR] and the part counters have FANUC counterparts",
+            );
+        }
+    }
+    out
+}
+
+fn free_locals(locals: &[bool; 34], size: u32) -> Option<u32> {
+    (1..=33u32).find(|&n| n + size - 1 <= 33 && (n..n + size).all(|k| !locals[k as usize]))
+}
+
+fn axis_index(e: &Expr) -> Option<u32> {
+    match &e.kind {
+        ExprKind::Ident(s) | ExprKind::Str(s) => b"XYZABC".iter().position(|&c| s.as_bytes() == [c]).map(|p| p as u32),
+        _ => None,
+    }
+}
+
+fn system(name: &str, idx: &[Expr]) -> Option<u32> {
+    match (name, idx) {
+        ("AA_IW", [a]) => Some(5041 + axis_index(a)?),
+        ("AA_IM", [a]) => Some(5021 + axis_index(a)?),
+        ("P_EP", [a]) => Some(5001 + axis_index(a)?),
+        ("AC_ACTUAL_PARTS", []) => Some(3901),
+        ("AC_REQUIRED_PARTS", []) => Some(3902),
+        ("P_UIFR", [n, a, c]) => {
+            let ExprKind::Num(n) = &n.kind else { return None };
+            let tr = matches!(&c.kind, ExprKind::Ident(s) if s == "TR");
+            (tr && (1.0..=4.0).contains(&n.value) && n.value.fract() == 0.0)
+                .then(|| 5221 + 20 * (n.value as u32 - 1) + axis_index(a).unwrap_or(99))
+                .filter(|&k| k < 5221 + 20 * 4)
+        }
+        _ => None,
+    }
+}
+
+fn rewrite(
+    v: &mut VarRef,
+    map: &HashMap<String, (u32, Vec<u32>)>,
+    r_target: &dyn Fn(u32) -> u32,
+    r_offset: Option<u32>,
+    info: &ProgInfo,
+    errs: &mut Vec<(Span, String)>,
+) {
+    let span = v.span;
+    let kind = std::mem::replace(&mut v.kind, VarKind::Hash(0));
+    v.kind = match kind {
+        VarKind::R(n) => VarKind::Hash(r_target(n)),
+        VarKind::RIndirect(e) => {
+            let off = r_offset.unwrap_or(500);
+            VarKind::HashIndirect(Box::new(bin(BinOp::Add, *e, num(off as f64, span))))
+        }
+        VarKind::Named { name, indices } => match map.get(&name) {
+            None => {
+                if !info.types.contains_key(&name) && !name.starts_with(TEMP_PREFIX) {
+                    // Reported as undeclared already.
+                }
+                VarKind::Hash(0)
+            }
+            Some((n, dims)) if indices.is_empty() || dims.is_empty() => VarKind::Hash(*n),
+            Some((n, dims)) => element(*n, dims, indices, span),
+        },
+        VarKind::System { name, indices } => match system(&name, &indices) {
+            Some(n) => VarKind::Hash(n),
+            None => {
+                errs.push((span, format!("system variable ${name}")));
+                VarKind::Hash(0)
+            }
+        },
+        k => k,
+    };
+}
+
+/// Element `indices` of an array stored row-major from `#base`.
+fn element(base: u32, dims: &[u32], indices: Vec<Expr>, span: Span) -> VarKind {
+    let consts: Option<Vec<f64>> = indices
+        .iter()
+        .map(|i| match &i.kind {
+            ExprKind::Num(n) => Some(n.value),
+            _ => None,
+        })
+        .collect();
+    if let Some(c) = consts {
+        let mut lin = 0.0;
+        for (k, v) in c.iter().enumerate() {
+            lin = lin * dims.get(k).copied().unwrap_or(1) as f64 + v;
+        }
+        if lin >= 0.0 && lin.fract() == 0.0 {
+            return VarKind::Hash(base + lin as u32);
+        }
+    }
+    let mut it = indices.into_iter();
+    let mut lin = it.next().unwrap_or_else(|| num(0.0, span));
+    for (k, i) in it.enumerate() {
+        let d = dims.get(k + 1).copied().unwrap_or(1);
+        lin = bin(BinOp::Add, bin(BinOp::Mul, lin, num(d as f64, span)), i);
+    }
+    VarKind::HashIndirect(Box::new(bin(BinOp::Add, lin, num(base as f64, span))))
+}
+
+/// Calls `f` on every variable reference, inner ones (in subscripts) first.
+pub fn visit_vars(body: &mut [Stmt], f: &mut dyn FnMut(&mut VarRef)) {
+    for s in body {
+        match &mut s.kind {
+            StmtKind::Block(b) => b.items.iter_mut().for_each(|i| visit_item(i, f)),
+            StmtKind::If(i) => {
+                visit_expr(&mut i.cond, f);
+                visit_vars(&mut i.then_body, f);
+                if let Some(e) = &mut i.else_part {
+                    visit_vars(&mut e.body, f);
+                }
+            }
+            StmtKind::While(w) => {
+                visit_expr(&mut w.cond, f);
+                visit_vars(&mut w.body, f);
+            }
+            StmtKind::Loop(l) => visit_vars(&mut l.body, f),
+            StmtKind::For(x) => {
+                visit_var(&mut x.var, f);
+                visit_expr(&mut x.from, f);
+                visit_expr(&mut x.to, f);
+                visit_vars(&mut x.body, f);
+            }
+            StmtKind::Repeat(r) => {
+                visit_vars(&mut r.body, f);
+                visit_expr(&mut r.until, f);
+            }
+            StmtKind::Do(d) => {
+                if let Some(c) = &mut d.cond {
+                    visit_expr(c, f);
+                }
+                visit_vars(&mut d.body, f);
+            }
+        }
+    }
+}
+
+fn visit_item(it: &mut Item, f: &mut dyn FnMut(&mut VarRef)) {
+    let goto = |g: &mut Goto, f: &mut dyn FnMut(&mut VarRef)| {
+        if let Some(c) = &mut g.cond {
+            visit_expr(c, f);
+        }
+        if let Target::Computed(e) = &mut g.target {
+            visit_expr(e, f);
+        }
+    };
+    match &mut it.kind {
+        ItemKind::Assign { target, value } => {
+            visit_var(target, f);
+            visit_expr(value, f);
+        }
+        ItemKind::Word(w) => match &mut w.value {
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => visit_expr(e, f),
+        },
+        ItemKind::Goto(g) => goto(g, f),
+        ItemKind::IfThen { cond, then } => {
+            visit_expr(cond, f);
+            visit_item(then, f);
+        }
+        ItemKind::Case(c) => {
+            visit_expr(&mut c.selector, f);
+            for a in &mut c.arms {
+                goto(&mut a.goto, f);
+            }
+        }
+        ItemKind::Call(c) => {
+            for a in &mut c.args {
+                if let Arg::Value(e) | Arg::Letter { value: e, .. } = a {
+                    visit_expr(e, f);
+                }
+            }
+            if let Some(r) = &mut c.repeat {
+                visit_expr(r, f);
+            }
+        }
+        ItemKind::Alarm { number, .. } => visit_expr(number, f),
+        ItemKind::Message { text: Some(e) } => visit_expr(e, f),
+        ItemKind::Return { to: Some(e) } => visit_expr(e, f),
+        _ => {}
+    }
+}
+
+fn visit_var(v: &mut VarRef, f: &mut dyn FnMut(&mut VarRef)) {
+    match &mut v.kind {
+        VarKind::HashIndirect(e) | VarKind::RIndirect(e) => visit_expr(e, f),
+        VarKind::Named { indices, .. } => indices.iter_mut().for_each(|e| visit_expr(e, f)),
+        _ => {}
+    }
+    f(v);
+}
+
+fn visit_expr(e: &mut Expr, f: &mut dyn FnMut(&mut VarRef)) {
+    match &mut e.kind {
+        ExprKind::Var(v) => visit_var(v, f),
+        ExprKind::Unary(_, a) => visit_expr(a, f),
+        ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => {
+            visit_expr(a, f);
+            visit_expr(b, f);
+        }
+        ExprKind::Func(_, args) => args.iter_mut().for_each(|a| visit_expr(a, f)),
+        _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::build::*;
+    use super::*;
+
+    fn map(body: Vec<Stmt>, info: ProgInfo, rules: &[VarRule]) -> (Vec<Stmt>, Vec<Mapped>, Ctx) {
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        let mut prog = program(body);
+        let m = {
+            let mut jobs = [Job { prog: &mut prog, info: &info, name: "MAIN".into(), file: 0 }];
+            run(&mut ctx, &mut jobs, rules, 300)
+        };
+        (prog.body, m, ctx)
+    }
+
+    #[test]
+    fn rules_parse() {
+        assert_eq!(parse_rules("R0-R99=#100").unwrap_or_default(), vec![VarRule::R { lo: 0, hi: 99, base: 100 }]);
+        assert_eq!(
+            parse_rules("cnt=#150, R5=#600").unwrap_or_default(),
+            vec![VarRule::Name { name: "CNT".into(), number: 150 }, VarRule::R { lo: 5, hi: 5, base: 600 }]
+        );
+        assert!(parse_rules("R1=100").is_err());
+    }
+
+    #[test]
+    fn r_defaults_to_500_plus_n_and_def_to_commons() {
+        let mut info = ProgInfo::default();
+        info.types.insert("CNT".into(), (DataType::Int, vec![]));
+        let body = vec![block(vec![assign(rv(1), var_expr(&named("CNT")))])];
+        let (_, m, ctx) = map(body, info, &[]);
+        assert!(ctx.diags.is_empty(), "{:?}", ctx.diags);
+        assert_eq!(m.iter().map(|x| (x.source.as_str(), x.number)).collect::<Vec<_>>(), [("R1", 501), ("CNT", 100)]);
+    }
+
+    #[test]
+    fn collisions_and_ranges_are_errors() {
+        let mut info = ProgInfo::default();
+        info.types.insert("CNT".into(), (DataType::Int, vec![]));
+        let body = vec![block(vec![assign(rv(5), var_expr(&named("CNT")))])];
+        let rules = parse_rules("CNT=#505").unwrap_or_default();
+        let (_, _, ctx) = map(body.clone(), info.clone(), &rules);
+        assert_eq!(ctx.diags[0].code, "NC302");
+        let (_, _, ctx) = map(vec![block(vec![assign(rv(600), n(1.0))])], ProgInfo::default(), &[]);
+        assert!(ctx.diags[0].message.contains("past #999"));
+        let rules = parse_rules("R5=#1000").unwrap_or_default();
+        let (_, _, ctx) = map(body, info, &rules);
+        assert!(ctx.diags.iter().any(|d| d.message.contains("#1000")));
+    }
+
+    #[test]
+    fn indirect_r_keeps_its_offset() {
+        let ind = VarRef { kind: VarKind::RIndirect(Box::new(r(1))), span: sp() };
+        let (body, _, _) = map(vec![block(vec![assign(ind, n(1.0))])], ProgInfo::default(), &[]);
+        let text = format!("{body:?}");
+        assert!(text.contains("HashIndirect") && text.contains("value: 500.0"));
+    }
+}

@@ -1,0 +1,509 @@
+//! Address words and Siemens-only items → their FANUC forms.
+//!
+//! `CR=` → `R`; `G4 F` → `G04 X` (seconds); `G70/G700` → `G20`, `G71/G710` → `G21` (F words
+//! under G70 are divided by 25.4: G70 changes lengths only); `AC()/IC()` → a G90/G91 switch
+//! around the block; `T="NAME"` → a number from the tool map; `MSG("…")` → a comment, or with
+//! the `M0` block that follows it `#3006=1(…)`; `SETAL(n)` → `#3000`; calls of translated
+//! subprograms → `G65 P…` with one argument letter per parameter ([`param_letters`]);
+//! `WORKPIECE`/`STOPRE` dropped with a note; frames, section repetition, modal calls and
+//! unknown cycles are unsupported.
+
+use super::*;
+
+/// G codes with the same number and meaning on both controls.
+const SAME_G: &[u32] = &[0, 1, 2, 3, 4, 9, 17, 18, 19, 40, 41, 42, 53, 54, 55, 56, 57, 64, 90, 91, 94, 95];
+const AXES: &[u8] = b"XYZABCUVW";
+/// Siemens instructions that only change dynamics (acceleration, feed control): dropped.
+const DYNAMICS_ONLY: &[&str] = &["SOFT", "BRISK", "DRIVE", "FFWON", "FFWOF", "CFC", "CFTCP", "CFIN"];
+/// Calls that only set up the HMI simulation: dropped.
+const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
+
+/// Argument letters for `n` parameters, with the local variable each fills: specification I
+/// in alphabetical order (A B C D E F H I J K M Q R S T U V W X Y Z; G L N O P cannot carry
+/// arguments) up to 21 parameters, else specification II (A B C, then I J K sets) up to 33.
+pub fn param_letters(n: usize) -> Option<Vec<(u8, u8)>> {
+    const SPEC1: &[(u8, u8)] = &[
+        (b'A', 1),
+        (b'B', 2),
+        (b'C', 3),
+        (b'D', 7),
+        (b'E', 8),
+        (b'F', 9),
+        (b'H', 11),
+        (b'I', 4),
+        (b'J', 5),
+        (b'K', 6),
+        (b'M', 13),
+        (b'Q', 17),
+        (b'R', 18),
+        (b'S', 19),
+        (b'T', 20),
+        (b'U', 21),
+        (b'V', 22),
+        (b'W', 23),
+        (b'X', 24),
+        (b'Y', 25),
+        (b'Z', 26),
+    ];
+    if n <= SPEC1.len() {
+        return Some(SPEC1[..n].to_vec());
+    }
+    if n > 33 {
+        return None;
+    }
+    let mut v = vec![(b'A', 1), (b'B', 2), (b'C', 3)];
+    for k in 0..(n - 3) {
+        v.push((b"IJK"[k % 3], 4 + k as u8));
+    }
+    Some(v)
+}
+
+#[derive(Clone, Copy)]
+struct Modal {
+    /// `Some(true)` G90, `Some(false)` G91, `None` unknown (a subprogram inherits its caller's).
+    abs: Option<bool>,
+    g70: bool,
+}
+
+pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
+    let mut m = Modal { abs: if info.is_sub { None } else { Some(true) }, g70: false };
+    let body = std::mem::take(&mut prog.body);
+    prog.body = body_pass(ctx, body, &mut m);
+}
+
+fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
+    let mut out: Vec<Stmt> = Vec::with_capacity(body.len());
+    let mut it = body.into_iter().peekable();
+    while let Some(mut s) = it.next() {
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                // MSG("…") directly followed by a block holding only M0: one stop with a message.
+                if let Some(text) = msg_text(b) {
+                    if let Some(StmtKind::Block(next)) = it.peek().map(|n| &n.kind) {
+                        if is_lone_m0(next) {
+                            let span = b.meta.span;
+                            let mut meta = std::mem::take(&mut b.meta);
+                            if let Some(StmtKind::Block(nb)) = it.next().map(|n| n.kind) {
+                                meta.comments.extend(nb.meta.comments);
+                            }
+                            out.push(meta_stmt(meta, vec![item(ItemKind::StopMessage { text: Some(text) }, span)]));
+                            continue;
+                        }
+                    }
+                }
+                let b = std::mem::take(b);
+                block_pass(ctx, b, m, &mut out);
+                continue;
+            }
+            StmtKind::If(i) => {
+                i.then_body = body_pass(ctx, std::mem::take(&mut i.then_body), m);
+                if let Some(e) = &mut i.else_part {
+                    e.body = body_pass(ctx, std::mem::take(&mut e.body), m);
+                }
+            }
+            StmtKind::While(w) => w.body = body_pass(ctx, std::mem::take(&mut w.body), m),
+            StmtKind::Loop(l) => l.body = body_pass(ctx, std::mem::take(&mut l.body), m),
+            StmtKind::For(f) => f.body = body_pass(ctx, std::mem::take(&mut f.body), m),
+            StmtKind::Repeat(r) => r.body = body_pass(ctx, std::mem::take(&mut r.body), m),
+            StmtKind::Do(d) => d.body = body_pass(ctx, std::mem::take(&mut d.body), m),
+        }
+        out.push(s);
+    }
+    out
+}
+
+pub fn msg_text(b: &Block) -> Option<String> {
+    match b.items.as_slice() {
+        [Item { kind: ItemKind::Message { text: Some(Expr { kind: ExprKind::Str(t), .. }) }, .. }] => Some(t.clone()),
+        _ => None,
+    }
+}
+
+pub fn is_lone_m0(b: &Block) -> bool {
+    b.meta.number.is_none()
+        && b.meta.label.is_none()
+        && matches!(b.items.as_slice(), [Item { kind: ItemKind::Word(w), .. }]
+            if w.addr.is(b'M') && const_of(&w.value) == Some(0.0))
+}
+
+fn const_of(v: &WordValue) -> Option<f64> {
+    match v {
+        WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) => Some(n.value),
+        _ => None,
+    }
+}
+
+fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
+    let items = std::mem::take(&mut b.items);
+    let mut kept: Vec<Item> = Vec::new();
+    let mut after: Vec<Stmt> = Vec::new();
+    let mut before: Vec<Stmt> = Vec::new();
+    let has_words = items.iter().any(|i| matches!(i.kind, ItemKind::Word(_)));
+    if has_words {
+        let words: Vec<Word> = items
+            .iter()
+            .filter_map(|i| match &i.kind {
+                ItemKind::Word(w) => Some(w.clone()),
+                _ => None,
+            })
+            .collect();
+        match words_pass(ctx, words, m, b.meta.span) {
+            Ok((ws, pre, post)) => {
+                before.extend(pre);
+                kept.extend(ws.into_iter().map(|w| {
+                    let span = w.span;
+                    item(ItemKind::Word(w), span)
+                }));
+                after.extend(post);
+            }
+            Err(mark) => {
+                out.extend(mark);
+                return;
+            }
+        }
+    }
+    for it in items {
+        let span = it.span;
+        match it.kind {
+            ItemKind::Word(_) => {}
+            ItemKind::Message { text: None } => {}
+            ItemKind::Message { text: Some(Expr { kind: ExprKind::Str(t), .. }) } => {
+                ctx.note(
+                    "NC320",
+                    span,
+                    "MSG becomes a comment",
+                    "FANUC shows no message without stopping; MSG followed by M0 would become #3006=1(…)",
+                );
+                b.meta.comments.push(Comment { text: format!("MSG: {t}"), span });
+            }
+            ItemKind::Message { text: Some(e) } => {
+                after.extend(ctx.unsupported(
+                    "NC314",
+                    e.span,
+                    "MSG with a computed text",
+                    "FANUC messages are fixed comment text",
+                ));
+            }
+            ItemKind::Alarm { style: AlarmStyle::Setal, number, .. } => match &number.kind {
+                // User alarms: SETAL(65000+k) ↔ #3000=k (alarm 3000+k), as the checker pairs them.
+                ExprKind::Num(n) if (65000.0..=65999.0).contains(&n.value) && n.value.fract() == 0.0 => {
+                    let v = n.value as u64;
+                    let k = v - 65000;
+                    kept.push(item(
+                        ItemKind::Alarm {
+                            style: AlarmStyle::FanucMacro,
+                            number: num(k as f64, number.span),
+                            text: Some(format!("SETAL {v}")),
+                        },
+                        span,
+                    ));
+                }
+                _ => after.extend(ctx.unsupported(
+                    "NC315",
+                    number.span,
+                    "SETAL with a computed number or one outside 65000..65999",
+                    "use a user alarm SETAL(65000+k); it becomes #3000=k",
+                )),
+            },
+            ItemKind::Stopre => ctx.note(
+                "NC321",
+                span,
+                "STOPRE dropped",
+                "FANUC waits for motion by itself before reading position variables",
+            ),
+            ItemKind::Call(c) => {
+                if let Some(s) = call(ctx, *c, span, &mut kept) {
+                    after.push(s);
+                }
+            }
+            ItemKind::Frame { op, .. } => after.extend(ctx.unsupported(
+                "NC316",
+                span,
+                &format!("frame instruction {op}"),
+                "FANUC has no programmable frames; use G52/G68 by hand",
+            )),
+            ItemKind::RepeatSection(_) => after.extend(ctx.unsupported(
+                "NC317",
+                span,
+                "program-section repetition (REPEAT label P=n)",
+                "rewrite the section as a FOR loop",
+            )),
+            ItemKind::Instruction { name } if DYNAMICS_ONLY.contains(&name.as_str()) => ctx.note(
+                "NC323",
+                span,
+                &format!("{name} dropped"),
+                "it changes acceleration or feed control only, not the programmed path",
+            ),
+            ItemKind::Instruction { name } => after.extend(ctx.unsupported(
+                "NC312",
+                span,
+                &format!("instruction {name}"),
+                "no FANUC code has the same meaning",
+            )),
+            ItemKind::ModalCallOff => {
+                after.extend(ctx.unsupported("NC318", span, "MCALL cancel", "modal calls are not translated"))
+            }
+            kind => kept.push(Item { kind, span }),
+        }
+    }
+    let drop_empty = kept.is_empty() && !meta_is_marked(&b.meta);
+    out.extend(before);
+    if !drop_empty {
+        b.items = kept;
+        out.push(Stmt { span: b.meta.span, kind: StmtKind::Block(b) });
+    }
+    out.extend(after);
+}
+
+type WordsOut = (Vec<Word>, Vec<Stmt>, Vec<Stmt>);
+
+/// Translates the NC words of one block. Returns the words, blocks to run before and after
+/// (the G90/G91 switch), or the marker of an unsupported word.
+fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Result<WordsOut, Vec<Stmt>> {
+    let dwell = words.iter().any(|w| w.addr.is(b'G') && const_of(&w.value) == Some(4.0));
+    // Modal G words of this block apply to its own axis words.
+    for w in &words {
+        if w.addr.is(b'G') {
+            match const_of(&w.value) {
+                Some(90.0) => m.abs = Some(true),
+                Some(91.0) => m.abs = Some(false),
+                Some(70.0) => m.g70 = true,
+                Some(v) if v == 71.0 || v == 700.0 || v == 710.0 => m.g70 = false,
+                _ => {}
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(words.len());
+    let mut explicit: Option<bool> = None;
+    let mut mixed = false;
+    let mut plain_axis = false;
+    for mut w in words {
+        let wspan = w.span;
+        match &w.addr {
+            Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
+            Addr::Name(n) => {
+                let what = format!("address {n}=");
+                return Err(unsup(ctx, "NC312", wspan, &what, "no FANUC address has this meaning"));
+            }
+            Addr::Letter(_) => {}
+        }
+        let letter = match w.addr {
+            Addr::Letter(l) => l,
+            Addr::Name(_) => b'?',
+        };
+        let is_axis = AXES.contains(&letter);
+        match &w.value {
+            WordValue::Ac(_) | WordValue::Ic(_) if !is_axis => {
+                let what = format!("{}=AC()/IC() on a non-axis address", letter as char);
+                return Err(unsup(ctx, "NC313", wspan, &what, "write the arc centre incrementally"));
+            }
+            WordValue::Ac(_) | WordValue::Ic(_) => {
+                let abs = matches!(w.value, WordValue::Ac(_));
+                if explicit.is_some_and(|e| e != abs) {
+                    mixed = true;
+                }
+                explicit = Some(abs);
+            }
+            WordValue::Expr(_) if is_axis => plain_axis = true,
+            WordValue::Expr(_) => {}
+        }
+        if let WordValue::Ac(e) | WordValue::Ic(e) = &w.value {
+            w.value = WordValue::Expr(e.clone());
+        }
+        match letter {
+            b'G' => match const_of(&w.value) {
+                Some(v) if v == 70.0 || v == 700.0 => w.value = WordValue::Expr(num(20.0, wspan)),
+                Some(v) if v == 71.0 || v == 710.0 => w.value = WordValue::Expr(num(21.0, wspan)),
+                Some(v) if v.fract() == 0.0 && SAME_G.contains(&(v as u32)) => {}
+                Some(v) => {
+                    let what = format!("G{v}");
+                    return Err(unsup(ctx, "NC311", wspan, &what, "no FANUC G code has the same meaning"));
+                }
+                None => {
+                    return Err(unsup(ctx, "NC311", wspan, "a computed G code", "write the G code as a constant"));
+                }
+            },
+            b'F' if dwell => w.addr = Addr::Letter(b'X'),
+            b'S' if dwell => {
+                return Err(unsup(
+                    ctx,
+                    "NC319",
+                    wspan,
+                    "G4 S (dwell in revolutions)",
+                    "write the dwell in seconds (G4 F)",
+                ));
+            }
+            b'F' if m.g70 => {
+                if let WordValue::Expr(e) = &w.value {
+                    w.value = WordValue::Expr(bin(BinOp::Div, e.clone(), num(25.4, wspan)));
+                }
+            }
+            b'T' => {
+                if let WordValue::Expr(Expr { kind: ExprKind::Str(name), span }) = &w.value {
+                    match ctx.tools.get(name) {
+                        Some(&n) => {
+                            ctx.tools_used.insert(name.clone(), n);
+                            w.value = WordValue::Expr(num(n as f64, *span));
+                        }
+                        None => {
+                            let msg = format!("tool \"{name}\" has no FANUC tool number");
+                            ctx.error("NC301", *span, &msg, &format!("give one with --tool-map {name}=<number>"));
+                            ctx.unsupported += 1;
+                            w.value = WordValue::Expr(num(0.0, *span));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+        out.push(w);
+    }
+    let (mut pre, mut post) = (vec![], vec![]);
+    if let Some(abs) = explicit {
+        if mixed || (plain_axis && m.abs != Some(abs)) {
+            let hint = "put the AC()/IC() words in a block of their own";
+            return Err(unsup(ctx, "NC313", span, "a block mixing absolute and incremental axis words", hint));
+        }
+        if m.abs != Some(abs) {
+            // Switch for this block, then back to the mode in force.
+            let g = |v: f64| Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span };
+            out.insert(0, g(if abs { 90.0 } else { 91.0 }));
+            let restore = match m.abs {
+                Some(prev) => WordValue::Expr(num(if prev { 90.0 } else { 91.0 }, span)),
+                None => {
+                    let t = ctx.temp(span);
+                    let sys = VarRef { kind: VarKind::Hash(4003), span };
+                    pre.push(block_stmt(vec![assign_item(&t, var_expr(&sys), span)], span));
+                    WordValue::Expr(var_expr(&t))
+                }
+            };
+            let w = Word { addr: Addr::Letter(b'G'), value: restore, span };
+            post.push(block_stmt(vec![item(ItemKind::Word(w), span)], span));
+        }
+    }
+    Ok((out, pre, post))
+}
+
+fn unsup(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str) -> Vec<Stmt> {
+    ctx.unsupported(code, span, what, hint).into_iter().collect()
+}
+
+/// A call: a translated subprogram becomes `G65 P<o> <letters>`; simulation-only calls are
+/// dropped; anything else is unsupported. Returns a marker statement when unsupported.
+fn call(ctx: &mut Ctx, c: Call, span: Span, kept: &mut Vec<Item>) -> Option<Stmt> {
+    let name = match &c.target {
+        CallTarget::Name(n) => n.to_ascii_uppercase(),
+        _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
+    };
+    if c.kind == CallKind::Mcall {
+        return ctx.unsupported(
+            "NC318",
+            span,
+            &format!("modal call MCALL {name}"),
+            "call the subprogram after each move",
+        );
+    }
+    if SIMULATION_ONLY.contains(&name.as_str()) {
+        ctx.note(
+            "NC322",
+            span,
+            &format!("{name} dropped"),
+            "it only sets up the HMI simulation; it does not move the machine",
+        );
+        return None;
+    }
+    let Some(callee) = ctx.callees.get(&name).cloned() else {
+        let hint = format!("translate {name} too: put {name}.SPF beside the main program");
+        return ctx.unsupported("NC303", span, &format!("call of {name}"), &hint);
+    };
+    if c.args.len() > callee.params.len() {
+        let what = format!("call of {name} with {} arguments ({} parameters)", c.args.len(), callee.params.len());
+        return ctx.unsupported("NC303", span, &what, "");
+    }
+    let Some(letters) = param_letters(callee.params.len()) else {
+        return ctx.unsupported("NC304", span, &format!("{name} with more than 33 parameters"), "");
+    };
+    if let Some(p) = callee.params.iter().find(|p| p.by_ref || !p.dims.is_empty()) {
+        let what = format!("VAR (by-reference) parameter {} of {name}", p.name);
+        let hint = "pass the value through an R parameter instead (R parameters map to common variables)";
+        return ctx.unsupported("NC304", p.span, &what, hint);
+    }
+    let repeat = c.repeat.clone();
+    if repeat.is_some() && !callee.params.is_empty() {
+        let what = format!("repeated call of {name} with parameters");
+        return ctx.unsupported("NC303", span, &what, "call it in a FOR loop");
+    }
+    // Every parameter is passed explicitly: an omitted Siemens argument is 0, while an
+    // omitted G65 letter would leave the local vacant.
+    let mut args = Vec::with_capacity(letters.len());
+    for (k, &(letter, var)) in letters.iter().enumerate() {
+        let value = match c.args.get(k) {
+            Some(Arg::Value(e)) | Some(Arg::Letter { value: e, .. }) => e.clone(),
+            Some(Arg::Omitted(s)) => num(0.0, *s),
+            None => num(0.0, span),
+        };
+        args.push(Arg::Letter { letter, var, value });
+    }
+    let g65 = Call { kind: CallKind::G65, target: CallTarget::Number(callee.number), args, repeat };
+    kept.push(item(ItemKind::Call(Box::new(g65)), span));
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::build::*;
+    use super::*;
+
+    fn run_words(items: Vec<Item>, ctx: &mut Ctx) -> Vec<Stmt> {
+        let mut prog = program(vec![block(items)]);
+        run(ctx, &mut prog, &ProgInfo::default());
+        prog.body
+    }
+
+    #[test]
+    fn letters_follow_spec_one_then_two() {
+        let l = param_letters(3).unwrap_or_default();
+        assert_eq!(l, vec![(b'A', 1), (b'B', 2), (b'C', 3)]);
+        let l = param_letters(22).unwrap_or_default();
+        assert_eq!(l[3], (b'I', 4));
+        assert_eq!(l[21], (b'I', 22));
+        assert!(param_letters(34).is_none());
+    }
+
+    #[test]
+    fn cr_becomes_r_and_g4_f_becomes_x() {
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        let w = Word { addr: Addr::Name("CR".into()), value: WordValue::Expr(n(5.0)), span: sp() };
+        let body = run_words(vec![item(ItemKind::Word(w), sp())], &mut ctx);
+        assert_eq!(shape_words(&body[0]), "R");
+        let body = run_words(vec![word_item(b'G', n(4.0)), word_item(b'F', n(2.0))], &mut ctx);
+        assert_eq!(shape_words(&body[0]), "G X");
+    }
+
+    #[test]
+    fn unknown_tool_name_is_an_error_with_a_hint() {
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        let t = Expr::new(ExprKind::Str("BALLNOSE_D8".into()), sp());
+        run_words(vec![word_item(b'T', t)], &mut ctx);
+        assert_eq!(ctx.diags[0].code, "NC301");
+        assert!(ctx.diags[0].notes[0].contains("--tool-map BALLNOSE_D8="));
+    }
+
+    #[test]
+    fn ic_in_absolute_mode_switches_to_g91_and_back() {
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
+        let w = Word { addr: Addr::Letter(b'X'), value: WordValue::Ic(n(5.0)), span: sp() };
+        let body = run_words(vec![word_item(b'G', n(1.0)), item(ItemKind::Word(w), sp())], &mut ctx);
+        assert_eq!(body.len(), 2);
+        assert_eq!(shape_words(&body[0]), "G G X");
+        assert_eq!(shape_words(&body[1]), "G");
+    }
+
+    #[test]
+    fn unknown_g_code_is_unsupported() {
+        let mut ctx = Ctx::new(0, UnsupportedPolicy::Warn);
+        let body = run_words(vec![word_item(b'G', n(500.0))], &mut ctx);
+        assert_eq!(ctx.unsupported, 1);
+        assert!(matches!(&body[0].kind, StmtKind::Block(b) if b.meta.comments[0].text.contains("G500")));
+    }
+}

@@ -1,0 +1,552 @@
+//! The translation API: a parsed Siemens main program (and the subprograms it calls) →
+//! FANUC Custom Macro B text, the symbol map that relates the two, and diagnostics.
+//!
+//! Constructs FANUC cannot express are NC3xx errors by default; with
+//! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
+//! their place (the translation is still not [`Translation::ok`]).
+
+use crate::diag::{self, Diagnostic};
+use crate::dialect::fanuc::emit::{self, CommentMode, EmitOptions, KEEP_PREFIX};
+use crate::dialect::{Dialect, Semantics};
+use crate::ir::*;
+use crate::passes::varmap::{self, Mapped, VarRule};
+use crate::passes::{self, Callee, Ctx, ProgInfo, UnsupportedPolicy};
+use crate::read::LineEnding;
+use crate::span::Span;
+use std::collections::BTreeMap;
+
+/// First O number given to subprograms without a `--program-map` entry.
+pub const FIRST_SUB_NUMBER: u32 = 9000;
+/// O number of the main program without `--program-number` or a map entry.
+pub const DEFAULT_MAIN_NUMBER: u32 = 1;
+
+#[derive(Clone, Debug)]
+pub struct TranslateOptions {
+    pub unsupported: UnsupportedPolicy,
+    /// `--var-map` rules.
+    pub var_rules: Vec<VarRule>,
+    /// `--tool-map NAME=n`.
+    pub tool_map: BTreeMap<String, u32>,
+    /// `--program-map NAME=9001` (names upper case).
+    pub program_map: BTreeMap<String, u32>,
+    /// `--program-number`: O number of the main program.
+    pub program_number: Option<u32>,
+    pub comments: CommentMode,
+    /// `--number-blocks k`.
+    pub number_blocks: Option<u32>,
+    pub line_ending: LineEnding,
+    /// The target control accepts `[[a] AND [b]]`.
+    pub compound_conditions: bool,
+    /// The target profile (NAT bit).
+    pub target: Semantics,
+    /// The source profile (number of R parameters).
+    pub source: Semantics,
+    /// Name of the main program (file stem) when the program does not name itself.
+    pub main_name: String,
+    /// File name shown in the header.
+    pub source_name: String,
+    /// The main file is a subprogram (`.SPF`) translated on its own.
+    pub main_is_sub: bool,
+}
+
+impl Default for TranslateOptions {
+    fn default() -> Self {
+        TranslateOptions {
+            unsupported: UnsupportedPolicy::Error,
+            var_rules: vec![],
+            tool_map: BTreeMap::new(),
+            program_map: BTreeMap::new(),
+            program_number: None,
+            comments: CommentMode::Keep,
+            number_blocks: None,
+            line_ending: LineEnding::Lf,
+            compound_conditions: false,
+            target: Semantics::default_for(Dialect::Fanuc),
+            source: Semantics::default_for(Dialect::Sinumerik),
+            main_name: "MAIN".into(),
+            source_name: String::new(),
+            main_is_sub: false,
+        }
+    }
+}
+
+/// How source names appear in the output.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SymbolMap {
+    /// Variables: R parameters (program `None`), DEF variables, parameters, temporaries.
+    pub vars: Vec<Mapped>,
+    /// Per program (O number): jump-target label or `N10` → FANUC N number.
+    pub labels: BTreeMap<u32, BTreeMap<String, u32>>,
+    /// Tool name → T number (the tools the program uses).
+    pub tools: BTreeMap<String, u32>,
+    /// Program name → O number.
+    pub programs: BTreeMap<String, u32>,
+    /// Siemens SETAL number → FANUC alarm number (3000 + n).
+    pub alarms: BTreeMap<u32, u32>,
+}
+
+impl SymbolMap {
+    /// The FANUC variable an R parameter or a main-program variable lives in (`"R1"`, `"CNT"`).
+    pub fn fanuc_var(&self, source: &str) -> Option<u32> {
+        let s = source.to_ascii_uppercase();
+        self.vars.iter().find(|m| m.source == s).map(|m| m.number)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Translation {
+    pub text: String,
+    /// The FANUC IR that was written (spans point into the Siemens sources).
+    pub unit: Unit,
+    pub symbol_map: SymbolMap,
+    pub diags: Vec<Diagnostic>,
+    /// Constructs that could not be expressed (also counted under the warn policy).
+    pub unsupported: usize,
+}
+
+impl Translation {
+    /// True when the text is a complete translation (no error, nothing unsupported).
+    pub fn ok(&self) -> bool {
+        !diag::has_errors(&self.diags) && self.unsupported == 0
+    }
+}
+
+fn prog_name(p: &Program, fallback: &str) -> String {
+    match &p.name {
+        Some(ProgName::Name(n)) => n.to_ascii_uppercase(),
+        Some(ProgName::Number(n)) => format!("O{n}"),
+        None => fallback.to_ascii_uppercase(),
+    }
+}
+
+/// Translates a Siemens main program and the subprograms it calls (each a parsed `.SPF`).
+pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+    let mut diags = Vec::new();
+    let mut unsupported = 0;
+    // Programs: the main one first, then the subprograms by name.
+    let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
+    if let Some(p) = main.programs.first() {
+        progs.push((p.clone(), main.file, opts.main_is_sub));
+    }
+    let mut sub_progs: Vec<(Program, crate::span::FileId)> =
+        subs.iter().flat_map(|u| u.programs.iter().map(|p| (p.clone(), u.file))).collect();
+    sub_progs.sort_by_key(|(p, _)| prog_name(p, ""));
+    sub_progs.dedup_by_key(|(p, _)| prog_name(p, ""));
+    progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
+
+    // O numbers.
+    let mut numbers: BTreeMap<String, u32> = BTreeMap::new();
+    let main_name =
+        main.programs.first().map_or(opts.main_name.to_ascii_uppercase(), |p| prog_name(p, &opts.main_name));
+    let mut taken: Vec<u32> = opts.program_map.values().copied().collect();
+    let main_no =
+        opts.program_number.or_else(|| opts.program_map.get(&main_name).copied()).unwrap_or(DEFAULT_MAIN_NUMBER);
+    taken.push(main_no);
+    numbers.insert(main_name.clone(), main_no);
+    let mut next = FIRST_SUB_NUMBER;
+    for (p, _, _) in progs.iter().skip(1) {
+        let name = prog_name(p, "");
+        let n = match opts.program_map.get(&name) {
+            Some(&n) => n,
+            None => {
+                while taken.contains(&next) {
+                    next += 1;
+                }
+                taken.push(next);
+                next
+            }
+        };
+        numbers.insert(name, n);
+    }
+    let mut callees = BTreeMap::new();
+    for (p, _, _) in progs.iter().skip(1) {
+        {
+            let name = prog_name(p, "");
+            let number = numbers.get(&name).copied().unwrap_or(FIRST_SUB_NUMBER);
+            callees.insert(name, Callee { number, params: p.params.clone() });
+        }
+    }
+
+    // Structural passes, per program.
+    let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
+    let mut tools_used = BTreeMap::new();
+    for (mut p, file, is_sub) in progs {
+        let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
+        let mut ctx = new_ctx(file, opts);
+        ctx.callees = callees.clone();
+        let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
+        passes::lower_program(&mut ctx, &mut p, &mut info);
+        tools_used.extend(ctx.tools_used);
+        unsupported += ctx.unsupported;
+        diags.extend(ctx.diags);
+        lowered.push((p, info, file, name));
+    }
+
+    // Variables, across programs (R parameters and commons are shared).
+    let mut vctx = new_ctx(main.file, opts);
+    let mapped = {
+        let mut jobs: Vec<varmap::Job> = lowered
+            .iter_mut()
+            .map(|(p, info, file, name)| varmap::Job { prog: p, info, name: name.clone(), file: *file })
+            .collect();
+        varmap::run(&mut vctx, &mut jobs, &opts.var_rules, opts.source.r_param_count)
+    };
+    unsupported += vctx.unsupported;
+    diags.extend(vctx.diags);
+
+    // Jumps, headers, O numbers.
+    let mut symbol_map =
+        SymbolMap { vars: mapped.clone(), tools: tools_used, programs: numbers.clone(), ..SymbolMap::default() };
+    let mut programs = Vec::new();
+    for (mut p, info, file, name) in lowered {
+        let number = numbers.get(&name).copied().unwrap_or(DEFAULT_MAIN_NUMBER);
+        if info.is_sub && !ends_with_return(&p.body) {
+            let span = Span::new(p.span.hi, p.span.hi);
+            p.body.push(passes::block_stmt(vec![passes::item(ItemKind::Return { to: None }, span)], span));
+        }
+        let mut ctx = new_ctx(file, opts);
+        let labels = passes::labels::run(&mut ctx, &mut p, opts.number_blocks);
+        unsupported += ctx.unsupported;
+        diags.extend(ctx.diags);
+        symbol_map.labels.insert(number, labels);
+        collect_alarms(&p.body, &mut symbol_map.alarms);
+        let header = header(&name, &mapped, !programs.is_empty(), opts);
+        let span = p.span;
+        let head_comments = vec![Comment { text: name.clone(), span }];
+        let mut body: Vec<Stmt> = header
+            .into_iter()
+            .map(|text| {
+                passes::meta_stmt(
+                    BlockMeta { span, comments: vec![Comment { text, span }], ..BlockMeta::default() },
+                    vec![],
+                )
+            })
+            .collect();
+        body.append(&mut p.body);
+        programs.push(Program {
+            name: Some(ProgName::Number(number)),
+            head: Some(BlockMeta { span, comments: head_comments, ..BlockMeta::default() }),
+            params: vec![],
+            save: false,
+            body,
+            span,
+        });
+    }
+    let unit = Unit { dialect: Dialect::Fanuc, file: main.file, programs };
+    let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
+    let emitted = emit::emit(&unit, &eo);
+    diags.extend(emitted.diags);
+    Translation { text: emitted.text, unit, symbol_map, diags, unsupported }
+}
+
+fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
+    let mut ctx = Ctx::new(file, opts.unsupported);
+    ctx.nat = opts.target.nat;
+    ctx.compound_conditions = opts.compound_conditions;
+    ctx.tools = opts.tool_map.clone();
+    ctx
+}
+
+fn ends_with_return(body: &[Stmt]) -> bool {
+    match body.last().map(|s| &s.kind) {
+        Some(StmtKind::Block(b)) => {
+            matches!(b.items.last().map(|i| &i.kind), Some(ItemKind::Return { .. } | ItemKind::End { .. }))
+        }
+        _ => false,
+    }
+}
+
+fn collect_alarms(body: &[Stmt], out: &mut BTreeMap<u32, u32>) {
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let ItemKind::Alarm { number: Expr { kind: ExprKind::Num(n), .. }, text: Some(t), .. } = &it.kind {
+                    if let Some(src) = t.strip_prefix("SETAL ").and_then(|s| s.parse::<u32>().ok()) {
+                        out.insert(src, 3000 + n.value as u32);
+                    }
+                }
+            }
+        }
+    });
+}
+
+/// The header comment lines of one program: where it came from and its variable map.
+fn header(name: &str, mapped: &[Mapped], is_sub: bool, opts: &TranslateOptions) -> Vec<String> {
+    let mut v = Vec::new();
+    if !is_sub {
+        let from = if opts.source_name.is_empty() { name.to_string() } else { opts.source_name.clone() };
+        v.push(format!("{KEEP_PREFIX}: SINUMERIK {from} TO FANUC MACRO B"));
+    }
+    let mut temps = Vec::new();
+    for m in mapped {
+        let mine = match &m.program {
+            None => !is_sub,
+            Some(p) => p == name,
+        };
+        if !mine {
+            continue;
+        }
+        if m.source == "temporary" {
+            temps.push(format!("#{}", m.number));
+        } else {
+            v.push(format!("{KEEP_PREFIX}: {} = #{}", m.source, m.number));
+        }
+    }
+    if !temps.is_empty() {
+        v.push(format!("{KEEP_PREFIX}: TEMPORARIES {}", temps.join(" ")));
+    }
+    v
+}
+
+/// The result of checking a translation.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    /// Both programs ran to the same trace.
+    pub equivalent: bool,
+    /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
+    pub summary: String,
+    /// Rendered diagnostics (parse errors of the output, the divergence).
+    pub rendered: String,
+    /// The output parsed back as FANUC.
+    pub reparsed: Option<Unit>,
+}
+
+/// Parses the translation back as FANUC (proving it is valid FANUC syntax); the text is
+/// added to `db` under `out_name`.
+pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) -> crate::dialect::Parsed {
+    let file = db.add(out_name, t.text.clone());
+    let opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
+    crate::parse(db, file, Dialect::Fanuc, &opts)
+}
+
+/// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
+/// translation in the evaluator and compares their traces (`check`). The Siemens side is
+/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number, and a
+/// `MSG` that became a comment (FANUC shows no message without stopping) is left out. The
+/// R parameters the translation maps start at 0 on both sides (Siemens' power-on value);
+/// FANUC's would otherwise be vacant.
+pub fn verify(
+    db: &mut crate::span::SourceDb,
+    main: &Unit,
+    subs: &[&Unit],
+    t: &Translation,
+    out_name: &str,
+    max_steps: u64,
+) -> Verification {
+    use crate::check::{self, Side, Verdict};
+    use crate::eval::{self, NoCallees, RunOptions};
+    let parsed = reparse(db, t, out_name);
+    let mut rendered = diag::render(db, &parsed.diags);
+    if diag::has_errors(&parsed.diags) {
+        return Verification {
+            equivalent: false,
+            summary: "not verified: the output does not parse as FANUC (a bug in nctrans)".into(),
+            rendered,
+            reparsed: None,
+        };
+    }
+    let source = align_source(main, &t.symbol_map);
+    let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
+    let mut inputs = Vec::new();
+    for m in
+        t.symbol_map.vars.iter().filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+    {
+        if let Ok(i) = eval::parse_input(&format!("#{}=0", m.number)) {
+            inputs.push(i);
+        }
+    }
+    // A subprogram run on its own: Siemens parameters are 0, G65 argument locals vacant.
+    if let Some(p) = main.programs.first() {
+        if let Some(letters) = passes::words::param_letters(p.params.len()) {
+            for (_, var) in letters {
+                if let Ok(i) = eval::parse_input(&format!("#{var}=0")) {
+                    inputs.push(i);
+                }
+            }
+        }
+    }
+    let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
+    let b = Side {
+        unit: parsed.unit.clone(),
+        callees: Box::new(NoCallees),
+        run: RunOptions { max_steps, inputs, ..RunOptions::default() },
+    };
+    let report = check::check(db, a, b);
+    rendered.push_str(&diag::render(&report.db, &report.diags));
+    let (equivalent, summary) = match report.verdict {
+        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
+        Verdict::Diverged { index } => {
+            rendered.push_str(&report.diff);
+            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
+        }
+        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
+        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
+    };
+    Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+}
+
+/// The Siemens programs a translation is compared against, aligned with its symbol map.
+pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
+    let mut u = unit.clone();
+    for p in &mut u.programs {
+        align_body(&mut p.body, map);
+    }
+    u
+}
+
+fn align_body(body: &mut [Stmt], map: &SymbolMap) {
+    for k in 0..body.len() {
+        let stop_follows = match body.get(k + 1).map(|s| &s.kind) {
+            Some(StmtKind::Block(next)) => passes::words::is_lone_m0(next),
+            _ => false,
+        };
+        let s = &mut body[k];
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                let lone_msg = passes::words::msg_text(b).is_some();
+                b.items.retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || (lone_msg && stop_follows));
+                for it in &mut b.items {
+                    if let ItemKind::Word(w) = &mut it.kind {
+                        if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), span }) = &mut w.value {
+                            if let ExprKind::Str(name) = &*kind {
+                                if let Some(&n) = map.tools.get(name) {
+                                    *kind = ExprKind::Num(Number { value: n as f64, point: false });
+                                    let _ = span;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            other => {
+                for child in child_bodies_mut(other) {
+                    align_body(child, map);
+                }
+            }
+        }
+    }
+}
+
+fn child_bodies_mut(kind: &mut StmtKind) -> Vec<&mut Vec<Stmt>> {
+    match kind {
+        StmtKind::Block(_) => vec![],
+        StmtKind::If(i) => {
+            let IfStmt { then_body, else_part, .. } = &mut **i;
+            let mut v = vec![then_body];
+            if let Some(e) = else_part {
+                v.push(&mut e.body);
+            }
+            v
+        }
+        StmtKind::While(w) => vec![&mut w.body],
+        StmtKind::Loop(l) => vec![&mut l.body],
+        StmtKind::For(f) => vec![&mut f.body],
+        StmtKind::Repeat(r) => vec![&mut r.body],
+        StmtKind::Do(d) => vec![&mut d.body],
+    }
+}
+
+/// The Siemens subprograms of a translation, served to the evaluator from memory.
+struct MemCallees(Vec<Unit>);
+
+impl crate::eval::CalleeSource for MemCallees {
+    fn find(
+        &mut self,
+        _db: &mut crate::span::SourceDb,
+        _caller: crate::span::FileId,
+        _dialect: Dialect,
+        name: &crate::eval::CalleeName,
+    ) -> Result<Option<Unit>, Diagnostic> {
+        let crate::eval::CalleeName::Name(n) = name else { return Ok(None) };
+        Ok(self
+            .0
+            .iter()
+            .find(|u| u.programs.first().is_some_and(|p| prog_name(p, "") == n.to_ascii_uppercase()))
+            .cloned())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::passes::build::*;
+    use crate::passes::{bin, cmp, func};
+
+    fn unit(body: Vec<Stmt>) -> Unit {
+        Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program(body)] }
+    }
+
+    #[test]
+    fn a_small_program_end_to_end() {
+        // R1=0 / WHILE R1<3 / G1 X=R1*2 F100 / R1=R1+1 / ENDWHILE / M30
+        let w = while_stmt(
+            cmp_rel(CmpOp::Lt, r(1), n(3.0)),
+            vec![
+                block(vec![
+                    word_item(b'G', n(1.0)),
+                    word_item(b'X', bin(BinOp::Mul, r(1), n(2.0))),
+                    word_item(b'F', n(100.0)),
+                ]),
+                block(vec![assign(rv(1), bin(BinOp::Add, r(1), n(1.0)))]),
+            ],
+        );
+        let body = vec![
+            block(vec![assign(rv(1), n(0.0))]),
+            w,
+            block(vec![crate::passes::item(ItemKind::End { code: EndCode::M30 }, sp())]),
+        ];
+        let t = to_fanuc(&unit(body), &[], &TranslateOptions::default());
+        assert!(t.ok(), "{:?}", t.diags);
+        assert_eq!(
+            t.text,
+            "%\nO0001 (MAIN)\n(NCTRANS: SINUMERIK MAIN TO FANUC MACRO B)\n(NCTRANS: R1 = #501)\n#501=0.\n\
+             WHILE [3.-#501 GT [ABS[#501]+3.+ABS[ABS[#501]-3.]]*0.0000005*0.000001] DO1\nG01 X[#501*2.] F100.\n#501=#501+1.\nEND1\nM30\n%\n"
+        );
+        assert_eq!(t.symbol_map.fanuc_var("r1"), Some(501));
+    }
+
+    #[test]
+    fn roundup_and_atan2_lower_exactly() {
+        let body = vec![
+            block(vec![assign(rv(1), func(Func::RoundUp, vec![r(2)], sp()))]),
+            block(vec![assign(rv(3), func(Func::Atan2, vec![r(4), r(5)], sp()))]),
+        ];
+        let t = to_fanuc(&unit(body), &[], &TranslateOptions::default());
+        assert!(t.ok(), "{:?}", t.diags);
+        let body: Vec<&str> =
+            t.text.lines().filter(|l| !l.starts_with('(') && !l.starts_with('O') && *l != "%").collect();
+        assert_eq!(
+            body,
+            [
+                "#1=FIX[#502]",
+                "IF [#502 GT #1] THEN #1=#1+1.",
+                "#501=#1",
+                "#2=ATAN[#504]/[#505]",
+                "IF [#2 GT 180.] THEN #2=#2-360.",
+                "#503=#2"
+            ]
+        );
+    }
+
+    #[test]
+    fn if_else_with_labels_gets_fresh_n_numbers() {
+        let i = if_stmt(
+            cmp(CmpOp::Gt, r(1), n(0.0)),
+            vec![block(vec![word_item(b'X', n(1.0))])],
+            Some(vec![block(vec![word_item(b'X', n(2.0))])]),
+        );
+        let t = to_fanuc(&unit(vec![i]), &[], &TranslateOptions::default());
+        let body: Vec<&str> =
+            t.text.lines().filter(|l| !l.starts_with('(') && !l.starts_with('O') && *l != "%").collect();
+        assert_eq!(body, ["IF [#501 LE 0.] GOTO 1000", "X1.", "GOTO 1001", "N1000", "X2.", "N1001"]);
+    }
+
+    #[test]
+    fn unsupported_warn_marks_the_line() {
+        let body = vec![block(vec![word_item(b'G', n(500.0))])];
+        let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
+        let t = to_fanuc(&unit(body), &[], &opts);
+        assert!(!t.ok());
+        assert!(t.text.contains("(*** NCTRANS UNSUPPORTED: G500 ***)"));
+    }
+}

@@ -1,0 +1,239 @@
+//! `nctrans --to fanuc IN [-o OUT] …`: the translation mode of the command line. Loads the
+//! Siemens program and the subprograms it calls (beside it), translates, writes the output,
+//! then verifies it by parsing it back as FANUC and comparing both runs' traces.
+
+use nctrans::dialect::fanuc::emit::CommentMode;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::passes::varmap;
+use nctrans::passes::UnsupportedPolicy;
+use nctrans::span::SourceDb;
+use nctrans::translate::{self, TranslateOptions};
+use nctrans::{diag, read};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(clap::Args, Debug)]
+pub struct TranslateArgs {
+    /// Translate the input to this dialect (fanuc).
+    #[arg(long, value_parser = parse_dialect)]
+    pub to: Option<Dialect>,
+    /// The program to translate.
+    pub input: Option<PathBuf>,
+    /// Write the translation here (default: standard output).
+    #[arg(short = 'o', long)]
+    pub output: Option<PathBuf>,
+    /// Do not run both programs to prove the translation.
+    #[arg(long)]
+    pub no_verify: bool,
+    /// What an untranslatable construct does: error (default) or warn (a marked comment line).
+    #[arg(long, default_value = "error", value_parser = ["error", "warn"])]
+    pub unsupported: String,
+    /// Variable mapping overrides: 'R0-R99=#100', 'R5=#600', 'NAME=#150' (repeatable).
+    #[arg(long = "var-map", value_name = "MAP")]
+    pub var_map: Vec<String>,
+    /// Tool name → FANUC tool number: NAME=n (repeatable).
+    #[arg(long = "tool-map", value_name = "NAME=N")]
+    pub tool_map: Vec<String>,
+    /// Program name → O number: NAME=9001 (repeatable).
+    #[arg(long = "program-map", value_name = "NAME=N")]
+    pub program_map: Vec<String>,
+    /// O number of the main program.
+    #[arg(long)]
+    pub program_number: Option<u32>,
+    /// Comments: keep, ascii (transliterated) or drop.
+    #[arg(long, default_value = "keep", value_parser = ["keep", "ascii", "drop"])]
+    pub comments: String,
+    /// Number every block with this step (N10, N20, …).
+    #[arg(long, value_name = "STEP")]
+    pub number_blocks: Option<u32>,
+    /// The target accepts compound conditions [[a] AND [b]].
+    #[arg(long)]
+    pub compound_conditions: bool,
+    /// Step limit of each verification run (blocks executed).
+    #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
+    /// Encoding of the input; detected when omitted.
+    #[arg(long = "input-encoding", value_parser = parse_encoding)]
+    pub input_encoding: Option<&'static encoding_rs::Encoding>,
+}
+
+fn parse_dialect(s: &str) -> Result<Dialect, String> {
+    Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
+}
+
+fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
+    encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| format!("unknown encoding '{s}'"))
+}
+
+fn pairs(list: &[String], what: &str) -> Result<BTreeMap<String, u32>, String> {
+    let mut m = BTreeMap::new();
+    for s in list {
+        for part in s.split(',').filter(|p| !p.trim().is_empty()) {
+            let (k, v) = part.split_once('=').ok_or_else(|| format!("{what} '{part}': expected NAME=n"))?;
+            let n: u32 = v.trim().parse().map_err(|_| format!("{what} '{part}': {v} is not a number"))?;
+            m.insert(k.trim().to_string(), n);
+        }
+    }
+    Ok(m)
+}
+
+fn fail(msg: String) -> ExitCode {
+    eprintln!("error: {msg}");
+    ExitCode::from(2)
+}
+
+/// Runs the translation mode. `None` when the arguments do not ask for it.
+pub fn run(a: &TranslateArgs) -> Option<ExitCode> {
+    let to = a.to?;
+    let Some(input) = &a.input else {
+        return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
+    };
+    if to != Dialect::Fanuc {
+        return Some(fail(format!("translation to {} is not available in this build", to.name())));
+    }
+    Some(to_fanuc(a, input))
+}
+
+fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
+    let bytes = match std::fs::read(input) {
+        Ok(b) => b,
+        Err(e) => return fail(format!("cannot read {}: {e}", input.display())),
+    };
+    let mut db = SourceDb::new();
+    let name = input.display().to_string();
+    let loaded = nctrans::load(&mut db, &name, &bytes, a.input_encoding);
+    let dialect = nctrans::detect_dialect(&name, &db.get(loaded.file).text);
+    if dialect != Dialect::Sinumerik {
+        return fail(format!("{name} is not a Sinumerik program (only Sinumerik → FANUC is translated)"));
+    }
+    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &popts);
+    eprint!("{}", diag::render(&db, &parsed.diags));
+    if diag::has_errors(&parsed.diags) {
+        return ExitCode::from(1);
+    }
+    // Subprograms it calls, found beside it (NAME.SPF, any case), transitively.
+    let mut subs: Vec<Unit> = Vec::new();
+    let mut todo = called_names(&parsed.unit);
+    let mut seen: Vec<String> = Vec::new();
+    while let Some(callee) = todo.pop() {
+        if seen.contains(&callee) {
+            continue;
+        }
+        seen.push(callee.clone());
+        let Some(path) = find_beside(input, &callee) else { continue };
+        let Ok(bytes) = std::fs::read(&path) else { continue };
+        let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+        let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
+        eprint!("{}", diag::render(&db, &p.diags));
+        if diag::has_errors(&p.diags) {
+            return ExitCode::from(1);
+        }
+        todo.extend(called_names(&p.unit));
+        subs.push(p.unit);
+    }
+    let opts = match options(a, input, loaded.line_ending) {
+        Ok(o) => o,
+        Err(e) => return fail(e),
+    };
+    let sub_refs: Vec<&Unit> = subs.iter().collect();
+    let t = translate::to_fanuc(&parsed.unit, &sub_refs, &opts);
+    eprint!("{}", diag::render(&db, &t.diags));
+    if diag::has_errors(&t.diags) && opts.unsupported == UnsupportedPolicy::Error {
+        eprintln!("error: not translated ({} construct(s) cannot be expressed on FANUC)", t.unsupported.max(1));
+        return ExitCode::from(1);
+    }
+    let out_bytes = read::encode(&t.text, loaded.encoding, loaded.bom);
+    if let Err(e) = write_output(a.output.as_deref(), &out_bytes) {
+        return fail(e);
+    }
+    if t.unsupported > 0 || diag::has_errors(&t.diags) {
+        eprintln!("error: the output is incomplete: {} construct(s) marked UNSUPPORTED", t.unsupported);
+        return ExitCode::from(1);
+    }
+    if a.no_verify {
+        return ExitCode::SUCCESS;
+    }
+    let out_name = a.output.as_ref().map_or("<translation>.nc".to_string(), |p| p.display().to_string());
+    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, a.max_steps);
+    eprint!("{}", v.rendered);
+    eprintln!("{}", v.summary);
+    if v.equivalent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}
+
+fn options(a: &TranslateArgs, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
+    let mut var_rules = Vec::new();
+    for s in &a.var_map {
+        var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);
+    }
+    let program_map =
+        pairs(&a.program_map, "--program-map")?.into_iter().map(|(k, v)| (k.to_ascii_uppercase(), v)).collect();
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
+    Ok(TranslateOptions {
+        unsupported: if a.unsupported == "warn" { UnsupportedPolicy::Warn } else { UnsupportedPolicy::Error },
+        var_rules,
+        tool_map: pairs(&a.tool_map, "--tool-map")?,
+        program_map,
+        program_number: a.program_number,
+        comments: match a.comments.as_str() {
+            "ascii" => CommentMode::Ascii,
+            "drop" => CommentMode::Drop,
+            _ => CommentMode::Keep,
+        },
+        number_blocks: a.number_blocks,
+        line_ending: eol,
+        compound_conditions: a.compound_conditions,
+        main_name: stem,
+        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
+        source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
+        ..TranslateOptions::default()
+    })
+}
+
+/// Writes through a temporary file and a rename, so a failed run never leaves half a program.
+fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
+    use std::io::Write;
+    match path {
+        None => std::io::stdout().lock().write_all(bytes).map_err(|e| format!("cannot write: {e}")),
+        Some(p) => {
+            let tmp = p.with_extension(format!("{}.nctrans-tmp", p.extension().and_then(|e| e.to_str()).unwrap_or("")));
+            std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
+            std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
+        }
+    }
+}
+
+fn called_names(unit: &Unit) -> Vec<String> {
+    let mut v = Vec::new();
+    for p in &unit.programs {
+        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    if let ItemKind::Call(c) = &it.kind {
+                        if let CallTarget::Name(n) = &c.target {
+                            v.push(n.to_ascii_uppercase());
+                        }
+                    }
+                }
+            }
+        });
+    }
+    v
+}
+
+fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
+    let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    files.sort();
+    files.into_iter().find(|f| {
+        let stem = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+        stem.eq_ignore_ascii_case(name) && ext == "spf"
+    })
+}

@@ -1,0 +1,77 @@
+//! `nctrans check A B` end to end: a FANUC program and its Siemens equivalent agree; a
+//! deliberately altered copy diverges at the right event with a label in each file and a
+//! diff; a step limit is inconclusive; `nctrans run` writes the spec's jsonl.
+
+mod eval_support;
+
+use eval_support::root;
+use std::process::Command;
+
+const FANUC: &str = "%\nO100\n#1=0\nG90 G0 X0 Y0\nWHILE[#1 LT 5]DO1\n#1=#1+1\nG1 X[#1*2.] F200.\nEND1\nM30\n%\n";
+const SIEMENS: &str = "R1=0\nG90 G0 X0 Y0\nWHILE R1<5\nR1=R1+1\nG1 X=R1*2 F200\nENDWHILE\nM30\n";
+/// The same program with the fourth iteration moving 0.5 mm too far.
+const ALTERED: &str =
+    "R1=0\nG90 G0 X0 Y0\nWHILE R1<5\nR1=R1+1\nIF R1==4\nG1 X=R1*2+0.5 F200\nELSE\nG1 X=R1*2 F200\nENDIF\nENDWHILE\nM30\n";
+
+fn write(name: &str, text: &str) -> String {
+    let dir = root().join("target/eval-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let p = dir.join(name);
+    std::fs::write(&p, text).expect("write");
+    p.to_string_lossy().to_string()
+}
+
+fn nctrans(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).to_string(),
+        String::from_utf8_lossy(&out.stderr).to_string(),
+    )
+}
+
+#[test]
+fn equal_programs_are_equivalent() {
+    let a = write("check-a.nc", FANUC);
+    let b = write("check-b.mpf", SIEMENS);
+    let (code, out, err) = nctrans(&["check", &a, &b]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    assert_eq!(out, "equivalent (7 trace events agree)\n");
+}
+
+#[test]
+fn altered_program_diverges_at_the_fourth_move() {
+    let a = write("check-a2.nc", FANUC);
+    let b = write("check-altered.mpf", ALTERED);
+    let (code, out, err) = nctrans(&["check", &a, &b]);
+    assert_eq!(code, 1, "{out}\n{err}");
+    // Events: rapid, then moves X2 X4 X6 X8: the fifth event differs.
+    assert!(out.starts_with("diverged at trace event 5\n"), "{out}");
+    assert!(out.contains("-move linear X=8 Y=0 f=200\n+move linear X=8.5 Y=0 f=200\n"), "{out}");
+    assert!(err.contains("error[NC500]"), "{err}");
+    // A label in each file: the FANUC G1 block (line 7) and the altered Siemens block (line 6).
+    assert!(err.contains("check-a2.nc:7:1"), "{err}");
+    assert!(err.contains("check-altered.mpf:6:1"), "{err}");
+}
+
+#[test]
+fn a_step_limit_is_inconclusive() {
+    let a = write("check-a3.nc", FANUC);
+    let b = write("check-b3.mpf", SIEMENS);
+    let (code, out, _) = nctrans(&["check", &a, &b, "--max-steps", "6"]);
+    assert_eq!(code, 4);
+    assert!(out.starts_with("inconclusive"), "{out}");
+}
+
+#[test]
+fn run_writes_jsonl_and_takes_inputs() {
+    // The header comment line is a block too: 3 steps.
+    let b = write("run-set.mpf", "; nctrans: set R1=2\nG0 X=R1 Y=R2\nM30\n");
+    let (code, out, _) = nctrans(&["run", &b, "--format", "jsonl", "--set", "R2=-1.5"]);
+    assert_eq!(code, 0);
+    assert_eq!(
+        out,
+        "{\"ev\":\"move\",\"mode\":\"rapid\",\"to\":{\"X\":2,\"Y\":-1.5},\"f\":null,\"line\":2}\n\
+         {\"ev\":\"end\",\"code\":\"M30\",\"steps\":3,\"line\":3}\n"
+    );
+}

@@ -1,0 +1,83 @@
+//! Every FANUC program in `../shared/external/cnc4me-fanuc/` (real production macros nobody on
+//! this project wrote) parses, except the ones listed here with the exact reason they are
+//! rejected. The folder lives beside the repository (`<repo>/../shared`); without it the test
+//! prints a note and passes.
+
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::span::SourceDb;
+use std::path::{Path, PathBuf};
+
+/// Files that must be rejected, with the diagnostic codes and messages they must give.
+/// DEEP_DRILL_CYCLE.nc jumps (`GOTO942` … `GOTO946`) to alarm blocks it wrote after its
+/// closing `%`; the control never reads those, so every such jump has no target.
+const REJECTED: &[(&str, &[&str])] = &[(
+    "programs/DEEP_DRILL_CYCLE.nc",
+    &[
+        "NC236 no block N942 in this program",
+        "NC236 no block N943 in this program",
+        "NC236 no block N944 in this program",
+        "NC236 no block N945 in this program",
+        "NC236 no block N946 in this program",
+    ],
+)];
+
+fn external() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cnc4me-fanuc");
+    dir.is_dir().then_some(dir)
+}
+
+fn programs(dir: &Path) -> Vec<String> {
+    let mut v = Vec::new();
+    for sub in ["examples", "programs"] {
+        let Ok(rd) = std::fs::read_dir(dir.join(sub)) else { continue };
+        for e in rd.flatten() {
+            let name = e.file_name().to_string_lossy().to_string();
+            if name.to_ascii_lowercase().ends_with(".nc") {
+                v.push(format!("{sub}/{name}"));
+            }
+        }
+    }
+    v.sort();
+    v
+}
+
+#[test]
+fn external_fanuc_programs_parse_or_are_rejected_for_the_listed_reason() {
+    let Some(dir) = external() else {
+        println!("note: ../shared/external/cnc4me-fanuc not found; external FANUC programs not checked");
+        return;
+    };
+    let files = programs(&dir);
+    assert!(files.len() >= 6, "expected the 6 cnc4me programs, found {files:?}");
+    let mut failures = Vec::new();
+    for rel in &files {
+        let bytes = std::fs::read(dir.join(rel)).expect("readable");
+        let mut db = SourceDb::new();
+        let loaded = nctrans::load(&mut db, rel, &bytes, None);
+        let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let errors: Vec<String> =
+            parsed.diags.iter().filter(|d| d.is_error()).map(|d| format!("{} {}", d.code, d.message)).collect();
+        let expected: Vec<String> =
+            REJECTED.iter().find(|(f, _)| f == rel).map_or(vec![], |(_, e)| e.iter().map(|s| s.to_string()).collect());
+        if errors != expected {
+            failures.push(format!(
+                "{rel}: expected errors {expected:?}, got {errors:?}\n{}",
+                nctrans::diag::render(&db, &parsed.diags)
+            ));
+        }
+        let len = db.get(loaded.file).text.len() as u32;
+        let spans = nctrans::ir::visit::check_spans(&parsed.unit, len);
+        if !spans.is_empty() {
+            failures.push(format!("{rel}: span problems {spans:?}"));
+        }
+        if expected.is_empty() && parsed.unit.programs.is_empty() {
+            failures.push(format!("{rel}: no program read"));
+        }
+    }
+    for (f, _) in REJECTED {
+        if !files.iter().any(|x| x == f) {
+            failures.push(format!("{f}: listed as rejected but not found"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

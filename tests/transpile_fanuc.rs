@@ -1,0 +1,517 @@
+//! Sinumerik → FANUC translation tests: pairs (Siemens input → exact FANUC output, or
+//! unsupported), every corpus program (outputs committed under `corpus/out/fanuc/`,
+//! `NCTRANS_BLESS=1` rewrites them), the CEAD examples, a property test on random programs
+//! (`NCTRANS_PROPTEST_N`, default 500) and injected bugs that verification must catch.
+
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::Unit;
+use nctrans::passes::UnsupportedPolicy;
+use nctrans::span::SourceDb;
+use nctrans::translate::{self, TranslateOptions, Translation};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+const STEPS: u64 = 200_000;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+struct Done {
+    db: SourceDb,
+    unit: Unit,
+    t: Translation,
+}
+
+fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
+    let mut db = SourceDb::new();
+    let file = db.add(name, src);
+    let parsed = nctrans::parse(&db, file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+    assert!(
+        !nctrans::diag::has_errors(&parsed.diags),
+        "{name} does not parse:\n{}",
+        nctrans::diag::render(&db, &parsed.diags)
+    );
+    let t = translate::to_fanuc(&parsed.unit, &[], opts);
+    Done { db, unit: parsed.unit, t }
+}
+
+fn verify(d: &mut Done) -> translate::Verification {
+    translate::verify(&mut d.db, &d.unit, &[], &d.t, "out.nc", STEPS)
+}
+
+/// The program lines of a translation: no `%`, `O` line or NCTRANS header.
+fn body(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|l| *l != "%" && !l.starts_with('O') && !l.starts_with("(NCTRANS"))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Siemens `src` translates to exactly `expected` and both run to the same trace.
+fn pair(src: &str, expected: &[&str]) {
+    let mut d = translate_src("pair.mpf", src, &TranslateOptions::default());
+    assert!(d.t.ok(), "not translated:\n{}", nctrans::diag::render(&d.db, &d.t.diags));
+    assert_eq!(body(&d.t.text), expected, "\nfull output:\n{}", d.t.text);
+    let v = verify(&mut d);
+    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, d.t.text);
+}
+
+/// Siemens `src` is refused with diagnostic `code`.
+fn refused(src: &str, code: &str) {
+    let d = translate_src("pair.mpf", src, &TranslateOptions::default());
+    assert!(!d.t.ok(), "translated although unsupported:\n{}", d.t.text);
+    assert!(
+        d.t.diags.iter().any(|x| x.code == code),
+        "expected {code}, got {:?}",
+        d.t.diags.iter().map(|x| x.code).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn pair_words_and_decimal_points() {
+    pair(
+        "S1200 M3\nG1 X1 Y=2*3 Z-0.5 F250\nG4 F1.5\nM30\n",
+        &["S1200 M03", "G01 X1. Y[2.*3.] Z-0.5 F250.", "G04 X1.5", "M30"],
+    );
+}
+
+#[test]
+fn pair_r_parameters_and_arc_radius() {
+    pair(
+        "R1=10 R2=R1/4\nG0 X0 Y0\nG2 X=R1 Y0 CR=R2*2 F100\nM30\n",
+        &["#501=10.", "#502=#501/4.", "G00 X0. Y0.", "G02 X#501 Y0. R[#502*2.] F100.", "M30"],
+    );
+}
+
+#[test]
+fn pair_if_else_inverts_and_jumps() {
+    pair(
+        "R1=2\nIF R1>1\nG1 X1 F100\nELSE\nG1 X2 F100\nENDIF\nM30\n",
+        &[
+            "#501=2.",
+            "IF [#501-1. LE [ABS[#501]+1.+ABS[ABS[#501]-1.]]*0.0000005*0.000001] GOTO 1000",
+            "G01 X1. F100.",
+            "GOTO 1001",
+            "N1000",
+            "G01 X2. F100.",
+            "N1001",
+            "M30",
+        ],
+    );
+}
+
+#[test]
+fn pair_while_becomes_do_with_depth() {
+    pair(
+        "DEF INT CNT\nCNT=0\nWHILE CNT<2\nG1 X=CNT F100\nCNT=CNT+1\nENDWHILE\nM30\n",
+        &["#100=0.", "#100=0.", "WHILE [#100 LT 2.] DO1", "G01 X#100 F100.", "#100=#100+1.", "END1", "M30"],
+    );
+}
+
+#[test]
+fn pair_roundup_is_a_ceiling() {
+    pair(
+        "R1=-1.2\nG1 X=ROUNDUP(R1) F100\nM30\n",
+        &["#501=-1.2", "#1=FIX[#501]", "IF [#501 GT #1] THEN #1=#1+1.", "G01 X#1 F100.", "M30"],
+    );
+}
+
+#[test]
+fn pair_atan2_range_is_normalised() {
+    pair(
+        "R1=ATAN2(-1,-1)\nG1 X=R1 F100\nM30\n",
+        &["#1=ATAN[-1.]/[-1.]", "IF [#1 GT 180.] THEN #1=#1-360.", "#501=#1", "G01 X#501 F100.", "M30"],
+    );
+}
+
+#[test]
+fn pair_logical_and_is_not_bitwise() {
+    pair(
+        "R1=2 R2=1\nR3=R1 AND R2\nG1 X=R3 F100\nM30\n",
+        &[
+            "#501=2.",
+            "#502=1.",
+            "#1=0.",
+            "IF [#501 EQ 0.] GOTO 1000",
+            "IF [#502 EQ 0.] GOTO 1000",
+            "#1=1.",
+            "N1000",
+            "#503=#1",
+            "G01 X#503 F100.",
+            "M30",
+        ],
+    );
+}
+
+#[test]
+fn pair_mod_and_div_keep_siemens_signs() {
+    pair(
+        "R1=-7 MOD 3\nR2=-7 DIV 2\nG1 X=R1 Y=R2 F100\nM30\n",
+        &["#501=-7.-FIX[-7./3.]*3.", "#502=FIX[-7./2.]", "G01 X#501 Y#502 F100.", "M30"],
+    );
+}
+
+#[test]
+fn pair_labels_become_n_numbers() {
+    pair(
+        "R1=0\nTOP: R1=R1+1\nG1 X=R1 F100\nIF R1<2 GOTOB TOP\nM30\n",
+        &[
+            "#501=0.",
+            "N1000 #501=#501+1. (TOP:)",
+            "G01 X#501 F100.",
+            "IF [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] GOTO 1000",
+            "M30",
+        ],
+    );
+}
+
+#[test]
+fn pair_msg_m0_is_a_stop_and_setal_an_alarm() {
+    pair(
+        "G1 X1 F100\nMSG(\"CHECK\")\nM0\nSETAL(65010)\nM30\n",
+        &["G01 X1. F100.", "#3006=1(CHECK)", "#3000=10(SETAL 65010)", "M30"],
+    );
+}
+
+#[test]
+fn pair_ic_switches_to_incremental_and_back() {
+    pair("G90 G1 X1 F100\nX=IC(2)\nM30\n", &["G90 G01 X1. F100.", "G91 X2.", "G90", "M30"]);
+}
+
+#[test]
+fn unsupported_constructs_are_refused() {
+    refused("TRANS X10\nM30\n", "NC316");
+    refused("DEF STRING[8] S\nM30\n", "NC310");
+    refused("G1 X1 F100 AR=90\nM30\n", "NC312");
+    refused("CYCLE81(10,0,2,-5)\nM30\n", "NC303");
+    refused("T=\"NOPE\"\nM6\nM30\n", "NC301");
+    refused("R1=$AC_TIME\nM30\n", "NC342");
+    refused("G500\nM30\n", "NC311");
+}
+
+#[test]
+fn warn_policy_marks_the_line() {
+    let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
+    let d = translate_src("w.mpf", "G1 X1 F100\nTRANS X10\nM30\n", &opts);
+    assert!(!d.t.ok());
+    assert!(d.t.text.contains("(*** NCTRANS UNSUPPORTED: frame instruction TRANS ***)"), "{}", d.t.text);
+}
+
+#[test]
+fn output_is_deterministic() {
+    let src = std::fs::read_to_string(root().join("corpus/in/sinumerik/pitfall-deep-nesting.mpf")).unwrap_or_default();
+    let a = translate_src("a.mpf", &src, &TranslateOptions::default()).t.text;
+    let b = translate_src("a.mpf", &src, &TranslateOptions::default()).t.text;
+    assert_eq!(a, b);
+}
+
+/// Verification must catch wrong translations: FUP instead of the ceiling, and an exact
+/// comparison instead of Siemens' relative one.
+#[test]
+fn injected_bugs_are_caught() {
+    let mut d = translate_src("bug.mpf", "R1=-1.2\nG1 X=ROUNDUP(R1) F100\nM30\n", &TranslateOptions::default());
+    assert!(verify(&mut d).equivalent);
+    d.t.text = d.t.text.replace("#1=FIX[#501]", "#1=FUP[#501]").replace("IF [#501 GT #1] THEN #1=#1+1.", "");
+    let v = verify(&mut d);
+    assert!(!v.equivalent && v.summary.starts_with("diverged"), "{}", v.summary);
+
+    let src = "R1=0 R2=0\nWHILE R1<>1\nR1=R1+0.1\nR2=R2+1\nIF R2>20 GOTOF OUT\nENDWHILE\nOUT: G1 X=R2 F100\nM30\n";
+    let mut d = translate_src("bug2.mpf", src, &TranslateOptions::default());
+    assert!(verify(&mut d).equivalent);
+    let naive =
+        d.t.text
+            .lines()
+            .map(|l| if l.starts_with("WHILE [ABS[#501-1.]") { "WHILE [#501 NE 1.] DO1" } else { l })
+            .collect::<Vec<_>>()
+            .join("\n");
+    assert_ne!(naive, d.t.text.trim_end());
+    d.t.text = naive + "\n";
+    assert!(!verify(&mut d).equivalent);
+}
+
+fn tool_map(src: &str) -> BTreeMap<String, u32> {
+    let mut m = BTreeMap::new();
+    for part in src.replace("t=\"", "T=\"").split("T=\"").skip(1) {
+        if let Some(name) = part.split('"').next() {
+            let n = m.len() as u32 + 1;
+            m.entry(name.to_string()).or_insert(n);
+        }
+    }
+    m
+}
+
+/// Corpus programs that cannot be translated, with the reason (diagnostic code).
+const REFUSED: &[(&str, &str)] = &[
+    ("address-ac-ic.mpf", "NC313"),
+    ("address-numbered.mpf", "NC312"),
+    ("arc-radius-angle.mpf", "NC312"),
+    ("assign-undeclared-name.mpf", "NC341"),
+    ("call-bare-name.mpf", "NC303"),
+    ("call-l-number.mpf", "NC303"),
+    ("call-repeat-p.mpf", "NC303"),
+    ("call-with-args.mpf", "NC303"),
+    ("cycle-unknown-call.mpf", "NC303"),
+    ("def-scalar-types.mpf", "NC310"),
+    ("frame-instructions.mpf", "NC316"),
+    ("goto-string-target.mpf", "NC305"),
+    ("mcall-modal.mpf", "NC318"),
+    ("named-instructions.mpf", "NC312"),
+    ("operators-bitwise.mpf", "NC330"),
+    ("operators-concat.mpf", "NC314"),
+    ("repeat-section.mpf", "NC317"),
+    ("system-variables.mpf", "NC342"),
+];
+
+#[test]
+fn corpus_translates_and_verifies() {
+    let dir = root().join("corpus/in/sinumerik");
+    let mut files: Vec<PathBuf> =
+        std::fs::read_dir(&dir).map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect()).unwrap_or_default();
+    files.sort();
+    let bless = std::env::var_os("NCTRANS_BLESS").is_some_and(|v| v != "0");
+    let mut failures = Vec::new();
+    for path in files {
+        let name = path.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string();
+        let bytes = std::fs::read(&path).unwrap_or_default();
+        let mut db = SourceDb::new();
+        let rel = format!("corpus/in/sinumerik/{name}");
+        let loaded = nctrans::load(&mut db, &rel, &bytes, None);
+        let text = db.get(loaded.file).text.clone();
+        let parsed =
+            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+        if nctrans::diag::has_errors(&parsed.diags) {
+            failures.push(format!("{name}: does not parse"));
+            continue;
+        }
+        let opts = TranslateOptions {
+            tool_map: tool_map(&text),
+            line_ending: loaded.line_ending,
+            main_name: Path::new(&name).file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase(),
+            source_name: name.clone(),
+            main_is_sub: name.ends_with(".spf"),
+            ..TranslateOptions::default()
+        };
+        let t = translate::to_fanuc(&parsed.unit, &[], &opts);
+        let refused = REFUSED.iter().find(|(f, _)| *f == name);
+        match (t.ok(), refused) {
+            (false, Some((_, code))) => {
+                if !t.diags.iter().any(|d| d.code == *code) {
+                    failures.push(format!("{name}: refused, but not with {code}"));
+                }
+                continue;
+            }
+            (false, None) => {
+                failures.push(format!("{name}: not translated:\n{}", nctrans::diag::render(&db, &t.diags)));
+                continue;
+            }
+            (true, Some(_)) => {
+                failures.push(format!("{name}: translated but listed as refused"));
+                continue;
+            }
+            (true, None) => {}
+        }
+        let v = translate::verify(&mut db, &parsed.unit, &[], &t, &format!("corpus/out/fanuc/{name}.nc"), STEPS);
+        if !v.equivalent {
+            failures.push(format!("{name}: {}\n{}", v.summary, v.rendered));
+        }
+        let out = root().join(format!("corpus/out/fanuc/{name}.nc"));
+        let encoded = nctrans::read::encode(&t.text, loaded.encoding, loaded.bom);
+        if bless {
+            let _ = std::fs::create_dir_all(out.parent().unwrap_or(&root()));
+            let _ = std::fs::write(&out, &encoded);
+        } else if std::fs::read(&out).ok().as_deref() != Some(encoded.as_slice()) {
+            failures.push(format!("{name}: differs from corpus/out/fanuc/{name}.nc (NCTRANS_BLESS=1 rewrites it)"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every CEAD example that uses only translatable constructs translates and verifies.
+#[test]
+fn cead_examples_translate_and_verify() {
+    let dir = root().join("../shared/external/cead-sinumerik/examples");
+    let Ok(rd) = std::fs::read_dir(&dir) else {
+        eprintln!("note: {} is absent; CEAD examples skipped", dir.display());
+        return;
+    };
+    let mut files: Vec<PathBuf> =
+        rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "mpf")).collect();
+    files.sort();
+    let (mut ok, mut refused, mut failures) = (0, 0, Vec::new());
+    for path in files {
+        let bytes = std::fs::read(&path).unwrap_or_default();
+        let mut db = SourceDb::new();
+        let loaded = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+        let text = db.get(loaded.file).text.clone();
+        let parsed =
+            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+        if nctrans::diag::has_errors(&parsed.diags) {
+            refused += 1;
+            continue;
+        }
+        let opts = TranslateOptions { tool_map: tool_map(&text), ..TranslateOptions::default() };
+        let t = translate::to_fanuc(&parsed.unit, &[], &opts);
+        if !t.ok() {
+            refused += 1;
+            continue;
+        }
+        let v = translate::verify(&mut db, &parsed.unit, &[], &t, "cead.nc", STEPS);
+        if v.equivalent || v.summary.starts_with("not verified: a run") {
+            ok += usize::from(v.equivalent);
+            refused += usize::from(!v.equivalent);
+        } else {
+            failures.push(format!("{}: {}\n{}", path.display(), v.summary, v.rendered));
+        }
+    }
+    eprintln!("CEAD examples: {ok} translated and verified, {refused} refused or not runnable");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A small deterministic generator (xorshift64*).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n.max(1)
+    }
+    fn num(&mut self) -> String {
+        let v = self.below(200) as i64 - 100;
+        format!("{:.1}", v as f64 / 10.0)
+    }
+}
+
+struct Gen {
+    rng: Rng,
+    labels: u32,
+}
+
+impl Gen {
+    fn expr(&mut self, depth: u32) -> String {
+        let r = |g: &mut Gen| format!("R{}", 1 + g.rng.below(4));
+        if depth == 0 {
+            return if self.rng.below(2) == 0 { r(self) } else { self.rng.num() };
+        }
+        let a = self.expr(depth - 1);
+        let b = self.expr(depth - 1);
+        match self.rng.below(14) {
+            0 => format!("({a}+{b})"),
+            1 => format!("({a}-{b})"),
+            2 => format!("({a}*{b})"),
+            3 => format!("({a}/(ABS({b})+1))"),
+            4 => format!("SIN({a})"),
+            5 => format!("TRUNC({a})"),
+            6 => format!("ROUNDUP({a})"),
+            7 => format!("ROUND({a})"),
+            8 => format!("MINVAL({a},{b})"),
+            9 => format!("MAXVAL({a},{b})"),
+            10 => format!("ATAN2({a},ABS({b})+0.5)"),
+            11 => format!("({a} MOD 3)"),
+            12 => format!("({a} DIV 2)"),
+            _ => format!("POT(({a})/10)"),
+        }
+    }
+
+    fn cond(&mut self) -> String {
+        let op = ["==", "<>", "<", "<=", ">", ">="][self.rng.below(6) as usize];
+        let c = format!("({} {op} {})", self.expr(1), self.expr(1));
+        match self.rng.below(5) {
+            0 => format!("{c} AND ({} > 0)", self.expr(0)),
+            1 => format!("{c} OR NOT ({} < 1)", self.expr(0)),
+            _ => c,
+        }
+    }
+
+    fn stmts(&mut self, depth: u32, n: u32, out: &mut Vec<String>) {
+        for _ in 0..n {
+            let k = if depth >= 4 { self.rng.below(3) } else { self.rng.below(9) };
+            match k {
+                0 | 1 => {
+                    let t = 1 + self.rng.below(4);
+                    let d = 1 + self.rng.below(2) as u32;
+                    let e = self.expr(d);
+                    // Bounded: FANUC overflows at 1e47, far below Siemens' range.
+                    out.push(format!("R{t}=BOUND(-1000,1000,{e})"));
+                }
+                2 => out.push(format!("G1 X=R1 Y=R2 Z={} F100", self.expr(1))),
+                3 => {
+                    out.push(format!("IF {}", self.cond()));
+                    self.stmts(depth + 1, 2, out);
+                    if self.rng.below(2) == 0 {
+                        out.push("ELSE".into());
+                        self.stmts(depth + 1, 2, out);
+                    }
+                    out.push("ENDIF".into());
+                }
+                4 => {
+                    let c = 10 + depth;
+                    out.push(format!("R{c}=0"));
+                    out.push(format!("WHILE R{c}<{}", 1 + self.rng.below(3)));
+                    self.stmts(depth + 1, 2, out);
+                    out.push(format!("R{c}=R{c}+1"));
+                    out.push("ENDWHILE".into());
+                }
+                5 => {
+                    let c = 20 + depth;
+                    out.push(format!("FOR R{c}=1 TO {}", 1 + self.rng.below(3)));
+                    self.stmts(depth + 1, 2, out);
+                    out.push("ENDFOR".into());
+                }
+                6 => {
+                    let c = 30 + depth;
+                    out.push(format!("R{c}=0"));
+                    out.push("REPEAT".into());
+                    self.stmts(depth + 1, 2, out);
+                    out.push(format!("R{c}=R{c}+1"));
+                    out.push(format!("UNTIL R{c}>={}", 1 + self.rng.below(3)));
+                }
+                7 => {
+                    self.labels += 1;
+                    let l = format!("SKIP{}", self.labels);
+                    out.push(format!("IF {} GOTOF {l}", self.cond()));
+                    self.stmts(depth + 1, 1, out);
+                    out.push(format!("{l}: G1 X=R3 Y=R4 F200"));
+                }
+                _ => out.push(format!("G1 X={} Y={} F100", self.expr(2), self.expr(1))),
+            }
+        }
+    }
+
+    fn program(&mut self) -> String {
+        let mut lines: Vec<String> = (1..=4).map(|k| format!("R{k}={}", self.rng.num())).collect();
+        self.stmts(0, 5, &mut lines);
+        lines.push("G1 X=R1 Y=R2 Z=R3 A=R4 F100".into());
+        lines.push("M30".into());
+        lines.join("\n") + "\n"
+    }
+}
+
+#[test]
+fn random_programs_translate_and_verify() {
+    let n: u64 = std::env::var("NCTRANS_PROPTEST_N").ok().and_then(|s| s.parse().ok()).unwrap_or(500);
+    let seed: u64 = std::env::var("NCTRANS_PROPTEST_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0x5EED_1234);
+    let mut failures = Vec::new();
+    for k in 0..n {
+        let mut g = Gen { rng: Rng(seed.wrapping_add(k.wrapping_mul(0x9E37_79B9_7F4A_7C15)) | 1), labels: 0 };
+        let src = g.program();
+        let mut d = translate_src("random.mpf", &src, &TranslateOptions::default());
+        if !d.t.ok() {
+            failures.push(format!("program {k}: not translated\n{src}\n{}", nctrans::diag::render(&d.db, &d.t.diags)));
+            continue;
+        }
+        let v = verify(&mut d);
+        if !v.equivalent {
+            failures.push(format!("program {k}: {}\n{src}\n{}\n{}", v.summary, v.rendered, d.t.text));
+        }
+        if failures.len() >= 3 {
+            break;
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
