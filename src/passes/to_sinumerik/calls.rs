@@ -219,17 +219,6 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             );
         }
     }
-    // Missing callees: a call to a program that is in none of the loaded files.
-    for s in &sites {
-        if !ctx.progs.iter().any(|p| p.number == Some(s.callee)) {
-            let file = ctx.progs[s.caller].file;
-            ctx.diags.push(
-                Diagnostic::error("NC353", format!("the called program O{} was not found", s.callee))
-                    .primary(file, s.span, "called here")
-                    .hint(format!("put O{:04} in the same file, or beside it as O{:04}.nc", s.callee, s.callee)),
-            );
-        }
-    }
     // M98 subprograms use their callers' locals: the locals of a program include those of
     // the subprograms it runs with M98 (to pass them by reference).
     let edges: Vec<(usize, usize)> = sites
@@ -342,7 +331,15 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
         CallTarget::Name(_) => return Ok(Item { kind: ItemKind::Call(Box::new(c)), span }),
     };
     let Some(callee) = ctx.program_by_number(n) else {
-        return Err(None); // reported by plan_programs
+        // Under the warn policy the call becomes a marked line: the run then reaches the
+        // same point as FANUC does before it would miss the program.
+        return Err(ctx.refuse(
+            "NC353",
+            span,
+            &format!("the called program O{n} was not found"),
+            &format!("call of the missing program O{n}"),
+            &format!("put O{n:04} in the same file, or beside it as O{n:04}.nc"),
+        ));
     };
     let cplan = ctx.progs[callee].clone();
     let mut args = Vec::new();

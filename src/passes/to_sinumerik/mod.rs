@@ -181,19 +181,23 @@ impl<'a> Ctx<'a> {
     /// Reports a construct without a Siemens counterpart. Returns the marked comment
     /// statement to put in its place under the warn policy.
     pub fn unsupported(&mut self, code: &'static str, span: Span, what: &str, hint: &str) -> Option<Stmt> {
+        self.refuse(code, span, &format!("{what} has no Sinumerik counterpart"), what, hint)
+    }
+
+    /// Reports something the translation cannot write (error, or warning and a marked
+    /// comment line under the warn policy).
+    pub fn refuse(&mut self, code: &'static str, span: Span, message: &str, what: &str, hint: &str) -> Option<Stmt> {
         let file = self.file();
         match self.opts.unsupported {
             UnsupportedPolicy::Error => {
                 self.diags.push(
-                    Diagnostic::error(code, format!("{what} has no Sinumerik counterpart"))
-                        .primary(file, span, "cannot be translated")
-                        .hint(hint),
+                    Diagnostic::error(code, message.to_string()).primary(file, span, "cannot be translated").hint(hint),
                 );
                 None
             }
             UnsupportedPolicy::Warn => {
                 self.diags.push(
-                    Diagnostic::warning(code, format!("{what} has no Sinumerik counterpart"))
+                    Diagnostic::warning(code, message.to_string())
                         .primary(file, span, "written as a marked comment")
                         .hint(hint),
                 );
