@@ -180,6 +180,17 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
         eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
         return ExitCode::from(2);
     };
+    let fanuc_only = [
+        ("--tool-map", !args.tool_map.is_empty()),
+        ("--program-number", args.program_number.is_some()),
+        ("--number-blocks", args.number_blocks.is_some()),
+        ("--compound-conditions", args.compound_conditions),
+        ("--comments", args.comments != "keep"),
+    ];
+    if let Some((flag, _)) = fanuc_only.iter().find(|(_, given)| *given) {
+        eprintln!("error: {flag} applies to --to fanuc only");
+        return ExitCode::from(2);
+    }
     let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
     let opts = match options(args, stem) {
