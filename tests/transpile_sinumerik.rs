@@ -169,8 +169,8 @@ fn goto_backward_wraps_to_the_top() {
 fn computed_goto_becomes_case_over_the_n_numbers() {
     pair(
         "O1\n#1=2\nIF[#1 GT 0]GOTO#1\nN1 G0 X1.\nN2 G0 X2.\nM30\n",
-        "DEF REAL LOC1\nLOC1=2\nIF LOC1>0\n  CASE(ROUND(LOC1)) OF 1 GOTOF LBL_1 2 GOTOF LBL_2\n  SETAL(64128)\nENDIF\n\
-N1 LBL_1: G0 X1\nN2 LBL_2: G0 X2\nM30\n",
+        "DEF REAL LOC1\nDEF STRING[16] NCTRANS_NO_N\nLOC1=2\nIF LOC1>0\n  CASE(ROUND(LOC1)) OF 1 GOTOF LBL_1 2 GOTOF LBL_2\n  \
+NCTRANS_NO_N=\"NO_SUCH_BLOCK\" GOTOF NCTRANS_NO_N\nENDIF\nN1 LBL_1: G0 X1\nN2 LBL_2: G0 X2\nM30\n",
     );
 }
 

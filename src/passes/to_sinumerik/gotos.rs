@@ -12,13 +12,17 @@
 //!
 //! Computed `GOTO#1` / `GOTO[expr]` → `CASE(ROUND(expr)) OF n1 GOTOx LBL_n1 …` over every
 //! N number of the program, each arm resolved from the jump's own position; a number with
-//! no block raises `SETAL(64128)` (FANUC alarm 128, mapped as runtime alarms are: 64000+n).
+//! no block jumps through `NCTRANS_NO_N` (a STRING holding a label that does not exist), so
+//! Siemens raises its own alarm 14080 where FANUC raises 128.
 
 use super::vacancy::resolve;
 use super::*;
 
 /// Siemens alarm numbers for FANUC runtime alarms the translation raises itself.
 pub const RUNTIME_ALARM_BASE: i64 = 64000;
+
+/// The STRING variable a computed GOTO jumps through when no block has the number.
+pub const NO_TARGET: &str = "NCTRANS_NO_N";
 
 #[derive(Default)]
 struct Scan {
@@ -264,29 +268,39 @@ fn lower_goto(
                 .collect();
             let selector = func(Func::FanucRound, vec![e.clone()], e.span);
             let case = Item { kind: ItemKind::Case(Box::new(Case { selector, arms, default: None })), span };
-            let alarm = Item {
-                kind: ItemKind::Alarm {
-                    style: AlarmStyle::Setal,
-                    number: int(RUNTIME_ALARM_BASE + 128, span),
-                    text: Some("ILLEGAL SEQUENCE NUMBER".into()),
+            // No block with that number: jump to a label that does not exist, held in a
+            // STRING variable, so Siemens raises its own "jump target not found" (14080),
+            // the counterpart of FANUC's alarm 128.
+            let plan = &mut ctx.progs[ctx.cur];
+            if !plan.defs.iter().any(|(n, _)| n == NO_TARGET) {
+                plan.defs.push((NO_TARGET.to_string(), DataType::String(16)));
+            }
+            let alarm_items = vec![
+                assign(named_ref(NO_TARGET, span), Expr::new(ExprKind::Str("NO_SUCH_BLOCK".into()), span), span),
+                Item {
+                    kind: ItemKind::Goto(Box::new(Goto {
+                        search: Search::Forward,
+                        target: Target::Label(Label { name: NO_TARGET.into(), span }),
+                        cond: None,
+                        missing_continues: false,
+                    })),
+                    span,
                 },
-                span,
-            };
+            ];
             match g.cond {
                 None => {
                     items.push(case);
-                    extra.push(plain_block(vec![alarm], span));
+                    extra.push(plain_block(alarm_items.clone(), span));
                 }
                 Some(c) => {
                     extra.push(if_stmt(
                         c,
-                        vec![plain_block(vec![case], span), plain_block(vec![alarm], span)],
+                        vec![plain_block(vec![case], span), plain_block(alarm_items.clone(), span)],
                         None,
                         span,
                     ));
                 }
             }
-            let _ = ctx;
         }
         Target::Label(_) => items.push(Item { kind: ItemKind::Goto(Box::new(g)), span }),
     }
