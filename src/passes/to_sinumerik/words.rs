@@ -121,6 +121,10 @@ pub fn system_var(n: u32, span: Span) -> Option<VarKind> {
                 ],
             )
         }
+        // Modal words: D, F, S (the G groups need $P_GG indices, not G numbers: unsupported).
+        4107 => sys("P_TOOL", vec![]),
+        4109 => sys("P_F", vec![]),
+        4119 => sys("P_S", vec![]),
         3901 => sys("AC_ACTUAL_PARTS", vec![]),
         3902 => sys("AC_REQUIRED_PARTS", vec![]),
         _ => None,
