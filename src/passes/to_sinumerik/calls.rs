@@ -15,6 +15,61 @@
 
 use super::*;
 
+/// The VAR parameter through which a program ending in `M99 P<n>` passes n back.
+pub const RET_PARAM: &str = "NCTRANS_RET";
+/// The caller's variable that receives it.
+pub const RET_CODE: &str = "NCTRANS_RC";
+
+/// `M99 P<n>` returns to block n of the caller: after a call of such a program the caller
+/// clears its return code before the call and afterwards jumps on it like a computed GOTO
+/// (`IF[NCTRANS_RC NE 0] GOTO NCTRANS_RC`, resolved by `gotos` from this point).
+pub fn lower_return_jumps(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
+    let mut used = false;
+    let out = map_bodies(body, &mut |list| {
+        let mut out = Vec::with_capacity(list.len());
+        for s in list {
+            let span = s.span;
+            let target = match &s.kind {
+                StmtKind::Block(b) => b.items.iter().find_map(|it| match &it.kind {
+                    ItemKind::Call(c) if matches!(c.kind, CallKind::G65 | CallKind::M98) => match c.target {
+                        CallTarget::Number(n) => Some(n),
+                        _ => None,
+                    },
+                    _ => None,
+                }),
+                _ => None,
+            };
+            let returns = target.and_then(|n| ctx.program_by_number(n)).is_some_and(|i| ctx.progs[i].returns_to);
+            if !returns {
+                out.push(s);
+                continue;
+            }
+            used = true;
+            out.push(plain_block(vec![assign(named_ref(RET_CODE, span), int(0, span), span)], span));
+            out.push(s);
+            let cond = Expr::new(
+                ExprKind::Cmp(CmpOp::Ne, Tolerance::Exact, Box::new(named(RET_CODE, span)), Box::new(int(0, span))),
+                span,
+            );
+            let g = Goto {
+                search: Search::ForwardThenWrap,
+                target: Target::Computed(named(RET_CODE, span)),
+                cond: Some(cond),
+                missing_continues: false,
+            };
+            out.push(plain_block(vec![Item { kind: ItemKind::Goto(Box::new(g)), span }], span));
+        }
+        out
+    });
+    if used {
+        let plan = &mut ctx.progs[ctx.cur];
+        if !plan.defs.iter().any(|(n, _)| n == RET_CODE) {
+            plan.defs.push((RET_CODE.to_string(), DataType::Real));
+        }
+    }
+    out
+}
+
 /// FANUC argument letter of local `n` under argument specification I, if any.
 pub fn spec1_letter(n: u32) -> Option<char> {
     Some(match n {
@@ -202,6 +257,7 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             tracked: BTreeSet::new(),
             given: number.and_then(|n| given.get(&n)).cloned().unwrap_or_default(),
             writes_locals,
+            returns_to: role != Role::Main && has_item(&p.body, &|k| matches!(k, ItemKind::Return { to: Some(_) })),
             defs: Vec::new(),
         });
         if by_m98 && by_macro {
@@ -275,6 +331,7 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
         return;
     }
     let mut items = Vec::with_capacity(b.items.len());
+    let mut ret_after: Option<Span> = None;
     for it in std::mem::take(&mut b.items) {
         match it.kind {
             ItemKind::Call(c) => match lower_call(ctx, *c, it.span) {
@@ -282,6 +339,12 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
                 Err(Some(stmt)) => out.push(stmt),
                 Err(None) => {}
             },
+            ItemKind::Return { to: Some(to) } if ctx.plan().returns_to => {
+                // Tell the caller where to continue, then return.
+                // RET stands in a block of its own after the one (and its label) that sets it.
+                items.push(assign(named_ref(RET_PARAM, it.span), to, it.span));
+                ret_after = Some(it.span);
+            }
             ItemKind::Return { to: Some(_) } => {
                 if let Some(st) = ctx.unsupported(
                     "NC354",
@@ -315,6 +378,9 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
     }
     b.items = items;
     out.push(Stmt { kind: StmtKind::Block(b), span });
+    if let Some(rs) = ret_after {
+        out.push(plain_block(vec![Item { kind: ItemKind::Return { to: None }, span: rs }], rs));
+    }
 }
 
 fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> {
@@ -360,7 +426,7 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
     };
     match c.kind {
         CallKind::G65 | CallKind::G66 => {
-            for p in &cplan.params {
+            for p in cplan.params.iter().filter(|p| p.local != 0) {
                 let arg = match (value_of(p.local), p.flag) {
                     (None, _) => Arg::Omitted(span),
                     (Some(v), false) => {
@@ -390,7 +456,7 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
             }
         }
         CallKind::M98 => {
-            for p in &cplan.params {
+            for p in cplan.params.iter().filter(|p| p.local != 0) {
                 let e = if p.flag {
                     super::vacancy::local_flag_expr(ctx, p.local, span)
                 } else {
@@ -400,6 +466,9 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
             }
         }
         _ => {}
+    }
+    if cplan.returns_to {
+        args.push(Arg::Value(named(RET_CODE, span)));
     }
     while matches!(args.last(), Some(Arg::Omitted(_))) {
         args.pop();

@@ -6,7 +6,7 @@
 //! - `FIX` → `TRUNC`; `FUP[x]` (away from zero) → `ROUNDUP(x)-TRUNC(x)-ROUNDUP(-x)`, exact
 //!   in integer arithmetic; `ACOS` is the same function; `ATAN[y]/[x]`, `ASIN[x]` with NAT=0
 //!   (0..360, 270..90) → `(ATAN2(y,x)+360) MOD 360`, `(ASIN(x)+360) MOD 360`.
-//! - `POW[a,k]` for a literal k in 0..4 → products (`POT` for 2); `BIN`/`BCD` → digit sums.
+//! - `POW[a,k]` for a literal k in 0..16 → products (`POT` for 2); `BIN`/`BCD` → digit sums.
 //! - Comparisons: FANUC compares exactly, Siemens within 1e-12 relative. `a op b` is written
 //!   `a-b op 0` (or `a op 0` when one side is the literal 0): a relative tolerance around 0
 //!   admits only 0, and IEEE subtraction is 0 exactly when a = b, so the test is exact.
@@ -257,7 +257,7 @@ fn lower_func(ctx: &mut Ctx, f: Func, mut args: Vec<Expr>, span: Span, marks: &m
         Func::Pow => {
             let k = args.get(1).and_then(literal);
             match k {
-                Some(k) if k.fract() == 0.0 && (0.0..=4.0).contains(&k) => {
+                Some(k) if k.fract() == 0.0 && (0.0..=16.0).contains(&k) => {
                     let k = k as u32;
                     match k {
                         0 => int(1, span),
@@ -270,7 +270,7 @@ fn lower_func(ctx: &mut Ctx, f: Func, mut args: Vec<Expr>, span: Span, marks: &m
                     marks.extend(ctx.unsupported(
                         "NC369",
                         span,
-                        "POW with an exponent that is not a literal 0..4",
+                        "POW with an exponent that is not a literal 0..16",
                         "Siemens has only POT (square); write EXP(b*LN(a)) if a is positive and rounding is acceptable",
                     ));
                     int(0, span)

@@ -7,6 +7,8 @@
 //!    parameters (`calls::plan_programs`), the vacancy analysis (`vacancy::analyse`) and the
 //!    variable map (`varmap::build`).
 //! 2. `vacancy::rewrite` — is-set flags on writes, EQ/NE against vacancy, conditional words.
+//! 2b. `calls::lower_return_jumps` — after a call of a program that ends with `M99 P<n>`,
+//!    a computed jump on the return code it passes back.
 //! 3. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
 //! 4. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 5. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`/`M17`, `$P_UIFR`.
@@ -143,6 +145,9 @@ pub struct ProgPlan {
     pub given: BTreeSet<u32>,
     /// The program writes a local (any; decides whether `G65 … L` can repeat by `P`).
     pub writes_locals: bool,
+    /// The program returns with `M99 P<n>`: it gets a `VAR REAL NCTRANS_RET` parameter
+    /// through which the caller learns where to continue.
+    pub returns_to: bool,
     /// DEF declarations the output needs (name, type), in order.
     pub defs: Vec<(String, DataType)>,
 }
@@ -251,6 +256,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         ctx.gen = 0;
         let mut body = p.body.clone();
         body = vacancy::rewrite(&mut ctx, body);
+        body = calls::lower_return_jumps(&mut ctx, body);
         body = gotos::lower(&mut ctx, body);
         body = structures::lower(&mut ctx, body);
         body = calls::lower(&mut ctx, body);

@@ -210,6 +210,9 @@ fn plan_locals(plan: &mut ProgPlan) {
         }
     }
     values.extend(flags);
+    if plan.returns_to {
+        values.push(ParamSpec { local: 0, flag: false, name: super::calls::RET_PARAM.into(), by_ref: true });
+    }
     plan.params = values;
     plan.defs = defs;
 }
