@@ -2,19 +2,19 @@
 //! share (program roles and names, variable map, vacancy tracking) and small IR builders.
 //!
 //! Order (see [`lower`]):
-//! 0. `indirect::resolve` — `#[expr]` with an index known at translation time → `#n`.
-//! 1. `plan` — program roles (main / G65 macro / M98 subprogram), Siemens names, PROC
+//! 1. `indirect::resolve` — `#[expr]` with an index known at translation time → `#n`.
+//! 2. plan — program roles (main / G65 macro / M98 subprogram), Siemens names, PROC
 //!    parameters (`calls::plan_programs`), the vacancy analysis (`vacancy::analyse`) and the
 //!    variable map (`varmap::build`).
-//! 2. `vacancy::rewrite` — is-set flags on writes, EQ/NE against vacancy, conditional words.
-//! 2b. `calls::lower_return_jumps` — after a call of a program that ends with `M99 P<n>`,
+//! 3. `vacancy::rewrite` — is-set flags on writes, EQ/NE against vacancy, conditional words.
+//! 4. `calls::lower_return_jumps` — after a call of a program that ends with `M99 P<n>`,
 //!    a computed jump on the return code it passes back.
-//! 3. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
-//! 4. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
-//! 5. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`/`M17`, `$P_UIFR`.
-//! 6. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
+//! 5. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
+//! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
+//! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
+//! 8. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
-//! 7. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
+//! 9. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
 //!
 //! Every pass keeps source spans on what it builds, so a divergence found later can point
 //! back at the FANUC text.
