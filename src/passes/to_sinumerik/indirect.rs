@@ -113,12 +113,13 @@ fn has_indirect(body: &[Stmt]) -> bool {
     found
 }
 
-/// Resolves the indirect variables of a program whose index is a known constant.
-pub fn resolve(p: &Program) -> Program {
-    let mut p = p.clone();
+/// Resolves the indirect variables of a program whose index is a known constant; `None`
+/// when the program has none (the common case: no copy is made).
+pub fn resolve(p: &Program) -> Option<Program> {
     if !has_indirect(&p.body) {
-        return p;
+        return None;
     }
+    let mut p = p.clone();
     let ins: Vec<Env> = {
         let flat = flatten(&p.body);
         let len = flat.nodes.len();
@@ -154,13 +155,13 @@ pub fn resolve(p: &Program) -> Program {
             }
         }
         if !settled {
-            return p;
+            return Some(p);
         }
         ins.into_iter().map(Option::unwrap_or_default).collect()
     };
     let mut counter = 0usize;
     rewrite(&mut p.body, &ins, &mut counter);
-    p
+    Some(p)
 }
 
 fn rewrite(body: &mut [Stmt], ins: &[Env], counter: &mut usize) {

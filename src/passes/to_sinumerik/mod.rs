@@ -163,8 +163,6 @@ pub struct Ctx<'a> {
     pub diags: Vec<Diagnostic>,
     /// Index into `progs` of the program being lowered.
     pub cur: usize,
-    /// Counter for generated names (labels) within the current program.
-    pub gen: u32,
     /// True while lowering the items of a plain block (a guard block may go in front).
     pub guard_ok: bool,
 }
@@ -234,8 +232,9 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
-    let resolved: Vec<(FileId, Program)> = programs.iter().map(|(f, p)| (*f, indirect::resolve(p))).collect();
-    let programs: Vec<(FileId, &Program)> = resolved.iter().map(|(f, p)| (*f, p)).collect();
+    let resolved: Vec<Option<Program>> = programs.iter().map(|(_, p)| indirect::resolve(p)).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&resolved).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
     let programs = programs.as_slice();
     let mut ctx = Ctx {
         opts,
@@ -244,7 +243,6 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         common_flags: BTreeMap::new(),
         diags: Vec::new(),
         cur: 0,
-        gen: 0,
         guard_ok: false,
     };
     calls::plan_programs(&mut ctx, programs);
@@ -253,7 +251,6 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let mut out = Vec::new();
     for (i, (_, p)) in programs.iter().enumerate() {
         ctx.cur = i;
-        ctx.gen = 0;
         let mut body = p.body.clone();
         body = vacancy::rewrite(&mut ctx, body);
         body = calls::lower_return_jumps(&mut ctx, body);

@@ -194,15 +194,14 @@ fn vacant_writes(body: &[Stmt]) -> Summary {
     s
 }
 
-struct Analysis<'p> {
-    progs: &'p [(FileId, &'p Program)],
+struct Analysis {
     numbers: Vec<Option<u32>>,
     summaries: Vec<Summary>,
     seeds: BTreeSet<Key>,
     edges: Vec<(Key, Key)>,
 }
 
-impl Analysis<'_> {
+impl Analysis {
     fn callee(&self, n: u32) -> Option<usize> {
         self.numbers.iter().position(|x| *x == Some(n))
     }
@@ -421,38 +420,26 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
             break;
         }
     }
-    let mut an = Analysis { progs: programs, numbers, summaries, seeds: BTreeSet::new(), edges: Vec::new() };
-    for (i, (_, p)) in an.progs.iter().enumerate() {
+    let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), edges: Vec::new() };
+    for (i, (_, p)) in programs.iter().enumerate() {
         let flat = flatten(&p.body);
         let entry =
-            if ctx.progs[i].role == Role::Macro { macro_entry(an.progs, an.numbers[i]) } else { BTreeSet::new() };
+            if ctx.progs[i].role == Role::Macro { macro_entry(programs, an.numbers[i]) } else { BTreeSet::new() };
         let ins = an.dataflow(&flat, entry);
-        let mut uses: Vec<(usize, BTreeSet<u32>)> = Vec::new();
+        // Seeds and copy edges, with the state before each item of the node.
         for (j, d) in ins.into_iter().enumerate() {
-            uses.push((j, d.unwrap_or_default()));
-        }
-        // Collect seeds with the state before each item of the node.
-        let mut an2 = Analysis {
-            progs: an.progs,
-            numbers: an.numbers.clone(),
-            summaries: an.summaries.clone(),
-            seeds: std::mem::take(&mut an.seeds),
-            edges: std::mem::take(&mut an.edges),
-        };
-        for (j, mut d) in uses {
+            let mut d = d.unwrap_or_default();
             match &flat.nodes[j] {
                 Node::Items(items) => {
                     for it in items.iter() {
-                        an2.uses_item(i, it, &d);
-                        an2.transfer_item(it, &mut d);
+                        an.uses_item(i, it, &d);
+                        an.transfer_item(it, &mut d);
                     }
                 }
-                Node::Head { cond: Some(c), .. } => an2.uses_expr(i, c, &d),
+                Node::Head { cond: Some(c), .. } => an.uses_expr(i, c, &d),
                 _ => {}
             }
         }
-        an.seeds = an2.seeds;
-        an.edges = an2.edges;
     }
     // M98 subprograms and their callers share locals: tracking is shared too.
     for &(a, b, m98) in &calls {
