@@ -89,7 +89,7 @@ impl Gen {
     }
 
     fn stmt(&mut self) {
-        let k = self.r.below(12);
+        let k = self.r.below(19);
         match k {
             0..=2 => {
                 let v = self.r.pick(VARS);
@@ -151,6 +151,38 @@ impl Gen {
                 }
                 self.line(&format!("G65 P9001{args}"));
             }
+            12 => {
+                let v = self.r.pick(VARS);
+                let w = self.r.pick(VARS);
+                self.line(&format!("{v}=-{w}"));
+            }
+            13 => {
+                let v = self.r.pick(VARS);
+                let w = self.r.pick(VARS);
+                self.line(&format!("G0 X-{v} Y[-{w}]"));
+            }
+            14 => {
+                let g = self.r.pick(&["G91", "G90"]);
+                let d = self.r.pick(&["G04 P200", "G04 X0.5", "G04 X15"]);
+                self.line(&format!("{g} G0 X1. Y-2"));
+                self.line(d);
+                self.line("G90");
+            }
+            15 => {
+                self.line("G1 X0 Y0 F80.");
+                let r = self.r.pick(&["R5.", "R-5.", "R5"]);
+                self.line(&format!("G2 X5. Y5. {r}"));
+            }
+            16 => {
+                // M98 shares the locals: the subprogram changes #1 and tests #2.
+                let l = self.r.below(3) + 1;
+                self.line(&format!("M98 P9002 L{l}"));
+            }
+            17 => {
+                let n = self.r.pick(&["#[3]", "#[100]", "#[250*2]"]);
+                let e = expr(&mut self.r, 1);
+                self.line(&format!("{n}={e}"));
+            }
             _ => {
                 if self.depth == 0 && !self.earlier.is_empty() && self.r.chance(50) {
                     // Backward jump, bounded by a counter so every program ends.
@@ -202,6 +234,11 @@ impl Gen {
         g.line("G1 X#24 Z#26 F50.");
         g.line("N5 #100=#1");
         g.line("IF[#2 NE #0]THEN #500=#2");
+        g.line("M99");
+        g.line("O9002");
+        g.line("#1=#1+1");
+        g.line("IF[#2 EQ #0]THEN #2=-#1");
+        g.line("G0 X#2");
         g.line("M99");
         g.out
     }

@@ -541,6 +541,24 @@ pub fn bare_hash(e: &Expr) -> Option<u32> {
     }
 }
 
+/// The variable whose vacancy `e` carries on FANUC: `#n`, `-#n`, `-[-#n]` (a negated vacant
+/// value stays vacant, so `X-#1` drops its word like `X#1`).
+pub fn vacancy_var(e: &Expr) -> Option<u32> {
+    match &e.kind {
+        ExprKind::Unary(UnOp::Neg, a) => vacancy_var(a),
+        _ => bare_hash(e),
+    }
+}
+
+/// Whether `e` is the vacant value itself (`#0`, `-#0`).
+pub fn is_vacant_literal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Vacant => true,
+        ExprKind::Unary(UnOp::Neg, a) => is_vacant_literal(a),
+        _ => bare_hash(e) == Some(0),
+    }
+}
+
 /// The numeric value of a literal.
 pub fn literal(e: &Expr) -> Option<f64> {
     match &e.kind {

@@ -142,6 +142,7 @@ pub(super) fn succs(flat: &Flat, i: usize) -> Vec<usize> {
 fn nonvacant(e: &Expr, d: &BTreeSet<u32>) -> bool {
     match &e.kind {
         ExprKind::Vacant => false,
+        ExprKind::Unary(UnOp::Neg, a) => nonvacant(a, d),
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => false,
             VarKind::Hash(n @ (1..=33 | 100..=999)) => d.contains(&n),
@@ -291,7 +292,7 @@ impl Analysis {
     fn uses_expr(&mut self, prog: usize, e: &Expr, d: &BTreeSet<u32>) {
         if let ExprKind::Cmp(CmpOp::Eq | CmpOp::Ne, Tolerance::Exact, a, b) = &e.kind {
             for (x, y) in [(a, b), (b, a)] {
-                if let Some(n) = bare_hash(x) {
+                if let Some(n) = vacancy_var(x) {
                     let other_nonzero = literal(y).is_some_and(|v| v != 0.0);
                     if !d.contains(&n) && !other_nonzero {
                         self.seeds.extend(key(prog, n));
@@ -308,7 +309,7 @@ impl Analysis {
         match &it.kind {
             ItemKind::Word(w) => {
                 if let WordValue::Expr(e) = &w.value {
-                    if let Some(n) = bare_hash(e) {
+                    if let Some(n) = vacancy_var(e) {
                         if !d.contains(&n) {
                             self.seeds.extend(key(prog, n));
                         }
@@ -316,7 +317,7 @@ impl Analysis {
                 }
             }
             ItemKind::Assign { target, value } => {
-                if let (VarKind::Hash(t), Some(w)) = (&target.kind, bare_hash(value)) {
+                if let (VarKind::Hash(t), Some(w)) = (&target.kind, vacancy_var(value)) {
                     if !d.contains(&w) {
                         if let (Some(a), Some(b)) = (key(prog, *t), key(prog, w)) {
                             self.edges.push((a, b));
@@ -330,7 +331,7 @@ impl Analysis {
                     if let Some(callee) = self.callee(*n) {
                         for a in &c.args {
                             if let Arg::Letter { var, value, .. } = a {
-                                if let Some(w) = bare_hash(value) {
+                                if let Some(w) = vacancy_var(value) {
                                     if !d.contains(&w) {
                                         if let Some(src) = key(prog, w) {
                                             self.edges.push((Key::Local(callee, u32::from(*var)), src));
@@ -497,11 +498,10 @@ enum Flag {
 }
 
 fn flag_of(ctx: &Ctx, e: &Expr) -> Flag {
-    if matches!(e.kind, ExprKind::Vacant) {
+    if is_vacant_literal(e) {
         return Flag::Const(false);
     }
-    match bare_hash(e) {
-        Some(0) => Flag::Const(false),
+    match vacancy_var(e) {
         Some(n) => flag_ref(ctx, n, e.span).map_or(Flag::Const(true), Flag::Var),
         None => Flag::Const(true),
     }
@@ -636,7 +636,7 @@ fn rewrite_block(ctx: &mut Ctx, mut b: Block, span: Span, out: &mut Vec<Stmt>) {
         .enumerate()
         .filter_map(|(i, it)| match &it.kind {
             ItemKind::Word(Word { value: WordValue::Expr(e), .. }) => {
-                bare_hash(e).and_then(|n| flag_ref(ctx, n, e.span)).map(|_| i)
+                vacancy_var(e).and_then(|n| flag_ref(ctx, n, e.span)).map(|_| i)
             }
             _ => None,
         })
@@ -671,7 +671,7 @@ fn variants(ctx: &Ctx, items: &[Item], cond: &[usize], span: Span) -> Stmt {
         return plain_block(items.to_vec(), span);
     };
     let n = match &items[first].kind {
-        ItemKind::Word(Word { value: WordValue::Expr(e), .. }) => bare_hash(e).unwrap_or(0),
+        ItemKind::Word(Word { value: WordValue::Expr(e), .. }) => vacancy_var(e).unwrap_or(0),
         _ => 0,
     };
     let flag = local_or_common_flag(ctx, n, items[first].span);

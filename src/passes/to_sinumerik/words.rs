@@ -240,6 +240,16 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
             kind => items.push(Item { kind, span: isp }),
         }
     }
+    if dwell && dwell_value.is_none() {
+        if let Some(st) = ctx.unsupported(
+            "NC363",
+            span,
+            "G04 without a P or X time",
+            "write the dwell as G04 P<ms> or G04 X<seconds>",
+        ) {
+            out.push(st);
+        }
+    }
     if let Some(v) = dwell_value {
         // G4 stands alone on Siemens.
         after.insert(
@@ -286,7 +296,7 @@ fn lower_word(
     let WordValue::Expr(e) = &mut w.value else {
         return Some(Item { kind: ItemKind::Word(w), span: isp });
     };
-    if matches!(e.kind, ExprKind::Vacant) || bare_hash(e) == Some(0) {
+    if is_vacant_literal(e) {
         return None; // a vacant value drops the word
     }
     let Addr::Letter(l) = w.addr else {
@@ -337,7 +347,7 @@ fn lower_word(
     if l == b'H' && (gs.contains(&430) || gs.contains(&440) || gs.contains(&490)) {
         return None;
     }
-    if dwell && matches!(l, b'P' | b'X' | b'U') {
+    if dwell && matches!(l, b'P' | b'X') {
         let secs = match (l, &e.kind) {
             (b'P', ExprKind::Num(n)) => num(n.value / 1000.0, e.span),
             (b'P', _) => bin(BinOp::Div, e.clone(), int(1000, e.span)),
