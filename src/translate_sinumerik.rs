@@ -256,7 +256,7 @@ pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Tr
         if header.len() == 2 {
             header.pop();
         }
-        if symbols.vars.iter().any(|e| e.flag.is_some()) && header.len() > 1 {
+        if header.iter().any(|h| h.contains("(is-set flag")) {
             header.push("  (an is-set flag FALSE means FANUC's vacant; the value is then 0)".to_string());
         }
         // Inputs first: the evaluator reads only the comment lines at the top.

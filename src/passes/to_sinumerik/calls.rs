@@ -368,6 +368,13 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
             kind => items.push(Item { kind, span: it.span }),
         }
     }
+    // MCALL (cancel) stands alone on Siemens.
+    if items.len() > 1 && items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff)) {
+        let (off, rest): (Vec<Item>, Vec<Item>) =
+            items.into_iter().partition(|it| matches!(it.kind, ItemKind::ModalCallOff));
+        out.push(plain_block(off, span));
+        items = rest;
+    }
     // A G10 L50 / G11 frame block keeps nothing Siemens can use.
     let g = g_codes(&items);
     if g.contains(&110) {

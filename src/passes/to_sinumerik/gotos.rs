@@ -267,7 +267,9 @@ fn lower_goto(
                 })
                 .collect();
             let selector = func(Func::FanucRound, vec![e.clone()], e.span);
-            let case = Item { kind: ItemKind::Case(Box::new(Case { selector, arms, default: None })), span };
+            // A program without N numbers has no arm: only the missing-target jump remains.
+            let case = (!arms.is_empty())
+                .then(|| Item { kind: ItemKind::Case(Box::new(Case { selector, arms, default: None })), span });
             // No block with that number: jump to a label that does not exist, held in a
             // STRING variable, so Siemens raises its own "jump target not found" (14080),
             // the counterpart of FANUC's alarm 128.
@@ -289,16 +291,14 @@ fn lower_goto(
             ];
             match g.cond {
                 None => {
-                    items.push(case);
-                    extra.push(plain_block(alarm_items.clone(), span));
+                    // CASE stands in a block of its own (the FANUC block may hold NC words).
+                    extra.extend(case.map(|c| plain_block(vec![c], span)));
+                    extra.push(plain_block(alarm_items, span));
                 }
                 Some(c) => {
-                    extra.push(if_stmt(
-                        c,
-                        vec![plain_block(vec![case], span), plain_block(alarm_items.clone(), span)],
-                        None,
-                        span,
-                    ));
+                    let mut body: Vec<Stmt> = case.into_iter().map(|c| plain_block(vec![c], span)).collect();
+                    body.push(plain_block(alarm_items, span));
+                    extra.push(if_stmt(c, body, None, span));
                 }
             }
         }

@@ -347,6 +347,18 @@ fn lower_word(
     if l == b'H' && (gs.contains(&430) || gs.contains(&440) || gs.contains(&490)) {
         return None;
     }
+    // Letters whose FANUC meaning here (outside calls, dwell, G10) Siemens does not share.
+    if matches!(l, b'P' | b'L' | b'Q' | b'E' | b'O' | b'H') && !(dwell && l == b'P') {
+        if let Some(st) = ctx.unsupported(
+            "NC362",
+            w.span,
+            &format!("the address {} in this block", l as char),
+            "FANUC gives it a meaning only in calls, dwells, cycles and G10; remove it or translate the block by hand",
+        ) {
+            after.push(st);
+        }
+        return None;
+    }
     if dwell && matches!(l, b'P' | b'X') {
         let secs = match (l, &e.kind) {
             (b'P', ExprKind::Num(n)) => num(n.value / 1000.0, e.span),
