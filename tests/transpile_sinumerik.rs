@@ -570,3 +570,22 @@ fn modal_feed_speed_and_d_read_as_siemens_modal_variables() {
     );
     assert_eq!(codes("O1\n#1=#4001\nM30\n", &Options::default()), vec!["NC365"]);
 }
+
+/// The seed brake test O9050: under the default policy only precise diagnostics (committed
+/// under corpus/out/sinumerik); under the warn policy the supported parts translate, each
+/// unsupported construct is one marked line, and the output reads back as Sinumerik.
+#[test]
+fn seed_o9050_translates_its_supported_parts_under_warn() {
+    let src = std::fs::read_to_string(root().join("corpus/in/fanuc/seed-o9050-brake-test.nc")).expect("seed");
+    let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
+    let tr = run(&src, &o);
+    assert!(!tr.has_errors());
+    let mut codes: Vec<&str> = tr.diags.iter().map(|d| d.code).collect();
+    codes.sort();
+    assert_eq!(codes, vec!["NC355", "NC355", "NC355", "NC355", "NC355", "NC355", "NC362", "NC363", "NC363"]);
+    let marked: usize = tr.files.iter().map(|f| f.text.matches("; NCTRANS UNSUPPORTED:").count()).sum();
+    assert_eq!(marked, 9, "one marked line per unsupported construct");
+    let text = &tr.files[0].text;
+    assert!(text.contains("N100 IF (TRUNC(R13) B_AND 8)-8==0 GOTOF LBL_110"), "{text}");
+    assert!(text.contains("STOPRE\nN130 LOC1=$AA_IM[Y]"), "{text}");
+}
