@@ -54,6 +54,7 @@ measure() { # label, then the command; prints seconds and peak RSS
   local label=$1; shift
   /usr/bin/time -f "%e %M" -o "$OUT/time.txt" taskset -c 0 "$@" || true
   read -r secs kb < "$OUT/time.txt"
+  LAST_SECS=$secs
   python3 - "$label" "$ITER" "$secs" "$kb" <<'PY'
 import sys
 label, n, s, kb = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
@@ -66,10 +67,12 @@ for ext in nc mpf; do
   f="$OUT/loop-$ITER.$ext"
   measure "$ext trace discarded" "$BIN" run --quiet "$f"
   measure "$ext jsonl to a file" sh -c "\"$BIN\" run --format jsonl \"$f\" > \"$OUT/loop-$ITER.$ext.jsonl\""
+  NCTRANS_SECS=$LAST_SECS
 done
 ls -l "$OUT"/loop-"$ITER".*.jsonl | awk '{print "jsonl size:", $5, $9}'
 if command -v rs274 >/dev/null 2>&1; then
   measure "rs274 (peer)" sh -c "rs274 -g \"$OUT/loop-$ITER.ngc\" > /dev/null 2>&1"
+  python3 -c "import sys; a, b = float(sys.argv[1]), float(sys.argv[2]); print(f'ratio: rs274 takes {a / max(b, 1e-9):.1f}x the time of nctrans run (Siemens, jsonl)')" "$LAST_SECS" "$NCTRANS_SECS"
 else
   echo "rs274 not installed (Debian package linuxcnc-uspace): no peer measurement"
 fi

@@ -4,7 +4,9 @@
 //! The pipeline (see `docs/architecture.md`): `read` → `dialect::*::parse` (one block at a
 //! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
 
+pub mod batch;
 pub mod check;
+pub mod config;
 pub mod diag;
 pub mod dialect;
 pub mod eval;

@@ -1,7 +1,7 @@
 //! The `nctrans` command line: the only code that prints. Parses arguments, calls the
 //! library, renders diagnostics with codespan-reporting.
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::{diag, ir};
@@ -9,6 +9,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod batch_cli;
 mod cli_sinumerik;
 mod translate_cli;
 
@@ -25,6 +26,9 @@ struct Cli {
     /// Translation mode: `nctrans --to fanuc IN [-o OUT] …`.
     #[command(flatten)]
     translate: translate_cli::TranslateArgs,
+    /// Batch mode: a folder in (`nctrans --to fanuc -o out/ programs/`).
+    #[command(flatten)]
+    batch: batch_cli::BatchArgs,
 }
 
 #[derive(Subcommand)]
@@ -73,6 +77,11 @@ enum Command {
         #[command(flatten)]
         input: InputOpts,
     },
+    /// Write a commented project configuration (nctrans.toml) with every key at its default.
+    Init {
+        /// Where to write it (default: ./nctrans.toml); an existing file is never overwritten.
+        path: Option<PathBuf>,
+    },
 }
 
 #[derive(clap::Args)]
@@ -84,6 +93,17 @@ struct EvalOpts {
     /// Stop after this many blocks (the run is then inconclusive).
     #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
     max_steps: u64,
+    /// Where a probe move (FANUC G31, Siemens MEAS=/MEAW=) touches, as a fraction of the move
+    /// in (0, 1]; without it every probe move reaches its end point.
+    #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
+    probe_contact: Option<f64>,
+}
+
+fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(f) if f > 0.0 && f <= 1.0 => Ok(f),
+        _ => Err(format!("'{s}' is not a fraction in (0, 1] (e.g. 0.5: the probe touches halfway)")),
+    }
 }
 
 #[derive(clap::Args)]
@@ -103,8 +123,17 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // The matches are kept so batch mode can tell flags given from defaults (flags win over
+    // nctrans.toml only when given).
+    let matches = Cli::command().get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => e.exit(),
+    };
     let Some(command) = cli.command else {
+        if let Some(code) = batch_cli::run(&cli.translate, &cli.batch, &matches) {
+            return code;
+        }
         if cli.translate.to == Some(Dialect::Sinumerik) {
             return cli_sinumerik::run(&cli.translate);
         }
@@ -117,6 +146,7 @@ fn main() -> ExitCode {
         Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
         Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
         Command::Check { a, b, from_a, from_b, eval, input } => cmd_check(&a, &b, from_a, from_b, &eval, &input),
+        Command::Init { path } => batch_cli::init(path.as_deref()),
     }
 }
 
@@ -196,7 +226,12 @@ fn load_for_run(
         inputs.retain(|h| h.target != i.target);
         inputs.push(i);
     }
-    let opts = nctrans::eval::RunOptions { max_steps: eval.max_steps, inputs, semantics: None };
+    let opts = nctrans::eval::RunOptions {
+        max_steps: eval.max_steps,
+        inputs,
+        semantics: None,
+        probe_contact: eval.probe_contact,
+    };
     Ok((parsed.unit, opts))
 }
 

@@ -119,3 +119,58 @@ fn fanuc_decimal_point_in_addresses_and_arguments() {
     // G65 arguments without a point: X10 → 0.010, A5 → 0.005, D3 → 3 (integer address).
     assert_eq!(t[2], "move rapid X=0.01 Y=3 Z=123 A=0.005 f=-");
 }
+
+#[test]
+fn siemens_subprogram_parameters_by_value_reference_and_omitted() {
+    let dir = root().join("target/eval-tests/procs");
+    std::fs::create_dir_all(&dir).expect("dir");
+    // VAR parameter written back; omitted parameter is 0; M30 in a subprogram returns;
+    // P2 runs it twice with the same arguments.
+    std::fs::write(
+        dir.join("shift.spf"),
+        "PROC SHIFT(REAL DX, VAR REAL ACC, REAL DY)\nACC=ACC+DX\nG0 X=ACC Y=DY\nM30\n",
+    )
+    .expect("write");
+    std::fs::write(dir.join("Tail.SPF"), "G0 Z5\n").expect("write");
+    std::fs::write(dir.join("MAIN.MPF"), "DEF REAL SUM=1\nSHIFT(2.5, SUM) P2\nG0 Z=SUM\nTAIL\nM30\n").expect("write");
+    let ran = run_file(&dir.join("MAIN.MPF"), &[], 10_000);
+    assert!(ran.parse_errors.is_none(), "{:?}", ran.parse_errors);
+    let t = bare_lines(&ran);
+    assert_eq!(
+        t,
+        vec![
+            "move rapid X=3.5 Y=0 f=-",
+            "move rapid X=6 Y=0 f=-",
+            "move rapid X=6 Y=0 Z=6 f=-",
+            "move rapid X=6 Y=0 Z=5 f=-",
+            "end M30 steps=12"
+        ]
+    );
+    // TAIL ends without M17/RET: an implicit return with a warning.
+    assert!(ran.outcome.diags.iter().any(|d| d.code == "NC410"));
+}
+
+#[test]
+fn siemens_mcall_runs_after_each_move_of_the_calling_level() {
+    let dir = root().join("target/eval-tests/mcall");
+    std::fs::create_dir_all(&dir).expect("dir");
+    // The modal subprogram moves too; its own moves do not call it again.
+    std::fs::write(dir.join("DRILL.SPF"), "PROC DRILL(REAL DEPTH)\nG1 Z=-DEPTH F100\nG0 Z2\nRET\n").expect("write");
+    std::fs::write(dir.join("MAIN.MPF"), "G0 X0 Y0 Z2\nMCALL DRILL(3)\nX10\nY10\nMCALL\nX20\nM30\n").expect("write");
+    let ran = run_file(&dir.join("MAIN.MPF"), &[], 10_000);
+    assert!(ran.parse_errors.is_none(), "{:?}", ran.parse_errors);
+    assert_eq!(
+        bare_lines(&ran),
+        vec![
+            "move rapid X=0 Y=0 Z=2 f=-",
+            "move rapid X=10 Y=0 Z=2 f=-",
+            "move linear X=10 Y=0 Z=-3 f=100",
+            "move rapid X=10 Y=0 Z=2 f=-",
+            "move rapid X=10 Y=10 Z=2 f=-",
+            "move linear X=10 Y=10 Z=-3 f=100",
+            "move rapid X=10 Y=10 Z=2 f=-",
+            "move rapid X=20 Y=10 Z=2 f=-",
+            "end M30 steps=13"
+        ]
+    );
+}

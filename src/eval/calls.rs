@@ -115,7 +115,7 @@ pub struct ModalCall {
     pub fanuc_args: Vec<(u8, Option<f64>)>,
     pub sie_args: Vec<Option<Value>>,
     pub repeat: u64,
-    /// The frame depth whose moves trigger it.
+    /// The frame depth that set it (kept for diagnostics; the call is modal at every level).
     pub depth: usize,
 }
 
@@ -373,7 +373,9 @@ impl Interp<'_> {
                     continue;
                 }
             }
-            let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+            let len = super::vars::array_len(&p.dims).ok_or_else(|| {
+                Fault::alarm(self.alarms.bad_index, format!("array parameter {} too large", p.name), span)
+            })?;
             let v = match args.get(i) {
                 Some(Some(v)) => convert_for(p.ty, v.clone()).map_err(|_| {
                     Fault::alarm(

@@ -194,3 +194,10 @@ fn bcd_conversions_and_siemens_min_max() {
     assert_eq!(num(&s, func(Func::MinVal, vec![p(3.0), p(-1.0)])), -1.0);
     assert_eq!(num(&s, func(Func::Pot, vec![p(-3.0)])), 9.0);
 }
+
+#[test]
+fn fanuc_one_argument_atan_wraps_with_nat0() {
+    assert!(close(num(&fanuc(), func(Func::FanucAtan, vec![p(-1.0)])), 315.0));
+    let f1 = Cx { nat: true, ..fanuc() };
+    assert!(close(num(&f1, func(Func::FanucAtan, vec![p(-1.0)])), -45.0));
+}

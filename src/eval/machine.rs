@@ -93,10 +93,16 @@ pub struct Machine {
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
     pub last_m: f64,
     pub last_n: f64,
+    /// Last G code of FANUC groups without an effect on the trace, for `#4007`.. reads:
+    /// 07 cutter compensation, 08 length compensation, 09 canned cycle, 10 return level,
+    /// 15 path mode (values ×10: 400 = G40).
+    pub group_g: [(u8, i64); 5],
     /// Semantics::incremental_travels_offset.
     pub incr_travels_offset: bool,
     /// The offset in effect when each axis last moved (for the rule above).
     pub applied: [f64; 9],
+    /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
+    pub probe_contact: Option<f64>,
 }
 
 impl Machine {
@@ -128,6 +134,8 @@ impl Machine {
             trans: [0.0; 9],
             last_m: 0.0,
             last_n: 0.0,
+            group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
+            probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
         }
@@ -213,6 +221,7 @@ impl Machine {
         let (mut r, mut ar, mut f, mut s, mut p, mut l) = (None, None, None, None, None, None);
         let mut t: Option<(ToolId, Span)> = None;
         let mut block_span = Span::default();
+        let mut measuring = false;
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -250,6 +259,9 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
+                // A measuring move: runs to its end point unless `probe_contact` says where
+                // the probe touches.
+                ("MEAS" | "MEAW", _) => measuring = true,
                 (
                     "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
                     | "K1",
@@ -262,7 +274,7 @@ impl Machine {
         }
 
         // G codes: modal state first; one-shot meanings remembered.
-        let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, false);
+        let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         for &(g, span) in &gs {
             let gi = (g * 10.0).round() as i64;
             match gi {
@@ -308,6 +320,17 @@ impl Machine {
                 // cancel, exact stop: no effect on the trace.
                 90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
                 | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
+                    let group = match gi {
+                        400 | 410 | 420 => Some(7),
+                        430 | 440 | 490 => Some(8),
+                        800 => Some(9),
+                        980 | 990 => Some(10),
+                        610..=640 => Some(15),
+                        _ => None,
+                    };
+                    if let Some(slot) = self.group_g.iter_mut().find(|s| Some(s.0) == group) {
+                        slot.1 = gi;
+                    }
                     warns.push(("NC405", format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
                 280 | 290 | 300 | 920 | 520 | 680 | 160 => {
@@ -497,6 +520,15 @@ impl Machine {
             } else {
                 v + self.active_offset(i)
             };
+        }
+        if probe {
+            if let Some(frac) = self.probe_contact {
+                // The skip signal stops the move part way; the skip position variables
+                // (#5061+, $AA_MW) read the stopping point, which is the new position.
+                for (t, from) in target.iter_mut().zip(self.pos) {
+                    *t = from + (*t - from) * frac;
+                }
+            }
         }
         let rapid = self.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {

@@ -4,10 +4,11 @@
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
 //! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
-//! loop and variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
+//! loop), `access` + `vars` (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
 //! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
 //! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
 
+pub mod access;
 pub mod arc;
 pub mod calls;
 pub mod exec;
@@ -49,11 +50,15 @@ pub struct RunOptions {
     pub inputs: Vec<Input>,
     /// The control profile; `None`: the dialect's default.
     pub semantics: Option<Semantics>,
+    /// Where along every probe move (FANUC `G31`, Siemens `MEAS=`/`MEAW=`) the probe
+    /// touches, as a fraction of the move in (0, 1]; `None`: no contact, the move reaches
+    /// its end point (FANUC then reports the end point in `#5061+`).
+    pub probe_contact: Option<f64>,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None }
+        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None, probe_contact: None }
     }
 }
 
@@ -149,7 +154,9 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
             .find(|i| matches!(&i.target, InputTarget::Name(n) if *n == p.name))
             .map(|i| i.value.clone())
             .unwrap_or_else(|| vars::zero_of(p.ty));
-        let len = p.dims.iter().map(|d| *d as usize).product::<usize>().max(1);
+        let len = vars::array_len(&p.dims).ok_or_else(|| {
+            Fault::alarm(it.alarms.bad_index, format!("array parameter {} too large", p.name), Default::default())
+        })?;
         let mut data = vec![vars::zero_of(p.ty); len];
         data[0] = value::convert_for(p.ty, v).unwrap_or_else(|_| vars::zero_of(p.ty));
         it.vars.frames[0].insert(p.name.clone(), vars::Slot::Own { ty: p.ty, dims: p.dims.clone(), data });

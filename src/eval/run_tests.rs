@@ -429,3 +429,175 @@ fn siemens_ac_ic_per_word() {
         ["move rapid X=1 f=-", "move rapid X=3 f=-", "move rapid X=10 Y=1 f=-", "move rapid X=10 Y=2 f=-"]
     );
 }
+
+#[test]
+fn goto_into_a_loop_body_runs_to_its_end_and_back_to_the_head() {
+    // GOTO 7 jumps into the DO body; END1 goes back to the WHILE head, which tests #1.
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(1), p(5.0))]),
+        s(vec![goto(Search::ForwardThenWrap, num_target(7), None)]),
+        do_(
+            Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(3.0))),
+            vec![blk(vec![g(0.0), word("X", hash(1))]).n(7).stmt()],
+        ),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=5 f=-", "end M30 steps=6"]);
+}
+
+#[test]
+fn siemens_for_end_value_is_evaluated_on_every_pass() {
+    let var_i = VarKind::R(1);
+    let for_ = Stmt {
+        kind: StmtKind::For(Box::new(ForStmt {
+            head: meta(),
+            var: vref(var_i.clone()),
+            from: p(1.0),
+            to: r(2),
+            body: vec![
+                s(vec![g(0.0), word("X", r(1))]),
+                // Lowering the end value inside the loop ends it early.
+                s(vec![assign(VarKind::R(2), p(2.0))]),
+            ],
+            end: meta(),
+        })),
+        span: sp(),
+    };
+    let u = siemens(vec![s(vec![assign(VarKind::R(2), p(10.0))]), for_, s(vec![end()])]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t, vec!["move rapid X=1 f=-", "move rapid X=2 f=-", "end M30 steps=9"]);
+}
+
+#[test]
+fn g53_ignores_g91() {
+    let u =
+        fanuc(vec![s(vec![g(0.0), word("X", p(10.0))]), s(vec![g(91.0), g(53.0), word("X", p(-1.5))]), s(vec![end()])]);
+    assert_eq!(run_u(&u).0[1], "move rapid X=-1.5 f=-");
+}
+
+#[test]
+fn incremental_move_after_an_offset_change() {
+    // FANUC: G91 after switching G54 → G55 moves by the increment only.
+    let fan = fanuc(vec![
+        s(vec![g(10.0), word("L", n(2.0)), word("P", n(2.0)), word("X", p(100.0))]),
+        s(vec![g(54.0), g(0.0), word("X", p(1.0))]),
+        s(vec![g(55.0), g(91.0), word("X", p(1.0))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&fan).0[1], "move rapid X=2 f=-");
+    // Siemens (MD42440 = 1): the increment applies to the programmed position, so the
+    // move also travels the new offset.
+    let sie = siemens(vec![
+        s(vec![g(0.0), word("X", p(1.0))]),
+        s(vec![item(ItemKind::Frame {
+            op: "TRANS".into(),
+            words: vec![Word { addr: Addr::Letter(b'X'), value: WordValue::Expr(p(100.0)), span: sp() }],
+        })]),
+        s(vec![word_v("X", WordValue::Ic(p(1.0)))]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&sie).0[1], "move rapid X=102 f=-");
+}
+
+#[test]
+fn machine_specific_m_codes_emit_nothing_with_a_warning() {
+    let u = fanuc(vec![s(vec![word("M", n(19.0))]), s(vec![end()])]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t, vec!["end M30 steps=2"]);
+    assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("M19")));
+}
+
+#[test]
+fn g66_is_modal_in_m98_subprograms_but_not_inside_its_macro() {
+    let call = |kind, prog, args: Vec<Arg>| {
+        item(ItemKind::Call(Box::new(Call { kind, target: CallTarget::Number(prog), args, repeat: None })))
+    };
+    let main = program(
+        Some(ProgName::Number(1)),
+        vec![
+            s(vec![call(CallKind::G66, 9100, vec![Arg::Letter { letter: b'Z', var: 26, value: p(-1.0) }])]),
+            s(vec![call(CallKind::M98, 2000, vec![])]),
+            s(vec![item(ItemKind::ModalCallOff)]),
+            s(vec![end()]),
+        ],
+    );
+    let sub = program(
+        Some(ProgName::Number(2000)),
+        vec![s(vec![g(0.0), word("X", p(5.0))]), s(vec![item(ItemKind::Return { to: None })])],
+    );
+    // The modal macro moves too: that move must not call it again.
+    let mac = program(
+        Some(ProgName::Number(9100)),
+        vec![s(vec![g(0.0), word("Z", hash(26))]), s(vec![item(ItemKind::Return { to: None })])],
+    );
+    let (t, _) = run_u(&unit(Dialect::Fanuc, vec![main, sub, mac]));
+    assert_eq!(t, vec!["move rapid X=5 f=-", "move rapid X=5 Z=-1 f=-", "end M30 steps=8"]);
+}
+
+#[test]
+fn fanuc_3003_3004_are_stored_without_effect() {
+    let u = fanuc(vec![
+        s(vec![assign(VarKind::Hash(3004), p(3.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(3004))]),
+        s(vec![g(0.0), word("X", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, out) = run_u(&u);
+    assert_eq!(t[0], "move rapid X=3 f=-");
+    assert!(out.diags.iter().any(|d| d.code == "NC405" && d.message.contains("#3004")));
+}
+
+#[test]
+fn fanuc_modal_group_variables() {
+    let u = fanuc(vec![
+        s(vec![g(91.0), g(18.0), g(41.0), g(43.0), word("H", n(1.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(4003))]),
+        s(vec![assign(VarKind::Hash(2), hash(4002))]),
+        s(vec![assign(VarKind::Hash(3), hash(4007))]),
+        s(vec![assign(VarKind::Hash(4), hash(4008))]),
+        s(vec![assign(VarKind::Hash(5), hash(4012))]),
+        s(vec![
+            g(90.0),
+            g(0.0),
+            word("X", hash(1)),
+            word("Y", hash(2)),
+            word("Z", hash(3)),
+            word("A", hash(4)),
+            word("B", hash(5)),
+        ]),
+        s(vec![end()]),
+    ]);
+    assert_eq!(run_u(&u).0[0], "move rapid X=91 Y=18 Z=41 A=43 B=67 f=-");
+}
+
+#[test]
+fn probe_moves_reach_the_end_point_unless_a_contact_is_given() {
+    // FANUC G31: the skip position #5061 is where the move stopped.
+    let f = fanuc(vec![
+        s(vec![g(31.0), word("X", p(10.0)), word("F", p(100.0))]),
+        s(vec![assign(VarKind::Hash(1), hash(5061))]),
+        s(vec![g(1.0), word("Y", hash(1))]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&f);
+    assert_eq!(t[0], "move linear X=10 f=100");
+    assert_eq!(t[1], "move linear X=10 Y=10 f=100");
+    let (t, _) = run_opts(&f, &RunOptions { probe_contact: Some(0.25), ..Default::default() });
+    assert_eq!(t[0], "move linear X=2.5 f=100");
+    assert_eq!(t[1], "move linear X=2.5 Y=2.5 f=100");
+    // Siemens MEAS=1: the same rule; $AA_MW reads the stopping point.
+    let aa_mw =
+        var(VarKind::System { name: "AA_MW".into(), indices: vec![Expr::new(ExprKind::Ident("X".into()), sp())] });
+    let u = siemens(vec![
+        s(vec![word("MEAS", n(1.0)), g(1.0), word("X", n(10.0)), word("F", n(100.0))]),
+        s(vec![word("Y", aa_mw)]),
+        s(vec![end()]),
+    ]);
+    let (t, _) = run_u(&u);
+    assert_eq!(t[0], "move linear X=10 f=100");
+    assert_eq!(t[1], "move linear X=10 Y=10 f=100");
+    let (t, _) = run_opts(&u, &RunOptions { probe_contact: Some(0.5), ..Default::default() });
+    assert_eq!(t[0], "move linear X=5 f=100");
+    assert_eq!(t[1], "move linear X=5 Y=5 f=100");
+}

@@ -43,7 +43,7 @@ impl Interp<'_> {
         let m = &self.m;
         let x = match n {
             3000 | 3006 => return Err(self.unmodelled(&format!("#{n} (write-only)"), span)),
-            3001 | 3002 | 3901 | 3902 => self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0),
+            3001 | 3002 | 3003 | 3004 | 3901 | 3902 => self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0),
             4001 => match m.motion {
                 super::machine::Motion::Rapid => 0.0,
                 super::machine::Motion::Linear => 1.0,
@@ -77,6 +77,20 @@ impl Interp<'_> {
                 }
             }
             4014 => 53.0 + m.wo as f64,
+            4007..=4010 | 4015 => {
+                let group = (n - 4000) as u8;
+                match m.group_g.iter().find(|s| s.0 == group) {
+                    Some(s) => s.1 as f64 / 10.0,
+                    None => return Err(self.unmodelled(&format!("#{n}"), span)),
+                }
+            }
+            4012 => {
+                if self.modal_call.is_some() {
+                    66.0
+                } else {
+                    67.0
+                }
+            }
             4107 => m.d,
             4109 => {
                 let f = m.feed.unwrap_or(0.0);
@@ -116,6 +130,12 @@ impl Interp<'_> {
             3000 => Err(Fault::alarm(3000 + round_half_away(v) as i64, "", span)),
             3006 => {
                 self.emit(Event::Stop { optional: false, message: None }, span);
+                Ok(())
+            }
+            // Single-block / feed-hold control: no effect on the toolpath (pitfall 46).
+            3003 | 3004 => {
+                self.warn("NC405", format!("#{n} (single block / feed hold control) has no effect on the trace"), span);
+                self.sys_store.insert(format!("#{n}"), v);
                 Ok(())
             }
             3001 | 3002 | 3901 | 3902 => {

@@ -97,3 +97,13 @@ pub fn zero_of(ty: DataType) -> Value {
         _ => Value::Num(0.0),
     }
 }
+
+/// Elements of an array with `dims` (1 for a scalar); `None` above a million elements,
+/// which no control holds (the evaluator must not allocate what the input asks blindly).
+pub fn array_len(dims: &[u32]) -> Option<usize> {
+    let mut n = 1usize;
+    for d in dims {
+        n = n.checked_mul(*d as usize)?;
+    }
+    (n <= 1_000_000).then_some(n.max(1))
+}

@@ -87,7 +87,7 @@ pub fn run_file(path: &Path, extra: &[&str], max_steps: u64) -> Ran {
     for e in extra {
         inputs.push(eval::parse_input(e).expect("valid input"));
     }
-    let opts = RunOptions { max_steps, inputs, semantics: None };
+    let opts = RunOptions { max_steps, inputs, ..Default::default() };
     let mut callees = eval::DirCallees { semantics: None };
     let outcome = eval::run(&mut db, &parsed.unit, &mut callees, &opts, &mut sink);
     Ran { sink, outcome, db, parse_errors: None }

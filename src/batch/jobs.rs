@@ -1,0 +1,384 @@
+//! The real per-file jobs: translate one file with the batch's maps, verify it by running
+//! both programs, and hand back the output bytes. Sinumerik → FANUC here; the other
+//! direction in `jobs_sinumerik.rs`.
+
+use super::library::ProgKey;
+use super::{discover, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::check::{self, Side, Verdict};
+use crate::config::{Comments, Config, LineEnds, Unsupported};
+use crate::diag::{self, Diagnostic};
+use crate::dialect::{Dialect, ParseOptions, Semantics};
+use crate::eval::{self, CalleeName, CalleeSource, NoCallees, RunOptions};
+use crate::ir::{ProgName, Unit};
+use crate::passes::{varmap, UnsupportedPolicy};
+use crate::read::LineEnding;
+use crate::span::{FileId, SourceDb};
+use crate::translate::{self, TranslateOptions, Translation};
+
+/// Changes a translation before it is verified: the tests' injected bug, which verification
+/// must catch. Never set outside tests.
+pub type Fault = dyn Fn(&InputFile, &mut String) + Sync;
+
+/// Settings shared by both directions, from the configuration.
+#[derive(Clone, Debug)]
+pub struct JobSettings {
+    pub unsupported: Unsupported,
+    pub comments: Comments,
+    pub number_blocks: Option<u32>,
+    pub compound_conditions: bool,
+    pub fanuc: Semantics,
+    pub sinumerik: Semantics,
+    pub output_encoding: Option<&'static encoding_rs::Encoding>,
+    pub line_ends: LineEnds,
+    pub max_steps: u64,
+    /// `--set` inputs for every run.
+    pub set: Vec<String>,
+}
+
+impl JobSettings {
+    pub fn from_config(c: &Config) -> Result<JobSettings, String> {
+        for s in &c.set {
+            eval::parse_input(s).map_err(|e| format!("verify.set: {e}"))?;
+        }
+        Ok(JobSettings {
+            unsupported: c.unsupported,
+            comments: c.comments,
+            number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
+            compound_conditions: c.fanuc.compound_conditions,
+            fanuc: c.fanuc_semantics(),
+            sinumerik: c.sinumerik_semantics(),
+            output_encoding: c.output_encoding,
+            line_ends: c.line_ends,
+            max_steps: c.max_steps,
+            set: c.set.clone(),
+        })
+    }
+
+    fn line_ending(&self, input: LineEnding) -> LineEnding {
+        match self.line_ends {
+            LineEnds::Keep => input,
+            LineEnds::Lf => LineEnding::Lf,
+            LineEnds::CrLf => LineEnding::CrLf,
+            LineEnds::Cr => LineEnding::Cr,
+        }
+    }
+}
+
+/// One file read and parsed into a job's own source database.
+pub(crate) struct LoadedFile {
+    pub unit: Unit,
+    pub loaded: crate::Loaded,
+    pub diags: Vec<Diagnostic>,
+}
+
+/// Reads and parses `file` as `dialect` into `db`.
+pub(crate) fn load(
+    db: &mut SourceDb,
+    file: &InputFile,
+    dialect: Dialect,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    sem: &Semantics,
+) -> Result<LoadedFile, String> {
+    let bytes = std::fs::read(&file.abs).map_err(|e| format!("cannot read {}: {e}", file.rel.display()))?;
+    let loaded = crate::load(db, &super::rel_string(&file.rel), &bytes, encoding);
+    let opts = ParseOptions { semantics: sem.clone() };
+    let parsed = crate::parse(db, loaded.file, dialect, &opts);
+    Ok(LoadedFile { unit: parsed.unit, loaded, diags: parsed.diags })
+}
+
+/// An outcome for a file that could not be read or parsed.
+pub(crate) fn failed(status: Status, summary: String, diagnostics: Vec<DiagRecord>) -> FileOutcome {
+    let mut o = FileOutcome::new(status, summary);
+    o.diagnostics = diagnostics;
+    o
+}
+
+/// Parse errors of a file and of the files it calls, as a `parse-error` outcome.
+pub(crate) fn parse_failure(db: &SourceDb, all: &[&LoadedFile]) -> Option<FileOutcome> {
+    let errors: Vec<Diagnostic> = all.iter().flat_map(|l| l.diags.iter().filter(|d| d.is_error()).cloned()).collect();
+    if errors.is_empty() {
+        return None;
+    }
+    let first = DiagRecord::from_diags(db, &errors[..1]);
+    let where_ = first[0].file.clone().unwrap_or_default();
+    Some(failed(
+        Status::ParseError,
+        format!("{} parse error(s), the first in {where_}", errors.len()),
+        DiagRecord::from_diags(db, &errors),
+    ))
+}
+
+/// Sinumerik → FANUC.
+pub struct ToFanucJob {
+    pub settings: JobSettings,
+    pub fault: Option<Box<Fault>>,
+}
+
+impl ToFanucJob {
+    pub fn new(settings: JobSettings) -> ToFanucJob {
+        ToFanucJob { settings, fault: None }
+    }
+
+    fn options(&self, ctx: &BatchContext, file: &InputFile, eol: LineEnding) -> Result<TranslateOptions, String> {
+        let mut var_rules = Vec::new();
+        for r in &ctx.maps.var_rules {
+            var_rules.extend(varmap::parse_rules(r).map_err(|e| format!("variables.to_fanuc: {e}"))?);
+        }
+        let s = &self.settings;
+        Ok(TranslateOptions {
+            unsupported: match s.unsupported {
+                Unsupported::Error => UnsupportedPolicy::Error,
+                Unsupported::Warn => UnsupportedPolicy::Warn,
+            },
+            var_rules,
+            tool_map: ctx.maps.tools.clone(),
+            program_map: ctx.maps.fanuc_numbers(),
+            program_number: None,
+            comments: match s.comments {
+                Comments::Keep => crate::dialect::fanuc::emit::CommentMode::Keep,
+                Comments::Ascii => crate::dialect::fanuc::emit::CommentMode::Ascii,
+                Comments::Drop => crate::dialect::fanuc::emit::CommentMode::Drop,
+            },
+            number_blocks: s.number_blocks,
+            line_ending: s.line_ending(eol),
+            compound_conditions: s.compound_conditions,
+            target: s.fanuc.clone(),
+            source: s.sinumerik.clone(),
+            main_name: file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase(),
+            source_name: file.rel.file_name().and_then(|x| x.to_str()).unwrap_or("").to_string(),
+            main_is_sub: file.rel.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
+        })
+    }
+}
+
+impl FileJob for ToFanucJob {
+    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        let mut db = SourceDb::new();
+        let enc = ctx.options.encoding;
+        let sem = &self.settings.sinumerik;
+        let main = match load(&mut db, file, Dialect::Sinumerik, enc, sem) {
+            Ok(m) => m,
+            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]),
+        };
+        let mut subs = Vec::new();
+        for i in ctx.library.callee_files(file.index) {
+            let Some(f) = ctx.files.get(i) else { continue };
+            match load(&mut db, f, Dialect::Sinumerik, enc, sem) {
+                Ok(l) => subs.push(l),
+                Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]),
+            }
+        }
+        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
+        let mut all: Vec<&LoadedFile> = vec![&main];
+        all.extend(subs.iter());
+        if let Some(mut o) = parse_failure(&db, &all) {
+            o.blocks = blocks;
+            return o;
+        }
+        let opts = match self.options(ctx, file, main.loaded.line_ending) {
+            Ok(o) => o,
+            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
+        };
+        let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
+        let mut t = translate::to_fanuc(&main.unit, &sub_units, &opts);
+        let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);
+        diagnostics.extend(DiagRecord::from_diags(&db, &t.diags));
+        let mut used = super::maps::Used::default();
+        for (name, n) in &t.symbol_map.programs {
+            used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));
+        }
+        used.tools = t.symbol_map.tools.clone();
+        for m in &t.symbol_map.vars {
+            let key = match &m.program {
+                Some(p) => format!("{p}.{}", m.source),
+                None => m.source.clone(),
+            };
+            used.variables.insert(key, format!("#{}", m.number));
+        }
+        if !t.ok() {
+            let n = t.diags.iter().filter(|d| d.is_error() || d.code.starts_with("NC3")).count().max(t.unsupported);
+            let mut o = failed(
+                Status::Unsupported,
+                format!("not translated: {n} construct(s) FANUC cannot express"),
+                diagnostics,
+            );
+            o.blocks = blocks;
+            return o;
+        }
+        if let Some(fault) = &self.fault {
+            fault(file, &mut t.text);
+        }
+        let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
+        let bytes = crate::read::encode(&t.text, encoding, main.loaded.bom);
+        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
+        outcome.blocks = blocks;
+        outcome.used = used;
+        outcome.outputs = vec![OutputFile { rel: discover::fanuc_output(&file.rel), bytes }];
+        if ctx.options.verify {
+            let key = main.unit.programs.first().map(|p| match &p.name {
+                Some(ProgName::Name(n)) => ProgKey::Name(n.to_ascii_uppercase()),
+                _ => ProgKey::Name(opts.main_name.clone()),
+            });
+            let vectors = key.map(|k| ctx.library.arg_vectors(&k)).unwrap_or_default();
+            let out_name = super::rel_string(&discover::fanuc_output(&file.rel));
+            let v = self.verify(&mut db, &main.unit, &sub_units, &t, &out_name, &vectors);
+            outcome.status = v.status;
+            outcome.summary = v.summary;
+            outcome.events = v.events;
+            diagnostics.extend(v.diagnostics);
+        }
+        outcome.diagnostics = diagnostics;
+        outcome
+    }
+}
+
+/// What verification found.
+pub(crate) struct Verified {
+    pub status: Status,
+    pub summary: String,
+    pub events: Option<u64>,
+    pub diagnostics: Vec<DiagRecord>,
+}
+
+/// Combines the verdicts of several runs (the plain run and one per argument vector): any
+/// divergence wins, then anything unproven; events add up.
+pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
+    let mut events = 0u64;
+    let mut worst: Option<Verified> = None;
+    for (label, r) in &runs {
+        let diagnostics = DiagRecord::from_diags(&r.db, &r.diags);
+        let (status, summary) = match &r.verdict {
+            Verdict::Equivalent { events: n } => {
+                events += n;
+                continue;
+            }
+            Verdict::Diverged { index } => (
+                Status::Diverged,
+                format!("diverged at trace event {}{label}: the translation is wrong (a bug in nctrans)", index + 1),
+            ),
+            Verdict::Inconclusive { reason } => (Status::Inconclusive, format!("inconclusive{label}: {reason}")),
+            Verdict::Failed => (Status::Inconclusive, format!("not verified{label}: a run could not be evaluated")),
+        };
+        let rank = |s: Status| super::report::rank(s);
+        if worst.as_ref().is_none_or(|w| rank(status) > rank(w.status)) {
+            worst = Some(Verified { status, summary, events: None, diagnostics });
+        }
+    }
+    match worst {
+        Some(w) => w,
+        None => Verified {
+            status: Status::Verified,
+            summary: if runs.len() > 1 {
+                format!("equivalent ({events} events in {} runs)", runs.len())
+            } else {
+                format!("equivalent ({events} events)")
+            },
+            events: Some(events),
+            diagnostics: vec![],
+        },
+    }
+}
+
+impl ToFanucJob {
+    /// Parses the output back as FANUC (it must be valid FANUC), then runs both programs:
+    /// once with the program's own inputs, and once per argument vector its callers use.
+    fn verify(
+        &self,
+        db: &mut SourceDb,
+        main: &Unit,
+        subs: &[&Unit],
+        t: &Translation,
+        out_name: &str,
+        vectors: &[Vec<super::library::ArgValue>],
+    ) -> Verified {
+        let parsed = translate::reparse(db, t, out_name);
+        if diag::has_errors(&parsed.diags) {
+            return Verified {
+                status: Status::Diverged,
+                summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
+                events: None,
+                diagnostics: DiagRecord::from_diags(db, &parsed.diags),
+            };
+        }
+        // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
+        // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
+        let mut fanuc_inputs: Vec<String> = t
+            .symbol_map
+            .vars
+            .iter()
+            .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+            .map(|m| format!("#{}=0", m.number))
+            .collect();
+        let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
+        let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
+        let mut runs = Vec::new();
+        let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
+        for (k, v) in vectors.iter().enumerate() {
+            let vals = v
+                .iter()
+                .filter_map(|a| {
+                    params.iter().position(|p| p.name.eq_ignore_ascii_case(&a.var)).map(|i| (i, a.to_set()))
+                })
+                .collect();
+            cases.push((format!(" (with the arguments of call site {})", k + 1), vals));
+        }
+        for (label, vals) in cases {
+            let mut a_in = Vec::new();
+            let mut b_in = std::mem::take(&mut fanuc_inputs);
+            fanuc_inputs = b_in.clone();
+            // Parameters not passed are 0 on Siemens; the argument locals get the same value.
+            for (i, (_, var)) in letters.iter().enumerate() {
+                let given = vals.iter().find(|(j, _)| *j == i);
+                let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
+                b_in.push(format!("#{var}={value}"));
+                if let Some((_, s)) = given {
+                    a_in.push(s.clone());
+                }
+            }
+            a_in.extend(self.settings.set.iter().cloned());
+            b_in.extend(self.settings.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
+            let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
+            let run = |inputs, sem: &Semantics| RunOptions {
+                max_steps: self.settings.max_steps,
+                inputs,
+                semantics: Some(sem.clone()),
+                probe_contact: None,
+            };
+            let source = translate::align_source(main, &t.symbol_map);
+            let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());
+            let a =
+                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &self.settings.sinumerik) };
+            let b = Side {
+                unit: parsed.unit.clone(),
+                callees: Box::new(NoCallees),
+                run: run(parse_all(&b_in), &self.settings.fanuc),
+            };
+            runs.push((label, check::check(db, a, b)));
+        }
+        combine(runs)
+    }
+}
+
+/// Siemens subprograms served from memory, found by name.
+struct MemCallees(Vec<Unit>);
+
+impl CalleeSource for MemCallees {
+    fn find(
+        &mut self,
+        _db: &mut SourceDb,
+        _caller: FileId,
+        _dialect: Dialect,
+        name: &CalleeName,
+    ) -> Result<Option<Unit>, Diagnostic> {
+        let CalleeName::Name(n) = name else { return Ok(None) };
+        let want = n.to_ascii_uppercase();
+        Ok(self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str())).cloned())
+    }
+}
+
+fn unit_name(u: &Unit) -> Option<String> {
+    match u.programs.first().and_then(|p| p.name.as_ref()) {
+        Some(ProgName::Name(n)) => Some(n.to_ascii_uppercase()),
+        _ => None,
+    }
+}

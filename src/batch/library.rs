@@ -1,0 +1,384 @@
+//! The library index: every file read once before translation, to learn which programs it
+//! defines, which programs it calls (and with which constant arguments), and which tool
+//! names it uses. Calls between files are resolved here for the whole batch.
+
+use super::discover::{dialect_of_name, InputFile};
+use crate::dialect::{Dialect, ParseOptions};
+use crate::ir::*;
+use crate::span::SourceDb;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+use std::path::Path;
+
+/// How programs are named across the library: a FANUC `O` number or a Siemens name.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum ProgKey {
+    Number(u32),
+    /// Upper case.
+    Name(String),
+}
+
+impl fmt::Display for ProgKey {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ProgKey::Number(n) => write!(f, "O{n:04}"),
+            ProgKey::Name(s) => f.write_str(s),
+        }
+    }
+}
+
+impl ProgKey {
+    /// Reads `O9010`, `9010` (numbers) or a name.
+    pub fn parse(s: &str) -> ProgKey {
+        let t = s.trim();
+        let digits = t.strip_prefix(['O', 'o']).unwrap_or(t);
+        match digits.parse::<u32>() {
+            Ok(n) if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) => ProgKey::Number(n),
+            _ => ProgKey::Name(t.to_ascii_uppercase()),
+        }
+    }
+}
+
+/// A constant argument of a call, as written: FANUC `A1.` (`#1`, point) or a Siemens
+/// positional value resolved to the parameter name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArgValue {
+    /// `#1` … `#26` (FANUC) or the PROC parameter name (Siemens).
+    pub var: String,
+    pub value: f64,
+    /// Written with a decimal point (FANUC's decimal-point rule applies to arguments).
+    pub point: bool,
+}
+
+impl ArgValue {
+    /// `#24=10.` / `LENGTH=5.5`, the `--set` spelling.
+    pub fn to_set(&self) -> String {
+        let mut v = format!("{}", self.value);
+        if self.point && !v.contains('.') && !v.contains('e') {
+            v.push('.');
+        }
+        format!("{}={v}", self.var)
+    }
+}
+
+/// One call found in the library.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CallSite {
+    /// The calling file (index into the batch).
+    pub file: usize,
+    pub line: usize,
+    pub target: ProgKey,
+    pub kind: CallKind,
+    /// The arguments when every one of them is a constant (else `None`).
+    pub args: Option<Vec<ArgValue>>,
+}
+
+/// One program defined in the library.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProgramInfo {
+    pub key: ProgKey,
+    /// The defining file (index into the batch) and the program's position in it.
+    pub file: usize,
+    pub position: usize,
+    /// Siemens `PROC` parameter names, in order.
+    pub params: Vec<String>,
+}
+
+/// What one file holds.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FileInfo {
+    /// The dialect the file is read in (from its name, else from its content); `None` when
+    /// the file could not be read.
+    pub dialect: Option<Dialect>,
+    /// Why the file could not be read.
+    pub read_error: Option<String>,
+    /// Parse errors found (the job reports them in full).
+    pub parse_errors: usize,
+    /// The programs, in file order (`None`: a program without name or number).
+    pub programs: Vec<Option<ProgKey>>,
+    pub blocks: u64,
+    /// Siemens tool names (`T="DRILL_5"`), as written.
+    pub tools: BTreeSet<String>,
+}
+
+/// The library: what every file defines and calls.
+#[derive(Clone, Debug, Default)]
+pub struct Library {
+    pub files: Vec<FileInfo>,
+    /// Every named program → where it is defined (the first file in batch order wins).
+    pub programs: BTreeMap<ProgKey, ProgramInfo>,
+    /// Programs defined more than once: key → the files after the first.
+    pub duplicates: BTreeMap<ProgKey, Vec<usize>>,
+    pub calls: Vec<CallSite>,
+}
+
+/// The most argument vectors drawn from call sites for verifying one program alone.
+pub const MAX_ARG_VECTORS: usize = 8;
+
+impl Library {
+    /// Builds the index from the scans of every file (in batch order).
+    pub fn build(scans: Vec<Scan>) -> Library {
+        let mut lib = Library::default();
+        let mut raw_calls = Vec::new();
+        for (i, scan) in scans.into_iter().enumerate() {
+            for (pos, (key, params)) in scan.defined.into_iter().enumerate() {
+                let Some(key) = key else { continue };
+                if lib.programs.contains_key(&key) {
+                    lib.duplicates.entry(key).or_default().push(i);
+                } else {
+                    lib.programs.insert(key.clone(), ProgramInfo { key, file: i, position: pos, params });
+                }
+            }
+            raw_calls.extend(scan.calls.into_iter().map(|c| (i, c)));
+            lib.files.push(scan.info);
+        }
+        // Siemens positional arguments are named after the callee's parameters now that
+        // every callee is known.
+        for (file, c) in raw_calls {
+            let args = c.args.map(|vals| {
+                let params = lib.programs.get(&c.target).map(|p| p.params.clone()).unwrap_or_default();
+                vals.into_iter()
+                    .enumerate()
+                    .filter_map(|(pos, a)| match a {
+                        RawArg::Letter { var, value, point } => Some(ArgValue { var: format!("#{var}"), value, point }),
+                        RawArg::Positional(Some((value, point))) => {
+                            params.get(pos).map(|name| ArgValue { var: name.clone(), value, point })
+                        }
+                        RawArg::Positional(None) => None,
+                    })
+                    .collect()
+            });
+            lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args });
+        }
+        lib
+    }
+
+    /// Whether any file of the library calls the program.
+    pub fn is_called(&self, key: &ProgKey) -> bool {
+        self.calls.iter().any(|c| &c.target == key)
+    }
+
+    /// The files that hold the programs `file` calls, directly or through other programs
+    /// (not `file` itself), in batch order. Calls to programs not in the library are left
+    /// to the translator to report.
+    pub fn callee_files(&self, file: usize) -> Vec<usize> {
+        let mut seen = BTreeSet::new();
+        let mut todo = vec![file];
+        while let Some(f) = todo.pop() {
+            for c in self.calls.iter().filter(|c| c.file == f) {
+                if let Some(p) = self.programs.get(&c.target) {
+                    if p.file != file && seen.insert(p.file) {
+                        todo.push(p.file);
+                    }
+                }
+            }
+        }
+        seen.into_iter().collect()
+    }
+
+    /// The constant argument vectors the library calls `key` with (distinct, in batch
+    /// order, at most [`MAX_ARG_VECTORS`]), for verifying the program alone.
+    pub fn arg_vectors(&self, key: &ProgKey) -> Vec<Vec<ArgValue>> {
+        let mut out: Vec<Vec<ArgValue>> = Vec::new();
+        for c in self.calls.iter().filter(|c| &c.target == key) {
+            if let Some(args) = &c.args {
+                if !out.contains(args) {
+                    out.push(args.clone());
+                }
+            }
+            if out.len() == MAX_ARG_VECTORS {
+                break;
+            }
+        }
+        out
+    }
+
+    /// Every Siemens tool name used anywhere, sorted.
+    pub fn tool_names(&self) -> BTreeSet<String> {
+        self.files.iter().flat_map(|f| f.tools.iter().cloned()).collect()
+    }
+}
+
+/// A call argument before the callee's parameter names are known.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RawArg {
+    Letter {
+        var: u8,
+        value: f64,
+        point: bool,
+    },
+    /// `None`: omitted or not a constant.
+    Positional(Option<(f64, bool)>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawCall {
+    pub line: usize,
+    pub target: ProgKey,
+    pub kind: CallKind,
+    pub args: Option<Vec<RawArg>>,
+}
+
+/// The result of reading one file for the index.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scan {
+    pub info: FileInfo,
+    /// Per program in file order: its key and PROC parameter names.
+    pub defined: Vec<(Option<ProgKey>, Vec<String>)>,
+    pub calls: Vec<RawCall>,
+}
+
+/// The dialect of a file: its name, else its content.
+pub fn dialect_of(rel: &Path, text: &str) -> Dialect {
+    dialect_of_name(rel).unwrap_or_else(|| Dialect::sniff(text))
+}
+
+/// Reads and parses one file for the index.
+pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) -> Scan {
+    let bytes = match std::fs::read(&file.abs) {
+        Ok(b) => b,
+        Err(e) => {
+            return Scan {
+                info: FileInfo { read_error: Some(format!("cannot read: {e}")), ..FileInfo::default() },
+                ..Scan::default()
+            }
+        }
+    };
+    let mut db = SourceDb::new();
+    let name = super::rel_string(&file.rel);
+    let loaded = crate::load(&mut db, &name, &bytes, encoding);
+    let dialect = dialect_of(&file.rel, &db.get(loaded.file).text);
+    let parsed = crate::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    let src = db.get(loaded.file);
+    let stem = file.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+    let mut scan = Scan {
+        info: FileInfo {
+            dialect: Some(dialect),
+            parse_errors: parsed.diags.iter().filter(|d| d.is_error()).count(),
+            blocks: crate::ir::visit::count_blocks(&parsed.unit) as u64,
+            ..FileInfo::default()
+        },
+        ..Scan::default()
+    };
+    let single = parsed.unit.programs.len() == 1;
+    for p in &parsed.unit.programs {
+        let key = match (&p.name, dialect) {
+            (Some(ProgName::Number(n)), _) => Some(ProgKey::Number(*n)),
+            (Some(ProgName::Name(n)), _) => Some(ProgKey::Name(n.to_ascii_uppercase())),
+            // Siemens finds a program by its file name.
+            (None, Dialect::Sinumerik) if single && !stem.is_empty() => Some(ProgKey::Name(stem.clone())),
+            (None, _) => None,
+        };
+        scan.info.programs.push(key.clone());
+        scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
+        walk_items(&p.body, &mut |item| match &item.kind {
+            ItemKind::Call(c) => {
+                let target = match &c.target {
+                    CallTarget::Number(n) => ProgKey::Number(*n),
+                    CallTarget::Name(s) => ProgKey::Name(s.to_ascii_uppercase()),
+                    CallTarget::Computed(_) => return,
+                };
+                let (line, _) = src.line_col(item.span.lo);
+                let args: Option<Vec<RawArg>> = c
+                    .args
+                    .iter()
+                    .map(|a| match a {
+                        Arg::Letter { var, value, .. } => {
+                            constant(value).map(|(value, point)| RawArg::Letter { var: *var, value, point })
+                        }
+                        Arg::Value(e) => constant(e).map(|v| RawArg::Positional(Some(v))),
+                        Arg::Omitted(_) => Some(RawArg::Positional(None)),
+                    })
+                    .collect();
+                scan.calls.push(RawCall { line, target, kind: c.kind, args });
+            }
+            ItemKind::Word(w) if w.addr.is(b'T') => {
+                if let WordValue::Expr(Expr { kind: ExprKind::Str(s), .. }) = &w.value {
+                    scan.info.tools.insert(s.clone());
+                }
+            }
+            _ => {}
+        });
+    }
+    scan
+}
+
+/// A constant argument value and whether it had a decimal point.
+fn constant(e: &Expr) -> Option<(f64, bool)> {
+    match &e.kind {
+        ExprKind::Num(n) => Some((n.value, n.point)),
+        ExprKind::Unary(UnOp::Neg, inner) => constant(inner).map(|(v, p)| (-v, p)),
+        _ => None,
+    }
+}
+
+/// Calls `f` on every item of every block (and the statement of a FANUC `IF..THEN`).
+fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                f(it);
+                if let ItemKind::IfThen { then, .. } = &it.kind {
+                    f(then);
+                }
+            }
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scan_text(name: &str, text: &str) -> Scan {
+        let dir = std::env::temp_dir().join(format!("nctrans-lib-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let abs = dir.join(name);
+        std::fs::write(&abs, text).unwrap();
+        let s = scan(&InputFile { index: 0, rel: name.into(), abs }, None);
+        std::fs::remove_dir_all(&dir).unwrap();
+        s
+    }
+
+    #[test]
+    fn keys_parse_and_print() {
+        assert_eq!(ProgKey::parse("O9010"), ProgKey::Number(9010));
+        assert_eq!(ProgKey::parse("12"), ProgKey::Number(12));
+        assert_eq!(ProgKey::parse("contour"), ProgKey::Name("CONTOUR".into()));
+        assert_eq!(ProgKey::Number(12).to_string(), "O0012");
+    }
+
+    #[test]
+    fn fanuc_calls_and_constant_arguments() {
+        let s = scan_text("m.nc", "%\nO1000\nG65 P9010 A1. X-2 Y#1\nG65 P9010 A1. X-2\nM98 P9020\nM30\n%\n");
+        assert_eq!(s.defined, [(Some(ProgKey::Number(1000)), vec![])]);
+        assert_eq!(s.calls.len(), 3);
+        assert_eq!(s.calls[0].args, None, "Y#1 is not a constant");
+        assert_eq!(
+            s.calls[1].args,
+            Some(vec![
+                RawArg::Letter { var: 1, value: 1.0, point: true },
+                RawArg::Letter { var: 24, value: -2.0, point: false }
+            ])
+        );
+        assert_eq!(s.calls[2].kind, CallKind::M98);
+        assert_eq!(s.calls[1].line, 4);
+    }
+
+    #[test]
+    fn siemens_names_params_tools_and_the_library() {
+        let main = scan_text("part.mpf", "T=\"DRILL_5\" M6\nCONTOUR(5.5,,2)\nM30\n");
+        let sub = scan_text("contour.spf", "PROC CONTOUR(REAL L, REAL W, REAL D)\nG1 X=L\nM17\n");
+        assert_eq!(main.defined[0].0, Some(ProgKey::Name("PART".into())));
+        assert_eq!(main.info.tools.iter().collect::<Vec<_>>(), ["DRILL_5"]);
+        let lib = Library::build(vec![sub, main]);
+        let key = ProgKey::Name("CONTOUR".into());
+        assert!(lib.is_called(&key));
+        assert!(!lib.is_called(&ProgKey::Name("PART".into())));
+        assert_eq!(lib.callee_files(1), [0]);
+        let v = lib.arg_vectors(&key);
+        assert_eq!(v.len(), 1);
+        let sets: Vec<String> = v[0].iter().map(ArgValue::to_set).collect();
+        assert_eq!(sets, ["L=5.5", "D=2"]);
+    }
+}

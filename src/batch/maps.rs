@@ -1,0 +1,423 @@
+//! The maps of a whole batch: one program map (Siemens names ↔ FANUC `O` numbers), one
+//! tool map (Siemens tool names → T numbers) and one variable map, fixed before any file is
+//! translated so that every call in every output points at the right program. They are
+//! written to `OUT/nctrans-map.toml` and read back (`--map`) so a rerun is byte-identical.
+
+use super::library::{Library, ProgKey};
+use crate::dialect::Dialect;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+
+/// First `O` number given to a called program (FANUC's macro range).
+pub const FIRST_SUB_NUMBER: u32 = 9000;
+/// First `O` number given to a main program.
+pub const FIRST_MAIN_NUMBER: u32 = 1;
+/// Largest four-digit `O` number.
+pub const MAX_O_NUMBER: u32 = 9999;
+
+/// The maps of a batch. Keys and values are spelled as the user writes them: programs
+/// `"CONTOUR" = "O9000"` (to FANUC) or `"O9010" = "PROBE_X"` (to Sinumerik).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BatchMaps {
+    /// Source program → target program.
+    pub programs: BTreeMap<ProgKey, ProgKey>,
+    /// Siemens tool name (as written) → T number.
+    pub tools: BTreeMap<String, u32>,
+    /// `--var-map` rules in force, in order (`R0-R99=#100`, `#500-#599=R100`).
+    pub var_rules: Vec<String>,
+    /// The variables the translations used (`R1` → `#501`, `PART.CNT` → `#100`); written for
+    /// people, and read back only to be written again.
+    pub variables: BTreeMap<String, String>,
+}
+
+/// What one file's translation used; merged into the written map.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Used {
+    pub programs: BTreeMap<ProgKey, ProgKey>,
+    pub tools: BTreeMap<String, u32>,
+    pub variables: BTreeMap<String, String>,
+}
+
+impl BatchMaps {
+    /// `Siemens name → O number`, the program map of the Sinumerik → FANUC translator.
+    pub fn fanuc_numbers(&self) -> BTreeMap<String, u32> {
+        self.programs
+            .iter()
+            .filter_map(|(k, v)| match (k, v) {
+                (ProgKey::Name(s), ProgKey::Number(n)) => Some((s.clone(), *n)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// `O number → Siemens name`, the program map of the FANUC → Sinumerik translator.
+    pub fn siemens_names(&self) -> BTreeMap<u32, String> {
+        self.programs
+            .iter()
+            .filter_map(|(k, v)| match (k, v) {
+                (ProgKey::Number(n), ProgKey::Name(s)) => Some((*n, s.clone())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Adds what a file used; an entry already present is kept (the batch pins programs and
+    /// tools before translating, so they agree).
+    pub fn merge_used(&mut self, used: &Used) {
+        for (k, v) in &used.programs {
+            self.programs.entry(k.clone()).or_insert_with(|| v.clone());
+        }
+        for (k, v) in &used.tools {
+            self.tools.entry(k.clone()).or_insert(*v);
+        }
+        for (k, v) in &used.variables {
+            self.variables.entry(k.clone()).or_insert_with(|| v.clone());
+        }
+    }
+}
+
+/// A valid Siemens program name from a file stem: letters, digits and `_`, starting with a
+/// letter, upper case (`10-bracket` → `P10_BRACKET`).
+pub fn siemens_name(stem: &str) -> String {
+    let mut s: String =
+        stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
+    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        s.insert(0, 'P');
+    }
+    s.truncate(24);
+    s
+}
+
+/// Fixes the program and tool maps for a batch: pinned entries first, then deterministic
+/// defaults for everything else in the library. Returns the maps and one message per program
+/// that got no number (four-digit `O` numbers exhausted).
+pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[String]) -> (BatchMaps, Vec<String>) {
+    let mut maps = BatchMaps {
+        programs: BTreeMap::new(),
+        tools: pinned.tools.clone(),
+        var_rules: pinned.var_rules.clone(),
+        variables: BTreeMap::new(),
+    };
+    let mut problems = Vec::new();
+    match target {
+        Dialect::Fanuc => {
+            let mut taken: BTreeSet<u32> = pinned.fanuc_numbers().values().copied().collect();
+            // Mains from 1 up, called programs (and PROCs) from 9000 up, in name order.
+            for (key, info) in &lib.programs {
+                let ProgKey::Name(name) = key else { continue };
+                if lib.files[info.file].dialect != Some(Dialect::Sinumerik) {
+                    continue;
+                }
+                let n = match pinned.programs.get(key) {
+                    Some(ProgKey::Number(n)) => Some(*n),
+                    _ => {
+                        let sub = lib.is_called(key) || !info.params.is_empty();
+                        let first = if sub { FIRST_SUB_NUMBER } else { FIRST_MAIN_NUMBER };
+                        let n = (first..=MAX_O_NUMBER).find(|n| !taken.contains(n));
+                        if let Some(n) = n {
+                            taken.insert(n);
+                        }
+                        n
+                    }
+                };
+                match n {
+                    Some(n) => {
+                        maps.programs.insert(key.clone(), ProgKey::Number(n));
+                    }
+                    None => problems.push(format!("no free O number left for {name}")),
+                }
+            }
+            // Tools: pinned numbers, then the next free number from 1, in name order.
+            let mut taken: BTreeSet<u32> = maps.tools.values().copied().collect();
+            for name in lib.tool_names() {
+                if maps.tools.contains_key(&name) {
+                    continue;
+                }
+                let n = (1..).find(|n| !taken.contains(n)).unwrap_or(1);
+                taken.insert(n);
+                maps.tools.insert(name, n);
+            }
+        }
+        Dialect::Sinumerik => {
+            let mut taken: BTreeSet<String> = pinned.siemens_names().into_values().collect();
+            for (key, info) in &lib.programs {
+                let ProgKey::Number(n) = key else { continue };
+                if lib.files[info.file].dialect != Some(Dialect::Fanuc) {
+                    continue;
+                }
+                let name = match pinned.programs.get(key) {
+                    Some(ProgKey::Name(s)) => s.clone(),
+                    _ => {
+                        // A main program alone in its file keeps the file's name (that is how
+                        // the operator knows it); called programs are named after their number.
+                        let alone = lib.files[info.file].programs.len() == 1;
+                        let base = match stems.get(info.file) {
+                            Some(stem) if alone && !lib.is_called(key) => siemens_name(stem),
+                            _ => format!("O{n:04}"),
+                        };
+                        let mut name = base.clone();
+                        let mut k = 2;
+                        while taken.contains(&name) {
+                            name = format!("{base}_{k}");
+                            k += 1;
+                        }
+                        taken.insert(name.clone());
+                        name
+                    }
+                };
+                maps.programs.insert(key.clone(), ProgKey::Name(name));
+            }
+        }
+    }
+    // Pinned entries for programs that are not in this library are kept: the map file
+    // stays the same across reruns on part of a library.
+    for (k, v) in &pinned.programs {
+        maps.programs.entry(k.clone()).or_insert_with(|| v.clone());
+    }
+    (maps, problems)
+}
+
+/// Quotes a TOML key or string (basic string with escapes).
+pub fn quote(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            c if c.is_control() => {
+                let _ = write!(out, "\\u{:04X}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// The map file's text. Stable: sorted keys, no timestamps.
+pub fn to_toml(maps: &BatchMaps, target: Dialect) -> String {
+    let mut s = String::new();
+    s.push_str("# nctrans-map.toml: the names this batch used, written by nctrans.\n");
+    s.push_str("# Give it back (nctrans --map nctrans-map.toml, or leave it in the output folder) and a\n");
+    s.push_str("# rerun names every program, tool and variable the same way: byte-identical output.\n");
+    s.push_str("# Edit a value to rename; the next run checks and uses it.\n\n");
+    let _ = writeln!(s, "target = {}\n", quote(target.name()));
+    match target {
+        Dialect::Fanuc => s.push_str("# Siemens program name = FANUC O number\n"),
+        Dialect::Sinumerik => s.push_str("# FANUC O number = Siemens program name\n"),
+    }
+    s.push_str("[programs]\n");
+    for (k, v) in &maps.programs {
+        let _ = writeln!(s, "{} = {}", quote(&k.to_string()), quote(&v.to_string()));
+    }
+    s.push_str("\n# Siemens tool name = FANUC T number\n[tools]\n");
+    for (k, v) in &maps.tools {
+        let _ = writeln!(s, "{} = {v}", quote(k));
+    }
+    s.push_str("\n[variables]\n# --var-map rules in force, in order\nrules = [");
+    let rules: Vec<String> = maps.var_rules.iter().map(|r| quote(r)).collect();
+    s.push_str(&rules.join(", "));
+    s.push_str("]\n\n# The variables the translations used (for reading; the rules above decide)\n[variables.used]\n");
+    for (k, v) in &maps.variables {
+        let _ = writeln!(s, "{} = {}", quote(k), quote(v));
+    }
+    s
+}
+
+/// Reads a map file. Errors name the key and what is allowed.
+pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| e.to_string().trim_end().to_string())?;
+    let mut maps = BatchMaps::default();
+    let mut target = None;
+    // The target decides how program keys read (a Siemens program may be called `O100`).
+    if let Some(value) = table.get("target") {
+        let s = value.as_str().ok_or("target: expected a string, \"fanuc\" or \"sinumerik\"")?;
+        target = Some(
+            Dialect::from_name(s)
+                .ok_or_else(|| format!("target: unknown dialect '{s}' (allowed: fanuc, sinumerik)"))?,
+        );
+    }
+    for (key, value) in &table {
+        match key.as_str() {
+            "target" => {}
+            "programs" => maps.programs = program_table(value, "programs", target)?,
+            "tools" => maps.tools = tool_table(value, "tools")?,
+            "variables" => {
+                let t = value.as_table().ok_or("variables: expected a table with 'rules' and 'used'")?;
+                for (k, v) in t {
+                    match k.as_str() {
+                        "rules" => maps.var_rules = string_list(v, "variables.rules")?,
+                        "used" => {
+                            let used =
+                                v.as_table().ok_or("variables.used: expected a table of \"SOURCE\" = \"TARGET\"")?;
+                            for (src, tgt) in used {
+                                let t = tgt
+                                    .as_str()
+                                    .ok_or_else(|| format!("variables.used.{src}: expected a string like \"#501\""))?;
+                                maps.variables.insert(src.clone(), t.to_string());
+                            }
+                        }
+                        other => return Err(format!("variables.{other}: unknown key (allowed: rules, used)")),
+                    }
+                }
+            }
+            other => return Err(format!("{other}: unknown key (allowed: target, programs, tools, variables)")),
+        }
+    }
+    Ok((maps, target))
+}
+
+/// `[programs]`: `"CONTOUR" = "O9000"` or `= 9000` (to FANUC), `"O9010" = "PROBE_X"` (to
+/// Sinumerik). With a known target the keys are read as that direction's source names.
+pub fn program_table(
+    value: &toml::Value,
+    what: &str,
+    dialect: Option<Dialect>,
+) -> Result<BTreeMap<ProgKey, ProgKey>, String> {
+    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"NAME\" = \"O9000\""))?;
+    let mut out = BTreeMap::new();
+    for (k, v) in t {
+        let target = match v {
+            toml::Value::Integer(n) if (1..=99_999_999).contains(n) => ProgKey::Number(*n as u32),
+            toml::Value::String(s) if !s.trim().is_empty() => ProgKey::parse(s),
+            _ => {
+                return Err(format!(
+                    "{what}.{k}: expected an O number (9000 or \"O9000\") or a Siemens program name (\"PROBE_X\")"
+                ))
+            }
+        };
+        if let ProgKey::Name(n) = &target {
+            if !n.starts_with(|c: char| c.is_ascii_alphabetic())
+                || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(format!(
+                    "{what}.{k}: '{n}' is not a Siemens program name (letters, digits and _, starting with a letter)"
+                ));
+            }
+        }
+        let key = match (dialect, ProgKey::parse(k)) {
+            (Some(Dialect::Fanuc), _) => ProgKey::Name(k.trim().to_ascii_uppercase()),
+            (Some(Dialect::Sinumerik), key @ ProgKey::Number(_)) => key,
+            (Some(Dialect::Sinumerik), _) => {
+                return Err(format!("{what}.{k}: a FANUC program is named by its O number (\"O9010\" or \"9010\")"))
+            }
+            (None, key) => key,
+        };
+        out.insert(key, target);
+    }
+    Ok(out)
+}
+
+/// `[tools]`: `"DRILL_5" = 12`.
+pub fn tool_table(value: &toml::Value, what: &str) -> Result<BTreeMap<String, u32>, String> {
+    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"TOOL NAME\" = T number"))?;
+    let mut out = BTreeMap::new();
+    for (k, v) in t {
+        match v.as_integer() {
+            Some(n) if (0..=99_999_999).contains(&n) => {
+                out.insert(k.clone(), n as u32);
+            }
+            _ => return Err(format!("{what}.{k}: expected a T number from 0 to 99999999")),
+        }
+    }
+    Ok(out)
+}
+
+/// A list of strings.
+pub fn string_list(value: &toml::Value, what: &str) -> Result<Vec<String>, String> {
+    let a = value.as_array().ok_or_else(|| format!("{what}: expected a list of strings like [\"R0-R99=#100\"]"))?;
+    a.iter()
+        .map(|v| v.as_str().map(str::to_string).ok_or_else(|| format!("{what}: every entry must be a string")))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::batch::library::{FileInfo, ProgramInfo};
+
+    fn lib_with(progs: &[(ProgKey, usize, Dialect)], called: &[ProgKey], files: usize) -> Library {
+        let mut lib = Library::default();
+        for i in 0..files {
+            let programs = progs.iter().filter(|p| p.1 == i).map(|p| Some(p.0.clone())).collect();
+            let dialect = progs.iter().find(|p| p.1 == i).map(|p| p.2);
+            lib.files.push(FileInfo { dialect, programs, ..FileInfo::default() });
+        }
+        for (k, f, _) in progs {
+            lib.programs.insert(k.clone(), ProgramInfo { key: k.clone(), file: *f, position: 0, params: vec![] });
+        }
+        for c in called {
+            lib.calls.push(crate::batch::library::CallSite {
+                file: 0,
+                line: 1,
+                target: c.clone(),
+                kind: crate::ir::CallKind::Named,
+                args: None,
+            });
+        }
+        lib
+    }
+
+    #[test]
+    fn fanuc_numbers_mains_low_subs_high_pins_respected() {
+        let name = |s: &str| ProgKey::Name(s.into());
+        let lib = lib_with(
+            &[
+                (name("PART"), 0, Dialect::Sinumerik),
+                (name("A_SUB"), 1, Dialect::Sinumerik),
+                (name("B_SUB"), 2, Dialect::Sinumerik),
+            ],
+            &[name("A_SUB"), name("B_SUB")],
+            3,
+        );
+        let mut pinned = BatchMaps::default();
+        pinned.programs.insert(name("B_SUB"), ProgKey::Number(9000));
+        let (maps, problems) = allocate(&lib, &pinned, Dialect::Fanuc, &[]);
+        assert!(problems.is_empty());
+        assert_eq!(maps.programs[&name("PART")], ProgKey::Number(1));
+        assert_eq!(maps.programs[&name("B_SUB")], ProgKey::Number(9000));
+        assert_eq!(maps.programs[&name("A_SUB")], ProgKey::Number(9001));
+    }
+
+    #[test]
+    fn siemens_names_from_stems_and_numbers() {
+        let lib = lib_with(
+            &[(ProgKey::Number(100), 0, Dialect::Fanuc), (ProgKey::Number(9010), 1, Dialect::Fanuc)],
+            &[ProgKey::Number(9010)],
+            2,
+        );
+        let (maps, _) =
+            allocate(&lib, &BatchMaps::default(), Dialect::Sinumerik, &["10-bracket".into(), "o9010".into()]);
+        assert_eq!(maps.programs[&ProgKey::Number(100)], ProgKey::Name("P10_BRACKET".into()));
+        assert_eq!(maps.programs[&ProgKey::Number(9010)], ProgKey::Name("O9010".into()));
+    }
+
+    #[test]
+    fn map_file_round_trips_byte_identical() {
+        let mut m = BatchMaps::default();
+        m.programs.insert(ProgKey::Name("CONTOUR".into()), ProgKey::Number(9000));
+        m.programs.insert(ProgKey::Name("PART \"1\"".into()), ProgKey::Number(1));
+        m.tools.insert("BallNose_D8".into(), 3);
+        m.var_rules = vec!["R0-R99=#100".into()];
+        m.variables.insert("R1".into(), "#101".into());
+        let text = to_toml(&m, Dialect::Fanuc);
+        let (back, target) = from_toml(&text).unwrap();
+        assert_eq!(target, Some(Dialect::Fanuc));
+        assert_eq!(back, m);
+        assert_eq!(to_toml(&back, Dialect::Fanuc), text);
+    }
+
+    #[test]
+    fn map_file_errors_name_the_key() {
+        let e = from_toml("[tools]\nDRILL = \"x\"\n").unwrap_err();
+        assert!(e.contains("tools.DRILL"), "{e}");
+        let e = from_toml("colour = 1\n").unwrap_err();
+        assert!(e.contains("colour: unknown key") && e.contains("programs"), "{e}");
+        let e = from_toml("[programs]\n\"O9010\" = \"9 BAD\"\n").unwrap_err();
+        assert!(e.contains("programs.O9010"), "{e}");
+    }
+}

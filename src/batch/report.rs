@@ -1,0 +1,244 @@
+//! What a batch tells the user: the summary table (counts per status, the worst files) and
+//! the per-file report as JSON or CSV. Written by hand: the formats are small, and the
+//! field order stays fixed for diffing reports between runs.
+
+use super::{BatchResult, FileRecord, Status};
+use std::fmt::Write as _;
+
+/// How bad a status is, for listing the worst files first: a divergence is a wrong
+/// translation caught, the most important thing to look at.
+pub fn rank(s: Status) -> u8 {
+    match s {
+        Status::Diverged => 7,
+        Status::Error => 6,
+        Status::ParseError => 5,
+        Status::Unsupported => 4,
+        Status::Inconclusive => 3,
+        Status::TranslatedUnverified => 2,
+        Status::Skipped => 1,
+        Status::Verified => 0,
+    }
+}
+
+/// The most files listed under "worst files".
+pub const WORST: usize = 10;
+
+/// The summary table printed at the end of a batch.
+pub fn summary(r: &BatchResult, target: &str) -> String {
+    let mut s = String::new();
+    let run = r.files.iter().filter(|f| f.status != Status::Skipped).count();
+    let _ = writeln!(
+        s,
+        "nctrans batch to {target}: {run} file(s) in {:.1} s with -j {}{}",
+        r.elapsed.as_secs_f64(),
+        r.jobs,
+        if r.cancelled { " (stopped by Ctrl-C: the files not run are listed as error)" } else { "" }
+    );
+    for st in Status::ALL {
+        let n = r.count(st);
+        if n > 0 || !matches!(st, Status::Skipped | Status::Error | Status::TranslatedUnverified) {
+            let _ = writeln!(s, "  {:<22} {n:>6}", st.as_str());
+        }
+    }
+    let mut worst: Vec<&FileRecord> = r.files.iter().filter(|f| f.status.is_failure()).collect();
+    worst.sort_by(|a, b| rank(b.status).cmp(&rank(a.status)).then_with(|| a.path.cmp(&b.path)));
+    if !worst.is_empty() {
+        let _ = writeln!(s, "worst files:");
+        for f in worst.iter().take(WORST) {
+            let first = f.diagnostics.iter().find(|d| d.severity == "error").or(f.diagnostics.first());
+            let why = match first {
+                Some(d) => match d.line {
+                    Some(l) => format!("{} line {l}: {}", d.code, d.message),
+                    None if !d.code.is_empty() => format!("{}: {}", d.code, d.message),
+                    None => d.message.clone(),
+                },
+                None => f.summary.clone(),
+            };
+            let _ = writeln!(s, "  {:<22} {}  {}", f.status.as_str(), f.path, why);
+        }
+        if worst.len() > WORST {
+            let _ = writeln!(s, "  … and {} more (see --report)", worst.len() - WORST);
+        }
+    }
+    if r.all_verified() {
+        let _ = writeln!(s, "every file verified");
+    }
+    s
+}
+
+/// A JSON string literal.
+fn js(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+fn opt_num<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or("null".to_string(), |v| v.to_string())
+}
+
+/// The report as JSON: run facts, counts per status, one record per file.
+pub fn json(r: &BatchResult, target: &str, input: &str, output: &str) -> String {
+    let mut s = String::new();
+    s.push_str("{\n");
+    let _ = writeln!(s, "  \"tool\": {},", js(concat!("nctrans ", env!("CARGO_PKG_VERSION"))));
+    let _ = writeln!(s, "  \"target\": {},", js(target));
+    let _ = writeln!(s, "  \"input\": {},", js(input));
+    let _ = writeln!(s, "  \"output\": {},", js(output));
+    let _ = writeln!(s, "  \"jobs\": {},", r.jobs);
+    let _ = writeln!(s, "  \"elapsed_s\": {:.3},", r.elapsed.as_secs_f64());
+    let _ = writeln!(s, "  \"cancelled\": {},", r.cancelled);
+    let _ = writeln!(s, "  \"all_verified\": {},", r.all_verified());
+    let _ = writeln!(s, "  \"map_written\": {},", r.map_written);
+    let counts: Vec<String> = Status::ALL.iter().map(|st| format!("{}: {}", js(st.as_str()), r.count(*st))).collect();
+    let _ = writeln!(s, "  \"counts\": {{{}}},", counts.join(", "));
+    s.push_str("  \"files\": [");
+    for (i, f) in r.files.iter().enumerate() {
+        s.push_str(if i == 0 { "\n" } else { ",\n" });
+        let outputs: Vec<String> = f.outputs.iter().map(|o| js(o)).collect();
+        let _ = write!(
+            s,
+            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
+            js(&f.path),
+            outputs.join(", "),
+            js(f.status.as_str()),
+            js(&f.summary),
+            opt_num(f.events),
+            f.blocks,
+            f.time.as_secs_f64() * 1000.0
+        );
+        for (j, d) in f.diagnostics.iter().enumerate() {
+            if j > 0 {
+                s.push_str(", ");
+            }
+            let _ = write!(
+                s,
+                "{{\"severity\": {}, \"code\": {}, \"message\": {}, \"file\": {}, \"line\": {}, \"column\": {}}}",
+                js(d.severity),
+                js(&d.code),
+                js(&d.message),
+                d.file.as_deref().map_or("null".to_string(), js),
+                opt_num(d.line),
+                opt_num(d.column)
+            );
+        }
+        s.push_str("]}");
+    }
+    s.push_str(if r.files.is_empty() { "]\n" } else { "\n  ]\n" });
+    s.push_str("}\n");
+    s
+}
+
+/// A CSV field (RFC 4180 quoting).
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// The report as CSV, one row per file. Outputs are separated by `;`; diagnostics by ` | `,
+/// each `CODE line:column message`.
+pub fn csv(r: &BatchResult) -> String {
+    let mut s = String::from("path,outputs,status,events,blocks,time_ms,summary,diagnostics\r\n");
+    for f in &r.files {
+        let diags: Vec<String> = f
+            .diagnostics
+            .iter()
+            .map(|d| match (d.line, d.column) {
+                (Some(l), Some(c)) => format!("{} {l}:{c} {}", d.code, d.message),
+                _ => format!("{} {}", d.code, d.message).trim().to_string(),
+            })
+            .collect();
+        let row = [
+            csv_field(&f.path),
+            csv_field(&f.outputs.join(";")),
+            f.status.as_str().to_string(),
+            opt_num(f.events),
+            f.blocks.to_string(),
+            format!("{:.3}", f.time.as_secs_f64() * 1000.0),
+            csv_field(&f.summary),
+            csv_field(&diags.join(" | ")),
+        ];
+        s.push_str(&row.join(","));
+        s.push_str("\r\n");
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::batch::{BatchMaps, DiagRecord};
+    use std::time::Duration;
+
+    fn result() -> BatchResult {
+        let rec = |path: &str, status: Status| FileRecord {
+            path: path.into(),
+            outputs: if status == Status::Verified { vec![path.replace(".mpf", ".nc")] } else { vec![] },
+            status,
+            summary: "s, \"q\"".into(),
+            diagnostics: vec![],
+            events: Some(3),
+            blocks: 4,
+            time: Duration::from_millis(2),
+        };
+        let mut bad = rec("b.mpf", Status::Diverged);
+        bad.diagnostics.push(DiagRecord {
+            severity: "error",
+            code: "NC501".into(),
+            message: "X differs".into(),
+            file: Some("b.mpf".into()),
+            line: Some(7),
+            column: Some(3),
+        });
+        BatchResult {
+            files: vec![rec("a.mpf", Status::Verified), bad, rec("c.mpf", Status::Unsupported)],
+            maps: BatchMaps::default(),
+            map_written: true,
+            cancelled: false,
+            elapsed: Duration::from_millis(1500),
+            jobs: 2,
+        }
+    }
+
+    #[test]
+    fn summary_counts_and_worst_first() {
+        let s = summary(&result(), "fanuc");
+        assert!(s.contains("  verified                    1\n"), "{s}");
+        assert!(s.contains("  diverged                    1\n"), "{s}");
+        let worst = s.split("worst files:\n").nth(1).unwrap();
+        let lines: Vec<&str> = worst.lines().collect();
+        assert!(lines[0].contains("b.mpf  NC501 line 7: X differs"), "{s}");
+        assert!(lines[1].contains("c.mpf"), "{s}");
+        assert!(!s.contains("every file verified"));
+    }
+
+    #[test]
+    fn json_and_csv_records() {
+        let j = json(&result(), "fanuc", "in", "out");
+        assert!(j.contains("\"counts\": {\"verified\": 1, \"translated-unverified\": 0, \"diverged\": 1"), "{j}");
+        assert!(j.contains("{\"severity\": \"error\", \"code\": \"NC501\", \"message\": \"X differs\", \"file\": \"b.mpf\", \"line\": 7, \"column\": 3}"), "{j}");
+        assert!(j.contains("\"summary\": \"s, \\\"q\\\"\""), "{j}");
+        let c = csv(&result());
+        let rows: Vec<&str> = c.split("\r\n").collect();
+        assert_eq!(rows[0], "path,outputs,status,events,blocks,time_ms,summary,diagnostics");
+        assert_eq!(rows[1], "a.mpf,a.nc,verified,3,4,2.000,\"s, \"\"q\"\"\",");
+        assert!(rows[2].ends_with(",NC501 7:3 X differs"), "{}", rows[2]);
+    }
+}

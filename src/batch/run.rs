@@ -1,0 +1,319 @@
+//! The parallel engine: scan every file, fix the maps, run the job over the files on `-j`
+//! worker threads, and commit the results strictly in input order, so the outputs, the
+//! report and even the progress lines are the same whatever the thread timing. Ctrl-C sets
+//! the cancel flag: workers finish the file they hold, take no new one, and what is done
+//! is committed and reported.
+
+use super::discover::{self, InputFile};
+use super::library::{self, Library};
+use super::maps;
+use super::write::{WriteError, Writer};
+use super::*;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+/// A problem that stops the batch before any file runs.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BatchError {
+    /// The input folder cannot be read.
+    Input(String),
+    /// The output folder cannot be created.
+    Output(String),
+}
+
+impl std::fmt::Display for BatchError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BatchError::Input(s) | BatchError::Output(s) => f.write_str(s),
+        }
+    }
+}
+
+/// Runs `work` on every item on `jobs` threads; `on_result` gets each result on the calling
+/// thread as it arrives (in any order). Items are taken in order; after `cancel` is set no
+/// new item is taken. A panicking `work` gives `None` for its item.
+pub fn parallel<T: Sync, R: Send>(
+    items: &[T],
+    jobs: usize,
+    cancel: &AtomicBool,
+    work: &(dyn Fn(&T) -> R + Sync),
+    on_result: &mut dyn FnMut(usize, Option<R>),
+) {
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = mpsc::channel::<(usize, Option<R>)>();
+    std::thread::scope(|s| {
+        for _ in 0..jobs.clamp(1, items.len().max(1)) {
+            let tx = tx.clone();
+            let next = &next;
+            s.spawn(move || loop {
+                if cancel.load(Ordering::SeqCst) {
+                    break;
+                }
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                let Some(item) = items.get(i) else { break };
+                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(item))).ok();
+                if tx.send((i, r)).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(tx);
+        for (i, r) in rx {
+            on_result(i, r);
+        }
+    });
+}
+
+fn error_record(file: &InputFile, code: &str, msg: String) -> FileRecord {
+    FileRecord {
+        path: rel_string(&file.rel),
+        outputs: vec![],
+        status: Status::Error,
+        summary: msg.clone(),
+        diagnostics: vec![DiagRecord::error(code, msg)],
+        events: None,
+        blocks: 0,
+        time: Duration::ZERO,
+    }
+}
+
+/// Runs a batch: everything of the issue except the per-file translation, which is `job`.
+/// `progress` is called on this thread, in input order.
+pub fn run_batch(
+    opts: BatchOptions,
+    job: &dyn FileJob,
+    cancel: Arc<AtomicBool>,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<BatchResult, BatchError> {
+    let start = Instant::now();
+    if !opts.input.is_dir() {
+        return Err(BatchError::Input(format!("{} is not a folder", opts.input.display())));
+    }
+    let found = discover::discover(&opts.input, Some(&opts.output))
+        .map_err(|e| BatchError::Input(format!("cannot read {}: {e}", opts.input.display())))?;
+    let files = found.files;
+    let jobs = opts.jobs.max(1);
+
+    // 1. Read every file once: what it defines and calls.
+    let mut scans: Vec<Option<library::Scan>> = vec![None; files.len()];
+    let enc = opts.encoding;
+    parallel(&files, jobs, &cancel, &|f: &InputFile| library::scan(f, enc), &mut |i, s| scans[i] = s);
+    let scans: Vec<library::Scan> = scans
+        .into_iter()
+        .map(|s| {
+            s.unwrap_or_else(|| library::Scan {
+                info: library::FileInfo {
+                    read_error: Some("not read (stopped, or the reader failed)".into()),
+                    ..Default::default()
+                },
+                ..Default::default()
+            })
+        })
+        .collect();
+    let library = Library::build(scans);
+
+    // 2. One set of maps for the batch.
+    let stems: Vec<String> =
+        files.iter().map(|f| f.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_string()).collect();
+    let (maps, problems) = maps::allocate(&library, &opts.pinned, opts.target, &stems);
+    for p in problems {
+        progress(Progress::Note(p));
+    }
+
+    // 3. Which files run: those in the source dialect that could be read.
+    let source = opts.source();
+    let mut records: Vec<Option<FileRecord>> = vec![None; files.len()];
+    let mut runnable: Vec<InputFile> = Vec::new();
+    let mut skipped = 0;
+    for (f, info) in files.iter().zip(&library.files) {
+        if let Some(e) = &info.read_error {
+            records[f.index] = Some(error_record(f, "NC600", e.clone()));
+        } else if info.dialect != Some(source) {
+            skipped += 1;
+            let mut r = error_record(f, "", format!("already {}: left alone", opts.target.name()));
+            r.status = Status::Skipped;
+            r.diagnostics.clear();
+            records[f.index] = Some(r);
+        } else {
+            runnable.push(f.clone());
+        }
+    }
+    let inputs: Vec<PathBuf> = files.iter().map(|f| f.abs.clone()).collect();
+    let (writer, stale) = Writer::new(&opts.output, opts.force, &inputs)
+        .map_err(|e| BatchError::Output(format!("cannot create {}: {e}", opts.output.display())))?;
+    if stale {
+        progress(Progress::Note(format!(
+            "removed the unfinished files of an earlier run that was killed ({}/{})",
+            opts.output.display(),
+            write::STAGING
+        )));
+    }
+    progress(Progress::Started { total: runnable.len(), skipped });
+
+    // 4. Translate in parallel; stage outputs in the workers, commit here in input order.
+    let ctx = BatchContext { options: opts.clone(), files: files.clone(), library, maps, cancel: cancel.clone() };
+    let work = |f: &InputFile| {
+        let t0 = Instant::now();
+        let outcome = job.run(f, &ctx);
+        let mut staged = Vec::new();
+        let mut stage_error = None;
+        if outcome.status.writes_output() {
+            for o in &outcome.outputs {
+                match writer.stage(&o.bytes) {
+                    Ok(s) => staged.push((o.rel.clone(), s)),
+                    Err(e) => {
+                        stage_error = Some(WriteError::Io(o.rel.clone(), e.to_string()));
+                        break;
+                    }
+                }
+            }
+        }
+        (outcome, staged, stage_error, t0.elapsed())
+    };
+    let total = runnable.len();
+    let mut pending: BTreeMap<usize, _> = BTreeMap::new();
+    let mut next_commit = 0usize;
+    let mut claimed: HashMap<PathBuf, String> = HashMap::new();
+    let mut done = 0usize;
+    let mut failures = 0usize;
+    let mut used_in_order: Vec<(usize, maps::Used)> = Vec::new();
+    let mut commit = |k: usize, result: Option<_>, records: &mut Vec<Option<FileRecord>>| {
+        let f = &runnable[k];
+        let rec = match result {
+            None => error_record(
+                f,
+                "NC609",
+                "internal error: the translation of this file failed (a bug in nctrans)".into(),
+            ),
+            Some((outcome, staged, stage_error, time)) => {
+                let (rec, used) = commit_one(f, outcome, staged, stage_error, time, &writer, &mut claimed);
+                used_in_order.push((k, used));
+                rec
+            }
+        };
+        done += 1;
+        if rec.status.is_failure() {
+            failures += 1;
+        }
+        progress(Progress::FileDone { record: &rec, done, total, failures, elapsed: start.elapsed() });
+        records[f.index] = Some(rec);
+    };
+    parallel(&runnable, jobs, &cancel, &work, &mut |k, r| {
+        pending.insert(k, r);
+        while let Some(r) = pending.remove(&next_commit) {
+            commit(next_commit, r, &mut records);
+            next_commit += 1;
+        }
+    });
+    // Stopped: commit what finished after a hole, still in order.
+    let cancelled = cancel.load(Ordering::SeqCst) && (next_commit < total || !pending.is_empty());
+    for (k, r) in std::mem::take(&mut pending) {
+        commit(k, r, &mut records);
+    }
+
+    // 5. The map file: the batch's maps plus what the translations used.
+    let mut maps = ctx.maps.clone();
+    used_in_order.sort_by_key(|(k, _)| *k);
+    for (_, used) in &used_in_order {
+        maps.merge_used(used);
+    }
+    let map_text = maps::to_toml(&maps, opts.target);
+    let map_rel = Path::new(MAP_FILE);
+    let existing = std::fs::read(opts.output.join(map_rel)).ok();
+    let map_written = if existing.as_deref() == Some(map_text.as_bytes()) {
+        true
+    } else {
+        match writer.write(map_rel, map_text.as_bytes()) {
+            Ok(()) => true,
+            Err(e) => {
+                progress(Progress::Note(format!("map not written: {}", e.message())));
+                false
+            }
+        }
+    };
+    if let Err(e) = writer.finish() {
+        progress(Progress::Note(format!("cannot remove the staging folder {}: {e}", write::STAGING)));
+    }
+    let files_out = files
+        .iter()
+        .zip(records)
+        .map(|(f, r)| r.unwrap_or_else(|| error_record(f, "NC605", "not run: the batch was stopped (Ctrl-C)".into())))
+        .collect();
+    Ok(BatchResult { files: files_out, maps, map_written, cancelled, elapsed: start.elapsed(), jobs })
+}
+
+/// Commits one file's staged outputs (or discards them) and builds its record.
+fn commit_one(
+    f: &InputFile,
+    outcome: FileOutcome,
+    staged: Vec<(PathBuf, write::Staged)>,
+    stage_error: Option<WriteError>,
+    time: Duration,
+    writer: &Writer,
+    claimed: &mut HashMap<PathBuf, String>,
+) -> (FileRecord, maps::Used) {
+    let path = rel_string(&f.rel);
+    let mut rec = FileRecord {
+        path: path.clone(),
+        outputs: vec![],
+        status: outcome.status,
+        summary: outcome.summary,
+        diagnostics: outcome.diagnostics,
+        events: outcome.events,
+        blocks: outcome.blocks,
+        time,
+    };
+    let fail = |rec: &mut FileRecord, code: &str, msg: String| {
+        rec.status = Status::Error;
+        rec.summary = msg.clone();
+        rec.diagnostics.push(DiagRecord::error(code, msg));
+    };
+    if let Some(e) = stage_error {
+        fail(&mut rec, e.code(), e.message());
+    } else if outcome.status.writes_output() {
+        // Check every output before writing any, so a file is written whole or not at all.
+        for (rel, _) in &staged {
+            if let Some(other) = claimed.get(rel) {
+                fail(&mut rec, "NC604", format!("{} is also the output of {other}; not written", rel_string(rel)));
+                break;
+            }
+            if let Err(e) = writer.check(rel) {
+                fail(&mut rec, e.code(), e.message());
+                break;
+            }
+        }
+    }
+    if rec.status.writes_output() {
+        let mut written: Vec<PathBuf> = Vec::new();
+        let mut iter = staged.into_iter();
+        for (rel, s) in iter.by_ref() {
+            match writer.commit(s, &rel) {
+                Ok(()) => written.push(rel),
+                Err(e) => {
+                    // Undo: a failing file leaves no output.
+                    for w in &written {
+                        let _ = std::fs::remove_file(writer.root().join(w));
+                    }
+                    written.clear();
+                    fail(&mut rec, e.code(), e.message());
+                    break;
+                }
+            }
+        }
+        for (_, s) in iter {
+            writer.discard(s);
+        }
+        for w in &written {
+            claimed.insert(w.clone(), path.clone());
+        }
+        rec.outputs = written.iter().map(|w| rel_string(w)).collect();
+        (rec, outcome.used)
+    } else {
+        for (_, s) in staged {
+            writer.discard(s);
+        }
+        (rec, maps::Used::default())
+    }
+}

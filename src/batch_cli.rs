@@ -1,0 +1,283 @@
+//! `nctrans --to fanuc -o out/ programs/` (a folder in, batch mode) and `nctrans init`: the
+//! command line of migration batches. Reads `nctrans.toml`, lets the flags win, runs the
+//! library's batch engine, renders progress (a live line on a terminal, plain lines
+//! otherwise), the summary table and the report, and stops cleanly on Ctrl-C.
+
+use crate::translate_cli::TranslateArgs;
+use clap::parser::ValueSource;
+use clap::ArgMatches;
+use nctrans::batch::{self, jobs, BatchOptions, FileJob, Progress, Status};
+use nctrans::config::{self, Config};
+use nctrans::dialect::Dialect;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// Flags only a batch has.
+#[derive(clap::Args, Debug)]
+pub struct BatchArgs {
+    /// Batch: worker threads (default: the number of cores).
+    #[arg(short = 'j', long = "jobs", value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Batch: replace existing output files.
+    #[arg(long)]
+    pub force: bool,
+    /// Batch: write a per-file report (.json or .csv).
+    #[arg(long, value_name = "FILE")]
+    pub report: Option<PathBuf>,
+    /// Batch: take program, tool and variable names from an earlier run's nctrans-map.toml
+    /// (default: the one in the output folder, if any).
+    #[arg(long, value_name = "FILE")]
+    pub map: Option<PathBuf>,
+    /// The project configuration (default: ./nctrans.toml when present).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+}
+
+fn fail(msg: impl std::fmt::Display) -> ExitCode {
+    eprintln!("error: {msg}");
+    ExitCode::from(2)
+}
+
+/// `nctrans init [PATH]`: writes the commented configuration; never overwrites one.
+pub fn init(path: Option<&Path>) -> ExitCode {
+    let path = path.map_or_else(|| PathBuf::from(config::FILE_NAME), Path::to_path_buf);
+    let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&path);
+    match file.and_then(|mut f| f.write_all(config::TEMPLATE.as_bytes())) {
+        Ok(()) => {
+            eprintln!("wrote {}", path.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            fail(format!("{} exists already; not overwritten", path.display()))
+        }
+        Err(e) => fail(format!("cannot write {}: {e}", path.display())),
+    }
+}
+
+fn given(m: &ArgMatches, id: &str) -> bool {
+    matches!(m.value_source(id), Some(ValueSource::CommandLine))
+}
+
+/// The configuration: defaults, then `nctrans.toml`, then the flags given.
+fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Config, String> {
+    let mut c = match &b.config {
+        Some(p) => Config::load(p)?,
+        None if Path::new(config::FILE_NAME).is_file() => Config::load(Path::new(config::FILE_NAME))?,
+        None => Config::default(),
+    };
+    let flag =
+        |c: &mut Config, key: &str, text: &str, name: &str| c.set_flag(key, text).map_err(|e| format!("{name}: {e}"));
+    if let Some(d) = t.to {
+        c.to = Some(d);
+    }
+    if let Some(o) = &t.output {
+        c.output = Some(o.clone());
+    }
+    if t.no_verify {
+        c.verify = false;
+    }
+    if given(m, "unsupported") {
+        flag(&mut c, "translate.unsupported", &t.unsupported, "--unsupported")?;
+    }
+    if given(m, "comments") {
+        flag(&mut c, "translate.comments", &t.comments, "--comments")?;
+    }
+    if let Some(n) = t.number_blocks {
+        flag(&mut c, "translate.number_blocks", &n.to_string(), "--number-blocks")?;
+    }
+    if t.compound_conditions {
+        c.fanuc.compound_conditions = true;
+    }
+    if given(m, "max_steps") {
+        flag(&mut c, "verify.max_steps", &t.max_steps.to_string(), "--max-steps")?;
+    }
+    if let Some(e) = t.input_encoding {
+        c.input_encoding = Some(e);
+    }
+    let to = c.to.ok_or("a batch needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
+    let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };
+    for r in &t.var_map {
+        flag(&mut c, &format!("variables.{dir}"), r, "--var-map")?;
+    }
+    for r in &t.tool_map {
+        flag(&mut c, "tools", r, "--tool-map")?;
+    }
+    for r in &t.program_map {
+        flag(&mut c, &format!("programs.{dir}"), r, "--program-map")?;
+    }
+    if let Some(j) = b.jobs {
+        flag(&mut c, "batch.jobs", &j.to_string(), "-j")?;
+    }
+    if b.force {
+        c.force = true;
+    }
+    if let Some(r) = &b.report {
+        flag(&mut c, "batch.report", &r.display().to_string(), "--report")?;
+    }
+    if let Some(p) = &b.map {
+        c.map = Some(p.clone());
+    }
+    Ok(c)
+}
+
+/// Runs a batch when the input is a folder; `None` otherwise (single-file translation).
+pub fn run(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Option<ExitCode> {
+    let input = t.input.as_ref().filter(|p| p.is_dir())?;
+    Some(run_batch(input, t, b, m))
+}
+
+fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> ExitCode {
+    let c = match configure(t, b, m) {
+        Ok(c) => c,
+        Err(e) => return fail(e),
+    };
+    let Some(to) = c.to else { return fail("a batch needs --to") };
+    let Some(output) = c.output.clone() else {
+        return fail("a folder is translated into a folder: give -o OUT (or batch.output in nctrans.toml)");
+    };
+    // Pinned names: an earlier run's map, then the configuration over it.
+    let map_path = c.map.clone().or_else(|| Some(output.join(batch::MAP_FILE)).filter(|p| p.is_file()));
+    let mut pinned = batch::BatchMaps::default();
+    if let Some(p) = &map_path {
+        let text = match std::fs::read_to_string(p) {
+            Ok(t) => t,
+            Err(e) => return fail(format!("cannot read {}: {e}", p.display())),
+        };
+        match batch::maps::from_toml(&text) {
+            Ok((maps, target)) if target.is_none_or(|d| d == to) => pinned = maps,
+            Ok((_, Some(d))) => {
+                return fail(format!("{}: this map is for --to {}, not {}", p.display(), d.name(), to.name()))
+            }
+            Ok(_) => {}
+            Err(e) => return fail(format!("{}: {e}", p.display())),
+        }
+        eprintln!("using the names in {}", p.display());
+    }
+    let from_config = c.batch_maps(to);
+    pinned.programs.extend(from_config.programs);
+    pinned.tools.extend(from_config.tools);
+    if !from_config.var_rules.is_empty() {
+        pinned.var_rules = from_config.var_rules;
+    }
+    let settings = match jobs::JobSettings::from_config(&c) {
+        Ok(s) => s,
+        Err(e) => return fail(e),
+    };
+    let job: Box<dyn FileJob> = match to {
+        Dialect::Fanuc => Box::new(jobs::ToFanucJob::new(settings)),
+        Dialect::Sinumerik => {
+            return fail("a batch to sinumerik is not available in this build (the FANUC → Sinumerik translator)")
+        }
+    };
+    let mut opts = BatchOptions::new(input, &output, to);
+    opts.jobs = if c.jobs == 0 { batch::default_jobs() } else { c.jobs };
+    opts.force = c.force;
+    opts.verify = c.verify;
+    opts.pinned = pinned;
+    opts.encoding = c.input_encoding;
+
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let cancel = cancel.clone();
+        // First Ctrl-C: finish the files in hand, report. Second: leave at once (the outputs
+        // already written are whole; the staging folder is cleared by the next run).
+        let _ = ctrlc::set_handler(move || {
+            if cancel.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+        });
+    }
+    let mut ui = ProgressUi::new();
+    let result = match batch::run_batch(opts, job.as_ref(), cancel, &mut |p| ui.show(p)) {
+        Ok(r) => r,
+        Err(e) => return fail(e),
+    };
+    ui.finish();
+    print!("{}", batch::report::summary(&result, to.name()));
+    if let Some(rp) = &c.report {
+        let text = if rp.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv")) {
+            batch::report::csv(&result)
+        } else {
+            batch::report::json(&result, to.name(), &input.display().to_string(), &output.display().to_string())
+        };
+        let tmp = rp.with_extension("nctrans-tmp");
+        if let Err(e) = std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, rp)) {
+            let _ = std::fs::remove_file(&tmp);
+            return fail(format!("cannot write the report {}: {e}", rp.display()));
+        }
+        eprintln!("report written to {}", rp.display());
+    }
+    if result.cancelled {
+        ExitCode::from(130)
+    } else if result.all_verified() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}
+
+/// Renders progress: one redrawn line on a terminal, plain lines otherwise.
+struct ProgressUi {
+    tty: bool,
+    drawn: bool,
+}
+
+impl ProgressUi {
+    fn new() -> ProgressUi {
+        ProgressUi { tty: std::io::stderr().is_terminal(), drawn: false }
+    }
+
+    fn show(&mut self, p: Progress) {
+        let mut err = std::io::stderr().lock();
+        match p {
+            Progress::Note(s) => {
+                self.clear(&mut err);
+                let _ = writeln!(err, "note: {s}");
+            }
+            Progress::Started { total, skipped } => {
+                self.clear(&mut err);
+                let _ = writeln!(err, "{total} file(s) to translate ({skipped} already in the target dialect)");
+            }
+            Progress::FileDone { record, done, total, failures, elapsed } => {
+                let eta = if done > 0 { elapsed.as_secs_f64() / done as f64 * (total - done) as f64 } else { 0.0 };
+                if self.tty {
+                    if record.status.is_failure() {
+                        self.clear(&mut err);
+                        let _ = writeln!(err, "{:<22} {}  {}", record.status.as_str(), record.path, record.summary);
+                    }
+                    let _ = write!(
+                        err,
+                        "\r\x1b[2K[{done}/{total}] {failures} failed, ETA {:.0} s  {}",
+                        eta.ceil(),
+                        record.path
+                    );
+                    let _ = err.flush();
+                    self.drawn = true;
+                } else {
+                    let _ = writeln!(
+                        err,
+                        "[{done}/{total}] {:<22} {}  {}",
+                        record.status.as_str(),
+                        record.path,
+                        if record.status == Status::Verified { "" } else { record.summary.as_str() }
+                    );
+                }
+            }
+        }
+    }
+
+    fn clear(&mut self, err: &mut impl Write) {
+        if self.drawn {
+            let _ = write!(err, "\r\x1b[2K");
+            self.drawn = false;
+        }
+    }
+
+    fn finish(&mut self) {
+        let mut err = std::io::stderr().lock();
+        self.clear(&mut err);
+    }
+}

@@ -1,0 +1,440 @@
+//! Migration batches end to end (issue 6): a library built from `corpus/in` (both dialects,
+//! calls across folders, a GBK file, an untranslatable file, an injected fault), the outputs,
+//! the map file, the report, the exit code, untouched inputs, byte-identical reruns, and runs
+//! stopped or killed midway. The engine itself is also tested with fake jobs.
+
+use nctrans::batch::jobs::{JobSettings, ToFanucJob};
+use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use nctrans::config::Config;
+use nctrans::dialect::Dialect;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("nctrans-batch-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Every file below `root` (relative path → bytes), skipping nothing.
+fn snapshot(root: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+                out.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    out
+}
+
+/// The test library: every corpus program of both dialects in two folders, plus a part
+/// program in a third folder that calls a subprogram of another folder.
+fn build_library(root: &Path) -> usize {
+    let mut n = 0;
+    for (from, to) in [("corpus/in/sinumerik", "siemens"), ("corpus/in/fanuc", "fanuc")] {
+        let dst = root.join(to);
+        std::fs::create_dir_all(&dst).unwrap();
+        for e in std::fs::read_dir(repo().join(from)).unwrap() {
+            let p = e.unwrap().path();
+            std::fs::copy(&p, dst.join(p.file_name().unwrap())).unwrap();
+            n += 1;
+        }
+    }
+    let parts = root.join("siemens/parts");
+    std::fs::create_dir_all(&parts).unwrap();
+    std::fs::write(
+        parts.join("bracket.mpf"),
+        "; bracket: pockets made by CONTOUR, which lives in another folder\nG90 G0 X0 Y0\nCONTOUR(12.5,8,2)\nG0 X50\nCONTOUR(3,4,1)\nM30\n",
+    )
+    .unwrap();
+    std::fs::write(root.join("readme.txt"), "not a program\n").unwrap();
+    n + 1
+}
+
+const FAULTY: &str = "siemens/seed-sine-curve-while.mpf";
+
+fn fanuc_job(fault: bool) -> ToFanucJob {
+    let mut job = ToFanucJob::new(JobSettings::from_config(&Config::default()).unwrap());
+    if fault {
+        // The injected bug: one extra move before the end. Verification must catch it.
+        job.fault = Some(Box::new(|f: &InputFile, text: &mut String| {
+            if batch::rel_string(&f.rel) == FAULTY {
+                *text = text.replacen("\nM30", "\nG01 X1. Y1.\nM30", 1);
+            }
+        }));
+    }
+    job
+}
+
+fn run(opts: BatchOptions, job: &dyn FileJob) -> batch::BatchResult {
+    batch::run_batch(opts, job, Arc::new(AtomicBool::new(false)), &mut |_| {}).unwrap()
+}
+
+fn status_of<'a>(r: &'a batch::BatchResult, path: &str) -> &'a batch::FileRecord {
+    r.files.iter().find(|f| f.path == path).unwrap_or_else(|| panic!("no record for {path}"))
+}
+
+#[test]
+fn library_to_fanuc_end_to_end() {
+    let dir = scratch("e2e");
+    let lib = dir.join("lib");
+    let programs = build_library(&lib);
+    assert!(programs >= 50, "the library must hold at least 50 programs, has {programs}");
+    let inputs_before = snapshot(&lib);
+
+    let out = dir.join("out");
+    let mut opts = BatchOptions::new(&lib, &out, Dialect::Fanuc);
+    opts.jobs = 2;
+    let r = run(opts.clone(), &fanuc_job(true));
+    assert!(!r.all_verified());
+
+    // Every Siemens file has a record, every FANUC file is left alone, readme ignored.
+    assert_eq!(r.files.len(), programs);
+    for f in &r.files {
+        if f.path.starts_with("fanuc/") {
+            assert_eq!(f.status, Status::Skipped, "{}", f.path);
+        } else {
+            assert!(
+                f.status != Status::ParseError && f.status != Status::Error,
+                "{}: {:?} {}",
+                f.path,
+                f.status,
+                f.summary
+            );
+        }
+    }
+    assert!(r.count(Status::Verified) >= 60, "{} verified", r.count(Status::Verified));
+
+    // The injected fault is caught, with the code and a line number; no output for it.
+    let bad = status_of(&r, FAULTY);
+    assert_eq!(bad.status, Status::Diverged, "{}", bad.summary);
+    assert!(bad.outputs.is_empty());
+    assert!(!out.join("siemens/seed-sine-curve-while.nc").exists());
+    let d = bad.diagnostics.iter().find(|d| d.code == "NC500");
+    let d = d.unwrap_or_else(|| panic!("no NC500 in {:?} ({})", bad.diagnostics, bad.summary));
+    assert!(d.line.is_some(), "{d:?}");
+
+    // The untranslatable file: unsupported, named construct, no output.
+    let cyc = status_of(&r, "siemens/cycle-unknown-call.mpf");
+    assert_eq!(cyc.status, Status::Unsupported);
+    assert!(cyc.diagnostics.iter().any(|d| d.code.starts_with("NC3") && d.line == Some(3)), "{:?}", cyc.diagnostics);
+    assert!(!out.join("siemens/cycle-unknown-call.nc").exists());
+
+    // The GBK file verifies and its output is GBK again (not UTF-8).
+    let gbk = status_of(&r, "siemens/encoding-gbk-comment.mpf");
+    assert_eq!(gbk.status, Status::Verified, "{}", gbk.summary);
+    let bytes = std::fs::read(out.join("siemens/encoding-gbk-comment.nc")).unwrap();
+    assert!(std::str::from_utf8(&bytes).is_err(), "GBK comment bytes kept");
+
+    // Calls across folders resolve through the one program map.
+    let maps_text = std::fs::read_to_string(out.join(batch::MAP_FILE)).unwrap();
+    let (maps, target) = batch::maps::from_toml(&maps_text).unwrap();
+    assert_eq!(target, Some(Dialect::Fanuc));
+    let contour = maps.fanuc_numbers()["CONTOUR"];
+    assert!(contour >= 9000);
+    let bracket = status_of(&r, "siemens/parts/bracket.mpf");
+    assert_eq!(bracket.status, Status::Verified, "{}", bracket.summary);
+    assert!(bracket.summary.contains("events"));
+    assert_eq!(bracket.outputs, ["siemens/parts/bracket.nc"]);
+    let text = std::fs::read_to_string(out.join("siemens/parts/bracket.nc")).unwrap();
+    assert!(text.contains(&format!("G65 P{contour} A12.5 B8. C2.")), "{text}");
+    let main_no = maps.fanuc_numbers()["BRACKET"];
+    assert!(text.contains(&format!("O{main_no:04}")), "{text}");
+    // The callee is verified alone with the arguments its callers pass (two call sites in
+    // the library with constant arguments, plus the plain run).
+    let sub = status_of(&r, "siemens/subprogram-header.spf");
+    assert_eq!(sub.status, Status::Verified, "{}", sub.summary);
+    assert!(sub.summary.contains("runs"), "{}", sub.summary);
+
+    // Outputs: exactly the verified files, mapped extensions, same folders; nothing staged.
+    let outputs = snapshot(&out);
+    let mut expected: Vec<String> = r.files.iter().flat_map(|f| f.outputs.clone()).collect();
+    expected.push(batch::MAP_FILE.into());
+    expected.sort();
+    assert_eq!(outputs.keys().cloned().collect::<Vec<_>>(), expected);
+    for f in r.files.iter().filter(|f| f.status == Status::Verified) {
+        assert_eq!(f.outputs.len(), 1);
+        assert!(f.outputs[0].ends_with(".nc"));
+    }
+
+    // The report: one record per file, with statuses and diagnostics.
+    let json = batch::report::json(&r, "fanuc", "lib", "out");
+    assert_eq!(json.matches("{\"path\": ").count(), programs);
+    assert!(json.contains(&format!("{{\"path\": \"{FAULTY}\", \"outputs\": [], \"status\": \"diverged\"")));
+    assert!(json.contains("\"code\": \"NC500\""));
+    let csv = batch::report::csv(&r);
+    assert_eq!(csv.lines().count(), programs + 1);
+
+    // Inputs untouched.
+    assert_eq!(snapshot(&lib), inputs_before);
+
+    // A rerun into the same folder without --force refuses to overwrite anything.
+    let again = run(opts.clone(), &fanuc_job(true));
+    assert_eq!(snapshot(&out), outputs);
+    let rec = status_of(&again, "siemens/parts/bracket.mpf");
+    assert_eq!(rec.status, Status::Error);
+    assert_eq!(rec.diagnostics.last().unwrap().code, "NC601");
+
+    // A second run with the map, elsewhere, on one thread: byte-identical outputs.
+    let out2 = dir.join("out2");
+    let mut opts2 = BatchOptions::new(&lib, &out2, Dialect::Fanuc);
+    opts2.jobs = 1;
+    opts2.pinned = maps;
+    let r2 = run(opts2, &fanuc_job(true));
+    assert_eq!(snapshot(&out2), outputs);
+    let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
+    assert_eq!(statuses(&r2), statuses(&r));
+    assert_eq!(snapshot(&lib), inputs_before);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn nctrans() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_nctrans"))
+}
+
+#[test]
+fn cli_exit_code_summary_report_and_init() {
+    let dir = scratch("cli");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(lib.join("sub")).unwrap();
+    for f in ["seed-if-else.mpf", "while-endwhile.mpf", "call-with-args.mpf", "subprogram-header.spf"] {
+        std::fs::copy(repo().join("corpus/in/sinumerik").join(f), lib.join("sub").join(f)).unwrap();
+    }
+    let out = dir.join("out");
+    let report = dir.join("r.csv");
+    let o = nctrans()
+        .args(["--to", "fanuc", "-j", "2", "--report"])
+        .arg(&report)
+        .arg("-o")
+        .arg(&out)
+        .arg(&lib)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}\n{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("every file verified"), "{stdout}");
+    assert!(stdout.contains("  verified                    4"), "{stdout}");
+    let csv = std::fs::read_to_string(&report).unwrap();
+    assert!(csv.starts_with("path,outputs,status,"));
+    assert_eq!(csv.matches(",verified,").count(), 4, "{csv}");
+
+    // One untranslatable file makes the exit code 1; existing outputs are refused.
+    std::fs::copy(repo().join("corpus/in/sinumerik/cycle-unknown-call.mpf"), lib.join("cycle.mpf")).unwrap();
+    let o = nctrans().args(["--to", "fanuc", "-o"]).arg(&out).arg(&lib).current_dir(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("worst files:") && stdout.contains("NC601"), "{stdout}");
+
+    // nctrans init writes the commented configuration, once; a bad key is named.
+    let o = nctrans().arg("init").current_dir(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    let cfg = std::fs::read_to_string(dir.join("nctrans.toml")).unwrap();
+    assert_eq!(cfg, nctrans::config::TEMPLATE);
+    assert_eq!(nctrans().arg("init").current_dir(&dir).output().unwrap().status.code(), Some(2));
+    std::fs::write(dir.join("nctrans.toml"), "[fanuc]\nincrement = \"IS-Q\"\n").unwrap();
+    let o = nctrans().args(["--to", "fanuc", "-o", "out3"]).arg(&lib).current_dir(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("fanuc.increment") && err.contains("\"IS-A\", \"IS-B\" or \"IS-C\""), "{err}");
+    // Flags win over the file: -j from the flag, the rest from the file.
+    std::fs::write(dir.join("nctrans.toml"), "to = \"fanuc\"\n[batch]\njobs = 7\nverify = false\n").unwrap();
+    let o = nctrans().args(["-j", "1", "-o", "out4"]).arg(&lib).current_dir(&dir).output().unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("with -j 1") && stdout.contains("translated-unverified"), "{stdout}");
+    assert_eq!(o.status.code(), Some(1), "unverified files are not a success");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A library big enough that a run takes a while: `n` programs with a loop each.
+fn slow_library(root: &Path, n: usize) {
+    std::fs::create_dir_all(root).unwrap();
+    for i in 0..n {
+        let text = format!("; slow {i}\nR1=0\nWHILE R1<3000\nG1 X=R1*0.01 Y={i} F1000\nR1=R1+1\nENDWHILE\nM30\n");
+        std::fs::write(root.join(format!("p{i:03}.mpf")), text).unwrap();
+    }
+}
+
+/// Waits until a translated output appears (the run is under way).
+fn wait_for_output(out: &Path, deadline: Duration) -> bool {
+    let t0 = Instant::now();
+    while t0.elapsed() < deadline {
+        if out.is_dir() && snapshot(out).keys().any(|k| k.ends_with(".nc")) {
+            return true;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    false
+}
+
+fn signal(pid: u32, sig: &str) {
+    let ok = Command::new("kill").args([sig, &pid.to_string()]).status().map(|s| s.success());
+    assert_eq!(ok.ok(), Some(true), "kill {sig} {pid}");
+}
+
+#[test]
+fn a_run_stopped_or_killed_midway_leaves_no_partial_file() {
+    if cfg!(not(unix)) {
+        eprintln!("note: signals are tested on Unix only");
+        return;
+    }
+    let dir = scratch("kill");
+    let lib = dir.join("lib");
+    slow_library(&lib, 120);
+    // The reference: the complete run.
+    let full = dir.join("full");
+    let o = nctrans().args(["--to", "fanuc", "-j", "2", "-o"]).arg(&full).arg(&lib).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stdout));
+    let reference = snapshot(&full);
+
+    for (sig, name) in [("-INT", "int"), ("-KILL", "kill")] {
+        let out = dir.join(name);
+        let mut child = nctrans()
+            .args(["--to", "fanuc", "-j", "1", "-o"])
+            .arg(&out)
+            .arg(&lib)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        assert!(wait_for_output(&out, Duration::from_secs(60)), "the run never started writing");
+        signal(child.id(), sig);
+        let status = child.wait().unwrap();
+        let got = snapshot(&out);
+        let finished = got.keys().filter(|k| k.ends_with(".nc")).count();
+        assert!(finished < 120, "{name}: stopped too late to test anything ({finished} files)");
+        for (k, v) in &got {
+            if k.starts_with(".nctrans-tmp/") {
+                // Only a killed run can leave its staging folder; nothing in it is an output.
+                assert_eq!(name, "kill", "a stopped run clears its staging folder");
+                continue;
+            }
+            assert_eq!(Some(v), reference.get(k), "{name}: {k} is not the complete output");
+        }
+        if name == "int" {
+            assert_eq!(status.code(), Some(130));
+            let mut s = String::new();
+            std::io::Read::read_to_string(&mut child.stdout.take().unwrap(), &mut s).unwrap();
+            assert!(s.contains("stopped by Ctrl-C"), "{s}");
+        }
+        // The next run into the same folder clears what a killed run left and completes it.
+        let o = nctrans().args(["--to", "fanuc", "-o"]).arg(&out).arg(&lib).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "files already written are refused without --force");
+        let o = nctrans().args(["--to", "fanuc", "--force", "-o"]).arg(&out).arg(&lib).output().unwrap();
+        assert_eq!(o.status.code(), Some(0));
+        assert_eq!(snapshot(&out), reference, "{name}: a rerun with --force completes the library");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+// ---- The engine with fake jobs: order, cancellation, collisions, panics. ----
+
+/// Copies each input to `<stem>.out` (or a fixed name), after a delay that makes later
+/// files finish first.
+struct Fake {
+    collide: bool,
+    panic_on: Option<&'static str>,
+    cancel_after: Option<usize>,
+}
+
+impl FileJob for Fake {
+    fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        std::thread::sleep(Duration::from_millis(((20 - f.index % 20) * 2) as u64));
+        let name = batch::rel_string(&f.rel);
+        if self.panic_on == Some(name.as_str()) {
+            panic!("fake job failure");
+        }
+        if self.cancel_after.is_some_and(|n| f.index + 1 >= n) {
+            ctx.cancel.store(true, Ordering::SeqCst);
+        }
+        let mut o = FileOutcome::new(if name.contains("bad") { Status::Diverged } else { Status::Verified }, "fake");
+        let rel = if self.collide { PathBuf::from("same.nc") } else { f.rel.with_extension("nc") };
+        o.outputs = vec![OutputFile { rel, bytes: std::fs::read(&f.abs).unwrap() }];
+        o
+    }
+}
+
+fn fake_library(root: &Path, n: usize) {
+    for i in 0..n {
+        let p = root.join(format!("d{}/f{i:02}{}.mpf", i % 3, if i == 7 { "bad" } else { "" }));
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(&p, format!("; {i}\nM30\n")).unwrap();
+    }
+}
+
+#[test]
+fn engine_output_and_progress_do_not_depend_on_thread_timing() {
+    let dir = scratch("fake-order");
+    fake_library(&dir.join("in"), 30);
+    let mut runs = Vec::new();
+    for jobs in [1, 2, 4] {
+        let out = dir.join(format!("out{jobs}"));
+        let mut opts = BatchOptions::new(dir.join("in"), &out, Dialect::Fanuc);
+        opts.jobs = jobs;
+        let mut lines = Vec::new();
+        let job = Fake { collide: false, panic_on: None, cancel_after: None };
+        let r = batch::run_batch(opts, &job, Arc::new(AtomicBool::new(false)), &mut |p| {
+            if let batch::Progress::FileDone { record, done, .. } = p {
+                lines.push(format!("{done} {} {}", record.path, record.status.as_str()));
+            }
+        })
+        .unwrap();
+        assert_eq!(r.count(Status::Verified), 29);
+        assert_eq!(r.count(Status::Diverged), 1);
+        assert!(!out.join("d1/f07bad.nc").exists(), "a failing file gets no output");
+        runs.push((lines, snapshot(&out)));
+    }
+    assert_eq!(runs[0], runs[1]);
+    assert_eq!(runs[0], runs[2]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn engine_collisions_panics_and_cancellation() {
+    let dir = scratch("fake-misc");
+    fake_library(&dir.join("in"), 12);
+    let opts = |out: &str| {
+        let mut o = BatchOptions::new(dir.join("in"), dir.join(out), Dialect::Fanuc);
+        o.jobs = 2;
+        o
+    };
+    // Two inputs, one output path: the first in input order wins, the rest are errors.
+    let r = run(opts("a"), &Fake { collide: true, panic_on: None, cancel_after: None });
+    let written: Vec<_> = r.files.iter().filter(|f| !f.outputs.is_empty()).collect();
+    assert_eq!(written.len(), 1);
+    assert_eq!(written[0].path, r.files[0].path);
+    assert!(r.files[1].diagnostics.iter().any(|d| d.code == "NC604"));
+    // A job that panics is an error record; the others go on.
+    let r = run(opts("b"), &Fake { collide: false, panic_on: Some("d0/f03.mpf"), cancel_after: None });
+    assert_eq!(status_of(&r, "d0/f03.mpf").status, Status::Error);
+    assert_eq!(r.count(Status::Verified), 10);
+    // Cancelled after a few files: what was done is written and reported, the rest "not run".
+    let r = run(opts("c"), &Fake { collide: false, panic_on: None, cancel_after: Some(3) });
+    assert!(r.cancelled);
+    assert!(!r.all_verified());
+    let not_run = r.files.iter().filter(|f| f.diagnostics.iter().any(|d| d.code == "NC605")).count();
+    assert!(not_run > 0 && not_run < 12, "{not_run}");
+    for f in &r.files {
+        for o in &f.outputs {
+            assert!(dir.join("c").join(o).exists());
+        }
+    }
+    assert!(!dir.join("c").join(".nctrans-tmp").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
