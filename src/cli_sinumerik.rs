@@ -3,7 +3,9 @@
 //! translates, prints or writes the Siemens files, then verifies by running both.
 
 use crate::translate_cli::TranslateArgs;
+use nctrans::batch::library::ProgKey;
 use nctrans::check::Verdict;
+use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::span::SourceDb;
@@ -21,10 +23,36 @@ pub struct Request<'a> {
     pub encoding: Option<&'static encoding_rs::Encoding>,
 }
 
-fn options(args: &TranslateArgs, stem: &str) -> Result<Options, String> {
+/// The project configuration `./nctrans.toml` when there is one (flags win over it).
+fn project_config() -> Result<Option<Config>, String> {
+    let p = Path::new(nctrans::config::FILE_NAME);
+    if p.is_file() {
+        Config::load(p).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
+fn options(args: &TranslateArgs, stem: &str, config: Option<&Config>) -> Result<Options, String> {
     let mut o = Options::default();
+    // Flag rules first: the first rule that covers a variable places it.
     for r in &args.var_map {
         o.var_map.push(VarMapRule::parse(r)?);
+    }
+    if let Some(c) = config {
+        for r in &c.var_map_to_sinumerik {
+            o.var_map.push(VarMapRule::parse(r).map_err(|e| format!("nctrans.toml variables.to_sinumerik: {e}"))?);
+        }
+        for (k, v) in &c.programs_to_sinumerik {
+            if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
+                o.program_map.insert(*n, name.to_ascii_uppercase());
+            }
+        }
+        o.source = c.fanuc_semantics();
+        o.target = c.sinumerik_semantics();
+        if c.unsupported == nctrans::config::Unsupported::Warn {
+            o.unsupported = UnsupportedPolicy::Warn;
+        }
     }
     for m in &args.program_map {
         let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
@@ -38,7 +66,9 @@ fn options(args: &TranslateArgs, stem: &str) -> Result<Options, String> {
         }
         o.program_map.insert(n, name);
     }
-    o.unsupported = if args.unsupported == "warn" { UnsupportedPolicy::Warn } else { UnsupportedPolicy::Error };
+    if args.unsupported == "warn" {
+        o.unsupported = UnsupportedPolicy::Warn;
+    }
     o.main_name = main_name(stem);
     Ok(o)
 }
@@ -116,6 +146,7 @@ pub struct Job {
 pub fn load_job(
     path: &Path,
     encoding: Option<&'static encoding_rs::Encoding>,
+    profile: &nctrans::dialect::Semantics,
 ) -> Result<Job, (SourceDb, Vec<diag::Diagnostic>)> {
     let mut db = SourceDb::new();
     let bytes = match std::fs::read(path) {
@@ -126,7 +157,7 @@ pub fn load_job(
     };
     let name = path.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, encoding);
-    let opts = ParseOptions::for_dialect(Dialect::Fanuc);
+    let opts = ParseOptions { semantics: profile.clone() };
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
     let mut diags = parsed.diags;
     let mut units = vec![parsed.unit];
@@ -193,14 +224,21 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
     }
     let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
-    let opts = match options(args, stem) {
+    let config = match project_config() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let opts = match options(args, stem, config.as_ref()) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    let job = match load_job(req.file, req.encoding) {
+    let job = match load_job(req.file, req.encoding, &opts.source) {
         Ok(j) => j,
         Err((db, diags)) => {
             eprint!("{}", diag::render(&db, &diags));
@@ -220,7 +258,7 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
     let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
     if !args.no_verify {
-        code = verify(&job, &tr, &req, args.max_steps);
+        code = verify(&job, &tr, &req, args.max_steps, &opts);
     }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {
         eprintln!("error: unsupported constructs were written as marked comments");
@@ -273,14 +311,23 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
 
 /// Runs both programs and reports: "equivalent (N events)" and success, or the first
 /// divergence / inconclusive run and failure.
-fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64) -> ExitCode {
+fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: &Options) -> ExitCode {
     let out_dir = match req.out {
         Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
         Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
         None => "<stdout>".to_string(),
     };
     let main_unit = &job.units[0];
-    let report = nctrans::verify_sinumerik::verify_with(&job.db, job.loaded.file, main_unit, tr, &out_dir, max_steps);
+    let profiles = nctrans::verify_sinumerik::Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
+    let report = nctrans::verify_sinumerik::verify_profiled(
+        &job.db,
+        job.loaded.file,
+        main_unit,
+        tr,
+        &out_dir,
+        max_steps,
+        &profiles,
+    );
     eprint!("{}", diag::render(&report.db, &report.diags));
     match report.verdict {
         Verdict::Equivalent { events } => {

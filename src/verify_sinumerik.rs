@@ -6,7 +6,7 @@
 
 use crate::check::{self, CheckReport, Side, Verdict};
 use crate::diag::Diagnostic;
-use crate::dialect::{Dialect, ParseOptions};
+use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
 use crate::eval::{input, Ending, Outcome, RunOptions};
 use crate::ir::Unit;
@@ -16,6 +16,7 @@ use crate::translate_sinumerik::Translation;
 /// Serves the translation's `.SPF` files to the Siemens run, from memory.
 struct Emitted {
     files: Vec<(String, String, String)>,
+    semantics: Semantics,
 }
 
 impl CalleeSource for Emitted {
@@ -31,7 +32,7 @@ impl CalleeSource for Emitted {
             return Ok(None);
         };
         let id = db.add(path.clone(), text.clone());
-        let parsed = crate::parse(db, id, dialect, &ParseOptions::for_dialect(dialect));
+        let parsed = crate::parse(db, id, dialect, &ParseOptions { semantics: self.semantics.clone() });
         if let Some(first) = parsed.diags.iter().find(|d| d.is_error()) {
             let mut d = first.clone();
             d.notes.push(format!("the translation {path} does not read back as Sinumerik"));
@@ -53,6 +54,22 @@ pub fn verify(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translation,
     verify_with(db, fanuc_file, fanuc, tr, out_dir, crate::eval::DEFAULT_MAX_STEPS)
 }
 
+/// The control profiles of the two runs.
+#[derive(Clone, Debug)]
+pub struct Profiles {
+    pub fanuc: Semantics,
+    pub sinumerik: Semantics,
+}
+
+impl Default for Profiles {
+    fn default() -> Self {
+        Profiles {
+            fanuc: Semantics::default_for(Dialect::Fanuc),
+            sinumerik: Semantics::default_for(Dialect::Sinumerik),
+        }
+    }
+}
+
 /// [`verify`] with a step limit for each run.
 pub fn verify_with(
     db: &SourceDb,
@@ -62,13 +79,28 @@ pub fn verify_with(
     out_dir: &str,
     max_steps: u64,
 ) -> CheckReport {
+    verify_profiled(db, fanuc_file, fanuc, tr, out_dir, max_steps, &Profiles::default())
+}
+
+/// [`verify_with`] for the given control profiles (the project's FANUC increment, DPI and
+/// NAT, the Siemens R parameter count).
+pub fn verify_profiled(
+    db: &SourceDb,
+    fanuc_file: FileId,
+    fanuc: &Unit,
+    tr: &Translation,
+    out_dir: &str,
+    max_steps: u64,
+    profiles: &Profiles,
+) -> CheckReport {
     let mut db = db.clone();
     let Some(main) = tr.main() else {
         return failed(db, vec![Diagnostic::error("NC372", "the translation has no main program to run")]);
     };
     let path = |name: &str| if out_dir.is_empty() { name.to_string() } else { format!("{out_dir}/{name}") };
     let main_id = db.add(path(&main.name), main.text.clone());
-    let parsed = crate::parse(&db, main_id, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+    let parsed =
+        crate::parse(&db, main_id, Dialect::Sinumerik, &ParseOptions { semantics: profiles.sinumerik.clone() });
     if crate::diag::has_errors(&parsed.diags) {
         let mut diags = parsed.diags;
         diags.push(
@@ -91,15 +123,21 @@ pub fn verify_with(
         .filter(|f| !f.main || f.name != main.name)
         .map(|f| (f.program.clone(), path(&f.name), f.text.clone()))
         .collect();
+    let emitted = Emitted { files, semantics: profiles.sinumerik.clone() };
     let a = Side {
         unit: fanuc.clone(),
-        callees: Box::new(DirCallees { semantics: None }),
-        run: RunOptions { inputs: in_a, max_steps, ..RunOptions::default() },
+        callees: Box::new(DirCallees { semantics: Some(profiles.fanuc.clone()) }),
+        run: RunOptions { inputs: in_a, max_steps, semantics: Some(profiles.fanuc.clone()), ..RunOptions::default() },
     };
     let b = Side {
         unit: parsed.unit,
-        callees: Box::new(Emitted { files }),
-        run: RunOptions { inputs: in_b, max_steps, ..RunOptions::default() },
+        callees: Box::new(emitted),
+        run: RunOptions {
+            inputs: in_b,
+            max_steps,
+            semantics: Some(profiles.sinumerik.clone()),
+            ..RunOptions::default()
+        },
     };
     check::check(&db, a, b)
 }
