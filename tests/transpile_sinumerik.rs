@@ -589,3 +589,11 @@ fn seed_o9050_translates_its_supported_parts_under_warn() {
     assert!(text.contains("N100 IF (TRUNC(R13) B_AND 8)-8==0 GOTOF LBL_110"), "{text}");
     assert!(text.contains("STOPRE\nN130 LOC1=$AA_IM[Y]"), "{text}");
 }
+
+#[test]
+fn m99_with_p_in_a_main_program_continues_at_that_block() {
+    pair(
+        "O1\n#1=0\nN5 #1=#1+1\nG0 X#1\nIF[#1 GE 3]GOTO 9\nM99 P5\nN9 M30\n",
+        "DEF REAL LOC1\nLOC1=0\nN5 LBL_5: LOC1=LOC1+1\nG0 X=LOC1\nIF LOC1-3>=0 GOTOF LBL_9\nGOTOB LBL_5\nN9 LBL_9: M30\n",
+    );
+}

@@ -25,10 +25,26 @@ pub const RET_CODE: &str = "NCTRANS_RC";
 /// (`IF[NCTRANS_RC NE 0] GOTO NCTRANS_RC`, resolved by `gotos` from this point).
 pub fn lower_return_jumps(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
     let mut used = false;
+    let main = ctx.plan().role == Role::Main;
     let out = map_bodies(body, &mut |list| {
         let mut out = Vec::with_capacity(list.len());
-        for s in list {
+        for mut s in list {
             let span = s.span;
+            // `M99 P<n>` in a main program continues at its own block n: a GOTO.
+            if let (true, StmtKind::Block(b)) = (main, &mut s.kind) {
+                for it in &mut b.items {
+                    if let ItemKind::Return { to: Some(to) } = &it.kind {
+                        let target = match literal(to) {
+                            Some(v) if v >= 1.0 && v.fract() == 0.0 && v <= 99_999.0 => {
+                                Target::Number(SeqNo { value: v as u32, span: to.span })
+                            }
+                            _ => Target::Computed(to.clone()),
+                        };
+                        let g = Goto { search: Search::ForwardThenWrap, target, cond: None, missing_continues: false };
+                        it.kind = ItemKind::Goto(Box::new(g));
+                    }
+                }
+            }
             let target = match &s.kind {
                 StmtKind::Block(b) => b.items.iter().find_map(|it| match &it.kind {
                     ItemKind::Call(c) if matches!(c.kind, CallKind::G65 | CallKind::M98) => match c.target {

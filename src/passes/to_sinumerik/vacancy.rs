@@ -114,7 +114,22 @@ pub(super) fn succs(flat: &Flat, i: usize) -> Vec<usize> {
                             break;
                         }
                     }
-                    ItemKind::Return { .. } | ItemKind::End { .. } => {
+                    ItemKind::Return { to } => {
+                        // `M99 P<n>` in a main program continues at its block n. For a
+                        // called program the edge is not real, but an extra edge only makes
+                        // this must-analysis more careful.
+                        if let Some(to) = to {
+                            match literal(to) {
+                                Some(v) if v >= 0.0 && v.fract() == 0.0 => {
+                                    out.extend(resolve(&flat.numbers, i, v as u32))
+                                }
+                                _ => out.extend((0..len).filter(|&j| flat.numbers[j].is_some())),
+                            }
+                        }
+                        fall = false;
+                        break;
+                    }
+                    ItemKind::End { .. } => {
                         fall = false;
                         break;
                     }
