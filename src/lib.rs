@@ -16,6 +16,8 @@ pub mod read;
 pub mod span;
 pub mod stream;
 pub mod translate;
+pub mod translate_sinumerik;
+pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

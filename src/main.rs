@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod batch_cli;
+mod cli_sinumerik;
 mod stream_cli;
 mod translate_cli;
 
@@ -136,6 +137,9 @@ fn main() -> ExitCode {
     let Some(command) = cli.command else {
         if let Some(code) = batch_cli::run(&cli.translate, &cli.batch, &matches) {
             return code;
+        }
+        if cli.translate.to == Some(Dialect::Sinumerik) {
+            return cli_sinumerik::run(&cli.translate);
         }
         return translate_cli::run(&cli.translate).unwrap_or_else(|| {
             eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");

@@ -227,15 +227,7 @@ fn quote(t: &str) -> String {
 }
 
 fn ty(t: DataType) -> String {
-    match t {
-        DataType::Int => "INT".into(),
-        DataType::Real => "REAL".into(),
-        DataType::Bool => "BOOL".into(),
-        DataType::Char => "CHAR".into(),
-        DataType::String(n) => format!("STRING[{n}]"),
-        DataType::Axis => "AXIS".into(),
-        DataType::Frame => "FRAME".into(),
-    }
+    t.to_string()
 }
 
 fn dims(d: &[u32]) -> String {

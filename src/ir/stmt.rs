@@ -270,6 +270,21 @@ pub enum DataType {
     Frame,
 }
 
+/// The declared type as `DEF` writes it (`REAL`, `STRING[20]`), for dumps and messages.
+impl std::fmt::Display for DataType {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DataType::Int => f.write_str("INT"),
+            DataType::Real => f.write_str("REAL"),
+            DataType::Bool => f.write_str("BOOL"),
+            DataType::Char => f.write_str("CHAR"),
+            DataType::String(n) => write!(f, "STRING[{n}]"),
+            DataType::Axis => f.write_str("AXIS"),
+            DataType::Frame => f.write_str("FRAME"),
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Def {
     pub ty: DataType,

@@ -100,7 +100,7 @@ fn def_items(ctx: &mut Ctx, d: Def, span: Span, info: &mut ProgInfo, out: &mut V
     for v in d.vars {
         info.types.insert(v.name.clone(), (d.ty, v.dims.clone()));
         if matches!(d.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
-            let what = format!("DEF {} {}", type_name(d.ty), v.name);
+            let what = format!("DEF {} {}", d.ty, v.name);
             let hint = "FANUC variables hold numbers only; rewrite the program without STRING/AXIS/FRAME variables";
             marks.extend(ctx.unsupported("NC310", v.span, &what, hint));
             continue;
@@ -153,18 +153,6 @@ fn element_indices(dims: &[u32], k: u32, span: Span) -> Vec<Expr> {
             }
             idx.into_iter().map(|i| num(i as f64, span)).collect()
         }
-    }
-}
-
-pub fn type_name(t: DataType) -> String {
-    match t {
-        DataType::Int => "INT".into(),
-        DataType::Real => "REAL".into(),
-        DataType::Bool => "BOOL".into(),
-        DataType::Char => "CHAR".into(),
-        DataType::String(n) => format!("STRING[{n}]"),
-        DataType::Axis => "AXIS".into(),
-        DataType::Frame => "FRAME".into(),
     }
 }
 

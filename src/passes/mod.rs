@@ -1,4 +1,5 @@
 //! Lowering passes: small IR→IR functions chosen per target, listed in order here.
+//! FANUC → Siemens lives in [`to_sinumerik`] (its own order in its `mod.rs`).
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
 //! [`words`] (address words, calls, messages), [`exprs`] (exact function rewrites, the
@@ -11,6 +12,7 @@ pub mod blocks;
 pub mod exprs;
 pub mod labels;
 pub mod lower_structures;
+pub mod to_sinumerik;
 pub mod varmap;
 pub mod words;
 

@@ -12,6 +12,8 @@ mod names;
 mod parse;
 mod structure;
 
+pub mod emit;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::{BlockMeta, Unit};

@@ -1,0 +1,353 @@
+//! `nctrans --to sinumerik FILE`: the command-line side of the FANUC → Sinumerik translation
+//! (part of the binary: it prints). Loads the FANUC file and the callees found beside it,
+//! translates, prints or writes the Siemens files, then verifies by running both.
+
+use crate::translate_cli::TranslateArgs;
+use nctrans::batch::library::ProgKey;
+use nctrans::check::Verdict;
+use nctrans::config::Config;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::span::SourceDb;
+use nctrans::translate_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
+use nctrans::{diag, read};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Where the input is and where the output goes.
+pub struct Request<'a> {
+    pub file: &'a Path,
+    pub out: Option<&'a Path>,
+    pub encoding: Option<&'static encoding_rs::Encoding>,
+}
+
+/// The project configuration `./nctrans.toml` when there is one (flags win over it).
+fn project_config() -> Result<Option<Config>, String> {
+    let p = Path::new(nctrans::config::FILE_NAME);
+    if p.is_file() {
+        Config::load(p).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
+fn options(args: &TranslateArgs, stem: &str, config: Option<&Config>) -> Result<Options, String> {
+    let mut o = Options::default();
+    // Flag rules first: the first rule that covers a variable places it.
+    for r in &args.var_map {
+        o.var_map.push(VarMapRule::parse(r)?);
+    }
+    if let Some(c) = config {
+        for r in &c.var_map_to_sinumerik {
+            o.var_map.push(VarMapRule::parse(r).map_err(|e| format!("nctrans.toml variables.to_sinumerik: {e}"))?);
+        }
+        for (k, v) in &c.programs_to_sinumerik {
+            if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
+                o.program_map.insert(*n, name.to_ascii_uppercase());
+            }
+        }
+        o.source = c.fanuc_semantics();
+        o.target = c.sinumerik_semantics();
+        if c.unsupported == nctrans::config::Unsupported::Warn {
+            o.unsupported = UnsupportedPolicy::Warn;
+        }
+    }
+    for m in &args.program_map {
+        let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
+        let n: u32 =
+            n.trim().trim_start_matches(['O', 'o']).parse().map_err(|_| format!("bad program number in '{m}'"))?;
+        let name = name.trim().to_ascii_uppercase();
+        if !valid_name(&name) {
+            return Err(format!(
+                "bad Siemens program name '{name}' (letters, digits and _, the first two letters or _)"
+            ));
+        }
+        o.program_map.insert(n, name);
+    }
+    if args.unsupported == "warn" {
+        o.unsupported = UnsupportedPolicy::Warn;
+    }
+    o.main_name = main_name(stem);
+    Ok(o)
+}
+
+fn valid_name(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2
+        && b.len() <= 31
+        && b[..2].iter().all(|c| c.is_ascii_alphabetic() || *c == b'_')
+        && b.iter().all(|c| c.is_ascii_alphanumeric() || *c == b'_')
+}
+
+/// A Siemens program name from a file stem: upper case, other characters `_`, and `P_` in
+/// front when it would not start with two letters.
+pub fn main_name(stem: &str) -> String {
+    let mut s: String =
+        stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
+    if !valid_name(&s) {
+        s = format!("P_{s}");
+    }
+    s.truncate(31);
+    s
+}
+
+/// Program numbers called in a unit.
+fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
+    let mut set = BTreeSet::new();
+    for p in &unit.programs {
+        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    let mut items = vec![it];
+                    if let ItemKind::IfThen { then, .. } = &it.kind {
+                        items.push(then);
+                    }
+                    for it in items {
+                        if let ItemKind::Call(c) = &it.kind {
+                            if let CallTarget::Number(n) = c.target {
+                                set.insert(n);
+                            }
+                        }
+                    }
+                }
+            }
+        });
+    }
+    set
+}
+
+/// The file beside `dir` that holds FANUC program `n`: `O1234.nc`, `1234.nc`, any case,
+/// `.nc`/`.tap`/no extension.
+pub fn find_callee_file(dir: &Path, n: u32) -> Option<PathBuf> {
+    let stems = [format!("O{n:04}"), format!("{n:04}"), format!("O{n}"), format!("{n}")];
+    let entries = std::fs::read_dir(dir).ok()?;
+    let mut found: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let stem = p.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+            let ext = p.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+            stems.iter().any(|s| s.eq_ignore_ascii_case(&stem)) && matches!(ext.as_str(), "nc" | "tap" | "")
+        })
+        .collect();
+    found.sort();
+    found.into_iter().next()
+}
+
+/// The loaded job: the main unit, the callee units found beside it, and the source DB.
+pub struct Job {
+    pub db: SourceDb,
+    pub units: Vec<Unit>,
+    pub loaded: nctrans::Loaded,
+}
+
+/// Loads `path` and, transitively, the callees it needs that are not in the file itself.
+pub fn load_job(
+    path: &Path,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    profile: &nctrans::dialect::Semantics,
+) -> Result<Job, (SourceDb, Vec<diag::Diagnostic>)> {
+    let mut db = SourceDb::new();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            return Err((db, vec![diag::Diagnostic::error("NC102", format!("cannot read {}: {e}", path.display()))]))
+        }
+    };
+    let name = path.display().to_string();
+    let loaded = nctrans::load(&mut db, &name, &bytes, encoding);
+    let opts = ParseOptions { semantics: profile.clone() };
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
+    let mut diags = parsed.diags;
+    let mut units = vec![parsed.unit];
+    let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let mut have: BTreeSet<u32> = BTreeSet::new();
+    let mut tried: BTreeSet<u32> = BTreeSet::new();
+    loop {
+        for u in &units {
+            for p in &u.programs {
+                if let Some(nctrans::ir::ProgName::Number(n)) = &p.name {
+                    have.insert(*n);
+                }
+            }
+        }
+        let want: Vec<u32> = units
+            .iter()
+            .flat_map(called_numbers)
+            .filter(|n| !have.contains(n) && !tried.contains(n))
+            .collect::<BTreeSet<u32>>()
+            .into_iter()
+            .collect();
+        if want.is_empty() {
+            break;
+        }
+        for n in want {
+            tried.insert(n);
+            let Some(p) = find_callee_file(&dir, n) else { continue };
+            let Ok(bytes) = std::fs::read(&p) else { continue };
+            let l = nctrans::load(&mut db, &p.display().to_string(), &bytes, encoding);
+            let parsed = nctrans::parse(&db, l.file, Dialect::Fanuc, &opts);
+            diags.extend(parsed.diags);
+            units.push(parsed.unit);
+        }
+    }
+    if diag::has_errors(&diags) {
+        return Err((db, diags));
+    }
+    // Warnings of reading are shown, not fatal.
+    let _ = diags;
+    Ok(Job { db, units, loaded })
+}
+
+fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
+    read::encode(text, loaded.encoding, loaded.bom)
+}
+
+/// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
+/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction).
+pub fn run(args: &TranslateArgs) -> ExitCode {
+    let Some(file) = args.input.as_deref() else {
+        eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
+        return ExitCode::from(2);
+    };
+    let fanuc_only = [
+        ("--tool-map", !args.tool_map.is_empty()),
+        ("--program-number", args.program_number.is_some()),
+        ("--number-blocks", args.number_blocks.is_some()),
+        ("--compound-conditions", args.compound_conditions),
+        ("--comments", args.comments != "keep"),
+    ];
+    if let Some((flag, _)) = fanuc_only.iter().find(|(_, given)| *given) {
+        eprintln!("error: {flag} applies to --to fanuc only");
+        return ExitCode::from(2);
+    }
+    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+    let config = match project_config() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let opts = match options(args, stem, config.as_ref()) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let job = match load_job(req.file, req.encoding, &opts.source) {
+        Ok(j) => j,
+        Err((db, diags)) => {
+            eprint!("{}", diag::render(&db, &diags));
+            return ExitCode::from(1);
+        }
+    };
+    let units: Vec<&Unit> = job.units.iter().collect();
+    let tr = ts::translate(&units, &opts, job.loaded.line_ending);
+    eprint!("{}", diag::render(&job.db, &tr.diags));
+    if tr.has_errors() {
+        eprintln!("error: translation failed; nothing written");
+        return ExitCode::from(1);
+    }
+    if let Err(code) = write_files(&req, &tr, &job.loaded) {
+        return code;
+    }
+    let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
+    let mut code = ExitCode::SUCCESS;
+    if !args.no_verify {
+        code = verify(&job, &tr, &req, args.max_steps, &opts);
+    }
+    if warned && opts.unsupported == UnsupportedPolicy::Warn {
+        eprintln!("error: unsupported constructs were written as marked comments");
+        return ExitCode::from(1);
+    }
+    code
+}
+
+fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) -> Result<(), ExitCode> {
+    match req.out {
+        None => {
+            let mut out = std::io::stdout().lock();
+            let several = tr.files.len() > 1;
+            for f in &tr.files {
+                let mut text = String::new();
+                if several {
+                    text.push_str(&format!("; ==== {} ====", f.name));
+                    text.push_str(loaded.line_ending.as_str());
+                }
+                text.push_str(&f.text);
+                if out.write_all(&encode(&text, loaded)).is_err() {
+                    return Err(ExitCode::from(2));
+                }
+            }
+        }
+        Some(o) => {
+            // A directory (existing, or written with a trailing slash) takes every file
+            // under its own name; a file path names the main program, subprograms go beside it.
+            let is_dir = o.is_dir() || o.to_string_lossy().ends_with('/');
+            let dir =
+                if is_dir { o.to_path_buf() } else { o.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf) };
+            if is_dir {
+                if let Err(e) = std::fs::create_dir_all(&dir) {
+                    eprintln!("error: cannot create {}: {e}", dir.display());
+                    return Err(ExitCode::from(2));
+                }
+            }
+            for f in &tr.files {
+                let path = if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) };
+                if let Err(e) = std::fs::write(&path, encode(&f.text, loaded)) {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    return Err(ExitCode::from(2));
+                }
+                eprintln!("wrote {}", path.display());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs both programs and reports: "equivalent (N events)" and success, or the first
+/// divergence / inconclusive run and failure.
+fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: &Options) -> ExitCode {
+    let out_dir = match req.out {
+        Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
+        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+        None => "<stdout>".to_string(),
+    };
+    let main_unit = &job.units[0];
+    let profiles = nctrans::verify_sinumerik::Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
+    let report = nctrans::verify_sinumerik::verify_profiled(
+        &job.db,
+        job.loaded.file,
+        main_unit,
+        tr,
+        &out_dir,
+        max_steps,
+        &profiles,
+    );
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    match report.verdict {
+        Verdict::Equivalent { events } => {
+            eprintln!("equivalent ({events} events)");
+            ExitCode::SUCCESS
+        }
+        Verdict::Diverged { .. } => {
+            if !report.diff.is_empty() {
+                eprintln!("{}", report.diff);
+            }
+            eprintln!("error: the translation is not equivalent");
+            ExitCode::from(1)
+        }
+        Verdict::Inconclusive { reason } => {
+            eprintln!("inconclusive: {reason}");
+            ExitCode::from(1)
+        }
+        Verdict::Failed => {
+            eprintln!("error: verification could not run");
+            ExitCode::from(1)
+        }
+    }
+}

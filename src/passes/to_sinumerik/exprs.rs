@@ -1,0 +1,334 @@
+//! FANUC expressions → Siemens expressions with exactly FANUC's results.
+//!
+//! - Variables through the variable map; `#0` (vacant) reads as 0; system variables per
+//!   `words::system_var`.
+//! - `a AND b` (bitwise on integer parts) → `TRUNC(a) B_AND TRUNC(b)`, same for OR/XOR.
+//! - `FIX` → `TRUNC`; `FUP[x]` (away from zero) → `ROUNDUP(x)-TRUNC(x)-ROUNDUP(-x)`, exact
+//!   in integer arithmetic; `ACOS` is the same function; `ATAN[y]/[x]`, `ASIN[x]` with NAT=0
+//!   (0..360, 270..90) → `(ATAN2(y,x)+360) MOD 360`, `(ASIN(x)+360) MOD 360`.
+//! - `POW[a,k]` for a literal k in 0..16 → products (`POT` for 2); `BIN`/`BCD` → digit sums.
+//! - Comparisons: FANUC compares exactly, Siemens within 1e-12 relative. `a op b` is written
+//!   `a-b op 0` (or `a op 0` when one side is the literal 0): a relative tolerance around 0
+//!   admits only 0, and IEEE subtraction is 0 exactly when a = b, so the test is exact.
+//! - Precedence is the emitter's job: it parenthesises by Siemens priorities.
+
+use super::*;
+
+/// Lowers every expression of the current program.
+pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
+    map_bodies(body, &mut |list| {
+        let mut out = Vec::with_capacity(list.len());
+        for mut s in list {
+            let mut local: Vec<Stmt> = Vec::new();
+            match &mut s.kind {
+                StmtKind::Block(b) => {
+                    ctx.guard_ok = true;
+                    for it in &mut b.items {
+                        lower_item(ctx, it, &mut local);
+                    }
+                    ctx.guard_ok = false;
+                }
+                StmtKind::If(i) => lower_expr(ctx, &mut i.cond, &mut local),
+                StmtKind::While(w) => lower_expr(ctx, &mut w.cond, &mut local),
+                StmtKind::Repeat(r) => lower_expr(ctx, &mut r.until, &mut local),
+                StmtKind::For(x) => {
+                    lower_expr(ctx, &mut x.from, &mut local);
+                    lower_expr(ctx, &mut x.to, &mut local);
+                }
+                StmtKind::Do(d) => {
+                    if let Some(c) = &mut d.cond {
+                        lower_expr(ctx, c, &mut local);
+                    }
+                }
+                StmtKind::Loop(_) => {}
+            }
+            out.extend(local);
+            out.push(s);
+        }
+        out
+    })
+}
+
+fn lower_item(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>) {
+    if let ItemKind::Assign { target, .. } = &mut it.kind {
+        map_target(ctx, target, marks);
+    }
+    if let ItemKind::IfThen { then, .. } = &mut it.kind {
+        lower_item(ctx, then, marks);
+    }
+    // Assignment targets were handled above; their index expressions and every other
+    // expression go through lower_expr.
+    let mut f = |e: &mut Expr| lower_expr(ctx, e, marks);
+    match &mut it.kind {
+        ItemKind::IfThen { cond, .. } => f(cond),
+        _ => item_exprs_mut(it, &mut f),
+    }
+}
+
+fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
+    let span = target.span;
+    match &target.kind {
+        VarKind::Hash(n) => {
+            let n = *n;
+            match super::varmap::map_hash(ctx, n, span).or_else(|| super::words::system_var(n, span)) {
+                Some(k) => target.kind = k,
+                None => {
+                    marks.extend(ctx.unsupported(
+                        "NC365",
+                        span,
+                        &format!("writing the system variable #{n}"),
+                        "see dialects.md §7 for the variables that have a Siemens counterpart",
+                    ));
+                    target.kind = VarKind::Named { name: format!("NCTRANS_UNSUPPORTED_{n}"), indices: vec![] };
+                }
+            }
+        }
+        VarKind::HashIndirect(x) => {
+            let mut x = (**x).clone();
+            lower_expr(ctx, &mut x, marks);
+            match runtime_indirect(ctx, x, span, marks) {
+                Some(k) => target.kind = k,
+                None => {
+                    marks.extend(ctx.unsupported(
+                        "NC361",
+                        span,
+                        "an indirect variable `#[…]` whose number is not known before the run",
+                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                    ));
+                    target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+/// FANUC alarm 115 (variable number out of range), as the translation raises it.
+const ALARM_INDEX: i64 = super::gotos::RUNTIME_ALARM_BASE + 115;
+
+/// `#[x]` with an index only known at run time → `R[ROUND(x)]`, when #100..#199 sit on
+/// R100..R199 one to one and nothing else shares those R numbers, no flag is kept for them,
+/// and the access is in a plain block: a guard block in front raises `SETAL(64115)` if the
+/// index leaves #100..#199, so the assumption is checked on every run instead of trusted.
+fn runtime_indirect(ctx: &Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>) -> Option<VarKind> {
+    if !ctx.guard_ok {
+        return None;
+    }
+    let linear = ctx.commons.iter().all(|(&n, &r)| {
+        let inside = (100..=199).contains(&n);
+        let on_block = (100..=199).contains(&r);
+        (inside && r == n) || (!inside && !on_block)
+    });
+    let flagged = ctx.common_flags.iter().any(|(&n, &r)| (100..=199).contains(&n) || (100..=199).contains(&r));
+    if !linear || flagged || ctx.opts.target.r_param_count < 200 {
+        return None;
+    }
+    let idx = func(Func::Round, vec![x], span);
+    let cmp = |op: CmpOp, v: i64| {
+        Expr::new(ExprKind::Cmp(op, Tolerance::Relative, Box::new(idx.clone()), Box::new(int(v, span))), span)
+    };
+    let alarm =
+        Item { kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: int(ALARM_INDEX, span), text: None }, span };
+    marks.push(if_stmt(
+        bin(BinOp::Or, cmp(CmpOp::Lt, 100), cmp(CmpOp::Gt, 199)),
+        vec![plain_block(vec![alarm], span)],
+        None,
+        span,
+    ));
+    Some(VarKind::RIndirect(Box::new(idx)))
+}
+
+fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
+    for c in super::vacancy::children_mut(e) {
+        lower_expr(ctx, c, marks);
+    }
+    let span = e.span;
+    let new = match std::mem::replace(&mut e.kind, ExprKind::Vacant) {
+        ExprKind::Vacant => Expr::num(0.0, false, span),
+        ExprKind::Var(v) => match v.kind {
+            VarKind::Hash(0) => Expr::num(0.0, false, span),
+            VarKind::Hash(n) => {
+                match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
+                    Some(k) => var_expr(k, v.span),
+                    None => {
+                        marks.extend(ctx.unsupported(
+                            "NC365",
+                            v.span,
+                            &format!("the system variable #{n}"),
+                            "see dialects.md §7 for the variables that have a Siemens counterpart",
+                        ));
+                        Expr::num(0.0, false, span)
+                    }
+                }
+            }
+            VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks) {
+                Some(k) => var_expr(k, v.span),
+                None => {
+                    marks.extend(ctx.unsupported(
+                        "NC361",
+                        v.span,
+                        "an indirect variable `#[…]` whose number is not known before the run",
+                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                    ));
+                    Expr::num(0.0, false, span)
+                }
+            },
+            kind => var_expr(kind, v.span),
+        },
+        ExprKind::Binary(op, a, b) => match op {
+            BinOp::FanucBitAnd | BinOp::FanucBitOr | BinOp::FanucBitXor => {
+                let sop = match op {
+                    BinOp::FanucBitAnd => BinOp::BitAnd,
+                    BinOp::FanucBitOr => BinOp::BitOr,
+                    _ => BinOp::BitXor,
+                };
+                bin(sop, int_part(*a), int_part(*b))
+            }
+            _ => Expr::new(ExprKind::Binary(op, a, b), span),
+        },
+        ExprKind::Cmp(op, _, a, b) => {
+            let zero = |x: &Expr| literal(x) == Some(0.0);
+            let (l, r) = if zero(&b) || zero(&a) {
+                (*a, *b)
+            } else {
+                let sp = a.span.to(b.span);
+                (bin(BinOp::Sub, *a, *b), Expr::num(0.0, false, sp))
+            };
+            Expr::new(ExprKind::Cmp(op, Tolerance::Relative, Box::new(l), Box::new(r)), span)
+        }
+        ExprKind::Func(f, args) => lower_func(ctx, f, args, span, marks),
+        kind => Expr::new(kind, span),
+    };
+    *e = new;
+}
+
+fn int_part(e: Expr) -> Expr {
+    match literal(&e) {
+        Some(v) if v.fract() == 0.0 => e,
+        _ => {
+            let sp = e.span;
+            func(Func::Trunc, vec![e], sp)
+        }
+    }
+}
+
+fn normalise_360(e: Expr, span: Span) -> Expr {
+    bin(BinOp::Mod, bin(BinOp::Add, e, int(360, span)), int(360, span))
+}
+
+fn neg(e: Expr) -> Expr {
+    let sp = e.span;
+    Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e)), sp)
+}
+
+fn lower_func(ctx: &mut Ctx, f: Func, mut args: Vec<Expr>, span: Span, marks: &mut Vec<Stmt>) -> Expr {
+    let nat = ctx.opts.source.nat;
+    let first = args.first().cloned().unwrap_or_else(|| int(0, span));
+    match f {
+        Func::FanucFup => {
+            let x = first;
+            bin(
+                BinOp::Sub,
+                bin(BinOp::Sub, func(Func::RoundUp, vec![x.clone()], span), func(Func::Trunc, vec![x.clone()], span)),
+                func(Func::RoundUp, vec![neg(x)], span),
+            )
+        }
+        Func::FanucRound => func(Func::Round, args, span),
+        Func::FanucAcos => func(Func::Acos, args, span),
+        Func::FanucAsin => {
+            let r = func(Func::Asin, args, span);
+            if nat {
+                r
+            } else {
+                normalise_360(r, span)
+            }
+        }
+        Func::FanucAtan2 | Func::FanucAtan => {
+            if f == Func::FanucAtan {
+                args.push(int(1, span));
+            }
+            let r = func(Func::Atan2, args, span);
+            if nat {
+                r
+            } else {
+                normalise_360(r, span)
+            }
+        }
+        Func::Pow => {
+            let k = args.get(1).and_then(literal);
+            match k {
+                Some(k) if k.fract() == 0.0 && (0.0..=16.0).contains(&k) => {
+                    let k = k as u32;
+                    match k {
+                        0 => int(1, span),
+                        1 => first,
+                        2 => func(Func::Pot, vec![first], span),
+                        _ => (1..k).fold(first.clone(), |acc, _| bin(BinOp::Mul, acc, first.clone())),
+                    }
+                }
+                _ => {
+                    marks.extend(ctx.unsupported(
+                        "NC369",
+                        span,
+                        "POW with an exponent that is not a literal 0..16",
+                        "Siemens has only POT (square); write EXP(b*LN(a)) if a is positive and rounding is acceptable",
+                    ));
+                    int(0, span)
+                }
+            }
+        }
+        Func::Bin => digit_sum(first, 16.0, 10.0, span),
+        Func::Bcd => digit_sum(first, 10.0, 16.0, span),
+        Func::Adp => {
+            marks.extend(ctx.unsupported(
+                "NC369",
+                span,
+                "ADP (add a decimal point to an argument)",
+                "pass the argument with a decimal point instead",
+            ));
+            first
+        }
+        other => func(other, args, span),
+    }
+}
+
+/// Re-weights the base-`from` digits of `TRUNC(ABS(x))` by powers of `to` (8 digits): BIN
+/// reads BCD nibbles as decimal digits, BCD writes decimal digits as nibbles. For BIN a
+/// nibble above 9 is FANUC's alarm 111; the result is then divided by
+/// `Π(1-TRUNC(nibble/10))`, which is 1 for valid BCD and 0 otherwise, so the same class of
+/// alarm (arithmetic) stops the Siemens run.
+fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
+    let xi = func(Func::Trunc, vec![func(Func::Abs, vec![x], span)], span);
+    let mut acc: Option<Expr> = None;
+    let mut valid: Option<Expr> = None;
+    for k in 0..8 {
+        let div = from.powi(k);
+        let scaled = if k == 0 {
+            xi.clone()
+        } else {
+            func(Func::Trunc, vec![bin(BinOp::Div, xi.clone(), num(div, span))], span)
+        };
+        let digit = bin(BinOp::Mod, scaled, num(from, span));
+        if from == 16.0 {
+            let ok = bin(
+                BinOp::Sub,
+                int(1, span),
+                func(Func::Trunc, vec![bin(BinOp::Div, digit.clone(), int(10, span))], span),
+            );
+            valid = Some(match valid {
+                None => ok,
+                Some(v) => bin(BinOp::Mul, v, ok),
+            });
+        }
+        let term = if k == 0 { digit } else { bin(BinOp::Mul, digit, num(to.powi(k), span)) };
+        acc = Some(match acc {
+            None => term,
+            Some(a) => bin(BinOp::Add, a, term),
+        });
+    }
+    let sum = acc.unwrap_or_else(|| int(0, span));
+    match valid {
+        Some(v) => bin(BinOp::Div, sum, v),
+        None => sum,
+    }
+}

@@ -1,0 +1,583 @@
+//! FANUC Macro B → Sinumerik lowering: the passes in the order they run, the plan they
+//! share (program roles and names, variable map, vacancy tracking) and small IR builders.
+//!
+//! Order (see [`lower`]):
+//! 1. `indirect::resolve` — `#[expr]` with an index known at translation time → `#n`.
+//! 2. plan — program roles (main / G65 macro / M98 subprogram), Siemens names, PROC
+//!    parameters (`calls::plan_programs`), the vacancy analysis (`vacancy::analyse`) and the
+//!    variable map (`varmap::build`).
+//! 3. `vacancy::rewrite` — is-set flags on writes, EQ/NE against vacancy, conditional words.
+//! 4. `calls::lower_return_jumps` — after a call of a program that ends with `M99 P<n>`,
+//!    a computed jump on the return code it passes back.
+//! 5. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
+//! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
+//! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
+//! 8. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
+//!    system variables.
+//! 9. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
+//!
+//! Every pass keeps source spans on what it builds, so a divergence found later can point
+//! back at the FANUC text.
+
+pub mod calls;
+pub mod exprs;
+pub mod gotos;
+pub mod indirect;
+pub mod structures;
+pub mod vacancy;
+pub mod varmap;
+pub mod words;
+
+use crate::diag::Diagnostic;
+use crate::dialect::Semantics;
+use crate::ir::*;
+use crate::span::{FileId, Span};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// What to do with a construct Sinumerik cannot express.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum UnsupportedPolicy {
+    /// An NC35x error; no output is written.
+    #[default]
+    Error,
+    /// A warning, and a visibly marked comment line `; NCTRANS UNSUPPORTED: …` in the output.
+    Warn,
+}
+
+/// One `--var-map` rule: FANUC `#from..=#to` → `R<r_start>` upwards.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VarMapRule {
+    pub from: u32,
+    pub to: u32,
+    pub r_start: u32,
+}
+
+impl VarMapRule {
+    /// Parses `#500-#599=R100` (or `#500=R7` for one variable).
+    pub fn parse(s: &str) -> Result<VarMapRule, String> {
+        let bad = || format!("bad --var-map '{s}' (expected like '#500-#599=R100')");
+        let (lhs, rhs) = s.split_once('=').ok_or_else(bad)?;
+        let num = |t: &str, p: char| -> Option<u32> {
+            let t = t.trim();
+            let t = t.strip_prefix(p).or_else(|| t.strip_prefix(p.to_ascii_lowercase()))?;
+            t.trim().parse().ok()
+        };
+        let (from, to) = match lhs.split_once('-') {
+            Some((a, b)) => (num(a, '#').ok_or_else(bad)?, num(b, '#').ok_or_else(bad)?),
+            None => {
+                let a = num(lhs, '#').ok_or_else(bad)?;
+                (a, a)
+            }
+        };
+        let r_start = num(rhs, 'R').ok_or_else(bad)?;
+        if from > to {
+            return Err(format!("bad --var-map '{s}': range runs backwards"));
+        }
+        Ok(VarMapRule { from, to, r_start })
+    }
+}
+
+/// Options of the FANUC → Sinumerik translation.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// The FANUC profile the source was written for (increment, DPI, NAT).
+    pub source: Semantics,
+    /// The Siemens target profile (number of R parameters).
+    pub target: Semantics,
+    pub var_map: Vec<VarMapRule>,
+    /// `--program-map 9010=PROBE_X`.
+    pub program_map: BTreeMap<u32, String>,
+    pub unsupported: UnsupportedPolicy,
+    /// Name of the main program when it has no `O` number (the input file stem).
+    pub main_name: String,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            source: Semantics::default_for(crate::dialect::Dialect::Fanuc),
+            target: Semantics::default_for(crate::dialect::Dialect::Sinumerik),
+            var_map: Vec::new(),
+            program_map: BTreeMap::new(),
+            unsupported: UnsupportedPolicy::Error,
+            main_name: "MAIN".into(),
+        }
+    }
+}
+
+/// How a FANUC program is used, which decides its Siemens form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// Run as the main program: `.MPF`, locals become `DEF` variables.
+    Main,
+    /// Called by `G65`/`G66` (or a standalone macro ending in M99): `.SPF` with a `PROC` whose
+    /// parameters are the argument locals, passed by value, plus is-set flags.
+    Macro,
+    /// Called by `M98`: `.SPF` whose `PROC` takes the caller's locals by reference (`VAR`).
+    Sub,
+}
+
+/// A PROC parameter of a translated program.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// The FANUC local variable it stands for.
+    pub local: u32,
+    /// True for the is-set flag of `local` (BOOL), false for its value (REAL).
+    pub flag: bool,
+    pub name: String,
+    pub by_ref: bool,
+}
+
+/// What the passes know about one program.
+#[derive(Clone, Debug)]
+pub struct ProgPlan {
+    pub file: FileId,
+    pub number: Option<u32>,
+    /// Siemens program name (upper case, no extension).
+    pub name: String,
+    pub role: Role,
+    pub params: Vec<ParamSpec>,
+    /// Locals `#1..#33` this program (and its M98 callees) reads or writes.
+    pub locals: BTreeSet<u32>,
+    /// Locals with an is-set flag.
+    pub tracked: BTreeSet<u32>,
+    /// Argument locals some G65/G66 call site in the job fills.
+    pub given: BTreeSet<u32>,
+    /// The program writes a local (any; decides whether `G65 … L` can repeat by `P`).
+    pub writes_locals: bool,
+    /// The program returns with `M99 P<n>`: it gets a `VAR REAL NCTRANS_RET` parameter
+    /// through which the caller learns where to continue.
+    pub returns_to: bool,
+    /// DEF declarations the output needs (name, type), in order.
+    pub defs: Vec<(String, DataType)>,
+}
+
+/// The shared state of one translation.
+pub struct Ctx<'a> {
+    pub opts: &'a Options,
+    pub progs: Vec<ProgPlan>,
+    /// FANUC common variable → R number.
+    pub commons: BTreeMap<u32, u32>,
+    /// Tracked common variable → R number of its is-set flag.
+    pub common_flags: BTreeMap<u32, u32>,
+    pub diags: Vec<Diagnostic>,
+    /// Index into `progs` of the program being lowered.
+    pub cur: usize,
+    /// True while lowering the items of a plain block (a guard block may go in front).
+    pub guard_ok: bool,
+}
+
+impl<'a> Ctx<'a> {
+    pub fn file(&self) -> FileId {
+        self.progs.get(self.cur).map_or(0, |p| p.file)
+    }
+
+    pub fn plan(&self) -> &ProgPlan {
+        &self.progs[self.cur]
+    }
+
+    /// The program planned for FANUC number `n`.
+    pub fn program_by_number(&self, n: u32) -> Option<usize> {
+        self.progs.iter().position(|p| p.number == Some(n))
+    }
+
+    /// Reports a construct without a Siemens counterpart. Returns the marked comment
+    /// statement to put in its place under the warn policy.
+    pub fn unsupported(&mut self, code: &'static str, span: Span, what: &str, hint: &str) -> Option<Stmt> {
+        self.refuse(code, span, &format!("{what} has no Sinumerik counterpart"), what, hint)
+    }
+
+    /// Reports something the translation cannot write (error, or warning and a marked
+    /// comment line under the warn policy).
+    pub fn refuse(&mut self, code: &'static str, span: Span, message: &str, what: &str, hint: &str) -> Option<Stmt> {
+        let file = self.file();
+        match self.opts.unsupported {
+            UnsupportedPolicy::Error => {
+                self.diags.push(
+                    Diagnostic::error(code, message.to_string()).primary(file, span, "cannot be translated").hint(hint),
+                );
+                None
+            }
+            UnsupportedPolicy::Warn => {
+                self.diags.push(
+                    Diagnostic::warning(code, message.to_string())
+                        .primary(file, span, "written as a marked comment")
+                        .hint(hint),
+                );
+                Some(comment_stmt(format!("NCTRANS UNSUPPORTED: {what}"), span))
+            }
+        }
+    }
+
+    pub fn error(&mut self, code: &'static str, span: Span, msg: String, label: &str, hint: &str) {
+        let file = self.file();
+        self.diags.push(Diagnostic::error(code, msg).primary(file, span, label).hint(hint));
+    }
+
+    pub fn warn(&mut self, code: &'static str, span: Span, msg: String, label: &str) {
+        let file = self.file();
+        self.diags.push(Diagnostic::warning(code, msg).primary(file, span, label));
+    }
+}
+
+/// The result of lowering: Sinumerik IR per program, with the plans and variable map the
+/// emitter and the symbol map need.
+pub struct Lowered {
+    pub programs: Vec<(ProgPlan, Program)>,
+    pub commons: BTreeMap<u32, u32>,
+    pub common_flags: BTreeMap<u32, u32>,
+    pub diags: Vec<Diagnostic>,
+}
+
+/// Runs every pass on the programs of a FANUC translation job (the main file first, then
+/// the callees found beside it).
+pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
+    let resolved: Vec<Option<Program>> = programs.iter().map(|(_, p)| indirect::resolve(p)).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&resolved).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
+    let programs = programs.as_slice();
+    let mut ctx = Ctx {
+        opts,
+        progs: Vec::new(),
+        commons: BTreeMap::new(),
+        common_flags: BTreeMap::new(),
+        diags: Vec::new(),
+        cur: 0,
+        guard_ok: false,
+    };
+    calls::plan_programs(&mut ctx, programs);
+    let info = vacancy::analyse(&mut ctx, programs);
+    varmap::build(&mut ctx, programs, &info);
+    let mut out = Vec::new();
+    for (i, (_, p)) in programs.iter().enumerate() {
+        ctx.cur = i;
+        let mut body = p.body.clone();
+        body = vacancy::rewrite(&mut ctx, body);
+        body = calls::lower_return_jumps(&mut ctx, body);
+        body = gotos::lower(&mut ctx, body);
+        body = structures::lower(&mut ctx, body);
+        body = calls::lower(&mut ctx, body);
+        body = words::lower(&mut ctx, body);
+        body = exprs::lower(&mut ctx, body);
+        let plan = ctx.progs[i].clone();
+        let prog = Program {
+            name: Some(ProgName::Name(plan.name.clone())),
+            head: p.head.clone(),
+            params: plan
+                .params
+                .iter()
+                .map(|s| Param {
+                    name: s.name.clone(),
+                    ty: if s.flag { DataType::Bool } else { DataType::Real },
+                    by_ref: s.by_ref,
+                    dims: vec![],
+                    span: p.head.as_ref().map_or(p.span, |h| h.span),
+                })
+                .collect(),
+            save: false,
+            body,
+            span: p.span,
+        };
+        out.push((plan, prog));
+    }
+    Lowered { programs: out, commons: ctx.commons, common_flags: ctx.common_flags, diags: ctx.diags }
+}
+
+// ---- small IR builders shared by the passes ----
+
+pub fn num(v: f64, span: Span) -> Expr {
+    Expr::num(v, true, span)
+}
+
+pub fn int(v: i64, span: Span) -> Expr {
+    Expr::num(v as f64, false, span)
+}
+
+pub fn var_expr(kind: VarKind, span: Span) -> Expr {
+    Expr::new(ExprKind::Var(Box::new(VarRef { kind, span })), span)
+}
+
+pub fn named(name: &str, span: Span) -> Expr {
+    var_expr(VarKind::Named { name: name.to_string(), indices: vec![] }, span)
+}
+
+pub fn named_ref(name: &str, span: Span) -> VarRef {
+    VarRef { kind: VarKind::Named { name: name.to_string(), indices: vec![] }, span }
+}
+
+pub fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
+    let span = a.span.to(b.span);
+    Expr::new(ExprKind::Binary(op, Box::new(a), Box::new(b)), span)
+}
+
+pub fn not(a: Expr) -> Expr {
+    let span = a.span;
+    Expr::new(ExprKind::Unary(UnOp::Not, Box::new(a)), span)
+}
+
+pub fn func(f: Func, args: Vec<Expr>, span: Span) -> Expr {
+    Expr::new(ExprKind::Func(f, args), span)
+}
+
+pub fn assign(target: VarRef, value: Expr, span: Span) -> Item {
+    Item { kind: ItemKind::Assign { target: Box::new(target), value }, span }
+}
+
+pub fn block_stmt(meta: BlockMeta, items: Vec<Item>) -> Stmt {
+    let span = meta.span;
+    Stmt { kind: StmtKind::Block(Block { meta, items }), span }
+}
+
+/// A block with the given items and no number, label or comment.
+pub fn plain_block(items: Vec<Item>, span: Span) -> Stmt {
+    block_stmt(BlockMeta { span, ..BlockMeta::default() }, items)
+}
+
+/// A block holding only a comment.
+pub fn comment_stmt(text: String, span: Span) -> Stmt {
+    block_stmt(BlockMeta { span, comments: vec![Comment { text, span }], ..BlockMeta::default() }, vec![])
+}
+
+/// A block holding only a label (a GOTO target placed before a structure).
+pub fn label_stmt(name: &str, span: Span) -> Stmt {
+    block_stmt(BlockMeta { span, label: Some(Label { name: name.to_string(), span }), ..BlockMeta::default() }, vec![])
+}
+
+pub fn if_stmt(cond: Expr, then_body: Vec<Stmt>, else_body: Option<Vec<Stmt>>, span: Span) -> Stmt {
+    let meta = BlockMeta { span, ..BlockMeta::default() };
+    Stmt {
+        kind: StmtKind::If(Box::new(IfStmt {
+            head: meta.clone(),
+            cond,
+            then_body,
+            else_part: else_body.map(|body| ElsePart { head: meta.clone(), body }),
+            end: meta,
+        })),
+        span,
+    }
+}
+
+/// Applies `f` to every statement list in `body` (children first), letting a pass rewrite
+/// blocks into several statements.
+pub fn map_bodies(body: Vec<Stmt>, f: &mut dyn FnMut(Vec<Stmt>) -> Vec<Stmt>) -> Vec<Stmt> {
+    let inner: Vec<Stmt> = body
+        .into_iter()
+        .map(|mut s| {
+            match &mut s.kind {
+                StmtKind::Block(_) => {}
+                StmtKind::If(i) => {
+                    i.then_body = map_bodies(std::mem::take(&mut i.then_body), f);
+                    if let Some(e) = &mut i.else_part {
+                        e.body = map_bodies(std::mem::take(&mut e.body), f);
+                    }
+                }
+                StmtKind::While(w) => w.body = map_bodies(std::mem::take(&mut w.body), f),
+                StmtKind::Loop(l) => l.body = map_bodies(std::mem::take(&mut l.body), f),
+                StmtKind::For(x) => x.body = map_bodies(std::mem::take(&mut x.body), f),
+                StmtKind::Repeat(r) => r.body = map_bodies(std::mem::take(&mut r.body), f),
+                StmtKind::Do(d) => d.body = map_bodies(std::mem::take(&mut d.body), f),
+            }
+            s
+        })
+        .collect();
+    f(inner)
+}
+
+/// Rewrites every expression of a statement tree in place (conditions, item expressions,
+/// nested IF-THEN items), outermost first is not guaranteed: `f` sees each root expression.
+pub fn map_exprs(body: &mut [Stmt], f: &mut dyn FnMut(&mut Expr)) {
+    for s in body.iter_mut() {
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                for it in &mut b.items {
+                    item_exprs_mut(it, f);
+                }
+            }
+            StmtKind::If(i) => {
+                f(&mut i.cond);
+                map_exprs(&mut i.then_body, f);
+                if let Some(e) = &mut i.else_part {
+                    map_exprs(&mut e.body, f);
+                }
+            }
+            StmtKind::While(w) => {
+                f(&mut w.cond);
+                map_exprs(&mut w.body, f);
+            }
+            StmtKind::Loop(l) => map_exprs(&mut l.body, f),
+            StmtKind::For(x) => {
+                f(&mut x.from);
+                f(&mut x.to);
+                map_exprs(&mut x.body, f);
+            }
+            StmtKind::Repeat(r) => {
+                f(&mut r.until);
+                map_exprs(&mut r.body, f);
+            }
+            StmtKind::Do(d) => {
+                if let Some(c) = &mut d.cond {
+                    f(c);
+                }
+                map_exprs(&mut d.body, f);
+            }
+        }
+    }
+}
+
+/// The root expressions of one item, mutably (the mirror of `ir::visit::item_exprs`, plus
+/// the indices of assignment targets).
+pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
+    fn word(w: &mut Word, f: &mut dyn FnMut(&mut Expr)) {
+        match &mut w.value {
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => f(e),
+        }
+    }
+    fn goto(g: &mut Goto, f: &mut dyn FnMut(&mut Expr)) {
+        if let Some(c) = &mut g.cond {
+            f(c);
+        }
+        if let Target::Computed(e) = &mut g.target {
+            f(e);
+        }
+    }
+    match &mut it.kind {
+        ItemKind::Assign { target, value } => {
+            varref_exprs_mut(target, f);
+            f(value);
+        }
+        ItemKind::Word(w) => word(w, f),
+        ItemKind::Goto(g) => goto(g, f),
+        ItemKind::IfThen { cond, then } => {
+            f(cond);
+            item_exprs_mut(then, f);
+        }
+        ItemKind::Case(c) => {
+            f(&mut c.selector);
+            for a in &mut c.arms {
+                f(&mut a.value);
+                goto(&mut a.goto, f);
+            }
+            if let Some(d) = &mut c.default {
+                goto(d, f);
+            }
+        }
+        ItemKind::Call(c) => {
+            if let CallTarget::Computed(e) = &mut c.target {
+                f(e);
+            }
+            for a in &mut c.args {
+                match a {
+                    Arg::Value(e) | Arg::Letter { value: e, .. } => f(e),
+                    Arg::Omitted(_) => {}
+                }
+            }
+            if let Some(r) = &mut c.repeat {
+                f(r);
+            }
+        }
+        ItemKind::Return { to } => {
+            if let Some(e) = to {
+                f(e);
+            }
+        }
+        ItemKind::Def(d) => {
+            for v in &mut d.vars {
+                if let Some(Init::Value(e)) = &mut v.init {
+                    f(e);
+                }
+            }
+        }
+        ItemKind::Alarm { number, .. } => f(number),
+        ItemKind::Message { text: Some(e) } => f(e),
+        ItemKind::ParamWrite(p) => {
+            f(&mut p.number);
+            if let Some(a) = &mut p.axis {
+                f(a);
+            }
+            if let Some(b) = &mut p.bit {
+                f(b);
+            }
+            f(&mut p.value);
+        }
+        ItemKind::RepeatSection(r) => {
+            if let Some(c) = &mut r.count {
+                f(c);
+            }
+        }
+        ItemKind::Frame { words, .. } => {
+            for w in words {
+                word(w, f);
+            }
+        }
+        ItemKind::Message { text: None }
+        | ItemKind::ModalCallOff
+        | ItemKind::Instruction { .. }
+        | ItemKind::End { .. }
+        | ItemKind::StopMessage { .. }
+        | ItemKind::Stopre => {}
+    }
+}
+
+fn varref_exprs_mut(v: &mut VarRef, f: &mut dyn FnMut(&mut Expr)) {
+    match &mut v.kind {
+        VarKind::HashIndirect(e) | VarKind::RIndirect(e) => f(e),
+        VarKind::Named { indices, .. } | VarKind::System { indices, .. } => {
+            for e in indices {
+                f(e);
+            }
+        }
+        VarKind::Hash(_) | VarKind::R(_) => {}
+    }
+}
+
+/// The plain variable number of `#n` in `e` (`Some(n)` only for a bare `#n`).
+pub fn bare_hash(e: &Expr) -> Option<u32> {
+    match &e.kind {
+        ExprKind::Var(v) => match v.kind {
+            VarKind::Hash(n) => Some(n),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The variable whose vacancy `e` carries on FANUC: `#n`, `-#n`, `-[-#n]` (a negated vacant
+/// value stays vacant, so `X-#1` drops its word like `X#1`).
+pub fn vacancy_var(e: &Expr) -> Option<u32> {
+    match &e.kind {
+        ExprKind::Unary(UnOp::Neg, a) => vacancy_var(a),
+        _ => bare_hash(e),
+    }
+}
+
+/// Whether `e` is the vacant value itself (`#0`, `-#0`).
+pub fn is_vacant_literal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Vacant => true,
+        ExprKind::Unary(UnOp::Neg, a) => is_vacant_literal(a),
+        _ => bare_hash(e) == Some(0),
+    }
+}
+
+/// The numeric value of a literal.
+pub fn literal(e: &Expr) -> Option<f64> {
+    match &e.kind {
+        ExprKind::Num(n) => Some(n.value),
+        ExprKind::Unary(UnOp::Neg, a) => literal(a).map(|v| -v),
+        _ => None,
+    }
+}
+
+/// The G code numbers (×10 to keep `G54.1` as 541) written in a block.
+pub fn g_codes(items: &[Item]) -> Vec<u32> {
+    items
+        .iter()
+        .filter_map(|it| match &it.kind {
+            ItemKind::Word(w) if w.addr.is(b'G') => match &w.value {
+                WordValue::Expr(e) => literal(e).map(|v| (v * 10.0).round() as u32),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}

@@ -1,0 +1,238 @@
+//! Where each FANUC variable lives on the Siemens control.
+//!
+//! Defaults (each overridable by `--var-map '#from-#to=Rn'`, rules applied first):
+//! - `#500..#799` → `R0..R299` (the inverse of the Siemens→FANUC default `Rn` → `#(500+n)`,
+//!   so round trips keep their R numbers), `#100..#199` → `R100..R199`.
+//! - Any other common variable the program uses (and any default that would land on an R
+//!   number already taken) gets the lowest free R number, with a warning naming it.
+//! - Is-set flags of tracked common variables take free R numbers from the top down.
+//! - Locals `#1..#33`: in a main program `DEF REAL LOCn`; in a G65 macro `PROC` parameters
+//!   `ARG_<letter>` for argument locals and `DEF REAL LOCn` for the rest; in an M98
+//!   subprogram `VAR REAL LOCn` parameters (the caller's variables by reference). Flags are
+//!   `<name>_SET` (BOOL) beside them.
+//!
+//! An explicit rule that runs past the last R parameter, or two variables on one R number,
+//! is an error (NC350/NC351).
+
+use super::calls::{arg_name, spec1_letter};
+use super::vacancy::Info;
+use super::*;
+
+/// The value name of local `n` in a program.
+pub fn local_name(plan: &ProgPlan, n: u32) -> String {
+    match plan.params.iter().find(|p| p.local == n && !p.flag) {
+        Some(p) => p.name.clone(),
+        None => format!("LOC{n}"),
+    }
+}
+
+/// The is-set flag name of local `n` in a program.
+pub fn flag_name(plan: &ProgPlan, n: u32) -> String {
+    match plan.params.iter().find(|p| p.local == n && p.flag) {
+        Some(p) => p.name.clone(),
+        None => format!("{}_SET", local_name(plan, n)),
+    }
+}
+
+fn used_commons(programs: &[(FileId, &Program)]) -> BTreeMap<u32, (FileId, Span)> {
+    let mut used = BTreeMap::new();
+    for (file, p) in programs {
+        fn visit(e: &Expr, file: FileId, used: &mut BTreeMap<u32, (FileId, Span)>) {
+            let mut stack = vec![e];
+            while let Some(x) = stack.pop() {
+                if let ExprKind::Var(v) = &x.kind {
+                    if let VarKind::Hash(n @ 100..=999) = v.kind {
+                        used.entry(n).or_insert((file, v.span));
+                    }
+                }
+                stack.extend(x.children());
+            }
+        }
+        crate::ir::visit::walk_stmts(&p.body, &mut |s| match &s.kind {
+            StmtKind::Block(b) => {
+                for it in &b.items {
+                    let mut items = vec![it];
+                    if let ItemKind::IfThen { then, .. } = &it.kind {
+                        items.push(then);
+                    }
+                    for it in items {
+                        if let ItemKind::Assign { target, .. } = &it.kind {
+                            if let VarKind::Hash(n @ 100..=999) = target.kind {
+                                used.entry(n).or_insert((*file, target.span));
+                            }
+                        }
+                        for e in crate::ir::visit::item_exprs(it) {
+                            visit(e, *file, &mut used);
+                        }
+                    }
+                }
+            }
+            StmtKind::Do(d) => {
+                if let Some(c) = &d.cond {
+                    visit(c, *file, &mut used);
+                }
+            }
+            _ => {}
+        });
+    }
+    used
+}
+
+/// Builds the variable map and completes every program's parameters and DEFs.
+pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
+    let count = ctx.opts.target.r_param_count;
+    let used = used_commons(programs);
+    let mut taken: BTreeMap<u32, u32> = BTreeMap::new(); // R → FANUC variable
+    let mut pending: Vec<u32> = Vec::new();
+    for (&n, &(file, span)) in &used {
+        let rule = ctx.opts.var_map.iter().find(|r| r.from <= n && n <= r.to);
+        let Some(rule) = rule else {
+            pending.push(n);
+            continue;
+        };
+        let r = rule.r_start + (n - rule.from);
+        if r >= count {
+            ctx.diags.push(
+                Diagnostic::error(
+                    "NC350",
+                    format!("--var-map puts #{n} on R{r}, past the last R parameter R{}", count - 1),
+                )
+                .primary(file, span, format!("#{n} used here"))
+                .note(format!("rule #{}-#{}=R{}", rule.from, rule.to, rule.r_start))
+                .hint("start the rule at a lower R number or split it"),
+            );
+            continue;
+        }
+        if let Some(other) = taken.get(&r) {
+            ctx.diags.push(
+                Diagnostic::error("NC351", format!("#{n} and #{other} would both be R{r}"))
+                    .primary(file, span, format!("#{n} used here"))
+                    .hint("give the two ranges --var-map rules that do not overlap"),
+            );
+            continue;
+        }
+        taken.insert(r, n);
+        ctx.commons.insert(n, r);
+    }
+    let default_r = |n: u32| match n {
+        500..=799 => Some(n - 500),
+        100..=199 => Some(n),
+        _ => None,
+    };
+    let mut leftovers = Vec::new();
+    for &n in &pending {
+        match default_r(n) {
+            Some(r) if r < count && !taken.contains_key(&r) => {
+                taken.insert(r, n);
+                ctx.commons.insert(n, r);
+            }
+            _ => leftovers.push(n),
+        }
+    }
+    for n in leftovers {
+        let (file, span) = used[&n];
+        match (0..count).find(|r| !taken.contains_key(r) && !pending.iter().any(|&m| default_r(m) == Some(*r))) {
+            Some(r) => {
+                taken.insert(r, n);
+                ctx.commons.insert(n, r);
+                ctx.diags.push(
+                    Diagnostic::warning("NC360", format!("#{n} has no default R parameter; it is R{r}"))
+                        .primary(file, span, "used here")
+                        .note("#100..#199 map to R100..R199 and #500..#799 to R0..R299 by default")
+                        .hint(format!("choose the place with --var-map '#{n}=R<k>'")),
+                );
+            }
+            None => ctx.diags.push(
+                Diagnostic::error("NC350", format!("no R parameter is left for #{n}"))
+                    .primary(file, span, "used here")
+                    .hint("raise the R parameter count of the target profile or map fewer variables"),
+            ),
+        }
+    }
+    for &n in &info.commons {
+        match (0..count).rev().find(|r| !taken.contains_key(r)) {
+            Some(r) => {
+                taken.insert(r, n);
+                ctx.common_flags.insert(n, r);
+            }
+            None => {
+                let (file, span) = used.get(&n).copied().unwrap_or((0, Span::default()));
+                ctx.diags.push(
+                    Diagnostic::error("NC350", format!("no R parameter is left for the is-set flag of #{n}"))
+                        .primary(file, span, "its vacancy is tested")
+                        .hint("raise the R parameter count of the target profile"),
+                );
+            }
+        }
+    }
+    for plan in &mut ctx.progs {
+        plan_locals(plan);
+    }
+}
+
+fn plan_locals(plan: &mut ProgPlan) {
+    let locals: Vec<u32> = plan.locals.iter().copied().collect();
+    let tracked = plan.tracked.clone();
+    let mut values = Vec::new();
+    let mut flags = Vec::new();
+    let mut defs = Vec::new();
+    for &n in &locals {
+        let flagged = tracked.contains(&n);
+        match plan.role {
+            Role::Main => {
+                defs.push((format!("LOC{n}"), DataType::Real));
+                if flagged {
+                    defs.push((format!("LOC{n}_SET"), DataType::Bool));
+                }
+            }
+            Role::Macro => {
+                // Argument locals become parameters: every spec-I letter the macro uses, and
+                // any local a caller fills (spec II sets included).
+                if spec1_letter(n).is_some() || plan.given_by_callers(n) {
+                    let name = arg_name(n);
+                    if flagged {
+                        flags.push(ParamSpec { local: n, flag: true, name: format!("{name}_SET"), by_ref: false });
+                    }
+                    values.push(ParamSpec { local: n, flag: false, name, by_ref: false });
+                } else {
+                    defs.push((format!("LOC{n}"), DataType::Real));
+                    if flagged {
+                        defs.push((format!("LOC{n}_SET"), DataType::Bool));
+                    }
+                }
+            }
+            Role::Sub => {
+                values.push(ParamSpec { local: n, flag: false, name: format!("LOC{n}"), by_ref: true });
+                if flagged {
+                    flags.push(ParamSpec { local: n, flag: true, name: format!("LOC{n}_SET"), by_ref: true });
+                }
+            }
+        }
+    }
+    values.extend(flags);
+    if plan.returns_to {
+        values.push(ParamSpec { local: 0, flag: false, name: super::calls::RET_PARAM.into(), by_ref: true });
+    }
+    plan.params = values;
+    plan.defs = defs;
+}
+
+impl ProgPlan {
+    /// Whether some call site in the job fills local `n` (spec II letters included).
+    pub fn given_by_callers(&self, n: u32) -> bool {
+        self.given.contains(&n)
+    }
+}
+
+/// The Siemens variable for FANUC `#n` read or written in the current program, or `None`
+/// when it is a system variable (handled by `words::system_var`).
+pub fn map_hash(ctx: &Ctx, n: u32, span: Span) -> Option<VarKind> {
+    match n {
+        1..=33 => Some(VarKind::Named { name: local_name(ctx.plan(), n), indices: vec![] }),
+        100..=999 => Some(ctx.commons.get(&n).map_or(VarKind::R(n), |r| VarKind::R(*r))),
+        _ => {
+            let _ = span;
+            None
+        }
+    }
+}

@@ -1,0 +1,404 @@
+//! Address words, G codes, messages, alarms and system variables.
+//!
+//! - Dimensional words written without a decimal point are in least input increments on
+//!   FANUC: `X10` → `X0.01` on the default IS-B metric profile (none with calculator-type
+//!   input). Expressions (`X[#1+2]`, `X#1`) are already in millimetres.
+//! - G codes: identical ones are kept; `G20/G21` → `G700/G710` (feeds follow the unit, as on
+//!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active);
+//!   `G43/G44/G49` and their `H` dropped with a warning (Siemens applies the length of the
+//!   active D itself); everything else is unsupported.
+//! - `G04 P500` → `G4 F0.5`, `G04 X1.5` → `G4 F1.5`, in a block of its own.
+//! - `R` in an arc block → `CR=`.
+//! - `#3000=n(TEXT)` → `SETAL(65000+n) ; TEXT` (the checker pairs 3000+n with 65000+n); `#3006=n(TEXT)` → `MSG("TEXT")`
+//!   and `M0`.
+//! - System variables per dialects.md §7 (see [`system_var`]); reading an actual position
+//!   puts `STOPRE` in front; writing a work offset re-selects the active offset.
+
+use super::*;
+
+/// Siemens alarm number base for FANUC macro alarms: `#3000=n` → `SETAL(65000+n)`.
+pub const MACRO_ALARM_BASE: i64 = 65000;
+
+/// Letters whose values are lengths or angles (scaled by the increment without a point).
+pub fn scaled_letter(l: u8) -> bool {
+    matches!(l, b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' | b'Q')
+}
+
+/// A value written without a decimal point, in millimetres (or degrees).
+pub fn scale(opts: &Options, v: f64) -> f64 {
+    if opts.source.increment_scaling && !opts.source.calculator_input {
+        let inc = opts.source.least_increment_mm;
+        // Round to the increment's decimals so 10 × 0.001 prints as 0.01, not 0.010000000000000002.
+        let digits = (-inc.log10()).ceil().max(0.0) as i32 + 1;
+        let f = 10f64.powi(digits);
+        (v * inc * f).round() / f
+    } else {
+        v
+    }
+}
+
+pub fn g_word(g10: u32, span: Span) -> Item {
+    let v = f64::from(g10) / 10.0;
+    Item { kind: ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span }), span }
+}
+
+/// The modal G codes that matter to a pass at a point of the text: active work offset and
+/// absolute/incremental mode, found by scanning the program in text order.
+pub struct ModalScan {
+    offsets: Vec<(u32, u32)>,
+    incremental: Vec<(u32, bool)>,
+}
+
+impl ModalScan {
+    pub fn new(body: &[Stmt]) -> ModalScan {
+        let mut m = ModalScan { offsets: Vec::new(), incremental: Vec::new() };
+        crate::ir::visit::walk_stmts(body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for g in g_codes(&b.items) {
+                    match g {
+                        540 | 550 | 560 | 570 | 580 | 590 => m.offsets.push((b.meta.span.lo, g)),
+                        900 => m.incremental.push((b.meta.span.lo, false)),
+                        910 => m.incremental.push((b.meta.span.lo, true)),
+                        _ => {}
+                    }
+                }
+            }
+        });
+        m
+    }
+
+    /// The work offset G code (×10) selected before `lo`; G54 at power-on.
+    pub fn offset_at(&self, lo: u32) -> u32 {
+        self.offsets.iter().rev().find(|(at, _)| *at <= lo).map_or(540, |x| x.1)
+    }
+
+    pub fn incremental_at(&self, lo: u32) -> bool {
+        self.incremental.iter().rev().find(|(at, _)| *at <= lo).is_some_and(|x| x.1)
+    }
+}
+
+/// The Siemens spelling of a FANUC G code (×10), `None` when unsupported, `Some(None)` when
+/// it is dropped.
+fn map_g(g: u32) -> Option<Option<u32>> {
+    Some(match g {
+        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910
+        | 940 | 950 => Some(g),
+        200 => Some(7000),
+        210 => Some(7100),
+        580 => Some(5050),
+        590 => Some(5060),
+        610 => Some(600),
+        800 | 430 | 440 | 490 => None,
+        _ => return None,
+    })
+}
+
+const AXES: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
+
+/// A FANUC system variable on Siemens (dialects.md §7), or `None` without a counterpart.
+/// Axis numbers 1..6 are X, Y, Z, A, B, C (the profile's axis order).
+pub fn system_var(n: u32, span: Span) -> Option<VarKind> {
+    let axis = |base: u32| -> Option<Expr> {
+        let i = n.checked_sub(base)? as usize;
+        AXES.get(i).map(|a| Expr::new(ExprKind::Ident((*a).to_string()), span))
+    };
+    let sys = |name: &str, indices: Vec<Expr>| Some(VarKind::System { name: name.into(), indices });
+    match n {
+        5001..=5006 => sys("P_EP", vec![axis(5001)?]),
+        5021..=5026 => sys("AA_IM", vec![axis(5021)?]),
+        5041..=5046 => sys("AA_IW", vec![axis(5041)?]),
+        5061..=5066 => sys("AA_MW", vec![axis(5061)?]),
+        5221..=5340 => {
+            let k = (n - 5221) / 20;
+            let i = (n - 5221) % 20;
+            let a = AXES.get(i as usize)?;
+            sys(
+                "P_UIFR",
+                vec![
+                    int(i64::from(k) + 1, span),
+                    Expr::new(ExprKind::Ident((*a).to_string()), span),
+                    Expr::new(ExprKind::Ident("TR".into()), span),
+                ],
+            )
+        }
+        // Modal words: D, F, S (the G groups need $P_GG indices, not G numbers: unsupported).
+        4107 => sys("P_TOOL", vec![]),
+        4109 => sys("P_F", vec![]),
+        4119 => sys("P_S", vec![]),
+        3901 => sys("AC_ACTUAL_PARTS", vec![]),
+        3902 => sys("AC_REQUIRED_PARTS", vec![]),
+        _ => None,
+    }
+}
+
+fn reads_actual(e: &Expr) -> bool {
+    if let ExprKind::Var(v) = &e.kind {
+        if let VarKind::Hash(5021..=5026 | 5041..=5046) = v.kind {
+            return true;
+        }
+    }
+    e.children().into_iter().any(reads_actual)
+}
+
+/// Lowers the words and messages of the current program.
+pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
+    let modal = ModalScan::new(&body);
+    let mut arc = false;
+    lower_list(ctx, body, &modal, &mut arc)
+}
+
+fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, modal: &ModalScan, arc: &mut bool) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(body.len());
+    for s in body {
+        let span = s.span;
+        match s.kind {
+            StmtKind::Block(b) => lower_block(ctx, b, span, modal, arc, &mut out),
+            mut kind => {
+                match &mut kind {
+                    StmtKind::If(i) => {
+                        i.then_body = lower_list(ctx, std::mem::take(&mut i.then_body), modal, arc);
+                        if let Some(e) = &mut i.else_part {
+                            e.body = lower_list(ctx, std::mem::take(&mut e.body), modal, arc);
+                        }
+                    }
+                    StmtKind::While(w) => w.body = lower_list(ctx, std::mem::take(&mut w.body), modal, arc),
+                    StmtKind::Loop(l) => l.body = lower_list(ctx, std::mem::take(&mut l.body), modal, arc),
+                    StmtKind::For(f) => f.body = lower_list(ctx, std::mem::take(&mut f.body), modal, arc),
+                    StmtKind::Repeat(r) => r.body = lower_list(ctx, std::mem::take(&mut r.body), modal, arc),
+                    StmtKind::Do(d) => d.body = lower_list(ctx, std::mem::take(&mut d.body), modal, arc),
+                    StmtKind::Block(_) => {}
+                }
+                out.push(Stmt { kind, span });
+            }
+        }
+    }
+    out
+}
+
+fn message(text: &Option<String>, span: Span) -> Item {
+    let t = text.clone().unwrap_or_default();
+    Item { kind: ItemKind::Message { text: Some(Expr::new(ExprKind::Str(t), span)) }, span }
+}
+
+fn word_item(letter: u8, v: Expr, span: Span) -> Item {
+    Item { kind: ItemKind::Word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(v), span }), span }
+}
+
+fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
+    let gs = g_codes(&b.items);
+    for &g in &gs {
+        match g {
+            20 | 30 => *arc = true,
+            0 | 10 => *arc = false,
+            _ => {}
+        }
+    }
+    let dwell = gs.contains(&40);
+    let comment_text = b.meta.comments.first().map(|c| c.text.clone());
+    let needs_stopre = b.items.iter().any(|it| crate::ir::visit::item_exprs(it).into_iter().any(reads_actual));
+    let mut items: Vec<Item> = Vec::with_capacity(b.items.len());
+    let mut after: Vec<Stmt> = Vec::new();
+    let mut dwell_value: Option<Expr> = None;
+    let mut offset_written = false;
+    for it in std::mem::take(&mut b.items) {
+        let isp = it.span;
+        match it.kind {
+            ItemKind::Word(w) => {
+                if let Some(x) = lower_word(ctx, w, *arc, dwell, &mut dwell_value, &gs, isp, &mut after) {
+                    items.push(x);
+                }
+            }
+            ItemKind::Alarm { style: AlarmStyle::FanucMacro, number, text } => {
+                let text = text.or_else(|| comment_text.clone());
+                let n = match literal(&number) {
+                    Some(v) => int(MACRO_ALARM_BASE + v.round() as i64, number.span),
+                    None => bin(BinOp::Add, int(MACRO_ALARM_BASE, number.span), number),
+                };
+                // The text rides along as the comment of the SETAL line: a MSG before it would
+                // be an extra message event the FANUC alarm does not have.
+                items.push(Item {
+                    kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: n, text: None },
+                    span: isp,
+                });
+                if let Some(t) = text {
+                    if !b.meta.comments.iter().any(|c| c.text == t) {
+                        b.meta.comments.push(Comment { text: t, span: isp });
+                    }
+                }
+            }
+            ItemKind::StopMessage { text } => {
+                let text = text.or_else(|| comment_text.clone());
+                items.push(message(&text, isp));
+                after.push(plain_block(vec![word_item(b'M', int(0, isp), isp)], isp));
+            }
+            ItemKind::Assign { target, value } => {
+                if let VarKind::Hash(n @ 5221..=5340) = target.kind {
+                    offset_written |= system_var(n, isp).is_some();
+                }
+                items.push(Item { kind: ItemKind::Assign { target, value }, span: isp });
+            }
+            kind => items.push(Item { kind, span: isp }),
+        }
+    }
+    if dwell && dwell_value.is_none() {
+        if let Some(st) = ctx.unsupported(
+            "NC363",
+            span,
+            "G04 without a P or X time",
+            "write the dwell as G04 P<ms> or G04 X<seconds>",
+        ) {
+            out.push(st);
+        }
+    }
+    if let Some(v) = dwell_value {
+        // G4 stands alone on Siemens.
+        after.insert(
+            0,
+            plain_block(
+                vec![
+                    g_word(40, span),
+                    Item {
+                        kind: ItemKind::Word(Word { addr: Addr::Letter(b'F'), value: WordValue::Expr(v), span }),
+                        span,
+                    },
+                ],
+                span,
+            ),
+        );
+    }
+    if offset_written {
+        let g = modal.offset_at(span.lo);
+        let sg = map_g(g).flatten().unwrap_or(g);
+        after.push(plain_block(vec![g_word(sg, span)], span));
+    }
+    if needs_stopre {
+        out.push(plain_block(vec![Item { kind: ItemKind::Stopre, span }], span));
+    }
+    let keep = !items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some() || !b.meta.comments.is_empty();
+    if keep {
+        b.items = items;
+        out.push(Stmt { kind: StmtKind::Block(b), span });
+    }
+    out.extend(after);
+}
+
+#[allow(clippy::too_many_arguments)]
+fn lower_word(
+    ctx: &mut Ctx,
+    mut w: Word,
+    arc: bool,
+    dwell: bool,
+    dwell_value: &mut Option<Expr>,
+    gs: &[u32],
+    isp: Span,
+    after: &mut Vec<Stmt>,
+) -> Option<Item> {
+    let WordValue::Expr(e) = &mut w.value else {
+        return Some(Item { kind: ItemKind::Word(w), span: isp });
+    };
+    if is_vacant_literal(e) {
+        return None; // a vacant value drops the word
+    }
+    let Addr::Letter(l) = w.addr else {
+        return Some(Item { kind: ItemKind::Word(w), span: isp });
+    };
+    if l == b'G' {
+        let g = literal(e).map(|v| (v * 10.0).round() as u32);
+        let Some(g) = g else {
+            if let Some(st) = ctx.unsupported(
+                "NC363",
+                w.span,
+                "a G code from a variable (`G#1`)",
+                "write the G code as a number; select between codes with IF/GOTO",
+            ) {
+                after.push(st);
+            }
+            return None;
+        };
+        if g == 40 {
+            return None; // G4 is written with its value below
+        }
+        return match map_g(g) {
+            Some(Some(sg)) => Some(g_word(sg, w.span)),
+            Some(None) => {
+                if matches!(g, 430 | 440 | 490) {
+                    ctx.warn(
+                        "NC368",
+                        w.span,
+                        format!("G{} is dropped: Sinumerik applies the length of the active tool edge (D)", g / 10),
+                        "tool length compensation",
+                    );
+                }
+                None
+            }
+            None => {
+                if let Some(st) = ctx.unsupported(
+                    "NC363",
+                    w.span,
+                    &format!("G{}{}", g / 10, if g % 10 != 0 { format!(".{}", g % 10) } else { String::new() }),
+                    "rewrite the block with G0/G1/G2/G3 moves, or translate the cycle by hand",
+                ) {
+                    after.push(st);
+                }
+                None
+            }
+        };
+    }
+    if l == b'H' && (gs.contains(&430) || gs.contains(&440) || gs.contains(&490)) {
+        return None;
+    }
+    // Letters whose FANUC meaning here (outside calls, dwell, G10) Siemens does not share.
+    if matches!(l, b'P' | b'L' | b'Q' | b'E' | b'O' | b'H') && !(dwell && l == b'P') {
+        if let Some(st) = ctx.unsupported(
+            "NC362",
+            w.span,
+            &format!("the address {} in this block", l as char),
+            "FANUC gives it a meaning only in calls, dwells, cycles and G10; remove it or translate the block by hand",
+        ) {
+            after.push(st);
+        }
+        return None;
+    }
+    if dwell && matches!(l, b'P' | b'X') {
+        let secs = match (l, &e.kind) {
+            (b'P', ExprKind::Num(n)) => num(n.value / 1000.0, e.span),
+            (b'P', _) => bin(BinOp::Div, e.clone(), int(1000, e.span)),
+            (_, ExprKind::Num(n)) if !n.point => num(scale(ctx.opts, n.value), e.span),
+            _ => e.clone(),
+        };
+        *dwell_value = Some(secs);
+        return None;
+    }
+    if scaled_letter(l) {
+        if let ExprKind::Num(n) = &mut e.kind {
+            if !n.point {
+                n.value = scale(ctx.opts, n.value);
+                n.point = true;
+            }
+        }
+        // ROUND in an address rounds to the address increment (pitfall 3).
+        if let ExprKind::Func(Func::FanucRound, args) = &e.kind {
+            if let Some(a) = args.first() {
+                let f = (1.0 / ctx.opts.source.least_increment_mm).round();
+                let sp = e.span;
+                *e = bin(BinOp::Div, func(Func::Round, vec![bin(BinOp::Mul, a.clone(), num(f, sp))], sp), num(f, sp));
+            }
+        }
+    }
+    if l == b'R' {
+        if arc {
+            w.addr = Addr::Name("CR".into());
+        } else {
+            if let Some(st) = ctx.unsupported(
+                "NC364",
+                w.span,
+                "an R word outside an arc (canned-cycle R plane)",
+                "translate the cycle by hand; in arcs R becomes CR=",
+            ) {
+                after.push(st);
+            }
+            return None;
+        }
+    }
+    Some(Item { kind: ItemKind::Word(w), span: isp })
+}

@@ -1,0 +1,289 @@
+//! Library entry of the FANUC → Sinumerik translation: FANUC units in (the main file first,
+//! then the files its callees were found in), Siemens files out (`NAME.MPF` for main
+//! programs, `NAME.SPF` per called O program), with the symbol map the checker needs and
+//! every diagnostic. Unsupported constructs are NC35x errors by default; with
+//! [`UnsupportedPolicy::Warn`] they are warnings and a `; NCTRANS UNSUPPORTED: …` line.
+
+pub use crate::passes::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
+
+use crate::diag::Diagnostic;
+use crate::dialect::sinumerik::emit::{emit_program, Frame};
+use crate::ir::*;
+use crate::passes::to_sinumerik::{self as passes, ProgPlan};
+use crate::read::LineEnding;
+use crate::span::{FileId, Span};
+use std::collections::BTreeSet;
+
+/// One written Siemens file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutFile {
+    /// File name: `NAME.MPF` or `NAME.SPF`.
+    pub name: String,
+    /// Siemens program name (what calls use).
+    pub program: String,
+    /// FANUC program number it came from.
+    pub fanuc_number: Option<u32>,
+    pub main: bool,
+    pub text: String,
+    /// The FANUC file the program came from.
+    pub source: FileId,
+    /// Source span of every output line (`None` for generated header lines).
+    pub lines: Vec<Option<Span>>,
+}
+
+/// Where a FANUC variable went.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VarEntry {
+    /// Siemens program name for locals, `None` for common variables (global).
+    pub program: Option<String>,
+    /// `#24`.
+    pub fanuc: String,
+    /// `ARG_X`, `R100`.
+    pub siemens: String,
+    /// Its is-set flag, when the program observes its vacancy.
+    pub flag: Option<String>,
+}
+
+/// FANUC names → Siemens names, for the header, the checker (inputs such as `--set '#500=1'`)
+/// and diagnostics.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SymbolMap {
+    pub vars: Vec<VarEntry>,
+    /// `O9010` → `PROBE_X`.
+    pub programs: Vec<(String, String)>,
+}
+
+impl SymbolMap {
+    /// The Siemens variable and flag for a FANUC common variable.
+    pub fn common(&self, n: u32) -> Option<&VarEntry> {
+        let key = format!("#{n}");
+        self.vars.iter().find(|v| v.program.is_none() && v.fanuc == key)
+    }
+}
+
+/// The result of a translation.
+#[derive(Clone, Debug, Default)]
+pub struct Translation {
+    pub files: Vec<OutFile>,
+    pub symbols: SymbolMap,
+    pub diags: Vec<Diagnostic>,
+}
+
+impl Translation {
+    pub fn has_errors(&self) -> bool {
+        crate::diag::has_errors(&self.diags)
+    }
+
+    /// The main program's file (the first `.MPF`).
+    pub fn main(&self) -> Option<&OutFile> {
+        self.files.iter().find(|f| f.main).or_else(|| self.files.first())
+    }
+}
+
+fn commons_of(p: &Program) -> BTreeSet<u32> {
+    let mut set = BTreeSet::new();
+    fn expr(e: &Expr, set: &mut BTreeSet<u32>) {
+        if let ExprKind::Var(v) = &e.kind {
+            if let VarKind::Hash(n @ 100..=999) = v.kind {
+                set.insert(n);
+            }
+        }
+        for c in e.children() {
+            expr(c, set);
+        }
+    }
+    fn item(it: &Item, set: &mut BTreeSet<u32>) {
+        if let ItemKind::Assign { target, .. } = &it.kind {
+            if let VarKind::Hash(n @ 100..=999) = target.kind {
+                set.insert(n);
+            }
+        }
+        if let ItemKind::IfThen { then, .. } = &it.kind {
+            item(then, set);
+        }
+        for e in crate::ir::visit::item_exprs(it) {
+            expr(e, set);
+        }
+    }
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| match &s.kind {
+        StmtKind::Block(b) => b.items.iter().for_each(|it| item(it, &mut set)),
+        StmtKind::Do(d) => {
+            if let Some(c) = &d.cond {
+                expr(c, &mut set);
+            }
+        }
+        _ => {}
+    });
+    set
+}
+
+fn local_entries(plan: &ProgPlan) -> Vec<VarEntry> {
+    plan.locals
+        .iter()
+        .map(|&n| VarEntry {
+            program: Some(plan.name.clone()),
+            fanuc: format!("#{n}"),
+            siemens: passes::varmap::local_name(plan, n),
+            flag: plan.tracked.contains(&n).then(|| passes::varmap::flag_name(plan, n)),
+        })
+        .collect()
+}
+
+fn entry_text(e: &VarEntry) -> String {
+    match &e.flag {
+        Some(f) => format!("{} = {} (is-set flag {f})", e.fanuc, e.siemens),
+        None => format!("{} = {}", e.fanuc, e.siemens),
+    }
+}
+
+/// The Siemens form of a FANUC input line `nctrans: set #24=10. #500=#0`: each variable by
+/// the map, with its is-set flag when it has one (a vacant input is value 0, flag 0).
+fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered) -> String {
+    let mut parts = Vec::new();
+    for part in rest.split_whitespace() {
+        let Some((lhs, rhs)) = part.split_once('=') else {
+            parts.push(part.to_string());
+            continue;
+        };
+        let Some(n) = lhs.trim().strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) else {
+            parts.push(part.to_string());
+            continue;
+        };
+        let vacant = rhs.trim() == "#0";
+        let value = if vacant { "0".to_string() } else { rhs.trim().to_string() };
+        let (name, flag) = match n {
+            1..=33 => (
+                passes::varmap::local_name(plan, n),
+                plan.tracked.contains(&n).then(|| passes::varmap::flag_name(plan, n)),
+            ),
+            100..=999 => match lowered.commons.get(&n) {
+                Some(r) => (format!("R{r}"), lowered.common_flags.get(&n).map(|f| format!("R{f}"))),
+                None => continue, // not used by the program: nothing to set
+            },
+            _ => {
+                parts.push(part.to_string());
+                continue;
+            }
+        };
+        parts.push(format!("{name}={value}"));
+        if let Some(f) = flag {
+            parts.push(format!("{f}={}", u8::from(!vacant)));
+        }
+    }
+    format!("nctrans: set {}", parts.join(" "))
+}
+
+/// Takes the `(nctrans: set …)` comment blocks off the top of a program body (they become
+/// header lines of the output, in Siemens names).
+fn take_inputs(prog: &mut Program) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < prog.body.len() {
+        let StmtKind::Block(b) = &prog.body[i].kind else { break };
+        if !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some() {
+            break;
+        }
+        let sets: Vec<String> = b
+            .meta
+            .comments
+            .iter()
+            .filter_map(|c| c.text.trim().strip_prefix("nctrans: set").map(str::to_string))
+            .collect();
+        if sets.is_empty() {
+            i += 1;
+            continue;
+        }
+        found.extend(sets);
+        prog.body.remove(i);
+    }
+    found
+}
+
+/// Translates FANUC programs to Sinumerik. `units[0]` holds the main program (its first
+/// program); further programs of any unit are the subprograms and macros it may call.
+pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Translation {
+    let programs: Vec<(FileId, &Program)> =
+        units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
+    let lowered = passes::lower(&programs, opts);
+    let mut diags = lowered.diags.clone();
+    let mut symbols = SymbolMap::default();
+    for (&n, &r) in &lowered.commons {
+        symbols.vars.push(VarEntry {
+            program: None,
+            fanuc: format!("#{n}"),
+            siemens: format!("R{r}"),
+            flag: lowered.common_flags.get(&n).map(|f| format!("R{f}")),
+        });
+    }
+    for (plan, _) in &lowered.programs {
+        if let Some(n) = plan.number {
+            symbols.programs.push((format!("O{n:04}"), plan.name.clone()));
+        }
+        symbols.vars.extend(local_entries(plan));
+    }
+    let mut files = Vec::new();
+    let mut names: BTreeSet<String> = BTreeSet::new();
+    for ((plan, prog), (file, src)) in lowered.programs.iter().zip(&programs) {
+        let mut prog = prog.clone();
+        let inputs: Vec<String> = take_inputs(&mut prog).iter().map(|rest| map_inputs(rest, plan, &lowered)).collect();
+        let main = plan.role == Role::Main;
+        let ext = if main { "MPF" } else { "SPF" };
+        let fname = format!("{}.{ext}", plan.name);
+        if !names.insert(fname.clone()) {
+            diags.push(
+                Diagnostic::error("NC371", format!("two programs would both be written as {fname}"))
+                    .primary(*file, src.span, "this program")
+                    .hint("give them distinct names with --program-map N=NAME"),
+            );
+        }
+        let mut header = vec![
+            match plan.number {
+                Some(n) => format!("Translated by nctrans from FANUC O{n:04}"),
+                None => "Translated by nctrans from FANUC".to_string(),
+            },
+            "FANUC variable map:".to_string(),
+        ];
+        let used = commons_of(src);
+        for e in &symbols.vars {
+            let mine = match &e.program {
+                None => e.fanuc[1..].parse::<u32>().is_ok_and(|n| used.contains(&n)),
+                Some(p) => *p == plan.name,
+            };
+            if mine {
+                header.push(format!("  {}", entry_text(e)));
+            }
+        }
+        if header.len() == 2 {
+            header.pop();
+        }
+        if header.iter().any(|h| h.contains("(is-set flag")) {
+            header.push("  (an is-set flag FALSE means FANUC's vacant; the value is then 0)".to_string());
+        }
+        // Inputs first: the evaluator reads only the comment lines at the top.
+        let header: Vec<String> = inputs.into_iter().chain(header).collect();
+        let frame = Frame { header: &header, defs: &plan.defs, proc_line: !main };
+        let emitted = emit_program(&prog, &frame);
+        for (span, what) in &emitted.problems {
+            diags.push(
+                Diagnostic::error("NC370", format!("cannot write {what} in Sinumerik syntax"))
+                    .primary(*file, *span, "from here")
+                    .note("this is a gap in nctrans's lowering, not in the program")
+                    .hint("report it with the program; translate this block by hand meanwhile"),
+            );
+        }
+        let text = match line_ending {
+            LineEnding::Lf => emitted.text,
+            other => emitted.text.replace('\n', other.as_str()),
+        };
+        files.push(OutFile {
+            name: fname,
+            program: plan.name.clone(),
+            fanuc_number: plan.number,
+            main,
+            text,
+            source: *file,
+            lines: emitted.lines,
+        });
+    }
+    Translation { files, symbols, diags }
+}
