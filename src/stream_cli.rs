@@ -229,3 +229,88 @@ pub fn side(
 pub fn texts_for_report(db: &mut SourceDb, streamed: &[(usize, &Path)]) {
     load_texts(db, streamed);
 }
+
+/// `nctrans --to fanuc IN -o OUT` streamed (with verification unless `--no-verify`);
+/// `None` when the input is not streamed or not a straight-line program (then the caller
+/// translates it whole; a partial output is removed first).
+pub fn translate(a: &super::translate_cli::TranslateArgs, input: &Path) -> Option<ExitCode> {
+    use stream::translate::{self as st, Fallback};
+    let out = a.output.as_deref()?;
+    if a.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+        return None;
+    }
+    let size = std::fs::metadata(input).ok()?.len();
+    if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
+        return None;
+    }
+    let eol = first_line_ending(input)?;
+    let opts = match super::translate_cli::options(a, input, eol) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Some(ExitCode::from(2));
+        }
+    };
+    let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
+    let file = match std::fs::File::create(&tmp) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", tmp.display());
+            return Some(ExitCode::from(2));
+        }
+    };
+    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    let mut line = ProgressLine::new("translating", size);
+    let mut report = |p: Progress| line.update(p);
+    let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
+    line.done();
+    drop(w);
+    let done = match r {
+        Ok(d) => d,
+        Err(f) => {
+            let _ = std::fs::remove_file(&tmp);
+            if let Fallback::NotStraight(why) = &f {
+                if size >= AUTO_BYTES {
+                    eprintln!(
+                        "note: {} is read whole: it has {why} (only straight-line programs stream)",
+                        input.display()
+                    );
+                }
+            }
+            return None;
+        }
+    };
+    if let Err(e) = std::fs::rename(&tmp, out) {
+        eprintln!("error: cannot write {}: {e}", out.display());
+        return Some(ExitCode::from(2));
+    }
+    if a.no_verify {
+        return Some(ExitCode::SUCCESS);
+    }
+    let mut line = ProgressLine::new("reading back", size);
+    let mut report = |p: Progress| line.update(p);
+    let v = st::verify(done.index, out, a.max_steps, Some(&mut report));
+    line.done();
+    if !v.diags.is_empty() {
+        let mut db = SourceDb::new();
+        db.add(input.display().to_string(), String::new());
+        db.add(out.display().to_string(), String::new());
+        load_texts(&mut db, &[(0, input), (1, out)]);
+        eprint!("{}", nctrans::diag::render(&db, &v.diags));
+    }
+    eprint!("{}", v.diff);
+    eprintln!("{}", v.summary);
+    Some(if v.equivalent { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}
+
+/// The line ending of the first line end in the file's first 64 KiB (LF when none).
+fn first_line_ending(path: &Path) -> Option<nctrans::read::LineEnding> {
+    use std::io::Read;
+    let mut buf = vec![0u8; 64 * 1024];
+    let mut f = std::fs::File::open(path).ok()?;
+    let n = f.read(&mut buf).ok()?;
+    buf.truncate(n);
+    let head = String::from_utf8_lossy(&buf);
+    Some(nctrans::read::detect_line_ending(&head))
+}

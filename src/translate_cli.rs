@@ -57,6 +57,10 @@ pub struct TranslateArgs {
     /// Encoding of the input; detected when omitted.
     #[arg(long = "input-encoding", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
+    /// Translate and verify as a stream in constant memory (automatic for inputs of 8 MB
+    /// and more; straight-line programs only, others are read whole).
+    #[arg(long)]
+    pub stream: bool,
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
@@ -97,6 +101,9 @@ pub fn run(a: &TranslateArgs) -> Option<ExitCode> {
 }
 
 fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
+    if let Some(code) = crate::stream_cli::translate(a, input) {
+        return code;
+    }
     let bytes = match std::fs::read(input) {
         Ok(b) => b,
         Err(e) => return fail(format!("cannot read {}: {e}", input.display())),
@@ -167,7 +174,7 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
     }
 }
 
-fn options(a: &TranslateArgs, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
+pub(crate) fn options(a: &TranslateArgs, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
     let mut var_rules = Vec::new();
     for s in &a.var_map {
         var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);

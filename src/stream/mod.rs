@@ -13,6 +13,7 @@ pub mod index;
 pub mod lines;
 pub mod paged;
 pub mod runs;
+pub mod translate;
 
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};

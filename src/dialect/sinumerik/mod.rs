@@ -182,7 +182,7 @@ impl Reader {
 }
 
 /// `%_N_PART1_MPF` → `PART1`; `%_N_SUB_SPF` → `SUB`; other `%` lines give no name.
-fn header_name(line: &str) -> Option<String> {
+pub(crate) fn header_name(line: &str) -> Option<String> {
     let t = line.trim_end();
     let body = t.strip_prefix("%_N_").or_else(|| t.strip_prefix("%_n_"))?;
     let upper = body.to_ascii_uppercase();
