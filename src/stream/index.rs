@@ -10,7 +10,7 @@ use crate::ir::{BlockMeta, Program, Stmt, StmtKind};
 use crate::span::Span;
 
 /// Ops per chunk (a chunk may be longer: it always ends with a whole top-level statement).
-pub const CHUNK_OPS: usize = 4096;
+pub const CHUNK_OPS: usize = 2048;
 
 /// Reader state at a chunk start.
 #[derive(Clone, Debug)]

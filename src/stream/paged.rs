@@ -16,7 +16,7 @@ use std::rc::Rc;
 use std::sync::Arc;
 
 /// Pages kept (the one running, the loop start it jumps back to, a few more).
-const CACHE: usize = 6;
+const CACHE: usize = 4;
 
 /// One chunk's ops, and its lines for line numbers.
 pub struct Page {
