@@ -217,3 +217,61 @@ fn loops_and_backward_jumps_across_many_chunks() {
         }
     }
 }
+
+/// Mutated corpus files through the streaming path (scan, then a streamed run at small
+/// chunks): no panic, and a file has errors in the stream exactly when it has them whole.
+#[test]
+fn mutated_programs_stream_without_panics() {
+    let dir = root().join("target/stream-tests/mutated");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let nasty = b"()[]#=;:/%\r\n\t -+*.,0123456789ENOGXRIFDWHLPAB_\xEF\xBC\x00";
+    let mut seed = 0x2545_F491_4F6C_DD1Du64;
+    let mut next = move |n: usize| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n.max(1) as u64) as usize
+    };
+    let mut count = 0;
+    for f in corpus_files() {
+        let Ok(base) = std::fs::read(&f) else { continue };
+        for k in 0..6 {
+            let mut b = base.clone();
+            match k % 3 {
+                0 => b.truncate(next(b.len() + 1)),
+                1 => {
+                    for _ in 0..3 {
+                        if !b.is_empty() {
+                            let i = next(b.len());
+                            b[i] = nasty[next(nasty.len())];
+                        }
+                    }
+                }
+                _ => {
+                    let i = next(b.len() + 1);
+                    let piece: Vec<u8> = b[i..].iter().take(200).copied().collect();
+                    b.splice(i..i, piece);
+                }
+            }
+            let ext = f.extension().and_then(|e| e.to_str()).unwrap_or("nc");
+            let path = dir.join(format!("m{count}.{ext}"));
+            std::fs::write(&path, &b).expect("write");
+            count += 1;
+            let (_, parsed, dialect) = whole(&path, &b);
+            let Some(s) = stream_unit(&path, &b, dialect, 2) else { continue };
+            assert_eq!(
+                nctrans::diag::has_errors(&s.index.diags),
+                nctrans::diag::has_errors(&parsed.diags),
+                "{} ({})",
+                path.display(),
+                f.display()
+            );
+            if parsed.diags.is_empty() {
+                if let Some((a, b, _)) = both_runs(&path, 2, 5_000) {
+                    assert_eq!(a, b, "{} ({})", path.display(), f.display());
+                }
+            }
+        }
+    }
+    assert!(count > 500, "{count} mutations");
+}

@@ -132,6 +132,7 @@ impl Pager {
         if let Some(l) = self.cache.borrow().iter().find_map(|p| hit(p)) {
             return l;
         }
+        let mut from = (0u64, 1u32);
         for (prog, pi) in self.ix.programs.iter().enumerate() {
             let i = pi.chunks.partition_point(|c| c.lo <= at);
             let Some(c) = i.checked_sub(1).map(|i| &pi.chunks[i]) else { continue };
@@ -139,8 +140,34 @@ impl Pager {
                 let page = self.page(prog, c.op_base).ok()??;
                 return hit(&page).flatten();
             }
+            if c.lo >= from.0 {
+                // The line after the chunk: count from its start.
+                from = (c.lo, c.line);
+            }
         }
-        None
+        self.count_lines(from, at)
+    }
+
+    /// The line of `at` by reading lines from a known line start (outside every chunk:
+    /// headers, blank and comment lines between programs, an empty program's end).
+    fn count_lines(&self, from: (u64, u32), at: u64) -> Option<usize> {
+        let mut slot = self.lines.borrow_mut();
+        if slot.is_none() {
+            let f = std::fs::File::open(&self.ix.path).ok()?;
+            *slot = Some(Lines::new(Input::File(f)).ok()?);
+        }
+        let lines = slot.as_mut()?;
+        lines.seek(from.0, from.1).ok()?;
+        let mut line = from.1 as usize;
+        while let Ok(Some(l)) = lines.next_line() {
+            if at < l.next || l.next == l.start + l.text.len() as u64 {
+                // Inside this line, or the last line (no line end after it).
+                return Some(l.line as usize);
+            }
+            line = l.line as usize + 1;
+        }
+        // After a final line end (or an empty file).
+        Some(line)
     }
 
     /// Jump search for block number `n` from op `from` (see `Code::find`).
