@@ -20,7 +20,7 @@ def sinumerik(f, sections, rng):
         f.write("CNT=0\nWHILE CNT<3\nG1 X=R2+CNT Y=R3-CNT\nCNT=CNT+1\nENDWHILE\n")
         f.write(f"GOTOF LA{s}\nG0 Z100\nLA{s}:\nR1=R1+1\n")
         f.write("G1 X=SIN(R1)*10 Y=COS(R1)*10\nG1 Z=DEPTH-0.1\n")
-        f.write("IF R1>0 GOTOF LB" + str(s) + "\nG0 Z50\nLB" + str(s) + ":\nG0 Z5\n")
+        f.write("R4=R1*2+R3\nG0 Z5\n")
     f.write("M30\n")
 
 
@@ -34,14 +34,15 @@ def fanuc(f, sections, rng):
         f.write("#5=0\nWHILE[#5 LT 3]DO1\nG1 X[#2+#5] Y[#3-#5]\n#5=#5+1\nEND1\n")
         f.write(f"GOTO{n + 2}\nG0 Z100.\nN{n + 2} #1=#1+1\n")
         f.write("G1 X[SIN[#1]*10] Y[COS[#1]*10]\nG1 Z[#4-0.1]\n")
-        n += 3
+        # FANUC N numbers stop at 99999: numbers are reused (GOTO searches forward first).
+        n = 10 + (n + 3 - 10) % 99000
     f.write("M30\n%\n")
 
 
 def main():
     dialect, blocks, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     rng = random.Random(7)
-    per = 25 if dialect == "sinumerik" else 20
+    per = 23 if dialect == "sinumerik" else 20
     with open(out, "w", newline="\n") as f:
         (sinumerik if dialect == "sinumerik" else fanuc)(f, blocks // per, rng)
 
