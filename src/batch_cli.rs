@@ -175,9 +175,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     };
     let job: Box<dyn FileJob> = match to {
         Dialect::Fanuc => Box::new(jobs::ToFanucJob::new(settings)),
-        Dialect::Sinumerik => {
-            return fail("a batch to sinumerik is not available in this build (the FANUC → Sinumerik translator)")
-        }
+        Dialect::Sinumerik => Box::new(nctrans::batch::jobs_sinumerik::ToSinumerikJob::new(settings)),
     };
     let mut opts = BatchOptions::new(input, &output, to);
     opts.jobs = if c.jobs == 0 { batch::default_jobs() } else { c.jobs };

@@ -4,6 +4,7 @@
 //! stopped or killed midway. The engine itself is also tested with fake jobs.
 
 use nctrans::batch::jobs::{JobSettings, ToFanucJob};
+use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile, OutputFile, Status};
 use nctrans::config::Config;
 use nctrans::dialect::Dialect;
@@ -63,11 +64,47 @@ fn build_library(root: &Path) -> usize {
         "; bracket: pockets made by CONTOUR, which lives in another folder\nG90 G0 X0 Y0\nCONTOUR(12.5,8,2)\nG0 X50\nCONTOUR(3,4,1)\nM30\n",
     )
     .unwrap();
+    // FANUC: a part program calling macros of two other folders; one macro alone in its
+    // file, called with and without its Z argument.
+    let fanuc = root.join("fanuc");
+    std::fs::create_dir_all(fanuc.join("parts")).unwrap();
+    std::fs::create_dir_all(fanuc.join("macros")).unwrap();
+    std::fs::write(
+        fanuc.join("parts/bracket.nc"),
+        "%\nO3000\n(BRACKET: CALLS MACROS OF OTHER FOLDERS)\nG65 P9200 X5. Y5. Z-2.\nG65 P9200 X8. Y5.\nG65 P9010 X10. Y20. Z-5. A2.\nM30\n%\n",
+    )
+    .unwrap();
+    std::fs::write(
+        fanuc.join("macros/o9200.nc"),
+        "%\nO9200\n(DRILL ONE HOLE: Z DEFAULTS TO -1)\nIF [#26 EQ #0] THEN #26 = -1.\nG0 X#24 Y#25\nG1 Z#26 F100.\nG0 Z5.\nM99\n%\n",
+    )
+    .unwrap();
     std::fs::write(root.join("readme.txt"), "not a program\n").unwrap();
-    n + 1
+    n + 3
 }
 
 const FAULTY: &str = "siemens/seed-sine-curve-while.mpf";
+const FAULTY_FANUC: &str = "fanuc/while-do-nested.nc";
+
+/// Settings for tests: a lower step limit keeps the one program that loops for ever
+/// (`seed-o9050-system-variable-examples.nc` waits on a signal) from dominating the time.
+fn test_settings() -> JobSettings {
+    let mut s = JobSettings::from_config(&Config::default()).unwrap();
+    s.max_steps = 200_000;
+    s
+}
+
+fn sinumerik_job(fault: bool) -> ToSinumerikJob {
+    let mut job = ToSinumerikJob::new(test_settings());
+    if fault {
+        job.fault = Some(Box::new(|f: &InputFile, text: &mut String| {
+            if batch::rel_string(&f.rel) == FAULTY_FANUC {
+                *text = text.replacen("\nM30", "\nG1 X1 Y1\nM30", 1);
+            }
+        }));
+    }
+    job
+}
 
 fn fanuc_job(fault: bool) -> ToFanucJob {
     let mut job = ToFanucJob::new(JobSettings::from_config(&Config::default()).unwrap());
@@ -197,6 +234,119 @@ fn library_to_fanuc_end_to_end() {
     opts2.jobs = 1;
     opts2.pinned = maps;
     let r2 = run(opts2, &fanuc_job(true));
+    assert_eq!(snapshot(&out2), outputs);
+    let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
+    assert_eq!(statuses(&r2), statuses(&r));
+    assert_eq!(snapshot(&lib), inputs_before);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn library_to_sinumerik_end_to_end() {
+    let dir = scratch("e2e-sin");
+    let lib = dir.join("lib");
+    let programs = build_library(&lib);
+    let fanuc_files = snapshot(&lib).keys().filter(|k| k.starts_with("fanuc/")).count();
+    assert!(fanuc_files >= 50, "at least 50 FANUC programs, has {fanuc_files}");
+    let inputs_before = snapshot(&lib);
+
+    let out = dir.join("out");
+    let mut opts = BatchOptions::new(&lib, &out, Dialect::Sinumerik);
+    opts.jobs = 2;
+    let r = run(opts.clone(), &sinumerik_job(true));
+    assert!(!r.all_verified());
+    assert_eq!(r.files.len(), programs);
+    for f in &r.files {
+        if f.path.starts_with("siemens/") {
+            assert_eq!(f.status, Status::Skipped, "{}", f.path);
+        } else {
+            assert!(
+                ![Status::ParseError, Status::Error].contains(&f.status),
+                "{}: {:?} {}",
+                f.path,
+                f.status,
+                f.summary
+            );
+        }
+    }
+    assert!(r.count(Status::Verified) >= 75, "{} verified", r.count(Status::Verified));
+
+    // The injected fault is caught with a code and a line; no output for it.
+    let bad = status_of(&r, FAULTY_FANUC);
+    assert_eq!(bad.status, Status::Diverged, "{}", bad.summary);
+    assert!(bad.outputs.is_empty());
+    assert!(!out.join("fanuc/WHILE_DO_NESTED.mpf").exists());
+    let d = bad.diagnostics.iter().find(|d| d.code == "NC500");
+    let d = d.unwrap_or_else(|| panic!("no NC500 in {:?} ({})", bad.diagnostics, bad.summary));
+    assert!(d.line.is_some(), "{d:?}");
+
+    // The untranslatable file: unsupported, the construct named with its line, no output.
+    let g10 = status_of(&r, "fanuc/g10-l50-param-write.nc");
+    assert_eq!(g10.status, Status::Unsupported);
+    assert!(g10.diagnostics.iter().any(|d| d.code == "NC355" && d.line == Some(4)), "{:?}", g10.diagnostics);
+    assert!(g10.outputs.is_empty());
+
+    // The GBK file verifies and stays GBK; CRLF stays CRLF.
+    let gbk = status_of(&r, "fanuc/encoding-gbk-comment.nc");
+    assert_eq!(gbk.status, Status::Verified, "{}", gbk.summary);
+    assert_eq!(gbk.outputs, ["fanuc/ENCODING_GBK_COMMENT.mpf"]);
+    let bytes = std::fs::read(out.join(&gbk.outputs[0])).unwrap();
+    assert!(std::str::from_utf8(&bytes).is_err(), "GBK comment bytes kept");
+    let crlf = status_of(&r, "fanuc/line-endings-crlf.nc");
+    let text = std::fs::read_to_string(out.join(&crlf.outputs[0])).unwrap();
+    assert!(text.contains("\r\n") && !text.replace("\r\n", "").contains('\n'), "{text:?}");
+
+    // Several programs in one file become one Siemens file each; called ones are .spf.
+    let multi = status_of(&r, "fanuc/multi-program-file.nc");
+    assert_eq!(multi.status, Status::Verified, "{}", multi.summary);
+    assert_eq!(multi.outputs, ["fanuc/MULTI_PROGRAM_FILE.mpf", "fanuc/O_1051.spf", "fanuc/O_1052.spf"]);
+
+    // Calls across folders resolve through the one program map; the macro alone in its
+    // file is a .spf, verified with the arguments its callers pass.
+    let maps_text = std::fs::read_to_string(out.join(batch::MAP_FILE)).unwrap();
+    let (maps, target) = batch::maps::from_toml(&maps_text).unwrap();
+    assert_eq!(target, Some(Dialect::Sinumerik));
+    let names = maps.siemens_names();
+    let bracket = status_of(&r, "fanuc/parts/bracket.nc");
+    assert_eq!(bracket.status, Status::Verified, "{}", bracket.summary);
+    assert_eq!(bracket.outputs, ["fanuc/parts/BRACKET.mpf"]);
+    let text = std::fs::read_to_string(out.join(&bracket.outputs[0])).unwrap();
+    assert!(text.contains(&format!("{}(5,5,-2,1)", names[&9200])), "{text}");
+    assert!(text.contains(&format!("{}(2,", names[&9010])), "{text}");
+    let mac = status_of(&r, "fanuc/macros/o9200.nc");
+    assert_eq!(mac.status, Status::Verified, "{}", mac.summary);
+    assert_eq!(mac.outputs, [format!("fanuc/macros/{}.spf", names[&9200])]);
+    assert!(mac.summary.contains("2 runs"), "{}", mac.summary);
+    let spf = std::fs::read_to_string(out.join(&mac.outputs[0])).unwrap();
+    assert!(spf.starts_with(&format!("PROC {}(", names[&9200])), "{spf}");
+    // O2001 is in two files: calls reach the first; the other is named after its file.
+    let dup = status_of(&r, "fanuc/pitfall-fup-negative.nc");
+    assert_eq!(dup.outputs, ["fanuc/PITFALL_FUP_NEGATIVE.mpf"]);
+    assert!(dup.diagnostics.iter().any(|d| d.code == "NC607" && d.severity == "warning"), "{:?}", dup.diagnostics);
+
+    // Outputs: exactly what the records list, and the map.
+    let outputs = snapshot(&out);
+    let mut expected: Vec<String> = r.files.iter().flat_map(|f| f.outputs.clone()).collect();
+    expected.push(batch::MAP_FILE.into());
+    expected.sort();
+    assert_eq!(outputs.keys().cloned().collect::<Vec<_>>(), expected);
+    for f in r.files.iter().filter(|f| f.status == Status::Verified) {
+        assert!(f.outputs.iter().all(|o| o.ends_with(".mpf") || o.ends_with(".spf")), "{:?}", f.outputs);
+    }
+
+    // The report: one record per file.
+    let json = batch::report::json(&r, "sinumerik", "lib", "out");
+    assert_eq!(json.matches("{\"path\": ").count(), programs);
+    assert!(json.contains(&format!("{{\"path\": \"{FAULTY_FANUC}\", \"outputs\": [], \"status\": \"diverged\"")));
+    assert_eq!(batch::report::csv(&r).lines().count(), programs + 1);
+    assert_eq!(snapshot(&lib), inputs_before);
+
+    // A second run with the map, elsewhere, on one thread: byte-identical.
+    let out2 = dir.join("out2");
+    let mut opts2 = BatchOptions::new(&lib, &out2, Dialect::Sinumerik);
+    opts2.jobs = 1;
+    opts2.pinned = maps;
+    let r2 = run(opts2, &sinumerik_job(true));
     assert_eq!(snapshot(&out2), outputs);
     let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
     assert_eq!(statuses(&r2), statuses(&r));

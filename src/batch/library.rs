@@ -71,6 +71,20 @@ pub struct CallSite {
     pub kind: CallKind,
     /// The arguments when every one of them is a constant (else `None`).
     pub args: Option<Vec<ArgValue>>,
+    /// The FANUC arguments given (not `#0`), in call order. Which arguments a macro receives,
+    /// and which surely, decide its Siemens `PROC` parameters and is-set flags, whatever
+    /// the values.
+    pub given: Vec<Given>,
+}
+
+/// One FANUC argument of a call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Given {
+    pub letter: char,
+    /// The local it fills (`#1`…`#33`, argument specification resolved).
+    pub var: u8,
+    /// The value can never be vacant (a constant, an expression), not `#5`.
+    pub sure: bool,
 }
 
 /// One program defined in the library.
@@ -148,7 +162,7 @@ impl Library {
                     })
                     .collect()
             });
-            lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args });
+            lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args, given: c.given });
         }
         lib
     }
@@ -217,6 +231,8 @@ pub struct RawCall {
     pub target: ProgKey,
     pub kind: CallKind,
     pub args: Option<Vec<RawArg>>,
+    /// FANUC arguments given (see [`CallSite::given`]).
+    pub given: Vec<Given>,
 }
 
 /// The result of reading one file for the index.
@@ -290,7 +306,19 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
                         Arg::Omitted(_) => Some(RawArg::Positional(None)),
                     })
                     .collect();
-                scan.calls.push(RawCall { line, target, kind: c.kind, args });
+                let given = c
+                    .args
+                    .iter()
+                    .filter_map(|a| match a {
+                        Arg::Letter { letter, var, value } if !matches!(value.kind, ExprKind::Vacant) => Some(Given {
+                            letter: char::from(*letter).to_ascii_uppercase(),
+                            var: *var,
+                            sure: surely_set(value),
+                        }),
+                        _ => None,
+                    })
+                    .collect();
+                scan.calls.push(RawCall { line, target, kind: c.kind, args, given });
             }
             ItemKind::Word(w) if w.addr.is(b'T') => {
                 if let WordValue::Expr(Expr { kind: ExprKind::Str(s), .. }) = &w.value {
@@ -301,6 +329,17 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
         });
     }
     scan
+}
+
+/// Whether an argument value can never be vacant, judged from the call alone (the rule
+/// the FANUC → Sinumerik vacancy analysis applies to macro arguments at entry).
+fn surely_set(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Vacant => false,
+        ExprKind::Unary(UnOp::Neg, a) => surely_set(a),
+        ExprKind::Var(v) => !matches!(v.kind, VarKind::Hash(0 | 1..=33 | 100..=999) | VarKind::HashIndirect(_)),
+        _ => true,
+    }
 }
 
 /// A constant argument value and whether it had a decimal point.

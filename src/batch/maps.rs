@@ -76,16 +76,23 @@ impl BatchMaps {
     }
 }
 
-/// A valid Siemens program name from a file stem: letters, digits and `_`, starting with a
-/// letter, upper case (`10-bracket` → `P10_BRACKET`).
+/// A valid Siemens program name from a file stem: letters, digits and `_`, the first two
+/// characters letters or `_` (the control's rule), upper case (`10-bracket` →
+/// `P_10_BRACKET`, `o9010` → `P_O9010`).
 pub fn siemens_name(stem: &str) -> String {
     let mut s: String =
         stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
-    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
-        s.insert(0, 'P');
+    if s.len() < 2 || !s.bytes().take(2).all(|b| b.is_ascii_alphabetic() || b == b'_') {
+        s.insert_str(0, "P_");
     }
     s.truncate(24);
     s
+}
+
+/// The Siemens name of FANUC program `n` when nothing else names it: `O_9010`, as the
+/// single-file translation writes it.
+pub fn numbered_name(n: u32) -> String {
+    format!("O_{n:04}")
 }
 
 /// Fixes the program and tool maps for a batch: pinned entries first, then deterministic
@@ -148,12 +155,12 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
                 let name = match pinned.programs.get(key) {
                     Some(ProgKey::Name(s)) => s.clone(),
                     _ => {
-                        // A main program alone in its file keeps the file's name (that is how
-                        // the operator knows it); called programs are named after their number.
-                        let alone = lib.files[info.file].programs.len() == 1;
+                        // The first program of a file, when nothing calls it, keeps the file's
+                        // name (that is how the operator knows it); the others are named after
+                        // their number.
                         let base = match stems.get(info.file) {
-                            Some(stem) if alone && !lib.is_called(key) => siemens_name(stem),
-                            _ => format!("O{n:04}"),
+                            Some(stem) if info.position == 0 && !lib.is_called(key) => siemens_name(stem),
+                            _ => numbered_name(*n),
                         };
                         let mut name = base.clone();
                         let mut k = 2;
@@ -357,6 +364,7 @@ mod tests {
                 target: c.clone(),
                 kind: crate::ir::CallKind::Named,
                 args: None,
+                given: vec![],
             });
         }
         lib
@@ -392,8 +400,10 @@ mod tests {
         );
         let (maps, _) =
             allocate(&lib, &BatchMaps::default(), Dialect::Sinumerik, &["10-bracket".into(), "o9010".into()]);
-        assert_eq!(maps.programs[&ProgKey::Number(100)], ProgKey::Name("P10_BRACKET".into()));
-        assert_eq!(maps.programs[&ProgKey::Number(9010)], ProgKey::Name("O9010".into()));
+        assert_eq!(maps.programs[&ProgKey::Number(100)], ProgKey::Name("P_10_BRACKET".into()));
+        assert_eq!(maps.programs[&ProgKey::Number(9010)], ProgKey::Name("O_9010".into()));
+        assert_eq!(siemens_name("part1"), "PART1");
+        assert_eq!(siemens_name("o9010"), "P_O9010");
     }
 
     #[test]
