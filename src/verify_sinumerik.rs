@@ -98,11 +98,14 @@ pub fn verify_profiled(
     };
     let spec = RunSpec {
         main,
+        out_dir,
+        max_steps,
+        profiles,
         fanuc_callees: Box::new(DirCallees { semantics: Some(profiles.fanuc.clone()) }),
         extra_fanuc: vec![],
         extra_siemens: vec![],
     };
-    verify_run(db, fanuc_file, fanuc, tr, out_dir, max_steps, profiles, spec)
+    verify_run(db, fanuc_file, fanuc, tr, spec)
 }
 
 /// One run of a proof: which translated program runs, where the FANUC side finds its
@@ -110,6 +113,11 @@ pub fn verify_profiled(
 pub struct RunSpec<'a> {
     /// The Siemens program run against the first program of the FANUC unit.
     pub main: &'a OutFile,
+    /// The folder the Siemens files are shown in (diagnostics point at `out_dir/NAME.MPF`).
+    pub out_dir: &'a str,
+    /// The step limit of each run.
+    pub max_steps: u64,
+    pub profiles: &'a Profiles,
     pub fanuc_callees: Box<dyn CalleeSource + Send>,
     /// Given after the header inputs of each side, so they win.
     pub extra_fanuc: Vec<Input>,
@@ -118,19 +126,9 @@ pub struct RunSpec<'a> {
 
 /// Runs the first program of `fanuc` and `spec.main` (the other programs of the translation
 /// served from memory) and compares the traces.
-#[allow(clippy::too_many_arguments)]
-pub fn verify_run(
-    db: &SourceDb,
-    fanuc_file: FileId,
-    fanuc: &Unit,
-    tr: &Translation,
-    out_dir: &str,
-    max_steps: u64,
-    profiles: &Profiles,
-    spec: RunSpec,
-) -> CheckReport {
+pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translation, spec: RunSpec) -> CheckReport {
     let mut db = db.clone();
-    let main = spec.main;
+    let RunSpec { main, out_dir, max_steps, profiles, .. } = spec;
     let path = |name: &str| if out_dir.is_empty() { name.to_string() } else { format!("{out_dir}/{name}") };
     let main_id = db.add(path(&main.name), main.text.clone());
     let parsed =

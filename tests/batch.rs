@@ -127,6 +127,76 @@ fn status_of<'a>(r: &'a batch::BatchResult, path: &str) -> &'a batch::FileRecord
     r.files.iter().find(|f| f.path == path).unwrap_or_else(|| panic!("no record for {path}"))
 }
 
+/// Checks shared by both directions: every file has a record, the files of the other
+/// dialect are left alone, none fails to read, and at least `min` verify.
+fn check_statuses(r: &batch::BatchResult, programs: usize, left_alone: &str, min: usize) {
+    assert!(!r.all_verified());
+    assert_eq!(r.files.len(), programs);
+    for f in &r.files {
+        if f.path.starts_with(left_alone) {
+            assert_eq!(f.status, Status::Skipped, "{}", f.path);
+        } else {
+            assert!(
+                ![Status::ParseError, Status::Error].contains(&f.status),
+                "{}: {:?} {}",
+                f.path,
+                f.status,
+                f.summary
+            );
+        }
+    }
+    assert!(r.count(Status::Verified) >= min, "{} verified", r.count(Status::Verified));
+}
+
+/// The injected fault is caught, with the code and a line number; no output for it.
+fn check_fault_caught(r: &batch::BatchResult, faulty: &str) {
+    let bad = status_of(r, faulty);
+    assert_eq!(bad.status, Status::Diverged, "{}", bad.summary);
+    assert!(bad.outputs.is_empty());
+    let d = bad.diagnostics.iter().find(|d| d.code == "NC500");
+    let d = d.unwrap_or_else(|| panic!("no NC500 in {:?} ({})", bad.diagnostics, bad.summary));
+    assert!(d.line.is_some(), "{d:?}");
+}
+
+/// The output folder holds exactly the files the records list, and the map; the report has
+/// one record per file. Returns the output folder's contents.
+fn check_outputs_and_report(
+    r: &batch::BatchResult,
+    out: &Path,
+    target: &str,
+    faulty: &str,
+) -> BTreeMap<String, Vec<u8>> {
+    let outputs = snapshot(out);
+    let mut expected: Vec<String> = r.files.iter().flat_map(|f| f.outputs.clone()).collect();
+    expected.push(batch::MAP_FILE.into());
+    expected.sort();
+    assert_eq!(outputs.keys().cloned().collect::<Vec<_>>(), expected);
+    let json = batch::report::json(r, target, "lib", "out");
+    assert_eq!(json.matches("{\"path\": ").count(), r.files.len());
+    assert!(json.contains(&format!("{{\"path\": \"{faulty}\", \"outputs\": [], \"status\": \"diverged\"")));
+    assert!(json.contains("\"code\": \"NC500\""));
+    assert_eq!(batch::report::csv(r).lines().count(), r.files.len() + 1);
+    outputs
+}
+
+/// A second run with the map, elsewhere, on one thread: byte-identical outputs and the same
+/// statuses; the inputs still untouched.
+fn check_rerun_with_map(
+    first: &batch::BatchResult,
+    outputs: &BTreeMap<String, Vec<u8>>,
+    opts: BatchOptions,
+    job: &dyn FileJob,
+) {
+    let input = opts.input.clone();
+    let inputs = snapshot(&input);
+    let out2 = opts.output.clone();
+    let r2 = run(opts, job);
+    assert_eq!(&snapshot(&out2), outputs);
+    let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
+    assert_eq!(statuses(&r2), statuses(first));
+    assert_eq!(snapshot(&input), inputs);
+}
+
 #[test]
 fn library_to_fanuc_end_to_end() {
     let dir = scratch("e2e");
@@ -139,33 +209,9 @@ fn library_to_fanuc_end_to_end() {
     let mut opts = BatchOptions::new(&lib, &out, Dialect::Fanuc);
     opts.jobs = 2;
     let r = run(opts.clone(), &fanuc_job(true));
-    assert!(!r.all_verified());
-
-    // Every Siemens file has a record, every FANUC file is left alone, readme ignored.
-    assert_eq!(r.files.len(), programs);
-    for f in &r.files {
-        if f.path.starts_with("fanuc/") {
-            assert_eq!(f.status, Status::Skipped, "{}", f.path);
-        } else {
-            assert!(
-                f.status != Status::ParseError && f.status != Status::Error,
-                "{}: {:?} {}",
-                f.path,
-                f.status,
-                f.summary
-            );
-        }
-    }
-    assert!(r.count(Status::Verified) >= 60, "{} verified", r.count(Status::Verified));
-
-    // The injected fault is caught, with the code and a line number; no output for it.
-    let bad = status_of(&r, FAULTY);
-    assert_eq!(bad.status, Status::Diverged, "{}", bad.summary);
-    assert!(bad.outputs.is_empty());
+    check_statuses(&r, programs, "fanuc/", 60);
+    check_fault_caught(&r, FAULTY);
     assert!(!out.join("siemens/seed-sine-curve-while.nc").exists());
-    let d = bad.diagnostics.iter().find(|d| d.code == "NC500");
-    let d = d.unwrap_or_else(|| panic!("no NC500 in {:?} ({})", bad.diagnostics, bad.summary));
-    assert!(d.line.is_some(), "{d:?}");
 
     // The untranslatable file: unsupported, named construct, no output.
     let cyc = status_of(&r, "siemens/cycle-unknown-call.mpf");
@@ -200,23 +246,11 @@ fn library_to_fanuc_end_to_end() {
     assert!(sub.summary.contains("runs"), "{}", sub.summary);
 
     // Outputs: exactly the verified files, mapped extensions, same folders; nothing staged.
-    let outputs = snapshot(&out);
-    let mut expected: Vec<String> = r.files.iter().flat_map(|f| f.outputs.clone()).collect();
-    expected.push(batch::MAP_FILE.into());
-    expected.sort();
-    assert_eq!(outputs.keys().cloned().collect::<Vec<_>>(), expected);
+    let outputs = check_outputs_and_report(&r, &out, "fanuc", FAULTY);
     for f in r.files.iter().filter(|f| f.status == Status::Verified) {
         assert_eq!(f.outputs.len(), 1);
         assert!(f.outputs[0].ends_with(".nc"));
     }
-
-    // The report: one record per file, with statuses and diagnostics.
-    let json = batch::report::json(&r, "fanuc", "lib", "out");
-    assert_eq!(json.matches("{\"path\": ").count(), programs);
-    assert!(json.contains(&format!("{{\"path\": \"{FAULTY}\", \"outputs\": [], \"status\": \"diverged\"")));
-    assert!(json.contains("\"code\": \"NC500\""));
-    let csv = batch::report::csv(&r);
-    assert_eq!(csv.lines().count(), programs + 1);
 
     // Inputs untouched.
     assert_eq!(snapshot(&lib), inputs_before);
@@ -228,16 +262,10 @@ fn library_to_fanuc_end_to_end() {
     assert_eq!(rec.status, Status::Error);
     assert_eq!(rec.diagnostics.last().unwrap().code, "NC601");
 
-    // A second run with the map, elsewhere, on one thread: byte-identical outputs.
-    let out2 = dir.join("out2");
-    let mut opts2 = BatchOptions::new(&lib, &out2, Dialect::Fanuc);
+    let mut opts2 = BatchOptions::new(&lib, dir.join("out2"), Dialect::Fanuc);
     opts2.jobs = 1;
     opts2.pinned = maps;
-    let r2 = run(opts2, &fanuc_job(true));
-    assert_eq!(snapshot(&out2), outputs);
-    let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
-    assert_eq!(statuses(&r2), statuses(&r));
-    assert_eq!(snapshot(&lib), inputs_before);
+    check_rerun_with_map(&r, &outputs, opts2, &fanuc_job(true));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -254,31 +282,9 @@ fn library_to_sinumerik_end_to_end() {
     let mut opts = BatchOptions::new(&lib, &out, Dialect::Sinumerik);
     opts.jobs = 2;
     let r = run(opts.clone(), &sinumerik_job(true));
-    assert!(!r.all_verified());
-    assert_eq!(r.files.len(), programs);
-    for f in &r.files {
-        if f.path.starts_with("siemens/") {
-            assert_eq!(f.status, Status::Skipped, "{}", f.path);
-        } else {
-            assert!(
-                ![Status::ParseError, Status::Error].contains(&f.status),
-                "{}: {:?} {}",
-                f.path,
-                f.status,
-                f.summary
-            );
-        }
-    }
-    assert!(r.count(Status::Verified) >= 75, "{} verified", r.count(Status::Verified));
-
-    // The injected fault is caught with a code and a line; no output for it.
-    let bad = status_of(&r, FAULTY_FANUC);
-    assert_eq!(bad.status, Status::Diverged, "{}", bad.summary);
-    assert!(bad.outputs.is_empty());
+    check_statuses(&r, programs, "siemens/", 75);
+    check_fault_caught(&r, FAULTY_FANUC);
     assert!(!out.join("fanuc/WHILE_DO_NESTED.mpf").exists());
-    let d = bad.diagnostics.iter().find(|d| d.code == "NC500");
-    let d = d.unwrap_or_else(|| panic!("no NC500 in {:?} ({})", bad.diagnostics, bad.summary));
-    assert!(d.line.is_some(), "{d:?}");
 
     // The untranslatable file: unsupported, the construct named with its line, no output.
     let g10 = status_of(&r, "fanuc/g10-l50-param-write.nc");
@@ -324,33 +330,113 @@ fn library_to_sinumerik_end_to_end() {
     assert_eq!(dup.outputs, ["fanuc/PITFALL_FUP_NEGATIVE.mpf"]);
     assert!(dup.diagnostics.iter().any(|d| d.code == "NC607" && d.severity == "warning"), "{:?}", dup.diagnostics);
 
-    // Outputs: exactly what the records list, and the map.
-    let outputs = snapshot(&out);
-    let mut expected: Vec<String> = r.files.iter().flat_map(|f| f.outputs.clone()).collect();
-    expected.push(batch::MAP_FILE.into());
-    expected.sort();
-    assert_eq!(outputs.keys().cloned().collect::<Vec<_>>(), expected);
+    // Outputs: exactly what the records list, and the map; the report; a rerun with the map.
+    let outputs = check_outputs_and_report(&r, &out, "sinumerik", FAULTY_FANUC);
     for f in r.files.iter().filter(|f| f.status == Status::Verified) {
         assert!(f.outputs.iter().all(|o| o.ends_with(".mpf") || o.ends_with(".spf")), "{:?}", f.outputs);
     }
-
-    // The report: one record per file.
-    let json = batch::report::json(&r, "sinumerik", "lib", "out");
-    assert_eq!(json.matches("{\"path\": ").count(), programs);
-    assert!(json.contains(&format!("{{\"path\": \"{FAULTY_FANUC}\", \"outputs\": [], \"status\": \"diverged\"")));
-    assert_eq!(batch::report::csv(&r).lines().count(), programs + 1);
     assert_eq!(snapshot(&lib), inputs_before);
-
-    // A second run with the map, elsewhere, on one thread: byte-identical.
-    let out2 = dir.join("out2");
-    let mut opts2 = BatchOptions::new(&lib, &out2, Dialect::Sinumerik);
+    let mut opts2 = BatchOptions::new(&lib, dir.join("out2"), Dialect::Sinumerik);
     opts2.jobs = 1;
     opts2.pinned = maps;
-    let r2 = run(opts2, &sinumerik_job(true));
-    assert_eq!(snapshot(&out2), outputs);
-    let statuses = |r: &batch::BatchResult| r.files.iter().map(|f| (f.path.clone(), f.status)).collect::<Vec<_>>();
-    assert_eq!(statuses(&r2), statuses(&r));
-    assert_eq!(snapshot(&lib), inputs_before);
+    check_rerun_with_map(&r, &outputs, opts2, &sinumerik_job(true));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The files one translator refuses in the round trips, with the code of the reason: every
+/// other file must verify in both directions. (A new refusal, or a fixed one, fails the test
+/// until this list says so: nothing is skipped silently.)
+const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
+    ("address-ac-ic.mpf", "NC313"),          // AC/IC mixed in one block
+    ("address-numbered.mpf", "NC312"),       // I1= and CIP
+    ("arc-radius-angle.mpf", "NC312"),       // AR=
+    ("assign-undeclared-name.mpf", "NC313"), // E=AC() on a non-axis address
+    ("call-bare-name.mpf", "NC303"),         // a call of a program not in the library
+    ("call-l-number.mpf", "NC303"),          // L0123 / L123 not in the library
+    ("call-repeat-p.mpf", "NC303"),          // LAYER not in the library
+    ("cycle-unknown-call.mpf", "NC322"),     // WORKPIECE, CYCLE81
+    ("def-scalar-types.mpf", "NC310"),       // DEF STRING / AXIS
+    ("frame-instructions.mpf", "NC316"),     // TRANS, ROT, …
+    ("goto-string-target.mpf", "NC310"),     // a jump to a computed label
+    ("mcall-modal.mpf", "NC318"),            // MCALL
+    ("named-instructions.mpf", "NC312"),     // SD=, BSPLINE, …
+    ("operators-bitwise.mpf", "NC330"),      // B_NOT
+    ("operators-concat.mpf", "NC314"),       // MSG with a computed text
+    ("repeat-section.mpf", "NC317"),         // REPEAT label P=n
+    ("system-variables.mpf", "NC321"),       // STOPRE, $AC_TIME
+];
+
+const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
+    ("functions-misc.nc", "NC369"),                      // ADP
+    ("g10-l50-param-write.nc", "NC355"),                 // G10 L50
+    ("m98-packed-p.nc", "NC355"),                        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
+    ("seed-o9050-brake-test.nc", "NC355"),               // G10 L50
+    ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
+    ("system-variables.nc", "NC365"),                    // #4003
+];
+
+/// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
+/// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
+const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
+    ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
+    ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
+    ("PITFALL_M98_SHARED_LOCAL.mpf", "NC304"), // M98's shared locals: VAR parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
+    ("P_M98_SUBPROGRAM.mpf", "NC304"),         // VAR parameters
+    ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
+    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
+];
+
+/// Runs one direction over `input` and checks that exactly the `refused` files (path under
+/// `input`, first diagnostic code) fail; every other file verifies.
+fn leg(input: &Path, out: &Path, target: Dialect, refused: &[(&str, &str)]) -> batch::BatchResult {
+    let mut opts = BatchOptions::new(input, out, target);
+    opts.jobs = 2;
+    let r = match target {
+        Dialect::Fanuc => {
+            let mut job = ToFanucJob::new(test_settings());
+            job.fault = None;
+            run(opts, &job)
+        }
+        Dialect::Sinumerik => run(opts, &sinumerik_job(false)),
+    };
+    let failed: BTreeMap<String, String> = r
+        .files
+        .iter()
+        .filter(|f| f.status != Status::Verified)
+        .map(|f| (f.path.clone(), f.diagnostics.first().map_or(f.summary.clone(), |d| d.code.clone())))
+        .collect();
+    let expected: BTreeMap<String, String> = refused.iter().map(|(p, c)| (p.to_string(), c.to_string())).collect();
+    assert_eq!(failed, expected, "to {}: the files that do not verify", target.name());
+    for f in &r.files {
+        assert!(f.status == Status::Verified || f.outputs.is_empty());
+    }
+    r
+}
+
+/// The whole library to the other dialect and back: each leg verifies every file (against
+/// the program it was translated from), so the library that comes back runs like the
+/// original, file for file, except the files listed as refused.
+#[test]
+fn whole_library_round_trips_both_ways() {
+    let dir = scratch("round-trip");
+    let lib = dir.join("lib");
+    build_library(&lib);
+    let before = snapshot(&lib);
+
+    let s1 = leg(&lib.join("siemens"), &dir.join("s1"), Dialect::Fanuc, SIEMENS_TO_FANUC_REFUSED);
+    let s2 = leg(&dir.join("s1"), &dir.join("s2"), Dialect::Sinumerik, &[]);
+    let written: usize = s1.files.iter().map(|f| f.outputs.len()).sum();
+    assert_eq!(s2.files.len(), written, "every FANUC file written comes back");
+    assert!(s2.count(Status::Verified) >= 70, "{}", s2.count(Status::Verified));
+
+    let f1 = leg(&lib.join("fanuc"), &dir.join("f1"), Dialect::Sinumerik, FANUC_TO_SINUMERIK_REFUSED);
+    let f2 = leg(&dir.join("f1"), &dir.join("f2"), Dialect::Fanuc, BACK_TO_FANUC_REFUSED);
+    let written: usize = f1.files.iter().map(|f| f.outputs.len()).sum();
+    assert_eq!(f2.files.len(), written, "every Siemens file written comes back");
+    assert!(f2.count(Status::Verified) >= 80, "{}", f2.count(Status::Verified));
+    assert_eq!(snapshot(&lib), before);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -409,6 +495,34 @@ fn cli_exit_code_summary_report_and_init() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("with -j 1") && stdout.contains("translated-unverified"), "{stdout}");
     assert_eq!(o.status.code(), Some(1), "unverified files are not a success");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn cli_to_sinumerik_alias_exit_codes_and_map_rerun() {
+    let dir = scratch("cli-sin");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(lib.join("m")).unwrap();
+    for f in ["if-then.nc", "g65-spec-i.nc", "multi-program-file.nc", "line-endings-crlf.nc"] {
+        std::fs::copy(repo().join("corpus/in/fanuc").join(f), lib.join("m").join(f)).unwrap();
+    }
+    let out = dir.join("out");
+    let o = nctrans().args(["--to", "siemens", "-j", "2", "-o"]).arg(&out).arg(&lib).output().unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}\n{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("batch to sinumerik") && stdout.contains("every file verified"), "{stdout}");
+    let first = snapshot(&out);
+    assert!(first.contains_key("m/MULTI_PROGRAM_FILE.mpf") && first.contains_key("m/O_1051.spf"), "{first:?}");
+    // A rerun with --force reads the map in the output folder: byte-identical.
+    let o = nctrans().args(["--to", "sinumerik", "--force", "-o"]).arg(&out).arg(&lib).output().unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(snapshot(&out), first);
+    // An untranslatable file: exit code 1, named in the summary.
+    std::fs::copy(repo().join("corpus/in/fanuc/g10-l50-param-write.nc"), lib.join("g10.nc")).unwrap();
+    let o = nctrans().args(["--to", "sinumerik", "-o"]).arg(dir.join("out2")).arg(&lib).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("unsupported") && stdout.contains("NC355"), "{stdout}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

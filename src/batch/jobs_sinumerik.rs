@@ -69,31 +69,72 @@ fn number_of(p: &crate::ir::Program) -> Option<u32> {
     }
 }
 
-/// The programs of this file whose number the library gives to an earlier file: calls
-/// elsewhere reach the other one, so this one is named after its file (`STEM`, or
-/// `STEM_O2001` after the first program) and a warning says so.
-fn shadowed(ctx: &BatchContext, file: &InputFile, unit: &Unit, opts: &mut Options) -> Vec<DiagRecord> {
+/// The programs of this file whose number the library gives to an earlier file. A copy of
+/// that program (the same text, as a Sinumerik → FANUC batch writes a subprogram into every
+/// caller's file) is the same program: it keeps the map's name and only the earlier file
+/// writes it. A different program of the same number is named after this file (`STEM`, or
+/// `STEM_O2001` after the first program) and a warning says so: calls elsewhere in the
+/// library reach the earlier one. Returns the numbers not to write, and the notes.
+fn duplicates(
+    ctx: &BatchContext,
+    file: &InputFile,
+    db: &SourceDb,
+    main: &LoadedFile,
+    opts: &mut Options,
+) -> (BTreeSet<u32>, Vec<DiagRecord>) {
     let mut notes = Vec::new();
+    let mut copies = BTreeSet::new();
     let base = maps::siemens_name(&stem(file));
-    for (i, p) in unit.programs.iter().enumerate() {
+    for (i, p) in main.unit.programs.iter().enumerate() {
         let Some(n) = number_of(p) else { continue };
         let Some(first) = ctx.library.programs.get(&ProgKey::Number(n)) else { continue };
         if first.file == file.index {
             continue;
         }
+        let Some(other) = ctx.files.get(first.file) else { continue };
+        let other_name = super::rel_string(&other.rel);
+        let mine = program_text(&db.get(main.loaded.file).text, p);
+        if i > 0 && other_program_text(other, n, ctx.options.encoding, &opts.source).is_some_and(|t| t == mine) {
+            let mut d = DiagRecord::error(
+                "NC607",
+                format!("O{n:04} is the same program as in {other_name}; it is written from there"),
+            );
+            d.severity = "note";
+            notes.push(d);
+            copies.insert(n);
+            continue;
+        }
         let name = if i == 0 { base.clone() } else { format!("{base}_O{n:04}") };
-        let other = ctx.files.get(first.file).map(|f| super::rel_string(&f.rel)).unwrap_or_default();
         let mut d = DiagRecord::error(
             "NC607",
-            format!(
-                "O{n:04} is also defined in {other}, which calls in the library reach; this one is written as {name}"
-            ),
+            format!("O{n:04} is also defined in {other_name}, which calls in the library reach; this one is written as {name}"),
         );
         d.severity = "warning";
         notes.push(d);
         opts.program_map.insert(n, name);
     }
-    notes
+    (copies, notes)
+}
+
+/// A program's text with blank lines and the spaces around lines left out.
+fn program_text(text: &str, p: &crate::ir::Program) -> String {
+    let lo = (p.span.lo as usize).min(text.len());
+    let hi = (p.span.hi as usize).clamp(lo, text.len());
+    let slice = text.get(lo..hi).unwrap_or("");
+    slice.lines().map(str::trim).filter(|l| !l.is_empty() && *l != "%").collect::<Vec<_>>().join("\n")
+}
+
+/// The text of program `n` in another file of the batch.
+fn other_program_text(
+    file: &InputFile,
+    n: u32,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    sem: &crate::dialect::Semantics,
+) -> Option<String> {
+    let mut db = SourceDb::new();
+    let loaded = super::jobs::load(&mut db, file, Dialect::Fanuc, encoding, sem).ok()?;
+    let p = loaded.unit.programs.iter().find(|p| number_of(p) == Some(n))?;
+    Some(program_text(&db.get(loaded.loaded.file).text, p))
 }
 
 /// The stand-in caller: every call the files outside this job make to the job's programs,
@@ -106,8 +147,11 @@ fn callers_text(ctx: &BatchContext, job_files: &BTreeSet<usize>, defined: &BTree
         if job_files.contains(&c.file) || !defined.contains(&n) {
             continue;
         }
-        // Only the library's definition of `n` (the first) is reached by these calls.
-        if ctx.library.programs.get(&c.target).is_none_or(|p| !job_files.contains(&p.file)) {
+        // Only the library's definition of `n` (the first) is reached by these calls, and
+        // only from files that do not hold a copy of their own.
+        if ctx.library.programs.get(&c.target).is_none_or(|p| !job_files.contains(&p.file))
+            || ctx.library.files.get(c.file).is_some_and(|f| f.programs.contains(&Some(c.target.clone())))
+        {
             continue;
         }
         let args: String = c
@@ -181,7 +225,7 @@ impl FileJob for ToSinumerikJob {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
-        let mut diagnostics = shadowed(ctx, file, &main.unit, &mut opts);
+        let (copies, mut diagnostics) = duplicates(ctx, file, &db, &main, &mut opts);
         diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
 
         // The programs of the job and the calls the rest of the library makes to them.
@@ -242,7 +286,7 @@ impl FileJob for ToSinumerikJob {
         outcome.outputs = tr
             .files
             .iter()
-            .filter(|f| f.source == own)
+            .filter(|f| f.source == own && !f.fanuc_number.is_some_and(|n| copies.contains(&n)))
             .map(|f| OutputFile {
                 rel: discover::sinumerik_output(&file.rel, &f.program, !f.main),
                 bytes: crate::read::encode(&f.text, encoding, main.loaded.bom),
@@ -302,20 +346,14 @@ impl ToSinumerikJob {
             fanuc.retain(|s| s.trim_start().starts_with('#'));
             let spec = RunSpec {
                 main: out,
+                out_dir: &out_dir,
+                max_steps: self.settings.max_steps,
+                profiles: &profiles,
                 fanuc_callees: Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())),
                 extra_fanuc: parse_all(&fanuc),
                 extra_siemens: parse_all(&siemens),
             };
-            let report = vs::verify_run(
-                db,
-                main.loaded.file,
-                &main.unit,
-                tr,
-                &out_dir,
-                self.settings.max_steps,
-                &profiles,
-                spec,
-            );
+            let report = vs::verify_run(db, main.loaded.file, &main.unit, tr, spec);
             runs.push((label, report));
         }
         combine(runs)

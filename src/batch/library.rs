@@ -173,13 +173,18 @@ impl Library {
     }
 
     /// The files that hold the programs `file` calls, directly or through other programs
-    /// (not `file` itself), in batch order. Calls to programs not in the library are left
+    /// (not `file` itself, nor for programs the calling file defines), in batch order. Calls to programs not in the library are left
     /// to the translator to report.
     pub fn callee_files(&self, file: usize) -> Vec<usize> {
         let mut seen = BTreeSet::new();
         let mut todo = vec![file];
         while let Some(f) = todo.pop() {
             for c in self.calls.iter().filter(|c| c.file == f) {
+                // A program of the calling file itself is found first (FANUC looks in the
+                // file before the memory), even when the library holds another copy.
+                if self.files.get(f).is_some_and(|i| i.programs.contains(&Some(c.target.clone()))) {
+                    continue;
+                }
                 if let Some(p) = self.programs.get(&c.target) {
                     if p.file != file && seen.insert(p.file) {
                         todo.push(p.file);
@@ -377,6 +382,17 @@ mod tests {
         let s = scan(&InputFile { index: 0, rel: name.into(), abs }, None);
         std::fs::remove_dir_all(&dir).unwrap();
         s
+    }
+
+    #[test]
+    fn a_program_of_the_calling_file_is_found_before_a_copy_elsewhere() {
+        let a = scan_text("a.nc", "%\nO1\nM98 P9000\nM30\nO9000\nG0 X1\nM99\n%\n");
+        let b = scan_text("b.nc", "%\nO2\nM98 P9000\nM30\nO9000\nG0 X2\nM99\n%\n");
+        let c = scan_text("c.nc", "%\nO3\nM98 P9000\nM30\n%\n");
+        let lib = Library::build(vec![a, b, c]);
+        assert_eq!(lib.duplicates[&ProgKey::Number(9000)], [1]);
+        assert!(lib.callee_files(1).is_empty(), "b.nc calls its own O9000");
+        assert_eq!(lib.callee_files(2), [0], "c.nc reaches the first definition");
     }
 
     #[test]
