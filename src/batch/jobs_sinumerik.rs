@@ -265,7 +265,10 @@ impl FileJob for ToSinumerikJob {
                 Some(p) => format!("{p}.{}", v.fanuc),
                 None => v.fanuc.clone(),
             };
-            used.variables.insert(key, v.siemens.clone());
+            used.variables.insert(key.clone(), v.siemens.clone());
+            if let Some(flag) = &v.flag {
+                used.variables.insert(format!("{key} is set"), flag.clone());
+            }
         }
         let own = main.loaded.file;
         let marked: usize =

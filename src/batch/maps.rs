@@ -62,17 +62,37 @@ impl BatchMaps {
     }
 
     /// Adds what a file used; an entry already present is kept (the batch pins programs and
-    /// tools before translating, so they agree).
-    pub fn merge_used(&mut self, used: &Used) {
+    /// tools before translating, so they agree). Returns one message per variable that this
+    /// file placed differently from an earlier file (the FANUC → Sinumerik translation
+    /// places common variables without a default R parameter, and the is-set flags, per
+    /// file), or per target two files gave to different variables: such files do not
+    /// share the variable on the control.
+    pub fn merge_used(&mut self, used: &Used) -> Vec<String> {
         for (k, v) in &used.programs {
             self.programs.entry(k.clone()).or_insert_with(|| v.clone());
         }
         for (k, v) in &used.tools {
             self.tools.entry(k.clone()).or_insert(*v);
         }
+        let mut conflicts = Vec::new();
         for (k, v) in &used.variables {
-            self.variables.entry(k.clone()).or_insert_with(|| v.clone());
+            match self.variables.get(k) {
+                Some(old) if old != v => conflicts.push(format!("{k} is {old} in one file and {v} in another")),
+                Some(_) => {}
+                None => {
+                    // Plain global variables only: locals live in their program, and an
+                    // array entry (`R[i]`) overlaps its elements on purpose.
+                    let plain = |k: &str| k.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'#' || b == b'_');
+                    let taken =
+                        plain(k).then(|| self.variables.iter().find(|(k2, v2)| *v2 == v && plain(k2))).flatten();
+                    if let Some((other, _)) = taken {
+                        conflicts.push(format!("{v} stands for {other} in one file and for {k} in another"));
+                    }
+                    self.variables.insert(k.clone(), v.clone());
+                }
+            }
         }
+        conflicts
     }
 }
 
@@ -419,6 +439,22 @@ mod tests {
         assert_eq!(target, Some(Dialect::Fanuc));
         assert_eq!(back, m);
         assert_eq!(to_toml(&back, Dialect::Fanuc), text);
+    }
+
+    #[test]
+    fn variables_placed_differently_by_two_files_are_reported() {
+        let mut m = BatchMaps::default();
+        let used = |pairs: &[(&str, &str)]| Used {
+            variables: pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
+            ..Used::default()
+        };
+        assert!(m.merge_used(&used(&[("#801", "R5"), ("O_9010.#24", "ARG_X")])).is_empty());
+        assert!(m.merge_used(&used(&[("#801", "R5"), ("O_9011.#24", "ARG_X")])).is_empty());
+        let c = m.merge_used(&used(&[("#801", "R6"), ("#802", "R5")]));
+        assert_eq!(
+            c,
+            ["#801 is R5 in one file and R6 in another", "R5 stands for #801 in one file and for #802 in another"]
+        );
     }
 
     #[test]
