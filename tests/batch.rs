@@ -503,15 +503,27 @@ fn cli_to_sinumerik_alias_exit_codes_and_map_rerun() {
     let dir = scratch("cli-sin");
     let lib = dir.join("lib");
     std::fs::create_dir_all(lib.join("m")).unwrap();
-    for f in ["if-then.nc", "g65-spec-i.nc", "multi-program-file.nc", "line-endings-crlf.nc"] {
+    for f in
+        ["if-then.nc", "g65-spec-i.nc", "multi-program-file.nc", "line-endings-crlf.nc", "common-retained-variables.nc"]
+    {
         std::fs::copy(repo().join("corpus/in/fanuc").join(f), lib.join("m").join(f)).unwrap();
     }
     let out = dir.join("out");
-    let o = nctrans().args(["--to", "siemens", "-j", "2", "-o"]).arg(&out).arg(&lib).output().unwrap();
+    let o = nctrans()
+        .args(["--to", "siemens", "-j", "2", "--var-map", "#500-#599=R200", "-o"])
+        .arg(&out)
+        .arg(&lib)
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(0), "{stdout}\n{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout.contains("batch to sinumerik") && stdout.contains("every file verified"), "{stdout}");
     let first = snapshot(&out);
+    // The variable rule of the flag is used, and kept in the map for the rerun.
+    let common = String::from_utf8_lossy(&first["m/COMMON_RETAINED_VARIABLE.mpf"]).to_string();
+    assert!(common.contains("#500 = R200"), "{common}");
+    let map = String::from_utf8_lossy(&first[batch::MAP_FILE]).to_string();
+    assert!(map.contains("rules = [\"#500-#599=R200\"]"), "{map}");
     assert!(first.contains_key("m/MULTI_PROGRAM_FILE.mpf") && first.contains_key("m/O_1051.spf"), "{first:?}");
     // A rerun with --force reads the map in the output folder: byte-identical.
     let o = nctrans().args(["--to", "sinumerik", "--force", "-o"]).arg(&out).arg(&lib).output().unwrap();
