@@ -538,6 +538,37 @@ fn cli_to_sinumerik_alias_exit_codes_and_map_rerun() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn common_variables_without_a_default_place_are_placed_once_for_the_library() {
+    let dir = scratch("commons");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("part_a.nc"), "%\nO1\n#801=5.\nM98 P9300\nM30\n%\n").unwrap();
+    std::fs::write(lib.join("macro_b.nc"), "%\nO9300\nG0 X#801\nM99\n%\n").unwrap();
+    std::fs::write(lib.join("part_c.nc"), "%\nO2\n#500=1.\n#802=3.\nG0 X#802 Y#500\nM30\n%\n").unwrap();
+    let out = dir.join("out");
+    let mut notes = Vec::new();
+    let r = batch::run_batch(
+        BatchOptions::new(&lib, &out, Dialect::Sinumerik),
+        &sinumerik_job(false),
+        Arc::new(AtomicBool::new(false)),
+        &mut |p| {
+            if let batch::Progress::Note(n) = p {
+                notes.push(n)
+            }
+        },
+    )
+    .unwrap();
+    assert!(r.all_verified(), "{:?}", r.files);
+    assert!(notes.is_empty(), "{notes:?}");
+    // #500 keeps its default R0; #801 and #802 get R1 and R2 in every file that uses them.
+    let text = |p: &str| std::fs::read_to_string(out.join(p)).unwrap();
+    assert!(text("PART_A.mpf").contains("R1=5"), "{}", text("PART_A.mpf"));
+    assert!(text("O_9300.spf").contains("X=R1"), "{}", text("O_9300.spf"));
+    assert!(text("PART_C.mpf").contains("R2=3") && text("PART_C.mpf").contains("R0=1"), "{}", text("PART_C.mpf"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A library big enough that a run takes a while: `n` programs with a loop each.
 fn slow_library(root: &Path, n: usize) {
     std::fs::create_dir_all(root).unwrap();

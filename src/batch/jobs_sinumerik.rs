@@ -44,6 +44,7 @@ impl ToSinumerikJob {
             var_map.push(VarMapRule::parse(r).map_err(|e| format!("variables.to_sinumerik: {e}"))?);
         }
         let s = &self.settings;
+        var_map.extend(library_places(&ctx.library.commons(), &var_map, s.sinumerik.r_param_count));
         Ok(Options {
             source: s.fanuc.clone(),
             target: s.sinumerik.clone(),
@@ -56,6 +57,42 @@ impl ToSinumerikJob {
             main_name: maps::siemens_name(&stem(file)),
         })
     }
+}
+
+/// Places for the common variables that have no default R parameter (#200..#499,
+/// #800..#999, or a default outside the R range or under a rule), fixed over the whole
+/// library: the translator would otherwise place them per file, and two files would not
+/// share them. Each gets the lowest R parameter no rule and no default place of any common
+/// variable of the library uses.
+fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> Vec<VarMapRule> {
+    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
+    let mut taken: BTreeSet<u32> = BTreeSet::new();
+    for r in rules {
+        let last = r.r_start.saturating_add(r.to - r.from).min(count);
+        taken.extend(r.r_start..=last);
+    }
+    let default_r = |n: u32| match n {
+        500..=799 => Some(n - 500),
+        100..=199 => Some(n),
+        _ => None,
+    };
+    let mut leftovers = Vec::new();
+    for &n in commons.iter().filter(|&&n| !covered(n)) {
+        match default_r(n) {
+            Some(r) if r < count && !taken.contains(&r) => {
+                taken.insert(r);
+            }
+            _ => leftovers.push(n),
+        }
+    }
+    let mut out = Vec::new();
+    for n in leftovers {
+        // None left: the translator reports it (NC350) in the files that use it.
+        let Some(r) = (0..count).find(|r| !taken.contains(r)) else { break };
+        taken.insert(r);
+        out.push(VarMapRule { from: n, to: n, r_start: r });
+    }
+    out
 }
 
 fn stem(file: &InputFile) -> String {
@@ -396,5 +433,27 @@ fn first_of(f: &OutFile, p: &crate::ir::Program) -> bool {
     match number_of(p) {
         Some(n) => f.fanuc_number == Some(n),
         None => f.fanuc_number.is_none(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commons_without_a_default_place_get_one_place_for_the_library() {
+        let commons: BTreeSet<u32> = [100, 500, 501, 801, 802, 950].into_iter().collect();
+        let rules = vec![VarMapRule::parse("#950=R2").unwrap()];
+        let places = library_places(&commons, &rules, 300);
+        // R0 and R1 are the default places of #500 and #501, R2 is the rule's.
+        assert_eq!(
+            places,
+            [VarMapRule { from: 801, to: 801, r_start: 3 }, VarMapRule { from: 802, to: 802, r_start: 4 }]
+        );
+        // Placed per file, #802 would take R0 in a file without #500: not what the library
+        // gives it, so the two files would not share R0.
+        let only: BTreeSet<u32> = [802].into_iter().collect();
+        assert_eq!(library_places(&only, &[], 300), [VarMapRule { from: 802, to: 802, r_start: 0 }]);
+        assert!(library_places(&commons, &rules, 2).len() < 2, "no R left past the count");
     }
 }

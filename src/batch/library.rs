@@ -113,6 +113,8 @@ pub struct FileInfo {
     pub blocks: u64,
     /// Siemens tool names (`T="DRILL_5"`), as written.
     pub tools: BTreeSet<String>,
+    /// FANUC common variables (`#100`..`#999`) used by number.
+    pub commons: BTreeSet<u32>,
 }
 
 /// The library: what every file defines and calls.
@@ -212,6 +214,11 @@ impl Library {
         out
     }
 
+    /// Every FANUC common variable used anywhere, sorted.
+    pub fn commons(&self) -> BTreeSet<u32> {
+        self.files.iter().flat_map(|f| f.commons.iter().copied()).collect()
+    }
+
     /// Every Siemens tool name used anywhere, sorted.
     pub fn tool_names(&self) -> BTreeSet<String> {
         self.files.iter().flat_map(|f| f.tools.iter().cloned()).collect()
@@ -291,6 +298,9 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
             (None, _) => None,
         };
         scan.info.programs.push(key.clone());
+        if dialect == Dialect::Fanuc {
+            scan.info.commons.extend(crate::translate_sinumerik::commons_of(p));
+        }
         scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
         walk_items(&p.body, &mut |item| match &item.kind {
             ItemKind::Call(c) => {
