@@ -569,6 +569,27 @@ fn common_variables_without_a_default_place_are_placed_once_for_the_library() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn every_main_program_of_a_fanuc_file_is_verified() {
+    let dir = scratch("two-mains");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("two.nc"), "%\nO10\nG0 X1.\nM30\nO11\nG0 X2.\nM30\n%\n").unwrap();
+    let r = run(BatchOptions::new(&lib, dir.join("out"), Dialect::Sinumerik), &sinumerik_job(false));
+    let rec = status_of(&r, "two.nc");
+    assert_eq!(rec.status, Status::Verified, "{}", rec.summary);
+    assert_eq!(rec.outputs, ["TWO.mpf", "O_0011.mpf"]);
+    assert!(rec.summary.contains("2 runs"), "{}", rec.summary);
+    // A fault in the second program alone is caught, and named.
+    let mut job = sinumerik_job(false);
+    job.fault = Some(Box::new(|_: &InputFile, text: &mut String| *text = text.replace("X2", "X3")));
+    let r = run(BatchOptions::new(&lib, dir.join("out2"), Dialect::Sinumerik), &job);
+    let rec = status_of(&r, "two.nc");
+    assert_eq!(rec.status, Status::Diverged, "{}", rec.summary);
+    assert!(rec.summary.contains("(O_0011)"), "{}", rec.summary);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A library big enough that a run takes a while: `n` programs with a loop each.
 fn slow_library(root: &Path, n: usize) {
     std::fs::create_dir_all(root).unwrap();

@@ -347,9 +347,10 @@ impl FileJob for ToSinumerikJob {
 }
 
 impl ToSinumerikJob {
-    /// Runs the file's first program against its translation: once with the inputs of the
-    /// header lines and `--set`, and once per argument vector the library calls it with.
-    /// The file's other programs run where it calls them (and in their callers' jobs).
+    /// Runs the file's first program against its translation (and each other program the
+    /// file does not call itself): with the inputs of the header lines and `--set`, and once
+    /// per argument vector the library calls it with. The programs the file calls run
+    /// where it calls them (and in their callers' jobs).
     fn verify(
         &self,
         db: &SourceDb,
@@ -359,42 +360,54 @@ impl ToSinumerikJob {
         subs: &[LoadedFile],
         tr: &Translation,
     ) -> Verified {
-        let Some(first) = main.unit.programs.first() else {
-            return combine(vec![]);
-        };
-        let Some(out) = tr.files.iter().find(|f| f.source == main.loaded.file && first_of(f, first)) else {
+        let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
+        let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
+        let mut runs = Vec::new();
+        for (i, p) in main.unit.programs.iter().enumerate() {
+            let key = number_of(p).map(ProgKey::Number);
+            // The first program, and every other one its own file does not call (a second main
+            // program, a macro only other files call): each runs as the main program.
+            let called_here =
+                key.as_ref().is_some_and(|k| ctx.library.calls.iter().any(|c| c.file == file.index && &c.target == k));
+            if i > 0 && called_here {
+                continue;
+            }
+            let Some(out) = tr.files.iter().find(|f| f.source == main.loaded.file && first_of(f, p)) else {
+                // A copy written by another file (see `duplicates`), verified there.
+                continue;
+            };
+            let mut unit = main.unit.clone();
+            let entry = unit.programs.remove(i);
+            unit.programs.insert(0, entry);
+            let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
+            let cases = match &mine {
+                Some(k) => cases(ctx, k),
+                None => vec![(String::new(), vec![])],
+            };
+            let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
+            for (label, mut fanuc) in cases {
+                fanuc.extend(self.settings.set.iter().cloned());
+                let siemens = siemens_inputs(tr, &out.program, &fanuc);
+                fanuc.retain(|s| s.trim_start().starts_with('#'));
+                let spec = RunSpec {
+                    main: out,
+                    out_dir: &out_dir,
+                    max_steps: self.settings.max_steps,
+                    profiles: &profiles,
+                    fanuc_callees: Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())),
+                    extra_fanuc: parse_all(&fanuc),
+                    extra_siemens: parse_all(&siemens),
+                };
+                runs.push((format!("{name}{label}"), vs::verify_run(db, main.loaded.file, &unit, tr, spec)));
+            }
+        }
+        if runs.is_empty() {
             return Verified {
                 status: Status::Inconclusive,
-                summary: "not verified: the first program's translation was not found".into(),
+                summary: "not verified: no program of the file was found in its translation".into(),
                 events: None,
                 diagnostics: vec![],
             };
-        };
-        let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
-        let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
-        let key = number_of(first)
-            .map(ProgKey::Number)
-            .filter(|k| ctx.library.programs.get(k).is_some_and(|p| p.file == file.index));
-        let cases = match &key {
-            Some(k) => cases(ctx, k),
-            None => vec![(String::new(), vec![])],
-        };
-        let mut runs = Vec::new();
-        for (label, mut fanuc) in cases {
-            fanuc.extend(self.settings.set.iter().cloned());
-            let siemens = siemens_inputs(tr, &out.program, &fanuc);
-            fanuc.retain(|s| s.trim_start().starts_with('#'));
-            let spec = RunSpec {
-                main: out,
-                out_dir: &out_dir,
-                max_steps: self.settings.max_steps,
-                profiles: &profiles,
-                fanuc_callees: Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())),
-                extra_fanuc: parse_all(&fanuc),
-                extra_siemens: parse_all(&siemens),
-            };
-            let report = vs::verify_run(db, main.loaded.file, &main.unit, tr, spec);
-            runs.push((label, report));
         }
         combine(runs)
     }
