@@ -206,8 +206,10 @@ fn callers_text(ctx: &BatchContext, job_files: &BTreeSet<usize>, defined: &BTree
     if blocks.is_empty() {
         return None;
     }
-    // A number no program of the job has: the stand-in is never called.
-    let number = (1..=99_999).find(|k| !defined.contains(k))?;
+    // A number no program of the library has: the stand-in is never called, and no name of
+    // the map is given to it.
+    let number =
+        (1..=99_999).find(|k| !defined.contains(k) && !ctx.library.programs.contains_key(&ProgKey::Number(*k)))?;
     let mut text = format!("O{number}\n");
     for b in blocks {
         text.push_str(&b);
@@ -293,13 +295,20 @@ impl FileJob for ToSinumerikJob {
             .collect();
         diagnostics.extend(DiagRecord::from_diags(&db, &own_diags));
 
+        // What this file's programs use (not the callees', not the stand-in's).
+        let own = main.loaded.file;
         let mut used = maps::Used::default();
-        for (fanuc, siemens) in &tr.symbols.programs {
-            used.programs.insert(ProgKey::parse(fanuc), ProgKey::Name(siemens.clone()));
+        let own_names: BTreeSet<&str> =
+            tr.files.iter().filter(|f| f.source == own).map(|f| f.program.as_str()).collect();
+        for f in tr.files.iter().filter(|f| f.source == own) {
+            if let Some(n) = f.fanuc_number {
+                used.programs.insert(ProgKey::Number(n), ProgKey::Name(f.program.clone()));
+            }
         }
         for v in &tr.symbols.vars {
             let key = match &v.program {
-                Some(p) => format!("{p}.{}", v.fanuc),
+                Some(p) if own_names.contains(p.as_str()) => format!("{p}.{}", v.fanuc),
+                Some(_) => continue,
                 None => v.fanuc.clone(),
             };
             used.variables.insert(key.clone(), v.siemens.clone());
@@ -307,7 +316,6 @@ impl FileJob for ToSinumerikJob {
                 used.variables.insert(format!("{key} is set"), flag.clone());
             }
         }
-        let own = main.loaded.file;
         let marked: usize =
             tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
         if tr.has_errors() || marked > 0 {
