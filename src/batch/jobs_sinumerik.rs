@@ -115,7 +115,6 @@ fn number_of(p: &crate::ir::Program) -> Option<u32> {
 fn duplicates(
     ctx: &BatchContext,
     file: &InputFile,
-    db: &SourceDb,
     main: &LoadedFile,
     opts: &mut Options,
 ) -> (BTreeSet<u32>, Vec<DiagRecord>) {
@@ -130,8 +129,7 @@ fn duplicates(
         }
         let Some(other) = ctx.files.get(first.file) else { continue };
         let other_name = super::rel_string(&other.rel);
-        let mine = program_text(&db.get(main.loaded.file).text, p);
-        if i > 0 && other_program_text(other, n, ctx.options.encoding, &opts.source).is_some_and(|t| t == mine) {
+        if i > 0 && ctx.library.is_canonical(&ProgKey::Number(n), file.index) {
             let mut d = DiagRecord::error(
                 "NC607",
                 format!("O{n:04} is the same program as in {other_name}; it is written from there"),
@@ -153,42 +151,31 @@ fn duplicates(
     (copies, notes)
 }
 
-/// A program's text with blank lines and the spaces around lines left out.
-fn program_text(text: &str, p: &crate::ir::Program) -> String {
-    let lo = (p.span.lo as usize).min(text.len());
-    let hi = (p.span.hi as usize).clamp(lo, text.len());
-    let slice = text.get(lo..hi).unwrap_or("");
-    slice.lines().map(str::trim).filter(|l| !l.is_empty() && *l != "%").collect::<Vec<_>>().join("\n")
-}
-
-/// The text of program `n` in another file of the batch.
-fn other_program_text(
-    file: &InputFile,
-    n: u32,
-    encoding: Option<&'static encoding_rs::Encoding>,
-    sem: &crate::dialect::Semantics,
-) -> Option<String> {
-    let mut db = SourceDb::new();
-    let loaded = super::jobs::load(&mut db, file, Dialect::Fanuc, encoding, sem).ok()?;
-    let p = loaded.unit.programs.iter().find(|p| number_of(p) == Some(n))?;
-    Some(program_text(&db.get(loaded.loaded.file).text, p))
-}
-
 /// The stand-in caller: every call the files outside this job make to the job's programs,
 /// one block each, with constant arguments for the surely-set letters and a local (maybe
 /// vacant) for the others. `None` when there is no such call.
-fn callers_text(ctx: &BatchContext, job_files: &BTreeSet<usize>, defined: &BTreeSet<u32>) -> Option<String> {
+fn callers_text(ctx: &BatchContext, job: &[(usize, &Unit)]) -> Option<String> {
+    // The job's programs that calls elsewhere reach: the first definition or a copy of it
+    // (each number counts once, from the first job file that defines it).
+    let mut defined: BTreeSet<u32> = BTreeSet::new();
+    let mut canonical: BTreeSet<u32> = BTreeSet::new();
+    for (f, unit) in job {
+        for n in unit.programs.iter().filter_map(number_of) {
+            if defined.insert(n) && ctx.library.is_canonical(&ProgKey::Number(n), *f) {
+                canonical.insert(n);
+            }
+        }
+    }
+    let job_files: BTreeSet<usize> = job.iter().map(|(f, _)| *f).collect();
     let mut blocks: BTreeSet<String> = BTreeSet::new();
     for c in &ctx.library.calls {
         let ProgKey::Number(n) = c.target else { continue };
-        if job_files.contains(&c.file) || !defined.contains(&n) {
+        if job_files.contains(&c.file) || !canonical.contains(&n) {
             continue;
         }
-        // Only the library's definition of `n` (the first) is reached by these calls, and
-        // only from files that do not hold a copy of their own.
-        if ctx.library.programs.get(&c.target).is_none_or(|p| !job_files.contains(&p.file))
-            || ctx.library.files.get(c.file).is_some_and(|f| f.programs.contains(&Some(c.target.clone())))
-        {
+        // A caller with a different program of that number of its own calls that one.
+        let own_copy = ctx.library.files.get(c.file).is_some_and(|f| f.programs.contains(&Some(c.target.clone())));
+        if own_copy && !ctx.library.is_canonical(&c.target, c.file) {
             continue;
         }
         let args: String = c
@@ -264,15 +251,15 @@ impl FileJob for ToSinumerikJob {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
-        let (copies, mut diagnostics) = duplicates(ctx, file, &db, &main, &mut opts);
+        let (copies, mut diagnostics) = duplicates(ctx, file, &main, &mut opts);
         diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
 
         // The programs of the job and the calls the rest of the library makes to them.
-        let mut job_files: BTreeSet<usize> = ctx.library.callee_files(file.index).into_iter().collect();
-        job_files.insert(file.index);
+        let mut job_files: Vec<usize> = vec![file.index];
+        job_files.extend(ctx.library.callee_files(file.index));
         let all: Vec<&LoadedFile> = std::iter::once(&main).chain(subs.iter()).collect();
-        let defined: BTreeSet<u32> = all.iter().flat_map(|l| l.unit.programs.iter().filter_map(number_of)).collect();
-        let callers: Option<(FileId, Unit)> = callers_text(ctx, &job_files, &defined).and_then(|text| {
+        let job: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all.iter().map(|l| &l.unit)).collect();
+        let callers: Option<(FileId, Unit)> = callers_text(ctx, &job).and_then(|text| {
             let id = db.add(CALLERS_FILE, text);
             let parsed =
                 crate::parse(&db, id, Dialect::Fanuc, &ParseOptions { semantics: self.settings.fanuc.clone() });

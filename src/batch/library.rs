@@ -110,6 +110,9 @@ pub struct FileInfo {
     pub parse_errors: usize,
     /// The programs, in file order (`None`: a program without name or number).
     pub programs: Vec<Option<ProgKey>>,
+    /// A fingerprint of each program's text (blank lines and the spaces around lines left
+    /// out), in the order of `programs`: copies of one program have the same.
+    pub fingerprints: Vec<u64>,
     pub blocks: u64,
     /// Siemens tool names (`T="DRILL_5"`), as written.
     pub tools: BTreeSet<String>,
@@ -167,6 +170,22 @@ impl Library {
             lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args, given: c.given });
         }
         lib
+    }
+
+    /// Whether the program `key` of `file` is the one calls in the library reach: the first
+    /// definition, or a copy of it with the same text (as a Sinumerik → FANUC batch writes a
+    /// subprogram into each caller's file).
+    pub fn is_canonical(&self, key: &ProgKey, file: usize) -> bool {
+        let Some(first) = self.programs.get(key) else { return false };
+        if first.file == file {
+            return true;
+        }
+        let print = |f: usize| {
+            let info = self.files.get(f)?;
+            let i = info.programs.iter().position(|p| p.as_ref() == Some(key))?;
+            info.fingerprints.get(i).copied()
+        };
+        print(file).is_some() && print(file) == print(first.file)
     }
 
     /// Whether any file of the library calls the program.
@@ -298,6 +317,7 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
             (None, _) => None,
         };
         scan.info.programs.push(key.clone());
+        scan.info.fingerprints.push(fingerprint(&program_text(&src.text, p)));
         if dialect == Dialect::Fanuc {
             scan.info.commons.extend(crate::translate_sinumerik::commons_of(p));
         }
@@ -344,6 +364,22 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
         });
     }
     scan
+}
+
+/// A program's text with blank lines, tape marks and the spaces around lines left out.
+pub fn program_text(text: &str, p: &Program) -> String {
+    let lo = (p.span.lo as usize).min(text.len());
+    let hi = (p.span.hi as usize).clamp(lo, text.len());
+    let slice = text.get(lo..hi).unwrap_or("");
+    slice.lines().map(str::trim).filter(|l| !l.is_empty() && *l != "%").collect::<Vec<_>>().join("\n")
+}
+
+/// A fingerprint of a text, the same on every run of the same build.
+fn fingerprint(text: &str) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut h);
+    h.finish()
 }
 
 /// Whether an argument value can never be vacant, judged from the call alone (the rule
@@ -399,10 +435,16 @@ mod tests {
         let a = scan_text("a.nc", "%\nO1\nM98 P9000\nM30\nO9000\nG0 X1\nM99\n%\n");
         let b = scan_text("b.nc", "%\nO2\nM98 P9000\nM30\nO9000\nG0 X2\nM99\n%\n");
         let c = scan_text("c.nc", "%\nO3\nM98 P9000\nM30\n%\n");
-        let lib = Library::build(vec![a, b, c]);
-        assert_eq!(lib.duplicates[&ProgKey::Number(9000)], [1]);
+        let d = scan_text("d.nc", "%\nO4\nM98 P9000\nM30\nO9000\n  G0 X1\n\nM99\n%\n");
+        let lib = Library::build(vec![a, b, c, d]);
+        let key = ProgKey::Number(9000);
+        assert_eq!(lib.duplicates[&key], [1, 3]);
         assert!(lib.callee_files(1).is_empty(), "b.nc calls its own O9000");
         assert_eq!(lib.callee_files(2), [0], "c.nc reaches the first definition");
+        assert!(lib.is_canonical(&key, 0));
+        assert!(!lib.is_canonical(&key, 1), "another program of the same number");
+        assert!(lib.is_canonical(&key, 3), "a copy (spacing aside) is the same program");
+        assert!(!lib.is_canonical(&key, 2), "c.nc does not define it");
     }
 
     #[test]
