@@ -44,7 +44,7 @@ impl ToSinumerikJob {
             var_map.push(VarMapRule::parse(r).map_err(|e| format!("variables.to_sinumerik: {e}"))?);
         }
         let s = &self.settings;
-        var_map.extend(library_places(&ctx.library.commons(), &var_map, s.sinumerik.r_param_count));
+        var_map.extend(library_places(&ctx.library.commons, &var_map, s.sinumerik.r_param_count));
         Ok(Options {
             source: s.fanuc.clone(),
             target: s.sinumerik.clone(),

@@ -129,6 +129,8 @@ pub struct Library {
     /// Programs defined more than once: key → the files after the first.
     pub duplicates: BTreeMap<ProgKey, Vec<usize>>,
     pub calls: Vec<CallSite>,
+    /// Every FANUC common variable used anywhere, sorted.
+    pub commons: BTreeSet<u32>,
 }
 
 /// The most argument vectors drawn from call sites for verifying one program alone.
@@ -149,6 +151,7 @@ impl Library {
                 }
             }
             raw_calls.extend(scan.calls.into_iter().map(|c| (i, c)));
+            lib.commons.extend(scan.info.commons.iter().copied());
             lib.files.push(scan.info);
         }
         // Siemens positional arguments are named after the callee's parameters now that
@@ -231,11 +234,6 @@ impl Library {
             }
         }
         out
-    }
-
-    /// Every FANUC common variable used anywhere, sorted.
-    pub fn commons(&self) -> BTreeSet<u32> {
-        self.files.iter().flat_map(|f| f.commons.iter().copied()).collect()
     }
 
     /// Every Siemens tool name used anywhere, sorted.
