@@ -252,17 +252,34 @@ impl TraceSink for CompareSink {
     }
 }
 
+/// One side of a check as a run: given its copy of the file database and the sink, it runs
+/// its program (a unit in memory, or a streamed file: `crate::stream::runner`).
+pub type Runner = Box<dyn FnOnce(&mut SourceDb, &mut dyn TraceSink) -> Outcome + Send>;
+
+impl Side {
+    pub fn runner(self) -> Runner {
+        Box::new(move |db, sink| {
+            let mut callees = self.callees;
+            eval::run(db, &self.unit, callees.as_mut(), &self.run, sink)
+        })
+    }
+}
+
 /// Runs both programs and compares their traces. `db` holds both main files (and is
 /// cloned for each run); the report's `db` also holds every callee either run loaded.
 pub fn check(db: &SourceDb, a: Side, b: Side) -> CheckReport {
+    check_runners(db, a.runner(), b.runner())
+}
+
+/// [`check`] for any two runs.
+pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     let n0 = db.len();
     let (tx, rx) = sync_channel::<Msg>(1024);
     let db_b = db.clone();
     let handle = std::thread::spawn(move || {
         let mut db_b = db_b;
         let mut sink = ChannelSink { tx, dead: false };
-        let mut callees = b.callees;
-        let out = eval::run(&mut db_b, &b.unit, callees.as_mut(), &b.run, &mut sink);
+        let out = b(&mut db_b, &mut sink);
         (out, db_b)
     });
     let mut db_a = db.clone();
@@ -276,8 +293,7 @@ pub fn check(db: &SourceDb, a: Side, b: Side) -> CheckReport {
         div: None,
         limit_seen: false,
     };
-    let mut callees_a = a.callees;
-    let outcome_a = eval::run(&mut db_a, &a.unit, callees_a.as_mut(), &a.run, &mut sink);
+    let outcome_a = a(&mut db_a, &mut sink);
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }

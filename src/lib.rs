@@ -14,6 +14,7 @@ pub mod ir;
 pub mod passes;
 pub mod read;
 pub mod span;
+pub mod stream;
 pub mod translate;
 pub mod translate_sinumerik;
 pub mod verify_sinumerik;

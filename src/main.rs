@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 mod batch_cli;
 mod cli_sinumerik;
+mod stream_cli;
 mod translate_cli;
 
 #[derive(Parser)]
@@ -111,6 +112,9 @@ struct InputOpts {
     /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …); detected when omitted.
     #[arg(long, value_parser = parse_encoding)]
     encoding: Option<&'static encoding_rs::Encoding>,
+    /// Read the file as a stream in constant memory (automatic for files of 8 MB and more).
+    #[arg(long)]
+    stream: bool,
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
@@ -171,6 +175,11 @@ fn read_file(path: &PathBuf) -> Result<Vec<u8>, ExitCode> {
 }
 
 fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &InputOpts) -> ExitCode {
+    if summary && stream_cli::wanted(path, input) {
+        if let Some(code) = stream_cli::parse_summary(path, from) {
+            return code;
+        }
+    }
     let bytes = match read_file(path) {
         Ok(b) => b,
         Err(code) => return code,
@@ -257,6 +266,11 @@ fn cmd_run(
     input: &InputOpts,
 ) -> ExitCode {
     use nctrans::eval::{self, Ending};
+    if stream_cli::wanted(path, input) {
+        if let Some(code) = stream_cli::run(path, from, eval, format, quiet) {
+            return code;
+        }
+    }
     let mut db = SourceDb::new();
     let (unit, opts) = match load_for_run(&mut db, path, from, eval, input) {
         Ok(x) => x,
@@ -298,16 +312,34 @@ fn cmd_check(
 ) -> ExitCode {
     use nctrans::check::{self, Side, Verdict};
     let mut db = SourceDb::new();
-    let (unit_a, opts_a) = match load_for_run(&mut db, a, from_a, eval, input) {
-        Ok(x) => x,
-        Err(code) => return code,
+    // Each side is streamed when it is large (or --stream), else read whole.
+    let mut streamed: Vec<(usize, &std::path::Path)> = Vec::new();
+    let mut runners = Vec::new();
+    for (path, from) in [(a, from_a), (b, from_b)] {
+        let id = db.len();
+        let runner =
+            match stream_cli::wanted(path, input).then(|| stream_cli::side(&mut db, path, from, eval)).flatten() {
+                Some(Ok(r)) => {
+                    streamed.push((id, path.as_path()));
+                    r
+                }
+                Some(Err(code)) => return code,
+                None => match load_for_run(&mut db, path, from, eval, input) {
+                    Ok((unit, run)) => {
+                        Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+                    }
+                    Err(code) => return code,
+                },
+            };
+        runners.push(runner);
+    }
+    let (Some(rb), Some(ra)) = (runners.pop(), runners.pop()) else {
+        return ExitCode::from(2);
     };
-    let (unit_b, opts_b) = match load_for_run(&mut db, b, from_b, eval, input) {
-        Ok(x) => x,
-        Err(code) => return code,
-    };
-    let side = |unit, run| Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run };
-    let report = check::check(&db, side(unit_a, opts_a), side(unit_b, opts_b));
+    let mut report = check::check_runners(&db, ra, rb);
+    if !report.diags.is_empty() {
+        stream_cli::texts_for_report(&mut report.db, &streamed);
+    }
     eprint!("{}", diag::render(&report.db, &report.diags));
     match report.verdict {
         Verdict::Equivalent { events } => {

@@ -234,7 +234,9 @@ impl Normalised<'_> {
 /// Normalises one block: full-width ASCII forms (U+FF01..U+FF5E) and the ideographic space
 /// become ASCII outside comments and strings; a letter O inside a G word becomes 0.
 pub fn normalise<'a>(raw: &RawBlock<'a>, style: CommentStyle) -> Normalised<'a> {
-    let needs_width = raw.text.chars().any(|c| ('\u{FF01}'..='\u{FF5E}').contains(&c) || c == '\u{3000}');
+    // ASCII lines (nearly all of a CAM program) are checked at memory speed.
+    let needs_width =
+        !raw.text.is_ascii() && raw.text.chars().any(|c| ('\u{FF01}'..='\u{FF5E}').contains(&c) || c == '\u{3000}');
     let mut n =
         Normalised { text: Cow::Borrowed(raw.text), start: raw.start, map: None, full_width: vec![], letter_o: vec![] };
     if needs_width {

@@ -58,6 +58,10 @@ pub struct TranslateArgs {
     /// Encoding of the input; detected when omitted.
     #[arg(long = "input-encoding", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
+    /// Translate and verify as a stream in constant memory (automatic for inputs of 8 MB
+    /// and more; straight-line programs only, others are read whole).
+    #[arg(long)]
+    pub stream: bool,
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
@@ -87,6 +91,9 @@ pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
 }
 
 fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
+    if let Some(code) = crate::stream_cli::translate(a, c, input) {
+        return code;
+    }
     let bytes = match std::fs::read(input) {
         Ok(b) => b,
         Err(e) => return fail(format!("cannot read {}: {e}", input.display())),
@@ -158,7 +165,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
 }
 
 /// Translation options from the configuration (flags already applied over `nctrans.toml`).
-fn options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
+pub(crate) fn options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
     let mut var_rules = Vec::new();
     for s in &c.var_map_to_fanuc {
         var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);

@@ -164,6 +164,28 @@ impl Interp<'_> {
         Ok(ids)
     }
 
+    /// Registers every program of a streamed file (paged code) like [`Self::register_unit`].
+    pub fn register_stream(&mut self, pager: &Rc<crate::stream::paged::Pager>) -> Vec<usize> {
+        let ix = pager.index();
+        let mut ids = Vec::new();
+        for (i, p) in ix.programs.iter().enumerate() {
+            let id = self.codes.len();
+            self.codes.push(Rc::new(Code::paged(ix.file, Rc::clone(pager), i)));
+            self.params.push(p.program.params.clone());
+            match &p.program.name {
+                Some(ProgName::Number(n)) => {
+                    self.by_number.entry(*n).or_insert(id);
+                }
+                Some(ProgName::Name(s)) => {
+                    self.by_name.entry(s.to_ascii_uppercase()).or_insert(id);
+                }
+                None => {}
+            }
+            ids.push(id);
+        }
+        ids
+    }
+
     fn lookup(&self, name: &CalleeName) -> Option<usize> {
         match name {
             CalleeName::Number(n) => self.by_number.get(n).copied(),

@@ -188,13 +188,15 @@ impl<'a> Interp<'a> {
             };
             let (ci, pc) = (fr.code, fr.pc);
             let code = Rc::clone(&self.codes[ci]);
-            let Some(op) = code.ops.get(pc) else {
+            // A streamed program's op lives in a page that `held` keeps alive.
+            let held = code.op_at(pc).map_err(Fault::error)?;
+            let Some(op) = held.as_ref().and_then(|h| h.op()) else {
                 // Past the last block.
                 if self.frames.len() == 1 {
-                    let span = code.ops.last().map_or(Span::default(), Op::span);
+                    let span = code.last_span();
                     return Err(Fault::alarm(0, "end of the main program reached without M30/M2/M99/RET", span));
                 }
-                let span = code.ops.last().map_or(Span::default(), Op::span);
+                let span = code.last_span();
                 self.warn("NC410", "subprogram ends without M99/M17/RET; returning to the caller".into(), span);
                 match self.do_return(None, span)? {
                     Flow::Stop(e) => return Ok(e),

@@ -5,8 +5,10 @@
 use crate::diag::Diagnostic;
 use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
 use crate::span::{FileId, Span};
+use crate::stream::paged::{Page, Pager};
 use std::cell::RefCell;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 /// Deepest structure nesting flattened (the parsers limit it far lower).
 const MAX_NESTING: u32 = 256;
@@ -63,9 +65,29 @@ pub struct Code {
     labels: HashMap<String, u32>,
     /// Resolved jumps: (from, search, key) → destination.
     memo: RefCell<HashMap<(usize, u8, Key), Option<usize>>>,
+    /// A streamed program: its pager and program index. `ops` is empty, `marks` holds the
+    /// labels only; block numbers are searched in the index's runs.
+    paged: Option<(Rc<Pager>, usize)>,
+}
+
+/// An op borrowed from a program in memory, or held by a page of a streamed one.
+pub enum OpRef<'c> {
+    Mem(&'c Op),
+    Page(Rc<Page>, usize),
+}
+
+impl OpRef<'_> {
+    pub fn op(&self) -> Option<&Op> {
+        match self {
+            OpRef::Mem(op) => Some(op),
+            OpRef::Page(p, pc) => p.get(*pc),
+        }
+    }
 }
 
 struct Builder {
+    /// Op index of `ops[0]` (a chunk of a streamed program starts part way).
+    base: usize,
     file: FileId,
     ops: Vec<Op>,
     marks: Vec<(usize, Option<u32>, Option<u32>)>,
@@ -73,8 +95,12 @@ struct Builder {
 }
 
 impl Builder {
+    fn at(&self) -> usize {
+        self.base + self.ops.len()
+    }
+
     fn mark(&mut self, meta: &BlockMeta) {
-        let at = self.ops.len();
+        let at = self.at();
         let n = meta.number.as_ref().map(|n| n.value);
         let l = meta.label.as_ref().map(|l| {
             let next = self.labels.len() as u32;
@@ -88,7 +114,11 @@ impl Builder {
     fn push(&mut self, meta: &BlockMeta, op: Op) -> usize {
         self.mark(meta);
         self.ops.push(op);
-        self.ops.len() - 1
+        self.at() - 1
+    }
+
+    fn op_mut(&mut self, at: usize) -> Option<&mut Op> {
+        self.ops.get_mut(at.wrapping_sub(self.base))
     }
 
     fn stmts(&mut self, body: &[Stmt], depth: u32) -> Result<(), Diagnostic> {
@@ -115,15 +145,15 @@ impl Builder {
                 self.stmts(then_body, d)?;
                 let false_target = if let Some(e) = else_part {
                     let jump = self.push(&e.head, Op::Jump { span: e.head.span, target: 0 });
-                    let else_start = self.ops.len();
+                    let else_start = self.at();
                     self.stmts(&e.body, d)?;
                     let end_at = self.push(end, Op::Nop(end.span));
-                    set_target(&mut self.ops[jump], end_at);
+                    set_target(self.op_mut(jump), end_at);
                     else_start
                 } else {
                     self.push(end, Op::Nop(end.span))
                 };
-                set_target(&mut self.ops[test], false_target);
+                set_target(self.op_mut(test), false_target);
             }
             StmtKind::While(w) => self.test_loop(&w.head, Some(&w.cond), &w.body, &w.end, d)?,
             StmtKind::Do(w) => self.test_loop(&w.head, w.cond.as_ref(), &w.body, &w.end, d)?,
@@ -142,8 +172,8 @@ impl Builder {
                 );
                 self.stmts(body, d)?;
                 self.push(end, Op::ForEnd { span: end.span, var: var.clone(), to: to.clone(), body: h + 1 });
-                let exit = self.ops.len();
-                if let Op::ForHead { exit: e, .. } = &mut self.ops[h] {
+                let exit = self.at();
+                if let Some(Op::ForHead { exit: e, .. }) = self.op_mut(h) {
                     *e = exit;
                 }
             }
@@ -165,18 +195,17 @@ impl Builder {
         };
         self.stmts(body, d)?;
         self.push(end, Op::Jump { span: end.span, target: top });
-        let exit = self.ops.len();
+        let exit = self.at();
         if cond.is_some() {
-            set_target(&mut self.ops[top], exit);
+            set_target(self.op_mut(top), exit);
         }
         Ok(())
     }
 }
 
-fn set_target(op: &mut Op, to: usize) {
-    match op {
-        Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. } => *target = to,
-        _ => {}
+fn set_target(op: Option<&mut Op>, to: usize) {
+    if let Some(Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. }) = op {
+        *target = to;
     }
 }
 
@@ -192,9 +221,47 @@ fn search_code(s: Search) -> u8 {
 impl Code {
     /// Flattens one program.
     pub fn flatten(file: FileId, prog: &Program) -> Result<Code, Diagnostic> {
-        let mut b = Builder { file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
+        let mut b = Builder { base: 0, file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
         b.stmts(&prog.body, 0)?;
-        Ok(Code { file, ops: b.ops, marks: b.marks, labels: b.labels, memo: RefCell::new(HashMap::new()) })
+        Ok(Code { file, ops: b.ops, marks: b.marks, labels: b.labels, memo: RefCell::new(HashMap::new()), paged: None })
+    }
+
+    /// Flattens the top-level statements of one chunk of a streamed program whose first op
+    /// has index `base` (jump targets are absolute op indices).
+    pub fn flatten_chunk(file: FileId, base: usize, body: &[Stmt]) -> Result<Vec<Op>, Diagnostic> {
+        let mut b = Builder { base, file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
+        b.stmts(body, 0)?;
+        Ok(b.ops)
+    }
+
+    /// A streamed program: ops are read chunk by chunk through `pager` (see `crate::stream`).
+    pub fn paged(file: FileId, pager: Rc<Pager>, prog: usize) -> Code {
+        let mut labels = HashMap::new();
+        let mut marks = Vec::new();
+        if let Some(p) = pager.index().programs.get(prog) {
+            for (at, name) in &p.labels {
+                let next = labels.len() as u32;
+                let id = *labels.entry(name.clone()).or_insert(next);
+                marks.push((*at, None, Some(id)));
+            }
+        }
+        Code { file, ops: Vec::new(), marks, labels, memo: RefCell::new(HashMap::new()), paged: Some((pager, prog)) }
+    }
+
+    /// The op at `pc` and what keeps it alive (a page of a streamed program).
+    pub fn op_at(&self, pc: usize) -> Result<Option<OpRef<'_>>, Diagnostic> {
+        match &self.paged {
+            None => Ok(self.ops.get(pc).map(OpRef::Mem)),
+            Some((pager, prog)) => Ok(pager.page(*prog, pc)?.map(|page| OpRef::Page(page, pc))),
+        }
+    }
+
+    /// The span of the last op (where a run falls off the end).
+    pub fn last_span(&self) -> Span {
+        match &self.paged {
+            None => self.ops.last().map_or(Span::default(), Op::span),
+            Some((pager, prog)) => pager.index().programs.get(*prog).map_or(Span::default(), |p| p.last_span),
+        }
     }
 
     /// The interned id of a label name (upper case), if the program has that label.
@@ -219,6 +286,11 @@ impl Code {
         if let Some(hit) = self.memo.borrow().get(&mk) {
             return *hit;
         }
+        if let (Some((pager, prog)), Key::Number(n)) = (&self.paged, key) {
+            let hit = pager.find_number(*prog, from, search, n);
+            self.memo.borrow_mut().insert(mk, hit);
+            return hit;
+        }
         // Marks are sorted by op index.
         let split = self.marks.partition_point(|m| m.0 <= from);
         let fwd = || self.marks[split..].iter().find(|m| self.matches(m, key));
@@ -238,6 +310,9 @@ impl Code {
     /// The first op, in program order, carrying sequence number `n` at or after `from`,
     /// then from the top (FANUC `M99 Pn` into the caller).
     pub fn find_number_from(&self, from: usize, n: u32) -> Option<usize> {
+        if let Some((pager, prog)) = &self.paged {
+            return pager.find_number_from(*prog, from, n);
+        }
         let split = self.marks.partition_point(|m| m.0 < from);
         self.marks[split..].iter().chain(self.marks[..split].iter()).find(|m| m.1 == Some(n)).map(|m| m.0)
     }

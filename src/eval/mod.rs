@@ -101,6 +101,26 @@ pub fn run(
         Ok(ids) => ids,
         Err(d) => return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] },
     };
+    run_registered(it, dialect, &ids)
+}
+
+/// Runs the first program of a streamed file (see `crate::stream`): its ops are read
+/// page by page through `pager`, so memory does not grow with the file's length. The
+/// file must be in `db` under `pager.index().file` (its text may be empty).
+pub fn run_stream(
+    db: &mut SourceDb,
+    pager: std::rc::Rc<crate::stream::paged::Pager>,
+    callees: &mut dyn CalleeSource,
+    opts: &RunOptions,
+    sink: &mut dyn TraceSink,
+) -> Outcome {
+    let dialect = pager.index().dialect;
+    let mut it = Interp::new(dialect, opts, db, callees, sink);
+    let ids = it.register_stream(&pager);
+    run_registered(it, dialect, &ids)
+}
+
+fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcome {
     let Some(&main) = ids.first() else {
         let d = Diagnostic::error("NC401", "the file holds no program to run");
         return Outcome { ending: Ending::Error, steps: 0, diags: vec![d] };

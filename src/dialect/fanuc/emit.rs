@@ -62,6 +62,19 @@ pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
     Emitted { text, diags: w.diags }
 }
 
+/// Writes statements alone, without `%` and `O` line (a streamed translation writes a
+/// program's body chunk by chunk).
+pub fn emit_body(body: &[Stmt], opts: &EmitOptions) -> Emitted {
+    let mut w = Writer { opts, lines: vec![], diags: vec![] };
+    w.body(body);
+    let eol = opts.line_ending.as_str();
+    let mut text = w.lines.join(eol);
+    if !text.is_empty() {
+        text.push_str(eol);
+    }
+    Emitted { text, diags: w.diags }
+}
+
 struct Writer<'a> {
     opts: &'a EmitOptions,
     lines: Vec<String>,

@@ -34,23 +34,22 @@ pub use parse::parse_grammar_for_test;
 
 /// Parses one FANUC file. Every bad block gives one diagnostic and reading continues.
 pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
-    let mut r = Reader {
-        file,
-        opts,
-        diags: Vec::new(),
-        tape: Tape::None,
-        after_end: None,
-        ignored_numbers: Vec::new(),
-        programs: Vec::new(),
-    };
+    let mut r = Reader::new(file, opts);
     for raw in read::blocks(&src.text) {
         r.line(&raw);
     }
     r.finish()
 }
 
+/// What a streaming reader needs to resume at a block boundary (see `crate::stream`).
+#[derive(Clone, Copy, Debug)]
+pub struct Resume {
+    tape: Tape,
+    param_mode: bool,
+}
+
 /// Where we are relative to the `%` tape marks.
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Tape {
     /// No `%` seen yet.
     None,
@@ -60,7 +59,9 @@ enum Tape {
     Closed,
 }
 
-struct Reader<'o> {
+/// The reader of one file, fed one physical line at a time: the whole-file [`parse`] and
+/// the streaming reader (`crate::stream`) are the same code, so they give the same IR.
+pub struct Reader<'o> {
     file: FileId,
     opts: &'o ParseOptions,
     diags: Vec<Diagnostic>,
@@ -72,8 +73,63 @@ struct Reader<'o> {
     programs: Vec<ProgramLines>,
 }
 
-impl Reader<'_> {
-    fn line(&mut self, raw: &read::RawBlock<'_>) {
+impl<'o> Reader<'o> {
+    pub fn new(file: FileId, opts: &'o ParseOptions) -> Reader<'o> {
+        Reader {
+            file,
+            opts,
+            diags: Vec::new(),
+            tape: Tape::None,
+            after_end: None,
+            ignored_numbers: Vec::new(),
+            programs: Vec::new(),
+        }
+    }
+
+    /// A reader for re-reading from a block boundary of a checked file: statements are
+    /// handed out as they finish, whichever program they belong to.
+    pub fn resume(file: FileId, opts: &'o ParseOptions, from: Resume) -> Reader<'o> {
+        let mut r = Reader::new(file, opts);
+        r.tape = from.tape;
+        let mut p = ProgramLines::new(Some(ProgName::Number(0)), None, Span::default(), file, opts);
+        p.param_mode = from.param_mode;
+        p.stream();
+        r.programs.push(p);
+        r
+    }
+
+    /// The state to resume from here.
+    pub fn checkpoint(&self) -> Resume {
+        Resume { tape: self.tape, param_mode: self.programs.last().is_some_and(|p| p.param_mode) }
+    }
+
+    /// Index (among all programs started so far) of the program being read.
+    pub fn current(&self) -> usize {
+        self.programs.len().saturating_sub(1)
+    }
+
+    /// The finished top-level statements of the current program so far (streaming; the
+    /// jump targets in them are remembered compactly for the final check).
+    pub fn drain(&mut self) -> Vec<crate::ir::Stmt> {
+        match self.programs.last_mut() {
+            Some(p) => {
+                p.stream();
+                p.drain()
+            }
+            None => Vec::new(),
+        }
+    }
+
+    pub fn at_top(&self) -> bool {
+        self.programs.last().is_none_or(|p| p.at_top())
+    }
+
+    pub fn diags(&self) -> &[Diagnostic] {
+        &self.diags
+    }
+
+    /// Reads one physical line.
+    pub fn line(&mut self, raw: &read::RawBlock<'_>) {
         let trimmed = raw.text.trim();
         if trimmed.is_empty() {
             return;
@@ -161,7 +217,19 @@ impl Reader<'_> {
         }
     }
 
-    fn finish(mut self) -> Parsed {
+    /// Ends the file: the unit, and for each of its programs the index it had among the
+    /// programs started while reading (nameless empty ones are dropped).
+    pub fn finish_indexed(self) -> (Parsed, Vec<usize>) {
+        let mut kept = Vec::new();
+        for (i, p) in self.programs.iter().enumerate() {
+            if !(p.is_empty() && p.name.is_none()) {
+                kept.push(i);
+            }
+        }
+        (self.finish(), kept)
+    }
+
+    pub fn finish(mut self) -> Parsed {
         if let Some(s) = self.after_end {
             self.diags.push(
                 Diagnostic::warning("NC237", "text after the closing `%` is not read")

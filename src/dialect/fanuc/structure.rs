@@ -28,6 +28,17 @@ pub struct ProgramLines {
     diags: Vec<Diagnostic>,
     file: FileId,
     max_nesting: usize,
+    /// Streaming: statements are taken out as they finish; what the final GOTO check
+    /// needs from them is kept here.
+    streamed: Option<Streamed>,
+}
+
+#[derive(Default)]
+struct Streamed {
+    drained: bool,
+    numbers: crate::stream::runs::Runs,
+    count: u64,
+    targets: Vec<crate::ir::SeqNo>,
 }
 
 struct Open {
@@ -59,16 +70,49 @@ impl ProgramLines {
             diags: Vec::new(),
             file,
             max_nesting: opts.semantics.max_loop_nesting as usize,
+            streamed: None,
         }
     }
 
+    /// Switches to streaming (see [`ProgramLines::drain`]).
+    pub fn stream(&mut self) {
+        self.streamed.get_or_insert_with(Streamed::default);
+    }
+
+    fn drained(&self) -> bool {
+        self.streamed.as_ref().is_some_and(|s| s.drained)
+    }
+
+    pub fn at_top(&self) -> bool {
+        self.stack.is_empty()
+    }
+
+    /// Takes the finished top-level statements. Comment blocks before the first `O` are
+    /// held back until it is known whether they are that program's title.
+    pub fn drain(&mut self) -> Vec<Stmt> {
+        if !self.stack.is_empty() || self.top.is_empty() || (self.name.is_none() && self.only_comments()) {
+            return Vec::new();
+        }
+        let top = std::mem::take(&mut self.top);
+        let s = self.streamed.get_or_insert_with(Streamed::default);
+        s.drained = true;
+        let (numbers, targets) = goto_facts(&top);
+        for n in numbers {
+            s.numbers.push(n, s.count, Span::default());
+            s.count += 1;
+        }
+        s.targets.extend(targets);
+        top
+    }
+
     pub fn is_empty(&self) -> bool {
-        self.top.is_empty() && self.stack.is_empty() && self.known.is_empty()
+        !self.drained() && self.top.is_empty() && self.stack.is_empty() && self.known.is_empty()
     }
 
     /// Only comment blocks so far (a title before the first `O`).
     pub fn only_comments(&self) -> bool {
-        self.known.is_empty()
+        !self.drained()
+            && self.known.is_empty()
             && self.stack.is_empty()
             && self.top.iter().all(|s| match &s.kind {
                 StmtKind::Block(b) => b.items.is_empty() && b.meta.number.is_none(),
@@ -197,7 +241,7 @@ pub fn build(mut p: ProgramLines, ignored: &[(u32, Span)]) -> (Program, Vec<Diag
         p.add(s);
     }
     let mut diags = std::mem::take(&mut p.diags);
-    check_gotos(&p.top, &p.known, file, ignored, &mut diags);
+    check_gotos(&p.top, &p.known, p.streamed.as_ref(), file, ignored, &mut diags);
     let mut span = p.span;
     if let Some(h) = &p.head {
         span = span.to(h.span);
@@ -213,14 +257,14 @@ fn plain(meta: BlockMeta) -> Stmt {
     Stmt { kind: StmtKind::Block(crate::ir::Block { meta, items: vec![] }), span }
 }
 
-/// Every literal `GOTO n` needs a block `Nn` in the same program.
-fn check_gotos(body: &[Stmt], known: &[u32], file: FileId, ignored: &[(u32, Span)], diags: &mut Vec<Diagnostic>) {
-    let mut numbers: HashSet<u32> = known.iter().copied().collect();
+/// The N numbers of `body` (in order) and its literal GOTO targets.
+fn goto_facts(body: &[Stmt]) -> (Vec<u32>, Vec<crate::ir::SeqNo>) {
+    let mut numbers = Vec::new();
     let mut targets = Vec::new();
     walk_stmts(body, &mut |s| {
         for m in metas(&s.kind) {
             if let Some(n) = &m.number {
-                numbers.insert(n.value);
+                numbers.push(n.value);
             }
         }
         if let StmtKind::Block(b) = &s.kind {
@@ -233,8 +277,26 @@ fn check_gotos(body: &[Stmt], known: &[u32], file: FileId, ignored: &[(u32, Span
             }
         }
     });
+    (numbers, targets)
+}
+
+/// Every literal `GOTO n` needs a block `Nn` in the same program.
+fn check_gotos(
+    body: &[Stmt],
+    known: &[u32],
+    streamed: Option<&Streamed>,
+    file: FileId,
+    ignored: &[(u32, Span)],
+    diags: &mut Vec<Diagnostic>,
+) {
+    let (found, mut targets) = goto_facts(body);
+    let numbers: HashSet<u32> = known.iter().copied().chain(found).collect();
+    if let Some(s) = streamed {
+        // Targets from drained statements come first: they are earlier in the file.
+        targets.splice(0..0, s.targets.iter().cloned());
+    }
     for t in targets {
-        if numbers.contains(&t.value) {
+        if numbers.contains(&t.value) || streamed.is_some_and(|s| s.numbers.first_from(t.value, 0).is_some()) {
             continue;
         }
         let mut d = Diagnostic::error("NC236", format!("no block N{} in this program", t.value)).primary(

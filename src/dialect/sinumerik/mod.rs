@@ -30,13 +30,93 @@ pub struct SinumerikParser;
 
 /// Parses one Sinumerik file into a unit with one program.
 pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
-    let mut st =
-        FileState { file, diags: Vec::new(), r_count: opts.semantics.r_param_count, declared: Default::default() };
-    let mut builder = structure::Builder::new(None, src.text.len() as u32);
-    let mut header_seen = false;
-    let mut any = false;
+    let mut r = Reader::new(file, opts, src.text.len() as u32);
     for raw in read::blocks(&src.text) {
-        let norm = read::normalise(&raw, CommentStyle::Semicolon);
+        r.line(&raw);
+    }
+    let (program, diags) = r.finish();
+    Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] }, diags }
+}
+
+/// The reader of one file, fed one physical line at a time: the whole-file [`parse`] and
+/// the streaming reader (`crate::stream`) are the same code, so they give the same IR.
+pub struct Reader {
+    st: FileState,
+    builder: structure::Builder,
+    header_seen: bool,
+    any: bool,
+}
+
+/// What a streaming reader needs to resume at a block boundary (see `crate::stream`).
+#[derive(Clone, Debug)]
+pub struct Resume {
+    declared: std::collections::HashMap<String, crate::ir::DataType>,
+    header_seen: bool,
+    any: bool,
+}
+
+impl Reader {
+    /// `len`: the length of the file text (the program's span until it is known).
+    pub fn new(file: FileId, opts: &ParseOptions, len: u32) -> Reader {
+        Reader {
+            st: FileState {
+                file,
+                diags: Vec::new(),
+                r_count: opts.semantics.r_param_count,
+                declared: Default::default(),
+            },
+            builder: structure::Builder::new(None, len),
+            header_seen: false,
+            any: false,
+        }
+    }
+
+    /// A reader for re-reading from a block boundary: no header, no PROC check, jump
+    /// targets not collected (the first scan did that).
+    pub fn resume(file: FileId, opts: &ParseOptions, from: &Resume) -> Reader {
+        let mut r = Reader::new(file, opts, 0);
+        r.st.declared = from.declared.clone();
+        r.header_seen = from.header_seen;
+        r.any = from.any;
+        r.builder.resumed();
+        r
+    }
+
+    /// The state to resume from here (valid when [`Reader::at_top`]).
+    pub fn checkpoint(&self) -> Resume {
+        Resume { declared: self.st.declared.clone(), header_seen: self.header_seen, any: self.any }
+    }
+
+    /// Streaming: jump targets are kept as compact runs (memory follows the macro part).
+    pub fn compact_targets(&mut self) {
+        self.builder.compact_targets();
+    }
+
+    /// No structure is open: the next block starts a top-level statement.
+    pub fn at_top(&self) -> bool {
+        self.builder.at_top()
+    }
+
+    /// The finished top-level statements so far (taken out of the program).
+    pub fn drain(&mut self) -> Vec<crate::ir::Stmt> {
+        self.builder.drain()
+    }
+
+    /// Name, head, parameters of the program as read so far (PROC and the `%_N_` header
+    /// come first, so they are known before the first statement).
+    pub fn program_head(&self) -> &crate::ir::Program {
+        self.builder.program()
+    }
+
+    pub fn diags(&self) -> &[Diagnostic] {
+        &self.st.diags
+    }
+
+    /// Reads one physical line.
+    pub fn line(&mut self, raw: &read::RawBlock<'_>) {
+        let file = self.st.file;
+        let (st, builder) = (&mut self.st, &mut self.builder);
+        let norm = read::normalise(raw, CommentStyle::Semicolon);
         if !norm.full_width.is_empty() || !norm.letter_o.is_empty() {
             st.diags.extend(norm.warnings(file));
         }
@@ -44,39 +124,39 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
         let text: &str = &norm.text;
         let trimmed = text.trim_start_matches([' ', '\t']);
         if trimmed.is_empty() {
-            continue;
+            return;
         }
         if trimmed.starts_with('%') {
-            if any || header_seen {
+            if self.any || self.header_seen {
                 st.diags.push(
                     Diagnostic::error("NC128", "a `%` line is only allowed as the first line")
                         .primary(file, whole, "`%` line inside the program")
                         .hint("the `%_N_NAME_MPF` header starts the file; remove this line"),
                 );
             } else {
-                header_seen = true;
+                self.header_seen = true;
                 builder.header(Header {
                     name: header_name(trimmed),
                     meta: BlockMeta { span: whole, ..Default::default() },
                 });
             }
-            continue;
+            return;
         }
-        any = true;
+        self.any = true;
         if let Some(line) = fast::line(&norm, whole) {
-            builder.push(line, &mut st);
-            continue;
+            builder.push(line, st);
+            return;
         }
         if let Some(d) = errors::too_deep(text, &norm, file) {
             st.diags.push(d);
-            continue;
+            return;
         }
         match SinumerikParser::parse(Rule::block, text) {
             Ok(mut pairs) => {
                 if let Some(block) = pairs.next() {
-                    let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
+                    let mut lower = Lower { norm: &norm, st, failed: false, whole };
                     if let Some(line) = lower.block(block, whole) {
-                        builder.push(line, &mut st);
+                        builder.push(line, st);
                     }
                 }
             }
@@ -87,18 +167,22 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
                 if let Some(kind) = structure::keyword_only(text, whole) {
                     builder.push(
                         structure::Line { meta: BlockMeta { span: whole, ..Default::default() }, kind, kw: whole },
-                        &mut st,
+                        st,
                     );
                 }
             }
         }
     }
-    let program = builder.finish(&mut st);
-    Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] }, diags: st.diags }
+
+    /// Closes what is open, checks jump targets; the program holds what was not drained.
+    pub fn finish(mut self) -> (crate::ir::Program, Vec<Diagnostic>) {
+        let program = self.builder.finish(&mut self.st);
+        (program, self.st.diags)
+    }
 }
 
 /// `%_N_PART1_MPF` → `PART1`; `%_N_SUB_SPF` → `SUB`; other `%` lines give no name.
-fn header_name(line: &str) -> Option<String> {
+pub(crate) fn header_name(line: &str) -> Option<String> {
     let t = line.trim_end();
     let body = t.strip_prefix("%_N_").or_else(|| t.strip_prefix("%_n_"))?;
     let upper = body.to_ascii_uppercase();

@@ -190,6 +190,8 @@ pub struct Builder {
     seen_code: bool,
     deep_reported: bool,
     targets: Targets,
+    /// Re-reading part of a file already checked: jump targets are not collected again.
+    resumed: bool,
 }
 
 impl Builder {
@@ -213,7 +215,33 @@ impl Builder {
             seen_code: false,
             deep_reported: false,
             targets: Targets::default(),
+            resumed: false,
         }
+    }
+
+    /// Re-reading from a block boundary of a checked file (see `crate::stream`).
+    pub fn resumed(&mut self) {
+        self.resumed = true;
+        self.seen_code = true;
+    }
+
+    /// Block numbers are kept as runs (`N10 N20 N30 …` is one entry), so a streamed
+    /// million-block file does not hold one entry per numbered block.
+    pub fn compact_targets(&mut self) {
+        self.targets.compact = true;
+    }
+
+    pub fn at_top(&self) -> bool {
+        self.stack.is_empty() && self.suppressed == 0
+    }
+
+    /// Takes the finished top-level statements (streaming).
+    pub fn drain(&mut self) -> Vec<Stmt> {
+        std::mem::take(&mut self.program.body)
+    }
+
+    pub fn program(&self) -> &Program {
+        &self.program
     }
 
     /// Sets the `%_N_…` header (it is read before any block).
@@ -225,7 +253,9 @@ impl Builder {
     /// Adds the next block of the file.
     pub fn push(&mut self, line: Line, st: &mut FileState) {
         let file = st.file;
-        self.targets.record(&line, st);
+        if !self.resumed {
+            self.targets.record(&line, st);
+        }
         let Line { meta, kind, kw } = line;
         let is_control = !matches!(kind, LineKind::Plain(_) | LineKind::Proc(_));
         if is_control {
@@ -352,7 +382,9 @@ impl Builder {
     /// Closes what is still open, checks the jump targets, and returns the program.
     pub fn finish(mut self, st: &mut FileState) -> Program {
         let file = st.file;
-        self.targets.check(st);
+        if !self.resumed {
+            self.targets.check(st);
+        }
         // Unterminated structures: report each (outermost first), then close them so the tree is whole.
         for o in &self.stack {
             st.diags.push(
@@ -468,6 +500,9 @@ struct Targets {
     count: usize,
     labels: HashMap<String, Vec<(usize, Span)>>,
     numbers: HashMap<u32, Vec<(usize, Span)>>,
+    /// Streaming: `numbers` stays empty and block numbers go here, as runs.
+    compact: bool,
+    runs: crate::stream::runs::Runs,
     jumps: Vec<(usize, Jump)>,
 }
 
@@ -493,7 +528,11 @@ impl Targets {
             v.push((i, lb.span));
         }
         if let Some(n) = &l.meta.number {
-            self.numbers.entry(n.value).or_default().push((i, n.span));
+            if self.compact {
+                self.runs.push(n.value, i as u64, n.span);
+            } else {
+                self.numbers.entry(n.value).or_default().push((i, n.span));
+            }
         }
         let LineKind::Plain(items) = &l.kind else { return };
         for it in items {
@@ -518,6 +557,18 @@ impl Targets {
         let file = st.file;
         for (i, j) in &self.jumps {
             match j {
+                Jump::Goto(g) if self.compact => {
+                    // Only the places of the jump's own number are expanded from the runs.
+                    let mut numbers = HashMap::new();
+                    if let Target::Number(n) = &g.target {
+                        let places: Vec<(usize, Span)> =
+                            self.runs.places(n.value, *i as u64).into_iter().map(|(at, s)| (at as usize, s)).collect();
+                        if !places.is_empty() {
+                            numbers.insert(n.value, places);
+                        }
+                    }
+                    check_goto(g, *i, &self.labels, &numbers, st)
+                }
                 Jump::Goto(g) => check_goto(g, *i, &self.labels, &self.numbers, st),
                 Jump::Section(lb) => {
                     let before = self.labels.get(&lb.name).is_some_and(|v| v.iter().any(|&(j, _)| j <= *i));

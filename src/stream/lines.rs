@@ -1,0 +1,268 @@
+//! Reading a file line by line in constant memory: a fixed buffer refilled from the file,
+//! lines split on LF, CR LF and lone CR exactly like `read::blocks`, each with its byte
+//! offset (after a UTF-8 byte-order mark, like the decoded text) and line number, and a
+//! seek to any line start for re-reading.
+
+use std::fs::File;
+use std::io::{self, Read, Seek, SeekFrom};
+
+/// Refill size; lines longer than this grow the buffer (up to [`MAX_LINE`]).
+const CHUNK: usize = 256 * 1024;
+/// A longer line is refused (the whole-file reader handles such files).
+pub const MAX_LINE: usize = 16 * 1024 * 1024;
+
+/// Why a file cannot be streamed as it is; the caller falls back to the whole-file path.
+#[derive(Debug)]
+pub enum NotStreamable {
+    Io(io::Error),
+    /// A line that is not UTF-8 (legacy encodings are decoded whole).
+    NotUtf8 {
+        line: u32,
+    },
+    /// A line longer than [`MAX_LINE`].
+    LongLine {
+        line: u32,
+    },
+    /// NUL bytes or many control characters: binary data (diagnosed by the whole path).
+    Binary,
+}
+
+impl std::fmt::Display for NotStreamable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NotStreamable::Io(e) => write!(f, "{e}"),
+            NotStreamable::NotUtf8 { line } => write!(f, "line {line} is not UTF-8"),
+            NotStreamable::LongLine { line } => write!(f, "line {line} is longer than {MAX_LINE} bytes"),
+            NotStreamable::Binary => write!(f, "the file holds binary data"),
+        }
+    }
+}
+
+impl From<io::Error> for NotStreamable {
+    fn from(e: io::Error) -> Self {
+        NotStreamable::Io(e)
+    }
+}
+
+/// Where the bytes come from: a file, or memory (tests).
+pub enum Input {
+    File(File),
+    Mem(io::Cursor<Vec<u8>>),
+}
+
+impl Input {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        match self {
+            Input::File(f) => f.read(buf),
+            Input::Mem(c) => c.read(buf),
+        }
+    }
+
+    fn seek(&mut self, to: u64) -> io::Result<()> {
+        match self {
+            Input::File(f) => f.seek(SeekFrom::Start(to)).map(|_| ()),
+            Input::Mem(c) => c.seek(SeekFrom::Start(to)).map(|_| ()),
+        }
+    }
+}
+
+/// A line reader with a fixed-size buffer.
+pub struct Lines {
+    input: Input,
+    buf: Vec<u8>,
+    /// Valid bytes are `buf[pos..end]`.
+    pos: usize,
+    end: usize,
+    eof: bool,
+    /// Text offset (after the BOM) of `buf[pos]`.
+    offset: u64,
+    line: u32,
+    bom: u64,
+    /// Control characters seen (for the binary-data check).
+    pub controls: u64,
+}
+
+/// One line: its text without the line end, its text offset and 1-based number.
+pub struct Line<'a> {
+    pub text: &'a str,
+    pub start: u64,
+    pub line: u32,
+    /// Offset of the next line (after this one's line end).
+    pub next: u64,
+}
+
+impl Lines {
+    /// Opens the input at its start (a UTF-8 byte-order mark is skipped).
+    pub fn new(mut input: Input) -> Result<Lines, NotStreamable> {
+        input.seek(0)?;
+        let mut l =
+            Lines { input, buf: vec![0; CHUNK], pos: 0, end: 0, eof: false, offset: 0, line: 0, bom: 0, controls: 0 };
+        l.fill(3)?;
+        if l.buf[..l.end].starts_with(b"\xEF\xBB\xBF") {
+            l.bom = 3;
+            l.pos = 3;
+        }
+        Ok(l)
+    }
+
+    /// Whether the file starts with a byte-order mark.
+    pub fn bom(&self) -> bool {
+        self.bom > 0
+    }
+
+    /// Continues reading at text offset `offset`, which must be a line start, as line `line`.
+    pub fn seek(&mut self, offset: u64, line: u32) -> Result<(), NotStreamable> {
+        self.input.seek(offset + self.bom)?;
+        self.pos = 0;
+        self.end = 0;
+        self.eof = false;
+        self.offset = offset;
+        self.line = line - 1;
+        Ok(())
+    }
+
+    /// Reads until at least `want` bytes are buffered or the input ends.
+    fn fill(&mut self, want: usize) -> io::Result<()> {
+        if self.pos > 0 {
+            self.buf.copy_within(self.pos..self.end, 0);
+            self.end -= self.pos;
+            self.pos = 0;
+        }
+        while self.end < want && !self.eof {
+            if self.end == self.buf.len() {
+                let n = (self.buf.len() * 2).min(MAX_LINE + CHUNK);
+                self.buf.resize(n, 0);
+            }
+            let n = self.input.read(&mut self.buf[self.end..])?;
+            if n == 0 {
+                self.eof = true;
+            }
+            self.end += n;
+        }
+        Ok(())
+    }
+
+    /// The next line, or `None` at the end of the input.
+    pub fn next_line(&mut self) -> Result<Option<Line<'_>>, NotStreamable> {
+        let mut scanned = 0;
+        let cut = loop {
+            let avail = &self.buf[self.pos + scanned..self.end];
+            if let Some(i) = avail.iter().position(|&c| c == b'\n' || c == b'\r') {
+                let at = self.pos + scanned + i;
+                // A CR at the end of the buffer may be the first half of CR LF.
+                if self.buf[at] == b'\r' && at + 1 == self.end && !self.eof {
+                    let keep = at - self.pos;
+                    self.fill(self.end - self.pos + CHUNK)?;
+                    scanned = keep;
+                    continue;
+                }
+                break Some(at);
+            }
+            if self.eof {
+                break None;
+            }
+            let have = self.end - self.pos;
+            if have > MAX_LINE {
+                return Err(NotStreamable::LongLine { line: self.line + 1 });
+            }
+            scanned = have;
+            self.fill(have + CHUNK)?;
+        };
+        let (text_end, next) = match cut {
+            Some(at) => {
+                let w = if self.buf[at] == b'\r' && self.buf.get(at + 1) == Some(&b'\n') && at + 1 < self.end {
+                    2
+                } else {
+                    1
+                };
+                (at, at + w)
+            }
+            None if self.pos == self.end => return Ok(None),
+            None => (self.end, self.end),
+        };
+        self.line += 1;
+        let bytes = &self.buf[self.pos..text_end];
+        let text = std::str::from_utf8(bytes).map_err(|_| NotStreamable::NotUtf8 { line: self.line })?;
+        for c in text.chars() {
+            if c == '\0' {
+                return Err(NotStreamable::Binary);
+            }
+            if c.is_control() && !matches!(c, '\t' | '\x0c' | '\x1a') {
+                self.controls += 1;
+            }
+        }
+        if self.controls > 64 {
+            return Err(NotStreamable::Binary);
+        }
+        let start = self.offset;
+        self.offset += (next - self.pos) as u64;
+        self.pos = next;
+        Ok(Some(Line { text, start, line: self.line, next: self.offset }))
+    }
+
+    /// Text bytes read so far (for progress).
+    pub fn offset(&self) -> u64 {
+        self.offset
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn all(bytes: &[u8]) -> Vec<(String, u64, u32)> {
+        let mut l = Lines::new(Input::Mem(io::Cursor::new(bytes.to_vec()))).unwrap();
+        let mut v = Vec::new();
+        while let Some(x) = l.next_line().unwrap() {
+            v.push((x.text.to_string(), x.start, x.line));
+        }
+        v
+    }
+
+    #[test]
+    fn splits_like_read_blocks() {
+        for text in ["a\r\nb\rc\n\nd", "x\n", "\r\r\n\n", "", "one line", "é\r\nü\r"] {
+            let want: Vec<_> =
+                crate::read::blocks(text).map(|b| (b.text.to_string(), u64::from(b.start), b.line)).collect();
+            assert_eq!(all(text.as_bytes()), want, "{text:?}");
+        }
+    }
+
+    #[test]
+    fn long_lines_and_buffer_edges() {
+        let mut text = String::new();
+        for i in 0..5000 {
+            text.push_str(&"X".repeat(i % 700));
+            text.push_str(if i % 3 == 0 {
+                "\r\n"
+            } else if i % 3 == 1 {
+                "\r"
+            } else {
+                "\n"
+            });
+        }
+        text.push_str(&"Y".repeat(CHUNK * 3));
+        let want: Vec<_> =
+            crate::read::blocks(&text).map(|b| (b.text.to_string(), u64::from(b.start), b.line)).collect();
+        assert_eq!(all(text.as_bytes()), want);
+    }
+
+    #[test]
+    fn bom_offsets_and_seek() {
+        let mut l = Lines::new(Input::Mem(io::Cursor::new(b"\xEF\xBB\xBFab\ncd\nef".to_vec()))).unwrap();
+        assert!(l.bom());
+        assert_eq!(l.next_line().unwrap().map(|x| x.start), Some(0));
+        assert_eq!(l.next_line().unwrap().map(|x| (x.text.to_string(), x.start)), Some(("cd".into(), 3)));
+        l.seek(3, 2).unwrap();
+        assert_eq!(l.next_line().unwrap().map(|x| (x.text.to_string(), x.line)), Some(("cd".into(), 2)));
+    }
+
+    #[test]
+    fn refuses_what_the_whole_path_must_read() {
+        let mut l = Lines::new(Input::Mem(io::Cursor::new(b"ok\n\xff\xfe\n".to_vec()))).unwrap();
+        assert!(l.next_line().is_ok());
+        assert!(matches!(l.next_line(), Err(NotStreamable::NotUtf8 { line: 2 })));
+        let mut l = Lines::new(Input::Mem(io::Cursor::new(b"a\0b".to_vec()))).unwrap();
+        assert!(matches!(l.next_line(), Err(NotStreamable::Binary)));
+    }
+}

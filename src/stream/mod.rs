@@ -1,0 +1,336 @@
+//! Streaming: reading, running and checking programs of any length in constant memory.
+//!
+//! The whole-file path (`dialect::parse`) holds the decoded text and the IR tree; for a CAM
+//! program of ten million blocks that is gigabytes. Here the file is read line by line
+//! through a fixed buffer ([`lines`]), each line goes through the dialect's own reader (the
+//! same code as the whole-file path, so the IR is the same), and finished top-level
+//! statements are handed out and dropped. A first scan builds an [`index`]: chunk offsets
+//! with the reader state to resume there, labels and N numbers as runs. The evaluator then
+//! executes chunk by chunk ([`paged`]), re-reading through the index what a backward jump or
+//! loop end needs. The approach and its limits are in docs/architecture.md ("Streaming").
+
+pub mod index;
+pub mod lines;
+pub mod paged;
+pub mod runs;
+pub mod translate;
+
+use crate::diag::Diagnostic;
+use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
+use crate::ir::Stmt;
+use crate::read::RawBlock;
+use crate::span::{FileId, Span};
+pub use index::CHUNK_OPS;
+use index::{Chunk, ProgIndex, Resume};
+use lines::{Input, Lines, NotStreamable};
+use std::path::{Path, PathBuf};
+
+/// Where a scan is, for a progress line (the library reports, `main.rs` renders).
+#[derive(Clone, Copy, Debug)]
+pub struct Progress {
+    /// Text bytes read.
+    pub done: u64,
+    /// File size in bytes.
+    pub total: u64,
+    /// Blocks (ops) read so far.
+    pub blocks: u64,
+}
+
+/// Called now and then during a scan or run (every 64 Ki lines).
+pub type ProgressFn<'a> = &'a mut dyn FnMut(Progress);
+
+/// A streamed file after its first scan.
+#[derive(Clone, Debug)]
+pub struct Index {
+    pub dialect: Dialect,
+    pub file: FileId,
+    pub path: PathBuf,
+    pub opts: ParseOptions,
+    /// File size in bytes.
+    pub size: u64,
+    /// Length of the decoded text (the size without a byte-order mark).
+    pub text_len: u64,
+    pub bom: bool,
+    pub programs: Vec<ProgIndex>,
+    /// Blocks as `ir::visit::count_blocks` counts them.
+    pub blocks: u64,
+    /// Every diagnostic of the file. Spans are exact for presence but, when not empty, the
+    /// caller should read the file whole to render them (rendering needs the text).
+    pub diags: Vec<Diagnostic>,
+    /// `; nctrans: set …` header comment lines (evaluator inputs), as text.
+    pub header: String,
+}
+
+/// The dialect reader behind a scan.
+enum Reader<'o> {
+    Sin(Box<sinumerik::Reader>),
+    Fan(Box<fanuc::Reader<'o>>),
+}
+
+impl Reader<'_> {
+    fn line(&mut self, raw: &RawBlock<'_>) {
+        match self {
+            Reader::Sin(r) => r.line(raw),
+            Reader::Fan(r) => r.line(raw),
+        }
+    }
+
+    fn drain(&mut self) -> Vec<Stmt> {
+        match self {
+            Reader::Sin(r) => r.drain(),
+            Reader::Fan(r) => r.drain(),
+        }
+    }
+
+    fn current(&self) -> usize {
+        match self {
+            Reader::Sin(_) => 0,
+            Reader::Fan(r) => r.current(),
+        }
+    }
+
+    fn at_top(&self) -> bool {
+        match self {
+            Reader::Sin(r) => r.at_top(),
+            Reader::Fan(r) => r.at_top(),
+        }
+    }
+
+    fn checkpoint(&self) -> Resume {
+        match self {
+            Reader::Sin(r) => Resume::Sinumerik(r.checkpoint()),
+            Reader::Fan(r) => Resume::Fanuc(r.checkpoint()),
+        }
+    }
+}
+
+/// Opens `path` for streaming.
+pub fn open(path: &Path) -> Result<(Input, u64), NotStreamable> {
+    let f = std::fs::File::open(path)?;
+    let size = f.metadata()?.len();
+    Ok((Input::File(f), size))
+}
+
+/// [`scan`] of a file on disk with the default chunk size.
+pub fn scan_path(
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    each: &mut dyn FnMut(usize, &Stmt),
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    let (input, size) = open(path)?;
+    scan(input, size, path, file, dialect, opts, CHUNK_OPS, each, progress)
+}
+
+/// The first scan: reads the whole file once, hands every finished top-level statement to
+/// `each` (with its program's index among the programs started so far) and builds the index.
+#[allow(clippy::too_many_arguments)]
+pub fn scan(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+    each: &mut dyn FnMut(usize, &Stmt),
+    mut progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    let mut lines = Lines::new(input)?;
+    let bom = lines.bom();
+    let text_len = size.saturating_sub(if bom { 3 } else { 0 });
+    let mut reader = match dialect {
+        Dialect::Sinumerik => {
+            let mut r = sinumerik::Reader::new(file, opts, text_len.min(u64::from(u32::MAX)) as u32);
+            r.compact_targets();
+            Reader::Sin(Box::new(r))
+        }
+        Dialect::Fanuc => Reader::Fan(Box::new(fanuc::Reader::new(file, opts))),
+    };
+    let mut progs: Vec<ProgIndex> = Vec::new();
+    // The open chunk: (program, lo, line, op_base at start, resume state).
+    let mut open: Option<(usize, u64, u32, Resume)> = None;
+    let mut boundary = (0u64, 1u32, reader.checkpoint());
+    let mut header = String::new();
+    let mut in_header = true;
+    let mut count = 0u64;
+    while let Some(l) = lines.next_line()? {
+        if text_len > u64::from(u32::MAX) {
+            // Spans are 32-bit offsets into the text.
+            return Err(NotStreamable::LongLine { line: l.line });
+        }
+        if in_header {
+            in_header = header_line(l.text, &mut header);
+        }
+        let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
+        let line_end = l.next;
+        reader.line(&raw);
+        count += 1;
+        if count.is_multiple_of(65536) {
+            if let Some(p) = progress.as_mut() {
+                p(Progress { done: line_end, total: size, blocks: progs.iter().map(|p| p.ops as u64).sum() });
+            }
+        }
+        let stmts = reader.drain();
+        if stmts.is_empty() {
+            continue;
+        }
+        let prog = reader.current();
+        while progs.len() <= prog {
+            progs.push(ProgIndex::new());
+        }
+        if let Some((p, lo, line, resume)) = open.take() {
+            if p != prog {
+                // A new program: the old chunk ends after its last statement.
+                close(&mut progs[p], lo, boundary.0, line, resume);
+                open = Some((prog, boundary.0, boundary.1, boundary.2.clone()));
+            } else {
+                open = Some((p, lo, line, resume));
+            }
+        } else {
+            open = Some((prog, boundary.0, boundary.1, boundary.2.clone()));
+        }
+        for s in &stmts {
+            each(prog, s);
+            progs[prog].add(s);
+        }
+        let next_line = l.line + 1;
+        let at_top = reader.at_top();
+        if let Some((p, lo, line, resume)) = &open {
+            let base = progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
+            if at_top && progs[*p].ops - base >= chunk_ops.max(1) {
+                close(&mut progs[*p], *lo, line_end, *line, resume.clone());
+                open = None;
+            }
+        }
+        if at_top && (open.is_none() || matches!(reader, Reader::Fan(_))) {
+            boundary = (line_end, next_line, reader.checkpoint());
+        }
+    }
+    if let Some((p, lo, line, resume)) = open.take() {
+        close(&mut progs[p], lo, lines.offset(), line, resume);
+    }
+    if lines.controls * 20 > lines.offset().max(1) {
+        return Err(NotStreamable::Binary);
+    }
+    // The end of the file: what is still open is closed (with diagnostics) by the reader.
+    let (programs, kept, mut diags) = match reader {
+        Reader::Sin(r) => {
+            let (p, d) = r.finish();
+            (vec![p], vec![0], d)
+        }
+        Reader::Fan(r) => {
+            let (parsed, kept) = r.finish_indexed();
+            (parsed.unit.programs, kept, parsed.diags)
+        }
+    };
+    let mut out = Vec::new();
+    for (mut p, raw) in programs.into_iter().zip(kept) {
+        let mut ix = if raw < progs.len() { std::mem::take(&mut progs[raw]) } else { ProgIndex::new() };
+        ix.raw = raw;
+        if !p.body.is_empty() {
+            // Statements closed only at the end of the file (an unclosed structure, an
+            // error) are not in any chunk: the caller must not run this file streamed.
+            diags.push(
+                Diagnostic::error("NC102", "unclosed structure at the end of a streamed file")
+                    .primary(file, p.span, "here")
+                    .hint("read the file whole to see the full diagnostics"),
+            );
+            for s in &p.body {
+                each(raw, s);
+            }
+        }
+        p.body = Vec::new();
+        ix.program = p;
+        out.push(ix);
+    }
+    let blocks = out.iter().map(|p| p.ops as u64 + u64::from(p.program.head.is_some())).sum();
+    if let Some(p) = progress.as_mut() {
+        p(Progress { done: lines.offset(), total: size, blocks });
+    }
+    diags.sort_by_key(|d| d.labels.iter().find(|l| l.primary).map_or(u32::MAX, |l| l.span.lo));
+    Ok(Index {
+        dialect,
+        file,
+        path: path.to_path_buf(),
+        opts: opts.clone(),
+        size,
+        text_len,
+        bom,
+        programs: out,
+        blocks,
+        diags,
+        header,
+    })
+}
+
+fn close(p: &mut ProgIndex, lo: u64, hi: u64, line: u32, resume: Resume) {
+    let base = p.chunks.last().map_or(0, |c| c.op_base + c.ops);
+    if p.ops > base {
+        p.chunks.push(Chunk { lo, hi, line, op_base: base, ops: p.ops - base, resume });
+    }
+}
+
+/// Collects `; nctrans: set …` / `(nctrans: set …)` header lines (see
+/// `eval::header_inputs`); returns whether the header may continue.
+fn header_line(text: &str, header: &mut String) -> bool {
+    let t = text.trim();
+    let comment = t.is_empty()
+        || t.starts_with('%')
+        || t.starts_with(';')
+        || t.starts_with('(')
+        || t.starts_with('O')
+        || t.starts_with("PROC");
+    if comment && header.len() < 64 * 1024 {
+        header.push_str(text);
+        header.push('\n');
+    }
+    comment
+}
+
+/// Re-reads one chunk: the statements of `chunk`, parsed again from the file.
+pub fn reread(
+    lines: &mut Lines,
+    ix: &Index,
+    chunk: &Chunk,
+    each: &mut dyn FnMut(Stmt),
+    on_line: &mut dyn FnMut(u64, u32),
+) -> Result<(), NotStreamable> {
+    lines.seek(chunk.lo, chunk.line)?;
+    let mut reader = match &chunk.resume {
+        Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(ix.file, &ix.opts, r))),
+        Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(ix.file, &ix.opts, *r))),
+    };
+    while let Some(l) = lines.next_line()? {
+        if l.start >= chunk.hi {
+            break;
+        }
+        on_line(l.start, l.line);
+        let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
+        reader.line(&raw);
+        for s in reader.drain() {
+            each(s);
+        }
+    }
+    Ok(())
+}
+
+/// A span that marks "somewhere in this file" for diagnostics without text.
+pub fn file_span(ix: &Index) -> Span {
+    Span::new(0, ix.text_len.min(u64::from(u32::MAX)) as u32)
+}
+
+/// A check side that runs a streamed file (see `check::check_runners`); its pager is made
+/// on the thread that runs it.
+pub fn runner(
+    ix: std::sync::Arc<Index>,
+    mut callees: Box<dyn crate::eval::CalleeSource + Send>,
+    opts: crate::eval::RunOptions,
+) -> crate::check::Runner {
+    Box::new(move |db, sink| {
+        let pager = std::rc::Rc::new(paged::Pager::new(ix));
+        crate::eval::run_stream(db, pager, callees.as_mut(), &opts, sink)
+    })
+}

@@ -1,0 +1,320 @@
+//! The command line's streaming path: `parse --summary`, `run` and `check` on files of 8 MB
+//! and more (or with `--stream`) read them as a stream in constant memory, with a progress
+//! line on a terminal for files over 10 MB. Anything the stream cannot do exactly as the
+//! whole-file path (a legacy encoding, diagnostics to render) falls back to that path.
+
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::span::SourceDb;
+use nctrans::stream::{self, lines, Index, Progress};
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Files this large are streamed without `--stream`.
+pub const AUTO_BYTES: u64 = 8 * 1024 * 1024;
+/// Files this large get a progress line on a terminal.
+const PROGRESS_BYTES: u64 = 10 * 1024 * 1024;
+
+/// Whether to stream `path`: asked for, or large, and not in a forced legacy encoding.
+pub fn wanted(path: &Path, input: &super::InputOpts) -> bool {
+    if input.encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+        return false;
+    }
+    input.stream || std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_BYTES)
+}
+
+/// Renders progress on stderr (`\r`-updated), at most ten times a second.
+pub struct ProgressLine {
+    what: &'static str,
+    start: Instant,
+    last: Option<Instant>,
+    on: bool,
+}
+
+impl ProgressLine {
+    pub fn new(what: &'static str, size: u64) -> ProgressLine {
+        ProgressLine {
+            what,
+            start: Instant::now(),
+            last: None,
+            on: size > PROGRESS_BYTES && std::io::stderr().is_terminal(),
+        }
+    }
+
+    pub fn update(&mut self, p: Progress) {
+        if !self.on || self.last.is_some_and(|t| t.elapsed().as_millis() < 100) {
+            return;
+        }
+        self.last = Some(Instant::now());
+        let secs = self.start.elapsed().as_secs_f64().max(1e-3);
+        let frac = p.done as f64 / p.total.max(1) as f64;
+        let eta = if frac > 0.0 { secs / frac - secs } else { 0.0 };
+        eprint!(
+            "\r{}: {:.0}/{:.0} MB ({:.0}%), {:.0} blocks/s, ETA {:.0} s   ",
+            self.what,
+            p.done as f64 / 1e6,
+            p.total as f64 / 1e6,
+            frac * 100.0,
+            p.blocks as f64 / secs,
+            eta
+        );
+    }
+
+    pub fn done(&self) {
+        if self.on && self.last.is_some() {
+            eprint!("\r{:70}\r", "");
+        }
+    }
+}
+
+/// The dialect from `--from`, the extension, else the first lines of the file.
+fn dialect_of(path: &Path, from: Option<Dialect>) -> Option<Dialect> {
+    if let Some(d) = from {
+        return Some(d);
+    }
+    let name = path.display().to_string();
+    if let Some(d) = path.extension().and_then(|e| e.to_str()).and_then(Dialect::from_extension) {
+        return Some(d);
+    }
+    let (input, _) = stream::open(path).ok()?;
+    let mut l = lines::Lines::new(input).ok()?;
+    let mut head = String::new();
+    for _ in 0..400 {
+        match l.next_line() {
+            Ok(Some(x)) => {
+                head.push_str(x.text);
+                head.push('\n');
+            }
+            _ => break,
+        }
+    }
+    Some(nctrans::detect_dialect(&name, &head))
+}
+
+/// First scan with a progress line; `None` when the file cannot be streamed exactly
+/// (the caller then reads it whole, which also renders any diagnostics).
+fn scan(
+    path: &Path,
+    from: Option<Dialect>,
+    file: usize,
+    each: &mut dyn FnMut(usize, &nctrans::ir::Stmt),
+) -> Option<Index> {
+    let dialect = dialect_of(path, from)?;
+    let (input, size) = stream::open(path).ok()?;
+    let mut line = ProgressLine::new("reading", size);
+    let mut report = |p: Progress| line.update(p);
+    let opts = ParseOptions::for_dialect(dialect);
+    let r = stream::scan(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, each, Some(&mut report));
+    line.done();
+    r.ok().filter(|ix| ix.diags.is_empty())
+}
+
+/// `nctrans parse --summary` streamed.
+pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
+    let ix = scan(path, from, 0, &mut |_, _| {})?;
+    let text = format!("{}: {} program(s), {} blocks, 0 warning(s)\n", path.display(), ix.programs.len(), ix.blocks);
+    Some(if std::io::stdout().lock().write_all(text.as_bytes()).is_err() {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Run options from the file's header lines and `--set`.
+fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunOptions, ExitCode> {
+    let mut inputs = nctrans::eval::header_inputs(&ix.header).map_err(|e| {
+        eprintln!("error: {}: bad `nctrans: set` header: {e}", ix.path.display());
+        ExitCode::from(2)
+    })?;
+    for s in &eval.set {
+        let i = nctrans::eval::parse_input(s).map_err(|e| {
+            eprintln!("error: --set {e}");
+            ExitCode::from(2)
+        })?;
+        inputs.retain(|h| h.target != i.target);
+        inputs.push(i);
+    }
+    Ok(nctrans::eval::RunOptions {
+        max_steps: eval.max_steps,
+        inputs,
+        semantics: None,
+        probe_contact: eval.probe_contact,
+    })
+}
+
+/// Gives the streamed files their text so diagnostics render (only when there are some).
+fn load_texts(db: &mut SourceDb, files: &[(usize, &Path)]) {
+    for &(id, path) in files {
+        if let Ok(bytes) = std::fs::read(path) {
+            db.set_text(id, nctrans::read::decode(&bytes, None).text);
+        }
+    }
+}
+
+/// `nctrans run` streamed.
+pub fn run(
+    path: &Path,
+    from: Option<Dialect>,
+    eval: &super::EvalOpts,
+    format: nctrans::eval::Format,
+    quiet: bool,
+) -> Option<ExitCode> {
+    use nctrans::eval::{self, Ending};
+    let ix = scan(path, from, 0, &mut |_, _| {})?;
+    let opts = match run_options(&ix, eval) {
+        Ok(o) => o,
+        Err(code) => return Some(code),
+    };
+    let mut db = SourceDb::new();
+    let main_id = db.add(path.display().to_string(), String::new());
+    let size = ix.size;
+    let pager = std::rc::Rc::new(stream::paged::Pager::new(Arc::new(ix)));
+    let progress_on = ProgressLine::new("running", size).on;
+    if progress_on {
+        let mut l = ProgressLine::new("running", size);
+        pager.set_progress(Box::new(move |p| l.update(p)));
+    }
+    let p2 = std::rc::Rc::clone(&pager);
+    let line_of = move |o: eval::Origin| (o.file == main_id).then(|| p2.line_of(o.span.lo)).flatten();
+    let mut callees = eval::DirCallees { semantics: None };
+    let (outcome, write_error) = if quiet {
+        (eval::run_stream(&mut db, pager, &mut callees, &opts, &mut eval::NullSink), None)
+    } else {
+        let out = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+        let mut sink = eval::WriterSink::new(out, format, Box::new(line_of));
+        let o = eval::run_stream(&mut db, pager, &mut callees, &opts, &mut sink);
+        let err = sink.error.take().or_else(|| sink.out.flush().err());
+        (o, err)
+    };
+    if progress_on {
+        eprint!("\r{:70}\r", "");
+    }
+    if !outcome.diags.is_empty() {
+        load_texts(&mut db, &[(main_id, path)]);
+    }
+    eprint!("{}", nctrans::diag::render(&db, &outcome.diags));
+    if let Some(e) = write_error {
+        eprintln!("error: writing the trace: {e}");
+        return Some(ExitCode::from(2));
+    }
+    Some(match outcome.ending {
+        Ending::End(_) | Ending::Stopped => ExitCode::SUCCESS,
+        Ending::Error => ExitCode::from(1),
+        Ending::Alarm { .. } => ExitCode::from(3),
+        Ending::Limit { .. } => ExitCode::from(4),
+    })
+}
+
+/// One side of `nctrans check`: streamed when wanted and possible.
+pub fn side(
+    db: &mut SourceDb,
+    path: &Path,
+    from: Option<Dialect>,
+    eval: &super::EvalOpts,
+) -> Option<Result<nctrans::check::Runner, ExitCode>> {
+    let file = db.len();
+    let ix = scan(path, from, file, &mut |_, _| {})?;
+    let opts = match run_options(&ix, eval) {
+        Ok(o) => o,
+        Err(code) => return Some(Err(code)),
+    };
+    db.add(path.display().to_string(), String::new());
+    let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
+    Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
+}
+
+/// Loads the texts of streamed check sides before rendering a report's diagnostics.
+pub fn texts_for_report(db: &mut SourceDb, streamed: &[(usize, &Path)]) {
+    load_texts(db, streamed);
+}
+
+/// `nctrans --to fanuc IN -o OUT` streamed (with verification unless `--no-verify`);
+/// `None` when the input is not streamed or not a straight-line program (then the caller
+/// translates it whole; a partial output is removed first).
+pub fn translate(
+    a: &super::translate_cli::TranslateArgs,
+    c: &nctrans::config::Config,
+    input: &Path,
+) -> Option<ExitCode> {
+    use stream::translate::{self as st, Fallback};
+    let out = a.output.as_deref()?;
+    if c.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+        return None;
+    }
+    let size = std::fs::metadata(input).ok()?.len();
+    if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
+        return None;
+    }
+    let eol = first_line_ending(input)?;
+    let opts = match super::translate_cli::options(c, input, eol) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Some(ExitCode::from(2));
+        }
+    };
+    let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
+    let file = match std::fs::File::create(&tmp) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", tmp.display());
+            return Some(ExitCode::from(2));
+        }
+    };
+    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    let mut line = ProgressLine::new("translating", size);
+    let mut report = |p: Progress| line.update(p);
+    let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
+    line.done();
+    drop(w);
+    let done = match r {
+        Ok(d) => d,
+        Err(f) => {
+            let _ = std::fs::remove_file(&tmp);
+            if let Fallback::NotStraight(why) = &f {
+                if size >= AUTO_BYTES {
+                    eprintln!(
+                        "note: {} is read whole: it has {why} (only straight-line programs stream)",
+                        input.display()
+                    );
+                }
+            }
+            return None;
+        }
+    };
+    if let Err(e) = std::fs::rename(&tmp, out) {
+        eprintln!("error: cannot write {}: {e}", out.display());
+        return Some(ExitCode::from(2));
+    }
+    if !c.verify {
+        return Some(ExitCode::SUCCESS);
+    }
+    let mut line = ProgressLine::new("reading back", size);
+    let mut report = |p: Progress| line.update(p);
+    let v = st::verify(done.index, out, c.max_steps, Some(&mut report));
+    line.done();
+    if !v.diags.is_empty() {
+        let mut db = SourceDb::new();
+        db.add(input.display().to_string(), String::new());
+        db.add(out.display().to_string(), String::new());
+        load_texts(&mut db, &[(0, input), (1, out)]);
+        eprint!("{}", nctrans::diag::render(&db, &v.diags));
+    }
+    eprint!("{}", v.diff);
+    eprintln!("{}", v.summary);
+    Some(if v.equivalent { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}
+
+/// The line ending of the first line end in the file's first 64 KiB (LF when none).
+fn first_line_ending(path: &Path) -> Option<nctrans::read::LineEnding> {
+    use std::io::Read;
+    let mut buf = vec![0u8; 64 * 1024];
+    let mut f = std::fs::File::open(path).ok()?;
+    let n = f.read(&mut buf).ok()?;
+    buf.truncate(n);
+    let head = String::from_utf8_lossy(&buf);
+    Some(nctrans::read::detect_line_ending(&head))
+}
