@@ -62,7 +62,7 @@ fn given(m: &ArgMatches, id: &str) -> bool {
 }
 
 /// The configuration: defaults, then `nctrans.toml`, then the flags given.
-fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Config, String> {
+pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Config, String> {
     let mut c = match &b.config {
         Some(p) => Config::load(p)?,
         None if Path::new(config::FILE_NAME).is_file() => Config::load(Path::new(config::FILE_NAME))?,
@@ -97,11 +97,18 @@ fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Config,
     if let Some(e) = t.input_encoding {
         c.input_encoding = Some(e);
     }
-    let to = c.to.ok_or("a batch needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
+    if let Some(n) = t.program_number {
+        c.program_number = Some(n);
+    }
+    let to = c.to.ok_or("a translation needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
     let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };
+    // The first rule that covers a variable places it, so flag rules go before the file's.
+    let before = if to == Dialect::Fanuc { c.var_map_to_fanuc.len() } else { c.var_map_to_sinumerik.len() };
     for r in &t.var_map {
         flag(&mut c, &format!("variables.{dir}"), r, "--var-map")?;
     }
+    let rules = if to == Dialect::Fanuc { &mut c.var_map_to_fanuc } else { &mut c.var_map_to_sinumerik };
+    rules.rotate_left(before);
     for r in &t.tool_map {
         flag(&mut c, "tools", r, "--tool-map")?;
     }
@@ -168,9 +175,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     };
     let job: Box<dyn FileJob> = match to {
         Dialect::Fanuc => Box::new(jobs::ToFanucJob::new(settings)),
-        Dialect::Sinumerik => {
-            return fail("a batch to sinumerik is not available in this build (the FANUC → Sinumerik translator)")
-        }
+        Dialect::Sinumerik => Box::new(nctrans::batch::jobs_sinumerik::ToSinumerikJob::new(settings)),
     };
     let mut opts = BatchOptions::new(input, &output, to);
     opts.jobs = if c.jobs == 0 { batch::default_jobs() } else { c.jobs };

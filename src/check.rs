@@ -104,10 +104,20 @@ fn opt_eq(a: Option<f64>, b: Option<f64>) -> bool {
     }
 }
 
+/// The FANUC alarm a Siemens `SETAL(64000+n)` stands for: the FANUC → Sinumerik
+/// translation raises FANUC run-time alarm n itself where Siemens has no alarm of its own
+/// for the case (`SETAL(64115)` guards an indirect variable out of range, FANUC 115).
+fn fanuc_alarm_of(n: i64) -> Option<i64> {
+    (64_000..=64_999).contains(&n).then_some(n - 64_000)
+}
+
 /// The class of a run-time alarm, so that FANUC 112 and Siemens 14051 (both a division
 /// by zero) compare equal; user alarms compare FANUC `#3000=n` (3000+n) with Siemens
-/// `SETAL(65000+n)`.
+/// `SETAL(65000+n)`; `SETAL(64000+n)` has the class of FANUC alarm n.
 fn alarm_class(n: i64) -> Option<String> {
+    if let Some(f) = fanuc_alarm_of(n) {
+        return alarm_class(f);
+    }
     Some(match n {
         111 | 112 | 14051 => "arithmetic".into(),
         128 | 14080 => "jump target".into(),
@@ -152,7 +162,10 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
         (Stop { optional: o1, message: m1 }, Stop { optional: o2, message: m2 }) => o1 == o2 && m1 == m2,
         (Message { text: t1 }, Message { text: t2 }) => t1 == t2,
         (Alarm { number: n1, .. }, Alarm { number: n2, .. }) => {
-            n1 == n2 || (alarm_class(*n1).is_some() && alarm_class(*n1) == alarm_class(*n2))
+            n1 == n2
+                || fanuc_alarm_of(*n1) == Some(*n2)
+                || fanuc_alarm_of(*n2) == Some(*n1)
+                || (alarm_class(*n1).is_some() && alarm_class(*n1) == alarm_class(*n2))
         }
         (End { code: c1, .. }, End { code: c2, .. }) => {
             let ret = |c: &str| matches!(c, "M99" | "RET" | "M17");
@@ -481,5 +494,16 @@ mod tests {
             &Event::Alarm { number: 14080, message: "x".into() }
         ));
         assert!(same_event(&Event::End { code: "M99", steps: 3 }, &Event::End { code: "RET", steps: 9 }));
+    }
+
+    #[test]
+    fn setal_64000_plus_n_is_fanuc_alarm_n() {
+        let alarm = |number| Event::Alarm { number, message: String::new() };
+        assert!(same_event(&alarm(115), &alarm(64115)));
+        assert!(same_event(&alarm(64115), &alarm(115)));
+        assert!(same_event(&alarm(64115), &alarm(17020)), "the same class as Siemens' own index alarm");
+        assert!(same_event(&alarm(500), &alarm(64500)), "a FANUC alarm without a class pairs by number");
+        assert!(!same_event(&alarm(112), &alarm(64115)));
+        assert!(!same_event(&alarm(3115), &alarm(64115)), "user alarms are 65000+n");
     }
 }

@@ -463,7 +463,7 @@ to_sinumerik = []    # e.g. ["#500-#599=R100"]
 
 [programs.to_sinumerik]
 # FANUC O numbers -> Siemens program names (--program-map 9010=PROBE_X). Unlisted: a main
-# program alone in its file keeps the file name, others are named O9010.
+# program alone in its file keeps the file name, others are named O_9010 (Siemens names start with two letters or _).
 # "O9010" = "PROBE_X"
 
 [translate]

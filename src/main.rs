@@ -141,7 +141,20 @@ fn main() -> ExitCode {
         if cli.translate.to == Some(Dialect::Sinumerik) {
             return cli_sinumerik::run(&cli.translate);
         }
-        return translate_cli::run(&cli.translate).unwrap_or_else(|| {
+        if cli.translate.to.is_some() {
+            // Single-file translation reads the project configuration like a batch does.
+            let config = match batch_cli::configure(&cli.translate, &cli.batch, &matches) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            };
+            if let Some(code) = translate_cli::run(&cli.translate, &config) {
+                return code;
+            }
+        }
+        return translate_cli::run(&cli.translate, &nctrans::config::Config::default()).unwrap_or_else(|| {
             eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
             ExitCode::from(2)
         });

@@ -233,10 +233,14 @@ pub fn texts_for_report(db: &mut SourceDb, streamed: &[(usize, &Path)]) {
 /// `nctrans --to fanuc IN -o OUT` streamed (with verification unless `--no-verify`);
 /// `None` when the input is not streamed or not a straight-line program (then the caller
 /// translates it whole; a partial output is removed first).
-pub fn translate(a: &super::translate_cli::TranslateArgs, input: &Path) -> Option<ExitCode> {
+pub fn translate(
+    a: &super::translate_cli::TranslateArgs,
+    c: &nctrans::config::Config,
+    input: &Path,
+) -> Option<ExitCode> {
     use stream::translate::{self as st, Fallback};
     let out = a.output.as_deref()?;
-    if a.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+    if c.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
         return None;
     }
     let size = std::fs::metadata(input).ok()?.len();
@@ -244,7 +248,7 @@ pub fn translate(a: &super::translate_cli::TranslateArgs, input: &Path) -> Optio
         return None;
     }
     let eol = first_line_ending(input)?;
-    let opts = match super::translate_cli::options(a, input, eol) {
+    let opts = match super::translate_cli::options(c, input, eol) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
@@ -285,12 +289,12 @@ pub fn translate(a: &super::translate_cli::TranslateArgs, input: &Path) -> Optio
         eprintln!("error: cannot write {}: {e}", out.display());
         return Some(ExitCode::from(2));
     }
-    if a.no_verify {
+    if !c.verify {
         return Some(ExitCode::SUCCESS);
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = st::verify(done.index, out, a.max_steps, Some(&mut report));
+    let v = st::verify(done.index, out, c.max_steps, Some(&mut report));
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();

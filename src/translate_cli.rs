@@ -2,6 +2,8 @@
 //! Siemens program and the subprograms it calls (beside it), translates, writes the output,
 //! then verifies it by parsing it back as FANUC and comparing both runs' traces.
 
+use nctrans::batch::library::ProgKey;
+use nctrans::config::{Comments, Config, LineEnds, Unsupported};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
@@ -10,13 +12,12 @@ use nctrans::passes::UnsupportedPolicy;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, TranslateOptions};
 use nctrans::{diag, read};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(clap::Args, Debug)]
 pub struct TranslateArgs {
-    /// Translate the input to this dialect (fanuc).
+    /// Translate the input to this dialect: fanuc, or sinumerik (alias siemens).
     #[arg(long, value_parser = parse_dialect)]
     pub to: Option<Dialect>,
     /// The program to translate.
@@ -30,13 +31,13 @@ pub struct TranslateArgs {
     /// What an untranslatable construct does: error (default) or warn (a marked comment line).
     #[arg(long, default_value = "error", value_parser = ["error", "warn"])]
     pub unsupported: String,
-    /// Variable mapping overrides: 'R0-R99=#100', 'R5=#600', 'NAME=#150' (repeatable).
+    /// Variable mapping overrides: to FANUC 'R0-R99=#100', 'R5=#600', 'NAME=#150'; to Sinumerik '#500-#599=R100' (repeatable).
     #[arg(long = "var-map", value_name = "MAP")]
     pub var_map: Vec<String>,
     /// Tool name → FANUC tool number: NAME=n (repeatable).
     #[arg(long = "tool-map", value_name = "NAME=N")]
     pub tool_map: Vec<String>,
-    /// Program name → O number: NAME=9001 (repeatable).
+    /// Program map: to FANUC NAME=9001 (name → O number); to Sinumerik 9010=PROBE_X (repeatable).
     #[arg(long = "program-map", value_name = "NAME=N")]
     pub program_map: Vec<String>,
     /// O number of the main program.
@@ -71,25 +72,14 @@ fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
     encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| format!("unknown encoding '{s}'"))
 }
 
-fn pairs(list: &[String], what: &str) -> Result<BTreeMap<String, u32>, String> {
-    let mut m = BTreeMap::new();
-    for s in list {
-        for part in s.split(',').filter(|p| !p.trim().is_empty()) {
-            let (k, v) = part.split_once('=').ok_or_else(|| format!("{what} '{part}': expected NAME=n"))?;
-            let n: u32 = v.trim().parse().map_err(|_| format!("{what} '{part}': {v} is not a number"))?;
-            m.insert(k.trim().to_string(), n);
-        }
-    }
-    Ok(m)
-}
-
 fn fail(msg: String) -> ExitCode {
     eprintln!("error: {msg}");
     ExitCode::from(2)
 }
 
 /// Runs the translation mode. `None` when the arguments do not ask for it.
-pub fn run(a: &TranslateArgs) -> Option<ExitCode> {
+/// `c` is the project configuration with the given flags already applied over it.
+pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
     let to = a.to?;
     let Some(input) = &a.input else {
         return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
@@ -97,11 +87,11 @@ pub fn run(a: &TranslateArgs) -> Option<ExitCode> {
     if to != Dialect::Fanuc {
         return Some(fail(format!("translation to {} is not available in this build", to.name())));
     }
-    Some(to_fanuc(a, input))
+    Some(to_fanuc(a, c, input))
 }
 
-fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
-    if let Some(code) = crate::stream_cli::translate(a, input) {
+fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
+    if let Some(code) = crate::stream_cli::translate(a, c, input) {
         return code;
     }
     let bytes = match std::fs::read(input) {
@@ -110,12 +100,12 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
     };
     let mut db = SourceDb::new();
     let name = input.display().to_string();
-    let loaded = nctrans::load(&mut db, &name, &bytes, a.input_encoding);
+    let loaded = nctrans::load(&mut db, &name, &bytes, c.input_encoding);
     let dialect = nctrans::detect_dialect(&name, &db.get(loaded.file).text);
     if dialect != Dialect::Sinumerik {
         return fail(format!("{name} is not a Sinumerik program (only Sinumerik → FANUC is translated)"));
     }
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+    let popts = ParseOptions { semantics: c.sinumerik_semantics() };
     let parsed = nctrans::parse(&db, loaded.file, dialect, &popts);
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
@@ -141,7 +131,7 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
         todo.extend(called_names(&p.unit));
         subs.push(p.unit);
     }
-    let opts = match options(a, input, loaded.line_ending) {
+    let opts = match options(c, input, loaded.line_ending) {
         Ok(o) => o,
         Err(e) => return fail(e),
     };
@@ -152,7 +142,7 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
         eprintln!("error: not translated ({} construct(s) cannot be expressed on FANUC)", t.unsupported.max(1));
         return ExitCode::from(1);
     }
-    let out_bytes = read::encode(&t.text, loaded.encoding, loaded.bom);
+    let out_bytes = read::encode(&t.text, c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
     if let Err(e) = write_output(a.output.as_deref(), &out_bytes) {
         return fail(e);
     }
@@ -160,11 +150,11 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
         eprintln!("error: the output is incomplete: {} construct(s) marked UNSUPPORTED", t.unsupported);
         return ExitCode::from(1);
     }
-    if a.no_verify {
+    if !c.verify {
         return ExitCode::SUCCESS;
     }
     let out_name = a.output.as_ref().map_or("<translation>.nc".to_string(), |p| p.display().to_string());
-    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, a.max_steps);
+    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, c.max_steps);
     eprint!("{}", v.rendered);
     eprintln!("{}", v.summary);
     if v.equivalent {
@@ -174,32 +164,48 @@ fn to_fanuc(a: &TranslateArgs, input: &Path) -> ExitCode {
     }
 }
 
-pub(crate) fn options(a: &TranslateArgs, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
+/// Translation options from the configuration (flags already applied over `nctrans.toml`).
+pub(crate) fn options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
     let mut var_rules = Vec::new();
-    for s in &a.var_map {
+    for s in &c.var_map_to_fanuc {
         var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);
     }
-    let program_map =
-        pairs(&a.program_map, "--program-map")?.into_iter().map(|(k, v)| (k.to_ascii_uppercase(), v)).collect();
+    let program_map = c
+        .programs_to_fanuc
+        .iter()
+        .filter_map(|(k, v)| match (k, v) {
+            (ProgKey::Name(s), ProgKey::Number(n)) => Some((s.to_ascii_uppercase(), *n)),
+            _ => None,
+        })
+        .collect();
     let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
     Ok(TranslateOptions {
-        unsupported: if a.unsupported == "warn" { UnsupportedPolicy::Warn } else { UnsupportedPolicy::Error },
-        var_rules,
-        tool_map: pairs(&a.tool_map, "--tool-map")?,
-        program_map,
-        program_number: a.program_number,
-        comments: match a.comments.as_str() {
-            "ascii" => CommentMode::Ascii,
-            "drop" => CommentMode::Drop,
-            _ => CommentMode::Keep,
+        unsupported: match c.unsupported {
+            Unsupported::Warn => UnsupportedPolicy::Warn,
+            Unsupported::Error => UnsupportedPolicy::Error,
         },
-        number_blocks: a.number_blocks,
-        line_ending: eol,
-        compound_conditions: a.compound_conditions,
+        var_rules,
+        tool_map: c.tools.clone(),
+        program_map,
+        program_number: c.program_number,
+        comments: match c.comments {
+            Comments::Ascii => CommentMode::Ascii,
+            Comments::Drop => CommentMode::Drop,
+            Comments::Keep => CommentMode::Keep,
+        },
+        number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
+        line_ending: match c.line_ends {
+            LineEnds::Keep => eol,
+            LineEnds::Lf => read::LineEnding::Lf,
+            LineEnds::CrLf => read::LineEnding::CrLf,
+            LineEnds::Cr => read::LineEnding::Cr,
+        },
+        compound_conditions: c.fanuc.compound_conditions,
+        target: c.fanuc_semantics(),
+        source: c.sinumerik_semantics(),
         main_name: stem,
         main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
         source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
-        ..TranslateOptions::default()
     })
 }
 

@@ -80,7 +80,8 @@ impl Translation {
     }
 }
 
-fn commons_of(p: &Program) -> BTreeSet<u32> {
+/// The common variables (`#100`..`#999`) a program reads or writes by number.
+pub fn commons_of(p: &Program) -> BTreeSet<u32> {
     let mut set = BTreeSet::new();
     fn expr(e: &Expr, set: &mut BTreeSet<u32>) {
         if let ExprKind::Var(v) = &e.kind {

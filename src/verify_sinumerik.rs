@@ -8,10 +8,10 @@ use crate::check::{self, CheckReport, Side, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
-use crate::eval::{input, Ending, Outcome, RunOptions};
+use crate::eval::{input, Ending, Input, Outcome, RunOptions};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
-use crate::translate_sinumerik::Translation;
+use crate::translate_sinumerik::{OutFile, Translation};
 
 /// Serves the translation's `.SPF` files to the Siemens run, from memory.
 struct Emitted {
@@ -93,10 +93,42 @@ pub fn verify_profiled(
     max_steps: u64,
     profiles: &Profiles,
 ) -> CheckReport {
-    let mut db = db.clone();
     let Some(main) = tr.main() else {
-        return failed(db, vec![Diagnostic::error("NC372", "the translation has no main program to run")]);
+        return failed(db.clone(), vec![Diagnostic::error("NC372", "the translation has no main program to run")]);
     };
+    let spec = RunSpec {
+        main,
+        out_dir,
+        max_steps,
+        profiles,
+        fanuc_callees: Box::new(DirCallees { semantics: Some(profiles.fanuc.clone()) }),
+        extra_fanuc: vec![],
+        extra_siemens: vec![],
+    };
+    verify_run(db, fanuc_file, fanuc, tr, spec)
+}
+
+/// One run of a proof: which translated program runs, where the FANUC side finds its
+/// callees, and inputs beyond the header lines (a batch's argument vectors and `--set`).
+pub struct RunSpec<'a> {
+    /// The Siemens program run against the first program of the FANUC unit.
+    pub main: &'a OutFile,
+    /// The folder the Siemens files are shown in (diagnostics point at `out_dir/NAME.MPF`).
+    pub out_dir: &'a str,
+    /// The step limit of each run.
+    pub max_steps: u64,
+    pub profiles: &'a Profiles,
+    pub fanuc_callees: Box<dyn CalleeSource + Send>,
+    /// Given after the header inputs of each side, so they win.
+    pub extra_fanuc: Vec<Input>,
+    pub extra_siemens: Vec<Input>,
+}
+
+/// Runs the first program of `fanuc` and `spec.main` (the other programs of the translation
+/// served from memory) and compares the traces.
+pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translation, spec: RunSpec) -> CheckReport {
+    let mut db = db.clone();
+    let RunSpec { main, out_dir, max_steps, profiles, .. } = spec;
     let path = |name: &str| if out_dir.is_empty() { name.to_string() } else { format!("{out_dir}/{name}") };
     let main_id = db.add(path(&main.name), main.text.clone());
     let parsed =
@@ -111,22 +143,24 @@ pub fn verify_profiled(
         return failed(db, diags);
     }
     let inputs = |text: &str| input::header_inputs(text);
-    let (in_a, in_b) = match (inputs(&db.get(fanuc_file).text), inputs(&main.text)) {
+    let (mut in_a, mut in_b) = match (inputs(&db.get(fanuc_file).text), inputs(&main.text)) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
             return failed(db, vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
         }
     };
+    in_a.extend(spec.extra_fanuc);
+    in_b.extend(spec.extra_siemens);
     let files = tr
         .files
         .iter()
-        .filter(|f| !f.main || f.name != main.name)
+        .filter(|f| f.name != main.name)
         .map(|f| (f.program.clone(), path(&f.name), f.text.clone()))
         .collect();
     let emitted = Emitted { files, semantics: profiles.sinumerik.clone() };
     let a = Side {
         unit: fanuc.clone(),
-        callees: Box::new(DirCallees { semantics: Some(profiles.fanuc.clone()) }),
+        callees: spec.fanuc_callees,
         run: RunOptions { inputs: in_a, max_steps, semantics: Some(profiles.fanuc.clone()), ..RunOptions::default() },
     };
     let b = Side {

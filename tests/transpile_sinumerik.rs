@@ -597,3 +597,23 @@ fn m99_with_p_in_a_main_program_continues_at_that_block() {
         "DEF REAL LOC1\nLOC1=0\nN5 LBL_5: LOC1=LOC1+1\nG0 X=LOC1\nIF LOC1-3>=0 GOTOF LBL_9\nGOTOB LBL_5\nN9 LBL_9: M30\n",
     );
 }
+
+#[test]
+fn the_guard_of_a_runtime_indirect_variable_verifies_against_fanuc_alarm_115() {
+    // #[#1] with #1 = 50 (an input, not known before the run): FANUC has no #50 and stops
+    // with alarm 115; the translation's guard raises SETAL(64115), which the checker pairs
+    // with FANUC 115.
+    let src = "%\nO1234\n(nctrans: set #2=50.)\n#1=#2\n#[#1]=6.\nG0 X1.\nM30\n%\n";
+    let mut db = SourceDb::new();
+    let file = db.add("guard.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    assert!(tr.main().unwrap().text.contains("SETAL(64115)"), "{}", tr.main().unwrap().text);
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    assert!(
+        matches!(report.verdict, nctrans::check::Verdict::Equivalent { .. }),
+        "{:?}\n{}",
+        report.verdict,
+        report.diff
+    );
+}

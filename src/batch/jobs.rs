@@ -1,6 +1,7 @@
 //! The real per-file jobs: translate one file with the batch's maps, verify it by running
-//! both programs, and hand back the output bytes. Sinumerik → FANUC here; the other
-//! direction in `jobs_sinumerik.rs`.
+//! both programs, and hand back the output bytes. Sinumerik → FANUC here, with what both
+//! directions share (settings, loading, outcomes, combining verdicts); FANUC → Sinumerik in
+//! `jobs_sinumerik.rs`.
 
 use super::library::ProgKey;
 use super::{discover, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
@@ -54,7 +55,7 @@ impl JobSettings {
         })
     }
 
-    fn line_ending(&self, input: LineEnding) -> LineEnding {
+    pub(crate) fn line_ending(&self, input: LineEnding) -> LineEnding {
         match self.line_ends {
             LineEnds::Keep => input,
             LineEnds::Lf => LineEnding::Lf,
@@ -84,6 +85,49 @@ pub(crate) fn load(
     let opts = ParseOptions { semantics: sem.clone() };
     let parsed = crate::parse(db, loaded.file, dialect, &opts);
     Ok(LoadedFile { unit: parsed.unit, loaded, diags: parsed.diags })
+}
+
+/// A job's input file and the files holding the programs it calls (transitively, from the
+/// library), read and parsed as `dialect`. A read or parse failure is the file's outcome.
+pub(crate) fn load_with_callees(
+    db: &mut SourceDb,
+    file: &InputFile,
+    ctx: &BatchContext,
+    dialect: Dialect,
+    sem: &Semantics,
+) -> Result<(LoadedFile, Vec<LoadedFile>), Box<FileOutcome>> {
+    let enc = ctx.options.encoding;
+    let read_error = |e: String| Box::new(failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]));
+    let main = load(db, file, dialect, enc, sem).map_err(read_error)?;
+    let mut subs = Vec::new();
+    for i in ctx.library.callee_files(file.index) {
+        let Some(f) = ctx.files.get(i) else { continue };
+        subs.push(load(db, f, dialect, enc, sem).map_err(read_error)?);
+    }
+    let mut all: Vec<&LoadedFile> = vec![&main];
+    all.extend(subs.iter());
+    if let Some(mut o) = parse_failure(db, &all) {
+        o.blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
+        return Err(Box::new(o));
+    }
+    Ok((main, subs))
+}
+
+/// The outcome of a file whose translation was refused: `n` constructs the target cannot
+/// express (errors, or marked comments under the warn policy). No output.
+pub(crate) fn unsupported(n: usize, target: &str, blocks: u64, diagnostics: Vec<DiagRecord>) -> FileOutcome {
+    let mut o =
+        failed(Status::Unsupported, format!("not translated: {n} construct(s) {target} cannot express"), diagnostics);
+    o.blocks = blocks;
+    o
+}
+
+/// Puts verification's findings into an outcome.
+pub(crate) fn apply(outcome: &mut FileOutcome, v: Verified) {
+    outcome.status = v.status;
+    outcome.summary = v.summary;
+    outcome.events = v.events;
+    outcome.diagnostics.extend(v.diagnostics);
 }
 
 /// An outcome for a file that could not be read or parsed.
@@ -154,27 +198,11 @@ impl ToFanucJob {
 impl FileJob for ToFanucJob {
     fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
         let mut db = SourceDb::new();
-        let enc = ctx.options.encoding;
-        let sem = &self.settings.sinumerik;
-        let main = match load(&mut db, file, Dialect::Sinumerik, enc, sem) {
-            Ok(m) => m,
-            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]),
+        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &self.settings.sinumerik) {
+            Ok(l) => l,
+            Err(o) => return *o,
         };
-        let mut subs = Vec::new();
-        for i in ctx.library.callee_files(file.index) {
-            let Some(f) = ctx.files.get(i) else { continue };
-            match load(&mut db, f, Dialect::Sinumerik, enc, sem) {
-                Ok(l) => subs.push(l),
-                Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]),
-            }
-        }
         let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let mut all: Vec<&LoadedFile> = vec![&main];
-        all.extend(subs.iter());
-        if let Some(mut o) = parse_failure(&db, &all) {
-            o.blocks = blocks;
-            return o;
-        }
         let opts = match self.options(ctx, file, main.loaded.line_ending) {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
@@ -197,13 +225,7 @@ impl FileJob for ToFanucJob {
         }
         if !t.ok() {
             let n = t.diags.iter().filter(|d| d.is_error() || d.code.starts_with("NC3")).count().max(t.unsupported);
-            let mut o = failed(
-                Status::Unsupported,
-                format!("not translated: {n} construct(s) FANUC cannot express"),
-                diagnostics,
-            );
-            o.blocks = blocks;
-            return o;
+            return unsupported(n, "FANUC", blocks, diagnostics);
         }
         if let Some(fault) = &self.fault {
             fault(file, &mut t.text);
@@ -222,12 +244,11 @@ impl FileJob for ToFanucJob {
             let vectors = key.map(|k| ctx.library.arg_vectors(&k)).unwrap_or_default();
             let out_name = super::rel_string(&discover::fanuc_output(&file.rel));
             let v = self.verify(&mut db, &main.unit, &sub_units, &t, &out_name, &vectors);
-            outcome.status = v.status;
-            outcome.summary = v.summary;
-            outcome.events = v.events;
-            diagnostics.extend(v.diagnostics);
+            outcome.diagnostics = diagnostics;
+            apply(&mut outcome, v);
+        } else {
+            outcome.diagnostics = diagnostics;
         }
-        outcome.diagnostics = diagnostics;
         outcome
     }
 }
@@ -359,8 +380,8 @@ impl ToFanucJob {
     }
 }
 
-/// Siemens subprograms served from memory, found by name.
-struct MemCallees(Vec<Unit>);
+/// Called programs served from memory: Siemens ones by name, FANUC ones by `O` number.
+pub(crate) struct MemCallees(pub Vec<Unit>);
 
 impl CalleeSource for MemCallees {
     fn find(
@@ -370,9 +391,16 @@ impl CalleeSource for MemCallees {
         _dialect: Dialect,
         name: &CalleeName,
     ) -> Result<Option<Unit>, Diagnostic> {
-        let CalleeName::Name(n) = name else { return Ok(None) };
-        let want = n.to_ascii_uppercase();
-        Ok(self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str())).cloned())
+        let found = match name {
+            CalleeName::Name(n) => {
+                let want = n.to_ascii_uppercase();
+                self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str()))
+            }
+            CalleeName::Number(n) => {
+                self.0.iter().find(|u| u.programs.iter().any(|p| p.name == Some(ProgName::Number(*n))))
+            }
+        };
+        Ok(found.cloned())
     }
 }
 

@@ -71,6 +71,20 @@ pub struct CallSite {
     pub kind: CallKind,
     /// The arguments when every one of them is a constant (else `None`).
     pub args: Option<Vec<ArgValue>>,
+    /// The FANUC arguments given (not `#0`), in call order. Which arguments a macro receives,
+    /// and which surely, decide its Siemens `PROC` parameters and is-set flags, whatever
+    /// the values.
+    pub given: Vec<Given>,
+}
+
+/// One FANUC argument of a call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Given {
+    pub letter: char,
+    /// The local it fills (`#1`…`#33`, argument specification resolved).
+    pub var: u8,
+    /// The value can never be vacant (a constant, an expression), not `#5`.
+    pub sure: bool,
 }
 
 /// One program defined in the library.
@@ -96,9 +110,14 @@ pub struct FileInfo {
     pub parse_errors: usize,
     /// The programs, in file order (`None`: a program without name or number).
     pub programs: Vec<Option<ProgKey>>,
+    /// A fingerprint of each program's text (blank lines and the spaces around lines left
+    /// out), in the order of `programs`: copies of one program have the same.
+    pub fingerprints: Vec<u64>,
     pub blocks: u64,
     /// Siemens tool names (`T="DRILL_5"`), as written.
     pub tools: BTreeSet<String>,
+    /// FANUC common variables (`#100`..`#999`) used by number.
+    pub commons: BTreeSet<u32>,
 }
 
 /// The library: what every file defines and calls.
@@ -110,6 +129,8 @@ pub struct Library {
     /// Programs defined more than once: key → the files after the first.
     pub duplicates: BTreeMap<ProgKey, Vec<usize>>,
     pub calls: Vec<CallSite>,
+    /// Every FANUC common variable used anywhere, sorted.
+    pub commons: BTreeSet<u32>,
 }
 
 /// The most argument vectors drawn from call sites for verifying one program alone.
@@ -130,6 +151,7 @@ impl Library {
                 }
             }
             raw_calls.extend(scan.calls.into_iter().map(|c| (i, c)));
+            lib.commons.extend(scan.info.commons.iter().copied());
             lib.files.push(scan.info);
         }
         // Siemens positional arguments are named after the callee's parameters now that
@@ -148,9 +170,25 @@ impl Library {
                     })
                     .collect()
             });
-            lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args });
+            lib.calls.push(CallSite { file, line: c.line, target: c.target, kind: c.kind, args, given: c.given });
         }
         lib
+    }
+
+    /// Whether the program `key` of `file` is the one calls in the library reach: the first
+    /// definition, or a copy of it with the same text (as a Sinumerik → FANUC batch writes a
+    /// subprogram into each caller's file).
+    pub fn is_canonical(&self, key: &ProgKey, file: usize) -> bool {
+        let Some(first) = self.programs.get(key) else { return false };
+        if first.file == file {
+            return true;
+        }
+        let print = |f: usize| {
+            let info = self.files.get(f)?;
+            let i = info.programs.iter().position(|p| p.as_ref() == Some(key))?;
+            info.fingerprints.get(i).copied()
+        };
+        print(file).is_some() && print(file) == print(first.file)
     }
 
     /// Whether any file of the library calls the program.
@@ -159,13 +197,18 @@ impl Library {
     }
 
     /// The files that hold the programs `file` calls, directly or through other programs
-    /// (not `file` itself), in batch order. Calls to programs not in the library are left
+    /// (not `file` itself, nor for programs the calling file defines), in batch order. Calls to programs not in the library are left
     /// to the translator to report.
     pub fn callee_files(&self, file: usize) -> Vec<usize> {
         let mut seen = BTreeSet::new();
         let mut todo = vec![file];
         while let Some(f) = todo.pop() {
             for c in self.calls.iter().filter(|c| c.file == f) {
+                // A program of the calling file itself is found first (FANUC looks in the
+                // file before the memory), even when the library holds another copy.
+                if self.files.get(f).is_some_and(|i| i.programs.contains(&Some(c.target.clone()))) {
+                    continue;
+                }
                 if let Some(p) = self.programs.get(&c.target) {
                     if p.file != file && seen.insert(p.file) {
                         todo.push(p.file);
@@ -217,6 +260,8 @@ pub struct RawCall {
     pub target: ProgKey,
     pub kind: CallKind,
     pub args: Option<Vec<RawArg>>,
+    /// FANUC arguments given (see [`CallSite::given`]).
+    pub given: Vec<Given>,
 }
 
 /// The result of reading one file for the index.
@@ -270,6 +315,10 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
             (None, _) => None,
         };
         scan.info.programs.push(key.clone());
+        scan.info.fingerprints.push(fingerprint(&program_text(&src.text, p)));
+        if dialect == Dialect::Fanuc {
+            scan.info.commons.extend(crate::translate_sinumerik::commons_of(p));
+        }
         scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
         walk_items(&p.body, &mut |item| match &item.kind {
             ItemKind::Call(c) => {
@@ -290,7 +339,19 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
                         Arg::Omitted(_) => Some(RawArg::Positional(None)),
                     })
                     .collect();
-                scan.calls.push(RawCall { line, target, kind: c.kind, args });
+                let given = c
+                    .args
+                    .iter()
+                    .filter_map(|a| match a {
+                        Arg::Letter { letter, var, value } if !matches!(value.kind, ExprKind::Vacant) => Some(Given {
+                            letter: char::from(*letter).to_ascii_uppercase(),
+                            var: *var,
+                            sure: surely_set(value),
+                        }),
+                        _ => None,
+                    })
+                    .collect();
+                scan.calls.push(RawCall { line, target, kind: c.kind, args, given });
             }
             ItemKind::Word(w) if w.addr.is(b'T') => {
                 if let WordValue::Expr(Expr { kind: ExprKind::Str(s), .. }) = &w.value {
@@ -301,6 +362,33 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
         });
     }
     scan
+}
+
+/// A program's text with blank lines, tape marks and the spaces around lines left out.
+pub fn program_text(text: &str, p: &Program) -> String {
+    let lo = (p.span.lo as usize).min(text.len());
+    let hi = (p.span.hi as usize).clamp(lo, text.len());
+    let slice = text.get(lo..hi).unwrap_or("");
+    slice.lines().map(str::trim).filter(|l| !l.is_empty() && *l != "%").collect::<Vec<_>>().join("\n")
+}
+
+/// A fingerprint of a text, the same on every run of the same build.
+fn fingerprint(text: &str) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut h);
+    h.finish()
+}
+
+/// Whether an argument value can never be vacant, judged from the call alone (the rule
+/// the FANUC → Sinumerik vacancy analysis applies to macro arguments at entry).
+fn surely_set(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Vacant => false,
+        ExprKind::Unary(UnOp::Neg, a) => surely_set(a),
+        ExprKind::Var(v) => !matches!(v.kind, VarKind::Hash(0 | 1..=33 | 100..=999) | VarKind::HashIndirect(_)),
+        _ => true,
+    }
 }
 
 /// A constant argument value and whether it had a decimal point.
@@ -338,6 +426,23 @@ mod tests {
         let s = scan(&InputFile { index: 0, rel: name.into(), abs }, None);
         std::fs::remove_dir_all(&dir).unwrap();
         s
+    }
+
+    #[test]
+    fn a_program_of_the_calling_file_is_found_before_a_copy_elsewhere() {
+        let a = scan_text("a.nc", "%\nO1\nM98 P9000\nM30\nO9000\nG0 X1\nM99\n%\n");
+        let b = scan_text("b.nc", "%\nO2\nM98 P9000\nM30\nO9000\nG0 X2\nM99\n%\n");
+        let c = scan_text("c.nc", "%\nO3\nM98 P9000\nM30\n%\n");
+        let d = scan_text("d.nc", "%\nO4\nM98 P9000\nM30\nO9000\n  G0 X1\n\nM99\n%\n");
+        let lib = Library::build(vec![a, b, c, d]);
+        let key = ProgKey::Number(9000);
+        assert_eq!(lib.duplicates[&key], [1, 3]);
+        assert!(lib.callee_files(1).is_empty(), "b.nc calls its own O9000");
+        assert_eq!(lib.callee_files(2), [0], "c.nc reaches the first definition");
+        assert!(lib.is_canonical(&key, 0));
+        assert!(!lib.is_canonical(&key, 1), "another program of the same number");
+        assert!(lib.is_canonical(&key, 3), "a copy (spacing aside) is the same program");
+        assert!(!lib.is_canonical(&key, 2), "c.nc does not define it");
     }
 
     #[test]

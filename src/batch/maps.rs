@@ -62,30 +62,57 @@ impl BatchMaps {
     }
 
     /// Adds what a file used; an entry already present is kept (the batch pins programs and
-    /// tools before translating, so they agree).
-    pub fn merge_used(&mut self, used: &Used) {
+    /// tools before translating, so they agree). Returns one message per variable that this
+    /// file placed differently from an earlier file (the FANUC → Sinumerik translation
+    /// places common variables without a default R parameter, and the is-set flags, per
+    /// file), or per target two files gave to different variables: such files do not
+    /// share the variable on the control.
+    pub fn merge_used(&mut self, used: &Used) -> Vec<String> {
         for (k, v) in &used.programs {
             self.programs.entry(k.clone()).or_insert_with(|| v.clone());
         }
         for (k, v) in &used.tools {
             self.tools.entry(k.clone()).or_insert(*v);
         }
+        let mut conflicts = Vec::new();
         for (k, v) in &used.variables {
-            self.variables.entry(k.clone()).or_insert_with(|| v.clone());
+            match self.variables.get(k) {
+                Some(old) if old != v => conflicts.push(format!("{k} is {old} in one file and {v} in another")),
+                Some(_) => {}
+                None => {
+                    // Plain global variables only: locals live in their program, and an
+                    // array entry (`R[i]`) overlaps its elements on purpose.
+                    let plain = |k: &str| k.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'#' || b == b'_');
+                    let taken =
+                        plain(k).then(|| self.variables.iter().find(|(k2, v2)| *v2 == v && plain(k2))).flatten();
+                    if let Some((other, _)) = taken {
+                        conflicts.push(format!("{v} stands for {other} in one file and for {k} in another"));
+                    }
+                    self.variables.insert(k.clone(), v.clone());
+                }
+            }
         }
+        conflicts
     }
 }
 
-/// A valid Siemens program name from a file stem: letters, digits and `_`, starting with a
-/// letter, upper case (`10-bracket` → `P10_BRACKET`).
+/// A valid Siemens program name from a file stem: letters, digits and `_`, the first two
+/// characters letters or `_` (the control's rule), upper case (`10-bracket` →
+/// `P_10_BRACKET`, `o9010` → `P_O9010`).
 pub fn siemens_name(stem: &str) -> String {
     let mut s: String =
         stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
-    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
-        s.insert(0, 'P');
+    if s.len() < 2 || !s.bytes().take(2).all(|b| b.is_ascii_alphabetic() || b == b'_') {
+        s.insert_str(0, "P_");
     }
     s.truncate(24);
     s
+}
+
+/// The Siemens name of FANUC program `n` when nothing else names it: `O_9010`, as the
+/// single-file translation writes it.
+pub fn numbered_name(n: u32) -> String {
+    format!("O_{n:04}")
 }
 
 /// Fixes the program and tool maps for a batch: pinned entries first, then deterministic
@@ -148,12 +175,12 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
                 let name = match pinned.programs.get(key) {
                     Some(ProgKey::Name(s)) => s.clone(),
                     _ => {
-                        // A main program alone in its file keeps the file's name (that is how
-                        // the operator knows it); called programs are named after their number.
-                        let alone = lib.files[info.file].programs.len() == 1;
+                        // The first program of a file, when nothing calls it, keeps the file's
+                        // name (that is how the operator knows it); the others are named after
+                        // their number.
                         let base = match stems.get(info.file) {
-                            Some(stem) if alone && !lib.is_called(key) => siemens_name(stem),
-                            _ => format!("O{n:04}"),
+                            Some(stem) if info.position == 0 && !lib.is_called(key) => siemens_name(stem),
+                            _ => numbered_name(*n),
                         };
                         let mut name = base.clone();
                         let mut k = 2;
@@ -357,6 +384,7 @@ mod tests {
                 target: c.clone(),
                 kind: crate::ir::CallKind::Named,
                 args: None,
+                given: vec![],
             });
         }
         lib
@@ -392,8 +420,10 @@ mod tests {
         );
         let (maps, _) =
             allocate(&lib, &BatchMaps::default(), Dialect::Sinumerik, &["10-bracket".into(), "o9010".into()]);
-        assert_eq!(maps.programs[&ProgKey::Number(100)], ProgKey::Name("P10_BRACKET".into()));
-        assert_eq!(maps.programs[&ProgKey::Number(9010)], ProgKey::Name("O9010".into()));
+        assert_eq!(maps.programs[&ProgKey::Number(100)], ProgKey::Name("P_10_BRACKET".into()));
+        assert_eq!(maps.programs[&ProgKey::Number(9010)], ProgKey::Name("O_9010".into()));
+        assert_eq!(siemens_name("part1"), "PART1");
+        assert_eq!(siemens_name("o9010"), "P_O9010");
     }
 
     #[test]
@@ -409,6 +439,22 @@ mod tests {
         assert_eq!(target, Some(Dialect::Fanuc));
         assert_eq!(back, m);
         assert_eq!(to_toml(&back, Dialect::Fanuc), text);
+    }
+
+    #[test]
+    fn variables_placed_differently_by_two_files_are_reported() {
+        let mut m = BatchMaps::default();
+        let used = |pairs: &[(&str, &str)]| Used {
+            variables: pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect(),
+            ..Used::default()
+        };
+        assert!(m.merge_used(&used(&[("#801", "R5"), ("O_9010.#24", "ARG_X")])).is_empty());
+        assert!(m.merge_used(&used(&[("#801", "R5"), ("O_9011.#24", "ARG_X")])).is_empty());
+        let c = m.merge_used(&used(&[("#801", "R6"), ("#802", "R5")]));
+        assert_eq!(
+            c,
+            ["#801 is R5 in one file and R6 in another", "R5 stands for #801 in one file and for #802 in another"]
+        );
     }
 
     #[test]

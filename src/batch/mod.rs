@@ -10,6 +10,7 @@
 
 pub mod discover;
 pub mod jobs;
+pub mod jobs_sinumerik;
 pub mod library;
 pub mod maps;
 pub mod report;

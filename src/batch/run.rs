@@ -217,7 +217,9 @@ pub fn run_batch(
     let mut maps = ctx.maps.clone();
     used_in_order.sort_by_key(|(k, _)| *k);
     for (_, used) in &used_in_order {
-        maps.merge_used(used);
+        for c in maps.merge_used(used) {
+            progress(Progress::Note(format!("variables disagree between files: {c}; map it with --var-map")));
+        }
     }
     let map_text = maps::to_toml(&maps, opts.target);
     let map_rel = Path::new(MAP_FILE);

@@ -1,0 +1,467 @@
+//! The FANUC → Sinumerik batch job: one FANUC file in, one Siemens file per program out
+//! (`NAME.MPF` for main programs, `NAME.SPF` for called ones), named by the batch's program
+//! map, each proved by running it against its FANUC source.
+//!
+//! A FANUC macro's Siemens form (its `PROC` parameters and is-set flags, `VAR` parameters for
+//! M98 subprograms) depends on how the program is called. The translator learns that from
+//! the calls among the programs it is given, so every job also gives it the calls the rest
+//! of the library makes to its programs (as a stand-in caller program whose output is
+//! dropped): the macro's own job and every caller's job then see the same calls and write
+//! the same `PROC` line, so each call in one output file fits the program in another.
+
+use super::jobs::{
+    apply, combine, failed, load_with_callees, unsupported, Fault, JobSettings, LoadedFile, MemCallees, Verified,
+};
+use super::library::{ArgValue, ProgKey};
+use super::{discover, maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::config::Unsupported;
+use crate::dialect::{Dialect, ParseOptions};
+use crate::eval::{self, Input};
+use crate::ir::{CallKind, ProgName, Unit};
+use crate::span::{FileId, SourceDb};
+use crate::translate_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
+use crate::verify_sinumerik::{self as vs, Profiles, RunSpec};
+use std::collections::BTreeSet;
+
+/// The name the stand-in caller program is shown under in diagnostics.
+const CALLERS_FILE: &str = "(calls from other files of the library)";
+
+/// FANUC → Sinumerik.
+pub struct ToSinumerikJob {
+    pub settings: JobSettings,
+    /// The tests' injected bug, applied to the text of every output of the file.
+    pub fault: Option<Box<Fault>>,
+}
+
+impl ToSinumerikJob {
+    pub fn new(settings: JobSettings) -> ToSinumerikJob {
+        ToSinumerikJob { settings, fault: None }
+    }
+
+    fn options(&self, ctx: &BatchContext, file: &InputFile) -> Result<Options, String> {
+        let mut var_map = Vec::new();
+        for r in &ctx.maps.var_rules {
+            var_map.push(VarMapRule::parse(r).map_err(|e| format!("variables.to_sinumerik: {e}"))?);
+        }
+        let s = &self.settings;
+        var_map.extend(library_places(&ctx.library.commons, &var_map, s.sinumerik.r_param_count));
+        Ok(Options {
+            source: s.fanuc.clone(),
+            target: s.sinumerik.clone(),
+            var_map,
+            program_map: ctx.maps.siemens_names(),
+            unsupported: match s.unsupported {
+                Unsupported::Error => UnsupportedPolicy::Error,
+                Unsupported::Warn => UnsupportedPolicy::Warn,
+            },
+            main_name: maps::siemens_name(&stem(file)),
+        })
+    }
+}
+
+/// Places for the common variables that have no default R parameter (#200..#499,
+/// #800..#999, or a default outside the R range or under a rule), fixed over the whole
+/// library: the translator would otherwise place them per file, and two files would not
+/// share them. Each gets the lowest R parameter no rule and no default place of any common
+/// variable of the library uses.
+fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> Vec<VarMapRule> {
+    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
+    let mut taken: BTreeSet<u32> = BTreeSet::new();
+    for r in rules {
+        let last = r.r_start.saturating_add(r.to - r.from).min(count);
+        taken.extend(r.r_start..=last);
+    }
+    let default_r = |n: u32| match n {
+        500..=799 => Some(n - 500),
+        100..=199 => Some(n),
+        _ => None,
+    };
+    let mut leftovers = Vec::new();
+    for &n in commons.iter().filter(|&&n| !covered(n)) {
+        match default_r(n) {
+            Some(r) if r < count && !taken.contains(&r) => {
+                taken.insert(r);
+            }
+            _ => leftovers.push(n),
+        }
+    }
+    let mut out = Vec::new();
+    for n in leftovers {
+        // None left: the translator reports it (NC350) in the files that use it.
+        let Some(r) = (0..count).find(|r| !taken.contains(r)) else { break };
+        taken.insert(r);
+        out.push(VarMapRule { from: n, to: n, r_start: r });
+    }
+    out
+}
+
+fn stem(file: &InputFile) -> String {
+    file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_string()
+}
+
+fn number_of(p: &crate::ir::Program) -> Option<u32> {
+    match p.name {
+        Some(ProgName::Number(n)) => Some(n),
+        _ => None,
+    }
+}
+
+/// The programs of this file whose number the library gives to an earlier file. A copy of
+/// that program (the same text, as a Sinumerik → FANUC batch writes a subprogram into every
+/// caller's file) is the same program: it keeps the map's name and only the earlier file
+/// writes it. A different program of the same number is named after this file (`STEM`, or
+/// `STEM_O2001` after the first program) and a warning says so: calls elsewhere in the
+/// library reach the earlier one. Returns the numbers not to write, and the notes.
+fn duplicates(
+    ctx: &BatchContext,
+    file: &InputFile,
+    main: &LoadedFile,
+    opts: &mut Options,
+) -> (BTreeSet<u32>, Vec<DiagRecord>) {
+    let mut notes = Vec::new();
+    let mut copies = BTreeSet::new();
+    let base = maps::siemens_name(&stem(file));
+    for (i, p) in main.unit.programs.iter().enumerate() {
+        let Some(n) = number_of(p) else { continue };
+        let Some(first) = ctx.library.programs.get(&ProgKey::Number(n)) else { continue };
+        if first.file == file.index {
+            continue;
+        }
+        let Some(other) = ctx.files.get(first.file) else { continue };
+        let other_name = super::rel_string(&other.rel);
+        if i > 0 && ctx.library.is_canonical(&ProgKey::Number(n), file.index) {
+            let mut d = DiagRecord::error(
+                "NC607",
+                format!("O{n:04} is the same program as in {other_name}; it is written from there"),
+            );
+            d.severity = "note";
+            notes.push(d);
+            copies.insert(n);
+            continue;
+        }
+        let name = if i == 0 { base.clone() } else { format!("{base}_O{n:04}") };
+        let mut d = DiagRecord::error(
+            "NC607",
+            format!("O{n:04} is also defined in {other_name}, which calls in the library reach; this one is written as {name}"),
+        );
+        d.severity = "warning";
+        notes.push(d);
+        opts.program_map.insert(n, name);
+    }
+    (copies, notes)
+}
+
+/// The stand-in caller: every call the files outside this job make to the job's programs,
+/// one block each, with constant arguments for the surely-set letters and a local (maybe
+/// vacant) for the others. `None` when there is no such call.
+fn callers_text(ctx: &BatchContext, job: &[(usize, &Unit)]) -> Option<String> {
+    // The job's programs that calls elsewhere reach: the first definition or a copy of it
+    // (each number counts once, from the first job file that defines it).
+    let mut defined: BTreeSet<u32> = BTreeSet::new();
+    let mut canonical: BTreeSet<u32> = BTreeSet::new();
+    for (f, unit) in job {
+        for n in unit.programs.iter().filter_map(number_of) {
+            if defined.insert(n) && ctx.library.is_canonical(&ProgKey::Number(n), *f) {
+                canonical.insert(n);
+            }
+        }
+    }
+    let job_files: BTreeSet<usize> = job.iter().map(|(f, _)| *f).collect();
+    let mut blocks: BTreeSet<String> = BTreeSet::new();
+    for c in &ctx.library.calls {
+        let ProgKey::Number(n) = c.target else { continue };
+        if job_files.contains(&c.file) || !canonical.contains(&n) {
+            continue;
+        }
+        // A caller with a different program of that number of its own calls that one.
+        let own_copy = ctx.library.files.get(c.file).is_some_and(|f| f.programs.contains(&Some(c.target.clone())));
+        if own_copy && !ctx.library.is_canonical(&c.target, c.file) {
+            continue;
+        }
+        let args: String = c
+            .given
+            .iter()
+            .map(|g| if g.sure { format!(" {}0.", g.letter) } else { format!(" {}#1", g.letter) })
+            .collect();
+        match c.kind {
+            CallKind::G65 => blocks.insert(format!("G65 P{n}{args}")),
+            CallKind::G66 => blocks.insert(format!("G66 P{n}{args}\nG67")),
+            CallKind::M98 => blocks.insert(format!("M98 P{n}")),
+            _ => false,
+        };
+    }
+    if blocks.is_empty() {
+        return None;
+    }
+    // A number no program of the library has: the stand-in is never called, and no name of
+    // the map is given to it.
+    let number =
+        (1..=99_999).find(|k| !defined.contains(k) && !ctx.library.programs.contains_key(&ProgKey::Number(*k)))?;
+    let mut text = format!("O{number}\n");
+    for b in blocks {
+        text.push_str(&b);
+        text.push('\n');
+    }
+    text.push_str("M30\n");
+    Some(text)
+}
+
+/// The Siemens inputs for FANUC inputs `#n=value` of a run of `program`: each variable by
+/// the symbol map, with its is-set flag (`#0` is value 0, flag 0). Variables the
+/// translation does not use are left out.
+fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    for s in fanuc {
+        let Some((lhs, rhs)) = s.split_once('=') else { continue };
+        let Some(n) = lhs.trim().strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) else {
+            // Not a FANUC variable: meant for the Siemens side as written.
+            out.push(s.clone());
+            continue;
+        };
+        let entry = match n {
+            1..=33 => {
+                let key = format!("#{n}");
+                tr.symbols.vars.iter().find(|v| v.program.as_deref() == Some(program) && v.fanuc == key)
+            }
+            _ => tr.symbols.common(n),
+        };
+        let Some(e) = entry else { continue };
+        let vacant = rhs.trim() == "#0";
+        out.push(format!("{}={}", e.siemens, if vacant { "0" } else { rhs.trim() }));
+        if let Some(f) = &e.flag {
+            out.push(format!("{f}={}", u8::from(!vacant)));
+        }
+    }
+    out
+}
+
+fn parse_all(v: &[String]) -> Vec<Input> {
+    v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
+}
+
+impl FileJob for ToSinumerikJob {
+    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        let mut db = SourceDb::new();
+        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Fanuc, &self.settings.fanuc) {
+            Ok(l) => l,
+            Err(o) => return *o,
+        };
+        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
+        let mut opts = match self.options(ctx, file) {
+            Ok(o) => o,
+            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
+        };
+        let (copies, mut diagnostics) = duplicates(ctx, file, &main, &mut opts);
+        diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
+
+        // The programs of the job and the calls the rest of the library makes to them.
+        let mut job_files: Vec<usize> = vec![file.index];
+        job_files.extend(ctx.library.callee_files(file.index));
+        let all: Vec<&LoadedFile> = std::iter::once(&main).chain(subs.iter()).collect();
+        let job: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all.iter().map(|l| &l.unit)).collect();
+        let callers: Option<(FileId, Unit)> = callers_text(ctx, &job).and_then(|text| {
+            let id = db.add(CALLERS_FILE, text);
+            let parsed =
+                crate::parse(&db, id, Dialect::Fanuc, &ParseOptions { semantics: self.settings.fanuc.clone() });
+            (!crate::diag::has_errors(&parsed.diags)).then_some((id, parsed.unit))
+        });
+        let mut units: Vec<&Unit> = all.iter().map(|l| &l.unit).collect();
+        if let Some((_, u)) = &callers {
+            units.push(u);
+        }
+        let eol = self.settings.line_ending(main.loaded.line_ending);
+        let mut tr = ts::translate(&units, &opts, eol);
+        let stand_in = callers.as_ref().map(|(id, _)| *id);
+        // The stand-in's own program is not an output; its warnings are about nothing real.
+        tr.files.retain(|f| Some(f.source) != stand_in);
+        let own_diags: Vec<_> = tr
+            .diags
+            .iter()
+            .filter(|d| d.is_error() || d.labels.iter().find(|l| l.primary).is_none_or(|l| Some(l.file) != stand_in))
+            .cloned()
+            .collect();
+        diagnostics.extend(DiagRecord::from_diags(&db, &own_diags));
+
+        // What this file's programs use (not the callees', not the stand-in's).
+        let own = main.loaded.file;
+        let mut used = maps::Used::default();
+        let own_names: BTreeSet<&str> =
+            tr.files.iter().filter(|f| f.source == own).map(|f| f.program.as_str()).collect();
+        for f in tr.files.iter().filter(|f| f.source == own) {
+            if let Some(n) = f.fanuc_number {
+                used.programs.insert(ProgKey::Number(n), ProgKey::Name(f.program.clone()));
+            }
+        }
+        for v in &tr.symbols.vars {
+            let key = match &v.program {
+                Some(p) if own_names.contains(p.as_str()) => format!("{p}.{}", v.fanuc),
+                Some(_) => continue,
+                None => v.fanuc.clone(),
+            };
+            used.variables.insert(key.clone(), v.siemens.clone());
+            if let Some(flag) = &v.flag {
+                used.variables.insert(format!("{key} is set"), flag.clone());
+            }
+        }
+        let marked: usize =
+            tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
+        if tr.has_errors() || marked > 0 {
+            let n = own_diags.iter().filter(|d| d.is_error()).count().max(marked);
+            return unsupported(n, "Sinumerik", blocks, diagnostics);
+        }
+        if let Some(fault) = &self.fault {
+            for f in tr.files.iter_mut().filter(|f| f.source == own) {
+                fault(file, &mut f.text);
+            }
+        }
+        let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
+        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
+        outcome.blocks = blocks;
+        outcome.used = used;
+        outcome.outputs = tr
+            .files
+            .iter()
+            .filter(|f| f.source == own && !f.fanuc_number.is_some_and(|n| copies.contains(&n)))
+            .map(|f| OutputFile {
+                rel: discover::sinumerik_output(&file.rel, &f.program, !f.main),
+                bytes: crate::read::encode(&f.text, encoding, main.loaded.bom),
+            })
+            .collect();
+        outcome.diagnostics = diagnostics;
+        if outcome.outputs.is_empty() {
+            outcome.status = Status::Unsupported;
+            outcome.summary = "not translated: the file holds no program".into();
+            return outcome;
+        }
+        if ctx.options.verify {
+            let v = self.verify(&db, file, ctx, &main, &subs, &tr);
+            apply(&mut outcome, v);
+        }
+        outcome
+    }
+}
+
+impl ToSinumerikJob {
+    /// Runs the file's first program against its translation (and each other program the
+    /// file does not call itself): with the inputs of the header lines and `--set`, and once
+    /// per argument vector the library calls it with. The programs the file calls run
+    /// where it calls them (and in their callers' jobs).
+    fn verify(
+        &self,
+        db: &SourceDb,
+        file: &InputFile,
+        ctx: &BatchContext,
+        main: &LoadedFile,
+        subs: &[LoadedFile],
+        tr: &Translation,
+    ) -> Verified {
+        let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
+        let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
+        let mut runs = Vec::new();
+        for (i, p) in main.unit.programs.iter().enumerate() {
+            let key = number_of(p).map(ProgKey::Number);
+            // The first program, and every other one its own file does not call (a second main
+            // program, a macro only other files call): each runs as the main program.
+            let called_here =
+                key.as_ref().is_some_and(|k| ctx.library.calls.iter().any(|c| c.file == file.index && &c.target == k));
+            if i > 0 && called_here {
+                continue;
+            }
+            let Some(out) = tr.files.iter().find(|f| f.source == main.loaded.file && first_of(f, p)) else {
+                // A copy written by another file (see `duplicates`), verified there.
+                continue;
+            };
+            let mut unit = main.unit.clone();
+            let entry = unit.programs.remove(i);
+            unit.programs.insert(0, entry);
+            let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
+            let cases = match &mine {
+                Some(k) => cases(ctx, k),
+                None => vec![(String::new(), vec![])],
+            };
+            let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
+            for (label, mut fanuc) in cases {
+                fanuc.extend(self.settings.set.iter().cloned());
+                let siemens = siemens_inputs(tr, &out.program, &fanuc);
+                fanuc.retain(|s| s.trim_start().starts_with('#'));
+                let spec = RunSpec {
+                    main: out,
+                    out_dir: &out_dir,
+                    max_steps: self.settings.max_steps,
+                    profiles: &profiles,
+                    fanuc_callees: Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())),
+                    extra_fanuc: parse_all(&fanuc),
+                    extra_siemens: parse_all(&siemens),
+                };
+                runs.push((format!("{name}{label}"), vs::verify_run(db, main.loaded.file, &unit, tr, spec)));
+            }
+        }
+        if runs.is_empty() {
+            return Verified {
+                status: Status::Inconclusive,
+                summary: "not verified: no program of the file was found in its translation".into(),
+                events: None,
+                diagnostics: vec![],
+            };
+        }
+        combine(runs)
+    }
+}
+
+/// The runs that prove a program alone: without inputs, and once per constant argument
+/// vector the library calls it with. A macro (called by G65/G66) is not run without its
+/// arguments: its callers always give some, and the translation may rely on that (a value
+/// FANUC would leave vacant). With no constant call in the library it runs once with 0 for
+/// the arguments the first call gives surely.
+fn cases(ctx: &BatchContext, key: &ProgKey) -> Vec<(String, Vec<String>)> {
+    let macro_calls: Vec<_> = ctx
+        .library
+        .calls
+        .iter()
+        .filter(|c| &c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66))
+        .collect();
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    if macro_calls.is_empty() {
+        out.push((String::new(), vec![]));
+    }
+    for (k, v) in ctx.library.arg_vectors(key).iter().enumerate() {
+        out.push((format!(" (with the arguments of call site {})", k + 1), v.iter().map(ArgValue::to_set).collect()));
+    }
+    if out.is_empty() {
+        if let Some(c) = macro_calls.first() {
+            let sets = c.given.iter().filter(|g| g.sure).map(|g| format!("#{}=0.", g.var)).collect();
+            out.push((" (with 0 for the arguments of its first call)".to_string(), sets));
+        }
+    }
+    out
+}
+
+/// Whether `f` is the translation of the FANUC program `p` (by number, else the unnamed main).
+fn first_of(f: &OutFile, p: &crate::ir::Program) -> bool {
+    match number_of(p) {
+        Some(n) => f.fanuc_number == Some(n),
+        None => f.fanuc_number.is_none(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commons_without_a_default_place_get_one_place_for_the_library() {
+        let commons: BTreeSet<u32> = [100, 500, 501, 801, 802, 950].into_iter().collect();
+        let rules = vec![VarMapRule::parse("#950=R2").unwrap()];
+        let places = library_places(&commons, &rules, 300);
+        // R0 and R1 are the default places of #500 and #501, R2 is the rule's.
+        assert_eq!(
+            places,
+            [VarMapRule { from: 801, to: 801, r_start: 3 }, VarMapRule { from: 802, to: 802, r_start: 4 }]
+        );
+        // Placed per file, #802 would take R0 in a file without #500: not what the library
+        // gives it, so the two files would not share R0.
+        let only: BTreeSet<u32> = [802].into_iter().collect();
+        assert_eq!(library_places(&only, &[], 300), [VarMapRule { from: 802, to: 802, r_start: 0 }]);
+        assert!(library_places(&commons, &rules, 2).len() < 2, "no R left past the count");
+    }
+}
