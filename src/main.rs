@@ -336,11 +336,8 @@ fn cmd_check(
     let (Some(rb), Some(ra)) = (runners.pop(), runners.pop()) else {
         return ExitCode::from(2);
     };
-    let mut report = check::check_runners(&db, ra, rb);
-    if !report.diags.is_empty() {
-        stream_cli::texts_for_report(&mut report.db, &streamed);
-    }
-    eprint!("{}", diag::render(&report.db, &report.diags));
+    let report = check::check_runners(&db, ra, rb);
+    eprint!("{}", stream_cli::render(&report.db, &report.diags, &streamed));
     match report.verdict {
         Verdict::Equivalent { events } => {
             println!("equivalent ({events} trace events agree)");

@@ -144,13 +144,50 @@ fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunO
     })
 }
 
-/// Gives the streamed files their text so diagnostics render (only when there are some).
-fn load_texts(db: &mut SourceDb, files: &[(usize, &Path)]) {
-    for &(id, path) in files {
-        if let Ok(bytes) = std::fs::read(path) {
-            db.set_text(id, nctrans::read::decode(&bytes, None).text);
+/// Renders diagnostics; those pointing into a streamed file (whose text is not loaded)
+/// are shown compactly with their line read from the file, so a warning at the end of a
+/// 400 MB program does not load the program.
+pub fn render(db: &SourceDb, diags: &[nctrans::diag::Diagnostic], streamed: &[(usize, &Path)]) -> String {
+    use nctrans::diag::Severity;
+    let mut out = String::new();
+    for d in diags {
+        let in_stream = |f: usize| streamed.iter().find(|s| s.0 == f).map(|s| s.1);
+        if !d.labels.iter().any(|l| in_stream(l.file).is_some()) {
+            out.push_str(&nctrans::diag::render(db, std::slice::from_ref(d)));
+            continue;
         }
+        let sev = match d.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        };
+        out.push_str(&format!("{sev}[{}]: {}\n", d.code, d.message));
+        for l in &d.labels {
+            let name = if l.file < db.len() { db.get(l.file).name.clone() } else { "?".into() };
+            let place = match in_stream(l.file).and_then(|p| stream::line_at(p, l.span.lo)) {
+                Some((line, start, text)) => {
+                    let col = text
+                        .get(..(u64::from(l.span.lo).saturating_sub(start)) as usize)
+                        .map_or(1, |t| t.chars().count() + 1);
+                    format!("  --> {name}:{line}:{col}\n{line:>6} | {text}\n")
+                }
+                None if l.file < db.len() && !db.get(l.file).text.is_empty() => {
+                    let (line, col) = db.get(l.file).line_col(l.span.lo);
+                    format!("  --> {name}:{line}:{col}\n")
+                }
+                None => format!("  --> {name}\n"),
+            };
+            out.push_str(&place);
+            if !l.message.is_empty() {
+                out.push_str(&format!("       = {}{}\n", if l.primary { "" } else { "also: " }, l.message));
+            }
+        }
+        for n in &d.notes {
+            out.push_str(&format!("   = {n}\n"));
+        }
+        out.push('\n');
     }
+    out
 }
 
 /// `nctrans run` streamed.
@@ -191,10 +228,7 @@ pub fn run(
     if progress_on {
         eprint!("\r{:70}\r", "");
     }
-    if !outcome.diags.is_empty() {
-        load_texts(&mut db, &[(main_id, path)]);
-    }
-    eprint!("{}", nctrans::diag::render(&db, &outcome.diags));
+    eprint!("{}", render(&db, &outcome.diags, &[(main_id, path)]));
     if let Some(e) = write_error {
         eprintln!("error: writing the trace: {e}");
         return Some(ExitCode::from(2));
@@ -223,11 +257,6 @@ pub fn side(
     db.add(path.display().to_string(), String::new());
     let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
     Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
-}
-
-/// Loads the texts of streamed check sides before rendering a report's diagnostics.
-pub fn texts_for_report(db: &mut SourceDb, streamed: &[(usize, &Path)]) {
-    load_texts(db, streamed);
 }
 
 /// `nctrans --to fanuc IN -o OUT` streamed (with verification unless `--no-verify`);
@@ -300,8 +329,7 @@ pub fn translate(
         let mut db = SourceDb::new();
         db.add(input.display().to_string(), String::new());
         db.add(out.display().to_string(), String::new());
-        load_texts(&mut db, &[(0, input), (1, out)]);
-        eprint!("{}", nctrans::diag::render(&db, &v.diags));
+        eprint!("{}", render(&db, &v.diags, &[(0, input), (1, out)]));
     }
     eprint!("{}", v.diff);
     eprintln!("{}", v.summary);

@@ -275,3 +275,51 @@ fn mutated_programs_stream_without_panics() {
     }
     assert!(count > 500, "{count} mutations");
 }
+
+/// The command line: `--stream` gives the same output as reading whole (summary, traces
+/// in both formats, check verdicts), and a run-time warning of a streamed file is rendered
+/// with its line read from the file.
+#[test]
+fn cli_streams_with_the_same_output() {
+    let bin = env!("CARGO_BIN_EXE_nctrans");
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(bin).args(args).output().expect("runs");
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stdout).to_string(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let files =
+        ["corpus/in/fanuc/bare-do-loop.nc", "corpus/in/sinumerik/while-endwhile.mpf", "corpus/in/fanuc/block-skip.nc"];
+    let mut compared = 0;
+    for f in files {
+        let p = root().join(f);
+        if !p.exists() {
+            continue;
+        }
+        let p = p.to_string_lossy().to_string();
+        for args in [vec!["parse", "--summary"], vec!["run", "--format", "jsonl"], vec!["run"]] {
+            let mut a = args.clone();
+            a.push(&p);
+            let whole = run(&a);
+            a.push("--stream");
+            assert_eq!(run(&a), whole, "{args:?} {f}");
+            compared += 1;
+        }
+        let whole = run(&["check", &p, &p]);
+        assert_eq!(run(&["check", "--stream", &p, &p]), whole, "check {f}");
+    }
+    assert!(compared >= 3, "no corpus file found");
+    let dir = root().join("target/stream-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let long = dir.join("long.mpf");
+    let mut text = String::from("G0 X0 F100\n");
+    for i in 0..300 {
+        text.push_str(&format!("G1 X{i}\n"));
+    }
+    std::fs::write(&long, text).expect("write");
+    let (code, _, err) = run(&["run", "--stream", "--quiet", "--max-steps", "200", &long.to_string_lossy()]);
+    assert_eq!(code, Some(4));
+    assert!(err.contains("NC408") && err.contains("long.mpf:201:1") && err.contains("G1 X199"), "{err}");
+}
