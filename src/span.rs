@@ -117,15 +117,6 @@ impl SourceDb {
         &self.files[id]
     }
 
-    /// Gives a file its text after the fact: a streamed file is added without its text
-    /// and gets it only when diagnostics must be rendered.
-    pub fn set_text(&mut self, id: FileId, text: impl Into<String>) {
-        if let Some(f) = self.files.get_mut(id) {
-            let name = std::mem::take(&mut f.name);
-            *f = SourceFile::new(name, text);
-        }
-    }
-
     pub fn len(&self) -> usize {
         self.files.len()
     }
