@@ -259,7 +259,7 @@ pub fn side(
     Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
 }
 
-/// `nctrans --to fanuc IN -o OUT` streamed (with verification unless `--no-verify`);
+/// `nctrans --to fanuc IN [-o OUT]` streamed (with verification unless `--no-verify`);
 /// `None` when the input is not streamed or not a straight-line program (then the caller
 /// translates it whole; a partial output is removed first).
 pub fn translate(
@@ -268,7 +268,6 @@ pub fn translate(
     input: &Path,
 ) -> Option<ExitCode> {
     use stream::translate::{self as st, Fallback};
-    let out = a.output.as_deref()?;
     if c.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
         return None;
     }
@@ -284,6 +283,12 @@ pub fn translate(
             return Some(ExitCode::from(2));
         }
     };
+    // Without -o the output goes through a temporary file, so a program found not to be
+    // straight-line part way can still be translated whole, and verification can read it.
+    let to_stdout = a.output.is_none();
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
+    let scratch = std::env::temp_dir().join(format!("nctrans-{}-{stem}.nc", std::process::id()));
+    let out: &Path = a.output.as_deref().unwrap_or(&scratch);
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
     let file = match std::fs::File::create(&tmp) {
@@ -318,12 +323,31 @@ pub fn translate(
         eprintln!("error: cannot write {}: {e}", out.display());
         return Some(ExitCode::from(2));
     }
+    if to_stdout {
+        let copied = std::fs::File::open(out).and_then(|mut f| {
+            let mut so = std::io::stdout().lock();
+            std::io::copy(&mut f, &mut so).and_then(|_| so.flush())
+        });
+        if let Err(e) = copied {
+            let _ = std::fs::remove_file(out);
+            eprintln!("error: cannot write: {e}");
+            return Some(ExitCode::from(2));
+        }
+    }
+    let code = verify_streamed(c, input, out, done.index, size);
+    if to_stdout {
+        let _ = std::fs::remove_file(out);
+    }
+    Some(code)
+}
+
+fn verify_streamed(c: &nctrans::config::Config, input: &Path, out: &Path, index: Index, size: u64) -> ExitCode {
     if !c.verify {
-        return Some(ExitCode::SUCCESS);
+        return ExitCode::SUCCESS;
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = st::verify(done.index, out, c.max_steps, Some(&mut report));
+    let v = stream::translate::verify(index, out, c.max_steps, Some(&mut report));
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();
@@ -333,7 +357,11 @@ pub fn translate(
     }
     eprint!("{}", v.diff);
     eprintln!("{}", v.summary);
-    Some(if v.equivalent { ExitCode::SUCCESS } else { ExitCode::from(1) })
+    if v.equivalent {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
 }
 
 /// The line ending of the first line end in the file's first 64 KiB (LF when none).

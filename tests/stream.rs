@@ -319,6 +319,10 @@ fn cli_streams_with_the_same_output() {
         text.push_str(&format!("G1 X{i}\n"));
     }
     std::fs::write(&long, text).expect("write");
+    let long_s = long.to_string_lossy().to_string();
+    let whole = run(&["--to", "fanuc", &long_s]);
+    assert_eq!(whole.0, Some(0), "{}", whole.2);
+    assert_eq!(run(&["--to", "fanuc", "--stream", &long_s]), whole, "streamed translation to stdout");
     let (code, _, err) = run(&["run", "--stream", "--quiet", "--max-steps", "200", &long.to_string_lossy()]);
     assert_eq!(code, Some(4));
     assert!(err.contains("NC408") && err.contains("long.mpf:201:1") && err.contains("G1 X199"), "{err}");
