@@ -228,9 +228,17 @@ impl Code {
 
     /// Flattens the top-level statements of one chunk of a streamed program whose first op
     /// has index `base` (jump targets are absolute op indices).
-    pub fn flatten_chunk(file: FileId, base: usize, body: &[Stmt]) -> Result<Vec<Op>, Diagnostic> {
-        let mut b = Builder { base, file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
-        b.stmts(body, 0)?;
+    pub fn flatten_chunk(file: FileId, base: usize, body: Vec<Stmt>) -> Result<Vec<Op>, Diagnostic> {
+        let mut b =
+            Builder { base, file, ops: Vec::with_capacity(body.len()), marks: Vec::new(), labels: HashMap::new() };
+        for s in body {
+            match s.kind {
+                // Plain blocks (nearly all of a CAM program) move into their op. Marks are
+                // not kept: a streamed program's labels and numbers are in its index.
+                StmtKind::Block(blk) => b.ops.push(Op::Block(blk)),
+                kind => b.stmt(&Stmt { kind, span: s.span }, 0)?,
+            }
+        }
         Ok(b.ops)
     }
 

@@ -109,7 +109,7 @@ impl Pager {
         let mut starts = Vec::with_capacity(CHUNK_OPS);
         super::reread(lines, &self.ix, chunk, &mut |s| stmts.push(s), &mut |lo, line| starts.push((lo as u32, line)))
             .map_err(|e: NotStreamable| self.err(e))?;
-        let ops = Code::flatten_chunk(self.ix.file, chunk.op_base, &stmts)?;
+        let ops = Code::flatten_chunk(self.ix.file, chunk.op_base, stmts)?;
         if let Some(p) = self.progress.borrow_mut().as_mut() {
             p(super::Progress { done: chunk.hi, total: self.ix.size, blocks: (chunk.op_base + chunk.ops) as u64 });
         }
