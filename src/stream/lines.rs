@@ -25,6 +25,8 @@ pub enum NotStreamable {
     },
     /// NUL bytes or many control characters: binary data (diagnosed by the whole path).
     Binary,
+    /// Over 4 GiB of text: spans are 32-bit offsets.
+    TooLarge,
 }
 
 impl std::fmt::Display for NotStreamable {
@@ -34,6 +36,7 @@ impl std::fmt::Display for NotStreamable {
             NotStreamable::NotUtf8 { line } => write!(f, "line {line} is not UTF-8"),
             NotStreamable::LongLine { line } => write!(f, "line {line} is longer than {MAX_LINE} bytes"),
             NotStreamable::Binary => write!(f, "the file holds binary data"),
+            NotStreamable::TooLarge => write!(f, "the file is larger than 4 GiB"),
         }
     }
 }

@@ -156,11 +156,11 @@ pub fn scan(
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
+    if text_len > u64::from(u32::MAX) {
+        // Spans are 32-bit offsets into the text.
+        return Err(NotStreamable::TooLarge);
+    }
     while let Some(l) = lines.next_line()? {
-        if text_len > u64::from(u32::MAX) {
-            // Spans are 32-bit offsets into the text.
-            return Err(NotStreamable::LongLine { line: l.line });
-        }
         if in_header {
             in_header = header_line(l.text, &mut header);
         }
