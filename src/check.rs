@@ -9,8 +9,9 @@ use crate::eval::trace::text_line;
 use crate::eval::{self, CalleeSource, Ending, Event, Origin, Outcome, RunOptions, TraceSink};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
+use std::cell::Cell;
 use std::collections::VecDeque;
-use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
 /// Absolute tolerance for numbers (trace spec).
 pub const TOLERANCE: f64 = 1e-6;
@@ -51,16 +52,26 @@ enum Msg {
     Ev(Event, Origin),
 }
 
+/// Where the second run's events go: a bounded channel to the comparing thread, or (one
+/// thread) an unbounded buffer read after the run.
+enum Tx {
+    Bounded(SyncSender<Msg>),
+    Buffered(Sender<Msg>),
+}
+
 struct ChannelSink {
-    tx: SyncSender<Msg>,
+    tx: Tx,
     dead: bool,
 }
 
 impl TraceSink for ChannelSink {
     fn event(&mut self, ev: &Event, origin: Origin) {
-        if !self.dead && self.tx.send(Msg::Ev(ev.clone(), origin)).is_err() {
-            self.dead = true;
-        }
+        let msg = Msg::Ev(ev.clone(), origin);
+        let sent = match &self.tx {
+            Tx::Bounded(t) => t.send(msg).is_ok(),
+            Tx::Buffered(t) => t.send(msg).is_ok(),
+        };
+        self.dead |= !sent;
     }
     fn wants_stop(&self) -> bool {
         self.dead
@@ -271,17 +282,42 @@ pub fn check(db: &SourceDb, a: Side, b: Side) -> CheckReport {
     check_runners(db, a.runner(), b.runner())
 }
 
+thread_local! {
+    static ONE_THREAD: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Runs `f` with every check on this thread done in this thread alone: the second program
+/// runs first with its trace buffered, then the first runs against it. Batch workers use it
+/// so that `-j N` means N busy cores; memory then grows with the second trace, which suits
+/// the batch's program-sized files (large files stream, see `crate::stream`).
+pub fn in_one_thread<T>(f: impl FnOnce() -> T) -> T {
+    let before = ONE_THREAD.with(|c| c.replace(true));
+    let out = f();
+    ONE_THREAD.with(|c| c.set(before));
+    out
+}
+
 /// [`check`] for any two runs.
 pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     let n0 = db.len();
-    let (tx, rx) = sync_channel::<Msg>(1024);
     let db_b = db.clone();
-    let handle = std::thread::spawn(move || {
+    let (rx, handle) = if ONE_THREAD.with(Cell::get) {
+        let (tx, rx) = channel::<Msg>();
         let mut db_b = db_b;
-        let mut sink = ChannelSink { tx, dead: false };
+        let mut sink = ChannelSink { tx: Tx::Buffered(tx), dead: false };
         let out = b(&mut db_b, &mut sink);
-        (out, db_b)
-    });
+        drop(sink);
+        (rx, Err((out, db_b)))
+    } else {
+        let (tx, rx) = sync_channel::<Msg>(1024);
+        let handle = std::thread::spawn(move || {
+            let mut db_b = db_b;
+            let mut sink = ChannelSink { tx: Tx::Bounded(tx), dead: false };
+            let out = b(&mut db_b, &mut sink);
+            (out, db_b)
+        });
+        (rx, Ok(handle))
+    };
     let mut db_a = db.clone();
     let mut sink = CompareSink {
         rx,
@@ -299,9 +335,13 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     }
     let CompareSink { rx, index, before_a, before_b, after_a, after_b, div, limit_seen } = sink;
     drop(rx);
-    let (outcome_b, db_b) = match handle.join() {
+    let joined = match handle {
+        Ok(h) => h.join().map_err(|_| ()),
+        Err(done) => Ok(done),
+    };
+    let (outcome_b, db_b) = match joined {
         Ok(r) => r,
-        Err(_) => (
+        Err(()) => (
             Outcome {
                 ending: Ending::Error,
                 steps: 0,
@@ -505,5 +545,23 @@ mod tests {
         assert!(same_event(&alarm(500), &alarm(64500)), "a FANUC alarm without a class pairs by number");
         assert!(!same_event(&alarm(112), &alarm(64115)));
         assert!(!same_event(&alarm(3115), &alarm(64115)), "user alarms are 65000+n");
+    }
+
+    #[test]
+    fn one_thread_checks_give_the_same_verdicts() {
+        let both = |f: f64| {
+            let two = check(&db2(), side(fanuc_loop(f)), side(siemens_loop()));
+            let one = in_one_thread(|| check(&db2(), side(fanuc_loop(f)), side(siemens_loop())));
+            assert_eq!(one.verdict, two.verdict);
+            assert_eq!(one.diff, two.diff);
+            assert_eq!(one.diags, two.diags);
+        };
+        both(1.0);
+        both(2.0);
+        let mut a = side(fanuc_loop(1.0));
+        a.run.max_steps = 5;
+        let r = in_one_thread(|| check(&db2(), a, side(siemens_loop())));
+        assert!(matches!(r.verdict, Verdict::Inconclusive { .. }), "{:?}", r.verdict);
+        assert!(!ONE_THREAD.with(Cell::get), "the mode ends with the closure");
     }
 }

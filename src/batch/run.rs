@@ -156,7 +156,8 @@ pub fn run_batch(
     let ctx = BatchContext { options: opts.clone(), files: files.clone(), library, maps, cancel: cancel.clone() };
     let work = |f: &InputFile| {
         let t0 = Instant::now();
-        let outcome = job.run(f, &ctx);
+        // One core per worker: the file's check runs in this thread (see check::in_one_thread).
+        let outcome = crate::check::in_one_thread(|| job.run(f, &ctx));
         let mut staged = Vec::new();
         let mut stage_error = None;
         if outcome.status.writes_output() {
