@@ -76,7 +76,7 @@ impl Diagnostic {
         self.severity == Severity::Error
     }
 
-    fn to_codespan(&self) -> cs::Diagnostic<FileId> {
+    fn to_codespan(&self, db: &SourceDb) -> cs::Diagnostic<FileId> {
         let sev = match self.severity {
             Severity::Error => cs::Severity::Error,
             Severity::Warning => cs::Severity::Warning,
@@ -90,7 +90,7 @@ impl Diagnostic {
                     .iter()
                     .map(|l| {
                         let style = if l.primary { cs::LabelStyle::Primary } else { cs::LabelStyle::Secondary };
-                        cs::Label::new(style, l.file, l.span.range()).with_message(l.message.clone())
+                        cs::Label::new(style, l.file, shown_range(db, l)).with_message(l.message.clone())
                     })
                     .collect(),
             )
@@ -111,7 +111,7 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic]) -> String {
         let mut one = String::new();
         // Rendering can only fail on a label outside its file; fall back to a plain line
         // rather than lose the diagnostic.
-        if term::emit_to_string(&mut one, &config, db, &d.to_codespan()).is_ok() {
+        if term::emit_to_string(&mut one, &config, db, &d.to_codespan(db)).is_ok() {
             out.push_str(&one);
         } else {
             out.push_str(&format!("{}[{}]: {}\n", sev_word(d.severity), d.code, d.message));
@@ -120,10 +120,49 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic]) -> String {
     out
 }
 
+/// Lines of a label that are shown at most; codespan prints every line of a label, and a
+/// label over a whole large program would take minutes to render.
+const MAX_LABEL_LINES: usize = 8;
+
+/// The label's range, cut after its first line when it covers more than
+/// [`MAX_LABEL_LINES`] lines.
+fn shown_range(db: &SourceDb, l: &Label) -> std::ops::Range<usize> {
+    let r = l.span.range();
+    if l.file >= db.len() {
+        return r;
+    }
+    let text = &db.get(l.file).text;
+    let Some(slice) = text.get(r.clone()) else { return r };
+    let mut lines = slice.match_indices(['\n', '\r']).take(MAX_LABEL_LINES + 1);
+    match (lines.next(), lines.count() >= MAX_LABEL_LINES) {
+        (Some((first_end, _)), true) => r.start..r.start + first_end,
+        _ => r,
+    }
+}
+
 fn sev_word(s: Severity) -> &'static str {
     match s {
         Severity::Error => "error",
         Severity::Warning => "warning",
         Severity::Note => "note",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_label_over_a_whole_program_shows_its_first_line_only() {
+        let mut db = SourceDb::new();
+        let text: String = (1..=5000).map(|i| format!("N{i} G1 X{i}\n")).collect();
+        let f = db.add("big.mpf", text.clone());
+        let d = Diagnostic::error("NC306", "too many").primary(f, Span::new(0, text.len() as u32), "here");
+        let out = render(&db, &[d]);
+        assert!(out.contains("N1 G1 X1"), "{out}");
+        assert!(!out.contains("N2 G1 X2"), "{out}");
+        // A short multi-line label is shown whole.
+        let d = Diagnostic::error("NC200", "x").primary(f, Span::new(0, 20), "here");
+        assert!(render(&db, &[d]).contains("N2 G1 X2"));
     }
 }

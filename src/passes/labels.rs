@@ -9,6 +9,7 @@
 //! `--number-blocks k` every block is numbered k, 2k, … and jumps use those numbers.
 
 use super::*;
+use crate::span::Span;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 const MAX_N: u32 = 99999;
@@ -16,6 +17,8 @@ const MAX_N: u32 = 99999;
 struct Pos {
     label: Option<String>,
     number: Option<u32>,
+    /// The block, for diagnostics.
+    span: Span,
 }
 
 struct Jump {
@@ -66,7 +69,9 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, number_blocks: Option<u32>) -> BTr
             }
             numbered = true;
         } else {
-            let span = prog.span;
+            // Point at the first block whose number would not fit, not at the whole program.
+            let first_over = (MAX_N / step) as usize;
+            let span = pos.get(first_over).map_or(prog.span, |p| p.span);
             let msg = format!("{} blocks numbered by {step} pass N{MAX_N}", pos.len());
             ctx.error("NC306", span, &msg, "use a smaller --number-blocks step");
         }
@@ -83,6 +88,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, number_blocks: Option<u32>) -> BTr
         if next as usize + targets.len() > MAX_N as usize {
             next = 1;
         }
+        let mut out_of_numbers = false;
         for (k, p) in pos.iter().enumerate() {
             let valid = p.number.filter(|n| (1..=MAX_N).contains(n));
             if targets.contains(&k) {
@@ -93,7 +99,12 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, number_blocks: Option<u32>) -> BTr
                             next += 1;
                         }
                         if next > MAX_N {
-                            ctx.error("NC306", prog.span, "no free N numbers left for jump targets", "");
+                            // Once, at the first jump target that gets no number.
+                            if !out_of_numbers {
+                                let msg = format!("no free N numbers left: {} jump targets", targets.len());
+                                ctx.error("NC306", p.span, &msg, "split the program into subprograms");
+                                out_of_numbers = true;
+                            }
                             None
                         } else {
                             next += 1;
@@ -128,7 +139,11 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, number_blocks: Option<u32>) -> BTr
 
 fn collect(body: &[Stmt], pos: &mut Vec<Pos>, gotos: &mut Vec<(usize, Goto)>) {
     let add = |m: &BlockMeta, pos: &mut Vec<Pos>| {
-        pos.push(Pos { label: m.label.as_ref().map(|l| l.name.clone()), number: m.number.as_ref().map(|n| n.value) });
+        pos.push(Pos {
+            label: m.label.as_ref().map(|l| l.name.clone()),
+            number: m.number.as_ref().map(|n| n.value),
+            span: m.span,
+        });
         pos.len() - 1
     };
     for s in body {
