@@ -236,7 +236,13 @@ fn load_for_run(
     if diag::has_errors(&parsed.diags) {
         return Err(ExitCode::from(1));
     }
-    let mut inputs = nctrans::eval::header_inputs(&db.get(loaded.file).text).map_err(|e| {
+    let opts = run_options(&db.get(loaded.file).text, &name, eval)?;
+    Ok((parsed.unit, opts))
+}
+
+/// Run options from a program's `nctrans: set` header lines, then `--set` (which wins).
+fn run_options(header: &str, name: &str, eval: &EvalOpts) -> Result<nctrans::eval::RunOptions, ExitCode> {
+    let mut inputs = nctrans::eval::header_inputs(header).map_err(|e| {
         eprintln!("error: {name}: bad `nctrans: set` header: {e}");
         ExitCode::from(2)
     })?;
@@ -248,13 +254,12 @@ fn load_for_run(
         inputs.retain(|h| h.target != i.target);
         inputs.push(i);
     }
-    let opts = nctrans::eval::RunOptions {
+    Ok(nctrans::eval::RunOptions {
         max_steps: eval.max_steps,
         inputs,
         semantics: None,
         probe_contact: eval.probe_contact,
-    };
-    Ok((parsed.unit, opts))
+    })
 }
 
 fn cmd_run(

@@ -124,24 +124,7 @@ pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
 
 /// Run options from the file's header lines and `--set`.
 fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunOptions, ExitCode> {
-    let mut inputs = nctrans::eval::header_inputs(&ix.header).map_err(|e| {
-        eprintln!("error: {}: bad `nctrans: set` header: {e}", ix.path.display());
-        ExitCode::from(2)
-    })?;
-    for s in &eval.set {
-        let i = nctrans::eval::parse_input(s).map_err(|e| {
-            eprintln!("error: --set {e}");
-            ExitCode::from(2)
-        })?;
-        inputs.retain(|h| h.target != i.target);
-        inputs.push(i);
-    }
-    Ok(nctrans::eval::RunOptions {
-        max_steps: eval.max_steps,
-        inputs,
-        semantics: None,
-        probe_contact: eval.probe_contact,
-    })
+    super::run_options(&ix.header, &ix.path.display().to_string(), eval)
 }
 
 /// Renders diagnostics; those pointing into a streamed file (whose text is not loaded)
