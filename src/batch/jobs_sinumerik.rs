@@ -21,7 +21,7 @@ use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
 use crate::translate_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
 use crate::verify_sinumerik::{self as vs, Profiles, RunSpec};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// The name the stand-in caller program is shown under in diagnostics.
 const CALLERS_FILE: &str = "(calls from other files of the library)";
@@ -45,6 +45,7 @@ impl ToSinumerikJob {
         }
         let s = &self.settings;
         var_map.extend(library_places(&ctx.library.commons, &var_map, s.sinumerik.r_param_count));
+        let flag_places = library_flag_places(&ctx.library.commons, &var_map, s.sinumerik.r_param_count);
         Ok(Options {
             source: s.fanuc.clone(),
             target: s.sinumerik.clone(),
@@ -55,8 +56,32 @@ impl ToSinumerikJob {
                 Unsupported::Warn => UnsupportedPolicy::Warn,
             },
             main_name: maps::siemens_name(&stem(file)),
+            flag_places,
         })
     }
+}
+
+/// Places for the is-set flags of the library's common variables, fixed over the whole
+/// library so a program that leaves `#500` vacant and another that tests it use the same
+/// flag: from the highest R parameter down, past every R a rule or a default place of any
+/// common variable of the library takes. Commons left without a place (no R free) are placed
+/// per file by the translator, as in single-file translation.
+fn library_flag_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> BTreeMap<u32, u32> {
+    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
+    let mut taken: BTreeSet<u32> = BTreeSet::new();
+    for r in rules {
+        let last = r.r_start.saturating_add(r.to - r.from).min(count);
+        taken.extend(r.r_start..=last);
+    }
+    for &n in commons.iter().filter(|&&n| !covered(n)) {
+        match n {
+            500..=799 => taken.insert(n - 500),
+            100..=199 => taken.insert(n),
+            _ => false,
+        };
+    }
+    let mut free = (0..count).rev().filter(|r| !taken.contains(r));
+    commons.iter().map_while(|&n| free.next().map(|r| (n, r))).collect()
 }
 
 /// Places for the common variables that have no default R parameter (#200..#499,
@@ -463,5 +488,35 @@ mod tests {
         let only: BTreeSet<u32> = [802].into_iter().collect();
         assert_eq!(library_places(&only, &[], 300), [VarMapRule { from: 802, to: 802, r_start: 0 }]);
         assert!(library_places(&commons, &rules, 2).len() < 2, "no R left past the count");
+    }
+
+    #[test]
+    fn is_set_flags_get_one_place_for_the_library() {
+        use crate::dialect::{Dialect, ParseOptions};
+        use crate::read::LineEnding;
+        // Program A tests only #501's vacancy; B tests #500's and #501's. Placed per file,
+        // #501's flag would be R299 in A and R298 in B.
+        let a = "%\nO1\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
+        let b = "%\nO2\nIF[#500EQ#0]GOTO10\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
+        let flag_of = |text: &str, places: &BTreeMap<u32, u32>, n: u32| {
+            let mut db = crate::span::SourceDb::new();
+            let f = db.add("t.nc", text);
+            let parsed = crate::parse(&db, f, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+            let opts = Options { flag_places: places.clone(), ..Options::default() };
+            let t = crate::translate_sinumerik::translate(&[&parsed.unit], &opts, LineEnding::Lf);
+            t.symbols.common(n).and_then(|e| e.flag.clone())
+        };
+        let none = BTreeMap::new();
+        assert_ne!(flag_of(a, &none, 501), flag_of(b, &none, 501), "per file the places differ");
+        let commons: BTreeSet<u32> = [500, 501].into_iter().collect();
+        let places = library_flag_places(&commons, &[], 300);
+        assert_eq!(places, [(500, 299), (501, 298)].into_iter().collect::<BTreeMap<_, _>>());
+        assert_eq!(flag_of(a, &places, 501).as_deref(), Some("R298"));
+        assert_eq!(flag_of(b, &places, 501).as_deref(), Some("R298"));
+        assert_eq!(flag_of(b, &places, 500).as_deref(), Some("R299"));
+        // Default places of the library's commons are never flag places.
+        let low: BTreeSet<u32> = [798, 799].into_iter().collect();
+        let p = library_flag_places(&low, &[], 300);
+        assert!(p.values().all(|r| *r < 298), "{p:?}");
     }
 }

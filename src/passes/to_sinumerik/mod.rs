@@ -90,6 +90,10 @@ pub struct Options {
     pub unsupported: UnsupportedPolicy,
     /// Name of the main program when it has no `O` number (the input file stem).
     pub main_name: String,
+    /// Fixed R parameters for the is-set flags of common variables (a batch fixes them for
+    /// the whole library, so every file tests a common variable's vacancy in the same place);
+    /// these R parameters are never given to anything else.
+    pub flag_places: BTreeMap<u32, u32>,
 }
 
 impl Default for Options {
@@ -101,6 +105,7 @@ impl Default for Options {
             program_map: BTreeMap::new(),
             unsupported: UnsupportedPolicy::Error,
             main_name: "MAIN".into(),
+            flag_places: BTreeMap::new(),
         }
     }
 }

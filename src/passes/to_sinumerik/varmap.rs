@@ -131,7 +131,10 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
     }
     for n in leftovers {
         let (file, span) = used[&n];
-        match (0..count).find(|r| !taken.contains_key(r) && !pending.iter().any(|&m| default_r(m) == Some(*r))) {
+        let flag_place = |r: &u32| ctx.opts.flag_places.values().any(|p| p == r);
+        match (0..count)
+            .find(|r| !taken.contains_key(r) && !flag_place(r) && !pending.iter().any(|&m| default_r(m) == Some(*r)))
+        {
             Some(r) => {
                 taken.insert(r, n);
                 ctx.commons.insert(n, r);
@@ -149,8 +152,14 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
             ),
         }
     }
+    let pinned = &ctx.opts.flag_places;
+    let reserved = |r: &u32| pinned.values().any(|p| p == r);
     for &n in &info.commons {
-        match (0..count).rev().find(|r| !taken.contains_key(r)) {
+        let place = match pinned.get(&n) {
+            Some(&r) if r < count && !taken.contains_key(&r) => Some(r),
+            _ => (0..count).rev().find(|r| !taken.contains_key(r) && !reserved(r)),
+        };
+        match place {
             Some(r) => {
                 taken.insert(r, n);
                 ctx.common_flags.insert(n, r);
