@@ -10,43 +10,28 @@ use nctrans::dialect::ParseOptions;
 use nctrans::eval::{self, NoCallees, NullSink, RunOptions};
 use nctrans::span::SourceDb;
 
-/// xorshift64*: deterministic, so a failure names a reproducible case.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        if n == 0 {
-            0
-        } else {
-            (self.next() % n as u64) as usize
-        }
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 const ALPHABET: &[u8] = b"0123456789.-+*/#[]()=XYZGMRIJKPLF \n";
 
 fn mutate(rng: &mut Rng, text: &[u8]) -> Vec<u8> {
     let mut b = text.to_vec();
-    for _ in 0..1 + rng.below(4) {
+    for _ in 0..1 + rng.index(4) {
         if b.is_empty() {
             break;
         }
-        let i = rng.below(b.len());
-        match rng.below(4) {
+        let i = rng.index(b.len());
+        match rng.index(4) {
             0 => {
                 b.remove(i);
             }
-            1 => b.insert(i, ALPHABET[rng.below(ALPHABET.len())]),
-            2 => b[i] = ALPHABET[rng.below(ALPHABET.len())],
+            1 => b.insert(i, ALPHABET[rng.index(ALPHABET.len())]),
+            2 => b[i] = ALPHABET[rng.index(ALPHABET.len())],
             _ => {
                 let lines: Vec<&[u8]> = b.split(|c| *c == b'\n').collect();
-                let j = rng.below(lines.len());
+                let j = rng.index(lines.len());
                 let mut out: Vec<u8> = Vec::new();
                 for (k, l) in lines.iter().enumerate() {
                     out.extend_from_slice(l);

@@ -12,26 +12,9 @@ use nctrans::span::SourceDb;
 use nctrans::translate_sinumerik::{translate, Options};
 use std::fmt::Write;
 
-/// xorshift64*: small, deterministic, reproducible from the seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n.max(1)
-    }
-    fn chance(&mut self, pct: u64) -> bool {
-        self.below(100) < pct
-    }
-    fn pick<'a>(&mut self, xs: &[&'a str]) -> &'a str {
-        xs[self.below(xs.len() as u64) as usize]
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 const CONSTS: &[&str] = &["1.", "2.5", "-3.", "0.25", "10.", "-1.2", "7", "12", "0"];
 const VARS: &[&str] = &["#1", "#2", "#3", "#4", "#5", "#100", "#500"];

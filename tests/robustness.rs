@@ -9,25 +9,9 @@ use std::path::PathBuf;
 use std::sync::mpsc;
 use std::time::Duration;
 
-/// Small deterministic generator (xorshift64*), so a failure names a reproducible case.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        if n == 0 {
-            0
-        } else {
-            (self.next() % n as u64) as usize
-        }
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 fn corpus_files() -> Vec<(PathBuf, Dialect)> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -51,28 +35,28 @@ const NASTY: &[u8] = b"()[]#=;:/%\"'\r\n\t -+*.,0123456789ENOGXRIFDWHLPAB_$\xEF\
 
 fn mutate(rng: &mut Rng, base: &[u8], other: &[u8]) -> Vec<u8> {
     let mut b = base.to_vec();
-    match rng.below(4) {
-        0 => b.truncate(rng.below(b.len() + 1)),
+    match rng.index(4) {
+        0 => b.truncate(rng.index(b.len() + 1)),
         1 => {
-            for _ in 0..1 + rng.below(4) {
+            for _ in 0..1 + rng.index(4) {
                 if !b.is_empty() {
-                    let i = rng.below(b.len());
-                    b[i] = NASTY[rng.below(NASTY.len())];
+                    let i = rng.index(b.len());
+                    b[i] = NASTY[rng.index(NASTY.len())];
                 }
             }
         }
         2 => {
-            let at = rng.below(b.len() + 1);
-            let lo = rng.below(other.len() + 1);
-            let hi = (lo + rng.below(200)).min(other.len());
+            let at = rng.index(b.len() + 1);
+            let lo = rng.index(other.len() + 1);
+            let hi = (lo + rng.index(200)).min(other.len());
             b.splice(at..at, other[lo..hi].iter().copied());
         }
         _ => {
             // Repeat a slice many times: deep nesting and long lines.
-            let lo = rng.below(b.len() + 1);
-            let hi = (lo + 1 + rng.below(8)).min(b.len());
+            let lo = rng.index(b.len() + 1);
+            let hi = (lo + 1 + rng.index(8)).min(b.len());
             let piece = b[lo..hi].to_vec();
-            for _ in 0..rng.below(300) {
+            for _ in 0..rng.index(300) {
                 b.splice(lo..lo, piece.iter().copied());
             }
         }
@@ -113,7 +97,7 @@ fn mutated_corpus_never_panics_or_hangs() {
         let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
         for (i, (path, dialect)) in files.iter().enumerate() {
             for round in 0..rounds {
-                let other = &contents[rng.below(contents.len())];
+                let other = &contents[rng.index(contents.len())];
                 let bytes = mutate(&mut rng, &contents[i], other);
                 let case = format!("{} round {round}", path.display());
                 let outcome = std::panic::catch_unwind(|| check_one(&bytes, *dialect));

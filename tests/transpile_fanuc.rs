@@ -11,6 +11,10 @@ use nctrans::translate::{self, TranslateOptions, Translation};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
+
 const STEPS: u64 = 200_000;
 
 fn root() -> PathBuf {
@@ -368,23 +372,9 @@ fn cead_examples_translate_and_verify() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n.max(1)
-    }
-    fn num(&mut self) -> String {
-        let v = self.below(200) as i64 - 100;
-        format!("{:.1}", v as f64 / 10.0)
-    }
+fn num(rng: &mut Rng) -> String {
+    let v = rng.below(200) as i64 - 100;
+    format!("{:.1}", v as f64 / 10.0)
 }
 
 struct Gen {
@@ -396,7 +386,7 @@ impl Gen {
     fn expr(&mut self, depth: u32) -> String {
         let r = |g: &mut Gen| format!("R{}", 1 + g.rng.below(4));
         if depth == 0 {
-            return if self.rng.below(2) == 0 { r(self) } else { self.rng.num() };
+            return if self.rng.below(2) == 0 { r(self) } else { num(&mut self.rng) };
         }
         let a = self.expr(depth - 1);
         let b = self.expr(depth - 1);
@@ -484,7 +474,7 @@ impl Gen {
     }
 
     fn program(&mut self) -> String {
-        let mut lines: Vec<String> = (1..=4).map(|k| format!("R{k}={}", self.rng.num())).collect();
+        let mut lines: Vec<String> = (1..=4).map(|k| format!("R{k}={}", num(&mut self.rng))).collect();
         self.stmts(0, 5, &mut lines);
         lines.push("G1 X=R1 Y=R2 Z=R3 A=R4 F100".into());
         lines.push("M30".into());
