@@ -177,18 +177,9 @@ fn two_points(text: &str, pos: usize, norm: &Normalised<'_>, file: FileId) -> Op
 /// than pest's for unbalanced and truncated blocks. Strings and the comment are skipped.
 fn unbalanced(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnostic> {
     let mut stack: Vec<(usize, u8)> = Vec::new();
-    let b = text.as_bytes();
-    let mut i = 0;
-    while i < b.len() {
-        match b[i] {
-            b'"' => {
-                i += 1;
-                while i < b.len() && b[i] != b'"' {
-                    i += 1;
-                }
-            }
-            b';' => break,
-            c @ (b'(' | b'[') => stack.push((i, c)),
+    for (i, c) in code_bytes(text) {
+        match c {
+            b'(' | b'[' => stack.push((i, c)),
             c @ (b')' | b']') => {
                 let want = if c == b')' { b'(' } else { b'[' };
                 match stack.pop() {
@@ -213,7 +204,6 @@ fn unbalanced(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnos
             }
             _ => {}
         }
-        i += 1;
     }
     let (at, o) = stack.pop()?;
     let close = if o == b'(' { ')' } else { ']' };
@@ -232,18 +222,9 @@ fn unbalanced(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnos
 /// Rejects a block whose parentheses/brackets nest deeper than [`MAX_PARENS`], so that pest
 /// and the converter never recurse deeper than that.
 pub fn too_deep(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnostic> {
-    let b = text.as_bytes();
     let mut depth = 0usize;
-    let mut i = 0;
-    while i < b.len() {
-        match b[i] {
-            b'"' => {
-                i += 1;
-                while i < b.len() && b[i] != b'"' {
-                    i += 1;
-                }
-            }
-            b';' => break,
+    for (i, c) in code_bytes(text) {
+        match c {
             b'(' | b'[' => {
                 depth += 1;
                 if depth > MAX_PARENS {
@@ -257,7 +238,24 @@ pub fn too_deep(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagn
             b')' | b']' => depth = depth.saturating_sub(1),
             _ => {}
         }
-        i += 1;
     }
     None
+}
+
+/// The bytes of a block's code with their offsets: string contents (`"…"`) are skipped and
+/// the `;` comment ends it.
+fn code_bytes(text: &str) -> impl Iterator<Item = (usize, u8)> + '_ {
+    let mut in_string = false;
+    text.bytes()
+        .enumerate()
+        .map_while(move |(i, c)| match c {
+            b'"' => {
+                in_string = !in_string;
+                Some(None)
+            }
+            _ if in_string => Some(None),
+            b';' => None,
+            _ => Some(Some((i, c))),
+        })
+        .flatten()
 }
