@@ -204,7 +204,7 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
     (maps, problems)
 }
 
-/// Quotes a TOML key or string (basic string with escapes).
+/// Quotes a TOML key or string (basic string with escapes); also a valid JSON string.
 pub fn quote(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');

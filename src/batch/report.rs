@@ -66,25 +66,9 @@ pub fn summary(r: &BatchResult, target: &str) -> String {
     s
 }
 
-/// A JSON string literal.
+/// A JSON string literal: the same escapes as a TOML basic string.
 fn js(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(out, "\\u{:04x}", c as u32);
-            }
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
+    super::maps::quote(s)
 }
 
 fn opt_num<T: std::fmt::Display>(v: Option<T>) -> String {
