@@ -160,6 +160,119 @@ impl<'a> Iterator for Blocks<'a> {
     }
 }
 
+/// Eight bytes as one word (the slice has exactly eight).
+#[inline]
+fn word8(c: &[u8]) -> u64 {
+    c.try_into().map_or(0, u64::from_le_bytes)
+}
+
+const LO: u64 = 0x0101_0101_0101_0101;
+const HI: u64 = 0x8080_8080_8080_8080;
+
+/// The end of the first line of `b` (the index of its first CR or LF, else `b.len()`), and
+/// whether every byte before it is plain: printable ASCII, tab, form feed or SUB. Such a
+/// line is valid UTF-8 and holds no control character that the binary-data check counts.
+/// Eight bytes are tested at a time (a word with no byte below 0x20 and none at or above
+/// 0x7F cannot hold a line end or anything that is not plain); only words that may, are
+/// looked at byte by byte.
+pub fn line_end(b: &[u8]) -> (usize, bool) {
+    let mut plain = true;
+    let mut chunks = b.chunks_exact(8);
+    let mut at = 0;
+    for c in &mut chunks {
+        let w = word8(c);
+        // Some byte < 0x20 (the classic "has less than" test), or some byte >= 0x7F.
+        let special = (w.wrapping_sub(LO * 0x20) & !w & HI) | ((w.wrapping_add(LO) | w) & HI);
+        if special != 0 {
+            for (k, &x) in c.iter().enumerate() {
+                match x {
+                    b'\n' | b'\r' => return (at + k, plain),
+                    b'\t' | 0x0c | 0x1a | 0x20..=0x7e => {}
+                    _ => plain = false,
+                }
+            }
+        }
+        at += 8;
+    }
+    for (k, &x) in chunks.remainder().iter().enumerate() {
+        match x {
+            b'\n' | b'\r' => return (at + k, plain),
+            b'\t' | 0x0c | 0x1a | 0x20..=0x7e => {}
+            _ => plain = false,
+        }
+    }
+    (b.len(), plain)
+}
+
+/// Whether `b` has a letter O or o (eight bytes at a time).
+fn has_letter_o(b: &[u8]) -> bool {
+    let mut chunks = b.chunks_exact(8);
+    for c in &mut chunks {
+        // Setting bit 5 maps exactly `O` and `o` to `o`; then look for a zero byte.
+        let v = (word8(c) | (LO * 0x20)) ^ (LO * u64::from(b'o'));
+        if v.wrapping_sub(LO) & !v & HI != 0 {
+            return true;
+        }
+    }
+    chunks.remainder().iter().any(|&c| c | 0x20 == b'o')
+}
+
+/// The value of a plain decimal literal: ASCII digits with at most one point and at least
+/// one digit (`12`, `-` and exponents excluded: `1.5`, `.5`, `7.`), or `None` for any
+/// other text. Exactly `s.parse::<f64>()` for such text: when the digits, read as a whole
+/// number, are below 2^53 and at most 22 follow the point, the number and the power of ten
+/// are both exact doubles and one IEEE division rounds their quotient correctly (Clinger's
+/// fast path); longer literals are left to the standard parser.
+pub fn decimal(s: &str) -> Option<f64> {
+    let b = s.as_bytes();
+    let mut mant: u64 = 0;
+    let mut digits = 0usize;
+    let mut frac: Option<usize> = None;
+    for (i, &c) in b.iter().enumerate() {
+        match c {
+            b'0'..=b'9' => {
+                // Leading zeros do not count towards the 19 digits a u64 holds.
+                if mant != 0 || c != b'0' {
+                    digits += 1;
+                }
+                if digits <= 19 {
+                    mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+                }
+            }
+            b'.' if frac.is_none() => frac = Some(i),
+            _ => return None,
+        }
+    }
+    let k = frac.map_or(0, |p| b.len() - p - 1);
+    if b.len() == usize::from(frac.is_some()) {
+        return None;
+    }
+    if digits <= 15 {
+        // digits <= 15: mant < 10^15 < 2^53.
+        if let Some(v) = scaled(mant, k) {
+            return Some(v);
+        }
+    }
+    s.parse().ok()
+}
+
+/// `mant / 10^k`, correctly rounded, when that is one exact division: `mant` below 2^53
+/// and `k` at most 22 (else `None`). Equal to parsing the decimal literal whose digits
+/// are `mant` with `k` of them after the point.
+#[inline]
+pub fn scaled(mant: u64, k: usize) -> Option<f64> {
+    if mant >= 1 << 53 {
+        return None;
+    }
+    POW10.get(k).map(|p| mant as f64 / p)
+}
+
+/// 10^0 ..= 10^22: every one an exact double.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20,
+    1e21, 1e22,
+];
+
 /// How a dialect writes comments, so normalisation leaves comment text untouched.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CommentStyle {
@@ -311,6 +424,10 @@ fn push_merged(spans: &mut Vec<Span>, s: Span) {
 /// alone as a word. `GOTO`, `GOTOF` and names like `GOAL` are left alone (a letter follows).
 fn fix_letter_o(n: &mut Normalised<'_>, style: CommentStyle) {
     let bytes = n.text.as_bytes();
+    // Nearly every block has no letter O at all: nothing to look for.
+    if !has_letter_o(bytes) {
+        return;
+    }
     let mut hits: Vec<(usize, usize)> = Vec::new();
     let mut zone = Zone::Code;
     let mut i = 0;

@@ -148,9 +148,14 @@ impl Lines {
     /// The next line, or `None` at the end of the input.
     pub fn next_line(&mut self) -> Result<Option<Line<'_>>, NotStreamable> {
         let mut scanned = 0;
+        // Whether `buf[pos..pos + scanned]` is plain ASCII (no control characters but tab,
+        // form feed and SUB): such a line needs neither a UTF-8 nor a control-character check.
+        let mut plain = true;
         let cut = loop {
             let avail = &self.buf[self.pos + scanned..self.end];
-            if let Some(i) = avail.iter().position(|&c| c == b'\n' || c == b'\r') {
+            let (i, p) = crate::read::line_end(avail);
+            plain &= p;
+            if i < avail.len() {
                 let at = self.pos + scanned + i;
                 // A CR at the end of the buffer may be the first half of CR LF.
                 if self.buf[at] == b'\r' && at + 1 == self.end && !self.eof {
@@ -186,16 +191,18 @@ impl Lines {
         self.line += 1;
         let bytes = &self.buf[self.pos..text_end];
         let text = std::str::from_utf8(bytes).map_err(|_| NotStreamable::NotUtf8 { line: self.line })?;
-        for c in text.chars() {
-            if c == '\0' {
+        if !plain {
+            for c in text.chars() {
+                if c == '\0' {
+                    return Err(NotStreamable::Binary);
+                }
+                if c.is_control() && !matches!(c, '\t' | '\x0c' | '\x1a') {
+                    self.controls += 1;
+                }
+            }
+            if self.controls > 64 {
                 return Err(NotStreamable::Binary);
             }
-            if c.is_control() && !matches!(c, '\t' | '\x0c' | '\x1a') {
-                self.controls += 1;
-            }
-        }
-        if self.controls > 64 {
-            return Err(NotStreamable::Binary);
         }
         let start = self.offset;
         self.offset += (next - self.pos) as u64;

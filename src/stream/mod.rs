@@ -75,10 +75,10 @@ impl Reader<'_> {
         }
     }
 
-    fn drain(&mut self) -> Vec<Stmt> {
+    fn drain_into(&mut self, out: &mut Vec<Stmt>) {
         match self {
-            Reader::Sin(r) => r.drain(),
-            Reader::Fan(r) => r.drain(),
+            Reader::Sin(r) => r.drain_into(out),
+            Reader::Fan(r) => r.drain_into(out),
         }
     }
 
@@ -156,6 +156,8 @@ pub fn scan(
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
+    // The statements finished by one line; reused, so a line costs no new vector.
+    let mut stmts: Vec<Stmt> = Vec::new();
     if text_len > u64::from(u32::MAX) {
         // Spans are 32-bit offsets into the text.
         return Err(NotStreamable::TooLarge);
@@ -173,7 +175,8 @@ pub fn scan(
                 p(Progress { done: line_end, total: size, blocks: progs.iter().map(|p| p.ops as u64).sum() });
             }
         }
-        let stmts = reader.drain();
+        stmts.clear();
+        reader.drain_into(&mut stmts);
         if stmts.is_empty() {
             continue;
         }
@@ -299,6 +302,7 @@ pub fn reread(
     on_line: &mut dyn FnMut(u64, u32),
 ) -> Result<(), NotStreamable> {
     lines.seek(chunk.lo, chunk.line)?;
+    let mut stmts: Vec<Stmt> = Vec::new();
     let mut reader = match &chunk.resume {
         Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(ix.file, &ix.opts, r))),
         Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(ix.file, &ix.opts, *r))),
@@ -310,7 +314,8 @@ pub fn reread(
         on_line(l.start, l.line);
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
         reader.line(&raw);
-        for s in reader.drain() {
+        reader.drain_into(&mut stmts);
+        for s in stmts.drain(..) {
             each(s);
         }
     }

@@ -69,11 +69,16 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
     let seg = cx.seg;
     let mut meta = BlockMeta { span: cx.span, skip: parts.skip, ..BlockMeta::default() };
     let mut comments: Vec<Comment> = Vec::new();
-    let mut rest: Vec<Part> = Vec::with_capacity(parts.parts.len());
-    for p in parts.parts {
-        match p {
-            Part::Comment(c) => comments.push(c),
-            other => rest.push(other),
+    let mut rest: Vec<Part> = parts.parts;
+    // Most blocks have no comment: then the parts are used as they are.
+    if rest.iter().any(|p| matches!(p, Part::Comment(_))) {
+        let all = std::mem::take(&mut rest);
+        rest.reserve(all.len());
+        for p in all {
+            match p {
+                Part::Comment(c) => comments.push(c),
+                other => rest.push(other),
+            }
         }
     }
 
@@ -107,7 +112,7 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
     }
 
     let mut items: Vec<Item> = Vec::new();
-    let mut words: Vec<RawWord> = Vec::new();
+    let mut words: Vec<RawWord> = Vec::with_capacity(rest.len());
     // The macro statement of the block, if any: (span, is plain GOTO).
     let mut statement: Option<(Span, bool)> = None;
     let mut note_statement = |span: Span, plain_goto: bool| -> Result<(), Diagnostic> {
@@ -184,8 +189,11 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
     }
 
     if !words.is_empty() {
+        // Read before `nc_words`, which may move the words' values into the items.
+        let opens_params =
+            words.iter().any(|w| is_g(w, 10)) && words.iter().any(|w| w.letter == b'L' && w.int() == Some(50));
         let (word_items, is_macro) =
-            if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &words)? };
+            if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &mut words)? };
         let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
         if is_macro {
             note_statement(wspan, false)?;
@@ -198,9 +206,13 @@ pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic>
                     .hint("put the macro statement and the NC words in separate blocks"));
             }
         }
-        items.extend(word_items);
+        if items.is_empty() {
+            items = word_items;
+        } else {
+            items.extend(word_items);
+        }
         items.sort_by_key(|i| i.span.lo);
-        if words.iter().any(|w| is_g(w, 10)) && words.iter().any(|w| w.letter == b'L' && w.int() == Some(50)) {
+        if opens_params {
             cx.param_mode = true;
         }
         if has_g11 {
@@ -311,7 +323,7 @@ fn assign(
 
 /// NC words, with the calls, returns and ends they spell. Returns the items and whether the
 /// block is a macro statement (a G65/G66 call or Macro A).
-fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool), Diagnostic> {
+fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, bool), Diagnostic> {
     let seg = cx.seg;
     if let Some(gi) = words.iter().position(|w| is_g(w, 65) || is_g(w, 66)) {
         let g = &words[gi];
@@ -333,27 +345,32 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
         return Ok((vec![item], true));
     }
     let mut items = Vec::with_capacity(words.len());
-    let mut used = vec![false; words.len()];
-    let find = |l: u8| words.iter().position(|w| w.letter == l);
-    for (i, w) in words.iter().enumerate() {
-        if used[i] {
+    // M98 and M99 take the first P (and L) word as their argument: those are the only
+    // words ever used up, so two flags stand for a per-word table.
+    let first_p = words.iter().position(|w| w.letter == b'P');
+    let first_l = words.iter().position(|w| w.letter == b'L');
+    let (mut used_p, mut used_l) = (false, false);
+    // Without M98/M99 no word is read after its own turn, so a plain word's value can be
+    // moved into its item instead of cloned.
+    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99));
+    for i in 0..words.len() {
+        if (used_p && Some(i) == first_p) || (used_l && Some(i) == first_l) {
             continue;
         }
+        let w = &words[i];
         if w.letter == b'M' {
             if is_m(w, 98) {
-                let p = find(b'P');
-                let l = find(b'L');
-                for k in [p, l].into_iter().flatten() {
-                    used[k] = true;
-                }
+                let (p, l) = (first_p, first_l);
+                used_p |= p.is_some();
+                used_l |= l.is_some();
                 items.push(args::m98(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
                 continue;
             }
             if is_m(w, 99) {
-                let p = find(b'P');
+                let p = first_p;
                 let mut span = w.span;
                 if let Some(k) = p {
-                    used[k] = true;
+                    used_p = true;
                     span = span.to(words[k].span);
                 }
                 items.push(Item { kind: ItemKind::Return { to: p.map(|k| words[k].value.clone()) }, span });
@@ -384,13 +401,16 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<(Vec<Item>, bool)
         if w.letter == b'O' {
             return Err(misplaced_program(seg.file, w.span));
         }
+        let (letter, span) = (w.letter, w.span);
+        let value =
+            if movable { std::mem::replace(&mut words[i].value, Expr::num(0.0, false, span)) } else { w.value.clone() };
         items.push(Item {
             kind: ItemKind::Word(crate::ir::Word {
-                addr: crate::ir::Addr::Letter(w.letter),
-                value: crate::ir::WordValue::Expr(w.value.clone()),
-                span: w.span,
+                addr: crate::ir::Addr::Letter(letter),
+                value: crate::ir::WordValue::Expr(value),
+                span,
             }),
-            span: w.span,
+            span,
         });
     }
     Ok((items, false))

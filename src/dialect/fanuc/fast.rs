@@ -45,25 +45,35 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
             skip_ws(b, &mut i);
         }
         let lo = i;
+        // The digits as one whole number and how many follow the point: up to 15 digits
+        // the value is exact without a second pass (`read::scaled`); longer ones are parsed.
+        let mut mant: u64 = 0;
         let mut digits = 0;
-        while b.get(i).is_some_and(u8::is_ascii_digit) {
+        while let Some(&c @ b'0'..=b'9') = b.get(i) {
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
             i += 1;
             digits += 1;
         }
         let mut point = false;
+        let mut frac = 0;
         if b.get(i) == Some(&b'.') {
             point = true;
             i += 1;
-            while b.get(i).is_some_and(u8::is_ascii_digit) {
+            while let Some(&c @ b'0'..=b'9') = b.get(i) {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
                 i += 1;
-                digits += 1;
+                frac += 1;
             }
         }
+        digits += frac;
         if digits == 0 || !ends_token(b, i) {
             return None;
         }
-        let n = literal(&seg.text[lo..i]);
-        let value = if neg == Some(true) { -n.value } else { n.value };
+        let n = match crate::read::scaled(mant, frac).filter(|_| digits <= 15) {
+            Some(v) => v,
+            None => literal(&seg.text[lo..i]).value,
+        };
+        let value = if neg == Some(true) { -n } else { n };
         out.parts.push(Part::Word(RawWord {
             letter: letter.to_ascii_uppercase(),
             value: Expr::num(value, point, seg.span(vstart, i)),

@@ -120,6 +120,14 @@ impl<'o> Reader<'o> {
         }
     }
 
+    /// [`Reader::drain`] into `out` (appended; an empty `out` lends its capacity).
+    pub fn drain_into(&mut self, out: &mut Vec<crate::ir::Stmt>) {
+        if let Some(p) = self.programs.last_mut() {
+            p.stream();
+            p.drain_into(out);
+        }
+    }
+
     pub fn at_top(&self) -> bool {
         self.programs.last().is_none_or(|p| p.at_top())
     }

@@ -330,7 +330,7 @@ fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, D
 
 /// Reads a literal matched by `unsigned` (digits with an optional point).
 pub fn literal(s: &str) -> Number {
-    Number { value: s.parse::<f64>().unwrap_or(0.0), point: s.contains('.') }
+    Number { value: crate::read::decimal(s).or_else(|| s.parse().ok()).unwrap_or(0.0), point: s.contains('.') }
 }
 
 /// Turns a pest failure into one diagnostic saying what was expected at the failing column.

@@ -11,41 +11,62 @@ const HARD_DEPTH: u32 = 32;
 
 /// Splits a normalised line into blocks at `;` outside comments. Yields `(lo, hi, end)`:
 /// the trimmed block text `lo..hi` and `end`, one past its `;` (or `hi` without one).
-/// Empty blocks (a lone `;`) are skipped.
-pub fn segments(text: &str) -> Vec<(usize, usize, usize)> {
-    let b = text.as_bytes();
-    let mut out = Vec::new();
-    let mut start = 0;
-    let mut in_comment = false;
-    for (i, &c) in b.iter().enumerate() {
-        match c {
-            b'(' if !in_comment => in_comment = true,
-            b')' if in_comment => in_comment = false,
-            b';' if !in_comment => {
-                push_trimmed(text, start, i, i + 1, &mut out);
-                start = i + 1;
-            }
-            _ => {}
-        }
-    }
-    if start < b.len() {
-        push_trimmed(text, start, b.len(), b.len(), &mut out);
-    }
-    out
+/// Empty blocks (a lone `;`) are skipped. An iterator, so a line costs no allocation.
+pub fn segments(text: &str) -> Segments<'_> {
+    Segments { text, pos: 0 }
 }
 
-fn push_trimmed(text: &str, lo: usize, hi: usize, end: usize, out: &mut Vec<(usize, usize, usize)>) {
+pub struct Segments<'a> {
+    text: &'a str,
+    /// Where the next block starts (`text.len() + 1` when done).
+    pos: usize,
+}
+
+impl Iterator for Segments<'_> {
+    type Item = (usize, usize, usize);
+
+    fn next(&mut self) -> Option<(usize, usize, usize)> {
+        let b = self.text.as_bytes();
+        while self.pos < b.len() {
+            let start = self.pos;
+            let mut in_comment = false;
+            let mut cut = None;
+            for (i, &c) in b.iter().enumerate().skip(start) {
+                match c {
+                    b'(' if !in_comment => in_comment = true,
+                    b')' if in_comment => in_comment = false,
+                    b';' if !in_comment => {
+                        cut = Some(i);
+                        break;
+                    }
+                    _ => {}
+                }
+            }
+            let (hi, end) = match cut {
+                Some(i) => (i, i + 1),
+                None => (b.len(), b.len()),
+            };
+            self.pos = if cut.is_some() { hi + 1 } else { b.len() + 1 };
+            if let Some(seg) = trimmed(self.text, start, hi, end) {
+                return Some(seg);
+            }
+        }
+        None
+    }
+}
+
+fn trimmed(text: &str, lo: usize, hi: usize, end: usize) -> Option<(usize, usize, usize)> {
     let s = &text[lo..hi];
     let t = s.trim_start();
     let lo2 = lo + (s.len() - t.len());
     let t = t.trim_end();
     if t.is_empty() {
-        return;
+        return None;
     }
     let hi2 = lo2 + t.len();
     // A `;` that ends the block belongs to its span; otherwise the block ends at its text.
     let end2 = if end > hi { end } else { hi2 };
-    out.push((lo2, hi2, end2));
+    Some((lo2, hi2, end2))
 }
 
 /// The `N` number a block starts with (after an optional `/n`), read textually; used to keep
@@ -62,6 +83,10 @@ pub fn leading_number(text: &str) -> Option<u32> {
 /// Checks a block's brackets, comments and operator characters before parsing.
 pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
     let b = seg.text.as_bytes();
+    // Plain motion blocks have none of the characters checked here.
+    if !b.iter().any(|&c| matches!(c, b'(' | b'[' | b']' | b'#' | b'<' | b'>' | b'!')) {
+        return Ok(());
+    }
     let max = opts.semantics.max_bracket_depth.min(HARD_DEPTH);
     let mut depth: u32 = 0;
     let mut open: Vec<usize> = Vec::new();

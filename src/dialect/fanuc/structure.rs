@@ -94,15 +94,38 @@ impl ProgramLines {
             return Vec::new();
         }
         let top = std::mem::take(&mut self.top);
+        self.note_drained(&top);
+        top
+    }
+
+    /// [`ProgramLines::drain`] into `out`; when `out` is empty the two vectors trade
+    /// places, so a stream of one-block statements allocates no new vector per block.
+    pub fn drain_into(&mut self, out: &mut Vec<Stmt>) {
+        if !self.stack.is_empty() || self.top.is_empty() || (self.name.is_none() && self.only_comments()) {
+            return;
+        }
+        let from = out.len();
+        if from == 0 {
+            std::mem::swap(&mut self.top, out);
+        } else {
+            out.append(&mut self.top);
+        }
+        self.note_drained(&out[from..]);
+    }
+
+    /// Remembers what the final GOTO check needs from drained statements.
+    fn note_drained(&mut self, top: &[Stmt]) {
         let s = self.streamed.get_or_insert_with(Streamed::default);
         s.drained = true;
-        let (numbers, targets) = goto_facts(&top);
-        for n in numbers {
-            s.numbers.push(n, s.count, Span::default());
-            s.count += 1;
-        }
-        s.targets.extend(targets);
-        top
+        let (runs, count) = (&mut s.numbers, &mut s.count);
+        goto_facts_into(
+            top,
+            &mut |n| {
+                runs.push(n, *count, Span::default());
+                *count += 1;
+            },
+            &mut s.targets,
+        );
     }
 
     pub fn is_empty(&self) -> bool {
@@ -261,10 +284,26 @@ fn plain(meta: BlockMeta) -> Stmt {
 fn goto_facts(body: &[Stmt]) -> (Vec<u32>, Vec<crate::ir::SeqNo>) {
     let mut numbers = Vec::new();
     let mut targets = Vec::new();
+    goto_facts_into(body, &mut |n| numbers.push(n), &mut targets);
+    (numbers, targets)
+}
+
+/// [`goto_facts`] without collecting the numbers (streaming hands each to `number`).
+fn goto_facts_into(body: &[Stmt], number: &mut dyn FnMut(u32), targets: &mut Vec<crate::ir::SeqNo>) {
     walk_stmts(body, &mut |s| {
-        for m in metas(&s.kind) {
-            if let Some(n) = &m.number {
-                numbers.push(n.value);
+        match &s.kind {
+            // A plain block (nearly all of them) without building the list of its metas.
+            StmtKind::Block(b) => {
+                if let Some(n) = &b.meta.number {
+                    number(n.value);
+                }
+            }
+            other => {
+                for m in metas(other) {
+                    if let Some(n) = &m.number {
+                        number(n.value);
+                    }
+                }
             }
         }
         if let StmtKind::Block(b) = &s.kind {
@@ -277,7 +316,6 @@ fn goto_facts(body: &[Stmt]) -> (Vec<u32>, Vec<crate::ir::SeqNo>) {
             }
         }
     });
-    (numbers, targets)
 }
 
 /// Every literal `GOTO n` needs a block `Nn` in the same program.

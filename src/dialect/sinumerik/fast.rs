@@ -20,17 +20,21 @@ pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
     while i < b.len() && blank(b[i]) {
         i += 1;
     }
-    // Optional block number `N123` (not `N1.`, not followed by `=`).
-    if i < b.len() && (b[i] == b'N' || b[i] == b'n') {
+    // Optional block number `N123` (not `N1.`, not followed by `=`), at most nine digits.
+    if i < b.len() && (b[i] | 0x20) == b'n' {
         let start = i;
         let mut j = i + 1;
+        let mut value: u32 = 0;
         while j < b.len() && b[j].is_ascii_digit() {
+            if j - i > 9 {
+                return None;
+            }
+            value = value * 10 + u32::from(b[j] - b'0');
             j += 1;
         }
-        if j == i + 1 || j - i > 10 || (j < b.len() && !(blank(b[j]) || b[j] == b';' || b[j].is_ascii_alphabetic())) {
+        if j == i + 1 || (j < b.len() && !(blank(b[j]) || b[j] == b';' || b[j].is_ascii_alphabetic())) {
             return None;
         }
-        let value: u32 = text[i + 1..j].parse().ok()?;
         meta.number = Some(SeqNo { value, span: norm.span(start, j) });
         i = j;
     }
@@ -49,7 +53,7 @@ pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
         let c = b[i];
         // Letters that mean more than a word (L calls, N numbers, P repeat counts after a
         // call) are left to the grammar.
-        if !c.is_ascii_alphabetic() || matches!(c.to_ascii_uppercase(), b'L' | b'N' | b'P') {
+        if !c.is_ascii_alphabetic() || matches!(c | 0x20, b'l' | b'n' | b'p') {
             return None;
         }
         let start = i;
@@ -57,21 +61,27 @@ pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
         if j < b.len() && (b[j] == b'-' || b[j] == b'+') {
             j += 1;
         }
-        let num = j;
+        // The digits as one whole number and how many follow the point: the value is then
+        // exact (see `read::scaled`), so no second pass over the text is needed.
+        let mut mant: u64 = 0;
         let mut digits = 0;
         while j < b.len() && b[j].is_ascii_digit() {
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(b[j] - b'0'));
             j += 1;
             digits += 1;
         }
         let mut point = false;
+        let mut frac = 0;
         if j < b.len() && b[j] == b'.' {
             point = true;
             j += 1;
             while j < b.len() && b[j].is_ascii_digit() {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(b[j] - b'0'));
                 j += 1;
-                digits += 1;
+                frac += 1;
             }
         }
+        digits += frac;
         if digits == 0 || digits > 15 {
             return None;
         }
@@ -97,7 +107,8 @@ pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
                 return None;
             }
         }
-        let value: f64 = text[num..j].parse().ok()?;
+        // At most 15 digits: below 2^53, so `scaled` is exact and always answers.
+        let value = crate::read::scaled(mant, frac)?;
         let value = if b[i + 1] == b'-' { -value } else { value };
         let span = norm.span(start, j);
         let vspan = norm.span(start + 1, j);

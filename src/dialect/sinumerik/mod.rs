@@ -102,6 +102,11 @@ impl Reader {
         self.builder.drain()
     }
 
+    /// [`Reader::drain`] into `out` (appended; an empty `out` lends its capacity).
+    pub fn drain_into(&mut self, out: &mut Vec<crate::ir::Stmt>) {
+        self.builder.drain_into(out)
+    }
+
     /// Name, head, parameters of the program as read so far (PROC and the `%_N_` header
     /// come first, so they are known before the first statement).
     pub fn program_head(&self) -> &crate::ir::Program {

@@ -240,6 +240,16 @@ impl Builder {
         std::mem::take(&mut self.program.body)
     }
 
+    /// [`Builder::drain`] into `out`; when `out` is empty the vectors trade places, so a stream of
+    /// one-block statements allocates no new vector per block.
+    pub fn drain_into(&mut self, out: &mut Vec<Stmt>) {
+        if out.is_empty() {
+            std::mem::swap(&mut self.program.body, out);
+        } else {
+            out.append(&mut self.program.body);
+        }
+    }
+
     pub fn program(&self) -> &Program {
         &self.program
     }
