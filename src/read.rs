@@ -204,6 +204,22 @@ pub fn line_end(b: &[u8]) -> (usize, bool) {
     (b.len(), plain)
 }
 
+/// The index of the first `x` or `y` in `b` (eight bytes at a time).
+pub fn find2(b: &[u8], x: u8, y: u8) -> Option<usize> {
+    let (sx, sy) = (LO * u64::from(x), LO * u64::from(y));
+    let zero = |v: u64| v.wrapping_sub(LO) & !v & HI != 0;
+    let mut chunks = b.chunks_exact(8);
+    let mut at = 0;
+    for c in &mut chunks {
+        let w = word8(c);
+        if zero(w ^ sx) || zero(w ^ sy) {
+            return c.iter().position(|&v| v == x || v == y).map(|k| at + k);
+        }
+        at += 8;
+    }
+    chunks.remainder().iter().position(|&v| v == x || v == y).map(|k| at + k)
+}
+
 /// Whether `b` has a letter O or o (eight bytes at a time).
 fn has_letter_o(b: &[u8]) -> bool {
     let mut chunks = b.chunks_exact(8);
@@ -298,6 +314,7 @@ pub struct Normalised<'a> {
 
 impl Normalised<'_> {
     /// File offset of byte `pos` of the normalised text.
+    #[inline]
     pub fn offset(&self, pos: usize) -> u32 {
         match &self.map {
             Some(m) => m[pos.min(m.len() - 1)],
@@ -306,7 +323,13 @@ impl Normalised<'_> {
     }
 
     /// File span of the normalised byte range `lo..hi`.
+    #[inline]
     pub fn span(&self, lo: usize, hi: usize) -> Span {
+        if self.map.is_none() {
+            // Unchanged text (nearly every block): offsets are the file's, shifted.
+            let from = self.start + lo as u32;
+            return Span::new(from, if hi > lo { self.start + hi as u32 } else { from });
+        }
         if hi > lo {
             // The end is one past the last byte: map the last byte and step over it, so a
             // full-width character ends where it ends in the file.
@@ -511,6 +534,29 @@ mod tests {
         let n = normalise(&raw("GOTO10 (GO HOME)"), CommentStyle::Parens);
         assert_eq!(n.text, "GOTO10 (GO HOME)");
         assert!(n.letter_o.is_empty());
+    }
+
+    #[test]
+    fn word_at_a_time_searches_match_byte_by_byte() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let alphabet = b"G1X.5;(o)O\n\r\t\x0c\x1a\x7f\x00\x1b\xc3\xa9 ~";
+        for len in 0..200 {
+            for _ in 0..20 {
+                let b: Vec<u8> = (0..len)
+                    .map(|_| {
+                        state ^= state << 13;
+                        state ^= state >> 7;
+                        state ^= state << 17;
+                        alphabet[(state % alphabet.len() as u64) as usize]
+                    })
+                    .collect();
+                let end = b.iter().position(|&c| c == b'\n' || c == b'\r').unwrap_or(b.len());
+                let plain = b[..end].iter().all(|&c| matches!(c, b'\t' | 0x0c | 0x1a | 0x20..=0x7e));
+                assert_eq!(line_end(&b), (end, plain), "{b:?}");
+                assert_eq!(find2(&b, b';', b'('), b.iter().position(|&c| c == b';' || c == b'('), "{b:?}");
+                assert_eq!(has_letter_o(&b), b.iter().any(|&c| c == b'o' || c == b'O'), "{b:?}");
+            }
+        }
     }
 
     #[test]

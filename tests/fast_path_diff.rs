@@ -3,11 +3,15 @@
 //! comments, block numbers and skips) go through both the fast path and the pest grammar;
 //! wherever the fast path takes a block, the IR must be identical. Both dialects.
 //!
+//! Also: the exact decimal reader the fast paths use (`read::decimal`) against `str::parse`
+//! on generated literals, and the FANUC builder's direct route for plain word blocks
+//! against its general route.
+//!
 //! `NCTRANS_FAST_BLOCKS` sets how many blocks are generated per dialect (default 20,000,
 //! fast enough for `cargo test` in debug); the ignored test runs a million per dialect
 //! (`cargo test --release --test fast_path_diff -- --ignored`, run by `bench/stream.sh`).
 
-use nctrans::dialect::fanuc::{parse_fast_for_test, parse_grammar_for_test};
+use nctrans::dialect::fanuc::{build_both_ways_for_test, parse_fast_for_test, parse_grammar_for_test};
 use nctrans::dialect::sinumerik::{block_via_fast_path, block_via_grammar};
 use std::path::PathBuf;
 
@@ -157,4 +161,124 @@ fn every_corpus_block_agrees() {
         }
     }
     assert!(taken > 500, "the fast path took only {taken} corpus blocks");
+}
+
+/// A decimal literal as CAM output and people write it: 1 to 25 digits, leading zeros,
+/// the point anywhere (or nowhere), long fractions.
+fn literal(r: &mut Rng) -> String {
+    let n = 1 + r.below(25) as usize;
+    let mut digits: String = (0..n).map(|_| char::from(b'0' + r.below(10) as u8)).collect();
+    if r.below(3) == 0 {
+        // Runs of zeros: exact powers of ten, values just below or above them.
+        let zeros = "0".repeat(r.below(20) as usize);
+        digits = format!("{}{zeros}{}", r.below(10), r.below(1000));
+    }
+    match r.below(4) {
+        0 => digits,
+        _ => {
+            let at = r.below(digits.len() as u64 + 1) as usize;
+            format!("{}.{}", &digits[..at], &digits[at..])
+        }
+    }
+}
+
+fn decimals(n: u64) {
+    let mut r = Rng(0xD1B5_4A32_D192_ED03);
+    for _ in 0..n {
+        let s = literal(&mut r);
+        let want: f64 = s.parse().expect("a generated literal parses");
+        let got = nctrans::read::decimal(&s);
+        assert_eq!(got.map(f64::to_bits), Some(want.to_bits()), "literal {s:?}: {got:?} vs {want:?}");
+    }
+    for s in [
+        "0",
+        "0.",
+        ".0",
+        "9007199254740991",
+        "9007199254740993",
+        "900719925474099.3",
+        "123456789012345",
+        "1234567890123456",
+        "0.1",
+        "0.3",
+        "2.675",
+        "1e5",
+        "",
+        ".",
+        "1.2.3",
+        "-1",
+        "+1",
+        " 1",
+        "1_0",
+    ] {
+        let want = s.parse::<f64>().ok().filter(|_| s.bytes().all(|c| c.is_ascii_digit() || c == b'.'));
+        assert_eq!(nctrans::read::decimal(s).map(f64::to_bits), want.map(f64::to_bits), "literal {s:?}");
+    }
+}
+
+#[test]
+fn exact_decimals_agree_with_str_parse() {
+    let n = std::env::var("NCTRANS_FAST_BLOCKS").ok().and_then(|v| v.parse().ok()).unwrap_or(20_000u64);
+    decimals(n * 10);
+}
+
+/// A FANUC block of address words that may mean more than a word: program and sequence
+/// numbers, calls, returns, ends, parameter-write mode and comments.
+fn fanuc_word_block(r: &mut Rng) -> String {
+    let mut s = String::new();
+    if r.below(10) == 0 {
+        s.push_str("/ ");
+    }
+    for k in 0..(1 + r.below(6)) {
+        let letter = if k == 0 {
+            r.pick(&["N", "N", "O", "G", "X", "M"])
+        } else {
+            r.pick(&["G", "G", "M", "M", "X", "Y", "P", "L", "N", "O", "R", "Q", "H", "F"])
+        };
+        s.push_str(letter);
+        s.push_str(r.pick(&["", "", "", "", "-", "+"]));
+        let value = match r.below(4) {
+            0 => r.pick(&["10", "11", "50", "65", "66", "67", "2", "30", "98", "99", "0", "100000"]).to_string(),
+            1 => format!("{}.", r.below(100)),
+            _ => format!("{}", r.below(100_000)),
+        };
+        s.push_str(&value);
+        s.push_str(r.pick(&["", " "]));
+        if r.below(25) == 0 {
+            s.push_str("(NOTE)");
+        }
+    }
+    s.trim().to_string()
+}
+
+#[test]
+fn fanuc_plain_blocks_build_like_the_general_route() {
+    let mut r = Rng(0x94D0_49BB_1331_11EB);
+    let mut taken = 0;
+    let check = |b: &str, taken: &mut usize| {
+        for param_mode in [false, true] {
+            if let Some((plain, general)) = build_both_ways_for_test(b, param_mode) {
+                assert_eq!(plain, general, "FANUC block {b:?} (parameter-write mode {param_mode})");
+                *taken += 1;
+            }
+        }
+    };
+    for _ in 0..20_000 {
+        check(&fanuc_word_block(&mut r), &mut taken);
+        check(&block(&mut r, false), &mut taken);
+    }
+    assert!(taken > 10_000, "the direct route took only {taken} blocks");
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    for top in ["corpus/in/fanuc", "corpus/err/fanuc"] {
+        let Ok(rd) = std::fs::read_dir(root.join(top)) else { continue };
+        for f in rd.filter_map(|e| e.ok()).map(|e| e.path()) {
+            let Ok(bytes) = std::fs::read(&f) else { continue };
+            let text = nctrans::read::decode(&bytes, None).text;
+            for raw in nctrans::read::blocks(&text) {
+                for part in raw.text.split(';') {
+                    check(part.trim(), &mut taken);
+                }
+            }
+        }
+    }
 }

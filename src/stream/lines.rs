@@ -190,7 +190,16 @@ impl Lines {
         };
         self.line += 1;
         let bytes = &self.buf[self.pos..text_end];
-        let text = std::str::from_utf8(bytes).map_err(|_| NotStreamable::NotUtf8 { line: self.line })?;
+        let text = if plain {
+            // SAFETY: `line_end` looked at every byte of `bytes` (they are the bytes before
+            // the line end it found, over all refills: `plain` is the AND of its answers)
+            // and found each to be a tab, form feed, SUB or in 0x20..=0x7E: all ASCII, and
+            // ASCII bytes are valid UTF-8 on their own.
+            // This skips a second pass over the line, which costs more than finding its end.
+            unsafe { std::str::from_utf8_unchecked(bytes) }
+        } else {
+            std::str::from_utf8(bytes).map_err(|_| NotStreamable::NotUtf8 { line: self.line })?
+        };
         if !plain {
             for c in text.chars() {
                 if c == '\0' {
@@ -265,6 +274,47 @@ mod tests {
         assert_eq!(l.next_line().unwrap().map(|x| (x.text.to_string(), x.start)), Some(("cd".into(), 3)));
         l.seek(3, 2).unwrap();
         assert_eq!(l.next_line().unwrap().map(|x| (x.text.to_string(), x.line)), Some(("cd".into(), 2)));
+    }
+
+    #[test]
+    fn control_characters_are_counted_like_the_whole_path() {
+        // Lines of plain ASCII with tabs, form feeds, SUB, DEL, other controls and
+        // multi-byte characters, over buffer refills: the same lines as `read::blocks`
+        // and the same count of control characters as a per-character check.
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        let pieces = ["G1 X1.5", "\t", "\x0c", "\x1a", "\x7f", "\x01", "\x1b", "é", "注", "\u{85}", "abcdefgh", " "];
+        let ends = ["\n", "\r\n", "\r"];
+        let mut text = String::new();
+        let mut controls = 0u64;
+        while text.len() < 3 * CHUNK {
+            let p = pieces[next(pieces.len() as u64) as usize];
+            if p.chars().any(|c| c.is_control() && !matches!(c, '\t' | '\x0c' | '\x1a')) {
+                if controls >= 60 {
+                    continue;
+                }
+                controls += 1;
+            }
+            text.push_str(p);
+            if next(4) == 0 {
+                text.push_str(ends[next(3) as usize]);
+            }
+        }
+        let want: Vec<_> =
+            crate::read::blocks(&text).map(|b| (b.text.to_string(), u64::from(b.start), b.line)).collect();
+        let mut l = Lines::new(Input::Mem(io::Cursor::new(text.as_bytes().to_vec()))).unwrap();
+        let mut got = Vec::new();
+        while let Some(x) = l.next_line().unwrap() {
+            got.push((x.text.to_string(), x.start, x.line));
+        }
+        assert_eq!(got, want);
+        assert_eq!(l.controls, controls);
+        assert!(controls > 10);
     }
 
     #[test]

@@ -66,6 +66,58 @@ fn is_m(w: &RawWord, code: u64) -> bool {
 
 /// Builds one block. Errors are returned as the block's single diagnostic.
 pub fn build(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic> {
+    match plain(cx, parts) {
+        Ok(line) => Ok(line),
+        Err(parts) => build_general(cx, parts),
+    }
+}
+
+/// The words of a plain motion block (nearly every block of a CAM program) become its items
+/// directly: what [`build_general`] does for a block of address words only, outside
+/// parameter-write mode, with at most a leading valid `N`, and none of the words that mean
+/// more (`O`, a later `N`, G10 G65 G66 G67, M2 M30 M98 M99). Any other block is handed back.
+fn plain(cx: &BlockCx<'_, '_>, parts: Parts) -> Result<Line, Parts> {
+    if cx.param_mode || parts.parts.is_empty() {
+        return Err(parts);
+    }
+    let mut words = 0;
+    for (i, p) in parts.parts.iter().enumerate() {
+        let Part::Word(w) = p else { return Err(parts) };
+        let ok = match w.letter {
+            b'N' => i == 0 && w.int().is_some_and(|n| (1..=99_999).contains(&n)),
+            b'O' => false,
+            b'G' => !matches!(w.int(), Some(10 | 65 | 66 | 67)),
+            b'M' => !matches!(w.int(), Some(2 | 30 | 98 | 99)),
+            _ => true,
+        };
+        if !ok {
+            return Err(parts);
+        }
+        words += usize::from(w.letter != b'N');
+    }
+    let mut meta = BlockMeta { span: cx.span, skip: parts.skip, ..BlockMeta::default() };
+    let mut items = Vec::with_capacity(words);
+    for p in parts.parts {
+        let Part::Word(w) = p else { continue };
+        if w.letter == b'N' {
+            meta.number = w.int().map(|n| SeqNo { value: n as u32, span: w.span });
+            continue;
+        }
+        // In written order, so already sorted by position as `build_general` sorts them.
+        items.push(Item {
+            kind: ItemKind::Word(crate::ir::Word {
+                addr: crate::ir::Addr::Letter(w.letter),
+                value: crate::ir::WordValue::Expr(w.value),
+                span: w.span,
+            }),
+            span: w.span,
+        });
+    }
+    Ok(Line::Block(Block { meta, items }))
+}
+
+/// Builds any block (see [`build`]).
+fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnostic> {
     let seg = cx.seg;
     let mut meta = BlockMeta { span: cx.span, skip: parts.skip, ..BlockMeta::default() };
     let mut comments: Vec<Comment> = Vec::new();
@@ -434,5 +486,25 @@ fn param_write(cx: &BlockCx<'_, '_>, words: &[RawWord]) -> Result<Item, Diagnost
     Ok(Item {
         kind: ItemKind::ParamWrite(Box::new(ParamWrite { number, axis: get(b'P'), bit: get(b'Q'), value })),
         span,
+    })
+}
+
+/// For tests: one block's line built by [`plain`] (when it takes the block) and by
+/// [`build_general`], from the grammar's parts, in or outside parameter-write mode; each as
+/// its debug text with the parameter-write mode after it. `None` when the grammar rejects
+/// the block or `plain` declines it.
+#[doc(hidden)]
+pub fn both_ways_for_test(text: &str, param_mode: bool) -> Option<(String, String)> {
+    super::parse::with_seg(text, |seg, opts| {
+        let parts = super::parse::parse_block(seg, opts).ok()?;
+        let span = seg.span(0, seg.text.len());
+        let mut cx = BlockCx { file: seg.file, seg, span, param_mode, opts };
+        let fast = plain(&cx, parts.clone()).ok()?;
+        let fast = format!("{fast:?} {}", cx.param_mode);
+        let general = match build_general(&mut cx, parts) {
+            Ok(line) => format!("{line:?} {}", cx.param_mode),
+            Err(d) => format!("error {d:?}"),
+        };
+        Some((fast, general))
     })
 }

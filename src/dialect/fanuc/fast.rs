@@ -10,7 +10,8 @@ use crate::ir::Expr;
 pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
     let b = seg.text.as_bytes();
     let mut i = 0;
-    let mut out = Parts::default();
+    // Most blocks have a handful of words; one allocation up front.
+    let mut out = Parts { skip: None, parts: Vec::with_capacity(6) };
     skip_ws(b, &mut i);
     if b.get(i) == Some(&b'/') {
         let mut j = i + 1;
@@ -23,8 +24,6 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
             return None;
         }
     }
-    // Most blocks have a handful of words; one allocation up front.
-    out.parts.reserve(6);
     loop {
         skip_ws(b, &mut i);
         if i >= b.len() {

@@ -28,6 +28,7 @@ pub struct Seg<'a> {
 
 impl Seg<'_> {
     /// File span of `text[lo..hi]`.
+    #[inline]
     pub fn span(&self, lo: usize, hi: usize) -> Span {
         self.norm.span(self.base + lo, self.base + hi)
     }

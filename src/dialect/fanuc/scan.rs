@@ -29,18 +29,25 @@ impl Iterator for Segments<'_> {
         let b = self.text.as_bytes();
         while self.pos < b.len() {
             let start = self.pos;
-            let mut in_comment = false;
+            // Up to the first `;` or `(` nothing can be in a comment; most lines have neither.
             let mut cut = None;
-            for (i, &c) in b.iter().enumerate().skip(start) {
-                match c {
-                    b'(' if !in_comment => in_comment = true,
-                    b')' if in_comment => in_comment = false,
-                    b';' if !in_comment => {
-                        cut = Some(i);
-                        break;
+            match crate::read::find2(&b[start..], b';', b'(').map(|k| start + k) {
+                Some(i) if b[i] == b';' => cut = Some(i),
+                Some(i) => {
+                    let mut in_comment = false;
+                    for (i, &c) in b.iter().enumerate().skip(i) {
+                        match c {
+                            b'(' if !in_comment => in_comment = true,
+                            b')' if in_comment => in_comment = false,
+                            b';' if !in_comment => {
+                                cut = Some(i);
+                                break;
+                            }
+                            _ => {}
+                        }
                     }
-                    _ => {}
                 }
+                None => {}
             }
             let (hi, end) = match cut {
                 Some(i) => (i, i + 1),

@@ -5,7 +5,7 @@
 use super::block::Line;
 use crate::diag::Diagnostic;
 use crate::dialect::ParseOptions;
-use crate::ir::visit::{metas, walk_stmts};
+use crate::ir::visit::{child_bodies, metas};
 use crate::ir::{BlockMeta, DoStmt, Expr, ItemKind, ProgName, Program, Stmt, StmtKind, Target};
 use crate::span::{FileId, Span};
 use std::collections::HashSet;
@@ -288,14 +288,22 @@ fn goto_facts(body: &[Stmt]) -> (Vec<u32>, Vec<crate::ir::SeqNo>) {
     (numbers, targets)
 }
 
-/// [`goto_facts`] without collecting the numbers (streaming hands each to `number`).
-fn goto_facts_into(body: &[Stmt], number: &mut dyn FnMut(u32), targets: &mut Vec<crate::ir::SeqNo>) {
-    walk_stmts(body, &mut |s| {
+/// [`goto_facts`] without collecting the numbers (streaming hands each to `number`), in
+/// the order `walk_stmts` visits them.
+fn goto_facts_into<F: FnMut(u32)>(body: &[Stmt], number: &mut F, targets: &mut Vec<crate::ir::SeqNo>) {
+    for s in body {
         match &s.kind {
             // A plain block (nearly all of them) without building the list of its metas.
             StmtKind::Block(b) => {
                 if let Some(n) = &b.meta.number {
                     number(n.value);
+                }
+                for it in &b.items {
+                    if let ItemKind::Goto(g) = &it.kind {
+                        if let Target::Number(n) = &g.target {
+                            targets.push(n.clone());
+                        }
+                    }
                 }
             }
             other => {
@@ -304,18 +312,12 @@ fn goto_facts_into(body: &[Stmt], number: &mut dyn FnMut(u32), targets: &mut Vec
                         number(n.value);
                     }
                 }
-            }
-        }
-        if let StmtKind::Block(b) = &s.kind {
-            for it in &b.items {
-                if let ItemKind::Goto(g) = &it.kind {
-                    if let Target::Number(n) = &g.target {
-                        targets.push(n.clone());
-                    }
+                for child in child_bodies(other) {
+                    goto_facts_into(child, number, targets);
                 }
             }
         }
-    });
+    }
 }
 
 /// Every literal `GOTO n` needs a block `Nn` in the same program.

@@ -712,7 +712,7 @@ pub fn parse_number(t: &str) -> Option<(f64, bool)> {
 
 /// The item for a letter-constant word: `L123` is a call, `M17` a return, `M2`/`M30` the end;
 /// everything else a plain word. Shared with the fast path so both give the same IR.
-#[inline]
+#[inline(always)]
 pub fn word_item(letter: u8, text: &str, value: f64, point: bool, span: Span, vspan: Span) -> ItemKind {
     if letter == b'L' && !point && !text.starts_with(['+', '-']) {
         return ItemKind::Call(Box::new(Call {
@@ -726,7 +726,7 @@ pub fn word_item(letter: u8, text: &str, value: f64, point: bool, span: Span, vs
 }
 
 /// `M17` → return, `M2`/`M30` → end of program (also written `M=30`); other words stay words.
-#[inline]
+#[inline(always)]
 fn special_word(w: Word) -> ItemKind {
     if w.addr.is(b'M') {
         if let WordValue::Expr(Expr { kind: ExprKind::Num(Number { value, point: false }), .. }) = &w.value {
