@@ -93,27 +93,22 @@ fn dialect_of(path: &Path, from: Option<Dialect>) -> Option<Dialect> {
     Some(nctrans::detect_dialect(&name, &head))
 }
 
-/// First scan with a progress line; `None` when the file cannot be streamed exactly
-/// (the caller then reads it whole, which also renders any diagnostics).
-fn scan(
-    path: &Path,
-    from: Option<Dialect>,
-    file: usize,
-    each: &mut dyn FnMut(usize, &nctrans::ir::Stmt),
-) -> Option<Index> {
+/// First scan (for the index only) with a progress line; `None` when the file cannot be
+/// streamed exactly (the caller then reads it whole, which also renders any diagnostics).
+fn scan(path: &Path, from: Option<Dialect>, file: usize) -> Option<Index> {
     let dialect = dialect_of(path, from)?;
     let (input, size) = stream::open(path).ok()?;
     let mut line = ProgressLine::new("reading", size);
     let mut report = |p: Progress| line.update(p);
     let opts = ParseOptions::for_dialect(dialect);
-    let r = stream::scan(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, each, Some(&mut report));
+    let r = stream::scan_index(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, Some(&mut report));
     line.done();
     r.ok().filter(|ix| ix.diags.is_empty())
 }
 
 /// `nctrans parse --summary` streamed.
 pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
-    let ix = scan(path, from, 0, &mut |_, _| {})?;
+    let ix = scan(path, from, 0)?;
     let text = format!("{}: {} program(s), {} blocks, 0 warning(s)\n", path.display(), ix.programs.len(), ix.blocks);
     Some(if std::io::stdout().lock().write_all(text.as_bytes()).is_err() {
         ExitCode::from(2)
@@ -182,7 +177,7 @@ pub fn run(
     quiet: bool,
 ) -> Option<ExitCode> {
     use nctrans::eval::{self, Ending};
-    let ix = scan(path, from, 0, &mut |_, _| {})?;
+    let ix = scan(path, from, 0)?;
     let opts = match run_options(&ix, eval) {
         Ok(o) => o,
         Err(code) => return Some(code),
@@ -232,7 +227,7 @@ pub fn side(
     eval: &super::EvalOpts,
 ) -> Option<Result<nctrans::check::Runner, ExitCode>> {
     let file = db.len();
-    let ix = scan(path, from, file, &mut |_, _| {})?;
+    let ix = scan(path, from, file)?;
     let opts = match run_options(&ix, eval) {
         Ok(o) => o,
         Err(code) => return Some(Err(code)),

@@ -3,7 +3,9 @@
 //! comments, block numbers and skips) go through both the fast path and the pest grammar;
 //! wherever the fast path takes a block, the IR must be identical. Both dialects.
 //!
-//! Also: the exact decimal reader the fast paths use (`read::decimal`) against `str::parse`
+//! Also: the index-only first scan (`stream::scan_index`, which skips building plain
+//! blocks' items) against the full scan on every corpus file, mutated ones and generated
+//! programs; the exact decimal reader the fast paths use (`read::decimal`) against `str::parse`
 //! on generated literals, and the FANUC builder's direct route for plain word blocks
 //! against its general route.
 //!
@@ -281,4 +283,83 @@ fn fanuc_plain_blocks_build_like_the_general_route() {
             }
         }
     }
+}
+
+/// The index of `bytes` by the full first scan and by the index-only one, as debug text.
+fn both_indexes(path: &std::path::Path, bytes: &[u8], chunk_ops: usize) -> (String, String) {
+    use nctrans::dialect::{Dialect, ParseOptions};
+    use nctrans::stream::{self, lines::Input};
+    let dialect = match path.extension().and_then(|e| e.to_str()) {
+        Some("mpf" | "spf") => Dialect::Sinumerik,
+        _ => Dialect::Fanuc,
+    };
+    let opts = ParseOptions::for_dialect(dialect);
+    let input = || Input::Mem(std::io::Cursor::new(bytes.to_vec()));
+    let size = bytes.len() as u64;
+    let full = stream::scan(input(), size, path, 0, dialect, &opts, chunk_ops, &mut |_, _| {}, None);
+    let index = stream::scan_index(input(), size, path, 0, dialect, &opts, chunk_ops, None);
+    (format!("{full:?}"), format!("{index:?}"))
+}
+
+#[test]
+fn the_index_only_scan_gives_the_full_scans_index() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    for top in ["corpus/in", "corpus/err"] {
+        for d in ["sinumerik", "fanuc"] {
+            let Ok(rd) = std::fs::read_dir(root.join(top).join(d)) else { continue };
+            for f in rd.filter_map(|e| e.ok()).map(|e| e.path()) {
+                if let Ok(b) = std::fs::read(&f) {
+                    files.push((f, b));
+                }
+            }
+        }
+    }
+    files.sort();
+    // Mutations: blocks cut, characters replaced, parts repeated (PROC after code, labels
+    // and N numbers twice, structures left open, …).
+    let nasty = b"()[]#=;:/%\r\n\t -+*.,0123456789ENOGXRIFDWHLPAB_";
+    let mut r = Rng(0x2545_F491_4F6C_DD1D);
+    let base = files.clone();
+    for (f, b) in &base {
+        for k in 0..4 {
+            let mut m = b.clone();
+            match k % 3 {
+                0 => m.truncate(r.below(m.len() as u64 + 1) as usize),
+                1 => {
+                    for _ in 0..3 {
+                        if !m.is_empty() {
+                            let i = r.below(m.len() as u64) as usize;
+                            m[i] = nasty[r.below(nasty.len() as u64) as usize];
+                        }
+                    }
+                }
+                _ => {
+                    let i = r.below(m.len() as u64 + 1) as usize;
+                    let piece: Vec<u8> = m[i..].iter().take(300).copied().collect();
+                    m.splice(i..i, piece);
+                }
+            }
+            files.push((f.clone(), m));
+        }
+    }
+    // Generated programs of plain blocks with comments, numbers and a PROC or title.
+    for siemens in [true, false] {
+        let mut text = String::from(if siemens { "; title\nPROC P1\n" } else { "%\n(TITLE)\nO1000\n" });
+        for _ in 0..3000 {
+            text.push_str(&block(&mut r, siemens));
+            text.push('\n');
+        }
+        text.push_str(if siemens { "M30\nPROC Q\n" } else { "M30\n%\n" });
+        files.push((PathBuf::from(if siemens { "gen.mpf" } else { "gen.nc" }), text.into_bytes()));
+    }
+    let mut compared = 0;
+    for (f, b) in &files {
+        for chunk in [1, 3, 4096] {
+            let (full, index) = both_indexes(f, b, chunk);
+            assert_eq!(full, index, "{} (chunks of {chunk})", f.display());
+            compared += 1;
+        }
+    }
+    assert!(compared > 1000, "only {compared} scans compared");
 }

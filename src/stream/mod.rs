@@ -39,6 +39,9 @@ pub struct Progress {
 /// Called now and then during a scan or run (every 64 Ki lines).
 pub type ProgressFn<'a> = &'a mut dyn FnMut(Progress);
 
+/// Called with each finished top-level statement during a scan (and its program's index).
+type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
+
 /// A streamed file after its first scan.
 #[derive(Clone, Debug)]
 pub struct Index {
@@ -136,6 +139,51 @@ pub fn scan(
     opts: &ParseOptions,
     chunk_ops: usize,
     each: &mut dyn FnMut(usize, &Stmt),
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Some(each), progress)
+}
+
+/// [`scan`] for a caller that needs only the index (`parse --summary`, `run`, `check`):
+/// the same index, diagnostics and header, but plain blocks are read without building
+/// their items, which the index does not hold (the chunks are read again for running).
+#[allow(clippy::too_many_arguments)]
+pub fn scan_index(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, None, progress)
+}
+
+/// [`scan_index`] of a file on disk with the default chunk size.
+pub fn scan_index_path(
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    let (input, size) = open(path)?;
+    scan_index(input, size, path, file, dialect, opts, CHUNK_OPS, progress)
+}
+
+/// The first scan; without `each` the reader builds only what the index needs.
+#[allow(clippy::too_many_arguments)]
+fn scan_with(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+    mut each: Option<EachFn<'_>>,
     mut progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
     let mut lines = Lines::new(input)?;
@@ -145,6 +193,9 @@ pub fn scan(
         Dialect::Sinumerik => {
             let mut r = sinumerik::Reader::new(file, opts, text_len.min(u64::from(u32::MAX)) as u32);
             r.compact_targets();
+            if each.is_none() {
+                r.index_only();
+            }
             Reader::Sin(Box::new(r))
         }
         Dialect::Fanuc => Reader::Fan(Box::new(fanuc::Reader::new(file, opts))),
@@ -196,7 +247,9 @@ pub fn scan(
             open = Some((prog, boundary.0, boundary.1, boundary.2.clone()));
         }
         for s in &stmts {
-            each(prog, s);
+            if let Some(each) = each.as_mut() {
+                each(prog, s);
+            }
             progs[prog].add(s);
         }
         let next_line = l.line + 1;
@@ -241,8 +294,10 @@ pub fn scan(
                     .primary(file, p.span, "here")
                     .hint("read the file whole to see the full diagnostics"),
             );
-            for s in &p.body {
-                each(raw, s);
+            if let Some(each) = each.as_mut() {
+                for s in &p.body {
+                    each(raw, s);
+                }
             }
         }
         p.body = Vec::new();

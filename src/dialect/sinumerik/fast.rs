@@ -11,11 +11,27 @@ use crate::span::Span;
 
 /// The line for `text`, or `None` when the block needs the grammar.
 pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
+    let (meta, items, _) = read(norm, whole, true)?;
+    Some(Line { meta, kind: LineKind::Plain(items), kw: whole })
+}
+
+/// For an index-only first scan (`crate::stream::scan_index`): the same decision as
+/// [`line`], the block's meta and whether it has words, without building the items.
+pub fn skeleton(norm: &Normalised<'_>, whole: Span) -> Option<(BlockMeta, bool)> {
+    let (meta, _, words) = read(norm, whole, false)?;
+    Some((meta, words > 0))
+}
+
+/// One reader for both: `keep` says whether to build the items. Every decision is taken
+/// the same way either way; only the pushing of items depends on `keep`.
+#[inline(always)]
+fn read(norm: &Normalised<'_>, whole: Span, keep: bool) -> Option<(BlockMeta, Vec<Item>, usize)> {
     let text: &str = &norm.text;
     let b = text.as_bytes();
     let mut i = 0;
     let mut meta = BlockMeta { span: whole, ..Default::default() };
-    let mut items: Vec<Item> = Vec::with_capacity(6);
+    let mut items: Vec<Item> = if keep { Vec::with_capacity(6) } else { Vec::new() };
+    let mut words = 0;
     let blank = |c: u8| c == b' ' || c == b'\t';
     while i < b.len() && blank(b[i]) {
         i += 1;
@@ -109,15 +125,18 @@ pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
         }
         // At most 15 digits: below 2^53, so `scaled` is exact and always answers.
         let value = crate::read::scaled(mant, frac)?;
-        let value = if b[i + 1] == b'-' { -value } else { value };
-        let span = norm.span(start, j);
-        let vspan = norm.span(start + 1, j);
-        let letter = c.to_ascii_uppercase();
-        items.push(Item { kind: word_item(letter, &text[start + 1..j], value, point, span, vspan), span });
+        words += 1;
+        if keep {
+            let value = if b[i + 1] == b'-' { -value } else { value };
+            let span = norm.span(start, j);
+            let vspan = norm.span(start + 1, j);
+            let letter = c.to_ascii_uppercase();
+            items.push(Item { kind: word_item(letter, &text[start + 1..j], value, point, span, vspan), span });
+        }
         i = j;
     }
-    if items.is_empty() && meta.number.is_none() && meta.comments.is_empty() {
+    if words == 0 && meta.number.is_none() && meta.comments.is_empty() {
         return None;
     }
-    Some(Line { meta, kind: LineKind::Plain(items), kw: whole })
+    Some((meta, items, words))
 }

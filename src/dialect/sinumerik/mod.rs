@@ -45,14 +45,28 @@ pub struct Reader {
     builder: structure::Builder,
     header_seen: bool,
     any: bool,
+    /// Plain blocks are read for an index only: their items are not built.
+    index_only: bool,
 }
 
 /// What a streaming reader needs to resume at a block boundary (see `crate::stream`).
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Resume {
     declared: std::collections::HashMap<String, crate::ir::DataType>,
     header_seen: bool,
     any: bool,
+}
+
+/// With the declarations in name order, so equal states print the same.
+impl std::fmt::Debug for Resume {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let declared: std::collections::BTreeMap<_, _> = self.declared.iter().collect();
+        f.debug_struct("Resume")
+            .field("declared", &declared)
+            .field("header_seen", &self.header_seen)
+            .field("any", &self.any)
+            .finish()
+    }
 }
 
 impl Reader {
@@ -68,6 +82,7 @@ impl Reader {
             builder: structure::Builder::new(None, len),
             header_seen: false,
             any: false,
+            index_only: false,
         }
     }
 
@@ -90,6 +105,13 @@ impl Reader {
     /// Streaming: jump targets are kept as compact runs (memory follows the macro part).
     pub fn compact_targets(&mut self) {
         self.builder.compact_targets();
+    }
+
+    /// For a first scan that only builds the index (`crate::stream::scan_index`): the
+    /// blocks the fast path reads get no items (the index needs their numbers, labels and
+    /// spans). The statements handed out are then skeletons, not the program's IR.
+    pub fn index_only(&mut self) {
+        self.index_only = true;
     }
 
     /// No structure is open: the next block starts a top-level statement.
@@ -148,7 +170,12 @@ impl Reader {
             return;
         }
         self.any = true;
-        if let Some(line) = fast::line(&norm, whole) {
+        if self.index_only {
+            if let Some((meta, words)) = fast::skeleton(&norm, whole) {
+                builder.push_skeleton(meta, words, st);
+                return;
+            }
+        } else if let Some(line) = fast::line(&norm, whole) {
             builder.push(line, st);
             return;
         }

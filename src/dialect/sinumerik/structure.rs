@@ -389,6 +389,21 @@ impl Builder {
         }
     }
 
+    /// Adds a plain block read for an index only (see `fast::skeleton`): its items were not
+    /// built, `words` says whether it had any. Everything but the items is as [`push`]
+    /// would have it; a plain block's items matter here only as "the block holds code"
+    /// (for the PROC check) and as jumps, which the fast path never reads.
+    ///
+    /// [`push`]: Builder::push
+    pub fn push_skeleton(&mut self, meta: BlockMeta, words: bool, st: &mut FileState) {
+        let kw = meta.span;
+        let counted = self.suppressed == 0;
+        self.push(Line { meta, kind: LineKind::Plain(Vec::new()), kw }, st);
+        if counted {
+            self.seen_code |= words;
+        }
+    }
+
     /// Closes what is still open, checks the jump targets, and returns the program.
     pub fn finish(mut self, st: &mut FileState) -> Program {
         let file = st.file;
