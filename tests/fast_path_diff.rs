@@ -13,7 +13,9 @@
 //! fast enough for `cargo test` in debug); the ignored test runs a million per dialect
 //! (`cargo test --release --test fast_path_diff -- --ignored`, run by `bench/stream.sh`).
 
-use nctrans::dialect::fanuc::{build_both_ways_for_test, parse_fast_for_test, parse_grammar_for_test};
+use nctrans::dialect::fanuc::{
+    build_both_ways_for_test, parse_fast_for_test, parse_grammar_for_test, skeleton_both_ways_for_test,
+};
 use nctrans::dialect::sinumerik::{block_via_fast_path, block_via_grammar};
 use std::path::PathBuf;
 
@@ -257,7 +259,13 @@ fn fanuc_word_block(r: &mut Rng) -> String {
 fn fanuc_plain_blocks_build_like_the_general_route() {
     let mut r = Rng(0x94D0_49BB_1331_11EB);
     let mut taken = 0;
-    let check = |b: &str, taken: &mut usize| {
+    let mut skeletons = 0;
+    let mut check = |b: &str, taken: &mut usize| {
+        // The index-only reader: where it takes a block, the full route agrees.
+        if let Some((skeleton, full)) = skeleton_both_ways_for_test(b) {
+            assert_eq!(skeleton, full, "FANUC block {b:?} read for the index");
+            skeletons += 1;
+        }
         for param_mode in [false, true] {
             if let Some((plain, general)) = build_both_ways_for_test(b, param_mode) {
                 assert_eq!(plain, general, "FANUC block {b:?} (parameter-write mode {param_mode})");
@@ -283,6 +291,7 @@ fn fanuc_plain_blocks_build_like_the_general_route() {
             }
         }
     }
+    assert!(skeletons > 10_000, "the index-only reader took only {skeletons} blocks");
 }
 
 /// The index of `bytes` by the full first scan and by the index-only one, as debug text.

@@ -198,7 +198,13 @@ fn scan_with(
             }
             Reader::Sin(Box::new(r))
         }
-        Dialect::Fanuc => Reader::Fan(Box::new(fanuc::Reader::new(file, opts))),
+        Dialect::Fanuc => {
+            let mut r = fanuc::Reader::new(file, opts);
+            if each.is_none() {
+                r.index_only();
+            }
+            Reader::Fan(Box::new(r))
+        }
     };
     let mut progs: Vec<ProgIndex> = Vec::new();
     // The open chunk: (program, lo, line, op_base at start, resume state).

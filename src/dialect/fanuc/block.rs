@@ -508,3 +508,24 @@ pub fn both_ways_for_test(text: &str, param_mode: bool) -> Option<(String, Strin
         Some((fast, general))
     })
 }
+
+/// For tests: a block by the index-only reader (`fast::skeleton`) and by the fast path and
+/// [`plain`] (outside parameter-write mode), as the block's meta and number of items.
+/// `None` when the skeleton reader declines (the full route then reads the block).
+#[doc(hidden)]
+pub fn skeleton_both_ways_for_test(text: &str) -> Option<(String, String)> {
+    super::parse::with_seg(text, |seg, opts| {
+        let (skip, number, words) = super::fast::skeleton(seg)?;
+        let span = seg.span(0, seg.text.len());
+        let meta = BlockMeta { span, skip, number, ..BlockMeta::default() };
+        let skeleton = format!("{meta:?} {words}");
+        let cx = BlockCx { file: seg.file, seg, span, param_mode: false, opts };
+        let full = match super::fast::parse_fast(seg).map(|parts| plain(&cx, parts)) {
+            Some(Ok(Line::Block(b))) => format!("{:?} {}", b.meta, b.items.len()),
+            Some(Ok(other)) => format!("not a plain block: {other:?}"),
+            Some(Err(_)) => "handed back by `plain`".to_string(),
+            None => "declined by the fast path".to_string(),
+        };
+        Some((skeleton, full))
+    })
+}

@@ -4,82 +4,152 @@
 //! then goes to pest. This keeps large programs well above 400,000 blocks per second.
 
 use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
-use crate::ir::Expr;
+use crate::ir::{Expr, SeqNo};
 
 /// The parts of a plain block, or `None` when the block needs the grammar.
 pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
     let b = seg.text.as_bytes();
     let mut i = 0;
     // Most blocks have a handful of words; one allocation up front.
-    let mut out = Parts { skip: None, parts: Vec::with_capacity(6) };
-    skip_ws(b, &mut i);
-    if b.get(i) == Some(&b'/') {
-        let mut j = i + 1;
-        if b.get(j).is_some_and(u8::is_ascii_digit) {
-            j += 1;
-        }
-        out.skip = Some(skip_level(&seg.text[i..j]));
-        i = j;
-        if !ends_token(b, i) {
-            return None;
-        }
-    }
+    let mut out = Parts { skip: skip_prefix(seg, &mut i)?, parts: Vec::with_capacity(6) };
     loop {
         skip_ws(b, &mut i);
         if i >= b.len() {
             return Some(out);
         }
-        let letter = b[i];
-        if !letter.is_ascii_alphabetic() {
-            return None;
-        }
-        let start = i;
-        i += 1;
-        skip_ws(b, &mut i);
-        let vstart = i;
-        let mut neg = None;
-        if let Some(&c @ (b'-' | b'+')) = b.get(i) {
-            neg = Some(c == b'-');
-            i += 1;
-            skip_ws(b, &mut i);
-        }
-        let lo = i;
-        // The digits as one whole number and how many follow the point: up to 15 digits
-        // the value is exact without a second pass (`read::scaled`); longer ones are parsed.
-        let mut mant: u64 = 0;
-        let mut digits = 0;
-        while let Some(&c @ b'0'..=b'9') = b.get(i) {
-            mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
-            i += 1;
-            digits += 1;
-        }
-        let mut point = false;
-        let mut frac = 0;
-        if b.get(i) == Some(&b'.') {
-            point = true;
-            i += 1;
-            while let Some(&c @ b'0'..=b'9') = b.get(i) {
-                mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
-                i += 1;
-                frac += 1;
-            }
-        }
-        digits += frac;
-        if digits == 0 || !ends_token(b, i) {
-            return None;
-        }
-        let n = match crate::read::scaled(mant, frac).filter(|_| digits <= 15) {
-            Some(v) => v,
-            None => literal(&seg.text[lo..i]).value,
-        };
-        let value = if neg == Some(true) { -n } else { n };
+        let w = word(seg, &mut i)?;
+        let value = if w.neg == Some(true) { -w.value } else { w.value };
         out.parts.push(Part::Word(RawWord {
-            letter: letter.to_ascii_uppercase(),
-            value: Expr::num(value, point, seg.span(vstart, i)),
-            span: seg.span(start, i),
-            lit: Some(Lit { lo, hi: i, point, signed: neg.is_some() }),
+            letter: w.letter,
+            value: Expr::num(value, w.point, seg.span(w.vstart, w.hi)),
+            span: seg.span(w.start, w.hi),
+            lit: Some(Lit { lo: w.lo, hi: w.hi, point: w.point, signed: w.neg.is_some() }),
         }));
     }
+}
+
+/// For an index-only first scan: what `block::plain` would make of the parts
+/// [`parse_fast`] gives, outside parameter-write mode, without building them: the skip
+/// level, the block number and how many other words the block has. `None` when the fast
+/// path declines the block or `plain` would hand it back (the caller then takes the full
+/// route). The words are read by the same code as in `parse_fast`, and each is judged with
+/// `plain`'s rule on what `RawWord::int` would give.
+pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
+    let b = seg.text.as_bytes();
+    let mut i = 0;
+    let skip = skip_prefix(seg, &mut i)?;
+    let mut number = None;
+    let mut words = 0;
+    let mut first = true;
+    loop {
+        skip_ws(b, &mut i);
+        if i >= b.len() {
+            // `plain` hands back a block without words (a lone skip).
+            return (!first).then_some((skip, number, words));
+        }
+        let w = word(seg, &mut i)?;
+        // `RawWord::int`: a literal without sign or point (its value is not negative).
+        let int = (!w.point && w.neg.is_none()).then_some(w.value as u64);
+        let ok = match w.letter {
+            b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
+            b'O' => false,
+            b'G' => !matches!(int, Some(10 | 65 | 66 | 67)),
+            b'M' => !matches!(int, Some(2 | 30 | 98 | 99)),
+            _ => true,
+        };
+        if !ok {
+            return None;
+        }
+        match (w.letter, int) {
+            (b'N', Some(n)) => number = Some(SeqNo { value: n as u32, span: seg.span(w.start, w.hi) }),
+            _ => words += 1,
+        }
+        first = false;
+    }
+}
+
+/// An optional block skip `/` or `/n` at `*i` (after blanks): `None` when it is not
+/// followed by a separator, a letter or the end.
+fn skip_prefix(seg: &Seg<'_>, i: &mut usize) -> Option<Option<u8>> {
+    let b = seg.text.as_bytes();
+    skip_ws(b, i);
+    if b.get(*i) != Some(&b'/') {
+        return Some(None);
+    }
+    let mut j = *i + 1;
+    if b.get(j).is_some_and(u8::is_ascii_digit) {
+        j += 1;
+    }
+    let level = skip_level(&seg.text[*i..j]);
+    *i = j;
+    ends_token(b, j).then_some(Some(level))
+}
+
+/// One address word as the fast path reads it.
+struct Word {
+    /// Upper case.
+    letter: u8,
+    /// Where the letter, the value (its sign) and the digits start; one past the end.
+    start: usize,
+    vstart: usize,
+    lo: usize,
+    hi: usize,
+    /// The sign, if written: `Some(true)` for `-`.
+    neg: Option<bool>,
+    point: bool,
+    /// The value of the digits (without the sign).
+    value: f64,
+}
+
+/// The word at `*i` (a letter, blanks, an optional sign, digits with an optional point),
+/// or `None` when it is anything else or not followed by a separator, a letter or the end.
+#[inline(always)]
+fn word(seg: &Seg<'_>, i: &mut usize) -> Option<Word> {
+    let b = seg.text.as_bytes();
+    let letter = *b.get(*i)?;
+    if !letter.is_ascii_alphabetic() {
+        return None;
+    }
+    let start = *i;
+    *i += 1;
+    skip_ws(b, i);
+    let vstart = *i;
+    let mut neg = None;
+    if let Some(&c @ (b'-' | b'+')) = b.get(*i) {
+        neg = Some(c == b'-');
+        *i += 1;
+        skip_ws(b, i);
+    }
+    let lo = *i;
+    // The digits as one whole number and how many follow the point: up to 15 digits
+    // the value is exact without a second pass (`read::scaled`); longer ones are parsed.
+    let mut mant: u64 = 0;
+    let mut digits = 0;
+    while let Some(&c @ b'0'..=b'9') = b.get(*i) {
+        mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+        *i += 1;
+        digits += 1;
+    }
+    let mut point = false;
+    let mut frac = 0;
+    if b.get(*i) == Some(&b'.') {
+        point = true;
+        *i += 1;
+        while let Some(&c @ b'0'..=b'9') = b.get(*i) {
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+            *i += 1;
+            frac += 1;
+        }
+    }
+    digits += frac;
+    if digits == 0 || !ends_token(b, *i) {
+        return None;
+    }
+    let value = match crate::read::scaled(mant, frac).filter(|_| digits <= 15) {
+        Some(v) => v,
+        None => literal(&seg.text[lo..*i]).value,
+    };
+    Some(Word { letter: letter.to_ascii_uppercase(), start, vstart, lo, hi: *i, neg, point, value })
 }
 
 /// For tests: the fast path on one line of text.

@@ -30,6 +30,7 @@ use block::{BlockCx, Line};
 use structure::ProgramLines;
 
 pub use block::both_ways_for_test as build_both_ways_for_test;
+pub use block::skeleton_both_ways_for_test;
 pub use fast::parse_fast_for_test;
 pub use parse::parse_grammar_for_test;
 
@@ -72,6 +73,8 @@ pub struct Reader<'o> {
     /// `N` numbers seen in the ignored text after the closing `%`, for GOTO notes.
     ignored_numbers: Vec<(u32, Span)>,
     programs: Vec<ProgramLines>,
+    /// Plain blocks are read for an index only: their items are not built.
+    index_only: bool,
 }
 
 impl<'o> Reader<'o> {
@@ -84,6 +87,7 @@ impl<'o> Reader<'o> {
             after_end: None,
             ignored_numbers: Vec::new(),
             programs: Vec::new(),
+            index_only: false,
         }
     }
 
@@ -97,6 +101,13 @@ impl<'o> Reader<'o> {
         p.stream();
         r.programs.push(p);
         r
+    }
+
+    /// For a first scan that only builds the index (`crate::stream::scan_index`): plain
+    /// blocks get no items (the index needs their numbers and spans). The statements
+    /// handed out are then skeletons, not the program's IR.
+    pub fn index_only(&mut self) {
+        self.index_only = true;
     }
 
     /// The state to resume from here.
@@ -171,6 +182,15 @@ impl<'o> Reader<'o> {
         let span = norm.span(lo, end);
         if self.programs.is_empty() {
             self.programs.push(ProgramLines::new(None, None, span, self.file, self.opts));
+        }
+        if self.index_only {
+            if let Some(prog) = self.programs.last_mut().filter(|p| !p.param_mode) {
+                if let Some((skip, number, words)) = fast::skeleton(&seg) {
+                    // What `block::plain` and `push` make of it, less the items.
+                    prog.push_skeleton(BlockMeta { span, skip, number, ..BlockMeta::default() }, words > 0);
+                    return;
+                }
+            }
         }
         // The fast path takes only letters, digits, signs, points, blanks and a leading `/n`:
         // none of the characters `scan::check` looks at, so a block it takes passes the check.

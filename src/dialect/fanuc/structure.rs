@@ -31,6 +31,9 @@ pub struct ProgramLines {
     /// Streaming: statements are taken out as they finish; what the final GOTO check
     /// needs from them is kept here.
     streamed: Option<Streamed>,
+    /// A block read for an index only had words but got no items (so the program is not
+    /// only comments; see [`ProgramLines::push_skeleton`]).
+    skeleton_words: bool,
 }
 
 #[derive(Default)]
@@ -71,6 +74,7 @@ impl ProgramLines {
             file,
             max_nesting: opts.semantics.max_loop_nesting as usize,
             streamed: None,
+            skeleton_words: false,
         }
     }
 
@@ -135,6 +139,7 @@ impl ProgramLines {
     /// Only comment blocks so far (a title before the first `O`).
     pub fn only_comments(&self) -> bool {
         !self.drained()
+            && !self.skeleton_words
             && self.known.is_empty()
             && self.stack.is_empty()
             && self.top.iter().all(|s| match &s.kind {
@@ -156,6 +161,14 @@ impl ProgramLines {
             Some(o) => o.body.push(s),
             None => self.top.push(s),
         }
+    }
+
+    /// Adds a plain block read for an index only (see `fast::skeleton`): its items were
+    /// not built, `words` says whether it had any. Items of a plain block matter here only
+    /// as "not a comment block" (they hold no GOTO), which `words` stands for.
+    pub fn push_skeleton(&mut self, meta: BlockMeta, words: bool) {
+        self.skeleton_words |= words;
+        self.push(Line::Block(crate::ir::Block { meta, items: Vec::new() }));
     }
 
     /// Adds one block, opening or closing loops.
