@@ -272,63 +272,72 @@ fn number(out: &mut Vec<u8>, v: f64) -> Result<(), Declined> {
 }
 
 /// Appends `emit::fmt_num(v, point).0` and returns its `.1` (false: more than 8 digits).
-///
-/// `fmt_num` starts from Rust's shortest round-trip decimal of `v`. For a value of at most
-/// 15 significant digits that decimal is the one with the fewest decimal places `d` whose
-/// digits `m` give `m / 10^d == v`: the division of two exact doubles is correctly rounded,
-/// as parsing the decimal is, so it is exactly the round-trip test; no decimal with fewer
-/// places round-trips (none was found), and no other one with `d` places does, since two
-/// decimals of at most 15 significant digits never round to the same double. Anything else
-/// (more digits, large or odd values) is left to `fmt_num` itself.
 pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
     let v = if v == 0.0 { 0.0 } else { v };
-    let a = v.abs();
-    if a < 1e15 {
-        for (d, &pow) in POW10.iter().enumerate().take(MAX_DIGITS + 1) {
-            let p = pow as f64;
-            let x = a * p;
-            if x >= 1e15 {
-                break;
-            }
-            let m = x.round();
-            if m / p != a {
-                continue;
-            }
-            let m = m as u64;
-            let (int, frac) = (m / pow, m % pow);
-            let int_digits = if int == 0 { 0 } else { digits(int) };
-            if d > 0 && int_digits + d > MAX_DIGITS {
-                // Rounded to 8 digits: `fmt_num`'s own business.
-                break;
-            }
-            if v < 0.0 {
-                out.push(b'-');
-            }
-            push_u64(out, int);
-            if d > 0 {
-                out.push(b'.');
-                for _ in digits(frac)..d {
-                    out.push(b'0');
-                }
-                push_u64(out, frac);
-            } else if point {
-                out.push(b'.');
-            }
-            return true;
+    // More than 8 digits (`m >= 10^8` with a fraction) are rounded by `fmt_num`.
+    if let Some((mut m, d)) = shortest(v.abs()).filter(|&(m, d)| d == 0 || m < POW10[MAX_DIGITS]) {
+        // Written backwards: the fraction's `d` digits, the point, the integer part.
+        let mut buf = [0u8; 24];
+        let mut k = buf.len();
+        for _ in 0..d {
+            k -= 1;
+            buf[k] = b'0' + (m % 10) as u8;
+            m /= 10;
         }
+        if d > 0 || point {
+            k -= 1;
+            buf[k] = b'.';
+        }
+        loop {
+            k -= 1;
+            buf[k] = b'0' + (m % 10) as u8;
+            m /= 10;
+            if m == 0 {
+                break;
+            }
+        }
+        if v < 0.0 {
+            k -= 1;
+            buf[k] = b'-';
+        }
+        out.extend_from_slice(&buf[k..]);
+        return true;
     }
     let (s, exact) = emit::fmt_num(v, point);
     out.extend_from_slice(s.as_bytes());
     exact
 }
 
-fn digits(mut n: u64) -> usize {
-    let mut k = 1;
-    while n >= 10 {
-        n /= 10;
-        k += 1;
+/// The shortest decimal of `a >= 0` as `fmt_num` gets it from Rust's `{}` (the shortest
+/// digits that parse back to `a`): `a = m / 10^d` with `d <= 8` decimal places; `None`
+/// leaves it to `fmt_num`.
+///
+/// A candidate `(m, d)` is checked by `m / 10^d == a`: both are exact doubles (`m < 10^15`)
+/// and the division is correctly rounded, as parsing the decimal is, so this is exactly the
+/// round-trip test. Two different decimals of at most 15 significant digits never round to
+/// the same double, so when `m` does not end in 0 no decimal with fewer places round-trips
+/// (it would give a second one with `d` places), and `{}` writes exactly these digits.
+fn shortest(a: f64) -> Option<(u64, usize)> {
+    if a < 1e7 {
+        // The usual case, one try: the digits at 8 places without their trailing zeros.
+        let (mut m, mut d) = ((a * 1e8 + 0.5) as u64, MAX_DIGITS);
+        while d > 0 && m.is_multiple_of(10) {
+            m /= 10;
+            d -= 1;
+        }
+        return (m as f64 / POW10[d] as f64 == a).then_some((m, d));
     }
-    k
+    for (d, &pow) in POW10.iter().enumerate().take(MAX_DIGITS + 1) {
+        let x = a * pow as f64;
+        if x.is_nan() || x >= 1e15 {
+            break;
+        }
+        let m = (x + 0.5) as u64;
+        if m as f64 / pow as f64 == a {
+            return (d == 0 || !m.is_multiple_of(10)).then_some((m, d));
+        }
+    }
+    None
 }
 
 fn push_u64(out: &mut Vec<u8>, mut n: u64) {
