@@ -299,3 +299,45 @@ fn blocks_the_translator_reports_on_are_not_streamed() {
     let (_, got) = both("bad70.mpf", "G70\nG1 X1 F100\nG500\nM30\n", CommentMode::Keep);
     assert!(matches!(got, Err(Fallback::Diagnostics)));
 }
+
+#[test]
+fn external_siemens_programs_stream_only_to_their_whole_translation() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cead-sinumerik");
+    let mut files = Vec::new();
+    let mut stack = vec![dir.clone()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().and_then(|x| x.to_str()).is_some_and(|x| x.eq_ignore_ascii_case("mpf")) {
+                files.push(p);
+            }
+        }
+    }
+    if files.is_empty() {
+        eprintln!("note: {} not found; skipped", dir.display());
+        return;
+    }
+    files.sort();
+    let mut streamed = 0;
+    for f in &files {
+        let o = {
+            let text = String::from_utf8_lossy(&std::fs::read(f).expect("read")).to_string();
+            opts(f, &text, CommentMode::Keep)
+        };
+        let mut out = Vec::new();
+        if st::to_fanuc(f, &o, &mut out, None).is_err() {
+            continue;
+        }
+        let bytes = std::fs::read(f).expect("read");
+        let mut db = SourceDb::new();
+        let loaded = nctrans::load(&mut db, &f.display().to_string(), &bytes, None);
+        let parsed =
+            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+        let whole = translate::to_fanuc(&parsed.unit, &[], &o);
+        same(&f.display().to_string(), &out, &whole.text, &db.get(loaded.file).text);
+        streamed += 1;
+    }
+    eprintln!("{streamed} of {} external programs streamed", files.len());
+}
