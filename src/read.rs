@@ -148,7 +148,7 @@ impl<'a> Iterator for Blocks<'a> {
             return None;
         }
         let rest = &self.text.as_bytes()[self.pos..];
-        let end = rest.iter().position(|&c| c == b'\n' || c == b'\r').unwrap_or(rest.len());
+        let end = find2(rest, b'\n', b'\r').unwrap_or(rest.len());
         let start = self.pos;
         let mut next = start + end;
         if next < self.text.len() {

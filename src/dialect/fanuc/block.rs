@@ -509,23 +509,30 @@ pub fn both_ways_for_test(text: &str, param_mode: bool) -> Option<(String, Strin
     })
 }
 
-/// For tests: a block by the index-only reader (`fast::skeleton`) and by the fast path and
-/// [`plain`] (outside parameter-write mode), as the block's meta and number of items.
-/// `None` when the skeleton reader declines (the full route then reads the block).
+/// For tests: a block by the one-pass readers (`fast::plain_line`, and `fast::skeleton`
+/// as the meta and number of items) and by the fast path and [`plain`] (outside
+/// parameter-write mode). `None` when the one-pass reader declines (the full route then
+/// reads the block).
 #[doc(hidden)]
 pub fn skeleton_both_ways_for_test(text: &str) -> Option<(String, String)> {
     super::parse::with_seg(text, |seg, opts| {
-        let (skip, number, words) = super::fast::skeleton(seg)?;
+        let (skip, number, items) = super::fast::plain_line(seg)?;
         let span = seg.span(0, seg.text.len());
         let meta = BlockMeta { span, skip, number, ..BlockMeta::default() };
-        let skeleton = format!("{meta:?} {words}");
+        let sk = super::fast::skeleton(seg).map(|(skip, number, words)| {
+            format!("{:?} {words}", BlockMeta { span, skip, number, ..BlockMeta::default() })
+        });
+        let one_pass = format!("{:?} / {sk:?}", Line::Block(Block { meta: meta.clone(), items }));
         let cx = BlockCx { file: seg.file, seg, span, param_mode: false, opts };
         let full = match super::fast::parse_fast(seg).map(|parts| plain(&cx, parts)) {
-            Some(Ok(Line::Block(b))) => format!("{:?} {}", b.meta, b.items.len()),
+            Some(Ok(Line::Block(b))) => {
+                let sk = format!("{:?} {}", b.meta, b.items.len());
+                format!("{:?} / {:?}", Line::Block(b), Some(sk))
+            }
             Some(Ok(other)) => format!("not a plain block: {other:?}"),
             Some(Err(_)) => "handed back by `plain`".to_string(),
             None => "declined by the fast path".to_string(),
         };
-        Some((skeleton, full))
+        Some((one_pass, full))
     })
 }

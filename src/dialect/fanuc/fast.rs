@@ -4,7 +4,7 @@
 //! then goes to pest. This keeps large programs well above 400,000 blocks per second.
 
 use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
-use crate::ir::{Expr, SeqNo};
+use crate::ir::{Addr, Expr, Item, ItemKind, SeqNo, WordValue};
 
 /// The parts of a plain block, or `None` when the block needs the grammar.
 pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
@@ -28,24 +28,40 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
     }
 }
 
-/// For an index-only first scan: what `block::plain` would make of the parts
-/// [`parse_fast`] gives, outside parameter-write mode, without building them: the skip
-/// level, the block number and how many other words the block has. `None` when the fast
-/// path declines the block or `plain` would hand it back (the caller then takes the full
-/// route). The words are read by the same code as in `parse_fast`, and each is judged with
-/// `plain`'s rule on what `RawWord::int` would give.
+/// What `block::plain` makes of the parts [`parse_fast`] gives, outside parameter-write
+/// mode, without building the parts: the skip level, the block number and the items.
+/// `None` when the fast path declines the block or `plain` would hand it back (the caller
+/// then takes the full route). The words are read by the same code as in `parse_fast`,
+/// each is judged with `plain`'s rule on what `RawWord::int` would give, and its item is
+/// the one `plain` makes of its `RawWord`.
+pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>)> {
+    let (skip, number, _, items) = plain_words(seg, true)?;
+    Some((skip, number, items))
+}
+
+/// For an index-only first scan: [`plain_line`] without building the items, only how many
+/// there would be.
 pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
+    let (skip, number, words, _) = plain_words(seg, false)?;
+    Some((skip, number, words))
+}
+
+/// Both of the above: `keep` says whether to build the items; every decision is the same.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn plain_words(seg: &Seg<'_>, keep: bool) -> Option<(Option<u8>, Option<SeqNo>, usize, Vec<Item>)> {
     let b = seg.text.as_bytes();
     let mut i = 0;
     let skip = skip_prefix(seg, &mut i)?;
     let mut number = None;
     let mut words = 0;
+    let mut items = if keep { Vec::with_capacity(6) } else { Vec::new() };
     let mut first = true;
     loop {
         skip_ws(b, &mut i);
         if i >= b.len() {
             // `plain` hands back a block without words (a lone skip).
-            return (!first).then_some((skip, number, words));
+            return (!first).then_some((skip, number, words, items));
         }
         let w = word(seg, &mut i)?;
         // `RawWord::int`: a literal without sign or point (its value is not negative).
@@ -62,7 +78,21 @@ pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
         }
         match (w.letter, int) {
             (b'N', Some(n)) => number = Some(SeqNo { value: n as u32, span: seg.span(w.start, w.hi) }),
-            _ => words += 1,
+            _ => {
+                words += 1;
+                if keep {
+                    let value = if w.neg == Some(true) { -w.value } else { w.value };
+                    let span = seg.span(w.start, w.hi);
+                    items.push(Item {
+                        kind: ItemKind::Word(crate::ir::Word {
+                            addr: Addr::Letter(w.letter),
+                            value: WordValue::Expr(Expr::num(value, w.point, seg.span(w.vstart, w.hi))),
+                            span,
+                        }),
+                        span,
+                    });
+                }
+            }
         }
         first = false;
     }

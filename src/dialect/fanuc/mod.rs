@@ -183,13 +183,18 @@ impl<'o> Reader<'o> {
         if self.programs.is_empty() {
             self.programs.push(ProgramLines::new(None, None, span, self.file, self.opts));
         }
-        if self.index_only {
-            if let Some(prog) = self.programs.last_mut().filter(|p| !p.param_mode) {
+        // Plain word blocks (nearly all of CAM output): what the fast path, `block::plain` and
+        // `push` make of them, in one pass; in an index-only scan without the items.
+        if let Some(prog) = self.programs.last_mut().filter(|p| !p.param_mode) {
+            if self.index_only {
                 if let Some((skip, number, words)) = fast::skeleton(&seg) {
-                    // What `block::plain` and `push` make of it, less the items.
                     prog.push_skeleton(BlockMeta { span, skip, number, ..BlockMeta::default() }, words > 0);
                     return;
                 }
+            } else if let Some((skip, number, items)) = fast::plain_line(&seg) {
+                let meta = BlockMeta { span, skip, number, ..BlockMeta::default() };
+                prog.push(Line::Block(crate::ir::Block { meta, items }));
+                return;
             }
         }
         // The fast path takes only letters, digits, signs, points, blanks and a leading `/n`:
