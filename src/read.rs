@@ -220,6 +220,43 @@ pub fn find2(b: &[u8], x: u8, y: u8) -> Option<usize> {
     chunks.remainder().iter().position(|&v| v == x || v == y).map(|k| at + k)
 }
 
+/// `s.trim_start()`, byte by byte while the text is ASCII (the Unicode tables are asked
+/// only from the first non-ASCII character on).
+pub fn trim_start(s: &str) -> &str {
+    let b = s.as_bytes();
+    let mut i = 0;
+    while i < b.len() && ascii_space(b[i]) {
+        i += 1;
+    }
+    match b.get(i) {
+        Some(c) if *c >= 0x80 => s[i..].trim_start(),
+        _ => &s[i..],
+    }
+}
+
+/// `s.trim_end()`, byte by byte while the text is ASCII.
+pub fn trim_end(s: &str) -> &str {
+    let b = s.as_bytes();
+    let mut j = b.len();
+    while j > 0 && ascii_space(b[j - 1]) {
+        j -= 1;
+    }
+    match j.checked_sub(1).map(|k| b[k]) {
+        Some(c) if c >= 0x80 => s[..j].trim_end(),
+        _ => &s[..j],
+    }
+}
+
+/// `s.trim()` (see [`trim_start`]).
+pub fn trim(s: &str) -> &str {
+    trim_end(trim_start(s))
+}
+
+/// The ASCII characters `char::is_whitespace` accepts (vertical tab included).
+fn ascii_space(c: u8) -> bool {
+    matches!(c, b' ' | b'\t' | b'\n' | 0x0b | 0x0c | b'\r')
+}
+
 /// Whether `b` has a letter O or o (eight bytes at a time).
 fn has_letter_o(b: &[u8]) -> bool {
     let mut chunks = b.chunks_exact(8);
@@ -556,6 +593,27 @@ mod tests {
                 assert_eq!(find2(&b, b';', b'('), b.iter().position(|&c| c == b';' || c == b'('), "{b:?}");
                 assert_eq!(has_letter_o(&b), b.iter().any(|&c| c == b'o' || c == b'O'), "{b:?}");
             }
+        }
+    }
+
+    #[test]
+    fn ascii_trims_are_the_unicode_trims() {
+        let pieces = [" ", "\t", "\x0b", "\x0c", "\u{3000}", "\u{85}", "\u{a0}", "a", "é", "\u{2003}", "G1", "\r"];
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..20_000 {
+            let mut s = String::new();
+            for _ in 0..(state % 7) {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                s.push_str(pieces[(state % pieces.len() as u64) as usize]);
+            }
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            assert_eq!(trim_start(&s), s.trim_start(), "{s:?}");
+            assert_eq!(trim_end(&s), s.trim_end(), "{s:?}");
+            assert_eq!(trim(&s), s.trim(), "{s:?}");
         }
     }
 

@@ -150,11 +150,11 @@ impl<'o> Reader<'o> {
 
     /// Reads one physical line.
     pub fn line(&mut self, raw: &read::RawBlock<'_>) {
-        let trimmed = raw.text.trim();
+        let trimmed = read::trim(raw.text);
         if trimmed.is_empty() {
             return;
         }
-        let lead = (raw.text.len() - raw.text.trim_start().len()) as u32;
+        let lead = (raw.text.len() - read::trim_start(raw.text).len()) as u32;
         let line_span = Span::new(raw.start + lead, raw.start + lead + trimmed.len() as u32);
         if self.tape == Tape::Closed {
             self.after_end = Some(self.after_end.map_or(line_span, |s| s.to(line_span)));
@@ -165,7 +165,7 @@ impl<'o> Reader<'o> {
         }
         let norm = read::normalise(raw, CommentStyle::Parens);
         self.diags.extend(norm.warnings(self.file));
-        if norm.text.trim_start().starts_with('%') {
+        if read::trim_start(&norm.text).starts_with('%') {
             let has_content = self.programs.iter().any(|p| !p.is_empty());
             self.tape = if self.tape == Tape::None && !has_content { Tape::Open } else { Tape::Closed };
             return;

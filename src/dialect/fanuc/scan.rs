@@ -64,9 +64,9 @@ impl Iterator for Segments<'_> {
 
 fn trimmed(text: &str, lo: usize, hi: usize, end: usize) -> Option<(usize, usize, usize)> {
     let s = &text[lo..hi];
-    let t = s.trim_start();
+    let t = crate::read::trim_start(s);
     let lo2 = lo + (s.len() - t.len());
-    let t = t.trim_end();
+    let t = crate::read::trim_end(t);
     if t.is_empty() {
         return None;
     }
