@@ -1,7 +1,10 @@
 //! A byte-level reader for the blocks that dominate CAM output: an optional `/n`, then only
 //! letter+number words (`N10 G01 X1.234 Y-2.5 F1000.`). It gives exactly the parts the
-//! grammar gives (tested on generated blocks in tests.rs) and declines anything else, which
-//! then goes to pest. This keeps large programs well above 400,000 blocks per second.
+//! grammar gives (tested on generated blocks in tests.rs and tests/fast_path_diff.rs) and
+//! declines anything else, which then goes to pest. For plain word blocks it also reads
+//! straight to the items `block::plain` makes of those parts (`plain_line`), or for an
+//! index-only scan to the block's number alone (`skeleton`); both are tested against the
+//! parts route.
 
 use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
 use crate::ir::{Addr, Expr, Item, ItemKind, SeqNo, WordValue};

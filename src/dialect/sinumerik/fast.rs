@@ -2,6 +2,7 @@
 //! (`N10 G1 X1.234 Y-2.5 F1000 ; comment`): letter + constant words, an optional leading
 //! block number and a trailing comment. It gives exactly the IR the grammar gives (a test
 //! compares them on many generated blocks) and declines anything else, which then goes to pest.
+//! For an index-only scan, `skeleton` takes the same decisions without building the items.
 
 use super::parse::word_item;
 use super::structure::{Line, LineKind};
