@@ -5,7 +5,8 @@
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
 //! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
 //! loop), `access` + `vars` (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
-//! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
+//! state and motion), `sysvars`, `trace` (events and writers; `numfmt`: the trace's
+//! number form), `input` (`--set` and
 //! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
 
 pub mod access;
@@ -17,6 +18,7 @@ pub mod fault;
 pub mod flow;
 pub mod input;
 pub mod machine;
+pub mod numfmt;
 pub mod sysvars;
 pub mod trace;
 pub mod value;
