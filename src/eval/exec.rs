@@ -177,6 +177,17 @@ impl<'a> Interp<'a> {
         self.sink.event(&ev, origin);
     }
 
+    /// [`Interp::emit`] of a borrowed event: passed on as it is unless a message waits
+    /// to be merged, or it is one.
+    fn emit_ref(&mut self, ev: &Event, span: Span) {
+        if self.pending_msg.is_none() && !matches!(ev, Event::Message { .. }) {
+            let origin = Origin { file: self.file(), span };
+            self.sink.event(ev, origin);
+        } else {
+            self.emit(ev.clone(), span);
+        }
+    }
+
     pub fn flush(&mut self) {
         if let Some((text, o)) = self.pending_msg.take() {
             self.sink.event(&Event::Message { text }, o);
@@ -389,9 +400,10 @@ impl<'a> Interp<'a> {
             for (code_, msg, span) in warns.drain(..) {
                 self.warn(code_, msg, span);
             }
-            for (ev, span) in out.drain(..) {
-                self.emit(ev, span);
+            for (ev, span) in &out {
+                self.emit_ref(ev, *span);
             }
+            out.clear();
             self.out_buf = out;
             self.warn_buf = warns;
             eff = r.map_err(|f| self.fix_file(f))?;

@@ -4,7 +4,7 @@
 use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
-use super::value::{round_half_away, round_to};
+use super::value::{round_half_away, round_to, round_to_scaled};
 use crate::span::Span;
 
 /// A word after evaluation of its value.
@@ -103,6 +103,8 @@ pub struct Machine {
     pub applied: [f64; 9],
     /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
     pub probe_contact: Option<f64>,
+    /// `(inc, 1.0 / inc)` of the metric and inch increments, for [`round_to_scaled`].
+    scales: [(f64, f64); 2],
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
@@ -141,6 +143,7 @@ impl Machine {
             probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
+            scales: [(inc_mm, 1.0 / inc_mm), (inc_mm / 10.0, 1.0 / (inc_mm / 10.0))],
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
         }
@@ -193,7 +196,10 @@ impl Machine {
     fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if w.bare && self.scaling { x * inc } else { x };
-        let v = round_to(v, inc);
+        let v = match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
+            Some(&(_, scale)) => round_to_scaled(v, inc, scale),
+            None => round_to(v, inc),
+        };
         if self.inch && !rotary {
             v * 25.4
         } else {

@@ -7,7 +7,7 @@
 pub fn push_num(out: &mut String, x: f64) {
     let mut buf = [0u8; BUF];
     match fast(x, &mut buf) {
-        Some(i) => out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or("0")),
+        Some(n) => out.push_str(std::str::from_utf8(&buf[..n]).unwrap_or("0")),
         None => push_num_std(out, x),
     }
 }
@@ -16,7 +16,7 @@ pub fn push_num(out: &mut String, x: f64) {
 pub fn put_num(out: &mut Vec<u8>, x: f64) {
     let mut buf = [0u8; BUF];
     match fast(x, &mut buf) {
-        Some(i) => out.extend_from_slice(&buf[i..]),
+        Some(n) => put_head(out, &buf, n),
         None => {
             let mut s = String::new();
             push_num_std(&mut s, x);
@@ -28,14 +28,22 @@ pub fn put_num(out: &mut Vec<u8>, x: f64) {
 /// Appends an integer in decimal.
 pub fn put_int(out: &mut Vec<u8>, n: i64) {
     let mut buf = [0u8; BUF];
-    let i = int_digits(&mut buf, n);
-    out.extend_from_slice(&buf[i..]);
+    let len = int_digits(&mut buf, n);
+    put_head(out, &buf, len);
+}
+
+/// Appends `buf[..n]`: the whole buffer is copied (a fixed size the compiler copies
+/// inline, where a short copy of a varying length is a `memcpy` call) and the rest cut.
+fn put_head(out: &mut Vec<u8>, buf: &[u8; BUF], n: usize) {
+    let at = out.len();
+    out.extend_from_slice(buf);
+    out.truncate(at + n);
 }
 
 /// Room for a sign, 20 digits, a point and 6 decimals.
 const BUF: usize = 32;
 
-/// Writes the form of `x` at the end of `buf` (ASCII only) and returns where it starts;
+/// Writes the form of `x` at the start of `buf` (ASCII only) and returns its length;
 /// `None` where the standard formatter must decide (an exact tie, `|x| ≥ 10¹²`).
 fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
     // An integer (what `x.fract() == 0.0` asks, without its `trunc` call): below 1e15
@@ -44,8 +52,8 @@ fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
         return Some(int_digits(buf, x as i64));
     }
     if !x.is_finite() {
-        buf[BUF - 1] = b'0';
-        return Some(BUF - 1);
+        buf[0] = b'0';
+        return Some(1);
     }
     let q = micros(x)?;
     Some(micros_digits(buf, x < 0.0, q))
@@ -110,46 +118,44 @@ fn micros(x: f64) -> Option<u64> {
     }
 }
 
-/// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign.
+/// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign;
+/// returns the length.
 fn micros_digits(buf: &mut [u8; BUF], neg: bool, q: u64) -> usize {
-    let mut i = BUF;
     if q == 0 {
-        buf[i - 1] = b'0';
-        return i - 1;
+        buf[0] = b'0';
+        return 1;
+    }
+    let mut i = 0;
+    if neg {
+        buf[0] = b'-';
+        i = 1;
     }
     let (int, frac) = (q / 1_000_000, (q % 1_000_000) as u32);
-    if frac != 0 {
-        // Six digits, then the trailing zeros dropped.
-        let (hi, lo) = (frac / 10_000, frac % 10_000);
-        let mut six = [0u8; 6];
-        six[0..2].copy_from_slice(pair(hi));
-        six[2..4].copy_from_slice(pair(lo / 100));
-        six[4..6].copy_from_slice(pair(lo % 100));
-        let mut n = 6;
-        while six[n - 1] == b'0' {
-            n -= 1;
-        }
-        i -= n;
-        buf[i..i + n].copy_from_slice(&six[..n]);
-        i -= 1;
-        buf[i] = b'.';
-    }
     i = put_digits(buf, i, int);
-    if neg {
-        i -= 1;
-        buf[i] = b'-';
+    if frac == 0 {
+        return i;
     }
-    i
+    // The point and six digits, then the trailing zeros dropped (there is a non-zero one).
+    buf[i] = b'.';
+    let (hi, lo) = (frac / 10_000, frac % 10_000);
+    buf[i + 1..i + 3].copy_from_slice(pair(hi));
+    buf[i + 3..i + 5].copy_from_slice(pair(lo / 100));
+    buf[i + 5..i + 7].copy_from_slice(pair(lo % 100));
+    let mut end = i + 7;
+    while buf[end - 1] == b'0' {
+        end -= 1;
+    }
+    end
 }
 
-/// Writes `n` in decimal at the end of `buf`; returns where it starts.
+/// Writes `n` in decimal at the start of `buf`; returns the length.
 fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
-    let mut i = put_digits(buf, BUF, n.unsigned_abs());
     if n < 0 {
-        i -= 1;
-        buf[i] = b'-';
+        buf[0] = b'-';
+        put_digits(buf, 1, n.unsigned_abs())
+    } else {
+        put_digits(buf, 0, n.unsigned_abs())
     }
-    i
 }
 
 /// "00" to "99".
@@ -166,9 +172,16 @@ fn pair(n: u32) -> &'static [u8] {
     &PAIRS[i..i + 2]
 }
 
-/// Writes the digits of `n` ending before `buf[end]`, two at a time; returns where they
-/// start. [`BUF`] leaves room for the 20 digits of any u64 and a sign.
-fn put_digits(buf: &mut [u8; BUF], end: usize, mut n: u64) -> usize {
+/// Writes the digits of `n` from `buf[at]` on, two at a time from the last; returns
+/// where they end. [`BUF`] leaves room for the 20 digits of any u64 after a sign.
+fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
+    let mut digits = 1;
+    let mut p = 10u64;
+    while digits < 20 && n >= p {
+        digits += 1;
+        p = p.wrapping_mul(10);
+    }
+    let end = at + digits;
     let mut i = end;
     while n >= 100 {
         i -= 2;
@@ -182,7 +195,7 @@ fn put_digits(buf: &mut [u8; BUF], end: usize, mut n: u64) -> usize {
         i -= 1;
         buf[i] = b'0' + n as u8;
     }
-    i
+    end
 }
 
 #[cfg(test)]
@@ -280,6 +293,11 @@ pub(crate) mod tests {
         ];
         for x in xs {
             same(x, &mut a, &mut b);
+        }
+        for n in [0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)] {
+            let mut v = Vec::new();
+            put_int(&mut v, n);
+            assert_eq!(v, n.to_string().as_bytes());
         }
         // Every exact tie with few fraction bits (m / 2^k for small k).
         for k in 1..=30 {
