@@ -367,16 +367,19 @@ impl<'a> Interp<'a> {
         }
         let mut words = std::mem::take(&mut self.words_buf);
         words.clear();
-        for w in b.words() {
+        // `extend` writes each word in place (a `push` per word built it on the stack
+        // first and copied it, which stalled on the copy).
+        let fanuc = self.fanuc;
+        words.extend(b.words().iter().map(|w| {
             let i = usize::from(w.letter - b'A');
-            words.push(WordVal {
+            WordVal {
                 addr: std::borrow::Cow::Borrowed(&LETTERS[i..i + 1]),
                 val: WV::Num(w.value),
                 mode: w.mode,
-                bare: self.fanuc && !w.point,
+                bare: fanuc && !w.point,
                 span: w.span,
-            });
-        }
+            }
+        }));
         self.finish_block(code, words, None, Vec::new(), b.span, pc)
     }
 

@@ -626,9 +626,15 @@ impl Machine {
             for (i, a) in axes.iter().enumerate() {
                 if a.is_some() {
                     self.seen[i] = true;
+                    // Axes without a word keep their position in `target` (a probe move
+                    // may change every axis: copied whole below). Copying axis by axis
+                    // also spares the CPU a stalled reload of `target` just written.
+                    self.pos[i] = target[i];
                 }
             }
-            self.pos = target;
+            if probe {
+                self.pos = target;
+            }
             out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
             return Ok(any_axis);
         }
