@@ -18,6 +18,7 @@ use nctrans::stream::translate::Fallback;
 use nctrans::translate_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -325,4 +326,76 @@ fn the_streamed_check_agrees_with_the_whole_check_and_catches_a_wrong_translatio
     let report = streamed_check(&path, &out, &o);
     assert!(matches!(report.verdict, Verdict::Diverged { .. }), "{:?}", report.verdict);
     assert!(!report.diff.is_empty());
+}
+
+fn cli(args: &[&str]) -> (Option<i32>, Vec<u8>, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("runs");
+    (o.status.code(), o.stdout, String::from_utf8_lossy(&o.stderr).to_string())
+}
+
+/// The stderr lines both paths print the same (the verdict, "wrote"), without the
+/// renderings of warnings (compact for a streamed file).
+fn verdict_lines(err: &str) -> Vec<String> {
+    err.lines()
+        .filter(|l| {
+            l.starts_with("equivalent")
+                || l.starts_with("wrote")
+                || l.starts_with("error: ")
+                || l.starts_with("inconclusive")
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn cli_streams_with_the_same_output_and_verdict() {
+    let dir = scratch("cli");
+    let src = dir.join("cam.nc");
+    std::fs::write(&src, generated(sts::CHUNK_STMTS + 2000, 5, "\r\n", true)).expect("write");
+    let s = src.to_string_lossy().to_string();
+    // To a file: the small file is translated whole without --stream.
+    let (a, b) = (dir.join("whole.mpf"), dir.join("streamed.mpf"));
+    let whole = cli(&["--to", "sinumerik", &s, "-o", &a.to_string_lossy()]);
+    let streamed = cli(&["--to", "sinumerik", "--stream", &s, "-o", &b.to_string_lossy()]);
+    assert_eq!(whole.0, Some(0), "{}", whole.2);
+    assert_eq!(streamed.0, Some(0), "{}", streamed.2);
+    assert_eq!(std::fs::read(&a).expect("whole"), std::fs::read(&b).expect("streamed"));
+    let (vw, vs) = (verdict_lines(&whole.2), verdict_lines(&streamed.2));
+    assert_eq!(vw.len(), vs.len(), "{whole:?}\n{streamed:?}");
+    assert_eq!(vw.last(), vs.last(), "the same verdict");
+    assert!(vs.last().is_some_and(|l| l.starts_with("equivalent (")), "{vs:?}");
+    // The kept warnings are shown, compactly, with their line.
+    assert!(streamed.2.contains("NC368") && streamed.2.contains("cam.nc:7:1"), "{}", streamed.2);
+    assert!(!dir.join("streamed.mpf.nctrans-tmp").exists());
+
+    // To standard output, and into a folder (under the program's name).
+    let whole = cli(&["--to", "sinumerik", &s]);
+    let streamed = cli(&["--to", "sinumerik", "--stream", &s]);
+    assert_eq!((whole.0, &whole.1), (streamed.0, &streamed.1));
+    assert_eq!(verdict_lines(&whole.2), verdict_lines(&streamed.2));
+    let (wd, sd) = (dir.join("w/"), dir.join("s/"));
+    let whole = cli(&["--to", "sinumerik", &s, "-o", &format!("{}/", wd.display())]);
+    let streamed = cli(&["--to", "sinumerik", "--stream", &s, "-o", &format!("{}/", sd.display())]);
+    assert_eq!(whole.0, streamed.0);
+    assert_eq!(std::fs::read(wd.join("CAM.MPF")).expect("whole"), std::fs::read(sd.join("CAM.MPF")).expect("streamed"));
+    let names = |d: &Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .expect("dir")
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(names(&wd), names(&sd), "no temporary file left behind");
+
+    // --no-verify, and a program that is not straight-line (translated whole, the same).
+    let nv = cli(&["--to", "sinumerik", "--stream", "--no-verify", &s, "-o", &b.to_string_lossy()]);
+    assert_eq!(nv.0, Some(0));
+    assert!(!nv.2.contains("equivalent"));
+    let macro_prog = dir.join("macro.nc");
+    std::fs::write(&macro_prog, "O1\n#1=2.\nG0 X#1\nM30\n").expect("write");
+    let m = macro_prog.to_string_lossy().to_string();
+    let whole = cli(&["--to", "sinumerik", &m]);
+    assert_eq!(cli(&["--to", "sinumerik", "--stream", &m]), whole);
 }

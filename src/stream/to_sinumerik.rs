@@ -24,10 +24,11 @@ use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::to_sinumerik::{self as passes, g_codes, Options};
+use crate::passes::to_sinumerik::{self as passes, g_codes, Ctx, Options, ProgPlan};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
+use std::collections::BTreeMap;
 use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::Arc;
@@ -176,8 +177,30 @@ pub fn has_bom(path: &Path) -> Result<bool, NotStreamable> {
     Ok(n == 3 && b == *b"\xEF\xBB\xBF")
 }
 
+/// What the passes decide for the whole program before they rewrite its body: for a
+/// straight-line program it does not depend on the blocks (no variables, no calls).
+struct Planned {
+    plan: ProgPlan,
+    commons: BTreeMap<u32, u32>,
+    common_flags: BTreeMap<u32, u32>,
+}
+
+impl Planned {
+    fn of(prog: &Program, opts: &Options) -> Option<Planned> {
+        let mut l = passes::lower(&[(0, prog)], opts);
+        let (plan, _) = l.programs.pop()?;
+        Some(Planned { plan, commons: l.commons, common_flags: l.common_flags })
+    }
+
+    fn same(&self, other: &Planned) -> bool {
+        format!("{:?}", (&self.plan, &self.commons, &self.common_flags))
+            == format!("{:?}", (&other.plan, &other.commons, &other.common_flags))
+    }
+}
+
 struct State<'a> {
     opts: &'a Options,
+    planned: Option<Planned>,
     eol: LineEnding,
     name: Option<ProgName>,
     head: Option<BlockMeta>,
@@ -234,7 +257,18 @@ impl State<'_> {
     /// The first chunk goes through the whole translator: it writes the header lines
     /// (program name, `nctrans: set` inputs in Siemens names) exactly as for the file.
     fn flush_first(&mut self, body: Vec<Stmt>) {
+        // The later chunks are lowered with the plan of an empty program of this name: the
+        // same as the first chunk's, or the program is not one a stream can translate.
         let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs: vec![self.program(body)] };
+        let planned = Planned::of(&self.program(vec![]), self.opts);
+        let first = unit.programs.first().and_then(|p| Planned::of(p, self.opts));
+        match (planned, first) {
+            (Some(a), Some(b)) if a.same(&b) => self.planned = Some(a),
+            _ => {
+                self.stop = Some(Fallback::NotStraight("a plan that depends on its blocks".into()));
+                return;
+            }
+        }
         let tr = ts::translate(&[&unit], self.opts, LineEnding::Lf);
         if !self.keep(tr.diags) {
             return;
@@ -265,16 +299,28 @@ impl State<'_> {
             let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
             body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
         }
-        let prog = self.program(body);
-        let mut lowered = passes::lower(&[(0, &prog)], self.opts);
-        if !self.keep(std::mem::take(&mut lowered.diags)) {
-            return;
-        }
-        let Some((plan, mut p)) = lowered.programs.pop() else { return };
-        if !plan.defs.is_empty() || !p.params.is_empty() {
+        let Some(pl) = &self.planned else { return };
+        if !pl.plan.defs.is_empty() || !pl.plan.params.is_empty() {
             self.stop = Some(Fallback::NotStraight("variables".into()));
             return;
         }
+        let mut ctx = Ctx {
+            opts: self.opts,
+            progs: vec![pl.plan.clone()],
+            commons: pl.commons.clone(),
+            common_flags: pl.common_flags.clone(),
+            diags: Vec::new(),
+            cur: 0,
+            guard_ok: false,
+        };
+        // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
+        // without variables) and with the plan made once.
+        let body = passes::lower_body(&mut ctx, body);
+        if !self.keep(std::mem::take(&mut ctx.diags)) {
+            return;
+        }
+        // Only the body is written (no PROC line, header or DEF lines).
+        let mut p = Program { name: None, head: None, params: vec![], save: false, body, span: Span::default() };
         if arc {
             let before = p.body.len();
             p.body.retain(|s| s.span != STAND_IN);
@@ -342,6 +388,7 @@ pub fn to_sinumerik(
     let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
     let mut st = State {
         opts,
+        planned: None,
         eol,
         name,
         head,
