@@ -399,3 +399,231 @@ fn cli_streams_with_the_same_output_and_verdict() {
     let whole = cli(&["--to", "sinumerik", &m]);
     assert_eq!(cli(&["--to", "sinumerik", "--stream", &m]), whole);
 }
+
+// ---- batches ----
+
+use nctrans::batch::jobs::{JobSettings, ToFanucJob};
+use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
+use std::collections::BTreeMap;
+use std::sync::atomic::AtomicBool;
+use std::sync::{Arc, Mutex};
+
+/// A straight-line Sinumerik program of `n` blocks.
+fn generated_sinumerik(n: usize, seed: u64) -> String {
+    let mut r = Rng(seed);
+    let mut t = String::from("%_N_CAMS_MPF\n; generated\nG17 G90 G71\nG0 X0 Y0 Z5\nG1 Z-1 F500\n");
+    for i in 0..n {
+        let v = |r: &mut Rng| format!("{:.3}", r.below(200_000) as f64 / 1000.0 - 100.0);
+        match r.below(5) {
+            0 => t.push_str(&format!("N{} G1 X{} Y{} F{}\n", 10 + i, v(&mut r), v(&mut r), 300 + r.below(900))),
+            1 => t.push_str(&format!("X{} ; step {i}\n", v(&mut r))),
+            2 => t.push_str(&format!("G0 Z{}\n", v(&mut r))),
+            _ => t.push_str(&format!("G1 X{} Y{} Z{}\n", v(&mut r), v(&mut r), v(&mut r))),
+        }
+    }
+    t.push_str("M30\n");
+    t
+}
+
+/// A batch folder: the corpus programs of both dialects, large straight-line programs in
+/// both (generated), and straight-line programs a stream must leave to the whole-file
+/// job: one another file calls, two files defining the same program number.
+fn batch_library(root: &Path) {
+    for (from, to) in [("corpus/in/sinumerik", "siemens"), ("corpus/in/fanuc", "fanuc")] {
+        let dst = root.join(to);
+        std::fs::create_dir_all(&dst).expect("dir");
+        let Ok(rd) = std::fs::read_dir(self::root().join(from)) else { continue };
+        for e in rd.filter_map(|e| e.ok()) {
+            std::fs::copy(e.path(), dst.join(e.file_name())).expect("copy");
+        }
+    }
+    let big = root.join("big");
+    std::fs::create_dir_all(&big).expect("dir");
+    // Program numbers no corpus file has (O2001 is called there).
+    let cam = generated(sts::CHUNK_STMTS + 700, 21, "\n", true).replace("O2001", "O7101");
+    std::fs::write(big.join("cam.nc"), cam).expect("write");
+    std::fs::write(big.join("camcrlf.nc"), generated(900, 22, "\r\n", false).replace("O2001", "O7102")).expect("write");
+    std::fs::write(big.join("cams.mpf"), generated_sinumerik(sts::CHUNK_STMTS + 300, 23)).expect("write");
+    std::fs::write(big.join("called.nc"), "%\nO3000\nG0 X1. Y2.\nG1 X3. F100.\nM30\n%\n").expect("write");
+    std::fs::write(big.join("caller.nc"), "%\nO3001\nM98 P3000\nM30\n%\n").expect("write");
+    std::fs::write(big.join("dup1.nc"), "%\nO4000\nG0 X1.\nM30\n%\n").expect("write");
+    std::fs::write(big.join("dup2.nc"), "%\nO4000\nG0 X2.\nM30\n%\n").expect("write");
+}
+
+/// Every file below `root` (relative path → bytes).
+fn snapshot(root: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).expect("dir").filter_map(|e| e.ok()) {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p.strip_prefix(root).expect("below").to_string_lossy().replace('\\', "/");
+                out.insert(rel, std::fs::read(&p).expect("read"));
+            }
+        }
+    }
+    out
+}
+
+/// A job that notes which files its streamed path translated.
+struct Watched<J> {
+    job: J,
+    streamed: Mutex<Vec<String>>,
+}
+
+impl<J> Watched<J> {
+    fn note(&self, f: &InputFile, o: Option<FileOutcome>) -> Option<FileOutcome> {
+        if o.is_some() {
+            self.streamed.lock().expect("lock").push(batch::rel_string(&f.rel));
+        }
+        o
+    }
+}
+
+impl FileJob for Watched<ToSinumerikJob> {
+    fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+    }
+}
+
+impl FileJob for Watched<ToFanucJob> {
+    fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+    }
+}
+
+fn settings(max_steps: u64) -> JobSettings {
+    let mut s = JobSettings::from_config(&nctrans::config::Config::default()).expect("settings");
+    // One corpus program waits for a signal for ever.
+    s.max_steps = max_steps;
+    s
+}
+
+/// Runs the batch whole and streamed (every straight-line file): the same records and the
+/// same files written. Returns the files the streamed run streamed.
+fn both_ways(input: &Path, dir: &Path, target: Dialect, max_steps: u64) -> (Vec<String>, batch::BatchResult) {
+    let mut results = Vec::new();
+    let mut streamed = Vec::new();
+    for (k, bytes) in [u64::MAX, 0].into_iter().enumerate() {
+        let out = dir.join(format!("out{k}"));
+        let mut opts = BatchOptions::new(input, &out, target);
+        opts.stream_bytes = bytes;
+        opts.jobs = 2;
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (r, s) = match target {
+            Dialect::Sinumerik => {
+                let job = Watched { job: ToSinumerikJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
+                let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
+                (r, job.streamed.into_inner().expect("lock"))
+            }
+            Dialect::Fanuc => {
+                let job = Watched { job: ToFanucJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
+                let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
+                (r, job.streamed.into_inner().expect("lock"))
+            }
+        };
+        assert!(!out.join(batch::write::STAGING).exists(), "the staging folder is gone");
+        results.push((r, snapshot(&out)));
+        streamed = s;
+    }
+    let (b, a) = (results.pop().expect("streamed"), results.pop().expect("whole"));
+    assert_eq!(a.0.files.len(), b.0.files.len());
+    for (x, y) in a.0.files.iter().zip(&b.0.files) {
+        let key = |f: &batch::FileRecord| {
+            (f.path.clone(), f.outputs.clone(), f.status, f.summary.clone(), f.events, f.blocks, f.diagnostics.clone())
+        };
+        assert_eq!(key(x), key(y), "{}", x.path);
+    }
+    assert_eq!(a.1.keys().collect::<Vec<_>>(), b.1.keys().collect::<Vec<_>>());
+    for (k, v) in &a.1 {
+        assert!(b.1[k] == *v, "{k} differs");
+    }
+    (streamed, b.0)
+}
+
+#[test]
+fn batches_stream_straight_line_files_with_the_same_outputs_and_report() {
+    let dir = scratch("batch");
+    let input = dir.join("in");
+    batch_library(&input);
+
+    let (streamed, r) = both_ways(&input, &dir.join("to-sinumerik"), Dialect::Sinumerik, 200_000);
+    for must in ["big/cam.nc", "big/camcrlf.nc", "fanuc/sequence-numbers.nc"] {
+        assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
+    }
+    for never in ["big/called.nc", "big/caller.nc", "big/dup1.nc", "big/dup2.nc", "fanuc/while-do-nested.nc"] {
+        assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
+    }
+    let cam = r.files.iter().find(|f| f.path == "big/cam.nc").expect("cam");
+    assert_eq!(cam.status, batch::Status::Verified, "{}", cam.summary);
+    assert_eq!(cam.outputs, ["big/CAM.mpf"]);
+    assert!(cam.diagnostics.iter().any(|d| d.code == "NC368" && d.line == Some(7)), "{:?}", cam.diagnostics);
+
+    let (streamed, r) = both_ways(&input, &dir.join("to-fanuc"), Dialect::Fanuc, 200_000);
+    assert!(streamed.iter().any(|s| s == "big/cams.mpf"), "{streamed:?}");
+    let cams = r.files.iter().find(|f| f.path == "big/cams.mpf").expect("cams");
+    assert_eq!(cams.status, batch::Status::Verified, "{}", cams.summary);
+
+    // A streamed file that does not verify (the step limit) gets no output, like a whole one.
+    let small = dir.join("small");
+    std::fs::create_dir_all(&small).expect("dir");
+    std::fs::copy(input.join("big/cam.nc"), small.join("cam.nc")).expect("copy");
+    let (streamed, r) = both_ways(&small, &dir.join("limit"), Dialect::Sinumerik, 100);
+    assert_eq!(streamed, ["cam.nc"]);
+    assert_eq!(r.files[0].status, batch::Status::Inconclusive, "{}", r.files[0].summary);
+    assert!(r.files[0].outputs.is_empty());
+}
+
+/// The report without its timings.
+fn untimed(report: &str) -> String {
+    report
+        .lines()
+        .map(|l| {
+            let mut l = l.to_string();
+            for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
+                if let Some(i) = l.find(key) {
+                    let rest = &l[i + key.len()..];
+                    let end = rest.find([',', '}']).unwrap_or(rest.len());
+                    l = format!("{}{}{}", &l[..i + key.len()], "_", &rest[end..]);
+                }
+            }
+            l
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn cli_batch_with_stream_gives_the_same_files_report_and_exit_code() {
+    let dir = scratch("cli-batch");
+    let input = dir.join("in");
+    std::fs::create_dir_all(&input).expect("dir");
+    std::fs::write(input.join("cam.nc"), generated(sts::CHUNK_STMTS + 100, 31, "\n", true)).expect("write");
+    std::fs::write(input.join("macro.nc"), "%\nO5\n#1=2.\nG0 X#1\nM30\n%\n").expect("write");
+    std::fs::write(input.join("cams.mpf"), generated_sinumerik(3000, 32)).expect("write");
+    let i = input.to_string_lossy().to_string();
+    let mut runs = Vec::new();
+    for stream in [false, true] {
+        let out = dir.join(format!("out-{stream}"));
+        let report = dir.join(format!("report-{stream}.json"));
+        let (o, r) = (out.to_string_lossy().to_string(), report.to_string_lossy().to_string());
+        let mut args = vec!["--to", "sinumerik", &i, "-o", &o, "--report", &r, "-j", "1"];
+        if stream {
+            args.push("--stream");
+        }
+        let (code, stdout, _) = cli(&args);
+        let report = std::fs::read_to_string(&report).expect("report");
+        let stdout = String::from_utf8_lossy(&stdout).to_string();
+        let report = untimed(&report).replace(&o, "OUT");
+        runs.push((code, report, snapshot(&out), stdout.lines().filter(|l| l.contains("verified")).count()));
+    }
+    let (b, a) = (runs.pop().expect("streamed"), runs.pop().expect("whole"));
+    assert_eq!(a.0, Some(0), "every FANUC program verifies: {}", a.1);
+    assert_eq!((a.0, &a.1, a.3), (b.0, &b.1, b.3));
+    assert_eq!(a.2, b.2);
+    assert!(a.2.contains_key("CAM.mpf"), "{:?}", a.2.keys());
+}
