@@ -377,6 +377,11 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         return None;
     }
     let eol = sts::first_line_ending(req.file).ok()?;
+    // Writing over the input: the streamed check re-reads the source as it runs.
+    let canon = |p: &Path| p.canonicalize().ok();
+    if req.out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(req.file)) {
+        return None;
+    }
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
     // Written to a temporary file and renamed: a program found not to be straight-line part
     // way is then translated whole; standard output gets a copy of the finished file.
