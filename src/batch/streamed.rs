@@ -94,7 +94,7 @@ pub fn without_shared_streamed(
         .iter()
         .enumerate()
         .filter(|(_, s)| {
-            s.info.streamed && s.defined.iter().any(|(k, _)| k.as_ref().is_some_and(|k| defined_in[k] > 1))
+            s.info.streamed && s.defined.iter().flat_map(|(k, _)| k).any(|k| defined_in.get(k).is_some_and(|n| *n > 1))
         })
         .map(|(i, _)| i)
         .collect();

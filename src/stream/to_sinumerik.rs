@@ -299,7 +299,10 @@ impl State<'_> {
             let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
             body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
         }
-        let Some(pl) = &self.planned else { return };
+        let Some(pl) = &self.planned else {
+            self.stop = Some(Fallback::NotStraight("no plan".into()));
+            return;
+        };
         if !pl.plan.defs.is_empty() || !pl.plan.params.is_empty() {
             self.stop = Some(Fallback::NotStraight("variables".into()));
             return;
