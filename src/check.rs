@@ -1,8 +1,10 @@
 //! Differential execution: runs two programs (either dialect) side by side and compares
 //! their traces event by event with the tolerances of the trace spec. The second program
-//! runs on its own thread and streams its events through a bounded channel, so memory
-//! does not grow with the trace length. The first divergence becomes one diagnostic
-//! (NC500) with a label in each file, plus the two traces around it as a unified diff.
+//! runs on its own thread and streams its events through a bounded channel in batches of
+//! [`BATCH`] (one event at a time made the two threads hand over the core at every event),
+//! so memory does not grow with the trace length. The first divergence becomes one
+//! diagnostic (NC500) with a label in each file, plus the two traces around it as a unified
+//! diff; the events kept for that context are written as text only when it is needed.
 
 use crate::diag::Diagnostic;
 use crate::eval::trace::text_line;
@@ -17,6 +19,10 @@ use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 pub const TOLERANCE: f64 = 1e-6;
 /// Events of context shown on each side of a divergence.
 pub const CONTEXT: usize = 3;
+/// Events the second run sends at a time.
+pub const BATCH: usize = 1024;
+/// Batches on their way (the second run waits when the first falls this far behind).
+const IN_FLIGHT: usize = 4;
 
 /// One program to run.
 pub struct Side {
@@ -48,9 +54,8 @@ pub struct CheckReport {
     pub outcome_b: Outcome,
 }
 
-enum Msg {
-    Ev(Event, Origin),
-}
+/// Events of the second run, in order.
+type Msg = Vec<(Event, Origin)>;
 
 /// Where the second run's events go: a bounded channel to the comparing thread, or (one
 /// thread) an unbounded buffer read after the run.
@@ -61,17 +66,35 @@ enum Tx {
 
 struct ChannelSink {
     tx: Tx,
+    batch: Msg,
     dead: bool,
 }
 
-impl TraceSink for ChannelSink {
-    fn event(&mut self, ev: &Event, origin: Origin) {
-        let msg = Msg::Ev(ev.clone(), origin);
+impl ChannelSink {
+    fn new(tx: Tx) -> ChannelSink {
+        ChannelSink { tx, batch: Vec::with_capacity(BATCH), dead: false }
+    }
+
+    /// Sends the events gathered so far (at a batch's end and after the run).
+    fn send(&mut self) {
+        if self.batch.is_empty() || self.dead {
+            return;
+        }
+        let msg = std::mem::replace(&mut self.batch, Vec::with_capacity(BATCH));
         let sent = match &self.tx {
             Tx::Bounded(t) => t.send(msg).is_ok(),
             Tx::Buffered(t) => t.send(msg).is_ok(),
         };
         self.dead |= !sent;
+    }
+}
+
+impl TraceSink for ChannelSink {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        self.batch.push((ev.clone(), origin));
+        if self.batch.len() >= BATCH {
+            self.send();
+        }
     }
     fn wants_stop(&self) -> bool {
         self.dead
@@ -86,9 +109,12 @@ struct Divergence {
 
 struct CompareSink {
     rx: Receiver<Msg>,
+    /// The batch being compared.
+    pending: std::vec::IntoIter<(Event, Origin)>,
     index: u64,
-    before_a: VecDeque<String>,
-    before_b: VecDeque<String>,
+    /// The last agreeing events of each run (written as text for a divergence's diff).
+    before_a: VecDeque<Event>,
+    before_b: VecDeque<Event>,
     after_a: Vec<String>,
     after_b: Vec<String>,
     div: Option<Divergence>,
@@ -188,17 +214,19 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
 }
 
 impl CompareSink {
-    fn push_ring(ring: &mut VecDeque<String>, s: String) {
+    fn push_ring(ring: &mut VecDeque<Event>, e: Event) {
         if ring.len() == CONTEXT {
             ring.pop_front();
         }
-        ring.push_back(s);
+        ring.push_back(e);
     }
 
     fn next_b(&mut self) -> Option<(Event, Origin)> {
-        match self.rx.recv() {
-            Ok(Msg::Ev(e, o)) => Some((e, o)),
-            Err(_) => None,
+        loop {
+            if let Some(x) = self.pending.next() {
+                return Some(x);
+            }
+            self.pending = self.rx.recv().ok()?.into_iter();
         }
     }
 
@@ -244,8 +272,8 @@ impl TraceSink for CompareSink {
         }
         match b {
             Some((eb, _)) if same_event(ev, &eb) => {
-                Self::push_ring(&mut self.before_a, text_line(ev));
-                Self::push_ring(&mut self.before_b, text_line(&eb));
+                Self::push_ring(&mut self.before_a, ev.clone());
+                Self::push_ring(&mut self.before_b, eb);
                 self.index += 1;
             }
             b => {
@@ -304,16 +332,18 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     let (rx, handle) = if ONE_THREAD.with(Cell::get) {
         let (tx, rx) = channel::<Msg>();
         let mut db_b = db_b;
-        let mut sink = ChannelSink { tx: Tx::Buffered(tx), dead: false };
+        let mut sink = ChannelSink::new(Tx::Buffered(tx));
         let out = b(&mut db_b, &mut sink);
+        sink.send();
         drop(sink);
         (rx, Err((out, db_b)))
     } else {
-        let (tx, rx) = sync_channel::<Msg>(1024);
+        let (tx, rx) = sync_channel::<Msg>(IN_FLIGHT);
         let handle = std::thread::spawn(move || {
             let mut db_b = db_b;
-            let mut sink = ChannelSink { tx: Tx::Bounded(tx), dead: false };
+            let mut sink = ChannelSink::new(Tx::Bounded(tx));
             let out = b(&mut db_b, &mut sink);
+            sink.send();
             (out, db_b)
         });
         (rx, Ok(handle))
@@ -321,6 +351,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     let mut db_a = db.clone();
     let mut sink = CompareSink {
         rx,
+        pending: Vec::new().into_iter(),
         index: 0,
         before_a: VecDeque::new(),
         before_b: VecDeque::new(),
@@ -333,7 +364,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }
-    let CompareSink { rx, index, before_a, before_b, after_a, after_b, div, limit_seen } = sink;
+    let CompareSink { rx, index, before_a, before_b, after_a, after_b, div, limit_seen, .. } = sink;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),
@@ -398,10 +429,10 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
             .note(format!("{} events agreed before this one", dv.index))
             .hint("compare the two blocks labelled above; the diff below shows the traces around the divergence");
         diags.push(d);
-        let mut old: Vec<String> = before_a.into_iter().collect();
+        let mut old: Vec<String> = before_a.iter().map(text_line).collect();
         old.push(ta);
         old.extend(after_a);
-        let mut new: Vec<String> = before_b.into_iter().collect();
+        let mut new: Vec<String> = before_b.iter().map(text_line).collect();
         new.push(tb);
         new.extend(after_b);
         let old = old.join("\n") + "\n";
@@ -450,6 +481,9 @@ mod tests {
     }
     /// FANUC: #1 = 0; WHILE [#1 LT 5] DO1; #1 = #1 + 1; G1 X#1 F100.; END1; M30
     fn fanuc_loop(step: f64) -> Unit {
+        fanuc_loop_to(step, 5.0)
+    }
+    fn fanuc_loop_to(step: f64, to: f64) -> Unit {
         let mut u = unit(
             Dialect::Fanuc,
             vec![program(
@@ -457,7 +491,7 @@ mod tests {
                 vec![
                     s(vec![assign(VarKind::Hash(1), p(0.0))]),
                     do_(
-                        Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(5.0))),
+                        Some(cmp(CmpOp::Lt, Tolerance::Exact, hash(1), p(to))),
                         vec![
                             s(vec![assign(VarKind::Hash(1), bin(BinOp::Add, hash(1), p(step)))]),
                             s(vec![word("G", n(1.0)), word("X", hash(1)), word("F", p(100.0))]),
@@ -472,6 +506,9 @@ mod tests {
     }
     /// Siemens: R1=0; WHILE R1<5; R1=R1+1; G1 X=R1 F100; ENDWHILE; M30
     fn siemens_loop() -> Unit {
+        siemens_loop_to(5.0)
+    }
+    fn siemens_loop_to(to: f64) -> Unit {
         let mut u = unit(
             Dialect::Sinumerik,
             vec![program(
@@ -479,7 +516,7 @@ mod tests {
                 vec![
                     s(vec![assign(VarKind::R(1), p(0.0))]),
                     while_(
-                        cmp(CmpOp::Lt, Tolerance::Relative, r(1), p(5.0)),
+                        cmp(CmpOp::Lt, Tolerance::Relative, r(1), p(to)),
                         vec![
                             s(vec![assign(VarKind::R(1), bin(BinOp::Add, r(1), p(1.0)))]),
                             s(vec![word("G", n(1.0)), word("X", r(1)), word("F", p(100.0))]),
@@ -511,6 +548,28 @@ mod tests {
         assert_eq!((d.labels[0].file, d.labels[1].file), (0, 1));
         assert!(r.diff.contains("-move linear X=6 f=100"), "{}", r.diff);
         assert!(r.diff.contains("+move linear X=1 f=100"), "{}", r.diff);
+    }
+
+    #[test]
+    fn divergences_after_many_batches_show_the_events_around_them() {
+        // 2500 moves agree, then one program ends where the other moves on (and the other
+        // way round): the divergence, its context and its diff are found across batches,
+        // in two threads and in one.
+        for (fa, sb) in [(2500.0, 3000.0), (3000.0, 2500.0)] {
+            let run = || check(&db2(), side(fanuc_loop_to(1.0, fa)), side(siemens_loop_to(sb)));
+            let r = run();
+            assert_eq!(r.verdict, Verdict::Diverged { index: 2500 });
+            let (ended, moved) = if fa < sb { ("-", "+") } else { ("+", "-") };
+            assert!(r.diff.contains(&format!("{ended}end M30")), "{}", r.diff);
+            assert!(r.diff.contains(&format!("{moved}move linear X=2501 f=100")), "{}", r.diff);
+            assert!(r
+                .diff
+                .contains(" move linear X=2498 f=100\n move linear X=2499 f=100\n move linear X=2500 f=100\n"));
+            let one = in_one_thread(run);
+            assert_eq!((one.verdict, one.diff, one.diags), (r.verdict, r.diff, r.diags));
+        }
+        let r = check(&db2(), side(fanuc_loop_to(1.0, 5000.0)), side(siemens_loop_to(5000.0)));
+        assert_eq!(r.verdict, Verdict::Equivalent { events: 5001 });
     }
 
     #[test]

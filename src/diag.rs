@@ -77,6 +77,12 @@ impl Diagnostic {
     }
 
     fn to_codespan(&self, db: &SourceDb) -> cs::Diagnostic<FileId> {
+        self.to_codespan_with(&|l| shown_range(db, l))
+    }
+
+    /// The codespan form, with each label's byte range given by `range` (an excerpt of a
+    /// file that is not in memory has its own offsets: see `crate::excerpt`).
+    pub(crate) fn to_codespan_with(&self, range: &dyn Fn(&Label) -> std::ops::Range<usize>) -> cs::Diagnostic<FileId> {
         let sev = match self.severity {
             Severity::Error => cs::Severity::Error,
             Severity::Warning => cs::Severity::Warning,
@@ -90,7 +96,7 @@ impl Diagnostic {
                     .iter()
                     .map(|l| {
                         let style = if l.primary { cs::LabelStyle::Primary } else { cs::LabelStyle::Secondary };
-                        cs::Label::new(style, l.file, shown_range(db, l)).with_message(l.message.clone())
+                        cs::Label::new(style, l.file, range(l)).with_message(l.message.clone())
                     })
                     .collect(),
             )
@@ -122,11 +128,11 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic]) -> String {
 
 /// Lines of a label that are shown at most; codespan prints every line of a label, and a
 /// label over a whole large program would take minutes to render.
-const MAX_LABEL_LINES: usize = 8;
+pub(crate) const MAX_LABEL_LINES: usize = 8;
 
 /// The label's range, cut after its first line when it covers more than
 /// [`MAX_LABEL_LINES`] lines.
-fn shown_range(db: &SourceDb, l: &Label) -> std::ops::Range<usize> {
+pub(crate) fn shown_range(db: &SourceDb, l: &Label) -> std::ops::Range<usize> {
     let r = l.span.range();
     if l.file >= db.len() {
         return r;
@@ -140,7 +146,7 @@ fn shown_range(db: &SourceDb, l: &Label) -> std::ops::Range<usize> {
     }
 }
 
-fn sev_word(s: Severity) -> &'static str {
+pub(crate) fn sev_word(s: Severity) -> &'static str {
     match s {
         Severity::Error => "error",
         Severity::Warning => "warning",

@@ -10,6 +10,7 @@ pub mod config;
 pub mod diag;
 pub mod dialect;
 pub mod eval;
+pub mod excerpt;
 pub mod ir;
 pub mod passes;
 pub mod read;

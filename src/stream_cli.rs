@@ -93,14 +93,15 @@ fn dialect_of(path: &Path, from: Option<Dialect>) -> Option<Dialect> {
     Some(nctrans::detect_dialect(&name, &head))
 }
 
-/// First scan with a progress line; `None` when the file cannot be streamed exactly
-/// (the caller then reads it whole, which also renders any diagnostics).
+/// First scan with a progress line; `None` when the file cannot be streamed exactly (the
+/// caller then reads it whole). The scan's diagnostics are rendered from excerpts of the
+/// file (it is not loaded); `Err` when they hold an error, as for a file read whole.
 fn scan(
     path: &Path,
     from: Option<Dialect>,
     file: usize,
     each: &mut dyn FnMut(usize, &nctrans::ir::Stmt),
-) -> Option<Index> {
+) -> Option<Result<Index, ExitCode>> {
     let dialect = dialect_of(path, from)?;
     let (input, size) = stream::open(path).ok()?;
     let mut line = ProgressLine::new("reading", size);
@@ -108,13 +109,38 @@ fn scan(
     let opts = ParseOptions::for_dialect(dialect);
     let r = stream::scan(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, each, Some(&mut report));
     line.done();
-    r.ok().filter(|ix| ix.diags.is_empty())
+    let ix = r.ok()?;
+    // NC102: a structure left open at the end; its full diagnostics need the whole file.
+    if ix.diags.iter().any(|d| d.code == "NC102") {
+        return None;
+    }
+    if !ix.diags.is_empty() {
+        let mut db = SourceDb::new();
+        while db.len() < file {
+            db.add("", String::new());
+        }
+        db.add(path.display().to_string(), String::new());
+        eprint!("{}", nctrans::excerpt::render(&db, &ix.diags, &[(file, path)]));
+        if nctrans::diag::has_errors(&ix.diags) {
+            return Some(Err(ExitCode::from(1)));
+        }
+    }
+    Some(Ok(ix))
 }
 
 /// `nctrans parse --summary` streamed.
 pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
-    let ix = scan(path, from, 0, &mut |_, _| {})?;
-    let text = format!("{}: {} program(s), {} blocks, 0 warning(s)\n", path.display(), ix.programs.len(), ix.blocks);
+    let ix = match scan(path, from, 0, &mut |_, _| {})? {
+        Ok(ix) => ix,
+        Err(code) => return Some(code),
+    };
+    let text = format!(
+        "{}: {} program(s), {} blocks, {} warning(s)\n",
+        path.display(),
+        ix.programs.len(),
+        ix.blocks,
+        ix.diags.len()
+    );
     Some(if std::io::stdout().lock().write_all(text.as_bytes()).is_err() {
         ExitCode::from(2)
     } else {
@@ -128,49 +154,10 @@ fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunO
 }
 
 /// Renders diagnostics; those pointing into a streamed file (whose text is not loaded)
-/// are shown compactly with their line read from the file, so a warning at the end of a
-/// 400 MB program does not load the program.
+/// show excerpts read from the file, so a warning at the end of a 400 MB program does not
+/// load the program.
 pub fn render(db: &SourceDb, diags: &[nctrans::diag::Diagnostic], streamed: &[(usize, &Path)]) -> String {
-    use nctrans::diag::Severity;
-    let mut out = String::new();
-    for d in diags {
-        let in_stream = |f: usize| streamed.iter().find(|s| s.0 == f).map(|s| s.1);
-        if !d.labels.iter().any(|l| in_stream(l.file).is_some()) {
-            out.push_str(&nctrans::diag::render(db, std::slice::from_ref(d)));
-            continue;
-        }
-        let sev = match d.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-            Severity::Note => "note",
-        };
-        out.push_str(&format!("{sev}[{}]: {}\n", d.code, d.message));
-        for l in &d.labels {
-            let name = if l.file < db.len() { db.get(l.file).name.clone() } else { "?".into() };
-            let place = match in_stream(l.file).and_then(|p| stream::line_at(p, l.span.lo)) {
-                Some((line, start, text)) => {
-                    let col = text
-                        .get(..(u64::from(l.span.lo).saturating_sub(start)) as usize)
-                        .map_or(1, |t| t.chars().count() + 1);
-                    format!("  --> {name}:{line}:{col}\n{line:>6} | {text}\n")
-                }
-                None if l.file < db.len() && !db.get(l.file).text.is_empty() => {
-                    let (line, col) = db.get(l.file).line_col(l.span.lo);
-                    format!("  --> {name}:{line}:{col}\n")
-                }
-                None => format!("  --> {name}\n"),
-            };
-            out.push_str(&place);
-            if !l.message.is_empty() {
-                out.push_str(&format!("       = {}{}\n", if l.primary { "" } else { "also: " }, l.message));
-            }
-        }
-        for n in &d.notes {
-            out.push_str(&format!("   = {n}\n"));
-        }
-        out.push('\n');
-    }
-    out
+    nctrans::excerpt::render(db, diags, streamed)
 }
 
 /// `nctrans run` streamed.
@@ -182,7 +169,10 @@ pub fn run(
     quiet: bool,
 ) -> Option<ExitCode> {
     use nctrans::eval::{self, Ending};
-    let ix = scan(path, from, 0, &mut |_, _| {})?;
+    let ix = match scan(path, from, 0, &mut |_, _| {})? {
+        Ok(ix) => ix,
+        Err(code) => return Some(code),
+    };
     let opts = match run_options(&ix, eval) {
         Ok(o) => o,
         Err(code) => return Some(code),
@@ -232,7 +222,10 @@ pub fn side(
     eval: &super::EvalOpts,
 ) -> Option<Result<nctrans::check::Runner, ExitCode>> {
     let file = db.len();
-    let ix = scan(path, from, file, &mut |_, _| {})?;
+    let ix = match scan(path, from, file, &mut |_, _| {})? {
+        Ok(ix) => ix,
+        Err(code) => return Some(Err(code)),
+    };
     let opts = match run_options(&ix, eval) {
         Ok(o) => o,
         Err(code) => return Some(Err(code)),
@@ -251,14 +244,17 @@ pub fn translate(
     input: &Path,
 ) -> Option<ExitCode> {
     use stream::translate::{self as st, Fallback};
-    if c.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+    // The stream reads and writes UTF-8 (ASCII CAM code); other encodings go whole.
+    if [c.input_encoding, c.output_encoding].iter().any(|e| e.is_some_and(|e| e != encoding_rs::UTF_8)) {
         return None;
     }
     let size = std::fs::metadata(input).ok()?.len();
     if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
         return None;
     }
-    let eol = first_line_ending(input)?;
+    let eol = stream::to_sinumerik::first_line_ending(input).ok()?;
+    // A byte-order mark is kept, as the whole-file path keeps it.
+    let bom = stream::to_sinumerik::has_bom(input).ok()?;
     let opts = match super::translate_cli::options(c, input, eol) {
         Ok(o) => o,
         Err(e) => {
@@ -282,6 +278,10 @@ pub fn translate(
         }
     };
     let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    if bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
+        let _ = std::fs::remove_file(&tmp);
+        return None;
+    }
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: Progress| line.update(p);
     let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
@@ -345,15 +345,4 @@ fn verify_streamed(c: &nctrans::config::Config, input: &Path, out: &Path, index:
     } else {
         ExitCode::from(1)
     }
-}
-
-/// The line ending of the first line end in the file's first 64 KiB (LF when none).
-fn first_line_ending(path: &Path) -> Option<nctrans::read::LineEnding> {
-    use std::io::Read;
-    let mut buf = vec![0u8; 64 * 1024];
-    let mut f = std::fs::File::open(path).ok()?;
-    let n = f.read(&mut buf).ok()?;
-    buf.truncate(n);
-    let head = String::from_utf8_lossy(&buf);
-    Some(nctrans::read::detect_line_ending(&head))
 }

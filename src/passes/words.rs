@@ -11,7 +11,7 @@
 use super::*;
 
 /// G codes with the same number and meaning on both controls.
-const SAME_G: &[u32] = &[0, 1, 2, 3, 4, 9, 17, 18, 19, 40, 41, 42, 53, 54, 55, 56, 57, 64, 90, 91, 94, 95];
+pub const SAME_G: &[u32] = &[0, 1, 2, 3, 4, 9, 17, 18, 19, 40, 41, 42, 53, 54, 55, 56, 57, 64, 90, 91, 94, 95];
 const AXES: &[u8] = b"XYZABCUVW";
 /// Siemens instructions that only change dynamics (acceleration, feed control): dropped.
 const DYNAMICS_ONLY: &[&str] = &["SOFT", "BRISK", "DRIVE", "FFWON", "FFWOF", "CFC", "CFTCP", "CFIN"];

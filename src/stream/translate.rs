@@ -1,15 +1,17 @@
 //! Streaming translation of straight-line Sinumerik programs to FANUC: the source is read
-//! once; every [`CHUNK_STMTS`] top-level statements go through the ordinary translator
-//! (`translate::to_fanuc`) and are written at once, so neither the source nor the output is
-//! ever held whole. Verification then parses the output back (streamed) and runs both
-//! programs streamed side by side, comparing their traces as they are produced.
+//! once and each block is written as it comes ([`fast`]: the exact text the whole-program
+//! translator writes for it; a block that translator has something to say on goes through
+//! `translate::to_fanuc` alone), so neither the source nor the output is ever held whole.
+//! The only state carried from block to block is the G70 mode (F in metric under inch
+//! lengths). Verification then parses the output back (streamed) and runs both programs
+//! streamed side by side, comparing their traces as they are produced.
 //!
 //! Only programs whose translation is local to each block stream: every block holds plain
 //! words with constant values (G1 X.. Y.. F..), program ends (M30, M2), comments, block
-//! numbers and skips; no
-//! labels, jumps, variables, structures, calls or PROC; no `--number-blocks`. Anything else
-//! needs the whole-program passes (labels → N numbers, structure lowering, the variable
-//! map written in the header) and is translated whole by the caller.
+//! numbers and skips; no labels, jumps, variables, structures, calls or PROC; no
+//! `--number-blocks`. Anything else needs the whole-program passes (labels → N numbers,
+//! structure lowering, the variable map written in the header) and is translated whole by
+//! the caller.
 
 use super::lines::NotStreamable;
 use super::{Index, ProgressFn};
@@ -18,15 +20,14 @@ use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::{DirCallees, NoCallees, RunOptions};
-use crate::ir::{Addr, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, WordValue};
+use crate::ir::{Addr, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue};
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
-/// Statements translated at a time.
-pub const CHUNK_STMTS: usize = 4096;
+mod fast;
 
 /// Why a file is not translated as a stream (the caller translates it whole).
 #[derive(Debug)]
@@ -79,8 +80,9 @@ struct State<'a> {
     opts: &'a TranslateOptions,
     eo: EmitOptions,
     name: Option<String>,
-    buf: Vec<Stmt>,
-    first: bool,
+    fast: fast::Fast,
+    /// Output not yet written to `out`.
+    buf: Vec<u8>,
     /// Statements the translator puts before a program's body (its header comments).
     header_len: usize,
     out: &'a mut dyn Write,
@@ -89,6 +91,9 @@ struct State<'a> {
     diags: Vec<Diagnostic>,
     unsupported: usize,
 }
+
+/// Output is handed to the writer in pieces of about this size.
+const WRITE_BYTES: usize = 1 << 16;
 
 impl State<'_> {
     fn unit(&self, body: Vec<Stmt>) -> Unit {
@@ -103,31 +108,55 @@ impl State<'_> {
         Unit { dialect: Dialect::Sinumerik, file: self.eo.file, programs: vec![program] }
     }
 
-    fn flush(&mut self) {
-        if self.buf.is_empty() || self.stop.is_some() || self.io.is_some() {
+    /// Translates one straight block: the fast path, else (when the translator has
+    /// something to say on it) the whole-program translator on the block alone, in the
+    /// G70 mode the blocks before it left.
+    fn block(&mut self, s: &Stmt) {
+        if self.io.is_some() || !self.diags.is_empty() || self.unsupported > 0 {
+            // The output will be discarded (the caller translates whole); only the
+            // straight-line check still matters.
             return;
         }
-        let body = std::mem::take(&mut self.buf);
-        let unit = self.unit(body);
-        let t = translate::to_fanuc(&unit, &[], self.opts);
-        self.unsupported += t.unsupported;
-        self.diags.extend(t.diags);
-        let text = if self.first {
-            self.first = false;
-            // The whole file minus its closing `%`, which is written at the very end.
-            let eol = self.opts.line_ending.as_str();
-            let closing = format!("%{eol}");
-            t.text.strip_suffix(&closing).unwrap_or(&t.text).to_string()
-        } else {
-            let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[self.header_len.min(p.body.len())..]);
+        let g70 = self.fast.g70;
+        if self.fast.block(s, &mut self.buf).is_err() {
+            let mut body = Vec::with_capacity(2);
+            if g70 {
+                body.push(g70_block());
+            }
+            body.push(s.clone());
+            let t = translate::to_fanuc(&self.unit(body), &[], self.opts);
+            self.unsupported += t.unsupported;
+            self.diags.extend(t.diags);
+            let skip = self.header_len + usize::from(g70);
+            let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
             let e = emit::emit_body(body, &self.eo);
             self.diags.extend(e.diags);
-            e.text
-        };
-        if let Err(e) = self.out.write_all(text.as_bytes()) {
-            self.io = Some(e);
+            self.buf.extend_from_slice(e.text.as_bytes());
+        }
+        if self.buf.len() >= WRITE_BYTES {
+            self.write();
         }
     }
+
+    fn write(&mut self) {
+        if self.io.is_none() {
+            if let Err(e) = self.out.write_all(&self.buf) {
+                self.io = Some(e);
+            }
+        }
+        self.buf.clear();
+    }
+}
+
+/// A block holding `G70`: sets the inch mode for a block translated on its own.
+fn g70_block() -> Stmt {
+    let g = Word {
+        addr: Addr::Letter(b'G'),
+        value: WordValue::Expr(crate::ir::Expr::num(70.0, false, Span::default())),
+        span: Span::default(),
+    };
+    let item = crate::ir::Item { kind: ItemKind::Word(g), span: Span::default() };
+    crate::passes::block_stmt(vec![item], Span::default())
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out`, reading it once. On `Err` nothing
@@ -143,12 +172,13 @@ pub fn to_fanuc(
     }
     let name = first_header(path).map_err(Fallback::NotStreamable)?;
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 };
+    let eol = opts.line_ending.as_str();
     let mut st = State {
         opts,
         eo,
         name,
-        buf: Vec::new(),
-        first: true,
+        fast: fast::Fast::new(opts.comments, eol),
+        buf: Vec::with_capacity(WRITE_BYTES + 4096),
         header_len: 0,
         out,
         stop: None,
@@ -156,7 +186,14 @@ pub fn to_fanuc(
         diags: Vec::new(),
         unsupported: 0,
     };
-    st.header_len = translate::to_fanuc(&st.unit(vec![]), &[], opts).unit.programs.first().map_or(0, |p| p.body.len());
+    // The program's head (`%`, the `O` line, the header comments) is what the translator
+    // writes for an empty program, without its closing `%`.
+    let head = translate::to_fanuc(&st.unit(vec![]), &[], opts);
+    st.header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
+    st.unsupported += head.unsupported;
+    st.diags.extend(head.diags);
+    let closing = format!("%{eol}");
+    st.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let mut blocks = 0u64;
     let r = super::scan_path(
@@ -173,10 +210,7 @@ pub fn to_fanuc(
                 return;
             }
             blocks += 1;
-            st.buf.push(s.clone());
-            if st.buf.len() >= CHUNK_STMTS {
-                st.flush();
-            }
+            st.block(s);
         },
         progress,
     );
@@ -195,21 +229,10 @@ pub fn to_fanuc(
     if index.programs.first().is_some_and(|p| !p.program.params.is_empty()) || read_name != st.name {
         return Err(Fallback::NotStraight("a PROC".into()));
     }
-    st.flush();
-    if st.first {
-        // An empty program: the translator still writes its `O` line.
-        st.buf.clear();
-        st.first = false;
-        let t = translate::to_fanuc(&st.unit(vec![]), &[], opts);
-        let eol = opts.line_ending.as_str();
-        let text = t.text.strip_suffix(&format!("%{eol}")).unwrap_or(&t.text).to_string();
-        if let Err(e) = st.out.write_all(text.as_bytes()) {
-            st.io = Some(e);
-        }
-    }
-    let eol = opts.line_ending.as_str();
+    st.buf.extend_from_slice(closing.as_bytes());
+    st.write();
     if st.io.is_none() {
-        if let Err(e) = st.out.write_all(format!("%{eol}").as_bytes()).and_then(|_| st.out.flush()) {
+        if let Err(e) = st.out.flush() {
             st.io = Some(e);
         }
     }

@@ -63,7 +63,7 @@ pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
 }
 
 /// Writes statements alone, without `%` and `O` line (a streamed translation writes a
-/// program's body chunk by chunk).
+/// program's body block by block; this is its way for blocks its fast path declines).
 pub fn emit_body(body: &[Stmt], opts: &EmitOptions) -> Emitted {
     let mut w = Writer { opts, lines: vec![], diags: vec![] };
     w.body(body);

@@ -1,0 +1,443 @@
+//! The streamed translator's fast path: the FANUC lines of one straight-line Sinumerik block
+//! (constant address words, program ends, comments, block numbers, skips) written straight
+//! into the output, byte for byte what the whole-program translator writes for it
+//! (`passes::blocks`, `words`, `exprs`, `labels`, then `dialect::fanuc::emit`), without
+//! building FANUC IR or formatting through `format!`. CAM programs are millions of such
+//! blocks, and the general translator costs some 40,000 instructions on each.
+//!
+//! Whatever the general translator would report on (an unknown G code, a dwell in
+//! revolutions, a number of more than 8 digits) is declined: the caller translates that
+//! block the general way, which gives the diagnostic. The differential tests
+//! (`tests/stream_translate.rs`, the unit tests below) hold the two paths to the same bytes.
+
+use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
+use crate::ir::{Addr, Block, BlockMeta, EndCode, Expr, ExprKind, ItemKind, Stmt, StmtKind, UnOp, Word, WordValue};
+use crate::passes::words::SAME_G;
+
+/// Highest block number FANUC keeps (`passes::labels` drops the others).
+const MAX_N: u32 = 99999;
+/// Digits FANUC accepts in a number (`emit::fmt_num`).
+const MAX_DIGITS: usize = 8;
+const POW10: [u64; 16] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+    10_000_000_000,
+    100_000_000_000,
+    1_000_000_000_000,
+    10_000_000_000_000,
+    100_000_000_000_000,
+    1_000_000_000_000_000,
+];
+
+/// The block needs the general translator (it would report something on it).
+#[derive(Debug, PartialEq, Eq)]
+pub struct Declined;
+
+/// The translation state that spans blocks: the words pass's G70 mode (lengths in inches,
+/// feeds still metric: F is divided by 25.4 until G71, G700 or G710).
+pub struct Fast {
+    pub g70: bool,
+    comments: CommentMode,
+    eol: &'static str,
+}
+
+impl Fast {
+    pub fn new(comments: CommentMode, eol: &'static str) -> Fast {
+        Fast { g70: false, comments, eol }
+    }
+
+    /// Appends the lines of `s`. On `Err` nothing was appended, but the G70 mode has taken
+    /// the block's G words into account, as the words pass does before it reports.
+    pub fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Declined> {
+        let StmtKind::Block(b) = &s.kind else { return Err(Declined) };
+        let start = out.len();
+        let r = self.lines(b, out);
+        if r.is_err() {
+            out.truncate(start);
+        }
+        r
+    }
+
+    fn lines(&mut self, b: &Block, out: &mut Vec<u8>) -> Result<(), Declined> {
+        if b.meta.label.is_some() {
+            return Err(Declined);
+        }
+        // The words pass: the block's modal G words apply to all its words.
+        let mut dwell = false;
+        let mut words = false;
+        for it in &b.items {
+            match &it.kind {
+                ItemKind::Word(w) => {
+                    words = true;
+                    if w.addr.is(b'G') {
+                        match const_of(&w.value) {
+                            Some(70.0) => self.g70 = true,
+                            Some(v) if v == 71.0 || v == 700.0 || v == 710.0 => self.g70 = false,
+                            Some(4.0) => dwell = true,
+                            _ => {}
+                        }
+                    }
+                }
+                ItemKind::End { .. } => {}
+                _ => return Err(Declined),
+            }
+        }
+        // The blocks pass: the words are one block (it keeps the block's number, label and
+        // comments), then each program end is a block of its own (keeping only the skip).
+        let mut first = true;
+        if words {
+            let (line, mut sep) = self.open(out, &b.meta, true);
+            for it in &b.items {
+                if let ItemKind::Word(w) = &it.kind {
+                    if sep {
+                        out.push(b' ');
+                    }
+                    sep = true;
+                    self.word(w, dwell, out)?;
+                }
+            }
+            self.close(out, line, &b.meta, true);
+            first = false;
+        }
+        for it in &b.items {
+            if let ItemKind::End { code } = &it.kind {
+                let (line, any) = self.open(out, &b.meta, first);
+                if any {
+                    out.push(b' ');
+                }
+                out.extend_from_slice(match code {
+                    EndCode::M30 => b"M30",
+                    EndCode::M2 => b"M02",
+                });
+                self.close(out, line, &b.meta, first);
+                first = false;
+            }
+        }
+        if first {
+            // No items: a line of its own for the number, the comments or the skip.
+            let (line, _) = self.open(out, &b.meta, true);
+            self.close(out, line, &b.meta, true);
+        }
+        Ok(())
+    }
+
+    /// Starts a line (`Writer::line`): the skip and, on a block's first line, its number.
+    /// Returns where the line starts and whether anything was written (the code then
+    /// follows after a space).
+    fn open(&self, out: &mut Vec<u8>, m: &BlockMeta, first: bool) -> (usize, bool) {
+        let start = out.len();
+        match m.skip {
+            Some(0) => out.push(b'/'),
+            Some(k) => {
+                out.push(b'/');
+                push_u64(out, u64::from(k));
+            }
+            None => {}
+        }
+        if first {
+            if let Some(n) = m.number.as_ref().map(|n| n.value).filter(|n| (1..=MAX_N).contains(n)) {
+                if out.len() > start {
+                    out.push(b' ');
+                }
+                out.push(b'N');
+                push_u64(out, u64::from(n));
+            }
+        }
+        (start, out.len() > start)
+    }
+
+    /// Ends a line: the comments (on a block's first line), then the line end, or nothing
+    /// when the line is empty or a lone `/` (the writer leaves those out).
+    fn close(&self, out: &mut Vec<u8>, line_start: usize, m: &BlockMeta, first: bool) {
+        if first {
+            for c in &m.comments {
+                let keep = c.text.starts_with(KEEP_PREFIX) || c.text.starts_with("*** NCTRANS");
+                if self.comments == CommentMode::Drop && !keep {
+                    continue;
+                }
+                if out.len() > line_start {
+                    out.push(b' ');
+                }
+                out.push(b'(');
+                out.extend_from_slice(emit::comment_text(&c.text, self.comments).as_bytes());
+                out.push(b')');
+            }
+        }
+        let line = &out[line_start..];
+        if line.is_empty() || line == b"/" {
+            out.truncate(line_start);
+        } else {
+            out.extend_from_slice(self.eol.as_bytes());
+        }
+    }
+
+    /// One word: the words pass's address rules, the expression pass's folding of `-n`,
+    /// then `Writer::word`.
+    fn word(&self, w: &Word, dwell: bool, out: &mut Vec<u8>) -> Result<(), Declined> {
+        let (Addr::Letter(letter), WordValue::Expr(e)) = (&w.addr, &w.value) else { return Err(Declined) };
+        let mut letter = *letter;
+        let mut per_inch = false;
+        match letter {
+            b'G' => {
+                // A G code must be a written constant the target has.
+                let v = const_of(&w.value).ok_or(Declined)?;
+                let g = if v == 70.0 || v == 700.0 {
+                    20.0
+                } else if v == 71.0 || v == 710.0 {
+                    21.0
+                } else if v.fract() == 0.0 && SAME_G.contains(&(v as u32)) {
+                    v
+                } else {
+                    return Err(Declined);
+                };
+                return self.num_word(b'G', g, out);
+            }
+            b'F' if dwell => letter = b'X',
+            b'S' if dwell => return Err(Declined),
+            b'F' if self.g70 => per_inch = true,
+            _ => {}
+        }
+        let v = folded(e).ok_or(Declined)?;
+        if per_inch {
+            // `F[v/25.4]`: a quotient is bracketed in an address; neither constant is.
+            out.push(letter);
+            out.push(b'[');
+            number(out, v)?;
+            out.extend_from_slice(b"/25.4]");
+            return Ok(());
+        }
+        self.num_word(letter, v, out)
+    }
+
+    /// `Writer::word` for a constant value.
+    fn num_word(&self, letter: u8, v: f64, out: &mut Vec<u8>) -> Result<(), Declined> {
+        out.push(letter);
+        if matches!(letter, b'G' | b'M') {
+            if (0.0..10.0).contains(&v) && v.fract() == 0.0 {
+                out.push(b'0');
+                push_u64(out, v as u64);
+                return Ok(());
+            }
+            if letter == b'G' && v >= 0.0 {
+                push_num(out, v, false);
+                return Ok(());
+            }
+        }
+        let int_addr = matches!(letter, b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O');
+        if int_addr && v.fract() == 0.0 {
+            // An integer in an integer address: written as it is, without a warning.
+            push_num(out, v, false);
+            return Ok(());
+        }
+        number(out, v)
+    }
+}
+
+/// A value the words pass sees as a constant (`G`, the modal codes): a number as written.
+fn const_of(v: &WordValue) -> Option<f64> {
+    match v {
+        WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) => Some(n.value),
+        _ => None,
+    }
+}
+
+/// A constant word value after the expression pass (which folds `-n` into a number).
+fn folded(e: &Expr) -> Option<f64> {
+    match &e.kind {
+        ExprKind::Num(n) => Some(n.value),
+        ExprKind::Unary(UnOp::Neg, x) => match &x.kind {
+            ExprKind::Num(n) => Some(-n.value),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// A constant in a dimension or an expression (`Writer::number`): declined when it has more
+/// than 8 digits, where the general writer rounds it with a warning.
+fn number(out: &mut Vec<u8>, v: f64) -> Result<(), Declined> {
+    if push_num(out, v, true) {
+        Ok(())
+    } else {
+        Err(Declined)
+    }
+}
+
+/// Appends `emit::fmt_num(v, point).0` and returns its `.1` (false: more than 8 digits).
+pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
+    let v = if v == 0.0 { 0.0 } else { v };
+    // More than 8 digits (`m >= 10^8` with a fraction) are rounded by `fmt_num`.
+    if let Some((mut m, d)) = shortest(v.abs()).filter(|&(m, d)| d == 0 || m < POW10[MAX_DIGITS]) {
+        // Written backwards: the fraction's `d` digits, the point, the integer part.
+        let mut buf = [0u8; 24];
+        let mut k = buf.len();
+        for _ in 0..d {
+            k -= 1;
+            buf[k] = b'0' + (m % 10) as u8;
+            m /= 10;
+        }
+        if d > 0 || point {
+            k -= 1;
+            buf[k] = b'.';
+        }
+        loop {
+            k -= 1;
+            buf[k] = b'0' + (m % 10) as u8;
+            m /= 10;
+            if m == 0 {
+                break;
+            }
+        }
+        if v < 0.0 {
+            k -= 1;
+            buf[k] = b'-';
+        }
+        out.extend_from_slice(&buf[k..]);
+        return true;
+    }
+    let (s, exact) = emit::fmt_num(v, point);
+    out.extend_from_slice(s.as_bytes());
+    exact
+}
+
+/// The shortest decimal of `a >= 0` as `fmt_num` gets it from Rust's `{}` (the shortest
+/// digits that parse back to `a`): `a = m / 10^d` with `d <= 8` decimal places; `None`
+/// leaves it to `fmt_num`.
+///
+/// A candidate `(m, d)` is checked by `m / 10^d == a`: both are exact doubles (`m < 10^15`)
+/// and the division is correctly rounded, as parsing the decimal is, so this is exactly the
+/// round-trip test. Two different decimals of at most 15 significant digits never round to
+/// the same double, so when `m` does not end in 0 no decimal with fewer places round-trips
+/// (it would give a second one with `d` places), and `{}` writes exactly these digits.
+fn shortest(a: f64) -> Option<(u64, usize)> {
+    if a < 1e7 {
+        // The usual case, one try: the digits at 8 places without their trailing zeros.
+        let (mut m, mut d) = ((a * 1e8 + 0.5) as u64, MAX_DIGITS);
+        while d > 0 && m.is_multiple_of(10) {
+            m /= 10;
+            d -= 1;
+        }
+        return (m as f64 / POW10[d] as f64 == a).then_some((m, d));
+    }
+    for (d, &pow) in POW10.iter().enumerate().take(MAX_DIGITS + 1) {
+        let x = a * pow as f64;
+        if x.is_nan() || x >= 1e15 {
+            break;
+        }
+        let m = (x + 0.5) as u64;
+        if m as f64 / pow as f64 == a {
+            return (d == 0 || !m.is_multiple_of(10)).then_some((m, d));
+        }
+    }
+    None
+}
+
+fn push_u64(out: &mut Vec<u8>, mut n: u64) {
+    let mut buf = [0u8; 20];
+    let mut k = buf.len();
+    loop {
+        k -= 1;
+        buf[k] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&buf[k..]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fast(v: f64, point: bool) -> (String, bool) {
+        let mut out = Vec::new();
+        let exact = push_num(&mut out, v, point);
+        (String::from_utf8(out).unwrap_or_default(), exact)
+    }
+
+    /// A deterministic generator (xorshift), so a failure names a reproducible value.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+    }
+
+    #[test]
+    fn numbers_are_written_as_fmt_num_writes_them() {
+        let mut values: Vec<f64> = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            10.0,
+            0.1,
+            0.2,
+            0.3,
+            1e-7,
+            1e-8,
+            1e-9,
+            0.000001,
+            0.00000001,
+            12345678.0,
+            1234567.8,
+            123456789.0,
+            12345678.9,
+            99999999.0,
+            99999999.5,
+            0.99999999,
+            0.999999999,
+            57.295779513,
+            1e14,
+            1e15,
+            1e16,
+            1e20,
+            2f64.powi(53),
+            1.0 / 3.0,
+            2.0 / 3.0,
+            25.4,
+            800.0 / 25.4,
+            1e-300,
+            5e-324,
+            f64::MAX,
+            0.1 + 0.2,
+            1.005,
+            2.675,
+            9.995,
+            0.045,
+            1234.5678,
+            -1234.5678,
+        ];
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..200_000 {
+            // Decimals as CAM programs write them: up to 8 integer and 8 fraction digits.
+            let int = rng.next() % POW10[(rng.next() % 9) as usize];
+            let dec = (rng.next() % 9) as i32;
+            let frac = rng.next() % POW10[dec as usize];
+            let text = format!("{int}.{frac:0w$}", w = dec as usize);
+            let v: f64 = text.parse().unwrap_or(0.0);
+            values.push(if rng.next().is_multiple_of(2) { v } else { -v });
+            // Any double: computed values, huge and tiny ones.
+            values.push(f64::from_bits(rng.next()));
+            values.push((rng.next() % 1_000_000) as f64 / 7.0);
+        }
+        for v in values {
+            for point in [true, false] {
+                assert_eq!(fast(v, point), emit::fmt_num(v, point), "{v:e} point {point}");
+            }
+        }
+    }
+}
