@@ -49,9 +49,9 @@ for n in $SIZES; do
       measure "--to fanuc -o (verified)" "$n" "$BIN" --to fanuc "$f" -o "$OUT/cam-$n.out.nc" --max-steps $STEPS
       measure "--to fanuc -o --no-verify" "$n" "$BIN" --to fanuc "$f" -o "$OUT/cam-$n.out.nc" --no-verify
       rm -f "$OUT/cam-$n.out.nc"
-    elif [ "$n" -le 1000000 ] && "$BIN" --help | grep -q sinumerik; then
-      # The reverse translator reads its input whole (not streamed): 1 M only.
-      measure "--to sinumerik -o (verified, whole)" "$n" "$BIN" --to sinumerik "$f" -o "$OUT/cam-$n.out.mpf" --max-steps $STEPS
+    else
+      measure "--to sinumerik -o (verified)" "$n" "$BIN" --to sinumerik "$f" -o "$OUT/cam-$n.out.mpf" --max-steps $STEPS
+      measure "--to sinumerik -o --no-verify" "$n" "$BIN" --to sinumerik "$f" -o "$OUT/cam-$n.out.mpf" --no-verify
       rm -f "$OUT/cam-$n.out.mpf"
     fi
   done

@@ -183,6 +183,9 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     opts.verify = c.verify;
     opts.pinned = pinned;
     opts.encoding = c.input_encoding;
+    if t.stream {
+        opts.stream_bytes = 0;
+    }
 
     let cancel = Arc::new(AtomicBool::new(false));
     {

@@ -238,6 +238,9 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(code) = streamed(args, &req, &opts) {
+        return code;
+    }
     let job = match load_job(req.file, req.encoding, &opts.source) {
         Ok(j) => j,
         Err((db, diags)) => {
@@ -329,14 +332,19 @@ fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: 
         &profiles,
     );
     eprint!("{}", diag::render(&report.db, &report.diags));
-    match report.verdict {
+    verdict(report.verdict, &report.diff)
+}
+
+/// Prints a verification's verdict; success only for "equivalent".
+fn verdict(v: Verdict, diff: &str) -> ExitCode {
+    match v {
         Verdict::Equivalent { events } => {
             eprintln!("equivalent ({events} events)");
             ExitCode::SUCCESS
         }
         Verdict::Diverged { .. } => {
-            if !report.diff.is_empty() {
-                eprintln!("{}", report.diff);
+            if !diff.is_empty() {
+                eprintln!("{diff}");
             }
             eprintln!("error: the translation is not equivalent");
             ExitCode::from(1)
@@ -350,4 +358,182 @@ fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: 
             ExitCode::from(1)
         }
     }
+}
+
+/// `--to sinumerik` as a stream, for an input of 8 MB and more (or `--stream`) that is a
+/// straight-line program: translated chunk by chunk into the output, then verified with
+/// both programs streamed. `None` when it is not (then it is translated whole; a partial
+/// output is removed first). Prints what the whole path prints; diagnostics point into
+/// files that are not loaded, so they are shown compactly with their line.
+fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitCode> {
+    use crate::stream_cli::{self, ProgressLine};
+    use nctrans::stream::to_sinumerik as sts;
+    use nctrans::stream::translate::Fallback;
+    if req.encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+        return None;
+    }
+    let size = std::fs::metadata(req.file).ok()?.len();
+    if !(args.stream || size >= stream_cli::AUTO_BYTES) {
+        return None;
+    }
+    let eol = sts::first_line_ending(req.file).ok()?;
+    // Writing over the input: the streamed check re-reads the source as it runs.
+    let canon = |p: &Path| p.canonicalize().ok();
+    if req.out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(req.file)) {
+        return None;
+    }
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
+    // Written to a temporary file and renamed: a program found not to be straight-line part
+    // way is then translated whole; standard output gets a copy of the finished file.
+    let is_dir = |o: &Path| o.is_dir() || o.to_string_lossy().ends_with('/');
+    let tmp = match req.out {
+        None => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
+        Some(o) if is_dir(o) => {
+            if let Err(e) = std::fs::create_dir_all(o) {
+                eprintln!("error: cannot create {}: {e}", o.display());
+                return Some(ExitCode::from(2));
+            }
+            o.join(format!(".nctrans-{}-{stem}.tmp", std::process::id()))
+        }
+        Some(o) => o.with_extension(format!("{}.nctrans-tmp", o.extension().and_then(|e| e.to_str()).unwrap_or(""))),
+    };
+    let file = match std::fs::File::create(&tmp) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", tmp.display());
+            return Some(ExitCode::from(2));
+        }
+    };
+    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    let mut line = ProgressLine::new("translating", size);
+    let mut report = |p: nctrans::stream::Progress| line.update(p);
+    let r = sts::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
+    line.done();
+    drop(w);
+    let done = match r {
+        Ok(d) => d,
+        Err(f) => {
+            let _ = std::fs::remove_file(&tmp);
+            if let Fallback::NotStraight(why) = &f {
+                if size >= stream_cli::AUTO_BYTES {
+                    eprintln!(
+                        "note: {} is read whole: it has {why} (only straight-line programs stream)",
+                        req.file.display()
+                    );
+                }
+            }
+            return None;
+        }
+    };
+    let mut db = SourceDb::new();
+    db.add(req.file.display().to_string(), String::new());
+    eprint!("{}", stream_cli::render(&db, &done.diags, &[(0, req.file)]));
+    let out = match req.out {
+        None => tmp.clone(),
+        Some(o) if is_dir(o) => o.join(&done.file_name),
+        Some(o) => o.to_path_buf(),
+    };
+    if let Err(e) = std::fs::rename(&tmp, &out) {
+        let _ = std::fs::remove_file(&tmp);
+        eprintln!("error: cannot write {}: {e}", out.display());
+        return Some(ExitCode::from(2));
+    }
+    if req.out.is_none() {
+        let copied = std::fs::File::open(&out).and_then(|mut f| {
+            let mut so = std::io::stdout().lock();
+            std::io::copy(&mut f, &mut so).and_then(|_| so.flush())
+        });
+        if copied.is_err() {
+            let _ = std::fs::remove_file(&out);
+            return Some(ExitCode::from(2));
+        }
+    } else {
+        eprintln!("wrote {}", out.display());
+    }
+    let warned = done.diags.iter().any(|d| d.code.starts_with("NC3"));
+    let mut code = ExitCode::SUCCESS;
+    if !args.no_verify {
+        // Shown under the name the whole path gives the translation.
+        let out_dir = match req.out {
+            Some(o) if is_dir(o) => o.display().to_string(),
+            Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+            None => "<stdout>".to_string(),
+        };
+        let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
+        code = verify_streamed(req.file, &out, &shown, done.index, args.max_steps, opts, size);
+    }
+    if req.out.is_none() {
+        let _ = std::fs::remove_file(&out);
+    }
+    if warned && opts.unsupported == UnsupportedPolicy::Warn {
+        eprintln!("error: unsupported constructs were written as marked comments");
+        return Some(ExitCode::from(1));
+    }
+    Some(code)
+}
+
+/// Verifies a streamed translation: the output read back as Sinumerik (streamed), both
+/// programs run streamed side by side, with each one's `nctrans: set` header inputs.
+fn verify_streamed(
+    input: &Path,
+    out: &Path,
+    shown: &str,
+    source: nctrans::stream::Index,
+    max_steps: u64,
+    opts: &Options,
+    size: u64,
+) -> ExitCode {
+    use crate::stream_cli::{self, ProgressLine};
+    use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
+    use nctrans::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
+    let mut line = ProgressLine::new("reading back", size);
+    let mut report = |p: nctrans::stream::Progress| line.update(p);
+    let popts = ParseOptions { semantics: opts.target.clone() };
+    let back = sts::read_back(out, 1, Dialect::Sinumerik, &popts, Some(&mut report));
+    line.done();
+    let mut db = SourceDb::new();
+    db.add(input.display().to_string(), String::new());
+    db.add(shown.to_string(), String::new());
+    let streamed = [(0, input), (1, out)];
+    let back = match back {
+        Ok(b) => b,
+        Err(ReadBack::Diags(mut diags)) => {
+            diags.push(
+                diag::Diagnostic::error("NC372", "the translation does not read back as Sinumerik")
+                    .note("this is a gap in nctrans's writer, not in the program")
+                    .hint("report it with the program"),
+            );
+            eprint!("{}", stream_cli::render(&db, &diags, &streamed));
+            return verdict(Verdict::Failed, "");
+        }
+        Err(ReadBack::Unreadable(e)) => {
+            eprintln!("error: {} cannot be read back: {e}", out.display());
+            return verdict(Verdict::Failed, "");
+        }
+    };
+    let (in_a, in_b) = match (header_inputs(&source.header), header_inputs(&back.header)) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(e), _) | (_, Err(e)) => {
+            let d = diag::Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"));
+            eprint!("{}", stream_cli::render(&db, &[d], &streamed));
+            return verdict(Verdict::Failed, "");
+        }
+    };
+    let run = |inputs, sem: &nctrans::dialect::Semantics| RunOptions {
+        inputs,
+        max_steps,
+        semantics: Some(sem.clone()),
+        ..RunOptions::default()
+    };
+    let a = StreamSide {
+        index: source,
+        name: input.display().to_string(),
+        callees: Box::new(DirCallees { semantics: Some(opts.source.clone()) }),
+        run: run(in_a, &opts.source),
+    };
+    let b =
+        StreamSide { index: back, name: shown.to_string(), callees: Box::new(NoCallees), run: run(in_b, &opts.target) };
+    let report = sts::compare(a, b);
+    eprint!("{}", stream_cli::render(&report.db, &report.diags, &streamed));
+    verdict(report.verdict, &report.diff)
 }

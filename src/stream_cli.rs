@@ -240,14 +240,17 @@ pub fn translate(
     input: &Path,
 ) -> Option<ExitCode> {
     use stream::translate::{self as st, Fallback};
-    if c.input_encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
+    // The stream reads and writes UTF-8 (ASCII CAM code); other encodings go whole.
+    if [c.input_encoding, c.output_encoding].iter().any(|e| e.is_some_and(|e| e != encoding_rs::UTF_8)) {
         return None;
     }
     let size = std::fs::metadata(input).ok()?.len();
     if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
         return None;
     }
-    let eol = first_line_ending(input)?;
+    let eol = stream::to_sinumerik::first_line_ending(input).ok()?;
+    // A byte-order mark is kept, as the whole-file path keeps it.
+    let bom = stream::to_sinumerik::has_bom(input).ok()?;
     let opts = match super::translate_cli::options(c, input, eol) {
         Ok(o) => o,
         Err(e) => {
@@ -271,6 +274,10 @@ pub fn translate(
         }
     };
     let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    if bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
+        let _ = std::fs::remove_file(&tmp);
+        return None;
+    }
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: Progress| line.update(p);
     let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
@@ -334,15 +341,4 @@ fn verify_streamed(c: &nctrans::config::Config, input: &Path, out: &Path, index:
     } else {
         ExitCode::from(1)
     }
-}
-
-/// The line ending of the first line end in the file's first 64 KiB (LF when none).
-fn first_line_ending(path: &Path) -> Option<nctrans::read::LineEnding> {
-    use std::io::Read;
-    let mut buf = vec![0u8; 64 * 1024];
-    let mut f = std::fs::File::open(path).ok()?;
-    let n = f.read(&mut buf).ok()?;
-    buf.truncate(n);
-    let head = String::from_utf8_lossy(&buf);
-    Some(nctrans::read::detect_line_ending(&head))
 }

@@ -59,7 +59,8 @@ pub struct TranslateArgs {
     #[arg(long = "input-encoding", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
     /// Translate and verify as a stream in constant memory (automatic for inputs of 8 MB
-    /// and more; straight-line programs only, others are read whole).
+    /// and more; straight-line programs only, others are read whole). In a batch: every
+    /// straight-line program of the folder, whatever its size.
     #[arg(long)]
     pub stream: bool,
 }

@@ -75,3 +75,23 @@ fn errors_render_with_their_line_and_nothing_runs() {
     assert_eq!(code, 1);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `--to fanuc` of a file with a byte-order mark: the streamed output keeps the mark, as the
+/// whole-file output does, byte for byte.
+#[test]
+fn a_byte_order_mark_is_kept_by_the_streamed_translation() {
+    let d = dir("bom");
+    let f = d.join("bom.mpf");
+    let mut bytes = b"\xEF\xBB\xBF".to_vec();
+    bytes.extend_from_slice(program(500, &[]).as_bytes());
+    std::fs::write(&f, &bytes).unwrap();
+    let (s, w) = (d.join("s.nc"), d.join("w.nc"));
+    let p = f.to_str().unwrap();
+    let a = run(&["--to", "fanuc", "--stream", p, "-o", s.to_str().unwrap()]);
+    let b = run(&["--to", "fanuc", p, "-o", w.to_str().unwrap()]);
+    assert_eq!((a.0, b.0), (0, 0), "{}\n{}", a.2, b.2);
+    let (s, w) = (std::fs::read(&s).unwrap(), std::fs::read(&w).unwrap());
+    assert!(w.starts_with(b"\xEF\xBB\xBF%"));
+    assert_eq!(s, w);
+    let _ = std::fs::remove_dir_all(&d);
+}

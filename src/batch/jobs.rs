@@ -163,7 +163,12 @@ impl ToFanucJob {
         ToFanucJob { settings, fault: None }
     }
 
-    fn options(&self, ctx: &BatchContext, file: &InputFile, eol: LineEnding) -> Result<TranslateOptions, String> {
+    pub(crate) fn options(
+        &self,
+        ctx: &BatchContext,
+        file: &InputFile,
+        eol: LineEnding,
+    ) -> Result<TranslateOptions, String> {
         let mut var_rules = Vec::new();
         for r in &ctx.maps.var_rules {
             var_rules.extend(varmap::parse_rules(r).map_err(|e| format!("variables.to_fanuc: {e}"))?);
@@ -197,6 +202,9 @@ impl ToFanucJob {
 
 impl FileJob for ToFanucJob {
     fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        if let Some(o) = super::streamed::to_fanuc(self, file, ctx) {
+            return o;
+        }
         let mut db = SourceDb::new();
         let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &self.settings.sinumerik) {
             Ok(l) => l,
@@ -211,18 +219,7 @@ impl FileJob for ToFanucJob {
         let mut t = translate::to_fanuc(&main.unit, &sub_units, &opts);
         let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);
         diagnostics.extend(DiagRecord::from_diags(&db, &t.diags));
-        let mut used = super::maps::Used::default();
-        for (name, n) in &t.symbol_map.programs {
-            used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));
-        }
-        used.tools = t.symbol_map.tools.clone();
-        for m in &t.symbol_map.vars {
-            let key = match &m.program {
-                Some(p) => format!("{p}.{}", m.source),
-                None => m.source.clone(),
-            };
-            used.variables.insert(key, format!("#{}", m.number));
-        }
+        let used = used_names(&t.symbol_map);
         if !t.ok() {
             let n = t.diags.iter().filter(|d| d.is_error() || d.code.starts_with("NC3")).count().max(t.unsupported);
             return unsupported(n, "FANUC", blocks, diagnostics);
@@ -251,6 +248,33 @@ impl FileJob for ToFanucJob {
         }
         outcome
     }
+}
+
+/// The names a translation to FANUC used: programs, tools, variables.
+pub(crate) fn used_names(map: &translate::SymbolMap) -> super::maps::Used {
+    let mut used = super::maps::Used::default();
+    for (name, n) in &map.programs {
+        used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));
+    }
+    used.tools = map.tools.clone();
+    for m in &map.vars {
+        let key = match &m.program {
+            Some(p) => format!("{p}.{}", m.source),
+            None => m.source.clone(),
+        };
+        used.variables.insert(key, format!("#{}", m.number));
+    }
+    used
+}
+
+/// The FANUC inputs that give the R parameters a translation maps their Siemens power-on
+/// value 0 (FANUC commons may be vacant), like `nctrans --to fanuc` does.
+pub(crate) fn r_homes(map: &translate::SymbolMap) -> Vec<String> {
+    map.vars
+        .iter()
+        .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+        .map(|m| format!("#{}=0", m.number))
+        .collect()
 }
 
 /// What verification found.
@@ -323,13 +347,7 @@ impl ToFanucJob {
         }
         // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-        let mut fanuc_inputs: Vec<String> = t
-            .symbol_map
-            .vars
-            .iter()
-            .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-            .map(|m| format!("#{}=0", m.number))
-            .collect();
+        let mut fanuc_inputs: Vec<String> = r_homes(&t.symbol_map);
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();

@@ -38,7 +38,7 @@ impl ToSinumerikJob {
         ToSinumerikJob { settings, fault: None }
     }
 
-    fn options(&self, ctx: &BatchContext, file: &InputFile) -> Result<Options, String> {
+    pub(crate) fn options(&self, ctx: &BatchContext, file: &InputFile) -> Result<Options, String> {
         let mut var_map = Vec::new();
         for r in &ctx.maps.var_rules {
             var_map.push(VarMapRule::parse(r).map_err(|e| format!("variables.to_sinumerik: {e}"))?);
@@ -231,10 +231,34 @@ fn callers_text(ctx: &BatchContext, job: &[(usize, &Unit)]) -> Option<String> {
     Some(text)
 }
 
+/// The names a file's translation used: its programs (`O` number → Siemens name, for the
+/// numbered ones) and the variables of those programs and the common ones.
+pub(crate) fn used_names(programs: &[(Option<u32>, &str)], symbols: &ts::SymbolMap) -> maps::Used {
+    let mut used = maps::Used::default();
+    for (number, name) in programs {
+        if let Some(n) = number {
+            used.programs.insert(ProgKey::Number(*n), ProgKey::Name(name.to_string()));
+        }
+    }
+    let own_names: BTreeSet<&str> = programs.iter().map(|(_, name)| *name).collect();
+    for v in &symbols.vars {
+        let key = match &v.program {
+            Some(p) if own_names.contains(p.as_str()) => format!("{p}.{}", v.fanuc),
+            Some(_) => continue,
+            None => v.fanuc.clone(),
+        };
+        used.variables.insert(key.clone(), v.siemens.clone());
+        if let Some(flag) = &v.flag {
+            used.variables.insert(format!("{key} is set"), flag.clone());
+        }
+    }
+    used
+}
+
 /// The Siemens inputs for FANUC inputs `#n=value` of a run of `program`: each variable by
 /// the symbol map, with its is-set flag (`#0` is value 0, flag 0). Variables the
 /// translation does not use are left out.
-fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<String> {
+pub(crate) fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<String> {
     let mut out = Vec::new();
     for s in fanuc {
         let Some((lhs, rhs)) = s.split_once('=') else { continue };
@@ -260,12 +284,15 @@ fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<Stri
     out
 }
 
-fn parse_all(v: &[String]) -> Vec<Input> {
+pub(crate) fn parse_all(v: &[String]) -> Vec<Input> {
     v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
 }
 
 impl FileJob for ToSinumerikJob {
     fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        if let Some(o) = super::streamed::to_sinumerik(self, file, ctx) {
+            return o;
+        }
         let mut db = SourceDb::new();
         let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Fanuc, &self.settings.fanuc) {
             Ok(l) => l,
@@ -309,25 +336,9 @@ impl FileJob for ToSinumerikJob {
 
         // What this file's programs use (not the callees', not the stand-in's).
         let own = main.loaded.file;
-        let mut used = maps::Used::default();
-        let own_names: BTreeSet<&str> =
-            tr.files.iter().filter(|f| f.source == own).map(|f| f.program.as_str()).collect();
-        for f in tr.files.iter().filter(|f| f.source == own) {
-            if let Some(n) = f.fanuc_number {
-                used.programs.insert(ProgKey::Number(n), ProgKey::Name(f.program.clone()));
-            }
-        }
-        for v in &tr.symbols.vars {
-            let key = match &v.program {
-                Some(p) if own_names.contains(p.as_str()) => format!("{p}.{}", v.fanuc),
-                Some(_) => continue,
-                None => v.fanuc.clone(),
-            };
-            used.variables.insert(key.clone(), v.siemens.clone());
-            if let Some(flag) = &v.flag {
-                used.variables.insert(format!("{key} is set"), flag.clone());
-            }
-        }
+        let own_programs: Vec<(Option<u32>, &str)> =
+            tr.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
+        let used = used_names(&own_programs, &tr.symbols);
         let marked: usize =
             tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
         if tr.has_errors() || marked > 0 {

@@ -118,6 +118,10 @@ pub struct FileInfo {
     pub tools: BTreeSet<String>,
     /// FANUC common variables (`#100`..`#999`) used by number.
     pub commons: BTreeSet<u32>,
+    /// Read as a stream: a large straight-line program (see `streamed::library_scan`), which
+    /// its job then translates as a stream too. Its `fingerprints` are not computed (0): a
+    /// file whose program another file also defines is read whole instead.
+    pub streamed: bool,
 }
 
 /// The library: what every file defines and calls.

@@ -15,6 +15,7 @@ pub mod library;
 pub mod maps;
 pub mod report;
 pub mod run;
+pub mod streamed;
 pub mod write;
 
 use crate::dialect::Dialect;
@@ -30,6 +31,10 @@ pub use run::{run_batch, BatchError};
 
 /// Name of the map file written into the output folder.
 pub const MAP_FILE: &str = "nctrans-map.toml";
+
+/// Input files this large are read and translated as a stream when they are straight-line
+/// programs (the single-file commands use the same size, `stream_cli::AUTO_BYTES`).
+pub const STREAM_BYTES: u64 = 8 * 1024 * 1024;
 
 /// What happened to one file. (`report::rank` orders them by how bad they are.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -170,6 +175,10 @@ pub struct FileOutcome {
     pub summary: String,
     /// The names this file's translation used (merged into the written map).
     pub used: maps::Used,
+    /// Outputs the job wrote itself, whole, into the staging folder (a translation streamed
+    /// as it was made, too large to hold): the path relative to the output folder and the
+    /// staged file ([`write::staged_path`]). Committed like `outputs`, or removed.
+    pub staged: Vec<(PathBuf, PathBuf)>,
 }
 
 impl FileOutcome {
@@ -182,6 +191,7 @@ impl FileOutcome {
             blocks: 0,
             summary: summary.into(),
             used: maps::Used::default(),
+            staged: vec![],
         }
     }
 }
@@ -231,6 +241,9 @@ pub struct BatchOptions {
     pub pinned: BatchMaps,
     /// `--encoding`: decode every input with this encoding instead of detecting it.
     pub encoding: Option<&'static encoding_rs::Encoding>,
+    /// Straight-line programs of this many bytes and more are read, translated and
+    /// verified as a stream, in constant memory ([`STREAM_BYTES`]; 0 with `--stream`).
+    pub stream_bytes: u64,
 }
 
 impl BatchOptions {
@@ -244,6 +257,7 @@ impl BatchOptions {
             verify: true,
             pinned: BatchMaps::default(),
             encoding: None,
+            stream_bytes: STREAM_BYTES,
         }
     }
 

@@ -99,7 +99,11 @@ pub fn run_batch(
     // 1. Read every file once: what it defines and calls.
     let mut scans: Vec<Option<library::Scan>> = vec![None; files.len()];
     let enc = opts.encoding;
-    parallel(&files, jobs, &cancel, &|f: &InputFile| library::scan(f, enc), &mut |i, s| scans[i] = s);
+    // A large straight-line program is read as a stream (see `streamed::library_scan`).
+    let stream_bytes = opts.stream_bytes;
+    let read =
+        |f: &InputFile| super::streamed::library_scan(f, enc, stream_bytes).unwrap_or_else(|| library::scan(f, enc));
+    parallel(&files, jobs, &cancel, &read, &mut |i, s| scans[i] = s);
     let scans: Vec<library::Scan> = scans
         .into_iter()
         .map(|s| {
@@ -112,6 +116,7 @@ pub fn run_batch(
             })
         })
         .collect();
+    let scans = super::streamed::without_shared_streamed(scans, &files, enc);
     let library = Library::build(scans);
 
     // 2. One set of maps for the batch.
@@ -168,6 +173,20 @@ pub fn run_batch(
                         stage_error = Some(WriteError::Io(o.rel.clone(), e.to_string()));
                         break;
                     }
+                }
+            }
+        }
+        // Outputs the job wrote itself (streamed): staged already; removed when not kept.
+        for (rel, path) in &outcome.staged {
+            if !outcome.status.writes_output() || stage_error.is_some() {
+                let _ = std::fs::remove_file(path);
+                continue;
+            }
+            match writer.adopt(path) {
+                Ok(s) => staged.push((rel.clone(), s)),
+                Err(e) => {
+                    let _ = std::fs::remove_file(path);
+                    stage_error = Some(WriteError::Io(rel.clone(), e.to_string()));
                 }
             }
         }

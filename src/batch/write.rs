@@ -12,6 +12,17 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// next one when a killed run left it behind.
 pub const STAGING: &str = ".nctrans-tmp";
 
+/// The staging folder of the output folder `root`.
+pub fn staging_dir(root: &Path) -> PathBuf {
+    root.join(STAGING)
+}
+
+/// Where a job writes a streamed output of input file `index` itself (see
+/// `FileOutcome::staged`): in the staging folder, under a name [`Writer::stage`] never uses.
+pub fn staged_path(root: &Path, index: usize) -> PathBuf {
+    staging_dir(root).join(format!("stream-{index}.part"))
+}
+
 /// Why an output was not written.
 #[derive(Clone, Debug, PartialEq)]
 pub enum WriteError {
@@ -65,7 +76,7 @@ impl Writer {
     /// of a killed run was removed.
     pub fn new(root: &Path, force: bool, inputs: &[PathBuf]) -> std::io::Result<(Writer, bool)> {
         std::fs::create_dir_all(root)?;
-        let staging = root.join(STAGING);
+        let staging = staging_dir(root);
         let stale = staging.exists();
         if stale {
             std::fs::remove_dir_all(&staging)?;
@@ -118,6 +129,15 @@ impl Writer {
                 Err(e)
             }
         }
+    }
+
+    /// Takes a file a job wrote (and flushed to disk) into the staging folder itself as a
+    /// staged file; anything outside the staging folder is refused.
+    pub fn adopt(&self, path: &Path) -> std::io::Result<Staged> {
+        if path.parent() != Some(self.staging.as_path()) || !path.is_file() {
+            return Err(std::io::Error::other(format!("{} is not a staged file", path.display())));
+        }
+        Ok(Staged(path.to_path_buf()))
     }
 
     /// Moves a staged file to `rel` (relative to the output folder): one rename, atomic.

@@ -5,6 +5,7 @@ use super::calls::{CalleeName, ModalCall};
 use super::expr::{self, Cx};
 use super::fault::{AlarmNumbers, Fault};
 use super::flow::{Code, Key, Op};
+use super::lit::LitBlock;
 use super::machine::{AbsInc, Machine, WordVal, WV};
 use super::trace::{Event, Origin, TraceSink};
 use super::value::{round_half_away, Value};
@@ -86,6 +87,7 @@ pub struct Interp<'a> {
     pub inputs: Vec<Input>,
     out_buf: Vec<(Event, Span)>,
     warn_buf: Vec<super::machine::Warn>,
+    words_buf: Vec<WordVal>,
     pub sys_store: HashMap<String, f64>,
 }
 
@@ -128,6 +130,7 @@ impl<'a> Interp<'a> {
             inputs: opts.inputs.clone(),
             out_buf: Vec::new(),
             warn_buf: Vec::new(),
+            words_buf: Vec::new(),
             sys_store: HashMap::new(),
             sem,
         }
@@ -174,6 +177,17 @@ impl<'a> Interp<'a> {
         self.sink.event(&ev, origin);
     }
 
+    /// [`Interp::emit`] of a borrowed event: passed on as it is unless a message waits
+    /// to be merged, or it is one.
+    fn emit_ref(&mut self, ev: &Event, span: Span) {
+        if self.pending_msg.is_none() && !matches!(ev, Event::Message { .. }) {
+            let origin = Origin { file: self.file(), span };
+            self.sink.event(ev, origin);
+        } else {
+            self.emit(ev.clone(), span);
+        }
+    }
+
     pub fn flush(&mut self) {
         if let Some((text, o)) = self.pending_msg.take() {
             self.sink.event(&Event::Message { text }, o);
@@ -215,7 +229,7 @@ impl<'a> Interp<'a> {
                 return Ok(Ending::Stopped);
             }
             let flow = self.exec_op(&code, op, pc)?;
-            if matches!(op, Op::Block(_)) && self.sink.wants_blocks() {
+            if matches!(op, Op::Block(_) | Op::Lit(_)) && self.sink.wants_blocks() {
                 let origin = Origin { file: code.file, span: op.span() };
                 let pos = self.m.trace_pos();
                 self.sink.block_done(origin, &pos);
@@ -255,6 +269,7 @@ impl<'a> Interp<'a> {
     fn exec_op(&mut self, code: &Rc<Code>, op: &Op, pc: usize) -> Result<Flow, Fault> {
         match op {
             Op::Block(b) => self.exec_block(code, b, pc),
+            Op::Lit(l) => self.exec_lit(code, l, pc),
             Op::Nop(_) => Ok(Flow::Next),
             Op::Test { cond, target, .. } => {
                 let cx = self.cx(false);
@@ -298,7 +313,10 @@ impl<'a> Interp<'a> {
     }
 
     fn exec_block(&mut self, code: &Rc<Code>, b: &Block, pc: usize) -> Result<Flow, Fault> {
-        let mut words: Vec<WordVal> = Vec::new();
+        // The words' buffer is reused from block to block (an early error return only
+        // drops it: the next block starts a new one).
+        let mut words = std::mem::take(&mut self.words_buf);
+        words.clear();
         let mut stop_message: Option<String> = None;
         let mut control: Vec<&Item> = Vec::new();
         if let Some(n) = &b.meta.number {
@@ -338,6 +356,44 @@ impl<'a> Interp<'a> {
                 _ => self.exec_simple(item, &mut stop_message)?,
             }
         }
+        self.finish_block(code, words, stop_message, control, b.meta.span, pc)
+    }
+
+    /// [`Interp::exec_block`] for a block of literal words: the same words, without the
+    /// expression walker.
+    fn exec_lit(&mut self, code: &Rc<Code>, b: &LitBlock, pc: usize) -> Result<Flow, Fault> {
+        if let Some(n) = b.number {
+            self.m.last_n = f64::from(n);
+        }
+        let mut words = std::mem::take(&mut self.words_buf);
+        words.clear();
+        // `extend` writes each word in place (a `push` per word built it on the stack
+        // first and copied it, which stalled on the copy).
+        let fanuc = self.fanuc;
+        words.extend(b.words().iter().map(|w| {
+            let i = usize::from(w.letter - b'A');
+            WordVal {
+                addr: std::borrow::Cow::Borrowed(&LETTERS[i..i + 1]),
+                val: WV::Num(w.value),
+                mode: w.mode,
+                bare: fanuc && !w.point,
+                span: w.span,
+            }
+        }));
+        self.finish_block(code, words, None, Vec::new(), b.span, pc)
+    }
+
+    /// The rest of a block once its words are evaluated: the NC words, then the control
+    /// items, then what the words ask (end, return, modal call).
+    fn finish_block(
+        &mut self,
+        code: &Rc<Code>,
+        mut words: Vec<WordVal>,
+        stop_message: Option<String>,
+        control: Vec<&Item>,
+        span: Span,
+        pc: usize,
+    ) -> Result<Flow, Fault> {
         let has_stop = stop_message.is_some();
         let mut eff = super::machine::BlockEffect::default();
         if !words.is_empty() || has_stop {
@@ -347,13 +403,16 @@ impl<'a> Interp<'a> {
             for (code_, msg, span) in warns.drain(..) {
                 self.warn(code_, msg, span);
             }
-            for (ev, span) in out.drain(..) {
-                self.emit(ev, span);
+            for (ev, span) in &out {
+                self.emit_ref(ev, *span);
             }
+            out.clear();
             self.out_buf = out;
             self.warn_buf = warns;
             eff = r.map_err(|f| self.fix_file(f))?;
         }
+        words.clear();
+        self.words_buf = words;
         for item in control {
             let flow = self.exec_control(code, item, pc)?;
             if !matches!(flow, Flow::Next) {
@@ -361,10 +420,10 @@ impl<'a> Interp<'a> {
             }
         }
         if let Some(code_) = eff.end {
-            return Ok(Flow::Stop(self.end(code_, b.meta.span)));
+            return Ok(Flow::Stop(self.end(code_, span)));
         }
         if eff.ret {
-            return self.do_return(None, b.meta.span);
+            return self.do_return(None, span);
         }
         if eff.moved {
             if let Some(mc) = self.modal_call.clone() {
@@ -372,7 +431,7 @@ impl<'a> Interp<'a> {
                 // the modal macro itself and what it calls.
                 let in_modal = self.frames.iter().any(|f| f.modal);
                 if !in_modal {
-                    return self.modal_trigger(&mc, pc, b.meta.span);
+                    return self.modal_trigger(&mc, pc, span);
                 }
             }
         }
@@ -605,8 +664,22 @@ impl<'a> Interp<'a> {
             WordValue::Ic(e) => (e, AbsInc::Ic),
         };
         let bare = self.fanuc && is_bare_literal(e);
-        let cx = self.cx(true);
-        let v = expr::eval(self, e, &cx)?;
+        // A literal (nearly every word of CAM code) is its value: skip the walker.
+        let lit = match &e.kind {
+            ExprKind::Num(n) => Some(n.value),
+            ExprKind::Unary(crate::ir::UnOp::Neg, a) => match &a.kind {
+                ExprKind::Num(n) => Some(-n.value),
+                _ => None,
+            },
+            _ => None,
+        };
+        let v = match lit {
+            Some(x) => Value::Num(x),
+            None => {
+                let cx = self.cx(true);
+                expr::eval(self, e, &cx)?
+            }
+        };
         let val = match v {
             Value::Vacant => return Ok(None),
             Value::Num(x) => WV::Num(x),

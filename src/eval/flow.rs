@@ -2,6 +2,7 @@
 //! into and out of structures behaves like the controls' interpretive search, and the
 //! label / N tables that the searches of each [`Search`] kind walk.
 
+use super::lit::LitBlock;
 use crate::diag::Diagnostic;
 use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
 use crate::span::{FileId, Span};
@@ -18,6 +19,8 @@ const MAX_NESTING: u32 = 256;
 pub enum Op {
     /// An NC block.
     Block(Block),
+    /// An NC block of constant one-letter words only (see [`LitBlock`]).
+    Lit(LitBlock),
     /// A structure block with nothing to do (`LOOP`, `REPEAT`, `ENDIF`, bare `DOm`).
     Nop(Span),
     /// `WHILE`/`IF`/`WHILE[..]DOm` head: continue when `cond` holds, else go to `target`.
@@ -37,6 +40,7 @@ impl Op {
     pub fn span(&self) -> Span {
         match self {
             Op::Block(b) => b.meta.span,
+            Op::Lit(l) => l.span,
             Op::Nop(s) => *s,
             Op::Test { span, .. }
             | Op::Jump { span, .. }
@@ -137,7 +141,8 @@ impl Builder {
         let d = depth + 1;
         match &s.kind {
             StmtKind::Block(b) => {
-                self.push(&b.meta, Op::Block(b.clone()));
+                let op = LitBlock::of(b).map_or_else(|| Op::Block(b.clone()), Op::Lit);
+                self.push(&b.meta, op);
             }
             StmtKind::If(st) => {
                 let crate::ir::IfStmt { head, cond, then_body, else_part, end } = &**st;
@@ -235,7 +240,10 @@ impl Code {
             match s.kind {
                 // Plain blocks (nearly all of a CAM program) move into their op. Marks are
                 // not kept: a streamed program's labels and numbers are in its index.
-                StmtKind::Block(blk) => b.ops.push(Op::Block(blk)),
+                StmtKind::Block(blk) => b.ops.push(match LitBlock::of(&blk) {
+                    Some(l) => Op::Lit(l),
+                    None => Op::Block(blk),
+                }),
                 kind => b.stmt(&Stmt { kind, span: s.span }, 0)?,
             }
         }

@@ -4,7 +4,7 @@
 use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
-use super::value::{round_half_away, round_to};
+use super::value::{round_half_away, round_to, round_to_scaled};
 use crate::span::Span;
 
 /// A word after evaluation of its value.
@@ -103,6 +103,11 @@ pub struct Machine {
     pub applied: [f64; 9],
     /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
     pub probe_contact: Option<f64>,
+    /// `(inc, 1.0 / inc)` of the metric and inch increments, for [`round_to_scaled`].
+    scales: [(f64, f64); 2],
+    /// Buffers of [`Machine::apply`], kept to save two allocations per block.
+    gs_buf: Vec<(f64, Span)>,
+    ms_buf: Vec<(f64, Span)>,
 }
 
 impl Machine {
@@ -138,6 +143,9 @@ impl Machine {
             probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
+            scales: [(inc_mm, 1.0 / inc_mm), (inc_mm / 10.0, 1.0 / (inc_mm / 10.0))],
+            gs_buf: Vec::new(),
+            ms_buf: Vec::new(),
         }
     }
 
@@ -188,7 +196,10 @@ impl Machine {
     fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if w.bare && self.scaling { x * inc } else { x };
-        let v = round_to(v, inc);
+        let v = match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
+            Some(&(_, scale)) => round_to_scaled(v, inc, scale),
+            None => round_to(v, inc),
+        };
         if self.inch && !rotary {
             v * 25.4
         } else {
@@ -213,9 +224,25 @@ impl Machine {
         out: &mut Vec<(Event, Span)>,
         warns: &mut Vec<Warn>,
     ) -> Result<BlockEffect, Fault> {
+        // The G and M lists are reused from block to block.
+        let (mut gs, mut ms) = (std::mem::take(&mut self.gs_buf), std::mem::take(&mut self.ms_buf));
+        gs.clear();
+        ms.clear();
+        let r = self.apply_words(words, stop_message, out, warns, &mut gs, &mut ms);
+        (self.gs_buf, self.ms_buf) = (gs, ms);
+        r
+    }
+
+    fn apply_words(
+        &mut self,
+        words: &[WordVal],
+        stop_message: Option<String>,
+        out: &mut Vec<(Event, Span)>,
+        warns: &mut Vec<Warn>,
+        gs: &mut Vec<(f64, Span)>,
+        ms: &mut Vec<(f64, Span)>,
+    ) -> Result<BlockEffect, Fault> {
         let mut eff = BlockEffect::default();
-        let mut gs: Vec<(f64, Span)> = Vec::new();
-        let mut ms: Vec<(f64, Span)> = Vec::new();
         let mut axes: [Option<(&WordVal, f64)>; 9] = [None; 9];
         let mut ijk: [Option<(&WordVal, f64)>; 3] = [None; 3];
         let (mut r, mut ar, mut f, mut s, mut p, mut l) = (None, None, None, None, None, None);
@@ -229,6 +256,62 @@ impl Machine {
                 WV::Str(_) => None,
             };
             let a: &str = &w.addr;
+            // One-letter addresses with a number (nearly every word) by their byte; the
+            // match below decides the same for them, and everything else.
+            if let (&[c], Some(x)) = (a.as_bytes(), num) {
+                let handled = match c {
+                    b'G' => {
+                        gs.push((x, w.span));
+                        true
+                    }
+                    b'M' => {
+                        ms.push((round_half_away(x), w.span));
+                        true
+                    }
+                    b'I' | b'J' | b'K' => {
+                        ijk[usize::from(c - b'I')] = Some((w, x));
+                        true
+                    }
+                    b'R' if self.fanuc => {
+                        r = Some((w, x));
+                        true
+                    }
+                    b'F' => {
+                        f = Some((w, x));
+                        true
+                    }
+                    b'S' => {
+                        s = Some((w, x));
+                        true
+                    }
+                    b'P' => {
+                        p = Some((w, x));
+                        true
+                    }
+                    b'L' => {
+                        l = Some(x);
+                        true
+                    }
+                    b'D' => {
+                        self.d = round_half_away(x);
+                        true
+                    }
+                    b'H' => {
+                        self.h = round_half_away(x);
+                        true
+                    }
+                    c => match axis_index(c) {
+                        Some(i) => {
+                            axes[i] = Some((w, x));
+                            true
+                        }
+                        None => false,
+                    },
+                };
+                if handled {
+                    continue;
+                }
+            }
             match (a, num) {
                 ("T", _) => {
                     t = Some((
@@ -275,8 +358,8 @@ impl Machine {
 
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
-        for &(g, span) in &gs {
-            let gi = (g * 10.0).round() as i64;
+        for &(g, span) in gs.iter() {
+            let gi = super::value::round(g * 10.0) as i64;
             match gi {
                 0 => self.motion = Motion::Rapid,
                 10 => self.motion = Motion::Linear,
@@ -371,7 +454,7 @@ impl Machine {
         }
 
         // 1. tool change
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             if m == 6.0 {
                 match &self.tool_sel {
                     Some(id) => {
@@ -384,7 +467,7 @@ impl Machine {
         }
         // 2. spindle start or S change
         let mut spindle_cmd = false;
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             let dir = match m as i64 {
                 3 => SpindleDir::Cw,
                 4 => SpindleDir::Ccw,
@@ -399,7 +482,7 @@ impl Machine {
             out.push((Event::Spindle { rpm: self.speed, dir: self.spindle }, s.map_or(block_span, |w| w.0.span)));
         }
         // 3. coolant on
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             if m == 7.0 || m == 8.0 {
                 self.coolant = true;
                 out.push((Event::Coolant { on: true }, span));
@@ -413,20 +496,20 @@ impl Machine {
             eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
         }
         // 5. spindle stop, coolant off
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             if m == 5.0 {
                 self.spindle = SpindleDir::Stop;
                 out.push((Event::Spindle { rpm: self.speed, dir: SpindleDir::Stop }, span));
             }
         }
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             if m == 9.0 {
                 self.coolant = false;
                 out.push((Event::Coolant { on: false }, span));
             }
         }
         // 6. M0/M1 and #3006
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             if m == 0.0 || m == 1.0 {
                 out.push((Event::Stop { optional: m == 1.0, message: None }, span));
             }
@@ -434,7 +517,7 @@ impl Machine {
         if let Some(text) = stop_message {
             out.push((Event::Stop { optional: false, message: Some(text) }, block_span));
         }
-        for &(m, span) in &ms {
+        for &(m, span) in ms.iter() {
             self.last_m = m;
             match m as i64 {
                 0 | 1 | 3 | 4 | 5 | 6 | 7 | 8 | 9 => {}
@@ -543,9 +626,15 @@ impl Machine {
             for (i, a) in axes.iter().enumerate() {
                 if a.is_some() {
                     self.seen[i] = true;
+                    // Axes without a word keep their position in `target` (a probe move
+                    // may change every axis: copied whole below). Copying axis by axis
+                    // also spares the CPU a stalled reload of `target` just written.
+                    self.pos[i] = target[i];
                 }
             }
-            self.pos = target;
+            if probe {
+                self.pos = target;
+            }
             out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
             return Ok(any_axis);
         }
@@ -693,7 +782,7 @@ fn fmt_g(g: f64) -> String {
 
 /// Removes float noise below the trace precision and negative zero.
 fn clean(x: f64) -> f64 {
-    let r = (x * 1e9).round() / 1e9;
+    let r = super::value::round(x * 1e9) / 1e9;
     if r == 0.0 {
         0.0
     } else {

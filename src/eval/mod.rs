@@ -3,10 +3,12 @@
 //! [`TraceSink`]. The library never prints; it returns an [`Outcome`].
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
-//! control), `flow` (flattening to linear code with jump tables), `exec` (the interpreter
-//! loop), `access` + `vars` (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal
-//! state and motion), `sysvars`, `trace` (events and writers), `input` (`--set` and
-//! header inputs), `fault` (alarms, errors, limits). Choices are in docs/semantics.md.
+//! control), `flow` (flattening to linear code with jump tables; `lit`: blocks of
+//! constant words in compact form), `exec` (the interpreter loop), `access` + `vars`
+//! (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal state
+//! and motion), `sysvars`, `trace` (events and writers; `numfmt`: the trace's number
+//! form), `input` (`--set` and header inputs), `fault` (alarms, errors, limits).
+//! Choices are in docs/semantics.md.
 
 pub mod access;
 pub mod arc;
@@ -16,7 +18,9 @@ pub mod expr;
 pub mod fault;
 pub mod flow;
 pub mod input;
+pub mod lit;
 pub mod machine;
+pub mod numfmt;
 pub mod sysvars;
 pub mod trace;
 pub mod value;
@@ -24,6 +28,8 @@ pub mod vars;
 
 #[cfg(test)]
 mod expr_tests;
+#[cfg(test)]
+mod lit_tests;
 #[cfg(test)]
 mod run_tests;
 #[cfg(test)]

@@ -175,50 +175,58 @@ impl TraceSink for VecSink {
     }
 }
 
-/// Appends a number in the trace's form (see [`fmt_num`]) without allocating.
-pub fn push_num(out: &mut String, x: f64) {
-    use std::fmt::Write;
-    if x.is_finite() && x.fract() == 0.0 && x.abs() < 1e15 {
-        let _ = write!(out, "{}", x as i64);
-        return;
+/// Appends a number in the trace's form (see [`super::numfmt`]) without allocating.
+pub use super::numfmt::push_num;
+
+/// What the writers append to: a byte buffer with the `String` methods they use, without
+/// a `String`'s UTF-8 checks per number (everything written is UTF-8: ASCII and whole
+/// `str`s).
+struct TextBuf<'b>(&'b mut Vec<u8>);
+
+impl TextBuf<'_> {
+    fn push_str(&mut self, s: &str) {
+        self.0.extend_from_slice(s.as_bytes());
     }
-    if !x.is_finite() {
-        out.push('0');
-        return;
-    }
-    let start = out.len();
-    let _ = write!(out, "{x:.6}");
-    while out.ends_with('0') {
-        out.pop();
-    }
-    if out.ends_with('.') {
-        out.pop();
-    }
-    if &out[start..] == "-0" {
-        out.truncate(start);
-        out.push('0');
+
+    fn push(&mut self, c: char) {
+        if c.is_ascii() {
+            self.0.push(c as u8);
+        } else {
+            self.push_str(c.encode_utf8(&mut [0; 4]));
+        }
     }
 }
 
-fn axes_text(out: &mut String, to: &Axes) {
+fn push_num_b(out: &mut TextBuf, x: f64) {
+    super::numfmt::put_num(out.0, x);
+}
+
+/// Appends the bytes written by `f` to `s` (always UTF-8, see [`TextBuf`]).
+fn to_string_buf(s: &mut String, f: impl FnOnce(&mut TextBuf)) {
+    let mut v = Vec::with_capacity(64);
+    f(&mut TextBuf(&mut v));
+    s.push_str(&String::from_utf8_lossy(&v));
+}
+
+fn axes_text(out: &mut TextBuf, to: &Axes) {
     for (i, v) in to.iter().enumerate() {
         if let Some(x) = v {
             out.push(' ');
             out.push(AXES[i]);
             out.push('=');
-            push_num(out, *x);
+            push_num_b(out, *x);
         }
     }
 }
 
-fn push_opt(out: &mut String, f: Option<f64>, none: &str) {
+fn push_opt(out: &mut TextBuf, f: Option<f64>, none: &str) {
     match f {
-        Some(x) => push_num(out, x),
+        Some(x) => push_num_b(out, x),
         None => out.push_str(none),
     }
 }
 
-fn push_quoted(o: &mut String, s: &str) {
+fn push_quoted(o: &mut TextBuf, s: &str) {
     o.push('"');
     for c in s.chars() {
         match c {
@@ -237,13 +245,22 @@ fn push_quoted(o: &mut String, s: &str) {
 /// One event as a line of the text form (no newline). Stable: the corpus traces are
 /// this form.
 pub fn text_line(ev: &Event) -> String {
-    let mut s = String::new();
-    write_text(&mut s, ev);
-    s
+    let mut v = Vec::with_capacity(64);
+    write_text_bytes(&mut v, ev);
+    String::from_utf8(v).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
 /// Appends the text form of `ev` to `s`.
 pub fn write_text(s: &mut String, ev: &Event) {
+    to_string_buf(s, |b| text_form(b, ev));
+}
+
+/// Appends the text form of `ev` to `v` (UTF-8).
+pub fn write_text_bytes(v: &mut Vec<u8>, ev: &Event) {
+    text_form(&mut TextBuf(v), ev);
+}
+
+fn text_form(s: &mut TextBuf, ev: &Event) {
     match ev {
         Event::Move { rapid, to, f } => {
             s.push_str(if *rapid { "move rapid" } else { "move linear" });
@@ -260,19 +277,19 @@ pub fn write_text(s: &mut String, ev: &Event) {
                 s.push(' ');
                 s.push(AXES[*i]);
                 s.push('=');
-                push_num(s, *v);
+                push_num_b(s, *v);
             }
             s.push_str(" f=");
             push_opt(s, *f, "-");
         }
         Event::Dwell { seconds } => {
             s.push_str("dwell ");
-            push_num(s, *seconds);
+            push_num_b(s, *seconds);
         }
         Event::Tool { tool } => {
             s.push_str("tool ");
             match tool {
-                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Number(n) => push_num_b(s, *n),
                 ToolId::Name(n) => push_quoted(s, n),
             }
         }
@@ -280,7 +297,7 @@ pub fn write_text(s: &mut String, ev: &Event) {
             s.push_str("spindle ");
             s.push_str(dir.name());
             s.push(' ');
-            push_num(s, *rpm);
+            push_num_b(s, *rpm);
         }
         Event::Coolant { on } => s.push_str(if *on { "coolant on" } else { "coolant off" }),
         Event::Stop { optional, message } => {
@@ -303,7 +320,7 @@ pub fn write_text(s: &mut String, ev: &Event) {
     }
 }
 
-fn axes_json(out: &mut String, to: &Axes) {
+fn axes_json(out: &mut TextBuf, to: &Axes) {
     out.push('{');
     let mut first = true;
     for (i, v) in to.iter().enumerate() {
@@ -315,7 +332,7 @@ fn axes_json(out: &mut String, to: &Axes) {
             out.push('"');
             out.push(AXES[i]);
             out.push_str("\":");
-            push_num(out, *x);
+            push_num_b(out, *x);
         }
     }
     out.push('}');
@@ -330,6 +347,15 @@ pub fn json_line(ev: &Event, line: Option<usize>) -> String {
 
 /// Appends the JSON object of `ev` to `s`.
 pub fn write_json(s: &mut String, ev: &Event, line: Option<usize>) {
+    to_string_buf(s, |b| json_form(b, ev, line));
+}
+
+/// Appends the JSON object of `ev` to `v` (UTF-8).
+pub fn write_json_bytes(v: &mut Vec<u8>, ev: &Event, line: Option<usize>) {
+    json_form(&mut TextBuf(v), ev, line);
+}
+
+fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
     s.push_str("{\"ev\":\"");
     s.push_str(ev.kind());
     s.push('"');
@@ -348,28 +374,28 @@ pub fn write_json(s: &mut String, ev: &Event, line: Option<usize>) {
             s.push_str(",\"center\":{\"");
             s.push(AXES[center[0].0]);
             s.push_str("\":");
-            push_num(s, center[0].1);
+            push_num_b(s, center[0].1);
             s.push_str(",\"");
             s.push(AXES[center[1].0]);
             s.push_str("\":");
-            push_num(s, center[1].1);
+            push_num_b(s, center[1].1);
             s.push_str("},\"f\":");
             push_opt(s, *f, "null");
         }
         Event::Dwell { seconds } => {
             s.push_str(",\"seconds\":");
-            push_num(s, *seconds);
+            push_num_b(s, *seconds);
         }
         Event::Tool { tool } => {
             s.push_str(",\"tool\":");
             match tool {
-                ToolId::Number(n) => push_num(s, *n),
+                ToolId::Number(n) => push_num_b(s, *n),
                 ToolId::Name(n) => push_quoted(s, n),
             }
         }
         Event::Spindle { rpm, dir } => {
             s.push_str(",\"rpm\":");
-            push_num(s, *rpm);
+            push_num_b(s, *rpm);
             s.push_str(",\"dir\":\"");
             s.push_str(dir.name());
             s.push('"');
@@ -395,7 +421,7 @@ pub fn write_json(s: &mut String, ev: &Event, line: Option<usize>) {
     }
     if let Some(l) = line {
         s.push_str(",\"line\":");
-        push_num(s, l as f64);
+        super::numfmt::put_int(s.0, l as i64);
     }
     s.push('}');
 }
@@ -414,12 +440,12 @@ pub struct WriterSink<'a, W: Write> {
     pub format: Format,
     pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
     pub error: Option<io::Error>,
-    buf: String,
+    buf: Vec<u8>,
 }
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink { out, format, line_of, error: None, buf: String::new() }
+        WriterSink { out, format, line_of, error: None, buf: Vec::with_capacity(256) }
     }
 }
 
@@ -431,17 +457,17 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         let line = (self.line_of)(origin);
         self.buf.clear();
         match self.format {
-            Format::Jsonl => write_json(&mut self.buf, ev, line),
+            Format::Jsonl => write_json_bytes(&mut self.buf, ev, line),
             Format::Text => {
-                write_text(&mut self.buf, ev);
+                write_text_bytes(&mut self.buf, ev);
                 if let Some(l) = line {
-                    self.buf.push_str("  @");
-                    push_num(&mut self.buf, l as f64);
+                    self.buf.extend_from_slice(b"  @");
+                    super::numfmt::put_int(&mut self.buf, l as i64);
                 }
             }
         }
-        self.buf.push('\n');
-        if let Err(e) = self.out.write_all(self.buf.as_bytes()) {
+        self.buf.push(b'\n');
+        if let Err(e) = self.out.write_all(&self.buf) {
             self.error = Some(e);
         }
     }

@@ -13,6 +13,7 @@ pub mod index;
 pub mod lines;
 pub mod paged;
 pub mod runs;
+pub mod to_sinumerik;
 pub mod translate;
 
 use crate::diag::Diagnostic;

@@ -42,6 +42,9 @@ pub struct Pager {
     ix: Arc<Index>,
     lines: RefCell<Option<Lines>>,
     cache: RefCell<VecDeque<Rc<Page>>>,
+    /// The page and line index [`Pager::line_of`] found last (it may outlive the cache by
+    /// one page).
+    hint: RefCell<Option<(Rc<Page>, usize)>>,
     /// Pages read so far (for tests and benchmarks: how much re-reading happened).
     pub reads: RefCell<u64>,
     progress: RefCell<Option<ProgressBox>>,
@@ -53,6 +56,7 @@ impl Pager {
             ix,
             lines: RefCell::new(None),
             cache: RefCell::new(VecDeque::new()),
+            hint: RefCell::new(None),
             reads: RefCell::new(0),
             progress: RefCell::new(None),
         }
@@ -122,15 +126,19 @@ impl Pager {
     /// 1-based line of text offset `lo` (for trace origins), from the cached pages, else by
     /// reading the page that holds it.
     pub fn line_of(&self, lo: u32) -> Option<usize> {
+        if let Some(l) = self.line_from_hint(lo) {
+            return Some(l);
+        }
         let at = u64::from(lo);
-        let hit = |p: &Page| {
-            (p.lo <= at && at < p.hi).then(|| {
-                let i = p.lines.partition_point(|l| l.0 <= lo);
-                i.checked_sub(1).map(|i| p.lines[i].1 as usize)
-            })
-        };
-        if let Some(l) = self.cache.borrow().iter().find_map(|p| hit(p)) {
-            return l;
+        // Some(index of the line in the page) when the page holds `at`.
+        let hit = |p: &Page| (p.lo <= at && at < p.hi).then(|| p.lines.partition_point(|l| l.0 <= lo).checked_sub(1));
+        let found = self.cache.borrow().iter().find_map(|p| hit(p).map(|i| (Rc::clone(p), i)));
+        if let Some((page, i)) = found {
+            let line = i.map(|i| page.lines[i].1 as usize);
+            if let Some(i) = i {
+                *self.hint.borrow_mut() = Some((page, i));
+            }
+            return line;
         }
         let mut from = (0u64, 1u32);
         for (prog, pi) in self.ix.programs.iter().enumerate() {
@@ -138,7 +146,7 @@ impl Pager {
             let Some(c) = i.checked_sub(1).map(|i| &pi.chunks[i]) else { continue };
             if at < c.hi {
                 let page = self.page(prog, c.op_base).ok()??;
-                return hit(&page).flatten();
+                return hit(&page).flatten().map(|i| page.lines[i].1 as usize);
             }
             if c.lo >= from.0 {
                 // The line after the chunk: count from its start.
@@ -146,6 +154,26 @@ impl Pager {
             }
         }
         self.count_lines(from, at)
+    }
+
+    /// The line of `lo` when it is the line last found or one of the next two (a trace asks
+    /// for lines in program order, so this nearly always answers without a search).
+    fn line_from_hint(&self, lo: u32) -> Option<usize> {
+        let mut hint = self.hint.borrow_mut();
+        let (page, i) = hint.as_mut()?;
+        let at = u64::from(lo);
+        if !(page.lo <= at && at < page.hi) {
+            return None;
+        }
+        let lines = &page.lines;
+        for j in *i..(*i + 3).min(lines.len()) {
+            let next = lines.get(j + 1).map_or(u64::MAX, |l| u64::from(l.0));
+            if lines[j].0 <= lo && at < next {
+                *i = j;
+                return Some(lines[j].1 as usize);
+            }
+        }
+        None
     }
 
     /// The line of `at` by reading lines from a known line start (outside every chunk:

@@ -36,7 +36,7 @@ pub struct Frame<'a> {
 
 /// Writes one program.
 pub fn emit_program(p: &Program, frame: &Frame) -> Emitted {
-    let mut w = Writer { out: Emitted::default(), depth: 0 };
+    let mut w = Writer { out: Emitted::default(), depth: 0, buf: String::new() };
     let name = match &p.name {
         Some(ProgName::Name(n)) => n.clone(),
         Some(ProgName::Number(n)) => format!("O_{n:04}"),
@@ -91,10 +91,16 @@ fn ty(t: DataType) -> String {
 struct Writer {
     out: Emitted,
     depth: usize,
+    /// The line being built (kept to reuse its allocation).
+    buf: String,
 }
 
 impl Writer {
     fn line(&mut self, s: String, span: Option<Span>) {
+        self.line_str(&s, span);
+    }
+
+    fn line_str(&mut self, s: &str, span: Option<Span>) {
         for _ in 0..self.depth {
             self.out.text.push_str("  ");
         }
@@ -161,28 +167,57 @@ impl Writer {
         }
     }
 
+    /// One block: its parts (skip, N, label, items, comments) separated by a space. Built
+    /// in one buffer, as plain CAM blocks are most of a large program.
     fn block(&mut self, b: &Block) {
-        let mut parts: Vec<String> = Vec::new();
+        use std::fmt::Write;
+        let mut s = std::mem::take(&mut self.buf);
+        s.clear();
+        let sep = |s: &mut String| {
+            if !s.is_empty() {
+                s.push(' ');
+            }
+        };
         if let Some(k) = b.meta.skip {
-            parts.push(if k == 0 { "/".into() } else { format!("/{k}") });
-        }
-        if let Some(n) = &b.meta.number {
-            parts.push(format!("N{}", n.value));
-        }
-        if let Some(l) = &b.meta.label {
-            parts.push(format!("{}:", l.name));
-        }
-        for it in &b.items {
-            let t = self.item(it);
-            if !t.is_empty() {
-                parts.push(t);
+            s.push('/');
+            if k != 0 {
+                let _ = write!(s, "{k}");
             }
         }
-        let comments: Vec<String> = b.meta.comments.iter().map(|c| comment_text(&c.text)).collect();
-        if !comments.is_empty() {
-            parts.push(format!("; {}", comments.join(" ; ")));
+        if let Some(n) = &b.meta.number {
+            sep(&mut s);
+            let _ = write!(s, "N{}", n.value);
         }
-        self.line(parts.join(" "), Some(b.meta.span));
+        if let Some(l) = &b.meta.label {
+            sep(&mut s);
+            let _ = write!(s, "{}:", l.name);
+        }
+        for it in &b.items {
+            match &it.kind {
+                ItemKind::Word(w) => {
+                    sep(&mut s);
+                    word_into(&mut s, w);
+                }
+                _ => {
+                    let t = self.item(it);
+                    if !t.is_empty() {
+                        sep(&mut s);
+                        s.push_str(&t);
+                    }
+                }
+            }
+        }
+        for (i, c) in b.meta.comments.iter().enumerate() {
+            if i == 0 {
+                sep(&mut s);
+                s.push_str("; ");
+            } else {
+                s.push_str(" ; ");
+            }
+            s.push_str(&comment_text(&c.text));
+        }
+        self.line_str(&s, Some(b.meta.span));
+        self.buf = s;
     }
 
     fn item(&mut self, it: &Item) -> String {
@@ -313,6 +348,30 @@ fn goto(g: &Goto) -> String {
     match &g.cond {
         Some(c) => format!("IF {} {kw} {target}", cond(c)),
         None => format!("{kw} {target}"),
+    }
+}
+
+/// [`word`] written into `out`, without the allocations for a plain number.
+fn word_into(out: &mut String, w: &Word) {
+    use std::fmt::Write;
+    match &w.value {
+        WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) if matches!(w.addr, Addr::Letter(_)) => {
+            out.push_str(w.addr.as_str());
+            let v = n.value;
+            if v == 0.0 {
+                out.push('0');
+            } else if (1e-6..1e15).contains(&v.abs()) {
+                let _ = write!(out, "{v}");
+            } else {
+                // The `EX` form needs `=` (as [`word`] writes it).
+                let t = number(v);
+                if t.contains("EX") {
+                    out.push('=');
+                }
+                out.push_str(&t);
+            }
+        }
+        _ => out.push_str(&word(w)),
     }
 }
 

@@ -256,14 +256,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let mut out = Vec::new();
     for (i, (_, p)) in programs.iter().enumerate() {
         ctx.cur = i;
-        let mut body = p.body.clone();
-        body = vacancy::rewrite(&mut ctx, body);
-        body = calls::lower_return_jumps(&mut ctx, body);
-        body = gotos::lower(&mut ctx, body);
-        body = structures::lower(&mut ctx, body);
-        body = calls::lower(&mut ctx, body);
-        body = words::lower(&mut ctx, body);
-        body = exprs::lower(&mut ctx, body);
+        let body = lower_body(&mut ctx, p.body.clone());
         let plan = ctx.progs[i].clone();
         let prog = Program {
             name: Some(ProgName::Name(plan.name.clone())),
@@ -286,6 +279,19 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         out.push((plan, prog));
     }
     Lowered { programs: out, commons: ctx.commons, common_flags: ctx.common_flags, diags: ctx.diags }
+}
+
+/// The passes that rewrite the body of program `ctx.cur` once the plan is made (steps 3 to
+/// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
+/// program with the plan made once.
+pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
+    body = vacancy::rewrite(ctx, body);
+    body = calls::lower_return_jumps(ctx, body);
+    body = gotos::lower(ctx, body);
+    body = structures::lower(ctx, body);
+    body = calls::lower(ctx, body);
+    body = words::lower(ctx, body);
+    exprs::lower(ctx, body)
 }
 
 // ---- small IR builders shared by the passes ----

@@ -1,0 +1,392 @@
+//! Large straight-line programs in a batch: read for the library index, translated and
+//! verified as a stream, in constant memory (`crate::stream`). A file of
+//! `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells, in UTF-8,
+//! holding one straight-line program that no other file of the batch calls, calls or
+//! defines again, is never read whole: its output is written straight into the staging
+//! folder (then committed atomically like any other), and its report entry (status,
+//! summary, events, blocks, diagnostics with their lines) is what the whole-file job gives.
+//! Anything else, or a stream that stops part way (a block that is not straight-line), is
+//! left to the whole-file job.
+
+use super::discover::{self, InputFile};
+use super::jobs::{self, apply, combine, ToFanucJob, Verified};
+use super::jobs_sinumerik::{self, parse_all, siemens_inputs, ToSinumerikJob};
+use super::library::{self, FileInfo, ProgKey, Scan};
+use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
+use crate::check::{CheckReport, Verdict};
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, ParseOptions, Semantics};
+use crate::eval::{header_inputs, Ending, NoCallees, Outcome, RunOptions};
+use crate::ir::{ProgName, Program, Unit};
+use crate::span::{FileId, SourceDb, Span};
+use crate::stream;
+use crate::stream::lines::Lines;
+use crate::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
+
+fn utf8(e: Option<&'static encoding_rs::Encoding>) -> bool {
+    e.is_none_or(|e| e == encoding_rs::UTF_8)
+}
+
+/// Reads `f` for the library index as a stream when it is at least `stream_bytes` long, its
+/// name tells its dialect, it is UTF-8 (or no other encoding is forced) and it holds one
+/// straight-line program; `None` otherwise (the caller reads it whole). What it reports is
+/// what `library::scan` reports, but the fingerprints (see [`without_shared_streamed`]).
+pub fn library_scan(
+    f: &InputFile,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    stream_bytes: u64,
+) -> Option<Scan> {
+    if !utf8(encoding) || std::fs::metadata(&f.abs).ok()?.len() < stream_bytes {
+        return None;
+    }
+    let dialect = discover::dialect_of_name(&f.rel)?;
+    let mut straight = true;
+    let mut each = |prog: usize, s: &crate::ir::Stmt| {
+        straight &= match dialect {
+            Dialect::Sinumerik => stream::translate::straight(s).is_ok(),
+            Dialect::Fanuc => prog == 0 && sts::straight(s).is_ok(),
+        };
+    };
+    let ix = stream::scan_path(&f.abs, 0, dialect, &ParseOptions::for_dialect(dialect), &mut each, None).ok()?;
+    if !straight || !ix.diags.is_empty() || ix.programs.len() != 1 {
+        return None;
+    }
+    let stem = f.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+    let mut scan = Scan {
+        info: FileInfo { dialect: Some(dialect), blocks: ix.blocks, streamed: true, ..FileInfo::default() },
+        ..Scan::default()
+    };
+    for p in &ix.programs {
+        let key = match (&p.program.name, dialect) {
+            (Some(ProgName::Number(n)), _) => Some(ProgKey::Number(*n)),
+            (Some(ProgName::Name(n)), _) => Some(ProgKey::Name(n.to_ascii_uppercase())),
+            (None, Dialect::Sinumerik) if !stem.is_empty() => Some(ProgKey::Name(stem.clone())),
+            (None, _) => None,
+        };
+        scan.info.programs.push(key.clone());
+        scan.info.fingerprints.push(0);
+        scan.defined.push((key, p.program.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
+    }
+    Some(scan)
+}
+
+/// The scans with every streamed one whose program another file also defines read again
+/// whole: which of two definitions is a copy of the other is told by the fingerprints of
+/// their texts, which a streamed scan does not compute.
+pub fn without_shared_streamed(
+    mut scans: Vec<Scan>,
+    files: &[InputFile],
+    encoding: Option<&'static encoding_rs::Encoding>,
+) -> Vec<Scan> {
+    let mut defined_in: BTreeMap<&ProgKey, usize> = BTreeMap::new();
+    for s in &scans {
+        let mut keys: Vec<&ProgKey> = s.defined.iter().filter_map(|(k, _)| k.as_ref()).collect();
+        keys.sort();
+        keys.dedup();
+        for k in keys {
+            *defined_in.entry(k).or_default() += 1;
+        }
+    }
+    let shared: Vec<usize> = scans
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| {
+            s.info.streamed && s.defined.iter().flat_map(|(k, _)| k).any(|k| defined_in.get(k).is_some_and(|n| *n > 1))
+        })
+        .map(|(i, _)| i)
+        .collect();
+    for i in shared {
+        if let Some(f) = files.get(i) {
+            scans[i] = library::scan(f, encoding);
+        }
+    }
+    scans
+}
+
+/// Whether the job may stream `file`: the library scan streamed it (a large straight-line
+/// program), and no other file calls its program, is called by it or defines it too.
+fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
+    let lib = &ctx.library;
+    let Some(info) = lib.files.get(file.index) else { return false };
+    info.streamed
+        && utf8(ctx.options.encoding)
+        && lib.callee_files(file.index).is_empty()
+        && info.programs.iter().flatten().all(|k| {
+            lib.programs.get(k).is_some_and(|p| p.file == file.index)
+                && !lib.is_called(k)
+                && !lib.duplicates.contains_key(k)
+        })
+}
+
+/// Streams a translation into the file's staged output; on `None` nothing is left there.
+fn write_part<T, E>(part: &Path, bom: bool, translate: impl FnOnce(&mut dyn Write) -> Result<T, E>) -> Option<T> {
+    let file = std::fs::File::create(part).ok()?;
+    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+    let done = (|| {
+        if bom {
+            w.write_all(b"\xEF\xBB\xBF").ok()?;
+        }
+        let t = translate(&mut w).ok()?;
+        // On disk before the rename into place, like every staged output.
+        let f = w.into_inner().ok()?;
+        f.sync_data().ok()?;
+        Some(t)
+    })();
+    if done.is_none() {
+        let _ = std::fs::remove_file(part);
+    }
+    done
+}
+
+/// The 1-based line and column (in characters) of text offsets of a file, as
+/// `SourceFile::line_col` gives them in the whole text, in one pass over the file.
+fn positions(path: &Path, offsets: &[u32]) -> Vec<(usize, usize)> {
+    let mut order: Vec<usize> = (0..offsets.len()).collect();
+    order.sort_by_key(|&i| offsets[i]);
+    let mut out = vec![(1, 1); offsets.len()];
+    let Ok((input, _)) = stream::open(path) else { return out };
+    let Ok(mut lines) = Lines::new(input) else { return out };
+    let mut k = 0;
+    let mut last = 0usize;
+    while k < order.len() {
+        let Ok(Some(l)) = lines.next_line() else { break };
+        last = l.line as usize;
+        // The last line (no line end) holds every offset up to the end of the text.
+        let end = l.next == l.start + l.text.len() as u64;
+        while k < order.len() && (u64::from(offsets[order[k]]) < l.next || end) {
+            let at = (u64::from(offsets[order[k]]).saturating_sub(l.start)) as usize;
+            let col = match l.text.get(..at.min(l.text.len())) {
+                Some(t) => t.chars().count() + at.saturating_sub(l.text.len()),
+                None => at,
+            };
+            out[order[k]] = (l.line as usize, col + 1);
+            k += 1;
+        }
+    }
+    // Past the last line end: the empty line after it.
+    for &i in &order[k..] {
+        out[i] = (last + 1, 1);
+    }
+    out
+}
+
+/// Report records of diagnostics that point into streamed files (id, name, path).
+fn records(diags: &[Diagnostic], files: &[(FileId, &str, &Path)]) -> Vec<DiagRecord> {
+    let mut db = SourceDb::new();
+    for (id, name, _) in files {
+        while db.len() < *id {
+            db.add("", String::new());
+        }
+        db.add(name.to_string(), String::new());
+    }
+    let mut out = DiagRecord::from_diags(&db, diags);
+    for (id, name, path) in files {
+        let at: Vec<(usize, u32)> = diags
+            .iter()
+            .enumerate()
+            .filter_map(|(i, d)| {
+                let l = d.labels.iter().find(|l| l.primary).or(d.labels.first())?;
+                (l.file == *id).then_some((i, l.span.lo))
+            })
+            .collect();
+        let offsets: Vec<u32> = at.iter().map(|(_, lo)| *lo).collect();
+        for ((i, _), (line, col)) in at.iter().zip(positions(path, &offsets)) {
+            out[*i].file = Some(name.to_string());
+            out[*i].line = Some(line);
+            out[*i].column = Some(col);
+        }
+    }
+    out
+}
+
+/// The verdict of one streamed check, as the whole-file jobs combine it, with the
+/// diagnostics' lines read from the streamed files.
+fn verdict(report: CheckReport, files: &[(FileId, &str, &Path)]) -> Verified {
+    let diags = report.diags.clone();
+    let mut v = combine(vec![(String::new(), report)]);
+    if !v.diagnostics.is_empty() {
+        v.diagnostics = records(&diags, files);
+    }
+    v
+}
+
+/// A check that could not run (the output does not read back, a bad header line).
+fn failed(diags: Vec<Diagnostic>) -> CheckReport {
+    let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
+    CheckReport {
+        verdict: Verdict::Failed,
+        db: SourceDb::new(),
+        diags,
+        diff: String::new(),
+        outcome_a: none(),
+        outcome_b: none(),
+    }
+}
+
+fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics) -> RunOptions {
+    RunOptions { inputs, max_steps, semantics: Some(sem.clone()), ..RunOptions::default() }
+}
+
+/// FANUC → Sinumerik for a streamable file (see the module documentation); `None` leaves
+/// the file to the whole-file job.
+pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+    let s = &job.settings;
+    if job.fault.is_some() || !utf8(s.output_encoding) || !streamable(file, ctx) {
+        return None;
+    }
+    let opts = job.options(ctx, file).ok()?;
+    let eol = s.line_ending(sts::first_line_ending(&file.abs).ok()?);
+    let part = write::staged_path(&ctx.options.output, file.index);
+    // The translator writes the byte-order mark itself.
+    let done = write_part(&part, false, |w| sts::to_sinumerik(&file.abs, &opts, eol, w, None))?;
+    let name = rel_string(&file.rel);
+    let rel_out = discover::sinumerik_output(&file.rel, &done.program, false);
+    let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
+    outcome.blocks = done.index.blocks;
+    outcome.used = jobs_sinumerik::used_names(&[(done.fanuc_number, done.program.as_str())], &done.symbols);
+    outcome.diagnostics = records(&done.diags, &[(0, &name, &file.abs)]);
+    outcome.staged = vec![(rel_out, part.clone())];
+    if !ctx.options.verify {
+        return Some(outcome);
+    }
+    // As `ToSinumerikJob::verify` runs a file's only program: its header inputs and `--set`.
+    let out_dir = rel_string(file.rel.parent().unwrap_or(Path::new("")));
+    let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
+    let files: [(FileId, &str, &Path); 2] = [(0, &name, &file.abs), (1, &shown, &part)];
+    let mut fanuc = s.set.clone();
+    let tr = crate::translate_sinumerik::Translation { symbols: done.symbols.clone(), ..Default::default() };
+    let siemens = siemens_inputs(&tr, &done.program, &fanuc);
+    fanuc.retain(|x| x.trim_start().starts_with('#'));
+    let report =
+        match sts::read_back(&part, 1, Dialect::Sinumerik, &ParseOptions { semantics: s.sinumerik.clone() }, None) {
+            Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
+                (Ok(mut a), Ok(mut b)) => {
+                    a.extend(parse_all(&fanuc));
+                    b.extend(parse_all(&siemens));
+                    let a = StreamSide {
+                        index: done.index,
+                        name: name.clone(),
+                        callees: Box::new(NoCallees),
+                        run: run_options(a, s.max_steps, &s.fanuc),
+                    };
+                    let b = StreamSide {
+                        index: back,
+                        name: shown.clone(),
+                        callees: Box::new(NoCallees),
+                        run: run_options(b, s.max_steps, &s.sinumerik),
+                    };
+                    sts::compare(a, b)
+                }
+                (Err(e), _) | (_, Err(e)) => {
+                    failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
+                }
+            },
+            Err(ReadBack::Diags(mut d)) => {
+                d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
+                failed(d)
+            }
+            Err(ReadBack::Unreadable(e)) => {
+                failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
+            }
+        };
+    apply(&mut outcome, verdict(report, &files));
+    Some(outcome)
+}
+
+/// Sinumerik → FANUC for a streamable file (see the module documentation); `None` leaves
+/// the file to the whole-file job.
+pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+    let s = &job.settings;
+    // The stream reads the Siemens file with the default profile.
+    if job.fault.is_some()
+        || !utf8(s.output_encoding)
+        || s.sinumerik != Semantics::default_for(Dialect::Sinumerik)
+        || !streamable(file, ctx)
+    {
+        return None;
+    }
+    let opts = job.options(ctx, file, sts::first_line_ending(&file.abs).ok()?).ok()?;
+    let bom = sts::has_bom(&file.abs).ok()?;
+    let part = write::staged_path(&ctx.options.output, file.index);
+    let done = write_part(&part, bom, |w| stream::translate::to_fanuc(&file.abs, &opts, w, None))?;
+    // The names a straight-line program's translation uses depend on its name alone.
+    let program = Program {
+        name: done.index.programs.first().and_then(|p| p.program.name.clone()),
+        head: None,
+        params: vec![],
+        save: false,
+        body: vec![],
+        span: Span::default(),
+    };
+    let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
+    let map = crate::translate::to_fanuc(&unit, &[], &opts).symbol_map;
+    let name = rel_string(&file.rel);
+    let rel_out = discover::fanuc_output(&file.rel);
+    let out_name = rel_string(&rel_out);
+    let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
+    outcome.blocks = done.index.blocks;
+    outcome.used = jobs::used_names(&map);
+    outcome.staged = vec![(rel_out, part.clone())];
+    if !ctx.options.verify {
+        return Some(outcome);
+    }
+    // As `ToFanucJob::verify` runs a program no file calls: `--set` on both sides, the
+    // mapped R parameters 0 on FANUC.
+    let files: [(FileId, &str, &Path); 2] = [(0, &name, &file.abs), (1, &out_name, &part)];
+    let back = match sts::read_back(&part, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
+        Ok(b) => b,
+        Err(e) => {
+            let diagnostics = match e {
+                ReadBack::Diags(d) => records(&d, &files),
+                ReadBack::Unreadable(m) => vec![DiagRecord::error("NC603", format!("cannot read {out_name}: {m}"))],
+            };
+            let summary = "the output does not parse as FANUC (a bug in nctrans)".to_string();
+            apply(&mut outcome, Verified { status: Status::Diverged, summary, events: None, diagnostics });
+            return Some(outcome);
+        }
+    };
+    let mut b_in = jobs::r_homes(&map);
+    b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
+    let a = StreamSide {
+        index: done.index,
+        name: name.clone(),
+        callees: Box::new(NoCallees),
+        run: run_options(parse_all(&s.set), s.max_steps, &s.sinumerik),
+    };
+    let b = StreamSide {
+        index: back,
+        name: out_name.clone(),
+        callees: Box::new(NoCallees),
+        run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
+    };
+    let report = sts::compare(a, b);
+    apply(&mut outcome, verdict(report, &files));
+    Some(outcome)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn positions_are_the_whole_texts_lines_and_columns() {
+        let dir = std::env::temp_dir().join(format!("nctrans-streamed-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = "G0 X1\r\nG1 Ä Y2\rZ3\n\nM30";
+        let path = dir.join("p.mpf");
+        std::fs::write(&path, text).unwrap();
+        let src = crate::span::SourceFile::new("p", text);
+        let offsets: Vec<u32> = (0..=text.len() as u32).filter(|&o| text.is_char_boundary(o as usize)).collect();
+        let got = positions(&path, &offsets);
+        for (o, g) in offsets.iter().zip(got) {
+            assert_eq!(g, src.line_col(*o), "offset {o}");
+        }
+        let part = dir.join("x.part");
+        assert!(write_part(&part, true, |_| Err::<(), ()>(())).is_none());
+        assert!(!part.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,106 @@
+//! Blocks made only of one-letter words with constant values (`N10 G1 X1.5 Y-2 F800`,
+//! nearly every block of CAM output), kept in a compact op: their values need no
+//! evaluation, and a page of them is freed without walking the IR. Running one does
+//! exactly what running the IR block does (`exec::exec_block` with literal words); the
+//! tests run every corpus program and generated ones both ways.
+
+use super::machine::AbsInc;
+use crate::ir::{Addr, Block, ExprKind, ItemKind, WordValue};
+use crate::span::Span;
+
+/// Words kept in place (a CAM block has up to six or so: `G1 X Y Z A F`); blocks with
+/// more stay IR. In place, not boxed: an allocation per block would cost more than the
+/// evaluation this saves.
+pub const MAX_WORDS: usize = 7;
+
+/// A block of constant one-letter words.
+#[derive(Clone, Debug)]
+pub struct LitBlock {
+    /// The block's span (`BlockMeta::span`).
+    pub span: Span,
+    /// The block number (`BlockMeta::number`).
+    pub number: Option<u32>,
+    len: u8,
+    words: [LitWord; MAX_WORDS],
+}
+
+/// One word: upper-case letter, the literal's value and whether it had a decimal point
+/// (the FANUC decimal-point rule), its `AC`/`IC` form, its span.
+#[derive(Clone, Copy, Debug)]
+pub struct LitWord {
+    pub value: f64,
+    pub span: Span,
+    pub letter: u8,
+    pub point: bool,
+    pub mode: AbsInc,
+}
+
+const NO_WORD: LitWord =
+    LitWord { value: 0.0, span: Span { lo: 0, hi: 0 }, letter: b'A', point: false, mode: AbsInc::Plain };
+
+impl LitBlock {
+    /// The compact form of `b`, when it has at most [`MAX_WORDS`] items, each a word with
+    /// an upper-case letter address and a number literal (or a negated one) as its value.
+    pub fn of(b: &Block) -> Option<LitBlock> {
+        if disabled() || b.items.len() > MAX_WORDS {
+            return None;
+        }
+        let mut words = [NO_WORD; MAX_WORDS];
+        for (slot, item) in words.iter_mut().zip(&b.items) {
+            let ItemKind::Word(w) = &item.kind else { return None };
+            let Addr::Letter(letter) = w.addr else { return None };
+            if !letter.is_ascii_uppercase() {
+                return None;
+            }
+            let (e, mode) = match &w.value {
+                WordValue::Expr(e) => (e, AbsInc::Plain),
+                WordValue::Ac(e) => (e, AbsInc::Ac),
+                WordValue::Ic(e) => (e, AbsInc::Ic),
+            };
+            let (value, point) = match &e.kind {
+                ExprKind::Num(n) => (n.value, n.point),
+                ExprKind::Unary(crate::ir::UnOp::Neg, a) => match &a.kind {
+                    ExprKind::Num(n) => (-n.value, n.point),
+                    _ => return None,
+                },
+                _ => return None,
+            };
+            *slot = LitWord { value, span: w.span, letter, point, mode };
+        }
+        Some(LitBlock {
+            span: b.meta.span,
+            number: b.meta.number.as_ref().map(|n| n.value),
+            len: b.items.len() as u8,
+            words,
+        })
+    }
+
+    pub fn words(&self) -> &[LitWord] {
+        &self.words[..usize::from(self.len)]
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests run programs with and without the compact form to compare the two.
+    static DISABLED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+#[cfg(test)]
+fn disabled() -> bool {
+    DISABLED.with(|d| d.get())
+}
+
+#[cfg(not(test))]
+fn disabled() -> bool {
+    false
+}
+
+/// Runs `f` with the compact form off (every block stays IR).
+#[cfg(test)]
+pub fn without<T>(f: impl FnOnce() -> T) -> T {
+    DISABLED.with(|d| d.set(true));
+    let r = f();
+    DISABLED.with(|d| d.set(false));
+    r
+}

@@ -1,0 +1,329 @@
+//! The trace's number form (integers plain, else rounded to 6 decimals with trailing zeros
+//! trimmed, `-0` as `0`), written without `core::fmt`: formatting every coordinate of a
+//! long trace through `{:.6}` cost a fifth of a `run`. [`push_num_std`] is the definition;
+//! [`push_num`] gives the same bytes, exactly, and falls back to it where it cannot.
+
+/// Appends `x` in the trace's number form. Byte-identical to [`push_num_std`].
+pub fn push_num(out: &mut String, x: f64) {
+    let mut buf = [0u8; BUF];
+    match fast(x, &mut buf) {
+        Some(n) => out.push_str(std::str::from_utf8(&buf[..n]).unwrap_or("0")),
+        None => push_num_std(out, x),
+    }
+}
+
+/// [`push_num`] into a byte buffer (the trace writers' form).
+pub fn put_num(out: &mut Vec<u8>, x: f64) {
+    let mut buf = [0u8; BUF];
+    match fast(x, &mut buf) {
+        Some(n) => put_head(out, &buf, n),
+        None => {
+            let mut s = String::new();
+            push_num_std(&mut s, x);
+            out.extend_from_slice(s.as_bytes());
+        }
+    }
+}
+
+/// Appends an integer in decimal.
+pub fn put_int(out: &mut Vec<u8>, n: i64) {
+    let mut buf = [0u8; BUF];
+    let len = int_digits(&mut buf, n);
+    put_head(out, &buf, len);
+}
+
+/// Appends `buf[..n]`: the whole buffer is copied (a fixed size the compiler copies
+/// inline, where a short copy of a varying length is a `memcpy` call) and the rest cut.
+fn put_head(out: &mut Vec<u8>, buf: &[u8; BUF], n: usize) {
+    let at = out.len();
+    out.extend_from_slice(buf);
+    out.truncate(at + n);
+}
+
+/// Room for a sign, 20 digits, a point and 6 decimals.
+const BUF: usize = 32;
+
+/// Writes the form of `x` at the start of `buf` (ASCII only) and returns its length;
+/// `None` where the standard formatter must decide (an exact tie, `|x| ≥ 10¹²`).
+fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
+    // An integer (what `x.fract() == 0.0` asks, without its `trunc` call): below 1e15
+    // the cast truncates exactly.
+    if x.abs() < 1e15 && (x as i64) as f64 == x {
+        return Some(int_digits(buf, x as i64));
+    }
+    if !x.is_finite() {
+        buf[0] = b'0';
+        return Some(1);
+    }
+    let q = micros(x)?;
+    Some(micros_digits(buf, x < 0.0, q))
+}
+
+/// The definition of the form through the standard formatter (the slow, general path).
+pub fn push_num_std(out: &mut String, x: f64) {
+    use std::fmt::Write;
+    if x.is_finite() && x.fract() == 0.0 && x.abs() < 1e15 {
+        let _ = write!(out, "{}", x as i64);
+        return;
+    }
+    if !x.is_finite() {
+        out.push('0');
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{x:.6}");
+    while out.ends_with('0') {
+        out.pop();
+    }
+    if out.ends_with('.') {
+        out.pop();
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
+}
+
+/// `|x| × 10⁶` rounded to the nearest integer, computed exactly from the binary value (the
+/// standard formatter rounds the exact value too). `None` where this does not decide the
+/// digits: an exact tie (the standard formatter's tie rule then applies), or `|x| ≥ 10¹²`.
+fn micros(x: f64) -> Option<u64> {
+    let a = x.abs();
+    if a >= 1e12 {
+        return None;
+    }
+    // Below 5e-7 every value rounds to 0 (and 5e-7 itself is not a binary fraction).
+    if a < 1e-7 {
+        return Some(0);
+    }
+    let bits = a.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    // a = m / 2^k exactly, with m < 2^53.
+    let m = (bits & ((1u64 << 52) - 1)) | (1u64 << 52);
+    let k = 1075 - exp;
+    // k ≤ 0 would be an integer (handled by the caller); a ≥ 1e-7 keeps k ≤ 76.
+    if !(1..=100).contains(&k) {
+        return None;
+    }
+    // m × 10⁶ < 2^73: exact in u128; the quotient is below 10¹⁸ (a < 10¹²).
+    let p = u128::from(m) * 1_000_000;
+    let q = p >> k;
+    let rem = p - (q << k);
+    let half = 1u128 << (k - 1);
+    let q = u64::try_from(q).ok()?;
+    match rem.cmp(&half) {
+        std::cmp::Ordering::Less => Some(q),
+        std::cmp::Ordering::Greater => Some(q + 1),
+        std::cmp::Ordering::Equal => None,
+    }
+}
+
+/// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign;
+/// returns the length.
+fn micros_digits(buf: &mut [u8; BUF], neg: bool, q: u64) -> usize {
+    if q == 0 {
+        buf[0] = b'0';
+        return 1;
+    }
+    let mut i = 0;
+    if neg {
+        buf[0] = b'-';
+        i = 1;
+    }
+    let (int, frac) = (q / 1_000_000, (q % 1_000_000) as u32);
+    i = put_digits(buf, i, int);
+    if frac == 0 {
+        return i;
+    }
+    // The point and six digits, then the trailing zeros dropped (there is a non-zero one).
+    buf[i] = b'.';
+    let (hi, lo) = (frac / 10_000, frac % 10_000);
+    buf[i + 1..i + 3].copy_from_slice(pair(hi));
+    buf[i + 3..i + 5].copy_from_slice(pair(lo / 100));
+    buf[i + 5..i + 7].copy_from_slice(pair(lo % 100));
+    let mut end = i + 7;
+    while buf[end - 1] == b'0' {
+        end -= 1;
+    }
+    end
+}
+
+/// Writes `n` in decimal at the start of `buf`; returns the length.
+fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
+    if n < 0 {
+        buf[0] = b'-';
+        put_digits(buf, 1, n.unsigned_abs())
+    } else {
+        put_digits(buf, 0, n.unsigned_abs())
+    }
+}
+
+/// "00" to "99".
+const PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// The two digits of `n` < 100.
+fn pair(n: u32) -> &'static [u8] {
+    let i = (n as usize % 100) * 2;
+    &PAIRS[i..i + 2]
+}
+
+/// Writes the digits of `n` from `buf[at]` on, two at a time from the last; returns
+/// where they end. [`BUF`] leaves room for the 20 digits of any u64 after a sign.
+fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
+    let mut digits = 1;
+    let mut p = 10u64;
+    while digits < 20 && n >= p {
+        digits += 1;
+        p = p.wrapping_mul(10);
+    }
+    let end = at + digits;
+    let mut i = end;
+    while n >= 100 {
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(pair((n % 100) as u32));
+        n /= 100;
+    }
+    if n >= 10 {
+        i -= 2;
+        buf[i..i + 2].copy_from_slice(pair(n as u32));
+    } else {
+        i -= 1;
+        buf[i] = b'0' + n as u8;
+    }
+    end
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// Asserts the fast and the standard path agree on `x`.
+    pub fn same(x: f64, a: &mut String, b: &mut String) {
+        a.clear();
+        b.clear();
+        push_num(a, x);
+        push_num_std(b, x);
+        assert_eq!(a, b, "x = {x:e} (bits {:#x})", x.to_bits());
+        let mut v = Vec::new();
+        put_num(&mut v, x);
+        assert_eq!(v, b.as_bytes(), "x = {x:e} (bits {:#x})", x.to_bits());
+    }
+
+    /// A small deterministic generator (SplitMix64).
+    pub struct Rng(pub u64);
+    impl Rng {
+        pub fn next(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        }
+        pub fn unit(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// `n` values of each kind the evaluator produces, and the edges of the fast path.
+    pub fn check_many(n: usize, seed: u64) {
+        let (mut a, mut b) = (String::new(), String::new());
+        let mut r = Rng(seed);
+        for _ in 0..n {
+            let u = r.unit();
+            let sign = if r.next() & 1 == 0 { 1.0 } else { -1.0 };
+            let mag = 10f64.powi((r.next() % 17) as i32 - 9);
+            // Random magnitudes, 1e-9 .. 1e8.
+            same(sign * u * mag, &mut a, &mut b);
+            // Positions as the machine rounds them (0.001 mm, 0.0001 inch, then × 25.4).
+            let mm = (sign * u * 2000.0 * 1000.0).round() / 1000.0;
+            same(mm, &mut a, &mut b);
+            let inch = (sign * u * 100.0 * 10000.0).round() / 10000.0;
+            same(inch * 25.4, &mut a, &mut b);
+            // The trace's `clean` (rounded to 1e-9), and sums as incremental moves make.
+            same((sign * u * 5000.0 * 1e9).round() / 1e9, &mut a, &mut b);
+            same(mm + inch * 0.1 + 0.1 + 0.2, &mut a, &mut b);
+            // Near ties of the 6th decimal: k + 0.5 millionths, and the floats around it.
+            let t = (sign * ((r.next() % 2_000_000_000) as f64 + 0.5)) / 1e6;
+            same(t, &mut a, &mut b);
+            same(f64::from_bits(t.to_bits() + 1), &mut a, &mut b);
+            same(f64::from_bits(t.to_bits() - 1), &mut a, &mut b);
+            // Any bit pattern at all (NaN, infinities, subnormals, huge).
+            same(f64::from_bits(r.next()), &mut a, &mut b);
+        }
+    }
+
+    #[test]
+    fn edges() {
+        let (mut a, mut b) = (String::new(), String::new());
+        let xs = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1e-7,
+            -1e-7,
+            4.999999e-7,
+            5e-7,
+            -5e-7,
+            5.000001e-7,
+            0.0000015,
+            0.0078125,
+            -0.0078125,
+            1.0000005,
+            0.1 + 0.2,
+            62.831853071,
+            999_999.999_999_5,
+            1e12 - 0.5,
+            1e12 + 0.5,
+            1e15 - 0.5,
+            1e15,
+            -1e15,
+            1e300,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for x in xs {
+            same(x, &mut a, &mut b);
+        }
+        for n in [0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)] {
+            let mut v = Vec::new();
+            put_int(&mut v, n);
+            assert_eq!(v, n.to_string().as_bytes());
+        }
+        // Every exact tie with few fraction bits (m / 2^k for small k).
+        for k in 1..=30 {
+            for m in 0..2000u64 {
+                let x = m as f64 / (1u64 << k) as f64;
+                same(x, &mut a, &mut b);
+                same(-x, &mut a, &mut b);
+                same(x + 123.0, &mut a, &mut b);
+            }
+        }
+        // Every multiple of 0.001 in ±100 (all metric positions of a small part).
+        for i in -100_000..=100_000 {
+            same(i as f64 / 1000.0, &mut a, &mut b);
+            same(i as f64 * 0.001, &mut a, &mut b);
+        }
+    }
+
+    #[test]
+    fn agrees_with_the_standard_formatter() {
+        check_many(300_000, 7);
+    }
+
+    /// The long run: `cargo test --release numfmt -- --ignored` (about 100 M values).
+    #[test]
+    #[ignore]
+    fn agrees_with_the_standard_formatter_long() {
+        check_many(10_000_000, 11);
+    }
+}

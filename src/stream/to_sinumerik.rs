@@ -1,0 +1,562 @@
+//! Streaming translation of straight-line FANUC programs to Sinumerik, and the streamed
+//! check both directions use: the FANUC file is read once; every [`CHUNK_STMTS`] top-level
+//! statements go through the ordinary FANUC → Sinumerik passes and writer and are written at
+//! once, so neither the source nor the output is ever held whole. Verification reads the
+//! output back (streamed) and runs both programs streamed side by side ([`compare`]).
+//!
+//! Only programs whose translation is local to each block stream ([`straight`]): one
+//! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
+//! need no other block, program ends (M30, M2), comments, N numbers and skips. No macro
+//! statements, variables (so nothing vacant), jumps, loops, calls (M98, G65, G66), G10.
+//! The one state the passes carry from block to block, the arc mode that makes `R` a
+//! radius (`CR=`), is carried over chunk boundaries by a stand-in `G2` block put in front
+//! of a chunk and taken out after lowering. Anything else (or any error, or a warning other
+//! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
+
+use super::lines::{Lines, NotStreamable};
+use super::translate::Fallback;
+use super::{Index, ProgressFn};
+use crate::check::{self, CheckReport, Runner, Verdict};
+use crate::diag::Diagnostic;
+use crate::dialect::sinumerik::emit::{emit_program, Frame};
+use crate::dialect::{Dialect, ParseOptions};
+use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
+use crate::ir::{
+    Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
+};
+use crate::passes::to_sinumerik::{self as passes, g_codes, Ctx, Options, ProgPlan};
+use crate::read::LineEnding;
+use crate::span::{FileId, SourceDb, SourceFile, Span};
+use crate::translate_sinumerik::{self as ts, SymbolMap};
+use std::collections::BTreeMap;
+use std::io::{Read, Write};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Statements translated at a time.
+pub const CHUNK_STMTS: usize = 4096;
+
+/// The one warning a streamed translation keeps (and reports): a tool length G code
+/// dropped (`G43 H1`, `G49`), common in CAM output. Other diagnostics fall back.
+pub const KEPT_WARNING: &str = "NC368";
+
+/// G codes (×10) whose translation needs nothing but their own block: motion, planes,
+/// units, cutter radius and tool length compensation, work offsets, exact stop, path mode,
+/// cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own block).
+const PLAIN_G: [u32; 30] = [
+    0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610,
+    640, 800, 900, 910, 940, 950,
+];
+
+/// A stand-in block's span: no statement read from a file has it.
+const STAND_IN: Span = Span::new(u32::MAX, u32::MAX);
+
+/// A FANUC block whose translation does not depend on any other block (see the module
+/// documentation); `Err` names what it has instead, for the "read whole" note.
+pub fn straight(s: &Stmt) -> Result<(), String> {
+    let StmtKind::Block(b) = &s.kind else { return Err("a loop".into()) };
+    if b.meta.label.is_some() {
+        return Err("a label".into());
+    }
+    for it in &b.items {
+        let w = match &it.kind {
+            ItemKind::Word(w) => w,
+            ItemKind::End { .. } => continue,
+            ItemKind::Call(_) => return Err("a call".into()),
+            ItemKind::Return { .. } => return Err("M99".into()),
+            ItemKind::Goto(_) | ItemKind::IfThen { .. } => return Err("a jump or an IF".into()),
+            ItemKind::Assign { .. } => return Err("a macro statement".into()),
+            _ => return Err("a block that is not plain words".into()),
+        };
+        let Addr::Letter(letter) = w.addr else { return Err(format!("the address {}", w.addr.as_str())) };
+        let value = match &w.value {
+            WordValue::Expr(e) => match &e.kind {
+                ExprKind::Num(n) => Some(n.value),
+                ExprKind::Unary(UnOp::Neg, x) => match &x.kind {
+                    ExprKind::Num(n) => Some(-n.value),
+                    _ => None,
+                },
+                _ => None,
+            },
+            _ => None,
+        };
+        let Some(v) = value else { return Err(format!("a computed {} word", letter as char)) };
+        if letter == b'G' {
+            let g10 = (v * 10.0).round();
+            if !(0.0..=9990.0).contains(&g10) || (g10 - v * 10.0).abs() > 1e-9 || !PLAIN_G.contains(&(g10 as u32)) {
+                return Err(format!("G{v}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A finished streamed translation.
+pub struct Streamed {
+    /// The source's first-scan index.
+    pub index: Index,
+    pub blocks: u64,
+    /// Kept warnings ([`KEPT_WARNING`]); spans into the source (file 0).
+    pub diags: Vec<Diagnostic>,
+    /// The written file's name (`NAME.MPF`) and program name.
+    pub file_name: String,
+    pub program: String,
+    /// The FANUC program number it came from.
+    pub fanuc_number: Option<u32>,
+    /// The symbol map of the translation (what the whole-file translator reports).
+    pub symbols: SymbolMap,
+}
+
+/// The program head (`O1234 (TITLE)`) from the first lines of the file, parsed by the
+/// FANUC reader: the chunks are translated as parts of a program of this name. The full
+/// scan's head is compared with it at the end.
+fn head(path: &Path, popts: &ParseOptions) -> Result<(Option<ProgName>, Option<BlockMeta>), Fallback> {
+    let (input, _) = super::open(path).map_err(Fallback::NotStreamable)?;
+    let mut lines = Lines::new(input).map_err(Fallback::NotStreamable)?;
+    let mut text = String::new();
+    for _ in 0..10_000 {
+        let Some(l) = lines.next_line().map_err(Fallback::NotStreamable)? else { break };
+        let t = l.text.trim();
+        // Keep the offsets: the prefix is the file's text up to here.
+        while (text.len() as u64) < l.start {
+            text.push('\n');
+        }
+        text.push_str(l.text);
+        if !(t.is_empty() || t.bytes().all(|b| b == b'%') || t.starts_with('(') || t.starts_with(';')) {
+            break;
+        }
+    }
+    let parsed = crate::dialect::fanuc::parse(&SourceFile::new("head", text), 0, popts);
+    if crate::diag::has_errors(&parsed.diags) {
+        return Err(Fallback::Diagnostics);
+    }
+    Ok(parsed.unit.programs.first().map_or((None, None), |p| (p.name.clone(), p.head.clone())))
+}
+
+/// The line ending used first in the file (LF when none), as `read::detect_line_ending`
+/// finds it in the whole text.
+pub fn first_line_ending(path: &Path) -> Result<LineEnding, NotStreamable> {
+    let mut f = std::fs::File::open(path)?;
+    let mut buf = vec![0u8; 64 * 1024];
+    let mut seen = 0usize;
+    let mut cr = false;
+    loop {
+        let n = f.read(&mut buf)?;
+        if n == 0 {
+            return Ok(if cr { LineEnding::Cr } else { LineEnding::Lf });
+        }
+        for &b in &buf[..n] {
+            if cr {
+                return Ok(if b == b'\n' { LineEnding::CrLf } else { LineEnding::Cr });
+            }
+            match b {
+                b'\n' => return Ok(LineEnding::Lf),
+                b'\r' => cr = true,
+                _ => {}
+            }
+        }
+        seen += n;
+        if seen > super::lines::MAX_LINE {
+            return Err(NotStreamable::LongLine { line: 1 });
+        }
+    }
+}
+
+/// Whether the file starts with a UTF-8 byte-order mark (the output then gets one too).
+pub fn has_bom(path: &Path) -> Result<bool, NotStreamable> {
+    let mut f = std::fs::File::open(path)?;
+    let mut b = [0u8; 3];
+    let mut n = 0;
+    while n < 3 {
+        let k = f.read(&mut b[n..])?;
+        if k == 0 {
+            break;
+        }
+        n += k;
+    }
+    Ok(n == 3 && b == *b"\xEF\xBB\xBF")
+}
+
+/// What the passes decide for the whole program before they rewrite its body: for a
+/// straight-line program it does not depend on the blocks (no variables, no calls).
+struct Planned {
+    plan: ProgPlan,
+    commons: BTreeMap<u32, u32>,
+    common_flags: BTreeMap<u32, u32>,
+}
+
+impl Planned {
+    fn of(prog: &Program, opts: &Options) -> Option<Planned> {
+        let mut l = passes::lower(&[(0, prog)], opts);
+        let (plan, _) = l.programs.pop()?;
+        Some(Planned { plan, commons: l.commons, common_flags: l.common_flags })
+    }
+
+    fn same(&self, other: &Planned) -> bool {
+        format!("{:?}", (&self.plan, &self.commons, &self.common_flags))
+            == format!("{:?}", (&other.plan, &other.commons, &other.common_flags))
+    }
+}
+
+struct State<'a> {
+    opts: &'a Options,
+    planned: Option<Planned>,
+    eol: LineEnding,
+    name: Option<ProgName>,
+    head: Option<BlockMeta>,
+    buf: Vec<Stmt>,
+    /// Whether a block of the buffer does more than carry comments: the first chunk is
+    /// written only then, as the translator takes `nctrans: set` comments off the top of
+    /// a program up to its first such block.
+    buf_real: bool,
+    first: bool,
+    /// The arc mode (G2/G3 last) before the first buffered statement, and after the last.
+    arc_at_start: bool,
+    arc: bool,
+    out: &'a mut dyn Write,
+    stop: Option<Fallback>,
+    io: Option<std::io::Error>,
+    diags: Vec<Diagnostic>,
+    file_name: String,
+    program: String,
+    fanuc_number: Option<u32>,
+    symbols: SymbolMap,
+}
+
+impl State<'_> {
+    fn program(&self, body: Vec<Stmt>) -> Program {
+        Program {
+            name: self.name.clone(),
+            head: self.head.clone(),
+            params: vec![],
+            save: false,
+            body,
+            span: Span::default(),
+        }
+    }
+
+    fn keep(&mut self, diags: Vec<Diagnostic>) -> bool {
+        if diags.iter().any(|d| d.is_error() || d.code != KEPT_WARNING) {
+            self.stop = Some(Fallback::Diagnostics);
+            return false;
+        }
+        self.diags.extend(diags);
+        true
+    }
+
+    fn write(&mut self, text: &str) {
+        let text = match self.eol {
+            LineEnding::Lf => std::borrow::Cow::Borrowed(text),
+            other => std::borrow::Cow::Owned(text.replace('\n', other.as_str())),
+        };
+        if let Err(e) = self.out.write_all(text.as_bytes()) {
+            self.io = Some(e);
+        }
+    }
+
+    /// The first chunk goes through the whole translator: it writes the header lines
+    /// (program name, `nctrans: set` inputs in Siemens names) exactly as for the file.
+    fn flush_first(&mut self, body: Vec<Stmt>) {
+        // The later chunks are lowered with the plan of an empty program of this name: the
+        // same as the first chunk's, or the program is not one a stream can translate.
+        let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs: vec![self.program(body)] };
+        let planned = Planned::of(&self.program(vec![]), self.opts);
+        let first = unit.programs.first().and_then(|p| Planned::of(p, self.opts));
+        match (planned, first) {
+            (Some(a), Some(b)) if a.same(&b) => self.planned = Some(a),
+            _ => {
+                self.stop = Some(Fallback::NotStraight("a plan that depends on its blocks".into()));
+                return;
+            }
+        }
+        let tr = ts::translate(&[&unit], self.opts, LineEnding::Lf);
+        if !self.keep(tr.diags) {
+            return;
+        }
+        let [f] = tr.files.as_slice() else {
+            self.stop = Some(Fallback::NotStraight("more than one program".into()));
+            return;
+        };
+        self.file_name = f.name.clone();
+        self.program = f.program.clone();
+        self.fanuc_number = f.fanuc_number;
+        self.symbols = tr.symbols;
+        let text = f.text.clone();
+        self.write(&text);
+    }
+
+    /// Later chunks: the passes on the chunk alone (after a stand-in G2 when an arc mode
+    /// runs into it), then the writer without the frame (header, DEF lines).
+    fn flush_rest(&mut self, mut body: Vec<Stmt>) {
+        let arc = self.arc_at_start;
+        if arc {
+            let word = Word {
+                addr: Addr::Letter(b'G'),
+                value: WordValue::Expr(crate::ir::Expr::num(2.0, false, STAND_IN)),
+                span: STAND_IN,
+            };
+            let meta = BlockMeta { span: STAND_IN, ..BlockMeta::default() };
+            let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
+            body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
+        }
+        let Some(pl) = &self.planned else {
+            self.stop = Some(Fallback::NotStraight("no plan".into()));
+            return;
+        };
+        if !pl.plan.defs.is_empty() || !pl.plan.params.is_empty() {
+            self.stop = Some(Fallback::NotStraight("variables".into()));
+            return;
+        }
+        let mut ctx = Ctx {
+            opts: self.opts,
+            progs: vec![pl.plan.clone()],
+            commons: pl.commons.clone(),
+            common_flags: pl.common_flags.clone(),
+            diags: Vec::new(),
+            cur: 0,
+            guard_ok: false,
+        };
+        // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
+        // without variables) and with the plan made once.
+        let body = passes::lower_body(&mut ctx, body);
+        if !self.keep(std::mem::take(&mut ctx.diags)) {
+            return;
+        }
+        // Only the body is written (no PROC line, header or DEF lines).
+        let mut p = Program { name: None, head: None, params: vec![], save: false, body, span: Span::default() };
+        if arc {
+            let before = p.body.len();
+            p.body.retain(|s| s.span != STAND_IN);
+            if before != p.body.len() + 1 {
+                self.stop = Some(Fallback::NotStraight("an arc mode the passes change".into()));
+                return;
+            }
+        }
+        let e = emit_program(&p, &Frame { header: &[], defs: &[], proc_line: false });
+        if !e.problems.is_empty() {
+            self.stop = Some(Fallback::Diagnostics);
+            return;
+        }
+        self.write(&e.text);
+    }
+
+    fn flush(&mut self) {
+        if self.buf.is_empty() || self.stop.is_some() || self.io.is_some() {
+            return;
+        }
+        let body = std::mem::take(&mut self.buf);
+        if self.first {
+            self.first = false;
+            self.flush_first(body);
+        } else {
+            self.flush_rest(body);
+        }
+        self.arc_at_start = self.arc;
+        self.buf_real = false;
+    }
+
+    fn push(&mut self, s: &Stmt) {
+        if let StmtKind::Block(b) = &s.kind {
+            // The arc mode as `words::lower` follows it.
+            for g in g_codes(&b.items) {
+                match g {
+                    20 | 30 => self.arc = true,
+                    0 | 10 => self.arc = false,
+                    _ => {}
+                }
+            }
+            self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+        }
+        self.buf.push(s.clone());
+        if self.buf.len() >= CHUNK_STMTS && (self.buf_real || !self.first) {
+            self.flush();
+        } else if self.first && self.buf.len() >= 64 * CHUNK_STMTS {
+            // A quarter million comment lines before the first block: read whole.
+            self.stop = Some(Fallback::NotStraight("a long run of comments at the top".into()));
+        }
+    }
+}
+
+/// Translates `path` (FANUC) to Sinumerik into `out`, reading it once. On `Err` nothing
+/// useful was written (the caller discards `out` and translates whole).
+pub fn to_sinumerik(
+    path: &Path,
+    opts: &Options,
+    eol: LineEnding,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Streamed, Fallback> {
+    let popts = ParseOptions { semantics: opts.source.clone() };
+    let (name, head) = head(path, &popts)?;
+    let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
+    let mut st = State {
+        opts,
+        planned: None,
+        eol,
+        name,
+        head,
+        buf: Vec::new(),
+        buf_real: false,
+        first: true,
+        arc_at_start: false,
+        arc: false,
+        out,
+        stop: None,
+        io: None,
+        diags: Vec::new(),
+        file_name: String::new(),
+        program: String::new(),
+        fanuc_number: None,
+        symbols: SymbolMap::default(),
+    };
+    if bom {
+        if let Err(e) = st.out.write_all(b"\xEF\xBB\xBF") {
+            return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
+        }
+    }
+    let mut blocks = 0u64;
+    let r = super::scan_path(
+        path,
+        0,
+        Dialect::Fanuc,
+        &popts,
+        &mut |prog, s| {
+            if st.stop.is_some() {
+                return;
+            }
+            if prog != 0 {
+                st.stop = Some(Fallback::NotStraight("more than one program".into()));
+                return;
+            }
+            if let Err(why) = straight(s) {
+                st.stop = Some(Fallback::NotStraight(why));
+                return;
+            }
+            blocks += 1;
+            st.push(s);
+        },
+        progress,
+    );
+    let index = r.map_err(Fallback::NotStreamable)?;
+    if let Some(f) = st.stop.take() {
+        return Err(f);
+    }
+    if !index.diags.is_empty() {
+        return Err(Fallback::Diagnostics);
+    }
+    let [p] = index.programs.as_slice() else {
+        return Err(Fallback::NotStraight("more than one program".into()));
+    };
+    if p.program.name != st.name || p.program.head.is_some() != st.head.is_some() {
+        return Err(Fallback::NotStraight("a program head after other lines".into()));
+    }
+    // `header_inputs` reads a whole text by LF lines, an index's header by any line end.
+    let cr = eol == LineEnding::Cr || first_line_ending(path).map_err(Fallback::NotStreamable)? == LineEnding::Cr;
+    if cr && index.header.contains("nctrans:") {
+        return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
+    }
+    if st.first {
+        // A short program (or one without blocks): all of it is the first chunk.
+        let body = std::mem::take(&mut st.buf);
+        st.first = false;
+        st.flush_first(body);
+    } else {
+        st.flush();
+    }
+    if let Some(f) = st.stop.take() {
+        return Err(f);
+    }
+    if st.io.is_none() {
+        if let Err(e) = st.out.flush() {
+            st.io = Some(e);
+        }
+    }
+    if let Some(e) = st.io {
+        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
+    }
+    Ok(Streamed {
+        index,
+        blocks,
+        diags: st.diags,
+        file_name: st.file_name,
+        program: st.program,
+        fanuc_number: st.fanuc_number,
+        symbols: st.symbols,
+    })
+}
+
+/// Why a written translation cannot be compared with its source.
+pub enum ReadBack {
+    /// The file cannot be read back as a stream (I/O, not UTF-8, …).
+    Unreadable(String),
+    /// The output has diagnostics in its own dialect (a bug in the writer).
+    Diags(Vec<Diagnostic>),
+}
+
+/// Reads a written translation back (streamed) as `dialect`, as file `file` of the check.
+pub fn read_back(
+    output: &Path,
+    file: FileId,
+    dialect: Dialect,
+    popts: &ParseOptions,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, ReadBack> {
+    let ix = super::scan_path(output, file, dialect, popts, &mut |_, _| {}, progress)
+        .map_err(|e| ReadBack::Unreadable(e.to_string()))?;
+    if !ix.diags.is_empty() {
+        return Err(ReadBack::Diags(ix.diags));
+    }
+    Ok(ix)
+}
+
+/// One program of a streamed check.
+pub struct StreamSide {
+    pub index: Index,
+    /// The name diagnostics show for the file.
+    pub name: String,
+    pub callees: Box<dyn CalleeSource + Send>,
+    pub run: RunOptions,
+}
+
+impl StreamSide {
+    fn runner(self) -> Runner {
+        super::runner(Arc::new(self.index), self.callees, self.run)
+    }
+}
+
+/// Runs two streamed programs side by side and compares their traces as they come.
+///
+/// The check runs on a thread of its own, so its two runs are two threads whatever the
+/// caller's mode: a batch worker's checks run in its one thread with the second trace
+/// buffered (`check::in_one_thread`), which for a program of millions of blocks is
+/// memory that grows with its length. A streamed check keeps both traces in step instead.
+pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
+    let mut db = SourceDb::new();
+    // File ids are the indexes' own: the source 0, the translation 1.
+    let (first, second) = if a.index.file <= b.index.file { (&a, &b) } else { (&b, &a) };
+    while db.len() < first.index.file {
+        db.add("", String::new());
+    }
+    db.add(first.name.clone(), String::new());
+    while db.len() < second.index.file {
+        db.add("", String::new());
+    }
+    db.add(second.name.clone(), String::new());
+    let (ra, rb) = (a.runner(), b.runner());
+    let fail_db = db.clone();
+    let joined = std::thread::scope(|s| s.spawn(|| check::check_runners(&db, ra, rb)).join());
+    joined.unwrap_or_else(|_| {
+        let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
+        CheckReport {
+            verdict: Verdict::Failed,
+            db: fail_db,
+            diags: vec![Diagnostic::error(
+                "NC499",
+                "the streamed check stopped unexpectedly (please report this program)",
+            )],
+            diff: String::new(),
+            outcome_a: none(),
+            outcome_b: none(),
+        }
+    })
+}
