@@ -132,7 +132,18 @@ fn read(norm: &Normalised<'_>, whole: Span, keep: bool) -> Option<(BlockMeta, Ve
             let span = norm.span(start, j);
             let vspan = norm.span(start + 1, j);
             let letter = c.to_ascii_uppercase();
-            items.push(Item { kind: word_item(letter, &text[start + 1..j], value, point, span, vspan), span });
+            // `word_item` gives a plain word for every letter but L (left to the grammar
+            // above) and M (M17, M2, M30 mean more); build those directly.
+            let kind = if letter == b'M' {
+                word_item(letter, &text[start + 1..j], value, point, span, vspan)
+            } else {
+                ItemKind::Word(Word {
+                    addr: Addr::Letter(letter),
+                    value: WordValue::Expr(Expr::num(value, point, vspan)),
+                    span,
+                })
+            };
+            items.push(Item { kind, span });
         }
         i = j;
     }
