@@ -109,7 +109,7 @@ impl Pager {
             *slot = Some(Lines::new(Input::File(f)).map_err(|e| self.err(e))?);
         }
         let Some(lines) = slot.as_mut() else { return Err(self.err("no reader")) };
-        let mut stmts = Vec::new();
+        let mut stmts = Vec::with_capacity(chunk.ops);
         let mut starts = Vec::with_capacity(CHUNK_OPS);
         super::reread(lines, &self.ix, chunk, &mut |s| stmts.push(s), &mut |lo, line| starts.push((lo as u32, line)))
             .map_err(|e: NotStreamable| self.err(e))?;

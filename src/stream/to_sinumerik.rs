@@ -501,7 +501,7 @@ pub fn read_back(
     popts: &ParseOptions,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, ReadBack> {
-    let ix = super::scan_path(output, file, dialect, popts, &mut |_, _| {}, progress)
+    let ix = super::scan_index_path(output, file, dialect, popts, progress)
         .map_err(|e| ReadBack::Unreadable(e.to_string()))?;
     if !ix.diags.is_empty() {
         return Err(ReadBack::Diags(ix.diags));

@@ -269,7 +269,7 @@ pub struct Verified {
 /// programs run streamed on two threads and their traces are compared as they come.
 pub fn verify(source: Index, output: &Path, max_steps: u64, progress: Option<ProgressFn<'_>>) -> Verified {
     let popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    let out_ix = match super::scan_path(output, 1, Dialect::Fanuc, &popts, &mut |_, _| {}, progress) {
+    let out_ix = match super::scan_index_path(output, 1, Dialect::Fanuc, &popts, progress) {
         Ok(ix) => ix,
         Err(e) => {
             return Verified {
