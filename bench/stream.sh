@@ -34,6 +34,8 @@ PY
 if [ -z "${SKIP_DIFF:-}" ]; then
   echo "== differential fast-path test, 1 M generated blocks per dialect (release)"
   cargo test --release --quiet --test fast_path_diff -- --ignored 2>&1 | grep -E "test result|panicked" || true
+  echo "== differential streamed-translation test, 1 M generated blocks (release)"
+  cargo test --release --quiet --test stream_translate_fast -- --ignored 2>&1 | grep -E "test result|panicked" || true
 fi
 
 for n in $SIZES; do
