@@ -16,6 +16,10 @@ pub mod passes;
 pub mod read;
 pub mod span;
 pub mod stream;
+/// The deterministic generator the randomised tests share (unit and integration tests).
+#[cfg(test)]
+#[path = "../tests/support/rng.rs"]
+mod test_rng;
 pub mod translate;
 pub mod translate_sinumerik;
 pub mod verify_sinumerik;

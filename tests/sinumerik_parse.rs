@@ -35,19 +35,9 @@ fn value(e: &str) -> String {
     v[..v.rfind(" @").unwrap_or(v.len())].to_string()
 }
 
-/// A tiny deterministic generator (xorshift) for generated blocks.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn pick<'a>(&mut self, v: &[&'a str]) -> &'a str {
-        v[(self.next() % v.len() as u64) as usize]
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 fn number(r: &mut Rng) -> String {
     let sign = r.pick(&["", "-", "+", ""]);

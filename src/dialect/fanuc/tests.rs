@@ -4,21 +4,7 @@
 use super::fast::parse_fast_for_test;
 use super::parse::parse_grammar_for_test;
 
-/// A small deterministic generator (xorshift), so the test needs no extra crate.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+use crate::test_rng::Rng;
 
 fn number(r: &mut Rng) -> String {
     let int = r.below(100_000);

@@ -364,16 +364,7 @@ mod tests {
         (String::from_utf8(out).unwrap_or_default(), exact)
     }
 
-    /// A deterministic generator (xorshift), so a failure names a reproducible value.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-    }
+    use crate::test_rng::Rng;
 
     #[test]
     fn numbers_are_written_as_fmt_num_writes_them() {
