@@ -208,6 +208,56 @@ impl Builder {
     }
 }
 
+/// The ops of one chunk of a streamed program, built statement by statement as the chunk
+/// is re-read (see [`Code::flatten_chunk`]); jump targets are absolute op indices.
+pub struct ChunkOps(Builder);
+
+impl ChunkOps {
+    /// Ops from index `base` on, room for `cap`.
+    pub fn new(file: FileId, base: usize, cap: usize) -> ChunkOps {
+        ChunkOps(Builder { base, file, ops: Vec::with_capacity(cap), marks: Vec::new(), labels: HashMap::new() })
+    }
+
+    /// The next top-level statement.
+    pub fn stmt(&mut self, s: Stmt) -> Result<(), Diagnostic> {
+        match s.kind {
+            // Plain blocks (nearly all of a CAM program) move into their op. Marks are
+            // not kept: a streamed program's labels and numbers are in its index.
+            StmtKind::Block(blk) => {
+                self.0.ops.push(match LitBlock::of(&blk) {
+                    Some(l) => Op::Lit(l),
+                    None => Op::Block(blk),
+                });
+                Ok(())
+            }
+            kind => self.0.stmt(&Stmt { kind, span: s.span }, 0),
+        }
+    }
+
+    /// The next block, to be read straight into its compact form in place (what
+    /// [`ChunkOps::stmt`] makes of a plain block whose [`LitBlock::of`] is the block
+    /// filled in); `None` when the compact form is off. Undo with [`ChunkOps::unlit`] when
+    /// the line is not such a block.
+    pub fn lit(&mut self) -> Option<&mut LitBlock> {
+        self.0.ops.push(Op::Lit(LitBlock::new(Span::default(), None)?));
+        match self.0.ops.last_mut() {
+            Some(Op::Lit(l)) => Some(l),
+            _ => None,
+        }
+    }
+
+    /// Drops the block [`ChunkOps::lit`] gave last.
+    pub fn unlit(&mut self) {
+        if let Some(Op::Lit(_)) = self.0.ops.last() {
+            self.0.ops.pop();
+        }
+    }
+
+    pub fn finish(self) -> Vec<Op> {
+        self.0.ops
+    }
+}
+
 fn set_target(op: Option<&mut Op>, to: usize) {
     if let Some(Op::Test { target, .. } | Op::Jump { target, .. } | Op::Until { target, .. }) = op {
         *target = to;
@@ -234,20 +284,11 @@ impl Code {
     /// Flattens the top-level statements of one chunk of a streamed program whose first op
     /// has index `base` (jump targets are absolute op indices).
     pub fn flatten_chunk(file: FileId, base: usize, body: Vec<Stmt>) -> Result<Vec<Op>, Diagnostic> {
-        let mut b =
-            Builder { base, file, ops: Vec::with_capacity(body.len()), marks: Vec::new(), labels: HashMap::new() };
+        let mut b = ChunkOps::new(file, base, body.len());
         for s in body {
-            match s.kind {
-                // Plain blocks (nearly all of a CAM program) move into their op. Marks are
-                // not kept: a streamed program's labels and numbers are in its index.
-                StmtKind::Block(blk) => b.ops.push(match LitBlock::of(&blk) {
-                    Some(l) => Op::Lit(l),
-                    None => Op::Block(blk),
-                }),
-                kind => b.stmt(&Stmt { kind, span: s.span }, 0)?,
-            }
+            b.stmt(s)?;
         }
-        Ok(b.ops)
+        Ok(b.finish())
     }
 
     /// A streamed program: ops are read chunk by chunk through `pager` (see `crate::stream`).

@@ -75,6 +75,26 @@ impl LitBlock {
         })
     }
 
+    /// An empty block to fill with [`LitBlock::push`] from words read straight from the
+    /// text (a streamed chunk's re-read, see `crate::stream::reread`); `None` when the
+    /// compact form is off (tests), so such blocks stay IR there too.
+    pub fn new(span: Span, number: Option<u32>) -> Option<LitBlock> {
+        (!disabled()).then_some(LitBlock { span, number, len: 0, words: [NO_WORD; MAX_WORDS] })
+    }
+
+    /// Adds a plain word (what [`LitBlock::of`] makes of a `Word` with a letter address and
+    /// a number literal `value`, negated when written with `-`); `false` when the block is
+    /// full or `letter` is not upper case (the block then must stay IR).
+    pub fn push(&mut self, letter: u8, value: f64, point: bool, span: Span) -> bool {
+        let Some(slot) = self.words.get_mut(usize::from(self.len)) else { return false };
+        if !letter.is_ascii_uppercase() {
+            return false;
+        }
+        *slot = LitWord { value, span, letter, point, mode: AbsInc::Plain };
+        self.len += 1;
+        true
+    }
+
     pub fn words(&self) -> &[LitWord] {
         &self.words[..usize::from(self.len)]
     }

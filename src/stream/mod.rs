@@ -18,6 +18,7 @@ pub mod translate;
 
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
+use crate::eval::lit::LitBlock;
 use crate::ir::Stmt;
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
@@ -97,6 +98,25 @@ impl Reader<'_> {
         match self {
             Reader::Sin(r) => r.at_top(),
             Reader::Fan(r) => r.at_top(),
+        }
+    }
+
+    /// Re-reading: `raw` straight into the compact op `b` when it is a plain block of
+    /// constant letter words at top level (see `sinumerik::Reader::plain_words`); `false`
+    /// when it must go through [`Reader::line`] (`b` is then to be dropped).
+    fn lit(&mut self, raw: &RawBlock<'_>, b: &mut LitBlock) -> bool {
+        match self {
+            Reader::Sin(r) => {
+                let Some((span, number)) =
+                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                else {
+                    return false;
+                };
+                b.span = span;
+                b.number = number;
+                true
+            }
+            Reader::Fan(_) => false,
         }
     }
 
@@ -355,12 +375,26 @@ fn header_line(text: &str, header: &mut String) -> bool {
     comment
 }
 
-/// Re-reads one chunk: the statements of `chunk`, parsed again from the file.
+/// Where a re-read puts what it reads.
+pub trait RereadSink {
+    /// The next top-level statement.
+    fn stmt(&mut self, s: Stmt);
+    /// A fresh compact block for the next line to be read into in place (`None`: read
+    /// the line as a statement).
+    fn lit(&mut self) -> Option<&mut LitBlock>;
+    /// Drops the block [`RereadSink::lit`] gave last (its line was not such a block).
+    fn unlit(&mut self);
+}
+
+/// Re-reads one chunk: the statements of `chunk`, parsed again from the file. With
+/// `direct`, plain blocks of constant letter words at top level skip the IR and are read
+/// into [`RereadSink::lit`] (the op the statement would flatten to).
 pub fn reread(
     lines: &mut Lines,
     ix: &Index,
     chunk: &Chunk,
-    each: &mut dyn FnMut(Stmt),
+    direct: bool,
+    sink: &mut dyn RereadSink,
     on_line: &mut dyn FnMut(u64, u32),
 ) -> Result<(), NotStreamable> {
     lines.seek(chunk.lo, chunk.line)?;
@@ -375,10 +409,18 @@ pub fn reread(
         }
         on_line(l.start, l.line);
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
+        if direct {
+            if let Some(b) = sink.lit() {
+                if reader.lit(&raw, b) {
+                    continue;
+                }
+                sink.unlit();
+            }
+        }
         reader.line(&raw);
         reader.drain_into(&mut stmts);
         for s in stmts.drain(..) {
-            each(s);
+            sink.stmt(s);
         }
     }
     Ok(())

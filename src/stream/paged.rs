@@ -7,10 +7,12 @@
 use super::index::CHUNK_OPS;
 use super::lines::{Input, Lines, NotStreamable};
 use super::Index;
+use super::RereadSink;
 use crate::diag::Diagnostic;
-use crate::eval::flow::{Code, Op};
-use crate::ir::Search;
-use std::cell::RefCell;
+use crate::eval::flow::{ChunkOps, Op};
+use crate::eval::lit::LitBlock;
+use crate::ir::{Search, Stmt};
+use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
 use std::rc::Rc;
 use std::sync::Arc;
@@ -30,6 +32,11 @@ pub struct Page {
 }
 
 impl Page {
+    /// The page's ops (from op index `base`).
+    pub fn ops(&self) -> &[Op] {
+        &self.ops
+    }
+
     pub fn get(&self, pc: usize) -> Option<&Op> {
         self.ops.get(pc.wrapping_sub(self.base))
     }
@@ -47,6 +54,10 @@ pub struct Pager {
     hint: RefCell<Option<(Rc<Page>, usize)>>,
     /// Pages read so far (for tests and benchmarks: how much re-reading happened).
     pub reads: RefCell<u64>,
+    /// Lines read straight into compact ops (see [`super::reread`]).
+    pub direct_lines: RefCell<u64>,
+    /// Whether re-reads take the direct route (tests compare it with the general one).
+    direct: Cell<bool>,
     progress: RefCell<Option<ProgressBox>>,
 }
 
@@ -58,6 +69,8 @@ impl Pager {
             cache: RefCell::new(VecDeque::new()),
             hint: RefCell::new(None),
             reads: RefCell::new(0),
+            direct_lines: RefCell::new(0),
+            direct: Cell::new(true),
             progress: RefCell::new(None),
         }
     }
@@ -65,6 +78,12 @@ impl Pager {
     /// Reports each page read: bytes up to the page's end, ops up to its last op.
     pub fn set_progress(&self, f: Box<dyn FnMut(super::Progress)>) {
         *self.progress.borrow_mut() = Some(f);
+    }
+
+    /// Turns the direct route of re-reads on or off (on by default; for tests that compare
+    /// the two).
+    pub fn set_direct(&self, on: bool) {
+        self.direct.set(on);
     }
 
     pub fn index(&self) -> &Index {
@@ -109,11 +128,17 @@ impl Pager {
             *slot = Some(Lines::new(Input::File(f)).map_err(|e| self.err(e))?);
         }
         let Some(lines) = slot.as_mut() else { return Err(self.err("no reader")) };
-        let mut stmts = Vec::with_capacity(chunk.ops);
+        let mut sink = Sink { ops: ChunkOps::new(self.ix.file, chunk.op_base, chunk.ops), failed: None, direct: 0 };
         let mut starts = Vec::with_capacity(CHUNK_OPS);
-        super::reread(lines, &self.ix, chunk, &mut |s| stmts.push(s), &mut |lo, line| starts.push((lo as u32, line)))
-            .map_err(|e: NotStreamable| self.err(e))?;
-        let ops = Code::flatten_chunk(self.ix.file, chunk.op_base, stmts)?;
+        super::reread(lines, &self.ix, chunk, self.direct.get(), &mut sink, &mut |lo, line| {
+            starts.push((lo as u32, line))
+        })
+        .map_err(|e: NotStreamable| self.err(e))?;
+        if let Some(d) = sink.failed {
+            return Err(d);
+        }
+        *self.direct_lines.borrow_mut() += sink.direct;
+        let ops = sink.ops.finish();
         if let Some(p) = self.progress.borrow_mut().as_mut() {
             p(super::Progress { done: chunk.hi, total: self.ix.size, blocks: (chunk.op_base + chunk.ops) as u64 });
         }
@@ -218,6 +243,34 @@ impl Pager {
     pub fn find_number_from(&self, prog: usize, from: usize, n: u32) -> Option<usize> {
         let runs = &self.ix.programs.get(prog)?.numbers;
         runs.first_from(n, from as u64).or_else(|| runs.first_from(n, 0)).map(|p| p.0 as usize)
+    }
+}
+
+/// A page's ops as a re-read makes them.
+struct Sink {
+    ops: ChunkOps,
+    /// The first error flattening a statement (the page is then not used).
+    failed: Option<Diagnostic>,
+    /// Lines read straight into compact ops.
+    direct: u64,
+}
+
+impl RereadSink for Sink {
+    fn stmt(&mut self, s: Stmt) {
+        if self.failed.is_none() {
+            self.failed = self.ops.stmt(s).err();
+        }
+    }
+
+    fn lit(&mut self) -> Option<&mut LitBlock> {
+        let l = self.ops.lit();
+        self.direct += u64::from(l.is_some());
+        l
+    }
+
+    fn unlit(&mut self) {
+        self.direct -= 1;
+        self.ops.unlit();
     }
 }
 

@@ -206,6 +206,35 @@ impl Reader {
         }
     }
 
+    /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
+    /// when the line is a plain block of constant letter words at top level, hands its words to
+    /// `each` (see `fast::words`) and gives its span and number; the reader then is where
+    /// [`Reader::line`] would leave it (less the statement, which the caller built). `None`
+    /// (the line is not read) when the line is anything else, needs normalising, or `each`
+    /// declines a word: then read it with [`Reader::line`].
+    pub fn plain_words(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        each: impl FnMut(u8, f64, bool, Span) -> bool,
+    ) -> Option<(Span, Option<u32>)> {
+        // Only `any` changes on a plain top-level line of a resumed reader (`builder.push`
+        // adds the statement and nothing else there: see `Builder::resumed_at_top`).
+        if self.index_only || !self.builder.resumed_at_top() || !raw.text.is_ascii() {
+            return None;
+        }
+        let norm = read::normalise(raw, CommentStyle::Semicolon);
+        let unchanged = matches!(norm.text, std::borrow::Cow::Borrowed(_))
+            && norm.full_width.is_empty()
+            && norm.letter_o.is_empty();
+        if !unchanged || norm.text.trim_start_matches([' ', '\t']).starts_with('%') {
+            return None;
+        }
+        let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+        let got = fast::words(&norm, whole, each)?;
+        self.any = true;
+        Some(got)
+    }
+
     /// Closes what is open, checks jump targets; the program holds what was not drained.
     pub fn finish(mut self) -> (crate::ir::Program, Vec<Diagnostic>) {
         let program = self.builder.finish(&mut self.st);

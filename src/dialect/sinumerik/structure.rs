@@ -235,6 +235,12 @@ impl Builder {
         self.stack.is_empty() && self.suppressed == 0
     }
 
+    /// A re-read at top level: a plain block read now only adds its statement (no jump
+    /// targets are recorded, `seen_code` is already set), so a caller may take it as read.
+    pub fn resumed_at_top(&self) -> bool {
+        self.resumed && self.at_top() && self.program.body.is_empty()
+    }
+
     /// Takes the finished top-level statements (streaming).
     pub fn drain(&mut self) -> Vec<Stmt> {
         std::mem::take(&mut self.program.body)

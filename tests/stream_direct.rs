@@ -1,0 +1,251 @@
+//! The direct route of a streamed re-read (plain lines straight into compact ops, see
+//! `stream::reread`) against the general one (reader → IR → flatten): on every corpus
+//! program and on generated ones, every page has the same ops, and a run the same trace.
+
+mod eval_support;
+#[path = "support/rng.rs"]
+mod rng;
+
+use eval_support::*;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::eval::{self, trace, Origin, RunOptions, TraceSink};
+use nctrans::span::SourceDb;
+use nctrans::stream::{self, lines::Input, paged::Pager};
+use rng::Rng;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::sync::Arc;
+
+fn corpus_files() -> Vec<PathBuf> {
+    let mut v = Vec::new();
+    for top in ["corpus/in", "corpus/err"] {
+        for (_, d) in dialect_dirs() {
+            let Ok(rd) = std::fs::read_dir(root().join(top).join(d)) else { continue };
+            v.extend(rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_file()));
+        }
+    }
+    v.sort();
+    v
+}
+
+/// Every page of every program of `path` (scanned with chunks of `chunk_ops`), as text,
+/// read with the direct route on or off; and how many lines took the direct route.
+fn pages(path: &Path, dialect: Dialect, chunk_ops: usize, direct: bool) -> Option<(Vec<String>, u64)> {
+    let bytes = std::fs::read(path).ok()?;
+    let input = Input::Mem(std::io::Cursor::new(bytes.clone()));
+    let opts = ParseOptions::for_dialect(dialect);
+    let ix = stream::scan_index(input, bytes.len() as u64, path, 0, dialect, &opts, chunk_ops, None).ok()?;
+    let pager = Pager::new(Arc::new(ix.clone()));
+    pager.set_direct(direct);
+    let mut out = Vec::new();
+    for (prog, p) in ix.programs.iter().enumerate() {
+        for c in &p.chunks {
+            match pager.page(prog, c.op_base) {
+                Ok(Some(page)) => out.push(format!("{prog} {} {:?}", c.op_base, page.ops())),
+                Ok(None) => out.push(format!("{prog} {} none", c.op_base)),
+                Err(d) => out.push(format!("{prog} {} error {}", c.op_base, d.code)),
+            }
+        }
+    }
+    let n = *pager.direct_lines.borrow();
+    Some((out, n))
+}
+
+fn dialect_of(path: &Path) -> Dialect {
+    let text = String::from_utf8_lossy(&std::fs::read(path).unwrap_or_default()).to_string();
+    nctrans::detect_dialect(&path.to_string_lossy(), &text)
+}
+
+/// Same pages both ways; returns how many lines took the direct route.
+fn same_pages(path: &Path, chunk_ops: usize) -> u64 {
+    let dialect = dialect_of(path);
+    let on = pages(path, dialect, chunk_ops, true);
+    let off = pages(path, dialect, chunk_ops, false);
+    match (on, off) {
+        (Some((a, n)), Some((b, m))) => {
+            assert_eq!(m, 0, "{}: direct route taken while off", path.display());
+            assert_eq!(a.len(), b.len(), "{} at chunks of {chunk_ops}", path.display());
+            for (x, y) in a.iter().zip(&b) {
+                assert_eq!(x, y, "{} at chunks of {chunk_ops}", path.display());
+            }
+            n
+        }
+        (None, None) => 0,
+        (a, b) => panic!("{}: scanned {} / {}", path.display(), a.is_some(), b.is_some()),
+    }
+}
+
+#[test]
+fn direct_route_gives_the_same_ops_on_every_corpus_program() {
+    let mut direct = 0;
+    let files = corpus_files();
+    assert!(files.len() > 20, "{} corpus files", files.len());
+    for path in &files {
+        for chunk in [1, 3, 2048] {
+            direct += same_pages(path, chunk);
+        }
+    }
+    // The route is really taken (the Sinumerik corpus has plain motion blocks).
+    assert!(direct > 100, "{direct} direct lines");
+}
+
+/// A Sinumerik line: mostly plain motion blocks in their many spellings, some that must
+/// not take the direct route (normalised, M30/M17, too many words, structures, labels…).
+fn line(r: &mut Rng) -> String {
+    let num = |r: &mut Rng| -> String {
+        let sign = r.pick(&["", "", "-", "+"]);
+        match r.below(6) {
+            0 => format!("{sign}{}", r.below(1000)),
+            1 => format!("{sign}{}.", r.below(100)),
+            2 => format!("{sign}.{}", r.below(1000)),
+            3 => format!("{sign}0.0"),
+            4 => format!("{sign}{}.{:03}", r.below(10_000), r.below(1000)),
+            _ => format!("{sign}{}.{}", r.below(100), r.below(100_000_000)),
+        }
+    };
+    match r.below(40) {
+        0 => "IF R1>0".into(),
+        1 => "ENDIF".into(),
+        2 => "WHILE R2<0".into(),
+        3 => "ENDWHILE".into(),
+        4 => "LAB1: G1 X1".into(),
+        5 => "M30".into(),
+        6 => format!("N{} M17", r.below(100)),
+        7 => "M2 X1".into(),
+        8 => "GO X1 Y2".into(),
+        9 => "G1 X\u{FF11}0 Y2".into(),
+        10 => "G1 X1 Y2 Z3 A4 B5 C6 F7 S8".into(),
+        11 => "".into(),
+        12 => "   ; comment only".into(),
+        13 => "R1=R1+1".into(),
+        14 => "G1 X=AC(5) Y2".into(),
+        15 => "/G1 X1".into(),
+        16 => "%_N_X_MPF".into(),
+        17 => "L10".into(),
+        18 => "G0O X1".into(),
+        19 => "M3.5 S1000".into(),
+        _ => {
+            let mut s = String::new();
+            if r.chance(40) {
+                s.push_str(&format!("{} ", r.pick(&["N", "n"])));
+                s.pop();
+                s.push_str(&format!("{} ", r.below(100_000)));
+            }
+            for _ in 0..r.below(9) {
+                let letter = r.pick(&["G", "X", "Y", "Z", "A", "F", "S", "M", "x", "g", "T", "D", "E", "H"]);
+                let v = if letter == "G" || letter == "M" { r.below(100).to_string() } else { num(r) };
+                s.push_str(letter);
+                s.push_str(&v);
+                s.push_str(r.pick(&[" ", " ", "", "\t", "  "]));
+            }
+            if r.chance(15) {
+                s.push_str("; note X1");
+            }
+            s
+        }
+    }
+}
+
+#[test]
+fn direct_route_gives_the_same_ops_and_trace_on_generated_programs() {
+    let dir = root().join("target/stream-direct-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut direct = 0;
+    for seed in 1..=12u64 {
+        let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut text = String::from("%_N_GEN_MPF\nDEF REAL Q\n");
+        for _ in 0..600 {
+            text.push_str(&line(&mut r));
+            text.push_str(r.pick(&["\n", "\n", "\r\n"]));
+        }
+        // Close whatever the random structures left open, so the file is streamable.
+        text.push_str("ENDIF\nENDWHILE\nENDIF\nENDWHILE\nM30\n");
+        let path = dir.join(format!("gen{seed}.mpf"));
+        std::fs::write(&path, &text).expect("write");
+        for chunk in [1, 3, 64, 2048] {
+            direct += same_pages(&path, chunk);
+        }
+    }
+    assert!(direct > 1000, "{direct} direct lines");
+}
+
+/// Events as text with `@line`.
+struct Trace {
+    out: Vec<String>,
+    pager: Rc<Pager>,
+}
+
+impl TraceSink for Trace {
+    fn event(&mut self, ev: &eval::Event, origin: Origin) {
+        let mut l = trace::text_line(ev);
+        if let Some(n) = (origin.file == 0).then(|| self.pager.line_of(origin.span.lo)).flatten() {
+            l.push_str(&format!("  @{n}"));
+        }
+        self.out.push(l);
+    }
+}
+
+/// The trace of a streamed run of `path` with the direct route on or off.
+fn streamed_trace(path: &Path, chunk_ops: usize, direct: bool) -> Vec<String> {
+    let dialect = dialect_of(path);
+    let mut db = SourceDb::new();
+    let file = db.add(path.to_string_lossy().to_string(), String::new());
+    let (input, size) = stream::open(path).expect("open");
+    let popts = ParseOptions::for_dialect(dialect);
+    let index = stream::scan_index(input, size, path, file, dialect, &popts, chunk_ops, None).expect("scan");
+    let inputs = eval::header_inputs(&index.header).expect("header");
+    let opts = RunOptions { max_steps: 1_000_000, inputs, ..Default::default() };
+    let pager = Rc::new(Pager::new(Arc::new(index)));
+    pager.set_direct(direct);
+    let mut t = Trace { out: vec![], pager: Rc::clone(&pager) };
+    let o = eval::run_stream(&mut db, Rc::clone(&pager), &mut eval::DirCallees { semantics: None }, &opts, &mut t);
+    t.out.push(format!("{:?} {} {:?}", o.ending, o.steps, o.diags.iter().map(|d| d.code).collect::<Vec<_>>()));
+    t.out
+}
+
+#[test]
+fn direct_route_runs_like_the_general_route() {
+    // Straight CAM code with a loop back over many chunks, and the Sinumerik corpus.
+    let dir = root().join("target/stream-direct-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut r = Rng(7);
+    let mut text = String::from("%_N_CAM_MPF\nG90 G17 F1000\nR1=0\nTOP:\n");
+    for i in 0..3000 {
+        text.push_str(&format!(
+            "N{} G1 X{}.{:03} Y-{}.{:02} Z{} ; cut\n",
+            i * 2 + 10,
+            r.below(500),
+            r.below(1000),
+            r.below(300),
+            r.below(100),
+            r.below(20)
+        ));
+    }
+    text.push_str("R1=R1+1\nIF R1<2 GOTOB TOP\nM30\n");
+    let path = dir.join("cam.mpf");
+    std::fs::write(&path, &text).expect("write");
+    assert!(same_pages(&path, 64) >= 3000);
+    let mut files = vec![path];
+    files.extend(corpus_files().into_iter().filter(|p| p.extension().is_some_and(|e| e != "nc")));
+    let mut compared = 0;
+    for path in &files {
+        // Files with errors do not run streamed (the CLI reads them whole).
+        let Some(ix) = scan(path) else { continue };
+        if ix.diags.iter().any(|d| d.severity == nctrans::diag::Severity::Error) {
+            continue;
+        }
+        for chunk in [3, 64] {
+            let a = streamed_trace(path, chunk, true);
+            let b = streamed_trace(path, chunk, false);
+            assert_eq!(a, b, "{} at chunks of {chunk}", path.display());
+            compared += 1;
+        }
+    }
+    assert!(compared > 10, "{compared} compared");
+}
+
+fn scan(path: &Path) -> Option<stream::Index> {
+    let dialect = dialect_of(path);
+    let (input, size) = stream::open(path).ok()?;
+    stream::scan_index(input, size, path, 0, dialect, &ParseOptions::for_dialect(dialect), 64, None).ok()
+}
