@@ -1,6 +1,7 @@
 //! The direct route of a streamed re-read (plain lines straight into compact ops, see
-//! `stream::reread`) against the general one (reader → IR → flatten): on every corpus
-//! program and on generated ones, every page has the same ops, and a run the same trace.
+//! `stream::reread`) against the general one (reader → IR → flatten), for both dialects:
+//! on every corpus program and on generated ones, every page has the same ops, and a run
+//! the same trace.
 
 mod eval_support;
 #[path = "support/rng.rs"]
@@ -77,16 +78,21 @@ fn same_pages(path: &Path, chunk_ops: usize) -> u64 {
 
 #[test]
 fn direct_route_gives_the_same_ops_on_every_corpus_program() {
-    let mut direct = 0;
+    let (mut direct, mut fanuc) = (0, 0);
     let files = corpus_files();
     assert!(files.len() > 20, "{} corpus files", files.len());
     for path in &files {
         for chunk in [1, 3, 2048] {
-            direct += same_pages(path, chunk);
+            let n = same_pages(path, chunk);
+            direct += n;
+            if dialect_of(path) == Dialect::Fanuc {
+                fanuc += n;
+            }
         }
     }
-    // The route is really taken (the Sinumerik corpus has plain motion blocks).
+    // The route is really taken (both corpora have plain motion blocks).
     assert!(direct > 100, "{direct} direct lines");
+    assert!(fanuc > 100, "{fanuc} direct FANUC lines");
 }
 
 /// A Sinumerik line: mostly plain motion blocks in their many spellings, some that must
@@ -169,6 +175,177 @@ fn direct_route_gives_the_same_ops_and_trace_on_generated_programs() {
     assert!(direct > 1000, "{direct} direct lines");
 }
 
+/// A FANUC line: mostly plain motion blocks in their many spellings, and lines that must
+/// not take the direct route: several blocks, comments, normalised text, program numbers,
+/// calls and ends (G65/M98/M99/M30), loops (words go into the open loop), parameter
+/// writes (`G10 L50` … `G11`), too many words, variables, GOTOs, a lone skip…; with
+/// `runnable`, only lines that leave a program runnable (no errors).
+fn fanuc_line(r: &mut Rng, runnable: bool) -> String {
+    let num = |r: &mut Rng| -> String {
+        let sign = r.pick(&["", "", "-", "+"]);
+        match r.below(6) {
+            0 => format!("{sign}{}", r.below(1000)),
+            1 => format!("{sign}{}.", r.below(100)),
+            2 => format!("{sign}.{}", r.below(1000)),
+            3 => format!("{sign}0.0"),
+            4 => format!("{sign}{}.{:04}", r.below(10_000), r.below(10_000)),
+            _ => format!("{sign}{}.{}", r.below(100), r.below(10_000_000_000_000_000)),
+        }
+    };
+    let pick = match r.below(60) {
+        k if runnable && !matches!(k, 4..=10 | 17 | 18 | 21 | 22 | 32 | 33 | 34..) => 40,
+        k => k,
+    };
+    match pick {
+        0 => "WHILE[#1 LT 3]DO1".into(),
+        1 => "END1".into(),
+        2 => "DO2".into(),
+        3 => "END2".into(),
+        4 => "#1=#1+1".into(),
+        5 => "G1 X1; G1 Y2".into(),
+        6 => "G1 X1 ;Y2;".into(),
+        7 => "G1 X1 (cut) Y2".into(),
+        8 => "(comment only)".into(),
+        9 => "G1 X\u{FF11}0 Y2".into(),
+        10 => "G0O X1".into(),
+        11 => "G10 L50".into(),
+        12 => "N1 R1 P2".into(),
+        13 => "G11".into(),
+        14 => "G65 P9010 A1.".into(),
+        15 => "M98 P9020".into(),
+        16 => format!("O{}", 2000 + r.below(50)),
+        17 => "G1 X1 Y2 Z3 A4 B5 C6 F7 S8".into(),
+        18 => "G1 X#1 Y2".into(),
+        19 => "GOTO 20".into(),
+        20 => "IF[#1 GT 2]GOTO 30".into(),
+        21 => "/".into(),
+        22 => "".into(),
+        23 => "N0 G1 X1".into(),
+        24 => "N100000 G1 X1".into(),
+        25 => "G1 N10 X1".into(),
+        26 => "M30".into(),
+        27 => "M99".into(),
+        28 => "G66 P9030".into(),
+        29 => "G67".into(),
+        30 => ":3000".into(),
+        31 => "X1.2.3".into(),
+        32 => format!("N{} ;", r.below(9000) + 1),
+        33 => "   ;".into(),
+        _ => {
+            let mut s = String::new();
+            if r.chance(10) {
+                s.push_str(r.pick(&["/", "/2 ", "/ "]));
+            }
+            if r.chance(40) {
+                s.push_str(&format!("{}{} ", r.pick(&["N", "n"]), r.below(99_999) + 1));
+            }
+            for _ in 0..r.below(9) {
+                let letter = r.pick(&["G", "X", "Y", "Z", "A", "F", "S", "M", "x", "g", "T", "D", "H", "I", "J", "R"]);
+                let v = if runnable && (letter == "G" || letter == "g") {
+                    r.pick(&["0", "1", "01", "17", "90", "91", "94"]).to_string()
+                } else if runnable && letter == "M" {
+                    r.pick(&["3", "5", "8", "09"]).to_string()
+                } else if letter == "G" || letter == "M" || letter == "g" {
+                    r.below(100).to_string()
+                } else {
+                    num(r)
+                };
+                s.push_str(letter);
+                s.push_str(r.pick(&["", "", " "]));
+                s.push_str(&v);
+                s.push_str(r.pick(&[" ", " ", "", "\t", "  "]));
+            }
+            if r.chance(10) {
+                s.push(';');
+            }
+            s
+        }
+    }
+}
+
+/// A generated FANUC file of 600 lines (its `%` marks: `tape`; only runnable lines:
+/// `runnable`).
+fn fanuc_program(seed: u64, tape: bool, runnable: bool) -> String {
+    let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let mut text = String::from(if tape { "%\nO1000 (GEN)\n" } else { "O1000 (GEN)\n" });
+    for i in 0..600 {
+        // A `%` late in some files ends the tape (with or without an opening `%`):
+        // what follows is not read (both ways).
+        if i == 550 && seed.is_multiple_of(3) && !runnable {
+            text.push_str("%\n");
+        }
+        text.push_str(&fanuc_line(&mut r, runnable));
+        text.push_str(r.pick(&["\n", "\n", "\r\n"]));
+    }
+    if !runnable {
+        text.push_str("G11\nEND2\nEND1\nEND2\nEND1\n");
+    }
+    text.push_str("M30\n");
+    if tape {
+        text.push_str("%\n");
+    }
+    text
+}
+
+#[test]
+fn direct_route_gives_the_same_ops_on_generated_fanuc_programs() {
+    let dir = root().join("target/stream-direct-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut direct = 0;
+    for seed in 1..=12u64 {
+        let path = dir.join(format!("gen{seed}.nc"));
+        std::fs::write(&path, fanuc_program(seed, seed.is_multiple_of(2), seed % 4 == 1)).expect("write");
+        for chunk in [1, 3, 64, 2048] {
+            direct += same_pages(&path, chunk);
+        }
+    }
+    assert!(direct > 1000, "{direct} direct lines");
+}
+
+#[test]
+fn direct_route_leaves_the_fanuc_reader_as_the_general_route_does() {
+    // A `%` after content ends the tape; after nothing but a program number it opens it.
+    // Whether the plain line before it counts as content is reader state the direct route
+    // must keep too.
+    let dir = root().join("target/stream-direct-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let cases = [
+        "O1000\nG1 X1\n%\nG1 X2\nG1 X3\nM30\n",
+        "O1000\nN10 G1 X1\n%\nN20 G1 X2\nM30\n",
+        "G1 X1\n%\nG1 X2\nM30\n",
+        "%\nO1000\nG1 X1\n%\nG1 X2\nM30\n%\n",
+        "O1000\nG1 X1;\n%\nG1 X2;\nM30;\n",
+    ];
+    let mut direct = 0;
+    for (k, text) in cases.iter().enumerate() {
+        let path = dir.join(format!("reader{k}.nc"));
+        std::fs::write(&path, text).expect("write");
+        for chunk in [1, 2, 3, 2048] {
+            direct += same_pages(&path, chunk);
+        }
+    }
+    assert!(direct > 5, "{direct} direct lines");
+}
+
+/// Straight FANUC CAM code with a loop back over many chunks.
+fn fanuc_cam(r: &mut Rng) -> String {
+    let mut text = String::from("%\nO1000 (CAM)\nG21 G17 G90 F1000.\n#1=0\nN5 G0 X0. Y0.\n");
+    for i in 0..3000 {
+        let n = if i % 4 == 0 { format!("N{} ", i * 2 + 10) } else { String::new() };
+        text.push_str(&format!(
+            "{n}G1 X{}.{:03} Y-{}.{:02} Z{}{}\n",
+            r.below(500),
+            r.below(1000),
+            r.below(300),
+            r.below(100),
+            r.below(20),
+            if i % 5 == 0 { ";" } else { "" }
+        ));
+    }
+    text.push_str("#1=#1+1\nIF[#1LT2]GOTO5\nM30\n%\n");
+    text
+}
+
 /// Events as text with `@line`.
 struct Trace {
     out: Vec<String>,
@@ -205,7 +382,8 @@ fn streamed_trace(path: &Path, chunk_ops: usize, direct: bool) -> Vec<String> {
 
 #[test]
 fn direct_route_runs_like_the_general_route() {
-    // Straight CAM code with a loop back over many chunks, and the Sinumerik corpus.
+    // Straight CAM code with a loop back over many chunks in both dialects, generated
+    // FANUC programs and the corpus.
     let dir = root().join("target/stream-direct-tests");
     std::fs::create_dir_all(&dir).expect("dir");
     let mut r = Rng(7);
@@ -225,13 +403,23 @@ fn direct_route_runs_like_the_general_route() {
     let path = dir.join("cam.mpf");
     std::fs::write(&path, &text).expect("write");
     assert!(same_pages(&path, 64) >= 3000);
-    let mut files = vec![path];
-    files.extend(corpus_files().into_iter().filter(|p| p.extension().is_some_and(|e| e != "nc")));
+    let fpath = dir.join("cam.nc");
+    std::fs::write(&fpath, fanuc_cam(&mut r)).expect("write");
+    assert!(same_pages(&fpath, 64) >= 3000);
+    let mut files = vec![path, fpath];
+    for seed in [1, 2, 3] {
+        let p = dir.join(format!("run{seed}.nc"));
+        std::fs::write(&p, fanuc_program(seed + 100, seed != 3, true)).expect("write");
+        files.push(p);
+    }
+    let generated = files.len();
+    files.extend(corpus_files());
     let mut compared = 0;
     for path in &files {
         // Files with errors do not run streamed (the CLI reads them whole).
         let Some(ix) = scan(path) else { continue };
         if ix.diags.iter().any(|d| d.severity == nctrans::diag::Severity::Error) {
+            assert!(!files[..generated].contains(path), "{}: {:?}", path.display(), ix.diags);
             continue;
         }
         for chunk in [3, 64] {

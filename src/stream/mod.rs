@@ -102,7 +102,8 @@ impl Reader<'_> {
     }
 
     /// Re-reading: `raw` straight into the compact op `b` when it is a plain block of
-    /// constant letter words at top level (see `sinumerik::Reader::plain_words`); `false`
+    /// constant letter words at top level (see `sinumerik::Reader::plain_words`,
+    /// `fanuc::Reader::plain_words`); `false`
     /// when it must go through [`Reader::line`] (`b` is then to be dropped).
     fn lit(&mut self, raw: &RawBlock<'_>, b: &mut LitBlock) -> bool {
         match self {
@@ -116,7 +117,16 @@ impl Reader<'_> {
                 b.number = number;
                 true
             }
-            Reader::Fan(_) => false,
+            Reader::Fan(r) => {
+                let Some((span, number)) =
+                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                else {
+                    return false;
+                };
+                b.span = span;
+                b.number = number;
+                true
+            }
         }
     }
 

@@ -3,11 +3,12 @@
 //! grammar gives (tested on generated blocks in tests.rs and tests/fast_path_diff.rs) and
 //! declines anything else, which then goes to pest. For plain word blocks it also reads
 //! straight to the items `block::plain` makes of those parts (`plain_line`), or for an
-//! index-only scan to the block's number alone (`skeleton`); both are tested against the
-//! parts route.
+//! index-only scan to the block's number alone (`skeleton`), or for a streamed re-read to
+//! its words alone (`lit_words`); all are tested against the parts route or the IR route.
 
 use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
 use crate::ir::{Addr, Expr, Item, ItemKind, SeqNo, WordValue};
+use crate::span::Span;
 
 /// The parts of a plain block, or `None` when the block needs the grammar.
 pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
@@ -38,33 +39,61 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
 /// each is judged with `plain`'s rule on what `RawWord::int` would give, and its item is
 /// the one `plain` makes of its `RawWord`.
 pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>)> {
-    let (skip, number, _, items) = plain_words(seg, true)?;
+    let mut items = Vec::with_capacity(6);
+    let (skip, number) = plain_words(seg, |letter, value, point, span, vspan| {
+        items.push(Item {
+            kind: ItemKind::Word(crate::ir::Word {
+                addr: Addr::Letter(letter),
+                value: WordValue::Expr(Expr::num(value, point, vspan)),
+                span,
+            }),
+            span,
+        });
+        true
+    })?;
     Some((skip, number, items))
 }
 
 /// For an index-only first scan: [`plain_line`] without building the items, only how many
 /// there would be.
 pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
-    let (skip, number, words, _) = plain_words(seg, false)?;
+    let mut words = 0;
+    let (skip, number) = plain_words(seg, |_, _, _, _, _| {
+        words += 1;
+        true
+    })?;
     Some((skip, number, words))
 }
 
-/// Both of the above: `keep` says whether to build the items; every decision is the same.
+/// For a re-read of a checked file (`crate::stream::reread`): the same decision as
+/// [`plain_line`], but each of the items it would build is handed to `each` as (letter,
+/// value with its sign, point, span) instead; the block is declined when `each` returns
+/// `false`. Gives the skip level and the block number.
+pub fn lit_words(
+    seg: &Seg<'_>,
+    mut each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Option<u8>, Option<SeqNo>)> {
+    plain_words(seg, |letter, value, point, span, _| each(letter, value, point, span))
+}
+
+/// All of the above: `item` gets each item's word (upper-case letter, value with its sign,
+/// point, span of the word and of its value) and may decline the block by returning
+/// `false`; every other decision is the same whatever `item` does.
 #[inline(always)]
-#[allow(clippy::type_complexity)]
-fn plain_words(seg: &Seg<'_>, keep: bool) -> Option<(Option<u8>, Option<SeqNo>, usize, Vec<Item>)> {
+fn plain_words(
+    seg: &Seg<'_>,
+    mut item: impl FnMut(u8, f64, bool, Span, Span) -> bool,
+) -> Option<(Option<u8>, Option<SeqNo>)> {
     let b = seg.text.as_bytes();
     let mut i = 0;
     let skip = skip_prefix(seg, &mut i)?;
     let mut number = None;
-    let mut words = 0;
-    let mut items = if keep { Vec::with_capacity(6) } else { Vec::new() };
     let mut first = true;
     loop {
         skip_ws(b, &mut i);
         if i >= b.len() {
             // `plain` hands back a block without words (a lone skip).
-            return (!first).then_some((skip, number, words, items));
+            return (!first).then_some((skip, number));
         }
         let w = word(seg, &mut i)?;
         // `RawWord::int`: a literal without sign or point (its value is not negative).
@@ -82,18 +111,9 @@ fn plain_words(seg: &Seg<'_>, keep: bool) -> Option<(Option<u8>, Option<SeqNo>, 
         match (w.letter, int) {
             (b'N', Some(n)) => number = Some(SeqNo { value: n as u32, span: seg.span(w.start, w.hi) }),
             _ => {
-                words += 1;
-                if keep {
-                    let value = if w.neg == Some(true) { -w.value } else { w.value };
-                    let span = seg.span(w.start, w.hi);
-                    items.push(Item {
-                        kind: ItemKind::Word(crate::ir::Word {
-                            addr: Addr::Letter(w.letter),
-                            value: WordValue::Expr(Expr::num(value, w.point, seg.span(w.vstart, w.hi))),
-                            span,
-                        }),
-                        span,
-                    });
+                let value = if w.neg == Some(true) { -w.value } else { w.value };
+                if !item(w.letter, value, w.point, seg.span(w.start, w.hi), seg.span(w.vstart, w.hi)) {
+                    return None;
                 }
             }
         }

@@ -75,6 +75,8 @@ pub struct Reader<'o> {
     programs: Vec<ProgramLines>,
     /// Plain blocks are read for an index only: their items are not built.
     index_only: bool,
+    /// Made by [`Reader::resume`]: re-reading a checked file.
+    resumed: bool,
 }
 
 impl<'o> Reader<'o> {
@@ -88,6 +90,7 @@ impl<'o> Reader<'o> {
             ignored_numbers: Vec::new(),
             programs: Vec::new(),
             index_only: false,
+            resumed: false,
         }
     }
 
@@ -100,6 +103,7 @@ impl<'o> Reader<'o> {
         p.param_mode = from.param_mode;
         p.stream();
         r.programs.push(p);
+        r.resumed = true;
         r
     }
 
@@ -173,6 +177,57 @@ impl<'o> Reader<'o> {
         for (lo, hi, end) in scan::segments(&norm.text) {
             self.segment(&norm, lo, hi, end);
         }
+    }
+
+    /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
+    /// when the line is one plain block of constant letter words that [`Reader::line`] would
+    /// add at the top level of the current program and drain at once, hands its items' words
+    /// to `each` (see `fast::lit_words`) and gives its span and number; the reader then is
+    /// exactly where [`Reader::line`] and [`Reader::drain_into`] would leave it (less the
+    /// statement, which the caller built). `None` (the line is not read, the reader is
+    /// untouched) for anything else or when `each` declines a word: then read it with
+    /// [`Reader::line`].
+    ///
+    /// Why nothing else changes: on such a line `line` adds no diagnostic (no normalising
+    /// warning, the fast path gives none), leaves the tape state alone (not `%`, tape not
+    /// closed) and `param_mode` too (the fast path runs only outside it and changes nothing),
+    /// reads one block (no second block after a `;`, no `(` comment), pushes it as a plain
+    /// statement at the top level (no loop open) that the next drain hands out at once (the
+    /// program has a name: nothing is held back as a title; nothing else waits), which
+    /// grows the program span and notes the block's number (its words hold no GOTO):
+    /// `ProgramLines::push_drained` does just that.
+    pub fn plain_words(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        each: impl FnMut(u8, f64, bool, Span) -> bool,
+    ) -> Option<(Span, Option<u32>)> {
+        if !self.resumed || self.index_only || self.tape == Tape::Closed || !raw.text.is_ascii() {
+            return None;
+        }
+        let prog = self.programs.last()?;
+        if prog.param_mode || !prog.drains_at_once() {
+            return None;
+        }
+        let norm = read::normalise(raw, CommentStyle::Parens);
+        let unchanged = matches!(norm.text, std::borrow::Cow::Borrowed(_))
+            && norm.full_width.is_empty()
+            && norm.letter_o.is_empty();
+        if !unchanged || read::trim_start(&norm.text).starts_with('%') {
+            return None;
+        }
+        // Exactly one block (an end-of-block `;` may close it), cut as `line` cuts it; no
+        // comment (the fast path would decline it too).
+        let mut segs = scan::segments(&norm.text);
+        let (lo, hi, end) = segs.next()?;
+        if segs.next().is_some() || norm.text[lo..hi].contains('(') {
+            return None;
+        }
+        let seg = parse::Seg { norm: &norm, base: lo, text: &norm.text[lo..hi], file: self.file };
+        let span = norm.span(lo, end);
+        let (_, number) = fast::lit_words(&seg, each)?;
+        let number = number.map(|n| n.value);
+        self.programs.last_mut()?.push_drained(span, number);
+        Some((span, number))
     }
 
     /// One block: `norm.text[lo..hi]` (trimmed, without `;`); `end` is one past the `;`

@@ -163,6 +163,27 @@ impl ProgramLines {
         }
     }
 
+    /// Whether a plain block read now would be drained at once, right after it is added
+    /// (see [`ProgramLines::push_drained`]): no loop is open, nothing waits, the program has
+    /// a name (so nothing is held back as a title) and it is streamed.
+    pub fn drains_at_once(&self) -> bool {
+        self.stack.is_empty() && self.top.is_empty() && self.name.is_some() && self.streamed.is_some()
+    }
+
+    /// What [`ProgramLines::push`] of a plain block `span`, numbered `number`, with plain
+    /// words only (no GOTO), and then [`ProgramLines::drain_into`] leave behind when
+    /// [`ProgramLines::drains_at_once`]: the span grown, the number noted as drained. The
+    /// statement itself the caller has built.
+    pub fn push_drained(&mut self, span: Span, number: Option<u32>) {
+        self.extend_span(span);
+        let s = self.streamed.get_or_insert_with(Streamed::default);
+        s.drained = true;
+        if let Some(n) = number {
+            s.numbers.push(n, s.count, Span::default());
+            s.count += 1;
+        }
+    }
+
     /// Adds a plain block read for an index only (see `fast::skeleton`): its items were
     /// not built, `words` says whether it had any. Items of a plain block matter here only
     /// as "not a comment block" (they hold no GOTO), which `words` stands for.
