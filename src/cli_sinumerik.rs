@@ -427,7 +427,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     };
     let mut db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
-    eprint!("{}", stream_cli::render(&db, &done.diags, &[(0, req.file)]));
+    eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, req.file)]));
     let out = match req.out {
         None => tmp.clone(),
         Some(o) if is_dir(o) => o.join(&done.file_name),
@@ -483,7 +483,7 @@ fn verify_streamed(
     opts: &Options,
     size: u64,
 ) -> ExitCode {
-    use crate::stream_cli::{self, ProgressLine};
+    use crate::stream_cli::ProgressLine;
     use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
     use nctrans::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
     let mut line = ProgressLine::new("reading back", size);
@@ -503,7 +503,7 @@ fn verify_streamed(
                     .note("this is a gap in nctrans's writer, not in the program")
                     .hint("report it with the program"),
             );
-            eprint!("{}", stream_cli::render(&db, &diags, &streamed));
+            eprint!("{}", nctrans::excerpt::render(&db, &diags, &streamed));
             return verdict(Verdict::Failed, "");
         }
         Err(ReadBack::Unreadable(e)) => {
@@ -515,7 +515,7 @@ fn verify_streamed(
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
             let d = diag::Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"));
-            eprint!("{}", stream_cli::render(&db, &[d], &streamed));
+            eprint!("{}", nctrans::excerpt::render(&db, &[d], &streamed));
             return verdict(Verdict::Failed, "");
         }
     };
@@ -534,6 +534,6 @@ fn verify_streamed(
     let b =
         StreamSide { index: back, name: shown.to_string(), callees: Box::new(NoCallees), run: run(in_b, &opts.target) };
     let report = sts::compare(a, b);
-    eprint!("{}", stream_cli::render(&report.db, &report.diags, &streamed));
+    eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
     verdict(report.verdict, &report.diff)
 }

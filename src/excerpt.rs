@@ -48,11 +48,14 @@ struct Reach {
 
 impl Excerpt {
     /// Reads `path` once, keeping the lines the `reach`es touch (at most a label's first
-    /// `MAX_LABEL_LINES + 2` lines each, so memory follows the diagnostics, not the file).
+    /// `MAX_LABEL_LINES + 2` lines each, so memory follows the diagnostics, not the file),
+    /// and fills in what each reach learns; the reaches keep their order.
     fn read(id: FileId, name: String, path: &Path, reach: &mut [Reach]) -> Option<Excerpt> {
         let f = std::fs::File::open(path).ok()?;
         let mut lines = Lines::new(Input::File(f)).ok()?;
-        reach.sort_by_key(|r| r.lo);
+        // Reaches by start, as the lines come.
+        let mut order: Vec<usize> = (0..reach.len()).collect();
+        order.sort_by_key(|&i| reach[i].lo);
         let mut ex = Excerpt { id, name, text: String::new(), lines: Vec::new() };
         // Labels that have started and may still need lines.
         let mut open: Vec<usize> = Vec::new();
@@ -61,8 +64,8 @@ impl Excerpt {
         let mut last: Option<(u64, u32, u64)> = None;
         while let Ok(Some(l)) = lines.next_line() {
             let text_end = l.start + l.text.len() as u64;
-            while k < reach.len() && reach[k].lo < l.next.max(text_end + 1) {
-                open.push(k);
+            while k < order.len() && reach[order[k]].lo < l.next.max(text_end + 1) {
+                open.push(order[k]);
                 k += 1;
             }
             let mut keep = false;
@@ -194,29 +197,23 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic], streamed: &[(FileId, &Path)])
         return diag::render(db, diags);
     }
     // One reach per label in a streamed file, in diagnostic order, then one pass per file.
-    let mut reach: Vec<(FileId, usize, Reach)> = Vec::new();
+    let mut reach: Vec<(FileId, Reach)> = Vec::new();
     for l in diags.iter().flat_map(|d| &d.labels) {
         if is_streamed(l.file) && reach.len() < MAX_LABELS {
-            let idx = reach.len();
-            let r = Reach { lo: u64::from(l.span.lo), hi: u64::from(l.span.hi), breaks: 0, first_end: None };
-            reach.push((l.file, idx, r));
+            reach.push((l.file, Reach { lo: u64::from(l.span.lo), hi: u64::from(l.span.hi), breaks: 0, first_end: None }));
         }
     }
     let mut excerpts = Vec::new();
-    let mut reached: Vec<Option<Reach>> = vec![None; reach.len()];
     for &(id, path) in streamed {
-        let mut mine: Vec<Reach> = reach.iter().filter(|r| r.0 == id).map(|r| r.2).collect();
-        let idx: Vec<usize> = reach.iter().filter(|r| r.0 == id).map(|r| r.1).collect();
+        let idx: Vec<usize> = (0..reach.len()).filter(|&i| reach[i].0 == id).collect();
+        let mut mine: Vec<Reach> = idx.iter().map(|&i| reach[i].1).collect();
         if mine.is_empty() {
             continue;
         }
         let name = if id < db.len() { db.get(id).name.clone() } else { path.display().to_string() };
-        // `read` sorts by start; keep each reach's place by sorting the indices the same way.
-        let mut order: Vec<usize> = (0..mine.len()).collect();
-        order.sort_by_key(|&i| mine[i].lo);
         if let Some(ex) = Excerpt::read(id, name, path, &mut mine) {
-            for (sorted, &i) in order.iter().enumerate() {
-                reached[idx[i]] = Some(mine[sorted]);
+            for (&i, r) in idx.iter().zip(mine) {
+                reach[i].1 = r;
             }
             excerpts.push(ex);
         }
@@ -230,7 +227,7 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic], streamed: &[(FileId, &Path)])
         let mut complete = true;
         for l in &d.labels {
             ranges.push(if is_streamed(l.file) {
-                let r = reached.get(n).copied().flatten();
+                let r = reach.get(n).map(|r| r.1);
                 n += 1;
                 match (r, excerpts.iter().find(|e| e.id == l.file)) {
                     (Some(r), Some(e)) => Some(e.range(&r)),

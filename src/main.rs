@@ -342,7 +342,7 @@ fn cmd_check(
         return ExitCode::from(2);
     };
     let report = check::check_runners(&db, ra, rb);
-    eprint!("{}", stream_cli::render(&report.db, &report.diags, &streamed));
+    eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
     match report.verdict {
         Verdict::Equivalent { events } => {
             println!("equivalent ({events} trace events agree)");

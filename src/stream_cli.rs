@@ -149,13 +149,6 @@ fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunO
     super::run_options(&ix.header, &ix.path.display().to_string(), eval)
 }
 
-/// Renders diagnostics; those pointing into a streamed file (whose text is not loaded)
-/// show excerpts read from the file, so a warning at the end of a 400 MB program does not
-/// load the program.
-pub fn render(db: &SourceDb, diags: &[nctrans::diag::Diagnostic], streamed: &[(usize, &Path)]) -> String {
-    nctrans::excerpt::render(db, diags, streamed)
-}
-
 /// `nctrans run` streamed.
 pub fn run(
     path: &Path,
@@ -197,7 +190,7 @@ pub fn run(
     if progress_on {
         eprint!("\r{:70}\r", "");
     }
-    eprint!("{}", render(&db, &outcome.diags, &[(main_id, path)]));
+    eprint!("{}", nctrans::excerpt::render(&db, &outcome.diags, &[(main_id, path)]));
     if let Some(e) = write_error {
         eprintln!("error: writing the trace: {e}");
         return Some(ExitCode::from(2));
@@ -332,7 +325,7 @@ fn verify_streamed(c: &nctrans::config::Config, input: &Path, out: &Path, index:
         let mut db = SourceDb::new();
         db.add(input.display().to_string(), String::new());
         db.add(out.display().to_string(), String::new());
-        eprint!("{}", render(&db, &v.diags, &[(0, input), (1, out)]));
+        eprint!("{}", nctrans::excerpt::render(&db, &v.diags, &[(0, input), (1, out)]));
     }
     eprint!("{}", v.diff);
     eprintln!("{}", v.summary);
