@@ -377,9 +377,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         return None;
     }
     let eol = sts::first_line_ending(req.file).ok()?;
-    // Writing over the input: the streamed check re-reads the source as it runs.
-    let canon = |p: &Path| p.canonicalize().ok();
-    if req.out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(req.file)) {
+    if stream_cli::writes_over(req.file, req.out) {
         return None;
     }
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
@@ -397,14 +395,10 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         }
         Some(o) => o.with_extension(format!("{}.nctrans-tmp", o.extension().and_then(|e| e.to_str()).unwrap_or(""))),
     };
-    let file = match std::fs::File::create(&tmp) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("error: cannot write {}: {e}", tmp.display());
-            return Some(ExitCode::from(2));
-        }
+    let mut w = match stream_cli::create_temp(&tmp) {
+        Ok(w) => w,
+        Err(code) => return Some(code),
     };
-    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
     let r = sts::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
@@ -415,12 +409,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         Err(f) => {
             let _ = std::fs::remove_file(&tmp);
             if let Fallback::NotStraight(why) = &f {
-                if size >= stream_cli::AUTO_BYTES {
-                    eprintln!(
-                        "note: {} is read whole: it has {why} (only straight-line programs stream)",
-                        req.file.display()
-                    );
-                }
+                stream_cli::note_read_whole(req.file, size, why);
             }
             return None;
         }
@@ -439,11 +428,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         return Some(ExitCode::from(2));
     }
     if req.out.is_none() {
-        let copied = std::fs::File::open(&out).and_then(|mut f| {
-            let mut so = std::io::stdout().lock();
-            std::io::copy(&mut f, &mut so).and_then(|_| so.flush())
-        });
-        if copied.is_err() {
+        if stream_cli::copy_to_stdout(&out).is_err() {
             let _ = std::fs::remove_file(&out);
             return Some(ExitCode::from(2));
         }

@@ -200,7 +200,10 @@ pub fn render(db: &SourceDb, diags: &[Diagnostic], streamed: &[(FileId, &Path)])
     let mut reach: Vec<(FileId, Reach)> = Vec::new();
     for l in diags.iter().flat_map(|d| &d.labels) {
         if is_streamed(l.file) && reach.len() < MAX_LABELS {
-            reach.push((l.file, Reach { lo: u64::from(l.span.lo), hi: u64::from(l.span.hi), breaks: 0, first_end: None }));
+            reach.push((
+                l.file,
+                Reach { lo: u64::from(l.span.lo), hi: u64::from(l.span.hi), breaks: 0, first_end: None },
+            ));
         }
     }
     let mut excerpts = Vec::new();

@@ -224,6 +224,39 @@ pub fn side(
     Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
 }
 
+/// Whether `out` is the input itself: a streamed translation re-reads its source while
+/// verifying, so it must not write over it (the whole-file path takes such a call).
+pub fn writes_over(input: &Path, out: Option<&Path>) -> bool {
+    let canon = |p: &Path| p.canonicalize().ok();
+    out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(input))
+}
+
+/// Creates the temporary output of a streamed translation (renamed when it is finished).
+pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, ExitCode> {
+    match std::fs::File::create(tmp) {
+        Ok(f) => Ok(std::io::BufWriter::with_capacity(1 << 16, f)),
+        Err(e) => {
+            eprintln!("error: cannot write {}: {e}", tmp.display());
+            Err(ExitCode::from(2))
+        }
+    }
+}
+
+/// Says why a large file is read whole after all (a small one says nothing: it was only
+/// streamed because `--stream` asked for it).
+pub fn note_read_whole(input: &Path, size: u64, why: &str) {
+    if size >= AUTO_BYTES {
+        eprintln!("note: {} is read whole: it has {why} (only straight-line programs stream)", input.display());
+    }
+}
+
+/// Copies a finished output file to standard output.
+pub fn copy_to_stdout(path: &Path) -> std::io::Result<()> {
+    let mut f = std::fs::File::open(path)?;
+    let mut so = std::io::stdout().lock();
+    std::io::copy(&mut f, &mut so).and_then(|_| so.flush())
+}
+
 /// `nctrans --to fanuc IN [-o OUT]` streamed (with verification unless `--no-verify`);
 /// `None` when the input is not streamed or not a straight-line program (then the caller
 /// translates it whole; a partial output is removed first).
@@ -239,6 +272,9 @@ pub fn translate(
     }
     let size = std::fs::metadata(input).ok()?.len();
     if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
+        return None;
+    }
+    if writes_over(input, a.output.as_deref()) {
         return None;
     }
     let eol = stream::to_sinumerik::first_line_ending(input).ok()?;
@@ -259,14 +295,10 @@ pub fn translate(
     let out: &Path = a.output.as_deref().unwrap_or(&scratch);
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
-    let file = match std::fs::File::create(&tmp) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("error: cannot write {}: {e}", tmp.display());
-            return Some(ExitCode::from(2));
-        }
+    let mut w = match create_temp(&tmp) {
+        Ok(w) => w,
+        Err(code) => return Some(code),
     };
-    let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
     if bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
         let _ = std::fs::remove_file(&tmp);
         return None;
@@ -281,12 +313,7 @@ pub fn translate(
         Err(f) => {
             let _ = std::fs::remove_file(&tmp);
             if let Fallback::NotStraight(why) = &f {
-                if size >= AUTO_BYTES {
-                    eprintln!(
-                        "note: {} is read whole: it has {why} (only straight-line programs stream)",
-                        input.display()
-                    );
-                }
+                note_read_whole(input, size, why);
             }
             return None;
         }
@@ -296,11 +323,7 @@ pub fn translate(
         return Some(ExitCode::from(2));
     }
     if to_stdout {
-        let copied = std::fs::File::open(out).and_then(|mut f| {
-            let mut so = std::io::stdout().lock();
-            std::io::copy(&mut f, &mut so).and_then(|_| so.flush())
-        });
-        if let Err(e) = copied {
+        if let Err(e) = copy_to_stdout(out) {
             let _ = std::fs::remove_file(out);
             eprintln!("error: cannot write: {e}");
             return Some(ExitCode::from(2));
