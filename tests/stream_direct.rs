@@ -13,21 +13,9 @@ use nctrans::eval::{self, trace, Origin, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use nctrans::stream::{self, lines::Input, paged::Pager};
 use rng::Rng;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::rc::Rc;
 use std::sync::Arc;
-
-fn corpus_files() -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    for top in ["corpus/in", "corpus/err"] {
-        for (_, d) in dialect_dirs() {
-            let Ok(rd) = std::fs::read_dir(root().join(top).join(d)) else { continue };
-            v.extend(rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_file()));
-        }
-    }
-    v.sort();
-    v
-}
 
 /// Every page of every program of `path` (scanned with chunks of `chunk_ops`), as text,
 /// read with the direct route on or off; and how many lines took the direct route.

@@ -93,6 +93,19 @@ pub fn run_file(path: &Path, extra: &[&str], max_steps: u64) -> Ran {
     Ran { sink, outcome, db, parse_errors: None }
 }
 
+/// Every corpus program, readable and erroneous, of both dialects, in path order.
+pub fn corpus_files() -> Vec<PathBuf> {
+    let mut v = Vec::new();
+    for top in ["corpus/in", "corpus/err"] {
+        for (_, d) in dialect_dirs() {
+            let Ok(rd) = std::fs::read_dir(root().join(top).join(d)) else { continue };
+            v.extend(rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_file()));
+        }
+    }
+    v.sort();
+    v
+}
+
 pub fn dialect_dirs() -> [(Dialect, &'static str); 2] {
     [(Dialect::Fanuc, "fanuc"), (Dialect::Sinumerik, "sinumerik")]
 }
