@@ -14,6 +14,7 @@
 //! the caller.
 
 use super::lines::NotStreamable;
+use super::to_sinumerik::ReadBack;
 use super::{Index, ProgressFn};
 use crate::check::{self, Verdict};
 use crate::diag::Diagnostic;
@@ -269,25 +270,19 @@ pub struct Verified {
 /// programs run streamed on two threads and their traces are compared as they come.
 pub fn verify(source: Index, output: &Path, max_steps: u64, progress: Option<ProgressFn<'_>>) -> Verified {
     let popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    let out_ix = match super::scan_index_path(output, 1, Dialect::Fanuc, &popts, progress) {
+    let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
+        equivalent: false,
+        summary: format!("not verified: {summary}"),
+        diags,
+        diff: String::new(),
+    };
+    let out_ix = match super::to_sinumerik::read_back(output, 1, Dialect::Fanuc, &popts, progress) {
         Ok(ix) => ix,
-        Err(e) => {
-            return Verified {
-                equivalent: false,
-                summary: format!("not verified: the output cannot be read back ({e})"),
-                diags: vec![],
-                diff: String::new(),
-            }
+        Err(ReadBack::Unreadable(e)) => return not_verified(format!("the output cannot be read back ({e})"), vec![]),
+        Err(ReadBack::Diags(d)) => {
+            return not_verified("the output does not parse as FANUC (a bug in nctrans)".into(), d);
         }
     };
-    if !out_ix.diags.is_empty() {
-        return Verified {
-            equivalent: false,
-            summary: "not verified: the output does not parse as FANUC (a bug in nctrans)".into(),
-            diags: out_ix.diags,
-            diff: String::new(),
-        };
-    }
     let mut db = SourceDb::new();
     db.add(source.path.display().to_string(), String::new());
     db.add(output.display().to_string(), String::new());
