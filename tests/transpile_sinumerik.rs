@@ -399,15 +399,20 @@ fn corpus_outputs(rel: &str) -> Vec<(String, Vec<u8>)> {
     files
 }
 
-#[test]
-fn corpus_translations_are_committed() {
-    let dir = root().join("corpus/in/fanuc");
-    let mut cases: Vec<String> = std::fs::read_dir(&dir)
+/// The file names in corpus/in/fanuc, sorted.
+fn fanuc_corpus_names() -> Vec<String> {
+    let mut cases: Vec<String> = std::fs::read_dir(root().join("corpus/in/fanuc"))
         .expect("corpus/in/fanuc exists")
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .collect();
     cases.sort();
+    cases
+}
+
+#[test]
+fn corpus_translations_are_committed() {
+    let cases = fanuc_corpus_names();
     let mut failures = Vec::new();
     let mut translated = 0;
     for case in &cases {
@@ -492,13 +497,7 @@ const NOT_PROVEN: &[(&str, &str)] = &[(
 
 #[test]
 fn every_translated_corpus_program_verifies() {
-    let dir = root().join("corpus/in/fanuc");
-    let mut cases: Vec<String> = std::fs::read_dir(&dir)
-        .expect("corpus/in/fanuc exists")
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    cases.sort();
+    let cases = fanuc_corpus_names();
     let mut failures = Vec::new();
     let mut proven = 0;
     for case in &cases {
