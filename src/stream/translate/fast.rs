@@ -317,7 +317,7 @@ pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
 /// round-trip test. Two different decimals of at most 15 significant digits never round to
 /// the same double, so when `m` does not end in 0 no decimal with fewer places round-trips
 /// (it would give a second one with `d` places), and `{}` writes exactly these digits.
-fn shortest(a: f64) -> Option<(u64, usize)> {
+pub fn shortest(a: f64) -> Option<(u64, usize)> {
     if a < 1e7 {
         // The usual case, one try: the digits at 8 places without their trailing zeros.
         let (mut m, mut d) = ((a * 1e8 + 0.5) as u64, MAX_DIGITS);
