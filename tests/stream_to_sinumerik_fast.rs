@@ -80,7 +80,7 @@ fn block(r: &mut Rng, arc: &mut bool) -> String {
         b.push_str(if r.chance(50) { "/" } else { "/2 " });
     }
     if r.chance(20) {
-        b.push_str(&format!("N{} ", r.below(100_000)));
+        b.push_str(&format!("N{} ", 1 + r.below(99_999)));
     }
     if r.chance(3) {
         // A dwell, or a tool length code with its warning: the general passes.

@@ -24,7 +24,7 @@ use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::to_sinumerik::{self as passes, g_codes, Ctx, Options, ProgPlan};
+use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
@@ -405,11 +405,16 @@ impl State<'_> {
     fn push(&mut self, s: &Stmt) {
         let arc_before = self.arc;
         if let StmtKind::Block(b) = &s.kind {
-            // The arc mode as `words::lower` follows it.
-            for g in g_codes(&b.items) {
-                match g {
-                    20 | 30 => self.arc = true,
-                    0 | 10 => self.arc = false,
+            // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
+            for it in &b.items {
+                let ItemKind::Word(w) = &it.kind else { continue };
+                let WordValue::Expr(e) = &w.value else { continue };
+                if !w.addr.is(b'G') {
+                    continue;
+                }
+                match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+                    Some(20 | 30) => self.arc = true,
+                    Some(0 | 10) => self.arc = false,
                     _ => {}
                 }
             }

@@ -321,9 +321,17 @@ pub fn shortest(a: f64) -> Option<(u64, usize)> {
     if a < 1e7 {
         // The usual case, one try: the digits at 8 places without their trailing zeros.
         let (mut m, mut d) = ((a * 1e8 + 0.5) as u64, MAX_DIGITS);
-        while d > 0 && m.is_multiple_of(10) {
-            m /= 10;
-            d -= 1;
+        // The trailing zeros (at most 8) taken off by halves: 8, else 4, 2, 1.
+        if m.is_multiple_of(100_000_000) {
+            m /= 100_000_000;
+            d = 0;
+        } else {
+            for (k, p) in [(4, 10_000), (2, 100), (1, 10)] {
+                if m.is_multiple_of(p) {
+                    m /= p;
+                    d -= k;
+                }
+            }
         }
         return (m as f64 / POW10[d] as f64 == a).then_some((m, d));
     }
