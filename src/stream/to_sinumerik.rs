@@ -1,16 +1,19 @@
 //! Streaming translation of straight-line FANUC programs to Sinumerik, and the streamed
-//! check both directions use: the FANUC file is read once; every [`CHUNK_STMTS`] top-level
-//! statements go through the ordinary FANUC → Sinumerik passes and writer and are written at
-//! once, so neither the source nor the output is ever held whole. Verification reads the
-//! output back (streamed) and runs both programs streamed side by side ([`compare`]).
+//! check both directions use: the FANUC file is read once. The first [`FIRST_STMTS`]
+//! statements go through the whole translator (it writes the header); after them each plain
+//! block is written straight from its words ([`fast`]: the passes' exact bytes), and the
+//! blocks the fast path declines go, up to [`CHUNK_STMTS`] at a time, through the ordinary
+//! FANUC → Sinumerik passes and writer. Neither the source nor the output is ever held
+//! whole. Verification reads the output back (streamed) and runs both programs streamed
+//! side by side ([`compare`]).
 //!
 //! Only programs whose translation is local to each block stream ([`straight`]): one
 //! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
 //! need no other block, program ends (M30, M2), comments, N numbers and skips. No macro
 //! statements, variables (so nothing vacant), jumps, loops, calls (M98, G65, G66), G10.
 //! The one state the passes carry from block to block, the arc mode that makes `R` a
-//! radius (`CR=`), is carried over chunk boundaries by a stand-in `G2` block put in front
-//! of a chunk and taken out after lowering. Anything else (or any error, or a warning other
+//! radius (`CR=`), is followed block by block: the fast path is given it, and a chunk of
+//! declined blocks gets a stand-in `G2` block in front, taken out after lowering. Anything else (or any error, or a warning other
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
@@ -37,6 +40,11 @@ mod fast;
 
 /// Statements translated at a time.
 pub const CHUNK_STMTS: usize = 4096;
+
+/// Statements of the first chunk, which the whole translator writes (with the header).
+/// Its plan is made twice and every pass runs on it, some 50,000 instructions a statement,
+/// so it is kept short; the fast path (or the passes, chunk by chunk) takes the rest.
+pub const FIRST_STMTS: usize = 64;
 
 /// Output is handed to the writer in pieces of about this size.
 const WRITE_BYTES: usize = 1 << 16;
@@ -448,7 +456,7 @@ pub fn to_sinumerik(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Streamed, Fallback> {
-    to_sinumerik_first(path, opts, eol, out, progress, CHUNK_STMTS)
+    to_sinumerik_first(path, opts, eol, out, progress, FIRST_STMTS)
 }
 
 /// [`to_sinumerik`] with the first `first_stmts` statements (from the first block that
