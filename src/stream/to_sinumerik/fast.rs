@@ -15,7 +15,7 @@
 use crate::ir::{Addr, Block, EndCode, ExprKind, ItemKind, WordValue};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
-use crate::stream::translate::fast::shortest;
+use crate::stream::translate::fast::{push_decimal, shortest};
 
 /// The block needs the general passes.
 #[derive(Debug, PartialEq, Eq)]
@@ -155,32 +155,7 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
 /// Appends `format!("{v}")` for a finite `v != 0` (Rust's shortest round-trip decimal).
 pub fn push_display(out: &mut Vec<u8>, v: f64) {
     match shortest(v.abs()) {
-        Some((mut m, d)) => {
-            let mut buf = [0u8; 24];
-            let mut k = buf.len();
-            for _ in 0..d {
-                k -= 1;
-                buf[k] = b'0' + (m % 10) as u8;
-                m /= 10;
-            }
-            if d > 0 {
-                k -= 1;
-                buf[k] = b'.';
-            }
-            loop {
-                k -= 1;
-                buf[k] = b'0' + (m % 10) as u8;
-                m /= 10;
-                if m == 0 {
-                    break;
-                }
-            }
-            if v < 0.0 {
-                k -= 1;
-                buf[k] = b'-';
-            }
-            out.extend_from_slice(&buf[k..]);
-        }
+        Some((m, d)) => push_decimal(out, m, d, v < 0.0, false),
         None => {
             use std::io::Write;
             let _ = write!(out, "{v}");
