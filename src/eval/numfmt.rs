@@ -51,6 +51,9 @@ fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
     if x.abs() < 1e15 && (x as i64) as f64 == x {
         return Some(int_digits(buf, x as i64));
     }
+    if let Some(n) = millis(x) {
+        return Some(millis_digits(buf, n));
+    }
     if !x.is_finite() {
         buf[0] = b'0';
         return Some(1);
@@ -116,6 +119,51 @@ fn micros(x: f64) -> Option<u64> {
         std::cmp::Ordering::Greater => Some(q + 1),
         std::cmp::Ordering::Equal => None,
     }
+}
+
+/// `n` when `x` is the double nearest to the decimal `n / 1000` (a position on the
+/// 0.001 mm grid, nearly every coordinate of a metric trace), `|x| < 10⁹`.
+///
+/// Then `x` prints as that decimal: `|x − n/1000|` is at most half an ulp of `x`, under
+/// 2⁻²⁴ < 6·10⁻⁸ for `|x| < 2³⁰`, while `n/1000` is itself a multiple of 10⁻⁶ and every
+/// other multiple is at least 10⁻⁶ − 6·10⁻⁸ from `x`: rounding the exact value of `x` to
+/// six decimals (what the standard formatter does) gives `n/1000`, never a tie. The test
+/// is `fl(n / 1000) == x` with an exact `n` (|n| < 10¹², the division correctly
+/// rounded), so any candidate `n` that passes it is right.
+#[inline]
+fn millis(x: f64) -> Option<i64> {
+    let t = x * 1000.0;
+    // NaN fails the comparison too.
+    if t.abs() >= 1e12 || t.is_nan() {
+        return None;
+    }
+    let n = super::value::round(t) as i64;
+    (n as f64 / 1000.0 == x).then_some(n)
+}
+
+/// Writes `n / 1000` with the fraction's trailing zeros trimmed (`n` not a multiple of
+/// 1000 gives a point, `0` no sign); returns the length.
+fn millis_digits(buf: &mut [u8; BUF], n: i64) -> usize {
+    let mut i = 0;
+    if n < 0 {
+        buf[0] = b'-';
+        i = 1;
+    }
+    let a = n.unsigned_abs();
+    let (int, frac) = (a / 1000, (a % 1000) as u32);
+    i = put_digits(buf, i, int);
+    if frac == 0 {
+        // Only `n = 0` here (integers take the caller's integer path): no `-0`.
+        return if n == 0 { 1 } else { i };
+    }
+    buf[i] = b'.';
+    buf[i + 1] = b'0' + (frac / 100) as u8;
+    buf[i + 2..i + 4].copy_from_slice(pair(frac % 100));
+    let mut end = i + 4;
+    while buf[end - 1] == b'0' {
+        end -= 1;
+    }
+    end
 }
 
 /// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign;
