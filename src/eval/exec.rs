@@ -368,7 +368,8 @@ impl<'a> Interp<'a> {
         if super::machine::fast_path_on() {
             if let Some(done) = self.m.apply_lit(b) {
                 let mut eff = super::machine::BlockEffect::default();
-                if let Some((ev, span)) = done {
+                if let Some(span) = done {
+                    let ev = self.m.move_event();
                     self.emit_ref(&ev, span);
                     eff.moved = true;
                 }

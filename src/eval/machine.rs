@@ -4,7 +4,7 @@
 use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
-use super::value::{round_half_away, round_to, round_to_scaled};
+use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal, round_to_scaled};
 use crate::span::Span;
 
 mod fast;
@@ -108,8 +108,9 @@ pub struct Machine {
     pub applied: [f64; 9],
     /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
     pub probe_contact: Option<f64>,
-    /// `(inc, 1.0 / inc)` of the metric and inch increments, for [`round_to_scaled`].
-    scales: [(f64, f64); 2],
+    /// `(inc, 1.0 / inc, decimal)` of the metric and inch increments, for
+    /// [`round_to_scaled`]; `decimal`: [`is_decimal_scale`], so [`round_to_decimal`] does.
+    scales: [(f64, f64, bool); 2],
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
@@ -148,7 +149,7 @@ impl Machine {
             probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
-            scales: [(inc_mm, 1.0 / inc_mm), (inc_mm / 10.0, 1.0 / (inc_mm / 10.0))],
+            scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
         }
@@ -207,9 +208,19 @@ impl Machine {
     fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if bare && self.scaling { x * inc } else { x };
-        let v = match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
-            Some(&(_, scale)) => round_to_scaled(v, inc, scale),
-            None => round_to(v, inc),
+        // The slot of this unit holds `inc` (unless `inc_mm` changed since `new`): no search.
+        let slot = self.scales[usize::from(self.inch && !rotary)];
+        let v = if slot.0 == inc && inc > 0.0 {
+            if slot.2 {
+                round_to_decimal(v, slot.1)
+            } else {
+                round_to_scaled(v, inc, slot.1)
+            }
+        } else {
+            match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
+                Some(&(_, scale, _)) => round_to_scaled(v, inc, scale),
+                None => round_to(v, inc),
+            }
         };
         if self.inch && !rotary {
             v * 25.4

@@ -46,13 +46,14 @@ const BUF: usize = 32;
 /// Writes the form of `x` at the start of `buf` (ASCII only) and returns its length;
 /// `None` where the standard formatter must decide (an exact tie, `|x| ≥ 10¹²`).
 fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
+    // First the 0.001 grid (integers below 10⁹ included: they print the same either way).
+    if let Some(n) = millis(x) {
+        return Some(millis_digits(buf, n));
+    }
     // An integer (what `x.fract() == 0.0` asks, without its `trunc` call): below 1e15
     // the cast truncates exactly.
     if x.abs() < 1e15 && (x as i64) as f64 == x {
         return Some(int_digits(buf, x as i64));
-    }
-    if let Some(n) = millis(x) {
-        return Some(millis_digits(buf, n));
     }
     if !x.is_finite() {
         buf[0] = b'0';
@@ -129,15 +130,16 @@ fn micros(x: f64) -> Option<u64> {
 /// other multiple is at least 10⁻⁶ − 6·10⁻⁸ from `x`: rounding the exact value of `x` to
 /// six decimals (what the standard formatter does) gives `n/1000`, never a tie. The test
 /// is `fl(n / 1000) == x` with an exact `n` (|n| < 10¹², the division correctly
-/// rounded), so any candidate `n` that passes it is right.
+/// rounded), so any candidate `n` that passes it is right. An integer `x` (|x| < 10⁹)
+/// passes with `n = 1000x` and prints as the integer; `-0` passes with `n = 0`: `0`.
 #[inline]
 fn millis(x: f64) -> Option<i64> {
     let t = x * 1000.0;
-    // NaN fails the comparison too.
     if t.abs() >= 1e12 || t.is_nan() {
         return None;
     }
-    let n = super::value::round(t) as i64;
+    // On the grid `t` is within far less than 0.5 of `n`: half away from zero, truncated.
+    let n = (t + 0.5f64.copysign(t)) as i64;
     (n as f64 / 1000.0 == x).then_some(n)
 }
 
@@ -153,8 +155,7 @@ fn millis_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     let (int, frac) = (a / 1000, (a % 1000) as u32);
     i = put_digits(buf, i, int);
     if frac == 0 {
-        // Only `n = 0` here (integers take the caller's integer path): no `-0`.
-        return if n == 0 { 1 } else { i };
+        return i;
     }
     buf[i] = b'.';
     buf[i + 1] = b'0' + (frac / 100) as u8;
@@ -223,6 +224,20 @@ fn pair(n: u32) -> &'static [u8] {
 /// Writes the digits of `n` from `buf[at]` on, two at a time from the last; returns
 /// where they end. [`BUF`] leaves room for the 20 digits of any u64 after a sign.
 fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
+    // Most numbers of a trace are small: no digit count, no loop.
+    if n < 10 {
+        buf[at] = b'0' + n as u8;
+        return at + 1;
+    }
+    if n < 100 {
+        buf[at..at + 2].copy_from_slice(pair(n as u32));
+        return at + 2;
+    }
+    if n < 1000 {
+        buf[at] = b'0' + (n / 100) as u8;
+        buf[at + 1..at + 3].copy_from_slice(pair((n % 100) as u32));
+        return at + 3;
+    }
     let mut digits = 1;
     let mut p = 10u64;
     while digits < 20 && n >= p {
@@ -354,6 +369,14 @@ pub(crate) mod tests {
                 same(x, &mut a, &mut b);
                 same(-x, &mut a, &mut b);
                 same(x + 123.0, &mut a, &mut b);
+            }
+        }
+        // The 0.001 grid's edges: around 10⁹ (where it stops), and one ulp off the grid.
+        for n in [999_999_999_999i64, 999_999_999_998, 1_000_000_000_000, 1_000_000_000_001, 123_456_789_012, 5, 1] {
+            for x in [n as f64 / 1000.0, -(n as f64) / 1000.0] {
+                same(x, &mut a, &mut b);
+                same(f64::from_bits(x.to_bits() + 1), &mut a, &mut b);
+                same(f64::from_bits(x.to_bits() - 1), &mut a, &mut b);
             }
         }
         // Every multiple of 0.001 in ±100 (all metric positions of a small part).

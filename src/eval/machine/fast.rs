@@ -8,7 +8,7 @@
 //! run programs both ways and compare the traces byte for byte.
 
 use super::{Machine, Motion};
-use crate::eval::lit::{LitBlock, LitWord};
+use crate::eval::lit::LitBlock;
 use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;
 use std::cell::Cell;
@@ -31,8 +31,9 @@ pub fn fast_path_on() -> bool {
     !OFF.with(|o| o.get())
 }
 
-/// What [`Machine::apply_lit`] did with a block it took: the move it made, if any.
-pub type LitDone = Option<(Event, Span)>;
+/// What [`Machine::apply_lit`] did with a block it took: the span of the move it made
+/// (its event is [`Machine::move_event`]), if any.
+pub type LitDone = Option<Span>;
 
 impl Machine {
     /// Runs a literal block when it needs nothing but modal G codes ([`Modal::g`]), axis
@@ -44,11 +45,13 @@ impl Machine {
         // Decide first, without touching the machine: every way out below is `None`.
         let mut modal = self.modal();
         let mut feed_word: Option<f64> = None;
-        let mut axes: [Option<LitWord>; 9] = [None; 9];
+        // Per axis, 1 + the index of its word (0: none); indices, not copies of the words.
+        let mut at = [0u8; 9];
         let mut any_axis = false;
+        let words = b.words();
         // The block's span as the general path folds it from its words.
         let mut span = Span::default();
-        for w in b.words() {
+        for (k, w) in words.iter().enumerate() {
             span = if span == Span::default() { w.span } else { span.to(w.span) };
             match w.letter {
                 b'G' => {
@@ -59,7 +62,7 @@ impl Machine {
                 b'F' => feed_word = Some(w.value),
                 c => {
                     // A later word for the same axis wins, as in the general path.
-                    axes[axis_index(c)?] = Some(*w);
+                    at[axis_index(c)?] = k as u8 + 1;
                     any_axis = true;
                 }
             }
@@ -80,8 +83,8 @@ impl Machine {
         if !any_axis {
             return Some(None);
         }
-        for (i, w) in axes.iter().enumerate() {
-            let Some(w) = w else { continue };
+        for (i, &k) in at.iter().enumerate() {
+            let Some(w) = usize::from(k).checked_sub(1).and_then(|k| words.get(k)) else { continue };
             // Each axis's target reads that axis's state only, so it can be written at once.
             let v = self.length_of(self.fanuc && !w.point, w.value, (3..6).contains(&i));
             let t = self.axis_target(i, v, w.mode, false);
@@ -89,8 +92,14 @@ impl Machine {
             self.seen[i] = true;
             self.pos[i] = t;
         }
+        Some(Some(span))
+    }
+
+    /// The move event of a block [`Machine::apply_lit`] moved in (built where it is sent,
+    /// not passed back through the fast path's result: it is 170 bytes).
+    #[inline]
+    pub fn move_event(&self) -> Event {
         let rapid = self.motion == Motion::Rapid;
-        let f = if rapid { None } else { self.feed };
-        Some(Some((Event::Move { rapid, to: self.trace_pos(), f }, span)))
+        Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }
     }
 }
