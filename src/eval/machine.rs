@@ -156,6 +156,7 @@ impl Machine {
     }
 
     /// The offset added to a workpiece position to get the machine position.
+    #[inline]
     pub fn active_offset(&self, axis: usize) -> f64 {
         if self.fanuc {
             // FANUC: external + selected table, live (a `#5221=` write acts at once).
@@ -172,6 +173,7 @@ impl Machine {
 
     /// The trace position: the machine-frame position of every axis positioned so far
     /// (workpiece zero + active work offset, docs/semantics.md).
+    #[inline]
     pub fn trace_pos(&self) -> Axes {
         let mut a = [None; 9];
         for (i, slot) in a.iter_mut().enumerate() {
@@ -190,6 +192,7 @@ impl Machine {
         }
     }
 
+    #[inline]
     fn inc_in_unit(&self) -> f64 {
         if self.inch {
             self.inc_mm / 10.0
@@ -204,7 +207,7 @@ impl Machine {
     }
 
     /// [`Machine::length`] of a value `x` written bare (without a decimal point) or not.
-    #[inline]
+    #[inline(always)]
     fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if bare && self.scaling { x * inc } else { x };
@@ -231,7 +234,7 @@ impl Machine {
 
     /// Where axis `i` goes (machine frame) for the length `v` (mm) of its word, written
     /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
-    #[inline]
+    #[inline(always)]
     fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
         let inc = match mode {
             AbsInc::Ac => false,

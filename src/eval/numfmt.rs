@@ -157,14 +157,29 @@ fn millis_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     if frac == 0 {
         return i;
     }
-    buf[i] = b'.';
-    buf[i + 1] = b'0' + (frac / 100) as u8;
-    buf[i + 2..i + 4].copy_from_slice(pair(frac % 100));
-    let mut end = i + 4;
-    while buf[end - 1] == b'0' {
-        end -= 1;
+    // `.ddd` with its trailing zeros cut, from a table: one copy, no digit loop.
+    let (text, len) = FRACTIONS[frac as usize % 1000];
+    buf[i..i + 4].copy_from_slice(&text);
+    i + usize::from(len)
+}
+
+/// For every fraction `0..1000` (thousandths): `.ddd` and its length once the trailing
+/// zeros are cut (`5` → `.005`, 4; `500` → `.5`, 2; `0` is never asked for).
+static FRACTIONS: [([u8; 4], u8); 1000] = fractions();
+
+const fn fractions() -> [([u8; 4], u8); 1000] {
+    let mut t = [([0u8; 4], 0u8); 1000];
+    let mut f = 0;
+    while f < 1000 {
+        let d = [(f / 100) as u8, (f / 10 % 10) as u8, (f % 10) as u8];
+        let mut len = 4;
+        while len > 1 && d[len - 2] == 0 {
+            len -= 1;
+        }
+        t[f] = ([b'.', b'0' + d[0], b'0' + d[1], b'0' + d[2]], len as u8);
+        f += 1;
     }
-    end
+    t
 }
 
 /// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign;
@@ -207,6 +222,17 @@ fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     }
 }
 
+/// 10⁰ to 10¹⁹.
+const POW10: [u64; 20] = {
+    let mut t = [1u64; 20];
+    let mut i = 1;
+    while i < 20 {
+        t[i] = t[i - 1] * 10;
+        i += 1;
+    }
+    t
+};
+
 /// "00" to "99".
 const PAIRS: &[u8; 200] = b"\
 0001020304050607080910111213141516171819\
@@ -238,12 +264,11 @@ fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
         buf[at + 1..at + 3].copy_from_slice(pair((n % 100) as u32));
         return at + 3;
     }
-    let mut digits = 1;
-    let mut p = 10u64;
-    while digits < 20 && n >= p {
-        digits += 1;
-        p = p.wrapping_mul(10);
-    }
+    // The digit count from the bit length: `bits × log10(2)` (1233 / 4096) is the count
+    // or one more than it, which one comparison settles.
+    let bits = 64 - (n | 1).leading_zeros() as usize;
+    let guess = (bits * 1233) >> 12;
+    let digits = guess + 1 - usize::from(n < POW10[guess]);
     let end = at + digits;
     let mut i = end;
     while n >= 100 {
@@ -357,7 +382,13 @@ pub(crate) mod tests {
         for x in xs {
             same(x, &mut a, &mut b);
         }
-        for n in [0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)] {
+        let mut ints = vec![0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)];
+        // Every power of ten and its neighbours (the digit count's edges).
+        for k in 0..19 {
+            let p = 10i64.pow(k);
+            ints.extend([p - 1, p, p + 1, -p, 1 - p]);
+        }
+        for n in ints {
             let mut v = Vec::new();
             put_int(&mut v, n);
             assert_eq!(v, n.to_string().as_bytes());
