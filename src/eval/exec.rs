@@ -365,6 +365,17 @@ impl<'a> Interp<'a> {
         if let Some(n) = b.number {
             self.m.last_n = f64::from(n);
         }
+        if super::machine::fast_path_on() {
+            if let Some(done) = self.m.apply_lit(b) {
+                let mut eff = super::machine::BlockEffect::default();
+                if let Some(span) = done {
+                    let ev = self.m.move_event();
+                    self.emit_ref(&ev, span);
+                    eff.moved = true;
+                }
+                return self.block_end(eff, b.span, pc);
+            }
+        }
         let mut words = std::mem::take(&mut self.words_buf);
         words.clear();
         // `extend` writes each word in place (a `push` per word built it on the stack
@@ -419,6 +430,11 @@ impl<'a> Interp<'a> {
                 return Ok(flow);
             }
         }
+        self.block_end(eff, span, pc)
+    }
+
+    /// What a block's words ask once its control items ran: end, return, modal call.
+    fn block_end(&mut self, eff: super::machine::BlockEffect, span: Span, pc: usize) -> Result<Flow, Fault> {
         if let Some(code_) = eff.end {
             return Ok(Flow::Stop(self.end(code_, span)));
         }

@@ -4,8 +4,13 @@
 use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
-use super::value::{round_half_away, round_to, round_to_scaled};
+use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal, round_to_scaled};
 use crate::span::Span;
+
+mod fast;
+mod modal;
+pub use fast::{fast_path_on, set_fast_path, LitDone};
+pub use modal::{g_index, Modal};
 
 /// A word after evaluation of its value.
 #[derive(Clone, Debug)]
@@ -103,8 +108,9 @@ pub struct Machine {
     pub applied: [f64; 9],
     /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
     pub probe_contact: Option<f64>,
-    /// `(inc, 1.0 / inc)` of the metric and inch increments, for [`round_to_scaled`].
-    scales: [(f64, f64); 2],
+    /// `(inc, 1.0 / inc, decimal)` of the metric and inch increments, for
+    /// [`round_to_scaled`]; `decimal`: [`is_decimal_scale`], so [`round_to_decimal`] does.
+    scales: [(f64, f64, bool); 2],
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
@@ -143,13 +149,14 @@ impl Machine {
             probe_contact: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
-            scales: [(inc_mm, 1.0 / inc_mm), (inc_mm / 10.0, 1.0 / (inc_mm / 10.0))],
+            scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
         }
     }
 
     /// The offset added to a workpiece position to get the machine position.
+    #[inline]
     pub fn active_offset(&self, axis: usize) -> f64 {
         if self.fanuc {
             // FANUC: external + selected table, live (a `#5221=` write acts at once).
@@ -166,6 +173,7 @@ impl Machine {
 
     /// The trace position: the machine-frame position of every axis positioned so far
     /// (workpiece zero + active work offset, docs/semantics.md).
+    #[inline]
     pub fn trace_pos(&self) -> Axes {
         let mut a = [None; 9];
         for (i, slot) in a.iter_mut().enumerate() {
@@ -184,6 +192,7 @@ impl Machine {
         }
     }
 
+    #[inline]
     fn inc_in_unit(&self) -> f64 {
         if self.inch {
             self.inc_mm / 10.0
@@ -194,16 +203,53 @@ impl Machine {
 
     /// A length word's value in mm: decimal-point rule, rounding to the increment, unit.
     fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
+        self.length_of(w.bare, x, rotary)
+    }
+
+    /// [`Machine::length`] of a value `x` written bare (without a decimal point) or not.
+    #[inline(always)]
+    fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
-        let v = if w.bare && self.scaling { x * inc } else { x };
-        let v = match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
-            Some(&(_, scale)) => round_to_scaled(v, inc, scale),
-            None => round_to(v, inc),
+        let v = if bare && self.scaling { x * inc } else { x };
+        // The slot of this unit holds `inc` (unless `inc_mm` changed since `new`): no search.
+        let slot = self.scales[usize::from(self.inch && !rotary)];
+        let v = if slot.0 == inc && inc > 0.0 {
+            if slot.2 {
+                round_to_decimal(v, slot.1)
+            } else {
+                round_to_scaled(v, inc, slot.1)
+            }
+        } else {
+            match self.scales.iter().find(|s| s.0 == inc && inc > 0.0) {
+                Some(&(_, scale, _)) => round_to_scaled(v, inc, scale),
+                None => round_to(v, inc),
+            }
         };
         if self.inch && !rotary {
             v * 25.4
         } else {
             v
+        }
+    }
+
+    /// Where axis `i` goes (machine frame) for the length `v` (mm) of its word, written
+    /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
+    #[inline(always)]
+    fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
+        let inc = match mode {
+            AbsInc::Ac => false,
+            AbsInc::Ic => true,
+            AbsInc::Plain => !self.absolute && !g53,
+        };
+        if g53 {
+            // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
+            v
+        } else if inc && self.incr_travels_offset {
+            self.pos[i] - self.applied[i] + v + self.active_offset(i)
+        } else if inc {
+            self.pos[i] + v
+        } else {
+            v + self.active_offset(i)
         }
     }
 
@@ -359,46 +405,21 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         for &(g, span) in gs.iter() {
-            let gi = super::value::round(g * 10.0) as i64;
+            let gi = g_index(g);
+            let mut modal = self.modal();
+            if modal.g(self.fanuc, gi) {
+                self.set_modal(modal);
+                continue;
+            }
             match gi {
-                0 => self.motion = Motion::Rapid,
-                10 => self.motion = Motion::Linear,
-                20 => self.motion = Motion::Cw,
-                30 => self.motion = Motion::Ccw,
                 40 => dwell = true,
                 100 => g10 = true,
-                110 => {}
-                170 => self.plane = Plane::XY,
-                180 => self.plane = Plane::ZX,
-                190 => self.plane = Plane::YZ,
-                200 if self.fanuc => {
-                    self.inch = true;
-                    self.inch_feed = true;
-                }
-                210 if self.fanuc => {
-                    self.inch = false;
-                    self.inch_feed = false;
-                }
-                700 if !self.fanuc => self.inch = true,
-                710 if !self.fanuc => self.inch = false,
-                7000 if !self.fanuc => {
-                    self.inch = true;
-                    self.inch_feed = true;
-                }
-                7100 if !self.fanuc => {
-                    self.inch = false;
-                    self.inch_feed = false;
-                }
                 310 if self.fanuc => probe = true,
                 530 | 1530 => g53 = true,
                 540..=590 if gi % 10 == 0 && self.fanuc => self.select_offset((gi / 10 - 53) as usize),
                 540..=570 if gi % 10 == 0 => self.select_offset((gi / 10 - 53) as usize),
                 5000 if !self.fanuc => self.select_offset(0),
                 5050..=5990 if !self.fanuc && gi % 10 == 0 => self.select_offset((gi / 10 - 500) as usize),
-                900 => self.absolute = true,
-                910 => self.absolute = false,
-                940 => self.per_rev = false,
-                950 => self.per_rev = true,
                 // Path control, compensation (the trace holds programmed positions), cycle
                 // cancel, exact stop: no effect on the trace.
                 90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
@@ -586,23 +607,7 @@ impl Machine {
         let mut target = self.pos;
         for (i, a) in axes.iter().enumerate() {
             let Some((w, x)) = a else { continue };
-            let rotary = (3..6).contains(&i);
-            let v = self.length(w, *x, rotary);
-            let inc = match w.mode {
-                AbsInc::Ac => false,
-                AbsInc::Ic => true,
-                AbsInc::Plain => !self.absolute && !g53,
-            };
-            target[i] = if g53 {
-                // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
-                v
-            } else if inc && self.incr_travels_offset {
-                self.pos[i] - self.applied[i] + v + self.active_offset(i)
-            } else if inc {
-                self.pos[i] + v
-            } else {
-                v + self.active_offset(i)
-            };
+            target[i] = self.axis_target(i, self.length(w, *x, (3..6).contains(&i)), w.mode, g53);
         }
         if probe {
             if let Some(frac) = self.probe_contact {

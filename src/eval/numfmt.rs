@@ -13,7 +13,65 @@ pub fn push_num(out: &mut String, x: f64) {
 }
 
 /// [`push_num`] into a byte buffer (the trace writers' form).
+#[inline]
 pub fn put_num(out: &mut Vec<u8>, x: f64) {
+    // The 0.001 grid below 10⁶ (nearly every coordinate and feed of a metric trace):
+    // written as [`fast`] writes it ([`millis_digits`]), in one short buffer.
+    if let Some(n) = millis(x) {
+        if n.unsigned_abs() < 1_000_000_000 {
+            put_small_millis(out, n);
+            return;
+        }
+    }
+    put_num_any(out, x);
+}
+
+/// [`millis_digits`] of `n` with `|n| < 10⁹` (at most a sign, 6 integer digits and
+/// `.ddd`: 11 bytes), appended through a 16-byte buffer copied whole.
+fn put_small_millis(out: &mut Vec<u8>, n: i64) {
+    let mut buf = [0u8; 16];
+    let mut i = usize::from(n < 0);
+    buf[0] = b'-';
+    let a = n.unsigned_abs();
+    let (int, frac) = ((a / 1000) as u32, (a % 1000) as u32);
+    if int >= 1000 {
+        let (hi, lo) = (int / 1000, int % 1000);
+        i = put_upto3(&mut buf, i, hi);
+        buf[i] = b'0' + (lo / 100) as u8;
+        buf[i + 1..i + 3].copy_from_slice(pair(lo % 100));
+        i += 3;
+    } else {
+        i = put_upto3(&mut buf, i, int);
+    }
+    let mut len = i;
+    if frac != 0 {
+        let (text, l) = FRACTIONS[frac as usize % 1000];
+        buf[i..i + 4].copy_from_slice(&text);
+        len += usize::from(l);
+    }
+    let at = out.len();
+    out.extend_from_slice(&buf);
+    out.truncate(at + len);
+}
+
+/// Writes `n < 1000` without leading zeros at `buf[at..]`; returns where it ends.
+#[inline]
+fn put_upto3(buf: &mut [u8; 16], at: usize, n: u32) -> usize {
+    if n < 10 {
+        buf[at] = b'0' + n as u8;
+        at + 1
+    } else if n < 100 {
+        buf[at..at + 2].copy_from_slice(pair(n));
+        at + 2
+    } else {
+        buf[at] = b'0' + (n / 100) as u8;
+        buf[at + 1..at + 3].copy_from_slice(pair(n % 100));
+        at + 3
+    }
+}
+
+/// [`put_num`] of any value.
+fn put_num_any(out: &mut Vec<u8>, x: f64) {
     let mut buf = [0u8; BUF];
     match fast(x, &mut buf) {
         Some(n) => put_head(out, &buf, n),
@@ -46,6 +104,10 @@ const BUF: usize = 32;
 /// Writes the form of `x` at the start of `buf` (ASCII only) and returns its length;
 /// `None` where the standard formatter must decide (an exact tie, `|x| ≥ 10¹²`).
 fn fast(x: f64, buf: &mut [u8; BUF]) -> Option<usize> {
+    // First the 0.001 grid (integers below 10⁹ included: they print the same either way).
+    if let Some(n) = millis(x) {
+        return Some(millis_digits(buf, n));
+    }
     // An integer (what `x.fract() == 0.0` asks, without its `trunc` call): below 1e15
     // the cast truncates exactly.
     if x.abs() < 1e15 && (x as i64) as f64 == x {
@@ -118,6 +180,66 @@ fn micros(x: f64) -> Option<u64> {
     }
 }
 
+/// `n` when `x` is the double nearest to the decimal `n / 1000` (a position on the
+/// 0.001 mm grid, nearly every coordinate of a metric trace), `|x| < 10⁹`.
+///
+/// Then `x` prints as that decimal: `|x − n/1000|` is at most half an ulp of `x`, under
+/// 2⁻²⁴ < 6·10⁻⁸ for `|x| < 2³⁰`, while `n/1000` is itself a multiple of 10⁻⁶ and every
+/// other multiple is at least 10⁻⁶ − 6·10⁻⁸ from `x`: rounding the exact value of `x` to
+/// six decimals (what the standard formatter does) gives `n/1000`, never a tie. The test
+/// is `fl(n / 1000) == x` with an exact `n` (|n| < 10¹², the division correctly
+/// rounded), so any candidate `n` that passes it is right. An integer `x` (|x| < 10⁹)
+/// passes with `n = 1000x` and prints as the integer; `-0` passes with `n = 0`: `0`.
+#[inline]
+fn millis(x: f64) -> Option<i64> {
+    let t = x * 1000.0;
+    if t.abs() >= 1e12 || t.is_nan() {
+        return None;
+    }
+    // On the grid `t` is within far less than 0.5 of `n`: half away from zero, truncated.
+    let n = (t + 0.5f64.copysign(t)) as i64;
+    (n as f64 / 1000.0 == x).then_some(n)
+}
+
+/// Writes `n / 1000` with the fraction's trailing zeros trimmed (`n` not a multiple of
+/// 1000 gives a point, `0` no sign); returns the length.
+fn millis_digits(buf: &mut [u8; BUF], n: i64) -> usize {
+    let mut i = 0;
+    if n < 0 {
+        buf[0] = b'-';
+        i = 1;
+    }
+    let a = n.unsigned_abs();
+    let (int, frac) = (a / 1000, (a % 1000) as u32);
+    i = put_digits(buf, i, int);
+    if frac == 0 {
+        return i;
+    }
+    // `.ddd` with its trailing zeros cut, from a table: one copy, no digit loop.
+    let (text, len) = FRACTIONS[frac as usize % 1000];
+    buf[i..i + 4].copy_from_slice(&text);
+    i + usize::from(len)
+}
+
+/// For every fraction `0..1000` (thousandths): `.ddd` and its length once the trailing
+/// zeros are cut (`5` → `.005`, 4; `500` → `.5`, 2; `0` is never asked for).
+static FRACTIONS: [([u8; 4], u8); 1000] = fractions();
+
+const fn fractions() -> [([u8; 4], u8); 1000] {
+    let mut t = [([0u8; 4], 0u8); 1000];
+    let mut f = 0;
+    while f < 1000 {
+        let d = [(f / 100) as u8, (f / 10 % 10) as u8, (f % 10) as u8];
+        let mut len = 4;
+        while len > 1 && d[len - 2] == 0 {
+            len -= 1;
+        }
+        t[f] = ([b'.', b'0' + d[0], b'0' + d[1], b'0' + d[2]], len as u8);
+        f += 1;
+    }
+    t
+}
+
 /// Writes `q / 10⁶` with the fraction's trailing zeros trimmed, `0` without a sign;
 /// returns the length.
 fn micros_digits(buf: &mut [u8; BUF], neg: bool, q: u64) -> usize {
@@ -158,6 +280,17 @@ fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     }
 }
 
+/// 10⁰ to 10¹⁹.
+const POW10: [u64; 20] = {
+    let mut t = [1u64; 20];
+    let mut i = 1;
+    while i < 20 {
+        t[i] = t[i - 1] * 10;
+        i += 1;
+    }
+    t
+};
+
 /// "00" to "99".
 const PAIRS: &[u8; 200] = b"\
 0001020304050607080910111213141516171819\
@@ -175,12 +308,25 @@ fn pair(n: u32) -> &'static [u8] {
 /// Writes the digits of `n` from `buf[at]` on, two at a time from the last; returns
 /// where they end. [`BUF`] leaves room for the 20 digits of any u64 after a sign.
 fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
-    let mut digits = 1;
-    let mut p = 10u64;
-    while digits < 20 && n >= p {
-        digits += 1;
-        p = p.wrapping_mul(10);
+    // Most numbers of a trace are small: no digit count, no loop.
+    if n < 10 {
+        buf[at] = b'0' + n as u8;
+        return at + 1;
     }
+    if n < 100 {
+        buf[at..at + 2].copy_from_slice(pair(n as u32));
+        return at + 2;
+    }
+    if n < 1000 {
+        buf[at] = b'0' + (n / 100) as u8;
+        buf[at + 1..at + 3].copy_from_slice(pair((n % 100) as u32));
+        return at + 3;
+    }
+    // The digit count from the bit length: `bits × log10(2)` (1233 / 4096) is the count
+    // or one more than it, which one comparison settles.
+    let bits = 64 - (n | 1).leading_zeros() as usize;
+    let guess = (bits * 1233) >> 12;
+    let digits = guess + 1 - usize::from(n < POW10[guess]);
     let end = at + digits;
     let mut i = end;
     while n >= 100 {
@@ -294,7 +440,13 @@ pub(crate) mod tests {
         for x in xs {
             same(x, &mut a, &mut b);
         }
-        for n in [0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)] {
+        let mut ints = vec![0, 1, -1, 9, 10, 99, 100, -100, 12_345, i64::MAX, i64::MIN, i64::MIN + 1, 10i64.pow(18)];
+        // Every power of ten and its neighbours (the digit count's edges).
+        for k in 0..19 {
+            let p = 10i64.pow(k);
+            ints.extend([p - 1, p, p + 1, -p, 1 - p]);
+        }
+        for n in ints {
             let mut v = Vec::new();
             put_int(&mut v, n);
             assert_eq!(v, n.to_string().as_bytes());
@@ -306,6 +458,22 @@ pub(crate) mod tests {
                 same(x, &mut a, &mut b);
                 same(-x, &mut a, &mut b);
                 same(x + 123.0, &mut a, &mut b);
+            }
+        }
+        // The 0.001 grid's edges: around 10⁹ (where it stops), and one ulp off the grid.
+        for n in [999_999_999_999i64, 999_999_999_998, 1_000_000_000_000, 1_000_000_000_001, 123_456_789_012, 5, 1] {
+            for x in [n as f64 / 1000.0, -(n as f64) / 1000.0] {
+                same(x, &mut a, &mut b);
+                same(f64::from_bits(x.to_bits() + 1), &mut a, &mut b);
+                same(f64::from_bits(x.to_bits() - 1), &mut a, &mut b);
+            }
+        }
+        // Large grid values: every integer-part length of the short grid writer and past it.
+        for int in [999i64, 1000, 1001, 9999, 10_000, 99_999, 100_000, 123_456, 999_999, 1_000_000, 9_999_999] {
+            for frac in [0i64, 1, 10, 100, 120, 500, 999] {
+                let x = (int * 1000 + frac) as f64 / 1000.0;
+                same(x, &mut a, &mut b);
+                same(-x, &mut a, &mut b);
             }
         }
         // Every multiple of 0.001 in ±100 (all metric positions of a small part).

@@ -11,8 +11,21 @@ pub const AXES: [char; 9] = ['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'];
 pub type Axes = [Option<f64>; 9];
 
 /// Index of an axis letter in [`AXES`].
+#[inline]
 pub fn axis_index(c: u8) -> Option<usize> {
-    AXES.iter().position(|a| *a as u8 == c)
+    // A match, not a search of `AXES`: asked for every word of every block.
+    Some(match c {
+        b'X' => 0,
+        b'Y' => 1,
+        b'Z' => 2,
+        b'A' => 3,
+        b'B' => 4,
+        b'C' => 5,
+        b'U' => 6,
+        b'V' => 7,
+        b'W' => 8,
+        _ => return None,
+    })
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -211,9 +224,7 @@ fn to_string_buf(s: &mut String, f: impl FnOnce(&mut TextBuf)) {
 fn axes_text(out: &mut TextBuf, to: &Axes) {
     for (i, v) in to.iter().enumerate() {
         if let Some(x) = v {
-            out.push(' ');
-            out.push(AXES[i]);
-            out.push('=');
+            out.0.extend_from_slice(&[b' ', AXES[i] as u8, b'=']);
             push_num_b(out, *x);
         }
     }

@@ -76,25 +76,10 @@ pub fn round_to(x: f64, inc: f64) -> f64 {
 /// [`round_to`] with `scale` = `1.0 / inc` (`inc > 0`) worked out by the caller: the same
 /// result, one division less for a caller that rounds many values to one increment.
 pub fn round_to_scaled(x: f64, inc: f64, scale: f64) -> f64 {
-    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
-    // `scale.fract() == 0.0` without its `trunc` call (the cast is exact up to 1e9).
-    if scale <= 1e9 && (scale as i64) as f64 == scale {
-        // A decimal increment: dividing the integer count by a power of ten gives the
-        // double nearest to the decimal value, with no noise to clean.
-        let k = round((x * scale) * 1e6);
-        let n = if k.abs() < 1e15 {
-            // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
-            // k is, and otherwise at least 1e-6 from one, farther than its rounding error
-            // (under 1.2e-7), so the division rounds the same way. Saves a division.
-            let ki = k as i64;
-            let q = (ki.abs() + 500_000) / 1_000_000;
-            (if ki < 0 { -q } else { q }) as f64
-        } else {
-            round(k / 1e6)
-        };
-        let r = n / scale;
-        return if r == 0.0 { 0.0 } else { r };
+    if is_decimal_scale(scale) {
+        return round_to_decimal(x, scale);
     }
+    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
     let q = round((x / inc) * 1e6) / 1e6;
     let r = round(q) * inc;
     // Clean the binary representation (0.1+0.2 style noise) so that printed values and
@@ -106,6 +91,39 @@ pub fn round_to_scaled(x: f64, inc: f64, scale: f64) -> f64 {
         0.0
     } else {
         cleaned
+    }
+}
+
+/// Whether [`round_to_scaled`] takes [`round_to_decimal`] for `scale`: an integer up to
+/// 10⁹ (`scale.fract() == 0.0` without its `trunc` call: the cast is exact up to 1e9).
+#[inline]
+pub fn is_decimal_scale(scale: f64) -> bool {
+    scale <= 1e9 && (scale as i64) as f64 == scale
+}
+
+/// [`round_to_scaled`] for a `scale` of [`is_decimal_scale`] (a decimal increment), which
+/// a caller rounding many values to one increment checks once.
+#[inline]
+pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
+    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
+    let k = round((x * scale) * 1e6);
+    let n = if k.abs() < 1e15 {
+        // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
+        // k is, and otherwise at least 1e-6 from one, farther than its rounding error
+        // (under 1.2e-7), so the division rounds the same way. Saves a division.
+        let ki = k as i64;
+        let q = (ki.abs() + 500_000) / 1_000_000;
+        (if ki < 0 { -q } else { q }) as f64
+    } else {
+        round(k / 1e6)
+    };
+    // Dividing the integer count by a power of ten gives the double nearest to the
+    // decimal value, with no noise to clean.
+    let r = n / scale;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
     }
 }
 

@@ -1,0 +1,105 @@
+//! The literal fast path: a compact block of G0/G1-style modal codes, axis words and F
+//! (nearly every block of CAM output) run straight on the machine state, without the
+//! general path's word vector, G/M lists and event vector. It decides every block it takes
+//! exactly as [`Machine::apply`] does (the same [`Modal::g`], [`Machine::length_of`],
+//! [`Machine::axis_target`] and trace position), and takes only blocks whose general run
+//! raises no warning, alarm or error and emits at most one move; anything else is left,
+//! untouched, to the general path. `src/eval/fast_tests.rs` and `tests/eval_fast.rs`
+//! run programs both ways and compare the traces byte for byte.
+
+use super::{Machine, Motion};
+use crate::eval::lit::LitBlock;
+use crate::eval::trace::{axis_index, Event};
+use crate::span::Span;
+use std::cell::Cell;
+
+thread_local! {
+    /// Off: every literal block takes the general path (the differential tests).
+    static OFF: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Turns the literal fast path on or off for runs on this thread (for the differential
+/// tests; it is on by default).
+#[doc(hidden)]
+pub fn set_fast_path(on: bool) {
+    OFF.with(|o| o.set(!on));
+}
+
+/// Whether the literal fast path is on for this thread.
+#[inline]
+pub fn fast_path_on() -> bool {
+    !OFF.with(|o| o.get())
+}
+
+/// What [`Machine::apply_lit`] did with a block it took: the span of the move it made
+/// (its event is [`Machine::move_event`]), if any.
+pub type LitDone = Option<Span>;
+
+impl Machine {
+    /// Runs a literal block when it needs nothing but modal G codes ([`Modal::g`]), axis
+    /// words and F, and its general run would neither fail nor warn: `None` (the machine
+    /// untouched) otherwise.
+    ///
+    /// [`Modal::g`]: super::Modal::g
+    pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
+        // Decide first, without touching the machine: every way out below is `None`.
+        let mut modal = self.modal();
+        let mut feed_word: Option<f64> = None;
+        // Per axis, 1 + the index of its word (0: none); indices, not copies of the words.
+        let mut at = [0u8; 9];
+        let mut any_axis = false;
+        let words = b.words();
+        // The block's span as the general path folds it from its words.
+        let mut span = Span::default();
+        for (k, w) in words.iter().enumerate() {
+            span = if span == Span::default() { w.span } else { span.to(w.span) };
+            match w.letter {
+                b'G' => {
+                    if !modal.g(self.fanuc, super::g_index(w.value)) {
+                        return None;
+                    }
+                }
+                b'F' => feed_word = Some(w.value),
+                c => {
+                    // A later word for the same axis wins, as in the general path.
+                    at[axis_index(c)?] = k as u8 + 1;
+                    any_axis = true;
+                }
+            }
+        }
+        if any_axis {
+            match modal.motion {
+                Motion::Rapid => {}
+                // The alarm of a feed move without any feed is the general path's.
+                Motion::Linear if feed_word.is_some() || self.feed.is_some() => {}
+                _ => return None,
+            }
+        }
+        // Commit, in the general path's order: modal codes, F, then the axes.
+        self.set_modal(modal);
+        if let Some(x) = feed_word {
+            self.feed = Some(self.feed_value(x));
+        }
+        if !any_axis {
+            return Some(None);
+        }
+        for (i, &k) in at.iter().enumerate() {
+            let Some(w) = usize::from(k).checked_sub(1).and_then(|k| words.get(k)) else { continue };
+            // Each axis's target reads that axis's state only, so it can be written at once.
+            let v = self.length_of(self.fanuc && !w.point, w.value, (3..6).contains(&i));
+            let t = self.axis_target(i, v, w.mode, false);
+            self.applied[i] = self.active_offset(i);
+            self.seen[i] = true;
+            self.pos[i] = t;
+        }
+        Some(Some(span))
+    }
+
+    /// The move event of a block [`Machine::apply_lit`] moved in (built where it is sent,
+    /// not passed back through the fast path's result: it is 170 bytes).
+    #[inline]
+    pub fn move_event(&self) -> Event {
+        let rapid = self.motion == Motion::Rapid;
+        Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }
+    }
+}

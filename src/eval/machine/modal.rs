@@ -1,0 +1,87 @@
+//! The G codes that only change modal state (motion mode, plane, units, G90/G91, feed
+//! type): one definition for the general block path and the literal fast path.
+
+use super::{Machine, Motion};
+use crate::eval::trace::Plane;
+
+/// The modal state a G code of [`Modal::g`] may change.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Modal {
+    pub motion: Motion,
+    pub plane: Plane,
+    pub absolute: bool,
+    pub inch: bool,
+    pub inch_feed: bool,
+    pub per_rev: bool,
+}
+
+/// A G word's value as the machine reads it: ten times the code, rounded (G1 = 10,
+/// G64.1 = 641, G700 = 7000).
+#[inline]
+pub fn g_index(g: f64) -> i64 {
+    crate::eval::value::round(g * 10.0) as i64
+}
+
+impl Modal {
+    /// Applies the G code `gi` ([`g_index`]) when all it does is change this state;
+    /// `false` (nothing changed) for every other code, which the general path decides.
+    #[inline]
+    pub fn g(&mut self, fanuc: bool, gi: i64) -> bool {
+        match gi {
+            0 => self.motion = Motion::Rapid,
+            10 => self.motion = Motion::Linear,
+            20 => self.motion = Motion::Cw,
+            30 => self.motion = Motion::Ccw,
+            110 => {}
+            170 => self.plane = Plane::XY,
+            180 => self.plane = Plane::ZX,
+            190 => self.plane = Plane::YZ,
+            200 if fanuc => {
+                self.inch = true;
+                self.inch_feed = true;
+            }
+            210 if fanuc => {
+                self.inch = false;
+                self.inch_feed = false;
+            }
+            700 if !fanuc => self.inch = true,
+            710 if !fanuc => self.inch = false,
+            7000 if !fanuc => {
+                self.inch = true;
+                self.inch_feed = true;
+            }
+            7100 if !fanuc => {
+                self.inch = false;
+                self.inch_feed = false;
+            }
+            900 => self.absolute = true,
+            910 => self.absolute = false,
+            940 => self.per_rev = false,
+            950 => self.per_rev = true,
+            _ => return false,
+        }
+        true
+    }
+}
+
+impl Machine {
+    pub fn modal(&self) -> Modal {
+        Modal {
+            motion: self.motion,
+            plane: self.plane,
+            absolute: self.absolute,
+            inch: self.inch,
+            inch_feed: self.inch_feed,
+            per_rev: self.per_rev,
+        }
+    }
+
+    pub fn set_modal(&mut self, m: Modal) {
+        self.motion = m.motion;
+        self.plane = m.plane;
+        self.absolute = m.absolute;
+        self.inch = m.inch;
+        self.inch_feed = m.inch_feed;
+        self.per_rev = m.per_rev;
+    }
+}
