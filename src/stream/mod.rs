@@ -82,10 +82,10 @@ impl Reader<'_> {
 
     /// An index-only scan: a plain top-level line read straight to its span and number
     /// (see `sinumerik::Reader::scan_plain`, `fanuc::Reader::scan_plain`).
-    fn scan_plain(&mut self, raw: &RawBlock<'_>) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+    fn scan_plain(&mut self, raw: &RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
         match self {
-            Reader::Sin(r) => r.scan_plain(raw),
-            Reader::Fan(r) => r.scan_plain(raw),
+            Reader::Sin(r) => r.scan_plain(raw, ascii),
+            Reader::Fan(r) => r.scan_plain(raw, ascii),
         }
     }
 
@@ -114,11 +114,11 @@ impl Reader<'_> {
     /// constant letter words at top level (see `sinumerik::Reader::plain_words`,
     /// `fanuc::Reader::plain_words`); `false`
     /// when it must go through [`Reader::line`] (`b` is then to be dropped).
-    fn lit(&mut self, raw: &RawBlock<'_>, b: &mut LitBlock) -> bool {
+    fn lit(&mut self, raw: &RawBlock<'_>, ascii: bool, b: &mut LitBlock) -> bool {
         match self {
             Reader::Sin(r) => {
                 let Some((span, number)) =
-                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
                 else {
                     return false;
                 };
@@ -128,7 +128,7 @@ impl Reader<'_> {
             }
             Reader::Fan(r) => {
                 let Some((span, number)) =
-                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
                 else {
                     return false;
                 };
@@ -271,7 +271,7 @@ fn scan_with(
         // An index-only scan takes a plain top-level line (nearly every line of CAM code)
         // straight to the index: the one statement `line` and a drain would give, added.
         if each.is_none() {
-            if let Some((span, number)) = reader.scan_plain(&raw) {
+            if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
                 let prog = reader.current();
                 chunks.before(prog);
                 chunks.progs[prog].add_plain(span, number.as_ref());
@@ -465,7 +465,7 @@ pub fn reread(
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
         if direct {
             if let Some(b) = sink.lit() {
-                if reader.lit(&raw, b) {
+                if reader.lit(&raw, l.ascii, b) {
                     continue;
                 }
                 sink.unlit();

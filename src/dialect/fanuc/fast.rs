@@ -238,52 +238,12 @@ impl Word {
     }
 }
 
-/// How many ASCII digits `b` starts with.
-#[inline(always)]
-fn digit_run(b: &[u8]) -> usize {
-    b.iter().position(|c| !c.is_ascii_digit()).unwrap_or(b.len())
-}
-
-/// How many ASCII digits `b` starts with, and their value as one whole number (wrapping
-/// past 19 digits; only used up to 15).
-#[inline(always)]
-fn digit_value(b: &[u8]) -> (usize, u64) {
-    let mut mant: u64 = 0;
-    for (k, &c) in b.iter().enumerate() {
-        let d = c.wrapping_sub(b'0');
-        if d > 9 {
-            return (k, mant);
-        }
-        mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-    }
-    (b.len(), mant)
-}
-
-/// 10^0 ..= 10^15 as integers (to put the digits after the point behind those before it).
-const POW10: [u64; 16] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-    10_000_000_000,
-    100_000_000_000,
-    1_000_000_000_000,
-    10_000_000_000_000,
-    100_000_000_000_000,
-    1_000_000_000_000_000,
-];
-
 /// The word at `*i` (a letter, blanks, an optional sign, digits with an optional point),
 /// or `None` when it is anything else or not followed by a separator, a letter or the end.
 #[inline(always)]
 fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
     let b = seg.text.as_bytes();
+    let len = b.len();
     let mut i = *at;
     let letter = *b.get(i)?;
     if !letter.is_ascii_alphabetic() {
@@ -291,30 +251,50 @@ fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
     }
     let start = i;
     i += 1;
-    skip_ws(b, &mut i);
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
     let vstart = i;
     let mut neg = None;
-    if let Some(&c @ (b'-' | b'+')) = b.get(i) {
-        neg = Some(c == b'-');
+    if i < len && (b[i] == b'-' || b[i] == b'+') {
+        neg = Some(b[i] == b'-');
         i += 1;
-        skip_ws(b, &mut i);
+        while i < len && blank(b[i]) {
+            i += 1;
+        }
     }
     let lo = i;
-    let (n, mut mant) = if VALUES { digit_value(b.get(i..)?) } else { (digit_run(b.get(i..)?), 0) };
-    i += n;
-    let mut digits = n;
+    // All the digits as one whole number (the point left out), when wanted.
+    let mut mant: u64 = 0;
+    while i < len {
+        let d = b[i].wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        if VALUES {
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+        }
+        i += 1;
+    }
+    let mut digits = i - lo;
     let mut point = false;
     let mut frac = 0;
-    if b.get(i) == Some(&b'.') {
+    if i < len && b[i] == b'.' {
         point = true;
         i += 1;
-        let (more, v) = if VALUES { digit_value(b.get(i..)?) } else { (digit_run(b.get(i..)?), 0) };
-        if VALUES && more <= 15 {
-            mant = mant.wrapping_mul(POW10[more]).wrapping_add(v);
+        let from = i;
+        while i < len {
+            let d = b[i].wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            if VALUES {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+            }
+            i += 1;
         }
-        frac = more;
-        i += more;
-        digits += more;
+        frac = i - from;
+        digits += frac;
     }
     if digits == 0 || !ends_token(b, i) {
         return None;
@@ -322,6 +302,12 @@ fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
     *at = i;
     let mant = VALUES.then_some(mant);
     Some(Word { letter: letter.to_ascii_uppercase(), start, vstart, lo, hi: i, neg, point, digits, mant, frac })
+}
+
+/// A blank between the parts of a block.
+#[inline(always)]
+fn blank(c: u8) -> bool {
+    matches!(c, b' ' | b'\t' | b'\x0C')
 }
 
 /// For tests: the fast path on one line of text.

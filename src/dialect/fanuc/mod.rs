@@ -191,8 +191,9 @@ impl<'o> Reader<'o> {
     /// letter O, so normalising would change nothing and warn of nothing; the rest is as
     /// for [`Reader::plain_words`], with `ProgramLines::push_drained_skeleton` for
     /// `push_skeleton` and the drain.
-    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>) -> Option<(Span, Option<crate::ir::SeqNo>)> {
-        if !self.index_only || self.tape == Tape::Closed || !raw.text.is_ascii() {
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
+    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        if !self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let prog = self.programs.last()?;
@@ -224,12 +225,14 @@ impl<'o> Reader<'o> {
     /// program has a name: nothing is held back as a title; nothing else waits), which
     /// grows the program span and notes the block's number (its words hold no GOTO):
     /// `ProgramLines::push_drained` does just that.
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
     pub fn plain_words(
         &mut self,
         raw: &read::RawBlock<'_>,
+        ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
-        if !self.resumed || self.index_only || self.tape == Tape::Closed || !raw.text.is_ascii() {
+        if !self.resumed || self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let prog = self.programs.last()?;

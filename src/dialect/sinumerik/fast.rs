@@ -31,7 +31,15 @@ pub fn skeleton(norm: &Normalised<'_>, whole: Span) -> Option<(BlockMeta, bool)>
 /// word is the only ASCII text `read::normalise` changes, so `raw` is what normalising
 /// would give (see `read::Normalised::unchanged`).
 pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>) -> Option<(Option<SeqNo>, bool)> {
-    let norm = Normalised::unchanged(raw);
+    super::automaton::skeleton(raw.text.as_bytes(), raw.start)
+}
+
+/// [`read`] with no sink on `text`: the block number and whether the block has words
+/// (for the test of `automaton::skeleton`, which must decide as [`read`] does).
+#[cfg(test)]
+pub(super) fn skeleton_by_read(text: &str, start: u32) -> Option<(Option<SeqNo>, bool)> {
+    let raw = crate::read::RawBlock { text, start, line: 1 };
+    let norm = Normalised::unchanged(&raw);
     let head = read(&norm, &mut Count)?;
     Some((head.number, head.words > 0))
 }
@@ -77,27 +85,6 @@ impl Found<'_> {
             v
         }
     }
-}
-
-/// How many ASCII digits `b` starts with.
-#[inline(always)]
-fn digit_run(b: &[u8]) -> usize {
-    b.iter().position(|c| !c.is_ascii_digit()).unwrap_or(b.len())
-}
-
-/// How many ASCII digits `b` starts with, and their value as one whole number (wrapping
-/// past 19 digits, which [`read`] declines).
-#[inline(always)]
-fn digit_value(b: &[u8]) -> (usize, u64) {
-    let mut mant: u64 = 0;
-    for (k, &c) in b.iter().enumerate() {
-        let d = c.wrapping_sub(b'0');
-        if d > 9 {
-            return (k, mant);
-        }
-        mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-    }
-    (b.len(), mant)
 }
 
 /// What [`read`] does with each word it reads.
@@ -253,36 +240,46 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
         if neg || sign == b'+' {
             j += 1;
         }
+        // The digits as one whole number (the point left out) and how many follow the
+        // point: the value is then exact (see `read::scaled`), no second pass needed.
         let from = j;
-        let (mut mant, mut frac) = (0, 0);
-        if S::VALUES {
-            let (n, v) = digit_value(&b[j..]);
-            (j, mant) = (j + n, v);
-        } else {
-            j += digit_run(&b[j..]);
+        let mut mant: u64 = 0;
+        while j < len {
+            let d = b[j].wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            if S::VALUES {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+            }
+            j += 1;
         }
         let mut digits = j - from;
         let point = j < len && b[j] == b'.';
+        let mut frac = 0;
         if point {
             j += 1;
-            if S::VALUES {
-                let (n, v) = digit_value(&b[j..]);
-                // At most 15 digits in all (else declined below): no overflow.
-                if n <= 15 {
-                    mant = mant.wrapping_mul(POW10[n]).wrapping_add(v);
+            let from = j;
+            while j < len {
+                let d = b[j].wrapping_sub(b'0');
+                if d > 9 {
+                    break;
                 }
-                frac = n;
-                j += n;
-            } else {
-                j += digit_run(&b[j..]);
+                if S::VALUES {
+                    mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+                }
+                j += 1;
             }
-            digits = j - from - 1;
+            frac = j - from;
+            digits += frac;
         }
         if digits == 0 || digits > 15 {
             return None;
         }
         // The word must end at a blank, the comment, the end, or the next letter word (`G1X10`),
         // and must not be an exponent (`1EX3`) or a numbered address (`X1=`).
+        // Where the next word or the comment is looked for (past the blanks looked over).
+        let mut next = j;
         if j < len {
             let n = b[j];
             if n.is_ascii_alphabetic() {
@@ -290,11 +287,11 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
                     return None;
                 }
             } else if blank(n) {
-                let mut k = j + 1;
-                while k < len && blank(b[k]) {
-                    k += 1;
+                next += 1;
+                while next < len && blank(b[next]) {
+                    next += 1;
                 }
-                if k < len && matches!(b[k], b'=' | b'[' | b'(') {
+                if next < len && matches!(b[next], b'=' | b'[' | b'(') {
                     return None;
                 }
             } else if n != b';' {
@@ -303,30 +300,10 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
         }
         head.words += 1;
         sink.word(Found { text, start, end: j, letter, mant, frac, neg, point }, norm)?;
-        i = j;
+        i = next;
     }
     if head.words == 0 && head.number.is_none() && head.comment.is_none() {
         return None;
     }
     Some(head)
 }
-
-/// 10^0 ..= 10^15 as integers (to put the digits after the point behind those before it).
-const POW10: [u64; 16] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-    10_000_000_000,
-    100_000_000_000,
-    1_000_000_000_000,
-    10_000_000_000_000,
-    100_000_000_000_000,
-    1_000_000_000_000_000,
-];

@@ -5,6 +5,7 @@
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
 
+mod automaton;
 mod errors;
 mod expr;
 mod fast;
@@ -219,8 +220,9 @@ impl Reader {
     /// skeleton block, which at the top level (no structure open, none suppressed) only
     /// records the number as a jump target, notes code and adds the statement, which the
     /// next drain hands out (nothing else waits: the program body is empty).
-    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>) -> Option<(Span, Option<crate::ir::SeqNo>)> {
-        if !self.index_only || !self.builder.plain_at_top() || !raw.text.is_ascii() {
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
+    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        if !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let (number, words) = fast::skeleton_raw(raw)?;
@@ -235,14 +237,16 @@ impl Reader {
     /// [`Reader::line`] would leave it (less the statement, which the caller built). `None`
     /// (the line is not read) when the line is anything else, needs normalising, or `each`
     /// declines a word: then read it with [`Reader::line`].
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
     pub fn plain_words(
         &mut self,
         raw: &read::RawBlock<'_>,
+        ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
         // Only `any` changes on a plain top-level line of a resumed reader (`builder.push`
         // adds the statement and nothing else there: see `Builder::resumed_at_top`).
-        if self.index_only || !self.builder.resumed_at_top() || !raw.text.is_ascii() {
+        if self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         // An ASCII line the fast reader takes is one normalising leaves alone (see
