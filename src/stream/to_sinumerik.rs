@@ -1,16 +1,19 @@
 //! Streaming translation of straight-line FANUC programs to Sinumerik, and the streamed
-//! check both directions use: the FANUC file is read once; every [`CHUNK_STMTS`] top-level
-//! statements go through the ordinary FANUC → Sinumerik passes and writer and are written at
-//! once, so neither the source nor the output is ever held whole. Verification reads the
-//! output back (streamed) and runs both programs streamed side by side ([`compare`]).
+//! check both directions use: the FANUC file is read once. The first [`FIRST_STMTS`]
+//! statements go through the whole translator (it writes the header); after them each plain
+//! block is written straight from its words ([`fast`]: the passes' exact bytes), and the
+//! blocks the fast path declines go, up to [`CHUNK_STMTS`] at a time, through the ordinary
+//! FANUC → Sinumerik passes and writer. Neither the source nor the output is ever held
+//! whole. Verification reads the output back (streamed) and runs both programs streamed
+//! side by side ([`compare`]).
 //!
 //! Only programs whose translation is local to each block stream ([`straight`]): one
 //! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
 //! need no other block, program ends (M30, M2), comments, N numbers and skips. No macro
 //! statements, variables (so nothing vacant), jumps, loops, calls (M98, G65, G66), G10.
 //! The one state the passes carry from block to block, the arc mode that makes `R` a
-//! radius (`CR=`), is carried over chunk boundaries by a stand-in `G2` block put in front
-//! of a chunk and taken out after lowering. Anything else (or any error, or a warning other
+//! radius (`CR=`), is followed block by block: the fast path is given it, and a chunk of
+//! declined blocks gets a stand-in `G2` block in front, taken out after lowering. Anything else (or any error, or a warning other
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
@@ -24,7 +27,7 @@ use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::to_sinumerik::{self as passes, g_codes, Ctx, Options, ProgPlan};
+use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
@@ -33,8 +36,18 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::Arc;
 
+mod fast;
+
 /// Statements translated at a time.
 pub const CHUNK_STMTS: usize = 4096;
+
+/// Statements of the first chunk, which the whole translator writes (with the header).
+/// Its plan is made twice and every pass runs on it, some 50,000 instructions a statement,
+/// so it is kept short; the fast path (or the passes, chunk by chunk) takes the rest.
+pub const FIRST_STMTS: usize = 64;
+
+/// Output is handed to the writer in pieces of about this size.
+const WRITE_BYTES: usize = 1 << 16;
 
 /// The one warning a streamed translation keeps (and reports): a tool length G code
 /// dropped (`G43 H1`, `G49`), common in CAM output. Other diagnostics fall back.
@@ -213,6 +226,14 @@ struct State<'a> {
     /// The arc mode (G2/G3 last) before the first buffered statement, and after the last.
     arc_at_start: bool,
     arc: bool,
+    /// Statements in the first chunk (the whole translator writes it, header included).
+    first_stmts: usize,
+    /// The line ending as bytes, for the fast path.
+    eol_bytes: &'static [u8],
+    /// Output not yet handed to `out`.
+    wbuf: Vec<u8>,
+    /// One fast-path line being built.
+    line: Vec<u8>,
     out: &'a mut dyn Write,
     stop: Option<Fallback>,
     io: Option<std::io::Error>,
@@ -245,13 +266,47 @@ impl State<'_> {
     }
 
     fn write(&mut self, text: &str) {
-        let text = match self.eol {
-            LineEnding::Lf => std::borrow::Cow::Borrowed(text),
-            other => std::borrow::Cow::Owned(text.replace('\n', other.as_str())),
-        };
-        if let Err(e) = self.out.write_all(text.as_bytes()) {
-            self.io = Some(e);
+        match self.eol {
+            LineEnding::Lf => self.wbuf.extend_from_slice(text.as_bytes()),
+            other => self.wbuf.extend_from_slice(text.replace('\n', other.as_str()).as_bytes()),
         }
+        if self.wbuf.len() >= WRITE_BYTES {
+            self.spill();
+        }
+    }
+
+    /// Hands the buffered output to `out`.
+    fn spill(&mut self) {
+        if self.io.is_none() {
+            if let Err(e) = self.out.write_all(&self.wbuf) {
+                self.io = Some(e);
+            }
+        }
+        self.wbuf.clear();
+    }
+
+    /// A block after the first chunk through the fast path: its line is written (after the
+    /// statements waiting for the passes); `false` when the passes must translate it.
+    fn fast(&mut self, s: &Stmt) -> bool {
+        let StmtKind::Block(b) = &s.kind else { return false };
+        // A plan with variables fails in `flush_rest`: the fast path must not write past it.
+        if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
+            return false;
+        }
+        let mut line = std::mem::take(&mut self.line);
+        line.clear();
+        let ok = fast::block(b, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        if ok {
+            self.flush();
+            if self.stop.is_none() && self.io.is_none() {
+                self.wbuf.extend_from_slice(&line);
+                if self.wbuf.len() >= WRITE_BYTES {
+                    self.spill();
+                }
+            }
+        }
+        self.line = line;
+        ok
     }
 
     /// The first chunk goes through the whole translator: it writes the header lines
@@ -356,19 +411,34 @@ impl State<'_> {
     }
 
     fn push(&mut self, s: &Stmt) {
+        let arc_before = self.arc;
         if let StmtKind::Block(b) = &s.kind {
-            // The arc mode as `words::lower` follows it.
-            for g in g_codes(&b.items) {
-                match g {
-                    20 | 30 => self.arc = true,
-                    0 | 10 => self.arc = false,
+            // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
+            for it in &b.items {
+                let ItemKind::Word(w) = &it.kind else { continue };
+                let WordValue::Expr(e) = &w.value else { continue };
+                if !w.addr.is(b'G') {
+                    continue;
+                }
+                match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+                    Some(20 | 30) => self.arc = true,
+                    Some(0 | 10) => self.arc = false,
                     _ => {}
                 }
             }
             self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
         }
+        if !self.first {
+            if self.fast(s) {
+                return;
+            }
+            if self.buf.is_empty() {
+                self.arc_at_start = arc_before;
+            }
+        }
         self.buf.push(s.clone());
-        if self.buf.len() >= CHUNK_STMTS && (self.buf_real || !self.first) {
+        let chunk = if self.first { self.first_stmts } else { CHUNK_STMTS };
+        if self.buf.len() >= chunk && (self.buf_real || !self.first) {
             self.flush();
         } else if self.first && self.buf.len() >= 64 * CHUNK_STMTS {
             // A quarter million comment lines before the first block: read whole.
@@ -386,6 +456,21 @@ pub fn to_sinumerik(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Streamed, Fallback> {
+    to_sinumerik_first(path, opts, eol, out, progress, FIRST_STMTS)
+}
+
+/// [`to_sinumerik`] with the first `first_stmts` statements (from the first block that
+/// does more than carry comments) translated whole, the rest block by block: the tests
+/// set it low so that short programs go through the fast path too.
+#[doc(hidden)]
+pub fn to_sinumerik_first(
+    path: &Path,
+    opts: &Options,
+    eol: LineEnding,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+    first_stmts: usize,
+) -> Result<Streamed, Fallback> {
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (name, head) = head(path, &popts)?;
     let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
@@ -400,6 +485,10 @@ pub fn to_sinumerik(
         first: true,
         arc_at_start: false,
         arc: false,
+        first_stmts: first_stmts.max(1),
+        eol_bytes: eol.as_str().as_bytes(),
+        wbuf: Vec::with_capacity(WRITE_BYTES + 4096),
+        line: Vec::new(),
         out,
         stop: None,
         io: None,
@@ -410,9 +499,7 @@ pub fn to_sinumerik(
         symbols: SymbolMap::default(),
     };
     if bom {
-        if let Err(e) = st.out.write_all(b"\xEF\xBB\xBF") {
-            return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
-        }
+        st.wbuf.extend_from_slice(b"\xEF\xBB\xBF");
     }
     let mut blocks = 0u64;
     let r = super::scan_path(
@@ -466,6 +553,7 @@ pub fn to_sinumerik(
     if let Some(f) = st.stop.take() {
         return Err(f);
     }
+    st.spill();
     if st.io.is_none() {
         if let Err(e) = st.out.flush() {
             st.io = Some(e);

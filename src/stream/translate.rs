@@ -28,7 +28,7 @@ use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
-mod fast;
+pub(super) mod fast;
 
 /// Why a file is not translated as a stream (the caller translates it whole).
 #[derive(Debug)]

@@ -275,37 +275,70 @@ fn number(out: &mut Vec<u8>, v: f64) -> Result<(), Declined> {
 pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
     let v = if v == 0.0 { 0.0 } else { v };
     // More than 8 digits (`m >= 10^8` with a fraction) are rounded by `fmt_num`.
-    if let Some((mut m, d)) = shortest(v.abs()).filter(|&(m, d)| d == 0 || m < POW10[MAX_DIGITS]) {
-        // Written backwards: the fraction's `d` digits, the point, the integer part.
-        let mut buf = [0u8; 24];
-        let mut k = buf.len();
-        for _ in 0..d {
-            k -= 1;
-            buf[k] = b'0' + (m % 10) as u8;
-            m /= 10;
-        }
-        if d > 0 || point {
-            k -= 1;
-            buf[k] = b'.';
-        }
-        loop {
-            k -= 1;
-            buf[k] = b'0' + (m % 10) as u8;
-            m /= 10;
-            if m == 0 {
-                break;
-            }
-        }
-        if v < 0.0 {
-            k -= 1;
-            buf[k] = b'-';
-        }
-        out.extend_from_slice(&buf[k..]);
+    if let Some((m, d)) = shortest(v.abs()).filter(|&(m, d)| d == 0 || m < POW10[MAX_DIGITS]) {
+        push_decimal(out, m, d, v < 0.0, point);
         return true;
     }
     let (s, exact) = emit::fmt_num(v, point);
     out.extend_from_slice(s.as_bytes());
     exact
+}
+
+/// Two-digit groups `00`..`99`: a number is written two digits per division.
+const PAIRS: [u8; 200] = {
+    let mut t = [0u8; 200];
+    let mut i = 0;
+    while i < 100 {
+        t[2 * i] = b'0' + (i / 10) as u8;
+        t[2 * i + 1] = b'0' + (i % 10) as u8;
+        i += 1;
+    }
+    t
+};
+
+/// Appends `m / 10^d` in decimal: `-` when `neg`, the integer part, then the point and
+/// the `d` fraction digits (the point also without them when `point`). `m < 10^20`.
+pub fn push_decimal(out: &mut Vec<u8>, mut m: u64, d: usize, neg: bool, point: bool) {
+    // Written backwards: the fraction's digits, the point, the integer part.
+    let mut buf = [0u8; 48];
+    let mut k = buf.len();
+    let mut left = d;
+    if left % 2 == 1 {
+        k -= 1;
+        buf[k] = b'0' + (m % 10) as u8;
+        m /= 10;
+        left -= 1;
+    }
+    while left > 0 {
+        let r = (m % 100) as usize * 2;
+        m /= 100;
+        k -= 2;
+        buf[k..k + 2].copy_from_slice(&PAIRS[r..r + 2]);
+        left -= 2;
+    }
+    if d > 0 || point {
+        k -= 1;
+        buf[k] = b'.';
+    }
+    while m >= 100 {
+        let r = (m % 100) as usize * 2;
+        m /= 100;
+        k -= 2;
+        buf[k..k + 2].copy_from_slice(&PAIRS[r..r + 2]);
+    }
+    if m >= 10 {
+        let r = m as usize * 2;
+        k -= 2;
+        buf[k..k + 2].copy_from_slice(&PAIRS[r..r + 2]);
+    } else {
+        k -= 1;
+        buf[k] = b'0' + m as u8;
+    }
+    if neg {
+        k -= 1;
+        buf[k] = b'-';
+    }
+    out.extend_from_slice(&buf[k..]);
 }
 
 /// The shortest decimal of `a >= 0` as `fmt_num` gets it from Rust's `{}` (the shortest
@@ -317,13 +350,21 @@ pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
 /// round-trip test. Two different decimals of at most 15 significant digits never round to
 /// the same double, so when `m` does not end in 0 no decimal with fewer places round-trips
 /// (it would give a second one with `d` places), and `{}` writes exactly these digits.
-fn shortest(a: f64) -> Option<(u64, usize)> {
+pub fn shortest(a: f64) -> Option<(u64, usize)> {
     if a < 1e7 {
         // The usual case, one try: the digits at 8 places without their trailing zeros.
         let (mut m, mut d) = ((a * 1e8 + 0.5) as u64, MAX_DIGITS);
-        while d > 0 && m.is_multiple_of(10) {
-            m /= 10;
-            d -= 1;
+        // The trailing zeros (at most 8) taken off by halves: 8, else 4, 2, 1.
+        if m.is_multiple_of(100_000_000) {
+            m /= 100_000_000;
+            d = 0;
+        } else {
+            for (k, p) in [(4, 10_000), (2, 100), (1, 10)] {
+                if m.is_multiple_of(p) {
+                    m /= p;
+                    d -= k;
+                }
+            }
         }
         return (m as f64 / POW10[d] as f64 == a).then_some((m, d));
     }

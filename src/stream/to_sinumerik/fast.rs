@@ -1,0 +1,223 @@
+//! The streamed FANUC → Sinumerik translator's fast path: the Sinumerik line of one plain
+//! FANUC block (constant letter words, program ends, N number, skip, comments) written
+//! straight into the output, byte for byte what the passes (`vacancy`, `calls`, `words`,
+//! `exprs` in `passes::to_sinumerik`) and `dialect::sinumerik::emit` write for it, without
+//! building Sinumerik IR or formatting through `format!`. The general path costs some
+//! 20,000 instructions on a CAM block; this one a few hundred.
+//!
+//! Whatever the passes would report on or rewrite into more than one line (a dwell, G43/
+//! G44/G49 with their warning, an `R` outside an arc, P/L/Q/E/O/H, a computed value, a
+//! number the writer spells with `EX`) is declined: the caller translates that block the
+//! general way. The one state carried from block to block is the arc mode (G2/G3 last),
+//! which the caller keeps. `tests/stream_to_sinumerik_fast.rs` holds the two paths to the
+//! same bytes.
+
+use crate::ir::{Addr, Block, EndCode, ExprKind, ItemKind, WordValue};
+use crate::passes::to_sinumerik::words::{scale, scaled_letter};
+use crate::passes::to_sinumerik::Options;
+use crate::stream::translate::fast::{push_decimal, shortest};
+
+/// The block needs the general passes.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Declined;
+
+/// The Siemens G code (×10) `words::map_g` gives a FANUC one, `Ok(None)` when the words
+/// pass drops it without a word (G80); `Err` for everything the fast path leaves to the
+/// passes (the dwell G4, G43/G44/G49 with their warning, codes without a counterpart).
+fn map_g(g: u32) -> Result<Option<u32>, Declined> {
+    Ok(Some(match g {
+        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910
+        | 940 | 950 => g,
+        200 => 7000,
+        210 => 7100,
+        580 => 5050,
+        590 => 5060,
+        610 => 600,
+        800 => return Ok(None),
+        _ => return Err(Declined),
+    }))
+}
+
+/// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
+/// is the arc mode after the block's own G codes (as the words pass sees it). On `Err` what
+/// was appended is to be discarded.
+pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>) -> Result<(), Declined> {
+    if b.meta.label.is_some() {
+        return Err(Declined);
+    }
+    let start = out.len();
+    // The writer: skip, N number, items, comments, each after a space when not first.
+    match b.meta.skip {
+        Some(0) => out.push(b'/'),
+        Some(k) => {
+            out.push(b'/');
+            push_u64(out, u64::from(k));
+        }
+        None => {}
+    }
+    if let Some(n) = &b.meta.number {
+        if out.len() > start {
+            out.push(b' ');
+        }
+        out.push(b'N');
+        push_u64(out, u64::from(n.value));
+    }
+    let mut items = false;
+    for it in &b.items {
+        let w = match &it.kind {
+            ItemKind::Word(w) => w,
+            ItemKind::End { code } => {
+                if out.len() > start {
+                    out.push(b' ');
+                }
+                out.extend_from_slice(match code {
+                    EndCode::M30 => b"M30",
+                    EndCode::M2 => b"M2",
+                });
+                items = true;
+                continue;
+            }
+            _ => return Err(Declined),
+        };
+        let (Addr::Letter(letter), WordValue::Expr(e)) = (&w.addr, &w.value) else { return Err(Declined) };
+        let ExprKind::Num(n) = &e.kind else { return Err(Declined) };
+        let letter = *letter;
+        let mut v = n.value;
+        match letter {
+            b'G' => {
+                let g10 = v * 10.0;
+                if !(0.0..=9990.0).contains(&g10) {
+                    return Err(Declined);
+                }
+                let Some(sg) = map_g(g10.round() as u32)? else { continue };
+                v = f64::from(sg) / 10.0;
+            }
+            b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
+            _ => {
+                if scaled_letter(letter) && !n.point {
+                    v = scale(opts, v);
+                }
+            }
+        }
+        if out.len() > start {
+            out.push(b' ');
+        }
+        items = true;
+        if letter == b'R' {
+            // `CR=` in an arc; elsewhere a cycle's R plane, which the passes report.
+            if !arc {
+                return Err(Declined);
+            }
+            out.extend_from_slice(b"CR=");
+        } else {
+            out.push(letter);
+        }
+        // `word_into`/`number`: 0, the shortest decimal, or an `EX` form (left to the passes).
+        if v == 0.0 {
+            out.push(b'0');
+        } else if (1e-6..1e15).contains(&v.abs()) {
+            push_display(out, v);
+        } else {
+            return Err(Declined);
+        }
+    }
+    let mut comments = false;
+    for (i, c) in b.meta.comments.iter().enumerate() {
+        comments = true;
+        if i == 0 {
+            if out.len() > start {
+                out.push(b' ');
+            }
+            out.extend_from_slice(b"; ");
+        } else {
+            out.extend_from_slice(b" ; ");
+        }
+        // `emit::comment_text`: line ends become spaces, then the text is trimmed.
+        let t = c.text.as_str();
+        if t.contains(['\n', '\r']) {
+            out.extend_from_slice(t.replace(['\n', '\r'], " ").trim().as_bytes());
+        } else {
+            out.extend_from_slice(t.trim().as_bytes());
+        }
+    }
+    // `calls::lower` and `words::lower` drop a block left with nothing but a skip.
+    if !items && b.meta.number.is_none() && !comments {
+        out.truncate(start);
+        return Ok(());
+    }
+    // `Writer::line_str` trims the end of the line.
+    let keep = out[start..].trim_ascii_end().len();
+    out.truncate(start + keep);
+    out.extend_from_slice(eol);
+    Ok(())
+}
+
+/// Appends `format!("{v}")` for a finite `v != 0` (Rust's shortest round-trip decimal).
+pub fn push_display(out: &mut Vec<u8>, v: f64) {
+    match shortest(v.abs()) {
+        Some((m, d)) => push_decimal(out, m, d, v < 0.0, false),
+        None => {
+            use std::io::Write;
+            let _ = write!(out, "{v}");
+        }
+    }
+}
+
+fn push_u64(out: &mut Vec<u8>, mut n: u64) {
+    let mut buf = [0u8; 20];
+    let mut k = buf.len();
+    loop {
+        k -= 1;
+        buf[k] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&buf[k..]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Rng;
+
+    #[test]
+    fn numbers_are_written_as_display_writes_them() {
+        let mut values: Vec<f64> = vec![
+            1.0,
+            -1.0,
+            0.5,
+            10.0,
+            0.1,
+            0.2,
+            0.3,
+            1e-6,
+            1.5e-6,
+            0.1 + 0.2,
+            1e14,
+            999999999999999.9,
+            1.0 / 3.0,
+            2.675,
+        ];
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        for _ in 0..200_000 {
+            let int = rng.next() % 10u64.pow((rng.next() % 9) as u32);
+            let dec = (rng.next() % 9) as usize;
+            let frac = rng.next() % 10u64.pow(dec as u32);
+            let v: f64 = format!("{int}.{frac:0dec$}").parse().unwrap_or(1.0);
+            values.push(if rng.next().is_multiple_of(2) { v } else { -v });
+            values.push(f64::from_bits(rng.next()));
+            values.push((rng.next() % 1_000_000) as f64 / 7.0);
+            values.push((rng.next() % 100_000_000) as f64 * 0.001);
+        }
+        for v in values {
+            if v == 0.0 || !(1e-6..1e15).contains(&v.abs()) {
+                continue;
+            }
+            let mut out = Vec::new();
+            push_display(&mut out, v);
+            assert_eq!(String::from_utf8_lossy(&out), format!("{v}"), "{v:e}");
+        }
+    }
+}

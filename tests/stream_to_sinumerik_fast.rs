@@ -1,0 +1,218 @@
+//! The streamed FANUC → Sinumerik translator's per-block fast path against the whole-file
+//! translator: generated straight-line programs (every G code a stream takes, G80 dropped,
+//! G43/G49 with their kept warning, dwells, arcs by R with the arc mode running over many
+//! blocks, numbers with and without a decimal point under two increment profiles, tiny
+//! values the writer spells with `EX`, N numbers, skips, program ends mid-block, several
+//! comments per block, each line ending), and every corpus FANUC program with the first
+//! chunk cut to a few statements (so nearly all its blocks take the fast path), must stream
+//! to exactly the bytes and warnings of the whole translation.
+
+#[path = "support/rng.rs"]
+mod rng;
+
+use nctrans::dialect::{Dialect, ParseOptions, Semantics};
+use nctrans::read::LineEnding;
+use nctrans::span::SourceDb;
+use nctrans::stream::to_sinumerik as sts;
+use nctrans::translate_sinumerik::{self as ts, Options};
+use rng::Rng;
+use std::path::{Path, PathBuf};
+
+fn scratch(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/stream-to-sinumerik-fast").join(name);
+    std::fs::create_dir_all(&d).expect("dir");
+    d
+}
+
+/// The whole translation of `path`: its bytes as the CLI writes them, the line ending and
+/// the translation.
+fn whole(path: &Path, o: &Options) -> (Vec<u8>, LineEnding, ts::Translation) {
+    let bytes = std::fs::read(path).expect("read");
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions { semantics: o.source.clone() });
+    let tr = ts::translate(&[&parsed.unit], o, loaded.line_ending);
+    let text = tr.main().map(|f| f.text.clone()).unwrap_or_default();
+    (nctrans::read::encode(&text, loaded.encoding, loaded.bom), loaded.line_ending, tr)
+}
+
+/// Asserts `out == whole`, naming the first line that differs.
+fn same(what: &str, out: &[u8], whole: &[u8]) {
+    if out == whole {
+        return;
+    }
+    let (a, b) = (String::from_utf8_lossy(out), String::from_utf8_lossy(whole));
+    let (a, b): (Vec<&str>, Vec<&str>) =
+        (a.split_inclusive(['\n', '\r']).collect(), b.split_inclusive(['\n', '\r']).collect());
+    let k = a.iter().zip(&b).position(|(x, y)| x != y).unwrap_or(a.len().min(b.len()));
+    panic!("{what}: line {}: streamed {:?}, whole {:?}", k + 1, a.get(k), b.get(k));
+}
+
+/// A number as FANUC programs write it.
+fn num(r: &mut Rng) -> String {
+    let sign = if r.chance(35) { "-" } else { "" };
+    let body = match r.below(10) {
+        0 => format!("{}", r.below(100_000)),
+        1 => format!("{}.", r.below(1000)),
+        2 => format!(".{}", r.below(1000)),
+        3 => format!("{}.{:04}", r.below(100), r.below(10_000)),
+        4 => format!("{}.{}", r.below(1000), r.below(100_000)),
+        5 => format!("0.{:07}", r.below(100)),
+        6 => format!("{}", r.below(1_000_000_000)),
+        7 => format!("00{}.{:03}0", r.below(100), r.below(1000)),
+        8 => "0".to_string(),
+        _ => format!("{}.{:02}", r.below(10_000), r.below(100)),
+    };
+    format!("{sign}{body}")
+}
+
+const G_CODES: &[&str] = &[
+    "0", "00", "1", "01", "2", "02", "3", "03", "17", "18", "19", "20", "21", "40", "41", "42", "53", "54", "55", "56",
+    "57", "58", "59", "61", "64", "80", "90", "91", "94", "95",
+];
+const COMMENTS: &[&str] =
+    &["(ROUGH)", "(  spaced  )", "()", "(STEP 3; DEPTH 2)", "(Tiefe \u{e4}\u{f6}\u{fc})", "(A)(B)"];
+
+/// One straight-line FANUC block; `arc` is the arc mode it leaves.
+fn block(r: &mut Rng, arc: &mut bool) -> String {
+    let mut b = String::new();
+    if r.chance(6) {
+        b.push_str(if r.chance(50) { "/" } else { "/2 " });
+    }
+    if r.chance(20) {
+        b.push_str(&format!("N{} ", 1 + r.below(99_999)));
+    }
+    if r.chance(3) {
+        // A dwell, or a tool length code with its warning: the general passes.
+        b.push_str(r.pick(&["G04 P500", "G4 X1.5", "G43 Z50. H1", "G49", "G90 G49"]));
+        return b;
+    }
+    if r.chance(5) {
+        b.push_str(r.pick(COMMENTS));
+    }
+    let mut g_arc: Option<bool> = None;
+    for _ in 0..r.below(6) {
+        match r.below(14) {
+            0 | 1 => {
+                let g = r.pick(G_CODES);
+                match g.trim_start_matches('0') {
+                    "2" | "3" => g_arc = Some(true),
+                    "" | "1" => g_arc = Some(false),
+                    _ => {}
+                }
+                b.push_str(&format!("G{g}"));
+            }
+            2 => b.push_str(&format!("M{}", r.pick(&["3", "5", "8", "9", "6", "0", "1", "03"]))),
+            3 => b.push_str(&format!("{}{}", r.pick(&["S", "T", "D"]), r.below(10_000))),
+            4 => b.push_str(&format!("F{}", num(r).trim_start_matches('-'))),
+            5 if r.chance(20) => b.push_str(r.pick(COMMENTS)),
+            _ => {
+                let l = r.pick(&["X", "Y", "Z", "A", "B", "C", "I", "J", "K", "U", "V", "W", "X", "Y", "Z"]);
+                b.push_str(&format!("{l}{}", num(r)));
+            }
+        }
+        b.push(' ');
+    }
+    let arc_here = g_arc.unwrap_or(*arc);
+    if arc_here && r.chance(40) {
+        b.push_str(&format!("R{} ", num(r)));
+    }
+    *arc = arc_here;
+    if r.chance(2) {
+        b.push_str(if r.chance(50) { "M30 " } else { "M02 " });
+    }
+    if r.chance(8) {
+        b.push_str(r.pick(COMMENTS));
+    }
+    b.trim_end().to_string()
+}
+
+fn program(r: &mut Rng, blocks: usize, eol: &str) -> String {
+    let mut t = format!("%{eol}O{} (GENERATED){eol}", 1 + r.below(9999));
+    let mut arc = false;
+    for _ in 0..blocks {
+        t.push_str(&block(r, &mut arc));
+        t.push_str(eol);
+    }
+    t.push_str(&format!("M30{eol}%{eol}"));
+    t
+}
+
+/// `cases` generated programs of `blocks` blocks each, streamed (with the first chunk cut
+/// to a few statements) against the whole translation.
+fn differential(seed: u64, cases: usize, blocks: usize) {
+    let dir = scratch(&format!("gen-{seed:x}"));
+    let mut r = Rng(seed);
+    let (mut streamed, mut checked) = (0, 0);
+    for case in 0..cases {
+        let eol = ["\n", "\r\n", "\r"][case % 3];
+        let mut o = Options { main_name: "CAMPART".into(), ..Options::default() };
+        if case % 4 == 1 {
+            // IS-C: the increment scaling has other digits.
+            o.source = Semantics { least_increment_mm: 0.0001, ..o.source };
+        }
+        let path = dir.join(format!("gen{case}.nc"));
+        std::fs::write(&path, program(&mut r, blocks, eol)).expect("write");
+        let (w, le, tr) = whole(&path, &o);
+        let first = [1, 2, 7, 64][case % 4];
+        let mut out = Vec::new();
+        match sts::to_sinumerik_first(&path, &o, le, &mut out, None, first) {
+            Ok(s) => {
+                assert!(!tr.has_errors(), "case {case}: streamed, but the whole translation fails");
+                same(&format!("case {case}"), &out, &w);
+                assert_eq!(s.diags, tr.diags, "case {case}: kept warnings");
+                streamed += 1;
+                checked += blocks;
+            }
+            Err(e) => {
+                // Only where the whole translation reports more than the kept warning.
+                assert!(
+                    tr.diags.iter().any(|d| d.is_error() || d.code != sts::KEPT_WARNING),
+                    "case {case}: not streamed ({e:?}), but the whole translation is clean"
+                );
+            }
+        }
+    }
+    eprintln!("{streamed} of {cases} programs streamed ({checked} blocks)");
+    assert!(streamed * 4 >= cases * 3, "only {streamed} of {cases} programs streamed");
+}
+
+#[test]
+fn generated_blocks_take_the_fast_path_to_the_whole_translation() {
+    differential(0xfa57_0f5e_5123, 24, 2000);
+}
+
+/// About a million generated blocks (release: `cargo test --release --test
+/// stream_to_sinumerik_fast -- --ignored`).
+#[test]
+#[ignore]
+fn a_million_generated_blocks_take_the_fast_path_to_the_whole_translation() {
+    differential(0x0ddf_00d5_eed0, 100, 10_000);
+}
+
+#[test]
+fn corpus_programs_stream_block_by_block_to_the_whole_translation() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let Ok(rd) = std::fs::read_dir(root.join("corpus/in/fanuc")) else {
+        println!("note: corpus/in/fanuc not found; skipped");
+        return;
+    };
+    let mut files: Vec<PathBuf> = rd.filter_map(|e| e.ok()).map(|e| e.path()).collect();
+    files.sort();
+    let mut streamed = Vec::new();
+    for f in &files {
+        let o = Options { main_name: "CAMPART".into(), ..Options::default() };
+        let (w, le, tr) = whole(f, &o);
+        for first in [1, 3] {
+            let mut out = Vec::new();
+            if let Ok(s) = sts::to_sinumerik_first(f, &o, le, &mut out, None, first) {
+                same(&format!("{} (first chunk {first})", f.display()), &out, &w);
+                assert_eq!(s.diags, tr.diags, "{}", f.display());
+                streamed.push(f.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default());
+            }
+        }
+    }
+    for name in ["sequence-numbers.nc", "line-endings-crlf.nc", "multi-word-block.nc", "pitfall-units-and-arcs.nc"] {
+        assert!(streamed.iter().filter(|s| *s == name).count() == 2, "{name} not streamed: {streamed:?}");
+    }
+}
