@@ -31,15 +31,7 @@ pub fn skeleton(norm: &Normalised<'_>, whole: Span) -> Option<(BlockMeta, bool)>
 /// word is the only ASCII text `read::normalise` changes, so `raw` is what normalising
 /// would give (see `read::Normalised::unchanged`).
 pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>) -> Option<(Option<SeqNo>, bool)> {
-    super::automaton::skeleton(raw.text.as_bytes(), raw.start)
-}
-
-/// [`read`] with no sink on `text`: the block number and whether the block has words
-/// (for the test of `automaton::skeleton`, which must decide as [`read`] does).
-#[cfg(test)]
-pub(super) fn skeleton_by_read(text: &str, start: u32) -> Option<(Option<SeqNo>, bool)> {
-    let raw = crate::read::RawBlock { text, start, line: 1 };
-    let norm = Normalised::unchanged(&raw);
+    let norm = Normalised::unchanged(raw);
     let head = read(&norm, &mut Count)?;
     Some((head.number, head.words > 0))
 }

@@ -5,7 +5,6 @@
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
 
-mod automaton;
 mod errors;
 mod expr;
 mod fast;
