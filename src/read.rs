@@ -349,6 +349,15 @@ pub struct Normalised<'a> {
     pub letter_o: Vec<Span>,
 }
 
+impl<'a> Normalised<'a> {
+    /// What [`normalise`] gives for a line it leaves as it is, without looking at the line:
+    /// for a caller that knows so (an ASCII line, whose reader declines every letter O in
+    /// code: on ASCII text normalising changes only a letter O in a G word).
+    pub fn unchanged(raw: &RawBlock<'a>) -> Normalised<'a> {
+        Normalised { text: Cow::Borrowed(raw.text), start: raw.start, map: None, full_width: vec![], letter_o: vec![] }
+    }
+}
+
 impl Normalised<'_> {
     /// File offset of byte `pos` of the normalised text.
     #[inline]

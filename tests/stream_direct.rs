@@ -118,6 +118,9 @@ fn line(r: &mut Rng) -> String {
         17 => "L10".into(),
         18 => "G0O X1".into(),
         19 => "M3.5 S1000".into(),
+        // A letter O for a zero that, read without normalising, would be an O word; a
+        // letter O in a comment (normalising leaves it); full-width text in a comment.
+        20 => r.pick(&["G0O1 X2", "g0o1 Y3", "N10 O5", "G1 X1 ;GO1", "G1 X1 ;\u{FF38}2"]).into(),
         _ => {
             let mut s = String::new();
             if r.chance(40) {
@@ -219,6 +222,8 @@ fn fanuc_line(r: &mut Rng, runnable: bool) -> String {
         31 => "X1.2.3".into(),
         32 => format!("N{} ;", r.below(9000) + 1),
         33 => "   ;".into(),
+        // Read without normalising, these must still be cut and read as `line` would.
+        34 => r.pick(&["G0O1 X2", "G1 X1;  ;", "G1 X1;;", "G1 X1; (C)", "\x0bG1 X1", "N5;", "G1 X1 \x0c;"]).into(),
         _ => {
             let mut s = String::new();
             if r.chance(10) {
