@@ -19,7 +19,7 @@ pub mod translate;
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
 use crate::eval::lit::LitBlock;
-use crate::ir::Stmt;
+use crate::ir::{Addr, Block, Comment, Expr, Item, ItemKind, Stmt, Word, WordValue};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
 pub use index::CHUNK_OPS;
@@ -43,6 +43,29 @@ pub type ProgressFn<'a> = &'a mut dyn FnMut(Progress);
 
 /// Called with each finished top-level statement during a scan (and its program's index).
 type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
+
+/// What a first scan hands out besides the index.
+enum Want<'a> {
+    /// Nothing: an index-only scan.
+    Index,
+    /// Every finished top-level statement, as the whole-file reader builds it.
+    Each(EachFn<'a>),
+    /// Plain top-level lines as their words, the rest as statements (see [`scan_words`]).
+    Words(&'a mut dyn WordsSink),
+}
+
+/// Where [`scan_words`] puts what it reads (each call with its program's index).
+pub trait WordsSink {
+    /// A plain top-level line of constant letter words (see [`scan_words`] for what the
+    /// block holds); `false` asks for the line as a statement instead ([`WordsSink::stmt`]
+    /// is then called with it, and nothing of the block is to be kept).
+    fn plain(&mut self, prog: usize, b: &crate::ir::Block) -> bool;
+    /// A finished top-level statement of any other line, as the whole-file reader builds it.
+    fn stmt(&mut self, prog: usize, s: &Stmt);
+    /// Whether the sink still wants anything (once `false`, it stays so: the rest of the
+    /// file is read for the index only).
+    fn active(&self) -> bool;
+}
 
 /// A streamed file after its first scan.
 #[derive(Clone, Debug)]
@@ -145,6 +168,32 @@ impl Reader<'_> {
             Reader::Fan(r) => Resume::Fanuc(r.checkpoint()),
         }
     }
+
+    /// A re-reading reader ([`Reader::lit`] works on it) resumed from `resume`.
+    fn resumed<'o>(file: FileId, opts: &'o ParseOptions, resume: &Resume) -> Reader<'o> {
+        match resume {
+            Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(file, opts, r))),
+            Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(file, opts, *r))),
+        }
+    }
+
+    /// [`Reader::lit`] into the items of a block (plain letter words with number values,
+    /// as the whole-file reader builds them; a value's span is taken as the word's less its
+    /// letter). `items` is appended to; on `false` it is to be cleared.
+    fn words(&mut self, raw: &RawBlock<'_>, ascii: bool, items: &mut Vec<Item>) -> bool {
+        let push = |letter: u8, value: f64, point: bool, span: Span| {
+            let vspan = Span::new(span.lo.saturating_add(1).min(span.hi), span.hi);
+            let w = Word { addr: Addr::Letter(letter), value: WordValue::Expr(Expr::num(value, point, vspan)), span };
+            items.push(Item { kind: ItemKind::Word(w), span });
+            true
+        };
+        match self {
+            Reader::Sin(r) => r.plain_words(raw, ascii, push).is_some(),
+            // The skip level of a block (`/2 X1`) is not handed out: such a line is read
+            // as a statement.
+            Reader::Fan(r) => !raw.text.as_bytes().contains(&b'/') && r.plain_words(raw, ascii, push).is_some(),
+        }
+    }
 }
 
 /// Opens `path` for streaming.
@@ -181,7 +230,7 @@ pub fn scan(
     each: &mut dyn FnMut(usize, &Stmt),
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
-    scan_with(input, size, path, file, dialect, opts, chunk_ops, Some(each), progress)
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Each(each), progress)
 }
 
 /// [`scan`] for a caller that needs only the index (`parse --summary`, `run`, `check`):
@@ -198,7 +247,52 @@ pub fn scan_index(
     chunk_ops: usize,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
-    scan_with(input, size, path, file, dialect, opts, chunk_ops, None, progress)
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Index, progress)
+}
+
+/// The first scan for a streamed translator: the index, diagnostics and header of
+/// [`scan_index`] (the same reader builds them), and for the translator each plain
+/// top-level line as a block of words ([`WordsSink::plain`]), every other statement as the
+/// whole-file reader builds it ([`WordsSink::stmt`]).
+///
+/// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and the
+/// re-reading reader reads straight into its words (`Reader::plain_words`, as
+/// [`reread`] with `direct` does; for FANUC, without a block skip): the block then holds
+/// exactly the items the whole-file reader builds (letter words with number values, a
+/// value negated when written with `-`), the block's number and span, and for Sinumerik
+/// the comment after the `;`; of the items only the values' spans may differ. That block
+/// is read without building the line's statement. For the other lines (and a plain line
+/// the sink asks to have as a statement) a whole-file reader is fed, which has then seen
+/// every line but the plain ones taken as words: each of those is a top-level block that
+/// the reader would have handed out at once, changing of its state only what decides
+/// diagnostics (numbers as jump targets, "code seen", the program span); the diagnostics
+/// reported are the index reader's, which read every line.
+#[allow(clippy::too_many_arguments)]
+pub fn scan_words(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+    sink: &mut dyn WordsSink,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Words(sink), progress)
+}
+
+/// [`scan_words`] of a file on disk with the default chunk size.
+pub fn scan_words_path(
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    sink: &mut dyn WordsSink,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    let (input, size) = open(path)?;
+    scan_words(input, size, path, file, dialect, opts, CHUNK_OPS, sink, progress)
 }
 
 /// [`scan_index`] of a file on disk with the default chunk size.
@@ -213,7 +307,7 @@ pub fn scan_index_path(
     scan_index(input, size, path, file, dialect, opts, CHUNK_OPS, progress)
 }
 
-/// The first scan; without `each` the reader builds only what the index needs.
+/// The first scan; unless [`Want::Each`], the reader builds only what the index needs.
 #[allow(clippy::too_many_arguments)]
 fn scan_with(
     input: Input,
@@ -223,35 +317,46 @@ fn scan_with(
     dialect: Dialect,
     opts: &ParseOptions,
     chunk_ops: usize,
-    mut each: Option<EachFn<'_>>,
+    mut want: Want<'_>,
     mut progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
     let mut lines = Lines::new(input)?;
     let bom = lines.bom();
     let text_len = size.saturating_sub(if bom { 3 } else { 0 });
-    let mut reader = match dialect {
+    let index_only = !matches!(want, Want::Each(_));
+    let new_reader = |index_only: bool| match dialect {
         Dialect::Sinumerik => {
             let mut r = sinumerik::Reader::new(file, opts, text_len.min(u64::from(u32::MAX)) as u32);
             r.compact_targets();
-            if each.is_none() {
+            if index_only {
                 r.index_only();
             }
             Reader::Sin(Box::new(r))
         }
         Dialect::Fanuc => {
             let mut r = fanuc::Reader::new(file, opts);
-            if each.is_none() {
+            if index_only {
                 r.index_only();
             }
             Reader::Fan(Box::new(r))
         }
     };
+    let mut reader = new_reader(index_only);
+    // For `Want::Words`: the whole-file reader of the lines not taken as words, and a
+    // re-reading reader that only reads plain lines into words (renewed now and then: it
+    // notes the numbers it reads).
+    let mut full = matches!(want, Want::Words(_)).then(|| new_reader(false));
+    let start = reader.checkpoint();
+    let mut words = full.as_ref().map(|_| Reader::resumed(file, opts, &start));
+    let mut words_read = 0u32;
+    let mut block = Block::default();
     let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
     // The statements finished by one line; reused, so a line costs no new vector.
     let mut stmts: Vec<Stmt> = Vec::new();
+    let mut full_stmts: Vec<Stmt> = Vec::new();
     if text_len > u64::from(u32::MAX) {
         // Spans are 32-bit offsets into the text.
         return Err(NotStreamable::TooLarge);
@@ -268,9 +373,51 @@ fn scan_with(
                 p(Progress { done: line_end, total: size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
             }
         }
-        // An index-only scan takes a plain top-level line (nearly every line of CAM code)
-        // straight to the index: the one statement `line` and a drain would give, added.
-        if each.is_none() {
+        // The sink of a words scan that still wants the lines.
+        let (mut sink, mut each) = match &mut want {
+            Want::Words(s) if s.active() => (Some(&mut **s), None),
+            Want::Each(e) => (None, Some(&mut **e)),
+            _ => (None, None),
+        };
+        if let (Some(sink), Some(w)) = (sink.as_mut(), words.as_mut()) {
+            // A plain top-level line: its words, then the index as an index-only scan has it.
+            block.items.clear();
+            if w.words(&raw, l.ascii, &mut block.items) {
+                if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
+                    let prog = reader.current();
+                    chunks.before(prog);
+                    chunks.progs[prog].add_plain(span, number.as_ref());
+                    chunks.after(&reader, chunk_ops, line_end, l.line + 1);
+                    words_read += 1;
+                    if words_read.is_multiple_of(4096) {
+                        *w = Reader::resumed(file, opts, &start);
+                    }
+                    block.meta.span = span;
+                    block.meta.number = number;
+                    block.meta.comments.clear();
+                    if let (Reader::Sin(_), Some(i)) = (&reader, l.text.find(';')) {
+                        // What the fast reader keeps of a comment: all after the first `;`
+                        // (words hold none).
+                        let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
+                        block.meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
+                    }
+                    if !sink.plain(prog, &block) {
+                        if let Some(f) = full.as_mut() {
+                            f.line(&raw);
+                            full_stmts.clear();
+                            f.drain_into(&mut full_stmts);
+                            for s in &full_stmts {
+                                sink.stmt(prog, s);
+                            }
+                        }
+                    }
+                    continue;
+                }
+            }
+        }
+        // An index-only scan (or a words scan whose sink wants no more) takes a plain
+        // top-level line (nearly every line of CAM code) straight to the index: the one statement `line` and a drain would give, added.
+        if sink.is_none() && each.is_none() {
             if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
                 let prog = reader.current();
                 chunks.before(prog);
@@ -282,10 +429,23 @@ fn scan_with(
         reader.line(&raw);
         stmts.clear();
         reader.drain_into(&mut stmts);
-        if stmts.is_empty() {
+        full_stmts.clear();
+        if let (Some(_), Some(f)) = (&sink, full.as_mut()) {
+            f.line(&raw);
+            f.drain_into(&mut full_stmts);
+        }
+        if stmts.is_empty() && full_stmts.is_empty() {
             continue;
         }
         let prog = reader.current();
+        if let Some(sink) = sink.as_mut() {
+            for s in &full_stmts {
+                sink.stmt(prog, s);
+            }
+        }
+        if stmts.is_empty() {
+            continue;
+        }
         chunks.before(prog);
         for s in &stmts {
             if let Some(each) = each.as_mut() {
@@ -325,10 +485,10 @@ fn scan_with(
                     .primary(file, p.span, "here")
                     .hint("read the file whole to see the full diagnostics"),
             );
-            if let Some(each) = each.as_mut() {
-                for s in &p.body {
-                    each(raw, s);
-                }
+            match &mut want {
+                Want::Each(each) => p.body.iter().for_each(|s| each(raw, s)),
+                Want::Words(sink) if sink.active() => p.body.iter().for_each(|s| sink.stmt(raw, s)),
+                _ => {}
             }
         }
         p.body = Vec::new();

@@ -68,6 +68,11 @@ const STAND_IN: Span = Span::new(u32::MAX, u32::MAX);
 /// documentation); `Err` names what it has instead, for the "read whole" note.
 pub fn straight(s: &Stmt) -> Result<(), String> {
     let StmtKind::Block(b) = &s.kind else { return Err("a loop".into()) };
+    straight_block(b)
+}
+
+/// [`straight`] of a block.
+fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
@@ -287,8 +292,7 @@ impl State<'_> {
 
     /// A block after the first chunk through the fast path: its line is written (after the
     /// statements waiting for the passes); `false` when the passes must translate it.
-    fn fast(&mut self, s: &Stmt) -> bool {
-        let StmtKind::Block(b) = &s.kind else { return false };
+    fn fast(&mut self, b: &Block) -> bool {
         // A plan with variables fails in `flush_rest`: the fast path must not write past it.
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
@@ -410,27 +414,49 @@ impl State<'_> {
         self.buf_real = false;
     }
 
+    /// The arc mode and `buf_real` after block `b`.
+    fn follow(&mut self, b: &Block) {
+        // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
+        for it in &b.items {
+            let ItemKind::Word(w) = &it.kind else { continue };
+            let WordValue::Expr(e) = &w.value else { continue };
+            if !w.addr.is(b'G') {
+                continue;
+            }
+            match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+                Some(20 | 30) => self.arc = true,
+                Some(0 | 10) => self.arc = false,
+                _ => {}
+            }
+        }
+        self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+    }
+
+    /// [`State::push`] of a plain block when the fast path takes it; else nothing has
+    /// changed and the caller pushes its statement.
+    fn push_plain(&mut self, b: &Block) -> bool {
+        if self.first {
+            return false;
+        }
+        let (arc, buf_real) = (self.arc, self.buf_real);
+        self.follow(b);
+        if self.fast(b) {
+            return true;
+        }
+        (self.arc, self.buf_real) = (arc, buf_real);
+        false
+    }
+
     fn push(&mut self, s: &Stmt) {
         let arc_before = self.arc;
         if let StmtKind::Block(b) = &s.kind {
-            // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
-            for it in &b.items {
-                let ItemKind::Word(w) = &it.kind else { continue };
-                let WordValue::Expr(e) = &w.value else { continue };
-                if !w.addr.is(b'G') {
-                    continue;
-                }
-                match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
-                    Some(20 | 30) => self.arc = true,
-                    Some(0 | 10) => self.arc = false,
-                    _ => {}
-                }
-            }
-            self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+            self.follow(b);
         }
         if !self.first {
-            if self.fast(s) {
-                return;
+            if let StmtKind::Block(b) = &s.kind {
+                if self.fast(b) {
+                    return;
+                }
             }
             if self.buf.is_empty() {
                 self.arc_at_start = arc_before;
@@ -444,6 +470,46 @@ impl State<'_> {
             // A quarter million comment lines before the first block: read whole.
             self.stop = Some(Fallback::NotStraight("a long run of comments at the top".into()));
         }
+    }
+}
+
+/// The translator as the first scan's sink: plain lines after the first chunk through
+/// the fast path straight from their words, the rest (and what it declines) as statements.
+struct Sink<'s, 'a> {
+    st: &'s mut State<'a>,
+    blocks: u64,
+}
+
+impl super::WordsSink for Sink<'_, '_> {
+    fn active(&self) -> bool {
+        self.st.stop.is_none()
+    }
+
+    fn stmt(&mut self, prog: usize, s: &Stmt) {
+        if self.st.stop.is_some() {
+            return;
+        }
+        if prog != 0 {
+            self.st.stop = Some(Fallback::NotStraight("more than one program".into()));
+            return;
+        }
+        if let Err(why) = straight(s) {
+            self.st.stop = Some(Fallback::NotStraight(why));
+            return;
+        }
+        self.blocks += 1;
+        self.st.push(s);
+    }
+
+    fn plain(&mut self, prog: usize, b: &Block) -> bool {
+        if self.st.stop.is_some() {
+            return true;
+        }
+        if prog != 0 || straight_block(b).is_err() || !self.st.push_plain(b) {
+            return false;
+        }
+        self.blocks += 1;
+        true
     }
 }
 
@@ -501,29 +567,9 @@ pub fn to_sinumerik_first(
     if bom {
         st.wbuf.extend_from_slice(b"\xEF\xBB\xBF");
     }
-    let mut blocks = 0u64;
-    let r = super::scan_path(
-        path,
-        0,
-        Dialect::Fanuc,
-        &popts,
-        &mut |prog, s| {
-            if st.stop.is_some() {
-                return;
-            }
-            if prog != 0 {
-                st.stop = Some(Fallback::NotStraight("more than one program".into()));
-                return;
-            }
-            if let Err(why) = straight(s) {
-                st.stop = Some(Fallback::NotStraight(why));
-                return;
-            }
-            blocks += 1;
-            st.push(s);
-        },
-        progress,
-    );
+    let mut sink = Sink { st: &mut st, blocks: 0 };
+    let r = super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut sink, progress);
+    let blocks = sink.blocks;
     let index = r.map_err(Fallback::NotStreamable)?;
     if let Some(f) = st.stop.take() {
         return Err(f);

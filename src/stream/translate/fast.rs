@@ -58,6 +58,11 @@ impl Fast {
     /// the block's G words into account, as the words pass does before it reports.
     pub fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Declined> {
         let StmtKind::Block(b) = &s.kind else { return Err(Declined) };
+        self.plain(b, out)
+    }
+
+    /// [`Fast::block`] of a block.
+    pub fn plain(&mut self, b: &Block, out: &mut Vec<u8>) -> Result<(), Declined> {
         let start = out.len();
         let r = self.lines(b, out);
         if r.is_err() {
