@@ -191,7 +191,11 @@ impl Reader<'_> {
             Reader::Sin(r) => r.plain_words(raw, ascii, push).is_some(),
             // The skip level of a block (`/2 X1`) is not handed out: such a line is read
             // as a statement.
-            Reader::Fan(r) => !raw.text.as_bytes().contains(&b'/') && r.plain_words(raw, ascii, push).is_some(),
+            Reader::Fan(r) => {
+                // A block skip is the first thing in the line after blanks (`fast::skip_prefix`).
+                let lead = raw.text.trim_start_matches([' ', '\t', '\x0C']);
+                !lead.starts_with('/') && r.plain_words(raw, ascii, push).is_some()
+            }
         }
     }
 }
@@ -395,9 +399,14 @@ fn scan_with(
                     block.meta.span = span;
                     block.meta.number = number;
                     block.meta.comments.clear();
-                    if let (Reader::Sin(_), Some(i)) = (&reader, l.text.find(';')) {
-                        // What the fast reader keeps of a comment: all after the first `;`
-                        // (words hold none).
+                    // What the Sinumerik fast reader keeps of a comment: all after the first
+                    // `;`, which comes after the last word (words hold none).
+                    let from = block.items.last().map_or(0, |it| it.span.hi.saturating_sub(raw.start) as usize);
+                    let comment = match &reader {
+                        Reader::Sin(_) => l.text.get(from..).and_then(|t| t.find(';')).map(|i| from + i),
+                        Reader::Fan(_) => None,
+                    };
+                    if let Some(i) = comment {
                         let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
                         block.meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
                     }

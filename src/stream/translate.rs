@@ -185,9 +185,7 @@ impl super::WordsSink for Sink<'_, '_> {
         if st.stop.is_some() {
             return true;
         }
-        if straight_block(b).is_err() {
-            return false;
-        }
+        // A plain block is straight (constant letter words, no label): not checked again.
         if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
             let g70 = st.fast.g70;
             if st.fast.plain(b, &mut st.buf).is_err() {
