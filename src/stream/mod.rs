@@ -19,7 +19,7 @@ pub mod translate;
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
 use crate::eval::lit::LitBlock;
-use crate::ir::{Addr, Block, Comment, Expr, Item, ItemKind, Stmt, Word, WordValue};
+use crate::ir::{Addr, Comment, Item, ItemKind, Stmt, WordValue};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
 pub use index::CHUNK_OPS;
@@ -54,12 +54,88 @@ enum Want<'a> {
     Words(&'a mut dyn WordsSink),
 }
 
+/// One word of a plain line read straight into words ([`scan_words`]): the letter (upper
+/// case), the value (negated when written with `-`), whether it was written with a point,
+/// and the word's span; the item the whole-file reader builds for it is a word of that
+/// letter holding that number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlainWord {
+    pub letter: u8,
+    pub value: f64,
+    pub point: bool,
+    pub span: Span,
+}
+
+/// What the streamed translators' fast paths look at in an item, the same whether it is an
+/// IR item or a [`PlainWord`] (so both go through one code).
+pub enum View {
+    /// A word: its letter when it has a letter address and an expression value (else
+    /// `None`), whether the address is `G`, the value when it is a number as written
+    /// (value, point), and when it is one after folding a `-n`.
+    Word { letter: Option<u8>, is_g: bool, num: Option<(f64, bool)>, folded: Option<f64> },
+    /// A program end.
+    End(crate::ir::EndCode),
+    /// Anything else.
+    Other,
+}
+
+/// An item as [`View`].
+pub trait ItemView {
+    fn view(&self) -> View;
+}
+
+impl ItemView for Item {
+    #[inline]
+    fn view(&self) -> View {
+        use crate::ir::{ExprKind, UnOp};
+        match &self.kind {
+            ItemKind::Word(w) => {
+                let e = match &w.value {
+                    WordValue::Expr(e) => Some(e),
+                    _ => None,
+                };
+                let num = match e.map(|e| &e.kind) {
+                    Some(ExprKind::Num(n)) => Some((n.value, n.point)),
+                    _ => None,
+                };
+                let folded = match e.map(|e| &e.kind) {
+                    Some(ExprKind::Num(n)) => Some(n.value),
+                    Some(ExprKind::Unary(UnOp::Neg, x)) => match &x.kind {
+                        ExprKind::Num(n) => Some(-n.value),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                let letter = match (&w.addr, e) {
+                    (Addr::Letter(l), Some(_)) => Some(*l),
+                    _ => None,
+                };
+                View::Word { letter, is_g: w.addr.is(b'G'), num, folded }
+            }
+            ItemKind::End { code } => View::End(*code),
+            _ => View::Other,
+        }
+    }
+}
+
+impl ItemView for PlainWord {
+    #[inline]
+    fn view(&self) -> View {
+        View::Word {
+            letter: Some(self.letter),
+            is_g: self.letter == b'G',
+            num: Some((self.value, self.point)),
+            folded: Some(self.value),
+        }
+    }
+}
+
 /// Where [`scan_words`] puts what it reads (each call with its program's index).
 pub trait WordsSink {
     /// A plain top-level line of constant letter words (see [`scan_words`] for what the
     /// block holds); `false` asks for the line as a statement instead ([`WordsSink::stmt`]
     /// is then called with it, and nothing of the block is to be kept).
-    fn plain(&mut self, prog: usize, b: &crate::ir::Block) -> bool;
+    fn plain(&mut self, prog: usize, meta: &crate::ir::BlockMeta, words: &[PlainWord]) -> bool;
     /// A finished top-level statement of any other line, as the whole-file reader builds it.
     fn stmt(&mut self, prog: usize, s: &Stmt);
     /// Whether the sink still wants anything (once `false`, it stays so: the rest of the
@@ -177,14 +253,11 @@ impl Reader<'_> {
         }
     }
 
-    /// [`Reader::lit`] into the items of a block (plain letter words with number values,
-    /// as the whole-file reader builds them; a value's span is taken as the word's less its
-    /// letter). `items` is appended to; on `false` it is to be cleared.
-    fn words(&mut self, raw: &RawBlock<'_>, ascii: bool, items: &mut Vec<Item>) -> bool {
+    /// [`Reader::lit`] into plain words. `words` is appended to; on `false` it is to be
+    /// cleared.
+    fn words(&mut self, raw: &RawBlock<'_>, ascii: bool, words: &mut Vec<PlainWord>) -> bool {
         let push = |letter: u8, value: f64, point: bool, span: Span| {
-            let vspan = Span::new(span.lo.saturating_add(1).min(span.hi), span.hi);
-            let w = Word { addr: Addr::Letter(letter), value: WordValue::Expr(Expr::num(value, point, vspan)), span };
-            items.push(Item { kind: ItemKind::Word(w), span });
+            words.push(PlainWord { letter, value, point, span });
             true
         };
         match self {
@@ -261,11 +334,10 @@ pub fn scan_index(
 ///
 /// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and the
 /// re-reading reader reads straight into its words (`Reader::plain_words`, as
-/// [`reread`] with `direct` does; for FANUC, without a block skip): the block then holds
-/// exactly the items the whole-file reader builds (letter words with number values, a
-/// value negated when written with `-`), the block's number and span, and for Sinumerik
-/// the comment after the `;`; of the items only the values' spans may differ. That block
-/// is read without building the line's statement. For the other lines (and a plain line
+/// [`reread`] with `direct` does; for FANUC, without a block skip): the sink gets the
+/// block's meta (span, number with the span of the line, for Sinumerik the comment after
+/// the `;`) and its words ([`PlainWord`]: the items the whole-file reader builds are
+/// exactly these, letter words with number values), without the line's statement. For the other lines (and a plain line
 /// the sink asks to have as a statement) a whole-file reader is fed, which has then seen
 /// every line but the plain ones taken as words: each of those is a top-level block that
 /// the reader would have handed out at once, changing of its state only what decides
@@ -353,7 +425,8 @@ fn scan_with(
     let start = reader.checkpoint();
     let mut words = full.as_ref().map(|_| Reader::resumed(file, opts, &start));
     let mut words_read = 0u32;
-    let mut block = Block::default();
+    let mut meta = crate::ir::BlockMeta::default();
+    let mut plain: Vec<PlainWord> = Vec::new();
     let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
     let mut header = String::new();
     let mut in_header = true;
@@ -385,8 +458,8 @@ fn scan_with(
         };
         if let (Some(sink), Some(w)) = (sink.as_mut(), words.as_mut()) {
             // A plain top-level line: its words, then the index as an index-only scan has it.
-            block.items.clear();
-            if w.words(&raw, l.ascii, &mut block.items) {
+            plain.clear();
+            if w.words(&raw, l.ascii, &mut plain) {
                 if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
                     let prog = reader.current();
                     chunks.before(prog);
@@ -396,21 +469,21 @@ fn scan_with(
                     if words_read.is_multiple_of(4096) {
                         *w = Reader::resumed(file, opts, &start);
                     }
-                    block.meta.span = span;
-                    block.meta.number = number;
-                    block.meta.comments.clear();
+                    meta.span = span;
+                    meta.number = number;
+                    meta.comments.clear();
                     // What the Sinumerik fast reader keeps of a comment: all after the first
                     // `;`, which comes after the last word (words hold none).
-                    let from = block.items.last().map_or(0, |it| it.span.hi.saturating_sub(raw.start) as usize);
+                    let from = plain.last().map_or(0, |it| it.span.hi.saturating_sub(raw.start) as usize);
                     let comment = match &reader {
                         Reader::Sin(_) => l.text.get(from..).and_then(|t| t.find(';')).map(|i| from + i),
                         Reader::Fan(_) => None,
                     };
                     if let Some(i) = comment {
                         let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
-                        block.meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
+                        meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
                     }
-                    if !sink.plain(prog, &block) {
+                    if !sink.plain(prog, &meta, &plain) {
                         if let Some(f) = full.as_mut() {
                             f.line(&raw);
                             full_stmts.clear();

@@ -18,7 +18,7 @@
 
 use super::lines::{Lines, NotStreamable};
 use super::translate::Fallback;
-use super::{Index, ProgressFn};
+use super::{Index, ItemView, PlainWord, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::sinumerik::emit::{emit_program, Frame};
@@ -99,14 +99,17 @@ fn straight_block(b: &Block) -> Result<(), String> {
             _ => None,
         };
         let Some(v) = value else { return Err(format!("a computed {} word", letter as char)) };
-        if letter == b'G' {
-            let g10 = (v * 10.0).round();
-            if !(0.0..=9990.0).contains(&g10) || (g10 - v * 10.0).abs() > 1e-9 || !PLAIN_G.contains(&(g10 as u32)) {
-                return Err(format!("G{v}"));
-            }
+        if letter == b'G' && !plain_g(v) {
+            return Err(format!("G{v}"));
         }
     }
     Ok(())
+}
+
+/// A G code whose translation needs nothing but its own block ([`PLAIN_G`]).
+fn plain_g(v: f64) -> bool {
+    let g10 = (v * 10.0).round();
+    (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G.contains(&(g10 as u32))
 }
 
 /// A finished streamed translation.
@@ -292,14 +295,14 @@ impl State<'_> {
 
     /// A block after the first chunk through the fast path: its line is written (after the
     /// statements waiting for the passes); `false` when the passes must translate it.
-    fn fast(&mut self, b: &Block) -> bool {
+    fn fast<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I]) -> bool {
         // A plan with variables fails in `flush_rest`: the fast path must not write past it.
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(b, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -432,15 +435,25 @@ impl State<'_> {
         self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
     }
 
-    /// [`State::push`] of a plain block when the fast path takes it; else nothing has
-    /// changed and the caller pushes its statement.
-    fn push_plain(&mut self, b: &Block) -> bool {
+    /// [`State::push`] of the words of a plain line when the fast path takes them; else
+    /// nothing has changed and the caller pushes its statement.
+    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         if self.first {
             return false;
         }
         let (arc, buf_real) = (self.arc, self.buf_real);
-        self.follow(b);
-        if self.fast(b) {
+        // `follow` of the block the words are.
+        for w in words {
+            if w.letter == b'G' {
+                match (w.value * 10.0).round() as u32 {
+                    20 | 30 => self.arc = true,
+                    0 | 10 => self.arc = false,
+                    _ => {}
+                }
+            }
+        }
+        self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
+        if self.fast(meta, words) {
             return true;
         }
         (self.arc, self.buf_real) = (arc, buf_real);
@@ -454,7 +467,7 @@ impl State<'_> {
         }
         if !self.first {
             if let StmtKind::Block(b) = &s.kind {
-                if self.fast(b) {
+                if self.fast(&b.meta, &b.items) {
                     return;
                 }
             }
@@ -501,11 +514,13 @@ impl super::WordsSink for Sink<'_, '_> {
         self.st.push(s);
     }
 
-    fn plain(&mut self, prog: usize, b: &Block) -> bool {
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         if self.st.stop.is_some() {
             return true;
         }
-        if prog != 0 || straight_block(b).is_err() || !self.st.push_plain(b) {
+        // Constant letter words without a label: straight when their G codes are.
+        let straight = words.iter().all(|w| w.letter != b'G' || plain_g(w.value));
+        if prog != 0 || !straight || !self.st.push_plain(meta, words) {
             return false;
         }
         self.blocks += 1;

@@ -15,13 +15,15 @@
 
 use super::lines::NotStreamable;
 use super::to_sinumerik::ReadBack;
-use super::{Index, ProgressFn};
+use super::{Index, PlainWord, ProgressFn};
 use crate::check::{self, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::{DirCallees, NoCallees, RunOptions};
-use crate::ir::{Addr, Block, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue};
+use crate::ir::{
+    Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
+};
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
@@ -180,7 +182,7 @@ impl super::WordsSink for Sink<'_, '_> {
 
     /// [`Sink::stmt`] of the block when the fast path takes it; else nothing has changed
     /// (the G70 mode is set back) and the statement is asked for.
-    fn plain(&mut self, _: usize, b: &Block) -> bool {
+    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         let st = &mut *self.st;
         if st.stop.is_some() {
             return true;
@@ -188,7 +190,7 @@ impl super::WordsSink for Sink<'_, '_> {
         // A plain block is straight (constant letter words, no label): not checked again.
         if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
             let g70 = st.fast.g70;
-            if st.fast.plain(b, &mut st.buf).is_err() {
+            if st.fast.plain(meta, words, &mut st.buf).is_err() {
                 st.fast.g70 = g70;
                 return false;
             }
