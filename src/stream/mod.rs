@@ -335,7 +335,7 @@ pub fn scan_index(
 /// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and the
 /// re-reading reader reads straight into its words (`Reader::plain_words`, as
 /// [`reread`] with `direct` does; for FANUC, without a block skip): the sink gets the
-/// block's meta (span, number with the span of the line, for Sinumerik the comment after
+/// block's meta (span, number, for Sinumerik the comment after
 /// the `;`) and its words ([`PlainWord`]: the items the whole-file reader builds are
 /// exactly these, letter words with number values), without the line's statement. For the other lines (and a plain line
 /// the sink asks to have as a statement) a whole-file reader is fed, which has then seen
