@@ -188,6 +188,13 @@ impl Reader<'_> {
         }
     }
 
+    fn diags(&self) -> &[Diagnostic] {
+        match self {
+            Reader::Sin(r) => r.diags(),
+            Reader::Fan(r) => r.diags(),
+        }
+    }
+
     fn drain_into(&mut self, out: &mut Vec<Stmt>) {
         match self {
             Reader::Sin(r) => r.drain_into(out),
@@ -680,6 +687,10 @@ pub trait RereadSink {
     fn lit(&mut self) -> Option<&mut LitBlock>;
     /// Drops the block [`RereadSink::lit`] gave last (its line was not such a block).
     fn unlit(&mut self);
+    /// An error the reader reports on a line it re-reads. The first scan found none (a file
+    /// with errors is not run streamed), so the file is not what was scanned, or not what
+    /// was written: what is read must not be run as if it were.
+    fn error(&mut self, d: Diagnostic);
 }
 
 /// Re-reads one chunk: the statements of `chunk`, parsed again from the file. With
@@ -718,6 +729,10 @@ pub fn reread(
         for s in stmts.drain(..) {
             sink.stmt(s);
         }
+    }
+    // Warnings were reported by the first scan; an error now means the text changed.
+    for d in reader.diags().iter().filter(|d| d.is_error()) {
+        sink.error(d.clone());
     }
     Ok(())
 }
