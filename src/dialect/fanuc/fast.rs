@@ -214,7 +214,7 @@ impl Word {
     fn value(&self, seg: &Seg<'_>) -> f64 {
         if self.digits <= 15 {
             if let Some(mant) = self.mant {
-                if let Some(v) = crate::read::scaled(mant, self.frac) {
+                if let Some(v) = crate::read::exact(mant, self.frac) {
                     return v;
                 }
             }

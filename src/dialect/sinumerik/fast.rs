@@ -66,11 +66,11 @@ struct Found<'t> {
 }
 
 impl Found<'_> {
-    /// The value with its sign: at most 15 digits (below 2^53), so `read::scaled` is exact
+    /// The value with its sign: at most 15 digits (below 2^53), so `read::exact` is exact
     /// and always answers (the `0.0` is never taken).
     #[inline(always)]
     fn value(&self) -> f64 {
-        let v = crate::read::scaled(self.mant, self.frac).unwrap_or(0.0);
+        let v = crate::read::exact(self.mant, self.frac).unwrap_or(0.0);
         if self.neg {
             -v
         } else {
