@@ -141,11 +141,8 @@ fn plain_words<const VALUES: bool>(
         let w = word::<VALUES>(seg, &mut i)?;
         // `RawWord::int`: a literal without sign or point (its value is not negative).
         // Only N, G and M words are judged by it.
-        let int = if matches!(w.letter, b'N' | b'G' | b'M') && !w.point && w.neg.is_none() {
-            Some(w.value(seg) as u64)
-        } else {
-            None
-        };
+        let int =
+            if matches!(w.letter, b'N' | b'G' | b'M') && !w.point && w.neg.is_none() { Some(w.int(seg)) } else { None };
         let ok = match w.letter {
             b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
@@ -235,6 +232,18 @@ impl Word {
             }
         }
         literal(&seg.text[self.lo..self.hi]).value
+    }
+}
+
+impl Word {
+    /// `value as u64` for a literal without sign or point: its digits as read, when they
+    /// are (at most 15 digits: the value is exactly `mant`).
+    #[inline(always)]
+    fn int(&self, seg: &Seg<'_>) -> u64 {
+        match self.mant {
+            Some(mant) if self.digits <= 15 && self.frac == 0 => mant,
+            _ => self.value(seg) as u64,
+        }
     }
 }
 

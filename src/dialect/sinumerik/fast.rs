@@ -206,10 +206,11 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
         head.number = Some(SeqNo { value, span: norm.span(start, j) });
         i = j;
     }
+    // Blanks are skipped here and after each word (where the next word is looked for).
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
     loop {
-        while i < len && blank(b[i]) {
-            i += 1;
-        }
         if i >= len {
             break;
         }
