@@ -660,4 +660,54 @@ mod tests {
         let d = decode(latin, None);
         assert_eq!(encode(&d.text, d.encoding, d.bom), latin);
     }
+
+    #[test]
+    fn line_ends_of_plain_lines_at_every_place_in_a_word() {
+        // CAM lines: plain text, the line end anywhere in an eight-byte word, sometimes a
+        // tab, form feed, control or non-ASCII byte before it in the same word or earlier.
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for len in 0..80 {
+            for _ in 0..40 {
+                let mut b: Vec<u8> = (0..len).map(|_| b"G1 X0.5Y-2;("[(next() % 12) as usize]).collect();
+                if len > 0 && next() % 3 == 0 {
+                    let at = (next() % len as u64) as usize;
+                    b[at] = [b'\t', 0x0c, 0x1a, 0x7f, 0x01, 0xc3][(next() % 6) as usize];
+                }
+                b.extend_from_slice([&b"\n"[..], b"\r\n", b"\r", b"", b"\nG1"][(next() % 5) as usize]);
+                let end = b.iter().position(|&c| c == b'\n' || c == b'\r').unwrap_or(b.len());
+                let plain = b[..end].iter().all(|&c| matches!(c, b'\t' | 0x0c | 0x1a | 0x20..=0x7e));
+                assert_eq!(line_end(&b), (end, plain), "{b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn exact_values_are_the_parsed_literals() {
+        // Every digit count and place of the point, and the largest whole numbers below 2^53.
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let digits = 1 + (state % 15) as u32;
+            let mant = (state >> 8) % 10u64.pow(digits);
+            let k = ((state >> 4) % u64::from(digits + 1)) as usize;
+            let text = format!("{mant:0width$}", width = digits as usize);
+            let literal = format!("{}.{}", &text[..text.len() - k], &text[text.len() - k..]);
+            let want: f64 = literal.parse().expect("a literal");
+            assert_eq!(exact(mant, k).map(f64::to_bits), Some(want.to_bits()), "{literal}");
+            assert_eq!(exact(mant, k), scaled(mant, k), "{literal}");
+        }
+        for mant in [0, 1, (1 << 53) - 1] {
+            assert_eq!(exact(mant, 0), Some(mant as f64));
+        }
+        assert_eq!(exact(1 << 53, 0), None);
+        assert_eq!(exact(1, 23), None);
+    }
 }
