@@ -242,6 +242,10 @@ impl Word {
     fn int(&self, seg: &Seg<'_>) -> u64 {
         match self.mant {
             Some(mant) if self.digits <= 15 && self.frac == 0 => mant,
+            // Not read (an index-only scan): only digits between `lo` and `hi` (no point).
+            None if self.digits <= 15 && !self.point => {
+                seg.text.as_bytes()[self.lo..self.hi].iter().fold(0, |n, &c| n * 10 + u64::from(c - b'0'))
+            }
             _ => self.value(seg) as u64,
         }
     }
