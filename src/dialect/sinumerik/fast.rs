@@ -51,6 +51,17 @@ pub fn words(
     Some((whole, head.number.map(|n| n.value)))
 }
 
+/// [`words`] on an ASCII line `raw` taken as it is (see [`skeleton_raw`] for why that is
+/// what normalising would give); its whole span is the line's.
+pub fn words_raw(
+    raw: &crate::read::RawBlock<'_>,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<u32>)> {
+    let norm = Normalised::unchanged(raw);
+    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+    words(&norm, whole, each)
+}
+
 /// One word as [`read`] found it: `text[start..end]`, its letter (upper case), its digits
 /// as one whole number `mant` with `frac` of them after the point (when the sink wants
 /// values), its sign and whether it had a decimal point.
