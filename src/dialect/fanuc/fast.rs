@@ -97,6 +97,29 @@ pub fn lit_line(
     Some((cut(seg.text.as_bytes(), stop)?, number))
 }
 
+/// [`skeleton_line`] on an ASCII line `raw` taken as it is (`Reader::scan_plain` says why
+/// that is what normalising would give): the block's span, number and whether it has
+/// words. The unchanged `Normalised` is made here, where nothing is left of it to drop.
+pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>, file: crate::span::FileId) -> Option<(Span, Option<SeqNo>, bool)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number, words) = skeleton_line(&seg)?;
+    Some((norm.span(lo, end), number, words))
+}
+
+/// [`lit_line`] on an ASCII line `raw` taken as it is (`Reader::plain_words` says why):
+/// the block's span and number.
+pub fn lit_raw(
+    raw: &crate::read::RawBlock<'_>,
+    file: crate::span::FileId,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<SeqNo>)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number) = lit_line(&seg, each)?;
+    Some((norm.span(lo, end), number))
+}
+
 /// Where `scan::segments` puts the one block of a line `b` that [`plain_words`] read up to
 /// `stop` (the end, or a `;`): `(lo, hi, end)`; `None` when more follows the `;` (more
 /// blocks, or a comment).
