@@ -243,6 +243,10 @@ fn fanuc_word_block(r: &mut Rng) -> String {
         s.push_str(r.pick(&["", "", "", "", "-", "+"]));
         let value = match r.below(4) {
             0 => r.pick(&["10", "11", "50", "65", "66", "67", "2", "30", "98", "99", "0", "100000"]).to_string(),
+            // More digits than a whole number is read exactly from (the value decides).
+            1 if r.below(4) == 0 => {
+                format!("{:016}", r.pick(&["1", "10", "30", "65", "99", "12345"]).parse::<u64>().unwrap_or(0))
+            }
             1 => format!("{}.", r.below(100)),
             _ => format!("{}", r.below(100_000)),
         };

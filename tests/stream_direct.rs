@@ -88,12 +88,15 @@ fn direct_route_gives_the_same_ops_on_every_corpus_program() {
 fn line(r: &mut Rng) -> String {
     let num = |r: &mut Rng| -> String {
         let sign = r.pick(&["", "", "-", "+"]);
-        match r.below(6) {
+        match r.below(7) {
             0 => format!("{sign}{}", r.below(1000)),
             1 => format!("{sign}{}.", r.below(100)),
             2 => format!("{sign}.{}", r.below(1000)),
             3 => format!("{sign}0.0"),
             4 => format!("{sign}{}.{:03}", r.below(10_000), r.below(1000)),
+            // Whole numbers of up to 19 digits: up to 15 are read exactly, longer ones
+            // are left to the grammar.
+            5 => format!("{sign}{}", r.below(1 << 60) >> r.below(60)),
             _ => format!("{sign}{}.{}", r.below(100), r.below(100_000_000)),
         }
     };
@@ -239,7 +242,10 @@ fn fanuc_line(r: &mut Rng, runnable: bool) -> String {
                 } else if runnable && letter == "M" {
                     r.pick(&["3", "5", "8", "09"]).to_string()
                 } else if letter == "G" || letter == "M" || letter == "g" {
-                    r.below(100).to_string()
+                    // Sometimes with more digits than an exact whole number read holds
+                    // (`G0000000000000065` is G65: not plain).
+                    let width = if r.chance(10) { 16 } else { 1 };
+                    format!("{:0width$}", r.below(100))
                 } else {
                     num(r)
                 };

@@ -97,6 +97,29 @@ pub fn lit_line(
     Some((cut(seg.text.as_bytes(), stop)?, number))
 }
 
+/// [`skeleton_line`] on an ASCII line `raw` taken as it is (`Reader::scan_plain` says why
+/// that is what normalising would give): the block's span, number and whether it has
+/// words. The unchanged `Normalised` is made here, where nothing is left of it to drop.
+pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>, file: crate::span::FileId) -> Option<(Span, Option<SeqNo>, bool)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number, words) = skeleton_line(&seg)?;
+    Some((norm.span(lo, end), number, words))
+}
+
+/// [`lit_line`] on an ASCII line `raw` taken as it is (`Reader::plain_words` says why):
+/// the block's span and number.
+pub fn lit_raw(
+    raw: &crate::read::RawBlock<'_>,
+    file: crate::span::FileId,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<SeqNo>)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number) = lit_line(&seg, each)?;
+    Some((norm.span(lo, end), number))
+}
+
 /// Where `scan::segments` puts the one block of a line `b` that [`plain_words`] read up to
 /// `stop` (the end, or a `;`): `(lo, hi, end)`; `None` when more follows the `;` (more
 /// blocks, or a comment).
@@ -141,11 +164,8 @@ fn plain_words<const VALUES: bool>(
         let w = word::<VALUES>(seg, &mut i)?;
         // `RawWord::int`: a literal without sign or point (its value is not negative).
         // Only N, G and M words are judged by it.
-        let int = if matches!(w.letter, b'N' | b'G' | b'M') && !w.point && w.neg.is_none() {
-            Some(w.value(seg) as u64)
-        } else {
-            None
-        };
+        let int =
+            if matches!(w.letter, b'N' | b'G' | b'M') && !w.point && w.neg.is_none() { Some(w.int(seg)) } else { None };
         let ok = match w.letter {
             b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
@@ -214,7 +234,7 @@ impl Word {
     fn value(&self, seg: &Seg<'_>) -> f64 {
         if self.digits <= 15 {
             if let Some(mant) = self.mant {
-                if let Some(v) = crate::read::scaled(mant, self.frac) {
+                if let Some(v) = crate::read::exact(mant, self.frac) {
                     return v;
                 }
             }
@@ -235,6 +255,22 @@ impl Word {
             }
         }
         literal(&seg.text[self.lo..self.hi]).value
+    }
+}
+
+impl Word {
+    /// `value as u64` for a literal without sign or point: its digits as read, when they
+    /// are (at most 15 digits: the value is exactly `mant`).
+    #[inline(always)]
+    fn int(&self, seg: &Seg<'_>) -> u64 {
+        match self.mant {
+            Some(mant) if self.digits <= 15 && self.frac == 0 => mant,
+            // Not read (an index-only scan): only digits between `lo` and `hi` (no point).
+            None if self.digits <= 15 && !self.point => {
+                seg.text.as_bytes()[self.lo..self.hi].iter().fold(0, |n, &c| n * 10 + u64::from(c - b'0'))
+            }
+            _ => self.value(seg) as u64,
+        }
     }
 }
 

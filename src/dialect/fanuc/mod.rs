@@ -200,10 +200,7 @@ impl<'o> Reader<'o> {
         if prog.param_mode || !prog.drains_at_once() {
             return None;
         }
-        let norm = Normalised::unchanged(raw);
-        let seg = parse::Seg { norm: &norm, base: 0, text: raw.text, file: self.file };
-        let ((lo, _, end), number, words) = fast::skeleton_line(&seg)?;
-        let span = norm.span(lo, end);
+        let (span, number, words) = fast::skeleton_raw(raw, self.file)?;
         self.programs.last_mut()?.push_drained_skeleton(span, number.as_ref().map(|n| n.value), words);
         Some((span, number))
     }
@@ -242,10 +239,7 @@ impl<'o> Reader<'o> {
         // An ASCII line the fast reader takes is one normalising leaves alone (it declines
         // every letter O), and neither a `%` line nor one with a comment. Exactly one block
         // (an end-of-block `;` may close it), cut as `line` cuts it.
-        let norm = Normalised::unchanged(raw);
-        let seg = parse::Seg { norm: &norm, base: 0, text: raw.text, file: self.file };
-        let ((lo, _, end), number) = fast::lit_line(&seg, each)?;
-        let span = norm.span(lo, end);
+        let (span, number) = fast::lit_raw(raw, self.file, each)?;
         let number = number.map(|n| n.value);
         self.programs.last_mut()?.push_drained(span, number);
         Some((span, number))

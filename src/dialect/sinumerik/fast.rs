@@ -51,6 +51,17 @@ pub fn words(
     Some((whole, head.number.map(|n| n.value)))
 }
 
+/// [`words`] on an ASCII line `raw` taken as it is (see [`skeleton_raw`] for why that is
+/// what normalising would give); its whole span is the line's.
+pub fn words_raw(
+    raw: &crate::read::RawBlock<'_>,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<u32>)> {
+    let norm = Normalised::unchanged(raw);
+    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+    words(&norm, whole, each)
+}
+
 /// One word as [`read`] found it: `text[start..end]`, its letter (upper case), its digits
 /// as one whole number `mant` with `frac` of them after the point (when the sink wants
 /// values), its sign and whether it had a decimal point.
@@ -66,11 +77,11 @@ struct Found<'t> {
 }
 
 impl Found<'_> {
-    /// The value with its sign: at most 15 digits (below 2^53), so `read::scaled` is exact
+    /// The value with its sign: at most 15 digits (below 2^53), so `read::exact` is exact
     /// and always answers (the `0.0` is never taken).
     #[inline(always)]
     fn value(&self) -> f64 {
-        let v = crate::read::scaled(self.mant, self.frac).unwrap_or(0.0);
+        let v = crate::read::exact(self.mant, self.frac).unwrap_or(0.0);
         if self.neg {
             -v
         } else {
@@ -206,10 +217,11 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
         head.number = Some(SeqNo { value, span: norm.span(start, j) });
         i = j;
     }
+    // Blanks are skipped here and after each word (where the next word is looked for).
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
     loop {
-        while i < len && blank(b[i]) {
-            i += 1;
-        }
         if i >= len {
             break;
         }

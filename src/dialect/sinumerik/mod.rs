@@ -250,9 +250,7 @@ impl Reader {
         }
         // An ASCII line the fast reader takes is one normalising leaves alone (see
         // `fast::skeleton_raw`); a `%` line it declines (`%` is not a letter).
-        let norm = read::Normalised::unchanged(raw);
-        let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
-        let got = fast::words(&norm, whole, each)?;
+        let got = fast::words_raw(raw, each)?;
         self.any = true;
         Some(got)
     }
