@@ -188,6 +188,29 @@ impl Reader<'_> {
         }
     }
 
+    /// A words scan: [`Reader::scan_plain`] of a plain top-level line that also hands its
+    /// words to `words` (appended; on `None` they are to be cleared), as
+    /// `Reader::plain_words` of a re-reading reader would (for FANUC, without a block skip),
+    /// in one pass (see `sinumerik::Reader::scan_plain_words`,
+    /// `fanuc::Reader::scan_plain_words`). Gives the span, the number and, for Sinumerik,
+    /// where the comment starts (the `;`).
+    #[allow(clippy::type_complexity)]
+    fn scan_plain_words(
+        &mut self,
+        raw: &RawBlock<'_>,
+        ascii: bool,
+        words: &mut Vec<PlainWord>,
+    ) -> Option<(Span, Option<crate::ir::SeqNo>, Option<usize>)> {
+        let push = |letter: u8, value: f64, point: bool, span: Span| {
+            words.push(PlainWord { letter, value, point, span });
+            true
+        };
+        match self {
+            Reader::Sin(r) => r.scan_plain_words(raw, ascii, push),
+            Reader::Fan(r) => r.scan_plain_words(raw, ascii, push).map(|(span, number)| (span, number, None)),
+        }
+    }
+
     fn diags(&self) -> &[Diagnostic] {
         match self {
             Reader::Sin(r) => r.diags(),
@@ -251,33 +274,6 @@ impl Reader<'_> {
             Reader::Fan(r) => Resume::Fanuc(r.checkpoint()),
         }
     }
-
-    /// A re-reading reader ([`Reader::lit`] works on it) resumed from `resume`.
-    fn resumed<'o>(file: FileId, opts: &'o ParseOptions, resume: &Resume) -> Reader<'o> {
-        match resume {
-            Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(file, opts, r))),
-            Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(file, opts, *r))),
-        }
-    }
-
-    /// [`Reader::lit`] into plain words. `words` is appended to; on `false` it is to be
-    /// cleared.
-    fn words(&mut self, raw: &RawBlock<'_>, ascii: bool, words: &mut Vec<PlainWord>) -> bool {
-        let push = |letter: u8, value: f64, point: bool, span: Span| {
-            words.push(PlainWord { letter, value, point, span });
-            true
-        };
-        match self {
-            Reader::Sin(r) => r.plain_words(raw, ascii, push).is_some(),
-            // The skip level of a block (`/2 X1`) is not handed out: such a line is read
-            // as a statement.
-            Reader::Fan(r) => {
-                // A block skip is the first thing in the line after blanks (`fast::skip_prefix`).
-                let lead = raw.text.trim_start_matches([' ', '\t', '\x0C']);
-                !lead.starts_with('/') && r.plain_words(raw, ascii, push).is_some()
-            }
-        }
-    }
 }
 
 /// Opens `path` for streaming.
@@ -339,9 +335,10 @@ pub fn scan_index(
 /// top-level line as a block of words ([`WordsSink::plain`]), every other statement as the
 /// whole-file reader builds it ([`WordsSink::stmt`]).
 ///
-/// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and the
-/// re-reading reader reads straight into its words (`Reader::plain_words`, as
-/// [`reread`] with `direct` does; for FANUC, without a block skip): the sink gets the
+/// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and a
+/// re-reading reader would read straight into its words (`Reader::plain_words`, as
+/// [`reread`] with `direct` does; for FANUC, without a block skip); the index reader reads
+/// both in one pass (`Reader::scan_plain_words`). The sink gets the
 /// block's meta (span, number, for Sinumerik the comment after
 /// the `;`) and its words ([`PlainWord`]: the items the whole-file reader builds are
 /// exactly these, letter words with number values), without the line's statement. For the other lines (and a plain line
@@ -425,13 +422,8 @@ fn scan_with(
         }
     };
     let mut reader = new_reader(index_only);
-    // For `Want::Words`: the whole-file reader of the lines not taken as words, and a
-    // re-reading reader that only reads plain lines into words (renewed now and then: it
-    // notes the numbers it reads).
+    // For `Want::Words`: the whole-file reader of the lines not taken as words.
     let mut full = matches!(want, Want::Words(_)).then(|| new_reader(false));
-    let start = reader.checkpoint();
-    let mut words = full.as_ref().map(|_| Reader::resumed(file, opts, &start));
-    let mut words_read = 0u32;
     let mut meta = crate::ir::BlockMeta::default();
     let mut plain: Vec<PlainWord> = Vec::new();
     let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
@@ -463,45 +455,34 @@ fn scan_with(
             Want::Each(e) => (None, Some(&mut **e)),
             _ => (None, None),
         };
-        if let (Some(sink), Some(w)) = (sink.as_mut(), words.as_mut()) {
-            // A plain top-level line: its words, then the index as an index-only scan has it.
+        if let Some(sink) = sink.as_mut() {
+            // A plain top-level line: the index as an index-only scan has it, and its words.
             plain.clear();
-            if w.words(&raw, l.ascii, &mut plain) {
-                if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
-                    let prog = reader.current();
-                    chunks.before(prog);
-                    chunks.progs[prog].add_plain(span, number.as_ref());
-                    chunks.after(&reader, chunk_ops, line_end, l.line + 1);
-                    words_read += 1;
-                    if words_read.is_multiple_of(4096) {
-                        *w = Reader::resumed(file, opts, &start);
-                    }
-                    meta.span = span;
-                    meta.number = number;
-                    meta.comments.clear();
-                    // What the Sinumerik fast reader keeps of a comment: all after the first
-                    // `;`, which comes after the last word (words hold none).
-                    let from = plain.last().map_or(0, |it| it.span.hi.saturating_sub(raw.start) as usize);
-                    let comment = match &reader {
-                        Reader::Sin(_) => l.text.get(from..).and_then(|t| t.find(';')).map(|i| from + i),
-                        Reader::Fan(_) => None,
-                    };
-                    if let Some(i) = comment {
-                        let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
-                        meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
-                    }
-                    if !sink.plain(prog, &meta, &plain) {
-                        if let Some(f) = full.as_mut() {
-                            f.line(&raw);
-                            full_stmts.clear();
-                            f.drain_into(&mut full_stmts);
-                            for s in &full_stmts {
-                                sink.stmt(prog, s);
-                            }
+            if let Some((span, number, comment)) = reader.scan_plain_words(&raw, l.ascii, &mut plain) {
+                let prog = reader.current();
+                chunks.before(prog);
+                chunks.progs[prog].add_plain(span, number.as_ref());
+                chunks.after(&reader, chunk_ops, line_end, l.line + 1);
+                meta.span = span;
+                meta.number = number;
+                meta.comments.clear();
+                // What the Sinumerik fast reader keeps of a comment: all after the first
+                // `;`, which comes after the last word (words hold none).
+                if let Some(i) = comment {
+                    let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
+                    meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
+                }
+                if !sink.plain(prog, &meta, &plain) {
+                    if let Some(f) = full.as_mut() {
+                        f.line(&raw);
+                        full_stmts.clear();
+                        f.drain_into(&mut full_stmts);
+                        for s in &full_stmts {
+                            sink.stmt(prog, s);
                         }
                     }
-                    continue;
                 }
+                continue;
             }
         }
         // An index-only scan (or a words scan whose sink wants no more) takes a plain

@@ -120,6 +120,29 @@ pub fn lit_raw(
     Some((norm.span(lo, end), number))
 }
 
+/// For a streamed translator's first scan of a whole line taken as it is
+/// (`Reader::scan_plain_words`): [`skeleton_raw`] and [`lit_raw`] in one pass (the words
+/// are read with their values; no decision depends on that, see [`plain_words`]). `None`
+/// also for a block with a skip (`/`, `/2`): its skip level is not handed out.
+pub fn scan_words_raw(
+    raw: &crate::read::RawBlock<'_>,
+    file: crate::span::FileId,
+    mut each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<SeqNo>, bool)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let mut words = false;
+    let (skip, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _| {
+        words = true;
+        each(letter, value, point, span)
+    })?;
+    if skip.is_some() {
+        return None;
+    }
+    let (lo, _, end) = cut(seg.text.as_bytes(), stop)?;
+    Some((norm.span(lo, end), number, words))
+}
+
 /// Where `scan::segments` puts the one block of a line `b` that [`plain_words`] read up to
 /// `stop` (the end, or a `;`): `(lo, hi, end)`; `None` when more follows the `;` (more
 /// blocks, or a comment).

@@ -205,6 +205,33 @@ impl<'o> Reader<'o> {
         Some((span, number))
     }
 
+    /// A streamed translator's first scan (`crate::stream::scan_words`): [`Reader::scan_plain`]
+    /// and, in the same pass over the line, what [`Reader::plain_words`] of a resumed reader
+    /// hands `each`. `None` (the reader is untouched) when `scan_plain` declines the line,
+    /// the block has a skip (`/2 X1`: its level is not handed out) or `each` declines a
+    /// word: then read it with [`Reader::line`]. Else the block's span and number.
+    ///
+    /// Why this is both: the conditions on the reader are `scan_plain`'s (a resumed reader
+    /// fed only such lines is always where `plain_words` reads them), and both read the
+    /// line with `fast::plain_words`, whose decisions do not depend on reading the values.
+    pub fn scan_plain_words(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        each: impl FnMut(u8, f64, bool, Span) -> bool,
+    ) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        if !self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
+            return None;
+        }
+        let prog = self.programs.last()?;
+        if prog.param_mode || !prog.drains_at_once() {
+            return None;
+        }
+        let (span, number, words) = fast::scan_words_raw(raw, self.file, each)?;
+        self.programs.last_mut()?.push_drained_skeleton(span, number.as_ref().map(|n| n.value), words);
+        Some((span, number))
+    }
+
     /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
     /// when the line is one plain block of constant letter words that [`Reader::line`] would
     /// add at the top level of the current program and drain at once, hands its items' words

@@ -62,6 +62,20 @@ pub fn words_raw(
     words(&norm, whole, each)
 }
 
+/// For a streamed translator's first scan of a plain top-level line
+/// (`Reader::scan_plain_words`): [`skeleton_raw`] and [`words_raw`] in one pass. The
+/// decisions are [`read`]'s, the same for both; the line is declined when `each` declines
+/// a word (as [`words_raw`] declines it). Gives the block number, whether it has words and
+/// where its comment starts (its `;`, an offset into `raw.text`).
+pub fn scan_words_raw(
+    raw: &crate::read::RawBlock<'_>,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Option<SeqNo>, bool, Option<usize>)> {
+    let norm = Normalised::unchanged(raw);
+    let head = read(&norm, &mut Each(each))?;
+    Some((head.number, head.words > 0, head.comment))
+}
+
 /// One word as [`read`] found it: `text[start..end]`, its letter (upper case), its digits
 /// as one whole number `mant` with `frac` of them after the point (when the sink wants
 /// values), its sign and whether it had a decimal point.

@@ -230,6 +230,32 @@ impl Reader {
         Some((Span::new(raw.start, raw.start + raw.text.len() as u32), number))
     }
 
+    /// A streamed translator's first scan (`crate::stream::scan_words`): [`Reader::scan_plain`]
+    /// and, in the same pass over the line, what [`Reader::plain_words`] of a resumed reader
+    /// hands `each`. `None` (the reader is untouched) when `scan_plain` declines the line or
+    /// `each` declines a word (`plain_words` would decline the line: then read it with
+    /// [`Reader::line`]); else the block's span, its number and where its comment starts
+    /// (the first `;` after the last word, an offset into `raw.text`).
+    ///
+    /// Why this is both: the conditions on the reader are `scan_plain`'s (a resumed reader
+    /// fed only such lines is always at top level), and both read the line with `fast::read`,
+    /// whose decisions do not depend on the sink; `plain_words` would change only `any` of a
+    /// reader that is not this one.
+    pub fn scan_plain_words(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        each: impl FnMut(u8, f64, bool, Span) -> bool,
+    ) -> Option<(Span, Option<crate::ir::SeqNo>, Option<usize>)> {
+        if !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
+            return None;
+        }
+        let (number, words, comment) = fast::scan_words_raw(raw, each)?;
+        self.any = true;
+        self.builder.push_plain_top(number.as_ref(), words);
+        Some((Span::new(raw.start, raw.start + raw.text.len() as u32), number, comment))
+    }
+
     /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
     /// when the line is a plain block of constant letter words at top level, hands its words to
     /// `each` (see `fast::words`) and gives its span and number; the reader then is where
