@@ -86,6 +86,84 @@ impl WordsSink for Record {
     }
 }
 
+/// The plain lines a words scan should take, found as the words scan did before it read
+/// a line once (`scan_plain_words`): a re-reading reader reads the line into its words
+/// (`plain_words`; FANUC: no block skip) and the index-only reader takes it whole
+/// (`scan_plain`); every other line goes through the index reader's `line`. `None` for a
+/// file that is not UTF-8.
+fn plain_lines_two_readers(path: &Path, dialect: Dialect) -> Option<Vec<Got>> {
+    use nctrans::dialect::{fanuc, sinumerik};
+    use nctrans::span::Span;
+    let bytes = std::fs::read(path).ok()?;
+    let text = std::str::from_utf8(bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes)).ok()?;
+    let opts = ParseOptions::for_dialect(dialect);
+    let mut out = Vec::new();
+    let mut stmts = Vec::new();
+    let mut words: Vec<PlainWord> = Vec::new();
+    fn push(words: &mut Vec<PlainWord>) -> impl FnMut(u8, f64, bool, Span) -> bool + '_ {
+        |letter, value, point, span| {
+            words.push(PlainWord { letter, value, point, span });
+            true
+        }
+    }
+    // What a sink gets for a plain line (the Sinumerik comment as the scan finds it).
+    let got = |prog: usize, raw: &nctrans::read::RawBlock<'_>, span: Span, number, words: &[PlainWord]| {
+        let from = words.last().map_or(0, |w| (w.span.hi - raw.start) as usize);
+        let comment = match dialect {
+            Dialect::Sinumerik => {
+                raw.text.get(from..).and_then(|t| t.find(';')).map(|i| raw.text[from + i + 1..].to_string())
+            }
+            Dialect::Fanuc => None,
+        };
+        Got::Plain {
+            prog,
+            number,
+            span: (span.lo, span.hi),
+            comments: comment.into_iter().collect(),
+            words: words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect(),
+        }
+    };
+    match dialect {
+        Dialect::Sinumerik => {
+            let mut r = sinumerik::Reader::new(0, &opts, text.len() as u32);
+            r.compact_targets();
+            r.index_only();
+            let mut w = sinumerik::Reader::resume(0, &opts, &r.checkpoint());
+            for raw in nctrans::read::blocks(text) {
+                words.clear();
+                if w.plain_words(&raw, false, push(&mut words)).is_some() {
+                    if let Some((span, number)) = r.scan_plain(&raw, false) {
+                        out.push(got(0, &raw, span, number.map(|n| n.value), &words));
+                        continue;
+                    }
+                }
+                r.line(&raw);
+                r.drain_into(&mut stmts);
+                stmts.clear();
+            }
+        }
+        Dialect::Fanuc => {
+            let mut r = fanuc::Reader::new(0, &opts);
+            r.index_only();
+            let mut w = fanuc::Reader::resume(0, &opts, r.checkpoint());
+            for raw in nctrans::read::blocks(text) {
+                words.clear();
+                let skip = raw.text.trim_start_matches([' ', '\t', '\x0C']).starts_with('/');
+                if !skip && w.plain_words(&raw, false, push(&mut words)).is_some() {
+                    if let Some((span, number)) = r.scan_plain(&raw, false) {
+                        out.push(got(r.current(), &raw, span, number.map(|n| n.value), &words));
+                        continue;
+                    }
+                }
+                r.line(&raw);
+                r.drain_into(&mut stmts);
+                stmts.clear();
+            }
+        }
+    }
+    Some(out)
+}
+
 /// Checks one file; returns how many lines went as words.
 fn check(path: &Path, dialect: Dialect) -> usize {
     let opts = ParseOptions::for_dialect(dialect);
@@ -113,6 +191,16 @@ fn check(path: &Path, dialect: Dialect) -> usize {
         } else {
             whole.iter().map(|(p, s)| Got::Stmt(*p, format!("{s:?}"))).collect()
         };
+        if take {
+            // Exactly the lines the two readers took as words, with the same words.
+            if let Some(two) = plain_lines_two_readers(path, dialect) {
+                let plain: Vec<&Got> = rec.got.iter().filter(|g| matches!(g, Got::Plain { .. })).collect();
+                assert_eq!(plain.len(), two.len(), "plain lines of {}", path.display());
+                for (a, b) in plain.iter().zip(&two) {
+                    assert_eq!(*a, b, "{}", path.display());
+                }
+            }
+        }
         assert_eq!(rec.got.len(), expected.len(), "{} (take {take})", path.display());
         for (a, b) in rec.got.iter().zip(&expected) {
             assert_eq!(a, b, "{} (take {take})", path.display());
