@@ -6,7 +6,7 @@
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::machine::set_fast_path;
-use nctrans::eval::trace::{Axes, Format, Origin, WriterSink};
+use nctrans::eval::trace::{Axes, Format, GridMove, Origin, WriterSink};
 use nctrans::eval::{self, Event, Outcome, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use std::fmt::Write as _;
@@ -39,6 +39,12 @@ impl TraceSink for Both {
     fn event(&mut self, ev: &Event, origin: Origin) {
         self.text.event(ev, origin);
         self.json.event(ev, origin);
+    }
+    // The writers' own grid move (the fast path's way to them) against their `event`
+    // (the general path's).
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.text.grid_move(m, origin);
+        self.json.grid_move(m, origin);
     }
     fn wants_blocks(&self) -> bool {
         true

@@ -8,6 +8,7 @@ use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal
 use crate::span::Span;
 
 mod fast;
+mod grid;
 mod modal;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use modal::{g_index, Modal};
@@ -114,6 +115,11 @@ pub struct Machine {
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
+    /// Per axis: (bits of a position, its trace grid value or `grid::OFF_GRID`), for
+    /// [`Machine::grid_move`]; a pure function of the bits, so never stale.
+    grid: [(u64, i64); 9],
+    /// The same for the feed (its own value, not `clean`ed).
+    feed_grid: (u64, i64),
 }
 
 impl Machine {
@@ -152,6 +158,8 @@ impl Machine {
             scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
+            grid: Machine::new_grid(),
+            feed_grid: (0f64.to_bits(), 0),
         }
     }
 
@@ -230,6 +238,26 @@ impl Machine {
         } else {
             v
         }
+    }
+
+    /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
+    /// length is `q / 1000`, `|q| <` [`super::numfmt::GRID_LIMIT`]) when it rounded to the
+    /// 0.001 mm grid in millimetres.
+    #[inline(always)]
+    fn length_grid(&self, bare: bool, x: f64, rotary: bool) -> (f64, Option<i64>) {
+        let inch = self.inch && !rotary;
+        let inc = if inch { self.inc_mm / 10.0 } else { self.inc_mm };
+        let slot = self.scales[0];
+        // `length_of`'s way for this unit: its slot holds `inc`, a decimal scale, 1000.
+        if !inch && slot.0 == inc && inc > 0.0 && slot.2 && slot.1 == 1000.0 {
+            let v = if bare && self.scaling { x * inc } else { x };
+            if let Some(q) = super::value::decimal_count(v, slot.1) {
+                // `round_to_decimal`'s result: `q as f64` is never `-0`.
+                let r = q as f64 / slot.1;
+                return (r, (q.unsigned_abs() < super::numfmt::GRID_LIMIT).then_some(q));
+            }
+        }
+        (self.length_of(bare, x, rotary), None)
     }
 
     /// Where axis `i` goes (machine frame) for the length `v` (mm) of its word, written

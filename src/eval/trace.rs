@@ -151,9 +151,41 @@ pub struct Origin {
     pub span: Span,
 }
 
+/// A straight move whose coordinates and feed are on the 0.001 grid (nearly every move
+/// of a metric CAM program), given as the integers [`super::numfmt::grid_of`] finds for
+/// the values of its [`Event::Move`]: a writer formats them without looking at a float.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridMove {
+    pub rapid: bool,
+    /// Bit `i`: axis `i` ([`AXES`]) has a position.
+    pub mask: u16,
+    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it).
+    pub to: [i64; 9],
+    /// The feed (`None` for a rapid move) and its `grid_of`.
+    pub f: Option<(f64, i64)>,
+}
+
+impl GridMove {
+    /// The move as an event: the same event the general path emits.
+    pub fn event(&self) -> Event {
+        let mut to = [None; 9];
+        for (i, slot) in to.iter_mut().enumerate() {
+            if self.mask & (1 << i) != 0 {
+                *slot = Some(self.to[i] as f64 / 1000.0);
+            }
+        }
+        Event::Move { rapid: self.rapid, to, f: self.f.map(|f| f.0) }
+    }
+}
+
 /// Receives the trace as it is produced; nothing is collected by the evaluator.
 pub trait TraceSink {
     fn event(&mut self, ev: &Event, origin: Origin);
+    /// A move on the grid: the same as `event(&m.event(), origin)` (the default), which a
+    /// writer may do faster.
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.event(&m.event(), origin);
+    }
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
@@ -479,6 +511,50 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         }
         self.buf.push(b'\n');
         if let Err(e) = self.out.write_all(&self.buf) {
+            self.error = Some(e);
+        }
+    }
+
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        if self.format != Format::Text {
+            return self.event(&m.event(), origin);
+        }
+        if self.error.is_some() {
+            return;
+        }
+        let line = (self.line_of)(origin);
+        // The line `text_form` and `event` write, in one pass into a buffer that holds the
+        // longest (9 axes of 11 bytes, a feed, a 20-digit line: under 200 bytes).
+        let mut b = [0u8; 256];
+        let mut i = if m.rapid {
+            b[..10].copy_from_slice(b"move rapid");
+            10
+        } else {
+            b[..11].copy_from_slice(b"move linear");
+            11
+        };
+        let mut mask = m.mask & 0x1ff;
+        while mask != 0 {
+            let a = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            b[i..i + 3].copy_from_slice(&[b' ', AXES[a] as u8, b'=']);
+            i = super::numfmt::put_grid(&mut b, i + 3, m.to[a]);
+        }
+        b[i..i + 3].copy_from_slice(b" f=");
+        i += 3;
+        match m.f {
+            Some((_, n)) => i = super::numfmt::put_grid(&mut b, i, n),
+            None => {
+                b[i] = b'-';
+                i += 1;
+            }
+        }
+        if let Some(l) = line {
+            b[i..i + 3].copy_from_slice(b"  @");
+            i = super::numfmt::put_uint_at(&mut b, i + 3, l as u64);
+        }
+        b[i] = b'\n';
+        if let Err(e) = self.out.write_all(&b[..i + 1]) {
             self.error = Some(e);
         }
     }

@@ -105,17 +105,9 @@ pub fn is_decimal_scale(scale: f64) -> bool {
 /// a caller rounding many values to one increment checks once.
 #[inline]
 pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
-    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
-    let k = round((x * scale) * 1e6);
-    let n = if k.abs() < 1e15 {
-        // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
-        // k is, and otherwise at least 1e-6 from one, farther than its rounding error
-        // (under 1.2e-7), so the division rounds the same way. Saves a division.
-        let ki = k as i64;
-        let q = (ki.abs() + 500_000) / 1_000_000;
-        (if ki < 0 { -q } else { q }) as f64
-    } else {
-        round(k / 1e6)
+    let n = match decimal_count(x, scale) {
+        Some(n) => n as f64,
+        None => round(round((x * scale) * 1e6) / 1e6),
     };
     // Dividing the integer count by a power of ten gives the double nearest to the
     // decimal value, with no noise to clean.
@@ -124,6 +116,25 @@ pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
         0.0
     } else {
         r
+    }
+}
+
+/// The count of increments [`round_to_decimal`] rounds `x` to (it returns the count
+/// divided by `scale`): `None` when it is not worked out in integers (`|x × scale|` of
+/// 10⁹ and more), where [`round_to_decimal`] takes floating point.
+#[inline]
+pub fn decimal_count(x: f64, scale: f64) -> Option<i64> {
+    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
+    let k = round((x * scale) * 1e6);
+    if k.abs() < 1e15 {
+        // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
+        // k is, and otherwise at least 1e-6 from one, farther than its rounding error
+        // (under 1.2e-7), so the division rounds the same way. Saves a division.
+        let ki = k as i64;
+        let q = (ki.abs() + 500_000) / 1_000_000;
+        Some(if ki < 0 { -q } else { q })
+    } else {
+        None
     }
 }
 
