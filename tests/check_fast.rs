@@ -46,7 +46,7 @@ fn blocks(r: &mut Rng, fanuc: bool, n: usize) -> Vec<String> {
         match r.below(40) {
             0 => b.push_str(if fanuc { "G20 " } else { "G70 " }),
             1 => b.push_str(if fanuc { "G21 " } else { "G71 " }),
-            2 => b.push_str(if fanuc { "M3 S1000 " } else { "M3 S1000 " }),
+            2 => b.push_str("M3 S1000 "),
             3 if !fanuc => b.push_str("TRANS X1.5 Y-2.25\n"),
             3 => b.push_str("G10 L2 P1 X1.5 Y-2.25\n"),
             _ => {}
