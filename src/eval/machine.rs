@@ -264,6 +264,12 @@ impl Machine {
     /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
     #[inline(always)]
     fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
+        self.target_from(i, v, mode, g53, self.active_offset(i))
+    }
+
+    /// [`Machine::axis_target`] with `off`, the [`Machine::active_offset`] of axis `i`.
+    #[inline(always)]
+    fn target_from(&self, i: usize, v: f64, mode: AbsInc, g53: bool, off: f64) -> f64 {
         let inc = match mode {
             AbsInc::Ac => false,
             AbsInc::Ic => true,
@@ -273,11 +279,11 @@ impl Machine {
             // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
             v
         } else if inc && self.incr_travels_offset {
-            self.pos[i] - self.applied[i] + v + self.active_offset(i)
+            self.pos[i] - self.applied[i] + v + off
         } else if inc {
             self.pos[i] + v
         } else {
-            v + self.active_offset(i)
+            v + off
         }
     }
 

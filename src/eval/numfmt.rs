@@ -49,7 +49,7 @@ pub const GRID_LIMIT: u64 = 1_000_000_000;
 /// Writes `n / 1000` (`|n| <` [`GRID_LIMIT`], as [`grid_of`] gives) at `out[at..]`, as
 /// [`put_num`] writes the value: 16 bytes are written (at most 11 used; `out` must have
 /// room for them); returns where the number ends.
-#[inline]
+#[inline(always)]
 pub fn put_grid(out: &mut [u8], at: usize, n: i64) -> usize {
     let mut buf = [0u8; 16];
     let len = small_millis(&mut buf, n);
@@ -59,7 +59,7 @@ pub fn put_grid(out: &mut [u8], at: usize, n: i64) -> usize {
 
 /// Writes `n / 1000` (`|n| < 10⁹`) at the start of `buf`, as [`millis_digits`] does;
 /// returns the length.
-#[inline]
+#[inline(always)]
 fn small_millis(buf: &mut [u8; 16], n: i64) -> usize {
     let mut i = usize::from(n < 0);
     buf[0] = b'-';
@@ -94,7 +94,7 @@ pub fn put_uint_at(out: &mut [u8], at: usize, n: u64) -> usize {
 }
 
 /// Writes `n < 1000` without leading zeros at `buf[at..]`; returns where it ends.
-#[inline]
+#[inline(always)]
 fn put_upto3(buf: &mut [u8; 16], at: usize, n: u32) -> usize {
     if n < 10 {
         buf[at] = b'0' + n as u8;
@@ -339,6 +339,7 @@ const PAIRS: &[u8; 200] = b"\
 8081828384858687888990919293949596979899";
 
 /// The two digits of `n` < 100.
+#[inline(always)]
 fn pair(n: u32) -> &'static [u8] {
     let i = (n as usize % 100) * 2;
     &PAIRS[i..i + 2]

@@ -484,11 +484,14 @@ pub struct WriterSink<'a, W: Write> {
     pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
     pub error: Option<io::Error>,
     buf: Vec<u8>,
+    /// Where [`TraceSink::grid_move`] writes a line (kept: clearing 256 bytes per line
+    /// costs more than writing it).
+    line: Box<[u8; 256]>,
 }
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink { out, format, line_of, error: None, buf: Vec::with_capacity(256) }
+        WriterSink { out, format, line_of, error: None, buf: Vec::with_capacity(256), line: Box::new([0; 256]) }
     }
 }
 
@@ -525,7 +528,7 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         let line = (self.line_of)(origin);
         // The line `text_form` and `event` write, in one pass into a buffer that holds the
         // longest (9 axes of 11 bytes, a feed, a 20-digit line: under 200 bytes).
-        let mut b = [0u8; 256];
+        let b = &mut *self.line;
         let mut i = if m.rapid {
             b[..10].copy_from_slice(b"move rapid");
             10
@@ -538,12 +541,12 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
             let a = mask.trailing_zeros() as usize;
             mask &= mask - 1;
             b[i..i + 3].copy_from_slice(&[b' ', AXES[a] as u8, b'=']);
-            i = super::numfmt::put_grid(&mut b, i + 3, m.to[a]);
+            i = super::numfmt::put_grid(b, i + 3, m.to[a]);
         }
         b[i..i + 3].copy_from_slice(b" f=");
         i += 3;
         match m.f {
-            Some((_, n)) => i = super::numfmt::put_grid(&mut b, i, n),
+            Some((_, n)) => i = super::numfmt::put_grid(b, i, n),
             None => {
                 b[i] = b'-';
                 i += 1;
@@ -551,7 +554,7 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         }
         if let Some(l) = line {
             b[i..i + 3].copy_from_slice(b"  @");
-            i = super::numfmt::put_uint_at(&mut b, i + 3, l as u64);
+            i = super::numfmt::put_uint_at(b, i + 3, l as u64);
         }
         b[i] = b'\n';
         if let Err(e) = self.out.write_all(&b[..i + 1]) {

@@ -93,8 +93,8 @@ impl Machine {
             let (i, w) = (usize::from(i), words.get(usize::from(k))?);
             // Each axis's target reads that axis's state only, so it can be written at once.
             let (v, q) = self.length_grid(self.fanuc && !w.point, w.value, (3..6).contains(&i));
-            let t = self.axis_target(i, v, w.mode, false);
             let off = self.active_offset(i);
+            let t = self.target_from(i, v, w.mode, false, off);
             self.applied[i] = off;
             self.seen[i] = true;
             self.pos[i] = t;
