@@ -253,3 +253,42 @@ fn generated_straight_line_programs_run_the_same_with_the_fast_path() {
     assert!(moves > 10_000, "only {moves} moves");
     assert!(streamed > 100, "only {streamed} programs streamed");
 }
+
+/// The text trace of a streamed run with real line numbers (`@line` from the text), the
+/// writer taking the lines its moves carry (`block_lines`) or looking every one up.
+fn streamed_text(path: &Path, dialect: Dialect, block_lines: bool) -> Option<Vec<u8>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let opts = ParseOptions::for_dialect(dialect);
+    let ix = nctrans::stream::scan_index_path(path, 0, dialect, &opts, None).ok()?;
+    let mut db = SourceDb::new();
+    let file = db.add(path.display().to_string(), String::new());
+    let run = RunOptions { max_steps: 200_000, ..Default::default() };
+    let runner = nctrans::stream::runner(std::sync::Arc::new(ix), Box::new(eval::DirCallees { semantics: None }), run);
+    let line = move |o: Origin| {
+        (o.file == file).then(|| text.as_bytes()[..o.span.lo as usize].iter().filter(|&&c| c == b'\n').count() + 1)
+    };
+    let mut sink = WriterSink::new(Vec::new(), Format::Text, Box::new(line));
+    if block_lines {
+        sink.block_lines = Some(file);
+    }
+    runner(&mut db, &mut sink);
+    Some(sink.out)
+}
+
+#[test]
+fn lines_carried_by_streamed_blocks_are_the_lines_of_their_spans() {
+    // Where the stream's re-read gives its blocks their lines, the writer takes them (and,
+    // in a debug build, asserts each is the one looked up): the traces must be the same.
+    let dir = root().join("target/eval-fast-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let mut r = Rng(91);
+    for i in 0..40 {
+        let fanuc = i % 2 == 0;
+        let text = program(&mut r, fanuc, 80);
+        let path = dir.join(if fanuc { "lines.nc" } else { "lines.mpf" });
+        std::fs::write(&path, &text).expect("scratch file");
+        let dialect = if fanuc { Dialect::Fanuc } else { Dialect::Sinumerik };
+        let looked_up = streamed_text(&path, dialect, false);
+        assert_eq!(streamed_text(&path, dialect, true), looked_up, "{text}");
+    }
+}

@@ -387,7 +387,8 @@ impl<'a> Interp<'a> {
                 let mut eff = super::machine::BlockEffect::default();
                 if let Some(span) = done {
                     match self.m.grid_move() {
-                        Some(g) if self.pending_msg.is_none() => {
+                        Some(mut g) if self.pending_msg.is_none() => {
+                            g.line = b.line;
                             let origin = Origin { file: self.file(), span };
                             self.sink.grid_move(&g, origin);
                         }

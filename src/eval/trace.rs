@@ -163,6 +163,9 @@ pub struct GridMove {
     pub to: [i64; 9],
     /// The feed (`None` for a rapid move) and its `grid_of`.
     pub f: Option<(f64, i64)>,
+    /// The 1-based line of the block that moved when known (0: not known); not part of
+    /// the event (see [`WriterSink::block_lines`]).
+    pub line: u32,
 }
 
 impl GridMove {
@@ -483,6 +486,11 @@ pub struct WriterSink<'a, W: Write> {
     pub format: Format,
     pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
     pub error: Option<io::Error>,
+    /// A file whose grid moves' own lines ([`GridMove::line`], when not 0) are the lines
+    /// `line_of` gives for their origins: the writer takes them without asking it (a
+    /// streamed run's re-read knows every block's line; the look-up costs a tenth of a
+    /// `run`). `None` (the default): always `line_of`.
+    pub block_lines: Option<crate::span::FileId>,
     buf: Vec<u8>,
     /// Where [`TraceSink::grid_move`] writes a line (kept: clearing 256 bytes per line
     /// costs more than writing it).
@@ -491,7 +499,15 @@ pub struct WriterSink<'a, W: Write> {
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink { out, format, line_of, error: None, buf: Vec::with_capacity(256), line: Box::new([0; 256]) }
+        WriterSink {
+            out,
+            format,
+            line_of,
+            error: None,
+            block_lines: None,
+            buf: Vec::with_capacity(256),
+            line: Box::new([0; 256]),
+        }
     }
 }
 
@@ -525,7 +541,13 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         if self.error.is_some() {
             return;
         }
-        let line = (self.line_of)(origin);
+        let line = match self.block_lines {
+            Some(file) if file == origin.file && m.line != 0 => {
+                debug_assert_eq!((self.line_of)(origin), Some(m.line as usize), "the line of {origin:?}");
+                Some(m.line as usize)
+            }
+            _ => (self.line_of)(origin),
+        };
         // The line `text_form` and `event` write, in one pass into a buffer that holds the
         // longest (9 axes of 11 bytes, a feed, a 20-digit line: under 200 bytes).
         let b = &mut *self.line;

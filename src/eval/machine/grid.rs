@@ -85,6 +85,6 @@ impl Machine {
             }
             Some((x, self.feed_grid.1))
         };
-        Some(GridMove { rapid, mask, to, f })
+        Some(GridMove { rapid, mask, to, f, line: 0 })
     }
 }
