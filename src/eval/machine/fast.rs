@@ -44,6 +44,7 @@ impl Machine {
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
         let mut modal = self.modal();
+        let mut any_g = false;
         let mut feed_word: Option<f64> = None;
         // The axis words: (axis, index of the word); a block naming an axis twice is left
         // to the general path (the later word wins there).
@@ -57,6 +58,7 @@ impl Machine {
             span = if span == Span::default() { w.span } else { span.to(w.span) };
             match w.letter {
                 b'G' => {
+                    any_g = true;
                     if !modal.g(self.fanuc, super::g_index(w.value)) {
                         return None;
                     }
@@ -82,17 +84,21 @@ impl Machine {
             }
         }
         // Commit, in the general path's order: modal codes, F, then the axes.
-        self.set_modal(modal);
+        if any_g {
+            self.set_modal(modal);
+        }
         if let Some(x) = feed_word {
             self.feed = Some(self.feed_value(x));
         }
         if n_axes == 0 {
             return Some(None);
         }
+        let milli = self.milli_lengths();
         for &(i, k) in &axes[..n_axes] {
             let (i, w) = (usize::from(i), words.get(usize::from(k))?);
             // Each axis's target reads that axis's state only, so it can be written at once.
-            let (v, q) = self.length_grid(self.fanuc && !w.point, w.value, (3..6).contains(&i));
+            let rotary = (3..6).contains(&i);
+            let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, rotary);
             let off = self.active_offset(i);
             let t = self.target_from(i, v, w.mode, false, off);
             self.applied[i] = off;
