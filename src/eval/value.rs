@@ -247,7 +247,7 @@ mod tests {
             z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
             z ^ (z >> 31)
         };
-        let mut xs = vec![0.0, -0.0, 0.0005, -0.0005, 0.0015, 1e6, 999_999.9995, 1e300, f64::NAN, f64::INFINITY];
+        let mut xs = vec![0.0, -0.0, 0.0005, -0.0005, 0.0015, 1e6, 999_999.999_5, 1e300, f64::NAN, f64::INFINITY];
         for _ in 0..200_000 {
             let r = next();
             let mag = 10f64.powi((r % 14) as i32 - 6);
