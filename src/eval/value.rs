@@ -126,7 +126,8 @@ pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
 pub fn decimal_count(x: f64, scale: f64) -> Option<i64> {
     // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
     let raw = (x * scale) * 1e6;
-    if !(raw.abs() < 2e15) {
+    // (NaN too takes the definition.)
+    if raw.abs() >= 2e15 || raw.is_nan() {
         return decimal_count_of(round(raw));
     }
     // `round(raw)` in integers (below 2⁵² the cast truncates exactly, and the
