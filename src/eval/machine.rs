@@ -120,6 +120,8 @@ pub struct Machine {
     grid: [(u64, i64); 9],
     /// The same for the feed (its own value, not `clean`ed).
     feed_grid: (u64, i64),
+    /// `seen` and its bit set (bit `i`: axis `i`), for [`Machine::grid_move`].
+    seen_mask: ([bool; 9], u16),
 }
 
 impl Machine {
@@ -160,6 +162,7 @@ impl Machine {
             ms_buf: Vec::new(),
             grid: Machine::new_grid(),
             feed_grid: (0f64.to_bits(), 0),
+            seen_mask: ([false; 9], 0),
         }
     }
 

@@ -209,6 +209,7 @@ pub struct NullSink;
 
 impl TraceSink for NullSink {
     fn event(&mut self, _ev: &Event, _origin: Origin) {}
+    fn grid_move(&mut self, _m: &GridMove, _origin: Origin) {}
 }
 
 /// Collects the trace (tests and the checker's context window; not for long runs).
@@ -495,6 +496,39 @@ pub struct WriterSink<'a, W: Write> {
     /// Where [`TraceSink::grid_move`] writes a line (kept: clearing 256 bytes per line
     /// costs more than writing it).
     line: Box<[u8; 256]>,
+    /// The `@line` number [`TraceSink::grid_move`] wrote last and its digits: the next
+    /// line is nearly always this one plus one, counted up in the digits.
+    last_line: (usize, [u8; 24], usize),
+}
+
+/// Writes line number `l` at `b[i..]` (room for 24 bytes) as `put_int` does, from
+/// `last` (the number written before and its digits) when `l` is that number or the next
+/// one; `last` becomes `l`. Returns where the digits end.
+fn put_line(b: &mut [u8], i: usize, l: usize, last: &mut (usize, [u8; 24], usize)) -> usize {
+    let (n, digits, len) = last;
+    let counted = if l == *n {
+        true
+    } else if n.checked_add(1) == Some(l) && *len > 0 {
+        // Add one from the last digit: nines become zeros; a number of nines only
+        // (a new digit) is written afresh.
+        let mut k = *len;
+        while k > 0 && digits[k - 1] == b'9' {
+            digits[k - 1] = b'0';
+            k -= 1;
+        }
+        if k > 0 {
+            digits[k - 1] += 1;
+        }
+        k > 0
+    } else {
+        false
+    };
+    if !counted {
+        *len = super::numfmt::put_uint_at(digits, 0, l as u64);
+    }
+    *n = l;
+    b[i..i + 24].copy_from_slice(digits);
+    i + *len
 }
 
 impl<'a, W: Write> WriterSink<'a, W> {
@@ -507,6 +541,7 @@ impl<'a, W: Write> WriterSink<'a, W> {
             block_lines: None,
             buf: Vec::with_capacity(256),
             line: Box::new([0; 256]),
+            last_line: (0, *b"000000000000000000000000", 1),
         }
     }
 }
@@ -576,7 +611,7 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         }
         if let Some(l) = line {
             b[i..i + 3].copy_from_slice(b"  @");
-            i = super::numfmt::put_uint_at(b, i + 3, l as u64);
+            i = put_line(b, i + 3, l, &mut self.last_line);
         }
         b[i] = b'\n';
         if let Err(e) = self.out.write_all(&b[..i + 1]) {
@@ -597,6 +632,29 @@ mod tests {
         let ev = Event::Move { rapid: false, to, f: Some(300.0) };
         assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
         assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
+    }
+
+    #[test]
+    fn line_numbers_counted_up_are_written_as_put_int_writes_them() {
+        let mut last = (0, *b"000000000000000000000000", 1);
+        let mut seq: Vec<usize> = (0..12_000).collect();
+        seq.extend([99, 100, 100, 101, 999_999, 1_000_000, 5, 4, 3, 0, 0, 1, 9, 10, usize::MAX - 1, usize::MAX, 0]);
+        let mut x = 7usize;
+        for _ in 0..2000 {
+            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let l = x >> (x % 60);
+            seq.extend([l, l.wrapping_add(1), l.wrapping_add(2)]);
+        }
+        let mut b = [0u8; 64];
+        for l in seq {
+            let end = put_line(&mut b, 3, l, &mut last);
+            let mut want = Vec::new();
+            super::super::numfmt::put_int(&mut want, l as i64);
+            if l > i64::MAX as usize {
+                want = l.to_string().into_bytes();
+            }
+            assert_eq!(&b[3..end], &want[..], "line {l}");
+        }
     }
 
     #[test]

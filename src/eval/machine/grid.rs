@@ -52,10 +52,15 @@ impl Machine {
     pub fn grid_move(&mut self) -> Option<GridMove> {
         let rapid = self.motion == Motion::Rapid;
         let mut to = [0i64; 9];
-        let mut mask = 0u16;
-        for (i, &seen) in self.seen.iter().enumerate() {
-            mask |= u16::from(seen) << i;
+        // The axes positioned so far as a bit set, worked out again only when they change.
+        if self.seen_mask.0 != self.seen {
+            let mut mask = 0u16;
+            for (i, &seen) in self.seen.iter().enumerate() {
+                mask |= u16::from(seen) << i;
+            }
+            self.seen_mask = (self.seen, mask);
         }
+        let mask = self.seen_mask.1;
         let mut left = mask;
         while left != 0 {
             let i = left.trailing_zeros() as usize;
