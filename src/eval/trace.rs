@@ -504,6 +504,7 @@ pub struct WriterSink<'a, W: Write> {
 /// Writes line number `l` at `b[i..]` (room for 24 bytes) as `put_int` does, from
 /// `last` (the number written before and its digits) when `l` is that number or the next
 /// one; `last` becomes `l`. Returns where the digits end.
+#[inline(always)]
 fn put_line(b: &mut [u8], i: usize, l: usize, last: &mut (usize, [u8; 24], usize)) -> usize {
     let (n, digits, len) = last;
     let counted = if l == *n {
