@@ -243,35 +243,6 @@ impl Machine {
         }
     }
 
-    /// Whether [`Machine::length_of`] of a linear (`[0]`) and of a rotary (`[1]`) axis
-    /// word rounds to the 0.001 grid in millimetres (its slot holds the increment, a
-    /// decimal scale of 1000, no inch conversion): what [`Machine::length_grid`] needs,
-    /// worked out once per block.
-    #[inline(always)]
-    fn milli_lengths(&self) -> [bool; 2] {
-        let slot = self.scales[0];
-        let ok = slot.0 == self.inc_mm && self.inc_mm > 0.0 && slot.2 && slot.1 == 1000.0;
-        [ok && !self.inch, ok]
-    }
-
-    /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
-    /// length is `q / 1000`, `|q| <` [`super::numfmt::GRID_LIMIT`]) when it rounded to the
-    /// 0.001 mm grid in millimetres (`milli`: [`Machine::milli_lengths`] for the axis).
-    #[inline(always)]
-    fn length_grid(&self, milli: bool, bare: bool, x: f64, rotary: bool) -> (f64, Option<i64>) {
-        if milli {
-            // `length_of`'s way for this word: the increment `inc_mm`, rounded by
-            // `round_to_decimal(v, 1000.0)`.
-            let v = if bare && self.scaling { x * self.inc_mm } else { x };
-            if let Some(q) = super::value::decimal_count(v, 1000.0) {
-                // `round_to_decimal`'s result: `q as f64` is never `-0`.
-                let r = q as f64 / 1000.0;
-                return (r, (q.unsigned_abs() < super::numfmt::GRID_LIMIT).then_some(q));
-            }
-        }
-        (self.length_of(bare, x, rotary), None)
-    }
-
     /// Where axis `i` goes (machine frame) for the length `v` (mm) of its word, written
     /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
     #[inline(always)]
