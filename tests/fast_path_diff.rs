@@ -243,6 +243,10 @@ fn fanuc_word_block(r: &mut Rng) -> String {
         s.push_str(r.pick(&["", "", "", "", "-", "+"]));
         let value = match r.below(4) {
             0 => r.pick(&["10", "11", "50", "65", "66", "67", "2", "30", "98", "99", "0", "100000"]).to_string(),
+            // More digits than a whole number is read exactly from (the value decides).
+            1 if r.below(4) == 0 => {
+                format!("{:016}", r.pick(&["1", "10", "30", "65", "99", "12345"]).parse::<u64>().unwrap_or(0))
+            }
             1 => format!("{}.", r.below(100)),
             _ => format!("{}", r.below(100_000)),
         };
@@ -292,6 +296,65 @@ fn fanuc_plain_blocks_build_like_the_general_route() {
         }
     }
     assert!(skeletons > 10_000, "the index-only reader took only {skeletons} blocks");
+}
+
+/// A line with what a reader of plain lines taken as they are could get wrong: a letter O
+/// where normalising reads a zero (`GO1`, `G0O`), full-width characters in code and in
+/// comments, `;` ends of blocks (FANUC), vertical tabs and form feeds, `%`, program
+/// numbers, a plain block spread over two blocks.
+fn tricky_line(r: &mut Rng, siemens: bool) -> String {
+    let pieces = [
+        "GO1 X1",
+        "G0O1 X2",
+        "g0o Y3",
+        "GO X1.5",
+        "G1 O5",
+        "N10 O1",
+        "Ｇ１ Ｘ２",
+        "G1 Ｘ2.5",
+        "G1 X1 ;Ｘ注",
+        "G1 X1 (Ｘ)",
+        "G1 X1;",
+        "G1 X1 ;  ",
+        "G1 X1;;",
+        "G1 X1; G2 Y1",
+        "G1 X1;(C)",
+        ";",
+        "  ;",
+        "\x0bG1 X1",
+        "G1 X1\x0b",
+        "\x0cG1 X1\x0c",
+        "G1\tX1\t",
+        "%",
+        " %",
+        "/1 G1 X1",
+        "/ G1 X1;",
+        "N5",
+        "N5;",
+        "N5 ;c",
+        "X1 ;GO1",
+        "G1 X1 (GO1)",
+        "O2000",
+        "G1 X1 ;",
+        "N7 G1 X-.5;  ;",
+        "G1 X1\u{3000}Y2",
+        "GOTO1",
+        "G1 X1.EX3",
+        "G1 X1=2",
+        "G1 X[1]",
+    ];
+    let mut s = String::from(r.pick(&pieces));
+    if r.below(3) == 0 {
+        s.push_str(r.pick(&[" ", "\t", " ;x", " (x)", "Y2", " Y-3.25", "\u{ff11}"]));
+    }
+    if !siemens && r.below(10) == 0 {
+        s = s.replace(';', "(;)");
+    }
+    if !siemens && s.contains('%') {
+        // A FANUC tape mark inside would end the program: everything after it is ignored.
+        s = "G1 X9".to_string();
+    }
+    s
 }
 
 /// The index of `bytes` by the full first scan and by the index-only one, as debug text.
@@ -352,11 +415,18 @@ fn the_index_only_scan_gives_the_full_scans_index() {
             files.push((f.clone(), m));
         }
     }
-    // Generated programs of plain blocks with comments, numbers and a PROC or title.
+    // Generated programs of plain blocks with comments, numbers and a PROC or title, and
+    // lines the index-only scan must not read as they are (it reads plain lines without
+    // normalising them): letter O for zero, full-width characters, `;` block ends, odd
+    // blanks, tape marks.
     for siemens in [true, false] {
         let mut text = String::from(if siemens { "; title\nPROC P1\n" } else { "%\n(TITLE)\nO1000\n" });
         for _ in 0..3000 {
-            text.push_str(&block(&mut r, siemens));
+            if r.below(4) == 0 {
+                text.push_str(&tricky_line(&mut r, siemens));
+            } else {
+                text.push_str(&block(&mut r, siemens));
+            }
             text.push('\n');
         }
         text.push_str(if siemens { "M30\nPROC Q\n" } else { "M30\n%\n" });

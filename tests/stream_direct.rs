@@ -88,12 +88,15 @@ fn direct_route_gives_the_same_ops_on_every_corpus_program() {
 fn line(r: &mut Rng) -> String {
     let num = |r: &mut Rng| -> String {
         let sign = r.pick(&["", "", "-", "+"]);
-        match r.below(6) {
+        match r.below(7) {
             0 => format!("{sign}{}", r.below(1000)),
             1 => format!("{sign}{}.", r.below(100)),
             2 => format!("{sign}.{}", r.below(1000)),
             3 => format!("{sign}0.0"),
             4 => format!("{sign}{}.{:03}", r.below(10_000), r.below(1000)),
+            // Whole numbers of up to 19 digits: up to 15 are read exactly, longer ones
+            // are left to the grammar.
+            5 => format!("{sign}{}", r.below(1 << 60) >> r.below(60)),
             _ => format!("{sign}{}.{}", r.below(100), r.below(100_000_000)),
         }
     };
@@ -118,6 +121,9 @@ fn line(r: &mut Rng) -> String {
         17 => "L10".into(),
         18 => "G0O X1".into(),
         19 => "M3.5 S1000".into(),
+        // A letter O for a zero that, read without normalising, would be an O word; a
+        // letter O in a comment (normalising leaves it); full-width text in a comment.
+        20 => r.pick(&["G0O1 X2", "g0o1 Y3", "N10 O5", "G1 X1 ;GO1", "G1 X1 ;\u{FF38}2"]).into(),
         _ => {
             let mut s = String::new();
             if r.chance(40) {
@@ -219,6 +225,8 @@ fn fanuc_line(r: &mut Rng, runnable: bool) -> String {
         31 => "X1.2.3".into(),
         32 => format!("N{} ;", r.below(9000) + 1),
         33 => "   ;".into(),
+        // Read without normalising, these must still be cut and read as `line` would.
+        34 => r.pick(&["G0O1 X2", "G1 X1;  ;", "G1 X1;;", "G1 X1; (C)", "\x0bG1 X1", "N5;", "G1 X1 \x0c;"]).into(),
         _ => {
             let mut s = String::new();
             if r.chance(10) {
@@ -234,7 +242,10 @@ fn fanuc_line(r: &mut Rng, runnable: bool) -> String {
                 } else if runnable && letter == "M" {
                     r.pick(&["3", "5", "8", "09"]).to_string()
                 } else if letter == "G" || letter == "M" || letter == "g" {
-                    r.below(100).to_string()
+                    // Sometimes with more digits than an exact whole number read holds
+                    // (`G0000000000000065` is G65: not plain).
+                    let width = if r.chance(10) { 16 } else { 1 };
+                    format!("{:0width$}", r.below(100))
                 } else {
                     num(r)
                 };

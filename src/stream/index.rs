@@ -84,6 +84,15 @@ impl ProgIndex {
         });
     }
 
+    /// [`ProgIndex::add`] of a plain block statement (span `span`, number `number`, no label).
+    pub fn add_plain(&mut self, span: Span, number: Option<&crate::ir::SeqNo>) {
+        if let Some(n) = number {
+            self.numbers.push(n.value, self.ops as u64, n.span);
+        }
+        self.last_span = span;
+        self.ops += 1;
+    }
+
     /// The chunk holding op `pc`.
     pub fn chunk_of(&self, pc: usize) -> Option<usize> {
         let i = self.chunks.partition_point(|c| c.op_base <= pc);

@@ -92,6 +92,8 @@ pub struct Line<'a> {
     pub line: u32,
     /// Offset of the next line (after this one's line end).
     pub next: u64,
+    /// Every byte is printable ASCII, a tab, a form feed or SUB (so the text is ASCII).
+    pub ascii: bool,
 }
 
 impl Lines {
@@ -216,7 +218,7 @@ impl Lines {
         let start = self.offset;
         self.offset += (next - self.pos) as u64;
         self.pos = next;
-        Ok(Some(Line { text, start, line: self.line, next: self.offset }))
+        Ok(Some(Line { text, start, line: self.line, next: self.offset, ascii: plain }))
     }
 
     /// Text bytes read so far (for progress).

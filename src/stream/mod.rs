@@ -80,6 +80,15 @@ impl Reader<'_> {
         }
     }
 
+    /// An index-only scan: a plain top-level line read straight to its span and number
+    /// (see `sinumerik::Reader::scan_plain`, `fanuc::Reader::scan_plain`).
+    fn scan_plain(&mut self, raw: &RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        match self {
+            Reader::Sin(r) => r.scan_plain(raw, ascii),
+            Reader::Fan(r) => r.scan_plain(raw, ascii),
+        }
+    }
+
     fn drain_into(&mut self, out: &mut Vec<Stmt>) {
         match self {
             Reader::Sin(r) => r.drain_into(out),
@@ -105,11 +114,11 @@ impl Reader<'_> {
     /// constant letter words at top level (see `sinumerik::Reader::plain_words`,
     /// `fanuc::Reader::plain_words`); `false`
     /// when it must go through [`Reader::line`] (`b` is then to be dropped).
-    fn lit(&mut self, raw: &RawBlock<'_>, b: &mut LitBlock) -> bool {
+    fn lit(&mut self, raw: &RawBlock<'_>, ascii: bool, b: &mut LitBlock) -> bool {
         match self {
             Reader::Sin(r) => {
                 let Some((span, number)) =
-                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
                 else {
                     return false;
                 };
@@ -119,7 +128,7 @@ impl Reader<'_> {
             }
             Reader::Fan(r) => {
                 let Some((span, number)) =
-                    r.plain_words(raw, |letter, value, point, span| b.push(letter, value, point, span))
+                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
                 else {
                     return false;
                 };
@@ -237,10 +246,7 @@ fn scan_with(
             Reader::Fan(Box::new(r))
         }
     };
-    let mut progs: Vec<ProgIndex> = Vec::new();
-    // The open chunk: (program, lo, line, op_base at start, resume state).
-    let mut open: Option<(usize, u64, u32, Resume)> = None;
-    let mut boundary = (0u64, 1u32, reader.checkpoint());
+    let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
@@ -256,52 +262,40 @@ fn scan_with(
         }
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
         let line_end = l.next;
-        reader.line(&raw);
         count += 1;
         if count.is_multiple_of(65536) {
             if let Some(p) = progress.as_mut() {
-                p(Progress { done: line_end, total: size, blocks: progs.iter().map(|p| p.ops as u64).sum() });
+                p(Progress { done: line_end, total: size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
             }
         }
+        // An index-only scan takes a plain top-level line (nearly every line of CAM code)
+        // straight to the index: the one statement `line` and a drain would give, added.
+        if each.is_none() {
+            if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
+                let prog = reader.current();
+                chunks.before(prog);
+                chunks.progs[prog].add_plain(span, number.as_ref());
+                chunks.after(&reader, chunk_ops, line_end, l.line + 1);
+                continue;
+            }
+        }
+        reader.line(&raw);
         stmts.clear();
         reader.drain_into(&mut stmts);
         if stmts.is_empty() {
             continue;
         }
         let prog = reader.current();
-        while progs.len() <= prog {
-            progs.push(ProgIndex::new());
-        }
-        if let Some((p, lo, line, resume)) = open.take() {
-            if p != prog {
-                // A new program: the old chunk ends after its last statement.
-                close(&mut progs[p], lo, boundary.0, line, resume);
-                open = Some((prog, boundary.0, boundary.1, boundary.2.clone()));
-            } else {
-                open = Some((p, lo, line, resume));
-            }
-        } else {
-            open = Some((prog, boundary.0, boundary.1, boundary.2.clone()));
-        }
+        chunks.before(prog);
         for s in &stmts {
             if let Some(each) = each.as_mut() {
                 each(prog, s);
             }
-            progs[prog].add(s);
+            chunks.progs[prog].add(s);
         }
-        let next_line = l.line + 1;
-        let at_top = reader.at_top();
-        if let Some((p, lo, line, resume)) = &open {
-            let base = progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if at_top && progs[*p].ops - base >= chunk_ops.max(1) {
-                close(&mut progs[*p], *lo, line_end, *line, resume.clone());
-                open = None;
-            }
-        }
-        if at_top && (open.is_none() || matches!(reader, Reader::Fan(_))) {
-            boundary = (line_end, next_line, reader.checkpoint());
-        }
+        chunks.after(&reader, chunk_ops, line_end, l.line + 1);
     }
+    let Chunker { mut progs, mut open, .. } = chunks;
     if let Some((p, lo, line, resume)) = open.take() {
         close(&mut progs[p], lo, lines.offset(), line, resume);
     }
@@ -359,6 +353,56 @@ fn scan_with(
         diags,
         header,
     })
+}
+
+/// The chunks of a scan as statements arrive.
+struct Chunker {
+    progs: Vec<ProgIndex>,
+    /// The open chunk: (program, lo, line, resume state).
+    open: Option<(usize, u64, u32, Resume)>,
+    /// Where the next chunk would start: (offset, line, resume state).
+    boundary: (u64, u32, Resume),
+}
+
+impl Chunker {
+    /// Before the statements a line finished, all of program `prog`: a chunk is open for them.
+    #[inline]
+    fn before(&mut self, prog: usize) {
+        if matches!(self.open, Some((p, ..)) if p == prog) {
+            // The chunk open is this program's (nearly always).
+            return;
+        }
+        while self.progs.len() <= prog {
+            self.progs.push(ProgIndex::new());
+        }
+        let boundary = &self.boundary;
+        self.open = Some(match self.open.take() {
+            Some((p, lo, line, resume)) if p != prog => {
+                // A new program: the old chunk ends after its last statement.
+                close(&mut self.progs[p], lo, boundary.0, line, resume);
+                (prog, boundary.0, boundary.1, boundary.2.clone())
+            }
+            Some(o) => o,
+            None => (prog, boundary.0, boundary.1, boundary.2.clone()),
+        });
+    }
+
+    /// After them: the chunk closes when it is long enough and no structure is open; the
+    /// next line (number `next_line`, at `line_end`) may then start the next one.
+    #[inline]
+    fn after(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        let at_top = reader.at_top();
+        if let Some((p, lo, line, resume)) = &self.open {
+            let base = self.progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
+            if at_top && self.progs[*p].ops - base >= chunk_ops.max(1) {
+                close(&mut self.progs[*p], *lo, line_end, *line, resume.clone());
+                self.open = None;
+            }
+        }
+        if at_top && (self.open.is_none() || matches!(reader, Reader::Fan(_))) {
+            self.boundary = (line_end, next_line, reader.checkpoint());
+        }
+    }
 }
 
 fn close(p: &mut ProgIndex, lo: u64, hi: u64, line: u32, resume: Resume) {
@@ -421,7 +465,7 @@ pub fn reread(
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
         if direct {
             if let Some(b) = sink.lit() {
-                if reader.lit(&raw, b) {
+                if reader.lit(&raw, l.ascii, b) {
                     continue;
                 }
                 sink.unlit();

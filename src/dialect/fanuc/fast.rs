@@ -4,7 +4,7 @@
 //! declines anything else, which then goes to pest. For plain word blocks it also reads
 //! straight to the items `block::plain` makes of those parts (`plain_line`), or for an
 //! index-only scan to the block's number alone (`skeleton`), or for a streamed re-read to
-//! its words alone (`lit_words`); all are tested against the parts route or the IR route.
+//! its words alone (`lit_line`); all are tested against the parts route or the IR route.
 
 use super::parse::{literal, skip_level, Lit, Part, Parts, RawWord, Seg};
 use crate::ir::{Addr, Expr, Item, ItemKind, SeqNo, WordValue};
@@ -21,8 +21,9 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
         if i >= b.len() {
             return Some(out);
         }
-        let w = word(seg, &mut i)?;
-        let value = if w.neg == Some(true) { -w.value } else { w.value };
+        let w = word::<true>(seg, &mut i)?;
+        let value = w.value(seg);
+        let value = if w.neg == Some(true) { -value } else { value };
         out.parts.push(Part::Word(RawWord {
             letter: w.letter,
             value: Expr::num(value, w.point, seg.span(w.vstart, w.hi)),
@@ -40,7 +41,7 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
 /// the one `plain` makes of its `RawWord`.
 pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>)> {
     let mut items = Vec::with_capacity(6);
-    let (skip, number) = plain_words(seg, |letter, value, point, span, vspan| {
+    let (skip, number, stop) = plain_words::<true>(seg, |letter, value, point, span, vspan| {
         items.push(Item {
             kind: ItemKind::Word(crate::ir::Word {
                 addr: Addr::Letter(letter),
@@ -51,39 +52,104 @@ pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>
         });
         true
     })?;
-    Some((skip, number, items))
+    // A segment holds no `;` (the block must be all of it).
+    (stop == seg.text.len()).then_some((skip, number, items))
 }
 
 /// For an index-only first scan: [`plain_line`] without building the items, only how many
 /// there would be.
 pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
     let mut words = 0;
-    let (skip, number) = plain_words(seg, |_, _, _, _, _| {
+    let (skip, number, stop) = plain_words::<false>(seg, |_, _, _, _, _| {
         words += 1;
         true
     })?;
-    Some((skip, number, words))
+    (stop == seg.text.len()).then_some((skip, number, words))
 }
 
-/// For a re-read of a checked file (`crate::stream::reread`): the same decision as
-/// [`plain_line`], but each of the items it would build is handed to `each` as (letter,
-/// value with its sign, point, span) instead; the block is declined when `each` returns
-/// `false`. Gives the skip level and the block number.
-pub fn lit_words(
+/// For an index-only first scan of a whole line taken as it is (`Reader::scan_plain`):
+/// [`skeleton`] of the one block `line` holds, with the block cut as `scan::segments`
+/// cuts it: `(lo, hi, end)` of that block (see there), its number and whether it has
+/// words. `None` when the line holds anything else, or more than one block.
+/// `seg` is the whole line (`base` 0): [`plain_words`] stops at a `;`, which a segment
+/// never holds.
+#[allow(clippy::type_complexity)]
+pub fn skeleton_line(seg: &Seg<'_>) -> Option<((usize, usize, usize), Option<SeqNo>, bool)> {
+    let mut words = false;
+    let (_, number, stop) = plain_words::<false>(seg, |_, _, _, _, _| {
+        words = true;
+        true
+    })?;
+    Some((cut(seg.text.as_bytes(), stop)?, number, words))
+}
+
+/// For a re-read of a checked file (`crate::stream::reread`), a whole line taken as it is
+/// (`Reader::plain_words`): the same decision as [`plain_line`] on the one block the line
+/// holds, cut as [`skeleton_line`] cuts it, but each of the items it would build is handed
+/// to `each` as (letter, value with its sign, point, span) instead; the block is declined
+/// when `each` returns `false`. Gives `(lo, hi, end)` of the block and its number.
+#[allow(clippy::type_complexity)]
+pub fn lit_line(
     seg: &Seg<'_>,
     mut each: impl FnMut(u8, f64, bool, Span) -> bool,
-) -> Option<(Option<u8>, Option<SeqNo>)> {
-    plain_words(seg, |letter, value, point, span, _| each(letter, value, point, span))
+) -> Option<((usize, usize, usize), Option<SeqNo>)> {
+    let (_, number, stop) = plain_words::<true>(seg, |letter, value, point, span, _| each(letter, value, point, span))?;
+    Some((cut(seg.text.as_bytes(), stop)?, number))
 }
 
-/// All of the above: `item` gets each item's word (upper-case letter, value with its sign,
-/// point, span of the word and of its value) and may decline the block by returning
-/// `false`; every other decision is the same whatever `item` does.
+/// [`skeleton_line`] on an ASCII line `raw` taken as it is (`Reader::scan_plain` says why
+/// that is what normalising would give): the block's span, number and whether it has
+/// words. The unchanged `Normalised` is made here, where nothing is left of it to drop.
+pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>, file: crate::span::FileId) -> Option<(Span, Option<SeqNo>, bool)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number, words) = skeleton_line(&seg)?;
+    Some((norm.span(lo, end), number, words))
+}
+
+/// [`lit_line`] on an ASCII line `raw` taken as it is (`Reader::plain_words` says why):
+/// the block's span and number.
+pub fn lit_raw(
+    raw: &crate::read::RawBlock<'_>,
+    file: crate::span::FileId,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<SeqNo>)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let ((lo, _, end), number) = lit_line(&seg, each)?;
+    Some((norm.span(lo, end), number))
+}
+
+/// Where `scan::segments` puts the one block of a line `b` that [`plain_words`] read up to
+/// `stop` (the end, or a `;`): `(lo, hi, end)`; `None` when more follows the `;` (more
+/// blocks, or a comment).
 #[inline(always)]
-fn plain_words(
+fn cut(b: &[u8], stop: usize) -> Option<(usize, usize, usize)> {
+    // Only blanks and `;` after the end-of-block `;`: empty segments, skipped.
+    if stop < b.len() && !b[stop + 1..].iter().all(|c| matches!(c, b' ' | b'\t' | b'\x0C' | b';')) {
+        return None;
+    }
+    // The block starts at its first word or skip (only blanks before), and ends at its
+    // last character that is not a blank, or after its `;`.
+    let lo = b.iter().position(|c| !matches!(c, b' ' | b'\t' | b'\x0C'))?;
+    let mut hi = stop;
+    while hi > lo && matches!(b[hi - 1], b' ' | b'\t' | b'\x0C') {
+        hi -= 1;
+    }
+    let end = if stop < b.len() { stop + 1 } else { hi };
+    Some((lo, hi, end))
+}
+
+/// All of the above: `item` gets each item's word (upper-case letter, value with its sign
+/// when `VALUES`, else 0, point, span of the word and of its value) and may decline the
+/// block by returning `false`; every other decision is the same whatever `item` does. Also
+/// gives where the block stopped: the end of `seg`, or a `;` (which only a whole line read
+/// as one, see [`skeleton_line`], can hold).
+#[inline(always)]
+fn plain_words<const VALUES: bool>(
     seg: &Seg<'_>,
     mut item: impl FnMut(u8, f64, bool, Span, Span) -> bool,
-) -> Option<(Option<u8>, Option<SeqNo>)> {
+) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
     let b = seg.text.as_bytes();
     let mut i = 0;
     let skip = skip_prefix(seg, &mut i)?;
@@ -91,13 +157,15 @@ fn plain_words(
     let mut first = true;
     loop {
         skip_ws(b, &mut i);
-        if i >= b.len() {
+        if i >= b.len() || b[i] == b';' {
             // `plain` hands back a block without words (a lone skip).
-            return (!first).then_some((skip, number));
+            return (!first).then_some((skip, number, i));
         }
-        let w = word(seg, &mut i)?;
+        let w = word::<VALUES>(seg, &mut i)?;
         // `RawWord::int`: a literal without sign or point (its value is not negative).
-        let int = (!w.point && w.neg.is_none()).then_some(w.value as u64);
+        // Only N, G and M words are judged by it.
+        let int =
+            if matches!(w.letter, b'N' | b'G' | b'M') && !w.point && w.neg.is_none() { Some(w.int(seg)) } else { None };
         let ok = match w.letter {
             b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
@@ -111,7 +179,8 @@ fn plain_words(
         match (w.letter, int) {
             (b'N', Some(n)) => number = Some(SeqNo { value: n as u32, span: seg.span(w.start, w.hi) }),
             _ => {
-                let value = if w.neg == Some(true) { -w.value } else { w.value };
+                let value = if VALUES { w.value(seg) } else { 0.0 };
+                let value = if w.neg == Some(true) { -value } else { value };
                 if !item(w.letter, value, w.point, seg.span(w.start, w.hi), seg.span(w.vstart, w.hi)) {
                     return None;
                 }
@@ -150,59 +219,131 @@ struct Word {
     /// The sign, if written: `Some(true)` for `-`.
     neg: Option<bool>,
     point: bool,
-    /// The value of the digits (without the sign).
-    value: f64,
+    /// How many digits, how many after the point, and when read, their value as one
+    /// whole number (meaningful up to 15 digits).
+    digits: usize,
+    frac: usize,
+    mant: Option<u64>,
+}
+
+impl Word {
+    /// The value of the digits (without the sign): up to 15 digits read as one whole
+    /// number with how many follow the point, which is exact (`read::scaled`); longer
+    /// ones are parsed.
+    #[inline(always)]
+    fn value(&self, seg: &Seg<'_>) -> f64 {
+        if self.digits <= 15 {
+            if let Some(mant) = self.mant {
+                if let Some(v) = crate::read::exact(mant, self.frac) {
+                    return v;
+                }
+            }
+            let text = &seg.text.as_bytes()[self.lo..self.hi];
+            let mut mant: u64 = 0;
+            let mut frac = 0;
+            let mut after = false;
+            for &c in text {
+                if c == b'.' {
+                    after = true;
+                } else {
+                    mant = mant * 10 + u64::from(c - b'0');
+                    frac += usize::from(after);
+                }
+            }
+            if let Some(v) = crate::read::scaled(mant, frac) {
+                return v;
+            }
+        }
+        literal(&seg.text[self.lo..self.hi]).value
+    }
+}
+
+impl Word {
+    /// `value as u64` for a literal without sign or point: its digits as read, when they
+    /// are (at most 15 digits: the value is exactly `mant`).
+    #[inline(always)]
+    fn int(&self, seg: &Seg<'_>) -> u64 {
+        match self.mant {
+            Some(mant) if self.digits <= 15 && self.frac == 0 => mant,
+            // Not read (an index-only scan): only digits between `lo` and `hi` (no point).
+            None if self.digits <= 15 && !self.point => {
+                seg.text.as_bytes()[self.lo..self.hi].iter().fold(0, |n, &c| n * 10 + u64::from(c - b'0'))
+            }
+            _ => self.value(seg) as u64,
+        }
+    }
 }
 
 /// The word at `*i` (a letter, blanks, an optional sign, digits with an optional point),
 /// or `None` when it is anything else or not followed by a separator, a letter or the end.
 #[inline(always)]
-fn word(seg: &Seg<'_>, i: &mut usize) -> Option<Word> {
+fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
     let b = seg.text.as_bytes();
-    let letter = *b.get(*i)?;
+    let len = b.len();
+    let mut i = *at;
+    let letter = *b.get(i)?;
     if !letter.is_ascii_alphabetic() {
         return None;
     }
-    let start = *i;
-    *i += 1;
-    skip_ws(b, i);
-    let vstart = *i;
+    let start = i;
+    i += 1;
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
+    let vstart = i;
     let mut neg = None;
-    if let Some(&c @ (b'-' | b'+')) = b.get(*i) {
-        neg = Some(c == b'-');
-        *i += 1;
-        skip_ws(b, i);
-    }
-    let lo = *i;
-    // The digits as one whole number and how many follow the point: up to 15 digits
-    // the value is exact without a second pass (`read::scaled`); longer ones are parsed.
-    let mut mant: u64 = 0;
-    let mut digits = 0;
-    while let Some(&c @ b'0'..=b'9') = b.get(*i) {
-        mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
-        *i += 1;
-        digits += 1;
-    }
-    let mut point = false;
-    let mut frac = 0;
-    if b.get(*i) == Some(&b'.') {
-        point = true;
-        *i += 1;
-        while let Some(&c @ b'0'..=b'9') = b.get(*i) {
-            mant = mant.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
-            *i += 1;
-            frac += 1;
+    if i < len && (b[i] == b'-' || b[i] == b'+') {
+        neg = Some(b[i] == b'-');
+        i += 1;
+        while i < len && blank(b[i]) {
+            i += 1;
         }
     }
-    digits += frac;
-    if digits == 0 || !ends_token(b, *i) {
+    let lo = i;
+    // All the digits as one whole number (the point left out), when wanted.
+    let mut mant: u64 = 0;
+    while i < len {
+        let d = b[i].wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        if VALUES {
+            mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+        }
+        i += 1;
+    }
+    let mut digits = i - lo;
+    let mut point = false;
+    let mut frac = 0;
+    if i < len && b[i] == b'.' {
+        point = true;
+        i += 1;
+        let from = i;
+        while i < len {
+            let d = b[i].wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            if VALUES {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+            }
+            i += 1;
+        }
+        frac = i - from;
+        digits += frac;
+    }
+    if digits == 0 || !ends_token(b, i) {
         return None;
     }
-    let value = match crate::read::scaled(mant, frac).filter(|_| digits <= 15) {
-        Some(v) => v,
-        None => literal(&seg.text[lo..*i]).value,
-    };
-    Some(Word { letter: letter.to_ascii_uppercase(), start, vstart, lo, hi: *i, neg, point, value })
+    *at = i;
+    let mant = VALUES.then_some(mant);
+    Some(Word { letter: letter.to_ascii_uppercase(), start, vstart, lo, hi: i, neg, point, digits, mant, frac })
+}
+
+/// A blank between the parts of a block.
+#[inline(always)]
+fn blank(c: u8) -> bool {
+    matches!(c, b' ' | b'\t' | b'\x0C')
 }
 
 /// For tests: the fast path on one line of text.
@@ -216,10 +357,11 @@ fn skip_ws(b: &[u8], i: &mut usize) {
     }
 }
 
-/// A literal may be followed only by a separator, the next letter, or the end.
+/// A literal may be followed only by a separator, the next letter, or the end (a `;` ends
+/// a block: only a whole line read as one holds it, see [`skeleton_line`]).
 fn ends_token(b: &[u8], i: usize) -> bool {
     match b.get(i) {
         None => true,
-        Some(c) => matches!(c, b' ' | b'\t' | b'\x0C') || c.is_ascii_alphabetic(),
+        Some(c) => matches!(c, b' ' | b'\t' | b'\x0C' | b';') || c.is_ascii_alphabetic(),
     }
 }

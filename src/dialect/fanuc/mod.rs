@@ -179,6 +179,32 @@ impl<'o> Reader<'o> {
         }
     }
 
+    /// An index-only first scan (see [`Reader::index_only`]): when the line is one plain
+    /// block of letter words that [`Reader::line`] would add at the top level of the
+    /// current program and the next drain would hand out at once, reads it without a
+    /// normalised copy and without a statement, and gives its span and block number; the
+    /// reader is then exactly where `line` and the drain would leave it, and the caller adds
+    /// the block to the index as the drained statement would be. `None` (the reader is
+    /// untouched) for anything else: then read the line with [`Reader::line`].
+    ///
+    /// Why nothing else changes: the line is ASCII and the fast reader declines every
+    /// letter O, so normalising would change nothing and warn of nothing; the rest is as
+    /// for [`Reader::plain_words`], with `ProgramLines::push_drained_skeleton` for
+    /// `push_skeleton` and the drain.
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
+    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        if !self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
+            return None;
+        }
+        let prog = self.programs.last()?;
+        if prog.param_mode || !prog.drains_at_once() {
+            return None;
+        }
+        let (span, number, words) = fast::skeleton_raw(raw, self.file)?;
+        self.programs.last_mut()?.push_drained_skeleton(span, number.as_ref().map(|n| n.value), words);
+        Some((span, number))
+    }
+
     /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
     /// when the line is one plain block of constant letter words that [`Reader::line`] would
     /// add at the top level of the current program and drain at once, hands its items' words
@@ -196,35 +222,24 @@ impl<'o> Reader<'o> {
     /// program has a name: nothing is held back as a title; nothing else waits), which
     /// grows the program span and notes the block's number (its words hold no GOTO):
     /// `ProgramLines::push_drained` does just that.
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
     pub fn plain_words(
         &mut self,
         raw: &read::RawBlock<'_>,
+        ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
-        if !self.resumed || self.index_only || self.tape == Tape::Closed || !raw.text.is_ascii() {
+        if !self.resumed || self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let prog = self.programs.last()?;
         if prog.param_mode || !prog.drains_at_once() {
             return None;
         }
-        let norm = read::normalise(raw, CommentStyle::Parens);
-        let unchanged = matches!(norm.text, std::borrow::Cow::Borrowed(_))
-            && norm.full_width.is_empty()
-            && norm.letter_o.is_empty();
-        if !unchanged || read::trim_start(&norm.text).starts_with('%') {
-            return None;
-        }
-        // Exactly one block (an end-of-block `;` may close it), cut as `line` cuts it; no
-        // comment (the fast path would decline it too).
-        let mut segs = scan::segments(&norm.text);
-        let (lo, hi, end) = segs.next()?;
-        if segs.next().is_some() || norm.text[lo..hi].contains('(') {
-            return None;
-        }
-        let seg = parse::Seg { norm: &norm, base: lo, text: &norm.text[lo..hi], file: self.file };
-        let span = norm.span(lo, end);
-        let (_, number) = fast::lit_words(&seg, each)?;
+        // An ASCII line the fast reader takes is one normalising leaves alone (it declines
+        // every letter O), and neither a `%` line nor one with a comment. Exactly one block
+        // (an end-of-block `;` may close it), cut as `line` cuts it.
+        let (span, number) = fast::lit_raw(raw, self.file, each)?;
         let number = number.map(|n| n.value);
         self.programs.last_mut()?.push_drained(span, number);
         Some((span, number))

@@ -184,6 +184,14 @@ impl ProgramLines {
         }
     }
 
+    /// [`ProgramLines::push_skeleton`] of a plain block with or without `words`, then a
+    /// drain, when [`ProgramLines::drains_at_once`]: [`ProgramLines::push_drained`] (the
+    /// statement is not made).
+    pub fn push_drained_skeleton(&mut self, span: Span, number: Option<u32>, words: bool) {
+        self.skeleton_words |= words;
+        self.push_drained(span, number);
+    }
+
     /// Adds a plain block read for an index only (see `fast::skeleton`): its items were
     /// not built, `words` says whether it had any. Items of a plain block matter here only
     /// as "not a comment block" (they hold no GOTO), which `words` stands for.

@@ -13,15 +13,27 @@ use crate::span::Span;
 /// The line for `text`, or `None` when the block needs the grammar.
 pub fn line(norm: &Normalised<'_>, whole: Span) -> Option<Line> {
     let mut items = Items(Vec::with_capacity(6));
-    let (meta, _) = read(norm, whole, &mut items)?;
-    Some(Line { meta, kind: LineKind::Plain(items.0), kw: whole })
+    let head = read(norm, &mut items)?;
+    Some(Line { meta: head.meta(norm, whole), kind: LineKind::Plain(items.0), kw: whole })
 }
 
 /// For an index-only first scan (`crate::stream::scan_index`): the same decision as
 /// [`line`], the block's meta and whether it has words, without building the items.
 pub fn skeleton(norm: &Normalised<'_>, whole: Span) -> Option<(BlockMeta, bool)> {
-    let (meta, words) = read(norm, whole, &mut Count)?;
-    Some((meta, words > 0))
+    let head = read(norm, &mut Count)?;
+    let words = head.words > 0;
+    Some((head.meta(norm, whole), words))
+}
+
+/// For an index-only first scan of a plain top-level line (`Reader::scan_plain`): the
+/// decision of [`skeleton`] on `raw` taken as it is, its block number and whether it has
+/// words. Only for an ASCII line: [`read`] declines every letter O, and a letter O in a G
+/// word is the only ASCII text `read::normalise` changes, so `raw` is what normalising
+/// would give (see `read::Normalised::unchanged`).
+pub fn skeleton_raw(raw: &crate::read::RawBlock<'_>) -> Option<(Option<SeqNo>, bool)> {
+    let norm = Normalised::unchanged(raw);
+    let head = read(&norm, &mut Count)?;
+    Some((head.number, head.words > 0))
 }
 
 /// For a re-read of a checked file (`crate::stream::reread`): the same decision as
@@ -35,25 +47,53 @@ pub fn words(
     whole: Span,
     each: impl FnMut(u8, f64, bool, Span) -> bool,
 ) -> Option<(Span, Option<u32>)> {
-    let (meta, _) = read(norm, whole, &mut Each(each))?;
-    Some((meta.span, meta.number.map(|n| n.value)))
+    let head = read(norm, &mut Each(each))?;
+    Some((whole, head.number.map(|n| n.value)))
 }
 
-/// One word as [`read`] found it: `text[start..end]`, its letter (upper case), its value
-/// (with its sign) and whether it had a decimal point.
+/// [`words`] on an ASCII line `raw` taken as it is (see [`skeleton_raw`] for why that is
+/// what normalising would give); its whole span is the line's.
+pub fn words_raw(
+    raw: &crate::read::RawBlock<'_>,
+    each: impl FnMut(u8, f64, bool, Span) -> bool,
+) -> Option<(Span, Option<u32>)> {
+    let norm = Normalised::unchanged(raw);
+    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+    words(&norm, whole, each)
+}
+
+/// One word as [`read`] found it: `text[start..end]`, its letter (upper case), its digits
+/// as one whole number `mant` with `frac` of them after the point (when the sink wants
+/// values), its sign and whether it had a decimal point.
 struct Found<'t> {
     text: &'t str,
     start: usize,
     end: usize,
     letter: u8,
-    value: f64,
+    mant: u64,
+    frac: usize,
+    neg: bool,
     point: bool,
+}
+
+impl Found<'_> {
+    /// The value with its sign: at most 15 digits (below 2^53), so `read::exact` is exact
+    /// and always answers (the `0.0` is never taken).
+    #[inline(always)]
+    fn value(&self) -> f64 {
+        let v = crate::read::exact(self.mant, self.frac).unwrap_or(0.0);
+        if self.neg {
+            -v
+        } else {
+            v
+        }
+    }
 }
 
 /// What [`read`] does with each word it reads.
 trait Sink {
-    /// Whether the block's comments are kept in its meta.
-    const COMMENTS: bool;
+    /// Whether the sink wants the words' values (`Found::mant` is 0 otherwise).
+    const VALUES: bool;
     /// The next word; `None` declines the block.
     fn word(&mut self, w: Found<'_>, norm: &Normalised<'_>) -> Option<()>;
 }
@@ -64,12 +104,13 @@ trait Sink {
 fn item(w: &Found<'_>, norm: &Normalised<'_>) -> (ItemKind, Span) {
     let span = norm.span(w.start, w.end);
     let vspan = norm.span(w.start + 1, w.end);
+    let value = w.value();
     let kind = if w.letter == b'M' {
-        word_item(w.letter, &w.text[w.start + 1..w.end], w.value, w.point, span, vspan)
+        word_item(w.letter, &w.text[w.start + 1..w.end], value, w.point, span, vspan)
     } else {
         ItemKind::Word(Word {
             addr: Addr::Letter(w.letter),
-            value: WordValue::Expr(Expr::num(w.value, w.point, vspan)),
+            value: WordValue::Expr(Expr::num(value, w.point, vspan)),
             span,
         })
     };
@@ -80,7 +121,7 @@ fn item(w: &Found<'_>, norm: &Normalised<'_>) -> (ItemKind, Span) {
 struct Items(Vec<Item>);
 
 impl Sink for Items {
-    const COMMENTS: bool = true;
+    const VALUES: bool = true;
     #[inline(always)]
     fn word(&mut self, w: Found<'_>, norm: &Normalised<'_>) -> Option<()> {
         let (kind, span) = item(&w, norm);
@@ -93,7 +134,7 @@ impl Sink for Items {
 struct Count;
 
 impl Sink for Count {
-    const COMMENTS: bool = true;
+    const VALUES: bool = false;
     #[inline(always)]
     fn word(&mut self, _: Found<'_>, _: &Normalised<'_>) -> Option<()> {
         Some(())
@@ -104,7 +145,7 @@ impl Sink for Count {
 struct Each<F>(F);
 
 impl<F: FnMut(u8, f64, bool, Span) -> bool> Sink for Each<F> {
-    const COMMENTS: bool = false;
+    const VALUES: bool = true;
     #[inline(always)]
     fn word(&mut self, w: Found<'_>, norm: &Normalised<'_>) -> Option<()> {
         if w.letter == b'M' {
@@ -116,124 +157,157 @@ impl<F: FnMut(u8, f64, bool, Span) -> bool> Sink for Each<F> {
             let ExprKind::Num(n) = e.kind else { return None };
             return (self.0)(letter, n.value, n.point, span).then_some(());
         }
-        (self.0)(w.letter, w.value, w.point, norm.span(w.start, w.end)).then_some(())
+        (self.0)(w.letter, w.value(), w.point, norm.span(w.start, w.end)).then_some(())
     }
+}
+
+/// What [`read`] found besides the words: the block number, how many words, and where
+/// the comment starts (its `;`).
+struct Head {
+    number: Option<SeqNo>,
+    words: usize,
+    comment: Option<usize>,
+}
+
+impl Head {
+    /// The block's meta (its span is the whole line).
+    fn meta(self, norm: &Normalised<'_>, whole: Span) -> BlockMeta {
+        let mut meta = BlockMeta { span: whole, number: self.number, ..Default::default() };
+        if let Some(i) = self.comment {
+            let span = norm.span(i, norm.text.len());
+            meta.comments.push(Comment { text: norm.text[i + 1..].to_string(), span });
+        }
+        meta
+    }
+}
+
+/// A blank between words.
+#[inline(always)]
+fn blank(c: u8) -> bool {
+    c == b' ' || c == b'\t'
 }
 
 /// One reader for all: the sink says what to build. Every decision is taken the same way
 /// whatever the sink (but a sink may decline the block).
 #[inline(always)]
-fn read<S: Sink>(norm: &Normalised<'_>, whole: Span, sink: &mut S) -> Option<(BlockMeta, usize)> {
+fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
     let text: &str = &norm.text;
     let b = text.as_bytes();
+    let len = b.len();
     let mut i = 0;
-    let mut meta = BlockMeta { span: whole, ..Default::default() };
-    let mut words = 0;
-    let mut commented = false;
-    let blank = |c: u8| c == b' ' || c == b'\t';
-    while i < b.len() && blank(b[i]) {
+    let mut head = Head { number: None, words: 0, comment: None };
+    while i < len && blank(b[i]) {
         i += 1;
     }
     // Optional block number `N123` (not `N1.`, not followed by `=`), at most nine digits.
-    if i < b.len() && (b[i] | 0x20) == b'n' {
+    if i < len && (b[i] | 0x20) == b'n' {
         let start = i;
         let mut j = i + 1;
         let mut value: u32 = 0;
-        while j < b.len() && b[j].is_ascii_digit() {
+        while j < len && b[j].is_ascii_digit() {
             if j - i > 9 {
                 return None;
             }
             value = value * 10 + u32::from(b[j] - b'0');
             j += 1;
         }
-        if j == i + 1 || (j < b.len() && !(blank(b[j]) || b[j] == b';' || b[j].is_ascii_alphabetic())) {
+        if j == i + 1 || (j < len && !(blank(b[j]) || b[j] == b';' || b[j].is_ascii_alphabetic())) {
             return None;
         }
-        meta.number = Some(SeqNo { value, span: norm.span(start, j) });
+        head.number = Some(SeqNo { value, span: norm.span(start, j) });
         i = j;
     }
+    // Blanks are skipped here and after each word (where the next word is looked for).
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
     loop {
-        while i < b.len() && blank(b[i]) {
-            i += 1;
-        }
-        if i >= b.len() {
-            break;
-        }
-        if b[i] == b';' {
-            commented = true;
-            if S::COMMENTS {
-                let span = norm.span(i, b.len());
-                meta.comments.push(Comment { text: text[i + 1..].to_string(), span });
-            }
+        if i >= len {
             break;
         }
         let c = b[i];
+        if c == b';' {
+            head.comment = Some(i);
+            break;
+        }
         // Letters that mean more than a word (L calls, N numbers, P repeat counts after a
-        // call) are left to the grammar.
-        if !c.is_ascii_alphabetic() || matches!(c | 0x20, b'l' | b'n' | b'p') {
+        // call) are left to the grammar; so is O, so that a line read without normalising
+        // is read only when normalising would not change it (`GO1` → `G01`).
+        let letter = c & !0x20;
+        if !letter.is_ascii_uppercase() || matches!(letter, b'L' | b'N' | b'O' | b'P') {
             return None;
         }
         let start = i;
         let mut j = i + 1;
-        if j < b.len() && (b[j] == b'-' || b[j] == b'+') {
+        let sign = if j < len { b[j] } else { 0 };
+        let neg = sign == b'-';
+        if neg || sign == b'+' {
             j += 1;
         }
-        // The digits as one whole number and how many follow the point: the value is then
-        // exact (see `read::scaled`), so no second pass over the text is needed.
+        // The digits as one whole number (the point left out) and how many follow the
+        // point: the value is then exact (see `read::scaled`), no second pass needed.
+        let from = j;
         let mut mant: u64 = 0;
-        let mut digits = 0;
-        while j < b.len() && b[j].is_ascii_digit() {
-            mant = mant.wrapping_mul(10).wrapping_add(u64::from(b[j] - b'0'));
-            j += 1;
-            digits += 1;
-        }
-        let mut point = false;
-        let mut frac = 0;
-        if j < b.len() && b[j] == b'.' {
-            point = true;
-            j += 1;
-            while j < b.len() && b[j].is_ascii_digit() {
-                mant = mant.wrapping_mul(10).wrapping_add(u64::from(b[j] - b'0'));
-                j += 1;
-                frac += 1;
+        while j < len {
+            let d = b[j].wrapping_sub(b'0');
+            if d > 9 {
+                break;
             }
+            if S::VALUES {
+                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+            }
+            j += 1;
         }
-        digits += frac;
+        let mut digits = j - from;
+        let point = j < len && b[j] == b'.';
+        let mut frac = 0;
+        if point {
+            j += 1;
+            let from = j;
+            while j < len {
+                let d = b[j].wrapping_sub(b'0');
+                if d > 9 {
+                    break;
+                }
+                if S::VALUES {
+                    mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+                }
+                j += 1;
+            }
+            frac = j - from;
+            digits += frac;
+        }
         if digits == 0 || digits > 15 {
             return None;
         }
         // The word must end at a blank, the comment, the end, or the next letter word (`G1X10`),
         // and must not be an exponent (`1EX3`) or a numbered address (`X1=`).
-        if j < b.len() {
+        // Where the next word or the comment is looked for (past the blanks looked over).
+        let mut next = j;
+        if j < len {
             let n = b[j];
-            if n == b'.' || n == b'=' || n == b'[' || n == b'(' {
-                return None;
-            }
             if n.is_ascii_alphabetic() {
-                if (n == b'E' || n == b'e') && b.get(j + 1).is_some_and(|x| *x == b'X' || *x == b'x') {
+                if (n | 0x20) == b'e' && j + 1 < len && (b[j + 1] | 0x20) == b'x' {
                     return None;
                 }
-            } else if !(blank(n) || n == b';') {
-                return None;
-            }
-            let mut k = j;
-            while k < b.len() && blank(b[k]) {
-                k += 1;
-            }
-            if k < b.len() && matches!(b[k], b'=' | b'[' | b'(') {
+            } else if blank(n) {
+                next += 1;
+                while next < len && blank(b[next]) {
+                    next += 1;
+                }
+                if next < len && matches!(b[next], b'=' | b'[' | b'(') {
+                    return None;
+                }
+            } else if n != b';' {
                 return None;
             }
         }
-        // At most 15 digits: below 2^53, so `scaled` is exact and always answers.
-        let value = crate::read::scaled(mant, frac)?;
-        words += 1;
-        let value = if b[i + 1] == b'-' { -value } else { value };
-        let letter = c.to_ascii_uppercase();
-        sink.word(Found { text, start, end: j, letter, value, point }, norm)?;
-        i = j;
+        head.words += 1;
+        sink.word(Found { text, start, end: j, letter, mant, frac, neg, point }, norm)?;
+        i = next;
     }
-    if words == 0 && meta.number.is_none() && !commented {
+    if head.words == 0 && head.number.is_none() && head.comment.is_none() {
         return None;
     }
-    Some((meta, words))
+    Some(head)
 }

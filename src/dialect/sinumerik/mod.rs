@@ -206,31 +206,51 @@ impl Reader {
         }
     }
 
+    /// An index-only first scan (see [`Reader::index_only`]): when the line is a plain block
+    /// that [`Reader::line`] would add at the top level, reads it in one pass over the raw
+    /// text (no normalised copy, no statement) and gives its span and block number; the
+    /// reader is then exactly where `line` and a drain would leave it, and the caller adds
+    /// the block to the index as the drained statement would be. `None` (the reader is
+    /// untouched) for anything else: then read the line with [`Reader::line`].
+    ///
+    /// Why nothing else changes: on an ASCII line that the fast reader takes (no letter O,
+    /// see `fast::skeleton_raw`) normalising changes nothing and warns of nothing; such a
+    /// line is neither blank nor a `%` line, so `line` sets `any` and pushes a plain
+    /// skeleton block, which at the top level (no structure open, none suppressed) only
+    /// records the number as a jump target, notes code and adds the statement, which the
+    /// next drain hands out (nothing else waits: the program body is empty).
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
+    pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
+        if !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
+            return None;
+        }
+        let (number, words) = fast::skeleton_raw(raw)?;
+        self.any = true;
+        self.builder.push_plain_top(number.as_ref(), words);
+        Some((Span::new(raw.start, raw.start + raw.text.len() as u32), number))
+    }
+
     /// Re-reading a checked file (a [`Reader::resume`]d reader, see `crate::stream::reread`):
     /// when the line is a plain block of constant letter words at top level, hands its words to
     /// `each` (see `fast::words`) and gives its span and number; the reader then is where
     /// [`Reader::line`] would leave it (less the statement, which the caller built). `None`
     /// (the line is not read) when the line is anything else, needs normalising, or `each`
     /// declines a word: then read it with [`Reader::line`].
+    /// `ascii`: the caller knows the line is ASCII (else it is checked).
     pub fn plain_words(
         &mut self,
         raw: &read::RawBlock<'_>,
+        ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
         // Only `any` changes on a plain top-level line of a resumed reader (`builder.push`
         // adds the statement and nothing else there: see `Builder::resumed_at_top`).
-        if self.index_only || !self.builder.resumed_at_top() || !raw.text.is_ascii() {
+        if self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
-        let norm = read::normalise(raw, CommentStyle::Semicolon);
-        let unchanged = matches!(norm.text, std::borrow::Cow::Borrowed(_))
-            && norm.full_width.is_empty()
-            && norm.letter_o.is_empty();
-        if !unchanged || norm.text.trim_start_matches([' ', '\t']).starts_with('%') {
-            return None;
-        }
-        let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
-        let got = fast::words(&norm, whole, each)?;
+        // An ASCII line the fast reader takes is one normalising leaves alone (see
+        // `fast::skeleton_raw`); a `%` line it declines (`%` is not a letter).
+        let got = fast::words_raw(raw, each)?;
         self.any = true;
         Some(got)
     }

@@ -410,6 +410,24 @@ impl Builder {
         }
     }
 
+    /// No structure is open and no statement waits to be drained: a plain block now is a
+    /// top-level statement handed out alone (see [`Builder::push_plain_top`]).
+    pub fn plain_at_top(&self) -> bool {
+        self.at_top() && self.program.body.is_empty()
+    }
+
+    /// What [`push_skeleton`] of a plain block numbered `number` and a drain leave behind
+    /// when [`Builder::plain_at_top`]: the number recorded as a jump target (the block has
+    /// no label and no jump), code noted when it has words. The statement is not made.
+    ///
+    /// [`push_skeleton`]: Builder::push_skeleton
+    pub fn push_plain_top(&mut self, number: Option<&SeqNo>, words: bool) {
+        if !self.resumed {
+            self.targets.record_plain(number);
+        }
+        self.seen_code |= words;
+    }
+
     /// Closes what is still open, checks the jump targets, and returns the program.
     pub fn finish(mut self, st: &mut FileState) -> Program {
         let file = st.file;
@@ -543,6 +561,19 @@ enum Jump {
 }
 
 impl Targets {
+    /// [`Targets::record`] of a plain block without label and jumps.
+    fn record_plain(&mut self, number: Option<&SeqNo>) {
+        let i = self.count;
+        self.count += 1;
+        if let Some(n) = number {
+            if self.compact {
+                self.runs.push(n.value, i as u64, n.span);
+            } else {
+                self.numbers.entry(n.value).or_default().push((i, n.span));
+            }
+        }
+    }
+
     fn record(&mut self, l: &Line, st: &mut FileState) {
         let i = self.count;
         self.count += 1;
