@@ -19,7 +19,7 @@ pub mod translate;
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
 use crate::eval::lit::LitBlock;
-use crate::ir::Stmt;
+use crate::ir::{Addr, Comment, Item, ItemKind, Stmt, WordValue};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
 pub use index::CHUNK_OPS;
@@ -43,6 +43,105 @@ pub type ProgressFn<'a> = &'a mut dyn FnMut(Progress);
 
 /// Called with each finished top-level statement during a scan (and its program's index).
 type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
+
+/// What a first scan hands out besides the index.
+enum Want<'a> {
+    /// Nothing: an index-only scan.
+    Index,
+    /// Every finished top-level statement, as the whole-file reader builds it.
+    Each(EachFn<'a>),
+    /// Plain top-level lines as their words, the rest as statements (see [`scan_words`]).
+    Words(&'a mut dyn WordsSink),
+}
+
+/// One word of a plain line read straight into words ([`scan_words`]): the letter (upper
+/// case), the value (negated when written with `-`), whether it was written with a point,
+/// and the word's span; the item the whole-file reader builds for it is a word of that
+/// letter holding that number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlainWord {
+    pub letter: u8,
+    pub value: f64,
+    pub point: bool,
+    pub span: Span,
+}
+
+/// What the streamed translators' fast paths look at in an item, the same whether it is an
+/// IR item or a [`PlainWord`] (so both go through one code).
+pub enum View {
+    /// A word: its letter when it has a letter address and an expression value (else
+    /// `None`), whether the address is `G`, the value when it is a number as written
+    /// (value, point), and when it is one after folding a `-n`.
+    Word { letter: Option<u8>, is_g: bool, num: Option<(f64, bool)>, folded: Option<f64> },
+    /// A program end.
+    End(crate::ir::EndCode),
+    /// Anything else.
+    Other,
+}
+
+/// An item as [`View`].
+pub trait ItemView {
+    fn view(&self) -> View;
+}
+
+impl ItemView for Item {
+    #[inline]
+    fn view(&self) -> View {
+        use crate::ir::{ExprKind, UnOp};
+        match &self.kind {
+            ItemKind::Word(w) => {
+                let e = match &w.value {
+                    WordValue::Expr(e) => Some(e),
+                    _ => None,
+                };
+                let num = match e.map(|e| &e.kind) {
+                    Some(ExprKind::Num(n)) => Some((n.value, n.point)),
+                    _ => None,
+                };
+                let folded = match e.map(|e| &e.kind) {
+                    Some(ExprKind::Num(n)) => Some(n.value),
+                    Some(ExprKind::Unary(UnOp::Neg, x)) => match &x.kind {
+                        ExprKind::Num(n) => Some(-n.value),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                let letter = match (&w.addr, e) {
+                    (Addr::Letter(l), Some(_)) => Some(*l),
+                    _ => None,
+                };
+                View::Word { letter, is_g: w.addr.is(b'G'), num, folded }
+            }
+            ItemKind::End { code } => View::End(*code),
+            _ => View::Other,
+        }
+    }
+}
+
+impl ItemView for PlainWord {
+    #[inline]
+    fn view(&self) -> View {
+        View::Word {
+            letter: Some(self.letter),
+            is_g: self.letter == b'G',
+            num: Some((self.value, self.point)),
+            folded: Some(self.value),
+        }
+    }
+}
+
+/// Where [`scan_words`] puts what it reads (each call with its program's index).
+pub trait WordsSink {
+    /// A plain top-level line of constant letter words (see [`scan_words`] for what the
+    /// block holds); `false` asks for the line as a statement instead ([`WordsSink::stmt`]
+    /// is then called with it, and nothing of the block is to be kept).
+    fn plain(&mut self, prog: usize, meta: &crate::ir::BlockMeta, words: &[PlainWord]) -> bool;
+    /// A finished top-level statement of any other line, as the whole-file reader builds it.
+    fn stmt(&mut self, prog: usize, s: &Stmt);
+    /// Whether the sink still wants anything (once `false`, it stays so: the rest of the
+    /// file is read for the index only).
+    fn active(&self) -> bool;
+}
 
 /// A streamed file after its first scan.
 #[derive(Clone, Debug)]
@@ -86,6 +185,13 @@ impl Reader<'_> {
         match self {
             Reader::Sin(r) => r.scan_plain(raw, ascii),
             Reader::Fan(r) => r.scan_plain(raw, ascii),
+        }
+    }
+
+    fn diags(&self) -> &[Diagnostic] {
+        match self {
+            Reader::Sin(r) => r.diags(),
+            Reader::Fan(r) => r.diags(),
         }
     }
 
@@ -145,6 +251,33 @@ impl Reader<'_> {
             Reader::Fan(r) => Resume::Fanuc(r.checkpoint()),
         }
     }
+
+    /// A re-reading reader ([`Reader::lit`] works on it) resumed from `resume`.
+    fn resumed<'o>(file: FileId, opts: &'o ParseOptions, resume: &Resume) -> Reader<'o> {
+        match resume {
+            Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(file, opts, r))),
+            Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(file, opts, *r))),
+        }
+    }
+
+    /// [`Reader::lit`] into plain words. `words` is appended to; on `false` it is to be
+    /// cleared.
+    fn words(&mut self, raw: &RawBlock<'_>, ascii: bool, words: &mut Vec<PlainWord>) -> bool {
+        let push = |letter: u8, value: f64, point: bool, span: Span| {
+            words.push(PlainWord { letter, value, point, span });
+            true
+        };
+        match self {
+            Reader::Sin(r) => r.plain_words(raw, ascii, push).is_some(),
+            // The skip level of a block (`/2 X1`) is not handed out: such a line is read
+            // as a statement.
+            Reader::Fan(r) => {
+                // A block skip is the first thing in the line after blanks (`fast::skip_prefix`).
+                let lead = raw.text.trim_start_matches([' ', '\t', '\x0C']);
+                !lead.starts_with('/') && r.plain_words(raw, ascii, push).is_some()
+            }
+        }
+    }
 }
 
 /// Opens `path` for streaming.
@@ -181,7 +314,7 @@ pub fn scan(
     each: &mut dyn FnMut(usize, &Stmt),
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
-    scan_with(input, size, path, file, dialect, opts, chunk_ops, Some(each), progress)
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Each(each), progress)
 }
 
 /// [`scan`] for a caller that needs only the index (`parse --summary`, `run`, `check`):
@@ -198,7 +331,51 @@ pub fn scan_index(
     chunk_ops: usize,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
-    scan_with(input, size, path, file, dialect, opts, chunk_ops, None, progress)
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Index, progress)
+}
+
+/// The first scan for a streamed translator: the index, diagnostics and header of
+/// [`scan_index`] (the same reader builds them), and for the translator each plain
+/// top-level line as a block of words ([`WordsSink::plain`]), every other statement as the
+/// whole-file reader builds it ([`WordsSink::stmt`]).
+///
+/// A plain line is one the index-only reader takes whole (`Reader::scan_plain`) and the
+/// re-reading reader reads straight into its words (`Reader::plain_words`, as
+/// [`reread`] with `direct` does; for FANUC, without a block skip): the sink gets the
+/// block's meta (span, number, for Sinumerik the comment after
+/// the `;`) and its words ([`PlainWord`]: the items the whole-file reader builds are
+/// exactly these, letter words with number values), without the line's statement. For the other lines (and a plain line
+/// the sink asks to have as a statement) a whole-file reader is fed, which has then seen
+/// every line but the plain ones taken as words: each of those is a top-level block that
+/// the reader would have handed out at once, changing of its state only what decides
+/// diagnostics (numbers as jump targets, "code seen", the program span); the diagnostics
+/// reported are the index reader's, which read every line.
+#[allow(clippy::too_many_arguments)]
+pub fn scan_words(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+    sink: &mut dyn WordsSink,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Words(sink), progress)
+}
+
+/// [`scan_words`] of a file on disk with the default chunk size.
+pub fn scan_words_path(
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    sink: &mut dyn WordsSink,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Index, NotStreamable> {
+    let (input, size) = open(path)?;
+    scan_words(input, size, path, file, dialect, opts, CHUNK_OPS, sink, progress)
 }
 
 /// [`scan_index`] of a file on disk with the default chunk size.
@@ -213,7 +390,7 @@ pub fn scan_index_path(
     scan_index(input, size, path, file, dialect, opts, CHUNK_OPS, progress)
 }
 
-/// The first scan; without `each` the reader builds only what the index needs.
+/// The first scan; unless [`Want::Each`], the reader builds only what the index needs.
 #[allow(clippy::too_many_arguments)]
 fn scan_with(
     input: Input,
@@ -223,35 +400,47 @@ fn scan_with(
     dialect: Dialect,
     opts: &ParseOptions,
     chunk_ops: usize,
-    mut each: Option<EachFn<'_>>,
+    mut want: Want<'_>,
     mut progress: Option<ProgressFn<'_>>,
 ) -> Result<Index, NotStreamable> {
     let mut lines = Lines::new(input)?;
     let bom = lines.bom();
     let text_len = size.saturating_sub(if bom { 3 } else { 0 });
-    let mut reader = match dialect {
+    let index_only = !matches!(want, Want::Each(_));
+    let new_reader = |index_only: bool| match dialect {
         Dialect::Sinumerik => {
             let mut r = sinumerik::Reader::new(file, opts, text_len.min(u64::from(u32::MAX)) as u32);
             r.compact_targets();
-            if each.is_none() {
+            if index_only {
                 r.index_only();
             }
             Reader::Sin(Box::new(r))
         }
         Dialect::Fanuc => {
             let mut r = fanuc::Reader::new(file, opts);
-            if each.is_none() {
+            if index_only {
                 r.index_only();
             }
             Reader::Fan(Box::new(r))
         }
     };
+    let mut reader = new_reader(index_only);
+    // For `Want::Words`: the whole-file reader of the lines not taken as words, and a
+    // re-reading reader that only reads plain lines into words (renewed now and then: it
+    // notes the numbers it reads).
+    let mut full = matches!(want, Want::Words(_)).then(|| new_reader(false));
+    let start = reader.checkpoint();
+    let mut words = full.as_ref().map(|_| Reader::resumed(file, opts, &start));
+    let mut words_read = 0u32;
+    let mut meta = crate::ir::BlockMeta::default();
+    let mut plain: Vec<PlainWord> = Vec::new();
     let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
     // The statements finished by one line; reused, so a line costs no new vector.
     let mut stmts: Vec<Stmt> = Vec::new();
+    let mut full_stmts: Vec<Stmt> = Vec::new();
     if text_len > u64::from(u32::MAX) {
         // Spans are 32-bit offsets into the text.
         return Err(NotStreamable::TooLarge);
@@ -268,9 +457,56 @@ fn scan_with(
                 p(Progress { done: line_end, total: size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
             }
         }
-        // An index-only scan takes a plain top-level line (nearly every line of CAM code)
-        // straight to the index: the one statement `line` and a drain would give, added.
-        if each.is_none() {
+        // The sink of a words scan that still wants the lines.
+        let (mut sink, mut each) = match &mut want {
+            Want::Words(s) if s.active() => (Some(&mut **s), None),
+            Want::Each(e) => (None, Some(&mut **e)),
+            _ => (None, None),
+        };
+        if let (Some(sink), Some(w)) = (sink.as_mut(), words.as_mut()) {
+            // A plain top-level line: its words, then the index as an index-only scan has it.
+            plain.clear();
+            if w.words(&raw, l.ascii, &mut plain) {
+                if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
+                    let prog = reader.current();
+                    chunks.before(prog);
+                    chunks.progs[prog].add_plain(span, number.as_ref());
+                    chunks.after(&reader, chunk_ops, line_end, l.line + 1);
+                    words_read += 1;
+                    if words_read.is_multiple_of(4096) {
+                        *w = Reader::resumed(file, opts, &start);
+                    }
+                    meta.span = span;
+                    meta.number = number;
+                    meta.comments.clear();
+                    // What the Sinumerik fast reader keeps of a comment: all after the first
+                    // `;`, which comes after the last word (words hold none).
+                    let from = plain.last().map_or(0, |it| it.span.hi.saturating_sub(raw.start) as usize);
+                    let comment = match &reader {
+                        Reader::Sin(_) => l.text.get(from..).and_then(|t| t.find(';')).map(|i| from + i),
+                        Reader::Fan(_) => None,
+                    };
+                    if let Some(i) = comment {
+                        let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
+                        meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
+                    }
+                    if !sink.plain(prog, &meta, &plain) {
+                        if let Some(f) = full.as_mut() {
+                            f.line(&raw);
+                            full_stmts.clear();
+                            f.drain_into(&mut full_stmts);
+                            for s in &full_stmts {
+                                sink.stmt(prog, s);
+                            }
+                        }
+                    }
+                    continue;
+                }
+            }
+        }
+        // An index-only scan (or a words scan whose sink wants no more) takes a plain
+        // top-level line (nearly every line of CAM code) straight to the index: the one statement `line` and a drain would give, added.
+        if sink.is_none() && each.is_none() {
             if let Some((span, number)) = reader.scan_plain(&raw, l.ascii) {
                 let prog = reader.current();
                 chunks.before(prog);
@@ -282,10 +518,23 @@ fn scan_with(
         reader.line(&raw);
         stmts.clear();
         reader.drain_into(&mut stmts);
-        if stmts.is_empty() {
+        full_stmts.clear();
+        if let (Some(_), Some(f)) = (&sink, full.as_mut()) {
+            f.line(&raw);
+            f.drain_into(&mut full_stmts);
+        }
+        if stmts.is_empty() && full_stmts.is_empty() {
             continue;
         }
         let prog = reader.current();
+        if let Some(sink) = sink.as_mut() {
+            for s in &full_stmts {
+                sink.stmt(prog, s);
+            }
+        }
+        if stmts.is_empty() {
+            continue;
+        }
         chunks.before(prog);
         for s in &stmts {
             if let Some(each) = each.as_mut() {
@@ -325,10 +574,10 @@ fn scan_with(
                     .primary(file, p.span, "here")
                     .hint("read the file whole to see the full diagnostics"),
             );
-            if let Some(each) = each.as_mut() {
-                for s in &p.body {
-                    each(raw, s);
-                }
+            match &mut want {
+                Want::Each(each) => p.body.iter().for_each(|s| each(raw, s)),
+                Want::Words(sink) if sink.active() => p.body.iter().for_each(|s| sink.stmt(raw, s)),
+                _ => {}
             }
         }
         p.body = Vec::new();
@@ -438,7 +687,16 @@ pub trait RereadSink {
     fn lit(&mut self) -> Option<&mut LitBlock>;
     /// Drops the block [`RereadSink::lit`] gave last (its line was not such a block).
     fn unlit(&mut self);
+    /// An error the reader reports on a line it re-reads. The first scan found none (a file
+    /// with errors is not run streamed), so the file is not what was scanned, or not what
+    /// was written: what is read must not be run as if it were.
+    fn error(&mut self, d: Diagnostic);
 }
+
+/// Errors a re-reading reader may report on a line the first scan read without one: it
+/// does not know what came before its chunk (a PROC line after "code": a resumed reader
+/// has taken code as seen, so that a later PROC is reported where the first scan did).
+const CONTEXT_ERRORS: [&str; 1] = ["NC129"];
 
 /// Re-reads one chunk: the statements of `chunk`, parsed again from the file. With
 /// `direct`, plain blocks of constant letter words at top level skip the IR and are read
@@ -476,6 +734,11 @@ pub fn reread(
         for s in stmts.drain(..) {
             sink.stmt(s);
         }
+    }
+    // Warnings were reported by the first scan; an error now means the text changed, but
+    // for one the first scan judged knowing what came before the chunk.
+    for d in reader.diags().iter().filter(|d| d.is_error() && !CONTEXT_ERRORS.contains(&d.code)) {
+        sink.error(d.clone());
     }
     Ok(())
 }

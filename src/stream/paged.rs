@@ -272,6 +272,12 @@ impl RereadSink for Sink {
         self.direct -= 1;
         self.ops.unlit();
     }
+
+    fn error(&mut self, d: Diagnostic) {
+        if self.failed.is_none() {
+            self.failed = Some(d);
+        }
+    }
 }
 
 impl std::fmt::Debug for Pager {

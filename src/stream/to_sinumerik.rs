@@ -18,7 +18,7 @@
 
 use super::lines::{Lines, NotStreamable};
 use super::translate::Fallback;
-use super::{Index, ProgressFn};
+use super::{Index, ItemView, PlainWord, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::sinumerik::emit::{emit_program, Frame};
@@ -68,6 +68,11 @@ const STAND_IN: Span = Span::new(u32::MAX, u32::MAX);
 /// documentation); `Err` names what it has instead, for the "read whole" note.
 pub fn straight(s: &Stmt) -> Result<(), String> {
     let StmtKind::Block(b) = &s.kind else { return Err("a loop".into()) };
+    straight_block(b)
+}
+
+/// [`straight`] of a block.
+fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
@@ -94,14 +99,17 @@ pub fn straight(s: &Stmt) -> Result<(), String> {
             _ => None,
         };
         let Some(v) = value else { return Err(format!("a computed {} word", letter as char)) };
-        if letter == b'G' {
-            let g10 = (v * 10.0).round();
-            if !(0.0..=9990.0).contains(&g10) || (g10 - v * 10.0).abs() > 1e-9 || !PLAIN_G.contains(&(g10 as u32)) {
-                return Err(format!("G{v}"));
-            }
+        if letter == b'G' && !plain_g(v) {
+            return Err(format!("G{v}"));
         }
     }
     Ok(())
+}
+
+/// A G code whose translation needs nothing but its own block ([`PLAIN_G`]).
+fn plain_g(v: f64) -> bool {
+    let g10 = (v * 10.0).round();
+    (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G.contains(&(g10 as u32))
 }
 
 /// A finished streamed translation.
@@ -287,15 +295,14 @@ impl State<'_> {
 
     /// A block after the first chunk through the fast path: its line is written (after the
     /// statements waiting for the passes); `false` when the passes must translate it.
-    fn fast(&mut self, s: &Stmt) -> bool {
-        let StmtKind::Block(b) = &s.kind else { return false };
+    fn fast<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I]) -> bool {
         // A plan with variables fails in `flush_rest`: the fast path must not write past it.
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(b, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -410,27 +417,59 @@ impl State<'_> {
         self.buf_real = false;
     }
 
-    fn push(&mut self, s: &Stmt) {
-        let arc_before = self.arc;
-        if let StmtKind::Block(b) = &s.kind {
-            // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
-            for it in &b.items {
-                let ItemKind::Word(w) = &it.kind else { continue };
-                let WordValue::Expr(e) = &w.value else { continue };
-                if !w.addr.is(b'G') {
-                    continue;
-                }
-                match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
-                    Some(20 | 30) => self.arc = true,
-                    Some(0 | 10) => self.arc = false,
+    /// The arc mode and `buf_real` after block `b`.
+    fn follow(&mut self, b: &Block) {
+        // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
+        for it in &b.items {
+            let ItemKind::Word(w) = &it.kind else { continue };
+            let WordValue::Expr(e) = &w.value else { continue };
+            if !w.addr.is(b'G') {
+                continue;
+            }
+            match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+                Some(20 | 30) => self.arc = true,
+                Some(0 | 10) => self.arc = false,
+                _ => {}
+            }
+        }
+        self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+    }
+
+    /// [`State::push`] of the words of a plain line when the fast path takes them; else
+    /// nothing has changed and the caller pushes its statement.
+    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        if self.first {
+            return false;
+        }
+        let (arc, buf_real) = (self.arc, self.buf_real);
+        // `follow` of the block the words are.
+        for w in words {
+            if w.letter == b'G' {
+                match (w.value * 10.0).round() as u32 {
+                    20 | 30 => self.arc = true,
+                    0 | 10 => self.arc = false,
                     _ => {}
                 }
             }
-            self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+        }
+        self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
+        if self.fast(meta, words) {
+            return true;
+        }
+        (self.arc, self.buf_real) = (arc, buf_real);
+        false
+    }
+
+    fn push(&mut self, s: &Stmt) {
+        let arc_before = self.arc;
+        if let StmtKind::Block(b) = &s.kind {
+            self.follow(b);
         }
         if !self.first {
-            if self.fast(s) {
-                return;
+            if let StmtKind::Block(b) = &s.kind {
+                if self.fast(&b.meta, &b.items) {
+                    return;
+                }
             }
             if self.buf.is_empty() {
                 self.arc_at_start = arc_before;
@@ -444,6 +483,48 @@ impl State<'_> {
             // A quarter million comment lines before the first block: read whole.
             self.stop = Some(Fallback::NotStraight("a long run of comments at the top".into()));
         }
+    }
+}
+
+/// The translator as the first scan's sink: plain lines after the first chunk through
+/// the fast path straight from their words, the rest (and what it declines) as statements.
+struct Sink<'s, 'a> {
+    st: &'s mut State<'a>,
+    blocks: u64,
+}
+
+impl super::WordsSink for Sink<'_, '_> {
+    fn active(&self) -> bool {
+        self.st.stop.is_none()
+    }
+
+    fn stmt(&mut self, prog: usize, s: &Stmt) {
+        if self.st.stop.is_some() {
+            return;
+        }
+        if prog != 0 {
+            self.st.stop = Some(Fallback::NotStraight("more than one program".into()));
+            return;
+        }
+        if let Err(why) = straight(s) {
+            self.st.stop = Some(Fallback::NotStraight(why));
+            return;
+        }
+        self.blocks += 1;
+        self.st.push(s);
+    }
+
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        if self.st.stop.is_some() {
+            return true;
+        }
+        // Constant letter words without a label: straight when their G codes are.
+        let straight = words.iter().all(|w| w.letter != b'G' || plain_g(w.value));
+        if prog != 0 || !straight || !self.st.push_plain(meta, words) {
+            return false;
+        }
+        self.blocks += 1;
+        true
     }
 }
 
@@ -501,29 +582,9 @@ pub fn to_sinumerik_first(
     if bom {
         st.wbuf.extend_from_slice(b"\xEF\xBB\xBF");
     }
-    let mut blocks = 0u64;
-    let r = super::scan_path(
-        path,
-        0,
-        Dialect::Fanuc,
-        &popts,
-        &mut |prog, s| {
-            if st.stop.is_some() {
-                return;
-            }
-            if prog != 0 {
-                st.stop = Some(Fallback::NotStraight("more than one program".into()));
-                return;
-            }
-            if let Err(why) = straight(s) {
-                st.stop = Some(Fallback::NotStraight(why));
-                return;
-            }
-            blocks += 1;
-            st.push(s);
-        },
-        progress,
-    );
+    let mut sink = Sink { st: &mut st, blocks: 0 };
+    let r = super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut sink, progress);
+    let blocks = sink.blocks;
     let index = r.map_err(Fallback::NotStreamable)?;
     if let Some(f) = st.stop.take() {
         return Err(f);

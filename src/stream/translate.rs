@@ -15,13 +15,15 @@
 
 use super::lines::NotStreamable;
 use super::to_sinumerik::ReadBack;
-use super::{Index, ProgressFn};
+use super::{Index, PlainWord, ProgressFn};
 use crate::check::{self, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::{DirCallees, NoCallees, RunOptions};
-use crate::ir::{Addr, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue};
+use crate::ir::{
+    Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
+};
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
@@ -53,6 +55,11 @@ pub struct Streamed {
 /// A block whose translation does not depend on any other block.
 pub fn straight(s: &Stmt) -> Result<(), String> {
     let StmtKind::Block(b) = &s.kind else { return Err("a control structure".into()) };
+    straight_block(b)
+}
+
+/// [`straight`] of a block.
+fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
@@ -149,6 +156,53 @@ impl State<'_> {
     }
 }
 
+/// The translator as the first scan's sink: plain lines through the fast path straight
+/// from their words, the rest (and what the fast path declines) as statements.
+struct Sink<'s, 'a> {
+    st: &'s mut State<'a>,
+    blocks: u64,
+}
+
+impl super::WordsSink for Sink<'_, '_> {
+    fn active(&self) -> bool {
+        self.st.stop.is_none()
+    }
+
+    fn stmt(&mut self, _: usize, s: &Stmt) {
+        if self.st.stop.is_some() {
+            return;
+        }
+        if let Err(why) = straight(s) {
+            self.st.stop = Some(Fallback::NotStraight(why));
+            return;
+        }
+        self.blocks += 1;
+        self.st.block(s);
+    }
+
+    /// [`Sink::stmt`] of the block when the fast path takes it; else nothing has changed
+    /// (the G70 mode is set back) and the statement is asked for.
+    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        let st = &mut *self.st;
+        if st.stop.is_some() {
+            return true;
+        }
+        // A plain block is straight (constant letter words, no label): not checked again.
+        if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
+            let g70 = st.fast.g70;
+            if st.fast.plain(meta, words, &mut st.buf).is_err() {
+                st.fast.g70 = g70;
+                return false;
+            }
+            if st.buf.len() >= WRITE_BYTES {
+                st.write();
+            }
+        }
+        self.blocks += 1;
+        true
+    }
+}
+
 /// A block holding `G70`: sets the inch mode for a block translated on its own.
 fn g70_block() -> Stmt {
     let g = Word {
@@ -196,25 +250,9 @@ pub fn to_fanuc(
     let closing = format!("%{eol}");
     st.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let mut blocks = 0u64;
-    let r = super::scan_path(
-        path,
-        0,
-        Dialect::Sinumerik,
-        &popts,
-        &mut |_, s| {
-            if st.stop.is_some() {
-                return;
-            }
-            if let Err(why) = straight(s) {
-                st.stop = Some(Fallback::NotStraight(why));
-                return;
-            }
-            blocks += 1;
-            st.block(s);
-        },
-        progress,
-    );
+    let mut sink = Sink { st: &mut st, blocks: 0 };
+    let r = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sink, progress);
+    let blocks = sink.blocks;
     let index = r.map_err(Fallback::NotStreamable)?;
     if let Some(f) = st.stop.take() {
         return Err(f);

@@ -12,10 +12,11 @@
 //! which the caller keeps. `tests/stream_to_sinumerik_fast.rs` holds the two paths to the
 //! same bytes.
 
-use crate::ir::{Addr, Block, EndCode, ExprKind, ItemKind, WordValue};
+use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
 use crate::stream::translate::fast::{push_decimal, shortest};
+use crate::stream::{ItemView, View};
 
 /// The block needs the general passes.
 #[derive(Debug, PartialEq, Eq)]
@@ -41,13 +42,20 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
 /// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
 /// is the arc mode after the block's own G codes (as the words pass sees it). On `Err` what
 /// was appended is to be discarded.
-pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>) -> Result<(), Declined> {
-    if b.meta.label.is_some() {
+pub fn block<I: ItemView>(
+    meta: &BlockMeta,
+    items: &[I],
+    arc: bool,
+    opts: &Options,
+    eol: &[u8],
+    out: &mut Vec<u8>,
+) -> Result<(), Declined> {
+    if meta.label.is_some() {
         return Err(Declined);
     }
     let start = out.len();
     // The writer: skip, N number, items, comments, each after a space when not first.
-    match b.meta.skip {
+    match meta.skip {
         Some(0) => out.push(b'/'),
         Some(k) => {
             out.push(b'/');
@@ -55,18 +63,18 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
         }
         None => {}
     }
-    if let Some(n) = &b.meta.number {
+    if let Some(n) = &meta.number {
         if out.len() > start {
             out.push(b' ');
         }
         out.push(b'N');
         push_u64(out, u64::from(n.value));
     }
-    let mut items = false;
-    for it in &b.items {
-        let w = match &it.kind {
-            ItemKind::Word(w) => w,
-            ItemKind::End { code } => {
+    let mut any = false;
+    for it in items {
+        let (letter, num) = match it.view() {
+            View::Word { letter, num, .. } => (letter, num),
+            View::End(code) => {
                 if out.len() > start {
                     out.push(b' ');
                 }
@@ -74,15 +82,13 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
                     EndCode::M30 => b"M30",
                     EndCode::M2 => b"M2",
                 });
-                items = true;
+                any = true;
                 continue;
             }
             _ => return Err(Declined),
         };
-        let (Addr::Letter(letter), WordValue::Expr(e)) = (&w.addr, &w.value) else { return Err(Declined) };
-        let ExprKind::Num(n) = &e.kind else { return Err(Declined) };
-        let letter = *letter;
-        let mut v = n.value;
+        let (Some(letter), Some((value, point))) = (letter, num) else { return Err(Declined) };
+        let mut v = value;
         match letter {
             b'G' => {
                 let g10 = v * 10.0;
@@ -94,7 +100,7 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
             }
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
             _ => {
-                if scaled_letter(letter) && !n.point {
+                if scaled_letter(letter) && !point {
                     v = scale(opts, v);
                 }
             }
@@ -102,7 +108,7 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
         if out.len() > start {
             out.push(b' ');
         }
-        items = true;
+        any = true;
         if letter == b'R' {
             // `CR=` in an arc; elsewhere a cycle's R plane, which the passes report.
             if !arc {
@@ -122,7 +128,7 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
         }
     }
     let mut comments = false;
-    for (i, c) in b.meta.comments.iter().enumerate() {
+    for (i, c) in meta.comments.iter().enumerate() {
         comments = true;
         if i == 0 {
             if out.len() > start {
@@ -141,7 +147,7 @@ pub fn block(b: &Block, arc: bool, opts: &Options, eol: &[u8], out: &mut Vec<u8>
         }
     }
     // `calls::lower` and `words::lower` drop a block left with nothing but a skip.
-    if !items && b.meta.number.is_none() && !comments {
+    if !any && meta.number.is_none() && !comments {
         out.truncate(start);
         return Ok(());
     }

@@ -11,8 +11,9 @@
 //! (`tests/stream_translate.rs`, the unit tests below) hold the two paths to the same bytes.
 
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
-use crate::ir::{Addr, Block, BlockMeta, EndCode, Expr, ExprKind, ItemKind, Stmt, StmtKind, UnOp, Word, WordValue};
+use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
 use crate::passes::words::SAME_G;
+use crate::stream::{ItemView, View};
 
 /// Highest block number FANUC keeps (`passes::labels` drops the others).
 const MAX_N: u32 = 99999;
@@ -58,27 +59,32 @@ impl Fast {
     /// the block's G words into account, as the words pass does before it reports.
     pub fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Declined> {
         let StmtKind::Block(b) = &s.kind else { return Err(Declined) };
+        self.plain(&b.meta, &b.items, out)
+    }
+
+    /// [`Fast::block`] of a block's meta and items (IR items, or the words of a plain line).
+    pub fn plain<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
         let start = out.len();
-        let r = self.lines(b, out);
+        let r = self.lines(meta, items, out);
         if r.is_err() {
             out.truncate(start);
         }
         r
     }
 
-    fn lines(&mut self, b: &Block, out: &mut Vec<u8>) -> Result<(), Declined> {
-        if b.meta.label.is_some() {
+    fn lines<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
+        if meta.label.is_some() {
             return Err(Declined);
         }
         // The words pass: the block's modal G words apply to all its words.
         let mut dwell = false;
         let mut words = false;
-        for it in &b.items {
-            match &it.kind {
-                ItemKind::Word(w) => {
+        for it in items {
+            match it.view() {
+                View::Word { is_g, num, .. } => {
                     words = true;
-                    if w.addr.is(b'G') {
-                        match const_of(&w.value) {
+                    if is_g {
+                        match num.map(|n| n.0) {
                             Some(70.0) => self.g70 = true,
                             Some(v) if v == 71.0 || v == 700.0 || v == 710.0 => self.g70 = false,
                             Some(4.0) => dwell = true,
@@ -86,30 +92,30 @@ impl Fast {
                         }
                     }
                 }
-                ItemKind::End { .. } => {}
-                _ => return Err(Declined),
+                View::End(_) => {}
+                View::Other => return Err(Declined),
             }
         }
         // The blocks pass: the words are one block (it keeps the block's number, label and
         // comments), then each program end is a block of its own (keeping only the skip).
         let mut first = true;
         if words {
-            let (line, mut sep) = self.open(out, &b.meta, true);
-            for it in &b.items {
-                if let ItemKind::Word(w) = &it.kind {
+            let (line, mut sep) = self.open(out, meta, true);
+            for it in items {
+                if let View::Word { letter, num, folded, .. } = it.view() {
                     if sep {
                         out.push(b' ');
                     }
                     sep = true;
-                    self.word(w, dwell, out)?;
+                    self.word(letter, num.map(|n| n.0), folded, dwell, out)?;
                 }
             }
-            self.close(out, line, &b.meta, true);
+            self.close(out, line, meta, true);
             first = false;
         }
-        for it in &b.items {
-            if let ItemKind::End { code } = &it.kind {
-                let (line, any) = self.open(out, &b.meta, first);
+        for it in items {
+            if let View::End(code) = it.view() {
+                let (line, any) = self.open(out, meta, first);
                 if any {
                     out.push(b' ');
                 }
@@ -117,14 +123,14 @@ impl Fast {
                     EndCode::M30 => b"M30",
                     EndCode::M2 => b"M02",
                 });
-                self.close(out, line, &b.meta, first);
+                self.close(out, line, meta, first);
                 first = false;
             }
         }
         if first {
             // No items: a line of its own for the number, the comments or the skip.
-            let (line, _) = self.open(out, &b.meta, true);
-            self.close(out, line, &b.meta, true);
+            let (line, _) = self.open(out, meta, true);
+            self.close(out, line, meta, true);
         }
         Ok(())
     }
@@ -181,14 +187,22 @@ impl Fast {
 
     /// One word: the words pass's address rules, the expression pass's folding of `-n`,
     /// then `Writer::word`.
-    fn word(&self, w: &Word, dwell: bool, out: &mut Vec<u8>) -> Result<(), Declined> {
-        let (Addr::Letter(letter), WordValue::Expr(e)) = (&w.addr, &w.value) else { return Err(Declined) };
-        let mut letter = *letter;
+    /// `letter`: the word's when it has a letter address and an expression value; `num`
+    /// its value when a number as written, `folded` after folding `-n`.
+    fn word(
+        &self,
+        letter: Option<u8>,
+        num: Option<f64>,
+        folded: Option<f64>,
+        dwell: bool,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
+        let mut letter = letter.ok_or(Declined)?;
         let mut per_inch = false;
         match letter {
             b'G' => {
                 // A G code must be a written constant the target has.
-                let v = const_of(&w.value).ok_or(Declined)?;
+                let v = num.ok_or(Declined)?;
                 let g = if v == 70.0 || v == 700.0 {
                     20.0
                 } else if v == 71.0 || v == 710.0 {
@@ -205,7 +219,7 @@ impl Fast {
             b'F' if self.g70 => per_inch = true,
             _ => {}
         }
-        let v = folded(e).ok_or(Declined)?;
+        let v = folded.ok_or(Declined)?;
         if per_inch {
             // `F[v/25.4]`: a quotient is bracketed in an address; neither constant is.
             out.push(letter);
@@ -238,26 +252,6 @@ impl Fast {
             return Ok(());
         }
         number(out, v)
-    }
-}
-
-/// A value the words pass sees as a constant (`G`, the modal codes): a number as written.
-fn const_of(v: &WordValue) -> Option<f64> {
-    match v {
-        WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) => Some(n.value),
-        _ => None,
-    }
-}
-
-/// A constant word value after the expression pass (which folds `-n` into a number).
-fn folded(e: &Expr) -> Option<f64> {
-    match &e.kind {
-        ExprKind::Num(n) => Some(n.value),
-        ExprKind::Unary(UnOp::Neg, x) => match &x.kind {
-            ExprKind::Num(n) => Some(-n.value),
-            _ => None,
-        },
-        _ => None,
     }
 }
 

@@ -1,0 +1,233 @@
+//! The streamed translators' first scan (`stream::scan_words`) against the whole-file reader
+//! and the index-only scan: on every corpus file, the external programs and generated
+//! programs (plain motion with numbers, comments, skips, program ends, blank and non-ASCII
+//! lines, macro lines in between), it builds the same index and diagnostics as
+//! `scan_index`, and what it hands out, plain lines as words and the rest as statements,
+//! is line for line what `scan` (the whole-file reader) hands out.
+
+#[path = "support/rng.rs"]
+mod rng;
+
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::{Addr, BlockMeta, ExprKind, ItemKind, Stmt, StmtKind, WordValue};
+use nctrans::stream::{self, PlainWord, WordsSink};
+use rng::Rng;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// What a sink got, one entry per statement: a plain line as its meta and words, or a
+/// statement's debug form.
+#[derive(Debug, PartialEq)]
+enum Got {
+    Plain { prog: usize, number: Option<u32>, span: (u32, u32), comments: Vec<String>, words: Vec<(u8, u64, bool)> },
+    Stmt(usize, String),
+}
+
+/// A plain block of a whole-file statement, as [`Got::Plain`]; else its debug form.
+fn of_stmt(prog: usize, s: &Stmt, plain_ok: bool) -> Got {
+    if plain_ok {
+        if let StmtKind::Block(b) = &s.kind {
+            let words: Option<Vec<_>> = b
+                .items
+                .iter()
+                .map(|it| match &it.kind {
+                    ItemKind::Word(w) => match (&w.addr, &w.value) {
+                        (Addr::Letter(l), WordValue::Expr(e)) => match &e.kind {
+                            ExprKind::Num(n) => Some((*l, n.value.to_bits(), n.point)),
+                            _ => None,
+                        },
+                        _ => None,
+                    },
+                    _ => None,
+                })
+                .collect();
+            if let Some(words) = words.filter(|_| b.meta.label.is_none() && b.meta.skip.is_none()) {
+                return plain(prog, &b.meta, words);
+            }
+        }
+    }
+    Got::Stmt(prog, format!("{s:?}"))
+}
+
+fn plain(prog: usize, meta: &BlockMeta, words: Vec<(u8, u64, bool)>) -> Got {
+    Got::Plain {
+        prog,
+        number: meta.number.as_ref().map(|n| n.value),
+        span: (meta.span.lo, meta.span.hi),
+        comments: meta.comments.iter().map(|c| c.text.clone()).collect(),
+        words,
+    }
+}
+
+struct Record {
+    got: Vec<Got>,
+    /// Whether plain lines are taken as words (else each is asked for as a statement).
+    take: bool,
+}
+
+impl WordsSink for Record {
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        if self.take {
+            let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect();
+            self.got.push(plain(prog, meta, words));
+        }
+        self.take
+    }
+
+    fn stmt(&mut self, prog: usize, s: &Stmt) {
+        self.got.push(Got::Stmt(prog, format!("{s:?}")));
+    }
+
+    fn active(&self) -> bool {
+        true
+    }
+}
+
+/// Checks one file; returns how many lines went as words.
+fn check(path: &Path, dialect: Dialect) -> usize {
+    let opts = ParseOptions::for_dialect(dialect);
+    let Ok(index) = stream::scan_index_path(path, 0, dialect, &opts, None) else { return 0 };
+    let mut whole = Vec::new();
+    let full = stream::scan_path(path, 0, dialect, &opts, &mut |p, s| whole.push((p, s.clone())), None).expect("scan");
+    let mut words = 0;
+    for take in [true, false] {
+        let mut rec = Record { got: Vec::new(), take };
+        let ix = stream::scan_words_path(path, 0, dialect, &opts, &mut rec, None).expect("scan_words");
+        assert_eq!(format!("{ix:?}"), format!("{index:?}"), "index of {}", path.display());
+        // The whole-file scan's index is the same too (but for what index-only readers
+        // leave out: compare what the runs need).
+        assert_eq!(ix.blocks, full.blocks, "{}", path.display());
+        assert_eq!(ix.diags.len(), full.diags.len(), "{}", path.display());
+        let expected: Vec<Got> = if take {
+            // Which whole-file statements are plain lines: those the words scan took.
+            let mut exp = Vec::new();
+            for (k, (p, s)) in whole.iter().enumerate() {
+                let as_plain = matches!(rec.got.get(k), Some(Got::Plain { .. }));
+                exp.push(of_stmt(*p, s, as_plain));
+            }
+            words = rec.got.iter().filter(|g| matches!(g, Got::Plain { .. })).count();
+            exp
+        } else {
+            whole.iter().map(|(p, s)| Got::Stmt(*p, format!("{s:?}"))).collect()
+        };
+        assert_eq!(rec.got.len(), expected.len(), "{} (take {take})", path.display());
+        for (a, b) in rec.got.iter().zip(&expected) {
+            assert_eq!(a, b, "{} (take {take})", path.display());
+        }
+    }
+    words
+}
+
+fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let Ok(rd) = std::fs::read_dir(dir) else { return out };
+    for e in rd.filter_map(|e| e.ok()) {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(files(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn corpus_and_external_programs_scan_the_same_with_words() {
+    let mut words = 0;
+    let mut n = 0;
+    for (dir, d) in [("corpus/in/sinumerik", Dialect::Sinumerik), ("corpus/in/fanuc", Dialect::Fanuc)] {
+        for f in files(&root().join(dir)) {
+            words += check(&f, d);
+            n += 1;
+        }
+    }
+    let ext = root().join("../shared/external");
+    if ext.is_dir() {
+        for f in files(&ext) {
+            let name = f.to_string_lossy().to_ascii_lowercase();
+            let d = if name.contains("fanuc") { Dialect::Fanuc } else { Dialect::Sinumerik };
+            if name.ends_with(".md") {
+                continue;
+            }
+            words += check(&f, d);
+            n += 1;
+        }
+    } else {
+        eprintln!("note: {} not found; external programs skipped", ext.display());
+    }
+    assert!(n > 100 && words > 300, "{n} files, {words} lines as words");
+}
+
+/// A program of mostly plain lines with everything around them that a reader may treat
+/// differently.
+fn generated(d: Dialect, seed: u64, lines: usize) -> String {
+    let mut r = Rng(seed);
+    let mut out = String::new();
+    match d {
+        Dialect::Sinumerik => out.push_str("%_N_GEN_MPF\n; head\n"),
+        Dialect::Fanuc => out.push_str("%\nO1234 (GEN)\n"),
+    }
+    let letters = b"XYZFSGMABCIJKRDTHUVW";
+    for i in 0..lines {
+        let mut l = String::new();
+        if r.chance(20) {
+            l.push_str(&format!("N{} ", 1 + r.below(200) * 10));
+        }
+        if d == Dialect::Fanuc && r.chance(5) {
+            l.insert_str(0, if r.chance(50) { "/" } else { "/2 " });
+        }
+        for _ in 0..r.below(6) {
+            let c = letters[r.index(letters.len())] as char;
+            let sign = if r.chance(30) { "-" } else { "" };
+            let v = match r.below(4) {
+                0 => format!("{}", r.below(100)),
+                1 => format!("{}.{}", r.below(1000), r.below(10_000)),
+                2 => format!("{}.", r.below(1000)),
+                _ => format!(".{}", r.below(100)),
+            };
+            let sep = if r.chance(20) { "" } else { " " };
+            l.push_str(&format!("{c}{sign}{v}{sep}"));
+        }
+        match r.below(40) {
+            0 if d == Dialect::Sinumerik => l.push_str("; a comment ; two"),
+            1 if d == Dialect::Sinumerik => l.push_str(";Ümlaut"),
+            2 => l.push_str("M30"),
+            3 => l.clear(),
+            4 => l = if d == Dialect::Sinumerik { "R1=R1+1".into() } else { "#1=#1+1".into() },
+            5 if d == Dialect::Fanuc => l.push_str("(COMMENT)"),
+            6 if d == Dialect::Fanuc => l.push(';'),
+            7 => l = "   ".into(),
+            8 => l.push_str("GO1"),
+            _ => {}
+        }
+        if i % 97 == 0 {
+            l.push('\r');
+        }
+        out.push_str(&l);
+        out.push('\n');
+    }
+    if d == Dialect::Fanuc {
+        out.push_str("M30\n%\n");
+    }
+    out
+}
+
+#[test]
+fn generated_programs_scan_the_same_with_words() {
+    let dir = root().join("target/stream-words-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut words = 0;
+    for seed in 1..=12u64 {
+        for d in [Dialect::Sinumerik, Dialect::Fanuc] {
+            let path = dir.join(format!("gen{seed}.{}", if d == Dialect::Fanuc { "nc" } else { "mpf" }));
+            std::fs::write(&path, generated(d, seed, 3000)).expect("write");
+            words += check(&path, d);
+        }
+    }
+    assert!(words > 20_000, "{words} lines as words");
+}
