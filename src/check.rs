@@ -7,12 +7,12 @@
 //! diff; the events kept for that context are written as text only when it is needed.
 
 use crate::diag::Diagnostic;
-use crate::eval::trace::text_line;
+use crate::eval::trace::{text_line, GridMove};
 use crate::eval::{self, CalleeSource, Ending, Event, Origin, Outcome, RunOptions, TraceSink};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
+use std::borrow::Cow;
 use std::cell::Cell;
-use std::collections::VecDeque;
 use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
 /// Absolute tolerance for numbers (trace spec).
@@ -54,8 +54,56 @@ pub struct CheckReport {
     pub outcome_b: Outcome,
 }
 
+/// One event as a check carries it: a move on the grid as its integers (copied without
+/// a clone's dispatch, compared exactly: two grid values within the tolerance are the
+/// same value), any other event as it is.
+#[derive(Clone, Debug)]
+enum Item {
+    Grid(GridMove),
+    Ev(Event),
+}
+
+impl Item {
+    fn event(&self) -> Cow<'_, Event> {
+        match self {
+            Item::Grid(g) => Cow::Owned(g.event()),
+            Item::Ev(e) => Cow::Borrowed(e),
+        }
+    }
+
+    fn into_event(self) -> Event {
+        match self {
+            Item::Grid(g) => g.event(),
+            Item::Ev(e) => e,
+        }
+    }
+
+    fn text(&self) -> String {
+        text_line(&self.event())
+    }
+
+    fn is_limit(&self) -> bool {
+        matches!(self, Item::Ev(Event::Limit { .. }))
+    }
+}
+
+/// [`same_event`] of two items. Two grid moves agree exactly when their integers do:
+/// grid values `n / 1000` that differ differ by 0.001, far beyond [`TOLERANCE`].
+fn same_item(a: &Item, b: &Item) -> bool {
+    match (a, b) {
+        (Item::Grid(x), Item::Grid(y)) => {
+            let mask = x.mask & 0x1ff;
+            x.rapid == y.rapid
+                && mask == y.mask & 0x1ff
+                && (0..9).all(|i| mask & (1 << i) == 0 || x.to[i] == y.to[i])
+                && x.f.map(|f| f.1) == y.f.map(|f| f.1)
+        }
+        _ => same_event(&a.event(), &b.event()),
+    }
+}
+
 /// Events of the second run, in order.
-type Msg = Vec<(Event, Origin)>;
+type Msg = Vec<(Item, Origin)>;
 
 /// Where the second run's events go: a bounded channel to the comparing thread, or (one
 /// thread) an unbounded buffer read after the run.
@@ -89,12 +137,21 @@ impl ChannelSink {
     }
 }
 
-impl TraceSink for ChannelSink {
-    fn event(&mut self, ev: &Event, origin: Origin) {
-        self.batch.push((ev.clone(), origin));
+impl ChannelSink {
+    fn push(&mut self, item: Item, origin: Origin) {
+        self.batch.push((item, origin));
         if self.batch.len() >= BATCH {
             self.send();
         }
+    }
+}
+
+impl TraceSink for ChannelSink {
+    fn event(&mut self, ev: &Event, origin: Origin) {
+        self.push(Item::Ev(ev.clone()), origin);
+    }
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.push(Item::Grid(*m), origin);
     }
     fn wants_stop(&self) -> bool {
         self.dead
@@ -109,12 +166,16 @@ struct Divergence {
 
 struct CompareSink {
     rx: Receiver<Msg>,
-    /// The batch being compared.
-    pending: std::vec::IntoIter<(Event, Origin)>,
+    /// The batch being compared and the index of its next event; the batch before it
+    /// (the events before a divergence may be there).
+    batch: Msg,
+    at: usize,
+    prev: Msg,
     index: u64,
-    /// The last agreeing events of each run (written as text for a divergence's diff).
-    before_a: VecDeque<Event>,
-    before_b: VecDeque<Event>,
+    /// The last agreeing events of the first run, by `index % CONTEXT` (the second run's
+    /// are still in its batches): written as text for a divergence's diff.
+    before_a: [Option<Item>; CONTEXT],
+    before_b: Vec<String>,
     after_a: Vec<String>,
     after_b: Vec<String>,
     div: Option<Divergence>,
@@ -214,29 +275,72 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
 }
 
 impl CompareSink {
-    fn push_ring(ring: &mut VecDeque<Event>, e: Event) {
-        if ring.len() == CONTEXT {
-            ring.pop_front();
+    fn new(rx: Receiver<Msg>) -> CompareSink {
+        CompareSink {
+            rx,
+            batch: Vec::new(),
+            at: 0,
+            prev: Vec::new(),
+            index: 0,
+            before_a: [const { None }; CONTEXT],
+            before_b: Vec::new(),
+            after_a: Vec::new(),
+            after_b: Vec::new(),
+            div: None,
+            limit_seen: false,
         }
-        ring.push_back(e);
     }
 
-    fn next_b(&mut self) -> Option<(Event, Origin)> {
-        loop {
-            if let Some(x) = self.pending.next() {
-                return Some(x);
-            }
-            self.pending = self.rx.recv().ok()?.into_iter();
+    /// Moves on to the second run's next event (at `batch[at - 1]`); `false` at its end.
+    fn advance_b(&mut self) -> bool {
+        while self.at >= self.batch.len() {
+            let Ok(next) = self.rx.recv() else { return false };
+            self.prev = std::mem::replace(&mut self.batch, next);
+            self.at = 0;
         }
+        self.at += 1;
+        true
+    }
+
+    /// The second run's next event, moved out (after a divergence only).
+    fn next_b(&mut self) -> Option<(Item, Origin)> {
+        if !self.advance_b() {
+            return None;
+        }
+        let slot = self.batch.get_mut(self.at - 1)?;
+        Some((std::mem::replace(&mut slot.0, Item::Ev(Event::Limit { steps: 0 })), slot.1))
     }
 
     fn fill_after_b(&mut self) {
         while self.after_b.len() < CONTEXT {
             match self.next_b() {
-                Some((e, _)) => self.after_b.push(text_line(&e)),
+                Some((e, _)) => self.after_b.push(e.text()),
                 None => break,
             }
         }
+    }
+
+    /// Records the divergence at event `index`: `a` against the second run's event at
+    /// `batch[b_at]` (`None`: its trace ended), with the agreeing events before each.
+    fn diverge(&mut self, a: Option<(Event, Origin)>, b_at: Option<usize>) {
+        // The second run's agreeing events end just before its divergent one (or at the
+        // end of its batches), in this batch and the one before.
+        let end = b_at.unwrap_or(self.batch.len());
+        let n = (self.index as usize).min(CONTEXT);
+        let from_prev = n.saturating_sub(end);
+        let prev = &self.prev[self.prev.len().saturating_sub(from_prev)..];
+        self.before_b = prev.iter().chain(&self.batch[end - (n - from_prev)..end]).map(|x| x.0.text()).collect();
+        let b = b_at.and_then(|i| self.batch.get(i)).map(|(item, o)| (item.clone().into_event(), *o));
+        self.div = Some(Divergence { index: self.index, a, b });
+        self.fill_after_b();
+    }
+
+    /// The first run's agreeing events before the divergence, oldest first, as text.
+    fn before_a_text(&self) -> Vec<String> {
+        let n = (self.index as usize).min(CONTEXT);
+        (self.index as usize - n..self.index as usize)
+            .filter_map(|k| self.before_a[k % CONTEXT].as_ref().map(Item::text))
+            .collect()
     }
 
     /// After A ended: B must have ended too.
@@ -244,46 +348,50 @@ impl CompareSink {
         if self.div.is_some() {
             return;
         }
-        if let Some(b) = self.next_b() {
-            if matches!(b.0, Event::Limit { .. }) {
+        if self.advance_b() {
+            if self.batch[self.at - 1].0.is_limit() {
                 self.limit_seen = true;
                 return;
             }
-            self.div = Some(Divergence { index: self.index, a: None, b: Some(b) });
-            self.fill_after_b();
+            self.diverge(None, Some(self.at - 1));
         }
+    }
+
+    /// One event of the first run (`ev`: its event, for a divergence).
+    fn compare(&mut self, a: Item, origin: Origin) {
+        if self.div.is_some() {
+            if self.after_a.len() < CONTEXT {
+                self.after_a.push(a.text());
+            }
+            return;
+        }
+        if a.is_limit() {
+            self.limit_seen = true;
+        }
+        let b_at = self.advance_b().then(|| self.at - 1);
+        let b = b_at.and_then(|i| self.batch.get(i));
+        if b.is_some_and(|b| b.0.is_limit()) {
+            self.limit_seen = true;
+        }
+        if b.is_some_and(|b| same_item(&a, &b.0)) {
+            self.before_a[self.index as usize % CONTEXT] = Some(a);
+            self.index += 1;
+            return;
+        }
+        if self.limit_seen {
+            return;
+        }
+        self.diverge(Some((a.into_event(), origin)), b_at);
     }
 }
 
 impl TraceSink for CompareSink {
     fn event(&mut self, ev: &Event, origin: Origin) {
-        if self.div.is_some() {
-            if self.after_a.len() < CONTEXT {
-                self.after_a.push(text_line(ev));
-            }
-            return;
-        }
-        if matches!(ev, Event::Limit { .. }) {
-            self.limit_seen = true;
-        }
-        let b = self.next_b();
-        if let Some((Event::Limit { .. }, _)) = &b {
-            self.limit_seen = true;
-        }
-        match b {
-            Some((eb, _)) if same_event(ev, &eb) => {
-                Self::push_ring(&mut self.before_a, ev.clone());
-                Self::push_ring(&mut self.before_b, eb);
-                self.index += 1;
-            }
-            b => {
-                if self.limit_seen {
-                    return;
-                }
-                self.div = Some(Divergence { index: self.index, a: Some((ev.clone(), origin)), b });
-                self.fill_after_b();
-            }
-        }
+        self.compare(Item::Ev(ev.clone()), origin);
+    }
+
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.compare(Item::Grid(*m), origin);
     }
 
     fn wants_stop(&self) -> bool {
@@ -349,22 +457,13 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
         (rx, Ok(handle))
     };
     let mut db_a = db.clone();
-    let mut sink = CompareSink {
-        rx,
-        pending: Vec::new().into_iter(),
-        index: 0,
-        before_a: VecDeque::new(),
-        before_b: VecDeque::new(),
-        after_a: Vec::new(),
-        after_b: Vec::new(),
-        div: None,
-        limit_seen: false,
-    };
+    let mut sink = CompareSink::new(rx);
     let outcome_a = a(&mut db_a, &mut sink);
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }
-    let CompareSink { rx, index, before_a, before_b, after_a, after_b, div, limit_seen, .. } = sink;
+    let before_a = sink.before_a_text();
+    let CompareSink { rx, index, before_b, after_a, after_b, div, limit_seen, .. } = sink;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),
@@ -429,10 +528,10 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
             .note(format!("{} events agreed before this one", dv.index))
             .hint("compare the two blocks labelled above; the diff below shows the traces around the divergence");
         diags.push(d);
-        let mut old: Vec<String> = before_a.iter().map(text_line).collect();
+        let mut old = before_a;
         old.push(ta);
         old.extend(after_a);
-        let mut new: Vec<String> = before_b.iter().map(text_line).collect();
+        let mut new = before_b;
         new.push(tb);
         new.extend(after_b);
         let old = old.join("\n") + "\n";

@@ -6,7 +6,7 @@
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::machine::set_fast_path;
-use nctrans::eval::trace::{Axes, Format, Origin, WriterSink};
+use nctrans::eval::trace::{Axes, Format, GridMove, Origin, WriterSink};
 use nctrans::eval::{self, Event, Outcome, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use std::fmt::Write as _;
@@ -39,6 +39,12 @@ impl TraceSink for Both {
     fn event(&mut self, ev: &Event, origin: Origin) {
         self.text.event(ev, origin);
         self.json.event(ev, origin);
+    }
+    // The writers' own grid move (the fast path's way to them) against their `event`
+    // (the general path's).
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.text.grid_move(m, origin);
+        self.json.grid_move(m, origin);
     }
     fn wants_blocks(&self) -> bool {
         true
@@ -246,4 +252,43 @@ fn generated_straight_line_programs_run_the_same_with_the_fast_path() {
     // The programs must move a lot (not all stop at their first alarm), and stream.
     assert!(moves > 10_000, "only {moves} moves");
     assert!(streamed > 100, "only {streamed} programs streamed");
+}
+
+/// The text trace of a streamed run with real line numbers (`@line` from the text), the
+/// writer taking the lines its moves carry (`block_lines`) or looking every one up.
+fn streamed_text(path: &Path, dialect: Dialect, block_lines: bool) -> Option<Vec<u8>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let opts = ParseOptions::for_dialect(dialect);
+    let ix = nctrans::stream::scan_index_path(path, 0, dialect, &opts, None).ok()?;
+    let mut db = SourceDb::new();
+    let file = db.add(path.display().to_string(), String::new());
+    let run = RunOptions { max_steps: 200_000, ..Default::default() };
+    let runner = nctrans::stream::runner(std::sync::Arc::new(ix), Box::new(eval::DirCallees { semantics: None }), run);
+    let line = move |o: Origin| {
+        (o.file == file).then(|| text.as_bytes()[..o.span.lo as usize].iter().filter(|&&c| c == b'\n').count() + 1)
+    };
+    let mut sink = WriterSink::new(Vec::new(), Format::Text, Box::new(line));
+    if block_lines {
+        sink.block_lines = Some(file);
+    }
+    runner(&mut db, &mut sink);
+    Some(sink.out)
+}
+
+#[test]
+fn lines_carried_by_streamed_blocks_are_the_lines_of_their_spans() {
+    // Where the stream's re-read gives its blocks their lines, the writer takes them (and,
+    // in a debug build, asserts each is the one looked up): the traces must be the same.
+    let dir = root().join("target/eval-fast-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let mut r = Rng(91);
+    for i in 0..40 {
+        let fanuc = i % 2 == 0;
+        let text = program(&mut r, fanuc, 80);
+        let path = dir.join(if fanuc { "lines.nc" } else { "lines.mpf" });
+        std::fs::write(&path, &text).expect("scratch file");
+        let dialect = if fanuc { Dialect::Fanuc } else { Dialect::Sinumerik };
+        let looked_up = streamed_text(&path, dialect, false);
+        assert_eq!(streamed_text(&path, dialect, true), looked_up, "{text}");
+    }
 }

@@ -4,7 +4,7 @@
 use super::calls::{CalleeName, ModalCall};
 use super::expr::{self, Cx};
 use super::fault::{AlarmNumbers, Fault};
-use super::flow::{Code, Key, Op};
+use super::flow::{Code, Key, Op, OpRef};
 use super::lit::LitBlock;
 use super::machine::{AbsInc, Machine, WordVal, WV};
 use super::trace::{Event, Origin, TraceSink};
@@ -15,6 +15,7 @@ use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, Semantics};
 use crate::ir::{Block, EndCode, Expr, ExprKind, Goto, Item, ItemKind, Search, Target, VarRef, WordValue};
 use crate::span::{FileId, SourceDb, Span};
+use crate::stream::paged::Page;
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
@@ -196,15 +197,31 @@ impl<'a> Interp<'a> {
 
     /// The main loop. Returns how the run ended.
     pub fn run_loop(&mut self) -> Result<Ending, Fault> {
+        // The page of a streamed program the last op came from (with its code's index):
+        // the next op is nearly always in it, found without asking the pager (which
+        // would give this same page: pages do not change once read).
+        let mut page: Option<(usize, Rc<Page>)> = None;
         loop {
             let Some(fr) = self.frames.last() else {
                 return Ok(Ending::End("M30"));
             };
             let (ci, pc) = (fr.code, fr.pc);
             let code = Rc::clone(&self.codes[ci]);
-            // A streamed program's op lives in a page that `held` keeps alive.
-            let held = code.op_at(pc).map_err(Fault::error)?;
-            let Some(op) = held.as_ref().and_then(|h| h.op()) else {
+            // A streamed program's op lives in a page that `page` or `held` keeps alive.
+            let in_page = matches!(&page, Some((c, p)) if *c == ci && p.get(pc).is_some());
+            let op = if in_page {
+                page.as_ref().and_then(|(_, p)| p.get(pc))
+            } else {
+                match code.op_at(pc).map_err(Fault::error)? {
+                    Some(OpRef::Mem(op)) => Some(op),
+                    Some(OpRef::Page(p, _)) => {
+                        page = Some((ci, p));
+                        page.as_ref().and_then(|(_, p)| p.get(pc))
+                    }
+                    None => None,
+                }
+            };
+            let Some(op) = op else {
                 // Past the last block.
                 if self.frames.len() == 1 {
                     let span = code.last_span();
@@ -369,8 +386,17 @@ impl<'a> Interp<'a> {
             if let Some(done) = self.m.apply_lit(b) {
                 let mut eff = super::machine::BlockEffect::default();
                 if let Some(span) = done {
-                    let ev = self.m.move_event();
-                    self.emit_ref(&ev, span);
+                    match self.m.grid_move() {
+                        Some(mut g) if self.pending_msg.is_none() => {
+                            g.line = b.line;
+                            let origin = Origin { file: self.file(), span };
+                            self.sink.grid_move(&g, origin);
+                        }
+                        _ => {
+                            let ev = self.m.move_event();
+                            self.emit_ref(&ev, span);
+                        }
+                    }
                     eff.moved = true;
                 }
                 return self.block_end(eff, b.span, pc);

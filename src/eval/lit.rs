@@ -20,6 +20,10 @@ pub struct LitBlock {
     pub span: Span,
     /// The block number (`BlockMeta::number`).
     pub number: Option<u32>,
+    /// The block's 1-based line in its file when its reader knows it (0: not known): a
+    /// streamed re-read can set it, and the trace writer then takes it for `@line`
+    /// instead of looking the span up ([`crate::eval::trace::WriterSink::block_lines`]).
+    pub line: u32,
     len: u8,
     words: [LitWord; MAX_WORDS],
 }
@@ -70,6 +74,7 @@ impl LitBlock {
         Some(LitBlock {
             span: b.meta.span,
             number: b.meta.number.as_ref().map(|n| n.value),
+            line: 0,
             len: b.items.len() as u8,
             words,
         })
@@ -79,7 +84,7 @@ impl LitBlock {
     /// text (a streamed chunk's re-read, see `crate::stream::reread`); `None` when the
     /// compact form is off (tests), so such blocks stay IR there too.
     pub fn new(span: Span, number: Option<u32>) -> Option<LitBlock> {
-        (!disabled()).then_some(LitBlock { span, number, len: 0, words: [NO_WORD; MAX_WORDS] })
+        (!disabled()).then_some(LitBlock { span, number, line: 0, len: 0, words: [NO_WORD; MAX_WORDS] })
     }
 
     /// Adds a plain word (what [`LitBlock::of`] makes of a `Word` with a letter address and

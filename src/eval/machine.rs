@@ -8,6 +8,7 @@ use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal
 use crate::span::Span;
 
 mod fast;
+mod grid;
 mod modal;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use modal::{g_index, Modal};
@@ -114,6 +115,13 @@ pub struct Machine {
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
+    /// Per axis: (bits of a position, its trace grid value or `grid::OFF_GRID`), for
+    /// [`Machine::grid_move`]; a pure function of the bits, so never stale.
+    grid: [(u64, i64); 9],
+    /// The same for the feed (its own value, not `clean`ed).
+    feed_grid: (u64, i64),
+    /// `seen` and its bit set (bit `i`: axis `i`), for [`Machine::grid_move`].
+    seen_mask: ([bool; 9], u16),
 }
 
 impl Machine {
@@ -152,6 +160,9 @@ impl Machine {
             scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
+            grid: Machine::new_grid(),
+            feed_grid: (0f64.to_bits(), 0),
+            seen_mask: ([false; 9], 0),
         }
     }
 
@@ -236,6 +247,12 @@ impl Machine {
     /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
     #[inline(always)]
     fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
+        self.target_from(i, v, mode, g53, self.active_offset(i))
+    }
+
+    /// [`Machine::axis_target`] with `off`, the [`Machine::active_offset`] of axis `i`.
+    #[inline(always)]
+    fn target_from(&self, i: usize, v: f64, mode: AbsInc, g53: bool, off: f64) -> f64 {
         let inc = match mode {
             AbsInc::Ac => false,
             AbsInc::Ic => true,
@@ -245,11 +262,11 @@ impl Machine {
             // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
             v
         } else if inc && self.incr_travels_offset {
-            self.pos[i] - self.applied[i] + v + self.active_offset(i)
+            self.pos[i] - self.applied[i] + v + off
         } else if inc {
             self.pos[i] + v
         } else {
-            v + self.active_offset(i)
+            v + off
         }
     }
 

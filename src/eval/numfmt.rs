@@ -30,18 +30,49 @@ pub fn put_num(out: &mut Vec<u8>, x: f64) {
 /// `.ddd`: 11 bytes), appended through a 16-byte buffer copied whole.
 fn put_small_millis(out: &mut Vec<u8>, n: i64) {
     let mut buf = [0u8; 16];
+    let len = small_millis(&mut buf, n);
+    let at = out.len();
+    out.extend_from_slice(&buf);
+    out.truncate(at + len);
+}
+
+/// Where [`put_num`] writes `x` from an integer: the `n` with `|n| < 10⁹` whose
+/// [`put_grid`] writes what [`put_num`] writes for `x` (the 0.001 grid below 10⁶).
+#[inline]
+pub fn grid_of(x: f64) -> Option<i64> {
+    millis(x).filter(|n| n.unsigned_abs() < GRID_LIMIT)
+}
+
+/// The bound of [`grid_of`]: `|n| < 10⁹` (values below 10⁶).
+pub const GRID_LIMIT: u64 = 1_000_000_000;
+
+/// Writes `n / 1000` (`|n| <` [`GRID_LIMIT`], as [`grid_of`] gives) at `out[at..]`, as
+/// [`put_num`] writes the value: 16 bytes are written (at most 11 used; `out` must have
+/// room for them); returns where the number ends.
+#[inline(always)]
+pub fn put_grid(out: &mut [u8], at: usize, n: i64) -> usize {
+    let mut buf = [0u8; 16];
+    let len = small_millis(&mut buf, n);
+    out[at..at + 16].copy_from_slice(&buf);
+    at + len
+}
+
+/// Writes `n / 1000` (`|n| < 10⁹`) at the start of `buf`, as [`millis_digits`] does;
+/// returns the length.
+#[inline(always)]
+fn small_millis(buf: &mut [u8; 16], n: i64) -> usize {
     let mut i = usize::from(n < 0);
     buf[0] = b'-';
     let a = n.unsigned_abs();
     let (int, frac) = ((a / 1000) as u32, (a % 1000) as u32);
     if int >= 1000 {
         let (hi, lo) = (int / 1000, int % 1000);
-        i = put_upto3(&mut buf, i, hi);
+        i = put_upto3(buf, i, hi % 1000);
         buf[i] = b'0' + (lo / 100) as u8;
         buf[i + 1..i + 3].copy_from_slice(pair(lo % 100));
         i += 3;
     } else {
-        i = put_upto3(&mut buf, i, int);
+        i = put_upto3(buf, i, int);
     }
     let mut len = i;
     if frac != 0 {
@@ -49,13 +80,21 @@ fn put_small_millis(out: &mut Vec<u8>, n: i64) {
         buf[i..i + 4].copy_from_slice(&text);
         len += usize::from(l);
     }
-    let at = out.len();
-    out.extend_from_slice(&buf);
-    out.truncate(at + len);
+    len
+}
+
+/// Writes the decimal digits of `n` at `out[at..]` (room for 20 bytes needed); returns
+/// where they end (as [`put_int`] writes a non-negative number).
+#[inline]
+pub fn put_uint_at(out: &mut [u8], at: usize, n: u64) -> usize {
+    let mut buf = [0u8; BUF];
+    let len = put_digits(&mut buf, 0, n);
+    out[at..at + 20].copy_from_slice(&buf[..20]);
+    at + len
 }
 
 /// Writes `n < 1000` without leading zeros at `buf[at..]`; returns where it ends.
-#[inline]
+#[inline(always)]
 fn put_upto3(buf: &mut [u8; 16], at: usize, n: u32) -> usize {
     if n < 10 {
         buf[at] = b'0' + n as u8;
@@ -300,6 +339,7 @@ const PAIRS: &[u8; 200] = b"\
 8081828384858687888990919293949596979899";
 
 /// The two digits of `n` < 100.
+#[inline(always)]
 fn pair(n: u32) -> &'static [u8] {
     let i = (n as usize % 100) * 2;
     &PAIRS[i..i + 2]

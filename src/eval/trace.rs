@@ -151,9 +151,44 @@ pub struct Origin {
     pub span: Span,
 }
 
+/// A straight move whose coordinates and feed are on the 0.001 grid (nearly every move
+/// of a metric CAM program), given as the integers [`super::numfmt::grid_of`] finds for
+/// the values of its [`Event::Move`]: a writer formats them without looking at a float.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridMove {
+    pub rapid: bool,
+    /// Bit `i`: axis `i` ([`AXES`]) has a position.
+    pub mask: u16,
+    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it).
+    pub to: [i64; 9],
+    /// The feed (`None` for a rapid move) and its `grid_of`.
+    pub f: Option<(f64, i64)>,
+    /// The 1-based line of the block that moved when known (0: not known); not part of
+    /// the event (see [`WriterSink::block_lines`]).
+    pub line: u32,
+}
+
+impl GridMove {
+    /// The move as an event: the same event the general path emits.
+    pub fn event(&self) -> Event {
+        let mut to = [None; 9];
+        for (i, slot) in to.iter_mut().enumerate() {
+            if self.mask & (1 << i) != 0 {
+                *slot = Some(self.to[i] as f64 / 1000.0);
+            }
+        }
+        Event::Move { rapid: self.rapid, to, f: self.f.map(|f| f.0) }
+    }
+}
+
 /// Receives the trace as it is produced; nothing is collected by the evaluator.
 pub trait TraceSink {
     fn event(&mut self, ev: &Event, origin: Origin);
+    /// A move on the grid: the same as `event(&m.event(), origin)` (the default), which a
+    /// writer may do faster.
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        self.event(&m.event(), origin);
+    }
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
@@ -174,6 +209,7 @@ pub struct NullSink;
 
 impl TraceSink for NullSink {
     fn event(&mut self, _ev: &Event, _origin: Origin) {}
+    fn grid_move(&mut self, _m: &GridMove, _origin: Origin) {}
 }
 
 /// Collects the trace (tests and the checker's context window; not for long runs).
@@ -451,12 +487,63 @@ pub struct WriterSink<'a, W: Write> {
     pub format: Format,
     pub line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>,
     pub error: Option<io::Error>,
+    /// A file whose grid moves' own lines ([`GridMove::line`], when not 0) are the lines
+    /// `line_of` gives for their origins: the writer takes them without asking it (a
+    /// streamed run's re-read knows every block's line; the look-up costs a tenth of a
+    /// `run`). `None` (the default): always `line_of`.
+    pub block_lines: Option<crate::span::FileId>,
     buf: Vec<u8>,
+    /// Where [`TraceSink::grid_move`] writes a line (kept: clearing 256 bytes per line
+    /// costs more than writing it).
+    line: Box<[u8; 256]>,
+    /// The `@line` number [`TraceSink::grid_move`] wrote last and its digits: the next
+    /// line is nearly always this one plus one, counted up in the digits.
+    last_line: (usize, [u8; 24], usize),
+}
+
+/// Writes line number `l` at `b[i..]` (room for 24 bytes) as `put_int` does, from
+/// `last` (the number written before and its digits) when `l` is that number or the next
+/// one; `last` becomes `l`. Returns where the digits end.
+#[inline(always)]
+fn put_line(b: &mut [u8], i: usize, l: usize, last: &mut (usize, [u8; 24], usize)) -> usize {
+    let (n, digits, len) = last;
+    let counted = if l == *n {
+        true
+    } else if n.checked_add(1) == Some(l) && *len > 0 {
+        // Add one from the last digit: nines become zeros; a number of nines only
+        // (a new digit) is written afresh.
+        let mut k = *len;
+        while k > 0 && digits[k - 1] == b'9' {
+            digits[k - 1] = b'0';
+            k -= 1;
+        }
+        if k > 0 {
+            digits[k - 1] += 1;
+        }
+        k > 0
+    } else {
+        false
+    };
+    if !counted {
+        *len = super::numfmt::put_uint_at(digits, 0, l as u64);
+    }
+    *n = l;
+    b[i..i + 24].copy_from_slice(digits);
+    i + *len
 }
 
 impl<'a, W: Write> WriterSink<'a, W> {
     pub fn new(out: W, format: Format, line_of: Box<dyn Fn(Origin) -> Option<usize> + 'a>) -> Self {
-        WriterSink { out, format, line_of, error: None, buf: Vec::with_capacity(256) }
+        WriterSink {
+            out,
+            format,
+            line_of,
+            error: None,
+            block_lines: None,
+            buf: Vec::with_capacity(256),
+            line: Box::new([0; 256]),
+            last_line: (0, *b"000000000000000000000000", 1),
+        }
     }
 }
 
@@ -482,6 +569,56 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
             self.error = Some(e);
         }
     }
+
+    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        if self.format != Format::Text {
+            return self.event(&m.event(), origin);
+        }
+        if self.error.is_some() {
+            return;
+        }
+        let line = match self.block_lines {
+            Some(file) if file == origin.file && m.line != 0 => {
+                debug_assert_eq!((self.line_of)(origin), Some(m.line as usize), "the line of {origin:?}");
+                Some(m.line as usize)
+            }
+            _ => (self.line_of)(origin),
+        };
+        // The line `text_form` and `event` write, in one pass into a buffer that holds the
+        // longest (9 axes of 11 bytes, a feed, a 20-digit line: under 200 bytes).
+        let b = &mut *self.line;
+        let mut i = if m.rapid {
+            b[..10].copy_from_slice(b"move rapid");
+            10
+        } else {
+            b[..11].copy_from_slice(b"move linear");
+            11
+        };
+        let mut mask = m.mask & 0x1ff;
+        while mask != 0 {
+            let a = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            b[i..i + 3].copy_from_slice(&[b' ', AXES[a] as u8, b'=']);
+            i = super::numfmt::put_grid(b, i + 3, m.to[a]);
+        }
+        b[i..i + 3].copy_from_slice(b" f=");
+        i += 3;
+        match m.f {
+            Some((_, n)) => i = super::numfmt::put_grid(b, i, n),
+            None => {
+                b[i] = b'-';
+                i += 1;
+            }
+        }
+        if let Some(l) = line {
+            b[i..i + 3].copy_from_slice(b"  @");
+            i = put_line(b, i + 3, l, &mut self.last_line);
+        }
+        b[i] = b'\n';
+        if let Err(e) = self.out.write_all(&b[..i + 1]) {
+            self.error = Some(e);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -496,6 +633,29 @@ mod tests {
         let ev = Event::Move { rapid: false, to, f: Some(300.0) };
         assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
         assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
+    }
+
+    #[test]
+    fn line_numbers_counted_up_are_written_as_put_int_writes_them() {
+        let mut last = (0, *b"000000000000000000000000", 1);
+        let mut seq: Vec<usize> = (0..12_000).collect();
+        seq.extend([99, 100, 100, 101, 999_999, 1_000_000, 5, 4, 3, 0, 0, 1, 9, 10, usize::MAX - 1, usize::MAX, 0]);
+        let mut x = 7usize;
+        for _ in 0..2000 {
+            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            let l = x >> (x % 60);
+            seq.extend([l, l.wrapping_add(1), l.wrapping_add(2)]);
+        }
+        let mut b = [0u8; 64];
+        for l in seq {
+            let end = put_line(&mut b, 3, l, &mut last);
+            let mut want = Vec::new();
+            super::super::numfmt::put_int(&mut want, l as i64);
+            if l > i64::MAX as usize {
+                want = l.to_string().into_bytes();
+            }
+            assert_eq!(&b[3..end], &want[..], "line {l}");
+        }
     }
 
     #[test]

@@ -105,17 +105,9 @@ pub fn is_decimal_scale(scale: f64) -> bool {
 /// a caller rounding many values to one increment checks once.
 #[inline]
 pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
-    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
-    let k = round((x * scale) * 1e6);
-    let n = if k.abs() < 1e15 {
-        // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
-        // k is, and otherwise at least 1e-6 from one, farther than its rounding error
-        // (under 1.2e-7), so the division rounds the same way. Saves a division.
-        let ki = k as i64;
-        let q = (ki.abs() + 500_000) / 1_000_000;
-        (if ki < 0 { -q } else { q }) as f64
-    } else {
-        round(k / 1e6)
+    let n = match decimal_count(x, scale) {
+        Some(n) => n as f64,
+        None => round(round((x * scale) * 1e6) / 1e6),
     };
     // Dividing the integer count by a power of ten gives the double nearest to the
     // decimal value, with no noise to clean.
@@ -124,6 +116,45 @@ pub fn round_to_decimal(x: f64, scale: f64) -> f64 {
         0.0
     } else {
         r
+    }
+}
+
+/// The count of increments [`round_to_decimal`] rounds `x` to (it returns the count
+/// divided by `scale`): `None` when it is not worked out in integers (`|x × scale|` of
+/// 10⁹ and more), where [`round_to_decimal`] takes floating point.
+#[inline]
+pub fn decimal_count(x: f64, scale: f64) -> Option<i64> {
+    // Pre-round the quotient so that 0.0005/0.001 = 0.49999.. still counts as a tie.
+    let raw = (x * scale) * 1e6;
+    // (NaN too takes the definition.)
+    if raw.abs() >= 2e15 || raw.is_nan() {
+        return decimal_count_of(round(raw));
+    }
+    // `round(raw)` in integers (below 2⁵² the cast truncates exactly, and the
+    // difference is exact): the same ties away from zero, without its float round trip.
+    let t = raw as i64;
+    let d = raw - t as f64;
+    let k = t + i64::from(d >= 0.5) - i64::from(d <= -0.5);
+    if k.unsigned_abs() < 1_000_000_000_000_000 {
+        // `round(k / 1e6)` in integers: below 1e15 the quotient is a tie exactly when
+        // k is, and otherwise at least 1e-6 from one, farther than its rounding error
+        // (under 1.2e-7), so the division rounds the same way. Saves a division.
+        let q = (k.abs() + 500_000) / 1_000_000;
+        Some(if k < 0 { -q } else { q })
+    } else {
+        None
+    }
+}
+
+/// [`decimal_count`] from `k`, the pre-rounded count of millionths of an increment (the
+/// definition, which [`decimal_count`] works out in integers).
+fn decimal_count_of(k: f64) -> Option<i64> {
+    if k.abs() < 1e15 {
+        let ki = k as i64;
+        let q = (ki.abs() + 500_000) / 1_000_000;
+        Some(if ki < 0 { -q } else { q })
+    } else {
+        None
     }
 }
 
@@ -206,6 +237,40 @@ pub fn fmt_num(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn decimal_count_in_integers_is_its_definition() {
+        let mut seed = 0x1234_5678_9abc_def0u64;
+        let mut next = move || {
+            seed = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = seed;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        };
+        let mut xs = vec![0.0, -0.0, 0.0005, -0.0005, 0.0015, 1e6, 999_999.999_5, 1e300, f64::NAN, f64::INFINITY];
+        for _ in 0..200_000 {
+            let r = next();
+            let mag = 10f64.powi((r % 14) as i32 - 6);
+            let x = (next() >> 11) as f64 / (1u64 << 53) as f64 * mag;
+            // Ties of the thousandth and their neighbours, and any bit pattern.
+            let tie = ((next() % 2_000_000) as f64 + 0.5) / 1000.0;
+            xs.extend([x, -x, tie, -tie, f64::from_bits(tie.to_bits() + 1), f64::from_bits(tie.to_bits() - 1)]);
+            xs.push(f64::from_bits(next()));
+            // Exact halves of the pre-rounded count (`raw` = k + 0.5) for each scale.
+            let half = (next() % 1_000_000_000_000) as f64 + 0.5;
+            for scale in [1e9, 1e10, 1e6] {
+                let x = half / scale;
+                xs.extend([x, -x, f64::from_bits(x.to_bits() + 1), f64::from_bits(x.to_bits() - 1)]);
+            }
+        }
+        for x in xs {
+            for scale in [1000.0, 10_000.0, 1.0] {
+                let want = decimal_count_of(round((x * scale) * 1e6));
+                assert_eq!(decimal_count(x, scale), want, "x = {x:e}, scale {scale}");
+            }
+        }
+    }
 
     #[test]
     fn int_conversion_rounds_half_away() {

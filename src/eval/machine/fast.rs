@@ -7,8 +7,8 @@
 //! untouched, to the general path. `src/eval/fast_tests.rs` and `tests/eval_fast.rs`
 //! run programs both ways and compare the traces byte for byte.
 
-use super::{Machine, Motion};
-use crate::eval::lit::LitBlock;
+use super::{AbsInc, Machine, Motion};
+use crate::eval::lit::{LitBlock, MAX_WORDS};
 use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;
 use std::cell::Cell;
@@ -44,10 +44,13 @@ impl Machine {
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
         let mut modal = self.modal();
+        let mut any_g = false;
         let mut feed_word: Option<f64> = None;
-        // Per axis, 1 + the index of its word (0: none); indices, not copies of the words.
-        let mut at = [0u8; 9];
-        let mut any_axis = false;
+        // The axis words: (axis, index of the word); a block naming an axis twice is left
+        // to the general path (the later word wins there).
+        let mut axes = [(0u8, 0u8); MAX_WORDS];
+        let mut n_axes = 0;
+        let mut seen_axes = 0u16;
         let words = b.words();
         // The block's span as the general path folds it from its words.
         let mut span = Span::default();
@@ -55,19 +58,24 @@ impl Machine {
             span = if span == Span::default() { w.span } else { span.to(w.span) };
             match w.letter {
                 b'G' => {
+                    any_g = true;
                     if !modal.g(self.fanuc, super::g_index(w.value)) {
                         return None;
                     }
                 }
                 b'F' => feed_word = Some(w.value),
                 c => {
-                    // A later word for the same axis wins, as in the general path.
-                    at[axis_index(c)?] = k as u8 + 1;
-                    any_axis = true;
+                    let i = axis_index(c)?;
+                    if seen_axes & (1 << i) != 0 {
+                        return None;
+                    }
+                    seen_axes |= 1 << i;
+                    *axes.get_mut(n_axes)? = (i as u8, k as u8);
+                    n_axes += 1;
                 }
             }
         }
-        if any_axis {
+        if n_axes > 0 {
             match modal.motion {
                 Motion::Rapid => {}
                 // The alarm of a feed move without any feed is the general path's.
@@ -76,21 +84,35 @@ impl Machine {
             }
         }
         // Commit, in the general path's order: modal codes, F, then the axes.
-        self.set_modal(modal);
+        if any_g {
+            self.set_modal(modal);
+        }
         if let Some(x) = feed_word {
             self.feed = Some(self.feed_value(x));
         }
-        if !any_axis {
+        if n_axes == 0 {
             return Some(None);
         }
-        for (i, &k) in at.iter().enumerate() {
-            let Some(w) = usize::from(k).checked_sub(1).and_then(|k| words.get(k)) else { continue };
+        let milli = self.milli_lengths();
+        for &(i, k) in &axes[..n_axes] {
+            let (i, w) = (usize::from(i), words.get(usize::from(k))?);
             // Each axis's target reads that axis's state only, so it can be written at once.
-            let v = self.length_of(self.fanuc && !w.point, w.value, (3..6).contains(&i));
-            let t = self.axis_target(i, v, w.mode, false);
-            self.applied[i] = self.active_offset(i);
+            let rotary = (3..6).contains(&i);
+            let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, rotary);
+            let off = self.active_offset(i);
+            let t = self.target_from(i, v, w.mode, false, off);
+            self.applied[i] = off;
             self.seen[i] = true;
             self.pos[i] = t;
+            // An absolute target is the word's length plus the offset: on the grid when both are.
+            let absolute = match w.mode {
+                AbsInc::Ac => true,
+                AbsInc::Ic => false,
+                AbsInc::Plain => self.absolute,
+            };
+            if let (true, Some(q)) = (absolute, q) {
+                self.set_grid(i, t, q, off);
+            }
         }
         Some(Some(span))
     }

@@ -1,0 +1,124 @@
+//! The trace position on the 0.001 grid: per axis, the integer the trace writes a
+//! coordinate from ([`grid_of`] of its `clean` value), remembered with the bits of the
+//! position it belongs to. A literal move sets it from the integer its word rounded to,
+//! so that nearly every move of a metric program reaches the writer as integers
+//! ([`GridMove`]) without a float being rounded or tested again.
+
+use super::{clean, Machine, Motion};
+use crate::eval::numfmt::{grid_of, GRID_LIMIT};
+use crate::eval::trace::GridMove;
+
+/// A grid entry for positions off the grid (no `n` with [`grid_of`]).
+const OFF_GRID: i64 = i64::MIN;
+
+/// The bound under which a position sum is exact enough for [`Machine::set_grid`]:
+/// 10⁸ thousandths (100 m).
+const SUM_LIMIT: u64 = 100_000_000;
+
+impl Machine {
+    /// Whether [`Machine::length_of`] of a linear (`[0]`) and of a rotary (`[1]`) axis
+    /// word rounds to the 0.001 grid in millimetres (its slot holds the increment, a
+    /// decimal scale of 1000, no inch conversion): what [`Machine::length_grid`] needs,
+    /// worked out once per block.
+    #[inline(always)]
+    pub(super) fn milli_lengths(&self) -> [bool; 2] {
+        let slot = self.scales[0];
+        let ok = slot.0 == self.inc_mm && self.inc_mm > 0.0 && slot.2 && slot.1 == 1000.0;
+        [ok && !self.inch, ok]
+    }
+
+    /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
+    /// length is `q / 1000`, `|q| <` [`GRID_LIMIT`]) when it rounded to the
+    /// 0.001 mm grid in millimetres (`milli`: [`Machine::milli_lengths`] for the axis).
+    #[inline(always)]
+    pub(super) fn length_grid(&self, milli: bool, bare: bool, x: f64, rotary: bool) -> (f64, Option<i64>) {
+        if milli {
+            // `length_of`'s way for this word: the increment `inc_mm`, rounded by
+            // `round_to_decimal(v, 1000.0)`.
+            let v = if bare && self.scaling { x * self.inc_mm } else { x };
+            if let Some(q) = crate::eval::value::decimal_count(v, 1000.0) {
+                // `round_to_decimal`'s result: `q as f64` is never `-0`.
+                let r = q as f64 / 1000.0;
+                return (r, (q.unsigned_abs() < GRID_LIMIT).then_some(q));
+            }
+        }
+        (self.length_of(bare, x, rotary), None)
+    }
+
+    /// The grid entries of a new machine: every position is `0.0`, whose grid value is 0.
+    pub(super) fn new_grid() -> [(u64, i64); 9] {
+        [(0f64.to_bits(), 0); 9]
+    }
+
+    /// Remembers that axis `i`, now at `t` = the word's length `q / 1000` (as
+    /// `round_to_decimal` gives it, `|q| <` [`GRID_LIMIT`]) plus the active offset `off`,
+    /// is written from `q + o`, where `off` = `o / 1000`.
+    ///
+    /// Why that is `grid_of(clean(t))`: with `off == 0.0`, `t` is `q / 1000` itself (a
+    /// double never `-0` plus a zero) and `clean` keeps it (`t × 10⁹` is within 0.25 of
+    /// the integer `q × 10⁶`). Otherwise, with `|q|, |o| < 10⁸`, `t` is within three
+    /// roundings of 2⁻⁵³ × 2·10⁵ of `(q + o) / 1000`, so `t × 10⁹` is within 0.1 of the
+    /// integer `(q + o) × 10⁶` (exact, under 2⁵³), which `clean` rounds to and divides:
+    /// the double nearest to `(q + o) / 1000`. Other sums are not remembered.
+    #[inline(always)]
+    pub(super) fn set_grid(&mut self, i: usize, t: f64, q: i64, off: f64) {
+        let n = if off == 0.0 {
+            q
+        } else {
+            match grid_of(off) {
+                Some(o) if q.unsigned_abs() < SUM_LIMIT && o.unsigned_abs() < SUM_LIMIT => q + o,
+                _ => return,
+            }
+        };
+        debug_assert!(n.unsigned_abs() < GRID_LIMIT);
+        debug_assert_eq!(grid_of(clean(t)), Some(n), "t = {t:e}, q = {q}, off = {off:e}");
+        self.grid[i] = (t.to_bits(), n);
+    }
+
+    /// The move just made as a [`GridMove`] (the event [`Machine::move_event`] gives, on
+    /// the grid), `None` when a coordinate or the feed is off the grid.
+    #[inline]
+    pub fn grid_move(&mut self) -> Option<GridMove> {
+        let rapid = self.motion == Motion::Rapid;
+        let mut to = [0i64; 9];
+        // The axes positioned so far as a bit set, worked out again only when they change.
+        if self.seen_mask.0 != self.seen {
+            let mut mask = 0u16;
+            for (i, &seen) in self.seen.iter().enumerate() {
+                mask |= u16::from(seen) << i;
+            }
+            self.seen_mask = (self.seen, mask);
+        }
+        let mask = self.seen_mask.1;
+        let mut left = mask;
+        while left != 0 {
+            let i = left.trailing_zeros() as usize;
+            left &= left - 1;
+            let (Some(&x), Some(entry)) = (self.pos.get(i), self.grid.get_mut(i)) else { return None };
+            let bits = x.to_bits();
+            if entry.0 != bits {
+                *entry = (bits, grid_of(clean(x)).unwrap_or(OFF_GRID));
+            }
+            if entry.1 == OFF_GRID {
+                return None;
+            }
+            if let Some(slot) = to.get_mut(i) {
+                *slot = entry.1;
+            }
+        }
+        let f = if rapid {
+            None
+        } else {
+            let x = self.feed?;
+            let bits = x.to_bits();
+            if self.feed_grid.0 != bits {
+                self.feed_grid = (bits, grid_of(x).unwrap_or(OFF_GRID));
+            }
+            if self.feed_grid.1 == OFF_GRID {
+                return None;
+            }
+            Some((x, self.feed_grid.1))
+        };
+        Some(GridMove { rapid, mask, to, f, line: 0 })
+    }
+}
