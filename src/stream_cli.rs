@@ -183,6 +183,7 @@ pub fn run(
     } else {
         let out = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
         let mut sink = eval::WriterSink::new(out, format, Box::new(line_of));
+        sink.block_lines = Some(main_id);
         let o = eval::run_stream(&mut db, pager, &mut callees, &opts, &mut sink);
         let err = sink.error.take().or_else(|| sink.out.flush().err());
         (o, err)

@@ -253,6 +253,7 @@ impl Reader<'_> {
                 };
                 b.span = span;
                 b.number = number;
+                b.line = raw.line;
                 true
             }
             Reader::Fan(r) => {
@@ -263,6 +264,7 @@ impl Reader<'_> {
                 };
                 b.span = span;
                 b.number = number;
+                b.line = raw.line;
                 true
             }
         }
