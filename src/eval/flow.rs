@@ -239,7 +239,15 @@ impl ChunkOps {
     /// filled in); `None` when the compact form is off. Undo with [`ChunkOps::unlit`] when
     /// the line is not such a block.
     pub fn lit(&mut self) -> Option<&mut LitBlock> {
-        self.0.ops.push(Op::Lit(LitBlock::new(Span::default(), None)?));
+        if !LitBlock::enabled() {
+            return None;
+        }
+        // A constant made after the vector has grown (`resize_with`, not `push`): it is then
+        // written straight into its slot; `push` of an op made at run time builds it on
+        // the stack and copies it twice (a memmove per re-read line).
+        const EMPTY: Op = Op::Lit(LitBlock::EMPTY);
+        let n = self.0.ops.len();
+        self.0.ops.resize_with(n + 1, || EMPTY);
         match self.0.ops.last_mut() {
             Some(Op::Lit(l)) => Some(l),
             _ => None,

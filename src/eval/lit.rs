@@ -81,10 +81,15 @@ impl LitBlock {
     }
 
     /// An empty block to fill with [`LitBlock::push`] from words read straight from the
-    /// text (a streamed chunk's re-read, see `crate::stream::reread`); `None` when the
-    /// compact form is off (tests), so such blocks stay IR there too.
-    pub fn new(span: Span, number: Option<u32>) -> Option<LitBlock> {
-        (!disabled()).then_some(LitBlock { span, number, line: 0, len: 0, words: [NO_WORD; MAX_WORDS] })
+    /// text (a streamed chunk's re-read, see `crate::stream::reread`). A constant, so that
+    /// it is copied straight from read-only data into its op slot (one built at run time
+    /// is built on the stack and copied twice: a memmove per re-read line).
+    pub const EMPTY: LitBlock =
+        LitBlock { span: Span { lo: 0, hi: 0 }, number: None, line: 0, len: 0, words: [NO_WORD; MAX_WORDS] };
+
+    /// Whether the compact form is on (tests turn it off, see [`without`]).
+    pub fn enabled() -> bool {
+        !disabled()
     }
 
     /// Adds a plain word (what [`LitBlock::of`] makes of a `Word` with a letter address and
