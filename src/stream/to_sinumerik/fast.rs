@@ -15,7 +15,7 @@
 use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
-use crate::stream::translate::fast::{push_decimal, shortest};
+use crate::stream::translate::fast::{push_decimal, push_short, shortest};
 use crate::stream::{ItemView, View};
 
 /// The block needs the general passes.
@@ -160,6 +160,9 @@ pub fn block<I: ItemView>(
 
 /// Appends `format!("{v}")` for a finite `v != 0` (Rust's shortest round-trip decimal).
 pub fn push_display(out: &mut Vec<u8>, v: f64) {
+    if push_short(out, v, false, false) {
+        return;
+    }
     match shortest(v.abs()) {
         Some((m, d)) => push_decimal(out, m, d, v < 0.0, false),
         None => {
