@@ -439,7 +439,8 @@ pub fn shortest(a: f64) -> Option<(u64, usize)> {
     None
 }
 
-fn push_u64(out: &mut Vec<u8>, mut n: u64) {
+/// Appends `n` in decimal (block numbers, integer parts).
+pub fn push_u64(out: &mut Vec<u8>, mut n: u64) {
     let mut buf = [0u8; 20];
     let mut k = buf.len();
     loop {
