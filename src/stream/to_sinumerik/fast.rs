@@ -15,7 +15,7 @@
 use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
-use crate::stream::translate::fast::{push_decimal, shortest};
+use crate::stream::translate::fast::{push_decimal, push_short, push_u64, shortest};
 use crate::stream::{ItemView, View};
 
 /// The block needs the general passes.
@@ -160,6 +160,9 @@ pub fn block<I: ItemView>(
 
 /// Appends `format!("{v}")` for a finite `v != 0` (Rust's shortest round-trip decimal).
 pub fn push_display(out: &mut Vec<u8>, v: f64) {
+    if push_short(out, v, false, false) {
+        return;
+    }
     match shortest(v.abs()) {
         Some((m, d)) => push_decimal(out, m, d, v < 0.0, false),
         None => {
@@ -167,20 +170,6 @@ pub fn push_display(out: &mut Vec<u8>, v: f64) {
             let _ = write!(out, "{v}");
         }
     }
-}
-
-fn push_u64(out: &mut Vec<u8>, mut n: u64) {
-    let mut buf = [0u8; 20];
-    let mut k = buf.len();
-    loop {
-        k -= 1;
-        buf[k] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    out.extend_from_slice(&buf[k..]);
 }
 
 #[cfg(test)]
