@@ -242,12 +242,13 @@ impl ChunkOps {
         if !LitBlock::enabled() {
             return None;
         }
-        // A constant made after the vector has grown (`resize_with`, not `push`): it is then
-        // written straight into its slot; `push` of an op made at run time builds it on
-        // the stack and copies it twice (a memmove per re-read line).
+        // A constant pushed after the vector has room: it is then written straight from
+        // read-only data into its slot. `push` of an op made at run time builds it on the
+        // stack and copies it twice (a memmove per re-read line); `resize_with` costs a
+        // call and a loop per line.
         const EMPTY: Op = Op::Lit(LitBlock::EMPTY);
-        let n = self.0.ops.len();
-        self.0.ops.resize_with(n + 1, || EMPTY);
+        self.0.ops.reserve(1);
+        self.0.ops.push(EMPTY);
         match self.0.ops.last_mut() {
             Some(Op::Lit(l)) => Some(l),
             _ => None,
