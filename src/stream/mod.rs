@@ -676,11 +676,6 @@ pub trait RereadSink {
     fn error(&mut self, d: Diagnostic);
 }
 
-/// Errors a re-reading reader may report on a line the first scan read without one: it
-/// does not know what came before its chunk (a PROC line after "code": a resumed reader
-/// has taken code as seen, so that a later PROC is reported where the first scan did).
-const CONTEXT_ERRORS: [&str; 1] = ["NC129"];
-
 /// Re-reads one chunk: the statements of `chunk`, parsed again from the file. With
 /// `direct`, plain blocks of constant letter words at top level skip the IR and are read
 /// into [`RereadSink::lit`] (the op the statement would flatten to).
@@ -718,9 +713,9 @@ pub fn reread(
             sink.stmt(s);
         }
     }
-    // Warnings were reported by the first scan; an error now means the text changed, but
-    // for one the first scan judged knowing what came before the chunk.
-    for d in reader.diags().iter().filter(|d| d.is_error() && !CONTEXT_ERRORS.contains(&d.code)) {
+    // Warnings were reported by the first scan; an error now means the text changed (the
+    // reader resumes with the state the first scan had at the chunk, so it judges alike).
+    for d in reader.diags().iter().filter(|d| d.is_error()) {
         sink.error(d.clone());
     }
     Ok(())

@@ -55,6 +55,8 @@ pub struct Resume {
     declared: std::collections::HashMap<String, crate::ir::DataType>,
     header_seen: bool,
     any: bool,
+    /// Whether a block of code came before (a `PROC` line is then an error, NC129).
+    seen_code: bool,
 }
 
 /// With the declarations in name order, so equal states print the same.
@@ -65,6 +67,7 @@ impl std::fmt::Debug for Resume {
             .field("declared", &declared)
             .field("header_seen", &self.header_seen)
             .field("any", &self.any)
+            .field("seen_code", &self.seen_code)
             .finish()
     }
 }
@@ -93,13 +96,18 @@ impl Reader {
         r.st.declared = from.declared.clone();
         r.header_seen = from.header_seen;
         r.any = from.any;
-        r.builder.resumed();
+        r.builder.resumed(from.seen_code);
         r
     }
 
     /// The state to resume from here (valid when [`Reader::at_top`]).
     pub fn checkpoint(&self) -> Resume {
-        Resume { declared: self.st.declared.clone(), header_seen: self.header_seen, any: self.any }
+        Resume {
+            declared: self.st.declared.clone(),
+            header_seen: self.header_seen,
+            any: self.any,
+            seen_code: self.builder.seen_code(),
+        }
     }
 
     /// Streaming: jump targets are kept as compact runs (memory follows the macro part).
@@ -267,17 +275,25 @@ impl Reader {
         &mut self,
         raw: &read::RawBlock<'_>,
         ascii: bool,
-        each: impl FnMut(u8, f64, bool, Span) -> bool,
+        mut each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
-        // Only `any` changes on a plain top-level line of a resumed reader (`builder.push`
-        // adds the statement and nothing else there: see `Builder::resumed_at_top`).
+        // Only `any` and, with a word, "code seen" change on a plain top-level line of a
+        // resumed reader (`builder.push` adds the statement and nothing else there: see
+        // `Builder::resumed_at_top`).
         if self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         // An ASCII line the fast reader takes is one normalising leaves alone (see
         // `fast::skeleton_raw`); a `%` line it declines (`%` is not a letter).
-        let got = fast::words_raw(raw, each)?;
+        let mut words = false;
+        let got = fast::words_raw(raw, |letter, value, point, span| {
+            words = true;
+            each(letter, value, point, span)
+        })?;
         self.any = true;
+        if words {
+            self.builder.code_seen();
+        }
         Some(got)
     }
 

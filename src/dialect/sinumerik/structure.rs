@@ -219,9 +219,21 @@ impl Builder {
         }
     }
 
-    /// Re-reading from a block boundary of a checked file (see `crate::stream`).
-    pub fn resumed(&mut self) {
+    /// Re-reading from a block boundary of a checked file (see `crate::stream`), with
+    /// `seen_code` as the first scan had it there (so a chunk's first `PROC` line is read
+    /// as the first scan read it).
+    pub fn resumed(&mut self, seen_code: bool) {
         self.resumed = true;
+        self.seen_code = seen_code;
+    }
+
+    /// Whether a block of code came before (for a resume checkpoint).
+    pub fn seen_code(&self) -> bool {
+        self.seen_code
+    }
+
+    /// A block with words was read past the builder (a re-read's direct route).
+    pub fn code_seen(&mut self) {
         self.seen_code = true;
     }
 
@@ -236,7 +248,8 @@ impl Builder {
     }
 
     /// A re-read at top level: a plain block read now only adds its statement (no jump
-    /// targets are recorded, `seen_code` is already set), so a caller may take it as read.
+    /// targets are recorded; `seen_code` only decides NC129, which the first scan already
+    /// reported for a file that runs), so a caller may take it as read.
     pub fn resumed_at_top(&self) -> bool {
         self.resumed && self.at_top() && self.program.body.is_empty()
     }
