@@ -244,30 +244,16 @@ impl Reader<'_> {
     /// `fanuc::Reader::plain_words`); `false`
     /// when it must go through [`Reader::line`] (`b` is then to be dropped).
     fn lit(&mut self, raw: &RawBlock<'_>, ascii: bool, b: &mut LitBlock) -> bool {
-        match self {
-            Reader::Sin(r) => {
-                let Some((span, number)) =
-                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
-                else {
-                    return false;
-                };
-                b.span = span;
-                b.number = number;
-                b.line = raw.line;
-                true
-            }
-            Reader::Fan(r) => {
-                let Some((span, number)) =
-                    r.plain_words(raw, ascii, |letter, value, point, span| b.push(letter, value, point, span))
-                else {
-                    return false;
-                };
-                b.span = span;
-                b.number = number;
-                b.line = raw.line;
-                true
-            }
-        }
+        let push = |letter, value, point, span| b.push(letter, value, point, span);
+        let got = match self {
+            Reader::Sin(r) => r.plain_words(raw, ascii, push),
+            Reader::Fan(r) => r.plain_words(raw, ascii, push),
+        };
+        let Some((span, number)) = got else { return false };
+        b.span = span;
+        b.number = number;
+        b.line = raw.line;
+        true
     }
 
     fn checkpoint(&self) -> Resume {
