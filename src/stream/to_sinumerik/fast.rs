@@ -15,7 +15,7 @@
 use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
-use crate::stream::translate::fast::{push_decimal, push_short, push_u64, shortest};
+use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
 use crate::stream::{ItemView, View};
 
 /// The block needs the general passes.
@@ -55,14 +55,7 @@ pub fn block<I: ItemView>(
     }
     let start = out.len();
     // The writer: skip, N number, items, comments, each after a space when not first.
-    match meta.skip {
-        Some(0) => out.push(b'/'),
-        Some(k) => {
-            out.push(b'/');
-            push_u64(out, u64::from(k));
-        }
-        None => {}
-    }
+    push_skip(out, meta.skip);
     if let Some(n) = &meta.number {
         if out.len() > start {
             out.push(b' ');

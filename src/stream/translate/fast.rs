@@ -140,14 +140,7 @@ impl Fast {
     /// follows after a space).
     fn open(&self, out: &mut Vec<u8>, m: &BlockMeta, first: bool) -> (usize, bool) {
         let start = out.len();
-        match m.skip {
-            Some(0) => out.push(b'/'),
-            Some(k) => {
-                out.push(b'/');
-                push_u64(out, u64::from(k));
-            }
-            None => {}
-        }
+        push_skip(out, m.skip);
         if first {
             if let Some(n) = m.number.as_ref().map(|n| n.value).filter(|n| (1..=MAX_N).contains(n)) {
                 if out.len() > start {
@@ -437,6 +430,18 @@ pub fn shortest(a: f64) -> Option<(u64, usize)> {
         }
     }
     None
+}
+
+/// Appends a block skip as both dialects write it: `/`, or `/k` for skip level k.
+pub fn push_skip(out: &mut Vec<u8>, skip: Option<u8>) {
+    match skip {
+        Some(0) => out.push(b'/'),
+        Some(k) => {
+            out.push(b'/');
+            push_u64(out, u64::from(k));
+        }
+        None => {}
+    }
 }
 
 /// Appends `n` in decimal (block numbers, integer parts).
