@@ -278,6 +278,24 @@ fn has_letter_o(b: &[u8]) -> bool {
     chunks.remainder().iter().any(|&c| c | 0x20 == b'o')
 }
 
+/// The fast readers' digit run: skips the ASCII digits of `b` from `i` and returns where
+/// they end; with `values`, each is appended to `mant` (wrapping: callers bound the digit
+/// count before they use the value). Inlined, so `values` is a constant at each caller.
+#[inline(always)]
+pub fn digit_run(b: &[u8], mut i: usize, values: bool, mant: &mut u64) -> usize {
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        if values {
+            *mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
+        }
+        i += 1;
+    }
+    i
+}
+
 /// The value of a plain decimal literal: ASCII digits with at most one point and at least
 /// one digit (`12`, `-` and exponents excluded: `1.5`, `.5`, `7.`), or `None` for any
 /// other text. Exactly `s.parse::<f64>()` for such text: when the digits, read as a whole

@@ -325,16 +325,7 @@ fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
     let lo = i;
     // All the digits as one whole number (the point left out), when wanted.
     let mut mant: u64 = 0;
-    while i < len {
-        let d = b[i].wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        if VALUES {
-            mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-        }
-        i += 1;
-    }
+    i = crate::read::digit_run(b, i, VALUES, &mut mant);
     let mut digits = i - lo;
     let mut point = false;
     let mut frac = 0;
@@ -342,16 +333,7 @@ fn word<const VALUES: bool>(seg: &Seg<'_>, at: &mut usize) -> Option<Word> {
         point = true;
         i += 1;
         let from = i;
-        while i < len {
-            let d = b[i].wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            if VALUES {
-                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-            }
-            i += 1;
-        }
+        i = crate::read::digit_run(b, i, VALUES, &mut mant);
         frac = i - from;
         digits += frac;
     }

@@ -262,32 +262,14 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
         // point: the value is then exact (see `read::scaled`), no second pass needed.
         let from = j;
         let mut mant: u64 = 0;
-        while j < len {
-            let d = b[j].wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            if S::VALUES {
-                mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-            }
-            j += 1;
-        }
+        j = crate::read::digit_run(b, j, S::VALUES, &mut mant);
         let mut digits = j - from;
         let point = j < len && b[j] == b'.';
         let mut frac = 0;
         if point {
             j += 1;
             let from = j;
-            while j < len {
-                let d = b[j].wrapping_sub(b'0');
-                if d > 9 {
-                    break;
-                }
-                if S::VALUES {
-                    mant = mant.wrapping_mul(10).wrapping_add(u64::from(d));
-                }
-                j += 1;
-            }
+            j = crate::read::digit_run(b, j, S::VALUES, &mut mant);
             frac = j - from;
             digits += frac;
         }
