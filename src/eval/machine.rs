@@ -67,14 +67,8 @@ pub struct Machine {
     pub scaling: bool,
     /// Least increment in mm (metric); inch increment is a tenth of it in inches.
     pub inc_mm: f64,
-    pub motion: Motion,
-    pub plane: Plane,
-    pub absolute: bool,
-    /// Lengths in inch (FANUC G20, Siemens G70/G700).
-    pub inch: bool,
-    /// Feeds in inch/min (FANUC G20, Siemens G700).
-    pub inch_feed: bool,
-    pub per_rev: bool,
+    /// Motion mode, plane, G90/G91, units and feed type (what [`Modal::g`] changes).
+    pub modal: Modal,
     /// Feed in mm/min (mm/rev under G95).
     pub feed: Option<f64>,
     pub speed: f64,
@@ -131,12 +125,14 @@ impl Machine {
             alarms,
             scaling,
             inc_mm,
-            motion: Motion::Rapid,
-            plane: Plane::XY,
-            absolute: true,
-            inch: false,
-            inch_feed: false,
-            per_rev: false,
+            modal: Modal {
+                motion: Motion::Rapid,
+                plane: Plane::XY,
+                absolute: true,
+                inch: false,
+                inch_feed: false,
+                per_rev: false,
+            },
             feed: None,
             speed: 0.0,
             spindle: SpindleDir::Stop,
@@ -205,7 +201,7 @@ impl Machine {
 
     #[inline]
     fn inc_in_unit(&self) -> f64 {
-        if self.inch {
+        if self.modal.inch {
             self.inc_mm / 10.0
         } else {
             self.inc_mm
@@ -223,7 +219,7 @@ impl Machine {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if bare && self.scaling { x * inc } else { x };
         // The slot of this unit holds `inc` (unless `inc_mm` changed since `new`): no search.
-        let slot = self.scales[usize::from(self.inch && !rotary)];
+        let slot = self.scales[usize::from(self.modal.inch && !rotary)];
         let v = if slot.0 == inc && inc > 0.0 {
             if slot.2 {
                 round_to_decimal(v, slot.1)
@@ -236,7 +232,7 @@ impl Machine {
                 None => round_to(v, inc),
             }
         };
-        if self.inch && !rotary {
+        if self.modal.inch && !rotary {
             v * 25.4
         } else {
             v
@@ -256,7 +252,7 @@ impl Machine {
         let inc = match mode {
             AbsInc::Ac => false,
             AbsInc::Ic => true,
-            AbsInc::Plain => !self.absolute && !g53,
+            AbsInc::Plain => !self.modal.absolute && !g53,
         };
         if g53 {
             // G53: machine coordinates, one block; G91 is ignored (docs/semantics.md).
@@ -271,7 +267,7 @@ impl Machine {
     }
 
     fn feed_value(&self, x: f64) -> f64 {
-        if self.inch_feed {
+        if self.modal.inch_feed {
             x * 25.4
         } else {
             x
@@ -423,9 +419,8 @@ impl Machine {
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
-            let mut modal = self.modal();
-            if modal.g(self.fanuc, gi) {
-                self.set_modal(modal);
+            // `Modal::g` changes nothing for a code it does not take.
+            if self.modal.g(self.fanuc, gi) {
                 continue;
             }
             match gi {
@@ -616,7 +611,7 @@ impl Machine {
         span: Span,
     ) -> Result<bool, Fault> {
         let any_axis = axes.iter().any(Option::is_some);
-        let arc_mode = matches!(self.motion, Motion::Cw | Motion::Ccw) && !g53 && !probe;
+        let arc_mode = matches!(self.modal.motion, Motion::Cw | Motion::Ccw) && !g53 && !probe;
         let any_ijk = ijk.iter().any(Option::is_some);
         if !any_axis && !(arc_mode && (any_ijk || ar.is_some())) {
             return Ok(false);
@@ -635,7 +630,7 @@ impl Machine {
                 }
             }
         }
-        let rapid = self.motion == Motion::Rapid && !probe;
+        let rapid = self.modal.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {
             return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
         }
@@ -660,8 +655,8 @@ impl Machine {
             out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
             return Ok(any_axis);
         }
-        let cw = self.motion == Motion::Cw;
-        let (u, v, _) = self.plane.axes();
+        let cw = self.modal.motion == Motion::Cw;
+        let (u, v, _) = self.modal.plane.axes();
         let s = (self.pos[u], self.pos[v]);
         let mut e = (target[u], target[v]);
         let ijk_of = |axis: usize| -> Option<(&WordVal, f64)> {
@@ -725,7 +720,7 @@ impl Machine {
         out.push((
             Event::Arc {
                 cw,
-                plane: self.plane,
+                plane: self.modal.plane,
                 to: self.trace_pos(),
                 center: [(u, clean(c.0)), (v, clean(c.1))],
                 f: self.feed,
@@ -753,7 +748,7 @@ impl Machine {
                     if let Some((w, x)) = a {
                         let v = self.length(w, *x, (3..6).contains(&i));
                         let slot = &mut self.offsets[n as usize][i];
-                        *slot = if self.absolute { v } else { *slot + v };
+                        *slot = if self.modal.absolute { v } else { *slot + v };
                     }
                 }
                 Ok(())

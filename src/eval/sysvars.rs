@@ -22,7 +22,7 @@ impl Interp<'_> {
 
     /// A position in the current input unit.
     fn in_unit(&self, mm: f64) -> f64 {
-        if self.m.inch {
+        if self.m.modal.inch {
             mm / 25.4
         } else {
             mm
@@ -44,33 +44,33 @@ impl Interp<'_> {
         let x = match n {
             3000 | 3006 => return Err(self.unmodelled(&format!("#{n} (write-only)"), span)),
             3001 | 3002 | 3003 | 3004 | 3901 | 3902 => self.sys_store.get(&format!("#{n}")).copied().unwrap_or(0.0),
-            4001 => match m.motion {
+            4001 => match m.modal.motion {
                 super::machine::Motion::Rapid => 0.0,
                 super::machine::Motion::Linear => 1.0,
                 super::machine::Motion::Cw => 2.0,
                 super::machine::Motion::Ccw => 3.0,
             },
-            4002 => match m.plane {
+            4002 => match m.modal.plane {
                 super::trace::Plane::XY => 17.0,
                 super::trace::Plane::ZX => 18.0,
                 super::trace::Plane::YZ => 19.0,
             },
             4003 => {
-                if m.absolute {
+                if m.modal.absolute {
                     90.0
                 } else {
                     91.0
                 }
             }
             4005 => {
-                if m.per_rev {
+                if m.modal.per_rev {
                     95.0
                 } else {
                     94.0
                 }
             }
             4006 => {
-                if m.inch {
+                if m.modal.inch {
                     20.0
                 } else {
                     21.0
@@ -94,7 +94,7 @@ impl Interp<'_> {
             4107 => m.d,
             4109 => {
                 let f = m.feed.unwrap_or(0.0);
-                if m.inch_feed {
+                if m.modal.inch_feed {
                     f / 25.4
                 } else {
                     f
@@ -150,7 +150,7 @@ impl Interp<'_> {
             }
             n => match Self::offset_var(n) {
                 Some((t, a)) => {
-                    let mm = if self.m.inch && !(3..6).contains(&a) { v * 25.4 } else { v };
+                    let mm = if self.m.modal.inch && !(3..6).contains(&a) { v * 25.4 } else { v };
                     self.m.offsets[t][a] = mm;
                     Ok(())
                 }
@@ -246,7 +246,7 @@ impl Interp<'_> {
                 let f = self.frame_index(idx.first(), span)?;
                 let a = self.axis_arg(idx.get(1), name, span)?;
                 self.uifr_component(idx, span)?;
-                let mm = if self.m.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
+                let mm = if self.m.modal.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
                 // Written, not active: G54.. must be selected again (dialects.md §7).
                 self.m.offsets[f][a] = mm;
                 Ok(())

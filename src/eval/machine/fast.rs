@@ -43,7 +43,7 @@ impl Machine {
     /// [`Modal::g`]: super::Modal::g
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
-        let mut modal = self.modal();
+        let mut modal = self.modal;
         let mut any_g = false;
         let mut feed_word: Option<f64> = None;
         // The axis words: (axis, index of the word); a block naming an axis twice is left
@@ -85,7 +85,7 @@ impl Machine {
         }
         // Commit, in the general path's order: modal codes, F, then the axes.
         if any_g {
-            self.set_modal(modal);
+            self.modal = modal;
         }
         if let Some(x) = feed_word {
             self.feed = Some(self.feed_value(x));
@@ -108,7 +108,7 @@ impl Machine {
             let absolute = match w.mode {
                 AbsInc::Ac => true,
                 AbsInc::Ic => false,
-                AbsInc::Plain => self.absolute,
+                AbsInc::Plain => self.modal.absolute,
             };
             if let (true, Some(q)) = (absolute, q) {
                 self.set_grid(i, t, q, off);
@@ -121,7 +121,7 @@ impl Machine {
     /// not passed back through the fast path's result: it is 170 bytes).
     #[inline]
     pub fn move_event(&self) -> Event {
-        let rapid = self.motion == Motion::Rapid;
+        let rapid = self.modal.motion == Motion::Rapid;
         Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }
     }
 }

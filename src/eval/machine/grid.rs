@@ -24,7 +24,7 @@ impl Machine {
     pub(super) fn milli_lengths(&self) -> [bool; 2] {
         let slot = self.scales[0];
         let ok = slot.0 == self.inc_mm && self.inc_mm > 0.0 && slot.2 && slot.1 == 1000.0;
-        [ok && !self.inch, ok]
+        [ok && !self.modal.inch, ok]
     }
 
     /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
@@ -79,7 +79,7 @@ impl Machine {
     /// the grid), `None` when a coordinate or the feed is off the grid.
     #[inline]
     pub fn grid_move(&mut self) -> Option<GridMove> {
-        let rapid = self.motion == Motion::Rapid;
+        let rapid = self.modal.motion == Motion::Rapid;
         let mut to = [0i64; 9];
         // The axes positioned so far as a bit set, worked out again only when they change.
         if self.seen_mask.0 != self.seen {

@@ -1,10 +1,13 @@
 //! The G codes that only change modal state (motion mode, plane, units, G90/G91, feed
 //! type): one definition for the general block path and the literal fast path.
 
-use super::{Machine, Motion};
+use super::Motion;
 use crate::eval::trace::Plane;
 
-/// The modal state a G code of [`Modal::g`] may change.
+/// The modal state a G code of [`Modal::g`] may change (`Machine::modal`).
+///
+/// `inch`: lengths in inch (FANUC G20, Siemens G70/G700); `inch_feed`: feeds in inch/min
+/// (FANUC G20, Siemens G700).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Modal {
     pub motion: Motion,
@@ -61,27 +64,5 @@ impl Modal {
             _ => return false,
         }
         true
-    }
-}
-
-impl Machine {
-    pub fn modal(&self) -> Modal {
-        Modal {
-            motion: self.motion,
-            plane: self.plane,
-            absolute: self.absolute,
-            inch: self.inch,
-            inch_feed: self.inch_feed,
-            per_rev: self.per_rev,
-        }
-    }
-
-    pub fn set_modal(&mut self, m: Modal) {
-        self.motion = m.motion;
-        self.plane = m.plane;
-        self.absolute = m.absolute;
-        self.inch = m.inch;
-        self.inch_feed = m.inch_feed;
-        self.per_rev = m.per_rev;
     }
 }
