@@ -11,21 +11,9 @@ use nctrans::eval::machine::set_fast_path;
 use nctrans::eval::{NoCallees, RunOptions};
 use nctrans::span::SourceDb;
 use std::fmt::Write as _;
-
-/// SplitMix64: deterministic test data.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// A coordinate: on the grid, or off it (five decimals, an inch program's values).
 fn num(r: &mut Rng) -> String {

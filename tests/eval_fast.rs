@@ -11,6 +11,9 @@ use nctrans::eval::{self, Event, Outcome, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -129,24 +132,6 @@ fn corpus_programs_run_the_same_with_the_fast_path() {
         }
     }
     assert!(count > 50 || !root().join("corpus/in").exists(), "only {count} corpus programs ran");
-}
-
-/// SplitMix64: deterministic test data.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    fn pick<'s>(&mut self, xs: &[&'s str]) -> &'s str {
-        xs[self.below(xs.len() as u64) as usize]
-    }
 }
 
 /// A number as CAM posts and people write it: sign, digits, with or without a point,
