@@ -139,7 +139,33 @@ fn corpus_programs_run_the_same_with_the_fast_path() {
 fn num(r: &mut Rng, fanuc: bool) -> String {
     let sign = if r.below(3) == 0 { "-" } else { "" };
     let int = r.next() % [1, 10, 100, 1000, 100_000][r.below(5) as usize];
-    match r.below(7) {
+    match r.below(10) {
+        // 0..=15 digits (1 at least), 0..=6 of them after the point: the compact words'
+        // thousandths worked out from the digits (`value::thousandths`), up to where they
+        // are not and the value is rounded instead.
+        7 | 8 => {
+            let digits = 1 + r.below(15) as usize;
+            let frac = r.below(digits.min(6) as u64 + 1) as usize;
+            let mut d: String = (0..digits).map(|_| char::from(b'0' + r.below(10) as u8)).collect();
+            if frac > 3 && r.below(2) == 0 {
+                // A tie of the thousandth, or next to one.
+                let at = digits - frac + 3;
+                let mut tail = r.pick(&["5", "49999999", "50000001", "4", "6"]).to_string();
+                while tail.len() < frac - 3 {
+                    tail.push('0');
+                }
+                tail.truncate(frac - 3);
+                d.replace_range(at.., &tail);
+            }
+            if fanuc && frac == 0 && r.below(2) == 0 {
+                return format!("{sign}{d}");
+            }
+            format!("{sign}{}.{}", &d[..digits - frac], &d[digits - frac..])
+        }
+        9 => format!(
+            "{sign}{}",
+            r.pick(&["0.0005", "1.2345", "0.00049999", "0.0015", "999.9995", "0.00050001", "2.0025"])
+        ),
         0 if fanuc => format!("{sign}{int}"),
         0 => format!("{sign}{int}."),
         1 => format!("{sign}{int}.{}", r.below(10)),

@@ -9,6 +9,7 @@ mod rng;
 
 use eval_support::*;
 use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::eval::lit::NO_MILLI;
 use nctrans::eval::{self, trace, Origin, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use nctrans::stream::{self, lines::Input, paged::Pager};
@@ -30,7 +31,10 @@ fn pages(path: &Path, dialect: Dialect, chunk_ops: usize, direct: bool) -> Optio
     for (prog, p) in ix.programs.iter().enumerate() {
         for c in &p.chunks {
             match pager.page(prog, c.op_base) {
-                Ok(Some(page)) => out.push(without_lines(&format!("{prog} {} {:?}", c.op_base, page.ops()))),
+                Ok(Some(page)) => {
+                    known_millis_are_right(page.ops());
+                    out.push(without_lines(&format!("{prog} {} {:?}", c.op_base, page.ops())))
+                }
                 Ok(None) => out.push(format!("{prog} {} none", c.op_base)),
                 Err(d) => out.push(format!("{prog} {} error {}", c.op_base, d.code)),
             }
@@ -45,19 +49,40 @@ fn dialect_of(path: &Path) -> Dialect {
     nctrans::detect_dialect(&path.to_string_lossy(), &text)
 }
 
-/// `text` with the line numbers of compact blocks (`line: N`) blanked: only the direct
-/// route knows a block's line (the general one builds it from IR, which has spans only);
-/// tests/eval_fast.rs checks that the carried line is the line of the block's span.
-fn without_lines(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(i) = rest.find("line: ") {
-        out.push_str(&rest[..i + 6]);
-        rest = rest[i + 6..].trim_start_matches(|c: char| c.is_ascii_digit());
-        out.push('_');
+/// Every count of thousandths a compact word carries (`LitWord::milli`, which only the
+/// direct route works out, from the digits) is the one the machine would round its
+/// value to.
+fn known_millis_are_right(ops: &[nctrans::eval::flow::Op]) {
+    for op in ops {
+        let nctrans::eval::flow::Op::Lit(b) = op else { continue };
+        for w in b.words() {
+            if w.milli != NO_MILLI {
+                let want = nctrans::eval::value::decimal_count(w.value, 1000.0);
+                assert_eq!(Some(i64::from(w.milli)), want, "{w:?}");
+            }
+        }
     }
-    out.push_str(rest);
-    out
+}
+
+/// `text` with the line numbers of compact blocks (`line: N`) and the counts of
+/// thousandths of their words (`milli: N`, checked by [`known_millis_are_right`]) blanked:
+/// only the direct route knows them (the general one builds blocks from IR, which has
+/// spans and values only); tests/eval_fast.rs checks that the carried line is the line of
+/// the block's span.
+fn without_lines(text: &str) -> String {
+    let mut text = text.to_string();
+    for key in ["line: ", "milli: "] {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text.as_str();
+        while let Some(i) = rest.find(key) {
+            out.push_str(&rest[..i + key.len()]);
+            rest = rest[i + key.len()..].trim_start_matches(|c: char| c == '-' || c.is_ascii_digit());
+            out.push('_');
+        }
+        out.push_str(rest);
+        text = out;
+    }
+    text
 }
 
 /// Same pages both ways; returns how many lines took the direct route.

@@ -29,18 +29,49 @@ pub struct LitBlock {
 }
 
 /// One word: upper-case letter, the literal's value and whether it had a decimal point
-/// (the FANUC decimal-point rule), its `AC`/`IC` form, its span.
+/// (the FANUC decimal-point rule), its `AC`/`IC` form, its span, and when its reader
+/// worked it out from the digits, the count of thousandths `decimal_count(value, 1000.0)`
+/// gives ([`crate::eval::value::thousandths`] with the sign; [`NO_MILLI`]: not known).
+/// 24 bytes, as without the count (it fills what was padding).
 #[derive(Clone, Copy, Debug)]
 pub struct LitWord {
     pub value: f64,
     pub span: Span,
+    pub milli: i32,
     pub letter: u8,
     pub point: bool,
     pub mode: AbsInc,
 }
 
-const NO_WORD: LitWord =
-    LitWord { value: 0.0, span: Span { lo: 0, hi: 0 }, letter: b'A', point: false, mode: AbsInc::Plain };
+/// [`LitWord::milli`] of a word whose count of thousandths is not known.
+pub const NO_MILLI: i32 = i32::MIN;
+
+/// [`LitWord::milli`] for a literal read as the digits `mant` with `frac` of them after the
+/// point (`None`: not read so, e.g. more than 15 digits), negated with `neg`.
+#[inline(always)]
+pub fn milli(neg: bool, digits: Option<(u64, usize)>) -> i32 {
+    match digits.and_then(|(mant, frac)| crate::eval::value::thousandths(mant, frac)) {
+        // At most 10⁹ (see `thousandths`).
+        Some(q) => {
+            let q = q as i32;
+            if neg {
+                -q
+            } else {
+                q
+            }
+        }
+        None => NO_MILLI,
+    }
+}
+
+const NO_WORD: LitWord = LitWord {
+    value: 0.0,
+    span: Span { lo: 0, hi: 0 },
+    milli: NO_MILLI,
+    letter: b'A',
+    point: false,
+    mode: AbsInc::Plain,
+};
 
 impl LitBlock {
     /// The compact form of `b`, when it has at most [`MAX_WORDS`] items, each a word with
@@ -69,7 +100,7 @@ impl LitBlock {
                 },
                 _ => return None,
             };
-            *slot = LitWord { value, span: w.span, letter, point, mode };
+            *slot = LitWord { value, span: w.span, milli: NO_MILLI, letter, point, mode };
         }
         Some(LitBlock {
             span: b.meta.span,
@@ -93,14 +124,16 @@ impl LitBlock {
     }
 
     /// Adds a plain word (what [`LitBlock::of`] makes of a `Word` with a letter address and
-    /// a number literal `value`, negated when written with `-`); `false` when the block is
-    /// full or `letter` is not upper case (the block then must stay IR).
-    pub fn push(&mut self, letter: u8, value: f64, point: bool, span: Span) -> bool {
+    /// a number literal `value`, negated when written with `-`), with its [`LitWord::milli`];
+    /// `false` when the block is full or `letter` is not upper case (the block then must
+    /// stay IR).
+    #[inline(always)]
+    pub fn push(&mut self, letter: u8, value: f64, point: bool, milli: i32, span: Span) -> bool {
         let Some(slot) = self.words.get_mut(usize::from(self.len)) else { return false };
         if !letter.is_ascii_uppercase() {
             return false;
         }
-        *slot = LitWord { value, span, letter, point, mode: AbsInc::Plain };
+        *slot = LitWord { value, span, milli, letter, point, mode: AbsInc::Plain };
         self.len += 1;
         true
     }

@@ -240,14 +240,13 @@ impl Reader<'_> {
     }
 
     /// Re-reading: `raw` straight into the compact op `b` when it is a plain block of
-    /// constant letter words at top level (see `sinumerik::Reader::plain_words`,
-    /// `fanuc::Reader::plain_words`); `false`
+    /// constant letter words at top level (see `sinumerik::Reader::lit`,
+    /// `fanuc::Reader::lit`); `false`
     /// when it must go through [`Reader::line`] (`b` is then to be dropped).
     fn lit(&mut self, raw: &RawBlock<'_>, ascii: bool, b: &mut LitBlock) -> bool {
-        let push = |letter, value, point, span| b.push(letter, value, point, span);
         let got = match self {
-            Reader::Sin(r) => r.plain_words(raw, ascii, push),
-            Reader::Fan(r) => r.plain_words(raw, ascii, push),
+            Reader::Sin(r) => r.lit(raw, ascii, b),
+            Reader::Fan(r) => r.lit(raw, ascii, b),
         };
         let Some((span, number)) = got else { return false };
         b.span = span;

@@ -41,7 +41,7 @@ pub fn parse_fast(seg: &Seg<'_>) -> Option<Parts> {
 /// the one `plain` makes of its `RawWord`.
 pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>)> {
     let mut items = Vec::with_capacity(6);
-    let (skip, number, stop) = plain_words::<true>(seg, |letter, value, point, span, vspan| {
+    let (skip, number, stop) = plain_words::<true>(seg, |letter, value, point, span, vspan, _| {
         items.push(Item {
             kind: ItemKind::Word(crate::ir::Word {
                 addr: Addr::Letter(letter),
@@ -60,7 +60,7 @@ pub fn plain_line(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, Vec<Item>
 /// there would be.
 pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
     let mut words = 0;
-    let (skip, number, stop) = plain_words::<false>(seg, |_, _, _, _, _| {
+    let (skip, number, stop) = plain_words::<false>(seg, |_, _, _, _, _, _| {
         words += 1;
         true
     })?;
@@ -76,7 +76,7 @@ pub fn skeleton(seg: &Seg<'_>) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
 #[allow(clippy::type_complexity)]
 pub fn skeleton_line(seg: &Seg<'_>) -> Option<((usize, usize, usize), Option<SeqNo>, bool)> {
     let mut words = false;
-    let (_, number, stop) = plain_words::<false>(seg, |_, _, _, _, _| {
+    let (_, number, stop) = plain_words::<false>(seg, |_, _, _, _, _, _| {
         words = true;
         true
     })?;
@@ -93,7 +93,8 @@ pub fn lit_line(
     seg: &Seg<'_>,
     mut each: impl FnMut(u8, f64, bool, Span) -> bool,
 ) -> Option<((usize, usize, usize), Option<SeqNo>)> {
-    let (_, number, stop) = plain_words::<true>(seg, |letter, value, point, span, _| each(letter, value, point, span))?;
+    let (_, number, stop) =
+        plain_words::<true>(seg, |letter, value, point, span, _, _| each(letter, value, point, span))?;
     Some((cut(seg.text.as_bytes(), stop)?, number))
 }
 
@@ -120,6 +121,27 @@ pub fn lit_raw(
     Some((norm.span(lo, end), number))
 }
 
+/// [`lit_raw`] straight into the compact block `b` (`Reader::lit`): each word is pushed as
+/// (letter, value with its sign, point, [`LitWord::milli`] from its digits, span) without a
+/// callback between; the line is declined where `b.push` declines a word (`b` is then to
+/// be dropped). The block's span and number.
+///
+/// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+pub fn lit_block(
+    raw: &crate::read::RawBlock<'_>,
+    file: crate::span::FileId,
+    b: &mut crate::eval::lit::LitBlock,
+) -> Option<(Span, Option<SeqNo>)> {
+    let norm = crate::read::Normalised::unchanged(raw);
+    let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
+    let (_, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _, digits| {
+        let neg = value.is_sign_negative();
+        b.push(letter, value, point, crate::eval::lit::milli(neg, digits), span)
+    })?;
+    let (lo, _, end) = cut(seg.text.as_bytes(), stop)?;
+    Some((norm.span(lo, end), number))
+}
+
 /// For a streamed translator's first scan of a whole line taken as it is
 /// (`Reader::scan_plain_words`): [`skeleton_raw`] and [`lit_raw`] in one pass (the words
 /// are read with their values; no decision depends on that, see [`plain_words`]). `None`
@@ -132,7 +154,7 @@ pub fn scan_words_raw(
     let norm = crate::read::Normalised::unchanged(raw);
     let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
     let mut words = false;
-    let (skip, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _| {
+    let (skip, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _, _| {
         words = true;
         each(letter, value, point, span)
     })?;
@@ -164,14 +186,16 @@ fn cut(b: &[u8], stop: usize) -> Option<(usize, usize, usize)> {
 }
 
 /// All of the above: `item` gets each item's word (upper-case letter, value with its sign
-/// when `VALUES`, else 0, point, span of the word and of its value) and may decline the
+/// when `VALUES`, else 0, point, span of the word and of its value, and when `VALUES` and
+/// at most 15 digits, the digits as one number and how many follow the point, else
+/// `None`) and may decline the
 /// block by returning `false`; every other decision is the same whatever `item` does. Also
 /// gives where the block stopped: the end of `seg`, or a `;` (which only a whole line read
 /// as one, see [`skeleton_line`], can hold).
 #[inline(always)]
 fn plain_words<const VALUES: bool>(
     seg: &Seg<'_>,
-    mut item: impl FnMut(u8, f64, bool, Span, Span) -> bool,
+    mut item: impl FnMut(u8, f64, bool, Span, Span, Option<(u64, usize)>) -> bool,
 ) -> Option<(Option<u8>, Option<SeqNo>, usize)> {
     let b = seg.text.as_bytes();
     let mut i = 0;
@@ -204,7 +228,8 @@ fn plain_words<const VALUES: bool>(
             _ => {
                 let value = if VALUES { w.value(seg) } else { 0.0 };
                 let value = if w.neg == Some(true) { -value } else { value };
-                if !item(w.letter, value, w.point, seg.span(w.start, w.hi), seg.span(w.vstart, w.hi)) {
+                let digits = w.mant.filter(|_| w.digits <= 15).map(|m| (m, w.frac));
+                if !item(w.letter, value, w.point, seg.span(w.start, w.hi), seg.span(w.vstart, w.hi), digits) {
                     return None;
                 }
             }

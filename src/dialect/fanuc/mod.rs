@@ -256,6 +256,32 @@ impl<'o> Reader<'o> {
         ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<u32>)> {
+        let file = self.file;
+        self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, file, each))
+    }
+
+    /// [`Reader::plain_words`] straight into the compact block `b` (`fast::lit_block`), for
+    /// the streamed re-read; `b` is to be dropped when this gives `None`.
+    #[inline]
+    pub fn lit(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        b: &mut crate::eval::lit::LitBlock,
+    ) -> Option<(Span, Option<u32>)> {
+        let file = self.file;
+        self.reread_plain(raw, ascii, |raw| fast::lit_block(raw, file, b))
+    }
+
+    /// What [`Reader::plain_words`] and [`Reader::lit`] share: the reader's conditions, and
+    /// its state after `take` read the line (it gives the block's span and number).
+    #[inline(always)]
+    fn reread_plain(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        take: impl FnOnce(&read::RawBlock<'_>) -> Option<(Span, Option<crate::ir::SeqNo>)>,
+    ) -> Option<(Span, Option<u32>)> {
         if !self.resumed || self.index_only || self.tape == Tape::Closed || !(ascii || raw.text.is_ascii()) {
             return None;
         }
@@ -266,7 +292,7 @@ impl<'o> Reader<'o> {
         // An ASCII line the fast reader takes is one normalising leaves alone (it declines
         // every letter O), and neither a `%` line nor one with a comment. Exactly one block
         // (an end-of-block `;` may close it), cut as `line` cuts it.
-        let (span, number) = fast::lit_raw(raw, self.file, each)?;
+        let (span, number) = take(raw)?;
         let number = number.map(|n| n.value);
         self.programs.last_mut()?.push_drained(span, number);
         Some((span, number))

@@ -6,6 +6,7 @@
 
 use super::parse::word_item;
 use super::structure::{Line, LineKind};
+use crate::eval::lit::LitBlock;
 use crate::ir::*;
 use crate::read::Normalised;
 use crate::span::Span;
@@ -60,6 +61,19 @@ pub fn words_raw(
     let norm = Normalised::unchanged(raw);
     let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
     words(&norm, whole, each)
+}
+
+/// [`words_raw`] straight into the compact block `b` (`crate::stream::reread`): each
+/// word is pushed as (letter, value, point, [`LitWord::milli`] from its digits, span),
+/// without a callback between; the line is declined where `b.push` declines a word (`b`
+/// is then to be dropped). Gives the line's span, its number and whether it has words.
+///
+/// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+pub fn lit_raw(raw: &crate::read::RawBlock<'_>, b: &mut LitBlock) -> Option<(Span, Option<u32>, bool)> {
+    let norm = Normalised::unchanged(raw);
+    let head = read(&norm, &mut Lit(b))?;
+    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+    Some((whole, head.number.map(|n| n.value), head.words > 0))
 }
 
 /// For a streamed translator's first scan of a plain top-level line
@@ -172,6 +186,32 @@ impl<F: FnMut(u8, f64, bool, Span) -> bool> Sink for Each<F> {
             return (self.0)(letter, n.value, n.point, span).then_some(());
         }
         (self.0)(w.letter, w.value(), w.point, norm.span(w.start, w.end)).then_some(())
+    }
+}
+
+/// Plain words into a compact block (see [`lit_raw`]): what [`Each`] hands its callback.
+struct Lit<'b>(&'b mut LitBlock);
+
+impl Sink for Lit<'_> {
+    const VALUES: bool = true;
+    #[inline(always)]
+    fn word(&mut self, w: Found<'_>, norm: &Normalised<'_>) -> Option<()> {
+        let value = w.value();
+        // At most 15 digits (`read` declines more): `mant` is the digits' number.
+        let mut milli = crate::eval::lit::milli(w.neg, Some((w.mant, w.frac)));
+        if w.letter == b'M' {
+            // Exactly the item `Items` builds: a plain word, or the block is declined.
+            let (kind, span) = item(&w, norm);
+            let ItemKind::Word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(e), .. }) = kind else {
+                return None;
+            };
+            let ExprKind::Num(n) = e.kind else { return None };
+            if n.value.to_bits() != value.to_bits() {
+                milli = crate::eval::lit::NO_MILLI;
+            }
+            return self.0.push(letter, n.value, n.point, milli, span).then_some(());
+        }
+        self.0.push(w.letter, value, w.point, milli, norm.span(w.start, w.end)).then_some(())
     }
 }
 

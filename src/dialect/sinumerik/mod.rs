@@ -280,21 +280,49 @@ impl Reader {
         // Only `any` and, with a word, "code seen" change on a plain top-level line of a
         // resumed reader (`builder.push` adds the statement and nothing else there: see
         // `Builder::resumed_at_top`).
+        self.reread_plain(raw, ascii, |raw| {
+            let mut words = false;
+            let (span, number) = fast::words_raw(raw, |letter, value, point, span| {
+                words = true;
+                each(letter, value, point, span)
+            })?;
+            Some((span, number, words))
+        })
+    }
+
+    /// [`Reader::plain_words`] straight into the compact block `b` (`fast::lit_raw`), for
+    /// the streamed re-read; `b` is to be dropped when this gives `None`.
+    #[inline]
+    pub fn lit(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        b: &mut crate::eval::lit::LitBlock,
+    ) -> Option<(Span, Option<u32>)> {
+        self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, b))
+    }
+
+    /// What [`Reader::plain_words`] and [`Reader::lit`] share: the reader's conditions, and
+    /// its state after `read` took the line (it gives the span, number and whether the
+    /// line has words).
+    #[inline(always)]
+    fn reread_plain(
+        &mut self,
+        raw: &read::RawBlock<'_>,
+        ascii: bool,
+        take: impl FnOnce(&read::RawBlock<'_>) -> Option<(Span, Option<u32>, bool)>,
+    ) -> Option<(Span, Option<u32>)> {
         if self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         // An ASCII line the fast reader takes is one normalising leaves alone (see
         // `fast::skeleton_raw`); a `%` line it declines (`%` is not a letter).
-        let mut words = false;
-        let got = fast::words_raw(raw, |letter, value, point, span| {
-            words = true;
-            each(letter, value, point, span)
-        })?;
+        let (span, number, words) = take(raw)?;
         self.any = true;
         if words {
             self.builder.code_seen();
         }
-        Some(got)
+        Some((span, number))
     }
 
     /// Closes what is open, checks jump targets; the program holds what was not drained.

@@ -98,7 +98,7 @@ impl Machine {
             let (i, w) = (usize::from(i), words.get(usize::from(k))?);
             // Each axis's target reads that axis's state only, so it can be written at once.
             let rotary = (3..6).contains(&i);
-            let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, rotary);
+            let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, w.milli, rotary);
             let off = self.active_offset(i);
             let t = self.target_from(i, v, w.mode, false, off);
             self.applied[i] = off;

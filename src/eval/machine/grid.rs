@@ -30,13 +30,23 @@ impl Machine {
     /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
     /// length is `q / 1000`, `|q| <` [`GRID_LIMIT`]) when it rounded to the
     /// 0.001 mm grid in millimetres (`milli`: [`Machine::milli_lengths`] for the axis).
+    /// `known`: the word's [`LitWord::milli`], `decimal_count(x, 1000.0)` when its reader
+    /// worked it out from the digits, which then is not worked out again.
+    ///
+    /// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
     #[inline(always)]
-    pub(super) fn length_grid(&self, milli: bool, bare: bool, x: f64, rotary: bool) -> (f64, Option<i64>) {
+    pub(super) fn length_grid(&self, milli: bool, bare: bool, x: f64, known: i32, rotary: bool) -> (f64, Option<i64>) {
         if milli {
             // `length_of`'s way for this word: the increment `inc_mm`, rounded by
             // `round_to_decimal(v, 1000.0)`.
-            let v = if bare && self.scaling { x * self.inc_mm } else { x };
-            if let Some(q) = crate::eval::value::decimal_count(v, 1000.0) {
+            let scaled = bare && self.scaling;
+            let count = if !scaled && known != crate::eval::lit::NO_MILLI {
+                Some(i64::from(known))
+            } else {
+                let v = if scaled { x * self.inc_mm } else { x };
+                crate::eval::value::decimal_count(v, 1000.0)
+            };
+            if let Some(q) = count {
                 // `round_to_decimal`'s result: `q as f64` is never `-0`.
                 let r = q as f64 / 1000.0;
                 return (r, (q.unsigned_abs() < GRID_LIMIT).then_some(q));
