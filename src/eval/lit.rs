@@ -138,6 +138,12 @@ impl LitBlock {
         true
     }
 
+    /// Drops the words pushed so far.
+    #[inline(always)]
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
     pub fn words(&self) -> &[LitWord] {
         &self.words[..usize::from(self.len)]
     }

@@ -132,6 +132,18 @@ pub fn lit_block(
     file: crate::span::FileId,
     b: &mut crate::eval::lit::LitBlock,
 ) -> Option<(Span, Option<SeqNo>)> {
+    // Most lines are taken by `quick::lit_words`: the words it takes are ones
+    // [`plain_words`] takes alike (no N, O or M, which it judges, no G it refuses), in a
+    // line without a skip, blanks at either end, or a `;`, so cut from its start to its end.
+    let plain = |w: &crate::dialect::quick::Quick| match w.letter {
+        b'N' | b'O' | b'M' => false,
+        b'G' => w.point || w.signed || !matches!(w.mant, 10 | 65 | 66 | 67),
+        _ => true,
+    };
+    if crate::dialect::quick::lit_words(raw.text, raw.start, b, plain) {
+        return Some((Span::new(raw.start, raw.start + raw.text.len() as u32), None));
+    }
+    b.clear();
     let norm = crate::read::Normalised::unchanged(raw);
     let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
     let (_, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _, digits| {

@@ -9,7 +9,7 @@
 mod args;
 mod block;
 mod expr;
-mod fast;
+pub(crate) mod fast;
 mod macro_a;
 mod names;
 mod parse;

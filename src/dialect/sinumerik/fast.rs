@@ -69,10 +69,19 @@ pub fn words_raw(
 /// is then to be dropped). Gives the line's span, its number and whether it has words.
 ///
 /// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+///
+/// Most lines are taken by `quick::lit_words` (the words it takes are ones [`read`] reads
+/// alike: no M, which `item` judges, no letter [`read`] leaves to the grammar, and those
+/// it does not begin with: N, lower case); the others, read by [`read`].
 pub fn lit_raw(raw: &crate::read::RawBlock<'_>, b: &mut LitBlock) -> Option<(Span, Option<u32>, bool)> {
+    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
+    let plain = |w: &crate::dialect::quick::Quick| !matches!(w.letter, b'L' | b'M' | b'N' | b'O' | b'P');
+    if crate::dialect::quick::lit_words(raw.text, raw.start, b, plain) {
+        return Some((whole, None, true));
+    }
+    b.clear();
     let norm = Normalised::unchanged(raw);
     let head = read(&norm, &mut Lit(b))?;
-    let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
     Some((whole, head.number.map(|n| n.value), head.words > 0))
 }
 

@@ -7,7 +7,7 @@
 
 mod errors;
 mod expr;
-mod fast;
+pub(crate) mod fast;
 mod names;
 mod parse;
 mod structure;
