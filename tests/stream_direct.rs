@@ -164,6 +164,17 @@ fn line(r: &mut Rng) -> String {
         // A letter O for a zero that, read without normalising, would be an O word; a
         // letter O in a comment (normalising leaves it); full-width text in a comment.
         20 => r.pick(&["G0O1 X2", "g0o1 Y3", "N10 O5", "G1 X1 ;GO1", "G1 X1 ;\u{FF38}2"]).into(),
+        // CAM output as it nearly always is (the quick reader's shape, `dialect::quick`).
+        21..=26 => {
+            let mut words = vec![r.pick(&["G1", "G0", "G1", "G01"]).to_string()];
+            for axis in ["X", "Y", "Z", "F"] {
+                if r.chance(70) {
+                    let v = num(r);
+                    words.push(format!("{axis}{}", if axis == "F" { v.trim_start_matches(['-', '+']) } else { &v }));
+                }
+            }
+            words.join(" ")
+        }
         _ => {
             let mut s = String::new();
             if r.chance(40) {
