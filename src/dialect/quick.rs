@@ -2,7 +2,8 @@
 //! Y-0.475 Z-0.0225 F800`, for the streamed re-read of both dialects only (see
 //! `sinumerik::fast::lit_raw`, `fanuc::fast::lit_block`): upper-case letters, each
 //! followed at once by an optional sign and at most seven digits before and seven after an
-//! optional point, the words one blank apart, nothing before the first or after the last.
+//! optional point (up to seven in all are read in one go), the words one blank apart,
+//! nothing before the first or after the last.
 //! It reads eight bytes at a time where the dialects' readers go byte by byte. A line of
 //! any other shape, or with a word its dialect's `ok` refuses, is left to the dialect's
 //! full reader, which then takes exactly the same decisions on it as before; on the lines
@@ -44,20 +45,34 @@ pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, ok: impl Fn(&Quick) -
         let neg = sign == b'-';
         let signed = neg || sign == b'+';
         j += usize::from(signed);
-        let (n, whole) = digits8(load8(s, j));
-        j += n;
-        let point = s.get(j) == Some(&b'.');
-        let (mut mant, mut frac) = (whole, 0);
-        if point {
-            j += 1;
-            let (m, part) = digits8(load8(s, j));
-            j += m;
-            // Eight digits in a run may go on (the full reader reads them).
-            let Some(&p) = POW10.get(m) else { return false };
-            mant = whole * p + part;
-            frac = m;
+        let w = load8(s, j);
+        let n = run(w);
+        let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
+        let (mant, frac);
+        if !point {
+            (mant, frac) = (value(w, n), 0);
+            j += n;
+        } else {
+            // The digits on both sides of the point closed up into one word (the byte
+            // after the window shifted in on top): one conversion for the number.
+            let low = (1u64 << (8 * n)) - 1;
+            let after = u64::from(s.get(j + 8).copied().unwrap_or(0));
+            let joined = (w & low) | ((w >> 8) & !low & !(0xFF << 56)) | (after << 56);
+            let all = run(joined);
+            if all < 8 {
+                (mant, frac) = (value(joined, all), all - n);
+                j += all + 1;
+            } else {
+                // Longer: the digits after the point from their own window.
+                let at = j + n + 1;
+                let rest = load8(s, at);
+                let m = run(rest);
+                let Some(&p) = POW10.get(m) else { return false };
+                (mant, frac) = (value(w, n) * p + value(rest, m), m);
+                j = at + m;
+            }
         }
-        // None is no number.
+        // None is no number; eight in a run may go on (the full reader reads them).
         if n + frac == 0 || n == 8 {
             return false;
         }
@@ -93,6 +108,12 @@ fn load8(s: &[u8], i: usize) -> u64 {
     if let Some(Ok(w)) = s.get(i..i + 8).map(<[u8; 8]>::try_from) {
         return u64::from_le_bytes(w);
     }
+    // Near the end of a line (its last word): its last eight bytes, shifted down.
+    let len = s.len();
+    if let (Some(Ok(w)), Some(k @ 1..=7)) = (s.get(len.wrapping_sub(8)..).map(<[u8; 8]>::try_from), len.checked_sub(i))
+    {
+        return u64::from_le_bytes(w) >> (8 * (8 - k));
+    }
     let mut w = [0u8; 8];
     let rest = s.get(i..).unwrap_or(&[]);
     for (d, &c) in w.iter_mut().zip(rest) {
@@ -101,28 +122,39 @@ fn load8(s: &[u8], i: usize) -> u64 {
     u64::from_le_bytes(w)
 }
 
-/// The run of ASCII digits `w` starts with (its first byte lowest): how many (0..=8) and
-/// their value as a whole number.
+const LO: u64 = 0x0101_0101_0101_0101;
+
+/// How many ASCII digits `w` starts with (its first byte lowest), 0..=8.
 #[inline(always)]
-fn digits8(w: u64) -> (usize, u64) {
-    const LO: u64 = 0x0101_0101_0101_0101;
+fn run(w: u64) -> usize {
     // Digits become 0..=9; a byte is one exactly when it is below 10 then: adding 0x76 to
     // its low seven bits sets bit 7 from 10 on (no carry out of the byte), and bytes from
     // 0x80 on have it set already.
     let v = w ^ (LO * 0x30);
     let non = (((v & (LO * 0x7F)) + LO * 0x76) | v) & (LO * 0x80);
-    let n = (non.trailing_zeros() / 8) as usize;
+    (non.trailing_zeros() / 8) as usize
+}
+
+/// The whole number the first `n` bytes of `w` (digits, see [`run`]) spell.
+#[inline(always)]
+fn value(w: u64, n: usize) -> u64 {
     if n == 0 {
-        return (0, 0);
+        return 0;
     }
     // The digits moved to the top bytes, zeros (leading zero digits) below them; then
     // pairs, fours and eights of digits are combined: each step's lanes hold at most 99,
     // 9999 and 99999999, so nothing carries into the next lane.
-    let d = v << (64 - 8 * n);
+    let d = (w ^ (LO * 0x30)) << (64 - 8 * n.min(8));
     let d = (d.wrapping_mul(10).wrapping_add(d >> 8)) & 0x00FF_00FF_00FF_00FF;
     let d = (d.wrapping_mul(100).wrapping_add(d >> 16)) & 0x0000_FFFF_0000_FFFF;
-    let d = (d.wrapping_mul(10_000).wrapping_add(d >> 32)) & 0xFFFF_FFFF;
-    (n, d)
+    (d.wrapping_mul(10_000).wrapping_add(d >> 32)) & 0xFFFF_FFFF
+}
+
+/// [`run`] and [`value`] at once.
+#[cfg(test)]
+fn digits8(w: u64) -> (usize, u64) {
+    let n = run(w);
+    (n, value(w, n))
 }
 
 #[cfg(test)]

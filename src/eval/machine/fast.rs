@@ -52,10 +52,11 @@ impl Machine {
         let mut n_axes = 0;
         let mut seen_axes = 0u16;
         let words = b.words();
-        // The block's span as the general path folds it from its words.
-        let mut span = Span::default();
+        // The block's span as the general path folds it from its words (from the first
+        // word's span on: a word's span is never empty, so never the fold's empty start).
+        let mut span = words.first().map_or(Span::default(), |w| w.span);
         for (k, w) in words.iter().enumerate() {
-            span = if span == Span::default() { w.span } else { span.to(w.span) };
+            span = span.to(w.span);
             match w.letter {
                 b'G' => {
                     any_g = true;
