@@ -173,3 +173,12 @@ pub fn without<T>(f: impl FnOnce() -> T) -> T {
     DISABLED.with(|d| d.set(false));
     r
 }
+
+#[cfg(test)]
+mod size_tests {
+    /// The thousandths count fills what was padding: a page of compact blocks is no larger.
+    #[test]
+    fn a_word_is_24_bytes() {
+        assert_eq!(std::mem::size_of::<super::LitWord>(), 24);
+    }
+}
