@@ -8,7 +8,7 @@
 //! run programs both ways and compare the traces byte for byte.
 
 use super::{AbsInc, Machine, Motion};
-use crate::eval::lit::{LitBlock, MAX_WORDS};
+use crate::eval::lit::LitBlock;
 use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;
 use std::cell::Cell;
@@ -46,10 +46,9 @@ impl Machine {
         let mut modal = self.modal;
         let mut any_g = false;
         let mut feed_word: Option<f64> = None;
-        // The axis words: (axis, index of the word); a block naming an axis twice is left
-        // to the general path (the later word wins there).
-        let mut axes = [(0u8, 0u8); MAX_WORDS];
-        let mut n_axes = 0;
+        // The axis words: the axes as bits, and the index of each one's word; a block
+        // naming an axis twice is left to the general path (the later word wins there).
+        let mut word_of = [0u8; 9];
         let mut seen_axes = 0u16;
         let words = b.words();
         // The block's span as the general path folds it from its words (from the first
@@ -71,12 +70,11 @@ impl Machine {
                         return None;
                     }
                     seen_axes |= 1 << i;
-                    *axes.get_mut(n_axes)? = (i as u8, k as u8);
-                    n_axes += 1;
+                    *word_of.get_mut(i)? = k as u8;
                 }
             }
         }
-        if n_axes > 0 {
+        if seen_axes != 0 {
             match modal.motion {
                 Motion::Rapid => {}
                 // The alarm of a feed move without any feed is the general path's.
@@ -91,13 +89,17 @@ impl Machine {
         if let Some(x) = feed_word {
             self.feed = Some(self.feed_value(x));
         }
-        if n_axes == 0 {
+        if seen_axes == 0 {
             return Some(None);
         }
         let milli = self.milli_lengths();
-        for &(i, k) in &axes[..n_axes] {
-            let (i, w) = (usize::from(i), words.get(usize::from(k))?);
-            // Each axis's target reads that axis's state only, so it can be written at once.
+        // Each axis's target reads that axis's state only, so the axes can be written at
+        // once and in any order (here by axis).
+        let mut left = seen_axes;
+        while left != 0 {
+            let i = left.trailing_zeros() as usize;
+            left &= left - 1;
+            let Some(w) = word_of.get(i).and_then(|&k| words.get(usize::from(k))) else { break };
             let rotary = (3..6).contains(&i);
             let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, w.milli, rotary);
             let off = self.active_offset(i);
