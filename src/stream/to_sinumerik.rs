@@ -17,6 +17,7 @@
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
+use super::translate::digits::Lit;
 use super::translate::Fallback;
 use super::{Index, ItemView, PlainWord, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
@@ -28,7 +29,7 @@ use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
 use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
-use crate::read::LineEnding;
+use crate::read::{LineEnding, RawBlock};
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
 use std::collections::BTreeMap;
@@ -295,14 +296,14 @@ impl State<'_> {
 
     /// A block after the first chunk through the fast path: its line is written (after the
     /// statements waiting for the passes); `false` when the passes must translate it.
-    fn fast<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I]) -> bool {
+    fn fast<'t, I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], lit: impl Fn(&I) -> Option<Lit<'t>>) -> bool {
         // A plan with variables fails in `flush_rest`: the fast path must not write past it.
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(meta, items, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -437,7 +438,7 @@ impl State<'_> {
 
     /// [`State::push`] of the words of a plain line when the fast path takes them; else
     /// nothing has changed and the caller pushes its statement.
-    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         if self.first {
             return false;
         }
@@ -453,7 +454,7 @@ impl State<'_> {
             }
         }
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
-        if self.fast(meta, words) {
+        if self.fast(meta, words, |w| Lit::of(line, w.span)) {
             return true;
         }
         (self.arc, self.buf_real) = (arc, buf_real);
@@ -467,7 +468,7 @@ impl State<'_> {
         }
         if !self.first {
             if let StmtKind::Block(b) = &s.kind {
-                if self.fast(&b.meta, &b.items) {
+                if self.fast(&b.meta, &b.items, |_| None) {
                     return;
                 }
             }
@@ -514,13 +515,13 @@ impl super::WordsSink for Sink<'_, '_> {
         self.st.push(s);
     }
 
-    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         if self.st.stop.is_some() {
             return true;
         }
         // Constant letter words without a label: straight when their G codes are.
         let straight = words.iter().all(|w| w.letter != b'G' || plain_g(w.value));
-        if prog != 0 || !straight || !self.st.push_plain(meta, words) {
+        if prog != 0 || !straight || !self.st.push_plain(meta, words, line) {
             return false;
         }
         self.blocks += 1;

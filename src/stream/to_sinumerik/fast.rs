@@ -15,6 +15,7 @@
 use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
+use crate::stream::translate::digits::Lit;
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
 use crate::stream::{ItemView, View};
 
@@ -41,10 +42,14 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
 
 /// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
 /// is the arc mode after the block's own G codes (as the words pass sees it). On `Err` what
-/// was appended is to be discarded.
-pub fn block<I: ItemView>(
+/// was appended is to be discarded. `lit` gives an item's literal, when known: its digits
+/// are written where they are the written form.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn block<'t, I: ItemView>(
     meta: &BlockMeta,
     items: &[I],
+    lit: impl Fn(&I) -> Option<Lit<'t>>,
     arc: bool,
     opts: &Options,
     eol: &[u8],
@@ -82,6 +87,8 @@ pub fn block<I: ItemView>(
         };
         let (Some(letter), Some((value, point))) = (letter, num) else { return Err(Declined) };
         let mut v = value;
+        // Whether `v` is still the value of the literal.
+        let mut as_written = true;
         match letter {
             b'G' => {
                 let g10 = v * 10.0;
@@ -90,11 +97,13 @@ pub fn block<I: ItemView>(
                 }
                 let Some(sg) = map_g(g10.round() as u32)? else { continue };
                 v = f64::from(sg) / 10.0;
+                as_written = false;
             }
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
                     v = scale(opts, v);
+                    as_written = false;
                 }
             }
         }
@@ -115,7 +124,9 @@ pub fn block<I: ItemView>(
         if v == 0.0 {
             out.push(b'0');
         } else if (1e-6..1e15).contains(&v.abs()) {
-            push_display(out, v);
+            if !(as_written && lit(it).is_some_and(|l| l.push_display(out))) {
+                push_display(out, v);
+            }
         } else {
             return Err(Declined);
         }

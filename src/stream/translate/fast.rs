@@ -13,7 +13,9 @@
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
 use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
 use crate::passes::words::SAME_G;
-use crate::stream::{ItemView, View};
+use crate::read::RawBlock;
+use crate::stream::translate::digits::Lit;
+use crate::stream::{ItemView, PlainWord, View};
 
 /// Highest block number FANUC keeps (`passes::labels` drops the others).
 const MAX_N: u32 = 99999;
@@ -64,15 +66,46 @@ impl Fast {
 
     /// [`Fast::block`] of a block's meta and items (IR items, or the words of a plain line).
     pub fn plain<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
+        self.with_lits(meta, items, |_| None, out)
+    }
+
+    /// [`Fast::plain`] of the words of a plain line `line`: their numbers are written from
+    /// their digits where those are the written form ([`Lit`]).
+    pub fn words(
+        &mut self,
+        meta: &BlockMeta,
+        words: &[PlainWord],
+        line: &RawBlock<'_>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
+        self.with_lits(meta, words, |w| Lit::of(line, w.span), out)
+    }
+
+    /// [`Fast::plain`] with `lit` giving an item's literal, when known.
+    #[inline(always)]
+    fn with_lits<'t, I: ItemView>(
+        &mut self,
+        meta: &BlockMeta,
+        items: &[I],
+        lit: impl Fn(&I) -> Option<Lit<'t>>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
         let start = out.len();
-        let r = self.lines(meta, items, out);
+        let r = self.lines(meta, items, lit, out);
         if r.is_err() {
             out.truncate(start);
         }
         r
     }
 
-    fn lines<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
+    #[inline(always)]
+    fn lines<'t, I: ItemView>(
+        &mut self,
+        meta: &BlockMeta,
+        items: &[I],
+        lit: impl Fn(&I) -> Option<Lit<'t>>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
         if meta.label.is_some() {
             return Err(Declined);
         }
@@ -107,7 +140,7 @@ impl Fast {
                         out.push(b' ');
                     }
                     sep = true;
-                    self.word(letter, num.map(|n| n.0), folded, dwell, out)?;
+                    self.word(letter, num.map(|n| n.0), folded, dwell, || lit(it), out)?;
                 }
             }
             self.close(out, line, meta, true);
@@ -181,13 +214,16 @@ impl Fast {
     /// One word: the words pass's address rules, the expression pass's folding of `-n`,
     /// then `Writer::word`.
     /// `letter`: the word's when it has a letter address and an expression value; `num`
-    /// its value when a number as written, `folded` after folding `-n`.
-    fn word(
+    /// its value when a number as written, `folded` after folding `-n`; `lit` the literal
+    /// of `folded`, when known.
+    #[inline(always)]
+    fn word<'t>(
         &self,
         letter: Option<u8>,
         num: Option<f64>,
         folded: Option<f64>,
         dwell: bool,
+        lit: impl FnOnce() -> Option<Lit<'t>>,
         out: &mut Vec<u8>,
     ) -> Result<(), Declined> {
         let mut letter = letter.ok_or(Declined)?;
@@ -205,7 +241,7 @@ impl Fast {
                 } else {
                     return Err(Declined);
                 };
-                return self.num_word(b'G', g, out);
+                return self.num_word(b'G', g, None, out);
             }
             b'F' if dwell => letter = b'X',
             b'S' if dwell => return Err(Declined),
@@ -217,15 +253,16 @@ impl Fast {
             // `F[v/25.4]`: a quotient is bracketed in an address; neither constant is.
             out.push(letter);
             out.push(b'[');
-            number(out, v)?;
+            number(out, v, lit())?;
             out.extend_from_slice(b"/25.4]");
             return Ok(());
         }
-        self.num_word(letter, v, out)
+        self.num_word(letter, v, lit(), out)
     }
 
-    /// `Writer::word` for a constant value.
-    fn num_word(&self, letter: u8, v: f64, out: &mut Vec<u8>) -> Result<(), Declined> {
+    /// `Writer::word` for a constant value (`lit`: its literal, when known).
+    #[inline(always)]
+    fn num_word(&self, letter: u8, v: f64, lit: Option<Lit<'_>>, out: &mut Vec<u8>) -> Result<(), Declined> {
         out.push(letter);
         if matches!(letter, b'G' | b'M') {
             if (0.0..10.0).contains(&v) && v.fract() == 0.0 {
@@ -241,17 +278,21 @@ impl Fast {
         let int_addr = matches!(letter, b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O');
         if int_addr && v.fract() == 0.0 {
             // An integer in an integer address: written as it is, without a warning.
-            push_num(out, v, false);
+            if !lit.is_some_and(|l| l.push_fanuc(out, false)) {
+                push_num(out, v, false);
+            }
             return Ok(());
         }
-        number(out, v)
+        number(out, v, lit)
     }
 }
 
 /// A constant in a dimension or an expression (`Writer::number`): declined when it has more
-/// than 8 digits, where the general writer rounds it with a warning.
-fn number(out: &mut Vec<u8>, v: f64) -> Result<(), Declined> {
-    if push_num(out, v, true) {
+/// than 8 digits, where the general writer rounds it with a warning. From the digits of
+/// `lit` (its literal) when they are the written form.
+#[inline(always)]
+fn number(out: &mut Vec<u8>, v: f64, lit: Option<Lit<'_>>) -> Result<(), Declined> {
+    if lit.is_some_and(|l| l.push_fanuc(out, true)) || push_num(out, v, true) {
         Ok(())
     } else {
         Err(Declined)
