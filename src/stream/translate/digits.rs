@@ -164,6 +164,134 @@ impl<'t> Lit<'t> {
     }
 }
 
+/// How a word's number is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// `fast::push_num(v, true)`: FANUC's dimension, with a point.
+    Point,
+    /// `fast::push_num(v, false)` of an integer `v`: FANUC's integer address.
+    Int,
+    /// `format!("{v}")`: Sinumerik.
+    Display,
+}
+
+/// [`Src::push_word`] on a word of `2 <= n <= $w` bytes held in one integer of type `$t`
+/// (`$w` bytes wide): its first byte (the letter) in the low byte, zeros above it.
+/// Made for `u64` (nearly every CAM word) and `u128` (the longer ones), as the
+/// arithmetic on a `u128` costs about twice as much.
+macro_rules! word_in {
+    ($name:ident, $t:ty, $w:expr) => {
+        #[inline(always)]
+        fn $name(t: &[u8], a: usize, n: usize, letter: u8, form: Form, out: &mut Vec<u8>) -> bool {
+            const fn bytes(b: u8) -> $t {
+                <$t>::from_le_bytes([b; $w])
+            }
+            let mask: $t = <$t>::MAX >> (($w - n) * 8);
+            // 16 (8) bytes from the letter on or, near the line's end, up to the word's end.
+            let w = if let Some(x) = t.get(a..a + $w) {
+                let Ok(x) = x.try_into() else { return false };
+                <$t>::from_le_bytes(x) & mask
+            } else {
+                let Some(x) = (a + n).checked_sub($w).and_then(|lo| t.get(lo..a + n)) else { return false };
+                let Ok(x) = x.try_into() else { return false };
+                <$t>::from_le_bytes(x) >> (($w - n) * 8)
+            };
+            let head = w as u32;
+            let s = usize::from((head >> 8) as u8 == b'-');
+            let first = (head >> (8 + 8 * s)) as u8;
+            let second = (head >> (16 + 8 * s)) as u8;
+            // `+`, a blank, a bare point, a leading zero before another digit.
+            if !first.is_ascii_digit() || (first == b'0' && second.is_ascii_digit()) {
+                return false;
+            }
+            // The point: the one byte of the literal equal to `.` (exact zero-byte test).
+            let d = w ^ bytes(b'.');
+            let nonzero = (((d & bytes(0x7f)) + bytes(0x7f)) | d) & bytes(0x80);
+            let dots = !nonzero & mask & bytes(0x80) & !0xff;
+            let dot = dots != 0;
+            // Trailing `0`s after the point: the word's last byte moved to the top, then the
+            // zero bytes of `w ^ "000…"` counted from there (the point stops them).
+            let strip = if dot { (((w ^ bytes(b'0')) << (($w - n) * 8)).leading_zeros() / 8) as usize } else { 0 };
+            let mut end = n - strip;
+            let nf = if dot { end - (dots.trailing_zeros() / 8) as usize - 1 } else { 0 };
+            let sig = end - 1 - s - usize::from(dot);
+            let mut w = (w & !0xff) | <$t>::from(letter);
+            match form {
+                Form::Point => {
+                    if sig > 8 || (!dot && sig > 7) {
+                        return false;
+                    }
+                    if !dot {
+                        if end >= $w {
+                            return false;
+                        }
+                        w |= <$t>::from(b'.') << (end * 8);
+                        end += 1;
+                    }
+                }
+                Form::Int => {
+                    if nf > 0 || sig > 7 {
+                        return false;
+                    }
+                    end -= usize::from(dot);
+                }
+                Form::Display => end -= usize::from(dot && nf == 0),
+            }
+            let at = out.len();
+            out.extend_from_slice(&w.to_le_bytes());
+            out.truncate(at + end);
+            true
+        }
+    };
+}
+
+word_in!(word_u64, u64, 8);
+word_in!(word_u128, u128, 16);
+
+/// Where a plain word's text is: its line and its span (letter included).
+#[derive(Clone, Copy)]
+pub struct Src<'t> {
+    pub line: &'t RawBlock<'t>,
+    pub span: Span,
+}
+
+impl<'t> Src<'t> {
+    /// The literal, for [`Lit`]'s writers.
+    #[inline(always)]
+    pub fn lit(self) -> Option<Lit<'t>> {
+        Lit::of(self.line, self.span)
+    }
+
+    /// Appends `letter` and the number `v != 0` of this word in `form`, when the literal
+    /// is already that form up to its trailing zeros (and a point FANUC adds): `-` or no
+    /// sign, no leading zero but the one before a point, no blank, and (`Point`, `Int`) at
+    /// most 8 significant digits, 7 without a fraction. The word (at most 15 bytes) is
+    /// handled in one integer (no loop over its bytes) and written whole, then cut to its
+    /// length. `false`, writing nothing, for the rest ([`Lit`] and the value writers take
+    /// them).
+    #[inline(always)]
+    pub fn push_word(self, letter: u8, v: f64, form: Form, out: &mut Vec<u8>) -> bool {
+        if v == 0.0 {
+            return false;
+        }
+        let (Some(a), Some(hi)) =
+            (self.span.lo.checked_sub(self.line.start), self.span.hi.checked_sub(self.line.start))
+        else {
+            return false;
+        };
+        let (a, hi) = (a as usize, hi as usize);
+        let Some(n) = hi.checked_sub(a) else { return false };
+        let t = self.line.text.as_bytes();
+        if (2..=8).contains(&n) {
+            word_u64(t, a, n, letter, form, out)
+        } else if (2..16).contains(&n) {
+            word_u128(t, a, n, letter, form, out)
+        } else {
+            false
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
