@@ -402,4 +402,44 @@ mod tests {
         }
         assert!(taken > 300_000, "{taken}");
     }
+
+    /// `Src::push_word` (the word read as one integer, from the letter on or up to the
+    /// word's end) against the value writers, with the word at the start, in the middle and
+    /// at the end of lines of every length.
+    #[test]
+    fn whole_words_are_what_the_value_writers_write() {
+        let mut r = Rng(0x0bad_cafe_1234_5678);
+        let mut taken = [0usize; 3];
+        for i in 0..300_000 {
+            let lit = literal(&mut r);
+            let Some(v) = value(&lit) else { continue };
+            let before = " ".repeat((r.next() % 12) as usize);
+            let after = " Y1".repeat((r.next() % 6) as usize);
+            let letter = [b'X', b'x', b'F'][i % 3];
+            let text = format!("{before}{}{lit}{after}", letter as char);
+            let line = RawBlock { text: &text, start: 1000, line: 1 };
+            let lo = 1000 + before.len() as u32;
+            let src = Src { line: &line, span: Span::new(lo, lo + 1 + lit.len() as u32) };
+            let up = letter.to_ascii_uppercase();
+            for (k, form) in [Form::Point, Form::Int, Form::Display].into_iter().enumerate() {
+                let mut a = Vec::new();
+                if !src.push_word(up, v, form, &mut a) {
+                    assert!(a.is_empty(), "{text:?}");
+                    continue;
+                }
+                taken[k] += 1;
+                let mut b = vec![up];
+                match form {
+                    Form::Point => assert!(push_num(&mut b, v, true), "{text:?}"),
+                    Form::Int => {
+                        assert_eq!(v.fract(), 0.0, "{text:?}");
+                        push_num(&mut b, v, false);
+                    }
+                    Form::Display => b.extend_from_slice(format!("{v}").as_bytes()),
+                }
+                assert_eq!(String::from_utf8_lossy(&a), String::from_utf8_lossy(&b), "{text:?} {form:?}");
+            }
+        }
+        assert!(taken.iter().all(|&n| n > 20_000), "{taken:?}");
+    }
 }
