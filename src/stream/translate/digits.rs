@@ -9,6 +9,9 @@
 //! are further apart than a double's spacing), so no shorter decimal reads back as
 //! `round(D)`, and the shortest one is `D` stripped. The readers compute the value from the
 //! same digits, correctly rounded (`read::exact`, `read::scaled`, or Rust's parser).
+//! [`Src::push_word`] takes the usual word (`X-0.4750`, `F800`) whole in one integer and
+//! writes it in one store; [`Lit`] takes the rest of the literals (a `+`, leading zeros,
+//! a bare point) byte by byte.
 //! Whatever the conditions here do not cover (more digits, a scaled value, an exponent,
 //! blanks inside the word) is written from the value, as before. The differential tests
 //! (`tests/stream_translate_fast.rs`, `tests/stream_to_sinumerik_fast.rs`, the unit tests
