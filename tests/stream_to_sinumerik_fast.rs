@@ -216,3 +216,82 @@ fn corpus_programs_stream_block_by_block_to_the_whole_translation() {
         assert!(streamed.iter().filter(|s| *s == name).count() == 2, "{name} not streamed: {streamed:?}");
     }
 }
+
+/// A number as the digit writer (`stream::translate::digits`) sees it: 1..15 digits with
+/// 0..6 decimals, leading and trailing zeros, `-`/`+`, a bare point at either end, blanks
+/// after the address or the sign, big and tiny values, and now and then more digits.
+fn literal(r: &mut Rng) -> String {
+    let sign = ["", "", "-", "+", "- "][r.index(5)];
+    let lead = "0".repeat(if r.chance(20) { r.index(3) } else { 0 });
+    let trail = "0".repeat(if r.chance(30) { r.index(4) } else { 0 });
+    let body = match r.below(10) {
+        0 => {
+            let digits = 1 + r.below(17) as u32;
+            format!("{}.", r.below(10u64.pow(digits)))
+        }
+        1 => format!("0.{}{}", "0".repeat(r.index(9)), 1 + r.below(99)),
+        2 => format!("{lead}{}", r.below(100_000)),
+        3 => format!(".{}{trail}", r.below(100_000)),
+        4 => format!("{lead}0.{trail}"),
+        _ => {
+            let digits = 1 + r.index(16);
+            let dec = r.index(7).min(digits);
+            let n = r.below(10u64.pow(digits as u32));
+            let s = format!("{n:0digits$}");
+            let (int, frac) = s.split_at(digits - dec);
+            format!("{lead}{int}.{frac}{trail}")
+        }
+    };
+    format!("{sign}{body}")
+}
+
+/// Blocks of generated numbers (with and without a point, so scaled or not, under two
+/// increment profiles), written from their digits by the fast path, against the whole
+/// translation.
+#[test]
+fn literal_digits_take_the_fast_path_to_the_whole_translation() {
+    let dir = scratch("literals");
+    let mut r = Rng(0x11f7_5eed_0042);
+    let letters = ["X", "Y", "Z", "I", "J", "K", "A", "B", "C", "F", "U", "W", "X "];
+    let mut streamed = 0;
+    for case in 0..16 {
+        let mut t = String::from("%\nO1234 (LITERALS)\n");
+        let mut arc = false;
+        for _ in 0..1500 {
+            let mut b = String::new();
+            if r.chance(30) {
+                let g = r.pick(&["G0 ", "G1 ", "G2 ", "G3 ", "G01 "]);
+                arc = matches!(g, "G2 " | "G3 ");
+                b.push_str(g);
+            }
+            for _ in 0..1 + r.index(4) {
+                b.push_str(&format!("{}{} ", letters[r.index(letters.len())], literal(&mut r)));
+            }
+            if arc && r.chance(20) {
+                b.push_str(&format!("R{}", literal(&mut r)));
+            }
+            t.push_str(b.trim_end());
+            t.push('\n');
+        }
+        t.push_str("M30\n%\n");
+        let mut o = Options { main_name: "CAMPART".into(), ..Options::default() };
+        if case % 2 == 1 {
+            o.source = Semantics { least_increment_mm: 0.0001, ..o.source };
+        }
+        let path = dir.join(format!("lit{case}.nc"));
+        std::fs::write(&path, &t).expect("write");
+        let (w, le, tr) = whole(&path, &o);
+        let mut out = Vec::new();
+        match sts::to_sinumerik_first(&path, &o, le, &mut out, None, 1) {
+            Ok(_) => {
+                same(&format!("literals case {case}"), &out, &w);
+                streamed += 1;
+            }
+            Err(e) => assert!(
+                tr.diags.iter().any(|d| d.is_error() || d.code != sts::KEPT_WARNING),
+                "case {case}: not streamed ({e:?}), but the whole translation is clean"
+            ),
+        }
+    }
+    assert!(streamed >= 12, "only {streamed} of 16 literal programs streamed");
+}

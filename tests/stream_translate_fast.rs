@@ -341,3 +341,100 @@ fn external_siemens_programs_stream_only_to_their_whole_translation() {
     }
     eprintln!("{streamed} of {} external programs streamed", files.len());
 }
+
+/// A literal as the digit writer (`stream::translate::digits`) sees it: 1..15 digits with
+/// 0..6 decimals, leading and trailing zeros, `-`/`+`, a bare point at either end, big and
+/// tiny values, and now and then more digits than the writers keep.
+fn literal(r: &mut Rng) -> String {
+    let sign = ["", "", "-", "+"][r.index(4)];
+    let lead = "0".repeat(if r.chance(20) { r.index(3) } else { 0 });
+    let trail = "0".repeat(if r.chance(30) { r.index(4) } else { 0 });
+    let body = match r.below(10) {
+        // Huge and tiny.
+        0 => {
+            let digits = 1 + r.below(15) as u32;
+            format!("{}", r.below(10u64.pow(digits)))
+        }
+        1 => format!("0.{}{}", "0".repeat(r.index(8)), 1 + r.below(99)),
+        2 => format!("{lead}{}.", r.below(100_000)),
+        3 => format!(".{}{trail}", r.below(100_000)),
+        4 => format!("{lead}0.{trail}"),
+        _ => {
+            let digits = 1 + r.index(15);
+            let dec = r.index(7).min(digits);
+            let n = r.below(10u64.pow(digits as u32));
+            let s = format!("{n:0digits$}");
+            let (int, frac) = s.split_at(digits - dec);
+            if dec == 0 && r.chance(50) {
+                format!("{lead}{int}")
+            } else {
+                format!("{lead}{int}.{frac}{trail}")
+            }
+        }
+    };
+    format!("{sign}{body}")
+}
+
+/// Whether the whole translator writes `block` without a word (its numbers are ones the
+/// stream must then write too).
+fn translates_clean(block: &str) -> bool {
+    let p = parse(&format!("{block}\nM30\n"));
+    let o = TranslateOptions::default();
+    let t = translate::to_fanuc(&p.unit, &[], &o);
+    p.diags.is_empty() && t.diags.is_empty() && t.unsupported == 0
+}
+
+/// Blocks of generated literals in inch and metric modes (G70/G71/G700/G710, F under G70
+/// as `F[v/25.4]`, dwells), written from their digits by the fast path, against the whole
+/// translation; blocks the translator reports on (too many digits) make the stream give up.
+#[test]
+fn literal_digits_stream_to_the_whole_translation() {
+    let mut r = Rng(0x1175_0000_dead_beef);
+    let letters = ['X', 'Y', 'Z', 'I', 'J', 'K', 'A', 'F', 'S', 'T', 'D', 'H', 'E', 'U'];
+    let (mut refused, mut blocks) = (0, 0);
+    for case in 0..24 {
+        let mut t = String::from("; literals\n");
+        for _ in 0..250 {
+            let mut b = String::new();
+            if r.chance(8) {
+                b.push_str(r.pick(&["G70 ", "G71 ", "G700 ", "G710 "]));
+            }
+            if r.chance(5) {
+                b.push_str("G4 F");
+                b.push_str(&literal(&mut r).replace(['-', '+'], ""));
+                b.push(' ');
+            } else if r.chance(50) {
+                b.push_str(r.pick(&["G1 ", "G0 ", "G01 "]));
+            }
+            for _ in 0..1 + r.index(4) {
+                let l = letters[r.index(letters.len())];
+                let v = literal(&mut r);
+                // Integer addresses with integers only (`T1.5` is refused elsewhere).
+                let v = if matches!(l, 'S' | 'T' | 'D' | 'H') { v.replace(['.', '-', '+'], "") } else { v };
+                b.push_str(&format!("{l}{v} "));
+            }
+            let b = b.trim_end().to_string();
+            if !clean(&b) {
+                continue;
+            }
+            if !translates_clean(&b) {
+                // On its own, after a clean block: the stream gives up on it.
+                let text = format!("G1 X1.5\n{b}\nM30\n");
+                let (whole, got) = both("refused.mpf", &text, CommentMode::Keep);
+                assert!(!whole.diags.is_empty() || whole.unsupported > 0, "{b}");
+                assert!(matches!(got, Err(Fallback::Diagnostics)), "{b}: streamed");
+                refused += 1;
+                continue;
+            }
+            t.push_str(&b);
+            t.push('\n');
+            blocks += 1;
+        }
+        t.push_str("M30\n");
+        let (whole, got) = both(&format!("lit{case}.mpf"), &t, CommentMode::Keep);
+        let out = got.map_err(|e| format!("case {case}: {e:?}")).expect("streams");
+        same(&format!("literals case {case}"), &out, &whole.text, &t);
+    }
+    eprintln!("{blocks} literal blocks streamed, {refused} refused");
+    assert!(blocks > 4000 && refused > 20, "{blocks} streamed, {refused} refused");
+}

@@ -69,7 +69,7 @@ struct Record {
 }
 
 impl WordsSink for Record {
-    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], _: &nctrans::read::RawBlock<'_>) -> bool {
         if self.take {
             let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect();
             self.got.push(plain(prog, meta, words));

@@ -134,8 +134,9 @@ impl ItemView for PlainWord {
 pub trait WordsSink {
     /// A plain top-level line of constant letter words (see [`scan_words`] for what the
     /// block holds); `false` asks for the line as a statement instead ([`WordsSink::stmt`]
-    /// is then called with it, and nothing of the block is to be kept).
-    fn plain(&mut self, prog: usize, meta: &crate::ir::BlockMeta, words: &[PlainWord]) -> bool;
+    /// is then called with it, and nothing of the block is to be kept). `line` is the line
+    /// read (the words' spans are offsets into the file, `line.start` that of `line.text`).
+    fn plain(&mut self, prog: usize, meta: &crate::ir::BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool;
     /// A finished top-level statement of any other line, as the whole-file reader builds it.
     fn stmt(&mut self, prog: usize, s: &Stmt);
     /// Whether the sink still wants anything (once `false`, it stays so: the rest of the
@@ -459,7 +460,7 @@ fn scan_with(
                     let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
                     meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
                 }
-                if !sink.plain(prog, &meta, &plain) {
+                if !sink.plain(prog, &meta, &plain, &raw) {
                     if let Some(f) = full.as_mut() {
                         f.line(&raw);
                         full_stmts.clear();

@@ -17,6 +17,7 @@
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
+use super::translate::digits::Src;
 use super::translate::Fallback;
 use super::{Index, ItemView, PlainWord, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
@@ -28,7 +29,7 @@ use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
 use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
-use crate::read::LineEnding;
+use crate::read::{LineEnding, RawBlock};
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
 use std::collections::BTreeMap;
@@ -60,6 +61,30 @@ const PLAIN_G: [u32; 30] = [
     0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610,
     640, 800, 900, 910, 940, 950,
 ];
+
+/// [`PLAIN_G`] as a set (one test instead of a search on every G word of a CAM file).
+struct GSet([u64; 16]);
+
+impl GSet {
+    const fn of(codes: &[u32]) -> GSet {
+        let mut bits = [0u64; 16];
+        let mut i = 0;
+        while i < codes.len() {
+            let g = codes[i] as usize;
+            bits[g / 64] |= 1 << (g % 64);
+            i += 1;
+        }
+        GSet(bits)
+    }
+
+    #[inline(always)]
+    fn contains(&self, g: u32) -> bool {
+        let g = g as usize;
+        self.0.get(g / 64).is_some_and(|b| b >> (g % 64) & 1 == 1)
+    }
+}
+
+const PLAIN_G_SET: GSet = GSet::of(&PLAIN_G);
 
 /// A stand-in block's span: no statement read from a file has it.
 const STAND_IN: Span = Span::new(u32::MAX, u32::MAX);
@@ -108,8 +133,8 @@ fn straight_block(b: &Block) -> Result<(), String> {
 
 /// A G code whose translation needs nothing but its own block ([`PLAIN_G`]).
 fn plain_g(v: f64) -> bool {
-    let g10 = (v * 10.0).round();
-    (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G.contains(&(g10 as u32))
+    let g10 = fast::round(v * 10.0);
+    (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G_SET.contains(g10 as u32)
 }
 
 /// A finished streamed translation.
@@ -295,14 +320,25 @@ impl State<'_> {
 
     /// A block after the first chunk through the fast path: its line is written (after the
     /// statements waiting for the passes); `false` when the passes must translate it.
-    fn fast<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I]) -> bool {
+    fn fast<'t, I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], lit: impl Fn(&I) -> Option<Src<'t>>) -> bool {
         // A plan with variables fails in `flush_rest`: the fast path must not write past it.
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
         }
+        if self.buf.is_empty() && self.stop.is_none() && self.io.is_none() {
+            // Nothing waits for the passes: the line goes straight into the output buffer.
+            let at = self.wbuf.len();
+            let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
+            if !ok {
+                self.wbuf.truncate(at);
+            } else if self.wbuf.len() >= WRITE_BYTES {
+                self.spill();
+            }
+            return ok;
+        }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(meta, items, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -437,7 +473,7 @@ impl State<'_> {
 
     /// [`State::push`] of the words of a plain line when the fast path takes them; else
     /// nothing has changed and the caller pushes its statement.
-    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         if self.first {
             return false;
         }
@@ -445,7 +481,7 @@ impl State<'_> {
         // `follow` of the block the words are.
         for w in words {
             if w.letter == b'G' {
-                match (w.value * 10.0).round() as u32 {
+                match fast::round(w.value * 10.0) as u32 {
                     20 | 30 => self.arc = true,
                     0 | 10 => self.arc = false,
                     _ => {}
@@ -453,7 +489,7 @@ impl State<'_> {
             }
         }
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
-        if self.fast(meta, words) {
+        if self.fast(meta, words, |w| Some(Src { line, span: w.span })) {
             return true;
         }
         (self.arc, self.buf_real) = (arc, buf_real);
@@ -467,7 +503,7 @@ impl State<'_> {
         }
         if !self.first {
             if let StmtKind::Block(b) = &s.kind {
-                if self.fast(&b.meta, &b.items) {
+                if self.fast(&b.meta, &b.items, |_| None) {
                     return;
                 }
             }
@@ -514,13 +550,13 @@ impl super::WordsSink for Sink<'_, '_> {
         self.st.push(s);
     }
 
-    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         if self.st.stop.is_some() {
             return true;
         }
         // Constant letter words without a label: straight when their G codes are.
         let straight = words.iter().all(|w| w.letter != b'G' || plain_g(w.value));
-        if prog != 0 || !straight || !self.st.push_plain(meta, words) {
+        if prog != 0 || !straight || !self.st.push_plain(meta, words, line) {
             return false;
         }
         self.blocks += 1;

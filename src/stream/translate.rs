@@ -24,12 +24,14 @@ use crate::eval::{DirCallees, NoCallees, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
+use crate::read::RawBlock;
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
+pub(super) mod digits;
 pub(super) mod fast;
 
 /// Why a file is not translated as a stream (the caller translates it whole).
@@ -182,7 +184,7 @@ impl super::WordsSink for Sink<'_, '_> {
 
     /// [`Sink::stmt`] of the block when the fast path takes it; else nothing has changed
     /// (the G70 mode is set back) and the statement is asked for.
-    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let st = &mut *self.st;
         if st.stop.is_some() {
             return true;
@@ -190,7 +192,7 @@ impl super::WordsSink for Sink<'_, '_> {
         // A plain block is straight (constant letter words, no label): not checked again.
         if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
             let g70 = st.fast.g70;
-            if st.fast.plain(meta, words, &mut st.buf).is_err() {
+            if st.fast.words(meta, words, line, &mut st.buf).is_err() {
                 st.fast.g70 = g70;
                 return false;
             }

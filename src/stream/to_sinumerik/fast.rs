@@ -15,6 +15,7 @@
 use crate::ir::{BlockMeta, EndCode};
 use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
+use crate::stream::translate::digits::{Form, Src};
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
 use crate::stream::{ItemView, View};
 
@@ -41,10 +42,14 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
 
 /// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
 /// is the arc mode after the block's own G codes (as the words pass sees it). On `Err` what
-/// was appended is to be discarded.
-pub fn block<I: ItemView>(
+/// was appended is to be discarded. `lit` gives an item's literal, when known: its digits
+/// are written where they are the written form.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn block<'t, I: ItemView>(
     meta: &BlockMeta,
     items: &[I],
+    lit: impl Fn(&I) -> Option<Src<'t>>,
     arc: bool,
     opts: &Options,
     eol: &[u8],
@@ -82,19 +87,23 @@ pub fn block<I: ItemView>(
         };
         let (Some(letter), Some((value, point))) = (letter, num) else { return Err(Declined) };
         let mut v = value;
+        // Whether `v` is still the value of the literal.
+        let mut as_written = true;
         match letter {
             b'G' => {
                 let g10 = v * 10.0;
                 if !(0.0..=9990.0).contains(&g10) {
                     return Err(Declined);
                 }
-                let Some(sg) = map_g(g10.round() as u32)? else { continue };
+                let Some(sg) = map_g(round(g10) as u32)? else { continue };
                 v = f64::from(sg) / 10.0;
+                as_written = false;
             }
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
                     v = scale(opts, v);
+                    as_written = false;
                 }
             }
         }
@@ -102,6 +111,20 @@ pub fn block<I: ItemView>(
             out.push(b' ');
         }
         any = true;
+        let range = (1e-6..1e15).contains(&v.abs());
+        if as_written && range && letter != b'R' {
+            // The usual word: straight from its literal.
+            if let Some(src) = lit(it) {
+                if src.push_word(letter, v, Form::Display, out) {
+                    continue;
+                }
+                out.push(letter);
+                if !src.lit().is_some_and(|l| l.push_display(out)) {
+                    push_display(out, v);
+                }
+                continue;
+            }
+        }
         if letter == b'R' {
             // `CR=` in an arc; elsewhere a cycle's R plane, which the passes report.
             if !arc {
@@ -114,7 +137,7 @@ pub fn block<I: ItemView>(
         // `word_into`/`number`: 0, the shortest decimal, or an `EX` form (left to the passes).
         if v == 0.0 {
             out.push(b'0');
-        } else if (1e-6..1e15).contains(&v.abs()) {
+        } else if range {
             push_display(out, v);
         } else {
             return Err(Declined);
@@ -149,6 +172,23 @@ pub fn block<I: ItemView>(
     out.truncate(start + keep);
     out.extend_from_slice(eol);
     Ok(())
+}
+
+/// `x.round()`, without a call to the library's `round` for the usual `0 <= x < 2^31`
+/// (a G code times ten): the integer part, plus one from a half up (`x - t` is exact).
+#[inline(always)]
+pub fn round(x: f64) -> f64 {
+    // Not -0.0 (its `round` keeps the sign).
+    if x.is_sign_positive() && x < 2_147_483_648.0 {
+        let t = f64::from(x as u32);
+        if x - t >= 0.5 {
+            t + 1.0
+        } else {
+            t
+        }
+    } else {
+        x.round()
+    }
 }
 
 /// Appends `format!("{v}")` for a finite `v != 0` (Rust's shortest round-trip decimal).
@@ -198,6 +238,11 @@ mod tests {
             values.push(f64::from_bits(rng.next()));
             values.push((rng.next() % 1_000_000) as f64 / 7.0);
             values.push((rng.next() % 100_000_000) as f64 * 0.001);
+        }
+        for &v in &values {
+            for x in [v, v * 10.0, v.abs(), 0.5, 2.5, 0.49999999999999994, 2_147_483_647.5, 4_503_599_627_370_495.5] {
+                assert_eq!(round(x).to_bits(), x.round().to_bits(), "{x:e}");
+            }
         }
         for v in values {
             if v == 0.0 || !(1e-6..1e15).contains(&v.abs()) {

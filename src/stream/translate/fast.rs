@@ -13,7 +13,9 @@
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
 use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
 use crate::passes::words::SAME_G;
-use crate::stream::{ItemView, View};
+use crate::read::RawBlock;
+use crate::stream::translate::digits::{Form, Lit, Src};
+use crate::stream::{ItemView, PlainWord, View};
 
 /// Highest block number FANUC keeps (`passes::labels` drops the others).
 const MAX_N: u32 = 99999;
@@ -37,6 +39,25 @@ const POW10: [u64; 16] = [
     100_000_000_000_000,
     1_000_000_000_000_000,
 ];
+
+/// Letters (as bits, `A` lowest) whose words `Fast::word` writes otherwise than as a
+/// dimension: G and M codes and the integer addresses; anything not a capital letter.
+const SPECIAL: u64 = {
+    let mut m = !((1u64 << 26) - 1);
+    let s = b"GMSTHDPLNO";
+    let mut i = 0;
+    while i < s.len() {
+        m |= 1 << (s[i] - b'A');
+        i += 1;
+    }
+    m
+};
+
+/// A letter's bit in [`SPECIAL`] (above the 26 letters for any other byte).
+#[inline(always)]
+fn letter_bit(l: u8) -> u64 {
+    1u64 << (l.wrapping_sub(b'A') as u64).min(63)
+}
 
 /// The block needs the general translator (it would report something on it).
 #[derive(Debug, PartialEq, Eq)]
@@ -64,15 +85,84 @@ impl Fast {
 
     /// [`Fast::block`] of a block's meta and items (IR items, or the words of a plain line).
     pub fn plain<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
+        self.with_lits(meta, items, |_| None, out)
+    }
+
+    /// [`Fast::plain`] of the words of a plain line `line`: their numbers are written from
+    /// their digits where those are the written form ([`Lit`]).
+    pub fn words(
+        &mut self,
+        meta: &BlockMeta,
+        words: &[PlainWord],
+        line: &RawBlock<'_>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
+        if meta.label.is_some() || words.is_empty() {
+            return self.with_lits(meta, words, |w| Some(Src { line, span: w.span }), out);
+        }
+        // What `lines` does for a block of words only, in one loop over them after the
+        // words pass's modes: a dimension word (neither an integer address, nor G/M, nor a
+        // feed under a dwell or G70) goes straight from its literal to the output.
+        let mut dwell = false;
+        for w in words {
+            if w.letter == b'G' {
+                let v = w.value;
+                if v == 70.0 {
+                    self.g70 = true;
+                } else if v == 71.0 || v == 700.0 || v == 710.0 {
+                    self.g70 = false;
+                } else if v == 4.0 {
+                    dwell = true;
+                }
+            }
+        }
+        let special = if dwell || self.g70 { SPECIAL | letter_bit(b'F') } else { SPECIAL };
         let start = out.len();
-        let r = self.lines(meta, items, out);
+        let (line_start, mut sep) = self.open(out, meta, true);
+        for w in words {
+            if sep {
+                out.push(b' ');
+            }
+            sep = true;
+            let src = Src { line, span: w.span };
+            if special & letter_bit(w.letter) == 0 && src.push_word(w.letter, w.value, Form::Point, out) {
+                continue;
+            }
+            let v = Some(w.value);
+            if self.word(Some(w.letter), v, v, dwell, || Some(src), out).is_err() {
+                out.truncate(start);
+                return Err(Declined);
+            }
+        }
+        self.close(out, line_start, meta, true);
+        Ok(())
+    }
+
+    /// [`Fast::plain`] with `lit` giving an item's literal, when known.
+    #[inline(always)]
+    fn with_lits<'t, I: ItemView>(
+        &mut self,
+        meta: &BlockMeta,
+        items: &[I],
+        lit: impl Fn(&I) -> Option<Src<'t>>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
+        let start = out.len();
+        let r = self.lines(meta, items, lit, out);
         if r.is_err() {
             out.truncate(start);
         }
         r
     }
 
-    fn lines<I: ItemView>(&mut self, meta: &BlockMeta, items: &[I], out: &mut Vec<u8>) -> Result<(), Declined> {
+    #[inline(always)]
+    fn lines<'t, I: ItemView>(
+        &mut self,
+        meta: &BlockMeta,
+        items: &[I],
+        lit: impl Fn(&I) -> Option<Src<'t>>,
+        out: &mut Vec<u8>,
+    ) -> Result<(), Declined> {
         if meta.label.is_some() {
             return Err(Declined);
         }
@@ -107,7 +197,7 @@ impl Fast {
                         out.push(b' ');
                     }
                     sep = true;
-                    self.word(letter, num.map(|n| n.0), folded, dwell, out)?;
+                    self.word(letter, num.map(|n| n.0), folded, dwell, || lit(it), out)?;
                 }
             }
             self.close(out, line, meta, true);
@@ -181,13 +271,16 @@ impl Fast {
     /// One word: the words pass's address rules, the expression pass's folding of `-n`,
     /// then `Writer::word`.
     /// `letter`: the word's when it has a letter address and an expression value; `num`
-    /// its value when a number as written, `folded` after folding `-n`.
-    fn word(
+    /// its value when a number as written, `folded` after folding `-n`; `lit` the literal
+    /// of `folded`, when known.
+    #[inline(always)]
+    fn word<'t>(
         &self,
         letter: Option<u8>,
         num: Option<f64>,
         folded: Option<f64>,
         dwell: bool,
+        lit: impl FnOnce() -> Option<Src<'t>>,
         out: &mut Vec<u8>,
     ) -> Result<(), Declined> {
         let mut letter = letter.ok_or(Declined)?;
@@ -205,7 +298,7 @@ impl Fast {
                 } else {
                     return Err(Declined);
                 };
-                return self.num_word(b'G', g, out);
+                return self.num_word(b'G', g, None, out);
             }
             b'F' if dwell => letter = b'X',
             b'S' if dwell => return Err(Declined),
@@ -217,20 +310,29 @@ impl Fast {
             // `F[v/25.4]`: a quotient is bracketed in an address; neither constant is.
             out.push(letter);
             out.push(b'[');
-            number(out, v)?;
+            number(out, v, lit().and_then(Src::lit))?;
             out.extend_from_slice(b"/25.4]");
             return Ok(());
         }
-        self.num_word(letter, v, out)
+        self.num_word(letter, v, lit(), out)
     }
 
-    /// `Writer::word` for a constant value.
-    fn num_word(&self, letter: u8, v: f64, out: &mut Vec<u8>) -> Result<(), Declined> {
+    /// `Writer::word` for a constant value (`src`: where its literal is, when known).
+    #[inline(always)]
+    fn num_word(&self, letter: u8, v: f64, src: Option<Src<'_>>, out: &mut Vec<u8>) -> Result<(), Declined> {
+        let int_addr = matches!(letter, b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O');
+        let integer = v.fract() == 0.0;
+        if !matches!(letter, b'G' | b'M') {
+            // The usual word: straight from its literal.
+            let form = if int_addr && integer { Form::Int } else { Form::Point };
+            if src.is_some_and(|s| s.push_word(letter, v, form, out)) {
+                return Ok(());
+            }
+        }
         out.push(letter);
         if matches!(letter, b'G' | b'M') {
-            if (0.0..10.0).contains(&v) && v.fract() == 0.0 {
-                out.push(b'0');
-                push_u64(out, v as u64);
+            if (0.0..10.0).contains(&v) && integer {
+                out.extend_from_slice(&[b'0', b'0' + v as u8]);
                 return Ok(());
             }
             if letter == b'G' && v >= 0.0 {
@@ -238,20 +340,24 @@ impl Fast {
                 return Ok(());
             }
         }
-        let int_addr = matches!(letter, b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O');
-        if int_addr && v.fract() == 0.0 {
+        let lit = src.and_then(Src::lit);
+        if int_addr && integer {
             // An integer in an integer address: written as it is, without a warning.
-            push_num(out, v, false);
+            if !lit.is_some_and(|l| l.push_fanuc(out, false)) {
+                push_num(out, v, false);
+            }
             return Ok(());
         }
-        number(out, v)
+        number(out, v, lit)
     }
 }
 
 /// A constant in a dimension or an expression (`Writer::number`): declined when it has more
-/// than 8 digits, where the general writer rounds it with a warning.
-fn number(out: &mut Vec<u8>, v: f64) -> Result<(), Declined> {
-    if push_num(out, v, true) {
+/// than 8 digits, where the general writer rounds it with a warning. From the digits of
+/// `lit` (its literal) when they are the written form.
+#[inline(always)]
+fn number(out: &mut Vec<u8>, v: f64, lit: Option<Lit<'_>>) -> Result<(), Declined> {
+    if lit.is_some_and(|l| l.push_fanuc(out, true)) || push_num(out, v, true) {
         Ok(())
     } else {
         Err(Declined)
