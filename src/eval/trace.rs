@@ -159,7 +159,8 @@ pub struct GridMove {
     pub rapid: bool,
     /// Bit `i`: axis `i` ([`AXES`]) has a position.
     pub mask: u16,
-    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it).
+    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it);
+    /// 0 for the axes not in `mask` (so that two moves compare as whole arrays).
     pub to: [i64; 9],
     /// The feed (`None` for a rapid move) and its `grid_of`.
     pub f: Option<(f64, i64)>,
