@@ -193,7 +193,8 @@ pub trait TraceSink {
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
-    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block).
+    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block); asked
+    /// once per run, so the answer must not change during it.
     fn wants_blocks(&self) -> bool {
         false
     }
