@@ -55,12 +55,14 @@ pub struct CheckReport {
 }
 
 /// One event as a check carries it: a move on the grid as its integers (copied without
-/// a clone's dispatch, compared exactly: two grid values within the tolerance are the
-/// same value), any other event as it is.
+/// a clone's dispatch, compared as integers: two grid values within the tolerance are
+/// the same value), any other event boxed (rare in the motion that makes up long
+/// traces; the box keeps every item as small as a grid move, so that it is moved in a
+/// few registers, not by `memcpy`).
 #[derive(Clone, Debug)]
 enum Item {
     Grid(GridMove),
-    Ev(Event),
+    Ev(Box<Event>),
 }
 
 impl Item {
@@ -74,7 +76,7 @@ impl Item {
     fn into_event(self) -> Event {
         match self {
             Item::Grid(g) => g.event(),
-            Item::Ev(e) => e,
+            Item::Ev(e) => *e,
         }
     }
 
@@ -83,7 +85,7 @@ impl Item {
     }
 
     fn is_limit(&self) -> bool {
-        matches!(self, Item::Ev(Event::Limit { .. }))
+        matches!(self, Item::Ev(e) if matches!(**e, Event::Limit { .. }))
     }
 }
 
@@ -91,15 +93,18 @@ impl Item {
 /// grid values `n / 1000` that differ differ by 0.001, far beyond [`TOLERANCE`].
 fn same_item(a: &Item, b: &Item) -> bool {
     match (a, b) {
-        (Item::Grid(x), Item::Grid(y)) => {
-            let mask = x.mask & 0x1ff;
-            x.rapid == y.rapid
-                && mask == y.mask & 0x1ff
-                && (0..9).all(|i| mask & (1 << i) == 0 || x.to[i] == y.to[i])
-                && x.f.map(|f| f.1) == y.f.map(|f| f.1)
-        }
+        (Item::Grid(x), Item::Grid(y)) => same_grid(x, y),
         _ => same_event(&a.event(), &b.event()),
     }
+}
+
+/// [`same_item`] of two grid moves: a few integer compares.
+#[inline]
+fn same_grid(x: &GridMove, y: &GridMove) -> bool {
+    // The positions of axes not in the mask are 0 ([`GridMove::to`]): the arrays compare
+    // whole.
+    debug_assert!((0..9).all(|i| (x.mask | y.mask) & (1 << i) != 0 || x.to[i] == 0 && y.to[i] == 0));
+    x.rapid == y.rapid && (x.mask ^ y.mask) & 0x1ff == 0 && x.to == y.to && x.f.map(|f| f.1) == y.f.map(|f| f.1)
 }
 
 /// Events of the second run, in order.
@@ -148,7 +153,7 @@ impl ChannelSink {
 
 impl TraceSink for ChannelSink {
     fn event(&mut self, ev: &Event, origin: Origin) {
-        self.push(Item::Ev(ev.clone()), origin);
+        self.push(Item::Ev(Box::new(ev.clone())), origin);
     }
     fn grid_move(&mut self, m: &GridMove, origin: Origin) {
         self.push(Item::Grid(*m), origin);
@@ -308,7 +313,7 @@ impl CompareSink {
             return None;
         }
         let slot = self.batch.get_mut(self.at - 1)?;
-        Some((std::mem::replace(&mut slot.0, Item::Ev(Event::Limit { steps: 0 })), slot.1))
+        Some((std::mem::replace(&mut slot.0, Item::Ev(Box::new(Event::Limit { steps: 0 }))), slot.1))
     }
 
     fn fill_after_b(&mut self) {
@@ -387,10 +392,22 @@ impl CompareSink {
 
 impl TraceSink for CompareSink {
     fn event(&mut self, ev: &Event, origin: Origin) {
-        self.compare(Item::Ev(ev.clone()), origin);
+        self.compare(Item::Ev(Box::new(ev.clone())), origin);
     }
 
     fn grid_move(&mut self, m: &GridMove, origin: Origin) {
+        // What `compare` does when the second run's next event is at hand and agrees
+        // (nearly every move of a long trace), without building an item to compare.
+        if self.div.is_none() {
+            if let Some((Item::Grid(y), _)) = self.batch.get(self.at) {
+                if same_grid(m, y) {
+                    self.at += 1;
+                    self.before_a[self.index as usize % CONTEXT] = Some(Item::Grid(*m));
+                    self.index += 1;
+                    return;
+                }
+            }
+        }
         self.compare(Item::Grid(*m), origin);
     }
 

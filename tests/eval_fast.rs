@@ -52,6 +52,11 @@ impl TraceSink for Both {
     fn wants_blocks(&self) -> bool {
         true
     }
+    // The writers hand over their last lines here (without it their outputs stay short).
+    fn finish(&mut self) {
+        self.text.finish();
+        self.json.finish();
+    }
     fn block_done(&mut self, origin: Origin, pos: &Axes) {
         let _ = writeln!(self.blocks, "{origin:?} {pos:?}");
     }

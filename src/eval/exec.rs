@@ -90,6 +90,8 @@ pub struct Interp<'a> {
     warn_buf: Vec<super::machine::Warn>,
     words_buf: Vec<WordVal>,
     pub sys_store: HashMap<String, f64>,
+    /// [`super::machine::fast_path_on`] when the run began (asked once, not per block).
+    fast_path: bool,
 }
 
 impl<'a> Interp<'a> {
@@ -133,6 +135,7 @@ impl<'a> Interp<'a> {
             warn_buf: Vec::new(),
             words_buf: Vec::new(),
             sys_store: HashMap::new(),
+            fast_path: super::machine::fast_path_on(),
             sem,
         }
     }
@@ -201,6 +204,8 @@ impl<'a> Interp<'a> {
         // the next op is nearly always in it, found without asking the pager (which
         // would give this same page: pages do not change once read).
         let mut page: Option<(usize, Rc<Page>)> = None;
+        // Asked once: a sink wants every block or none (see `TraceSink::wants_blocks`).
+        let wants_blocks = self.sink.wants_blocks();
         loop {
             let Some(fr) = self.frames.last() else {
                 return Ok(Ending::End("M30"));
@@ -246,7 +251,7 @@ impl<'a> Interp<'a> {
                 return Ok(Ending::Stopped);
             }
             let flow = self.exec_op(&code, op, pc)?;
-            if matches!(op, Op::Block(_) | Op::Lit(_)) && self.sink.wants_blocks() {
+            if wants_blocks && matches!(op, Op::Block(_) | Op::Lit(_)) {
                 let origin = Origin { file: code.file, span: op.span() };
                 let pos = self.m.trace_pos();
                 self.sink.block_done(origin, &pos);
@@ -382,23 +387,29 @@ impl<'a> Interp<'a> {
         if let Some(n) = b.number {
             self.m.last_n = f64::from(n);
         }
-        if super::machine::fast_path_on() {
+        if self.fast_path {
             if let Some(done) = self.m.apply_lit(b) {
-                let mut eff = super::machine::BlockEffect::default();
-                if let Some(span) = done {
-                    match self.m.grid_move() {
-                        Some(mut g) if self.pending_msg.is_none() => {
-                            g.line = b.line;
-                            let origin = Origin { file: self.file(), span };
-                            self.sink.grid_move(&g, origin);
-                        }
-                        _ => {
-                            let ev = self.m.move_event();
-                            self.emit_ref(&ev, span);
-                        }
+                let Some(span) = done else { return Ok(Flow::Next) };
+                // Matched in place (a move out of the option copied the whole move).
+                let mut grid = self.m.grid_move();
+                match &mut grid {
+                    Some(g) if self.pending_msg.is_none() => {
+                        g.line = b.line;
+                        // `code` is the running frame's: its file is `self.file()`.
+                        let origin = Origin { file: code.file, span };
+                        self.sink.grid_move(g, origin);
                     }
-                    eff.moved = true;
+                    _ => {
+                        let ev = self.m.move_event();
+                        self.emit_ref(&ev, span);
+                    }
                 }
+                // `block_end` of a block that moved and neither ends nor returns: only a
+                // modal call can follow.
+                if self.modal_call.is_none() {
+                    return Ok(Flow::Next);
+                }
+                let eff = super::machine::BlockEffect { moved: true, ..Default::default() };
                 return self.block_end(eff, b.span, pc);
             }
         }

@@ -167,6 +167,8 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         }
     };
     it.flush();
+    // The trace is complete: a writer hands over the lines it still holds.
+    it.sink.finish();
     Outcome { ending, steps: it.steps.min(it.max_steps), diags: std::mem::take(&mut it.diags) }
 }
 

@@ -30,7 +30,7 @@ pub fn put_num(out: &mut Vec<u8>, x: f64) {
 /// `.ddd`: 11 bytes), appended through a 16-byte buffer copied whole.
 fn put_small_millis(out: &mut Vec<u8>, n: i64) {
     let mut buf = [0u8; 16];
-    let len = small_millis(&mut buf, n);
+    let len = small_millis(&mut buf, 0, n);
     let at = out.len();
     out.extend_from_slice(&buf);
     out.truncate(at + len);
@@ -47,40 +47,37 @@ pub fn grid_of(x: f64) -> Option<i64> {
 pub const GRID_LIMIT: u64 = 1_000_000_000;
 
 /// Writes `n / 1000` (`|n| <` [`GRID_LIMIT`], as [`grid_of`] gives) at `out[at..]`, as
-/// [`put_num`] writes the value: 16 bytes are written (at most 11 used; `out` must have
-/// room for them); returns where the number ends.
+/// [`put_num`] writes the value, straight into `out` (a fixed-size window, so that the
+/// compiler can see the writes inside it when `at` is bounded): bytes up to `at + 11`
+/// are written (`out` must have room for them); returns where the number ends.
 #[inline(always)]
-pub fn put_grid(out: &mut [u8], at: usize, n: i64) -> usize {
-    let mut buf = [0u8; 16];
-    let len = small_millis(&mut buf, n);
-    out[at..at + 16].copy_from_slice(&buf);
-    at + len
+pub fn put_grid<const N: usize>(out: &mut [u8; N], at: usize, n: i64) -> usize {
+    small_millis(out, at, n)
 }
 
-/// Writes `n / 1000` (`|n| < 10⁹`) at the start of `buf`, as [`millis_digits`] does;
-/// returns the length.
+/// Writes `n / 1000` (`|n| < 10⁹`) at `buf[at..]`, as [`millis_digits`] does; returns
+/// where it ends. Every part is a 4-byte copy from a table ([`DIGITS3`], [`FRACTIONS`])
+/// advanced by its length: no digit loop and few branches (this writes every coordinate
+/// of a text trace).
 #[inline(always)]
-fn small_millis(buf: &mut [u8; 16], n: i64) -> usize {
-    let mut i = usize::from(n < 0);
-    buf[0] = b'-';
-    let a = n.unsigned_abs();
-    let (int, frac) = ((a / 1000) as u32, (a % 1000) as u32);
-    if int >= 1000 {
-        let (hi, lo) = (int / 1000, int % 1000);
-        i = put_upto3(buf, i, hi % 1000);
-        buf[i] = b'0' + (lo / 100) as u8;
-        buf[i + 1..i + 3].copy_from_slice(pair(lo % 100));
-        i += 3;
+fn small_millis<const N: usize>(buf: &mut [u8; N], at: usize, n: i64) -> usize {
+    debug_assert!(n.unsigned_abs() < GRID_LIMIT);
+    buf[at] = b'-';
+    let i = at + usize::from(n < 0);
+    // Below 10⁹: 32-bit divisions.
+    let a = n.unsigned_abs() as u32;
+    let (int, frac) = (a / 1000, a % 1000);
+    let i = if int >= 1000 {
+        let i = put_upto3(buf, i, (int / 1000) % 1000);
+        buf[i..i + 4].copy_from_slice(&PADDED3[(int % 1000) as usize].to_le_bytes());
+        i + 3
     } else {
-        i = put_upto3(buf, i, int);
-    }
-    let mut len = i;
-    if frac != 0 {
-        let (text, l) = FRACTIONS[frac as usize % 1000];
-        buf[i..i + 4].copy_from_slice(&text);
-        len += usize::from(l);
-    }
-    len
+        put_upto3(buf, i, int)
+    };
+    // A zero fraction has length 0: its bytes are written but not counted.
+    let (text, l) = FRACTIONS[frac as usize % 1000];
+    buf[i..i + 4].copy_from_slice(&text);
+    i + usize::from(l)
 }
 
 /// Writes the decimal digits of `n` at `out[at..]` (room for 20 bytes needed); returns
@@ -93,20 +90,52 @@ pub fn put_uint_at(out: &mut [u8], at: usize, n: u64) -> usize {
     at + len
 }
 
-/// Writes `n < 1000` without leading zeros at `buf[at..]`; returns where it ends.
+/// Writes `n < 1000` without leading zeros at `buf[at..]` (4 bytes written); returns
+/// where it ends.
 #[inline(always)]
-fn put_upto3(buf: &mut [u8; 16], at: usize, n: u32) -> usize {
-    if n < 10 {
-        buf[at] = b'0' + n as u8;
-        at + 1
-    } else if n < 100 {
-        buf[at..at + 2].copy_from_slice(pair(n));
-        at + 2
-    } else {
-        buf[at] = b'0' + (n / 100) as u8;
-        buf[at + 1..at + 3].copy_from_slice(pair(n % 100));
-        at + 3
+fn put_upto3<const N: usize>(buf: &mut [u8; N], at: usize, n: u32) -> usize {
+    let d = DIGITS3[n as usize % 1000];
+    buf[at..at + 4].copy_from_slice(&d.to_le_bytes());
+    at + (d >> 24) as usize
+}
+
+/// For every `n < 1000`: its digits without leading zeros in the low bytes (first digit
+/// lowest, as they lie in memory little-endian) and in the top byte their count (`0` has
+/// one digit). Written as 4 bytes, the top byte lies past the digits, where the next
+/// part of the text goes.
+static DIGITS3: [u32; 1000] = digits3(false);
+
+/// [`DIGITS3`] with leading zeros: always three digits (`7` → `007`).
+static PADDED3: [u32; 1000] = digits3(true);
+
+const fn digits3(padded: bool) -> [u32; 1000] {
+    let mut t = [0u32; 1000];
+    let mut n = 0;
+    while n < 1000 {
+        let len = if padded || n >= 100 {
+            3
+        } else if n >= 10 {
+            2
+        } else {
+            1
+        };
+        let mut v = 0u32;
+        let mut k = 0;
+        while k < len {
+            // Digit k (from the first) of the `len` digits of `n`.
+            let mut d = n as u32;
+            let mut j = len - 1 - k;
+            while j > 0 {
+                d /= 10;
+                j -= 1;
+            }
+            v |= (b'0' as u32 + d % 10) << (8 * k);
+            k += 1;
+        }
+        t[n] = v | ((len as u32) << 24);
+        n += 1;
     }
+    t
 }
 
 /// [`put_num`] of any value.
@@ -261,7 +290,7 @@ fn millis_digits(buf: &mut [u8; BUF], n: i64) -> usize {
 }
 
 /// For every fraction `0..1000` (thousandths): `.ddd` and its length once the trailing
-/// zeros are cut (`5` → `.005`, 4; `500` → `.5`, 2; `0` is never asked for).
+/// zeros are cut (`5` → `.005`, 4; `500` → `.5`, 2; `0` → nothing, 0).
 static FRACTIONS: [([u8; 4], u8); 1000] = fractions();
 
 const fn fractions() -> [([u8; 4], u8); 1000] {
@@ -276,6 +305,7 @@ const fn fractions() -> [([u8; 4], u8); 1000] {
         t[f] = ([b'.', b'0' + d[0], b'0' + d[1], b'0' + d[2]], len as u8);
         f += 1;
     }
+    t[0].1 = 0;
     t
 }
 
@@ -520,6 +550,34 @@ pub(crate) mod tests {
         for i in -100_000..=100_000 {
             same(i as f64 / 1000.0, &mut a, &mut b);
             same(i as f64 * 0.001, &mut a, &mut b);
+        }
+    }
+
+    #[test]
+    fn the_grid_writer_writes_what_the_standard_formatter_writes() {
+        let check = |n: i64| {
+            let mut b = [b'#'; 40];
+            let end = put_grid(&mut b, 5, n);
+            let mut want = String::new();
+            push_num_std(&mut want, n as f64 / 1000.0);
+            assert_eq!(&b[5..end], want.as_bytes(), "n = {n}");
+        };
+        for n in -300_000..=300_000 {
+            check(n);
+        }
+        let mut r = Rng(5);
+        for _ in 0..500_000 {
+            let n = (r.next() % 1_999_999_999) as i64 - 999_999_999;
+            check(n);
+            check(n / 1000 * 1000);
+        }
+        for p in [1_000i64, 10_000, 100_000, 1_000_000, 10_000_000, 100_000_000, 1_000_000_000] {
+            for n in [p - 1, p, p + 1, p - 1000, p + 1000] {
+                if n.unsigned_abs() < GRID_LIMIT {
+                    check(n);
+                    check(-n);
+                }
+            }
         }
     }
 

@@ -159,7 +159,8 @@ pub struct GridMove {
     pub rapid: bool,
     /// Bit `i`: axis `i` ([`AXES`]) has a position.
     pub mask: u16,
-    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it).
+    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it);
+    /// 0 for the axes not in `mask` (so that two moves compare as whole arrays).
     pub to: [i64; 9],
     /// The feed (`None` for a rapid move) and its `grid_of`.
     pub f: Option<(f64, i64)>,
@@ -192,7 +193,8 @@ pub trait TraceSink {
     /// Called after every executed block with the current position (workpiece frame,
     /// millimetres); for per-block comparisons. Default: nothing.
     fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
-    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block).
+    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block); asked
+    /// once per run, so the answer must not change during it.
     fn wants_blocks(&self) -> bool {
         false
     }
@@ -201,6 +203,9 @@ pub trait TraceSink {
     fn wants_stop(&self) -> bool {
         false
     }
+    /// Called once when the run has ended (after its last event): a writer hands over
+    /// what it still holds. Default: nothing.
+    fn finish(&mut self) {}
 }
 
 /// Discards the trace.
@@ -480,8 +485,20 @@ pub enum Format {
     Jsonl,
 }
 
+/// Bytes a [`WriterSink`] gathers before it hands them to its output in one write.
+pub const WRITE_CHUNK: usize = 1 << 16;
+
+/// Room for a grid move line (the longest is under 200 bytes); the chunk has twice this
+/// after [`WRITE_CHUNK`], the window [`TraceSink::grid_move`] of [`WriterSink`] writes in.
+const LINE_ROOM: usize = 256;
+
 /// Writes each event as it arrives. `line_of` maps an origin to a 1-based line (jsonl
 /// `line` field; text form appends `@line`). Write errors are kept and reported once.
+///
+/// The lines are gathered in a buffer of [`WRITE_CHUNK`] bytes and handed to `out` in
+/// one `write_all` each time it fills (a call per line cost more than the line), and at
+/// [`TraceSink::finish`], which a run calls at its end: `out` holds the whole trace only
+/// after it (read `error` then).
 pub struct WriterSink<'a, W: Write> {
     pub out: W,
     pub format: Format,
@@ -492,10 +509,13 @@ pub struct WriterSink<'a, W: Write> {
     /// streamed run's re-read knows every block's line; the look-up costs a tenth of a
     /// `run`). `None` (the default): always `line_of`.
     pub block_lines: Option<crate::span::FileId>,
+    /// Where [`TraceSink::event`] writes a line before it is gathered.
     buf: Vec<u8>,
-    /// Where [`TraceSink::grid_move`] writes a line (kept: clearing 256 bytes per line
-    /// costs more than writing it).
-    line: Box<[u8; 256]>,
+    /// The gathered lines: `chunk[..used]` (`used <` [`WRITE_CHUNK`] between calls);
+    /// 2 × [`LINE_ROOM`] bytes more, so that a grid move is written in place without a check
+    /// per byte (kept: clearing it per line would cost more than writing the line).
+    chunk: Box<[u8]>,
+    used: usize,
     /// The `@line` number [`TraceSink::grid_move`] wrote last and its digits: the next
     /// line is nearly always this one plus one, counted up in the digits.
     last_line: (usize, [u8; 24], usize),
@@ -541,10 +561,78 @@ impl<'a, W: Write> WriterSink<'a, W> {
             error: None,
             block_lines: None,
             buf: Vec::with_capacity(256),
-            line: Box::new([0; 256]),
+            chunk: vec![0; WRITE_CHUNK + 2 * LINE_ROOM].into_boxed_slice(),
+            used: 0,
             last_line: (0, *b"000000000000000000000000", 1),
         }
     }
+
+    /// Hands the gathered lines to `out` (the first error is kept; nothing is written
+    /// after it).
+    fn drain(&mut self) {
+        let used = std::mem::take(&mut self.used);
+        if used == 0 || self.error.is_some() {
+            return;
+        }
+        if let Err(e) = self.chunk.get(..used).map_or(Ok(()), |b| self.out.write_all(b)) {
+            self.error = Some(e);
+        }
+    }
+
+    /// Gathers `bytes` (a whole line) after the lines before it.
+    fn gather(&mut self, bytes: &[u8]) {
+        if self.used + bytes.len() > WRITE_CHUNK {
+            self.drain();
+        }
+        match self.chunk.get_mut(self.used..self.used + bytes.len()) {
+            Some(room) if self.used + bytes.len() <= WRITE_CHUNK => {
+                room.copy_from_slice(bytes);
+                self.used += bytes.len();
+            }
+            // A line longer than the chunk (a long message) goes out as it is.
+            _ => {
+                if self.error.is_none() {
+                    if let Err(e) = self.out.write_all(bytes) {
+                        self.error = Some(e);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Writes `text` (at most 16 bytes, the rest of the 16 written is not counted) at
+/// `w[i..]`; returns where it ends. `i` is taken modulo 256 so that the compiler sees
+/// every write inside the 512-byte window (a grid move line is under 200 bytes).
+#[inline(always)]
+fn put_at(w: &mut [u8; 2 * LINE_ROOM], i: usize, text: &[u8; 16], len: usize) -> usize {
+    let i = i % LINE_ROOM;
+    w[i..i + 16].copy_from_slice(text);
+    i + len
+}
+
+/// `" X="` and the like for every axis, as 16 bytes for [`put_at`].
+const AXIS_PREFIX: [[u8; 16]; 9] = {
+    let mut t = [[0u8; 16]; 9];
+    let mut a = 0;
+    while a < 9 {
+        t[a][0] = b' ';
+        t[a][1] = AXES[a] as u8;
+        t[a][2] = b'=';
+        a += 1;
+    }
+    t
+};
+
+/// `s` (at most 16 bytes) as 16 bytes for [`put_at`].
+const fn text16(s: &[u8]) -> [u8; 16] {
+    let mut t = [0u8; 16];
+    let mut k = 0;
+    while k < s.len() {
+        t[k] = s[k];
+        k += 1;
+    }
+    t
 }
 
 impl<W: Write> TraceSink for WriterSink<'_, W> {
@@ -553,21 +641,21 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
             return;
         }
         let line = (self.line_of)(origin);
-        self.buf.clear();
+        let mut buf = std::mem::take(&mut self.buf);
+        buf.clear();
         match self.format {
-            Format::Jsonl => write_json_bytes(&mut self.buf, ev, line),
+            Format::Jsonl => write_json_bytes(&mut buf, ev, line),
             Format::Text => {
-                write_text_bytes(&mut self.buf, ev);
+                write_text_bytes(&mut buf, ev);
                 if let Some(l) = line {
-                    self.buf.extend_from_slice(b"  @");
-                    super::numfmt::put_int(&mut self.buf, l as i64);
+                    buf.extend_from_slice(b"  @");
+                    super::numfmt::put_int(&mut buf, l as i64);
                 }
             }
         }
-        self.buf.push(b'\n');
-        if let Err(e) = self.out.write_all(&self.buf) {
-            self.error = Some(e);
-        }
+        buf.push(b'\n');
+        self.gather(&buf);
+        self.buf = buf;
     }
 
     fn grid_move(&mut self, m: &GridMove, origin: Origin) {
@@ -584,39 +672,53 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
             }
             _ => (self.line_of)(origin),
         };
-        // The line `text_form` and `event` write, in one pass into a buffer that holds the
-        // longest (9 axes of 11 bytes, a feed, a 20-digit line: under 200 bytes).
-        let b = &mut *self.line;
-        let mut i = if m.rapid {
-            b[..10].copy_from_slice(b"move rapid");
-            10
-        } else {
-            b[..11].copy_from_slice(b"move linear");
-            11
+        // The line `text_form` and `event` write, in one pass, in place after the lines
+        // gathered so far: `used < WRITE_CHUNK`, so the window fits in the chunk.
+        let used = self.used;
+        let Some(Ok(w)) = self.chunk.get_mut(used..used + 2 * LINE_ROOM).map(<&mut [u8; 2 * LINE_ROOM]>::try_from)
+        else {
+            // Not reached (the chunk has the room); the general way, should it be.
+            return self.event(&m.event(), origin);
         };
+        const RAPID: [u8; 16] = text16(b"move rapid");
+        const LINEAR: [u8; 16] = text16(b"move linear");
+        const FEED: [u8; 16] = text16(b" f=");
+        const NO_FEED: [u8; 16] = text16(b" f=-");
+        const AT: [u8; 16] = text16(b"  @");
+        const NL: [u8; 16] = text16(b"\n");
+        let mut i = if m.rapid { put_at(w, 0, &RAPID, 10) } else { put_at(w, 0, &LINEAR, 11) };
         let mut mask = m.mask & 0x1ff;
         while mask != 0 {
             let a = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            b[i..i + 3].copy_from_slice(&[b' ', AXES[a] as u8, b'=']);
-            i = super::numfmt::put_grid(b, i + 3, m.to[a]);
+            i = put_at(w, i, &AXIS_PREFIX[a % 9], 3);
+            i = super::numfmt::put_grid(w, i % LINE_ROOM, m.to[a % 9]);
         }
-        b[i..i + 3].copy_from_slice(b" f=");
-        i += 3;
         match m.f {
-            Some((_, n)) => i = super::numfmt::put_grid(b, i, n),
-            None => {
-                b[i] = b'-';
-                i += 1;
+            Some((_, n)) => {
+                i = put_at(w, i, &FEED, 3);
+                i = super::numfmt::put_grid(w, i % LINE_ROOM, n);
             }
+            None => i = put_at(w, i, &NO_FEED, 4),
         }
         if let Some(l) = line {
-            b[i..i + 3].copy_from_slice(b"  @");
-            i = put_line(b, i + 3, l, &mut self.last_line);
+            i = put_at(w, i, &AT, 3);
+            i = put_line(w, i % LINE_ROOM, l, &mut self.last_line);
         }
-        b[i] = b'\n';
-        if let Err(e) = self.out.write_all(&b[..i + 1]) {
-            self.error = Some(e);
+        i = put_at(w, i, &NL, 1);
+        debug_assert!(i < LINE_ROOM);
+        self.used = used + i;
+        if self.used >= WRITE_CHUNK {
+            self.drain();
+        }
+    }
+
+    fn finish(&mut self) {
+        self.drain();
+        if self.error.is_none() {
+            if let Err(e) = self.out.flush() {
+                self.error = Some(e);
+            }
         }
     }
 }
