@@ -212,6 +212,20 @@ pub fn line_end(b: &[u8]) -> (usize, bool) {
     (b.len(), plain)
 }
 
+/// A plain line as a dialect's index-only reader found it straight in the read buffer
+/// (`sinumerik::skeleton_bytes`, `fanuc::skeleton_bytes`), all offsets into the line: its
+/// text is `len` bytes, all plain (see [`line_end`]), followed by a CR or LF; its block is
+/// `lo..hi`; its block number, when it has one, is `number.0` written at `number.1..number.2`;
+/// `words` tells whether it has words besides the number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkelLine {
+    pub len: usize,
+    pub lo: usize,
+    pub hi: usize,
+    pub number: Option<(u32, usize, usize)>,
+    pub words: bool,
+}
+
 /// The index of the first `x` or `y` in `b` (eight bytes at a time).
 pub fn find2(b: &[u8], x: u8, y: u8) -> Option<usize> {
     let (sx, sy) = (LO * u64::from(x), LO * u64::from(y));

@@ -48,6 +48,8 @@ type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
 enum Want<'a> {
     /// Nothing: an index-only scan.
     Index,
+    /// [`Want::Index`] with every line read the general way (no [`take_plain`]): for tests.
+    IndexGeneral,
     /// Every finished top-level statement, as the whole-file reader builds it.
     Each(EachFn<'a>),
     /// Plain top-level lines as their words, the rest as statements (see [`scan_words`]).
@@ -318,6 +320,23 @@ pub fn scan_index(
     scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Index, progress)
 }
 
+/// [`scan_index`] reading every line through `Lines::next_line` and `Reader::scan_plain`
+/// or `Reader::line`, never straight from the buffer: what the fast first scan must give
+/// (for the differential tests).
+#[doc(hidden)]
+#[allow(clippy::too_many_arguments)]
+pub fn scan_index_general(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::IndexGeneral, None)
+}
+
 /// The first scan for a streamed translator: the index, diagnostics and header of
 /// [`scan_index`] (the same reader builds them), and for the translator each plain
 /// top-level line as a block of words ([`WordsSink::plain`]), every other statement as the
@@ -425,7 +444,31 @@ fn scan_with(
         // Spans are 32-bit offsets into the text.
         return Err(NotStreamable::TooLarge);
     }
-    while let Some(l) = lines.next_line()? {
+    loop {
+        // An index-only scan (or a words scan whose sink wants no more) past the header:
+        // a plain top-level line read straight from the buffer (see `take_plain`).
+        let index_now = match &want {
+            Want::Index => true,
+            Want::Words(s) => !s.active(),
+            Want::Each(_) | Want::IndexGeneral => false,
+        };
+        if index_now && !in_header {
+            if let Some((t, span, number)) = take_plain(&mut lines, &mut reader) {
+                count += 1;
+                if count.is_multiple_of(65536) {
+                    if let Some(p) = progress.as_mut() {
+                        let blocks = chunks.progs.iter().map(|p| p.ops as u64).sum();
+                        p(Progress { done: t.next, total: size, blocks });
+                    }
+                }
+                let prog = reader.current();
+                chunks.before(prog);
+                chunks.progs[prog].add_plain(span, number.as_ref());
+                chunks.after(&reader, chunk_ops, t.next, t.line + 1);
+                continue;
+            }
+        }
+        let Some(l) = lines.next_line()? else { break };
         if in_header {
             in_header = header_line(l.text, &mut header);
         }
@@ -571,6 +614,31 @@ fn scan_with(
         diags,
         header,
     })
+}
+
+/// An index-only scan of a plain top-level line straight from the read buffer: what
+/// [`Reader::scan_plain`] would give for the line [`Lines::next_line`] gives, and the same
+/// change to the reader and the lines, without making the line's text or looking at its
+/// bytes twice (the dialect's `skeleton_bytes` finds the line's end as it reads it). `None`
+/// (nothing read, nothing changed) when the line is another, or not known to be such a line
+/// (see `skeleton_bytes`): then read it the general way.
+#[inline]
+fn take_plain(lines: &mut Lines, reader: &mut Reader<'_>) -> Option<(lines::Taken, Span, Option<crate::ir::SeqNo>)> {
+    let (found, start) = match reader {
+        Reader::Sin(r) if r.plain_ready() => (sinumerik::skeleton_bytes(lines.ahead())?, lines.offset()),
+        Reader::Fan(r) if r.plain_ready() => (fanuc::skeleton_bytes(lines.ahead())?, lines.offset()),
+        _ => return None,
+    };
+    let t = lines.skip_plain(found.len)?;
+    debug_assert_eq!(t.start, start);
+    let at = |k: usize| start as u32 + k as u32;
+    let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
+    let span = Span::new(at(found.lo), at(found.hi));
+    match reader {
+        Reader::Sin(r) => r.take_plain(number.as_ref(), found.words),
+        Reader::Fan(r) => r.take_plain(span, number.as_ref().map(|n| n.value), found.words),
+    }
+    Some((t, span, number))
 }
 
 /// The chunks of a scan as statements arrive.

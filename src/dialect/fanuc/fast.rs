@@ -370,3 +370,114 @@ fn ends_token(b: &[u8], i: usize) -> bool {
         Some(c) => matches!(c, b' ' | b'\t' | b'\x0C' | b';') || c.is_ascii_alphabetic(),
     }
 }
+
+/// For an index-only first scan straight from the read buffer (`crate::stream::scan_index`):
+/// `b` starts at a line start and runs on past it (the line ends at the first CR or LF). The
+/// line when [`skeleton_raw`] would take it with the same block, number and words, and it
+/// holds only plain bytes (printable ASCII, tab, form feed, SUB: valid UTF-8, no control
+/// character to count); `None` when it may not be so (the caller then reads the line the
+/// general way), which includes a line not ending within `b`.
+///
+/// Why this is [`skeleton_line`]'s decision: it takes the steps of [`plain_words`] (with
+/// [`word`] and [`ends_token`]) and [`cut`] on the same bytes, the end of the line being a CR
+/// or LF here where it is the end of the text there. Besides what they decline it declines
+/// a block skip (`/`, rare in CAM output) and an N, G or M word of 16 or more digits
+/// without sign or point (whose value `plain_words` takes as parsed: `G0000000000000065`).
+#[inline]
+pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
+    let len = b.len();
+    let eol = |c: u8| c == b'\n' || c == b'\r';
+    let mut i = 0;
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
+    let lo = i;
+    let mut number = None;
+    let mut words = false;
+    let mut first = true;
+    let stop = loop {
+        while i < len && blank(b[i]) {
+            i += 1;
+        }
+        let c = *b.get(i)?;
+        if eol(c) || c == b';' {
+            break i;
+        }
+        if !c.is_ascii_alphabetic() {
+            return None;
+        }
+        let letter = c & !0x20;
+        let start = i;
+        i += 1;
+        while i < len && blank(b[i]) {
+            i += 1;
+        }
+        let mut signed = false;
+        if i < len && (b[i] == b'-' || b[i] == b'+') {
+            signed = true;
+            i += 1;
+            while i < len && blank(b[i]) {
+                i += 1;
+            }
+        }
+        let from = i;
+        while i < len && b[i].is_ascii_digit() {
+            i += 1;
+        }
+        let int_end = i;
+        let mut point = false;
+        if i < len && b[i] == b'.' {
+            point = true;
+            i += 1;
+            while i < len && b[i].is_ascii_digit() {
+                i += 1;
+            }
+        }
+        let digits = i - from - usize::from(point);
+        let n = *b.get(i)?;
+        if digits == 0 || !(blank(n) || n == b';' || n.is_ascii_alphabetic() || eol(n)) {
+            return None;
+        }
+        // `RawWord::int` of an N, G or M word without sign or point: its digits' value.
+        let int = if matches!(letter, b'N' | b'G' | b'M') && !point && !signed {
+            if digits > 15 {
+                return None;
+            }
+            Some(b[from..int_end].iter().fold(0u64, |n, &c| n * 10 + u64::from(c - b'0')))
+        } else {
+            None
+        };
+        let ok = match letter {
+            b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
+            b'O' => false,
+            b'G' => !matches!(int, Some(10 | 65 | 66 | 67)),
+            b'M' => !matches!(int, Some(2 | 30 | 98 | 99)),
+            _ => true,
+        };
+        if !ok {
+            return None;
+        }
+        match (letter, int) {
+            (b'N', Some(n)) => number = Some((n as u32, start, i)),
+            _ => words = true,
+        }
+        first = false;
+    };
+    if first {
+        return None;
+    }
+    // The line end, past only blanks and `;` after an end-of-block `;` (else `cut` declines).
+    let mut k = stop;
+    while !eol(*b.get(k)?) {
+        if !matches!(b[k], b' ' | b'\t' | b'\x0C' | b';') {
+            return None;
+        }
+        k += 1;
+    }
+    let mut hi = stop;
+    while hi > lo && blank(b[hi - 1]) {
+        hi -= 1;
+    }
+    let end = if b[stop] == b';' { stop + 1 } else { hi };
+    Some(crate::read::SkelLine { len: k, lo, hi: end, number, words })
+}

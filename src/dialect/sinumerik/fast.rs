@@ -307,3 +307,103 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
     }
     Some(head)
 }
+
+/// For an index-only first scan straight from the read buffer (`crate::stream::scan_index`):
+/// `b` starts at a line start and runs on past it (the line ends at the first CR or LF). The
+/// line when [`skeleton_raw`] would take it with the same number and words, and it holds only
+/// plain bytes (printable ASCII, tab, form feed, SUB: valid UTF-8, no control character to
+/// count); `None` when it may not be so (the caller then reads the line the general way),
+/// which includes a line not ending within `b`.
+///
+/// Why this is [`read`]'s decision: it takes the same steps on the same bytes, the end of
+/// the line being a CR or LF here where it is the end of the text there; it declines
+/// besides what `read` declines only what `read` may take but this need not (a word of 16
+/// or more digits is declined by both). After a blank it does not look for `=`, `[` or `(`
+/// as `read` does: the next round declines them (not a letter, `;` or line end) as `read` does.
+#[inline]
+pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
+    let len = b.len();
+    let mut i = 0;
+    let mut number = None;
+    let mut words = false;
+    while i < len && blank(b[i]) {
+        i += 1;
+    }
+    if i < len && (b[i] | 0x20) == b'n' {
+        let mut j = i + 1;
+        let mut value: u32 = 0;
+        while j < len {
+            let d = b[j].wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            if j - i > 9 {
+                return None;
+            }
+            value = value * 10 + u32::from(d);
+            j += 1;
+        }
+        let c = *b.get(j)?;
+        if j == i + 1 || !(blank(c) || c == b';' || c.is_ascii_alphabetic() || c == b'\n' || c == b'\r') {
+            return None;
+        }
+        number = Some((value, i, j));
+        i = j;
+    }
+    loop {
+        while i < len && blank(b[i]) {
+            i += 1;
+        }
+        let c = *b.get(i)?;
+        if c == b'\n' || c == b'\r' {
+            // No words, number or comment: a blank line, which `read` declines.
+            if !words && number.is_none() {
+                return None;
+            }
+            return Some(crate::read::SkelLine { len: i, lo: 0, hi: i, number, words });
+        }
+        if c == b';' {
+            let (k, plain) = crate::read::line_end(&b[i + 1..]);
+            let end = i + 1 + k;
+            if !plain || end >= len {
+                return None;
+            }
+            return Some(crate::read::SkelLine { len: end, lo: 0, hi: end, number, words });
+        }
+        let letter = c & !0x20;
+        if !letter.is_ascii_uppercase() || matches!(letter, b'L' | b'N' | b'O' | b'P') {
+            return None;
+        }
+        let mut j = i + 1;
+        let sign = *b.get(j)?;
+        if sign == b'-' || sign == b'+' {
+            j += 1;
+        }
+        let from = j;
+        while j < len && b[j].is_ascii_digit() {
+            j += 1;
+        }
+        let mut digits = j - from;
+        if j < len && b[j] == b'.' {
+            j += 1;
+            let from = j;
+            while j < len && b[j].is_ascii_digit() {
+                j += 1;
+            }
+            digits += j - from;
+        }
+        if digits == 0 || digits > 15 {
+            return None;
+        }
+        let n = *b.get(j)?;
+        if n.is_ascii_alphabetic() {
+            if (n | 0x20) == b'e' && b.get(j + 1).is_none_or(|&x| (x | 0x20) == b'x') {
+                return None;
+            }
+        } else if !(blank(n) || n == b';' || n == b'\n' || n == b'\r') {
+            return None;
+        }
+        words = true;
+        i = j;
+    }
+}
