@@ -378,11 +378,14 @@ fn ends_token(b: &[u8], i: usize) -> bool {
 /// character to count); `None` when it may not be so (the caller then reads the line the
 /// general way), which includes a line not ending within `b`.
 ///
-/// Why this is [`skeleton_line`]'s decision: it takes the steps of [`plain_words`] (with
-/// [`word`] and [`ends_token`]) and [`cut`] on the same bytes, the end of the line being a CR
-/// or LF here where it is the end of the text there. Besides what they decline it declines
-/// a block skip (`/`, rare in CAM output) and an N, G or M word of 16 or more digits
-/// without sign or point (whose value `plain_words` takes as parsed: `G0000000000000065`).
+/// Why this is [`skeleton_line`]'s decision: the words of letters other than N, G, M and O
+/// are read by an automaton ([`STEP`]) whose states are where [`word`] is in a word, one
+/// step per byte, and whose stops are [`ends_token`]'s and [`plain_words`]'s (the end of the
+/// line being a CR or LF here where it is the end of the text there); N, G and M words are
+/// read by [`word`]'s steps and judged by `plain_words`'s rules; then [`cut`]'s steps.
+/// Besides what they decline it declines a block skip (`/`, rare in CAM output) and an N, G
+/// or M word of 16 or more digits without sign or point (whose value `plain_words` takes
+/// as parsed: `G0000000000000065`).
 #[inline]
 pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
     let len = b.len();
@@ -393,20 +396,19 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
     }
     let lo = i;
     let mut number = None;
-    let mut words = false;
-    let mut first = true;
+    // Whether a word other than the N word comes (only an N word first may not be one).
+    let mut words = b.get(lo).is_some_and(|c| (c | 0x20) != b'n');
     let stop = loop {
-        while i < len && blank(b[i]) {
-            i += 1;
-        }
-        let c = *b.get(i)?;
-        if eol(c) || c == b';' {
+        let (k, how) = crate::read::run_automaton(&STEP, &b[i..], 0, STOP)?;
+        i += k;
+        if how != NGM {
+            if how == REJECT_ROW {
+                return None;
+            }
             break i;
         }
-        if !c.is_ascii_alphabetic() {
-            return None;
-        }
-        let letter = c & !0x20;
+        // An N, G or M word: `word`'s steps, then `RawWord::int` and `plain_words`'s rule.
+        let letter = b[i] & !0x20;
         let start = i;
         i += 1;
         while i < len && blank(b[i]) {
@@ -438,8 +440,7 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
         if digits == 0 || !(blank(n) || n == b';' || n.is_ascii_alphabetic() || eol(n)) {
             return None;
         }
-        // `RawWord::int` of an N, G or M word without sign or point: its digits' value.
-        let int = if matches!(letter, b'N' | b'G' | b'M') && !point && !signed {
+        let int = if !point && !signed {
             if digits > 15 {
                 return None;
             }
@@ -448,22 +449,24 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
             None
         };
         let ok = match letter {
-            b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
-            b'O' => false,
+            b'N' => start == lo && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'G' => !matches!(int, Some(10 | 65 | 66 | 67)),
-            b'M' => !matches!(int, Some(2 | 30 | 98 | 99)),
-            _ => true,
+            _ => !matches!(int, Some(2 | 30 | 98 | 99)),
         };
         if !ok {
             return None;
         }
-        match (letter, int) {
-            (b'N', Some(n)) => number = Some((n as u32, start, i)),
-            _ => words = true,
+        if letter == b'N' {
+            number = int.map(|n| (n as u32, start, i));
+            let mut j = i;
+            while j < len && blank(b[j]) {
+                j += 1;
+            }
+            words = b.get(j).is_some_and(u8::is_ascii_alphabetic);
         }
-        first = false;
     };
-    if first {
+    if stop == lo {
+        // No word: `plain_words` hands back a block without words.
         return None;
     }
     // The line end, past only blanks and `;` after an end-of-block `;` (else `cut` declines).
@@ -481,3 +484,102 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
     let end = if b[stop] == b';' { stop + 1 } else { hi };
     Some(crate::read::SkelLine { len: k, lo, hi: end, number, words })
 }
+
+/// The states of [`skeleton_bytes`]'s automaton: between words, after a word's letter (and
+/// blanks), after its sign (and blanks), in its digits before a point, after a point with
+/// no digit before it, after a point and a digit. Then where it stops: an N, G or M word,
+/// a decline, a `;`, the line end.
+const SEP: u8 = 0;
+const LET: u8 = 1;
+const SIGN: u8 = 2;
+const INT: u8 = 3;
+const POINT0: u8 = 4;
+const POINT: u8 = 5;
+const NGM_STATE: u8 = 8;
+const REJECT: u8 = 9;
+const SEMI_STATE: u8 = 10;
+const EOL_STATE: u8 = 11;
+/// Where the automaton stops, as [`STEP`] holds it.
+const STOP: u16 = (NGM_STATE as u16) << 8;
+const NGM: u16 = (NGM_STATE as u16) << 8;
+const REJECT_ROW: u16 = (REJECT as u16) << 8;
+
+/// One step of [`word`] and [`plain_words`] for a word of another letter than N, G, M or O:
+/// `state` (below 8) and the next byte `c`.
+const fn step(state: u8, c: u8) -> u8 {
+    let blank = matches!(c, b' ' | b'\t' | b'\x0C');
+    let digit = c.is_ascii_digit();
+    let up = c & !0x20;
+    let letter = up.is_ascii_uppercase();
+    // What may follow a word's digits (`ends_token`), and then start the next word.
+    let ends = if blank {
+        SEP
+    } else if letter && matches!(up, b'N' | b'G' | b'M') {
+        NGM_STATE
+    } else if letter && up != b'O' {
+        LET
+    } else if c == b';' {
+        SEMI_STATE
+    } else if c == b'\n' || c == b'\r' {
+        EOL_STATE
+    } else {
+        REJECT
+    };
+    match state {
+        SEP => ends,
+        LET | SIGN => {
+            if blank {
+                state
+            } else if state == LET && (c == b'-' || c == b'+') {
+                SIGN
+            } else if digit {
+                INT
+            } else if c == b'.' {
+                POINT0
+            } else {
+                REJECT
+            }
+        }
+        INT => {
+            if digit {
+                INT
+            } else if c == b'.' {
+                POINT
+            } else {
+                ends
+            }
+        }
+        POINT0 => {
+            if digit {
+                POINT
+            } else {
+                REJECT
+            }
+        }
+        POINT => {
+            if digit {
+                POINT
+            } else {
+                ends
+            }
+        }
+        _ => REJECT,
+    }
+}
+
+/// [`step`] for every state and byte, at `state << 8 | byte`, each next state as its row
+/// (`state << 8`) or, where the automaton stops, as [`STOP`] and up (`read::run_automaton`
+/// runs it); 8 rows, a power of two (the rows past the last state decline).
+static STEP: [u16; 8 * 256] = {
+    let mut t = [0u16; 8 * 256];
+    let mut s = 0;
+    while s < 8 {
+        let mut c = 0;
+        while c < 256 {
+            t[s * 256 + c] = (step(s as u8, c as u8) as u16) << 8;
+            c += 1;
+        }
+        s += 1;
+    }
+    t
+};
