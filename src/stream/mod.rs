@@ -464,7 +464,8 @@ fn scan_with(
                 let prog = reader.current();
                 chunks.before(prog);
                 chunks.progs[prog].add_plain(span, number.as_ref());
-                chunks.after(&reader, chunk_ops, t.next, t.line + 1);
+                // `take_plain` reads only at the top level, where the reader stays.
+                chunks.after_top(&reader, chunk_ops, t.next, t.line + 1);
                 continue;
             }
         }
@@ -652,12 +653,17 @@ struct Chunker {
 
 impl Chunker {
     /// Before the statements a line finished, all of program `prog`: a chunk is open for them.
-    #[inline]
+    #[inline(always)]
     fn before(&mut self, prog: usize) {
-        if matches!(self.open, Some((p, ..)) if p == prog) {
-            // The chunk open is this program's (nearly always).
-            return;
+        if !matches!(self.open, Some((p, ..)) if p == prog) {
+            // The chunk open is not this program's (seldom).
+            self.open_for(prog);
         }
+    }
+
+    /// [`Chunker::before`] when no chunk of program `prog` is open.
+    #[inline(never)]
+    fn open_for(&mut self, prog: usize) {
         while self.progs.len() <= prog {
             self.progs.push(ProgIndex::new());
         }
@@ -687,6 +693,43 @@ impl Chunker {
         }
         if at_top && (self.open.is_none() || matches!(reader, Reader::Fan(_))) {
             self.boundary = (line_end, next_line, reader.checkpoint());
+        }
+    }
+}
+
+impl Chunker {
+    /// [`Chunker::after`] of a line read where the reader is and stays at the top level
+    /// (`reader.at_top()`, which it then need not ask). The same chunks and boundaries.
+    #[inline(always)]
+    fn after_top(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        if let Some((p, ..)) = &self.open {
+            let prog = &self.progs[*p];
+            let base = prog.chunks.last().map_or(0, |c| c.op_base + c.ops);
+            if prog.ops - base >= chunk_ops.max(1) {
+                self.close_open(line_end);
+            }
+        }
+        match reader {
+            Reader::Fan(r) => {
+                // The boundary moves with every line; its resume state is set in place.
+                self.boundary.0 = line_end;
+                self.boundary.1 = next_line;
+                let now = r.checkpoint();
+                match &mut self.boundary.2 {
+                    Resume::Fanuc(was) => *was = now,
+                    other => *other = Resume::Fanuc(now),
+                }
+            }
+            Reader::Sin(_) if self.open.is_none() => self.boundary = (line_end, next_line, reader.checkpoint()),
+            Reader::Sin(_) => {}
+        }
+    }
+
+    /// Closes the open chunk at `hi`.
+    #[inline(never)]
+    fn close_open(&mut self, hi: u64) {
+        if let Some((p, lo, line, resume)) = self.open.take() {
+            close(&mut self.progs[p], lo, hi, line, resume);
         }
     }
 }

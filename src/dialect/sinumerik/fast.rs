@@ -321,7 +321,7 @@ fn read<S: Sink>(norm: &Normalised<'_>, sink: &mut S) -> Option<Head> {
 /// It declines what `read` declines; an `EX` after a word's digits too (`read` looks for it
 /// after the word, the automaton finds an `E` word without a value: both decline). After a
 /// blank it does not look for `=`, `[` or `(` as `read` does: the next step declines them.
-#[inline]
+#[inline(always)]
 pub fn skeleton_bytes(b: &[u8]) -> Option<crate::read::SkelLine> {
     let len = b.len();
     let mut i = 0;
