@@ -212,6 +212,54 @@ pub fn line_end(b: &[u8]) -> (usize, bool) {
     (b.len(), plain)
 }
 
+/// A plain line as a dialect's index-only reader found it straight in the read buffer
+/// (`sinumerik::skeleton_bytes`, `fanuc::skeleton_bytes`), all offsets into the line: its
+/// text is `len` bytes, all plain (see [`line_end`]), followed by a CR or LF; its block is
+/// `lo..hi`; its block number, when it has one, is `number.0` written at `number.1..number.2`;
+/// `words` tells whether it has words besides the number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkelLine {
+    pub len: usize,
+    pub lo: usize,
+    pub hi: usize,
+    pub number: Option<(u32, usize, usize)>,
+    pub words: bool,
+}
+
+/// Runs a byte automaton (the dialects' `skeleton_bytes`) over `b` from row `row`: `step`
+/// holds at `row | byte` the next state's row (`state << 8`), or a value at or above
+/// `stop` where the automaton stops. Gives where it stopped and the value there, or `None`
+/// when `b` ends first. `ROWS` is a power of two, so a masked index needs no bounds check;
+/// eight bytes are stepped at a time while there are (no bounds check per byte either).
+#[inline(always)]
+pub fn run_automaton<const ROWS: usize>(
+    step: &[u16; ROWS],
+    b: &[u8],
+    mut row: usize,
+    stop: u16,
+) -> Option<(usize, u16)> {
+    let mut chunks = b.chunks_exact(8);
+    let mut at = 0;
+    for chunk in &mut chunks {
+        for (k, &c) in chunk.iter().enumerate() {
+            let next = step[(row | usize::from(c)) & (ROWS - 1)];
+            if next >= stop {
+                return Some((at + k, next));
+            }
+            row = usize::from(next);
+        }
+        at += 8;
+    }
+    for (k, &c) in chunks.remainder().iter().enumerate() {
+        let next = step[(row | usize::from(c)) & (ROWS - 1)];
+        if next >= stop {
+            return Some((at + k, next));
+        }
+        row = usize::from(next);
+    }
+    None
+}
+
 /// The index of the first `x` or `y` in `b` (eight bytes at a time).
 pub fn find2(b: &[u8], x: u8, y: u8) -> Option<usize> {
     let (sx, sy) = (LO * u64::from(x), LO * u64::from(y));

@@ -85,6 +85,7 @@ impl ProgIndex {
     }
 
     /// [`ProgIndex::add`] of a plain block statement (span `span`, number `number`, no label).
+    #[inline]
     pub fn add_plain(&mut self, span: Span, number: Option<&crate::ir::SeqNo>) {
         if let Some(n) = number {
             self.numbers.push(n.value, self.ops as u64, n.span);

@@ -96,6 +96,14 @@ pub struct Line<'a> {
     pub ascii: bool,
 }
 
+/// A line [`Lines::skip_plain`] moved past: as [`Line`], less the text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Taken {
+    pub start: u64,
+    pub line: u32,
+    pub next: u64,
+}
+
 impl Lines {
     /// Opens the input at its start (a UTF-8 byte-order mark is skipped).
     pub fn new(mut input: Input) -> Result<Lines, NotStreamable> {
@@ -219,6 +227,40 @@ impl Lines {
         self.offset += (next - self.pos) as u64;
         self.pos = next;
         Ok(Some(Line { text, start, line: self.line, next: self.offset, ascii: plain }))
+    }
+
+    /// The buffered bytes from the next line's start on (any number of lines, the last
+    /// perhaps cut short): for a reader that takes a line straight from the buffer and then
+    /// moves past it with [`Lines::skip_plain`].
+    #[inline]
+    pub fn ahead(&self) -> &[u8] {
+        &self.buf[self.pos..self.end]
+    }
+
+    /// Moves past the next line, whose text is the first `len` bytes of [`Lines::ahead`],
+    /// all of them plain (see `read::line_end`; the caller has looked), followed by a CR
+    /// or LF: what [`Lines::next_line`] would do, without looking at the text again (plain
+    /// text is valid UTF-8 with no control character to count). Gives the line as
+    /// `next_line` would, less its text. `None`, and nothing moves, when no line end
+    /// follows, or it is a CR that a refill might show to be the first half of CR LF.
+    #[inline]
+    pub fn skip_plain(&mut self, len: usize) -> Option<Taken> {
+        let at = self.pos + len;
+        if at >= self.end {
+            return None;
+        }
+        let w = match self.buf[at] {
+            b'\n' => 1,
+            b'\r' if at + 1 < self.end => 1 + usize::from(self.buf[at + 1] == b'\n'),
+            b'\r' if self.eof => 1,
+            _ => return None,
+        };
+        self.line += 1;
+        let start = self.offset;
+        let next = at + w;
+        self.offset += (next - self.pos) as u64;
+        self.pos = next;
+        Some(Taken { start, line: self.line, next: self.offset })
     }
 
     /// Text bytes read so far (for progress).

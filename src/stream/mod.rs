@@ -9,6 +9,7 @@
 //! executes chunk by chunk ([`paged`]), re-reading through the index what a backward jump or
 //! loop end needs. The approach and its limits are in docs/architecture.md ("Streaming").
 
+mod chunker;
 pub mod index;
 pub mod lines;
 pub mod paged;
@@ -22,6 +23,7 @@ use crate::eval::lit::LitBlock;
 use crate::ir::{Addr, Comment, Item, ItemKind, Stmt, WordValue};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
+use chunker::{close, take_plain, Chunker};
 pub use index::CHUNK_OPS;
 use index::{Chunk, ProgIndex, Resume};
 use lines::{Input, Lines, NotStreamable};
@@ -48,6 +50,8 @@ type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
 enum Want<'a> {
     /// Nothing: an index-only scan.
     Index,
+    /// [`Want::Index`] with every line read the general way (no [`take_plain`]): for tests.
+    IndexGeneral,
     /// Every finished top-level statement, as the whole-file reader builds it.
     Each(EachFn<'a>),
     /// Plain top-level lines as their words, the rest as statements (see [`scan_words`]).
@@ -318,6 +322,23 @@ pub fn scan_index(
     scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::Index, progress)
 }
 
+/// [`scan_index`] reading every line through `Lines::next_line` and `Reader::scan_plain`
+/// or `Reader::line`, never straight from the buffer: what the fast first scan must give
+/// (for the differential tests).
+#[doc(hidden)]
+#[allow(clippy::too_many_arguments)]
+pub fn scan_index_general(
+    input: Input,
+    size: u64,
+    path: &Path,
+    file: FileId,
+    dialect: Dialect,
+    opts: &ParseOptions,
+    chunk_ops: usize,
+) -> Result<Index, NotStreamable> {
+    scan_with(input, size, path, file, dialect, opts, chunk_ops, Want::IndexGeneral, None)
+}
+
 /// The first scan for a streamed translator: the index, diagnostics and header of
 /// [`scan_index`] (the same reader builds them), and for the translator each plain
 /// top-level line as a block of words ([`WordsSink::plain`]), every other statement as the
@@ -425,7 +446,32 @@ fn scan_with(
         // Spans are 32-bit offsets into the text.
         return Err(NotStreamable::TooLarge);
     }
-    while let Some(l) = lines.next_line()? {
+    loop {
+        // An index-only scan (or a words scan whose sink wants no more) past the header:
+        // a plain top-level line read straight from the buffer (see `take_plain`).
+        let index_now = match &want {
+            Want::Index => true,
+            Want::Words(s) => !s.active(),
+            Want::Each(_) | Want::IndexGeneral => false,
+        };
+        if index_now && !in_header {
+            if let Some((t, span, number)) = take_plain(&mut lines, &mut reader) {
+                count += 1;
+                if count.is_multiple_of(65536) {
+                    if let Some(p) = progress.as_mut() {
+                        let blocks = chunks.progs.iter().map(|p| p.ops as u64).sum();
+                        p(Progress { done: t.next, total: size, blocks });
+                    }
+                }
+                let prog = reader.current();
+                chunks.before(prog);
+                chunks.progs[prog].add_plain(span, number.as_ref());
+                // `take_plain` reads only at the top level, where the reader stays.
+                chunks.after_top(&reader, chunk_ops, t.next, t.line + 1);
+                continue;
+            }
+        }
+        let Some(l) = lines.next_line()? else { break };
         if in_header {
             in_header = header_line(l.text, &mut header);
         }
@@ -571,63 +617,6 @@ fn scan_with(
         diags,
         header,
     })
-}
-
-/// The chunks of a scan as statements arrive.
-struct Chunker {
-    progs: Vec<ProgIndex>,
-    /// The open chunk: (program, lo, line, resume state).
-    open: Option<(usize, u64, u32, Resume)>,
-    /// Where the next chunk would start: (offset, line, resume state).
-    boundary: (u64, u32, Resume),
-}
-
-impl Chunker {
-    /// Before the statements a line finished, all of program `prog`: a chunk is open for them.
-    #[inline]
-    fn before(&mut self, prog: usize) {
-        if matches!(self.open, Some((p, ..)) if p == prog) {
-            // The chunk open is this program's (nearly always).
-            return;
-        }
-        while self.progs.len() <= prog {
-            self.progs.push(ProgIndex::new());
-        }
-        let boundary = &self.boundary;
-        self.open = Some(match self.open.take() {
-            Some((p, lo, line, resume)) if p != prog => {
-                // A new program: the old chunk ends after its last statement.
-                close(&mut self.progs[p], lo, boundary.0, line, resume);
-                (prog, boundary.0, boundary.1, boundary.2.clone())
-            }
-            Some(o) => o,
-            None => (prog, boundary.0, boundary.1, boundary.2.clone()),
-        });
-    }
-
-    /// After them: the chunk closes when it is long enough and no structure is open; the
-    /// next line (number `next_line`, at `line_end`) may then start the next one.
-    #[inline]
-    fn after(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
-        let at_top = reader.at_top();
-        if let Some((p, lo, line, resume)) = &self.open {
-            let base = self.progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if at_top && self.progs[*p].ops - base >= chunk_ops.max(1) {
-                close(&mut self.progs[*p], *lo, line_end, *line, resume.clone());
-                self.open = None;
-            }
-        }
-        if at_top && (self.open.is_none() || matches!(reader, Reader::Fan(_))) {
-            self.boundary = (line_end, next_line, reader.checkpoint());
-        }
-    }
-}
-
-fn close(p: &mut ProgIndex, lo: u64, hi: u64, line: u32, resume: Resume) {
-    let base = p.chunks.last().map_or(0, |c| c.op_base + c.ops);
-    if p.ops > base {
-        p.chunks.push(Chunk { lo, hi, line, op_base: base, ops: p.ops - base, resume });
-    }
 }
 
 /// Collects `; nctrans: set …` / `(nctrans: set …)` header lines (see

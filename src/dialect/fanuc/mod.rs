@@ -32,6 +32,31 @@ use structure::ProgramLines;
 pub use block::both_ways_for_test as build_both_ways_for_test;
 pub use block::skeleton_both_ways_for_test;
 pub use fast::parse_fast_for_test;
+pub use fast::skeleton_bytes;
+
+/// The index-only reader's decision on one line `text` (at file offset 0), the old way
+/// (`Reader::scan_plain`'s `fast::skeleton_raw`) and the buffer way ([`skeleton_bytes`]
+/// on `text` followed by `after`, which should start with a line end), each as the
+/// block's span, its number (value and span) and whether it has words.
+#[doc(hidden)]
+#[allow(clippy::type_complexity)]
+pub fn skeleton_both_for_test(
+    text: &str,
+    after: &str,
+) -> (Option<(Span, Option<(u32, Span)>, bool)>, Option<(Span, Option<(u32, Span)>, bool)>) {
+    let raw = read::RawBlock { text, start: 0, line: 1 };
+    let old = if text.is_ascii() {
+        fast::skeleton_raw(&raw, 0).map(|(span, n, words)| (span, n.map(|n| (n.value, n.span)), words))
+    } else {
+        None
+    };
+    let bytes = [text.as_bytes(), after.as_bytes()].concat();
+    let new = skeleton_bytes(&bytes).map(|f| {
+        let n = f.number.map(|(v, lo, hi)| (v, Span::new(lo as u32, hi as u32)));
+        (Span::new(f.lo as u32, f.hi as u32), n, f.words)
+    });
+    (old, new)
+}
 pub use parse::parse_grammar_for_test;
 
 /// Parses one FANUC file. Every bad block gives one diagnostic and reading continues.
@@ -201,8 +226,27 @@ impl<'o> Reader<'o> {
             return None;
         }
         let (span, number, words) = fast::skeleton_raw(raw, self.file)?;
-        self.programs.last_mut()?.push_drained_skeleton(span, number.as_ref().map(|n| n.value), words);
+        self.take_plain(span, number.as_ref().map(|n| n.value), words);
         Some((span, number))
+    }
+
+    /// Whether [`Reader::scan_plain`] would read a line that the fast reader takes (it
+    /// then changes the reader only by [`Reader::take_plain`]).
+    #[inline]
+    pub fn plain_ready(&self) -> bool {
+        self.index_only
+            && self.tape != Tape::Closed
+            && self.programs.last().is_some_and(|p| !p.param_mode && p.drains_at_once())
+    }
+
+    /// What [`Reader::scan_plain`] does to the reader with a line it reads (block `span`,
+    /// numbered `number`, with or without `words`): for a caller that read the line itself
+    /// with [`skeleton_bytes`] when [`Reader::plain_ready`].
+    #[inline]
+    pub fn take_plain(&mut self, span: Span, number: Option<u32>, words: bool) {
+        if let Some(p) = self.programs.last_mut() {
+            p.push_drained_skeleton(span, number, words);
+        }
     }
 
     /// A streamed translator's first scan (`crate::stream::scan_words`): [`Reader::scan_plain`]

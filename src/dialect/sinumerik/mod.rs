@@ -14,6 +14,8 @@ mod structure;
 
 pub mod emit;
 
+pub use fast::skeleton_bytes;
+
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};
 use crate::ir::{BlockMeta, Unit};
@@ -233,9 +235,23 @@ impl Reader {
             return None;
         }
         let (number, words) = fast::skeleton_raw(raw)?;
-        self.any = true;
-        self.builder.push_plain_top(number.as_ref(), words);
+        self.take_plain(number.as_ref(), words);
         Some((Span::new(raw.start, raw.start + raw.text.len() as u32), number))
+    }
+
+    /// Whether [`Reader::scan_plain`] would read a line that the fast reader takes (it
+    /// then changes the reader only by [`Reader::take_plain`]).
+    #[inline]
+    pub fn plain_ready(&self) -> bool {
+        self.index_only && self.builder.plain_at_top()
+    }
+
+    /// What [`Reader::scan_plain`] does to the reader with a line it reads: for a caller
+    /// that read the line itself with [`skeleton_bytes`] when [`Reader::plain_ready`].
+    #[inline]
+    pub fn take_plain(&mut self, number: Option<&crate::ir::SeqNo>, words: bool) {
+        self.any = true;
+        self.builder.push_plain_top(number, words);
     }
 
     /// A streamed translator's first scan (`crate::stream::scan_words`): [`Reader::scan_plain`]
@@ -345,6 +361,31 @@ pub(crate) fn header_name(line: &str) -> Option<String> {
 #[doc(hidden)]
 pub fn block_via_grammar(text: &str) -> Option<String> {
     block_dump(text, false)
+}
+
+/// The index-only reader's decision on one line `text` (at file offset 0), the old way
+/// (`Reader::scan_plain`'s `fast::skeleton_raw`) and the buffer way ([`skeleton_bytes`]
+/// on `text` followed by `after`, which should start with a line end), each as the
+/// block's span, its number (value and span) and whether it has words.
+#[doc(hidden)]
+#[allow(clippy::type_complexity)]
+pub fn skeleton_both_for_test(
+    text: &str,
+    after: &str,
+) -> (Option<(Span, Option<(u32, Span)>, bool)>, Option<(Span, Option<(u32, Span)>, bool)>) {
+    let raw = read::RawBlock { text, start: 0, line: 1 };
+    let old = if text.is_ascii() {
+        fast::skeleton_raw(&raw)
+            .map(|(n, words)| (Span::new(0, text.len() as u32), n.map(|n| (n.value, n.span)), words))
+    } else {
+        None
+    };
+    let bytes = [text.as_bytes(), after.as_bytes()].concat();
+    let new = skeleton_bytes(&bytes).map(|f| {
+        let n = f.number.map(|(v, lo, hi)| (v, Span::new(lo as u32, hi as u32)));
+        (Span::new(f.lo as u32, f.hi as u32), n, f.words)
+    });
+    (old, new)
 }
 
 /// The IR of one block through the fast path only (`None` when it declines).

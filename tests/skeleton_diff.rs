@@ -1,0 +1,351 @@
+//! The differential test of the index-only first scan read straight from the buffer
+//! (issue 7): `skeleton_bytes` of both dialects against the reader they stand for
+//! (`Reader::scan_plain`'s `skeleton_raw`) on every corpus line and generated lines
+//! (plain CAM lines and near misses: `N1.`, `X1=`, `GO1`, `1EX3`, 16 and more digits,
+//! letters L/N/O/P, tabs, form feeds, comments, controls, non-ASCII, every line end), and
+//! `stream::scan_index` against `stream::scan_index_general` (every line the general way)
+//! on every corpus file and generated files (lines across buffer refills, CR LF cut by a
+//! refill, macro parts among CAM lines, small and large chunks).
+//!
+//! `NCTRANS_SKELETON_LINES` sets how many lines are generated per dialect (default
+//! 100,000); the ignored test runs a million per dialect
+//! (`cargo test --release --test skeleton_diff -- --ignored`).
+
+#[path = "support/rng.rs"]
+mod rng;
+
+use nctrans::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
+use nctrans::stream::{self, lines::Input};
+use rng::Rng;
+use std::path::{Path, PathBuf};
+
+/// A number as CAM output and hand-written code spell them, and near misses.
+fn number(r: &mut Rng) -> String {
+    fn digits(r: &mut Rng, lo: u64, spread: u64) -> String {
+        let n = lo + r.below(spread);
+        (0..n).map(|_| char::from(b'0' + r.below(10) as u8)).collect()
+    }
+    match r.below(12) {
+        0 => digits(r, 1, 4),
+        1 => format!("{}.", digits(r, 1, 4)),
+        2 => {
+            let a = digits(r, 1, 3);
+            format!("{a}.{}", digits(r, 0, 5))
+        }
+        3 => format!(".{}", digits(r, 1, 4)),
+        4 => digits(r, 13, 5),
+        5 => {
+            let a = digits(r, 1, 8);
+            format!("{a}.{}", digits(r, 5, 10))
+        }
+        6 => r.pick(&["", ".", "..", "1..2", "1.2.3"]).to_string(),
+        7 => {
+            let a = digits(r, 1, 2);
+            format!("{a}EX{}", r.pick(&["3", "-2", "", "X"]))
+        }
+        8 => {
+            let a = digits(r, 1, 2);
+            format!("{a}E{}", digits(r, 1, 1))
+        }
+        9 => r.pick(&["10", "65", "66", "67", "2", "30", "98", "99", "0065", "0000000000000065", "17"]).to_string(),
+        _ => {
+            let a = digits(r, 1, 1);
+            format!("{a}.{}", digits(r, 4, 1))
+        }
+    }
+}
+
+const LETTERS: &[&str] = &[
+    "G", "X", "Y", "Z", "F", "S", "T", "M", "I", "J", "K", "A", "B", "C", "E", "D", "H", "R", "U", "V", "W", "Q", "L",
+    "N", "O", "P", "g", "x", "n", "e",
+];
+
+/// One generated line (without its line end); `siemens` picks the comment forms.
+fn line(r: &mut Rng, siemens: bool) -> String {
+    let mut s = String::new();
+    if r.chance(10) {
+        s.push_str(r.pick(&[" ", "\t", "  ", "\x0c", " \t"]));
+    }
+    if r.chance(5) {
+        s.push_str(r.pick(&["/", "/2 ", "/ ", "%"]));
+    }
+    if r.chance(30) {
+        let n = r.below(12) + u64::from(r.chance(20));
+        let digits: String = (0..n).map(|_| char::from(b'0' + r.below(10) as u8)).collect();
+        s.push_str(r.pick(&["N", "n", "N ", "N"]));
+        s.push_str(&digits);
+        s.push_str(r.pick(&[" ", " ", "", ".", "=1", "\t", ";x", "G1"]));
+    }
+    let words = r.below(7);
+    for k in 0..words {
+        s.push_str(r.pick(LETTERS));
+        if !siemens && r.chance(5) {
+            s.push(' ');
+        }
+        if r.chance(30) {
+            s.push_str(r.pick(&["-", "+", "-", "- ", "--"]));
+        }
+        s.push_str(&number(r));
+        if r.chance(3) {
+            s.push_str(r.pick(&["=", "=2", "[1]", "(x)", " =3", " [", ":", "'", "\u{3000}", "\u{ff11}", "O", "#1"]));
+        }
+        if k + 1 < words || r.chance(10) {
+            s.push_str(r.pick(&[" ", " ", " ", "", "\t", "  ", "\x0c", " \x1a"]));
+        }
+    }
+    if r.chance(15) {
+        let comment = r.pick(&["", "x", " tool 1", " é", " 注释", "\x01", "\x7f", "\t\x0c\x1a", "(;)", ";", " ; "]);
+        if siemens || r.chance(50) {
+            s.push(';');
+            s.push_str(comment);
+        } else {
+            s.push_str(&format!("({comment})"));
+        }
+    }
+    if r.chance(3) {
+        // Blanks or `;` after the block (FANUC end-of-block marks).
+        s.push_str(r.pick(&[" ", ";", " ;", ";;", "; ", "\t"]));
+    }
+    if r.chance(2) {
+        s = r
+            .pick(&[
+                "",
+                " ",
+                "\t",
+                "GOTOB LAB1",
+                "LAB1:",
+                "IF R1>2",
+                "WHILE [#1 LT 3] DO1",
+                "END1",
+                "#1=#1+1",
+                "M30",
+                "M99",
+                "M02",
+                "G65 P9010",
+                "O1000",
+                "GO1 X1",
+                "G1 XO.5",
+                "X1.EX3",
+                "R1=5",
+            ])
+            .to_string();
+    }
+    s
+}
+
+/// The line ends `skeleton_bytes` sees after a line (the first starts none: it must decline).
+const AFTER: &[&str] = &["", "\n", "\r\n", "\r", "\rG1 X2", "\nN5 G1", "\n\n"];
+
+/// Whether `skeleton_bytes` may decline a line the old reader takes: not plain bytes (it
+/// reads only those), and for FANUC a block skip or an N, G or M word of 16 or more digits.
+fn may_decline(text: &str, siemens: bool) -> bool {
+    let plain = text.bytes().all(|c| matches!(c, b'\t' | 0x0c | 0x1a | 0x20..=0x7e));
+    if !plain {
+        return true;
+    }
+    if siemens {
+        return false;
+    }
+    let b = text.as_bytes();
+    let mut run = 0;
+    let long = b.iter().any(|c| {
+        run = if c.is_ascii_digit() { run + 1 } else { 0 };
+        run >= 16
+    });
+    text.contains('/') || long
+}
+
+/// Compares both readers on `text` with every line end after it; counts the lines both take.
+fn compare(text: &str, siemens: bool, taken: &mut u64) {
+    for after in AFTER {
+        let (old, new) = if siemens {
+            sinumerik::skeleton_both_for_test(text, after)
+        } else {
+            fanuc::skeleton_both_for_test(text, after)
+        };
+        if after.is_empty() {
+            assert_eq!(new, None, "a line without its end: {text:?}");
+            continue;
+        }
+        match (&old, &new) {
+            (_, Some(_)) => assert_eq!(old, new, "{text:?} then {after:?}"),
+            (Some(_), None) => assert!(may_decline(text, siemens), "declined {text:?} then {after:?}: {old:?}"),
+            (None, None) => {}
+        }
+        *taken += u64::from(new.is_some());
+    }
+}
+
+fn corpus_files() -> Vec<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut dirs = vec![
+        root.join("corpus/in/sinumerik"),
+        root.join("corpus/in/fanuc"),
+        root.join("corpus/err/sinumerik"),
+        root.join("corpus/err/fanuc"),
+    ];
+    let external = root.join("../shared/external");
+    if external.is_dir() {
+        dirs.push(external);
+    } else {
+        println!("note: {} not found; the external programs are not compared", external.display());
+    }
+    let mut files = Vec::new();
+    while let Some(d) = dirs.pop() {
+        let Ok(rd) = std::fs::read_dir(&d) else { continue };
+        for p in rd.filter_map(|e| e.ok()).map(|e| e.path()) {
+            if p.is_dir() {
+                dirs.push(p);
+            } else if dialect_of(&p).is_some() {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+fn dialect_of(p: &Path) -> Option<Dialect> {
+    match p.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        "mpf" | "spf" => Some(Dialect::Sinumerik),
+        "nc" => Some(Dialect::Fanuc),
+        _ => None,
+    }
+}
+
+#[test]
+fn every_corpus_line_agrees() {
+    let mut lines = 0;
+    let mut taken = 0;
+    for f in corpus_files() {
+        let Ok(bytes) = std::fs::read(&f) else { continue };
+        let text = String::from_utf8_lossy(&bytes);
+        let siemens = dialect_of(&f) == Some(Dialect::Sinumerik);
+        for l in text.split(['\n', '\r']) {
+            compare(l, siemens, &mut taken);
+            lines += 1;
+        }
+    }
+    assert!(lines > 2000, "only {lines} corpus lines");
+    println!("{lines} corpus lines, taken {taken} times");
+    assert!(taken > 1000, "only {taken} corpus lines taken");
+}
+
+fn generated_lines(n: u64) {
+    for siemens in [true, false] {
+        let mut r = Rng(if siemens { 0x9E37_79B9_7F4A_7C15 } else { 0x2545_F491_4F6C_DD1D });
+        let mut taken = 0;
+        for _ in 0..n {
+            compare(&line(&mut r, siemens), siemens, &mut taken);
+        }
+        // Both sides of the decision are exercised.
+        let all = n * (AFTER.len() as u64 - 1);
+        assert!(taken > all / 10 && taken < all * 9 / 10, "taken {taken} of {all} (siemens: {siemens})");
+    }
+}
+
+#[test]
+fn generated_lines_agree() {
+    let n = std::env::var("NCTRANS_SKELETON_LINES").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
+    generated_lines(n);
+}
+
+#[test]
+#[ignore]
+fn a_million_generated_lines_agree() {
+    generated_lines(1_000_000);
+}
+
+/// The index of `bytes` by the fast first scan and by the general one, as debug text.
+fn both_indexes(path: &Path, dialect: Dialect, bytes: &[u8], chunk_ops: usize) -> (String, String) {
+    let opts = ParseOptions::for_dialect(dialect);
+    let input = || Input::Mem(std::io::Cursor::new(bytes.to_vec()));
+    let size = bytes.len() as u64;
+    let fast = stream::scan_index(input(), size, path, 0, dialect, &opts, chunk_ops, None);
+    let general = stream::scan_index_general(input(), size, path, 0, dialect, &opts, chunk_ops);
+    (format!("{fast:?}"), format!("{general:?}"))
+}
+
+#[test]
+fn every_corpus_file_has_the_same_index() {
+    let mut compared = 0;
+    for f in corpus_files() {
+        let Ok(bytes) = std::fs::read(&f) else { continue };
+        let Some(dialect) = dialect_of(&f) else { continue };
+        for chunk in [1, 5, 2048] {
+            let (fast, general) = both_indexes(&f, dialect, &bytes, chunk);
+            assert_eq!(fast, general, "{} (chunks of {chunk})", f.display());
+            compared += 1;
+        }
+    }
+    assert!(compared > 300, "only {compared} scans compared");
+}
+
+/// A generated program of about `size` bytes: a header, CAM lines (some near misses) with
+/// every line end, and now and then a macro part (labels, loops, jumps, variables).
+fn program(r: &mut Rng, siemens: bool, size: usize) -> Vec<u8> {
+    let mut text = String::from(if siemens { "; title\n; nctrans: set R1=2\n" } else { "%\nO1000 (TITLE)\n" });
+    let macro_part = if siemens {
+        ["LAB1:", "R1=R1+1", "IF R1<3 GOTOB LAB1", "WHILE R2<2", "R2=R2+1", "ENDWHILE", "N7 G1 X1 ; n", "DEF REAL Q"]
+    } else {
+        ["#1=#1+1", "IF [#1 LT 3] GOTO 7", "WHILE [#2 LT 2] DO1", "#2=#2+1", "END1", "N7 G1 X1.", "(NOTE)", "G65 P9 A1"]
+    };
+    let mut n = 10;
+    while text.len() < size {
+        if r.chance(2) {
+            let k = r.index(macro_part.len());
+            text.push_str(macro_part[k]);
+        } else if r.chance(90) {
+            // A CAM line, numbered or not.
+            if r.chance(50) {
+                text.push_str(&format!("N{n} "));
+                n += 10;
+            }
+            let cut = r.below(3) as usize;
+            let words = ["G1", "X0.1394", "Y-0.4750", "Z-0.0225", "F800."];
+            text.push_str(&words[cut..].join(" "));
+            if r.chance(10) {
+                text.push_str(if siemens { " ; cut" } else { " (cut)" });
+            }
+        } else {
+            text.push_str(&line(r, siemens));
+        }
+        text.push_str(r.pick(&["\n", "\n", "\n", "\r\n", "\r"]));
+    }
+    text.push_str(if siemens { "M30\n" } else { "M30\n%\n" });
+    text.into_bytes()
+}
+
+#[test]
+fn generated_files_have_the_same_index() {
+    let mut r = Rng(0xD1B5_4A32_D192_ED03);
+    for siemens in [true, false] {
+        let dialect = if siemens { Dialect::Sinumerik } else { Dialect::Fanuc };
+        let path = PathBuf::from(if siemens { "gen.mpf" } else { "gen.nc" });
+        for k in 0..6 {
+            // Sizes across the 256 KiB refills (a CR LF cut by one now and then), a BOM.
+            let mut bytes = program(&mut r, siemens, 4_000 + k * 150_000);
+            if k == 2 {
+                bytes.splice(0..0, *b"\xEF\xBB\xBF");
+            }
+            for chunk in [1, 64, 2048] {
+                let (fast, general) = both_indexes(&path, dialect, &bytes, chunk);
+                assert_eq!(fast, general, "{} of {} bytes (chunks of {chunk})", path.display(), bytes.len());
+            }
+        }
+        // A CR as the last byte of the first buffer (256 KiB), then an LF or another line.
+        const FIRST: usize = 256 * 1024;
+        for end in ["\r\n", "\rG1 X2\n", "\r\r\n"] {
+            let mut bytes = program(&mut r, siemens, FIRST - 100);
+            let keep = bytes[..FIRST - 200].iter().rposition(|&c| c == b'\n').map_or(0, |i| i + 1);
+            bytes.truncate(keep);
+            bytes.extend_from_slice(b"G1 X1");
+            bytes.resize(FIRST - 1, b' ');
+            bytes.extend_from_slice(end.as_bytes());
+            bytes.extend_from_slice(&program(&mut r, siemens, 2000));
+            assert_eq!(bytes[FIRST - 1], b'\r');
+            let (fast, general) = both_indexes(&path, dialect, &bytes, 2048);
+            assert_eq!(fast, general, "a CR at the end of the first buffer, then {end:?}");
+        }
+    }
+}
