@@ -306,7 +306,7 @@ fn digit_runs_at_every_alignment_agree() {
                 let run: String = (0..len).map(|k| char::from(b'0' + ((k * 7 + len) % 10) as u8)).collect();
                 for letter in ["X", "G", "M", "N", "F"] {
                     for shape in
-                        [format!("{run}"), format!("{run}."), format!(".{run}"), format!("1.{run}"), format!("{run}.5")]
+                        [run.clone(), format!("{run}."), format!(".{run}"), format!("1.{run}"), format!("{run}.5")]
                     {
                         let blanks = " ".repeat(pad);
                         compare(&format!("{blanks}{letter}{shape}"), siemens, &mut taken);
