@@ -452,12 +452,14 @@ fn programs_across_read_buffer_ends_stream_to_the_whole_translation() {
     for (case, (eol, shift)) in [("\r\n", 0), ("\r", 0), ("\n", 3), ("\r\n", 7), ("\n", 0)].into_iter().enumerate() {
         let mut text = program(&mut r, &letters, 12_000, eol);
         assert!(text.len() > CHUNK + 20_000, "{}", text.len());
-        // The first line end from CHUNK - 300 on, moved to CHUNK - 1 - shift by lengthening
-        // the header comment.
-        let at = CHUNK - 300 + text[CHUNK - 300..].find(['\n', '\r']).expect("a line end");
+        // A plain line (the quick reader's) from the first line start after CHUNK - 300
+        // on, its line end moved to CHUNK - 1 - shift by lengthening the header comment.
+        let s0 = CHUNK - 300 + text[CHUNK - 300..].find(['\n', '\r']).expect("a line end") + eol.len();
+        text.insert_str(s0, &format!("G1 X1.5 Y-2{eol}"));
+        let at = s0 + "G1 X1.5 Y-2".len();
         let head = text.find("; generated").expect("header") + "; generated".len();
         text.insert_str(head, &"x".repeat(CHUNK - 1 - shift - at));
-        assert!(text.as_bytes()[CHUNK - 1 - shift] == eol.as_bytes()[0], "case {case}");
+        assert!(text[CHUNK - 1 - shift..].starts_with(eol), "case {case}");
         if case == 4 {
             text.truncate(text.len() - eol.len());
         }

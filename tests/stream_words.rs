@@ -22,7 +22,13 @@ fn root() -> PathBuf {
 /// statement's debug form.
 #[derive(Debug, PartialEq)]
 enum Got {
-    Plain { prog: usize, number: Option<u32>, span: (u32, u32), comments: Vec<String>, words: Vec<(u8, u64, bool)> },
+    Plain {
+        prog: usize,
+        number: Option<u32>,
+        span: (u32, u32),
+        comments: Vec<String>,
+        words: Vec<(u8, u64, bool, (u32, u32))>,
+    },
     Stmt(usize, String),
 }
 
@@ -36,7 +42,7 @@ fn of_stmt(prog: usize, s: &Stmt, plain_ok: bool) -> Got {
                 .map(|it| match &it.kind {
                     ItemKind::Word(w) => match (&w.addr, &w.value) {
                         (Addr::Letter(l), WordValue::Expr(e)) => match &e.kind {
-                            ExprKind::Num(n) => Some((*l, n.value.to_bits(), n.point)),
+                            ExprKind::Num(n) => Some((*l, n.value.to_bits(), n.point, (it.span.lo, it.span.hi))),
                             _ => None,
                         },
                         _ => None,
@@ -52,7 +58,7 @@ fn of_stmt(prog: usize, s: &Stmt, plain_ok: bool) -> Got {
     Got::Stmt(prog, format!("{s:?}"))
 }
 
-fn plain(prog: usize, meta: &BlockMeta, words: Vec<(u8, u64, bool)>) -> Got {
+fn plain(prog: usize, meta: &BlockMeta, words: Vec<(u8, u64, bool, (u32, u32))>) -> Got {
     Got::Plain {
         prog,
         number: meta.number.as_ref().map(|n| n.value),
@@ -73,7 +79,7 @@ struct Record {
 impl WordsSink for Record {
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], _: &nctrans::read::RawBlock<'_>) -> bool {
         if self.take {
-            let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect();
+            let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point, (w.span.lo, w.span.hi))).collect();
             self.got.push(plain(prog, meta, words));
         }
         self.take
@@ -126,7 +132,7 @@ fn plain_lines_two_readers(path: &Path, dialect: Dialect) -> Option<Vec<Got>> {
             number,
             span: (span.lo, span.hi),
             comments: comment.into_iter().collect(),
-            words: words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect(),
+            words: words.iter().map(|w| (w.letter, w.value.to_bits(), w.point, (w.span.lo, w.span.hi))).collect(),
         }
     };
     match dialect {
@@ -412,11 +418,12 @@ fn cam_programs_scan_the_same_with_words_across_buffer_ends() {
     std::fs::create_dir_all(&dir).expect("dir");
     // Lines around the first buffer end: across it in a word, at a point, a CR LF split by
     // it, a CR before it, a line end just after it.
-    let tails: [(usize, &str); 6] = [
+    let tails: [(usize, &str); 7] = [
         (CHUNK - 5, "G1 X12.3456 Y-7.5\n"),
-        (CHUNK - 3, "X1.5 Y2\r\n"),
+        (CHUNK - 8, "X1.5 Y2\r\nY3\n"),
+        (CHUNK - 14, "N20 G1 X-12.5\r\nY3\r\n"),
+        (CHUNK - 7, "N20 X1\rY2\n"),
         (CHUNK - 9, "X-12.5 Y2\r\nY3\n"),
-        (CHUNK - 6, "N20 X1\rY2\n"),
         (CHUNK - 1, "X\n"),
         (CHUNK - 2, "X1\n"),
     ];
