@@ -14,6 +14,7 @@ mod macro_a;
 mod names;
 mod parse;
 mod scan;
+pub mod scan_words;
 mod skeleton;
 mod structure;
 
