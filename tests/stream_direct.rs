@@ -523,7 +523,7 @@ fn direct_route_reads_across_the_read_buffer_end() {
                 if split && want > 12 {
                     let mut l = l;
                     while l.len() < want {
-                        l.push_str("0");
+                        l.push('0');
                     }
                     l.truncate(want);
                     // Ends in a digit (not a point or sign): still the quick shape.

@@ -101,7 +101,7 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
                 let at = j + n + 1;
                 let rest = load8(s, at);
                 let m = run(rest);
-                let Some(&p) = POW10.get(m) else { return None };
+                let &p = POW10.get(m)?;
                 (mant, frac) = (value(w, n) * p + value(rest, m), m);
                 j = at + m;
             }
