@@ -487,3 +487,78 @@ fn scan(path: &Path) -> Option<stream::Index> {
     let (input, size) = stream::open(path).ok()?;
     stream::scan_index(input, size, path, 0, dialect, &ParseOptions::for_dialect(dialect), 64, None).ok()
 }
+
+/// Files longer than the 256 KiB read buffer, so that re-read lines cross its end: lines
+/// in the quick reader's shape (and others), with LF, CR LF and lone CR line ends, a CR LF
+/// split across the first buffer's end (its CR the buffer's last byte), a line across it,
+/// with and without a line end after the last line. Same pages and runs both ways.
+#[test]
+fn direct_route_reads_across_the_read_buffer_end() {
+    const BUF: usize = 256 * 1024;
+    let dir = root().join("target/stream-direct-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut direct = 0;
+    for (k, (fanuc, split, last_end)) in
+        [(false, true, true), (false, false, false), (true, true, false), (true, false, true)].into_iter().enumerate()
+    {
+        let mut r = Rng(k as u64 * 77 + 5);
+        let mut text = String::from(if fanuc { "O1000 (BIG)\n" } else { "%_N_BIG_MPF\n" });
+        let quick = |r: &mut Rng| {
+            format!(
+                "G1 X{}.{:04} Y-{}.{} Z{} F{}",
+                r.below(500),
+                r.below(10_000),
+                r.below(90),
+                r.below(99),
+                r.below(9),
+                r.below(900)
+            )
+        };
+        while text.len() < BUF * 5 / 2 {
+            // Near the first buffer's end: a quick line whose CR LF straddles it, or a
+            // line across it.
+            if text.len() > BUF - 200 && text.len() < BUF {
+                let l = quick(&mut r);
+                let want = BUF - 1 - text.len();
+                if split && want > 12 {
+                    let mut l = l;
+                    while l.len() < want {
+                        l.push('0');
+                    }
+                    l.truncate(want);
+                    // Ends in a digit (not a point or sign): still the quick shape.
+                    while !l.ends_with(|c: char| c.is_ascii_digit()) {
+                        l.pop();
+                        l.push('1');
+                    }
+                    text.push_str(&l);
+                    text.push_str("\r\n");
+                    assert!(!split || text.len() == BUF + 1, "{}", text.len());
+                    continue;
+                }
+            }
+            let l = match r.below(10) {
+                0 if fanuc => fanuc_line(&mut r, true),
+                0 => line(&mut r),
+                _ => quick(&mut r),
+            };
+            // No structures (a random `IF` might not close) and no program ends.
+            if l.contains("IF") || l.contains("WHILE") || l.contains("M30") || l.contains("M17") || l.contains('%') {
+                continue;
+            }
+            text.push_str(&l);
+            text.push_str(r.pick(&["\n", "\r\n", "\r", "\n"]));
+        }
+        text.push_str("M30");
+        if last_end {
+            text.push('\n');
+        }
+        let path = dir.join(format!("big{k}.{}", if fanuc { "nc" } else { "mpf" }));
+        std::fs::write(&path, &text).expect("write");
+        for chunk in [1, 64, 2048] {
+            direct += same_pages(&path, chunk);
+        }
+        assert_eq!(streamed_trace(&path, 64, true), streamed_trace(&path, 64, false), "{}", path.display());
+    }
+    assert!(direct > 50_000, "{direct} direct lines");
+}

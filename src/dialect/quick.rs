@@ -13,32 +13,66 @@
 use crate::eval::lit::{milli, LitBlock};
 use crate::span::Span;
 
-/// One word as read: upper-case letter, its digits as one whole number with `frac` of
-/// them after the point, whether a sign (`neg`: `-`) and a point were written.
+/// Which words a dialect's full reader reads alike (the others, the quick reader leaves to
+/// it): a letter whose bit (`1 << (letter - b'A')`) is set in `refuse` is not taken, nor
+/// with `g_macro` a `G10`, `G65`, `G66` or `G67` written without sign or point. Plain data
+/// checked in line, not a callback (a callback per word was not inlined).
 #[derive(Clone, Copy, Debug)]
-pub struct Quick {
-    pub letter: u8,
-    pub mant: u64,
-    pub frac: usize,
-    pub signed: bool,
-    pub neg: bool,
-    pub point: bool,
+pub struct Rule {
+    pub refuse: u32,
+    pub g_macro: bool,
+}
+
+impl Rule {
+    /// The bits of `letters` for [`Rule::refuse`].
+    pub const fn letters(letters: &[u8]) -> u32 {
+        let mut m = 0;
+        let mut k = 0;
+        while k < letters.len() {
+            m |= 1 << (letters[k] - b'A');
+            k += 1;
+        }
+        m
+    }
 }
 
 /// Reads the line `text` (starting at file offset `start`) into `b` when it has the shape
-/// above and `ok` takes each word; `false` otherwise, and then `b` may hold some of its
+/// above and `rule` takes each word; `false` otherwise, and then `b` may hold some of its
 /// words (to be cleared). Each word is pushed as the dialects' readers push it: value
 /// `read::exact(mant, frac)` with its sign, point, thousandths from the digits, span from
 /// its letter to its last digit.
 #[inline(always)]
-pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, ok: impl Fn(&Quick) -> bool) -> bool {
-    let s = text.as_bytes();
+pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, rule: Rule) -> bool {
+    words::<false>(text.as_bytes(), start, b, rule).is_some()
+}
+
+/// [`lit_words`] on a line read straight from a read buffer (`crate::stream::reread`):
+/// `s` starts at the line's start and runs on past its end, which is the first CR or LF.
+/// Gives the line's length (the offset of its CR or LF) when [`lit_words`] would take the
+/// line `s[..len]` with the same words; `None` otherwise, which includes a line that does
+/// not end within `s` (then `b` may hold some words, to be cleared). A line it takes holds
+/// only upper-case letters, signs, digits, points and blanks: plain ASCII.
+///
+/// Why the bytes after the line do not matter: every run of digits stops at the first
+/// byte that is no digit, here the CR or LF where [`lit_words`] has the end of the text
+/// (which [`load8`] reads as 0, no digit either), and after a word's digits the CR or LF
+/// ends the line where the end of the text does.
+#[inline(always)]
+pub fn lit_words_buf(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Option<usize> {
+    words::<true>(s, start, b, rule)
+}
+
+/// [`lit_words`] (`BUF` false: the line is all of `s`) and [`lit_words_buf`] (`BUF` true:
+/// the line ends at the first CR or LF of `s`); the line's length.
+#[inline(always)]
+fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Option<usize> {
     let len = s.len();
     let mut i = 0;
     loop {
-        let Some(&letter) = s.get(i) else { return false };
-        if !letter.is_ascii_uppercase() {
-            return false;
+        let &letter = s.get(i)?;
+        let k = letter.wrapping_sub(b'A');
+        if k >= 26 || (rule.refuse >> k) & 1 != 0 {
+            return None;
         }
         let mut j = i + 1;
         let sign = s.get(j).copied().unwrap_or(0);
@@ -67,32 +101,39 @@ pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, ok: impl Fn(&Quick) -
                 let at = j + n + 1;
                 let rest = load8(s, at);
                 let m = run(rest);
-                let Some(&p) = POW10.get(m) else { return false };
+                let &p = POW10.get(m)?;
                 (mant, frac) = (value(w, n) * p + value(rest, m), m);
                 j = at + m;
             }
         }
         // None is no number; eight in a run may go on (the full reader reads them).
         if n + frac == 0 || n == 8 {
-            return false;
+            return None;
         }
-        let w = Quick { letter, mant, frac, signed, neg, point };
-        if !ok(&w) {
-            return false;
+        if rule.g_macro && letter == b'G' && !point && !signed && matches!(mant, 10 | 65 | 66 | 67) {
+            return None;
         }
         // At most 14 digits: below 2^53, `exact` answers.
         let v = crate::read::exact(mant, frac).unwrap_or(0.0);
         let value = if neg { -v } else { v };
         let span = Span::new(start + i as u32, start + j as u32);
         if !b.push(letter, value, point, milli(neg, Some((mant, frac))), span) {
-            return false;
+            return None;
         }
-        if j == len {
-            return true;
-        }
-        // One blank, then the next word's letter (checked there).
-        if s[j] != b' ' {
-            return false;
+        if BUF {
+            match s.get(j) {
+                Some(b'\n' | b'\r') => return Some(j),
+                Some(b' ') => {}
+                _ => return None,
+            }
+        } else {
+            if j == len {
+                return Some(j);
+            }
+            // One blank, then the next word's letter (checked there).
+            if s[j] != b' ' {
+                return None;
+            }
         }
         i = j + 1;
     }
@@ -245,8 +286,7 @@ mod tests {
             let text = line(&mut r);
             let raw = RawBlock { text: &text, start: 1000 + n, line: n + 1 };
             let mut probe = LitBlock::EMPTY;
-            let plain_sin = |w: &Quick| !matches!(w.letter, b'L' | b'M' | b'N' | b'O' | b'P');
-            quick += usize::from(lit_words(raw.text, raw.start, &mut probe, plain_sin));
+            quick += usize::from(lit_words(raw.text, raw.start, &mut probe, crate::dialect::sinumerik::fast::QUICK));
 
             let mut b = LitBlock::EMPTY;
             let got = crate::dialect::sinumerik::fast::lit_raw(&raw, &mut b).map(|(s, n, _)| (s, n));
@@ -276,6 +316,58 @@ mod tests {
             }
         }
         assert!(quick > 5_000 && taken > quick + 5_000, "{quick} quick, {taken} taken");
+    }
+
+    /// The buffer reader against the line reader: on each generated line followed by a line
+    /// end (LF, CR LF, CR) and more text, it takes the line when and only when the line
+    /// reader takes it, with the same words, and gives the line's length; without a line
+    /// end after the line (a line cut by the buffer's end) it never takes it. And the
+    /// dialects' `lit_buf` take a line only as their `lit_raw` / `lit_block` take it.
+    #[test]
+    fn buffer_lines_read_as_whole_lines() {
+        let mut r = Rng(0x0bad_cafe_1234_5678);
+        let mut taken = 0;
+        for n in 0..200_000u32 {
+            let text = line(&mut r);
+            let after = [&line(&mut r)[..], "7", "0.5", ".", "", "X1"][r.below(6)].to_string();
+            let end = ["\n", "\r\n", "\r", ""][r.below(4)];
+            let buf = format!("{text}{end}{after}");
+            let start = 1000 + n;
+            let sin = crate::dialect::sinumerik::fast::QUICK;
+            let fan = crate::dialect::fanuc::fast::QUICK;
+            for (rule, name) in [(sin, "sinumerik"), (fan, "fanuc")] {
+                let mut want = LitBlock::EMPTY;
+                let whole = lit_words(&text, start, &mut want, rule);
+                let mut got = LitBlock::EMPTY;
+                let len = lit_words_buf(buf.as_bytes(), start, &mut got, rule);
+                if end.is_empty() {
+                    assert_eq!(len, None, "{name} {buf:?}");
+                    continue;
+                }
+                assert_eq!(len, whole.then_some(text.len()), "{name} {buf:?}");
+                if whole {
+                    taken += 1;
+                    assert_eq!(words(&got), words(&want), "{name} {buf:?}");
+                    millis_right(&got);
+                }
+            }
+            let raw = RawBlock { text: &text, start, line: 1 };
+            let mut b = LitBlock::EMPTY;
+            if crate::dialect::sinumerik::fast::lit_buf(buf.as_bytes(), start, &mut b).is_some() {
+                let mut w = LitBlock::EMPTY;
+                let whole = Span::new(start, start + text.len() as u32);
+                assert_eq!(crate::dialect::sinumerik::fast::lit_raw(&raw, &mut w), Some((whole, None, true)));
+                assert_eq!(words(&b), words(&w), "{buf:?}");
+            }
+            let mut b = LitBlock::EMPTY;
+            if crate::dialect::fanuc::fast::lit_buf(buf.as_bytes(), start, &mut b).is_some() {
+                let mut w = LitBlock::EMPTY;
+                let whole = Span::new(start, start + text.len() as u32);
+                assert_eq!(crate::dialect::fanuc::fast::lit_block(&raw, 0, &mut w), Some((whole, None)));
+                assert_eq!(words(&b), words(&w), "{buf:?}");
+            }
+        }
+        assert!(taken > 10_000, "{taken} taken");
     }
 
     /// `digits8` against counting and adding the digits one by one, on every run length

@@ -134,6 +134,25 @@ impl Lines {
         Ok(())
     }
 
+    /// [`Lines::seek`], but when `offset` is at or after the next line's start and among
+    /// the bytes buffered (a re-read of the chunk after the one just read, nearly always),
+    /// reading goes on from the buffer: the file is not read again (a page re-read would
+    /// otherwise read a whole buffer for a chunk of a fraction of it). The bytes buffered
+    /// are the file's from `offset()` on (`fill` only appends to them), so they are what
+    /// reading there again would give.
+    pub fn seek_near(&mut self, offset: u64, line: u32) -> Result<(), NotStreamable> {
+        let ahead = (self.end - self.pos) as u64;
+        match offset.checked_sub(self.offset) {
+            Some(k) if k <= ahead && line > 0 => {
+                self.pos += k as usize;
+                self.offset = offset;
+                self.line = line - 1;
+                Ok(())
+            }
+            _ => self.seek(offset, line),
+        }
+    }
+
     /// Reads until at least `want` bytes are buffered or the input ends.
     fn fill(&mut self, want: usize) -> io::Result<()> {
         if self.pos > 0 {

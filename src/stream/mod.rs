@@ -267,6 +267,32 @@ impl Reader<'_> {
         true
     }
 
+    /// [`Reader::lit`] of the next line straight from the read buffer (see
+    /// `sinumerik::Reader::lit_buf`, `fanuc::Reader::lit_buf`): when the reader takes it,
+    /// moves `lines` past it and fills `b` as `lit` of the line `next_line` would give
+    /// does, and changes the reader alike. `None` (nothing moved, the reader untouched;
+    /// `b` may hold some words) otherwise: then read the line the general way.
+    #[inline(always)]
+    fn lit_ahead(&mut self, lines: &mut Lines, b: &mut LitBlock) -> Option<lines::Taken> {
+        // A text offset fits 32 bits (the first scan refused larger files).
+        let start = lines.offset() as u32;
+        let len = match self {
+            Reader::Sin(r) => r.lit_buf(lines.ahead(), start, b)?,
+            Reader::Fan(r) => r.lit_buf(lines.ahead(), start, b)?,
+        };
+        // The quick reader takes only plain bytes up to a CR or LF.
+        let t = lines.skip_plain(len)?;
+        let span = Span::new(start, start + len as u32);
+        match self {
+            Reader::Sin(r) => r.took_lit(),
+            Reader::Fan(r) => r.took_lit(span),
+        }
+        b.span = span;
+        b.number = None;
+        b.line = t.line;
+        Some(t)
+    }
+
     fn checkpoint(&self) -> Resume {
         match self {
             Reader::Sin(r) => Resume::Sinumerik(r.checkpoint()),
@@ -690,33 +716,58 @@ pub trait RereadSink {
 /// Re-reads one chunk: the statements of `chunk`, parsed again from the file. With
 /// `direct`, plain blocks of constant letter words at top level skip the IR and are read
 /// into [`RereadSink::lit`] (the op the statement would flatten to).
-pub fn reread(
+/// Generic over the sink and `on_line`, so that their calls per line are inlined.
+pub fn reread<S: RereadSink + ?Sized, F: FnMut(u64, u32) + ?Sized>(
     lines: &mut Lines,
     ix: &Index,
     chunk: &Chunk,
     direct: bool,
-    sink: &mut dyn RereadSink,
-    on_line: &mut dyn FnMut(u64, u32),
+    sink: &mut S,
+    on_line: &mut F,
 ) -> Result<(), NotStreamable> {
-    lines.seek(chunk.lo, chunk.line)?;
+    lines.seek_near(chunk.lo, chunk.line)?;
     let mut stmts: Vec<Stmt> = Vec::new();
     let mut reader = match &chunk.resume {
         Resume::Sinumerik(r) => Reader::Sin(Box::new(sinumerik::Reader::resume(ix.file, &ix.opts, r))),
         Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(ix.file, &ix.opts, *r))),
     };
-    while let Some(l) = lines.next_line()? {
+    loop {
+        // The direct route: a plain line read straight from the read buffer where it can
+        // be (`Reader::lit_ahead`), else the line as `next_line` gives it; a block made
+        // for the one is used for the other.
+        let mut lit = None;
+        if direct {
+            if lines.offset() >= chunk.hi {
+                break;
+            }
+            if let Some(b) = sink.lit() {
+                if let Some(t) = reader.lit_ahead(lines, b) {
+                    on_line(t.start, t.line);
+                    continue;
+                }
+                b.clear();
+                lit = Some(b);
+            }
+        }
+        let Some(l) = lines.next_line()? else {
+            if lit.is_some() {
+                sink.unlit();
+            }
+            break;
+        };
         if l.start >= chunk.hi {
+            if lit.is_some() {
+                sink.unlit();
+            }
             break;
         }
         on_line(l.start, l.line);
         let raw = RawBlock { text: l.text, start: l.start as u32, line: l.line };
-        if direct {
-            if let Some(b) = sink.lit() {
-                if reader.lit(&raw, l.ascii, b) {
-                    continue;
-                }
-                sink.unlit();
+        if let Some(b) = lit {
+            if reader.lit(&raw, l.ascii, b) {
+                continue;
             }
+            sink.unlit();
         }
         reader.line(&raw);
         reader.drain_into(&mut stmts);

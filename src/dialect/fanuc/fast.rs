@@ -133,14 +133,9 @@ pub fn lit_block(
     b: &mut crate::eval::lit::LitBlock,
 ) -> Option<(Span, Option<SeqNo>)> {
     // Most lines are taken by `quick::lit_words`: the words it takes are ones
-    // [`plain_words`] takes alike (no N, O or M, which it judges, no G it refuses), in a
-    // line without a skip, blanks at either end, or a `;`, so cut from its start to its end.
-    let plain = |w: &crate::dialect::quick::Quick| match w.letter {
-        b'N' | b'O' | b'M' => false,
-        b'G' => w.point || w.signed || !matches!(w.mant, 10 | 65 | 66 | 67),
-        _ => true,
-    };
-    if crate::dialect::quick::lit_words(raw.text, raw.start, b, plain) {
+    // [`plain_words`] takes alike (see [`QUICK`]), in a line without a skip, blanks
+    // at either end, or a `;`, so cut from its start to its end.
+    if crate::dialect::quick::lit_words(raw.text, raw.start, b, QUICK) {
         return Some((Span::new(raw.start, raw.start + raw.text.len() as u32), None));
     }
     b.clear();
@@ -152,6 +147,19 @@ pub fn lit_block(
     })?;
     let (lo, _, end) = cut(seg.text.as_bytes(), stop)?;
     Some((norm.span(lo, end), number))
+}
+
+/// The words `quick::lit_words` may take for [`lit_block`]: ones [`plain_words`] takes
+/// alike (no N, O or M, which it judges, no G it refuses).
+pub const QUICK: crate::dialect::quick::Rule =
+    crate::dialect::quick::Rule { refuse: crate::dialect::quick::Rule::letters(b"MNO"), g_macro: true };
+
+/// [`lit_block`]'s quick reader on a line read straight from a read buffer (see
+/// `quick::lit_words_buf`): the line's length when it takes the line, as [`lit_block`]
+/// would with the line's whole span and no number.
+#[inline(always)]
+pub fn lit_buf(ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
+    crate::dialect::quick::lit_words_buf(ahead, start, b, QUICK)
 }
 
 /// For a streamed translator's first scan of a whole line taken as it is

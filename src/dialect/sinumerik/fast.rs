@@ -75,8 +75,7 @@ pub fn words_raw(
 /// it does not begin with: N, lower case); the others, read by [`read`].
 pub fn lit_raw(raw: &crate::read::RawBlock<'_>, b: &mut LitBlock) -> Option<(Span, Option<u32>, bool)> {
     let whole = Span::new(raw.start, raw.start + raw.text.len() as u32);
-    let plain = |w: &crate::dialect::quick::Quick| !matches!(w.letter, b'L' | b'M' | b'N' | b'O' | b'P');
-    if crate::dialect::quick::lit_words(raw.text, raw.start, b, plain) {
+    if crate::dialect::quick::lit_words(raw.text, raw.start, b, QUICK) {
         return Some((whole, None, true));
     }
     b.clear();
@@ -84,6 +83,19 @@ pub fn lit_raw(raw: &crate::read::RawBlock<'_>, b: &mut LitBlock) -> Option<(Spa
     let head = read(&norm, &mut Lit(b))?;
     Some((whole, head.number.map(|n| n.value), head.words > 0))
 }
+
+/// [`lit_raw`]'s quick reader on a line read straight from a read buffer (see
+/// `quick::lit_words_buf`): the line's length when it takes the line, as [`lit_raw`]
+/// would with the line's whole span, no number and words.
+#[inline(always)]
+pub fn lit_buf(ahead: &[u8], start: u32, b: &mut LitBlock) -> Option<usize> {
+    crate::dialect::quick::lit_words_buf(ahead, start, b, QUICK)
+}
+
+/// The words `quick::lit_words` may take for [`lit_raw`]: those [`read`] reads alike
+/// (see there).
+pub const QUICK: crate::dialect::quick::Rule =
+    crate::dialect::quick::Rule { refuse: crate::dialect::quick::Rule::letters(b"LMNOP"), g_macro: false };
 
 /// For a streamed translator's first scan of a plain top-level line
 /// (`Reader::scan_plain_words`): [`skeleton_raw`] and [`words_raw`] in one pass. The

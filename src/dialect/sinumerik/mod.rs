@@ -319,6 +319,31 @@ impl Reader {
         self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, b))
     }
 
+    /// [`Reader::lit`] of the next line read straight from a read buffer (`ahead` starts at
+    /// the line's start, its text offset `start`, and runs on past its end): the line's
+    /// length when the reader is where `lit` reads lines and the quick reader takes the
+    /// line (`fast::lit_buf`), its words then in `b`. Nothing of the reader changes: once
+    /// the caller has moved past the line, [`Reader::took_lit`] does what `lit` does.
+    /// `None` otherwise (`b` may hold some words: clear it).
+    ///
+    /// Why this is `lit`: the conditions on the reader are the same (the line is plain
+    /// ASCII, see `quick::lit_words_buf`), and on such a line `fast::lit_raw` takes it
+    /// by `quick::lit_words` too: with these words, the line's span, no number, and words.
+    #[inline(always)]
+    pub fn lit_buf(&self, ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
+        if self.index_only || !self.builder.resumed_at_top() {
+            return None;
+        }
+        fast::lit_buf(ahead, start, b)
+    }
+
+    /// What [`Reader::lit`] does to the reader with a line [`Reader::lit_buf`] took.
+    #[inline(always)]
+    pub fn took_lit(&mut self) {
+        self.any = true;
+        self.builder.code_seen();
+    }
+
     /// What [`Reader::plain_words`] and [`Reader::lit`] share: the reader's conditions, and
     /// its state after `read` took the line (it gives the span, number and whether the
     /// line has words).
