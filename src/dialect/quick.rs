@@ -140,12 +140,12 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
 }
 
 /// 10^0 ..= 10^7.
-const POW10: [u64; 8] = [1, 10, 100, 1000, 10_000, 100_000, 1_000_000, 10_000_000];
+pub(crate) const POW10: [u64; 8] = [1, 10, 100, 1000, 10_000, 100_000, 1_000_000, 10_000_000];
 
 /// The eight bytes of `s` from `i` as a little-endian word (the first byte lowest), bytes
 /// past the end 0 (not a digit).
 #[inline(always)]
-fn load8(s: &[u8], i: usize) -> u64 {
+pub(crate) fn load8(s: &[u8], i: usize) -> u64 {
     if let Some(Ok(w)) = s.get(i..i + 8).map(<[u8; 8]>::try_from) {
         return u64::from_le_bytes(w);
     }
@@ -167,7 +167,7 @@ const LO: u64 = 0x0101_0101_0101_0101;
 
 /// How many ASCII digits `w` starts with (its first byte lowest), 0..=8.
 #[inline(always)]
-fn run(w: u64) -> usize {
+pub(crate) fn run(w: u64) -> usize {
     // Digits become 0..=9; a byte is one exactly when it is below 10 then: adding 0x76 to
     // its low seven bits sets bit 7 from 10 on (no carry out of the byte), and bytes from
     // 0x80 on have it set already.
@@ -178,7 +178,7 @@ fn run(w: u64) -> usize {
 
 /// The whole number the first `n` bytes of `w` (digits, see [`run`]) spell.
 #[inline(always)]
-fn value(w: u64, n: usize) -> u64 {
+pub(crate) fn value(w: u64, n: usize) -> u64 {
     if n == 0 {
         return 0;
     }

@@ -5,6 +5,7 @@
 //! dialect's full reader (`Reader::scan_plain_words`), which takes the same decisions on
 //! the lines taken here (tests: `tests/stream_words.rs` and the unit tests below).
 
+use crate::dialect::quick::{load8, run, value, POW10};
 use crate::span::Span;
 
 /// One word as [`quick_line`] read it: upper-case letter, its digits as one whole number
@@ -124,50 +125,4 @@ pub fn quick_line(
 #[inline(always)]
 pub fn scan_words_bytes(b: &[u8], start: u32, push: impl FnMut(u8, f64, bool, Span)) -> Option<QLine> {
     quick_line(b, start, |w| !matches!(w.letter, b'L' | b'M' | b'N' | b'O' | b'P'), push)
-}
-
-/// 10^0 ..= 10^7.
-const POW10: [u64; 8] = [1, 10, 100, 1000, 10_000, 100_000, 1_000_000, 10_000_000];
-
-/// The eight bytes of `s` from `i` as a little-endian word (the first byte lowest), bytes
-/// past the end 0 (not a digit).
-#[inline(always)]
-fn load8(s: &[u8], i: usize) -> u64 {
-    if let Some(Ok(w)) = s.get(i..i + 8).map(<[u8; 8]>::try_from) {
-        return u64::from_le_bytes(w);
-    }
-    let mut w = [0u8; 8];
-    let rest = s.get(i..).unwrap_or(&[]);
-    for (d, &c) in w.iter_mut().zip(rest) {
-        *d = c;
-    }
-    u64::from_le_bytes(w)
-}
-
-const LO: u64 = 0x0101_0101_0101_0101;
-
-/// How many ASCII digits `w` starts with (its first byte lowest), 0..=8.
-#[inline(always)]
-fn run(w: u64) -> usize {
-    // Digits become 0..=9; a byte is one exactly when it is below 10 then: adding 0x76 to
-    // its low seven bits sets bit 7 from 10 on (no carry out of the byte), and bytes from
-    // 0x80 on have it set already.
-    let v = w ^ (LO * 0x30);
-    let non = (((v & (LO * 0x7F)) + LO * 0x76) | v) & (LO * 0x80);
-    (non.trailing_zeros() / 8) as usize
-}
-
-/// The whole number the first `n` bytes of `w` (digits, see [`run`]) spell.
-#[inline(always)]
-fn value(w: u64, n: usize) -> u64 {
-    if n == 0 {
-        return 0;
-    }
-    // The digits moved to the top bytes, zeros below them; then pairs, fours and eights of
-    // digits are combined: each step's lanes hold at most 99, 9999 and 99999999, so nothing
-    // carries into the next lane.
-    let d = (w ^ (LO * 0x30)) << (64 - 8 * n.min(8));
-    let d = (d.wrapping_mul(10).wrapping_add(d >> 8)) & 0x00FF_00FF_00FF_00FF;
-    let d = (d.wrapping_mul(100).wrapping_add(d >> 16)) & 0x0000_FFFF_0000_FFFF;
-    (d.wrapping_mul(10_000).wrapping_add(d >> 32)) & 0xFFFF_FFFF
 }
