@@ -10,7 +10,7 @@
 use super::{AbsInc, Machine, Motion};
 use crate::eval::lit::{LitBlock, NO_MILLI};
 use crate::eval::numfmt::GRID_LIMIT;
-use crate::eval::trace::{Event, AXES};
+use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;
 use std::cell::Cell;
 
@@ -31,27 +31,6 @@ pub fn set_fast_path(on: bool) {
 pub fn fast_path_on() -> bool {
     !OFF.with(|o| o.get())
 }
-
-/// [`CLASS`] of a G word.
-const G: u8 = 9;
-/// [`CLASS`] of an F word.
-const F: u8 = 10;
-/// [`CLASS`] of any other letter (the general path's).
-const OTHER: u8 = 11;
-
-/// Per letter `A..=Z`: its axis index in [`AXES`], or [`G`], [`F`], [`OTHER`]: one look-up
-/// per word instead of a chain of compares.
-const CLASS: [u8; 26] = {
-    let mut t = [OTHER; 26];
-    t[(b'G' - b'A') as usize] = G;
-    t[(b'F' - b'A') as usize] = F;
-    let mut a = 0;
-    while a < AXES.len() {
-        t[(AXES[a] as u8 - b'A') as usize] = a as u8;
-        a += 1;
-    }
-    t
-};
 
 /// What [`Machine::apply_lit`] did with a block it took: the span of the move it made
 /// (its event is [`Machine::move_event`]), if any.
@@ -78,8 +57,8 @@ impl Machine {
         let mut span = words.first().map_or(Span::default(), |w| w.span);
         for (k, w) in words.iter().enumerate() {
             span = span.to(w.span);
-            match CLASS.get(usize::from(w.letter.wrapping_sub(b'A'))).copied().unwrap_or(OTHER) {
-                G => {
+            match w.letter {
+                b'G' => {
                     any_g = true;
                     // G1 (nearly every G word of CAM output) without rounding its value.
                     let gi = if w.value == 1.0 { 10 } else { super::g_index(w.value) };
@@ -87,15 +66,14 @@ impl Machine {
                         return None;
                     }
                 }
-                F => feed_word = Some((w.value, w.milli)),
-                OTHER => return None,
-                i => {
-                    let bit = 1u16 << (i & 15);
-                    if seen_axes & bit != 0 {
+                b'F' => feed_word = Some((w.value, w.milli)),
+                c => {
+                    let i = axis_index(c)?;
+                    if seen_axes & (1 << i) != 0 {
                         return None;
                     }
-                    seen_axes |= bit;
-                    *word_of.get_mut(usize::from(i))? = k as u8;
+                    seen_axes |= 1 << i;
+                    *word_of.get_mut(i)? = k as u8;
                 }
             }
         }
