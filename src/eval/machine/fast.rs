@@ -112,7 +112,8 @@ impl Machine {
             left &= left - 1;
             let Some(w) = word_of.get(i).and_then(|&k| words.get(usize::from(k))) else { break };
             let rotary = (3..6).contains(&i);
-            let (v, q) = self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
+            let (v, q) =
+                self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
             let off = self.active_offset(i % 9);
             let t = self.target_from(i, v, w.mode, false, off);
             self.applied[i % 9] = off;
