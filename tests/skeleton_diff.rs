@@ -231,6 +231,95 @@ fn every_corpus_line_agrees() {
     assert!(taken > 1000, "only {taken} corpus lines taken");
 }
 
+/// G and M words whose values are near those the fast reader declines (G10, G65-G67, M2,
+/// M30, M98, M99), as the line's first word and after others, followed by every kind of
+/// byte: FANUC's `skeleton_bytes` reads G and M words of one or two digits on the spot.
+#[test]
+fn g_and_m_values_near_the_limits_agree() {
+    let values = [
+        "0",
+        "1",
+        "2",
+        "3",
+        "9",
+        "00",
+        "01",
+        "02",
+        "03",
+        "09",
+        "10",
+        "11",
+        "29",
+        "30",
+        "31",
+        "64",
+        "65",
+        "66",
+        "67",
+        "68",
+        "97",
+        "98",
+        "99",
+        "100",
+        "010",
+        "065",
+        "002",
+        "0030",
+        "1.",
+        "2.",
+        "10.",
+        ".5",
+        "-2",
+        "+10",
+        "- 65",
+        " 2",
+        "0000000000000002",
+        "000000000000002",
+    ];
+    let afters =
+        ["", " ", "  ", "\t", "\x0c", ";", " ;", "X1", "x1", "G1", "M3", "O1", "=", ".", "..", "5", "(", "/", "#"];
+    let befores = ["", " ", "N10 ", "G1 ", "X1 ", "X1", "G90 G1 ", "N1 M3 "];
+    let mut taken = 0;
+    for siemens in [false, true] {
+        for letter in ["G", "M", "g", "m", "N"] {
+            for v in values {
+                for a in afters {
+                    for b in befores {
+                        compare(&format!("{b}{letter}{v}{a}"), siemens, &mut taken);
+                        compare(&format!("{b}{letter}{v}{a} X2 Y3"), siemens, &mut taken);
+                    }
+                }
+            }
+        }
+    }
+    assert!(taken > 10_000, "only {taken} taken");
+}
+
+/// Digit runs of every length from 1 to 20 at every position modulo eight (the automaton
+/// steps eight bytes at a time), before and after a point, in N, G, M and other words.
+#[test]
+fn digit_runs_at_every_alignment_agree() {
+    let mut taken = 0;
+    for siemens in [false, true] {
+        for pad in 0..8 {
+            for len in 1..=20 {
+                let run: String = (0..len).map(|k| char::from(b'0' + ((k * 7 + len) % 10) as u8)).collect();
+                for letter in ["X", "G", "M", "N", "F"] {
+                    for shape in
+                        [run.clone(), format!("{run}."), format!(".{run}"), format!("1.{run}"), format!("{run}.5")]
+                    {
+                        let blanks = " ".repeat(pad);
+                        compare(&format!("{blanks}{letter}{shape}"), siemens, &mut taken);
+                        compare(&format!("G1{blanks}{letter}{shape} Y-1"), siemens, &mut taken);
+                        compare(&format!("N5 X1{blanks}{letter}-{shape}"), siemens, &mut taken);
+                    }
+                }
+            }
+        }
+    }
+    assert!(taken > 5_000, "only {taken} taken");
+}
+
 fn generated_lines(n: u64) {
     for siemens in [true, false] {
         let mut r = Rng(if siemens { 0x9E37_79B9_7F4A_7C15 } else { 0x2545_F491_4F6C_DD1D });

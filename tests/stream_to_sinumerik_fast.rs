@@ -295,3 +295,46 @@ fn literal_digits_take_the_fast_path_to_the_whole_translation() {
     }
     assert!(streamed >= 12, "only {streamed} of 16 literal programs streamed");
 }
+
+/// Programs larger than the 256 KiB read buffer, whose lines meet its first end every way:
+/// a CR LF split by it, a lone CR as its last byte, a line (a word) across it; and a last
+/// line without a line end. The first scan reads plain lines straight from the buffer
+/// (`stream::scan_words`), and must hand over every line whole all the same.
+#[test]
+fn programs_across_read_buffer_ends_take_the_fast_path_to_the_whole_translation() {
+    const CHUNK: usize = 256 * 1024;
+    let dir = scratch("edges");
+    let mut r = Rng(0x0b0f_fe12_0000_0002);
+    let mut streamed = 0;
+    for (case, (eol, shift)) in [("\r\n", 0), ("\r", 0), ("\n", 3), ("\r\n", 7), ("\n", 0)].into_iter().enumerate() {
+        let mut text = program(&mut r, 16_000, eol);
+        assert!(text.len() > CHUNK + 20_000, "{}", text.len());
+        // A plain line (the quick reader's) from the first line start after CHUNK - 300
+        // on, its line end moved to CHUNK - 1 - shift by lengthening the header comment.
+        let s0 = CHUNK - 300 + text[CHUNK - 300..].find(['\n', '\r']).expect("a line end") + eol.len();
+        text.insert_str(s0, &format!("G1 X1.5 Y-2{eol}"));
+        let at = s0 + "G1 X1.5 Y-2".len();
+        let head = text.find("(GENERATED").expect("header") + "(GENERATED".len();
+        text.insert_str(head, &"X".repeat(CHUNK - 1 - shift - at));
+        assert!(text[CHUNK - 1 - shift..].starts_with(eol), "case {case}");
+        if case == 4 {
+            text.truncate(text.len() - eol.len());
+        }
+        let path = dir.join(format!("edge{case}.nc"));
+        std::fs::write(&path, &text).expect("write");
+        let o = Options { main_name: "CAMPART".into(), ..Options::default() };
+        let (w, le, tr) = whole(&path, &o);
+        let mut out = Vec::new();
+        match sts::to_sinumerik_first(&path, &o, le, &mut out, None, 64) {
+            Ok(_) => {
+                same(&format!("case {case}"), &out, &w);
+                streamed += 1;
+            }
+            Err(e) => assert!(
+                tr.diags.iter().any(|d| d.is_error() || d.code != sts::KEPT_WARNING),
+                "case {case}: not streamed ({e:?}), but the whole translation is clean"
+            ),
+        }
+    }
+    assert!(streamed >= 3, "only {streamed} of 5 streamed");
+}

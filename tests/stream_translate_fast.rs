@@ -438,3 +438,40 @@ fn literal_digits_stream_to_the_whole_translation() {
     eprintln!("{blocks} literal blocks streamed, {refused} refused");
     assert!(blocks > 4000 && refused > 20, "{blocks} streamed, {refused} refused");
 }
+
+/// Programs larger than the 256 KiB read buffer, whose lines meet its first end every way:
+/// a CR LF split by it, a lone CR as its last byte, a line (a word) across it; and a last
+/// line without a line end. The first scan reads plain lines straight from the buffer
+/// (`stream::scan_words`), and must hand over every line whole all the same.
+#[test]
+fn programs_across_read_buffer_ends_stream_to_the_whole_translation() {
+    const CHUNK: usize = 256 * 1024;
+    let letters: Vec<char> = ('A'..='Z').filter(|&c| admitted(c, "1.5")).collect();
+    let mut r = Rng(0x0b0f_fe12_0000_0001);
+    let mut streamed = 0;
+    for (case, (eol, shift)) in [("\r\n", 0), ("\r", 0), ("\n", 3), ("\r\n", 7), ("\n", 0)].into_iter().enumerate() {
+        let mut text = program(&mut r, &letters, 12_000, eol);
+        assert!(text.len() > CHUNK + 20_000, "{}", text.len());
+        // A plain line (the quick reader's) from the first line start after CHUNK - 300
+        // on, its line end moved to CHUNK - 1 - shift by lengthening the header comment.
+        let s0 = CHUNK - 300 + text[CHUNK - 300..].find(['\n', '\r']).expect("a line end") + eol.len();
+        text.insert_str(s0, &format!("G1 X1.5 Y-2{eol}"));
+        let at = s0 + "G1 X1.5 Y-2".len();
+        let head = text.find("; generated").expect("header") + "; generated".len();
+        text.insert_str(head, &"x".repeat(CHUNK - 1 - shift - at));
+        assert!(text[CHUNK - 1 - shift..].starts_with(eol), "case {case}");
+        if case == 4 {
+            text.truncate(text.len() - eol.len());
+        }
+        let (whole, got) = both(&format!("edge{case}.mpf"), &text, CommentMode::Keep);
+        match got {
+            Ok(out) => {
+                same(&format!("case {case}"), &out, &whole.text, &text);
+                streamed += 1;
+            }
+            Err(Fallback::Diagnostics) => assert!(!whole.diags.is_empty() || whole.unsupported > 0, "case {case}"),
+            Err(e) => panic!("case {case}: not streamed: {e:?}"),
+        }
+    }
+    assert!(streamed >= 3, "only {streamed} of 5 streamed");
+}

@@ -22,7 +22,13 @@ fn root() -> PathBuf {
 /// statement's debug form.
 #[derive(Debug, PartialEq)]
 enum Got {
-    Plain { prog: usize, number: Option<u32>, span: (u32, u32), comments: Vec<String>, words: Vec<(u8, u64, bool)> },
+    Plain {
+        prog: usize,
+        number: Option<u32>,
+        span: (u32, u32),
+        comments: Vec<String>,
+        words: Vec<(u8, u64, bool, (u32, u32))>,
+    },
     Stmt(usize, String),
 }
 
@@ -36,7 +42,7 @@ fn of_stmt(prog: usize, s: &Stmt, plain_ok: bool) -> Got {
                 .map(|it| match &it.kind {
                     ItemKind::Word(w) => match (&w.addr, &w.value) {
                         (Addr::Letter(l), WordValue::Expr(e)) => match &e.kind {
-                            ExprKind::Num(n) => Some((*l, n.value.to_bits(), n.point)),
+                            ExprKind::Num(n) => Some((*l, n.value.to_bits(), n.point, (it.span.lo, it.span.hi))),
                             _ => None,
                         },
                         _ => None,
@@ -52,7 +58,7 @@ fn of_stmt(prog: usize, s: &Stmt, plain_ok: bool) -> Got {
     Got::Stmt(prog, format!("{s:?}"))
 }
 
-fn plain(prog: usize, meta: &BlockMeta, words: Vec<(u8, u64, bool)>) -> Got {
+fn plain(prog: usize, meta: &BlockMeta, words: Vec<(u8, u64, bool, (u32, u32))>) -> Got {
     Got::Plain {
         prog,
         number: meta.number.as_ref().map(|n| n.value),
@@ -66,12 +72,14 @@ struct Record {
     got: Vec<Got>,
     /// Whether plain lines are taken as words (else each is asked for as a statement).
     take: bool,
+    /// Whether the scan may read plain lines with the quick readers (else all the general way).
+    quick: bool,
 }
 
 impl WordsSink for Record {
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], _: &nctrans::read::RawBlock<'_>) -> bool {
         if self.take {
-            let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect();
+            let words = words.iter().map(|w| (w.letter, w.value.to_bits(), w.point, (w.span.lo, w.span.hi))).collect();
             self.got.push(plain(prog, meta, words));
         }
         self.take
@@ -83,6 +91,10 @@ impl WordsSink for Record {
 
     fn active(&self) -> bool {
         true
+    }
+
+    fn quick(&self) -> bool {
+        self.quick
     }
 }
 
@@ -120,7 +132,7 @@ fn plain_lines_two_readers(path: &Path, dialect: Dialect) -> Option<Vec<Got>> {
             number,
             span: (span.lo, span.hi),
             comments: comment.into_iter().collect(),
-            words: words.iter().map(|w| (w.letter, w.value.to_bits(), w.point)).collect(),
+            words: words.iter().map(|w| (w.letter, w.value.to_bits(), w.point, (w.span.lo, w.span.hi))).collect(),
         }
     };
     match dialect {
@@ -171,8 +183,8 @@ fn check(path: &Path, dialect: Dialect) -> usize {
     let mut whole = Vec::new();
     let full = stream::scan_path(path, 0, dialect, &opts, &mut |p, s| whole.push((p, s.clone())), None).expect("scan");
     let mut words = 0;
-    for take in [true, false] {
-        let mut rec = Record { got: Vec::new(), take };
+    for (take, quick) in [(true, true), (false, true), (true, false), (false, false)] {
+        let mut rec = Record { got: Vec::new(), take, quick };
         let ix = stream::scan_words_path(path, 0, dialect, &opts, &mut rec, None).expect("scan_words");
         assert_eq!(format!("{ix:?}"), format!("{index:?}"), "index of {}", path.display());
         // The whole-file scan's index is the same too (but for what index-only readers
@@ -201,9 +213,9 @@ fn check(path: &Path, dialect: Dialect) -> usize {
                 }
             }
         }
-        assert_eq!(rec.got.len(), expected.len(), "{} (take {take})", path.display());
+        assert_eq!(rec.got.len(), expected.len(), "{} (take {take}, quick {quick})", path.display());
         for (a, b) in rec.got.iter().zip(&expected) {
-            assert_eq!(a, b, "{} (take {take})", path.display());
+            assert_eq!(a, b, "{} (take {take}, quick {quick})", path.display());
         }
     }
     words
@@ -318,4 +330,113 @@ fn generated_programs_scan_the_same_with_words() {
         }
     }
     assert!(words > 20_000, "{words} lines as words");
+}
+
+/// A CAM line of the shape the quick readers take (`N10 G1 X1.5 Y-2. F800`), now and then
+/// just off it (a letter a dialect judges, two blanks, a trailing blank, a comment, a long
+/// number, lower case).
+fn cam_line(d: Dialect, r: &mut Rng) -> String {
+    let mut l = String::new();
+    if r.chance(4) {
+        l.push_str(&format!("N{} ", r.below(100_001)));
+    }
+    let letters: &[u8] = if r.chance(30) { b"XYZFGMNOLPEx" } else { b"XYZFGIJKAB" };
+    for k in 0..1 + r.below(6) {
+        if k > 0 {
+            l.push_str(if r.chance(60) { "  " } else { " " });
+        }
+        let c = letters[r.index(letters.len())] as char;
+        let sign = ["", "", "", "-", "+"][r.index(5)];
+        let v = match r.below(6) {
+            0 => format!("{}", r.below(100)),
+            1 => format!("{}.{}", r.below(1000), r.below(10_000)),
+            2 => format!("{}.", r.below(100_000)),
+            3 => format!(".{:03}", r.below(1000)),
+            4 => format!("{}.{:07}", r.below(10_000_000), r.below(10_000_000)),
+            _ => ["10", "65", "0", "00", "1", "3", "66.", "99999999", "0.0", "12345678.1"][r.index(10)].to_string(),
+        };
+        l.push_str(&format!("{c}{sign}{v}"));
+    }
+    match r.below(60) {
+        0 => l.push(' '),
+        1 if d == Dialect::Sinumerik => l.push_str(" ; cut"),
+        2 if d == Dialect::Fanuc => l.push_str(" (CUT)"),
+        3 => l.insert(0, ' '),
+        4 => l.push_str("M30"),
+        _ => {}
+    }
+    l
+}
+
+/// A CAM program of about `bytes` bytes with mixed line ends; `tail` goes at text offset
+/// `at` (the first refill of the 256 KiB read buffer is there: a line across it, a CR LF
+/// split by it, a lone CR just before it) and the file ends with or without a line end.
+fn cam_program(d: Dialect, seed: u64, at: usize, tail: &str, end: &str) -> String {
+    let mut r = Rng(seed);
+    let mut out = String::from(if d == Dialect::Sinumerik { "%_N_CAM_MPF\n; head\n" } else { "%\nO1234 (CAM)\n" });
+    let eol = |r: &mut Rng| ["\n", "\n", "\n", "\r\n", "\r"][r.index(5)];
+    while out.len() < at {
+        let l = cam_line(d, &mut r);
+        out.push_str(&l);
+        out.push_str(eol(&mut r));
+    }
+    // Back to a line start before `at`, then a filler line so that `tail` starts at `at`.
+    while out.len() > at - 60 {
+        let cut = out[..out.len() - 1].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+        out.truncate(cut);
+    }
+    let n = at - out.len() - 1;
+    let mut fill = String::new();
+    while n - fill.len() > 9 {
+        fill.push_str("Y12345 ");
+    }
+    let rest = n - fill.len();
+    fill.push_str(&"X1.234567"[..rest]);
+    if rest < 9 {
+        fill.replace_range(fill.len() - rest.., &format!("X{}", "1".repeat(rest - 1)));
+    }
+    out.push_str(&fill);
+    out.push('\n');
+    out.push_str(tail);
+    for _ in 0..r.below(2000) + 2000 {
+        let l = cam_line(d, &mut r);
+        out.push_str(&l);
+        out.push_str(eol(&mut r));
+    }
+    out.push_str(&cam_line(d, &mut r));
+    if d == Dialect::Fanuc {
+        out.push_str("\nM30\n%");
+    }
+    out.push_str(end);
+    out
+}
+
+#[test]
+fn cam_programs_scan_the_same_with_words_across_buffer_ends() {
+    const CHUNK: usize = 256 * 1024;
+    let dir = root().join("target/stream-words-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    // Lines around the first buffer end: across it in a word, at a point, a CR LF split by
+    // it, a CR before it, a line end just after it.
+    let tails: [(usize, &str); 7] = [
+        (CHUNK - 5, "G1 X12.3456 Y-7.5\n"),
+        (CHUNK - 8, "X1.5 Y2\r\nY3\n"),
+        (CHUNK - 14, "N20 G1 X-12.5\r\nY3\r\n"),
+        (CHUNK - 7, "N20 X1\rY2\n"),
+        (CHUNK - 9, "X-12.5 Y2\r\nY3\n"),
+        (CHUNK - 1, "X\n"),
+        (CHUNK - 2, "X1\n"),
+    ];
+    let mut words = 0;
+    for (k, (at, tail)) in tails.iter().enumerate() {
+        for d in [Dialect::Sinumerik, Dialect::Fanuc] {
+            let end = ["", "\n", "\r", "\r\n"][k % 4];
+            let text = cam_program(d, 100 + k as u64, *at, tail, end);
+            assert!(text[*at..].starts_with(tail), "{k}");
+            let path = dir.join(format!("cam{k}.{}", if d == Dialect::Fanuc { "nc" } else { "mpf" }));
+            std::fs::write(&path, &text).expect("write");
+            words += check(&path, d);
+        }
+    }
+    assert!(words > 60_000, "{words} lines as words");
 }

@@ -263,6 +263,34 @@ impl Lines {
         Some(Taken { start, line: self.line, next: self.offset })
     }
 
+    /// What [`Lines::skip_plain`]`(len)` would give, without moving: for a reader that
+    /// looks at the line's text (in [`Lines::ahead`]) before it moves past it with
+    /// [`Lines::skip_peeked`]. The same conditions (`None` likewise).
+    #[inline]
+    pub fn peek_plain(&self, len: usize) -> Option<Taken> {
+        let at = self.pos + len;
+        if at >= self.end {
+            return None;
+        }
+        let w = match self.buf[at] {
+            b'\n' => 1,
+            b'\r' if at + 1 < self.end => 1 + usize::from(self.buf[at + 1] == b'\n'),
+            b'\r' if self.eof => 1,
+            _ => return None,
+        };
+        Some(Taken { start: self.offset, line: self.line + 1, next: self.offset + (len + w) as u64 })
+    }
+
+    /// Moves past the line [`Lines::peek_plain`] gave as `t` (nothing moved since): as
+    /// [`Lines::skip_plain`] would.
+    #[inline]
+    pub fn skip_peeked(&mut self, t: Taken) {
+        debug_assert_eq!((t.start, t.line), (self.offset, self.line + 1));
+        self.pos += (t.next - t.start) as usize;
+        self.offset = t.next;
+        self.line = t.line;
+    }
+
     /// Text bytes read so far (for progress).
     pub fn offset(&self) -> u64 {
         self.offset

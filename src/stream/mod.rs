@@ -16,6 +16,7 @@ pub mod paged;
 pub mod runs;
 pub mod to_sinumerik;
 pub mod translate;
+mod words;
 
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
@@ -146,6 +147,12 @@ pub trait WordsSink {
     /// Whether the sink still wants anything (once `false`, it stays so: the rest of the
     /// file is read for the index only).
     fn active(&self) -> bool;
+    /// Whether plain lines may be read straight from the read buffer by the quick readers
+    /// (`scan_words_bytes`); `false` reads every line the general way: the same results,
+    /// for the differential tests.
+    fn quick(&self) -> bool {
+        true
+    }
 }
 
 /// A streamed file after its first scan.
@@ -433,6 +440,8 @@ fn scan_with(
     let mut reader = new_reader(index_only);
     // For `Want::Words`: the whole-file reader of the lines not taken as words.
     let mut full = matches!(want, Want::Words(_)).then(|| new_reader(false));
+    // Whether a words scan may read plain lines straight from the buffer (tests compare).
+    let quick_words = matches!(&want, Want::Words(s) if s.quick());
     let mut meta = crate::ir::BlockMeta::default();
     let mut plain: Vec<PlainWord> = Vec::new();
     let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
@@ -469,6 +478,33 @@ fn scan_with(
                 // `take_plain` reads only at the top level, where the reader stays.
                 chunks.after_top(&reader, chunk_ops, t.next, t.line + 1);
                 continue;
+            }
+        }
+        // A words scan: a plain top-level line read straight from the buffer (see
+        // `words::take_plain_words`).
+        if quick_words && !in_header {
+            if let Want::Words(s) = &mut want {
+                if s.active() {
+                    let mut st = words::WordsState {
+                        reader: &mut reader,
+                        full: &mut full,
+                        chunks: &mut chunks,
+                        meta: &mut meta,
+                        plain: &mut plain,
+                        full_stmts: &mut full_stmts,
+                        chunk_ops,
+                    };
+                    if let Some(t) = words::take_plain_words(&mut lines, &mut st, &mut **s) {
+                        count += 1;
+                        if count.is_multiple_of(65536) {
+                            if let Some(p) = progress.as_mut() {
+                                let blocks = chunks.progs.iter().map(|p| p.ops as u64).sum();
+                                p(Progress { done: t.next, total: size, blocks });
+                            }
+                        }
+                        continue;
+                    }
+                }
             }
         }
         let Some(l) = lines.next_line()? else { break };

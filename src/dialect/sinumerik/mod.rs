@@ -10,6 +10,7 @@ mod expr;
 pub(crate) mod fast;
 mod names;
 mod parse;
+pub mod scan_words;
 mod structure;
 
 pub mod emit;
