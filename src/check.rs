@@ -169,6 +169,15 @@ struct Divergence {
     b: Option<(Event, Origin)>,
 }
 
+/// An agreeing event of the first run, kept for a divergence's context.
+enum Agreed {
+    Own(Item),
+    /// A grid move equal to the second run's grid move of the same index ([`same_grid`]):
+    /// its text is that one's (equal integers, and a feed on the grid is the one double
+    /// `n / 1000`), so nothing is copied (this is every move of a long agreeing trace).
+    AsB,
+}
+
 struct CompareSink {
     rx: Receiver<Msg>,
     /// The batch being compared and the index of its next event; the batch before it
@@ -179,7 +188,7 @@ struct CompareSink {
     index: u64,
     /// The last agreeing events of the first run, by `index % CONTEXT` (the second run's
     /// are still in its batches): written as text for a divergence's diff.
-    before_a: [Option<Item>; CONTEXT],
+    before_a: [Option<Agreed>; CONTEXT],
     before_b: Vec<String>,
     after_a: Vec<String>,
     after_b: Vec<String>,
@@ -340,11 +349,17 @@ impl CompareSink {
         self.fill_after_b();
     }
 
-    /// The first run's agreeing events before the divergence, oldest first, as text.
+    /// The first run's agreeing events before the divergence, oldest first, as text
+    /// (after [`CompareSink::diverge`]: the second run's events of the same indexes are
+    /// `before_b`).
     fn before_a_text(&self) -> Vec<String> {
         let n = (self.index as usize).min(CONTEXT);
-        (self.index as usize - n..self.index as usize)
-            .filter_map(|k| self.before_a[k % CONTEXT].as_ref().map(Item::text))
+        let from = self.index as usize - n;
+        (from..self.index as usize)
+            .filter_map(|k| match self.before_a[k % CONTEXT].as_ref()? {
+                Agreed::Own(item) => Some(item.text()),
+                Agreed::AsB => self.before_b.get(k - from).cloned(),
+            })
             .collect()
     }
 
@@ -379,7 +394,7 @@ impl CompareSink {
             self.limit_seen = true;
         }
         if b.is_some_and(|b| same_item(&a, &b.0)) {
-            self.before_a[self.index as usize % CONTEXT] = Some(a);
+            self.before_a[self.index as usize % CONTEXT] = Some(Agreed::Own(a));
             self.index += 1;
             return;
         }
@@ -402,7 +417,7 @@ impl TraceSink for CompareSink {
             if let Some((Item::Grid(y), _)) = self.batch.get(self.at) {
                 if same_grid(m, y) {
                     self.at += 1;
-                    self.before_a[self.index as usize % CONTEXT] = Some(Item::Grid(*m));
+                    self.before_a[self.index as usize % CONTEXT] = Some(Agreed::AsB);
                     self.index += 1;
                     return;
                 }

@@ -242,6 +242,12 @@ fn coord(r: &mut Rng) -> String {
 /// A CAM program of `blocks` straight moves (any axes, rapids, feeds changing or not,
 /// N numbers, now and then a block the fast path leaves to the general one).
 fn cam(r: &mut Rng, fanuc: bool, blocks: usize) -> String {
+    cam_with(r, fanuc, blocks, false)
+}
+
+/// [`cam`]; `held`: as 2D passes are, X and Y nearly every block and Z and F seldom
+/// (the writer copies a value repeated from the line before instead of formatting it).
+fn cam_with(r: &mut Rng, fanuc: bool, blocks: usize, held: bool) -> String {
     let mut t = String::from(if fanuc { "%\nO1000\nG21 G17 G90 G94 F500.\n" } else { "G71 G17 G90 G94 F500\n" });
     let mut n = 0;
     for _ in 0..blocks {
@@ -251,13 +257,20 @@ fn cam(r: &mut Rng, fanuc: bool, blocks: usize) -> String {
         }
         t.push_str(if r.chance(10) { "G0 " } else { "G1 " });
         for a in ["X", "Y", "Z", "A", "B", "C", "U", "V", "W"] {
-            if r.chance(if "XYZ".contains(a) { 80 } else { 5 }) {
+            let chance = match (held, a) {
+                (true, "X" | "Y") => 90,
+                (true, "Z") => 3,
+                (true, _) => 1,
+                (false, "X" | "Y" | "Z") => 80,
+                (false, _) => 5,
+            };
+            if r.chance(chance) {
                 let c = coord(r);
                 let c = if fanuc && !c.contains('.') { format!("{c}.") } else { c };
                 let _ = write!(t, "{a}{c} ");
             }
         }
-        if r.chance(30) {
+        if r.chance(if held { 4 } else { 30 }) {
             let f = r.below(20_000);
             let _ = if r.chance(80) { write!(t, "F{f}.") } else { write!(t, "F{f}.{}", r.below(1000)) };
         }
@@ -276,9 +289,9 @@ fn cam_traces_across_many_chunks_are_written_as_the_reference_writes_them() {
     std::fs::create_dir_all(&dir).expect("scratch dir");
     let mut r = Rng(4242);
     let (mut moves, mut bytes, mut streamed) = (0, 0, 0);
-    for i in 0..8 {
+    for i in 0..12 {
         let fanuc = i % 2 == 0;
-        let text = cam(&mut r, fanuc, 2000 + 1000 * i);
+        let text = cam_with(&mut r, fanuc, 2000 + 1000 * (i % 8), i >= 8);
         let path = dir.join(if fanuc { "cam.nc" } else { "cam.mpf" });
         std::fs::write(&path, &text).expect("scratch file");
         let (g, n) = run_mem(&path);

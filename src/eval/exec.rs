@@ -211,6 +211,7 @@ impl<'a> Interp<'a> {
                 return Ok(Ending::End("M30"));
             };
             let (ci, pc) = (fr.code, fr.pc);
+            let no_reps = fr.reps.is_empty();
             let code = Rc::clone(&self.codes[ci]);
             // A streamed program's op lives in a page that `page` or `held` keeps alive.
             let in_page = matches!(&page, Some((c, p)) if *c == ci && p.get(pc).is_some());
@@ -239,23 +240,28 @@ impl<'a> Interp<'a> {
                     _ => continue,
                 }
             };
-            // The choke point: every executed block passes here.
-            self.steps += 1;
-            if self.steps > self.max_steps {
-                return Err(Fault::Limit {
-                    reason: format!("step limit of {} blocks reached", self.max_steps),
-                    span: op.span(),
-                });
-            }
-            if self.sink.wants_stop() {
-                return Ok(Ending::Stopped);
-            }
-            let flow = self.exec_op(&code, op, pc)?;
-            if wants_blocks && matches!(op, Op::Block(_) | Op::Lit(_)) {
-                let origin = Origin { file: code.file, span: op.span() };
-                let pos = self.m.trace_pos();
-                self.sink.block_done(origin, &pos);
-            }
+            let (flow, pc) = if matches!(op, Op::Lit(_)) && !wants_blocks && no_reps {
+                // A run of literal blocks (CAM output): one after the other, without
+                // coming back here for each.
+                let page = page.as_ref().and_then(|(c, p)| (*c == ci).then_some(&**p));
+                self.run_lits(&code, page, op, pc)?
+            } else {
+                // The choke point: every executed block passes here (or `run_lits`).
+                self.steps += 1;
+                if self.steps > self.max_steps {
+                    return Err(self.step_limit(op));
+                }
+                if self.sink.wants_stop() {
+                    return Ok(Ending::Stopped);
+                }
+                let flow = self.exec_op(&code, op, pc)?;
+                if wants_blocks && matches!(op, Op::Block(_) | Op::Lit(_)) {
+                    let origin = Origin { file: code.file, span: op.span() };
+                    let pos = self.m.trace_pos();
+                    self.sink.block_done(origin, &pos);
+                }
+                (flow, pc)
+            };
             match flow {
                 Flow::Next => {
                     let fr = self.frames.last_mut().ok_or_else(internal)?;
@@ -284,6 +290,48 @@ impl<'a> Interp<'a> {
                 }
                 Flow::Switched => {}
                 Flow::Stop(e) => return Ok(e),
+            }
+        }
+    }
+
+    /// The fault of the step limit, reached at `op`.
+    fn step_limit(&self, op: &Op) -> Fault {
+        Fault::Limit { reason: format!("step limit of {} blocks reached", self.max_steps), span: op.span() }
+    }
+
+    /// Runs the literal op `op` at `pc` of `code` and the literal ops after it (in `page`,
+    /// the streamed page it is in, or in `code`'s ops), each exactly as `run_loop` runs
+    /// an op, while each gives [`Flow::Next`] and leaves the frames as they were; returns
+    /// the flow of the last op run and its pc. The top frame has no section repetition
+    /// (its end is not looked for here) and no sink wants `block_done`.
+    fn run_lits(&mut self, code: &Rc<Code>, page: Option<&Page>, op: &Op, pc: usize) -> Result<(Flow, usize), Fault> {
+        let depth = self.frames.len();
+        let (mut op, mut pc) = (op, pc);
+        loop {
+            // Entered with a literal op and continued with literal ops only.
+            let Op::Lit(l) = op else { return Err(internal()) };
+            // What a frame reads of its own pc during the op (M99 Pn) is this op's.
+            if let Some(fr) = self.frames.last_mut() {
+                fr.pc = pc;
+            }
+            self.steps += 1;
+            if self.steps > self.max_steps {
+                return Err(self.step_limit(op));
+            }
+            if self.sink.wants_stop() {
+                return Ok((Flow::Stop(Ending::Stopped), pc));
+            }
+            let flow = self.exec_lit(code, l, pc)?;
+            if !matches!(flow, Flow::Next) || self.frames.len() != depth {
+                return Ok((flow, pc));
+            }
+            let next = match page {
+                Some(p) => p.get(pc + 1),
+                None => code.mem_op(pc + 1),
+            };
+            match next {
+                Some(n @ Op::Lit(_)) => (op, pc) = (n, pc + 1),
+                _ => return Ok((Flow::Next, pc)),
             }
         }
     }

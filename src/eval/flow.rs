@@ -322,6 +322,16 @@ impl Code {
         }
     }
 
+    /// The op at `pc` of a program in memory (`None` for a streamed one, whose ops are
+    /// in its pages).
+    #[inline]
+    pub fn mem_op(&self, pc: usize) -> Option<&Op> {
+        match &self.paged {
+            None => self.ops.get(pc),
+            Some(_) => None,
+        }
+    }
+
     /// The span of the last op (where a run falls off the end).
     pub fn last_span(&self) -> Span {
         match &self.paged {

@@ -519,7 +519,14 @@ pub struct WriterSink<'a, W: Write> {
     /// The `@line` number [`TraceSink::grid_move`] wrote last and its digits: the next
     /// line is nearly always this one plus one, counted up in the digits.
     last_line: (usize, [u8; 24], usize),
+    /// Per axis (and the feed, last): the grid value [`TraceSink::grid_move`] wrote last
+    /// and, once repeated, its bytes with their prefix (` X=12.5`, at most 14 of 16; see
+    /// `put_cached`): CAM output repeats Z and F from line to line.
+    last_text: [(i64, [u8; 16], usize); 10],
 }
+
+/// [`WriterSink`]'s `last_text` of nothing written yet (no grid value is `i64::MIN`).
+const NO_TEXT: (i64, [u8; 16], usize) = (i64::MIN, [0; 16], 0);
 
 /// Writes line number `l` at `b[i..]` (room for 24 bytes) as `put_int` does, from
 /// `last` (the number written before and its digits) when `l` is that number or the next
@@ -564,6 +571,7 @@ impl<'a, W: Write> WriterSink<'a, W> {
             chunk: vec![0; WRITE_CHUNK + 2 * LINE_ROOM].into_boxed_slice(),
             used: 0,
             last_line: (0, *b"000000000000000000000000", 1),
+            last_text: [NO_TEXT; 10],
         }
     }
 
@@ -609,6 +617,34 @@ fn put_at(w: &mut [u8; 2 * LINE_ROOM], i: usize, text: &[u8; 16], len: usize) ->
     let i = i % LINE_ROOM;
     w[i..i + 16].copy_from_slice(text);
     i + len
+}
+
+/// Writes `prefix` (3 bytes) and the grid value `n` at `w[i..]` as [`put_at`] and
+/// [`super::numfmt::put_grid`] do; returns where they end. `last`: the value written
+/// before and, once it was written twice running, its bytes (length 0: not kept), from
+/// which a repeated value is copied, not formatted again. A value that changes from line
+/// to line (X and Y of CAM output) is only remembered, not kept: keeping bytes that are
+/// not used again cost more than formatting.
+#[inline(always)]
+fn put_cached(
+    w: &mut [u8; 2 * LINE_ROOM],
+    i: usize,
+    prefix: &[u8; 16],
+    n: i64,
+    last: &mut (i64, [u8; 16], usize),
+) -> usize {
+    if last.0 != n {
+        last.0 = n;
+        last.2 = 0;
+        let end = put_at(w, i, prefix, 3);
+        return super::numfmt::put_grid(w, end % LINE_ROOM, n);
+    }
+    if last.2 == 0 {
+        // Repeated: formatted where it is kept (the prefix and at most 11 bytes fit in 16).
+        last.1 = *prefix;
+        last.2 = super::numfmt::put_grid(&mut last.1, 3, n);
+    }
+    put_at(w, i, &last.1, last.2 % 16)
 }
 
 /// `" X="` and the like for every axis, as 16 bytes for [`put_at`].
@@ -691,14 +727,10 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
         while mask != 0 {
             let a = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            i = put_at(w, i, &AXIS_PREFIX[a % 9], 3);
-            i = super::numfmt::put_grid(w, i % LINE_ROOM, m.to[a % 9]);
+            i = put_cached(w, i, &AXIS_PREFIX[a % 9], m.to[a % 9], &mut self.last_text[a % 9]);
         }
         match m.f {
-            Some((_, n)) => {
-                i = put_at(w, i, &FEED, 3);
-                i = super::numfmt::put_grid(w, i % LINE_ROOM, n);
-            }
+            Some((_, n)) => i = put_cached(w, i, &FEED, n, &mut self.last_text[9]),
             None => i = put_at(w, i, &NO_FEED, 4),
         }
         if let Some(l) = line {

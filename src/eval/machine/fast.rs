@@ -8,7 +8,8 @@
 //! run programs both ways and compare the traces byte for byte.
 
 use super::{AbsInc, Machine, Motion};
-use crate::eval::lit::LitBlock;
+use crate::eval::lit::{LitBlock, NO_MILLI};
+use crate::eval::numfmt::GRID_LIMIT;
 use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;
 use std::cell::Cell;
@@ -45,7 +46,7 @@ impl Machine {
         // Decide first, without touching the machine: every way out below is `None`.
         let mut modal = self.modal;
         let mut any_g = false;
-        let mut feed_word: Option<f64> = None;
+        let mut feed_word: Option<(f64, i32)> = None;
         // The axis words: the axes as bits, and the index of each one's word; a block
         // naming an axis twice is left to the general path (the later word wins there).
         let mut word_of = [0u8; 9];
@@ -59,11 +60,13 @@ impl Machine {
             match w.letter {
                 b'G' => {
                     any_g = true;
-                    if !modal.g(self.fanuc, super::g_index(w.value)) {
+                    // G1 (nearly every G word of CAM output) without rounding its value.
+                    let gi = if w.value == 1.0 { 10 } else { super::g_index(w.value) };
+                    if !modal.g(self.fanuc, gi) {
                         return None;
                     }
                 }
-                b'F' => feed_word = Some(w.value),
+                b'F' => feed_word = Some((w.value, w.milli)),
                 c => {
                     let i = axis_index(c)?;
                     if seen_axes & (1 << i) != 0 {
@@ -86,13 +89,21 @@ impl Machine {
         if any_g {
             self.modal = modal;
         }
-        if let Some(x) = feed_word {
-            self.feed = Some(self.feed_value(x));
+        if let Some((x, q)) = feed_word {
+            let f = self.feed_value(x);
+            self.feed = Some(f);
+            // The feed's grid value from its digits when it is the word's own value on
+            // the grid: `grid_of(f)` is `q` exactly when `f` is the double nearest to
+            // `q / 1000` (see `numfmt::grid_of`), which the division tests.
+            if f == x && q != NO_MILLI && u64::from(q.unsigned_abs()) < GRID_LIMIT && f64::from(q) / 1000.0 == f {
+                self.set_feed_grid(f, i64::from(q));
+            }
         }
         if seen_axes == 0 {
             return Some(None);
         }
         let milli = self.milli_lengths();
+        let bare_scaled = self.fanuc && self.scaling;
         // Each axis's target reads that axis's state only, so the axes can be written at
         // once and in any order (here by axis).
         let mut left = seen_axes;
@@ -101,12 +112,13 @@ impl Machine {
             left &= left - 1;
             let Some(w) = word_of.get(i).and_then(|&k| words.get(usize::from(k))) else { break };
             let rotary = (3..6).contains(&i);
-            let (v, q) = self.length_grid(milli[usize::from(rotary)], self.fanuc && !w.point, w.value, w.milli, rotary);
-            let off = self.active_offset(i);
+            let (v, q) =
+                self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
+            let off = self.active_offset(i % 9);
             let t = self.target_from(i, v, w.mode, false, off);
-            self.applied[i] = off;
-            self.seen[i] = true;
-            self.pos[i] = t;
+            self.applied[i % 9] = off;
+            self.seen[i % 9] = true;
+            self.pos[i % 9] = t;
             // An absolute target is the word's length plus the offset: on the grid when both are.
             let absolute = match w.mode {
                 AbsInc::Ac => true,
@@ -114,7 +126,7 @@ impl Machine {
                 AbsInc::Plain => self.modal.absolute,
             };
             if let (true, Some(q)) = (absolute, q) {
-                self.set_grid(i, t, q, off);
+                self.set_grid(i % 9, t, q, off);
             }
         }
         Some(Some(span))

@@ -55,6 +55,13 @@ impl Machine {
         (self.length_of(bare, x, rotary), None)
     }
 
+    /// Remembers that the feed `f` is written from `n` (`grid_of(f) == Some(n)`).
+    #[inline(always)]
+    pub(super) fn set_feed_grid(&mut self, f: f64, n: i64) {
+        debug_assert_eq!(grid_of(f), Some(n), "f = {f:e}");
+        self.feed_grid = (f.to_bits(), n);
+    }
+
     /// The grid entries of a new machine: every position is `0.0`, whose grid value is 0.
     pub(super) fn new_grid() -> [(u64, i64); 9] {
         [(0f64.to_bits(), 0); 9]
