@@ -74,42 +74,7 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
         if k >= 26 || (rule.refuse >> k) & 1 != 0 {
             return None;
         }
-        let mut j = i + 1;
-        let sign = s.get(j).copied().unwrap_or(0);
-        let neg = sign == b'-';
-        let signed = neg || sign == b'+';
-        j += usize::from(signed);
-        let w = load8(s, j);
-        let n = run(w);
-        let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
-        let (mant, frac);
-        if !point {
-            (mant, frac) = (value(w, n), 0);
-            j += n;
-        } else {
-            // The digits on both sides of the point closed up into one word (the byte
-            // after the window shifted in on top): one conversion for the number.
-            let low = (1u64 << (8 * n)) - 1;
-            let after = u64::from(s.get(j + 8).copied().unwrap_or(0));
-            let joined = (w & low) | ((w >> 8) & !low & !(0xFF << 56)) | (after << 56);
-            let all = run(joined);
-            if all < 8 {
-                (mant, frac) = (value(joined, all), all - n);
-                j += all + 1;
-            } else {
-                // Longer: the digits after the point from their own window.
-                let at = j + n + 1;
-                let rest = load8(s, at);
-                let m = run(rest);
-                let &p = POW10.get(m)?;
-                (mant, frac) = (value(w, n) * p + value(rest, m), m);
-                j = at + m;
-            }
-        }
-        // None is no number; eight in a run may go on (the full reader reads them).
-        if n + frac == 0 || n == 8 {
-            return None;
-        }
+        let Num { mant, frac, neg, signed, point, end: j } = word_number(s, i + 1)?;
         if rule.g_macro && letter == b'G' && !point && !signed && matches!(mant, 10 | 65 | 66 | 67) {
             return None;
         }
@@ -137,6 +102,61 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
         }
         i = j + 1;
     }
+}
+
+/// A word's number as the quick readers take it: its digits as one whole number `mant`
+/// with `frac` of them after the point, its sign, and `end`, the offset just past its last
+/// digit.
+pub(crate) struct Num {
+    pub mant: u64,
+    pub frac: usize,
+    pub neg: bool,
+    pub signed: bool,
+    pub point: bool,
+    pub end: usize,
+}
+
+/// The number at `s[j..]` (after a word's letter): an optional sign, then at most seven
+/// digits before and seven after an optional point, at least one digit; `None` for any
+/// other shape (eight digits in a run may go on: the full readers read those).
+#[inline(always)]
+pub(crate) fn word_number(s: &[u8], mut j: usize) -> Option<Num> {
+    let sign = s.get(j).copied().unwrap_or(0);
+    let neg = sign == b'-';
+    let signed = neg || sign == b'+';
+    j += usize::from(signed);
+    let w = load8(s, j);
+    let n = run(w);
+    let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
+    let (mant, frac);
+    if !point {
+        (mant, frac) = (value(w, n), 0);
+        j += n;
+    } else {
+        // The digits on both sides of the point closed up into one word (the byte
+        // after the window shifted in on top): one conversion for the number.
+        let low = (1u64 << (8 * n)) - 1;
+        let after = u64::from(s.get(j + 8).copied().unwrap_or(0));
+        let joined = (w & low) | ((w >> 8) & !low & !(0xFF << 56)) | (after << 56);
+        let all = run(joined);
+        if all < 8 {
+            (mant, frac) = (value(joined, all), all - n);
+            j += all + 1;
+        } else {
+            // Longer: the digits after the point from their own window.
+            let at = j + n + 1;
+            let rest = load8(s, at);
+            let m = run(rest);
+            let &p = POW10.get(m)?;
+            (mant, frac) = (value(w, n) * p + value(rest, m), m);
+            j = at + m;
+        }
+    }
+    // None is no number; eight in a run may go on (the full reader reads them).
+    if n + frac == 0 || n == 8 {
+        return None;
+    }
+    Some(Num { mant, frac, neg, signed, point, end: j })
 }
 
 /// 10^0 ..= 10^7.

@@ -5,7 +5,7 @@
 //! dialect's full reader (`Reader::scan_plain_words`), which takes the same decisions on
 //! the lines taken here (tests: `tests/stream_words.rs` and the unit tests below).
 
-use crate::dialect::quick::{load8, run, value, POW10};
+use crate::dialect::quick::{load8, run, value, word_number, Num};
 use crate::span::Span;
 
 /// One word as [`quick_line`] read it: upper-case letter, its digits as one whole number
@@ -62,42 +62,7 @@ pub fn quick_line(
         if !letter.is_ascii_uppercase() {
             return None;
         }
-        let mut j = i + 1;
-        let sign = b.get(j).copied().unwrap_or(0);
-        let neg = sign == b'-';
-        let signed = neg || sign == b'+';
-        j += usize::from(signed);
-        let w = load8(b, j);
-        let n = run(w);
-        let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
-        let (mant, frac);
-        if !point {
-            (mant, frac) = (value(w, n), 0);
-            j += n;
-        } else {
-            // The digits on both sides of the point closed up into one word (the byte
-            // after the window shifted in on top): one conversion for the number.
-            let low = (1u64 << (8 * n)) - 1;
-            let after = u64::from(b.get(j + 8).copied().unwrap_or(0));
-            let joined = (w & low) | ((w >> 8) & !low & !(0xFF << 56)) | (after << 56);
-            let all = run(joined);
-            if all < 8 {
-                (mant, frac) = (value(joined, all), all - n);
-                j += all + 1;
-            } else {
-                // Longer: the digits after the point from their own window.
-                let at = j + n + 1;
-                let rest = load8(b, at);
-                let m = run(rest);
-                let p = *POW10.get(m)?;
-                (mant, frac) = (value(w, n) * p + value(rest, m), m);
-                j = at + m;
-            }
-        }
-        // None is no number; eight in a run may go on (the full reader reads them).
-        if n + frac == 0 || n == 8 {
-            return None;
-        }
+        let Num { mant, frac, neg, signed, point, end: j } = word_number(b, i + 1)?;
         let w = QWord { letter, mant, frac, signed, neg, point };
         if !ok(&w) {
             return None;
