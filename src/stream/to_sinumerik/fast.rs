@@ -104,7 +104,10 @@ pub fn block<'t, I: ItemView>(
                     }
                     any = true;
                     out.push(b'G');
-                    push_u64(out, u64::from(sg / 10));
+                    match sg / 10 {
+                        g @ 0..=9 => out.push(b'0' + g as u8),
+                        g => push_u64(out, u64::from(g)),
+                    }
                     continue;
                 }
                 v = f64::from(sg) / 10.0;
