@@ -154,6 +154,15 @@ impl Fast {
                 out.push(b' ');
             }
             sep = true;
+            if w.letter == b'G' {
+                // The usual G code (G0..G9 the target has): what `word` and `num_word`
+                // write for it, `G0n`.
+                let g = w.value as u32;
+                if g < 10 && f64::from(g) == w.value && same_g(g) {
+                    out.extend_from_slice(&[b'G', b'0', b'0' + g as u8]);
+                    continue;
+                }
+            }
             let src = Src { line, span: w.span };
             if special & letter_bit(w.letter) == 0 && src.push_word(w.letter, w.value, Form::Point, out) {
                 continue;
