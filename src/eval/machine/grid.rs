@@ -8,6 +8,13 @@ use super::{clean, Machine, Motion};
 use crate::eval::numfmt::{grid_of, GRID_LIMIT};
 use crate::eval::trace::GridMove;
 
+/// The length `q / 1000` (`round_to_decimal`'s result: `q as f64` is never `-0`), and
+/// `q` when it is under [`GRID_LIMIT`].
+#[inline(always)]
+fn milli_length(q: i64) -> (f64, Option<i64>) {
+    (q as f64 / 1000.0, (q.unsigned_abs() < GRID_LIMIT).then_some(q))
+}
+
 /// A grid entry for positions off the grid (no `n` with [`grid_of`]).
 const OFF_GRID: i64 = i64::MIN;
 
@@ -36,20 +43,24 @@ impl Machine {
     /// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
     #[inline(always)]
     pub(super) fn length_grid(&self, milli: bool, bare: bool, x: f64, known: i32, rotary: bool) -> (f64, Option<i64>) {
+        // The count the reader worked out (nearly every CAM word): `length_of`'s way for
+        // the word, `round_to_decimal(x, 1000.0)`, is `known / 1000` then.
+        if milli && known != crate::eval::lit::NO_MILLI && !(bare && self.scaling) {
+            return milli_length(i64::from(known));
+        }
+        self.length_grid_rest(milli, bare, x, rotary)
+    }
+
+    /// [`Machine::length_grid`] for a word without a known count, out of line: inlined,
+    /// its loop invariants (the scale, `inc_mm / 1000`) were worked out for every block.
+    #[inline(never)]
+    fn length_grid_rest(&self, milli: bool, bare: bool, x: f64, rotary: bool) -> (f64, Option<i64>) {
         if milli {
             // `length_of`'s way for this word: the increment `inc_mm`, rounded by
             // `round_to_decimal(v, 1000.0)`.
-            let scaled = bare && self.scaling;
-            let count = if !scaled && known != crate::eval::lit::NO_MILLI {
-                Some(i64::from(known))
-            } else {
-                let v = if scaled { x * self.inc_mm } else { x };
-                crate::eval::value::decimal_count(v, 1000.0)
-            };
-            if let Some(q) = count {
-                // `round_to_decimal`'s result: `q as f64` is never `-0`.
-                let r = q as f64 / 1000.0;
-                return (r, (q.unsigned_abs() < GRID_LIMIT).then_some(q));
+            let v = if bare && self.scaling { x * self.inc_mm } else { x };
+            if let Some(q) = crate::eval::value::decimal_count(v, 1000.0) {
+                return milli_length(q);
             }
         }
         (self.length_of(bare, x, rotary), None)

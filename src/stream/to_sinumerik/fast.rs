@@ -96,6 +96,20 @@ pub fn block<'t, I: ItemView>(
                     return Err(Declined);
                 }
                 let Some(sg) = map_g(round(g10) as u32)? else { continue };
+                if sg % 10 == 0 {
+                    // A whole G code: what `push_display` (or the `0` of G0) writes for
+                    // it, without formatting a double.
+                    if out.len() > start {
+                        out.push(b' ');
+                    }
+                    any = true;
+                    out.push(b'G');
+                    match sg / 10 {
+                        g @ 0..=9 => out.push(b'0' + g as u8),
+                        g => push_u64(out, u64::from(g)),
+                    }
+                    continue;
+                }
                 v = f64::from(sg) / 10.0;
                 as_written = false;
             }

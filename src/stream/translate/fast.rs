@@ -59,6 +59,36 @@ fn letter_bit(l: u8) -> u64 {
     1u64 << (l.wrapping_sub(b'A') as u64).min(63)
 }
 
+/// [`SAME_G`] as bits (all below 128), so a G word is judged without searching the list.
+const SAME_G_BITS: u128 = {
+    let mut m = 0u128;
+    let mut i = 0;
+    while i < SAME_G.len() {
+        assert!(SAME_G[i] < 128);
+        m |= 1 << SAME_G[i];
+        i += 1;
+    }
+    m
+};
+
+/// `SAME_G.contains(&g)`.
+#[inline(always)]
+fn same_g(g: u32) -> bool {
+    g < 128 && SAME_G_BITS >> g & 1 != 0
+}
+
+/// `v.fract() == 0.0`, which calls `trunc` (a library call on the baseline x86-64): below
+/// 2^52 the truncating cast back to f64 gives `v` exactly when `v` is an integer; larger
+/// magnitudes, infinities and NaN keep `fract`.
+#[inline(always)]
+fn is_int(v: f64) -> bool {
+    if v.abs() < 4_503_599_627_370_496.0 {
+        (v as i64) as f64 == v
+    } else {
+        v.fract() == 0.0
+    }
+}
+
 /// The block needs the general translator (it would report something on it).
 #[derive(Debug, PartialEq, Eq)]
 pub struct Declined;
@@ -124,6 +154,15 @@ impl Fast {
                 out.push(b' ');
             }
             sep = true;
+            if w.letter == b'G' {
+                // The usual G code (G0..G9 the target has): what `word` and `num_word`
+                // write for it, `G0n`.
+                let g = w.value as u32;
+                if g < 10 && f64::from(g) == w.value && same_g(g) {
+                    out.extend_from_slice(&[b'G', b'0', b'0' + g as u8]);
+                    continue;
+                }
+            }
             let src = Src { line, span: w.span };
             if special & letter_bit(w.letter) == 0 && src.push_word(w.letter, w.value, Form::Point, out) {
                 continue;
@@ -293,7 +332,7 @@ impl Fast {
                     20.0
                 } else if v == 71.0 || v == 710.0 {
                     21.0
-                } else if v.fract() == 0.0 && SAME_G.contains(&(v as u32)) {
+                } else if is_int(v) && same_g(v as u32) {
                     v
                 } else {
                     return Err(Declined);
@@ -321,7 +360,7 @@ impl Fast {
     #[inline(always)]
     fn num_word(&self, letter: u8, v: f64, src: Option<Src<'_>>, out: &mut Vec<u8>) -> Result<(), Declined> {
         let int_addr = matches!(letter, b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O');
-        let integer = v.fract() == 0.0;
+        let integer = is_int(v);
         if !matches!(letter, b'G' | b'M') {
             // The usual word: straight from its literal.
             let form = if int_addr && integer { Form::Int } else { Form::Point };
@@ -568,6 +607,40 @@ pub fn push_u64(out: &mut Vec<u8>, mut n: u64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn is_int_and_same_g_agree_with_fract_and_the_list() {
+        let vs = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            -0.5,
+            2.5,
+            1e15,
+            4503599627370495.5,
+            4503599627370496.0,
+            1e20,
+            -1e20,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MIN_POSITIVE,
+            95.0,
+            96.0,
+            127.0,
+            128.0,
+            1e10,
+        ];
+        for v in vs {
+            assert_eq!(is_int(v), v.fract() == 0.0, "{v}");
+        }
+        for g in 0..300 {
+            assert_eq!(same_g(g), SAME_G.contains(&g), "{g}");
+        }
+        assert!(!same_g(u32::MAX));
+    }
 
     fn fast(v: f64, point: bool) -> (String, bool) {
         let mut out = Vec::new();
