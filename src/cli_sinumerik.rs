@@ -384,8 +384,11 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     // Written to a temporary file and renamed: a program found not to be straight-line part
     // way is then translated whole; standard output gets a copy of the finished file.
     let is_dir = |o: &Path| o.is_dir() || o.to_string_lossy().ends_with('/');
+    // A special target (`-o /dev/null`, see `stream_cli::is_special`) is copied into at the end.
+    let special = req.out.filter(|o| stream_cli::is_special(o));
     let tmp = match req.out {
         None => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
+        Some(_) if special.is_some() => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
         Some(o) if is_dir(o) => {
             if let Err(e) = std::fs::create_dir_all(o) {
                 eprintln!("error: cannot create {}: {e}", o.display());
@@ -419,6 +422,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, req.file)]));
     let out = match req.out {
         None => tmp.clone(),
+        Some(_) if special.is_some() => tmp.clone(),
         Some(o) if is_dir(o) => o.join(&done.file_name),
         Some(o) => o.to_path_buf(),
     };
@@ -427,7 +431,14 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         eprintln!("error: cannot write {}: {e}", out.display());
         return Some(ExitCode::from(2));
     }
-    if req.out.is_none() {
+    if let Some(t) = special {
+        if let Err(e) = stream_cli::copy_into(&out, t) {
+            let _ = std::fs::remove_file(&out);
+            eprintln!("error: cannot write {}: {e}", t.display());
+            return Some(ExitCode::from(2));
+        }
+        eprintln!("wrote {}", t.display());
+    } else if req.out.is_none() {
         if stream_cli::copy_to_stdout(&out).is_err() {
             let _ = std::fs::remove_file(&out);
             return Some(ExitCode::from(2));
@@ -447,7 +458,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
         code = verify_streamed(req.file, &out, &shown, done.index, args.max_steps, opts, size);
     }
-    if req.out.is_none() {
+    if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);
     }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {

@@ -252,6 +252,21 @@ pub fn note_read_whole(input: &Path, size: u64, why: &str) {
 }
 
 /// Copies a finished output file to standard output.
+/// Whether `-o` names something that is neither a regular file nor a folder (`/dev/null`,
+/// a FIFO, a terminal): such a target is written into, never replaced by renaming a finished
+/// file over it (that would put a regular file in its place, `/dev/null` included), and the
+/// translation is kept in a temporary file until then, for verification to read back.
+pub fn is_special(p: &Path) -> bool {
+    std::fs::metadata(p).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
+/// Copies the finished file `path` into the special target `to` (see [`is_special`]).
+pub fn copy_into(path: &Path, to: &Path) -> std::io::Result<()> {
+    let mut f = std::fs::File::open(path)?;
+    let mut t = std::fs::OpenOptions::new().write(true).open(to)?;
+    std::io::copy(&mut f, &mut t).and_then(|_| t.flush())
+}
+
 pub fn copy_to_stdout(path: &Path) -> std::io::Result<()> {
     let mut f = std::fs::File::open(path)?;
     let mut so = std::io::stdout().lock();
@@ -290,10 +305,15 @@ pub fn translate(
     };
     // Without -o the output goes through a temporary file, so a program found not to be
     // straight-line part way can still be translated whole, and verification can read it.
+    // So does a special target (`-o /dev/null`, see `is_special`), copied into at the end.
+    let special = a.output.as_deref().filter(|p| is_special(p));
     let to_stdout = a.output.is_none();
     let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
     let scratch = std::env::temp_dir().join(format!("nctrans-{}-{stem}.nc", std::process::id()));
-    let out: &Path = a.output.as_deref().unwrap_or(&scratch);
+    let out: &Path = match a.output.as_deref() {
+        Some(o) if special.is_none() => o,
+        _ => &scratch,
+    };
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
     let mut w = match create_temp(&tmp) {
@@ -330,8 +350,15 @@ pub fn translate(
             return Some(ExitCode::from(2));
         }
     }
+    if let Some(t) = special {
+        if let Err(e) = copy_into(out, t) {
+            let _ = std::fs::remove_file(out);
+            eprintln!("error: cannot write {}: {e}", t.display());
+            return Some(ExitCode::from(2));
+        }
+    }
     let code = verify_streamed(c, input, out, done.index, size);
-    if to_stdout {
+    if to_stdout || special.is_some() {
         let _ = std::fs::remove_file(out);
     }
     Some(code)

@@ -215,6 +215,12 @@ fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
     use std::io::Write;
     match path {
         None => std::io::stdout().lock().write_all(bytes).map_err(|e| format!("cannot write: {e}")),
+        // A device or FIFO (`-o /dev/null`) is written into: a rename would replace it.
+        Some(p) if crate::stream_cli::is_special(p) => std::fs::OpenOptions::new()
+            .write(true)
+            .open(p)
+            .and_then(|mut f| f.write_all(bytes))
+            .map_err(|e| format!("cannot write {}: {e}", p.display())),
         Some(p) => {
             let tmp = p.with_extension(format!("{}.nctrans-tmp", p.extension().and_then(|e| e.to_str()).unwrap_or("")));
             std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
