@@ -416,6 +416,20 @@ pub fn exact(mant: u64, k: usize) -> Option<f64> {
     POW10.get(k).map(|p| v / p)
 }
 
+/// [`exact`] for a literal the caller knows to be short (the quick readers': at most 14
+/// digits, so below 2^53, and at most seven after the point): the same conversion and the
+/// same division, without the checks.
+#[inline(always)]
+pub fn exact_short(mant: u64, k: usize) -> f64 {
+    debug_assert!(mant < 1 << 53 && k < 8);
+    let v = mant as i64 as f64;
+    if k == 0 {
+        v
+    } else {
+        v / POW10[k & 7]
+    }
+}
+
 /// How a dialect writes comments, so normalisation leaves comment text untouched.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CommentStyle {
@@ -769,6 +783,9 @@ mod tests {
             let want: f64 = literal.parse().expect("a literal");
             assert_eq!(exact(mant, k).map(f64::to_bits), Some(want.to_bits()), "{literal}");
             assert_eq!(exact(mant, k), scaled(mant, k), "{literal}");
+            if k < 8 {
+                assert_eq!(exact_short(mant, k).to_bits(), want.to_bits(), "{literal}");
+            }
         }
         for mant in [0, 1, (1 << 53) - 1] {
             assert_eq!(exact(mant, 0), Some(mant as f64));

@@ -79,11 +79,8 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
         if letter == b'G' && rule.g_macro && !point && !signed && matches!(mant, 10 | 65 | 66 | 67) {
             return None;
         }
-        // What `read::exact(mant, frac)` gives, without its checks: at most 14 digits
-        // (below 2^53), at most seven after the point (`word_number`), so the same
-        // conversion and the same division by the same power of ten.
-        let v = mant as i64 as f64;
-        let v = if frac == 0 { v } else { v / POW10F[frac & 7] };
+        // At most 14 digits, at most seven after the point (`word_number`).
+        let v = crate::read::exact_short(mant, frac);
         let value = if neg { -v } else { v };
         let span = Span::new(start + i as u32, start + j as u32);
         // The letter is upper case (checked above): `push_upper` skips that check.
@@ -163,9 +160,6 @@ pub(crate) fn word_number(s: &[u8], mut j: usize) -> Option<Num> {
     }
     Some(Num { mant, frac, neg, signed, point, end: j })
 }
-
-/// 10^0 ..= 10^7 as `f64` (exact), the values `read::exact` divides by.
-const POW10F: [f64; 8] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7];
 
 /// 10^0 ..= 10^7.
 pub(crate) const POW10: [u64; 8] = [1, 10, 100, 1000, 10_000, 100_000, 1_000_000, 10_000_000];

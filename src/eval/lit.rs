@@ -129,13 +129,7 @@ impl LitBlock {
     /// stay IR).
     #[inline(always)]
     pub fn push(&mut self, letter: u8, value: f64, point: bool, milli: i32, span: Span) -> bool {
-        let Some(slot) = self.words.get_mut(usize::from(self.len)) else { return false };
-        if !letter.is_ascii_uppercase() {
-            return false;
-        }
-        *slot = LitWord { value, span, milli, letter, point, mode: AbsInc::Plain };
-        self.len += 1;
-        true
+        letter.is_ascii_uppercase() && self.push_upper(letter, value, point, milli, span)
     }
 
     /// [`LitBlock::push`] of a word whose `letter` the caller has checked to be upper case
