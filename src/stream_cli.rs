@@ -247,7 +247,10 @@ pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, Exit
 /// streamed because `--stream` asked for it).
 pub fn note_read_whole(input: &Path, size: u64, why: &str) {
     if size >= AUTO_BYTES {
-        eprintln!("note: {} is read whole: it has {why} (only straight-line programs stream)", input.display());
+        eprintln!(
+            "note: {} is read whole: it has {why} (only straight-line programs and simple macro parts stream)",
+            input.display()
+        );
     }
 }
 
@@ -329,13 +332,40 @@ pub fn translate(
     let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
     line.done();
     drop(w);
-    let done = match r {
-        Ok(d) => d,
-        Err(f) => {
-            let _ = std::fs::remove_file(&tmp);
-            if let Fallback::NotStraight(why) = &f {
-                note_read_whole(input, size, why);
+    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
+    // streamed), else the whole-file path.
+    let (index, inputs) = match r {
+        Ok(d) => (d.index, None),
+        Err(Fallback::NotStraight(why)) => {
+            let mut w = match create_temp(&tmp) {
+                Ok(w) => w,
+                Err(code) => return Some(code),
+            };
+            let started = !bom || w.write_all(b"\xEF\xBB\xBF").is_ok();
+            let mut line = ProgressLine::new("translating", size);
+            let mut report = |p: Progress| line.update(p);
+            let r = if started {
+                stream::segmented::to_fanuc(input, &opts, &mut w, Some(&mut report)).map_err(Some)
+            } else {
+                Err(None)
+            };
+            line.done();
+            drop(w);
+            match r {
+                Ok(d) => (d.index, Some(d.inputs)),
+                Err(f) => {
+                    let _ = std::fs::remove_file(&tmp);
+                    let seg_why = match &f {
+                        Some(Fallback::NotStraight(w)) => w.as_str(),
+                        _ => why.as_str(),
+                    };
+                    note_read_whole(input, size, seg_why);
+                    return None;
+                }
             }
+        }
+        Err(_) => {
+            let _ = std::fs::remove_file(&tmp);
             return None;
         }
     };
@@ -357,20 +387,30 @@ pub fn translate(
             return Some(ExitCode::from(2));
         }
     }
-    let code = verify_streamed(c, input, out, done.index, size);
+    let code = verify_streamed(c, input, out, index, inputs, size);
     if to_stdout || special.is_some() {
         let _ = std::fs::remove_file(out);
     }
     Some(code)
 }
 
-fn verify_streamed(c: &nctrans::config::Config, input: &Path, out: &Path, index: Index, size: u64) -> ExitCode {
+fn verify_streamed(
+    c: &nctrans::config::Config,
+    input: &Path,
+    out: &Path,
+    index: Index,
+    inputs: Option<Vec<nctrans::eval::Input>>,
+    size: u64,
+) -> ExitCode {
     if !c.verify {
         return ExitCode::SUCCESS;
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = stream::translate::verify(index, out, c.max_steps, Some(&mut report));
+    let v = match inputs {
+        None => stream::translate::verify(index, out, c.max_steps, Some(&mut report)),
+        Some(inputs) => stream::segmented::verify(index, out, c.max_steps, inputs, Some(&mut report)),
+    };
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();

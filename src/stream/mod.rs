@@ -14,6 +14,7 @@ pub mod index;
 pub mod lines;
 pub mod paged;
 pub mod runs;
+pub mod segmented;
 pub mod to_sinumerik;
 pub mod translate;
 pub use reread::{reread, RereadSink};
