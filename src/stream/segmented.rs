@@ -174,8 +174,6 @@ impl Skel {
                             }
                             _ => {}
                         },
-                        #[allow(unreachable_patterns)]
-                        _ => why = why.or(Some("an unusual word value")),
                     },
                     _ => {}
                 }
