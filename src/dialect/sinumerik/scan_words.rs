@@ -53,7 +53,8 @@ impl Canon {
         let s = usize::from(num.neg);
         let digits = j - i - 1 - usize::from(num.signed) - usize::from(num.point);
         let n_int = digits.wrapping_sub(num.frac);
-        if (num.signed && !num.neg) || n_int == 0 || n_int > 7 || num.mant == 0 {
+        // A `+` (signed, not negative), no integer digit or more than 7, zero.
+        if num.signed != num.neg || n_int.wrapping_sub(1) >= 7 || num.mant == 0 {
             return Canon::NONE;
         }
         let Some(Ok(mut bytes)) = b.get(i..i + 16).map(<[u8; 16]>::try_from) else { return Canon::NONE };
