@@ -23,8 +23,8 @@ pub struct QWord {
 
 /// A word's text in the writers' canonical form, found while [`quick_line`] reads it (the
 /// word's bytes are at hand then): the letter, `-` when negative, the integer digits, a
-/// point, the fraction digits without their trailing zeros: `bytes[..len]` (the rest is
-/// whatever followed in the text).
+/// point, the fraction digits without their trailing zeros: `bytes()[..len]` (the rest
+/// is whatever followed in the text).
 /// Only for a literal already so written up to its trailing zeros and point: no `+`, at
 /// least one integer digit and no leading zero before another one, not zero. `len == 0`:
 /// not known (the writers then look at the text themselves, `translate::digits`).
@@ -33,7 +33,9 @@ pub struct QWord {
 /// digits is the shortest decimal of its double, up to leading and trailing zeros).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Canon {
-    pub bytes: [u8; 16],
+    /// `bytes` (see [`Canon::bytes`]) as two integers, first byte lowest.
+    pub lo: u64,
+    pub hi: u64,
     /// Bytes of the form with its point (`X-1.5`: 5, `F800`: 5 as `F800.`); 0: not known.
     pub len: u8,
     /// Where the point is (letter, sign and integer digits before it).
@@ -44,7 +46,13 @@ pub struct Canon {
 
 impl Canon {
     /// Not known.
-    pub const NONE: Canon = Canon { bytes: [0; 16], len: 0, dot: 0, sig: 0 };
+    pub const NONE: Canon = Canon { lo: 0, hi: 0, len: 0, dot: 0, sig: 0 };
+
+    /// The 16 bytes: the form, then whatever followed in the text.
+    #[inline(always)]
+    pub fn bytes(&self) -> [u8; 16] {
+        (u128::from(self.hi) << 64 | u128::from(self.lo)).to_le_bytes()
+    }
 
     /// The canonical form of the word at `b[i..j]`, read by `word_number` as `num`: `NONE`
     /// when the literal is not already in that form or fewer than 16 bytes follow `i`.
@@ -57,10 +65,17 @@ impl Canon {
         if num.signed != num.neg || n_int.wrapping_sub(1) >= 7 || num.mant == 0 {
             return Canon::NONE;
         }
-        let Some(Ok(mut bytes)) = b.get(i..i + 16).map(<[u8; 16]>::try_from) else { return Canon::NONE };
+        // The word's 16 bytes as two integers, changed in registers: a byte stored into
+        // them in memory and read back whole stalls the load (store forwarding fails).
+        let (Some(Ok(lo)), Some(Ok(hi))) =
+            (b.get(i..i + 8).map(<[u8; 8]>::try_from), b.get(i + 8..i + 16).map(<[u8; 8]>::try_from))
+        else {
+            return Canon::NONE;
+        };
+        let (mut lo, mut hi) = (u64::from_le_bytes(lo), u64::from_le_bytes(hi));
         let dot = 1 + s + n_int;
         // A leading zero before another integer digit.
-        if n_int > 1 && bytes[1 + s] == b'0' {
+        if n_int > 1 && b.get(i + 1 + s) == Some(&b'0') {
             return Canon::NONE;
         }
         // Without the fraction's trailing zeros (the point FANUC writes in its place
@@ -69,11 +84,15 @@ impl Canon {
         if dot + nf >= 16 {
             return Canon::NONE;
         }
-        while nf > 0 && bytes[dot + nf] == b'0' {
+        while nf > 0 && b.get(i + dot + nf) == Some(&b'0') {
             nf -= 1;
         }
-        bytes[dot] = b'.';
-        Canon { bytes, len: (dot + 1 + nf) as u8, dot: dot as u8, sig: (n_int + nf) as u8 }
+        if dot < 8 {
+            lo = (lo & !(0xff << (8 * dot))) | (u64::from(b'.') << (8 * dot));
+        } else {
+            hi = (hi & !(0xff << (8 * (dot - 8)))) | (u64::from(b'.') << (8 * (dot - 8)));
+        }
+        Canon { lo, hi, len: (dot + 1 + nf) as u8, dot: dot as u8, sig: (n_int + nf) as u8 }
     }
 }
 

@@ -253,7 +253,7 @@ pub fn plain_words(meta: &BlockMeta, words: &[PlainWord], arc: &mut bool, eol: &
         }
         let len = if c.len > c.dot + 1 { c.len } else { c.dot };
         let at = out.len();
-        out.extend_from_slice(&c.bytes);
+        out.extend_from_slice(&c.bytes());
         out.truncate(at + usize::from(len));
         out.push(b' ');
     }

@@ -278,7 +278,7 @@ impl<'t> Src<'t> {
     #[inline(always)]
     pub fn push_word(self, letter: u8, v: f64, form: Form, out: &mut Vec<u8>) -> bool {
         let c = self.canon;
-        if c.len != 0 && c.bytes[0] == letter {
+        if c.len != 0 && c.lo as u8 == letter {
             // The form the quick reader found (not zero, no `+`, no leading zero): what
             // `word_u64`/`word_u128` below write for it, where they write anything (for
             // `Point` at most 7 digits, where they take 8 with a point).
@@ -292,7 +292,7 @@ impl<'t> Src<'t> {
             };
             if len != 0 {
                 let at = out.len();
-                out.extend_from_slice(&c.bytes);
+                out.extend_from_slice(&c.bytes());
                 out.truncate(at + usize::from(len));
                 return true;
             }

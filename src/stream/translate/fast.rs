@@ -211,7 +211,7 @@ impl Fast {
                 return false;
             }
             let at = out.len();
-            out.extend_from_slice(&c.bytes);
+            out.extend_from_slice(&c.bytes());
             out.truncate(at + usize::from(c.len));
             out.push(b' ');
         }
