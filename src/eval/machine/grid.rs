@@ -18,6 +18,15 @@ fn milli_length(q: i64) -> (f64, Option<i64>) {
 /// A grid entry for positions off the grid (no `n` with [`grid_of`]).
 const OFF_GRID: i64 = i64::MIN;
 
+/// `grid_of` of `x` (`clean`ed with `cleaned`), or [`OFF_GRID`]. Out of line: a literal move set the entries it
+/// changed, so [`Machine::grid_move`] rarely works one out (inlined, its constants were
+/// loaded for every move).
+#[cold]
+#[inline(never)]
+fn grid_value(x: f64, cleaned: bool) -> i64 {
+    grid_of(if cleaned { clean(x) } else { x }).unwrap_or(OFF_GRID)
+}
+
 /// The bound under which a position sum is exact enough for [`Machine::set_grid`]:
 /// 10⁸ thousandths (100 m).
 const SUM_LIMIT: u64 = 100_000_000;
@@ -159,7 +168,7 @@ impl Machine {
             };
             let bits = x.to_bits();
             if *b != bits {
-                (*b, *n) = (bits, grid_of(clean(x)).unwrap_or(OFF_GRID));
+                (*b, *n) = (bits, grid_value(x, true));
             }
             if *n == OFF_GRID {
                 return None;
@@ -171,7 +180,7 @@ impl Machine {
             let x = self.feed?;
             let bits = x.to_bits();
             if g.feed.0 != bits {
-                g.feed = (bits, grid_of(x).unwrap_or(OFF_GRID));
+                g.feed = (bits, grid_value(x, false));
             }
             if g.feed.1 == OFF_GRID {
                 return None;
