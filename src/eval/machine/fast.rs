@@ -58,9 +58,12 @@ impl Machine {
         for (k, w) in words.iter().enumerate() {
             span = span.to(w.span);
             match w.letter {
+                // G1 in G1 mode (nearly every G word of CAM output) changes nothing: the
+                // modal state is then not written back.
+                b'G' if w.value == 1.0 && modal.motion == Motion::Linear => {}
                 b'G' => {
                     any_g = true;
-                    // G1 (nearly every G word of CAM output) without rounding its value.
+                    // G1 without rounding its value.
                     let gi = if w.value == 1.0 { 10 } else { super::g_index(w.value) };
                     if !modal.g(self.fanuc, gi) {
                         return None;
