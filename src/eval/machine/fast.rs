@@ -118,16 +118,17 @@ impl Machine {
             let (v, q) =
                 self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
             let off = self.active_offset(i % 9);
-            let t = self.target_from(i, v, w.mode, false, off);
-            self.applied[i % 9] = off;
-            self.seen[i % 9] = true;
-            self.pos[i % 9] = t;
-            // An absolute target is the word's length plus the offset: on the grid when both are.
             let absolute = match w.mode {
                 AbsInc::Ac => true,
                 AbsInc::Ic => false,
                 AbsInc::Plain => self.modal.absolute,
             };
+            // An absolute target is the word's length plus the offset (`target_from`'s
+            // way without G53), and on the grid when both are.
+            let t = if absolute { v + off } else { self.target_from(i, v, w.mode, false, off) };
+            self.applied[i % 9] = off;
+            self.seen[i % 9] = true;
+            self.pos[i % 9] = t;
             if let (true, Some(q)) = (absolute, q) {
                 self.set_grid(i % 9, t, q, off);
             }
