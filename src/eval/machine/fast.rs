@@ -108,8 +108,9 @@ impl Machine {
         let milli = self.milli_lengths();
         let bare_scaled = self.fanuc && self.scaling;
         // Lengths in millimetres on the 0.001 grid for every axis (`milli[0]` implies
-        // `milli[1]`), no decimal-point rule, absolute: nearly every CAM block's axes.
-        let plain = milli[0] && !bare_scaled && self.modal.absolute;
+        // `milli[1]`), absolute: with a count of thousandths, a plain mode and no
+        // decimal-point rule to apply (a point, or no rule), nearly every CAM block's axes.
+        let plain = milli[0] && self.modal.absolute;
         // Each axis's target reads that axis's state only, so the axes can be written at
         // once and in any order (here by axis).
         let mut left = seen_axes;
@@ -117,21 +118,22 @@ impl Machine {
             let i = left.trailing_zeros() as usize;
             left &= left - 1;
             let Some(w) = word_of.get(i).and_then(|&k| words.get(usize::from(k))) else { break };
-            let (v, q, absolute) = if plain && w.mode == AbsInc::Plain && w.milli != NO_MILLI {
-                // What the general way below gives for such a word, without its choices.
-                let (v, q) = self.length_grid(true, false, w.value, w.milli, false);
-                (v, q, true)
-            } else {
-                let rotary = (3..6).contains(&i);
-                let (v, q) =
-                    self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
-                let absolute = match w.mode {
-                    AbsInc::Ac => true,
-                    AbsInc::Ic => false,
-                    AbsInc::Plain => self.modal.absolute,
+            let (v, q, absolute) =
+                if plain && w.mode == AbsInc::Plain && w.milli != NO_MILLI && (w.point || !bare_scaled) {
+                    // What the general way below gives for such a word, without its choices.
+                    let (v, q) = self.length_grid(true, false, w.value, w.milli, false);
+                    (v, q, true)
+                } else {
+                    let rotary = (3..6).contains(&i);
+                    let (v, q) =
+                        self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
+                    let absolute = match w.mode {
+                        AbsInc::Ac => true,
+                        AbsInc::Ic => false,
+                        AbsInc::Plain => self.modal.absolute,
+                    };
+                    (v, q, absolute)
                 };
-                (v, q, absolute)
-            };
             let off = self.active_offset(i % 9);
             // An absolute target is the word's length plus the offset (`target_from`'s
             // way without G53), and on the grid when both are.
