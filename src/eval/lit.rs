@@ -73,6 +73,10 @@ const NO_WORD: LitWord = LitWord {
     mode: AbsInc::Plain,
 };
 
+/// A slot of [`LitBlock::EMPTY`] (all zero bytes).
+const ZERO_WORD: LitWord =
+    LitWord { value: 0.0, span: Span { lo: 0, hi: 0 }, milli: 0, letter: 0, point: false, mode: AbsInc::Plain };
+
 impl LitBlock {
     /// The compact form of `b`, when it has at most [`MAX_WORDS`] items, each a word with
     /// an upper-case letter address and a number literal (or a negated one) as its value.
@@ -115,8 +119,11 @@ impl LitBlock {
     /// text (a streamed chunk's re-read, see `crate::stream::reread`). A constant, so that
     /// it is copied straight from read-only data into its op slot (one built at run time
     /// is built on the stack and copied twice: a memmove per re-read line).
+    /// Its words past `len` (never read) are all zero bytes, as is the rest of it: a
+    /// constant of zeros is written with a few stores in line, any other with a call to
+    /// `memcpy`.
     pub const EMPTY: LitBlock =
-        LitBlock { span: Span { lo: 0, hi: 0 }, number: None, line: 0, len: 0, words: [NO_WORD; MAX_WORDS] };
+        LitBlock { span: Span { lo: 0, hi: 0 }, number: None, line: 0, len: 0, words: [ZERO_WORD; MAX_WORDS] };
 
     /// Whether the compact form is on (tests turn it off, see [`without`]).
     pub fn enabled() -> bool {
