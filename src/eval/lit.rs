@@ -64,16 +64,8 @@ pub fn milli(neg: bool, digits: Option<(u64, usize)>) -> i32 {
     }
 }
 
-const NO_WORD: LitWord = LitWord {
-    value: 0.0,
-    span: Span { lo: 0, hi: 0 },
-    milli: NO_MILLI,
-    letter: b'A',
-    point: false,
-    mode: AbsInc::Plain,
-};
-
-/// A slot of [`LitBlock::EMPTY`] (all zero bytes).
+/// A slot of [`LitBlock::EMPTY`] (all zero bytes), and the unused ones of
+/// [`LitBlock::of`] (so that both routes give the same op, unused slots included).
 const ZERO_WORD: LitWord =
     LitWord { value: 0.0, span: Span { lo: 0, hi: 0 }, milli: 0, letter: 0, point: false, mode: AbsInc::Plain };
 
@@ -84,7 +76,7 @@ impl LitBlock {
         if disabled() || b.items.len() > MAX_WORDS {
             return None;
         }
-        let mut words = [NO_WORD; MAX_WORDS];
+        let mut words = [ZERO_WORD; MAX_WORDS];
         for (slot, item) in words.iter_mut().zip(&b.items) {
             let ItemKind::Word(w) = &item.kind else { return None };
             let Addr::Letter(letter) = w.addr else { return None };
