@@ -10,7 +10,7 @@ mod rng;
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{Addr, BlockMeta, ExprKind, ItemKind, Stmt, StmtKind, WordValue};
-use nctrans::stream::{self, PlainWord, WordsSink};
+use nctrans::stream::{self, Canon, PlainWord, WordsSink};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 
@@ -114,7 +114,7 @@ fn plain_lines_two_readers(path: &Path, dialect: Dialect) -> Option<Vec<Got>> {
     let mut words: Vec<PlainWord> = Vec::new();
     fn push(words: &mut Vec<PlainWord>) -> impl FnMut(u8, f64, bool, Span) -> bool + '_ {
         |letter, value, point, span| {
-            words.push(PlainWord { letter, value, point, span });
+            words.push(PlainWord { letter, value, point, span, canon: Canon::NONE });
             true
         }
     }

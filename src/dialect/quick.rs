@@ -10,7 +10,7 @@
 //! this reader takes, the full reader would give exactly these words (tests: the dialects'
 //! `quick_*` tests compare both on generated lines, tests/stream_direct.rs the pages).
 
-use crate::eval::lit::{milli, LitBlock};
+use crate::eval::lit::{milli, LitBlock, NO_MILLI};
 use crate::span::Span;
 
 /// Which words a dialect's full reader reads alike (the others, the quick reader leaves to
@@ -43,7 +43,7 @@ impl Rule {
 /// its letter to its last digit.
 #[inline(always)]
 pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, rule: Rule) -> bool {
-    words::<false>(text.as_bytes(), start, b, rule).is_some()
+    words::<false>(text.as_bytes(), 0, start, b, rule).is_some()
 }
 
 /// [`lit_words`] on a line read straight from a read buffer (`crate::stream::reread`):
@@ -59,15 +59,93 @@ pub fn lit_words(text: &str, start: u32, b: &mut LitBlock, rule: Rule) -> bool {
 /// ends the line where the end of the text does.
 #[inline(always)]
 pub fn lit_words_buf(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Option<usize> {
-    words::<true>(s, start, b, rule)
+    // Word by word from a window of fixed size (one bounds check a word, none a load);
+    // the words too near the end of `s` for one, the general loop.
+    let mut i = 0;
+    while let Some(win) = s.get(i..).and_then(<[u8]>::first_chunk::<WIN>) {
+        let letter = win[0];
+        let k = letter.wrapping_sub(b'A');
+        if k >= 26 || (rule.refuse >> k) & 1 != 0 {
+            return None;
+        }
+        // The sign is the lowest byte of the window after the letter; the digits start
+        // there or one on, and the bytes after a point one on from that.
+        let w1 = win8::<1>(win);
+        let sign = w1 as u8;
+        let neg = sign == b'-';
+        let signed = neg || sign == b'+';
+        let (w, off) = if signed { (win8::<2>(win), 2) } else { (w1, 1) };
+        let n = run(w);
+        let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
+        let (mant, frac, j);
+        if !point {
+            (mant, frac, j) = (value(w, n), 0, off + n);
+        } else {
+            // The digits before the point from `w`, those after it from `wn` (the same
+            // bytes one on): the number's digits closed up, as in `word_number`.
+            let low = (1u64 << (8 * n)) - 1;
+            let joined = (w & low) | (win8_at(win, off + 1) & !low);
+            let all = run(joined);
+            if all < 8 {
+                (mant, frac, j) = (value(joined, all), all - n, off + all + 1);
+            } else {
+                let at = off + n + 1;
+                let rest = u64::from_le_bytes(*win.get(at..)?.first_chunk::<8>()?);
+                let m = run(rest);
+                let &p = POW10.get(m)?;
+                (mant, frac, j) = (value(w, n) * p + value(rest, m), m, at + m);
+            }
+        }
+        if n + frac == 0 || n == 8 {
+            return None;
+        }
+        if letter == b'G' && rule.g_macro && !point && !signed && matches!(mant, 10 | 65 | 66 | 67) {
+            return None;
+        }
+        let v = crate::read::exact_short(mant, frac);
+        let value = if neg { -v } else { v };
+        let span = Span::new(start + i as u32, start + (i + j) as u32);
+        // No count of thousandths for a G word: only axis and F words' are read.
+        let q = if letter == b'G' { NO_MILLI } else { milli(neg, Some((mant, frac))) };
+        if !b.push_upper(letter, value, point, q, span) {
+            return None;
+        }
+        // `j` is at most 18 (a sign, seven digits, a point, seven digits after the letter).
+        match win[j & (WIN - 1)] {
+            b'\n' | b'\r' => return Some(i + j),
+            b' ' => {}
+            _ => return None,
+        }
+        i += j + 1;
+    }
+    words::<true>(s, i, start, b, rule)
+}
+
+/// The window [`lit_words_buf`] reads a word from (a power of two).
+const WIN: usize = 32;
+
+/// The eight bytes of `win` from `at` (at most 3) as a little-endian word.
+#[inline(always)]
+fn win8_at(win: &[u8; WIN], at: usize) -> u64 {
+    let mut w = [0u8; 8];
+    w.copy_from_slice(&win[at & 3..(at & 3) + 8]);
+    u64::from_le_bytes(w)
+}
+
+/// The eight bytes of `win` from `AT` as a little-endian word.
+#[inline(always)]
+fn win8<const AT: usize>(win: &[u8; WIN]) -> u64 {
+    let mut w = [0u8; 8];
+    w.copy_from_slice(&win[AT..AT + 8]);
+    u64::from_le_bytes(w)
 }
 
 /// [`lit_words`] (`BUF` false: the line is all of `s`) and [`lit_words_buf`] (`BUF` true:
-/// the line ends at the first CR or LF of `s`); the line's length.
+/// the line ends at the first CR or LF of `s`), from the word at `from`; the line's length.
 #[inline(always)]
-fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Option<usize> {
+fn words<const BUF: bool>(s: &[u8], from: usize, start: u32, b: &mut LitBlock, rule: Rule) -> Option<usize> {
     let len = s.len();
-    let mut i = 0;
+    let mut i = from;
     loop {
         let &letter = s.get(i)?;
         let k = letter.wrapping_sub(b'A');
@@ -84,7 +162,8 @@ fn words<const BUF: bool>(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) ->
         let value = if neg { -v } else { v };
         let span = Span::new(start + i as u32, start + j as u32);
         // The letter is upper case (checked above): `push_upper` skips that check.
-        if !b.push_upper(letter, value, point, milli(neg, Some((mant, frac))), span) {
+        let q = if letter == b'G' { NO_MILLI } else { milli(neg, Some((mant, frac))) };
+        if !b.push_upper(letter, value, point, q, span) {
             return None;
         }
         if BUF {
@@ -223,7 +302,7 @@ fn digits8(w: u64) -> (usize, u64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::eval::lit::{LitWord, MAX_WORDS, NO_MILLI};
+    use crate::eval::lit::{LitWord, MAX_WORDS};
     use crate::read::RawBlock;
 
     struct Rng(u64);
@@ -353,7 +432,11 @@ mod tests {
             let text = line(&mut r);
             let after = [&line(&mut r)[..], "7", "0.5", ".", "", "X1"][r.below(6)].to_string();
             let end = ["\n", "\r\n", "\r", ""][r.below(4)];
-            let buf = format!("{text}{end}{after}");
+            // Often more text after it, so that every word of the line is read from a
+            // full window (`lit_words_buf` reads the words near the end of `s` otherwise).
+            let more =
+                if end.is_empty() || r.below(2) == 0 { "" } else { "G1 X12.5 Y-0.125 Z7 F800 ; more text after" };
+            let buf = format!("{text}{end}{after}{more}");
             let start = 1000 + n;
             let sin = crate::dialect::sinumerik::fast::QUICK;
             let fan = crate::dialect::fanuc::fast::QUICK;

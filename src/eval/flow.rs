@@ -238,6 +238,7 @@ impl ChunkOps {
     /// [`ChunkOps::stmt`] makes of a plain block whose [`LitBlock::of`] is the block
     /// filled in); `None` when the compact form is off. Undo with [`ChunkOps::unlit`] when
     /// the line is not such a block.
+    #[inline(always)]
     pub fn lit(&mut self) -> Option<&mut LitBlock> {
         if !LitBlock::enabled() {
             return None;

@@ -64,14 +64,10 @@ pub fn milli(neg: bool, digits: Option<(u64, usize)>) -> i32 {
     }
 }
 
-const NO_WORD: LitWord = LitWord {
-    value: 0.0,
-    span: Span { lo: 0, hi: 0 },
-    milli: NO_MILLI,
-    letter: b'A',
-    point: false,
-    mode: AbsInc::Plain,
-};
+/// A slot of [`LitBlock::EMPTY`] (all zero bytes), and the unused ones of
+/// [`LitBlock::of`] (so that both routes give the same op, unused slots included).
+const ZERO_WORD: LitWord =
+    LitWord { value: 0.0, span: Span { lo: 0, hi: 0 }, milli: 0, letter: 0, point: false, mode: AbsInc::Plain };
 
 impl LitBlock {
     /// The compact form of `b`, when it has at most [`MAX_WORDS`] items, each a word with
@@ -80,7 +76,7 @@ impl LitBlock {
         if disabled() || b.items.len() > MAX_WORDS {
             return None;
         }
-        let mut words = [NO_WORD; MAX_WORDS];
+        let mut words = [ZERO_WORD; MAX_WORDS];
         for (slot, item) in words.iter_mut().zip(&b.items) {
             let ItemKind::Word(w) = &item.kind else { return None };
             let Addr::Letter(letter) = w.addr else { return None };
@@ -115,8 +111,11 @@ impl LitBlock {
     /// text (a streamed chunk's re-read, see `crate::stream::reread`). A constant, so that
     /// it is copied straight from read-only data into its op slot (one built at run time
     /// is built on the stack and copied twice: a memmove per re-read line).
+    /// Its words past `len` (never read) are all zero bytes, as is the rest of it: a
+    /// constant of zeros is written with a few stores in line, any other with a call to
+    /// `memcpy`.
     pub const EMPTY: LitBlock =
-        LitBlock { span: Span { lo: 0, hi: 0 }, number: None, line: 0, len: 0, words: [NO_WORD; MAX_WORDS] };
+        LitBlock { span: Span { lo: 0, hi: 0 }, number: None, line: 0, len: 0, words: [ZERO_WORD; MAX_WORDS] };
 
     /// Whether the compact form is on (tests turn it off, see [`without`]).
     pub fn enabled() -> bool {

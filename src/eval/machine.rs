@@ -110,13 +110,8 @@ pub struct Machine {
     /// Buffers of [`Machine::apply`], kept to save two allocations per block.
     gs_buf: Vec<(f64, Span)>,
     ms_buf: Vec<(f64, Span)>,
-    /// Per axis: (bits of a position, its trace grid value or `grid::OFF_GRID`), for
-    /// [`Machine::grid_move`]; a pure function of the bits, so never stale.
-    grid: [(u64, i64); 9],
-    /// The same for the feed (its own value, not `clean`ed).
-    feed_grid: (u64, i64),
-    /// `seen` and its bit set (bit `i`: axis `i`), for [`Machine::grid_move`].
-    seen_mask: ([bool; 9], u16),
+    /// The trace position on the 0.001 grid and the move given to sinks ([`grid::Grid`]).
+    grid: grid::Grid,
 }
 
 impl Machine {
@@ -157,9 +152,7 @@ impl Machine {
             scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
-            grid: Machine::new_grid(),
-            feed_grid: (0f64.to_bits(), 0),
-            seen_mask: ([false; 9], 0),
+            grid: grid::Grid::new(inc_mm),
         }
     }
 

@@ -22,7 +22,6 @@ struct Pos {
 }
 
 struct Jump {
-    pos: usize,
     target: Option<usize>,
 }
 
@@ -57,7 +56,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, number_blocks: Option<u32>) -> BTr
         } else if target.is_none() && !g.missing_continues {
             ctx.error("NC305", span, &format!("jump target {name} not found"), "add the label, or use GOTOC");
         }
-        jumps.push(Jump { pos: *at, target });
+        jumps.push(Jump { target });
     }
     let targets: BTreeSet<usize> = jumps.iter().filter_map(|j| j.target).collect();
     let mut numbers: Vec<Option<u32>> = vec![None; pos.len()];
@@ -187,30 +186,29 @@ fn apply(body: &mut [Stmt], numbers: &[Option<u32>], jumps: &[Jump], k: &mut usi
             StmtKind::Block(b) => {
                 set_meta(&mut b.meta, numbers.get(*k).copied().flatten());
                 *k += 1;
-                let items = std::mem::take(&mut b.items);
-                for mut it in items {
-                    if let ItemKind::Goto(g) = &mut it.kind {
-                        let j = jumps.get(*gi);
-                        *gi += 1;
-                        let n = j.and_then(|j| j.target).and_then(|t| numbers.get(t).copied().flatten());
-                        match n {
-                            Some(n) => {
-                                let span = match &g.target {
-                                    Target::Label(l) => l.span,
-                                    Target::Number(s) => s.span,
-                                    Target::Computed(e) => e.span,
-                                };
-                                g.target = Target::Number(SeqNo { value: n, span });
-                                g.search = Search::ForwardThenWrap;
-                                g.missing_continues = false;
-                            }
-                            // GOTOC to a missing label: continue with the next block.
-                            None => continue,
+                // In place: rebuilding the vector grew every block's items once more
+                // (a large share of a long program's memory in the whole-file path).
+                b.items.retain_mut(|it| {
+                    let ItemKind::Goto(g) = &mut it.kind else { return true };
+                    let j = jumps.get(*gi);
+                    *gi += 1;
+                    let n = j.and_then(|j| j.target).and_then(|t| numbers.get(t).copied().flatten());
+                    match n {
+                        Some(n) => {
+                            let span = match &g.target {
+                                Target::Label(l) => l.span,
+                                Target::Number(s) => s.span,
+                                Target::Computed(e) => e.span,
+                            };
+                            g.target = Target::Number(SeqNo { value: n, span });
+                            g.search = Search::ForwardThenWrap;
+                            g.missing_continues = false;
+                            true
                         }
-                        let _ = j.map(|j| j.pos);
+                        // GOTOC to a missing label: continue with the next block.
+                        None => false,
                     }
-                    b.items.push(it);
-                }
+                });
             }
             StmtKind::Do(d) => {
                 set_meta(&mut d.head, numbers.get(*k).copied().flatten());

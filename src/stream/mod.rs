@@ -33,6 +33,8 @@ use index::{ProgIndex, Resume};
 use lines::{Input, Lines, NotStreamable};
 use std::path::{Path, PathBuf};
 
+pub use crate::dialect::sinumerik::scan_words::Canon;
+
 /// Where a scan is, for a progress line (the library reports, `main.rs` renders).
 #[derive(Clone, Copy, Debug)]
 pub struct Progress {
@@ -72,6 +74,9 @@ pub struct PlainWord {
     pub value: f64,
     pub point: bool,
     pub span: Span,
+    /// The word's text in the writers' form when the quick reader found it so
+    /// (`Canon::NONE` from the general readers: the writers then read the text).
+    pub canon: Canon,
 }
 
 /// What the streamed translators' fast paths look at in an item, the same whether it is an
@@ -217,7 +222,7 @@ impl Reader<'_> {
         words: &mut Vec<PlainWord>,
     ) -> Option<(Span, Option<crate::ir::SeqNo>, Option<usize>)> {
         let push = |letter: u8, value: f64, point: bool, span: Span| {
-            words.push(PlainWord { letter, value, point, span });
+            words.push(PlainWord { letter, value, point, span, canon: Canon::NONE });
             true
         };
         match self {

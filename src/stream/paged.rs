@@ -262,6 +262,7 @@ impl RereadSink for Sink {
         }
     }
 
+    #[inline(always)]
     fn lit(&mut self) -> Option<&mut LitBlock> {
         let l = self.ops.lit();
         self.direct += u64::from(l.is_some());

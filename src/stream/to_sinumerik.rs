@@ -489,7 +489,7 @@ impl State<'_> {
             }
         }
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
-        if self.fast(meta, words, |w| Some(Src { line, span: w.span })) {
+        if self.fast(meta, words, |w| Some(Src { line, span: w.span, canon: w.canon })) {
             return true;
         }
         (self.arc, self.buf_real) = (arc, buf_real);
@@ -551,7 +551,25 @@ impl super::WordsSink for Sink<'_, '_> {
     }
 
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        if self.st.stop.is_some() {
+        let st = &mut *self.st;
+        if st.stop.is_some() {
+            return true;
+        }
+        // The usual CAM line, when nothing waits for the passes (as `State::fast` with an
+        // empty buffer): written at once (`fast::plain_words`, the same bytes as
+        // `push_plain`; its G0..G3 are straight).
+        if prog == 0
+            && !st.first
+            && st.buf.is_empty()
+            && st.io.is_none()
+            && st.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty())
+            && fast::plain_words(meta, words, &mut st.arc, st.eol_bytes, &mut st.wbuf)
+        {
+            st.buf_real = true;
+            if st.wbuf.len() >= WRITE_BYTES {
+                st.spill();
+            }
+            self.blocks += 1;
             return true;
         }
         // Constant letter words without a label: straight when their G codes are.

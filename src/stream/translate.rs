@@ -192,7 +192,9 @@ impl super::WordsSink for Sink<'_, '_> {
         // A plain block is straight (constant letter words, no label): not checked again.
         if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
             let g70 = st.fast.g70;
-            if st.fast.words(meta, words, line, &mut st.buf).is_err() {
+            // The usual CAM line in one loop (it changes no mode), else the words one by one.
+            if !st.fast.plain_words(meta, words, &mut st.buf) && st.fast.words(meta, words, line, &mut st.buf).is_err()
+            {
                 st.fast.g70 = g70;
                 return false;
             }

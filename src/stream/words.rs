@@ -42,7 +42,7 @@ pub(super) fn take_plain_words(
     let start = lines.offset() as u32;
     st.plain.clear();
     let plain = &mut *st.plain;
-    let push = |letter, value, point, span| plain.push(PlainWord { letter, value, point, span });
+    let push = |letter, value, point, span, canon| plain.push(PlainWord { letter, value, point, span, canon });
     let ahead = lines.ahead();
     let found = match &*st.reader {
         Reader::Sin(r) if r.plain_ready() => sinumerik::scan_words::scan_words_bytes(ahead, start, push)?,

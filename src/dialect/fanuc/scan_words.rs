@@ -2,7 +2,7 @@
 //! with FANUC's rules: the quick reader (`sinumerik::scan_words::quick_line`) and what
 //! `fast::scan_words_raw` would decide on the lines it takes.
 
-use crate::dialect::sinumerik::scan_words::{quick_line, QLine, QWord};
+use crate::dialect::sinumerik::scan_words::{quick_line, Canon, QLine, QWord};
 use crate::span::Span;
 
 /// [`quick_line`] with FANUC's rules, for `crate::stream::scan_words` (see
@@ -17,7 +17,7 @@ use crate::span::Span;
 /// G65, G66 and G67 written without sign or point (refused here, so the full reader
 /// takes those lines).
 #[inline(always)]
-pub fn scan_words_bytes(b: &[u8], start: u32, push: impl FnMut(u8, f64, bool, Span)) -> Option<QLine> {
+pub fn scan_words_bytes(b: &[u8], start: u32, push: impl FnMut(u8, f64, bool, Span, Canon)) -> Option<QLine> {
     let ok = |w: &QWord| match w.letter {
         b'N' | b'O' | b'M' => false,
         b'G' => w.point || w.signed || !matches!(w.mant, 10 | 65 | 66 | 67),

@@ -11,11 +11,12 @@ pub(crate) mod fast;
 mod names;
 mod parse;
 pub mod scan_words;
+mod skeleton;
 mod structure;
 
 pub mod emit;
 
-pub use fast::skeleton_bytes;
+pub use skeleton::skeleton_bytes;
 
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Parsed};

@@ -21,6 +21,81 @@ pub struct QWord {
     pub point: bool,
 }
 
+/// A word's text in the writers' canonical form, found while [`quick_line`] reads it (the
+/// word's bytes are at hand then): the letter, `-` when negative, the integer digits, a
+/// point, the fraction digits without their trailing zeros: `bytes()[..len]` (the rest
+/// is whatever followed in the text).
+/// Only for a literal already so written up to its trailing zeros and point: no `+`, at
+/// least one integer digit and no leading zero before another one, not zero. `len == 0`:
+/// not known (the writers then look at the text themselves, `translate::digits`).
+///
+/// Why these are the writers' digits: see `translate::digits` (a literal of at most 15
+/// digits is the shortest decimal of its double, up to leading and trailing zeros).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Canon {
+    /// `bytes` (see [`Canon::bytes`]) as two integers, first byte lowest.
+    pub lo: u64,
+    pub hi: u64,
+    /// Bytes of the form with its point (`X-1.5`: 5, `F800`: 5 as `F800.`); 0: not known.
+    pub len: u8,
+    /// Where the point is (letter, sign and integer digits before it).
+    pub dot: u8,
+    /// Significant digits written (integer and fraction, the `0` of `0.5` counted).
+    pub sig: u8,
+}
+
+impl Canon {
+    /// Not known.
+    pub const NONE: Canon = Canon { lo: 0, hi: 0, len: 0, dot: 0, sig: 0 };
+
+    /// The 16 bytes: the form, then whatever followed in the text.
+    #[inline(always)]
+    pub fn bytes(&self) -> [u8; 16] {
+        (u128::from(self.hi) << 64 | u128::from(self.lo)).to_le_bytes()
+    }
+
+    /// The canonical form of the word at `b[i..j]`, read by `word_number` as `num`: `NONE`
+    /// when the literal is not already in that form or fewer than 16 bytes follow `i`.
+    #[inline(always)]
+    fn of(b: &[u8], i: usize, j: usize, num: &Num) -> Canon {
+        let s = usize::from(num.neg);
+        let digits = j - i - 1 - usize::from(num.signed) - usize::from(num.point);
+        let n_int = digits.wrapping_sub(num.frac);
+        // A `+` (signed, not negative), no integer digit or more than 7, zero.
+        if num.signed != num.neg || n_int.wrapping_sub(1) >= 7 || num.mant == 0 {
+            return Canon::NONE;
+        }
+        // The word's 16 bytes as two integers, changed in registers: a byte stored into
+        // them in memory and read back whole stalls the load (store forwarding fails).
+        let (Some(Ok(lo)), Some(Ok(hi))) =
+            (b.get(i..i + 8).map(<[u8; 8]>::try_from), b.get(i + 8..i + 16).map(<[u8; 8]>::try_from))
+        else {
+            return Canon::NONE;
+        };
+        let (mut lo, mut hi) = (u64::from_le_bytes(lo), u64::from_le_bytes(hi));
+        let dot = 1 + s + n_int;
+        // A leading zero before another integer digit.
+        if n_int > 1 && b.get(i + 1 + s) == Some(&b'0') {
+            return Canon::NONE;
+        }
+        // Without the fraction's trailing zeros (the point FANUC writes in its place
+        // when the literal has none; the writers cut off what follows `len`).
+        let mut nf = num.frac;
+        if dot + nf >= 16 {
+            return Canon::NONE;
+        }
+        while nf > 0 && b.get(i + dot + nf) == Some(&b'0') {
+            nf -= 1;
+        }
+        if dot < 8 {
+            lo = (lo & !(0xff << (8 * dot))) | (u64::from(b'.') << (8 * dot));
+        } else {
+            hi = (hi & !(0xff << (8 * (dot - 8)))) | (u64::from(b'.') << (8 * (dot - 8)));
+        }
+        Canon { lo, hi, len: (dot + 1 + nf) as u8, dot: dot as u8, sig: (n_int + nf) as u8 }
+    }
+}
+
 /// A line [`quick_line`] took: its length (the line end, CR or LF, follows in the buffer)
 /// and its block number (value, and its letter and end as offsets into the line).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,7 +119,7 @@ pub fn quick_line(
     b: &[u8],
     start: u32,
     ok: impl Fn(&QWord) -> bool,
-    mut push: impl FnMut(u8, f64, bool, Span),
+    mut push: impl FnMut(u8, f64, bool, Span, Canon),
 ) -> Option<QLine> {
     let mut i = 0;
     let mut number = None;
@@ -62,14 +137,16 @@ pub fn quick_line(
         if !letter.is_ascii_uppercase() {
             return None;
         }
-        let Num { mant, frac, neg, signed, point, end: j } = word_number(b, i + 1)?;
+        let num = word_number(b, i + 1)?;
+        let Num { mant, frac, neg, signed, point, end: j } = num;
         let w = QWord { letter, mant, frac, signed, neg, point };
         if !ok(&w) {
             return None;
         }
         // At most 14 digits: below 2^53, `exact` answers.
         let v = crate::read::exact(mant, frac).unwrap_or(0.0);
-        push(letter, if neg { -v } else { v }, point, Span::new(start + i as u32, start + j as u32));
+        let canon = Canon::of(b, i, j, &num);
+        push(letter, if neg { -v } else { v }, point, Span::new(start + i as u32, start + j as u32), canon);
         match *b.get(j)? {
             b' ' => i = j + 1,
             b'\n' | b'\r' => return Some(QLine { len: j, number }),
@@ -88,6 +165,6 @@ pub fn quick_line(
 /// span, but for the letters it declines (L, N, O, P) and M (which `Each` judges): they are
 /// refused here, so the full reader takes those lines.
 #[inline(always)]
-pub fn scan_words_bytes(b: &[u8], start: u32, push: impl FnMut(u8, f64, bool, Span)) -> Option<QLine> {
+pub fn scan_words_bytes(b: &[u8], start: u32, push: impl FnMut(u8, f64, bool, Span, Canon)) -> Option<QLine> {
     quick_line(b, start, |w| !matches!(w.letter, b'L' | b'M' | b'N' | b'O' | b'P'), push)
 }

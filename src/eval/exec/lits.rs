@@ -65,9 +65,8 @@ impl Interp<'_> {
         if self.fast_path {
             if let Some(done) = self.m.apply_lit(b) {
                 let Some(span) = done else { return Ok(Flow::Next) };
-                // Matched in place (a move out of the option copied the whole move).
-                let mut grid = self.m.grid_move();
-                match &mut grid {
+                // The machine's own move, written in place.
+                match self.m.grid_move() {
                     Some(g) if self.pending_msg.is_none() => {
                         g.line = b.line;
                         // `code` is the running frame's: its file is `self.file()`.

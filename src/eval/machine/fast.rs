@@ -58,9 +58,12 @@ impl Machine {
         for (k, w) in words.iter().enumerate() {
             span = span.to(w.span);
             match w.letter {
+                // G1 in G1 mode (nearly every G word of CAM output) changes nothing: the
+                // modal state is then not written back.
+                b'G' if w.value == 1.0 && modal.motion == Motion::Linear => {}
                 b'G' => {
                     any_g = true;
-                    // G1 (nearly every G word of CAM output) without rounding its value.
+                    // G1 without rounding its value.
                     let gi = if w.value == 1.0 { 10 } else { super::g_index(w.value) };
                     if !modal.g(self.fanuc, gi) {
                         return None;
@@ -104,6 +107,10 @@ impl Machine {
         }
         let milli = self.milli_lengths();
         let bare_scaled = self.fanuc && self.scaling;
+        // Lengths in millimetres on the 0.001 grid for every axis (`milli[0]` implies
+        // `milli[1]`), absolute: with a count of thousandths, a plain mode and no
+        // decimal-point rule to apply (a point, or no rule), nearly every CAM block's axes.
+        let plain = milli[0] && self.modal.absolute;
         // Each axis's target reads that axis's state only, so the axes can be written at
         // once and in any order (here by axis).
         let mut left = seen_axes;
@@ -111,20 +118,29 @@ impl Machine {
             let i = left.trailing_zeros() as usize;
             left &= left - 1;
             let Some(w) = word_of.get(i).and_then(|&k| words.get(usize::from(k))) else { break };
-            let rotary = (3..6).contains(&i);
-            let (v, q) =
-                self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
+            let (v, q, absolute) =
+                if plain && w.mode == AbsInc::Plain && w.milli != NO_MILLI && (w.point || !bare_scaled) {
+                    // What the general way below gives for such a word, without its choices.
+                    let (v, q) = self.length_grid(true, false, w.value, w.milli, false);
+                    (v, q, true)
+                } else {
+                    let rotary = (3..6).contains(&i);
+                    let (v, q) =
+                        self.length_grid(milli[usize::from(rotary)], bare_scaled && !w.point, w.value, w.milli, rotary);
+                    let absolute = match w.mode {
+                        AbsInc::Ac => true,
+                        AbsInc::Ic => false,
+                        AbsInc::Plain => self.modal.absolute,
+                    };
+                    (v, q, absolute)
+                };
             let off = self.active_offset(i % 9);
-            let t = self.target_from(i, v, w.mode, false, off);
+            // An absolute target is the word's length plus the offset (`target_from`'s
+            // way without G53), and on the grid when both are.
+            let t = if absolute { v + off } else { self.target_from(i, v, w.mode, false, off) };
             self.applied[i % 9] = off;
             self.seen[i % 9] = true;
             self.pos[i % 9] = t;
-            // An absolute target is the word's length plus the offset: on the grid when both are.
-            let absolute = match w.mode {
-                AbsInc::Ac => true,
-                AbsInc::Ic => false,
-                AbsInc::Plain => self.modal.absolute,
-            };
             if let (true, Some(q)) = (absolute, q) {
                 self.set_grid(i % 9, t, q, off);
             }

@@ -4,7 +4,7 @@
 //! so that nearly every move of a metric program reaches the writer as integers
 //! ([`GridMove`]) without a float being rounded or tested again.
 
-use super::{clean, Machine, Motion};
+use super::{clean, is_decimal_scale, Machine, Motion};
 use crate::eval::numfmt::{grid_of, GRID_LIMIT};
 use crate::eval::trace::GridMove;
 
@@ -18,22 +18,62 @@ fn milli_length(q: i64) -> (f64, Option<i64>) {
 /// A grid entry for positions off the grid (no `n` with [`grid_of`]).
 const OFF_GRID: i64 = i64::MIN;
 
+/// `grid_of` of `x` (`clean`ed with `cleaned`), or [`OFF_GRID`]. Out of line: a literal move set the entries it
+/// changed, so [`Machine::grid_move`] rarely works one out (inlined, its constants were
+/// loaded for every move).
+#[cold]
+#[inline(never)]
+fn grid_value(x: f64, cleaned: bool) -> i64 {
+    grid_of(if cleaned { clean(x) } else { x }).unwrap_or(OFF_GRID)
+}
+
 /// The bound under which a position sum is exact enough for [`Machine::set_grid`]:
 /// 10⁸ thousandths (100 m).
 const SUM_LIMIT: u64 = 100_000_000;
+
+/// The grid state of a [`Machine`]: per axis the bits of the position its grid value
+/// belongs to, and the move handed to sinks, kept from move to move and written in place
+/// (its `to` holds every axis's grid value or [`OFF_GRID`]: a pure function of the
+/// bits, so never stale; 0 for the axes not positioned yet).
+#[derive(Clone, Debug)]
+pub(super) struct Grid {
+    bits: [u64; 9],
+    /// The feed's bits and grid value (its own value, not `clean`ed).
+    feed: (u64, i64),
+    /// `seen` when `gm.mask` was worked out from it.
+    seen: [bool; 9],
+    gm: GridMove,
+    /// The bits of the `inc_mm` for which a length rounds to the 0.001 grid in
+    /// millimetres ([`Machine::milli_lengths`]; `None`: for none), worked out once: the
+    /// increment slots are set by [`Machine::new`] only.
+    milli_inc: Option<u64>,
+}
+
+impl Grid {
+    /// The grid state of a new machine: every position is `0.0`, whose grid value is 0.
+    pub(super) fn new(inc_mm: f64) -> Grid {
+        let inc = 1.0 / inc_mm;
+        let ok = inc_mm > 0.0 && is_decimal_scale(inc) && inc == 1000.0;
+        Grid {
+            bits: [0f64.to_bits(); 9],
+            feed: (0f64.to_bits(), 0),
+            seen: [false; 9],
+            gm: GridMove { rapid: true, mask: 0, to: [0; 9], f: None, line: 0 },
+            milli_inc: ok.then_some(inc_mm.to_bits()),
+        }
+    }
+}
 
 impl Machine {
     /// Whether [`Machine::length_of`] of a linear (`[0]`) and of a rotary (`[1]`) axis
     /// word rounds to the 0.001 grid in millimetres (its slot holds the increment, a
     /// decimal scale of 1000, no inch conversion): what [`Machine::length_grid`] needs,
-    /// worked out once per block.
+    /// worked out once per block (the slot's part once per machine: [`Grid::new`]).
     #[inline(always)]
     pub(super) fn milli_lengths(&self) -> [bool; 2] {
-        let slot = self.scales[0];
-        let ok = slot.0 == self.inc_mm && self.inc_mm > 0.0 && slot.2 && slot.1 == 1000.0;
+        let ok = self.grid.milli_inc == Some(self.inc_mm.to_bits());
         [ok && !self.modal.inch, ok]
     }
-
     /// [`Machine::length_of`], and the count `q` of thousandths it rounded to (the
     /// length is `q / 1000`, `|q| <` [`GRID_LIMIT`]) when it rounded to the
     /// 0.001 mm grid in millimetres (`milli`: [`Machine::milli_lengths`] for the axis).
@@ -70,12 +110,7 @@ impl Machine {
     #[inline(always)]
     pub(super) fn set_feed_grid(&mut self, f: f64, n: i64) {
         debug_assert_eq!(grid_of(f), Some(n), "f = {f:e}");
-        self.feed_grid = (f.to_bits(), n);
-    }
-
-    /// The grid entries of a new machine: every position is `0.0`, whose grid value is 0.
-    pub(super) fn new_grid() -> [(u64, i64); 9] {
-        [(0f64.to_bits(), 0); 9]
+        self.grid.feed = (f.to_bits(), n);
     }
 
     /// Remembers that axis `i`, now at `t` = the word's length `q / 1000` (as
@@ -100,53 +135,59 @@ impl Machine {
         };
         debug_assert!(n.unsigned_abs() < GRID_LIMIT);
         debug_assert_eq!(grid_of(clean(t)), Some(n), "t = {t:e}, q = {q}, off = {off:e}");
-        self.grid[i] = (t.to_bits(), n);
+        if let (Some(b), Some(to)) = (self.grid.bits.get_mut(i), self.grid.gm.to.get_mut(i)) {
+            (*b, *to) = (t.to_bits(), n);
+        }
     }
 
     /// The move just made as a [`GridMove`] (the event [`Machine::move_event`] gives, on
-    /// the grid), `None` when a coordinate or the feed is off the grid.
+    /// the grid), `None` when a coordinate or the feed is off the grid. The move is the
+    /// machine's own, updated in place (building one per move zeroed and copied it).
     #[inline]
-    pub fn grid_move(&mut self) -> Option<GridMove> {
+    pub fn grid_move(&mut self) -> Option<&mut GridMove> {
         let rapid = self.modal.motion == Motion::Rapid;
-        let mut to = [0i64; 9];
+        let g = &mut self.grid;
         // The axes positioned so far as a bit set, worked out again only when they change.
-        if self.seen_mask.0 != self.seen {
+        if g.seen != self.seen {
             let mut mask = 0u16;
             for (i, &seen) in self.seen.iter().enumerate() {
                 mask |= u16::from(seen) << i;
+                if !seen {
+                    // Not reached while `seen` only grows; keeps `to`'s zeros if it did not.
+                    (g.bits[i], g.gm.to[i]) = (0f64.to_bits(), 0);
+                }
             }
-            self.seen_mask = (self.seen, mask);
+            (g.seen, g.gm.mask) = (self.seen, mask);
         }
-        let mask = self.seen_mask.1;
-        let mut left = mask;
+        let mut left = g.gm.mask;
         while left != 0 {
             let i = left.trailing_zeros() as usize;
             left &= left - 1;
-            let (Some(&x), Some(entry)) = (self.pos.get(i), self.grid.get_mut(i)) else { return None };
+            let (Some(&x), Some(b), Some(n)) = (self.pos.get(i), g.bits.get_mut(i), g.gm.to.get_mut(i)) else {
+                return None;
+            };
             let bits = x.to_bits();
-            if entry.0 != bits {
-                *entry = (bits, grid_of(clean(x)).unwrap_or(OFF_GRID));
+            if *b != bits {
+                (*b, *n) = (bits, grid_value(x, true));
             }
-            if entry.1 == OFF_GRID {
+            if *n == OFF_GRID {
                 return None;
             }
-            if let Some(slot) = to.get_mut(i) {
-                *slot = entry.1;
-            }
         }
-        let f = if rapid {
+        g.gm.f = if rapid {
             None
         } else {
             let x = self.feed?;
             let bits = x.to_bits();
-            if self.feed_grid.0 != bits {
-                self.feed_grid = (bits, grid_of(x).unwrap_or(OFF_GRID));
+            if g.feed.0 != bits {
+                g.feed = (bits, grid_value(x, false));
             }
-            if self.feed_grid.1 == OFF_GRID {
+            if g.feed.1 == OFF_GRID {
                 return None;
             }
-            Some((x, self.feed_grid.1))
+            Some((x, g.feed.1))
         };
-        Some(GridMove { rapid, mask, to, f, line: 0 })
+        g.gm.rapid = rapid;
+        Some(&mut g.gm)
     }
 }

@@ -17,7 +17,7 @@ use crate::passes::to_sinumerik::words::{scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
 use crate::stream::translate::digits::{Form, Src};
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
-use crate::stream::{ItemView, View};
+use crate::stream::{ItemView, PlainWord, View};
 
 /// The block needs the general passes.
 #[derive(Debug, PartialEq, Eq)]
@@ -186,6 +186,81 @@ pub fn block<'t, I: ItemView>(
     out.truncate(start + keep);
     out.extend_from_slice(eol);
     Ok(())
+}
+
+/// A letter's bit (`A` lowest); 0 for a byte that is not a capital letter.
+#[inline(always)]
+const fn bit(l: u8) -> u32 {
+    if l.is_ascii_uppercase() {
+        1 << (l - b'A')
+    } else {
+        0
+    }
+}
+
+/// Bits of `letters`.
+const fn bits(letters: &[u8]) -> u32 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < letters.len() {
+        m |= bit(letters[i]);
+        i += 1;
+    }
+    m
+}
+
+/// Letters [`plain_words`] writes from their literal: all but G (its own case), those
+/// [`block`] declines (P L Q E O H) and R (`CR=` in an arc).
+const FROM_LITERAL: u32 = ((1 << 26) - 1) & !bits(b"GPLQEOHR");
+/// `words::scaled_letter`'s letters: written from the literal only with a point.
+const SCALED: u32 = bits(b"XYZUVWABCIJKRQ");
+
+/// [`block`] of the usual CAM line read by the quick reader, in one loop: no label, skip
+/// or comment; words G0..G3 (arc mode G2/G3 into `arc`) and words [`FROM_LITERAL`] in
+/// their canonical form (`Canon`: `push_word`'s `Display` bytes), a scaled letter with a
+/// point, at least 10^-6 (smaller ones `block` leaves to the passes). What [`block`] writes
+/// for such a line: the N number, the words one space apart, the line end. `false`,
+/// nothing changed, for any other line ([`block`] takes it).
+#[inline(always)]
+pub fn plain_words(meta: &BlockMeta, words: &[PlainWord], arc: &mut bool, eol: &[u8], out: &mut Vec<u8>) -> bool {
+    if meta.label.is_some() || meta.skip.is_some() || !meta.comments.is_empty() || words.is_empty() {
+        return false;
+    }
+    let start = out.len();
+    let mut a = *arc;
+    if let Some(n) = &meta.number {
+        out.push(b'N');
+        push_u64(out, u64::from(n.value));
+        out.push(b' ');
+    }
+    for w in words {
+        if w.letter == b'G' {
+            // `map_g` keeps G0..G3 (the arc mode as `push_plain` follows it).
+            let g = w.value as u32;
+            if g > 3 || f64::from(g) != w.value {
+                out.truncate(start);
+                return false;
+            }
+            a = g >= 2;
+            out.extend_from_slice(&[b'G', b'0' + g as u8, b' ']);
+            continue;
+        }
+        let c = &w.canon;
+        let b = bit(w.letter);
+        if c.len == 0 || FROM_LITERAL & b == 0 || (SCALED & b != 0 && !w.point) || w.value.abs() < 1e-6 {
+            out.truncate(start);
+            return false;
+        }
+        let len = if c.len > c.dot + 1 { c.len } else { c.dot };
+        let at = out.len();
+        out.extend_from_slice(&c.bytes());
+        out.truncate(at + usize::from(len));
+        out.push(b' ');
+    }
+    out.pop();
+    out.extend_from_slice(eol);
+    *arc = a;
+    true
 }
 
 /// `x.round()`, without a call to the library's `round` for the usual `0 <= x < 2^31`

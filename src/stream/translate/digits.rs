@@ -19,6 +19,7 @@
 
 use crate::read::RawBlock;
 use crate::span::Span;
+use crate::stream::Canon;
 
 /// A literal `[+-]digits[.digits]` (at least one digit, at most 15) as offsets into its
 /// bytes `b` (the word without its letter).
@@ -251,11 +252,13 @@ macro_rules! word_in {
 word_in!(word_u64, u64, 8);
 word_in!(word_u128, u128, 16);
 
-/// Where a plain word's text is: its line and its span (letter included).
+/// Where a plain word's text is: its line and its span (letter included), and its
+/// canonical form when the quick reader found it (`Canon::NONE` otherwise).
 #[derive(Clone, Copy)]
 pub struct Src<'t> {
     pub line: &'t RawBlock<'t>,
     pub span: Span,
+    pub canon: Canon,
 }
 
 impl<'t> Src<'t> {
@@ -274,6 +277,26 @@ impl<'t> Src<'t> {
     /// them).
     #[inline(always)]
     pub fn push_word(self, letter: u8, v: f64, form: Form, out: &mut Vec<u8>) -> bool {
+        let c = self.canon;
+        if c.len != 0 && c.lo as u8 == letter {
+            // The form the quick reader found (not zero, no `+`, no leading zero): what
+            // `word_u64`/`word_u128` below write for it, where they write anything (for
+            // `Point` at most 7 digits, where they take 8 with a point).
+            let (dot, frac) = (c.dot, c.len > c.dot + 1);
+            let len = match form {
+                Form::Point if c.sig <= 7 => c.len,
+                Form::Int if !frac && c.sig <= 7 => dot,
+                Form::Display if frac => c.len,
+                Form::Display => dot,
+                _ => 0,
+            };
+            if len != 0 {
+                let at = out.len();
+                out.extend_from_slice(&c.bytes());
+                out.truncate(at + usize::from(len));
+                return true;
+            }
+        }
         if v == 0.0 {
             return false;
         }
@@ -422,7 +445,7 @@ mod tests {
             let text = format!("{before}{}{lit}{after}", letter as char);
             let line = RawBlock { text: &text, start: 1000, line: 1 };
             let lo = 1000 + before.len() as u32;
-            let src = Src { line: &line, span: Span::new(lo, lo + 1 + lit.len() as u32) };
+            let src = Src { line: &line, span: Span::new(lo, lo + 1 + lit.len() as u32), canon: Canon::NONE };
             let up = letter.to_ascii_uppercase();
             for (k, form) in [Form::Point, Form::Int, Form::Display].into_iter().enumerate() {
                 let mut a = Vec::new();
@@ -444,5 +467,56 @@ mod tests {
             }
         }
         assert!(taken.iter().all(|&n| n > 20_000), "{taken:?}");
+    }
+
+    /// `Src::push_word` from the form the quick reader found (`Canon`) against the value
+    /// writers: literals of every shape as words of a line the quick reader takes, with
+    /// and without 16 bytes after the word in the buffer.
+    #[test]
+    fn canonical_forms_are_what_the_value_writers_write() {
+        use crate::dialect::sinumerik::scan_words::scan_words_bytes;
+        let mut r = Rng(0x1357_9bdf_2468_ace0);
+        let mut taken = [0usize; 3];
+        let mut none = 0;
+        for i in 0..300_000 {
+            let lit = literal(&mut r);
+            let number = if i % 4 == 0 { "N10 " } else { "" };
+            let before = if i % 3 == 0 { "G1 " } else { "" };
+            let after = [" Y1", "", " Z-2.5"][i % 3];
+            let pad = ["\n", "\nG1 X2 Y3 Z4 F5000\n", "\r\n"][(r.next() % 3) as usize];
+            let text = format!("{number}{before}X{lit}{after}{pad}");
+            let mut words = Vec::new();
+            let Some(found) = scan_words_bytes(text.as_bytes(), 1000, |l, v, _, span, c| words.push((l, v, span, c)))
+            else {
+                continue;
+            };
+            let line = RawBlock { text: &text[..found.len], start: 1000, line: 1 };
+            for &(letter, v, span, canon) in &words {
+                if canon.len == 0 {
+                    none += 1;
+                    continue;
+                }
+                let src = Src { line: &line, span, canon };
+                for (k, form) in [Form::Point, Form::Int, Form::Display].into_iter().enumerate() {
+                    let mut a = Vec::new();
+                    if !src.push_word(letter, v, form, &mut a) {
+                        assert!(a.is_empty(), "{text:?}");
+                        continue;
+                    }
+                    taken[k] += 1;
+                    let mut b = vec![letter];
+                    match form {
+                        Form::Point => assert!(push_num(&mut b, v, true), "{text:?}"),
+                        Form::Int => {
+                            assert_eq!(v.fract(), 0.0, "{text:?}");
+                            push_num(&mut b, v, false);
+                        }
+                        Form::Display => b.extend_from_slice(format!("{v}").as_bytes()),
+                    }
+                    assert_eq!(String::from_utf8_lossy(&a), String::from_utf8_lossy(&b), "{text:?} {form:?}");
+                }
+            }
+        }
+        assert!(taken.iter().all(|&n| n > 20_000) && none > 20_000, "{taken:?} {none}");
     }
 }

@@ -128,7 +128,7 @@ impl Fast {
         out: &mut Vec<u8>,
     ) -> Result<(), Declined> {
         if meta.label.is_some() || words.is_empty() {
-            return self.with_lits(meta, words, |w| Some(Src { line, span: w.span }), out);
+            return self.with_lits(meta, words, |w| Some(Src { line, span: w.span, canon: w.canon }), out);
         }
         // What `lines` does for a block of words only, in one loop over them after the
         // words pass's modes: a dimension word (neither an integer address, nor G/M, nor a
@@ -163,7 +163,7 @@ impl Fast {
                     continue;
                 }
             }
-            let src = Src { line, span: w.span };
+            let src = Src { line, span: w.span, canon: w.canon };
             if special & letter_bit(w.letter) == 0 && src.push_word(w.letter, w.value, Form::Point, out) {
                 continue;
             }
@@ -175,6 +175,49 @@ impl Fast {
         }
         self.close(out, line_start, meta, true);
         Ok(())
+    }
+
+    /// [`Fast::words`] of the usual CAM line read by the quick reader, in one loop: no
+    /// label, skip or comment; words G0..G9 the target has but G4 (a dwell changes F and S)
+    /// and dimension words (not [`SPECIAL`], nor F under G70) in their canonical form
+    /// (`Canon`, `push_word`'s `Point` bytes, at most 7 digits). What [`Fast::words`]
+    /// writes for such a line: the N number FANUC keeps, the words one space apart, the
+    /// line end. `false`, nothing changed, for any other line.
+    #[inline(always)]
+    pub fn plain_words(&self, meta: &BlockMeta, words: &[PlainWord], out: &mut Vec<u8>) -> bool {
+        if meta.label.is_some() || meta.skip.is_some() || !meta.comments.is_empty() || words.is_empty() {
+            return false;
+        }
+        let special = if self.g70 { SPECIAL | letter_bit(b'F') } else { SPECIAL };
+        let start = out.len();
+        if let Some(n) = meta.number.as_ref().map(|n| n.value).filter(|n| (1..=MAX_N).contains(n)) {
+            out.push(b'N');
+            push_u64(out, u64::from(n));
+            out.push(b' ');
+        }
+        for w in words {
+            if w.letter == b'G' {
+                let g = w.value as u32;
+                if g >= 10 || g == 4 || f64::from(g) != w.value || !same_g(g) {
+                    out.truncate(start);
+                    return false;
+                }
+                out.extend_from_slice(&[b'G', b'0', b'0' + g as u8, b' ']);
+                continue;
+            }
+            let c = &w.canon;
+            if c.len == 0 || c.sig > 7 || special & letter_bit(w.letter) != 0 {
+                out.truncate(start);
+                return false;
+            }
+            let at = out.len();
+            out.extend_from_slice(&c.bytes());
+            out.truncate(at + usize::from(c.len));
+            out.push(b' ');
+        }
+        out.pop();
+        out.extend_from_slice(self.eol.as_bytes());
+        true
     }
 
     /// [`Fast::plain`] with `lit` giving an item's literal, when known.
