@@ -226,58 +226,38 @@ pub struct SkelLine {
     pub words: bool,
 }
 
-/// A byte automaton's table (the dialects' `skeleton_bytes`): at `row | byte`, where `row`
-/// is a state's row (`state << 8`), the next state's row. 2^16 entries, so that any `u16`
-/// row with a byte is an index in it (no mask, no bounds check per byte).
-pub type Automaton = [u16; 1 << 16];
-
-/// Runs a byte automaton over `b` from row `row`: rows at or above `stop` are where it
-/// stops, and every such row must be absorbing (each byte leads back to it; the dialects'
-/// tests check). Gives where it stopped (the first byte that led to a stop row) and that
-/// row, or `None` when `b` ends first.
-///
-/// Eight bytes are stepped at a time with no test between (three instructions a byte:
-/// load, or, load); a stop among them is absorbing, so it shows after the eighth, and only
-/// then are those eight stepped again one by one to find where.
+/// Runs a byte automaton (the dialects' `skeleton_bytes`) over `b` from row `row`: `step`
+/// holds at `row | byte` the next state's row (`state << 8`), or a value at or above
+/// `stop` where the automaton stops. Gives where it stopped and the value there, or `None`
+/// when `b` ends first. `ROWS` is a power of two, so a masked index needs no bounds check;
+/// eight bytes are stepped at a time while there are (no bounds check per byte either).
 #[inline(always)]
-pub fn run_automaton(step: &Automaton, b: &[u8], mut row: u16, stop: u16) -> Option<(usize, u16)> {
+pub fn run_automaton<const ROWS: usize>(
+    step: &[u16; ROWS],
+    b: &[u8],
+    mut row: usize,
+    stop: u16,
+) -> Option<(usize, u16)> {
     let mut chunks = b.chunks_exact(8);
     let mut at = 0;
     for chunk in &mut chunks {
-        let from = row;
-        for &c in chunk {
-            row = step[usize::from(row | u16::from(c))];
-        }
-        if row >= stop {
-            return stop_in(step, chunk, from, stop).map(|(k, how)| (at + k, how));
+        for (k, &c) in chunk.iter().enumerate() {
+            let next = step[(row | usize::from(c)) & (ROWS - 1)];
+            if next >= stop {
+                return Some((at + k, next));
+            }
+            row = usize::from(next);
         }
         at += 8;
     }
-    stop_in(step, chunks.remainder(), row, stop).map(|(k, how)| (at + k, how))
-}
-
-/// Where in `b` the automaton from `row` first reaches a stop row, and that row.
-#[inline(always)]
-fn stop_in(step: &Automaton, b: &[u8], mut row: u16, stop: u16) -> Option<(usize, u16)> {
-    for (k, &c) in b.iter().enumerate() {
-        row = step[usize::from(row | u16::from(c))];
-        if row >= stop {
-            return Some((k, row));
+    for (k, &c) in chunks.remainder().iter().enumerate() {
+        let next = step[(row | usize::from(c)) & (ROWS - 1)];
+        if next >= stop {
+            return Some((at + k, next));
         }
+        row = usize::from(next);
     }
     None
-}
-
-/// Whether every row of `step` at or above `stop` that a row below it leads to is
-/// absorbing, as [`run_automaton`] needs (for the dialects' tests).
-#[cfg(test)]
-pub fn stops_absorb(step: &Automaton, stop: u16) -> bool {
-    let mut reached = [false; 256];
-    for &n in &step[..usize::from(stop)] {
-        reached[usize::from(n >> 8)] = true;
-    }
-    (usize::from(stop >> 8)..256)
-        .all(|s| !reached[s] || step[s << 8..(s + 1) << 8].iter().all(|&n| usize::from(n) == s << 8))
 }
 
 /// The index of the first `x` or `y` in `b` (eight bytes at a time).
