@@ -231,6 +231,25 @@ fn every_corpus_line_agrees() {
     assert!(taken > 1000, "only {taken} corpus lines taken");
 }
 
+/// Where the automaton stops (a line end, a comment, a declined byte, an N, G or M word)
+/// at every place in the eight bytes it steps at once without a test, and in the bytes
+/// after the last eight: blanks of every count move it along.
+#[test]
+fn stops_at_every_place_in_eight_bytes_agree() {
+    let mut taken = 0;
+    for siemens in [true, false] {
+        for pad in 0..20 {
+            for word in ["X1", "X-1.5", "Y.25", "F800.", "Z12345678901234"] {
+                for stop in ["", " ", ";C", " ; c", "#", "=", " G1", "G2", " m3", "N5", " X2", "  ", "\t", "X", "."] {
+                    let text = format!("G1{}{word}{stop}", " ".repeat(pad));
+                    compare(&text, siemens, &mut taken);
+                }
+            }
+        }
+    }
+    assert!(taken > 2000, "only {taken} lines taken");
+}
+
 /// G and M words whose values are near those the fast reader declines (G10, G65-G67, M2,
 /// M30, M98, M99), as the line's first word and after others, followed by every kind of
 /// byte: FANUC's `skeleton_bytes` reads G and M words of one or two digits on the spot.
