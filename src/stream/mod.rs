@@ -275,30 +275,28 @@ impl Reader<'_> {
         true
     }
 
-    /// [`Reader::lit`] of the next line straight from the read buffer (see
-    /// `sinumerik::Reader::lit_buf`, `fanuc::Reader::lit_buf`): when the reader takes it,
-    /// moves `lines` past it and fills `b` as `lit` of the line `next_line` would give
-    /// does, and changes the reader alike. `None` (nothing moved, the reader untouched;
-    /// `b` may hold some words) otherwise: then read the line the general way.
+    /// The dialect whose quick reader reads the next line straight from the read buffer
+    /// when the reader is where it does (see `sinumerik::Reader::lit_ready`,
+    /// `fanuc::Reader::lit_ready`; a line the dialect's `fast::lit_buf` then takes is
+    /// taken as `lit` would take it), `None` otherwise. It holds for a whole run of such
+    /// lines: taking them ([`Reader::took_run`]) changes no condition.
     #[inline(always)]
-    fn lit_ahead(&mut self, lines: &mut Lines, b: &mut LitBlock) -> Option<lines::Taken> {
-        // A text offset fits 32 bits (the first scan refused larger files).
-        let start = lines.offset() as u32;
-        let len = match self {
-            Reader::Sin(r) => r.lit_buf(lines.ahead(), start, b)?,
-            Reader::Fan(r) => r.lit_buf(lines.ahead(), start, b)?,
-        };
-        // The quick reader takes only plain bytes up to a CR or LF.
-        let t = lines.skip_plain(len)?;
-        let span = Span::new(start, start + len as u32);
+    fn quick_dialect(&self) -> Option<Dialect> {
+        match self {
+            Reader::Sin(r) => r.lit_ready().then_some(Dialect::Sinumerik),
+            Reader::Fan(r) => r.lit_ready().then_some(Dialect::Fanuc),
+        }
+    }
+
+    /// What `took_lit` of each line of a run taken by the quick reader does to the reader,
+    /// at once: `span` runs from the first line's start to the last line's end. Once is as
+    /// good as each time: the Sinumerik reader notes code seen, the FANUC one grows its
+    /// program's span (by the smallest start and largest end: these) and marks it drained.
+    fn took_run(&mut self, span: Span) {
         match self {
             Reader::Sin(r) => r.took_lit(),
             Reader::Fan(r) => r.took_lit(span),
         }
-        b.span = span;
-        b.number = None;
-        b.line = t.line;
-        Some(t)
     }
 
     fn checkpoint(&self) -> Resume {

@@ -6,10 +6,11 @@ use super::index::{Chunk, Resume};
 use super::lines::Lines;
 use super::{Index, NotStreamable, Reader};
 use crate::diag::Diagnostic;
-use crate::dialect::{fanuc, sinumerik};
+use crate::dialect::{fanuc, sinumerik, Dialect};
 use crate::eval::lit::LitBlock;
 use crate::ir::Stmt;
 use crate::read::RawBlock;
+use crate::span::Span;
 
 /// Where a re-read puts what it reads.
 pub trait RereadSink {
@@ -45,19 +46,62 @@ pub fn reread<S: RereadSink + ?Sized, F: FnMut(u64, u32) + ?Sized>(
         Resume::Fanuc(r) => Reader::Fan(Box::new(fanuc::Reader::resume(ix.file, &ix.opts, *r))),
     };
     loop {
-        // The direct route: a plain line read straight from the read buffer where it can
-        // be (`Reader::lit_ahead`), else the line as `next_line` gives it; a block made
-        // for the one is used for the other.
+        // The direct route: a run of plain lines read straight from the read buffer where
+        // it can be (the reader's conditions checked once for the run, what taking its
+        // lines does to the reader done once after it: `Reader::quick_dialect`, `took_run`),
+        // else the line as `next_line` gives it; a block made for the one is used for the
+        // other.
         let mut lit = None;
         if direct {
             if lines.offset() >= chunk.hi {
                 break;
             }
-            if let Some(b) = sink.lit() {
-                if let Some(t) = reader.lit_ahead(lines, b) {
-                    on_line(t.start, t.line);
-                    continue;
+            if let Some(dialect) = reader.quick_dialect() {
+                // A text offset fits 32 bits (the first scan refused larger files).
+                let first = lines.offset() as u32;
+                let mut end = first;
+                // `lit` is set on each way out of the run (a block is borrowed from `sink`
+                // for one line at a time only). One loop for each dialect, its quick reader
+                // with its rule built in.
+                macro_rules! run {
+                    ($lit_buf:path) => {
+                        loop {
+                            let Some(b) = sink.lit() else {
+                                lit = None;
+                                break false;
+                            };
+                            let start = lines.offset() as u32;
+                            // The quick reader takes only plain bytes up to a CR or LF.
+                            let Some((t, len)) = $lit_buf(lines.ahead(), start, b)
+                                .and_then(|len| lines.skip_plain(len).map(|t| (t, len)))
+                            else {
+                                b.clear();
+                                lit = Some(b);
+                                break false;
+                            };
+                            end = start + len as u32;
+                            b.span = Span::new(start, end);
+                            b.number = None;
+                            b.line = t.line;
+                            on_line(t.start, t.line);
+                            if lines.offset() >= chunk.hi {
+                                lit = None;
+                                break true;
+                            }
+                        }
+                    };
                 }
+                let chunk_end = match dialect {
+                    Dialect::Sinumerik => run!(sinumerik::fast::lit_buf),
+                    Dialect::Fanuc => run!(fanuc::fast::lit_buf),
+                };
+                if end != first {
+                    reader.took_run(Span::new(first, end));
+                }
+                if chunk_end {
+                    break;
+                }
+            } else if let Some(b) = sink.lit() {
                 b.clear();
                 lit = Some(b);
             }

@@ -331,14 +331,21 @@ impl<'o> Reader<'o> {
     /// by `quick::lit_words` too: with these words, the line's whole span and no number.
     #[inline(always)]
     pub fn lit_buf(&self, ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
-        if !self.resumed || self.index_only || self.tape == Tape::Closed {
-            return None;
-        }
-        let prog = self.programs.last()?;
-        if prog.param_mode || !prog.drains_at_once() {
+        if !self.lit_ready() {
             return None;
         }
         fast::lit_buf(ahead, start, b)
+    }
+
+    /// Whether the reader is where [`Reader::lit_buf`] reads lines. For a run of lines:
+    /// [`Reader::took_lit`] leaves each condition as it was (it grows the span and marks a
+    /// drain of a program that has drained already), so one check holds for the run.
+    #[inline(always)]
+    pub fn lit_ready(&self) -> bool {
+        self.resumed
+            && !self.index_only
+            && self.tape != Tape::Closed
+            && self.programs.last().is_some_and(|p| !p.param_mode && p.drains_at_once())
     }
 
     /// What [`Reader::lit`] does to the reader with a line [`Reader::lit_buf`] took, its

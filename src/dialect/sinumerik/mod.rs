@@ -332,10 +332,18 @@ impl Reader {
     /// by `quick::lit_words` too: with these words, the line's span, no number, and words.
     #[inline(always)]
     pub fn lit_buf(&self, ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
-        if self.index_only || !self.builder.resumed_at_top() {
+        if !self.lit_ready() {
             return None;
         }
         fast::lit_buf(ahead, start, b)
+    }
+
+    /// Whether the reader is where [`Reader::lit_buf`] reads lines. For a run of lines:
+    /// [`Reader::took_lit`] leaves both conditions as they were (it notes code seen), so
+    /// one check holds for the run.
+    #[inline(always)]
+    pub fn lit_ready(&self) -> bool {
+        !self.index_only && self.builder.resumed_at_top()
     }
 
     /// What [`Reader::lit`] does to the reader with a line [`Reader::lit_buf`] took.
