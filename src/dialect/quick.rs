@@ -75,18 +75,22 @@ pub fn lit_words_buf(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Opti
         let neg = sign == b'-';
         let signed = neg || sign == b'+';
         let (w, off) = if signed { (win8::<2>(win), 2) } else { (w1, 1) };
-        let n = run(w);
+        let non = nondigits(w);
+        let n = (non.trailing_zeros() / 8) as usize;
         let point = n < 8 && (w >> (8 * n)) as u8 == b'.';
         let (mant, frac, j);
         if !point {
             (mant, frac, j) = (value(w, n), 0, off + n);
         } else {
-            // The digits before the point from `w`, those after it from `wn` (the same
-            // bytes one on): the number's digits closed up, as in `word_number`.
+            // The digits on both sides of the point closed up (the bytes after it moved
+            // down one), as in `word_number`; which of them are digits, from `non` moved
+            // alike, without a second look at the bytes. The top byte is the one after
+            // `w`: taken for no digit here, and looked at only when the seven below are
+            // all digits.
             let low = (1u64 << (8 * n)) - 1;
-            let joined = (w & low) | (win8_at(win, off + 1) & !low);
-            let all = run(joined);
-            if all < 8 {
+            let all = ((((non >> 8) | (0x80 << 56)) & !low).trailing_zeros() / 8) as usize;
+            if all < 7 || !win[(off + 8) & (WIN - 1)].is_ascii_digit() {
+                let joined = (w & low) | ((w >> 8) & !low);
                 (mant, frac, j) = (value(joined, all), all - n, off + all + 1);
             } else {
                 let at = off + n + 1;
@@ -123,14 +127,6 @@ pub fn lit_words_buf(s: &[u8], start: u32, b: &mut LitBlock, rule: Rule) -> Opti
 
 /// The window [`lit_words_buf`] reads a word from (a power of two).
 const WIN: usize = 32;
-
-/// The eight bytes of `win` from `at` (at most 3) as a little-endian word.
-#[inline(always)]
-fn win8_at(win: &[u8; WIN], at: usize) -> u64 {
-    let mut w = [0u8; 8];
-    w.copy_from_slice(&win[at & 3..(at & 3) + 8]);
-    u64::from_le_bytes(w)
-}
 
 /// The eight bytes of `win` from `AT` as a little-endian word.
 #[inline(always)]
@@ -269,12 +265,17 @@ const LO: u64 = 0x0101_0101_0101_0101;
 /// How many ASCII digits `w` starts with (its first byte lowest), 0..=8.
 #[inline(always)]
 pub(crate) fn run(w: u64) -> usize {
+    (nondigits(w).trailing_zeros() / 8) as usize
+}
+
+/// The top bit of each byte of `w` that is no ASCII digit (the other bits 0).
+#[inline(always)]
+fn nondigits(w: u64) -> u64 {
     // Digits become 0..=9; a byte is one exactly when it is below 10 then: adding 0x76 to
     // its low seven bits sets bit 7 from 10 on (no carry out of the byte), and bytes from
     // 0x80 on have it set already.
     let v = w ^ (LO * 0x30);
-    let non = (((v & (LO * 0x7F)) + LO * 0x76) | v) & (LO * 0x80);
-    (non.trailing_zeros() / 8) as usize
+    (((v & (LO * 0x7F)) + LO * 0x76) | v) & (LO * 0x80)
 }
 
 /// The whole number the first `n` bytes of `w` (digits, see [`run`]) spell.
