@@ -4,7 +4,7 @@
 
 use super::index::{Chunk, ProgIndex, Resume};
 use super::lines::{self, Lines};
-use super::Reader;
+use super::{Progress, ProgressFn, Reader};
 use crate::dialect::{fanuc, sinumerik};
 use crate::span::Span;
 
@@ -36,6 +36,81 @@ pub(super) fn take_plain(
     Some((t, span, number))
 }
 
+/// The index-only scan's run of plain top-level lines: [`take_plain`] and the index's
+/// bookkeeping of `scan_with` for each line (counted in `count`, with `progress` told at
+/// every 65536th line, where `scan_with` tells it), while there are such lines. Whether any
+/// line was taken.
+///
+/// For FANUC the run holds what does not change from line to line: taking a plain line
+/// changes neither the reader's program (so `prog` and the open chunk stay), nor whether it
+/// takes plain lines (`plain_ready`), nor its resume state (tape, parameter mode); so the
+/// boundary's resume state is set only where it is read (a chunk opened after one closed in
+/// the run) and at the end of the run, the line ends in between.
+#[inline(never)]
+pub(super) fn take_plain_run(
+    lines: &mut Lines,
+    reader: &mut Reader<'_>,
+    chunks: &mut Chunker,
+    chunk_ops: usize,
+    count: &mut u64,
+    progress: &mut Option<ProgressFn<'_>>,
+    size: u64,
+) -> bool {
+    let mut tell = |count: &mut u64, chunks: &Chunker, done: u64| {
+        *count += 1;
+        if count.is_multiple_of(65536) {
+            if let Some(p) = progress.as_mut() {
+                p(Progress { done, total: size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
+            }
+        }
+    };
+    let r = match reader {
+        Reader::Fan(r) if r.plain_ready() => r,
+        Reader::Fan(_) => return false,
+        Reader::Sin(_) => {
+            let mut any = false;
+            while let Some((t, span, number)) = take_plain(lines, reader) {
+                tell(count, chunks, t.next);
+                let prog = reader.current();
+                chunks.before(prog);
+                chunks.progs[prog].add_plain(span, number.as_ref());
+                chunks.after_top(reader, chunk_ops, t.next, t.line + 1);
+                any = true;
+            }
+            return any;
+        }
+    };
+    debug_assert_eq!(chunk_ops.max(1), chunks.chunk_ops);
+    let prog = r.current();
+    let now = r.checkpoint();
+    let mut any = false;
+    loop {
+        let start = lines.offset();
+        let Some(found) = fanuc::skeleton_bytes(lines.ahead()) else { break };
+        let Some(t) = lines.skip_plain(found.len) else { break };
+        let at = |k: usize| start as u32 + k as u32;
+        let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
+        let span = Span::new(at(found.lo), at(found.hi));
+        r.take_plain(span, found.number.map(|n| n.0), found.words);
+        tell(count, chunks, t.next);
+        chunks.before(prog);
+        let p = &mut chunks.progs[prog];
+        p.add_plain(span, number.as_ref());
+        debug_assert_eq!(chunks.close_at, base(p) + chunks.chunk_ops);
+        if p.ops >= chunks.close_at {
+            chunks.boundary.2 = Resume::Fanuc(now);
+            chunks.close_open(t.next);
+        }
+        chunks.boundary.0 = t.next;
+        chunks.boundary.1 = t.line + 1;
+        any = true;
+    }
+    if any {
+        chunks.boundary.2 = Resume::Fanuc(now);
+    }
+    any
+}
+
 /// The chunks of a scan as statements arrive.
 pub(super) struct Chunker {
     pub(super) progs: Vec<ProgIndex>,
@@ -43,6 +118,11 @@ pub(super) struct Chunker {
     pub(super) open: Option<(usize, u64, u32, Resume)>,
     /// Where the next chunk would start: (offset, line, resume state).
     pub(super) boundary: (u64, u32, Resume),
+    /// Ops per chunk (at least one).
+    pub(super) chunk_ops: usize,
+    /// While a chunk is open: the op count of its program at which it may close (its ops
+    /// reach `chunk_ops`), kept so a line need not work it out from the closed chunks.
+    pub(super) close_at: usize,
 }
 
 impl Chunker {
@@ -61,6 +141,9 @@ impl Chunker {
         while self.progs.len() <= prog {
             self.progs.push(ProgIndex::new());
         }
+        // The chunks of `prog` stay as they are while its chunk is open (`close` of
+        // another program's chunk below does not touch them).
+        self.close_at = base(&self.progs[prog]) + self.chunk_ops;
         let boundary = &self.boundary;
         self.open = Some(match self.open.take() {
             Some((p, lo, line, resume)) if p != prog => {
@@ -77,10 +160,11 @@ impl Chunker {
     /// next line (number `next_line`, at `line_end`) may then start the next one.
     #[inline]
     pub(super) fn after(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        debug_assert_eq!(chunk_ops.max(1), self.chunk_ops);
         let at_top = reader.at_top();
         if let Some((p, lo, line, resume)) = &self.open {
-            let base = self.progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if at_top && self.progs[*p].ops - base >= chunk_ops.max(1) {
+            debug_assert_eq!(self.close_at, base(&self.progs[*p]) + self.chunk_ops);
+            if at_top && self.progs[*p].ops >= self.close_at {
                 close(&mut self.progs[*p], *lo, line_end, *line, resume.clone());
                 self.open = None;
             }
@@ -96,10 +180,10 @@ impl Chunker {
     /// (`reader.at_top()`, which it then need not ask). The same chunks and boundaries.
     #[inline(always)]
     pub(super) fn after_top(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        debug_assert_eq!(chunk_ops.max(1), self.chunk_ops);
         if let Some((p, ..)) = &self.open {
-            let prog = &self.progs[*p];
-            let base = prog.chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if prog.ops - base >= chunk_ops.max(1) {
+            debug_assert_eq!(self.close_at, base(&self.progs[*p]) + self.chunk_ops);
+            if self.progs[*p].ops >= self.close_at {
                 self.close_open(line_end);
             }
         }
@@ -128,8 +212,13 @@ impl Chunker {
     }
 }
 
+/// The op index where the next chunk of `p` starts.
+fn base(p: &ProgIndex) -> usize {
+    p.chunks.last().map_or(0, |c| c.op_base + c.ops)
+}
+
 pub(super) fn close(p: &mut ProgIndex, lo: u64, hi: u64, line: u32, resume: Resume) {
-    let base = p.chunks.last().map_or(0, |c| c.op_base + c.ops);
+    let base = base(p);
     if p.ops > base {
         p.chunks.push(Chunk { lo, hi, line, op_base: base, ops: p.ops - base, resume });
     }
