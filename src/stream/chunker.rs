@@ -1,52 +1,30 @@
 //! The first scan's bookkeeping per line (`super::scan_with`): the chunks as statements
-//! arrive ([`Chunker`]), and a plain top-level line of an index-only scan read straight
-//! from the read buffer ([`take_plain`]).
+//! arrive ([`Chunker`]), and the plain top-level lines of an index-only scan read straight
+//! from the read buffer ([`take_plain_run`]).
 
 use super::index::{Chunk, ProgIndex, Resume};
-use super::lines::{self, Lines};
+use super::lines::Lines;
 use super::{Progress, ProgressFn, Reader};
 use crate::dialect::{fanuc, sinumerik};
 use crate::span::Span;
 
-/// An index-only scan of a plain top-level line straight from the read buffer: what
-/// [`Reader::scan_plain`] would give for the line [`Lines::next_line`] gives, and the same
-/// change to the reader and the lines, without making the line's text or looking at its
-/// bytes twice (the dialect's `skeleton_bytes` finds the line's end as it reads it). `None`
-/// (nothing read, nothing changed) when the line is another, or not known to be such a line
-/// (see `skeleton_bytes`): then read it the general way.
-#[inline]
-pub(super) fn take_plain(
-    lines: &mut Lines,
-    reader: &mut Reader<'_>,
-) -> Option<(lines::Taken, Span, Option<crate::ir::SeqNo>)> {
-    let (found, start) = match reader {
-        Reader::Sin(r) if r.plain_ready() => (sinumerik::skeleton_bytes(lines.ahead())?, lines.offset()),
-        Reader::Fan(r) if r.plain_ready() => (fanuc::skeleton_bytes(lines.ahead())?, lines.offset()),
-        _ => return None,
-    };
-    let t = lines.skip_plain(found.len)?;
-    debug_assert_eq!(t.start, start);
-    let at = |k: usize| start as u32 + k as u32;
-    let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
-    let span = Span::new(at(found.lo), at(found.hi));
-    match reader {
-        Reader::Sin(r) => r.take_plain(number.as_ref(), found.words),
-        Reader::Fan(r) => r.take_plain(span, number.as_ref().map(|n| n.value), found.words),
-    }
-    Some((t, span, number))
-}
-
-/// The index-only scan's run of plain top-level lines: [`take_plain`] and the index's
-/// bookkeeping of `scan_with` for each line (counted in `count`, with `progress` told at
-/// every 65536th line, where `scan_with` tells it), while there are such lines. Whether any
-/// line was taken.
+/// An index-only scan of the plain top-level lines from here straight from the read buffer,
+/// while there are such lines: for each what [`Reader::scan_plain`] would give for the line
+/// [`Lines::next_line`] gives, the same change to the reader and the lines, and the index's
+/// bookkeeping of `scan_with` (the line counted in `count`, `progress` told at every
+/// 65536th line, where `scan_with` tells it), without making the line's text or looking at
+/// its bytes twice (the dialect's `skeleton_bytes` finds the line's end as it reads it).
+/// A line that is another, or not known to be such a line (see `skeleton_bytes`), ends the
+/// run unread: then read it the general way. Whether any line was taken.
 ///
-/// For FANUC the run holds what does not change from line to line: taking a plain line
-/// changes neither the reader's program (so `prog` and the open chunk stay), nor whether it
-/// takes plain lines (`plain_ready`), nor its resume state (tape, parameter mode); so the
-/// boundary's resume state is set only where it is read (a chunk opened after one closed in
-/// the run) and at the end of the run, the line ends in between.
-#[inline(never)]
+/// The run holds what does not change from line to line: taking a plain line changes
+/// neither the reader's program (so `prog` and the open chunk stay) nor whether it takes
+/// plain lines (`plain_ready`: the reader stays at the top level with nothing pending);
+/// for FANUC not its resume state either (tape, parameter mode), so the boundary's resume
+/// state is set only where it is read (a chunk opened after one closed in the run) and at
+/// the end of the run, the line ends in between. (A Sinumerik line changes its resume
+/// state, "code seen": the boundary is set as `Chunker::after_top` sets it.)
+#[inline]
 pub(super) fn take_plain_run(
     lines: &mut Lines,
     reader: &mut Reader<'_>,
@@ -56,31 +34,67 @@ pub(super) fn take_plain_run(
     progress: &mut Option<ProgressFn<'_>>,
     size: u64,
 ) -> bool {
-    let mut tell = |count: &mut u64, chunks: &Chunker, done: u64| {
-        *count += 1;
-        if count.is_multiple_of(65536) {
-            if let Some(p) = progress.as_mut() {
-                p(Progress { done, total: size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
-            }
-        }
-    };
-    let r = match reader {
-        Reader::Fan(r) if r.plain_ready() => r,
-        Reader::Fan(_) => return false,
-        Reader::Sin(_) => {
-            let mut any = false;
-            while let Some((t, span, number)) = take_plain(lines, reader) {
-                tell(count, chunks, t.next);
-                let prog = reader.current();
-                chunks.before(prog);
-                chunks.progs[prog].add_plain(span, number.as_ref());
-                chunks.after_top(reader, chunk_ops, t.next, t.line + 1);
-                any = true;
-            }
-            return any;
-        }
-    };
     debug_assert_eq!(chunk_ops.max(1), chunks.chunk_ops);
+    let mut tell = Tell { count, progress, size };
+    // One function each: together in one, the FANUC loop ran slower.
+    match reader {
+        Reader::Fan(r) if r.plain_ready() => fanuc_run(lines, r, chunks, &mut tell),
+        Reader::Sin(r) if r.plain_ready() => sinumerik_run(lines, r, chunks, &mut tell),
+        _ => false,
+    }
+}
+
+/// Counts the lines of a run and tells `progress` as `scan_with` does.
+struct Tell<'a, 'p> {
+    count: &'a mut u64,
+    progress: &'a mut Option<ProgressFn<'p>>,
+    size: u64,
+}
+
+impl Tell<'_, '_> {
+    #[inline(always)]
+    fn line(&mut self, chunks: &Chunker, done: u64) {
+        *self.count += 1;
+        if self.count.is_multiple_of(65536) {
+            if let Some(p) = self.progress.as_mut() {
+                p(Progress { done, total: self.size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
+            }
+        }
+    }
+}
+
+/// [`take_plain_run`] of a Sinumerik reader that takes plain lines. One program (0);
+/// a plain line changes the resume state ("code seen"): it is asked where a chunk closed.
+#[inline(never)]
+fn sinumerik_run(lines: &mut Lines, r: &mut sinumerik::Reader, chunks: &mut Chunker, tell: &mut Tell) -> bool {
+    let mut any = false;
+    loop {
+        let start = lines.offset();
+        let Some(found) = sinumerik::skeleton_bytes(lines.ahead()) else { break };
+        let Some(t) = lines.skip_plain(found.len) else { break };
+        let at = |k: usize| start as u32 + k as u32;
+        let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
+        let span = Span::new(at(found.lo), at(found.hi));
+        r.take_plain(number.as_ref(), found.words);
+        tell.line(chunks, t.next);
+        chunks.before(0);
+        let p = &mut chunks.progs[0];
+        p.add_plain(span, number.as_ref());
+        debug_assert_eq!(chunks.close_at, base(p) + chunks.chunk_ops);
+        if p.ops >= chunks.close_at {
+            chunks.close_open(t.next);
+        }
+        if chunks.open.is_none() {
+            chunks.boundary = (t.next, t.line + 1, Resume::Sinumerik(r.checkpoint()));
+        }
+        any = true;
+    }
+    any
+}
+
+/// [`take_plain_run`] of a FANUC reader that takes plain lines.
+#[inline(never)]
+fn fanuc_run(lines: &mut Lines, r: &mut fanuc::Reader, chunks: &mut Chunker, tell: &mut Tell) -> bool {
     let prog = r.current();
     let now = r.checkpoint();
     let mut any = false;
@@ -92,7 +106,7 @@ pub(super) fn take_plain_run(
         let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
         let span = Span::new(at(found.lo), at(found.hi));
         r.take_plain(span, found.number.map(|n| n.0), found.words);
-        tell(count, chunks, t.next);
+        tell.line(chunks, t.next);
         chunks.before(prog);
         let p = &mut chunks.progs[prog];
         p.add_plain(span, number.as_ref());

@@ -56,7 +56,7 @@ type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
 enum Want<'a> {
     /// Nothing: an index-only scan.
     Index,
-    /// [`Want::Index`] with every line read the general way (no [`take_plain`]): for tests.
+    /// [`Want::Index`] with every line read the general way (no [`take_plain_run`](chunker::take_plain_run)): for tests.
     IndexGeneral,
     /// Every finished top-level statement, as the whole-file reader builds it.
     Each(EachFn<'a>),
