@@ -407,10 +407,7 @@ fn verify_streamed(
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = match inputs {
-        None => stream::translate::verify(index, out, c.max_steps, Some(&mut report)),
-        Some(inputs) => stream::segmented::verify(index, out, c.max_steps, inputs, Some(&mut report)),
-    };
+    let v = stream::translate::verify(index, out, c.max_steps, inputs.unwrap_or_default(), Some(&mut report));
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();

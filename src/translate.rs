@@ -347,14 +347,7 @@ pub fn verify(
     }
     let source = align_source(main, &t.symbol_map);
     let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
-    let mut inputs = Vec::new();
-    for m in
-        t.symbol_map.vars.iter().filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-    {
-        if let Ok(i) = eval::parse_input(&format!("#{}=0", m.number)) {
-            inputs.push(i);
-        }
-    }
+    let mut inputs = r_param_inputs(&t.symbol_map);
     // A subprogram run on its own: Siemens parameters are 0, G65 argument locals vacant.
     if let Some(p) = main.programs.first() {
         if let Some(letters) = passes::words::param_letters(p.params.len()) {
@@ -383,6 +376,16 @@ pub fn verify(
         Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
     };
     Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+}
+
+/// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
+/// compared with the Siemens program, whose R parameters start at 0 (FANUC's would be vacant).
+pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
+    map.vars
+        .iter()
+        .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+        .filter_map(|m| crate::eval::parse_input(&format!("#{}=0", m.number)).ok())
+        .collect()
 }
 
 /// The Siemens programs a translation is compared against, aligned with its symbol map.

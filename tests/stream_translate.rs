@@ -61,7 +61,7 @@ fn streamed_translation_is_the_whole_translation() {
     std::fs::write(&out, &streamed).expect("write");
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
-    let v = st::verify(ix, &out, 1_000_000, None);
+    let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
     assert!(v.equivalent && v.summary.contains("(10"), "{}", v.summary);
 
     // A broken translation is caught by the streamed verification.
@@ -69,7 +69,7 @@ fn streamed_translation_is_the_whole_translation() {
     assert_ne!(bad.as_bytes(), &streamed[..]);
     std::fs::write(&out, bad).expect("write");
     let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
-    let v = st::verify(ix, &out, 1_000_000, None);
+    let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
     assert!(!v.equivalent && v.summary.contains("diverged"), "{}", v.summary);
 }
 

@@ -24,9 +24,8 @@
 //! builds it again with those blocks kept out of runs; the writing scan fills the runs.
 
 use super::lines::NotStreamable;
-use super::translate::{fast, straight, Fallback, Verified};
+use super::translate::{fast, straight, Fallback};
 use super::{Index, PlainWord, ProgressFn, WordsSink};
-use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
@@ -38,7 +37,6 @@ use crate::span::Span;
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
 use std::path::Path;
-use std::sync::Arc;
 
 /// The text of a placeholder comment (`k`: the run's index); no source comment of the
 /// skeleton may hold it (checked on the translated skeleton).
@@ -321,14 +319,7 @@ pub fn to_fanuc(
     let eol = opts.line_ending.as_str();
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
-    let mut inputs = Vec::new();
-    for m in
-        t.symbol_map.vars.iter().filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-    {
-        if let Ok(i) = crate::eval::parse_input(&format!("#{}=0", m.number)) {
-            inputs.push(i);
-        }
-    }
+    let inputs = crate::translate::r_param_inputs(&t.symbol_map);
     // A block the fast path declines is translated alone, as the straight stream does: the
     // header of an empty program comes first, then the block.
     lone.body = vec![];
@@ -533,50 +524,4 @@ impl WordsSink for Writer<'_> {
         }
         self.flush_some();
     }
-}
-
-/// Verifies a segmented translation as `stream::translate::verify` does (the output read
-/// back streamed, both programs run paged side by side), with the output side's R
-/// parameters set to 0 first (`inputs`), as `translate::verify` sets them.
-pub fn verify(
-    source: Index,
-    output: &Path,
-    max_steps: u64,
-    inputs: Vec<Input>,
-    progress: Option<ProgressFn<'_>>,
-) -> Verified {
-    use super::to_sinumerik::{read_back, ReadBack};
-    use crate::check::{self, Verdict};
-    use crate::eval::{DirCallees, NoCallees, RunOptions};
-    let popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
-        equivalent: false,
-        summary: format!("not verified: {summary}"),
-        diags,
-        diff: String::new(),
-    };
-    let out_ix = match read_back(output, 1, Dialect::Fanuc, &popts, progress) {
-        Ok(ix) => ix,
-        Err(ReadBack::Unreadable(e)) => return not_verified(format!("the output cannot be read back ({e})"), vec![]),
-        Err(ReadBack::Diags(d)) => {
-            return not_verified("the output does not parse as FANUC (a bug in nctrans)".into(), d);
-        }
-    };
-    let mut db = crate::span::SourceDb::new();
-    db.add(source.path.display().to_string(), String::new());
-    db.add(output.display().to_string(), String::new());
-    let run = RunOptions { max_steps, ..RunOptions::default() };
-    let out_run = RunOptions { inputs, ..run.clone() };
-    let a = super::runner(Arc::new(source), Box::new(DirCallees { semantics: None }), run);
-    let b = super::runner(Arc::new(out_ix), Box::new(NoCallees), out_run);
-    let report = check::check_runners(&db, a, b);
-    let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
-        Verdict::Diverged { index } => {
-            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
-        }
-        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-    };
-    Verified { equivalent, summary, diags: report.diags, diff: report.diff }
 }

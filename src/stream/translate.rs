@@ -309,8 +309,17 @@ pub struct Verified {
 }
 
 /// Verifies a streamed translation: the output is read back as FANUC (streamed), then both
-/// programs run streamed on two threads and their traces are compared as they come.
-pub fn verify(source: Index, output: &Path, max_steps: u64, progress: Option<ProgressFn<'_>>) -> Verified {
+/// programs run streamed on two threads and their traces are compared as they come. `inputs`
+/// are set on the output's side before it runs: for a segmented translation the R
+/// parameters its symbol map maps start at 0, as `translate::verify` sets them (a
+/// straight-line translation has none).
+pub fn verify(
+    source: Index,
+    output: &Path,
+    max_steps: u64,
+    inputs: Vec<crate::eval::Input>,
+    progress: Option<ProgressFn<'_>>,
+) -> Verified {
     let popts = ParseOptions::for_dialect(Dialect::Fanuc);
     let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
         equivalent: false,
@@ -329,8 +338,9 @@ pub fn verify(source: Index, output: &Path, max_steps: u64, progress: Option<Pro
     db.add(source.path.display().to_string(), String::new());
     db.add(output.display().to_string(), String::new());
     let run = RunOptions { max_steps, ..RunOptions::default() };
-    let a = super::runner(Arc::new(source), Box::new(DirCallees { semantics: None }), run.clone());
-    let b = super::runner(Arc::new(out_ix), Box::new(NoCallees), run);
+    let out_run = RunOptions { inputs, ..run.clone() };
+    let a = super::runner(Arc::new(source), Box::new(DirCallees { semantics: None }), run);
+    let b = super::runner(Arc::new(out_ix), Box::new(NoCallees), out_run);
     let report = check::check_runners(&db, a, b);
     let (equivalent, summary) = match report.verdict {
         Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),

@@ -454,19 +454,26 @@ mod tests {
                     continue;
                 }
                 taken[k] += 1;
-                let mut b = vec![up];
-                match form {
-                    Form::Point => assert!(push_num(&mut b, v, true), "{text:?}"),
-                    Form::Int => {
-                        assert_eq!(v.fract(), 0.0, "{text:?}");
-                        push_num(&mut b, v, false);
-                    }
-                    Form::Display => b.extend_from_slice(format!("{v}").as_bytes()),
-                }
+                let b = written(up, v, form, &text);
                 assert_eq!(String::from_utf8_lossy(&a), String::from_utf8_lossy(&b), "{text:?} {form:?}");
             }
         }
         assert!(taken.iter().all(|&n| n > 20_000), "{taken:?}");
+    }
+
+    /// The word `letter` `v` as the value writers write it in `form` (what `Src::push_word`
+    /// must give from the digits).
+    fn written(letter: u8, v: f64, form: Form, text: &str) -> Vec<u8> {
+        let mut b = vec![letter];
+        match form {
+            Form::Point => assert!(push_num(&mut b, v, true), "{text:?}"),
+            Form::Int => {
+                assert_eq!(v.fract(), 0.0, "{text:?}");
+                push_num(&mut b, v, false);
+            }
+            Form::Display => b.extend_from_slice(format!("{v}").as_bytes()),
+        }
+        b
     }
 
     /// `Src::push_word` from the form the quick reader found (`Canon`) against the value
@@ -504,15 +511,7 @@ mod tests {
                         continue;
                     }
                     taken[k] += 1;
-                    let mut b = vec![letter];
-                    match form {
-                        Form::Point => assert!(push_num(&mut b, v, true), "{text:?}"),
-                        Form::Int => {
-                            assert_eq!(v.fract(), 0.0, "{text:?}");
-                            push_num(&mut b, v, false);
-                        }
-                        Form::Display => b.extend_from_slice(format!("{v}").as_bytes()),
-                    }
+                    let b = written(letter, v, form, &text);
                     assert_eq!(String::from_utf8_lossy(&a), String::from_utf8_lossy(&b), "{text:?} {form:?}");
                 }
             }
