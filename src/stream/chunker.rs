@@ -1,39 +1,128 @@
 //! The first scan's bookkeeping per line (`super::scan_with`): the chunks as statements
-//! arrive ([`Chunker`]), and a plain top-level line of an index-only scan read straight
-//! from the read buffer ([`take_plain`]).
+//! arrive ([`Chunker`]), and the plain top-level lines of an index-only scan read straight
+//! from the read buffer ([`take_plain_run`]).
 
 use super::index::{Chunk, ProgIndex, Resume};
-use super::lines::{self, Lines};
-use super::Reader;
+use super::lines::Lines;
+use super::{Progress, ProgressFn, Reader};
 use crate::dialect::{fanuc, sinumerik};
 use crate::span::Span;
 
-/// An index-only scan of a plain top-level line straight from the read buffer: what
-/// [`Reader::scan_plain`] would give for the line [`Lines::next_line`] gives, and the same
-/// change to the reader and the lines, without making the line's text or looking at its
-/// bytes twice (the dialect's `skeleton_bytes` finds the line's end as it reads it). `None`
-/// (nothing read, nothing changed) when the line is another, or not known to be such a line
-/// (see `skeleton_bytes`): then read it the general way.
+/// An index-only scan of the plain top-level lines from here straight from the read buffer,
+/// while there are such lines: for each what [`Reader::scan_plain`] would give for the line
+/// [`Lines::next_line`] gives, the same change to the reader and the lines, and the index's
+/// bookkeeping of `scan_with` (the line counted in `count`, `progress` told at every
+/// 65536th line, where `scan_with` tells it), without making the line's text or looking at
+/// its bytes twice (the dialect's `skeleton_bytes` finds the line's end as it reads it).
+/// A line that is another, or not known to be such a line (see `skeleton_bytes`), ends the
+/// run unread: then read it the general way. Whether any line was taken.
+///
+/// The run holds what does not change from line to line: taking a plain line changes
+/// neither the reader's program (so `prog` and the open chunk stay) nor whether it takes
+/// plain lines (`plain_ready`: the reader stays at the top level with nothing pending);
+/// for FANUC not its resume state either (tape, parameter mode), so the boundary's resume
+/// state is set only where it is read (a chunk opened after one closed in the run) and at
+/// the end of the run, the line ends in between. (A Sinumerik line changes its resume
+/// state, "code seen": the boundary is set as `Chunker::after_top` sets it.)
 #[inline]
-pub(super) fn take_plain(
+pub(super) fn take_plain_run(
     lines: &mut Lines,
     reader: &mut Reader<'_>,
-) -> Option<(lines::Taken, Span, Option<crate::ir::SeqNo>)> {
-    let (found, start) = match reader {
-        Reader::Sin(r) if r.plain_ready() => (sinumerik::skeleton_bytes(lines.ahead())?, lines.offset()),
-        Reader::Fan(r) if r.plain_ready() => (fanuc::skeleton_bytes(lines.ahead())?, lines.offset()),
-        _ => return None,
-    };
-    let t = lines.skip_plain(found.len)?;
-    debug_assert_eq!(t.start, start);
-    let at = |k: usize| start as u32 + k as u32;
-    let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
-    let span = Span::new(at(found.lo), at(found.hi));
+    chunks: &mut Chunker,
+    chunk_ops: usize,
+    count: &mut u64,
+    progress: &mut Option<ProgressFn<'_>>,
+    size: u64,
+) -> bool {
+    debug_assert_eq!(chunk_ops.max(1), chunks.chunk_ops);
+    let mut tell = Tell { count, progress, size };
+    // One function each: together in one, the FANUC loop ran slower.
     match reader {
-        Reader::Sin(r) => r.take_plain(number.as_ref(), found.words),
-        Reader::Fan(r) => r.take_plain(span, number.as_ref().map(|n| n.value), found.words),
+        Reader::Fan(r) if r.plain_ready() => fanuc_run(lines, r, chunks, &mut tell),
+        Reader::Sin(r) if r.plain_ready() => sinumerik_run(lines, r, chunks, &mut tell),
+        _ => false,
     }
-    Some((t, span, number))
+}
+
+/// Counts the lines of a run and tells `progress` as `scan_with` does.
+struct Tell<'a, 'p> {
+    count: &'a mut u64,
+    progress: &'a mut Option<ProgressFn<'p>>,
+    size: u64,
+}
+
+impl Tell<'_, '_> {
+    #[inline(always)]
+    fn line(&mut self, chunks: &Chunker, done: u64) {
+        *self.count += 1;
+        if self.count.is_multiple_of(65536) {
+            if let Some(p) = self.progress.as_mut() {
+                p(Progress { done, total: self.size, blocks: chunks.progs.iter().map(|p| p.ops as u64).sum() });
+            }
+        }
+    }
+}
+
+/// [`take_plain_run`] of a Sinumerik reader that takes plain lines. One program (0);
+/// a plain line changes the resume state ("code seen"): it is asked where a chunk closed.
+#[inline(never)]
+fn sinumerik_run(lines: &mut Lines, r: &mut sinumerik::Reader, chunks: &mut Chunker, tell: &mut Tell) -> bool {
+    let mut any = false;
+    loop {
+        let start = lines.offset();
+        let Some(found) = sinumerik::skeleton_bytes(lines.ahead()) else { break };
+        let Some(t) = lines.skip_plain(found.len) else { break };
+        let at = |k: usize| start as u32 + k as u32;
+        let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
+        let span = Span::new(at(found.lo), at(found.hi));
+        r.take_plain(number.as_ref(), found.words);
+        tell.line(chunks, t.next);
+        chunks.before(0);
+        let p = &mut chunks.progs[0];
+        p.add_plain(span, number.as_ref());
+        debug_assert_eq!(chunks.close_at, base(p) + chunks.chunk_ops);
+        if p.ops >= chunks.close_at {
+            chunks.close_open(t.next);
+        }
+        if chunks.open.is_none() {
+            chunks.boundary = (t.next, t.line + 1, Resume::Sinumerik(r.checkpoint()));
+        }
+        any = true;
+    }
+    any
+}
+
+/// [`take_plain_run`] of a FANUC reader that takes plain lines.
+#[inline(never)]
+fn fanuc_run(lines: &mut Lines, r: &mut fanuc::Reader, chunks: &mut Chunker, tell: &mut Tell) -> bool {
+    let prog = r.current();
+    let now = r.checkpoint();
+    let mut any = false;
+    loop {
+        let start = lines.offset();
+        let Some(found) = fanuc::skeleton_bytes(lines.ahead()) else { break };
+        let Some(t) = lines.skip_plain(found.len) else { break };
+        let at = |k: usize| start as u32 + k as u32;
+        let number = found.number.map(|(value, lo, hi)| crate::ir::SeqNo { value, span: Span::new(at(lo), at(hi)) });
+        let span = Span::new(at(found.lo), at(found.hi));
+        r.take_plain(span, found.number.map(|n| n.0), found.words);
+        tell.line(chunks, t.next);
+        chunks.before(prog);
+        let p = &mut chunks.progs[prog];
+        p.add_plain(span, number.as_ref());
+        debug_assert_eq!(chunks.close_at, base(p) + chunks.chunk_ops);
+        if p.ops >= chunks.close_at {
+            chunks.boundary.2 = Resume::Fanuc(now);
+            chunks.close_open(t.next);
+        }
+        chunks.boundary.0 = t.next;
+        chunks.boundary.1 = t.line + 1;
+        any = true;
+    }
+    if any {
+        chunks.boundary.2 = Resume::Fanuc(now);
+    }
+    any
 }
 
 /// The chunks of a scan as statements arrive.
@@ -43,6 +132,11 @@ pub(super) struct Chunker {
     pub(super) open: Option<(usize, u64, u32, Resume)>,
     /// Where the next chunk would start: (offset, line, resume state).
     pub(super) boundary: (u64, u32, Resume),
+    /// Ops per chunk (at least one).
+    pub(super) chunk_ops: usize,
+    /// While a chunk is open: the op count of its program at which it may close (its ops
+    /// reach `chunk_ops`), kept so a line need not work it out from the closed chunks.
+    pub(super) close_at: usize,
 }
 
 impl Chunker {
@@ -61,6 +155,9 @@ impl Chunker {
         while self.progs.len() <= prog {
             self.progs.push(ProgIndex::new());
         }
+        // The chunks of `prog` stay as they are while its chunk is open (`close` of
+        // another program's chunk below does not touch them).
+        self.close_at = base(&self.progs[prog]) + self.chunk_ops;
         let boundary = &self.boundary;
         self.open = Some(match self.open.take() {
             Some((p, lo, line, resume)) if p != prog => {
@@ -77,10 +174,11 @@ impl Chunker {
     /// next line (number `next_line`, at `line_end`) may then start the next one.
     #[inline]
     pub(super) fn after(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        debug_assert_eq!(chunk_ops.max(1), self.chunk_ops);
         let at_top = reader.at_top();
         if let Some((p, lo, line, resume)) = &self.open {
-            let base = self.progs[*p].chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if at_top && self.progs[*p].ops - base >= chunk_ops.max(1) {
+            debug_assert_eq!(self.close_at, base(&self.progs[*p]) + self.chunk_ops);
+            if at_top && self.progs[*p].ops >= self.close_at {
                 close(&mut self.progs[*p], *lo, line_end, *line, resume.clone());
                 self.open = None;
             }
@@ -96,10 +194,10 @@ impl Chunker {
     /// (`reader.at_top()`, which it then need not ask). The same chunks and boundaries.
     #[inline(always)]
     pub(super) fn after_top(&mut self, reader: &Reader<'_>, chunk_ops: usize, line_end: u64, next_line: u32) {
+        debug_assert_eq!(chunk_ops.max(1), self.chunk_ops);
         if let Some((p, ..)) = &self.open {
-            let prog = &self.progs[*p];
-            let base = prog.chunks.last().map_or(0, |c| c.op_base + c.ops);
-            if prog.ops - base >= chunk_ops.max(1) {
+            debug_assert_eq!(self.close_at, base(&self.progs[*p]) + self.chunk_ops);
+            if self.progs[*p].ops >= self.close_at {
                 self.close_open(line_end);
             }
         }
@@ -128,8 +226,13 @@ impl Chunker {
     }
 }
 
+/// The op index where the next chunk of `p` starts.
+fn base(p: &ProgIndex) -> usize {
+    p.chunks.last().map_or(0, |c| c.op_base + c.ops)
+}
+
 pub(super) fn close(p: &mut ProgIndex, lo: u64, hi: u64, line: u32, resume: Resume) {
-    let base = p.chunks.last().map_or(0, |c| c.op_base + c.ops);
+    let base = base(p);
     if p.ops > base {
         p.chunks.push(Chunk { lo, hi, line, op_base: base, ops: p.ops - base, resume });
     }

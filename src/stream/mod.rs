@@ -27,7 +27,7 @@ use crate::eval::lit::LitBlock;
 use crate::ir::{Addr, Comment, Item, ItemKind, Stmt, WordValue};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
-use chunker::{close, take_plain, Chunker};
+use chunker::{close, take_plain_run, Chunker};
 pub use index::CHUNK_OPS;
 use index::{ProgIndex, Resume};
 use lines::{Input, Lines, NotStreamable};
@@ -56,7 +56,7 @@ type EachFn<'a> = &'a mut dyn FnMut(usize, &Stmt);
 enum Want<'a> {
     /// Nothing: an index-only scan.
     Index,
-    /// [`Want::Index`] with every line read the general way (no [`take_plain`]): for tests.
+    /// [`Want::Index`] with every line read the general way (no [`take_plain_run`](chunker::take_plain_run)): for tests.
     IndexGeneral,
     /// Every finished top-level statement, as the whole-file reader builds it.
     Each(EachFn<'a>),
@@ -476,7 +476,13 @@ fn scan_with(
     let quick_words = matches!(&want, Want::Words(s) if s.quick());
     let mut meta = crate::ir::BlockMeta::default();
     let mut plain: Vec<PlainWord> = Vec::new();
-    let mut chunks = Chunker { progs: Vec::new(), open: None, boundary: (0u64, 1u32, reader.checkpoint()) };
+    let mut chunks = Chunker {
+        progs: Vec::new(),
+        open: None,
+        boundary: (0u64, 1u32, reader.checkpoint()),
+        chunk_ops: chunk_ops.max(1),
+        close_at: 0,
+    };
     let mut header = String::new();
     let mut in_header = true;
     let mut count = 0u64;
@@ -489,28 +495,18 @@ fn scan_with(
     }
     loop {
         // An index-only scan (or a words scan whose sink wants no more) past the header:
-        // a plain top-level line read straight from the buffer (see `take_plain`).
+        // the plain top-level lines from here read straight from the buffer (see
+        // `take_plain_run`).
         let index_now = match &want {
             Want::Index => true,
             Want::Words(s) => !s.active(),
             Want::Each(_) | Want::IndexGeneral => false,
         };
-        if index_now && !in_header {
-            if let Some((t, span, number)) = take_plain(&mut lines, &mut reader) {
-                count += 1;
-                if count.is_multiple_of(65536) {
-                    if let Some(p) = progress.as_mut() {
-                        let blocks = chunks.progs.iter().map(|p| p.ops as u64).sum();
-                        p(Progress { done: t.next, total: size, blocks });
-                    }
-                }
-                let prog = reader.current();
-                chunks.before(prog);
-                chunks.progs[prog].add_plain(span, number.as_ref());
-                // `take_plain` reads only at the top level, where the reader stays.
-                chunks.after_top(&reader, chunk_ops, t.next, t.line + 1);
-                continue;
-            }
+        if index_now
+            && !in_header
+            && take_plain_run(&mut lines, &mut reader, &mut chunks, chunk_ops, &mut count, &mut progress, size)
+        {
+            continue;
         }
         // A words scan: a plain top-level line read straight from the buffer (see
         // `words::take_plain_words`).

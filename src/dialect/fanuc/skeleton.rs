@@ -43,6 +43,12 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<SkelLine> {
             how
         };
         if how != NGM {
+            if how == EOL_WORD {
+                // The line ends right after a word's digits (nearly every CAM line): no
+                // blank or `;` before the line end to step over or trim.
+                debug_assert!(i > lo && eol(b[i]) && !blank(b[i - 1]));
+                return Some(SkelLine { len: i, lo, hi: i, number, words });
+            }
             if how == REJECT_ROW {
                 return None;
             }
@@ -157,7 +163,7 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<SkelLine> {
 /// The states of [`skeleton_bytes`]'s automaton: between words, after a word's letter (and
 /// blanks), after its sign (and blanks), in its digits before a point, after a point with
 /// no digit before it, after a point and a digit. Then where it stops: an N, G or M word,
-/// a decline, a `;`, the line end.
+/// a decline, a `;`, the line end (after a blank or not: after a word's digits).
 const SEP: u8 = 0;
 const LET: u8 = 1;
 const SIGN: u8 = 2;
@@ -168,10 +174,13 @@ const NGM_STATE: u8 = 8;
 const REJECT: u8 = 9;
 const SEMI_STATE: u8 = 10;
 const EOL_STATE: u8 = 11;
+/// The line end right after a word's digits (not after a blank).
+const EOL_WORD_STATE: u8 = 12;
 /// Where the automaton stops, as [`STEP`] holds it.
 const STOP: u16 = (NGM_STATE as u16) << 8;
 const NGM: u16 = (NGM_STATE as u16) << 8;
 const REJECT_ROW: u16 = (REJECT as u16) << 8;
+const EOL_WORD: u16 = (EOL_WORD_STATE as u16) << 8;
 
 /// One step of `word` and `plain_words` for a word of another letter than N, G, M or O:
 /// `state` (below 8) and the next byte `c`.
@@ -214,6 +223,8 @@ const fn step(state: u8, c: u8) -> u8 {
                 INT
             } else if c == b'.' {
                 POINT
+            } else if ends == EOL_STATE {
+                EOL_WORD_STATE
             } else {
                 ends
             }
@@ -228,6 +239,8 @@ const fn step(state: u8, c: u8) -> u8 {
         POINT => {
             if digit {
                 POINT
+            } else if ends == EOL_STATE {
+                EOL_WORD_STATE
             } else {
                 ends
             }

@@ -187,6 +187,7 @@ impl ProgramLines {
     /// [`ProgramLines::push_skeleton`] of a plain block with or without `words`, then a
     /// drain, when [`ProgramLines::drains_at_once`]: [`ProgramLines::push_drained`] (the
     /// statement is not made).
+    #[inline]
     pub fn push_drained_skeleton(&mut self, span: Span, number: Option<u32>, words: bool) {
         self.skeleton_words |= words;
         self.push_drained(span, number);
