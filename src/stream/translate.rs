@@ -33,6 +33,7 @@ use std::sync::Arc;
 
 pub(super) mod digits;
 pub(super) mod fast;
+pub(super) mod numwrite;
 
 /// Why a file is not translated as a stream (the caller translates it whole).
 #[derive(Debug)]
