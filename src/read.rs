@@ -226,6 +226,27 @@ pub struct SkelLine {
     pub words: bool,
 }
 
+/// The table of a byte automaton for [`run_automaton`]: `step(state, byte)` for every one of
+/// `$rows` states and every byte, at `state << 8 | byte`, as the next state's row
+/// (`next << 8`). A macro, not a function: a `static` table is built in a const block, which
+/// cannot call the dialects' `step` through a function pointer.
+macro_rules! automaton_table {
+    ($rows:expr, $step:ident) => {{
+        let mut t = [0u16; $rows * 256];
+        let mut s = 0;
+        while s < $rows {
+            let mut c = 0;
+            while c < 256 {
+                t[s * 256 + c] = ($step(s as u8, c as u8) as u16) << 8;
+                c += 1;
+            }
+            s += 1;
+        }
+        t
+    }};
+}
+pub(crate) use automaton_table;
+
 /// Runs a byte automaton (the dialects' `skeleton_bytes`) over `b` from row `row`: `step`
 /// holds at `row | byte` the next state's row (`state << 8`), or a value at or above
 /// `stop` where the automaton stops. Gives where it stopped and the value there, or `None`

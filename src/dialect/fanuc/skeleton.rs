@@ -252,19 +252,7 @@ const fn step(state: u8, c: u8) -> u8 {
 /// [`step`] for every state and byte, at `state << 8 | byte`, each next state as its row
 /// (`state << 8`) or, where the automaton stops, as [`STOP`] and up (`read::run_automaton`
 /// runs it); 8 rows, a power of two (the rows past the last state decline).
-static STEP: [u16; 8 * 256] = {
-    let mut t = [0u16; 8 * 256];
-    let mut s = 0;
-    while s < 8 {
-        let mut c = 0;
-        while c < 256 {
-            t[s * 256 + c] = (step(s as u8, c as u8) as u16) << 8;
-            c += 1;
-        }
-        s += 1;
-    }
-    t
-};
+static STEP: [u16; 8 * 256] = crate::read::automaton_table!(8, step);
 
 /// A blank between the parts of a block (`fast::blank`).
 #[inline(always)]

@@ -152,20 +152,8 @@ const fn step(state: u8, c: u8) -> u8 {
 /// [`step`] for every state and byte, at `state << 8 | byte`, each next state as its row
 /// (`state << 8`) or, where the automaton stops, as [`STOP`] and up (`read::run_automaton`
 /// runs it); 64 rows, a power of two (the rows past the last state decline).
-static STEP: [u16; 64 * 256] = {
-    let mut t = [0u16; 64 * 256];
-    let mut s = 0;
-    while s < 64 {
-        let mut c = 0;
-        while c < 256 {
-            let next = step(s as u8, c as u8);
-            t[s * 256 + c] = (next as u16) << 8;
-            c += 1;
-        }
-        s += 1;
-    }
-    t
-};
+static STEP: [u16; 64 * 256] = crate::read::automaton_table!(64, step);
+
 /// Rows at and above this are where the automaton stops.
 const STOP: u16 = 64 << 8;
 
