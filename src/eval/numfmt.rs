@@ -349,8 +349,8 @@ fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     }
 }
 
-/// 10⁰ to 10¹⁹.
-const POW10: [u64; 20] = {
+/// 10⁰ to 10¹⁹ (also the streamed translators' number writers').
+pub(crate) const POW10: [u64; 20] = {
     let mut t = [1u64; 20];
     let mut i = 1;
     while i < 20 {

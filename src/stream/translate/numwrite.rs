@@ -3,27 +3,10 @@
 //! (shared by both directions' fast paths; split from `fast.rs` for size).
 
 use crate::dialect::fanuc::emit;
+use crate::eval::numfmt::POW10;
 
 /// Digits FANUC accepts in a number (`emit::fmt_num`).
 const MAX_DIGITS: usize = 8;
-const POW10: [u64; 16] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-    10_000_000_000,
-    100_000_000_000,
-    1_000_000_000_000,
-    10_000_000_000_000,
-    100_000_000_000_000,
-    1_000_000_000_000_000,
-];
 
 /// Appends `emit::fmt_num(v, point).0` and returns its `.1` (false: more than 8 digits).
 pub fn push_num(out: &mut Vec<u8>, v: f64, point: bool) -> bool {
