@@ -320,25 +320,12 @@ impl Reader {
         self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, b))
     }
 
-    /// [`Reader::lit`] of the next line read straight from a read buffer (`ahead` starts at
-    /// the line's start, its text offset `start`, and runs on past its end): the line's
-    /// length when the reader is where `lit` reads lines and the quick reader takes the
-    /// line (`fast::lit_buf`), its words then in `b`. Nothing of the reader changes: once
-    /// the caller has moved past the line, [`Reader::took_lit`] does what `lit` does.
-    /// `None` otherwise (`b` may hold some words: clear it).
-    ///
-    /// Why this is `lit`: the conditions on the reader are the same (the line is plain
-    /// ASCII, see `quick::lit_words_buf`), and on such a line `fast::lit_raw` takes it
-    /// by `quick::lit_words` too: with these words, the line's span, no number, and words.
-    #[inline(always)]
-    pub fn lit_buf(&self, ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
-        if !self.lit_ready() {
-            return None;
-        }
-        fast::lit_buf(ahead, start, b)
-    }
-
-    /// Whether the reader is where [`Reader::lit_buf`] reads lines. For a run of lines:
+    /// Whether the reader is where [`Reader::lit`] reads lines, so that a line the quick
+    /// reader takes straight from a read buffer (`fast::lit_buf`) is what `lit` would give:
+    /// the line is plain ASCII (`quick::lit_words_buf`), and on such a line `fast::lit_raw`
+    /// takes it by `quick::lit_words` too, with these words, the line's span, no number, and words. Nothing of the
+    /// reader changes: once the caller has moved past the line, [`Reader::took_lit`] does
+    /// what `lit` does. For a run of lines:
     /// [`Reader::took_lit`] leaves both conditions as they were (it notes code seen), so
     /// one check holds for the run.
     #[inline(always)]
@@ -346,7 +333,7 @@ impl Reader {
         !self.index_only && self.builder.resumed_at_top()
     }
 
-    /// What [`Reader::lit`] does to the reader with a line [`Reader::lit_buf`] took.
+    /// What [`Reader::lit`] does to the reader with a line the quick reader took where [`Reader::lit_ready`] held.
     #[inline(always)]
     pub fn took_lit(&mut self) {
         self.any = true;
