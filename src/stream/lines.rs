@@ -264,22 +264,9 @@ impl Lines {
     /// follows, or it is a CR that a refill might show to be the first half of CR LF.
     #[inline]
     pub fn skip_plain(&mut self, len: usize) -> Option<Taken> {
-        let at = self.pos + len;
-        if at >= self.end {
-            return None;
-        }
-        let w = match self.buf[at] {
-            b'\n' => 1,
-            b'\r' if at + 1 < self.end => 1 + usize::from(self.buf[at + 1] == b'\n'),
-            b'\r' if self.eof => 1,
-            _ => return None,
-        };
-        self.line += 1;
-        let start = self.offset;
-        let next = at + w;
-        self.offset += (next - self.pos) as u64;
-        self.pos = next;
-        Some(Taken { start, line: self.line, next: self.offset })
+        let t = self.peek_plain(len)?;
+        self.skip_peeked(t);
+        Some(t)
     }
 
     /// What [`Lines::skip_plain`]`(len)` would give, without moving: for a reader that
