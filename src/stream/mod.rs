@@ -705,6 +705,21 @@ pub fn file_span(ix: &Index) -> Span {
     Span::new(0, ix.text_len.min(u64::from(u32::MAX)) as u32)
 }
 
+/// Output the streamed translators hand to their writer in pieces of about this size.
+pub(crate) const WRITE_BYTES: usize = 1 << 16;
+
+/// Hands a streamed translator's buffered output to `out` and empties the buffer; the
+/// first write error is kept in `io` (later output is then dropped: the caller discards the
+/// file).
+pub(crate) fn spill(out: &mut dyn std::io::Write, buf: &mut Vec<u8>, io: &mut Option<std::io::Error>) {
+    if io.is_none() {
+        if let Err(e) = out.write_all(buf) {
+            *io = Some(e);
+        }
+    }
+    buf.clear();
+}
+
 /// A check side that runs a streamed file (see `check::check_runners`); its pager is made
 /// on the thread that runs it.
 pub fn runner(

@@ -25,6 +25,7 @@
 
 use super::lines::NotStreamable;
 use super::translate::{fast, straight, Fallback};
+use super::WRITE_BYTES;
 use super::{Index, PlainWord, ProgressFn, WordsSink};
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
@@ -45,9 +46,6 @@ const MARK: &str = "NCTRANS SEGMENT ";
 const MAX_TRACKED_N: u32 = 1 << 24;
 /// The labels pass's highest N number.
 const MAX_N: u32 = 99999;
-/// Output is handed to the writer in pieces of about this size.
-const WRITE_BYTES: usize = 1 << 16;
-
 /// A set of N values (a bit per value up to [`MAX_TRACKED_N`]).
 #[derive(Default, Clone)]
 struct NSet(Vec<u64>);
@@ -470,12 +468,7 @@ impl Writer<'_> {
     }
 
     fn write(&mut self) {
-        if self.io.is_none() {
-            if let Err(e) = self.out.write_all(&self.buf) {
-                self.io = Some(e);
-            }
-        }
-        self.buf.clear();
+        super::spill(self.out, &mut self.buf, &mut self.io);
     }
 
     fn live(&self) -> bool {

@@ -19,6 +19,7 @@
 use super::lines::{Lines, NotStreamable};
 use super::translate::digits::Src;
 use super::translate::Fallback;
+use super::WRITE_BYTES;
 use super::{Index, ItemView, PlainWord, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
@@ -46,9 +47,6 @@ pub const CHUNK_STMTS: usize = 4096;
 /// Its plan is made twice and every pass runs on it, some 50,000 instructions a statement,
 /// so it is kept short; the fast path (or the passes, chunk by chunk) takes the rest.
 pub const FIRST_STMTS: usize = 64;
-
-/// Output is handed to the writer in pieces of about this size.
-const WRITE_BYTES: usize = 1 << 16;
 
 /// The one warning a streamed translation keeps (and reports): a tool length G code
 /// dropped (`G43 H1`, `G49`), common in CAM output. Other diagnostics fall back.
@@ -310,12 +308,7 @@ impl State<'_> {
 
     /// Hands the buffered output to `out`.
     fn spill(&mut self) {
-        if self.io.is_none() {
-            if let Err(e) = self.out.write_all(&self.wbuf) {
-                self.io = Some(e);
-            }
-        }
-        self.wbuf.clear();
+        super::spill(self.out, &mut self.wbuf, &mut self.io);
     }
 
     /// A block after the first chunk through the fast path: its line is written (after the

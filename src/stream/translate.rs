@@ -15,6 +15,7 @@
 
 use super::lines::NotStreamable;
 use super::to_sinumerik::ReadBack;
+use super::WRITE_BYTES;
 use super::{Index, PlainWord, ProgressFn};
 use crate::check::{self, Verdict};
 use crate::diag::Diagnostic;
@@ -103,9 +104,6 @@ struct State<'a> {
     unsupported: usize,
 }
 
-/// Output is handed to the writer in pieces of about this size.
-const WRITE_BYTES: usize = 1 << 16;
-
 impl State<'_> {
     fn unit(&self, body: Vec<Stmt>) -> Unit {
         let program = Program {
@@ -150,12 +148,7 @@ impl State<'_> {
     }
 
     fn write(&mut self) {
-        if self.io.is_none() {
-            if let Err(e) = self.out.write_all(&self.buf) {
-                self.io = Some(e);
-            }
-        }
-        self.buf.clear();
+        super::spill(self.out, &mut self.buf, &mut self.io);
     }
 }
 
