@@ -29,12 +29,10 @@ pub(super) fn take_plain_run(
     lines: &mut Lines,
     reader: &mut Reader<'_>,
     chunks: &mut Chunker,
-    chunk_ops: usize,
     count: &mut u64,
     progress: &mut Option<ProgressFn<'_>>,
     size: u64,
 ) -> bool {
-    debug_assert_eq!(chunk_ops.max(1), chunks.chunk_ops);
     let mut tell = Tell { count, progress, size };
     // One function each: together in one, the FANUC loop ran slower.
     match reader {

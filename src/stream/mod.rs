@@ -504,7 +504,7 @@ fn scan_with(
         };
         if index_now
             && !in_header
-            && take_plain_run(&mut lines, &mut reader, &mut chunks, chunk_ops, &mut count, &mut progress, size)
+            && take_plain_run(&mut lines, &mut reader, &mut chunks, &mut count, &mut progress, size)
         {
             continue;
         }
