@@ -281,18 +281,151 @@ fn generated_macro_programs() {
     assert!(same >= 90, "only {same} of 120 generated programs were segmented: {why:?}");
 }
 
+/// A mode line for a CAM run: inch/metric switches (G70 keeps F metric: `F[f/25.4]`) and
+/// G90/G91, alone or with a move.
+fn mode_line(r: &mut Rng) -> String {
+    let g = r.pick(&["G70", "G71", "G700", "G710", "G90", "G91", "G70 G91", "G71 G90"]);
+    match r.below(3) {
+        0 => g.to_string(),
+        1 => format!("{g} G1 X{}.5 F{}", r.below(9), 100 + r.below(900)),
+        _ => format!("{g} Y{}", r.below(9)),
+    }
+}
+
+/// A generated program whose CAM runs switch G70/G71/G700/G710 and G90/G91, with a macro
+/// part that reads those modes (F under G70, AC()/IC() words), MSG lines before a lone M0
+/// (in the macro part or starting a run) and now and then a case that must decline (a MSG
+/// not followed by M0, a MSG beside other items).
+fn generated_modes(r: &mut Rng, eol: &str) -> String {
+    let mut next = 0u32;
+    let mut numbers = vec![];
+    let mut s = format!("%_N_GENM_MPF{eol}R1={} R2=0{eol}", 1 + r.below(4));
+    if r.chance(50) {
+        s.push_str(&format!("MSG(\"SETUP {}\"){eol}M0{eol}", r.below(99)));
+    }
+    let g = r.pick(&["G70", "G71", "G700", "G710", "G90 G71", ""]);
+    if !g.is_empty() {
+        s.push_str(&format!("{g}{eol}"));
+    }
+    let n_runs = 2 + r.index(4);
+    for k in 0..n_runs {
+        let n = 1 + r.index(12);
+        for _ in 0..n {
+            if r.chance(25) {
+                s.push_str(&mode_line(r));
+                s.push_str(eol);
+            }
+            let m = 1 + r.index(3);
+            s.push_str(&cam_run(r, m, &mut next, eol, &mut numbers));
+        }
+        match r.below(10) {
+            0 => s.push_str(&format!("G1 X=AC(R1+{k}) F=R1*100{eol}")),
+            1 => s.push_str(&format!("G1 Y=IC(R1) Z=IC(-1){eol}")),
+            2 => s.push_str(&format!("IF R1>2{eol}G70 G1 X=R1 F200{eol}ELSE{eol}G91 X=AC(1){eol}ENDIF{eol}")),
+            3 => s.push_str(&format!("WHILE R2<2{eol}R2=R2+1{eol}G1 X=IC(R2) F=R2*50{eol}ENDWHILE{eol}R2=0{eol}")),
+            // Paired with the M0 that starts the next run.
+            4 => s.push_str(&format!("MSG(\"CHECK {k}\"){eol}M0{eol}")),
+            5 => s.push_str(&format!("MSG(\"TURN {k}\"){eol}M0 ; turn over{eol}G1 F=R1*10 X=AC(3){eol}")),
+            6 if r.chance(30) => s.push_str(&format!("MSG(\"INFO {k}\"){eol}")),
+            7 if r.chance(30) => s.push_str(&format!("MSG(\"A\") R3=2{eol}M0{eol}")),
+            _ => s.push_str(&format!("R{}=R1+{}.5 G1 F=R1*10 X=R1{eol}", 4 + k, k)),
+        }
+    }
+    s.push_str(&format!("M30{eol}"));
+    s
+}
+
+#[test]
+fn generated_mode_switches_ac_ic_and_msg() {
+    let mut r = Rng(0x1DC7_0070);
+    let (mut same, mut declined, mut equivalent) = (0, 0, 0);
+    let mut why = Vec::new();
+    for case in 0..120 {
+        let eol = if case % 2 == 0 { "\n" } else { "\r\n" };
+        let text = generated_modes(&mut r, eol);
+        let comments = [CommentMode::Keep, CommentMode::Drop, CommentMode::Ascii][case % 3];
+        match compare_with(&format!("genm{case}.mpf"), &text, comments) {
+            Outcome::Same(eq) => {
+                same += 1;
+                equivalent += usize::from(eq);
+            }
+            Outcome::Declined(w) => {
+                declined += 1;
+                why.push(w);
+            }
+        }
+    }
+    println!(
+        "modes: {same} segmented and identical ({equivalent} verified equivalent), {declined} declined: {why:?}"
+    );
+    assert!(same >= 80, "only {same} of 120 programs with mode switches were segmented: {why:?}");
+    assert!(equivalent >= 30, "only {equivalent} verified equivalent");
+}
+
+/// Each mode a CAM run changes reaches the skeleton after it, and each run starts in the
+/// mode before it (small programs, each rule alone).
+#[test]
+fn modes_cross_run_boundaries() {
+    for (name, text) in [
+        // G70 in a run: F of the macro block after it is per inch.
+        ("inch-run.mpf", "R1=1\nG1 X1 F100\nG70 X2\nR2=2\nG1 X=R1 F300\nM30\n"),
+        // G70 in the macro part: the run after it divides F.
+        ("inch-macro.mpf", "R1=1\nG70 G1 X=R1\nG1 X1 F100\nY2 F200\nR2=1\nG71 X=R2\nX3 F50\nM30\n"),
+        // G70 inside a structure: the words pass follows the text, so does the run after it.
+        ("inch-if.mpf", "R1=1\nIF R1>5\nG70 X=R1\nENDIF\nG1 X1 F100\nM30\n"),
+        ("inch-off.mpf", "R1=1\nG70\nG1 X1 F100\nG710 X2 F10\nR1=2\nG1 X=R1 F20\nM30\n"),
+        // G91 in a run: the IC() word after it needs no switch; AC() does.
+        ("abs-run.mpf", "R1=1\nG1 X1\nG91 X2\nR2=2\nG1 X=IC(R1)\nY=AC(R2)\nG90 X1\nR3=1\nG1 X=AC(R3)\nY=IC(1)\nM30\n"),
+        // MSG in the macro part, M0 the next (straight) block: a stop with the message.
+        ("msg-m0.mpf", "R1=1\nG1 X1\nMSG(\"LOOK\")\nM0\nG1 X2\nM30\n"),
+        ("msg-m0-crlf.mpf", "R1=1\r\nMSG(\"LOOK\")\r\nM0\r\nG1 X2\r\nMSG(\"B\")\r\nM0\r\nM30\r\n"),
+    ] {
+        match compare(name, text) {
+            Outcome::Same(_) => {}
+            Outcome::Declined(w) => panic!("{name} declined: {w}"),
+        }
+    }
+}
+
+/// Runs the command line with `--stream` on `text`: its output must be the whole
+/// translation's (what the fallback writes when the segmented path declines).
+fn cli_stream_matches_whole(name: &str, text: &str) {
+    let path = scratch().join(name);
+    std::fs::write(&path, text).expect("write");
+    let out = scratch().join(format!("{name}.cli.nc"));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["--stream", "--to", "fanuc"])
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .expect("run nctrans");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, &path.display().to_string(), text.as_bytes(), None);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+    let whole = translate::to_fanuc(&parsed.unit, &[], &opts(&path, text));
+    if whole.unsupported == 0 {
+        assert!(std::fs::read(&out).expect("output") == whole.text.as_bytes(), "{name}: {stderr}");
+    }
+}
+
 #[test]
 fn declines_what_it_does_not_handle() {
     for (name, text) in [
-        ("inch.mpf", "R1=1\nG70 G1 X1\nX2\nM30\n"),
-        ("msg.mpf", "MSG(\"HI\")\nG1 X1\nM30\n"),
+        // A MSG left as a comment (its note needs the whole path's rendering).
+        ("msg.mpf", "R1=1\nMSG(\"HI\")\nG1 X1\nM30\n"),
+        ("msg-numbered-m0.mpf", "R1=1\nMSG(\"HI\")\nN5 M0\nM30\n"),
+        // Beside other items (the blocks pass's pieces pair where the aligned source does not).
+        ("msg-beside.mpf", "R1=1\nMSG(\"HI\") R2=1\nM0\nM30\n"),
         ("call.mpf", "R1=1\nSUBPROG\nG1 X1\nM30\n"),
-        ("acic.mpf", "R1=1\nG1 X=AC(R1)\nM30\n"),
+        ("string.mpf", "R1=1\nT=\"DRILL\"\nG1 X1\nM30\n"),
     ] {
         match compare(name, text) {
             Outcome::Declined(_) => {}
             Outcome::Same(_) => panic!("{name} was segmented"),
         }
+        cli_stream_matches_whole(name, text);
     }
 }
 

@@ -24,7 +24,7 @@
 //! builds it again with those blocks kept out of runs; the writing scan fills the runs.
 
 use super::lines::NotStreamable;
-use super::translate::{fast, straight, Fallback};
+use super::translate::{fast, g70_block, straight, Fallback};
 use super::WRITE_BYTES;
 use super::{Index, PlainWord, ProgressFn, WordsSink};
 use crate::dialect::fanuc::emit::{self, EmitOptions};
@@ -81,9 +81,57 @@ fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
     meta.number.as_ref().is_some_and(|n| keep.has(n.value))
 }
 
-/// A G70/G700 word (the inch mode the fast path carries across blocks: declined).
-fn is_inch(letter: u8, v: f64) -> bool {
-    letter == b'G' && (v == 70.0 || v == 700.0)
+/// The two modes of the words pass that reach from block to block outside a structure, in
+/// textual order (`passes::words::words_pass`): G70 (inch lengths, metric feed: the fast
+/// path's `g70`) and G90/G91 (read by AC()/IC() words).
+#[derive(Clone, Copy)]
+struct Modes {
+    g70: bool,
+    abs: bool,
+}
+
+/// Which of the two modes a block's words touched.
+#[derive(Clone, Copy, Default)]
+struct Touched {
+    inch: bool,
+    abs: bool,
+}
+
+impl Modes {
+    /// A constant G word, as the words pass takes it.
+    fn g(&mut self, v: f64, t: &mut Touched) {
+        if v == 70.0 {
+            self.g70 = true;
+        } else if v == 71.0 || v == 700.0 || v == 710.0 {
+            self.g70 = false;
+        } else if v == 90.0 || v == 91.0 {
+            self.abs = v == 90.0;
+            t.abs = true;
+            return;
+        } else {
+            return;
+        }
+        t.inch = true;
+    }
+
+    /// The G words of a block's items.
+    fn items(&mut self, items: &[crate::ir::Item], t: &mut Touched) {
+        for it in items {
+            if let ItemKind::Word(w) = &it.kind {
+                if let (Addr::Letter(b'G'), WordValue::Expr(e)) = (&w.addr, &w.value) {
+                    if let ExprKind::Num(x) = &e.kind {
+                        self.g(x.value, t);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A constant G word (for a placeholder).
+fn g_item(v: f64, span: Span) -> crate::ir::Item {
+    let w = crate::ir::Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(crate::ir::Expr::num(v, false, span)), span };
+    crate::ir::Item { kind: ItemKind::Word(w), span }
 }
 
 /// The first scan's sink: builds the skeleton.
@@ -98,6 +146,17 @@ struct Skel {
     /// N values jumps name.
     targets: NSet,
     max_n: u32,
+    /// The modes in textual order up to here.
+    modes: Modes,
+    /// Which modes the run being collected changes.
+    touched: Touched,
+    /// The G70 mode at the start of each run.
+    run_g70: Vec<bool>,
+    /// The last statement was a block holding only a MSG.
+    after_msg: bool,
+    /// Where the lone M0 blocks right after such a MSG start: kept in the skeleton (the
+    /// words pass pairs the two).
+    forced: Vec<u32>,
     stop: Option<String>,
 }
 
@@ -120,28 +179,43 @@ impl Skel {
         let valid = n.filter(|n| *n <= MAX_N);
         match &mut self.run {
             Some((hi, _)) => *hi = (*hi).max(valid),
-            None => self.run = Some((valid, meta.span)),
+            None => {
+                self.run = Some((valid, meta.span));
+                self.run_g70.push(self.modes.g70);
+            }
         }
     }
 
+    /// Ends the run being collected: its placeholder block carries the modes the run leaves
+    /// (as G70/G71 and G90/G91 words, where it changes them) for the words pass to follow
+    /// into the skeleton after it; the placeholder's line is replaced whole.
     fn close_run(&mut self) {
         if let Some((hi, span)) = self.run.take() {
+            let t = std::mem::take(&mut self.touched);
+            let mut items = Vec::new();
+            if t.inch {
+                items.push(g_item(if self.modes.g70 { 70.0 } else { 71.0 }, span));
+            }
+            if t.abs {
+                items.push(g_item(if self.modes.abs { 90.0 } else { 91.0 }, span));
+            }
             let meta = BlockMeta {
                 span,
                 number: hi.map(|value| SeqNo { value, span }),
                 comments: vec![Comment { text: format!("{MARK}{}", self.runs), span }],
                 ..BlockMeta::default()
             };
-            self.body.push(crate::passes::meta_stmt(meta, vec![]));
+            self.body.push(crate::passes::meta_stmt(meta, items));
             self.runs += 1;
         }
     }
 
-    /// Checks a statement of the macro part and collects its jump targets.
+    /// Checks a statement of the macro part, follows its modes and collects its jump targets.
     fn macro_stmt(&mut self, s: &Stmt) {
         let mut why: Option<&'static str> = None;
         let mut targets = Vec::new();
         let mut max_n = 0;
+        let mut modes = self.modes;
         crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
             let StmtKind::Block(b) = &s.kind else { return };
             if let Some(n) = &b.meta.number {
@@ -149,27 +223,32 @@ impl Skel {
                     max_n = max_n.max(n.value);
                 }
             }
+            modes.items(&b.items, &mut Touched::default());
+            let lone_msg = crate::passes::words::msg_text(b).is_some();
             for it in &b.items {
                 match &it.kind {
                     ItemKind::Call(_) => why = why.or(Some("a call of another program")),
-                    ItemKind::Message { .. } | ItemKind::StopMessage { .. } => why = why.or(Some("a MSG")),
+                    // A MSG alone in its block is paired with a lone M0 after it, or left
+                    // as a comment with a note (declined: see `to_fanuc`); beside other
+                    // items the pieces the blocks pass makes may pair where the verifier's
+                    // aligned source does not.
+                    ItemKind::Message { .. } if lone_msg => {}
+                    ItemKind::Message { .. } => why = why.or(Some("a MSG beside other items")),
+                    ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
                     ItemKind::Goto(g) => match &g.target {
                         Target::Number(n) => targets.push(n.value),
                         Target::Label(_) => {}
                         Target::Computed(_) => why = why.or(Some("a computed jump")),
                     },
                     ItemKind::Word(w) => match &w.value {
-                        WordValue::Ac(_) | WordValue::Ic(_) => why = why.or(Some("AC()/IC()")),
                         WordValue::Expr(e) => match &e.kind {
                             ExprKind::Str(_) => why = why.or(Some("a string-valued word")),
-                            ExprKind::Num(x) if matches!(w.addr, Addr::Letter(l) if is_inch(l, x.value)) => {
-                                why = why.or(Some("G70/G700 (inch)"));
-                            }
                             _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
                                 why = why.or(Some("a computed G word"));
                             }
                             _ => {}
                         },
+                        WordValue::Ac(_) | WordValue::Ic(_) => {}
                     },
                     _ => {}
                 }
@@ -178,6 +257,7 @@ impl Skel {
         if let Some(w) = why {
             return self.decline(w);
         }
+        self.modes = modes;
         self.max_n = self.max_n.max(max_n);
         for n in targets {
             if n > MAX_TRACKED_N {
@@ -187,18 +267,6 @@ impl Skel {
         }
         self.body.push(s.clone());
     }
-}
-
-/// Whether a straight statement holds G70/G700.
-fn stmt_inch(s: &Stmt) -> bool {
-    let StmtKind::Block(b) = &s.kind else { return false };
-    b.items.iter().any(|it| match &it.kind {
-        ItemKind::Word(w) => match (&w.addr, &w.value) {
-            (Addr::Letter(l), WordValue::Expr(e)) => matches!(&e.kind, ExprKind::Num(x) if is_inch(*l, x.value)),
-            _ => false,
-        },
-        _ => false,
-    })
 }
 
 impl WordsSink for Skel {
@@ -214,14 +282,16 @@ impl WordsSink for Skel {
             self.decline("more than one program");
             return true;
         }
-        if kept(&self.keep, meta) {
+        if kept(&self.keep, meta) || self.after_msg {
+            // Asked for as a statement (a lone M0 after a MSG is judged there).
             return false;
         }
-        if words.iter().any(|w| is_inch(w.letter, w.value)) {
-            self.decline("G70/G700 (inch)");
-            return true;
-        }
         self.run_block(meta);
+        let mut t = self.touched;
+        for w in words.iter().filter(|w| w.letter == b'G') {
+            self.modes.g(w.value, &mut t);
+        }
+        self.touched = t;
         true
     }
 
@@ -232,13 +302,18 @@ impl WordsSink for Skel {
         if prog != 0 {
             return self.decline("more than one program");
         }
+        let after_msg = std::mem::replace(&mut self.after_msg, false);
         if let StmtKind::Block(b) = &s.kind {
-            if straight(s).is_ok() && !kept(&self.keep, &b.meta) {
-                if stmt_inch(s) {
-                    return self.decline("G70/G700 (inch)");
-                }
-                return self.run_block(&b.meta);
+            if after_msg && crate::passes::words::is_lone_m0(b) {
+                self.forced.push(b.meta.span.lo);
+            } else if straight(s).is_ok() && !kept(&self.keep, &b.meta) {
+                self.run_block(&b.meta);
+                let mut t = self.touched;
+                self.modes.items(&b.items, &mut t);
+                self.touched = t;
+                return;
             }
+            self.after_msg = crate::passes::words::msg_text(b).is_some();
         }
         self.close_run();
         self.macro_stmt(s);
@@ -256,6 +331,11 @@ fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallback> {
         run_ns: NSet::default(),
         targets: NSet::default(),
         max_n: 0,
+        modes: Modes { g70: false, abs: true },
+        touched: Touched::default(),
+        run_g70: Vec::new(),
+        after_msg: false,
+        forced: Vec::new(),
         stop: None,
     };
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
@@ -326,6 +406,8 @@ pub fn to_fanuc(
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
     let mut w = Writer {
         keep: &sk.keep,
+        run_g70: &sk.run_g70,
+        forced: &sk.forced,
         fast: fast::Fast::new(opts.comments, eol),
         opts,
         eo: EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 },
@@ -362,7 +444,8 @@ pub fn to_fanuc(
 }
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
-/// order: each `(NCTRANS SEGMENT k)` or `Nn (NCTRANS SEGMENT k)` alone on its line; `None`
+/// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
+/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`); `None`
 /// when the text holds the marker anywhere else.
 fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
     let open = format!("({MARK}");
@@ -371,11 +454,14 @@ fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)
     while let Some(at) = text[from..].find(&open).map(|k| k + from) {
         let lo = text[..at].rfind('\n').map_or(0, |k| k + 1);
         let head = &text[lo..at];
-        let numbered = head
-            .strip_prefix('N')
-            .and_then(|h| h.strip_suffix(' '))
-            .is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()));
-        if !(head.is_empty() || numbered) {
+        // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
+        let words = head.strip_suffix(' ').is_some_and(|h| {
+            h.split(' ').enumerate().all(|(k, t)| {
+                let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
+                d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+            })
+        });
+        if !(head.is_empty() || words) {
             return None;
         }
         let tail = format!("{}){eol}", v.len());
@@ -394,6 +480,10 @@ fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)
 /// run, translated as it is read.
 struct Writer<'a> {
     keep: &'a NSet,
+    /// The G70 mode at each run's start (the skeleton scan's).
+    run_g70: &'a [bool],
+    /// Where the straight blocks kept in the skeleton for a MSG start.
+    forced: &'a [u32],
     fast: fast::Fast,
     opts: &'a TranslateOptions,
     eo: EmitOptions,
@@ -434,25 +524,31 @@ impl Writer<'_> {
             Some(&(lo, hi)) => {
                 self.copy_to(lo);
                 self.pos = hi;
+                self.fast.g70 = self.run_g70.get(self.next).copied().unwrap_or(false);
                 self.next += 1;
             }
             None => self.bad = true,
         }
     }
 
+    /// Whether a block starting at `lo` was kept in the skeleton for a MSG before it.
+    fn forced(&self, lo: u32) -> bool {
+        self.forced.binary_search(&lo).is_ok()
+    }
+
     /// A straight block of a run the fast path declined: translated alone (as
-    /// `stream::translate` does).
-    fn alone(&mut self, s: &Stmt) {
+    /// `stream::translate` does), after a G70 block when `g70` was the mode before it.
+    fn alone(&mut self, s: &Stmt, g70: bool) {
         let mut u = self.lone.clone();
         if let Some(p) = u.programs.first_mut() {
-            p.body = vec![s.clone()];
+            p.body = if g70 { vec![g70_block(), s.clone()] } else { vec![s.clone()] };
         }
         let t = translate::to_fanuc(&u, &[], self.opts);
         if !t.diags.is_empty() || t.unsupported > 0 {
             self.bad = true;
             return;
         }
-        let skip = self.header_len;
+        let skip = self.header_len + usize::from(g70);
         let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
         let e = emit::emit_body(body, &self.eo);
         if !e.diags.is_empty() {
@@ -485,13 +581,14 @@ impl WordsSink for Writer<'_> {
         if !self.live() {
             return true;
         }
-        if kept(self.keep, meta) {
+        if kept(self.keep, meta) || self.forced(meta.span.lo) {
             return false;
         }
         self.enter();
+        let g70 = self.fast.g70;
         if self.fast.words(meta, words, line, &mut self.buf).is_err() {
             // Nothing was written; the block comes again as a statement (still a run block).
-            self.fast.g70 = false;
+            self.fast.g70 = g70;
             return false;
         }
         self.flush_some();
@@ -503,7 +600,7 @@ impl WordsSink for Writer<'_> {
             return;
         }
         let run = match &s.kind {
-            StmtKind::Block(b) => straight(s).is_ok() && !kept(self.keep, &b.meta),
+            StmtKind::Block(b) => straight(s).is_ok() && !kept(self.keep, &b.meta) && !self.forced(b.meta.span.lo),
             _ => false,
         };
         if !run {
@@ -511,9 +608,10 @@ impl WordsSink for Writer<'_> {
             return;
         }
         self.enter();
+        let g70 = self.fast.g70;
         if self.fast.block(s, &mut self.buf).is_err() {
-            self.fast.g70 = false;
-            self.alone(s);
+            // The mode is the one after the block already (`Fast::block`).
+            self.alone(s, g70);
         }
         self.flush_some();
     }
