@@ -355,9 +355,7 @@ fn generated_mode_switches_ac_ic_and_msg() {
             }
         }
     }
-    println!(
-        "modes: {same} segmented and identical ({equivalent} verified equivalent), {declined} declined: {why:?}"
-    );
+    println!("modes: {same} segmented and identical ({equivalent} verified equivalent), {declined} declined: {why:?}");
     assert!(same >= 80, "only {same} of 120 programs with mode switches were segmented: {why:?}");
     assert!(equivalent >= 30, "only {equivalent} verified equivalent");
 }

@@ -8,16 +8,41 @@
 //! straight-line stream's fast path. Memory follows the macro part, not the motion part.
 //!
 //! Why the output is the whole translation's, byte for byte:
-//! - a straight block's translation depends on no other block but through the G70 mode
-//!   (see `translate::fast`), and programs with G70/G700 anywhere are declined; the words
-//!   pass's G90/G91 mode reaches only AC()/IC() words, which are declined too;
+//! - a straight block's translation depends on no other block but through the words
+//!   pass's modes, and the words pass follows them in TEXTUAL order (`body_pass` walks the
+//!   statements and every structure's bodies in source order with one `Modal`; it never
+//!   follows jumps or loops). So the mode at any block is a function of the text before
+//!   it, and textual order is all there is to follow: the skeleton scan does it
+//!   ([`Modes`], the same rules: G70 on; G71, G700, G710 off; G90/G91), through runs and
+//!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
+//!   - each run's fast path starts in the G70 mode the text before it leaves (a block the
+//!     fast path declines is translated alone after a G70 block when that mode is on);
+//!   - each placeholder carries the modes its run leaves as G70/G71 and G90/G91 words
+//!     (only where the run changes them), so the skeleton's words pass reads the modes
+//!     the whole translation has at the macro statements after the run: F under G70, the
+//!     G90/G91 switch around AC()/IC() words. The placeholder's line is replaced whole,
+//!     so these words never reach the output.
+//!   - whether textual order is the mode a jump or a loop head runs in is the verifier's
+//!     question, the same for both paths: they write the same bytes.
 //! - the labels pass sees the same jumps and the same jump targets: a run never holds a
 //!   block whose N value any jump names (those stay real blocks of the skeleton), and
 //!   labelled blocks are not straight; it picks fresh numbers above the highest N of the
 //!   program, which the placeholder carries as its own N (programs whose numbers could
 //!   run out and wrap to low numbers are declined);
 //! - nothing else in the passes looks from one block at another one outside a structure
-//!   (MSG followed by M0 does; MSG is declined).
+//!   but MSG: a block holding only `MSG("…")` and a lone M0 block right after it become
+//!   one stop with the message. Such an M0 stays a real block of the skeleton (never a
+//!   run's), so the pair meets there. A MSG not so paired becomes a comment with a note
+//!   (NC320): the skeleton's translation then has a diagnostic and the whole path takes
+//!   the file (its notes are rendered from the text). A MSG beside other items is
+//!   declined: the blocks pass splits the block and a piece may pair with the M0 where
+//!   the verifier's aligned source (`translate::align_source`: a MSG is kept only alone
+//!   in its block before a lone M0) does not.
+//!
+//! Why verification gives the whole path's verdict: the streamed verifier runs the
+//! source as it is, the whole path runs `align_source` of it, which differs only in MSG
+//! items (dropped unless paired: here every MSG is paired, and a paired one is kept) and
+//! string-valued T words (declined).
 //!
 //! The source is read two or three times: a scan builds the skeleton (and collects the N
 //! values jumps name); when such a value is also the N of a run block, a second scan
@@ -130,7 +155,11 @@ impl Modes {
 
 /// A constant G word (for a placeholder).
 fn g_item(v: f64, span: Span) -> crate::ir::Item {
-    let w = crate::ir::Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(crate::ir::Expr::num(v, false, span)), span };
+    let w = crate::ir::Word {
+        addr: Addr::Letter(b'G'),
+        value: WordValue::Expr(crate::ir::Expr::num(v, false, span)),
+        span,
+    };
     crate::ir::Item { kind: ItemKind::Word(w), span }
 }
 
