@@ -385,6 +385,53 @@ fn modes_cross_run_boundaries() {
     }
 }
 
+/// A generated program whose N numbers reach N99999 (the labels pass then numbers jump
+/// targets from N1 up, skipping every N in use, the CAM runs' included): runs numbered from
+/// a low pool (dense or sparse) and near N99999, structures and jumps to labels.
+fn generated_high_numbers(r: &mut Rng, eol: &str) -> String {
+    let pool = [20, 300, 2000][r.index(3)];
+    let mut s = format!("%_N_GENH_MPF{eol}R1={} R2=0 R3=0{eol}", 1 + r.below(4));
+    for k in 0..2 + r.index(4) {
+        for _ in 0..1 + r.index(30) {
+            let n = match r.below(3) {
+                0 => Some(1 + r.below(pool) as u32),
+                1 => Some(99_900 + r.below(100) as u32),
+                _ => None,
+            };
+            s.push_str(&cam_block(r, n));
+            s.push_str(eol);
+        }
+        match r.below(4) {
+            0 => s.push_str(&format!("IF R1>2{eol}G1 X=R1{eol}ELSE{eol}G0 Z=R1{eol}ENDIF{eol}")),
+            1 => s.push_str(&format!("WHILE R2<2{eol}R2=R2+1{eol}ENDWHILE{eol}R2=0{eol}")),
+            2 => s.push_str(&format!("IF R1>1 GOTOF MK{k}{eol}G1 X9{eol}MK{k}: G0 Z{k}{eol}")),
+            _ => s.push_str(&format!("N{} R3=R3+1{eol}", 1 + r.below(pool))),
+        }
+    }
+    s.push_str(&format!("M30{eol}"));
+    s
+}
+
+#[test]
+fn generated_numbers_near_n99999() {
+    let mut r = Rng(0x9_9999);
+    let (mut same, mut declined) = (0, 0);
+    let mut why = Vec::new();
+    for case in 0..60 {
+        let eol = if case % 2 == 0 { "\n" } else { "\r\n" };
+        let text = generated_high_numbers(&mut r, eol);
+        match compare(&format!("genh{case}.mpf"), &text) {
+            Outcome::Same(_) => same += 1,
+            Outcome::Declined(w) => {
+                declined += 1;
+                why.push(w);
+            }
+        }
+    }
+    println!("high numbers: {same} segmented and identical, {declined} declined: {why:?}");
+    assert!(same >= 50, "only {same} of 60 programs with N numbers near N99999 were segmented: {why:?}");
+}
+
 /// Runs the command line with `--stream` on `text`: its output must be the whole
 /// translation's (what the fallback writes when the segmented path declines).
 fn cli_stream_matches_whole(name: &str, text: &str) {

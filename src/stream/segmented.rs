@@ -27,8 +27,11 @@
 //! - the labels pass sees the same jumps and the same jump targets: a run never holds a
 //!   block whose N value any jump names (those stay real blocks of the skeleton), and
 //!   labelled blocks are not straight; it picks fresh numbers above the highest N of the
-//!   program, which the placeholder carries as its own N (programs whose numbers could
-//!   run out and wrap to low numbers are declined);
+//!   program, which the placeholder carries as its own N. When those would pass N99999
+//!   it numbers them from N1 up, skipping every N in use: then the run blocks' N values
+//!   up to where enough free numbers are passed go into the skeleton as carrier blocks
+//!   (`carry_numbers`), and the translated skeleton is checked for a fresh number a run
+//!   block has (`fresh_numbers_ok`: declined);
 //! - nothing else in the passes looks from one block at another one outside a structure
 //!   but MSG: a block holding only `MSG("…")` and a lone M0 block right after it become
 //!   one stop with the message. Such an M0 stays a real block of the skeleton (never a
@@ -97,11 +100,12 @@ pub fn to_fanuc(
         }
     }
     // The labels pass numbers jump targets from the next thousand above the highest N, and
-    // from 1 when those would pass N99999 (then it needs every N of the runs): declined.
+    // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
     let mut nodes = 0usize;
     crate::ir::visit::walk_stmts(&sk.body, &mut |_| nodes += 1);
-    if u64::from((sk.max_n / 1000 + 1) * 1000) + 4 * nodes as u64 + 16 > u64::from(MAX_N) {
-        return Err(Fallback::NotStraight("N numbers close to N99999".into()));
+    let fresh = 4 * nodes as u64 + 16;
+    if u64::from((sk.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
+        carry_numbers(&mut sk, fresh)?;
     }
     let mut lone = program.clone();
     program.body = std::mem::take(&mut sk.body);
@@ -114,6 +118,7 @@ pub fn to_fanuc(
     let eol = opts.line_ending.as_str();
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+    fresh_numbers_ok(&t.text, &places, &sk)?;
     let inputs = crate::translate::r_param_inputs(&t.symbol_map);
     // A block the fast path declines is translated alone, as the straight stream does: the
     // header of an empty program comes first, then the block.
@@ -158,4 +163,79 @@ pub fn to_fanuc(
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
     Ok(Segmented { blocks: index.blocks, index, inputs })
+}
+
+/// Most carrier blocks (run N numbers) a skeleton takes.
+const MAX_CARRIED: usize = 20_000;
+
+/// For a labels pass that will number jump targets from N1 up: the N values of run blocks
+/// up to where `fresh` numbers no block uses are passed (the most targets the lowered
+/// skeleton can have: a few per statement) go into the skeleton as carrier blocks, empty
+/// blocks with that N and the last run's marker, right after its placeholder (their lines
+/// are replaced with it). They give the labels pass the same numbers in use there as the
+/// whole program has; they are not jump targets (a target N in a run was kept out of the
+/// runs) and hold no label, so they change nothing else. `fresh_numbers_ok` checks the
+/// result. Declines when the numbers run out.
+fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
+    let (mut free, mut v, mut carried) = (0u64, 0u32, Vec::new());
+    while free < fresh {
+        v += 1;
+        if v > MAX_N || carried.len() > MAX_CARRIED {
+            return Err(Fallback::NotStraight("N numbers close to N99999, most of them in use".into()));
+        }
+        if sk.skel_ns.has(v) {
+            continue;
+        }
+        if sk.run_ns.has(v) {
+            carried.push(v);
+        } else {
+            free += 1;
+        }
+    }
+    let Some(last) = sk.runs.checked_sub(1) else { return Ok(()) };
+    let mark = format!("{}{last}", skel::MARK);
+    let is_last = |s: &crate::ir::Stmt| match &s.kind {
+        crate::ir::StmtKind::Block(b) => b.meta.comments.first().is_some_and(|c| c.text == mark),
+        _ => false,
+    };
+    let Some(at) = sk.body.iter().rposition(is_last) else {
+        return Err(Fallback::NotStraight("a lost placeholder (a bug in nctrans)".into()));
+    };
+    let span = sk.body[at].span;
+    let carriers = carried.into_iter().map(|value| {
+        let meta = crate::ir::BlockMeta {
+            span,
+            number: Some(crate::ir::SeqNo { value, span }),
+            comments: vec![crate::ir::Comment { text: mark.clone(), span }],
+            ..crate::ir::BlockMeta::default()
+        };
+        crate::passes::meta_stmt(meta, vec![])
+    });
+    sk.body.splice(at + 1..at + 1, carriers);
+    Ok(())
+}
+
+/// Checks that no N number the labels pass gave a jump target in the translated skeleton
+/// `text` (an N at a line start, outside the placeholders, that no skeleton block has in
+/// the source) is one a run block has: the whole translation would have skipped it.
+fn fresh_numbers_ok(text: &str, places: &[(usize, usize)], sk: &skel::Skel) -> Result<(), Fallback> {
+    let mut at = 0;
+    let mut places = places.iter().peekable();
+    for line in text.split_inclusive('\n') {
+        let lo = at;
+        at += line.len();
+        while places.next_if(|p| p.1 <= lo).is_some() {}
+        if places.peek().is_some_and(|p| p.0 <= lo) {
+            continue;
+        }
+        let l = line.trim_start_matches(|c: char| c == '/' || c.is_ascii_digit() || c == ' ');
+        let l = if line.starts_with('/') { l } else { line };
+        let Some(d) = l.strip_prefix('N') else { continue };
+        let digits = d.bytes().take_while(u8::is_ascii_digit).count();
+        let Ok(n) = d[..digits].parse::<u32>() else { continue };
+        if n <= MAX_N && !sk.skel_ns.has(n) && sk.run_ns.has(n) {
+            return Err(Fallback::NotStraight("N numbers close to N99999, too many jump targets".into()));
+        }
+    }
+    Ok(())
 }

@@ -110,6 +110,8 @@ pub(super) struct Skel {
     /// N values jumps name.
     pub(super) targets: NSet,
     pub(super) max_n: u32,
+    /// N values of the skeleton's own blocks (up to [`MAX_TRACKED_N`]).
+    pub(super) skel_ns: NSet,
     /// The modes in textual order up to here.
     pub(super) modes: Modes,
     /// Which modes the run being collected changes.
@@ -179,12 +181,16 @@ impl Skel {
         let mut why: Option<&'static str> = None;
         let mut targets = Vec::new();
         let mut max_n = 0;
+        let mut own = Vec::new();
         let mut modes = self.modes;
         crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
             let StmtKind::Block(b) = &s.kind else { return };
             if let Some(n) = &b.meta.number {
                 if n.value <= MAX_N {
                     max_n = max_n.max(n.value);
+                }
+                if n.value <= MAX_TRACKED_N {
+                    own.push(n.value);
                 }
             }
             modes.items(&b.items, &mut Touched::default());
@@ -223,6 +229,9 @@ impl Skel {
         }
         self.modes = modes;
         self.max_n = self.max_n.max(max_n);
+        for n in own {
+            self.skel_ns.insert(n);
+        }
         for n in targets {
             if n > MAX_TRACKED_N {
                 return self.decline("a jump to an N number above 16777216");
@@ -295,6 +304,7 @@ pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallb
         run_ns: NSet::default(),
         targets: NSet::default(),
         max_n: 0,
+        skel_ns: NSet::default(),
         modes: Modes { g70: false, abs: true },
         touched: Touched::default(),
         run_g70: Vec::new(),

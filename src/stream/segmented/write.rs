@@ -12,11 +12,12 @@ use std::io::Write;
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
 /// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
-/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`); `None`
+/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`), with the carrier lines right
+/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None`
 /// when the text holds the marker anywhere else.
 pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
     let open = format!("({MARK}");
-    let mut v = Vec::with_capacity(runs);
+    let mut v: Vec<(usize, usize)> = Vec::with_capacity(runs);
     let mut from = 0;
     while let Some(at) = text[from..].find(&open).map(|k| k + from) {
         let lo = text[..at].rfind('\n').map_or(0, |k| k + 1);
@@ -31,8 +32,18 @@ pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(us
         if !(head.is_empty() || words) {
             return None;
         }
-        let tail = format!("{}){eol}", v.len());
         let after = at + open.len();
+        // A line of the run before, right after its placeholder: a carrier of N numbers
+        // (see `segmented::carry_numbers`), replaced with it.
+        if let Some(last) = v.len().checked_sub(1) {
+            let tail = format!("{last}){eol}");
+            if v[last].1 == lo && text[after..].starts_with(&tail) {
+                v[last].1 = after + tail.len();
+                from = after + tail.len();
+                continue;
+            }
+        }
+        let tail = format!("{}){eol}", v.len());
         if !text[after..].starts_with(&tail) {
             return None;
         }
