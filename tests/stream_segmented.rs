@@ -53,6 +53,12 @@ fn compare(name: &str, text: &str) -> Outcome {
 
 /// [`compare`] with a comment mode.
 fn compare_with(name: &str, text: &str, comments: CommentMode) -> Outcome {
+    compare_full(name, text, comments, false)
+}
+
+/// [`compare_with`]; `noted`: through `to_fanuc_with_notes` (its notes must be the whole
+/// translation's diagnostics).
+fn compare_full(name: &str, text: &str, comments: CommentMode, noted: bool) -> Outcome {
     let dir = scratch();
     let path = dir.join(name);
     std::fs::write(&path, text).expect("write");
@@ -63,14 +69,19 @@ fn compare_with(name: &str, text: &str, comments: CommentMode) -> Outcome {
     let o = TranslateOptions { comments, ..opts(&path, text) };
     let t = translate::to_fanuc(&parsed.unit, &[], &o);
     let mut out = Vec::new();
-    let seg = match segmented::to_fanuc(&path, &o, &mut out, None) {
+    let r = if noted {
+        segmented::to_fanuc_with_notes(&path, &o, &mut out, None)
+    } else {
+        segmented::to_fanuc(&path, &o, &mut out, None).map(|s| (s, vec![]))
+    };
+    let (seg, notes) = match r {
         Ok(s) => s,
         Err(Fallback::NotStraight(why)) => return Outcome::Declined(why),
         Err(f) => return Outcome::Declined(format!("{f:?}")),
     };
     assert!(
-        parsed.diags.is_empty() && t.diags.is_empty() && t.unsupported == 0,
-        "{name}: segmented took a program with diagnostics"
+        parsed.diags.is_empty() && t.diags == notes && t.unsupported == 0,
+        "{name}: segmented took a program with diagnostics, or its notes differ"
     );
     let got = String::from_utf8_lossy(&out);
     if got != t.text {
@@ -430,6 +441,45 @@ fn generated_numbers_near_n99999() {
     }
     println!("high numbers: {same} segmented and identical, {declined} declined: {why:?}");
     assert!(same >= 50, "only {same} of 60 programs with N numbers near N99999 were segmented: {why:?}");
+}
+
+/// A MSG the whole path leaves as a comment (with a note NC320): `to_fanuc_with_notes`
+/// takes it, gives the note, and the streamed verifier leaves the MSG out of the source as
+/// `align_source` does (without that the source's message would meet a move or merge into
+/// an M1 stop, and the verdicts would differ).
+#[test]
+fn unpaired_msg_with_notes() {
+    let mut checked = 0;
+    for (name, text) in [
+        ("um-run.mpf", "R1=1\nMSG(\"ROUGH\")\nG1 X1 F100\nG1 X2\nM0\nM30\n"),
+        ("um-m1.mpf", "R1=1\nG1 X1\nMSG(\"ROUGH\")\nM1\nG1 X2\nM30\n"),
+        ("um-numbered.mpf", "R1=1\nMSG(\"A\")\nN5 M0\nG1 X1\nM30\n"),
+        ("um-if.mpf", "R1=1\nIF R1>0\nMSG(\"IN\")\nG1 X=R1\nENDIF\nG1 X2\nM0\nM30\n"),
+        ("um-both.mpf", "R1=1\nMSG(\"A\")\nG1 X1\nMSG(\"B\")\nM0\nG1 X2\nMSG(\"C\")\nM30\n"),
+        ("um-crlf.mpf", "R1=1\r\nMSG(\"ROUGH\")\r\nG70 G1 X1 F100\r\nM0\r\nM30\r\n"),
+    ] {
+        match compare_full(name, text, CommentMode::Keep, true) {
+            Outcome::Same(eq) => {
+                assert!(eq, "{name} not verified equivalent");
+                checked += 1;
+            }
+            Outcome::Declined(w) => panic!("{name} declined: {w}"),
+        }
+        // Without notes allowed, declined.
+        assert!(matches!(compare(name, text), Outcome::Declined(_)), "{name}");
+    }
+    let mut r = Rng(0x03E5_5A9E);
+    let (mut same, mut with_notes) = (0, 0);
+    for case in 0..60 {
+        let eol = if case % 2 == 0 { "\n" } else { "\r\n" };
+        let text = generated_modes(&mut r, eol);
+        if let Outcome::Same(_) = compare_full(&format!("umg{case}.mpf"), &text, CommentMode::Keep, true) {
+            same += 1;
+            with_notes += usize::from(matches!(compare(&format!("umh{case}.mpf"), &text), Outcome::Declined(_)));
+        }
+    }
+    println!("unpaired MSG: {checked} small programs, {same} generated segmented ({with_notes} with notes)");
+    assert!(same >= 45 && with_notes >= 5, "{same} segmented, {with_notes} with notes");
 }
 
 /// Runs the command line with `--stream` on `text`: its output must be the whole

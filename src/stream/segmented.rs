@@ -36,16 +36,18 @@
 //!   but MSG: a block holding only `MSG("…")` and a lone M0 block right after it become
 //!   one stop with the message. Such an M0 stays a real block of the skeleton (never a
 //!   run's), so the pair meets there. A MSG not so paired becomes a comment with a note
-//!   (NC320): the skeleton's translation then has a diagnostic and the whole path takes
-//!   the file (its notes are rendered from the text). A MSG beside other items is
-//!   declined: the blocks pass splits the block and a piece may pair with the M0 where
-//!   the verifier's aligned source (`translate::align_source`: a MSG is kept only alone
-//!   in its block before a lone M0) does not.
+//!   (NC320) in the skeleton as in the whole file: [`to_fanuc_with_notes`] returns the
+//!   notes for the caller to render, [`to_fanuc`] declines them. A MSG beside other items
+//!   is declined: the blocks pass splits the block and a piece may pair with the M0 where
+//!   the verifier's aligned source (`translate::align_source`: a MSG is kept only alone in
+//!   its block before a lone M0) does not.
 //!
-//! Why verification gives the whole path's verdict: the streamed verifier runs the
-//! source as it is, the whole path runs `align_source` of it, which differs only in MSG
-//! items (dropped unless paired: here every MSG is paired, and a paired one is kept) and
-//! string-valued T words (declined).
+//! Why verification gives the whole path's verdict: the whole path runs `align_source` of
+//! the source, which differs from it only in MSG items (dropped unless paired) and
+//! string-valued T words (declined). The MSG items it drops are found on the skeleton
+//! (`unpaired_messages`: its bodies pair as the source's do, since a lone M0 after a lone
+//! MSG is never a run's) and named in `Index::drop_messages`; the streamed source leaves
+//! them out of the statements it re-reads (`stream::paged`, [`drop_messages`]).
 //!
 //! The source is read two or three times: a scan builds the skeleton (and collects the N
 //! values jumps name); when such a value is also the N of a run block, a second scan
@@ -60,10 +62,12 @@ use write::{placeholders, Writer};
 use super::lines::NotStreamable;
 use super::translate::{fast, Fallback};
 use super::{Index, ProgressFn, WRITE_BYTES};
+use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::Unit;
+use crate::ir::{ItemKind, Stmt, StmtKind, Unit};
+use crate::passes::words::{is_lone_m0, msg_text};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
 use std::path::Path;
@@ -80,13 +84,36 @@ pub struct Segmented {
 
 /// Translates `path` (Sinumerik) to FANUC into `out` as a skeleton translated whole with its
 /// runs of straight blocks streamed (see the module comment). On `Err` nothing useful was
-/// written (the caller discards `out` and translates whole).
+/// written (the caller discards `out` and translates whole). Declines a translation with
+/// notes (a MSG left as a comment, a dropped STOPRE): [`to_fanuc_with_notes`] takes those.
 pub fn to_fanuc(
     path: &Path,
     opts: &TranslateOptions,
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Segmented, Fallback> {
+    segment(path, opts, out, progress, false).map(|(s, _)| s)
+}
+
+/// [`to_fanuc`] of a program whose translation may have notes (remarks, no warning or
+/// error): they are returned, as `translate::to_fanuc` gives them for the whole file
+/// (spans into the source), for the caller to render (`excerpt::render`).
+pub fn to_fanuc_with_notes(
+    path: &Path,
+    opts: &TranslateOptions,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
+    segment(path, opts, out, progress, true)
+}
+
+fn segment(
+    path: &Path,
+    opts: &TranslateOptions,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+    notes_ok: bool,
+) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
     if opts.number_blocks.is_some() || opts.main_is_sub {
         return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
     }
@@ -107,12 +134,18 @@ pub fn to_fanuc(
     if u64::from((sk.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
         carry_numbers(&mut sk, fresh)?;
     }
+    // A MSG the whole path's verifier leaves out of the source (`align_source`) is left
+    // out of the streamed source's statements too (`Index::drop_messages`).
+    let mut drop_msgs = Vec::new();
+    unpaired_messages(&sk.body, &mut drop_msgs);
+    drop_msgs.sort_unstable();
     let mut lone = program.clone();
     program.body = std::mem::take(&mut sk.body);
     let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
     let t = translate::to_fanuc(&unit, &[], opts);
     drop(unit);
-    if !t.diags.is_empty() || t.unsupported > 0 {
+    let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note);
+    if !(t.diags.is_empty() || notes_ok && notes_only) || t.unsupported > 0 {
         return Err(Fallback::Diagnostics);
     }
     let eol = opts.line_ending.as_str();
@@ -126,6 +159,7 @@ pub fn to_fanuc(
     let lone_unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
     let head = translate::to_fanuc(&lone_unit, &[], opts);
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
+    let notes = t.diags;
     let mut w = Writer {
         keep: &sk.keep,
         run_g70: &sk.run_g70,
@@ -146,8 +180,9 @@ pub fn to_fanuc(
         bad: false,
     };
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
+    let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
+    index.drop_messages = drop_msgs;
     if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
@@ -162,7 +197,47 @@ pub fn to_fanuc(
     if let Some(e) = w.io {
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
-    Ok(Segmented { blocks: index.blocks, index, inputs })
+    Ok((Segmented { blocks: index.blocks, index, inputs }, notes))
+}
+
+/// The span starts of the MSG items `translate::align_source` drops from `body` (all but a
+/// MSG alone in its block right before a lone M0 block in the same body). The skeleton
+/// pairs as the source does: a lone M0 right after a lone MSG is never a run's.
+fn unpaired_messages(body: &[Stmt], out: &mut Vec<u32>) {
+    for (k, s) in body.iter().enumerate() {
+        let StmtKind::Block(b) = &s.kind else {
+            for child in crate::ir::visit::child_bodies(&s.kind) {
+                unpaired_messages(child, out);
+            }
+            continue;
+        };
+        let stop_follows = matches!(body.get(k + 1).map(|n| &n.kind), Some(StmtKind::Block(n)) if is_lone_m0(n));
+        if msg_text(b).is_some() && stop_follows {
+            continue;
+        }
+        out.extend(b.items.iter().filter(|i| matches!(i.kind, ItemKind::Message { .. })).map(|i| i.span.lo));
+    }
+}
+
+/// Leaves out of a re-read top-level statement the MSG items `drop` (sorted span starts:
+/// `Index::drop_messages`) names.
+pub(crate) fn drop_messages(s: &mut Stmt, drop: &[u32]) {
+    let keep =
+        |i: &crate::ir::Item| !matches!(i.kind, ItemKind::Message { .. }) || drop.binary_search(&i.span.lo).is_err();
+    match &mut s.kind {
+        StmtKind::Block(b) => b.items.retain(keep),
+        StmtKind::If(i) => {
+            i.then_body.iter_mut().for_each(|s| drop_messages(s, drop));
+            if let Some(e) = &mut i.else_part {
+                e.body.iter_mut().for_each(|s| drop_messages(s, drop));
+            }
+        }
+        StmtKind::While(w) => w.body.iter_mut().for_each(|s| drop_messages(s, drop)),
+        StmtKind::Loop(l) => l.body.iter_mut().for_each(|s| drop_messages(s, drop)),
+        StmtKind::For(f) => f.body.iter_mut().for_each(|s| drop_messages(s, drop)),
+        StmtKind::Repeat(r) => r.body.iter_mut().for_each(|s| drop_messages(s, drop)),
+        StmtKind::Do(d) => d.body.iter_mut().for_each(|s| drop_messages(s, drop)),
+    }
 }
 
 /// Most carrier blocks (run N numbers) a skeleton takes.
