@@ -533,7 +533,10 @@ fn cli_streams_a_large_macro_program() {
     let dir = scratch();
     let path = dir.join("bigmacro.mpf");
     let mut r = Rng(0xB16);
-    let mut text = String::from("%_N_BIGMACRO_MPF\nR1=5 R2=0\nN1 G90 G71\nIF R1>3 GOTOF N77777\n");
+    // What Siemens post-processors put on top: a MSG (a comment with a note), G70 (inch),
+    // then G71 again; AC()/IC() in the macro part.
+    let mut text =
+        String::from("%_N_BIGMACRO_MPF\nMSG(\"ROUGHING T1\")\nG70\nR1=5 R2=0\nN1 G90 G71\nIF R1>3 GOTOF N77777\n");
     let (mut numbers, mut middle) = (vec![], false);
     while text.len() < 8_500_000 {
         // Numbers repeat from run to run (the labels pass would wrap past N99999).
@@ -541,7 +544,7 @@ fn cli_streams_a_large_macro_program() {
         text.push_str(&cam_run(&mut r, 1000, &mut next, "\n", &mut numbers));
         if text.len() > 4_000_000 && !middle {
             // N numbers of the runs end in 0: this one is unique.
-            text.push_str("N77777 G0 Z10\nR2=R2+1\nIF R2<2 GOTOB N1\n");
+            text.push_str("N77777 G0 Z10\nG1 X=IC(R1)\nR2=R2+1\nIF R2<2 GOTOB N1\n");
             middle = true;
         }
     }
@@ -561,7 +564,10 @@ fn cli_streams_a_large_macro_program() {
     // What the library writes (identical to the whole translation: the tests above; the
     // whole-file path would need gigabytes here).
     let mut lib = Vec::new();
-    segmented::to_fanuc(&path, &opts(&path, &text), &mut lib, None).map_err(|e| format!("{e:?}")).expect("segmented");
+    segmented::to_fanuc_with_notes(&path, &opts(&path, &text), &mut lib, None)
+        .map_err(|e| format!("{e:?}"))
+        .expect("segmented");
+    assert!(stderr.contains("NC320"), "{stderr}");
     assert!(std::fs::read(&out).expect("output") == lib);
 }
 
