@@ -59,6 +59,11 @@ fn compare_with(name: &str, text: &str, comments: CommentMode) -> Outcome {
 /// [`compare_with`]; `noted`: through `to_fanuc_with_notes` (its notes must be the whole
 /// translation's diagnostics).
 fn compare_full(name: &str, text: &str, comments: CommentMode, noted: bool) -> Outcome {
+    compare_tools(name, text, comments, noted, &[])
+}
+
+/// [`compare_full`] with a tool map (`--tool-map NAME=n`).
+fn compare_tools(name: &str, text: &str, comments: CommentMode, noted: bool, tools: &[(&str, u32)]) -> Outcome {
     let dir = scratch();
     let path = dir.join(name);
     std::fs::write(&path, text).expect("write");
@@ -66,7 +71,8 @@ fn compare_full(name: &str, text: &str, comments: CommentMode, noted: bool) -> O
     let loaded = nctrans::load(&mut db, &path.display().to_string(), text.as_bytes(), None);
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
-    let o = TranslateOptions { comments, ..opts(&path, text) };
+    let mut o = TranslateOptions { comments, ..opts(&path, text) };
+    o.tool_map.extend(tools.iter().map(|(k, v)| (k.to_string(), *v)));
     let t = translate::to_fanuc(&parsed.unit, &[], &o);
     let mut out = Vec::new();
     let r = if noted {
@@ -482,6 +488,25 @@ fn unpaired_msg_with_notes() {
     assert!(same >= 45 && with_notes >= 5, "{same} segmented, {with_notes} with notes");
 }
 
+/// Tool names (`T="DRILL"`, with a tool map): the whole path numbers them in the output and
+/// in the source it verifies against; the streamed source does the same (without that the
+/// tool changes would differ and the verdicts with them).
+#[test]
+fn tool_names_with_a_tool_map() {
+    let tools = [("DRILL", 5), ("MILL_10", 12)];
+    for (name, text) in [
+        ("tool.mpf", "R1=1\nT=\"DRILL\"\nM6\nG1 X1 F100\nT=\"MILL_10\" M6\nG1 X2\nM30\n"),
+        ("tool-if.mpf", "R1=1\r\nIF R1>0\r\nT=\"DRILL\"\r\nENDIF\r\nM6\r\nG1 X1 F100\r\nM30\r\n"),
+    ] {
+        match compare_tools(name, text, CommentMode::Keep, false, &tools) {
+            Outcome::Same(eq) => assert!(eq, "{name} not verified equivalent"),
+            Outcome::Declined(w) => panic!("{name} declined: {w}"),
+        }
+        // Without the map: an error, declined.
+        assert!(matches!(compare(name, text), Outcome::Declined(_)), "{name}");
+    }
+}
+
 /// Runs the command line with `--stream` on `text`: its output must be the whole
 /// translation's (what the fallback writes when the segmented path declines).
 fn cli_stream_matches_whole(name: &str, text: &str) {
@@ -514,6 +539,7 @@ fn declines_what_it_does_not_handle() {
         // Beside other items (the blocks pass's pieces pair where the aligned source does not).
         ("msg-beside.mpf", "R1=1\nMSG(\"HI\") R2=1\nM0\nM30\n"),
         ("call.mpf", "R1=1\nSUBPROG\nG1 X1\nM30\n"),
+        // A tool name without a tool map (an error).
         ("string.mpf", "R1=1\nT=\"DRILL\"\nG1 X1\nM30\n"),
     ] {
         match compare(name, text) {

@@ -183,10 +183,10 @@ pub struct Index {
     pub diags: Vec<Diagnostic>,
     /// `; nctrans: set …` header comment lines (evaluator inputs), as text.
     pub header: String,
-    /// Span starts (sorted) of MSG items a run of the program leaves out: those
-    /// `translate::align_source` drops, for verifying a segmented translation as the whole
-    /// path does (`segmented::drop_messages`). Empty but there.
-    pub drop_messages: Vec<u32>,
+    /// What a run of the program changes in the statements it re-reads, as
+    /// `translate::align_source` does for the whole path: set for verifying a segmented
+    /// translation (`segmented::SourceAlign`), empty elsewhere.
+    pub align: segmented::SourceAlign,
 }
 
 /// The dialect reader behind a scan.
@@ -684,7 +684,7 @@ fn scan_with(
         blocks,
         diags,
         header,
-        drop_messages: Vec::new(),
+        align: segmented::SourceAlign::default(),
     })
 }
 

@@ -132,7 +132,7 @@ impl Pager {
             ops: ChunkOps::new(self.ix.file, chunk.op_base, chunk.ops),
             failed: None,
             direct: 0,
-            drop_messages: &self.ix.drop_messages,
+            align: &self.ix.align,
         };
         let mut starts = Vec::with_capacity(CHUNK_OPS);
         super::reread(lines, &self.ix, chunk, self.direct.get(), &mut sink, &mut |lo, line| {
@@ -254,8 +254,8 @@ impl Pager {
 /// A page's ops as a re-read makes them.
 struct Sink<'a> {
     ops: ChunkOps,
-    /// `Index::drop_messages`.
-    drop_messages: &'a [u32],
+    /// `Index::align`.
+    align: &'a super::segmented::SourceAlign,
     /// The first error flattening a statement (the page is then not used).
     failed: Option<Diagnostic>,
     /// Lines read straight into compact ops.
@@ -264,8 +264,8 @@ struct Sink<'a> {
 
 impl RereadSink for Sink<'_> {
     fn stmt(&mut self, mut s: Stmt) {
-        if !self.drop_messages.is_empty() {
-            super::segmented::drop_messages(&mut s, self.drop_messages);
+        if !self.align.is_empty() {
+            self.align.stmt(&mut s);
         }
         if self.failed.is_none() {
             self.failed = self.ops.stmt(s).err();

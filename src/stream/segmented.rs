@@ -44,10 +44,11 @@
 //!
 //! Why verification gives the whole path's verdict: the whole path runs `align_source` of
 //! the source, which differs from it only in MSG items (dropped unless paired) and
-//! string-valued T words (declined). The MSG items it drops are found on the skeleton
+//! string-valued words (a tool name the translation maps becomes its number). The MSG items it drops are found on the skeleton
 //! (`unpaired_messages`: its bodies pair as the source's do, since a lone M0 after a lone
-//! MSG is never a run's) and named in `Index::drop_messages`; the streamed source leaves
-//! them out of the statements it re-reads (`stream::paged`, [`drop_messages`]).
+//! MSG is never a run's) and named in `Index::align`; the streamed source leaves them out
+//! of the statements it re-reads (`stream::paged`, [`SourceAlign`]), and numbers the
+//! string-valued T words there as the whole path does.
 //!
 //! The source is read two or three times: a scan builds the skeleton (and collects the N
 //! values jumps name); when such a value is also the N of a run block, a second scan
@@ -66,9 +67,10 @@ use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{ItemKind, Stmt, StmtKind, Unit};
+use crate::ir::{Expr, ExprKind, ItemKind, Number, Stmt, StmtKind, Unit, WordValue};
 use crate::passes::words::{is_lone_m0, msg_text};
 use crate::translate::{self, TranslateOptions};
+use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -153,6 +155,7 @@ fn segment(
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
     fresh_numbers_ok(&t.text, &places, &sk)?;
     let inputs = crate::translate::r_param_inputs(&t.symbol_map);
+    let tools = t.symbol_map.tools.clone();
     // A block the fast path declines is translated alone, as the straight stream does: the
     // header of an empty program comes first, then the block.
     lone.body = vec![];
@@ -182,7 +185,7 @@ fn segment(
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
-    index.drop_messages = drop_msgs;
+    index.align = SourceAlign { messages: drop_msgs, tools };
     if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
@@ -219,24 +222,55 @@ fn unpaired_messages(body: &[Stmt], out: &mut Vec<u32>) {
     }
 }
 
-/// Leaves out of a re-read top-level statement the MSG items `drop` (sorted span starts:
-/// `Index::drop_messages`) names.
-pub(crate) fn drop_messages(s: &mut Stmt, drop: &[u32]) {
-    let keep =
-        |i: &crate::ir::Item| !matches!(i.kind, ItemKind::Message { .. }) || drop.binary_search(&i.span.lo).is_err();
-    match &mut s.kind {
-        StmtKind::Block(b) => b.items.retain(keep),
-        StmtKind::If(i) => {
-            i.then_body.iter_mut().for_each(|s| drop_messages(s, drop));
-            if let Some(e) = &mut i.else_part {
-                e.body.iter_mut().for_each(|s| drop_messages(s, drop));
+/// `translate::align_source` for a streamed source: what the whole path's verifier changes
+/// in the source before running it, applied to each statement a run re-reads
+/// (`stream::paged`). Both kinds of item are in the macro part only (never in a plain line).
+#[derive(Clone, Debug, Default)]
+pub struct SourceAlign {
+    /// Span starts (sorted) of the MSG items left out (all but the paired ones).
+    messages: Vec<u32>,
+    /// Tool name → T number of the tools the translation maps (string-valued words).
+    tools: BTreeMap<String, u32>,
+}
+
+impl SourceAlign {
+    pub fn is_empty(&self) -> bool {
+        self.messages.is_empty() && self.tools.is_empty()
+    }
+
+    /// Aligns a re-read top-level statement.
+    pub fn stmt(&self, s: &mut Stmt) {
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                let drop = &self.messages;
+                b.items
+                    .retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || drop.binary_search(&i.span.lo).is_err());
+                for it in &mut b.items {
+                    if let ItemKind::Word(w) = &mut it.kind {
+                        if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), .. }) = &mut w.value {
+                            let n = match &*kind {
+                                ExprKind::Str(name) => self.tools.get(name).copied(),
+                                _ => None,
+                            };
+                            if let Some(n) = n {
+                                *kind = ExprKind::Num(Number { value: f64::from(n), point: false });
+                            }
+                        }
+                    }
+                }
             }
+            StmtKind::If(i) => {
+                i.then_body.iter_mut().for_each(|s| self.stmt(s));
+                if let Some(e) = &mut i.else_part {
+                    e.body.iter_mut().for_each(|s| self.stmt(s));
+                }
+            }
+            StmtKind::While(w) => w.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Loop(l) => l.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::For(f) => f.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Repeat(r) => r.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Do(d) => d.body.iter_mut().for_each(|s| self.stmt(s)),
         }
-        StmtKind::While(w) => w.body.iter_mut().for_each(|s| drop_messages(s, drop)),
-        StmtKind::Loop(l) => l.body.iter_mut().for_each(|s| drop_messages(s, drop)),
-        StmtKind::For(f) => f.body.iter_mut().for_each(|s| drop_messages(s, drop)),
-        StmtKind::Repeat(r) => r.body.iter_mut().for_each(|s| drop_messages(s, drop)),
-        StmtKind::Do(d) => d.body.iter_mut().for_each(|s| drop_messages(s, drop)),
     }
 }
 

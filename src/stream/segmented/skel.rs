@@ -212,7 +212,6 @@ impl Skel {
                     },
                     ItemKind::Word(w) => match &w.value {
                         WordValue::Expr(e) => match &e.kind {
-                            ExprKind::Str(_) => why = why.or(Some("a string-valued word")),
                             _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
                                 why = why.or(Some("a computed G word"));
                             }
