@@ -157,6 +157,8 @@ fn cam_run(r: &mut Rng, n: usize, eol: &str, arc: &mut bool, ns: &mut Vec<u32>) 
                 *arc = false;
             }
             8 => line.push_str(&format!("F{}.", 100 + r.below(900))),
+            // What the fast path leaves to the passes: a dwell, a dropped G43/G49 (warned).
+            9 if r.chance(30) => line.push_str(r.pick(&["G4 P200", "G43 Z9. H1", "G49", "G4 X0.5"])),
             _ => line.push_str(&format!("(PASS {})", r.below(99))),
         }
         if r.chance(5) && !line.starts_with('N') {
@@ -181,7 +183,11 @@ fn generated(seed: u64, eol: &str) -> String {
     if r.chance(50) {
         t.push_str(&format!("(nctrans: set #1=2. #100=3.){eol}"));
     }
-    t.push_str(&format!("#100=[#100+1]{eol}#101=2.5{eol}G21 G17 G90 G94{eol}G0 X0. Y0. Z5.{eol}"));
+    t.push_str(&format!("#100=[#100+1]{eol}#101=2.5{eol}"));
+    if r.chance(30) {
+        t.push_str(&format!("G43 Z20. H1{eol}"));
+    }
+    t.push_str(&format!("G21 G17 G90 G94{eol}G0 X0. Y0. Z5.{eol}"));
     let mut arc = false;
     let mut ns: Vec<u32> = Vec::new();
     let mut counter = 130;
