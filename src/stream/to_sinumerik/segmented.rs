@@ -365,7 +365,8 @@ fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)
     let mut from = 0;
     while let Some(at) = text[from..].find(MARK).map(|k| k + from) {
         let lo = at.checked_sub(2)?;
-        if !(text[lo..at] == *"; " && (lo == 0 || text[..lo].ends_with('\n') || text[..lo].ends_with('\r'))) {
+        let line_start = |p: &str| p.is_empty() || p.ends_with('\n') || p.ends_with('\r');
+        if !(text.get(lo..at) == Some("; ") && text.get(..lo).is_some_and(line_start)) {
             return None;
         }
         let tail = format!("{}{eol}", v.len());
