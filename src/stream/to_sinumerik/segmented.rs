@@ -42,9 +42,12 @@
 //!   holds the marker anywhere else is declined).
 //!
 //! Any diagnostic of the source, or of the skeleton or a block alone other than the
-//! straight stream's [`KEPT_WARNING`] (kept, in file order as the words pass gives them),
-//! declines, as do several programs, `nctrans: set`
-//! lines with CR line ends, N values above 2^24.
+//! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
+//! words pass gives them), declines, as do several programs, `nctrans: set` lines with CR
+//! line ends and N values above 2^24. The source is read two or three times: a scan
+//! builds the skeleton (and collects the N values jumps name); when such a value is also
+//! the N of a run block, a second scan builds it again with those blocks kept out of
+//! runs; the writing scan (`writer`) fills the runs.
 
 use super::super::lines::NotStreamable;
 use super::super::translate::Fallback;
