@@ -474,6 +474,20 @@ fn unpaired_msg_with_notes() {
         // Without notes allowed, declined.
         assert!(matches!(compare(name, text), Outcome::Declined(_)), "{name}");
     }
+    // A MSG beside other items: the blocks pass splits it off, and as the last piece it
+    // pairs with a lone M0 (where the whole path's aligned source drops it: both verdicts
+    // say so alike), else it is a comment with a note.
+    for (name, text) in [
+        ("um-beside.mpf", "R1=1\nMSG(\"HI\") R2=1\nM0\nM30\n"),
+        ("um-beside-last.mpf", "R1=1\nR2=1 MSG(\"HI\")\nM0\nG1 X1\nM30\n"),
+        ("um-beside-m0.mpf", "R1=1\nMSG(\"HI\") M0\nG1 X1\nM30\n"),
+        ("um-beside-move.mpf", "R1=1\nMSG(\"HI\") G1 X=R1\nG1 X2\nM0\nM30\n"),
+    ] {
+        match compare_full(name, text, CommentMode::Keep, true) {
+            Outcome::Same(_) => checked += 1,
+            Outcome::Declined(w) => panic!("{name} declined: {w}"),
+        }
+    }
     let mut r = Rng(0x03E5_5A9E);
     let (mut same, mut with_notes) = (0, 0);
     for case in 0..60 {
@@ -536,8 +550,6 @@ fn declines_what_it_does_not_handle() {
         // A MSG left as a comment (its note needs the whole path's rendering).
         ("msg.mpf", "R1=1\nMSG(\"HI\")\nG1 X1\nM30\n"),
         ("msg-numbered-m0.mpf", "R1=1\nMSG(\"HI\")\nN5 M0\nM30\n"),
-        // Beside other items (the blocks pass's pieces pair where the aligned source does not).
-        ("msg-beside.mpf", "R1=1\nMSG(\"HI\") R2=1\nM0\nM30\n"),
         ("call.mpf", "R1=1\nSUBPROG\nG1 X1\nM30\n"),
         // A tool name without a tool map (an error).
         ("string.mpf", "R1=1\nT=\"DRILL\"\nG1 X1\nM30\n"),

@@ -38,9 +38,9 @@
 //!   run's), so the pair meets there. A MSG not so paired becomes a comment with a note
 //!   (NC320) in the skeleton as in the whole file: [`to_fanuc_with_notes`] returns the
 //!   notes for the caller to render, [`to_fanuc`] declines them. A MSG beside other items
-//!   is declined: the blocks pass splits the block and a piece may pair with the M0 where
-//!   the verifier's aligned source (`translate::align_source`: a MSG is kept only alone in
-//!   its block before a lone M0) does not.
+//!   is split off by the blocks pass and its piece may pair the same way: a lone M0 after
+//!   any block with a MSG stays in the skeleton, so the skeleton holds every pair the
+//!   whole file has (and the verifier's source is aligned alike, below).
 //!
 //! Why verification gives the whole path's verdict: the whole path runs `align_source` of
 //! the source, which differs from it only in MSG items (dropped unless paired) and

@@ -118,10 +118,10 @@ pub(super) struct Skel {
     pub(super) touched: Touched,
     /// The G70 mode at the start of each run.
     pub(super) run_g70: Vec<bool>,
-    /// The last statement was a block holding only a MSG.
+    /// The last statement was a block holding a MSG.
     pub(super) after_msg: bool,
-    /// Where the lone M0 blocks right after such a MSG start: kept in the skeleton (the
-    /// words pass pairs the two).
+    /// Where the lone M0 blocks right after such a block start: kept in the skeleton (the
+    /// words pass may pair the two).
     pub(super) forced: Vec<u32>,
     pub(super) stop: Option<String>,
 }
@@ -194,16 +194,9 @@ impl Skel {
                 }
             }
             modes.items(&b.items, &mut Touched::default());
-            let lone_msg = crate::passes::words::msg_text(b).is_some();
             for it in &b.items {
                 match &it.kind {
                     ItemKind::Call(_) => why = why.or(Some("a call of another program")),
-                    // A MSG alone in its block is paired with a lone M0 after it, or left
-                    // as a comment with a note (declined: see `to_fanuc`); beside other
-                    // items the pieces the blocks pass makes may pair where the verifier's
-                    // aligned source does not.
-                    ItemKind::Message { .. } if lone_msg => {}
-                    ItemKind::Message { .. } => why = why.or(Some("a MSG beside other items")),
                     ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
                     ItemKind::Goto(g) => match &g.target {
                         Target::Number(n) => targets.push(n.value),
@@ -285,7 +278,8 @@ impl WordsSink for Skel {
                 self.touched = t;
                 return;
             }
-            self.after_msg = crate::passes::words::msg_text(b).is_some();
+            // Any block with a MSG: its last piece (`passes::blocks`) may be the MSG alone.
+            self.after_msg = b.items.iter().any(|i| matches!(i.kind, ItemKind::Message { .. }));
         }
         self.close_run();
         self.macro_stmt(s);
