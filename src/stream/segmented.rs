@@ -153,7 +153,7 @@ fn segment(
     let eol = opts.line_ending.as_str();
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
-    fresh_numbers_ok(&t.text, &places, &sk)?;
+    fresh_numbers_ok(&t.text, eol, &places, &sk)?;
     let inputs = crate::translate::r_param_inputs(&t.symbol_map);
     let tools = t.symbol_map.tools.clone();
     // A block the fast path declines is translated alone, as the straight stream does: the
@@ -327,10 +327,10 @@ fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
 /// Checks that no N number the labels pass gave a jump target in the translated skeleton
 /// `text` (an N at a line start, outside the placeholders, that no skeleton block has in
 /// the source) is one a run block has: the whole translation would have skipped it.
-fn fresh_numbers_ok(text: &str, places: &[(usize, usize)], sk: &skel::Skel) -> Result<(), Fallback> {
+fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &skel::Skel) -> Result<(), Fallback> {
     let mut at = 0;
     let mut places = places.iter().peekable();
-    for line in text.split_inclusive('\n') {
+    for line in text.split_inclusive(eol) {
         let lo = at;
         at += line.len();
         while places.next_if(|p| p.1 <= lo).is_some() {}

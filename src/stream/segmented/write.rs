@@ -20,7 +20,8 @@ pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(us
     let mut v: Vec<(usize, usize)> = Vec::with_capacity(runs);
     let mut from = 0;
     while let Some(at) = text[from..].find(&open).map(|k| k + from) {
-        let lo = text[..at].rfind('\n').map_or(0, |k| k + 1);
+        // The line start: after the last LF, or CR (a file with CR line ends).
+        let lo = text[..at].rfind(['\n', '\r']).map_or(0, |k| k + 1);
         let head = &text[lo..at];
         // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
         let words = head.strip_suffix(' ').is_some_and(|h| {
