@@ -44,11 +44,17 @@
 //!
 //! Why verification gives the whole path's verdict: the whole path runs `align_source` of
 //! the source, which differs from it only in MSG items (dropped unless paired) and
-//! string-valued words (a tool name the translation maps becomes its number). The MSG items it drops are found on the skeleton
-//! (`unpaired_messages`: its bodies pair as the source's do, since a lone M0 after a lone
-//! MSG is never a run's) and named in `Index::align`; the streamed source leaves them out
-//! of the statements it re-reads (`stream::paged`, [`SourceAlign`]), and numbers the
-//! string-valued T words there as the whole path does.
+//! string-valued words (a tool name the translation maps becomes its number). The MSG
+//! items it drops are found on the skeleton (`unpaired_messages`: its bodies pair as the
+//! source's do, since a lone M0 after a block with a MSG is never a run's) and named in
+//! `Index::align`; the streamed source leaves them out of the statements it re-reads
+//! (`stream::paged`, [`SourceAlign`]) and numbers the tool names there alike.
+//!
+//! Still declined (the whole path takes them): calls of other programs, PROC parameters,
+//! more than one program, computed jumps and G words, N numbers above 16777216 or near
+//! N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
+//! the translation has a warning or an error on (notes only through
+//! [`to_fanuc_with_notes`]).
 //!
 //! The source is read two or three times: a scan builds the skeleton (and collects the N
 //! values jumps name); when such a value is also the N of a run block, a second scan
