@@ -164,6 +164,11 @@ impl WordsSink for Writer<'_> {
             return false;
         }
         self.enter();
+        // The usual CAM line in one loop (it changes no mode), as the straight stream does.
+        if self.fast.plain_words(meta, words, &mut self.buf) {
+            self.flush_some();
+            return true;
+        }
         let g70 = self.fast.g70;
         if self.fast.words(meta, words, line, &mut self.buf).is_err() {
             // Nothing was written; the block comes again as a statement (still a run block).
