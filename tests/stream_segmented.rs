@@ -554,12 +554,19 @@ fn cli_stream_matches_whole(name: &str, text: &str) {
 #[test]
 fn declines_what_it_does_not_handle() {
     for (name, text) in [
-        // A MSG left as a comment (its note needs the whole path's rendering).
+        // A MSG left as a comment: `to_fanuc` declines its note (the command line takes it
+        // through `to_fanuc_with_notes`, `unpaired_msg_with_notes`).
         ("msg.mpf", "R1=1\nMSG(\"HI\")\nG1 X1\nM30\n"),
         ("msg-numbered-m0.mpf", "R1=1\nMSG(\"HI\")\nN5 M0\nM30\n"),
         ("call.mpf", "R1=1\nSUBPROG\nG1 X1\nM30\n"),
         // A tool name without a tool map (an error).
         ("string.mpf", "R1=1\nT=\"DRILL\"\nG1 X1\nM30\n"),
+        // A computed jump target.
+        ("goto-string.mpf", "DEF STRING[16] T1=\"FIN\"\nG1 X1\nGOTOF T1\nG0 X9\nFIN: M30\n"),
+        // A PROC with parameters.
+        ("proc.mpf", "PROC PMAIN(REAL A)\nR1=A\nG1 X1\nM30\n"),
+        // A computed G word.
+        ("g-computed.mpf", "R1=1\nG=R1 X1\nG1 X2\nM30\n"),
     ] {
         match compare(name, text) {
             Outcome::Declined(_) => {}
@@ -567,6 +574,12 @@ fn declines_what_it_does_not_handle() {
         }
         cli_stream_matches_whole(name, text);
     }
+    // `--number-blocks` (every block numbered by its place in the whole program).
+    let text = "R1=1\nG1 X1\nG1 X=R1\nM30\n";
+    let path = scratch().join("numbered.mpf");
+    std::fs::write(&path, text).expect("write");
+    let o = TranslateOptions { number_blocks: Some(10), ..opts(&path, text) };
+    assert!(segmented::to_fanuc_with_notes(&path, &o, &mut Vec::new(), None).is_err());
 }
 
 /// The command line takes the segmented route for a large program with a macro part (no
