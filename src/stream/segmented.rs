@@ -74,6 +74,8 @@ pub struct Segmented {
     /// `#n=0` for the R parameters the translation maps: the output side's inputs when
     /// verifying (as `translate::verify` sets them).
     pub inputs: Vec<Input>,
+    /// The skeleton's translation's symbol map: the names the whole translation uses.
+    pub symbol_map: translate::SymbolMap,
 }
 
 /// Whether `meta`'s N value is one a jump names (such a block stays in the skeleton).
@@ -358,7 +360,7 @@ pub fn to_fanuc(
     if let Some(e) = w.io {
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
-    Ok(Segmented { blocks: index.blocks, index, inputs })
+    Ok(Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map })
 }
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
