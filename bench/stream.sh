@@ -2,7 +2,8 @@
 # Streaming benchmark (issue 7): generated CAM programs of 1 M and 10 M blocks (about 40 and
 # 400 MB) in each dialect and a macro-heavy program of 1 M blocks per dialect, each through
 # `parse --summary`, `run` (text trace to /dev/null) and translation with verification, on
-# one core (taskset -c 0), release build; blocks/s and peak RSS from /usr/bin/time.
+# one core (taskset -c 0), release build; blocks/s and peak RSS from /usr/bin/time. The CAM
+# programs are also run and translated with a small macro part (segmented streaming).
 # LinuxCNC rs274 on the same motion is the peer when installed. Also runs the
 # million-block differential fast-path test in release. Results go in bench/README.md.
 #
@@ -66,6 +67,24 @@ for n in $SIZES; do
   if [ "$n" -gt 1000000 ]; then
     rm -f "$OUT/cam-$n.mpf" "$OUT/cam-$n.nc"
   fi
+  # The same motion cut into three runs by a small macro part (gen_cam.py --macro): it
+  # streams segmented. Capped at 4 GiB of address space, so that a build whose segmented
+  # route declined (and read the file whole) fails here instead of filling the machine.
+  for d in sinumerik fanuc; do
+    ext=$([ "$d" = fanuc ] && echo nc || echo mpf)
+    to=$([ "$d" = fanuc ] && echo sinumerik || echo fanuc)
+    oext=$([ "$d" = fanuc ] && echo mpf || echo nc)
+    f="$OUT/cam-macro-$n.$ext"
+    [ -f "$f" ] || python3 bench/gen_cam.py "$d" "$n" "$f" --macro
+    echo "== $d CAM with a macro part, $n blocks ($(du -m "$f" | cut -f1) MB)"
+    (
+      ulimit -v 4194304
+      measure "run (text trace to /dev/null)" "$n" "$BIN" run --max-steps $STEPS "$f"
+      measure "--to $to -o (verified, segmented)" "$n" "$BIN" --to $to "$f" -o "$OUT/cam-macro-$n.out.$oext" --max-steps $STEPS
+    )
+    rm -f "$OUT/cam-macro-$n.out.$oext"
+    [ "$n" -gt 1000000 ] && rm -f "$f"
+  done
 done
 
 for d in sinumerik fanuc; do
