@@ -145,6 +145,10 @@ fn library(input: &Path) {
     w(sin.join("seg1.mpf"), sinumerik_macro(1, 5, "\n", "G0 X=R8 Y1\nIF R8==0\nG0 Z7\nENDIF\n"));
     w(sin.join("seg2.mpf"), sinumerik_macro(2, 4, "\r\n", ""));
     w(sin.join("seg3.mpf"), format!("%_N_SEGNAMED_MPF\n{}", sinumerik_macro(3, 3, "\n", "")));
+    // A byte-order mark (kept in the output).
+    w(sin.join("seg4.mpf"), format!("\u{feff}{}", sinumerik_macro(8, 3, "\n", "")));
+    // A subprogram no file calls (translated as a subprogram: segmented declines).
+    w(sin.join("lone.spf"), sinumerik_macro(9, 2, "\n", "").replace("M30", "M17"));
     // A tool name (the library's tool table; the segmented stream declines it).
     w(sin.join("tools.mpf"), sinumerik_macro(4, 3, "\n", "T=\"MILL_A\" M6\n"));
     w(sin.join("drill.mpf"), "R1=1\nT=\"ZED_1\" M6\nG1 X=R1 F100\nM30\n".into());
@@ -269,12 +273,12 @@ fn batches_stream_macro_programs_with_the_same_outputs_map_and_report() {
     library(&input);
 
     let (streamed, r) = both_ways(&input, &dir.join("to-fanuc"), Dialect::Fanuc);
-    for must in ["sin/seg1.mpf", "sin/seg2.mpf", "sin/seg3.mpf"] {
+    for must in ["sin/seg1.mpf", "sin/seg2.mpf", "sin/seg3.mpf", "sin/seg4.mpf"] {
         assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
         let f = r.files.iter().find(|f| f.path == must).expect("record");
         assert_eq!(f.status, batch::Status::Verified, "{must}: {}", f.summary);
     }
-    for never in ["sin/tools.mpf", "sin/caller.mpf", "sin/subx.spf", "sin/warn.mpf", "sin/drill.mpf"] {
+    for never in ["sin/tools.mpf", "sin/caller.mpf", "sin/subx.spf", "sin/warn.mpf", "sin/drill.mpf", "sin/lone.spf"] {
         assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
     }
     assert!(r.maps.tools.contains_key("MILL_A"), "{:?}", r.maps.tools);
@@ -323,7 +327,7 @@ fn streamed_library_scans_report_what_whole_scans_do() {
             checked += 1;
         }
     }
-    assert!(checked >= 9, "{checked}");
+    assert!(checked >= 11, "{checked}");
 }
 
 fn cli(args: &[&str]) -> Option<i32> {
