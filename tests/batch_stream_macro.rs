@@ -166,6 +166,12 @@ fn library(input: &Path) {
     w(fan.join("dup1.nc"), fanuc_macro(15, 7400, 2, &[], ""));
     w(fan.join("dup2.nc"), fanuc_macro(16, 7400, 2, &[], ""));
     w(fan.join("warn.nc"), fanuc_macro(17, 7205, 2, &[], "G01 Ｘ5. F100.\n"));
+    // Header inputs (both sides read them), CRLF line ends.
+    let hdr = fanuc_macro(18, 7206, 3, &[], "G01 X#5 F100.\n").replace("O7206\n", "O7206\n(nctrans: set #5=3.)\n");
+    w(fan.join("hdr.nc"), hdr.replace('\n', "\r\n"));
+    // A subprogram no file calls.
+    w(fan.join("sub.nc"), fanuc_macro(19, 7207, 2, &[], "").replace("M30", "M99"));
+    w(sin.join("hdr.mpf"), format!("; nctrans: set R7=2\n{}", sinumerik_macro(10, 2, "\n", "G1 X=R7 F100\n")));
 }
 
 /// Every file below `root` (relative path → bytes).
@@ -273,7 +279,7 @@ fn batches_stream_macro_programs_with_the_same_outputs_map_and_report() {
     library(&input);
 
     let (streamed, r) = both_ways(&input, &dir.join("to-fanuc"), Dialect::Fanuc);
-    for must in ["sin/seg1.mpf", "sin/seg2.mpf", "sin/seg3.mpf", "sin/seg4.mpf"] {
+    for must in ["sin/seg1.mpf", "sin/seg2.mpf", "sin/seg3.mpf", "sin/seg4.mpf", "sin/hdr.mpf"] {
         assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
         let f = r.files.iter().find(|f| f.path == must).expect("record");
         assert_eq!(f.status, batch::Status::Verified, "{must}: {}", f.summary);
@@ -292,7 +298,7 @@ fn batches_stream_macro_programs_with_the_same_outputs_map_and_report() {
     for never in ["fan/caller.nc", "fan/callee.nc", "fan/dup1.nc", "fan/dup2.nc", "fan/warn.nc"] {
         assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
     }
-    for f in ["fan/mac1.nc", "fan/mac2.nc", "fan/small.nc"] {
+    for f in ["fan/mac1.nc", "fan/mac2.nc", "fan/small.nc", "fan/hdr.nc", "fan/sub.nc"] {
         let f = r.files.iter().find(|x| x.path == f).expect("record");
         assert_eq!(f.status, batch::Status::Verified, "{}: {}", f.path, f.summary);
     }
@@ -327,7 +333,7 @@ fn streamed_library_scans_report_what_whole_scans_do() {
             checked += 1;
         }
     }
-    assert!(checked >= 11, "{checked}");
+    assert!(checked >= 14, "{checked}");
 }
 
 fn cli(args: &[&str]) -> Option<i32> {
