@@ -407,6 +407,26 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     let r = sts::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
     line.done();
     drop(w);
+    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
+    // streamed), else the whole-file path (with a note only when segmented declines too).
+    let r = match r {
+        Err(Fallback::NotStraight(why)) => {
+            let mut w = match stream_cli::create_temp(&tmp) {
+                Ok(w) => w,
+                Err(code) => return Some(code),
+            };
+            let mut line = ProgressLine::new("translating", size);
+            let mut report = |p: nctrans::stream::Progress| line.update(p);
+            let r = sts::segmented::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
+            line.done();
+            drop(w);
+            r.map_err(|f| match f {
+                Fallback::NotStraight(seg) => Fallback::NotStraight(seg),
+                Fallback::Diagnostics | Fallback::NotStreamable(_) => Fallback::NotStraight(why),
+            })
+        }
+        r => r,
+    };
     let done = match r {
         Ok(d) => d,
         Err(f) => {

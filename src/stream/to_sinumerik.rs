@@ -39,6 +39,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 mod fast;
+pub mod segmented;
 
 /// Statements translated at a time.
 pub const CHUNK_STMTS: usize = 4096;

@@ -1,0 +1,481 @@
+//! Segmented streaming translation (FANUC → Sinumerik) of programs with a macro part: the
+//! top-level statements that are not straight blocks (macro statements, IF/GOTO,
+//! WHILE/DO loops, program ends, jump targets) are kept as IR, each maximal run of
+//! top-level straight blocks between them stands in that IR as ONE placeholder block (a
+//! comment `NCTRANS SEGMENT k`), and the whole-program translator translates that skeleton
+//! (variable map, DEF lines, labels, structures come out as for the whole file). The
+//! skeleton's text is then written with each placeholder line replaced by its run, re-read
+//! from the source and translated block by block by the straight stream's fast path (or,
+//! for a block it declines, by the passes on that block alone). Memory follows the macro
+//! part, not the motion part.
+//!
+//! Why the output is the whole translation's, byte for byte (pass by pass, see
+//! `passes::to_sinumerik::lower`):
+//! - a straight block (`to_sinumerik::straight`) has no variable, jump, call or structure:
+//!   `vacancy::rewrite`, `gotos`, `structures`, `calls` and `exprs` leave it as it is, and
+//!   the variable plan (`calls::plan_programs`, `vacancy::analyse`, `varmap::build`) sees
+//!   no use of anything in it. The one exception is a program end (M30/M2): the vacancy
+//!   dataflow stops there, so blocks with one are never in a run;
+//! - jumps: a run never holds a block whose N value any jump names (a second scan keeps
+//!   them out when the first finds one), so `gotos`/`vacancy` resolve every jump to the
+//!   same block, in the same direction, with the same `LBL_n_k` count (every block of a
+//!   named N value is in the skeleton). Computed jumps (`GOTO#1`, every N a target),
+//!   calls (M98, G65, G66/G67), M99, G10 and writes of work offsets (`words` re-selects
+//!   the G54.. in force at that point of the text, which may lie in a run) are declined;
+//! - the arc mode (`words::lower`, G2/G3 last makes `R` a `CR=`) is ONE flag the words
+//!   pass carries over every block of the program in text order, nested bodies included,
+//!   whatever the control flow: the translation is static. Its value at the start of each
+//!   run is the same fold over the skeleton's blocks before the placeholder and the runs
+//!   before (each with its own G codes), which is what this module computes; inside a run
+//!   it follows block by block as in the straight stream. The earlier passes only add
+//!   blocks without G codes (labels, the N/comment line in front of an IF) or repeat a
+//!   block's own constant G words in each variant of a vacancy IF (the same last G code);
+//!   an `IF[..]THEN` with a word (its G codes land in an inner block) is declined. The
+//!   flag is read only by `R` words; the skeleton's own blocks see it without the runs'
+//!   G codes (a placeholder has none), so a skeleton block with an `R` word where the two
+//!   folds differ declines;
+//! - `take_inputs` takes `nctrans: set` comment blocks off the top up to the first block
+//!   that keeps an item, number or label: no run starts before the first statement that
+//!   surely does (`solid`), and that statement is itself in the skeleton;
+//! - a placeholder is a comment-only block at the top level: no pass changes it, and the
+//!   writer writes it as `; NCTRANS SEGMENT k` alone on its line (a skeleton whose text
+//!   holds the marker anywhere else is declined).
+//!
+//! Any diagnostic of the source, or of the skeleton or a block alone other than the
+//! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
+//! words pass gives them), declines, as do several programs, `nctrans: set` lines with CR
+//! line ends and N values above 2^24. The source is read two or three times: a scan
+//! builds the skeleton (and collects the N values jumps name); when such a value is also
+//! the N of a run block, a second scan builds it again with those blocks kept out of
+//! runs; the writing scan (`writer`) fills the runs.
+
+use super::super::lines::NotStreamable;
+use super::super::translate::Fallback;
+use super::super::{PlainWord, ProgressFn, WordsSink, WRITE_BYTES};
+use super::{fast, first_line_ending, has_bom, plain_g, straight, Streamed};
+use crate::dialect::{Dialect, ParseOptions};
+use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
+use crate::passes::to_sinumerik::{self as passes, Options};
+use crate::read::{LineEnding, RawBlock};
+use crate::span::Span;
+use crate::translate_sinumerik as ts;
+use std::io::Write;
+use std::path::Path;
+use writer::{kept_warning, Alone, Writer};
+
+mod writer;
+
+/// The text of a placeholder comment (`k`: the run's index).
+const MARK: &str = "NCTRANS SEGMENT ";
+/// N values above this are not tracked (a block holding one declines).
+const MAX_TRACKED_N: u32 = 1 << 24;
+
+/// A set of N values, a bit each.
+#[derive(Default, Clone)]
+struct Bits(Vec<u64>);
+
+impl Bits {
+    fn insert(&mut self, n: u32) {
+        let w = (n / 64) as usize;
+        if self.0.len() <= w {
+            self.0.resize(w + 1, 0);
+        }
+        self.0[w] |= 1 << (n % 64);
+    }
+    fn has(&self, n: u32) -> bool {
+        self.0.get((n / 64) as usize).is_some_and(|w| w >> (n % 64) & 1 == 1)
+    }
+    fn meets(&self, o: &Bits) -> bool {
+        self.0.iter().zip(&o.0).any(|(a, b)| a & b != 0)
+    }
+}
+
+/// The arc mode after G code `g10` (×10) as `words::lower` follows it.
+fn arc_after(arc: bool, g10: u32) -> bool {
+    match g10 {
+        20 | 30 => true,
+        0 | 10 => false,
+        _ => arc,
+    }
+}
+
+/// The arc mode after a block's own G codes.
+fn follow_items(arc: bool, items: &[Item]) -> bool {
+    passes::g_codes(items).into_iter().fold(arc, arc_after)
+}
+
+/// The arc mode after a plain line's G words.
+fn follow_words(arc: bool, words: &[PlainWord]) -> bool {
+    words.iter().filter(|w| w.letter == b'G').fold(arc, |a, w| arc_after(a, fast::round(w.value * 10.0) as u32))
+}
+
+/// Whether an M value is a program end, call or return (never a plain word of a run).
+fn special_m(v: f64) -> bool {
+    v == 2.0 || v == 30.0 || v == 98.0 || v == 99.0
+}
+
+/// A block the translation surely keeps as a line with an item, a number or a label (so
+/// `take_inputs` stops there): a number, a program end, a constant motion word or a G code
+/// the words pass keeps. Anything else counts as not (runs start later).
+fn solid(s: &Stmt) -> bool {
+    let StmtKind::Block(b) = &s.kind else { return true };
+    b.meta.number.is_some()
+        || b.items.iter().any(|it| match &it.kind {
+            ItemKind::End { .. } => true,
+            ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) => {
+                let v = passes::literal(e);
+                match l {
+                    b'G' => v.is_some_and(|v| {
+                        matches!((v * 10.0).round() as u32, 0 | 10 | 20 | 30 | 170 | 180 | 190 | 900 | 910 | 940 | 950)
+                    }),
+                    b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' | b'F' | b'S' | b'T' | b'D' => v.is_some(),
+                    _ => false,
+                }
+            }
+            _ => false,
+        })
+}
+
+/// What declines an item of the skeleton (see the module comment); its jump target.
+fn check_item(it: &Item, targets: &mut Vec<u32>) -> Option<&'static str> {
+    match &it.kind {
+        ItemKind::Call(_) | ItemKind::ModalCallOff => Some("a call of another program"),
+        ItemKind::Return { .. } => Some("M99"),
+        ItemKind::ParamWrite(_) => Some("G10"),
+        ItemKind::Goto(g) => match &g.target {
+            Target::Number(n) => {
+                targets.push(n.value);
+                None
+            }
+            _ => Some("a computed jump"),
+        },
+        ItemKind::Assign { target, .. } => match target.kind {
+            VarKind::Hash(5221..=5340) | VarKind::HashIndirect(_) => Some("a work offset or indirect write"),
+            _ => None,
+        },
+        ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) if addr.is(b'G') => {
+            passes::literal(e).is_some_and(|v| matches!((v * 10.0).round() as u32, 100 | 110)).then_some("G10")
+        }
+        _ => None,
+    }
+}
+
+/// Which top-level statements are run blocks; the same in every scan (it changes only
+/// on statements that are not).
+#[derive(Clone, Default)]
+struct Class {
+    /// N values jumps name (their blocks stay in the skeleton).
+    keep: Bits,
+    /// A `solid` statement has been seen.
+    solid: bool,
+}
+
+impl Class {
+    fn kept(&self, meta: &BlockMeta) -> bool {
+        meta.number.as_ref().is_some_and(|n| self.keep.has(n.value))
+    }
+
+    /// Whether a plain line is a run block (else it is to come as a statement).
+    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        self.solid
+            && meta.label.is_none()
+            && !self.kept(meta)
+            && words.iter().all(|w| match w.letter {
+                b'G' => plain_g(w.value),
+                b'M' => !special_m(w.value),
+                _ => true,
+            })
+    }
+
+    fn stmt_run(&self, s: &Stmt) -> bool {
+        let StmtKind::Block(b) = &s.kind else { return false };
+        self.solid
+            && straight(s).is_ok()
+            && !self.kept(&b.meta)
+            && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
+    }
+
+    /// After a statement of the skeleton.
+    fn observe(&mut self, s: &Stmt) {
+        self.solid |= solid(s);
+    }
+}
+
+/// The first scans' sink: builds the skeleton.
+struct Skel {
+    class: Class,
+    body: Vec<Stmt>,
+    /// The run being collected (the span of its first block).
+    run: Option<Span>,
+    /// The arc mode at the start of each run.
+    arcs: Vec<bool>,
+    /// The arc mode after everything so far (what the words pass has on the whole file)…
+    arc: bool,
+    /// … and after the skeleton's statements alone (what it has on the skeleton).
+    own_arc: bool,
+    run_ns: Bits,
+    targets: Bits,
+    stop: Option<String>,
+}
+
+impl Skel {
+    fn decline(&mut self, why: impl Into<String>) {
+        if self.stop.is_none() {
+            self.stop = Some(why.into());
+        }
+    }
+
+    fn run_block(&mut self, meta: &BlockMeta) {
+        if let Some(n) = &meta.number {
+            if n.value > MAX_TRACKED_N {
+                return self.decline("an N number above 16777216");
+            }
+            self.run_ns.insert(n.value);
+        }
+        if self.run.is_none() {
+            self.run = Some(meta.span);
+            self.arcs.push(self.arc);
+        }
+    }
+
+    fn close_run(&mut self) {
+        if let Some(span) = self.run.take() {
+            let k = self.arcs.len() - 1;
+            self.body.push(passes::comment_stmt(format!("{MARK}{k}"), span));
+        }
+    }
+
+    /// Checks a statement of the skeleton, collects its jump targets, follows its arc mode.
+    fn macro_stmt(&mut self, s: &Stmt) {
+        let mut why: Option<&'static str> = None;
+        let mut targets = Vec::new();
+        let (mut arc, mut own) = (self.arc, self.own_arc);
+        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
+            let StmtKind::Block(b) = &s.kind else { return };
+            if b.meta.number.as_ref().is_some_and(|n| n.value > MAX_TRACKED_N) {
+                why = why.or(Some("an N number above 16777216"));
+            }
+            arc = follow_items(arc, &b.items);
+            own = follow_items(own, &b.items);
+            if arc != own && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'R'))) {
+                why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
+            }
+            for it in &b.items {
+                why = why.or(check_item(it, &mut targets));
+                if let ItemKind::IfThen { then, .. } = &it.kind {
+                    if matches!(then.kind, ItemKind::Word(_)) {
+                        why = why.or(Some("IF..THEN with an address word"));
+                    }
+                    why = why.or(check_item(then, &mut targets));
+                }
+            }
+        });
+        if let Some(w) = why {
+            return self.decline(w);
+        }
+        for n in targets {
+            if n > MAX_TRACKED_N {
+                return self.decline("a jump to an N number above 16777216");
+            }
+            self.targets.insert(n);
+        }
+        (self.arc, self.own_arc) = (arc, own);
+        self.class.observe(s);
+        self.body.push(s.clone());
+    }
+}
+
+impl WordsSink for Skel {
+    fn active(&self) -> bool {
+        self.stop.is_none()
+    }
+
+    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], _: &RawBlock<'_>) -> bool {
+        if self.stop.is_some() {
+            return true;
+        }
+        if prog != 0 {
+            self.decline("more than one program");
+            return true;
+        }
+        if !self.class.plain_run(meta, words) {
+            return false;
+        }
+        self.run_block(meta);
+        self.arc = follow_words(self.arc, words);
+        true
+    }
+
+    fn stmt(&mut self, prog: usize, s: &Stmt) {
+        if self.stop.is_some() {
+            return;
+        }
+        if prog != 0 {
+            return self.decline("more than one program");
+        }
+        if self.class.stmt_run(s) {
+            if let StmtKind::Block(b) = &s.kind {
+                self.run_block(&b.meta);
+                self.arc = follow_items(self.arc, &b.items);
+            }
+            return;
+        }
+        self.close_run();
+        self.macro_stmt(s);
+    }
+}
+
+/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
+/// the program (name, head, span) it is the body of.
+fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> Result<(Skel, Program), Fallback> {
+    let mut sk = Skel {
+        class: Class { keep, solid: false },
+        body: Vec::new(),
+        run: None,
+        arcs: Vec::new(),
+        arc: false,
+        own_arc: false,
+        run_ns: Bits::default(),
+        targets: Bits::default(),
+        stop: None,
+    };
+    let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, popts, &mut sk, None)
+        .map_err(Fallback::NotStreamable)?;
+    sk.close_run();
+    if let Some(why) = sk.stop.take() {
+        return Err(Fallback::NotStraight(why));
+    }
+    if !ix.diags.is_empty() {
+        return Err(Fallback::Diagnostics);
+    }
+    // `header_inputs` reads a whole text by LF lines, an index's header by any line end.
+    let cr = eol == LineEnding::Cr || first_line_ending(path).map_err(Fallback::NotStreamable)? == LineEnding::Cr;
+    if cr && ix.header.contains("nctrans:") {
+        return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
+    }
+    let mut programs = ix.programs.into_iter();
+    let (Some(p), None) = (programs.next(), programs.next()) else {
+        return Err(Fallback::NotStraight("more than one program".into()));
+    };
+    Ok((sk, p.program))
+}
+
+/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
+/// order: each `; NCTRANS SEGMENT k` alone on its line; `None` when the text holds the
+/// marker anywhere else.
+fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
+    let mut v = Vec::with_capacity(runs);
+    let mut from = 0;
+    while let Some(at) = text[from..].find(MARK).map(|k| k + from) {
+        let lo = at.checked_sub(2)?;
+        let line_start = |p: &str| p.is_empty() || p.ends_with('\n') || p.ends_with('\r');
+        if !(text.get(lo..at) == Some("; ") && text.get(..lo).is_some_and(line_start)) {
+            return None;
+        }
+        let tail = format!("{}{eol}", v.len());
+        let after = at + MARK.len();
+        if !text[after..].starts_with(&tail) {
+            return None;
+        }
+        let hi = after + tail.len();
+        v.push((lo, hi));
+        from = hi;
+    }
+    (v.len() == runs).then_some(v)
+}
+
+/// Translates `path` (FANUC) to Sinumerik into `out` as a skeleton translated whole with its
+/// runs of straight blocks streamed (see the module comment), with `eol` line ends. On
+/// `Err` nothing useful was written (the caller discards `out` and translates whole).
+pub fn to_sinumerik(
+    path: &Path,
+    opts: &Options,
+    eol: LineEnding,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<Streamed, Fallback> {
+    let popts = ParseOptions { semantics: opts.source.clone() };
+    let (mut sk, mut program) = skeleton(path, &popts, eol, Bits::default())?;
+    if sk.targets.meets(&sk.run_ns) {
+        // Jumps name N values of run blocks: scan again keeping those blocks real.
+        let keep = sk.targets.clone();
+        (sk, program) = skeleton(path, &popts, eol, keep)?;
+        if sk.targets.meets(&sk.run_ns) {
+            return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
+        }
+    }
+    let keep = sk.class.keep.clone();
+    program.body = std::mem::take(&mut sk.body);
+    let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs: vec![program] };
+    let tr = ts::translate(&[&unit], opts, eol);
+    if !tr.diags.iter().all(kept_warning) {
+        return Err(Fallback::Diagnostics);
+    }
+    let [f] = tr.files.as_slice() else {
+        return Err(Fallback::NotStraight("more than one program".into()));
+    };
+    if !f.main {
+        return Err(Fallback::NotStraight("a program that is not a main program".into()));
+    }
+    let places = placeholders(&f.text, sk.arcs.len(), eol.as_str())
+        .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+    let alone = {
+        let Some(p) = unit.programs.first() else { return Err(Fallback::NotStraight("no program".into())) };
+        let mut l = passes::lower(&[(0, p)], opts);
+        let Some((plan, _)) = l.programs.pop() else { return Err(Fallback::NotStraight("no plan".into())) };
+        Alone { plan, commons: l.commons, common_flags: l.common_flags }
+    };
+    drop(unit);
+    let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
+    let mut w = Writer {
+        class: Class { keep, solid: false },
+        opts,
+        alone,
+        eol,
+        text: &f.text,
+        places,
+        arcs: sk.arcs,
+        pos: 0,
+        next: 0,
+        in_run: false,
+        pending: false,
+        arc: false,
+        buf: Vec::with_capacity(WRITE_BYTES + 4096),
+        out,
+        io: None,
+        bad: false,
+        diags: Vec::new(),
+    };
+    if bom {
+        w.buf.extend_from_slice(b"\xEF\xBB\xBF");
+    }
+    let index = super::super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut w, progress)
+        .map_err(Fallback::NotStreamable)?;
+    if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
+        return Err(Fallback::Diagnostics);
+    }
+    w.copy_to(w.text.len());
+    w.write();
+    if w.io.is_none() {
+        if let Err(e) = w.out.flush() {
+            w.io = Some(e);
+        }
+    }
+    if let Some(e) = w.io {
+        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
+    }
+    // The words pass warns block by block in text order: the skeleton's warnings and the
+    // runs' interleave by their place in the file.
+    let mut diags = tr.diags.clone();
+    diags.append(&mut w.diags);
+    diags.sort_by_key(|d| d.labels.first().map_or(0, |l| l.span.lo));
+    Ok(Streamed {
+        blocks: index.blocks,
+        index,
+        diags,
+        file_name: f.name.clone(),
+        program: f.program.clone(),
+        fanuc_number: f.fanuc_number,
+        symbols: tr.symbols.clone(),
+    })
+}
