@@ -292,9 +292,11 @@ fn batches_stream_macro_programs_with_the_same_outputs_map_and_report() {
     assert!(warn.diagnostics.iter().any(|d| d.code == "NC110"), "{:?}", warn.diagnostics);
 
     // FANUC → Sinumerik: the library scan streams the macro programs (their commons count
-    // for every file's variable places); their jobs go whole until a segmented FANUC
-    // stream is in the chain.
+    // for every file's variable places), and the segmented FANUC stream translates them.
     let (streamed, r) = both_ways(&input, &dir.join("to-sinumerik"), Dialect::Sinumerik);
+    for must in ["fan/mac1.nc", "fan/mac2.nc", "fan/small.nc", "fan/hdr.nc"] {
+        assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
+    }
     for never in ["fan/caller.nc", "fan/callee.nc", "fan/dup1.nc", "fan/dup2.nc", "fan/warn.nc"] {
         assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
     }

@@ -107,11 +107,10 @@ pub(super) fn to_fanuc_part(
 type ToSinumerik =
     fn(&Path, &SinOptions, LineEnding, &mut dyn Write, Option<ProgressFn<'_>>) -> Result<sts::Streamed, Fallback>;
 
-/// The FANUC → Sinumerik streams a batch tries, in order. The segmented FANUC → Sinumerik
-/// stream (`stream::to_sinumerik::segmented`, when it lands) goes after the straight one.
-/// Its `Streamed` must carry what the whole-file job reports and verifies with (see
+/// The FANUC → Sinumerik streams a batch tries, in order: straight-line, then segmented.
+/// Each `Streamed` carries what the whole-file job reports and verifies with (see
 /// `streamed::to_sinumerik`).
-const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik];
+const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik, sts::segmented::to_sinumerik];
 
 /// FANUC → Sinumerik into `part` by the first of [`TO_SINUMERIK`] that takes the file (the
 /// translator writes the byte-order mark itself).
