@@ -118,8 +118,8 @@ pub struct FileInfo {
     pub tools: BTreeSet<String>,
     /// FANUC common variables (`#100`..`#999`) used by number.
     pub commons: BTreeSet<u32>,
-    /// Read as a stream: a large straight-line program (see `streamed::library_scan`), which
-    /// its job then translates as a stream too. Its `fingerprints` are not computed (0): a
+    /// Read as a stream: a large program that calls nothing (see `streamed::library_scan`),
+    /// which its job then tries to translate as a stream too. Its `fingerprints` are not computed (0): a
     /// file whose program another file also defines is read whole instead.
     pub streamed: bool,
 }
@@ -405,7 +405,7 @@ fn constant(e: &Expr) -> Option<(f64, bool)> {
 }
 
 /// Calls `f` on every item of every block (and the statement of a FANUC `IF..THEN`).
-fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
+pub(super) fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {

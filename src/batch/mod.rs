@@ -16,6 +16,7 @@ pub mod maps;
 pub mod report;
 pub mod run;
 pub mod streamed;
+mod streamed_macro;
 pub mod write;
 
 use crate::dialect::Dialect;

@@ -1,24 +1,26 @@
-//! Large straight-line programs in a batch: read for the library index, translated and
-//! verified as a stream, in constant memory (`crate::stream`). A file of
-//! `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells, in UTF-8,
-//! holding one straight-line program that no other file of the batch calls, calls or
-//! defines again, is never read whole: its output is written straight into the staging
-//! folder (then committed atomically like any other), and its report entry (status,
-//! summary, events, blocks, diagnostics with their lines) is what the whole-file job gives.
-//! Anything else, or a stream that stops part way (a block that is not straight-line), is
+//! Large programs in a batch: read for the library index, translated and verified as a
+//! stream (`crate::stream`), in memory that follows the macro part, not the motion part. A
+//! file of `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells, in
+//! UTF-8, holding one program without calls that no other file of the batch calls or
+//! defines again, is read for the library as a stream; its job then tries the streamed
+//! translators (straight-line, then segmented: `streamed_macro.rs`), which write its output
+//! straight into the staging folder (then committed atomically like any other), and its
+//! report entry (status, summary, events, blocks, diagnostics with their lines) is what the
+//! whole-file job gives. Anything else, or a file every streamed translator declines, is
 //! left to the whole-file job.
 
 use super::discover::{self, InputFile};
 use super::jobs::{self, apply, combine, ToFanucJob, Verified};
 use super::jobs_sinumerik::{self, parse_all, siemens_inputs, ToSinumerikJob};
 use super::library::{self, FileInfo, ProgKey, Scan};
+use super::streamed_macro::{self, LibItems};
 use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::{header_inputs, Ending, NoCallees, Outcome, RunOptions};
-use crate::ir::{ProgName, Program, Unit};
-use crate::span::{FileId, SourceDb, Span};
+use crate::ir::ProgName;
+use crate::span::{FileId, SourceDb};
 use crate::stream;
 use crate::stream::lines::Lines;
 use crate::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
@@ -32,8 +34,10 @@ fn utf8(e: Option<&'static encoding_rs::Encoding>) -> bool {
 
 /// Reads `f` for the library index as a stream when it is at least `stream_bytes` long, its
 /// name tells its dialect, it is UTF-8 (or no other encoding is forced) and it holds one
-/// straight-line program; `None` otherwise (the caller reads it whole). What it reports is
-/// what `library::scan` reports, but the fingerprints (see [`without_shared_streamed`]).
+/// program without diagnostics that calls nothing (a streamed scan does not record calls);
+/// `None` otherwise (the caller reads it whole). What it reports is what `library::scan`
+/// reports (its tools and FANUC commons too), but the fingerprints (see
+/// [`without_shared_streamed`]).
 pub fn library_scan(
     f: &InputFile,
     encoding: Option<&'static encoding_rs::Encoding>,
@@ -43,20 +47,26 @@ pub fn library_scan(
         return None;
     }
     let dialect = discover::dialect_of_name(&f.rel)?;
-    let mut straight = true;
-    let mut each = |prog: usize, s: &crate::ir::Stmt| {
-        straight &= match dialect {
-            Dialect::Sinumerik => stream::translate::straight(s).is_ok(),
-            Dialect::Fanuc => prog == 0 && sts::straight(s).is_ok(),
-        };
+    let mut items = LibItems::default();
+    let mut each = |_: usize, s: &crate::ir::Stmt| {
+        if !items.calls {
+            items.stmt(dialect, s);
+        }
     };
     let ix = stream::scan_path(&f.abs, 0, dialect, &ParseOptions::for_dialect(dialect), &mut each, None).ok()?;
-    if !straight || !ix.diags.is_empty() || ix.programs.len() != 1 {
+    if items.calls || !ix.diags.is_empty() || ix.programs.len() != 1 {
         return None;
     }
     let stem = f.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
     let mut scan = Scan {
-        info: FileInfo { dialect: Some(dialect), blocks: ix.blocks, streamed: true, ..FileInfo::default() },
+        info: FileInfo {
+            dialect: Some(dialect),
+            blocks: ix.blocks,
+            streamed: true,
+            tools: items.tools,
+            commons: items.commons,
+            ..FileInfo::default()
+        },
         ..Scan::default()
     };
     for p in &ix.programs {
@@ -106,8 +116,8 @@ pub fn without_shared_streamed(
     scans
 }
 
-/// Whether the job may stream `file`: the library scan streamed it (a large straight-line
-/// program), and no other file calls its program, is called by it or defines it too.
+/// Whether the job may stream `file`: the library scan streamed it (a large program that
+/// calls nothing), and no other file calls its program, is called by it or defines it too.
 fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
     let lib = &ctx.library;
     let Some(info) = lib.files.get(file.index) else { return false };
@@ -121,21 +131,26 @@ fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
         })
 }
 
-/// Streams a translation into the file's staged output; on `None` nothing is left there.
-fn write_part<T, E>(part: &Path, bom: bool, translate: impl FnOnce(&mut dyn Write) -> Result<T, E>) -> Option<T> {
-    let file = std::fs::File::create(part).ok()?;
+/// Streams a translation into the file's staged output; on `Err` (the translator's error,
+/// `None` for one of writing) nothing is left there.
+pub(super) fn write_part<T, E>(
+    part: &Path,
+    bom: bool,
+    translate: impl FnOnce(&mut dyn Write) -> Result<T, E>,
+) -> Result<T, Option<E>> {
+    let file = std::fs::File::create(part).map_err(|_| None)?;
     let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
     let done = (|| {
         if bom {
-            w.write_all(b"\xEF\xBB\xBF").ok()?;
+            w.write_all(b"\xEF\xBB\xBF").map_err(|_| None)?;
         }
-        let t = translate(&mut w).ok()?;
+        let t = translate(&mut w).map_err(Some)?;
         // On disk before the rename into place, like every staged output.
-        let f = w.into_inner().ok()?;
-        f.sync_data().ok()?;
-        Some(t)
+        let f = w.into_inner().map_err(|_| None)?;
+        f.sync_data().map_err(|_| None)?;
+        Ok(t)
     })();
-    if done.is_none() {
+    if done.is_err() {
         let _ = std::fs::remove_file(part);
     }
     done
@@ -240,8 +255,7 @@ pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) 
     let opts = job.options(ctx, file).ok()?;
     let eol = s.line_ending(sts::first_line_ending(&file.abs).ok()?);
     let part = write::staged_path(&ctx.options.output, file.index);
-    // The translator writes the byte-order mark itself.
-    let done = write_part(&part, false, |w| sts::to_sinumerik(&file.abs, &opts, eol, w, None))?;
+    let done = streamed_macro::to_sinumerik_part(&file.abs, &opts, eol, &part)?;
     let name = rel_string(&file.rel);
     let rel_out = discover::sinumerik_output(&file.rel, &done.program, false);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
@@ -311,23 +325,12 @@ pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Optio
     let opts = job.options(ctx, file, sts::first_line_ending(&file.abs).ok()?).ok()?;
     let bom = sts::has_bom(&file.abs).ok()?;
     let part = write::staged_path(&ctx.options.output, file.index);
-    let done = write_part(&part, bom, |w| stream::translate::to_fanuc(&file.abs, &opts, w, None))?;
-    // The names a straight-line program's translation uses depend on its name alone.
-    let program = Program {
-        name: done.index.programs.first().and_then(|p| p.program.name.clone()),
-        head: None,
-        params: vec![],
-        save: false,
-        body: vec![],
-        span: Span::default(),
-    };
-    let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-    let map = crate::translate::to_fanuc(&unit, &[], &opts).symbol_map;
+    let (index, map) = streamed_macro::to_fanuc_part(&file.abs, &opts, &part, bom)?;
     let name = rel_string(&file.rel);
     let rel_out = discover::fanuc_output(&file.rel);
     let out_name = rel_string(&rel_out);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
-    outcome.blocks = done.index.blocks;
+    outcome.blocks = index.blocks;
     outcome.used = jobs::used_names(&map);
     outcome.staged = vec![(rel_out, part.clone())];
     if !ctx.options.verify {
@@ -351,7 +354,7 @@ pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Optio
     let mut b_in = jobs::r_homes(&map);
     b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
     let a = StreamSide {
-        index: done.index,
+        index,
         name: name.clone(),
         callees: Box::new(NoCallees),
         run: run_options(parse_all(&s.set), s.max_steps, &s.sinumerik),
@@ -385,7 +388,7 @@ mod tests {
             assert_eq!(g, src.line_col(*o), "offset {o}");
         }
         let part = dir.join("x.part");
-        assert!(write_part(&part, true, |_| Err::<(), ()>(())).is_none());
+        assert!(write_part(&part, true, |_| Err::<(), ()>(())).is_err());
         assert!(!part.exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -88,6 +88,8 @@ pub struct Segmented {
     /// `#n=0` for the R parameters the translation maps: the output side's inputs when
     /// verifying (as `translate::verify` sets them).
     pub inputs: Vec<Input>,
+    /// The skeleton's translation's symbol map: the names the whole translation uses.
+    pub symbol_map: translate::SymbolMap,
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out` as a skeleton translated whole with its
@@ -206,7 +208,7 @@ fn segment(
     if let Some(e) = w.io {
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
-    Ok((Segmented { blocks: index.blocks, index, inputs }, notes))
+    Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
 }
 
 /// The span starts of the MSG items `translate::align_source` drops from `body` (all but a

@@ -1,0 +1,124 @@
+//! Large programs with a macro part in a batch (`streamed.rs` does the rest): what the
+//! library scan learns from a streamed file's statements, and the chain of streamed
+//! translators a file goes through before it is left to the whole-file job — the
+//! straight-line stream, then the segmented one (the macro part translated whole, its runs
+//! of straight blocks streamed).
+
+use super::library;
+use crate::dialect::Dialect;
+use crate::ir::{ItemKind, Program, Stmt, Unit, WordValue};
+use crate::passes::to_sinumerik::Options as SinOptions;
+use crate::read::LineEnding;
+use crate::span::Span;
+use crate::stream::to_sinumerik as sts;
+use crate::stream::translate::Fallback;
+use crate::stream::{self, Index, ProgressFn};
+use crate::translate::{SymbolMap, TranslateOptions};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::Path;
+
+/// What `library::scan` reports of a file's statements, gathered one top-level statement
+/// at a time: its tools, its FANUC common variables, and whether it calls anything (a
+/// streamed scan does not record calls: such a file is read whole).
+#[derive(Default)]
+pub(super) struct LibItems {
+    pub calls: bool,
+    pub tools: BTreeSet<String>,
+    pub commons: BTreeSet<u32>,
+}
+
+impl LibItems {
+    pub fn stmt(&mut self, dialect: Dialect, s: &Stmt) {
+        library::walk_items(std::slice::from_ref(s), &mut |item| match &item.kind {
+            // `library::scan` records every call but a computed one; none is streamed.
+            ItemKind::Call(_) => self.calls = true,
+            ItemKind::Word(w) if w.addr.is(b'T') => {
+                if let WordValue::Expr(crate::ir::Expr { kind: crate::ir::ExprKind::Str(s), .. }) = &w.value {
+                    self.tools.insert(s.clone());
+                }
+            }
+            _ => {}
+        });
+        // A straight FANUC block has constant words only: no variable.
+        if dialect == Dialect::Fanuc && sts::straight(s).is_err() {
+            let p = Program {
+                name: None,
+                head: None,
+                params: vec![],
+                save: false,
+                body: vec![s.clone()],
+                span: Span::default(),
+            };
+            self.commons.extend(crate::translate_sinumerik::commons_of(&p));
+        }
+    }
+}
+
+/// One streamed translator into the staged output `part` (a fresh file): `Ok(None)` when
+/// it declines because the program is not straight-line (the next translator may take it),
+/// `Err(())` when it fails otherwise; nothing is left at `part` unless it is `Ok(Some)`.
+fn route<T>(
+    part: &Path,
+    bom: bool,
+    translate: impl FnOnce(&mut dyn Write) -> Result<T, Fallback>,
+) -> Result<Option<T>, ()> {
+    match super::streamed::write_part(part, bom, translate) {
+        Ok(t) => Ok(Some(t)),
+        Err(Some(Fallback::NotStraight(_))) => Ok(None),
+        Err(_) => Err(()),
+    }
+}
+
+/// Sinumerik → FANUC into `part` as a straight-line stream, else segmented: the source's
+/// index and the translation's symbol map (what the whole-file translation's would be).
+pub(super) fn to_fanuc_part(
+    path: &Path,
+    opts: &TranslateOptions,
+    part: &Path,
+    bom: bool,
+) -> Option<(Index, SymbolMap)> {
+    let straight = |w: &mut dyn Write| {
+        let done = stream::translate::to_fanuc(path, opts, w, None)?;
+        // The names a straight-line program's translation uses depend on its name alone.
+        let program = Program {
+            name: done.index.programs.first().and_then(|p| p.program.name.clone()),
+            head: None,
+            params: vec![],
+            save: false,
+            body: vec![],
+            span: Span::default(),
+        };
+        let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
+        let map = crate::translate::to_fanuc(&unit, &[], opts).symbol_map;
+        Ok((done.index, map))
+    };
+    if let Some(done) = route(part, bom, straight).ok()? {
+        return Some(done);
+    }
+    let segmented = |w: &mut dyn Write| {
+        let done = stream::segmented::to_fanuc(path, opts, w, None)?;
+        Ok((done.index, done.symbol_map))
+    };
+    route(part, bom, segmented).ok()?
+}
+
+/// A streamed FANUC → Sinumerik translator (the signature of `sts::to_sinumerik`).
+type ToSinumerik =
+    fn(&Path, &SinOptions, LineEnding, &mut dyn Write, Option<ProgressFn<'_>>) -> Result<sts::Streamed, Fallback>;
+
+/// The FANUC → Sinumerik streams a batch tries, in order: straight-line, then segmented.
+/// Each `Streamed` carries what the whole-file job reports and verifies with (see
+/// `streamed::to_sinumerik`).
+const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik, sts::segmented::to_sinumerik];
+
+/// FANUC → Sinumerik into `part` by the first of [`TO_SINUMERIK`] that takes the file (the
+/// translator writes the byte-order mark itself).
+pub(super) fn to_sinumerik_part(path: &Path, opts: &SinOptions, eol: LineEnding, part: &Path) -> Option<sts::Streamed> {
+    for f in TO_SINUMERIK {
+        if let Some(done) = route(part, false, |w| f(path, opts, eol, w, None)).ok()? {
+            return Some(done);
+        }
+    }
+    None
+}
