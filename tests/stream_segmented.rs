@@ -416,7 +416,10 @@ fn modes_cross_run_boundaries() {
         // ... in the macro part: the run after it starts there.
         ("feed-inch-macro.mpf", "R1=1\nG700 G1 X=R1 F2\nG71 X=R1\nG1 X1 F100\nY2 F200\nR2=1\nG70 X=R2\nX3 F50\nM30\n"),
         ("feed-mm-run.mpf", "R1=1\nG700\nG1 X1 F10\nG710 G70 X2 F20\nR2=2\nG1 X=R1 F300\nG700 X2 F5\nM30\n"),
-        ("ac-ic-own.mpf", "R1=1\nG1 X1 F100\nG90 X=IC(R1)\nG91 Y=AC(R1)\nN7 G90 G1 X=IC(2) Y=IC(R1) ; c\nG91 X=IC(1)\nG90 X2\nM30\n"),
+        (
+            "ac-ic-own.mpf",
+            "R1=1\nG1 X1 F100\nG90 X=IC(R1)\nG91 Y=AC(R1)\nN7 G90 G1 X=IC(2) Y=IC(R1) ; c\nG91 X=IC(1)\nG90 X2\nM30\n",
+        ),
     ] {
         match compare(name, text) {
             Outcome::Same(true) => {}

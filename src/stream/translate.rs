@@ -131,13 +131,13 @@ impl State<'_> {
         if self.fast.block(s, &mut self.buf).is_err() {
             let mut body = Vec::with_capacity(2);
             let set = units_block(units);
-            let g70 = set.is_some();
+            let set_units = set.is_some();
             body.extend(set);
             body.push(s.clone());
             let t = translate::to_fanuc(&self.unit(body), &[], self.opts);
             self.unsupported += t.unsupported;
             self.diags.extend(t.diags);
-            let skip = self.header_len + usize::from(g70);
+            let skip = self.header_len + usize::from(set_units);
             let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
             let e = emit::emit_body(body, &self.eo);
             self.diags.extend(e.diags);

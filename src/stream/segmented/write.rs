@@ -4,8 +4,8 @@
 use super::skel::{kept, NSet, MARK};
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
-use crate::read::RawBlock;
 use crate::passes::words::units::Units;
+use crate::read::RawBlock;
 use crate::stream::translate::{fast, straight, units_block};
 use crate::stream::{PlainWord, WordsSink, WRITE_BYTES};
 use crate::translate::{self, TranslateOptions};
@@ -122,7 +122,7 @@ impl Writer<'_> {
     fn alone(&mut self, s: &Stmt, units: Units) {
         let mut u = self.lone.clone();
         let set = units_block(units);
-        let g70 = set.is_some();
+        let set_units = set.is_some();
         if let Some(p) = u.programs.first_mut() {
             p.body = set.into_iter().chain([s.clone()]).collect();
         }
@@ -131,7 +131,7 @@ impl Writer<'_> {
             self.bad = true;
             return;
         }
-        let skip = self.header_len + usize::from(g70);
+        let skip = self.header_len + usize::from(set_units);
         let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
         let e = emit::emit_body(body, &self.eo);
         if !e.diags.is_empty() {
