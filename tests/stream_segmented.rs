@@ -588,6 +588,9 @@ fn declines_what_it_does_not_handle() {
         ("proc.mpf", "PROC PMAIN(REAL A)\nR1=A\nG1 X1\nM30\n"),
         // A computed G word.
         ("g-computed.mpf", "R1=1\nG=R1 X1\nG1 X2\nM30\n"),
+        // Run blocks the fast path declines, in metric and in inch: the one scan leaves the
+        // runs to a writing scan, which translates them alone (they have diagnostics).
+        ("alone.mpf", "R1=1\nG1 X1 F100\nG4 S2\nG70 X2\nG4 F3 S1\nR2=2\nG1 X=R1\nG4 S3\nM30\n"),
     ] {
         match compare(name, text) {
             Outcome::Declined(_) => {}
@@ -677,5 +680,28 @@ fn cli_stream_writes_the_whole_translation() {
         // The library takes it segmented (so the command line did too, or it would have
         // said nothing different: the bytes are the same either way).
         assert!(matches!(compare(&format!("cli{k}b.mpf"), &text), Outcome::Same(true)));
+    }
+}
+
+/// Runs whose translations pass the in-memory part of the spill (64 KiB) go through its
+/// temporary file: the same bytes, with mode switches inside the runs and a macro part
+/// reading them between.
+#[test]
+fn large_runs_through_the_spill_file() {
+    let mut r = Rng(0x5B11_0001);
+    for (k, eol) in ["\n", "\r\n"].into_iter().enumerate() {
+        let (mut next, mut numbers) = (0u32, vec![]);
+        let mut s = format!("%_N_BIGSPILL_MPF{eol}R1=2 R2=0{eol}");
+        for j in 0..4 {
+            for _ in 0..12 {
+                s.push_str(&mode_line(&mut r));
+                s.push_str(eol);
+                s.push_str(&cam_run(&mut r, 150, &mut next, eol, &mut numbers));
+            }
+            s.push_str(&format!("G1 X=AC(R1+{j}) F=R1*100{eol}R2=R2+1{eol}"));
+        }
+        s.push_str(&format!("M30{eol}"));
+        assert!(s.len() > 150_000, "{}", s.len());
+        assert!(matches!(compare(&format!("bigspill{k}.mpf"), &s), Outcome::Same(_)), "bigspill{k} declined");
     }
 }

@@ -58,14 +58,25 @@
 //! the translation has a warning or an error on (notes only through
 //! [`to_fanuc_with_notes`]).
 //!
-//! The source is read two or three times: a scan builds the skeleton (and collects the N
-//! values jumps name); when such a value is also the N of a run block, a second scan
-//! builds it again with those blocks kept out of runs; the writing scan fills the runs.
+//! The source is read once before verification: ONE scan (`one`) builds the skeleton (and
+//! collects the N values jumps name) and translates each run as it reaches it into a spill
+//! (`spill`: memory, then a temporary file about the output's size), since the units a
+//! run's translation depends on are followed in textual order and known there; then the
+//! skeleton is translated and written with each placeholder line replaced by a byte copy
+//! of its run's spilled translation. Two cases take the older route of two or three
+//! scans: when a jump names the N of a run block, a second scan builds the skeleton again
+//! with those blocks kept out of runs; when a run block is one the fast path declines (it
+//! is translated alone, in the program's frame, known after the scan). Then a writing
+//! scan (`write`) fills the runs.
 
+mod one;
 mod skel;
+mod spill;
 mod write;
 
-use skel::{skeleton, NSet, MAX_N};
+use one::One;
+use skel::{finish, new_skel, skeleton, NSet, MAX_N};
+use spill::Spill;
 use write::{placeholders, Writer};
 
 use super::lines::NotStreamable;
@@ -129,9 +140,27 @@ fn segment(
     if opts.number_blocks.is_some() || opts.main_is_sub {
         return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
     }
-    let (mut sk, mut program) = skeleton(path, NSet::default())?;
+    let eol = opts.line_ending.as_str();
+    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+    let mut progress = progress;
+    // One scan builds the skeleton and spills the runs' translations (`one`).
+    let mut one = One {
+        sk: new_skel(NSet::default()),
+        fast: fast::Fast::new(opts.comments, eol),
+        spill: Spill::new(),
+        starts: Vec::new(),
+        ok: true,
+    };
+    let ix =
+        super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut one, progress.as_mut().map(|p| &mut **p as _))
+            .map_err(Fallback::NotStreamable)?;
+    let (mut sk, mut program, ix) = finish(one.sk, ix)?;
+    let mut spilled =
+        (one.ok && one.spill.io.is_none() && one.starts.len() == sk.runs).then_some((one.spill, one.starts, ix));
     if sk.targets.meets(&sk.run_ns) {
-        // Jumps name N values of run blocks: scan again keeping those blocks real.
+        // Jumps name N values of run blocks: scan again keeping those blocks real, and
+        // write the runs in a writing scan.
+        spilled = None;
         let keep = sk.targets.clone();
         (sk, program) = skeleton(path, keep)?;
         if sk.targets.meets(&sk.run_ns) {
@@ -160,7 +189,6 @@ fn segment(
     if !(t.diags.is_empty() || notes_ok && notes_only) || t.unsupported > 0 {
         return Err(Fallback::Diagnostics);
     }
-    let eol = opts.line_ending.as_str();
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
     fresh_numbers_ok(&t.text, eol, &places, &sk)?;
@@ -173,6 +201,11 @@ fn segment(
     let head = translate::to_fanuc(&lone_unit, &[], opts);
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
     let notes = t.diags;
+    if let Some((spill, starts, mut index)) = spilled {
+        index.align = SourceAlign { messages: drop_msgs, tools };
+        assemble(&t.text, &places, spill, &starts, out).map_err(|e| Fallback::NotStreamable(NotStreamable::Io(e)))?;
+        return Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes));
+    }
     let mut w = Writer {
         keep: &sk.keep,
         run_units: &sk.run_units,
@@ -192,7 +225,6 @@ fn segment(
         io: None,
         bad: false,
     };
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     index.align = SourceAlign { messages: drop_msgs, tools };
@@ -211,6 +243,30 @@ fn segment(
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
     Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
+}
+
+/// Writes the translated skeleton `text` to `out` with each placeholder line (`places`)
+/// replaced by its run's translation from the spill (run `k` from `starts[k]` on).
+fn assemble(
+    text: &str,
+    places: &[(usize, usize)],
+    spill: Spill,
+    starts: &[u64],
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    let total = spill.len();
+    let mut r = spill.reader()?;
+    let mut o = std::io::BufWriter::with_capacity(WRITE_BYTES, &mut *out);
+    let mut pos = 0;
+    for (k, &(lo, hi)) in places.iter().enumerate() {
+        o.write_all(text.get(pos..lo).unwrap_or_default().as_bytes())?;
+        r.copy_to(starts.get(k + 1).copied().unwrap_or(total), &mut o)?;
+        pos = hi;
+    }
+    o.write_all(text.get(pos..).unwrap_or_default().as_bytes())?;
+    o.flush()?;
+    drop(o);
+    out.flush()
 }
 
 /// The span starts of the MSG items `translate::align_source` drops from `body` (all but a

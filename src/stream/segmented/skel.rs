@@ -7,7 +7,7 @@ use crate::passes::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::translate::{straight, Fallback};
-use crate::stream::{PlainWord, WordsSink};
+use crate::stream::{Index, PlainWord, WordsSink};
 use std::path::Path;
 
 /// The text of a placeholder comment (`k`: the run's index); no source comment of the
@@ -59,6 +59,11 @@ pub(super) struct Touched {
 }
 
 impl Modes {
+    /// The length and feed units in force.
+    pub(super) fn units(&self) -> Units {
+        self.units
+    }
+
     /// A constant G word, as the words pass takes it.
     fn g(&mut self, v: f64, t: &mut Touched) {
         if self.units.g(v) {
@@ -284,10 +289,9 @@ impl WordsSink for Skel {
     }
 }
 
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallback> {
-    let mut sk = Skel {
+/// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
+pub(super) fn new_skel(keep: NSet) -> Skel {
+    Skel {
         keep,
         body: Vec::new(),
         run: None,
@@ -302,10 +306,22 @@ pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallb
         after_msg: false,
         forced: Vec::new(),
         stop: None,
-    };
+    }
+}
+
+/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
+/// the program (name, head, span) it is the body of.
+pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallback> {
+    let mut sk = new_skel(keep);
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sk, None)
         .map_err(Fallback::NotStreamable)?;
+    finish(sk, ix).map(|(sk, p, _)| (sk, p))
+}
+
+/// A skeleton after its scan (whose index is `ix`): the skeleton, the program it is the
+/// body of, and the index.
+pub(super) fn finish(mut sk: Skel, ix: Index) -> Result<(Skel, Program, Index), Fallback> {
     sk.close_run();
     if let Some(why) = sk.stop.take() {
         return Err(Fallback::NotStraight(why));
@@ -313,12 +329,12 @@ pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallb
     if !ix.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
-    let mut programs = ix.programs.into_iter();
-    let (Some(p), None) = (programs.next(), programs.next()) else {
+    if ix.programs.len() != 1 {
         return Err(Fallback::NotStraight("more than one program".into()));
-    };
-    if !p.program.params.is_empty() {
+    }
+    if !ix.programs[0].program.params.is_empty() {
         return Err(Fallback::NotStraight("a PROC with parameters".into()));
     }
-    Ok((sk, p.program))
+    let program = ix.programs[0].program.clone();
+    Ok((sk, program, ix))
 }
