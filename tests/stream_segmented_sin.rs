@@ -399,3 +399,29 @@ fn arc_modes_run_from_the_macro_part_into_runs_and_back() {
         }
     }
 }
+
+/// Runs whose translations pass the in-memory part of the spill (64 KiB) go through its
+/// temporary file, with blocks the fast path declines (translated alone after the scan and
+/// put in at their places) and arc modes running between the runs and the macro part.
+#[test]
+fn large_runs_through_the_spill_file() {
+    let dir = scratch("spill");
+    for (k, eol) in ["\n", "\r\n"].into_iter().enumerate() {
+        let mut r = Rng(0x5B11_0002 + k as u64);
+        let mut t = format!("%{eol}O2{k}00 (SPILL){eol}#100=1{eol}G21 G17 G90 G94{eol}G0 X0. Y0. Z5.{eol}");
+        let (mut arc, mut ns) = (false, Vec::new());
+        for j in 0..4 {
+            t.push_str(&cam_run(&mut r, 1500, eol, &mut arc, &mut ns));
+            t.push_str(&format!("#10{j}=#100+{j}{eol}G1 X#100 Y{j}.{eol}"));
+            arc = false;
+        }
+        t.push_str(&format!("M30{eol}%{eol}"));
+        assert!(t.len() > 100_000, "{}", t.len());
+        let path = dir.join(format!("spill{k}.nc"));
+        std::fs::write(&path, &t).expect("write");
+        match compare(&path) {
+            Outcome::Same(_) => {}
+            Outcome::Declined(why) => panic!("spill{k} declined: {why}"),
+        }
+    }
+}

@@ -71,12 +71,12 @@
 
 mod one;
 mod skel;
-mod spill;
+pub(crate) mod spill;
 mod write;
 
 use one::One;
 use skel::{finish, new_skel, skeleton, NSet, MAX_N};
-use spill::Spill;
+use spill::{assemble, Spill};
 use write::{placeholders, Writer};
 
 use super::lines::NotStreamable;
@@ -203,7 +203,8 @@ fn segment(
     let notes = t.diags;
     if let Some((spill, starts, mut index)) = spilled {
         index.align = SourceAlign { messages: drop_msgs, tools };
-        assemble(&t.text, &places, spill, &starts, out).map_err(|e| Fallback::NotStreamable(NotStreamable::Io(e)))?;
+        assemble(&t.text, &places, spill, &starts, &[], out)
+            .map_err(|e| Fallback::NotStreamable(NotStreamable::Io(e)))?;
         return Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes));
     }
     let mut w = Writer {
@@ -243,30 +244,6 @@ fn segment(
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
     Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
-}
-
-/// Writes the translated skeleton `text` to `out` with each placeholder line (`places`)
-/// replaced by its run's translation from the spill (run `k` from `starts[k]` on).
-fn assemble(
-    text: &str,
-    places: &[(usize, usize)],
-    spill: Spill,
-    starts: &[u64],
-    out: &mut dyn Write,
-) -> std::io::Result<()> {
-    let total = spill.len();
-    let mut r = spill.reader()?;
-    let mut o = std::io::BufWriter::with_capacity(WRITE_BYTES, &mut *out);
-    let mut pos = 0;
-    for (k, &(lo, hi)) in places.iter().enumerate() {
-        o.write_all(text.get(pos..lo).unwrap_or_default().as_bytes())?;
-        r.copy_to(starts.get(k + 1).copied().unwrap_or(total), &mut o)?;
-        pos = hi;
-    }
-    o.write_all(text.get(pos..).unwrap_or_default().as_bytes())?;
-    o.flush()?;
-    drop(o);
-    out.flush()
 }
 
 /// The span starts of the MSG items `translate::align_source` drops from `body` (all but a

@@ -66,6 +66,11 @@ impl Spill {
         Spill { buf: Vec::with_capacity(WRITE_BYTES + 4096), ..Spill::default() }
     }
 
+    /// Bytes in the file (the buffer holds the rest).
+    pub(crate) fn flushed(&self) -> u64 {
+        self.flushed
+    }
+
     /// Bytes spilled so far.
     pub(crate) fn len(&self) -> u64 {
         self.flushed + self.buf.len() as u64
@@ -159,4 +164,38 @@ impl SpillReader {
         self.at = to;
         Ok(())
     }
+}
+
+/// Writes the translated skeleton `text` to `out` with each placeholder line (`places`)
+/// replaced by its run's translation from the spill (run `k` from `starts[k]` on), with
+/// the texts `inserts` (each: its run, where in the spill, the bytes; in order) put in.
+pub(crate) fn assemble(
+    text: &str,
+    places: &[(usize, usize)],
+    spill: Spill,
+    starts: &[u64],
+    inserts: &[(usize, u64, String)],
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    let total = spill.len();
+    let mut r = spill.reader()?;
+    let mut o = std::io::BufWriter::with_capacity(WRITE_BYTES, &mut *out);
+    let mut pos = 0;
+    let mut ins = inserts.iter().peekable();
+    for (k, &(lo, hi)) in places.iter().enumerate() {
+        o.write_all(text.get(pos..lo).unwrap_or_default().as_bytes())?;
+        while let Some((_, at, bytes)) = ins.next_if(|i| i.0 == k) {
+            r.copy_to(*at, &mut o)?;
+            o.write_all(bytes.as_bytes())?;
+        }
+        r.copy_to(starts.get(k + 1).copied().unwrap_or(total), &mut o)?;
+        pos = hi;
+    }
+    if ins.next().is_some() {
+        return Err(std::io::Error::other("a block to put in outside the runs"));
+    }
+    o.write_all(text.get(pos..).unwrap_or_default().as_bytes())?;
+    o.flush()?;
+    drop(o);
+    out.flush()
 }

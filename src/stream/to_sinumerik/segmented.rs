@@ -44,14 +44,22 @@
 //! Any diagnostic of the source, or of the skeleton or a block alone other than the
 //! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
 //! words pass gives them), declines, as do several programs, `nctrans: set` lines with CR
-//! line ends and N values above 2^24. The source is read two or three times: a scan
-//! builds the skeleton (and collects the N values jumps name); when such a value is also
-//! the N of a run block, a second scan builds it again with those blocks kept out of
-//! runs; the writing scan (`writer`) fills the runs.
+//! line ends and N values above 2^24. The source is read once before verification: ONE
+//! scan (`one`) builds the skeleton (and collects the N values jumps name) and translates
+//! each run as it reaches it into a spill (`segmented::spill`: memory, then a temporary
+//! file about the output's size), since the arc mode a run depends on is followed in
+//! textual order and known there; a run block the fast path declines is kept (up to a few
+//! thousand) and translated alone with the skeleton's plan after the scan. The skeleton's
+//! text is then written with each placeholder line replaced by a byte copy of its run's
+//! spilled translation, the blocks translated alone put in at their places. When a jump
+//! names the N of a run block, a second scan builds the skeleton again with those blocks
+//! kept out of runs, and a writing scan (`writer`) fills the runs, as it does when more
+//! blocks are declined or a declined line turns out to be no run block.
 
 use super::super::lines::NotStreamable;
+use super::super::segmented::spill::{assemble, Spill};
 use super::super::translate::Fallback;
-use super::super::{PlainWord, ProgressFn, WordsSink, WRITE_BYTES};
+use super::super::{Index, PlainWord, ProgressFn, WordsSink, WRITE_BYTES};
 use super::{fast, first_line_ending, has_bom, plain_g, straight, Streamed};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
@@ -59,10 +67,12 @@ use crate::passes::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
 use crate::translate_sinumerik as ts;
+use one::One;
 use std::io::Write;
 use std::path::Path;
 use writer::{kept_warning, Alone, Writer};
 
+mod one;
 mod writer;
 
 /// The text of a placeholder comment (`k`: the run's index).
@@ -325,10 +335,9 @@ impl WordsSink for Skel {
     }
 }
 
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> Result<(Skel, Program), Fallback> {
-    let mut sk = Skel {
+/// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
+fn new_skel(keep: Bits) -> Skel {
+    Skel {
         class: Class { keep, solid: false },
         body: Vec::new(),
         run: None,
@@ -338,9 +347,21 @@ fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> R
         run_ns: Bits::default(),
         targets: Bits::default(),
         stop: None,
-    };
+    }
+}
+
+/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
+/// the program (name, head, span) it is the body of.
+fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> Result<(Skel, Program), Fallback> {
+    let mut sk = new_skel(keep);
     let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, popts, &mut sk, None)
         .map_err(Fallback::NotStreamable)?;
+    finish(path, eol, sk, ix).map(|(sk, p, _)| (sk, p))
+}
+
+/// A skeleton after its scan of `path` (whose index is `ix`): the skeleton, the program it
+/// is the body of, and the index.
+fn finish(path: &Path, eol: LineEnding, mut sk: Skel, ix: Index) -> Result<(Skel, Program, Index), Fallback> {
     sk.close_run();
     if let Some(why) = sk.stop.take() {
         return Err(Fallback::NotStraight(why));
@@ -353,11 +374,11 @@ fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> R
     if cr && ix.header.contains("nctrans:") {
         return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
     }
-    let mut programs = ix.programs.into_iter();
-    let (Some(p), None) = (programs.next(), programs.next()) else {
+    if ix.programs.len() != 1 {
         return Err(Fallback::NotStraight("more than one program".into()));
-    };
-    Ok((sk, p.program))
+    }
+    let program = ix.programs[0].program.clone();
+    Ok((sk, program, ix))
 }
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
@@ -395,9 +416,35 @@ pub fn to_sinumerik(
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Streamed, Fallback> {
     let popts = ParseOptions { semantics: opts.source.clone() };
-    let (mut sk, mut program) = skeleton(path, &popts, eol, Bits::default())?;
+    let mut progress = progress;
+    // One scan builds the skeleton and spills the runs' translations (`one`).
+    let mut one = One {
+        sk: new_skel(Bits::default()),
+        opts,
+        eol,
+        spill: Spill::new(),
+        starts: Vec::new(),
+        arc: false,
+        pending: false,
+        deferred: Vec::new(),
+        ok: true,
+    };
+    let ix = super::super::scan_words_path(
+        path,
+        0,
+        Dialect::Fanuc,
+        &popts,
+        &mut one,
+        progress.as_mut().map(|p| &mut **p as _),
+    )
+    .map_err(Fallback::NotStreamable)?;
+    let (mut sk, mut program, ix) = finish(path, eol, one.sk, ix)?;
+    let live = one.ok && !one.pending && one.spill.io.is_none() && one.starts.len() == sk.arcs.len();
+    let mut spilled = live.then_some((one.spill, one.starts, one.deferred, ix));
     if sk.targets.meets(&sk.run_ns) {
-        // Jumps name N values of run blocks: scan again keeping those blocks real.
+        // Jumps name N values of run blocks: scan again keeping those blocks real, and
+        // write the runs in a writing scan.
+        spilled = None;
         let keep = sk.targets.clone();
         (sk, program) = skeleton(path, &popts, eol, keep)?;
         if sk.targets.meets(&sk.run_ns) {
@@ -427,6 +474,35 @@ pub fn to_sinumerik(
     };
     drop(unit);
     let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
+    if let Some((spill, starts, deferred, index)) = spilled {
+        // The blocks the fast path declined, as the writing scan translates them.
+        let mut inserts = Vec::with_capacity(deferred.len());
+        let mut run_diags = Vec::new();
+        for d in deferred {
+            let Some((text, diags)) = alone.written(opts, &d.stmt, d.arc, eol) else {
+                return Err(Fallback::Diagnostics);
+            };
+            run_diags.extend(diags);
+            inserts.push((d.run, d.at, text));
+        }
+        let io = |e| Fallback::NotStreamable(NotStreamable::Io(e));
+        if bom {
+            out.write_all(b"\xEF\xBB\xBF").map_err(io)?;
+        }
+        assemble(&f.text, &places, spill, &starts, &inserts, out).map_err(io)?;
+        let mut diags = tr.diags.clone();
+        diags.append(&mut run_diags);
+        diags.sort_by_key(|d| d.labels.first().map_or(0, |l| l.span.lo));
+        return Ok(Streamed {
+            blocks: index.blocks,
+            index,
+            diags,
+            file_name: f.name.clone(),
+            program: f.program.clone(),
+            fanuc_number: f.fanuc_number,
+            symbols: tr.symbols.clone(),
+        });
+    }
     let mut w = Writer {
         class: Class { keep, solid: false },
         opts,

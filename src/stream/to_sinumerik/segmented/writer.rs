@@ -68,6 +68,25 @@ impl Alone {
     }
 }
 
+impl Alone {
+    /// [`Alone::block`] with `eol` line ends, when its diagnostics are all kept warnings.
+    pub(super) fn written(
+        &self,
+        opts: &Options,
+        s: &Stmt,
+        arc: bool,
+        eol: LineEnding,
+    ) -> Option<(String, Vec<Diagnostic>)> {
+        match self.block(opts, s, arc) {
+            Some((text, diags)) if diags.iter().all(kept_warning) => match eol {
+                LineEnding::Lf => Some((text, diags)),
+                other => Some((text.replace('\n', other.as_str()), diags)),
+            },
+            _ => None,
+        }
+    }
+}
+
 /// The writing scan's sink: the skeleton's text with each placeholder line replaced by its
 /// run, translated as it is read.
 pub(super) struct Writer<'a> {
@@ -124,15 +143,12 @@ impl Writer<'_> {
 
     /// A run block the fast path declined, through the passes alone.
     fn alone(&mut self, s: &Stmt, arc: bool) {
-        match self.alone.block(self.opts, s, arc) {
-            Some((text, diags)) if diags.iter().all(kept_warning) => {
+        match self.alone.written(self.opts, s, arc, self.eol) {
+            Some((text, diags)) => {
                 self.diags.extend(diags);
-                match self.eol {
-                    LineEnding::Lf => self.buf.extend_from_slice(text.as_bytes()),
-                    other => self.buf.extend_from_slice(text.replace('\n', other.as_str()).as_bytes()),
-                }
+                self.buf.extend_from_slice(text.as_bytes());
             }
-            _ => self.bad = true,
+            None => self.bad = true,
         }
     }
 
