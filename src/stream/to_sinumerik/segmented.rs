@@ -424,7 +424,6 @@ pub fn to_sinumerik(
         eol,
         spill: Spill::new(),
         starts: Vec::new(),
-        arc: false,
         pending: false,
         deferred: Vec::new(),
         ok: true,

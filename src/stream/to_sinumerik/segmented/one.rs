@@ -7,7 +7,7 @@ use super::super::super::segmented::spill::Spill;
 use super::super::super::translate::digits::Src;
 use super::super::super::{PlainWord, WordsSink};
 use super::super::fast;
-use super::{follow_items, follow_words, Skel};
+use super::{follow_words, Skel};
 use crate::ir::{BlockMeta, Stmt, StmtKind};
 use crate::passes::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
@@ -20,8 +20,6 @@ pub(super) struct One<'a> {
     pub(super) spill: Spill,
     /// Where each run's translation starts in the spill.
     pub(super) starts: Vec<u64>,
-    /// The arc mode in the run being translated.
-    pub(super) arc: bool,
     /// The last plain line was a run block the fast path declined: its statement comes.
     pub(super) pending: bool,
     /// The run blocks the fast path declined, in order: each is translated alone with the
@@ -64,9 +62,10 @@ impl WordsSink for One<'_> {
             return self.sk.plain(prog, meta, words, line);
         }
         // A run block (as `Skel::plain` takes it): translated first, so that a block the fast
-        // path declines comes as a statement with the skeleton not yet changed.
-        let starting = sk.run.is_none();
-        let mut arc = if starting { sk.arc } else { self.arc };
+        // path declines comes as a statement with the skeleton not yet changed. The arc mode
+        // the skeleton follows through the runs is the one each run block starts in
+        // (`fast::plain_words` follows it as `follow_words` does).
+        let mut arc = sk.arc;
         let at = self.spill.len();
         let eol = self.eol.as_str().as_bytes();
         let buf = &mut self.spill.buf;
@@ -77,23 +76,24 @@ impl WordsSink for One<'_> {
             if fast::block(meta, words, lit, after, self.opts, eol, buf).is_err() {
                 // Nothing is kept; the block comes again as a statement.
                 buf.truncate(mark);
-                self.arc = arc;
                 self.pending = true;
                 return false;
             }
             arc = after;
         }
-        self.arc = arc;
-        if starting {
+        if self.sk.run.is_none() {
             self.starts.push(at);
         }
+        // What `Skel::plain` does with a run block.
+        self.sk.run_block(meta);
+        self.sk.arc = arc;
         self.spill.flush_some();
-        self.sk.plain(prog, meta, words, line)
+        true
     }
 
     fn stmt(&mut self, prog: usize, s: &Stmt) {
         let pending = std::mem::take(&mut self.pending);
-        let (was_run, arc) = (self.sk.run.is_some(), self.sk.arc);
+        let (was_run, before) = (self.sk.run.is_some(), self.sk.arc);
         self.sk.stmt(prog, s);
         if !self.live() || self.sk.stop.is_some() {
             return;
@@ -110,11 +110,10 @@ impl WordsSink for One<'_> {
         };
         let at = self.spill.len();
         if !was_run {
-            self.arc = arc;
             self.starts.push(at);
         }
-        let before = self.arc;
-        let after = follow_items(before, &b.items);
+        // The skeleton has followed the block's arc mode (`follow_items`).
+        let after = self.sk.arc;
         let eol = self.eol.as_str().as_bytes();
         if fast::block(&b.meta, &b.items, |_| None, after, self.opts, eol, &mut self.spill.buf).is_err() {
             // Translated alone after the scan (with the skeleton's plan), and put in here.
@@ -123,9 +122,9 @@ impl WordsSink for One<'_> {
                 self.ok = false;
                 return;
             }
-            self.deferred.push(Deferred { run: self.starts.len().saturating_sub(1), at, stmt: s.clone(), arc: before });
+            let run = self.starts.len().saturating_sub(1);
+            self.deferred.push(Deferred { run, at, stmt: s.clone(), arc: before });
         }
-        self.arc = after;
         self.spill.flush_some();
     }
 }
