@@ -57,7 +57,9 @@ impl WordsSink for One {
             self.starts.push(at);
         }
         self.spill.flush_some();
-        self.sk.plain(prog, meta, words, line)
+        // What `Skel::plain` does with a run block.
+        self.sk.plain_run_block(meta, words);
+        true
     }
 
     fn stmt(&mut self, prog: usize, s: &Stmt) {

@@ -154,6 +154,19 @@ impl Skel {
         }
     }
 
+    /// A plain line that is a run block (`WordsSink::plain` has judged it so).
+    #[inline]
+    pub(super) fn plain_run_block(&mut self, meta: &BlockMeta, words: &[PlainWord]) {
+        self.run_block(meta);
+        let mut t = self.touched;
+        for w in words {
+            if w.letter == b'G' {
+                self.modes.g(w.value, &mut t);
+            }
+        }
+        self.touched = t;
+    }
+
     /// Ends the run being collected: its placeholder block carries the modes the run leaves
     /// (as unit words, `Units::words`, and G90/G91 words, where it changes them) for the
     /// words pass to follow
@@ -254,12 +267,7 @@ impl WordsSink for Skel {
             // Asked for as a statement (a lone M0 after a MSG is judged there).
             return false;
         }
-        self.run_block(meta);
-        let mut t = self.touched;
-        for w in words.iter().filter(|w| w.letter == b'G') {
-            self.modes.g(w.value, &mut t);
-        }
-        self.touched = t;
+        self.plain_run_block(meta, words);
         true
     }
 

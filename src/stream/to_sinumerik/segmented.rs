@@ -191,7 +191,11 @@ impl Class {
             && meta.label.is_none()
             && !self.kept(meta)
             && words.iter().all(|w| match w.letter {
-                b'G' => plain_g(w.value),
+                // G0..G3 (plain) without `plain_g`'s rounding: CAM lines are made of them.
+                b'G' => {
+                    let g = w.value as u32;
+                    (g <= 3 && f64::from(g) == w.value) || plain_g(w.value)
+                }
                 b'M' => !special_m(w.value),
                 _ => true,
             })
