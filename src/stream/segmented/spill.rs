@@ -16,7 +16,7 @@ static MADE: AtomicU64 = AtomicU64::new(0);
 
 /// A temporary file, removed when dropped (if it could not be unlinked while open).
 struct TempFile {
-    file: File,
+    file: Option<File>,
     path: Option<PathBuf>,
 }
 
@@ -32,7 +32,7 @@ impl TempFile {
                 Ok(file) => {
                     // Unlinked while open where that works: nothing is left if the process dies.
                     let path = std::fs::remove_file(&path).is_err().then_some(path);
-                    return Ok(TempFile { file, path });
+                    return Ok(TempFile { file: Some(file), path });
                 }
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 100 => tries += 1,
                 Err(e) => return Err(e),
@@ -41,8 +41,16 @@ impl TempFile {
     }
 }
 
+impl TempFile {
+    fn file(&mut self) -> std::io::Result<&mut File> {
+        self.file.as_mut().ok_or_else(|| std::io::Error::other("spill file closed"))
+    }
+}
+
 impl Drop for TempFile {
     fn drop(&mut self) {
+        // Closed first: some systems remove no open file.
+        drop(self.file.take());
         if let Some(p) = &self.path {
             let _ = std::fs::remove_file(p);
         }
@@ -100,7 +108,7 @@ impl Spill {
             }
         }
         if let Some(f) = &mut self.file {
-            match f.file.write_all(&self.buf) {
+            match f.file().and_then(|file| file.write_all(&self.buf)) {
                 Ok(()) => self.flushed += self.buf.len() as u64,
                 Err(e) => self.io = Some(e),
             }
@@ -120,7 +128,7 @@ impl Spill {
             }
         }
         if let Some(f) = &mut self.file {
-            f.file.seek(SeekFrom::Start(0))?;
+            f.file()?.seek(SeekFrom::Start(0))?;
         }
         Ok(SpillReader { file: self.file, mem: self.buf, at: 0, chunk: Vec::new() })
     }
@@ -155,7 +163,7 @@ impl SpillReader {
                 }
                 while left > 0 {
                     let n = usize::try_from(left).unwrap_or(usize::MAX).min(self.chunk.len());
-                    f.file.read_exact(&mut self.chunk[..n])?;
+                    f.file()?.read_exact(&mut self.chunk[..n])?;
                     out.write_all(&self.chunk[..n])?;
                     left -= n as u64;
                 }
