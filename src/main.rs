@@ -176,7 +176,7 @@ fn read_file(path: &PathBuf) -> Result<Vec<u8>, ExitCode> {
 
 fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &InputOpts) -> ExitCode {
     if summary && stream_cli::wanted(path, input) {
-        if let Some(code) = stream_cli::parse_summary(path, from) {
+        if let Some(code) = stream_cli::parse_summary(path, from, input.encoding) {
             return code;
         }
     }
@@ -272,7 +272,7 @@ fn cmd_run(
 ) -> ExitCode {
     use nctrans::eval::{self, Ending};
     if stream_cli::wanted(path, input) {
-        if let Some(code) = stream_cli::run(path, from, eval, format, quiet) {
+        if let Some(code) = stream_cli::run(path, from, eval, format, quiet, input.encoding) {
             return code;
         }
     }
@@ -323,7 +323,7 @@ fn cmd_check(
     for (path, from) in [(a, from_a), (b, from_b)] {
         let id = db.len();
         let runner =
-            match stream_cli::wanted(path, input).then(|| stream_cli::side(&mut db, path, from, eval)).flatten() {
+            match stream_cli::wanted_side(path, input).then(|| stream_cli::side(&mut db, path, from, eval)).flatten() {
                 Some(Ok(r)) => {
                     streamed.push((id, path.as_path()));
                     r

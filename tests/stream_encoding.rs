@@ -30,8 +30,13 @@ fn legacy() -> Vec<(&'static Encoding, &'static str)> {
     ]
 }
 
-fn sinumerik_text(comment: &str, eol: &str, blocks: usize) -> String {
-    let mut s = format!("; {comment}{eol}G90 G17 G71{eol}R1=2.5{eol}MSG(\"{comment}\"){eol}");
+/// A Sinumerik CAM program; with `msg`, an R parameter and a message (these run and read
+/// as a stream, but do not translate as one: MSG is not a streamed block).
+fn sinumerik_text(comment: &str, eol: &str, blocks: usize, msg: bool) -> String {
+    let mut s = format!("; {comment}{eol}G90 G17 G71{eol}");
+    if msg {
+        s.push_str(&format!("R1=2.5{eol}MSG(\"{comment}\"){eol}"));
+    }
     for i in 0..blocks {
         s.push_str(&format!("N{} G1 X{}.{} Y-{} F1200 ; {comment}{eol}", 10 * (i + 1), i, i % 10, i % 7));
     }
@@ -82,7 +87,9 @@ fn detection_matches_the_whole_path_for_every_chunk_size() {
     for (enc, comment) in legacy() {
         for eol in ["\n", "\r\n", "\r"] {
             for bom in [false, true] {
-                for (ext, text) in [("mpf", sinumerik_text(comment, eol, 12)), ("nc", fanuc_text(comment, eol, 12))] {
+                for (ext, text) in
+                    [("mpf", sinumerik_text(comment, eol, 12, true)), ("nc", fanuc_text(comment, eol, 12))]
+                {
                     let p = dir.join(format!("f{n}.{ext}"));
                     n += 1;
                     std::fs::write(&p, encoded(&text, enc, bom)).unwrap();
@@ -154,7 +161,7 @@ fn encode_to_matches_read_encode() {
 fn copy_is_removed_on_drop() {
     let dir = scratch("copy");
     let p = dir.join("x.mpf");
-    std::fs::write(&p, encoded(&sinumerik_text("Fräser", "\n", 3), encoding_rs::WINDOWS_1252, false)).unwrap();
+    std::fs::write(&p, encoded(&sinumerik_text("Fräser", "\n", 3, true), encoding_rs::WINDOWS_1252, false)).unwrap();
     let c = transcode::copy(&p, None).unwrap().expect("a legacy file gets a copy");
     let cp = c.path().to_path_buf();
     assert_eq!(cp.file_name(), p.file_name());
@@ -166,8 +173,303 @@ fn copy_is_removed_on_drop() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-fn nctrans(args: &[&str], cwd: &Path, tmp: &Path) -> (i32, Vec<u8>, String) {
-    let o =
-        Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(cwd).env("TMPDIR", tmp).output().unwrap();
-    (o.status.code().unwrap_or(-1), o.stdout, String::from_utf8_lossy(&o.stderr).into_owned())
+/// What a command gives: exit code, stdout, stderr and the files it wrote.
+#[derive(Debug, PartialEq)]
+struct Ran {
+    code: i32,
+    stdout: Vec<u8>,
+    stderr: String,
+    files: Vec<(String, Vec<u8>)>,
+}
+
+/// Runs nctrans in a fresh folder holding `input` (as `name`) and `nctrans.toml` (when
+/// given), with TMPDIR a fresh empty folder: whole, then with `--stream`. Checks the
+/// streamed run went through a temporary file (the temp folder changed, when `copied`) and
+/// left nothing behind. (That the translations stream is shown at the library level:
+/// [`translations_stream_from_the_copy`].)
+fn both(case: &str, name: &str, input: &[u8], toml: Option<&str>, args: &[&str], copied: bool) -> (Ran, Ran) {
+    let mut out = Vec::new();
+    for stream in [false, true] {
+        let dir = scratch(&format!("{case}-{stream}"));
+        let work = dir.join("w");
+        let tmp = dir.join("tmp");
+        std::fs::create_dir_all(&work).unwrap();
+        std::fs::create_dir_all(&tmp).unwrap();
+        std::fs::write(work.join(name), input).unwrap();
+        if let Some(t) = toml {
+            std::fs::write(work.join("nctrans.toml"), t).unwrap();
+        }
+        let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_000_000_000);
+        std::fs::File::open(&tmp).unwrap().set_modified(old).unwrap();
+        let mut a: Vec<&str> = args.to_vec();
+        if stream {
+            a.push("--stream");
+        }
+        let o = Command::new(env!("CARGO_BIN_EXE_nctrans"))
+            .args(&a)
+            .current_dir(&work)
+            .env("TMPDIR", &tmp)
+            .output()
+            .unwrap();
+        let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().map(|e| e.path()).collect();
+        assert!(left.is_empty(), "{case}: left behind {left:?}");
+        let touched = std::fs::metadata(&tmp).unwrap().modified().unwrap() != old;
+        if stream && copied {
+            assert!(touched, "{case}: the streamed run made no decoded copy (read whole?)");
+        }
+        let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&work)
+            .unwrap()
+            .flatten()
+            .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
+            .collect();
+        files.sort();
+        out.push(Ran {
+            code: o.status.code().unwrap_or(-1),
+            stdout: o.stdout,
+            stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
+            files,
+        });
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    let s = out.pop().unwrap();
+    let w = out.pop().unwrap();
+    (w, s)
+}
+
+fn same(case: &str, name: &str, input: &[u8], toml: Option<&str>, args: &[&str], copied: bool) -> Ran {
+    let (w, s) = both(case, name, input, toml, args, copied);
+    assert_eq!(w.code, s.code, "{case}: exit codes\nwhole: {}\nstream: {}", w.stderr, s.stderr);
+    assert_eq!(w.stderr, s.stderr, "{case}: stderr");
+    assert!(w.stdout == s.stdout, "{case}: stdout differs");
+    assert!(w.files == s.files, "{case}: written files differ");
+    s
+}
+
+/// A Sinumerik program with a macro part (a loop back over CAM runs) and legacy comments.
+fn sinumerik_macro(comment: &str, eol: &str) -> String {
+    let mut s = format!("; {comment}{eol}R1=5 R2=0{eol}N1 G90 G71 F1000{eol}IF R1>3 GOTOF N777{eol}");
+    for i in 0..30 {
+        s.push_str(&format!("N{} G1 X{}.25 Y{} ; {comment}{eol}", 100 + 10 * i, i, i % 5));
+    }
+    s.push_str(&format!("N777 G0 Z10{eol}R2=R2+1{eol}IF R2<2 GOTOB N1{eol}M30{eol}"));
+    s
+}
+
+fn fanuc_macro(comment: &str, eol: &str) -> String {
+    let mut s = format!("O2000 ({comment}){eol}#1=0{eol}N1 G90 G21 F1000.{eol}");
+    for i in 0..30 {
+        s.push_str(&format!("G01 X{}.25 Y{} ({comment}){eol}", i, i % 5));
+    }
+    s.push_str(&format!("#1=#1+1{eol}IF[#1LT2]GOTO1{eol}M30{eol}"));
+    s
+}
+
+#[test]
+fn cli_streams_legacy_files_as_the_whole_path_reads_them() {
+    for (k, (enc, comment)) in legacy().into_iter().enumerate() {
+        for (e, eol) in ["\n", "\r\n"].into_iter().enumerate() {
+            let bom = e == 1 && k % 2 == 0;
+            let forced = enc.name().to_ascii_lowercase();
+            let case = format!("{}-{e}", enc.name());
+            let sin = encoded(&sinumerik_text(comment, eol, 40, true), enc, bom);
+            let sin_t = encoded(&sinumerik_text(comment, eol, 40, false), enc, bom);
+            let fan = encoded(&fanuc_text(comment, eol, 40), enc, bom);
+            let sin_m = encoded(&sinumerik_macro(comment, eol), enc, bom);
+            let fan_m = encoded(&fanuc_macro(comment, eol), enc, bom);
+            for (forced_args, tr_args) in
+                [(vec![], vec![]), (vec!["--encoding", forced.as_str()], vec!["--input-encoding", forced.as_str()])]
+            {
+                let f = if forced_args.is_empty() { "detected" } else { "forced" };
+                for (n, name, bytes) in [
+                    (0, "p.mpf", &sin),
+                    (1, "q.nc", &fan),
+                    (2, "m.mpf", &sin_m),
+                    (3, "n.nc", &fan_m),
+                    (4, "t.mpf", &sin_t),
+                ] {
+                    let mut a = vec!["run", name];
+                    a.extend(&forced_args);
+                    let r = same(&format!("{case}-{f}-run{n}"), name, bytes, None, &a, true);
+                    assert!(!r.stdout.is_empty());
+                    let mut a = vec!["parse", "--summary", name];
+                    a.extend(&forced_args);
+                    same(&format!("{case}-{f}-sum{n}"), name, bytes, None, &a, true);
+                    let to = if name.ends_with(".mpf") { "fanuc" } else { "sinumerik" };
+                    let out = if to == "fanuc" { "out.nc" } else { "out.mpf" };
+                    let mut a = vec!["--to", to, name, "-o", out];
+                    a.extend(&tr_args);
+                    let r = same(&format!("{case}-{f}-to-{to}{n}"), name, bytes, None, &a, true);
+                    assert_eq!(r.code, 0, "{}", r.stderr);
+                    // The translation is in the source's encoding and keeps its comment.
+                    let written = &r.files.iter().find(|x| x.0 == out).expect("output").1;
+                    let back = read::decode(written, Some(enc));
+                    assert!(back.text.contains(comment.split(' ').next().unwrap()), "{case}: {}", back.text);
+                    let mut a = vec!["--to", to, name];
+                    a.extend(&tr_args);
+                    same(&format!("{case}-{f}-stdout-{to}{n}"), name, bytes, None, &a, true);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn cli_output_encoding_and_bom() {
+    let (enc, comment) = legacy()[1];
+    let gbk = encoded(&sinumerik_text(comment, "\r\n", 20, false), enc, true);
+    // A legacy source with a BOM written as UTF-8: the BOM comes back.
+    let r = same(
+        "out-utf8",
+        "p.mpf",
+        &gbk,
+        Some("[output]\nencoding = \"utf-8\"\n"),
+        &["--to", "fanuc", "p.mpf", "-o", "o.nc"],
+        true,
+    );
+    let o = &r.files.iter().find(|x| x.0 == "o.nc").unwrap().1;
+    assert!(o.starts_with(b"\xEF\xBB\xBF") && std::str::from_utf8(o).is_ok());
+    // A UTF-8 source written in GBK (no copy of the source; the output is encoded).
+    let utf = sinumerik_text(comment, "\n", 20, false);
+    let r = same(
+        "out-gbk",
+        "p.mpf",
+        utf.as_bytes(),
+        Some("[output]\nencoding = \"gbk\"\n"),
+        &["--to", "fanuc", "p.mpf", "-o", "o.nc"],
+        true,
+    );
+    let o = &r.files.iter().find(|x| x.0 == "o.nc").unwrap().1;
+    assert!(std::str::from_utf8(o).is_err() && read::decode(o, Some(enc)).text.contains("粗加工"));
+    // windows-1252 source, output in Shift-JIS: "ä" has no Shift-JIS code, a reference.
+    let latin = encoded(&sinumerik_text("Fräser", "\n", 10, false), encoding_rs::WINDOWS_1252, false);
+    let r = same(
+        "out-sjis",
+        "p.mpf",
+        &latin,
+        Some("[output]\nencoding = \"shift_jis\"\n"),
+        &["--to", "fanuc", "p.mpf", "-o", "o.nc"],
+        true,
+    );
+    assert!(String::from_utf8_lossy(&r.files.iter().find(|x| x.0 == "o.nc").unwrap().1).contains("&#228;"));
+}
+
+#[test]
+fn cli_diagnostics_point_into_the_decoded_text() {
+    let cases: Vec<(&str, Vec<u8>, Vec<&str>)> = vec![
+        // A parse error after lines with two-byte characters: line and column from the copy.
+        (
+            "parse-gbk",
+            encoded(
+                "; 粗加工 刀具\nG90 G71 F100\nN10 G1 X1 ; 粗加工\nN20 G1 X=(1+ ; 刀具\nM30\n",
+                encoding_rs::GBK,
+                false,
+            ),
+            vec!["run", "p.mpf"],
+        ),
+        (
+            "parse-sum",
+            encoded("; 粗加工 刀具\r\nN20 G1 X=(1+ ; 刀具\r\nM30\r\n", encoding_rs::GBK, false),
+            vec!["parse", "--summary", "p.mpf"],
+        ),
+        // An alarm while running (in the trace), an evaluation error.
+        (
+            "alarm-1252",
+            encoded("; Fräser Ø10\nG90 G71\nN10 G1 X1 ; Fräser\nM30\n", encoding_rs::WINDOWS_1252, false),
+            vec!["run", "p.mpf"],
+        ),
+        (
+            "eval-sjis",
+            encoded(
+                "; 荒加工 工具\nG90 G71 F100\nN10 G1 X1 ; 荒加工\nR3=UNDEF_VAR+1 ; 工具\nM30\n",
+                encoding_rs::SHIFT_JIS,
+                false,
+            ),
+            vec!["run", "p.mpf"],
+        ),
+        (
+            "tr-error",
+            encoded("; Fréza žluťoučký\nG90 G71 F100\nN10 G1 X=(1+ ; kůň\nM30\n", encoding_rs::WINDOWS_1250, false),
+            vec!["--to", "fanuc", "p.mpf", "-o", "o.nc"],
+        ),
+    ];
+    for (case, bytes, args) in cases {
+        let r = same(case, "p.mpf", &bytes, None, &args, true);
+        assert_ne!(r.code, 0, "{case}: {}", r.stderr);
+        // The alarm is in the trace; the others are rendered with their line.
+        assert!(r.stderr.contains("p.mpf:") || case.starts_with("alarm"), "{case}: {}", r.stderr);
+        if case == "eval-sjis" {
+            assert!(r.stderr.contains("p.mpf:4:4") && r.stderr.contains("R3=UNDEF_VAR+1 ; 工具"), "{}", r.stderr);
+        }
+    }
+}
+
+/// The translations the command-line tests compare do stream (from the decoded copy): the
+/// straight or segmented translators accept them (the command line cannot be asked).
+#[test]
+fn translations_stream_from_the_copy() {
+    use nctrans::stream::to_sinumerik as sts;
+    use nctrans::stream::{segmented, translate as st};
+    let dir = scratch("lib");
+    for (enc, comment) in legacy() {
+        for eol in ["\n", "\r\n"] {
+            for (name, text) in [
+                ("t.mpf", sinumerik_text(comment, eol, 40, false)),
+                ("m.mpf", sinumerik_macro(comment, eol)),
+                ("q.nc", fanuc_text(comment, eol, 40)),
+                ("n.nc", fanuc_macro(comment, eol)),
+            ] {
+                let p = dir.join(name);
+                std::fs::write(&p, encoded(&text, enc, false)).unwrap();
+                let copy = transcode::copy(&p, None).unwrap().expect("a copy");
+                let c = copy.path();
+                let mut out = Vec::new();
+                let case = format!("{} {name} {eol:?}", enc.name());
+                if name.ends_with(".mpf") {
+                    let o = nctrans::translate::TranslateOptions {
+                        main_name: "T".into(),
+                        source_name: name.into(),
+                        line_ending: copy.detected.line_ending,
+                        ..Default::default()
+                    };
+                    let straight = st::to_fanuc(c, &o, &mut out, None).is_ok();
+                    if !straight {
+                        out.clear();
+                        assert!(segmented::to_fanuc(c, &o, &mut out, None).is_ok(), "{case}");
+                    }
+                    assert_eq!(straight, name == "t.mpf", "{case}");
+                } else {
+                    let o = nctrans::translate_sinumerik::Options { main_name: "T".into(), ..Default::default() };
+                    let le = copy.detected.line_ending;
+                    let straight = sts::to_sinumerik(c, &o, le, &mut out, None).is_ok();
+                    if !straight {
+                        out.clear();
+                        assert!(sts::segmented::to_sinumerik(c, &o, le, &mut out, None).is_ok(), "{case}");
+                    }
+                }
+                let text = String::from_utf8(out).unwrap();
+                assert!(text.contains(comment.split(' ').next().unwrap()), "{case}: {text}");
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `check` reads a side that is not UTF-8 whole (its diagnostics are rendered from the
+/// file itself): the same verdict with `--stream`, detected or forced, and no copy.
+#[test]
+fn cli_check_reads_legacy_sides_whole() {
+    for (enc, comment) in legacy() {
+        let bytes = encoded(&sinumerik_text(comment, "\r\n", 10, true), enc, false);
+        let name = enc.name().to_ascii_lowercase();
+        let r = same(&format!("check-{name}"), "p.mpf", &bytes, None, &["check", "p.mpf", "p.mpf"], false);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        same(
+            &format!("checkf-{name}"),
+            "p.mpf",
+            &bytes,
+            None,
+            &["check", "p.mpf", "p.mpf", "--encoding", &name],
+            false,
+        );
+    }
 }

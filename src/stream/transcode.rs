@@ -245,10 +245,11 @@ pub fn decode_to(path: &Path, det: &Detected, out: &mut dyn Write) -> io::Result
 /// Encodes the UTF-8 file `utf8` into `out` in `enc` (as `read::encode`: unmappable
 /// characters as numeric character references, a BOM only for UTF-8 output).
 pub fn encode_to(utf8: &Path, enc: &'static Encoding, bom: bool, out: &mut dyn Write) -> io::Result<()> {
-    let enc = enc.output_encoding();
+    // `read::encode` asks for UTF-8 itself: UTF-16 text is written as UTF-8 without one.
     if bom && enc == encoding_rs::UTF_8 {
         out.write_all(BOM)?;
     }
+    let enc = enc.output_encoding();
     let mut encoder = enc.new_encoder();
     let mut carry: Vec<u8> = Vec::new();
     let mut back = vec![0u8; CHUNK * 4 + 64];
