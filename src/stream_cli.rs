@@ -453,14 +453,23 @@ fn translate_from(
             let mut line = ProgressLine::new("translating", size);
             let mut report = |p: Progress| line.update(p);
             let r = if started {
-                stream::segmented::to_fanuc(path, &opts, &mut w, Some(&mut report)).map_err(Some)
+                stream::segmented::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
             } else {
                 Err(None)
             };
             line.done();
             drop(w);
             match r {
-                Ok(d) => (d.index, Some(d.inputs)),
+                Ok((d, notes)) => {
+                    // The translation's notes, as the whole path renders them (lines read
+                    // from the file, or its decoded copy).
+                    if !notes.is_empty() {
+                        let mut db = SourceDb::new();
+                        db.add(input.display().to_string(), String::new());
+                        eprint!("{}", nctrans::excerpt::render(&db, &notes, &[(0, path)]));
+                    }
+                    (d.index, Some(d.inputs))
+                }
                 Err(f) => {
                     let _ = std::fs::remove_file(write_to);
                     let seg_why = match f {

@@ -30,8 +30,8 @@ fn legacy() -> Vec<(&'static Encoding, &'static str)> {
     ]
 }
 
-/// A Sinumerik CAM program; with `msg`, an R parameter and a message (these run and read
-/// as a stream, but do not translate as one: MSG is not a streamed block).
+/// A Sinumerik CAM program; with `msg`, an R parameter and a message too (not a
+/// straight-line program then).
 fn sinumerik_text(comment: &str, eol: &str, blocks: usize, msg: bool) -> String {
     let mut s = format!("; {comment}{eol}G90 G17 G71{eol}");
     if msg {

@@ -184,6 +184,10 @@ pub struct Index {
     pub diags: Vec<Diagnostic>,
     /// `; nctrans: set …` header comment lines (evaluator inputs), as text.
     pub header: String,
+    /// What a run of the program changes in the statements it re-reads, as
+    /// `translate::align_source` does for the whole path: set for verifying a segmented
+    /// translation (`segmented::SourceAlign`), empty elsewhere.
+    pub align: segmented::SourceAlign,
 }
 
 /// The dialect reader behind a scan.
@@ -681,6 +685,7 @@ fn scan_with(
         blocks,
         diags,
         header,
+        align: segmented::SourceAlign::default(),
     })
 }
 

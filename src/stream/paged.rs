@@ -128,7 +128,12 @@ impl Pager {
             *slot = Some(Lines::new(Input::File(f)).map_err(|e| self.err(e))?);
         }
         let Some(lines) = slot.as_mut() else { return Err(self.err("no reader")) };
-        let mut sink = Sink { ops: ChunkOps::new(self.ix.file, chunk.op_base, chunk.ops), failed: None, direct: 0 };
+        let mut sink = Sink {
+            ops: ChunkOps::new(self.ix.file, chunk.op_base, chunk.ops),
+            failed: None,
+            direct: 0,
+            align: &self.ix.align,
+        };
         let mut starts = Vec::with_capacity(CHUNK_OPS);
         super::reread(lines, &self.ix, chunk, self.direct.get(), &mut sink, &mut |lo, line| {
             starts.push((lo as u32, line))
@@ -247,16 +252,21 @@ impl Pager {
 }
 
 /// A page's ops as a re-read makes them.
-struct Sink {
+struct Sink<'a> {
     ops: ChunkOps,
+    /// `Index::align`.
+    align: &'a super::segmented::SourceAlign,
     /// The first error flattening a statement (the page is then not used).
     failed: Option<Diagnostic>,
     /// Lines read straight into compact ops.
     direct: u64,
 }
 
-impl RereadSink for Sink {
-    fn stmt(&mut self, s: Stmt) {
+impl RereadSink for Sink<'_> {
+    fn stmt(&mut self, mut s: Stmt) {
+        if !self.align.is_empty() {
+            self.align.stmt(&mut s);
+        }
         if self.failed.is_none() {
             self.failed = self.ops.stmt(s).err();
         }

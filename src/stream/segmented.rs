@@ -8,63 +8,77 @@
 //! straight-line stream's fast path. Memory follows the macro part, not the motion part.
 //!
 //! Why the output is the whole translation's, byte for byte:
-//! - a straight block's translation depends on no other block but through the G70 mode
-//!   (see `translate::fast`), and programs with G70/G700 anywhere are declined; the words
-//!   pass's G90/G91 mode reaches only AC()/IC() words, which are declined too;
+//! - a straight block's translation depends on no other block but through the words
+//!   pass's modes, and the words pass follows them in TEXTUAL order (`body_pass` walks the
+//!   statements and every structure's bodies in source order with one `Modal`; it never
+//!   follows jumps or loops). So the mode at any block is a function of the text before
+//!   it, and textual order is all there is to follow: the skeleton scan does it
+//!   (`skel::Modes`, the same rules: G70 on; G71, G700, G710 off; G90/G91), through runs and
+//!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
+//!   - each run's fast path starts in the G70 mode the text before it leaves (a block the
+//!     fast path declines is translated alone after a G70 block when that mode is on);
+//!   - each placeholder carries the modes its run leaves as G70/G71 and G90/G91 words
+//!     (only where the run changes them), so the skeleton's words pass reads the modes
+//!     the whole translation has at the macro statements after the run: F under G70, the
+//!     G90/G91 switch around AC()/IC() words. The placeholder's line is replaced whole,
+//!     so these words never reach the output.
+//!   - whether textual order is the mode a jump or a loop head runs in is the verifier's
+//!     question, the same for both paths: they write the same bytes.
 //! - the labels pass sees the same jumps and the same jump targets: a run never holds a
 //!   block whose N value any jump names (those stay real blocks of the skeleton), and
 //!   labelled blocks are not straight; it picks fresh numbers above the highest N of the
-//!   program, which the placeholder carries as its own N (programs whose numbers could
-//!   run out and wrap to low numbers are declined);
+//!   program, which the placeholder carries as its own N. When those would pass N99999
+//!   it numbers them from N1 up, skipping every N in use: then the run blocks' N values
+//!   up to where enough free numbers are passed go into the skeleton as carrier blocks
+//!   (`carry_numbers`), and the translated skeleton is checked for a fresh number a run
+//!   block has (`fresh_numbers_ok`: declined);
 //! - nothing else in the passes looks from one block at another one outside a structure
-//!   (MSG followed by M0 does; MSG is declined).
+//!   but MSG: a block holding only `MSG("…")` and a lone M0 block right after it become
+//!   one stop with the message. Such an M0 stays a real block of the skeleton (never a
+//!   run's), so the pair meets there. A MSG not so paired becomes a comment with a note
+//!   (NC320) in the skeleton as in the whole file: [`to_fanuc_with_notes`] returns the
+//!   notes for the caller to render, [`to_fanuc`] declines them. A MSG beside other items
+//!   is split off by the blocks pass and its piece may pair the same way: a lone M0 after
+//!   any block with a MSG stays in the skeleton, so the skeleton holds every pair the
+//!   whole file has (and the verifier's source is aligned alike, below).
+//!
+//! Why verification gives the whole path's verdict: the whole path runs `align_source` of
+//! the source, which differs from it only in MSG items (dropped unless paired) and
+//! string-valued words (a tool name the translation maps becomes its number). The MSG
+//! items it drops are found on the skeleton (`unpaired_messages`: its bodies pair as the
+//! source's do, since a lone M0 after a block with a MSG is never a run's) and named in
+//! `Index::align`; the streamed source leaves them out of the statements it re-reads
+//! (`stream::paged`, [`SourceAlign`]) and numbers the tool names there alike.
+//!
+//! Still declined (the whole path takes them): calls of other programs, PROC parameters,
+//! more than one program, computed jumps and G words, N numbers above 16777216 or near
+//! N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
+//! the translation has a warning or an error on (notes only through
+//! [`to_fanuc_with_notes`]).
 //!
 //! The source is read two or three times: a scan builds the skeleton (and collects the N
 //! values jumps name); when such a value is also the N of a run block, a second scan
 //! builds it again with those blocks kept out of runs; the writing scan fills the runs.
 
+mod skel;
+mod write;
+
+use skel::{skeleton, NSet, MAX_N};
+use write::{placeholders, Writer};
+
 use super::lines::NotStreamable;
-use super::translate::{fast, straight, Fallback};
-use super::WRITE_BYTES;
-use super::{Index, PlainWord, ProgressFn, WordsSink};
-use crate::dialect::fanuc::emit::{self, EmitOptions};
+use super::translate::{fast, Fallback};
+use super::{Index, ProgressFn, WRITE_BYTES};
+use crate::diag::{Diagnostic, Severity};
+use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{
-    Addr, BlockMeta, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target, Unit, WordValue,
-};
-use crate::read::RawBlock;
-use crate::span::Span;
+use crate::ir::{Expr, ExprKind, ItemKind, Number, Stmt, StmtKind, Unit, WordValue};
+use crate::passes::words::{is_lone_m0, msg_text};
 use crate::translate::{self, TranslateOptions};
+use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
-
-/// The text of a placeholder comment (`k`: the run's index); no source comment of the
-/// skeleton may hold it (checked on the translated skeleton).
-const MARK: &str = "NCTRANS SEGMENT ";
-/// N values above this are not tracked (a run holding one declines).
-const MAX_TRACKED_N: u32 = 1 << 24;
-/// The labels pass's highest N number.
-const MAX_N: u32 = 99999;
-/// A set of N values (a bit per value up to [`MAX_TRACKED_N`]).
-#[derive(Default, Clone)]
-struct NSet(Vec<u64>);
-
-impl NSet {
-    fn insert(&mut self, n: u32) {
-        let w = (n / 64) as usize;
-        if self.0.len() <= w {
-            self.0.resize(w + 1, 0);
-        }
-        self.0[w] |= 1 << (n % 64);
-    }
-    fn has(&self, n: u32) -> bool {
-        self.0.get((n / 64) as usize).is_some_and(|w| w & (1 << (n % 64)) != 0)
-    }
-    fn meets(&self, o: &NSet) -> bool {
-        self.0.iter().zip(&o.0).any(|(a, b)| a & b != 0)
-    }
-}
 
 /// A finished segmented translation.
 pub struct Segmented {
@@ -78,217 +92,38 @@ pub struct Segmented {
     pub symbol_map: translate::SymbolMap,
 }
 
-/// Whether `meta`'s N value is one a jump names (such a block stays in the skeleton).
-fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
-    meta.number.as_ref().is_some_and(|n| keep.has(n.value))
-}
-
-/// A G70/G700 word (the inch mode the fast path carries across blocks: declined).
-fn is_inch(letter: u8, v: f64) -> bool {
-    letter == b'G' && (v == 70.0 || v == 700.0)
-}
-
-/// The first scan's sink: builds the skeleton.
-struct Skel {
-    keep: NSet,
-    body: Vec<Stmt>,
-    /// The run being collected: its highest valid N value, the span of its first block.
-    run: Option<(Option<u32>, Span)>,
-    runs: usize,
-    /// N values of run blocks.
-    run_ns: NSet,
-    /// N values jumps name.
-    targets: NSet,
-    max_n: u32,
-    stop: Option<String>,
-}
-
-impl Skel {
-    fn decline(&mut self, why: impl Into<String>) {
-        if self.stop.is_none() {
-            self.stop = Some(why.into());
-        }
-    }
-
-    fn run_block(&mut self, meta: &BlockMeta) {
-        let n = meta.number.as_ref().map(|n| n.value);
-        if let Some(n) = n {
-            if n > MAX_TRACKED_N {
-                return self.decline("an N number above 16777216");
-            }
-            self.run_ns.insert(n);
-            self.max_n = self.max_n.max(if n <= MAX_N { n } else { 0 });
-        }
-        let valid = n.filter(|n| *n <= MAX_N);
-        match &mut self.run {
-            Some((hi, _)) => *hi = (*hi).max(valid),
-            None => self.run = Some((valid, meta.span)),
-        }
-    }
-
-    fn close_run(&mut self) {
-        if let Some((hi, span)) = self.run.take() {
-            let meta = BlockMeta {
-                span,
-                number: hi.map(|value| SeqNo { value, span }),
-                comments: vec![Comment { text: format!("{MARK}{}", self.runs), span }],
-                ..BlockMeta::default()
-            };
-            self.body.push(crate::passes::meta_stmt(meta, vec![]));
-            self.runs += 1;
-        }
-    }
-
-    /// Checks a statement of the macro part and collects its jump targets.
-    fn macro_stmt(&mut self, s: &Stmt) {
-        let mut why: Option<&'static str> = None;
-        let mut targets = Vec::new();
-        let mut max_n = 0;
-        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-            let StmtKind::Block(b) = &s.kind else { return };
-            if let Some(n) = &b.meta.number {
-                if n.value <= MAX_N {
-                    max_n = max_n.max(n.value);
-                }
-            }
-            for it in &b.items {
-                match &it.kind {
-                    ItemKind::Call(_) => why = why.or(Some("a call of another program")),
-                    ItemKind::Message { .. } | ItemKind::StopMessage { .. } => why = why.or(Some("a MSG")),
-                    ItemKind::Goto(g) => match &g.target {
-                        Target::Number(n) => targets.push(n.value),
-                        Target::Label(_) => {}
-                        Target::Computed(_) => why = why.or(Some("a computed jump")),
-                    },
-                    ItemKind::Word(w) => match &w.value {
-                        WordValue::Ac(_) | WordValue::Ic(_) => why = why.or(Some("AC()/IC()")),
-                        WordValue::Expr(e) => match &e.kind {
-                            ExprKind::Str(_) => why = why.or(Some("a string-valued word")),
-                            ExprKind::Num(x) if matches!(w.addr, Addr::Letter(l) if is_inch(l, x.value)) => {
-                                why = why.or(Some("G70/G700 (inch)"));
-                            }
-                            _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
-                                why = why.or(Some("a computed G word"));
-                            }
-                            _ => {}
-                        },
-                    },
-                    _ => {}
-                }
-            }
-        });
-        if let Some(w) = why {
-            return self.decline(w);
-        }
-        self.max_n = self.max_n.max(max_n);
-        for n in targets {
-            if n > MAX_TRACKED_N {
-                return self.decline("a jump to an N number above 16777216");
-            }
-            self.targets.insert(n);
-        }
-        self.body.push(s.clone());
-    }
-}
-
-/// Whether a straight statement holds G70/G700.
-fn stmt_inch(s: &Stmt) -> bool {
-    let StmtKind::Block(b) = &s.kind else { return false };
-    b.items.iter().any(|it| match &it.kind {
-        ItemKind::Word(w) => match (&w.addr, &w.value) {
-            (Addr::Letter(l), WordValue::Expr(e)) => matches!(&e.kind, ExprKind::Num(x) if is_inch(*l, x.value)),
-            _ => false,
-        },
-        _ => false,
-    })
-}
-
-impl WordsSink for Skel {
-    fn active(&self) -> bool {
-        self.stop.is_none()
-    }
-
-    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], _: &RawBlock<'_>) -> bool {
-        if self.stop.is_some() {
-            return true;
-        }
-        if prog != 0 {
-            self.decline("more than one program");
-            return true;
-        }
-        if kept(&self.keep, meta) {
-            return false;
-        }
-        if words.iter().any(|w| is_inch(w.letter, w.value)) {
-            self.decline("G70/G700 (inch)");
-            return true;
-        }
-        self.run_block(meta);
-        true
-    }
-
-    fn stmt(&mut self, prog: usize, s: &Stmt) {
-        if self.stop.is_some() {
-            return;
-        }
-        if prog != 0 {
-            return self.decline("more than one program");
-        }
-        if let StmtKind::Block(b) = &s.kind {
-            if straight(s).is_ok() && !kept(&self.keep, &b.meta) {
-                if stmt_inch(s) {
-                    return self.decline("G70/G700 (inch)");
-                }
-                return self.run_block(&b.meta);
-            }
-        }
-        self.close_run();
-        self.macro_stmt(s);
-    }
-}
-
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallback> {
-    let mut sk = Skel {
-        keep,
-        body: Vec::new(),
-        run: None,
-        runs: 0,
-        run_ns: NSet::default(),
-        targets: NSet::default(),
-        max_n: 0,
-        stop: None,
-    };
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let ix =
-        super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sk, None).map_err(Fallback::NotStreamable)?;
-    sk.close_run();
-    if let Some(why) = sk.stop.take() {
-        return Err(Fallback::NotStraight(why));
-    }
-    if !ix.diags.is_empty() {
-        return Err(Fallback::Diagnostics);
-    }
-    let mut programs = ix.programs.into_iter();
-    let (Some(p), None) = (programs.next(), programs.next()) else {
-        return Err(Fallback::NotStraight("more than one program".into()));
-    };
-    if !p.program.params.is_empty() {
-        return Err(Fallback::NotStraight("a PROC with parameters".into()));
-    }
-    Ok((sk, p.program))
-}
-
 /// Translates `path` (Sinumerik) to FANUC into `out` as a skeleton translated whole with its
 /// runs of straight blocks streamed (see the module comment). On `Err` nothing useful was
-/// written (the caller discards `out` and translates whole).
+/// written (the caller discards `out` and translates whole). Declines a translation with
+/// notes (a MSG left as a comment, a dropped STOPRE): [`to_fanuc_with_notes`] takes those.
 pub fn to_fanuc(
     path: &Path,
     opts: &TranslateOptions,
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Segmented, Fallback> {
+    segment(path, opts, out, progress, false).map(|(s, _)| s)
+}
+
+/// [`to_fanuc`] of a program whose translation may have notes (remarks, no warning or
+/// error): they are returned, as `translate::to_fanuc` gives them for the whole file
+/// (spans into the source), for the caller to render (`excerpt::render`).
+pub fn to_fanuc_with_notes(
+    path: &Path,
+    opts: &TranslateOptions,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
+    segment(path, opts, out, progress, true)
+}
+
+fn segment(
+    path: &Path,
+    opts: &TranslateOptions,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+    notes_ok: bool,
+) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
     if opts.number_blocks.is_some() || opts.main_is_sub {
         return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
     }
@@ -302,32 +137,44 @@ pub fn to_fanuc(
         }
     }
     // The labels pass numbers jump targets from the next thousand above the highest N, and
-    // from 1 when those would pass N99999 (then it needs every N of the runs): declined.
+    // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
     let mut nodes = 0usize;
     crate::ir::visit::walk_stmts(&sk.body, &mut |_| nodes += 1);
-    if u64::from((sk.max_n / 1000 + 1) * 1000) + 4 * nodes as u64 + 16 > u64::from(MAX_N) {
-        return Err(Fallback::NotStraight("N numbers close to N99999".into()));
+    let fresh = 4 * nodes as u64 + 16;
+    if u64::from((sk.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
+        carry_numbers(&mut sk, fresh)?;
     }
+    // A MSG the whole path's verifier leaves out of the source (`align_source`) is left
+    // out of the streamed source's statements too (`Index::drop_messages`).
+    let mut drop_msgs = Vec::new();
+    unpaired_messages(&sk.body, &mut drop_msgs);
+    drop_msgs.sort_unstable();
     let mut lone = program.clone();
     program.body = std::mem::take(&mut sk.body);
     let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
     let t = translate::to_fanuc(&unit, &[], opts);
     drop(unit);
-    if !t.diags.is_empty() || t.unsupported > 0 {
+    let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note);
+    if !(t.diags.is_empty() || notes_ok && notes_only) || t.unsupported > 0 {
         return Err(Fallback::Diagnostics);
     }
     let eol = opts.line_ending.as_str();
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+    fresh_numbers_ok(&t.text, eol, &places, &sk)?;
     let inputs = crate::translate::r_param_inputs(&t.symbol_map);
+    let tools = t.symbol_map.tools.clone();
     // A block the fast path declines is translated alone, as the straight stream does: the
     // header of an empty program comes first, then the block.
     lone.body = vec![];
     let lone_unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
     let head = translate::to_fanuc(&lone_unit, &[], opts);
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
+    let notes = t.diags;
     let mut w = Writer {
         keep: &sk.keep,
+        run_g70: &sk.run_g70,
+        forced: &sk.forced,
         fast: fast::Fast::new(opts.comments, eol),
         opts,
         eo: EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 },
@@ -344,8 +191,9 @@ pub fn to_fanuc(
         bad: false,
     };
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
+    let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
+    index.align = SourceAlign { messages: drop_msgs, tools };
     if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
@@ -360,163 +208,151 @@ pub fn to_fanuc(
     if let Some(e) = w.io {
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
-    Ok(Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map })
+    Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
 }
 
-/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
-/// order: each `(NCTRANS SEGMENT k)` or `Nn (NCTRANS SEGMENT k)` alone on its line; `None`
-/// when the text holds the marker anywhere else.
-fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
-    let open = format!("({MARK}");
-    let mut v = Vec::with_capacity(runs);
-    let mut from = 0;
-    while let Some(at) = text[from..].find(&open).map(|k| k + from) {
-        let lo = text[..at].rfind('\n').map_or(0, |k| k + 1);
-        let head = &text[lo..at];
-        let numbered = head
-            .strip_prefix('N')
-            .and_then(|h| h.strip_suffix(' '))
-            .is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()));
-        if !(head.is_empty() || numbered) {
-            return None;
-        }
-        let tail = format!("{}){eol}", v.len());
-        let after = at + open.len();
-        if !text[after..].starts_with(&tail) {
-            return None;
-        }
-        let hi = after + tail.len();
-        v.push((lo, hi));
-        from = hi;
-    }
-    (v.len() == runs).then_some(v)
-}
-
-/// The writing scan's sink: the skeleton's text with each placeholder line replaced by its
-/// run, translated as it is read.
-struct Writer<'a> {
-    keep: &'a NSet,
-    fast: fast::Fast,
-    opts: &'a TranslateOptions,
-    eo: EmitOptions,
-    /// The program with an empty body (for a block translated alone).
-    lone: Unit,
-    header_len: usize,
-    /// The translated skeleton.
-    text: String,
-    places: Vec<(usize, usize)>,
-    /// How far `text` is written.
-    pos: usize,
-    /// The next run.
-    next: usize,
-    in_run: bool,
-    buf: Vec<u8>,
-    out: &'a mut dyn Write,
-    io: Option<std::io::Error>,
-    /// The scan does not match the skeleton's (the file changed), or a block alone has
-    /// diagnostics: the output is discarded.
-    bad: bool,
-}
-
-impl Writer<'_> {
-    fn copy_to(&mut self, to: usize) {
-        if let Some(s) = self.text.get(self.pos..to) {
-            self.buf.extend_from_slice(s.as_bytes());
-        }
-        self.pos = to;
-    }
-
-    /// A run block comes: at a run's first, the skeleton up to its placeholder is written.
-    fn enter(&mut self) {
-        if self.in_run {
-            return;
-        }
-        self.in_run = true;
-        match self.places.get(self.next) {
-            Some(&(lo, hi)) => {
-                self.copy_to(lo);
-                self.pos = hi;
-                self.next += 1;
+/// The span starts of the MSG items `translate::align_source` drops from `body` (all but a
+/// MSG alone in its block right before a lone M0 block in the same body). The skeleton
+/// pairs as the source does: a lone M0 right after a lone MSG is never a run's.
+fn unpaired_messages(body: &[Stmt], out: &mut Vec<u32>) {
+    for (k, s) in body.iter().enumerate() {
+        let StmtKind::Block(b) = &s.kind else {
+            for child in crate::ir::visit::child_bodies(&s.kind) {
+                unpaired_messages(child, out);
             }
-            None => self.bad = true,
+            continue;
+        };
+        let stop_follows = matches!(body.get(k + 1).map(|n| &n.kind), Some(StmtKind::Block(n)) if is_lone_m0(n));
+        if msg_text(b).is_some() && stop_follows {
+            continue;
         }
-    }
-
-    /// A straight block of a run the fast path declined: translated alone (as
-    /// `stream::translate` does).
-    fn alone(&mut self, s: &Stmt) {
-        let mut u = self.lone.clone();
-        if let Some(p) = u.programs.first_mut() {
-            p.body = vec![s.clone()];
-        }
-        let t = translate::to_fanuc(&u, &[], self.opts);
-        if !t.diags.is_empty() || t.unsupported > 0 {
-            self.bad = true;
-            return;
-        }
-        let skip = self.header_len;
-        let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
-        let e = emit::emit_body(body, &self.eo);
-        if !e.diags.is_empty() {
-            self.bad = true;
-        }
-        self.buf.extend_from_slice(e.text.as_bytes());
-    }
-
-    fn flush_some(&mut self) {
-        if self.buf.len() >= WRITE_BYTES {
-            self.write();
-        }
-    }
-
-    fn write(&mut self) {
-        super::spill(self.out, &mut self.buf, &mut self.io);
-    }
-
-    fn live(&self) -> bool {
-        !self.bad && self.io.is_none()
+        out.extend(b.items.iter().filter(|i| matches!(i.kind, ItemKind::Message { .. })).map(|i| i.span.lo));
     }
 }
 
-impl WordsSink for Writer<'_> {
-    fn active(&self) -> bool {
-        self.live()
+/// `translate::align_source` for a streamed source: what the whole path's verifier changes
+/// in the source before running it, applied to each statement a run re-reads
+/// (`stream::paged`). Both kinds of item are in the macro part only (never in a plain line).
+#[derive(Clone, Debug, Default)]
+pub struct SourceAlign {
+    /// Span starts (sorted) of the MSG items left out (all but the paired ones).
+    messages: Vec<u32>,
+    /// Tool name → T number of the tools the translation maps (string-valued words).
+    tools: BTreeMap<String, u32>,
+}
+
+impl SourceAlign {
+    pub fn is_empty(&self) -> bool {
+        self.messages.is_empty() && self.tools.is_empty()
     }
 
-    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        if !self.live() {
-            return true;
+    /// Aligns a re-read top-level statement.
+    pub fn stmt(&self, s: &mut Stmt) {
+        match &mut s.kind {
+            StmtKind::Block(b) => {
+                let drop = &self.messages;
+                b.items
+                    .retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || drop.binary_search(&i.span.lo).is_err());
+                for it in &mut b.items {
+                    if let ItemKind::Word(w) = &mut it.kind {
+                        if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), .. }) = &mut w.value {
+                            let n = match &*kind {
+                                ExprKind::Str(name) => self.tools.get(name).copied(),
+                                _ => None,
+                            };
+                            if let Some(n) = n {
+                                *kind = ExprKind::Num(Number { value: f64::from(n), point: false });
+                            }
+                        }
+                    }
+                }
+            }
+            StmtKind::If(i) => {
+                i.then_body.iter_mut().for_each(|s| self.stmt(s));
+                if let Some(e) = &mut i.else_part {
+                    e.body.iter_mut().for_each(|s| self.stmt(s));
+                }
+            }
+            StmtKind::While(w) => w.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Loop(l) => l.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::For(f) => f.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Repeat(r) => r.body.iter_mut().for_each(|s| self.stmt(s)),
+            StmtKind::Do(d) => d.body.iter_mut().for_each(|s| self.stmt(s)),
         }
-        if kept(self.keep, meta) {
-            return false;
-        }
-        self.enter();
-        if self.fast.words(meta, words, line, &mut self.buf).is_err() {
-            // Nothing was written; the block comes again as a statement (still a run block).
-            self.fast.g70 = false;
-            return false;
-        }
-        self.flush_some();
-        true
     }
+}
 
-    fn stmt(&mut self, _: usize, s: &Stmt) {
-        if !self.live() {
-            return;
+/// Most carrier blocks (run N numbers) a skeleton takes.
+const MAX_CARRIED: usize = 20_000;
+
+/// For a labels pass that will number jump targets from N1 up: the N values of run blocks
+/// up to where `fresh` numbers no block uses are passed (the most targets the lowered
+/// skeleton can have: a few per statement) go into the skeleton as carrier blocks, empty
+/// blocks with that N and the last run's marker, right after its placeholder (their lines
+/// are replaced with it). They give the labels pass the same numbers in use there as the
+/// whole program has; they are not jump targets (a target N in a run was kept out of the
+/// runs) and hold no label, so they change nothing else. `fresh_numbers_ok` checks the
+/// result. Declines when the numbers run out.
+fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
+    let (mut free, mut v, mut carried) = (0u64, 0u32, Vec::new());
+    while free < fresh {
+        v += 1;
+        if v > MAX_N || carried.len() > MAX_CARRIED {
+            return Err(Fallback::NotStraight("N numbers close to N99999, most of them in use".into()));
         }
-        let run = match &s.kind {
-            StmtKind::Block(b) => straight(s).is_ok() && !kept(self.keep, &b.meta),
-            _ => false,
+        if sk.skel_ns.has(v) {
+            continue;
+        }
+        if sk.run_ns.has(v) {
+            carried.push(v);
+        } else {
+            free += 1;
+        }
+    }
+    let Some(last) = sk.runs.checked_sub(1) else { return Ok(()) };
+    let mark = format!("{}{last}", skel::MARK);
+    let is_last = |s: &crate::ir::Stmt| match &s.kind {
+        crate::ir::StmtKind::Block(b) => b.meta.comments.first().is_some_and(|c| c.text == mark),
+        _ => false,
+    };
+    let Some(at) = sk.body.iter().rposition(is_last) else {
+        return Err(Fallback::NotStraight("a lost placeholder (a bug in nctrans)".into()));
+    };
+    let span = sk.body[at].span;
+    let carriers = carried.into_iter().map(|value| {
+        let meta = crate::ir::BlockMeta {
+            span,
+            number: Some(crate::ir::SeqNo { value, span }),
+            comments: vec![crate::ir::Comment { text: mark.clone(), span }],
+            ..crate::ir::BlockMeta::default()
         };
-        if !run {
-            self.in_run = false;
-            return;
+        crate::passes::meta_stmt(meta, vec![])
+    });
+    sk.body.splice(at + 1..at + 1, carriers);
+    Ok(())
+}
+
+/// Checks that no N number the labels pass gave a jump target in the translated skeleton
+/// `text` (an N at a line start, outside the placeholders, that no skeleton block has in
+/// the source) is one a run block has: the whole translation would have skipped it.
+fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &skel::Skel) -> Result<(), Fallback> {
+    let mut at = 0;
+    let mut places = places.iter().peekable();
+    for line in text.split_inclusive(eol) {
+        let lo = at;
+        at += line.len();
+        while places.next_if(|p| p.1 <= lo).is_some() {}
+        if places.peek().is_some_and(|p| p.0 <= lo) {
+            continue;
         }
-        self.enter();
-        if self.fast.block(s, &mut self.buf).is_err() {
-            self.fast.g70 = false;
-            self.alone(s);
+        let l = line.trim_start_matches(|c: char| c == '/' || c.is_ascii_digit() || c == ' ');
+        let l = if line.starts_with('/') { l } else { line };
+        let Some(d) = l.strip_prefix('N') else { continue };
+        let digits = d.bytes().take_while(u8::is_ascii_digit).count();
+        let Ok(n) = d[..digits].parse::<u32>() else { continue };
+        if n <= MAX_N && !sk.skel_ns.has(n) && sk.run_ns.has(n) {
+            return Err(Fallback::NotStraight("N numbers close to N99999, too many jump targets".into()));
         }
-        self.flush_some();
     }
+    Ok(())
 }

@@ -202,7 +202,7 @@ impl super::WordsSink for Sink<'_, '_> {
 }
 
 /// A block holding `G70`: sets the inch mode for a block translated on its own.
-fn g70_block() -> Stmt {
+pub(super) fn g70_block() -> Stmt {
     let g = Word {
         addr: Addr::Letter(b'G'),
         value: WordValue::Expr(crate::ir::Expr::num(70.0, false, Span::default())),

@@ -1,0 +1,202 @@
+//! The writing scan of a segmented translation: the translated skeleton's text with each
+//! placeholder line replaced by its run, translated as it is read (see `segmented`).
+
+use super::skel::{kept, NSet, MARK};
+use crate::dialect::fanuc::emit::{self, EmitOptions};
+use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
+use crate::read::RawBlock;
+use crate::stream::translate::{fast, g70_block, straight};
+use crate::stream::{PlainWord, WordsSink, WRITE_BYTES};
+use crate::translate::{self, TranslateOptions};
+use std::io::Write;
+
+/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
+/// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
+/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`), with the carrier lines right
+/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None`
+/// when the text holds the marker anywhere else.
+pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
+    let open = format!("({MARK}");
+    let mut v: Vec<(usize, usize)> = Vec::with_capacity(runs);
+    let mut from = 0;
+    while let Some(at) = text[from..].find(&open).map(|k| k + from) {
+        // The line start: after the last LF, or CR (a file with CR line ends).
+        let lo = text[..at].rfind(['\n', '\r']).map_or(0, |k| k + 1);
+        let head = &text[lo..at];
+        // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
+        let words = head.strip_suffix(' ').is_some_and(|h| {
+            h.split(' ').enumerate().all(|(k, t)| {
+                let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
+                d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+            })
+        });
+        if !(head.is_empty() || words) {
+            return None;
+        }
+        let after = at + open.len();
+        // A line of the run before, right after its placeholder: a carrier of N numbers
+        // (see `segmented::carry_numbers`), replaced with it.
+        if let Some(last) = v.len().checked_sub(1) {
+            let tail = format!("{last}){eol}");
+            if v[last].1 == lo && text[after..].starts_with(&tail) {
+                v[last].1 = after + tail.len();
+                from = after + tail.len();
+                continue;
+            }
+        }
+        let tail = format!("{}){eol}", v.len());
+        if !text[after..].starts_with(&tail) {
+            return None;
+        }
+        let hi = after + tail.len();
+        v.push((lo, hi));
+        from = hi;
+    }
+    (v.len() == runs).then_some(v)
+}
+
+/// The writing scan's sink: the skeleton's text with each placeholder line replaced by its
+/// run, translated as it is read.
+pub(super) struct Writer<'a> {
+    pub(super) keep: &'a NSet,
+    /// The G70 mode at each run's start (the skeleton scan's).
+    pub(super) run_g70: &'a [bool],
+    /// Where the straight blocks kept in the skeleton for a MSG start.
+    pub(super) forced: &'a [u32],
+    pub(super) fast: fast::Fast,
+    pub(super) opts: &'a TranslateOptions,
+    pub(super) eo: EmitOptions,
+    /// The program with an empty body (for a block translated alone).
+    pub(super) lone: Unit,
+    pub(super) header_len: usize,
+    /// The translated skeleton.
+    pub(super) text: String,
+    pub(super) places: Vec<(usize, usize)>,
+    /// How far `text` is written.
+    pub(super) pos: usize,
+    /// The next run.
+    pub(super) next: usize,
+    pub(super) in_run: bool,
+    pub(super) buf: Vec<u8>,
+    pub(super) out: &'a mut dyn Write,
+    pub(super) io: Option<std::io::Error>,
+    /// The scan does not match the skeleton's (the file changed), or a block alone has
+    /// diagnostics: the output is discarded.
+    pub(super) bad: bool,
+}
+
+impl Writer<'_> {
+    pub(super) fn copy_to(&mut self, to: usize) {
+        if let Some(s) = self.text.get(self.pos..to) {
+            self.buf.extend_from_slice(s.as_bytes());
+        }
+        self.pos = to;
+    }
+
+    /// A run block comes: at a run's first, the skeleton up to its placeholder is written.
+    fn enter(&mut self) {
+        if self.in_run {
+            return;
+        }
+        self.in_run = true;
+        match self.places.get(self.next) {
+            Some(&(lo, hi)) => {
+                self.copy_to(lo);
+                self.pos = hi;
+                self.fast.g70 = self.run_g70.get(self.next).copied().unwrap_or(false);
+                self.next += 1;
+            }
+            None => self.bad = true,
+        }
+    }
+
+    /// Whether a block starting at `lo` was kept in the skeleton for a MSG before it.
+    fn forced(&self, lo: u32) -> bool {
+        self.forced.binary_search(&lo).is_ok()
+    }
+
+    /// A straight block of a run the fast path declined: translated alone (as
+    /// `stream::translate` does), after a G70 block when `g70` was the mode before it.
+    fn alone(&mut self, s: &Stmt, g70: bool) {
+        let mut u = self.lone.clone();
+        if let Some(p) = u.programs.first_mut() {
+            p.body = if g70 { vec![g70_block(), s.clone()] } else { vec![s.clone()] };
+        }
+        let t = translate::to_fanuc(&u, &[], self.opts);
+        if !t.diags.is_empty() || t.unsupported > 0 {
+            self.bad = true;
+            return;
+        }
+        let skip = self.header_len + usize::from(g70);
+        let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
+        let e = emit::emit_body(body, &self.eo);
+        if !e.diags.is_empty() {
+            self.bad = true;
+        }
+        self.buf.extend_from_slice(e.text.as_bytes());
+    }
+
+    fn flush_some(&mut self) {
+        if self.buf.len() >= WRITE_BYTES {
+            self.write();
+        }
+    }
+
+    pub(super) fn write(&mut self) {
+        crate::stream::spill(self.out, &mut self.buf, &mut self.io);
+    }
+
+    fn live(&self) -> bool {
+        !self.bad && self.io.is_none()
+    }
+}
+
+impl WordsSink for Writer<'_> {
+    fn active(&self) -> bool {
+        self.live()
+    }
+
+    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
+        if !self.live() {
+            return true;
+        }
+        if kept(self.keep, meta) || self.forced(meta.span.lo) {
+            return false;
+        }
+        self.enter();
+        // The usual CAM line in one loop (it changes no mode), as the straight stream does.
+        if self.fast.plain_words(meta, words, &mut self.buf) {
+            self.flush_some();
+            return true;
+        }
+        let g70 = self.fast.g70;
+        if self.fast.words(meta, words, line, &mut self.buf).is_err() {
+            // Nothing was written; the block comes again as a statement (still a run block).
+            self.fast.g70 = g70;
+            return false;
+        }
+        self.flush_some();
+        true
+    }
+
+    fn stmt(&mut self, _: usize, s: &Stmt) {
+        if !self.live() {
+            return;
+        }
+        let run = match &s.kind {
+            StmtKind::Block(b) => straight(s).is_ok() && !kept(self.keep, &b.meta) && !self.forced(b.meta.span.lo),
+            _ => false,
+        };
+        if !run {
+            self.in_run = false;
+            return;
+        }
+        self.enter();
+        let g70 = self.fast.g70;
+        if self.fast.block(s, &mut self.buf).is_err() {
+            // The mode is the one after the block already (`Fast::block`).
+            self.alone(s, g70);
+        }
+        self.flush_some();
+    }
+}
