@@ -393,7 +393,7 @@ fn streamed_from(
     src: &crate::stream_cli::Source,
     size: u64,
 ) -> Result<Option<ExitCode>, NotStreamable> {
-    use crate::stream_cli::{self, ProgressLine, Scratch};
+    use crate::stream_cli::{self, ProgressLine};
     use nctrans::stream::to_sinumerik as sts;
     use nctrans::stream::translate::Fallback;
     let path = src.path();
@@ -420,9 +420,8 @@ fn streamed_from(
     };
     // A source not in UTF-8 (so the output neither): the stream writes UTF-8 into a
     // scratch file, encoded into `tmp` when finished and read back from there.
-    let utf8 = (enc != encoding_rs::UTF_8)
-        .then(|| Scratch(std::env::temp_dir().join(format!("nctrans-{}-{stem}.utf8.mpf", std::process::id()))));
-    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| &u.0);
+    let utf8 = (enc != encoding_rs::UTF_8).then(|| transcode::TempFile::new(&format!("{stem}.utf8.mpf")));
+    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
     let mut w = match stream_cli::create_temp(write_to) {
         Ok(w) => w,
         Err(code) => return Ok(Some(code)),
@@ -472,7 +471,7 @@ fn streamed_from(
     };
     if let Some(u) = &utf8 {
         let encoded = stream_cli::create_temp(&tmp)
-            .map(|mut w| transcode::encode_to(&u.0, enc, bom, &mut w).and_then(|_| w.flush()));
+            .map(|mut w| transcode::encode_to(u.path(), enc, bom, &mut w).and_then(|_| w.flush()));
         match encoded {
             Ok(Ok(())) => {}
             Ok(Err(e)) => {
@@ -522,7 +521,7 @@ fn streamed_from(
             None => "<stdout>".to_string(),
         };
         let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
-        let read_back = utf8.as_ref().map_or(out.as_path(), |u| u.0.as_path());
+        let read_back = utf8.as_ref().map_or(out.as_path(), |u| u.path());
         code = verify_streamed((req.file, path), read_back, &shown, done.index, args.max_steps, opts, size);
     }
     if req.out.is_none() || special.is_some() {

@@ -374,15 +374,6 @@ pub fn translate(
     }
 }
 
-/// A temporary file removed when dropped.
-pub struct Scratch(pub std::path::PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
-
 /// [`translate`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
 fn translate_from(
@@ -422,9 +413,8 @@ fn translate_from(
     let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
     // Output not in UTF-8: the stream writes UTF-8 into a scratch file, encoded into `tmp`
     // when finished and read back from there by verification.
-    let utf8 = (out_enc != encoding_rs::UTF_8)
-        .then(|| Scratch(std::env::temp_dir().join(format!("nctrans-{}-{stem}.utf8.nc", std::process::id()))));
-    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| &u.0);
+    let utf8 = (out_enc != encoding_rs::UTF_8).then(|| transcode::TempFile::new(&format!("{stem}.utf8.nc")));
+    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
     // A byte-order mark is kept, as the whole-file path keeps it (only in UTF-8).
     let direct_bom = bom && utf8.is_none();
     let mut w = match create_temp(write_to) {
@@ -492,7 +482,7 @@ fn translate_from(
     };
     if let Some(u) = &utf8 {
         let encoded =
-            create_temp(&tmp).map(|mut w| transcode::encode_to(&u.0, out_enc, bom, &mut w).and_then(|_| w.flush()));
+            create_temp(&tmp).map(|mut w| transcode::encode_to(u.path(), out_enc, bom, &mut w).and_then(|_| w.flush()));
         match encoded {
             Ok(Ok(())) => {}
             Ok(Err(e)) => {
@@ -521,7 +511,7 @@ fn translate_from(
             return Ok(Some(ExitCode::from(2)));
         }
     }
-    let read_back = utf8.as_ref().map_or(out, |u| &u.0);
+    let read_back = utf8.as_ref().map_or(out, |u| u.path());
     let code = verify_streamed(c, (input, path), (out, read_back), index, inputs, size);
     if to_stdout || special.is_some() {
         let _ = std::fs::remove_file(out);

@@ -152,6 +152,11 @@ fn encode_to_matches_read_encode() {
             let mut out = Vec::new();
             transcode::encode_to(&p, enc, bom, &mut out).unwrap();
             assert_eq!(out, read::encode(&text, enc, bom), "{}", enc.name());
+            // A mark at the start of the UTF-8 text (a stream keeping its source's) is not text.
+            std::fs::write(&p, format!("\u{feff}{text}")).unwrap();
+            let mut out = Vec::new();
+            transcode::encode_to(&p, enc, bom, &mut out).unwrap();
+            assert_eq!(out, read::encode(&text, enc, bom), "{} after a mark", enc.name());
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -159,6 +164,7 @@ fn encode_to_matches_read_encode() {
 
 #[test]
 fn copy_is_removed_on_drop() {
+    let _lock = TEMP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("copy");
     let p = dir.join("x.mpf");
     std::fs::write(&p, encoded(&sinumerik_text("Fräser", "\n", 3, true), encoding_rs::WINDOWS_1252, false)).unwrap();
@@ -409,6 +415,7 @@ fn cli_diagnostics_point_into_the_decoded_text() {
 fn translations_stream_from_the_copy() {
     use nctrans::stream::to_sinumerik as sts;
     use nctrans::stream::{segmented, translate as st};
+    let _lock = TEMP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("lib");
     for (enc, comment) in legacy() {
         for eol in ["\n", "\r\n"] {
@@ -472,4 +479,238 @@ fn cli_check_reads_legacy_sides_whole() {
             false,
         );
     }
+}
+
+/// A report line without its times.
+fn untimed(l: &str) -> String {
+    let mut l = l.to_string();
+    for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
+        if let Some(i) = l.find(key) {
+            let rest = &l[i + key.len()..];
+            let end = rest.find([',', '}']).unwrap_or(rest.len());
+            l = format!("{}_{}", &l[..i + key.len()], &rest[end..]);
+        }
+    }
+    l
+}
+
+/// In-process tests that make temporary copies run one at a time, so one can check that
+/// none is left in the temp folder.
+static TEMP: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The temp folder's entries this process made (`nctrans-<pid>-…`).
+fn my_temp_files() -> Vec<PathBuf> {
+    let prefix = format!("nctrans-{}-", std::process::id());
+    std::fs::read_dir(std::env::temp_dir())
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().starts_with(&prefix))
+        .map(|e| e.path())
+        .collect()
+}
+
+mod batch_jobs {
+    use nctrans::batch::jobs::{JobSettings, ToFanucJob};
+    use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+    use nctrans::batch::{self, BatchContext, FileJob, FileOutcome, InputFile};
+    use std::sync::Mutex;
+
+    /// A job that notes which files its streamed path translated.
+    pub struct Watched<J> {
+        pub job: J,
+        pub streamed: Mutex<Vec<String>>,
+    }
+
+    impl<J> Watched<J> {
+        fn note(&self, f: &InputFile, o: Option<FileOutcome>) -> Option<FileOutcome> {
+            if o.is_some() {
+                self.streamed.lock().unwrap().push(batch::rel_string(&f.rel));
+            }
+            o
+        }
+    }
+
+    impl FileJob for Watched<ToSinumerikJob> {
+        fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
+            self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+        }
+    }
+
+    impl FileJob for Watched<ToFanucJob> {
+        fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
+            self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+        }
+    }
+
+    pub fn settings(out: Option<&'static encoding_rs::Encoding>) -> JobSettings {
+        let mut s = JobSettings::from_config(&nctrans::config::Config::default()).unwrap();
+        s.max_steps = 2_000_000;
+        s.output_encoding = out;
+        s
+    }
+}
+
+/// Every file below `root` (relative path → bytes).
+fn snapshot(root: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    let mut out = std::collections::BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.insert(p.strip_prefix(root).unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    out
+}
+
+/// A batch with streaming off and on: the same records and files. Returns what streamed.
+fn batch_both_ways(
+    input: &Path,
+    dir: &Path,
+    target: nctrans::dialect::Dialect,
+    forced: Option<&'static Encoding>,
+    out_enc: Option<&'static Encoding>,
+) -> Vec<String> {
+    use batch_jobs::{settings, Watched};
+    use nctrans::batch::{self, jobs::ToFanucJob, jobs_sinumerik::ToSinumerikJob, BatchOptions};
+    use nctrans::dialect::Dialect;
+    use std::sync::atomic::AtomicBool;
+    use std::sync::{Arc, Mutex};
+    let mut runs = Vec::new();
+    let mut streamed = Vec::new();
+    for (k, bytes) in [u64::MAX, 0].into_iter().enumerate() {
+        let out = dir.join(format!("out{k}"));
+        let _ = std::fs::remove_dir_all(&out);
+        let mut opts = BatchOptions::new(input, &out, target);
+        opts.stream_bytes = bytes;
+        opts.jobs = 2;
+        opts.encoding = forced;
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (r, s) = match target {
+            Dialect::Sinumerik => {
+                let job = Watched { job: ToSinumerikJob::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
+                (batch::run_batch(opts, &job, cancel, &mut |_| {}).unwrap(), job.streamed.into_inner().unwrap())
+            }
+            Dialect::Fanuc => {
+                let job = Watched { job: ToFanucJob::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
+                (batch::run_batch(opts, &job, cancel, &mut |_| {}).unwrap(), job.streamed.into_inner().unwrap())
+            }
+        };
+        runs.push((r, snapshot(&out)));
+        streamed = s;
+    }
+    let (b, a) = (runs.pop().unwrap(), runs.pop().unwrap());
+    assert_eq!(a.0.files.len(), b.0.files.len());
+    for (x, y) in a.0.files.iter().zip(&b.0.files) {
+        let key = |f: &batch::FileRecord| {
+            (f.path.clone(), f.outputs.clone(), f.status, f.summary.clone(), f.events, f.blocks, f.diagnostics.clone())
+        };
+        assert_eq!(key(x), key(y), "{}", x.path);
+        // Files already in the target dialect are left alone.
+        assert!(matches!(x.status, batch::Status::Verified | batch::Status::Skipped), "{}: {}", x.path, x.summary);
+    }
+    assert_eq!(a.0.maps, b.0.maps);
+    assert_eq!(a.1.keys().collect::<Vec<_>>(), b.1.keys().collect::<Vec<_>>());
+    for (k, v) in &a.1 {
+        assert!(b.1[k] == *v, "{k} differs");
+    }
+    streamed.sort();
+    streamed
+}
+
+#[test]
+fn batches_stream_legacy_files_with_the_same_outputs_and_report() {
+    use nctrans::dialect::Dialect;
+    let _lock = TEMP.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = scratch("batch");
+    let input = dir.join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    let mut names = Vec::new();
+    for (k, (enc, comment)) in legacy().into_iter().enumerate() {
+        let eol = if k % 2 == 0 { "\r\n" } else { "\n" };
+        let n = enc.name().to_ascii_lowercase().replace(['-', '_'], "");
+        std::fs::write(input.join(format!("s{n}.mpf")), encoded(&sinumerik_text(comment, eol, 30, false), enc, false))
+            .unwrap();
+        std::fs::write(input.join(format!("m{n}.mpf")), encoded(&sinumerik_macro(comment, eol), enc, false)).unwrap();
+        std::fs::write(
+            input.join(format!("f{n}.nc")),
+            encoded(&fanuc_text(comment, eol, 30).replace("O1000", &format!("O{}", 1100 + k)), enc, false),
+        )
+        .unwrap();
+        std::fs::write(
+            input.join(format!("g{n}.nc")),
+            encoded(&fanuc_macro(comment, eol).replace("O2000", &format!("O{}", 2100 + k)), enc, false),
+        )
+        .unwrap();
+        names.push(n);
+    }
+    // A UTF-8 file with a mark beside them.
+    std::fs::write(input.join("utf.mpf"), format!("\u{feff}{}", sinumerik_text("Fräser", "\n", 10, false))).unwrap();
+    std::fs::write(
+        input.join("utf.nc"),
+        format!("\u{feff}{}", fanuc_text("Fräser", "\n", 10).replace("O1000", "O1200")),
+    )
+    .unwrap();
+    let to_f = batch_both_ways(&input, &dir.join("f"), Dialect::Fanuc, None, None);
+    let to_s = batch_both_ways(&input, &dir.join("s"), Dialect::Sinumerik, None, None);
+    for n in &names {
+        for f in [format!("s{n}.mpf"), format!("m{n}.mpf")] {
+            assert!(to_f.contains(&f), "{f} not streamed: {to_f:?}");
+        }
+        for f in [format!("f{n}.nc"), format!("g{n}.nc")] {
+            assert!(to_s.contains(&f), "{f} not streamed: {to_s:?}");
+        }
+    }
+    // Outputs in another encoding than the sources'.
+    for out in [encoding_rs::UTF_8, encoding_rs::GBK] {
+        let s = batch_both_ways(&input, &dir.join("fo"), Dialect::Fanuc, None, Some(out));
+        assert!(s.len() >= 9, "{s:?}");
+        let s = batch_both_ways(&input, &dir.join("so"), Dialect::Sinumerik, None, Some(out));
+        assert!(s.len() >= 9, "{s:?}");
+    }
+    // A forced encoding over files in it.
+    let gbk = dir.join("gbk");
+    std::fs::create_dir_all(&gbk).unwrap();
+    for f in ["sgbk.mpf", "mgbk.mpf", "fgbk.nc", "ggbk.nc"] {
+        std::fs::copy(input.join(f), gbk.join(f)).unwrap();
+    }
+    let s = batch_both_ways(&gbk, &dir.join("gf"), Dialect::Fanuc, Some(encoding_rs::GBK), None);
+    assert_eq!(s, ["mgbk.mpf", "sgbk.mpf"]);
+    let s = batch_both_ways(&gbk, &dir.join("gs"), Dialect::Sinumerik, Some(encoding_rs::GBK), None);
+    assert_eq!(s, ["fgbk.nc", "ggbk.nc"]);
+    assert!(my_temp_files().is_empty(), "left behind: {:?}", my_temp_files());
+    // The command line: the same report, files and exit code with --stream, nothing left in
+    // the temp folder.
+    let tmp = dir.join("tmp");
+    std::fs::create_dir_all(&tmp).unwrap();
+    for to in ["fanuc", "sinumerik"] {
+        let mut runs = Vec::new();
+        for stream in [false, true] {
+            let out = dir.join(format!("cli-{to}-{stream}"));
+            let report = dir.join(format!("report-{to}-{stream}.json"));
+            let mut args = vec![
+                "--to".to_string(),
+                to.into(),
+                input.display().to_string(),
+                "-o".into(),
+                out.display().to_string(),
+            ];
+            args.extend(["--report".to_string(), report.display().to_string()]);
+            if stream {
+                args.push("--stream".into());
+            }
+            let o = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(&args).env("TMPDIR", &tmp).output().unwrap();
+            let report = std::fs::read_to_string(&report).unwrap().replace(&out.display().to_string(), "OUT");
+            let report: Vec<String> = report.lines().map(untimed).collect();
+            runs.push((o.status.code(), report, snapshot(&out)));
+        }
+        assert!(runs[0] == runs[1], "--to {to}: {:?}\n{:?}", runs[0].1, runs[1].1);
+        assert!(runs[0].1.iter().filter(|l| l.contains("\"status\": \"verified\"")).count() >= 9, "{:?}", runs[0].1);
+        assert_eq!(std::fs::read_dir(&tmp).unwrap().count(), 0, "left in the temp folder");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -243,7 +243,9 @@ pub fn decode_to(path: &Path, det: &Detected, out: &mut dyn Write) -> io::Result
 }
 
 /// Encodes the UTF-8 file `utf8` into `out` in `enc` (as `read::encode`: unmappable
-/// characters as numeric character references, a BOM only for UTF-8 output).
+/// characters as numeric character references, a BOM only for UTF-8 output, when `bom`).
+/// A byte-order mark at the start of `utf8` is not text (a stream that keeps its source's
+/// mark wrote it): it is dropped.
 pub fn encode_to(utf8: &Path, enc: &'static Encoding, bom: bool, out: &mut dyn Write) -> io::Result<()> {
     // `read::encode` asks for UTF-8 itself: UTF-16 text is written as UTF-8 without one.
     if bom && enc == encoding_rs::UTF_8 {
@@ -255,10 +257,20 @@ pub fn encode_to(utf8: &Path, enc: &'static Encoding, bom: bool, out: &mut dyn W
     let mut back = vec![0u8; CHUNK * 4 + 64];
     let mut file = File::open(utf8)?;
     let mut buf = vec![0u8; CHUNK];
+    let mut start = true;
     loop {
         let n = file.read(&mut buf)?;
         let last = n == 0;
         carry.extend_from_slice(&buf[..n]);
+        if start {
+            if carry.len() < BOM.len() && !last && BOM.starts_with(&carry) {
+                continue;
+            }
+            if carry.starts_with(BOM) {
+                carry.drain(..BOM.len());
+            }
+            start = false;
+        }
         let upto = match std::str::from_utf8(&carry) {
             Ok(s) => s.len(),
             Err(e) if e.error_len().is_none() && !last => e.valid_up_to(),
@@ -312,6 +324,29 @@ pub fn needs_copy(forced: Option<&'static Encoding>) -> bool {
 }
 
 static SEQ: AtomicU32 = AtomicU32::new(0);
+
+/// A temporary file in the system temp folder (for a UTF-8 translation that is encoded
+/// when finished), removed when dropped. The file is not created here.
+#[derive(Debug)]
+pub struct TempFile(PathBuf);
+
+impl TempFile {
+    /// A fresh name ending in `name`.
+    pub fn new(name: &str) -> TempFile {
+        let n = SEQ.fetch_add(1, Ordering::Relaxed);
+        TempFile(std::env::temp_dir().join(format!("nctrans-{}-{n}-{name}", std::process::id())))
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
 
 /// Detects the file's encoding and decodes it into a [`TempCopy`]. `Ok(None)` when the
 /// file is UTF-8 after all (stream the file itself).
