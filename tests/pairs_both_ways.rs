@@ -40,6 +40,20 @@ const ROWS: &[Row] = &[
     },
     Row { what: "dwell", siemens: "G4 F0.5\nM30\n", fanuc: "O1\nG04 P500\nM30\n", way: Way::Both },
     Row { what: "inch units", siemens: "G700 G1 X1 F10\nM30\n", fanuc: "O1\nG20 G01 X1. F10.\nM30\n", way: Way::Both },
+    // FANUC G20/G21 set lengths and feeds, as G700/G710 do (not G70/G71, which leave the
+    // feeds): so no F is converted FANUC → Siemens, and Siemens G71 after G700 keeps F inch.
+    Row {
+        what: "inch then metric units, feeds with them",
+        siemens: "G700 G1 X1 F10\nG710 G1 X10 F500\nM30\n",
+        fanuc: "O1\nG20 G01 X1. F10.\nG21 G01 X10. F500.\nM30\n",
+        way: Way::Both,
+    },
+    Row {
+        what: "lengths metric, feeds inch (G71 after G700)",
+        siemens: "G700 G1 X1 F10\nG71 G1 X10 F500\nM30\n",
+        fanuc: "O1\nG20 G01 X1. F10.\nG21 G01 X10. F12700.\nM30\n",
+        way: Way::Both,
+    },
     Row {
         what: "arc radius",
         siemens: "G1 X0 Y0 F100\nG2 X10 Y10 CR=10\nM30\n",

@@ -73,6 +73,54 @@ fn streamed_translation_is_the_whole_translation() {
     assert!(!v.equivalent && v.summary.contains("diverged"), "{}", v.summary);
 }
 
+/// Generated programs switching G70/G71/G700/G710 (alone and beside moves) with F words and
+/// dwells: the stream writes the whole translation, every unit combination occurs (F as
+/// written, `F[f/25.4]`, `F[f*25.4]`), and the streamed verification finds it equivalent.
+#[test]
+fn feed_units_stream_identically_and_verify_equivalent() {
+    let dir = root().join("target/stream-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut seed = 0x0f33_d700_0071_u64;
+    let mut next = |n: u64| {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (seed >> 33) % n
+    };
+    let units = ["G70", "G71", "G700", "G710"];
+    for case in 0..6 {
+        let mut text = format!("%_N_FEED{case}_MPF\nG90 G17 G94\n");
+        for i in 0..3000 {
+            if next(7) == 0 {
+                let g = units[next(4) as usize];
+                match next(3) {
+                    0 => text.push_str(&format!("{g}\n")),
+                    1 => text.push_str(&format!("{g} G1 X{}.5 F{}\n", i % 9, 1 + next(900))),
+                    _ => text.push_str(&format!("{} {g} Y{}\n", units[next(4) as usize], i % 7)),
+                }
+            }
+            match next(5) {
+                0 => text.push_str(&format!("G4 F{}.5\n", next(3))),
+                1 | 2 => text.push_str(&format!("G1 X{}.25 Y{} F{}\n", i % 31, i % 11, 1 + next(2000))),
+                _ => text.push_str(&format!("N{} Z-{}.5 F{}.5\n", 10 + i, i % 3, next(50))),
+            }
+        }
+        text.push_str("M30\n");
+        let path = dir.join(format!("feed{case}.mpf"));
+        std::fs::write(&path, &text).expect("write");
+        let (whole, streamed) = both(&path);
+        let streamed = streamed.map_err(|e| format!("case {case}: {e:?}")).expect("streams");
+        assert_eq!(String::from_utf8_lossy(&streamed), whole, "case {case}");
+        for conv in ["/25.4]", "*25.4]"] {
+            assert!(whole.contains(conv), "case {case}: no {conv}");
+        }
+        let out = dir.join(format!("feed{case}.nc"));
+        std::fs::write(&out, &streamed).expect("write");
+        let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+        let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
+        let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
+        assert!(v.equivalent, "case {case}: {}", v.summary);
+    }
+}
+
 #[test]
 fn corpus_programs_stream_only_when_straight_and_then_identically() {
     let Ok(rd) = std::fs::read_dir(root().join("corpus/in/sinumerik")) else { return };

@@ -1,14 +1,17 @@
 //! Address words and Siemens-only items → their FANUC forms.
 //!
 //! `CR=` → `R`; `G4 F` → `G04 X` (seconds); `G70/G700` → `G20`, `G71/G710` → `G21` (F words
-//! under G70 are divided by 25.4: G70 changes lengths only); `AC()/IC()` → a G90/G91 switch
-//! around the block; `T="NAME"` → a number from the tool map; `MSG("…")` → a comment, or with
+//! are converted where the Sinumerik feed unit differs from the length unit: G70/G71 change
+//! lengths only, [`units`]); `AC()/IC()` → the block in G90/G91 with a switch back after it; `T="NAME"` → a number from the tool map; `MSG("…")` → a comment, or with
 //! the `M0` block that follows it `#3006=1(…)`; `SETAL(n)` → `#3000`; calls of translated
 //! subprograms → `G65 P…` with one argument letter per parameter ([`param_letters`]);
 //! `WORKPIECE`/`STOPRE` dropped with a note; frames, section repetition, modal calls and
 //! unknown cycles are unsupported.
 
 use super::*;
+use units::{FeedConv, Units};
+
+pub mod units;
 
 /// G codes with the same number and meaning on both controls.
 pub const SAME_G: &[u32] = &[0, 1, 2, 3, 4, 9, 17, 18, 19, 40, 41, 42, 53, 54, 55, 56, 57, 64, 90, 91, 94, 95];
@@ -62,11 +65,50 @@ pub fn param_letters(n: usize) -> Option<Vec<(u8, u8)>> {
 struct Modal {
     /// `Some(true)` G90, `Some(false)` G91, `None` unknown (a subprogram inherits its caller's).
     abs: Option<bool>,
-    g70: bool,
+    units: UnitState,
+}
+
+/// The length and feed units in textual order, as far as they are known.
+#[derive(Clone, Copy)]
+enum UnitState {
+    Known(Units),
+    /// A subprogram's start: lengths and feeds in one unit, the caller's (calls are
+    /// declined where the two differ, so this holds for every translated caller).
+    Caller,
+    /// In a subprogram after G70/G71 and before any G700/G710: the lengths' unit is known,
+    /// the feeds' is still the caller's (an F word is declined).
+    FeedUnknown,
+}
+
+impl UnitState {
+    fn g(&mut self, v: f64) {
+        match self {
+            UnitState::Known(u) => {
+                u.g(v);
+            }
+            _ if v == 700.0 || v == 710.0 => {
+                *self = UnitState::Known(Units { inch: v == 700.0, inch_feed: v == 700.0 })
+            }
+            _ if v == 70.0 || v == 71.0 => *self = UnitState::FeedUnknown,
+            _ => {}
+        }
+    }
+
+    /// How F words are written; `None` when the feed unit is not known.
+    fn feed(self) -> Option<FeedConv> {
+        match self {
+            UnitState::Known(u) => Some(u.feed()),
+            UnitState::Caller => Some(FeedConv::Same),
+            UnitState::FeedUnknown => None,
+        }
+    }
 }
 
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
-    let mut m = Modal { abs: if info.is_sub { None } else { Some(true) }, g70: false };
+    let mut m = Modal {
+        abs: if info.is_sub { None } else { Some(true) },
+        units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
+    };
     let body = std::mem::take(&mut prog.body);
     prog.body = body_pass(ctx, body, &mut m);
 }
@@ -212,7 +254,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 "FANUC waits for motion by itself before reading position variables",
             ),
             ItemKind::Call(c) => {
-                if let Some(s) = call(ctx, *c, span, &mut kept) {
+                if let Some(s) = call(ctx, *c, span, m.units.feed() == Some(FeedConv::Same), &mut kept) {
                     after.push(s);
                 }
             }
@@ -267,8 +309,7 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
             match const_of(&w.value) {
                 Some(90.0) => m.abs = Some(true),
                 Some(91.0) => m.abs = Some(false),
-                Some(70.0) => m.g70 = true,
-                Some(v) if v == 71.0 || v == 700.0 || v == 710.0 => m.g70 = false,
+                Some(v) => m.units.g(v),
                 _ => {}
             }
         }
@@ -333,9 +374,19 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                     "write the dwell in seconds (G4 F)",
                 ));
             }
-            b'F' if m.g70 => {
-                if let WordValue::Expr(e) = &w.value {
-                    w.value = WordValue::Expr(bin(BinOp::Div, e.clone(), num(25.4, wspan)));
+            b'F' => {
+                let op = match m.units.feed() {
+                    Some(FeedConv::Same) => None,
+                    Some(FeedConv::PerInch) => Some(BinOp::Div),
+                    Some(FeedConv::PerMm) => Some(BinOp::Mul),
+                    None => {
+                        let hint = "write G700 or G710 in the subprogram before its first F word";
+                        let what = "a feed after G70/G71 in a subprogram (its feed unit is the caller's)";
+                        return Err(unsup(ctx, "NC324", wspan, what, hint));
+                    }
+                };
+                if let (Some(op), WordValue::Expr(e)) = (op, &w.value) {
+                    w.value = WordValue::Expr(bin(op, e.clone(), num(25.4, wspan)));
                 }
             }
             b'T' => {
@@ -365,7 +416,10 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
             return Err(unsup(ctx, "NC313", span, "a block mixing absolute and incremental axis words", hint));
         }
         if m.abs != Some(abs) {
-            // Switch for this block, then back to the mode in force.
+            // Switch for this block, then back to the mode in force. The block's own G90/G91
+            // words are in `m.abs` already (the restore block sets that mode) and must go:
+            // FANUC takes the last G code of a group in a block, so they would undo the switch.
+            out.retain(|w| !(w.addr.is(b'G') && matches!(const_of(&w.value), Some(v) if v == 90.0 || v == 91.0)));
             let g = |v: f64| Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span };
             out.insert(0, g(if abs { 90.0 } else { 91.0 }));
             let restore = match m.abs {
@@ -390,7 +444,8 @@ fn unsup(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str) 
 
 /// A call: a translated subprogram becomes `G65 P<o> <letters>`; simulation-only calls are
 /// dropped; anything else is unsupported. Returns a marker statement when unsupported.
-fn call(ctx: &mut Ctx, c: Call, span: Span, kept: &mut Vec<Item>) -> Option<Stmt> {
+/// `units_ok`: lengths and feeds are in one unit here (what a subprogram assumes it starts in).
+fn call(ctx: &mut Ctx, c: Call, span: Span, units_ok: bool, kept: &mut Vec<Item>) -> Option<Stmt> {
     let name = match &c.target {
         CallTarget::Name(n) => n.to_ascii_uppercase(),
         _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
@@ -428,6 +483,11 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, kept: &mut Vec<Item>) -> Option<Stmt
         let hint = "pass the value through an R parameter instead (R parameters map to common variables)";
         return ctx.unsupported("NC304", p.span, &what, hint);
     }
+    if !units_ok {
+        let what = format!("call of {name} while lengths and feeds are in different units (G70/G71)");
+        let hint = "set both units with G700 or G710 before the call (a subprogram starts in its caller's units)";
+        return ctx.unsupported("NC324", span, &what, hint);
+    }
     let repeat = c.repeat.clone();
     if repeat.is_some() && !callee.params.is_empty() {
         let what = format!("repeated call of {name} with parameters");
@@ -450,60 +510,4 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, kept: &mut Vec<Item>) -> Option<Stmt
 }
 
 #[cfg(test)]
-mod tests {
-    use super::super::build::*;
-    use super::*;
-
-    fn run_words(items: Vec<Item>, ctx: &mut Ctx) -> Vec<Stmt> {
-        let mut prog = program(vec![block(items)]);
-        run(ctx, &mut prog, &ProgInfo::default());
-        prog.body
-    }
-
-    #[test]
-    fn letters_follow_spec_one_then_two() {
-        let l = param_letters(3).unwrap_or_default();
-        assert_eq!(l, vec![(b'A', 1), (b'B', 2), (b'C', 3)]);
-        let l = param_letters(22).unwrap_or_default();
-        assert_eq!(l[3], (b'I', 4));
-        assert_eq!(l[21], (b'I', 22));
-        assert!(param_letters(34).is_none());
-    }
-
-    #[test]
-    fn cr_becomes_r_and_g4_f_becomes_x() {
-        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
-        let w = Word { addr: Addr::Name("CR".into()), value: WordValue::Expr(n(5.0)), span: sp() };
-        let body = run_words(vec![item(ItemKind::Word(w), sp())], &mut ctx);
-        assert_eq!(shape_words(&body[0]), "R");
-        let body = run_words(vec![word_item(b'G', n(4.0)), word_item(b'F', n(2.0))], &mut ctx);
-        assert_eq!(shape_words(&body[0]), "G X");
-    }
-
-    #[test]
-    fn unknown_tool_name_is_an_error_with_a_hint() {
-        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
-        let t = Expr::new(ExprKind::Str("BALLNOSE_D8".into()), sp());
-        run_words(vec![word_item(b'T', t)], &mut ctx);
-        assert_eq!(ctx.diags[0].code, "NC301");
-        assert!(ctx.diags[0].notes[0].contains("--tool-map BALLNOSE_D8="));
-    }
-
-    #[test]
-    fn ic_in_absolute_mode_switches_to_g91_and_back() {
-        let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
-        let w = Word { addr: Addr::Letter(b'X'), value: WordValue::Ic(n(5.0)), span: sp() };
-        let body = run_words(vec![word_item(b'G', n(1.0)), item(ItemKind::Word(w), sp())], &mut ctx);
-        assert_eq!(body.len(), 2);
-        assert_eq!(shape_words(&body[0]), "G G X");
-        assert_eq!(shape_words(&body[1]), "G");
-    }
-
-    #[test]
-    fn unknown_g_code_is_unsupported() {
-        let mut ctx = Ctx::new(0, UnsupportedPolicy::Warn);
-        let body = run_words(vec![word_item(b'G', n(500.0))], &mut ctx);
-        assert_eq!(ctx.unsupported, 1);
-        assert!(matches!(&body[0].kind, StmtKind::Block(b) if b.meta.comments[0].text.contains("G500")));
-    }
-}
+mod tests;

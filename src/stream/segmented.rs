@@ -13,13 +13,15 @@
 //!   statements and every structure's bodies in source order with one `Modal`; it never
 //!   follows jumps or loops). So the mode at any block is a function of the text before
 //!   it, and textual order is all there is to follow: the skeleton scan does it
-//!   (`skel::Modes`, the same rules: G70 on; G71, G700, G710 off; G90/G91), through runs and
+//!   (`skel::Modes`, the same rules: `passes::words::units`, G90/G91), through runs and
 //!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
-//!   - each run's fast path starts in the G70 mode the text before it leaves (a block the
-//!     fast path declines is translated alone after a G70 block when that mode is on);
-//!   - each placeholder carries the modes its run leaves as G70/G71 and G90/G91 words
+//!   - each run's fast path starts in the units the text before it leaves (a block the
+//!     fast path declines is translated alone after a block setting those units when they
+//!     are not the start's, `G700 G71` for metric lengths with inch feeds);
+//!   - each placeholder carries the modes its run leaves as unit words (`G710 G70`, `G700
+//!     G71`, `G700`, `G710`: any state from any other) and G90/G91 words
 //!     (only where the run changes them), so the skeleton's words pass reads the modes
-//!     the whole translation has at the macro statements after the run: F under G70, the
+//!     the whole translation has at the macro statements after the run: converted F, the
 //!     G90/G91 switch around AC()/IC() words. The placeholder's line is replaced whole,
 //!     so these words never reach the output.
 //!   - whether textual order is the mode a jump or a loop head runs in is the verifier's
@@ -173,7 +175,7 @@ fn segment(
     let notes = t.diags;
     let mut w = Writer {
         keep: &sk.keep,
-        run_g70: &sk.run_g70,
+        run_units: &sk.run_units,
         forced: &sk.forced,
         fast: fast::Fast::new(opts.comments, eol),
         opts,

@@ -2,8 +2,8 @@
 //! once and each block is written as it comes ([`fast`]: the exact text the whole-program
 //! translator writes for it; a block that translator has something to say on goes through
 //! `translate::to_fanuc` alone), so neither the source nor the output is ever held whole.
-//! The only state carried from block to block is the G70 mode (F in metric under inch
-//! lengths). Verification then parses the output back (streamed) and runs both programs
+//! The only state carried from block to block is the length and feed units (F converted
+//! where they differ, `passes::words::units`). Verification then parses the output back (streamed) and runs both programs
 //! streamed side by side, comparing their traces as they are produced.
 //!
 //! Only programs whose translation is local to each block stream: every block holds plain
@@ -25,6 +25,7 @@ use crate::eval::{DirCallees, NoCallees, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
+use crate::passes::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
@@ -119,24 +120,24 @@ impl State<'_> {
 
     /// Translates one straight block: the fast path, else (when the translator has
     /// something to say on it) the whole-program translator on the block alone, in the
-    /// G70 mode the blocks before it left.
+    /// units the blocks before it left.
     fn block(&mut self, s: &Stmt) {
         if self.io.is_some() || !self.diags.is_empty() || self.unsupported > 0 {
             // The output will be discarded (the caller translates whole); only the
             // straight-line check still matters.
             return;
         }
-        let g70 = self.fast.g70;
+        let units = self.fast.units;
         if self.fast.block(s, &mut self.buf).is_err() {
             let mut body = Vec::with_capacity(2);
-            if g70 {
-                body.push(g70_block());
-            }
+            let set = units_block(units);
+            let set_units = set.is_some();
+            body.extend(set);
             body.push(s.clone());
             let t = translate::to_fanuc(&self.unit(body), &[], self.opts);
             self.unsupported += t.unsupported;
             self.diags.extend(t.diags);
-            let skip = self.header_len + usize::from(g70);
+            let skip = self.header_len + usize::from(set_units);
             let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
             let e = emit::emit_body(body, &self.eo);
             self.diags.extend(e.diags);
@@ -177,7 +178,7 @@ impl super::WordsSink for Sink<'_, '_> {
     }
 
     /// [`Sink::stmt`] of the block when the fast path takes it; else nothing has changed
-    /// (the G70 mode is set back) and the statement is asked for.
+    /// (the units are set back) and the statement is asked for.
     fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let st = &mut *self.st;
         if st.stop.is_some() {
@@ -185,11 +186,11 @@ impl super::WordsSink for Sink<'_, '_> {
         }
         // A plain block is straight (constant letter words, no label): not checked again.
         if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
-            let g70 = st.fast.g70;
+            let units = st.fast.units;
             // The usual CAM line in one loop (it changes no mode), else the words one by one.
             if !st.fast.plain_words(meta, words, &mut st.buf) && st.fast.words(meta, words, line, &mut st.buf).is_err()
             {
-                st.fast.g70 = g70;
+                st.fast.units = units;
                 return false;
             }
             if st.buf.len() >= WRITE_BYTES {
@@ -201,15 +202,25 @@ impl super::WordsSink for Sink<'_, '_> {
     }
 }
 
-/// A block holding `G70`: sets the inch mode for a block translated on its own.
-pub(super) fn g70_block() -> Stmt {
-    let g = Word {
-        addr: Addr::Letter(b'G'),
-        value: WordValue::Expr(crate::ir::Expr::num(70.0, false, Span::default())),
-        span: Span::default(),
-    };
-    let item = crate::ir::Item { kind: ItemKind::Word(g), span: Span::default() };
-    crate::passes::block_stmt(vec![item], Span::default())
+/// A block setting `units` for a block translated on its own (its translation is one block
+/// the caller skips); `None` for the units a program starts in.
+pub(super) fn units_block(units: Units) -> Option<Stmt> {
+    if units == Units::default() {
+        return None;
+    }
+    let items = units
+        .words()
+        .iter()
+        .map(|&v| {
+            let g = Word {
+                addr: Addr::Letter(b'G'),
+                value: WordValue::Expr(crate::ir::Expr::num(v, false, Span::default())),
+                span: Span::default(),
+            };
+            crate::ir::Item { kind: ItemKind::Word(g), span: Span::default() }
+        })
+        .collect();
+    Some(crate::passes::block_stmt(items, Span::default()))
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out`, reading it once. On `Err` nothing

@@ -3,6 +3,7 @@
 
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target, WordValue};
+use crate::passes::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::translate::{straight, Fallback};
@@ -42,11 +43,11 @@ pub(super) fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
 }
 
 /// The two modes of the words pass that reach from block to block outside a structure, in
-/// textual order (`passes::words::words_pass`): G70 (inch lengths, metric feed: the fast
-/// path's `g70`) and G90/G91 (read by AC()/IC() words).
+/// textual order (`passes::words::words_pass`): the length and feed units (G70, G71, G700,
+/// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
 #[derive(Clone, Copy)]
 pub(super) struct Modes {
-    g70: bool,
+    units: Units,
     abs: bool,
 }
 
@@ -60,18 +61,14 @@ pub(super) struct Touched {
 impl Modes {
     /// A constant G word, as the words pass takes it.
     fn g(&mut self, v: f64, t: &mut Touched) {
-        if v == 70.0 {
-            self.g70 = true;
-        } else if v == 71.0 || v == 700.0 || v == 710.0 {
-            self.g70 = false;
-        } else if v == 90.0 || v == 91.0 {
-            self.abs = v == 90.0;
-            t.abs = true;
-            return;
-        } else {
+        if self.units.g(v) {
+            t.inch = true;
             return;
         }
-        t.inch = true;
+        if v == 90.0 || v == 91.0 {
+            self.abs = v == 90.0;
+            t.abs = true;
+        }
     }
 
     /// The G words of a block's items.
@@ -116,8 +113,8 @@ pub(super) struct Skel {
     pub(super) modes: Modes,
     /// Which modes the run being collected changes.
     pub(super) touched: Touched,
-    /// The G70 mode at the start of each run.
-    pub(super) run_g70: Vec<bool>,
+    /// The units at the start of each run.
+    pub(super) run_units: Vec<Units>,
     /// The last statement was a block holding a MSG.
     pub(super) after_msg: bool,
     /// Where the lone M0 blocks right after such a block start: kept in the skeleton (the
@@ -147,20 +144,21 @@ impl Skel {
             Some((hi, _)) => *hi = (*hi).max(valid),
             None => {
                 self.run = Some((valid, meta.span));
-                self.run_g70.push(self.modes.g70);
+                self.run_units.push(self.modes.units);
             }
         }
     }
 
     /// Ends the run being collected: its placeholder block carries the modes the run leaves
-    /// (as G70/G71 and G90/G91 words, where it changes them) for the words pass to follow
+    /// (as unit words, `Units::words`, and G90/G91 words, where it changes them) for the
+    /// words pass to follow
     /// into the skeleton after it; the placeholder's line is replaced whole.
     fn close_run(&mut self) {
         if let Some((hi, span)) = self.run.take() {
             let t = std::mem::take(&mut self.touched);
             let mut items = Vec::new();
             if t.inch {
-                items.push(g_item(if self.modes.g70 { 70.0 } else { 71.0 }, span));
+                items.extend(self.modes.units.words().iter().map(|&v| g_item(v, span)));
             }
             if t.abs {
                 items.push(g_item(if self.modes.abs { 90.0 } else { 91.0 }, span));
@@ -298,9 +296,9 @@ pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallb
         targets: NSet::default(),
         max_n: 0,
         skel_ns: NSet::default(),
-        modes: Modes { g70: false, abs: true },
+        modes: Modes { units: Units::default(), abs: true },
         touched: Touched::default(),
-        run_g70: Vec::new(),
+        run_units: Vec::new(),
         after_msg: false,
         forced: Vec::new(),
         stop: None,

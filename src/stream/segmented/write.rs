@@ -4,8 +4,9 @@
 use super::skel::{kept, NSet, MARK};
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
+use crate::passes::words::units::Units;
 use crate::read::RawBlock;
-use crate::stream::translate::{fast, g70_block, straight};
+use crate::stream::translate::{fast, straight, units_block};
 use crate::stream::{PlainWord, WordsSink, WRITE_BYTES};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
@@ -59,8 +60,8 @@ pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(us
 /// run, translated as it is read.
 pub(super) struct Writer<'a> {
     pub(super) keep: &'a NSet,
-    /// The G70 mode at each run's start (the skeleton scan's).
-    pub(super) run_g70: &'a [bool],
+    /// The units at each run's start (the skeleton scan's).
+    pub(super) run_units: &'a [Units],
     /// Where the straight blocks kept in the skeleton for a MSG start.
     pub(super) forced: &'a [u32],
     pub(super) fast: fast::Fast,
@@ -103,7 +104,7 @@ impl Writer<'_> {
             Some(&(lo, hi)) => {
                 self.copy_to(lo);
                 self.pos = hi;
-                self.fast.g70 = self.run_g70.get(self.next).copied().unwrap_or(false);
+                self.fast.units = self.run_units.get(self.next).copied().unwrap_or_default();
                 self.next += 1;
             }
             None => self.bad = true,
@@ -116,18 +117,21 @@ impl Writer<'_> {
     }
 
     /// A straight block of a run the fast path declined: translated alone (as
-    /// `stream::translate` does), after a G70 block when `g70` was the mode before it.
-    fn alone(&mut self, s: &Stmt, g70: bool) {
+    /// `stream::translate` does), after a block setting `units` when they are not the
+    /// program's start units.
+    fn alone(&mut self, s: &Stmt, units: Units) {
         let mut u = self.lone.clone();
+        let set = units_block(units);
+        let set_units = set.is_some();
         if let Some(p) = u.programs.first_mut() {
-            p.body = if g70 { vec![g70_block(), s.clone()] } else { vec![s.clone()] };
+            p.body = set.into_iter().chain([s.clone()]).collect();
         }
         let t = translate::to_fanuc(&u, &[], self.opts);
         if !t.diags.is_empty() || t.unsupported > 0 {
             self.bad = true;
             return;
         }
-        let skip = self.header_len + usize::from(g70);
+        let skip = self.header_len + usize::from(set_units);
         let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
         let e = emit::emit_body(body, &self.eo);
         if !e.diags.is_empty() {
@@ -169,10 +173,10 @@ impl WordsSink for Writer<'_> {
             self.flush_some();
             return true;
         }
-        let g70 = self.fast.g70;
+        let units = self.fast.units;
         if self.fast.words(meta, words, line, &mut self.buf).is_err() {
             // Nothing was written; the block comes again as a statement (still a run block).
-            self.fast.g70 = g70;
+            self.fast.units = units;
             return false;
         }
         self.flush_some();
@@ -192,10 +196,10 @@ impl WordsSink for Writer<'_> {
             return;
         }
         self.enter();
-        let g70 = self.fast.g70;
+        let units = self.fast.units;
         if self.fast.block(s, &mut self.buf).is_err() {
-            // The mode is the one after the block already (`Fast::block`).
-            self.alone(s, g70);
+            // The units are the ones after the block already (`Fast::block`).
+            self.alone(s, units);
         }
         self.flush_some();
     }

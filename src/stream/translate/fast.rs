@@ -13,6 +13,7 @@
 pub use super::numwrite::{push_decimal, push_num, push_short, push_skip, push_u64, shortest};
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
 use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
+use crate::passes::words::units::{FeedConv, Units};
 use crate::passes::words::SAME_G;
 use crate::read::RawBlock;
 use crate::stream::translate::digits::{Form, Lit, Src};
@@ -73,20 +74,20 @@ fn is_int(v: f64) -> bool {
 #[derive(Debug, PartialEq, Eq)]
 pub struct Declined;
 
-/// The translation state that spans blocks: the words pass's G70 mode (lengths in inches,
-/// feeds still metric: F is divided by 25.4 until G71, G700 or G710).
+/// The translation state that spans blocks: the words pass's length and feed units (an F
+/// word is converted where they differ: `F[v/25.4]` or `F[v*25.4]`).
 pub struct Fast {
-    pub g70: bool,
+    pub units: Units,
     comments: CommentMode,
     eol: &'static str,
 }
 
 impl Fast {
     pub fn new(comments: CommentMode, eol: &'static str) -> Fast {
-        Fast { g70: false, comments, eol }
+        Fast { units: Units::default(), comments, eol }
     }
 
-    /// Appends the lines of `s`. On `Err` nothing was appended, but the G70 mode has taken
+    /// Appends the lines of `s`. On `Err` nothing was appended, but the units have taken
     /// the block's G words into account, as the words pass does before it reports.
     pub fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Declined> {
         let StmtKind::Block(b) = &s.kind else { return Err(Declined) };
@@ -112,21 +113,18 @@ impl Fast {
         }
         // What `lines` does for a block of words only, in one loop over them after the
         // words pass's modes: a dimension word (neither an integer address, nor G/M, nor a
-        // feed under a dwell or G70) goes straight from its literal to the output.
+        // feed under a dwell or converted) goes straight from its literal to the output.
         let mut dwell = false;
         for w in words {
             if w.letter == b'G' {
                 let v = w.value;
-                if v == 70.0 {
-                    self.g70 = true;
-                } else if v == 71.0 || v == 700.0 || v == 710.0 {
-                    self.g70 = false;
-                } else if v == 4.0 {
+                if !self.units.g(v) && v == 4.0 {
                     dwell = true;
                 }
             }
         }
-        let special = if dwell || self.g70 { SPECIAL | letter_bit(b'F') } else { SPECIAL };
+        let convert = self.units.feed() != FeedConv::Same;
+        let special = if dwell || convert { SPECIAL | letter_bit(b'F') } else { SPECIAL };
         let start = out.len();
         let (line_start, mut sep) = self.open(out, meta, true);
         for w in words {
@@ -159,7 +157,7 @@ impl Fast {
 
     /// [`Fast::words`] of the usual CAM line read by the quick reader, in one loop: no
     /// label, skip or comment; words G0..G9 the target has but G4 (a dwell changes F and S)
-    /// and dimension words (not [`SPECIAL`], nor F under G70) in their canonical form
+    /// and dimension words (not [`SPECIAL`], nor a converted F) in their canonical form
     /// (`Canon`, `push_word`'s `Point` bytes, at most 7 digits). What [`Fast::words`]
     /// writes for such a line: the N number FANUC keeps, the words one space apart, the
     /// line end. `false`, nothing changed, for any other line.
@@ -168,7 +166,7 @@ impl Fast {
         if meta.label.is_some() || meta.skip.is_some() || !meta.comments.is_empty() || words.is_empty() {
             return false;
         }
-        let special = if self.g70 { SPECIAL | letter_bit(b'F') } else { SPECIAL };
+        let special = if self.units.feed() != FeedConv::Same { SPECIAL | letter_bit(b'F') } else { SPECIAL };
         let start = out.len();
         if let Some(n) = meta.number.as_ref().map(|n| n.value).filter(|n| (1..=MAX_N).contains(n)) {
             out.push(b'N');
@@ -237,8 +235,7 @@ impl Fast {
                     words = true;
                     if is_g {
                         match num.map(|n| n.0) {
-                            Some(70.0) => self.g70 = true,
-                            Some(v) if v == 71.0 || v == 700.0 || v == 710.0 => self.g70 = false,
+                            Some(v) if self.units.g(v) => {}
                             Some(4.0) => dwell = true,
                             _ => {}
                         }
@@ -346,7 +343,7 @@ impl Fast {
         out: &mut Vec<u8>,
     ) -> Result<(), Declined> {
         let mut letter = letter.ok_or(Declined)?;
-        let mut per_inch = false;
+        let mut conv: &[u8] = b"";
         match letter {
             b'G' => {
                 // A G code must be a written constant the target has.
@@ -364,16 +361,21 @@ impl Fast {
             }
             b'F' if dwell => letter = b'X',
             b'S' if dwell => return Err(Declined),
-            b'F' if self.g70 => per_inch = true,
+            b'F' => match self.units.feed() {
+                FeedConv::Same => {}
+                FeedConv::PerInch => conv = b"/25.4]",
+                FeedConv::PerMm => conv = b"*25.4]",
+            },
             _ => {}
         }
         let v = folded.ok_or(Declined)?;
-        if per_inch {
-            // `F[v/25.4]`: a quotient is bracketed in an address; neither constant is.
+        if !conv.is_empty() {
+            // `F[v/25.4]`, `F[v*25.4]`: a binary expression is bracketed in an address;
+            // neither constant is.
             out.push(letter);
             out.push(b'[');
             number(out, v, lit().and_then(Src::lit))?;
-            out.extend_from_slice(b"/25.4]");
+            out.extend_from_slice(conv);
             return Ok(());
         }
         self.num_word(letter, v, lit(), out)
