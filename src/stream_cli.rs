@@ -25,13 +25,6 @@ pub fn wanted(path: &Path, input: &super::InputOpts) -> bool {
     input.stream || std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_BYTES)
 }
 
-/// Whether to stream `path` as a side of `check`: as [`wanted`], and not in a forced legacy
-/// encoding (`check` renders its diagnostics from the file itself, so a side that is not
-/// UTF-8 is read whole).
-pub fn wanted_side(path: &Path, input: &super::InputOpts) -> bool {
-    !transcode::needs_copy(input.encoding) && wanted(path, input)
-}
-
 /// What a stream reads for `path`: the file itself, or (legacy encodings) a decoded UTF-8
 /// copy, removed when this is dropped. Spans, lines and columns are the same in both
 /// (offsets into the decoded text), so diagnostics render from [`Source::path`].
@@ -40,8 +33,6 @@ pub struct Source<'a> {
     pub copy: Option<TempCopy>,
     /// `--encoding`.
     forced: Option<&'static encoding_rs::Encoding>,
-    /// Whether a decoded copy may be made (not for a `check` side, rendered from `original`).
-    may_copy: bool,
 }
 
 impl<'a> Source<'a> {
@@ -49,13 +40,13 @@ impl<'a> Source<'a> {
     /// extra), else a decoded copy; `None` when it cannot be made.
     pub fn new(path: &'a Path, forced: Option<&'static encoding_rs::Encoding>) -> Option<Source<'a>> {
         let copy = if transcode::needs_copy(forced) { transcode::copy(path, forced).ok()? } else { None };
-        Some(Source { original: path, copy, forced, may_copy: true })
+        Some(Source { original: path, copy, forced })
     }
 
     /// After a stream of the file itself stopped at a line that is not UTF-8: a decoded
     /// copy to stream instead (`None` when there is one already, or it cannot be made).
     pub fn transcoded(&mut self, why: &NotStreamable) -> Option<()> {
-        if self.copy.is_some() || !self.may_copy || !matches!(why, NotStreamable::NotUtf8 { .. }) {
+        if self.copy.is_some() || !matches!(why, NotStreamable::NotUtf8 { .. }) {
             return None;
         }
         self.copy = Some(transcode::copy(self.original, self.forced).ok()??);
@@ -277,16 +268,18 @@ pub fn run(
     })
 }
 
-/// One side of `nctrans check`: streamed when wanted and possible. Only a UTF-8 side
-/// streams (see [`wanted_side`]): the caller renders the check's diagnostics from `path`.
-pub fn side(
+/// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the
+/// file, or a decoded copy of a legacy-encoded one: the caller keeps it until the check has
+/// run, and renders the check's diagnostics from its [`Source::path`]).
+pub fn side<'a>(
     db: &mut SourceDb,
-    path: &Path,
+    path: &'a Path,
     from: Option<Dialect>,
     eval: &super::EvalOpts,
-) -> Option<Result<nctrans::check::Runner, ExitCode>> {
+    forced: Option<&'static encoding_rs::Encoding>,
+) -> Option<Result<(nctrans::check::Runner, Source<'a>), ExitCode>> {
     let file = db.len();
-    let mut src = Source { original: path, copy: None, forced: None, may_copy: false };
+    let mut src = Source::new(path, forced)?;
     let ix = match scan(&mut src, from, file)? {
         Ok(ix) => ix,
         Err(code) => return Some(Err(code)),
@@ -297,7 +290,7 @@ pub fn side(
     };
     db.add(path.display().to_string(), String::new());
     let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
-    Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
+    Some(Ok((stream::runner(Arc::new(ix), callees, opts), src)))
 }
 
 /// Whether `out` is the input itself: a streamed translation re-reads its source while

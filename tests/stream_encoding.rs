@@ -714,3 +714,57 @@ fn batches_stream_legacy_files_with_the_same_outputs_and_report() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `check` of two legacy-encoded programs (one per dialect): streamed sides read decoded
+/// copies and render the divergence from them, exactly as the whole path renders it.
+#[test]
+fn cli_check_streams_legacy_sides() {
+    let a = encoded(
+        "; Fräser Ø10\nR1=5\nG0 X=R1 Y0\nG1 X10 F100 ; Schlichten ä\nX12 ; Ø\nM30\n",
+        encoding_rs::WINDOWS_1252,
+        false,
+    );
+    for (case, last) in [("equal", "X12."), ("diverged", "X13.")] {
+        let b = encoded(
+            &format!(
+                "%\r\nO1 (粗加工 刀具)\r\n#100=5\r\nG0 X#100 Y0\r\nG1 X10. F100.\r\n{last} (刀具)\r\nM30\r\n%\r\n"
+            ),
+            encoding_rs::GBK,
+            false,
+        );
+        let mut ran = Vec::new();
+        for stream in [false, true] {
+            let dir = scratch(&format!("check-{case}-{stream}"));
+            let tmp = dir.join("tmp");
+            std::fs::create_dir_all(&tmp).unwrap();
+            std::fs::write(dir.join("a.mpf"), &a).unwrap();
+            std::fs::write(dir.join("b.nc"), &b).unwrap();
+            let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_000_000_000);
+            std::fs::File::open(&tmp).unwrap().set_modified(old).unwrap();
+            let mut args = vec!["check", "a.mpf", "b.nc"];
+            if stream {
+                args.push("--stream");
+            }
+            let o = Command::new(env!("CARGO_BIN_EXE_nctrans"))
+                .args(&args)
+                .current_dir(&dir)
+                .env("TMPDIR", &tmp)
+                .output()
+                .unwrap();
+            let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().map(|e| e.path()).collect();
+            assert!(left.is_empty(), "{case}: left behind {left:?}");
+            let touched = std::fs::metadata(&tmp).unwrap().modified().unwrap() != old;
+            assert_eq!(touched, stream, "{case}: a decoded copy is made exactly when streaming");
+            ran.push((o.status.code(), o.stdout, String::from_utf8_lossy(&o.stderr).into_owned()));
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+        assert_eq!(ran[0], ran[1], "{case}: whole vs streamed");
+        if case == "diverged" {
+            assert_eq!(ran[1].0, Some(1));
+            // (Detection of so short a GBK text guesses another CJK encoding: both paths alike.)
+            assert!(ran[1].2.contains("b.nc:6:1") && ran[1].2.contains("a.mpf:5:1") && ran[1].2.contains("X12 ; Ø"));
+        } else {
+            assert_eq!(ran[1].0, Some(0), "{}", ran[1].2);
+        }
+    }
+}
