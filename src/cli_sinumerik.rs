@@ -9,6 +9,8 @@ use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::span::SourceDb;
+use nctrans::stream::lines::NotStreamable;
+use nctrans::stream::transcode;
 use nctrans::translate_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
 use nctrans::{diag, read};
 use std::collections::BTreeSet;
@@ -365,21 +367,39 @@ fn verdict(v: Verdict, diff: &str) -> ExitCode {
 /// both programs streamed. `None` when it is not (then it is translated whole; a partial
 /// output is removed first). Prints what the whole path prints; diagnostics point into
 /// files that are not loaded, so they are shown compactly with their line.
+/// A source in a legacy encoding streams from a decoded UTF-8 copy, and its translation is
+/// written as UTF-8 first, verified from there, then encoded (as the whole path encodes).
 fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitCode> {
+    use crate::stream_cli;
+    let size = std::fs::metadata(req.file).ok()?.len();
+    if !(args.stream || size >= stream_cli::AUTO_BYTES) || stream_cli::writes_over(req.file, req.out) {
+        return None;
+    }
+    let mut src = stream_cli::Source::new(req.file, req.encoding)?;
+    loop {
+        match streamed_from(args, req, opts, &src, size) {
+            Ok(code) => return code,
+            Err(why) => src.transcoded(&why)?,
+        }
+    }
+}
+
+/// [`streamed`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
+/// left written: the caller streams again from a decoded copy).
+fn streamed_from(
+    args: &TranslateArgs,
+    req: &Request,
+    opts: &Options,
+    src: &crate::stream_cli::Source,
+    size: u64,
+) -> Result<Option<ExitCode>, NotStreamable> {
     use crate::stream_cli::{self, ProgressLine};
     use nctrans::stream::to_sinumerik as sts;
     use nctrans::stream::translate::Fallback;
-    if req.encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
-        return None;
-    }
-    let size = std::fs::metadata(req.file).ok()?.len();
-    if !(args.stream || size >= stream_cli::AUTO_BYTES) {
-        return None;
-    }
-    let eol = sts::first_line_ending(req.file).ok()?;
-    if stream_cli::writes_over(req.file, req.out) {
-        return None;
-    }
+    let path = src.path();
+    let (Some(eol), Some((enc, bom))) = (src.line_ending(), src.encoding()) else {
+        return Ok(None);
+    };
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("out");
     // Written to a temporary file and renamed: a program found not to be straight-line part
     // way is then translated whole; standard output gets a copy of the finished file.
@@ -392,34 +412,44 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         Some(o) if is_dir(o) => {
             if let Err(e) = std::fs::create_dir_all(o) {
                 eprintln!("error: cannot create {}: {e}", o.display());
-                return Some(ExitCode::from(2));
+                return Ok(Some(ExitCode::from(2)));
             }
             o.join(format!(".nctrans-{}-{stem}.tmp", std::process::id()))
         }
         Some(o) => o.with_extension(format!("{}.nctrans-tmp", o.extension().and_then(|e| e.to_str()).unwrap_or(""))),
     };
-    let mut w = match stream_cli::create_temp(&tmp) {
+    // A source not in UTF-8 (so the output neither): the stream writes UTF-8 into a
+    // scratch file, encoded into `tmp` when finished and read back from there.
+    let utf8 = (enc != encoding_rs::UTF_8).then(|| transcode::TempFile::new(&format!("{stem}.utf8.mpf")));
+    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
+    let mut w = match stream_cli::create_temp(write_to) {
         Ok(w) => w,
-        Err(code) => return Some(code),
+        Err(code) => return Ok(Some(code)),
     };
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
-    let r = sts::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
+    let r = sts::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
     line.done();
     drop(w);
     // Not straight-line: segmented (the macro part whole, its runs of straight blocks
     // streamed), else the whole-file path (with a note only when segmented declines too).
     let r = match r {
         Err(Fallback::NotStraight(why)) => {
-            let mut w = match stream_cli::create_temp(&tmp) {
+            let mut w = match stream_cli::create_temp(write_to) {
                 Ok(w) => w,
-                Err(code) => return Some(code),
+                Err(code) => return Ok(Some(code)),
             };
             let mut line = ProgressLine::new("translating", size);
             let mut report = |p: nctrans::stream::Progress| line.update(p);
-            let r = sts::segmented::to_sinumerik(req.file, opts, eol, &mut w, Some(&mut report));
+            let r = sts::segmented::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
             line.done();
             drop(w);
+            if let Err(Fallback::NotStreamable(NotStreamable::NotUtf8 { .. })) = &r {
+                let _ = std::fs::remove_file(write_to);
+                if let Err(Fallback::NotStreamable(e)) = r {
+                    return Err(e);
+                }
+            }
             r.map_err(|f| match f {
                 Fallback::NotStraight(seg) => Fallback::NotStraight(seg),
                 Fallback::Diagnostics | Fallback::NotStreamable(_) => Fallback::NotStraight(why),
@@ -430,16 +460,31 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     let done = match r {
         Ok(d) => d,
         Err(f) => {
-            let _ = std::fs::remove_file(&tmp);
-            if let Fallback::NotStraight(why) = &f {
-                stream_cli::note_read_whole(req.file, size, why);
+            let _ = std::fs::remove_file(write_to);
+            match f {
+                Fallback::NotStraight(why) => stream_cli::note_read_whole(req.file, size, &why),
+                Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. }) => return Err(e),
+                _ => {}
             }
-            return None;
+            return Ok(None);
         }
     };
+    if let Some(u) = &utf8 {
+        let encoded = stream_cli::create_temp(&tmp)
+            .map(|mut w| transcode::encode_to(u.path(), enc, bom, &mut w).and_then(|_| w.flush()));
+        match encoded {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => {
+                let _ = std::fs::remove_file(&tmp);
+                eprintln!("error: cannot write {}: {e}", tmp.display());
+                return Ok(Some(ExitCode::from(2)));
+            }
+            Err(code) => return Ok(Some(code)),
+        }
+    }
     let mut db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
-    eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, req.file)]));
+    eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, path)]));
     let out = match req.out {
         None => tmp.clone(),
         Some(_) if special.is_some() => tmp.clone(),
@@ -449,19 +494,19 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     if let Err(e) = std::fs::rename(&tmp, &out) {
         let _ = std::fs::remove_file(&tmp);
         eprintln!("error: cannot write {}: {e}", out.display());
-        return Some(ExitCode::from(2));
+        return Ok(Some(ExitCode::from(2)));
     }
     if let Some(t) = special {
         if let Err(e) = stream_cli::copy_into(&out, t) {
             let _ = std::fs::remove_file(&out);
             eprintln!("error: cannot write {}: {e}", t.display());
-            return Some(ExitCode::from(2));
+            return Ok(Some(ExitCode::from(2)));
         }
         eprintln!("wrote {}", t.display());
     } else if req.out.is_none() {
         if stream_cli::copy_to_stdout(&out).is_err() {
             let _ = std::fs::remove_file(&out);
-            return Some(ExitCode::from(2));
+            return Ok(Some(ExitCode::from(2)));
         }
     } else {
         eprintln!("wrote {}", out.display());
@@ -476,22 +521,23 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
             None => "<stdout>".to_string(),
         };
         let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
-        code = verify_streamed(req.file, &out, &shown, done.index, args.max_steps, opts, size);
+        let read_back = utf8.as_ref().map_or(out.as_path(), |u| u.path());
+        code = verify_streamed((req.file, path), read_back, &shown, done.index, args.max_steps, opts, size);
     }
     if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);
     }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {
         eprintln!("error: unsupported constructs were written as marked comments");
-        return Some(ExitCode::from(1));
+        return Ok(Some(ExitCode::from(1)));
     }
-    Some(code)
+    Ok(Some(code))
 }
 
 /// Verifies a streamed translation: the output read back as Sinumerik (streamed), both
 /// programs run streamed side by side, with each one's `nctrans: set` header inputs.
 fn verify_streamed(
-    input: &Path,
+    (input, input_read): (&Path, &Path),
     out: &Path,
     shown: &str,
     source: nctrans::stream::Index,
@@ -510,7 +556,7 @@ fn verify_streamed(
     let mut db = SourceDb::new();
     db.add(input.display().to_string(), String::new());
     db.add(shown.to_string(), String::new());
-    let streamed = [(0, input), (1, out)];
+    let streamed = [(0, input_read), (1, out)];
     let back = match back {
         Ok(b) => b,
         Err(ReadBack::Diags(mut diags)) => {

@@ -176,7 +176,7 @@ fn read_file(path: &PathBuf) -> Result<Vec<u8>, ExitCode> {
 
 fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &InputOpts) -> ExitCode {
     if summary && stream_cli::wanted(path, input) {
-        if let Some(code) = stream_cli::parse_summary(path, from) {
+        if let Some(code) = stream_cli::parse_summary(path, from, input.encoding) {
             return code;
         }
     }
@@ -272,7 +272,7 @@ fn cmd_run(
 ) -> ExitCode {
     use nctrans::eval::{self, Ending};
     if stream_cli::wanted(path, input) {
-        if let Some(code) = stream_cli::run(path, from, eval, format, quiet) {
+        if let Some(code) = stream_cli::run(path, from, eval, format, quiet, input.encoding) {
             return code;
         }
     }
@@ -317,32 +317,36 @@ fn cmd_check(
 ) -> ExitCode {
     use nctrans::check::{self, Side, Verdict};
     let mut db = SourceDb::new();
-    // Each side is streamed when it is large (or --stream), else read whole.
-    let mut streamed: Vec<(usize, &std::path::Path)> = Vec::new();
+    // Each side is streamed when it is large (or --stream), else read whole. A streamed
+    // side's source (a decoded copy for a legacy encoding) lives until the check has run.
+    let mut streamed: Vec<(usize, stream_cli::Source)> = Vec::new();
     let mut runners = Vec::new();
     for (path, from) in [(a, from_a), (b, from_b)] {
         let id = db.len();
-        let runner =
-            match stream_cli::wanted(path, input).then(|| stream_cli::side(&mut db, path, from, eval)).flatten() {
-                Some(Ok(r)) => {
-                    streamed.push((id, path.as_path()));
-                    r
+        let side = stream_cli::wanted(path, input)
+            .then(|| stream_cli::side(&mut db, path, from, eval, input.encoding))
+            .flatten();
+        let runner = match side {
+            Some(Ok((r, src))) => {
+                streamed.push((id, src));
+                r
+            }
+            Some(Err(code)) => return code,
+            None => match load_for_run(&mut db, path, from, eval, input) {
+                Ok((unit, run)) => {
+                    Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
                 }
-                Some(Err(code)) => return code,
-                None => match load_for_run(&mut db, path, from, eval, input) {
-                    Ok((unit, run)) => {
-                        Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
-                    }
-                    Err(code) => return code,
-                },
-            };
+                Err(code) => return code,
+            },
+        };
         runners.push(runner);
     }
     let (Some(rb), Some(ra)) = (runners.pop(), runners.pop()) else {
         return ExitCode::from(2);
     };
     let report = check::check_runners(&db, ra, rb);
-    eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
+    let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
+    eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
     match report.verdict {
         Verdict::Equivalent { events } => {
             println!("equivalent ({events} trace events agree)");

@@ -1,10 +1,13 @@
 //! The command line's streaming path: `parse --summary`, `run` and `check` on files of 8 MB
 //! and more (or with `--stream`) read them as a stream in constant memory, with a progress
-//! line on a terminal for files over 10 MB. Anything the stream cannot do exactly as the
-//! whole-file path (a legacy encoding, diagnostics to render) falls back to that path.
+//! line on a terminal for files over 10 MB. A file in a legacy encoding (detected, or
+//! forced with `--encoding`) streams from a decoded UTF-8 copy (`stream::transcode`).
+//! Anything the stream cannot do exactly as the whole-file path falls back to that path.
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
+use nctrans::stream::lines::NotStreamable;
+use nctrans::stream::transcode::{self, TempCopy};
 use nctrans::stream::{self, lines, Index, Progress};
 use std::io::{IsTerminal, Write};
 use std::path::Path;
@@ -17,12 +20,59 @@ pub const AUTO_BYTES: u64 = 8 * 1024 * 1024;
 /// Files this large get a progress line on a terminal.
 const PROGRESS_BYTES: u64 = 10 * 1024 * 1024;
 
-/// Whether to stream `path`: asked for, or large, and not in a forced legacy encoding.
+/// Whether to stream `path`: asked for, or large (in any encoding).
 pub fn wanted(path: &Path, input: &super::InputOpts) -> bool {
-    if input.encoding.is_some_and(|e| e != encoding_rs::UTF_8) {
-        return false;
-    }
     input.stream || std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_BYTES)
+}
+
+/// What a stream reads for `path`: the file itself, or (legacy encodings) a decoded UTF-8
+/// copy, removed when this is dropped. Spans, lines and columns are the same in both
+/// (offsets into the decoded text), so diagnostics render from [`Source::path`].
+pub struct Source<'a> {
+    pub original: &'a Path,
+    pub copy: Option<TempCopy>,
+    /// `--encoding`.
+    forced: Option<&'static encoding_rs::Encoding>,
+}
+
+impl<'a> Source<'a> {
+    /// The file itself when `forced` is not a legacy encoding (a UTF-8 file costs nothing
+    /// extra), else a decoded copy; `None` when it cannot be made.
+    pub fn new(path: &'a Path, forced: Option<&'static encoding_rs::Encoding>) -> Option<Source<'a>> {
+        let copy = if transcode::needs_copy(forced) { transcode::copy(path, forced).ok()? } else { None };
+        Some(Source { original: path, copy, forced })
+    }
+
+    /// After a stream of the file itself stopped at a line that is not UTF-8: a decoded
+    /// copy to stream instead (`None` when there is one already, or it cannot be made).
+    pub fn transcoded(&mut self, why: &NotStreamable) -> Option<()> {
+        if self.copy.is_some() || !matches!(why, NotStreamable::NotUtf8 { .. }) {
+            return None;
+        }
+        self.copy = Some(transcode::copy(self.original, self.forced).ok()??);
+        Some(())
+    }
+
+    /// The path to read.
+    pub fn path(&self) -> &Path {
+        self.copy.as_ref().map_or(self.original, |c| c.path())
+    }
+
+    /// The source's encoding and byte-order mark, as `read::decode` decides them.
+    pub fn encoding(&self) -> Option<(&'static encoding_rs::Encoding, bool)> {
+        match &self.copy {
+            Some(c) => Some((c.detected.encoding, c.detected.bom)),
+            None => Some((encoding_rs::UTF_8, stream::to_sinumerik::has_bom(self.original).ok()?)),
+        }
+    }
+
+    /// The source's first line ending (of the decoded text).
+    pub fn line_ending(&self) -> Option<nctrans::read::LineEnding> {
+        match &self.copy {
+            Some(c) => Some(c.detected.line_ending),
+            None => stream::to_sinumerik::first_line_ending(self.original).ok(),
+        }
+    }
 }
 
 /// Renders progress on stderr (`\r`-updated), at most ten times a second.
@@ -94,18 +144,25 @@ fn dialect_of(path: &Path, from: Option<Dialect>) -> Option<Dialect> {
 }
 
 /// First scan (for the index only) with a progress line; `None` when the file cannot be
-/// streamed exactly (the caller then reads it whole). The scan's diagnostics are rendered
-/// from excerpts of the file (it is not loaded); `Err` when they hold an error, as for a
-/// file read whole.
-fn scan(path: &Path, from: Option<Dialect>, file: usize) -> Option<Result<Index, ExitCode>> {
-    let dialect = dialect_of(path, from)?;
-    let (input, size) = stream::open(path).ok()?;
-    let mut line = ProgressLine::new("reading", size);
-    let mut report = |p: Progress| line.update(p);
-    let opts = ParseOptions::for_dialect(dialect);
-    let r = stream::scan_index(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, Some(&mut report));
-    line.done();
-    let ix = r.ok()?;
+/// streamed exactly (the caller then reads it whole). A file found not to be UTF-8 is
+/// scanned again from a decoded copy (in `src`). The scan's diagnostics are rendered from
+/// excerpts of the file (it is not loaded); `Err` when they hold an error, as for a file
+/// read whole.
+fn scan(src: &mut Source, from: Option<Dialect>, file: usize) -> Option<Result<Index, ExitCode>> {
+    let ix = loop {
+        let path = src.path();
+        let dialect = dialect_of(path, from)?;
+        let (input, size) = stream::open(path).ok()?;
+        let mut line = ProgressLine::new("reading", size);
+        let mut report = |p: Progress| line.update(p);
+        let opts = ParseOptions::for_dialect(dialect);
+        let r = stream::scan_index(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, Some(&mut report));
+        line.done();
+        match r {
+            Ok(ix) => break ix,
+            Err(why) => src.transcoded(&why)?,
+        }
+    };
     // NC102: a structure left open at the end; its full diagnostics need the whole file.
     if ix.diags.iter().any(|d| d.code == "NC102") {
         return None;
@@ -115,8 +172,8 @@ fn scan(path: &Path, from: Option<Dialect>, file: usize) -> Option<Result<Index,
         while db.len() < file {
             db.add("", String::new());
         }
-        db.add(path.display().to_string(), String::new());
-        eprint!("{}", nctrans::excerpt::render(&db, &ix.diags, &[(file, path)]));
+        db.add(src.original.display().to_string(), String::new());
+        eprint!("{}", nctrans::excerpt::render(&db, &ix.diags, &[(file, src.path())]));
         if nctrans::diag::has_errors(&ix.diags) {
             return Some(Err(ExitCode::from(1)));
         }
@@ -125,8 +182,13 @@ fn scan(path: &Path, from: Option<Dialect>, file: usize) -> Option<Result<Index,
 }
 
 /// `nctrans parse --summary` streamed.
-pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
-    let ix = match scan(path, from, 0)? {
+pub fn parse_summary(
+    path: &Path,
+    from: Option<Dialect>,
+    forced: Option<&'static encoding_rs::Encoding>,
+) -> Option<ExitCode> {
+    let mut src = Source::new(path, forced)?;
+    let ix = match scan(&mut src, from, 0)? {
         Ok(ix) => ix,
         Err(code) => return Some(code),
     };
@@ -145,8 +207,8 @@ pub fn parse_summary(path: &Path, from: Option<Dialect>) -> Option<ExitCode> {
 }
 
 /// Run options from the file's header lines and `--set`.
-fn run_options(ix: &Index, eval: &super::EvalOpts) -> Result<nctrans::eval::RunOptions, ExitCode> {
-    super::run_options(&ix.header, &ix.path.display().to_string(), eval)
+fn run_options(ix: &Index, name: &Path, eval: &super::EvalOpts) -> Result<nctrans::eval::RunOptions, ExitCode> {
+    super::run_options(&ix.header, &name.display().to_string(), eval)
 }
 
 /// `nctrans run` streamed.
@@ -156,13 +218,15 @@ pub fn run(
     eval: &super::EvalOpts,
     format: nctrans::eval::Format,
     quiet: bool,
+    forced: Option<&'static encoding_rs::Encoding>,
 ) -> Option<ExitCode> {
     use nctrans::eval::{self, Ending};
-    let ix = match scan(path, from, 0)? {
+    let mut src = Source::new(path, forced)?;
+    let ix = match scan(&mut src, from, 0)? {
         Ok(ix) => ix,
         Err(code) => return Some(code),
     };
-    let opts = match run_options(&ix, eval) {
+    let opts = match run_options(&ix, path, eval) {
         Ok(o) => o,
         Err(code) => return Some(code),
     };
@@ -191,7 +255,7 @@ pub fn run(
     if progress_on {
         eprint!("\r{:70}\r", "");
     }
-    eprint!("{}", nctrans::excerpt::render(&db, &outcome.diags, &[(main_id, path)]));
+    eprint!("{}", nctrans::excerpt::render(&db, &outcome.diags, &[(main_id, src.path())]));
     if let Some(e) = write_error {
         eprintln!("error: writing the trace: {e}");
         return Some(ExitCode::from(2));
@@ -204,25 +268,29 @@ pub fn run(
     })
 }
 
-/// One side of `nctrans check`: streamed when wanted and possible.
-pub fn side(
+/// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the
+/// file, or a decoded copy of a legacy-encoded one: the caller keeps it until the check has
+/// run, and renders the check's diagnostics from its [`Source::path`]).
+pub fn side<'a>(
     db: &mut SourceDb,
-    path: &Path,
+    path: &'a Path,
     from: Option<Dialect>,
     eval: &super::EvalOpts,
-) -> Option<Result<nctrans::check::Runner, ExitCode>> {
+    forced: Option<&'static encoding_rs::Encoding>,
+) -> Option<Result<(nctrans::check::Runner, Source<'a>), ExitCode>> {
     let file = db.len();
-    let ix = match scan(path, from, file)? {
+    let mut src = Source::new(path, forced)?;
+    let ix = match scan(&mut src, from, file)? {
         Ok(ix) => ix,
         Err(code) => return Some(Err(code)),
     };
-    let opts = match run_options(&ix, eval) {
+    let opts = match run_options(&ix, path, eval) {
         Ok(o) => o,
         Err(code) => return Some(Err(code)),
     };
     db.add(path.display().to_string(), String::new());
     let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
-    Some(Ok(stream::runner(Arc::new(ix), callees, opts)))
+    Some(Ok((stream::runner(Arc::new(ix), callees, opts), src)))
 }
 
 /// Whether `out` is the input itself: a streamed translation re-reads its source while
@@ -278,32 +346,49 @@ pub fn copy_to_stdout(path: &Path) -> std::io::Result<()> {
 
 /// `nctrans --to fanuc IN [-o OUT]` streamed (with verification unless `--no-verify`);
 /// `None` when the input is not streamed or not a straight-line program (then the caller
-/// translates it whole; a partial output is removed first).
+/// translates it whole; a partial output is removed first). A source in a legacy encoding
+/// streams from a decoded copy; an output in another encoding than UTF-8 is written as
+/// UTF-8 first, verified from there (as the whole path verifies its text), then encoded.
 pub fn translate(
     a: &super::translate_cli::TranslateArgs,
     c: &nctrans::config::Config,
     input: &Path,
 ) -> Option<ExitCode> {
-    use stream::translate::{self as st, Fallback};
-    // The stream reads and writes UTF-8 (ASCII CAM code); other encodings go whole.
-    if [c.input_encoding, c.output_encoding].iter().any(|e| e.is_some_and(|e| e != encoding_rs::UTF_8)) {
-        return None;
-    }
     let size = std::fs::metadata(input).ok()?.len();
-    if !(a.stream || size >= AUTO_BYTES) || dialect_of(input, None) != Some(Dialect::Sinumerik) {
+    if !(a.stream || size >= AUTO_BYTES) || writes_over(input, a.output.as_deref()) {
         return None;
     }
-    if writes_over(input, a.output.as_deref()) {
-        return None;
+    let mut src = Source::new(input, c.input_encoding)?;
+    loop {
+        match translate_from(a, c, &src, size) {
+            Ok(code) => return code,
+            Err(why) => src.transcoded(&why)?,
+        }
     }
-    let eol = stream::to_sinumerik::first_line_ending(input).ok()?;
-    // A byte-order mark is kept, as the whole-file path keeps it.
-    let bom = stream::to_sinumerik::has_bom(input).ok()?;
+}
+
+/// [`translate`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
+/// left written: the caller streams again from a decoded copy).
+fn translate_from(
+    a: &super::translate_cli::TranslateArgs,
+    c: &nctrans::config::Config,
+    src: &Source,
+    size: u64,
+) -> Result<Option<ExitCode>, NotStreamable> {
+    use stream::translate::{self as st, Fallback};
+    let (input, path) = (src.original, src.path());
+    if dialect_of(path, None) != Some(Dialect::Sinumerik) {
+        return Ok(None);
+    }
+    let (Some(eol), Some((enc, bom))) = (src.line_ending(), src.encoding()) else {
+        return Ok(None);
+    };
+    let out_enc = c.output_encoding.unwrap_or(enc);
     let opts = match super::translate_cli::options(c, input, eol) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
-            return Some(ExitCode::from(2));
+            return Ok(Some(ExitCode::from(2)));
         }
     };
     // Without -o the output goes through a temporary file, so a program found not to be
@@ -319,17 +404,23 @@ pub fn translate(
     };
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let tmp = out.with_extension(format!("{ext}.nctrans-tmp"));
-    let mut w = match create_temp(&tmp) {
+    // Output not in UTF-8: the stream writes UTF-8 into a scratch file, encoded into `tmp`
+    // when finished and read back from there by verification.
+    let utf8 = (out_enc != encoding_rs::UTF_8).then(|| transcode::TempFile::new(&format!("{stem}.utf8.nc")));
+    let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
+    // A byte-order mark is kept, as the whole-file path keeps it (only in UTF-8).
+    let direct_bom = bom && utf8.is_none();
+    let mut w = match create_temp(write_to) {
         Ok(w) => w,
-        Err(code) => return Some(code),
+        Err(code) => return Ok(Some(code)),
     };
-    if bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
-        let _ = std::fs::remove_file(&tmp);
-        return None;
+    if direct_bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
+        let _ = std::fs::remove_file(write_to);
+        return Ok(None);
     }
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: Progress| line.update(p);
-    let r = st::to_fanuc(input, &opts, &mut w, Some(&mut report));
+    let r = st::to_fanuc(path, &opts, &mut w, Some(&mut report));
     line.done();
     drop(w);
     // Not straight-line: segmented (the macro part whole, its runs of straight blocks
@@ -337,15 +428,15 @@ pub fn translate(
     let (index, inputs) = match r {
         Ok(d) => (d.index, None),
         Err(Fallback::NotStraight(why)) => {
-            let mut w = match create_temp(&tmp) {
+            let mut w = match create_temp(write_to) {
                 Ok(w) => w,
-                Err(code) => return Some(code),
+                Err(code) => return Ok(Some(code)),
             };
-            let started = !bom || w.write_all(b"\xEF\xBB\xBF").is_ok();
+            let started = !direct_bom || w.write_all(b"\xEF\xBB\xBF").is_ok();
             let mut line = ProgressLine::new("translating", size);
             let mut report = |p: Progress| line.update(p);
             let r = if started {
-                stream::segmented::to_fanuc_with_notes(input, &opts, &mut w, Some(&mut report)).map_err(Some)
+                stream::segmented::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
             } else {
                 Err(None)
             };
@@ -354,59 +445,80 @@ pub fn translate(
             match r {
                 Ok((d, notes)) => {
                     // The translation's notes, as the whole path renders them (lines read
-                    // from the file).
+                    // from the file, or its decoded copy).
                     if !notes.is_empty() {
                         let mut db = SourceDb::new();
                         db.add(input.display().to_string(), String::new());
-                        eprint!("{}", nctrans::excerpt::render(&db, &notes, &[(0, input)]));
+                        eprint!("{}", nctrans::excerpt::render(&db, &notes, &[(0, path)]));
                     }
                     (d.index, Some(d.inputs))
                 }
                 Err(f) => {
-                    let _ = std::fs::remove_file(&tmp);
-                    let seg_why = match &f {
-                        Some(Fallback::NotStraight(w)) => w.as_str(),
-                        _ => why.as_str(),
+                    let _ = std::fs::remove_file(write_to);
+                    let seg_why = match f {
+                        Some(Fallback::NotStraight(w)) => w,
+                        Some(Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. })) => return Err(e),
+                        _ => why,
                     };
-                    note_read_whole(input, size, seg_why);
-                    return None;
+                    note_read_whole(input, size, &seg_why);
+                    return Ok(None);
                 }
             }
         }
-        Err(_) => {
-            let _ = std::fs::remove_file(&tmp);
-            return None;
+        Err(f) => {
+            let _ = std::fs::remove_file(write_to);
+            return match f {
+                Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. }) => Err(e),
+                _ => Ok(None),
+            };
         }
     };
+    if let Some(u) = &utf8 {
+        let encoded =
+            create_temp(&tmp).map(|mut w| transcode::encode_to(u.path(), out_enc, bom, &mut w).and_then(|_| w.flush()));
+        match encoded {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => {
+                let _ = std::fs::remove_file(&tmp);
+                eprintln!("error: cannot write {}: {e}", tmp.display());
+                return Ok(Some(ExitCode::from(2)));
+            }
+            Err(code) => return Ok(Some(code)),
+        }
+    }
     if let Err(e) = std::fs::rename(&tmp, out) {
         eprintln!("error: cannot write {}: {e}", out.display());
-        return Some(ExitCode::from(2));
+        return Ok(Some(ExitCode::from(2)));
     }
     if to_stdout {
         if let Err(e) = copy_to_stdout(out) {
             let _ = std::fs::remove_file(out);
             eprintln!("error: cannot write: {e}");
-            return Some(ExitCode::from(2));
+            return Ok(Some(ExitCode::from(2)));
         }
     }
     if let Some(t) = special {
         if let Err(e) = copy_into(out, t) {
             let _ = std::fs::remove_file(out);
             eprintln!("error: cannot write {}: {e}", t.display());
-            return Some(ExitCode::from(2));
+            return Ok(Some(ExitCode::from(2)));
         }
     }
-    let code = verify_streamed(c, input, out, index, inputs, size);
+    let read_back = utf8.as_ref().map_or(out, |u| u.path());
+    let code = verify_streamed(c, (input, path), (out, read_back), index, inputs, size);
     if to_stdout || special.is_some() {
         let _ = std::fs::remove_file(out);
     }
-    Some(code)
+    Ok(Some(code))
 }
 
+/// Verifies a streamed translation. Each file is given as its name and the path to read
+/// (a decoded copy of a legacy source; the UTF-8 text of an output written in another
+/// encoding).
 fn verify_streamed(
     c: &nctrans::config::Config,
-    input: &Path,
-    out: &Path,
+    input: (&Path, &Path),
+    out: (&Path, &Path),
     index: Index,
     inputs: Option<Vec<nctrans::eval::Input>>,
     size: u64,
@@ -416,13 +528,13 @@ fn verify_streamed(
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = stream::translate::verify(index, out, c.max_steps, inputs.unwrap_or_default(), Some(&mut report));
+    let v = stream::translate::verify(index, out.1, c.max_steps, inputs.unwrap_or_default(), Some(&mut report));
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();
-        db.add(input.display().to_string(), String::new());
-        db.add(out.display().to_string(), String::new());
-        eprint!("{}", nctrans::excerpt::render(&db, &v.diags, &[(0, input), (1, out)]));
+        db.add(input.0.display().to_string(), String::new());
+        db.add(out.0.display().to_string(), String::new());
+        eprint!("{}", nctrans::excerpt::render(&db, &v.diags, &[(0, input.1), (1, out.1)]));
     }
     eprint!("{}", v.diff);
     eprintln!("{}", v.summary);

@@ -1,7 +1,8 @@
 //! Large programs in a batch: read for the library index, translated and verified as a
 //! stream (`crate::stream`), in memory that follows the macro part, not the motion part. A
-//! file of `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells, in
-//! UTF-8, holding one program without calls that no other file of the batch calls or
+//! file of `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells (in
+//! any encoding: a legacy one is read from a decoded UTF-8 copy, `stream::transcode`, and
+//! its output written as UTF-8, verified, then encoded), holding one program without calls that no other file of the batch calls or
 //! defines again, is read for the library as a stream; its job then tries the streamed
 //! translators (straight-line, then segmented: `streamed_macro.rs`), which write its output
 //! straight into the staging folder (then committed atomically like any other), and its
@@ -20,16 +21,54 @@ use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::{header_inputs, Ending, NoCallees, Outcome, RunOptions};
 use crate::ir::ProgName;
+use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::stream;
-use crate::stream::lines::Lines;
+use crate::stream::lines::{Lines, NotStreamable};
 use crate::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
+use crate::stream::transcode::{self, TempCopy, TempFile};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-fn utf8(e: Option<&'static encoding_rs::Encoding>) -> bool {
-    e.is_none_or(|e| e == encoding_rs::UTF_8)
+/// Runs `attempt` on the file itself, or on a decoded copy when `--encoding` names a legacy
+/// encoding or (only then, so a UTF-8 file costs nothing extra) when the attempt on the file
+/// itself fails and the file is not UTF-8. `None` when it fails either way.
+fn with_source<T>(
+    abs: &Path,
+    forced: Option<&'static encoding_rs::Encoding>,
+    mut attempt: impl FnMut(&Path, Option<&TempCopy>) -> Option<T>,
+) -> Option<T> {
+    if !transcode::needs_copy(forced) {
+        if let Some(t) = attempt(abs, None) {
+            return Some(t);
+        }
+    }
+    let copy = transcode::copy(abs, forced).ok()??;
+    attempt(copy.path(), Some(&copy))
+}
+
+/// The source's encoding and byte-order mark as `read::decode` decides them, and its first
+/// line ending.
+fn source_form(abs: &Path, copy: Option<&TempCopy>) -> Option<(&'static encoding_rs::Encoding, bool, LineEnding)> {
+    match copy {
+        Some(c) => Some((c.detected.encoding, c.detected.bom, c.detected.line_ending)),
+        None => Some((encoding_rs::UTF_8, sts::has_bom(abs).ok()?, sts::first_line_ending(abs).ok()?)),
+    }
+}
+
+/// Encodes the UTF-8 translation `utf8` into the staged output `part` (on disk before the
+/// rename into place, like every staged output); nothing is left at `part` on failure.
+fn encode_part(utf8: &Path, enc: &'static encoding_rs::Encoding, bom: bool, part: &Path) -> Option<()> {
+    let done = (|| {
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, std::fs::File::create(part)?);
+        transcode::encode_to(utf8, enc, bom, &mut w)?;
+        w.into_inner().map_err(|e| e.into_error())?.sync_data()
+    })();
+    if done.is_err() {
+        let _ = std::fs::remove_file(part);
+    }
+    done.ok()
 }
 
 /// Reads `f` for the library index as a stream when it is at least `stream_bytes` long, its
@@ -43,17 +82,31 @@ pub fn library_scan(
     encoding: Option<&'static encoding_rs::Encoding>,
     stream_bytes: u64,
 ) -> Option<Scan> {
-    if !utf8(encoding) || std::fs::metadata(&f.abs).ok()?.len() < stream_bytes {
+    if std::fs::metadata(&f.abs).ok()?.len() < stream_bytes {
         return None;
     }
     let dialect = discover::dialect_of_name(&f.rel)?;
-    let mut items = LibItems::default();
-    let mut each = |_: usize, s: &crate::ir::Stmt| {
-        if !items.calls {
-            items.stmt(dialect, s);
-        }
+    let scan = |path: &Path| {
+        let mut items = LibItems::default();
+        let mut each = |_: usize, s: &crate::ir::Stmt| {
+            if !items.calls {
+                items.stmt(dialect, s);
+            }
+        };
+        let r = stream::scan_path(path, 0, dialect, &ParseOptions::for_dialect(dialect), &mut each, None);
+        r.map(|ix| (ix, items))
     };
-    let ix = stream::scan_path(&f.abs, 0, dialect, &ParseOptions::for_dialect(dialect), &mut each, None).ok()?;
+    // A file that is not UTF-8 is scanned again from a decoded copy (only then).
+    let mut copy = None;
+    if transcode::needs_copy(encoding) {
+        copy = Some(transcode::copy(&f.abs, encoding).ok()??);
+    }
+    let mut r = scan(copy.as_ref().map_or(f.abs.as_path(), |c: &TempCopy| c.path()));
+    if copy.is_none() && matches!(r, Err(NotStreamable::NotUtf8 { .. })) {
+        copy = Some(transcode::copy(&f.abs, encoding).ok()??);
+        r = scan(copy.as_ref().map_or(f.abs.as_path(), |c: &TempCopy| c.path()));
+    }
+    let (ix, items) = r.ok()?;
     if items.calls || !ix.diags.is_empty() || ix.programs.len() != 1 {
         return None;
     }
@@ -122,7 +175,6 @@ fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
     let lib = &ctx.library;
     let Some(info) = lib.files.get(file.index) else { return false };
     info.streamed
-        && utf8(ctx.options.encoding)
         && lib.callee_files(file.index).is_empty()
         && info.programs.iter().flatten().all(|k| {
             lib.programs.get(k).is_some_and(|p| p.file == file.index)
@@ -248,20 +300,40 @@ fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics)
 /// FANUC → Sinumerik for a streamable file (see the module documentation); `None` leaves
 /// the file to the whole-file job.
 pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
-    let s = &job.settings;
-    if job.fault.is_some() || !utf8(s.output_encoding) || !streamable(file, ctx) {
+    if job.fault.is_some() || !streamable(file, ctx) {
         return None;
     }
+    with_source(&file.abs, ctx.options.encoding, |path, copy| to_sinumerik_from(job, file, ctx, path, copy))
+}
+
+/// [`to_sinumerik`] reading `path` (the file, or its decoded `copy`).
+fn to_sinumerik_from(
+    job: &ToSinumerikJob,
+    file: &InputFile,
+    ctx: &BatchContext,
+    path: &Path,
+    copy: Option<&TempCopy>,
+) -> Option<FileOutcome> {
+    let s = &job.settings;
     let opts = job.options(ctx, file).ok()?;
-    let eol = s.line_ending(sts::first_line_ending(&file.abs).ok()?);
+    let (enc, bom, first_eol) = source_form(&file.abs, copy)?;
+    let out_enc = s.output_encoding.unwrap_or(enc);
+    let eol = s.line_ending(first_eol);
     let part = write::staged_path(&ctx.options.output, file.index);
-    let done = streamed_macro::to_sinumerik_part(&file.abs, &opts, eol, &part)?;
+    // Not UTF-8 in or out: the stream writes UTF-8 (with the UTF-8 source's mark, which
+    // `encode_to` drops) into a temporary file, encoded into `part` and read back from there.
+    let utf8 = (copy.is_some() || out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.mpf"));
+    let done = streamed_macro::to_sinumerik_part(path, &opts, eol, utf8.as_ref().map_or(&part, |u| u.path()))?;
+    if let Some(u) = &utf8 {
+        encode_part(u.path(), out_enc, bom, &part)?;
+    }
+    let read_back = utf8.as_ref().map_or(part.as_path(), |u| u.path());
     let name = rel_string(&file.rel);
     let rel_out = discover::sinumerik_output(&file.rel, &done.program, false);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
     outcome.blocks = done.index.blocks;
     outcome.used = jobs_sinumerik::used_names(&[(done.fanuc_number, done.program.as_str())], &done.symbols);
-    outcome.diagnostics = records(&done.diags, &[(0, &name, &file.abs)]);
+    outcome.diagnostics = records(&done.diags, &[(0, &name, path)]);
     outcome.staged = vec![(rel_out, part.clone())];
     if !ctx.options.verify {
         return Some(outcome);
@@ -269,43 +341,48 @@ pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) 
     // As `ToSinumerikJob::verify` runs a file's only program: its header inputs and `--set`.
     let out_dir = rel_string(file.rel.parent().unwrap_or(Path::new("")));
     let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
-    let files: [(FileId, &str, &Path); 2] = [(0, &name, &file.abs), (1, &shown, &part)];
+    let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &shown, read_back)];
     let mut fanuc = s.set.clone();
     let tr = crate::translate_sinumerik::Translation { symbols: done.symbols.clone(), ..Default::default() };
     let siemens = siemens_inputs(&tr, &done.program, &fanuc);
     fanuc.retain(|x| x.trim_start().starts_with('#'));
-    let report =
-        match sts::read_back(&part, 1, Dialect::Sinumerik, &ParseOptions { semantics: s.sinumerik.clone() }, None) {
-            Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
-                (Ok(mut a), Ok(mut b)) => {
-                    a.extend(parse_all(&fanuc));
-                    b.extend(parse_all(&siemens));
-                    let a = StreamSide {
-                        index: done.index,
-                        name: name.clone(),
-                        callees: Box::new(NoCallees),
-                        run: run_options(a, s.max_steps, &s.fanuc),
-                    };
-                    let b = StreamSide {
-                        index: back,
-                        name: shown.clone(),
-                        callees: Box::new(NoCallees),
-                        run: run_options(b, s.max_steps, &s.sinumerik),
-                    };
-                    sts::compare(a, b)
-                }
-                (Err(e), _) | (_, Err(e)) => {
-                    failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
-                }
-            },
-            Err(ReadBack::Diags(mut d)) => {
-                d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
-                failed(d)
+    let report = match sts::read_back(
+        read_back,
+        1,
+        Dialect::Sinumerik,
+        &ParseOptions { semantics: s.sinumerik.clone() },
+        None,
+    ) {
+        Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
+            (Ok(mut a), Ok(mut b)) => {
+                a.extend(parse_all(&fanuc));
+                b.extend(parse_all(&siemens));
+                let a = StreamSide {
+                    index: done.index,
+                    name: name.clone(),
+                    callees: Box::new(NoCallees),
+                    run: run_options(a, s.max_steps, &s.fanuc),
+                };
+                let b = StreamSide {
+                    index: back,
+                    name: shown.clone(),
+                    callees: Box::new(NoCallees),
+                    run: run_options(b, s.max_steps, &s.sinumerik),
+                };
+                sts::compare(a, b)
             }
-            Err(ReadBack::Unreadable(e)) => {
-                failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
+            (Err(e), _) | (_, Err(e)) => {
+                failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
             }
-        };
+        },
+        Err(ReadBack::Diags(mut d)) => {
+            d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
+            failed(d)
+        }
+        Err(ReadBack::Unreadable(e)) => {
+            failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
+        }
+    };
     apply(&mut outcome, verdict(report, &files));
     Some(outcome)
 }
@@ -315,17 +392,33 @@ pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) 
 pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
     let s = &job.settings;
     // The stream reads the Siemens file with the default profile.
-    if job.fault.is_some()
-        || !utf8(s.output_encoding)
-        || s.sinumerik != Semantics::default_for(Dialect::Sinumerik)
-        || !streamable(file, ctx)
-    {
+    if job.fault.is_some() || s.sinumerik != Semantics::default_for(Dialect::Sinumerik) || !streamable(file, ctx) {
         return None;
     }
-    let opts = job.options(ctx, file, sts::first_line_ending(&file.abs).ok()?).ok()?;
-    let bom = sts::has_bom(&file.abs).ok()?;
+    with_source(&file.abs, ctx.options.encoding, |path, copy| to_fanuc_from(job, file, ctx, path, copy))
+}
+
+/// [`to_fanuc`] reading `path` (the file, or its decoded `copy`).
+fn to_fanuc_from(
+    job: &ToFanucJob,
+    file: &InputFile,
+    ctx: &BatchContext,
+    path: &Path,
+    copy: Option<&TempCopy>,
+) -> Option<FileOutcome> {
+    let s = &job.settings;
+    let (enc, bom, eol) = source_form(&file.abs, copy)?;
+    let out_enc = s.output_encoding.unwrap_or(enc);
+    let opts = job.options(ctx, file, eol).ok()?;
     let part = write::staged_path(&ctx.options.output, file.index);
-    let (index, map) = streamed_macro::to_fanuc_part(&file.abs, &opts, &part, bom)?;
+    // Output not in UTF-8: the stream writes UTF-8 into a temporary file, encoded into
+    // `part` and read back from there; in UTF-8 the mark is written as the whole path does.
+    let utf8 = (out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.nc"));
+    let into = utf8.as_ref().map_or(part.as_path(), |u| u.path());
+    let (index, map) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none())?;
+    if let Some(u) = &utf8 {
+        encode_part(u.path(), out_enc, bom, &part)?;
+    }
     let name = rel_string(&file.rel);
     let rel_out = discover::fanuc_output(&file.rel);
     let out_name = rel_string(&rel_out);
@@ -338,8 +431,8 @@ pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Optio
     }
     // As `ToFanucJob::verify` runs a program no file calls: `--set` on both sides, the
     // mapped R parameters 0 on FANUC.
-    let files: [(FileId, &str, &Path); 2] = [(0, &name, &file.abs), (1, &out_name, &part)];
-    let back = match sts::read_back(&part, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
+    let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &out_name, into)];
+    let back = match sts::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
         Ok(b) => b,
         Err(e) => {
             let diagnostics = match e {

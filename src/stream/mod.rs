@@ -16,6 +16,7 @@ pub mod paged;
 pub mod runs;
 pub mod segmented;
 pub mod to_sinumerik;
+pub mod transcode;
 pub mod translate;
 pub use reread::{reread, RereadSink};
 mod reread;
