@@ -162,6 +162,12 @@ pub trait WordsSink {
     fn quick(&self) -> bool {
         true
     }
+    /// Whether the scan may stop reading once the sink is no longer active: its caller
+    /// discards the index then (the straight-line translators, which fall back at their
+    /// first line that is not straight). The index it returns covers only the lines read.
+    fn abandon(&self) -> bool {
+        false
+    }
 }
 
 /// A streamed file after its first scan.
@@ -504,6 +510,7 @@ fn scan_with(
         // `take_plain_run`).
         let index_now = match &want {
             Want::Index => true,
+            Want::Words(s) if !s.active() && s.abandon() => break,
             Want::Words(s) => !s.active(),
             Want::Each(_) | Want::IndexGeneral => false,
         };

@@ -528,6 +528,11 @@ impl super::WordsSink for Sink<'_, '_> {
         self.st.stop.is_none()
     }
 
+    /// A stopped translation is discarded: the rest of the file need not be read.
+    fn abandon(&self) -> bool {
+        true
+    }
+
     fn stmt(&mut self, prog: usize, s: &Stmt) {
         if self.st.stop.is_some() {
             return;
