@@ -434,7 +434,7 @@ fn streamed_from(
     // Not straight-line: segmented (the macro part whole, its runs of straight blocks
     // streamed), else the whole-file path (with a note only when segmented declines too).
     let r = match r {
-        Err(Fallback::NotStraight(why)) => {
+        Err(Fallback::NotStraight(_)) => {
             let mut w = match stream_cli::create_temp(write_to) {
                 Ok(w) => w,
                 Err(code) => return Ok(Some(code)),
@@ -450,10 +450,7 @@ fn streamed_from(
                     return Err(e);
                 }
             }
-            r.map_err(|f| match f {
-                Fallback::NotStraight(seg) => Fallback::NotStraight(seg),
-                Fallback::Diagnostics | Fallback::NotStreamable(_) => Fallback::NotStraight(why),
-            })
+            r.map_err(|f| Fallback::NotStraight(stream_cli::segmented_why(&f)))
         }
         r => r,
     };

@@ -313,6 +313,16 @@ pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, Exit
 
 /// Says why a large file is read whole after all (a small one says nothing: it was only
 /// streamed because `--stream` asked for it).
+/// Why the segmented route declined, for [`note_read_whole`] (after "it has").
+pub fn segmented_why(f: &stream::translate::Fallback) -> String {
+    use stream::translate::Fallback;
+    match f {
+        Fallback::NotStraight(w) => w.clone(),
+        Fallback::Diagnostics => "warnings or errors to show".into(),
+        Fallback::NotStreamable(e) => format!("a line the stream cannot take ({e})"),
+    }
+}
+
 pub fn note_read_whole(input: &Path, size: u64, why: &str) {
     if size >= AUTO_BYTES {
         eprintln!(
@@ -458,7 +468,8 @@ fn translate_from(
                     let seg_why = match f {
                         Some(Fallback::NotStraight(w)) => w,
                         Some(Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. })) => return Err(e),
-                        _ => why,
+                        Some(f) => segmented_why(&f),
+                        None => why,
                     };
                     note_read_whole(input, size, &seg_why);
                     return Ok(None);
