@@ -445,10 +445,17 @@ fn translate_from(
             let started = !direct_bom || w.write_all(b"\xEF\xBB\xBF").is_ok();
             let mut line = ProgressLine::new("translating", size);
             let mut report = |p: Progress| line.update(p);
-            let r = if started {
-                stream::segmented::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
-            } else {
+            // Calls of subprograms beside the input are taken when the verifier's callees
+            // (`DirCallees`: beside the file it reads, default semantics) are the ones the
+            // whole path loads.
+            let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
+            let mut load = |u: &nctrans::ir::Unit| callees_beside(input, c, u);
+            let r = if !started {
                 Err(None)
+            } else if path == input && sem {
+                stream::segmented::to_fanuc_with_subs(path, &opts, &mut load, &mut w, Some(&mut report)).map_err(Some)
+            } else {
+                stream::segmented::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
             };
             line.done();
             drop(w);
@@ -521,6 +528,60 @@ fn translate_from(
         let _ = std::fs::remove_file(out);
     }
     Ok(Some(code))
+}
+
+/// The subprograms a segmented skeleton `unit` calls, found beside `input` and loaded as the
+/// whole path loads them (`translate_cli`: transitively, file ids from 1 up), for
+/// `segmented::to_fanuc_with_subs`. Declines (the whole path takes the program) a callee
+/// not found, one with any diagnostic, one that is not one program named as its file, one
+/// beside a main program file of the same name (the verifier's `DirCallees` could take
+/// that), and callees calling other than by a constant name.
+fn callees_beside(
+    input: &Path,
+    c: &nctrans::config::Config,
+    unit: &nctrans::ir::Unit,
+) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
+    use super::translate_cli::{called_names, find_beside};
+    use nctrans::ir::ProgName;
+    use stream::translate::Fallback;
+    let no = |why: &str| Fallback::NotStraight(why.into());
+    let mut db = SourceDb::new();
+    db.add(input.display().to_string(), String::new());
+    let popts = ParseOptions { semantics: c.sinumerik_semantics() };
+    let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
+    let files: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .map_err(|_| no("a folder that cannot be listed"))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    let mut subs = Vec::new();
+    let mut todo = called_names(unit);
+    let mut seen: Vec<String> = Vec::new();
+    while let Some(callee) = todo.pop() {
+        if seen.contains(&callee) {
+            continue;
+        }
+        seen.push(callee.clone());
+        let path = find_beside(input, &callee).ok_or_else(|| no("a call of a program not found beside it"))?;
+        let mpf = files.iter().any(|f| {
+            f.file_stem().and_then(|s| s.to_str()).is_some_and(|s| s.eq_ignore_ascii_case(&callee))
+                && f.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("mpf"))
+        });
+        if mpf {
+            return Err(no("a call of a name that is also a main program beside it"));
+        }
+        let bytes = std::fs::read(&path).map_err(|_| no("a subprogram that cannot be read"))?;
+        let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+        let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
+        let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(&callee)));
+        if !p.diags.is_empty() || !named || !stream::segmented::calls_plain(&p.unit) {
+            return Err(no(
+                "a subprogram with diagnostics, or not one PROC named as its file, or a call of another kind",
+            ));
+        }
+        todo.extend(called_names(&p.unit));
+        subs.push(p.unit);
+    }
+    Ok(subs)
 }
 
 /// Verifies a streamed translation. Each file is given as its name and the path to read

@@ -229,7 +229,7 @@ fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
     }
 }
 
-fn called_names(unit: &Unit) -> Vec<String> {
+pub(crate) fn called_names(unit: &Unit) -> Vec<String> {
     let mut v = Vec::new();
     for p in &unit.programs {
         nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
@@ -247,7 +247,7 @@ fn called_names(unit: &Unit) -> Vec<String> {
     v
 }
 
-fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
+pub(crate) fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
     let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).collect();
     files.sort();

@@ -115,7 +115,7 @@ pub fn to_fanuc(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Segmented, Fallback> {
-    segment(path, opts, out, progress, false).map(|(s, _)| s)
+    segment(path, opts, out, progress, false, None).map(|(s, _)| s)
 }
 
 /// [`to_fanuc`] of a program whose translation may have notes (remarks, no warning or
@@ -127,7 +127,28 @@ pub fn to_fanuc_with_notes(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
-    segment(path, opts, out, progress, true)
+    segment(path, opts, out, progress, true, None)
+}
+
+/// Gives the callee units of a skeleton (a unit holding the main program's macro part: every
+/// call it has, as the whole program has them): the subprograms the whole path would load
+/// for the whole program, or `Err` to decline.
+pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallback>;
+
+/// [`to_fanuc_with_notes`] of a program that may call other programs by a constant name
+/// (`L100`, `NAME`, `NAME(…)`; not MCALL): the skeleton keeps the calls, `load` gives the
+/// callees (each loaded as `translate_cli` loads them: file ids from 1 up, the main being
+/// file 0), and the skeleton is translated with them as `translate::to_fanuc(main, subs, …)`
+/// translates the whole program: the main program with its runs, then each subprogram.
+/// Notes are declined unless all of them are on the main file.
+pub fn to_fanuc_with_subs(
+    path: &Path,
+    opts: &TranslateOptions,
+    load: LoadCallees<'_>,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
+    segment(path, opts, out, progress, true, Some(load))
 }
 
 fn segment(
@@ -136,7 +157,9 @@ fn segment(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
     notes_ok: bool,
+    mut load: Option<LoadCallees<'_>>,
 ) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
+    let calls_ok = load.is_some();
     if opts.number_blocks.is_some() || opts.main_is_sub {
         return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
     }
@@ -145,7 +168,7 @@ fn segment(
     let mut progress = progress;
     // One scan builds the skeleton and spills the runs' translations (`one`).
     let mut one = One {
-        sk: new_skel(NSet::default()),
+        sk: new_skel(NSet::default(), calls_ok),
         fast: fast::Fast::new(opts.comments, eol),
         spill: Spill::new(),
         starts: Vec::new(),
@@ -162,7 +185,7 @@ fn segment(
         // write the runs in a writing scan.
         spilled = None;
         let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, keep)?;
+        (sk, program) = skeleton(path, keep, calls_ok)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
@@ -183,15 +206,29 @@ fn segment(
     let mut lone = program.clone();
     program.body = std::mem::take(&mut sk.body);
     let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-    let t = translate::to_fanuc(&unit, &[], opts);
+    let subs = match load.as_mut() {
+        Some(load) => load(&unit)?,
+        None => Vec::new(),
+    };
+    let sub_refs: Vec<&Unit> = subs.iter().collect();
+    let t = translate::to_fanuc(&unit, &sub_refs, opts);
     drop(unit);
-    let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note);
+    // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
+    // as read from their files: only callees alignment leaves alone stream.
+    if subs.iter().any(|u| translate::align_source(u, &t.symbol_map) != *u) {
+        return Err(Fallback::NotStraight("a subprogram with a MSG or a tool name".into()));
+    }
+    drop(subs);
+    let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note && d.labels.iter().all(|l| l.file == 0));
     if !(t.diags.is_empty() || notes_ok && notes_only) || t.unsupported > 0 {
         return Err(Fallback::Diagnostics);
     }
     let places = placeholders(&t.text, sk.runs, eol)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
-    fresh_numbers_ok(&t.text, eol, &places, &sk)?;
+    // The labels pass numbers each program on its own: only the main program's text is
+    // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
+    let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
+    fresh_numbers_ok(&t.text[..main_end], eol, &places, &sk)?;
     let inputs = crate::translate::r_param_inputs(&t.symbol_map);
     let tools = t.symbol_map.tools.clone();
     // A block the fast path declines is translated alone, as the straight stream does: the
@@ -244,6 +281,42 @@ fn segment(
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
     Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
+}
+
+/// Whether every call in `unit` is one a skeleton keeps with its callees (by a constant
+/// name, not modal): the callees a [`LoadCallees`] gives must call only such.
+pub fn calls_plain(unit: &Unit) -> bool {
+    let mut ok = true;
+    for p in &unit.programs {
+        crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    if let ItemKind::Call(c) = &it.kind {
+                        ok &= skel::plain_call(c);
+                    }
+                }
+            }
+        });
+    }
+    ok
+}
+
+/// Where the main program's text ends in a translation of several programs: at the line
+/// break before the second program's `O` line (searched after `from`, past every run).
+fn main_text_end(t: &translate::Translation, eol: &str, from: usize) -> usize {
+    let Some(crate::ir::ProgName::Number(n)) = t.unit.programs.get(1).and_then(|p| p.name.as_ref()) else {
+        return t.text.len();
+    };
+    let o = format!("{eol}O{n:04}");
+    let mut at = from.min(t.text.len());
+    while let Some(k) = t.text.get(at..).and_then(|r| r.find(&o)) {
+        let hi = at + k + o.len();
+        if !t.text[hi..].starts_with(|c: char| c.is_ascii_digit()) {
+            return at + k + eol.len();
+        }
+        at = hi;
+    }
+    t.text.len()
 }
 
 /// The span starts of the MSG items `translate::align_source` drops from `body` (all but a

@@ -2,7 +2,10 @@
 //! straight blocks one placeholder, the modes followed in textual order (see `segmented`).
 
 use crate::dialect::{Dialect, ParseOptions};
-use crate::ir::{Addr, BlockMeta, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target, WordValue};
+use crate::ir::{
+    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target,
+    WordValue,
+};
 use crate::passes::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
@@ -126,6 +129,15 @@ pub(super) struct Skel {
     /// words pass may pair the two).
     pub(super) forced: Vec<u32>,
     pub(super) stop: Option<String>,
+    /// Calls of other programs by a constant name (`L100`, `NAME`, `NAME(…)`) may stay in
+    /// the skeleton: the caller translates it with the callees (`segmented::to_fanuc_with_subs`).
+    pub(super) calls_ok: bool,
+}
+
+/// Whether a call may stay in a skeleton translated with its callees: by a constant name,
+/// not modal (the whole path loads exactly these callees, `called_names`).
+pub(crate) fn plain_call(c: &crate::ir::Call) -> bool {
+    matches!(c.kind, CallKind::Named | CallKind::LNumber) && matches!(c.target, CallTarget::Name(_))
 }
 
 impl Skel {
@@ -199,6 +211,7 @@ impl Skel {
         let mut max_n = 0;
         let mut own = Vec::new();
         let mut modes = self.modes;
+        let calls_ok = self.calls_ok;
         crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
             let StmtKind::Block(b) = &s.kind else { return };
             if let Some(n) = &b.meta.number {
@@ -212,6 +225,7 @@ impl Skel {
             modes.items(&b.items, &mut Touched::default());
             for it in &b.items {
                 match &it.kind {
+                    ItemKind::Call(c) if calls_ok && plain_call(c) => {}
                     ItemKind::Call(_) => why = why.or(Some("a call of another program")),
                     ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
                     ItemKind::Goto(g) => match &g.target {
@@ -298,7 +312,7 @@ impl WordsSink for Skel {
 }
 
 /// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
-pub(super) fn new_skel(keep: NSet) -> Skel {
+pub(super) fn new_skel(keep: NSet, calls_ok: bool) -> Skel {
     Skel {
         keep,
         body: Vec::new(),
@@ -314,13 +328,14 @@ pub(super) fn new_skel(keep: NSet) -> Skel {
         after_msg: false,
         forced: Vec::new(),
         stop: None,
+        calls_ok,
     }
 }
 
 /// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
 /// the program (name, head, span) it is the body of.
-pub(super) fn skeleton(path: &Path, keep: NSet) -> Result<(Skel, Program), Fallback> {
-    let mut sk = new_skel(keep);
+pub(super) fn skeleton(path: &Path, keep: NSet, calls_ok: bool) -> Result<(Skel, Program), Fallback> {
+    let mut sk = new_skel(keep, calls_ok);
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sk, None)
         .map_err(Fallback::NotStreamable)?;
