@@ -606,6 +606,10 @@ fn verify_streamed(
         let mut db = SourceDb::new();
         db.add(input.0.display().to_string(), String::new());
         db.add(out.0.display().to_string(), String::new());
+        // Subprograms the source's run called (read whole, rendered from their text).
+        for (name, text) in &v.callees {
+            db.add(name.clone(), text.clone());
+        }
         eprint!("{}", nctrans::excerpt::render(&db, &v.diags, &[(0, input.1), (1, out.1)]));
     }
     eprint!("{}", v.diff);

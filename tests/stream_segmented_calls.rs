@@ -161,6 +161,9 @@ fn cli_same(path: &Path) -> String {
     s.1
 }
 
+/// A test folder: its name, the main program's calls, the subprograms (name, text).
+type Set<'a> = (&'a str, Vec<&'a str>, Vec<(&'a str, &'a str)>);
+
 const L100: &str = "PROC L100\nR3=R1*2\nG0 Z=R3\nM17\n";
 const POCKET: &str =
     "PROC POCKET(REAL DEPTH, REAL SAFE)\nDEF INT CNT\nCNT=0\nWHILE CNT<2\nG1 Z=-DEPTH F200\nG0 Z=SAFE\nCNT=CNT+1\nENDWHILE\nTOOLCHG\nRET\n";
@@ -181,7 +184,7 @@ fn main_with_calls(seed: u64, calls: &[&str]) -> String {
 
 #[test]
 fn calls_of_subprograms_stream_as_the_whole_translation() {
-    let sets: Vec<(&str, Vec<&str>, Vec<(&str, &str)>)> = vec![
+    let sets: Vec<Set> = vec![
         ("one-l", vec!["L100"], vec![("L100", L100)]),
         (
             "named-params",
@@ -193,6 +196,8 @@ fn calls_of_subprograms_stream_as_the_whole_translation() {
             vec!["TOOLCHG", "L100", "POCKET(1, 2)", "TOOLCHG"],
             vec![("L100", L100), ("POCKET", POCKET), ("TOOLCHG", TOOLCHG)],
         ),
+        // A callee reading an R parameter never set: the warning shows its line, as whole.
+        ("unset", vec!["USERSUB", "L100"], vec![("USERSUB", "PROC USERSUB\nG0 Z=R7+10\nM17\n"), ("L100", L100)]),
     ];
     for (k, (name, calls, subs)) in sets.into_iter().enumerate() {
         let path = files(name, &main_with_calls(k as u64 + 7, &calls), &subs);
@@ -204,6 +209,9 @@ fn calls_of_subprograms_stream_as_the_whole_translation() {
         assert!(seq, "{name}: {ssum}");
         let stderr = cli_same(&path);
         assert!(stderr.contains("equivalent"), "{stderr}");
+        if name == "unset" {
+            assert!(stderr.contains("USERSUB.SPF:2:") && stderr.contains("NC404"), "{stderr}");
+        }
     }
 }
 
@@ -219,7 +227,7 @@ fn a_broken_subprogram_in_the_output_fails_the_streamed_verification() {
 
 #[test]
 fn declines_calls_it_does_not_take() {
-    let sets: Vec<(&str, Vec<&str>, Vec<(&str, &str)>)> = vec![
+    let sets: Vec<Set> = vec![
         // A callee not beside the program.
         ("missing", vec!["L100", "NOWHERE"], vec![("L100", L100)]),
         // A MSG in a callee (the whole path's verifier drops it, the streamed one would not).
@@ -238,4 +246,37 @@ fn declines_calls_it_does_not_take() {
         }
         cli_same(&path);
     }
+}
+
+/// The command line takes the segmented route for a large main program calling two
+/// subprograms (no "read whole" note) and writes what the library writes. Minutes in a debug
+/// build: `cargo test --release --test stream_segmented_calls -- --ignored`.
+#[test]
+#[ignore]
+fn cli_streams_a_large_program_with_calls() {
+    let mut seed = 11;
+    let mut text = String::from("R1=5 R2=0\nG71 G90\n");
+    while text.len() < 4_300_000 {
+        text.push_str(&cam(&mut seed, 1000));
+    }
+    text.push_str("L100\n");
+    while text.len() < 8_600_000 {
+        text.push_str(&cam(&mut seed, 1000));
+    }
+    text.push_str("POCKET(2, R1)\nM30\n");
+    let path = files("large", &text, &[("L100", L100), ("POCKET", POCKET), ("TOOLCHG", TOOLCHG)]);
+    let out = path.with_extension("nc");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["--to", "fanuc"])
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .expect("run nctrans");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(!stderr.contains("read whole") && stderr.contains("equivalent"), "{stderr}");
+    let (lib, ok, sum) = streamed(&path, None).unwrap_or_else(|e| panic!("declined: {e:?}"));
+    assert!(ok, "{sum}");
+    assert!(std::fs::read(&out).expect("output") == lib.as_bytes());
 }

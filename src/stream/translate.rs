@@ -316,6 +316,9 @@ pub struct Verified {
     /// Diagnostics of the output's parse or of the check (files: 0 source, 1 output).
     pub diags: Vec<Diagnostic>,
     pub diff: String,
+    /// The files the runs loaded after the two (the callees, with their text: ids from 2
+    /// up), for rendering `diags` as the whole path renders them.
+    pub callees: Vec<(String, String)>,
 }
 
 /// Verifies a streamed translation: the output is read back as FANUC (streamed), then both
@@ -336,6 +339,7 @@ pub fn verify(
         summary: format!("not verified: {summary}"),
         diags,
         diff: String::new(),
+        callees: Vec::new(),
     };
     let out_ix = match super::to_sinumerik::read_back(output, 1, Dialect::Fanuc, &popts, progress) {
         Ok(ix) => ix,
@@ -360,5 +364,7 @@ pub fn verify(
         Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
         Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
     };
-    Verified { equivalent, summary, diags: report.diags, diff: report.diff }
+    let callees =
+        (2..report.db.len()).map(|id| (report.db.get(id).name.clone(), report.db.get(id).text.clone())).collect();
+    Verified { equivalent, summary, diags: report.diags, diff: report.diff, callees }
 }
