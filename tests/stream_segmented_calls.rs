@@ -143,11 +143,16 @@ fn streamed(path: &Path, break_at: Option<(&str, &str)>) -> Result<(String, bool
 
 /// The command line on `path`, whole then `--stream`: same output, stderr, exit code.
 fn cli_same(path: &Path) -> String {
+    cli_same_with(path, &[])
+}
+
+/// [`cli_same`] with more arguments.
+fn cli_same_with(path: &Path, args: &[&str]) -> String {
     let out = path.with_extension("cli.nc");
     let run = |stream: bool| {
         let _ = std::fs::remove_file(&out);
         let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"));
-        c.args(["--to", "fanuc", "--max-steps", "2000000"]).arg(path).arg("-o").arg(&out);
+        c.args(["--to", "fanuc", "--max-steps", "2000000"]).args(args).arg(path).arg("-o").arg(&out);
         if stream {
             c.arg("--stream");
         }
@@ -209,6 +214,9 @@ fn calls_of_subprograms_stream_as_the_whole_translation() {
         assert!(seq, "{name}: {ssum}");
         let stderr = cli_same(&path);
         assert!(stderr.contains("equivalent"), "{stderr}");
+        // Program numbers from `--program-map` (and the rest numbered around them).
+        let mapped = cli_same_with(&path, &["--program-map", "L100=9000", "--program-map", "TOOLCHG=8123"]);
+        assert!(mapped.contains("equivalent"), "{mapped}");
         if name == "unset" {
             assert!(stderr.contains("USERSUB.SPF:2:") && stderr.contains("NC404"), "{stderr}");
         }
