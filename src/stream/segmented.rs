@@ -52,7 +52,16 @@
 //! `Index::align`; the streamed source leaves them out of the statements it re-reads
 //! (`stream::paged`, [`SourceAlign`]) and numbers the tool names there alike.
 //!
-//! Still declined (the whole path takes them): calls of other programs, PROC parameters,
+//! Calls of subprograms by a constant name (`L100`, `NAME(…)`) stay in the skeleton through
+//! [`to_fanuc_with_subs`]: it is translated with the callees as the whole program is (the
+//! passes never look through a call at the caller's blocks; the labels pass numbers each
+//! program on its own, so only the main program's text is checked for fresh numbers), and
+//! the streamed verifier finds them beside the file (`DirCallees`) and the output's own `O`
+//! programs in the read-back index: callees the whole path's verifier would align
+//! differently (a MSG, a tool name) are declined.
+//!
+//! Still declined (the whole path takes them): other calls (modal, computed, without the
+//! callees), PROC parameters,
 //! more than one program, computed jumps and G words, N numbers above 16777216 or near
 //! N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
 //! the translation has a warning or an error on (notes only through
