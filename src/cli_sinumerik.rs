@@ -467,16 +467,8 @@ fn streamed_from(
         }
     };
     if let Some(u) = &utf8 {
-        let encoded = stream_cli::create_temp(&tmp)
-            .map(|mut w| transcode::encode_to(u.path(), enc, bom, &mut w).and_then(|_| w.flush()));
-        match encoded {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => {
-                let _ = std::fs::remove_file(&tmp);
-                eprintln!("error: cannot write {}: {e}", tmp.display());
-                return Ok(Some(ExitCode::from(2)));
-            }
-            Err(code) => return Ok(Some(code)),
+        if let Err(code) = stream_cli::encode_output(u.path(), enc, bom, &tmp) {
+            return Ok(Some(code));
         }
     }
     let mut db = SourceDb::new();

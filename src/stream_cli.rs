@@ -313,6 +313,18 @@ pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, Exit
 
 /// Says why a large file is read whole after all (a small one says nothing: it was only
 /// streamed because `--stream` asked for it).
+/// Encodes a finished UTF-8 translation (`utf8`) into `tmp` in the output encoding (with a
+/// byte-order mark when `bom`, UTF-8 only); on failure `tmp` is removed and the error shown.
+pub fn encode_output(utf8: &Path, enc: &'static encoding_rs::Encoding, bom: bool, tmp: &Path) -> Result<(), ExitCode> {
+    let mut w = create_temp(tmp)?;
+    if let Err(e) = transcode::encode_to(utf8, enc, bom, &mut w).and_then(|_| w.flush()) {
+        let _ = std::fs::remove_file(tmp);
+        eprintln!("error: cannot write {}: {e}", tmp.display());
+        return Err(ExitCode::from(2));
+    }
+    Ok(())
+}
+
 /// Why the segmented route declined, for [`note_read_whole`] (after "it has").
 pub fn segmented_why(f: &stream::translate::Fallback) -> String {
     use stream::translate::Fallback;
@@ -492,16 +504,8 @@ fn translate_from(
         }
     };
     if let Some(u) = &utf8 {
-        let encoded =
-            create_temp(&tmp).map(|mut w| transcode::encode_to(u.path(), out_enc, bom, &mut w).and_then(|_| w.flush()));
-        match encoded {
-            Ok(Ok(())) => {}
-            Ok(Err(e)) => {
-                let _ = std::fs::remove_file(&tmp);
-                eprintln!("error: cannot write {}: {e}", tmp.display());
-                return Ok(Some(ExitCode::from(2)));
-            }
-            Err(code) => return Ok(Some(code)),
+        if let Err(code) = encode_output(u.path(), out_enc, bom, &tmp) {
+            return Ok(Some(code));
         }
     }
     if let Err(e) = std::fs::rename(&tmp, out) {

@@ -477,6 +477,22 @@ pub fn to_sinumerik(
     };
     drop(unit);
     let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
+    // The words pass warns block by block in text order: the skeleton's warnings and the
+    // runs' interleave by their place in the file.
+    let finish = |index: super::super::Index, mut run_diags: Vec<crate::diag::Diagnostic>| {
+        let mut diags = tr.diags.clone();
+        diags.append(&mut run_diags);
+        diags.sort_by_key(|d| d.labels.first().map_or(0, |l| l.span.lo));
+        Streamed {
+            blocks: index.blocks,
+            index,
+            diags,
+            file_name: f.name.clone(),
+            program: f.program.clone(),
+            fanuc_number: f.fanuc_number,
+            symbols: tr.symbols.clone(),
+        }
+    };
     if let Some((spill, starts, deferred, index)) = spilled {
         // The blocks the fast path declined, as the writing scan translates them.
         let mut inserts = Vec::with_capacity(deferred.len());
@@ -493,18 +509,7 @@ pub fn to_sinumerik(
             out.write_all(b"\xEF\xBB\xBF").map_err(io)?;
         }
         assemble(&f.text, &places, spill, &starts, &inserts, out).map_err(io)?;
-        let mut diags = tr.diags.clone();
-        diags.append(&mut run_diags);
-        diags.sort_by_key(|d| d.labels.first().map_or(0, |l| l.span.lo));
-        return Ok(Streamed {
-            blocks: index.blocks,
-            index,
-            diags,
-            file_name: f.name.clone(),
-            program: f.program.clone(),
-            fanuc_number: f.fanuc_number,
-            symbols: tr.symbols.clone(),
-        });
+        return Ok(finish(index, run_diags));
     }
     let mut w = Writer {
         class: Class { keep, solid: false },
@@ -543,18 +548,5 @@ pub fn to_sinumerik(
     if let Some(e) = w.io {
         return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
     }
-    // The words pass warns block by block in text order: the skeleton's warnings and the
-    // runs' interleave by their place in the file.
-    let mut diags = tr.diags.clone();
-    diags.append(&mut w.diags);
-    diags.sort_by_key(|d| d.labels.first().map_or(0, |l| l.span.lo));
-    Ok(Streamed {
-        blocks: index.blocks,
-        index,
-        diags,
-        file_name: f.name.clone(),
-        program: f.program.clone(),
-        fanuc_number: f.fanuc_number,
-        symbols: tr.symbols.clone(),
-    })
+    Ok(finish(index, w.diags))
 }
