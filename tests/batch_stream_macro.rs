@@ -152,6 +152,9 @@ fn library(input: &Path) {
     // A tool name (the library's tool table numbers it, the segmented stream too).
     w(sin.join("tools.mpf"), sinumerik_macro(4, 3, "\n", "T=\"MILL_A\" M6\n"));
     w(sin.join("drill.mpf"), "R1=1\nT=\"ZED_1\" M6\nG1 X=R1 F100\nM30\n".into());
+    // A MSG left as a comment (a note in the report), and one paired with the M0 after it.
+    w(sin.join("msg.mpf"), sinumerik_macro(20, 3, "\n", "MSG(\"ROUGHING\")\nG1 X=R2 F100\n"));
+    w(sin.join("msgstop.mpf"), sinumerik_macro(21, 3, "\r\n", "MSG(\"CHECK PART\")\r\nM0\r\n"));
     // Calls between files: the caller and the callee go whole.
     w(sin.join("caller.mpf"), sinumerik_macro(5, 2, "\n", "SUBX\n"));
     w(sin.join("subx.spf"), format!("PROC SUBX\n{}", sinumerik_macro(6, 2, "\n", "").replace("M30", "M17")));
@@ -289,6 +292,8 @@ fn batches_stream_macro_programs_with_the_same_outputs_map_and_report() {
         "sin/hdr.mpf",
         "sin/tools.mpf",
         "sin/drill.mpf",
+        "sin/msg.mpf",
+        "sin/msgstop.mpf",
     ];
     for must in must {
         assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");

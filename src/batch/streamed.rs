@@ -415,7 +415,7 @@ fn to_fanuc_from(
     // `part` and read back from there; in UTF-8 the mark is written as the whole path does.
     let utf8 = (out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.nc"));
     let into = utf8.as_ref().map_or(part.as_path(), |u| u.path());
-    let (index, map) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none())?;
+    let (index, map, notes) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none())?;
     if let Some(u) = &utf8 {
         encode_part(u.path(), out_enc, bom, &part)?;
     }
@@ -426,6 +426,8 @@ fn to_fanuc_from(
     outcome.blocks = index.blocks;
     outcome.used = jobs::used_names(&map);
     outcome.staged = vec![(rel_out, part.clone())];
+    // The translation's notes, as the whole-file job lists them before the check's.
+    outcome.diagnostics = records(&notes, &[(0, &name, path)]);
     if !ctx.options.verify {
         return Some(outcome);
     }

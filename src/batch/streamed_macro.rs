@@ -5,6 +5,7 @@
 //! of straight blocks streamed).
 
 use super::library;
+use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
 use crate::ir::{ItemKind, Program, Stmt, Unit, WordValue};
 use crate::passes::to_sinumerik::Options as SinOptions;
@@ -71,13 +72,14 @@ fn route<T>(
 }
 
 /// Sinumerik → FANUC into `part` as a straight-line stream, else segmented: the source's
-/// index and the translation's symbol map (what the whole-file translation's would be).
+/// index, the translation's symbol map (what the whole-file translation's would be) and its
+/// notes (a MSG left as a comment: the whole-file job reports them too).
 pub(super) fn to_fanuc_part(
     path: &Path,
     opts: &TranslateOptions,
     part: &Path,
     bom: bool,
-) -> Option<(Index, SymbolMap)> {
+) -> Option<(Index, SymbolMap, Vec<Diagnostic>)> {
     let straight = |w: &mut dyn Write| {
         let done = stream::translate::to_fanuc(path, opts, w, None)?;
         // The names a straight-line program's translation uses depend on its name alone.
@@ -91,14 +93,14 @@ pub(super) fn to_fanuc_part(
         };
         let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
         let map = crate::translate::to_fanuc(&unit, &[], opts).symbol_map;
-        Ok((done.index, map))
+        Ok((done.index, map, Vec::new()))
     };
     if let Some(done) = route(part, bom, straight).ok()? {
         return Some(done);
     }
     let segmented = |w: &mut dyn Write| {
-        let done = stream::segmented::to_fanuc(path, opts, w, None)?;
-        Ok((done.index, done.symbol_map))
+        let (done, notes) = stream::segmented::to_fanuc_with_notes(path, opts, w, None)?;
+        Ok((done.index, done.symbol_map, notes))
     };
     route(part, bom, segmented).ok()?
 }
