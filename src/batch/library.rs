@@ -118,7 +118,8 @@ pub struct FileInfo {
     pub tools: BTreeSet<String>,
     /// FANUC common variables (`#100`..`#999`) used by number.
     pub commons: BTreeSet<u32>,
-    /// Read as a stream: a large program that calls nothing (see `streamed::library_scan`),
+    /// Read as a stream: a large program that calls nothing, or (Sinumerik) only by a
+    /// constant name (see `streamed::library_scan`),
     /// which its job then tries to translate as a stream too. Its `fingerprints` are not computed (0): a
     /// file whose program another file also defines is read whole instead.
     pub streamed: bool,
@@ -326,36 +327,8 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
         scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
         walk_items(&p.body, &mut |item| match &item.kind {
             ItemKind::Call(c) => {
-                let target = match &c.target {
-                    CallTarget::Number(n) => ProgKey::Number(*n),
-                    CallTarget::Name(s) => ProgKey::Name(s.to_ascii_uppercase()),
-                    CallTarget::Computed(_) => return,
-                };
                 let (line, _) = src.line_col(item.span.lo);
-                let args: Option<Vec<RawArg>> = c
-                    .args
-                    .iter()
-                    .map(|a| match a {
-                        Arg::Letter { var, value, .. } => {
-                            constant(value).map(|(value, point)| RawArg::Letter { var: *var, value, point })
-                        }
-                        Arg::Value(e) => constant(e).map(|v| RawArg::Positional(Some(v))),
-                        Arg::Omitted(_) => Some(RawArg::Positional(None)),
-                    })
-                    .collect();
-                let given = c
-                    .args
-                    .iter()
-                    .filter_map(|a| match a {
-                        Arg::Letter { letter, var, value } if !matches!(value.kind, ExprKind::Vacant) => Some(Given {
-                            letter: char::from(*letter).to_ascii_uppercase(),
-                            var: *var,
-                            sure: surely_set(value),
-                        }),
-                        _ => None,
-                    })
-                    .collect();
-                scan.calls.push(RawCall { line, target, kind: c.kind, args, given });
+                scan.calls.extend(raw_call(c, line));
             }
             ItemKind::Word(w) if w.addr.is(b'T') => {
                 if let WordValue::Expr(Expr { kind: ExprKind::Str(s), .. }) = &w.value {
@@ -366,6 +339,37 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
         });
     }
     scan
+}
+
+/// What the index records of a call on `line` (1-based): `None` for a computed target.
+pub(super) fn raw_call(c: &Call, line: usize) -> Option<RawCall> {
+    let target = match &c.target {
+        CallTarget::Number(n) => ProgKey::Number(*n),
+        CallTarget::Name(s) => ProgKey::Name(s.to_ascii_uppercase()),
+        CallTarget::Computed(_) => return None,
+    };
+    let args: Option<Vec<RawArg>> = c
+        .args
+        .iter()
+        .map(|a| match a {
+            Arg::Letter { var, value, .. } => {
+                constant(value).map(|(value, point)| RawArg::Letter { var: *var, value, point })
+            }
+            Arg::Value(e) => constant(e).map(|v| RawArg::Positional(Some(v))),
+            Arg::Omitted(_) => Some(RawArg::Positional(None)),
+        })
+        .collect();
+    let given = c
+        .args
+        .iter()
+        .filter_map(|a| match a {
+            Arg::Letter { letter, var, value } if !matches!(value.kind, ExprKind::Vacant) => {
+                Some(Given { letter: char::from(*letter).to_ascii_uppercase(), var: *var, sure: surely_set(value) })
+            }
+            _ => None,
+        })
+        .collect();
+    Some(RawCall { line, target, kind: c.kind, args, given })
 }
 
 /// A program's text with blank lines, tape marks and the spaces around lines left out.

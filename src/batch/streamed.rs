@@ -2,16 +2,21 @@
 //! stream (`crate::stream`), in memory that follows the macro part, not the motion part. A
 //! file of `BatchOptions::stream_bytes` (8 MB) and more whose dialect its name tells (in
 //! any encoding: a legacy one is read from a decoded UTF-8 copy, `stream::transcode`, and
-//! its output written as UTF-8, verified, then encoded), holding one program without calls that no other file of the batch calls or
-//! defines again, is read for the library as a stream; its job then tries the streamed
-//! translators (straight-line, then segmented: `streamed_macro.rs`), which write its output
+//! its output written as UTF-8, verified, then encoded), holding one program that no other
+//! file of the batch calls or defines again and that calls nothing, or (Sinumerik) only
+//! subprograms by a constant name, is read for the library as a stream; its job then tries
+//! the streamed translators (straight-line, then segmented: `streamed_macro.rs`), which
+//! write its output
 //! straight into the staging folder (then committed atomically like any other), and its
 //! report entry (status, summary, events, blocks, diagnostics with their lines) is what the
-//! whole-file job gives. Anything else, or a file every streamed translator declines, is
-//! left to the whole-file job.
+//! whole-file job gives. A Sinumerik main calling `.spf` subprograms of the batch streams to
+//! FANUC with them (`segmented::to_fanuc_with_subs`, the callees read whole as the
+//! whole-file job reads them, and verified against them as it verifies; any verdict but an
+//! equivalence is left to the whole-file job). Anything else, or a file every streamed
+//! translator declines, is left to the whole-file job.
 
 use super::discover::{self, InputFile};
-use super::jobs::{self, apply, combine, ToFanucJob, Verified};
+use super::jobs::{self, apply, combine, MemCallees, ToFanucJob, Verified};
 use super::jobs_sinumerik::{self, parse_all, siemens_inputs, ToSinumerikJob};
 use super::library::{self, FileInfo, ProgKey, Scan};
 use super::streamed_macro::{self, LibItems};
@@ -19,14 +24,17 @@ use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
-use crate::eval::{header_inputs, Ending, NoCallees, Outcome, RunOptions};
-use crate::ir::ProgName;
+use crate::eval::{header_inputs, CalleeSource, Ending, NoCallees, Outcome, RunOptions};
+use crate::ir::{ProgName, Unit};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::stream;
 use crate::stream::lines::{Lines, NotStreamable};
+use crate::stream::segmented::LoadCallees;
 use crate::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
 use crate::stream::transcode::{self, TempCopy, TempFile};
+use crate::stream::translate::Fallback;
+use crate::translate;
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
@@ -73,9 +81,10 @@ fn encode_part(utf8: &Path, enc: &'static encoding_rs::Encoding, bom: bool, part
 
 /// Reads `f` for the library index as a stream when it is at least `stream_bytes` long, its
 /// name tells its dialect, it is UTF-8 (or no other encoding is forced) and it holds one
-/// program without diagnostics that calls nothing (a streamed scan does not record calls);
-/// `None` otherwise (the caller reads it whole). What it reports is what `library::scan`
-/// reports (its tools and FANUC commons too), but the fingerprints (see
+/// program without diagnostics that calls nothing, or (Sinumerik) only by a constant name
+/// (`segmented::calls_plain`); `None` otherwise (the caller reads it whole). What it
+/// reports is what `library::scan` reports (its calls, tools and FANUC commons too), but the
+/// fingerprints (see
 /// [`without_shared_streamed`]).
 pub fn library_scan(
     f: &InputFile,
@@ -89,7 +98,7 @@ pub fn library_scan(
     let scan = |path: &Path| {
         let mut items = LibItems::default();
         let mut each = |_: usize, s: &crate::ir::Stmt| {
-            if !items.calls {
+            if !items.other_calls {
                 items.stmt(dialect, s);
             }
         };
@@ -107,9 +116,16 @@ pub fn library_scan(
         r = scan(copy.as_ref().map_or(f.abs.as_path(), |c: &TempCopy| c.path()));
     }
     let (ix, items) = r.ok()?;
-    if items.calls || !ix.diags.is_empty() || ix.programs.len() != 1 {
+    if items.other_calls || !ix.diags.is_empty() || ix.programs.len() != 1 {
         return None;
     }
+    // The calls' lines, as `library::scan` gives them from the (decoded) text.
+    let offsets: Vec<u32> = items.calls.iter().map(|(lo, _)| *lo).collect();
+    let lines = if offsets.is_empty() {
+        Vec::new()
+    } else {
+        positions(copy.as_ref().map_or(f.abs.as_path(), |c: &TempCopy| c.path()), &offsets)
+    };
     let stem = f.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
     let mut scan = Scan {
         info: FileInfo {
@@ -120,6 +136,7 @@ pub fn library_scan(
             commons: items.commons,
             ..FileInfo::default()
         },
+        calls: items.calls.into_iter().zip(lines).map(|((_, c), (line, _))| library::RawCall { line, ..c }).collect(),
         ..Scan::default()
     };
     for p in &ix.programs {
@@ -169,18 +186,49 @@ pub fn without_shared_streamed(
     scans
 }
 
-/// Whether the job may stream `file`: the library scan streamed it (a large program that
-/// calls nothing), and no other file calls its program, is called by it or defines it too.
+/// Whether the job may stream `file`: the library scan streamed it, and no other file calls
+/// its program, is called by it or defines it too.
 fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
+    ctx.library.callee_files(file.index).is_empty() && streamed_alone(file, ctx)
+}
+
+/// Whether the library scan streamed `file` and no file calls its program or defines it too.
+fn streamed_alone(file: &InputFile, ctx: &BatchContext) -> bool {
     let lib = &ctx.library;
     let Some(info) = lib.files.get(file.index) else { return false };
     info.streamed
-        && lib.callee_files(file.index).is_empty()
         && info.programs.iter().flatten().all(|k| {
             lib.programs.get(k).is_some_and(|p| p.file == file.index)
                 && !lib.is_called(k)
                 && !lib.duplicates.contains_key(k)
         })
+}
+
+/// The files of the programs a Sinumerik main `file` calls (as `jobs::load_with_callees`
+/// loads them for the whole job), when its job may stream it with them: the library scan
+/// streamed it (its calls are plain), no file calls its program or defines it too, each
+/// call names a program of another file, and every callee file is a Sinumerik subprogram
+/// file (`.spf`, read whole by the loader) defining one program no other file defines.
+fn streamable_with_callees(file: &InputFile, ctx: &BatchContext) -> Option<Vec<usize>> {
+    let lib = &ctx.library;
+    if !streamed_alone(file, ctx) {
+        return None;
+    }
+    for c in lib.calls.iter().filter(|c| c.file == file.index) {
+        if lib.programs.get(&c.target)?.file == file.index {
+            return None;
+        }
+    }
+    let callees = lib.callee_files(file.index);
+    for &i in &callees {
+        let (info, f) = (lib.files.get(i)?, ctx.files.get(i)?);
+        let spf = f.rel.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf"));
+        let one = matches!(&info.programs[..], [Some(k)] if !lib.duplicates.contains_key(k));
+        if !spf || !one || info.parse_errors > 0 || info.dialect != Some(Dialect::Sinumerik) {
+            return None;
+        }
+    }
+    Some(callees)
 }
 
 /// Streams a translation into the file's staged output; on `Err` (the translator's error,
@@ -392,10 +440,31 @@ fn to_sinumerik_from(
 pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
     let s = &job.settings;
     // The stream reads the Siemens file with the default profile.
-    if job.fault.is_some() || s.sinumerik != Semantics::default_for(Dialect::Sinumerik) || !streamable(file, ctx) {
+    if job.fault.is_some() || s.sinumerik != Semantics::default_for(Dialect::Sinumerik) {
         return None;
     }
-    with_source(&file.abs, ctx.options.encoding, |path, copy| to_fanuc_from(job, file, ctx, path, copy))
+    let callees = streamable_with_callees(file, ctx)?;
+    with_source(&file.abs, ctx.options.encoding, |path, copy| to_fanuc_from(job, file, ctx, path, copy, &callees))
+}
+
+/// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
+/// whole job (file ids from 1 up after the main's 0, the job's encoding and profile);
+/// declines one with any diagnostic or a call `segmented::to_fanuc_with_subs` cannot take.
+fn load_callees(job: &ToFanucJob, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
+    let no = |why: &str| Fallback::NotStraight(why.into());
+    let mut db = SourceDb::new();
+    db.add("", String::new());
+    let mut units = Vec::new();
+    for &i in callees {
+        let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
+        let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, &job.settings.sinumerik)
+            .map_err(|e| no(&e))?;
+        if !l.diags.is_empty() || !stream::segmented::calls_plain(&l.unit) {
+            return Err(no("a callee with diagnostics or a call of another kind"));
+        }
+        units.push(l.unit);
+    }
+    Ok(units)
 }
 
 /// [`to_fanuc`] reading `path` (the file, or its decoded `copy`).
@@ -405,6 +474,7 @@ fn to_fanuc_from(
     ctx: &BatchContext,
     path: &Path,
     copy: Option<&TempCopy>,
+    callees: &[usize],
 ) -> Option<FileOutcome> {
     let s = &job.settings;
     let (enc, bom, eol) = source_form(&file.abs, copy)?;
@@ -415,7 +485,14 @@ fn to_fanuc_from(
     // `part` and read back from there; in UTF-8 the mark is written as the whole path does.
     let utf8 = (out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.nc"));
     let into = utf8.as_ref().map_or(part.as_path(), |u| u.path());
-    let (index, map, notes) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none())?;
+    // The callees' units, kept for the verifier's source side.
+    let mut subs: Vec<Unit> = Vec::new();
+    let mut load = |_: &Unit| {
+        subs = load_callees(job, ctx, callees)?;
+        Ok(subs.clone())
+    };
+    let load: Option<LoadCallees<'_>> = if callees.is_empty() { None } else { Some(&mut load) };
+    let (index, map, notes) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none(), load)?;
     if let Some(u) = &utf8 {
         encode_part(u.path(), out_enc, bom, &part)?;
     }
@@ -436,6 +513,11 @@ fn to_fanuc_from(
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &out_name, into)];
     let back = match sts::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
         Ok(b) => b,
+        // With callees the whole job gives this verdict (see below).
+        Err(_) if !subs.is_empty() => {
+            let _ = std::fs::remove_file(&part);
+            return None;
+        }
         Err(e) => {
             let diagnostics = match e {
                 ReadBack::Diags(d) => records(&d, &files),
@@ -448,10 +530,19 @@ fn to_fanuc_from(
     };
     let mut b_in = jobs::r_homes(&map);
     b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
+    // The callees as the whole job's verifier serves them (aligned as it aligns them); the
+    // FANUC side finds the output's own O programs in the read-back index, as the whole
+    // job's finds them in the parsed output.
+    let with_subs = !subs.is_empty();
+    let source_callees: Box<dyn CalleeSource + Send> = if with_subs {
+        Box::new(MemCallees(subs.iter().map(|u| translate::align_source(u, &map)).collect()))
+    } else {
+        Box::new(NoCallees)
+    };
     let a = StreamSide {
         index,
         name: name.clone(),
-        callees: Box::new(NoCallees),
+        callees: source_callees,
         run: run_options(parse_all(&s.set), s.max_steps, &s.sinumerik),
     };
     let b = StreamSide {
@@ -461,6 +552,13 @@ fn to_fanuc_from(
         run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
     };
     let report = sts::compare(a, b);
+    // With callees, only an equivalence is taken: the diagnostics of any other verdict may
+    // point into a callee file, which the streamed records do not name as the whole job
+    // does; the whole job then gives that verdict itself.
+    if with_subs && !matches!(report.verdict, Verdict::Equivalent { .. }) {
+        let _ = std::fs::remove_file(&part);
+        return None;
+    }
     apply(&mut outcome, verdict(report, &files));
     Some(outcome)
 }

@@ -11,6 +11,7 @@ use crate::ir::{ItemKind, Program, Stmt, Unit, WordValue};
 use crate::passes::to_sinumerik::Options as SinOptions;
 use crate::read::LineEnding;
 use crate::span::Span;
+use crate::stream::segmented::LoadCallees;
 use crate::stream::to_sinumerik as sts;
 use crate::stream::translate::Fallback;
 use crate::stream::{self, Index, ProgressFn};
@@ -20,20 +21,25 @@ use std::io::Write;
 use std::path::Path;
 
 /// What `library::scan` reports of a file's statements, gathered one top-level statement
-/// at a time: its tools, its FANUC common variables, and whether it calls anything (a
-/// streamed scan does not record calls: such a file is read whole).
+/// at a time: its tools, its FANUC common variables, its Sinumerik calls by a constant name
+/// (`segmented::calls_plain`: the only ones a streamed job can take), and whether it has a
+/// call of another kind (such a file is read whole).
 #[derive(Default)]
 pub(super) struct LibItems {
-    pub calls: bool,
+    /// A call the streamed scan does not take: any in FANUC, one not plain in Sinumerik.
+    pub other_calls: bool,
+    /// The plain Sinumerik calls: the text offset of each (its line is found after the
+    /// scan) and the call as `library::scan` records it (line 0 until then).
+    pub calls: Vec<(u32, library::RawCall)>,
     pub tools: BTreeSet<String>,
     pub commons: BTreeSet<u32>,
 }
 
 impl LibItems {
     pub fn stmt(&mut self, dialect: Dialect, s: &Stmt) {
+        let mut calls = Vec::new();
         library::walk_items(std::slice::from_ref(s), &mut |item| match &item.kind {
-            // `library::scan` records every call but a computed one; none is streamed.
-            ItemKind::Call(_) => self.calls = true,
+            ItemKind::Call(c) => calls.push((item.span.lo, library::raw_call(c, 0))),
             ItemKind::Word(w) if w.addr.is(b'T') => {
                 if let WordValue::Expr(crate::ir::Expr { kind: crate::ir::ExprKind::Str(s), .. }) = &w.value {
                     self.tools.insert(s.clone());
@@ -41,6 +47,26 @@ impl LibItems {
             }
             _ => {}
         });
+        if !calls.is_empty() {
+            let plain = dialect == Dialect::Sinumerik
+                && stream::segmented::calls_plain(&Unit {
+                    dialect,
+                    file: 0,
+                    programs: vec![Program {
+                        name: None,
+                        head: None,
+                        params: vec![],
+                        save: false,
+                        body: vec![s.clone()],
+                        span: Span::default(),
+                    }],
+                });
+            // A plain call has a constant target: `raw_call` gives it.
+            match calls.into_iter().map(|(lo, c)| c.map(|c| (lo, c))).collect::<Option<Vec<_>>>() {
+                Some(c) if plain => self.calls.extend(c),
+                _ => self.other_calls = true,
+            }
+        }
         // A straight FANUC block has constant words only: no variable.
         if dialect == Dialect::Fanuc && sts::straight(s).is_err() {
             let p = Program {
@@ -74,12 +100,23 @@ fn route<T>(
 /// Sinumerik → FANUC into `part` as a straight-line stream, else segmented: the source's
 /// index, the translation's symbol map (what the whole-file translation's would be) and its
 /// notes (a MSG left as a comment: the whole-file job reports them too).
+///
+/// With `load` (a main that calls subprograms: it gives their units) only the segmented
+/// stream with callees is tried (`segmented::to_fanuc_with_subs`).
 pub(super) fn to_fanuc_part(
     path: &Path,
     opts: &TranslateOptions,
     part: &Path,
     bom: bool,
+    load: Option<LoadCallees<'_>>,
 ) -> Option<(Index, SymbolMap, Vec<Diagnostic>)> {
+    if let Some(load) = load {
+        let with_subs = |w: &mut dyn Write| {
+            let (done, notes) = stream::segmented::to_fanuc_with_subs(path, opts, load, w, None)?;
+            Ok((done.index, done.symbol_map, notes))
+        };
+        return route(part, bom, with_subs).ok()?;
+    }
     let straight = |w: &mut dyn Write| {
         let done = stream::translate::to_fanuc(path, opts, w, None)?;
         // The names a straight-line program's translation uses depend on its name alone.

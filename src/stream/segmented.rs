@@ -317,7 +317,8 @@ fn main_text_end(t: &translate::Translation, eol: &str, from: usize) -> usize {
         return t.text.len();
     };
     let o = format!("{eol}O{n:04}");
-    let mut at = from.min(t.text.len());
+    // From the line end `from` follows (a run's placeholder line may be the main's last).
+    let mut at = from.saturating_sub(eol.len()).min(t.text.len());
     while let Some(k) = t.text.get(at..).and_then(|r| r.find(&o)) {
         let hi = at + k + o.len();
         if !t.text[hi..].starts_with(|c: char| c.is_ascii_digit()) {
