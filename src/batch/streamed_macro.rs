@@ -49,18 +49,7 @@ impl LibItems {
         });
         if !calls.is_empty() {
             let plain = dialect == Dialect::Sinumerik
-                && stream::segmented::calls_plain(&Unit {
-                    dialect,
-                    file: 0,
-                    programs: vec![Program {
-                        name: None,
-                        head: None,
-                        params: vec![],
-                        save: false,
-                        body: vec![s.clone()],
-                        span: Span::default(),
-                    }],
-                });
+                && stream::segmented::calls_plain(&Unit { dialect, file: 0, programs: vec![program_of(s)] });
             // A plain call has a constant target: `raw_call` gives it.
             match calls.into_iter().map(|(lo, c)| c.map(|c| (lo, c))).collect::<Option<Vec<_>>>() {
                 Some(c) if plain => self.calls.extend(c),
@@ -69,17 +58,14 @@ impl LibItems {
         }
         // A straight FANUC block has constant words only: no variable.
         if dialect == Dialect::Fanuc && sts::straight(s).is_err() {
-            let p = Program {
-                name: None,
-                head: None,
-                params: vec![],
-                save: false,
-                body: vec![s.clone()],
-                span: Span::default(),
-            };
-            self.commons.extend(crate::translate_sinumerik::commons_of(&p));
+            self.commons.extend(crate::translate_sinumerik::commons_of(&program_of(s)));
         }
     }
+}
+
+/// A nameless program holding the one statement `s` (what the whole-program helpers take).
+fn program_of(s: &Stmt) -> Program {
+    Program { name: None, head: None, params: vec![], save: false, body: vec![s.clone()], span: Span::default() }
 }
 
 /// One streamed translator into the staged output `part` (a fresh file): `Ok(None)` when
