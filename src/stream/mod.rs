@@ -733,6 +733,18 @@ pub(crate) fn spill(out: &mut dyn std::io::Write, buf: &mut Vec<u8>, io: &mut Op
     buf.clear();
 }
 
+/// Ends a streamed translator's output: flushes `out` unless writing already failed; the
+/// first write error, if any, is the fallback (the caller discards the file).
+pub(crate) fn finish_output(
+    out: &mut dyn std::io::Write,
+    io: Option<std::io::Error>,
+) -> Result<(), translate::Fallback> {
+    match io.map_or_else(|| out.flush(), Err) {
+        Ok(()) => Ok(()),
+        Err(e) => Err(translate::Fallback::NotStreamable(lines::NotStreamable::Io(e))),
+    }
+}
+
 /// A check side that runs a streamed file (see `check::check_runners`); its pager is made
 /// on the thread that runs it.
 pub fn runner(

@@ -281,14 +281,7 @@ fn segment(
     let rest = w.text.len();
     w.copy_to(rest);
     w.write();
-    if w.io.is_none() {
-        if let Err(e) = w.out.flush() {
-            w.io = Some(e);
-        }
-    }
-    if let Some(e) = w.io {
-        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
-    }
+    super::finish_output(w.out, w.io)?;
     Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
 }
 

@@ -668,14 +668,7 @@ pub fn to_sinumerik_first(
         return Err(f);
     }
     st.spill();
-    if st.io.is_none() {
-        if let Err(e) = st.out.flush() {
-            st.io = Some(e);
-        }
-    }
-    if let Some(e) = st.io {
-        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
-    }
+    super::finish_output(st.out, st.io)?;
     Ok(Streamed {
         index,
         blocks,

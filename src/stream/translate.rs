@@ -284,14 +284,7 @@ pub fn to_fanuc(
     }
     st.buf.extend_from_slice(closing.as_bytes());
     st.write();
-    if st.io.is_none() {
-        if let Err(e) = st.out.flush() {
-            st.io = Some(e);
-        }
-    }
-    if let Some(e) = st.io {
-        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
-    }
+    super::finish_output(st.out, st.io)?;
     Ok(Streamed { index, blocks, diags: st.diags, unsupported: st.unsupported })
 }
 

@@ -540,13 +540,6 @@ pub fn to_sinumerik(
     }
     w.copy_to(w.text.len());
     w.write();
-    if w.io.is_none() {
-        if let Err(e) = w.out.flush() {
-            w.io = Some(e);
-        }
-    }
-    if let Some(e) = w.io {
-        return Err(Fallback::NotStreamable(NotStreamable::Io(e)));
-    }
+    super::super::finish_output(w.out, w.io)?;
     Ok(finish(index, w.diags))
 }
