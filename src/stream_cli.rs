@@ -545,7 +545,8 @@ fn callees_beside(
     c: &nctrans::config::Config,
     unit: &nctrans::ir::Unit,
 ) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
-    use super::translate_cli::{called_names, find_beside};
+    use super::translate_cli::find_beside;
+    use nctrans::ir::visit::called_names;
     use nctrans::ir::ProgName;
     use stream::translate::Fallback;
     let no = |why: &str| Fallback::NotStraight(why.into());

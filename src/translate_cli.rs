@@ -6,7 +6,7 @@ use nctrans::batch::library::ProgKey;
 use nctrans::config::{Comments, Config, LineEnds, Unsupported};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
-use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::ir::Unit;
 use nctrans::passes::varmap;
 use nctrans::passes::UnsupportedPolicy;
 use nctrans::span::SourceDb;
@@ -114,7 +114,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     }
     // Subprograms it calls, found beside it (NAME.SPF, any case), transitively.
     let mut subs: Vec<Unit> = Vec::new();
-    let mut todo = called_names(&parsed.unit);
+    let mut todo = nctrans::ir::visit::called_names(&parsed.unit);
     let mut seen: Vec<String> = Vec::new();
     while let Some(callee) = todo.pop() {
         if seen.contains(&callee) {
@@ -129,7 +129,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         if diag::has_errors(&p.diags) {
             return ExitCode::from(1);
         }
-        todo.extend(called_names(&p.unit));
+        todo.extend(nctrans::ir::visit::called_names(&p.unit));
         subs.push(p.unit);
     }
     let opts = match options(c, input, loaded.line_ending) {
@@ -227,24 +227,6 @@ fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
             std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
         }
     }
-}
-
-pub(crate) fn called_names(unit: &Unit) -> Vec<String> {
-    let mut v = Vec::new();
-    for p in &unit.programs {
-        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
-            if let StmtKind::Block(b) = &s.kind {
-                for it in &b.items {
-                    if let ItemKind::Call(c) = &it.kind {
-                        if let CallTarget::Name(n) = &c.target {
-                            v.push(n.to_ascii_uppercase());
-                        }
-                    }
-                }
-            }
-        });
-    }
-    v
 }
 
 pub(crate) fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {

@@ -6,7 +6,7 @@
 //! line.
 
 use nctrans::dialect::{Dialect, ParseOptions};
-use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 use nctrans::stream::segmented;
 use nctrans::stream::translate::Fallback;
@@ -51,29 +51,11 @@ fn opts(path: &Path) -> TranslateOptions {
     }
 }
 
-fn called(unit: &Unit) -> Vec<String> {
-    let mut v = Vec::new();
-    for p in &unit.programs {
-        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
-            if let StmtKind::Block(b) = &s.kind {
-                for it in &b.items {
-                    if let ItemKind::Call(c) = &it.kind {
-                        if let CallTarget::Name(n) = &c.target {
-                            v.push(n.to_ascii_uppercase());
-                        }
-                    }
-                }
-            }
-        });
-    }
-    v
-}
-
 /// The whole path's loading of the callees (`NAME.SPF` beside `main`, transitively) into
 /// `db` (file ids from 1 up).
 fn load_subs(db: &mut SourceDb, main: &Path, unit: &Unit) -> Option<Vec<Unit>> {
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let (mut todo, mut seen, mut subs) = (called(unit), Vec::<String>::new(), Vec::new());
+    let (mut todo, mut seen, mut subs) = (nctrans::ir::visit::called_names(unit), Vec::<String>::new(), Vec::new());
     while let Some(c) = todo.pop() {
         if seen.contains(&c) {
             continue;
@@ -86,7 +68,7 @@ fn load_subs(db: &mut SourceDb, main: &Path, unit: &Unit) -> Option<Vec<Unit>> {
         if !p.diags.is_empty() {
             return None;
         }
-        todo.extend(called(&p.unit));
+        todo.extend(nctrans::ir::visit::called_names(&p.unit));
         subs.push(p.unit);
     }
     Some(subs)

@@ -237,6 +237,26 @@ fn expr_spans(problems: &mut Vec<String>, parent: Span, e: &Expr) {
 }
 
 /// Number of source blocks a unit holds (structure heads, ELSE and ends count as blocks).
+/// The names a unit calls by a constant name (upper case, in walk order, repeats kept):
+/// the subprograms a translation loads beside its input.
+pub fn called_names(unit: &Unit) -> Vec<String> {
+    let mut v = Vec::new();
+    for p in &unit.programs {
+        walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    if let ItemKind::Call(c) = &it.kind {
+                        if let CallTarget::Name(n) = &c.target {
+                            v.push(n.to_ascii_uppercase());
+                        }
+                    }
+                }
+            }
+        });
+    }
+    v
+}
+
 pub fn count_blocks(unit: &Unit) -> usize {
     let mut n = 0;
     for p in &unit.programs {
