@@ -546,7 +546,6 @@ fn callees_beside(
     unit: &nctrans::ir::Unit,
 ) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
     use super::translate_cli::find_beside;
-    use nctrans::ir::visit::called_names;
     use nctrans::ir::ProgName;
     use stream::translate::Fallback;
     let no = |why: &str| Fallback::NotStraight(why.into());
@@ -558,17 +557,10 @@ fn callees_beside(
         .map_err(|_| no("a folder that cannot be listed"))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .collect();
-    let mut subs = Vec::new();
-    let mut todo = called_names(unit);
-    let mut seen: Vec<String> = Vec::new();
-    while let Some(callee) = todo.pop() {
-        if seen.contains(&callee) {
-            continue;
-        }
-        seen.push(callee.clone());
-        let path = find_beside(input, &callee).ok_or_else(|| no("a call of a program not found beside it"))?;
+    super::translate_cli::callees(unit, |callee| {
+        let path = find_beside(input, callee).ok_or_else(|| no("a call of a program not found beside it"))?;
         let mpf = files.iter().any(|f| {
-            f.file_stem().and_then(|s| s.to_str()).is_some_and(|s| s.eq_ignore_ascii_case(&callee))
+            f.file_stem().and_then(|s| s.to_str()).is_some_and(|s| s.eq_ignore_ascii_case(callee))
                 && f.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("mpf"))
         });
         if mpf {
@@ -577,16 +569,14 @@ fn callees_beside(
         let bytes = std::fs::read(&path).map_err(|_| no("a subprogram that cannot be read"))?;
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
-        let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(&callee)));
+        let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(callee)));
         if !p.diags.is_empty() || !named || !stream::segmented::calls_plain(&p.unit) {
             return Err(no(
                 "a subprogram with diagnostics, or not one PROC named as its file, or a call of another kind",
             ));
         }
-        todo.extend(called_names(&p.unit));
-        subs.push(p.unit);
-    }
-    Ok(subs)
+        Ok(Some(p.unit))
+    })
 }
 
 /// Verifies a streamed translation. Each file is given as its name and the path to read

@@ -113,25 +113,21 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return ExitCode::from(1);
     }
     // Subprograms it calls, found beside it (NAME.SPF, any case), transitively.
-    let mut subs: Vec<Unit> = Vec::new();
-    let mut todo = nctrans::ir::visit::called_names(&parsed.unit);
-    let mut seen: Vec<String> = Vec::new();
-    while let Some(callee) = todo.pop() {
-        if seen.contains(&callee) {
-            continue;
-        }
-        seen.push(callee.clone());
-        let Some(path) = find_beside(input, &callee) else { continue };
-        let Ok(bytes) = std::fs::read(&path) else { continue };
+    let subs = callees(&parsed.unit, |callee| {
+        let Some(path) = find_beside(input, callee) else { return Ok(None) };
+        let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         eprint!("{}", diag::render(&db, &p.diags));
         if diag::has_errors(&p.diags) {
-            return ExitCode::from(1);
+            return Err(ExitCode::from(1));
         }
-        todo.extend(nctrans::ir::visit::called_names(&p.unit));
-        subs.push(p.unit);
-    }
+        Ok(Some(p.unit))
+    });
+    let subs = match subs {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
     let opts = match options(c, input, loaded.line_ending) {
         Ok(o) => o,
         Err(e) => return fail(e),
@@ -227,6 +223,26 @@ fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
             std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
         }
     }
+}
+
+/// The programs `unit` calls by name, transitively, each name once: `load` gives a callee's
+/// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops.
+pub(crate) fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>, E>) -> Result<Vec<Unit>, E> {
+    let mut subs = Vec::new();
+    let mut todo = nctrans::ir::visit::called_names(unit);
+    let mut seen: Vec<String> = Vec::new();
+    while let Some(callee) = todo.pop() {
+        if seen.contains(&callee) {
+            continue;
+        }
+        let sub = load(&callee)?;
+        seen.push(callee);
+        if let Some(u) = sub {
+            todo.extend(nctrans::ir::visit::called_names(&u));
+            subs.push(u);
+        }
+    }
+    Ok(subs)
 }
 
 pub(crate) fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
