@@ -142,6 +142,7 @@ impl Interp<'_> {
             let id = self.codes.len();
             self.codes.push(Rc::new(code));
             self.params.push(p.params.clone());
+            self.save.push(p.save);
             let key = match &p.name {
                 Some(ProgName::Number(n)) => Some(CalleeName::Number(*n)),
                 Some(ProgName::Name(s)) => Some(CalleeName::Name(s.to_ascii_uppercase())),
@@ -172,6 +173,7 @@ impl Interp<'_> {
             let id = self.codes.len();
             self.codes.push(Rc::new(Code::paged(ix.file, Rc::clone(pager), i)));
             self.params.push(p.program.params.clone());
+            self.save.push(p.program.save);
             match &p.program.name {
                 Some(ProgName::Number(n)) => {
                     self.by_number.entry(*n).or_insert(id);
@@ -357,6 +359,8 @@ impl Interp<'_> {
             self.vars.frames.push(HashMap::new());
             sframe = self.vars.frames.len() - 1;
         }
+        let saved =
+            (kind == FrameKind::Proc && self.save.get(code) == Some(&true)).then(|| Box::new(Saved::of(&self.m)));
         self.frames.push(Frame {
             code,
             pc: 0,
@@ -367,6 +371,7 @@ impl Interp<'_> {
             call_span: span,
             reps: Vec::new(),
             modal,
+            saved,
         });
         Ok(())
     }
@@ -541,6 +546,10 @@ impl Interp<'_> {
             return Ok(Flow::Stop(self.end(code, span)));
         }
         let top = self.frames.last_mut().ok_or_else(internal)?;
+        // Each pass of a SAVE subprogram ends in the modes it was called in.
+        if let Some(saved) = &top.saved {
+            saved.restore(&mut self.m);
+        }
         if top.repeats_left > 0 {
             top.repeats_left -= 1;
             top.pc = 0;
@@ -569,5 +578,32 @@ impl Interp<'_> {
             }
         }
         Ok(Flow::Switched)
+    }
+}
+
+/// What a Siemens `PROC … SAVE` subprogram restores at its end: the modal G functions
+/// (every group the machine models), the settable frame (G54.. and the values selected
+/// with it, where the subprogram selected another) and the programmable frame (TRANS).
+/// The feed, spindle, tool and position are not modal G functions and stay.
+#[derive(Clone, Debug)]
+pub struct Saved {
+    modal: super::machine::Modal,
+    wo: usize,
+    frame: [f64; 9],
+    trans: [f64; 9],
+}
+
+impl Saved {
+    fn of(m: &super::machine::Machine) -> Saved {
+        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans }
+    }
+
+    fn restore(&self, m: &mut super::machine::Machine) {
+        m.modal = self.modal;
+        if m.wo != self.wo {
+            m.wo = self.wo;
+            m.frame = self.frame;
+        }
+        m.trans = self.trans;
     }
 }

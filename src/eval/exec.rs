@@ -52,6 +52,8 @@ pub struct Frame {
     pub reps: Vec<Rep>,
     /// This frame runs a modal (G66/MCALL) call: moves inside it do not trigger it.
     pub modal: bool,
+    /// A Siemens `PROC … SAVE` subprogram: the modes at its call, restored at its end.
+    pub saved: Option<Box<super::calls::Saved>>,
 }
 
 /// What a block asks the loop to do next.
@@ -74,6 +76,8 @@ pub struct Interp<'a> {
     pub by_name: HashMap<String, usize>,
     /// Formal parameters per code index.
     pub params: Vec<Vec<crate::ir::Param>>,
+    /// Whether each code index is a `PROC … SAVE` program.
+    pub save: Vec<bool>,
     pub db: &'a mut SourceDb,
     pub callees: &'a mut dyn CalleeSource,
     pub sink: &'a mut dyn TraceSink,
@@ -119,6 +123,7 @@ impl<'a> Interp<'a> {
             by_number: HashMap::new(),
             by_name: HashMap::new(),
             params: Vec::new(),
+            save: Vec::new(),
             db,
             callees,
             sink,

@@ -141,6 +141,7 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         call_span: Default::default(),
         reps: Vec::new(),
         modal: false,
+        saved: None,
     });
     let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
     let ending = match result {
