@@ -102,6 +102,10 @@ pub struct Translation {
     pub diags: Vec<Diagnostic>,
     /// Constructs that could not be expressed (also counted under the warn policy).
     pub unsupported: usize,
+    /// The main program's G90/G91 and units followed its text block by block (no paths
+    /// that disagree on them, no call that changes the units): what the streamed
+    /// translators, which follow the text, need to give the same output.
+    pub modes_exact: bool,
 }
 
 impl Translation {
@@ -158,17 +162,20 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         };
         numbers.insert(name, n);
     }
+    // What each subprogram leaves changed for its caller (the words pass follows modes
+    // across calls) and, for SAVE ones, restores.
+    let named: Vec<(String, &Program)> = progs.iter().skip(1).map(|(p, _, _)| (prog_name(p, ""), p)).collect();
+    let effects = passes::words::effects::effects(&named);
     let mut callees = BTreeMap::new();
-    for (p, _, _) in progs.iter().skip(1) {
-        {
-            let name = prog_name(p, "");
-            let number = numbers.get(&name).copied().unwrap_or(FIRST_SUB_NUMBER);
-            callees.insert(name, Callee { number, params: p.params.clone() });
-        }
+    for (name, p) in named {
+        let number = numbers.get(&name).copied().unwrap_or(FIRST_SUB_NUMBER);
+        let effect = effects.get(&name).copied().unwrap_or_default();
+        callees.insert(name, Callee { number, params: p.params.clone(), effect });
     }
 
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
+    let mut modes_exact = true;
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
@@ -176,6 +183,9 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         ctx.callees = callees.clone();
         let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
+        if lowered.is_empty() {
+            modes_exact = !ctx.modes_inexact;
+        }
         tools_used.extend(ctx.tools_used);
         unsupported += ctx.unsupported;
         diags.extend(ctx.diags);
@@ -236,7 +246,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported }
+    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, modes_exact }
 }
 
 fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {

@@ -388,6 +388,13 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
 ];
 
+/// FANUC translations of the Siemens library that do not come back, and why.
+const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
+    // PROC … SAVE: the FANUC macro reads its caller's modal G codes (#4001..) on entry and
+    // selects them again with G#t words before M99; Sinumerik has no computed G code.
+    ("subprogram-proc-var.nc", "NC363"),
+];
+
 /// Files that verify in each leg but, run alone, do not come back the same, and why: each leg
 /// proves the translation under its own inputs, and these differences are in what the
 /// target cannot carry back.
@@ -397,7 +404,6 @@ const SIEMENS_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
     // A PROC run alone: its parameters are 0 on Siemens. Through FANUC they come back as
     // macro arguments that were not given (vacant), so the words using them are left out.
     ("subprogram-header.spf", "PROC parameters not passed: 0 on Siemens, vacant through FANUC"),
-    ("subprogram-proc-var.spf", "PROC parameters not passed: 0 on Siemens, vacant through FANUC"),
     ("tool-name-string.mpf", "tool names become T numbers"),
 ];
 
@@ -544,7 +550,7 @@ fn whole_library_round_trips_both_ways() {
     let before = snapshot(&lib);
 
     let s1 = leg(&lib.join("siemens"), &dir.join("s1"), Dialect::Fanuc, SIEMENS_TO_FANUC_REFUSED);
-    let s2 = leg(&dir.join("s1"), &dir.join("s2"), Dialect::Sinumerik, &[]);
+    let s2 = leg(&dir.join("s1"), &dir.join("s2"), Dialect::Sinumerik, BACK_TO_SINUMERIK_REFUSED);
     let written: usize = s1.files.iter().map(|f| f.outputs.len()).sum();
     assert_eq!(s2.files.len(), written, "every FANUC file written comes back");
     assert!(s2.count(Status::Verified) >= 70, "{}", s2.count(Status::Verified));

@@ -505,3 +505,31 @@ fn random_programs_translate_and_verify() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
+
+/// G90/G91 and the units where paths meet (after an IF, at a loop's head, after a block
+/// that may be skipped, at a jump target reached past a mode word): every path verifies,
+/// whichever branch the run takes, or the F word that depends on the path is refused.
+#[test]
+fn modes_where_paths_meet_hold_on_every_path() {
+    let both = [
+        "G90 G0 X0\nR1={v}\nIF R1==1\nG91\nENDIF\nX=AC(5)\nX1\nM30\n",
+        "G90 G0 X0\nR1={v}\nIF R1==1\nG91\nELSE\nG90\nENDIF\nX=IC(2)\nX1\nM30\n",
+        "G90 G0 X0\nR1={v}\nR2=0\nWHILE R2<2\nX=IC(1)\nIF R1==1\nG91\nENDIF\nR2=R2+1\nENDWHILE\nX=AC(1)\nM30\n",
+        "G90 G0 X0\nR1={v}\nR2=0\nMARK:\nX=IC(1)\nIF R1==1\nG91\nENDIF\nR2=R2+1\nIF R2<2 GOTOB MARK\nX=AC(0)\nM30\n",
+        "G90 G0 X0\nR1={v}\nIF R1==1 GOTOF SKIP\nG91\nSKIP:\nX=AC(4)\nX1\nM30\n",
+        "G710 G1 X0 F10\nR1={v}\nIF R1==1\nG70\nENDIF\nG710\nG1 X1 F100\nM30\n",
+    ];
+    for src in both {
+        for v in ["0", "1"] {
+            let src = src.replace("{v}", v);
+            let mut d = translate_src("paths.mpf", &src, &TranslateOptions::default());
+            assert!(d.t.ok(), "not translated:\n{src}\n{}", nctrans::diag::render(&d.db, &d.t.diags));
+            let r = verify(&mut d);
+            assert!(r.equivalent, "{src}\n{}\n{}\n{}", r.summary, r.rendered, d.t.text);
+        }
+    }
+    // The feed unit depends on the path: refused until G700/G710 sets both units again.
+    refused("G710 G1 X0 F10\nR1=1\nIF R1==1\nG70\nENDIF\nG1 X1 F100\nM30\n", "NC324");
+    refused("G710 G1 X0 F10\nR2=0\nWHILE R2<2\nG1 X=R2 F100\nG700\nR2=R2+1\nENDWHILE\nM30\n", "NC324");
+    refused("G710 G1 X0 F10\nMARK:\nG1 X1 F100\nG70\nGOTOB MARK\nM30\n", "NC324");
+}

@@ -48,11 +48,13 @@ pub struct ProgInfo {
     pub is_sub: bool,
 }
 
-/// A callee the translation knows: its O number and its parameters, in order.
-#[derive(Clone, Debug)]
+/// A callee the translation knows: its O number, its parameters in order, and what it
+/// changes of its caller's modes.
+#[derive(Clone, Debug, Default)]
 pub struct Callee {
     pub number: u32,
     pub params: Vec<Param>,
+    pub effect: words::effects::Effect,
 }
 
 /// State shared by the passes of one translation.
@@ -73,6 +75,9 @@ pub struct Ctx {
     pub diags: Vec<Diagnostic>,
     /// Number of unsupported constructs met (also under the warn policy).
     pub unsupported: usize,
+    /// The words pass met paths that disagree on G90/G91 or the units (`words::modes`):
+    /// the modes did not simply follow the text.
+    pub modes_inexact: bool,
     next_temp: u32,
     next_label: u32,
 }
@@ -88,6 +93,7 @@ impl Ctx {
             tools_used: BTreeMap::new(),
             callees: BTreeMap::new(),
             diags: Vec::new(),
+            modes_inexact: false,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

@@ -9,8 +9,11 @@
 //! unknown cycles are unsupported.
 
 use super::*;
+use modes::{Feed, Modes, Resets, UnitState};
 use units::{FeedConv, Units};
 
+pub mod effects;
+mod modes;
 pub mod units;
 
 /// G codes with the same number and meaning on both controls.
@@ -61,62 +64,66 @@ pub fn param_letters(n: usize) -> Option<Vec<(u8, u8)>> {
     Some(v)
 }
 
-#[derive(Clone, Copy)]
 struct Modal {
-    /// `Some(true)` G90, `Some(false)` G91, `None` unknown (a subprogram inherits its caller's).
-    abs: Option<bool>,
-    units: UnitState,
+    s: Modes,
+    /// Jump targets where modes are reset.
+    resets: Resets,
+    /// In a subprogram: the temporary that holds its caller's feed factor (see
+    /// [`UnitState::CallerFeed`]), made for the first F word that needs it.
+    caller_feed: Option<VarRef>,
 }
 
-/// The length and feed units in textual order, as far as they are known.
-#[derive(Clone, Copy)]
-enum UnitState {
-    Known(Units),
-    /// A subprogram's start: lengths and feeds in one unit, the caller's (calls are
-    /// declined where the two differ, so this holds for every translated caller).
-    Caller,
-    /// In a subprogram after G70/G71 and before any G700/G710: the lengths' unit is known,
-    /// the feeds' is still the caller's (an F word is declined).
-    FeedUnknown,
-}
-
-impl UnitState {
-    fn g(&mut self, v: f64) {
-        match self {
-            UnitState::Known(u) => {
-                u.g(v);
-            }
-            _ if v == 700.0 || v == 710.0 => {
-                *self = UnitState::Known(Units { inch: v == 700.0, inch_feed: v == 700.0 })
-            }
-            _ if v == 70.0 || v == 71.0 => *self = UnitState::FeedUnknown,
-            _ => {}
+impl Modal {
+    /// Where paths meet, one with the modes here and one with `other`: what they agree
+    /// on from here on. Where they disagree the modes no longer follow the text (the
+    /// streamed translators, which follow the text, decline then).
+    fn meet(&mut self, ctx: &mut Ctx, other: Modes) {
+        if other != self.s {
+            ctx.modes_inexact = true;
         }
-    }
-
-    /// How F words are written; `None` when the feed unit is not known.
-    fn feed(self) -> Option<FeedConv> {
-        match self {
-            UnitState::Known(u) => Some(u.feed()),
-            UnitState::Caller => Some(FeedConv::Same),
-            UnitState::FeedUnknown => None,
-        }
+        self.s = self.s.merge(other);
     }
 }
 
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
     let mut m = Modal {
-        abs: if info.is_sub { None } else { Some(true) },
-        units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
+        s: Modes {
+            abs: if info.is_sub { None } else { Some(true) },
+            units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
+        },
+        resets: Resets::of(&prog.body, &ctx.callees),
+        caller_feed: None,
+    };
+    // The groups a SAVE subprogram sets (its callees' included), read before its G codes
+    // become FANUC ones.
+    let saves = if info.is_sub && prog.save {
+        effects::effect_of(prog, &|n| ctx.callees.get(n).map(|c| c.effect)).sets
+    } else {
+        0
     };
     let body = std::mem::take(&mut prog.body);
     prog.body = body_pass(ctx, body, &mut m);
+    if saves != 0 {
+        save::restore_on_return(ctx, prog, saves);
+    }
+    if let Some(t) = m.caller_feed {
+        // On entry, before any unit word of the subprogram: the caller's feed factor,
+        // 25.4 when it runs in G20 (inch per minute), else 1.
+        let span = t.span;
+        let sys = var_expr(&VarRef { kind: VarKind::Hash(4006), span });
+        let inch_caller = bin(BinOp::Sub, num(21.0, span), sys);
+        let factor = bin(BinOp::Add, bin(BinOp::Mul, inch_caller, num(24.4, span)), num(1.0, span));
+        prog.body.insert(0, block_stmt(vec![assign_item(&t, factor, span)], span));
+    }
 }
 
 fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
     let mut out: Vec<Stmt> = Vec::with_capacity(body.len());
     let mut it = body.into_iter().peekable();
     while let Some(mut s) = it.next() {
+        let mut at = m.s;
+        m.resets.apply(&crate::ir::visit::metas(&s.kind), &mut at);
+        m.meet(ctx, at);
         match &mut s.kind {
             StmtKind::Block(b) => {
                 // MSG("…") directly followed by a block holding only M0: one stop with a message.
@@ -134,20 +141,40 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                     }
                 }
                 let b = std::mem::take(b);
+                let before = m.s;
+                let skip = b.meta.skip.is_some();
                 block_pass(ctx, b, m, &mut out);
+                if skip {
+                    // A block that may be skipped: both ways meet after it.
+                    m.meet(ctx, before);
+                }
                 continue;
             }
             StmtKind::If(i) => {
+                let entry = m.s;
                 i.then_body = body_pass(ctx, std::mem::take(&mut i.then_body), m);
+                let then_end = m.s;
+                m.s = entry;
                 if let Some(e) = &mut i.else_part {
                     e.body = body_pass(ctx, std::mem::take(&mut e.body), m);
                 }
+                m.meet(ctx, then_end);
             }
-            StmtKind::While(w) => w.body = body_pass(ctx, std::mem::take(&mut w.body), m),
-            StmtKind::Loop(l) => l.body = body_pass(ctx, std::mem::take(&mut l.body), m),
-            StmtKind::For(f) => f.body = body_pass(ctx, std::mem::take(&mut f.body), m),
-            StmtKind::Repeat(r) => r.body = body_pass(ctx, std::mem::take(&mut r.body), m),
-            StmtKind::Do(d) => d.body = body_pass(ctx, std::mem::take(&mut d.body), m),
+            kind => {
+                // A loop's head holds what every pass may bring; so does its exit.
+                let entry = m.resets.loop_entry(modes::loop_body(kind), m.s, &ctx.callees);
+                m.meet(ctx, entry);
+                let entry = m.s;
+                match kind {
+                    StmtKind::While(w) => w.body = body_pass(ctx, std::mem::take(&mut w.body), m),
+                    StmtKind::Loop(l) => l.body = body_pass(ctx, std::mem::take(&mut l.body), m),
+                    StmtKind::For(f) => f.body = body_pass(ctx, std::mem::take(&mut f.body), m),
+                    StmtKind::Repeat(r) => r.body = body_pass(ctx, std::mem::take(&mut r.body), m),
+                    StmtKind::Do(d) => d.body = body_pass(ctx, std::mem::take(&mut d.body), m),
+                    StmtKind::Block(_) | StmtKind::If(_) => {}
+                }
+                m.meet(ctx, entry);
+            }
         }
         out.push(s);
     }
@@ -254,7 +281,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 "FANUC waits for motion by itself before reading position variables",
             ),
             ItemKind::Call(c) => {
-                if let Some(s) = call(ctx, *c, span, m.units.feed() == Some(FeedConv::Same), &mut kept) {
+                if let Some(s) = call(ctx, *c, span, m, &mut kept) {
                     after.push(s);
                 }
             }
@@ -307,9 +334,9 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
     for w in &words {
         if w.addr.is(b'G') {
             match const_of(&w.value) {
-                Some(90.0) => m.abs = Some(true),
-                Some(91.0) => m.abs = Some(false),
-                Some(v) => m.units.g(v),
+                Some(90.0) => m.s.abs = Some(true),
+                Some(91.0) => m.s.abs = Some(false),
+                Some(v) => m.s.units.g(v),
                 _ => {}
             }
         }
@@ -375,18 +402,30 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                 ));
             }
             b'F' => {
-                let op = match m.units.feed() {
-                    Some(FeedConv::Same) => None,
-                    Some(FeedConv::PerInch) => Some(BinOp::Div),
-                    Some(FeedConv::PerMm) => Some(BinOp::Mul),
-                    None => {
-                        let hint = "write G700 or G710 in the subprogram before its first F word";
-                        let what = "a feed after G70/G71 in a subprogram (its feed unit is the caller's)";
+                let (op, by) = match m.s.units.feed() {
+                    Feed::Static(FeedConv::Same) => (None, None),
+                    Feed::Static(FeedConv::PerInch) => (Some(BinOp::Div), None),
+                    Feed::Static(FeedConv::PerMm) => (Some(BinOp::Mul), None),
+                    Feed::Unknown => {
+                        let what = "a feed where the units (G70/G71/G700/G710) depend on the path taken or on a call";
+                        let hint = "write G700 or G710 before the F word, after the IF, loop, jump target or call";
                         return Err(unsup(ctx, "NC324", wspan, what, hint));
+                    }
+                    Feed::Caller { inch } => {
+                        let t = m.caller_feed.get_or_insert_with(|| ctx.temp(wspan)).clone();
+                        let factor = var_expr(&t);
+                        // G21: v * factor mm/min. G20: that per inch, as v / (25.4 / factor),
+                        // exact for both factors (x/x and x/1 are).
+                        if inch {
+                            (Some(BinOp::Div), Some(bin(BinOp::Div, num(25.4, wspan), factor)))
+                        } else {
+                            (Some(BinOp::Mul), Some(factor))
+                        }
                     }
                 };
                 if let (Some(op), WordValue::Expr(e)) = (op, &w.value) {
-                    w.value = WordValue::Expr(bin(op, e.clone(), num(25.4, wspan)));
+                    let by = by.unwrap_or_else(|| num(25.4, wspan));
+                    w.value = WordValue::Expr(bin(op, e.clone(), by));
                 }
             }
             b'T' => {
@@ -411,18 +450,18 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
     }
     let (mut pre, mut post) = (vec![], vec![]);
     if let Some(abs) = explicit {
-        if mixed || (plain_axis && m.abs != Some(abs)) {
+        if mixed || (plain_axis && m.s.abs != Some(abs)) {
             let hint = "put the AC()/IC() words in a block of their own";
             return Err(unsup(ctx, "NC313", span, "a block mixing absolute and incremental axis words", hint));
         }
-        if m.abs != Some(abs) {
+        if m.s.abs != Some(abs) {
             // Switch for this block, then back to the mode in force. The block's own G90/G91
-            // words are in `m.abs` already (the restore block sets that mode) and must go:
+            // words are in `m.s.abs` already (the restore block sets that mode) and must go:
             // FANUC takes the last G code of a group in a block, so they would undo the switch.
             out.retain(|w| !(w.addr.is(b'G') && matches!(const_of(&w.value), Some(v) if v == 90.0 || v == 91.0)));
             let g = |v: f64| Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span };
             out.insert(0, g(if abs { 90.0 } else { 91.0 }));
-            let restore = match m.abs {
+            let restore = match m.s.abs {
                 Some(prev) => WordValue::Expr(num(if prev { 90.0 } else { 91.0 }, span)),
                 None => {
                     let t = ctx.temp(span);
@@ -444,8 +483,9 @@ fn unsup(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str) 
 
 /// A call: a translated subprogram becomes `G65 P<o> <letters>`; simulation-only calls are
 /// dropped; anything else is unsupported. Returns a marker statement when unsupported.
-/// `units_ok`: lengths and feeds are in one unit here (what a subprogram assumes it starts in).
-fn call(ctx: &mut Ctx, c: Call, span: Span, units_ok: bool, kept: &mut Vec<Item>) -> Option<Stmt> {
+/// A subprogram assumes it starts with lengths and feeds in one unit: declined where they
+/// differ. The modes `m` continue in what the callee leaves of them ([`Effect`]).
+fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>) -> Option<Stmt> {
     let name = match &c.target {
         CallTarget::Name(n) => n.to_ascii_uppercase(),
         _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
@@ -483,8 +523,12 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, units_ok: bool, kept: &mut Vec<Item>
         let hint = "pass the value through an R parameter instead (R parameters map to common variables)";
         return ctx.unsupported("NC304", p.span, &what, hint);
     }
-    if !units_ok {
-        let what = format!("call of {name} while lengths and feeds are in different units (G70/G71)");
+    if !m.s.units.one_unit() {
+        let what = if matches!(m.s.units, UnitState::Unknown) {
+            format!("call of {name} where the units (G70/G71/G700/G710) depend on the path taken or on a call")
+        } else {
+            format!("call of {name} while lengths and feeds are in different units (G70/G71)")
+        };
         let hint = "set both units with G700 or G710 before the call (a subprogram starts in its caller's units)";
         return ctx.unsupported("NC324", span, &what, hint);
     }
@@ -506,8 +550,14 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, units_ok: bool, kept: &mut Vec<Item>
     }
     let g65 = Call { kind: CallKind::G65, target: CallTarget::Number(callee.number), args, repeat };
     kept.push(item(ItemKind::Call(Box::new(g65)), span));
+    // The modes as the callee leaves them (G90/G91 read from #4003 by an AC()/IC() word
+    // until the caller's next G90/G91).
+    let before = m.s;
+    m.s.call(&callee.effect);
+    ctx.modes_inexact |= m.s.units != before.units;
     None
 }
 
+mod save;
 #[cfg(test)]
 mod tests;

@@ -222,6 +222,10 @@ fn segment(
     let sub_refs: Vec<&Unit> = subs.iter().collect();
     let t = translate::to_fanuc(&unit, &sub_refs, opts);
     drop(unit);
+    // The runs take the units the scan follows in text order.
+    if !t.modes_exact {
+        return Err(Fallback::NotStraight("units or G90/G91 that depend on the path taken or on a call".into()));
+    }
     // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
     // as read from their files: only callees alignment leaves alone stream.
     if subs.iter().any(|u| translate::align_source(u, &t.symbol_map) != *u) {

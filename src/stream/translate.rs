@@ -63,6 +63,23 @@ pub fn straight(s: &Stmt) -> Result<(), String> {
     straight_block(b)
 }
 
+/// A straight block that may also stand in a run of a segmented translation: not one that
+/// may be skipped and sets G90/G91 (the mode AC()/IC() words of the skeleton read, merged
+/// both ways there; a straight stream has no such words).
+pub fn run_block(s: &Stmt) -> bool {
+    straight(s).is_ok() && !matches!(&s.kind, StmtKind::Block(b) if b.meta.skip.is_some() && sets_g(b, &[90.0, 91.0]))
+}
+
+/// Whether `b` holds one of the constant G words `codes`.
+fn sets_g(b: &Block, codes: &[f64]) -> bool {
+    b.items.iter().any(|it| match &it.kind {
+        ItemKind::Word(w) if w.addr.is(b'G') => {
+            matches!(&w.value, WordValue::Expr(e) if matches!(&e.kind, ExprKind::Num(n) if codes.contains(&n.value)))
+        }
+        _ => false,
+    })
+}
+
 /// [`straight`] of a block.
 fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
@@ -84,6 +101,11 @@ fn straight_block(b: &Block) -> Result<(), String> {
         };
         if !constant || !matches!(w.addr, Addr::Letter(_)) {
             return Err(format!("a computed or named {} word", w.addr.as_str()));
+        }
+        // Skipped or not, the units differ after it: the translator merges both ways
+        // (`passes::words::modes`), a stream follows the text.
+        if b.meta.skip.is_some() && sets_g(b, &[70.0, 71.0, 700.0, 710.0]) {
+            return Err("a block that may be skipped (/) with G70/G71/G700/G710".into());
         }
     }
     Ok(())

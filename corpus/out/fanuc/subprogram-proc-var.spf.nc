@@ -5,9 +5,13 @@ O0001 (POCKET)
 (NCTRANS: DEPTH_DONE [parameter, letter B] = #2)
 (NCTRANS: PASSES [parameter, letter C] = #3)
 (NCTRANS: SIZES [parameter, letter D] = #7)
+(NCTRANS: TEMPORARIES #4 #5)
+#4=#4001
+#5=#4003
 ( PROC with value, reference [VAR] and array parameters, SAVE attribute)
 G91 G01 X#1 F100.
 #2=#3*#7
 G90
+G#4 G#5
 M99
 %

@@ -145,7 +145,7 @@ fn feeds_follow_their_own_unit() {
 }
 
 #[test]
-fn a_subprogram_feed_is_declined_where_its_unit_is_the_callers() {
+fn a_subprogram_feed_after_g70_g71_is_converted_from_the_callers_unit() {
     let g = |v: f64| block(vec![word_item(b'G', n(v))]);
     let f = || block(vec![word_item(b'F', n(500.0))]);
     let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
@@ -154,15 +154,36 @@ fn a_subprogram_feed_is_declined_where_its_unit_is_the_callers() {
     // After G700/G710 in the subprogram both are known.
     assert_eq!(translate(vec![g(700.0), g(71.0), f()], true, &mut ctx), ["G20", "G21", "F[500*25.4]"]);
     assert!(ctx.diags.is_empty());
-    // G70 first: the feed unit is the caller's.
-    translate(vec![g(70.0), f()], true, &mut ctx);
-    assert_eq!(ctx.diags.len(), 1);
-    assert_eq!(ctx.diags[0].code, "NC324");
+    // G71 first: lengths metric, feeds the caller's, whose factor is saved on entry.
+    let out = translate(vec![g(71.0), f(), g(70.0), f()], true, &mut ctx);
+    assert_eq!(out, ["assign", "G21", "F[500*#]", "G20", "F[500/[25.4/#]]"]);
+    assert!(ctx.diags.is_empty());
+    // One saved factor per subprogram, and none where no F needs it.
+    assert_eq!(translate(vec![g(70.0), g(71.0)], true, &mut ctx), ["G20", "G21"]);
+    // In a main program G71 alone is metric lengths and feeds.
+    assert_eq!(translate(vec![g(71.0), f()], false, &mut ctx), ["G21", "F500"]);
+    assert!(ctx.diags.is_empty());
+}
+
+/// The saved factor is 25.4 when the caller runs in G20 and exactly 1 in G21; with it the
+/// F words give the caller's feed, to the bit, in the subprogram's length unit.
+#[test]
+fn the_callers_feed_factor_is_exact() {
+    for (g4006, factor) in [(20.0f64, 25.4f64), (21.0, 1.0)] {
+        assert_eq!((21.0 - g4006) * 24.4 + 1.0, factor);
+        for v in [500.0f64, 0.1, 1234.567, 20.0] {
+            let per_mm = v * factor;
+            let per_inch = v / (25.4 / factor);
+            let want_inch = if g4006 == 20.0 { v } else { v / 25.4 };
+            assert_eq!(per_inch, want_inch, "{v} {g4006}");
+            assert_eq!(per_mm, if g4006 == 20.0 { v * 25.4 } else { v });
+        }
+    }
 }
 
 #[test]
 fn a_call_is_declined_while_lengths_and_feeds_differ() {
-    let callee = Callee { number: 9001, params: vec![] };
+    let callee = Callee { number: 9001, ..Callee::default() };
     let call = || {
         let c = Call { kind: CallKind::Named, target: CallTarget::Name("SUB".into()), args: vec![], repeat: None };
         block(vec![item(ItemKind::Call(Box::new(c)), sp())])

@@ -9,7 +9,7 @@ use crate::ir::{
 use crate::passes::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
-use crate::stream::translate::{straight, Fallback};
+use crate::stream::translate::{run_block, Fallback};
 use crate::stream::{Index, PlainWord, WordsSink};
 use std::path::Path;
 
@@ -296,7 +296,7 @@ impl WordsSink for Skel {
         if let StmtKind::Block(b) = &s.kind {
             if after_msg && crate::passes::words::is_lone_m0(b) {
                 self.forced.push(b.meta.span.lo);
-            } else if straight(s).is_ok() && !kept(&self.keep, &b.meta) {
+            } else if run_block(s) && !kept(&self.keep, &b.meta) {
                 self.run_block(&b.meta);
                 let mut t = self.touched;
                 self.modes.items(&b.items, &mut t);

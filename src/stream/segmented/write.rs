@@ -6,7 +6,7 @@ use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
 use crate::passes::words::units::Units;
 use crate::read::RawBlock;
-use crate::stream::translate::{fast, straight, units_block};
+use crate::stream::translate::{fast, run_block, units_block};
 use crate::stream::{PlainWord, WordsSink, WRITE_BYTES};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
@@ -188,7 +188,7 @@ impl WordsSink for Writer<'_> {
             return;
         }
         let run = match &s.kind {
-            StmtKind::Block(b) => straight(s).is_ok() && !kept(self.keep, &b.meta) && !self.forced(b.meta.span.lo),
+            StmtKind::Block(b) => run_block(s) && !kept(self.keep, &b.meta) && !self.forced(b.meta.span.lo),
             _ => false,
         };
         if !run {

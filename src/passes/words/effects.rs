@@ -1,0 +1,240 @@
+//! What a Siemens subprogram changes of the modes its caller runs in, for the words pass
+//! of the caller (which follows G90/G91 and the units in textual order, and so must know
+//! what they are after a call) and of the subprogram itself (a `PROC … SAVE` subprogram
+//! restores its caller's modal G functions on return; its FANUC translation saves and
+//! restores the groups it sets, read from the `#4001..` modal variables).
+
+use super::units::Units;
+use crate::ir::{CallTarget, ItemKind, Program, Stmt, StmtKind, Word, WordValue};
+use std::collections::BTreeMap;
+
+/// The FANUC modal groups a subprogram can set that its translation restores (SAVE), as
+/// bits, with the system variable that reads each and the Siemens G codes that set it.
+pub const GROUPS: &[(u16, u32, &[u32])] = &[
+    (1 << 0, 4001, &[0, 1, 2, 3]),
+    (1 << 1, 4002, &[17, 18, 19]),
+    (1 << 2, 4003, &[90, 91]),
+    (1 << 3, 4005, &[94, 95]),
+    (1 << 4, 4006, &[70, 71, 700, 710]),
+    (1 << 5, 4007, &[40, 41, 42]),
+    (1 << 6, 4014, &[54, 55, 56, 57]),
+    (1 << 7, 4015, &[64]),
+];
+/// The bit of G90/G91.
+pub const ABS: u16 = 1 << 2;
+
+/// What the units are after a call, given the caller's (one unit: calls are declined
+/// where lengths and feeds differ).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum UnitEffect {
+    /// Unchanged: no unit word runs (or SAVE restores them).
+    #[default]
+    None,
+    /// G70/G71 last, no G700/G710: lengths in this unit (`true`: inch), feeds the caller's.
+    Lengths(bool),
+    /// Both set.
+    Both(Units),
+    /// Depends on the path taken (unit words under a condition, jumps, early returns).
+    Unknown,
+}
+
+/// A subprogram's effects, its callees' included.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Effect {
+    /// The groups it (or a subprogram it calls) sets, SAVE or not.
+    pub sets: u16,
+    /// The units its caller continues in.
+    pub units: UnitEffect,
+    /// `PROC … SAVE`: the caller continues in the modes it called in.
+    pub save: bool,
+}
+
+impl Effect {
+    /// The groups the caller finds changed after the call.
+    pub fn leaves(&self) -> u16 {
+        if self.save {
+            0
+        } else {
+            self.sets
+        }
+    }
+}
+
+/// The effects of `progs` (by upper-case name), followed through calls among them to a
+/// fixed point (each pass can only add groups or move a unit effect towards `Unknown`).
+pub fn effects(progs: &[(String, &Program)]) -> BTreeMap<String, Effect> {
+    let mut map: BTreeMap<String, Effect> = progs.iter().map(|(n, _)| (n.clone(), Effect::default())).collect();
+    for _ in 0..=progs.len() {
+        let mut changed = false;
+        for (name, p) in progs {
+            let e = effect_of(p, &|n| map.get(n).copied());
+            if map.get(name) != Some(&e) {
+                map.insert(name.clone(), e);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    map
+}
+
+fn const_g(w: &Word) -> Option<u32> {
+    match &w.value {
+        WordValue::Expr(e) if w.addr.is(b'G') => match &e.kind {
+            crate::ir::ExprKind::Num(n) if n.value.fract() == 0.0 && (0.0..=1000.0).contains(&n.value) => {
+                Some(n.value as u32)
+            }
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+fn group_of(g: u32) -> u16 {
+    GROUPS.iter().find(|(_, _, gs)| gs.contains(&g)).map_or(0, |(bit, _, _)| *bit)
+}
+
+/// `p`'s effect, with its callees' from `known` (by upper-case name).
+pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect {
+    let mut sets = 0u16;
+    // Unit words and callees that change units; where they are; jumps and early returns.
+    let mut unit_words = 0usize;
+    let mut callee_units = false;
+    let mut jumps = false;
+    let mut returns = 0usize;
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                match &it.kind {
+                    ItemKind::Word(w) => {
+                        if let Some(g) = const_g(w) {
+                            sets |= group_of(g);
+                            unit_words += usize::from(Units::default().g(f64::from(g)));
+                        }
+                    }
+                    ItemKind::Call(c) => {
+                        if let CallTarget::Name(n) = &c.target {
+                            if let Some(e) = known(&n.to_ascii_uppercase()) {
+                                sets |= e.leaves();
+                                callee_units |= !e.save && e.units != UnitEffect::None;
+                            }
+                        }
+                    }
+                    ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::RepeatSection(_) => jumps = true,
+                    ItemKind::Return { .. } | ItemKind::End { .. } => returns += 1,
+                    _ => {}
+                }
+            }
+        }
+    });
+    let units = if unit_words == 0 && !callee_units {
+        UnitEffect::None
+    } else if callee_units || jumps || !linear(&p.body, returns, unit_words) {
+        UnitEffect::Unknown
+    } else {
+        fold_units(&p.body)
+    };
+    Effect { sets, units, save: p.save }
+}
+
+/// Every unit word in a top-level block that cannot be skipped, and the one return (if any)
+/// in the last statement: then every run of the subprogram passes every unit word in
+/// textual order.
+fn linear(body: &[Stmt], returns: usize, unit_words: usize) -> bool {
+    let mut top_words = 0usize;
+    for s in body {
+        if let StmtKind::Block(b) = &s.kind {
+            if b.meta.skip.is_some() {
+                continue;
+            }
+            for it in &b.items {
+                if let ItemKind::Word(w) = &it.kind {
+                    if let Some(g) = const_g(w) {
+                        top_words += usize::from(Units::default().g(f64::from(g)));
+                    }
+                }
+            }
+        }
+    }
+    let last_returns = body.last().is_some_and(|s| match &s.kind {
+        StmtKind::Block(b) => {
+            b.items.iter().any(|it| matches!(it.kind, ItemKind::Return { .. } | ItemKind::End { .. }))
+        }
+        _ => false,
+    });
+    top_words == unit_words && (returns == 0 || (returns == 1 && last_returns))
+}
+
+/// The units after the top-level blocks, from the caller's one unit.
+fn fold_units(body: &[Stmt]) -> UnitEffect {
+    let mut e = UnitEffect::None;
+    for s in body {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let ItemKind::Word(w) = &it.kind {
+                    if let Some(g) = const_g(w) {
+                        e = match (g, e) {
+                            (700, _) => UnitEffect::Both(Units { inch: true, inch_feed: true }),
+                            (710, _) => UnitEffect::Both(Units::default()),
+                            (70 | 71, UnitEffect::Both(mut u)) => {
+                                u.inch = g == 70;
+                                UnitEffect::Both(u)
+                            }
+                            (70 | 71, _) => UnitEffect::Lengths(g == 70),
+                            (_, e) => e,
+                        };
+                    }
+                }
+            }
+        }
+    }
+    e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dialect::{Dialect, ParseOptions};
+
+    fn effects_of(files: &[(&str, &str)]) -> BTreeMap<String, Effect> {
+        let mut db = crate::span::SourceDb::new();
+        let units: Vec<(String, crate::ir::Unit)> = files
+            .iter()
+            .map(|(name, text)| {
+                let f = db.add(*name, *text);
+                let parsed = crate::parse(&db, f, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
+                assert!(!crate::diag::has_errors(&parsed.diags), "{name}");
+                (name.to_string(), parsed.unit)
+            })
+            .collect();
+        let progs: Vec<(String, &Program)> = units.iter().map(|(n, u)| (n.clone(), &u.programs[0])).collect();
+        effects(&progs)
+    }
+
+    #[test]
+    fn what_a_subprogram_leaves_its_caller() {
+        let e = effects_of(&[
+            ("PLAIN", "PROC PLAIN\nG1 X1 F100\nM17\n"),
+            ("LEN", "PROC LEN\nG70 X1\nG0 Y1\nM17\n"),
+            ("BOTH", "PROC BOTH\nG70\nG700 X1\nG71\nM17\n"),
+            ("COND", "PROC COND\nIF R1>1\nG70\nENDIF\nM17\n"),
+            ("EARLY", "PROC EARLY\nIF R1>1 GOTOF DONE\nG70\nDONE: M17\n"),
+            ("SKIP", "PROC SKIP\n/G70\nM17\n"),
+            ("OUTER", "PROC OUTER\nLEN\nM17\n"),
+            ("SAVED", "PROC SAVED SAVE\nG91 G70 G18\nLEN\nM17\n"),
+        ]);
+        assert_eq!(e["PLAIN"], Effect { sets: 1, ..Effect::default() });
+        assert_eq!(e["LEN"].units, UnitEffect::Lengths(true));
+        assert_eq!(e["BOTH"].units, UnitEffect::Both(Units { inch: false, inch_feed: true }));
+        for unknown in ["COND", "EARLY", "SKIP", "OUTER"] {
+            assert_eq!(e[unknown].units, UnitEffect::Unknown, "{unknown}");
+        }
+        // A SAVE subprogram sets G90/G91, units, plane, motion (its callee's too) and leaves none.
+        let saved = e["SAVED"];
+        assert!(saved.save && saved.leaves() == 0);
+        assert_eq!(saved.sets & (ABS | 1 << 4 | 1 << 1 | 1), ABS | 1 << 4 | 1 << 1 | 1);
+        assert_eq!(e["OUTER"].leaves() & 1, 1, "the callee's G0 reaches OUTER's caller");
+    }
+}

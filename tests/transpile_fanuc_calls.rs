@@ -1,0 +1,102 @@
+//! Sinumerik → FANUC translation of main programs with the subprograms they call, found
+//! beside them: every folder of `corpus/in/sinumerik-calls/` holds main programs (`.MPF`)
+//! and their subprograms (`.SPF`). Each main is translated by the command line as a user
+//! runs it, whole and `--stream`, and verified; outputs are committed under
+//! `corpus/out/fanuc-calls/<folder>/` (`NCTRANS_BLESS=1` rewrites them). Mains listed in
+//! [`REFUSED`] must be refused with their code. The modes a subprogram changes or restores
+//! (SAVE) are what these programs exercise.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Mains that cannot be translated, with the diagnostic that says why.
+const REFUSED: &[(&str, &str)] = &[("units-after-call/UNKNOWN.MPF", "NC324")];
+
+fn nctrans(dir: &Path, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(dir).output().expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn mains() -> Vec<(PathBuf, String)> {
+    let mut v = Vec::new();
+    let Ok(rd) = std::fs::read_dir(root().join("corpus/in/sinumerik-calls")) else { return v };
+    let mut dirs: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.is_dir()).collect();
+    dirs.sort();
+    for d in dirs {
+        let mut files: Vec<String> = std::fs::read_dir(&d)
+            .map(|r| r.filter_map(|e| e.ok()?.file_name().into_string().ok()).collect())
+            .unwrap_or_default();
+        files.sort();
+        v.extend(files.into_iter().filter(|f| f.ends_with(".MPF")).map(|f| (d.clone(), f)));
+    }
+    v
+}
+
+#[test]
+fn mains_with_subprograms_translate_and_verify() {
+    let bless = std::env::var_os("NCTRANS_BLESS").is_some_and(|v| v != "0");
+    let mut failures = Vec::new();
+    let all = mains();
+    assert!(all.len() >= 6, "corpus/in/sinumerik-calls holds {} mains", all.len());
+    for (dir, main) in all {
+        let case = dir.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string();
+        let key = format!("{case}/{main}");
+        let (code, out, err) = nctrans(&dir, &["--to", "fanuc", &main]);
+        // Streamed or not, the user gets the same program and the same verdict.
+        let (scode, sout, serr) = nctrans(&dir, &["--to", "fanuc", "--stream", &main]);
+        if (scode, &sout) != (code, &out) || serr.lines().last() != err.lines().last() {
+            failures.push(format!("{key}: --stream differs:\n{sout}\n{serr}\nvs\n{out}\n{err}"));
+        }
+        if let Some((_, want)) = REFUSED.iter().find(|(k, _)| *k == key) {
+            if code == 0 || !err.contains(&format!("error[{want}]")) {
+                failures.push(format!("{key}: should be refused with {want}:\n{err}"));
+            }
+            continue;
+        }
+        if code != 0 || !err.contains("equivalent (") {
+            failures.push(format!("{key}: not translated and verified:\n{err}"));
+            continue;
+        }
+        let golden = root().join("corpus/out/fanuc-calls").join(&case).join(format!("{main}.nc"));
+        if bless {
+            let _ = std::fs::create_dir_all(golden.parent().unwrap_or(&root()));
+            let _ = std::fs::write(&golden, &out);
+        } else if std::fs::read_to_string(&golden).ok().as_deref() != Some(out.as_str()) {
+            failures.push(format!("{key}: differs from {} (NCTRANS_BLESS=1 rewrites it)", golden.display()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The restore of a SAVE subprogram's modes is what makes its caller right: without it,
+/// `nctrans check` finds the divergence (the checker runs the Siemens SAVE semantics).
+#[test]
+fn a_save_subprogram_without_its_restore_diverges() {
+    let dir = root().join("corpus/in/sinumerik-calls/save-restores-modes");
+    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "MAIN.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    let tmp = std::env::temp_dir().join(format!("nctrans-save-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).expect("temp dir");
+    for f in ["MAIN.MPF", "POCKET_SAVE.SPF"] {
+        std::fs::copy(dir.join(f), tmp.join(f)).expect("copy");
+    }
+    let check = |text: &str| {
+        std::fs::write(tmp.join("OUT.nc"), text).expect("write");
+        nctrans(&tmp, &["check", "MAIN.MPF", "OUT.nc"])
+    };
+    let (ok, _, ok_err) = check(&out);
+    assert_eq!(ok, 0, "the translation itself checks equivalent: {ok_err}");
+    let broken: String = out.lines().filter(|l| !l.starts_with("G#")).map(|l| format!("{l}\n")).collect();
+    assert_ne!(broken, out, "the translation restores with G#t words");
+    let (bad, _, bad_err) = check(&broken);
+    assert_ne!(bad, 0, "without the restore the check must fail: {bad_err}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}
