@@ -41,9 +41,15 @@
 //!   writer writes it as `; NCTRANS SEGMENT k` alone on its line (a skeleton whose text
 //!   holds the marker anywhere else is declined).
 //!
+//! Calls by a constant number (`M98 P`, `G65 P`) stay in the skeleton through
+//! [`to_sinumerik_with_subs`]: the file's other programs are kept whole beside it and the
+//! callees beside the file are loaded whole, and all are translated together as the whole
+//! job is (see `subs`); the subprogram files are returned for the caller to write.
+//!
 //! Any diagnostic of the source, or of the skeleton or a block alone other than the
 //! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
-//! words pass gives them), declines, as do several programs, `nctrans: set` lines with CR
+//! words pass gives them), declines, as do several programs (but through
+//! [`to_sinumerik_with_subs`]), `nctrans: set` lines with CR
 //! line ends and N values above 2^24. The source is read once before verification: ONE
 //! scan (`one`) builds the skeleton (and collects the N values jumps name) and translates
 //! each run as it reaches it into a spill (`segmented::spill`: memory, then a temporary
