@@ -277,6 +277,31 @@ fn declined_programs_give_the_whole_paths_output() {
         assert_eq!(library(&main, &o).is_ok(), streams, "{what}");
         same_three_ways(&dir, "p.nc");
     }
+    // A source with a byte-order mark or in a legacy encoding: the command line takes the
+    // calls only from UTF-8 without a mark (its subprogram writer's case).
+    for (what, bytes) in [
+        (
+            "bom",
+            [
+                b"\xEF\xBB\xBF".as_slice(),
+                format!("O1\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG0 X1.\nM99\n").as_bytes(),
+            ]
+            .concat(),
+        ),
+        (
+            "latin1",
+            [
+                format!("O1 (").as_bytes(),
+                b"\xB0C".as_slice(),
+                format!(")\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG0 X1.\nM99\n").as_bytes(),
+            ]
+            .concat(),
+        ),
+    ] {
+        let dir = scratch(&format!("declined-{what}"));
+        std::fs::write(dir.join("p.nc"), bytes).expect("write");
+        same_three_ways(&dir, "p.nc");
+    }
     // A callee beside the file with a reading diagnostic: declined by the command line's
     // loader (`callees_beside`), which the whole path shows.
     let dir = scratch("declined-callee-warning");
@@ -424,4 +449,38 @@ fn with_runs(text: &str, r: &mut Rng) -> Option<String> {
     }
     out.push_str(&decoded[from..]);
     Some(out)
+}
+
+/// The command line takes the segmented route for a large main program (over the 8 MB at
+/// which it streams without `--stream`) calling a subprogram of the same file and one beside
+/// it: no "read whole" note, and the files the library gives (seconds in a debug build).
+#[test]
+fn cli_streams_a_large_main_program_with_calls() {
+    let dir = scratch("large");
+    let mut r = Rng(31);
+    let mut text = String::from("%\nO1000\n#100=5.\nG21 G90 G0 X0. Y0.\n");
+    while text.len() < 4_300_000 {
+        text.push_str(&cam(&mut r, 1000));
+    }
+    text.push_str("M98 P9010\n");
+    while text.len() < 8_600_000 {
+        text.push_str(&cam(&mut r, 1000));
+    }
+    text.push_str("G65 P9020 A1.5 B2.\nM30\n");
+    text.push_str(SUBS[0].1);
+    text.push_str(SUBS[1].1);
+    text.push_str("%\n");
+    std::fs::write(dir.join("O9030.nc"), format!("%\n{}%\n", SUBS[2].1)).expect("write");
+    let main = dir.join("big.nc");
+    std::fs::write(&main, &text).expect("write");
+    let run = cli(&dir, &["--to", "sinumerik", "big.nc", "-o", "out/"]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(!run.stderr.contains("read whole") && run.stderr.contains("equivalent"), "{}", run.stderr);
+    let o = Options { main_name: "BIG".into(), ..Options::default() };
+    let (lib, subs) = library(&main, &o).unwrap_or_else(|e| panic!("declined: {e:?}"));
+    assert!(std::fs::read(dir.join("out/BIG.MPF")).expect("main") == lib);
+    assert_eq!(subs.len(), 3);
+    for f in subs {
+        assert_eq!(std::fs::read_to_string(dir.join("out").join(&f.name)).expect("sub"), f.text);
+    }
 }
