@@ -291,7 +291,7 @@ fn declined_programs_give_the_whole_paths_output() {
         (
             "latin1",
             [
-                format!("O1 (").as_bytes(),
+                b"O1 (".as_slice(),
                 b"\xB0C".as_slice(),
                 format!(")\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG0 X1.\nM99\n").as_bytes(),
             ]
