@@ -259,6 +259,11 @@ fn declined_programs_give_the_whole_paths_output() {
         ("g66", format!("O1\n#100=1.\n{run}G66 P9030\n{run}G67\nM30\nO9030\nG0 X1.\nM99\n"), false),
         ("computed", format!("O1\n#100=9030\n{run}M98 P#100\n{run}M30\nO9030\nG0 X1.\nM99\n"), false),
         ("missing", format!("O1\n#100=1.\n{run}M98 P9031\n{run}M30\n"), false),
+        (
+            "m99 p in sub",
+            format!("O1\n#100=1.\nM98 P9030\nN10 G0 X1.\n{run}N20 G0 X2.\n{run}M30\nO9030\nM99 P20\n"),
+            false,
+        ),
         ("m99 in main", format!("O1\n#100=1.\n{run}M98 P9030\n{run}M99\nO9030\nG0 X1.\nM99\n"), false),
         ("g66 in sub", format!("O1\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG66 P9031\nG67\nM99\n"), false),
         (
@@ -302,6 +307,15 @@ fn declined_programs_give_the_whole_paths_output() {
         std::fs::write(dir.join("p.nc"), bytes).expect("write");
         same_three_ways(&dir, "p.nc");
     }
+    // `M99 P<n>` in a callee beside the file: its caller's return CASE lists every N of the
+    // main program, run blocks' too.
+    let dir = scratch("declined-m99p-beside");
+    let p = dir.join("p.nc");
+    std::fs::write(&p, format!("O1\n#100=1.\nG0 X0.\nM98 P9030\nN10 G0 X1.\n{run}N20 G0 X2.\n{run}M30\n"))
+        .expect("write");
+    std::fs::write(dir.join("O9030.nc"), "O9030\nG0 Y5.\nM99 P20\n").expect("write");
+    assert!(library(&p, &Options::default()).is_err(), "M99 P beside");
+    same_three_ways(&dir, "p.nc");
     // A callee beside the file with a reading diagnostic: declined by the command line's
     // loader (`callees_beside`), which the whole path shows.
     let dir = scratch("declined-callee-warning");

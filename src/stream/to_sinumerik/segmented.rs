@@ -510,6 +510,7 @@ fn segment(
         Some(load) => load(&unit)?,
         None => Vec::new(),
     };
+    subs::callees_ok(&callees)?;
     let units: Vec<&Unit> = std::iter::once(&unit).chain(&callees).collect();
     let tr = ts::translate(&units, opts, eol);
     if !tr.diags.iter().all(|d| kept_warning(d) && d.labels.iter().all(|l| l.file == 0)) {

@@ -15,7 +15,7 @@
 //! each statement as the whole-file reader builds it (spans into the file included), which
 //! re-parsing a tail would not (offsets, the `%` line, header lines).
 //! Declined: G66/G67 and computed call targets anywhere, M99 in the main program (as
-//! before), `M99 P<n>` in a subprogram (see `sub_stmt`), a callee not found or with any diagnostic (the caller's `LoadCallees`), a
+//! before), `M99 P<n>` in a subprogram (see `declines`), a callee not found or with any diagnostic (the caller's `LoadCallees`), a
 //! diagnostic on a callee file, and a marker comment in a subprogram's translation.
 
 use super::Skel;
@@ -72,36 +72,49 @@ pub(super) fn split_files(files: &[OutFile], calls: bool) -> Result<(&OutFile, V
     Ok((f, rest.to_vec()))
 }
 
+/// Why a subprogram's statements decline (`None`: they do not): a call the skeleton would
+/// not keep, and `M99 P<n>`. A caller of a program with `M99 P<n>` gets a CASE over every N
+/// number it has (`calls::lower`), run blocks' included, which the skeleton does not have.
+fn declines(body: &[Stmt]) -> Option<&'static str> {
+    let mut why = None;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        let StmtKind::Block(b) = &s.kind else { return };
+        for it in &b.items {
+            let then = match &it.kind {
+                ItemKind::IfThen { then, .. } => Some(&**then),
+                _ => None,
+            };
+            for it in std::iter::once(it).chain(then) {
+                why = why.or(match &it.kind {
+                    ItemKind::Call(c) if !plain_call(c) => Some("a modal or computed call"),
+                    ItemKind::ModalCallOff => Some("a modal or computed call"),
+                    ItemKind::Return { to: Some(_) } => Some("M99 P in a subprogram"),
+                    _ => None,
+                });
+            }
+        }
+    });
+    why
+}
+
+/// Declines callees (loaded beside the file) as [`Skel::sub_stmt`] declines the file's own
+/// subprograms.
+pub(super) fn callees_ok(units: &[Unit]) -> Result<(), Fallback> {
+    match units.iter().flat_map(|u| &u.programs).find_map(|p| declines(&p.body)) {
+        Some(why) => Err(Fallback::NotStraight(why.into())),
+        None => Ok(()),
+    }
+}
+
 impl Skel {
     /// A statement of a program after the main one: kept whole (the runs are the main
-    /// program's only), declined with a call the skeleton would not keep.
+    /// program's only), declined as [`declines`] says.
     pub(super) fn sub_stmt(&mut self, prog: usize, s: &Stmt) {
         if !self.calls {
             return self.decline("more than one program");
         }
         self.close_run();
-        let mut why = None;
-        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-            let StmtKind::Block(b) = &s.kind else { return };
-            for it in &b.items {
-                let then = match &it.kind {
-                    ItemKind::IfThen { then, .. } => Some(&**then),
-                    _ => None,
-                };
-                for it in std::iter::once(it).chain(then) {
-                    match &it.kind {
-                        ItemKind::Call(c) if !plain_call(c) => why = why.or(Some("a modal or computed call")),
-                        ItemKind::ModalCallOff => why = why.or(Some("a modal or computed call")),
-                        // Its translation returns the target through a VAR parameter into a
-                        // CASE of the caller, which the streamed Siemens run does not follow
-                        // as the whole one does (the verdicts differ).
-                        ItemKind::Return { to: Some(_) } => why = why.or(Some("M99 P in a subprogram")),
-                        _ => {}
-                    }
-                }
-            }
-        });
-        if let Some(w) = why {
+        if let Some(w) = declines(std::slice::from_ref(s)) {
             return self.decline(w);
         }
         let k = prog - 1;
