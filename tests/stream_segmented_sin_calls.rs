@@ -1,7 +1,8 @@
 //! Segmented streaming (FANUC → Sinumerik) of main programs that call subprograms
 //! (`segmented::to_sinumerik_with_subs`, and the command line's `--stream`): subprograms
 //! after the main program's M30 in the same file and in files beside it (`O9030.nc`), called
-//! by `M98 P` and `G65 P` with arguments, one calling another, common variables shared. The
+//! by `M98 P` and `G65 P` with arguments and `G66 P`/`G67` around CAM runs, one calling
+//! another, common variables shared. The
 //! command line writes what the whole path writes in all three output modes (stdout with
 //! separator lines, `-o FILE` with the subprograms beside it, `-o DIR/`), byte for byte,
 //! with the same stderr and exit code; declined programs too. The streamed verification
@@ -57,17 +58,19 @@ fn cam(r: &mut Rng, n: usize) -> String {
 }
 
 /// The subprograms the generated programs call: number, text (without `%` lines).
-const SUBS: [(u32, &str); 4] = [
+const SUBS: [(u32, &str); 5] = [
     (9010, "O9010 (TOOL CHANGE)\n#102=#100+1\nG0 Z50.\nM98 P9030\nM99\n"),
     (9020, "O9020 (POCKET)\nG1 X#1 Y#2 F300.\n#100=#100+#1\nIF[#2GT5.]GOTO10\nG1 Z-#2\nN10 G0 Z5.\nM99\n"),
     (9030, "O9030\nG0 X#100 Y0.\nM99\n"),
     (9040, "O9040\n#1=0\nWHILE[#1LT3]DO1\nG1 X#1 Y#100\n#1=#1+1\nEND1\nM99\n"),
+    (9050, "O9050 (DRILL AFTER EACH MOVE)\nG1 Z#26 F100.\nG0 Z#18\nM99\n"),
 ];
 
 /// A generated main program: CAM runs around calls of 1-3 subprograms; the callees (and
 /// what they call) after M30 in the same file or as `O<n>.nc` beside it.
 fn generated(r: &mut Rng, dir: &Path, eol: &str) -> PathBuf {
-    let calls = ["M98 P9010", "G65 P9020 A1.5 B#101", "M98 P9030 L2", "G65 P9040", "G65 P9020 A2. B7."];
+    let calls =
+        ["M98 P9010", "G65 P9020 A1.5 B#101", "M98 P9030 L2", "G65 P9040", "G65 P9020 A2. B7.", "G66 P9050 R2. Z-1."];
     let mut text = String::from("%\nO1000 (CAM)\n#100=5.\n#101=2.\nG21 G17 G90 G94\nG0 X0. Y0. Z5.\nG1 Z-1. F500.\n");
     let mut want = Vec::new();
     for _ in 0..1 + r.below(3) {
@@ -75,6 +78,13 @@ fn generated(r: &mut Rng, dir: &Path, eol: &str) -> PathBuf {
         text.push_str(&cam(r, n));
         let c = calls[r.index(calls.len())];
         text.push_str(c);
+        if c.starts_with("G66") {
+            // A modal call over a CAM run: the macro runs after each of its moves.
+            let n = 5 + r.below(30) as usize;
+            text.push('\n');
+            text.push_str(&cam(r, n));
+            text.push_str("G67");
+        }
         text.push_str(if r.chance(30) { "\n#101=#100*2\n" } else { "\n" });
         let n: u32 = c.split('P').nth(1).and_then(|p| p[..4].parse().ok()).expect("P");
         want.push(n);
@@ -256,7 +266,8 @@ fn declined_programs_give_the_whole_paths_output() {
     let mut r = Rng(5);
     let run = cam(&mut r, 40);
     let cases = [
-        ("g66", format!("O1\n#100=1.\n{run}G66 P9030\n{run}G67\nM30\nO9030\nG0 X1.\nM99\n"), false),
+        ("g66 computed", format!("O1\n#100=9030\n{run}G66 P#100\n{run}G67\nM30\nO9030\nG0 X1.\nM99\n"), false),
+        ("g66 m98 both", format!("O1\n#100=1.\n{run}G66 P9030\n{run}G67\nM98 P9030\nM30\nO9030\nG0 X1.\nM99\n"), false),
         ("computed", format!("O1\n#100=9030\n{run}M98 P#100\n{run}M30\nO9030\nG0 X1.\nM99\n"), false),
         ("missing", format!("O1\n#100=1.\n{run}M98 P9031\n{run}M30\n"), false),
         (
@@ -265,7 +276,13 @@ fn declined_programs_give_the_whole_paths_output() {
             false,
         ),
         ("m99 in main", format!("O1\n#100=1.\n{run}M98 P9030\n{run}M99\nO9030\nG0 X1.\nM99\n"), false),
-        ("g66 in sub", format!("O1\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG66 P9031\nG67\nM99\n"), false),
+        (
+            "g66 in sub",
+            format!(
+                "O1\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG66 P9031 X1.\nG0 X1.\nG67\nM99\nO9031\nG0 Y#24\nM99\n"
+            ),
+            true,
+        ),
         (
             "marker in sub",
             format!("O1\n#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG0 X1. (NCTRANS SEGMENT 0)\nM99\n"),

@@ -20,7 +20,7 @@
 //!   them out when the first finds one), so `gotos`/`vacancy` resolve every jump to the
 //!   same block, in the same direction, with the same `LBL_n_k` count (every block of a
 //!   named N value is in the skeleton). Computed jumps (`GOTO#1`, every N a target),
-//!   calls (M98, G65, G66/G67), M99, G10 and writes of work offsets (`words` re-selects
+//!   calls (M98, G65, G66/G67; but see `subs`), M99, G10 and writes of work offsets (`words` re-selects
 //!   the G54.. in force at that point of the text, which may lie in a run) are declined;
 //! - the arc mode (`words::lower`, G2/G3 last makes `R` a `CR=`) is ONE flag the words
 //!   pass carries over every block of the program in text order, nested bodies included,
@@ -159,6 +159,7 @@ fn solid(s: &Stmt) -> bool {
 fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
     match &it.kind {
         ItemKind::Call(c) if calls && subs::plain_call(c) => None,
+        ItemKind::ModalCallOff if calls => None,
         ItemKind::Call(_) | ItemKind::ModalCallOff => Some("a call of another program"),
         ItemKind::Return { .. } => Some("M99"),
         ItemKind::ParamWrite(_) => Some("G10"),

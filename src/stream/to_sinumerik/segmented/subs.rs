@@ -1,5 +1,5 @@
 //! Segmented FANUC → Sinumerik translation of a main program that calls subprograms
-//! (`M98 P9010`, `G65 P9020 A1.`): the calls stay in the skeleton, the programs after the
+//! (`M98 P9010`, `G65 P9020 A1.`, `G66 P9050 R2.`): the calls stay in the skeleton, the programs after the
 //! main one in the same file are read whole (statement by statement from the same scan),
 //! the callees beside the file are loaded whole by the caller, and the skeleton is
 //! translated with all of them as `translate_sinumerik::translate` translates the whole job.
@@ -14,8 +14,12 @@
 //! file are taken from the scan and not re-parsed from a tail of the text: the scan gives
 //! each statement as the whole-file reader builds it (spans into the file included), which
 //! re-parsing a tail would not (offsets, the `%` line, header lines).
-//! Declined: G66/G67 and computed call targets anywhere, M99 in the main program (as
-//! before), `M99 P<n>` in a subprogram (see `declines`), a callee not found or with any diagnostic (the caller's `LoadCallees`), a
+//! A modal call (`G66 P<n>` … `G67`) is kept too: both become `MCALL` lines at their own
+//! blocks (`calls::lower`), the vacancy dataflow takes the G66 block as the call site, and
+//! the moves of a run under it are translated as any others; that the macro runs after each
+//! of them is the evaluators' business, the same in the whole and the streamed runs.
+//! Declined: computed call targets anywhere, M99 in the main program (as before),
+//! `M99 P<n>` in a subprogram (see `declines`), a callee not found or with any diagnostic (the caller's `LoadCallees`), a
 //! diagnostic on a callee file, and a marker comment in a subprogram's translation.
 
 use super::Skel;
@@ -34,9 +38,9 @@ use std::path::Path;
 /// decline.
 pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallback>;
 
-/// A call the skeleton keeps: `M98 P<n>` or `G65 P<n> …` (not modal, not computed).
+/// A call the skeleton keeps: `M98 P<n>`, `G65 P<n> …` or `G66 P<n> …` (not computed).
 pub(super) fn plain_call(c: &Call) -> bool {
-    matches!(c.kind, CallKind::M98 | CallKind::G65) && matches!(c.target, CallTarget::Number(_))
+    matches!(c.kind, CallKind::M98 | CallKind::G65 | CallKind::G66) && matches!(c.target, CallTarget::Number(_))
 }
 
 /// [`super::to_sinumerik`] of a FANUC main program that may call subprograms by a constant
@@ -87,7 +91,6 @@ fn declines(body: &[Stmt]) -> Option<&'static str> {
             for it in std::iter::once(it).chain(then) {
                 why = why.or(match &it.kind {
                     ItemKind::Call(c) if !plain_call(c) => Some("a modal or computed call"),
-                    ItemKind::ModalCallOff => Some("a modal or computed call"),
                     ItemKind::Return { to: Some(_) } => Some("M99 P in a subprogram"),
                     _ => None,
                 });
