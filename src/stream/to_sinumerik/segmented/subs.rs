@@ -1,6 +1,7 @@
 //! Segmented FANUC → Sinumerik translation of a main program that calls subprograms
-//! (`M98 P9010`, `G65 P9020 A1.`, `G66 P9050 R2.`): the calls stay in the skeleton, the programs after the
-//! main one in the same file are read whole (statement by statement from the same scan),
+//! (`M98 P9010`, `G65 P9020 A1.`, `G66 P9050 R2.`): the calls stay in the skeleton, the
+//! programs after the main one in the same file are read whole (statement by statement
+//! from the same scan),
 //! the callees beside the file are loaded whole by the caller, and the skeleton is
 //! translated with all of them as `translate_sinumerik::translate` translates the whole job.
 //!
@@ -19,8 +20,9 @@
 //! the moves of a run under it are translated as any others; that the macro runs after each
 //! of them is the evaluators' business, the same in the whole and the streamed runs.
 //! Declined: computed call targets anywhere, M99 in the main program (as before),
-//! `M99 P<n>` in a subprogram (see `declines`), a callee not found or with any diagnostic (the caller's `LoadCallees`), a
-//! diagnostic on a callee file, and a marker comment in a subprogram's translation.
+//! `M99 P<n>` in any subprogram (see `declines`), a callee not found or with any
+//! diagnostic (the caller's `LoadCallees`), a diagnostic of the translation on a callee
+//! file, and a marker comment in a subprogram's translation.
 
 use super::Skel;
 use crate::ir::{Call, CallKind, CallTarget, ItemKind, Stmt, StmtKind, Unit};
