@@ -382,16 +382,19 @@ fn write_one(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
     Ok(())
 }
 
-/// The subprogram files of a streamed translation (UTF-8 without a byte-order mark, see
-/// `streamed_from`), after its main file, as [`write_files`] writes them: on standard
-/// output each after its separator line, else beside the main file (or in the folder).
-fn write_subs(req: &Request, subs: &[ts::OutFile], eol: read::LineEnding) -> Result<(), ExitCode> {
+/// How the files of a translation are encoded: the source's encoding and byte-order mark.
+type Encoded = (&'static encoding_rs::Encoding, bool);
+
+/// The subprogram files of a streamed translation, after its main file, as [`write_files`]
+/// writes them (each encoded whole, `enc`): on standard output each after its separator
+/// line, else beside the main file (or in the folder).
+fn write_subs(req: &Request, subs: &[ts::OutFile], eol: read::LineEnding, enc: Encoded) -> Result<(), ExitCode> {
     match req.out {
         None => {
             let mut out = std::io::stdout().lock();
             for f in subs {
                 let text = format!("{}{}", separator(&f.name, eol), f.text);
-                if out.write_all(&read::encode(&text, encoding_rs::UTF_8, false)).is_err() {
+                if out.write_all(&read::encode(&text, enc.0, enc.1)).is_err() {
                     return Err(ExitCode::from(2));
                 }
             }
@@ -399,11 +402,31 @@ fn write_subs(req: &Request, subs: &[ts::OutFile], eol: read::LineEnding) -> Res
         Some(o) => {
             let (_, dir) = out_place(o);
             for f in subs {
-                write_one(&dir.join(&f.name), &read::encode(&f.text, encoding_rs::UTF_8, false))?;
+                write_one(&dir.join(&f.name), &read::encode(&f.text, enc.0, enc.1))?;
             }
         }
     }
     Ok(())
+}
+
+/// The main file of a streamed translation with subprograms on standard output, as
+/// [`write_files`] writes it: `encode(separator + text)`, which is the separator encoded
+/// (with the byte-order mark in front, when there is one) and then the encoded text as
+/// written (its own mark left out). The separator is ASCII, so encoding it apart from the
+/// text gives the same bytes (every encoder starts and ends in its ASCII state).
+fn main_to_stdout(out: &Path, name: &str, eol: read::LineEnding, enc: Encoded) -> std::io::Result<()> {
+    let mut so = std::io::stdout().lock();
+    so.write_all(&read::encode(&separator(name, eol), enc.0, enc.1))?;
+    let mut f = std::io::BufReader::new(std::fs::File::open(out)?);
+    if enc.0 == encoding_rs::UTF_8 && enc.1 {
+        let mut mark = [0u8; 3];
+        std::io::Read::read_exact(&mut f, &mut mark)?;
+        if &mark != b"\xEF\xBB\xBF" {
+            so.write_all(&mark)?;
+        }
+    }
+    std::io::copy(&mut f, &mut so)?;
+    so.flush()
 }
 
 /// Runs both programs and reports: "equivalent (N events)" and success, or the first
@@ -518,7 +541,7 @@ fn streamed_from(
         Ok(w) => w,
         Err(code) => return Ok(Some(code)),
     };
-    let with_subs = enc == encoding_rs::UTF_8 && !bom && special.is_none() && path == req.file;
+    let with_subs = special.is_none();
     let mut subs: Vec<ts::OutFile> = Vec::new();
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
@@ -537,7 +560,7 @@ fn streamed_from(
             let mut report = |p: nctrans::stream::Progress| line.update(p);
             // Calls of subprograms (after the main program, or beside the file as the whole
             // path finds them) are taken when the files are written as `write_files` writes
-            // them: a UTF-8 source without a byte-order mark, to a file, a folder or stdout.
+            // them: to a file, a folder or stdout (not a special target).
             let r = if with_subs {
                 let mut load = |u: &Unit| callees_beside(req, opts, u);
                 sts::segmented::to_sinumerik_with_subs(path, opts, eol, &mut load, &mut w, Some(&mut report)).map(
@@ -600,21 +623,22 @@ fn streamed_from(
         }
         eprintln!("wrote {}", t.display());
     } else if req.out.is_none() {
-        let several = !subs.is_empty();
-        let head = separator(&done.file_name, eol);
-        if several && std::io::stdout().lock().write_all(head.as_bytes()).is_err()
-            || stream_cli::copy_to_stdout(&out).is_err()
-        {
+        let copied = if subs.is_empty() {
+            stream_cli::copy_to_stdout(&out)
+        } else {
+            main_to_stdout(&out, &done.file_name, eol, (enc, bom))
+        };
+        if copied.is_err() {
             let _ = std::fs::remove_file(&out);
             return Ok(Some(ExitCode::from(2)));
         }
-        if let Err(code) = write_subs(req, &subs, eol) {
+        if let Err(code) = write_subs(req, &subs, eol, (enc, bom)) {
             let _ = std::fs::remove_file(&out);
             return Ok(Some(code));
         }
     } else {
         eprintln!("wrote {}", out.display());
-        if let Err(code) = write_subs(req, &subs, eol) {
+        if let Err(code) = write_subs(req, &subs, eol, (enc, bom)) {
             return Ok(Some(code));
         }
     }

@@ -311,6 +311,14 @@ fn declined_programs_give_the_whole_paths_output() {
             .concat(),
         ),
         (
+            "shift-jis",
+            [
+                b"O1 (\x89\xc1\x8d\x48)\n".as_slice(),
+                format!("#100=1.\n{run}M98 P9030\n{run}M30\nO9030\nG0 X1.\nM99\n").as_bytes(),
+            ]
+            .concat(),
+        ),
+        (
             "latin1",
             [
                 b"O1 (".as_slice(),
@@ -514,4 +522,53 @@ fn cli_streams_a_large_main_program_with_calls() {
     for f in subs {
         assert_eq!(std::fs::read_to_string(dir.join("out").join(&f.name)).expect("sub"), f.text);
     }
+}
+
+/// A large main program in Shift_JIS (a comment in Japanese) calling subprograms: the
+/// command line streams it from a decoded copy (no "read whole" note) and writes every file
+/// as the whole translation encodes it, to a folder and to standard output (each file after
+/// its separator line, encoded with it).
+#[test]
+fn cli_streams_a_large_legacy_encoded_main_program_with_calls() {
+    let dir = scratch("large-sjis");
+    let mut r = Rng(37);
+    let mut text = b"%\nO1000 (\x89\xc1\x8d\x48)\n#100=5.\nG21 G90 G0 X0. Y0.\n".to_vec();
+    while text.len() < 4_200_000 {
+        text.extend_from_slice(cam(&mut r, 1000).as_bytes());
+    }
+    text.extend_from_slice(b"M98 P9010\n");
+    while text.len() < 8_500_000 {
+        text.extend_from_slice(cam(&mut r, 1000).as_bytes());
+    }
+    text.extend_from_slice(b"G65 P9020 A1.5 B2.\nM30\n");
+    text.extend_from_slice(SUBS[0].1.as_bytes());
+    text.extend_from_slice(b"O9020 (\x8c\x8a)\n");
+    text.extend_from_slice(SUBS[1].1.split_once('\n').map_or("", |(_, rest)| rest).as_bytes());
+    text.extend_from_slice(b"%\n");
+    std::fs::write(dir.join("O9030.nc"), format!("%\n{}%\n", SUBS[2].1)).expect("write");
+    let main = dir.join("big.nc");
+    std::fs::write(&main, &text).expect("write");
+    // The whole translation, encoded as the whole path encodes it.
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, &main.display().to_string(), &text, None);
+    assert_eq!(loaded.encoding, encoding_rs::SHIFT_JIS);
+    let popts = ParseOptions::for_dialect(Dialect::Fanuc);
+    let unit = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &popts).unit;
+    let callee = nctrans::load(&mut db, "O9030.nc", &std::fs::read(dir.join("O9030.nc")).expect("read"), None);
+    let callee = nctrans::parse(&db, callee.file, Dialect::Fanuc, &popts).unit;
+    let o = Options { main_name: "BIG".into(), ..Options::default() };
+    let tr = nctrans::translate_sinumerik::translate(&[&unit, &callee], &o, loaded.line_ending);
+    drop(unit);
+    let enc = |t: &str| nctrans::read::encode(t, loaded.encoding, loaded.bom);
+    let run = cli(&dir, &["--to", "sinumerik", "big.nc", "-o", "out/"]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(!run.stderr.contains("read whole") && run.stderr.contains("equivalent"), "{}", run.stderr);
+    assert_eq!(tr.files.len(), 4);
+    for f in &tr.files {
+        assert!(std::fs::read(dir.join("out").join(&f.name)).expect("file") == enc(&f.text), "{}", f.name);
+    }
+    let run = cli(&dir, &["--to", "sinumerik", "big.nc"]);
+    assert!(!run.stderr.contains("read whole") && run.stderr.contains("equivalent"), "{}", run.stderr);
+    let want: Vec<u8> = tr.files.iter().flat_map(|f| enc(&format!("; ==== {} ====\n{}", f.name, f.text))).collect();
+    assert!(run.stdout == want, "stdout differs");
 }
