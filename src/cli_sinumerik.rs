@@ -163,11 +163,38 @@ pub fn load_job(
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
     let mut diags = parsed.diags;
     let mut units = vec![parsed.unit];
-    let dir = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let dir = beside(path);
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags);
+    if diag::has_errors(&diags) {
+        return Err((db, diags));
+    }
+    // Warnings of reading are shown, not fatal.
+    let _ = diags;
+    Ok(Job { db, units, loaded })
+}
+
+/// The folder a file is in (`.` for a bare file name, whose parent is empty).
+fn beside(path: &Path) -> PathBuf {
+    path.parent().filter(|p| !p.as_os_str().is_empty()).map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// Loads, transitively, the callees `units` need that none of them holds, from the files
+/// beside them in `dir` (`find_callee_file`), in the order the whole path takes them (each
+/// round the wanted numbers ascending); their reading diagnostics go to `diags`. Returns
+/// the numbers called that were not found.
+fn load_callees(
+    db: &mut SourceDb,
+    units: &mut Vec<Unit>,
+    dir: &Path,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    opts: &ParseOptions,
+    diags: &mut Vec<diag::Diagnostic>,
+) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
+    let mut missing = BTreeSet::new();
     loop {
-        for u in &units {
+        for u in units.iter() {
             for p in &u.programs {
                 if let Some(nctrans::ir::ProgName::Number(n)) = &p.name {
                     have.insert(*n);
@@ -186,20 +213,46 @@ pub fn load_job(
         }
         for n in want {
             tried.insert(n);
-            let Some(p) = find_callee_file(&dir, n) else { continue };
-            let Ok(bytes) = std::fs::read(&p) else { continue };
-            let l = nctrans::load(&mut db, &p.display().to_string(), &bytes, encoding);
-            let parsed = nctrans::parse(&db, l.file, Dialect::Fanuc, &opts);
+            let Some(p) = find_callee_file(dir, n) else {
+                missing.insert(n);
+                continue;
+            };
+            let Ok(bytes) = std::fs::read(&p) else {
+                missing.insert(n);
+                continue;
+            };
+            let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
+            let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
             diags.extend(parsed.diags);
             units.push(parsed.unit);
         }
     }
-    if diag::has_errors(&diags) {
-        return Err((db, diags));
+    missing
+}
+
+/// The callees of a streamed skeleton `unit` (the main program's macro part and the other
+/// programs of the file) beside the input, loaded as [`load_job`] loads them (file ids
+/// from 1 up); declines a call of a program found nowhere and a callee with diagnostics.
+fn callees_beside(
+    req: &Request,
+    opts: &Options,
+    unit: &Unit,
+) -> Result<Vec<Unit>, nctrans::stream::translate::Fallback> {
+    use nctrans::stream::translate::Fallback;
+    let mut db = SourceDb::new();
+    db.add(req.file.display().to_string(), String::new());
+    let dir = beside(req.file);
+    let popts = ParseOptions { semantics: opts.source.clone() };
+    let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
+    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags);
+    if !missing.is_empty() {
+        return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }
-    // Warnings of reading are shown, not fatal.
-    let _ = diags;
-    Ok(Job { db, units, loaded })
+    if !diags.is_empty() {
+        return Err(Fallback::NotStraight("a called program with diagnostics".into()));
+    }
+    units.remove(0);
+    Ok(units)
 }
 
 fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
@@ -272,6 +325,20 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
     code
 }
 
+/// Where `-o` puts the files: whether it names a folder (an existing one, or written with a
+/// trailing slash: every file under its own name), and the folder of the subprograms (a
+/// file path names the main program, subprograms go beside it).
+fn out_place(o: &Path) -> (bool, PathBuf) {
+    let is_dir = o.is_dir() || o.to_string_lossy().ends_with('/');
+    let dir = if is_dir { o.to_path_buf() } else { o.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf) };
+    (is_dir, dir)
+}
+
+/// The line standard output shows in front of each file when there are several.
+fn separator(name: &str, eol: read::LineEnding) -> String {
+    format!("; ==== {name} ===={}", eol.as_str())
+}
+
 fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) -> Result<(), ExitCode> {
     match req.out {
         None => {
@@ -280,8 +347,7 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
             for f in &tr.files {
                 let mut text = String::new();
                 if several {
-                    text.push_str(&format!("; ==== {} ====", f.name));
-                    text.push_str(loaded.line_ending.as_str());
+                    text.push_str(&separator(&f.name, loaded.line_ending));
                 }
                 text.push_str(&f.text);
                 if out.write_all(&encode(&text, loaded)).is_err() {
@@ -290,11 +356,7 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
             }
         }
         Some(o) => {
-            // A directory (existing, or written with a trailing slash) takes every file
-            // under its own name; a file path names the main program, subprograms go beside it.
-            let is_dir = o.is_dir() || o.to_string_lossy().ends_with('/');
-            let dir =
-                if is_dir { o.to_path_buf() } else { o.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf) };
+            let (is_dir, dir) = out_place(o);
             if is_dir {
                 if let Err(e) = std::fs::create_dir_all(&dir) {
                     eprintln!("error: cannot create {}: {e}", dir.display());
@@ -303,15 +365,68 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
             }
             for f in &tr.files {
                 let path = if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) };
-                if let Err(e) = std::fs::write(&path, encode(&f.text, loaded)) {
-                    eprintln!("error: cannot write {}: {e}", path.display());
-                    return Err(ExitCode::from(2));
-                }
-                eprintln!("wrote {}", path.display());
+                write_one(&path, &encode(&f.text, loaded))?;
             }
         }
     }
     Ok(())
+}
+
+/// Writes one file of `-o` and says so.
+fn write_one(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
+    if let Err(e) = std::fs::write(path, bytes) {
+        eprintln!("error: cannot write {}: {e}", path.display());
+        return Err(ExitCode::from(2));
+    }
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// How the files of a translation are encoded: the source's encoding and byte-order mark.
+type Encoded = (&'static encoding_rs::Encoding, bool);
+
+/// The subprogram files of a streamed translation, after its main file, as [`write_files`]
+/// writes them (each encoded whole, `enc`): on standard output each after its separator
+/// line, else beside the main file (or in the folder).
+fn write_subs(req: &Request, subs: &[ts::OutFile], eol: read::LineEnding, enc: Encoded) -> Result<(), ExitCode> {
+    match req.out {
+        None => {
+            let mut out = std::io::stdout().lock();
+            for f in subs {
+                let text = format!("{}{}", separator(&f.name, eol), f.text);
+                if out.write_all(&read::encode(&text, enc.0, enc.1)).is_err() {
+                    return Err(ExitCode::from(2));
+                }
+            }
+        }
+        Some(o) => {
+            let (_, dir) = out_place(o);
+            for f in subs {
+                write_one(&dir.join(&f.name), &read::encode(&f.text, enc.0, enc.1))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The main file of a streamed translation with subprograms on standard output, as
+/// [`write_files`] writes it: `encode(separator + text)`, which is the separator encoded
+/// (with the byte-order mark in front, when there is one) and then the encoded text as
+/// written (its own mark left out). The separator is ASCII, so encoding it apart from the
+/// text gives the same bytes (every encoder starts and ends in its ASCII state).
+fn main_to_stdout(out: &Path, name: &str, eol: read::LineEnding, enc: Encoded) -> std::io::Result<()> {
+    let mut so = std::io::stdout().lock();
+    so.write_all(&read::encode(&separator(name, eol), enc.0, enc.1))?;
+    let mut f = std::io::BufReader::new(std::fs::File::open(out)?);
+    if enc.0 == encoding_rs::UTF_8 && enc.1 {
+        let mut mark = [0u8; 3];
+        std::io::Read::read_exact(&mut f, &mut mark)?;
+        if &mark != b"\xEF\xBB\xBF" {
+            so.write_all(&mark)?;
+        }
+    }
+    std::io::copy(&mut f, &mut so)?;
+    so.flush()
 }
 
 /// Runs both programs and reports: "equivalent (N events)" and success, or the first
@@ -426,6 +541,8 @@ fn streamed_from(
         Ok(w) => w,
         Err(code) => return Ok(Some(code)),
     };
+    let with_subs = special.is_none();
+    let mut subs: Vec<ts::OutFile> = Vec::new();
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
     let r = sts::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
@@ -441,7 +558,20 @@ fn streamed_from(
             };
             let mut line = ProgressLine::new("translating", size);
             let mut report = |p: nctrans::stream::Progress| line.update(p);
-            let r = sts::segmented::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
+            // Calls of subprograms (after the main program, or beside the file as the whole
+            // path finds them) are taken when the files are written as `write_files` writes
+            // them: to a file, a folder or stdout (not a special target).
+            let r = if with_subs {
+                let mut load = |u: &Unit| callees_beside(req, opts, u);
+                sts::segmented::to_sinumerik_with_subs(path, opts, eol, &mut load, &mut w, Some(&mut report)).map(
+                    |(d, s)| {
+                        subs = s;
+                        d
+                    },
+                )
+            } else {
+                sts::segmented::to_sinumerik(path, opts, eol, &mut w, Some(&mut report))
+            };
             line.done();
             drop(w);
             if let Err(Fallback::NotStreamable(NotStreamable::NotUtf8 { .. })) = &r {
@@ -493,12 +623,24 @@ fn streamed_from(
         }
         eprintln!("wrote {}", t.display());
     } else if req.out.is_none() {
-        if stream_cli::copy_to_stdout(&out).is_err() {
+        let copied = if subs.is_empty() {
+            stream_cli::copy_to_stdout(&out)
+        } else {
+            main_to_stdout(&out, &done.file_name, eol, (enc, bom))
+        };
+        if copied.is_err() {
             let _ = std::fs::remove_file(&out);
             return Ok(Some(ExitCode::from(2)));
         }
+        if let Err(code) = write_subs(req, &subs, eol, (enc, bom)) {
+            let _ = std::fs::remove_file(&out);
+            return Ok(Some(code));
+        }
     } else {
         eprintln!("wrote {}", out.display());
+        if let Err(code) = write_subs(req, &subs, eol, (enc, bom)) {
+            return Ok(Some(code));
+        }
     }
     let warned = done.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
@@ -511,7 +653,18 @@ fn streamed_from(
         };
         let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
         let read_back = utf8.as_ref().map_or(out.as_path(), |u| u.path());
-        code = verify_streamed((req.file, path), read_back, &shown, done.index, args.max_steps, opts, size);
+        // The subprograms are served to the Siemens run from memory, under the names the
+        // whole path's verifier shows them (`verify_sinumerik::Emitted`).
+        let files = subs
+            .iter()
+            .map(|f| {
+                let shown = if out_dir.is_empty() { f.name.clone() } else { format!("{out_dir}/{}", f.name) };
+                (f.program.clone(), shown, f.text.clone())
+            })
+            .collect();
+        let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: opts.target.clone() };
+        let back = (read_back, shown.as_str(), Box::new(emitted) as _);
+        code = verify_streamed((req.file, path), back, done.index, args.max_steps, opts, size);
     }
     if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);
@@ -524,18 +677,18 @@ fn streamed_from(
 }
 
 /// Verifies a streamed translation: the output read back as Sinumerik (streamed), both
-/// programs run streamed side by side, with each one's `nctrans: set` header inputs.
+/// programs run streamed side by side, with each one's `nctrans: set` header inputs; the
+/// output's callees come from `out_callees` (the translated subprograms).
 fn verify_streamed(
     (input, input_read): (&Path, &Path),
-    out: &Path,
-    shown: &str,
+    (out, shown, out_callees): (&Path, &str, Box<dyn nctrans::eval::CalleeSource + Send>),
     source: nctrans::stream::Index,
     max_steps: u64,
     opts: &Options,
     size: u64,
 ) -> ExitCode {
     use crate::stream_cli::ProgressLine;
-    use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
+    use nctrans::eval::{header_inputs, DirCallees, RunOptions};
     use nctrans::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
@@ -582,8 +735,7 @@ fn verify_streamed(
         callees: Box::new(DirCallees { semantics: Some(opts.source.clone()) }),
         run: run(in_a, &opts.source),
     };
-    let b =
-        StreamSide { index: back, name: shown.to_string(), callees: Box::new(NoCallees), run: run(in_b, &opts.target) };
+    let b = StreamSide { index: back, name: shown.to_string(), callees: out_callees, run: run(in_b, &opts.target) };
     let report = sts::compare(a, b);
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
     verdict(report.verdict, &report.diff)

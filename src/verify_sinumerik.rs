@@ -13,10 +13,12 @@ use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
 use crate::translate_sinumerik::{OutFile, Translation};
 
-/// Serves the translation's `.SPF` files to the Siemens run, from memory.
-struct Emitted {
-    files: Vec<(String, String, String)>,
-    semantics: Semantics,
+/// Serves the translation's `.SPF` files to the Siemens run, from memory (also the streamed
+/// verification's, `cli_sinumerik`).
+pub struct Emitted {
+    /// Siemens program name, the path shown, the text.
+    pub files: Vec<(String, String, String)>,
+    pub semantics: Semantics,
 }
 
 impl CalleeSource for Emitted {

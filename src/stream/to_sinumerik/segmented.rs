@@ -20,7 +20,7 @@
 //!   them out when the first finds one), so `gotos`/`vacancy` resolve every jump to the
 //!   same block, in the same direction, with the same `LBL_n_k` count (every block of a
 //!   named N value is in the skeleton). Computed jumps (`GOTO#1`, every N a target),
-//!   calls (M98, G65, G66/G67), M99, G10 and writes of work offsets (`words` re-selects
+//!   calls (M98, G65, G66/G67; but see `subs`), M99, G10 and writes of work offsets (`words` re-selects
 //!   the G54.. in force at that point of the text, which may lie in a run) are declined;
 //! - the arc mode (`words::lower`, G2/G3 last makes `R` a `CR=`) is ONE flag the words
 //!   pass carries over every block of the program in text order, nested bodies included,
@@ -41,9 +41,15 @@
 //!   writer writes it as `; NCTRANS SEGMENT k` alone on its line (a skeleton whose text
 //!   holds the marker anywhere else is declined).
 //!
+//! Calls by a constant number (`M98 P`, `G65 P`) stay in the skeleton through
+//! [`to_sinumerik_with_subs`]: the file's other programs are kept whole beside it and the
+//! callees beside the file are loaded whole, and all are translated together as the whole
+//! job is (see `subs`); the subprogram files are returned for the caller to write.
+//!
 //! Any diagnostic of the source, or of the skeleton or a block alone other than the
 //! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
-//! words pass gives them), declines, as do several programs, `nctrans: set` lines with CR
+//! words pass gives them), declines, as do several programs (but through
+//! [`to_sinumerik_with_subs`]), `nctrans: set` lines with CR
 //! line ends and N values above 2^24. The source is read once before verification: ONE
 //! scan (`one`) builds the skeleton (and collects the N values jumps name) and translates
 //! each run as it reaches it into a spill (`segmented::spill`: memory, then a temporary
@@ -66,14 +72,17 @@ use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target
 use crate::passes::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
-use crate::translate_sinumerik as ts;
+use crate::translate_sinumerik::{self as ts, OutFile};
 use one::One;
 use std::io::Write;
 use std::path::Path;
 use writer::{kept_warning, Alone, Writer};
 
 mod one;
+mod subs;
 mod writer;
+
+pub use subs::{to_sinumerik_with_subs, LoadCallees};
 
 /// The text of a placeholder comment (`k`: the run's index).
 const MARK: &str = "NCTRANS SEGMENT ";
@@ -147,8 +156,10 @@ fn solid(s: &Stmt) -> bool {
 }
 
 /// What declines an item of the skeleton (see the module comment); its jump target.
-fn check_item(it: &Item, targets: &mut Vec<u32>) -> Option<&'static str> {
+fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
     match &it.kind {
+        ItemKind::Call(c) if calls && subs::plain_call(c) => None,
+        ItemKind::ModalCallOff if calls => None,
         ItemKind::Call(_) | ItemKind::ModalCallOff => Some("a call of another program"),
         ItemKind::Return { .. } => Some("M99"),
         ItemKind::ParamWrite(_) => Some("G10"),
@@ -230,6 +241,13 @@ struct Skel {
     run_ns: Bits,
     targets: Bits,
     stop: Option<String>,
+    /// Calls by a constant number are kept, and the programs after the main one are
+    /// collected whole (`subs`); else both decline.
+    calls: bool,
+    /// The bodies of the programs after the main one (program k + 1 at k), read whole.
+    subs: Vec<Vec<Stmt>>,
+    /// Those programs, with their bodies (after `finish`).
+    sub_programs: Vec<Program>,
 }
 
 impl Skel {
@@ -275,12 +293,12 @@ impl Skel {
                 why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
             }
             for it in &b.items {
-                why = why.or(check_item(it, &mut targets));
+                why = why.or(check_item(it, self.calls, &mut targets));
                 if let ItemKind::IfThen { then, .. } = &it.kind {
                     if matches!(then.kind, ItemKind::Word(_)) {
                         why = why.or(Some("IF..THEN with an address word"));
                     }
-                    why = why.or(check_item(then, &mut targets));
+                    why = why.or(check_item(then, self.calls, &mut targets));
                 }
             }
         });
@@ -309,8 +327,11 @@ impl WordsSink for Skel {
             return true;
         }
         if prog != 0 {
-            self.decline("more than one program");
-            return true;
+            if !self.calls {
+                self.decline("more than one program");
+            }
+            // A subprogram's line: it comes as a statement, kept whole.
+            return !self.calls;
         }
         if !self.class.plain_run(meta, words) {
             return false;
@@ -325,7 +346,7 @@ impl WordsSink for Skel {
             return;
         }
         if prog != 0 {
-            return self.decline("more than one program");
+            return self.sub_stmt(prog, s);
         }
         if self.class.stmt_run(s) {
             if let StmtKind::Block(b) = &s.kind {
@@ -340,7 +361,7 @@ impl WordsSink for Skel {
 }
 
 /// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
-fn new_skel(keep: Bits) -> Skel {
+fn new_skel(keep: Bits, calls: bool) -> Skel {
     Skel {
         class: Class { keep, solid: false },
         body: Vec::new(),
@@ -351,13 +372,22 @@ fn new_skel(keep: Bits) -> Skel {
         run_ns: Bits::default(),
         targets: Bits::default(),
         stop: None,
+        calls,
+        subs: Vec::new(),
+        sub_programs: Vec::new(),
     }
 }
 
 /// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
 /// the program (name, head, span) it is the body of.
-fn skeleton(path: &Path, popts: &ParseOptions, eol: LineEnding, keep: Bits) -> Result<(Skel, Program), Fallback> {
-    let mut sk = new_skel(keep);
+fn skeleton(
+    path: &Path,
+    popts: &ParseOptions,
+    eol: LineEnding,
+    keep: Bits,
+    calls: bool,
+) -> Result<(Skel, Program), Fallback> {
+    let mut sk = new_skel(keep, calls);
     let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, popts, &mut sk, None)
         .map_err(Fallback::NotStreamable)?;
     finish(path, eol, sk, ix).map(|(sk, p, _)| (sk, p))
@@ -378,9 +408,14 @@ fn finish(path: &Path, eol: LineEnding, mut sk: Skel, ix: Index) -> Result<(Skel
     if cr && ix.header.contains("nctrans:") {
         return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
     }
-    if ix.programs.len() != 1 {
+    if ix.programs.len() != 1 && !sk.calls || ix.programs.is_empty() || sk.subs.len() >= ix.programs.len() {
         return Err(Fallback::NotStraight("more than one program".into()));
     }
+    let mut subs = std::mem::take(&mut sk.subs).into_iter();
+    sk.sub_programs = ix.programs[1..]
+        .iter()
+        .map(|p| Program { body: subs.next().unwrap_or_default(), ..p.program.clone() })
+        .collect();
     let program = ix.programs[0].program.clone();
     Ok((sk, program, ix))
 }
@@ -419,11 +454,23 @@ pub fn to_sinumerik(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Streamed, Fallback> {
+    segment(path, opts, eol, out, progress, None).map(|(s, _)| s)
+}
+
+fn segment(
+    path: &Path,
+    opts: &Options,
+    eol: LineEnding,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+    mut load: Option<LoadCallees<'_>>,
+) -> Result<(Streamed, Vec<OutFile>), Fallback> {
+    let calls = load.is_some();
     let popts = ParseOptions { semantics: opts.source.clone() };
     let mut progress = progress;
     // One scan builds the skeleton and spills the runs' translations (`one`).
     let mut one = One {
-        sk: new_skel(Bits::default()),
+        sk: new_skel(Bits::default(), calls),
         opts,
         eol,
         spill: Spill::new(),
@@ -449,32 +496,43 @@ pub fn to_sinumerik(
         // write the runs in a writing scan.
         spilled = None;
         let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, &popts, eol, keep)?;
+        (sk, program) = skeleton(path, &popts, eol, keep, calls)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
     }
     let keep = sk.class.keep.clone();
     program.body = std::mem::take(&mut sk.body);
-    let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs: vec![program] };
-    let tr = ts::translate(&[&unit], opts, eol);
-    if !tr.diags.iter().all(kept_warning) {
+    let mut programs = vec![program];
+    programs.append(&mut sk.sub_programs);
+    let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };
+    // The callees beside the file, as the whole path loads them (`subs`).
+    let callees = match load.as_mut() {
+        Some(load) => load(&unit)?,
+        None => Vec::new(),
+    };
+    subs::callees_ok(&callees)?;
+    let units: Vec<&Unit> = std::iter::once(&unit).chain(&callees).collect();
+    let tr = ts::translate(&units, opts, eol);
+    if !tr.diags.iter().all(|d| kept_warning(d) && d.labels.iter().all(|l| l.file == 0)) {
         return Err(Fallback::Diagnostics);
     }
-    let [f] = tr.files.as_slice() else {
-        return Err(Fallback::NotStraight("more than one program".into()));
-    };
-    if !f.main {
-        return Err(Fallback::NotStraight("a program that is not a main program".into()));
-    }
+    let (f, subs) = subs::split_files(&tr.files, calls)?;
     let places = placeholders(&f.text, sk.arcs.len(), eol.as_str())
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+    // The main program's plan, made with every program as the whole translation makes it.
     let alone = {
-        let Some(p) = unit.programs.first() else { return Err(Fallback::NotStraight("no program".into())) };
-        let mut l = passes::lower(&[(0, p)], opts);
-        let Some((plan, _)) = l.programs.pop() else { return Err(Fallback::NotStraight("no plan".into())) };
+        let all: Vec<(crate::span::FileId, &Program)> =
+            units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
+        let mut l = passes::lower(&all, opts);
+        if l.programs.is_empty() {
+            return Err(Fallback::NotStraight("no plan".into()));
+        }
+        let (plan, _) = l.programs.swap_remove(0);
         Alone { plan, commons: l.commons, common_flags: l.common_flags }
     };
+    drop(units);
+    drop(callees);
     drop(unit);
     let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
     // The words pass warns block by block in text order: the skeleton's warnings and the
@@ -509,7 +567,7 @@ pub fn to_sinumerik(
             out.write_all(b"\xEF\xBB\xBF").map_err(io)?;
         }
         assemble(&f.text, &places, spill, &starts, &inserts, out).map_err(io)?;
-        return Ok(finish(index, run_diags));
+        return Ok((finish(index, run_diags), subs));
     }
     let mut w = Writer {
         class: Class { keep, solid: false },
@@ -541,5 +599,5 @@ pub fn to_sinumerik(
     w.copy_to(w.text.len());
     w.write();
     super::super::finish_output(w.out, w.io)?;
-    Ok(finish(index, w.diags))
+    Ok((finish(index, w.diags), subs))
 }

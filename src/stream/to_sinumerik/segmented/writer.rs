@@ -177,7 +177,8 @@ impl WordsSink for Writer<'_> {
             return true;
         }
         if prog != 0 {
-            self.bad = true;
+            // A subprogram's line (the skeleton took them whole, `subs`): nothing to write.
+            self.in_run = false;
             return true;
         }
         if !self.class.plain_run(meta, words) {
@@ -208,7 +209,8 @@ impl WordsSink for Writer<'_> {
             return;
         }
         if prog != 0 {
-            self.bad = true;
+            self.bad |= std::mem::take(&mut self.pending);
+            self.in_run = false;
             return;
         }
         let pending = std::mem::take(&mut self.pending);
