@@ -17,6 +17,7 @@ pub mod report;
 pub mod run;
 pub mod streamed;
 mod streamed_macro;
+mod streamed_calls;
 pub mod write;
 
 use crate::dialect::Dialect;

@@ -19,6 +19,7 @@ use super::discover::{self, InputFile};
 use super::jobs::{self, apply, combine, MemCallees, ToFanucJob, Verified};
 use super::jobs_sinumerik::{self, parse_all, siemens_inputs, ToSinumerikJob};
 use super::library::{self, FileInfo, ProgKey, Scan};
+use super::streamed_calls;
 use super::streamed_macro::{self, LibItems};
 use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
@@ -116,7 +117,13 @@ pub fn library_scan(
         r = scan(copy.as_ref().map_or(f.abs.as_path(), |c: &TempCopy| c.path()));
     }
     let (ix, items) = r.ok()?;
-    if items.other_calls || !ix.diags.is_empty() || ix.programs.len() != 1 {
+    // A FANUC file may hold subprograms after the main one (a Siemens file's key is its
+    // name only when it holds one program).
+    let programs_ok = match dialect {
+        Dialect::Fanuc => !ix.programs.is_empty(),
+        Dialect::Sinumerik => ix.programs.len() == 1,
+    };
+    if items.other_calls || !ix.diags.is_empty() || !programs_ok {
         return None;
     }
     // The calls' lines, as `library::scan` gives them from the (decoded) text.
@@ -348,19 +355,24 @@ fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics)
 /// FANUC → Sinumerik for a streamable file (see the module documentation); `None` leaves
 /// the file to the whole-file job.
 pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
-    if job.fault.is_some() || !streamable(file, ctx) {
+    if job.fault.is_some() {
         return None;
     }
-    with_source(&file.abs, ctx.options.encoding, |path, copy| to_sinumerik_from(job, file, ctx, path, copy))
+    // A main that calls subprograms (its own after M30, other files'): with its callees.
+    let callees = if streamable(file, ctx) { None } else { Some(streamed_calls::callees(file, ctx)?) };
+    let callees = callees.as_deref();
+    with_source(&file.abs, ctx.options.encoding, |path, copy| to_sinumerik_from(job, file, ctx, path, copy, callees))
 }
 
-/// [`to_sinumerik`] reading `path` (the file, or its decoded `copy`).
+/// [`to_sinumerik`] reading `path` (the file, or its decoded `copy`), with the `callees`
+/// files of a main that calls subprograms (`streamed_calls`).
 fn to_sinumerik_from(
     job: &ToSinumerikJob,
     file: &InputFile,
     ctx: &BatchContext,
     path: &Path,
     copy: Option<&TempCopy>,
+    callees: Option<&[usize]>,
 ) -> Option<FileOutcome> {
     let s = &job.settings;
     let opts = job.options(ctx, file).ok()?;
@@ -371,19 +383,53 @@ fn to_sinumerik_from(
     // Not UTF-8 in or out: the stream writes UTF-8 (with the UTF-8 source's mark, which
     // `encode_to` drops) into a temporary file, encoded into `part` and read back from there.
     let utf8 = (copy.is_some() || out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.mpf"));
-    let done = streamed_macro::to_sinumerik_part(path, &opts, eol, utf8.as_ref().map_or(&part, |u| u.path()))?;
+    let target = utf8.as_ref().map_or(part.as_path(), |u| u.path());
+    // The callees' units, kept for the verifier's source side; the translation's other
+    // files (the file's own subprograms, the callees'), for its Siemens side.
+    let mut units: Vec<Unit> = Vec::new();
+    let (done, subs) = match callees {
+        None => (streamed_macro::to_sinumerik_part(path, &opts, eol, target)?, Vec::new()),
+        Some(c) => {
+            let mut load = |_: &Unit| {
+                units = streamed_calls::load(job, ctx, c)?;
+                Ok(units.clone())
+            };
+            streamed_macro::to_sinumerik_subs_part(path, &opts, eol, target, &mut load)?
+        }
+    };
+    let with_calls = callees.is_some();
     if let Some(u) = &utf8 {
         encode_part(u.path(), out_enc, bom, &part)?;
     }
+    // Declined after the main's output is staged: nothing of the file is left staged.
+    let decline = || {
+        let _ = std::fs::remove_file(&part);
+        None
+    };
     let read_back = utf8.as_ref().map_or(part.as_path(), |u| u.path());
     let name = rel_string(&file.rel);
     let rel_out = discover::sinumerik_output(&file.rel, &done.program, false);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
     outcome.blocks = done.index.blocks;
-    outcome.used = jobs_sinumerik::used_names(&[(done.fanuc_number, done.program.as_str())], &done.symbols);
+    let programs: Vec<(Option<u32>, &str)> = std::iter::once((done.fanuc_number, done.program.as_str()))
+        .chain(streamed_calls::own(&subs).map(|f| (f.fanuc_number, f.program.as_str())))
+        .collect();
+    outcome.used = jobs_sinumerik::used_names(&programs, &done.symbols);
     outcome.diagnostics = records(&done.diags, &[(0, &name, path)]);
     outcome.staged = vec![(rel_out, part.clone())];
+    // The main file first, then its subprograms, as the whole job lists its outputs.
+    let stage_subs = |outcome: &mut FileOutcome| match streamed_calls::stage_own(file, ctx, &subs, out_enc, bom) {
+        Some(more) => {
+            outcome.staged.extend(more);
+            Some(())
+        }
+        None => {
+            let _ = std::fs::remove_file(&part);
+            None
+        }
+    };
     if !ctx.options.verify {
+        stage_subs(&mut outcome)?;
         return Some(outcome);
     }
     // As `ToSinumerikJob::verify` runs a file's only program: its header inputs and `--set`.
@@ -405,16 +451,27 @@ fn to_sinumerik_from(
             (Ok(mut a), Ok(mut b)) => {
                 a.extend(parse_all(&fanuc));
                 b.extend(parse_all(&siemens));
+                // The callees as the whole job's verifier serves them: the FANUC units
+                // loaded, the translation's other files under the names it shows them.
+                let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) =
+                    if with_calls {
+                        let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
+                        let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
+                        let emitted = crate::verify_sinumerik::Emitted { files, semantics: s.sinumerik.clone() };
+                        (Box::new(MemCallees(std::mem::take(&mut units))), Box::new(emitted))
+                    } else {
+                        (Box::new(NoCallees), Box::new(NoCallees))
+                    };
                 let a = StreamSide {
                     index: done.index,
                     name: name.clone(),
-                    callees: Box::new(NoCallees),
+                    callees: a_callees,
                     run: run_options(a, s.max_steps, &s.fanuc),
                 };
                 let b = StreamSide {
                     index: back,
                     name: shown.clone(),
-                    callees: Box::new(NoCallees),
+                    callees: b_callees,
                     run: run_options(b, s.max_steps, &s.sinumerik),
                 };
                 sts::compare(a, b)
@@ -423,6 +480,8 @@ fn to_sinumerik_from(
                 failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
             }
         },
+        // With calls the whole job gives this verdict (see below).
+        Err(_) if with_calls => return decline(),
         Err(ReadBack::Diags(mut d)) => {
             d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
             failed(d)
@@ -431,7 +490,14 @@ fn to_sinumerik_from(
             failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
         }
     };
+    // With calls, only an equivalence is taken: the diagnostics of any other verdict may
+    // point into a callee or subprogram file, which the streamed records do not name as
+    // the whole job does; the whole job then gives that verdict itself.
+    if with_calls && !matches!(report.verdict, Verdict::Equivalent { .. }) {
+        return decline();
+    }
     apply(&mut outcome, verdict(report, &files));
+    stage_subs(&mut outcome)?;
     Some(outcome)
 }
 

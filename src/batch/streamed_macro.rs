@@ -7,7 +7,7 @@
 use super::library;
 use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
-use crate::ir::{ItemKind, Program, Stmt, Unit, WordValue};
+use crate::ir::{CallKind, ItemKind, Program, Stmt, Unit, WordValue};
 use crate::passes::to_sinumerik::Options as SinOptions;
 use crate::read::LineEnding;
 use crate::span::Span;
@@ -16,6 +16,7 @@ use crate::stream::to_sinumerik as sts;
 use crate::stream::translate::Fallback;
 use crate::stream::{self, Index, ProgressFn};
 use crate::translate::{SymbolMap, TranslateOptions};
+use crate::translate_sinumerik::OutFile;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::Path;
@@ -26,9 +27,10 @@ use std::path::Path;
 /// call of another kind (such a file is read whole).
 #[derive(Default)]
 pub(super) struct LibItems {
-    /// A call the streamed scan does not take: any in FANUC, one not plain in Sinumerik.
+    /// A call the streamed scan does not take: one not plain in Sinumerik, in FANUC one by a
+    /// computed number or of a kind other than `M98`/`G65`/`G66`.
     pub other_calls: bool,
-    /// The plain Sinumerik calls: the text offset of each (its line is found after the
+    /// The plain calls: the text offset of each (its line is found after the
     /// scan) and the call as `library::scan` records it (line 0 until then).
     pub calls: Vec<(u32, library::RawCall)>,
     pub tools: BTreeSet<String>,
@@ -48,8 +50,22 @@ impl LibItems {
             _ => {}
         });
         if !calls.is_empty() {
-            let plain = dialect == Dialect::Sinumerik
-                && stream::segmented::calls_plain(&Unit { dialect, file: 0, programs: vec![program_of(s)] });
+            let plain = match dialect {
+                Dialect::Sinumerik => {
+                    stream::segmented::calls_plain(&Unit { dialect, file: 0, programs: vec![program_of(s)] })
+                }
+                // The calls the FANUC segmented stream keeps (`M98 P`, `G65 P`, `G66 P` by a
+                // constant number); `raw_call` refuses a computed target below.
+                Dialect::Fanuc => {
+                    let mut kinds = true;
+                    library::walk_items(std::slice::from_ref(s), &mut |item| {
+                        if let ItemKind::Call(c) = &item.kind {
+                            kinds &= matches!(c.kind, CallKind::M98 | CallKind::G65 | CallKind::G66);
+                        }
+                    });
+                    kinds
+                }
+            };
             // A plain call has a constant target: `raw_call` gives it.
             match calls.into_iter().map(|(lo, c)| c.map(|c| (lo, c))).collect::<Option<Vec<_>>>() {
                 Some(c) if plain => self.calls.extend(c),
@@ -146,4 +162,17 @@ pub(super) fn to_sinumerik_part(path: &Path, opts: &SinOptions, eol: LineEnding,
         }
     }
     None
+}
+
+/// FANUC → Sinumerik into `part` of a main program with calls, its callees given by `load`
+/// (`segmented::to_sinumerik_with_subs`): the main file's translation, and the others of
+/// the whole translation (the main file's subprograms and its callees').
+pub(super) fn to_sinumerik_subs_part(
+    path: &Path,
+    opts: &SinOptions,
+    eol: LineEnding,
+    part: &Path,
+    load: sts::segmented::LoadCallees<'_>,
+) -> Option<(sts::Streamed, Vec<OutFile>)> {
+    route(part, false, |w| sts::segmented::to_sinumerik_with_subs(path, opts, eol, load, w, None)).ok()?
 }
