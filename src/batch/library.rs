@@ -118,8 +118,8 @@ pub struct FileInfo {
     pub tools: BTreeSet<String>,
     /// FANUC common variables (`#100`..`#999`) used by number.
     pub commons: BTreeSet<u32>,
-    /// Read as a stream: a large program that calls nothing, or (Sinumerik) only by a
-    /// constant name (see `streamed::library_scan`),
+    /// Read as a stream: a large program that calls nothing, or only by a constant name or
+    /// number (FANUC: with subprograms after it; see `streamed::library_scan`),
     /// which its job then tries to translate as a stream too. Its `fingerprints` are not computed (0): a
     /// file whose program another file also defines is read whole instead.
     pub streamed: bool,

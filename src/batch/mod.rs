@@ -16,8 +16,8 @@ pub mod maps;
 pub mod report;
 pub mod run;
 pub mod streamed;
-mod streamed_macro;
 mod streamed_calls;
+mod streamed_macro;
 pub mod write;
 
 use crate::dialect::Dialect;

@@ -12,8 +12,10 @@
 //! whole-file job gives. A Sinumerik main calling `.spf` subprograms of the batch streams to
 //! FANUC with them (`segmented::to_fanuc_with_subs`, the callees read whole as the
 //! whole-file job reads them, and verified against them as it verifies; any verdict but an
-//! equivalence is left to the whole-file job). Anything else, or a file every streamed
-//! translator declines, is left to the whole-file job.
+//! equivalence is left to the whole-file job). A FANUC main calling subprograms by a
+//! constant number (its own after `M30`, other files') streams to Sinumerik with them
+//! likewise (`streamed_calls.rs`, `segmented::to_sinumerik_with_subs`). Anything else, or a
+//! file every streamed translator declines, is left to the whole-file job.
 
 use super::discover::{self, InputFile};
 use super::jobs::{self, apply, combine, MemCallees, ToFanucJob, Verified};
@@ -82,8 +84,9 @@ fn encode_part(utf8: &Path, enc: &'static encoding_rs::Encoding, bom: bool, part
 
 /// Reads `f` for the library index as a stream when it is at least `stream_bytes` long, its
 /// name tells its dialect, it is UTF-8 (or no other encoding is forced) and it holds one
-/// program without diagnostics that calls nothing, or (Sinumerik) only by a constant name
-/// (`segmented::calls_plain`); `None` otherwise (the caller reads it whole). What it
+/// program without diagnostics (FANUC: one or more) that calls nothing, or only by a
+/// constant name (Sinumerik, `segmented::calls_plain`) or number (FANUC `M98`/`G65`/`G66`);
+/// `None` otherwise (the caller reads it whole). What it
 /// reports is what `library::scan` reports (its calls, tools and FANUC commons too), but the
 /// fingerprints (see
 /// [`without_shared_streamed`]).
@@ -453,15 +456,15 @@ fn to_sinumerik_from(
                 b.extend(parse_all(&siemens));
                 // The callees as the whole job's verifier serves them: the FANUC units
                 // loaded, the translation's other files under the names it shows them.
-                let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) =
-                    if with_calls {
-                        let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
-                        let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
-                        let emitted = crate::verify_sinumerik::Emitted { files, semantics: s.sinumerik.clone() };
-                        (Box::new(MemCallees(std::mem::take(&mut units))), Box::new(emitted))
-                    } else {
-                        (Box::new(NoCallees), Box::new(NoCallees))
-                    };
+                let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) = if with_calls
+                {
+                    let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
+                    let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
+                    let emitted = crate::verify_sinumerik::Emitted { files, semantics: s.sinumerik.clone() };
+                    (Box::new(MemCallees(std::mem::take(&mut units))), Box::new(emitted))
+                } else {
+                    (Box::new(NoCallees), Box::new(NoCallees))
+                };
                 let a = StreamSide {
                     index: done.index,
                     name: name.clone(),

@@ -48,7 +48,8 @@ pub(super) fn callees(file: &InputFile, ctx: &BatchContext) -> Option<Vec<usize>
         let callers: Vec<usize> = lib.calls.iter().filter(|c| &c.target == k).map(|c| c.file).collect();
         // The first program is called by nothing (else it runs once per argument vector);
         // the others only and surely by this file (else each runs as a main too).
-        let ok = if i == 0 { callers.is_empty() } else { !callers.is_empty() && callers.iter().all(|&f| f == file.index) };
+        let ok =
+            if i == 0 { callers.is_empty() } else { !callers.is_empty() && callers.iter().all(|&f| f == file.index) };
         if !ok {
             return None;
         }
@@ -80,7 +81,8 @@ pub(super) fn load(job: &ToSinumerikJob, ctx: &BatchContext, callees: &[usize]) 
     let mut units = Vec::with_capacity(callees.len());
     for &i in callees {
         let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
-        let l = jobs::load(&mut db, f, Dialect::Fanuc, ctx.options.encoding, &job.settings.fanuc).map_err(|e| no(&e))?;
+        let l =
+            jobs::load(&mut db, f, Dialect::Fanuc, ctx.options.encoding, &job.settings.fanuc).map_err(|e| no(&e))?;
         if !l.diags.is_empty() {
             return Err(no("a callee with diagnostics"));
         }
