@@ -491,12 +491,19 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
         return None;
     }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;
-    loop {
+    // An output folder the stream creates is removed again when the whole path takes over
+    // (which creates it only for a translation it writes).
+    let made = req.out.filter(|o| o.to_string_lossy().ends_with('/') && !o.exists());
+    let code = (|| loop {
         match streamed_from(args, req, opts, &src, size) {
             Ok(code) => return code,
             Err(why) => src.transcoded(&why)?,
         }
+    })();
+    if let (None, Some(dir)) = (&code, made) {
+        let _ = std::fs::remove_dir(dir);
     }
+    code
 }
 
 /// [`streamed`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is

@@ -432,30 +432,11 @@ fn align_body(body: &mut [Stmt], map: &SymbolMap) {
                 }
             }
             other => {
-                for child in child_bodies_mut(other) {
+                for child in crate::ir::visit::child_bodies_mut(other) {
                     align_body(child, map);
                 }
             }
         }
-    }
-}
-
-fn child_bodies_mut(kind: &mut StmtKind) -> Vec<&mut Vec<Stmt>> {
-    match kind {
-        StmtKind::Block(_) => vec![],
-        StmtKind::If(i) => {
-            let IfStmt { then_body, else_part, .. } = &mut **i;
-            let mut v = vec![then_body];
-            if let Some(e) = else_part {
-                v.push(&mut e.body);
-            }
-            v
-        }
-        StmtKind::While(w) => vec![&mut w.body],
-        StmtKind::Loop(l) => vec![&mut l.body],
-        StmtKind::For(f) => vec![&mut f.body],
-        StmtKind::Repeat(r) => vec![&mut r.body],
-        StmtKind::Do(d) => vec![&mut d.body],
     }
 }
 

@@ -93,3 +93,27 @@ fn every_translation_route_writes_into_a_fifo_without_replacing_it() {
     assert!(left.is_empty(), "left behind: {left:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--stream -o DIR/` for a program the stream hands to the whole path, which then fails:
+/// no output folder is left behind (the whole path alone creates none).
+#[test]
+fn a_failed_translation_leaves_no_output_folder() {
+    let dir = scratch("no-folder");
+    let src = dir.join("lost.nc");
+    std::fs::write(&src, "%\nO1000\nG21 G0 X0\nM98 P1234\nM30\n%\n").expect("program");
+    for (to, extra) in [("sinumerik", "out-s/"), ("fanuc", "out-f/")] {
+        let input = if to == "fanuc" {
+            let p = dir.join("lost.mpf");
+            std::fs::write(&p, "G0 X0\nNOWHERE\nM30\n").expect("program");
+            p
+        } else {
+            src.clone()
+        };
+        let out = dir.join(extra);
+        let o = format!("{}/", out.display());
+        let st = Command::new(bin()).args(["--to", to, "--stream"]).arg(&input).args(["-o", &o]).output().expect("run");
+        assert!(!st.status.success(), "{to}: {}", String::from_utf8_lossy(&st.stderr));
+        assert!(!out.exists(), "{to}: {} left behind", out.display());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

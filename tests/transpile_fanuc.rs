@@ -528,6 +528,19 @@ fn modes_where_paths_meet_hold_on_every_path() {
             assert!(r.equivalent, "{src}\n{}\n{}\n{}", r.summary, r.rendered, d.t.text);
         }
     }
+    // Loops nested 60 deep, the mode set in the innermost: every level's head and exit
+    // hold what its passes may bring (one walk per loop, not rounds through the nesting).
+    let mut deep = String::from("G90 G0 X0\n");
+    for i in 1..=60 {
+        deep.push_str(&format!("WHILE R{i}<1\nR{i}=R{i}+1\n"));
+    }
+    deep.push_str("G91 X1\nX=AC(2)\n");
+    deep.push_str(&"ENDWHILE\n".repeat(60));
+    deep.push_str("X=IC(1)\nM30\n");
+    let mut d = translate_src("deep.mpf", &deep, &TranslateOptions::default());
+    assert!(d.t.ok(), "{}", nctrans::diag::render(&d.db, &d.t.diags));
+    let r = verify(&mut d);
+    assert!(r.equivalent, "{}\n{}", r.summary, r.rendered);
     // The feed unit depends on the path: refused until G700/G710 sets both units again.
     refused("G710 G1 X0 F10\nR1=1\nIF R1==1\nG70\nENDIF\nG1 X1 F100\nM30\n", "NC324");
     refused("G710 G1 X0 F10\nR2=0\nWHILE R2<2\nG1 X=R2 F100\nG700\nR2=R2+1\nENDWHILE\nM30\n", "NC324");

@@ -32,6 +32,26 @@ pub fn child_bodies(kind: &StmtKind) -> Vec<&[Stmt]> {
     }
 }
 
+/// [`child_bodies`], to change them.
+pub fn child_bodies_mut(kind: &mut StmtKind) -> Vec<&mut Vec<Stmt>> {
+    match kind {
+        StmtKind::Block(_) => vec![],
+        StmtKind::If(i) => {
+            let IfStmt { then_body, else_part, .. } = &mut **i;
+            let mut v = vec![then_body];
+            if let Some(e) = else_part {
+                v.push(&mut e.body);
+            }
+            v
+        }
+        StmtKind::While(w) => vec![&mut w.body],
+        StmtKind::Loop(l) => vec![&mut l.body],
+        StmtKind::For(f) => vec![&mut f.body],
+        StmtKind::Repeat(r) => vec![&mut r.body],
+        StmtKind::Do(d) => vec![&mut d.body],
+    }
+}
+
 /// The block metadata (head, else, end) of a statement, in source order.
 pub fn metas(kind: &StmtKind) -> Vec<&BlockMeta> {
     match kind {

@@ -185,21 +185,8 @@ fn rewrite(body: &mut [Stmt], ins: &[Env], counter: &mut usize) {
                 *counter += 1;
             }
             other => {
-                let mut bodies: Vec<&mut Vec<Stmt>> = match other {
-                    StmtKind::If(i) => {
-                        let mut v = vec![&mut i.then_body];
-                        if let Some(e) = &mut i.else_part {
-                            v.push(&mut e.body);
-                        }
-                        v
-                    }
-                    StmtKind::While(w) => vec![&mut w.body],
-                    StmtKind::Loop(l) => vec![&mut l.body],
-                    StmtKind::For(f) => vec![&mut f.body],
-                    StmtKind::Repeat(r) => vec![&mut r.body],
-                    StmtKind::Block(_) | StmtKind::Do(_) => vec![],
-                };
-                for b in bodies.iter_mut() {
+                // (DO has its own arm above.)
+                for b in crate::ir::visit::child_bodies_mut(other) {
                     rewrite(b, ins, counter);
                 }
             }

@@ -11,7 +11,7 @@ use super::effects::{Effect, UnitEffect, ABS};
 use super::units::{FeedConv, Units};
 use crate::ir::{Addr, ExprKind, Item, ItemKind, Stmt, StmtKind, Target, WordValue};
 use crate::passes::Callee;
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// The length and feed units, as far as every path agrees on them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -224,16 +224,23 @@ impl Resets {
             all_units: computed && !units_at.is_empty(),
             ..Resets::default()
         };
-        // The words of the jump's own block run before it jumps; the target's after it.
+        let mut at_key: HashMap<&Key, Vec<usize>> = HashMap::new();
+        for (k, p) in &targets {
+            at_key.entry(k).or_default().push(*p);
+        }
+        // Positions come in walk order, sorted: whether one lies between a jump and its
+        // target (the jump's own block included, the target's not) is a binary search.
         let between = |set: &[usize], from: usize, to: usize| {
-            set.iter().any(|&p| p != to && p >= from.min(to) && p <= from.max(to))
+            let (lo, hi) = (from.min(to), from.max(to));
+            let i = set.partition_point(|&p| p < lo);
+            set[i..].iter().take_while(|&&p| p <= hi).any(|&p| p != to)
         };
         for (key, from) in &jumps {
-            for (_, to) in targets.iter().filter(|(k, _)| k == key) {
-                if between(&abs_at, *from, *to) {
+            for &to in at_key.get(key).map_or(&[][..], |v| v.as_slice()) {
+                if between(&abs_at, *from, to) {
                     r.abs.insert(key.clone());
                 }
-                if between(&units_at, *from, *to) {
+                if between(&units_at, *from, to) {
                     r.units.insert(key.clone());
                 }
             }
@@ -297,8 +304,27 @@ impl Resets {
 
     /// The modes at the head of a loop entered with `m`, which hold after it too: `m`
     /// merged with what each pass leaves, to a fixed point (each mode can only become
-    /// unknown, so two rounds settle it).
+    /// unknown, so two rounds settle it). A loop that holds loops takes the coarser rule
+    /// (every mode its body may set is unknown), so that nested loops cost one walk each
+    /// rather than rounds multiplied through the nesting.
     pub(super) fn loop_entry(&self, body: &[Stmt], m: Modes, callees: &BTreeMap<String, Callee>) -> Modes {
+        let mut nested = false;
+        let (mut abs, mut units) = (false, false);
+        crate::ir::visit::walk_stmts(body, &mut |s| match &s.kind {
+            StmtKind::Block(b) => {
+                let (a, u) = sets(&b.items, callees);
+                abs |= a;
+                units |= u;
+            }
+            StmtKind::If(_) => {}
+            _ => nested = true,
+        });
+        if nested {
+            return Modes {
+                abs: if abs { None } else { m.abs },
+                units: if units { UnitState::Unknown } else { m.units },
+            };
+        }
         let mut e = m;
         for _ in 0..4 {
             let n = e.merge(self.fold(body, e, callees));

@@ -62,7 +62,7 @@ fn before_returns(body: Vec<Stmt>, restore: &Stmt) -> Vec<Stmt> {
             }
             StmtKind::Block(_) => out.push(s),
             kind => {
-                for body in child_bodies_mut(kind) {
+                for body in crate::ir::visit::child_bodies_mut(kind) {
                     let b = std::mem::take(body);
                     *body = before_returns(b, restore);
                 }
@@ -71,22 +71,4 @@ fn before_returns(body: Vec<Stmt>, restore: &Stmt) -> Vec<Stmt> {
         }
     }
     out
-}
-
-fn child_bodies_mut(kind: &mut StmtKind) -> Vec<&mut Vec<Stmt>> {
-    match kind {
-        StmtKind::Block(_) => vec![],
-        StmtKind::If(i) => {
-            let mut v = vec![&mut i.then_body];
-            if let Some(e) = &mut i.else_part {
-                v.push(&mut e.body);
-            }
-            v
-        }
-        StmtKind::While(w) => vec![&mut w.body],
-        StmtKind::Loop(l) => vec![&mut l.body],
-        StmtKind::For(f) => vec![&mut f.body],
-        StmtKind::Repeat(r) => vec![&mut r.body],
-        StmtKind::Do(d) => vec![&mut d.body],
-    }
 }
