@@ -144,27 +144,27 @@ impl FileJob for Watched {
     }
 }
 
-fn settings() -> JobSettings {
+fn settings(max_steps: u64) -> JobSettings {
     let mut s = JobSettings::from_config(&nctrans::config::Config::default()).expect("settings");
-    s.max_steps = 2_000_000;
+    s.max_steps = max_steps;
     s
 }
 
-#[test]
-fn a_main_with_calls_streams_with_the_same_outputs_map_and_report() {
-    let dir = scratch("api");
-    let input = dir.join("in");
-    library(&input);
+/// Runs the batch with streaming off and on (every file): the same records, the same files
+/// written (the map file too), no staging folder left. Returns the files the streamed run
+/// streamed, and its result.
+fn both_ways(input: &Path, dir: &Path, max_steps: u64) -> (Vec<String>, batch::BatchResult) {
     let mut results = Vec::new();
     let mut streamed = Vec::new();
     for (k, bytes) in [u64::MAX, 0].into_iter().enumerate() {
         let out = dir.join(format!("out{k}"));
-        let mut opts = BatchOptions::new(&input, &out, Dialect::Sinumerik);
+        let mut opts = BatchOptions::new(input, &out, Dialect::Sinumerik);
         opts.stream_bytes = bytes;
         opts.jobs = 2;
-        let job = Watched { job: ToSinumerikJob::new(settings()), streamed: Mutex::new(vec![]) };
+        let job = Watched { job: ToSinumerikJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
         let r = batch::run_batch(opts, &job, Arc::new(AtomicBool::new(false)), &mut |_| {}).expect("batch");
         streamed = job.streamed.into_inner().expect("lock");
+        assert!(!out.join(batch::write::STAGING).exists(), "the staging folder is gone");
         results.push((r, snapshot(&out)));
     }
     let (b, a) = (results.pop().expect("streamed"), results.pop().expect("whole"));
@@ -185,9 +185,18 @@ fn a_main_with_calls_streams_with_the_same_outputs_map_and_report() {
             String::from_utf8_lossy(&b.1[k])
         );
     }
+    (streamed, b.0)
+}
+
+#[test]
+fn a_main_with_calls_streams_with_the_same_outputs_map_and_report() {
+    let dir = scratch("api");
+    let input = dir.join("in");
+    library(&input);
+    let (streamed, r) = both_ways(&input, &dir, 2_000_000);
     for must in ["fan/main1.nc", "fan/main2.nc", "fan/main5.nc", "fan/main6.nc"] {
         assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
-        let f = b.0.files.iter().find(|f| f.path == must).expect("record");
+        let f = r.files.iter().find(|f| f.path == must).expect("record");
         assert_eq!(f.status, batch::Status::Verified, "{must}: {}", f.summary);
         assert!(f.outputs.len() >= 2, "{must}: the main and its subprograms: {:?}", f.outputs);
     }
@@ -197,8 +206,23 @@ fn a_main_with_calls_streams_with_the_same_outputs_map_and_report() {
         assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
     }
     // The callee files' programs are written by their own jobs, once.
-    let main1 = b.0.files.iter().find(|f| f.path == "fan/main1.nc").expect("main1");
+    let main1 = r.files.iter().find(|f| f.path == "fan/main1.nc").expect("main1");
     assert!(main1.outputs.iter().all(|o| !o.contains("8001") && !o.contains("8002")), "{:?}", main1.outputs);
+}
+
+/// A main whose check does not prove equivalence (the step limit) is left to the whole job,
+/// which gives its verdict: the same records and files as with streaming off.
+#[test]
+fn a_main_with_calls_that_does_not_verify_gives_the_whole_jobs_verdict() {
+    let dir = scratch("steps");
+    let input = dir.join("in");
+    library(&input);
+    let (streamed, r) = both_ways(&input, &dir, 300);
+    for f in ["fan/main1.nc", "fan/main2.nc"] {
+        assert!(!streamed.iter().any(|s| s == f), "{f} streamed");
+        let rec = r.files.iter().find(|x| x.path == f).expect("record");
+        assert_ne!(rec.status, batch::Status::Verified, "{f}: {}", rec.summary);
+    }
 }
 
 /// What `library_scan` reports of a streamed FANUC file with calls and subprograms is what
