@@ -333,11 +333,8 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
     // Modal G words of this block apply to its own axis words.
     for w in &words {
         if w.addr.is(b'G') {
-            match const_of(&w.value) {
-                Some(90.0) => m.s.abs = Some(true),
-                Some(91.0) => m.s.abs = Some(false),
-                Some(v) => m.s.units.g(v),
-                _ => {}
+            if let Some(v) = const_of(&w.value) {
+                m.s.g(v);
             }
         }
     }
