@@ -102,10 +102,10 @@ pub struct Translation {
     pub diags: Vec<Diagnostic>,
     /// Constructs that could not be expressed (also counted under the warn policy).
     pub unsupported: usize,
-    /// The main program's G90/G91 and units followed its text block by block (no paths
-    /// that disagree on them, no call that changes the units): what the streamed
-    /// translators, which follow the text, need to give the same output.
-    pub modes_exact: bool,
+    /// The main program's units followed its text block by block (no paths that disagree
+    /// on them, no call that changes them): what the streamed translators, which convert
+    /// F words in text order, need to give the same output.
+    pub units_follow_text: bool,
 }
 
 impl Translation {
@@ -175,7 +175,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
 
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
-    let mut modes_exact = true;
+    let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
@@ -184,7 +184,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {
-            modes_exact = !ctx.modes_inexact;
+            units_follow_text = !ctx.units_inexact;
         }
         tools_used.extend(ctx.tools_used);
         unsupported += ctx.unsupported;
@@ -246,7 +246,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, modes_exact }
+    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
 }
 
 fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {

@@ -397,6 +397,9 @@ fn modes_cross_run_boundaries() {
         // G70 in the macro part: the run after it divides F.
         ("inch-macro.mpf", "R1=1\nG70 G1 X=R1\nG1 X1 F100\nY2 F200\nR2=1\nG71 X=R2\nX3 F50\nM30\n"),
         ("inch-off.mpf", "R1=1\nG70\nG1 X1 F100\nG710 X2 F10\nR1=2\nG1 X=R1 F20\nM30\n"),
+        // G91 in one branch: the AC() after it reads the mode at run time (#4003), in the
+        // skeleton; the run between takes no mode from it.
+        ("abs-if.mpf", "R1=1\nG1 X1 F100\nIF R1>5\nG91\nENDIF\nG1 X2\nX3\nR2=1\nX=AC(R2)\nM30\n"),
         // G91 in a run: the IC() word after it needs no switch; AC() does.
         ("abs-run.mpf", "R1=1\nG1 X1\nG91 X2\nR2=2\nG1 X=IC(R1)\nY=AC(R2)\nG90 X1\nR3=1\nG1 X=AC(R3)\nY=IC(1)\nM30\n"),
         // MSG in the macro part, M0 the next (straight) block: a stop with the message.

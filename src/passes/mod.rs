@@ -75,9 +75,9 @@ pub struct Ctx {
     pub diags: Vec<Diagnostic>,
     /// Number of unsupported constructs met (also under the warn policy).
     pub unsupported: usize,
-    /// The words pass met paths that disagree on G90/G91 or the units (`words::modes`):
-    /// the modes did not simply follow the text.
-    pub modes_inexact: bool,
+    /// The words pass met paths that disagree on the units, or a call that changes them
+    /// (`words::modes`): the units did not simply follow the text.
+    pub units_inexact: bool,
     next_temp: u32,
     next_label: u32,
 }
@@ -93,7 +93,7 @@ impl Ctx {
             tools_used: BTreeMap::new(),
             callees: BTreeMap::new(),
             diags: Vec::new(),
-            modes_inexact: false,
+            units_inexact: false,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

@@ -75,11 +75,12 @@ struct Modal {
 
 impl Modal {
     /// Where paths meet, one with the modes here and one with `other`: what they agree
-    /// on from here on. Where they disagree the modes no longer follow the text (the
-    /// streamed translators, which follow the text, decline then).
+    /// on from here on. Where they disagree on the units, those no longer follow the text
+    /// (the streamed translators, whose runs convert F words in text order, decline then;
+    /// G90/G91 is read by AC()/IC() words only, all in the skeleton they translate here).
     fn meet(&mut self, ctx: &mut Ctx, other: Modes) {
-        if other != self.s {
-            ctx.modes_inexact = true;
+        if other.units != self.s.units {
+            ctx.units_inexact = true;
         }
         self.s = self.s.merge(other);
     }
@@ -333,11 +334,8 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
     // Modal G words of this block apply to its own axis words.
     for w in &words {
         if w.addr.is(b'G') {
-            match const_of(&w.value) {
-                Some(90.0) => m.s.abs = Some(true),
-                Some(91.0) => m.s.abs = Some(false),
-                Some(v) => m.s.units.g(v),
-                _ => {}
+            if let Some(v) = const_of(&w.value) {
+                m.s.g(v);
             }
         }
     }
@@ -554,7 +552,7 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
     // until the caller's next G90/G91).
     let before = m.s;
     m.s.call(&callee.effect);
-    ctx.modes_inexact |= m.s.units != before.units;
+    ctx.units_inexact |= m.s.units != before.units;
     None
 }
 

@@ -222,9 +222,11 @@ fn segment(
     let sub_refs: Vec<&Unit> = subs.iter().collect();
     let t = translate::to_fanuc(&unit, &sub_refs, opts);
     drop(unit);
-    // The runs take the units the scan follows in text order.
-    if !t.modes_exact {
-        return Err(Fallback::NotStraight("units or G90/G91 that depend on the path taken or on a call".into()));
+    // The runs take the units the scan follows in text order. (G90/G91 merged where paths
+    // meet is read by the skeleton's own AC()/IC() words only: the placeholders carry each
+    // run's last G90/G91, jump targets and skippable G90/G91 blocks are never in a run.)
+    if !t.units_follow_text {
+        return Err(Fallback::NotStraight("units that depend on the path taken or on a call".into()));
     }
     // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
     // as read from their files: only callees alignment leaves alone stream.
