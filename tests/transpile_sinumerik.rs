@@ -244,11 +244,13 @@ fn m98_shares_the_callers_locals_by_reference() {
     let src = "O1\n#1=5\n#2=#0\nM98 P100 L2\nG0 X#1\nM30\nO100\n#1=#1+1\nIF[#2 EQ #0]THEN #2=0\nM99\n";
     assert_eq!(
         out(src, ""),
-        "DEF REAL LOC1, LOC2\nDEF BOOL LOC2_SET\nLOC1=5\nLOC2=0 LOC2_SET=0\nO_0100(LOC1,LOC2,LOC2_SET) P=2\nG0 X=LOC1\nM30\n"
+        "DEF REAL LOC1, LOC2\nDEF BOOL LOC1_SET, LOC2_SET\nLOC1=5 LOC1_SET=1\nLOC2=0 LOC2_SET=0\nO_0100(LOC1,LOC2,LOC1_SET,LOC2_SET) P=2\nG0 X=LOC1\nM30\n"
     );
+    // Every shared local has its flag (the PROC line depends on the subprogram alone); a
+    // word whose variable is set on every path to it needs no IF (`G0 X=LOC1` above).
     assert_eq!(
         out(src, "O_0100.SPF"),
-        "PROC O_0100(VAR REAL LOC1, VAR REAL LOC2, VAR BOOL LOC2_SET)\nLOC1=LOC1+1\nIF NOT LOC2_SET\n  LOC2=0 LOC2_SET=1\nENDIF\nRET\n"
+        "PROC O_0100(VAR REAL LOC1, VAR REAL LOC2, VAR BOOL LOC1_SET, VAR BOOL LOC2_SET)\nLOC1=LOC1+1 LOC1_SET=1\nIF NOT LOC2_SET\n  LOC2=0 LOC2_SET=1\nENDIF\nRET\n"
     );
 }
 

@@ -271,6 +271,7 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             params: Vec::new(),
             locals,
             tracked: BTreeSet::new(),
+            sure_words: BTreeSet::new(),
             given: number.and_then(|n| given.get(&n)).cloned().unwrap_or_default(),
             writes_locals,
             returns_to: role != Role::Main && has_item(&p.body, &|k| matches!(k, ItemKind::Return { to: Some(_) })),

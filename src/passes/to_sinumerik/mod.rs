@@ -146,6 +146,9 @@ pub struct ProgPlan {
     pub locals: BTreeSet<u32>,
     /// Locals with an is-set flag.
     pub tracked: BTreeSet<u32>,
+    /// Address words (`lo, hi` of the value's span) whose variable is set on every path to
+    /// them: a tracked variable's flag is surely TRUE there, so the word needs no IF.
+    pub sure_words: BTreeSet<(u32, u32)>,
     /// Argument locals some G65/G66 call site in the job fills.
     pub given: BTreeSet<u32>,
     /// The program writes a local (any; decides whether `G65 … L` can repeat by `P`).

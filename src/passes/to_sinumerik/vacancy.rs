@@ -214,6 +214,8 @@ struct Analysis {
     numbers: Vec<Option<u32>>,
     summaries: Vec<Summary>,
     seeds: BTreeSet<Key>,
+    /// Address words whose variable is definitely set there: (program, span lo, hi).
+    sure: BTreeSet<(usize, u32, u32)>,
     edges: Vec<(Key, Key)>,
 }
 
@@ -327,6 +329,8 @@ impl Analysis {
                     if let Some(n) = vacancy_var(e) {
                         if !d.contains(&n) {
                             self.seeds.extend(key(prog, n));
+                        } else {
+                            self.sure.insert((prog, e.span.lo, e.span.hi));
                         }
                     }
                 }
@@ -436,7 +440,7 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
             break;
         }
     }
-    let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), edges: Vec::new() };
+    let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new() };
     for (i, (_, p)) in programs.iter().enumerate() {
         let flat = flatten(&p.body);
         let entry =
@@ -457,12 +461,17 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
             }
         }
     }
-    // M98 subprograms and their callers share locals: tracking is shared too.
+    // M98 subprograms and their callers share locals. Every local a subprogram shares (its
+    // own and its M98 callees') is tracked, in it and in each caller: its `PROC` line then
+    // depends on it alone, not on what one caller's flow needs, so a batch job translating
+    // the subprogram's own file writes the line its callers' jobs call (a caller in another
+    // file tracked a local the subprogram never touches: the call passed a flag the PROC
+    // did not take).
     for &(a, b, m98) in &calls {
         if m98 {
-            for n in 1..=33 {
-                an.edges.push((Key::Local(a, n), Key::Local(b, n)));
-                an.edges.push((Key::Local(b, n), Key::Local(a, n)));
+            for &n in &ctx.progs[b].locals {
+                an.seeds.insert(Key::Local(a, n));
+                an.seeds.insert(Key::Local(b, n));
             }
         }
     }
@@ -476,6 +485,11 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
         }
         if tracked.len() == before {
             break;
+        }
+    }
+    for &(p, lo, hi) in &an.sure {
+        if let Some(pl) = ctx.progs.get_mut(p) {
+            pl.sure_words.insert((lo, hi));
         }
     }
     let mut commons = BTreeSet::new();
@@ -650,7 +664,9 @@ fn rewrite_block(ctx: &mut Ctx, mut b: Block, span: Span, out: &mut Vec<Stmt>) {
         .iter()
         .enumerate()
         .filter_map(|(i, it)| match &it.kind {
-            ItemKind::Word(Word { value: WordValue::Expr(e), .. }) => {
+            ItemKind::Word(Word { value: WordValue::Expr(e), .. })
+                if !ctx.plan().sure_words.contains(&(e.span.lo, e.span.hi)) =>
+            {
                 vacancy_var(e).and_then(|n| flag_ref(ctx, n, e.span)).map(|_| i)
             }
             _ => None,
