@@ -407,6 +407,7 @@ impl State<'_> {
             diags: Vec::new(),
             cur: 0,
             guard_ok: false,
+            modal: Default::default(),
         };
         // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
         // without variables) and with the plan made once.

@@ -329,12 +329,18 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
 
 /// Lowers calls, returns and offset writes of the current program.
 pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
-    let modal = super::words::ModalScan::new(&body);
+    let modal = std::mem::take(&mut ctx.modal);
+    let out = lower_with(ctx, body, &modal);
+    ctx.modal = modal;
+    out
+}
+
+fn lower_with(ctx: &mut Ctx, body: Vec<Stmt>, modal: &super::words::ModalScan) -> Vec<Stmt> {
     map_bodies(body, &mut |list| {
         let mut out = Vec::with_capacity(list.len());
         for s in list {
             match s.kind {
-                StmtKind::Block(b) => lower_block(ctx, b, s.span, &modal, &mut out),
+                StmtKind::Block(b) => lower_block(ctx, b, s.span, modal, &mut out),
                 kind => out.push(Stmt { kind, span: s.span }),
             }
         }
@@ -547,7 +553,26 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         }
     };
     let gs = g_codes(&b.items);
-    let incremental = gs.contains(&910) || (!gs.contains(&900) && modal.incremental_at(span.lo));
+    let incremental = if gs.contains(&910) {
+        true
+    } else if gs.contains(&900) {
+        false
+    } else {
+        match modal.incremental_at(span.lo) {
+            Some(inc) => inc,
+            None => {
+                if let Some(st) = ctx.unsupported(
+                    "NC374",
+                    span,
+                    "`G10 L2` where G90/G91 depends on the path taken or on the caller",
+                    "write G90 or G91 in the G10 block",
+                ) {
+                    out.push(st);
+                }
+                return;
+            }
+        }
+    };
     // Modal G codes written in the G10 block (G90/G91 …) stay in force for later blocks.
     let modal_words: Vec<Item> = b
         .items
@@ -596,9 +621,13 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
     }
     // Writing $P_UIFR does not activate it: re-select the offset active here.
     let g = match modal.offset_at(span.lo) {
-        580 => 5050,
-        590 => 5060,
-        g => g,
+        Some(580) => 5050,
+        Some(590) => 5060,
+        Some(g) => g,
+        None => {
+            out.extend(super::words::unknown_offset(ctx, span));
+            return;
+        }
     };
     out.push(plain_block(vec![super::words::g_word(g, span)], span));
 }

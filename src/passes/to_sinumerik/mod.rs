@@ -23,6 +23,7 @@ pub mod calls;
 pub mod exprs;
 pub mod gotos;
 pub mod indirect;
+pub mod modal;
 pub mod structures;
 pub mod vacancy;
 pub mod varmap;
@@ -173,6 +174,9 @@ pub struct Ctx<'a> {
     pub cur: usize,
     /// True while lowering the items of a plain block (a guard block may go in front).
     pub guard_ok: bool,
+    /// The work offset and G90/G91 at each block of the program being lowered, found on
+    /// it as read (`modal`).
+    pub modal: modal::ModalScan,
 }
 
 impl<'a> Ctx<'a> {
@@ -252,6 +256,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         diags: Vec::new(),
         cur: 0,
         guard_ok: false,
+        modal: modal::ModalScan::default(),
     };
     calls::plan_programs(&mut ctx, programs);
     let info = vacancy::analyse(&mut ctx, programs);
@@ -288,6 +293,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
+    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
     body = gotos::lower(ctx, body);

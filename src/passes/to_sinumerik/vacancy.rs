@@ -48,10 +48,13 @@ pub(super) enum Node<'a> {
 pub(super) struct Flat<'a> {
     pub nodes: Vec<Node<'a>>,
     pub numbers: Vec<Option<u32>>,
+    /// Each block node's span start and whether it may be skipped (`/`); `None` for loop
+    /// heads and ends.
+    pub blocks: Vec<Option<(u32, bool)>>,
 }
 
 pub(super) fn flatten(body: &[Stmt]) -> Flat<'_> {
-    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new() };
+    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new(), blocks: Vec::new() };
     flatten_into(body, &mut f);
     f
 }
@@ -62,14 +65,17 @@ fn flatten_into<'a>(body: &'a [Stmt], f: &mut Flat<'a>) {
             StmtKind::Block(b) => {
                 f.nodes.push(Node::Items(&b.items));
                 f.numbers.push(b.meta.number.as_ref().map(|n| n.value));
+                f.blocks.push(Some((b.meta.span.lo, b.meta.skip.is_some())));
             }
             StmtKind::Do(d) => {
                 let head = f.nodes.len();
                 f.nodes.push(Node::Head { cond: d.cond.as_ref(), exit: 0 });
                 f.numbers.push(d.head.number.as_ref().map(|n| n.value));
+                f.blocks.push(None);
                 flatten_into(&d.body, f);
                 f.nodes.push(Node::End { head });
                 f.numbers.push(d.end.number.as_ref().map(|n| n.value));
+                f.blocks.push(None);
                 let exit = f.nodes.len();
                 if let Node::Head { exit: e, .. } = &mut f.nodes[head] {
                     *e = exit;

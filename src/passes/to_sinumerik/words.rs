@@ -42,39 +42,17 @@ pub fn g_word(g10: u32, span: Span) -> Item {
     Item { kind: ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span }), span }
 }
 
-/// The modal G codes that matter to a pass at a point of the text: active work offset and
-/// absolute/incremental mode, found by scanning the program in text order.
-pub struct ModalScan {
-    offsets: Vec<(u32, u32)>,
-    incremental: Vec<(u32, bool)>,
-}
+pub use super::modal::ModalScan;
 
-impl ModalScan {
-    pub fn new(body: &[Stmt]) -> ModalScan {
-        let mut m = ModalScan { offsets: Vec::new(), incremental: Vec::new() };
-        crate::ir::visit::walk_stmts(body, &mut |s| {
-            if let StmtKind::Block(b) = &s.kind {
-                for g in g_codes(&b.items) {
-                    match g {
-                        540 | 550 | 560 | 570 | 580 | 590 => m.offsets.push((b.meta.span.lo, g)),
-                        900 => m.incremental.push((b.meta.span.lo, false)),
-                        910 => m.incremental.push((b.meta.span.lo, true)),
-                        _ => {}
-                    }
-                }
-            }
-        });
-        m
-    }
-
-    /// The work offset G code (×10) selected before `lo`; G54 at power-on.
-    pub fn offset_at(&self, lo: u32) -> u32 {
-        self.offsets.iter().rev().find(|(at, _)| *at <= lo).map_or(540, |x| x.1)
-    }
-
-    pub fn incremental_at(&self, lo: u32) -> bool {
-        self.incremental.iter().rev().find(|(at, _)| *at <= lo).is_some_and(|x| x.1)
-    }
+/// A work offset written where the offset in force depends on the path taken (or on the
+/// caller): the write must be re-selected to act on Siemens, and which one is not known.
+pub fn unknown_offset(ctx: &mut Ctx, span: Span) -> Option<Stmt> {
+    ctx.unsupported(
+        "NC373",
+        span,
+        "a work-offset write where the active offset (G54..G59) depends on the path taken or on the caller",
+        "select the work offset (G54..G59) before the write, on every path (in a subprogram: in the subprogram)",
+    )
 }
 
 /// The Siemens spelling of a FANUC G code (×10), `None` when unsupported, `Some(None)` when
@@ -142,9 +120,11 @@ fn reads_actual(e: &Expr) -> bool {
 
 /// Lowers the words and messages of the current program.
 pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
-    let modal = ModalScan::new(&body);
+    let modal = std::mem::take(&mut ctx.modal);
     let mut arc = false;
-    lower_list(ctx, body, &modal, &mut arc)
+    let out = lower_list(ctx, body, &modal, &mut arc);
+    ctx.modal = modal;
+    out
 }
 
 fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, modal: &ModalScan, arc: &mut bool) -> Vec<Stmt> {
@@ -267,9 +247,13 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
         );
     }
     if offset_written {
-        let g = modal.offset_at(span.lo);
-        let sg = map_g(g).flatten().unwrap_or(g);
-        after.push(plain_block(vec![g_word(sg, span)], span));
+        match modal.offset_at(span.lo) {
+            Some(g) => {
+                let sg = map_g(g).flatten().unwrap_or(g);
+                after.push(plain_block(vec![g_word(sg, span)], span));
+            }
+            None => after.extend(unknown_offset(ctx, span)),
+        }
     }
     if needs_stopre {
         out.push(plain_block(vec![Item { kind: ItemKind::Stopre, span }], span));

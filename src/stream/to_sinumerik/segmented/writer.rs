@@ -53,6 +53,7 @@ impl Alone {
             diags: Vec::new(),
             cur: 0,
             guard_ok: false,
+            modal: Default::default(),
         };
         let mut body = passes::lower_body(&mut ctx, body);
         if arc {
