@@ -276,6 +276,7 @@ fn cli_batch_of_mains_with_calls_gives_the_same_files_report_and_exit_code() {
     let dir = scratch("cli");
     let input = dir.join("in");
     library(&input);
+    shared_macros(&input);
     let i = input.to_string_lossy().to_string();
     // Verified, and (the subprograms staged without a check) with --no-verify.
     for verify in [true, false] {
@@ -299,6 +300,7 @@ fn cli_batch_of_mains_with_calls_gives_the_same_files_report_and_exit_code() {
         assert_eq!((a.0, &a.1), (b.0, &b.1), "verify {verify}");
         assert_eq!(a.2, b.2, "verify {verify}");
         assert!(b.2.contains_key("fan/O_2001.spf") && b.2.contains_key("fan/O_2501.spf"), "{:?}", b.2.keys());
+        assert!(b.2.contains_key("fan/MAINC.mpf") && b.2.contains_key("fan/O_9010.spf"), "{:?}", b.2.keys());
     }
 }
 
@@ -312,13 +314,13 @@ fn shared_macros(input: &Path) -> Vec<(&'static str, String)> {
     let macros = "%\nO9010\nIF [#2 EQ #0] THEN #2=1.\nIF [#24 NE #0] GOTO5\n#24=#1*2\nN5 G01 X#24 Y#2 F200.\n\
                   IF [#26 NE #0] THEN #3=#26\nM99\nO9020\nG00 X#1 Y5.\nM99\nO9030\nG01 Z-#26 F#9\nG00 Z2.\nM99\n%\n";
     let mains = vec![
-        ("mainA.nc", main_program(11, 1000, &["G65 P9010 A1. B2.", "M98 P9020", "G65 P9030 Z2. F100."], "")),
-        ("mainB.nc", main_program(12, 1100, &["G65 P9010 X3. Z#1", "G65 P9030 Z1. F50.", "G00 X1."], "")),
+        ("mainA.nc", main_program(11, 4000, &["G65 P9010 A1. B2.", "M98 P9020", "G65 P9030 Z2. F100."], "")),
+        ("mainB.nc", main_program(12, 4100, &["G65 P9010 X3. Z#1", "G65 P9030 Z1. F50.", "G00 X1."], "")),
         (
             "mainC.nc",
             main_program(
                 13,
-                1200,
+                4200,
                 &["G65 P9010 A#1", "M98 P9020", "G66 P9030 Z1. F60.", "G01 X5. F300.\nG67", "M98 P2301"],
                 "O2301\nG65 P9010 B4.\nM99\n",
             ),
@@ -328,7 +330,7 @@ fn shared_macros(input: &Path) -> Vec<(&'static str, String)> {
         std::fs::write(fan.join(name), text).expect("write");
     }
     std::fs::write(fan.join("macros.nc"), macros).expect("write");
-    std::fs::write(fan.join("small.nc"), "%\nO3000\nG65 P9010 C5. A1.\nG65 P9030 Z3. F20.\nM30\n%\n").expect("write");
+    std::fs::write(fan.join("small.nc"), "%\nO4300\nG65 P9010 C5. A1.\nG65 P9030 Z3. F20.\nM30\n%\n").expect("write");
     let mut all: Vec<(&'static str, String)> = mains;
     all.push(("macros.nc", macros.to_string()));
     all
