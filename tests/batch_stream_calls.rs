@@ -1,9 +1,10 @@
 //! FANUC → Sinumerik batches stream a large main program that calls subprograms: its own
 //! after M30 and programs of other batch files (`M98 P`, `G65 P` with arguments, `G66 P` …
 //! `G67`). The streamed batch writes the same files (`.mpf`, `.spf`, the map file), the same
-//! report and exit code as with streaming off; the main streams, its callee files go whole,
-//! and so do mains whose job the streamed one is not (a callee another file calls too, a
-//! subprogram its own file does not call). The library scan of such a file streams and
+//! report and exit code as with streaming off; the main streams (with the whole job's
+//! stand-in caller when other files call its callees too: many CAM mains calling the
+//! macros of one library file), its callee files go whole, and so do mains whose job the
+//! streamed one is not (a subprogram its own file does not call). The library scan of such a file streams and
 //! reports what the whole scan reports.
 
 #[path = "support/rng.rs"]
@@ -100,7 +101,8 @@ fn library(input: &Path) {
     std::fs::write(fan.join("main5.nc"), bytes).expect("write");
     w("lib5.nc", "%\nO8501\n(\u{dc}BER)\nG01 Z-#18 F60.\nM99\n%\n".into());
     w("main6.nc", format!("\u{feff}{}", main_program(6, 1600, &["M98 P2601", "G00 Y1."], "O2601\nG00 X8.\nM99\n")));
-    // A callee another file calls too: the whole job adds a stand-in caller; goes whole.
+    // A callee another file calls too: the whole job adds a stand-in caller; so does the
+    // streamed one.
     w("main3.nc", main_program(3, 1200, &["M98 P8004", "G00 X1."], ""));
     w("shared.nc", "%\nO8004\nG01 X7. F100.\nM99\n%\n".into());
     w("other.nc", "%\nO1300\nM98 P8004\nM30\n%\n".into());
@@ -200,9 +202,9 @@ fn a_main_with_calls_streams_with_the_same_outputs_map_and_report() {
         assert_eq!(f.status, batch::Status::Verified, "{must}: {}", f.summary);
         assert!(f.outputs.len() >= 2, "{must}: the main and its subprograms: {:?}", f.outputs);
     }
-    for never in
-        ["fan/lib1.nc", "fan/lib2.nc", "fan/lib5.nc", "fan/main3.nc", "fan/shared.nc", "fan/other.nc", "fan/main4.nc"]
-    {
+    // Its callee is called from other.nc too: with the stand-in.
+    assert!(streamed.iter().any(|s| s == "fan/main3.nc"), "main3 not streamed: {streamed:?}");
+    for never in ["fan/lib1.nc", "fan/lib2.nc", "fan/lib5.nc", "fan/shared.nc", "fan/main4.nc"] {
         assert!(!streamed.iter().any(|s| s == never), "{never} streamed");
     }
     // The callee files' programs are written by their own jobs, once.
@@ -274,6 +276,7 @@ fn cli_batch_of_mains_with_calls_gives_the_same_files_report_and_exit_code() {
     let dir = scratch("cli");
     let input = dir.join("in");
     library(&input);
+    shared_macros(&input);
     let i = input.to_string_lossy().to_string();
     // Verified, and (the subprograms staged without a check) with --no-verify.
     for verify in [true, false] {
@@ -297,5 +300,72 @@ fn cli_batch_of_mains_with_calls_gives_the_same_files_report_and_exit_code() {
         assert_eq!((a.0, &a.1), (b.0, &b.1), "verify {verify}");
         assert_eq!(a.2, b.2, "verify {verify}");
         assert!(b.2.contains_key("fan/O_2001.spf") && b.2.contains_key("fan/O_2501.spf"), "{:?}", b.2.keys());
+        assert!(b.2.contains_key("fan/MAINC.mpf") && b.2.contains_key("fan/O_9010.spf"), "{:?}", b.2.keys());
+    }
+}
+
+/// The shop's common case: large CAM mains all calling the macros and subprograms of one
+/// library file (G65 with different argument letters, M98, G66), a small file calling them
+/// too. Every job translates with a stand-in for the calls the other files make, so the
+/// macro's `PROC` line is the same in every job.
+fn shared_macros(input: &Path) -> Vec<(&'static str, String)> {
+    let fan = input.join("fan");
+    std::fs::create_dir_all(&fan).expect("dir");
+    let macros = "%\nO9010\nIF [#2 EQ #0] THEN #2=1.\nIF [#24 NE #0] GOTO5\n#24=#1*2\nN5 G01 X#24 Y#2 F200.\n\
+                  IF [#26 NE #0] THEN #3=#26\nM99\nO9020\nG00 X#1 Y5.\nM99\nO9030\nG01 Z-#26 F#9\nG00 Z2.\nM99\n%\n";
+    let mains = vec![
+        ("mainA.nc", main_program(11, 4000, &["G65 P9010 A1. B2.", "M98 P9020", "G65 P9030 Z2. F100."], "")),
+        ("mainB.nc", main_program(12, 4100, &["G65 P9010 X3. Z#1", "G65 P9030 Z1. F50.", "G00 X1."], "")),
+        (
+            "mainC.nc",
+            main_program(
+                13,
+                4200,
+                &["G65 P9010 A#1", "M98 P9020", "G66 P9030 Z1. F60.", "G01 X5. F300.\nG67", "M98 P2301"],
+                "O2301\nG65 P9010 B4.\nM99\n",
+            ),
+        ),
+    ];
+    for (name, text) in &mains {
+        std::fs::write(fan.join(name), text).expect("write");
+    }
+    std::fs::write(fan.join("macros.nc"), macros).expect("write");
+    std::fs::write(fan.join("small.nc"), "%\nO4300\nG65 P9010 C5. A1.\nG65 P9030 Z3. F20.\nM30\n%\n").expect("write");
+    let mut all: Vec<(&'static str, String)> = mains;
+    all.push(("macros.nc", macros.to_string()));
+    all
+}
+
+/// The trace events of `nctrans run FILE` (the end line left out: step counts differ).
+fn events(file: &Path) -> Vec<String> {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).arg("run").arg(file).output().expect("run");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    text.lines().map(|l| l.split("  @").next().unwrap_or(l).to_string()).filter(|l| !l.starts_with("end ")).collect()
+}
+
+#[test]
+fn mains_calling_one_shared_macro_file_stream_with_the_whole_jobs_stand_in() {
+    let dir = scratch("shared");
+    let input = dir.join("in");
+    let texts = shared_macros(&input);
+    let (streamed, r) = both_ways(&input, &dir, 2_000_000);
+    for must in ["fan/mainA.nc", "fan/mainB.nc", "fan/mainC.nc"] {
+        assert!(streamed.iter().any(|s| s == must), "{must} not streamed: {streamed:?}");
+        let f = r.files.iter().find(|f| f.path == must).expect("record");
+        assert_eq!(f.status, batch::Status::Verified, "{must}: {}", f.summary);
+    }
+    assert!(!streamed.iter().any(|s| s == "fan/macros.nc"), "the macro file streamed");
+    // The streamed output folder runs as the library does: each main's calls fit the
+    // PROC lines the macro file's own job wrote.
+    let macros = &texts.iter().find(|(n, _)| *n == "macros.nc").expect("macros").1;
+    let out = dir.join("out1/fan");
+    for (name, text) in texts.iter().filter(|(n, _)| n.starts_with("main")) {
+        let all = format!("{}{}", text.trim_end_matches("%\n"), macros.trim_start_matches("%\n"));
+        let whole = dir.join("all.nc");
+        std::fs::write(&whole, all).expect("all");
+        let want = events(&whole);
+        let mpf = out.join(format!("{}.mpf", name.trim_end_matches(".nc").to_ascii_uppercase()));
+        assert!(want.len() > 100, "{name}: {}", want.len());
+        assert_eq!(events(&mpf), want, "{name}: the output folder does not run as the library does");
     }
 }

@@ -231,6 +231,22 @@ fn callers_text(ctx: &BatchContext, job: &[(usize, &Unit)]) -> Option<String> {
     Some(text)
 }
 
+/// The stand-in caller of a job (`callers_text`) added to `db` and parsed with the job's
+/// FANUC profile: its file and unit; `None` when there is no call to stand in for or it does
+/// not parse (the job goes without it). Shared by the whole job and the streamed one
+/// (`streamed_calls`), which must translate with the same stand-in.
+pub(crate) fn stand_in(
+    db: &mut SourceDb,
+    ctx: &BatchContext,
+    job: &[(usize, &Unit)],
+    fanuc: &crate::dialect::Semantics,
+) -> Option<(FileId, Unit)> {
+    let text = callers_text(ctx, job)?;
+    let id = db.add(CALLERS_FILE, text);
+    let parsed = crate::parse(db, id, Dialect::Fanuc, &ParseOptions { semantics: fanuc.clone() });
+    (!crate::diag::has_errors(&parsed.diags)).then_some((id, parsed.unit))
+}
+
 /// The names a file's translation used: its programs (`O` number → Siemens name, for the
 /// numbered ones) and the variables of those programs and the common ones.
 pub(crate) fn used_names(programs: &[(Option<u32>, &str)], symbols: &ts::SymbolMap) -> maps::Used {
@@ -311,12 +327,7 @@ impl FileJob for ToSinumerikJob {
         job_files.extend(ctx.library.callee_files(file.index));
         let all: Vec<&LoadedFile> = std::iter::once(&main).chain(subs.iter()).collect();
         let job: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all.iter().map(|l| &l.unit)).collect();
-        let callers: Option<(FileId, Unit)> = callers_text(ctx, &job).and_then(|text| {
-            let id = db.add(CALLERS_FILE, text);
-            let parsed =
-                crate::parse(&db, id, Dialect::Fanuc, &ParseOptions { semantics: self.settings.fanuc.clone() });
-            (!crate::diag::has_errors(&parsed.diags)).then_some((id, parsed.unit))
-        });
+        let callers = stand_in(&mut db, ctx, &job, &self.settings.fanuc);
         let mut units: Vec<&Unit> = all.iter().map(|l| &l.unit).collect();
         if let Some((_, u)) = &callers {
             units.push(u);

@@ -393,11 +393,15 @@ fn to_sinumerik_from(
     let (done, subs) = match callees {
         None => (streamed_macro::to_sinumerik_part(path, &opts, eol, target)?, Vec::new()),
         Some(c) => {
-            let mut load = |_: &Unit| {
-                units = streamed_calls::load(job, ctx, c)?;
-                Ok(units.clone())
+            // The stand-in caller (if any) is translated with them, as the whole job does,
+            // but neither run nor written.
+            let mut load = |main: &Unit| {
+                let stand_in;
+                (units, stand_in) = streamed_calls::load(job, ctx, file, main, c)?;
+                Ok(units.iter().cloned().chain(stand_in).collect())
             };
-            streamed_macro::to_sinumerik_subs_part(path, &opts, eol, target, &mut load)?
+            let stand_in = streamed_calls::stand_in_id(c);
+            streamed_macro::to_sinumerik_subs_part(path, &opts, eol, target, &mut load, stand_in)?
         }
     };
     let with_calls = callees.is_some();

@@ -8,20 +8,23 @@
 //! stand-in for the calls other files make to any of those programs, renames programs
 //! whose number an earlier file defines, and verifies the first program and every other
 //! one its own file does not call. A file streams only where that comes down to the
-//! streamed job's one translation and one run: no stand-in (no file outside the job calls
-//! a program of the job), no program defined twice, no program of the file called from
-//! elsewhere, and each program after the first called by the file itself.
+//! streamed job's one translation and one run: no program of the file defined twice or
+//! called from elsewhere, and each program after the first called by the file itself. The
+//! stand-in (the shop's common case: many CAM mains calling the macros of one library
+//! file) is the whole job's own (`jobs_sinumerik::stand_in`, same text, same file id after
+//! the callees'), translated with the rest and dropped from the files
+//! (`segmented::to_sinumerik_with_stand_in`; a diagnostic on it declines, where the whole
+//! job drops its warnings); like the whole job, the check runs without it.
 
 use super::discover::{self, InputFile};
 use super::jobs;
-use super::jobs_sinumerik::ToSinumerikJob;
+use super::jobs_sinumerik::{self, ToSinumerikJob};
 use super::{write, BatchContext};
 use crate::dialect::Dialect;
 use crate::ir::Unit;
-use crate::span::SourceDb;
+use crate::span::{FileId, SourceDb};
 use crate::stream::translate::Fallback;
 use crate::translate_sinumerik::OutFile;
-use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -55,26 +58,36 @@ pub(super) fn callees(file: &InputFile, ctx: &BatchContext) -> Option<Vec<usize>
         }
     }
     let callees = lib.callee_files(file.index);
-    let job: BTreeSet<usize> = callees.iter().copied().chain([file.index]).collect();
     for &i in &callees {
         let c = lib.files.get(i)?;
         if c.dialect != Some(Dialect::Fanuc) || c.parse_errors > 0 || c.read_error.is_some() {
             return None;
         }
-        // A call from outside the job to one of its programs makes the whole job's stand-in.
-        for k in c.programs.iter().flatten() {
-            if lib.calls.iter().any(|call| &call.target == k && !job.contains(&call.file)) {
-                return None;
-            }
-        }
     }
+    // Calls from outside the job to its programs: the stand-in `load` gives, as the whole
+    // job makes it.
     Some(callees)
 }
 
+/// The file id of the stand-in caller of a job with `callees` callee files: after the
+/// main's 0 and theirs, as the whole job adds it.
+pub(super) fn stand_in_id(callees: &[usize]) -> FileId {
+    callees.len() + 1
+}
+
 /// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
-/// whole job (file ids from 1 up after the main's 0, the job's encoding and FANUC profile);
-/// declines a file that does not read or has any diagnostic.
-pub(super) fn load(job: &ToSinumerikJob, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
+/// whole job (file ids from 1 up after the main's 0, the job's encoding and FANUC profile),
+/// and the job's stand-in caller (`jobs_sinumerik::stand_in`, from the calls other files
+/// make to the programs of the main `file`, whose skeleton unit is `main`, and of the
+/// callees; file [`stand_in_id`]) when there is one; declines a file that does not read or
+/// has any diagnostic.
+pub(super) fn load(
+    job: &ToSinumerikJob,
+    ctx: &BatchContext,
+    file: &InputFile,
+    main: &Unit,
+    callees: &[usize],
+) -> Result<(Vec<Unit>, Option<Unit>), Fallback> {
     let no = |why: &str| Fallback::NotStraight(why.into());
     let mut db = SourceDb::new();
     db.add("", String::new());
@@ -88,7 +101,14 @@ pub(super) fn load(job: &ToSinumerikJob, ctx: &BatchContext, callees: &[usize]) 
         }
         units.push(l.unit);
     }
-    Ok(units)
+    let files = std::iter::once(file.index).chain(callees.iter().copied());
+    let all: Vec<(usize, &Unit)> = files.zip(std::iter::once(main).chain(&units)).collect();
+    let stand_in = jobs_sinumerik::stand_in(&mut db, ctx, &all, &job.settings.fanuc);
+    match stand_in {
+        Some((id, _)) if id != stand_in_id(callees) => Err(no("the stand-in caller's file id")),
+        Some((_, unit)) => Ok((units, Some(unit))),
+        None => Ok((units, None)),
+    }
 }
 
 /// The file's own subprograms among the translation's other files (the callees' are

@@ -165,14 +165,17 @@ pub(super) fn to_sinumerik_part(path: &Path, opts: &SinOptions, eol: LineEnding,
 }
 
 /// FANUC → Sinumerik into `part` of a main program with calls, its callees given by `load`
-/// (`segmented::to_sinumerik_with_subs`): the main file's translation, and the others of
-/// the whole translation (the main file's subprograms and its callees').
+/// and maybe a stand-in caller of file `stand_in` (`segmented::to_sinumerik_with_stand_in`):
+/// the main file's translation, and the others of the whole translation (the main file's
+/// subprograms and its callees', not the stand-in's).
 pub(super) fn to_sinumerik_subs_part(
     path: &Path,
     opts: &SinOptions,
     eol: LineEnding,
     part: &Path,
     load: sts::segmented::LoadCallees<'_>,
+    stand_in: crate::span::FileId,
 ) -> Option<(sts::Streamed, Vec<OutFile>)> {
-    route(part, false, |w| sts::segmented::to_sinumerik_with_subs(path, opts, eol, load, w, None)).ok()?
+    let f = |w: &mut dyn Write| sts::segmented::to_sinumerik_with_stand_in(path, opts, eol, load, stand_in, w, None);
+    route(part, false, f).ok()?
 }

@@ -82,7 +82,7 @@ mod one;
 mod subs;
 mod writer;
 
-pub use subs::{to_sinumerik_with_subs, LoadCallees};
+pub use subs::{to_sinumerik_with_stand_in, to_sinumerik_with_subs, LoadCallees};
 
 /// The text of a placeholder comment (`k`: the run's index).
 const MARK: &str = "NCTRANS SEGMENT ";
@@ -454,7 +454,7 @@ pub fn to_sinumerik(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Streamed, Fallback> {
-    segment(path, opts, eol, out, progress, None).map(|(s, _)| s)
+    segment(path, opts, eol, out, progress, None, None).map(|(s, _)| s)
 }
 
 fn segment(
@@ -464,6 +464,7 @@ fn segment(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
     mut load: Option<LoadCallees<'_>>,
+    stand_in: Option<crate::span::FileId>,
 ) -> Result<(Streamed, Vec<OutFile>), Fallback> {
     let calls = load.is_some();
     let popts = ParseOptions { semantics: opts.source.clone() };
@@ -517,7 +518,10 @@ fn segment(
     if !tr.diags.iter().all(|d| kept_warning(d) && d.labels.iter().all(|l| l.file == 0)) {
         return Err(Fallback::Diagnostics);
     }
-    let (f, subs) = subs::split_files(&tr.files, calls)?;
+    // A stand-in caller's program (`subs::to_sinumerik_with_stand_in`) is no file of the
+    // result; a diagnostic on it has declined above (its file is not 0).
+    let files: Vec<OutFile> = tr.files.iter().filter(|f| Some(f.source) != stand_in).cloned().collect();
+    let (f, subs) = subs::split_files(&files, calls)?;
     let places = placeholders(&f.text, sk.arcs.len(), eol.as_str())
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
     // The main program's plan, made with every program as the whole translation makes it.

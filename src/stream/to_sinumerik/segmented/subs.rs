@@ -28,6 +28,7 @@ use super::Skel;
 use crate::ir::{Call, CallKind, CallTarget, ItemKind, Stmt, StmtKind, Unit};
 use crate::passes::to_sinumerik::Options;
 use crate::read::LineEnding;
+use crate::span::FileId;
 use crate::stream::translate::Fallback;
 use crate::stream::ProgressFn;
 use crate::translate_sinumerik::OutFile;
@@ -57,7 +58,23 @@ pub fn to_sinumerik_with_subs(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(super::Streamed, Vec<OutFile>), Fallback> {
-    super::segment(path, opts, eol, out, progress, Some(load))
+    super::segment(path, opts, eol, out, progress, Some(load), None)
+}
+
+/// [`to_sinumerik_with_subs`] where `load` may also give a stand-in caller unit (file
+/// `stand_in`: calls other files make to the callees, so their `PROC` lines come out as in
+/// every other job): it is translated with the rest, as the whole batch job translates it,
+/// and its program is no file of the result (any diagnostic on it declines).
+pub fn to_sinumerik_with_stand_in(
+    path: &Path,
+    opts: &Options,
+    eol: LineEnding,
+    load: LoadCallees<'_>,
+    stand_in: FileId,
+    out: &mut dyn Write,
+    progress: Option<ProgressFn<'_>>,
+) -> Result<(super::Streamed, Vec<OutFile>), Fallback> {
+    super::segment(path, opts, eol, out, progress, Some(load), Some(stand_in))
 }
 
 /// The translation's main file (the first, the only main) and the others; with `calls`
