@@ -7,15 +7,17 @@
 //! streamed one is not (a subprogram its own file does not call). The library scan of such a file streams and
 //! reports what the whole scan reports.
 
+#[path = "support/batch_out.rs"]
+mod batch_out;
 #[path = "support/rng.rs"]
 mod rng;
 
+use batch_out::{snapshot, untimed};
 use nctrans::batch::jobs::JobSettings;
 use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
 use nctrans::dialect::Dialect;
 use rng::Rng;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::AtomicBool;
@@ -110,24 +112,6 @@ fn library(input: &Path) {
     w("main4.nc", main_program(4, 1400, &["M98 P2401", "G00 X2."], "O2401\nG00 Y3.\nM99\nO2402\nG00 Y4.\nM99\n"));
 }
 
-/// Every file below `root` (relative path → bytes).
-fn snapshot(root: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("dir").filter_map(|e| e.ok()) {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                let rel = p.strip_prefix(root).expect("below").to_string_lossy().replace('\\', "/");
-                out.insert(rel, std::fs::read(&p).expect("read"));
-            }
-        }
-    }
-    out
-}
-
 /// A job that notes which files its streamed path translated.
 struct Watched {
     job: ToSinumerikJob,
@@ -170,23 +154,7 @@ fn both_ways(input: &Path, dir: &Path, max_steps: u64) -> (Vec<String>, batch::B
         results.push((r, snapshot(&out)));
     }
     let (b, a) = (results.pop().expect("streamed"), results.pop().expect("whole"));
-    assert_eq!(a.0.files.len(), b.0.files.len());
-    for (x, y) in a.0.files.iter().zip(&b.0.files) {
-        let key = |f: &batch::FileRecord| {
-            (f.path.clone(), f.outputs.clone(), f.status, f.summary.clone(), f.events, f.blocks, f.diagnostics.clone())
-        };
-        assert_eq!(key(x), key(y), "{}", x.path);
-    }
-    assert_eq!(a.0.maps, b.0.maps, "the batch's maps");
-    assert_eq!(a.1.keys().collect::<Vec<_>>(), b.1.keys().collect::<Vec<_>>());
-    for (k, v) in &a.1 {
-        assert!(
-            b.1[k] == *v,
-            "{k} differs:\n{}\n---\n{}",
-            String::from_utf8_lossy(v),
-            String::from_utf8_lossy(&b.1[k])
-        );
-    }
+    batch_out::assert_same(&a, &b);
     (streamed, b.0)
 }
 
@@ -251,24 +219,6 @@ fn streamed_scans_of_mains_with_calls_report_what_whole_scans_do() {
         }
     }
     assert!(with_subs >= 3, "{with_subs}");
-}
-
-fn untimed(report: &str) -> String {
-    report
-        .lines()
-        .map(|l| {
-            let mut l = l.to_string();
-            for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
-                if let Some(i) = l.find(key) {
-                    let rest = &l[i + key.len()..];
-                    let end = rest.find([',', '}']).unwrap_or(rest.len());
-                    l = format!("{}_{}", &l[..i + key.len()], &rest[end..]);
-                }
-            }
-            l
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 #[test]

@@ -8,15 +8,17 @@
 //! the library the batch builds from streamed scans is the one whole scans give. Both
 //! directions, through the library API and through the command line (exit code, report).
 
+#[path = "support/batch_out.rs"]
+mod batch_out;
 #[path = "support/rng.rs"]
 mod rng;
 
+use batch_out::{snapshot, untimed};
 use nctrans::batch::jobs::{JobSettings, ToFanucJob};
 use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
 use nctrans::dialect::Dialect;
 use rng::Rng;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::AtomicBool;
@@ -191,24 +193,6 @@ fn library(input: &Path) {
     w(sin.join("hdr.mpf"), format!("; nctrans: set R7=2\n{}", sinumerik_macro(10, 2, "\n", "G1 X=R7 F100\n")));
 }
 
-/// Every file below `root` (relative path → bytes).
-fn snapshot(root: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("dir").filter_map(|e| e.ok()) {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                let rel = p.strip_prefix(root).expect("below").to_string_lossy().replace('\\', "/");
-                out.insert(rel, std::fs::read(&p).expect("read"));
-            }
-        }
-    }
-    out
-}
-
 /// A job that notes which files its streamed path translated.
 struct Watched<J> {
     job: J,
@@ -269,23 +253,7 @@ fn both_ways(input: &Path, dir: &Path, target: Dialect) -> (Vec<String>, batch::
         streamed = s;
     }
     let (b, a) = (results.pop().expect("streamed"), results.pop().expect("whole"));
-    assert_eq!(a.0.files.len(), b.0.files.len());
-    for (x, y) in a.0.files.iter().zip(&b.0.files) {
-        let key = |f: &batch::FileRecord| {
-            (f.path.clone(), f.outputs.clone(), f.status, f.summary.clone(), f.events, f.blocks, f.diagnostics.clone())
-        };
-        assert_eq!(key(x), key(y), "{}", x.path);
-    }
-    assert_eq!(a.0.maps, b.0.maps, "the batch's maps");
-    assert_eq!(a.1.keys().collect::<Vec<_>>(), b.1.keys().collect::<Vec<_>>());
-    for (k, v) in &a.1 {
-        assert!(
-            b.1[k] == *v,
-            "{k} differs:\n{}\n---\n{}",
-            String::from_utf8_lossy(v),
-            String::from_utf8_lossy(&b.1[k])
-        );
-    }
+    batch_out::assert_same(&a, &b);
     (streamed, b.0)
 }
 
@@ -381,25 +349,6 @@ fn streamed_library_scans_report_what_whole_scans_do() {
 
 fn cli(args: &[&str]) -> Option<i32> {
     Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("runs").status.code()
-}
-
-/// The report without its timings.
-fn untimed(report: &str) -> String {
-    report
-        .lines()
-        .map(|l| {
-            let mut l = l.to_string();
-            for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
-                if let Some(i) = l.find(key) {
-                    let rest = &l[i + key.len()..];
-                    let end = rest.find([',', '}']).unwrap_or(rest.len());
-                    l = format!("{}{}{}", &l[..i + key.len()], "_", &rest[end..]);
-                }
-            }
-            l
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 #[test]

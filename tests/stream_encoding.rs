@@ -3,6 +3,10 @@
 //! boundaries), the decoded copy is the decoded text, and the command line gives the same
 //! traces, summaries, translations, diagnostics and exit codes with `--stream` as whole.
 
+#[path = "support/batch_out.rs"]
+mod batch_out;
+
+use batch_out::{snapshot, untimed_line};
 use encoding_rs::Encoding;
 use nctrans::read;
 use nctrans::stream::transcode;
@@ -481,19 +485,6 @@ fn cli_check_reads_legacy_sides_whole() {
     }
 }
 
-/// A report line without its times.
-fn untimed(l: &str) -> String {
-    let mut l = l.to_string();
-    for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
-        if let Some(i) = l.find(key) {
-            let rest = &l[i + key.len()..];
-            let end = rest.find([',', '}']).unwrap_or(rest.len());
-            l = format!("{}_{}", &l[..i + key.len()], &rest[end..]);
-        }
-    }
-    l
-}
-
 /// In-process tests that make temporary copies run one at a time, so one can check that
 /// none is left in the temp folder.
 static TEMP: std::sync::Mutex<()> = std::sync::Mutex::new(());
@@ -548,23 +539,6 @@ mod batch_jobs {
         s.output_encoding = out;
         s
     }
-}
-
-/// Every file below `root` (relative path → bytes).
-fn snapshot(root: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
-    let mut out = std::collections::BTreeMap::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.insert(p.strip_prefix(root).unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    out
 }
 
 /// A batch with streaming off and on: the same records and files. Returns what streamed.
@@ -705,7 +679,7 @@ fn batches_stream_legacy_files_with_the_same_outputs_and_report() {
             }
             let o = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(&args).env("TMPDIR", &tmp).output().unwrap();
             let report = std::fs::read_to_string(&report).unwrap().replace(&out.display().to_string(), "OUT");
-            let report: Vec<String> = report.lines().map(untimed).collect();
+            let report: Vec<String> = report.lines().map(untimed_line).collect();
             runs.push((o.status.code(), report, snapshot(&out)));
         }
         assert!(runs[0] == runs[1], "--to {to}: {:?}\n{:?}", runs[0].1, runs[1].1);

@@ -5,9 +5,12 @@
 //! catches a wrong translation. The CLI and the batch take the streamed path for large
 //! (or `--stream`) inputs with the same outputs, verdicts and reports.
 
+#[path = "support/batch_out.rs"]
+mod batch_out;
 #[path = "support/rng.rs"]
 mod rng;
 
+use batch_out::untimed;
 use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
@@ -580,25 +583,6 @@ fn batches_stream_straight_line_files_with_the_same_outputs_and_report() {
     assert_eq!(streamed, ["cam.nc"]);
     assert_eq!(r.files[0].status, batch::Status::Inconclusive, "{}", r.files[0].summary);
     assert!(r.files[0].outputs.is_empty());
-}
-
-/// The report without its timings.
-fn untimed(report: &str) -> String {
-    report
-        .lines()
-        .map(|l| {
-            let mut l = l.to_string();
-            for key in ["\"time_ms\": ", "\"elapsed_s\": "] {
-                if let Some(i) = l.find(key) {
-                    let rest = &l[i + key.len()..];
-                    let end = rest.find([',', '}']).unwrap_or(rest.len());
-                    l = format!("{}{}{}", &l[..i + key.len()], "_", &rest[end..]);
-                }
-            }
-            l
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 #[test]
