@@ -15,6 +15,7 @@ pub mod lines;
 pub mod paged;
 pub mod runs;
 pub mod segmented;
+mod splice;
 pub mod to_sinumerik;
 pub mod transcode;
 pub mod translate;

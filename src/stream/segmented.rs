@@ -89,8 +89,9 @@ use spill::{assemble, Spill};
 use write::{placeholders, Writer};
 
 use super::lines::NotStreamable;
+use super::splice::Splice;
 use super::translate::{fast, Fallback};
-use super::{Index, ProgressFn, WRITE_BYTES};
+use super::{Index, ProgressFn};
 use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
@@ -268,26 +269,16 @@ fn segment(
         eo: EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 },
         lone: lone_unit,
         header_len,
-        text: t.text,
-        places,
-        pos: 0,
-        next: 0,
-        in_run: false,
-        buf: Vec::with_capacity(WRITE_BYTES + 4096),
-        out,
-        io: None,
+        out: Splice::new(&t.text, places, out),
         bad: false,
     };
     let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     index.align = SourceAlign { messages: drop_msgs, tools };
-    if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
+    if w.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
-    let rest = w.text.len();
-    w.copy_to(rest);
-    w.write();
-    super::finish_output(w.out, w.io)?;
+    w.out.finish()?;
     Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
 }
 

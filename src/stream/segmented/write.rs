@@ -6,10 +6,10 @@ use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
 use crate::passes::words::units::Units;
 use crate::read::RawBlock;
+use crate::stream::splice::{Entered, Splice};
 use crate::stream::translate::{fast, run_block, units_block};
-use crate::stream::{PlainWord, WordsSink, WRITE_BYTES};
+use crate::stream::{PlainWord, WordsSink};
 use crate::translate::{self, TranslateOptions};
-use std::io::Write;
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
 /// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
@@ -70,44 +70,20 @@ pub(super) struct Writer<'a> {
     /// The program with an empty body (for a block translated alone).
     pub(super) lone: Unit,
     pub(super) header_len: usize,
-    /// The translated skeleton.
-    pub(super) text: String,
-    pub(super) places: Vec<(usize, usize)>,
-    /// How far `text` is written.
-    pub(super) pos: usize,
-    /// The next run.
-    pub(super) next: usize,
-    pub(super) in_run: bool,
-    pub(super) buf: Vec<u8>,
-    pub(super) out: &'a mut dyn Write,
-    pub(super) io: Option<std::io::Error>,
+    /// The translated skeleton, written with the runs in their places.
+    pub(super) out: Splice<'a>,
     /// The scan does not match the skeleton's (the file changed), or a block alone has
     /// diagnostics: the output is discarded.
     pub(super) bad: bool,
 }
 
 impl Writer<'_> {
-    pub(super) fn copy_to(&mut self, to: usize) {
-        if let Some(s) = self.text.get(self.pos..to) {
-            self.buf.extend_from_slice(s.as_bytes());
-        }
-        self.pos = to;
-    }
-
-    /// A run block comes: at a run's first, the skeleton up to its placeholder is written.
+    /// A run block comes: at a run's first, the units it starts in.
     fn enter(&mut self) {
-        if self.in_run {
-            return;
-        }
-        self.in_run = true;
-        match self.places.get(self.next) {
-            Some(&(lo, hi)) => {
-                self.copy_to(lo);
-                self.pos = hi;
-                self.fast.units = self.run_units.get(self.next).copied().unwrap_or_default();
-                self.next += 1;
-            }
-            None => self.bad = true,
+        match self.out.enter() {
+            Entered::InRun => {}
+            Entered::Run(k) => self.fast.units = self.run_units.get(k).copied().unwrap_or_default(),
+            Entered::NoPlace => self.bad = true,
         }
     }
 
@@ -137,21 +113,11 @@ impl Writer<'_> {
         if !e.diags.is_empty() {
             self.bad = true;
         }
-        self.buf.extend_from_slice(e.text.as_bytes());
-    }
-
-    fn flush_some(&mut self) {
-        if self.buf.len() >= WRITE_BYTES {
-            self.write();
-        }
-    }
-
-    pub(super) fn write(&mut self) {
-        crate::stream::spill(self.out, &mut self.buf, &mut self.io);
+        self.out.buf.extend_from_slice(e.text.as_bytes());
     }
 
     fn live(&self) -> bool {
-        !self.bad && self.io.is_none()
+        !self.bad && self.out.io.is_none()
     }
 }
 
@@ -169,17 +135,17 @@ impl WordsSink for Writer<'_> {
         }
         self.enter();
         // The usual CAM line in one loop (it changes no mode), as the straight stream does.
-        if self.fast.plain_words(meta, words, &mut self.buf) {
-            self.flush_some();
+        if self.fast.plain_words(meta, words, &mut self.out.buf) {
+            self.out.flush_some();
             return true;
         }
         let units = self.fast.units;
-        if self.fast.words(meta, words, line, &mut self.buf).is_err() {
+        if self.fast.words(meta, words, line, &mut self.out.buf).is_err() {
             // Nothing was written; the block comes again as a statement (still a run block).
             self.fast.units = units;
             return false;
         }
-        self.flush_some();
+        self.out.flush_some();
         true
     }
 
@@ -192,15 +158,15 @@ impl WordsSink for Writer<'_> {
             _ => false,
         };
         if !run {
-            self.in_run = false;
+            self.out.leave();
             return;
         }
         self.enter();
         let units = self.fast.units;
-        if self.fast.block(s, &mut self.buf).is_err() {
+        if self.fast.block(s, &mut self.out.buf).is_err() {
             // The units are the ones after the block already (`Fast::block`).
             self.alone(s, units);
         }
-        self.flush_some();
+        self.out.flush_some();
     }
 }
