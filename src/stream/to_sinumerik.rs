@@ -223,18 +223,80 @@ pub fn has_bom(path: &Path) -> Result<bool, NotStreamable> {
 }
 
 /// What the passes decide for the whole program before they rewrite its body: for a
-/// straight-line program it does not depend on the blocks (no variables, no calls).
-struct Planned {
-    plan: ProgPlan,
-    commons: BTreeMap<u32, u32>,
-    common_flags: BTreeMap<u32, u32>,
+/// straight-line program it does not depend on the blocks (no variables, no calls). With it
+/// a chunk of blocks (or one block) is lowered alone.
+pub(super) struct Planned {
+    pub(super) plan: ProgPlan,
+    pub(super) commons: BTreeMap<u32, u32>,
+    pub(super) common_flags: BTreeMap<u32, u32>,
+}
+
+/// Why [`Planned::lower`] wrote nothing.
+pub(super) enum LoweredAlone {
+    /// The passes changed the stand-in G2 (the arc mode would not run into the blocks).
+    ArcChanged,
+    /// The writer cannot spell the result.
+    Unwritable,
 }
 
 impl Planned {
-    fn of(prog: &Program, opts: &Options) -> Option<Planned> {
-        let mut l = passes::lower(&[(0, prog)], opts);
-        let (plan, _) = l.programs.pop()?;
+    /// The first of the programs `programs` are lowered with (the main one).
+    pub(super) fn of_first(programs: &[(crate::span::FileId, &Program)], opts: &Options) -> Option<Planned> {
+        let mut l = passes::lower(programs, opts);
+        if l.programs.is_empty() {
+            return None;
+        }
+        let (plan, _) = l.programs.swap_remove(0);
         Some(Planned { plan, commons: l.commons, common_flags: l.common_flags })
+    }
+
+    fn of(prog: &Program, opts: &Options) -> Option<Planned> {
+        Planned::of_first(&[(0, prog)], opts)
+    }
+
+    /// `body` through the passes with this plan, after a stand-in G2 when the arc mode `arc`
+    /// runs into it (taken out again), written without the frame (no PROC line, header or
+    /// DEF lines) with LF line ends; and the passes' diagnostics.
+    pub(super) fn lower(
+        &self,
+        opts: &Options,
+        mut body: Vec<Stmt>,
+        arc: bool,
+    ) -> (Vec<crate::diag::Diagnostic>, Result<String, LoweredAlone>) {
+        if arc {
+            let word = Word {
+                addr: Addr::Letter(b'G'),
+                value: WordValue::Expr(crate::ir::Expr::num(2.0, false, STAND_IN)),
+                span: STAND_IN,
+            };
+            let meta = BlockMeta { span: STAND_IN, ..BlockMeta::default() };
+            let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
+            body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
+        }
+        let mut ctx = Ctx {
+            opts,
+            progs: vec![self.plan.clone()],
+            commons: self.commons.clone(),
+            common_flags: self.common_flags.clone(),
+            diags: Vec::new(),
+            cur: 0,
+            guard_ok: false,
+            modal: Default::default(),
+        };
+        // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
+        // without variables) and with the plan made once.
+        let mut body = passes::lower_body(&mut ctx, body);
+        if arc {
+            let before = body.len();
+            body.retain(|s| s.span != STAND_IN);
+            if before != body.len() + 1 {
+                return (ctx.diags, Err(LoweredAlone::ArcChanged));
+            }
+        }
+        let p = Program { name: None, head: None, params: vec![], save: false, body, span: Span::default() };
+        let e = emit_program(&p, &Frame { header: &[], defs: &[], proc_line: false });
+        let text = if e.problems.is_empty() { Ok(e.text) } else { Err(LoweredAlone::Unwritable) };
+        (ctx.diags, text)
     }
 
     fn same(&self, other: &Planned) -> bool {
@@ -379,18 +441,7 @@ impl State<'_> {
 
     /// Later chunks: the passes on the chunk alone (after a stand-in G2 when an arc mode
     /// runs into it), then the writer without the frame (header, DEF lines).
-    fn flush_rest(&mut self, mut body: Vec<Stmt>) {
-        let arc = self.arc_at_start;
-        if arc {
-            let word = Word {
-                addr: Addr::Letter(b'G'),
-                value: WordValue::Expr(crate::ir::Expr::num(2.0, false, STAND_IN)),
-                span: STAND_IN,
-            };
-            let meta = BlockMeta { span: STAND_IN, ..BlockMeta::default() };
-            let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
-            body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
-        }
+    fn flush_rest(&mut self, body: Vec<Stmt>) {
         let Some(pl) = &self.planned else {
             self.stop = Some(Fallback::NotStraight("no plan".into()));
             return;
@@ -399,38 +450,17 @@ impl State<'_> {
             self.stop = Some(Fallback::NotStraight("variables".into()));
             return;
         }
-        let mut ctx = Ctx {
-            opts: self.opts,
-            progs: vec![pl.plan.clone()],
-            commons: pl.commons.clone(),
-            common_flags: pl.common_flags.clone(),
-            diags: Vec::new(),
-            cur: 0,
-            guard_ok: false,
-            modal: Default::default(),
-        };
-        // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
-        // without variables) and with the plan made once.
-        let body = passes::lower_body(&mut ctx, body);
-        if !self.keep(std::mem::take(&mut ctx.diags)) {
+        let (diags, text) = pl.lower(self.opts, body, self.arc_at_start);
+        if !self.keep(diags) {
             return;
         }
-        // Only the body is written (no PROC line, header or DEF lines).
-        let mut p = Program { name: None, head: None, params: vec![], save: false, body, span: Span::default() };
-        if arc {
-            let before = p.body.len();
-            p.body.retain(|s| s.span != STAND_IN);
-            if before != p.body.len() + 1 {
-                self.stop = Some(Fallback::NotStraight("an arc mode the passes change".into()));
-                return;
+        match text {
+            Ok(text) => self.write(&text),
+            Err(LoweredAlone::ArcChanged) => {
+                self.stop = Some(Fallback::NotStraight("an arc mode the passes change".into()))
             }
+            Err(LoweredAlone::Unwritable) => self.stop = Some(Fallback::Diagnostics),
         }
-        let e = emit_program(&p, &Frame { header: &[], defs: &[], proc_line: false });
-        if !e.problems.is_empty() {
-            self.stop = Some(Fallback::Diagnostics);
-            return;
-        }
-        self.write(&e.text);
     }
 
     fn flush(&mut self) {

@@ -64,9 +64,10 @@
 
 use super::super::lines::NotStreamable;
 use super::super::segmented::spill::{assemble, Spill};
+use super::super::splice::Splice;
 use super::super::translate::Fallback;
-use super::super::{Index, PlainWord, ProgressFn, WordsSink, WRITE_BYTES};
-use super::{fast, first_line_ending, has_bom, plain_g, straight, Streamed};
+use super::super::{Index, PlainWord, ProgressFn, WordsSink};
+use super::{fast, first_line_ending, has_bom, plain_g, straight, Planned, Streamed};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
 use crate::passes::to_sinumerik::{self as passes, Options};
@@ -76,7 +77,7 @@ use crate::translate_sinumerik::{self as ts, OutFile};
 use one::One;
 use std::io::Write;
 use std::path::Path;
-use writer::{kept_warning, Alone, Writer};
+use writer::{kept_warning, Writer};
 
 mod one;
 mod subs;
@@ -528,12 +529,7 @@ fn segment(
     let alone = {
         let all: Vec<(crate::span::FileId, &Program)> =
             units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
-        let mut l = passes::lower(&all, opts);
-        if l.programs.is_empty() {
-            return Err(Fallback::NotStraight("no plan".into()));
-        }
-        let (plan, _) = l.programs.swap_remove(0);
-        Alone { plan, commons: l.commons, common_flags: l.common_flags }
+        Planned::of_first(&all, opts).ok_or_else(|| Fallback::NotStraight("no plan".into()))?
     };
     drop(units);
     drop(callees);
@@ -560,7 +556,7 @@ fn segment(
         let mut inserts = Vec::with_capacity(deferred.len());
         let mut run_diags = Vec::new();
         for d in deferred {
-            let Some((text, diags)) = alone.written(opts, &d.stmt, d.arc, eol) else {
+            let Some((text, diags)) = writer::alone(&alone, opts, &d.stmt, d.arc, eol) else {
                 return Err(Fallback::Diagnostics);
             };
             run_diags.extend(diags);
@@ -578,30 +574,21 @@ fn segment(
         opts,
         alone,
         eol,
-        text: &f.text,
-        places,
         arcs: sk.arcs,
-        pos: 0,
-        next: 0,
-        in_run: false,
         pending: false,
         arc: false,
-        buf: Vec::with_capacity(WRITE_BYTES + 4096),
-        out,
-        io: None,
+        out: Splice::new(&f.text, places, out),
         bad: false,
         diags: Vec::new(),
     };
     if bom {
-        w.buf.extend_from_slice(b"\xEF\xBB\xBF");
+        w.out.buf.extend_from_slice(b"\xEF\xBB\xBF");
     }
     let index = super::super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
-    if w.bad || w.next != w.places.len() || !index.diags.is_empty() {
+    if w.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
-    w.copy_to(w.text.len());
-    w.write();
-    super::super::finish_output(w.out, w.io)?;
+    w.out.finish()?;
     Ok((finish(index, w.diags), subs))
 }
