@@ -203,6 +203,14 @@ fn const_of(v: &WordValue) -> Option<f64> {
     }
 }
 
+/// The value of an item that is a constant G word.
+fn const_g(it: &Item) -> Option<f64> {
+    match &it.kind {
+        ItemKind::Word(w) if w.addr.is(b'G') => const_of(&w.value),
+        _ => None,
+    }
+}
+
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
     let items = std::mem::take(&mut b.items);
     let mut kept: Vec<Item> = Vec::new();

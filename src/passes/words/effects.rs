@@ -5,7 +5,7 @@
 //! restores the groups it sets, read from the `#4001..` modal variables).
 
 use super::units::Units;
-use crate::ir::{CallTarget, ItemKind, Program, Stmt, StmtKind, Word, WordValue};
+use crate::ir::{CallTarget, ItemKind, Program, Stmt, StmtKind};
 use std::collections::BTreeMap;
 
 /// The FANUC modal groups a subprogram can set that its translation restores (SAVE), as
@@ -80,16 +80,9 @@ pub fn effects(progs: &[(String, &Program)]) -> BTreeMap<String, Effect> {
     map
 }
 
-fn const_g(w: &Word) -> Option<u32> {
-    match &w.value {
-        WordValue::Expr(e) if w.addr.is(b'G') => match &e.kind {
-            crate::ir::ExprKind::Num(n) if n.value.fract() == 0.0 && (0.0..=1000.0).contains(&n.value) => {
-                Some(n.value as u32)
-            }
-            _ => None,
-        },
-        _ => None,
-    }
+/// A constant, whole G code of an item (G codes are at most G1000 here).
+fn g_code(it: &crate::ir::Item) -> Option<u32> {
+    super::const_g(it).filter(|v| v.fract() == 0.0 && (0.0..=1000.0).contains(v)).map(|v| v as u32)
 }
 
 fn group_of(g: u32) -> u16 {
@@ -107,13 +100,11 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
+                if let Some(g) = g_code(it) {
+                    sets |= group_of(g);
+                    unit_words += usize::from(Units::default().g(f64::from(g)));
+                }
                 match &it.kind {
-                    ItemKind::Word(w) => {
-                        if let Some(g) = const_g(w) {
-                            sets |= group_of(g);
-                            unit_words += usize::from(Units::default().g(f64::from(g)));
-                        }
-                    }
                     ItemKind::Call(c) => {
                         if let CallTarget::Name(n) = &c.target {
                             if let Some(e) = known(&n.to_ascii_uppercase()) {
@@ -149,12 +140,8 @@ fn linear(body: &[Stmt], returns: usize, unit_words: usize) -> bool {
             if b.meta.skip.is_some() {
                 continue;
             }
-            for it in &b.items {
-                if let ItemKind::Word(w) = &it.kind {
-                    if let Some(g) = const_g(w) {
-                        top_words += usize::from(Units::default().g(f64::from(g)));
-                    }
-                }
+            for g in b.items.iter().filter_map(g_code) {
+                top_words += usize::from(Units::default().g(f64::from(g)));
             }
         }
     }
@@ -172,21 +159,17 @@ fn fold_units(body: &[Stmt]) -> UnitEffect {
     let mut e = UnitEffect::None;
     for s in body {
         if let StmtKind::Block(b) = &s.kind {
-            for it in &b.items {
-                if let ItemKind::Word(w) = &it.kind {
-                    if let Some(g) = const_g(w) {
-                        e = match (g, e) {
-                            (700, _) => UnitEffect::Both(Units { inch: true, inch_feed: true }),
-                            (710, _) => UnitEffect::Both(Units::default()),
-                            (70 | 71, UnitEffect::Both(mut u)) => {
-                                u.inch = g == 70;
-                                UnitEffect::Both(u)
-                            }
-                            (70 | 71, _) => UnitEffect::Lengths(g == 70),
-                            (_, e) => e,
-                        };
+            for g in b.items.iter().filter_map(g_code) {
+                e = match (g, e) {
+                    (700, _) => UnitEffect::Both(Units { inch: true, inch_feed: true }),
+                    (710, _) => UnitEffect::Both(Units::default()),
+                    (70 | 71, UnitEffect::Both(mut u)) => {
+                        u.inch = g == 70;
+                        UnitEffect::Both(u)
                     }
-                }
+                    (70 | 71, _) => UnitEffect::Lengths(g == 70),
+                    (_, e) => e,
+                };
             }
         }
     }

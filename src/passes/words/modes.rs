@@ -7,9 +7,10 @@
 //! mode word lies between a jump and its target. An unknown G90/G91 is read at run time
 //! (`#4003`); unknown units decline F words and calls until G700/G710 sets both again.
 
+use super::const_g;
 use super::effects::{Effect, UnitEffect, ABS};
 use super::units::{FeedConv, Units};
-use crate::ir::{Addr, ExprKind, Item, ItemKind, Stmt, StmtKind, Target, WordValue};
+use crate::ir::{Item, ItemKind, Stmt, StmtKind, Target};
 use crate::passes::Callee;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
@@ -135,19 +136,6 @@ pub(super) struct Resets {
     units: HashSet<Key>,
     all_abs: bool,
     all_units: bool,
-}
-
-fn const_g(it: &Item) -> Option<f64> {
-    match &it.kind {
-        ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'G')) => match &w.value {
-            WordValue::Expr(e) => match &e.kind {
-                ExprKind::Num(n) => Some(n.value),
-                _ => None,
-            },
-            _ => None,
-        },
-        _ => None,
-    }
 }
 
 fn callee_effect(it: &Item, callees: &BTreeMap<String, Callee>) -> Option<Effect> {
