@@ -209,21 +209,11 @@ fn both(case: &str, name: &str, input: &[u8], toml: Option<&str>, args: &[&str],
         if let Some(t) = toml {
             std::fs::write(work.join("nctrans.toml"), t).unwrap();
         }
-        let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_000_000_000);
-        std::fs::File::open(&tmp).unwrap().set_modified(old).unwrap();
         let mut a: Vec<&str> = args.to_vec();
         if stream {
             a.push("--stream");
         }
-        let o = Command::new(env!("CARGO_BIN_EXE_nctrans"))
-            .args(&a)
-            .current_dir(&work)
-            .env("TMPDIR", &tmp)
-            .output()
-            .unwrap();
-        let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().map(|e| e.path()).collect();
-        assert!(left.is_empty(), "{case}: left behind {left:?}");
-        let touched = std::fs::metadata(&tmp).unwrap().modified().unwrap() != old;
+        let (o, touched) = watched(&work, &tmp, &a, case);
         if stream && copied {
             assert!(touched, "{case}: the streamed run made no decoded copy (read whole?)");
         }
@@ -713,21 +703,11 @@ fn cli_check_streams_legacy_sides() {
             std::fs::create_dir_all(&tmp).unwrap();
             std::fs::write(dir.join("a.mpf"), &a).unwrap();
             std::fs::write(dir.join("b.nc"), &b).unwrap();
-            let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_000_000_000);
-            std::fs::File::open(&tmp).unwrap().set_modified(old).unwrap();
             let mut args = vec!["check", "a.mpf", "b.nc"];
             if stream {
                 args.push("--stream");
             }
-            let o = Command::new(env!("CARGO_BIN_EXE_nctrans"))
-                .args(&args)
-                .current_dir(&dir)
-                .env("TMPDIR", &tmp)
-                .output()
-                .unwrap();
-            let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().flatten().map(|e| e.path()).collect();
-            assert!(left.is_empty(), "{case}: left behind {left:?}");
-            let touched = std::fs::metadata(&tmp).unwrap().modified().unwrap() != old;
+            let (o, touched) = watched(&dir, &tmp, &args, case);
             assert_eq!(touched, stream, "{case}: a decoded copy is made exactly when streaming");
             ran.push((o.status.code(), o.stdout, String::from_utf8_lossy(&o.stderr).into_owned()));
             let _ = std::fs::remove_dir_all(&dir);
@@ -741,4 +721,17 @@ fn cli_check_streams_legacy_sides() {
             assert_eq!(ran[1].0, Some(0), "{}", ran[1].2);
         }
     }
+}
+
+/// Runs `nctrans ARGS` in `dir` with `tmp` as its temp folder: nothing may be left there;
+/// also says whether the run wrote into it (a decoded copy), read off the folder's time.
+fn watched(dir: &Path, tmp: &Path, args: &[&str], case: &str) -> (std::process::Output, bool) {
+    let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_000_000_000);
+    std::fs::File::open(tmp).unwrap().set_modified(old).unwrap();
+    let o =
+        Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(dir).env("TMPDIR", tmp).output().unwrap();
+    let left: Vec<_> = std::fs::read_dir(tmp).unwrap().flatten().map(|e| e.path()).collect();
+    assert!(left.is_empty(), "{case}: left behind {left:?}");
+    let touched = std::fs::metadata(tmp).unwrap().modified().unwrap() != old;
+    (o, touched)
 }
