@@ -7,6 +7,8 @@
 //! G2/G3 by R around macro statements and loops, LF and CRLF). What it must decline, it
 //! declines; the CLI then translates whole with the same output.
 
+#[path = "support/fanuc_runs.rs"]
+mod fanuc_runs;
 #[path = "support/rng.rs"]
 mod rng;
 
@@ -256,43 +258,6 @@ fn generated_macro_programs_translate_segmented_to_the_whole_translation() {
     assert!(equivalent >= 140, "{equivalent} of {same} equivalent");
 }
 
-/// The file with generated CAM runs put after some of its first program's top-level
-/// statements (none before the first: the head and `nctrans: set` lines stay on top).
-fn with_runs(text: &str, r: &mut Rng) -> Option<String> {
-    let mut db = SourceDb::new();
-    let loaded = nctrans::load(&mut db, "x.nc", text.as_bytes(), None);
-    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let p = parsed.unit.programs.first()?;
-    let decoded = &db.get(loaded.file).text;
-    let eol = loaded.line_ending.as_str();
-    let mut ends: Vec<usize> = p
-        .body
-        .iter()
-        .skip(1)
-        .filter(|_| r.chance(60))
-        .filter_map(|s| {
-            let hi = s.span.hi as usize;
-            let at = decoded.get(hi..)?.find(['\n', '\r'])? + hi;
-            let at = decoded.get(at..)?.find(|c| c != '\r' && c != '\n').map_or(decoded.len(), |k| k + at);
-            Some(at)
-        })
-        .collect();
-    ends.dedup();
-    if ends.is_empty() {
-        return None;
-    }
-    let mut out = String::new();
-    let mut from = 0;
-    let (mut arc, mut ns) = (false, Vec::new());
-    for at in ends {
-        out.push_str(&decoded[from..at]);
-        out.push_str(&cam_upto(r, 31, eol, &mut arc, &mut ns));
-        from = at;
-    }
-    out.push_str(&decoded[from..]);
-    Some(out)
-}
-
 #[test]
 fn corpus_programs_with_cam_runs_translate_segmented_to_the_whole_translation() {
     let Ok(rd) = std::fs::read_dir(root().join("corpus/in/fanuc")) else {
@@ -307,7 +272,11 @@ fn corpus_programs_with_cam_runs_translate_segmented_to_the_whole_translation() 
     for f in files {
         let Ok(text) = std::fs::read_to_string(&f) else { continue };
         let name = f.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-        for (k, t) in [Some(text.clone()), with_runs(&text, &mut r)].into_iter().flatten().enumerate() {
+        // The arc mode and the N numbers used run on from one inserted run to the next.
+        let (mut arc, mut ns) = (false, Vec::new());
+        let runs =
+            fanuc_runs::with_runs(&text, &mut r, 60, |r, eol| Some(cam_upto(r, 31, eol.as_str(), &mut arc, &mut ns)));
+        for (k, t) in [Some(text.clone()), runs].into_iter().flatten().enumerate() {
             let path = dir.join(format!("{k}-{name}"));
             std::fs::write(&path, t).expect("write");
             match compare(&path) {

@@ -8,6 +8,8 @@
 //! with the same stderr and exit code; declined programs too. The streamed verification
 //! fails when a subprogram of the output is broken.
 
+#[path = "support/fanuc_runs.rs"]
+mod fanuc_runs;
 #[path = "support/rng.rs"]
 mod rng;
 
@@ -426,7 +428,15 @@ fn corpus_programs_with_calls_and_cam_runs_stream_as_the_whole_translation() {
             continue;
         }
         let name = f.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-        for (k, t) in [Some(text.clone()), with_runs(&text, &mut r)].into_iter().flatten().enumerate() {
+        // (Not into CR-only files: `cam` writes LF lines.)
+        let runs = fanuc_runs::with_runs(&text, &mut r, 50, |r, eol| {
+            if eol == LineEnding::Cr {
+                return None;
+            }
+            let n = 5 + r.below(30) as usize;
+            Some(cam(r, n).replace('\n', eol.as_str()))
+        });
+        for (k, t) in [Some(text.clone()), runs].into_iter().flatten().enumerate() {
             let dir = scratch(&format!("corpus-{k}-{name}"));
             let main = dir.join(&name);
             std::fs::write(&main, t).expect("write");
@@ -452,42 +462,6 @@ fn nctrans_main_name(file: &str) -> String {
     let mut s = if ok { s } else { format!("P_{s}") };
     s.truncate(31);
     s
-}
-
-/// The file with CAM runs put after some of its first program's top-level statements (none
-/// before the first: the head and `nctrans: set` lines stay on top).
-fn with_runs(text: &str, r: &mut Rng) -> Option<String> {
-    let mut db = SourceDb::new();
-    let loaded = nctrans::load(&mut db, "x.nc", text.as_bytes(), None);
-    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let p = parsed.unit.programs.first()?;
-    let decoded = &db.get(loaded.file).text;
-    let eol = loaded.line_ending.as_str();
-    let mut ends: Vec<usize> = p
-        .body
-        .iter()
-        .skip(1)
-        .filter(|_| r.chance(50))
-        .filter_map(|s| {
-            let hi = s.span.hi as usize;
-            let at = decoded.get(hi..)?.find(['\n', '\r'])? + hi;
-            Some(decoded.get(at..)?.find(|c| c != '\r' && c != '\n').map_or(decoded.len(), |k| k + at))
-        })
-        .collect();
-    ends.dedup();
-    if ends.is_empty() || loaded.line_ending == LineEnding::Cr {
-        return None;
-    }
-    let mut out = String::new();
-    let mut from = 0;
-    for at in ends {
-        out.push_str(&decoded[from..at]);
-        let n = 5 + r.below(30) as usize;
-        out.push_str(&cam(r, n).replace('\n', eol));
-        from = at;
-    }
-    out.push_str(&decoded[from..]);
-    Some(out)
 }
 
 /// The command line takes the segmented route for a large main program (over the 8 MB at
