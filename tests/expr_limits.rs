@@ -141,7 +141,11 @@ fn cases(over: usize) -> Vec<Case> {
     let mut nests = vec![
         ("nest", format!("G1 X{}1{} F100.", "[".repeat(k), "]".repeat(k)), 1),
         ("sin", format!("#2={}90{}\nG1 X#2 F100.", "SIN[".repeat(k), "]".repeat(k)), 1),
-        ("neg", format!("G1 X-{}1{} F100.", "[-".repeat(k - 1) + "[", "]".repeat(k)), if k.is_multiple_of(2) { 1 } else { -1 }),
+        (
+            "neg",
+            format!("G1 X-{}1{} F100.", "[-".repeat(k - 1) + "[", "]".repeat(k)),
+            if k.is_multiple_of(2) { 1 } else { -1 },
+        ),
         ("ind", format!("G1 X#{}1{} F100.", "[#".repeat(k - 1) + "[", "]".repeat(k)), 1),
     ];
     for (name, body, x) in nests.drain(..) {
@@ -167,7 +171,9 @@ fn cases(over: usize) -> Vec<Case> {
     let (c, _) = chain("+", n - 1);
     v.push(siemens("if", &format!("IF {c} > 0 GOTOF LBL1\nG1 X9 F100\nLBL1: G1 X1 F100"), bad("NC130"), Some(1)));
     v.push(siemens("while", &format!("WHILE {c} < 0\nENDWHILE\nG1 X1 F100"), bad("NC130"), Some(1)));
-    for (name, op, x) in [("neg", "-", if n.is_multiple_of(2) { 1 } else { -1 }), ("not", "NOT ", n.is_multiple_of(2) as i64)] {
+    for (name, op, x) in
+        [("neg", "-", if n.is_multiple_of(2) { 1 } else { -1 }), ("not", "NOT ", n.is_multiple_of(2) as i64)]
+    {
         v.push(siemens(name, &format!("G1 X={}1 F100", op.repeat(n)), bad("NC130"), Some(x)));
     }
     let mut bnot = siemens("bnot", &format!("R2={}1", "B_NOT ".repeat(n)), bad("NC130"), None);
