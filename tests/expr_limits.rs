@@ -201,6 +201,13 @@ fn cases(over: usize) -> Vec<Case> {
         bad("NC130"),
         Some(1),
     ));
+    // The deepest walks together: a comparison chain (the costliest to lower for FANUC)
+    // inside 64 nested structures, the most the Siemens structurer takes.
+    let (c, x) = chain("==", n);
+    let ifs = format!("{}G1 X={c} F100\n{}", "IF R1==1\n".repeat(64), "ENDIF\n".repeat(64));
+    let mut nested = siemens("in_structures", ifs.trim_end(), bad("NC130"), x);
+    nested.refused = nested.refused.map(|(code, _)| (code, 66));
+    v.push(nested);
     v.retain(|c| only.as_ref().is_none_or(|o| o.split(',').any(|n| n == c.name)));
     v
 }
