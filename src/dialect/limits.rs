@@ -10,8 +10,10 @@
 //! CAM or hand-written expression has a few dozen operations, and FANUC itself allows five
 //! levels of brackets.
 
+use super::Dialect;
 use crate::diag::Diagnostic;
-use crate::ir::{Expr, ExprKind, VarKind};
+use crate::ir::visit::{item_exprs, walk_stmts};
+use crate::ir::{Expr, ExprKind, Item, ItemKind, Stmt, StmtKind, VarKind};
 use crate::span::{FileId, Span};
 
 /// The most operations that may nest in one expression tree: `1+1+…` with 256 `+` is
@@ -76,4 +78,42 @@ pub fn too_nested(file: FileId, at: Span, level: u32, hint: &str) -> Diagnostic 
     Diagnostic::error("NC130", format!("expression nested deeper than {MAX_NESTING} levels"))
         .primary(file, at, format!("level {level}"))
         .hint(hint)
+}
+
+/// NC130 for each expression of a translated `body` that the translation made deeper than
+/// [`MAX_EXPR_DEPTH`], at its source span: its output would not read back. Checked before
+/// the output is written, so the message is about the source, not about nctrans's writer.
+pub fn deepened(body: &[Stmt], file: FileId, target: Dialect) -> Vec<Diagnostic> {
+    let (name, example) = match target {
+        Dialect::Sinumerik => ("Sinumerik", " (an exact FANUC comparison is a difference with 0 there)"),
+        Dialect::Fanuc => ("FANUC", ""),
+    };
+    fn item<'a>(it: &'a Item, out: &mut Vec<&'a Expr>) {
+        out.extend(item_exprs(it));
+        if let ItemKind::IfThen { then, .. } = &it.kind {
+            item(then, out);
+        }
+    }
+    let mut exprs: Vec<&Expr> = Vec::new();
+    walk_stmts(body, &mut |s| match &s.kind {
+        StmtKind::Block(b) => b.items.iter().for_each(|it| item(it, &mut exprs)),
+        StmtKind::If(i) => exprs.push(&i.cond),
+        StmtKind::While(w) => exprs.push(&w.cond),
+        StmtKind::For(f) => exprs.extend([&f.from, &f.to]),
+        StmtKind::Repeat(r) => exprs.push(&r.until),
+        StmtKind::Do(d) => exprs.extend(d.cond.as_ref()),
+        StmtKind::Loop(_) => {}
+    });
+    exprs
+        .into_iter()
+        .filter(|e| depth(e) > MAX_EXPR_DEPTH)
+        .map(|e| {
+            Diagnostic::error("NC130", format!("in {name} this expression nests more than {MAX_EXPR_DEPTH} operations"))
+                .primary(file, e.span, "too long once translated")
+                .note(format!(
+                    "the translation writes operations the source does not{example}, and nctrans reads at most {MAX_EXPR_DEPTH} nested operations in one expression"
+                ))
+                .hint("split the expression into several assignments in the source")
+        })
+        .collect()
 }
