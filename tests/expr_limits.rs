@@ -5,7 +5,8 @@
 //! and nothing aborts; at the limit parse, dump, span check, run and translation both ways
 //! work and compute the right value. The library runs on a thread with half the stack of a
 //! batch worker (the checker inside it too), the CLI binary with its own threads (main
-//! thread, the checker's second program, batch workers).
+//! thread, the checker's second program, batch workers). To measure a form's stack:
+//! `CASES=s_eq STK=<bytes> cargo test --test expr_limits at_the_limit`.
 
 use nctrans::check;
 use nctrans::dialect::limits::{MAX_EXPR_DEPTH, MAX_NESTING, THREAD_STACK};
