@@ -3,10 +3,10 @@
 //!
 //! Every walk over an expression after the reader (structurers, passes, both emitters, the
 //! evaluator, `ir::dump`, `ir::visit`, and the drop of its boxes) recurses once per level,
-//! and pest recurses once per nested bracket. These bounds are what keeps all of them on the
-//! stack: the main thread has 8 MiB, but a batch worker and the checker's second program run
-//! on spawned threads of 2 MiB, in debug builds too. `tests/expr_limits.rs` runs every
-//! command on expressions at the limits on such threads. No real program comes near them: a
+//! and pest recurses once per nested bracket. These bounds, with [`THREAD_STACK`] for the
+//! threads nctrans starts (a spawned thread has only 2 MiB unless told), are what keeps all
+//! of them on the stack, in debug builds too. `tests/expr_limits.rs` runs every command on
+//! expressions at the limits on half that stack. No real program comes near them: a
 //! CAM or hand-written expression has a few dozen operations, and FANUC itself allows five
 //! levels of brackets.
 
