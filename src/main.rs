@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 mod batch_cli;
 mod cli_sinumerik;
+mod out_guard;
 mod stream_cli;
 mod translate_cli;
 
@@ -139,7 +140,7 @@ fn main() -> ExitCode {
             return code;
         }
         if cli.translate.to == Some(Dialect::Sinumerik) {
-            return cli_sinumerik::run(&cli.translate);
+            return cli_sinumerik::run(&cli.translate, cli.batch.force);
         }
         if cli.translate.to.is_some() {
             // Single-file translation reads the project configuration like a batch does.

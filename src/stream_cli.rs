@@ -447,6 +447,8 @@ fn translate_from(
     drop(w);
     // Not straight-line: segmented (the macro part whole, its runs of straight blocks
     // streamed), else the whole-file path.
+    // The files read, which the output must not be (the callees beside the input, too).
+    let mut read = vec![input.to_path_buf()];
     let (index, inputs) = match r {
         Ok(d) => (d.index, None),
         Err(Fallback::NotStraight(why)) => {
@@ -461,7 +463,7 @@ fn translate_from(
             // (`DirCallees`: beside the file it reads, default semantics) are the ones the
             // whole path loads.
             let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
-            let mut load = |u: &nctrans::ir::Unit| callees_beside(input, c, u);
+            let mut load = |u: &nctrans::ir::Unit| callees_beside(input, c, u, &mut read);
             let r = if !started {
                 Err(None)
             } else if path == input && sem {
@@ -508,6 +510,10 @@ fn translate_from(
             return Ok(Some(code));
         }
     }
+    if let Err(code) = super::out_guard::check(out, &read, true, "-o") {
+        let _ = std::fs::remove_file(&tmp);
+        return Ok(Some(code));
+    }
     if let Err(e) = std::fs::rename(&tmp, out) {
         eprintln!("error: cannot write {}: {e}", out.display());
         return Ok(Some(ExitCode::from(2)));
@@ -544,6 +550,7 @@ fn callees_beside(
     input: &Path,
     c: &nctrans::config::Config,
     unit: &nctrans::ir::Unit,
+    read: &mut Vec<std::path::PathBuf>,
 ) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
     use super::translate_cli::find_beside;
     use nctrans::ir::ProgName;
@@ -567,6 +574,7 @@ fn callees_beside(
             return Err(no("a call of a name that is also a main program beside it"));
         }
         let bytes = std::fs::read(&path).map_err(|_| no("a subprogram that cannot be read"))?;
+        read.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(callee)));

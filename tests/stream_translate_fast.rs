@@ -11,12 +11,12 @@ mod fast_same;
 #[path = "support/rng.rs"]
 mod rng;
 
+use fast_same::{opts, same};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::stream::translate::{self as st, Fallback};
 use nctrans::translate::{self, TranslateOptions};
-use fast_same::{opts, same};
 use rng::Rng;
 use std::path::PathBuf;
 

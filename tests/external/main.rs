@@ -36,4 +36,3 @@ pub fn external(sub: &str) -> PathBuf {
     );
     dir
 }
-

@@ -17,9 +17,9 @@ fn external_programs_scan_the_same_with_words() {
     let (mut words, mut n) = (0, 0);
     for f in files(&crate::external("")) {
         // Program files by their extension (the GUD `.DEF` file too); not the notes, licences and CSVs.
-        let Some(d) = dialect_of(&f).or_else(|| {
-            f.extension().is_some_and(|x| x.eq_ignore_ascii_case("def")).then_some(Dialect::Sinumerik)
-        }) else {
+        let Some(d) = dialect_of(&f)
+            .or_else(|| f.extension().is_some_and(|x| x.eq_ignore_ascii_case("def")).then_some(Dialect::Sinumerik))
+        else {
             continue;
         };
         words += check(&f, d);
