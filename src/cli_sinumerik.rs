@@ -511,7 +511,7 @@ fn verdict(v: Verdict, diff: &str) -> ExitCode {
 fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitCode> {
     use crate::stream_cli;
     let size = std::fs::metadata(req.file).ok()?.len();
-    if !(args.stream || size >= stream_cli::AUTO_BYTES) || stream_cli::writes_over(req.file, req.out) {
+    if !(args.stream || size >= stream_cli::AUTO_BYTES) {
         return None;
     }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;

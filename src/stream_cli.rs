@@ -293,13 +293,6 @@ pub fn side<'a>(
     Some(Ok((stream::runner(Arc::new(ix), callees, opts), src)))
 }
 
-/// Whether `out` is the input itself: a streamed translation re-reads its source while
-/// verifying, so it must not write over it (the whole-file path takes such a call).
-pub fn writes_over(input: &Path, out: Option<&Path>) -> bool {
-    let canon = |p: &Path| p.canonicalize().ok();
-    out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(input))
-}
-
 /// Creates the temporary output of a streamed translation (renamed when it is finished).
 pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, ExitCode> {
     match std::fs::File::create(tmp) {
@@ -377,7 +370,7 @@ pub fn translate(
     input: &Path,
 ) -> Option<ExitCode> {
     let size = std::fs::metadata(input).ok()?.len();
-    if !(a.stream || size >= AUTO_BYTES) || writes_over(input, a.output.as_deref()) {
+    if !(a.stream || size >= AUTO_BYTES) {
         return None;
     }
     let mut src = Source::new(input, c.input_encoding)?;
