@@ -55,7 +55,8 @@ enum Command {
         from: Option<Dialect>,
         #[command(flatten)]
         eval: EvalOpts,
-        /// Trace format: text (one event per line) or jsonl (trace-format.md).
+        /// Trace format: text (one event per line) or jsonl (one JSON object per event); both are
+        /// described in docs/trace-format.md.
         #[arg(long, default_value = "text", value_parser = parse_format)]
         format: nctrans::eval::Format,
         /// Run without printing the trace (for timing).

@@ -159,7 +159,11 @@ fn batch_folders_that_overlap_are_refused_and_nothing_is_written() {
         let o = nctrans(&at, &["--to", "fanuc", "-o", out, input]);
         refused(&o, "NC610", &[(&d.join("lib/a.mpf"), SIEMENS)]);
         assert!(stderr(&o).contains("hint: give an output folder"), "{}", stderr(&o));
-        assert!(!d.join("lib/nctrans-map.toml").exists() && !d.join("lib/out").exists() && !d.join("nctrans-map.toml").exists());
+        assert!(
+            !d.join("lib/nctrans-map.toml").exists()
+                && !d.join("lib/out").exists()
+                && !d.join("nctrans-map.toml").exists()
+        );
         assert!(String::from_utf8_lossy(&o.stdout).is_empty(), "no summary for a refused batch");
     }
     #[cfg(unix)]
