@@ -438,10 +438,10 @@ fn translate_from(
     let r = st::to_fanuc(path, &opts, &mut w, Some(&mut report));
     line.done();
     drop(w);
-    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
-    // streamed), else the whole-file path.
     // The files read, which the output must not be (the callees beside the input, too).
     let mut read = vec![input.to_path_buf()];
+    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
+    // streamed), else the whole-file path.
     let (index, inputs) = match r {
         Ok(d) => (d.index, None),
         Err(Fallback::NotStraight(why)) => {
