@@ -21,7 +21,8 @@ pub struct BatchArgs {
     /// Batch: worker threads (default: the number of cores).
     #[arg(short = 'j', long = "jobs", value_name = "N")]
     pub jobs: Option<usize>,
-    /// Batch: replace existing output files.
+    /// Replace existing output files (a batch's, or the -o of one file's translation); an
+    /// input is never written, even with it.
     #[arg(long)]
     pub force: bool,
     /// Batch: write a per-file report (.json or .csv).
@@ -177,6 +178,14 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
         Dialect::Fanuc => Box::new(jobs::ToFanucJob::new(settings)),
         Dialect::Sinumerik => Box::new(nctrans::batch::jobs_sinumerik::ToSinumerikJob::new(settings)),
     };
+    // The report is never written over a program of the library (another spelling, a link).
+    if let Some(rp) = &c.report {
+        let found = batch::discover::discover(input, Some(&output)).map(|f| f.files).unwrap_or_default();
+        let inputs: Vec<PathBuf> = found.into_iter().map(|f| f.abs).collect();
+        if let Err(code) = crate::out_guard::check(rp, &inputs, true, "--report") {
+            return code;
+        }
+    }
     let mut opts = BatchOptions::new(input, &output, to);
     opts.jobs = if c.jobs == 0 { batch::default_jobs() } else { c.jobs };
     opts.force = c.force;
@@ -201,6 +210,10 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     let mut ui = ProgressUi::new();
     let result = match batch::run_batch(opts, job.as_ref(), cancel, &mut |p| ui.show(p)) {
         Ok(r) => r,
+        Err(batch::BatchError::Refused { code, message, hint }) => {
+            eprintln!("error[{code}]: {message}\n  = hint: {hint}");
+            return ExitCode::from(2);
+        }
         Err(e) => return fail(e),
     };
     ui.finish();

@@ -23,6 +23,8 @@ pub struct Request<'a> {
     pub file: &'a Path,
     pub out: Option<&'a Path>,
     pub encoding: Option<&'static encoding_rs::Encoding>,
+    /// `--force`: existing output files may be replaced (inputs never).
+    pub force: bool,
 }
 
 /// The project configuration `./nctrans.toml` when there is one (flags win over it).
@@ -142,6 +144,8 @@ pub struct Job {
     pub db: SourceDb,
     pub units: Vec<Unit>,
     pub loaded: nctrans::Loaded,
+    /// The files read: the input, then the callee files (no output may be one of them).
+    pub read: Vec<PathBuf>,
 }
 
 /// Loads `path` and, transitively, the callees it needs that are not in the file itself.
@@ -164,13 +168,14 @@ pub fn load_job(
     let mut diags = parsed.diags;
     let mut units = vec![parsed.unit];
     let dir = beside(path);
-    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags);
+    let mut read = vec![path.to_path_buf()];
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut read);
     if diag::has_errors(&diags) {
         return Err((db, diags));
     }
     // Warnings of reading are shown, not fatal.
     let _ = diags;
-    Ok(Job { db, units, loaded })
+    Ok(Job { db, units, loaded, read })
 }
 
 /// The folder a file is in (`.` for a bare file name, whose parent is empty).
@@ -180,8 +185,8 @@ fn beside(path: &Path) -> PathBuf {
 
 /// Loads, transitively, the callees `units` need that none of them holds, from the files
 /// beside them in `dir` (`find_callee_file`), in the order the whole path takes them (each
-/// round the wanted numbers ascending); their reading diagnostics go to `diags`. Returns
-/// the numbers called that were not found.
+/// round the wanted numbers ascending); their reading diagnostics go to `diags`, their
+/// paths to `read`. Returns the numbers called that were not found.
 fn load_callees(
     db: &mut SourceDb,
     units: &mut Vec<Unit>,
@@ -189,6 +194,7 @@ fn load_callees(
     encoding: Option<&'static encoding_rs::Encoding>,
     opts: &ParseOptions,
     diags: &mut Vec<diag::Diagnostic>,
+    read: &mut Vec<PathBuf>,
 ) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
@@ -221,6 +227,7 @@ fn load_callees(
                 missing.insert(n);
                 continue;
             };
+            read.push(p.clone());
             let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
             let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
             diags.extend(parsed.diags);
@@ -237,6 +244,7 @@ fn callees_beside(
     req: &Request,
     opts: &Options,
     unit: &Unit,
+    read: &mut Vec<PathBuf>,
 ) -> Result<Vec<Unit>, nctrans::stream::translate::Fallback> {
     use nctrans::stream::translate::Fallback;
     let mut db = SourceDb::new();
@@ -244,7 +252,7 @@ fn callees_beside(
     let dir = beside(req.file);
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
-    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags);
+    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, read);
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }
@@ -261,7 +269,7 @@ fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
 
 /// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
 /// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction).
-pub fn run(args: &TranslateArgs) -> ExitCode {
+pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
     let Some(file) = args.input.as_deref() else {
         eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
         return ExitCode::from(2);
@@ -277,8 +285,6 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
         eprintln!("error: {flag} applies to --to fanuc only");
         return ExitCode::from(2);
     }
-    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
-    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
     let config = match project_config() {
         Ok(c) => c,
         Err(e) => {
@@ -286,6 +292,16 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let force = force || config.as_ref().is_some_and(|c| c.force);
+    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding, force };
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+    // -o naming the main file: refused before anything is read when it is the input, or an
+    // existing file without --force (the subprogram files are checked once they are named).
+    if let Some(o) = req.out.filter(|o| !out_place(o).0) {
+        if let Err(code) = crate::out_guard::check(o, &[file.to_path_buf()], force, "-o") {
+            return code;
+        }
+    }
     let opts = match options(args, stem, config.as_ref()) {
         Ok(o) => o,
         Err(e) => {
@@ -310,7 +326,7 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
         eprintln!("error: translation failed; nothing written");
         return ExitCode::from(1);
     }
-    if let Err(code) = write_files(&req, &tr, &job.loaded) {
+    if let Err(code) = write_files(&req, &tr, &job.loaded, &job.read) {
         return code;
     }
     let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
@@ -339,7 +355,12 @@ fn separator(name: &str, eol: read::LineEnding) -> String {
     format!("; ==== {name} ===={}", eol.as_str())
 }
 
-fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) -> Result<(), ExitCode> {
+fn write_files(
+    req: &Request,
+    tr: &ts::Translation,
+    loaded: &nctrans::Loaded,
+    read: &[PathBuf],
+) -> Result<(), ExitCode> {
     match req.out {
         None => {
             let mut out = std::io::stdout().lock();
@@ -357,15 +378,18 @@ fn write_files(req: &Request, tr: &ts::Translation, loaded: &nctrans::Loaded) ->
         }
         Some(o) => {
             let (is_dir, dir) = out_place(o);
+            let paths: Vec<PathBuf> =
+                tr.files.iter().map(|f| if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) }).collect();
+            // Every file checked before the first is written: none is half done.
+            crate::out_guard::check_all(paths.iter().map(PathBuf::as_path), read, req.force)?;
             if is_dir {
                 if let Err(e) = std::fs::create_dir_all(&dir) {
                     eprintln!("error: cannot create {}: {e}", dir.display());
                     return Err(ExitCode::from(2));
                 }
             }
-            for f in &tr.files {
-                let path = if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) };
-                write_one(&path, &encode(&f.text, loaded))?;
+            for (f, path) in tr.files.iter().zip(&paths) {
+                write_one(path, &encode(&f.text, loaded))?;
             }
         }
     }
@@ -487,7 +511,7 @@ fn verdict(v: Verdict, diff: &str) -> ExitCode {
 fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitCode> {
     use crate::stream_cli;
     let size = std::fs::metadata(req.file).ok()?.len();
-    if !(args.stream || size >= stream_cli::AUTO_BYTES) || stream_cli::writes_over(req.file, req.out) {
+    if !(args.stream || size >= stream_cli::AUTO_BYTES) {
         return None;
     }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;
@@ -550,6 +574,8 @@ fn streamed_from(
     };
     let with_subs = special.is_none();
     let mut subs: Vec<ts::OutFile> = Vec::new();
+    // The files read (the input, the callees beside it): no output may be one of them.
+    let mut read = vec![req.file.to_path_buf()];
     let mut line = ProgressLine::new("translating", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
     let r = sts::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
@@ -569,7 +595,7 @@ fn streamed_from(
             // path finds them) are taken when the files are written as `write_files` writes
             // them: to a file, a folder or stdout (not a special target).
             let r = if with_subs {
-                let mut load = |u: &Unit| callees_beside(req, opts, u);
+                let mut load = |u: &Unit| callees_beside(req, opts, u, &mut read);
                 sts::segmented::to_sinumerik_with_subs(path, opts, eol, &mut load, &mut w, Some(&mut report)).map(
                     |(d, s)| {
                         subs = s;
@@ -617,6 +643,15 @@ fn streamed_from(
         Some(o) if is_dir(o) => o.join(&done.file_name),
         Some(o) => o.to_path_buf(),
     };
+    if let Some(o) = req.out.filter(|_| special.is_none()) {
+        let dir = out_place(o).1;
+        let mut paths = vec![out.clone()];
+        paths.extend(subs.iter().map(|f| dir.join(&f.name)));
+        if let Err(code) = crate::out_guard::check_all(paths.iter().map(PathBuf::as_path), &read, req.force) {
+            let _ = std::fs::remove_file(&tmp);
+            return Ok(Some(code));
+        }
+    }
     if let Err(e) = std::fs::rename(&tmp, &out) {
         let _ = std::fs::remove_file(&tmp);
         eprintln!("error: cannot write {}: {e}", out.display());

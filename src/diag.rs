@@ -3,7 +3,9 @@
 //! Codes are stable and grouped by phase: NC1xx reading and parsing (NC100–NC119 shared
 //! reading, NC120–NC159 Sinumerik, NC160–NC199 FANUC), NC2xx validation and structure
 //! (NC200–NC229 Sinumerik, NC230–NC259 FANUC), NC3xx unsupported on a target, NC4xx
-//! evaluation, NC5xx divergence. The full list is in `docs/diagnostics.md`.
+//! evaluation, NC5xx divergence, NC6xx files and batches. Each code is documented with the rule
+//! that raises it: `docs/translation.md` and `docs/translation-fanuc-to-sinumerik.md`
+//! (Diagnostics), `docs/semantics.md` (evaluation), the README (batches and files).
 
 use crate::span::{FileId, SourceDb, Span};
 use codespan_reporting::diagnostic as cs;

@@ -14,6 +14,7 @@ pub mod excerpt;
 pub mod ir;
 pub mod passes;
 pub mod read;
+pub mod same_file;
 pub mod span;
 pub mod stream;
 /// The deterministic generator the randomised tests share (unit and integration tests).

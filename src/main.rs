@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 mod batch_cli;
 mod cli_sinumerik;
+mod out_guard;
 mod stream_cli;
 mod translate_cli;
 
@@ -54,7 +55,8 @@ enum Command {
         from: Option<Dialect>,
         #[command(flatten)]
         eval: EvalOpts,
-        /// Trace format: text (one event per line) or jsonl (trace-format.md).
+        /// Trace format: text (one event per line) or jsonl (one JSON object per event); both are
+        /// described in docs/trace-format.md.
         #[arg(long, default_value = "text", value_parser = parse_format)]
         format: nctrans::eval::Format,
         /// Run without printing the trace (for timing).
@@ -139,7 +141,7 @@ fn main() -> ExitCode {
             return code;
         }
         if cli.translate.to == Some(Dialect::Sinumerik) {
-            return cli_sinumerik::run(&cli.translate);
+            return cli_sinumerik::run(&cli.translate, cli.batch.force);
         }
         if cli.translate.to.is_some() {
             // Single-file translation reads the project configuration like a batch does.

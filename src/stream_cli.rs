@@ -293,13 +293,6 @@ pub fn side<'a>(
     Some(Ok((stream::runner(Arc::new(ix), callees, opts), src)))
 }
 
-/// Whether `out` is the input itself: a streamed translation re-reads its source while
-/// verifying, so it must not write over it (the whole-file path takes such a call).
-pub fn writes_over(input: &Path, out: Option<&Path>) -> bool {
-    let canon = |p: &Path| p.canonicalize().ok();
-    out.is_some_and(|o| canon(o).is_some() && canon(o) == canon(input))
-}
-
 /// Creates the temporary output of a streamed translation (renamed when it is finished).
 pub fn create_temp(tmp: &Path) -> Result<std::io::BufWriter<std::fs::File>, ExitCode> {
     match std::fs::File::create(tmp) {
@@ -377,7 +370,7 @@ pub fn translate(
     input: &Path,
 ) -> Option<ExitCode> {
     let size = std::fs::metadata(input).ok()?.len();
-    if !(a.stream || size >= AUTO_BYTES) || writes_over(input, a.output.as_deref()) {
+    if !(a.stream || size >= AUTO_BYTES) {
         return None;
     }
     let mut src = Source::new(input, c.input_encoding)?;
@@ -445,6 +438,8 @@ fn translate_from(
     let r = st::to_fanuc(path, &opts, &mut w, Some(&mut report));
     line.done();
     drop(w);
+    // The files read, which the output must not be (the callees beside the input, too).
+    let mut read = vec![input.to_path_buf()];
     // Not straight-line: segmented (the macro part whole, its runs of straight blocks
     // streamed), else the whole-file path.
     let (index, inputs) = match r {
@@ -461,7 +456,7 @@ fn translate_from(
             // (`DirCallees`: beside the file it reads, default semantics) are the ones the
             // whole path loads.
             let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
-            let mut load = |u: &nctrans::ir::Unit| callees_beside(input, c, u);
+            let mut load = |u: &nctrans::ir::Unit| callees_beside(input, c, u, &mut read);
             let r = if !started {
                 Err(None)
             } else if path == input && sem {
@@ -508,6 +503,10 @@ fn translate_from(
             return Ok(Some(code));
         }
     }
+    if let Err(code) = super::out_guard::check(out, &read, true, "-o") {
+        let _ = std::fs::remove_file(&tmp);
+        return Ok(Some(code));
+    }
     if let Err(e) = std::fs::rename(&tmp, out) {
         eprintln!("error: cannot write {}: {e}", out.display());
         return Ok(Some(ExitCode::from(2)));
@@ -544,6 +543,7 @@ fn callees_beside(
     input: &Path,
     c: &nctrans::config::Config,
     unit: &nctrans::ir::Unit,
+    read: &mut Vec<std::path::PathBuf>,
 ) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
     use super::translate_cli::find_beside;
     use nctrans::ir::ProgName;
@@ -567,6 +567,7 @@ fn callees_beside(
             return Err(no("a call of a name that is also a main program beside it"));
         }
         let bytes = std::fs::read(&path).map_err(|_| no("a subprogram that cannot be read"))?;
+        read.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(callee)));

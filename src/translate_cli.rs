@@ -92,6 +92,12 @@ pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
 }
 
 fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
+    // Refused before anything is read: -o onto the input, or onto an existing file without --force.
+    if let Some(o) = a.output.as_deref() {
+        if let Err(code) = crate::out_guard::check(o, &[input.to_path_buf()], c.force, "-o") {
+            return code;
+        }
+    }
     if let Some(code) = crate::stream_cli::translate(a, c, input) {
         return code;
     }
@@ -113,9 +119,11 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return ExitCode::from(1);
     }
     // Subprograms it calls, found beside it (NAME.SPF, any case), transitively.
+    let mut inputs = vec![input.to_path_buf()];
     let subs = callees(&parsed.unit, |callee| {
         let Some(path) = find_beside(input, callee) else { return Ok(None) };
         let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
+        inputs.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         eprint!("{}", diag::render(&db, &p.diags));
@@ -140,6 +148,9 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return ExitCode::from(1);
     }
     let out_bytes = read::encode(&t.text, c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
+    if let Some(Err(code)) = a.output.as_deref().map(|o| crate::out_guard::check(o, &inputs, c.force, "-o")) {
+        return code;
+    }
     if let Err(e) = write_output(a.output.as_deref(), &out_bytes) {
         return fail(e);
     }

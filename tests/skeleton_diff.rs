@@ -4,7 +4,8 @@
 //! (plain CAM lines and near misses: `N1.`, `X1=`, `GO1`, `1EX3`, 16 and more digits,
 //! letters L/N/O/P, tabs, form feeds, comments, controls, non-ASCII, every line end), and
 //! `stream::scan_index` against `stream::scan_index_general` (every line the general way)
-//! on every corpus file and generated files (lines across buffer refills, CR LF cut by a
+//! on every corpus file and generated files (the external programs get both checks in the
+//! `external` test target) (lines across buffer refills, CR LF cut by a
 //! refill, macro parts among CAM lines, small and large chunks).
 //!
 //! `NCTRANS_SKELETON_LINES` sets how many lines are generated per dialect (default
@@ -13,11 +14,13 @@
 
 #[path = "support/rng.rs"]
 mod rng;
+#[path = "support/skeleton.rs"]
+mod skeleton;
 
-use nctrans::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
-use nctrans::stream::{self, lines::Input};
+use nctrans::dialect::Dialect;
 use rng::Rng;
-use std::path::{Path, PathBuf};
+use skeleton::{both_indexes, compare, dialect_of, AFTER};
+use std::path::PathBuf;
 
 /// A number as CAM output and hand-written code spell them, and near misses.
 fn number(r: &mut Rng) -> String {
@@ -133,49 +136,6 @@ fn line(r: &mut Rng, siemens: bool) -> String {
     s
 }
 
-/// The line ends `skeleton_bytes` sees after a line (the first starts none: it must decline).
-const AFTER: &[&str] = &["", "\n", "\r\n", "\r", "\rG1 X2", "\nN5 G1", "\n\n"];
-
-/// Whether `skeleton_bytes` may decline a line the old reader takes: not plain bytes (it
-/// reads only those), and for FANUC a block skip or an N, G or M word of 16 or more digits.
-fn may_decline(text: &str, siemens: bool) -> bool {
-    let plain = text.bytes().all(|c| matches!(c, b'\t' | 0x0c | 0x1a | 0x20..=0x7e));
-    if !plain {
-        return true;
-    }
-    if siemens {
-        return false;
-    }
-    let b = text.as_bytes();
-    let mut run = 0;
-    let long = b.iter().any(|c| {
-        run = if c.is_ascii_digit() { run + 1 } else { 0 };
-        run >= 16
-    });
-    text.contains('/') || long
-}
-
-/// Compares both readers on `text` with every line end after it; counts the lines both take.
-fn compare(text: &str, siemens: bool, taken: &mut u64) {
-    for after in AFTER {
-        let (old, new) = if siemens {
-            sinumerik::skeleton_both_for_test(text, after)
-        } else {
-            fanuc::skeleton_both_for_test(text, after)
-        };
-        if after.is_empty() {
-            assert_eq!(new, None, "a line without its end: {text:?}");
-            continue;
-        }
-        match (&old, &new) {
-            (_, Some(_)) => assert_eq!(old, new, "{text:?} then {after:?}"),
-            (Some(_), None) => assert!(may_decline(text, siemens), "declined {text:?} then {after:?}: {old:?}"),
-            (None, None) => {}
-        }
-        *taken += u64::from(new.is_some());
-    }
-}
-
 fn corpus_files() -> Vec<PathBuf> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut dirs = vec![
@@ -184,12 +144,6 @@ fn corpus_files() -> Vec<PathBuf> {
         root.join("corpus/err/sinumerik"),
         root.join("corpus/err/fanuc"),
     ];
-    let external = root.join("../shared/external");
-    if external.is_dir() {
-        dirs.push(external);
-    } else {
-        println!("note: {} not found; the external programs are not compared", external.display());
-    }
     let mut files = Vec::new();
     while let Some(d) = dirs.pop() {
         let Ok(rd) = std::fs::read_dir(&d) else { continue };
@@ -203,14 +157,6 @@ fn corpus_files() -> Vec<PathBuf> {
     }
     files.sort();
     files
-}
-
-fn dialect_of(p: &Path) -> Option<Dialect> {
-    match p.extension()?.to_str()?.to_ascii_lowercase().as_str() {
-        "mpf" | "spf" => Some(Dialect::Sinumerik),
-        "nc" => Some(Dialect::Fanuc),
-        _ => None,
-    }
 }
 
 #[test]
@@ -362,16 +308,6 @@ fn generated_lines_agree() {
 #[ignore]
 fn a_million_generated_lines_agree() {
     generated_lines(1_000_000);
-}
-
-/// The index of `bytes` by the fast first scan and by the general one, as debug text.
-fn both_indexes(path: &Path, dialect: Dialect, bytes: &[u8], chunk_ops: usize) -> (String, String) {
-    let opts = ParseOptions::for_dialect(dialect);
-    let input = || Input::Mem(std::io::Cursor::new(bytes.to_vec()));
-    let size = bytes.len() as u64;
-    let fast = stream::scan_index(input(), size, path, 0, dialect, &opts, chunk_ops, None);
-    let general = stream::scan_index_general(input(), size, path, 0, dialect, &opts, chunk_ops);
-    (format!("{fast:?}"), format!("{general:?}"))
 }
 
 #[test]

@@ -96,19 +96,20 @@ fn a_byte_order_mark_is_kept_by_the_streamed_translation() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// `--to fanuc --stream IN -o IN`: the streamed check re-reads its source while verifying, so
-/// writing over the input is left to the whole-file path, which gives the same program.
+/// `--to fanuc --stream IN -o IN`: the input is never written (issue 16: it used to be
+/// replaced by its translation), streamed or not.
 #[test]
-fn writing_over_the_input_is_not_streamed() {
+fn writing_over_the_input_is_refused() {
     let d = dir("over");
     let f = d.join("over.mpf");
-    let w = d.join("w.nc");
-    std::fs::write(&f, program(300, &[])).unwrap();
+    let text = program(300, &[]);
+    std::fs::write(&f, &text).unwrap();
     let p = f.to_str().unwrap();
-    let b = run(&["--to", "fanuc", p, "-o", w.to_str().unwrap()]);
-    let a = run(&["--to", "fanuc", "--stream", p, "-o", p]);
-    assert_eq!((a.0, b.0), (0, 0), "{}\n{}", a.2, b.2);
-    assert!(a.2.contains("equivalent"), "{}", a.2);
-    assert_eq!(std::fs::read(&f).unwrap(), std::fs::read(&w).unwrap());
+    for args in [&["--to", "fanuc", "--stream", p, "-o", p][..], &["--to", "fanuc", p, "-o", p, "--force"][..]] {
+        let a = run(args);
+        assert_eq!(a.0, 2, "{}", a.2);
+        assert!(a.2.contains("error[NC602]"), "{}", a.2);
+        assert_eq!(std::fs::read_to_string(&f).unwrap(), text);
+    }
     let _ = std::fs::remove_dir_all(&d);
 }

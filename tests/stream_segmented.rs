@@ -556,6 +556,8 @@ fn cli_stream_matches_whole(name: &str, text: &str) {
     let path = scratch().join(name);
     std::fs::write(&path, text).expect("write");
     let out = scratch().join(format!("{name}.cli.nc"));
+    // An earlier run's output: -o replaces an existing file only with --force.
+    let _ = std::fs::remove_file(&out);
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
         .args(["--stream", "--to", "fanuc"])
         .arg(&path)
@@ -634,6 +636,7 @@ fn cli_streams_a_large_macro_program() {
     text.push_str("M30\n");
     std::fs::write(&path, &text).expect("write");
     let out = dir.join("bigmacro.nc");
+    let _ = std::fs::remove_file(&out);
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
         .args(["--to", "fanuc"])
         .arg(&path)
@@ -663,6 +666,7 @@ fn cli_stream_writes_the_whole_translation() {
         let path = scratch().join(format!("cli{k}.mpf"));
         std::fs::write(&path, &text).expect("write");
         let out = scratch().join(format!("cli{k}.nc"));
+        let _ = std::fs::remove_file(&out);
         let run = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
             .args(["--stream", "--to", "fanuc"])
             .arg(&path)

@@ -393,7 +393,8 @@ fn cli_streams_with_the_same_output_and_verdict() {
     assert_eq!(names(&wd), names(&sd), "no temporary file left behind");
 
     // --no-verify, and a program that is not straight-line (translated whole, the same).
-    let nv = cli(&["--to", "sinumerik", "--stream", "--no-verify", &s, "-o", &b.to_string_lossy()]);
+    // (Onto the earlier output: replacing an existing file takes --force.)
+    let nv = cli(&["--to", "sinumerik", "--stream", "--no-verify", "--force", &s, "-o", &b.to_string_lossy()]);
     assert_eq!(nv.0, Some(0));
     assert!(!nv.2.contains("equivalent"));
     let macro_prog = dir.join("macro.nc");

@@ -6,16 +6,19 @@
 //! line ending) must stream to exactly the bytes `translate::to_fanuc` writes for the whole
 //! program; blocks the translator reports on must make the stream give up.
 
+#[path = "support/fast_same.rs"]
+mod fast_same;
 #[path = "support/rng.rs"]
 mod rng;
 
+use fast_same::{opts, same};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::stream::translate::{self as st, Fallback};
 use nctrans::translate::{self, TranslateOptions};
 use rng::Rng;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn dir() -> PathBuf {
     let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/stream-fast-tests");
@@ -50,16 +53,6 @@ fn both(name: &str, text: &str, comments: CommentMode) -> (nctrans::translate::T
     let mut out = Vec::new();
     let r = st::to_fanuc(&path, &o, &mut out, None).map(|_| out);
     (whole, r)
-}
-
-fn opts(path: &Path, text: &str, comments: CommentMode) -> TranslateOptions {
-    TranslateOptions {
-        main_name: path.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase(),
-        source_name: path.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
-        line_ending: nctrans::read::detect_line_ending(text),
-        comments,
-        ..TranslateOptions::default()
-    }
 }
 
 /// A constant as a CAM system or a person writes it.
@@ -149,24 +142,6 @@ fn block(r: &mut Rng, letters: &[char]) -> String {
         b.push_str(&format!("; {}", r.pick(COMMENTS)));
     }
     b.trim_end().to_string()
-}
-
-/// Asserts `out == whole`, naming the first line that differs and its source lines.
-fn same(what: &str, out: &[u8], whole: &str, source: &str) {
-    let out = String::from_utf8_lossy(out);
-    if out == whole {
-        return;
-    }
-    let (a, b): (Vec<&str>, Vec<&str>) = (out.lines().collect(), whole.lines().collect());
-    let k = a.iter().zip(&b).position(|(x, y)| x != y).unwrap_or(a.len().min(b.len()));
-    let near: Vec<&str> = source.lines().skip(k.saturating_sub(4)).take(6).collect();
-    panic!(
-        "{what}: line {}: streamed {:?}, whole {:?}\nsource near it:\n{}",
-        k + 1,
-        a.get(k),
-        b.get(k),
-        near.join("\n")
-    );
 }
 
 /// Whether `b` parses without a word and is a block the stream takes.
@@ -316,48 +291,6 @@ fn blocks_the_translator_reports_on_are_not_streamed() {
     // clean program in G70 streams.
     let (_, got) = both("bad70.mpf", "G70\nG1 X1 F100\nG500\nM30\n", CommentMode::Keep);
     assert!(matches!(got, Err(Fallback::Diagnostics)));
-}
-
-#[test]
-fn external_siemens_programs_stream_only_to_their_whole_translation() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cead-sinumerik");
-    let mut files = Vec::new();
-    let mut stack = vec![dir.clone()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().and_then(|x| x.to_str()).is_some_and(|x| x.eq_ignore_ascii_case("mpf")) {
-                files.push(p);
-            }
-        }
-    }
-    if files.is_empty() {
-        eprintln!("note: {} not found; skipped", dir.display());
-        return;
-    }
-    files.sort();
-    let mut streamed = 0;
-    for f in &files {
-        let o = {
-            let text = String::from_utf8_lossy(&std::fs::read(f).expect("read")).to_string();
-            opts(f, &text, CommentMode::Keep)
-        };
-        let mut out = Vec::new();
-        if st::to_fanuc(f, &o, &mut out, None).is_err() {
-            continue;
-        }
-        let bytes = std::fs::read(f).expect("read");
-        let mut db = SourceDb::new();
-        let loaded = nctrans::load(&mut db, &f.display().to_string(), &bytes, None);
-        let parsed =
-            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
-        let whole = translate::to_fanuc(&parsed.unit, &[], &o);
-        same(&f.display().to_string(), &out, &whole.text, &db.get(loaded.file).text);
-        streamed += 1;
-    }
-    eprintln!("{streamed} of {} external programs streamed", files.len());
 }
 
 /// A literal as the digit writer (`stream::translate::digits`) sees it: 1..15 digits with

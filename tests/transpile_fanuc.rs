@@ -1,19 +1,22 @@
 //! Sinumerik → FANUC translation tests: pairs (Siemens input → exact FANUC output, or
 //! unsupported), every corpus program (outputs committed under `corpus/out/fanuc/`,
-//! `NCTRANS_BLESS=1` rewrites them), the CEAD examples, a property test on random programs
-//! (`NCTRANS_PROPTEST_N`, default 500) and injected bugs that verification must catch.
+//! `NCTRANS_BLESS=1` rewrites them), a property test on random programs
+//! (`NCTRANS_PROPTEST_N`, default 500) and injected bugs that verification must catch. The
+//! CEAD examples are translated in the `external` test target.
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::passes::UnsupportedPolicy;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, TranslateOptions, Translation};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 #[path = "support/rng.rs"]
 mod rng;
+#[path = "support/tool_names.rs"]
+mod tool_names;
 use rng::Rng;
+use tool_names::tool_map;
 
 const STEPS: u64 = 200_000;
 
@@ -234,17 +237,6 @@ fn injected_bugs_are_caught() {
     assert!(!verify(&mut d).equivalent);
 }
 
-fn tool_map(src: &str) -> BTreeMap<String, u32> {
-    let mut m = BTreeMap::new();
-    for part in src.replace("t=\"", "T=\"").split("T=\"").skip(1) {
-        if let Some(name) = part.split('"').next() {
-            let n = m.len() as u32 + 1;
-            m.entry(name.to_string()).or_insert(n);
-        }
-    }
-    m
-}
-
 /// Corpus programs that cannot be translated, with the reason (diagnostic code).
 const REFUSED: &[(&str, &str)] = &[
     ("address-ac-ic.mpf", "NC313"),
@@ -328,47 +320,6 @@ fn corpus_translates_and_verifies() {
             failures.push(format!("{name}: differs from corpus/out/fanuc/{name}.nc (NCTRANS_BLESS=1 rewrites it)"));
         }
     }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
-}
-
-/// Every CEAD example that uses only translatable constructs translates and verifies.
-#[test]
-fn cead_examples_translate_and_verify() {
-    let dir = root().join("../shared/external/cead-sinumerik/examples");
-    let Ok(rd) = std::fs::read_dir(&dir) else {
-        eprintln!("note: {} is absent; CEAD examples skipped", dir.display());
-        return;
-    };
-    let mut files: Vec<PathBuf> =
-        rd.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "mpf")).collect();
-    files.sort();
-    let (mut ok, mut refused, mut failures) = (0, 0, Vec::new());
-    for path in files {
-        let bytes = std::fs::read(&path).unwrap_or_default();
-        let mut db = SourceDb::new();
-        let loaded = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
-        let text = db.get(loaded.file).text.clone();
-        let parsed =
-            nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
-        if nctrans::diag::has_errors(&parsed.diags) {
-            refused += 1;
-            continue;
-        }
-        let opts = TranslateOptions { tool_map: tool_map(&text), ..TranslateOptions::default() };
-        let t = translate::to_fanuc(&parsed.unit, &[], &opts);
-        if !t.ok() {
-            refused += 1;
-            continue;
-        }
-        let v = translate::verify(&mut db, &parsed.unit, &[], &t, "cead.nc", STEPS);
-        if v.equivalent || v.summary.starts_with("not verified: a run") {
-            ok += usize::from(v.equivalent);
-            refused += usize::from(!v.equivalent);
-        } else {
-            failures.push(format!("{}: {}\n{}", path.display(), v.summary, v.rendered));
-        }
-    }
-    eprintln!("CEAD examples: {ok} translated and verified, {refused} refused or not runnable");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

@@ -1,5 +1,5 @@
-//! FANUC → Sinumerik pair tests: for every construct and every pitfall of dialects.md §9 that
-//! concerns this direction, the FANUC input and the exact Siemens output (header comments
+//! FANUC → Sinumerik pair tests: for every construct and every translation pitfall that
+//! concerns this direction (`docs/translation-fanuc-to-sinumerik.md`), the FANUC input and the exact Siemens output (header comments
 //! left out), or the diagnostic code when the construct is unsupported. Every output is also
 //! parsed back as Sinumerik, so a pair can only pass with valid target syntax.
 

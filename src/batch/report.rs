@@ -20,6 +20,21 @@ pub fn rank(s: Status) -> u8 {
     }
 }
 
+/// Why a failed file failed, for its "worst files" line: its first error, else what its
+/// status says (a run that hit the step limit, a divergence without a diagnostic), never
+/// a warning the file also had, which did not stop it.
+fn blocking(f: &FileRecord) -> String {
+    match f.diagnostics.iter().find(|d| d.severity == "error") {
+        Some(d) => match d.line {
+            Some(l) => format!("{} line {l}: {}", d.code, d.message),
+            None if !d.code.is_empty() => format!("{}: {}", d.code, d.message),
+            None => d.message.clone(),
+        },
+        None if !f.summary.is_empty() => f.summary.clone(),
+        None => f.diagnostics.first().map_or_else(String::new, |d| format!("{}: {}", d.code, d.message)),
+    }
+}
+
 /// The most files listed under "worst files".
 pub const WORST: usize = 10;
 
@@ -45,16 +60,7 @@ pub fn summary(r: &BatchResult, target: &str) -> String {
     if !worst.is_empty() {
         let _ = writeln!(s, "worst files:");
         for f in worst.iter().take(WORST) {
-            let first = f.diagnostics.iter().find(|d| d.severity == "error").or(f.diagnostics.first());
-            let why = match first {
-                Some(d) => match d.line {
-                    Some(l) => format!("{} line {l}: {}", d.code, d.message),
-                    None if !d.code.is_empty() => format!("{}: {}", d.code, d.message),
-                    None => d.message.clone(),
-                },
-                None => f.summary.clone(),
-            };
-            let _ = writeln!(s, "  {:<22} {}  {}", f.status.as_str(), f.path, why);
+            let _ = writeln!(s, "  {:<22} {}  {}", f.status.as_str(), f.path, blocking(f));
         }
         if worst.len() > WORST {
             let _ = writeln!(s, "  … and {} more (see --report)", worst.len() - WORST);
@@ -211,6 +217,31 @@ mod tests {
         assert!(lines[0].contains("b.mpf  NC501 line 7: X differs"), "{s}");
         assert!(lines[1].contains("c.mpf"), "{s}");
         assert!(!s.contains("every file verified"));
+    }
+
+    /// A failed file's line names what stopped it: an error before any warning, and a run
+    /// stopped without an error diagnostic (the step limit) by its status, not by the
+    /// warning it also had (issue 16: NC368 stood where the file failed).
+    #[test]
+    fn worst_files_name_the_blocking_reason_not_a_warning() {
+        let warning = |line| DiagRecord {
+            severity: "warning",
+            code: "NC368".into(),
+            message: "G43 is dropped".into(),
+            file: Some("x.nc".into()),
+            line: Some(line),
+            column: Some(1),
+        };
+        let mut r = result();
+        r.files[1].diagnostics.insert(0, warning(2));
+        r.files[2].status = Status::Inconclusive;
+        r.files[2].summary = "inconclusive: step limit of 10000000 blocks reached".into();
+        r.files[2].diagnostics.push(warning(3));
+        let s = summary(&r, "sinumerik");
+        let worst: Vec<&str> = s.split("worst files:\n").nth(1).unwrap().lines().collect();
+        assert!(worst[0].ends_with("b.mpf  NC501 line 7: X differs"), "{s}");
+        assert!(worst[1].ends_with("c.mpf  inconclusive: step limit of 10000000 blocks reached"), "{s}");
+        assert!(!s.contains("NC368"), "{s}");
     }
 
     #[test]

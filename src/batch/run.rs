@@ -21,14 +21,66 @@ pub enum BatchError {
     Input(String),
     /// The output folder cannot be created.
     Output(String),
+    /// A batch that must not run, refused before anything is written: the folders overlap
+    /// (NC610), the folder holds no program (NC611) or none in the source dialect (NC612).
+    Refused { code: &'static str, message: String, hint: String },
 }
 
 impl std::fmt::Display for BatchError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             BatchError::Input(s) | BatchError::Output(s) => f.write_str(s),
+            BatchError::Refused { code, message, hint } => write!(f, "{message} [{code}]\n  = hint: {hint}"),
         }
     }
+}
+
+/// A dialect as messages name it.
+fn shown(d: Dialect) -> &'static str {
+    match d {
+        Dialect::Sinumerik => "Sinumerik",
+        Dialect::Fanuc => "FANUC",
+    }
+}
+
+/// Refuses input and output folders of which one is, or lies in, the other: outputs
+/// written into the library would mix with the programs (and be read as inputs by the
+/// next run), and inputs inside the output folder could be written over.
+fn separate_folders(input: &Path, output: &Path, target: Dialect) -> Result<(), BatchError> {
+    use crate::same_file::within;
+    let (i, o) = (input.display(), output.display());
+    let message = match (within(output, input), within(input, output)) {
+        (true, true) => {
+            format!("the output folder {o} is the input folder: the outputs would be written into the library")
+        }
+        (true, false) => {
+            format!(
+                "the output folder {o} lies inside the input folder {i}: the outputs would be written into the library"
+            )
+        }
+        (false, true) => {
+            format!("the input folder {i} lies inside the output folder {o}: outputs could land on the programs")
+        }
+        (false, false) => return Ok(()),
+    };
+    // A folder beside the library, named after it.
+    let name = crate::same_file::resolved(input)
+        .and_then(|p| p.file_name().map(|n| n.to_string_lossy().to_string()))
+        .unwrap_or_else(|| "programs".into());
+    let beside = format!("{name}-{}", target.name());
+    let beside = match input.components().next_back() {
+        Some(std::path::Component::Normal(_)) => input.with_file_name(beside),
+        Some(std::path::Component::CurDir) if input.components().count() == 1 => Path::new("..").join(beside),
+        _ => input.join("..").join(beside),
+    };
+    Err(BatchError::Refused {
+        code: "NC610",
+        message,
+        hint: format!(
+            "give an output folder that neither holds nor lies in the input folder, e.g. -o {}/",
+            beside.display()
+        ),
+    })
 }
 
 /// Runs `work` on every item on `jobs` threads; `on_result` gets each result on the calling
@@ -94,9 +146,19 @@ pub fn run_batch(
     if !opts.input.is_dir() {
         return Err(BatchError::Input(format!("{} is not a folder", opts.input.display())));
     }
+    separate_folders(&opts.input, &opts.output, opts.target)?;
     let found = discover::discover(&opts.input, Some(&opts.output))
         .map_err(|e| BatchError::Input(format!("cannot read {}: {e}", opts.input.display())))?;
     let files = found.files;
+    if files.is_empty() {
+        return Err(BatchError::Refused {
+            code: "NC611",
+            message: format!("no NC program found in {} (nothing translated)", opts.input.display()),
+            hint: "programs are files named .mpf .spf .nc .tap .fnc .cnc (any case) or O1234, in the folder \
+                   and its subfolders; hidden folders are not entered"
+                .into(),
+        });
+    }
     let jobs = opts.jobs.max(1);
 
     // 1. Read every file once: what it defines and calls.
@@ -147,6 +209,23 @@ pub fn run_batch(
         } else {
             runnable.push(f.clone());
         }
+    }
+    if runnable.is_empty() && skipped == files.len() {
+        return Err(BatchError::Refused {
+            code: "NC612",
+            message: format!(
+                "none of the {} program(s) in {} is {}: nothing to translate to {}",
+                files.len(),
+                opts.input.display(),
+                shown(source),
+                shown(opts.target)
+            ),
+            hint: format!(
+                "they are {} already; --to {} translates them the other way",
+                shown(opts.target),
+                source.name()
+            ),
+        });
     }
     let inputs: Vec<PathBuf> = files.iter().map(|f| f.abs.clone()).collect();
     let (writer, stale) = Writer::new(&opts.output, opts.force, &inputs)

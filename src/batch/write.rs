@@ -2,6 +2,7 @@
 //! flushed to disk, then renamed into place, so a killed run never leaves a partial output
 //! file. Existing outputs are kept unless `--force`; an input is never written, even with it.
 
+use crate::same_file::FileKey;
 use std::collections::HashSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -66,7 +67,7 @@ pub struct Writer {
     root: PathBuf,
     staging: PathBuf,
     force: bool,
-    inputs: HashSet<PathBuf>,
+    inputs: HashSet<FileKey>,
     counter: AtomicU64,
 }
 
@@ -82,7 +83,7 @@ impl Writer {
             std::fs::remove_dir_all(&staging)?;
         }
         std::fs::create_dir_all(&staging)?;
-        let inputs = inputs.iter().filter_map(|p| p.canonicalize().ok()).collect();
+        let inputs = inputs.iter().filter_map(|p| FileKey::of(p)).collect();
         Ok((Writer { root: root.to_path_buf(), staging, force, inputs, counter: AtomicU64::new(0) }, stale))
     }
 
@@ -97,10 +98,9 @@ impl Writer {
             return Err(WriteError::Outside(rel.to_path_buf()));
         }
         let path = self.root.join(rel);
-        if let Ok(canon) = path.canonicalize() {
-            if self.inputs.contains(&canon) {
-                return Err(WriteError::IsInput(rel.to_path_buf()));
-            }
+        // The same file by identity: another spelling, a symbolic or a hard link of an input.
+        if FileKey::of(&path).is_some_and(|k| self.inputs.contains(&k)) {
+            return Err(WriteError::IsInput(rel.to_path_buf()));
         }
         if !self.force && std::fs::symlink_metadata(&path).is_ok() {
             return Err(WriteError::Exists(rel.to_path_buf()));
@@ -203,6 +203,12 @@ mod tests {
         w.write(Path::new("sub/a.nc"), b"new").unwrap();
         assert_eq!(std::fs::read(root.join("sub/a.nc")).unwrap(), b"new");
         assert!(matches!(w.write(Path::new("in.nc"), b"x"), Err(WriteError::IsInput(_))));
+        // A hard link of an input is the input, even with --force.
+        #[cfg(unix)]
+        {
+            std::fs::hard_link(&input, root.join("link.nc")).unwrap();
+            assert!(matches!(w.write(Path::new("link.nc"), b"x"), Err(WriteError::IsInput(_))));
+        }
         assert_eq!(std::fs::read(&input).unwrap(), b"O1\n");
         w.finish().unwrap();
         assert!(!root.join(STAGING).exists());

@@ -204,7 +204,7 @@ pub fn rel_eq(a: f64, b: f64, tol: f64) -> bool {
 }
 
 /// A comparison. FANUC: vacant differs from 0 only in EQ/NE; GE/LE read it as 0 (the
-/// Mitsubishi table; the documented choice for the open question). Strings compare
+/// Mitsubishi table; the choice docs/semantics.md documents). Strings compare
 /// exactly.
 pub fn compare(op: CmpOp, tol: Tolerance, a: &Value, bv: &Value, cx: &Cx) -> bool {
     if let (Value::Str(x), Value::Str(y)) = (a, bv) {
@@ -263,7 +263,7 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
         Func::Tan => {
-            // FANUC computes TAN as SIN/COS (dialects.md §3.3); at 90° that divides by 0.
+            // FANUC computes TAN as SIN/COS (source F2 of docs/semantics.md); at 90° that divides by 0.
             let c = cos_deg(x);
             if c == 0.0 {
                 return Err(Fault::alarm(cx.alarms.div_zero, "TAN of an odd multiple of 90 degrees", span));

@@ -44,7 +44,7 @@ pub struct AlarmNumbers {
 
 impl AlarmNumbers {
     /// FANUC 0i/16i: 112 division by zero, 111 calculated data overflow (also domain
-    /// errors, dialects.md §3.3), 128 sequence number not found, 115 variable number out of
+    /// errors, source F7 of `docs/semantics.md`), 128 sequence number not found, 115 variable number out of
     /// range, 116 write-protected variable, 011 feed zero, 020 over tolerance of radius.
     pub const FANUC: AlarmNumbers = AlarmNumbers {
         div_zero: 112,

@@ -1,5 +1,5 @@
 //! The bundled evaluator: runs a FANUC or Siemens program with each control's exact
-//! semantics and streams the canonical trace (shared/spec/trace-format.md) into a
+//! semantics and streams the canonical trace (`docs/trace-format.md`) into a
 //! [`TraceSink`]. The library never prints; it returns an [`Outcome`].
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per

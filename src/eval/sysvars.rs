@@ -1,4 +1,4 @@
-//! System variables (dialects.md §7): the common FANUC `#1000+` and Siemens `$` ones.
+//! System variables (`docs/semantics.md`, System variables): the common FANUC `#1000+` and Siemens `$` ones.
 //! Reading or writing one that is not modelled is an error naming it, never a silent 0.
 
 use super::exec::Interp;
@@ -247,7 +247,7 @@ impl Interp<'_> {
                 let a = self.axis_arg(idx.get(1), name, span)?;
                 self.uifr_component(idx, span)?;
                 let mm = if self.m.modal.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
-                // Written, not active: G54.. must be selected again (dialects.md §7).
+                // Written, not active: G54.. must be selected again (source S20 of docs/semantics.md).
                 self.m.offsets[f][a] = mm;
                 Ok(())
             }

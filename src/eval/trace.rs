@@ -1,4 +1,4 @@
-//! The canonical trace (shared/spec/trace-format.md): events, their origin, the sink they
+//! The canonical trace (`docs/trace-format.md`): events, their origin, the sink they
 //! stream into, and the text and jsonl writers.
 
 use crate::span::{FileId, Span};

@@ -14,7 +14,7 @@ pub enum Value {
 
 impl Value {
     /// The numeric reading: vacant reads as 0 everywhere except EQ/NE and copying
-    /// (dialects.md §2.1).
+    /// (`docs/semantics.md`, Vacant values).
     pub fn num(&self) -> Option<f64> {
         match self {
             Value::Vacant => Some(0.0),
@@ -38,7 +38,7 @@ impl Value {
 }
 
 /// Half away from zero: the rounding both controls document for ROUND and for integer
-/// addresses (`M#1` with 3.5 → M4, dialects.md §3.3). Ties choice in docs/semantics.md.
+/// addresses (`M#1` with 3.5 → M4, source A1 of `docs/semantics.md`). Ties choice in docs/semantics.md.
 pub fn round_half_away(x: f64) -> f64 {
     round(x)
 }

@@ -210,7 +210,7 @@ pub enum VarClass {
 }
 
 impl VarClass {
-    /// The class of FANUC variable `#n` (common ranges per dialects.md §2.1).
+    /// The class of FANUC variable `#n` (the ranges of `docs/semantics.md`, Reading: source F8).
     pub fn of_fanuc(n: u32) -> VarClass {
         match n {
             0 => VarClass::Null,

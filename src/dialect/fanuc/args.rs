@@ -1,6 +1,6 @@
 //! `G65`/`G66` macro calls and `M98` subprogram calls: the program number, the repeat count,
 //! and the argument letters resolved to local variables (argument specification I and II,
-//! dialects.md §5.1).
+//! sources H1 and I1 of `docs/semantics.md`).
 
 use super::parse::{RawWord, Seg};
 use crate::diag::Diagnostic;
@@ -143,7 +143,7 @@ pub fn m98(seg: &Seg<'_>, m: &RawWord, p: Option<&RawWord>, l: Option<&RawWord>)
     let mut repeat = l.map(|l| l.value.clone());
     let target = match (p.int(), p.lit, l) {
         (Some(v), Some(lit), None) if p.digits() > 4 && v >= 10_000 => {
-            // The digits before the last four are the count (dialects.md §5.1).
+            // The digits before the last four are the count (`M98 P68003`, source R1).
             let split = lit.hi - 4;
             let count = v / 10_000;
             repeat = Some(Expr::new(

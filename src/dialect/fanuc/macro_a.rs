@@ -1,5 +1,5 @@
 //! Macro A (`G65 Hm P#i Q#j R#k`), lowered at parse time to the Macro B meaning it has
-//! (dialects.md §5.3), so later phases never see H codes. Every lowered node keeps the span
+//! (the H-code table, source G1 of `docs/semantics.md`), so later phases never see H codes. Every lowered node keeps the span
 //! of the word it came from.
 
 use super::parse::{RawWord, Seg};

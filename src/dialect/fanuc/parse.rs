@@ -316,8 +316,8 @@ fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, D
     }
     let bracketed = body.as_rule() == Rule::bracket;
     let mut inner = expr::value(cx, body)?;
-    // `X[1]`: a bracketed constant is a computed value, read in units like `X1.` (open
-    // question 10 of dialects.md; Mitsubishi documents this rule, FANUC is believed to agree).
+    // `X[1]`: a bracketed constant is a computed value, read in units like `X1.` (a `[?]`
+    // row of docs/semantics.md; Mitsubishi documents this rule, FANUC is believed to agree).
     // Marking the point keeps it apart from the increment-scaled `X1`.
     if let (true, ExprKind::Num(n)) = (bracketed, &mut inner.kind) {
         n.point = true;

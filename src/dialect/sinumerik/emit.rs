@@ -436,7 +436,8 @@ fn with_indices(name: &str, indices: &[Expr]) -> String {
     }
 }
 
-/// Priority of an expression's top operator (higher binds tighter), per dialects.md §3.2.
+/// Priority of an expression's top operator (higher binds tighter), per the Siemens
+/// priority table (sources S1 and S13 of `docs/semantics.md`).
 fn prec(e: &Expr) -> u8 {
     match &e.kind {
         ExprKind::Num(n) if n.value < 0.0 => 65,

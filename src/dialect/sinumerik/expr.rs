@@ -1,5 +1,5 @@
 //! Expressions: the flat `expr` pair (prefix operators, operands, infix operators) folded with
-//! the Siemens precedence table (dialects.md §3.2) into IR, without recursion on operator
+//! the Siemens precedence table (sources S1, S13 of `docs/semantics.md`) into IR, without recursion on operator
 //! chains. Parentheses and calls recurse, but the driver caps their nesting before pest runs.
 
 use super::errors::HINT;

@@ -10,7 +10,8 @@ pub struct Builtin {
     pub arity: usize,
 }
 
-/// The arithmetic functions of dialects.md §3.3, by upper-case name.
+/// The Siemens arithmetic functions (`docs/semantics.md`, Operators and functions), by
+/// upper-case name.
 pub fn builtin(name: &str) -> Option<Builtin> {
     let (func, arity) = match name {
         "SIN" => (Func::Sin, 1),
@@ -35,7 +36,7 @@ pub fn builtin(name: &str) -> Option<Builtin> {
     Some(Builtin { func, arity })
 }
 
-/// Multi-letter NC addresses that take a value with `=` (dialects.md §6.2, §8): arc radius
+/// Multi-letter NC addresses that take a value with `=` (source S26 of `docs/semantics.md`): arc radius
 /// and angle, polar coordinates, extra turns, spindle positioning, spline parameters, and
 /// other per-block addresses. Anything not listed is decided by [`is_address_name`].
 const ADDRESSES: &[&str] = &[

@@ -533,7 +533,8 @@ fn push(stack: &mut [Open], root: &mut Vec<Stmt>, s: Stmt) {
     }
 }
 
-/// A control-structure block may carry neither a label nor a skip (dialects.md §1.2, S16).
+/// A control-structure block may carry neither a label nor a skip (source S16 of
+/// `docs/semantics.md`).
 fn control_block_checks(meta: &BlockMeta, kw: Span, st: &mut FileState) {
     let file = st.file;
     if let Some(l) = &meta.label {

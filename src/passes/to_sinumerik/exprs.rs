@@ -77,7 +77,7 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
                         "NC365",
                         span,
                         &format!("writing the system variable #{n}"),
-                        "see dialects.md §7 for the variables that have a Siemens counterpart",
+                        "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
                     ));
                     target.kind = VarKind::Named { name: format!("NCTRANS_UNSUPPORTED_{n}"), indices: vec![] };
                 }
@@ -155,7 +155,7 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                             "NC365",
                             v.span,
                             &format!("the system variable #{n}"),
-                            "see dialects.md §7 for the variables that have a Siemens counterpart",
+                            "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
                         ));
                         Expr::num(0.0, false, span)
                     }

@@ -11,7 +11,7 @@
 //! - `R` in an arc block → `CR=`.
 //! - `#3000=n(TEXT)` → `SETAL(65000+n) ; TEXT` (the checker pairs 3000+n with 65000+n); `#3006=n(TEXT)` → `MSG("TEXT")`
 //!   and `M0`.
-//! - System variables per dialects.md §7 (see [`system_var`]); reading an actual position
+//! - System variables as `docs/translation-fanuc-to-sinumerik.md` lists them (see [`system_var`]); reading an actual position
 //!   puts `STOPRE` in front; writing a work offset re-selects the active offset.
 
 use super::*;
@@ -73,7 +73,8 @@ fn map_g(g: u32) -> Option<Option<u32>> {
 
 const AXES: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
 
-/// A FANUC system variable on Siemens (dialects.md §7), or `None` without a counterpart.
+/// A FANUC system variable on Siemens (`docs/translation-fanuc-to-sinumerik.md`, Variables),
+/// or `None` without a counterpart.
 /// Axis numbers 1..6 are X, Y, Z, A, B, C (the profile's axis order).
 pub fn system_var(n: u32, span: Span) -> Option<VarKind> {
     let axis = |base: u32| -> Option<Expr> {

@@ -1,5 +1,5 @@
-//! Every CEAD Sinumerik example program (`../shared/external/cead-sinumerik/examples`, a
-//! sibling of the repository in CI) parses. The set of files that are rejected is asserted
+//! Every CEAD Sinumerik example program (`cead-sinumerik/examples` of the external
+//! programs) parses. The set of files that are rejected is asserted
 //! exactly, with the reason, so a new rejection or a silent change shows up here.
 
 use nctrans::dialect::{Dialect, ParseOptions};
@@ -17,11 +17,11 @@ const WARNED: &[(&str, &str, &str)] = &[(
     "`DEF REAL R0=0` declares a name that is R parameter R0; every later `R0` is the R parameter",
 )];
 
-fn programs() -> Option<Vec<PathBuf>> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cead-sinumerik/examples");
+fn programs() -> Vec<PathBuf> {
+    let dir = crate::external("cead-sinumerik/examples");
     let mut v = Vec::new();
     for d in [dir.clone(), dir.join("flattening")] {
-        for e in std::fs::read_dir(&d).ok()?.flatten() {
+        for e in std::fs::read_dir(&d).expect("readable folder").flatten() {
             let p = e.path();
             if p.extension().is_some_and(|x| x == "mpf") {
                 v.push(p);
@@ -29,15 +29,12 @@ fn programs() -> Option<Vec<PathBuf>> {
         }
     }
     v.sort();
-    Some(v)
+    v
 }
 
 #[test]
 fn every_cead_example_parses() {
-    let Some(files) = programs() else {
-        println!("note: ../shared/external/cead-sinumerik not found; skipping the external programs");
-        return;
-    };
+    let files = programs();
     assert!(files.len() >= 30, "expected the 32 CEAD examples, found {}", files.len());
     let mut rejected = Vec::new();
     let mut warned = Vec::new();

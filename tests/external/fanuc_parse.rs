@@ -1,11 +1,10 @@
-//! Every FANUC program in `../shared/external/cnc4me-fanuc/` (real production macros nobody on
-//! this project wrote) parses, except the ones listed here with the exact reason they are
-//! rejected. The folder lives beside the repository (`<repo>/../shared`); without it the test
-//! prints a note and passes.
+//! Every FANUC program in `cnc4me-fanuc/` of the external programs (real production macros
+//! nobody on this project wrote) parses, except the ones listed here with the exact reason
+//! they are rejected.
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Files that must be rejected, with the diagnostic codes and messages they must give.
 /// DEEP_DRILL_CYCLE.nc jumps (`GOTO942` … `GOTO946`) to alarm blocks it wrote after its
@@ -20,11 +19,6 @@ const REJECTED: &[(&str, &[&str])] = &[(
         "NC236 no block N946 in this program",
     ],
 )];
-
-fn external() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cnc4me-fanuc");
-    dir.is_dir().then_some(dir)
-}
 
 fn programs(dir: &Path) -> Vec<String> {
     let mut v = Vec::new();
@@ -43,10 +37,7 @@ fn programs(dir: &Path) -> Vec<String> {
 
 #[test]
 fn external_fanuc_programs_parse_or_are_rejected_for_the_listed_reason() {
-    let Some(dir) = external() else {
-        println!("note: ../shared/external/cnc4me-fanuc not found; external FANUC programs not checked");
-        return;
-    };
+    let dir = crate::external("cnc4me-fanuc");
     let files = programs(&dir);
     assert!(files.len() >= 6, "expected the 6 cnc4me programs, found {files:?}");
     let mut failures = Vec::new();

@@ -1,7 +1,7 @@
-//! The cnc4me FANUC macros (`../shared/external/cnc4me-fanuc`, real production G65 macros)
+//! The cnc4me FANUC macros (`cnc4me-fanuc` of the external programs, real production G65 macros)
 //! translated to Sinumerik and verified: each macro is called from a small main program with
 //! the arguments documented in its header, and once with each mandatory argument left out
-//! (the `#3000` alarm paths). Skipped with a note when `../shared` is absent.
+//! (the `#3000` alarm paths).
 //!
 //! Findings, each asserted below:
 //! - The probing macros call Renishaw programs (O9810, O9832, …) that are not part of the
@@ -18,12 +18,6 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate_sinumerik::{translate, Options, UnsupportedPolicy};
-use std::path::PathBuf;
-
-fn external() -> Option<PathBuf> {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/external/cnc4me-fanuc");
-    p.is_dir().then_some(p)
-}
 
 /// Runs `main` (FANUC text) and its translation; the verdict, or why there is none.
 fn verify_text(name: &str, main: &str, policy: UnsupportedPolicy) -> Result<Verdict, String> {
@@ -64,10 +58,7 @@ fn drop_letter(args: &str, letter: &str) -> String {
 
 #[test]
 fn cnc4me_macros_alarm_paths_verify() {
-    let Some(ext) = external() else {
-        eprintln!("note: ../shared/external/cnc4me-fanuc not found; skipped");
-        return;
-    };
+    let ext = crate::external("cnc4me-fanuc");
     let mut proven = 0;
     for (file, number, args, mandatory) in MACROS {
         let Ok(text) = std::fs::read_to_string(ext.join(file)) else { continue };
@@ -93,10 +84,7 @@ fn cnc4me_macros_alarm_paths_verify() {
 
 #[test]
 fn cnc4me_examples() {
-    let Some(ext) = external() else {
-        eprintln!("note: ../shared/external/cnc4me-fanuc not found; skipped");
-        return;
-    };
+    let ext = crate::external("cnc4me-fanuc");
     let run = |name: &str| {
         let text = std::fs::read_to_string(ext.join(name)).unwrap_or_default();
         verify_text(name, &text, UnsupportedPolicy::Error)

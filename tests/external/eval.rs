@@ -1,20 +1,13 @@
-//! External checks: every CEAD Sinumerik example (`<repo>/../shared/external/cead-sinumerik/
-//! examples/*.mpf`) runs and its positions are compared with the golden CSV (one row per
-//! executed block, axis columns forward-filled); every cnc4me FANUC program runs. Skipped
-//! with a note when `../shared` is absent. The agreement and each known disagreement are
-//! explained in docs/semantics.md (section "External checks").
+//! External checks: every CEAD Sinumerik example (`cead-sinumerik/examples/*.mpf` of the
+//! external programs) runs and its positions are compared with the golden CSV (one row per
+//! executed block, axis columns forward-filled); every cnc4me FANUC program runs. The
+//! agreement and each known disagreement are explained in docs/semantics.md (section
+//! "External checks").
 
-mod eval_support;
-
-use eval_support::*;
+use crate::eval_support::*;
 use nctrans::eval::trace::{axis_index, Axes};
 use nctrans::eval::Ending;
 use std::path::PathBuf;
-
-fn shared() -> Option<PathBuf> {
-    let p = root().join("../shared/external");
-    p.is_dir().then_some(p)
-}
 
 /// Known disagreements with the CEAD goldens, each explained in docs/semantics.md.
 const CEAD_DISAGREE: &[(&str, &str)] = &[
@@ -131,11 +124,7 @@ fn compare(mpf: &std::path::Path) -> Result<(), String> {
 
 #[test]
 fn cead_sinumerik_examples_agree_with_goldens() {
-    let Some(ext) = shared() else {
-        eprintln!("note: ../shared/external not found; CEAD comparison skipped");
-        return;
-    };
-    let dir = ext.join("cead-sinumerik/examples");
+    let dir = crate::external("cead-sinumerik/examples");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .map(|rd| {
             rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.extension().is_some_and(|e| e == "mpf")).collect()
@@ -180,13 +169,8 @@ const CNC4ME: &[(&str, &[&str], &str)] = &[
 
 #[test]
 fn cnc4me_fanuc_programs_run() {
-    let Some(ext) = shared() else {
-        eprintln!("note: ../shared/external not found; cnc4me runs skipped");
-        return;
-    };
-    let find = |name: &str| {
-        ["examples", "programs"].iter().map(|d| ext.join("cnc4me-fanuc").join(d).join(name)).find(|p| p.is_file())
-    };
+    let ext = crate::external("cnc4me-fanuc");
+    let find = |name: &str| ["examples", "programs"].iter().map(|d| ext.join(d).join(name)).find(|p| p.is_file());
     let mut seen = std::collections::BTreeSet::new();
     let mut problems = Vec::new();
     for (name, inputs, expect) in CNC4ME {
@@ -218,7 +202,7 @@ fn cnc4me_fanuc_programs_run() {
     }
     // Every file of the set is covered by the table.
     for sub in ["examples", "programs"] {
-        if let Ok(rd) = std::fs::read_dir(ext.join("cnc4me-fanuc").join(sub)) {
+        if let Ok(rd) = std::fs::read_dir(ext.join(sub)) {
             for e in rd.filter_map(|e| e.ok()) {
                 let n = e.file_name().to_string_lossy().to_string();
                 if !seen.contains(n.as_str()) {
