@@ -133,6 +133,13 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
 /// Runs a batch when the input is a folder; `None` otherwise (single-file translation).
 pub fn run(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Option<ExitCode> {
     let input = t.input.as_ref().filter(|p| p.is_dir())?;
+    if let Some(d) = t.from {
+        // Each file of a folder is read as its extension (else its content) says.
+        return Some(fail(format!(
+            "--from {} applies to a single file: in a batch each file's dialect comes from its extension (else its content)",
+            d.name()
+        )));
+    }
     Some(run_batch(input, t, b, m))
 }
 

@@ -142,6 +142,10 @@ pub struct Job {
     pub db: SourceDb,
     pub units: Vec<Unit>,
     pub loaded: nctrans::Loaded,
+    /// The warnings of reading the files (shown before the translation's).
+    pub warnings: Vec<diag::Diagnostic>,
+    /// Program numbers after a closing `%` in the files read (see `Options::after_end`).
+    pub after_end: BTreeSet<u32>,
 }
 
 /// Loads `path` and, transitively, the callees it needs that are not in the file itself.
@@ -162,15 +166,15 @@ pub fn load_job(
     let opts = ParseOptions { semantics: profile.clone() };
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
     let mut diags = parsed.diags;
+    let mut after_end: BTreeSet<u32> = parsed.after_end_programs.into_iter().collect();
     let mut units = vec![parsed.unit];
     let dir = beside(path);
-    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags);
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut after_end);
     if diag::has_errors(&diags) {
         return Err((db, diags));
     }
     // Warnings of reading are shown, not fatal.
-    let _ = diags;
-    Ok(Job { db, units, loaded })
+    Ok(Job { db, units, loaded, warnings: diags, after_end })
 }
 
 /// The folder a file is in (`.` for a bare file name, whose parent is empty).
@@ -189,6 +193,7 @@ fn load_callees(
     encoding: Option<&'static encoding_rs::Encoding>,
     opts: &ParseOptions,
     diags: &mut Vec<diag::Diagnostic>,
+    after_end: &mut BTreeSet<u32>,
 ) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
@@ -224,6 +229,7 @@ fn load_callees(
             let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
             let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
             diags.extend(parsed.diags);
+            after_end.extend(parsed.after_end_programs);
             units.push(parsed.unit);
         }
     }
@@ -244,7 +250,7 @@ fn callees_beside(
     let dir = beside(req.file);
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
-    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags);
+    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, &mut BTreeSet::new());
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }
@@ -266,6 +272,9 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
         eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
         return ExitCode::from(2);
     };
+    if let Err(code) = crate::cli_dialect::check_direction(file, args.from, Dialect::Sinumerik) {
+        return code;
+    }
     let fanuc_only = [
         ("--tool-map", !args.tool_map.is_empty()),
         ("--program-number", args.program_number.is_some()),
@@ -303,6 +312,9 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    eprint!("{}", diag::render(&job.db, &job.warnings));
+    let mut opts = opts;
+    opts.after_end = job.after_end.clone();
     let units: Vec<&Unit> = job.units.iter().collect();
     let tr = ts::translate(&units, &opts, job.loaded.line_ending);
     eprint!("{}", diag::render(&job.db, &tr.diags));
@@ -488,6 +500,9 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     use crate::stream_cli;
     let size = std::fs::metadata(req.file).ok()?.len();
     if !(args.stream || size >= stream_cli::AUTO_BYTES) || stream_cli::writes_over(req.file, req.out) {
+        return None;
+    }
+    if nctrans::empty::may_be_program_less(req.file) {
         return None;
     }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod batch_cli;
+mod cli_dialect;
 mod cli_sinumerik;
 mod stream_cli;
 mod translate_cli;

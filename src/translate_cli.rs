@@ -22,6 +22,10 @@ pub struct TranslateArgs {
     pub to: Option<Dialect>,
     /// The program to translate.
     pub input: Option<PathBuf>,
+    /// Dialect of the input (default: from its extension, .mpf/.spf or .nc/.tap, else its
+    /// content); needed to read a file as the dialect its extension does not say.
+    #[arg(long, value_parser = parse_dialect)]
+    pub from: Option<Dialect>,
     /// Write the translation here (default: standard output).
     #[arg(short = 'o', long)]
     pub output: Option<PathBuf>,
@@ -88,6 +92,9 @@ pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
     if to != Dialect::Fanuc {
         return Some(fail(format!("translation to {} is not available in this build", to.name())));
     }
+    if let Err(code) = crate::cli_dialect::check_direction(input, a.from, to) {
+        return Some(code);
+    }
     Some(to_fanuc(a, c, input))
 }
 
@@ -102,10 +109,8 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     let mut db = SourceDb::new();
     let name = input.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, c.input_encoding);
-    let dialect = nctrans::detect_dialect(&name, &db.get(loaded.file).text);
-    if dialect != Dialect::Sinumerik {
-        return fail(format!("{name} is not a Sinumerik program (only Sinumerik → FANUC is translated)"));
-    }
+    // `run` has checked the direction: the input is read as Sinumerik.
+    let dialect = Dialect::Sinumerik;
     let popts = ParseOptions { semantics: c.sinumerik_semantics() };
     let parsed = nctrans::parse(&db, loaded.file, dialect, &popts);
     eprint!("{}", diag::render(&db, &parsed.diags));

@@ -95,6 +95,9 @@ pub struct Options {
     /// the whole library, so every file tests a common variable's vacancy in the same place);
     /// these R parameters are never given to anything else.
     pub flag_places: BTreeMap<u32, u32>,
+    /// Program numbers found after the closing `%` of a file read (not read by the
+    /// control): a call of one is told it is there but after the `%` (NC353).
+    pub after_end: std::collections::BTreeSet<u32>,
 }
 
 impl Default for Options {
@@ -107,6 +110,7 @@ impl Default for Options {
             unsupported: UnsupportedPolicy::Error,
             main_name: "MAIN".into(),
             flag_places: BTreeMap::new(),
+            after_end: std::collections::BTreeSet::new(),
         }
     }
 }
