@@ -98,7 +98,7 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
         c.input_encoding = Some(e);
     }
     if let Some(n) = t.program_number {
-        c.program_number = Some(n);
+        flag(&mut c, "translate.program_number", &n.to_string(), "--program-number")?;
     }
     let to = c.to.ok_or("a translation needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
     let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };

@@ -23,38 +23,28 @@ pub struct Request<'a> {
     pub file: &'a Path,
     pub out: Option<&'a Path>,
     pub encoding: Option<&'static encoding_rs::Encoding>,
+    /// Whether to verify (`--no-verify`, `batch.verify`), and each run's step limit.
+    pub verify: bool,
+    pub max_steps: u64,
 }
 
-/// The project configuration `./nctrans.toml` when there is one (flags win over it).
-fn project_config() -> Result<Option<Config>, String> {
-    let p = Path::new(nctrans::config::FILE_NAME);
-    if p.is_file() {
-        Config::load(p).map(Some)
-    } else {
-        Ok(None)
-    }
-}
-
-fn options(args: &TranslateArgs, stem: &str, config: Option<&Config>) -> Result<Options, String> {
+/// The options from the configuration: `nctrans.toml` (or `--config`) with the flags given
+/// applied over it (`batch_cli::configure`).
+fn options(args: &TranslateArgs, stem: &str, c: &Config) -> Result<Options, String> {
     let mut o = Options::default();
-    // Flag rules first: the first rule that covers a variable places it.
-    for r in &args.var_map {
+    // Flag rules come first in the list: the first rule that covers a variable places it.
+    for r in &c.var_map_to_sinumerik {
         o.var_map.push(VarMapRule::parse(r)?);
     }
-    if let Some(c) = config {
-        for r in &c.var_map_to_sinumerik {
-            o.var_map.push(VarMapRule::parse(r).map_err(|e| format!("nctrans.toml variables.to_sinumerik: {e}"))?);
+    for (k, v) in &c.programs_to_sinumerik {
+        if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
+            o.program_map.insert(*n, name.to_ascii_uppercase());
         }
-        for (k, v) in &c.programs_to_sinumerik {
-            if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
-                o.program_map.insert(*n, name.to_ascii_uppercase());
-            }
-        }
-        o.source = c.fanuc_semantics();
-        o.target = c.sinumerik_semantics();
-        if c.unsupported == nctrans::config::Unsupported::Warn {
-            o.unsupported = UnsupportedPolicy::Warn;
-        }
+    }
+    o.source = c.fanuc_semantics();
+    o.target = c.sinumerik_semantics();
+    if c.unsupported == nctrans::config::Unsupported::Warn {
+        o.unsupported = UnsupportedPolicy::Warn;
     }
     for m in &args.program_map {
         let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
@@ -266,8 +256,9 @@ fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
 }
 
 /// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
-/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction).
-pub fn run(args: &TranslateArgs) -> ExitCode {
+/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction). `config` is the
+/// project configuration with the flags given applied over it.
+pub fn run(args: &TranslateArgs, config: &Config) -> ExitCode {
     let Some(file) = args.input.as_deref() else {
         eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
         return ExitCode::from(2);
@@ -286,16 +277,15 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
         eprintln!("error: {flag} applies to --to fanuc only");
         return ExitCode::from(2);
     }
-    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding };
-    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
-    let config = match project_config() {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+    let req = Request {
+        file,
+        out: args.output.as_deref(),
+        encoding: config.input_encoding,
+        verify: config.verify,
+        max_steps: config.max_steps,
     };
-    let opts = match options(args, stem, config.as_ref()) {
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+    let opts = match options(args, stem, config) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
@@ -327,8 +317,8 @@ pub fn run(args: &TranslateArgs) -> ExitCode {
     }
     let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
-    if !args.no_verify {
-        code = verify(&job, &tr, &req, args.max_steps, &opts);
+    if req.verify {
+        code = verify(&job, &tr, &req, req.max_steps, &opts);
     }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {
         eprintln!("error: unsupported constructs were written as marked comments");
@@ -510,7 +500,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     // (which creates it only for a translation it writes).
     let made = req.out.filter(|o| o.to_string_lossy().ends_with('/') && !o.exists());
     let code = (|| loop {
-        match streamed_from(args, req, opts, &src, size) {
+        match streamed_from(req, opts, &src, size) {
             Ok(code) => return code,
             Err(why) => src.transcoded(&why)?,
         }
@@ -524,7 +514,6 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
 /// [`streamed`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
 fn streamed_from(
-    args: &TranslateArgs,
     req: &Request,
     opts: &Options,
     src: &crate::stream_cli::Source,
@@ -666,7 +655,7 @@ fn streamed_from(
     }
     let warned = done.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
-    if !args.no_verify {
+    if req.verify {
         // Shown under the name the whole path gives the translation.
         let out_dir = match req.out {
             Some(o) if is_dir(o) => o.display().to_string(),
@@ -686,7 +675,7 @@ fn streamed_from(
             .collect();
         let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: opts.target.clone() };
         let back = (read_back, shown.as_str(), Box::new(emitted) as _);
-        code = verify_streamed((req.file, path), back, done.index, args.max_steps, opts, size);
+        code = verify_streamed((req.file, path), back, done.index, req.max_steps, opts, size);
     }
     if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);

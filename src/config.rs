@@ -315,7 +315,20 @@ impl Config {
                     one_of(key, v, &[("keep", Comments::Keep), ("ascii", Comments::Ascii), ("drop", Comments::Drop)])?;
             }
             "translate.number_blocks" => self.number_blocks = as_int(key, v, 0, 1000)? as u32,
-            "translate.program_number" => self.program_number = Some(as_int(key, v, 1, 99_999_999)? as u32),
+            "translate.program_number" => {
+                let n = as_int(key, v, 1, 99_999_999)? as u32;
+                // The series decides how many digits an O number may have (fanuc.series is
+                // read before [translate]: the table's keys are in order).
+                if n > self.fanuc.max_program_number() {
+                    return Err(format!(
+                        "{key}: O{n} has more digits than a FANUC {} program number takes (O1 to O{}); \
+                         choose a smaller number, or set fanuc.series to the control's series",
+                        self.fanuc.series,
+                        self.fanuc.max_program_number()
+                    ));
+                }
+                self.program_number = Some(n);
+            }
             "input.encoding" => self.input_encoding = encoding(key, v, "auto")?,
             "output.encoding" => self.output_encoding = encoding(key, v, "keep")?,
             "output.line_ending" => {
@@ -452,8 +465,8 @@ to_fanuc = []        # e.g. ["R0-R99=#100", "COUNT=#150"]
 to_sinumerik = []    # e.g. ["#500-#599=R100"]
 
 [tools]
-# Siemens tool names -> FANUC T numbers (--tool-map NAME=n). Names not listed get the next
-# free number from 1 in name order; the numbers used are written to nctrans-map.toml.
+# Siemens tool names -> FANUC T numbers (--tool-map NAME=n). A name not listed is refused
+# (NC301): nctrans never chooses a T number. The numbers used are written to nctrans-map.toml.
 # "DRILL_5" = 12
 
 [programs.to_fanuc]

@@ -59,8 +59,9 @@ pub struct TranslateArgs {
     /// Step limit of each verification run (blocks executed).
     #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
-    /// Encoding of the input; detected when omitted.
-    #[arg(long = "input-encoding", value_parser = parse_encoding)]
+    /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …; key
+    /// input.encoding); detected when omitted.
+    #[arg(long = "encoding", visible_alias = "input-encoding", value_name = "ENCODING", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
     /// Translate and verify as a stream in constant memory (automatic for inputs of 8 MB
     /// and more; straight-line programs only, others are read whole). In a batch: every
@@ -85,7 +86,7 @@ fn fail(msg: String) -> ExitCode {
 /// Runs the translation mode. `None` when the arguments do not ask for it.
 /// `c` is the project configuration with the given flags already applied over it.
 pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
-    let to = a.to?;
+    let to = a.to.or(c.to)?;
     let Some(input) = &a.input else {
         return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
     };
