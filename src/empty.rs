@@ -3,7 +3,7 @@
 //! a failed transfer is never "translated" into a program without an end or "equivalent".
 
 use crate::diag::Diagnostic;
-use crate::ir::{Stmt, StmtKind, Unit};
+use crate::ir::{Program, StmtKind, Unit};
 use crate::span::{FileId, Span};
 use std::io::BufRead;
 use std::path::Path;
@@ -11,14 +11,15 @@ use std::path::Path;
 /// Whether a parsed unit holds no executable block: every program (if any) is a header
 /// and comment-only or empty blocks.
 pub fn program_less(unit: &Unit) -> bool {
-    fn any_content(body: &[Stmt]) -> bool {
-        body.iter().any(|s| match &s.kind {
-            StmtKind::Block(b) => !b.items.is_empty(),
-            // A structure (IF, WHILE, DO…) is a statement even when empty.
-            _ => true,
-        })
-    }
-    !unit.programs.iter().any(|p| any_content(&p.body))
+    !unit.programs.iter().any(has_content)
+}
+
+/// Whether a program holds an executable block (a structure counts, even when empty).
+pub fn has_content(p: &Program) -> bool {
+    p.body.iter().any(|s| match &s.kind {
+        StmtKind::Block(b) => !b.items.is_empty(),
+        _ => true,
+    })
 }
 
 /// The NC145 diagnostic for `file` with `text`: the same in every command. It points at
@@ -58,16 +59,53 @@ pub fn may_be_program_less(path: &Path) -> bool {
     }
 }
 
-/// A line that is more than a comment, a `%` line or a program header in either dialect.
+/// A line that surely holds a word or statement in either dialect. "No" may be wrong
+/// (the whole-file parse then decides), "yes" must not be: everything that could leave a
+/// block without items is taken away first (comments, `%`, headers, block skip, block
+/// numbers and labels, `&`), and what is left is counted as content.
 fn looks_like_content(line: &str) -> bool {
     let t = line.trim_start_matches('\u{feff}').trim();
-    if t.is_empty() || t.starts_with(';') || t.starts_with('(') || t.starts_with('%') {
+    if t.starts_with('%') {
         return false;
     }
-    let up = t.to_ascii_uppercase();
-    // FANUC `O1234 (TITLE)` / `:1234`, Siemens `PROC NAME(…)`.
-    let header = (up.starts_with('O') || up.starts_with(':')) && up[1..].starts_with(|c: char| c.is_ascii_digit());
-    !(header || up.starts_with("PROC "))
+    // `;` comments to the end of the line; FANUC `( … )` comments anywhere.
+    let t = t.split(';').next().unwrap_or("");
+    let mut rest = String::with_capacity(t.len());
+    let mut depth = 0u32;
+    for c in t.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' if depth > 0 => depth -= 1,
+            _ if depth == 0 && c != '&' => rest.push(c.to_ascii_uppercase()),
+            _ => {}
+        }
+    }
+    let mut r = rest.trim();
+    // FANUC `O1234` / `:1234` headers (whatever follows), Siemens `PROC NAME(…)`.
+    if r.starts_with("PROC ") || r == "PROC" {
+        return false;
+    }
+    let digits = |s: &str| s.trim_start_matches(|c: char| c.is_ascii_digit()).to_string();
+    if r.strip_prefix(['O', ':']).is_some_and(|x| x.starts_with(|c: char| c.is_ascii_digit())) {
+        return false;
+    }
+    // Block skip `/`, `/3`; block numbers `N10`, `:10`; a label `NAME:`.
+    let owned;
+    if let Some(x) = r.strip_prefix('/') {
+        owned = digits(x);
+        r = owned.trim();
+    }
+    let owned2;
+    if let Some(x) = r.strip_prefix(['N', ':']).filter(|x| x.starts_with(|c: char| c.is_ascii_digit())) {
+        owned2 = digits(x);
+        r = owned2.trim();
+    }
+    if let Some((label, after)) = r.split_once(':') {
+        if !label.is_empty() && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            r = after.trim();
+        }
+    }
+    !r.is_empty()
 }
 
 #[cfg(test)]
@@ -76,10 +114,25 @@ mod tests {
 
     #[test]
     fn header_and_comment_lines_are_not_content_but_a_word_is() {
-        for l in ["", "  ", "; note", "(note)", "%", "%_N_PART_MPF", "O1000 (TITLE)", ":0100", "PROC SUB(REAL A)"] {
+        let none = [
+            "",
+            "  ",
+            "; note",
+            "(note)",
+            "%",
+            "%_N_PART_MPF",
+            "O1000 (TITLE)",
+            ":0100",
+            "PROC SUB(REAL A)",
+            "N10",
+            "/N20 (skip)",
+            "START:",
+            "&",
+        ];
+        for l in none {
             assert!(!looks_like_content(l), "{l:?}");
         }
-        for l in ["G0 X1", "M30", "R1=2", "#1=2", "N10 G1", "ORIGIN=1"] {
+        for l in ["G0 X1", "M30", "R1=2", "#1=2", "N10 G1", "ORIGIN=1", "(C) G1 X1", "/2 M0", "LBL: G0 X1"] {
             assert!(looks_like_content(l), "{l:?}");
         }
     }

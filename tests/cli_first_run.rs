@@ -77,6 +77,19 @@ fn a_program_less_file_is_nc145_in_every_command_and_both_dialects() {
 }
 
 #[test]
+fn an_empty_program_in_a_fanuc_file_is_refused_before_it_becomes_a_program_less_file() {
+    // O1053 is empty, O10 is not: the file is not program-less, but O1053's Siemens file would
+    // be (and every later command on it would stop at NC145).
+    let dir = workdir("empty-program");
+    std::fs::write(dir.join("two.nc"), "%\nO1053\n(EMPTY)\nO10\n#1=2\nM99\n%\n").expect("write");
+    let (out, err, code) = nctrans(&dir, &["--to", "sinumerik", "two.nc"]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(err.contains("error[NC146]: program O1053 holds no block to translate"), "{err}");
+    assert!(out.is_empty(), "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_file_with_only_a_comment_before_a_real_program_still_translates() {
     // The NC145 check looks at the whole file: comments in front of a program are fine.
     let dir = workdir("not-empty");
