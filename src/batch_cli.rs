@@ -99,6 +99,7 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
     }
     if let Some(n) = t.program_number {
         flag(&mut c, "translate.program_number", &n.to_string(), "--program-number")?;
+        c.check_program_number().map_err(|e| format!("--program-number: {e}"))?;
     }
     let to = c.to.ok_or("a translation needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
     let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };

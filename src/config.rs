@@ -247,6 +247,7 @@ impl Config {
                 }
             }
         }
+        c.check_program_number()?;
         Ok(c)
     }
 
@@ -316,18 +317,8 @@ impl Config {
             }
             "translate.number_blocks" => self.number_blocks = as_int(key, v, 0, 1000)? as u32,
             "translate.program_number" => {
-                let n = as_int(key, v, 1, 99_999_999)? as u32;
-                // The series decides how many digits an O number may have (fanuc.series is
-                // read before [translate]: the table's keys are in order).
-                if n > self.fanuc.max_program_number() {
-                    return Err(format!(
-                        "{key}: O{n} has more digits than a FANUC {} program number takes (O1 to O{}); \
-                         choose a smaller number, or set fanuc.series to the control's series",
-                        self.fanuc.series,
-                        self.fanuc.max_program_number()
-                    ));
-                }
-                self.program_number = Some(n);
+                // Checked against the series once the whole file is read (`check_program_number`).
+                self.program_number = Some(as_int(key, v, 1, 99_999_999)? as u32);
             }
             "input.encoding" => self.input_encoding = encoding(key, v, "auto")?,
             "output.encoding" => self.output_encoding = encoding(key, v, "keep")?,
@@ -358,6 +349,21 @@ impl Config {
             }
         }
         Ok(())
+    }
+
+    /// The series decides how many digits an O number may have: a main program number
+    /// beyond it is refused, naming the series. Checked after the whole file is read (the
+    /// series may come after the number) and after the flags.
+    pub fn check_program_number(&self) -> Result<(), String> {
+        match self.program_number {
+            Some(n) if n > self.fanuc.max_program_number() => Err(format!(
+                "translate.program_number: O{n} has more digits than a FANUC {} program number takes \
+                 (O1 to O{}); choose a smaller number, or set fanuc.series to the control's series",
+                self.fanuc.series,
+                self.fanuc.max_program_number()
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Sets a key from a command-line flag's text: numbers and booleans are read as such,

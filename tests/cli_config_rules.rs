@@ -180,8 +180,8 @@ fn a_program_number_the_series_cannot_hold_is_refused_naming_the_series() {
     std::fs::write(dir.join("nctrans.toml"), "[translate]\nprogram_number = 12345\n").expect("config");
     let (_, err, code) = nctrans(&dir, &["--to", "fanuc", "p.mpf"]);
     assert!(code == 2 && err.contains("translate.program_number") && err.contains("0i-F"), "{err}");
-    // A series with longer program numbers takes it.
-    std::fs::write(dir.join("nctrans.toml"), "[fanuc]\nseries = \"30i\"\n[translate]\nprogram_number = 12345\n")
+    // A series with longer program numbers takes it (written before or after the number).
+    std::fs::write(dir.join("nctrans.toml"), "[translate]\nprogram_number = 12345\n[fanuc]\nseries = \"30i\"\n")
         .expect("config");
     let (out, err, code) = nctrans(&dir, &["--to", "fanuc", "p.mpf"]);
     assert_eq!(code, 0, "{err}");

@@ -173,7 +173,8 @@ fn same(what: &str, out: &[u8], whole: &str, source: &str) {
 /// file without a program, NC145: in the generated program it is not).
 fn clean(b: &str) -> bool {
     let p = parse(&format!("{b}\n"));
-    p.diags.iter().all(|d| d.code == "NC145") && p.unit.programs.iter().flat_map(|p| &p.body).all(|s| st::straight(s).is_ok())
+    p.diags.iter().all(|d| d.code == "NC145")
+        && p.unit.programs.iter().flat_map(|p| &p.body).all(|s| st::straight(s).is_ok())
 }
 
 fn program(r: &mut Rng, letters: &[char], blocks: usize, eol: &str) -> String {
