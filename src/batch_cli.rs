@@ -99,7 +99,8 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
         c.input_encoding = Some(e);
     }
     if let Some(n) = t.program_number {
-        c.program_number = Some(n);
+        flag(&mut c, "translate.program_number", &n.to_string(), "--program-number")?;
+        c.check_program_number().map_err(|e| format!("--program-number: {e}"))?;
     }
     let to = c.to.ok_or("a translation needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
     let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };
@@ -134,6 +135,13 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
 /// Runs a batch when the input is a folder; `None` otherwise (single-file translation).
 pub fn run(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Option<ExitCode> {
     let input = t.input.as_ref().filter(|p| p.is_dir())?;
+    if let Some(d) = t.from {
+        // Each file of a folder is read as its extension (else its content) says.
+        return Some(fail(format!(
+            "--from {} applies to a single file: in a batch each file's dialect comes from its extension (else its content)",
+            d.name()
+        )));
+    }
     Some(run_batch(input, t, b, m))
 }
 

@@ -560,9 +560,18 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
                 d.primary(map_b(o.file), o.span, label)
             };
         }
-        d = d
-            .note(format!("{} events agreed before this one", dv.index))
-            .hint("compare the two blocks labelled above; the diff below shows the traces around the divergence");
+        d = d.note(format!("{} events agreed before this one", dv.index));
+        // A tool name against a number: the two are a program and its translation, compared
+        // without the tool map the translation used.
+        let tool = |e: &Option<(Event, Origin)>, named: bool| matches!(e, Some((Event::Tool { tool }, _)) if matches!(tool, eval::trace::ToolId::Name(_)) == named);
+        if (tool(&dv.a, true) && tool(&dv.b, false)) || (tool(&dv.a, false) && tool(&dv.b, true)) {
+            d = d.hint(
+                "a tool name against a T number: give the tool map the translation used \
+                 (nctrans check A B --tool-map NAME=n, or --map nctrans-map.toml)",
+            );
+        } else {
+            d = d.hint("compare the two blocks labelled above; the diff below shows the traces around the divergence");
+        }
         diags.push(d);
         let mut old = before_a;
         old.push(ta);

@@ -25,38 +25,28 @@ pub struct Request<'a> {
     pub encoding: Option<&'static encoding_rs::Encoding>,
     /// `--force`: existing output files may be replaced (inputs never).
     pub force: bool,
+    /// Whether to verify (`--no-verify`, `batch.verify`), and each run's step limit.
+    pub verify: bool,
+    pub max_steps: u64,
 }
 
-/// The project configuration `./nctrans.toml` when there is one (flags win over it).
-fn project_config() -> Result<Option<Config>, String> {
-    let p = Path::new(nctrans::config::FILE_NAME);
-    if p.is_file() {
-        Config::load(p).map(Some)
-    } else {
-        Ok(None)
-    }
-}
-
-fn options(args: &TranslateArgs, stem: &str, config: Option<&Config>) -> Result<Options, String> {
+/// The options from the configuration: `nctrans.toml` (or `--config`) with the flags given
+/// applied over it (`batch_cli::configure`).
+fn options(args: &TranslateArgs, stem: &str, c: &Config) -> Result<Options, String> {
     let mut o = Options::default();
-    // Flag rules first: the first rule that covers a variable places it.
-    for r in &args.var_map {
+    // Flag rules come first in the list: the first rule that covers a variable places it.
+    for r in &c.var_map_to_sinumerik {
         o.var_map.push(VarMapRule::parse(r)?);
     }
-    if let Some(c) = config {
-        for r in &c.var_map_to_sinumerik {
-            o.var_map.push(VarMapRule::parse(r).map_err(|e| format!("nctrans.toml variables.to_sinumerik: {e}"))?);
+    for (k, v) in &c.programs_to_sinumerik {
+        if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
+            o.program_map.insert(*n, name.to_ascii_uppercase());
         }
-        for (k, v) in &c.programs_to_sinumerik {
-            if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
-                o.program_map.insert(*n, name.to_ascii_uppercase());
-            }
-        }
-        o.source = c.fanuc_semantics();
-        o.target = c.sinumerik_semantics();
-        if c.unsupported == nctrans::config::Unsupported::Warn {
-            o.unsupported = UnsupportedPolicy::Warn;
-        }
+    }
+    o.source = c.fanuc_semantics();
+    o.target = c.sinumerik_semantics();
+    if c.unsupported == nctrans::config::Unsupported::Warn {
+        o.unsupported = UnsupportedPolicy::Warn;
     }
     for m in &args.program_map {
         let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
@@ -146,6 +136,10 @@ pub struct Job {
     pub loaded: nctrans::Loaded,
     /// The files read: the input, then the callee files (no output may be one of them).
     pub read: Vec<PathBuf>,
+    /// The warnings of reading the files (shown before the translation's).
+    pub warnings: Vec<diag::Diagnostic>,
+    /// Program numbers after a closing `%` in the files read (see `Options::after_end`).
+    pub after_end: BTreeSet<u32>,
 }
 
 /// Loads `path` and, transitively, the callees it needs that are not in the file itself.
@@ -166,16 +160,16 @@ pub fn load_job(
     let opts = ParseOptions { semantics: profile.clone() };
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
     let mut diags = parsed.diags;
+    let mut after_end: BTreeSet<u32> = parsed.after_end_programs.into_iter().collect();
     let mut units = vec![parsed.unit];
     let dir = beside(path);
     let mut read = vec![path.to_path_buf()];
-    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut read);
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut read, &mut after_end);
     if diag::has_errors(&diags) {
         return Err((db, diags));
     }
     // Warnings of reading are shown, not fatal.
-    let _ = diags;
-    Ok(Job { db, units, loaded, read })
+    Ok(Job { db, units, loaded, read, warnings: diags, after_end })
 }
 
 /// The folder a file is in (`.` for a bare file name, whose parent is empty).
@@ -195,6 +189,7 @@ fn load_callees(
     opts: &ParseOptions,
     diags: &mut Vec<diag::Diagnostic>,
     read: &mut Vec<PathBuf>,
+    after_end: &mut BTreeSet<u32>,
 ) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
@@ -231,6 +226,7 @@ fn load_callees(
             let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
             let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
             diags.extend(parsed.diags);
+            after_end.extend(parsed.after_end_programs);
             units.push(parsed.unit);
         }
     }
@@ -252,7 +248,8 @@ fn callees_beside(
     let dir = beside(req.file);
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
-    let missing = load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, read);
+    let missing =
+        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, read, &mut BTreeSet::new());
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }
@@ -268,12 +265,16 @@ fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
 }
 
 /// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
-/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction).
-pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
+/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction). `config` is the
+/// project configuration with the flags given applied over it.
+pub fn run(args: &TranslateArgs, config: &Config) -> ExitCode {
     let Some(file) = args.input.as_deref() else {
         eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
         return ExitCode::from(2);
     };
+    if let Err(code) = crate::cli_dialect::check_direction(file, args.from, Dialect::Sinumerik) {
+        return code;
+    }
     let fanuc_only = [
         ("--tool-map", !args.tool_map.is_empty()),
         ("--program-number", args.program_number.is_some()),
@@ -285,15 +286,15 @@ pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
         eprintln!("error: {flag} applies to --to fanuc only");
         return ExitCode::from(2);
     }
-    let config = match project_config() {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+    let force = config.force;
+    let req = Request {
+        file,
+        out: args.output.as_deref(),
+        encoding: config.input_encoding,
+        force,
+        verify: config.verify,
+        max_steps: config.max_steps,
     };
-    let force = force || config.as_ref().is_some_and(|c| c.force);
-    let req = Request { file, out: args.output.as_deref(), encoding: args.input_encoding, force };
     let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
     // -o naming the main file: refused before anything is read when it is the input, or an
     // existing file without --force (the subprogram files are checked once they are named).
@@ -302,7 +303,7 @@ pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
             return code;
         }
     }
-    let opts = match options(args, stem, config.as_ref()) {
+    let opts = match options(args, stem, config) {
         Ok(o) => o,
         Err(e) => {
             eprintln!("error: {e}");
@@ -319,6 +320,9 @@ pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    eprint!("{}", diag::render(&job.db, &job.warnings));
+    let mut opts = opts;
+    opts.after_end = job.after_end.clone();
     let units: Vec<&Unit> = job.units.iter().collect();
     let tr = ts::translate(&units, &opts, job.loaded.line_ending);
     eprint!("{}", diag::render(&job.db, &tr.diags));
@@ -331,8 +335,8 @@ pub fn run(args: &TranslateArgs, force: bool) -> ExitCode {
     }
     let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
-    if !args.no_verify {
-        code = verify(&job, &tr, &req, args.max_steps, &opts);
+    if req.verify {
+        code = verify(&job, &tr, &req, req.max_steps, &opts);
     }
     if warned && opts.unsupported == UnsupportedPolicy::Warn {
         eprintln!("error: unsupported constructs were written as marked comments");
@@ -514,12 +518,15 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     if !(args.stream || size >= stream_cli::AUTO_BYTES) {
         return None;
     }
+    if nctrans::empty::may_be_program_less(req.file) {
+        return None;
+    }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;
     // An output folder the stream creates is removed again when the whole path takes over
     // (which creates it only for a translation it writes).
     let made = req.out.filter(|o| o.to_string_lossy().ends_with('/') && !o.exists());
     let code = (|| loop {
-        match streamed_from(args, req, opts, &src, size) {
+        match streamed_from(req, opts, &src, size) {
             Ok(code) => return code,
             Err(why) => src.transcoded(&why)?,
         }
@@ -533,7 +540,6 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
 /// [`streamed`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
 fn streamed_from(
-    args: &TranslateArgs,
     req: &Request,
     opts: &Options,
     src: &crate::stream_cli::Source,
@@ -686,7 +692,7 @@ fn streamed_from(
     }
     let warned = done.diags.iter().any(|d| d.code.starts_with("NC3"));
     let mut code = ExitCode::SUCCESS;
-    if !args.no_verify {
+    if req.verify {
         // Shown under the name the whole path gives the translation.
         let out_dir = match req.out {
             Some(o) if is_dir(o) => o.display().to_string(),
@@ -706,7 +712,7 @@ fn streamed_from(
             .collect();
         let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: opts.target.clone() };
         let back = (read_back, shown.as_str(), Box::new(emitted) as _);
-        code = verify_streamed((req.file, path), back, done.index, args.max_steps, opts, size);
+        code = verify_streamed((req.file, path), back, done.index, req.max_steps, opts, size);
     }
     if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);

@@ -247,6 +247,7 @@ impl Config {
                 }
             }
         }
+        c.check_program_number()?;
         Ok(c)
     }
 
@@ -315,7 +316,10 @@ impl Config {
                     one_of(key, v, &[("keep", Comments::Keep), ("ascii", Comments::Ascii), ("drop", Comments::Drop)])?;
             }
             "translate.number_blocks" => self.number_blocks = as_int(key, v, 0, 1000)? as u32,
-            "translate.program_number" => self.program_number = Some(as_int(key, v, 1, 99_999_999)? as u32),
+            "translate.program_number" => {
+                // Checked against the series once the whole file is read (`check_program_number`).
+                self.program_number = Some(as_int(key, v, 1, 99_999_999)? as u32);
+            }
             "input.encoding" => self.input_encoding = encoding(key, v, "auto")?,
             "output.encoding" => self.output_encoding = encoding(key, v, "keep")?,
             "output.line_ending" => {
@@ -345,6 +349,21 @@ impl Config {
             }
         }
         Ok(())
+    }
+
+    /// The series decides how many digits an O number may have: a main program number
+    /// beyond it is refused, naming the series. Checked after the whole file is read (the
+    /// series may come after the number) and after the flags.
+    pub fn check_program_number(&self) -> Result<(), String> {
+        match self.program_number {
+            Some(n) if n > self.fanuc.max_program_number() => Err(format!(
+                "translate.program_number: O{n} has more digits than a FANUC {} program number takes \
+                 (O1 to O{}); choose a smaller number, or set fanuc.series to the control's series",
+                self.fanuc.series,
+                self.fanuc.max_program_number()
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Sets a key from a command-line flag's text: numbers and booleans are read as such,
@@ -452,8 +471,8 @@ to_fanuc = []        # e.g. ["R0-R99=#100", "COUNT=#150"]
 to_sinumerik = []    # e.g. ["#500-#599=R100"]
 
 [tools]
-# Siemens tool names -> FANUC T numbers (--tool-map NAME=n). Names not listed get the next
-# free number from 1 in name order; the numbers used are written to nctrans-map.toml.
+# Siemens tool names -> FANUC T numbers (--tool-map NAME=n). A name not listed is refused
+# (NC301): nctrans never chooses a T number. The numbers used are written to nctrans-map.toml.
 # "DRILL_5" = 12
 
 [programs.to_fanuc]

@@ -9,6 +9,7 @@ pub mod check;
 pub mod config;
 pub mod diag;
 pub mod dialect;
+pub mod empty;
 pub mod eval;
 pub mod excerpt;
 pub mod ir;

@@ -10,6 +10,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod batch_cli;
+mod check_cli;
+mod cli_dialect;
 mod cli_sinumerik;
 mod out_guard;
 mod stream_cli;
@@ -79,6 +81,8 @@ enum Command {
         eval: EvalOpts,
         #[command(flatten)]
         input: InputOpts,
+        #[command(flatten)]
+        maps: check_cli::MapOpts,
     },
     /// Write a commented project configuration (nctrans.toml) with every key at its default.
     Init {
@@ -111,8 +115,9 @@ fn parse_fraction(s: &str) -> Result<f64, String> {
 
 #[derive(clap::Args)]
 struct InputOpts {
-    /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …); detected when omitted.
-    #[arg(long, value_parser = parse_encoding)]
+    /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …); detected when
+    /// omitted.
+    #[arg(long, visible_alias = "input-encoding", value_name = "ENCODING", value_parser = parse_encoding)]
     encoding: Option<&'static encoding_rs::Encoding>,
     /// Read the file as a stream in constant memory (automatic for files of 8 MB and more).
     #[arg(long)]
@@ -140,11 +145,9 @@ fn main() -> ExitCode {
         if let Some(code) = batch_cli::run(&cli.translate, &cli.batch, &matches) {
             return code;
         }
-        if cli.translate.to == Some(Dialect::Sinumerik) {
-            return cli_sinumerik::run(&cli.translate, cli.batch.force);
-        }
-        if cli.translate.to.is_some() {
-            // Single-file translation reads the project configuration like a batch does.
+        if cli.translate.to.is_some() || cli.translate.input.is_some() {
+            // Single-file translation reads the project configuration like a batch does;
+            // its `to` stands for `--to`.
             let config = match batch_cli::configure(&cli.translate, &cli.batch, &matches) {
                 Ok(c) => c,
                 Err(e) => {
@@ -152,19 +155,22 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            if config.to == Some(Dialect::Sinumerik) {
+                return cli_sinumerik::run(&cli.translate, &config);
+            }
             if let Some(code) = translate_cli::run(&cli.translate, &config) {
                 return code;
             }
         }
-        return translate_cli::run(&cli.translate, &nctrans::config::Config::default()).unwrap_or_else(|| {
-            eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
-            ExitCode::from(2)
-        });
+        eprintln!("error: give a subcommand (parse, …) or --to fanuc IN; see --help");
+        return ExitCode::from(2);
     };
     match command {
         Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
         Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
-        Command::Check { a, b, from_a, from_b, eval, input } => cmd_check(&a, &b, from_a, from_b, &eval, &input),
+        Command::Check { a, b, from_a, from_b, eval, input, maps } => {
+            cmd_check(&a, &b, (from_a, from_b), &eval, &input, &maps)
+        }
         Command::Init { path } => batch_cli::init(path.as_deref()),
     }
 }
@@ -312,12 +318,22 @@ fn cmd_run(
 fn cmd_check(
     a: &PathBuf,
     b: &PathBuf,
-    from_a: Option<Dialect>,
-    from_b: Option<Dialect>,
+    (from_a, from_b): (Option<Dialect>, Option<Dialect>),
     eval: &EvalOpts,
     input: &InputOpts,
+    maps: &check_cli::MapOpts,
 ) -> ExitCode {
-    use nctrans::check::{self, Side, Verdict};
+    use nctrans::check::{self, Side};
+    let names = match maps.names() {
+        Ok(n) => n,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Some(names) = &names {
+        return check_as_translation(a, b, (from_a, from_b), eval, input, names);
+    }
     let mut db = SourceDb::new();
     // Each side is streamed when it is large (or --stream), else read whole. A streamed
     // side's source (a decoded copy for a legacy encoding) lives until the check has run.
@@ -349,14 +365,20 @@ fn cmd_check(
     let report = check::check_runners(&db, ra, rb);
     let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
-    match report.verdict {
+    check_verdict(report.verdict, &report.diff)
+}
+
+/// Prints a check's verdict; its exit code.
+fn check_verdict(verdict: nctrans::check::Verdict, diff: &str) -> ExitCode {
+    use nctrans::check::Verdict;
+    match verdict {
         Verdict::Equivalent { events } => {
             println!("equivalent ({events} trace events agree)");
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
             println!("diverged at trace event {}", index + 1);
-            print!("{}", report.diff);
+            print!("{diff}");
             ExitCode::from(1)
         }
         Verdict::Inconclusive { reason } => {
@@ -368,4 +390,49 @@ fn cmd_check(
             ExitCode::from(1)
         }
     }
+}
+
+/// `check` with a translation's maps (`--tool-map`, `--map`): both sides read whole, a
+/// Siemens side compared with a FANUC one aligned as the translation's verification aligns
+/// it (see `check_cli`).
+fn check_as_translation(
+    a: &PathBuf,
+    b: &PathBuf,
+    (from_a, from_b): (Option<Dialect>, Option<Dialect>),
+    eval: &EvalOpts,
+    input: &InputOpts,
+    names: &check_cli::Names,
+) -> ExitCode {
+    use nctrans::check::{self, Side};
+    let mut db = SourceDb::new();
+    let mut sides = Vec::new();
+    for (path, from) in [(a, from_a), (b, from_b)] {
+        match load_for_run(&mut db, path, from, eval, input) {
+            Ok(side) => sides.push(side),
+            Err(code) => return code,
+        }
+    }
+    let dialects: Vec<Dialect> = sides.iter().map(|(u, _)| u.dialect).collect();
+    let cross = dialects[0] != dialects[1];
+    let runners: Vec<_> = sides
+        .into_iter()
+        .map(|(unit, mut run)| {
+            let unit = match unit.dialect {
+                Dialect::Sinumerik if cross => names.align(&unit),
+                Dialect::Fanuc if cross => {
+                    names.fanuc_inputs(&mut run.inputs);
+                    unit
+                }
+                _ => unit,
+            };
+            Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+        })
+        .collect();
+    let mut runners = runners.into_iter();
+    let (Some(ra), Some(rb)) = (runners.next(), runners.next()) else {
+        return ExitCode::from(2);
+    };
+    let report = check::check_runners(&db, ra, rb);
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    check_verdict(report.verdict, &report.diff)
 }

@@ -22,6 +22,10 @@ pub struct TranslateArgs {
     pub to: Option<Dialect>,
     /// The program to translate.
     pub input: Option<PathBuf>,
+    /// Dialect of the input (default: from its extension, .mpf/.spf or .nc/.tap, else its
+    /// content); needed to read a file as the dialect its extension does not say.
+    #[arg(long, value_parser = parse_dialect)]
+    pub from: Option<Dialect>,
     /// Write the translation here (default: standard output).
     #[arg(short = 'o', long)]
     pub output: Option<PathBuf>,
@@ -55,8 +59,9 @@ pub struct TranslateArgs {
     /// Step limit of each verification run (blocks executed).
     #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
-    /// Encoding of the input; detected when omitted.
-    #[arg(long = "input-encoding", value_parser = parse_encoding)]
+    /// Encoding of the input (utf-8, gbk, shift_jis, windows-1250, iso-8859-1, …; key
+    /// input.encoding); detected when omitted.
+    #[arg(long = "encoding", visible_alias = "input-encoding", value_name = "ENCODING", value_parser = parse_encoding)]
     pub input_encoding: Option<&'static encoding_rs::Encoding>,
     /// Translate and verify as a stream in constant memory (automatic for inputs of 8 MB
     /// and more; straight-line programs only, others are read whole). In a batch: every
@@ -81,12 +86,15 @@ fn fail(msg: String) -> ExitCode {
 /// Runs the translation mode. `None` when the arguments do not ask for it.
 /// `c` is the project configuration with the given flags already applied over it.
 pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
-    let to = a.to?;
+    let to = a.to.or(c.to)?;
     let Some(input) = &a.input else {
         return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
     };
     if to != Dialect::Fanuc {
         return Some(fail(format!("translation to {} is not available in this build", to.name())));
+    }
+    if let Err(code) = crate::cli_dialect::check_direction(input, a.from, to) {
+        return Some(code);
     }
     Some(to_fanuc(a, c, input))
 }
@@ -108,10 +116,8 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     let mut db = SourceDb::new();
     let name = input.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, c.input_encoding);
-    let dialect = nctrans::detect_dialect(&name, &db.get(loaded.file).text);
-    if dialect != Dialect::Sinumerik {
-        return fail(format!("{name} is not a Sinumerik program (only Sinumerik → FANUC is translated)"));
-    }
+    // `run` has checked the direction: the input is read as Sinumerik.
+    let dialect = Dialect::Sinumerik;
     let popts = ParseOptions { semantics: c.sinumerik_semantics() };
     let parsed = nctrans::parse(&db, loaded.file, dialect, &popts);
     eprint!("{}", diag::render(&db, &parsed.diags));

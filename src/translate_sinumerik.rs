@@ -230,6 +230,17 @@ pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Tr
         let main = plan.role == Role::Main;
         let ext = if main { "MPF" } else { "SPF" };
         let fname = format!("{}.{ext}", plan.name);
+        // A program of a FANUC file may be empty; its Siemens file would hold no program,
+        // which every command refuses (NC145), so the translation says it here.
+        if !crate::empty::has_content(&prog) {
+            let name = plan.number.map_or_else(|| "the main program".to_string(), |n| format!("program O{n:04}"));
+            diags.push(
+                Diagnostic::error("NC146", format!("{name} holds no block to translate"))
+                    .primary(*file, src.span, "this program")
+                    .note(format!("{fname} would hold no program (NC145)"))
+                    .hint("delete the empty program, or give it its blocks"),
+            );
+        }
         if !names.insert(fname.clone()) {
             diags.push(
                 Diagnostic::error("NC371", format!("two programs would both be written as {fname}"))

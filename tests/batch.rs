@@ -27,6 +27,24 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 /// Every file below `root` (relative path → bytes), skipping nothing.
+/// The tool table a batch needs for the Siemens tool names under `root` (`T="NAME"`):
+/// numbered from 1 in name order. nctrans never numbers tools itself (NC301).
+fn tool_table(root: &Path) -> BTreeMap<String, u32> {
+    let mut names = std::collections::BTreeSet::new();
+    for (rel, bytes) in snapshot(root) {
+        if batch::discover::dialect_of_name(Path::new(&rel)) != Some(Dialect::Sinumerik) {
+            continue;
+        }
+        let text = String::from_utf8_lossy(&bytes).replace("t=\"", "T=\"");
+        for part in text.split("T=\"").skip(1) {
+            if let Some(name) = part.split('"').next() {
+                names.insert(name.to_string());
+            }
+        }
+    }
+    names.into_iter().zip(1..).collect()
+}
+
 fn snapshot(root: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut out = BTreeMap::new();
     let mut stack = vec![root.to_path_buf()];
@@ -208,6 +226,7 @@ fn library_to_fanuc_end_to_end() {
     let out = dir.join("out");
     let mut opts = BatchOptions::new(&lib, &out, Dialect::Fanuc);
     opts.jobs = 2;
+    opts.pinned.tools = tool_table(&lib);
     let r = run(opts.clone(), &fanuc_job(true));
     check_statuses(&r, programs, "fanuc/", 60);
     check_fault_caught(&r, FAULTY);
@@ -419,6 +438,7 @@ const FANUC_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
 fn leg(input: &Path, out: &Path, target: Dialect, refused: &[(&str, &str)]) -> batch::BatchResult {
     let mut opts = BatchOptions::new(input, out, target);
     opts.jobs = 2;
+    opts.pinned.tools = tool_table(input);
     let r = match target {
         Dialect::Fanuc => {
             let mut job = ToFanucJob::new(test_settings());

@@ -70,6 +70,8 @@ pub(crate) struct LoadedFile {
     pub unit: Unit,
     pub loaded: crate::Loaded,
     pub diags: Vec<Diagnostic>,
+    /// FANUC program numbers after the closing `%` (`Parsed::after_end_programs`).
+    pub after_end: Vec<u32>,
 }
 
 /// Reads and parses `file` as `dialect` into `db`.
@@ -84,7 +86,7 @@ pub(crate) fn load(
     let loaded = crate::load(db, &super::rel_string(&file.rel), &bytes, encoding);
     let opts = ParseOptions { semantics: sem.clone() };
     let parsed = crate::parse(db, loaded.file, dialect, &opts);
-    Ok(LoadedFile { unit: parsed.unit, loaded, diags: parsed.diags })
+    Ok(LoadedFile { unit: parsed.unit, loaded, diags: parsed.diags, after_end: parsed.after_end_programs })
 }
 
 /// A job's input file and the files holding the programs it calls (transitively, from the

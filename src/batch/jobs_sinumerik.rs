@@ -57,6 +57,7 @@ impl ToSinumerikJob {
             },
             main_name: maps::siemens_name(&stem(file)),
             flag_places,
+            after_end: BTreeSet::new(),
         })
     }
 }
@@ -319,6 +320,7 @@ impl FileJob for ToSinumerikJob {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
+        opts.after_end = std::iter::once(&main).chain(subs.iter()).flat_map(|l| l.after_end.iter().copied()).collect();
         let (copies, mut diagnostics) = duplicates(ctx, file, &main, &mut opts);
         diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
 

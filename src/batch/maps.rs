@@ -154,15 +154,19 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
                     None => problems.push(format!("no free O number left for {name}")),
                 }
             }
-            // Tools: pinned numbers, then the next free number from 1, in name order.
-            let mut taken: BTreeSet<u32> = maps.tools.values().copied().collect();
-            for name in lib.tool_names() {
-                if maps.tools.contains_key(&name) {
-                    continue;
-                }
-                let n = (1..).find(|n| !taken.contains(n)).unwrap_or(1);
-                taken.insert(n);
-                maps.tools.insert(name, n);
+            // Tools: only the numbers given (--tool-map, [tools], an earlier map). A T number
+            // names a pocket and its offsets on the machine, which nctrans cannot know, and the
+            // trace would call a chosen one equivalent: a name without a number is refused in
+            // its files (NC301), as in a single-file translation, and listed here once.
+            let missing: Vec<String> = lib.tool_names().into_iter().filter(|n| !maps.tools.contains_key(n)).collect();
+            if !missing.is_empty() {
+                let table: Vec<String> = missing.iter().map(|n| format!("{} = <T number>", quote(n))).collect();
+                problems.push(format!(
+                    "{} tool name(s) have no FANUC T number, so the files using them are not translated (NC301); \
+                     give them under [tools] in nctrans.toml: {}",
+                    missing.len(),
+                    table.join(", ")
+                ));
             }
         }
         Dialect::Sinumerik => {

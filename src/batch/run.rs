@@ -202,7 +202,13 @@ pub fn run_batch(
             records[f.index] = Some(error_record(f, "NC600", e.clone()));
         } else if info.dialect != Some(source) {
             skipped += 1;
-            let mut r = error_record(f, "", format!("already {}: left alone", opts.target.name()));
+            // Say how its dialect was decided: a wrong extension is then seen at once.
+            let how = match f.rel.extension().and_then(|e| e.to_str()) {
+                Some(e) if super::discover::dialect_of_name(&f.rel).is_some() => format!("by its extension .{e}"),
+                _ if super::discover::dialect_of_name(&f.rel).is_some() => "by its name".to_string(),
+                _ => "judged from its content".to_string(),
+            };
+            let mut r = error_record(f, "", format!("already {}, {how}: left alone", opts.target.name()));
             r.status = Status::Skipped;
             r.diagnostics.clear();
             records[f.index] = Some(r);
@@ -236,6 +242,20 @@ pub fn run_batch(
             opts.output.display(),
             write::STAGING
         )));
+    }
+    if skipped > 0 {
+        // Named (the first few), so a file whose extension says the wrong dialect is seen.
+        let mut named: Vec<String> = records
+            .iter()
+            .flatten()
+            .filter(|r| r.status == Status::Skipped)
+            .take(10)
+            .map(|r| format!("{} ({})", r.path, r.summary.trim_end_matches(": left alone")))
+            .collect();
+        if skipped > named.len() {
+            named.push(format!("and {} more (see --report)", skipped - named.len()));
+        }
+        progress(Progress::Note(format!("left alone: {}", named.join(", "))));
     }
     progress(Progress::Started { total: runnable.len(), skipped });
 

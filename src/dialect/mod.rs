@@ -99,6 +99,9 @@ impl ParseOptions {
 pub struct Parsed {
     pub unit: Unit,
     pub diags: Vec<Diagnostic>,
+    /// FANUC: the `O` numbers in the text after the closing `%` (not read, NC237), so a
+    /// call of one can be told it is there but after the `%`.
+    pub after_end_programs: Vec<u32>,
 }
 
 /// Parses one file in the given dialect.
@@ -110,10 +113,16 @@ pub fn parse(src: &SourceFile, file: FileId, dialect: Dialect, opts: &ParseOptio
             .primary(file, crate::span::Span::new(at, end), "control character in program text")
             .note("NC programs are text; NUL bytes and control characters are not allowed")
             .hint("check that the right file was given, and that it was transferred in text mode");
-        return Parsed { unit: Unit { dialect, file, programs: vec![] }, diags: vec![d] };
+        return Parsed { unit: Unit { dialect, file, programs: vec![] }, diags: vec![d], after_end_programs: vec![] };
     }
-    match dialect {
+    let mut parsed = match dialect {
         Dialect::Sinumerik => sinumerik::parse(src, file, opts),
         Dialect::Fanuc => fanuc::parse(src, file, opts),
+    };
+    // A file that read without error but holds nothing to execute (NC145): said here, so
+    // every command that reads a program says it the same way.
+    if !crate::diag::has_errors(&parsed.diags) && crate::empty::program_less(&parsed.unit) {
+        parsed.diags.push(crate::empty::diagnostic(file, &src.text));
     }
+    parsed
 }

@@ -26,6 +26,12 @@ pub fn parse_rules(s: &str) -> Result<Vec<VarRule>, String> {
     let mut v = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let (lhs, rhs) = part.split_once('=').ok_or_else(|| format!("'{part}': expected SOURCE=#n"))?;
+        if lhs.trim_start().starts_with('#') && rhs.trim_start().starts_with(['R', 'r']) {
+            return Err(format!(
+                "'{part}' maps FANUC variables onto R parameters, a FANUC → Sinumerik rule (--to sinumerik); \
+                 to FANUC a rule maps R parameters or variable names onto # variables, like 'R0-R99=#100' or 'COUNT=#150'"
+            ));
+        }
         let number: u32 = rhs
             .trim()
             .strip_prefix('#')

@@ -442,8 +442,13 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                             w.value = WordValue::Expr(num(n as f64, *span));
                         }
                         None => {
+                            // Never chosen here: a T number selects a pocket and its offsets.
                             let msg = format!("tool \"{name}\" has no FANUC tool number");
-                            ctx.error("NC301", *span, &msg, &format!("give one with --tool-map {name}=<number>"));
+                            let hint = format!(
+                                "give the T number the machine has this tool under: --tool-map {name}=<number>, \
+                                 or `\"{name}\" = <number>` under [tools] in nctrans.toml (nctrans never chooses one)"
+                            );
+                            ctx.error("NC301", *span, &msg, &hint);
                             ctx.unsupported += 1;
                             w.value = WordValue::Expr(num(0.0, *span));
                         }

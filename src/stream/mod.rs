@@ -680,6 +680,15 @@ fn scan_with(
     if let Some(p) = progress.as_mut() {
         p(Progress { done: lines.offset(), total: size, blocks });
     }
+    // A program-less file is NC145 here as in the whole-file parse. Only a file whose lines
+    // all look like comments or headers can be one; that (small) file is parsed whole.
+    if !crate::diag::has_errors(&diags) && crate::empty::may_be_program_less(path) {
+        if let Ok(bytes) = std::fs::read(path) {
+            let src = crate::span::SourceFile::new(path.display().to_string(), crate::read::decode(&bytes, None).text);
+            let whole = crate::dialect::parse(&src, file, dialect, opts);
+            diags.extend(whole.diags.into_iter().filter(|d| d.code == "NC145"));
+        }
+    }
     diags.sort_by_key(|d| d.labels.iter().find(|l| l.primary).map_or(u32::MAX, |l| l.span.lo));
     Ok(Index {
         dialect,

@@ -99,6 +99,8 @@ pub struct Reader<'o> {
     after_end: Option<Span>,
     /// `N` numbers seen in the ignored text after the closing `%`, for GOTO notes.
     ignored_numbers: Vec<(u32, Span)>,
+    /// `O` numbers starting lines of the ignored text after the closing `%`.
+    ignored_programs: Vec<u32>,
     programs: Vec<ProgramLines>,
     /// Plain blocks are read for an index only: their items are not built.
     index_only: bool,
@@ -115,6 +117,7 @@ impl<'o> Reader<'o> {
             tape: Tape::None,
             after_end: None,
             ignored_numbers: Vec::new(),
+            ignored_programs: Vec::new(),
             programs: Vec::new(),
             index_only: false,
             resumed: false,
@@ -191,6 +194,9 @@ impl<'o> Reader<'o> {
             self.after_end = Some(self.after_end.map_or(line_span, |s| s.to(line_span)));
             if let Some(n) = scan::leading_number(trimmed) {
                 self.ignored_numbers.push((n, line_span));
+            }
+            if let Some(n) = scan::program_number(trimmed) {
+                self.ignored_programs.push(n);
             }
             return;
         }
@@ -480,6 +486,10 @@ impl<'o> Reader<'o> {
         // Structure diagnostics come per program; order everything by position so the
         // report reads top to bottom.
         self.diags.sort_by_key(|d| d.labels.iter().find(|l| l.primary).map_or(u32::MAX, |l| l.span.lo));
-        Parsed { unit: Unit { dialect: Dialect::Fanuc, file: self.file, programs }, diags: self.diags }
+        Parsed {
+            unit: Unit { dialect: Dialect::Fanuc, file: self.file, programs },
+            diags: self.diags,
+            after_end_programs: self.ignored_programs,
+        }
     }
 }

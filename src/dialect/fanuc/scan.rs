@@ -85,6 +85,13 @@ pub fn leading_number(text: &str) -> Option<u32> {
     digits.parse().ok()
 }
 
+/// The number of a program-number line (`O1234 …`, `:1234`), if it is one.
+pub fn program_number(text: &str) -> Option<u32> {
+    let rest = text.trim_start().strip_prefix(['O', 'o', ':'])?.trim_start();
+    let digits: &str = &rest[..rest.find(|c: char| !c.is_ascii_digit()).unwrap_or(rest.len())];
+    digits.parse().ok()
+}
+
 /// Checks a block's brackets, comments and operator characters before parsing.
 pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
     let b = seg.text.as_bytes();

@@ -39,7 +39,11 @@ pub fn parse(src: &SourceFile, file: FileId, opts: &ParseOptions) -> Parsed {
         r.line(&raw);
     }
     let (program, diags) = r.finish();
-    Parsed { unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] }, diags }
+    Parsed {
+        unit: Unit { dialect: Dialect::Sinumerik, file, programs: vec![program] },
+        diags,
+        after_end_programs: vec![],
+    }
 }
 
 /// The reader of one file, fed one physical line at a time: the whole-file [`parse`] and

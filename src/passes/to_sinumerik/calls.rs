@@ -429,12 +429,19 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
     let Some(callee) = ctx.program_by_number(n) else {
         // Under the warn policy the call becomes a marked line: the run then reaches the
         // same point as FANUC does before it would miss the program.
+        let hint = if ctx.opts.after_end.contains(&n) {
+            format!(
+                "O{n:04} is in the file, but after the closing `%`, where the control stops reading (NC237): move it before that `%`"
+            )
+        } else {
+            format!("put O{n:04} in the same file, or beside it as O{n:04}.nc")
+        };
         return Err(ctx.refuse(
             "NC353",
             span,
             &format!("the called program O{n} was not found"),
             &format!("call of the missing program O{n}"),
-            &format!("put O{n:04} in the same file, or beside it as O{n:04}.nc"),
+            &hint,
         ));
     };
     let cplan = ctx.progs[callee].clone();

@@ -58,6 +58,12 @@ impl VarMapRule {
     pub fn parse(s: &str) -> Result<VarMapRule, String> {
         let bad = || format!("bad --var-map '{s}' (expected like '#500-#599=R100')");
         let (lhs, rhs) = s.split_once('=').ok_or_else(bad)?;
+        if rhs.trim_start().starts_with('#') && !lhs.trim_start().starts_with('#') {
+            return Err(format!(
+                "--var-map '{s}' maps Siemens variables onto # variables, a Sinumerik → FANUC rule (--to fanuc); \
+                 to Sinumerik a rule maps FANUC common variables onto R parameters, like '#500-#599=R100'"
+            ));
+        }
         let num = |t: &str, p: char| -> Option<u32> {
             let t = t.trim();
             let t = t.strip_prefix(p).or_else(|| t.strip_prefix(p.to_ascii_lowercase()))?;
@@ -73,6 +79,19 @@ impl VarMapRule {
         let r_start = num(rhs, 'R').ok_or_else(bad)?;
         if from > to {
             return Err(format!("bad --var-map '{s}': range runs backwards"));
+        }
+        // Only common variables are placed by a rule; a rule over others would do nothing.
+        if from < 100 {
+            return Err(format!(
+                "--var-map '{s}': #{from} is a local variable (#1–#33: one set per macro call, written as DEF \
+                 variables of each Siemens program), not placed by a rule; a rule maps common variables #100–#999"
+            ));
+        }
+        if to > 999 {
+            return Err(format!(
+                "--var-map '{s}': #{to} is a system variable (#1000 and up, translated by meaning), not placed by \
+                 a rule; a rule maps common variables #100–#999"
+            ));
         }
         Ok(VarMapRule { from, to, r_start })
     }
@@ -95,6 +114,9 @@ pub struct Options {
     /// the whole library, so every file tests a common variable's vacancy in the same place);
     /// these R parameters are never given to anything else.
     pub flag_places: BTreeMap<u32, u32>,
+    /// Program numbers found after the closing `%` of a file read (not read by the
+    /// control): a call of one is told it is there but after the `%` (NC353).
+    pub after_end: std::collections::BTreeSet<u32>,
 }
 
 impl Default for Options {
@@ -107,6 +129,7 @@ impl Default for Options {
             unsupported: UnsupportedPolicy::Error,
             main_name: "MAIN".into(),
             flag_places: BTreeMap::new(),
+            after_end: std::collections::BTreeSet::new(),
         }
     }
 }
