@@ -194,6 +194,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
 
     // Variables, across programs (R parameters and commons are shared).
     let mut vctx = new_ctx(main.file, opts);
+    vctx.callees = callees.clone();
     let mapped = {
         let mut jobs: Vec<varmap::Job> = lowered
             .iter_mut()
@@ -344,7 +345,7 @@ pub fn verify(
     max_steps: u64,
 ) -> Verification {
     use crate::check::{self, Side, Verdict};
-    use crate::eval::{self, NoCallees, RunOptions};
+    use crate::eval::{NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
     let mut rendered = diag::render(db, &parsed.diags);
     if diag::has_errors(&parsed.diags) {
@@ -358,16 +359,7 @@ pub fn verify(
     let source = align_source(main, &t.symbol_map);
     let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
     let mut inputs = r_param_inputs(&t.symbol_map);
-    // A subprogram run on its own: Siemens parameters are 0, G65 argument locals vacant.
-    if let Some(p) = main.programs.first() {
-        if let Some(letters) = passes::words::param_letters(p.params.len()) {
-            for (_, var) in letters {
-                if let Ok(i) = eval::parse_input(&format!("#{var}=0")) {
-                    inputs.push(i);
-                }
-            }
-        }
-    }
+    inputs.extend(standalone_args(main, &t.symbol_map));
     let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
     let b = Side {
         unit: parsed.unit.clone(),
@@ -386,6 +378,39 @@ pub fn verify(
         Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
     };
     Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+}
+
+/// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
+/// parameters are 0 (the G65 argument locals would be vacant); VAR parameters as
+/// [`var_param_inputs`] gives them.
+pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> {
+    let Some(p) = main.programs.first() else { return vec![] };
+    let letters = passes::words::param_letters(p.params.len()).unwrap_or_default();
+    let mut texts: Vec<String> =
+        p.params.iter().zip(letters).filter(|(prm, _)| !prm.by_ref).map(|(_, (_, var))| format!("#{var}=0")).collect();
+    texts.extend(var_param_inputs(&p.params, map));
+    texts.iter().filter_map(|t| crate::eval::parse_input(t).ok()).collect()
+}
+
+/// For a subprogram run on its own: each VAR parameter, which holds the number of its
+/// caller's variable, gets a free common variable (from #999 down, past every number the
+/// translation uses) that starts at 0, as the Siemens parameter then does.
+pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
+    let letters = passes::words::param_letters(params.len()).unwrap_or_default();
+    let used: std::collections::BTreeSet<u32> = map.vars.iter().map(|m| m.number).collect();
+    let mut next = 999u32;
+    let mut texts = Vec::new();
+    for (prm, (_, var)) in params.iter().zip(letters).filter(|(p, _)| p.by_ref) {
+        let size = prm.dims.iter().product::<u32>().max(1);
+        while next >= 500 + size && (next + 1 - size..=next).any(|k| used.contains(&k)) {
+            next -= 1;
+        }
+        let base = next + 1 - size;
+        texts.push(format!("#{var}={base}"));
+        texts.extend((base..=next).map(|k| format!("#{k}=0")));
+        next = base.saturating_sub(1);
+    }
+    texts
 }
 
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is

@@ -380,10 +380,10 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
-    ("PITFALL_M98_SHARED_LOCAL.mpf", "NC304"), // M98's shared locals: VAR parameters
+    ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
     ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
     ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC304"),         // VAR parameters
+    ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
     ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
 ];

@@ -367,6 +367,9 @@ impl ToFanucJob {
             fanuc_inputs = b_in.clone();
             // Parameters not passed are 0 on Siemens; the argument locals get the same value.
             for (i, (_, var)) in letters.iter().enumerate() {
+                if params.get(i).is_some_and(|p| p.by_ref) {
+                    continue;
+                }
                 let given = vals.iter().find(|(j, _)| *j == i);
                 let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
                 b_in.push(format!("#{var}={value}"));
@@ -374,6 +377,7 @@ impl ToFanucJob {
                     a_in.push(s.clone());
                 }
             }
+            b_in.extend(translate::var_param_inputs(&params, &t.symbol_map));
             a_in.extend(self.settings.set.iter().cloned());
             b_in.extend(self.settings.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
             let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
