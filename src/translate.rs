@@ -332,8 +332,9 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) 
 
 /// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
 /// translation in the evaluator and compares their traces (`check`). The Siemens side is
-/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number, and a
-/// `MSG` that became a comment (FANUC shows no message without stopping) is left out. The
+/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number. A `MSG`
+/// that became a comment (FANUC shows no message without stopping) is left out of the
+/// comparison by the check ([`EXCLUDE`]), which counts it for the verdict. The
 /// R parameters the translation maps start at 0 on both sides (Siemens' power-on value);
 /// FANUC's would otherwise be vacant.
 pub fn verify(
@@ -366,10 +367,10 @@ pub fn verify(
         callees: Box::new(NoCallees),
         run: RunOptions { max_steps, inputs, ..RunOptions::default() },
     };
-    let report = check::check(db, a, b);
+    let report = check::check_excluding(db, a, b, EXCLUDE);
     rendered.push_str(&diag::render(&report.db, &report.diags));
     let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
+        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
         Verdict::Diverged { index } => {
             rendered.push_str(&report.diff);
             (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
@@ -423,7 +424,12 @@ pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
         .collect()
 }
 
-/// The Siemens programs a translation is compared against, aligned with its symbol map.
+/// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation
+/// keeps as comments (`words` pass, NC320), counted in the verdict.
+pub const EXCLUDE: crate::check::Exclude = crate::check::Exclude { messages: true };
+
+/// The Siemens programs a translation is compared against, aligned with its symbol map
+/// (tool names read as their numbers).
 pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
     let mut u = unit.clone();
     for p in &mut u.programs {
@@ -433,16 +439,9 @@ pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
 }
 
 fn align_body(body: &mut [Stmt], map: &SymbolMap) {
-    for k in 0..body.len() {
-        let stop_follows = match body.get(k + 1).map(|s| &s.kind) {
-            Some(StmtKind::Block(next)) => passes::words::is_lone_m0(next),
-            _ => false,
-        };
-        let s = &mut body[k];
+    for s in body.iter_mut() {
         match &mut s.kind {
             StmtKind::Block(b) => {
-                let lone_msg = passes::words::msg_text(b).is_some();
-                b.items.retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || (lone_msg && stop_follows));
                 for it in &mut b.items {
                     if let ItemKind::Word(w) = &mut it.kind {
                         if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), span }) = &mut w.value {

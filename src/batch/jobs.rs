@@ -127,6 +127,7 @@ pub(crate) fn apply(outcome: &mut FileOutcome, v: Verified) {
     outcome.status = v.status;
     outcome.summary = v.summary;
     outcome.events = v.events;
+    outcome.excluded = v.excluded;
     outcome.diagnostics.extend(v.diagnostics);
 }
 
@@ -282,6 +283,8 @@ pub(crate) struct Verified {
     pub status: Status,
     pub summary: String,
     pub events: Option<u64>,
+    /// What the checks left out of the comparison (equivalences only).
+    pub excluded: check::Excluded,
     pub diagnostics: Vec<DiagRecord>,
 }
 
@@ -289,12 +292,14 @@ pub(crate) struct Verified {
 /// divergence wins, then anything unproven; events add up.
 pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
     let mut events = 0u64;
+    let mut excluded = check::Excluded::default();
     let mut worst: Option<Verified> = None;
     for (label, r) in &runs {
         let diagnostics = DiagRecord::from_diags(&r.db, &r.diags);
         let (status, summary) = match &r.verdict {
             Verdict::Equivalent { events: n } => {
                 events += n;
+                excluded.add(r.excluded);
                 continue;
             }
             Verdict::Diverged { index } => (
@@ -306,7 +311,7 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         };
         let rank = |s: Status| super::report::rank(s);
         if worst.as_ref().is_none_or(|w| rank(status) > rank(w.status)) {
-            worst = Some(Verified { status, summary, events: None, diagnostics });
+            worst = Some(Verified { status, summary, events: None, excluded: Default::default(), diagnostics });
         }
     }
     match worst {
@@ -314,11 +319,12 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         None => Verified {
             status: Status::Verified,
             summary: if runs.len() > 1 {
-                format!("equivalent ({events} events in {} runs)", runs.len())
+                excluded.equivalent(&format!("{events} events in {} runs", runs.len()))
             } else {
-                format!("equivalent ({events} events)")
+                excluded.equivalent(&format!("{events} events"))
             },
             events: Some(events),
+            excluded,
             diagnostics: vec![],
         },
     }
@@ -342,6 +348,7 @@ impl ToFanucJob {
                 status: Status::Diverged,
                 summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
                 events: None,
+                excluded: Default::default(),
                 diagnostics: DiagRecord::from_diags(db, &parsed.diags),
             };
         }
@@ -396,7 +403,7 @@ impl ToFanucJob {
                 callees: Box::new(NoCallees),
                 run: run(parse_all(&b_in), &self.settings.fanuc),
             };
-            runs.push((label, check::check(db, a, b)));
+            runs.push((label, check::check_excluding(db, a, b, translate::EXCLUDE)));
         }
         combine(runs)
     }

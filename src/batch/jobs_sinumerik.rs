@@ -448,6 +448,7 @@ impl ToSinumerikJob {
                 status: Status::Inconclusive,
                 summary: "not verified: no program of the file was found in its translation".into(),
                 events: None,
+                excluded: Default::default(),
                 diagnostics: vec![],
             };
         }

@@ -171,6 +171,8 @@ pub struct FileOutcome {
     pub diagnostics: Vec<DiagRecord>,
     /// Trace events compared by verification.
     pub events: Option<u64>,
+    /// Trace events verification knowingly left out (a `MSG` kept as a comment).
+    pub excluded: crate::check::Excluded,
     /// Blocks read from the input (for blocks/s).
     pub blocks: u64,
     /// One line for people: `equivalent (120 events)`, the first divergence, …
@@ -190,6 +192,7 @@ impl FileOutcome {
             outputs: vec![],
             diagnostics: vec![],
             events: None,
+            excluded: Default::default(),
             blocks: 0,
             summary: summary.into(),
             used: maps::Used::default(),
@@ -288,6 +291,8 @@ pub struct FileRecord {
     pub summary: String,
     pub diagnostics: Vec<DiagRecord>,
     pub events: Option<u64>,
+    /// Trace events verification knowingly left out of the comparison.
+    pub excluded: crate::check::Excluded,
     pub blocks: u64,
     pub time: Duration,
 }

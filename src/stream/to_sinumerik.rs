@@ -757,6 +757,11 @@ impl StreamSide {
 /// buffered (`check::in_one_thread`), which for a program of millions of blocks is
 /// memory that grows with its length. A streamed check keeps both traces in step instead.
 pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
+    compare_excluding(a, b, check::Exclude::default())
+}
+
+/// [`compare`] leaving out (and counting) what `exclude` names.
+pub fn compare_excluding(a: StreamSide, b: StreamSide, exclude: check::Exclude) -> CheckReport {
     let mut db = SourceDb::new();
     // File ids are the indexes' own: the source 0, the translation 1.
     let (first, second) = if a.index.file <= b.index.file { (&a, &b) } else { (&b, &a) };
@@ -770,11 +775,12 @@ pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
     db.add(second.name.clone(), String::new());
     let (ra, rb) = (a.runner(), b.runner());
     let fail_db = db.clone();
-    let joined = std::thread::scope(|s| s.spawn(|| check::check_runners(&db, ra, rb)).join());
+    let joined = std::thread::scope(|s| s.spawn(|| check::check_runners_excluding(&db, ra, rb, exclude)).join());
     joined.unwrap_or_else(|_| {
         let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
         CheckReport {
             verdict: Verdict::Failed,
+            excluded: Default::default(),
             db: fail_db,
             diags: vec![Diagnostic::error(
                 "NC499",
