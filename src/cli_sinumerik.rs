@@ -55,7 +55,9 @@ fn options(args: &TranslateArgs, stem: &str, config: Option<&Config>) -> Result<
         if c.unsupported == nctrans::config::Unsupported::Warn {
             o.unsupported = UnsupportedPolicy::Warn;
         }
+        o.specialise_callers = c.specialise_callers;
     }
+    o.specialise_callers |= args.specialise_callers;
     for m in &args.program_map {
         let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
         let n: u32 =

@@ -317,12 +317,14 @@ fn library_to_sinumerik_end_to_end() {
     assert_eq!(bracket.status, Status::Verified, "{}", bracket.summary);
     assert_eq!(bracket.outputs, ["fanuc/parts/BRACKET.mpf"]);
     let text = std::fs::read_to_string(out.join(&bracket.outputs[0])).unwrap();
-    assert!(text.contains(&format!("{}(5,5,-2,1)", names[&9200])), "{text}");
+    // Written for every possible caller: each argument has its is-set flag.
+    assert!(text.contains(&format!("{}(5,5,-2,1,1,1)", names[&9200])), "{text}");
     assert!(text.contains(&format!("{}(2,", names[&9010])), "{text}");
     let mac = status_of(&r, "fanuc/macros/o9200.nc");
     assert_eq!(mac.status, Status::Verified, "{}", mac.summary);
     assert_eq!(mac.outputs, [format!("fanuc/macros/{}.spf", names[&9200])]);
-    assert!(mac.summary.contains("2 runs"), "{}", mac.summary);
+    // The two call sites' arguments (X Y Z, X Y), and each with one of them vacant (3 + 2).
+    assert!(mac.summary.contains("7 runs"), "{}", mac.summary);
     let spf = std::fs::read_to_string(out.join(&mac.outputs[0])).unwrap();
     assert!(spf.starts_with(&format!("PROC {}(", names[&9200])), "{spf}");
     // O2001 is in two files: calls reach the first; the other is named after its file.

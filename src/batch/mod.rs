@@ -249,6 +249,9 @@ pub struct BatchOptions {
     /// Straight-line programs of this many bytes and more are read, translated and
     /// verified as a stream, in constant memory ([`STREAM_BYTES`]; 0 with `--stream`).
     pub stream_bytes: u64,
+    /// FANUC → Sinumerik `--specialise-callers`: each macro written for the library's calls
+    /// only (see `translate_sinumerik::Options::specialise_callers`).
+    pub specialise_callers: bool,
 }
 
 impl BatchOptions {
@@ -263,6 +266,7 @@ impl BatchOptions {
             pinned: BatchMaps::default(),
             encoding: None,
             stream_bytes: STREAM_BYTES,
+            specialise_callers: false,
         }
     }
 
