@@ -15,6 +15,9 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
+mod exclude;
+pub use exclude::{Exclude, Excluded};
+
 /// Absolute tolerance for numbers (trace spec).
 pub const TOLERANCE: f64 = 1e-6;
 /// Events of context shown on each side of a divergence.
@@ -41,50 +44,6 @@ pub enum Verdict {
     Inconclusive { reason: String },
     /// A run could not be evaluated (see the diagnostics).
     Failed,
-}
-
-/// Trace events a translation knowingly does not carry: a check of it leaves them out of the
-/// comparison and counts them ([`Excluded`]), so that its verdict says what was not compared.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Exclude {
-    /// The first run's messages shown without a stop (Siemens `MSG`), and the message of a
-    /// first-run stop that the second run makes without one: FANUC shows no message without
-    /// stopping, so the Sinumerik → FANUC translation keeps such a `MSG` as a comment.
-    pub messages: bool,
-}
-
-/// What a check left out of the comparison ([`Exclude`]), counted as the first run made it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Excluded {
-    pub messages: u64,
-}
-
-impl Excluded {
-    pub fn is_empty(&self) -> bool {
-        self.messages == 0
-    }
-
-    pub fn add(&mut self, other: Excluded) {
-        self.messages += other.messages;
-    }
-
-    /// What was not compared, for people: `2 messages kept as comments`; `None` for nothing.
-    pub fn describe(&self) -> Option<String> {
-        match self.messages {
-            0 => None,
-            1 => Some("1 message kept as a comment".into()),
-            n => Some(format!("{n} messages kept as comments")),
-        }
-    }
-
-    /// The verdict line of an equivalence: `equivalent (12 events)`,
-    /// `equivalent (12 events; 2 messages kept as comments)`; `detail` is what was compared.
-    pub fn equivalent(&self, detail: &str) -> String {
-        match self.describe() {
-            Some(d) => format!("equivalent ({detail}; {d})"),
-            None => format!("equivalent ({detail})"),
-        }
-    }
 }
 
 pub struct CheckReport {
