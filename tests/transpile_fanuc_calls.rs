@@ -157,3 +157,13 @@ fn var_parameters_refuse_values_and_other_types() {
     }
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+/// NC381's way out: the subprogram's local mapped to a common variable has a number its
+/// callee can reach, and the call translates and verifies.
+#[test]
+fn a_local_mapped_to_a_common_variable_can_be_passed_by_reference() {
+    let dir = root().join("corpus/in/sinumerik-calls/var-parameters");
+    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "--var-map", "K=#150", "LOCAL_COUNTER.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("G65 P9000 A#1 B1. C150.") && err.contains("equivalent ("), "{out}\n{err}");
+}
