@@ -775,7 +775,11 @@ pub fn compare_excluding(a: StreamSide, b: StreamSide, exclude: check::Exclude) 
     db.add(second.name.clone(), String::new());
     let (ra, rb) = (a.runner(), b.runner());
     let fail_db = db.clone();
-    let joined = std::thread::scope(|s| s.spawn(|| check::check_runners_excluding(&db, ra, rb, exclude)).join());
+    let joined = std::thread::scope(|s| {
+        let thread = std::thread::Builder::new().stack_size(crate::dialect::limits::THREAD_STACK);
+        let check = || check::check_runners_excluding(&db, ra, rb, exclude);
+        thread.spawn_scoped(s, check).expect("start the checker's thread").join()
+    });
     joined.unwrap_or_else(|_| {
         let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
         CheckReport {

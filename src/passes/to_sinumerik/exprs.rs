@@ -205,6 +205,9 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
 fn int_part(e: Expr) -> Expr {
     match literal(&e) {
         Some(v) if v.fract() == 0.0 => e,
+        // Already an integer: a chain `#1 AND #2 AND …` would otherwise nest one TRUNC per
+        // operator, past the reader's bracket limit.
+        _ if matches!(e.kind, ExprKind::Binary(BinOp::BitAnd | BinOp::BitOr | BinOp::BitXor, ..)) => e,
         _ => {
             let sp = e.span;
             func(Func::Trunc, vec![e], sp)
