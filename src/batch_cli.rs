@@ -92,6 +92,9 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
     if t.compound_conditions {
         c.fanuc.compound_conditions = true;
     }
+    if t.specialise_callers {
+        c.specialise_callers = true;
+    }
     if given(m, "max_steps") {
         flag(&mut c, "verify.max_steps", &t.max_steps.to_string(), "--max-steps")?;
     }
@@ -200,6 +203,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     opts.verify = c.verify;
     opts.pinned = pinned;
     opts.encoding = c.input_encoding;
+    opts.specialise_callers = c.specialise_callers;
     if t.stream {
         opts.stream_bytes = 0;
     }

@@ -15,6 +15,9 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
+mod exclude;
+pub use exclude::{Exclude, Excluded};
+
 /// Absolute tolerance for numbers (trace spec).
 pub const TOLERANCE: f64 = 1e-6;
 /// Events of context shown on each side of a divergence.
@@ -45,6 +48,8 @@ pub enum Verdict {
 
 pub struct CheckReport {
     pub verdict: Verdict,
+    /// The events left out of the comparison (by the check's [`Exclude`]).
+    pub excluded: Excluded,
     /// All files of both runs (callees included), for rendering `diags`.
     pub db: SourceDb,
     pub diags: Vec<Diagnostic>,
@@ -196,6 +201,8 @@ struct CompareSink {
     after_b: Vec<String>,
     div: Option<Divergence>,
     limit_seen: bool,
+    exclude: Exclude,
+    excluded: Excluded,
 }
 
 fn num_eq(a: f64, b: f64) -> bool {
@@ -291,8 +298,10 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
 }
 
 impl CompareSink {
-    fn new(rx: Receiver<Msg>) -> CompareSink {
+    fn new(rx: Receiver<Msg>, exclude: Exclude) -> CompareSink {
         CompareSink {
+            exclude,
+            excluded: Excluded::default(),
             rx,
             batch: Vec::new(),
             at: 0,
@@ -390,12 +399,20 @@ impl CompareSink {
         if a.is_limit() {
             self.limit_seen = true;
         }
+        if self.exclude.messages && matches!(&a, Item::Ev(e) if matches!(**e, Event::Message { .. })) {
+            self.excluded.messages += 1;
+            return;
+        }
         let b_at = self.advance_b().then(|| self.at - 1);
         let b = b_at.and_then(|i| self.batch.get(i));
         if b.is_some_and(|b| b.0.is_limit()) {
             self.limit_seen = true;
         }
-        if b.is_some_and(|b| same_item(&a, &b.0)) {
+        let message_left_out = self.exclude.messages && b.is_some_and(|b| stop_without_message(&a, &b.0));
+        if message_left_out {
+            self.excluded.messages += 1;
+        }
+        if message_left_out || b.is_some_and(|b| same_item(&a, &b.0)) {
             self.before_a[self.index as usize % CONTEXT] = Some(Agreed::Own(a));
             self.index += 1;
             return;
@@ -404,6 +421,17 @@ impl CompareSink {
             return;
         }
         self.diverge(Some((a.into_event(), origin)), b_at);
+    }
+}
+
+/// `a` is a stop with a message and `b` the same stop without one.
+fn stop_without_message(a: &Item, b: &Item) -> bool {
+    match (a, b) {
+        (Item::Ev(a), Item::Ev(b)) => matches!(
+            (&**a, &**b),
+            (Event::Stop { optional: o1, message: Some(_) }, Event::Stop { optional: o2, message: None }) if o1 == o2
+        ),
+        _ => false,
     }
 }
 
@@ -452,6 +480,11 @@ pub fn check(db: &SourceDb, a: Side, b: Side) -> CheckReport {
     check_runners(db, a.runner(), b.runner())
 }
 
+/// [`check`] leaving out (and counting) what `exclude` names.
+pub fn check_excluding(db: &SourceDb, a: Side, b: Side, exclude: Exclude) -> CheckReport {
+    check_runners_excluding(db, a.runner(), b.runner(), exclude)
+}
+
 thread_local! {
     static ONE_THREAD: Cell<bool> = const { Cell::new(false) };
 }
@@ -469,6 +502,11 @@ pub fn in_one_thread<T>(f: impl FnOnce() -> T) -> T {
 
 /// [`check`] for any two runs.
 pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
+    check_runners_excluding(db, a, b, Exclude::default())
+}
+
+/// [`check_runners`] leaving out (and counting) what `exclude` names.
+pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exclude) -> CheckReport {
     let n0 = db.len();
     let db_b = db.clone();
     let (rx, handle) = if ONE_THREAD.with(Cell::get) {
@@ -493,13 +531,13 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
         (rx, Ok(handle))
     };
     let mut db_a = db.clone();
-    let mut sink = CompareSink::new(rx);
+    let mut sink = CompareSink::new(rx, exclude);
     let outcome_a = a(&mut db_a, &mut sink);
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }
     let before_a = sink.before_a_text();
-    let CompareSink { rx, index, before_b, after_a, after_b, div, limit_seen, .. } = sink;
+    let CompareSink { rx, index, before_b, after_a, after_b, div, limit_seen, excluded, .. } = sink;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),
@@ -603,7 +641,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     } else {
         Verdict::Equivalent { events: index }
     };
-    CheckReport { verdict, db: merged, diags, diff, outcome_a, outcome_b }
+    CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b }
 }
 
 #[cfg(test)]

@@ -85,6 +85,8 @@ pub struct Config {
     pub comments: Comments,
     /// `--number-blocks k` (0: off).
     pub number_blocks: u32,
+    /// `--specialise-callers` (FANUC → Sinumerik): write each macro for the calls seen only.
+    pub specialise_callers: bool,
     /// `--program-number n` (single-file translation to FANUC).
     pub program_number: Option<u32>,
     /// `--encoding`: input encoding (`None`: detect).
@@ -127,6 +129,7 @@ impl Default for Config {
             unsupported: Unsupported::Error,
             comments: Comments::Keep,
             number_blocks: 0,
+            specialise_callers: false,
             program_number: None,
             input_encoding: None,
             output_encoding: None,
@@ -145,7 +148,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 27] = [
+pub const KEYS: [(&str, &str, &str); 28] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -161,6 +164,7 @@ pub const KEYS: [(&str, &str, &str); 27] = [
     ("translate.unsupported", "--unsupported", "\"error\" or \"warn\""),
     ("translate.comments", "--comments", "\"keep\", \"ascii\" or \"drop\""),
     ("translate.number_blocks", "--number-blocks", "a step from 0 (off) to 1000"),
+    ("translate.specialise_callers", "--specialise-callers", "true or false"),
     ("translate.program_number", "--program-number", "an O number from 1 to 99999999"),
     ("input.encoding", "--encoding", "\"auto\" or an encoding label (utf-8, gbk, shift_jis, windows-1250, …)"),
     ("output.encoding", "-", "\"keep\" or an encoding label (utf-8, gbk, …)"),
@@ -316,6 +320,7 @@ impl Config {
                     one_of(key, v, &[("keep", Comments::Keep), ("ascii", Comments::Ascii), ("drop", Comments::Drop)])?;
             }
             "translate.number_blocks" => self.number_blocks = as_int(key, v, 0, 1000)? as u32,
+            "translate.specialise_callers" => self.specialise_callers = as_bool(key, v)?,
             "translate.program_number" => {
                 // Checked against the series once the whole file is read (`check_program_number`).
                 self.program_number = Some(as_int(key, v, 1, 99_999_999)? as u32);
@@ -493,6 +498,10 @@ unsupported = "error"
 comments = "keep"
 # Number the output blocks N10, N20, ... with this step; 0 is off. (--number-blocks)
 number_blocks = 0
+# FANUC -> Sinumerik: write each macro only for the calls this run sees (an argument they all
+# give is taken as set, and the macro's default for it is dropped). Off: every macro keeps
+# its vacancy logic, right for any caller. (--specialise-callers)
+specialise_callers = false
 # O number of the main program of a single-file translation. (--program-number)
 # program_number = 1
 

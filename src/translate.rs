@@ -194,6 +194,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
 
     // Variables, across programs (R parameters and commons are shared).
     let mut vctx = new_ctx(main.file, opts);
+    vctx.callees = callees.clone();
     let mapped = {
         let mut jobs: Vec<varmap::Job> = lowered
             .iter_mut()
@@ -332,8 +333,9 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) 
 
 /// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
 /// translation in the evaluator and compares their traces (`check`). The Siemens side is
-/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number, and a
-/// `MSG` that became a comment (FANUC shows no message without stopping) is left out. The
+/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number. A `MSG`
+/// that became a comment (FANUC shows no message without stopping) is left out of the
+/// comparison by the check ([`EXCLUDE`]), which counts it for the verdict. The
 /// R parameters the translation maps start at 0 on both sides (Siemens' power-on value);
 /// FANUC's would otherwise be vacant.
 pub fn verify(
@@ -345,7 +347,7 @@ pub fn verify(
     max_steps: u64,
 ) -> Verification {
     use crate::check::{self, Side, Verdict};
-    use crate::eval::{self, NoCallees, RunOptions};
+    use crate::eval::{NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
     let mut rendered = diag::render(db, &parsed.diags);
     if diag::has_errors(&parsed.diags) {
@@ -359,26 +361,17 @@ pub fn verify(
     let source = align_source(main, &t.symbol_map);
     let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
     let mut inputs = r_param_inputs(&t.symbol_map);
-    // A subprogram run on its own: Siemens parameters are 0, G65 argument locals vacant.
-    if let Some(p) = main.programs.first() {
-        if let Some(letters) = passes::words::param_letters(p.params.len()) {
-            for (_, var) in letters {
-                if let Ok(i) = eval::parse_input(&format!("#{var}=0")) {
-                    inputs.push(i);
-                }
-            }
-        }
-    }
+    inputs.extend(standalone_args(main, &t.symbol_map));
     let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
     let b = Side {
         unit: parsed.unit.clone(),
         callees: Box::new(NoCallees),
         run: RunOptions { max_steps, inputs, ..RunOptions::default() },
     };
-    let report = check::check(db, a, b);
+    let report = check::check_excluding(db, a, b, EXCLUDE);
     rendered.push_str(&diag::render(&report.db, &report.diags));
     let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
+        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
         Verdict::Diverged { index } => {
             rendered.push_str(&report.diff);
             (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
@@ -387,6 +380,39 @@ pub fn verify(
         Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
     };
     Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+}
+
+/// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
+/// parameters are 0 (the G65 argument locals would be vacant); VAR parameters as
+/// [`var_param_inputs`] gives them.
+pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> {
+    let Some(p) = main.programs.first() else { return vec![] };
+    let letters = passes::words::param_letters(p.params.len()).unwrap_or_default();
+    let mut texts: Vec<String> =
+        p.params.iter().zip(letters).filter(|(prm, _)| !prm.by_ref).map(|(_, (_, var))| format!("#{var}=0")).collect();
+    texts.extend(var_param_inputs(&p.params, map));
+    texts.iter().filter_map(|t| crate::eval::parse_input(t).ok()).collect()
+}
+
+/// For a subprogram run on its own: each VAR parameter, which holds the number of its
+/// caller's variable, gets a free common variable (from #999 down, past every number the
+/// translation uses) that starts at 0, as the Siemens parameter then does.
+pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
+    let letters = passes::words::param_letters(params.len()).unwrap_or_default();
+    let used: std::collections::BTreeSet<u32> = map.vars.iter().map(|m| m.number).collect();
+    let mut next = 999u32;
+    let mut texts = Vec::new();
+    for (prm, (_, var)) in params.iter().zip(letters).filter(|(p, _)| p.by_ref) {
+        let size = prm.dims.iter().product::<u32>().max(1);
+        while next >= 500 + size && (next + 1 - size..=next).any(|k| used.contains(&k)) {
+            next -= 1;
+        }
+        let base = next + 1 - size;
+        texts.push(format!("#{var}={base}"));
+        texts.extend((base..=next).map(|k| format!("#{k}=0")));
+        next = base.saturating_sub(1);
+    }
+    texts
 }
 
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
@@ -399,7 +425,12 @@ pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
         .collect()
 }
 
-/// The Siemens programs a translation is compared against, aligned with its symbol map.
+/// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation
+/// keeps as comments (`words` pass, NC320), counted in the verdict.
+pub const EXCLUDE: crate::check::Exclude = crate::check::Exclude { messages: true };
+
+/// The Siemens programs a translation is compared against, aligned with its symbol map
+/// (tool names read as their numbers).
 pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
     let mut u = unit.clone();
     for p in &mut u.programs {
@@ -409,16 +440,9 @@ pub fn align_source(unit: &Unit, map: &SymbolMap) -> Unit {
 }
 
 fn align_body(body: &mut [Stmt], map: &SymbolMap) {
-    for k in 0..body.len() {
-        let stop_follows = match body.get(k + 1).map(|s| &s.kind) {
-            Some(StmtKind::Block(next)) => passes::words::is_lone_m0(next),
-            _ => false,
-        };
-        let s = &mut body[k];
+    for s in body.iter_mut() {
         match &mut s.kind {
             StmtKind::Block(b) => {
-                let lone_msg = passes::words::msg_text(b).is_some();
-                b.items.retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || (lone_msg && stop_follows));
                 for it in &mut b.items {
                     if let ItemKind::Word(w) = &mut it.kind {
                         if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), span }) = &mut w.value {

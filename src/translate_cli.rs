@@ -56,6 +56,10 @@ pub struct TranslateArgs {
     /// The target accepts compound conditions [[a] AND [b]].
     #[arg(long)]
     pub compound_conditions: bool,
+    /// To Sinumerik: write each macro only for the calls seen (drops the defaults of the
+    /// arguments they all give; a caller added later may not get them).
+    #[arg(long)]
+    pub specialise_callers: bool,
     /// Step limit of each verification run (blocks executed).
     #[arg(long, default_value_t = nctrans::eval::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,

@@ -46,7 +46,15 @@ impl CalleeSource for Emitted {
 
 fn failed(db: SourceDb, diags: Vec<Diagnostic>) -> CheckReport {
     let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
-    CheckReport { verdict: Verdict::Failed, db, diags, diff: String::new(), outcome_a: none(), outcome_b: none() }
+    CheckReport {
+        verdict: Verdict::Failed,
+        excluded: Default::default(),
+        db,
+        diags,
+        diff: String::new(),
+        outcome_a: none(),
+        outcome_b: none(),
+    }
 }
 
 /// Runs the FANUC program (`fanuc`, file `fanuc_file` in `db`; its callees are found beside

@@ -14,7 +14,11 @@ fn root() -> PathBuf {
 }
 
 /// Mains that cannot be translated, with the diagnostic that says why.
-const REFUSED: &[(&str, &str)] = &[("units-after-call/UNKNOWN.MPF", "NC324")];
+const REFUSED: &[(&str, &str)] = &[
+    ("units-after-call/UNKNOWN.MPF", "NC324"),
+    // A subprogram's own DEF variable passed by reference: FANUC locals are per call level.
+    ("var-parameters/LOCAL_COUNTER.MPF", "NC381"),
+];
 
 fn nctrans(dir: &Path, args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(dir).output().expect("run nctrans");
@@ -99,4 +103,67 @@ fn a_save_subprogram_without_its_restore_diverges() {
     let (bad, _, bad_err) = check(&broken);
     assert_ne!(bad, 0, "without the restore the check must fail: {bad_err}");
     let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// A VAR parameter is carried as the number of the caller's variable, written through
+/// `#[#n]`: `nctrans check` (Siemens by-reference semantics against FANUC's) proves it, and
+/// finds the divergence when the caller passes the value instead of the number.
+#[test]
+fn var_parameters_passed_by_value_diverge() {
+    let dir = root().join("corpus/in/sinumerik-calls/var-parameters");
+    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "MAIN.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    let tmp = std::env::temp_dir().join(format!("nctrans-var-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).expect("temp dir");
+    for f in ["MAIN.MPF", "ADD_PASS.SPF", "TWO_PASSES.SPF", "SUM3.SPF", "ALIASED.SPF"] {
+        std::fs::copy(dir.join(f), tmp.join(f)).expect("copy");
+    }
+    let check = |text: &str| {
+        std::fs::write(tmp.join("OUT.nc"), text).expect("write");
+        nctrans(&tmp, &["check", "MAIN.MPF", "OUT.nc"])
+    };
+    let (ok, _, ok_err) = check(&out);
+    assert_eq!(ok, 0, "the translation itself checks equivalent: {ok_err}");
+    assert!(out.contains("G65 P9000 A100. B2.5 C101.") && out.contains("#[#1]=#[#1]+#2"), "{out}");
+    let by_value = out.replace("G65 P9000 A100. B2.5 C101.", "G65 P9000 A#100 B2.5 C#101");
+    let (bad, _, bad_err) = check(&by_value);
+    assert_ne!(bad, 0, "passing the values must fail the check: {bad_err}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// What a VAR parameter cannot be given is refused where it is passed: a value that is not
+/// a variable (NC380), a variable of another type or shape (NC382).
+#[test]
+fn var_parameters_refuse_values_and_other_types() {
+    let tmp = std::env::temp_dir().join(format!("nctrans-var-refused-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).expect("temp dir");
+    let sub = "PROC ADD_ONE(VAR REAL SUM)\nSUM=SUM+1\nRET\n";
+    std::fs::write(tmp.join("ADD_ONE.SPF"), sub).expect("write");
+    let cases = [
+        (
+            "CONST.MPF",
+            "ADD_ONE(5)\nM30\n",
+            "NC380",
+            "argument 1 of ADD_ONE for VAR parameter SUM that is not a variable",
+        ),
+        ("OMITTED.MPF", "ADD_ONE()\nM30\n", "NC380", "not a variable"),
+        ("INT.MPF", "DEF INT N\nADD_ONE(N)\nG1 X=N F100\nM30\n", "NC382", "INT passed for VAR parameter SUM REAL"),
+        ("ARRAY.MPF", "DEF REAL V[2]\nADD_ONE(V)\nM30\n", "NC382", "REAL[2] passed for VAR parameter SUM REAL"),
+    ];
+    for (name, text, code, what) in cases {
+        std::fs::write(tmp.join(name), text).expect("write");
+        let (rc, _, err) = nctrans(&tmp, &["--to", "fanuc", name]);
+        assert!(rc != 0 && err.contains(&format!("error[{code}]")) && err.contains(what), "{name}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// NC381's way out: the subprogram's local mapped to a common variable has a number its
+/// callee can reach, and the call translates and verifies.
+#[test]
+fn a_local_mapped_to_a_common_variable_can_be_passed_by_reference() {
+    let dir = root().join("corpus/in/sinumerik-calls/var-parameters");
+    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "--var-map", "K=#150", "LOCAL_COUNTER.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("G65 P9000 A#1 B1. C150.") && err.contains("equivalent ("), "{out}\n{err}");
 }

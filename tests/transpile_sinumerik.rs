@@ -213,18 +213,43 @@ fn definitely_set_variables_need_no_flag() {
 #[test]
 fn omitted_g65_arguments_pass_not_given() {
     let src = "O1\nG65 P9010 X1. Z2.\nG65 P9010 X3.\nM30\nO9010\nIF[#26 EQ #0]GOTO 10\nN10 G1 X#24 Z#26 F100.\nM99\n";
-    assert_eq!(out(src, ""), "O_9010(1,2,1)\nO_9010(3)\nM30\n");
+    // Written for every possible caller: one that leaves X out too gets FANUC's dropped word.
+    assert_eq!(out(src, ""), "O_9010(1,2,1,1)\nO_9010(3,,1)\nM30\n");
     assert_eq!(
         out(src, "O_9010.SPF"),
+        "PROC O_9010(REAL ARG_X, REAL ARG_Z, BOOL ARG_X_SET, BOOL ARG_Z_SET)\nIF NOT ARG_Z_SET GOTOF LBL_10\nN10 LBL_10:\n\
+IF ARG_X_SET\n  IF ARG_Z_SET\n    G1 X=ARG_X Z=ARG_Z F100\n  ELSE\n    G1 X=ARG_X F100\n  ENDIF\nELSE\n  IF ARG_Z_SET\n    G1 Z=ARG_Z F100\n  ELSE\n    G1 F100\n  ENDIF\nENDIF\nRET\n"
+    );
+    // `--specialise-callers`: X is given by every call seen, so it is taken as set.
+    let spec = Options { specialise_callers: true, ..Options::default() };
+    assert_eq!(out_with(src, "", &spec), "O_9010(1,2,1)\nO_9010(3)\nM30\n");
+    assert_eq!(
+        out_with(src, "O_9010.SPF", &spec),
         "PROC O_9010(REAL ARG_X, REAL ARG_Z, BOOL ARG_Z_SET)\nIF NOT ARG_Z_SET GOTOF LBL_10\nN10 LBL_10:\n\
 IF ARG_Z_SET\n  G1 X=ARG_X Z=ARG_Z F100\nELSE\n  G1 X=ARG_X F100\nENDIF\nRET\n"
+    );
+}
+
+/// A macro's own default for an argument (`IF [#11 EQ #0] THEN #11=1.`) is kept for any
+/// caller, even when every call seen gives the argument; `--specialise-callers` decides it.
+#[test]
+fn a_macro_keeps_its_defaults_unless_specialised() {
+    let src = "O1\nG65 P9100 H2.\nM30\nO9100\nIF[#11 EQ #0]THEN #11=1.\nG1 X#11 F100.\nM99\n";
+    assert_eq!(
+        out(src, "O_9100.SPF"),
+        "PROC O_9100(REAL ARG_H, BOOL ARG_H_SET)\nIF NOT ARG_H_SET\n  ARG_H=1 ARG_H_SET=1\nENDIF\nG1 X=ARG_H F100\nRET\n"
+    );
+    let spec = Options { specialise_callers: true, ..Options::default() };
+    assert_eq!(
+        out_with(src, "O_9100.SPF", &spec),
+        "PROC O_9100(REAL ARG_H)\nIF 0\n  ARG_H=1\nENDIF\nG1 X=ARG_H F100\nRET\n"
     );
 }
 
 #[test]
 fn g65_arguments_without_point_follow_the_letter_increment() {
     let src = "O1\nG65 P9010 X10 F100\nM30\nO9010\nG1 X#24 F#9\nM99\n";
-    assert_eq!(out(src, ""), "O_9010(100,0.01)\nM30\n");
+    assert_eq!(out(src, ""), "O_9010(100,0.01,1,1)\nM30\n");
 }
 
 #[test]
@@ -233,8 +258,8 @@ fn program_map_names_the_subprogram() {
     o.program_map.insert(9010, "PROBE_X".into());
     let tr = run("O1\nG65 P9010 A1.\nM30\nO9010\nG0 X#1\nM99\n", &o);
     assert_eq!(tr.files.iter().map(|f| f.name.as_str()).collect::<Vec<_>>(), vec!["O_0001.MPF", "PROBE_X.SPF"]);
-    assert!(tr.files[0].text.contains("PROBE_X(1)\n"));
-    assert!(tr.files[1].text.starts_with("PROC PROBE_X(REAL ARG_A)\n"));
+    assert!(tr.files[0].text.contains("PROBE_X(1,1)\n"));
+    assert!(tr.files[1].text.starts_with("PROC PROBE_X(REAL ARG_A, BOOL ARG_A_SET)\n"));
 }
 
 // ---- calls (pitfalls 13, 33, 34) ----
@@ -257,8 +282,11 @@ fn m98_shares_the_callers_locals_by_reference() {
 #[test]
 fn g66_is_mcall_and_g67_cancels() {
     let src = "O1\nG66 P9020 A1.\nG0 X10.\nG67\nM30\nO9020\nG1 Z-#1 F50.\nM99\n";
-    assert_eq!(out(src, ""), "MCALL O_9020(1)\nG0 X10\nMCALL\nM30\n");
-    assert_eq!(out(src, "O_9020.SPF"), "PROC O_9020(REAL ARG_A)\nG1 Z=-ARG_A F50\nRET\n");
+    assert_eq!(out(src, ""), "MCALL O_9020(1,1)\nG0 X10\nMCALL\nM30\n");
+    assert_eq!(
+        out(src, "O_9020.SPF"),
+        "PROC O_9020(REAL ARG_A, BOOL ARG_A_SET)\nIF ARG_A_SET\n  G1 Z=-ARG_A F50\nELSE\n  G1 F50\nENDIF\nRET\n"
+    );
 }
 
 #[test]
@@ -374,7 +402,8 @@ fn var_map_overflow_and_collision_are_errors() {
 #[test]
 fn tracked_common_variables_get_a_flag_r_parameter() {
     let src = "O1\nIF[#500 EQ #0]THEN #500=1.\nG0 X#500\nM30\n";
-    assert_eq!(out(src, ""), "IF NOT R299\n  R0=1 R299=1\nENDIF\nIF R299\n  G0 X=R0\nELSE\n  G0\nENDIF\nM30\n");
+    // After the default the variable is set on both paths: the word needs no IF.
+    assert_eq!(out(src, ""), "IF NOT R299\n  R0=1 R299=1\nENDIF\nG0 X=R0\nM30\n");
 }
 
 // ---- output form ----

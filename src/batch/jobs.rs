@@ -129,6 +129,7 @@ pub(crate) fn apply(outcome: &mut FileOutcome, v: Verified) {
     outcome.status = v.status;
     outcome.summary = v.summary;
     outcome.events = v.events;
+    outcome.excluded = v.excluded;
     outcome.diagnostics.extend(v.diagnostics);
 }
 
@@ -284,6 +285,8 @@ pub(crate) struct Verified {
     pub status: Status,
     pub summary: String,
     pub events: Option<u64>,
+    /// What the checks left out of the comparison (equivalences only).
+    pub excluded: check::Excluded,
     pub diagnostics: Vec<DiagRecord>,
 }
 
@@ -291,12 +294,14 @@ pub(crate) struct Verified {
 /// divergence wins, then anything unproven; events add up.
 pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
     let mut events = 0u64;
+    let mut excluded = check::Excluded::default();
     let mut worst: Option<Verified> = None;
     for (label, r) in &runs {
         let diagnostics = DiagRecord::from_diags(&r.db, &r.diags);
         let (status, summary) = match &r.verdict {
             Verdict::Equivalent { events: n } => {
                 events += n;
+                excluded.add(r.excluded);
                 continue;
             }
             Verdict::Diverged { index } => (
@@ -308,7 +313,7 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         };
         let rank = |s: Status| super::report::rank(s);
         if worst.as_ref().is_none_or(|w| rank(status) > rank(w.status)) {
-            worst = Some(Verified { status, summary, events: None, diagnostics });
+            worst = Some(Verified { status, summary, events: None, excluded: Default::default(), diagnostics });
         }
     }
     match worst {
@@ -316,11 +321,12 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         None => Verified {
             status: Status::Verified,
             summary: if runs.len() > 1 {
-                format!("equivalent ({events} events in {} runs)", runs.len())
+                excluded.equivalent(&format!("{events} events in {} runs", runs.len()))
             } else {
-                format!("equivalent ({events} events)")
+                excluded.equivalent(&format!("{events} events"))
             },
             events: Some(events),
+            excluded,
             diagnostics: vec![],
         },
     }
@@ -344,6 +350,7 @@ impl ToFanucJob {
                 status: Status::Diverged,
                 summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
                 events: None,
+                excluded: Default::default(),
                 diagnostics: DiagRecord::from_diags(db, &parsed.diags),
             };
         }
@@ -369,6 +376,9 @@ impl ToFanucJob {
             fanuc_inputs = b_in.clone();
             // Parameters not passed are 0 on Siemens; the argument locals get the same value.
             for (i, (_, var)) in letters.iter().enumerate() {
+                if params.get(i).is_some_and(|p| p.by_ref) {
+                    continue;
+                }
                 let given = vals.iter().find(|(j, _)| *j == i);
                 let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
                 b_in.push(format!("#{var}={value}"));
@@ -376,6 +386,7 @@ impl ToFanucJob {
                     a_in.push(s.clone());
                 }
             }
+            b_in.extend(translate::var_param_inputs(&params, &t.symbol_map));
             a_in.extend(self.settings.set.iter().cloned());
             b_in.extend(self.settings.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
             let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
@@ -394,7 +405,7 @@ impl ToFanucJob {
                 callees: Box::new(NoCallees),
                 run: run(parse_all(&b_in), &self.settings.fanuc),
             };
-            runs.push((label, check::check(db, a, b)));
+            runs.push((label, check::check_excluding(db, a, b, translate::EXCLUDE)));
         }
         combine(runs)
     }

@@ -57,7 +57,7 @@ impl ToSinumerikJob {
             },
             main_name: maps::siemens_name(&stem(file)),
             flag_places,
-            after_end: BTreeSet::new(),
+            specialise_callers: ctx.options.specialise_callers,
         })
     }
 }
@@ -425,7 +425,7 @@ impl ToSinumerikJob {
             unit.programs.insert(0, entry);
             let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
             let cases = match &mine {
-                Some(k) => cases(ctx, k),
+                Some(k) => cases(ctx, k, !ctx.options.specialise_callers),
                 None => vec![(String::new(), vec![])],
             };
             let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
@@ -450,6 +450,7 @@ impl ToSinumerikJob {
                 status: Status::Inconclusive,
                 summary: "not verified: no program of the file was found in its translation".into(),
                 events: None,
+                excluded: Default::default(),
                 diagnostics: vec![],
             };
         }
@@ -459,10 +460,12 @@ impl ToSinumerikJob {
 
 /// The runs that prove a program alone: without inputs, and once per constant argument
 /// vector the library calls it with. A macro (called by G65/G66) is not run without its
-/// arguments: its callers always give some, and the translation may rely on that (a value
-/// FANUC would leave vacant). With no constant call in the library it runs once with 0 for
-/// the arguments the first call gives surely.
-fn cases(ctx: &BatchContext, key: &ProgKey) -> Vec<(String, Vec<String>)> {
+/// arguments: its callers always give some. With no constant call in the library it runs
+/// once with 0 for the arguments the first call gives surely. With `each_vacant` (a macro
+/// written for every possible caller, not `--specialise-callers`) it also runs with each of
+/// those arguments left out in turn: a caller added later may leave any one out, and the
+/// macro's vacancy logic (a default, an alarm) must be right for it.
+fn cases(ctx: &BatchContext, key: &ProgKey, each_vacant: bool) -> Vec<(String, Vec<String>)> {
     let macro_calls: Vec<_> = ctx
         .library
         .calls
@@ -480,6 +483,20 @@ fn cases(ctx: &BatchContext, key: &ProgKey) -> Vec<(String, Vec<String>)> {
         if let Some(c) = macro_calls.first() {
             let sets = c.given.iter().filter(|g| g.sure).map(|g| format!("#{}=0.", g.var)).collect();
             out.push((" (with 0 for the arguments of its first call)".to_string(), sets));
+        }
+    }
+    if each_vacant && !macro_calls.is_empty() {
+        let mut seen: BTreeSet<Vec<String>> = out.iter().map(|(_, v)| v.clone()).collect();
+        for (label, sets) in out.clone() {
+            for (k, s) in sets.iter().enumerate() {
+                let mut fewer = sets.clone();
+                fewer.remove(k);
+                if seen.insert(fewer.clone()) {
+                    let var = s.split_once('=').map_or(s.as_str(), |x| x.0);
+                    let base = label.strip_suffix(')').unwrap_or(&label);
+                    out.push((format!("{base} but {var} vacant)"), fewer));
+                }
+            }
         }
     }
     out

@@ -171,6 +171,8 @@ pub struct FileOutcome {
     pub diagnostics: Vec<DiagRecord>,
     /// Trace events compared by verification.
     pub events: Option<u64>,
+    /// Trace events verification knowingly left out (a `MSG` kept as a comment).
+    pub excluded: crate::check::Excluded,
     /// Blocks read from the input (for blocks/s).
     pub blocks: u64,
     /// One line for people: `equivalent (120 events)`, the first divergence, …
@@ -190,6 +192,7 @@ impl FileOutcome {
             outputs: vec![],
             diagnostics: vec![],
             events: None,
+            excluded: Default::default(),
             blocks: 0,
             summary: summary.into(),
             used: maps::Used::default(),
@@ -246,6 +249,9 @@ pub struct BatchOptions {
     /// Straight-line programs of this many bytes and more are read, translated and
     /// verified as a stream, in constant memory ([`STREAM_BYTES`]; 0 with `--stream`).
     pub stream_bytes: u64,
+    /// FANUC → Sinumerik `--specialise-callers`: each macro written for the library's calls
+    /// only (see `translate_sinumerik::Options::specialise_callers`).
+    pub specialise_callers: bool,
 }
 
 impl BatchOptions {
@@ -260,6 +266,7 @@ impl BatchOptions {
             pinned: BatchMaps::default(),
             encoding: None,
             stream_bytes: STREAM_BYTES,
+            specialise_callers: false,
         }
     }
 
@@ -288,6 +295,8 @@ pub struct FileRecord {
     pub summary: String,
     pub diagnostics: Vec<DiagRecord>,
     pub events: Option<u64>,
+    /// Trace events verification knowingly left out of the comparison.
+    pub excluded: crate::check::Excluded,
     pub blocks: u64,
     pub time: Duration,
 }

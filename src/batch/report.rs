@@ -55,6 +55,16 @@ pub fn summary(r: &BatchResult, target: &str) -> String {
             let _ = writeln!(s, "  {:<22} {n:>6}", st.as_str());
         }
     }
+    // What verification knowingly left out (the verdicts say it per file).
+    let mut excluded = crate::check::Excluded::default();
+    let mut with = 0;
+    for f in r.files.iter().filter(|f| f.status == Status::Verified && !f.excluded.is_empty()) {
+        excluded.add(f.excluded);
+        with += 1;
+    }
+    if let Some(d) = excluded.describe() {
+        let _ = writeln!(s, "  not compared: {d} (in {with} verified file(s))");
+    }
     let mut worst: Vec<&FileRecord> = r.files.iter().filter(|f| f.status.is_failure()).collect();
     worst.sort_by(|a, b| rank(b.status).cmp(&rank(a.status)).then_with(|| a.path.cmp(&b.path)));
     if !worst.is_empty() {
@@ -102,12 +112,13 @@ pub fn json(r: &BatchResult, target: &str, input: &str, output: &str) -> String 
         let outputs: Vec<String> = f.outputs.iter().map(|o| js(o)).collect();
         let _ = write!(
             s,
-            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
+            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"not_compared\": {{\"messages\": {}}}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
             js(&f.path),
             outputs.join(", "),
             js(f.status.as_str()),
             js(&f.summary),
             opt_num(f.events),
+            f.excluded.messages,
             f.blocks,
             f.time.as_secs_f64() * 1000.0
         );
@@ -143,9 +154,10 @@ fn csv_field(s: &str) -> String {
 }
 
 /// The report as CSV, one row per file. Outputs are separated by `;`; diagnostics by ` | `,
-/// each `CODE line:column message`.
+/// each `CODE line:column message`; `not_compared` is what verification knowingly left out
+/// (`2 messages kept as comments`), empty for nothing.
 pub fn csv(r: &BatchResult) -> String {
-    let mut s = String::from("path,outputs,status,events,blocks,time_ms,summary,diagnostics\r\n");
+    let mut s = String::from("path,outputs,status,events,not_compared,blocks,time_ms,summary,diagnostics\r\n");
     for f in &r.files {
         let diags: Vec<String> = f
             .diagnostics
@@ -160,6 +172,7 @@ pub fn csv(r: &BatchResult) -> String {
             csv_field(&f.outputs.join(";")),
             f.status.as_str().to_string(),
             opt_num(f.events),
+            csv_field(&f.excluded.describe().unwrap_or_default()),
             f.blocks.to_string(),
             format!("{:.3}", f.time.as_secs_f64() * 1000.0),
             csv_field(&f.summary),
@@ -185,6 +198,7 @@ mod tests {
             summary: "s, \"q\"".into(),
             diagnostics: vec![],
             events: Some(3),
+            excluded: Default::default(),
             blocks: 4,
             time: Duration::from_millis(2),
         };
@@ -197,8 +211,10 @@ mod tests {
             line: Some(7),
             column: Some(3),
         });
+        let mut good = rec("a.mpf", Status::Verified);
+        good.excluded.messages = 2;
         BatchResult {
-            files: vec![rec("a.mpf", Status::Verified), bad, rec("c.mpf", Status::Unsupported)],
+            files: vec![good, bad, rec("c.mpf", Status::Unsupported)],
             maps: BatchMaps::default(),
             map_written: true,
             cancelled: false,
@@ -217,6 +233,7 @@ mod tests {
         assert!(lines[0].contains("b.mpf  NC501 line 7: X differs"), "{s}");
         assert!(lines[1].contains("c.mpf"), "{s}");
         assert!(!s.contains("every file verified"));
+        assert!(s.contains("  not compared: 2 messages kept as comments (in 1 verified file(s))\n"), "{s}");
     }
 
     /// A failed file's line names what stopped it: an error before any warning, and a run
@@ -252,8 +269,9 @@ mod tests {
         assert!(j.contains("\"summary\": \"s, \\\"q\\\"\""), "{j}");
         let c = csv(&result());
         let rows: Vec<&str> = c.split("\r\n").collect();
-        assert_eq!(rows[0], "path,outputs,status,events,blocks,time_ms,summary,diagnostics");
-        assert_eq!(rows[1], "a.mpf,a.nc,verified,3,4,2.000,\"s, \"\"q\"\"\",");
+        assert!(j.contains("\"events\": 3, \"not_compared\": {\"messages\": 2}, \"blocks\": 4"), "{j}");
+        assert_eq!(rows[0], "path,outputs,status,events,not_compared,blocks,time_ms,summary,diagnostics");
+        assert_eq!(rows[1], "a.mpf,a.nc,verified,3,2 messages kept as comments,4,2.000,\"s, \"\"q\"\"\",");
         assert!(rows[2].ends_with(",NC501 7:3 X differs"), "{}", rows[2]);
     }
 }

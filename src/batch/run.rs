@@ -129,6 +129,7 @@ fn error_record(file: &InputFile, code: &str, msg: String) -> FileRecord {
         summary: msg.clone(),
         diagnostics: vec![DiagRecord::error(code, msg)],
         events: None,
+        excluded: Default::default(),
         blocks: 0,
         time: Duration::ZERO,
     }
@@ -386,6 +387,7 @@ fn commit_one(
         summary: outcome.summary,
         diagnostics: outcome.diagnostics,
         events: outcome.events,
+        excluded: outcome.excluded,
         blocks: outcome.blocks,
         time,
     };

@@ -346,6 +346,7 @@ fn failed(diags: Vec<Diagnostic>) -> CheckReport {
     let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
     CheckReport {
         verdict: Verdict::Failed,
+        excluded: Default::default(),
         db: SourceDb::new(),
         diags,
         diff: String::new(),
@@ -600,7 +601,10 @@ fn to_fanuc_from(
                 ReadBack::Unreadable(m) => vec![DiagRecord::error("NC603", format!("cannot read {out_name}: {m}"))],
             };
             let summary = "the output does not parse as FANUC (a bug in nctrans)".to_string();
-            apply(&mut outcome, Verified { status: Status::Diverged, summary, events: None, diagnostics });
+            apply(
+                &mut outcome,
+                Verified { status: Status::Diverged, summary, events: None, excluded: Default::default(), diagnostics },
+            );
             return Some(outcome);
         }
     };
@@ -627,7 +631,7 @@ fn to_fanuc_from(
         callees: Box::new(NoCallees),
         run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
     };
-    let report = sts::compare(a, b);
+    let report = sts::compare_excluding(a, b, translate::EXCLUDE);
     // With callees, only an equivalence is taken: the diagnostics of any other verdict may
     // point into a callee file, which the streamed records do not name as the whole job
     // does; the whole job then gives that verdict itself.

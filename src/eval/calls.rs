@@ -301,8 +301,18 @@ impl Interp<'_> {
 
     /// Evaluates Siemens arguments: `Some(value)`, `None` for omitted.
     fn sie_args(&mut self, call: &Call) -> Result<Vec<Option<Value>>, Fault> {
+        self.sie_args_beside(call, &[])
+    }
+
+    /// The argument values, leaving out those bound by reference (`refs[i]` is a place):
+    /// a whole array passed to a VAR array parameter has no value of its own.
+    fn sie_args_beside(&mut self, call: &Call, refs: &[Option<Place>]) -> Result<Vec<Option<Value>>, Fault> {
         let mut out = Vec::new();
-        for a in &call.args {
+        for (i, a) in call.args.iter().enumerate() {
+            if matches!(refs.get(i), Some(Some(_))) {
+                out.push(None);
+                continue;
+            }
             match a {
                 Arg::Value(e) => {
                     let cx = self.cx(false);
@@ -471,7 +481,6 @@ impl Interp<'_> {
                 Ok(Flow::Switched)
             }
             CallKind::Named | CallKind::LNumber => {
-                let args = self.sie_args(call)?;
                 let params = self.params.get(code).cloned().unwrap_or_default();
                 let mut refs = Vec::new();
                 for (i, a) in call.args.iter().enumerate() {
@@ -481,6 +490,7 @@ impl Interp<'_> {
                         _ => None,
                     });
                 }
+                let args = self.sie_args_beside(call, &refs)?;
                 self.set_caller_pc(pc + 1)?;
                 self.push_frame(code, FrameKind::Proc, repeats, span, false)?;
                 self.bind_params(code, &args, &refs, span)?;

@@ -12,6 +12,9 @@ use super::words::param_letters;
 use super::*;
 use std::collections::{BTreeSet, HashMap};
 
+mod byref;
+use byref::{RefParam, Scope};
+
 /// One `--var-map` rule.
 #[derive(Clone, Debug, PartialEq)]
 pub enum VarRule {
@@ -177,16 +180,26 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
         }
         None
     };
+    let callees: HashMap<u32, Vec<Param>> = ctx.callees.values().map(|c| (c.number, c.params.clone())).collect();
     for (j, seen) in jobs.iter_mut().zip(names) {
         ctx.file = j.file;
         let mut map: HashMap<String, (u32, Vec<u32>)> = HashMap::new();
+        let mut refs: HashMap<String, RefParam> = HashMap::new();
         let mut locals = [false; 34];
         locals[0] = true;
         if let Some(letters) = param_letters(j.prog.params.len()) {
             for (p, (letter, var)) in j.prog.params.iter().zip(letters) {
                 locals[var as usize] = true;
                 map.insert(p.name.clone(), (var as u32, vec![]));
-                let source = format!("{} (parameter, letter {})", p.name, letter as char);
+                let source = if p.by_ref {
+                    refs.insert(p.name.clone(), RefParam { var: var as u32, dims: p.dims.clone() });
+                    format!(
+                        "{} (VAR parameter, letter {}: the number of the caller's variable)",
+                        p.name, letter as char
+                    )
+                } else {
+                    format!("{} (parameter, letter {})", p.name, letter as char)
+                };
                 out.push(Mapped { program: Some(j.name.clone()), source, number: var as u32 });
             }
         }
@@ -259,8 +272,10 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
             out.push(Mapped { program: Some(j.name.clone()), source, number: n });
         }
         let types = j.info;
+        let scope = Scope { map: &map, refs: &refs, r_target: &r_target, r_offset, info: types, callees: &callees };
+        byref::rewrite_calls(ctx, &mut j.prog.body, &scope);
         let mut errs: Vec<(Span, String)> = Vec::new();
-        visit_vars(&mut j.prog.body, &mut |v| rewrite(v, &map, &r_target, r_offset, types, &mut errs));
+        visit_vars(&mut j.prog.body, &mut |v| rewrite(v, &map, &refs, &r_target, r_offset, types, &mut errs));
         for (span, msg) in errs {
             ctx.unsupported(
                 "NC342",
@@ -305,6 +320,7 @@ fn system(name: &str, idx: &[Expr]) -> Option<u32> {
 fn rewrite(
     v: &mut VarRef,
     map: &HashMap<String, (u32, Vec<u32>)>,
+    refs: &HashMap<String, RefParam>,
     r_target: &dyn Fn(u32) -> u32,
     r_offset: Option<u32>,
     info: &ProgInfo,
@@ -317,6 +333,13 @@ fn rewrite(
         VarKind::RIndirect(e) => {
             let off = r_offset.unwrap_or(500);
             VarKind::HashIndirect(Box::new(bin(BinOp::Add, *e, num(off as f64, span))))
+        }
+        VarKind::Named { name, indices } if refs.contains_key(&name) => {
+            // A VAR parameter: its local holds the number of the caller's variable.
+            let rp = &refs[&name];
+            let base = var_expr(&VarRef { kind: VarKind::Hash(rp.var), span });
+            let at = byref::plus_offset(base, &rp.dims, &indices, span);
+            VarKind::HashIndirect(Box::new(at))
         }
         VarKind::Named { name, indices } => match map.get(&name) {
             None => {

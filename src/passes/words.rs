@@ -529,10 +529,24 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
     let Some(letters) = param_letters(callee.params.len()) else {
         return ctx.unsupported("NC304", span, &format!("{name} with more than 33 parameters"), "");
     };
-    if let Some(p) = callee.params.iter().find(|p| p.by_ref || !p.dims.is_empty()) {
-        let what = format!("VAR (by-reference) parameter {} of {name}", p.name);
-        let hint = "pass the value through an R parameter instead (R parameters map to common variables)";
-        return ctx.unsupported("NC304", p.span, &what, hint);
+    if let Some(p) = callee.params.iter().find(|p| !p.by_ref && !p.dims.is_empty()) {
+        let what = format!("array parameter {} of {name} passed by value", p.name);
+        return ctx.unsupported("NC304", p.span, &what, "declare it VAR (Siemens passes arrays by reference)");
+    }
+    // A VAR parameter becomes the number of the caller's variable (`varmap` writes it
+    // and checks the variable can have one): only a variable can be passed.
+    for (k, p) in callee.params.iter().enumerate().filter(|(_, p)| p.by_ref) {
+        let is_var = matches!(c.args.get(k), Some(Arg::Value(Expr { kind: ExprKind::Var(_), .. })));
+        if !is_var {
+            let at = match c.args.get(k) {
+                Some(Arg::Value(e)) => e.span,
+                Some(Arg::Omitted(s)) => *s,
+                _ => span,
+            };
+            let what = format!("argument {} of {name} for VAR parameter {} that is not a variable", k + 1, p.name);
+            let hint = "pass a variable (an R parameter or a DEF variable); Siemens writes the result back into it";
+            return ctx.unsupported("NC380", at, &what, hint);
+        }
     }
     if !m.s.units.one_unit() {
         let what = if matches!(m.s.units, UnitState::Unknown) {

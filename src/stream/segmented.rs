@@ -42,15 +42,14 @@
 //!   notes for the caller to render, [`to_fanuc`] declines them. A MSG beside other items
 //!   is split off by the blocks pass and its piece may pair the same way: a lone M0 after
 //!   any block with a MSG stays in the skeleton, so the skeleton holds every pair the
-//!   whole file has (and the verifier's source is aligned alike, below).
+//!   whole file has.
 //!
 //! Why verification gives the whole path's verdict: the whole path runs `align_source` of
-//! the source, which differs from it only in MSG items (dropped unless paired) and
-//! string-valued words (a tool name the translation maps becomes its number). The MSG
-//! items it drops are found on the skeleton (`unpaired_messages`: its bodies pair as the
-//! source's do, since a lone M0 after a block with a MSG is never a run's) and named in
-//! `Index::align`; the streamed source leaves them out of the statements it re-reads
-//! (`stream::paged`, [`SourceAlign`]) and numbers the tool names there alike.
+//! the source, which differs from it only in string-valued words (a tool name the
+//! translation maps becomes its number), and its check leaves the messages kept as
+//! comments out of the comparison (`translate::EXCLUDE`), as the streamed check does. The
+//! streamed source numbers the tool names in the statements it re-reads alike
+//! (`stream::paged`, [`SourceAlign`]).
 //!
 //! Calls of subprograms by a constant name (`L100`, `NAME(…)`) stay in the skeleton through
 //! [`to_fanuc_with_subs`]: it is translated with the callees as the whole program is (the
@@ -58,7 +57,7 @@
 //! program on its own, so only the main program's text is checked for fresh numbers), and
 //! the streamed verifier finds them beside the file (`DirCallees`) and the output's own `O`
 //! programs in the read-back index: callees the whole path's verifier would align
-//! differently (a MSG, a tool name) are declined.
+//! differently (a tool name) are declined.
 //!
 //! Still declined (the whole path takes them): other calls (modal, computed, without the
 //! callees), PROC parameters,
@@ -97,7 +96,6 @@ use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
 use crate::ir::{Expr, ExprKind, ItemKind, Number, Stmt, StmtKind, Unit, WordValue};
-use crate::passes::words::{is_lone_m0, msg_text};
 use crate::translate::{self, TranslateOptions};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -208,11 +206,6 @@ fn segment(
     if u64::from((sk.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
         carry_numbers(&mut sk, fresh)?;
     }
-    // A MSG the whole path's verifier leaves out of the source (`align_source`) is left
-    // out of the streamed source's statements too (`Index::drop_messages`).
-    let mut drop_msgs = Vec::new();
-    unpaired_messages(&sk.body, &mut drop_msgs);
-    drop_msgs.sort_unstable();
     let mut lone = program.clone();
     program.body = std::mem::take(&mut sk.body);
     let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
@@ -232,7 +225,7 @@ fn segment(
     // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
     // as read from their files: only callees alignment leaves alone stream.
     if subs.iter().any(|u| translate::align_source(u, &t.symbol_map) != *u) {
-        return Err(Fallback::NotStraight("a subprogram with a MSG or a tool name".into()));
+        return Err(Fallback::NotStraight("a subprogram with a tool name".into()));
     }
     drop(subs);
     let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note && d.labels.iter().all(|l| l.file == 0));
@@ -255,7 +248,7 @@ fn segment(
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
     let notes = t.diags;
     if let Some((spill, starts, mut index)) = spilled {
-        index.align = SourceAlign { messages: drop_msgs, tools };
+        index.align = SourceAlign { tools };
         assemble(&t.text, &places, spill, &starts, &[], out)
             .map_err(|e| Fallback::NotStreamable(NotStreamable::Io(e)))?;
         return Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes));
@@ -274,7 +267,7 @@ fn segment(
     };
     let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
-    index.align = SourceAlign { messages: drop_msgs, tools };
+    index.align = SourceAlign { tools };
     if w.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
@@ -319,48 +312,24 @@ fn main_text_end(t: &translate::Translation, eol: &str, from: usize) -> usize {
     t.text.len()
 }
 
-/// The span starts of the MSG items `translate::align_source` drops from `body` (all but a
-/// MSG alone in its block right before a lone M0 block in the same body). The skeleton
-/// pairs as the source does: a lone M0 right after a lone MSG is never a run's.
-fn unpaired_messages(body: &[Stmt], out: &mut Vec<u32>) {
-    for (k, s) in body.iter().enumerate() {
-        let StmtKind::Block(b) = &s.kind else {
-            for child in crate::ir::visit::child_bodies(&s.kind) {
-                unpaired_messages(child, out);
-            }
-            continue;
-        };
-        let stop_follows = matches!(body.get(k + 1).map(|n| &n.kind), Some(StmtKind::Block(n)) if is_lone_m0(n));
-        if msg_text(b).is_some() && stop_follows {
-            continue;
-        }
-        out.extend(b.items.iter().filter(|i| matches!(i.kind, ItemKind::Message { .. })).map(|i| i.span.lo));
-    }
-}
-
 /// `translate::align_source` for a streamed source: what the whole path's verifier changes
 /// in the source before running it, applied to each statement a run re-reads
-/// (`stream::paged`). Both kinds of item are in the macro part only (never in a plain line).
+/// (`stream::paged`). A string-valued word is in the macro part only (never in a plain line).
 #[derive(Clone, Debug, Default)]
 pub struct SourceAlign {
-    /// Span starts (sorted) of the MSG items left out (all but the paired ones).
-    messages: Vec<u32>,
     /// Tool name → T number of the tools the translation maps (string-valued words).
     tools: BTreeMap<String, u32>,
 }
 
 impl SourceAlign {
     pub fn is_empty(&self) -> bool {
-        self.messages.is_empty() && self.tools.is_empty()
+        self.tools.is_empty()
     }
 
     /// Aligns a re-read top-level statement.
     pub fn stmt(&self, s: &mut Stmt) {
         match &mut s.kind {
             StmtKind::Block(b) => {
-                let drop = &self.messages;
-                b.items
-                    .retain(|i| !matches!(i.kind, ItemKind::Message { .. }) || drop.binary_search(&i.span.lo).is_err());
                 for it in &mut b.items {
                     if let ItemKind::Word(w) = &mut it.kind {
                         if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), .. }) = &mut w.value {

@@ -757,6 +757,11 @@ impl StreamSide {
 /// buffered (`check::in_one_thread`), which for a program of millions of blocks is
 /// memory that grows with its length. A streamed check keeps both traces in step instead.
 pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
+    compare_excluding(a, b, check::Exclude::default())
+}
+
+/// [`compare`] leaving out (and counting) what `exclude` names.
+pub fn compare_excluding(a: StreamSide, b: StreamSide, exclude: check::Exclude) -> CheckReport {
     let mut db = SourceDb::new();
     // File ids are the indexes' own: the source 0, the translation 1.
     let (first, second) = if a.index.file <= b.index.file { (&a, &b) } else { (&b, &a) };
@@ -772,12 +777,14 @@ pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
     let fail_db = db.clone();
     let joined = std::thread::scope(|s| {
         let thread = std::thread::Builder::new().stack_size(crate::dialect::limits::THREAD_STACK);
-        thread.spawn_scoped(s, || check::check_runners(&db, ra, rb)).expect("start the checker's thread").join()
+        let check = || check::check_runners_excluding(&db, ra, rb, exclude);
+        thread.spawn_scoped(s, check).expect("start the checker's thread").join()
     });
     joined.unwrap_or_else(|_| {
         let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
         CheckReport {
             verdict: Verdict::Failed,
+            excluded: Default::default(),
             db: fail_db,
             diags: vec![Diagnostic::error(
                 "NC499",

@@ -370,9 +370,9 @@ pub fn verify(
     let out_run = RunOptions { inputs, ..run.clone() };
     let a = super::runner(Arc::new(source), Box::new(DirCallees { semantics: None }), run);
     let b = super::runner(Arc::new(out_ix), Box::new(NoCallees), out_run);
-    let report = check::check_runners(&db, a, b);
+    let report = check::check_runners_excluding(&db, a, b, crate::translate::EXCLUDE);
     let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, format!("equivalent ({events} events)")),
+        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
         Verdict::Diverged { index } => {
             (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
         }

@@ -114,9 +114,11 @@ pub struct Options {
     /// the whole library, so every file tests a common variable's vacancy in the same place);
     /// these R parameters are never given to anything else.
     pub flag_places: BTreeMap<u32, u32>,
-    /// Program numbers found after the closing `%` of a file read (not read by the
-    /// control): a call of one is told it is there but after the `%` (NC353).
-    pub after_end: std::collections::BTreeSet<u32>,
+    /// Specialise each macro to the calls the translation sees (`--specialise-callers`): an
+    /// argument every one of them gives surely is taken as set on entry, so the macro's test
+    /// of it (`IF [#11 EQ #0]`) is decided and its default dropped. Off: a macro is written
+    /// for every possible caller, its vacancy logic kept (any argument may be vacant).
+    pub specialise_callers: bool,
 }
 
 impl Default for Options {
@@ -129,7 +131,7 @@ impl Default for Options {
             unsupported: UnsupportedPolicy::Error,
             main_name: "MAIN".into(),
             flag_places: BTreeMap::new(),
-            after_end: std::collections::BTreeSet::new(),
+            specialise_callers: false,
         }
     }
 }

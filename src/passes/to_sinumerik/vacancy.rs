@@ -174,6 +174,16 @@ fn nonvacant(e: &Expr, d: &BTreeSet<u32>) -> bool {
     }
 }
 
+/// The variable `cond` tests for vacancy: `#n EQ #0` (either way round).
+fn tested_vacant(cond: &Expr) -> Option<u32> {
+    let ExprKind::Cmp(CmpOp::Eq, Tolerance::Exact, a, b) = &cond.kind else { return None };
+    match (vacancy_var(a), vacancy_var(b)) {
+        (Some(n), None) if is_vacant_literal(b) => Some(n),
+        (None, Some(n)) if is_vacant_literal(a) => Some(n),
+        _ => None,
+    }
+}
+
 /// What a program may leave vacant in variables it writes (for callers' analyses).
 #[derive(Clone, Default)]
 struct Summary {
@@ -260,10 +270,15 @@ impl Analysis {
                 VarKind::HashIndirect(_) if !nonvacant(value, d) => d.clear(),
                 _ => {}
             },
-            ItemKind::IfThen { then, .. } => {
+            ItemKind::IfThen { cond, then } => {
                 let mut after = d.clone();
                 self.transfer_item(then, &mut after);
-                d.retain(|v| after.contains(v));
+                // `IF [#n EQ #0] THEN …`: where the test fails, #n is not vacant (FANUC's
+                // EQ tells vacant from 0), so a default written this way leaves it set.
+                let mut skipped = d.clone();
+                skipped.extend(tested_vacant(cond));
+                d.clear();
+                d.extend(after.intersection(&skipped).copied());
             }
             ItemKind::Call(c) => self.kill_call(c, d),
             _ => {}
@@ -283,6 +298,16 @@ impl Analysis {
         }
         ins[0] = Some(entry);
         let succs: Vec<Vec<usize>> = (0..len).map(|i| self.succs(flat, i)).collect();
+        // `IF [#n EQ #0] GOTO …` ending a node: #n is not vacant where it falls through.
+        let fall_set: Vec<Option<u32>> = (0..len)
+            .map(|i| match &flat.nodes[i] {
+                Node::Items(items) => match items.last().map(|it| &it.kind) {
+                    Some(ItemKind::Goto(g)) => g.cond.as_ref().and_then(tested_vacant),
+                    _ => None,
+                },
+                _ => None,
+            })
+            .collect();
         // Sets only shrink, so this terminates; the bound guards against a slow case.
         for _round in 0..(len + 2).min(200) {
             let mut changed = false;
@@ -293,7 +318,13 @@ impl Analysis {
                         self.transfer_item(it, &mut d);
                     }
                 }
-                for &s in &succs[i] {
+                for (k, &s) in succs[i].iter().enumerate() {
+                    // The fall-through edge is the last one (`succs`); a jump to the next
+                    // node as well meets it there without the refinement.
+                    let mut d = d.clone();
+                    if k + 1 == succs[i].len() && s == i + 1 {
+                        d.extend(fall_set[i]);
+                    }
                     let new = match &ins[s] {
                         None => d.clone(),
                         Some(old) => old.intersection(&d).copied().collect(),
@@ -376,7 +407,9 @@ impl Analysis {
     }
 }
 
-/// Macro entry: the argument locals every call site gives a value that cannot be vacant.
+/// Macro entry under `--specialise-callers`: the argument locals every call site gives a
+/// value that cannot be vacant. Without it nothing is set on entry: a later caller may leave
+/// any argument out.
 fn macro_entry(progs: &[(FileId, &Program)], number: Option<u32>) -> BTreeSet<u32> {
     let Some(num) = number else { return BTreeSet::new() };
     let mut result: Option<BTreeSet<u32>> = None;
@@ -449,8 +482,11 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
     let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new() };
     for (i, (_, p)) in programs.iter().enumerate() {
         let flat = flatten(&p.body);
-        let entry =
-            if ctx.progs[i].role == Role::Macro { macro_entry(programs, an.numbers[i]) } else { BTreeSet::new() };
+        let entry = if ctx.progs[i].role == Role::Macro && ctx.opts.specialise_callers {
+            macro_entry(programs, an.numbers[i])
+        } else {
+            BTreeSet::new()
+        };
         let ins = an.dataflow(&flat, entry);
         // Seeds and copy edges, with the state before each item of the node.
         for (j, d) in ins.into_iter().enumerate() {
