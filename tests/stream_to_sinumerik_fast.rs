@@ -66,9 +66,11 @@ fn num(r: &mut Rng) -> String {
     format!("{sign}{body}")
 }
 
+/// The fast path's G codes. Not G20: an inch program is read whole (the streamed writers
+/// count values without a decimal point in mm).
 const G_CODES: &[&str] = &[
-    "0", "00", "1", "01", "2", "02", "3", "03", "17", "18", "19", "20", "21", "40", "41", "42", "53", "54", "55", "56",
-    "57", "58", "59", "61", "64", "80", "90", "91", "94", "95",
+    "0", "00", "1", "01", "2", "02", "3", "03", "17", "18", "19", "21", "40", "41", "42", "53", "54", "55", "56", "57",
+    "58", "59", "61", "64", "80", "90", "91", "94", "95",
 ];
 const COMMENTS: &[&str] =
     &["(ROUGH)", "(  spaced  )", "()", "(STEP 3; DEPTH 2)", "(Tiefe \u{e4}\u{f6}\u{fc})", "(A)(B)"];
@@ -212,7 +214,9 @@ fn corpus_programs_stream_block_by_block_to_the_whole_translation() {
             }
         }
     }
-    for name in ["sequence-numbers.nc", "line-endings-crlf.nc", "multi-word-block.nc", "pitfall-units-and-arcs.nc"] {
+    // (An inch program, `pitfall-units-and-arcs.nc`, is read whole: the streamed writers
+    // count values without a decimal point in mm.)
+    for name in ["sequence-numbers.nc", "line-endings-crlf.nc", "multi-word-block.nc"] {
         assert!(streamed.iter().filter(|s| *s == name).count() == 2, "{name} not streamed: {streamed:?}");
     }
 }

@@ -227,6 +227,33 @@ fn g65_arguments_without_point_follow_the_letter_increment() {
     assert_eq!(out(src, ""), "O_9010(100,0.01)\nM30\n");
 }
 
+/// G20 without decimal points: IS-B counts 0.0001 in (`Z1000` = 0.1 in, not 1), written
+/// under G700 in inch; angles and dwell seconds keep the metric increment; F is in in/min as
+/// written. A called program takes its callers' one unit; where the unit is not known (the
+/// callers disagree, or a path decides it) a value without a point is refused (NC375).
+#[test]
+fn inch_values_without_decimal_point_count_the_inch_increment() {
+    pair(
+        "O1\nG20 G17 G90\nG0 Z1000\nG1 X20000 Y-5 A90000 F20\nG2 X30000 Y10000 R10000\nG04 X1500\nG21 X1000\nM30\n",
+        "G700 G17 G90\nG0 Z0.1\nG1 X2 Y-0.0005 A90 F20\nG2 X3 Y1 CR=1\nG4 F1.5\nG710 X1\nM30\n",
+    );
+    // IS-C: 0.00001 in.
+    let mut opts = Options::default();
+    opts.source.least_increment_mm = 0.0001;
+    assert_eq!(out_with("O1\nG20\nG0 Z10000\nM30\n", "", &opts), "G700\nG0 Z0.1\nM30\n");
+    // Arguments and the callee's own values in the caller's unit.
+    let src = "O1\nG20\nG65 P9020 X5000 A45000\nM98 P9021\nM30\nO9020\nG1 X#24 A#1 F10\nM99\nO9021\nG0 Z100\nM99\n";
+    assert_eq!(out(src, ""), "G700\nO_9020(45,0.5)\nO_9021\nM30\n");
+    assert_eq!(out(src, "O_9021.SPF").lines().find(|l| l.starts_with("G0")), Some("G0 Z0.01"));
+    // Callers in both units, or a unit chosen on one path only: refused.
+    let mixed = "O1\nM98 P9021\nG20\nM98 P9021\nM30\nO9021\nG0 Z100\nM99\n";
+    assert_eq!(codes(mixed, &Options::default()), vec!["NC375"]);
+    let path = "O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z100\nM30\n";
+    assert_eq!(codes(path, &Options::default()), vec!["NC375"]);
+    // With a decimal point nothing depends on the unit.
+    assert!(codes("O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z1.\nM30\n", &Options::default()).is_empty());
+}
+
 #[test]
 fn program_map_names_the_subprogram() {
     let mut o = Options::default();

@@ -333,6 +333,24 @@ fn siemens_g70_after_g700_reads_feeds_metric() {
     assert_eq!(t[6], "move linear X=25.4 Y=6 f=300");
 }
 
+/// FANUC G04 X without a decimal point counts the increment system's dwell unit (IS-B
+/// 0.001 s, IS-C 0.0001 s: S28), whatever G20/G21; G20 lengths count 0.0001 in (IS-B).
+#[test]
+fn fanuc_bare_dwell_and_inch_lengths_follow_the_increment_system() {
+    let u = fanuc(vec![
+        s(vec![g(4.0), word("X", n(1500.0))]),
+        s(vec![g(20.0), g(0.0), word("Z", n(1000.0))]),
+        s(vec![g(4.0), word("X", n(1500.0))]),
+        s(vec![end()]),
+    ]);
+    let t = run_u(&u).0;
+    assert_eq!(t[..3], ["dwell 1.5", "move rapid Z=2.54 f=-", "dwell 1.5"]);
+    let mut sem = Semantics::default_for(Dialect::Fanuc);
+    sem.least_increment_mm = 0.0001;
+    let (t, _) = run_opts(&u, &RunOptions { semantics: Some(sem), ..Default::default() });
+    assert_eq!(t[..3], ["dwell 0.15", "move rapid Z=0.254 f=-", "dwell 0.15"]);
+}
+
 #[test]
 fn dwell_units_per_control() {
     let u = fanuc(vec![

@@ -54,11 +54,13 @@ pub const FIRST_STMTS: usize = 64;
 pub const KEPT_WARNING: &str = "NC368";
 
 /// G codes (×10) whose translation needs nothing but their own block: motion, planes,
-/// units, cutter radius and tool length compensation, work offsets, exact stop, path mode,
-/// cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own block).
-const PLAIN_G: [u32; 30] = [
-    0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610,
-    640, 800, 900, 910, 940, 950,
+/// metric units, cutter radius and tool length compensation, work offsets, exact stop, path
+/// mode, cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own
+/// block). Not G20: under it every later value without a decimal point counts 0.0001 in,
+/// which the streamed writers (metric) do not follow; an inch program is read whole.
+const PLAIN_G: [u32; 29] = [
+    0, 10, 20, 30, 40, 170, 180, 190, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610, 640,
+    800, 900, 910, 940, 950,
 ];
 
 /// [`PLAIN_G`] as a set (one test instead of a search on every G word of a CAM file).
@@ -300,8 +302,11 @@ impl Planned {
     }
 
     fn same(&self, other: &Planned) -> bool {
-        format!("{:?}", (&self.plan, &self.commons, &self.common_flags))
-            == format!("{:?}", (&other.plan, &other.commons, &other.common_flags))
+        // Whether the program selects G20/G21 matters only to its callers (a straight
+        // program has none, and a streamed one never holds G20).
+        let plan = |p: &ProgPlan| ProgPlan { sets_units: false, ..p.clone() };
+        format!("{:?}", (plan(&self.plan), &self.commons, &self.common_flags))
+            == format!("{:?}", (plan(&other.plan), &other.commons, &other.common_flags))
     }
 }
 

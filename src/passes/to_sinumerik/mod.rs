@@ -159,6 +159,12 @@ pub struct ProgPlan {
     pub returns_to: bool,
     /// DEF declarations the output needs (name, type), in order.
     pub defs: Vec<(String, DataType)>,
+    /// The unit (G20 `true`, G21) the program starts in, where known: metric for the main
+    /// program, its callers' one unit for a called program (`modal::call_units`).
+    pub start_inch: Option<bool>,
+    /// The program (or a call in it) may select G20/G21: its caller's unit after the call
+    /// is not known.
+    pub sets_units: bool,
 }
 
 /// The shared state of one translation.
@@ -259,6 +265,12 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         modal: modal::ModalScan::default(),
     };
     calls::plan_programs(&mut ctx, programs);
+    let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
+    modal::close_setters(&mut ctx.progs, &bodies);
+    let units = modal::call_units(&ctx.progs, &bodies);
+    for (p, u) in ctx.progs.iter_mut().zip(units) {
+        p.start_inch = u;
+    }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
     let mut out = Vec::new();
@@ -293,7 +305,8 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
-    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main);
+    let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main, ctx.plan().start_inch, &setters);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
     body = gotos::lower(ctx, body);

@@ -13,7 +13,7 @@
 //! same bytes.
 
 use crate::ir::{BlockMeta, EndCode};
-use crate::passes::to_sinumerik::words::{scale, scaled_letter};
+use crate::passes::to_sinumerik::words::{rotary_letter, scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
 use crate::stream::translate::digits::{Form, Src};
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
@@ -30,7 +30,6 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
     Ok(Some(match g {
         0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910
         | 940 | 950 => g,
-        200 => 7000,
         210 => 7100,
         580 => 5050,
         590 => 5060,
@@ -116,7 +115,8 @@ pub fn block<'t, I: ItemView>(
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
-                    v = scale(opts, v);
+                    // Metric: a G20 block is never streamed (`to_sinumerik::PLAIN_G`).
+                    v = scale(opts, v, false, rotary_letter(letter));
                     as_written = false;
                 }
             }

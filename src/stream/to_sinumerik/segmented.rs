@@ -507,6 +507,10 @@ fn segment(
     program.body = std::mem::take(&mut sk.body);
     let mut programs = vec![program];
     programs.append(&mut sk.sub_programs);
+    // The runs are written metric: a G20 anywhere (never in a run, `PLAIN_G`) reads whole.
+    if programs.iter().any(|p| crate::passes::to_sinumerik::modal::has_g(&p.body, &[200])) {
+        return Err(Fallback::NotStraight("G20 (a program with inch values is read whole)".into()));
+    }
     let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };
     // The callees beside the file, as the whole path loads them (`subs`).
     let callees = match load.as_mut() {
