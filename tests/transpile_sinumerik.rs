@@ -671,3 +671,55 @@ fn the_guard_of_a_runtime_indirect_variable_verifies_against_fanuc_alarm_115() {
         report.diff
     );
 }
+
+/// Verifies the translation of `src` (one FANUC file) with `opts`.
+fn verifies(src: &str, opts: &Options) -> (String, nctrans::check::Verdict, String) {
+    let mut db = SourceDb::new();
+    let file = db.add("ix.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let tr = translate(&[&parsed.unit], opts, LineEnding::Lf);
+    assert!(!tr.has_errors(), "{:?}", tr.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    (tr.main().unwrap().text.clone(), report.verdict, report.diff)
+}
+
+/// #17 item 3: a computed `#[…]` in #500.. reaches the R parameter the direct access uses
+/// (`#554` = R54), by the same rule, for every value its index takes; an index that lands
+/// in #100.. and in #500.. as the loop goes selects the right range each time; the is-set
+/// flag of a tracked variable is kept by the computed write; `--var-map` moves both.
+#[test]
+fn computed_variables_reach_the_r_parameter_of_the_direct_access() {
+    let src = "O1\n#1=0\nWHILE[#1 LT 4]DO1\n#[550+#1*2]=#1*10.+5.\nG1 X#[550+#1*2] F100.\n#1=#1+1\nEND1\n\
+               G0 X#554 Y#556\n#2=120\nWHILE[#2 LE 570]DO1\n#[#2]=#2/100.\nG0 Z#[#2]\n#2=#2+450\nEND1\nG0 Z#101\nM30\n";
+    let (text, v, diff) = verifies(src, &Options::default());
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1-500") && text.contains("R[NCTRANS_IX1]="), "{text}");
+    assert!(text.contains("G0 X=R54 Y=R56"), "{text}");
+    // The same with #500..#599 on R100.. and #100..#199 on R200..: direct and computed
+    // move together.
+    let rules = ["#500-#599=R100", "#100-#199=R200"].map(|r| VarMapRule::parse(r).unwrap());
+    let opts = Options { var_map: rules.to_vec(), ..Options::default() };
+    let (text, v, diff) = verifies(src, &opts);
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1-400") && text.contains("G0 X=R154 Y=R156"), "{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1+100") && text.contains("G0 Z=R201"), "{text}");
+    // A wrong offset is caught: the check sees the computed access miss the direct one.
+    let mut db = SourceDb::new();
+    let file = db.add("ix.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let mut tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    let main = tr.files.iter_mut().find(|f| f.main).unwrap();
+    main.text = main.text.replacen("NCTRANS_IX1=NCTRANS_IX1-500", "NCTRANS_IX1=NCTRANS_IX1-499", 1);
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
+}
+
+/// A computed read of a tracked variable that is vacant there raises SETAL(64115) (Siemens
+/// has no vacant value): FANUC omits the word, so the check reports the divergence.
+#[test]
+fn a_computed_read_of_a_vacant_tracked_variable_is_refused_at_run_time() {
+    let src = "O1\n(nctrans: set #3=4.)\n#1=#3\nG0 X1.\nG0 X#[550+#1]\nIF [#554 EQ #0] GOTO 9\nN9 M30\n";
+    let (text, v, _) = verifies(src, &Options::default());
+    assert!(text.contains("AND NOT R"), "{text}");
+    assert!(!matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{text}");
+}

@@ -284,6 +284,7 @@ impl Planned {
             cur: 0,
             guard_ok: false,
             modal: Default::default(),
+            index_bases: Default::default(),
         };
         // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
         // without variables) and with the plan made once.

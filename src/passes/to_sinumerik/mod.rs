@@ -183,6 +183,9 @@ pub struct Ctx<'a> {
     /// The work offset and G90/G91 at each block of the program being lowered, found on
     /// it as read (`modal`).
     pub modal: modal::ModalScan,
+    /// Common variable numbers the computed `#[…]` indices of the job start from (their
+    /// constant term): which variable ranges they are meant for (`varmap::dispatch_ranges`).
+    pub index_bases: BTreeSet<u32>,
 }
 
 impl<'a> Ctx<'a> {
@@ -263,6 +266,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         cur: 0,
         guard_ok: false,
         modal: modal::ModalScan::default(),
+        index_bases: BTreeSet::new(),
     };
     calls::plan_programs(&mut ctx, programs);
     let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
