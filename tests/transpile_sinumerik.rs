@@ -723,3 +723,12 @@ fn a_computed_read_of_a_vacant_tracked_variable_is_refused_at_run_time() {
     assert!(text.contains("AND NOT R"), "{text}");
     assert!(!matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{text}");
 }
+
+/// `#4109` under G20 reads in/min; its image `$P_F` under G700 reads in the programmed unit
+/// too (828D FM G2, 7.3: system variables follow G700/G710, not G70/G71).
+#[test]
+fn the_modal_feed_reads_in_the_programmed_unit_under_g20() {
+    let (text, v, diff) = verifies("O1\nG20 G1 X1. F20.\n#1=#4109\nG1 Y[#1/10.]\nM30\n", &Options::default());
+    assert!(text.contains("LOC1=$P_F"), "{text}");
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+}

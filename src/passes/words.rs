@@ -14,6 +14,7 @@ use units::{FeedConv, Units};
 
 pub mod effects;
 mod modes;
+mod sysunits;
 pub mod units;
 
 /// G codes with the same number and meaning on both controls.
@@ -128,9 +129,14 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                         }
                     }
                 }
-                let b = std::mem::take(b);
+                let mut b = std::mem::take(b);
                 let before = m.s;
                 let skip = b.meta.skip.is_some();
+                // The block's expressions are evaluated before its own unit words act.
+                if let Err(mark) = sys_units(ctx, m, &mut b.items, b.meta.span) {
+                    out.extend(mark);
+                    continue;
+                }
                 block_pass(ctx, b, m, &mut out);
                 if skip {
                     // A block that may be skipped: both ways meet after it.
@@ -139,6 +145,7 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                 continue;
             }
             StmtKind::If(i) => {
+                out.extend(sys_units_expr(ctx, m, &mut i.cond));
                 let entry = m.s;
                 i.then_body = body_pass(ctx, std::mem::take(&mut i.then_body), m);
                 let then_end = m.s;
@@ -154,10 +161,20 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                 m.meet(ctx, entry);
                 let entry = m.s;
                 match kind {
-                    StmtKind::While(w) => w.body = body_pass(ctx, std::mem::take(&mut w.body), m),
+                    StmtKind::While(w) => {
+                        out.extend(sys_units_expr(ctx, m, &mut w.cond));
+                        w.body = body_pass(ctx, std::mem::take(&mut w.body), m)
+                    }
                     StmtKind::Loop(l) => l.body = body_pass(ctx, std::mem::take(&mut l.body), m),
-                    StmtKind::For(f) => f.body = body_pass(ctx, std::mem::take(&mut f.body), m),
-                    StmtKind::Repeat(r) => r.body = body_pass(ctx, std::mem::take(&mut r.body), m),
+                    StmtKind::For(f) => {
+                        out.extend(sys_units_expr(ctx, m, &mut f.from));
+                        out.extend(sys_units_expr(ctx, m, &mut f.to));
+                        f.body = body_pass(ctx, std::mem::take(&mut f.body), m)
+                    }
+                    StmtKind::Repeat(r) => {
+                        r.body = body_pass(ctx, std::mem::take(&mut r.body), m);
+                        out.extend(sys_units_expr(ctx, m, &mut r.until));
+                    }
                     StmtKind::Do(d) => d.body = body_pass(ctx, std::mem::take(&mut d.body), m),
                     StmtKind::Block(_) | StmtKind::If(_) => {}
                 }
@@ -167,6 +184,40 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
         out.push(s);
     }
     out
+}
+
+/// Length system variables in `items` scaled where the Siemens unit (the feeds') and the
+/// FANUC one (the lengths') differ ([`sysunits`]); a marker where the units are not known.
+fn sys_units(ctx: &mut Ctx, m: &Modal, items: &mut [Item], span: Span) -> Result<(), Vec<Stmt>> {
+    if !items.iter().any(sysunits::uses_lengths) {
+        return Ok(());
+    }
+    match m.s.units.feed() {
+        Feed::Static(conv) => {
+            items.iter_mut().for_each(|it| sysunits::item(it, conv));
+            Ok(())
+        }
+        Feed::Unknown => Err(unknown_sys_units(ctx, span)),
+    }
+}
+
+/// [`sys_units`] of a condition or loop bound.
+fn sys_units_expr(ctx: &mut Ctx, m: &Modal, e: &mut Expr) -> Vec<Stmt> {
+    if !sysunits::reads(e) {
+        return vec![];
+    }
+    match m.s.units.feed() {
+        Feed::Static(conv) => {
+            sysunits::expr(e, conv);
+            vec![]
+        }
+        Feed::Unknown => unknown_sys_units(ctx, e.span),
+    }
+}
+
+fn unknown_sys_units(ctx: &mut Ctx, span: Span) -> Vec<Stmt> {
+    let what = "a length system variable ($AA_IW, $AA_IM, $P_EP, $P_UIFR) where the units (G70/G71/G700/G710) depend on the path taken or on a call";
+    unsup(ctx, "NC376", span, what, "write G700 or G710 before it, after the IF, loop, jump target or call")
 }
 
 pub fn msg_text(b: &Block) -> Option<String> {

@@ -29,6 +29,14 @@ pub fn g_index(g: f64) -> i64 {
 }
 
 impl Modal {
+    /// The unit system variables with lengths (and feeds) are read and written in: FANUC
+    /// G20; Siemens only under G700 (G70/G71 read and write in the basic system, metric:
+    /// 828D function manual G2, 7.3), the feeds' unit in both.
+    #[inline]
+    pub fn sys_inch(&self) -> bool {
+        self.inch_feed
+    }
+
     /// Applies the G code `gi` ([`g_index`]) when all it does is change this state;
     /// `false` (nothing changed) for every other code, which the general path decides.
     #[inline]
