@@ -50,19 +50,15 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
 }
 
 fn lower_item(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>) {
-    lower_item_in(ctx, it, marks, false);
-}
-
-/// `guarded`: the item is the THEN of an `IF[…]THEN` (its write happens only sometimes).
-fn lower_item_in(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>, guarded: bool) {
     if let ItemKind::Assign { target, value } = &mut it.kind {
         // A computed write keeps the is-set flag of the variable it reaches: the value's
         // flag, taken from the FANUC value before it is lowered.
         let flag = matches!(target.kind, VarKind::HashIndirect(_)).then(|| super::vacancy::flag_of_value(ctx, value));
-        map_target(ctx, target, marks, flag.map(|f| (f, guarded)));
+        map_target(ctx, target, marks, flag);
     }
     if let ItemKind::IfThen { then, .. } = &mut it.kind {
-        lower_item_in(ctx, then, marks, true);
+        // (`structures` has made every IF-THEN block an IF statement; this is for any left.)
+        lower_item(ctx, then, marks);
     }
     // Assignment targets were handled above; their index expressions and every other
     // expression go through lower_expr.
@@ -73,9 +69,8 @@ fn lower_item_in(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>, guarded: b
     }
 }
 
-/// `write_flag`: for a computed target, the flag of the value written and whether the write
-/// is conditional.
-fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_flag: Option<(Expr, bool)>) {
+/// `write_flag`: for a computed target, the flag of the value written.
+fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_flag: Option<Expr>) {
     let span = target.span;
     match &target.kind {
         VarKind::Hash(n) => {
@@ -103,7 +98,7 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
                         "NC361",
                         span,
                         "an indirect variable `#[…]` whose number is not known before the run",
-                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                        "use it in a plain block (assign it to a variable before the IF or WHILE), or give its range a --var-map rule",
                     ));
                     target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
                 }
@@ -136,8 +131,7 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
             ranges.iter().any(|&(from, to, _)| from <= *n && *n <= to).then_some((r, f))
         })
         .collect();
-    if ranges.is_empty() || (!tracked.is_empty() && matches!(access, Access::Write(Some((_, true))))) {
-        // A conditional write (`IF[…]THEN #[…]=…`) cannot keep a flag in front of its block.
+    if ranges.is_empty() {
         return None;
     }
     let idx = func(Func::Round, vec![x], span);
@@ -200,8 +194,8 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
 /// A computed variable access.
 enum Access {
     Read,
-    /// The value's flag and whether the write is conditional (`None`: no flag known).
-    Write(Option<(Expr, bool)>),
+    /// The value's flag.
+    Write(Option<Expr>),
 }
 
 /// The is-set flags of the tracked variables a computed access with R number `r` may reach:
@@ -216,7 +210,7 @@ fn flags(r: &Expr, tracked: &[(u32, u32)], access: Access, span: Span, marks: &m
         let flag = VarRef { kind: VarKind::R(f), span };
         let body = match &access {
             Access::Write(w) => {
-                let value = w.as_ref().map_or_else(|| int(1, span), |(e, _)| e.clone());
+                let value = w.clone().unwrap_or_else(|| int(1, span));
                 marks.push(if_stmt(
                     hit,
                     vec![plain_block(vec![crate::passes::assign_item(&flag, value, span)], span)],
@@ -279,7 +273,7 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                         "NC361",
                         v.span,
                         "an indirect variable `#[…]` whose number is not known before the run",
-                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                        "use it in a plain block (assign it to a variable before the IF or WHILE), or give its range a --var-map rule",
                     ));
                     Expr::num(0.0, false, span)
                 }
