@@ -250,6 +250,8 @@ fn inch_values_without_decimal_point_count_the_inch_increment() {
     assert_eq!(codes(mixed, &Options::default()), vec!["NC375"]);
     let path = "O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z100\nM30\n";
     assert_eq!(codes(path, &Options::default()), vec!["NC375"]);
+    // A unit word that may be skipped leaves the unit unknown.
+    assert_eq!(codes("O1\n/G20\nG0 Z100\nM30\n", &Options::default()), vec!["NC375"]);
     // With a decimal point nothing depends on the unit.
     assert!(codes("O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z1.\nM30\n", &Options::default()).is_empty());
 }

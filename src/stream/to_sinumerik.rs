@@ -54,13 +54,13 @@ pub const FIRST_STMTS: usize = 64;
 pub const KEPT_WARNING: &str = "NC368";
 
 /// G codes (×10) whose translation needs nothing but their own block: motion, planes,
-/// metric units, cutter radius and tool length compensation, work offsets, exact stop, path
-/// mode, cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own
-/// block). Not G20: under it every later value without a decimal point counts 0.0001 in,
-/// which the streamed writers (metric) do not follow; an inch program is read whole.
-const PLAIN_G: [u32; 29] = [
-    0, 10, 20, 30, 40, 170, 180, 190, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610, 640,
-    800, 900, 910, 940, 950,
+/// units, cutter radius and tool length compensation, work offsets, exact stop, path mode,
+/// cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own block).
+/// G20 makes every later value without a decimal point count 0.0001 in: the straight
+/// stream follows it as it follows the arc mode (the segmented one reads such programs whole).
+const PLAIN_G: [u32; 30] = [
+    0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610,
+    640, 800, 900, 910, 940, 950,
 ];
 
 /// [`PLAIN_G`] as a set (one test instead of a search on every G word of a CAM file).
@@ -257,13 +257,14 @@ impl Planned {
     }
 
     /// `body` through the passes with this plan, after a stand-in G2 when the arc mode `arc`
-    /// runs into it (taken out again), written without the frame (no PROC line, header or
-    /// DEF lines) with LF line ends; and the passes' diagnostics.
+    /// runs into it (taken out again), starting in the unit `inch` (G20, G21, not known), written without the
+    /// frame (no PROC line, header or DEF lines) with LF line ends; and the passes' diagnostics.
     pub(super) fn lower(
         &self,
         opts: &Options,
         mut body: Vec<Stmt>,
         arc: bool,
+        inch: Option<bool>,
     ) -> (Vec<crate::diag::Diagnostic>, Result<String, LoweredAlone>) {
         if arc {
             let word = Word {
@@ -275,9 +276,11 @@ impl Planned {
             let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
             body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
         }
+        let mut plan = self.plan.clone();
+        plan.start_inch = inch;
         let mut ctx = Ctx {
             opts,
-            progs: vec![self.plan.clone()],
+            progs: vec![plan],
             commons: self.commons.clone(),
             common_flags: self.common_flags.clone(),
             diags: Vec::new(),
@@ -326,6 +329,11 @@ struct State<'a> {
     /// The arc mode (G2/G3 last) before the first buffered statement, and after the last.
     arc_at_start: bool,
     arc: bool,
+    /// G20 in force before the first buffered statement, and after the last (a value
+    /// without a decimal point counts the inch increment; the program starts metric;
+    /// `None`: not known, after a skippable unit word).
+    inch_at_start: Option<bool>,
+    inch: Option<bool>,
     /// Statements in the first chunk (the whole translator writes it, header included).
     first_stmts: usize,
     /// The line ending as bytes, for the fast path.
@@ -390,7 +398,8 @@ impl State<'_> {
         if self.buf.is_empty() && self.stop.is_none() && self.io.is_none() {
             // Nothing waits for the passes: the line goes straight into the output buffer.
             let at = self.wbuf.len();
-            let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
+            let ok =
+                fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
             if !ok {
                 self.wbuf.truncate(at);
             } else if self.wbuf.len() >= WRITE_BYTES {
@@ -400,7 +409,7 @@ impl State<'_> {
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -456,7 +465,7 @@ impl State<'_> {
             self.stop = Some(Fallback::NotStraight("variables".into()));
             return;
         }
-        let (diags, text) = pl.lower(self.opts, body, self.arc_at_start);
+        let (diags, text) = pl.lower(self.opts, body, self.arc_at_start, self.inch_at_start);
         if !self.keep(diags) {
             return;
         }
@@ -481,11 +490,22 @@ impl State<'_> {
             self.flush_rest(body);
         }
         self.arc_at_start = self.arc;
+        self.inch_at_start = self.inch;
         self.buf_real = false;
+    }
+
+    /// A block that may be skipped (`/`) and changes the unit leaves it unknown, as where
+    /// paths meet in `passes::to_sinumerik::modal` (a value without a decimal point is then
+    /// declined by the fast path and refused by the passes, NC375).
+    fn skipped_unit(&mut self, skip: bool, inch_before: Option<bool>) {
+        if skip && self.inch != inch_before {
+            self.inch = None;
+        }
     }
 
     /// The arc mode and `buf_real` after block `b`.
     fn follow(&mut self, b: &Block) {
+        let inch_before = self.inch;
         // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
         for it in &b.items {
             let ItemKind::Word(w) = &it.kind else { continue };
@@ -496,9 +516,12 @@ impl State<'_> {
             match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
                 Some(20 | 30) => self.arc = true,
                 Some(0 | 10) => self.arc = false,
+                Some(200) => self.inch = Some(true),
+                Some(210) => self.inch = Some(false),
                 _ => {}
             }
         }
+        self.skipped_unit(b.meta.skip.is_some(), inch_before);
         self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
     }
 
@@ -508,27 +531,30 @@ impl State<'_> {
         if self.first {
             return false;
         }
-        let (arc, buf_real) = (self.arc, self.buf_real);
+        let (arc, inch, buf_real) = (self.arc, self.inch, self.buf_real);
         // `follow` of the block the words are.
         for w in words {
             if w.letter == b'G' {
                 match fast::round(w.value * 10.0) as u32 {
                     20 | 30 => self.arc = true,
                     0 | 10 => self.arc = false,
+                    200 => self.inch = Some(true),
+                    210 => self.inch = Some(false),
                     _ => {}
                 }
             }
         }
+        self.skipped_unit(meta.skip.is_some(), inch);
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
         if self.fast(meta, words, |w| Some(Src { line, span: w.span, canon: w.canon })) {
             return true;
         }
-        (self.arc, self.buf_real) = (arc, buf_real);
+        (self.arc, self.inch, self.buf_real) = (arc, inch, buf_real);
         false
     }
 
     fn push(&mut self, s: &Stmt) {
-        let arc_before = self.arc;
+        let (arc_before, inch_before) = (self.arc, self.inch);
         if let StmtKind::Block(b) = &s.kind {
             self.follow(b);
         }
@@ -540,6 +566,7 @@ impl State<'_> {
             }
             if self.buf.is_empty() {
                 self.arc_at_start = arc_before;
+                self.inch_at_start = inch_before;
             }
         }
         self.buf.push(s.clone());
@@ -656,6 +683,8 @@ pub fn to_sinumerik_first(
         first: true,
         arc_at_start: false,
         arc: false,
+        inch_at_start: Some(false),
+        inch: Some(false),
         first_stmts: first_stmts.max(1),
         eol_bytes: eol.as_str().as_bytes(),
         wbuf: Vec::with_capacity(WRITE_BYTES + 4096),

@@ -67,14 +67,15 @@ impl State {
 }
 
 impl ModalScan {
-    /// `main`: the program starts in G54, G90 and G21 (power-on, metric profile); a called
+    /// `main`: the program starts in G54 and G90 (power-on) and in the unit `inch` (G21 for
+    /// a main program, [`call_units`]; a streamed chunk's may differ); a called
     /// program starts in its caller's modes, which are not known here, except the unit
     /// when every call in the job is made in the same one (`inch`, [`call_units`]).
     pub fn new(body: &[Stmt], main: bool, inch: Option<bool>, setters: &[u32]) -> ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch: Some(false) }
+            State { offset: Some(540), incremental: Some(false), inch }
         } else {
             State { inch, ..State::UNKNOWN }
         };
@@ -114,18 +115,20 @@ impl ModalScan {
                 break;
             }
         }
-        let blocks = (0..len)
-            .filter_map(|i| {
-                let (lo, _) = flat.blocks[i]?;
-                let st = match (settled, ins[i]) {
-                    (true, Some(s)) => out_of(i, s),
-                    // Unreachable: nothing runs there, any value is as good; unsettled: none.
-                    (true, None) => start,
-                    (false, _) => State::UNKNOWN,
-                };
-                Some((lo, st))
-            })
-            .collect();
+        let mut blocks = Vec::new();
+        let mut prev = start;
+        for i in 0..len {
+            let Some((lo, _)) = flat.blocks[i] else { continue };
+            let st = match (settled, ins[i]) {
+                (true, Some(s)) => out_of(i, s),
+                // Unreachable (after M30, say): nothing runs there, any value is as good;
+                // the text before it, as the streamed translator follows it.
+                (true, None) => out_of(i, prev),
+                (false, _) => State::UNKNOWN,
+            };
+            prev = st;
+            blocks.push((lo, st));
+        }
         ModalScan { blocks }
     }
 

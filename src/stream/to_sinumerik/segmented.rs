@@ -204,9 +204,11 @@ impl Class {
             && !self.kept(meta)
             && words.iter().all(|w| match w.letter {
                 // G0..G3 (plain) without `plain_g`'s rounding: CAM lines are made of them.
+                // Not G20: the runs are written metric, and a G20 in the skeleton reads the
+                // program whole.
                 b'G' => {
                     let g = w.value as u32;
-                    (g <= 3 && f64::from(g) == w.value) || plain_g(w.value)
+                    (g <= 3 && f64::from(g) == w.value) || (plain_g(w.value) && w.value != 20.0)
                 }
                 b'M' => !special_m(w.value),
                 _ => true,
@@ -217,6 +219,7 @@ impl Class {
         let StmtKind::Block(b) = &s.kind else { return false };
         self.solid
             && straight(s).is_ok()
+            && !crate::passes::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
             && !self.kept(&b.meta)
             && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
     }
