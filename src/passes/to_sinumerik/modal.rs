@@ -117,9 +117,9 @@ impl ModalScan {
         }
         let mut blocks = Vec::new();
         let mut prev = start;
-        for i in 0..len {
+        for (i, at) in ins.iter().enumerate() {
             let Some((lo, _)) = flat.blocks[i] else { continue };
-            let st = match (settled, ins[i]) {
+            let st = match (settled, *at) {
                 (true, Some(s)) => out_of(i, s),
                 // Unreachable (after M30, say): nothing runs there, any value is as good;
                 // the text before it, as the streamed translator follows it.
