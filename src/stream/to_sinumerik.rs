@@ -11,9 +11,11 @@
 //! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
 //! need no other block, program ends (M30, M2), comments, N numbers and skips. No macro
 //! statements, variables (so nothing vacant), jumps, loops, calls (M98, G65, G66), G10.
-//! The one state the passes carry from block to block, the arc mode that makes `R` a
-//! radius (`CR=`), is followed block by block: the fast path is given it, and a chunk of
-//! declined blocks gets a stand-in `G2` block in front, taken out after lowering. Anything else (or any error, or a warning other
+//! The states the passes carry from block to block, the arc mode that makes `R` a radius
+//! (`CR=`) and the unit (G20/G21) a number without a point is counted in, are followed
+//! block by block: the fast path is given them, and a chunk of declined blocks gets a
+//! stand-in `G2` block in front (taken out after lowering) and starts in the unit in force
+//! (`ProgPlan::start_inch`). Anything else (or any error, or a warning other
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
