@@ -400,6 +400,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
+    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
     ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters

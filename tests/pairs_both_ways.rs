@@ -40,8 +40,8 @@ const ROWS: &[Row] = &[
     },
     Row { what: "dwell", siemens: "G4 F0.5\nM30\n", fanuc: "O1\nG04 P500\nM30\n", way: Way::Both },
     Row { what: "inch units", siemens: "G700 G1 X1 F10\nM30\n", fanuc: "O1\nG20 G01 X1. F10.\nM30\n", way: Way::Both },
-    // FANUC G20/G21 set lengths and feeds, as G700/G710 do (not G70/G71, which leave the
-    // feeds): so no F is converted FANUC → Siemens, and Siemens G71 after G700 keeps F inch.
+    // FANUC G20/G21 set lengths and feeds, as G700/G710 do (not G70/G71, which read F in
+    // the basic system, mm/min): so no F is converted FANUC → Siemens.
     Row {
         what: "inch then metric units, feeds with them",
         siemens: "G700 G1 X1 F10\nG710 G1 X10 F500\nM30\n",
@@ -49,10 +49,10 @@ const ROWS: &[Row] = &[
         way: Way::Both,
     },
     Row {
-        what: "lengths metric, feeds inch (G71 after G700)",
-        siemens: "G700 G1 X1 F10\nG71 G1 X10 F500\nM30\n",
-        fanuc: "O1\nG20 G01 X1. F10.\nG21 G01 X10. F12700.\nM30\n",
-        way: Way::Both,
+        what: "lengths inch, feeds metric (G70 after G700)",
+        siemens: "G700 G1 X1 F10\nG70 G1 X2 F254\nM30\n",
+        fanuc: "O1\nG20 G01 X1. F10.\nG01 X2. F10.\nM30\n",
+        way: Way::SToF("G70 is written only where feeds are metric and lengths inch; FANUC → Siemens keeps G700"),
     },
     Row {
         what: "arc radius",

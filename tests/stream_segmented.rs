@@ -308,8 +308,8 @@ fn generated_macro_programs() {
     assert!(same >= 90, "only {same} of 120 generated programs were segmented: {why:?}");
 }
 
-/// A mode line for a CAM run: inch/metric switches (G70 keeps F metric: `F[f/25.4]`; G71
-/// after G700 keeps F inch: `F[f*25.4]`) and
+/// A mode line for a CAM run: inch/metric switches (G70 reads F metric, after G700 too:
+/// `F[f/25.4]`) and
 /// G90/G91, alone or with a move.
 fn mode_line(r: &mut Rng) -> String {
     let g = r.pick(&["G70", "G71", "G700", "G710", "G90", "G91", "G70 G91", "G71 G90", "G700 G71", "G710 G70"]);
@@ -412,7 +412,7 @@ fn modes_cross_run_boundaries() {
     // G90/G91: identical and verified equivalent (each diverged before the words pass
     // followed the feed unit apart and dropped the block's own G90/G91 under a switch).
     for (name, text) in [
-        // G71 after G700 in a run: the placeholder carries `G700 G71`, F after it is per mm.
+        // G71/G70 after G700 in a run: F after it is in mm/min (the basic system) again.
         ("feed-inch-run.mpf", "R1=1\nG700\nG1 X1 F10\nG71 X2\nR2=2\nG1 X=R1 F300\nM30\n"),
         // ... in the macro part: the run after it starts there.
         ("feed-inch-macro.mpf", "R1=1\nG700 G1 X=R1 F2\nG71 X=R1\nG1 X1 F100\nY2 F200\nR2=1\nG70 X=R2\nX3 F50\nM30\n"),

@@ -76,7 +76,8 @@ const COMMENTS: &[&str] =
 /// One straight-line FANUC block; `arc` is the arc mode it leaves.
 fn block(r: &mut Rng, arc: &mut bool) -> String {
     let mut b = String::new();
-    if r.chance(6) {
+    let skipped = r.chance(6);
+    if skipped {
         b.push_str(if r.chance(50) { "/" } else { "/2 " });
     }
     if r.chance(20) {
@@ -94,7 +95,12 @@ fn block(r: &mut Rng, arc: &mut bool) -> String {
     for _ in 0..r.below(6) {
         match r.below(14) {
             0 | 1 => {
-                let g = r.pick(G_CODES);
+                let mut g = r.pick(G_CODES);
+                // A unit word that may be skipped leaves the unit unknown: values without a
+                // decimal point are then refused (NC375), which is not what this exercises.
+                while skipped && (g == "20" || g == "21") {
+                    g = r.pick(G_CODES);
+                }
                 match g.trim_start_matches('0') {
                     "2" | "3" => g_arc = Some(true),
                     "" | "1" => g_arc = Some(false),

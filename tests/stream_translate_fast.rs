@@ -252,8 +252,9 @@ fn inch_mode_carries_across_the_whole_stream() {
         whole.text.contains("F[12./25.4]") && whole.text.ends_with("X9.5 F12.\nM30\n%\n"),
         "G70 not kept to the end"
     );
-    // G71 after G700 keeps F inch: every F is multiplied by 25.4 until G70/G700/G710.
-    let mut t = String::from("G700 G17 G90 G94\nG1 X1 F2\nG71\n");
+    // G70 after G700 reads F in mm/min again (828D FM G2, 7.3): every F is divided by 25.4
+    // until G710, and none is multiplied.
+    let mut t = String::from("G700 G17 G90 G94\nG1 X1 F2\nG70\n");
     for i in 0..9000 {
         t.push_str(&format!("G1 X{}.5 F{}\n", i % 10, 10 + i % 3));
         if i == 7000 {
@@ -265,10 +266,11 @@ fn inch_mode_carries_across_the_whole_stream() {
     let out = got.map_err(|e| format!("{e:?}")).expect("streams");
     same("feed inch", &out, &whole.text, &t);
     assert!(
-        whole.text.contains("X1. F2.\nG21\nG01 X0.5 F[10.*25.4]")
-            && whole.text.contains("X0.5 F[12.*25.4]")
+        whole.text.contains("X1. F2.\nG20\nG01 X0.5 F[10./25.4]")
+            && whole.text.contains("X0.5 F[12./25.4]")
+            && !whole.text.contains("*25.4")
             && whole.text.ends_with("X9.5 F12.\nM30\n%\n"),
-        "G700 G71 not kept to the end"
+        "G700 G70 not kept to the end"
     );
 }
 

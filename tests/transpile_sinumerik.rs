@@ -252,6 +252,35 @@ fn g65_arguments_without_point_follow_the_letter_increment() {
     assert_eq!(out(src, ""), "O_9010(100,0.01,1,1)\nM30\n");
 }
 
+/// G20 without decimal points: IS-B counts 0.0001 in (`Z1000` = 0.1 in, not 1), written
+/// under G700 in inch; angles and dwell seconds keep the metric increment; F is in in/min as
+/// written. A called program takes its callers' one unit; where the unit is not known (the
+/// callers disagree, or a path decides it) a value without a point is refused (NC375).
+#[test]
+fn inch_values_without_decimal_point_count_the_inch_increment() {
+    pair(
+        "O1\nG20 G17 G90\nG0 Z1000\nG1 X20000 Y-5 A90000 F20\nG2 X30000 Y10000 R10000\nG04 X1500\nG21 X1000\nM30\n",
+        "G700 G17 G90\nG0 Z0.1\nG1 X2 Y-0.0005 A90 F20\nG2 X3 Y1 CR=1\nG4 F1.5\nG710 X1\nM30\n",
+    );
+    // IS-C: 0.00001 in.
+    let mut opts = Options::default();
+    opts.source.least_increment_mm = 0.0001;
+    assert_eq!(out_with("O1\nG20\nG0 Z10000\nM30\n", "", &opts), "G700\nG0 Z0.1\nM30\n");
+    // Arguments and the callee's own values in the caller's unit.
+    let src = "O1\nG20\nG65 P9020 X5000 A45000\nM98 P9021\nM30\nO9020\nG1 X#24 A#1 F10\nM99\nO9021\nG0 Z100\nM99\n";
+    assert_eq!(out(src, ""), "G700\nO_9020(45,0.5)\nO_9021\nM30\n");
+    assert_eq!(out(src, "O_9021.SPF").lines().find(|l| l.starts_with("G0")), Some("G0 Z0.01"));
+    // Callers in both units, or a unit chosen on one path only: refused.
+    let mixed = "O1\nM98 P9021\nG20\nM98 P9021\nM30\nO9021\nG0 Z100\nM99\n";
+    assert_eq!(codes(mixed, &Options::default()), vec!["NC375"]);
+    let path = "O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z100\nM30\n";
+    assert_eq!(codes(path, &Options::default()), vec!["NC375"]);
+    // A unit word that may be skipped leaves the unit unknown.
+    assert_eq!(codes("O1\n/G20\nG0 Z100\nM30\n", &Options::default()), vec!["NC375"]);
+    // With a decimal point nothing depends on the unit.
+    assert!(codes("O1\n#1=1\nIF [#1 EQ 1] GOTO 5\nG20\nN5 G0 Z1.\nM30\n", &Options::default()).is_empty());
+}
+
 #[test]
 fn program_map_names_the_subprogram() {
     let mut o = Options::default();
@@ -672,4 +701,65 @@ fn the_guard_of_a_runtime_indirect_variable_verifies_against_fanuc_alarm_115() {
         report.verdict,
         report.diff
     );
+}
+
+/// Verifies the translation of `src` (one FANUC file) with `opts`.
+fn verifies(src: &str, opts: &Options) -> (String, nctrans::check::Verdict, String) {
+    let mut db = SourceDb::new();
+    let file = db.add("ix.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let tr = translate(&[&parsed.unit], opts, LineEnding::Lf);
+    assert!(!tr.has_errors(), "{:?}", tr.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    (tr.main().unwrap().text.clone(), report.verdict, report.diff)
+}
+
+/// #17 item 3: a computed `#[…]` in #500.. reaches the R parameter the direct access uses
+/// (`#554` = R54), by the same rule, for every value its index takes; an index that lands
+/// in #100.. and in #500.. as the loop goes selects the right range each time; the is-set
+/// flag of a tracked variable is kept by the computed write; `--var-map` moves both.
+#[test]
+fn computed_variables_reach_the_r_parameter_of_the_direct_access() {
+    let src = "O1\n#1=0\nWHILE[#1 LT 4]DO1\n#[550+#1*2]=#1*10.+5.\nG1 X#[550+#1*2] F100.\n#1=#1+1\nEND1\n\
+               G0 X#554 Y#556\n#2=120\nWHILE[#2 LE 570]DO1\n#[#2]=#2/100.\nG0 Z#[#2]\n#2=#2+450\nEND1\nG0 Z#101\nM30\n";
+    let (text, v, diff) = verifies(src, &Options::default());
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1-500") && text.contains("R[NCTRANS_IX1]="), "{text}");
+    assert!(text.contains("G0 X=R54 Y=R56"), "{text}");
+    // The same with #500..#599 on R100.. and #100..#199 on R200..: direct and computed
+    // move together.
+    let rules = ["#500-#599=R100", "#100-#199=R200"].map(|r| VarMapRule::parse(r).unwrap());
+    let opts = Options { var_map: rules.to_vec(), ..Options::default() };
+    let (text, v, diff) = verifies(src, &opts);
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1-400") && text.contains("G0 X=R154 Y=R156"), "{text}");
+    assert!(text.contains("NCTRANS_IX1=NCTRANS_IX1+100") && text.contains("G0 Z=R201"), "{text}");
+    // A wrong offset is caught: the check sees the computed access miss the direct one.
+    let mut db = SourceDb::new();
+    let file = db.add("ix.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let mut tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    let main = tr.files.iter_mut().find(|f| f.main).unwrap();
+    main.text = main.text.replacen("NCTRANS_IX1=NCTRANS_IX1-500", "NCTRANS_IX1=NCTRANS_IX1-499", 1);
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
+}
+
+/// A computed read of a tracked variable that is vacant there raises SETAL(64115) (Siemens
+/// has no vacant value): FANUC omits the word, so the check reports the divergence.
+#[test]
+fn a_computed_read_of_a_vacant_tracked_variable_is_refused_at_run_time() {
+    let src = "O1\n(nctrans: set #3=4.)\n#1=#3\nG0 X1.\nG0 X#[550+#1]\nIF [#554 EQ #0] GOTO 9\nN9 M30\n";
+    let (text, v, _) = verifies(src, &Options::default());
+    assert!(text.contains("AND NOT R"), "{text}");
+    assert!(!matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{text}");
+}
+
+/// `#4109` under G20 reads in/min; its image `$P_F` under G700 reads in the programmed unit
+/// too (828D FM G2, 7.3: system variables follow G700/G710, not G70/G71).
+#[test]
+fn the_modal_feed_reads_in_the_programmed_unit_under_g20() {
+    let (text, v, diff) = verifies("O1\nG20 G1 X1. F20.\n#1=#4109\nG1 Y[#1/10.]\nM30\n", &Options::default());
+    assert!(text.contains("LOC1=$P_F"), "{text}");
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
 }

@@ -38,7 +38,27 @@ pub struct Semantics {
     pub incremental_travels_offset: bool,
 }
 
+/// The FANUC least input increment of a word written without a decimal point, in the unit
+/// it is read in: `inc_mm` (the profile's metric increment, [`Semantics::least_increment_mm`])
+/// for metric lengths, angles (`rotary`) and dwell seconds; a tenth of it in inch for
+/// lengths under G20 (IS-B: 0.001 mm, 0.0001 in; IS-C: 0.0001 mm, 0.00001 in). The one
+/// rule for the evaluator (`eval::machine`, G65 arguments) and the FANUC → Sinumerik
+/// lowering (`passes::to_sinumerik::words::scale`), so both read `Z1000` alike.
+#[inline(always)]
+pub fn input_increment(inc_mm: f64, inch: bool, rotary: bool) -> f64 {
+    if inch && !rotary {
+        inc_mm / 10.0
+    } else {
+        inc_mm
+    }
+}
+
 impl Semantics {
+    /// [`input_increment`] of this profile.
+    pub fn input_increment(&self, inch: bool, rotary: bool) -> f64 {
+        input_increment(self.least_increment_mm, inch, rotary)
+    }
+
     /// The default profile of each control (FANUC 0i/16i-class IS-B metric mill with NAT=0;
     /// Siemens 828D).
     pub fn default_for(dialect: Dialect) -> Semantics {

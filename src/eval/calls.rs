@@ -282,11 +282,7 @@ impl Interp<'_> {
                         let scaling = self.sem.increment_scaling && !self.sem.calculator_input;
                         match (bare && scaling, letter_scaled(*letter)) {
                             (true, Some(rotary)) => {
-                                let inc = if self.m.modal.inch && !rotary {
-                                    self.sem.least_increment_mm / 10.0
-                                } else {
-                                    self.sem.least_increment_mm
-                                };
+                                let inc = self.sem.input_increment(self.m.modal.inch, rotary);
                                 Some(round_to(x * inc, inc))
                             }
                             _ => Some(x),

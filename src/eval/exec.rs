@@ -158,7 +158,7 @@ impl<'a> Interp<'a> {
             rel_tol: self.sem.cmp_tolerance,
             alarms: if self.fanuc { &AlarmNumbers::FANUC } else { &AlarmNumbers::SINUMERIK },
             in_address,
-            increment: if self.m.modal.inch { self.sem.least_increment_mm / 10.0 } else { self.sem.least_increment_mm },
+            increment: self.sem.input_increment(self.m.modal.inch, false),
         }
     }
 

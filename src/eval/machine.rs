@@ -195,11 +195,7 @@ impl Machine {
 
     #[inline]
     fn inc_in_unit(&self) -> f64 {
-        if self.modal.inch {
-            self.inc_mm / 10.0
-        } else {
-            self.inc_mm
-        }
+        crate::dialect::semantics::input_increment(self.inc_mm, self.modal.inch, false)
     }
 
     /// A length word's value in mm: decimal-point rule, rounding to the increment, unit.
@@ -571,9 +567,11 @@ impl Machine {
     ) -> Result<f64, Fault> {
         if self.fanuc {
             if let Some((w, x)) = axes[0] {
-                // G04 X: seconds; without a decimal point in increments (X1000 = 1 s).
-                let v = if w.bare && self.scaling { x * 0.001 } else { x };
-                return Ok(round_to(v, 0.001));
+                // G04 X: seconds; without a decimal point in increments of the increment
+                // system, not of the unit (IS-B X1000 = 1 s, IS-C 0.1 s: S28).
+                let inc = crate::dialect::semantics::input_increment(self.inc_mm, self.modal.inch, true);
+                let v = if w.bare && self.scaling { x * inc } else { x };
+                return Ok(round_to(v, inc));
             }
             if let Some((_, x)) = p {
                 return Ok(round_half_away(x) / 1000.0);

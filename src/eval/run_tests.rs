@@ -309,6 +309,48 @@ fn units_inch_feeds() {
     assert_eq!(run_u(&u).0[0], "move linear X=25.4 f=254");
 }
 
+/// Siemens G70/G71 after G700/G710: F is read in the basic system (metric) again, and the
+/// feed already in force keeps its physical value across every switch (828D FM G2, 7.3).
+#[test]
+fn siemens_g70_after_g700_reads_feeds_metric() {
+    let u = siemens(vec![
+        s(vec![g(700.0), g(1.0), word("X", p(1.0)), word("F", p(20.0))]),
+        s(vec![g(70.0), word("Y", p(1.0))]),
+        s(vec![word("Y", p(2.0)), word("F", p(300.0))]),
+        s(vec![g(700.0), word("Y", p(3.0)), word("F", p(10.0))]),
+        s(vec![g(71.0), word("Y", p(4.0))]),
+        s(vec![word("Y", p(5.0)), word("F", p(300.0))]),
+        s(vec![g(710.0), word("Y", p(6.0)), word("F", p(300.0))]),
+        s(vec![end()]),
+    ]);
+    let t = run_u(&u).0;
+    assert_eq!(t[0], "move linear X=25.4 f=508");
+    assert_eq!(t[1], "move linear X=25.4 Y=25.4 f=508", "G70 keeps the feed in force");
+    assert_eq!(t[2], "move linear X=25.4 Y=50.8 f=300", "F under G70 is mm/min");
+    assert_eq!(t[3], "move linear X=25.4 Y=76.2 f=254");
+    assert_eq!(t[4], "move linear X=25.4 Y=4 f=254", "G71 keeps the feed in force");
+    assert_eq!(t[5], "move linear X=25.4 Y=5 f=300");
+    assert_eq!(t[6], "move linear X=25.4 Y=6 f=300");
+}
+
+/// FANUC G04 X without a decimal point counts the increment system's dwell unit (IS-B
+/// 0.001 s, IS-C 0.0001 s: S28), whatever G20/G21; G20 lengths count 0.0001 in (IS-B).
+#[test]
+fn fanuc_bare_dwell_and_inch_lengths_follow_the_increment_system() {
+    let u = fanuc(vec![
+        s(vec![g(4.0), word("X", n(1500.0))]),
+        s(vec![g(20.0), g(0.0), word("Z", n(1000.0))]),
+        s(vec![g(4.0), word("X", n(1500.0))]),
+        s(vec![end()]),
+    ]);
+    let t = run_u(&u).0;
+    assert_eq!(t[..3], ["dwell 1.5", "move rapid Z=2.54 f=-", "dwell 1.5"]);
+    let mut sem = Semantics::default_for(Dialect::Fanuc);
+    sem.least_increment_mm = 0.0001;
+    let (t, _) = run_opts(&u, &RunOptions { semantics: Some(sem), ..Default::default() });
+    assert_eq!(t[..3], ["dwell 0.15", "move rapid Z=0.254 f=-", "dwell 0.15"]);
+}
+
 #[test]
 fn dwell_units_per_control() {
     let u = fanuc(vec![

@@ -22,7 +22,7 @@ impl Interp<'_> {
 
     /// A position in the current input unit.
     fn in_unit(&self, mm: f64) -> f64 {
-        if self.m.modal.inch {
+        if self.m.modal.sys_inch() {
             mm / 25.4
         } else {
             mm
@@ -150,7 +150,7 @@ impl Interp<'_> {
             }
             n => match Self::offset_var(n) {
                 Some((t, a)) => {
-                    let mm = if self.m.modal.inch && !(3..6).contains(&a) { v * 25.4 } else { v };
+                    let mm = if self.m.modal.sys_inch() && !(3..6).contains(&a) { v * 25.4 } else { v };
                     self.m.offsets[t][a] = mm;
                     Ok(())
                 }
@@ -225,7 +225,15 @@ impl Interp<'_> {
             "AC_ACTUAL_PARTS" | "AC_REQUIRED_PARTS" | "AC_TOTAL_PARTS" | "AC_SPECIAL_PARTS" => {
                 self.sys_store.get(name).copied().unwrap_or(0.0)
             }
-            "P_F" => self.m.feed.unwrap_or(0.0),
+            // In the programmed unit under G700 (inch/min), else the basic system's.
+            "P_F" => {
+                let f = self.m.feed.unwrap_or(0.0);
+                if self.m.modal.sys_inch() {
+                    f / 25.4
+                } else {
+                    f
+                }
+            }
             "P_S" => self.m.speed,
             "P_TOOLNO" => match &self.m.tool {
                 Some(ToolId::Number(t)) => *t,
@@ -246,7 +254,7 @@ impl Interp<'_> {
                 let f = self.frame_index(idx.first(), span)?;
                 let a = self.axis_arg(idx.get(1), name, span)?;
                 self.uifr_component(idx, span)?;
-                let mm = if self.m.modal.inch && !(3..6).contains(&a) { x * 25.4 } else { x };
+                let mm = if self.m.modal.sys_inch() && !(3..6).contains(&a) { x * 25.4 } else { x };
                 // Written, not active: G54.. must be selected again (source S20 of docs/semantics.md).
                 self.m.offsets[f][a] = mm;
                 Ok(())

@@ -1,8 +1,8 @@
 //! Address words and Siemens-only items → their FANUC forms.
 //!
 //! `CR=` → `R`; `G4 F` → `G04 X` (seconds); `G70/G700` → `G20`, `G71/G710` → `G21` (F words
-//! are converted where the Sinumerik feed unit differs from the length unit: G70/G71 change
-//! lengths only, [`units`]); `AC()/IC()` → the block in G90/G91 with a switch back after it; `T="NAME"` → a number from the tool map; `MSG("…")` → a comment, or with
+//! are converted where the Sinumerik feed unit differs from the length unit: under G70/G71
+//! F is in the basic system, metric, [`units`]); `AC()/IC()` → the block in G90/G91 with a switch back after it; `T="NAME"` → a number from the tool map; `MSG("…")` → a comment, or with
 //! the `M0` block that follows it `#3006=1(…)`; `SETAL(n)` → `#3000`; calls of translated
 //! subprograms → `G65 P…` with one argument letter per parameter ([`param_letters`]);
 //! `WORKPIECE`/`STOPRE` dropped with a note; frames, section repetition, modal calls and
@@ -14,6 +14,7 @@ use units::{FeedConv, Units};
 
 pub mod effects;
 mod modes;
+mod sysunits;
 pub mod units;
 
 /// G codes with the same number and meaning on both controls.
@@ -68,9 +69,6 @@ struct Modal {
     s: Modes,
     /// Jump targets where modes are reset.
     resets: Resets,
-    /// In a subprogram: the temporary that holds its caller's feed factor (see
-    /// [`UnitState::CallerFeed`]), made for the first F word that needs it.
-    caller_feed: Option<VarRef>,
 }
 
 impl Modal {
@@ -93,7 +91,6 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
             units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
         },
         resets: Resets::of(&prog.body, &ctx.callees),
-        caller_feed: None,
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -106,15 +103,6 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
     prog.body = body_pass(ctx, body, &mut m);
     if saves != 0 {
         save::restore_on_return(ctx, prog, saves);
-    }
-    if let Some(t) = m.caller_feed {
-        // On entry, before any unit word of the subprogram: the caller's feed factor,
-        // 25.4 when it runs in G20 (inch per minute), else 1.
-        let span = t.span;
-        let sys = var_expr(&VarRef { kind: VarKind::Hash(4006), span });
-        let inch_caller = bin(BinOp::Sub, num(21.0, span), sys);
-        let factor = bin(BinOp::Add, bin(BinOp::Mul, inch_caller, num(24.4, span)), num(1.0, span));
-        prog.body.insert(0, block_stmt(vec![assign_item(&t, factor, span)], span));
     }
 }
 
@@ -141,9 +129,14 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                         }
                     }
                 }
-                let b = std::mem::take(b);
+                let mut b = std::mem::take(b);
                 let before = m.s;
                 let skip = b.meta.skip.is_some();
+                // The block's expressions are evaluated before its own unit words act.
+                if let Err(mark) = sys_units(ctx, m, &mut b.items, b.meta.span) {
+                    out.extend(mark);
+                    continue;
+                }
                 block_pass(ctx, b, m, &mut out);
                 if skip {
                     // A block that may be skipped: both ways meet after it.
@@ -152,6 +145,7 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                 continue;
             }
             StmtKind::If(i) => {
+                out.extend(sys_units_expr(ctx, m, &mut i.cond));
                 let entry = m.s;
                 i.then_body = body_pass(ctx, std::mem::take(&mut i.then_body), m);
                 let then_end = m.s;
@@ -167,10 +161,20 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
                 m.meet(ctx, entry);
                 let entry = m.s;
                 match kind {
-                    StmtKind::While(w) => w.body = body_pass(ctx, std::mem::take(&mut w.body), m),
+                    StmtKind::While(w) => {
+                        out.extend(sys_units_expr(ctx, m, &mut w.cond));
+                        w.body = body_pass(ctx, std::mem::take(&mut w.body), m)
+                    }
                     StmtKind::Loop(l) => l.body = body_pass(ctx, std::mem::take(&mut l.body), m),
-                    StmtKind::For(f) => f.body = body_pass(ctx, std::mem::take(&mut f.body), m),
-                    StmtKind::Repeat(r) => r.body = body_pass(ctx, std::mem::take(&mut r.body), m),
+                    StmtKind::For(f) => {
+                        out.extend(sys_units_expr(ctx, m, &mut f.from));
+                        out.extend(sys_units_expr(ctx, m, &mut f.to));
+                        f.body = body_pass(ctx, std::mem::take(&mut f.body), m)
+                    }
+                    StmtKind::Repeat(r) => {
+                        r.body = body_pass(ctx, std::mem::take(&mut r.body), m);
+                        out.extend(sys_units_expr(ctx, m, &mut r.until));
+                    }
                     StmtKind::Do(d) => d.body = body_pass(ctx, std::mem::take(&mut d.body), m),
                     StmtKind::Block(_) | StmtKind::If(_) => {}
                 }
@@ -180,6 +184,40 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
         out.push(s);
     }
     out
+}
+
+/// Length system variables in `items` scaled where the Siemens unit (the feeds') and the
+/// FANUC one (the lengths') differ ([`sysunits`]); a marker where the units are not known.
+fn sys_units(ctx: &mut Ctx, m: &Modal, items: &mut [Item], span: Span) -> Result<(), Vec<Stmt>> {
+    if !items.iter().any(sysunits::uses_lengths) {
+        return Ok(());
+    }
+    match m.s.units.feed() {
+        Feed::Static(conv) => {
+            items.iter_mut().for_each(|it| sysunits::item(it, conv));
+            Ok(())
+        }
+        Feed::Unknown => Err(unknown_sys_units(ctx, span)),
+    }
+}
+
+/// [`sys_units`] of a condition or loop bound.
+fn sys_units_expr(ctx: &mut Ctx, m: &Modal, e: &mut Expr) -> Vec<Stmt> {
+    if !sysunits::reads(e) {
+        return vec![];
+    }
+    match m.s.units.feed() {
+        Feed::Static(conv) => {
+            sysunits::expr(e, conv);
+            vec![]
+        }
+        Feed::Unknown => unknown_sys_units(ctx, e.span),
+    }
+}
+
+fn unknown_sys_units(ctx: &mut Ctx, span: Span) -> Vec<Stmt> {
+    let what = "a length system variable ($AA_IW, $AA_IM, $P_EP, $P_UIFR) where the units (G70/G71/G700/G710) depend on the path taken or on a call";
+    unsup(ctx, "NC376", span, what, "write G700 or G710 before it, after the IF, loop, jump target or call")
 }
 
 pub fn msg_text(b: &Block) -> Option<String> {
@@ -408,30 +446,18 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                 ));
             }
             b'F' => {
-                let (op, by) = match m.s.units.feed() {
-                    Feed::Static(FeedConv::Same) => (None, None),
-                    Feed::Static(FeedConv::PerInch) => (Some(BinOp::Div), None),
-                    Feed::Static(FeedConv::PerMm) => (Some(BinOp::Mul), None),
+                let op = match m.s.units.feed() {
+                    Feed::Static(FeedConv::Same) => None,
+                    Feed::Static(FeedConv::PerInch) => Some(BinOp::Div),
+                    Feed::Static(FeedConv::PerMm) => Some(BinOp::Mul),
                     Feed::Unknown => {
                         let what = "a feed where the units (G70/G71/G700/G710) depend on the path taken or on a call";
                         let hint = "write G700 or G710 before the F word, after the IF, loop, jump target or call";
                         return Err(unsup(ctx, "NC324", wspan, what, hint));
                     }
-                    Feed::Caller { inch } => {
-                        let t = m.caller_feed.get_or_insert_with(|| ctx.temp(wspan)).clone();
-                        let factor = var_expr(&t);
-                        // G21: v * factor mm/min. G20: that per inch, as v / (25.4 / factor),
-                        // exact for both factors (x/x and x/1 are).
-                        if inch {
-                            (Some(BinOp::Div), Some(bin(BinOp::Div, num(25.4, wspan), factor)))
-                        } else {
-                            (Some(BinOp::Mul), Some(factor))
-                        }
-                    }
                 };
                 if let (Some(op), WordValue::Expr(e)) = (op, &w.value) {
-                    let by = by.unwrap_or_else(|| num(25.4, wspan));
-                    w.value = WordValue::Expr(bin(op, e.clone(), by));
+                    w.value = WordValue::Expr(bin(op, e.clone(), num(25.4, wspan)));
                 }
             }
             b'T' => {

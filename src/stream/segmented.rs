@@ -17,9 +17,9 @@
 //!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
 //!   - each run's fast path starts in the units the text before it leaves (a block the
 //!     fast path declines is translated alone after a block setting those units when they
-//!     are not the start's, `G700 G71` for metric lengths with inch feeds);
-//!   - each placeholder carries the modes its run leaves as unit words (`G710 G70`, `G700
-//!     G71`, `G700`, `G710`: any state from any other) and G90/G91 words
+//!     are not the start's, `G70` for inch lengths with metric feeds);
+//!   - each placeholder carries the modes its run leaves as a unit word (`G70`, `G700`,
+//!     `G710`: each sets any state from any other) and G90/G91 words
 //!     (only where the run changes them), so the skeleton's words pass reads the modes
 //!     the whole translation has at the macro statements after the run: converted F, the
 //!     G90/G91 switch around AC()/IC() words. The placeholder's line is replaced whole,

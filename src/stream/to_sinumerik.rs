@@ -11,9 +11,11 @@
 //! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
 //! need no other block, program ends (M30, M2), comments, N numbers and skips. No macro
 //! statements, variables (so nothing vacant), jumps, loops, calls (M98, G65, G66), G10.
-//! The one state the passes carry from block to block, the arc mode that makes `R` a
-//! radius (`CR=`), is followed block by block: the fast path is given it, and a chunk of
-//! declined blocks gets a stand-in `G2` block in front, taken out after lowering. Anything else (or any error, or a warning other
+//! The states the passes carry from block to block, the arc mode that makes `R` a radius
+//! (`CR=`) and the unit (G20/G21) a number without a point is counted in, are followed
+//! block by block: the fast path is given them, and a chunk of declined blocks gets a
+//! stand-in `G2` block in front (taken out after lowering) and starts in the unit in force
+//! (`ProgPlan::start_inch`). Anything else (or any error, or a warning other
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
 use super::lines::{Lines, NotStreamable};
@@ -56,6 +58,8 @@ pub const KEPT_WARNING: &str = "NC368";
 /// G codes (×10) whose translation needs nothing but their own block: motion, planes,
 /// units, cutter radius and tool length compensation, work offsets, exact stop, path mode,
 /// cycle cancel, absolute/incremental, feed modes, and the dwell (written as its own block).
+/// G20 makes every later value without a decimal point count 0.0001 in: the straight
+/// stream follows it as it follows the arc mode (the segmented one reads such programs whole).
 const PLAIN_G: [u32; 30] = [
     0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 530, 540, 550, 560, 570, 580, 590, 610,
     640, 800, 900, 910, 940, 950,
@@ -255,13 +259,14 @@ impl Planned {
     }
 
     /// `body` through the passes with this plan, after a stand-in G2 when the arc mode `arc`
-    /// runs into it (taken out again), written without the frame (no PROC line, header or
-    /// DEF lines) with LF line ends; and the passes' diagnostics.
+    /// runs into it (taken out again), starting in the unit `inch` (G20, G21, not known), written without the
+    /// frame (no PROC line, header or DEF lines) with LF line ends; and the passes' diagnostics.
     pub(super) fn lower(
         &self,
         opts: &Options,
         mut body: Vec<Stmt>,
         arc: bool,
+        inch: Option<bool>,
     ) -> (Vec<crate::diag::Diagnostic>, Result<String, LoweredAlone>) {
         if arc {
             let word = Word {
@@ -273,15 +278,18 @@ impl Planned {
             let items = vec![Item { kind: ItemKind::Word(word), span: STAND_IN }];
             body.insert(0, Stmt { kind: StmtKind::Block(Block { meta, items }), span: STAND_IN });
         }
+        let mut plan = self.plan.clone();
+        plan.start_inch = inch;
         let mut ctx = Ctx {
             opts,
-            progs: vec![self.plan.clone()],
+            progs: vec![plan],
             commons: self.commons.clone(),
             common_flags: self.common_flags.clone(),
             diags: Vec::new(),
             cur: 0,
             guard_ok: false,
             modal: Default::default(),
+            index_bases: Default::default(),
         };
         // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
         // without variables) and with the plan made once.
@@ -300,8 +308,11 @@ impl Planned {
     }
 
     fn same(&self, other: &Planned) -> bool {
-        format!("{:?}", (&self.plan, &self.commons, &self.common_flags))
-            == format!("{:?}", (&other.plan, &other.commons, &other.common_flags))
+        // Whether the program selects G20/G21 matters only to its callers (a straight
+        // program has none, and a streamed one never holds G20).
+        let plan = |p: &ProgPlan| ProgPlan { sets_units: false, ..p.clone() };
+        format!("{:?}", (plan(&self.plan), &self.commons, &self.common_flags))
+            == format!("{:?}", (plan(&other.plan), &other.commons, &other.common_flags))
     }
 }
 
@@ -320,6 +331,11 @@ struct State<'a> {
     /// The arc mode (G2/G3 last) before the first buffered statement, and after the last.
     arc_at_start: bool,
     arc: bool,
+    /// G20 in force before the first buffered statement, and after the last (a value
+    /// without a decimal point counts the inch increment; the program starts metric;
+    /// `None`: not known, after a skippable unit word).
+    inch_at_start: Option<bool>,
+    inch: Option<bool>,
     /// Statements in the first chunk (the whole translator writes it, header included).
     first_stmts: usize,
     /// The line ending as bytes, for the fast path.
@@ -384,7 +400,8 @@ impl State<'_> {
         if self.buf.is_empty() && self.stop.is_none() && self.io.is_none() {
             // Nothing waits for the passes: the line goes straight into the output buffer.
             let at = self.wbuf.len();
-            let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
+            let ok =
+                fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
             if !ok {
                 self.wbuf.truncate(at);
             } else if self.wbuf.len() >= WRITE_BYTES {
@@ -394,7 +411,7 @@ impl State<'_> {
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        let ok = fast::block(meta, items, lit, self.arc, self.opts, self.eol_bytes, &mut line).is_ok();
+        let ok = fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
             if self.stop.is_none() && self.io.is_none() {
@@ -450,7 +467,7 @@ impl State<'_> {
             self.stop = Some(Fallback::NotStraight("variables".into()));
             return;
         }
-        let (diags, text) = pl.lower(self.opts, body, self.arc_at_start);
+        let (diags, text) = pl.lower(self.opts, body, self.arc_at_start, self.inch_at_start);
         if !self.keep(diags) {
             return;
         }
@@ -475,11 +492,22 @@ impl State<'_> {
             self.flush_rest(body);
         }
         self.arc_at_start = self.arc;
+        self.inch_at_start = self.inch;
         self.buf_real = false;
+    }
+
+    /// A block that may be skipped (`/`) and changes the unit leaves it unknown, as where
+    /// paths meet in `passes::to_sinumerik::modal` (a value without a decimal point is then
+    /// declined by the fast path and refused by the passes, NC375).
+    fn skipped_unit(&mut self, skip: bool, inch_before: Option<bool>) {
+        if skip && self.inch != inch_before {
+            self.inch = None;
+        }
     }
 
     /// The arc mode and `buf_real` after block `b`.
     fn follow(&mut self, b: &Block) {
+        let inch_before = self.inch;
         // The arc mode as `words::lower` follows it (`g_codes`, without its vector).
         for it in &b.items {
             let ItemKind::Word(w) = &it.kind else { continue };
@@ -490,9 +518,12 @@ impl State<'_> {
             match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
                 Some(20 | 30) => self.arc = true,
                 Some(0 | 10) => self.arc = false,
+                Some(200) => self.inch = Some(true),
+                Some(210) => self.inch = Some(false),
                 _ => {}
             }
         }
+        self.skipped_unit(b.meta.skip.is_some(), inch_before);
         self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
     }
 
@@ -502,27 +533,30 @@ impl State<'_> {
         if self.first {
             return false;
         }
-        let (arc, buf_real) = (self.arc, self.buf_real);
+        let (arc, inch, buf_real) = (self.arc, self.inch, self.buf_real);
         // `follow` of the block the words are.
         for w in words {
             if w.letter == b'G' {
                 match fast::round(w.value * 10.0) as u32 {
                     20 | 30 => self.arc = true,
                     0 | 10 => self.arc = false,
+                    200 => self.inch = Some(true),
+                    210 => self.inch = Some(false),
                     _ => {}
                 }
             }
         }
+        self.skipped_unit(meta.skip.is_some(), inch);
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
         if self.fast(meta, words, |w| Some(Src { line, span: w.span, canon: w.canon })) {
             return true;
         }
-        (self.arc, self.buf_real) = (arc, buf_real);
+        (self.arc, self.inch, self.buf_real) = (arc, inch, buf_real);
         false
     }
 
     fn push(&mut self, s: &Stmt) {
-        let arc_before = self.arc;
+        let (arc_before, inch_before) = (self.arc, self.inch);
         if let StmtKind::Block(b) = &s.kind {
             self.follow(b);
         }
@@ -534,6 +568,7 @@ impl State<'_> {
             }
             if self.buf.is_empty() {
                 self.arc_at_start = arc_before;
+                self.inch_at_start = inch_before;
             }
         }
         self.buf.push(s.clone());
@@ -650,6 +685,8 @@ pub fn to_sinumerik_first(
         first: true,
         arc_at_start: false,
         arc: false,
+        inch_at_start: Some(false),
+        inch: Some(false),
         first_stmts: first_stmts.max(1),
         eol_bytes: eol.as_str().as_bytes(),
         wbuf: Vec::with_capacity(WRITE_BYTES + 4096),

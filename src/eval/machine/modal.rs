@@ -7,7 +7,10 @@ use crate::eval::trace::Plane;
 /// The modal state a G code of [`Modal::g`] may change (`Machine::modal`).
 ///
 /// `inch`: lengths in inch (FANUC G20, Siemens G70/G700); `inch_feed`: feeds in inch/min
-/// (FANUC G20, Siemens G700).
+/// (FANUC G20, Siemens G700). Siemens G70/G71 leave feeds in the basic system (MD10240,
+/// metric in every profile here), whatever G700/G710 came before: only G700/G710 make F
+/// inch/metric (828D function manual G2, 7.3; docs/semantics.md "Units"). The feed in force
+/// is stored in mm/min, so it stays physically the same across any switch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Modal {
     pub motion: Motion,
@@ -26,6 +29,14 @@ pub fn g_index(g: f64) -> i64 {
 }
 
 impl Modal {
+    /// The unit system variables with lengths (and feeds) are read and written in: FANUC
+    /// G20; Siemens only under G700 (G70/G71 read and write in the basic system, metric:
+    /// 828D function manual G2, 7.3), the feeds' unit in both.
+    #[inline]
+    pub fn sys_inch(&self) -> bool {
+        self.inch_feed
+    }
+
     /// Applies the G code `gi` ([`g_index`]) when all it does is change this state;
     /// `false` (nothing changed) for every other code, which the general path decides.
     #[inline]
@@ -47,8 +58,14 @@ impl Modal {
                 self.inch = false;
                 self.inch_feed = false;
             }
-            700 if !fanuc => self.inch = true,
-            710 if !fanuc => self.inch = false,
+            700 if !fanuc => {
+                self.inch = true;
+                self.inch_feed = false;
+            }
+            710 if !fanuc => {
+                self.inch = false;
+                self.inch_feed = false;
+            }
             7000 if !fanuc => {
                 self.inch = true;
                 self.inch_feed = true;

@@ -276,6 +276,8 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             writes_locals,
             returns_to: role != Role::Main && has_item(&p.body, &|k| matches!(k, ItemKind::Return { to: Some(_) })),
             defs: Vec::new(),
+            start_inch: None,
+            sets_units: super::modal::sets_units(&p.body),
         });
         if by_m98 && by_macro {
             ctx.cur = i;
@@ -357,7 +359,7 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
     let mut ret_after: Option<Span> = None;
     for it in std::mem::take(&mut b.items) {
         match it.kind {
-            ItemKind::Call(c) => match lower_call(ctx, *c, it.span) {
+            ItemKind::Call(c) => match lower_call(ctx, *c, it.span, modal.inch_at(span.lo)) {
                 Ok(item) => items.push(item),
                 Err(Some(stmt)) => out.push(stmt),
                 Err(None) => {}
@@ -413,7 +415,8 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
     }
 }
 
-fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> {
+/// `inch`: the unit (G20/G21) of the call block, for arguments written without a decimal point.
+fn lower_call(ctx: &mut Ctx, c: Call, span: Span, inch: Option<bool>) -> Result<Item, Option<Stmt>> {
     let n = match &c.target {
         CallTarget::Number(n) => *n,
         CallTarget::Computed(_) => {
@@ -469,8 +472,12 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span) -> Result<Item, Option<Stmt>> 
                     (Some(v), false) => {
                         let mut v = v.clone();
                         if let (ExprKind::Num(num), Some(l)) = (&mut v.kind, letter_of(p.local)) {
-                            if !num.point && super::words::scaled_letter(l) {
-                                num.value = super::words::scale(ctx.opts, num.value);
+                            if !num.point && super::words::scaled_letter(l) && super::words::scales_bare(ctx.opts) {
+                                let rotary = super::words::rotary_letter(l);
+                                let Some(inch) = inch.or(rotary.then_some(false)) else {
+                                    return Err(bare_in_unknown_unit(ctx, v.span));
+                                };
+                                num.value = super::words::scale(ctx.opts, num.value, inch, rotary);
                                 num.point = true;
                             }
                         }
@@ -601,8 +608,13 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         let WordValue::Expr(e) = &w.value else { continue };
         let mut v = e.clone();
         if let ExprKind::Num(n) = &mut v.kind {
-            if !n.point {
-                n.value = super::words::scale(ctx.opts, n.value);
+            if !n.point && super::words::scales_bare(ctx.opts) {
+                let rotary = super::words::rotary_letter(a);
+                let Some(inch) = modal.inch_at(span.lo).or(rotary.then_some(false)) else {
+                    out.extend(bare_in_unknown_unit(ctx, v.span));
+                    return;
+                };
+                n.value = super::words::scale(ctx.opts, n.value, inch, rotary);
                 n.point = true;
             }
         }
@@ -637,4 +649,15 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         }
     };
     out.push(plain_block(vec![super::words::g_word(g, span)], span));
+}
+
+/// A value written without a decimal point where the unit (G20/G21) it counts in is not known.
+fn bare_in_unknown_unit(ctx: &mut Ctx, span: Span) -> Option<Stmt> {
+    ctx.refuse(
+        "NC375",
+        span,
+        "a value without a decimal point where the unit (G20/G21) depends on the path taken or on the caller",
+        "a value without a decimal point",
+        "write the value with a decimal point, or select G20/G21 before it (in a subprogram: in the subprogram)",
+    )
 }

@@ -50,10 +50,14 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
 }
 
 fn lower_item(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>) {
-    if let ItemKind::Assign { target, .. } = &mut it.kind {
-        map_target(ctx, target, marks);
+    if let ItemKind::Assign { target, value } = &mut it.kind {
+        // A computed write keeps the is-set flag of the variable it reaches: the value's
+        // flag, taken from the FANUC value before it is lowered.
+        let flag = matches!(target.kind, VarKind::HashIndirect(_)).then(|| super::vacancy::flag_of_value(ctx, value));
+        map_target(ctx, target, marks, flag);
     }
     if let ItemKind::IfThen { then, .. } = &mut it.kind {
+        // (`structures` has made every IF-THEN block an IF statement; this is for any left.)
         lower_item(ctx, then, marks);
     }
     // Assignment targets were handled above; their index expressions and every other
@@ -65,7 +69,8 @@ fn lower_item(ctx: &mut Ctx, it: &mut Item, marks: &mut Vec<Stmt>) {
     }
 }
 
-fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
+/// `write_flag`: for a computed target, the flag of the value written.
+fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_flag: Option<Expr>) {
     let span = target.span;
     match &target.kind {
         VarKind::Hash(n) => {
@@ -86,14 +91,14 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
         VarKind::HashIndirect(x) => {
             let mut x = (**x).clone();
             lower_expr(ctx, &mut x, marks);
-            match runtime_indirect(ctx, x, span, marks) {
+            match runtime_indirect(ctx, x, span, marks, Access::Write(write_flag)) {
                 Some(k) => target.kind = k,
                 None => {
                     marks.extend(ctx.unsupported(
                         "NC361",
                         span,
                         "an indirect variable `#[…]` whose number is not known before the run",
-                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                        "use it in a plain block (assign it to a variable before the IF or WHILE), or give its range a --var-map rule",
                     ));
                     target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
                 }
@@ -106,36 +111,136 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>) {
 /// FANUC alarm 115 (variable number out of range), as the translation raises it.
 const ALARM_INDEX: i64 = super::gotos::RUNTIME_ALARM_BASE + 115;
 
-/// `#[x]` with an index only known at run time → `R[ROUND(x)]`, when #100..#199 sit on
-/// R100..R199 one to one and nothing else shares those R numbers, no flag is kept for them,
-/// and the access is in a plain block: a guard block in front raises `SETAL(64115)` if the
-/// index leaves #100..#199, so the assumption is checked on every run instead of trusted.
-fn runtime_indirect(ctx: &Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>) -> Option<VarKind> {
+/// `#[x]` with an index only known at run time → `R[…]` by the variable map's own rules
+/// (`varmap::dispatch_ranges`), in a plain block: blocks in front compute the R number into
+/// an `INT` temporary, one `IF` per range that needs an offset (`NCTRANS_IX1=NCTRANS_IX1-500`
+/// for `#500..` on `R0..`), and raise `SETAL(64115)` for a number no range holds, so the
+/// mapping is checked on every run instead of trusted. One range on its own R numbers needs
+/// no temporary: `R[ROUND(x)]` after the guard.
+fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, access: Access) -> Option<VarKind> {
     if !ctx.guard_ok {
         return None;
     }
-    let linear = ctx.commons.iter().all(|(&n, &r)| {
-        let inside = (100..=199).contains(&n);
-        let on_block = (100..=199).contains(&r);
-        (inside && r == n) || (!inside && !on_block)
-    });
-    let flagged = ctx.common_flags.iter().any(|(&n, &r)| (100..=199).contains(&n) || (100..=199).contains(&r));
-    if !linear || flagged || ctx.opts.target.r_param_count < 200 {
+    let ranges = super::varmap::dispatch_ranges(ctx);
+    // The tracked variables it may reach, (R number, flag R number).
+    let tracked: Vec<(u32, u32)> = ctx
+        .common_flags
+        .iter()
+        .filter_map(|(n, &f)| {
+            let r = *ctx.commons.get(n)?;
+            ranges.iter().any(|&(from, to, _)| from <= *n && *n <= to).then_some((r, f))
+        })
+        .collect();
+    if ranges.is_empty() {
         return None;
     }
     let idx = func(Func::Round, vec![x], span);
-    let cmp = |op: CmpOp, v: i64| {
-        Expr::new(ExprKind::Cmp(op, Tolerance::Relative, Box::new(idx.clone()), Box::new(int(v, span))), span)
+    let cmp = |e: &Expr, op: CmpOp, v: u32| {
+        Expr::new(ExprKind::Cmp(op, Tolerance::Relative, Box::new(e.clone()), Box::new(int(i64::from(v), span))), span)
     };
-    let alarm =
-        Item { kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: int(ALARM_INDEX, span), text: None }, span };
-    marks.push(if_stmt(
-        bin(BinOp::Or, cmp(CmpOp::Lt, 100), cmp(CmpOp::Gt, 199)),
-        vec![plain_block(vec![alarm], span)],
-        None,
-        span,
-    ));
-    Some(VarKind::RIndirect(Box::new(idx)))
+    let outside =
+        |e: &Expr, (from, to, _): (u32, u32, u32)| bin(BinOp::Or, cmp(e, CmpOp::Lt, from), cmp(e, CmpOp::Gt, to));
+    let inside =
+        |e: &Expr, (from, to, _): (u32, u32, u32)| bin(BinOp::And, cmp(e, CmpOp::Ge, from), cmp(e, CmpOp::Le, to));
+    let alarm = || {
+        plain_block(
+            vec![Item {
+                kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: int(ALARM_INDEX, span), text: None },
+                span,
+            }],
+            span,
+        )
+    };
+    if let [one @ (from, _, r)] = ranges[..] {
+        if from == r {
+            marks.push(if_stmt(outside(&idx, one), vec![alarm()], None, span));
+            flags(&idx, &tracked, access, span, marks);
+            return Some(VarKind::RIndirect(Box::new(idx)));
+        }
+    }
+    // The temporary: one per computed access of the statement (the blocks in front of it
+    // are `marks`), the same ones again for the next statement; declared once.
+    let k = marks.iter().filter(|m| is_temp_set(m)).count() + 1;
+    let name = format!("{IX_TEMP}{k}");
+    let plan = &mut ctx.progs[ctx.cur];
+    if !plan.defs.iter().any(|d| d.0 == name) {
+        plan.defs.push((name.clone(), DataType::Int));
+    }
+    let t = named(&name, span);
+    marks.push(plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), idx, span)], span));
+    // Ranges on their own R numbers need no assignment: they are tested last, together.
+    let (same, moved): (Vec<_>, Vec<_>) = ranges.iter().copied().partition(|(from, _, r)| from == r);
+    let mut tail = match same.split_first() {
+        None => vec![alarm()],
+        Some((first, rest)) => {
+            let cond = rest.iter().fold(outside(&t, *first), |c, &r| bin(BinOp::And, c, outside(&t, r)));
+            vec![if_stmt(cond, vec![alarm()], None, span)]
+        }
+    };
+    for range @ (from, _, r) in moved.into_iter().rev() {
+        let shift = if r > from {
+            bin(BinOp::Add, t.clone(), int(i64::from(r - from), span))
+        } else {
+            bin(BinOp::Sub, t.clone(), int(i64::from(from - r), span))
+        };
+        let set = plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), shift, span)], span);
+        tail = vec![if_stmt(inside(&t, range), vec![set], Some(tail), span)];
+    }
+    marks.extend(tail);
+    flags(&t, &tracked, access, span, marks);
+    Some(VarKind::RIndirect(Box::new(t)))
+}
+
+/// A computed variable access.
+enum Access {
+    Read,
+    /// The value's flag.
+    Write(Option<Expr>),
+}
+
+/// The is-set flags of the tracked variables a computed access with R number `r` may reach:
+/// a write sets the flag of the one it reaches to the value's; a read of one that is vacant
+/// (its flag FALSE) raises `SETAL(64115)`, as Siemens has no vacant value to read.
+fn flags(r: &Expr, tracked: &[(u32, u32)], access: Access, span: Span, marks: &mut Vec<Stmt>) {
+    for &(rn, f) in tracked {
+        let hit = Expr::new(
+            ExprKind::Cmp(CmpOp::Eq, Tolerance::Relative, Box::new(r.clone()), Box::new(int(i64::from(rn), span))),
+            span,
+        );
+        let flag = VarRef { kind: VarKind::R(f), span };
+        let body = match &access {
+            Access::Write(w) => {
+                let value = w.clone().unwrap_or_else(|| int(1, span));
+                marks.push(if_stmt(
+                    hit,
+                    vec![plain_block(vec![crate::passes::assign_item(&flag, value, span)], span)],
+                    None,
+                    span,
+                ));
+                continue;
+            }
+            Access::Read => vec![plain_block(
+                vec![Item {
+                    kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: int(ALARM_INDEX, span), text: None },
+                    span,
+                }],
+                span,
+            )],
+        };
+        let unset =
+            Expr::new(ExprKind::Unary(UnOp::Not, Box::new(Expr::new(ExprKind::Var(Box::new(flag)), span))), span);
+        marks.push(if_stmt(bin(BinOp::And, hit, unset), body, None, span));
+    }
+}
+
+/// The name stem of the temporaries that hold a computed R number.
+const IX_TEMP: &str = "NCTRANS_IX";
+
+/// Whether `s` is the block that sets a computed-R-number temporary (`NCTRANS_IX1=ROUND(…)`).
+fn is_temp_set(s: &Stmt) -> bool {
+    let StmtKind::Block(b) = &s.kind else { return false };
+    matches!(b.items.as_slice(), [Item { kind: ItemKind::Assign { target, .. }, .. }]
+        if matches!(&target.kind, VarKind::Named { name, .. } if name.starts_with(IX_TEMP)))
 }
 
 fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
@@ -161,14 +266,14 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                     }
                 }
             }
-            VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks) {
+            VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks, Access::Read) {
                 Some(k) => var_expr(k, v.span),
                 None => {
                     marks.extend(ctx.unsupported(
                         "NC361",
                         v.span,
                         "an indirect variable `#[…]` whose number is not known before the run",
-                        "use the variables by number, or keep the indexed range inside #100..#199 (R100..R199)",
+                        "use it in a plain block (assign it to a variable before the IF or WHILE), or give its range a --var-map rule",
                     ));
                     Expr::num(0.0, false, span)
                 }

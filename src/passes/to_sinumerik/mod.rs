@@ -184,6 +184,12 @@ pub struct ProgPlan {
     pub returns_to: bool,
     /// DEF declarations the output needs (name, type), in order.
     pub defs: Vec<(String, DataType)>,
+    /// The unit (G20 `true`, G21) the program starts in, where known: metric for the main
+    /// program, its callers' one unit for a called program (`modal::call_units`).
+    pub start_inch: Option<bool>,
+    /// The program (or a call in it) may select G20/G21: its caller's unit after the call
+    /// is not known.
+    pub sets_units: bool,
 }
 
 /// The shared state of one translation.
@@ -202,6 +208,9 @@ pub struct Ctx<'a> {
     /// The work offset and G90/G91 at each block of the program being lowered, found on
     /// it as read (`modal`).
     pub modal: modal::ModalScan,
+    /// Common variable numbers the computed `#[…]` indices of the job start from (their
+    /// constant term): which variable ranges they are meant for (`varmap::dispatch_ranges`).
+    pub index_bases: BTreeSet<u32>,
 }
 
 impl<'a> Ctx<'a> {
@@ -282,8 +291,15 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         cur: 0,
         guard_ok: false,
         modal: modal::ModalScan::default(),
+        index_bases: BTreeSet::new(),
     };
     calls::plan_programs(&mut ctx, programs);
+    let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
+    modal::close_setters(&mut ctx.progs, &bodies);
+    let units = modal::call_units(&ctx.progs, &bodies);
+    for (p, u) in ctx.progs.iter_mut().zip(units) {
+        p.start_inch = u;
+    }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
     let mut out = Vec::new();
@@ -318,7 +334,8 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
-    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main);
+    let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main, ctx.plan().start_inch, &setters);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
     body = gotos::lower(ctx, body);

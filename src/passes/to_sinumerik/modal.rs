@@ -1,6 +1,7 @@
 //! The modal G codes a FANUC → Sinumerik pass needs at a block: the active work offset
 //! (G54..G59, re-selected after a `G10 L2` or `#5221+` write, since writing `$P_UIFR` does
-//! not activate it) and G90/G91 (a `G10 L2` under G91 adds). Found by a forward dataflow
+//! not activate it), G90/G91 (a `G10 L2` under G91 adds) and G20/G21 (the unit a value
+//! written without a decimal point is counted in). Found by a forward dataflow
 //! over the FANUC program's control-flow graph (`vacancy::flatten`: GOTO search order,
 //! loops, every edge), so a value holds only where every path to the block agrees on it; a
 //! block that may be skipped (`/`) passes both ways. Computed on the program as read, before
@@ -12,30 +13,52 @@ use super::*;
 /// The two modes at the exit of each block (text order), `None` where paths disagree.
 #[derive(Default)]
 pub struct ModalScan {
-    /// (block span start, work offset G code ×10, incremental).
-    blocks: Vec<(u32, Option<u32>, Option<bool>)>,
+    /// (block span start, the modes after it).
+    blocks: Vec<(u32, State)>,
 }
 
-#[derive(Clone, Copy, PartialEq, Eq)]
-struct State {
-    offset: Option<u32>,
-    incremental: Option<bool>,
+/// The modes after a block, each `None` where the paths to it disagree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct State {
+    /// The work offset G code ×10.
+    pub offset: Option<u32>,
+    pub incremental: Option<bool>,
+    /// G20 (`true`) or G21.
+    pub inch: Option<bool>,
 }
 
 impl State {
+    const UNKNOWN: State = State { offset: None, incremental: None, inch: None };
+
     fn merge(self, o: State) -> State {
         State {
             offset: if self.offset == o.offset { self.offset } else { None },
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
+            inch: if self.inch == o.inch { self.inch } else { None },
         }
     }
 
-    fn apply(mut self, items: &[Item]) -> State {
+    /// `setters`: the programs of the job that may select G20/G21 (after a call of one, or
+    /// of a computed target, the unit is not known).
+    fn apply(mut self, items: &[Item], setters: &[u32]) -> State {
+        for it in items {
+            if let ItemKind::Call(c) = &it.kind {
+                let sets = match &c.target {
+                    CallTarget::Number(n) => setters.contains(n),
+                    _ => true,
+                };
+                if sets {
+                    self.inch = None;
+                }
+            }
+        }
         for g in g_codes(items) {
             match g {
                 540 | 550 | 560 | 570 | 580 | 590 => self.offset = Some(g),
                 900 => self.incremental = Some(false),
                 910 => self.incremental = Some(true),
+                200 => self.inch = Some(true),
+                210 => self.inch = Some(false),
                 _ => {}
             }
         }
@@ -44,19 +67,21 @@ impl State {
 }
 
 impl ModalScan {
-    /// `main`: the program starts in G54 and G90 (power-on); a called program starts in its
-    /// caller's modes, which are not known here.
-    pub fn new(body: &[Stmt], main: bool) -> ModalScan {
+    /// `main`: the program starts in G54 and G90 (power-on) and in the unit `inch` (G21 for
+    /// a main program, [`call_units`]; a streamed chunk's may differ); a called
+    /// program starts in its caller's modes, which are not known here, except the unit
+    /// when every call in the job is made in the same one (`inch`, [`call_units`]).
+    pub fn new(body: &[Stmt], main: bool, inch: Option<bool>, setters: &[u32]) -> ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false) }
+            State { offset: Some(540), incremental: Some(false), inch }
         } else {
-            State { offset: None, incremental: None }
+            State { inch, ..State::UNKNOWN }
         };
         let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
             (Node::Items(items), Some((_, skip))) => {
-                let after = s.apply(items);
+                let after = s.apply(items, setters);
                 if skip {
                     after.merge(s)
                 } else {
@@ -90,23 +115,25 @@ impl ModalScan {
                 break;
             }
         }
-        let blocks = (0..len)
-            .filter_map(|i| {
-                let (lo, _) = flat.blocks[i]?;
-                let st = match (settled, ins[i]) {
-                    (true, Some(s)) => out_of(i, s),
-                    // Unreachable: nothing runs there, any value is as good; unsettled: none.
-                    (true, None) => start,
-                    (false, _) => State { offset: None, incremental: None },
-                };
-                Some((lo, st.offset, st.incremental))
-            })
-            .collect();
+        let mut blocks = Vec::new();
+        let mut prev = start;
+        for (i, at) in ins.iter().enumerate() {
+            let Some((lo, _)) = flat.blocks[i] else { continue };
+            let st = match (settled, *at) {
+                (true, Some(s)) => out_of(i, s),
+                // Unreachable (after M30, say): nothing runs there, any value is as good;
+                // the text before it, as the streamed translator follows it.
+                (true, None) => out_of(i, prev),
+                (false, _) => State::UNKNOWN,
+            };
+            prev = st;
+            blocks.push((lo, st));
+        }
         ModalScan { blocks }
     }
 
     /// The block at or before `lo` in text order.
-    fn at(&self, lo: u32) -> Option<&(u32, Option<u32>, Option<bool>)> {
+    fn at(&self, lo: u32) -> Option<&(u32, State)> {
         let i = self.blocks.partition_point(|b| b.0 <= lo);
         i.checked_sub(1).and_then(|i| self.blocks.get(i))
     }
@@ -114,11 +141,144 @@ impl ModalScan {
     /// The work offset G code (×10) in force after the block at `lo`; `None` where the paths
     /// to it disagree (or a called program has not selected one itself).
     pub fn offset_at(&self, lo: u32) -> Option<u32> {
-        self.at(lo).and_then(|b| b.1)
+        self.at(lo).and_then(|b| b.1.offset)
     }
 
     /// G91 in force after the block at `lo`; `None` where the paths disagree.
     pub fn incremental_at(&self, lo: u32) -> Option<bool> {
-        self.at(lo).and_then(|b| b.2)
+        self.at(lo).and_then(|b| b.1.incremental)
+    }
+
+    /// G20 in force after the block at `lo` (a value of the block is read in it); `None`
+    /// where the paths disagree or a called program runs in its caller's unveiled unit.
+    pub fn inch_at(&self, lo: u32) -> Option<bool> {
+        self.at(lo).and_then(|b| b.1.inch)
+    }
+
+    /// The unit in force after each block (text order), for [`call_units`].
+    fn all(&self) -> impl Iterator<Item = (u32, Option<bool>)> + '_ {
+        self.blocks.iter().map(|b| (b.0, b.1.inch))
+    }
+}
+
+/// The unit (G20/G21) each program of a job starts in, where every call of it in the job is
+/// made in the same one: the main program (index 0 when `main0`) starts metric; a called
+/// program in the unit at its call sites (`M98`/`G65` blocks; for `G66`, every block of the
+/// caller, since the macro runs after each move); `None` where they differ, where no call
+/// of it is in the job, or where a call is computed (`P#1`). Fixed point over the call
+/// graph: a callee's start can only go from unseen to a unit to unknown.
+pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Seen {
+        None,
+        Unit(bool),
+        Mixed,
+    }
+    let n = progs.len();
+    let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    let by_number = |num: u32| progs.iter().position(|p| p.number == Some(num));
+    let mut seen = vec![Seen::None; n];
+    let start = |seen: &[Seen], i: usize| -> Option<bool> {
+        if progs[i].role == Role::Main {
+            return Some(false);
+        }
+        match seen[i] {
+            Seen::Unit(u) => Some(u),
+            _ => None,
+        }
+    };
+    let mut computed = false;
+    let mut settled = false;
+    for _ in 0..(2 * n + 2) {
+        let mut next = vec![Seen::None; n];
+        let see = |next: &mut Vec<Seen>, j: usize, u: Option<bool>| {
+            next[j] = match (next[j], u) {
+                (Seen::None, Some(u)) => Seen::Unit(u),
+                (Seen::Unit(a), Some(b)) if a == b => Seen::Unit(a),
+                _ => Seen::Mixed,
+            };
+        };
+        for i in 0..n {
+            let main = progs[i].role == Role::Main;
+            let scan = ModalScan::new(bodies[i], main, start(&seen, i), &setters);
+            let all: Vec<Option<bool>> = scan.all().map(|b| b.1).collect();
+            crate::ir::visit::walk_stmts(bodies[i], &mut |s| {
+                let StmtKind::Block(b) = &s.kind else { return };
+                for it in &b.items {
+                    let ItemKind::Call(c) = &it.kind else { continue };
+                    let j = match &c.target {
+                        CallTarget::Number(num) => by_number(*num),
+                        _ => {
+                            computed = true;
+                            None
+                        }
+                    };
+                    let Some(j) = j else { continue };
+                    if c.kind == CallKind::G66 {
+                        for &u in &all {
+                            see(&mut next, j, u);
+                        }
+                    } else {
+                        see(&mut next, j, scan.inch_at(b.meta.span.lo));
+                    }
+                }
+            });
+        }
+        if next == seen {
+            settled = true;
+            break;
+        }
+        seen = next;
+    }
+    let known = settled && !computed;
+    (0..n).map(|i| if known || progs[i].role == Role::Main { start(&seen, i) } else { None }).collect()
+}
+
+/// Whether `body` has a G20 or G21 word (a constant one; a computed G code is refused).
+pub fn sets_units(body: &[Stmt]) -> bool {
+    has_g(body, &[200, 210])
+}
+
+/// Whether `body` has one of the G codes `codes` (×10).
+pub fn has_g(body: &[Stmt], codes: &[u32]) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= g_codes(&b.items).iter().any(|g| codes.contains(g));
+        }
+    });
+    any
+}
+
+/// Marks the programs that call (directly or through others) a program that may select
+/// G20/G21: after their call, too, the caller's unit is not known.
+pub fn close_setters(progs: &mut [ProgPlan], bodies: &[&[Stmt]]) {
+    for _ in 0..progs.len() {
+        let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+        let mut changed = false;
+        for (p, body) in progs.iter_mut().zip(bodies) {
+            if p.sets_units {
+                continue;
+            }
+            let mut calls = false;
+            crate::ir::visit::walk_stmts(body, &mut |s| {
+                if let StmtKind::Block(b) = &s.kind {
+                    calls |= b.items.iter().any(|it| match &it.kind {
+                        ItemKind::Call(c) => match &c.target {
+                            CallTarget::Number(n) => setters.contains(n),
+                            _ => !setters.is_empty(),
+                        },
+                        _ => false,
+                    });
+                }
+            });
+            if calls {
+                p.sets_units = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
     }
 }

@@ -2,9 +2,16 @@
 //!
 //! Defaults (each overridable by `--var-map '#from-#to=Rn'`, rules applied first):
 //! - `#500..#799` → `R0..R299` (the inverse of the Siemens→FANUC default `Rn` → `#(500+n)`,
-//!   so round trips keep their R numbers), `#100..#199` → `R100..R199`.
+//!   so round trips keep their R numbers), `#100..#199` → `R100..R199` ([`DEFAULT_RULES`]).
 //! - Any other common variable the program uses (and any default that would land on an R
 //!   number already taken) gets the lowest free R number, with a warning naming it.
+//! - A computed `#[…]` goes through the same rules at run time ([`dispatch_ranges`]): every
+//!   number of a rule's range whose R number is its own (a direct access of it goes there,
+//!   or nothing else is there) is reached as `R[i-from+Rn]`, so `#[550+#1*2]` with #1 = 2
+//!   is the R parameter `#554` is. Where two ranges' R numbers overlap (`#600..#699` and
+//!   `#100..#199` by default), the ranges the job's variables and computed indices point
+//!   at come first, then a range on its own numbers (`#100..#199`). Any other number
+//!   raises `SETAL(64115)` (FANUC alarm 115's image).
 //! - Is-set flags of tracked common variables take free R numbers from the top down.
 //! - Locals `#1..#33`: in a main program `DEF REAL LOCn`; in a G65 macro `PROC` parameters
 //!   `ARG_<letter>` for argument locals and `DEF REAL LOCn` for the rest; in an M98
@@ -114,11 +121,7 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
         taken.insert(r, n);
         ctx.commons.insert(n, r);
     }
-    let default_r = |n: u32| match n {
-        500..=799 => Some(n - 500),
-        100..=199 => Some(n),
-        _ => None,
-    };
+    let default_r = default_r;
     let mut leftovers = Vec::new();
     for &n in &pending {
         match default_r(n) {
@@ -177,6 +180,131 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
     for plan in &mut ctx.progs {
         plan_locals(plan);
     }
+    ctx.index_bases = index_bases(programs);
+}
+
+/// The default rules `(from, to, R start)`, in the order they are applied.
+pub const DEFAULT_RULES: &[(u32, u32, u32)] = &[(500, 799, 0), (100, 199, 100)];
+
+/// The default R number of `#n` (the first default rule that holds it).
+fn default_r(n: u32) -> Option<u32> {
+    DEFAULT_RULES.iter().find(|r| r.0 <= n && n <= r.1).map(|r| r.2 + (n - r.0))
+}
+
+/// The constant term of an index (`550` of `#[550+#1*2]`), when it has one.
+fn constant_term(e: &Expr) -> Option<f64> {
+    match &e.kind {
+        ExprKind::Num(n) => Some(n.value),
+        ExprKind::Binary(BinOp::Add, a, b) => match (constant_term(a), constant_term(b)) {
+            (Some(x), Some(y)) => Some(x + y),
+            (x, y) => x.or(y),
+        },
+        ExprKind::Binary(BinOp::Sub, a, b) => match (constant_term(a), literal(b)) {
+            (Some(x), Some(y)) => Some(x - y),
+            (x, _) => x,
+        },
+        _ => None,
+    }
+}
+
+/// [`Ctx::index_bases`] of the job.
+fn index_bases(programs: &[(FileId, &Program)]) -> BTreeSet<u32> {
+    let mut bases = BTreeSet::new();
+    let mut see = |x: &Expr| {
+        if let Some(c) = constant_term(x) {
+            let c = c.round();
+            if (100.0..=999.0).contains(&c) {
+                bases.insert(c as u32);
+            }
+        }
+    };
+    for (_, p) in programs {
+        crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+            let StmtKind::Block(b) = &s.kind else { return };
+            for it in &b.items {
+                let mut items = vec![it];
+                if let ItemKind::IfThen { then, .. } = &it.kind {
+                    items.push(then);
+                }
+                for it in items {
+                    if let ItemKind::Assign { target, .. } = &it.kind {
+                        if let VarKind::HashIndirect(x) = &target.kind {
+                            see(x);
+                        }
+                    }
+                    let mut stack: Vec<&Expr> = crate::ir::visit::item_exprs(it);
+                    while let Some(e) = stack.pop() {
+                        if let ExprKind::Var(v) = &e.kind {
+                            if let VarKind::HashIndirect(x) = &v.kind {
+                                see(x);
+                            }
+                        }
+                        stack.extend(e.children());
+                    }
+                }
+            }
+        });
+    }
+    bases
+}
+
+/// The variable ranges a computed `#[…]` reaches at run time, `(from, to, R of from)`, each
+/// a run of numbers whose R parameter is the one a direct access uses, no two numbers
+/// sharing an R number. A number goes by its rule (the first `--var-map` rule that holds it,
+/// else [`DEFAULT_RULES`]), as direct access does; a variable of the job goes where the map
+/// put it (its rule's place, or alone where a collision or NC360 put it). Where numbers the
+/// job never names would share an R number (`#620` and `#120` on R120 by default), one gets
+/// it: an explicit rule's, else one in a hundred (`#6xx`, `#1xx`) the job's variables or
+/// computed indices use, else one on its own number, else the earlier rule's; the others
+/// are left out (`SETAL(64115)` at run time). Tracked variables (is-set flags) are in: the
+/// computed access keeps their flags (`exprs::runtime_indirect`).
+pub fn dispatch_ranges(ctx: &Ctx) -> Vec<(u32, u32, u32)> {
+    let count = ctx.opts.target.r_param_count;
+    let explicit = ctx.opts.var_map.len();
+    let rules: Vec<(u32, u32, u32)> =
+        ctx.opts.var_map.iter().map(|r| (r.from, r.to, r.r_start)).chain(DEFAULT_RULES.iter().copied()).collect();
+    let hundreds: BTreeSet<u32> = ctx.commons.keys().chain(&ctx.index_bases).map(|n| n / 100).collect();
+    let owner: BTreeMap<u32, u32> = ctx.commons.iter().map(|(&n, &r)| (r, n)).collect();
+    let flag_r: BTreeSet<u32> = ctx.common_flags.values().chain(ctx.opts.flag_places.values()).copied().collect();
+    // R number → (preference, number): the candidate that gets it (lowest preference).
+    let mut best: BTreeMap<u32, ((u8, u8, usize), u32)> = BTreeMap::new();
+    for n in 100..=999u32 {
+        let Some(k) = rules.iter().position(|r| r.0 <= n && n <= r.1) else { continue };
+        let (from, _, r0) = rules[k];
+        let Some(r) = r0.checked_add(n - from) else { continue };
+        if r >= count || flag_r.contains(&r) {
+            continue;
+        }
+        let pref = match ctx.commons.get(&n) {
+            Some(&m) if m == r => (0, 0, k),
+            Some(_) => continue,
+            None if owner.contains_key(&r) => continue,
+            None => {
+                (if k < explicit { 1 } else { 2 }, u8::from(!hundreds.contains(&(n / 100))) * 2 + u8::from(n != r), k)
+            }
+        };
+        if best.get(&r).is_none_or(|b| pref < b.0) {
+            best.insert(r, (pref, n));
+        }
+    }
+    // Runs of consecutive numbers with one offset (number → R).
+    let mut chosen: Vec<(u32, u32)> = best.iter().map(|(&r, &(_, n))| (n, r)).collect();
+    chosen.sort_unstable();
+    let mut out: Vec<(u32, u32, u32)> = Vec::new();
+    for (n, r) in chosen {
+        match out.last_mut() {
+            Some(last) if last.1 + 1 == n && last.2 + (n - last.0) == r => last.1 = n,
+            _ => out.push((n, n, r)),
+        }
+    }
+    // A variable placed off its rule (a collision, or no rule: NC360) is reached where it is.
+    for (&n, &r) in &ctx.commons {
+        if best.get(&r).is_none_or(|b| b.1 != n) {
+            out.push((n, n, r));
+        }
+    }
+    out.sort_unstable();
+    out
 }
 
 fn plan_locals(plan: &mut ProgPlan) {

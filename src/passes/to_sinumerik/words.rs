@@ -1,8 +1,11 @@
 //! Address words, G codes, messages, alarms and system variables.
 //!
 //! - Dimensional words written without a decimal point are in least input increments on
-//!   FANUC: `X10` → `X0.01` on the default IS-B metric profile (none with calculator-type
-//!   input). Expressions (`X[#1+2]`, `X#1`) are already in millimetres.
+//!   FANUC: `X10` → `X0.01` on the default IS-B metric profile, `Z1000` → `Z0.1` under G20
+//!   (0.0001 in; the Siemens program runs in G700, in inch), by the evaluator's rule
+//!   (`dialect::semantics::input_increment`); none with calculator-type input. Where the
+//!   unit is not known (paths disagree, a caller's unit that differs between calls) such a
+//!   value is refused (NC375). Expressions (`X[#1+2]`, `X#1`) are already in the unit.
 //! - G codes: identical ones are kept; `G20/G21` → `G700/G710` (feeds follow the unit, as on
 //!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active);
 //!   `G43/G44/G49` and their `H` dropped with a warning (Siemens applies the length of the
@@ -24,10 +27,17 @@ pub fn scaled_letter(l: u8) -> bool {
     matches!(l, b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' | b'Q')
 }
 
-/// A value written without a decimal point, in millimetres (or degrees).
-pub fn scale(opts: &Options, v: f64) -> f64 {
+/// Letters whose bare values count the metric increment whatever the unit: angles.
+pub fn rotary_letter(l: u8) -> bool {
+    matches!(l, b'A' | b'B' | b'C')
+}
+
+/// A value written without a decimal point, in the unit it is read in (mm, or inch under
+/// G20 `inch`; degrees when `rotary`; seconds for a dwell `X`, also `rotary`): the
+/// evaluator's rule, [`crate::dialect::semantics::input_increment`].
+pub fn scale(opts: &Options, v: f64, inch: bool, rotary: bool) -> f64 {
     if opts.source.increment_scaling && !opts.source.calculator_input {
-        let inc = opts.source.least_increment_mm;
+        let inc = opts.source.input_increment(inch, rotary);
         // Round to the increment's decimals so 10 × 0.001 prints as 0.01, not 0.010000000000000002.
         let digits = (-inc.log10()).ceil().max(0.0) as i32 + 1;
         let f = 10f64.powi(digits);
@@ -35,6 +45,11 @@ pub fn scale(opts: &Options, v: f64) -> f64 {
     } else {
         v
     }
+}
+
+/// Whether FANUC counts a value without a decimal point in increments (not calculator-type input).
+pub fn scales_bare(opts: &Options) -> bool {
+    opts.source.increment_scaling && !opts.source.calculator_input
 }
 
 pub fn g_word(g10: u32, span: Span) -> Item {
@@ -185,7 +200,8 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
         let isp = it.span;
         match it.kind {
             ItemKind::Word(w) => {
-                if let Some(x) = lower_word(ctx, w, *arc, dwell, &mut dwell_value, &gs, isp, &mut after) {
+                let inch = modal.inch_at(span.lo);
+                if let Some(x) = lower_word(ctx, w, *arc, dwell, inch, &mut dwell_value, &gs, isp, &mut after) {
                     items.push(x);
                 }
             }
@@ -273,6 +289,7 @@ fn lower_word(
     mut w: Word,
     arc: bool,
     dwell: bool,
+    inch: Option<bool>,
     dwell_value: &mut Option<Expr>,
     gs: &[u32],
     isp: Span,
@@ -348,23 +365,44 @@ fn lower_word(
         let secs = match (l, &e.kind) {
             (b'P', ExprKind::Num(n)) => num(n.value / 1000.0, e.span),
             (b'P', _) => bin(BinOp::Div, e.clone(), int(1000, e.span)),
-            (_, ExprKind::Num(n)) if !n.point => num(scale(ctx.opts, n.value), e.span),
+            (_, ExprKind::Num(n)) if !n.point => num(scale(ctx.opts, n.value, false, true), e.span),
             _ => e.clone(),
         };
         *dwell_value = Some(secs);
         return None;
     }
     if scaled_letter(l) {
+        let rotary = rotary_letter(l);
+        let counted = matches!(&e.kind, ExprKind::Num(n) if !n.point) && scales_bare(ctx.opts);
+        let rounds = matches!(&e.kind, ExprKind::Func(Func::FanucRound, _));
+        let inch = match inch {
+            Some(u) => u,
+            None if (counted && !rotary) || rounds => {
+                let what = if rounds { "ROUND in an address" } else { "a value without a decimal point" };
+                if let Some(st) = ctx.refuse(
+                    "NC375",
+                    w.span,
+                    &format!("{what} where the unit (G20/G21) depends on the path taken or on the caller"),
+                    what,
+                    "write the value with a decimal point, or select G20/G21 before it (in a subprogram: in the subprogram)",
+                ) {
+                    after.push(st);
+                }
+                return None;
+            }
+            None => false,
+        };
         if let ExprKind::Num(n) = &mut e.kind {
             if !n.point {
-                n.value = scale(ctx.opts, n.value);
+                n.value = scale(ctx.opts, n.value, inch, rotary);
                 n.point = true;
             }
         }
         // ROUND in an address rounds to the address increment (pitfall 3).
         if let ExprKind::Func(Func::FanucRound, args) = &e.kind {
             if let Some(a) = args.first() {
-                let f = (1.0 / ctx.opts.source.least_increment_mm).round();
+                // The evaluator's address increment (`eval::expr` in_address), angles too.
+                let f = (1.0 / ctx.opts.source.input_increment(inch, false)).round();
                 let sp = e.span;
                 *e = bin(BinOp::Div, func(Func::Round, vec![bin(BinOp::Mul, a.clone(), num(f, sp))], sp), num(f, sp));
             }

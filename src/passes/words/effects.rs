@@ -30,9 +30,7 @@ pub enum UnitEffect {
     /// Unchanged: no unit word runs (or SAVE restores them).
     #[default]
     None,
-    /// G70/G71 last, no G700/G710: lengths in this unit (`true`: inch), feeds the caller's.
-    Lengths(bool),
-    /// Both set.
+    /// Both set (by the last unit word: each of G70, G71, G700, G710 sets both).
     Both(Units),
     /// Depends on the path taken (unit words under a condition, jumps, early returns).
     Unknown,
@@ -160,16 +158,10 @@ fn fold_units(body: &[Stmt]) -> UnitEffect {
     for s in body {
         if let StmtKind::Block(b) = &s.kind {
             for g in b.items.iter().filter_map(g_code) {
-                e = match (g, e) {
-                    (700, _) => UnitEffect::Both(Units { inch: true, inch_feed: true }),
-                    (710, _) => UnitEffect::Both(Units::default()),
-                    (70 | 71, UnitEffect::Both(mut u)) => {
-                        u.inch = g == 70;
-                        UnitEffect::Both(u)
-                    }
-                    (70 | 71, _) => UnitEffect::Lengths(g == 70),
-                    (_, e) => e,
-                };
+                let mut u = Units::default();
+                if u.g(f64::from(g)) {
+                    e = UnitEffect::Both(u);
+                }
             }
         }
     }
@@ -209,8 +201,9 @@ mod tests {
             ("SAVED", "PROC SAVED SAVE\nG91 G70 G18\nLEN\nM17\n"),
         ]);
         assert_eq!(e["PLAIN"], Effect { sets: 1, ..Effect::default() });
-        assert_eq!(e["LEN"].units, UnitEffect::Lengths(true));
-        assert_eq!(e["BOTH"].units, UnitEffect::Both(Units { inch: false, inch_feed: true }));
+        assert_eq!(e["LEN"].units, UnitEffect::Both(Units { inch: true, inch_feed: false }));
+        // G71 after G700 reads F metric again.
+        assert_eq!(e["BOTH"].units, UnitEffect::Both(Units::default()));
         for unknown in ["COND", "EARLY", "SKIP", "OUTER"] {
             assert_eq!(e[unknown].units, UnitEffect::Unknown, "{unknown}");
         }

@@ -5,7 +5,8 @@
 //! after an IF (both branches), at the head of a loop (entry and every later pass, to a
 //! fixed point), after a block that may be skipped (`/`), and at a jump target when a
 //! mode word lies between a jump and its target. An unknown G90/G91 is read at run time
-//! (`#4003`); unknown units decline F words and calls until G700/G710 sets both again.
+//! (`#4003`); unknown units decline F words and calls until a unit word (G70, G71, G700,
+//! G710: each sets lengths and feeds, [`super::units`]) sets them again.
 
 use super::const_g;
 use super::effects::{Effect, UnitEffect, ABS};
@@ -21,40 +22,24 @@ pub(super) enum UnitState {
     /// A subprogram's start: lengths and feeds in one unit, the caller's (calls are
     /// declined where the two differ, so this holds for every translated caller).
     Caller,
-    /// In a subprogram after G70/G71 and before any G700/G710: the lengths' unit is known
-    /// (`inch`), the feeds' is still the caller's, known only at run time. FANUC keeps the
-    /// caller's G20/G21 in `#4006` until the subprogram's first unit word, so the subprogram
-    /// saves it on entry and its F words are converted from it.
-    CallerFeed {
-        inch: bool,
-    },
     /// Paths disagree (or a callee's units on return depend on its path): F words and
-    /// calls are declined until G700/G710.
+    /// calls are declined until a unit word.
     Unknown,
 }
 
 /// How an F word is written.
 pub(super) enum Feed {
     Static(FeedConv),
-    /// Feeds in the caller's unit, lengths in this one (`true`: inch).
-    Caller {
-        inch: bool,
-    },
     Unknown,
 }
 
 impl UnitState {
     pub(super) fn g(&mut self, v: f64) {
-        match self {
-            UnitState::Known(u) => {
-                u.g(v);
-            }
-            _ if v == 700.0 || v == 710.0 => {
-                *self = UnitState::Known(Units { inch: v == 700.0, inch_feed: v == 700.0 })
-            }
-            UnitState::Unknown => {}
-            _ if v == 70.0 || v == 71.0 => *self = UnitState::CallerFeed { inch: v == 70.0 },
-            _ => {}
+        // Each unit word sets lengths and feeds whatever held before (G70/G71 read F in
+        // the basic system), so it makes any state known.
+        let mut u = Units::default();
+        if u.g(v) {
+            *self = UnitState::Known(u);
         }
     }
 
@@ -62,7 +47,6 @@ impl UnitState {
         match self {
             UnitState::Known(u) => Feed::Static(u.feed()),
             UnitState::Caller => Feed::Static(FeedConv::Same),
-            UnitState::CallerFeed { inch } => Feed::Caller { inch },
             UnitState::Unknown => Feed::Unknown,
         }
     }
@@ -75,9 +59,7 @@ impl UnitState {
         *self = match (effect.units, *self) {
             (UnitEffect::None, s) => s,
             (UnitEffect::Both(u), _) => UnitState::Known(u),
-            (UnitEffect::Lengths(inch), UnitState::Known(u)) => UnitState::Known(Units { inch, ..u }),
-            (UnitEffect::Lengths(inch), UnitState::Caller) => UnitState::CallerFeed { inch },
-            _ => UnitState::Unknown,
+            (UnitEffect::Unknown, _) => UnitState::Unknown,
         };
     }
 

@@ -125,60 +125,41 @@ fn feeds_follow_their_own_unit() {
     let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
     let g = |v: f64| block(vec![word_item(b'G', n(v))]);
     let f = || block(vec![word_item(b'G', n(1.0)), word_item(b'F', n(500.0))]);
-    // G700 then G71: lengths metric, feeds inch.
+    // G700: lengths and feeds inch.
+    let out = translate(vec![g(700.0), f()], false, &mut ctx);
+    assert_eq!(out, ["G20", "G1 F500"]);
+    // G700 then G71: F under G71 is in the basic system (metric), as lengths.
     let out = translate(vec![g(700.0), g(71.0), f()], false, &mut ctx);
-    assert_eq!(out, ["G20", "G21", "G1 F[500*25.4]"]);
+    assert_eq!(out, ["G20", "G21", "G1 F500"]);
     // G70 from the start: lengths inch, feeds metric.
     let out = translate(vec![g(70.0), f()], false, &mut ctx);
     assert_eq!(out, ["G20", "G1 F[500/25.4]"]);
-    // G700 then G71 then G70: both inch again.
-    let out = translate(vec![g(700.0), g(71.0), g(70.0), f()], false, &mut ctx);
-    assert_eq!(out, ["G20", "G21", "G20", "G1 F500"]);
+    // G700 then G70: F under G70 is mm/min again (828D FM G2, 7.3), not inch/min.
+    let out = translate(vec![g(700.0), g(70.0), f()], false, &mut ctx);
+    assert_eq!(out, ["G20", "G20", "G1 F[500/25.4]"]);
     // G710 sets both; G71 alone keeps the feeds metric.
     let out = translate(vec![g(70.0), g(710.0), f(), g(71.0), f()], false, &mut ctx);
     assert_eq!(out, ["G20", "G21", "G1 F500", "G21", "G1 F500"]);
     // A dwell's F is seconds.
     let dwell = block(vec![word_item(b'G', n(4.0)), word_item(b'F', n(2.0))]);
-    let out = translate(vec![g(700.0), g(71.0), dwell], false, &mut ctx);
-    assert_eq!(out[2], "G4 X2");
+    let out = translate(vec![g(70.0), dwell], false, &mut ctx);
+    assert_eq!(out[1], "G4 X2");
     assert!(ctx.diags.is_empty());
 }
 
 #[test]
-fn a_subprogram_feed_after_g70_g71_is_converted_from_the_callers_unit() {
+fn a_subprogram_feed_after_g70_g71_is_in_the_basic_system() {
     let g = |v: f64| block(vec![word_item(b'G', n(v))]);
     let f = || block(vec![word_item(b'F', n(500.0))]);
     let mut ctx = Ctx::new(0, UnsupportedPolicy::Error);
     // Lengths and feeds in the caller's one unit: F as written.
     assert_eq!(translate(vec![f()], true, &mut ctx), ["F500"]);
-    // After G700/G710 in the subprogram both are known.
-    assert_eq!(translate(vec![g(700.0), g(71.0), f()], true, &mut ctx), ["G20", "G21", "F[500*25.4]"]);
-    assert!(ctx.diags.is_empty());
-    // G71 first: lengths metric, feeds the caller's, whose factor is saved on entry.
+    // After any unit word in the subprogram both are known: G70/G71 read F metric, whatever
+    // the caller's G700/G710 (so no run-time factor from the caller's unit).
+    assert_eq!(translate(vec![g(700.0), g(71.0), f()], true, &mut ctx), ["G20", "G21", "F500"]);
     let out = translate(vec![g(71.0), f(), g(70.0), f()], true, &mut ctx);
-    assert_eq!(out, ["assign", "G21", "F[500*#]", "G20", "F[500/[25.4/#]]"]);
+    assert_eq!(out, ["G21", "F500", "G20", "F[500/25.4]"]);
     assert!(ctx.diags.is_empty());
-    // One saved factor per subprogram, and none where no F needs it.
-    assert_eq!(translate(vec![g(70.0), g(71.0)], true, &mut ctx), ["G20", "G21"]);
-    // In a main program G71 alone is metric lengths and feeds.
-    assert_eq!(translate(vec![g(71.0), f()], false, &mut ctx), ["G21", "F500"]);
-    assert!(ctx.diags.is_empty());
-}
-
-/// The saved factor is 25.4 when the caller runs in G20 and exactly 1 in G21; with it the
-/// F words give the caller's feed, to the bit, in the subprogram's length unit.
-#[test]
-fn the_callers_feed_factor_is_exact() {
-    for (g4006, factor) in [(20.0f64, 25.4f64), (21.0, 1.0)] {
-        assert_eq!((21.0 - g4006) * 24.4 + 1.0, factor);
-        for v in [500.0f64, 0.1, 1234.567, 20.0] {
-            let per_mm = v * factor;
-            let per_inch = v / (25.4 / factor);
-            let want_inch = if g4006 == 20.0 { v } else { v / 25.4 };
-            assert_eq!(per_inch, want_inch, "{v} {g4006}");
-            assert_eq!(per_mm, if g4006 == 20.0 { v * 25.4 } else { v });
-        }
-    }
 }
 
 #[test]

@@ -8,12 +8,13 @@
 //! Whatever the passes would report on or rewrite into more than one line (a dwell, G43/
 //! G44/G49 with their warning, an `R` outside an arc, P/L/Q/E/O/H, a computed value, a
 //! number the writer spells with `EX`) is declined: the caller translates that block the
-//! general way. The one state carried from block to block is the arc mode (G2/G3 last),
-//! which the caller keeps. `tests/stream_to_sinumerik_fast.rs` holds the two paths to the
+//! general way. The states carried from block to block are the arc mode (G2/G3 last) and
+//! the unit (G20/G21: a value without a decimal point counts 0.0001 in under G20), which
+//! the caller keeps. `tests/stream_to_sinumerik_fast.rs` holds the two paths to the
 //! same bytes.
 
 use crate::ir::{BlockMeta, EndCode};
-use crate::passes::to_sinumerik::words::{scale, scaled_letter};
+use crate::passes::to_sinumerik::words::{rotary_letter, scale, scaled_letter};
 use crate::passes::to_sinumerik::Options;
 use crate::stream::translate::digits::{Form, Src};
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
@@ -41,7 +42,8 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
 }
 
 /// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
-/// is the arc mode after the block's own G codes (as the words pass sees it). On `Err` what
+/// is the arc mode after the block's own G codes (as the words pass sees it), `inch` the
+/// unit (G20, `None`: not known) after them (as `passes::to_sinumerik::modal` finds it). On `Err` what
 /// was appended is to be discarded. `lit` gives an item's literal, when known: its digits
 /// are written where they are the written form.
 #[allow(clippy::too_many_arguments)]
@@ -51,6 +53,7 @@ pub fn block<'t, I: ItemView>(
     items: &[I],
     lit: impl Fn(&I) -> Option<Src<'t>>,
     arc: bool,
+    inch: Option<bool>,
     opts: &Options,
     eol: &[u8],
     out: &mut Vec<u8>,
@@ -116,7 +119,10 @@ pub fn block<'t, I: ItemView>(
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
-                    v = scale(opts, v);
+                    let rotary = rotary_letter(letter);
+                    // Where the unit is not known the passes refuse the value (NC375).
+                    let Some(inch) = inch.or(rotary.then_some(false)) else { return Err(Declined) };
+                    v = scale(opts, v, inch, rotary);
                     as_written = false;
                 }
             }

@@ -204,9 +204,11 @@ impl Class {
             && !self.kept(meta)
             && words.iter().all(|w| match w.letter {
                 // G0..G3 (plain) without `plain_g`'s rounding: CAM lines are made of them.
+                // Not G20: the runs are written metric, and a G20 in the skeleton reads the
+                // program whole.
                 b'G' => {
                     let g = w.value as u32;
-                    (g <= 3 && f64::from(g) == w.value) || plain_g(w.value)
+                    (g <= 3 && f64::from(g) == w.value) || (plain_g(w.value) && w.value != 20.0)
                 }
                 b'M' => !special_m(w.value),
                 _ => true,
@@ -217,6 +219,7 @@ impl Class {
         let StmtKind::Block(b) = &s.kind else { return false };
         self.solid
             && straight(s).is_ok()
+            && !crate::passes::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
             && !self.kept(&b.meta)
             && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
     }
@@ -507,6 +510,10 @@ fn segment(
     program.body = std::mem::take(&mut sk.body);
     let mut programs = vec![program];
     programs.append(&mut sk.sub_programs);
+    // The runs are written metric: a G20 anywhere (never in a run, `PLAIN_G`) reads whole.
+    if programs.iter().any(|p| crate::passes::to_sinumerik::modal::has_g(&p.body, &[200])) {
+        return Err(Fallback::NotStraight("G20 (a program with inch values is read whole)".into()));
+    }
     let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };
     // The callees beside the file, as the whole path loads them (`subs`).
     let callees = match load.as_mut() {

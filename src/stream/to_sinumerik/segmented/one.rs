@@ -73,7 +73,7 @@ impl WordsSink for One<'_> {
             let after = follow_words(arc, words);
             let mark = buf.len();
             let lit = |w: &PlainWord| Some(Src { line, span: w.span, canon: w.canon });
-            if fast::block(meta, words, lit, after, self.opts, eol, buf).is_err() {
+            if fast::block(meta, words, lit, after, Some(false), self.opts, eol, buf).is_err() {
                 // Nothing is kept; the block comes again as a statement.
                 buf.truncate(mark);
                 self.pending = true;
@@ -115,7 +115,7 @@ impl WordsSink for One<'_> {
         // The skeleton has followed the block's arc mode (`follow_items`).
         let after = self.sk.arc;
         let eol = self.eol.as_str().as_bytes();
-        if fast::block(&b.meta, &b.items, |_| None, after, self.opts, eol, &mut self.spill.buf).is_err() {
+        if fast::block(&b.meta, &b.items, |_| None, after, Some(false), self.opts, eol, &mut self.spill.buf).is_err() {
             // Translated alone after the scan (with the skeleton's plan), and put in here.
             self.spill.buf.truncate((at - self.spill.flushed()) as usize);
             if self.deferred.len() >= MAX_DEFERRED {

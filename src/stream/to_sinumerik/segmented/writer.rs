@@ -28,7 +28,8 @@ pub(super) fn alone(
     arc: bool,
     eol: LineEnding,
 ) -> Option<(String, Vec<Diagnostic>)> {
-    match plan.lower(opts, vec![s.clone()], arc) {
+    // Metric: a program with G20 is not segmented.
+    match plan.lower(opts, vec![s.clone()], arc, Some(false)) {
         (diags, Ok(text)) if diags.iter().all(kept_warning) => match eol {
             LineEnding::Lf => Some((text, diags)),
             other => Some((text.replace('\n', other.as_str()), diags)),
@@ -113,7 +114,7 @@ impl WordsSink for Writer<'_> {
         let after = follow_words(self.arc, words);
         let at = self.out.buf.len();
         let lit = |w: &PlainWord| Some(Src { line, span: w.span, canon: w.canon });
-        if fast::block(meta, words, lit, after, self.opts, eol, &mut self.out.buf).is_ok() {
+        if fast::block(meta, words, lit, after, Some(false), self.opts, eol, &mut self.out.buf).is_ok() {
             self.arc = after;
             self.out.flush_some();
             return true;
@@ -152,7 +153,7 @@ impl WordsSink for Writer<'_> {
         let after = follow_items(before, &b.items);
         let at = self.out.buf.len();
         let eol = self.eol.as_str().as_bytes();
-        if fast::block(&b.meta, &b.items, |_| None, after, self.opts, eol, &mut self.out.buf).is_err() {
+        if fast::block(&b.meta, &b.items, |_| None, after, Some(false), self.opts, eol, &mut self.out.buf).is_err() {
             self.out.buf.truncate(at);
             self.alone(s, before);
         }
