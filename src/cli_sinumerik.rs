@@ -42,9 +42,8 @@ fn options(args: &TranslateArgs, stem: &str, c: &Config) -> Result<Options, Stri
         if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
             o.program_map.insert(*n, name.to_ascii_uppercase());
         }
-        o.specialise_callers = c.specialise_callers;
     }
-    o.specialise_callers |= args.specialise_callers;
+    o.specialise_callers = c.specialise_callers || args.specialise_callers;
     for m in &args.program_map {
         let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
         let n: u32 =

@@ -57,6 +57,7 @@ impl ToSinumerikJob {
             },
             main_name: maps::siemens_name(&stem(file)),
             flag_places,
+            after_end: BTreeSet::new(),
             specialise_callers: ctx.options.specialise_callers,
         })
     }

@@ -119,6 +119,9 @@ pub struct Options {
     /// of it (`IF [#11 EQ #0]`) is decided and its default dropped. Off: a macro is written
     /// for every possible caller, its vacancy logic kept (any argument may be vacant).
     pub specialise_callers: bool,
+    /// Program numbers found after the closing `%` of a file read (not read by the
+    /// control): a call of one is told it is there but after the `%` (NC353).
+    pub after_end: std::collections::BTreeSet<u32>,
 }
 
 impl Default for Options {
@@ -132,6 +135,7 @@ impl Default for Options {
             main_name: "MAIN".into(),
             flag_places: BTreeMap::new(),
             specialise_callers: false,
+            after_end: std::collections::BTreeSet::new(),
         }
     }
 }
