@@ -132,6 +132,8 @@ fn check_compares_a_program_with_its_translation_through_the_translations_maps()
     let (out, err, code) = nctrans(&dir, &["check", "lib/t.mpf", "t.nc", "--tool-map", "ENDMILL_D6=12"]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("equivalent"), "{out}");
+    // The message the translation keeps as a comment is left out, and the verdict says so.
+    assert!(out.contains("1 message kept as a comment"), "{out}");
     // A wrong number is a divergence, not an equivalence.
     let (out, _, code) = nctrans(&dir, &["check", "lib/t.mpf", "t.nc", "--tool-map", "ENDMILL_D6=13"]);
     assert!(code == 1 && out.contains("diverged"), "{out}");

@@ -268,7 +268,7 @@ fn inch_values_without_decimal_point_count_the_inch_increment() {
     assert_eq!(out_with("O1\nG20\nG0 Z10000\nM30\n", "", &opts), "G700\nG0 Z0.1\nM30\n");
     // Arguments and the callee's own values in the caller's unit.
     let src = "O1\nG20\nG65 P9020 X5000 A45000\nM98 P9021\nM30\nO9020\nG1 X#24 A#1 F10\nM99\nO9021\nG0 Z100\nM99\n";
-    assert_eq!(out(src, ""), "G700\nO_9020(45,0.5)\nO_9021\nM30\n");
+    assert_eq!(out(src, ""), "G700\nO_9020(45,0.5,1,1)\nO_9021\nM30\n");
     assert_eq!(out(src, "O_9021.SPF").lines().find(|l| l.starts_with("G0")), Some("G0 Z0.01"));
     // Callers in both units, or a unit chosen on one path only: refused.
     let mixed = "O1\nM98 P9021\nG20\nM98 P9021\nM30\nO9021\nG0 Z100\nM99\n";
