@@ -347,7 +347,14 @@ fn cmd_check(
     let report = check::check_runners(&db, ra, rb);
     let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
+    // The trace holds programmed positions: a program that ran a compensation word (D, H,
+    // G40..G49) may apply another length or radius than the other, unseen (issue 17 item 6).
+    let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
     match report.verdict {
+        Verdict::Equivalent { events } if compensates => {
+            println!("inconclusive: {events} trace events agree, but tool compensation (D, H, G40..G49) is not compared");
+            ExitCode::from(4)
+        }
         Verdict::Equivalent { events } => {
             println!("equivalent ({events} trace events agree)");
             ExitCode::SUCCESS

@@ -9,6 +9,7 @@
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
 pub mod blocks;
+pub mod compensation;
 pub mod exprs;
 pub mod labels;
 pub mod lower_structures;

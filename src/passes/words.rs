@@ -212,6 +212,9 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
+    if let Some(c) = super::compensation::in_block(&b.items, crate::dialect::Dialect::Sinumerik) {
+        out.extend(ctx.unsupported(super::compensation::CODE, c.span, &c.what, super::compensation::HINT));
+    }
     let items = std::mem::take(&mut b.items);
     let mut kept: Vec<Item> = Vec::new();
     let mut after: Vec<Stmt> = Vec::new();

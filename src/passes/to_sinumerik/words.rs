@@ -165,6 +165,10 @@ fn word_item(letter: u8, v: Expr, span: Span) -> Item {
 }
 
 fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
+    if let Some(c) = crate::passes::compensation::in_block(&b.items, crate::dialect::Dialect::Fanuc) {
+        let msg = format!("{} cannot be translated to Sinumerik", c.what);
+        out.extend(ctx.refuse(crate::passes::compensation::CODE, c.span, &msg, &c.what, crate::passes::compensation::HINT));
+    }
     let gs = g_codes(&b.items);
     for &g in &gs {
         match g {
@@ -304,17 +308,8 @@ fn lower_word(
         }
         return match map_g(g) {
             Some(Some(sg)) => Some(g_word(sg, w.span)),
-            Some(None) => {
-                if matches!(g, 430 | 440 | 490) {
-                    ctx.warn(
-                        "NC368",
-                        w.span,
-                        format!("G{} is dropped: Sinumerik applies the length of the active tool edge (D)", g / 10),
-                        "tool length compensation",
-                    );
-                }
-                None
-            }
+            // G43/G44/G49 are refused with their block (`passes::compensation`).
+            Some(None) => None,
             None => {
                 if let Some(st) = ctx.unsupported(
                     "NC363",
