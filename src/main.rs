@@ -352,7 +352,9 @@ fn cmd_check(
     let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
     match report.verdict {
         Verdict::Equivalent { events } if compensates => {
-            println!("inconclusive: {events} trace events agree, but tool compensation (D, H, G40..G49) is not compared");
+            println!(
+                "inconclusive: {events} trace events agree, but tool compensation (D, H, G40..G49) is not compared"
+            );
             ExitCode::from(4)
         }
         Verdict::Equivalent { events } => {

@@ -173,15 +173,23 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         callees.insert(name, Callee { number, params: p.params.clone(), effect });
     }
 
+    // Comparisons of integers (counters included) need no tolerance form.
+    let types: Vec<passes::integral::Types> = progs.iter().map(|(p, _, _)| declared_types(p)).collect();
+    let names: std::collections::BTreeSet<String> = progs.iter().skip(1).map(|(p, _, _)| prog_name(p, "")).collect();
+    let with_types: Vec<(&Program, &passes::integral::Types)> =
+        progs.iter().zip(&types).map(|((p, _, _), t)| (p, t)).collect();
+    let mut exact_cmps = passes::integral::exact_comparisons(&with_types, &names).into_iter();
+
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
+        passes::own_header::drop_own_header(&mut p);
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
-        let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
+        let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {
             units_follow_text = !ctx.units_inexact;
@@ -247,6 +255,21 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
     Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+}
+
+/// The declared types of a program's scalar names (DEF and PROC parameters).
+fn declared_types(p: &Program) -> passes::integral::Types {
+    let mut t: passes::integral::Types = p.params.iter().map(|prm| (prm.name.clone(), prm.ty)).collect();
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let ItemKind::Def(d) = &it.kind {
+                    t.extend(d.vars.iter().filter(|v| v.dims.is_empty()).map(|v| (v.name.clone(), d.ty)));
+                }
+            }
+        }
+    });
+    t
 }
 
 fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {

@@ -202,9 +202,29 @@ fn take_inputs(prog: &mut Program) -> Vec<String> {
 
 /// Translates FANUC programs to Sinumerik. `units[0]` holds the main program (its first
 /// program); further programs of any unit are the subprograms and macros it may call.
+use crate::passes::own_header as passes_header;
+
 pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Translation {
-    let programs: Vec<(FileId, &Program)> =
+    let mut programs: Vec<(FileId, &Program)> =
         units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
+    // A translation translated back: its old header goes (copied only then).
+    let cleaned: Vec<Program> = programs
+        .iter()
+        .filter(|(_, p)| passes_header::has_own_header(p))
+        .map(|(_, p)| {
+            let mut p = (*p).clone();
+            passes_header::drop_own_header(&mut p);
+            p
+        })
+        .collect();
+    let mut cleaned = cleaned.iter();
+    for (_, p) in programs.iter_mut() {
+        if passes_header::has_own_header(p) {
+            if let Some(c) = cleaned.next() {
+                *p = c;
+            }
+        }
+    }
     let lowered = passes::lower(&programs, opts);
     let mut diags = lowered.diags.clone();
     let mut symbols = SymbolMap::default();

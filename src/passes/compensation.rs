@@ -45,9 +45,13 @@ fn in_item(it: &Item, source: Dialect) -> Option<Found> {
 
 fn in_word(w: &Word, source: Dialect) -> Option<Found> {
     let Addr::Letter(l) = w.addr else { return None };
-    let found = |what: String| Some(Found { what: format!("{what} (the trace does not compare tool compensation yet)"), span: w.span });
+    let found = |what: String| {
+        Some(Found { what: format!("{what} (the trace does not compare tool compensation yet)"), span: w.span })
+    };
     match l {
-        b'D' if source == Dialect::Sinumerik => found("the cutting edge `D` (tool length and radius compensation)".into()),
+        b'D' if source == Dialect::Sinumerik => {
+            found("the cutting edge `D` (tool length and radius compensation)".into())
+        }
         b'D' => found("the radius offset register `D` (tool radius compensation)".into()),
         b'H' if source == Dialect::Fanuc => found("the length offset register `H` (tool length compensation)".into()),
         b'G' => {

@@ -397,7 +397,11 @@ impl Lower<'_> {
     }
 
     fn compare(&mut self, op: CmpOp, tol: Tolerance, a: Expr, b: Expr, span: Span, pre: &mut Vec<Stmt>) -> Expr {
-        let exact = tol == Tolerance::Exact || is_zero(&a) || is_zero(&b) || (self.integral(&a) && self.integral(&b));
+        let exact = tol == Tolerance::Exact
+            || is_zero(&a)
+            || is_zero(&b)
+            || (self.integral(&a) && self.integral(&b))
+            || self.info.exact_cmps.contains(&span);
         let mk = |op, x: Expr, y: Expr| Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(x), Box::new(y)), span);
         if exact {
             // Room for the condition's own bracket and one compound level.

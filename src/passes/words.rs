@@ -22,7 +22,7 @@ const AXES: &[u8] = b"XYZABCUVW";
 /// Siemens instructions that only change dynamics (acceleration, feed control): dropped.
 const DYNAMICS_ONLY: &[&str] = &["SOFT", "BRISK", "DRIVE", "FFWON", "FFWOF", "CFC", "CFTCP", "CFIN"];
 /// Calls that only set up the HMI simulation: dropped.
-const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
+pub const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
 
 /// Argument letters for `n` parameters, with the local variable each fills: specification I
 /// in alphabetical order (A B C D E F H I J K M Q R S T U V W X Y Z; G L N O P cannot carry
