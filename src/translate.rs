@@ -124,7 +124,39 @@ fn prog_name(p: &Program, fallback: &str) -> String {
 }
 
 /// Translates a Siemens main program and the subprograms it calls (each a parsed `.SPF`).
+/// Under the warn policy refused blocks become marked comments whole and the program
+/// alarms on its first line ([`crate::unfinished`]).
 pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+    if opts.unsupported == UnsupportedPolicy::Error {
+        return to_fanuc_strict(main, subs, opts);
+    }
+    let strict = TranslateOptions { unsupported: UnsupportedPolicy::Error, ..opts.clone() };
+    let mut all = vec![main];
+    all.extend(subs.iter().copied());
+    let style = |m: &str| format!("{} {m} ***", passes::UNSUPPORTED_MARK);
+    let (mut t, warnings, marked, _) = crate::unfinished::translate_marking(&all, style, |us| {
+        let t = to_fanuc_strict(us[0], &us[1..], &strict);
+        let d = t.diags.clone();
+        (t, d)
+    });
+    if marked == 0 {
+        return t;
+    }
+    let mut diags = warnings;
+    diags.append(&mut t.diags);
+    t.diags = diags;
+    t.unsupported += marked;
+    if let Some(p) = t.unit.programs.first_mut() {
+        let span = Span::new(p.span.lo, p.span.lo);
+        p.body.insert(0, crate::unfinished::summary_block(span, "*** NCTRANS:", marked));
+        p.body.insert(0, crate::unfinished::alarm_block(span));
+    }
+    let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
+    t.text = emit::emit(&t.unit, &eo).text;
+    t
+}
+
+fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
