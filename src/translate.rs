@@ -549,7 +549,7 @@ mod tests {
         assert_eq!(
             t.text,
             "%\nO0001 (MAIN)\n(NCTRANS: SINUMERIK MAIN TO FANUC MACRO B)\n(NCTRANS: R1 = #501)\n#501=0.\n\
-             WHILE [3.-#501 GT [ABS[#501]+3.+ABS[ABS[#501]-3.]]*0.0000005*0.000001] DO1\nG01 X[#501*2.] F100.\n#501=#501+1.\nEND1\nM30\n%\n"
+             WHILE [#501 LT 3.] DO1\nG01 X[#501*2.] F100.\n#501=#501+1.\nEND1\nM30\n%\n"
         );
         assert_eq!(t.symbol_map.fanuc_var("r1"), Some(501));
     }
@@ -596,6 +596,11 @@ mod tests {
         let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
         let t = to_fanuc(&unit(body), &[], &opts);
         assert!(!t.ok());
-        assert!(t.text.contains("(*** NCTRANS UNSUPPORTED: G500 ***)"));
+        assert!(
+            t.text.contains("(*** NCTRANS UNSUPPORTED: G500 cannot be translated to FANUC Macro B ***)"),
+            "{}",
+            t.text
+        );
+        assert!(t.text.contains("\n#3000=999(UNFINISHED TRANSLATION)\n"), "{}", t.text);
     }
 }

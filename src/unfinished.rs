@@ -132,7 +132,7 @@ pub fn alarm_block(span: Span) -> Stmt {
 /// The comment line after the alarm: how many blocks are marked (`prefix` is the
 /// direction's marker opening, so comment filters keep it).
 pub fn summary_block(span: Span, prefix: &str, marked: usize) -> Stmt {
-    let text = format!("{prefix} UNFINISHED, {marked} BLOCKS NOT TRANSLATED, EACH MARKED WHERE IT STOOD");
+    let text = format!("{prefix} UNFINISHED, BLOCKS NOT TRANSLATED: {marked}, EACH MARKED WHERE IT STOOD");
     let meta = BlockMeta { span, comments: vec![Comment { text, span }], ..BlockMeta::default() };
     Stmt { kind: StmtKind::Block(Block { meta, items: vec![] }), span }
 }

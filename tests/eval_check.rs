@@ -75,3 +75,20 @@ fn run_writes_jsonl_and_takes_inputs() {
          {\"ev\":\"end\",\"code\":\"M30\",\"steps\":3,\"line\":3}\n"
     );
 }
+
+/// Issue 17 item 6: the trace holds programmed positions, so two programs that compensate
+/// (here Siemens `T6 D1`, cutting edge 1 of tool 6, and FANUC `T6 D1` without `G43 H6`) are
+/// never called equivalent: `check` says compensation was not compared, exit 4.
+#[test]
+fn compensation_is_not_compared_so_check_is_inconclusive() {
+    let a = write("comp-a.mpf", "T6 D1\nM6\nG0 X0 Y0 Z50\nG1 Z-2 F200\nM30\n");
+    let b = write("comp-b.nc", "%\nO1\nT6 D1\nM06\nG00 X0 Y0 Z50.\nG01 Z-2. F200.\nM30\n%\n");
+    let (code, out, err) = nctrans(&["check", &a, &b]);
+    assert_eq!(code, 4, "{out}\n{err}");
+    assert!(out.starts_with("inconclusive:") && out.contains("tool compensation"), "{out}");
+    assert!(err.contains("warning[NC387]"), "{err}");
+    let c = write("comp-c.nc", "%\nO1\nG00 X0 Y0\nG41 D04 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let d = write("comp-d.nc", "%\nO1\nG00 X0 Y0\nG42 D01 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let (code, out, _) = nctrans(&["check", &c, &d]);
+    assert_eq!(code, 4, "{out}");
+}

@@ -75,11 +75,48 @@ fn words_decimal_point_dwell_units_arcs_offsets() {
     );
 }
 
+/// Issue 17 item 6: FANUC `G41 D04` takes radius register 4, Siemens `D4` is cutting edge 4;
+/// `G43 H1` has no Siemens word. The trace does not compare compensation, so every block with
+/// one is refused (NC385), never translated and called equivalent.
 #[test]
-fn tool_length_compensation_is_dropped_with_a_warning() {
-    let tr = run("O1\nG43 H1 Z50.\nM30\n", &Options::default());
-    assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC368"]);
-    assert_eq!(strip_header(&tr.files[0].text), "Z50\nM30\n");
+fn tool_compensation_is_refused() {
+    for src in [
+        "O1\nG43 H1 Z50.\nM30\n",
+        "O1\nG41 D04 X10. Y5.\nM30\n",
+        "O1\nG49\nM30\n",
+        "O1\nG40 X0\nM30\n",
+        "O1\nD1\nM30\n",
+    ] {
+        let tr = run(src, &Options::default());
+        assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC385"], "{src}");
+        assert!(tr.has_errors(), "{src}");
+    }
+    // A G65 argument D or H is not compensation.
+    let tr = run("O1\nG65 P9000 D5. H2.\nM30\nO9000\n#20=#7+#11\nM99\n", &Options::default());
+    assert!(!tr.diags.iter().any(|d| d.code == "NC385"), "{:?}", tr.diags);
+}
+
+/// Issue 17 item 7: under `--unsupported warn` a block with a construct Siemens lacks becomes
+/// one marked comment as a whole (the cycle's `X10. Y10. Z-2.` would be a rapid plunge under
+/// G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
+#[test]
+fn warn_policy_marks_the_whole_block_and_alarms_first() {
+    let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
+    let src = "O1\nG00 X0 Y0 Z5.\nN20 G99 G81 X10. Y10. Z-2. R2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
+    let tr = run(src, &o);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
+    assert!(tr.diags.iter().all(|d| !d.is_error()));
+    let text = strip_header(&tr.files[0].text);
+    let code: Vec<&str> = text.lines().filter(|l| !l.starts_with(';')).collect();
+    assert_eq!(code.first(), Some(&"SETAL(65999) ; UNFINISHED TRANSLATION"), "{text}");
+    assert!(!text.contains("X10") && !text.contains("Z-2") && !text.contains("ROT"), "{text}");
+    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G99"), "{text}");
+    assert!(text.contains("\n; NCTRANS UNSUPPORTED: G68"), "{text}");
+    assert_eq!(
+        code[1..],
+        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G99 has no Sinumerik counterpart", "G0 Z50", "M30"],
+        "{text}"
+    );
 }
 
 #[test]
