@@ -22,35 +22,47 @@ pub const ALARM: u32 = 999;
 /// The alarm's text (26 characters fit every FANUC alarm line).
 pub const ALARM_TEXT: &str = "UNFINISHED TRANSLATION";
 
-/// Replaces the statement `span` lies in with a marked comment block; false when no
-/// statement of `file` holds it.
-pub fn mark(units: &mut [Unit], file: FileId, span: Span, text: &str) -> bool {
+/// What [`mark`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marked {
+    /// The statement is now a marked comment block.
+    New,
+    /// It already was (another construct of the same block).
+    Already,
+    /// No statement of the file holds the span.
+    Nowhere,
+}
+
+/// Replaces the statement `span` lies in with a marked comment block.
+pub fn mark(units: &mut [Unit], file: FileId, span: Span, text: &str) -> Marked {
     for u in units.iter_mut().filter(|u| u.file == file) {
         for p in &mut u.programs {
-            if mark_in(&mut p.body, span, text) {
-                return true;
+            match mark_in(&mut p.body, span, text) {
+                Marked::Nowhere => {}
+                m => return m,
             }
         }
     }
-    false
+    Marked::Nowhere
 }
 
 fn contains(outer: Span, inner: Span) -> bool {
     outer.lo <= inner.lo && inner.hi <= outer.hi && outer.hi > outer.lo
 }
 
-fn mark_in(body: &mut [Stmt], span: Span, text: &str) -> bool {
+fn mark_in(body: &mut [Stmt], span: Span, text: &str) -> Marked {
     for s in body.iter_mut() {
         if !contains(s.span, span) {
             continue;
         }
-        for child in crate::ir::visit::child_bodies_mut(&mut s.kind) {
-            if mark_in(child, span, text) {
-                return true;
-            }
-        }
         if is_marker(s) {
-            return false; // already marked: this error is its consequence
+            return Marked::Already;
+        }
+        for child in crate::ir::visit::child_bodies_mut(&mut s.kind) {
+            match mark_in(child, span, text) {
+                Marked::Nowhere => {}
+                m => return m,
+            }
         }
         let first = crate::ir::visit::metas(&s.kind).first().map(|m| (*m).clone()).unwrap_or_default();
         let meta = BlockMeta {
@@ -61,9 +73,9 @@ fn mark_in(body: &mut [Stmt], span: Span, text: &str) -> bool {
             ..BlockMeta::default()
         };
         s.kind = StmtKind::Block(Block { meta, items: vec![] });
-        return true;
+        return Marked::New;
     }
-    false
+    Marked::Nowhere
 }
 
 fn is_marker(s: &Stmt) -> bool {
@@ -106,10 +118,14 @@ pub fn translate_marking<T>(
         let mut progress = false;
         for d in errors {
             let Some((file, span)) = place(d) else { continue };
-            if mark(&mut owned, file, span, &style(&d.message)) {
-                marked += 1;
-                progress = true;
-                warnings.push(as_warning(d));
+            match mark(&mut owned, file, span, &style(&d.message)) {
+                Marked::New => {
+                    marked += 1;
+                    progress = true;
+                    warnings.push(as_warning(d));
+                }
+                Marked::Already => warnings.push(as_warning(d)),
+                Marked::Nowhere => {}
             }
         }
         if !progress {

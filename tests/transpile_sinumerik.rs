@@ -379,7 +379,8 @@ fn warn_policy_writes_a_marked_comment() {
     let tr = run("O1\nG10 L50\nN1234 R1\nG11\nG0 X1.\nM30\n", &o);
     assert!(!tr.has_errors());
     let text = strip_header(&tr.files[0].text);
-    assert!(text.starts_with("; NCTRANS UNSUPPORTED: `G10 L50` parameter write\n"), "{text}");
+    assert!(text.starts_with("SETAL(65999) ; UNFINISHED TRANSLATION\n"), "{text}");
+    assert!(text.contains("\n; NCTRANS UNSUPPORTED: `G10 L50` parameter write has no Sinumerik counterpart\n"), "{text}");
 }
 
 // ---- variable map (pitfall 12) ----
@@ -525,7 +526,8 @@ fn corpus_translations_are_committed() {
         failures.join("\n")
     );
     // The floor: the cases that translate today. Unsupported ones have precise diagnostics.
-    assert!(translated >= 80, "only {translated} corpus programs translate");
+    // multi-word-block.nc (`G43 H1`) is refused since tool compensation is (issue 17 item 6).
+    assert!(translated >= 79, "only {translated} corpus programs translate");
 }
 
 // ---- verification: both programs run, traces compared ----
@@ -578,7 +580,7 @@ fn every_translated_corpus_program_verifies() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    assert!(proven >= 79, "only {proven} corpus programs proven equivalent");
+    assert!(proven >= 78, "only {proven} corpus programs proven equivalent");
 }
 
 /// The naive translation of each pitfall case (the text a token-by-token translator would
@@ -637,7 +639,8 @@ fn modal_feed_speed_and_d_read_as_siemens_modal_variables() {
 
 /// The seed brake test O9050: under the default policy only precise diagnostics (committed
 /// under corpus/out/sinumerik); under the warn policy the supported parts translate, each
-/// unsupported construct is one marked line, and the output reads back as Sinumerik.
+/// block with an unsupported construct is one marked line, and the output reads back as
+/// Sinumerik.
 #[test]
 fn seed_o9050_translates_its_supported_parts_under_warn() {
     let src = std::fs::read_to_string(root().join("corpus/in/fanuc/seed-o9050-brake-test.nc")).expect("seed");
@@ -648,7 +651,8 @@ fn seed_o9050_translates_its_supported_parts_under_warn() {
     codes.sort();
     assert_eq!(codes, vec!["NC355", "NC355", "NC355", "NC355", "NC355", "NC355", "NC362", "NC363", "NC363"]);
     let marked: usize = tr.files.iter().map(|f| f.text.matches("; NCTRANS UNSUPPORTED:").count()).sum();
-    assert_eq!(marked, 9, "one marked line per unsupported construct");
+    // One marked line per refused block: one block holds both an NC362 and an NC363.
+    assert_eq!(marked, 8, "one marked line per refused block");
     let text = &tr.files[0].text;
     assert!(text.contains("N100 IF (TRUNC(R13) B_AND 8)-8==0 GOTOF LBL_110"), "{text}");
     assert!(text.contains("STOPRE\nN130 LOC1=$AA_IM[Y]"), "{text}");

@@ -9,7 +9,7 @@ use crate::ir::*;
 /// line came before it in the same header, so `#500 = R0` lines are its entries).
 fn is_own(text: &str, after_map: bool) -> bool {
     let t = text.trim();
-    if t.len() >= 12 && t[..12].eq_ignore_ascii_case("nctrans: set") {
+    if t.get(..12).is_some_and(|h| h.eq_ignore_ascii_case("nctrans: set")) {
         return false;
     }
     t.starts_with("NCTRANS: ")
@@ -67,5 +67,6 @@ mod tests {
         assert!(!is_own(" nctrans: set R1=2", false));
         assert!(!is_own("NCTRANS: SET #1=2", false));
         assert!(!is_own("Seed 000 6.1: hemisphere", false));
+        assert!(!is_own("直径 8 毫米球头立铣刀", false));
     }
 }
