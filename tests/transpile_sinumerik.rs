@@ -380,7 +380,10 @@ fn warn_policy_writes_a_marked_comment() {
     assert!(!tr.has_errors());
     let text = strip_header(&tr.files[0].text);
     assert!(text.starts_with("SETAL(65999) ; UNFINISHED TRANSLATION\n"), "{text}");
-    assert!(text.contains("\n; NCTRANS UNSUPPORTED: `G10 L50` parameter write has no Sinumerik counterpart\n"), "{text}");
+    assert!(
+        text.contains("\n; NCTRANS UNSUPPORTED: `G10 L50` parameter write has no Sinumerik counterpart\n"),
+        "{text}"
+    );
 }
 
 // ---- variable map (pitfall 12) ----
