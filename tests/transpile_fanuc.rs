@@ -109,7 +109,7 @@ fn pair_if_else_inverts_and_jumps() {
 fn pair_while_becomes_do_with_depth() {
     pair(
         "DEF INT CNT\nCNT=0\nWHILE CNT<2\nG1 X=CNT F100\nCNT=CNT+1\nENDWHILE\nM30\n",
-        &["#100=0.", "#100=0.", "WHILE [#100 LT 2.] DO1", "G01 X#100 F100.", "#100=#100+1.", "END1", "M30"],
+        &["#100=0.", "WHILE [#100 LT 2.] DO1", "G01 X#100 F100.", "#100=#100+1.", "END1", "M30"],
     );
 }
 
