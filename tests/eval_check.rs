@@ -92,3 +92,26 @@ fn compensation_is_not_compared_so_check_is_inconclusive() {
     let (code, out, _) = nctrans(&["check", &c, &d]);
     assert_eq!(code, 4, "{out}");
 }
+
+/// Issue 17 item 6 on the streamed paths: past the first chunks the straight-line
+/// translators write blocks without the passes; a compensation block far down a CAM program
+/// must still be refused, both ways.
+#[test]
+fn compensation_far_down_a_streamed_program_is_refused() {
+    let mut fanuc = String::from("%\nO1\nG00 X0 Y0\nG01 F100.\n");
+    let mut siemens = String::from("G0 X0 Y0\nG1 F100\n");
+    for i in 0..6000 {
+        fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+        siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+    }
+    fanuc.push_str("G41 D04 X10. Y5.\nX20.\nG40 X0 Y0\nM30\n%\n");
+    siemens.push_str("G41 D4 X10 Y5\nX20\nG40 X0 Y0\nM30\n");
+    let f = write("comp-stream.nc", &fanuc);
+    let s = write("comp-stream.mpf", &siemens);
+    for (input, to) in [(&f, "sinumerik"), (&s, "fanuc")] {
+        let (code, out, err) = nctrans(&["--to", to, "--stream", "--no-verify", input]);
+        assert_eq!(code, 1, "{input}: {out}\n{err}");
+        assert!(err.contains("error[NC385]"), "{input}: {err}");
+        assert!(!out.contains("G41"), "{input}: {out}");
+    }
+}
