@@ -592,10 +592,18 @@ mod tests {
 
     #[test]
     fn unsupported_warn_marks_the_line() {
-        let body = vec![block(vec![word_item(b'G', n(500.0))])];
+        // Marking finds the block by its span: a parsed program.
+        let mut db = crate::span::SourceDb::new();
+        let file = db.add("w.mpf", "G500 X1\nM30\n".to_string());
+        let p = crate::parse(&db, file, Dialect::Sinumerik, &crate::dialect::ParseOptions::for_dialect(Dialect::Sinumerik));
         let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
-        let t = to_fanuc(&unit(body), &[], &opts);
+        let t = to_fanuc(&p.unit, &[], &opts);
         assert!(!t.ok());
+        assert!(!t.text.contains("X1."), "{}", t.text);
+        // Synthetic IR without spans cannot be marked: the errors stay errors.
+        let body = vec![block(vec![word_item(b'G', n(500.0))])];
+        let t2 = to_fanuc(&unit(body), &[], &opts);
+        assert!(crate::diag::has_errors(&t2.diags));
         assert!(
             t.text.contains("(*** NCTRANS UNSUPPORTED: G500 cannot be translated to FANUC Macro B ***)"),
             "{}",
