@@ -595,7 +595,8 @@ mod tests {
         // Marking finds the block by its span: a parsed program.
         let mut db = crate::span::SourceDb::new();
         let file = db.add("w.mpf", "G500 X1\nM30\n".to_string());
-        let p = crate::parse(&db, file, Dialect::Sinumerik, &crate::dialect::ParseOptions::for_dialect(Dialect::Sinumerik));
+        let p =
+            crate::parse(&db, file, Dialect::Sinumerik, &crate::dialect::ParseOptions::for_dialect(Dialect::Sinumerik));
         let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
         let t = to_fanuc(&p.unit, &[], &opts);
         assert!(!t.ok());

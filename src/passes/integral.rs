@@ -97,7 +97,7 @@ pub fn exact_comparisons(progs: &[(&Program, &Types)], names: &BTreeSet<String>)
     }
     // Greatest fixpoint: start from every assigned key, drop those with a non-counter write.
     let mut counters: BTreeSet<Key> = w.assigns.iter().map(|a| a.target.clone()).collect();
-    counters.retain(|k| !w.spoiled.contains(k) && !(w.all_r_spoiled && matches!(k, Key::R(_))));
+    counters.retain(|k| !(w.spoiled.contains(k) || (w.all_r_spoiled && matches!(k, Key::R(_)))));
     loop {
         let before = counters.len();
         let drop: Vec<Key> = w
@@ -267,7 +267,7 @@ impl Walk {
                     s.span,
                 );
                 self.assigns.push(Assign { target: k, value: step, set: inner.clone() });
-                self.body(&f.body, prog, &mut inner, names);
+                self.body(&f.body, prog, &inner, names);
             }
         }
     }
