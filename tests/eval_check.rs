@@ -115,3 +115,27 @@ fn compensation_far_down_a_streamed_program_is_refused() {
         assert!(!out.contains("G41"), "{input}: {out}");
     }
 }
+
+/// Issue 17 item 7 on the streamed paths: under `--unsupported warn` a cycle far down a
+/// streamed CAM program becomes one marked comment as a whole, and the file alarms first.
+#[test]
+fn warn_far_down_a_streamed_program_marks_the_whole_block() {
+    let mut fanuc = String::from("%\nO1\nG00 X0 Y0 Z5.\nG01 F100.\n");
+    let mut siemens = String::from("G0 X0 Y0 Z5\nG1 F100\n");
+    for i in 0..6000 {
+        fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+        siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+    }
+    fanuc.push_str("G99 G81 X77. Y77. Z-2. R2. F150.\nG80\nG00 Z50.\nM30\n%\n");
+    siemens.push_str("ROT Z=45 X77\nG0 Z50\nM30\n");
+    let f = write("warn-stream.nc", &fanuc);
+    let s = write("warn-stream.mpf", &siemens);
+    for (input, to, alarm) in [(&f, "sinumerik", "SETAL(65999)"), (&s, "fanuc", "#3000=999")] {
+        let (code, out, err) = nctrans(&["--to", to, "--stream", "--unsupported", "warn", input]);
+        assert_eq!(code, 1, "{input}: {err}");
+        assert!(!out.contains("X77"), "{input}: the marked block's words survived");
+        assert!(out.lines().take(4).any(|l| l.starts_with(alarm)), "{input}: {}", &out[..200.min(out.len())]);
+        assert!(out.contains("NCTRANS UNSUPPORTED"), "{input}");
+        assert!(err.contains("not verified"), "{input}: {err}");
+    }
+}
