@@ -481,13 +481,15 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
         (rx, Err((out, db_b)))
     } else {
         let (tx, rx) = sync_channel::<Msg>(IN_FLIGHT);
-        let handle = std::thread::spawn(move || {
+        let run = move || {
             let mut db_b = db_b;
             let mut sink = ChannelSink::new(Tx::Bounded(tx));
             let out = b(&mut db_b, &mut sink);
             sink.send();
             (out, db_b)
-        });
+        };
+        let stack = crate::dialect::limits::THREAD_STACK;
+        let handle = std::thread::Builder::new().stack_size(stack).spawn(run).expect("start the checker's thread");
         (rx, Ok(handle))
     };
     let mut db_a = db.clone();

@@ -260,6 +260,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
         diags.extend(ctx.diags);
         symbol_map.labels.insert(number, labels);
         collect_alarms(&p.body, &mut symbol_map.alarms);
+        diags.extend(crate::dialect::limits::deepened(&p.body, file, Dialect::Fanuc));
         let header = header(&name, &mapped, !programs.is_empty(), opts);
         let span = p.span;
         let head_comments = vec![Comment { text: name.clone(), span }];

@@ -312,6 +312,7 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
         }
         // Inputs first: the evaluator reads only the comment lines at the top.
         let header: Vec<String> = inputs.into_iter().chain(header).collect();
+        diags.extend(crate::dialect::limits::deepened(&prog.body, *file, crate::dialect::Dialect::Sinumerik));
         let frame = Frame { header: &header, defs: &plan.defs, proc_line: !main };
         let emitted = emit_program(&prog, &frame);
         for (span, what) in &emitted.problems {

@@ -169,7 +169,7 @@ fn precedence_is_kept_by_parentheses() {
     pair(
         "O1\n#1=2\n#2=3\n#3=[#1+#2]*#1\n#4=#1+#2*#1\n#5=-[#1-#2]\n#6=#1-[#2-#1]\n#7=#1 AND 8 OR 1\nIF[#1 AND 2 EQ 2]GOTO 5\nN5 M30\n",
         "DEF REAL LOC1, LOC2, LOC3, LOC4, LOC5, LOC6, LOC7\nLOC1=2\nLOC2=3\nLOC3=(LOC1+LOC2)*LOC1\n\
-LOC4=LOC1+LOC2*LOC1\nLOC5=-(LOC1-LOC2)\nLOC6=LOC1-(LOC2-LOC1)\nLOC7=TRUNC(LOC1) B_AND 8 B_OR 1\n\
+LOC4=LOC1+LOC2*LOC1\nLOC5=-(LOC1-LOC2)\nLOC6=LOC1-(LOC2-LOC1)\nLOC7=(TRUNC(LOC1) B_AND 8) B_OR 1\n\
 IF (TRUNC(LOC1) B_AND 2)-2==0 GOTOF LBL_5\nN5 LBL_5: M30\n",
     );
 }

@@ -47,7 +47,9 @@ pub fn parallel<T: Sync, R: Send>(
         for _ in 0..jobs.clamp(1, items.len().max(1)) {
             let tx = tx.clone();
             let next = &next;
-            s.spawn(move || loop {
+            let worker = std::thread::Builder::new().stack_size(crate::dialect::limits::THREAD_STACK);
+            // The same stack as the main thread (see `limits::THREAD_STACK`).
+            let started = worker.spawn_scoped(s, move || loop {
                 if cancel.load(Ordering::SeqCst) {
                     break;
                 }
@@ -58,6 +60,7 @@ pub fn parallel<T: Sync, R: Send>(
                     break;
                 }
             });
+            started.expect("start a batch worker");
         }
         drop(tx);
         for (i, r) in rx {

@@ -2,6 +2,7 @@
 //! same small surface (`parse`, later `emit`), and the [`Semantics`] flags they share.
 
 pub mod fanuc;
+pub mod limits;
 pub mod quick;
 pub mod semantics;
 pub mod sinumerik;

@@ -11,8 +11,11 @@ use crate::diag::Diagnostic;
 use crate::ir::{BinOp, CmpOp, Expr, ExprKind, Func, Tolerance, UnOp, VarRef};
 use crate::span::{FileId, Span};
 
-/// Deepest expression nesting evaluated (recursion guard; controls allow far less).
-pub const MAX_EXPR_DEPTH: u32 = 200;
+/// Deepest expression nesting evaluated: a recursion guard. The readers build no tree deeper
+/// than [`limits::MAX_EXPR_DEPTH`](crate::dialect::limits::MAX_EXPR_DEPTH); the margin is for
+/// the few levels flattening may wrap around one (loop conditions, FOR steps), so NC411 is
+/// only ever an IR built by other code.
+pub const MAX_EXPR_DEPTH: u32 = 2 * crate::dialect::limits::MAX_EXPR_DEPTH;
 
 /// What an expression needs from its surroundings.
 #[derive(Clone, Copy, Debug)]

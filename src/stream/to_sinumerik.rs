@@ -770,7 +770,10 @@ pub fn compare(a: StreamSide, b: StreamSide) -> CheckReport {
     db.add(second.name.clone(), String::new());
     let (ra, rb) = (a.runner(), b.runner());
     let fail_db = db.clone();
-    let joined = std::thread::scope(|s| s.spawn(|| check::check_runners(&db, ra, rb)).join());
+    let joined = std::thread::scope(|s| {
+        let thread = std::thread::Builder::new().stack_size(crate::dialect::limits::THREAD_STACK);
+        thread.spawn_scoped(s, || check::check_runners(&db, ra, rb)).expect("start the checker's thread").join()
+    });
     joined.unwrap_or_else(|_| {
         let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
         CheckReport {

@@ -5,6 +5,7 @@
 use super::names::{self, FuncSpec};
 use super::parse::{literal, Rule, Seg};
 use crate::diag::Diagnostic;
+use crate::dialect::limits::{self, MAX_EXPR_DEPTH};
 use crate::dialect::ParseOptions;
 use crate::ir::{BinOp, CmpOp, Expr, ExprKind, Func, Tolerance, UnOp, VarKind, VarRef};
 use crate::span::Span;
@@ -25,7 +26,24 @@ impl ExprCx<'_, '_> {
     fn err(&self, code: &'static str, msg: impl Into<String>, span: Span, label: &str) -> Diagnostic {
         Diagnostic::error(code, msg).primary(self.seg.file, span, label.to_string())
     }
+
+    /// NC130 for the expression at `span` (see [`limits`]).
+    fn too_deep(&self, span: Span) -> Diagnostic {
+        limits::too_deep(self.seg.file, span, HINT)
+    }
+
+    /// `e` if no more than [`MAX_EXPR_DEPTH`] operations nest in it. For the nodes that wrap
+    /// bounded operands (brackets, signs, functions, indirection), so each adds one level at
+    /// most before it is measured.
+    pub fn bounded(&self, e: Expr) -> Result<Expr, Diagnostic> {
+        if limits::depth(&e) > MAX_EXPR_DEPTH {
+            return Err(self.too_deep(e.span));
+        }
+        Ok(e)
+    }
 }
+
+const HINT: &str = "split the calculation into several assignments with intermediate variables (#100…)";
 
 /// Whether an expression is a condition (a comparison, or conditions joined logically).
 pub fn is_cond(e: &Expr) -> bool {
@@ -123,48 +141,55 @@ fn cond(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
         }
     }
     let span = lhs.span.to(rhs.span);
-    Ok(Expr::new(ExprKind::Cmp(cmp, Tolerance::Exact, Box::new(lhs), Box::new(rhs)), span))
+    cx.bounded(Expr::new(ExprKind::Cmp(cmp, Tolerance::Exact, Box::new(lhs), Box::new(rhs)), span))
 }
 
-/// `factor (op factor)*` with two precedence levels, left associative.
+/// `factor (op factor)*` with two precedence levels, left associative. Without recursion,
+/// and each term's depth is counted as it is built, so a chain longer than
+/// [`MAX_EXPR_DEPTH`] is refused before its tree grows deeper than that.
 fn infix(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
+    let whole = cx.span(&p);
     let mut it = p.into_inner();
-    let mut current = match it.next() {
-        Some(f) => factor(cx, f)?,
+    let measured = |e: Expr| -> (u32, Expr) { (limits::depth(&e), e) };
+    let (mut depth, mut current) = match it.next() {
+        Some(f) => measured(factor(cx, f)?),
         None => return Err(cx.err("NC199", "empty expression", Span::default(), "here")),
     };
-    // Add-level operands waiting for the mul-level term to their right.
-    let mut pending: Vec<(Expr, Pair<'_, Rule>)> = Vec::new();
+    // Add-level operands waiting for the mul-level term to their right, and the operator
+    // after each.
+    let mut terms: Vec<(Expr, u32)> = Vec::new();
+    let mut ops: Vec<Pair<'_, Rule>> = Vec::new();
     while let Some(op) = it.next() {
-        let rhs = match it.next() {
-            Some(f) => factor(cx, f)?,
+        let (d, rhs) = match it.next() {
+            Some(f) => measured(factor(cx, f)?),
             None => return Err(cx.err("NC199", "operator without operand", cx.span(&op), "here")),
         };
         if op.as_rule() == Rule::mul_op {
             current = binary(cx, &op, current, rhs)?;
+            depth = 1 + depth.max(d);
+            if depth > MAX_EXPR_DEPTH {
+                return Err(cx.too_deep(whole));
+            }
         } else {
-            pending.push((current, op));
-            current = rhs;
+            terms.push((current, depth));
+            ops.push(op);
+            (current, depth) = (rhs, d);
         }
     }
     // Fold the add level left to right: a - b + c = (a - b) + c.
-    let mut acc: Option<Expr> = None;
-    let mut ops: Vec<Pair<'_, Rule>> = Vec::new();
-    let mut terms: Vec<Expr> = Vec::new();
-    for (t, op) in pending {
-        terms.push(t);
-        ops.push(op);
-    }
-    terms.push(current);
+    terms.push((current, depth));
     let mut terms = terms.into_iter();
-    if let Some(first) = terms.next() {
-        acc = Some(first);
+    let Some((mut acc, mut acc_depth)) = terms.next() else {
+        return Err(cx.err("NC199", "empty expression", Span::default(), "here"));
+    };
+    for (op, (t, d)) in ops.iter().zip(terms) {
+        acc = binary(cx, op, acc, t)?;
+        acc_depth = 1 + acc_depth.max(d);
+        if acc_depth > MAX_EXPR_DEPTH {
+            return Err(cx.too_deep(whole));
+        }
     }
-    for (op, t) in ops.iter().zip(terms) {
-        let Some(a) = acc.take() else { break };
-        acc = Some(binary(cx, op, a, t)?);
-    }
-    acc.ok_or_else(|| cx.err("NC199", "empty expression", Span::default(), "here"))
+    Ok(acc)
 }
 
 fn binary(cx: &ExprCx<'_, '_>, op: &Pair<'_, Rule>, a: Expr, b: Expr) -> Result<Expr, Diagnostic> {
@@ -234,7 +259,7 @@ fn factor(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
         Some(minus) => {
             let e = need_value(cx, e, "a sign needs a value")?;
             if minus {
-                Ok(Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e)), span))
+                cx.bounded(Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e)), span))
             } else {
                 Ok(Expr { span, ..e })
             }
@@ -259,6 +284,9 @@ pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Di
     };
     if inner.as_rule() == Rule::bracket {
         let e = value(cx, inner)?;
+        if limits::depth(&e) >= MAX_EXPR_DEPTH {
+            return Err(cx.too_deep(span));
+        }
         return Ok(VarRef { kind: VarKind::HashIndirect(Box::new(e)), span });
     }
     let n = inner.as_str().parse::<u32>().map_err(|_| {
@@ -312,7 +340,7 @@ fn func(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
             )
             .hint(names::function_usage(&name)));
     }
-    Ok(Expr::new(ExprKind::Func(func, args), span))
+    cx.bounded(Expr::new(ExprKind::Func(func, args), span))
 }
 
 fn plural(n: usize) -> &'static str {
@@ -346,5 +374,5 @@ fn atan(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
             .hint("write either `ATAN[y]/[x]` or `ATAN[y,x]`"));
     }
     let f = if args.len() == 2 { Func::FanucAtan2 } else { Func::FanucAtan };
-    Ok(Expr::new(ExprKind::Func(f, args), span))
+    cx.bounded(Expr::new(ExprKind::Func(f, args), span))
 }

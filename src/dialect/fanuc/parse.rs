@@ -323,7 +323,7 @@ fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, D
         n.point = true;
     }
     let value = match neg {
-        Some(true) => Expr::new(ExprKind::Unary(crate::ir::UnOp::Neg, Box::new(inner)), vspan),
+        Some(true) => cx.bounded(Expr::new(ExprKind::Unary(crate::ir::UnOp::Neg, Box::new(inner)), vspan))?,
         _ => Expr { span: vspan, ..inner },
     };
     Ok(RawWord { letter, value, span, lit: None })

@@ -4,10 +4,8 @@
 
 use super::parse::Seg;
 use crate::diag::Diagnostic;
+use crate::dialect::limits::MAX_NESTING;
 use crate::dialect::ParseOptions;
-
-/// Hard cap on bracket nesting whatever the profile says, so no input can recurse deeply.
-const HARD_DEPTH: u32 = 32;
 
 /// Splits a normalised line into blocks at `;` outside comments. Yields `(lo, hi, end)`:
 /// the trimmed block text `lo..hi` and `end`, one past its `;` (or `hi` without one).
@@ -94,7 +92,8 @@ pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
     if !b.iter().any(|&c| matches!(c, b'(' | b'[' | b']' | b'#' | b'<' | b'>' | b'!')) {
         return Ok(());
     }
-    let max = opts.semantics.max_bracket_depth.min(HARD_DEPTH);
+    // Capped whatever the profile says, so no input makes the grammar recurse deeply.
+    let max = opts.semantics.max_bracket_depth.min(MAX_NESTING);
     let mut depth: u32 = 0;
     let mut open: Vec<usize> = Vec::new();
     let mut comment: Option<usize> = None;

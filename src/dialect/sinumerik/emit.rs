@@ -557,9 +557,11 @@ pub fn expr(e: &Expr) -> String {
         }
         ExprKind::Binary(op, a, b) => {
             let p = binprec(*op);
-            // Any comparison inside another operator is parenthesised (pitfall 6).
-            let lp = prec(a) < p || matches!(a.kind, ExprKind::Cmp(..));
-            let rp = prec(b) <= p || matches!(b.kind, ExprKind::Cmp(..));
+            // Any comparison inside another operator is parenthesised (pitfall 6), and so is
+            // a different bitwise operator: few readers know B_AND binds tighter than B_OR.
+            let mixed = |x: &Expr| matches!(&x.kind, ExprKind::Binary(o, ..) if (50..=60).contains(&p) && (50..=60).contains(&binprec(*o)) && binprec(*o) != p);
+            let lp = prec(a) < p || matches!(a.kind, ExprKind::Cmp(..)) || mixed(a);
+            let rp = prec(b) <= p || matches!(b.kind, ExprKind::Cmp(..)) || mixed(b);
             format!("{}{}{}", wrap(a, lp), binop(*op), wrap(b, rp))
         }
         ExprKind::Cmp(op, _, a, b) => {

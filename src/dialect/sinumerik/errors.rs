@@ -4,11 +4,9 @@
 
 use super::Rule;
 use crate::diag::Diagnostic;
+use crate::dialect::limits::{self, MAX_NESTING};
 use crate::read::Normalised;
 use crate::span::FileId;
-
-/// Parentheses and brackets nested deeper than this are rejected before pest runs.
-pub const MAX_PARENS: usize = 64;
 
 /// What a grammar rule means to a reader, or `None` when it should not be listed.
 fn describe(r: Rule) -> Option<&'static str> {
@@ -219,20 +217,16 @@ fn unbalanced(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnos
     )
 }
 
-/// Rejects a block whose parentheses/brackets nest deeper than [`MAX_PARENS`], so that pest
+/// Rejects a block whose parentheses/brackets nest deeper than [`MAX_NESTING`], so that pest
 /// and the converter never recurse deeper than that.
 pub fn too_deep(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagnostic> {
-    let mut depth = 0usize;
+    let mut depth = 0u32;
     for (i, c) in code_bytes(text) {
         match c {
             b'(' | b'[' => {
                 depth += 1;
-                if depth > MAX_PARENS {
-                    return Some(
-                        Diagnostic::error("NC130", format!("expression nested deeper than {MAX_PARENS} levels"))
-                            .primary(file, norm.span(i, i + 1), format!("level {depth}"))
-                            .hint("split the calculation into several assignments with intermediate R parameters"),
-                    );
+                if depth > MAX_NESTING {
+                    return Some(limits::too_nested(file, norm.span(i, i + 1), depth, HINT));
                 }
             }
             b')' | b']' => depth = depth.saturating_sub(1),
@@ -241,6 +235,9 @@ pub fn too_deep(text: &str, norm: &Normalised<'_>, file: FileId) -> Option<Diagn
     }
     None
 }
+
+/// What to do about an expression that is too long or too deep (NC130).
+pub const HINT: &str = "split the calculation into several assignments with intermediate R parameters";
 
 /// The bytes of a block's code with their offsets: string contents (`"…"`) are skipped and
 /// the `;` comment ends it.

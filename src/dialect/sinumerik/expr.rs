@@ -2,10 +2,12 @@
 //! the Siemens precedence table (dialects.md §3.2) into IR, without recursion on operator
 //! chains. Parentheses and calls recurse, but the driver caps their nesting before pest runs.
 
+use super::errors::HINT;
 use super::names;
 use super::parse::Lower;
 use super::Rule;
 use crate::diag::Diagnostic;
+use crate::dialect::limits::{self, MAX_EXPR_DEPTH};
 use crate::ir::*;
 use crate::span::Span;
 use pest::iterators::Pair;
@@ -53,10 +55,6 @@ fn combine(op: Op, a: Expr, b: Expr) -> Expr {
     Expr::new(kind, span)
 }
 
-/// The deepest expression tree the reader builds. Later phases walk (and `Drop` frees) the
-/// tree recursively, so its depth is bounded here, where it is built.
-pub const MAX_EXPR_DEPTH: u32 = 256;
-
 fn reduce(vals: &mut Vec<(Expr, u32)>, ops: &mut Vec<(Op, u8)>) -> u32 {
     if let (Some((op, _)), Some((b, db)), Some((a, da))) = (ops.pop(), vals.pop(), vals.pop()) {
         let d = 1 + da.max(db);
@@ -64,19 +62,6 @@ fn reduce(vals: &mut Vec<(Expr, u32)>, ops: &mut Vec<(Op, u8)>) -> u32 {
         return d;
     }
     0
-}
-
-/// Depth of an expression tree, without recursion.
-fn depth(e: &Expr) -> u32 {
-    let mut max = 0;
-    let mut stack = vec![(e, 1u32)];
-    while let Some((x, d)) = stack.pop() {
-        max = max.max(d);
-        for c in x.children() {
-            stack.push((c, d + 1));
-        }
-    }
-    max
 }
 
 impl Lower<'_, '_> {
@@ -102,7 +87,7 @@ impl Lower<'_, '_> {
                     Rule::op_plus => {}
                     _ => {
                         let mut e = self.operand(q);
-                        let mut d = depth(&e);
+                        let mut d = limits::depth(&e);
                         // Innermost prefix first: `NOT -x` is `NOT (-x)`.
                         while let Some((op, lo)) = prefixes.pop() {
                             if d > MAX_EXPR_DEPTH {
@@ -118,24 +103,17 @@ impl Lower<'_, '_> {
                 }
             }
             if deepest > MAX_EXPR_DEPTH || vals.len() > MAX_EXPR_DEPTH as usize {
-                self.error(
-                    Diagnostic::error("NC130", format!("expression nested deeper than {MAX_EXPR_DEPTH} operations"))
-                        .primary(self.file(), whole, "too long to evaluate in one expression")
-                        .hint("split the calculation into several assignments with intermediate R parameters"),
-                );
+                self.error(limits::too_deep(self.file(), whole, HINT));
                 return Expr::num(0.0, false, whole);
             }
         }
         while !ops.is_empty() {
             deepest = deepest.max(reduce(&mut vals, &mut ops));
-        }
-        if deepest > MAX_EXPR_DEPTH {
-            self.error(
-                Diagnostic::error("NC130", format!("expression nested deeper than {MAX_EXPR_DEPTH} operations"))
-                    .primary(self.file(), whole, "too long to evaluate in one expression")
-                    .hint("split the calculation into several assignments with intermediate R parameters"),
-            );
-            return Expr::num(0.0, false, whole);
+            // Stop as soon as it is too deep, so no deeper tree is ever built.
+            if deepest > MAX_EXPR_DEPTH {
+                self.error(limits::too_deep(self.file(), whole, HINT));
+                return Expr::num(0.0, false, whole);
+            }
         }
         vals.pop().map_or_else(|| Expr::num(0.0, false, whole), |(e, _)| e)
     }

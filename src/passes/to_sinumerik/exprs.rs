@@ -204,7 +204,8 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
 
 fn int_part(e: Expr) -> Expr {
     // Already an integer (a truncation, a rounding, a bitwise result): another TRUNC would
-    // only pile up on every round trip (`FIX[FIX[x]] AND 3`).
+    // only pile up on every round trip (`FIX[FIX[x]] AND 3`), and a chain `#1 AND #2 AND …`
+    // would nest one TRUNC per operator, past the reader's bracket limit.
     if matches!(
         &e.kind,
         ExprKind::Func(Func::Trunc | Func::Round | Func::RoundUp, _)
