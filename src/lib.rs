@@ -24,6 +24,7 @@ pub mod stream;
 mod test_rng;
 pub mod translate;
 pub mod translate_sinumerik;
+pub mod unfinished;
 pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};

@@ -365,15 +365,25 @@ fn cmd_check(
     let report = check::check_runners(&db, ra, rb);
     let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
-    check_verdict(report.verdict, &report.diff)
+    check_verdict(&report)
 }
 
 /// Prints a check's verdict; its exit code.
-fn check_verdict(verdict: nctrans::check::Verdict, diff: &str) -> ExitCode {
+fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
     use nctrans::check::Verdict;
-    match verdict {
+    // The trace holds programmed positions: a program that ran a compensation word (D, H,
+    // G40..G49) may apply another length or radius than the other, unseen (issue 17 item 6).
+    let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
+    let diff = &report.diff;
+    match &report.verdict {
+        Verdict::Equivalent { events } if compensates => {
+            println!(
+                "inconclusive: {events} trace events agree, but tool compensation (D, H, G40..G49) is not compared"
+            );
+            ExitCode::from(4)
+        }
         Verdict::Equivalent { events } => {
-            println!("equivalent ({events} trace events agree)");
+            println!("{}", report.excluded.equivalent(&format!("{events} trace events agree")));
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
@@ -441,9 +451,5 @@ fn check_as_translation(
     };
     let report = check::check_runners_excluding(&db, ra, rb, exclude);
     eprint!("{}", diag::render(&report.db, &report.diags));
-    if let check::Verdict::Equivalent { events } = report.verdict {
-        println!("{}", report.excluded.equivalent(&format!("{events} trace events agree")));
-        return ExitCode::SUCCESS;
-    }
-    check_verdict(report.verdict, &report.diff)
+    check_verdict(&report)
 }

@@ -124,7 +124,39 @@ fn prog_name(p: &Program, fallback: &str) -> String {
 }
 
 /// Translates a Siemens main program and the subprograms it calls (each a parsed `.SPF`).
+/// Under the warn policy refused blocks become marked comments whole and the program
+/// alarms on its first line ([`crate::unfinished`]).
 pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+    if opts.unsupported == UnsupportedPolicy::Error {
+        return to_fanuc_strict(main, subs, opts);
+    }
+    let strict = TranslateOptions { unsupported: UnsupportedPolicy::Error, ..opts.clone() };
+    let mut all = vec![main];
+    all.extend(subs.iter().copied());
+    let style = |m: &str| format!("{} {m} ***", passes::UNSUPPORTED_MARK);
+    let (mut t, warnings, marked, _) = crate::unfinished::translate_marking(&all, style, |us| {
+        let t = to_fanuc_strict(us[0], &us[1..], &strict);
+        let d = t.diags.clone();
+        (t, d)
+    });
+    if marked == 0 {
+        return t;
+    }
+    let mut diags = warnings;
+    diags.append(&mut t.diags);
+    t.diags = diags;
+    t.unsupported += marked;
+    if let Some(p) = t.unit.programs.first_mut() {
+        let span = Span::new(p.span.lo, p.span.lo);
+        p.body.insert(0, crate::unfinished::summary_block(span, "*** NCTRANS:", marked));
+        p.body.insert(0, crate::unfinished::alarm_block(span));
+    }
+    let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
+    t.text = emit::emit(&t.unit, &eo).text;
+    t
+}
+
+fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
@@ -173,15 +205,23 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
         callees.insert(name, Callee { number, params: p.params.clone(), effect });
     }
 
+    // Comparisons of integers (counters included) need no tolerance form.
+    let types: Vec<passes::integral::Types> = progs.iter().map(|(p, _, _)| declared_types(p)).collect();
+    let names: std::collections::BTreeSet<String> = progs.iter().skip(1).map(|(p, _, _)| prog_name(p, "")).collect();
+    let with_types: Vec<(&Program, &passes::integral::Types)> =
+        progs.iter().zip(&types).map(|((p, _, _), t)| (p, t)).collect();
+    let mut exact_cmps = passes::integral::exact_comparisons(&with_types, &names).into_iter();
+
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
+        passes::own_header::drop_own_header(&mut p);
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
-        let mut info = ProgInfo { is_sub, ..ProgInfo::default() };
+        let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {
             units_follow_text = !ctx.units_inexact;
@@ -249,6 +289,21 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
     Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+}
+
+/// The declared types of a program's scalar names (DEF and PROC parameters).
+fn declared_types(p: &Program) -> passes::integral::Types {
+    let mut t: passes::integral::Types = p.params.iter().map(|prm| (prm.name.clone(), prm.ty)).collect();
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let ItemKind::Def(d) = &it.kind {
+                    t.extend(d.vars.iter().filter(|v| v.dims.is_empty()).map(|v| (v.name.clone(), d.ty)));
+                }
+            }
+        }
+    });
+    t
 }
 
 fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
@@ -519,7 +574,7 @@ mod tests {
         assert_eq!(
             t.text,
             "%\nO0001 (MAIN)\n(NCTRANS: SINUMERIK MAIN TO FANUC MACRO B)\n(NCTRANS: R1 = #501)\n#501=0.\n\
-             WHILE [3.-#501 GT [ABS[#501]+3.+ABS[ABS[#501]-3.]]*0.0000005*0.000001] DO1\nG01 X[#501*2.] F100.\n#501=#501+1.\nEND1\nM30\n%\n"
+             WHILE [#501 LT 3.] DO1\nG01 X[#501*2.] F100.\n#501=#501+1.\nEND1\nM30\n%\n"
         );
         assert_eq!(t.symbol_map.fanuc_var("r1"), Some(501));
     }
@@ -562,10 +617,24 @@ mod tests {
 
     #[test]
     fn unsupported_warn_marks_the_line() {
-        let body = vec![block(vec![word_item(b'G', n(500.0))])];
+        // Marking finds the block by its span: a parsed program.
+        let mut db = crate::span::SourceDb::new();
+        let file = db.add("w.mpf", "G500 X1\nM30\n".to_string());
+        let p =
+            crate::parse(&db, file, Dialect::Sinumerik, &crate::dialect::ParseOptions::for_dialect(Dialect::Sinumerik));
         let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
-        let t = to_fanuc(&unit(body), &[], &opts);
+        let t = to_fanuc(&p.unit, &[], &opts);
         assert!(!t.ok());
-        assert!(t.text.contains("(*** NCTRANS UNSUPPORTED: G500 ***)"));
+        assert!(!t.text.contains("X1."), "{}", t.text);
+        // Synthetic IR without spans cannot be marked: the errors stay errors.
+        let body = vec![block(vec![word_item(b'G', n(500.0))])];
+        let t2 = to_fanuc(&unit(body), &[], &opts);
+        assert!(crate::diag::has_errors(&t2.diags));
+        assert!(
+            t.text.contains("(*** NCTRANS UNSUPPORTED: G500 cannot be translated to FANUC Macro B ***)"),
+            "{}",
+            t.text
+        );
+        assert!(t.text.contains("\n#3000=999(UNFINISHED TRANSLATION)\n"), "{}", t.text);
     }
 }

@@ -165,6 +165,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return fail(e);
     }
     if t.unsupported > 0 || diag::has_errors(&t.diags) {
+        eprintln!("not verified: the output is unfinished (it alarms on its first line)");
         eprintln!("error: the output is incomplete: {} construct(s) marked UNSUPPORTED", t.unsupported);
         return ExitCode::from(1);
     }

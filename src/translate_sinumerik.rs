@@ -202,9 +202,59 @@ fn take_inputs(prog: &mut Program) -> Vec<String> {
 
 /// Translates FANUC programs to Sinumerik. `units[0]` holds the main program (its first
 /// program); further programs of any unit are the subprograms and macros it may call.
+use crate::passes::own_header as passes_header;
+
+/// Translates FANUC programs to Sinumerik files. Under the warn policy refused blocks become
+/// marked comments whole and the main program alarms on its first line
+/// ([`crate::unfinished`]).
 pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Translation {
-    let programs: Vec<(FileId, &Program)> =
+    if opts.unsupported == UnsupportedPolicy::Error {
+        return translate_strict(units, opts, line_ending);
+    }
+    let strict = Options { unsupported: UnsupportedPolicy::Error, ..opts.clone() };
+    let style = |m: &str| format!("NCTRANS UNSUPPORTED: {m}");
+    let (t, warnings, marked, mut owned) = crate::unfinished::translate_marking(units, style, |us| {
+        let t = translate_strict(us, &strict, line_ending);
+        let d = t.diags.clone();
+        (t, d)
+    });
+    if marked == 0 {
+        return t;
+    }
+    if let Some(p) = owned.first_mut().and_then(|u| u.programs.first_mut()) {
+        let span = crate::span::Span::new(p.span.lo, p.span.lo);
+        p.body.insert(0, crate::unfinished::summary_block(span, "NCTRANS:", marked));
+        p.body.insert(0, crate::unfinished::alarm_block(span));
+    }
+    let refs: Vec<&Unit> = owned.iter().collect();
+    let mut t = translate_strict(&refs, &strict, line_ending);
+    let mut diags = warnings;
+    diags.append(&mut t.diags);
+    t.diags = diags;
+    t
+}
+
+fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Translation {
+    let mut programs: Vec<(FileId, &Program)> =
         units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
+    // A translation translated back: its old header goes (copied only then).
+    let cleaned: Vec<Program> = programs
+        .iter()
+        .filter(|(_, p)| passes_header::has_own_header(p))
+        .map(|(_, p)| {
+            let mut p = (*p).clone();
+            passes_header::drop_own_header(&mut p);
+            p
+        })
+        .collect();
+    let mut cleaned = cleaned.iter();
+    for (_, p) in programs.iter_mut() {
+        if passes_header::has_own_header(p) {
+            if let Some(c) = cleaned.next() {
+                *p = c;
+            }
+        }
+    }
     let lowered = passes::lower(&programs, opts);
     let mut diags = lowered.diags.clone();
     let mut symbols = SymbolMap::default();

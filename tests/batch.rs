@@ -391,6 +391,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("functions-misc.nc", "NC369"),                      // ADP
     ("g10-l50-param-write.nc", "NC355"),                 // G10 L50
     ("m98-packed-p.nc", "NC355"),                        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
+    ("multi-word-block.nc", "NC385"),                    // G43 H1: tool compensation is not compared
     ("seed-o9050-brake-test.nc", "NC355"),               // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
     ("system-variables.nc", "NC365"),                    // #4003

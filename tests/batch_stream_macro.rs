@@ -171,7 +171,7 @@ fn library(input: &Path) {
     let calls2 = sinumerik_macro(22, 4, "\n", "SUBY\nIF R1>1\nSUBZ(2.5)\nENDIF\n").replace("M30", "SUBZ(R1)\nM30");
     w(sin.join("caller2.mpf"), calls2);
     w(sin.join("suby.spf"), "PROC SUBY\nR20=R1+1\nG1 X=R20 F150\nM17\n".into());
-    w(sin.join("subz.spf"), "PROC SUBZ(REAL D)\nG1 Z=-D F80\nIF D>2\nSUBY\nENDIF\nM17\n".into());
+    w(sin.join("subz.spf"), "PROC SUBZ(REAL DEP)\nG1 Z=-DEP F80\nIF DEP>2\nSUBY\nENDIF\nM17\n".into());
     // A call of a program no file defines: goes whole.
     w(sin.join("lost.mpf"), sinumerik_macro(23, 2, "\n", "NOWHERE\n"));
     // A warning (a full-width letter).

@@ -75,3 +75,67 @@ fn run_writes_jsonl_and_takes_inputs() {
          {\"ev\":\"end\",\"code\":\"M30\",\"steps\":3,\"line\":3}\n"
     );
 }
+
+/// Issue 17 item 6: the trace holds programmed positions, so two programs that compensate
+/// (here Siemens `T6 D1`, cutting edge 1 of tool 6, and FANUC `T6 D1` without `G43 H6`) are
+/// never called equivalent: `check` says compensation was not compared, exit 4.
+#[test]
+fn compensation_is_not_compared_so_check_is_inconclusive() {
+    let a = write("comp-a.mpf", "T6 D1\nM6\nG0 X0 Y0 Z50\nG1 Z-2 F200\nM30\n");
+    let b = write("comp-b.nc", "%\nO1\nT6 D1\nM06\nG00 X0 Y0 Z50.\nG01 Z-2. F200.\nM30\n%\n");
+    let (code, out, err) = nctrans(&["check", &a, &b]);
+    assert_eq!(code, 4, "{out}\n{err}");
+    assert!(out.starts_with("inconclusive:") && out.contains("tool compensation"), "{out}");
+    assert!(err.contains("warning[NC387]"), "{err}");
+    let c = write("comp-c.nc", "%\nO1\nG00 X0 Y0\nG41 D04 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let d = write("comp-d.nc", "%\nO1\nG00 X0 Y0\nG42 D01 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let (code, out, _) = nctrans(&["check", &c, &d]);
+    assert_eq!(code, 4, "{out}");
+}
+
+/// Issue 17 item 6 on the streamed paths: past the first chunks the straight-line
+/// translators write blocks without the passes; a compensation block far down a CAM program
+/// must still be refused, both ways.
+#[test]
+fn compensation_far_down_a_streamed_program_is_refused() {
+    let mut fanuc = String::from("%\nO1\nG00 X0 Y0\nG01 F100.\n");
+    let mut siemens = String::from("G0 X0 Y0\nG1 F100\n");
+    for i in 0..6000 {
+        fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+        siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+    }
+    fanuc.push_str("G41 D04 X10. Y5.\nX20.\nG40 X0 Y0\nM30\n%\n");
+    siemens.push_str("G41 D4 X10 Y5\nX20\nG40 X0 Y0\nM30\n");
+    let f = write("comp-stream.nc", &fanuc);
+    let s = write("comp-stream.mpf", &siemens);
+    for (input, to) in [(&f, "sinumerik"), (&s, "fanuc")] {
+        let (code, out, err) = nctrans(&["--to", to, "--stream", "--no-verify", input]);
+        assert_eq!(code, 1, "{input}: {out}\n{err}");
+        assert!(err.contains("error[NC385]"), "{input}: {err}");
+        assert!(!out.contains("G41"), "{input}: {out}");
+    }
+}
+
+/// Issue 17 item 7 on the streamed paths: under `--unsupported warn` a cycle far down a
+/// streamed CAM program becomes one marked comment as a whole, and the file alarms first.
+#[test]
+fn warn_far_down_a_streamed_program_marks_the_whole_block() {
+    let mut fanuc = String::from("%\nO1\nG00 X0 Y0 Z5.\nG01 F100.\n");
+    let mut siemens = String::from("G0 X0 Y0 Z5\nG1 F100\n");
+    for i in 0..6000 {
+        fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+        siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
+    }
+    fanuc.push_str("G99 G81 X77. Y77. Z-2. R2. F150.\nG80\nG00 Z50.\nM30\n%\n");
+    siemens.push_str("ROT Z=45 X77\nG0 Z50\nM30\n");
+    let f = write("warn-stream.nc", &fanuc);
+    let s = write("warn-stream.mpf", &siemens);
+    for (input, to, alarm) in [(&f, "sinumerik", "SETAL(65999)"), (&s, "fanuc", "#3000=999")] {
+        let (code, out, err) = nctrans(&["--to", to, "--stream", "--unsupported", "warn", input]);
+        assert_eq!(code, 1, "{input}: {err}");
+        assert!(!out.contains("X77"), "{input}: the marked block's words survived");
+        assert!(out.lines().take(4).any(|l| l.starts_with(alarm)), "{input}: {}", &out[..200.min(out.len())]);
+        assert!(out.contains("NCTRANS UNSUPPORTED"), "{input}");
+        assert!(err.contains("not verified"), "{input}: {err}");
+    }
+}

@@ -128,7 +128,7 @@ fn siemens_subprogram_parameters_by_value_reference_and_omitted() {
     // P2 runs it twice with the same arguments.
     std::fs::write(
         dir.join("shift.spf"),
-        "PROC SHIFT(REAL DX, VAR REAL ACC, REAL DY)\nACC=ACC+DX\nG0 X=ACC Y=DY\nM30\n",
+        "PROC SHIFT(REAL DX, VAR REAL TOTAL, REAL DY)\nTOTAL=TOTAL+DX\nG0 X=TOTAL Y=DY\nM30\n",
     )
     .expect("write");
     std::fs::write(dir.join("Tail.SPF"), "G0 Z5\n").expect("write");

@@ -135,7 +135,7 @@ const ROWS: &[Row] = &[
     },
     Row {
         what: "FOR loop",
-        siemens: "DEF INT I\nFOR I=1 TO 3\nG1 X=I F100\nENDFOR\nM30\n",
+        siemens: "DEF INT CNT\nFOR CNT=1 TO 3\nG1 X=CNT F100\nENDFOR\nM30\n",
         fanuc: "O1\n#1=1\nWHILE[#1 LE 3]DO1\nG01 X#1 F100.\n#1=#1+1\nEND1\nM30\n",
         way: Way::Both,
     },

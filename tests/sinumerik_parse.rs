@@ -162,9 +162,9 @@ fn address_or_variable() {
 fn header_and_proc_name_the_program() {
     let d = ok("%_N_PART7_MPF\n;$PATH=/_N_MPF_DIR\nG0 X0\nM30\n");
     assert!(d.contains("program PART7"), "{d}");
-    let d = ok("PROC SUB1(REAL A, VAR INT B) SAVE\nRET\n");
+    let d = ok("PROC SUB1(REAL P_A, VAR INT P_B) SAVE\nRET\n");
     assert!(d.contains("program SUB1 save"), "{d}");
-    assert!(d.contains("param var INT B"), "{d}");
+    assert!(d.contains("param var INT P_B"), "{d}");
 }
 
 #[test]

@@ -330,7 +330,7 @@ fn every_corpus_file_has_the_same_index() {
 fn program(r: &mut Rng, siemens: bool, size: usize) -> Vec<u8> {
     let mut text = String::from(if siemens { "; title\n; nctrans: set R1=2\n" } else { "%\nO1000 (TITLE)\n" });
     let macro_part = if siemens {
-        ["LAB1:", "R1=R1+1", "IF R1<3 GOTOB LAB1", "WHILE R2<2", "R2=R2+1", "ENDWHILE", "N7 G1 X1 ; n", "DEF REAL Q"]
+        ["LAB1:", "R1=R1+1", "IF R1<3 GOTOB LAB1", "WHILE R2<2", "R2=R2+1", "ENDWHILE", "N7 G1 X1 ; n", "DEF REAL QQ"]
     } else {
         ["#1=#1+1", "IF [#1 LT 3] GOTO 7", "WHILE [#2 LT 2] DO1", "#2=#2+1", "END1", "N7 G1 X1.", "(NOTE)", "G65 P9 A1"]
     };

@@ -183,9 +183,9 @@ fn loops_and_backward_jumps_across_many_chunks() {
     let fanuc = dir.join("loops.nc");
     std::fs::write(&fanuc, &f).expect("write");
     // Siemens: GOTOB to a label far above, FOR and REPEAT across chunks.
-    let mut s = String::from("DEF INT K\nR1=0\nF500\nTOP:\nFOR K=1 TO 2\n");
+    let mut s = String::from("DEF INT KCNT\nR1=0\nF500\nTOP:\nFOR KCNT=1 TO 2\n");
     for i in 0..200 {
-        s.push_str(&format!("N{} G1 X{} Y=R1+K\n", i + 1, i));
+        s.push_str(&format!("N{} G1 X{} Y=R1+KCNT\n", i + 1, i));
     }
     s.push_str("ENDFOR\n");
     for i in 0..40 {

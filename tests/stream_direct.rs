@@ -204,7 +204,7 @@ fn direct_route_gives_the_same_ops_and_trace_on_generated_programs() {
     let mut direct = 0;
     for seed in 1..=12u64 {
         let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        let mut text = String::from("%_N_GEN_MPF\nDEF REAL Q\n");
+        let mut text = String::from("%_N_GEN_MPF\nDEF REAL QQ\n");
         for _ in 0..600 {
             text.push_str(&line(&mut r));
             text.push_str(r.pick(&["\n", "\n", "\r\n"]));

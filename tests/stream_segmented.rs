@@ -588,7 +588,7 @@ fn declines_what_it_does_not_handle() {
         // A computed jump target.
         ("goto-string.mpf", "DEF STRING[16] T1=\"FIN\"\nG1 X1\nGOTOF T1\nG0 X9\nFIN: M30\n"),
         // A PROC with parameters.
-        ("proc.mpf", "PROC PMAIN(REAL A)\nR1=A\nG1 X1\nM30\n"),
+        ("proc.mpf", "PROC PMAIN(REAL P_A)\nR1=P_A\nG1 X1\nM30\n"),
         // A computed G word.
         ("g-computed.mpf", "R1=1\nG=R1 X1\nG1 X2\nM30\n"),
         // Run blocks the fast path declines, in metric and in inch: the one scan leaves the

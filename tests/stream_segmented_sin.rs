@@ -159,8 +159,8 @@ fn cam_run(r: &mut Rng, n: usize, eol: &str, arc: &mut bool, ns: &mut Vec<u32>) 
                 *arc = false;
             }
             8 => line.push_str(&format!("F{}.", 100 + r.below(900))),
-            // What the fast path leaves to the passes: a dwell, a dropped G43/G49 (warned).
-            9 if r.chance(30) => line.push_str(r.pick(&["G4 P200", "G43 Z9. H1", "G49", "G4 X0.5"])),
+            // What the fast path leaves to the passes: a dwell (tool compensation is refused).
+            9 if r.chance(30) => line.push_str(r.pick(&["G4 P200", "G4 X0.5"])),
             _ => line.push_str(&format!("(PASS {})", r.below(99))),
         }
         if r.chance(5) && !line.starts_with('N') {
@@ -187,7 +187,7 @@ fn generated(seed: u64, eol: &str) -> String {
     }
     t.push_str(&format!("#100=[#100+1]{eol}#101=2.5{eol}"));
     if r.chance(30) {
-        t.push_str(&format!("G43 Z20. H1{eol}"));
+        t.push_str(&format!("G0 Z20.{eol}"));
     }
     t.push_str(&format!("G21 G17 G90 G94{eol}G0 X0. Y0. Z5.{eol}"));
     let mut arc = false;

@@ -1,6 +1,6 @@
 //! The streamed FANUC → Sinumerik translator's per-block fast path against the whole-file
 //! translator: generated straight-line programs (every G code a stream takes, G80 dropped,
-//! G43/G49 with their kept warning, dwells, arcs by R with the arc mode running over many
+//! dwells, arcs by R with the arc mode running over many
 //! blocks, numbers with and without a decimal point under two increment profiles, tiny
 //! values the writer spells with `EX`, N numbers, skips, program ends mid-block, several
 //! comments per block, each line ending), and every corpus FANUC program with the first
@@ -67,8 +67,9 @@ fn num(r: &mut Rng) -> String {
 }
 
 const G_CODES: &[&str] = &[
-    "0", "00", "1", "01", "2", "02", "3", "03", "17", "18", "19", "20", "21", "40", "41", "42", "53", "54", "55", "56",
-    "57", "58", "59", "61", "64", "80", "90", "91", "94", "95",
+    // No G40/G41/G42 nor D: tool compensation is refused (NC385, issue 17 item 6).
+    "0", "00", "1", "01", "2", "02", "3", "03", "17", "18", "19", "20", "21", "53", "54", "55", "56", "57", "58", "59",
+    "61", "64", "80", "90", "91", "94", "95",
 ];
 const COMMENTS: &[&str] =
     &["(ROUGH)", "(  spaced  )", "()", "(STEP 3; DEPTH 2)", "(Tiefe \u{e4}\u{f6}\u{fc})", "(A)(B)"];
@@ -85,7 +86,7 @@ fn block(r: &mut Rng, arc: &mut bool) -> String {
     }
     if r.chance(3) {
         // A dwell, or a tool length code with its warning: the general passes.
-        b.push_str(r.pick(&["G04 P500", "G4 X1.5", "G43 Z50. H1", "G49", "G90 G49"]));
+        b.push_str(r.pick(&["G04 P500", "G4 X1.5", "G90 G17"]));
         return b;
     }
     if r.chance(5) {
@@ -109,7 +110,7 @@ fn block(r: &mut Rng, arc: &mut bool) -> String {
                 b.push_str(&format!("G{g}"));
             }
             2 => b.push_str(&format!("M{}", r.pick(&["3", "5", "8", "9", "6", "0", "1", "03"]))),
-            3 => b.push_str(&format!("{}{}", r.pick(&["S", "T", "D"]), r.below(10_000))),
+            3 => b.push_str(&format!("{}{}", r.pick(&["S", "T"]), r.below(10_000))),
             4 => b.push_str(&format!("F{}", num(r).trim_start_matches('-'))),
             5 if r.chance(20) => b.push_str(r.pick(COMMENTS)),
             _ => {
@@ -218,7 +219,7 @@ fn corpus_programs_stream_block_by_block_to_the_whole_translation() {
             }
         }
     }
-    for name in ["sequence-numbers.nc", "line-endings-crlf.nc", "multi-word-block.nc", "pitfall-units-and-arcs.nc"] {
+    for name in ["sequence-numbers.nc", "line-endings-crlf.nc", "pitfall-units-and-arcs.nc"] {
         assert!(streamed.iter().filter(|s| *s == name).count() == 2, "{name} not streamed: {streamed:?}");
     }
 }

@@ -79,8 +79,9 @@ fn value(r: &mut Rng) -> String {
 }
 
 const G_CODES: &[&str] = &[
-    "0", "1", "2", "3", "9", "17", "18", "19", "40", "41", "42", "53", "54", "55", "56", "57", "64", "90", "91", "94",
-    "95", "70", "71", "700", "710", "00", "01",
+    // No G40/G41/G42 nor D: tool compensation is refused (NC385, issue 17 item 6).
+    "0", "1", "2", "3", "9", "17", "18", "19", "53", "54", "55", "56", "57", "64", "90", "91", "94", "95", "70", "71",
+    "700", "710", "00", "01",
 ];
 const COMMENTS: &[&str] = &[
     "roughing",
@@ -194,7 +195,7 @@ fn a_million_generated_blocks_stream_to_the_whole_translation() {
 /// `cases` generated programs of `blocks(case)` blocks each, streamed against the whole
 /// translation.
 fn differential(seed: u64, cases: usize, blocks: impl Fn(usize) -> usize) {
-    let letters: Vec<char> = ('A'..='Z').filter(|&c| admitted(c, "1.5")).collect();
+    let letters: Vec<char> = ('A'..='Z').filter(|&c| c != 'D' && admitted(c, "1.5")).collect();
     // Letters that are something else with an integer (`L1` is a call) get decimals only.
     let decimal_only: Vec<char> = letters.iter().copied().filter(|&c| !admitted(c, "1")).collect();
     assert_eq!(decimal_only, ['L'], "letters that take decimals only");
@@ -341,7 +342,8 @@ fn translates_clean(block: &str) -> bool {
 
 /// Blocks of generated literals in inch and metric modes (G70/G71/G700/G710, F under G70
 /// as `F[v/25.4]`, dwells), written from their digits by the fast path, against the whole
-/// translation; blocks the translator reports on (too many digits) make the stream give up.
+/// translation; blocks the translator reports on (too many digits, a `D` word: tool
+/// compensation is refused, NC385) make the stream give up.
 #[test]
 fn literal_digits_stream_to_the_whole_translation() {
     let mut r = Rng(0x1175_0000_dead_beef);
@@ -391,7 +393,8 @@ fn literal_digits_stream_to_the_whole_translation() {
         same(&format!("literals case {case}"), &out, &whole.text, &t);
     }
     eprintln!("{blocks} literal blocks streamed, {refused} refused");
-    assert!(blocks > 4000 && refused > 20, "{blocks} streamed, {refused} refused");
+    // About a third of the blocks hold a D word since it is refused (issue 17 item 6).
+    assert!(blocks > 3000 && refused > 20, "{blocks} streamed, {refused} refused");
 }
 
 /// Programs larger than the 256 KiB read buffer, whose lines meet its first end every way:
@@ -401,7 +404,7 @@ fn literal_digits_stream_to_the_whole_translation() {
 #[test]
 fn programs_across_read_buffer_ends_stream_to_the_whole_translation() {
     const CHUNK: usize = 256 * 1024;
-    let letters: Vec<char> = ('A'..='Z').filter(|&c| admitted(c, "1.5")).collect();
+    let letters: Vec<char> = ('A'..='Z').filter(|&c| c != 'D' && admitted(c, "1.5")).collect();
     let mut r = Rng(0x0b0f_fe12_0000_0001);
     let mut streamed = 0;
     for (case, (eol, shift)) in [("\r\n", 0), ("\r", 0), ("\n", 3), ("\r\n", 7), ("\n", 0)].into_iter().enumerate() {

@@ -97,7 +97,7 @@ fn pair_if_else_inverts_and_jumps() {
         "R1=2\nIF R1>1\nG1 X1 F100\nELSE\nG1 X2 F100\nENDIF\nM30\n",
         &[
             "#501=2.",
-            "IF [#501-1. LE [ABS[#501]+1.+ABS[ABS[#501]-1.]]*0.0000005*0.000001] GOTO 1000",
+            "IF [#501 LE 1.] GOTO 1000",
             "G01 X1. F100.",
             "GOTO 1001",
             "N1000",
@@ -112,7 +112,7 @@ fn pair_if_else_inverts_and_jumps() {
 fn pair_while_becomes_do_with_depth() {
     pair(
         "DEF INT CNT\nCNT=0\nWHILE CNT<2\nG1 X=CNT F100\nCNT=CNT+1\nENDWHILE\nM30\n",
-        &["#100=0.", "#100=0.", "WHILE [#100 LT 2.] DO1", "G01 X#100 F100.", "#100=#100+1.", "END1", "M30"],
+        &["#100=0.", "WHILE [#100 LT 2.] DO1", "G01 X#100 F100.", "#100=#100+1.", "END1", "M30"],
     );
 }
 
@@ -163,13 +163,40 @@ fn pair_mod_and_div_keep_siemens_signs() {
 fn pair_labels_become_n_numbers() {
     pair(
         "R1=0\nTOP: R1=R1+1\nG1 X=R1 F100\nIF R1<2 GOTOB TOP\nM30\n",
+        &["#501=0.", "N1000 #501=#501+1. (TOP:)", "G01 X#501 F100.", "IF [#501 LT 2.] GOTO 1000", "M30"],
+    );
+}
+
+/// Issue 17 item 10: a comparison of counters (set at the top, stepped by integers) is the
+/// plain FANUC comparison; anything that may be a non-integer keeps the tolerance form.
+#[test]
+fn pair_counter_comparisons_are_plain_and_reals_keep_the_tolerance() {
+    let tol = |a: &str, b: &str| format!("[ABS[{a}]+{b}+ABS[ABS[{a}]-{b}]]*0.0000005*0.000001");
+    // A REAL stepped by 0.5.
+    pair(
+        "R1=0\nTOP: R1=R1+0.5\nIF R1<2 GOTOB TOP\nM30\n",
+        &["#501=0.", "N1000 #501=#501+0.5 (TOP:)", &format!("IF [2.-#501 GT {}] GOTO 1000", tol("#501", "2.")), "M30"],
+    );
+    // Never set by the program: whatever the previous run (or a caller) left.
+    pair(
+        "IF R1<2 GOTOF END\nG1 X1 F100\nEND: M30\n",
+        &[&format!("IF [2.-#501 GT {}] GOTO 1000", tol("#501", "2.")), "G01 X1. F100.", "N1000 M30 (END:)"],
+    );
+    // Set only after a label a jump may reach first: not definitely set there.
+    pair(
+        "GOTOF SET\nBACK: IF R1<2 GOTOF END\nSET: R1=1\nGOTOB BACK\nEND: M30\n",
         &[
-            "#501=0.",
-            "N1000 #501=#501+1. (TOP:)",
-            "G01 X#501 F100.",
-            "IF [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] GOTO 1000",
-            "M30",
+            "GOTO 1001",
+            &format!("N1000 IF [2.-#501 GT {}] GOTO 1002 (BACK:)", tol("#501", "2.")),
+            "N1001 #501=1. (SET:)",
+            "GOTO 1000",
+            "N1002 M30 (END:)",
         ],
+    );
+    // A counter in a FOR loop and its end value.
+    pair(
+        "R2=3\nFOR R1=1 TO R2\nG1 X=R1 F100\nENDFOR\nM30\n",
+        &["#502=3.", "#501=1.", "WHILE [#501 LE #502] DO1", "G01 X#501 F100.", "#501=#501+1.", "END1", "M30"],
     );
 }
 
@@ -189,7 +216,7 @@ fn pair_ic_switches_to_incremental_and_back() {
 #[test]
 fn unsupported_constructs_are_refused() {
     refused("TRANS X10\nM30\n", "NC316");
-    refused("DEF STRING[8] S\nM30\n", "NC310");
+    refused("DEF STRING[8] S_NAME\nM30\n", "NC310");
     refused("G1 X1 F100 AR=90\nM30\n", "NC312");
     refused("CYCLE81(10,0,2,-5)\nM30\n", "NC303");
     refused("T=\"NOPE\"\nM6\nM30\n", "NC301");
@@ -202,7 +229,8 @@ fn warn_policy_marks_the_line() {
     let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
     let d = translate_src("w.mpf", "G1 X1 F100\nTRANS X10\nM30\n", &opts);
     assert!(!d.t.ok());
-    assert!(d.t.text.contains("(*** NCTRANS UNSUPPORTED: frame instruction TRANS ***)"), "{}", d.t.text);
+    let mark = "(*** NCTRANS UNSUPPORTED: frame instruction TRANS cannot be translated to FANUC Macro B ***)";
+    assert!(d.t.text.contains(mark), "{}", d.t.text);
 }
 
 #[test]
@@ -496,4 +524,45 @@ fn modes_where_paths_meet_hold_on_every_path() {
     refused("G710 G1 X0 F10\nR1=1\nIF R1==1\nG70\nENDIF\nG1 X1 F100\nM30\n", "NC324");
     refused("G710 G1 X0 F10\nR2=0\nWHILE R2<2\nG1 X=R2 F100\nG700\nR2=R2+1\nENDWHILE\nM30\n", "NC324");
     refused("G710 G1 X0 F10\nMARK:\nG1 X1 F100\nG70\nGOTOB MARK\nM30\n", "NC324");
+}
+
+/// Issue 17 item 6: Siemens `T6 D1` applies cutting edge 1 of tool 6 (length and radius);
+/// FANUC `T6 D1` selects radius register 1 and no length. The trace does not compare
+/// compensation, so every block with D, D0 or G40/G41/G42 is refused (NC385).
+#[test]
+fn tool_compensation_is_refused() {
+    refused("T6 D1\nM6\nM30\n", "NC385");
+    refused("D0\nM30\n", "NC385");
+    refused("G0 X0 Y0\nG41 X10 Y5\nG1 X20 F100\nG40 X0 Y0\nM30\n", "NC385");
+    // H is an auxiliary function on Sinumerik, not an offset.
+    pair("H2\nM30\n", &["H2", "M30"]);
+}
+
+/// Issue 17 item 7: under `--unsupported warn` the block becomes one marked comment as a
+/// whole (before, `X10 Y10` survived as a rapid move after the G500 mark), and the program
+/// alarms on its first line, so it cannot be run as a finished one.
+#[test]
+fn warn_policy_marks_the_whole_block_and_alarms_first() {
+    let opts =
+        TranslateOptions { unsupported: nctrans::passes::UnsupportedPolicy::Warn, ..TranslateOptions::default() };
+    let d = translate_src("warn.mpf", "G0 X0 Y0\nN20 G500 X10 Y10\nG1 X5 F100\nM30\n", &opts);
+    assert!(!d.t.ok());
+    assert!(d.t.diags.iter().all(|x| !x.is_error()), "{:?}", d.t.diags);
+    let lines: Vec<&str> = d.t.text.lines().collect();
+    assert_eq!(lines[2], "#3000=999(UNFINISHED TRANSLATION)", "{}", d.t.text);
+    assert!(!d.t.text.contains("X10."), "{}", d.t.text);
+    assert!(
+        d.t.text.contains("\nN20 (*** NCTRANS UNSUPPORTED: G500 cannot be translated to FANUC Macro B ***)\n"),
+        "{}",
+        d.t.text
+    );
+    let want = [
+        "#3000=999(UNFINISHED TRANSLATION)",
+        "(*** NCTRANS: UNFINISHED, BLOCKS NOT TRANSLATED: 1, EACH MARKED WHERE IT STOOD)",
+        "G00 X0. Y0.",
+        "N20 (*** NCTRANS UNSUPPORTED: G500 cannot be translated to FANUC Macro B ***)",
+        "G01 X5. F100.",
+        "M30",
+    ];
+    assert_eq!(body(&d.t.text)[..], want, "{}", d.t.text);
 }

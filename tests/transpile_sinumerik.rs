@@ -75,11 +75,48 @@ fn words_decimal_point_dwell_units_arcs_offsets() {
     );
 }
 
+/// Issue 17 item 6: FANUC `G41 D04` takes radius register 4, Siemens `D4` is cutting edge 4;
+/// `G43 H1` has no Siemens word. The trace does not compare compensation, so every block with
+/// one is refused (NC385), never translated and called equivalent.
 #[test]
-fn tool_length_compensation_is_dropped_with_a_warning() {
-    let tr = run("O1\nG43 H1 Z50.\nM30\n", &Options::default());
-    assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC368"]);
-    assert_eq!(strip_header(&tr.files[0].text), "Z50\nM30\n");
+fn tool_compensation_is_refused() {
+    for src in [
+        "O1\nG43 H1 Z50.\nM30\n",
+        "O1\nG41 D04 X10. Y5.\nM30\n",
+        "O1\nG49\nM30\n",
+        "O1\nG40 X0\nM30\n",
+        "O1\nD1\nM30\n",
+    ] {
+        let tr = run(src, &Options::default());
+        assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC385"], "{src}");
+        assert!(tr.has_errors(), "{src}");
+    }
+    // A G65 argument D or H is not compensation.
+    let tr = run("O1\nG65 P9000 D5. H2.\nM30\nO9000\n#20=#7+#11\nM99\n", &Options::default());
+    assert!(!tr.diags.iter().any(|d| d.code == "NC385"), "{:?}", tr.diags);
+}
+
+/// Issue 17 item 7: under `--unsupported warn` a block with a construct Siemens lacks becomes
+/// one marked comment as a whole (the cycle's `X10. Y10. Z-2.` would be a rapid plunge under
+/// G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
+#[test]
+fn warn_policy_marks_the_whole_block_and_alarms_first() {
+    let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
+    let src = "O1\nG00 X0 Y0 Z5.\nN20 G99 G81 X10. Y10. Z-2. R2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
+    let tr = run(src, &o);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
+    assert!(tr.diags.iter().all(|d| !d.is_error()));
+    let text = strip_header(&tr.files[0].text);
+    let code: Vec<&str> = text.lines().filter(|l| !l.starts_with(';')).collect();
+    assert_eq!(code.first(), Some(&"SETAL(65999) ; UNFINISHED TRANSLATION"), "{text}");
+    assert!(!text.contains("X10") && !text.contains("Z-2") && !text.contains("ROT"), "{text}");
+    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G99"), "{text}");
+    assert!(text.contains("\n; NCTRANS UNSUPPORTED: G68"), "{text}");
+    assert_eq!(
+        code[1..],
+        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G99 has no Sinumerik counterpart", "G0 Z50", "M30"],
+        "{text}"
+    );
 }
 
 #[test]
@@ -399,7 +436,11 @@ fn warn_policy_writes_a_marked_comment() {
     let tr = run("O1\nG10 L50\nN1234 R1\nG11\nG0 X1.\nM30\n", &o);
     assert!(!tr.has_errors());
     let text = strip_header(&tr.files[0].text);
-    assert!(text.starts_with("; NCTRANS UNSUPPORTED: `G10 L50` parameter write\n"), "{text}");
+    assert!(text.starts_with("SETAL(65999) ; UNFINISHED TRANSLATION\n"), "{text}");
+    assert!(
+        text.contains("\n; NCTRANS UNSUPPORTED: `G10 L50` parameter write has no Sinumerik counterpart\n"),
+        "{text}"
+    );
 }
 
 // ---- variable map (pitfall 12) ----
@@ -546,7 +587,8 @@ fn corpus_translations_are_committed() {
         failures.join("\n")
     );
     // The floor: the cases that translate today. Unsupported ones have precise diagnostics.
-    assert!(translated >= 80, "only {translated} corpus programs translate");
+    // multi-word-block.nc (`G43 H1`) is refused since tool compensation is (issue 17 item 6).
+    assert!(translated >= 79, "only {translated} corpus programs translate");
 }
 
 // ---- verification: both programs run, traces compared ----
@@ -599,7 +641,7 @@ fn every_translated_corpus_program_verifies() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    assert!(proven >= 79, "only {proven} corpus programs proven equivalent");
+    assert!(proven >= 78, "only {proven} corpus programs proven equivalent");
 }
 
 /// The naive translation of each pitfall case (the text a token-by-token translator would
@@ -658,7 +700,8 @@ fn modal_feed_speed_and_d_read_as_siemens_modal_variables() {
 
 /// The seed brake test O9050: under the default policy only precise diagnostics (committed
 /// under corpus/out/sinumerik); under the warn policy the supported parts translate, each
-/// unsupported construct is one marked line, and the output reads back as Sinumerik.
+/// block with an unsupported construct is one marked line, and the output reads back as
+/// Sinumerik.
 #[test]
 fn seed_o9050_translates_its_supported_parts_under_warn() {
     let src = std::fs::read_to_string(root().join("corpus/in/fanuc/seed-o9050-brake-test.nc")).expect("seed");
@@ -669,7 +712,8 @@ fn seed_o9050_translates_its_supported_parts_under_warn() {
     codes.sort();
     assert_eq!(codes, vec!["NC355", "NC355", "NC355", "NC355", "NC355", "NC355", "NC362", "NC363", "NC363"]);
     let marked: usize = tr.files.iter().map(|f| f.text.matches("; NCTRANS UNSUPPORTED:").count()).sum();
-    assert_eq!(marked, 9, "one marked line per unsupported construct");
+    // One marked line per refused block: one block holds both an NC362 and an NC363.
+    assert_eq!(marked, 8, "one marked line per refused block");
     let text = &tr.files[0].text;
     assert!(text.contains("N100 IF (TRUNC(R13) B_AND 8)-8==0 GOTOF LBL_110"), "{text}");
     assert!(text.contains("STOPRE\nN130 LOC1=$AA_IM[Y]"), "{text}");

@@ -481,7 +481,7 @@ mod tests {
     #[test]
     fn siemens_names_params_tools_and_the_library() {
         let main = scan_text("part.mpf", "T=\"DRILL_5\" M6\nCONTOUR(5.5,,2)\nM30\n");
-        let sub = scan_text("contour.spf", "PROC CONTOUR(REAL L, REAL W, REAL D)\nG1 X=L\nM17\n");
+        let sub = scan_text("contour.spf", "PROC CONTOUR(REAL LEN, REAL WID, REAL DEP)\nG1 X=LEN\nM17\n");
         assert_eq!(main.defined[0].0, Some(ProgKey::Name("PART".into())));
         assert_eq!(main.info.tools.iter().collect::<Vec<_>>(), ["DRILL_5"]);
         let lib = Library::build(vec![sub, main]);
@@ -492,6 +492,6 @@ mod tests {
         let v = lib.arg_vectors(&key);
         assert_eq!(v.len(), 1);
         let sets: Vec<String> = v[0].iter().map(ArgValue::to_set).collect();
-        assert_eq!(sets, ["L=5.5", "D=2"]);
+        assert_eq!(sets, ["LEN=5.5", "DEP=2"]);
     }
 }

@@ -7,6 +7,11 @@ use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
 use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal, round_to_scaled};
 use crate::span::Span;
 
+/// Warning code for a compensation word (D, FANUC H, G40..G49): the trace holds programmed
+/// positions, so `check` cannot call two programs that compensate equivalent (it reports the
+/// code's presence as "tool compensation not compared").
+pub const COMPENSATION_NOTE: &str = "NC387";
+
 mod fast;
 mod grid;
 mod modal;
@@ -343,10 +348,14 @@ impl Machine {
                     }
                     b'D' => {
                         self.d = round_half_away(x);
+                        warns.push((COMPENSATION_NOTE, "D (tool compensation) is not modelled".into(), w.span));
                         true
                     }
                     b'H' => {
                         self.h = round_half_away(x);
+                        if self.fanuc {
+                            warns.push((COMPENSATION_NOTE, "H (tool length offset) is not modelled".into(), w.span));
+                        }
                         true
                     }
                     c => match axis_index(c) {
@@ -437,7 +446,8 @@ impl Machine {
                     if let Some(slot) = self.group_g.iter_mut().find(|s| Some(s.0) == group) {
                         slot.1 = gi;
                     }
-                    warns.push(("NC405", format!("G{} has no effect on the trace", fmt_g(g)), span))
+                    let code = if matches!(gi, 400..=490) { COMPENSATION_NOTE } else { "NC405" };
+                    warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
                 280 | 290 | 300 | 920 | 520 | 680 | 160 => {
                     return Err(unsupported(

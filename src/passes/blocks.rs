@@ -20,6 +20,106 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     }
     let body = std::mem::take(&mut prog.body);
     prog.body = split_body(ctx, body, info);
+    drop_dead_zero_stores(&mut prog.body);
+}
+
+/// Whether `e` reads the named variable `name` (also in subscripts).
+fn mentions(e: &Expr, name: &str) -> bool {
+    let mut stack = vec![e];
+    while let Some(e) = stack.pop() {
+        match &e.kind {
+            ExprKind::Var(v) => match &v.kind {
+                VarKind::Named { name: n, indices } => {
+                    if n == name {
+                        return true;
+                    }
+                    stack.extend(indices.iter());
+                }
+                VarKind::RIndirect(x) | VarKind::HashIndirect(x) => stack.push(x),
+                VarKind::System { indices, .. } => stack.extend(indices.iter()),
+                _ => {}
+            },
+            ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            ExprKind::Unary(_, a) => stack.push(a),
+            ExprKind::Func(_, args) => stack.extend(args.iter()),
+            _ => {}
+        }
+    }
+    false
+}
+
+/// How far a dead `v=0` looks ahead for the store that replaces it.
+const DEAD_STORE_WINDOW: usize = 64;
+
+/// Removes a top-level `v=0` (a DEF's start value, typically) that a later top-level
+/// assignment to `v` replaces before anything can read it: only plain blocks without a
+/// jump, call, end or skip between, none of which reads `v`. A DEF variable the program
+/// sets at once then reads as one assignment, and a round trip (whose other direction
+/// writes the DEF's start value out as `LOC1=0`) does not add one each time.
+fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
+    let zero_store = |s: &Stmt| -> Option<String> {
+        let StmtKind::Block(b) = &s.kind else { return None };
+        let m = &b.meta;
+        if m.label.is_some() || m.number.is_some() || !m.comments.is_empty() || b.items.len() != 1 {
+            return None;
+        }
+        match &b.items[0].kind {
+            ItemKind::Assign { target, value: Expr { kind: ExprKind::Num(n), .. } } if n.value == 0.0 => {
+                match &target.kind {
+                    VarKind::Named { name, indices } if indices.is_empty() => Some(name.clone()),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    };
+    let reads = |s: &Stmt, name: &str| {
+        let mut found = false;
+        let StmtKind::Block(b) = &s.kind else { return true };
+        for it in &b.items {
+            let mut check = |e: &Expr| found |= mentions(e, name);
+            for e in crate::ir::visit::item_exprs(it) {
+                check(e);
+            }
+            if let ItemKind::Assign { target, .. } = &it.kind {
+                if let VarKind::Named { indices, .. } = &target.kind {
+                    indices.iter().for_each(&mut check);
+                }
+            }
+        }
+        found
+    };
+    let mut dead = Vec::new();
+    for i in 0..body.len() {
+        let Some(name) = zero_store(&body[i]) else { continue };
+        for s in body.iter().skip(i + 1).take(DEAD_STORE_WINDOW) {
+            let StmtKind::Block(b) = &s.kind else { break };
+            let plain = b.meta.skip.is_none()
+                && b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. } | ItemKind::Word(_)));
+            if !plain {
+                break;
+            }
+            let sets = b.items.iter().any(|it| {
+                matches!(&it.kind, ItemKind::Assign { target, .. } if matches!(&target.kind, VarKind::Named { name: n, indices } if *n == name && indices.is_empty()))
+            });
+            if reads(s, &name) {
+                break;
+            }
+            if sets {
+                dead.push(i);
+                break;
+            }
+        }
+    }
+    let mut k = 0;
+    body.retain(|_| {
+        let keep = !dead.contains(&k);
+        k += 1;
+        keep
+    });
 }
 
 fn split_body(ctx: &mut Ctx, body: Vec<Stmt>, info: &mut ProgInfo) -> Vec<Stmt> {

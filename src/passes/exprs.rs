@@ -37,6 +37,24 @@ pub(crate) struct Lower<'a> {
     pub info: &'a ProgInfo,
 }
 
+/// `(ASIN(x)+360) MOD 360`, `(ATAN2(y,x)+360) MOD 360`: the FANUC → Sinumerik spelling of
+/// FANUC's NAT=0 ranges (0..360, 270..90), which are FANUC's `ASIN[x]`, `ATAN[y]/[x]` as
+/// they are (up to one rounding of the `+360`), so a round trip gives the FANUC function back
+/// instead of wrapping the range correction once more.
+fn fanuc_range(e: &Expr) -> Option<(Func, Vec<Expr>)> {
+    let is_360 = |x: &Expr| matches!(&x.kind, ExprKind::Num(n) if n.value == 360.0);
+    let ExprKind::Binary(BinOp::Mod, a, m) = &e.kind else { return None };
+    let ExprKind::Binary(BinOp::Add, f, k) = &a.kind else { return None };
+    if !is_360(m) || !is_360(k) {
+        return None;
+    }
+    match &f.kind {
+        ExprKind::Func(Func::Asin, args) if args.len() == 1 => Some((Func::FanucAsin, args.clone())),
+        ExprKind::Func(Func::Atan2, args) if args.len() == 2 => Some((Func::FanucAtan2, args.clone())),
+        _ => None,
+    }
+}
+
 /// Pushes `pre` before `stmt`, moving the jump target of `meta` in front of them.
 fn with_pre(out: &mut Vec<Stmt>, meta: &mut BlockMeta, mut pre: Vec<Stmt>) {
     if pre.is_empty() {
@@ -192,6 +210,11 @@ impl Lower<'_> {
         };
         let span = value.span;
         let v = match ty {
+            // A constant is already known to be TRUE or FALSE (`LOC2_SET=0` is `#102=0.`).
+            Some(DataType::Bool) if matches!(value.kind, ExprKind::Num(_)) => {
+                let ExprKind::Num(n) = &value.kind else { unreachable!() };
+                num(if n.value != 0.0 { 1.0 } else { 0.0 }, span)
+            }
             Some(DataType::Bool) if !is_logical(&value) => {
                 let c = Expr::new(
                     ExprKind::Cmp(CmpOp::Ne, Tolerance::Exact, Box::new(value), Box::new(num(0.0, span))),
@@ -244,6 +267,10 @@ impl Lower<'_> {
         let span = e.span;
         if is_logical(&e) {
             return self.logical_value(e, pre);
+        }
+        if let Some((f, args)) = fanuc_range(&e).filter(|_| !self.ctx.nat) {
+            let args: Vec<Expr> = args.into_iter().map(|a| self.val(a, pre)).collect();
+            return func(f, args, span);
         }
         match e.kind {
             ExprKind::Num(_) | ExprKind::Vacant => e,
@@ -397,7 +424,11 @@ impl Lower<'_> {
     }
 
     fn compare(&mut self, op: CmpOp, tol: Tolerance, a: Expr, b: Expr, span: Span, pre: &mut Vec<Stmt>) -> Expr {
-        let exact = tol == Tolerance::Exact || is_zero(&a) || is_zero(&b) || (self.integral(&a) && self.integral(&b));
+        let exact = tol == Tolerance::Exact
+            || is_zero(&a)
+            || is_zero(&b)
+            || (self.integral(&a) && self.integral(&b))
+            || self.info.exact_cmps.contains(&span);
         let mk = |op, x: Expr, y: Expr| Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(x), Box::new(y)), span);
         if exact {
             // Room for the condition's own bracket and one compound level.

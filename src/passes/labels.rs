@@ -170,9 +170,17 @@ fn collect(body: &[Stmt], pos: &mut Vec<Pos>, gotos: &mut Vec<(usize, Goto)>) {
     }
 }
 
+/// A label the FANUC → Sinumerik translation made from an N number (`LBL_11`, `LBL_11_2`).
+fn is_fanuc_label(name: &str) -> bool {
+    name.strip_prefix("LBL_")
+        .is_some_and(|r| !r.is_empty() && r.split('_').all(|p| !p.is_empty() && p.bytes().all(|c| c.is_ascii_digit())))
+}
+
 fn set_meta(m: &mut BlockMeta, n: Option<u32>) {
     if let Some(l) = m.label.take() {
-        if !l.name.starts_with(LABEL_PREFIX) {
+        // `LBL_11` on N11 is what the FANUC → Sinumerik translation names N11: the N
+        // number says it already (a round trip would add it again each time).
+        if !l.name.starts_with(LABEL_PREFIX) && !is_fanuc_label(&l.name) {
             m.comments.insert(0, Comment { text: format!("{}:", l.name), span: l.span });
         }
     }

@@ -9,9 +9,12 @@
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
 pub mod blocks;
+pub mod compensation;
 pub mod exprs;
+pub mod integral;
 pub mod labels;
 pub mod lower_structures;
+pub mod own_header;
 pub mod to_sinumerik;
 pub mod varmap;
 pub mod words;
@@ -46,6 +49,9 @@ pub struct ProgInfo {
     pub types: BTreeMap<String, (DataType, Vec<u32>)>,
     /// Program is a subprogram (`PROC`): runs at its own FANUC local level.
     pub is_sub: bool,
+    /// Spans of the comparisons whose sides are provably integers there ([`integral`]):
+    /// written as plain FANUC comparisons.
+    pub exact_cmps: std::collections::BTreeSet<Span>,
 }
 
 /// A callee the translation knows: its O number, its parameters in order, and what it

@@ -171,7 +171,11 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
     let mut alloc_common = |claimed: &HashMap<u32, String>, size: u32| -> Option<u32> {
         let mut n = next_common;
         while n + size - 1 <= 999 {
-            let fits = (n..n + size).all(|k| common(k) && !claimed.contains_key(&k));
+            // #100..#199 only where the R parameter of the same number is not used: the
+            // FANUC → Sinumerik translation brings both #k and #(500+k) back as Rk, so a
+            // round trip would have to move one of them (issue 17 item 10).
+            let fits = (n..n + size)
+                .all(|k| common(k) && !claimed.contains_key(&k) && !((100..=199).contains(&k) && r_used.contains(&k)));
             if fits {
                 next_common = n + size;
                 return Some(n);
@@ -181,12 +185,40 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
         None
     };
     let callees: HashMap<u32, Vec<Param>> = ctx.callees.values().map(|c| (c.number, c.params.clone())).collect();
+    // Names a subprogram uses: a main program's DEF variable of that name is visible there.
+    let sub_names: BTreeSet<String> = jobs
+        .iter()
+        .zip(&names)
+        .filter(|(j, _)| j.info.is_sub)
+        .flat_map(|(_, seen)| seen.iter().map(|(n, _)| n.clone()))
+        .collect();
     for (j, seen) in jobs.iter_mut().zip(names) {
         ctx.file = j.file;
         let mut map: HashMap<String, (u32, Vec<u32>)> = HashMap::new();
         let mut refs: HashMap<String, RefParam> = HashMap::new();
         let mut locals = [false; 34];
         locals[0] = true;
+        // `LOCn` is what the FANUC → Sinumerik translation calls a main program's local #n:
+        // it goes back there (a round trip keeps the program), unless a subprogram sees it
+        // or a rule places it.
+        if !j.info.is_sub {
+            for (name, _) in &seen {
+                let Some(k) = name.strip_prefix("LOC").and_then(|d| d.parse::<u32>().ok()) else { continue };
+                let scalar_real = matches!(j.info.types.get(name), Some((DataType::Real, d)) if d.is_empty());
+                let ruled = rules.iter().any(|r| matches!(r, VarRule::Name { name: n, .. } if n == name));
+                if (1..=33).contains(&k)
+                    && format!("LOC{k}") == *name
+                    && scalar_real
+                    && !ruled
+                    && !sub_names.contains(name)
+                    && !locals[k as usize]
+                {
+                    locals[k as usize] = true;
+                    map.insert(name.clone(), (k, vec![]));
+                    out.push(Mapped { program: Some(j.name.clone()), source: name.clone(), number: k });
+                }
+            }
+        }
         if let Some(letters) = param_letters(j.prog.params.len()) {
             for (p, (letter, var)) in j.prog.params.iter().zip(letters) {
                 locals[var as usize] = true;

@@ -23,7 +23,7 @@ const AXES: &[u8] = b"XYZABCUVW";
 /// Siemens instructions that only change dynamics (acceleration, feed control): dropped.
 const DYNAMICS_ONLY: &[&str] = &["SOFT", "BRISK", "DRIVE", "FFWON", "FFWOF", "CFC", "CFTCP", "CFIN"];
 /// Calls that only set up the HMI simulation: dropped.
-const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
+pub const SIMULATION_ONLY: &[&str] = &["WORKPIECE"];
 
 /// Argument letters for `n` parameters, with the local variable each fills: specification I
 /// in alphabetical order (A B C D E F H I J K M Q R S T U V W X Y Z; G L N O P cannot carry
@@ -250,6 +250,9 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
+    if let Some(c) = super::compensation::in_block(&b.items, crate::dialect::Dialect::Sinumerik) {
+        out.extend(ctx.unsupported(super::compensation::CODE, c.span, &c.what, super::compensation::HINT));
+    }
     let items = std::mem::take(&mut b.items);
     let mut kept: Vec<Item> = Vec::new();
     let mut after: Vec<Stmt> = Vec::new();

@@ -6,7 +6,7 @@ O0001 (CASE-INSENSITIVE)
 ( Keywords and names in lower case are the same as upper case)
 #100=1.
 #501=0.
-WHILE [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] DO1
+WHILE [#501 LT 2.] DO1
 G01 X[#501*#100] F100.
 #501=#501+1.
 END1

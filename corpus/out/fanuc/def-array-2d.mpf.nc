@@ -1,9 +1,9 @@
 %
 O0001 (DEF-ARRAY-2D)
 (NCTRANS: SINUMERIK def-array-2d.mpf TO FANUC MACRO B)
-(NCTRANS: A[…] [30 elements] = #100)
-(NCTRANS: B[…] [6 elements] = #130)
-(NCTRANS: C[…] [4 elements] = #136)
+(NCTRANS: TAB_A[…] [30 elements] = #100)
+(NCTRANS: TAB_B[…] [6 elements] = #130)
+(NCTRANS: TAB_C[…] [4 elements] = #136)
 ( Two-dimensional arrays: SET with omitted entries, REP fill, element assignment)
 #100=0.
 #101=0.

@@ -4,7 +4,7 @@ O0001 (IF-GOTO)
 (NCTRANS: R1 = #501)
 ( IF condition GOTOF target in one block [no ENDIF])
 #501=5.
-IF [#501-3. GT [ABS[#501]+3.+ABS[ABS[#501]-3.]]*0.0000005*0.000001] GOTO 1000
+IF [#501 GT 3.] GOTO 1000
 G00 X1.
 N1000 G00 X2. (BIG:)
 M30

@@ -7,7 +7,7 @@ O0001 (PITFALL-DEEP-NESTING)
 (NCTRANS: R4 = #504)
 ( Pitfall 16: FANUC allows 3 nested DO loops  the fourth becomes an IF/GOTO loop)
 #501=0.
-WHILE [2.-#501 GT [ABS[#501]+2.+ABS[ABS[#501]-2.]]*0.0000005*0.000001] DO1
+WHILE [#501 LT 2.] DO1
 #502=0.
 WHILE [2.-#502 GT [ABS[#502]+2.+ABS[ABS[#502]-2.]]*0.0000005*0.000001] DO2
 #503=0.

@@ -168,3 +168,54 @@ pub fn r_number(upper: &str) -> Option<&str> {
     let digits = upper.strip_prefix('R')?;
     (!digits.is_empty() && digits.bytes().all(|c| c.is_ascii_digit())).then_some(digits)
 }
+
+/// Words the control reserves beyond the grammar's keywords (which the reader already
+/// refuses as names, NC136): per-word value forms, call forms and the identifier `RL`
+/// (reserved for conventional turning machines, S9).
+const RESERVED: &[&str] = &["AC", "IC", "SET", "REP", "CALL", "PCALL", "EXTCALL", "RL", "GOTOS"];
+
+/// Why `upper` cannot name a user variable (DEF) or a PROC parameter, if it cannot.
+///
+/// S9: identifiers begin with two letters or underscores, and reserved words must not be
+/// used as identifiers. A single letter is an address (`I=0` is the arc centre, whatever
+/// was declared), and so are the built-in functions, the multi-letter addresses and the
+/// named instructions this reader knows. Letters followed by digits (`L1`, `X1`) break the
+/// two-letter rule too, but the reader keeps them apart from addresses once declared and
+/// real programs use them, so they stay accepted (R numbers get warning NC133).
+pub fn reserved_name(upper: &str) -> Option<String> {
+    let b = upper.as_bytes();
+    if b.len() == 1 {
+        return Some(match b[0] {
+            b'_' => "`_` alone is not an identifier".to_string(),
+            _ => format!("{upper} is an address letter"),
+        });
+    }
+    if builtin(upper).is_some() || axis_indexed(upper) {
+        return Some(format!("{upper} is a built-in function"));
+    }
+    if ADDRESSES.contains(&upper) {
+        return Some(format!("{upper} is an NC address"));
+    }
+    if is_instruction(upper) {
+        return Some(format!("{upper} is an NC instruction"));
+    }
+    if RESERVED.contains(&upper) {
+        return Some(format!("{upper} is a reserved word"));
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::reserved_name;
+
+    #[test]
+    fn address_letters_and_reserved_words_are_not_names() {
+        for bad in ["I", "X", "R", "N", "SIN", "CR", "SPOS", "CIP", "AC", "SET", "SAVE"] {
+            assert!(reserved_name(bad).is_some(), "{bad} accepted");
+        }
+        for good in ["I_COUNT", "COUNT", "II", "L1", "R0", "_RPM", "AM", "OFFSET"] {
+            assert_eq!(reserved_name(good), None, "{good} refused");
+        }
+    }
+}

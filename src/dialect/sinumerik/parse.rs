@@ -556,6 +556,19 @@ impl Lower<'_, '_> {
         Some(ItemKind::Def(Box::new(Def { ty, vars })))
     }
 
+    /// A DEF or PROC parameter name the control refuses (an address letter, a reserved
+    /// word) is an error at its declaration: read on, `I=0` would be the arc centre.
+    fn check_name(&mut self, what: &str, name: &str, span: Span) {
+        if let Some(why) = names::reserved_name(name) {
+            self.error(
+                Diagnostic::error("NC212", format!("{what} {name} cannot be a name: {why}"))
+                    .primary(self.file(), span, "not a user name on Sinumerik")
+                    .note("Sinumerik identifiers begin with two letters or `_` and must not be an address or a reserved word")
+                    .hint(format!("give it a name like `U_{name}` or `{name}_CNT`")),
+            );
+        }
+    }
+
     pub fn data_type(&mut self, p: Pair<'_, Rule>) -> Option<DataType> {
         Some(match p.as_rule() {
             Rule::type_real => DataType::Real,
@@ -590,7 +603,10 @@ impl Lower<'_, '_> {
         let mut init = None;
         for q in p.into_inner() {
             match q.as_rule() {
-                Rule::user_name => name = q.as_str().to_ascii_uppercase(),
+                Rule::user_name => {
+                    name = q.as_str().to_ascii_uppercase();
+                    self.check_name("DEF variable", &name, self.span(&q));
+                }
                 Rule::dims => dims = self.dims(q)?,
                 Rule::def_init => {
                     let Some(v) = q.into_inner().next() else { continue };
@@ -654,7 +670,10 @@ impl Lower<'_, '_> {
                     for q in p.into_inner() {
                         match q.as_rule() {
                             Rule::kw_var => prm.by_ref = true,
-                            Rule::user_name => prm.name = q.as_str().to_ascii_uppercase(),
+                            Rule::user_name => {
+                                prm.name = q.as_str().to_ascii_uppercase();
+                                self.check_name("PROC parameter", &prm.name, self.span(&q));
+                            }
                             Rule::dims => prm.dims = self.dims(q).unwrap_or_default(),
                             _ => {
                                 if let Some(t) = self.data_type(q) {

@@ -308,11 +308,18 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
 }
 
 fn int_part(e: Expr) -> Expr {
+    // Already an integer (a truncation, a rounding, a bitwise result): another TRUNC would
+    // only pile up on every round trip (`FIX[FIX[x]] AND 3`), and a chain `#1 AND #2 AND …`
+    // would nest one TRUNC per operator, past the reader's bracket limit.
+    if matches!(
+        &e.kind,
+        ExprKind::Func(Func::Trunc | Func::Round | Func::RoundUp, _)
+            | ExprKind::Binary(BinOp::BitAnd | BinOp::BitOr | BinOp::BitXor, _, _)
+    ) {
+        return e;
+    }
     match literal(&e) {
         Some(v) if v.fract() == 0.0 => e,
-        // Already an integer: a chain `#1 AND #2 AND …` would otherwise nest one TRUNC per
-        // operator, past the reader's bracket limit.
-        _ if matches!(e.kind, ExprKind::Binary(BinOp::BitAnd | BinOp::BitOr | BinOp::BitXor, ..)) => e,
         _ => {
             let sp = e.span;
             func(Func::Trunc, vec![e], sp)

@@ -168,7 +168,85 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, modal: &ModalScan, arc: &mut bool)
             }
         }
     }
+    merge_reselects(&mut out);
     out
+}
+
+/// A block that only selects a work offset (`G54`): its G value.
+fn selection(s: &Stmt) -> Option<f64> {
+    let StmtKind::Block(b) = &s.kind else { return None };
+    let m = &b.meta;
+    if m.label.is_some() || m.number.is_some() || m.skip.is_some() || !m.comments.is_empty() || b.items.len() != 1 {
+        return None;
+    }
+    match &b.items[0].kind {
+        ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(e), .. }) => {
+            literal(e).filter(|g| (54.0..=57.0).contains(g) || (500.0..=599.0).contains(g))
+        }
+        _ => None,
+    }
+}
+
+/// A plain block of work-offset writes (`#5221=…`, `$P_UIFR` once mapped) whose values read
+/// no other system variable (an actual position would depend on the frame in force).
+fn frame_writes_only(s: &Stmt) -> bool {
+    let StmtKind::Block(b) = &s.kind else { return false };
+    let m = &b.meta;
+    let system = |e: &Expr| {
+        let mut other = false;
+        let mut stack = vec![e];
+        while let Some(e) = stack.pop() {
+            match &e.kind {
+                // Still FANUC variables here: `#5221..#5340` are the work offsets.
+                ExprKind::Var(v) => match &v.kind {
+                    VarKind::Hash(n) => other |= *n >= 1000 && !(5221..=5340).contains(n),
+                    VarKind::HashIndirect(_) | VarKind::System { .. } => other = true,
+                    VarKind::Named { indices, .. } => stack.extend(indices.iter()),
+                    VarKind::RIndirect(x) => stack.push(x),
+                    VarKind::R(_) => {}
+                },
+                ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => {
+                    stack.push(a);
+                    stack.push(b);
+                }
+                ExprKind::Unary(_, a) => stack.push(a),
+                ExprKind::Func(_, args) => stack.extend(args.iter()),
+                _ => {}
+            }
+        }
+        other
+    };
+    m.label.is_none()
+        && m.number.is_none()
+        && m.skip.is_none()
+        && !b.items.is_empty()
+        && b.items.iter().all(|it| match &it.kind {
+            ItemKind::Assign { target, value } => {
+                matches!(target.kind, VarKind::Hash(n @ 5221..=5340) if system_var(n, it.span).is_some())
+                    && !system(value)
+            }
+            _ => false,
+        })
+}
+
+/// Each work-offset write re-selects the offset in force; where writes follow one another
+/// (`#5221=…`, `#5222=…`) or the program selects it itself right after, one selection after
+/// the last does the same (nothing in between moves or reads the frame in force), and a
+/// round trip does not add a `G54` line each time.
+fn merge_reselects(out: &mut Vec<Stmt>) {
+    let mut i = 0;
+    while i + 1 < out.len() {
+        let g = selection(&out[i]);
+        let same_next = g.is_some() && selection(&out[i + 1]) == g;
+        let delayed = g.is_some() && i + 2 < out.len() && frame_writes_only(&out[i + 1]) && selection(&out[i + 2]) == g;
+        // Only a selection that follows a frame write is the translation's own.
+        let after_write = i > 0 && frame_writes_only(&out[i - 1]);
+        if after_write && (same_next || delayed) {
+            out.remove(i);
+        } else {
+            i += 1;
+        }
+    }
 }
 
 fn message(text: &Option<String>, span: Span) -> Item {
@@ -181,6 +259,16 @@ fn word_item(letter: u8, v: Expr, span: Span) -> Item {
 }
 
 fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
+    if let Some(c) = crate::passes::compensation::in_block(&b.items, crate::dialect::Dialect::Fanuc) {
+        let msg = format!("{} cannot be translated to Sinumerik", c.what);
+        out.extend(ctx.refuse(
+            crate::passes::compensation::CODE,
+            c.span,
+            &msg,
+            &c.what,
+            crate::passes::compensation::HINT,
+        ));
+    }
     let gs = g_codes(&b.items);
     for &g in &gs {
         match g {
@@ -207,6 +295,7 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
             }
             ItemKind::Alarm { style: AlarmStyle::FanucMacro, number, text } => {
                 let text = text.or_else(|| comment_text.clone());
+                let number_copy = number.clone();
                 let n = match literal(&number) {
                     Some(v) => int(MACRO_ALARM_BASE + v.round() as i64, number.span),
                     None => bin(BinOp::Add, int(MACRO_ALARM_BASE, number.span), number),
@@ -217,8 +306,14 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
                     kind: ItemKind::Alarm { style: AlarmStyle::Setal, number: n, text: None },
                     span: isp,
                 });
-                if let Some(t) = text {
-                    if !b.meta.comments.iter().any(|c| c.text == t) {
+                // `SETAL 65000` is the text the Sinumerik → FANUC translation gives `#3000=0`
+                // (the SETAL it came from): the SETAL line says it, a round trip would repeat it.
+                let own = |t: &str| {
+                    literal(&number_copy)
+                        .is_some_and(|v| t.trim() == format!("SETAL {}", MACRO_ALARM_BASE + v.round() as i64))
+                };
+                if let Some(t) = text.filter(|t| !own(t)) {
+                    if !b.meta.comments.iter().any(|c| c.text.trim() == t.trim()) {
                         b.meta.comments.push(Comment { text: t, span: isp });
                     }
                 }
@@ -322,17 +417,8 @@ fn lower_word(
         }
         return match map_g(g) {
             Some(Some(sg)) => Some(g_word(sg, w.span)),
-            Some(None) => {
-                if matches!(g, 430 | 440 | 490) {
-                    ctx.warn(
-                        "NC368",
-                        w.span,
-                        format!("G{} is dropped: Sinumerik applies the length of the active tool edge (D)", g / 10),
-                        "tool length compensation",
-                    );
-                }
-                None
-            }
+            // G43/G44/G49 are refused with their block (`passes::compensation`).
+            Some(None) => None,
             None => {
                 if let Some(st) = ctx.unsupported(
                     "NC363",

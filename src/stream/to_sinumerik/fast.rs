@@ -26,11 +26,11 @@ pub struct Declined;
 
 /// The Siemens G code (×10) `words::map_g` gives a FANUC one, `Ok(None)` when the words
 /// pass drops it without a word (G80); `Err` for everything the fast path leaves to the
-/// passes (the dwell G4, G43/G44/G49 with their warning, codes without a counterpart).
+/// passes (the dwell G4, tool compensation G40..G49, codes without a counterpart).
 fn map_g(g: u32) -> Result<Option<u32>, Declined> {
     Ok(Some(match g {
-        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 400 | 410 | 420 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910
-        | 940 | 950 => g,
+        // G40/G41/G42 (and D) are refused by the passes (`passes::compensation`).
+        0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910 | 940 | 950 => g,
         200 => 7000,
         210 => 7100,
         580 => 5050,
@@ -116,7 +116,7 @@ pub fn block<'t, I: ItemView>(
                 v = f64::from(sg) / 10.0;
                 as_written = false;
             }
-            b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' => return Err(Declined),
+            b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' | b'D' => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
                     let rotary = rotary_letter(letter);
@@ -216,8 +216,8 @@ const fn bits(letters: &[u8]) -> u32 {
 }
 
 /// Letters [`plain_words`] writes from their literal: all but G (its own case), those
-/// [`block`] declines (P L Q E O H) and R (`CR=` in an arc).
-const FROM_LITERAL: u32 = ((1 << 26) - 1) & !bits(b"GPLQEOHR");
+/// [`block`] declines (P L Q E O H D) and R (`CR=` in an arc).
+const FROM_LITERAL: u32 = ((1 << 26) - 1) & !bits(b"GPLQEOHDR");
 /// `words::scaled_letter`'s letters: written from the literal only with a point.
 const SCALED: u32 = bits(b"XYZUVWABCIJKRQ");
 

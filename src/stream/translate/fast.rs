@@ -348,6 +348,10 @@ impl Fast {
             b'G' => {
                 // A G code must be a written constant the target has.
                 let v = num.ok_or(Declined)?;
+                // Tool radius compensation is refused by the passes (`passes::compensation`).
+                if (40.0..=42.0).contains(&v) {
+                    return Err(Declined);
+                }
                 let g = if v == 70.0 || v == 700.0 {
                     20.0
                 } else if v == 71.0 || v == 710.0 {
@@ -361,6 +365,8 @@ impl Fast {
             }
             b'F' if dwell => letter = b'X',
             b'S' if dwell => return Err(Declined),
+            // A cutting edge: refused by the passes (`passes::compensation`).
+            b'D' => return Err(Declined),
             b'F' => match self.units.feed() {
                 FeedConv::Same => {}
                 FeedConv::PerInch => conv = b"/25.4]",
