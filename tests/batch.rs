@@ -368,23 +368,23 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g73-chip-break.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g74-left-tap.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g76-fine-bore.nc", "NC363"), // drilling cycles are not translated yet (#19)
+    ("cycle-g74-left-tap.nc", "NC363"),   // drilling cycles are not translated yet (#19)
+    ("cycle-g76-fine-bore.nc", "NC363"),  // drilling cycles are not translated yet (#19)
     ("cycle-g81-spot-drill.nc", "NC363"), // drilling cycles are not translated yet (#19)
     ("cycle-g82-counterbore.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g83-deep-hole.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g84-rigid-tap.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g85-ream.nc", "NC363"), // drilling cycles are not translated yet (#19)
+    ("cycle-g83-deep-hole.nc", "NC363"),  // drilling cycles are not translated yet (#19)
+    ("cycle-g84-rigid-tap.nc", "NC363"),  // drilling cycles are not translated yet (#19)
+    ("cycle-g85-ream.nc", "NC363"),       // drilling cycles are not translated yet (#19)
     ("cycle-g86-rough-bore.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("cycle-g87-back-bore.nc", "NC363"), // drilling cycles are not translated yet (#19)
+    ("cycle-g87-back-bore.nc", "NC363"),  // drilling cycles are not translated yet (#19)
     ("cycle-g88-bore-manual.nc", "NC363"), // drilling cycles are not translated yet (#19)
     ("cycle-g89-bore-dwell.nc", "NC363"), // drilling cycles are not translated yet (#19)
-    ("functions-misc.nc", "NC369"),                      // ADP
-    ("g10-l50-param-write.nc", "NC355"),                 // G10 L50
-    ("m98-packed-p.nc", "NC355"),                        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
-    ("seed-o9050-brake-test.nc", "NC355"),               // G10 L50
+    ("functions-misc.nc", "NC369"),       // ADP
+    ("g10-l50-param-write.nc", "NC355"),  // G10 L50
+    ("m98-packed-p.nc", "NC355"),         // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
+    ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
-    ("system-variables.nc", "NC365"),                    // #4003
+    ("system-variables.nc", "NC365"),     // #4003
 ];
 
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator

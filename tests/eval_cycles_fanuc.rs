@@ -16,6 +16,20 @@ fn trace(src: &str) -> Vec<String> {
     bare_lines(&run(src))
 }
 
+/// The trace without the positioning moves to the holes (pinned by
+/// `each_hole_is_positioned_by_a_rapid_at_the_level_the_tool_stands_at`).
+fn holes(src: &str) -> Vec<String> {
+    let t = trace(src);
+    let mut out = Vec::new();
+    for (k, l) in t.iter().enumerate() {
+        let before_hole = t.get(k + 1).is_some_and(|n| n.starts_with("cycle "));
+        if !(before_hole && l.starts_with("move rapid")) {
+            out.push(l.clone());
+        }
+    }
+    out
+}
+
 /// The error diagnostics' codes of a run that stopped with an evaluator error.
 fn error_codes(src: &str) -> Vec<String> {
     let ran = run(src);
@@ -29,8 +43,19 @@ fn prog(body: &str) -> String {
 }
 
 #[test]
+fn each_hole_is_positioned_by_a_rapid_at_the_level_the_tool_stands_at() {
+    let t = trace(&prog("G99 G81 X10. Y10. Z-5. R2. F100.\nG98 X20.\nX30.\nZ-6.\nG80\n"));
+    assert_eq!(t[1], "move rapid X=10 Y=10 Z=50 f=-");
+    // After a G99 hole the tool moves on at the R plane, after a G98 hole at the initial level.
+    assert_eq!(t[3], "move rapid X=20 Y=10 Z=2 f=-");
+    assert_eq!(t[5], "move rapid X=30 Y=10 Z=50 f=-");
+    // A block without plane words drills where the tool is: no positioning.
+    assert_eq!(t[7], "cycle drill X=30 Y=10 r=2 bottom=-6 peck=- dwell=- retract=initial f=100");
+}
+
+#[test]
 fn g98_returns_to_the_initial_level_and_g99_to_r() {
-    let t = trace(&prog("G98 G81 X10. Y10. Z-5. R2. F100.\nG99 X20.\nG80\nG0 X0\n"));
+    let t = holes(&prog("G98 G81 X10. Y10. Z-5. R2. F100.\nG99 X20.\nG80\nG0 X0\n"));
     assert_eq!(t[1], "cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
     assert_eq!(t[2], "cycle drill X=20 Y=10 r=2 bottom=-5 peck=- dwell=- retract=r f=100");
     // After the last hole the tool stands over it at the R plane (G99).
@@ -39,7 +64,7 @@ fn g98_returns_to_the_initial_level_and_g99_to_r() {
 
 #[test]
 fn cycle_data_is_modal_and_a_block_without_axis_words_drills_nothing() {
-    let t = trace(&prog("G99 G83 X10. Y10. Z-20. R2. Q5. F80.\nF120.\nM8\nY20.\nZ-25.\nG80\n"));
+    let t = holes(&prog("G99 G83 X10. Y10. Z-20. R2. Q5. F80.\nF120.\nM8\nY20.\nZ-25.\nG80\n"));
     assert_eq!(t[1], "cycle peck X=10 Y=10 r=2 bottom=-20 peck=5 dwell=- retract=r f=80");
     assert_eq!(t[2], "coolant on");
     // F was taken by the block without axis words; R, Z, Q stayed.
@@ -51,7 +76,7 @@ fn cycle_data_is_modal_and_a_block_without_axis_words_drills_nothing() {
 
 #[test]
 fn g91_measures_r_from_the_initial_level_and_z_from_r_and_repeats_move() {
-    let t = trace(&prog("G91 G99 G81 X10. Z-7. R-48. K3 F100.\nG90 G80\nG0 X0\n"));
+    let t = holes(&prog("G91 G99 G81 X10. Z-7. R-48. K3 F100.\nG90 G80\nG0 X0\n"));
     for (k, x) in ["10", "20", "30"].iter().enumerate() {
         assert_eq!(t[1 + k], format!("cycle drill X={x} Y=0 r=2 bottom=-5 peck=- dwell=- retract=r f=100"));
     }
@@ -60,7 +85,7 @@ fn g91_measures_r_from_the_initial_level_and_z_from_r_and_repeats_move() {
 
 #[test]
 fn k_repeats_the_same_hole_under_g90_and_k0_only_stores_the_data() {
-    let t = trace(&prog("G81 X10. Y5. Z-5. R2. F100. K0\nX11. K2\nG80\n"));
+    let t = holes(&prog("G81 X10. Y5. Z-5. R2. F100. K0\nX11. K2\nG80\n"));
     assert_eq!(t.len(), 4, "{t:?}");
     // K0 neither drills nor positions.
     assert_eq!(t[1], "cycle drill X=11 Y=0 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
@@ -69,7 +94,7 @@ fn k_repeats_the_same_hole_under_g90_and_k0_only_stores_the_data() {
 
 #[test]
 fn a_motion_code_cancels_the_cycle_and_its_data() {
-    let t = trace(&prog("G81 X10. Y10. Z-5. R2. F100.\nG1 X20.\nX30.\nG81 X40.\n"));
+    let t = holes(&prog("G81 X10. Y10. Z-5. R2. F100.\nG1 X20.\nX30.\nG81 X40.\n"));
     assert_eq!(t[2], "move linear X=20 Y=10 Z=50 f=100");
     assert_eq!(t[3], "move linear X=30 Y=10 Z=50 f=100");
     // The depth and R plane went with the cycle.
@@ -81,23 +106,27 @@ fn a_motion_code_cancels_the_cycle_and_its_data() {
 #[test]
 fn peck_cycles_without_q_alarm_like_the_control() {
     for src in ["G83 X10. Y10. Z-20. R2. F80.\n", "G73 X10. Y10. Z-20. R2. Q0 F80.\n"] {
-        let t = trace(&prog(src));
+        let t = holes(&prog(src));
         assert!(t.last().is_some_and(|l| l.starts_with("alarm 45 ")), "{t:?}");
     }
-    let t = trace(&prog("G73 X10. Y10. Z-20. R2. Q2.5 F80.\nG80\n"));
+    let t = holes(&prog("G73 X10. Y10. Z-20. R2. Q2.5 F80.\nG80\n"));
     assert_eq!(t[1], "cycle chip_break X=10 Y=10 r=2 bottom=-20 peck=2.5 dwell=- retract=initial f=80");
 }
 
 #[test]
 fn p_is_a_dwell_in_milliseconds_where_the_cycle_has_one() {
-    let t = trace(&prog("G82 X1. Y1. Z-3. R1. P500 F50.\nG80\nG81 X2. Y2. Z-3. R1. P500 F50.\nG80\n"));
+    let t = holes(&prog(
+        "G82 X1. Y1. Z-3. R1. P500 F50.\nG80\nG81 X2. Y2. Z-3. R1. P500 F50.\nG80\nG82 X3. Z-3. R1. F50.\n",
+    ));
     assert_eq!(t[1], "cycle dwell_drill X=1 Y=1 r=1 bottom=-3 peck=- dwell=0.5 retract=initial f=50");
     assert_eq!(t[2], "cycle drill X=2 Y=2 r=1 bottom=-3 peck=- dwell=- retract=initial f=50");
+    // G82 without P (the P of before went with G80) is the motion of G81: reported as it.
+    assert_eq!(t[3], "cycle drill X=3 Y=2 r=1 bottom=-3 peck=- dwell=- retract=initial f=50");
 }
 
 #[test]
 fn the_decimal_point_rule_applies_to_r_z_and_q() {
-    let t = trace(&prog("G83 X10. Y10. Z-20000 R2000 Q5000 F80.\nG80\n"));
+    let t = holes(&prog("G83 X10. Y10. Z-20000 R2000 Q5000 F80.\nG80\n"));
     assert_eq!(t[1], "cycle peck X=10 Y=10 r=2 bottom=-20 peck=5 dwell=- retract=initial f=80");
 }
 
@@ -107,7 +136,7 @@ fn every_kind_is_named_and_g87_returns_to_the_initial_level() {
         "G99 G85 X1. Y0 Z-5. R2. F100.\nG86 X2.\nG89 X3. P200\nG76 X4. Q0.5 P100\nM29 S500\nG84 X5.\nG74 X6.\n\
          G87 X7. Z5. R-20.\nG88 X8. Z-5. R2. P300\nG80\n",
     );
-    let t = trace(&src);
+    let t = holes(&src);
     let kinds: Vec<&str> = t.iter().filter_map(|l| l.strip_prefix("cycle ")?.split(' ').next()).collect();
     assert_eq!(kinds, ["bore", "bore_stop", "bore_dwell", "fine_bore", "tap", "tap_left", "back_bore", "bore_stop"]);
     // P stays from G76 (modal), and G87 returns to the initial level under G99.
@@ -121,7 +150,7 @@ fn every_kind_is_named_and_g87_returns_to_the_initial_level() {
 
 #[test]
 fn the_work_offset_moves_the_holes_and_the_planes() {
-    let t = trace(&prog("#5221=100.\n#5223=-10.\nG54 G81 X10. Y10. Z-5. R2. F100.\nG80\nG0 X0\n"));
+    let t = holes(&prog("#5221=100.\n#5223=-10.\nG54 G81 X10. Y10. Z-5. R2. F100.\nG80\nG0 X0\n"));
     let hole = t.iter().find(|l| l.starts_with("cycle")).expect("a hole");
     assert_eq!(hole, "cycle drill X=110 Y=10 r=-8 bottom=-15 peck=- dwell=- retract=initial f=100");
 }
@@ -130,12 +159,12 @@ fn the_work_offset_moves_the_holes_and_the_planes() {
 fn the_cycle_group_reads_back_in_4009() {
     let src = "G99 G83 X1. Y1. Z-5. R1. Q1. F50.\n#100=#4009\n#101=#4010\nG80\n#102=#4009\n\
                IF[#100NE83]GOTO9\nIF[#101NE99]GOTO9\nIF[#102NE80]GOTO9\n#3006=1(OK)\nN9";
-    assert!(trace(&prog(src)).iter().any(|l| l == "stop \"OK\""));
+    assert!(holes(&prog(src)).iter().any(|l| l == "stop \"OK\""));
 }
 
 #[test]
 fn no_feed_alarms_and_other_axes_are_refused() {
-    let t = trace("O1\nG0 X0 Y0 Z50.\nG81 X10. Y10. Z-5. R2.\nM30\n");
+    let t = holes("O1\nG0 X0 Y0 Z50.\nG81 X10. Y10. Z-5. R2.\nM30\n");
     assert!(t.last().is_some_and(|l| l.starts_with("alarm 11 ")), "{t:?}");
     assert_eq!(error_codes(&prog("G81 X10. Y10. Z-5. R2. F100.\nA90.\n")), vec!["NC417"]);
     assert_eq!(error_codes(&prog("G81 X10. Y10. Z-5. R2. F100. K10000\n")), vec!["NC419"]);

@@ -92,3 +92,22 @@ pub struct Hole {
     /// Feed in mm/min (mm/rev under G95).
     pub f: f64,
 }
+
+impl Hole {
+    /// The hole as both evaluators report it: a dwell of 0 is no dwell, and a dwelling
+    /// kind without a dwell is the same motion as its kind without one (G82 P0 = G81,
+    /// G89 P0 = G85, CYCLE82 with DTB 0 = CYCLE81), so they compare equal.
+    pub fn normalised(mut self) -> Hole {
+        if self.dwell.is_some_and(|d| d == 0.0) {
+            self.dwell = None;
+        }
+        if self.dwell.is_none() {
+            self.kind = match self.kind {
+                CycleKind::DwellDrill => CycleKind::Drill,
+                CycleKind::BoreDwell => CycleKind::Bore,
+                k => k,
+            };
+        }
+        self
+    }
+}

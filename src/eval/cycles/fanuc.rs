@@ -166,7 +166,7 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
     let Some(f) = m.feed else {
         return Err(Fault::alarm(m.alarms.no_feed, "drilling cycle without any feed programmed", span));
     };
-    let dwell = if takes_dwell(gi) { m.cycle.p } else { None };
+    let dwell = if takes_dwell(gi) { Some(m.cycle.p.unwrap_or(0.0)) } else { None };
     // G87 positions below the part: it can only return to the initial level.
     let retract = if kind == CycleKind::BackBore { Retract::Initial } else { m.cycle.retract };
     let off = m.active_offset(n);
@@ -180,6 +180,11 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
             m.seen[axis] = true;
             at[k] = (axis, clean(m.pos[axis]));
         }
+        if cw.plane.iter().any(Option::is_some) {
+            // The positioning to the hole: a rapid at the level the tool stands at (the
+            // same move a Sinumerik positioning block makes before its modal cycle).
+            out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None }, span));
+        }
         // Under G91, R is measured from the initial level and Z from the R plane.
         let r_abs = if r.incremental { m.cycle.initial + r.mm } else { r.mm + off };
         let bottom = if z.incremental { r_abs + z.mm } else { z.mm + off };
@@ -189,7 +194,7 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         };
         m.seen[n] = true;
         m.applied[n] = off;
-        let hole = Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f };
+        let hole = Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f }.normalised();
         out.push((Event::Cycle(Box::new(hole)), span));
         if is_manual_retract(gi) {
             // G88 halts at the bottom for the operator to retract by hand.
