@@ -220,7 +220,7 @@ impl Machine {
 
     /// [`Machine::length`] of a value `x` written bare (without a decimal point) or not.
     #[inline(always)]
-    fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
+    pub(crate) fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if bare && self.scaling { x * inc } else { x };
         // The slot of this unit holds `inc` (unless `inc_mm` changed since `new`): no search.

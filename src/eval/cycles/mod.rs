@@ -1,8 +1,10 @@
 //! Drilling cycles in the evaluator: the modal cycle state both dialects' readers fill
-//! (`fanuc`: G73–G89 with G98/G99, G80, K/L repeats), the hole they drill (one `cycle`
+//! (`fanuc`: G73–G89 with G98/G99, G80, K/L repeats; `siemens`: CYCLE81–CYCLE89, CYCLE840,
+//! MCALL), the hole they drill (one `cycle`
 //! event each, `ir::cycle::Hole`) and the event's text and JSON forms.
 
 pub mod fanuc;
+pub mod siemens;
 
 use crate::eval::numfmt::push_num;
 use crate::eval::trace::AXES;
@@ -33,6 +35,8 @@ pub struct State {
     pub p: Option<f64>,
     /// `M29 S`: the next tapping cycles are rigid (not visible in the trace).
     pub rigid: bool,
+    /// Sinumerik: the cycle `MCALL` made modal.
+    pub mcall: Option<siemens::McallCycle>,
 }
 
 impl Default for State {
@@ -46,6 +50,7 @@ impl Default for State {
             q: None,
             p: None,
             rigid: false,
+            mcall: None,
         }
     }
 }

@@ -45,7 +45,7 @@ impl Machine {
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
         // In a drilling cycle mode an axis word is a hole (`eval::cycles`).
-        if self.cycle.active.is_some() {
+        if self.cycle.active.is_some() || self.cycle.mcall.is_some() {
             return None;
         }
         let mut modal = self.modal;
