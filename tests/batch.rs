@@ -355,6 +355,17 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("call-l-number.mpf", "NC303"),          // L0123 / L123 not in the library
     ("call-repeat-p.mpf", "NC303"),          // LAYER not in the library
     ("cycle-unknown-call.mpf", "NC322"),     // WORKPIECE, CYCLE81
+    ("cycle81-spot-drill.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle82-counterbore.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle83-chip-break.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle83-deep-hole.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle84-rigid-tap.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle840-floating-tap.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle85-ream.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle86-fine-bore.mpf", "NC318"), // drilling cycles are not translated yet (#19)
+    ("cycle87-bore-stop.mpf", "NC303"), // drilling cycles are not translated yet (#19)
+    ("cycle88-bore-dwell-stop.mpf", "NC303"), // drilling cycles are not translated yet (#19)
+    ("cycle89-bore-dwell.mpf", "NC318"), // drilling cycles are not translated yet (#19)
     ("def-scalar-types.mpf", "NC310"),       // DEF STRING / AXIS
     ("frame-instructions.mpf", "NC316"),     // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"),     // a jump to a computed label
