@@ -193,8 +193,8 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
             }
             peck = Some(first);
             match a.get("VARI") {
-                x if x == 0.0 => CycleKind::ChipBreak,
-                x if x == 1.0 => CycleKind::Peck,
+                0.0 => CycleKind::ChipBreak,
+                1.0 => CycleKind::Peck,
                 x => {
                     return Err(refuse(
                         "NC423",
@@ -346,8 +346,8 @@ fn tapping(m: &Machine, a: &Args, span: Span) -> Result<(CycleKind, Option<f64>)
         }
     };
     match a.get("ENC") {
-        x if x == 1.0 => Ok((kind, None)),
-        x if x == 0.0 => match pitch {
+        1.0 => Ok((kind, None)),
+        0.0 => match pitch {
             Some(p) => Ok((kind, Some(p.abs() * m.speed))),
             None => {
                 Err(refuse("NC427", "CYCLE840 with an encoder needs the pitch (MPIT or PIT)".into(), span, "give PIT"))
