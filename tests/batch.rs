@@ -355,21 +355,16 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("call-l-number.mpf", "NC303"),           // L0123 / L123 not in the library
     ("call-repeat-p.mpf", "NC303"),           // LAYER not in the library
     ("cycle-unknown-call.mpf", "NC322"),      // WORKPIECE, CYCLE81
-    ("cycle81-spot-drill.mpf", "NC318"),      // drilling cycles are not translated yet (#19)
-    ("cycle82-counterbore.mpf", "NC318"),     // drilling cycles are not translated yet (#19)
-    ("cycle83-chip-break.mpf", "NC318"),      // drilling cycles are not translated yet (#19)
-    ("cycle83-deep-hole.mpf", "NC318"),       // drilling cycles are not translated yet (#19)
-    ("cycle84-rigid-tap.mpf", "NC318"),       // drilling cycles are not translated yet (#19)
-    ("cycle840-floating-tap.mpf", "NC318"),   // drilling cycles are not translated yet (#19)
-    ("cycle85-ream.mpf", "NC318"),            // drilling cycles are not translated yet (#19)
-    ("cycle86-fine-bore.mpf", "NC318"),       // drilling cycles are not translated yet (#19)
-    ("cycle87-bore-stop.mpf", "NC303"),       // drilling cycles are not translated yet (#19)
-    ("cycle88-bore-dwell-stop.mpf", "NC303"), // drilling cycles are not translated yet (#19)
-    ("cycle89-bore-dwell.mpf", "NC318"),      // drilling cycles are not translated yet (#19)
+    ("cycle84-rigid-tap.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle840-floating-tap.mpf", "NC390"),   // no exact FANUC cycle
+    ("cycle85-ream.mpf", "NC390"),            // no exact FANUC cycle
+    ("cycle86-fine-bore.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle87-bore-stop.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle88-bore-dwell-stop.mpf", "NC390"), // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),        // DEF STRING / AXIS
     ("frame-instructions.mpf", "NC316"),      // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"),      // a jump to a computed label
-    ("mcall-modal.mpf", "NC318"),             // MCALL
+    ("mcall-modal.mpf", "NC393"),             // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),      // SD=, BSPLINE, …
     ("operators-bitwise.mpf", "NC330"),       // B_NOT
     ("operators-concat.mpf", "NC314"),        // MSG with a computed text
@@ -397,19 +392,15 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
-    ("CYCLE_G73_G83_MANIFOLD.mpf", "NC318"), // MCALL CYCLEnn: cycles are not translated to FANUC yet
-    ("CYCLE_G81_SPOT_DRILL.mpf", "NC318"),   // MCALL CYCLEnn: cycles are not translated to FANUC yet
-    ("CYCLE_G82_COUNTERBORE.mpf", "NC318"),  // MCALL CYCLEnn: cycles are not translated to FANUC yet
-    ("CYCLE_G85_REAM.mpf", "NC318"),         // MCALL CYCLEnn: cycles are not translated to FANUC yet
-    ("CYCLE_G89_BORE_DWELL.mpf", "NC318"),   // MCALL CYCLEnn: cycles are not translated to FANUC yet
-    ("GOTO_FORMS.mpf", "NC310"),             // the computed-GOTO helper STRING
-    ("MACRO_A_H99_ALARM.mpf", "NC315"),      // SETAL outside 65000..65999
+    ("CYCLE_G85_REAM.mpf", "NC390"),    // CYCLE85: its FFR/RFF would change FANUC's modal F
+    ("GOTO_FORMS.mpf", "NC310"),        // the computed-GOTO helper STRING
+    ("MACRO_A_H99_ALARM.mpf", "NC315"), // SETAL outside 65000..65999
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC304"), // M98's shared locals: VAR parameters
-    ("P_G65_REPEAT_L.mpf", "NC303"),         // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"),       // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC304"),       // VAR parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"),    // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"),  // MCALL
+    ("P_M98_SUBPROGRAM.mpf", "NC304"),  // VAR parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
-    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),   // the computed-GOTO helper STRING
+    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"), // the computed-GOTO helper STRING
 ];
 
 /// FANUC translations of the Siemens library that do not come back, and why.

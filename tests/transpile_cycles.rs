@@ -130,3 +130,69 @@ fn a_translation_planted_wrong_in_any_field_is_caught() {
         assert!(report.contains("diverged"), "{what}: {report}");
     }
 }
+
+const S_HEAD: &str = "G17 G90 G54\nT1 M6\nS1000 M3\nG0 X0 Y0 Z50\nF100\n";
+
+/// The verified FANUC translation of a Sinumerik program's body.
+fn to_fanuc(body: &str) -> Vec<String> {
+    let src = scratch("mpf", &format!("{S_HEAD}{body}M30\n"));
+    let (code, out, err) = nctrans(&[&src, "--to", "fanuc"]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    out.lines().filter(|l| !l.starts_with('(') && !l.starts_with('%')).map(str::to_string).collect()
+}
+
+fn refused_to_fanuc(body: &str) -> String {
+    let src = scratch("mpf", &format!("{S_HEAD}{body}M30\n"));
+    let (code, _, err) = nctrans(&[&src, "--to", "fanuc"]);
+    assert_ne!(code, 0, "{err}");
+    err
+}
+
+#[test]
+fn mcall_cycles_become_a_fanuc_cycle_block_holes_and_g80() {
+    let t = to_fanuc("MCALL CYCLE81(50, 0, 2, -5)\nG0 X10 Y10\nX20\nMCALL\n");
+    let k = t.iter().position(|l| l.starts_with("G98 G81")).expect("cycle block");
+    assert_eq!(t[k..k + 3], ["G98 G81 X10. Y10. Z-5. R2.", "X20.", "G80"]);
+    // RTP = RFP + SDIS: G99; DTB in ms; CYCLE83 chip breaking is G73.
+    let t = to_fanuc("MCALL CYCLE82(2, 0, 2, -5, , 0.3)\nG0 X10 Y10\nMCALL\n");
+    assert!(t.iter().any(|l| l == "G99 G82 X10. Y10. Z-5. R2. P300"), "{t:?}");
+    let t = to_fanuc("G0 X5 Y5\nCYCLE83(50, 1, 0, -20, , , 2, 0, 0, 0, 1, 0)\n");
+    assert!(t.iter().any(|l| l == "G98 G73 Z-20. R1. Q2."), "{t:?}");
+    // RTP between the tool and the R plane: positioned there first.
+    let t = to_fanuc("G0 X5 Y5\nCYCLE89(10, 0, 2, -8, , 0.4)\n");
+    let k = t.iter().position(|l| l == "G00 Z10.").expect("approach");
+    assert_eq!(t[k + 1], "G98 G89 Z-8. R2. P400");
+}
+
+#[test]
+fn sinumerik_cycles_without_an_exact_fanuc_form_are_refused() {
+    assert!(refused_to_fanuc("CYCLE85(50, 0, 2, -22, , 0, 70, 70)\n").contains("NC390"));
+    assert!(refused_to_fanuc("CYCLE84(50, 0, 2, -16, , , 3, 8, , , 400)\n").contains("NC390"));
+    assert!(refused_to_fanuc("CYCLE82(50, 0, 2, -5, , 0.0005)\n").contains("NC392"));
+    assert!(refused_to_fanuc("CYCLE81(80, 0, 2, -5)\n").contains("NC393"));
+    assert!(refused_to_fanuc("MCALL CYCLE81(50, 0, 2, -5)\nG1 X10 Y10\nMCALL\n").contains("NC396"));
+    assert!(refused_to_fanuc("CYCLE83(50, 0, 0, -20, , , 4, 1, 0, 0, 1, 1)\n").contains("NC391"));
+}
+
+#[test]
+fn a_fanuc_translation_planted_wrong_is_caught() {
+    let src = scratch("mpf", &format!("{S_HEAD}MCALL CYCLE83(50, 1, 0, -20, , , 4, 0, 0, 0, 1, 1)\nG0 X10 Y10\nX20\nMCALL\nM30\n"));
+    let out = scratch("nc", "");
+    let (code, _, err) = nctrans(&[&src, "--to", "fanuc", "-o", &out]);
+    assert_eq!(code, 0, "{err}");
+    let good = std::fs::read_to_string(&out).expect("translation");
+    assert!(good.contains("G98 G83 X10. Y10. Z-20. R1. Q4."), "{good}");
+    for (what, to) in [
+        ("depth", "G98 G83 X10. Y10. Z-21. R1. Q4."),
+        ("R plane", "G98 G83 X10. Y10. Z-20. R1.5 Q4."),
+        ("peck", "G98 G83 X10. Y10. Z-20. R1. Q3."),
+        ("kind", "G98 G73 X10. Y10. Z-20. R1. Q4."),
+        ("retract", "G99 G83 X10. Y10. Z-20. R1. Q4."),
+        ("feed", "G98 G83 X10. Y10. Z-20. R1. Q4. F90."),
+    ] {
+        let bad = scratch("nc", &good.replacen("G98 G83 X10. Y10. Z-20. R1. Q4.", to, 1));
+        let (code, report, _) = nctrans(&["check", &src, &bad]);
+        assert_ne!(code, 0, "a wrong {what} was not caught:\n{report}");
+    }
+}
