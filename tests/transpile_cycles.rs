@@ -196,3 +196,15 @@ fn a_fanuc_translation_planted_wrong_is_caught() {
         assert_ne!(code, 0, "a wrong {what} was not caught:\n{report}");
     }
 }
+
+#[test]
+fn a_streamed_translation_reads_a_cycle_program_whole() {
+    // The streamed writer takes plain blocks one by one; hole blocks depend on the cycle
+    // before them, so a program with a drilling cycle is translated whole, the same.
+    let src = root().join("corpus/in/fanuc/cycle-g81-spot-drill.nc").to_string_lossy().into_owned();
+    let whole = nctrans(&[&src, "--to", "sinumerik"]);
+    let streamed = nctrans(&[&src, "--to", "sinumerik", "--stream"]);
+    assert_eq!(whole.0, 0, "{}", whole.2);
+    assert_eq!(streamed.0, 0, "{}", streamed.2);
+    assert_eq!(streamed.1, whole.1);
+}
