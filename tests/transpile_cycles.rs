@@ -177,7 +177,10 @@ fn sinumerik_cycles_without_an_exact_fanuc_form_are_refused() {
 
 #[test]
 fn a_fanuc_translation_planted_wrong_is_caught() {
-    let src = scratch("mpf", &format!("{S_HEAD}MCALL CYCLE83(50, 1, 0, -20, , , 4, 0, 0, 0, 1, 1)\nG0 X10 Y10\nX20\nMCALL\nM30\n"));
+    let src = scratch(
+        "mpf",
+        &format!("{S_HEAD}MCALL CYCLE83(50, 1, 0, -20, , , 4, 0, 0, 0, 1, 1)\nG0 X10 Y10\nX20\nMCALL\nM30\n"),
+    );
     let out = scratch("nc", "");
     let (code, _, err) = nctrans(&[&src, "--to", "fanuc", "-o", &out]);
     assert_eq!(code, 0, "{err}");
