@@ -293,6 +293,16 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
             c1 == c2 || (ret(c1) && ret(c2))
         }
         (Limit { .. }, Limit { .. }) => true,
+        (Cycle(h1), Cycle(h2)) => {
+            h1.kind == h2.kind
+                && h1.retract == h2.retract
+                && h1.at.iter().zip(&h2.at).all(|(x, y)| x.0 == y.0 && num_eq(x.1, y.1))
+                && num_eq(h1.r, h2.r)
+                && num_eq(h1.bottom, h2.bottom)
+                && opt_eq(h1.peck, h2.peck)
+                && opt_eq(h1.dwell, h2.dwell)
+                && num_eq(h1.f, h2.f)
+        }
         _ => false,
     }
 }

@@ -218,7 +218,7 @@ fn unsupported_constructs_are_refused() {
     refused("TRANS X10\nM30\n", "NC316");
     refused("DEF STRING[8] S_NAME\nM30\n", "NC310");
     refused("G1 X1 F100 AR=90\nM30\n", "NC312");
-    refused("CYCLE81(10,0,2,-5)\nM30\n", "NC303");
+    refused("CYCLE81(10,0,2,-5)\nM30\n", "NC393");
     refused("T=\"NOPE\"\nM6\nM30\n", "NC301");
     refused("R1=$AC_TIME\nM30\n", "NC342");
     refused("G500\nM30\n", "NC311");
@@ -275,11 +275,17 @@ const REFUSED: &[(&str, &str)] = &[
     ("call-l-number.mpf", "NC303"),
     ("call-repeat-p.mpf", "NC303"),
     ("call-with-args.mpf", "NC303"),
-    ("cycle-unknown-call.mpf", "NC303"),
+    ("cycle-unknown-call.mpf", "NC393"),      // CYCLE81 with RTP above the tool
+    ("cycle84-rigid-tap.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle840-floating-tap.mpf", "NC390"),   // no exact FANUC cycle
+    ("cycle85-ream.mpf", "NC390"),            // no exact FANUC cycle
+    ("cycle86-fine-bore.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle87-bore-stop.mpf", "NC390"),       // no exact FANUC cycle
+    ("cycle88-bore-dwell-stop.mpf", "NC390"), // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),
     ("frame-instructions.mpf", "NC316"),
     ("goto-string-target.mpf", "NC305"),
-    ("mcall-modal.mpf", "NC318"),
+    ("mcall-modal.mpf", "NC393"), // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),
     ("operators-bitwise.mpf", "NC330"),
     ("operators-concat.mpf", "NC314"),

@@ -296,7 +296,7 @@ impl Interp<'_> {
     }
 
     /// Evaluates Siemens arguments: `Some(value)`, `None` for omitted.
-    fn sie_args(&mut self, call: &Call) -> Result<Vec<Option<Value>>, Fault> {
+    pub(crate) fn sie_args(&mut self, call: &Call) -> Result<Vec<Option<Value>>, Fault> {
         self.sie_args_beside(call, &[])
     }
 
@@ -429,6 +429,10 @@ impl Interp<'_> {
     pub fn call(&mut self, call: &Call, pc: usize, span: Span) -> Result<Flow, Fault> {
         let name = self.target_name(call)?;
         if let CalleeName::Name(s) = &name {
+            // The standard drilling cycles are the control's own (eval::cycles::siemens).
+            if let Some(c) = crate::dialect::sinumerik::cycles::cycle_of(s).filter(|_| !self.fanuc) {
+                return self.siemens_cycle_call(call, c, span);
+            }
             if SIMULATION_ONLY.contains(&s.as_str()) {
                 self.warn("NC406", format!("{s}(...) only sets up the HMI simulation: no effect on the trace"), span);
                 return Ok(Flow::Next);
@@ -454,6 +458,7 @@ impl Interp<'_> {
             CallKind::G66 | CallKind::Mcall => {
                 let fanuc_args = if self.fanuc { self.fanuc_args(call)? } else { vec![] };
                 let sie_args = if self.fanuc { vec![] } else { self.sie_args(call)? };
+                self.m.cycle.mcall = None;
                 self.modal_call = Some(super::calls::ModalCall {
                     code,
                     fanuc_args,

@@ -445,6 +445,9 @@ impl<'a> Interp<'a> {
         if eff.ret {
             return self.do_return(None, span);
         }
+        if eff.moved && self.m.cycle.mcall.is_some() {
+            self.mcall_hole(span)?;
+        }
         if eff.moved {
             if let Some(mc) = self.modal_call.clone() {
                 // Modal at every program level (M98 subprograms included), except inside
@@ -531,6 +534,7 @@ impl<'a> Interp<'a> {
             },
             ItemKind::ModalCallOff => {
                 self.modal_call = None;
+                self.m.cycle.mcall = None;
                 Ok(())
             }
             ItemKind::ParamWrite(_) => {

@@ -5,6 +5,7 @@ use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
 use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal, round_to_scaled};
+use crate::ir::cycle::Retract;
 use crate::span::Span;
 
 /// Warning code for a compensation word (D, FANUC H, G40..G49): the trace holds programmed
@@ -117,6 +118,8 @@ pub struct Machine {
     ms_buf: Vec<(f64, Span)>,
     /// The trace position on the 0.001 grid and the move given to sinks ([`grid::Grid`]).
     grid: grid::Grid,
+    /// The drilling cycle mode and the data it keeps between holes.
+    pub cycle: super::cycles::State,
 }
 
 impl Machine {
@@ -158,6 +161,7 @@ impl Machine {
             gs_buf: Vec::new(),
             ms_buf: Vec::new(),
             grid: grid::Grid::new(inc_mm),
+            cycle: super::cycles::State::default(),
         }
     }
 
@@ -190,6 +194,13 @@ impl Machine {
         a
     }
 
+    /// Records `gi` as the last G code of FANUC group `group` (for `#4001`.. reads).
+    pub fn set_group_g(&mut self, group: u8, gi: i64) {
+        if let Some(slot) = self.group_g.iter_mut().find(|s| s.0 == group) {
+            slot.1 = gi;
+        }
+    }
+
     /// Selects offset table `n` (Siemens copies the frame now).
     pub fn select_offset(&mut self, n: usize) {
         self.wo = n.min(self.offsets.len() - 1);
@@ -204,13 +215,13 @@ impl Machine {
     }
 
     /// A length word's value in mm: decimal-point rule, rounding to the increment, unit.
-    fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
+    pub(crate) fn length(&self, w: &WordVal, x: f64, rotary: bool) -> f64 {
         self.length_of(w.bare, x, rotary)
     }
 
     /// [`Machine::length`] of a value `x` written bare (without a decimal point) or not.
     #[inline(always)]
-    fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
+    pub(crate) fn length_of(&self, bare: bool, x: f64, rotary: bool) -> f64 {
         let inc = if rotary { self.inc_mm } else { self.inc_in_unit() };
         let v = if bare && self.scaling { x * inc } else { x };
         // The slot of this unit holds `inc` (unless `inc_mm` changed since `new`): no search.
@@ -237,7 +248,7 @@ impl Machine {
     /// Where axis `i` goes (machine frame) for the length `v` (mm) of its word, written
     /// in `mode`; `g53`: machine coordinates. Reads only axis `i`'s state.
     #[inline(always)]
-    fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
+    pub(crate) fn axis_target(&self, i: usize, v: f64, mode: AbsInc, g53: bool) -> f64 {
         self.target_from(i, v, mode, g53, self.active_offset(i))
     }
 
@@ -303,6 +314,8 @@ impl Machine {
         let mut t: Option<(ToolId, Span)> = None;
         let mut block_span = Span::default();
         let mut measuring = false;
+        // FANUC Q is read by the drilling cycles; anywhere else it is ignored (a warning).
+        let mut q_word = None;
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -393,6 +406,7 @@ impl Machine {
                 ("S", Some(x)) => s = Some((w, x)),
                 ("P", Some(x)) => p = Some((w, x)),
                 ("L", Some(x)) => l = Some(x),
+                ("Q", Some(_)) if self.fanuc => q_word = Some(w.span),
                 ("D", Some(x)) => self.d = round_half_away(x),
                 ("H", Some(x)) => self.h = round_half_away(x),
                 (a, Some(x)) if a.len() == 1 && axis_index(a.as_bytes()[0]).is_some() => {
@@ -416,8 +430,12 @@ impl Machine {
 
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
+        let (mut cycle_g, mut motion_g) = (None, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
+            if matches!(gi, 0 | 10 | 20 | 30) {
+                motion_g = Some(span);
+            }
             // `Modal::g` changes nothing for a code it does not take.
             if self.modal.g(self.fanuc, gi) {
                 continue;
@@ -433,6 +451,16 @@ impl Machine {
                 5050..=5990 if !self.fanuc && gi % 10 == 0 => self.select_offset((gi / 10 - 500) as usize),
                 // Path control, compensation (the trace holds programmed positions), cycle
                 // cancel, exact stop: no effect on the trace.
+                // Drilling cycles (eval::cycles): select, cancel, return level.
+                gi if self.fanuc && super::cycles::fanuc::is_cycle_g(gi) => cycle_g = Some((gi, span)),
+                800 if self.fanuc => {
+                    self.cycle.cancel();
+                    self.set_group_g(9, 800);
+                }
+                980 | 990 if self.fanuc => {
+                    self.cycle.retract = if gi == 980 { Retract::Initial } else { Retract::R };
+                    self.set_group_g(10, gi);
+                }
                 90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
                 | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
                     let group = match gi {
@@ -455,13 +483,16 @@ impl Machine {
                         span,
                     ))
                 }
-                730 | 740 | 760 | 810..=890 if self.fanuc => {
-                    return Err(unsupported(&format!("canned cycle G{} is not modelled", fmt_g(g)), span))
-                }
                 _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }
         }
 
+        if self.fanuc {
+            super::cycles::fanuc::select(self, cycle_g, motion_g)?;
+        }
+        if let (Some(span), None) = (q_word, self.cycle.active) {
+            warns.push(("NC405", "address Q has no effect on the trace and is ignored".into(), span));
+        }
         if g10 {
             self.g10(l, p, &axes, warns, block_span)?;
             return Ok(eff);
@@ -525,6 +556,8 @@ impl Machine {
         if dwell {
             let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
             out.push((Event::Dwell { seconds: secs }, block_span));
+        } else if self.cycle.active.is_some() && !g53 {
+            eff.moved = super::cycles::fanuc::holes(self, words, out, block_span)?;
         } else {
             eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
         }
@@ -554,6 +587,8 @@ impl Machine {
             self.last_m = m;
             match m as i64 {
                 0 | 1 | 3 | 4 | 5 | 6 | 7 | 8 | 9 => {}
+                // Rigid tapping for the tapping cycles that follow (not visible in the trace).
+                29 if self.fanuc => self.cycle.rigid = true,
                 30 => eff.end = Some("M30"),
                 2 => eff.end = Some("M2"),
                 99 | 17 => eff.ret = true,
@@ -738,7 +773,7 @@ fn fmt_g(g: f64) -> String {
 }
 
 /// Removes float noise below the trace precision and negative zero.
-fn clean(x: f64) -> f64 {
+pub(crate) fn clean(x: f64) -> f64 {
     let r = super::value::round(x * 1e9) / 1e9;
     if r == 0.0 {
         0.0

@@ -6,13 +6,14 @@
 //! control), `flow` (flattening to linear code with jump tables; `lit`: blocks of
 //! constant words in compact form), `exec` (the interpreter loop), `access` + `vars`
 //! (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal state
-//! and motion), `sysvars`, `trace` (events and writers; `numfmt`: the trace's number
+//! and motion; `cycles`: drilling cycles), `sysvars`, `trace` (events and writers; `numfmt`: the trace's number
 //! form), `input` (`--set` and header inputs), `fault` (alarms, errors, limits).
 //! Choices are in docs/semantics.md.
 
 pub mod access;
 pub mod arc;
 pub mod calls;
+pub mod cycles;
 pub mod exec;
 pub mod expr;
 pub mod fault;

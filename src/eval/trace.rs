@@ -123,6 +123,8 @@ pub enum Event {
     Limit {
         steps: u64,
     },
+    /// One hole of a drilling cycle (format v2; boxed: rare and large).
+    Cycle(Box<crate::ir::cycle::Hole>),
 }
 
 impl Event {
@@ -140,6 +142,7 @@ impl Event {
             Event::Alarm { .. } => "alarm",
             Event::End { .. } => "end",
             Event::Limit { .. } => "limit",
+            Event::Cycle(_) => "cycle",
         }
     }
 }
@@ -369,6 +372,7 @@ fn text_form(s: &mut TextBuf, ev: &Event) {
         }
         Event::End { code, steps } => s.push_str(&format!("end {code} steps={steps}")),
         Event::Limit { steps } => s.push_str(&format!("limit steps={steps}")),
+        Event::Cycle(h) => s.push_str(&super::cycles::text_form(h)),
     }
 }
 
@@ -470,6 +474,7 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
         }
         Event::End { code, steps } => s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}")),
         Event::Limit { steps } => s.push_str(&format!(",\"steps\":{steps}")),
+        Event::Cycle(h) => s.push_str(&super::cycles::json_fields(h)),
     }
     if let Some(l) = line {
         s.push_str(",\"line\":");

@@ -4,6 +4,7 @@
 //! `O` programs). A program is a tree of [`Stmt`]s whose leaves are NC [`Block`]s.
 //! Every node carries a [`Span`](crate::span::Span) into the decoded source text.
 
+pub mod cycle;
 pub mod dump;
 pub mod expr;
 pub mod stmt;

@@ -2,7 +2,7 @@
 //! FANUC → Siemens lives in [`to_sinumerik`] (its own order in its `mod.rs`).
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
-//! [`words`] (address words, calls, messages), [`exprs`] (exact function rewrites, the
+//! [`words`] (address words, calls, messages), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
 //! relative-equality rule, bracket depth), [`lower_structures`] (IF/WHILE/LOOP/FOR/REPEAT/CASE
 //! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
 //! [`labels`] (labels and N numbers → unique FANUC N numbers). The result is IR that the FANUC
@@ -10,6 +10,7 @@
 
 pub mod blocks;
 pub mod compensation;
+pub mod cycles;
 pub mod exprs;
 pub mod integral;
 pub mod labels;
@@ -170,6 +171,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     blocks::run(ctx, prog, info);
     words::run(ctx, prog, info);
+    cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);
 }

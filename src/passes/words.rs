@@ -359,9 +359,8 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("instruction {name}"),
                 "no FANUC code has the same meaning",
             )),
-            ItemKind::ModalCallOff => {
-                after.extend(ctx.unsupported("NC318", span, "MCALL cancel", "modal calls are not translated"))
-            }
+            // Kept for the drilling cycles (`passes::cycles`), which refuse any other.
+            ItemKind::ModalCallOff => kept.push(Item { kind: ItemKind::ModalCallOff, span }),
             kind => kept.push(Item { kind, span }),
         }
     }
@@ -530,6 +529,11 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
         CallTarget::Name(n) => n.to_ascii_uppercase(),
         _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
     };
+    if crate::dialect::sinumerik::cycles::cycle_of(&name).is_some() {
+        // A drilling cycle: `passes::cycles` writes it.
+        kept.push(Item { kind: ItemKind::Call(Box::new(c)), span });
+        return None;
+    }
     if c.kind == CallKind::Mcall {
         return ctx.unsupported(
             "NC318",

@@ -8,6 +8,7 @@
 
 mod args;
 mod block;
+pub mod cycles;
 mod expr;
 pub(crate) mod fast;
 mod macro_a;

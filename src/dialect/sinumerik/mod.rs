@@ -5,6 +5,7 @@
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
 
+pub mod cycles;
 mod errors;
 mod expr;
 pub(crate) mod fast;

@@ -44,6 +44,10 @@ impl Machine {
     /// [`Modal::g`]: super::Modal::g
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
+        // In a drilling cycle mode an axis word is a hole (`eval::cycles`).
+        if self.cycle.active.is_some() || self.cycle.mcall.is_some() {
+            return None;
+        }
         let mut modal = self.modal;
         let mut any_g = false;
         let mut feed_word: Option<(f64, i32)> = None;

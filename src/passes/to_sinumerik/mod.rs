@@ -12,14 +12,16 @@
 //! 5. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
 //! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
-//! 8. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
+//! 8. `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
+//! 9. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
-//! 9. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
+//! 10. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
 //!
 //! Every pass keeps source spans on what it builds, so a divergence found later can point
 //! back at the FANUC text.
 
 pub mod calls;
+pub mod cycles;
 pub mod exprs;
 pub mod gotos;
 pub mod indirect;
@@ -345,6 +347,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = gotos::lower(ctx, body);
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
+    body = cycles::lower(ctx, body);
     body = words::lower(ctx, body);
     exprs::lower(ctx, body)
 }

@@ -176,7 +176,12 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
             _ => None,
         },
         ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) if addr.is(b'G') => {
-            passes::literal(e).is_some_and(|v| matches!((v * 10.0).round() as u32, 100 | 110)).then_some("G10")
+            // A drilling cycle makes the blocks after it holes: read whole.
+            passes::literal(e).and_then(|v| match (v * 10.0).round() as u32 {
+                100 | 110 => Some("G10"),
+                730 | 740 | 760 | 810..=890 => Some("a drilling cycle"),
+                _ => None,
+            })
         }
         _ => None,
     }

@@ -1,0 +1,425 @@
+//! Sinumerik drilling cycles → FANUC (runs after `words`, which keeps `CYCLEnn` calls and
+//! `MCALL` for it): `MCALL CYCLE81/82/83/89(…)` and its positioning blocks become a FANUC
+//! cycle block (the first hole, with G98/G99, the cycle code, Z, R, Q, P), hole blocks and
+//! G80; a direct call becomes a cycle block without a position (it drills where the tool is)
+//! and G80. Exact only (the `cycle` events and the moves between the holes must agree):
+//! - R = RFP + SDIS, Z = DP (or RFP − DPR); RTP = R → G99; RTP = the level the tool stands
+//!   at (its last Z in this block list) → G98, an RTP between that level and R first
+//!   positions Z there (`G0 Z<RTP>`, the approach the Sinumerik cycle makes);
+//! - DTB (s) → P (ms); CYCLE83 FDPR → Q with VARI 1 → G83, VARI 0 → G73 (SDIS 0, DAM 0);
+//! - the positioning blocks must be G0 moves of the plane axes: FANUC positions by rapid.
+//!
+//! Refused with a reason (NC390–NC396): other cycles, arguments the FANUC cycle has no
+//! place for, an RTP that is neither, positions that are not plain rapids, and a cycle open
+//! across a structure. Rules: docs/translation.md.
+
+use super::*;
+use crate::dialect::sinumerik::cycles::{cycle_of, SieCycle};
+use crate::passes::to_sinumerik::{literal, map_bodies};
+
+/// Lowers the drilling cycles of every block list of `prog`.
+pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
+    let body = std::mem::take(&mut prog.body);
+    let top = !info.is_sub;
+    let mut nested = Vec::with_capacity(body.len());
+    for s in body {
+        match s.kind {
+            StmtKind::Block(_) => nested.push(s),
+            _ => nested.extend(map_bodies(vec![s], &mut |b| list(ctx, b, false))),
+        }
+    }
+    prog.body = list(ctx, nested, top);
+}
+
+/// The FANUC cycle a Sinumerik call makes: its G code and words after the position.
+struct Fanuc {
+    g: f64,
+    retract: f64,
+    words: Vec<(u8, Expr)>,
+    /// `G0 Z<RTP>` first.
+    approach: Option<f64>,
+}
+
+fn word(letter: u8, e: Expr, span: Span) -> Item {
+    item(ItemKind::Word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(e), span }), span)
+}
+
+fn gw(v: f64, span: Span) -> Item {
+    word(b'G', Expr::num(v, v.fract() != 0.0, span), span)
+}
+
+fn mm(v: f64, span: Span) -> Expr {
+    Expr::num(v, true, span)
+}
+
+fn g_of(w: &Word) -> Option<f64> {
+    match &w.value {
+        WordValue::Expr(e) if w.addr.is(b'G') => literal(e),
+        _ => None,
+    }
+}
+
+fn cycle_call(it: &Item) -> Option<(&Call, SieCycle)> {
+    match &it.kind {
+        ItemKind::Call(c) => match &c.target {
+            CallTarget::Name(n) => cycle_of(&n.to_ascii_uppercase()).map(|k| (&**c, k)),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+fn refuse(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str, out: &mut Vec<Stmt>) {
+    out.extend(ctx.unsupported(code, span, what, hint));
+}
+
+/// The argument `name` of the call: `Some(expr)`, or `None` when empty or missing.
+fn arg<'a>(c: &'a Call, k: SieCycle, name: &str) -> Option<&'a Expr> {
+    let i = k.params().iter().position(|p| *p == name)?;
+    match c.args.get(i)? {
+        Arg::Value(e) => Some(e),
+        _ => None,
+    }
+}
+
+fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
+    match arg(c, k, name) {
+        None => Some(0.0),
+        Some(e) => literal(e),
+    }
+}
+
+/// Plans the FANUC cycle of a call made where the tool stands at `level` (its last Z).
+fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static str, String, &'static str)> {
+    let bad = |code, what: String, hint| Err((code, what, hint));
+    let (g, allowed): (f64, &[&str]) = match k {
+        SieCycle::C81 => (81.0, &[]),
+        SieCycle::C82 => (82.0, &["DTB"]),
+        SieCycle::C83 => (0.0, &["FDEP", "FDPR", "VARI", "DAM", "FRF"]),
+        SieCycle::C89 => (89.0, &["DTB"]),
+        other => {
+            let why = match other {
+                SieCycle::C84 | SieCycle::C840 => {
+                    "tapping needs M29 and the spindle state, which the translation does not know yet"
+                }
+                SieCycle::C85 => "its feeds FFR/RFF would change FANUC's modal F",
+                SieCycle::C86 => "the lift-off direction is a FANUC machine parameter (6240) for G76",
+                _ => "FANUC's G88 needs a spindle direction the translation does not know",
+            };
+            return bad(
+                "NC390",
+                format!("{} (no exact FANUC cycle: {why})", other.name()),
+                "write the holes as a FANUC cycle by hand",
+            );
+        }
+    };
+    for (i, p) in k.params().iter().enumerate() {
+        let set = match c.args.get(i) {
+            Some(Arg::Value(e)) => literal(e) != Some(0.0),
+            _ => false,
+        };
+        if set && !["RTP", "RFP", "SDIS", "DP", "DPR"].contains(p) && !allowed.contains(p) {
+            return bad("NC391", format!("{} with {p}", k.name()), "FANUC's cycle has no place for it: leave it empty");
+        }
+    }
+    // `$P_EP[Z]`: the level the tool stands at (how the FANUC → Sinumerik translation
+    // writes G98's initial level).
+    let at_tool = arg(c, k, "RTP").is_some_and(is_tool_level);
+    let level = if at_tool { Some(f64::NAN) } else { level };
+    let rtp_value = if at_tool { Some(f64::NAN) } else { constant(c, k, "RTP") };
+    let (Some(rtp), Some(rfp), Some(sdis)) = (rtp_value, constant(c, k, "RFP"), constant(c, k, "SDIS")) else {
+        return bad(
+            "NC392",
+            format!("{} with RTP, RFP or SDIS known only at run time", k.name()),
+            "write them as numbers",
+        );
+    };
+    if !at_tool && rtp < rfp {
+        return bad("NC392", format!("{} drilling upwards (RTP below RFP)", k.name()), "");
+    }
+    let r = rfp + sdis.abs();
+    let z = match arg(c, k, "DPR").filter(|e| literal(e) != Some(0.0)) {
+        Some(dpr) => match literal(dpr) {
+            Some(d) => mm(rfp - d.abs(), dpr.span),
+            None => bin(BinOp::Sub, mm(rfp, dpr.span), func(Func::Abs, vec![dpr.clone()], dpr.span)),
+        },
+        None => match arg(c, k, "DP") {
+            Some(e) => literal(e).map_or_else(|| e.clone(), |v| mm(v, e.span)),
+            None => mm(0.0, Span::default()),
+        },
+    };
+    let mut words = vec![(b'Z', z), (b'R', mm(r, Span::default()))];
+    let mut g = g;
+    if k == SieCycle::C83 {
+        if sdis != 0.0
+            || constant(c, k, "DAM") != Some(0.0)
+            || !matches!(constant(c, k, "FRF"), Some(x) if x == 0.0 || x == 1.0)
+        {
+            return bad(
+                "NC391",
+                "CYCLE83 with SDIS, DAM or FRF set".into(),
+                "G83/G73 count Q from R with equal infeeds",
+            );
+        }
+        let q = match (arg(c, k, "FDPR").filter(|e| literal(e) != Some(0.0)), arg(c, k, "FDEP")) {
+            (Some(e), _) => literal(e).map_or_else(|| e.clone(), |v| mm(v.abs(), e.span)),
+            (None, Some(e)) => match literal(e) {
+                Some(v) => mm(rfp - v, e.span),
+                None => bin(BinOp::Sub, mm(rfp, e.span), e.clone()),
+            },
+            (None, None) => return bad("NC391", "CYCLE83 without FDEP or FDPR".into(), "give the infeed"),
+        };
+        words.push((b'Q', q));
+        g = match constant(c, k, "VARI") {
+            Some(1.0) => 83.0,
+            Some(0.0) => 73.0,
+            _ => return bad("NC392", "CYCLE83 with VARI known only at run time".into(), "write VARI as 0 or 1"),
+        };
+    }
+    if allowed.contains(&"DTB") {
+        match constant(c, k, "DTB") {
+            Some(s) if ((s * 1000.0).round() - s * 1000.0).abs() < 1e-9 => {
+                if s != 0.0 {
+                    words.push((b'P', Expr::num((s * 1000.0).round(), false, Span::default())));
+                }
+            }
+            _ => {
+                return bad(
+                    "NC392",
+                    format!("{} with a dwell DTB not a whole number of milliseconds", k.name()),
+                    "FANUC's P counts milliseconds",
+                )
+            }
+        }
+    }
+    let same = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    let (retract, approach) = if at_tool {
+        (98.0, None)
+    } else if same(rtp, r) {
+        (99.0, None)
+    } else {
+        match level {
+            Some(p) if same(p, rtp) => (98.0, None),
+            Some(p) if (p > rtp && rtp > r) => (98.0, Some(rtp)),
+            _ => {
+                return bad(
+                    "NC393",
+                    format!(
+                        "{}: RTP is neither RFP + SDIS nor a level between the tool's last Z and RFP + SDIS",
+                        k.name()
+                    ),
+                    "position the tool at RTP (G0 Z…) before the cycle, or give RTP = RFP + SDIS",
+                )
+            }
+        }
+    };
+    Ok(Fanuc { g, retract, words, approach })
+}
+
+/// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).
+fn positions(b: &Block, motion: Option<f64>) -> Result<bool, &'static str> {
+    let mut moved = false;
+    let mut g0 = motion == Some(0.0);
+    for it in &b.items {
+        match &it.kind {
+            ItemKind::Word(w) => match w.addr.as_str() {
+                "X" | "Y" => moved = true,
+                "G" => match g_of(w) {
+                    Some(0.0) => g0 = true,
+                    _ => return Err("a G code in a hole block"),
+                },
+                "M" | "F" | "S" => {}
+                _ => return Err("a word other than X, Y, M, F, S in a hole block"),
+            },
+            _ => return Err("a statement other than words in a hole block"),
+        }
+    }
+    if moved && !g0 {
+        return Err("a hole positioned by a feed move (FANUC positions by rapid)");
+    }
+    Ok(moved)
+}
+
+fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(body.len());
+    let mut level: Option<f64> = None;
+    let mut motion: Option<f64> = if top { Some(0.0) } else { None };
+    let mut abs: Option<bool> = if top { Some(true) } else { None };
+    // The MCALL in force and whether its first hole was written.
+    let mut active: Option<(Fanuc, bool, Span)> = None;
+    // The block number and comments of an MCALL block, written on its first hole.
+    let mut carry: Option<BlockMeta> = None;
+    // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
+    let mut refused_mcall = false;
+    for s in body {
+        let span = s.span;
+        let StmtKind::Block(mut b) = s.kind else {
+            if active.take().is_some() {
+                refuse(
+                    ctx,
+                    "NC394",
+                    span,
+                    "a drilling cycle (MCALL) open into a structure",
+                    "end it with MCALL before",
+                    &mut out,
+                );
+            }
+            level = None;
+            motion = None;
+            out.push(s);
+            continue;
+        };
+        let call = b.items.iter().find_map(cycle_call).map(|(c, k)| (c.clone(), k));
+        let off = b.items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff));
+        if let Some((c, k)) = call {
+            b.items.retain(|it| cycle_call(it).is_none());
+            let mcall = c.kind == CallKind::Mcall;
+            if abs != Some(true) {
+                refuse(
+                    ctx,
+                    "NC395",
+                    span,
+                    "a drilling cycle where G90 is not known to be active",
+                    "program G90 before",
+                    &mut out,
+                );
+                continue;
+            }
+            let f = match plan(&c, k, level) {
+                Ok(f) => f,
+                Err((code, what, hint)) => {
+                    refuse(ctx, code, span, &what, hint, &mut out);
+                    refused_mcall |= mcall;
+                    continue;
+                }
+            };
+            let mut meta = None;
+            if b.items.is_empty() && b.meta.label.is_none() {
+                meta = Some(std::mem::take(&mut b.meta));
+            } else {
+                out.push(Stmt { kind: StmtKind::Block(b), span });
+            }
+            if motion != Some(0.0) {
+                out.push(block_stmt(vec![gw(0.0, span)], span));
+                motion = Some(0.0);
+            }
+            if let Some(z) = f.approach {
+                out.push(block_stmt(vec![gw(0.0, span), word(b'Z', mm(z, span), span)], span));
+            }
+            if mcall {
+                active = Some((f, false, span));
+                carry = meta;
+            } else {
+                // A direct call drills where the tool is: the cycle block without a position.
+                let mut items = vec![gw(f.retract, span), gw(f.g, span)];
+                items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
+                match meta {
+                    Some(m) => out.push(meta_stmt(BlockMeta { span, ..m }, items)),
+                    None => out.push(block_stmt(items, span)),
+                }
+                out.push(block_stmt(vec![gw(80.0, span)], span));
+            }
+            // Every hole ends at RTP.
+            if !arg(&c, k, "RTP").is_some_and(is_tool_level) {
+                level = constant(&c, k, "RTP");
+            }
+            continue;
+        }
+        if off {
+            b.items.retain(|it| !matches!(it.kind, ItemKind::ModalCallOff));
+            match active.take() {
+                Some((f, first, _)) => {
+                    let _ = f;
+                    if first {
+                        b.items.insert(0, gw(80.0, span));
+                    }
+                }
+                None if std::mem::take(&mut refused_mcall) => {}
+                None => refuse(ctx, "NC318", span, "MCALL cancel", "modal calls are not translated", &mut out),
+            }
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            continue;
+        }
+        if let Some((f, first, _)) = &mut active {
+            match positions(&b, motion) {
+                Err(why) => {
+                    refuse(ctx, "NC396", span, why, "under MCALL, position the holes with G0 X… Y…", &mut out);
+                    continue;
+                }
+                Ok(false) => {}
+                Ok(true) => {
+                    b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
+                    if !*first {
+                        let mut items = vec![gw(f.retract, span), gw(f.g, span)];
+                        items.append(&mut b.items);
+                        items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
+                        b.items = items;
+                        *first = true;
+                        if let Some(m) = carry.take() {
+                            if b.meta.number.is_none() || m.number.is_none() {
+                                b.meta.number = b.meta.number.take().or(m.number);
+                                let mut comments = m.comments;
+                                comments.append(&mut b.meta.comments);
+                                b.meta.comments = comments;
+                            } else {
+                                // Both numbered: the MCALL's number stays a block (a jump may
+                                // name it).
+                                out.push(meta_stmt(m, vec![]));
+                            }
+                        }
+                    }
+                }
+            }
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            continue;
+        }
+        for it in &b.items {
+            if let ItemKind::Word(w) = &it.kind {
+                match (w.addr.as_str(), g_of(w)) {
+                    ("G", Some(v)) if [0.0, 1.0, 2.0, 3.0].contains(&v) => motion = Some(v),
+                    ("G", Some(90.0)) => abs = Some(true),
+                    ("G", Some(91.0)) => abs = Some(false),
+                    ("Z", _) => {
+                        level = match (&w.value, abs) {
+                            (WordValue::Expr(e), Some(true)) => literal(e),
+                            _ => None,
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
+            // An assignment, a call …: the tool's level may have changed.
+            level = None;
+        }
+        out.push(Stmt { kind: StmtKind::Block(b), span });
+    }
+    if let Some((_, _, span)) = active {
+        if !top {
+            refuse(
+                ctx,
+                "NC394",
+                span,
+                "a drilling cycle (MCALL) still open at the end of a block list",
+                "end it with MCALL",
+                &mut out,
+            );
+        }
+    }
+    out
+}
+
+/// Whether `e` is `$P_EP[Z]`, the programmed end point of the drilling axis.
+fn is_tool_level(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Var(v) => match &v.kind {
+            VarKind::System { name, indices } => {
+                name.eq_ignore_ascii_case("P_EP")
+                    && matches!(indices.as_slice(), [i] if matches!(&i.kind, ExprKind::Ident(a) if a.eq_ignore_ascii_case("Z")))
+            }
+            _ => false,
+        },
+        _ => false,
+    }
+}

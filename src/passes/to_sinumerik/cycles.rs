@@ -1,0 +1,455 @@
+//! FANUC drilling cycles → Sinumerik: a G81/G82/G83/G73/G85/G89 block and the hole blocks
+//! after it become `MCALL CYCLEnn(…)`, a `G0` positioning block per hole and `MCALL`; a hole
+//! without a position (only Z or R) is a direct `CYCLEnn(…)` call. Exact only:
+//! - RFP = R, SDIS = 0 (so CYCLE83's infeeds count from R as G83's Q does), DP = Z;
+//! - G99 → RTP = R; G98 → RTP = the Z end point at the MCALL (`$P_EP[Z]`, the initial level);
+//! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`.
+//!
+//! Everything else in a cycle is refused (NC428) naming what differs: G84/G74 (the spindle
+//! state after tapping and rigid/floating), G76/G87 (the shift direction is a FANUC machine
+//! parameter), G86 (every Sinumerik boring cycle that stops the spindle also stops the
+//! program), G88 (CYCLE88 needs the spindle direction SDIR), incremental cycle data (G91),
+//! another plane, a cycle that spans structures or labels, G98 after a G99 hole, and
+//! repeats K/L that are not a constant. The rules are in docs/translation-fanuc-to-sinumerik.md.
+
+use super::*;
+
+/// The cycle data of the sequence, as FANUC expressions in millimetres.
+#[derive(Clone, Default)]
+struct Data {
+    g: u32,
+    r: Option<Expr>,
+    z: Option<Expr>,
+    q: Option<Expr>,
+    p: Option<Expr>,
+    g99: bool,
+}
+
+/// Lowers the drilling cycles of every block list of the program.
+pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
+    let mut any = false;
+    let mut planes = false;
+    visit_blocks(&body, &mut |b| {
+        let gs = g_codes(&b.items);
+        any |= gs.iter().copied().any(cycle_g);
+        planes |= gs.iter().any(|g| matches!(g, 180 | 190));
+    });
+    if !any {
+        return body;
+    }
+    let top = ctx.plan().role == Role::Main;
+    let mut nested = Vec::with_capacity(body.len());
+    for s in body {
+        match s.kind {
+            StmtKind::Block(_) => nested.push(s),
+            _ => nested.extend(map_bodies(vec![s], &mut |b| lower_list(ctx, b, planes, false))),
+        }
+    }
+    lower_list(ctx, nested, planes, top)
+}
+
+fn cycle_g(g: u32) -> bool {
+    matches!(g, 730 | 740 | 760 | 810..=890)
+}
+
+fn visit_blocks(body: &[Stmt], f: &mut dyn FnMut(&Block)) {
+    for s in body {
+        match &s.kind {
+            StmtKind::Block(b) => f(b),
+            StmtKind::If(i) => {
+                visit_blocks(&i.then_body, f);
+                if let Some(e) = &i.else_part {
+                    visit_blocks(&e.body, f);
+                }
+            }
+            StmtKind::While(w) => visit_blocks(&w.body, f),
+            StmtKind::Loop(l) => visit_blocks(&l.body, f),
+            StmtKind::For(x) => visit_blocks(&x.body, f),
+            StmtKind::Repeat(r) => visit_blocks(&r.body, f),
+            StmtKind::Do(d) => visit_blocks(&d.body, f),
+        }
+    }
+}
+
+/// The numeric value of a word in the block at `lo`: a literal without a decimal point is in
+/// least increments of the unit in force there (G20/G21); `None` where that unit depends on
+/// the path taken or on the caller (the value cannot be written exactly).
+fn length(ctx: &Ctx, e: &Expr, lo: u32) -> Option<Expr> {
+    fn bare(e: &Expr) -> bool {
+        match &e.kind {
+            ExprKind::Num(n) => !n.point,
+            ExprKind::Unary(UnOp::Neg, a) => bare(a),
+            _ => false,
+        }
+    }
+    match literal(e) {
+        Some(v) if bare(e) => {
+            ctx.modal.inch_at(lo).map(|inch| num(super::words::scale(ctx.opts, v, inch, false), e.span))
+        }
+        _ => Some(e.clone()),
+    }
+}
+
+const UNIT_UNKNOWN: &str =
+    "a drilling-cycle value without a decimal point where the unit (G20/G21) depends on the path taken or on the caller";
+const UNIT_HINT: &str = "write the value with a decimal point";
+
+fn word_expr(w: &Word) -> Option<&Expr> {
+    match &w.value {
+        WordValue::Expr(e) => Some(e),
+        _ => None,
+    }
+}
+
+fn block(items: Vec<Item>, span: Span) -> Stmt {
+    plain_block(items, span)
+}
+
+fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str, out: &mut Vec<Stmt>) {
+    out.extend(ctx.refuse("NC428", span, &format!("{what}: not translated to Sinumerik"), what, hint));
+}
+
+fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(body.len());
+    let mut active: Option<Data> = None;
+    // The motion mode before the cycle (G0 at the top of a main program): the positioning
+    // blocks write G0, so another mode is written again after the cycle.
+    let mut motion: Option<u32> = if top { Some(0) } else { None };
+    let mut after_g99_hole = false;
+    for s in body {
+        let span = s.span;
+        let StmtKind::Block(mut b) = s.kind else {
+            if active.take().is_some() {
+                refuse(
+                    ctx,
+                    span,
+                    "a drilling cycle that stays active into a structure",
+                    "cancel it with G80 before",
+                    &mut out,
+                );
+            }
+            motion = None;
+            out.push(s);
+            continue;
+        };
+        let gs = g_codes(&b.items);
+        let new_cycle = gs.iter().copied().find(|g| cycle_g(*g));
+        let motion_g = gs.iter().copied().find(|g| matches!(g, 0 | 10 | 20 | 30));
+        if active.is_none() && new_cycle.is_none() {
+            if let Some(m) = motion_g {
+                motion = Some(m);
+            }
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            continue;
+        }
+        if b.meta.label.is_some() && active.is_some() {
+            refuse(
+                ctx,
+                span,
+                "a jump target inside a drilling cycle",
+                "cancel the cycle (G80) before the label",
+                &mut out,
+            );
+        }
+        if planes {
+            refuse(ctx, span, "a drilling cycle in a program that selects G18/G19", "drill in G17", &mut out);
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            active = None;
+            continue;
+        }
+        // Cancel: G80 or a motion code ends the MCALL before the block's own words.
+        let cancel = gs.contains(&800) || motion_g.is_some();
+        if cancel && new_cycle.is_none() {
+            b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && word_expr(w).and_then(literal) == Some(80.0)));
+            if active.take().is_some() {
+                if b.items.is_empty() {
+                    // `G80` alone: the block becomes the `MCALL` (which stands alone).
+                    b.items.push(Item { kind: ItemKind::ModalCallOff, span });
+                    if let Some(m) = motion.filter(|m| *m != 0) {
+                        out.push(Stmt { kind: StmtKind::Block(b), span });
+                        out.push(block(vec![super::words::g_word(m, span)], span));
+                        continue;
+                    }
+                    if motion.is_none() {
+                        refuse(
+                            ctx,
+                            span,
+                            "the motion mode after a drilling cycle",
+                            "program G00 or G01 after G80",
+                            &mut out,
+                        );
+                    }
+                    out.push(Stmt { kind: StmtKind::Block(b), span });
+                    after_g99_hole = false;
+                    continue;
+                }
+                let mut items = vec![Item { kind: ItemKind::ModalCallOff, span }];
+                if motion_g.is_none() {
+                    match motion {
+                        Some(0) => {}
+                        Some(m) => items.push(super::words::g_word(m, span)),
+                        None => refuse(
+                            ctx,
+                            span,
+                            "the motion mode after a drilling cycle",
+                            "program G00 or G01 after G80",
+                            &mut out,
+                        ),
+                    }
+                }
+                out.push(block(items, span));
+            }
+            if let Some(m) = motion_g {
+                motion = Some(m);
+            }
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            after_g99_hole = false;
+            continue;
+        }
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. })) {
+            if active.take().is_some() {
+                out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
+            }
+            out.push(Stmt { kind: StmtKind::Block(b), span });
+            continue;
+        }
+        let mut d = active.clone().unwrap_or_default();
+        let starting = active.is_none();
+        if let Some(g) = new_cycle {
+            d.g = g;
+        }
+        if gs.contains(&910) {
+            refuse(ctx, span, "a drilling cycle with incremental data (G91)", "program the cycle in G90", &mut out);
+        }
+        let mut changed = starting || new_cycle.is_some();
+        let (mut pos, mut drill_word, mut other, mut count) = (Vec::new(), false, Vec::new(), None::<Expr>);
+        let mut feed = false;
+        for it in std::mem::take(&mut b.items) {
+            let ItemKind::Word(w) = &it.kind else {
+                other.push(it);
+                continue;
+            };
+            let Some(e) = word_expr(w) else {
+                refuse(ctx, it.span, "an AC()/IC() word in a drilling cycle", "write the value plainly", &mut out);
+                continue;
+            };
+            match w.addr.as_str() {
+                "G" => match literal(e).map(|v| (v * 10.0).round() as u32) {
+                    Some(980) => {
+                        d.g99 = false;
+                        changed = true;
+                    }
+                    Some(990) => {
+                        d.g99 = true;
+                        changed = true;
+                    }
+                    Some(g) if cycle_g(g) => {}
+                    Some(900) => {}
+                    _ => other.push(it.clone()),
+                },
+                "X" | "Y" => {
+                    pos.push(it.clone());
+                    drill_word = true;
+                }
+                "Z" => {
+                    let Some(v) = length(ctx, e, span.lo) else {
+                        refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
+                        continue;
+                    };
+                    d.z = Some(v);
+                    drill_word = true;
+                    changed = true;
+                }
+                "R" => {
+                    let Some(v) = length(ctx, e, span.lo) else {
+                        refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
+                        continue;
+                    };
+                    d.r = Some(v);
+                    drill_word = true;
+                    changed = true;
+                }
+                "Q" => {
+                    let Some(v) = length(ctx, e, span.lo) else {
+                        refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
+                        continue;
+                    };
+                    d.q = Some(v);
+                    changed = true;
+                }
+                "P" => {
+                    d.p = Some(e.clone());
+                    changed = true;
+                }
+                "K" | "L" => count = Some(e.clone()),
+                "F" => {
+                    feed = true;
+                    other.push(it.clone());
+                }
+                _ => other.push(it.clone()),
+            }
+        }
+        active = Some(d.clone());
+        if let Some(why) = unsupported_kind(d.g) {
+            // Every block of the cycle is refused, so no hole turns into a plain move.
+            refuse(ctx, span, why.0, why.1, &mut out);
+            continue;
+        }
+        // G85 carries the feed in its arguments: a new F is a new MCALL.
+        changed |= feed && d.g == 850;
+        let repeats = match &count {
+            None => 1,
+            Some(e) => match literal(e) {
+                Some(k) if (0.0..=99.0).contains(&k) && k.fract() == 0.0 => k as usize,
+                _ => {
+                    refuse(
+                        ctx,
+                        span,
+                        "a repeat count K/L that is not a constant from 0 to 99",
+                        "write the holes as blocks",
+                        &mut out,
+                    );
+                    1
+                }
+            },
+        };
+        let mcall = drill_word && (changed || starting);
+        // F and S go before an MCALL (its arguments may read them); the block number, the
+        // comments and the other words ride on the first hole.
+        let (lead, rest): (Vec<Item>, Vec<Item>) = other
+            .into_iter()
+            .partition(|it| mcall && matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'F') || w.addr.is(b'S')));
+        if !lead.is_empty() {
+            out.push(block(lead, span));
+        }
+        b.items = rest;
+        if !drill_word || repeats == 0 {
+            if !b.items.is_empty() || b.meta.number.is_some() || !b.meta.comments.is_empty() {
+                out.push(Stmt { kind: StmtKind::Block(b), span });
+            }
+            if !drill_word && changed && !starting {
+                // New data without a hole: the next hole drills with it.
+                pending(ctx, &mut out, &active, span, after_g99_hole);
+            }
+            continue;
+        }
+        if mcall {
+            if let Some(call) = call_item(ctx, &d, CallKind::Mcall, span, after_g99_hole, &mut out) {
+                out.push(block(vec![call], span));
+            }
+        }
+        for k in 0..repeats {
+            let mut hole = if k == 0 { std::mem::take(&mut b) } else { Block::default() };
+            if pos.is_empty() {
+                if let Some(call) = call_item(ctx, &d, CallKind::Named, span, after_g99_hole, &mut out) {
+                    hole.items.push(call);
+                }
+            } else {
+                hole.items.insert(0, super::words::g_word(0, span));
+                hole.items.extend(pos.iter().cloned());
+            }
+            hole.meta.span = span;
+            out.push(Stmt { kind: StmtKind::Block(hole), span });
+        }
+        if repeats > 0 {
+            after_g99_hole = d.g99;
+        }
+    }
+    if active.is_some() && !top {
+        let span = out.last().map_or(Span::default(), |s| s.span);
+        refuse(ctx, span, "a drilling cycle still active at the end of a block list", "cancel it with G80", &mut out);
+    }
+    out
+}
+
+/// New cycle data in a block without a hole: written as an MCALL at once (the next hole
+/// block then drills with it).
+fn pending(ctx: &mut Ctx, out: &mut Vec<Stmt>, d: &Option<Data>, span: Span, after_g99: bool) {
+    if let Some(d) = d {
+        if let Some(call) = call_item(ctx, d, CallKind::Mcall, span, after_g99, out) {
+            out.push(block(vec![call], span));
+        }
+    }
+}
+
+/// The cycles without an exact Sinumerik counterpart, and why.
+fn unsupported_kind(g: u32) -> Option<(&'static str, &'static str)> {
+    Some(match g {
+        840 | 740 => (
+            "tapping G84/G74",
+            "CYCLE84/CYCLE840 need the spindle state after the cycle and rigid or floating tapping, which the translation does not know yet",
+        ),
+        760 | 870 => ("fine or back boring G76/G87", "the shift direction is a FANUC machine parameter (6240): write CYCLE86 by hand"),
+        860 => ("boring G86", "every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87)"),
+        880 => ("boring G88", "CYCLE88 needs the spindle direction SDIR, which the translation does not know"),
+        _ => return None,
+    })
+}
+
+/// `CYCLEnn(RTP, RFP, SDIS, DP, …)` for the data `d`.
+fn call_item(
+    ctx: &mut Ctx,
+    d: &Data,
+    kind: CallKind,
+    span: Span,
+    after_g99: bool,
+    out: &mut Vec<Stmt>,
+) -> Option<Item> {
+    let (Some(r), Some(z)) = (d.r.clone(), d.z.clone()) else {
+        refuse(ctx, span, "a drilling cycle without R or Z", "program R and Z in the cycle block", out);
+        return None;
+    };
+    if !d.g99 && after_g99 {
+        refuse(ctx, span, "G98 after a G99 hole in one drilling cycle", "start the cycle again after G80", out);
+        return None;
+    }
+    let rtp = if d.g99 { r.clone() } else { var_expr(VarKind::Hash(5003), span) };
+    let v = |e: Expr| Arg::Value(e);
+    let none = || Arg::Omitted(span);
+    let zero = || Arg::Value(int(0, span));
+    let dtb = || match &d.p {
+        Some(p) => match literal(p) {
+            Some(ms) => Arg::Value(num(ms.round() / 1000.0, span)),
+            None => Arg::Value(bin(BinOp::Div, p.clone(), int(1000, span))),
+        },
+        None => Arg::Value(int(0, span)),
+    };
+    let mut args = vec![v(rtp), v(r), zero(), v(z)];
+    let name = match d.g {
+        810 => "CYCLE81",
+        820 => {
+            args.extend([none(), dtb()]);
+            "CYCLE82"
+        }
+        830 | 730 => {
+            let Some(q) = d.q.clone() else {
+                refuse(ctx, span, "G73/G83 without Q", "program the infeed Q", out);
+                return None;
+            };
+            let vari = if d.g == 830 { 1 } else { 0 };
+            args.extend([
+                none(),
+                none(),
+                v(q),
+                zero(),
+                zero(),
+                zero(),
+                Arg::Value(int(1, span)),
+                Arg::Value(int(vari, span)),
+            ]);
+            "CYCLE83"
+        }
+        850 => {
+            let f = || var_expr(VarKind::Hash(4109), span);
+            args.extend([none(), zero(), v(f()), v(f())]);
+            "CYCLE85"
+        }
+        890 => {
+            args.extend([none(), dtb()]);
+            "CYCLE89"
+        }
+        _ => return None,
+    };
+    let call = Call { kind, target: CallTarget::Name(name.into()), args, repeat: None };
+    Some(Item { kind: ItemKind::Call(Box::new(call)), span })
+}
