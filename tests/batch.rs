@@ -396,7 +396,8 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g73-chip-break.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g74-left-tap.nc", "NC428"),   // a drilling cycle without an exact Sinumerik form
-    ("cycle-g76-fine-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
+    ("cycle-g76-fine-bore.nc", "NC428"),
+    ("cycle-g81-spot-drill.nc", "NC385"),  // G43 H1: tool compensation is not compared
     ("cycle-g83-deep-hole.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g84-rigid-tap.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
