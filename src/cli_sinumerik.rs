@@ -160,7 +160,7 @@ pub fn load_job(
     let mut units = vec![parsed.unit];
     let dir = beside(path);
     let mut read = vec![path.to_path_buf()];
-    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut read, &mut after_end);
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, (&mut read, &mut after_end));
     if diag::has_errors(&diags) {
         return Err((db, diags));
     }
@@ -184,8 +184,7 @@ fn load_callees(
     encoding: Option<&'static encoding_rs::Encoding>,
     opts: &ParseOptions,
     diags: &mut Vec<diag::Diagnostic>,
-    read: &mut Vec<PathBuf>,
-    after_end: &mut BTreeSet<u32>,
+    (read, after_end): (&mut Vec<PathBuf>, &mut BTreeSet<u32>),
 ) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
@@ -245,7 +244,7 @@ fn callees_beside(
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
     let missing =
-        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, read, &mut BTreeSet::new());
+        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, (read, &mut BTreeSet::new()));
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }

@@ -397,17 +397,17 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g73-chip-break.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g74-left-tap.nc", "NC428"),   // a drilling cycle without an exact Sinumerik form
     ("cycle-g76-fine-bore.nc", "NC428"),
-    ("cycle-g81-spot-drill.nc", "NC385"),  // G43 H1: tool compensation is not compared
+    ("cycle-g81-spot-drill.nc", "NC385"), // G43 H1: tool compensation is not compared
     ("cycle-g83-deep-hole.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g84-rigid-tap.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g88-bore-manual.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("functions-misc.nc", "NC369"),                      // ADP
-    ("g10-l50-param-write.nc", "NC355"),                 // G10 L50
-    ("m98-packed-p.nc", "NC355"),                        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
-    ("multi-word-block.nc", "NC385"),                    // G43 H1: tool compensation is not compared
-    ("seed-o9050-brake-test.nc", "NC355"),               // G10 L50
+    ("functions-misc.nc", "NC369"),       // ADP
+    ("g10-l50-param-write.nc", "NC355"),  // G10 L50
+    ("m98-packed-p.nc", "NC355"),         // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
+    ("multi-word-block.nc", "NC385"),     // G43 H1: tool compensation is not compared
+    ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
     ("system-variables.nc", "NC365"),     // #4003
 ];
@@ -415,14 +415,14 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
-    ("CYCLE_G85_REAM.mpf", "NC390"),    // CYCLE85: its FFR/RFF would change FANUC's modal F
-    ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
-    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
-    ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
+    ("CYCLE_G85_REAM.mpf", "NC390"), // CYCLE85: its FFR/RFF would change FANUC's modal F
+    ("GOTO_FORMS.mpf", "NC310"),     // the computed-GOTO helper STRING
+    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"), // the computed variables' SETAL(64115)
+    ("MACRO_A_H99_ALARM.mpf", "NC315"), // SETAL outside 65000..65999
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
-    ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"), // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"), // MCALL
+    ("P_M98_SUBPROGRAM.mpf", "NC303"), // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
     ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"), // the computed-GOTO helper STRING
 ];
