@@ -228,10 +228,16 @@ impl Interp<'_> {
                 CalleeName::Number(n) => format!("O{n} in this file, or O{n}.nc / {n}.nc beside it"),
                 CalleeName::Name(s) => format!("{s}.SPF or {s}.MPF beside this file (any case)"),
             };
-            Diagnostic::error("NC401", format!("called program {shown} not found"))
+            let d = Diagnostic::error("NC401", format!("called program {shown} not found"))
                 .primary(self.file(), span, "called here")
-                .note(format!("looked for {where_}"))
-                .hint("put the subprogram beside the main program")
+                .note(format!("looked for {where_}"));
+            match name {
+                // `SH602` alone: a program name to the control; only an address if no program has it.
+                CalleeName::Name(s) if numbered_name(s) => d
+                    .note(format!("{s} is read as a call: a name of letters and digits written alone is a program name"))
+                    .hint(format!("put {s}.SPF beside the main program; if {s} is an address, give it its value (`{s}=…`)")),
+                _ => d.hint("put the subprogram beside the main program"),
+            }
         };
         Fault::error(d)
     }
@@ -606,4 +612,10 @@ impl Saved {
         }
         m.trans = self.trans;
     }
+}
+
+/// `SH602`, `PLCASUP1`: two or more letters, then digits (one letter and digits is an address).
+fn numbered_name(s: &str) -> bool {
+    let letters = s.bytes().take_while(u8::is_ascii_alphabetic).count();
+    letters >= 2 && letters < s.len() && s.bytes().skip(letters).all(|c| c.is_ascii_digit())
 }

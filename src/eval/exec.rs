@@ -383,6 +383,25 @@ impl<'a> Interp<'a> {
                 | ItemKind::Return { .. }
                 | ItemKind::End { .. }
                 | ItemKind::RepeatSection(_) => control.push(item),
+                ItemKind::IfBlock { cond, items } => {
+                    let cx = self.cx(false);
+                    if expr::eval(self, cond, &cx)?.truthy() {
+                        for inner in items {
+                            match &inner.kind {
+                                ItemKind::Word(w) => {
+                                    if let Some(wv) = self.eval_word(w)? {
+                                        words.push(wv);
+                                    }
+                                }
+                                ItemKind::Goto(_)
+                                | ItemKind::Call(_)
+                                | ItemKind::Return { .. }
+                                | ItemKind::End { .. } => control.push(inner),
+                                _ => self.exec_simple(inner, &mut stop_message)?,
+                            }
+                        }
+                    }
+                }
                 ItemKind::IfThen { cond, then } => {
                     let cx = self.cx(false);
                     if expr::eval(self, cond, &cx)?.truthy() {
@@ -547,7 +566,8 @@ impl<'a> Interp<'a> {
                 let r = self.m.frame_op(op, &ws, item.span);
                 r.map_err(|f| self.fix_file(f))
             }
-            ItemKind::IfThen { .. } | ItemKind::Word(_) => Ok(()),
+            ItemKind::IfThen { .. } | ItemKind::IfBlock { .. } | ItemKind::Word(_) => Ok(()),
+            ItemKind::SyncAction(a) => Err(super::refuse::sync_action(self.file(), item.span, a)),
             ItemKind::Goto(_)
             | ItemKind::Case(_)
             | ItemKind::Call(_)
@@ -682,6 +702,7 @@ impl<'a> Interp<'a> {
             WordValue::Expr(e) => (e, AbsInc::Plain),
             WordValue::Ac(e) => (e, AbsInc::Ac),
             WordValue::Ic(e) => (e, AbsInc::Ic),
+            WordValue::Rotary(m, _) => return Err(super::refuse::rotary(self.file(), w, *m)),
         };
         let bare = self.fanuc && is_bare_literal(e);
         // A literal (nearly every word of CAM code) is its value: skip the walker.

@@ -21,6 +21,7 @@ pub mod input;
 pub mod lit;
 pub mod machine;
 pub mod numfmt;
+pub mod refuse;
 pub mod sysvars;
 pub mod trace;
 pub mod value;

@@ -131,6 +131,32 @@ impl Dumper {
                 self.nested(|d| d.item(then));
                 return;
             }
+            ItemKind::IfBlock { cond, items } => {
+                self.line(format!("if-block {} {at}", expr(cond)));
+                self.nested(|d| {
+                    for i in items {
+                        d.item(i);
+                    }
+                });
+                return;
+            }
+            ItemKind::SyncAction(a) => {
+                let mut s = String::from("sync-action");
+                if let Some((scope, id)) = &a.id {
+                    let kw = if *scope == SyncScope::Static { "ids" } else { "id" };
+                    let _ = write!(s, " {kw}={}", expr(id));
+                }
+                if let Some((t, c)) = &a.trigger {
+                    let _ = write!(s, " {} {}", t.name().to_ascii_lowercase(), expr(c));
+                }
+                self.line(format!("{s} {at}"));
+                self.nested(|d| {
+                    for i in &a.actions {
+                        d.item(i);
+                    }
+                });
+                return;
+            }
             ItemKind::Case(c) => {
                 let mut s = format!("case {}", expr(&c.selector));
                 for a in &c.arms {
@@ -150,7 +176,12 @@ impl Dumper {
             ItemKind::End { code } => format!("end {code:?}"),
             ItemKind::Def(def) => {
                 let vars: Vec<String> = def.vars.iter().map(defvar).collect();
-                format!("def {} {}", ty(def.ty), vars.join(", "))
+                let scope = match def.scope {
+                    Some(DefScope::Nck) => "nck ",
+                    Some(DefScope::Chan) => "chan ",
+                    None => "",
+                };
+                format!("def {scope}{} {}", ty(def.ty), vars.join(", "))
             }
             ItemKind::Alarm { style, number, text } => {
                 let st = match style {
@@ -263,6 +294,7 @@ fn word(w: &Word) -> String {
         WordValue::Expr(e) => expr(e),
         WordValue::Ac(e) => format!("ac({})", expr(e)),
         WordValue::Ic(e) => format!("ic({})", expr(e)),
+        WordValue::Rotary(m, e) => format!("{}({})", m.name().to_ascii_lowercase(), expr(e)),
     };
     format!("{} {v}", w.addr.as_str())
 }
@@ -440,6 +472,7 @@ pub fn func_name(f: Func) -> &'static str {
         Func::MinVal => "minval",
         Func::MaxVal => "maxval",
         Func::Bound => "bound",
+        Func::AxName => "axname",
         Func::Bin => "bin",
         Func::Bcd => "bcd",
         Func::Adp => "adp",

@@ -62,6 +62,10 @@ pub enum ItemKind {
     Goto(Box<Goto>),
     /// FANUC `IF[cond]THEN stmt`: exactly one macro statement, run when `cond` holds.
     IfThen { cond: Expr, then: Box<Item> },
+    /// Haas `IF [cond] S800 F600.` / `IF [cond] THEN M31`: the block's other items, run only
+    /// when `cond` holds (Haas operator's manual, macros: IF without GOTO or THEN). Empty
+    /// for `IF [cond]` alone.
+    IfBlock { cond: Expr, items: Vec<Item> },
     /// Siemens `CASE (e) OF 1 GOTOF A 2 GOTOF B DEFAULT GOTOF C`.
     Case(Box<Case>),
     /// Any subprogram or macro call (see [`CallKind`]).
@@ -92,6 +96,52 @@ pub enum ItemKind {
     /// path modes (`CIP`, `BSPLINE`, `SOFT`, `CFC`), spline end conditions (`BNAT`, `ETAN`),
     /// `SUPA`, `SBLOF`. Like a G function, but named; never a subprogram call.
     Instruction { name: String },
+    /// Siemens synchronized action: `ID=1 WHEN cond DO actions` and its forms. It runs in
+    /// the interpolation cycle beside the program, so neither the evaluator nor FANUC can
+    /// carry it; it is read so that the rest of the file can be checked.
+    SyncAction(Box<SyncAction>),
+}
+
+/// A Siemens synchronized action.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SyncAction {
+    /// `ID=n` (modal, this program) or `IDS=n` (static, beyond the program end).
+    pub id: Option<(SyncScope, Expr)>,
+    /// `WHEN`, `WHENEVER`, `EVERY`, `FROM`, or `None` for an action without condition.
+    pub trigger: Option<(SyncTrigger, Expr)>,
+    /// The items after `DO`, in order.
+    pub actions: Vec<Item>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SyncScope {
+    /// `ID=n`.
+    Modal,
+    /// `IDS=n`.
+    Static,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SyncTrigger {
+    /// `WHEN c`: once, the first time c holds.
+    When,
+    /// `WHENEVER c`: in every interpolation cycle in which c holds.
+    Whenever,
+    /// `EVERY c`: each time c becomes true.
+    Every,
+    /// `FROM c`: in every cycle once c has held.
+    From,
+}
+
+impl SyncTrigger {
+    pub fn name(self) -> &'static str {
+        match self {
+            SyncTrigger::When => "WHEN",
+            SyncTrigger::Whenever => "WHENEVER",
+            SyncTrigger::Every => "EVERY",
+            SyncTrigger::From => "FROM",
+        }
+    }
 }
 
 /// FANUC `G10 L50` mode: `N<param> [P<axis>] [Q<bit>] R<value>`.
@@ -163,6 +213,61 @@ pub enum WordValue {
     Ac(Expr),
     /// Siemens `X=IC(…)`: incremental for this word only.
     Ic(Expr),
+    /// Siemens rotary-axis positioning `C=ACP(…)`, `ACN`, `DC`, `CAC`, `CACP`, `CACN`,
+    /// `CIC`, `CDC`: the value with the direction or coding rule that goes with it.
+    Rotary(RotaryMode, Expr),
+}
+
+/// How a Siemens rotary-axis word positions (dialects.md §6; Siemens PGA "ACP, ACN, DC").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RotaryMode {
+    /// `ACP(a)`: absolute, approached in the positive direction.
+    Acp,
+    /// `ACN(a)`: absolute, approached in the negative direction.
+    Acn,
+    /// `DC(a)`: absolute along the shortest path.
+    Dc,
+    /// `CAC(n)`: coded position n from the machine data table, absolute.
+    Cac,
+    /// `CACP(n)`: coded position, positive direction.
+    Cacp,
+    /// `CACN(n)`: coded position, negative direction.
+    Cacn,
+    /// `CIC(n)`: coded position, incremental.
+    Cic,
+    /// `CDC(n)`: coded position, shortest path.
+    Cdc,
+}
+
+impl RotaryMode {
+    /// The Siemens spelling (`ACP`).
+    pub fn name(self) -> &'static str {
+        match self {
+            RotaryMode::Acp => "ACP",
+            RotaryMode::Acn => "ACN",
+            RotaryMode::Dc => "DC",
+            RotaryMode::Cac => "CAC",
+            RotaryMode::Cacp => "CACP",
+            RotaryMode::Cacn => "CACN",
+            RotaryMode::Cic => "CIC",
+            RotaryMode::Cdc => "CDC",
+        }
+    }
+
+    /// From the upper-case Siemens keyword.
+    pub fn from_name(upper: &str) -> Option<RotaryMode> {
+        Some(match upper {
+            "ACP" => RotaryMode::Acp,
+            "ACN" => RotaryMode::Acn,
+            "DC" => RotaryMode::Dc,
+            "CAC" => RotaryMode::Cac,
+            "CACP" => RotaryMode::Cacp,
+            "CACN" => RotaryMode::Cacn,
+            "CIC" => RotaryMode::Cic,
+            "CDC" => RotaryMode::Cdc,
+            _ => return None,
+        })
+    }
 }
 
 /// How a jump searches for its target.
@@ -287,8 +392,20 @@ impl std::fmt::Display for DataType {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Def {
+    /// `DEF NCK …` / `DEF CHAN …` (global user data in a definition file); `None` for a
+    /// program's own DEF.
+    pub scope: Option<DefScope>,
     pub ty: DataType,
     pub vars: Vec<DefVar>,
+}
+
+/// Where Siemens global user data lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DefScope {
+    /// `NCK`: one value for the whole control.
+    Nck,
+    /// `CHAN`: one value per channel.
+    Chan,
 }
 
 #[derive(Clone, Debug, PartialEq)]

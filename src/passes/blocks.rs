@@ -62,7 +62,8 @@ fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>
                 // A word's value is taken where it is written: an assignment later in the
                 // block must not change it, so it is computed before that assignment.
                 if last_assign.is_some_and(|a| a > k) {
-                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e)) = &mut w.value;
+                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e)) =
+                        &mut w.value;
                     if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
                         let t = ctx.temp(e.span);
                         let v = std::mem::replace(e, var_expr(&t));
@@ -178,6 +179,7 @@ mod tests {
     #[test]
     fn def_initialises_every_element() {
         let d = Def {
+            scope: None,
             ty: DataType::Real,
             vars: vec![DefVar { name: "A".into(), dims: vec![2, 2], init: None, span: sp() }],
         };
@@ -193,6 +195,7 @@ mod tests {
     #[test]
     fn string_def_is_unsupported() {
         let d = Def {
+            scope: None,
             ty: DataType::String(10),
             vars: vec![DefVar { name: "S".into(), dims: vec![], init: None, span: sp() }],
         };

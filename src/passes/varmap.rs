@@ -412,7 +412,7 @@ fn visit_item(it: &mut Item, f: &mut dyn FnMut(&mut VarRef)) {
             visit_expr(value, f);
         }
         ItemKind::Word(w) => match &mut w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => visit_expr(e, f),
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => visit_expr(e, f),
         },
         ItemKind::Goto(g) => goto(g, f),
         ItemKind::IfThen { cond, then } => {

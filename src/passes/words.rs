@@ -321,6 +321,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
             ItemKind::ModalCallOff => {
                 after.extend(ctx.unsupported("NC318", span, "MCALL cancel", "modal calls are not translated"))
             }
+            ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
+                "NC631",
+                span,
+                &crate::eval::refuse::sync_name(&a),
+                crate::eval::refuse::SYNC_WHY,
+            )),
             kind => kept.push(Item { kind, span }),
         }
     }
@@ -367,6 +373,10 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         };
         let is_axis = AXES.contains(&letter);
         match &w.value {
+            WordValue::Rotary(m, _) => {
+                let what = format!("{}={}(…) rotary-axis positioning", w.addr.as_str(), m.name());
+                return Err(unsup(ctx, "NC630", wspan, &what, crate::eval::refuse::ROTARY_WHY));
+            }
             WordValue::Ac(_) | WordValue::Ic(_) if !is_axis => {
                 let what = format!("{}=AC()/IC() on a non-axis address", letter as char);
                 return Err(unsup(ctx, "NC313", wspan, &what, "write the arc centre incrementally"));

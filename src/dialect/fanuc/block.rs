@@ -179,6 +179,8 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         Ok(())
     };
     let only = rest.len() == 1;
+    // Haas `IF [c] <NC words>`: the condition over the rest of the block.
+    let mut haas_if: Option<(Expr, Span)> = None;
     for p in rest {
         match p {
             Part::Word(w) => words.push(w),
@@ -200,7 +202,11 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
                     span,
                 });
             }
-            Part::If { cond, then, span } => {
+            Part::If { cond, then: None, span } => {
+                note_statement(span, false)?;
+                haas_if = Some((cond, span));
+            }
+            Part::If { cond, then: Some(then), span } => {
                 note_statement(span, false)?;
                 let kind = match *then {
                     Part::Goto { target, .. } => ItemKind::Goto(Box::new(Goto {
@@ -247,9 +253,20 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         let (word_items, is_macro) =
             if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &mut words)? };
         let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
-        if is_macro {
+        // Haas `IF [c] THEN #i=… <words>`: the assignment and the words are conditional.
+        let then_words = !is_macro
+            && haas_if.is_none()
+            && items.len() == 1
+            && matches!(items[0].kind, ItemKind::IfThen { .. });
+        if then_words {
+            if let Some(Item { kind: ItemKind::IfThen { cond, then }, span }) = items.pop() {
+                items.push(*then);
+                haas_if = Some((cond, span));
+            }
+        }
+        if is_macro && haas_if.is_none() {
             note_statement(wspan, false)?;
-        } else if let Some((s, plain_goto)) = statement {
+        } else if let (Some((s, plain_goto)), None) = (statement, &haas_if) {
             if !plain_goto {
                 return Err(Diagnostic::error("NC167", "a macro statement and NC words in one block")
                     .primary(cx.file, s, "macro statement")
@@ -270,6 +287,10 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         if has_g11 {
             cx.param_mode = false;
         }
+    }
+    if let Some((cond, span)) = haas_if {
+        let span = items.iter().map(|i| i.span).fold(span, Span::to);
+        items = vec![Item { kind: ItemKind::IfBlock { cond, items }, span }];
     }
     meta.comments = comments;
     Ok(Line::Block(Block { meta, items }))

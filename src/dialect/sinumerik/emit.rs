@@ -286,7 +286,12 @@ impl Writer {
                         s
                     })
                     .collect();
-                format!("DEF {} {}", ty(d.ty), vars.join(", "))
+                let scope = match d.scope {
+                    Some(DefScope::Nck) => "NCK ",
+                    Some(DefScope::Chan) => "CHAN ",
+                    None => "",
+                };
+                format!("DEF {scope}{} {}", ty(d.ty), vars.join(", "))
             }
             ItemKind::Alarm { style: AlarmStyle::Setal, number, .. } => format!("SETAL({})", expr(number)),
             ItemKind::Alarm { style: AlarmStyle::FanucMacro, .. } => self.problem(it.span, "a FANUC #3000 alarm"),
@@ -295,6 +300,19 @@ impl Writer {
             ItemKind::Message { text: None } => "MSG()".into(),
             ItemKind::Stopre => "STOPRE".into(),
             ItemKind::IfThen { .. } => self.problem(it.span, "a FANUC IF-THEN"),
+            ItemKind::IfBlock { .. } => self.problem(it.span, "a Haas IF with NC words"),
+            ItemKind::SyncAction(a) => {
+                let mut s = String::new();
+                if let Some((scope, id)) = &a.id {
+                    let kw = if *scope == SyncScope::Static { "IDS" } else { "ID" };
+                    s.push_str(&format!("{kw}={} ", expr(id)));
+                }
+                if let Some((t, c)) = &a.trigger {
+                    s.push_str(&format!("{} {} ", t.name(), expr(c)));
+                }
+                let acts: Vec<String> = a.actions.iter().map(|i| self.item(i)).collect();
+                format!("{s}DO {}", acts.join(" "))
+            }
             ItemKind::ParamWrite(_) => self.problem(it.span, "a FANUC parameter write"),
             ItemKind::RepeatSection(r) => {
                 let kw = if r.single { "REPEATB" } else { "REPEAT" };
@@ -393,6 +411,7 @@ fn word(w: &Word) -> String {
         },
         WordValue::Ac(e) => format!("{addr}=AC({})", expr(e)),
         WordValue::Ic(e) => format!("{addr}=IC({})", expr(e)),
+        WordValue::Rotary(m, e) => format!("{addr}={}({})", m.name(), expr(e)),
     }
 }
 
@@ -510,6 +529,7 @@ fn func_name(f: Func) -> &'static str {
         Func::MinVal => "MINVAL",
         Func::MaxVal => "MAXVAL",
         Func::Bound => "BOUND",
+        Func::AxName => "AXNAME",
         // FANUC-only functions have no Siemens spelling; the passes lower them. Should one
         // slip through, a name Siemens does not know makes the re-parse fail loudly.
         Func::FanucAsin => "FANUC_ASIN",

@@ -13,6 +13,7 @@ mod parse;
 pub mod scan_words;
 mod skeleton;
 mod structure;
+mod sync;
 
 pub mod emit;
 

@@ -22,6 +22,7 @@
 pub mod calls;
 pub mod exprs;
 pub mod gotos;
+pub mod haas_if;
 pub mod indirect;
 pub mod modal;
 pub mod structures;
@@ -293,6 +294,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
+    body = haas_if::refuse(ctx, body);
     ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
@@ -449,7 +451,7 @@ pub fn map_exprs(body: &mut [Stmt], f: &mut dyn FnMut(&mut Expr)) {
 pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
     fn word(w: &mut Word, f: &mut dyn FnMut(&mut Expr)) {
         match &mut w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => f(e),
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => f(e),
         }
     }
     fn goto(g: &mut Goto, f: &mut dyn FnMut(&mut Expr)) {
@@ -470,6 +472,23 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
         ItemKind::IfThen { cond, then } => {
             f(cond);
             item_exprs_mut(then, f);
+        }
+        ItemKind::IfBlock { cond, items } => {
+            f(cond);
+            for i in items {
+                item_exprs_mut(i, f);
+            }
+        }
+        ItemKind::SyncAction(a) => {
+            if let Some((_, e)) = &mut a.id {
+                f(e);
+            }
+            if let Some((_, e)) = &mut a.trigger {
+                f(e);
+            }
+            for i in &mut a.actions {
+                item_exprs_mut(i, f);
+            }
         }
         ItemKind::Case(c) => {
             f(&mut c.selector);
