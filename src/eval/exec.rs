@@ -731,6 +731,7 @@ impl<'a> Interp<'a> {
                 let i = (b - b'A') as usize;
                 std::borrow::Cow::Borrowed(&LETTERS[i..i + 1])
             }
+            crate::ir::Addr::Axis(e) => std::borrow::Cow::Owned(self.axis_name(e)?),
             a => std::borrow::Cow::Owned(a.as_str().to_ascii_uppercase()),
         };
         Ok(Some(WordVal { addr, val, mode, bare, span: w.span }))

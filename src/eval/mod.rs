@@ -12,6 +12,7 @@
 
 pub mod access;
 pub mod arc;
+pub mod axes;
 pub mod calls;
 pub mod exec;
 pub mod expr;

@@ -296,7 +296,10 @@ fn word(w: &Word) -> String {
         WordValue::Ic(e) => format!("ic({})", expr(e)),
         WordValue::Rotary(m, e) => format!("{}({})", m.name().to_ascii_lowercase(), expr(e)),
     };
-    format!("{} {v}", w.addr.as_str())
+    match &w.addr {
+        Addr::Axis(e) => format!("AX[{}] {v}", expr(e)),
+        a => format!("{} {v}", a.as_str()),
+    }
 }
 
 fn goto(g: &Goto) -> String {

@@ -177,19 +177,33 @@ pub enum AlarmStyle {
 }
 
 /// An address: a single letter (the common case, no allocation) or a longer name (`CR`,
-/// `AR`, `SPOS`, `ELX`, `I1`).
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+/// `AR`, `SPOS`, `ELX`, `I1`), or Siemens `AX[e]`: the axis whose name `e` gives at run time
+/// (an AXIS variable or `AXNAME("X")`).
+#[derive(Clone, Debug, PartialEq)]
 pub enum Addr {
     Letter(u8),
     Name(Box<str>),
+    Axis(Box<Expr>),
+}
+
+// Addresses are compared and hashed by what they are written as; `AX[e]` by its expression
+// (structurally, like every IR comparison).
+impl Eq for Addr {}
+
+impl std::hash::Hash for Addr {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.as_str().hash(state);
+    }
 }
 
 impl Addr {
+    /// The address as written; `AX` for an axis chosen at run time.
     pub fn as_str(&self) -> &str {
         match self {
             // Letters are upper-case ASCII by construction.
             Addr::Letter(b) => std::str::from_utf8(std::slice::from_ref(b)).unwrap_or("?"),
             Addr::Name(s) => s,
+            Addr::Axis(_) => "AX",
         }
     }
 

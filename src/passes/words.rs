@@ -361,6 +361,10 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         let wspan = w.span;
         match &w.addr {
             Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
+            Addr::Axis(_) => {
+                let what = "AX[…] (an axis chosen by name at run time)";
+                return Err(unsup(ctx, "NC635", wspan, what, "FANUC addresses are fixed letters; write the axis letter"));
+            }
             Addr::Name(n) => {
                 let what = format!("address {n}=");
                 return Err(unsup(ctx, "NC312", wspan, &what, "no FANUC address has this meaning"));
@@ -369,7 +373,7 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         }
         let letter = match w.addr {
             Addr::Letter(l) => l,
-            Addr::Name(_) => b'?',
+            Addr::Name(_) | Addr::Axis(_) => b'?',
         };
         let is_axis = AXES.contains(&letter);
         match &w.value {

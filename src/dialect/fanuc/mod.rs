@@ -391,6 +391,23 @@ impl<'o> Reader<'o> {
                 return;
             }
         }
+        // `* * * *`, `=====`: a separator line that real files carry; the control would alarm.
+        if scan::decorative(seg.text) {
+            self.diags.push(
+                Diagnostic::warning("NC250", "a line of only `*`, `=` or `-` is read as a comment")
+                    .primary(self.file, span, "separator line")
+                    .note("it is no NC block (no address, no macro statement); the FANUC and Haas manuals do not say that a control skips it")
+                    .hint("put separator lines in parentheses: `(* * * *)`"),
+            );
+            if let Some(prog) = self.programs.last_mut() {
+                let comments = vec![crate::ir::Comment { text: seg.text.to_string(), span }];
+                prog.push(Line::Block(crate::ir::Block {
+                    meta: BlockMeta { span, comments, ..BlockMeta::default() },
+                    items: Vec::new(),
+                }));
+            }
+            return;
+        }
         // The fast path takes only letters, digits, signs, points, blanks and a leading `/n`:
         // none of the characters `scan::check` looks at, so a block it takes passes the check.
         let parsed = match fast::parse_fast(&seg) {
@@ -424,6 +441,18 @@ impl<'o> Reader<'o> {
             }
             Ok(Line::Program { number, meta }) => self.start_program(number, meta),
             Ok(line) => {
+                if let Line::Block(b) = &line {
+                    if let [crate::ir::Item { kind: crate::ir::ItemKind::IfBlock { items, .. }, span }] = b.items.as_slice() {
+                        if items.is_empty() {
+                            self.diags.push(
+                                Diagnostic::warning("NC251", "`IF [..]` with nothing after it does nothing")
+                                    .primary(self.file, *span, "no GOTO, THEN or NC words")
+                                    .note("read as a Haas conditional block with no words; FANUC requires GOTO or THEN after IF")
+                                    .hint("complete the statement (`IF [..] GOTO n`) or delete the line"),
+                            );
+                        }
+                    }
+                }
                 prog.param_mode = cx.param_mode;
                 prog.push(line);
             }

@@ -394,7 +394,14 @@ fn word_into(out: &mut String, w: &Word) {
 }
 
 fn word(w: &Word) -> String {
-    let addr = w.addr.as_str();
+    let ax;
+    let addr = match &w.addr {
+        Addr::Axis(e) => {
+            ax = format!("AX[{}]", expr(e));
+            ax.as_str()
+        }
+        a => a.as_str(),
+    };
     let single = matches!(w.addr, Addr::Letter(_));
     match &w.value {
         WordValue::Expr(e) => match &e.kind {

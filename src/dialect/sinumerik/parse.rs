@@ -387,6 +387,23 @@ impl Lower<'_, '_> {
                     Some(s) => self.subscripts(s, names::axis_indexed(&name)),
                     None => Vec::new(),
                 };
+                // `AX[X]=10`, `AX[AX_W]=IC(2)`: an axis word whose axis is named in the brackets.
+                if name == "AX" && indices.len() == 1 && !self.st.declared.contains_key(&name) {
+                    let axis = indices.into_iter().next()?;
+                    let addr = match &axis.kind {
+                        ExprKind::Ident(a) if a.len() == 1 => Addr::Letter(a.as_bytes()[0]),
+                        ExprKind::Ident(a) => Addr::Name(a.as_str().into()),
+                        _ => Addr::Axis(Box::new(axis)),
+                    };
+                    let value = match ac_ic {
+                        None => WordValue::Expr(value),
+                        Some(Pos::Ac) => WordValue::Ac(value),
+                        Some(Pos::Ic) => WordValue::Ic(value),
+                        Some(Pos::Rotary(m)) => WordValue::Rotary(m, value),
+                    };
+                    let span = tspan.to(vspan_of(&value));
+                    return Some(ItemKind::Word(Word { addr, value, span }));
+                }
                 match names::r_number(&name) {
                     Some(d) if indices.is_empty() => self.r_param(d, tspan),
                     _ => VarRef { kind: VarKind::Named { name, indices }, span: tspan },

@@ -245,6 +245,10 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
+    let split: Vec<Option<Program>> = programs.iter().map(|(_, p)| haas_if::split(p)).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&split).map(|((f, p), s)| (*f, s.as_ref().unwrap_or(p))).collect();
+    let programs = programs.as_slice();
     let resolved: Vec<Option<Program>> = programs.iter().map(|(_, p)| indirect::resolve(p)).collect();
     let programs: Vec<(FileId, &Program)> =
         programs.iter().zip(&resolved).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
@@ -298,6 +302,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
+    body = haas_if::restructure(body);
     body = gotos::lower(ctx, body);
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
