@@ -148,3 +148,41 @@ fn synchronized_actions_are_read_with_condition_and_actions() {
     assert!(ir.contains("call DELDTG (X)"), "{ir}");
     assert!(ir.contains("assign POS['X] = 0.2\nassign FA['X] = 30\n"), "{ir}");
 }
+
+/// Parses and runs a FANUC program with the Haas profile; the trace lines.
+fn run_haas(text: &str) -> (Vec<String>, Vec<&'static str>) {
+    use nctrans::dialect::Semantics;
+    use nctrans::eval::{self, RunOptions, VecSink};
+    let mut sem = Semantics::default_for(Dialect::Fanuc);
+    sem.haas = true;
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, "haas.nc", text.as_bytes(), None);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions { semantics: sem.clone() });
+    assert!(!nctrans::diag::has_errors(&parsed.diags), "{:?}", parsed.diags);
+    let opts = RunOptions { semantics: Some(sem.clone()), ..RunOptions::default() };
+    let mut sink = VecSink::default();
+    let mut callees = eval::DirCallees { semantics: Some(sem) };
+    let out = eval::run(&mut db, &parsed.unit, &mut callees, &opts, &mut sink);
+    let lines = sink.events.iter().map(|(e, _)| nctrans::eval::trace::text_line(e)).collect();
+    (lines, out.diags.iter().map(|d| d.code).collect())
+}
+
+#[test]
+fn haas_m97_runs_the_local_subprogram_l_times_and_returns_after_the_call() {
+    let src = "O1\nG00 G90 X0 Y0\nM97 P1000 L2\nG00 X50.\nM30\nN1000 G91 G01 X10. F300.\nG90\nM99\n";
+    let (trace, codes) = run_haas(src);
+    assert!(codes.is_empty(), "{codes:?}");
+    let moves: Vec<&String> = trace.iter().filter(|l| l.starts_with("move")).collect();
+    assert_eq!(moves.len(), 4, "{trace:?}");
+    assert!(moves[1].contains("X=10"), "{trace:?}");
+    assert!(moves[2].contains("X=20"), "{trace:?}");
+    assert!(moves[3].contains("X=50"), "{trace:?}");
+    // Without the Haas profile M97 is a plain M code, with a warning saying why.
+    assert!(fanuc(src).1.contains(&"NC253"));
+}
+
+#[test]
+fn haas_m97_to_a_missing_block_is_the_controls_alarm() {
+    let (trace, codes) = run_haas("O1\nM97 P2000\nM30\n");
+    assert!(trace.iter().any(|l| l.contains("alarm")), "{trace:?} {codes:?}");
+}

@@ -378,6 +378,7 @@ impl Interp<'_> {
             reps: Vec::new(),
             modal,
             saved,
+            start: 0,
         });
         Ok(())
     }
@@ -427,6 +428,9 @@ impl Interp<'_> {
     }
 
     pub fn call(&mut self, call: &Call, pc: usize, span: Span) -> Result<Flow, Fault> {
+        if call.kind == CallKind::M97 {
+            return self.local_call(call, pc, span);
+        }
         let name = self.target_name(call)?;
         if let CalleeName::Name(s) = &name {
             if SIMULATION_ONLY.contains(&s.as_str()) {
@@ -471,7 +475,7 @@ impl Interp<'_> {
                 self.set_args(&args);
                 Ok(Flow::Switched)
             }
-            CallKind::M98 => {
+            CallKind::M98 | CallKind::M97 => {
                 self.set_caller_pc(pc + 1)?;
                 self.push_frame(code, FrameKind::Sub, repeats, span, false)?;
                 Ok(Flow::Switched)
@@ -493,6 +497,27 @@ impl Interp<'_> {
                 Ok(Flow::Switched)
             }
         }
+    }
+
+    /// Haas `M97 Pn Lm`: the blocks from Nn of this program, up to their M99, m times; like
+    /// M98 it shares the caller's locals.
+    fn local_call(&mut self, call: &Call, pc: usize, span: Span) -> Result<Flow, Fault> {
+        let CallTarget::Number(n) = call.target else { return Err(internal()) };
+        let repeats = self.repeat_count(call)?;
+        if repeats == 0 {
+            return Ok(Flow::Next);
+        }
+        let ci = self.frames.last().ok_or_else(internal)?.code;
+        let code = Rc::clone(&self.codes[ci]);
+        let Some(start) = code.find_number_from(pc + 1, n) else {
+            return Err(Fault::alarm(self.alarms.no_target, format!("M97 P{n}: N{n} not found in this program"), span));
+        };
+        self.set_caller_pc(pc + 1)?;
+        self.push_frame(ci, FrameKind::Sub, repeats, span, false)?;
+        let top = self.frames.last_mut().ok_or_else(internal)?;
+        top.pc = start;
+        top.start = start;
+        Ok(Flow::Switched)
     }
 
     fn set_caller_pc(&mut self, pc: usize) -> Result<(), Fault> {
@@ -558,7 +583,7 @@ impl Interp<'_> {
         }
         if top.repeats_left > 0 {
             top.repeats_left -= 1;
-            top.pc = 0;
+            top.pc = top.start;
             top.reps.clear();
             return Ok(Flow::Switched);
         }

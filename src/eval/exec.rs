@@ -54,6 +54,8 @@ pub struct Frame {
     pub modal: bool,
     /// A Siemens `PROC … SAVE` subprogram: the modes at its call, restored at its end.
     pub saved: Option<Box<super::calls::Saved>>,
+    /// Where each pass starts: 0, or the block Nn of a Haas `M97 Pn` local subprogram.
+    pub start: usize,
 }
 
 /// What a block asks the loop to do next.

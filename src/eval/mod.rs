@@ -144,6 +144,7 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         reps: Vec::new(),
         modal: false,
         saved: None,
+        start: 0,
     });
     let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
     let ending = match result {

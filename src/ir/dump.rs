@@ -326,6 +326,7 @@ fn call(c: &Call) -> String {
         CallKind::G65 => "g65",
         CallKind::G66 => "g66",
         CallKind::M98 => "m98",
+        CallKind::M97 => "m97",
         CallKind::Named => "call",
         CallKind::LNumber => "call-l",
         CallKind::Mcall => "mcall",

@@ -338,6 +338,9 @@ pub enum CallKind {
     G66,
     /// FANUC `M98 P… L…` (or packed `P68003`): no new local level.
     M98,
+    /// Haas `M97 Pn Lm`: the local subprogram starting at block Nn of the same program, up
+    /// to its M99; no new local level. The target is `CallTarget::Number(n)`, a sequence number.
+    M97,
     /// Siemens call by name: `CONTOUR`, `CONTOUR(5.5,,R3)`, `CYCLE81(…)`, `WORKPIECE(…)`.
     Named,
     /// Siemens `L123` (leading zeros significant: the name keeps them).

@@ -87,7 +87,7 @@ fn plain(cx: &BlockCx<'_, '_>, parts: Parts) -> Result<Line, Parts> {
             b'N' => i == 0 && w.int().is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
             b'G' => !matches!(w.int(), Some(10 | 65 | 66 | 67)),
-            b'M' => !matches!(w.int(), Some(2 | 30 | 98 | 99)),
+            b'M' => !matches!(w.int(), Some(2 | 30 | 97 | 98 | 99)),
             _ => true,
         };
         if !ok {
@@ -425,7 +425,8 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
     let (mut used_p, mut used_l) = (false, false);
     // Without M98/M99 no word is read after its own turn, so a plain word's value can be
     // moved into its item instead of cloned.
-    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99));
+    let haas = cx.opts.semantics.haas;
+    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99) || (haas && is_m(w, 97)));
     for i in 0..words.len() {
         if (used_p && Some(i) == first_p) || (used_l && Some(i) == first_l) {
             continue;
@@ -437,6 +438,13 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
                 used_p |= p.is_some();
                 used_l |= l.is_some();
                 items.push(args::m98(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
+                continue;
+            }
+            if haas && is_m(w, 97) {
+                let (p, l) = (first_p, first_l);
+                used_p |= p.is_some();
+                used_l |= l.is_some();
+                items.push(args::m97(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
                 continue;
             }
             if is_m(w, 99) {

@@ -188,6 +188,7 @@ impl Writer<'_> {
                     CallKind::G65 => "G65",
                     CallKind::G66 => "G66",
                     CallKind::M98 => "M98",
+                    CallKind::M97 => "M97",
                     _ => {
                         self.bug(it.span, "a Siemens call");
                         "G65"

@@ -442,6 +442,16 @@ impl<'o> Reader<'o> {
             Ok(Line::Program { number, meta }) => self.start_program(number, meta),
             Ok(line) => {
                 if let Line::Block(b) = &line {
+                    if !self.opts.semantics.haas {
+                        if let Some(m97) = haas_m97(b) {
+                            self.diags.push(
+                                Diagnostic::warning("NC253", "M97 with P is a Haas local subprogram call")
+                                    .primary(self.file, m97, "read as a plain M code")
+                                    .note("on a FANUC M97 is a machine builder's M code; on a Haas it runs block N<P> of this program up to its M99")
+                                    .hint("for a Haas program set `[fanuc] series = \"haas\"` in nctrans.toml"),
+                            );
+                        }
+                    }
                     if let [crate::ir::Item { kind: crate::ir::ItemKind::IfBlock { items, .. }, span }] = b.items.as_slice() {
                         if items.is_empty() {
                             self.diags.push(
@@ -511,4 +521,24 @@ impl<'o> Reader<'o> {
         self.diags.sort_by_key(|d| d.labels.iter().find(|l| l.primary).map_or(u32::MAX, |l| l.span.lo));
         Parsed { unit: Unit { dialect: Dialect::Fanuc, file: self.file, programs }, diags: self.diags }
     }
+}
+
+/// The span of an `M97` word in a block that also has a P word (a Haas local call read
+/// without the Haas profile).
+fn haas_m97(b: &crate::ir::Block) -> Option<Span> {
+    use crate::ir::{ExprKind, ItemKind, WordValue};
+    let word = |letter: u8| {
+        b.items.iter().find_map(|i| match &i.kind {
+            ItemKind::Word(w) if w.addr.is(letter) => Some(w),
+            _ => None,
+        })
+    };
+    let m = b.items.iter().find_map(|i| match &i.kind {
+        ItemKind::Word(w) if w.addr.is(b'M') => match &w.value {
+            WordValue::Expr(e) if matches!(e.kind, ExprKind::Num(n) if n.value == 97.0) => Some(w.span),
+            _ => None,
+        },
+        _ => None,
+    })?;
+    word(b'P').map(|_| m)
 }
