@@ -69,28 +69,23 @@ impl CalleeSource for DirCallees {
     ) -> Result<Option<Unit>, Diagnostic> {
         let caller_path = Path::new(&db.get(caller).name).to_path_buf();
         let dir = caller_path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
-        let Ok(entries) = std::fs::read_dir(dir) else {
-            return Ok(None);
+        let hit = match name {
+            // By file name, then name prefix, then the program number line inside any file.
+            CalleeName::Number(n) => super::callee_files::find(dir, Some(&caller_path), *n, &|_| true),
+            CalleeName::Name(s) => {
+                let Ok(entries) = std::fs::read_dir(dir) else {
+                    return Ok(None);
+                };
+                let mut files: Vec<std::path::PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+                files.sort();
+                files.into_iter().find(|f| {
+                    let st = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+                    let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+                    st.eq_ignore_ascii_case(s) && *f != caller_path && (ext == "spf" || ext == "mpf")
+                })
+            }
         };
-        let mut files: Vec<std::path::PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        files.sort();
-        let stems: Vec<String> = match name {
-            CalleeName::Number(n) => vec![format!("O{n}"), format!("O{n:04}"), format!("{n}"), format!("{n:04}")],
-            CalleeName::Name(s) => vec![s.clone()],
-        };
-        let hit = stems.iter().find_map(|stem| {
-            files.iter().find(|f| {
-                let st = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-                let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
-                st.eq_ignore_ascii_case(stem)
-                    && **f != caller_path
-                    && match name {
-                        CalleeName::Number(_) => true,
-                        CalleeName::Name(_) => ext == "spf" || ext == "mpf",
-                    }
-            })
-        });
-        let Some(path) = hit.cloned() else {
+        let Some(path) = hit else {
             return Ok(None);
         };
         let bytes = std::fs::read(&path)

@@ -13,6 +13,7 @@
 pub mod access;
 pub mod arc;
 pub mod axes;
+pub mod callee_files;
 pub mod calls;
 pub mod exec;
 pub mod expr;
