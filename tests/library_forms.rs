@@ -186,3 +186,13 @@ fn haas_m97_to_a_missing_block_is_the_controls_alarm() {
     let (trace, codes) = run_haas("O1\nM97 P2000\nM30\n");
     assert!(trace.iter().any(|l| l.contains("alarm")), "{trace:?} {codes:?}");
 }
+
+#[test]
+fn extern_declares_and_call_forms_name_the_program() {
+    let (ir, codes) = siemens("EXTERN CYC(REAL, VAR INT[3])\nDEF STRING[8] P_NAME\nCALL \"cyc\"\nCALL P_NAME\nPCALL CYC(1, R2)\nM30\n");
+    assert!(codes.is_empty(), "{codes:?}");
+    assert!(ir.contains("extern CYC (REAL[], var INT[3])"), "{ir}");
+    assert!(ir.contains("call CYC\n"), "{ir}");
+    assert!(ir.contains("call P_NAME\n"), "{ir}");
+    assert!(ir.contains("call CYC (1, R2)\n"), "{ir}");
+}

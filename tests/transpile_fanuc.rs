@@ -260,6 +260,7 @@ const REFUSED: &[(&str, &str)] = &[
     ("call-with-args.mpf", "NC303"),
     ("cycle-unknown-call.mpf", "NC303"),
     ("def-scalar-types.mpf", "NC310"),
+    ("extern-and-call-by-name.mpf", "NC303"),
     ("frame-instructions.mpf", "NC316"),
     ("goto-string-target.mpf", "NC305"),
     ("gud-def-nck-chan.mpf", "NC634"),

@@ -535,7 +535,8 @@ impl<'a> Interp<'a> {
                 }
                 Ok(())
             }
-            ItemKind::Stopre => Ok(()),
+            // Declarations: nothing runs (`EXTERN`).
+            ItemKind::Stopre | ItemKind::Extern(_) => Ok(()),
             ItemKind::Instruction { name } => match name.as_str() {
                 "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
                     Diagnostic::error(

@@ -131,6 +131,14 @@ impl Dumper {
                 self.nested(|d| d.item(then));
                 return;
             }
+            ItemKind::Extern(e) => {
+                let ps: Vec<String> = e
+                    .params
+                    .iter()
+                    .map(|(by_ref, t, dims)| format!("{}{}{dims:?}", if *by_ref { "var " } else { "" }, ty(*t)))
+                    .collect();
+                format!("extern {} ({})", e.name, ps.join(", "))
+            }
             ItemKind::IfBlock { cond, items } => {
                 self.line(format!("if-block {} {at}", expr(cond)));
                 self.nested(|d| {

@@ -100,6 +100,17 @@ pub enum ItemKind {
     /// the interpolation cycle beside the program, so neither the evaluator nor FANUC can
     /// carry it; it is read so that the rest of the file can be checked.
     SyncAction(Box<SyncAction>),
+    /// Siemens `EXTERN NAME(REAL, VAR INT)`: the parameters of a subprogram this program
+    /// calls. A declaration only: nothing runs.
+    Extern(Box<ExternDecl>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExternDecl {
+    /// Upper case.
+    pub name: String,
+    /// Each parameter: by reference (`VAR`), its type and array dimensions.
+    pub params: Vec<(bool, DataType, Vec<u32>)>,
 }
 
 /// A Siemens synchronized action.

@@ -149,6 +149,7 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         ItemKind::RepeatSection(r) => v.extend(r.count.iter()),
         ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
         ItemKind::ModalCallOff
+        | ItemKind::Extern(_)
         | ItemKind::Instruction { .. }
         | ItemKind::End { .. }
         | ItemKind::StopMessage { .. }

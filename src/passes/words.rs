@@ -321,6 +321,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
             ItemKind::ModalCallOff => {
                 after.extend(ctx.unsupported("NC318", span, "MCALL cancel", "modal calls are not translated"))
             }
+            ItemKind::Extern(e) => ctx.note(
+                "NC637",
+                span,
+                &format!("EXTERN {} dropped", e.name),
+                "it only declares the parameters of a called subprogram; FANUC calls declare nothing",
+            ),
             ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
                 "NC631",
                 span,

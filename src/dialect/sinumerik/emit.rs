@@ -301,6 +301,18 @@ impl Writer {
             ItemKind::Stopre => "STOPRE".into(),
             ItemKind::IfThen { .. } => self.problem(it.span, "a FANUC IF-THEN"),
             ItemKind::IfBlock { .. } => self.problem(it.span, "a Haas IF with NC words"),
+            ItemKind::Extern(e) => {
+                let ps: Vec<String> = e
+                    .params
+                    .iter()
+                    .map(|(by_ref, t, dims)| {
+                        let dims: Vec<String> = dims.iter().map(|d| d.to_string()).collect();
+                        let dims = if dims.is_empty() { String::new() } else { format!("[{}]", dims.join(",")) };
+                        format!("{}{}{dims}", if *by_ref { "VAR " } else { "" }, ty(*t))
+                    })
+                    .collect();
+                format!("EXTERN {}({})", e.name, ps.join(", "))
+            }
             ItemKind::SyncAction(a) => {
                 let mut s = String::new();
                 if let Some((scope, id)) = &a.id {

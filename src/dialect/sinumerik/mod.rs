@@ -14,6 +14,7 @@ pub mod scan_words;
 mod skeleton;
 mod structure;
 mod sync;
+mod decls;
 
 pub mod emit;
 

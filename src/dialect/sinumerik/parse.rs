@@ -181,6 +181,7 @@ impl Lower<'_, '_> {
             }
             Rule::items => LineKind::Plain(self.items(inner)),
             Rule::sync_line => LineKind::Plain(self.sync_line(inner).into_iter().collect()),
+            Rule::extern_stmt => LineKind::Plain(self.extern_decl(inner).into_iter().collect()),
             _ => LineKind::Plain(Vec::new()),
         }
     }
@@ -289,6 +290,7 @@ impl Lower<'_, '_> {
                 Some(ItemKind::Frame { op, words })
             }
             Rule::assign => self.assign(p),
+            Rule::call_stmt => self.call_stmt(p),
             Rule::call => {
                 let mut it = p.into_inner();
                 let name = it.next().map(|n| n.as_str().to_ascii_uppercase()).unwrap_or_default();

@@ -554,6 +554,7 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
             }
         }
         ItemKind::Message { text: None }
+        | ItemKind::Extern(_)
         | ItemKind::ModalCallOff
         | ItemKind::Instruction { .. }
         | ItemKind::End { .. }
