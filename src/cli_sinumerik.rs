@@ -106,10 +106,14 @@ fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
                     if let ItemKind::IfThen { then, .. } = &it.kind {
                         items.push(then);
                     }
+                    if let ItemKind::IfBlock { items: inner, .. } = &it.kind {
+                        items.extend(inner);
+                    }
                     for it in items {
                         if let ItemKind::Call(c) = &it.kind {
-                            if let CallTarget::Number(n) = c.target {
-                                set.insert(n);
+                            // Haas M97 names a block of this program, not a program.
+                            if let (CallTarget::Number(n), false) = (&c.target, c.kind == nctrans::ir::CallKind::M97) {
+                                set.insert(*n);
                             }
                         }
                     }
