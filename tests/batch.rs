@@ -355,11 +355,9 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("axname-axis-by-name.mpf", "NC310"),    // DEF STRING, AXNAME
     ("call-bare-name.mpf", "NC303"),         // a call of a program not in the library
     ("call-l-number.mpf", "NC303"),          // L0123 / L123 not in the library
-    ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
     ("call-repeat-p.mpf", "NC303"),          // LAYER not in the library
     ("cycle-unknown-call.mpf", "NC322"),     // WORKPIECE, CYCLE81
     ("def-scalar-types.mpf", "NC310"),       // DEF STRING / AXIS
-    ("extern-and-call-by-name.mpf", "NC310"), // DEF STRING: the program name of CALL
     ("frame-instructions.mpf", "NC316"),     // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"),     // a jump to a computed label
     ("gud-def-nck-chan.mpf", "NC634"),       // DEF NCK / DEF CHAN global user data
@@ -371,6 +369,10 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("rotary-acp-acn-dc.mpf", "NC630"),      // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"),    // synchronized actions
     ("system-variables.mpf", "NC321"),       // STOPRE, $AC_TIME
+    // SH602 not in the library
+    ("call-numbered-program-name.mpf", "NC303"),
+    // DEF STRING: the program name of CALL
+    ("extern-and-call-by-name.mpf", "NC310"),
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[

@@ -142,7 +142,8 @@ fn global_user_data_keeps_its_scope() {
 
 #[test]
 fn synchronized_actions_are_read_with_condition_and_actions() {
-    let (ir, codes) = siemens("ID=1 WHEN ($A_IN[1]==1) AND (R1==0) DO DELDTG(X)\nWHEN $A_DBB[2]==1 DO POS[X]=0.2 FA[X]=30\nM30\n");
+    let (ir, codes) =
+        siemens("ID=1 WHEN ($A_IN[1]==1) AND (R1==0) DO DELDTG(X)\nWHEN $A_DBB[2]==1 DO POS[X]=0.2 FA[X]=30\nM30\n");
     assert!(codes.is_empty(), "{codes:?}");
     assert!(ir.contains("sync-action id=1 when"), "{ir}");
     assert!(ir.contains("call DELDTG (X)"), "{ir}");
@@ -189,7 +190,9 @@ fn haas_m97_to_a_missing_block_is_the_controls_alarm() {
 
 #[test]
 fn extern_declares_and_call_forms_name_the_program() {
-    let (ir, codes) = siemens("EXTERN CYC(REAL, VAR INT[3])\nDEF STRING[8] P_NAME\nCALL \"cyc\"\nCALL P_NAME\nPCALL CYC(1, R2)\nM30\n");
+    let (ir, codes) = siemens(
+        "EXTERN CYC(REAL, VAR INT[3])\nDEF STRING[8] P_NAME\nCALL \"cyc\"\nCALL P_NAME\nPCALL CYC(1, R2)\nM30\n",
+    );
     assert!(codes.is_empty(), "{codes:?}");
     assert!(ir.contains("extern CYC (REAL[], var INT[3])"), "{ir}");
     assert!(ir.contains("call CYC\n"), "{ir}");

@@ -86,7 +86,8 @@ mod tests {
         let d = folder(&[("MAIN.nc", "O1\nM98 P9724\nM30\n"), ("O09724_PROBE_X.nc", "O9724\nM99\n")]);
         let found = find(&d, Some(&d.join("MAIN.nc")), 9724, &fanuc_ext);
         assert_eq!(found.as_deref(), Some(d.join("O09724_PROBE_X.nc").as_path()));
-        let d = folder(&[("MAIN2.nc", "O1\nM98 P9725\nM30\n"), ("PROBE.NC", "%\nO9001\nM99\nO09725 (PROBE Y)\nM99\n%\n")]);
+        let d =
+            folder(&[("MAIN2.nc", "O1\nM98 P9725\nM30\n"), ("PROBE.NC", "%\nO9001\nM99\nO09725 (PROBE Y)\nM99\n%\n")]);
         let found = find(&d, Some(&d.join("MAIN2.nc")), 9725, &fanuc_ext);
         assert_eq!(found.as_deref(), Some(d.join("PROBE.NC").as_path()));
         // O97250 is another program; the caller itself is never its own callee file.

@@ -229,8 +229,12 @@ impl Interp<'_> {
             match name {
                 // `SH602` alone: a program name to the control; only an address if no program has it.
                 CalleeName::Name(s) if numbered_name(s) => d
-                    .note(format!("{s} is read as a call: a name of letters and digits written alone is a program name"))
-                    .hint(format!("put {s}.SPF beside the main program; if {s} is an address, give it its value (`{s}=…`)")),
+                    .note(format!(
+                        "{s} is read as a call: a name of letters and digits written alone is a program name"
+                    ))
+                    .hint(format!(
+                        "put {s}.SPF beside the main program; if {s} is an address, give it its value (`{s}=…`)"
+                    )),
                 _ => d.hint("put the subprogram beside the main program"),
             }
         };

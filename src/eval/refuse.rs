@@ -17,7 +17,10 @@ pub fn rotary(file: FileId, w: &Word, m: RotaryMode) -> Fault {
         Diagnostic::error("NC430", format!("{}={}(…) is not modelled by the evaluator", w.addr.as_str(), m.name()))
             .primary(file, w.span, "rotary-axis positioning")
             .note(ROTARY_WHY)
-            .hint(format!("write the end position as a plain value (`{}=…`) if the direction does not matter", w.addr.as_str())),
+            .hint(format!(
+                "write the end position as a plain value (`{}=…`) if the direction does not matter",
+                w.addr.as_str()
+            )),
     )
 }
 

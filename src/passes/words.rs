@@ -369,7 +369,13 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
             Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
             Addr::Axis(_) => {
                 let what = "AX[…] (an axis chosen by name at run time)";
-                return Err(unsup(ctx, "NC635", wspan, what, "FANUC addresses are fixed letters; write the axis letter"));
+                return Err(unsup(
+                    ctx,
+                    "NC635",
+                    wspan,
+                    what,
+                    "FANUC addresses are fixed letters; write the axis letter",
+                ));
             }
             Addr::Name(n) => {
                 let what = format!("address {n}=");

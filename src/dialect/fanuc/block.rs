@@ -254,10 +254,8 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
             if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &mut words)? };
         let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
         // Haas `IF [c] THEN #i=… <words>`: the assignment and the words are conditional.
-        let then_words = !is_macro
-            && haas_if.is_none()
-            && items.len() == 1
-            && matches!(items[0].kind, ItemKind::IfThen { .. });
+        let then_words =
+            !is_macro && haas_if.is_none() && items.len() == 1 && matches!(items[0].kind, ItemKind::IfThen { .. });
         if then_words {
             if let Some(Item { kind: ItemKind::IfThen { cond, then }, span }) = items.pop() {
                 items.push(*then);

@@ -452,7 +452,9 @@ impl<'o> Reader<'o> {
                             );
                         }
                     }
-                    if let [crate::ir::Item { kind: crate::ir::ItemKind::IfBlock { items, .. }, span }] = b.items.as_slice() {
+                    if let [crate::ir::Item { kind: crate::ir::ItemKind::IfBlock { items, .. }, span }] =
+                        b.items.as_slice()
+                    {
                         if items.is_empty() {
                             self.diags.push(
                                 Diagnostic::warning("NC251", "`IF [..]` with nothing after it does nothing")

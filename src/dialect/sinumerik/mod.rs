@@ -5,6 +5,7 @@
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
 
+mod decls;
 mod errors;
 mod expr;
 pub(crate) mod fast;
@@ -14,7 +15,6 @@ pub mod scan_words;
 mod skeleton;
 mod structure;
 mod sync;
-mod decls;
 
 pub mod emit;
 

@@ -33,8 +33,8 @@ pub fn split(p: &Program) -> Option<Program> {
                 out.push(st);
                 continue;
             };
-            let splits = b.meta.skip.is_none()
-                && matches!(b.items.as_slice(), [Item { kind: ItemKind::IfBlock { .. }, .. }]);
+            let splits =
+                b.meta.skip.is_none() && matches!(b.items.as_slice(), [Item { kind: ItemKind::IfBlock { .. }, .. }]);
             let Some(n) = splits.then(|| free.next()).flatten() else {
                 out.push(st);
                 continue;
