@@ -35,8 +35,12 @@ fn siemens(text: &str) -> (String, Vec<&'static str>) {
 #[test]
 fn haas_if_runs_the_nc_words_of_its_block() {
     let (ir, codes) = fanuc("O1\nIF [#1 EQ 2] S800 M03\nM30\n");
-    assert!(codes.is_empty(), "{codes:?}");
+    // Read the same with any profile; without the Haas one a warning says FANUC alarms.
+    assert_eq!(codes, vec!["NC255"]);
     assert!(ir.contains("if-block (eq #1 2)\nword S 800\nword M 3\n"), "{ir}");
+    let (trace, codes) = run_haas("O1\n#1=2\nIF [#1 EQ 2] S800 M03\nIF [#1 NE 2] S900\nM30\n");
+    assert!(codes.is_empty(), "{codes:?}");
+    assert!(trace.iter().any(|l| l.contains("800")) && !trace.iter().any(|l| l.contains("900")), "{trace:?}");
 }
 
 #[test]
@@ -49,7 +53,7 @@ fn haas_if_without_then_assigns() {
 #[test]
 fn haas_then_assignment_with_words_is_one_conditional_block() {
     let (ir, codes) = fanuc("O1\nIF [#1 EQ 2] THEN #7=[#9*0.9] F[#9*0.85]\nM30\n");
-    assert!(codes.is_empty(), "{codes:?}");
+    assert_eq!(codes, vec!["NC255"]);
     assert!(ir.contains("if-block (eq #1 2)\nassign #7 = (* #9 0.9)\nword F (* #9 0.85)\n"), "{ir}");
 }
 

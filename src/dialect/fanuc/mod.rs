@@ -443,6 +443,17 @@ impl<'o> Reader<'o> {
             Ok(line) => {
                 if let Line::Block(b) = &line {
                     if !self.opts.semantics.haas {
+                        let haas_if = b.items.iter().find(
+                            |i| matches!(&i.kind, crate::ir::ItemKind::IfBlock { items, .. } if !items.is_empty()),
+                        );
+                        if let Some(i) = haas_if {
+                            self.diags.push(
+                                Diagnostic::warning("NC255", "`IF [..]` followed by NC words is a Haas form")
+                                    .primary(self.file, i.span, "the words run only when the condition holds")
+                                    .note("a FANUC control requires GOTO or THEN after IF[..] and alarms on this block")
+                                    .hint("for a Haas program set `[fanuc] series = \"haas\"` in nctrans.toml"),
+                            );
+                        }
                         if let Some(m97) = haas_m97(b) {
                             self.diags.push(
                                 Diagnostic::warning("NC253", "M97 with P is a Haas local subprogram call")
