@@ -286,6 +286,8 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
             c1 == c2 || (ret(c1) && ret(c2))
         }
         (Limit { .. }, Limit { .. }) => true,
+        (WorkOffset { n: n1 }, WorkOffset { n: n2 }) => n1 == n2,
+        (Home(h1), Home(h2)) => h1.point == h2.point && h1.axes == h2.axes && axes_eq(&h1.via, &h2.via),
         _ => false,
     }
 }
