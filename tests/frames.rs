@@ -135,3 +135,103 @@ fn planted_differences_are_caught() {
     // Second reference point for the first.
     assert!(!equivalent("O1\nG91 G30 Z0\nM30\n", "G74 Z1=0\nM30\n"));
 }
+
+mod translation {
+    use super::*;
+    use nctrans::read::LineEnding;
+    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+
+    const STEPS: u64 = 100_000;
+
+    /// FANUC → Sinumerik: the text, or the diagnostic codes; verified when translated.
+    fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let id = db.add("p.nc", fanuc);
+        let p = nctrans::parse(&mut db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
+        if t.has_errors() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", STEPS);
+        let text: String = t.files.iter().map(|x| x.text.clone()).collect();
+        assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
+        Ok(text)
+    }
+
+    fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let s = load(&mut db, siemens, Dialect::Sinumerik);
+        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        if !t.ok() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", STEPS);
+        assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+        Ok(t.text)
+    }
+
+    #[test]
+    fn fanuc_frames_become_trans_supa_g74_g75_and_verify() {
+        let out = f_to_s(F_PART).unwrap();
+        for line in ["TRANS X50 Y20\n", "G91\nG74 Z1=0\n", "TRANS\n", "G0 X10 Y10\nG74 X1=0 Y1=0\nG1\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let out = f_to_s("O1\nG54.1 P2\nG0 X1.\nG58\nG53 Z0\nG91 G30 P3 Z0\nG90\nM30\n").unwrap();
+        for line in ["G508\n", "G505\n", "SUPA Z0\n", "G75 FP=2 Z1=0\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn siemens_frames_become_g52_g53_g28_g30_and_verify() {
+        let out = s_to_f(S_PART).unwrap();
+        for line in ["G52 X50. Y20. Z0.\n", "G91 G28 Z0.\nG90\n", "G52 X0. Y0. Z0.\n", "G91 G28 X0. Y0.\nG90\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let out = s_to_f("G507\nG506\nG0 SUPA Z0\nG153 X0\nG75 FP=1 Z1=0\nM30\n").unwrap();
+        for line in ["G54.1 P1\n", "G59\n", "G00 G53 Z0.\n", "G53 X0.\n", "G91 G30 P2 Z0.\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn what_has_no_exact_counterpart_is_refused() {
+        // G52 that keeps another axis's shift: TRANS would drop it.
+        assert_eq!(f_to_s("O1\nG52 X10.\nG52 Y5.\nM30\n"), Err(vec!["NC442".into()]));
+        assert!(f_to_s("O1\nG52 X10. Y0\nG52 X0 Y5.\nM30\n").is_ok());
+        // G52 under G91 (the evaluator refuses it too).
+        assert_eq!(f_to_s("O1\nG91 G52 X10.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
+        assert_eq!(f_to_s("O1\nG54.1 P#1\nM30\n").unwrap_err(), vec!["NC443".to_string()]);
+        assert_eq!(f_to_s("O1\nG28 Z0 M5\nM30\n").unwrap_err(), vec!["NC444".to_string()]);
+        // ATRANS adds to a frame FANUC cannot read; TRANS under G91.
+        assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC316".to_string()]);
+        assert_eq!(s_to_f("G91\nTRANS X5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert_eq!(s_to_f("G74 Z1=0 M5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+    }
+
+    #[test]
+    fn planted_wrong_translations_are_caught() {
+        let good = f_to_s(F_PART).unwrap();
+        for (from, to) in [
+            ("TRANS X50 Y20", "TRANS X-50 Y20"),     // shift sign
+            ("G0 X10 Y10\n", ""),                    // missing intermediate point
+            ("G74 X1=0 Y1=0", "G75 FP=1 X1=0 Y1=0"), // second reference point
+            ("G54\n", "G55\n"),                      // offset number
+        ] {
+            assert!(good.contains(from), "{from:?} not in\n{good}");
+            let bad = good.replacen(from, to, 1);
+            assert!(!equivalent(F_PART, &bad), "planted {from:?} → {to:?} not caught\n{bad}");
+        }
+        let good = s_to_f(S_PART).unwrap();
+        for (from, to) in [("G52 X50.", "G52 X-50."), ("G00 X10. Y10.\n", ""), ("G54\n", "G54.1 P1\n")] {
+            assert!(good.contains(from), "{from:?} not in\n{good}");
+            let bad = good.replacen(from, to, 1);
+            assert!(!equivalent(&bad, S_PART), "planted {from:?} → {to:?} not caught\n{bad}");
+        }
+    }
+}

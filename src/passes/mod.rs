@@ -10,6 +10,7 @@
 
 pub mod blocks;
 pub mod exprs;
+pub mod frames;
 pub mod labels;
 pub mod lower_structures;
 pub mod to_sinumerik;

@@ -71,6 +71,8 @@ struct Modal {
     /// In a subprogram: the temporary that holds its caller's feed factor (see
     /// [`UnitState::CallerFeed`]), made for the first F word that needs it.
     caller_feed: Option<VarRef>,
+    /// The axes a TRANS becomes a G52 of (`frames::trans_axes`).
+    trans_axes: u16,
 }
 
 impl Modal {
@@ -94,6 +96,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         },
         resets: Resets::of(&prog.body, &ctx.callees),
         caller_feed: None,
+        trans_axes: super::frames::trans_axes(&prog.body),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -212,6 +215,11 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
+    // TRANS, SUPA/G153, G505.., G74/G75 (frames.rs).
+    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
+        out.extend(stmts);
+        return;
+    }
     let items = std::mem::take(&mut b.items);
     let mut kept: Vec<Item> = Vec::new();
     let mut after: Vec<Stmt> = Vec::new();

@@ -21,6 +21,7 @@
 
 pub mod calls;
 pub mod exprs;
+pub mod frames;
 pub mod gotos;
 pub mod indirect;
 pub mod modal;

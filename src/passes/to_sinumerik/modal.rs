@@ -14,12 +14,18 @@ use super::*;
 pub struct ModalScan {
     /// (block span start, work offset G code ×10, incremental).
     blocks: Vec<(u32, Option<u32>, Option<bool>)>,
+    /// The motion G code (×10: 0, 10, 20, 30) after each block, where every path agrees.
+    motion: Vec<Option<u32>>,
+    /// The axes (bit per `AXES` index) any `G52` of the program may leave shifted, and
+    /// whether it is the main program (a called one starts with its caller's shift).
+    pub g52: (u16, bool),
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 struct State {
     offset: Option<u32>,
     incremental: Option<bool>,
+    motion: Option<u32>,
 }
 
 impl State {
@@ -27,6 +33,7 @@ impl State {
         State {
             offset: if self.offset == o.offset { self.offset } else { None },
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
+            motion: if self.motion == o.motion { self.motion } else { None },
         }
     }
 
@@ -34,8 +41,13 @@ impl State {
         for g in g_codes(items) {
             match g {
                 540 | 550 | 560 | 570 | 580 | 590 => self.offset = Some(g),
+                // An extended offset (G54.1 Pn): a re-selection would need its P.
+                541 => self.offset = None,
                 900 => self.incremental = Some(false),
                 910 => self.incremental = Some(true),
+                0 | 10 | 20 | 30 => self.motion = Some(g),
+                // Canned cycles and their cancel: the motion group is not followed here.
+                730..=890 => self.motion = None,
                 _ => {}
             }
         }
@@ -50,9 +62,9 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false) }
+            State { offset: Some(540), incremental: Some(false), motion: Some(0) }
         } else {
-            State { offset: None, incremental: None }
+            State { offset: None, incremental: None, motion: None }
         };
         let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
             (Node::Items(items), Some((_, skip))) => {
@@ -90,6 +102,7 @@ impl ModalScan {
                 break;
             }
         }
+        let mut motion = Vec::new();
         let blocks = (0..len)
             .filter_map(|i| {
                 let (lo, _) = flat.blocks[i]?;
@@ -97,12 +110,13 @@ impl ModalScan {
                     (true, Some(s)) => out_of(i, s),
                     // Unreachable: nothing runs there, any value is as good; unsettled: none.
                     (true, None) => start,
-                    (false, _) => State { offset: None, incremental: None },
+                    (false, _) => State { offset: None, incremental: None, motion: None },
                 };
+                motion.push(st.motion);
                 Some((lo, st.offset, st.incremental))
             })
             .collect();
-        ModalScan { blocks }
+        ModalScan { blocks, motion, g52: (super::frames::g52_axes(body), main) }
     }
 
     /// The block at or before `lo` in text order.
@@ -115,6 +129,13 @@ impl ModalScan {
     /// to it disagree (or a called program has not selected one itself).
     pub fn offset_at(&self, lo: u32) -> Option<u32> {
         self.at(lo).and_then(|b| b.1)
+    }
+
+    /// The motion G code (×10) in force after the block at `lo`; `None` where the paths
+    /// disagree.
+    pub fn motion_at(&self, lo: u32) -> Option<u32> {
+        let i = self.blocks.partition_point(|b| b.0 <= lo);
+        i.checked_sub(1).and_then(|i| self.motion.get(i).copied().flatten())
     }
 
     /// G91 in force after the block at `lo`; `None` where the paths disagree.

@@ -164,8 +164,23 @@ fn word_item(letter: u8, v: Expr, span: Span) -> Item {
     Item { kind: ItemKind::Word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(v), span }), span }
 }
 
-fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
+fn lower_block(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
     let gs = g_codes(&b.items);
+    let mut b = match super::frames::split(ctx, b, span, modal, &gs) {
+        Err(b) => b,
+        Ok(split) => {
+            // G52, G54.1 and G28/G30 (frames.rs); the rest of the block is lowered here,
+            // with the arc mode of the source block (G28 leaves the motion mode alone).
+            out.extend(split.before);
+            let keep_arc = *arc;
+            if let Some(rest) = split.block {
+                lower_block(ctx, rest, span, modal, arc, out);
+            }
+            *arc = keep_arc;
+            out.extend(split.after);
+            return;
+        }
+    };
     for &g in &gs {
         match g {
             20 | 30 => *arc = true,
