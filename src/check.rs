@@ -477,7 +477,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
         let (tx, rx) = channel::<Msg>();
         let mut db_b = db_b;
         let mut sink = ChannelSink::new(Tx::Buffered(tx));
-        let out = b(&mut db_b, &mut sink);
+        let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
         sink.send();
         drop(sink);
         (rx, Err((out, db_b)))
@@ -486,7 +486,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
         let run = move || {
             let mut db_b = db_b;
             let mut sink = ChannelSink::new(Tx::Bounded(tx));
-            let out = b(&mut db_b, &mut sink);
+            let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
             sink.send();
             (out, db_b)
         };
@@ -496,7 +496,7 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
     };
     let mut db_a = db.clone();
     let mut sink = CompareSink::new(rx);
-    let outcome_a = a(&mut db_a, &mut sink);
+    let outcome_a = a(&mut db_a, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }

@@ -380,6 +380,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
+    ("O_2001.mpf", "NC445"),                   // TRANS in a program with G91 (G74's G91 G28)
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC304"), // M98's shared locals: VAR parameters
     ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
     ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL

@@ -212,6 +212,10 @@ mod translation {
         assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC316".to_string()]);
         assert_eq!(s_to_f("G91\nTRANS X5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
         assert_eq!(s_to_f("G74 Z1=0 M5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        // After a frame change a Sinumerik incremental move also travels the change, a
+        // FANUC one does not: a frame in a program with incremental moves is refused.
+        assert_eq!(s_to_f("X1\nTRANS X100\nX=IC(1)\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert_eq!(f_to_s("O1\nG52 X100. Y0\nG91 X1.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
     }
 
     #[test]

@@ -479,7 +479,10 @@ impl Machine {
         }
 
         if g10 {
-            self.g10(l, p, &axes, warns, block_span)?;
+            if self.g10(l, p, &axes, warns, block_span)? {
+                // A write to the active (or the external) offset acts at once: as a re-selection.
+                out.push((Event::WorkOffset { n: self.wo as u32 }, block_span));
+            }
             return Ok(eff);
         }
         if g52 {

@@ -13,6 +13,7 @@
 pub mod access;
 pub mod arc;
 pub mod calls;
+pub mod collapse;
 pub mod exec;
 pub mod expr;
 pub mod fault;

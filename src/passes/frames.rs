@@ -37,12 +37,17 @@ fn const_g(it: &Item) -> Option<f64> {
     }
 }
 
-/// The axes any TRANS of `body` names, with X, Y and Z.
+/// The axes any TRANS of `body` names, with X, Y and Z; bit 15: the program has an
+/// incremental word (G91 or IC()), after which TRANS and G52 differ.
 pub fn trans_axes(body: &[Stmt]) -> u16 {
     let mut bits = 0b111;
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
+                if const_g(it) == Some(91.0) || matches!(&it.kind, ItemKind::Word(Word { value: WordValue::Ic(_), .. }))
+                {
+                    bits |= 1 << 15;
+                }
                 if let ItemKind::Frame { words, .. } = &it.kind {
                     for w in words {
                         if let Addr::Letter(l) = w.addr {
@@ -96,8 +101,13 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
         if op != "TRANS" {
             return None; // the words pass refuses the others (NC316)
         }
-        if abs != Some(true) {
-            return Some(refuse(ctx, *fspan, "TRANS where G91 may be in force", "select G90 before the TRANS"));
+        if abs != Some(true) || axes & (1 << 15) != 0 {
+            return Some(refuse(
+                ctx,
+                *fspan,
+                "TRANS in a program with incremental moves (G91, IC()): after a TRANS a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not",
+                "program the moves in G90 (or AC()); select G90 before the TRANS",
+            ));
         }
         let mut items = vec![g(52.0, span)];
         for (i, &l) in AXES.iter().enumerate() {

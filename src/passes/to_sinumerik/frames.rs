@@ -127,6 +127,15 @@ fn local_shift(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split 
             "write G52 alone in its block, under G90: `G90 G52 X.. Y..`",
         );
     }
+    if modal.incremental_motion {
+        return refused(
+            ctx,
+            "NC442",
+            span,
+            "G52 in a program with incremental (G91) moves (after a TRANS a Sinumerik incremental move also travels the shift, a FANUC one does not)",
+            "program the moves after G52 in G90",
+        );
+    }
     let (shifted, main) = modal.g52;
     let need = if main { shifted } else { shifted | 0b111 };
     let named: u16 = b.items.iter().filter_map(letter_of).filter_map(|(l, _)| axis_bit(l)).fold(0, |a, x| a | x);

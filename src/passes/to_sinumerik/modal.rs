@@ -19,6 +19,9 @@ pub struct ModalScan {
     /// The axes (bit per `AXES` index) any `G52` of the program may leave shifted, and
     /// whether it is the main program (a called one starts with its caller's shift).
     pub g52: (u16, bool),
+    /// Some block moves an axis where G91 may be in force (a Sinumerik incremental move
+    /// after a frame change also travels the change, a FANUC one does not).
+    pub incremental_motion: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -103,6 +106,7 @@ impl ModalScan {
             }
         }
         let mut motion = Vec::new();
+        let mut incremental_motion = false;
         let blocks = (0..len)
             .filter_map(|i| {
                 let (lo, _) = flat.blocks[i]?;
@@ -113,10 +117,19 @@ impl ModalScan {
                     (false, _) => State { offset: None, incremental: None, motion: None },
                 };
                 motion.push(st.motion);
+                if let Node::Items(items) = &flat.nodes[i] {
+                    let gs = g_codes(items);
+                    let moves = items.iter().any(|it| {
+                        matches!(&it.kind, ItemKind::Word(Word { addr: Addr::Letter(l), .. }) if b"XYZABCUVW".contains(l))
+                    });
+                    if moves && st.incremental != Some(false) && !gs.iter().any(|g| matches!(g, 100 | 280 | 300 | 520)) {
+                        incremental_motion = true;
+                    }
+                }
                 Some((lo, st.offset, st.incremental))
             })
             .collect();
-        ModalScan { blocks, motion, g52: (super::frames::g52_axes(body), main) }
+        ModalScan { blocks, motion, g52: (super::frames::g52_axes(body), main), incremental_motion }
     }
 
     /// The block at or before `lo` in text order.

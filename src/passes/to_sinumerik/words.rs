@@ -228,7 +228,9 @@ fn lower_block(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, arc: &mut
             }
             ItemKind::Assign { target, value } => {
                 if let VarKind::Hash(n @ 5221..=5340) = target.kind {
-                    offset_written |= system_var(n, isp).is_some();
+                    // Only the active offset needs re-selecting (below); unknown: NC373.
+                    let active = modal.offset_at(span.lo).map(|g| g / 10 - 53);
+                    offset_written |= system_var(n, isp).is_some() && active.is_none_or(|a| a == (n - 5221) / 20 + 1);
                 }
                 items.push(Item { kind: ItemKind::Assign { target, value }, span: isp });
             }
