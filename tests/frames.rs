@@ -148,7 +148,7 @@ mod translation {
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
         let id = db.add("p.nc", fanuc);
-        let p = nctrans::parse(&mut db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
         let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
         if t.has_errors() {
             let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();

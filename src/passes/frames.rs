@@ -78,7 +78,7 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
     while k < b.items.len() {
         let span = b.items[k].span;
         match (&b.items[k].kind, const_g(&b.items[k])) {
-            (_, Some(v)) if v == 153.0 => b.items[k] = g(53.0, span),
+            (_, Some(153.0)) => b.items[k] = g(53.0, span),
             (_, Some(v)) if (505.0..=554.0).contains(&v) && v.fract() == 0.0 => {
                 let sel = if v < 507.0 {
                     vec![g(v - 447.0, span)]

@@ -19,9 +19,7 @@ pub struct Home {
 }
 
 fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
-    Fault::Error(Box::new(
-        crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "here").hint(hint.to_string()),
-    ))
+    Fault::Error(Box::new(crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "here").hint(hint)))
 }
 
 impl Machine {
