@@ -467,7 +467,7 @@ impl Machine {
                 }
                 290 | 920 | 520 | 680 | 160 => {
                     return Err(unsupported(
-                        &format!("G{} (reference return / coordinate setting) is not modelled", fmt_g(g)),
+                        &format!("G{} ({}) is not modelled", fmt_g(g), refs::unmodelled_frame(gi)),
                         span,
                     ))
                 }

@@ -22,6 +22,17 @@ fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
     Fault::Error(Box::new(crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "here").hint(hint)))
 }
 
+/// What an unmodelled coordinate-system G code (×10) is, for its error.
+pub fn unmodelled_frame(gi: i64) -> &'static str {
+    match gi {
+        290 => "return from the reference point",
+        920 => "coordinate system setting",
+        680 => "coordinate system rotation",
+        160 => "polar coordinates",
+        _ => "local coordinate system, a FANUC code",
+    }
+}
+
 impl Machine {
     /// Selects work offset `n` (the trace's `work_offset` number, also the table index) and
     /// emits its event, also when it is the one already active.

@@ -82,6 +82,26 @@ fn name_word(name: &str, v: Expr, span: Span) -> Item {
 
 /// Splits off what this module translates; `Err(b)` hands the block back untouched.
 pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<Split, Block> {
+    if let Some(&g) = gs.iter().find(|g| matches!(g, 680 | 681 | 510 | 511 | 160 | 290 | 920)) {
+        let what = match g {
+            680 | 681 => "G68 (coordinate rotation)",
+            510 => "G51 (scaling)",
+            511 => "G51.1 (mirroring)",
+            160 => "G16 (polar coordinates)",
+            290 => "G29 (return from the reference point)",
+            _ => "G92 (coordinate system setting)",
+        };
+        let st = ctx.refuse(
+            "NC446",
+            span,
+            &format!(
+                "{what} is not translated: nctrans does not model it yet, so its Sinumerik form could not be proven"
+            ),
+            what,
+            "translate the feature by hand (e.g. G68 about a centre: TRANS to the centre, AROT RPL=, ATRANS back)",
+        );
+        return Ok(Split { before: Vec::new(), block: None, after: st.into_iter().collect() });
+    }
     if gs.contains(&520) {
         Ok(local_shift(ctx, b, span, modal))
     } else if gs.contains(&280) || gs.contains(&300) {

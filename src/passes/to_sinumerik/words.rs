@@ -4,7 +4,8 @@
 //!   FANUC: `X10` → `X0.01` on the default IS-B metric profile (none with calculator-type
 //!   input). Expressions (`X[#1+2]`, `X#1`) are already in millimetres.
 //! - G codes: identical ones are kept; `G20/G21` → `G700/G710` (feeds follow the unit, as on
-//!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active);
+//!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active),
+//!   `G69`/`G15` too (G68/G16 are refused, frames.rs);
 //!   `G43/G44/G49` and their `H` dropped with a warning (Siemens applies the length of the
 //!   active D itself); everything else is unsupported.
 //! - `G04 P500` → `G4 F0.5`, `G04 X1.5` → `G4 F1.5`, in a block of its own.
@@ -66,7 +67,8 @@ fn map_g(g: u32) -> Option<Option<u32>> {
         580 => Some(5050),
         590 => Some(5060),
         610 => Some(600),
-        800 | 430 | 440 | 490 => None,
+        // G69/G15 cancel a rotation / polar mode that cannot be active (G68/G16 are refused).
+        800 | 430 | 440 | 490 | 690 | 150 => None,
         _ => return None,
     })
 }
