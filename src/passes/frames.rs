@@ -74,7 +74,7 @@ pub fn supa_as_g53(b: &mut Block) {
 /// in `out` (it bypasses the words pass, where G58/G59 are Siemens codes of another
 /// meaning); `Some(stmts)`: the block became these (TRANS, G74, G75, or a refusal).
 pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &mut Vec<Stmt>) -> Option<Vec<Stmt>> {
-    let mut k = 0;
+    let (mut k, mut moved) = (0, false);
     while k < b.items.len() {
         let span = b.items[k].span;
         match (&b.items[k].kind, const_g(&b.items[k])) {
@@ -87,13 +87,14 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
                 };
                 out.push(block_stmt(sel, span));
                 b.items.remove(k);
+                moved = true;
                 continue;
             }
             _ => {}
         }
         k += 1;
     }
-    if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none() {
+    if moved && b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none() {
         return Some(Vec::new());
     }
     let span = b.meta.span;

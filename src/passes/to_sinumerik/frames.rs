@@ -7,7 +7,9 @@
 //!   since its caller's shift is not known), so that is required (NC442). FANUC has no other
 //!   programmable frame component nctrans translates (G68/G51/G51.1 are refused), so TRANS
 //!   is exact. `G52 X0 Y0 Z0` → bare `TRANS`.
-//! - `G53 ..` → `SUPA ..` (machine coordinates, one block).
+//! - `G53 ..` stays `G53 ..` (words.rs): Sinumerik G53 suppresses the settable and
+//!   programmable frames for the block, which is all FANUC G53 ignores that translates (the
+//!   external offset `G10 L2 P0` / `#5201+` is refused), and the streamed translators agree.
 //! - `G54.1 Pn` (and `G54 Pn`) → `G50(6+n)`: `G507` for P1 (the trace numbers both 6 + n).
 //! - `G28 ..` → the intermediate point as `G0 ..` (left out for `G91 G28 Z0`, where it is
 //!   the current position), then `G74 Z1=0 ..`, then the motion G code again if it was not
@@ -106,16 +108,6 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         Ok(local_shift(ctx, b, span, modal))
     } else if gs.contains(&280) || gs.contains(&300) {
         Ok(reference_return(ctx, b, span, modal, gs.contains(&300)))
-    } else if gs.contains(&530) {
-        // FANUC G53 is the machine position, so SUPA (which also suppresses the handwheel
-        // and external offsets), not Siemens G53 (the frames only).
-        let mut b = b;
-        for it in b.items.iter_mut() {
-            if g_of(it) == Some(530) {
-                *it = Item { kind: ItemKind::Instruction { name: "SUPA".into() }, span: it.span };
-            }
-        }
-        Ok(Split { before: Vec::new(), block: Some(b), after: Vec::new() })
     } else if gs.contains(&541)
         || (gs.contains(&540) && b.items.iter().any(|it| matches!(letter_of(it), Some((b'P', _)))))
     {
@@ -179,9 +171,17 @@ fn local_shift(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split 
         }
     }
     let frame = Item { kind: ItemKind::Frame { op: "TRANS".into(), words }, span };
+    // The block's G90 stays in force after it: it goes first, in a block of its own.
+    let g90: Vec<Item> = b.items.iter().filter(|it| g_of(it) == Some(900)).cloned().collect();
     let mut meta = b.meta;
     meta.span = span;
-    Split { before: Vec::new(), block: None, after: vec![block_stmt(meta, vec![frame])] }
+    // The first block keeps the number and label: a jump to the block runs both.
+    let after = if g90.is_empty() {
+        vec![block_stmt(meta, vec![frame])]
+    } else {
+        vec![block_stmt(meta, g90), plain_block(vec![frame], span)]
+    };
+    Split { before: Vec::new(), block: None, after }
 }
 
 fn extended_offset(ctx: &mut Ctx, mut b: Block, span: Span) -> Split {
