@@ -94,6 +94,8 @@ pub struct Machine {
     pub trans: [f64; 9],
     /// FANUC local coordinate system (`G52`), added to every work offset.
     pub local: [f64; 9],
+    /// Work-offset selections so far (a Siemens SAVE return re-selects after one).
+    pub wo_selections: u64,
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
     pub last_m: f64,
     pub last_n: f64,
@@ -147,6 +149,7 @@ impl Machine {
             frame: [0.0; 9],
             trans: [0.0; 9],
             local: [0.0; 9],
+            wo_selections: 0,
             last_m: 0.0,
             last_n: 0.0,
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],

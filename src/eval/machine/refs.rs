@@ -38,6 +38,7 @@ impl Machine {
     /// emits its event, also when it is the one already active.
     pub(super) fn select_work_offset(&mut self, n: usize, out: &mut Vec<(Event, Span)>, span: Span) {
         self.select_offset(n);
+        self.wo_selections += 1;
         out.push((Event::WorkOffset { n: self.wo as u32 }, span));
     }
 
