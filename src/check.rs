@@ -303,6 +303,8 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
                 && opt_eq(h1.dwell, h2.dwell)
                 && num_eq(h1.f, h2.f)
         }
+        (WorkOffset { n: n1 }, WorkOffset { n: n2 }) => n1 == n2,
+        (Home(h1), Home(h2)) => h1.point == h2.point && h1.axes == h2.axes && axes_eq(&h1.via, &h2.via),
         _ => false,
     }
 }
@@ -523,7 +525,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         let (tx, rx) = channel::<Msg>();
         let mut db_b = db_b;
         let mut sink = ChannelSink::new(Tx::Buffered(tx));
-        let out = b(&mut db_b, &mut sink);
+        let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
         sink.send();
         drop(sink);
         (rx, Err((out, db_b)))
@@ -532,7 +534,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         let run = move || {
             let mut db_b = db_b;
             let mut sink = ChannelSink::new(Tx::Bounded(tx));
-            let out = b(&mut db_b, &mut sink);
+            let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
             sink.send();
             (out, db_b)
         };
@@ -542,7 +544,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     };
     let mut db_a = db.clone();
     let mut sink = CompareSink::new(rx, exclude);
-    let outcome_a = a(&mut db_a, &mut sink);
+    let outcome_a = a(&mut db_a, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }

@@ -588,9 +588,12 @@ impl Interp<'_> {
         }
         let top = self.frames.last_mut().ok_or_else(internal)?;
         // Each pass of a SAVE subprogram ends in the modes it was called in.
-        if let Some(saved) = &top.saved {
-            saved.restore(&mut self.m);
+        let reselected = top.saved.as_ref().is_some_and(|saved| saved.restore(&mut self.m));
+        if reselected {
+            // The subprogram selected an offset: the return selects the caller's again.
+            self.emit(super::trace::Event::WorkOffset { n: self.m.wo as u32 }, span);
         }
+        let top = self.frames.last_mut().ok_or_else(internal)?;
         if top.repeats_left > 0 {
             top.repeats_left -= 1;
             top.pc = top.start;
@@ -632,20 +635,27 @@ pub struct Saved {
     wo: usize,
     frame: [f64; 9],
     trans: [f64; 9],
+    /// [`Machine::wo_selections`](super::machine::Machine::wo_selections) at the call.
+    selections: u64,
 }
 
 impl Saved {
     fn of(m: &super::machine::Machine) -> Saved {
-        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans }
+        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans, selections: m.wo_selections }
     }
 
-    fn restore(&self, m: &mut super::machine::Machine) {
+    /// Restores the modes; `true` when the subprogram selected a work offset (the restore
+    /// is then a selection, a `work_offset` event, as FANUC's translation re-selects it).
+    fn restore(&self, m: &mut super::machine::Machine) -> bool {
+        let selected = m.wo_selections != self.selections;
+        m.wo_selections = self.selections;
         m.modal = self.modal;
         if m.wo != self.wo {
             m.wo = self.wo;
             m.frame = self.frame;
         }
         m.trans = self.trans;
+        selected
     }
 }
 

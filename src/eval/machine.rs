@@ -17,6 +17,7 @@ mod fast;
 mod grid;
 mod modal;
 mod offsets;
+mod refs;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use modal::{g_index, Modal};
 
@@ -97,6 +98,10 @@ pub struct Machine {
     pub frame: [f64; 9],
     /// Siemens programmable offset (`TRANS`/`ATRANS`).
     pub trans: [f64; 9],
+    /// FANUC local coordinate system (`G52`), added to every work offset.
+    pub local: [f64; 9],
+    /// Work-offset selections so far (a Siemens SAVE return re-selects after one).
+    pub wo_selections: u64,
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
     pub last_m: f64,
     pub last_n: f64,
@@ -151,6 +156,8 @@ impl Machine {
             wo: if fanuc { 1 } else { 0 },
             frame: [0.0; 9],
             trans: [0.0; 9],
+            local: [0.0; 9],
+            wo_selections: 0,
             last_m: 0.0,
             last_n: 0.0,
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
@@ -170,7 +177,7 @@ impl Machine {
     pub fn active_offset(&self, axis: usize) -> f64 {
         if self.fanuc {
             // FANUC: external + selected table, live (a `#5221=` write acts at once).
-            self.offsets[0][axis] + self.offsets[self.wo][axis]
+            self.offsets[0][axis] + self.offsets[self.wo][axis] + self.local[axis]
         } else {
             self.frame[axis] + self.trans[axis]
         }
@@ -316,6 +323,8 @@ impl Machine {
         let mut measuring = false;
         // FANUC Q is read by the drilling cycles; anywhere else it is ignored (a warning).
         let mut q_word = None;
+        // Siemens G74/G75: the machine axes named (`Z1=0`) and the fixed point (`FP=`).
+        let (mut named, mut fp) = (Vec::new(), None);
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -417,6 +426,10 @@ impl Machine {
                 // A measuring move: runs to its end point unless `probe_contact` says where
                 // the probe touches.
                 ("MEAS" | "MEAW", _) => measuring = true,
+                ("FP", Some(x)) if !self.fanuc => fp = Some((w, x)),
+                (a, _) if !self.fanuc && Machine::machine_axis(a).is_some() => {
+                    named.extend(Machine::machine_axis(a).map(|i| (i, w.span)))
+                }
                 (
                     "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "TURN" | "AP" | "RP" | "I1" | "J1"
                     | "K1",
@@ -431,6 +444,7 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
+        let (mut g52, mut home) = (false, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
@@ -445,10 +459,21 @@ impl Machine {
                 100 => g10 = true,
                 310 if self.fanuc => probe = true,
                 530 | 1530 => g53 = true,
-                540..=590 if gi % 10 == 0 && self.fanuc => self.select_offset((gi / 10 - 53) as usize),
-                540..=570 if gi % 10 == 0 => self.select_offset((gi / 10 - 53) as usize),
-                5000 if !self.fanuc => self.select_offset(0),
-                5050..=5990 if !self.fanuc && gi % 10 == 0 => self.select_offset((gi / 10 - 500) as usize),
+                // FANUC `G54 Pn` is `G54.1 Pn` (extended offsets).
+                540 | 541 if self.fanuc && (gi == 541 || p.is_some()) => self.extended_offset(p, out, span)?,
+                540..=590 if gi % 10 == 0 && self.fanuc => self.select_work_offset((gi / 10 - 53) as usize, out, span),
+                540..=570 if gi % 10 == 0 => self.select_work_offset((gi / 10 - 53) as usize, out, span),
+                5000 if !self.fanuc => self.select_work_offset(0, out, span),
+                5050..=5990 if !self.fanuc && gi % 10 == 0 => {
+                    self.select_work_offset((gi / 10 - 500) as usize, out, span)
+                }
+                520 if self.fanuc => g52 = true,
+                280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
+                300 if self.fanuc => {
+                    home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
+                }
+                740 if !self.fanuc => home = Some(refs::Home { point: 1, via_words: false }),
+                750 if !self.fanuc => home = Some(refs::Home { point: self.fixed_point(fp, span)?, via_words: false }),
                 // Path control, compensation (the trace holds programmed positions), cycle
                 // cancel, exact stop: no effect on the trace.
                 // Drilling cycles (eval::cycles): select, cancel, return level.
@@ -477,9 +502,9 @@ impl Machine {
                     let code = if matches!(gi, 400..=490) { COMPENSATION_NOTE } else { "NC405" };
                     warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
-                280 | 290 | 300 | 920 | 520 | 680 | 160 => {
+                290 | 920 | 520 | 680 | 160 => {
                     return Err(unsupported(
-                        &format!("G{} (reference return / coordinate setting) is not modelled", fmt_g(g)),
+                        &format!("G{} ({}) is not modelled", fmt_g(g), refs::unmodelled_frame(gi)),
                         span,
                     ))
                 }
@@ -494,8 +519,20 @@ impl Machine {
             warns.push(("NC405", "address Q has no effect on the trace and is ignored".into(), span));
         }
         if g10 {
-            self.g10(l, p, &axes, warns, block_span)?;
+            if self.g10(l, p, &axes, warns, block_span)? {
+                // A write to the active (or the external) offset acts at once: as a re-selection.
+                out.push((Event::WorkOffset { n: self.wo as u32 }, block_span));
+            }
             return Ok(eff);
+        }
+        if g52 {
+            self.local_shift(&axes, block_span)?;
+            return Ok(eff);
+        }
+        if home.is_none() {
+            for (_, span) in named.drain(..) {
+                warns.push(("NC405", "a machine-axis word outside G74/G75 has no effect on the trace".into(), span));
+            }
         }
 
         // F, S, T.
@@ -553,7 +590,10 @@ impl Machine {
             }
         }
         // 4. motion or dwell
-        if dwell {
+        if let Some(h) = home {
+            let named: Vec<usize> = named.iter().map(|n| n.0).collect();
+            eff.moved = self.reference_return(h, &axes, &named, out, block_span)?;
+        } else if dwell {
             let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
             out.push((Event::Dwell { seconds: secs }, block_span));
         } else if self.cycle.active.is_some() && !g53 {

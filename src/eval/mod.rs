@@ -15,6 +15,7 @@ pub mod arc;
 pub mod axes;
 pub mod callee_files;
 pub mod calls;
+pub mod collapse;
 pub mod cycles;
 pub mod exec;
 pub mod expr;

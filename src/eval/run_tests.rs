@@ -274,7 +274,18 @@ fn work_offsets_and_g53() {
         s(vec![end()]),
     ]);
     let (t, _) = run_u(&u);
-    assert_eq!(t, vec!["move rapid X=105 f=-", "move rapid X=0 f=-", "move rapid X=0 Y=5 f=-", "end M30 steps=6"]);
+    // The G10 write to the active G54 acts at once (a work_offset), then G54 selects it.
+    assert_eq!(
+        t,
+        vec![
+            "work_offset 1",
+            "work_offset 1",
+            "move rapid X=105 f=-",
+            "move rapid X=0 f=-",
+            "move rapid X=0 Y=5 f=-",
+            "end M30 steps=6"
+        ]
+    );
 }
 
 #[test]
@@ -295,8 +306,10 @@ fn siemens_uifr_needs_reselection() {
         s(vec![end()]),
     ]);
     let (t, _) = run_u(&u);
-    assert_eq!(t[0], "move rapid X=1 f=-");
-    assert_eq!(t[1], "move rapid X=51 f=-");
+    assert_eq!(
+        t,
+        vec!["work_offset 1", "move rapid X=1 f=-", "work_offset 1", "move rapid X=51 f=-", "end M30 steps=5"]
+    );
 }
 
 #[test]
@@ -528,7 +541,7 @@ fn incremental_move_after_an_offset_change() {
         s(vec![g(55.0), g(91.0), word("X", p(1.0))]),
         s(vec![end()]),
     ]);
-    assert_eq!(run_u(&fan).0[1], "move rapid X=2 f=-");
+    assert_eq!(run_u(&fan).0[3], "move rapid X=2 f=-");
     // Siemens (MD42440 = 1): the increment applies to the programmed position, so the
     // move also travels the new offset.
     let sie = siemens(vec![

@@ -152,6 +152,10 @@ impl Interp<'_> {
                 Some((t, a)) => {
                     let mm = if self.m.modal.sys_inch() && !(3..6).contains(&a) { v * 25.4 } else { v };
                     self.m.offsets[t][a] = mm;
+                    // The active offset changed (live on FANUC): as a re-selection.
+                    if t == self.m.wo || t == 0 {
+                        self.emit(Event::WorkOffset { n: self.m.wo as u32 }, span);
+                    }
                     Ok(())
                 }
                 None => Err(self.unmodelled(&format!("#{n}"), span)),

@@ -125,6 +125,25 @@ pub enum Event {
     },
     /// One hole of a drilling cycle (format v2; boxed: rare and large).
     Cycle(Box<crate::ir::cycle::Hole>),
+    /// A work-offset selection (format v2): 0 none, 1..6 G54..G59 (Siemens G54..G57,
+    /// G505, G506), 7.. FANUC G54.1 P1.. / Siemens G507...
+    WorkOffset {
+        n: u32,
+    },
+    /// A reference-point return (format v2; boxed: rare).
+    Home(Box<HomeEv>),
+}
+
+/// The fields of a `home` event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HomeEv {
+    /// The homed axes ([`AXES`] indices), in axis order.
+    pub axes: Vec<u8>,
+    /// Where the approach starts on each homed axis: the intermediate point (FANUC G28's
+    /// axis words; the current position when the tool goes straight, as G74 does).
+    pub via: Axes,
+    /// 1: reference point; 2..4: second to fourth reference point (G30 Pn, G75 FP=n-1).
+    pub point: u8,
 }
 
 impl Event {
@@ -143,6 +162,8 @@ impl Event {
             Event::End { .. } => "end",
             Event::Limit { .. } => "limit",
             Event::Cycle(_) => "cycle",
+            Event::WorkOffset { .. } => "work_offset",
+            Event::Home(_) => "home",
         }
     }
 }
@@ -373,6 +394,15 @@ fn text_form(s: &mut TextBuf, ev: &Event) {
         Event::End { code, steps } => s.push_str(&format!("end {code} steps={steps}")),
         Event::Limit { steps } => s.push_str(&format!("limit steps={steps}")),
         Event::Cycle(h) => s.push_str(&super::cycles::text_form(h)),
+        Event::WorkOffset { n } => s.push_str(&format!("work_offset {n}")),
+        Event::Home(h) => {
+            s.push_str(&format!("home point={} axes=", h.point));
+            for &i in &h.axes {
+                s.push(AXES[usize::from(i)]);
+            }
+            s.push_str(" via");
+            axes_text(s, &h.via);
+        }
     }
 }
 
@@ -475,6 +505,21 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
         Event::End { code, steps } => s.push_str(&format!(",\"code\":\"{code}\",\"steps\":{steps}")),
         Event::Limit { steps } => s.push_str(&format!(",\"steps\":{steps}")),
         Event::Cycle(h) => s.push_str(&super::cycles::json_fields(h)),
+        Event::WorkOffset { n } => s.push_str(&format!(",\"n\":{n}")),
+        Event::Home(h) => {
+            s.push_str(",\"axes\":[");
+            for (k, &i) in h.axes.iter().enumerate() {
+                if k > 0 {
+                    s.push(',');
+                }
+                s.push('"');
+                s.push(AXES[usize::from(i)]);
+                s.push('"');
+            }
+            s.push_str("],\"via\":");
+            axes_json(s, &h.via);
+            s.push_str(&format!(",\"point\":{}", h.point));
+        }
     }
     if let Some(l) = line {
         s.push_str(",\"line\":");

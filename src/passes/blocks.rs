@@ -148,7 +148,9 @@ fn split_body(ctx: &mut Ctx, body: Vec<Stmt>, info: &mut ProgInfo) -> Vec<Stmt> 
     out
 }
 
-fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>) {
+fn split_block(ctx: &mut Ctx, mut b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>) {
+    // SUPA is a word of its block on FANUC (G53), not a statement after it.
+    super::frames::supa_as_g53(&mut b);
     let mut first: Vec<Item> = Vec::new();
     let mut words: Vec<Item> = Vec::new();
     let mut tail: Vec<Item> = Vec::new();

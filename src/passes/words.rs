@@ -69,6 +69,9 @@ struct Modal {
     s: Modes,
     /// Jump targets where modes are reset.
     resets: Resets,
+    /// In a subprogram: the temporary that holds its caller's feed factor (see
+    /// The axes a TRANS becomes a G52 of (`frames::trans_axes`).
+    trans_axes: u16,
 }
 
 impl Modal {
@@ -91,6 +94,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
             units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
         },
         resets: Resets::of(&prog.body, &ctx.callees),
+        trans_axes: super::frames::trans_axes(&prog.body),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -252,6 +256,11 @@ fn const_g(it: &Item) -> Option<f64> {
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
     if let Some(c) = super::compensation::in_block(&b.items, crate::dialect::Dialect::Sinumerik) {
         out.extend(ctx.unsupported(super::compensation::CODE, c.span, &c.what, super::compensation::HINT));
+    }
+    // TRANS, SUPA/G153, G505.., G74/G75 (frames.rs).
+    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
+        out.extend(stmts);
+        return;
     }
     let items = std::mem::take(&mut b.items);
     let mut kept: Vec<Item> = Vec::new();

@@ -11,7 +11,7 @@ impl Machine {
         axes: &[Option<(&WordVal, f64)>; 9],
         warns: &mut Vec<Warn>,
         span: Span,
-    ) -> Result<(), Fault> {
+    ) -> Result<bool, Fault> {
         match l.map(round_half_away) {
             Some(2.0) => {
                 let n = p.map_or(0.0, |(_, x)| round_half_away(x));
@@ -25,7 +25,7 @@ impl Machine {
                         *slot = if self.modal.absolute { v } else { *slot + v };
                     }
                 }
-                Ok(())
+                Ok(n as usize == self.wo || n == 0.0)
             }
             _ => {
                 warns.push((
@@ -33,7 +33,7 @@ impl Machine {
                     "G10 other than L2 (tool or parameter data) has no effect on the trace".into(),
                     span,
                 ));
-                Ok(())
+                Ok(false)
             }
         }
     }

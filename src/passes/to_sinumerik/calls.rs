@@ -649,8 +649,10 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         }
         out.push(block_stmt(meta, vec![assign(target, value, w.span)]));
     }
-    // Writing $P_UIFR does not activate it: re-select the offset active here.
+    // Writing $P_UIFR does not activate it: re-select the offset active here, if it is
+    // the one written (FANUC: a write to another offset acts at its next selection).
     let g = match modal.offset_at(span.lo) {
+        Some(g) if i64::from(g / 10) - 53 != frame => return,
         Some(580) => 5050,
         Some(590) => 5060,
         Some(g) => g,

@@ -23,6 +23,7 @@
 pub mod calls;
 pub mod cycles;
 pub mod exprs;
+pub mod frames;
 pub mod gotos;
 pub mod haas_if;
 pub mod indirect;

@@ -15,6 +15,12 @@ use super::*;
 pub struct ModalScan {
     /// (block span start, the modes after it).
     blocks: Vec<(u32, State)>,
+    /// The axes (bit per `AXES` index) any `G52` of the program may leave shifted, and
+    /// whether it is the main program (a called one starts with its caller's shift).
+    pub g52: (u16, bool),
+    /// Some block moves an axis where G91 may be in force (a Sinumerik incremental move
+    /// after a frame change also travels the change, a FANUC one does not).
+    pub incremental_motion: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -25,16 +31,19 @@ pub struct State {
     pub incremental: Option<bool>,
     /// G20 (`true`) or G21.
     pub inch: Option<bool>,
+    /// The motion G code ×10 (0, 10, 20, 30).
+    pub motion: Option<u32>,
 }
 
 impl State {
-    const UNKNOWN: State = State { offset: None, incremental: None, inch: None };
+    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None };
 
     fn merge(self, o: State) -> State {
         State {
             offset: if self.offset == o.offset { self.offset } else { None },
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
             inch: if self.inch == o.inch { self.inch } else { None },
+            motion: if self.motion == o.motion { self.motion } else { None },
         }
     }
 
@@ -55,10 +64,15 @@ impl State {
         for g in g_codes(items) {
             match g {
                 540 | 550 | 560 | 570 | 580 | 590 => self.offset = Some(g),
+                // An extended offset (G54.1 Pn): a re-selection would need its P.
+                541 => self.offset = None,
                 900 => self.incremental = Some(false),
                 910 => self.incremental = Some(true),
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
+                0 | 10 | 20 | 30 => self.motion = Some(g),
+                // Canned cycles and their cancel: the motion group is not followed here.
+                730..=890 => self.motion = None,
                 _ => {}
             }
         }
@@ -75,7 +89,7 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch }
+            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0) }
         } else {
             State { inch, ..State::UNKNOWN }
         };
@@ -116,6 +130,7 @@ impl ModalScan {
             }
         }
         let mut blocks = Vec::new();
+        let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
             let Some((lo, _)) = flat.blocks[i] else { continue };
@@ -127,9 +142,18 @@ impl ModalScan {
                 (false, _) => State::UNKNOWN,
             };
             prev = st;
+            if let Node::Items(items) = &flat.nodes[i] {
+                let gs = g_codes(items);
+                let moves = items.iter().any(|it| {
+                    matches!(&it.kind, ItemKind::Word(Word { addr: Addr::Letter(l), .. }) if b"XYZABCUVW".contains(l))
+                });
+                if moves && st.incremental != Some(false) && !gs.iter().any(|g| matches!(g, 100 | 280 | 300 | 520)) {
+                    incremental_motion = true;
+                }
+            }
             blocks.push((lo, st));
         }
-        ModalScan { blocks }
+        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion }
     }
 
     /// The block at or before `lo` in text order.
@@ -147,6 +171,12 @@ impl ModalScan {
     /// G91 in force after the block at `lo`; `None` where the paths disagree.
     pub fn incremental_at(&self, lo: u32) -> Option<bool> {
         self.at(lo).and_then(|b| b.1.incremental)
+    }
+
+    /// The motion G code (×10) in force after the block at `lo`; `None` where the paths
+    /// disagree.
+    pub fn motion_at(&self, lo: u32) -> Option<u32> {
+        self.at(lo).and_then(|b| b.1.motion)
     }
 
     /// G20 in force after the block at `lo` (a value of the block is read in it); `None`

@@ -7,7 +7,8 @@
 //!   unit is not known (paths disagree, a caller's unit that differs between calls) such a
 //!   value is refused (NC375). Expressions (`X[#1+2]`, `X#1`) are already in the unit.
 //! - G codes: identical ones are kept; `G20/G21` → `G700/G710` (feeds follow the unit, as on
-//!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active);
+//!   FANUC); `G58/G59` → `G505/G506`; `G61` → `G60`; `G80` dropped (no cycle can be active),
+//!   `G69`/`G15` too (G68/G16 are refused, frames.rs);
 //!   `G43/G44/G49` and their `H` dropped with a warning (Siemens applies the length of the
 //!   active D itself); everything else is unsupported.
 //! - `G04 P500` → `G4 F0.5`, `G04 X1.5` → `G4 F1.5`, in a block of its own.
@@ -81,7 +82,8 @@ fn map_g(g: u32) -> Option<Option<u32>> {
         580 => Some(5050),
         590 => Some(5060),
         610 => Some(600),
-        800 | 430 | 440 | 490 => None,
+        // G69/G15 cancel a rotation / polar mode that cannot be active (G68/G16 are refused).
+        800 | 430 | 440 | 490 | 690 | 150 => None,
         _ => return None,
     })
 }
@@ -273,7 +275,7 @@ fn word_item(letter: u8, v: Expr, span: Span) -> Item {
     Item { kind: ItemKind::Word(Word { addr: Addr::Letter(letter), value: WordValue::Expr(v), span }), span }
 }
 
-fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
+fn lower_block(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
     if let Some(c) = crate::passes::compensation::in_block(&b.items, crate::dialect::Dialect::Fanuc) {
         let msg = format!("{} cannot be translated to Sinumerik", c.what);
         out.extend(ctx.refuse(
@@ -285,6 +287,21 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
         ));
     }
     let gs = g_codes(&b.items);
+    let mut b = match super::frames::split(ctx, b, span, modal, &gs) {
+        Err(b) => b,
+        Ok(split) => {
+            // G52, G54.1 and G28/G30 (frames.rs); the rest of the block is lowered here,
+            // with the arc mode of the source block (G28 leaves the motion mode alone).
+            out.extend(split.before);
+            let keep_arc = *arc;
+            if let Some(rest) = split.block {
+                lower_block(ctx, rest, span, modal, arc, out);
+            }
+            *arc = keep_arc;
+            out.extend(split.after);
+            return;
+        }
+    };
     for &g in &gs {
         match g {
             20 | 30 => *arc = true,
@@ -340,7 +357,9 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, arc: 
             }
             ItemKind::Assign { target, value } => {
                 if let VarKind::Hash(n @ 5221..=5340) = target.kind {
-                    offset_written |= system_var(n, isp).is_some();
+                    // Only the active offset needs re-selecting (below); unknown: NC373.
+                    let active = modal.offset_at(span.lo).map(|g| g / 10 - 53);
+                    offset_written |= system_var(n, isp).is_some() && active.is_none_or(|a| a == (n - 5221) / 20 + 1);
                 }
                 items.push(Item { kind: ItemKind::Assign { target, value }, span: isp });
             }

@@ -1,0 +1,191 @@
+//! Coordinate systems and reference points (trace v2): work-offset selection as
+//! `work_offset` events, the FANUC local coordinate system (G52), and reference-point
+//! returns (FANUC G28/G30, Siemens G74/G75) as `home` events (docs/semantics.md,
+//! "Coordinate systems and reference points").
+
+use super::{axis_index, round_half_away, AbsInc, Event, Fault, Machine, Span, WordVal, WV};
+
+/// The machine position of every reference and fixed point (trace spec: machine 0 on every
+/// axis; no profile key sets another yet).
+const REFERENCE_POSITION: f64 = 0.0;
+
+/// A reference-point return asked for by a block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Home {
+    /// 1: reference point (G28, G74); 2..4: FANUC G30 Pn, Siemens G75 FP=n-1.
+    pub point: u8,
+    /// FANUC: the axis words give an intermediate point; Siemens: they only name the axes.
+    pub via_words: bool,
+}
+
+fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
+    Fault::Error(Box::new(crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "here").hint(hint)))
+}
+
+/// What an unmodelled coordinate-system G code (×10) is, for its error.
+pub fn unmodelled_frame(gi: i64) -> &'static str {
+    match gi {
+        290 => "return from the reference point",
+        920 => "coordinate system setting",
+        680 => "coordinate system rotation",
+        160 => "polar coordinates",
+        _ => "local coordinate system, a FANUC code",
+    }
+}
+
+impl Machine {
+    /// Selects work offset `n` (the trace's `work_offset` number, also the table index) and
+    /// emits its event, also when it is the one already active.
+    pub(super) fn select_work_offset(&mut self, n: usize, out: &mut Vec<(Event, Span)>, span: Span) {
+        self.select_offset(n);
+        self.wo_selections += 1;
+        out.push((Event::WorkOffset { n: self.wo as u32 }, span));
+    }
+
+    /// FANUC `G54.1 Pn` (and `G54 Pn`, the same on 0i/30i): extended offset n = 7.. in the
+    /// trace, table `6 + n`.
+    pub(super) fn extended_offset(
+        &mut self,
+        p: Option<(&WordVal, f64)>,
+        out: &mut Vec<(Event, Span)>,
+        span: Span,
+    ) -> Result<(), Fault> {
+        let n = p.map(|(_, x)| round_half_away(x)).unwrap_or(1.0);
+        if !(1.0..=48.0).contains(&n) {
+            return Err(Fault::alarm(
+                self.alarms.bad_index,
+                format!("G54.1 P{n}: no such extended work offset (P1..P48)"),
+                span,
+            ));
+        }
+        self.select_work_offset(6 + n as usize, out, span);
+        Ok(())
+    }
+
+    /// FANUC `G52 X.. Y..`: each axis given replaces that axis's local shift (in every work
+    /// offset); `G52 X0 Y0 Z0` cancels. No motion.
+    pub(super) fn local_shift(&mut self, axes: &[Option<(&WordVal, f64)>; 9], span: Span) -> Result<(), Fault> {
+        if !self.modal.absolute || axes.iter().flatten().any(|(w, _)| w.mode != AbsInc::Plain) {
+            return Err(error(
+                "NC440",
+                "G52 under G91 (an incremental local shift) is not modelled".into(),
+                span,
+                "write G52 with the absolute shift under G90",
+            ));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if let Some((w, x)) = a {
+                self.local[i] = self.length(w, *x, (3..6).contains(&i));
+            }
+        }
+        Ok(())
+    }
+
+    /// The homed axes of a Siemens G74/G75 block: machine-axis words `X1=0` (or `X=0`),
+    /// whose values are ignored.
+    pub(super) fn machine_axis(addr: &str) -> Option<usize> {
+        let b = addr.as_bytes();
+        match b {
+            [c, b'1'] => axis_index(*c),
+            _ => None,
+        }
+    }
+
+    /// A reference-point return of the axes in `axes` (FANUC: with the intermediate point
+    /// they give; Siemens: `named` machine axes). Emits the rapid to the intermediate point
+    /// (FANUC, unless every word is an incremental 0: the point is where the tool stands),
+    /// then the `home` event, and leaves the homed axes at the reference position.
+    pub(super) fn reference_return(
+        &mut self,
+        home: Home,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        named: &[usize],
+        out: &mut Vec<(Event, Span)>,
+        span: Span,
+    ) -> Result<bool, Fault> {
+        let mut homed = [false; 9];
+        if home.via_words {
+            let mut target = self.pos;
+            let mut stays = true;
+            for (i, a) in axes.iter().enumerate() {
+                let Some((w, x)) = a else { continue };
+                let v = self.length(w, *x, (3..6).contains(&i));
+                let inc = w.mode == AbsInc::Ic || (w.mode == AbsInc::Plain && !self.modal.absolute);
+                stays &= inc && v == 0.0;
+                target[i] = self.axis_target(i, v, w.mode, false);
+                homed[i] = true;
+            }
+            if !stays {
+                for (i, h) in homed.iter().enumerate() {
+                    if *h {
+                        self.applied[i] = self.active_offset(i);
+                        self.seen[i] = true;
+                        self.pos[i] = target[i];
+                    }
+                }
+                out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+            }
+        } else {
+            for &i in named {
+                homed[i] = true;
+            }
+            if let Some((w, _)) = axes.iter().flatten().next() {
+                return Err(error(
+                    "NC441",
+                    format!("G74/G75 names machine axes (`{}1=0`), not {}", w.addr, w.addr),
+                    w.span,
+                    "write the axes to approach as machine axes with the value 0: `G74 X1=0 Y1=0 Z1=0`",
+                ));
+            }
+        }
+        if !homed.iter().any(|h| *h) {
+            return Ok(false);
+        }
+        let mut list = Vec::new();
+        let mut via = [None; 9];
+        for (i, h) in homed.iter().enumerate() {
+            if *h {
+                list.push(i as u8);
+                via[i] = Some(super::clean(self.pos[i]));
+                self.pos[i] = REFERENCE_POSITION;
+                self.seen[i] = true;
+                self.applied[i] = self.active_offset(i);
+            }
+        }
+        out.push((Event::Home(Box::new(crate::eval::trace::HomeEv { axes: list, via, point: home.point })), span));
+        Ok(true)
+    }
+
+    /// The point number of Siemens `G75 FP=k` (k 1..4, default 1) in the trace: k + 1, so
+    /// that it meets FANUC `G30 P(k+1)`.
+    pub(super) fn fixed_point(&self, fp: Option<(&WordVal, f64)>, span: Span) -> Result<u8, Fault> {
+        let k = match fp {
+            None => 1.0,
+            Some((w, x)) => match w.val {
+                WV::Num(_) => round_half_away(x),
+                WV::Str(_) => 0.0,
+            },
+        };
+        if !(1.0..=4.0).contains(&k) {
+            return Err(Fault::alarm(
+                self.alarms.bad_index,
+                format!("G75 FP={k}: no such fixed point (FP=1..4)"),
+                span,
+            ));
+        }
+        Ok(k as u8 + 1)
+    }
+
+    /// The point number of FANUC `G30 Pn` (n 2..4, default 2).
+    pub(super) fn second_reference(&self, p: Option<(&WordVal, f64)>, span: Span) -> Result<u8, Fault> {
+        let n = p.map(|(_, x)| round_half_away(x)).unwrap_or(2.0);
+        if !(2.0..=4.0).contains(&n) {
+            return Err(Fault::alarm(
+                self.alarms.bad_index,
+                format!("G30 P{n}: no such reference point (P2..P4)"),
+                span,
+            ));
+        }
+        Ok(n as u8)
+    }
+}

@@ -1,0 +1,197 @@
+//! Sinumerik → FANUC: programmable translation, machine coordinates, settable offsets past
+//! G57 and reference-point approach (docs/translation.md, "Coordinate systems").
+//!
+//! - `TRANS X.. Y..` → `G52` naming X, Y, Z and every other axis any TRANS of the program
+//!   names, the unnamed ones 0: TRANS replaces the whole programmable frame, G52 only the
+//!   axes it names. Bare `TRANS` → `G52 X0 Y0 Z0`. Under G91 (or where it may be in force)
+//!   refused: FANUC reads G52 under G91 as incremental. `ATRANS` (adds to the frame, whose
+//!   value FANUC cannot read back) is refused.
+//! - `SUPA` and `G153` → `G53` in the same block.
+//! - `G505`/`G506` → `G58`/`G59`, `G507`.. → `G54.1 P1`.. (the trace numbers both alike).
+//! - `G74 Z1=0` → `G91 G28 Z0` (the intermediate point is where the tool stands, as for
+//!   G74), then `G90` again where the program is absolute; `G75 FP=k` → `G91 G30 P(k+1)`.
+
+use super::*;
+
+const AXES: &[u8; 9] = b"XYZABCUVW";
+
+fn g(v: f64, span: Span) -> Item {
+    item(ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span }), span)
+}
+
+fn letter(l: u8, v: Expr, span: Span) -> Item {
+    item(ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }), span)
+}
+
+fn point(v: f64, span: Span) -> Expr {
+    Expr::num(v, true, span)
+}
+
+fn const_g(it: &Item) -> Option<f64> {
+    match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(e), .. }) => match &e.kind {
+            ExprKind::Num(n) => Some(n.value),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The axes any TRANS of `body` names, with X, Y and Z; bit 15: the program has an
+/// incremental word (G91 or IC()), after which TRANS and G52 differ.
+pub fn trans_axes(body: &[Stmt]) -> u16 {
+    let mut bits = 0b111;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if const_g(it) == Some(91.0) || matches!(&it.kind, ItemKind::Word(Word { value: WordValue::Ic(_), .. }))
+                {
+                    bits |= 1 << 15;
+                }
+                if let ItemKind::Frame { words, .. } = &it.kind {
+                    for w in words {
+                        if let Addr::Letter(l) = w.addr {
+                            bits |= AXES.iter().position(|&c| c == l).map_or(0, |i| 1 << i);
+                        }
+                    }
+                }
+            }
+        }
+    });
+    bits
+}
+
+/// `SUPA` → `G53` in its block (before the block is split: it stays with its words).
+pub fn supa_as_g53(b: &mut Block) {
+    for it in b.items.iter_mut() {
+        if matches!(&it.kind, ItemKind::Instruction { name } if name == "SUPA") {
+            *it = g(53.0, it.span);
+        }
+    }
+}
+
+/// Rewrites `G153` in place and moves a `G505..` selection into a block of its own
+/// in `out` (it bypasses the words pass, where G58/G59 are Siemens codes of another
+/// meaning); `Some(stmts)`: the block became these (TRANS, G74, G75, or a refusal).
+pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &mut Vec<Stmt>) -> Option<Vec<Stmt>> {
+    let (mut k, mut moved) = (0, false);
+    while k < b.items.len() {
+        let span = b.items[k].span;
+        match (&b.items[k].kind, const_g(&b.items[k])) {
+            (_, Some(153.0)) => b.items[k] = g(53.0, span),
+            (_, Some(v)) if (505.0..=554.0).contains(&v) && v.fract() == 0.0 => {
+                let sel = if v < 507.0 {
+                    vec![g(v - 447.0, span)]
+                } else {
+                    vec![g(54.1, span), letter(b'P', num(v - 506.0, span), span)]
+                };
+                out.push(block_stmt(sel, span));
+                b.items.remove(k);
+                moved = true;
+                continue;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    if moved && b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none() {
+        return Some(Vec::new());
+    }
+    let span = b.meta.span;
+    if let [Item { kind: ItemKind::Frame { op, words }, span: fspan }] = b.items.as_slice() {
+        if op != "TRANS" {
+            return None; // the words pass refuses the others (NC316)
+        }
+        if abs != Some(true) || axes & (1 << 15) != 0 {
+            return Some(refuse(
+                ctx,
+                *fspan,
+                "TRANS in a program with incremental moves (G91, IC()): after a TRANS a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not",
+                "program the moves in G90 (or AC()); select G90 before the TRANS",
+            ));
+        }
+        if words.iter().any(|w| matches!(w.value, WordValue::Rotary(..))) {
+            return Some(refuse(
+                ctx,
+                *fspan,
+                "a rotary positioning form (ACP, ACN, DC …) in a TRANS",
+                "a shift is a plain value: write TRANS with the value alone",
+            ));
+        }
+        let mut items = vec![g(52.0, span)];
+        for (i, &l) in AXES.iter().enumerate() {
+            if axes & (1 << i) == 0 {
+                continue;
+            }
+            let v = words.iter().rev().find(|w| w.addr.is(l)).map(|w| match &w.value {
+                // Refused above: a rotary positioning form is no shift value.
+                WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => e.clone(),
+            });
+            items.push(letter(l, v.unwrap_or_else(|| point(0.0, *fspan)), *fspan));
+        }
+        let meta = std::mem::take(&mut b.meta);
+        return Some(vec![meta_stmt(meta, items)]);
+    }
+    let gs: Vec<f64> = b.items.iter().filter_map(const_g).collect();
+    let home = if gs.contains(&74.0) {
+        74.0
+    } else if gs.contains(&75.0) {
+        75.0
+    } else {
+        return None;
+    };
+    let mut items = vec![g(91.0, span), g(if home == 74.0 { 28.0 } else { 30.0 }, span)];
+    for it in &b.items {
+        let ok = match &it.kind {
+            ItemKind::Word(w) => match &w.addr {
+                Addr::Letter(b'G') => const_g(it) == Some(home),
+                Addr::Name(n) if n.as_ref() == "FP" && home == 75.0 => {
+                    let k = match &w.value {
+                        WordValue::Expr(Expr { kind: ExprKind::Num(k), .. }) => k.value,
+                        _ => 0.0,
+                    };
+                    if !(1.0..=4.0).contains(&k) || k.fract() != 0.0 {
+                        return Some(refuse(ctx, w.span, "G75 without a constant FP=1..4", "write FP=1 to FP=4"));
+                    }
+                    items.insert(2, letter(b'P', num(k + 1.0, w.span), w.span));
+                    true
+                }
+                Addr::Name(n) => match n.as_bytes() {
+                    [c, b'1'] if AXES.contains(c) => {
+                        items.push(letter(*c, point(0.0, w.span), w.span));
+                        true
+                    }
+                    _ => false,
+                },
+                _ => false,
+            },
+            _ => false,
+        };
+        if !ok {
+            return Some(refuse(
+                ctx,
+                it.span,
+                "G74/G75 with other words than the machine axes (and FP=)",
+                "write the approach alone in its block: `G74 Z1=0`",
+            ));
+        }
+    }
+    if abs.is_none() {
+        return Some(refuse(
+            ctx,
+            span,
+            "G74/G75 where G90/G91 depends on the caller or the path taken",
+            "select G90 or G91 before the reference point approach",
+        ));
+    }
+    let meta = std::mem::take(&mut b.meta);
+    let mut out = vec![meta_stmt(meta, items)];
+    if abs == Some(true) {
+        out.push(block_stmt(vec![g(90.0, span)], span));
+    }
+    Some(out)
+}
+
+fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Vec<Stmt> {
+    ctx.unsupported("NC445", span, what, hint).into_iter().collect()
+}

@@ -1,0 +1,244 @@
+//! Coordinate systems, frames and reference returns (issue #20, trace v2): what the
+//! evaluator reports for FANUC G52/G53/G54.1/G28/G30 and Siemens TRANS/ATRANS/SUPA/G74/G75,
+//! that the two dialects' forms of one part agree, and that planted differences (offset
+//! number, missing intermediate point, wrong shift sign) are caught.
+
+use nctrans::check::{self, Side, Verdict};
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::eval::{self, NoCallees, RunOptions, VecSink};
+use nctrans::ir::Unit;
+use nctrans::span::SourceDb;
+
+fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
+    let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
+    let id = db.add(name, text);
+    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
+    assert!(!nctrans::diag::has_errors(&p.diags), "does not parse:\n{}", nctrans::diag::render(db, &p.diags));
+    p.unit
+}
+
+/// The trace in its text form, one event a line; an error ends it with `error CODE`.
+fn trace(text: &str, d: Dialect) -> String {
+    let mut db = SourceDb::new();
+    let unit = load(&mut db, text, d);
+    let mut sink = VecSink::default();
+    let out = eval::run(&mut db, &unit, &mut NoCallees, &RunOptions::default(), &mut sink);
+    let mut s: Vec<String> = sink.events.iter().map(|(e, _)| eval::trace::text_line(e)).collect();
+    if let Some(e) = out.diags.iter().find(|d| d.severity == nctrans::diag::Severity::Error) {
+        s.push(format!("error {}", e.code));
+    }
+    s.join("\n")
+}
+
+fn verdict(fanuc: &str, siemens: &str) -> Verdict {
+    let mut db = SourceDb::new();
+    let f = load(&mut db, fanuc, Dialect::Fanuc);
+    let s = load(&mut db, siemens, Dialect::Sinumerik);
+    let side = |u: Unit| Side { unit: u, callees: Box::new(NoCallees), run: RunOptions::default() };
+    check::check(&db, side(f), side(s)).verdict
+}
+
+fn equivalent(fanuc: &str, siemens: &str) -> bool {
+    matches!(verdict(fanuc, siemens), Verdict::Equivalent { .. })
+}
+
+#[test]
+fn g52_shifts_every_work_offset_per_axis_until_cancelled() {
+    let t = trace(
+        "O1\nG10 L2 P2 X100. Y0 Z0\nG90 G54\nG52 X10. Y5.\nG0 X0 Y0\nG52 Y20.\nG0 X0 Y0\nG55\nG0 X0 Y0\nG52 X0 Y0 Z0\nG0 X0 Y0\nM30\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        t,
+        "work_offset 1\nmove rapid X=10 Y=5 f=-\nmove rapid X=10 Y=20 f=-\nwork_offset 2\nmove rapid X=110 Y=20 f=-\n\
+         move rapid X=100 Y=0 f=-\nend M30 steps=11"
+    );
+}
+
+#[test]
+fn g52_under_g91_is_refused() {
+    assert!(trace("O1\nG91 G52 X10.\nM30\n", Dialect::Fanuc).ends_with("error NC440"));
+}
+
+#[test]
+fn extended_offsets_and_their_siemens_numbers() {
+    assert_eq!(
+        trace("O1\nG54.1 P3\nG54 P1\nG59\nM30\n", Dialect::Fanuc),
+        "work_offset 9\nwork_offset 7\nwork_offset 6\nend M30 steps=4"
+    );
+    assert_eq!(
+        trace("G500\nG54\nG57\nG505\nG509\nM30\n", Dialect::Sinumerik),
+        "work_offset 0\nwork_offset 1\nwork_offset 4\nwork_offset 5\nwork_offset 9\nend M30 steps=6"
+    );
+    assert!(trace("O1\nG54.1 P49\nM30\n", Dialect::Fanuc).contains("alarm"));
+}
+
+#[test]
+fn g28_moves_to_the_intermediate_point_then_homes() {
+    let t = trace("O1\nG0 X10. Y10. Z100.\nG28 G90 Z50.\nG0 X0\nG91 G28 X0 Y0\nM30\n", Dialect::Fanuc);
+    assert_eq!(
+        t,
+        "move rapid X=10 Y=10 Z=100 f=-\nmove rapid X=10 Y=10 Z=50 f=-\nhome point=1 axes=Z via Z=50\n\
+         move rapid X=0 Y=10 Z=0 f=-\nhome point=1 axes=XY via X=0 Y=10\nend M30 steps=5"
+    );
+    // G28 leaves the motion mode as it was: the next block still feeds.
+    let t = trace("O1\nG1 X10. F100.\nG91 G28 Z0\nG90 X20.\nM30\n", Dialect::Fanuc);
+    assert!(t.contains("move linear X=20 Z=0 f=100"), "{t}");
+}
+
+#[test]
+fn g30_points_and_siemens_g75_fixed_points() {
+    assert!(trace("O1\nG91 G30 P3 Z0\nM30\n", Dialect::Fanuc).starts_with("home point=3 axes=Z via Z=0"));
+    assert!(trace("O1\nG91 G30 Z0\nM30\n", Dialect::Fanuc).starts_with("home point=2 axes=Z"));
+    assert!(trace("G75 FP=2 Z1=0\nM30\n", Dialect::Sinumerik).starts_with("home point=3 axes=Z via Z=0"));
+    assert!(trace("G75 X1=0 Y1=0\nM30\n", Dialect::Sinumerik).starts_with("home point=2 axes=XY"));
+    assert!(trace("G74 Z=0\nM30\n", Dialect::Sinumerik).ends_with("error NC441"));
+    assert!(trace("O1\nG30 P5 Z0\nM30\n", Dialect::Fanuc).contains("alarm"));
+}
+
+#[test]
+fn machine_coordinate_moves_ignore_the_offsets() {
+    let t = trace("O1\nG10 L2 P1 X100. Y0 Z-200.\nG54\nG52 X5.\nG0 X0 Z0\nG53 Z0\nM30\n", Dialect::Fanuc);
+    assert!(t.contains("move rapid X=105 Z=-200 f=-\nmove rapid X=105 Z=0 f=-"), "{t}");
+    let t = trace("$P_UIFR[1,Z,TR]=-200\nG54\nTRANS X5\nG0 X0 Z0\nG0 SUPA Z0\nG153 X0\nM30\n", Dialect::Sinumerik);
+    assert!(t.contains("move rapid X=5 Z=-200 f=-\nmove rapid X=5 Z=0 f=-\nmove rapid X=0 Z=0 f=-"), "{t}");
+}
+
+#[test]
+fn trans_replaces_atrans_adds() {
+    let t = trace(
+        "TRANS X10 Y10\nG0 X0 Y0\nATRANS X5\nG0 X0 Y0\nTRANS Y1\nG0 X0 Y0\nTRANS\nG0 X0 Y0\nM30\n",
+        Dialect::Sinumerik,
+    );
+    assert_eq!(t, "move rapid X=10 Y=10 f=-\nmove rapid X=15 Y=10 f=-\nmove rapid X=0 Y=1 f=-\nmove rapid X=0 Y=0 f=-\nend M30 steps=9");
+}
+
+const F_PART: &str = "O1\nG90 G54\nG0 X0 Y0 Z100.\nG52 X50. Y20.\nG0 X0 Y0\nG1 Z-5. F200.\nG91 G28 Z0\nG90 G52 X0 Y0\nG28 X10. Y10.\nM30\n";
+const S_PART: &str = "G90 G54\nG0 X0 Y0 Z100\nTRANS X50 Y20\nG0 X0 Y0\nG1 Z-5 F200\nG74 Z1=0\nTRANS\nG0 X10 Y10\nG74 X1=0 Y1=0\nG1\nM30\n";
+
+#[test]
+fn the_two_dialects_forms_of_one_part_agree() {
+    assert!(equivalent(F_PART, S_PART), "{:?}", verdict(F_PART, S_PART));
+    assert!(equivalent("O1\nG55\nG30 P2 G91 Z0\nM30\n", "G55\nG75 FP=1 Z1=0\nM30\n"));
+    assert!(equivalent("O1\nG54.1 P1\nG59\nM30\n", "G507\nG506\nM30\n"));
+}
+
+#[test]
+fn planted_differences_are_caught() {
+    // Wrong offset number.
+    assert!(!equivalent("O1\nG54.1 P1\nM30\n", "G508\nM30\n"));
+    assert!(!equivalent("O1\nG58\nM30\n", "G57\nM30\n"));
+    // Missing intermediate point.
+    assert!(!equivalent(F_PART, &S_PART.replace("G0 X10 Y10\n", "")));
+    // Wrong shift sign.
+    assert!(!equivalent(F_PART, &S_PART.replace("TRANS X50", "TRANS X-50")));
+    // Second reference point for the first.
+    assert!(!equivalent("O1\nG91 G30 Z0\nM30\n", "G74 Z1=0\nM30\n"));
+}
+
+mod translation {
+    use super::*;
+    use nctrans::read::LineEnding;
+    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+
+    const STEPS: u64 = 100_000;
+
+    /// FANUC → Sinumerik: the text, or the diagnostic codes; verified when translated.
+    fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let id = db.add("p.nc", fanuc);
+        let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
+        if t.has_errors() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", STEPS);
+        let text: String = t.files.iter().map(|x| x.text.clone()).collect();
+        assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
+        Ok(text)
+    }
+
+    fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let s = load(&mut db, siemens, Dialect::Sinumerik);
+        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        if !t.ok() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", STEPS);
+        assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+        Ok(t.text)
+    }
+
+    #[test]
+    fn fanuc_frames_become_trans_supa_g74_g75_and_verify() {
+        let out = f_to_s(F_PART).unwrap();
+        for line in ["TRANS X50 Y20\n", "G91\nG74 Z1=0\nG90\nTRANS\n", "G0 X10 Y10\nG74 X1=0 Y1=0\nG1\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let out = f_to_s("O1\nG54.1 P2\nG0 X1.\nG58\nG53 Z0\nG91 G30 P3 Z0\nG90\nM30\n").unwrap();
+        for line in ["G508\n", "G505\n", "G53 Z0\n", "G75 FP=2 Z1=0\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn siemens_frames_become_g52_g53_g28_g30_and_verify() {
+        let out = s_to_f(S_PART).unwrap();
+        for line in ["G52 X50. Y20. Z0.\n", "G91 G28 Z0.\nG90\n", "G52 X0. Y0. Z0.\n", "G91 G28 X0. Y0.\nG90\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let out = s_to_f("G507\nG506\nG0 SUPA Z0\nG153 X0\nG75 FP=1 Z1=0\nM30\n").unwrap();
+        for line in ["G54.1 P1\n", "G59\n", "G00 G53 Z0.\n", "G53 X0.\n", "G91 G30 P2 Z0.\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn what_has_no_exact_counterpart_is_refused() {
+        // G52 that keeps another axis's shift: TRANS would drop it.
+        assert_eq!(f_to_s("O1\nG52 X10.\nG52 Y5.\nM30\n"), Err(vec!["NC442".into()]));
+        assert!(f_to_s("O1\nG52 X10. Y0\nG52 X0 Y5.\nM30\n").is_ok());
+        // G52 under G91 (the evaluator refuses it too).
+        assert_eq!(f_to_s("O1\nG91 G52 X10.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
+        assert_eq!(f_to_s("O1\nG54.1 P#1\nM30\n").unwrap_err(), vec!["NC443".to_string()]);
+        assert_eq!(f_to_s("O1\nG28 Z0 M5\nM30\n").unwrap_err(), vec!["NC444".to_string()]);
+        // Rotation is not modelled: refused by name; its cancel cannot then be active.
+        assert_eq!(f_to_s("O1\nG68 X0 Y0 R45.\nG0 X1.\nM30\n").unwrap_err(), vec!["NC446".to_string()]);
+        assert!(f_to_s("O1\nG90 G69 G15\nG0 X1.\nM30\n").unwrap().contains("G90\nG0 X1\n"));
+        // ATRANS adds to a frame FANUC cannot read; TRANS under G91.
+        assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC316".to_string()]);
+        assert_eq!(s_to_f("G91\nTRANS X5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert_eq!(s_to_f("G74 Z1=0 M5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        // After a frame change a Sinumerik incremental move also travels the change, a
+        // FANUC one does not: a frame in a program with incremental moves is refused.
+        assert_eq!(s_to_f("X1\nTRANS X100\nX=IC(1)\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert_eq!(f_to_s("O1\nG52 X100. Y0\nG91 X1.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
+    }
+
+    #[test]
+    fn planted_wrong_translations_are_caught() {
+        let good = f_to_s(F_PART).unwrap();
+        for (from, to) in [
+            ("TRANS X50 Y20", "TRANS X-50 Y20"),     // shift sign
+            ("G0 X10 Y10\n", ""),                    // missing intermediate point
+            ("G74 X1=0 Y1=0", "G75 FP=1 X1=0 Y1=0"), // second reference point
+            ("G54\n", "G55\n"),                      // offset number
+        ] {
+            assert!(good.contains(from), "{from:?} not in\n{good}");
+            let bad = good.replacen(from, to, 1);
+            assert!(!equivalent(F_PART, &bad), "planted {from:?} → {to:?} not caught\n{bad}");
+        }
+        let good = s_to_f(S_PART).unwrap();
+        for (from, to) in [("G52 X50.", "G52 X-50."), ("G00 X10. Y10.\n", ""), ("G54\n", "G54.1 P1\n")] {
+            assert!(good.contains(from), "{from:?} not in\n{good}");
+            let bad = good.replacen(from, to, 1);
+            assert!(!equivalent(&bad, S_PART), "planted {from:?} → {to:?} not caught\n{bad}");
+        }
+    }
+}
