@@ -411,6 +411,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g88-bore-manual.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("functions-misc.nc", "NC369"),       // ADP
+    ("g52-pockets-g28-tool-changes.nc", "NC385"), // G43 H: tool compensation is not compared
     ("g10-l50-param-write.nc", "NC355"),  // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)
     ("jump-target-after-tape-end.nc", "NC254"), // a jump past the closing % (then NC366)

@@ -23,6 +23,7 @@ fn run(src: &str) -> Ran {
     run_text(&format!("scycle-run-{k}.mpf"), src, &[])
 }
 
+/// The setting-up every test program starts with (G54 is the first event, `work_offset 1`).
 const HEAD: &str = "G17 G90 G54\nT1 M6\nS1000 M3\nG0 X0 Y0 Z50\nF100\n";
 
 fn prog(body: &str) -> String {
@@ -44,13 +45,13 @@ fn error_codes(body: &str) -> Vec<String> {
 #[test]
 fn a_direct_call_drills_where_the_tool_is_and_mcall_after_every_move() {
     let t = trace("G0 X10 Y10\nCYCLE81(50, 0, 2, -5)\nMCALL CYCLE81(50, 0, 2, -5)\nX20\nY20\nMCALL\nX30\n");
-    assert_eq!(t[4], "cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
-    assert_eq!(t[5], "move rapid X=20 Y=10 Z=50 f=-");
-    assert_eq!(t[6], "cycle drill X=20 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
-    assert_eq!(t[8], "cycle drill X=20 Y=20 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+    assert_eq!(t[5], "cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+    assert_eq!(t[6], "move rapid X=20 Y=10 Z=50 f=-");
+    assert_eq!(t[7], "cycle drill X=20 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+    assert_eq!(t[9], "cycle drill X=20 Y=20 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
     // MCALL alone ends it: the last move drills nothing.
-    assert_eq!(t[9], "move rapid X=30 Y=20 Z=50 f=-");
-    assert_eq!(t[10], "end M30 steps=13");
+    assert_eq!(t[10], "move rapid X=30 Y=20 Z=50 f=-");
+    assert_eq!(t[11], "end M30 steps=13");
 }
 
 #[test]
@@ -64,16 +65,16 @@ fn dpr_wins_over_dp_and_empty_arguments_are_zero() {
 fn the_retraction_plane_sets_the_retract_level() {
     // RTP = RFP + SDIS: back to the R plane.
     let t = trace("CYCLE81(2, 0, 2, -5)\nG0 X5\n");
-    assert_eq!(t[3], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=r f=100");
-    assert_eq!(t[4], "move rapid X=5 Y=0 Z=2 f=-");
+    assert_eq!(t[4], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=r f=100");
+    assert_eq!(t[5], "move rapid X=5 Y=0 Z=2 f=-");
     // RTP between the tool and the R plane: approached first, then the tool's level.
     let t = trace("CYCLE81(10, 0, 2, -5)\n");
-    assert_eq!(t[3], "move rapid X=0 Y=0 Z=10 f=-");
-    assert_eq!(t[4], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+    assert_eq!(t[4], "move rapid X=0 Y=0 Z=10 f=-");
+    assert_eq!(t[5], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
     // RTP above the tool: the cycle returns through the start level to RTP.
     let t = trace("CYCLE81(80, 0, 2, -5)\n");
-    assert_eq!(t[3], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
-    assert_eq!(t[4], "move rapid X=0 Y=0 Z=80 f=-");
+    assert_eq!(t[4], "cycle drill X=0 Y=0 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+    assert_eq!(t[5], "move rapid X=0 Y=0 Z=80 f=-");
 }
 
 #[test]
@@ -102,7 +103,7 @@ fn every_cycle_has_its_kind() {
     assert_eq!(c[11], format!("cycle bore_dwell X=0 Y=0 r=2 bottom=-8 peck=- dwell=0.4 {end} f=100"));
     // CYCLE87/88 stop at the bottom.
     let t = trace("CYCLE87(50, 0, 2, -12, , 3)\n");
-    assert_eq!(t[4], "stop");
+    assert_eq!(t[5], "stop");
 }
 
 #[test]
