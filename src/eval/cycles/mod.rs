@@ -3,11 +3,12 @@
 //! MCALL), the hole they drill (one `cycle`
 //! event each, `ir::cycle::Hole`) and the event's text and JSON forms.
 
+pub mod expand;
 pub mod fanuc;
 pub mod siemens;
 
 use crate::eval::numfmt::push_num;
-use crate::eval::trace::AXES;
+use crate::eval::trace::{Event, AXES};
 use crate::ir::cycle::{CycleKind, Hole, Retract};
 
 /// A length of a cycle as programmed: absolute (the work offset still to add) or
@@ -60,6 +61,20 @@ impl State {
     /// level G98/G99 is its own modal group and stays).
     pub fn cancel(&mut self) {
         *self = State { retract: self.retract, ..State::default() };
+    }
+}
+
+/// Writes one hole: its `cycle` event, or under `--expand-cycles` (`retracts` given) the
+/// moves the control makes for it. A halting hole (G88, CYCLE87/88) is followed by its
+/// `stop` (the expansion puts the stop at the bottom, where the control halts).
+pub fn push_hole(retracts: Option<&expand::Retracts>, hole: Hole, cx: &expand::Context, out: &mut dyn FnMut(Event)) {
+    if let Some(evs) = retracts.and_then(|rt| expand::expand(&hole, cx, rt)) {
+        evs.into_iter().for_each(&mut *out);
+        return;
+    }
+    out(Event::Cycle(Box::new(hole)));
+    if cx.halt {
+        out(Event::Stop { optional: false, message: None });
     }
 }
 
