@@ -460,9 +460,7 @@ impl Config {
         use crate::eval::cycles::expand::Retracts;
         match dialect {
             Dialect::Fanuc => Retracts { chip_break: self.fanuc.g73_return, peck_clearance: self.fanuc.g83_clearance },
-            Dialect::Sinumerik => {
-                Retracts { chip_break: self.cycle83_retract, peck_clearance: self.cycle83_clearance }
-            }
+            Dialect::Sinumerik => Retracts { chip_break: self.cycle83_retract, peck_clearance: self.cycle83_clearance },
         }
     }
 

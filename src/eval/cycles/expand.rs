@@ -80,8 +80,11 @@ pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Option<Vec<Event>> {
             w.rapid(cx.end);
         }
         CycleKind::Tap | CycleKind::TapLeft => {
-            let (inward, out) =
-                if h.kind == CycleKind::Tap { (SpindleDir::Cw, SpindleDir::Ccw) } else { (SpindleDir::Ccw, SpindleDir::Cw) };
+            let (inward, out) = if h.kind == CycleKind::Tap {
+                (SpindleDir::Cw, SpindleDir::Ccw)
+            } else {
+                (SpindleDir::Ccw, SpindleDir::Cw)
+            };
             w.feed(h.bottom, h.f);
             w.dwell(h.dwell);
             w.out.push(Event::Spindle { rpm: cx.rpm, dir: out });
