@@ -37,9 +37,23 @@ pub struct Context {
 /// The events of one hole, or `None` for the kinds whose motion the event does not hold
 /// (back boring and fine boring: the shift direction and amount are machine data the
 /// event leaves out); the caller then writes the `cycle` event itself.
-pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Option<Vec<Event>> {
+/// The most infeeds one hole is expanded into: a tiny peck over a deep hole would otherwise
+/// write millions of moves for one block.
+pub const MAX_INFEEDS: f64 = 10_000.0;
+
+/// [`expand`] refused: the hole needs more infeeds than [`MAX_INFEEDS`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TooManyInfeeds(pub f64);
+
+pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Result<Option<Vec<Event>>, TooManyInfeeds> {
     if matches!(h.kind, CycleKind::BackBore | CycleKind::FineBore) {
-        return None;
+        return Ok(None);
+    }
+    if let Some(q) = h.peck.filter(|_| h.kind.pecks()) {
+        let n = ((h.bottom - h.r).abs() / q.abs()).ceil();
+        if n.is_nan() || n > MAX_INFEEDS {
+            return Err(TooManyInfeeds(n));
+        }
     }
     let mut w = Writer { pos: cx.start, axis: cx.axis, out: Vec::new() };
     // Towards the bottom: -1 when drilling down the axis.
@@ -50,8 +64,11 @@ pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Option<Vec<Event>> {
             let q = h.peck.unwrap_or((h.bottom - h.r).abs()).abs();
             let total = (h.bottom - h.r).abs();
             let mut done = 0.0_f64;
+            let mut k = 0.0;
             while done < total - 1e-9 {
-                let next = (done + q).min(total);
+                // From the count, not by adding: no drift over many infeeds.
+                k += 1.0;
+                let next = (k * q).min(total);
                 if done > 0.0 {
                     if h.kind == CycleKind::Peck {
                         w.rapid(h.r);
@@ -107,7 +124,7 @@ pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Option<Vec<Event>> {
         }
         CycleKind::BackBore | CycleKind::FineBore => unreachable!("returned above"),
     }
-    Some(w.out)
+    Ok(Some(w.out))
 }
 
 struct Writer {

@@ -142,3 +142,19 @@ fn tapping_reverses_the_spindle_and_fine_boring_stays_a_cycle_event() {
     );
     assert!(t[10].starts_with("cycle fine_bore X=6 Y=6"), "{t:?}");
 }
+
+#[test]
+fn a_hole_of_too_many_infeeds_is_refused_not_expanded_for_ever() {
+    // 100 mm in 0.001 mm infeeds: 100 000 infeeds.
+    let p = "O1\nG90 G0 X0 Y0 Z10.\nG99 G73 X1. Y1. Z-98. R2. Q0.001 F50.\nG80\nM30\n";
+    let mut db = SourceDb::new();
+    let loaded = crate::load(&mut db, "t.nc", p.as_bytes(), None);
+    let parsed = crate::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let mut sink = VecSink::default();
+    let opts = RunOptions { expand_cycles: Some(FANUC), ..Default::default() };
+    let out = run(&mut db, &parsed.unit, &mut NoCallees, &opts, &mut sink);
+    assert!(out.diags.iter().any(|d| d.code == "NC453" && d.message.contains("100000 infeeds")), "{:?}", out.diags);
+    // Without the option the hole is one event.
+    let t = trace(Dialect::Fanuc, p, None);
+    assert!(t.iter().any(|l| l.starts_with("cycle chip_break")), "{t:?}");
+}

@@ -199,7 +199,7 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         // G88 halts at the bottom for the operator to retract by hand.
         let halt = is_manual_retract(gi);
         let cx = super::expand::Context { start, axis: n, end: m.pos[n], rpm: m.speed, spindle: m.spindle, halt };
-        super::push_hole(m.expand.as_ref(), hole, &cx, &mut |e| out.push((e, span)));
+        super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push((e, span)))?;
     }
     Ok(count > 0)
 }

@@ -283,7 +283,7 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
     let cx =
         super::expand::Context { start: m.trace_pos(), axis: n, end, rpm: m.speed, spindle: m.spindle, halt: stop };
-    super::push_hole(m.expand.as_ref(), hole, &cx, &mut |e| out.push(e));
+    super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push(e))?;
     m.pos[n] = rtp;
     m.applied[n] = off;
     if after {
