@@ -94,10 +94,14 @@ fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
                     if let ItemKind::IfThen { then, .. } = &it.kind {
                         items.push(then);
                     }
+                    if let ItemKind::IfBlock { items: inner, .. } = &it.kind {
+                        items.extend(inner);
+                    }
                     for it in items {
                         if let ItemKind::Call(c) = &it.kind {
-                            if let CallTarget::Number(n) = c.target {
-                                set.insert(n);
+                            // Haas M97 names a block of this program, not a program.
+                            if let (CallTarget::Number(n), false) = (&c.target, c.kind == nctrans::ir::CallKind::M97) {
+                                set.insert(*n);
                             }
                         }
                     }
@@ -108,21 +112,11 @@ fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
     set
 }
 
-/// The file beside `dir` that holds FANUC program `n`: `O1234.nc`, `1234.nc`, any case,
-/// `.nc`/`.tap`/no extension.
+/// The file beside `dir` that holds FANUC program `n`: `O1234.nc`, `1234.nc`, a name that
+/// starts with it (`O01234_PROBE.nc`), or any FANUC file holding the line `O1234`; any case,
+/// `.nc`/`.tap`/`.txt`/no extension (`eval::callee_files`).
 pub fn find_callee_file(dir: &Path, n: u32) -> Option<PathBuf> {
-    let stems = [format!("O{n:04}"), format!("{n:04}"), format!("O{n}"), format!("{n}")];
-    let entries = std::fs::read_dir(dir).ok()?;
-    let mut found: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            let stem = p.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
-            let ext = p.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
-            stems.iter().any(|s| s.eq_ignore_ascii_case(&stem)) && matches!(ext.as_str(), "nc" | "tap" | "")
-        })
-        .collect();
-    found.sort();
-    found.into_iter().next()
+    nctrans::eval::callee_files::find(dir, None, n, &nctrans::eval::callee_files::fanuc_ext)
 }
 
 /// The loaded job: the main unit, the callee units found beside it, and the source DB.
@@ -160,7 +154,7 @@ pub fn load_job(
     let mut units = vec![parsed.unit];
     let dir = beside(path);
     let mut read = vec![path.to_path_buf()];
-    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, &mut read, &mut after_end);
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, (&mut read, &mut after_end));
     if diag::has_errors(&diags) {
         return Err((db, diags));
     }
@@ -184,8 +178,7 @@ fn load_callees(
     encoding: Option<&'static encoding_rs::Encoding>,
     opts: &ParseOptions,
     diags: &mut Vec<diag::Diagnostic>,
-    read: &mut Vec<PathBuf>,
-    after_end: &mut BTreeSet<u32>,
+    (read, after_end): (&mut Vec<PathBuf>, &mut BTreeSet<u32>),
 ) -> BTreeSet<u32> {
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
@@ -245,7 +238,7 @@ fn callees_beside(
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
     let missing =
-        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, read, &mut BTreeSet::new());
+        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, (read, &mut BTreeSet::new()));
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }

@@ -13,7 +13,9 @@ use std::path::PathBuf;
 pub const FILE_NAME: &str = "nctrans.toml";
 
 /// FANUC series accepted by `fanuc.series`; the 30i class takes 8-digit program numbers.
-pub const SERIES: [&str; 10] = ["0i", "0i-F", "15i", "16i", "18i", "21i", "30i", "31i", "32i", "0i-F Plus"];
+/// `haas` and `haas-ngc` are Haas controls read as FANUC with their own forms (M97).
+pub const SERIES: [&str; 12] =
+    ["0i", "0i-F", "15i", "16i", "18i", "21i", "30i", "31i", "32i", "0i-F Plus", "haas", "haas-ngc"];
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Unsupported {
@@ -162,7 +164,7 @@ impl Default for Config {
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
 pub const KEYS: [(&str, &str, &str); 32] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
-    ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i"),
+    ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
     ("fanuc.decimal_point", "-", "\"increment\" (X10 = 10 increments) or \"calculator\" (X10 = 10 mm)"),
     ("fanuc.nat", "-", "true or false"),
@@ -444,6 +446,7 @@ impl Config {
         };
         s.calculator_input = self.fanuc.calculator_input;
         s.nat = self.fanuc.nat;
+        s.haas = self.fanuc.series.starts_with("haas");
         s
     }
 

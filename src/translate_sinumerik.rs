@@ -102,6 +102,9 @@ pub fn commons_of(p: &Program) -> BTreeSet<u32> {
         if let ItemKind::IfThen { then, .. } = &it.kind {
             item(then, set);
         }
+        if let ItemKind::IfBlock { items, .. } = &it.kind {
+            items.iter().for_each(|i| item(i, set));
+        }
         for e in crate::ir::visit::item_exprs(it) {
             expr(e, set);
         }

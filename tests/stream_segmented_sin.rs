@@ -306,7 +306,8 @@ fn what_needs_the_whole_program_declines() {
         ("two programs", format!("O1\nG0 X0.\n{cam}#1=1\nM30\nO2\n{cam}#1=1\nM30\n")),
         ("marker", format!("O1\nG0 X0.\n{cam}#1=1 (NCTRANS SEGMENT 0)\n{cam}M30\n")),
         ("marker after text", format!("O1\nG0 X0.\n{cam}#1=1 (中NCTRANS SEGMENT 0)\n{cam}M30\n")),
-        ("if-then word", format!("O1\nG0 X0.\n{cam}IF[#1EQ#0]THEN G2 X1. Y2. R20.\n{cam}M30\n")),
+        // (`IF[..]THEN G2 …` is a Haas conditional block since issue 21, read and translated.)
+        ("if-then two statements", format!("O1\nG0 X0.\n{cam}IF[#1EQ#0]THEN #2=1 GOTO7\nN7 {cam}M30\n")),
         ("r after a run's arc", format!("O1\nG0 X0.\nG2 X1. Y1. R20.\nIF[#1EQ#0]GOTO7\nN7 X2. R20.\n{cam}M30\n")),
         ("error", format!("O1\nG0 X0.\n{cam}#1=1\nG28 Z0.\n{cam}M30\n")),
     ];

@@ -210,3 +210,21 @@ fn cam_programs_scan_the_same_with_words_across_buffer_ends() {
     }
     assert!(words > 60_000, "{words} lines as words");
 }
+
+/// A structure still open at the end of the file (an error file) is handed out with the
+/// words of its blocks, as the whole-file reader has them (the index reader keeps none).
+#[test]
+fn an_unclosed_structure_at_the_end_keeps_its_words() {
+    let dir = std::env::temp_dir().join(format!("nctrans-words-unclosed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let cases = [
+        ("u.mpf", "IF R1<R2\nG00 Z200.\n", Dialect::Sinumerik),
+        ("u.nc", "O1\nWHILE[#1 LT 2]DO1\nG00 Z200.\n", Dialect::Fanuc),
+    ];
+    for (name, text, d) in cases {
+        let p = dir.join(name);
+        std::fs::write(&p, text).expect("write");
+        check(&p, d);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

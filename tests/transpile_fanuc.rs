@@ -270,7 +270,10 @@ const REFUSED: &[(&str, &str)] = &[
     ("address-ac-ic.mpf", "NC313"),
     ("address-numbered.mpf", "NC312"),
     ("arc-radius-angle.mpf", "NC312"),
+    ("axis-indirect-ax.mpf", "NC635"),
     ("assign-undeclared-name.mpf", "NC341"),
+    ("axname-axis-by-name.mpf", "NC632"),
+    ("call-numbered-program-name.mpf", "NC303"),
     ("call-bare-name.mpf", "NC303"),
     ("call-l-number.mpf", "NC303"),
     ("call-repeat-p.mpf", "NC303"),
@@ -283,13 +286,17 @@ const REFUSED: &[(&str, &str)] = &[
     ("cycle87-bore-stop.mpf", "NC390"),       // no exact FANUC cycle
     ("cycle88-bore-dwell-stop.mpf", "NC390"), // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),
+    ("extern-and-call-by-name.mpf", "NC303"),
     ("frame-instructions.mpf", "NC316"),
     ("goto-string-target.mpf", "NC305"),
+    ("gud-def-nck-chan.mpf", "NC634"),
     ("mcall-modal.mpf", "NC393"), // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),
     ("operators-bitwise.mpf", "NC330"),
     ("operators-concat.mpf", "NC314"),
     ("repeat-section.mpf", "NC317"),
+    ("rotary-acp-acn-dc.mpf", "NC630"),
+    ("sync-action-when-do.mpf", "NC631"),
     ("system-variables.mpf", "NC342"),
 ];
 

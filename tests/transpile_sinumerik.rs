@@ -97,12 +97,12 @@ fn tool_compensation_is_refused() {
 }
 
 /// Issue 17 item 7: under `--unsupported warn` a block with a construct Siemens lacks becomes
-/// one marked comment as a whole (the cycle's `X10. Y10. Z-2.` would be a rapid plunge under
-/// G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
+/// one marked comment as a whole (the skip move's `X10. Y10. Z-2.` would be a rapid plunge
+/// under G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
 #[test]
 fn warn_policy_marks_the_whole_block_and_alarms_first() {
     let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
-    let src = "O1\nG00 X0 Y0 Z5.\nN20 G99 G81 X10. Y10. Z-2. R2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
+    let src = "O1\nG00 X0 Y0 Z5.\nN20 G31 X10. Y10. Z-2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
     let tr = run(src, &o);
     assert!(!tr.has_errors(), "{:?}", tr.diags);
     assert!(tr.diags.iter().all(|d| !d.is_error()));
@@ -110,11 +110,11 @@ fn warn_policy_marks_the_whole_block_and_alarms_first() {
     let code: Vec<&str> = text.lines().filter(|l| !l.starts_with(';')).collect();
     assert_eq!(code.first(), Some(&"SETAL(65999) ; UNFINISHED TRANSLATION"), "{text}");
     assert!(!text.contains("X10") && !text.contains("Z-2") && !text.contains("ROT"), "{text}");
-    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G99"), "{text}");
+    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G31"), "{text}");
     assert!(text.contains("\n; NCTRANS UNSUPPORTED: G68"), "{text}");
     assert_eq!(
         code[1..],
-        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G99 has no Sinumerik counterpart", "G0 Z50", "M30"],
+        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G31 has no Sinumerik counterpart", "G0 Z50", "M30"],
         "{text}"
     );
 }

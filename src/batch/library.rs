@@ -343,6 +343,10 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
 
 /// What the index records of a call on `line` (1-based): `None` for a computed target.
 pub(super) fn raw_call(c: &Call, line: usize) -> Option<RawCall> {
+    // Haas M97 runs a block of the same program: no program of the library is called.
+    if c.kind == crate::ir::CallKind::M97 {
+        return None;
+    }
     let target = match &c.target {
         CallTarget::Number(n) => ProgKey::Number(*n),
         CallTarget::Name(s) => ProgKey::Name(s.to_ascii_uppercase()),
@@ -416,6 +420,9 @@ pub(super) fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
                 f(it);
                 if let ItemKind::IfThen { then, .. } = &it.kind {
                     f(then);
+                }
+                if let ItemKind::IfBlock { items, .. } = &it.kind {
+                    items.iter().for_each(&mut *f);
                 }
             }
         }

@@ -36,6 +36,10 @@ pub struct Semantics {
     /// only the increment. Used by the evaluator; the translator must keep it in mind when
     /// it emits G91 after an offset change.
     pub incremental_travels_offset: bool,
+    /// A Haas control (`[fanuc] series = "haas"` / `"haas-ngc"`): `M97 Pn` calls the local
+    /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
+    /// M97). On a FANUC, M97 is a machine builder's M code.
+    pub haas: bool,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -76,6 +80,7 @@ impl Semantics {
                 max_call_depth: 4,
                 max_subprogram_depth: 10,
                 incremental_travels_offset: false,
+                haas: false,
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -90,6 +95,7 @@ impl Semantics {
                 max_call_depth: 15,
                 max_subprogram_depth: 15,
                 incremental_travels_offset: true,
+                haas: false,
             },
         }
     }

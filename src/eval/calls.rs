@@ -69,28 +69,23 @@ impl CalleeSource for DirCallees {
     ) -> Result<Option<Unit>, Diagnostic> {
         let caller_path = Path::new(&db.get(caller).name).to_path_buf();
         let dir = caller_path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
-        let Ok(entries) = std::fs::read_dir(dir) else {
-            return Ok(None);
+        let hit = match name {
+            // By file name, then name prefix, then the program number line inside any file.
+            CalleeName::Number(n) => super::callee_files::find(dir, Some(&caller_path), *n, &|_| true),
+            CalleeName::Name(s) => {
+                let Ok(entries) = std::fs::read_dir(dir) else {
+                    return Ok(None);
+                };
+                let mut files: Vec<std::path::PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+                files.sort();
+                files.into_iter().find(|f| {
+                    let st = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+                    let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+                    st.eq_ignore_ascii_case(s) && *f != caller_path && (ext == "spf" || ext == "mpf")
+                })
+            }
         };
-        let mut files: Vec<std::path::PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        files.sort();
-        let stems: Vec<String> = match name {
-            CalleeName::Number(n) => vec![format!("O{n}"), format!("O{n:04}"), format!("{n}"), format!("{n:04}")],
-            CalleeName::Name(s) => vec![s.clone()],
-        };
-        let hit = stems.iter().find_map(|stem| {
-            files.iter().find(|f| {
-                let st = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-                let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
-                st.eq_ignore_ascii_case(stem)
-                    && **f != caller_path
-                    && match name {
-                        CalleeName::Number(_) => true,
-                        CalleeName::Name(_) => ext == "spf" || ext == "mpf",
-                    }
-            })
-        });
-        let Some(path) = hit.cloned() else {
+        let Some(path) = hit else {
             return Ok(None);
         };
         let bytes = std::fs::read(&path)
@@ -228,10 +223,20 @@ impl Interp<'_> {
                 CalleeName::Number(n) => format!("O{n} in this file, or O{n}.nc / {n}.nc beside it"),
                 CalleeName::Name(s) => format!("{s}.SPF or {s}.MPF beside this file (any case)"),
             };
-            Diagnostic::error("NC401", format!("called program {shown} not found"))
+            let d = Diagnostic::error("NC401", format!("called program {shown} not found"))
                 .primary(self.file(), span, "called here")
-                .note(format!("looked for {where_}"))
-                .hint("put the subprogram beside the main program")
+                .note(format!("looked for {where_}"));
+            match name {
+                // `SH602` alone: a program name to the control; only an address if no program has it.
+                CalleeName::Name(s) if numbered_name(s) => d
+                    .note(format!(
+                        "{s} is read as a call: a name of letters and digits written alone is a program name"
+                    ))
+                    .hint(format!(
+                        "put {s}.SPF beside the main program; if {s} is an address, give it its value (`{s}=…`)"
+                    )),
+                _ => d.hint("put the subprogram beside the main program"),
+            }
         };
         Fault::error(d)
     }
@@ -378,6 +383,7 @@ impl Interp<'_> {
             reps: Vec::new(),
             modal,
             saved,
+            start: 0,
         });
         Ok(())
     }
@@ -427,6 +433,9 @@ impl Interp<'_> {
     }
 
     pub fn call(&mut self, call: &Call, pc: usize, span: Span) -> Result<Flow, Fault> {
+        if call.kind == CallKind::M97 {
+            return self.local_call(call, pc, span);
+        }
         let name = self.target_name(call)?;
         if let CalleeName::Name(s) = &name {
             // The standard drilling cycles are the control's own (eval::cycles::siemens).
@@ -476,7 +485,7 @@ impl Interp<'_> {
                 self.set_args(&args);
                 Ok(Flow::Switched)
             }
-            CallKind::M98 => {
+            CallKind::M98 | CallKind::M97 => {
                 self.set_caller_pc(pc + 1)?;
                 self.push_frame(code, FrameKind::Sub, repeats, span, false)?;
                 Ok(Flow::Switched)
@@ -498,6 +507,27 @@ impl Interp<'_> {
                 Ok(Flow::Switched)
             }
         }
+    }
+
+    /// Haas `M97 Pn Lm`: the blocks from Nn of this program, up to their M99, m times; like
+    /// M98 it shares the caller's locals.
+    fn local_call(&mut self, call: &Call, pc: usize, span: Span) -> Result<Flow, Fault> {
+        let CallTarget::Number(n) = call.target else { return Err(internal()) };
+        let repeats = self.repeat_count(call)?;
+        if repeats == 0 {
+            return Ok(Flow::Next);
+        }
+        let ci = self.frames.last().ok_or_else(internal)?.code;
+        let code = Rc::clone(&self.codes[ci]);
+        let Some(start) = code.find_number_from(pc + 1, n) else {
+            return Err(Fault::alarm(self.alarms.no_target, format!("M97 P{n}: N{n} not found in this program"), span));
+        };
+        self.set_caller_pc(pc + 1)?;
+        self.push_frame(ci, FrameKind::Sub, repeats, span, false)?;
+        let top = self.frames.last_mut().ok_or_else(internal)?;
+        top.pc = start;
+        top.start = start;
+        Ok(Flow::Switched)
     }
 
     fn set_caller_pc(&mut self, pc: usize) -> Result<(), Fault> {
@@ -563,7 +593,7 @@ impl Interp<'_> {
         }
         if top.repeats_left > 0 {
             top.repeats_left -= 1;
-            top.pc = 0;
+            top.pc = top.start;
             top.reps.clear();
             return Ok(Flow::Switched);
         }
@@ -617,4 +647,10 @@ impl Saved {
         }
         m.trans = self.trans;
     }
+}
+
+/// `SH602`, `PLCASUP1`: two or more letters, then digits (one letter and digits is an address).
+fn numbered_name(s: &str) -> bool {
+    let letters = s.bytes().take_while(u8::is_ascii_alphabetic).count();
+    letters >= 2 && letters < s.len() && s.bytes().skip(letters).all(|c| c.is_ascii_digit())
 }

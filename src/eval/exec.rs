@@ -54,6 +54,8 @@ pub struct Frame {
     pub modal: bool,
     /// A Siemens `PROC … SAVE` subprogram: the modes at its call, restored at its end.
     pub saved: Option<Box<super::calls::Saved>>,
+    /// Where each pass starts: 0, or the block Nn of a Haas `M97 Pn` local subprogram.
+    pub start: usize,
 }
 
 /// What a block asks the loop to do next.
@@ -384,6 +386,25 @@ impl<'a> Interp<'a> {
                 | ItemKind::Return { .. }
                 | ItemKind::End { .. }
                 | ItemKind::RepeatSection(_) => control.push(item),
+                ItemKind::IfBlock { cond, items } => {
+                    let cx = self.cx(false);
+                    if expr::eval(self, cond, &cx)?.truthy() {
+                        for inner in items {
+                            match &inner.kind {
+                                ItemKind::Word(w) => {
+                                    if let Some(wv) = self.eval_word(w)? {
+                                        words.push(wv);
+                                    }
+                                }
+                                ItemKind::Goto(_)
+                                | ItemKind::Call(_)
+                                | ItemKind::Return { .. }
+                                | ItemKind::End { .. } => control.push(inner),
+                                _ => self.exec_simple(inner, &mut stop_message)?,
+                            }
+                        }
+                    }
+                }
                 ItemKind::IfThen { cond, then } => {
                     let cx = self.cx(false);
                     if expr::eval(self, cond, &cx)?.truthy() {
@@ -518,7 +539,8 @@ impl<'a> Interp<'a> {
                 }
                 Ok(())
             }
-            ItemKind::Stopre => Ok(()),
+            // Declarations: nothing runs (`EXTERN`).
+            ItemKind::Stopre | ItemKind::Extern(_) => Ok(()),
             ItemKind::Instruction { name } => match name.as_str() {
                 "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
                     Diagnostic::error(
@@ -552,7 +574,8 @@ impl<'a> Interp<'a> {
                 let r = self.m.frame_op(op, &ws, item.span);
                 r.map_err(|f| self.fix_file(f))
             }
-            ItemKind::IfThen { .. } | ItemKind::Word(_) => Ok(()),
+            ItemKind::IfThen { .. } | ItemKind::IfBlock { .. } | ItemKind::Word(_) => Ok(()),
+            ItemKind::SyncAction(a) => Err(super::refuse::sync_action(self.file(), item.span, a)),
             ItemKind::Goto(_)
             | ItemKind::Case(_)
             | ItemKind::Call(_)
@@ -687,6 +710,7 @@ impl<'a> Interp<'a> {
             WordValue::Expr(e) => (e, AbsInc::Plain),
             WordValue::Ac(e) => (e, AbsInc::Ac),
             WordValue::Ic(e) => (e, AbsInc::Ic),
+            WordValue::Rotary(m, _) => return Err(super::refuse::rotary(self.file(), w, *m)),
         };
         let bare = self.fanuc && is_bare_literal(e);
         // A literal (nearly every word of CAM code) is its value: skip the walker.
@@ -715,6 +739,7 @@ impl<'a> Interp<'a> {
                 let i = (b - b'A') as usize;
                 std::borrow::Cow::Borrowed(&LETTERS[i..i + 1])
             }
+            crate::ir::Addr::Axis(e) => std::borrow::Cow::Owned(self.axis_name(e)?),
             a => std::borrow::Cow::Owned(a.as_str().to_ascii_uppercase()),
         };
         Ok(Some(WordVal { addr, val, mode, bare, span: w.span }))

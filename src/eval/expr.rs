@@ -114,6 +114,15 @@ fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Re
             let vb = eval_depth(env, bx, cx, d)?;
             Ok(Value::Num(b(compare(*op, *tol, &va, &vb, cx))))
         }
+        // AXNAME("X"): the axis of that name, held as its upper-case name (like `Ident`).
+        ExprKind::Func(Func::AxName, args) if args.len() == 1 => match eval_depth(env, &args[0], cx, d)? {
+            Value::Str(s) => Ok(Value::Str(s.trim().to_ascii_uppercase())),
+            _ => Err(Fault::error(
+                Diagnostic::error("NC432", "AXNAME needs the axis name as a string")
+                    .primary(cx.file, args[0].span, "not a string")
+                    .hint("write `AXNAME(\"X\")` or pass a STRING variable"),
+            )),
+        },
         ExprKind::Func(f, args) => {
             let mut xs = [0.0f64; 3];
             if args.len() > 3 {
@@ -260,6 +269,8 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
     let domain = |what: &str| Fault::alarm(cx.alarms.domain, what.to_string(), span);
     let nat_wrap = |deg: f64| if !cx.nat && deg < 0.0 { deg + 360.0 } else { deg };
     let r = match f {
+        // Strings only; reached with a number when the argument count is wrong.
+        Func::AxName => return Err(domain("AXNAME needs one string argument")),
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
         Func::Tan => {

@@ -87,6 +87,7 @@ impl LitBlock {
                 WordValue::Expr(e) => (e, AbsInc::Plain),
                 WordValue::Ac(e) => (e, AbsInc::Ac),
                 WordValue::Ic(e) => (e, AbsInc::Ic),
+                WordValue::Rotary(..) => return None,
             };
             let (value, point) = match &e.kind {
                 ExprKind::Num(n) => (n.value, n.point),

@@ -12,6 +12,8 @@
 
 pub mod access;
 pub mod arc;
+pub mod axes;
+pub mod callee_files;
 pub mod calls;
 pub mod cycles;
 pub mod exec;
@@ -22,6 +24,7 @@ pub mod input;
 pub mod lit;
 pub mod machine;
 pub mod numfmt;
+pub mod refuse;
 pub mod sysvars;
 pub mod trace;
 pub mod value;
@@ -153,6 +156,7 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         reps: Vec::new(),
         modal: false,
         saved: None,
+        start: 0,
     });
     let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
     let ending = match result {

@@ -409,6 +409,7 @@ fn event_order_inside_a_block_and_msg_merge() {
 #[test]
 fn siemens_int_variables_round_on_assignment() {
     let def = item(ItemKind::Def(Box::new(Def {
+        scope: None,
         ty: DataType::Int,
         vars: vec![DefVar { name: "K".into(), dims: vec![], init: Some(Init::Value(p(2.5))), span: sp() }],
     })));

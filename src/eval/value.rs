@@ -217,6 +217,11 @@ pub enum ConvError {
 /// any number → BOOL is "non-zero is TRUE".
 pub fn convert_for(ty: DataType, v: Value) -> Result<Value, ConvError> {
     match ty {
+        // An axis name (`AXNAME("X")`, `"X"`) is kept as its upper-case name.
+        DataType::Axis if matches!(v, Value::Str(_)) => match v {
+            Value::Str(s) => Ok(Value::Str(s.trim().to_ascii_uppercase())),
+            other => Ok(other),
+        },
         DataType::Real | DataType::Axis | DataType::Frame => match v {
             Value::Str(_) => Err(ConvError::Type),
             other => Ok(Value::Num(other.num().unwrap_or(0.0))),

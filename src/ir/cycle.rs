@@ -1,6 +1,6 @@
 //! Drilling cycles as meaning, shared by both dialects: what kind of hole, where the tool
 //! returns, and one drilled hole as the trace's `cycle` event reports it
-//! (shared/spec/trace-format.md, format v2). FANUC G73–G89 and Siemens CYCLE81–CYCLE89 are
+//! (docs/trace-format.md, format v2). FANUC G73–G89 and Siemens CYCLE81–CYCLE89 are
 //! spellings of these; the dialects map their codes onto [`CycleKind`].
 
 /// What a drilling cycle does in the hole (the trace's `kind`).

@@ -131,6 +131,40 @@ impl Dumper {
                 self.nested(|d| d.item(then));
                 return;
             }
+            ItemKind::Extern(e) => {
+                let ps: Vec<String> = e
+                    .params
+                    .iter()
+                    .map(|(by_ref, t, dims)| format!("{}{}{dims:?}", if *by_ref { "var " } else { "" }, ty(*t)))
+                    .collect();
+                format!("extern {} ({})", e.name, ps.join(", "))
+            }
+            ItemKind::IfBlock { cond, items } => {
+                self.line(format!("if-block {} {at}", expr(cond)));
+                self.nested(|d| {
+                    for i in items {
+                        d.item(i);
+                    }
+                });
+                return;
+            }
+            ItemKind::SyncAction(a) => {
+                let mut s = String::from("sync-action");
+                if let Some((scope, id)) = &a.id {
+                    let kw = if *scope == SyncScope::Static { "ids" } else { "id" };
+                    let _ = write!(s, " {kw}={}", expr(id));
+                }
+                if let Some((t, c)) = &a.trigger {
+                    let _ = write!(s, " {} {}", t.name().to_ascii_lowercase(), expr(c));
+                }
+                self.line(format!("{s} {at}"));
+                self.nested(|d| {
+                    for i in &a.actions {
+                        d.item(i);
+                    }
+                });
+                return;
+            }
             ItemKind::Case(c) => {
                 let mut s = format!("case {}", expr(&c.selector));
                 for a in &c.arms {
@@ -150,7 +184,12 @@ impl Dumper {
             ItemKind::End { code } => format!("end {code:?}"),
             ItemKind::Def(def) => {
                 let vars: Vec<String> = def.vars.iter().map(defvar).collect();
-                format!("def {} {}", ty(def.ty), vars.join(", "))
+                let scope = match def.scope {
+                    Some(DefScope::Nck) => "nck ",
+                    Some(DefScope::Chan) => "chan ",
+                    None => "",
+                };
+                format!("def {scope}{} {}", ty(def.ty), vars.join(", "))
             }
             ItemKind::Alarm { style, number, text } => {
                 let st = match style {
@@ -263,8 +302,12 @@ fn word(w: &Word) -> String {
         WordValue::Expr(e) => expr(e),
         WordValue::Ac(e) => format!("ac({})", expr(e)),
         WordValue::Ic(e) => format!("ic({})", expr(e)),
+        WordValue::Rotary(m, e) => format!("{}({})", m.name().to_ascii_lowercase(), expr(e)),
     };
-    format!("{} {v}", w.addr.as_str())
+    match &w.addr {
+        Addr::Axis(e) => format!("AX[{}] {v}", expr(e)),
+        a => format!("{} {v}", a.as_str()),
+    }
 }
 
 fn goto(g: &Goto) -> String {
@@ -291,6 +334,7 @@ fn call(c: &Call) -> String {
         CallKind::G65 => "g65",
         CallKind::G66 => "g66",
         CallKind::M98 => "m98",
+        CallKind::M97 => "m97",
         CallKind::Named => "call",
         CallKind::LNumber => "call-l",
         CallKind::Mcall => "mcall",
@@ -440,6 +484,7 @@ pub fn func_name(f: Func) -> &'static str {
         Func::MinVal => "minval",
         Func::MaxVal => "maxval",
         Func::Bound => "bound",
+        Func::AxName => "axname",
         Func::Bin => "bin",
         Func::Bcd => "bcd",
         Func::Adp => "adp",

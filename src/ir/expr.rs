@@ -163,6 +163,8 @@ pub enum Func {
     Bcd,
     /// FANUC `ADP[x]` (30i): add a decimal point to a value passed without one.
     Adp,
+    /// Siemens `AXNAME("X")`: the axis whose name is the string (upper case).
+    AxName,
 }
 
 /// A variable reference.

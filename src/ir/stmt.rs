@@ -62,6 +62,10 @@ pub enum ItemKind {
     Goto(Box<Goto>),
     /// FANUC `IF[cond]THEN stmt`: exactly one macro statement, run when `cond` holds.
     IfThen { cond: Expr, then: Box<Item> },
+    /// Haas `IF [cond] S800 F600.` / `IF [cond] THEN M31`: the block's other items, run only
+    /// when `cond` holds (Haas operator's manual, macros: IF without GOTO or THEN). Empty
+    /// for `IF [cond]` alone.
+    IfBlock { cond: Expr, items: Vec<Item> },
     /// Siemens `CASE (e) OF 1 GOTOF A 2 GOTOF B DEFAULT GOTOF C`.
     Case(Box<Case>),
     /// Any subprogram or macro call (see [`CallKind`]).
@@ -92,6 +96,63 @@ pub enum ItemKind {
     /// path modes (`CIP`, `BSPLINE`, `SOFT`, `CFC`), spline end conditions (`BNAT`, `ETAN`),
     /// `SUPA`, `SBLOF`. Like a G function, but named; never a subprogram call.
     Instruction { name: String },
+    /// Siemens synchronized action: `ID=1 WHEN cond DO actions` and its forms. It runs in
+    /// the interpolation cycle beside the program, so neither the evaluator nor FANUC can
+    /// carry it; it is read so that the rest of the file can be checked.
+    SyncAction(Box<SyncAction>),
+    /// Siemens `EXTERN NAME(REAL, VAR INT)`: the parameters of a subprogram this program
+    /// calls. A declaration only: nothing runs.
+    Extern(Box<ExternDecl>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExternDecl {
+    /// Upper case.
+    pub name: String,
+    /// Each parameter: by reference (`VAR`), its type and array dimensions.
+    pub params: Vec<(bool, DataType, Vec<u32>)>,
+}
+
+/// A Siemens synchronized action.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SyncAction {
+    /// `ID=n` (modal, this program) or `IDS=n` (static, beyond the program end).
+    pub id: Option<(SyncScope, Expr)>,
+    /// `WHEN`, `WHENEVER`, `EVERY`, `FROM`, or `None` for an action without condition.
+    pub trigger: Option<(SyncTrigger, Expr)>,
+    /// The items after `DO`, in order.
+    pub actions: Vec<Item>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SyncScope {
+    /// `ID=n`.
+    Modal,
+    /// `IDS=n`.
+    Static,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SyncTrigger {
+    /// `WHEN c`: once, the first time c holds.
+    When,
+    /// `WHENEVER c`: in every interpolation cycle in which c holds.
+    Whenever,
+    /// `EVERY c`: each time c becomes true.
+    Every,
+    /// `FROM c`: in every cycle once c has held.
+    From,
+}
+
+impl SyncTrigger {
+    pub fn name(self) -> &'static str {
+        match self {
+            SyncTrigger::When => "WHEN",
+            SyncTrigger::Whenever => "WHENEVER",
+            SyncTrigger::Every => "EVERY",
+            SyncTrigger::From => "FROM",
+        }
+    }
 }
 
 /// FANUC `G10 L50` mode: `N<param> [P<axis>] [Q<bit>] R<value>`.
@@ -127,19 +188,33 @@ pub enum AlarmStyle {
 }
 
 /// An address: a single letter (the common case, no allocation) or a longer name (`CR`,
-/// `AR`, `SPOS`, `ELX`, `I1`).
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+/// `AR`, `SPOS`, `ELX`, `I1`), or Siemens `AX[e]`: the axis whose name `e` gives at run time
+/// (an AXIS variable or `AXNAME("X")`).
+#[derive(Clone, Debug, PartialEq)]
 pub enum Addr {
     Letter(u8),
     Name(Box<str>),
+    Axis(Box<Expr>),
+}
+
+// Addresses are compared and hashed by what they are written as; `AX[e]` by its expression
+// (structurally, like every IR comparison).
+impl Eq for Addr {}
+
+impl std::hash::Hash for Addr {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.as_str().hash(state);
+    }
 }
 
 impl Addr {
+    /// The address as written; `AX` for an axis chosen at run time.
     pub fn as_str(&self) -> &str {
         match self {
             // Letters are upper-case ASCII by construction.
             Addr::Letter(b) => std::str::from_utf8(std::slice::from_ref(b)).unwrap_or("?"),
             Addr::Name(s) => s,
+            Addr::Axis(_) => "AX",
         }
     }
 
@@ -163,6 +238,61 @@ pub enum WordValue {
     Ac(Expr),
     /// Siemens `X=IC(…)`: incremental for this word only.
     Ic(Expr),
+    /// Siemens rotary-axis positioning `C=ACP(…)`, `ACN`, `DC`, `CAC`, `CACP`, `CACN`,
+    /// `CIC`, `CDC`: the value with the direction or coding rule that goes with it.
+    Rotary(RotaryMode, Expr),
+}
+
+/// How a Siemens rotary-axis word positions (Siemens PGA "ACP, ACN, DC").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RotaryMode {
+    /// `ACP(a)`: absolute, approached in the positive direction.
+    Acp,
+    /// `ACN(a)`: absolute, approached in the negative direction.
+    Acn,
+    /// `DC(a)`: absolute along the shortest path.
+    Dc,
+    /// `CAC(n)`: coded position n from the machine data table, absolute.
+    Cac,
+    /// `CACP(n)`: coded position, positive direction.
+    Cacp,
+    /// `CACN(n)`: coded position, negative direction.
+    Cacn,
+    /// `CIC(n)`: coded position, incremental.
+    Cic,
+    /// `CDC(n)`: coded position, shortest path.
+    Cdc,
+}
+
+impl RotaryMode {
+    /// The Siemens spelling (`ACP`).
+    pub fn name(self) -> &'static str {
+        match self {
+            RotaryMode::Acp => "ACP",
+            RotaryMode::Acn => "ACN",
+            RotaryMode::Dc => "DC",
+            RotaryMode::Cac => "CAC",
+            RotaryMode::Cacp => "CACP",
+            RotaryMode::Cacn => "CACN",
+            RotaryMode::Cic => "CIC",
+            RotaryMode::Cdc => "CDC",
+        }
+    }
+
+    /// From the upper-case Siemens keyword.
+    pub fn from_name(upper: &str) -> Option<RotaryMode> {
+        Some(match upper {
+            "ACP" => RotaryMode::Acp,
+            "ACN" => RotaryMode::Acn,
+            "DC" => RotaryMode::Dc,
+            "CAC" => RotaryMode::Cac,
+            "CACP" => RotaryMode::Cacp,
+            "CACN" => RotaryMode::Cacn,
+            "CIC" => RotaryMode::Cic,
+            "CDC" => RotaryMode::Cdc,
+            _ => return None,
+        })
+    }
 }
 
 /// How a jump searches for its target.
@@ -219,6 +349,9 @@ pub enum CallKind {
     G66,
     /// FANUC `M98 P… L…` (or packed `P68003`): no new local level.
     M98,
+    /// Haas `M97 Pn Lm`: the local subprogram starting at block Nn of the same program, up
+    /// to its M99; no new local level. The target is `CallTarget::Number(n)`, a sequence number.
+    M97,
     /// Siemens call by name: `CONTOUR`, `CONTOUR(5.5,,R3)`, `CYCLE81(…)`, `WORKPIECE(…)`.
     Named,
     /// Siemens `L123` (leading zeros significant: the name keeps them).
@@ -287,8 +420,20 @@ impl std::fmt::Display for DataType {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Def {
+    /// `DEF NCK …` / `DEF CHAN …` (global user data in a definition file); `None` for a
+    /// program's own DEF.
+    pub scope: Option<DefScope>,
     pub ty: DataType,
     pub vars: Vec<DefVar>,
+}
+
+/// Where Siemens global user data lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DefScope {
+    /// `NCK`: one value for the whole control.
+    Nck,
+    /// `CHAN`: one value per channel.
+    Chan,
 }
 
 #[derive(Clone, Debug, PartialEq)]

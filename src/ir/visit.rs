@@ -76,7 +76,7 @@ pub fn metas(kind: &StmtKind) -> Vec<&BlockMeta> {
 pub fn item_exprs(item: &Item) -> Vec<&Expr> {
     fn word(w: &Word) -> &Expr {
         match &w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => e,
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => e,
         }
     }
     fn goto<'a>(g: &'a Goto, v: &mut Vec<&'a Expr>) {
@@ -95,7 +95,11 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         }
         ItemKind::Word(w) => v.push(word(w)),
         ItemKind::Goto(g) => goto(g, &mut v),
-        ItemKind::IfThen { cond, .. } => v.push(cond),
+        ItemKind::IfThen { cond, .. } | ItemKind::IfBlock { cond, .. } => v.push(cond),
+        ItemKind::SyncAction(a) => {
+            v.extend(a.id.iter().map(|(_, e)| e));
+            v.extend(a.trigger.iter().map(|(_, e)| e));
+        }
         ItemKind::Case(c) => {
             v.push(&c.selector);
             for a in &c.arms {
@@ -145,6 +149,7 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         ItemKind::RepeatSection(r) => v.extend(r.count.iter()),
         ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
         ItemKind::ModalCallOff
+        | ItemKind::Extern(_)
         | ItemKind::Instruction { .. }
         | ItemKind::End { .. }
         | ItemKind::StopMessage { .. }
@@ -229,6 +234,7 @@ fn item_spans(problems: &mut Vec<String>, parent: Span, it: &Item) {
         ItemKind::Assign { target, .. } => inside(problems, it.span, target.span, "variable"),
         ItemKind::Word(w) => inside(problems, it.span, w.span, "word"),
         ItemKind::IfThen { then, .. } => item_spans(problems, it.span, then),
+        ItemKind::IfBlock { items, .. } => items.iter().for_each(|i| item_spans(problems, it.span, i)),
         ItemKind::Def(d) => {
             for v in &d.vars {
                 inside(problems, it.span, v.span, "declaration");

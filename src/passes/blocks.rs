@@ -162,7 +162,8 @@ fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>
                 // A word's value is taken where it is written: an assignment later in the
                 // block must not change it, so it is computed before that assignment.
                 if last_assign.is_some_and(|a| a > k) {
-                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e)) = &mut w.value;
+                    let (WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e)) =
+                        &mut w.value;
                     if !matches!(e.kind, ExprKind::Num(_) | ExprKind::Str(_)) {
                         let t = ctx.temp(e.span);
                         let v = std::mem::replace(e, var_expr(&t));
@@ -197,6 +198,16 @@ fn split_block(ctx: &mut Ctx, b: Block, info: &mut ProgInfo, out: &mut Vec<Stmt>
 /// `DEF type a=1, b[3]` → `a=1`, `b[0]=0`, `b[1]=0`, `b[2]=0`: Siemens DEF variables start at
 /// their initial value or 0 on every run, FANUC variables keep whatever they held.
 fn def_items(ctx: &mut Ctx, d: Def, span: Span, info: &mut ProgInfo, out: &mut Vec<Item>, marks: &mut Vec<Stmt>) {
+    if let Some(scope) = d.scope {
+        // Global user data keeps its value between programs (the HMI often writes it): a
+        // FANUC translation would have to map it to retained common variables for the whole
+        // library, never initialise it here.
+        let kw = if scope == DefScope::Nck { "NCK" } else { "CHAN" };
+        let what = format!("global user data definition DEF {kw} {}", d.ty);
+        let hint = "FANUC has no declarations; global user data needs a library-wide map to common variables #500+";
+        marks.extend(ctx.unsupported("NC634", span, &what, hint));
+        return;
+    }
     for v in d.vars {
         info.types.insert(v.name.clone(), (d.ty, v.dims.clone()));
         if matches!(d.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
@@ -278,6 +289,7 @@ mod tests {
     #[test]
     fn def_initialises_every_element() {
         let d = Def {
+            scope: None,
             ty: DataType::Real,
             vars: vec![DefVar { name: "A".into(), dims: vec![2, 2], init: None, span: sp() }],
         };
@@ -293,6 +305,7 @@ mod tests {
     #[test]
     fn string_def_is_unsupported() {
         let d = Def {
+            scope: None,
             ty: DataType::String(10),
             vars: vec![DefVar { name: "S".into(), dims: vec![], init: None, span: sp() }],
         };

@@ -332,6 +332,11 @@ impl Lower<'_> {
         }
         let c = |v: f64| num(v, span);
         match f {
+            Func::AxName => {
+                let why = "FANUC addresses are fixed letters; an axis cannot be chosen by name at run time";
+                self.ctx.unsupported("NC632", span, "AXNAME(…)", why);
+                num(0.0, span)
+            }
             Func::Round => func(Func::FanucRound, args, span),
             Func::Acos => func(Func::FanucAcos, args, span),
             Func::Asin if self.ctx.nat => func(Func::FanucAsin, args, span),

@@ -245,7 +245,14 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                 None if temp => vec![],
                 None => {
                     let msg = format!("variable {name} is not declared");
-                    ctx.error("NC341", span, &msg, &format!("declare it: DEF REAL {name}"));
+                    // Machine builders' libraries declare most names in GUD files (`DEF NCK …` in
+                    // MGUD.DEF): those keep their values between programs, so a FANUC
+                    // translation would need one library-wide map to retained commons.
+                    let hint = format!(
+                        "declare it: DEF REAL {name}; global user data (DEF NCK/CHAN in a .DEF file) is not \
+                         applied to the programs that use it yet, so such a program cannot be translated"
+                    );
+                    ctx.error("NC341", span, &msg, &hint);
                     continue;
                 }
             };
@@ -473,7 +480,7 @@ fn visit_item(it: &mut Item, f: &mut dyn FnMut(&mut VarRef)) {
             visit_expr(value, f);
         }
         ItemKind::Word(w) => match &mut w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => visit_expr(e, f),
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => visit_expr(e, f),
         },
         ItemKind::Goto(g) => goto(g, f),
         ItemKind::IfThen { cond, then } => {

@@ -361,6 +361,18 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
             )),
             // Kept for the drilling cycles (`passes::cycles`), which refuse any other.
             ItemKind::ModalCallOff => kept.push(Item { kind: ItemKind::ModalCallOff, span }),
+            ItemKind::Extern(e) => ctx.note(
+                "NC637",
+                span,
+                &format!("EXTERN {} dropped", e.name),
+                "it only declares the parameters of a called subprogram; FANUC calls declare nothing",
+            ),
+            ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
+                "NC631",
+                span,
+                &crate::eval::refuse::sync_name(&a),
+                crate::eval::refuse::SYNC_WHY,
+            )),
             kind => kept.push(Item { kind, span }),
         }
     }
@@ -395,6 +407,16 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         let wspan = w.span;
         match &w.addr {
             Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
+            Addr::Axis(_) => {
+                let what = "AX[…] (an axis chosen by name at run time)";
+                return Err(unsup(
+                    ctx,
+                    "NC635",
+                    wspan,
+                    what,
+                    "FANUC addresses are fixed letters; write the axis letter",
+                ));
+            }
             Addr::Name(n) => {
                 let what = format!("address {n}=");
                 return Err(unsup(ctx, "NC312", wspan, &what, "no FANUC address has this meaning"));
@@ -403,10 +425,14 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         }
         let letter = match w.addr {
             Addr::Letter(l) => l,
-            Addr::Name(_) => b'?',
+            Addr::Name(_) | Addr::Axis(_) => b'?',
         };
         let is_axis = AXES.contains(&letter);
         match &w.value {
+            WordValue::Rotary(m, _) => {
+                let what = format!("{}={}(…) rotary-axis positioning", w.addr.as_str(), m.name());
+                return Err(unsup(ctx, "NC630", wspan, &what, crate::eval::refuse::ROTARY_WHY));
+            }
             WordValue::Ac(_) | WordValue::Ic(_) if !is_axis => {
                 let what = format!("{}=AC()/IC() on a non-axis address", letter as char);
                 return Err(unsup(ctx, "NC313", wspan, &what, "write the arc centre incrementally"));

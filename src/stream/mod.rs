@@ -654,8 +654,15 @@ fn scan_with(
             (parsed.unit.programs, kept, parsed.diags)
         }
     };
+    // A words scan hands out what the whole-file reader closed at the end (the index
+    // reader keeps no words in its blocks).
+    let mut full_bodies: Vec<Vec<Stmt>> = match full {
+        Some(Reader::Sin(r)) => vec![r.finish().0.body],
+        Some(Reader::Fan(r)) => r.finish_indexed().0.unit.programs.into_iter().map(|p| p.body).collect(),
+        None => Vec::new(),
+    };
     let mut out = Vec::new();
-    for (mut p, raw) in programs.into_iter().zip(kept) {
+    for (k, (mut p, raw)) in programs.into_iter().zip(kept).enumerate() {
         let mut ix = if raw < progs.len() { std::mem::take(&mut progs[raw]) } else { ProgIndex::new() };
         ix.raw = raw;
         if !p.body.is_empty() {
@@ -668,7 +675,10 @@ fn scan_with(
             );
             match &mut want {
                 Want::Each(each) => p.body.iter().for_each(|s| each(raw, s)),
-                Want::Words(sink) if sink.active() => p.body.iter().for_each(|s| sink.stmt(raw, s)),
+                Want::Words(sink) if sink.active() => match full_bodies.get_mut(k).filter(|b| !b.is_empty()) {
+                    Some(body) => body.iter().for_each(|s| sink.stmt(raw, s)),
+                    None => p.body.iter().for_each(|s| sink.stmt(raw, s)),
+                },
                 _ => {}
             }
         }

@@ -110,7 +110,9 @@ fn straight_block(b: &Block) -> Result<(), String> {
             ItemKind::End { .. } => continue,
             ItemKind::Call(_) => return Err("a call".into()),
             ItemKind::Return { .. } => return Err("M99".into()),
-            ItemKind::Goto(_) | ItemKind::IfThen { .. } => return Err("a jump or an IF".into()),
+            ItemKind::Goto(_) | ItemKind::IfThen { .. } | ItemKind::IfBlock { .. } => {
+                return Err("a jump or an IF".into())
+            }
             ItemKind::Assign { .. } => return Err("a macro statement".into()),
             _ => return Err("a block that is not plain words".into()),
         };

@@ -163,8 +163,10 @@ const CNC4ME: &[(&str, &[&str], &str)] = &[
     ("CENTERLINE_VERIFICATION.nc", &["#24=20.15", "#17=.04"], "error NC401 O9832"),
     ("MATERIAL_VERIFICATION.nc", &["#24=2.5", "#25=-1.", "#21=.3", "#22=-.3", "#17=.05"], "error NC401 O9832"),
     ("POINTS_AT_Z_VERIFICATION.nc", &["#24=1.2", "#25=2.3", "#26=0."], "error NC401 O9832"),
-    // The parser rejects the file: its alarm blocks N942.. come after the closing `%`.
-    ("DEEP_DRILL_CYCLE.nc", &["#26=-1.", "#7=-.5", "#19=1000."], "parse NC236"),
+    // Its alarm blocks N942.. come after the closing `%` (warning NC254): without F the
+    // jump to N945 is the control's alarm 128, as on the machine; with F it drills.
+    ("DEEP_DRILL_CYCLE.nc", &["#26=-1.", "#7=-.5", "#19=1000."], "alarm 128"),
+    ("DEEP_DRILL_CYCLE.nc", &["#26=-1.", "#7=-.5", "#19=1000.", "#9=60."], "end"),
 ];
 
 #[test]

@@ -133,6 +133,27 @@ pub fn macro_call(seg: &Seg<'_>, kind: CallKind, g: &RawWord, others: &[&RawWord
     Ok(Item { kind: ItemKind::Call(Box::new(Call { kind, target, args, repeat })), span: cover(&all) })
 }
 
+/// Haas `M97 Pn [Lm]`: the local subprogram at block Nn, m times.
+pub fn m97(seg: &Seg<'_>, m: &RawWord, p: Option<&RawWord>, l: Option<&RawWord>) -> Result<Item, Diagnostic> {
+    let target = match p.and_then(|p| p.int().map(|n| (n, p))) {
+        Some((n, _)) if (1..=99_999).contains(&n) => CallTarget::Number(n as u32),
+        _ => {
+            return Err(Diagnostic::error("NC252", "M97 needs the sequence number of its local subprogram")
+                .primary(seg.file, p.map_or(m.span, |p| p.span), "P with a block number 1..99999 expected")
+                .note("Haas M97 Pn runs the blocks from Nn of this program up to their M99")
+                .hint("write `M97 P1000` and start the subprogram with `N1000`"))
+        }
+    };
+    let mut all = vec![m];
+    all.extend(p);
+    all.extend(l);
+    let repeat = l.map(|l| l.value.clone());
+    Ok(Item {
+        kind: ItemKind::Call(Box::new(Call { kind: CallKind::M97, target, args: vec![], repeat })),
+        span: cover(&all),
+    })
+}
+
 /// `M98 P… [L…]`, with the packed form `P68003` (= O8003 six times) when no `L` is written.
 pub fn m98(seg: &Seg<'_>, m: &RawWord, p: Option<&RawWord>, l: Option<&RawWord>) -> Result<Item, Diagnostic> {
     let Some(p) = p else {

@@ -87,7 +87,7 @@ fn plain(cx: &BlockCx<'_, '_>, parts: Parts) -> Result<Line, Parts> {
             b'N' => i == 0 && w.int().is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
             b'G' => !matches!(w.int(), Some(10 | 65 | 66 | 67)),
-            b'M' => !matches!(w.int(), Some(2 | 30 | 98 | 99)),
+            b'M' => !matches!(w.int(), Some(2 | 30 | 97 | 98 | 99)),
             _ => true,
         };
         if !ok {
@@ -179,6 +179,8 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         Ok(())
     };
     let only = rest.len() == 1;
+    // Haas `IF [c] <NC words>`: the condition over the rest of the block.
+    let mut haas_if: Option<(Expr, Span)> = None;
     for p in rest {
         match p {
             Part::Word(w) => words.push(w),
@@ -200,7 +202,11 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
                     span,
                 });
             }
-            Part::If { cond, then, span } => {
+            Part::If { cond, then: None, span } => {
+                note_statement(span, false)?;
+                haas_if = Some((cond, span));
+            }
+            Part::If { cond, then: Some(then), span } => {
                 note_statement(span, false)?;
                 let kind = match *then {
                     Part::Goto { target, .. } => ItemKind::Goto(Box::new(Goto {
@@ -247,9 +253,18 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         let (word_items, is_macro) =
             if params { (vec![param_write(cx, &words)?], false) } else { nc_words(cx, &mut words)? };
         let wspan = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
-        if is_macro {
+        // Haas `IF [c] THEN #i=… <words>`: the assignment and the words are conditional.
+        let then_words =
+            !is_macro && haas_if.is_none() && items.len() == 1 && matches!(items[0].kind, ItemKind::IfThen { .. });
+        if then_words {
+            if let Some(Item { kind: ItemKind::IfThen { cond, then }, span }) = items.pop() {
+                items.push(*then);
+                haas_if = Some((cond, span));
+            }
+        }
+        if is_macro && haas_if.is_none() {
             note_statement(wspan, false)?;
-        } else if let Some((s, plain_goto)) = statement {
+        } else if let (Some((s, plain_goto)), None) = (statement, &haas_if) {
             if !plain_goto {
                 return Err(Diagnostic::error("NC167", "a macro statement and NC words in one block")
                     .primary(cx.file, s, "macro statement")
@@ -270,6 +285,10 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
         if has_g11 {
             cx.param_mode = false;
         }
+    }
+    if let Some((cond, span)) = haas_if {
+        let span = items.iter().map(|i| i.span).fold(span, Span::to);
+        items = vec![Item { kind: ItemKind::IfBlock { cond, items }, span }];
     }
     meta.comments = comments;
     Ok(Line::Block(Block { meta, items }))
@@ -404,7 +423,8 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
     let (mut used_p, mut used_l) = (false, false);
     // Without M98/M99 no word is read after its own turn, so a plain word's value can be
     // moved into its item instead of cloned.
-    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99));
+    let haas = cx.opts.semantics.haas;
+    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99) || (haas && is_m(w, 97)));
     for i in 0..words.len() {
         if (used_p && Some(i) == first_p) || (used_l && Some(i) == first_l) {
             continue;
@@ -416,6 +436,13 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
                 used_p |= p.is_some();
                 used_l |= l.is_some();
                 items.push(args::m98(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
+                continue;
+            }
+            if haas && is_m(w, 97) {
+                let (p, l) = (first_p, first_l);
+                used_p |= p.is_some();
+                used_l |= l.is_some();
+                items.push(args::m97(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
                 continue;
             }
             if is_m(w, 99) {

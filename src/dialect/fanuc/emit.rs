@@ -179,11 +179,16 @@ impl Writer<'_> {
                 }
             }
             ItemKind::IfThen { cond, then } => format!("IF {} THEN {}", self.cond(cond), self.item(then)),
+            ItemKind::IfBlock { cond, items } => {
+                let words: Vec<String> = items.iter().map(|i| self.item(i)).collect();
+                format!("IF {} {}", self.cond(cond), words.join(" ")).trim_end().to_string()
+            }
             ItemKind::Call(c) => {
                 let code = match c.kind {
                     CallKind::G65 => "G65",
                     CallKind::G66 => "G66",
                     CallKind::M98 => "M98",
+                    CallKind::M97 => "M97",
                     _ => {
                         self.bug(it.span, "a Siemens call");
                         "G65"
@@ -249,8 +254,8 @@ impl Writer<'_> {
         let letter = w.addr.as_str().to_string();
         let e = match &w.value {
             WordValue::Expr(e) => e,
-            WordValue::Ac(e) | WordValue::Ic(e) => {
-                self.bug(w.span, "AC()/IC()");
+            WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => {
+                self.bug(w.span, "AC()/IC()/ACP()");
                 e
             }
         };

@@ -240,8 +240,9 @@ fn factor(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnostic> {
         return Err(cx.err("NC199", "empty operand", span, "here"));
     };
     let mut neg = None;
-    if first.as_rule() == Rule::sign {
-        neg = Some(first.as_str() == "-");
+    // A run of signs folds to one: an odd number of `-` is a minus (`+ -` is `-`).
+    while first.as_rule() == Rule::sign {
+        neg = Some((first.as_str() == "-") != neg.unwrap_or(false));
         match it.next() {
             Some(n) => first = n,
             None => return Err(cx.err("NC199", "sign without operand", span, "here")),

@@ -398,6 +398,23 @@ impl<'o> Reader<'o> {
                 return;
             }
         }
+        // `* * * *`, `=====`: a separator line that real files carry; the control would alarm.
+        if scan::decorative(seg.text) {
+            self.diags.push(
+                Diagnostic::warning("NC250", "a line of only `*`, `=` or `-` is read as a comment")
+                    .primary(self.file, span, "separator line")
+                    .note("it is no NC block (no address, no macro statement); the FANUC and Haas manuals do not say that a control skips it")
+                    .hint("put separator lines in parentheses: `(* * * *)`"),
+            );
+            if let Some(prog) = self.programs.last_mut() {
+                let comments = vec![crate::ir::Comment { text: seg.text.to_string(), span }];
+                prog.push(Line::Block(crate::ir::Block {
+                    meta: BlockMeta { span, comments, ..BlockMeta::default() },
+                    items: Vec::new(),
+                }));
+            }
+            return;
+        }
         // The fast path takes only letters, digits, signs, points, blanks and a leading `/n`:
         // none of the characters `scan::check` looks at, so a block it takes passes the check.
         let parsed = match fast::parse_fast(&seg) {
@@ -431,6 +448,41 @@ impl<'o> Reader<'o> {
             }
             Ok(Line::Program { number, meta }) => self.start_program(number, meta),
             Ok(line) => {
+                if let Line::Block(b) = &line {
+                    if !self.opts.semantics.haas {
+                        let haas_if = b.items.iter().find(
+                            |i| matches!(&i.kind, crate::ir::ItemKind::IfBlock { items, .. } if !items.is_empty()),
+                        );
+                        if let Some(i) = haas_if {
+                            self.diags.push(
+                                Diagnostic::warning("NC255", "`IF [..]` followed by NC words is a Haas form")
+                                    .primary(self.file, i.span, "the words run only when the condition holds")
+                                    .note("a FANUC control requires GOTO or THEN after IF[..] and alarms on this block")
+                                    .hint("for a Haas program set `[fanuc] series = \"haas\"` in nctrans.toml"),
+                            );
+                        }
+                        if let Some(m97) = haas_m97(b) {
+                            self.diags.push(
+                                Diagnostic::warning("NC253", "M97 with P is a Haas local subprogram call")
+                                    .primary(self.file, m97, "read as a plain M code")
+                                    .note("on a FANUC M97 is a machine builder's M code; on a Haas it runs block N<P> of this program up to its M99")
+                                    .hint("for a Haas program set `[fanuc] series = \"haas\"` in nctrans.toml"),
+                            );
+                        }
+                    }
+                    if let [crate::ir::Item { kind: crate::ir::ItemKind::IfBlock { items, .. }, span }] =
+                        b.items.as_slice()
+                    {
+                        if items.is_empty() {
+                            self.diags.push(
+                                Diagnostic::warning("NC251", "`IF [..]` with nothing after it does nothing")
+                                    .primary(self.file, *span, "no GOTO, THEN or NC words")
+                                    .note("read as a Haas conditional block with no words; FANUC requires GOTO or THEN after IF")
+                                    .hint("complete the statement (`IF [..] GOTO n`) or delete the line"),
+                            );
+                        }
+                    }
+                }
                 prog.param_mode = cx.param_mode;
                 prog.push(line);
             }
@@ -493,4 +545,24 @@ impl<'o> Reader<'o> {
             after_end_programs: self.ignored_programs,
         }
     }
+}
+
+/// The span of an `M97` word in a block that also has a P word (a Haas local call read
+/// without the Haas profile).
+fn haas_m97(b: &crate::ir::Block) -> Option<Span> {
+    use crate::ir::{ExprKind, ItemKind, WordValue};
+    let word = |letter: u8| {
+        b.items.iter().find_map(|i| match &i.kind {
+            ItemKind::Word(w) if w.addr.is(letter) => Some(w),
+            _ => None,
+        })
+    };
+    let m = b.items.iter().find_map(|i| match &i.kind {
+        ItemKind::Word(w) if w.addr.is(b'M') => match &w.value {
+            WordValue::Expr(e) if matches!(e.kind, ExprKind::Num(n) if n.value == 97.0) => Some(w.span),
+            _ => None,
+        },
+        _ => None,
+    })?;
+    word(b'P').map(|_| m)
 }

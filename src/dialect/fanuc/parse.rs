@@ -89,10 +89,11 @@ pub enum Part {
         target: Target,
         span: Span,
     },
-    /// `IF[c]GOTO n` (`then` is a `Goto`) or `IF[c]THEN #i=…` (`then` is an `Assign`).
+    /// `IF[c]GOTO n` (`then` is a `Goto`), `IF[c]THEN #i=…` (`then` is an `Assign`), or the
+    /// Haas `IF[c] <NC words>` (`then` is `None`: the block's words are conditional).
     If {
         cond: Expr,
-        then: Box<Part>,
+        then: Option<Box<Part>>,
         span: Span,
     },
     While {
@@ -190,17 +191,21 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
             let then = match it.next() {
                 Some(t) if t.as_rule() == Rule::goto_stmt => {
                     let s = span_of(seg, &t);
-                    goto(cx, t, s)?
+                    Some(goto(cx, t, s)?)
                 }
                 Some(t) => {
-                    // then_part: kw_then ~ assign
-                    let a = t.into_inner().nth(1).ok_or_else(|| internal(seg, span))?;
-                    let s = span_of(seg, &a);
-                    assign(cx, a, s)?
+                    // then_part: [THEN] [#i=…]
+                    match t.into_inner().find(|a| a.as_rule() == Rule::assign) {
+                        Some(a) => {
+                            let s = span_of(seg, &a);
+                            Some(assign(cx, a, s)?)
+                        }
+                        None => None,
+                    }
                 }
-                None => return Err(internal(seg, span)),
+                None => None,
             };
-            Ok(Part::If { cond, then: Box::new(then), span })
+            Ok(Part::If { cond, then: then.map(Box::new), span })
         }
         Rule::while_stmt => {
             let mut it = p.into_inner();

@@ -191,3 +191,11 @@ pub fn check(seg: &Seg<'_>, opts: &ParseOptions) -> Result<(), Diagnostic> {
     }
     Ok(())
 }
+
+/// A separator line: only `*`, `=`, `-`, `_` and blanks, at least three of the marks and
+/// no `-` followed by a digit (never a signed value).
+pub fn decorative(text: &str) -> bool {
+    let b = text.as_bytes();
+    let marks = b.iter().filter(|c| matches!(c, b'*' | b'=' | b'-' | b'_')).count();
+    marks >= 3 && b.iter().all(|c| matches!(c, b'*' | b'=' | b'-' | b'_' | b' ' | b'\t'))
+}

@@ -382,17 +382,25 @@ fn check_gotos(
         if numbers.contains(&t.value) || streamed.is_some_and(|s| s.numbers.first_from(t.value, 0).is_some()) {
             continue;
         }
+        if let Some((_, s)) = ignored.iter().find(|(n, _)| *n == t.value) {
+            // Such programs run on real machines until that path is taken: the jump is the
+            // control's alarm when it executes (the evaluator's no-target alarm), not a reason
+            // to refuse the file.
+            diags.push(
+                Diagnostic::warning("NC254", format!("N{} is only after the closing `%`", t.value))
+                    .primary(file, t.span, "this jump alarms when it is taken")
+                    .secondary(file, *s, "this block is after the closing `%`")
+                    .note("the control does not read anything after the second `%` (alarm 128 when the jump runs)")
+                    .hint(format!("move N{} before the closing `%`", t.value)),
+            );
+            continue;
+        }
         let mut d = Diagnostic::error("NC236", format!("no block N{} in this program", t.value)).primary(
             file,
             t.span,
             "jump target not found",
         );
-        if let Some((_, s)) = ignored.iter().find(|(n, _)| *n == t.value) {
-            d = d
-                .secondary(file, *s, "this block is after the closing `%`")
-                .note("the control does not read anything after the second `%`")
-                .hint(format!("move N{} before the closing `%`", t.value));
-        } else {
+        {
             d = d
                 .note("GOTO searches only the current program (alarm 128 if the number is missing)")
                 .hint(format!("add a block starting with N{}, or jump to an existing N number", t.value));

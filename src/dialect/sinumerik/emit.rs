@@ -286,7 +286,12 @@ impl Writer {
                         s
                     })
                     .collect();
-                format!("DEF {} {}", ty(d.ty), vars.join(", "))
+                let scope = match d.scope {
+                    Some(DefScope::Nck) => "NCK ",
+                    Some(DefScope::Chan) => "CHAN ",
+                    None => "",
+                };
+                format!("DEF {scope}{} {}", ty(d.ty), vars.join(", "))
             }
             ItemKind::Alarm { style: AlarmStyle::Setal, number, .. } => format!("SETAL({})", expr(number)),
             ItemKind::Alarm { style: AlarmStyle::FanucMacro, .. } => self.problem(it.span, "a FANUC #3000 alarm"),
@@ -295,6 +300,31 @@ impl Writer {
             ItemKind::Message { text: None } => "MSG()".into(),
             ItemKind::Stopre => "STOPRE".into(),
             ItemKind::IfThen { .. } => self.problem(it.span, "a FANUC IF-THEN"),
+            ItemKind::IfBlock { .. } => self.problem(it.span, "a Haas IF with NC words"),
+            ItemKind::Extern(e) => {
+                let ps: Vec<String> = e
+                    .params
+                    .iter()
+                    .map(|(by_ref, t, dims)| {
+                        let dims: Vec<String> = dims.iter().map(|d| d.to_string()).collect();
+                        let dims = if dims.is_empty() { String::new() } else { format!("[{}]", dims.join(",")) };
+                        format!("{}{}{dims}", if *by_ref { "VAR " } else { "" }, ty(*t))
+                    })
+                    .collect();
+                format!("EXTERN {}({})", e.name, ps.join(", "))
+            }
+            ItemKind::SyncAction(a) => {
+                let mut s = String::new();
+                if let Some((scope, id)) = &a.id {
+                    let kw = if *scope == SyncScope::Static { "IDS" } else { "ID" };
+                    s.push_str(&format!("{kw}={} ", expr(id)));
+                }
+                if let Some((t, c)) = &a.trigger {
+                    s.push_str(&format!("{} {} ", t.name(), expr(c)));
+                }
+                let acts: Vec<String> = a.actions.iter().map(|i| self.item(i)).collect();
+                format!("{s}DO {}", acts.join(" "))
+            }
             ItemKind::ParamWrite(_) => self.problem(it.span, "a FANUC parameter write"),
             ItemKind::RepeatSection(r) => {
                 let kw = if r.single { "REPEATB" } else { "REPEAT" };
@@ -376,7 +406,14 @@ fn word_into(out: &mut String, w: &Word) {
 }
 
 fn word(w: &Word) -> String {
-    let addr = w.addr.as_str();
+    let ax;
+    let addr = match &w.addr {
+        Addr::Axis(e) => {
+            ax = format!("AX[{}]", expr(e));
+            ax.as_str()
+        }
+        a => a.as_str(),
+    };
     let single = matches!(w.addr, Addr::Letter(_));
     match &w.value {
         WordValue::Expr(e) => match &e.kind {
@@ -393,6 +430,7 @@ fn word(w: &Word) -> String {
         },
         WordValue::Ac(e) => format!("{addr}=AC({})", expr(e)),
         WordValue::Ic(e) => format!("{addr}=IC({})", expr(e)),
+        WordValue::Rotary(m, e) => format!("{addr}={}({})", m.name(), expr(e)),
     }
 }
 
@@ -511,6 +549,7 @@ fn func_name(f: Func) -> &'static str {
         Func::MinVal => "MINVAL",
         Func::MaxVal => "MAXVAL",
         Func::Bound => "BOUND",
+        Func::AxName => "AXNAME",
         // FANUC-only functions have no Siemens spelling; the passes lower them. Should one
         // slip through, a name Siemens does not know makes the re-parse fail loudly.
         Func::FanucAsin => "FANUC_ASIN",

@@ -6,6 +6,7 @@
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
 
 pub mod cycles;
+mod decls;
 mod errors;
 mod expr;
 pub(crate) mod fast;
@@ -14,6 +15,7 @@ mod parse;
 pub mod scan_words;
 mod skeleton;
 mod structure;
+mod sync;
 
 pub mod emit;
 

@@ -31,6 +31,7 @@ pub fn builtin(name: &str) -> Option<Builtin> {
         "MINVAL" => (Func::MinVal, 2),
         "MAXVAL" => (Func::MaxVal, 2),
         "BOUND" => (Func::Bound, 3),
+        "AXNAME" => (Func::AxName, 1),
         _ => return None,
     };
     Some(Builtin { func, arity })

@@ -180,6 +180,8 @@ impl Lower<'_, '_> {
                 LineKind::Plain(item.into_iter().collect())
             }
             Rule::items => LineKind::Plain(self.items(inner)),
+            Rule::sync_line => LineKind::Plain(self.sync_line(inner).into_iter().collect()),
+            Rule::extern_stmt => LineKind::Plain(self.extern_decl(inner).into_iter().collect()),
             _ => LineKind::Plain(Vec::new()),
         }
     }
@@ -201,7 +203,7 @@ impl Lower<'_, '_> {
         Some(Item { kind, span })
     }
 
-    fn items(&mut self, inner: pest::iterators::Pairs<'_, Rule>) -> Vec<Item> {
+    pub(super) fn items(&mut self, inner: pest::iterators::Pairs<'_, Rule>) -> Vec<Item> {
         let mut out: Vec<Item> = Vec::new();
         for p in inner {
             let span = self.span(&p);
@@ -223,7 +225,7 @@ impl Lower<'_, '_> {
         out
     }
 
-    fn item(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
+    pub(super) fn item(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
         let span = self.span(&p);
         match p.as_rule() {
             Rule::word_const => self.word_const(&p),
@@ -288,6 +290,7 @@ impl Lower<'_, '_> {
                 Some(ItemKind::Frame { op, words })
             }
             Rule::assign => self.assign(p),
+            Rule::call_stmt => self.call_stmt(p),
             Rule::call => {
                 let mut it = p.into_inner();
                 let name = it.next().map(|n| n.as_str().to_ascii_uppercase()).unwrap_or_default();
@@ -307,7 +310,10 @@ impl Lower<'_, '_> {
             }
             Rule::bare_name => {
                 let name = p.as_str().to_ascii_uppercase();
-                if name.len() == 1 || (name.as_bytes()[0].is_ascii_alphabetic() && is_numbered(&name)) {
+                // `X` or `X1` alone is an address without its value; a longer name with digits
+                // (`SH602`, `PLCASUP1`) is a program name: the control looks it up in the
+                // program directory first (see `calls::not_found` for the message if absent).
+                if name.len() == 1 || (is_numbered(&name) && letters_of(&name) == 1) {
                     self.error(
                         Diagnostic::error("NC127", format!("address {name} has no value"))
                             .primary(self.file(), span, "value missing")
@@ -371,8 +377,9 @@ impl Lower<'_, '_> {
                             if name.len() == 1 { Addr::Letter(name.as_bytes()[0]) } else { Addr::Name(name.into()) };
                         let value = match ac_ic {
                             None => WordValue::Expr(value),
-                            Some(true) => WordValue::Ac(value),
-                            Some(false) => WordValue::Ic(value),
+                            Some(Pos::Ac) => WordValue::Ac(value),
+                            Some(Pos::Ic) => WordValue::Ic(value),
+                            Some(Pos::Rotary(m)) => WordValue::Rotary(m, value),
                         };
                         let span = tspan.to(vspan_of(&value));
                         return Some(special_word(Word { addr, value, span }));
@@ -382,15 +389,36 @@ impl Lower<'_, '_> {
                     Some(s) => self.subscripts(s, names::axis_indexed(&name)),
                     None => Vec::new(),
                 };
+                // `AX[X]=10`, `AX[AX_W]=IC(2)`: an axis word whose axis is named in the brackets.
+                if name == "AX" && indices.len() == 1 && !self.st.declared.contains_key(&name) {
+                    let axis = indices.into_iter().next()?;
+                    let addr = match &axis.kind {
+                        ExprKind::Ident(a) if a.len() == 1 => Addr::Letter(a.as_bytes()[0]),
+                        ExprKind::Ident(a) => Addr::Name(a.as_str().into()),
+                        _ => Addr::Axis(Box::new(axis)),
+                    };
+                    let value = match ac_ic {
+                        None => WordValue::Expr(value),
+                        Some(Pos::Ac) => WordValue::Ac(value),
+                        Some(Pos::Ic) => WordValue::Ic(value),
+                        Some(Pos::Rotary(m)) => WordValue::Rotary(m, value),
+                    };
+                    let span = tspan.to(vspan_of(&value));
+                    return Some(ItemKind::Word(Word { addr, value, span }));
+                }
                 match names::r_number(&name) {
                     Some(d) if indices.is_empty() => self.r_param(d, tspan),
                     _ => VarRef { kind: VarKind::Named { name, indices }, span: tspan },
                 }
             }
         };
-        if ac_ic.is_some() {
+        if let Some(pos) = ac_ic {
+            let what = match pos {
+                Pos::Rotary(m) => format!("{}(…) only applies", m.name()),
+                _ => "AC(…)/IC(…) only apply".to_string(),
+            };
             self.error(
-                Diagnostic::error("NC125", "AC(…)/IC(…) only apply to address words")
+                Diagnostic::error("NC125", format!("{what} to address words"))
                     .primary(self.file(), value.span, "not an address")
                     .hint("assign the plain value to the variable; use AC/IC on axis words like `X=IC(5)`"),
             );
@@ -398,12 +426,17 @@ impl Lower<'_, '_> {
         Some(ItemKind::Assign { target: Box::new(var), value })
     }
 
-    /// The value after `=`: an expression, or `AC(e)` (`Some(true)`) / `IC(e)` (`Some(false)`).
-    fn word_value(&mut self, p: Pair<'_, Rule>) -> (Expr, Option<bool>) {
+    /// The value after `=`: an expression, or `AC(e)` / `IC(e)` / a rotary `ACP(e)` ….
+    fn word_value(&mut self, p: Pair<'_, Rule>) -> (Expr, Option<Pos>) {
         if p.as_rule() == Rule::ac_ic {
             let span = self.span(&p);
             let mut it = p.into_inner();
-            let ac = it.next().is_some_and(|k| k.as_str().eq_ignore_ascii_case("AC"));
+            let kw = it.next().map(|k| k.as_str().to_ascii_uppercase()).unwrap_or_default();
+            let ac = match kw.as_str() {
+                "AC" => Pos::Ac,
+                "IC" => Pos::Ic,
+                other => Pos::Rotary(RotaryMode::from_name(other).unwrap_or(RotaryMode::Dc)),
+            };
             let e = match it.find(|q| q.as_rule() == Rule::expr) {
                 Some(e) => self.expr(e),
                 None => Expr::num(0.0, false, span),
@@ -533,10 +566,14 @@ impl Lower<'_, '_> {
 
     fn def(&mut self, pairs: Vec<Pair<'_, Rule>>) -> Option<ItemKind> {
         let mut ty = None;
+        let mut scope = None;
         let mut vars = Vec::new();
         for p in pairs {
             match p.as_rule() {
                 Rule::def_var => vars.push(self.def_var(p)?),
+                Rule::def_scope => {
+                    scope = Some(if p.as_str().eq_ignore_ascii_case("NCK") { DefScope::Nck } else { DefScope::Chan })
+                }
                 Rule::kw_def | Rule::comma => {}
                 _ => ty = Some(self.data_type(p)?),
             }
@@ -553,7 +590,7 @@ impl Lower<'_, '_> {
             }
             self.st.declared.insert(v.name.clone(), ty);
         }
-        Some(ItemKind::Def(Box::new(Def { ty, vars })))
+        Some(ItemKind::Def(Box::new(Def { scope, ty, vars })))
     }
 
     /// A DEF or PROC parameter name the control refuses (an address letter, a reserved
@@ -700,6 +737,10 @@ fn p_text(span: &Span, norm: &Normalised<'_>) -> String {
     norm.text.get(lo..hi).unwrap_or("…").to_string()
 }
 
+fn letters_of(name: &str) -> usize {
+    name.bytes().take_while(u8::is_ascii_alphabetic).count()
+}
+
 fn is_numbered(name: &str) -> bool {
     let letters = name.bytes().take_while(u8::is_ascii_alphabetic).count();
     letters < name.len() && name.bytes().skip(letters).all(|c| c.is_ascii_digit())
@@ -707,8 +748,16 @@ fn is_numbered(name: &str) -> bool {
 
 fn vspan_of(v: &WordValue) -> Span {
     match v {
-        WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => e.span,
+        WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => e.span,
     }
+}
+
+/// The positioning function written around a word's value.
+#[derive(Clone, Copy)]
+enum Pos {
+    Ac,
+    Ic,
+    Rotary(RotaryMode),
 }
 
 fn call_named(name: String, args: Vec<Arg>) -> ItemKind {

@@ -359,6 +359,17 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
     let mut ret_after: Option<Span> = None;
     for it in std::mem::take(&mut b.items) {
         match it.kind {
+            ItemKind::Call(c) if c.kind == CallKind::M97 => {
+                if let Some(st) = ctx.unsupported(
+                    "NC636",
+                    it.span,
+                    "Haas `M97 P<n>` (a local subprogram at block N<n> of the same program)",
+                    "Siemens calls whole programs only: move the blocks from N<n> to their M99 into a subprogram \
+                     and call it with M98",
+                ) {
+                    out.push(st);
+                }
+            }
             ItemKind::Call(c) => match lower_call(ctx, *c, it.span, modal.inch_at(span.lo)) {
                 Ok(item) => items.push(item),
                 Err(Some(stmt)) => out.push(stmt),

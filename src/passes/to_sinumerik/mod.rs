@@ -24,6 +24,7 @@ pub mod calls;
 pub mod cycles;
 pub mod exprs;
 pub mod gotos;
+pub mod haas_if;
 pub mod indirect;
 pub mod modal;
 pub mod structures;
@@ -284,6 +285,10 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
+    let split: Vec<Option<Program>> = programs.iter().map(|(_, p)| haas_if::split(p)).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&split).map(|((f, p), s)| (*f, s.as_ref().unwrap_or(p))).collect();
+    let programs = programs.as_slice();
     let resolved: Vec<Option<Program>> = programs.iter().map(|(_, p)| indirect::resolve(p)).collect();
     let programs: Vec<(FileId, &Program)> =
         programs.iter().zip(&resolved).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
@@ -340,10 +345,12 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
+    body = haas_if::refuse(ctx, body);
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main, ctx.plan().start_inch, &setters);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
+    body = haas_if::restructure(body);
     body = gotos::lower(ctx, body);
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
@@ -498,7 +505,7 @@ pub fn map_exprs(body: &mut [Stmt], f: &mut dyn FnMut(&mut Expr)) {
 pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
     fn word(w: &mut Word, f: &mut dyn FnMut(&mut Expr)) {
         match &mut w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) => f(e),
+            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => f(e),
         }
     }
     fn goto(g: &mut Goto, f: &mut dyn FnMut(&mut Expr)) {
@@ -519,6 +526,23 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
         ItemKind::IfThen { cond, then } => {
             f(cond);
             item_exprs_mut(then, f);
+        }
+        ItemKind::IfBlock { cond, items } => {
+            f(cond);
+            for i in items {
+                item_exprs_mut(i, f);
+            }
+        }
+        ItemKind::SyncAction(a) => {
+            if let Some((_, e)) = &mut a.id {
+                f(e);
+            }
+            if let Some((_, e)) = &mut a.trigger {
+                f(e);
+            }
+            for i in &mut a.actions {
+                item_exprs_mut(i, f);
+            }
         }
         ItemKind::Case(c) => {
             f(&mut c.selector);
@@ -579,6 +603,7 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
             }
         }
         ItemKind::Message { text: None }
+        | ItemKind::Extern(_)
         | ItemKind::ModalCallOff
         | ItemKind::Instruction { .. }
         | ItemKind::End { .. }

@@ -187,7 +187,23 @@ fn selection(s: &Stmt) -> Option<f64> {
     }
 }
 
-/// A plain block of work-offset writes (`#5221=…`, `$P_UIFR` once mapped) whose values read
+/// The work offset a block of the program selects itself (`N120 G54 G0 X0`): a block that is
+/// surely executed (no `/`) and holds only address words, so nothing in it reads the frame
+/// before the selection takes effect.
+fn selects(s: &Stmt) -> Option<f64> {
+    let StmtKind::Block(b) = &s.kind else { return None };
+    if b.meta.skip.is_some() || !b.items.iter().all(|it| matches!(it.kind, ItemKind::Word(_))) {
+        return None;
+    }
+    b.items.iter().find_map(|it| match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(e), .. }) => {
+            literal(e).filter(|g| (54.0..=57.0).contains(g) || (500.0..=599.0).contains(g))
+        }
+        _ => None,
+    })
+}
+
+/// A block of work-offset writes (`#5221=…`, `$P_UIFR` once mapped) whose values read
 /// no other system variable (an actual position would depend on the frame in force).
 fn frame_writes_only(s: &Stmt) -> bool {
     let StmtKind::Block(b) = &s.kind else { return false };
@@ -216,9 +232,8 @@ fn frame_writes_only(s: &Stmt) -> bool {
         }
         other
     };
-    m.label.is_none()
-        && m.number.is_none()
-        && m.skip.is_none()
+    // A label or N number may stand on it: a jump to it writes and meets the same selection.
+    m.skip.is_none()
         && !b.items.is_empty()
         && b.items.iter().all(|it| match &it.kind {
             ItemKind::Assign { target, value } => {
@@ -237,8 +252,8 @@ fn merge_reselects(out: &mut Vec<Stmt>) {
     let mut i = 0;
     while i + 1 < out.len() {
         let g = selection(&out[i]);
-        let same_next = g.is_some() && selection(&out[i + 1]) == g;
-        let delayed = g.is_some() && i + 2 < out.len() && frame_writes_only(&out[i + 1]) && selection(&out[i + 2]) == g;
+        let same_next = g.is_some() && selects(&out[i + 1]) == g;
+        let delayed = g.is_some() && i + 2 < out.len() && frame_writes_only(&out[i + 1]) && selects(&out[i + 2]) == g;
         // Only a selection that follows a frame write is the translation's own.
         let after_write = i > 0 && frame_writes_only(&out[i - 1]);
         if after_write && (same_next || delayed) {

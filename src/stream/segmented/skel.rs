@@ -240,7 +240,7 @@ impl Skel {
                             }
                             _ => {}
                         },
-                        WordValue::Ac(_) | WordValue::Ic(_) => {}
+                        WordValue::Ac(_) | WordValue::Ic(_) | WordValue::Rotary(..) => {}
                     },
                     _ => {}
                 }

@@ -131,7 +131,7 @@ fn follow_words(arc: bool, words: &[PlainWord]) -> bool {
 
 /// Whether an M value is a program end, call or return (never a plain word of a run).
 fn special_m(v: f64) -> bool {
-    v == 2.0 || v == 30.0 || v == 98.0 || v == 99.0
+    v == 2.0 || v == 30.0 || v == 97.0 || v == 98.0 || v == 99.0
 }
 
 /// A block the translation surely keeps as a line with an item, a number or a label (so

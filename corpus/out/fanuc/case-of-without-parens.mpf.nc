@@ -1,0 +1,17 @@
+%
+O0001 (CASE-OF-WITHOUT-PARENS)
+(NCTRANS: SINUMERIK case-of-without-parens.mpf TO FANUC MACRO B)
+(NCTRANS: DRESS_MODE = #100)
+( Grinding cycle selector: CASE written without parentheses, as dressing packages do)
+#100=1.
+IF [#100 EQ 0.] GOTO 1000
+IF [#100 EQ 1.] GOTO 1001
+GOTO 1002
+N1000 G00 X50. (DR_NONE:)
+GOTO 1003
+N1001 G00 X40. Z2. (DR_ROLL:)
+G01 Z-10. F200.
+GOTO 1003
+N1002 #3000=1(SETAL 65001) (DR_ABORT:)
+N1003 M30 (DR_END:)
+%

@@ -1,0 +1,8 @@
+%
+O0001 (ROLL_DRESS)
+(NCTRANS: SINUMERIK roll_dress.spf TO FANUC MACRO B)
+( one roll pass)
+G01 X5. F100.
+G00 X0.
+M99
+%
