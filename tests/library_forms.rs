@@ -100,11 +100,11 @@ fn separator_lines_are_comments_with_a_warning() {
 
 #[test]
 fn case_without_parentheses_reads_as_with_them() {
-    let with = siemens("DEF INT M=1\nCASE (M) OF 1 GOTOF AA DEFAULT GOTOF BB\nAA: M30\nBB: M30\n");
-    let without = siemens("DEF INT M=1\nCASE M OF 1 GOTOF AA DEFAULT GOTOF BB\nAA: M30\nBB: M30\n");
+    let with = siemens("DEF INT MODE=1\nCASE (MODE) OF 1 GOTOF AA DEFAULT GOTOF BB\nAA: M30\nBB: M30\n");
+    let without = siemens("DEF INT MODE=1\nCASE MODE OF 1 GOTOF AA DEFAULT GOTOF BB\nAA: M30\nBB: M30\n");
     assert!(with.1.is_empty() && without.1.is_empty(), "{:?} {:?}", with.1, without.1);
     assert_eq!(with.0, without.0);
-    assert!(without.0.contains("case M | 1 -> "), "{}", without.0);
+    assert!(without.0.contains("case MODE | 1 -> "), "{}", without.0);
 }
 
 #[test]
