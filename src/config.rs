@@ -52,6 +52,10 @@ pub struct FanucProfile {
     pub nat: bool,
     /// The control accepts `[[a] AND [b]]` in IF and WHILE.
     pub compound_conditions: bool,
+    /// Parameter 5114: the return amount d of G73 (mm), for `run --expand-cycles`.
+    pub g73_return: f64,
+    /// Parameter 5115: the clearance d of G83 (mm), for `run --expand-cycles`.
+    pub g83_clearance: f64,
 }
 
 impl FanucProfile {
@@ -73,6 +77,10 @@ pub struct Config {
     pub fanuc: FanucProfile,
     /// Siemens MD28050: number of R parameters.
     pub r_parameters: u32,
+    /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
+    pub cycle83_retract: f64,
+    /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
+    pub cycle83_clearance: f64,
     /// `--var-map` rules for Sinumerik → FANUC (`R0-R99=#100`).
     pub var_map_to_fanuc: Vec<String>,
     /// `--var-map` rules for FANUC → Sinumerik (`#500-#599=R100`).
@@ -121,8 +129,12 @@ impl Default for Config {
                 calculator_input: false,
                 nat: false,
                 compound_conditions: false,
+                g73_return: 0.6,
+                g83_clearance: 0.25,
             },
             r_parameters: 300,
+            cycle83_retract: 1.0,
+            cycle83_clearance: 0.6,
             var_map_to_fanuc: vec![],
             var_map_to_sinumerik: vec![],
             tools: BTreeMap::new(),
@@ -150,14 +162,18 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 28] = [
+pub const KEYS: [(&str, &str, &str); 32] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
     ("fanuc.decimal_point", "-", "\"increment\" (X10 = 10 increments) or \"calculator\" (X10 = 10 mm)"),
     ("fanuc.nat", "-", "true or false"),
     ("fanuc.compound_conditions", "--compound-conditions", "true or false"),
+    ("fanuc.g73_return", "-", "a length in mm from 0 to 100 (parameter 5114)"),
+    ("fanuc.g83_clearance", "-", "a length in mm from 0 to 100 (parameter 5115)"),
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
+    ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
+    ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
@@ -199,6 +215,12 @@ fn as_bool(key: &str, v: &toml::Value) -> Result<bool, String> {
 
 fn as_int(key: &str, v: &toml::Value, lo: i64, hi: i64) -> Result<i64, String> {
     v.as_integer().filter(|n| (lo..=hi).contains(n)).ok_or_else(|| bad(key, v))
+}
+
+/// A retract amount: 0 to 100 mm, written as a float or an integer.
+fn as_mm(key: &str, v: &toml::Value) -> Result<f64, String> {
+    let x = v.as_float().or_else(|| v.as_integer().map(|n| n as f64));
+    x.filter(|x| (0.0..=100.0).contains(x)).ok_or_else(|| bad(key, v))
 }
 
 fn one_of<T: Copy>(key: &str, v: &toml::Value, options: &[(&str, T)]) -> Result<T, String> {
@@ -284,6 +306,10 @@ impl Config {
             "fanuc.nat" => self.fanuc.nat = as_bool(key, v)?,
             "fanuc.compound_conditions" => self.fanuc.compound_conditions = as_bool(key, v)?,
             "sinumerik.r_parameters" => self.r_parameters = as_int(key, v, 1, 32535)? as u32,
+            "fanuc.g73_return" => self.fanuc.g73_return = as_mm(key, v)?,
+            "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
+            "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
+            "sinumerik.cycle83_clearance" => self.cycle83_clearance = as_mm(key, v)?,
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
             "tools" => {
@@ -431,6 +457,16 @@ impl Config {
         s
     }
 
+    /// The retract amounts of the pecking cycles on a control of `dialect`, for
+    /// `run --expand-cycles`.
+    pub fn cycle_retracts(&self, dialect: Dialect) -> crate::eval::cycles::expand::Retracts {
+        use crate::eval::cycles::expand::Retracts;
+        match dialect {
+            Dialect::Fanuc => Retracts { chip_break: self.fanuc.g73_return, peck_clearance: self.fanuc.g83_clearance },
+            Dialect::Sinumerik => Retracts { chip_break: self.cycle83_retract, peck_clearance: self.cycle83_clearance },
+        }
+    }
+
     /// The pinned batch maps for a direction: programs, tools and variable rules.
     pub fn batch_maps(&self, target: Dialect) -> crate::batch::BatchMaps {
         let (programs, rules) = match target {
@@ -466,10 +502,19 @@ decimal_point = "increment"
 nat = false
 # The control accepts [[a] AND [b]] in IF and WHILE (newer controls; check the manual).
 compound_conditions = false
+# Drilling cycles, used by `nctrans run --expand-cycles` (machine data, not in the program):
+# parameter 5114, the return amount d of G73 (high-speed peck) in mm;
+g73_return = 0.6
+# parameter 5115, the clearance d of G83 (peck) in mm: where the rapid back into the hole stops.
+g83_clearance = 0.25
 
 [sinumerik]
 # MD28050: the number of R parameters (828D: 300).
 r_parameters = 300
+# CYCLE83, used by `nctrans run --expand-cycles`: the chip-breaking retract (VARI 0) in mm,
+cycle83_retract = 1.0
+# and the anticipation distance above the last depth for chip removal (VARI 1) in mm.
+cycle83_clearance = 0.6
 
 [variables]
 # Where variables go, as --var-map rules. Sinumerik -> FANUC defaults: R n -> #(500+n), DEF

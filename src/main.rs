@@ -64,6 +64,10 @@ enum Command {
         /// Run without printing the trace (for timing).
         #[arg(long)]
         quiet: bool,
+        /// Write each drilling cycle as the moves, dwells and spindle events the control makes
+        /// (retract amounts from nctrans.toml [fanuc]/[sinumerik]) instead of `cycle` events.
+        #[arg(long)]
+        expand_cycles: bool,
         #[command(flatten)]
         input: InputOpts,
     },
@@ -167,7 +171,9 @@ fn main() -> ExitCode {
     };
     match command {
         Command::Parse { file, from, summary, input } => cmd_parse(&file, from, summary, &input),
-        Command::Run { file, from, eval, format, quiet, input } => cmd_run(&file, from, &eval, format, quiet, &input),
+        Command::Run { file, from, eval, format, quiet, expand_cycles, input } => {
+            cmd_run(&file, from, &eval, format, (quiet, expand_cycles), &input)
+        }
         Command::Check { a, b, from_a, from_b, eval, input, maps } => {
             cmd_check(&a, &b, (from_a, from_b), &eval, &input, &maps)
         }
@@ -267,6 +273,7 @@ fn run_options(header: &str, name: &str, eval: &EvalOpts) -> Result<nctrans::eva
         inputs,
         semantics: None,
         probe_contact: eval.probe_contact,
+        expand_cycles: None,
     })
 }
 
@@ -275,20 +282,37 @@ fn cmd_run(
     from: Option<Dialect>,
     eval: &EvalOpts,
     format: nctrans::eval::Format,
-    quiet: bool,
+    (quiet, expand_cycles): (bool, bool),
     input: &InputOpts,
 ) -> ExitCode {
     use nctrans::eval::{self, Ending};
-    if stream_cli::wanted(path, input) {
+    // The streamed run writes `cycle` events only; an expanded run reads the whole file.
+    if !expand_cycles && stream_cli::wanted(path, input) {
         if let Some(code) = stream_cli::run(path, from, eval, format, quiet, input.encoding) {
             return code;
         }
     }
     let mut db = SourceDb::new();
-    let (unit, opts) = match load_for_run(&mut db, path, from, eval, input) {
+    let (unit, mut opts) = match load_for_run(&mut db, path, from, eval, input) {
         Ok(x) => x,
         Err(code) => return code,
     };
+    if expand_cycles {
+        // The retract amounts are machine data: the profile's, when the folder has one.
+        let project = std::path::Path::new(nctrans::config::FILE_NAME);
+        let config = if project.is_file() {
+            match nctrans::config::Config::load(project) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            }
+        } else {
+            nctrans::config::Config::default()
+        };
+        opts.expand_cycles = Some(config.cycle_retracts(unit.dialect));
+    }
     let main_file = db.get(unit.file).clone();
     let main_id = unit.file;
     let line_of = move |o: eval::Origin| (o.file == main_id).then(|| main_file.line_col(o.span.lo).0);

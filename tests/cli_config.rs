@@ -58,3 +58,34 @@ fn a_wrong_config_key_is_a_clear_error() {
     assert!(err.contains("translate.unsupported") && err.contains("\"error\""), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `run --expand-cycles` takes the pecking retracts from the profile (parameter 5115 as
+/// `fanuc.g83_clearance`); without the flag the hole stays one `cycle` event.
+#[test]
+fn run_expand_cycles_takes_the_retracts_from_the_profile() {
+    let dir = workdir("expand");
+    let part = "O1\nG90 G0 X0 Y0 Z20.\nG99 G83 X5. Y5. Z-6. R2. Q5. F100.\nG80\nM30\n";
+    std::fs::write(dir.join("deep.nc"), part).expect("write part");
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_nctrans"))
+            .current_dir(&dir)
+            .arg("run")
+            .args(extra)
+            .arg("deep.nc")
+            .output()
+            .expect("run nctrans");
+        (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (out, err) = run(&[]);
+    assert!(out.contains("cycle peck X=5 Y=5 r=2 bottom=-6 peck=5"), "{out}{err}");
+    // The default clearance (0.25 mm) above the first depth, -3.
+    let (out, err) = run(&["--expand-cycles"]);
+    assert!(!out.contains("cycle ") && out.contains("move rapid X=5 Y=5 Z=-2.75 f=-"), "{out}{err}");
+    std::fs::write(dir.join("nctrans.toml"), "[fanuc]\ng83_clearance = 1\n").expect("write config");
+    let (out, err) = run(&["--expand-cycles"]);
+    assert!(out.contains("move rapid X=5 Y=5 Z=-2 f=-") && !out.contains("Z=-2.75"), "{out}{err}");
+    std::fs::write(dir.join("nctrans.toml"), "[fanuc]\ng83_clearance = -1\n").expect("write config");
+    let (_, err) = run(&["--expand-cycles"]);
+    assert!(err.contains("fanuc.g83_clearance"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

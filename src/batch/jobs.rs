@@ -395,6 +395,7 @@ impl ToFanucJob {
                 inputs,
                 semantics: Some(sem.clone()),
                 probe_contact: None,
+                expand_cycles: None,
             };
             let source = translate::align_source(main, &t.symbol_map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());

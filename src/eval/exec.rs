@@ -116,6 +116,7 @@ impl<'a> Interp<'a> {
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         m.incr_travels_offset = sem.incremental_travels_offset;
         m.probe_contact = opts.probe_contact;
+        m.expand = opts.expand_cycles;
         let r_count = sem.r_param_count as usize;
         Interp {
             fanuc,

@@ -125,6 +125,8 @@ pub struct Machine {
     grid: grid::Grid,
     /// The drilling cycle mode and the data it keeps between holes.
     pub cycle: super::cycles::State,
+    /// `RunOptions::expand_cycles`: holes are written as their moves.
+    pub expand: Option<super::cycles::expand::Retracts>,
 }
 
 impl Machine {
@@ -162,6 +164,7 @@ impl Machine {
             last_n: 0.0,
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
             probe_contact: None,
+            expand: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
             scales: [inc_mm, inc_mm / 10.0].map(|inc| (inc, 1.0 / inc, is_decimal_scale(1.0 / inc))),

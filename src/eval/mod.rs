@@ -65,11 +65,21 @@ pub struct RunOptions {
     /// touches, as a fraction of the move in (0, 1]; `None`: no contact, the move reaches
     /// its end point (FANUC then reports the end point in `#5061+`).
     pub probe_contact: Option<f64>,
+    /// `--expand-cycles`: every drilling hole is written as the moves, dwells and spindle
+    /// events the control makes (`cycles::expand`), with these retract amounts, instead of
+    /// its `cycle` event. For viewing: `check` never sets it.
+    pub expand_cycles: Option<cycles::expand::Retracts>,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { max_steps: DEFAULT_MAX_STEPS, inputs: Vec::new(), semantics: None, probe_contact: None }
+        RunOptions {
+            max_steps: DEFAULT_MAX_STEPS,
+            inputs: Vec::new(),
+            semantics: None,
+            probe_contact: None,
+            expand_cycles: None,
+        }
     }
 }
 

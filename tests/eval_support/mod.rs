@@ -70,6 +70,11 @@ impl Ran {
 
 /// Runs `path` (dialect from its extension) with the file's header inputs plus `extra`.
 pub fn run_file(path: &Path, extra: &[&str], max_steps: u64) -> Ran {
+    run_file_expanding(path, extra, max_steps, false)
+}
+
+/// [`run_file`], with `expand` as `nctrans run --expand-cycles` with the default profile.
+pub fn run_file_expanding(path: &Path, extra: &[&str], max_steps: u64, expand: bool) -> Ran {
     let bytes = std::fs::read(path).expect("readable program");
     let mut db = SourceDb::new();
     let name = path.to_string_lossy().replace('\\', "/");
@@ -87,7 +92,8 @@ pub fn run_file(path: &Path, extra: &[&str], max_steps: u64) -> Ran {
     for e in extra {
         inputs.push(eval::parse_input(e).expect("valid input"));
     }
-    let opts = RunOptions { max_steps, inputs, ..Default::default() };
+    let expand_cycles = expand.then(|| nctrans::config::Config::default().cycle_retracts(dialect));
+    let opts = RunOptions { max_steps, inputs, expand_cycles, ..Default::default() };
     let mut callees = eval::DirCallees { semantics: None };
     let outcome = eval::run(&mut db, &parsed.unit, &mut callees, &opts, &mut sink);
     Ran { sink, outcome, db, parse_errors: None }

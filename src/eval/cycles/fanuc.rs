@@ -188,6 +188,7 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         // Under G91, R is measured from the initial level and Z from the R plane.
         let r_abs = if r.incremental { m.cycle.initial + r.mm } else { r.mm + off };
         let bottom = if z.incremental { r_abs + z.mm } else { z.mm + off };
+        let start = m.trace_pos();
         m.pos[n] = match retract {
             Retract::Initial => m.cycle.initial,
             Retract::R => r_abs,
@@ -195,11 +196,10 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         m.seen[n] = true;
         m.applied[n] = off;
         let hole = Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f }.normalised();
-        out.push((Event::Cycle(Box::new(hole)), span));
-        if is_manual_retract(gi) {
-            // G88 halts at the bottom for the operator to retract by hand.
-            out.push((Event::Stop { optional: false, message: None }, span));
-        }
+        // G88 halts at the bottom for the operator to retract by hand.
+        let halt = is_manual_retract(gi);
+        let cx = super::expand::Context { start, axis: n, end: m.pos[n], rpm: m.speed, spindle: m.spindle, halt };
+        super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push((e, span)))?;
     }
     Ok(count > 0)
 }

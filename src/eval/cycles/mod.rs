@@ -3,12 +3,16 @@
 //! MCALL), the hole they drill (one `cycle`
 //! event each, `ir::cycle::Hole`) and the event's text and JSON forms.
 
+pub mod expand;
 pub mod fanuc;
 pub mod siemens;
 
+use crate::diag::Diagnostic;
+use crate::eval::fault::Fault;
 use crate::eval::numfmt::push_num;
-use crate::eval::trace::AXES;
+use crate::eval::trace::{Event, AXES};
 use crate::ir::cycle::{CycleKind, Hole, Retract};
+use crate::span::Span;
 
 /// A length of a cycle as programmed: absolute (the work offset still to add) or
 /// incremental (from the level the control measures it from).
@@ -61,6 +65,46 @@ impl State {
     pub fn cancel(&mut self) {
         *self = State { retract: self.retract, ..State::default() };
     }
+}
+
+/// Writes one hole: its `cycle` event, or under `--expand-cycles` (`retracts` given) the
+/// moves the control makes for it. A halting hole (G88, CYCLE87/88) is followed by its
+/// `stop` (the expansion puts the stop at the bottom, where the control halts).
+pub fn push_hole(
+    retracts: Option<&expand::Retracts>,
+    hole: Hole,
+    cx: &expand::Context,
+    span: Span,
+    out: &mut dyn FnMut(Event),
+) -> Result<(), Fault> {
+    if let Some(rt) = retracts {
+        match expand::expand(&hole, cx, rt) {
+            Ok(Some(evs)) => {
+                evs.into_iter().for_each(&mut *out);
+                return Ok(());
+            }
+            Ok(None) => {}
+            Err(expand::TooManyInfeeds(n)) => {
+                return Err(Fault::error(
+                    Diagnostic::error(
+                        "NC453",
+                        format!(
+                            "--expand-cycles: this hole takes {} infeeds, more than the {} a hole is expanded into",
+                            crate::eval::value::fmt_num(n),
+                            expand::MAX_INFEEDS
+                        ),
+                    )
+                    .primary(usize::MAX, span, "here")
+                    .hint("run without --expand-cycles to see the hole as its cycle event, or check the peck depth"),
+                ))
+            }
+        }
+    }
+    out(Event::Cycle(Box::new(hole)));
+    if cx.halt {
+        out(Event::Stop { optional: false, message: None });
+    }
+    Ok(())
 }
 
 /// The text form of a hole (`cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=-

@@ -277,11 +277,13 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     }
     let at = [(u, clean(m.pos[u])), (v, clean(m.pos[v]))];
     let hole = Hole { kind, at, r: clean(r), bottom: clean(bottom), peck, dwell, retract, f }.normalised();
-    out.push(Event::Cycle(Box::new(hole)));
-    if stop {
-        // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
-        out.push(Event::Stop { optional: false, message: None });
-    }
+    // The hole ends at the R plane or at the level the tool stands at now (an RTP beyond
+    // it is the rapid after the hole).
+    let end = if retract == Retract::R { r } else { m.pos[n] };
+    // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
+    let cx =
+        super::expand::Context { start: m.trace_pos(), axis: n, end, rpm: m.speed, spindle: m.spindle, halt: stop };
+    super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push(e))?;
     m.pos[n] = rtp;
     m.applied[n] = off;
     if after {
