@@ -109,7 +109,7 @@ fn a_translation_planted_wrong_in_any_field_is_caught() {
     let body = "G98 G83 X10. Y10. Z-20. R1. Q4. F120.\nX20.\nG80\nG99 G82 X30. Y10. Z-5. R2. P300\nG80\n";
     let src = scratch("nc", &fanuc(body));
     let out = scratch("mpf", "");
-    let (code, _, err) = nctrans(&[&src, "--to", "sinumerik", "-o", &out]);
+    let (code, _, err) = nctrans(&[&src, "--to", "sinumerik", "-o", &out, "--force"]);
     assert_eq!(code, 0, "{err}");
     let good = std::fs::read_to_string(&out).expect("translation");
     assert_eq!(nctrans(&["check", &src, &out]).0, 0);
@@ -182,7 +182,7 @@ fn a_fanuc_translation_planted_wrong_is_caught() {
         &format!("{S_HEAD}MCALL CYCLE83(50, 1, 0, -20, , , 4, 0, 0, 0, 1, 1)\nG0 X10 Y10\nX20\nMCALL\nM30\n"),
     );
     let out = scratch("nc", "");
-    let (code, _, err) = nctrans(&[&src, "--to", "fanuc", "-o", &out]);
+    let (code, _, err) = nctrans(&[&src, "--to", "fanuc", "-o", &out, "--force"]);
     assert_eq!(code, 0, "{err}");
     let good = std::fs::read_to_string(&out).expect("translation");
     assert!(good.contains("G98 G83 X10. Y10. Z-20. R1. Q4."), "{good}");
@@ -204,7 +204,7 @@ fn a_fanuc_translation_planted_wrong_is_caught() {
 fn a_streamed_translation_reads_a_cycle_program_whole() {
     // The streamed writer takes plain blocks one by one; hole blocks depend on the cycle
     // before them, so a program with a drilling cycle is translated whole, the same.
-    let src = root().join("corpus/in/fanuc/cycle-g81-spot-drill.nc").to_string_lossy().into_owned();
+    let src = root().join("corpus/in/fanuc/cycle-g82-counterbore.nc").to_string_lossy().into_owned();
     let whole = nctrans(&[&src, "--to", "sinumerik"]);
     let streamed = nctrans(&[&src, "--to", "sinumerik", "--stream"]);
     assert_eq!(whole.0, 0, "{}", whole.2);
