@@ -428,7 +428,6 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G85_REAM.mpf", "NC390"), // CYCLE85: its FFR/RFF would change FANUC's modal F
     ("GOTO_FORMS.mpf", "NC310"),     // the computed-GOTO helper STRING
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"), // the computed variables' SETAL(64115)
-    ("O_2001.mpf", "NC445"),         // TRANS in a program with G91 (G74's G91 G28)
     ("MACRO_A_H99_ALARM.mpf", "NC315"), // SETAL outside 65000..65999
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
     ("P_G65_REPEAT_L.mpf", "NC303"), // a repeated call with parameters
