@@ -189,6 +189,21 @@ fn generated_blocks_take_the_fast_path_to_the_whole_translation() {
     differential(0xfa57_0f5e_5123, 24, 2000);
 }
 
+/// A first block of only an N number is no program on its own (the translator refuses
+/// one without words, NC146): the first chunk runs on to the first block with words.
+#[test]
+fn a_first_block_of_only_a_number_streams_to_the_whole_translation() {
+    let path = scratch("number-first").join("n-first.nc");
+    std::fs::write(&path, "%\nO2806 (GENERATED)\nN13683\nG0 X1. Y2.\nG1 X3. F100.\nX4.\nM30\n%\n").expect("write");
+    let o = Options { main_name: "CAMPART".into(), ..Options::default() };
+    let (w, le, tr) = whole(&path, &o);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
+    let mut out = Vec::new();
+    let s = sts::to_sinumerik_first(&path, &o, le, &mut out, None, 1).expect("streams");
+    same("number first", &out, &w);
+    assert_eq!(s.diags, tr.diags);
+}
+
 /// About a million generated blocks (release: `cargo test --release --test
 /// stream_to_sinumerik_fast -- --ignored`).
 #[test]
