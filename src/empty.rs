@@ -81,6 +81,10 @@ fn looks_like_content(line: &str) -> bool {
         }
     }
     let mut r = rest.trim();
+    // A FANUC separator line (`* * *`, `=====`) is read as a comment block (NC250).
+    if crate::dialect::fanuc::decorative(r) {
+        return false;
+    }
     // FANUC `O1234` / `:1234` headers (whatever follows), Siemens `PROC NAME(…)`.
     if r.starts_with("PROC ") || r == "PROC" {
         return false;
@@ -128,6 +132,8 @@ mod tests {
             "/N20 (skip)",
             "START:",
             "&",
+            "* * * * * * * ",
+            "=========",
         ];
         for l in none {
             assert!(!looks_like_content(l), "{l:?}");

@@ -264,6 +264,21 @@ fn mutated_programs_stream_without_panics() {
     assert!(count > 500, "{count} mutations");
 }
 
+/// A file whose only lines after the header are separators (comments, NC250) holds no
+/// program: the stream reports NC145 as the whole-file parse does.
+#[test]
+fn a_file_of_only_separator_lines_is_program_less_when_streamed_too() {
+    let dir = root().join("target/stream-tests");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join("separators-only.nc");
+    let b = b"%\nO1203 (TEMPLATE)\n* * * * * * * \n=====\n%\n";
+    std::fs::write(&path, b).expect("write");
+    let (_, parsed, dialect) = whole(&path, b);
+    assert!(codes(&parsed.diags).contains(&"NC145"), "{:?}", codes(&parsed.diags));
+    let s = stream_unit(&path, b, dialect, 2).expect("streams");
+    assert_eq!(codes(&s.index.diags), codes(&parsed.diags));
+}
+
 /// The command line: `--stream` gives the same output as reading whole (summary, traces
 /// in both formats, check verdicts), and a run-time warning of a streamed file is rendered
 /// with its line read from the file.

@@ -189,6 +189,21 @@ fn generated_blocks_take_the_fast_path_to_the_whole_translation() {
     differential(0xfa57_0f5e_5123, 24, 2000);
 }
 
+/// A first block of only an N number is no program on its own (the translator refuses
+/// one without words, NC146): the first chunk runs on to the first block with words.
+#[test]
+fn a_first_block_of_only_a_number_streams_to_the_whole_translation() {
+    let path = scratch("number-first").join("n-first.nc");
+    std::fs::write(&path, "%\nO2806 (GENERATED)\nN13683\nG0 X1. Y2.\nG1 X3. F100.\nX4.\nM30\n%\n").expect("write");
+    let o = Options { main_name: "CAMPART".into(), ..Options::default() };
+    let (w, le, tr) = whole(&path, &o);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
+    let mut out = Vec::new();
+    let s = sts::to_sinumerik_first(&path, &o, le, &mut out, None, 1).expect("streams");
+    same("number first", &out, &w);
+    assert_eq!(s.diags, tr.diags);
+}
+
 /// About a million generated blocks (release: `cargo test --release --test
 /// stream_to_sinumerik_fast -- --ignored`).
 #[test]
@@ -318,9 +333,14 @@ fn programs_across_read_buffer_ends_take_the_fast_path_to_the_whole_translation(
         assert!(text.len() > CHUNK + 20_000, "{}", text.len());
         // A plain line (the quick reader's) from the first line start after CHUNK - 300
         // on, its line end moved to CHUNK - 1 - shift by lengthening the header comment.
-        let s0 = CHUNK - 300 + text[CHUNK - 300..].find(['\n', '\r']).expect("a line end") + eol.len();
-        text.insert_str(s0, &format!("G1 X1.5 Y-2{eol}"));
-        let at = s0 + "G1 X1.5 Y-2".len();
+        // The generator's comments may hold non-ASCII text: look from the first char boundary.
+        let from = (CHUNK - 300..).find(|&i| text.is_char_boundary(i)).expect("a boundary");
+        let s0 = from + text[from..].find(['\n', '\r']).expect("a line end") + eol.len();
+        // No G code and no axis: the generator's arc mode runs on through it (a G1 here
+        // would leave a later R word outside an arc, NC364).
+        const PLAIN: &str = "S1500 F1.5 M8";
+        text.insert_str(s0, &format!("{PLAIN}{eol}"));
+        let at = s0 + PLAIN.len();
         let head = text.find("(GENERATED").expect("header") + "(GENERATED".len();
         text.insert_str(head, &"X".repeat(CHUNK - 1 - shift - at));
         assert!(text[CHUNK - 1 - shift..].starts_with(eol), "case {case}");

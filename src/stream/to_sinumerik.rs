@@ -325,9 +325,10 @@ struct State<'a> {
     name: Option<ProgName>,
     head: Option<BlockMeta>,
     buf: Vec<Stmt>,
-    /// Whether a block of the buffer does more than carry comments: the first chunk is
-    /// written only then, as the translator takes `nctrans: set` comments off the top of
-    /// a program up to its first such block.
+    /// Whether a block of the buffer has words: the first chunk is written only then. The
+    /// translator takes `nctrans: set` comments off the top of a program up to its first
+    /// block with words, an N number or a label, and refuses a program without a block with
+    /// words (NC146), which a first chunk of only an `N10` would be.
     buf_real: bool,
     first: bool,
     /// The arc mode (G2/G3 last) before the first buffered statement, and after the last.
@@ -526,7 +527,7 @@ impl State<'_> {
             }
         }
         self.skipped_unit(b.meta.skip.is_some(), inch_before);
-        self.buf_real |= !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some();
+        self.buf_real |= !b.items.is_empty();
     }
 
     /// [`State::push`] of the words of a plain line when the fast path takes them; else

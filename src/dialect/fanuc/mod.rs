@@ -35,6 +35,7 @@ use structure::ProgramLines;
 pub use block::both_ways_for_test as build_both_ways_for_test;
 pub use block::skeleton_both_ways_for_test;
 pub use fast::parse_fast_for_test;
+pub(crate) use scan::decorative;
 pub use skeleton::skeleton_bytes;
 
 /// The index-only reader's decision on one line `text` (at file offset 0), the old way
