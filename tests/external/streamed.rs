@@ -5,7 +5,7 @@
 
 use crate::fast_same::{opts, same};
 use crate::skeleton::{both_indexes, compare, dialect_of};
-use crate::words_scan::{check, files};
+use crate::words_scan::{check, files, same_as_whole_parse};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
@@ -14,7 +14,7 @@ use nctrans::translate;
 
 #[test]
 fn external_programs_scan_the_same_with_words() {
-    let (mut words, mut n) = (0, 0);
+    let (mut words, mut n, mut whole) = (0, 0, 0);
     for f in files(&crate::external("")) {
         // Program files by their extension (the GUD `.DEF` file too); not the notes, licences and CSVs.
         let Some(d) = dialect_of(&f)
@@ -23,9 +23,10 @@ fn external_programs_scan_the_same_with_words() {
             continue;
         };
         words += check(&f, d);
+        whole += usize::from(same_as_whole_parse(&f, d));
         n += 1;
     }
-    assert!(n > 50 && words > 0, "{n} files, {words} lines as words");
+    assert!(n > 50 && words > 0 && whole > 500, "{n} files, {words} lines as words, {whole} compared whole");
 }
 
 #[test]

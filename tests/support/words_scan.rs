@@ -1,6 +1,7 @@
 //! The words-scan comparison of one program file (shared by `tests/stream_words.rs` and the
 //! external programs' test): `stream::scan_words` against `scan_index` and the whole-file
-//! `scan`, with plain lines taken as words and not, by the quick readers and not.
+//! `scan`, with plain lines taken as words and not, by the quick readers and not; and
+//! (`same_as_whole_parse`) the streamed `scan` against the whole-file parse, the reference.
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{Addr, BlockMeta, ExprKind, ItemKind, Stmt, StmtKind, WordValue};
@@ -223,4 +224,35 @@ pub fn files(dir: &Path) -> Vec<PathBuf> {
     }
     out.sort();
     out
+}
+
+/// The statements the streamed whole scan (`stream::scan_path`) hands out are exactly the
+/// whole-file parse's (the pest reader, the reference), program by program. Returns whether
+/// it compared: `false` for a file the whole-file parse refuses (errors) or does not read.
+pub fn same_as_whole_parse(path: &Path, dialect: Dialect) -> bool {
+    let opts = ParseOptions::for_dialect(dialect);
+    let bytes = std::fs::read(path).expect("read");
+    let mut db = nctrans::span::SourceDb::new();
+    let loaded = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &opts);
+    if nctrans::diag::has_errors(&parsed.diags) {
+        return false;
+    }
+    let mut streamed = Vec::new();
+    let Ok(_) = stream::scan_path(path, 0, dialect, &opts, &mut |p, s| streamed.push((p, format!("{s:?}"))), None)
+    else {
+        return false;
+    };
+    let whole: Vec<(usize, String)> = parsed
+        .unit
+        .programs
+        .iter()
+        .enumerate()
+        .flat_map(|(k, p)| p.body.iter().map(move |s| (k, format!("{s:?}"))))
+        .collect();
+    assert_eq!(streamed.len(), whole.len(), "statements of {}", path.display());
+    for (a, b) in streamed.iter().zip(&whole) {
+        assert_eq!(a, b, "{}", path.display());
+    }
+    true
 }
