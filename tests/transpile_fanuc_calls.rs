@@ -124,8 +124,8 @@ fn var_parameters_passed_by_value_diverge() {
     };
     let (ok, _, ok_err) = check(&out);
     assert_eq!(ok, 0, "the translation itself checks equivalent: {ok_err}");
-    assert!(out.contains("G65 P9000 A100. B2.5 C101.") && out.contains("#[#1]=#[#1]+#2"), "{out}");
-    let by_value = out.replace("G65 P9000 A100. B2.5 C101.", "G65 P9000 A#100 B2.5 C#101");
+    assert!(out.contains("G65 P9000 A104. B2.5 C105.") && out.contains("#[#1]=#[#1]+#2"), "{out}");
+    let by_value = out.replace("G65 P9000 A104. B2.5 C105.", "G65 P9000 A#104 B2.5 C#105");
     let (bad, _, bad_err) = check(&by_value);
     assert_ne!(bad, 0, "passing the values must fail the check: {bad_err}");
     let _ = std::fs::remove_dir_all(&tmp);
@@ -147,8 +147,13 @@ fn var_parameters_refuse_values_and_other_types() {
             "argument 1 of ADD_ONE for VAR parameter SUM that is not a variable",
         ),
         ("OMITTED.MPF", "ADD_ONE()\nM30\n", "NC380", "not a variable"),
-        ("INT.MPF", "DEF INT N\nADD_ONE(N)\nG1 X=N F100\nM30\n", "NC382", "INT passed for VAR parameter SUM REAL"),
-        ("ARRAY.MPF", "DEF REAL V[2]\nADD_ONE(V)\nM30\n", "NC382", "REAL[2] passed for VAR parameter SUM REAL"),
+        (
+            "INT.MPF",
+            "DEF INT NUM\nADD_ONE(NUM)\nG1 X=NUM F100\nM30\n",
+            "NC382",
+            "INT passed for VAR parameter SUM REAL",
+        ),
+        ("ARRAY.MPF", "DEF REAL VALS[2]\nADD_ONE(VALS)\nM30\n", "NC382", "REAL[2] passed for VAR parameter SUM REAL"),
     ];
     for (name, text, code, what) in cases {
         std::fs::write(tmp.join(name), text).expect("write");
@@ -163,7 +168,7 @@ fn var_parameters_refuse_values_and_other_types() {
 #[test]
 fn a_local_mapped_to_a_common_variable_can_be_passed_by_reference() {
     let dir = root().join("corpus/in/sinumerik-calls/var-parameters");
-    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "--var-map", "K=#150", "LOCAL_COUNTER.MPF"]);
+    let (code, out, err) = nctrans(&dir, &["--to", "fanuc", "--var-map", "KOUNT=#150", "LOCAL_COUNTER.MPF"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("G65 P9000 A#1 B1. C150.") && err.contains("equivalent ("), "{out}\n{err}");
 }

@@ -3,37 +3,35 @@ O0001 (MAIN)
 (NCTRANS: SINUMERIK MAIN.MPF TO FANUC MACRO B)
 (NCTRANS: R1 = #501)
 (NCTRANS: R10 = #510)
-(NCTRANS: TOTAL = #100)
-(NCTRANS: PASSES = #101)
-(NCTRANS: I = #102)
-(NCTRANS: DEPTHS[…] [3 elements] = #103)
+(NCTRANS: IX = #100)
+(NCTRANS: DEPTHS[…] [3 elements] = #101)
+(NCTRANS: TOTAL = #104)
+(NCTRANS: PASSES = #105)
 ( Depth passes counted and summed through VAR [by-reference] parameters)
 #100=0.
 #101=0.
 #102=0.
 #103=0.
+G21 G90 G17 G00 X0. Y0. Z5.
 #104=0.
 #105=0.
-G21 G90 G17 G00 X0. Y0. Z5.
-#100=0.
-#101=0.
 #510=1.5
 ( the subprogram adds to the caller's counter and sum)
-G65 P9000 A100. B2.5 C101.
-G65 P9000 A100. B#510 C101.
-G01 X#100 Y#101 F200.
+G65 P9000 A104. B2.5 C105.
+G65 P9000 A104. B#510 C105.
+G01 X#104 Y#105 F200.
 ( passed on to a nested call [VAR to VAR], twice)
-G65 P9003 A100. B101.
-G01 X#100 Y#101
+G65 P9003 A104. B105.
+G01 X#104 Y#105
 ( an array element with a computed index, and a whole array)
-#102=0.
-WHILE [#102 LE 2.] DO1
-G65 P9000 A[#102+103.] B[0.5*[#102+1.]] C101.
-#102=#102+1.
+#100=0.
+WHILE [#100 LE 2.] DO1
+G65 P9000 A[#100+101.] B[0.5*[#100+1.]] C105.
+#100=#100+1.
 END1
-G65 P9002 A103. B100.
-G01 X#100 Y#105 Z#101
-G01 X#104 Y#103
+G65 P9002 A101. B104.
+G01 X#104 Y#103 Z#105
+G01 X#102 Y#101
 ( the same R parameter for two VAR parameters, which the callee also reads directly)
 #501=3.
 G65 P9001 A501. B501.
@@ -67,8 +65,8 @@ O9002 (SUM3)
 #[#1+1.]=#[#1+1.]*10.
 M99
 O9003 (TWO_PASSES)
-(NCTRANS: T [VAR parameter, letter A: the number of the caller's variable] = #1)
-(NCTRANS: N [VAR parameter, letter B: the number of the caller's variable] = #2)
+(NCTRANS: SUM [VAR parameter, letter A: the number of the caller's variable] = #1)
+(NCTRANS: COUNT [VAR parameter, letter B: the number of the caller's variable] = #2)
 G65 P9000 A#1 B1. C#2
 G65 P9000 A#1 B[#[#2]*0.1] C#2
 G01 X[#[#1]*2.] F300.
