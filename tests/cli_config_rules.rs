@@ -3,24 +3,14 @@
 //! rules refused in the wrong direction, O numbers checked against the series, and `check`
 //! taking a translation's maps.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+#[path = "support/cli_run.rs"]
+mod cli_run;
+
+use cli_run::nctrans;
+use std::path::PathBuf;
 
 fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("nctrans-config-rules-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-/// Runs nctrans in `dir`: (stdout, stderr, exit code).
-fn nctrans(dir: &Path, args: &[&str]) -> (String, String, i32) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).current_dir(dir).args(args).output().expect("run nctrans");
-    (
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-        out.status.code().unwrap_or(-1),
-    )
+    cli_run::workdir("config-rules", name)
 }
 
 const SIEMENS: &str = "R1=10\nG1 X=R1 F100\nM30\n";

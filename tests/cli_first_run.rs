@@ -2,24 +2,14 @@
 //! in every command, a subprogram after the closing `%` is warned about and named as such,
 //! and a file already in the target dialect is told so (never read as the other dialect).
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+#[path = "support/cli_run.rs"]
+mod cli_run;
+
+use cli_run::nctrans;
+use std::path::PathBuf;
 
 fn workdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("nctrans-first-run-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-/// Runs nctrans in `dir`: (stdout, stderr, exit code).
-fn nctrans(dir: &Path, args: &[&str]) -> (String, String, i32) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).current_dir(dir).args(args).output().expect("run nctrans");
-    (
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-        out.status.code().unwrap_or(-1),
-    )
+    cli_run::workdir("first-run", name)
 }
 
 const NC145: &str = "error[NC145]: the file holds no program: nothing to run, check or translate";
