@@ -168,90 +168,9 @@ impl Event {
     }
 }
 
-/// Where an event comes from: never compared, used for diagnostics.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Origin {
-    pub file: FileId,
-    pub span: Span,
-}
-
-/// A straight move whose coordinates and feed are on the 0.001 grid (nearly every move
-/// of a metric CAM program), given as the integers [`super::numfmt::grid_of`] finds for
-/// the values of its [`Event::Move`]: a writer formats them without looking at a float.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GridMove {
-    pub rapid: bool,
-    /// Bit `i`: axis `i` ([`AXES`]) has a position.
-    pub mask: u16,
-    /// Per axis in `mask`: the position is `to[i] / 1000` (the double nearest to it);
-    /// 0 for the axes not in `mask` (so that two moves compare as whole arrays).
-    pub to: [i64; 9],
-    /// The feed (`None` for a rapid move) and its `grid_of`.
-    pub f: Option<(f64, i64)>,
-    /// The 1-based line of the block that moved when known (0: not known); not part of
-    /// the event (see [`WriterSink::block_lines`]).
-    pub line: u32,
-}
-
-impl GridMove {
-    /// The move as an event: the same event the general path emits.
-    pub fn event(&self) -> Event {
-        let mut to = [None; 9];
-        for (i, slot) in to.iter_mut().enumerate() {
-            if self.mask & (1 << i) != 0 {
-                *slot = Some(self.to[i] as f64 / 1000.0);
-            }
-        }
-        Event::Move { rapid: self.rapid, to, f: self.f.map(|f| f.0) }
-    }
-}
-
-/// Receives the trace as it is produced; nothing is collected by the evaluator.
-pub trait TraceSink {
-    fn event(&mut self, ev: &Event, origin: Origin);
-    /// A move on the grid: the same as `event(&m.event(), origin)` (the default), which a
-    /// writer may do faster.
-    fn grid_move(&mut self, m: &GridMove, origin: Origin) {
-        self.event(&m.event(), origin);
-    }
-    /// Called after every executed block with the current position (workpiece frame,
-    /// millimetres); for per-block comparisons. Default: nothing.
-    fn block_done(&mut self, _origin: Origin, _pos: &Axes) {}
-    /// Whether [`TraceSink::block_done`] is wanted (it costs a little per block); asked
-    /// once per run, so the answer must not change during it.
-    fn wants_blocks(&self) -> bool {
-        false
-    }
-    /// Polled once per block: `true` ends the run early ([`super::Ending::Stopped`]),
-    /// e.g. when the checker has seen enough.
-    fn wants_stop(&self) -> bool {
-        false
-    }
-    /// Called once when the run has ended (after its last event): a writer hands over
-    /// what it still holds. Default: nothing.
-    fn finish(&mut self) {}
-}
-
-/// Discards the trace.
-#[derive(Default)]
-pub struct NullSink;
-
-impl TraceSink for NullSink {
-    fn event(&mut self, _ev: &Event, _origin: Origin) {}
-    fn grid_move(&mut self, _m: &GridMove, _origin: Origin) {}
-}
-
-/// Collects the trace (tests and the checker's context window; not for long runs).
-#[derive(Default)]
-pub struct VecSink {
-    pub events: Vec<(Event, Origin)>,
-}
-
-impl TraceSink for VecSink {
-    fn event(&mut self, ev: &Event, origin: Origin) {
-        self.events.push((ev.clone(), origin));
-    }
-}
+#[path = "trace_sink.rs"]
+mod sink;
+pub use sink::{GridMove, NullSink, Origin, TraceSink, VecSink};
 
 /// Appends a number in the trace's form (see [`super::numfmt`]) without allocating.
 pub use super::numfmt::push_num;
@@ -806,45 +725,5 @@ impl<W: Write> TraceSink for WriterSink<'_, W> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn json_of_a_move_follows_the_spec() {
-        let mut to = [None; 9];
-        to[0] = Some(10.0);
-        to[2] = Some(-0.5);
-        let ev = Event::Move { rapid: false, to, f: Some(300.0) };
-        assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
-        assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
-    }
-
-    #[test]
-    fn line_numbers_counted_up_are_written_as_put_int_writes_them() {
-        let mut last = (0, *b"000000000000000000000000", 1);
-        let mut seq: Vec<usize> = (0..12_000).collect();
-        seq.extend([99, 100, 100, 101, 999_999, 1_000_000, 5, 4, 3, 0, 0, 1, 9, 10, usize::MAX - 1, usize::MAX, 0]);
-        let mut x = 7usize;
-        for _ in 0..2000 {
-            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-            let l = x >> (x % 60);
-            seq.extend([l, l.wrapping_add(1), l.wrapping_add(2)]);
-        }
-        let mut b = [0u8; 64];
-        for l in seq {
-            let end = put_line(&mut b, 3, l, &mut last);
-            let mut want = Vec::new();
-            super::super::numfmt::put_int(&mut want, l as i64);
-            if l > i64::MAX as usize {
-                want = l.to_string().into_bytes();
-            }
-            assert_eq!(&b[3..end], &want[..], "line {l}");
-        }
-    }
-
-    #[test]
-    fn json_escapes_messages() {
-        let ev = Event::Stop { optional: false, message: Some("a\"b".into()) };
-        assert_eq!(json_line(&ev, None), r#"{"ev":"stop","optional":false,"message":"a\"b"}"#);
-    }
-}
+#[path = "trace_tests.rs"]
+mod tests;
