@@ -1,0 +1,171 @@
+//! The motion of a block once its words are read: the dwell time and the move (or arc) it
+//! makes, with the events they emit.
+
+use super::*;
+
+impl Machine {
+    pub(super) fn dwell_seconds(
+        &self,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        p: Option<(&WordVal, f64)>,
+        f: Option<(&WordVal, f64)>,
+        s: Option<(&WordVal, f64)>,
+        span: Span,
+    ) -> Result<f64, Fault> {
+        if self.fanuc {
+            if let Some((w, x)) = axes[0] {
+                // G04 X: seconds; without a decimal point in increments of the increment
+                // system, not of the unit (IS-B X1000 = 1 s, IS-C 0.1 s: S28).
+                let inc = crate::dialect::semantics::input_increment(self.inc_mm, self.modal.inch, true);
+                let v = if w.bare && self.scaling { x * inc } else { x };
+                return Ok(round_to(v, inc));
+            }
+            if let Some((_, x)) = p {
+                return Ok(round_half_away(x) / 1000.0);
+            }
+        } else {
+            if let Some((_, x)) = f {
+                return Ok(x);
+            }
+            if let Some((_, revs)) = s {
+                if self.speed <= 0.0 {
+                    return Err(Fault::alarm(self.alarms.no_feed, "G4 S (revolutions) with the spindle speed 0", span));
+                }
+                return Ok(revs * 60.0 / self.speed);
+            }
+        }
+        Err(Fault::alarm(self.alarms.no_feed, "dwell without a time", span))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn motion_block(
+        &mut self,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        ijk: &[Option<(&WordVal, f64)>; 3],
+        r: Option<(&WordVal, f64)>,
+        ar: Option<f64>,
+        g53: bool,
+        probe: bool,
+        out: &mut Vec<(Event, Span)>,
+        span: Span,
+    ) -> Result<bool, Fault> {
+        let any_axis = axes.iter().any(Option::is_some);
+        let arc_mode = matches!(self.modal.motion, Motion::Cw | Motion::Ccw) && !g53 && !probe;
+        let any_ijk = ijk.iter().any(Option::is_some);
+        if !any_axis && !(arc_mode && (any_ijk || ar.is_some())) {
+            return Ok(false);
+        }
+        let mut target = self.pos;
+        for (i, a) in axes.iter().enumerate() {
+            let Some((w, x)) = a else { continue };
+            target[i] = self.axis_target(i, self.length(w, *x, (3..6).contains(&i)), w.mode, g53);
+        }
+        if probe {
+            if let Some(frac) = self.probe_contact {
+                // The skip signal stops the move part way; the skip position variables
+                // (#5061+, $AA_MW) read the stopping point, which is the new position.
+                for (t, from) in target.iter_mut().zip(self.pos) {
+                    *t = from + (*t - from) * frac;
+                }
+            }
+        }
+        let rapid = self.modal.motion == Motion::Rapid && !probe;
+        if !rapid && self.feed.is_none() {
+            return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.applied[i] = self.active_offset(i);
+            }
+        }
+        if !arc_mode {
+            for (i, a) in axes.iter().enumerate() {
+                if a.is_some() {
+                    self.seen[i] = true;
+                    // Axes without a word keep their position in `target` (a probe move
+                    // may change every axis: copied whole below). Copying axis by axis
+                    // also spares the CPU a stalled reload of `target` just written.
+                    self.pos[i] = target[i];
+                }
+            }
+            if probe {
+                self.pos = target;
+            }
+            out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
+            return Ok(any_axis);
+        }
+        let cw = self.modal.motion == Motion::Cw;
+        let (u, v, _) = self.modal.plane.axes();
+        let s = (self.pos[u], self.pos[v]);
+        let mut e = (target[u], target[v]);
+        let ijk_of = |axis: usize| -> Option<(&WordVal, f64)> {
+            match axis {
+                0 => ijk[0],
+                1 => ijk[1],
+                2 => ijk[2],
+                _ => None,
+            }
+        };
+        let centre_coord = |m: &Machine, axis: usize| -> Option<f64> {
+            ijk_of(axis).map(|(w, x)| {
+                let val = m.length(w, x, false);
+                if w.mode == AbsInc::Ac {
+                    val + m.active_offset(axis)
+                } else {
+                    m.pos[axis] + val
+                }
+            })
+        };
+        let bad_arc = |why: &str| Fault::alarm(self.alarms.arc, why.to_string(), span);
+        let c = if let Some((w, rv)) = r {
+            let rr = self.length(w, rv, false);
+            arc::centre_from_radius(s, e, rr, cw)
+                .ok_or_else(|| bad_arc("arc radius too small for the end point, or no end point"))?
+        } else if any_ijk {
+            let cu = centre_coord(self, u).unwrap_or(s.0);
+            let cv = centre_coord(self, v).unwrap_or(s.1);
+            if let Some(a) = ar {
+                if axes[u].is_none() && axes[v].is_none() {
+                    e = arc::end_from_angle(s, (cu, cv), a, cw);
+                }
+            }
+            (cu, cv)
+        } else if let Some(a) = ar {
+            let rr = arc::radius_from_angle(s, e, a)
+                .ok_or_else(|| bad_arc("AR= needs an end point different from the start"))?;
+            arc::centre_from_radius(s, e, rr, cw).ok_or_else(|| bad_arc("no arc for AR="))?
+        } else {
+            return Err(bad_arc("arc without I/J/K, radius or opening angle"));
+        };
+        let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
+        let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
+        if (rs - re).abs() > 0.01 {
+            return Err(bad_arc(&format!(
+                "arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"
+            )));
+        }
+        target[u] = e.0;
+        target[v] = e.1;
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.seen[i] = true;
+            }
+        }
+        self.seen[u] = true;
+        self.seen[v] = true;
+        self.applied[u] = self.active_offset(u);
+        self.applied[v] = self.active_offset(v);
+        self.pos = target;
+        out.push((
+            Event::Arc {
+                cw,
+                plane: self.modal.plane,
+                to: self.trace_pos(),
+                center: [(u, clean(c.0)), (v, clean(c.1))],
+                f: self.feed,
+            },
+            span,
+        ));
+        Ok(true)
+    }
+}
