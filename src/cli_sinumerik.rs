@@ -477,37 +477,13 @@ fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: 
     eprint!("{}", diag::render(&report.db, &report.diags));
     let mut runs = vec![(String::new(), report)];
     let units: Vec<&Unit> = job.units.iter().collect();
-    let settings = nctrans::verify_called::RunSettings { out_dir: &out_dir, max_steps, profiles: &profiles, set: &[] };
-    runs.extend(nctrans::verify_called::called_runs(&job.db, &units, tr, &settings, !opts.specialise_callers));
-    combined(nctrans::verify_called::combine(runs), &|db, diags| diag::render(db, diags))
-}
-
-/// Prints the combined verdict of a proof's runs (the main program's, each called macro's
-/// alone): the first run that is not equivalent as [`verdict`] prints it, naming the run,
-/// else `equivalent (N events in K runs)`. `render` shows the diagnostics.
-fn combined(
-    c: nctrans::verify_called::Combined,
-    render: &dyn Fn(&SourceDb, &[diag::Diagnostic]) -> String,
-) -> ExitCode {
-    use nctrans::verify_called::Combined;
-    match c {
-        Combined::Equivalent { events, runs, excluded } => {
-            eprintln!("{}", Combined::summary(events, runs, &excluded));
-            ExitCode::SUCCESS
-        }
-        Combined::Not(label, report) => {
-            // The main run's diagnostics are shown already.
-            if !label.is_empty() {
-                eprint!("{}", render(&report.db, &report.diags));
-                eprintln!("in the run{label}:");
-            }
-            verdict(report.verdict, &report.diff)
-        }
-    }
+    let files = (tr.files.as_slice(), &tr.symbols);
+    runs.extend(nctrans::verify_called::single_file_runs(&job.db, &units, files, opts, &out_dir, max_steps));
+    crate::cli_called::combined(nctrans::verify_called::combine(runs), &|db, diags| diag::render(db, diags))
 }
 
 /// Prints a verification's verdict; success only for "equivalent".
-fn verdict(v: Verdict, diff: &str) -> ExitCode {
+pub(crate) fn verdict(v: Verdict, diff: &str) -> ExitCode {
     match v {
         Verdict::Equivalent { events } => {
             eprintln!("equivalent ({events} events)");
@@ -606,9 +582,7 @@ fn streamed_from(
     };
     let with_subs = special.is_none();
     let mut subs: Vec<ts::OutFile> = Vec::new();
-    // The FANUC programs translated whole (the skeleton: the main program's macro part and
-    // the file's other programs; the callees beside it) and their files, for the runs of
-    // the called macros alone.
+    // The FANUC units translated whole (the skeleton, the callees) and their files.
     let mut fanuc: (SourceDb, Vec<Unit>) = (SourceDb::new(), Vec::new());
     // The files read (the input, the callees beside it): no output may be one of them.
     let mut read = vec![req.file.to_path_buf()];
@@ -749,20 +723,9 @@ fn streamed_from(
         // As the whole path: each macro called by G65/G66 also runs alone, with its
         // callers' arguments and each of them vacant (`verify_called`).
         let called = || {
-            if fanuc.1.is_empty() {
-                return Vec::new();
-            }
-            let profiles =
-                nctrans::verify_sinumerik::Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
-            let settings = nctrans::verify_called::RunSettings {
-                out_dir: &out_dir,
-                max_steps: req.max_steps,
-                profiles: &profiles,
-                set: &[],
-            };
-            let tr = ts::Translation { files: subs.clone(), symbols: done.symbols.clone(), ..Default::default() };
             let units: Vec<&Unit> = fanuc.1.iter().collect();
-            nctrans::verify_called::called_runs(&fanuc.0, &units, &tr, &settings, !opts.specialise_callers)
+            let files = (subs.as_slice(), &done.symbols);
+            nctrans::verify_called::single_file_runs(&fanuc.0, &units, files, opts, &out_dir, req.max_steps)
         };
         code = verify_streamed((req.file, path), back, done.index, req.max_steps, opts, size, &called);
     }
@@ -844,7 +807,7 @@ fn verify_streamed(
     }
     let mut runs = vec![(String::new(), report)];
     runs.extend(called());
-    combined(nctrans::verify_called::combine(runs), &|db, diags| {
+    crate::cli_called::combined(nctrans::verify_called::combine(runs), &|db, diags| {
         nctrans::excerpt::render(db, diags, &[(0, input_read)])
     })
 }
