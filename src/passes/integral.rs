@@ -20,6 +20,13 @@
 //! it), or among the top-level statements after it since the last one a jump may enter (a
 //! label or an N number, also nested), or the point is inside a FOR over the variable. Anything else (PROC parameters, R
 //! parameters a caller or the previous run left, system variables) keeps the exact form.
+//!
+//! The same on a grid (issue 17 item 10): values that are all multiples of g = 2^-k (k ≤ 6)
+//! are exact in binary and differ, when they differ, by at least g; with every bound above
+//! scaled by g the tolerance stays below g. A REAL stepped by 0.5, or an integer counter
+//! against 2.5 (half a step of the 1/2 grid from its nearest values), compares plainly.
+//! [`exact_differences`] asks the same of the Siemens programs FANUC → Sinumerik writes
+//! (`a-b op 0` → `a op b`), where only labelled blocks are jump targets.
 
 use crate::ir::*;
 use crate::span::Span;
