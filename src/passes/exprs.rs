@@ -440,7 +440,7 @@ impl Lower<'_> {
             // around 0 admits only 0, and IEEE `a-b` is 0 only when a = b and keeps the sign,
             // so it is FANUC's exact `a GT b`: the plain form, and a round trip gives back
             // what it was given. Not for EQ/NE/GE/LE, where FANUC tells a vacant operand
-            // from 0 (or may: issue open) and `a-b` never is vacant.
+            // from 0 (or may: the manuals disagree on GE and LE) and `a-b` never is vacant.
             let (a, b) = match (op, a, b) {
                 (CmpOp::Lt | CmpOp::Gt, Expr { kind: ExprKind::Binary(BinOp::Sub, x, y), .. }, z) if is_zero(&z) => {
                     (*x, *y)
