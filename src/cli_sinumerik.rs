@@ -225,20 +225,22 @@ fn load_callees(
 /// The callees of a streamed skeleton `unit` (the main program's macro part and the other
 /// programs of the file) beside the input, loaded as [`load_job`] loads them (file ids
 /// from 1 up); declines a call of a program found nowhere and a callee with diagnostics.
+/// `db` gets the input (file 0, without its text) and the callee files.
 fn callees_beside(
     req: &Request,
     opts: &Options,
     unit: &Unit,
     read: &mut Vec<PathBuf>,
+    db: &mut SourceDb,
 ) -> Result<Vec<Unit>, nctrans::stream::translate::Fallback> {
     use nctrans::stream::translate::Fallback;
-    let mut db = SourceDb::new();
+    *db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
+    let db = &mut *db;
     let dir = beside(req.file);
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (mut units, mut diags) = (vec![unit.clone()], Vec::new());
-    let missing =
-        load_callees(&mut db, &mut units, &dir, req.encoding, &popts, &mut diags, (read, &mut BTreeSet::new()));
+    let missing = load_callees(db, &mut units, &dir, req.encoding, &popts, &mut diags, (read, &mut BTreeSet::new()));
     if !missing.is_empty() {
         return Err(Fallback::NotStraight("a call of a program found neither in the file nor beside it".into()));
     }
@@ -470,12 +472,18 @@ fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: 
         max_steps,
         &profiles,
     );
+    // A program the others call by G65/G66 also runs alone, with its callers' arguments
+    // and with each of them vacant (`verify_called`), as the batch proves it.
     eprint!("{}", diag::render(&report.db, &report.diags));
-    verdict(report.verdict, &report.diff)
+    let mut runs = vec![(String::new(), report)];
+    let units: Vec<&Unit> = job.units.iter().collect();
+    let files = (tr.files.as_slice(), &tr.symbols);
+    runs.extend(nctrans::verify_called::single_file_runs(&job.db, &units, files, opts, &out_dir, max_steps));
+    crate::cli_called::combined(nctrans::verify_called::combine(runs), &|db, diags| diag::render(db, diags))
 }
 
 /// Prints a verification's verdict; success only for "equivalent".
-fn verdict(v: Verdict, diff: &str) -> ExitCode {
+pub(crate) fn verdict(v: Verdict, diff: &str) -> ExitCode {
     match v {
         Verdict::Equivalent { events } => {
             eprintln!("equivalent ({events} events)");
@@ -574,6 +582,8 @@ fn streamed_from(
     };
     let with_subs = special.is_none();
     let mut subs: Vec<ts::OutFile> = Vec::new();
+    // The FANUC units translated whole (the skeleton, the callees) and their files.
+    let mut fanuc: (SourceDb, Vec<Unit>) = (SourceDb::new(), Vec::new());
     // The files read (the input, the callees beside it): no output may be one of them.
     let mut read = vec![req.file.to_path_buf()];
     let mut line = ProgressLine::new("translating", size);
@@ -595,7 +605,11 @@ fn streamed_from(
             // path finds them) are taken when the files are written as `write_files` writes
             // them: to a file, a folder or stdout (not a special target).
             let r = if with_subs {
-                let mut load = |u: &Unit| callees_beside(req, opts, u, &mut read);
+                let mut load = |u: &Unit| {
+                    let units = callees_beside(req, opts, u, &mut read, &mut fanuc.0)?;
+                    fanuc.1 = std::iter::once(u.clone()).chain(units.iter().cloned()).collect();
+                    Ok(units)
+                };
                 sts::segmented::to_sinumerik_with_subs(path, opts, eol, &mut load, &mut w, Some(&mut report)).map(
                     |(d, s)| {
                         subs = s;
@@ -706,7 +720,14 @@ fn streamed_from(
             .collect();
         let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: opts.target.clone() };
         let back = (read_back, shown.as_str(), Box::new(emitted) as _);
-        code = verify_streamed((req.file, path), back, done.index, req.max_steps, opts, size);
+        // As the whole path: each macro called by G65/G66 also runs alone, with its
+        // callers' arguments and each of them vacant (`verify_called`).
+        let called = || {
+            let units: Vec<&Unit> = fanuc.1.iter().collect();
+            let files = (subs.as_slice(), &done.symbols);
+            nctrans::verify_called::single_file_runs(&fanuc.0, &units, files, opts, &out_dir, req.max_steps)
+        };
+        code = verify_streamed((req.file, path), back, done.index, req.max_steps, opts, size, &called);
     }
     if req.out.is_none() || special.is_some() {
         let _ = std::fs::remove_file(&out);
@@ -728,6 +749,7 @@ fn verify_streamed(
     max_steps: u64,
     opts: &Options,
     size: u64,
+    called: &dyn Fn() -> Vec<(String, nctrans::check::CheckReport)>,
 ) -> ExitCode {
     use crate::stream_cli::ProgressLine;
     use nctrans::eval::{header_inputs, DirCallees, RunOptions};
@@ -780,5 +802,12 @@ fn verify_streamed(
     let b = StreamSide { index: back, name: shown.to_string(), callees: out_callees, run: run(in_b, &opts.target) };
     let report = sts::compare(a, b);
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
-    verdict(report.verdict, &report.diff)
+    if !matches!(report.verdict, Verdict::Equivalent { .. }) {
+        return verdict(report.verdict, &report.diff);
+    }
+    let mut runs = vec![(String::new(), report)];
+    runs.extend(called());
+    crate::cli_called::combined(nctrans::verify_called::combine(runs), &|db, diags| {
+        nctrans::excerpt::render(db, diags, &[(0, input_read)])
+    })
 }

@@ -25,6 +25,7 @@ mod test_rng;
 pub mod translate;
 pub mod translate_sinumerik;
 pub mod unfinished;
+pub mod verify_called;
 pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};

@@ -11,6 +11,7 @@ use std::process::ExitCode;
 
 mod batch_cli;
 mod check_cli;
+mod cli_called;
 mod cli_dialect;
 mod cli_sinumerik;
 mod out_guard;

@@ -167,15 +167,33 @@ fn pair_labels_become_n_numbers() {
     );
 }
 
-/// Issue 17 item 10: a comparison of counters (set at the top, stepped by integers) is the
-/// plain FANUC comparison; anything that may be a non-integer keeps the tolerance form.
+/// Issue 17 item 10: a comparison of counters (set at the top, stepped by integers, or by
+/// multiples of one power of two) is the plain FANUC comparison; anything that may be
+/// another non-integer keeps the tolerance form.
 #[test]
 fn pair_counter_comparisons_are_plain_and_reals_keep_the_tolerance() {
     let tol = |a: &str, b: &str| format!("[ABS[{a}]+{b}+ABS[ABS[{a}]-{b}]]*0.0000005*0.000001");
-    // A REAL stepped by 0.5.
+    // A REAL stepped by 0.5: every value a multiple of 1/2, exact in binary, and two that
+    // differ differ by 1/2, which the tolerance never reaches below 5e11.
     pair(
         "R1=0\nTOP: R1=R1+0.5\nIF R1<2 GOTOB TOP\nM30\n",
-        &["#501=0.", "N1000 #501=#501+0.5 (TOP:)", &format!("IF [2.-#501 GT {}] GOTO 1000", tol("#501", "2.")), "M30"],
+        &["#501=0.", "N1000 #501=#501+0.5 (TOP:)", "IF [#501 LT 2.] GOTO 1000", "M30"],
+    );
+    // An integer counter against a constant half-way between two of its values.
+    pair(
+        "R1=0\nTOP: R1=R1+1\nIF R1<2.5 GOTOB TOP\nM30\n",
+        &["#501=0.", "N1000 #501=#501+1. (TOP:)", "IF [#501 LT 2.5] GOTO 1000", "M30"],
+    );
+    // A REAL stepped by 0.1 (not a binary fraction): sums miss 0.9 by one rounding step,
+    // where the tolerance decides.
+    pair(
+        "R1=0.5\nTOP: R1=R1+0.1\nIF R1<0.9 GOTOB TOP\nM30\n",
+        &[
+            "#501=0.5",
+            "N1000 #501=#501+0.1 (TOP:)",
+            &format!("IF [0.9-#501 GT {}] GOTO 1000", tol("#501", "0.9")),
+            "M30",
+        ],
     );
     // Never set by the program: whatever the previous run (or a caller) left.
     pair(
@@ -198,6 +216,24 @@ fn pair_counter_comparisons_are_plain_and_reals_keep_the_tolerance() {
         "R2=3\nFOR R1=1 TO R2\nG1 X=R1 F100\nENDFOR\nM30\n",
         &["#502=3.", "#501=1.", "WHILE [#501 LE #502] DO1", "G01 X#501 F100.", "#501=#501+1.", "END1", "M30"],
     );
+}
+
+/// Issue 17 item 10: where the tolerance form is kept, the plain comparison would be wrong,
+/// and the check says so: R1 stepped by 0.1 reaches 0.8999999999999999, which Siemens
+/// takes as equal to 0.9 (`R1<0.9` false) and FANUC's exact `LT` as less.
+#[test]
+fn the_plain_form_of_a_kept_tolerance_comparison_is_caught() {
+    let mut d = translate_src(
+        "tol.mpf",
+        "R1=0.5\nTOP: R1=R1+0.1\nG1 X=R1 F100\nIF R1<0.9 GOTOB TOP\nM30\n",
+        &TranslateOptions::default(),
+    );
+    assert!(verify(&mut d).equivalent, "{}", d.t.text);
+    let exact = "IF [0.9-#501 GT [ABS[#501]+0.9+ABS[ABS[#501]-0.9]]*0.0000005*0.000001] GOTO 1000";
+    assert!(d.t.text.contains(exact), "{}", d.t.text);
+    d.t.text = d.t.text.replace(exact, "IF [#501 LT 0.9] GOTO 1000");
+    let v = verify(&mut d);
+    assert!(!v.equivalent, "the plain form was not caught: {}", v.summary);
 }
 
 #[test]

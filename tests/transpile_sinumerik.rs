@@ -189,7 +189,7 @@ WHILE LOC1-1<=0\n  LOC1=LOC1+0.1\nENDWHILE\nN10 LBL_10: M30\n",
 fn goto_with_duplicate_numbers_takes_fanucs_forward_then_wrap_target() {
     pair(
         "O1\n#1=0\nN10 #1=#1+1\nIF[#1 GE 3]GOTO 20\nGOTO 10\nN20 G0 X#1\nN10 G0 Y1.\nM30\n",
-        "DEF REAL LOC1\nLOC1=0\nN10 LOC1=LOC1+1\nIF LOC1-3>=0 GOTOF LBL_20\nGOTOF LBL_10_2\nN20 LBL_20: G0 X=LOC1\n\
+        "DEF REAL LOC1\nLOC1=0\nN10 LOC1=LOC1+1\nIF LOC1>=3 GOTOF LBL_20\nGOTOF LBL_10_2\nN20 LBL_20: G0 X=LOC1\n\
 N10 LBL_10_2: G0 Y1\nM30\n",
     );
 }
@@ -215,8 +215,8 @@ NCTRANS_NO_N=\"NO_SUCH_BLOCK\" GOTOF NCTRANS_NO_N\nENDIF\nN1 LBL_1: G0 X1\nN2 LB
 fn loops_and_if_then_become_siemens_structures() {
     pair(
         "O1\n#1=0\nDO1\n#1=#1+1\nIF[#1 GE 5]GOTO 100\nEND1\nN100 IF[#1 EQ 5]THEN #2=1\nM30\n",
-        "DEF REAL LOC1, LOC2\nLOC1=0\nLOOP\n  LOC1=LOC1+1\n  IF LOC1-5>=0 GOTOF LBL_100\nENDLOOP\n\
-LBL_100:\nN100 IF LOC1-5==0\n  LOC2=1\nENDIF\nM30\n",
+        "DEF REAL LOC1, LOC2\nLOC1=0\nLOOP\n  LOC1=LOC1+1\n  IF LOC1>=5 GOTOF LBL_100\nENDLOOP\n\
+LBL_100:\nN100 IF LOC1==5\n  LOC2=1\nENDIF\nM30\n",
     );
 }
 
@@ -224,7 +224,7 @@ LBL_100:\nN100 IF LOC1-5==0\n  LOC2=1\nENDIF\nM30\n",
 fn goto_to_a_while_line_reenters_the_loop_from_a_label_before_it() {
     pair(
         "O1\n#1=0\nN5 WHILE[#1 LT 3]DO1\n#1=#1+1\nIF[#1 EQ 2]GOTO 5\nN6 END1\nM30\n",
-        "DEF REAL LOC1\nLOC1=0\nLBL_5:\nN5 WHILE LOC1-3<0\n  LOC1=LOC1+1\n  IF LOC1-2==0 GOTOB LBL_5\nN6 ENDWHILE\nM30\n",
+        "DEF REAL LOC1\nLOC1=0\nLBL_5:\nN5 WHILE LOC1<3\n  LOC1=LOC1+1\n  IF LOC1==2 GOTOB LBL_5\nN6 ENDWHILE\nM30\n",
     );
 }
 
@@ -408,7 +408,7 @@ fn g10_l2_needs_the_offset_and_mode_every_path_agrees_on() {
     // The same offset on both paths, and a loop that keeps it: translated.
     pair(
         "O1\nG90 G55\n#1=0\nIF [#1 EQ 1] GOTO 10\nG55\nN10 G10 L2 P1 X5.\nG0 X0\nM30\n",
-        "DEF REAL LOC1\nG90 G55\nLOC1=0\nIF LOC1-1==0 GOTOF LBL_10\nG55\nN10 LBL_10: $P_UIFR[1,X,TR]=5\nG0 X0\nM30\n",
+        "DEF REAL LOC1\nG90 G55\nLOC1=0\nIF LOC1==1 GOTOF LBL_10\nG55\nN10 LBL_10: $P_UIFR[1,X,TR]=5\nG0 X0\nM30\n",
     );
     let sub_sets = "O1\nG55\nM98 P100\nM30\nO100\nG56 G90\nG10 L2 P2 X5.\nM99\n";
     assert!(!run(sub_sets, &o).has_errors(), "{:?}", codes(sub_sets, &o));
@@ -610,11 +610,23 @@ fn job(rel: &str) -> Job {
     Job { db, file: loaded.file, unit: parsed.unit, tr }
 }
 
+/// The verdict of the main program's run and, as `nctrans --to sinumerik` proves them, of
+/// each macro's runs alone (its callers' arguments, then each of them vacant).
 fn verdict(j: &Job, tr: &Translation) -> (nctrans::check::Verdict, String) {
+    use nctrans::verify_called::{called_runs, combine, Combined, RunSettings};
     // A million blocks is far more than any corpus program needs; the endless one stops sooner.
     let rep = nctrans::verify_sinumerik::verify_with(&j.db, j.file, &j.unit, tr, "out", 1_000_000);
-    let text = format!("{}\n{}", nctrans::diag::render(&rep.db, &rep.diags), rep.diff);
-    (rep.verdict, text)
+    let profiles = nctrans::verify_sinumerik::Profiles::default();
+    let settings = RunSettings { out_dir: "out", max_steps: 1_000_000, profiles: &profiles, set: &[] };
+    let mut runs = vec![(String::new(), rep)];
+    runs.extend(called_runs(&j.db, &[&j.unit], tr, &settings, true));
+    match combine(runs) {
+        Combined::Equivalent { events, .. } => (nctrans::check::Verdict::Equivalent { events }, String::new()),
+        Combined::Not(label, rep) => {
+            let text = format!("run{label}\n{}\n{}", nctrans::diag::render(&rep.db, &rep.diags), rep.diff);
+            (rep.verdict, text)
+        }
+    }
 }
 
 /// Corpus programs that translate but cannot be proven, with the reason.
@@ -654,7 +666,7 @@ fn pitfall_cases_catch_the_naive_translation() {
         ("pitfall-atan-asin-range.nc", "", "(ATAN2(-1,-1)+360) MOD 360", "ATAN2(-1,-1)"),
         ("pitfall-bitwise-and.nc", "", "TRUNC(LOC1) B_AND 10", "LOC1 AND 10"),
         ("pitfall-eq-exact.nc", "", "LOC1-0.3==0", "LOC1==0.3"),
-        ("pitfall-compound-condition.nc", "", "(LOC1-1==0) AND (LOC2-2==0)", "LOC1==1 AND LOC2==2"),
+        ("pitfall-compound-condition.nc", "", "(LOC1==1) AND (LOC2==2)", "LOC1==1 AND LOC2==2"),
         ("pitfall-decimal-point.nc", "", "X0.01", "X10"),
         ("pitfall-dwell-units.nc", "", "G4 F0.5", "G4 F500"),
         ("pitfall-round-in-address.nc", "", "ROUND(LOC1*1000)/1000", "ROUND(LOC1)"),
@@ -663,6 +675,10 @@ fn pitfall_cases_catch_the_naive_translation() {
         ("pitfall-m98-shared-locals.nc", "O_2011.SPF", "VAR REAL LOC1", "REAL LOC1"),
         ("pitfall-vacant-argument.nc", "O_9100.SPF", "IF NOT ARG_Z_SET GOTOF", "IF ARG_Z==0 GOTOF"),
         ("pitfall-vacant-copy.nc", "", "IF LOC2_SET\n  G0 X1 Y=LOC2\nELSE\n  G0 X1\nENDIF", "G0 X1 Y=LOC2"),
+        // Every call gives every argument: only the macro's runs with one vacant see its
+        // default and its alarm (issue 17 item 9).
+        ("macro-defaults-all-given.nc", "O_9100.SPF", "ARG_H=1 ARG_H_SET=1", "ARG_H=2 ARG_H_SET=1"),
+        ("macro-defaults-all-given.nc", "O_9100.SPF", "IF NOT ARG_D_SET GOTOF", "IF 0 GOTOF"),
     ];
     for (case, file, right, wrong) in naive {
         let j = job(&format!("corpus/in/fanuc/{case}"));
@@ -724,7 +740,7 @@ fn seed_o9050_translates_its_supported_parts_under_warn() {
 fn m99_with_p_in_a_main_program_continues_at_that_block() {
     pair(
         "O1\n#1=0\nN5 #1=#1+1\nG0 X#1\nIF[#1 GE 3]GOTO 9\nM99 P5\nN9 M30\n",
-        "DEF REAL LOC1\nLOC1=0\nN5 LBL_5: LOC1=LOC1+1\nG0 X=LOC1\nIF LOC1-3>=0 GOTOF LBL_9\nGOTOB LBL_5\nN9 LBL_9: M30\n",
+        "DEF REAL LOC1\nLOC1=0\nN5 LBL_5: LOC1=LOC1+1\nG0 X=LOC1\nIF LOC1>=3 GOTOF LBL_9\nGOTOB LBL_5\nN9 LBL_9: M30\n",
     );
 }
 
@@ -807,4 +823,30 @@ fn the_modal_feed_reads_in_the_programmed_unit_under_g20() {
     let (text, v, diff) = verifies("O1\nG20 G1 X1. F20.\n#1=#4109\nG1 Y[#1/10.]\nM30\n", &Options::default());
     assert!(text.contains("LOC1=$P_F"), "{text}");
     assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+}
+
+/// #17 item 10: FANUC's exact comparison is written plainly where the Siemens tolerance
+/// cannot change its result: both sides counters (integers, or multiples of one power of
+/// two, as `R1` stepped by 0.25) or a constant no value of the other side comes near
+/// (`#1 LT 2.5` for an integer counter). A REAL stepped by 0.1 keeps the exact difference
+/// form, and writing it plainly is caught: its sums miss 0.9 by one rounding step, which
+/// FANUC sees and the Siemens tolerance hides.
+#[test]
+fn comparisons_are_plain_where_exact_and_keep_the_difference_elsewhere() {
+    let src = "O1\n#1=0\nWHILE[#1 LT 2.5]DO1\n#1=#1+1\nEND1\n#501=0\nN10 #501=#501+0.25\nIF[#501 LT 2.]GOTO 10\n\
+               #502=0.5\nN20 #502=#502+0.1\nG1 X#502 F100.\nIF[#502 LT 0.9]GOTO 20\nM30\n";
+    let (text, v, diff) = verifies(src, &Options::default());
+    assert!(matches!(v, nctrans::check::Verdict::Equivalent { .. }), "{v:?}\n{diff}\n{text}");
+    assert!(text.contains("WHILE LOC1<2.5\n"), "{text}");
+    assert!(text.contains("IF R1<2 GOTOB LBL_10\n"), "{text}");
+    assert!(text.contains("IF R2-0.9<0 GOTOB LBL_20\n"), "{text}");
+    // The plain form where it is not exact: one pass fewer than FANUC makes.
+    let mut db = SourceDb::new();
+    let file = db.add("ix.nc", src);
+    let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let mut tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    let main = tr.files.iter_mut().find(|f| f.main).unwrap();
+    main.text = main.text.replace("IF R2-0.9<0 GOTOB", "IF R2<0.9 GOTOB");
+    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
 }

@@ -320,11 +320,7 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         Some(w) => w,
         None => Verified {
             status: Status::Verified,
-            summary: if runs.len() > 1 {
-                excluded.equivalent(&format!("{events} events in {} runs", runs.len()))
-            } else {
-                excluded.equivalent(&format!("{events} events"))
-            },
+            summary: crate::verify_called::Combined::summary(events, runs.len(), &excluded),
             events: Some(events),
             excluded,
             diagnostics: vec![],

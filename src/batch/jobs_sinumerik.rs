@@ -12,15 +12,17 @@
 use super::jobs::{
     apply, combine, failed, load_with_callees, unsupported, Fault, JobSettings, LoadedFile, MemCallees, Verified,
 };
-use super::library::{ArgValue, ProgKey};
+use super::library::ProgKey;
 use super::{discover, maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
 use crate::config::Unsupported;
 use crate::dialect::{Dialect, ParseOptions};
+use crate::eval::calls::CalleeSource;
 use crate::eval::{self, Input};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
 use crate::translate_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
-use crate::verify_sinumerik::{self as vs, Profiles, RunSpec};
+use crate::verify_called::{self, RunSettings};
+use crate::verify_sinumerik::Profiles;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The name the stand-in caller program is shown under in diagnostics.
@@ -426,25 +428,28 @@ impl ToSinumerikJob {
             unit.programs.insert(0, entry);
             let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
             let cases = match &mine {
-                Some(k) => cases(ctx, k, !ctx.options.specialise_callers),
+                Some(k) => verify_called::cases(&ctx.library, k, !ctx.options.specialise_callers),
                 None => vec![(String::new(), vec![])],
             };
             let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
-            for (label, mut fanuc) in cases {
-                fanuc.extend(self.settings.set.iter().cloned());
-                let siemens = siemens_inputs(tr, &out.program, &fanuc);
-                fanuc.retain(|s| s.trim_start().starts_with('#'));
-                let spec = RunSpec {
-                    main: out,
-                    out_dir: &out_dir,
-                    max_steps: self.settings.max_steps,
-                    profiles: &profiles,
-                    fanuc_callees: Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())),
-                    extra_fanuc: parse_all(&fanuc),
-                    extra_siemens: parse_all(&siemens),
-                };
-                runs.push((format!("{name}{label}"), vs::verify_run(db, main.loaded.file, &unit, tr, spec)));
-            }
+            let settings = RunSettings {
+                out_dir: &out_dir,
+                max_steps: self.settings.max_steps,
+                profiles: &profiles,
+                set: &self.settings.set,
+            };
+            let served =
+                || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
+            runs.extend(verify_called::case_runs(
+                db,
+                main.loaded.file,
+                &unit,
+                tr,
+                out,
+                (&name, cases),
+                &settings,
+                &served,
+            ));
         }
         if runs.is_empty() {
             return Verified {
@@ -457,50 +462,6 @@ impl ToSinumerikJob {
         }
         combine(runs)
     }
-}
-
-/// The runs that prove a program alone: without inputs, and once per constant argument
-/// vector the library calls it with. A macro (called by G65/G66) is not run without its
-/// arguments: its callers always give some. With no constant call in the library it runs
-/// once with 0 for the arguments the first call gives surely. With `each_vacant` (a macro
-/// written for every possible caller, not `--specialise-callers`) it also runs with each of
-/// those arguments left out in turn: a caller added later may leave any one out, and the
-/// macro's vacancy logic (a default, an alarm) must be right for it.
-fn cases(ctx: &BatchContext, key: &ProgKey, each_vacant: bool) -> Vec<(String, Vec<String>)> {
-    let macro_calls: Vec<_> = ctx
-        .library
-        .calls
-        .iter()
-        .filter(|c| &c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66))
-        .collect();
-    let mut out: Vec<(String, Vec<String>)> = Vec::new();
-    if macro_calls.is_empty() {
-        out.push((String::new(), vec![]));
-    }
-    for (k, v) in ctx.library.arg_vectors(key).iter().enumerate() {
-        out.push((format!(" (with the arguments of call site {})", k + 1), v.iter().map(ArgValue::to_set).collect()));
-    }
-    if out.is_empty() {
-        if let Some(c) = macro_calls.first() {
-            let sets = c.given.iter().filter(|g| g.sure).map(|g| format!("#{}=0.", g.var)).collect();
-            out.push((" (with 0 for the arguments of its first call)".to_string(), sets));
-        }
-    }
-    if each_vacant && !macro_calls.is_empty() {
-        let mut seen: BTreeSet<Vec<String>> = out.iter().map(|(_, v)| v.clone()).collect();
-        for (label, sets) in out.clone() {
-            for (k, s) in sets.iter().enumerate() {
-                let mut fewer = sets.clone();
-                fewer.remove(k);
-                if seen.insert(fewer.clone()) {
-                    let var = s.split_once('=').map_or(s.as_str(), |x| x.0);
-                    let base = label.strip_suffix(')').unwrap_or(&label);
-                    out.push((format!("{base} but {var} vacant)"), fewer));
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Whether `f` is the translation of the FANUC program `p` (by number, else the unnamed main).

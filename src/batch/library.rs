@@ -299,19 +299,29 @@ pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) 
     let loaded = crate::load(&mut db, &name, &bytes, encoding);
     let dialect = dialect_of(&file.rel, &db.get(loaded.file).text);
     let parsed = crate::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
-    let src = db.get(loaded.file);
     let stem = file.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+    let mut scan = scan_unit(&parsed.unit, db.get(loaded.file), &stem);
+    scan.info.parse_errors = parsed.diags.iter().filter(|d| d.is_error()).count();
+    scan
+}
+
+/// What the index records of a parsed `unit` (its source `src`, a Siemens file's program
+/// named by `stem` when it has one program without a name): also how a single file's
+/// translation learns the calls among the programs it translates together
+/// (`verify_called`). Parse errors are the caller's to count.
+pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan {
+    let dialect = unit.dialect;
+    let stem = stem.to_string();
     let mut scan = Scan {
         info: FileInfo {
             dialect: Some(dialect),
-            parse_errors: parsed.diags.iter().filter(|d| d.is_error()).count(),
-            blocks: crate::ir::visit::count_blocks(&parsed.unit) as u64,
+            blocks: crate::ir::visit::count_blocks(unit) as u64,
             ..FileInfo::default()
         },
         ..Scan::default()
     };
-    let single = parsed.unit.programs.len() == 1;
-    for p in &parsed.unit.programs {
+    let single = unit.programs.len() == 1;
+    for p in &unit.programs {
         let key = match (&p.name, dialect) {
             (Some(ProgName::Number(n)), _) => Some(ProgKey::Number(*n)),
             (Some(ProgName::Name(n)), _) => Some(ProgKey::Name(n.to_ascii_uppercase())),

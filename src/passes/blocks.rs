@@ -95,13 +95,31 @@ fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
     let mut dead = Vec::new();
     for i in 0..body.len() {
         let Some(name) = zero_store(&body[i]) else { continue };
-        for s in body.iter().skip(i + 1).take(DEAD_STORE_WINDOW) {
-            let StmtKind::Block(b) = &s.kind else { break };
+        // Jumps passed on the way: each must name a label between the zero store and the
+        // store W that replaces it (it then skips only blocks that do not read `v`), never
+        // one past W.
+        let mut jumps: Vec<&Target> = Vec::new();
+        for (k, s) in body.iter().enumerate().skip(i + 1).take(DEAD_STORE_WINDOW) {
+            let StmtKind::Block(b) = &s.kind else {
+                // An IF or WHILE that never reads `v` and only assigns and moves (no jump,
+                // call or end) lets the search go on past it (`DEF REAL A, B` then
+                // `A=4 IF 9<A … ENDIF B=4`: B's start value is dead too).
+                if passes_over(s, &name, &reads) {
+                    continue;
+                }
+                break;
+            };
             let plain = b.meta.skip.is_none()
-                && b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. } | ItemKind::Word(_)));
+                && b.items
+                    .iter()
+                    .all(|it| matches!(it.kind, ItemKind::Assign { .. } | ItemKind::Word(_) | ItemKind::Goto(_)));
             if !plain {
                 break;
             }
+            jumps.extend(b.items.iter().filter_map(|it| match &it.kind {
+                ItemKind::Goto(g) => Some(&g.target),
+                _ => None,
+            }));
             let sets = b.items.iter().any(|it| {
                 matches!(&it.kind, ItemKind::Assign { target, .. } if matches!(&target.kind, VarKind::Named { name: n, indices } if *n == name && indices.is_empty()))
             });
@@ -109,7 +127,19 @@ fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
                 break;
             }
             if sets {
-                dead.push(i);
+                let between = &body[i + 1..=k];
+                let lands = |t: &Target| {
+                    between.iter().any(|x| {
+                        crate::ir::visit::metas(&x.kind).first().is_some_and(|m| match t {
+                            Target::Label(l) => m.label.as_ref().is_some_and(|x| x.name == l.name),
+                            // A number may stand on several blocks; the search could pass W.
+                            Target::Number(_) | Target::Computed(_) => false,
+                        })
+                    })
+                };
+                if jumps.iter().all(|t| lands(t)) {
+                    dead.push(i);
+                }
                 break;
             }
         }
@@ -120,6 +150,32 @@ fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
         k += 1;
         keep
     });
+}
+
+/// Whether the IF or WHILE statement `s` neither reads `name` (in a condition or a block)
+/// nor holds anything but plain blocks of assignments and words.
+fn passes_over(s: &Stmt, name: &str, reads: &dyn Fn(&Stmt, &str) -> bool) -> bool {
+    let conds: Vec<&Expr> = match &s.kind {
+        StmtKind::If(i) => vec![&i.cond],
+        StmtKind::While(w) => vec![&w.cond],
+        _ => return false,
+    };
+    if conds.iter().any(|c| mentions(c, name)) {
+        return false;
+    }
+    let mut ok = true;
+    for body in crate::ir::visit::child_bodies(&s.kind) {
+        for inner in body {
+            ok &= match &inner.kind {
+                StmtKind::Block(b) => {
+                    b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. } | ItemKind::Word(_)))
+                        && !reads(inner, name)
+                }
+                _ => passes_over(inner, name, reads),
+            };
+        }
+    }
+    ok
 }
 
 fn split_body(ctx: &mut Ctx, body: Vec<Stmt>, info: &mut ProgInfo) -> Vec<Stmt> {

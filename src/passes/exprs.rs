@@ -436,6 +436,17 @@ impl Lower<'_> {
             || self.info.exact_cmps.contains(&span);
         let mk = |op, x: Expr, y: Expr| Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(x), Box::new(y)), span);
         if exact {
+            // `a-b>0` (as FANUC → Sinumerik writes FANUC's `a GT b`): the Siemens tolerance
+            // around 0 admits only 0, and IEEE `a-b` is 0 only when a = b and keeps the sign,
+            // so it is FANUC's exact `a GT b`: the plain form, and a round trip gives back
+            // what it was given. Not for EQ/NE/GE/LE, where FANUC tells a vacant operand
+            // from 0 (or may: the manuals disagree on GE and LE) and `a-b` never is vacant.
+            let (a, b) = match (op, a, b) {
+                (CmpOp::Lt | CmpOp::Gt, Expr { kind: ExprKind::Binary(BinOp::Sub, x, y), .. }, z) if is_zero(&z) => {
+                    (*x, *y)
+                }
+                (_, a, b) => (a, b),
+            };
             // Room for the condition's own bracket and one compound level.
             let a = self.fit(a, MAX_DEPTH - 2, pre);
             let b = self.fit(b, MAX_DEPTH - 2, pre);

@@ -20,6 +20,13 @@
 //! it), or among the top-level statements after it since the last one a jump may enter (a
 //! label or an N number, also nested), or the point is inside a FOR over the variable. Anything else (PROC parameters, R
 //! parameters a caller or the previous run left, system variables) keeps the exact form.
+//!
+//! The same on a grid (issue 17 item 10): values that are all multiples of g = 2^-k (k ≤ 6)
+//! are exact in binary and differ, when they differ, by at least g; with every bound above
+//! scaled by g the tolerance stays below g. A REAL stepped by 0.5, or an integer counter
+//! against 2.5 (half a step of the 1/2 grid from its nearest values), compares plainly.
+//! [`exact_differences`] asks the same of the Siemens programs FANUC → Sinumerik writes
+//! (`a-b op 0` → `a op b`), where only labelled blocks are jump targets.
 
 use crate::ir::*;
 use crate::span::Span;
@@ -71,11 +78,45 @@ struct Walk {
     all_r_spoiled: bool,
 }
 
-/// For every program (in order), the spans of the relative comparisons whose two sides are
-/// provably integers below 1e12 where they stand.
-pub fn exact_comparisons(progs: &[(&Program, &Types)], names: &BTreeSet<String>) -> Vec<BTreeSet<Span>> {
+/// The finest grid tried: multiples of 2^-MAX_K (1/64).
+const MAX_K: i32 = 6;
+
+/// Values that are multiples of `g` = 2^-k (k = 0: the integers). Such values below 2^40·g
+/// add and subtract exactly in IEEE doubles, and two that differ differ by at least `g`.
+/// Every bound of the integer rule is scaled by `g`: a grid counter starts below 1e9·g and
+/// steps by at most 1000·g, so it reaches 1e12·g (where the tolerance 1e-12·max could reach
+/// `g`) only after a billion assignments, as an integer counter reaches 1e12.
+#[derive(Clone, Copy)]
+struct Grid {
+    g: f64,
+}
+
+impl Grid {
+    fn all() -> impl Iterator<Item = Grid> {
+        (0..=MAX_K).map(|k| Grid { g: 2f64.powi(-k) })
+    }
+    fn on(self, v: f64) -> bool {
+        (v / self.g).fract() == 0.0
+    }
+    fn start(self, v: f64) -> bool {
+        self.on(v) && v.abs() < MAX_START * self.g
+    }
+    fn step(self, v: f64) -> bool {
+        self.on(v) && v.abs() <= MAX_STEP * self.g
+    }
+    fn value(self, v: f64) -> bool {
+        self.on(v) && v.abs() < 1e12 * self.g
+    }
+}
+
+/// The walk of every program and, per grid, its counters (greatest fixpoint).
+fn counters(progs: &[(&Program, &Types)], names: &BTreeSet<String>, labels_only: bool) -> (Walk, Vec<BTreeSet<Key>>) {
     let mut w = Walk::default();
     for (i, (p, _)) in progs.iter().enumerate() {
+        // A jump reaches a block by its label, or by its N number when a jump names one
+        // (or is computed); with `labels_only` a program whose jumps all name labels has
+        // only its labelled blocks as targets.
+        let numbers = !labels_only || jumps_to_numbers(&p.body);
         // `base`: set by the prefix (before the first jump), so at every later point;
         // `set`: also by the top-level blocks since the last possible jump target.
         let mut base = BTreeSet::new();
@@ -85,7 +126,7 @@ pub fn exact_comparisons(progs: &[(&Program, &Types)], names: &BTreeSet<String>)
             if prefix && has_jump(s) {
                 prefix = false;
             }
-            if !prefix && is_target(s) {
+            if !prefix && is_target(s, numbers) {
                 set = base.clone();
             }
             w.stmt(s, i, &mut set.clone(), names);
@@ -95,50 +136,90 @@ pub fn exact_comparisons(progs: &[(&Program, &Types)], names: &BTreeSet<String>)
             }
         }
     }
-    // Greatest fixpoint: start from every assigned key, drop those with a non-counter write.
-    let mut counters: BTreeSet<Key> = w.assigns.iter().map(|a| a.target.clone()).collect();
-    counters.retain(|k| !(w.spoiled.contains(k) || (w.all_r_spoiled && matches!(k, Key::R(_)))));
-    loop {
-        let before = counters.len();
-        let drop: Vec<Key> = w
-            .assigns
-            .iter()
-            .filter(|a| counters.contains(&a.target) && !counter_value(&a.value, &counters, &a.set))
-            .map(|a| a.target.clone())
-            .collect();
-        for k in drop {
-            counters.remove(&k);
-        }
-        if counters.len() == before {
-            break;
-        }
-    }
+    let mut all: BTreeSet<Key> = w.assigns.iter().map(|a| a.target.clone()).collect();
+    all.retain(|k| !(w.spoiled.contains(k) || (w.all_r_spoiled && matches!(k, Key::R(_)))));
+    let per_grid = Grid::all()
+        .map(|grid| {
+            let mut counters = all.clone();
+            loop {
+                let before = counters.len();
+                let drop: Vec<Key> = w
+                    .assigns
+                    .iter()
+                    .filter(|a| counters.contains(&a.target) && !counter_value(&a.value, &counters, &a.set, grid))
+                    .map(|a| a.target.clone())
+                    .collect();
+                for k in drop {
+                    counters.remove(&k);
+                }
+                if counters.len() == before {
+                    break counters;
+                }
+            }
+        })
+        .collect();
+    (w, per_grid)
+}
+
+/// For every program (in order), the spans of the relative comparisons whose two sides are
+/// provably on one grid (integers, or multiples of 1/2 … 1/64) below its bound where they
+/// stand: there the exact comparison gives the Siemens result (Sinumerik → FANUC).
+pub fn exact_comparisons(progs: &[(&Program, &Types)], names: &BTreeSet<String>) -> Vec<BTreeSet<Span>> {
+    let (w, counters) = counters(progs, names, false);
+    proven(&w, progs, |c| {
+        let types = progs[c.prog].1;
+        Grid::all()
+            .zip(&counters)
+            .any(|(g, k)| integral(&c.a, k, &c.set, types, g) && integral(&c.b, k, &c.set, types, g))
+    })
+}
+
+/// For every program (in order), the spans of the Siemens comparisons `a-b op 0` (the
+/// exact form FANUC → Sinumerik writes for FANUC's `a op b`) whose `a` and `b` are provably
+/// on one grid below its bound where they stand: there `a op b` under the Siemens tolerance
+/// is FANUC's exact result. `progs` are translated Siemens programs, whose jumps name
+/// labels: a block is a jump target by its label only, unless a jump of its program names
+/// an N number (the segmented stream's skeleton then has the same targets as the whole
+/// program: its runs hold no label, jump or assignment).
+pub fn exact_differences(progs: &[(&Program, &Types)], names: &BTreeSet<String>) -> Vec<BTreeSet<Span>> {
+    let (w, counters) = counters(progs, names, true);
+    proven(&w, progs, |c| {
+        let types = progs[c.prog].1;
+        let zero = matches!(&c.b.kind, ExprKind::Num(n) if n.value == 0.0);
+        let ExprKind::Binary(BinOp::Sub, x, y) = &c.a.kind else { return false };
+        zero && Grid::all()
+            .zip(&counters)
+            .any(|(g, k)| integral(x, k, &c.set, types, g) && integral(y, k, &c.set, types, g))
+    })
+}
+
+/// The spans of the comparisons `ok` proves, per program; two comparisons with one span (a
+/// pass may synthesise one) count only when both are proven.
+fn proven(w: &Walk, progs: &[(&Program, &Types)], ok: impl Fn(&Seen) -> bool) -> Vec<BTreeSet<Span>> {
     let mut out = vec![BTreeSet::new(); progs.len()];
     let mut unproven: BTreeSet<Span> = BTreeSet::new();
     for c in &w.cmps {
-        let types = progs[c.prog].1;
-        if integral(&c.a, &counters, &c.set, types) && integral(&c.b, &counters, &c.set, types) {
+        if ok(c) {
             out[c.prog].insert(c.span);
         } else {
             unproven.insert(c.span);
         }
     }
-    // Two comparisons with one span (a pass may synthesise one): only both proven counts.
     for s in &mut out {
         s.retain(|sp| !unproven.contains(sp));
     }
     out
 }
 
-/// An assignment's value keeps its target a counter.
-fn counter_value(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>) -> bool {
+/// An assignment's value keeps its target a counter on `grid`.
+fn counter_value(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>, grid: Grid) -> bool {
     let counter = |e: &Expr| match &e.kind {
         ExprKind::Var(v) => key(v).is_some_and(|k| counters.contains(&k) && set.contains(&k)),
         _ => false,
     };
-    let step = |e: &Expr| matches!(&e.kind, ExprKind::Num(n) if n.value.fract() == 0.0 && n.value.abs() <= MAX_STEP);
+    let step = |e: &Expr| matches!(&e.kind, ExprKind::Num(n) if grid.step(n.value));
     match &e.kind {
-        ExprKind::Num(n) => n.value.fract() == 0.0 && n.value.abs() < MAX_START,
+        ExprKind::Num(n) => grid.start(n.value),
         ExprKind::Var(_) => counter(e),
         ExprKind::Unary(UnOp::Neg, a) => counter(a),
         ExprKind::Binary(BinOp::Add, a, b) => (counter(a) && step(b)) || (step(a) && counter(b)),
@@ -147,26 +228,26 @@ fn counter_value(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>) -> boo
     }
 }
 
-/// `e` is an integer below 1e12 wherever it is read (the exprs pass's rule plus counters).
-fn integral(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>, types: &Types) -> bool {
+/// `e` is on `grid` below its bound wherever it is read (the exprs pass's rule plus counters).
+fn integral(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>, types: &Types, grid: Grid) -> bool {
     match &e.kind {
-        ExprKind::Num(n) => n.value.fract() == 0.0 && n.value.abs() < 1e12,
+        ExprKind::Num(n) => grid.value(n.value),
         ExprKind::Var(v) => match key(v) {
             Some(k) => {
+                // INT is 32 bits: below 2^31, under 1e12·g for every grid tried.
                 let typed = matches!(&k, Key::Name(n) if matches!(types.get(n), Some(DataType::Int | DataType::Bool | DataType::Char)));
-                // INT is 32 bits; counters stay below 1e12.
                 typed || (counters.contains(&k) && set.contains(&k))
             }
             None => false,
         },
-        ExprKind::Unary(UnOp::Neg, a) => integral(a, counters, set, types),
-        // Sums and differences of two integers below 1e12 stay below 2e12, where the
-        // tolerance is still below 2 but two integers 1 apart could meet it: allow one
+        ExprKind::Unary(UnOp::Neg, a) => integral(a, counters, set, types, grid),
+        // Sums and differences of two values below 1e12·g stay below 2e12·g, where the
+        // tolerance is still below 2g but two values g apart could meet it: allow one
         // level only when a side is a small constant.
         ExprKind::Binary(BinOp::Add | BinOp::Sub, a, b) => {
-            let small =
-                |x: &Expr| matches!(&x.kind, ExprKind::Num(n) if n.value.fract() == 0.0 && n.value.abs() <= MAX_START);
-            (integral(a, counters, set, types) && small(b)) || (small(a) && integral(b, counters, set, types))
+            let small = |x: &Expr| matches!(&x.kind, ExprKind::Num(n) if grid.on(n.value) && n.value.abs() <= MAX_START * grid.g);
+            (integral(a, counters, set, types, grid) && small(b))
+                || (small(a) && integral(b, counters, set, types, grid))
         }
         _ => false,
     }
@@ -191,11 +272,32 @@ fn definitely_sets(s: &Stmt, set: &mut BTreeSet<Key>) {
     }
 }
 
-/// A statement a jump may enter: a label or an N number on it or inside it.
-fn is_target(s: &Stmt) -> bool {
+/// A statement a jump may enter: a label (or, with `numbers`, an N number) on it or inside it.
+fn is_target(s: &Stmt, numbers: bool) -> bool {
     let mut found = false;
     crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-        found |= crate::ir::visit::metas(&s.kind).iter().any(|m| m.label.is_some() || m.number.is_some());
+        found |= crate::ir::visit::metas(&s.kind).iter().any(|m| m.label.is_some() || (numbers && m.number.is_some()));
+    });
+    found
+}
+
+/// Whether a jump of `body` names an N number or is computed (then any numbered block may
+/// be its target).
+fn jumps_to_numbers(body: &[Stmt]) -> bool {
+    fn names_number(it: &Item) -> bool {
+        let goto = |g: &Goto| !matches!(g.target, Target::Label(_));
+        match &it.kind {
+            ItemKind::Goto(g) => goto(g),
+            ItemKind::Case(c) => c.arms.iter().any(|a| goto(&a.goto)) || c.default.as_ref().is_some_and(goto),
+            ItemKind::IfThen { then, .. } => names_number(then),
+            _ => false,
+        }
+    }
+    let mut found = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            found |= b.items.iter().any(names_number);
+        }
     });
     found
 }

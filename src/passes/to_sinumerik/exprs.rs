@@ -307,6 +307,88 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
     *e = new;
 }
 
+/// FANUC's `a op b` written `a-b op 0` (exact under the Siemens tolerance) becomes the plain
+/// `a op b` where both sides are provably integers, or multiples of one power of two, below
+/// the bound where the tolerance could join two of them (`passes::integral`, run on the
+/// translated programs, so on what the Siemens control computes): two such values differ
+/// by at least the grid step, far more than 1e-12 of either, so the tolerance changes no
+/// result. `LOC1-3<=0` → `LOC1<=3` for a counter stepped by 1.
+pub fn plain_comparisons(programs: &mut [(ProgPlan, Program)]) {
+    let names: BTreeSet<String> = programs.iter().map(|(plan, _)| plan.name.to_ascii_uppercase()).collect();
+    let types: Vec<crate::passes::integral::Types> =
+        programs.iter().map(|(_, p)| p.params.iter().map(|prm| (prm.name.clone(), prm.ty)).collect()).collect();
+    let with_types: Vec<(&Program, &crate::passes::integral::Types)> =
+        programs.iter().zip(&types).map(|((_, p), t)| (p, t)).collect();
+    let exact = crate::passes::integral::exact_differences(&with_types, &names);
+    for ((_, p), spans) in programs.iter_mut().zip(exact) {
+        if !spans.is_empty() {
+            plain_in(&mut p.body, &spans);
+        }
+    }
+}
+
+fn plain_in(body: &mut [Stmt], spans: &BTreeSet<Span>) {
+    for s in body {
+        match &mut s.kind {
+            StmtKind::Block(b) => b.items.iter_mut().for_each(|it| plain_item(it, spans)),
+            StmtKind::If(i) => plain_expr(&mut i.cond, spans),
+            StmtKind::While(w) => plain_expr(&mut w.cond, spans),
+            StmtKind::Repeat(r) => plain_expr(&mut r.until, spans),
+            StmtKind::Do(d) => {
+                if let Some(c) = &mut d.cond {
+                    plain_expr(c, spans);
+                }
+            }
+            StmtKind::For(_) | StmtKind::Loop(_) => {}
+        }
+        for b in crate::ir::visit::child_bodies_mut(&mut s.kind) {
+            plain_in(b, spans);
+        }
+    }
+}
+
+fn plain_item(it: &mut Item, spans: &BTreeSet<Span>) {
+    match &mut it.kind {
+        ItemKind::Assign { value, .. } => plain_expr(value, spans),
+        ItemKind::Goto(g) => {
+            if let Some(c) = &mut g.cond {
+                plain_expr(c, spans);
+            }
+        }
+        ItemKind::IfThen { cond, then } => {
+            plain_expr(cond, spans);
+            plain_item(then, spans);
+        }
+        _ => {}
+    }
+}
+
+fn plain_expr(e: &mut Expr, spans: &BTreeSet<Span>) {
+    match &mut e.kind {
+        // Only the difference `lower` wrote (its 0 has the span of the difference); a
+        // source's own `#1-2. LT 0.` stays as written, so a round trip keeps its form.
+        ExprKind::Cmp(_, Tolerance::Relative, a, b)
+            if spans.contains(&e.span) && literal(b) == Some(0.0) && b.span == a.span =>
+        {
+            if let ExprKind::Binary(BinOp::Sub, x, y) = &mut a.kind {
+                let (x, y) = (
+                    std::mem::replace(&mut **x, Expr::num(0.0, false, e.span)),
+                    std::mem::replace(&mut **y, Expr::num(0.0, false, e.span)),
+                );
+                **a = x;
+                **b = y;
+            }
+        }
+        ExprKind::Cmp(_, _, a, b) | ExprKind::Binary(_, a, b) => {
+            plain_expr(a, spans);
+            plain_expr(b, spans);
+        }
+        ExprKind::Unary(_, a) => plain_expr(a, spans),
+        ExprKind::Func(_, args) => args.iter_mut().for_each(|a| plain_expr(a, spans)),
+        _ => {}
+    }
+}
+
 fn int_part(e: Expr) -> Expr {
     // Already an integer (a truncation, a rounding, a bitwise result): another TRUNC would
     // only pile up on every round trip (`FIX[FIX[x]] AND 3`), and a chain `#1 AND #2 AND …`

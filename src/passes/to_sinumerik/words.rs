@@ -218,6 +218,8 @@ fn frame_writes_only(s: &Stmt) -> bool {
                 // Still FANUC variables here: `#5221..#5340` are the work offsets.
                 ExprKind::Var(v) => match &v.kind {
                     VarKind::Hash(n) => other |= *n >= 1000 && !(5221..=5340).contains(n),
+                    // A work offset written by G10 L2 (`calls::lower`): a stored value.
+                    VarKind::System { name, .. } if name == "P_UIFR" => {}
                     VarKind::HashIndirect(_) | VarKind::System { .. } => other = true,
                     VarKind::Named { indices, .. } => stack.extend(indices.iter()),
                     VarKind::RIndirect(x) => stack.push(x),
@@ -239,8 +241,12 @@ fn frame_writes_only(s: &Stmt) -> bool {
         && !b.items.is_empty()
         && b.items.iter().all(|it| match &it.kind {
             ItemKind::Assign { target, value } => {
-                matches!(target.kind, VarKind::Hash(n @ 5221..=5340) if system_var(n, it.span).is_some())
-                    && !system(value)
+                let offset = match &target.kind {
+                    VarKind::Hash(n @ 5221..=5340) => system_var(*n, it.span).is_some(),
+                    VarKind::System { name, .. } => name == "P_UIFR",
+                    _ => false,
+                };
+                offset && !system(value)
             }
             _ => false,
         })
@@ -251,11 +257,15 @@ fn frame_writes_only(s: &Stmt) -> bool {
 /// the last does the same (nothing in between moves or reads the frame in force), and a
 /// round trip does not add a `G54` line each time.
 fn merge_reselects(out: &mut Vec<Stmt>) {
+    // The translation's own selection is written `G540` (G54 ×10, as G54.1 … come); the
+    // program's own words may still read `G54`.
+    let norm = |g: Option<f64>| g.map(|g| if g < 100.0 { g * 10.0 } else { g });
     let mut i = 0;
     while i + 1 < out.len() {
-        let g = selection(&out[i]);
-        let same_next = g.is_some() && selects(&out[i + 1]) == g;
-        let delayed = g.is_some() && i + 2 < out.len() && frame_writes_only(&out[i + 1]) && selects(&out[i + 2]) == g;
+        let g = norm(selection(&out[i]));
+        let same_next = g.is_some() && norm(selects(&out[i + 1])) == g;
+        let delayed =
+            g.is_some() && i + 2 < out.len() && frame_writes_only(&out[i + 1]) && norm(selects(&out[i + 2])) == g;
         // Only a selection that follows a frame write is the translation's own.
         let after_write = i > 0 && frame_writes_only(&out[i - 1]);
         if after_write && (same_next || delayed) {

@@ -1,0 +1,223 @@
+//! The runs that prove a FANUC → Sinumerik translation's called programs on their own, one
+//! rule for every path (the batch job, `nctrans --to sinumerik` whole and streamed): a
+//! macro is written for every possible caller (`translate_sinumerik::Options::
+//! specialise_callers` off), so it is run with the arguments its callers pass and again with
+//! each of those arguments left vacant, where its vacancy logic (a default, an alarm) must
+//! be right for a caller added later.
+
+use crate::batch::jobs_sinumerik::{parse_all, siemens_inputs};
+use crate::batch::library::{self, Library, ProgKey};
+use crate::check::{CheckReport, Excluded, Verdict};
+use crate::eval::calls::CalleeSource;
+use crate::ir::{CallKind, ProgName, Unit};
+use crate::span::{FileId, SourceDb};
+use crate::translate_sinumerik::{OutFile, Translation};
+use crate::verify_sinumerik::{self as vs, Profiles, RunSpec};
+use std::collections::BTreeSet;
+
+/// The runs that prove a program alone: without inputs, and once per constant argument
+/// vector the library calls it with. A macro (called by G65/G66) is not run without its
+/// arguments: its callers always give some. With no constant call in the library it runs
+/// once with 0 for the arguments the first call gives surely. With `each_vacant` (a macro
+/// written for every possible caller, not `--specialise-callers`) it also runs with each of
+/// those arguments left out in turn: a caller added later may leave any one out, and the
+/// macro's vacancy logic (a default, an alarm) must be right for it.
+/// Each case is a label for the verdict and the `#n=value` inputs of the FANUC side.
+pub fn cases(lib: &Library, key: &ProgKey, each_vacant: bool) -> Vec<(String, Vec<String>)> {
+    let macro_calls: Vec<_> =
+        lib.calls.iter().filter(|c| &c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)).collect();
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    if macro_calls.is_empty() {
+        out.push((String::new(), vec![]));
+    }
+    for (k, v) in lib.arg_vectors(key).iter().enumerate() {
+        // A letter written twice for one local (`I-3. I4. D5.` fill #7 twice): the later
+        // one is what the macro gets, and the one input to give.
+        let mut sets: Vec<String> = Vec::new();
+        for (i, a) in v.iter().enumerate() {
+            if !v[i + 1..].iter().any(|b| b.var == a.var) {
+                sets.push(a.to_set());
+            }
+        }
+        out.push((format!(" (with the arguments of call site {})", k + 1), sets));
+    }
+    if out.is_empty() {
+        if let Some(c) = macro_calls.first() {
+            let sets = c.given.iter().filter(|g| g.sure).map(|g| format!("#{}=0.", g.var)).collect();
+            out.push((" (with 0 for the arguments of its first call)".to_string(), sets));
+        }
+    }
+    if each_vacant && !macro_calls.is_empty() {
+        let mut seen: BTreeSet<Vec<String>> = out.iter().map(|(_, v)| v.clone()).collect();
+        for (label, sets) in out.clone() {
+            for (k, s) in sets.iter().enumerate() {
+                let mut fewer = sets.clone();
+                fewer.remove(k);
+                if seen.insert(fewer.clone()) {
+                    let var = s.split_once('=').map_or(s.as_str(), |x| x.0);
+                    let base = label.strip_suffix(')').unwrap_or(&label);
+                    out.push((format!("{base} but {var} vacant)"), fewer));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What every run of a proof shares.
+pub struct RunSettings<'a> {
+    /// The folder the Siemens files are shown in.
+    pub out_dir: &'a str,
+    pub max_steps: u64,
+    pub profiles: &'a Profiles,
+    /// Inputs given to every run (`--set`): FANUC `#n=…` ones are mapped for the Siemens side.
+    pub set: &'a [String],
+}
+
+/// Runs the first program of the FANUC `unit` (file `fanuc_file` in `db`) against its
+/// translation `out` once per case (`cases`), each run's FANUC callees from `callees`.
+/// `name` goes in front of each case's label.
+#[allow(clippy::too_many_arguments)]
+pub fn case_runs(
+    db: &SourceDb,
+    fanuc_file: FileId,
+    unit: &Unit,
+    tr: &Translation,
+    out: &OutFile,
+    (name, cases): (&str, Vec<(String, Vec<String>)>),
+    settings: &RunSettings,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
+    let mut runs = Vec::new();
+    for (label, mut fanuc) in cases {
+        fanuc.extend(settings.set.iter().cloned());
+        let siemens = siemens_inputs(tr, &out.program, &fanuc);
+        fanuc.retain(|s| s.trim_start().starts_with('#'));
+        let spec = RunSpec {
+            main: out,
+            out_dir: settings.out_dir,
+            max_steps: settings.max_steps,
+            profiles: settings.profiles,
+            fanuc_callees: callees(),
+            extra_fanuc: parse_all(&fanuc),
+            extra_siemens: parse_all(&siemens),
+        };
+        runs.push((format!("{name}{label}"), vs::verify_run(db, fanuc_file, unit, tr, spec)));
+    }
+    runs
+}
+
+/// The runs of a single file's translation beyond its main program's: every program the
+/// FANUC `units` (the file, then the callees found beside it) call by G65/G66, run alone as
+/// a main program with the cases of [`cases`] (the calls among `units` are the library),
+/// its FANUC callees served from `units`. The labels name the program
+/// (` (O_9100 alone, with the arguments of call site 1 but #11 vacant)`).
+pub fn called_runs(
+    db: &SourceDb,
+    units: &[&Unit],
+    tr: &Translation,
+    settings: &RunSettings,
+    each_vacant: bool,
+) -> Vec<(String, CheckReport)> {
+    let scans = units.iter().map(|u| library::scan_unit(u, db.get(u.file), "")).collect::<Vec<library::Scan>>();
+    let lib = Library::build(scans);
+    let mut targets: Vec<u32> = Vec::new();
+    for c in lib.calls.iter().filter(|c| matches!(c.kind, CallKind::G65 | CallKind::G66)) {
+        if let ProgKey::Number(n) = c.target {
+            if !targets.contains(&n) {
+                targets.push(n);
+            }
+        }
+    }
+    let all: Vec<Unit> = units.iter().map(|u| (*u).clone()).collect();
+    let mut runs = Vec::new();
+    for n in targets {
+        let here = units
+            .iter()
+            .find_map(|u| u.programs.iter().position(|p| p.name == Some(ProgName::Number(n))).map(|i| (*u, i)));
+        let (Some((u, i)), Some(out)) = (here, tr.files.iter().find(|f| f.fanuc_number == Some(n))) else {
+            // Not translated here (a call the translation reports) or not found.
+            continue;
+        };
+        let mut unit = u.clone();
+        let entry = unit.programs.remove(i);
+        unit.programs.insert(0, entry);
+        let name = format!(" ({} alone,", out.program);
+        let label = |(label, sets): (String, Vec<String>)| {
+            let label = match label.strip_prefix(" (") {
+                Some(l) => format!(" {l}"),
+                None => format!("{label})"),
+            };
+            (label, sets)
+        };
+        let key = ProgKey::Number(n);
+        let mut all_cases = cases(&lib, &key, each_vacant).into_iter().map(label);
+        let given: Vec<_> = all_cases.by_ref().take(cases(&lib, &key, false).len()).collect();
+        let served = || Box::new(crate::batch::jobs::MemCallees(all.clone())) as Box<dyn CalleeSource + Send>;
+        // The macro alone with its callers' own arguments: its translation may rest on what
+        // the callers leave (their unit for values without a decimal point, common variables
+        // they set), which a run alone does not have. Then the main program's run is its
+        // proof, as before; only a macro that runs alone as it runs called is also run with
+        // each argument vacant.
+        let base = case_runs(db, u.file, &unit, tr, out, (&name, given), settings, &served);
+        if base.iter().any(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. })) {
+            continue;
+        }
+        runs.extend(base);
+        let vacant: Vec<_> = all_cases.collect();
+        runs.extend(case_runs(db, u.file, &unit, tr, out, (&name, vacant), settings, &served));
+    }
+    runs
+}
+
+/// [`called_runs`] as `nctrans --to sinumerik` makes them, whole and streamed: the
+/// translation's `files` and `symbols`, its options' profiles, no `--set`, each argument
+/// vacant unless `--specialise-callers`.
+pub fn single_file_runs(
+    db: &SourceDb,
+    units: &[&Unit],
+    (files, symbols): (&[OutFile], &crate::translate_sinumerik::SymbolMap),
+    opts: &crate::translate_sinumerik::Options,
+    out_dir: &str,
+    max_steps: u64,
+) -> Vec<(String, CheckReport)> {
+    let profiles = Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
+    let settings = RunSettings { out_dir, max_steps, profiles: &profiles, set: &[] };
+    let tr = Translation { files: files.to_vec(), symbols: symbols.clone(), ..Default::default() };
+    called_runs(db, units, &tr, &settings, !opts.specialise_callers)
+}
+
+/// Several runs' verdicts as one: the first that is not an equivalence (with its label), or
+/// the events and exclusions added up.
+pub enum Combined {
+    /// Every run equivalent: the events and what was left out, over `runs` runs.
+    Equivalent { events: u64, runs: usize, excluded: Excluded },
+    /// The first run that was not, with its label.
+    Not(String, Box<CheckReport>),
+}
+
+/// Combines runs (see [`Combined`]).
+pub fn combine(runs: Vec<(String, CheckReport)>) -> Combined {
+    let (mut events, mut excluded, n) = (0, Excluded::default(), runs.len());
+    for (label, r) in runs {
+        match r.verdict {
+            Verdict::Equivalent { events: e } => {
+                events += e;
+                excluded.add(r.excluded);
+            }
+            _ => return Combined::Not(label, Box::new(r)),
+        }
+    }
+    Combined::Equivalent { events, runs: n, excluded }
+}
+
+impl Combined {
+    /// `equivalent (N events)`, or `equivalent (N events in K runs)` for several.
+    pub fn summary(events: u64, runs: usize, excluded: &Excluded) -> String {
+        if runs > 1 {
+            excluded.equivalent(&format!("{events} events in {runs} runs"))
+        } else {
+            excluded.equivalent(&format!("{events} events"))
+        }
+    }
+}
