@@ -379,8 +379,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
     ("call-repeat-p.mpf", "NC303"),              // LAYER not in the library
     ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
-    ("cycle84-rigid-tap.mpf", "NC390"),          // no exact FANUC cycle
-    ("cycle840-floating-tap.mpf", "NC390"),      // no exact FANUC cycle
     ("cycle85-ream.mpf", "NC390"),               // no exact FANUC cycle
     ("cycle86-fine-bore.mpf", "NC390"),          // no exact FANUC cycle
     ("cycle87-bore-stop.mpf", "NC390"),          // no exact FANUC cycle
@@ -402,11 +400,9 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g73-chip-break.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("cycle-g74-left-tap.nc", "NC428"),   // a drilling cycle without an exact Sinumerik form
     ("cycle-g76-fine-bore.nc", "NC428"),
     ("cycle-g81-spot-drill.nc", "NC385"), // G43 H1: tool compensation is not compared
     ("cycle-g83-deep-hole.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
-    ("cycle-g84-rigid-tap.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g88-bore-manual.nc", "NC428"), // a drilling cycle without an exact Sinumerik form

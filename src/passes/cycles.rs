@@ -38,6 +38,9 @@ struct Fanuc {
     words: Vec<(u8, Expr)>,
     /// `G0 Z<RTP>` first.
     approach: Option<f64>,
+    /// Tapping: `M29 S…` before the cycle block, the F written back after G80.
+    m29: Option<Expr>,
+    restore: Option<f64>,
 }
 
 fn word(letter: u8, e: Expr, span: Span) -> Item {
@@ -90,18 +93,22 @@ fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
 }
 
 /// Plans the FANUC cycle of a call made where the tool stands at `level` (its last Z).
-fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static str, String, &'static str)> {
+fn plan(
+    c: &Call,
+    k: SieCycle,
+    level: Option<f64>,
+    st: &super::cycles_tap::SieState,
+) -> Result<Fanuc, (&'static str, String, &'static str)> {
     let bad = |code, what: String, hint| Err((code, what, hint));
     let (g, allowed): (f64, &[&str]) = match k {
         SieCycle::C81 => (81.0, &[]),
         SieCycle::C82 => (82.0, &["DTB"]),
         SieCycle::C83 => (0.0, &["FDEP", "FDPR", "VARI", "DAM", "FRF"]),
         SieCycle::C89 => (89.0, &["DTB"]),
+        SieCycle::C84 => (84.0, &["DTB", "SDAC", "MPIT", "PIT", "SST"]),
+        SieCycle::C840 => (84.0, &["DTB", "SDR", "SDAC", "ENC", "MPIT", "PIT"]),
         other => {
             let why = match other {
-                SieCycle::C84 | SieCycle::C840 => {
-                    "tapping needs M29 and the spindle state, which the translation does not know yet"
-                }
                 SieCycle::C85 => "its feeds FFR/RFF would change FANUC's modal F",
                 SieCycle::C86 => "the lift-off direction is a FANUC machine parameter (6240) for G76",
                 _ => "FANUC's G88 needs a spindle direction the translation does not know",
@@ -150,6 +157,16 @@ fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static st
     };
     let mut words = vec![(b'Z', z), (b'R', mm(r, Span::default()))];
     let mut g = g;
+    let (mut m29, mut restore) = (None, None);
+    if matches!(k, SieCycle::C84 | SieCycle::C840) {
+        let t = super::cycles_tap::plan(c, k, st)?;
+        g = t.g;
+        m29 = t.m29;
+        restore = t.restore.filter(|prev| t.f.as_ref().and_then(literal) != Some(*prev));
+        if let Some(f) = t.f {
+            words.push((b'F', f));
+        }
+    }
     if k == SieCycle::C83 {
         if sdis != 0.0
             || constant(c, k, "DAM") != Some(0.0)
@@ -213,7 +230,7 @@ fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static st
             }
         }
     };
-    Ok(Fanuc { g, retract, words, approach })
+    Ok(Fanuc { g, retract, words, approach, m29, restore })
 }
 
 /// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).
@@ -251,6 +268,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
     let mut carry: Option<BlockMeta> = None;
     // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
     let mut refused_mcall = false;
+    let mut tap = super::cycles_tap::SieState::start(top);
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
@@ -266,6 +284,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             }
             level = None;
             motion = None;
+            tap = super::cycles_tap::SieState::default();
             out.push(s);
             continue;
         };
@@ -285,7 +304,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 );
                 continue;
             }
-            let f = match plan(&c, k, level) {
+            let f = match plan(&c, k, level, &tap) {
                 Ok(f) => f,
                 Err((code, what, hint)) => {
                     refuse(ctx, code, span, &what, hint, &mut out);
@@ -313,11 +332,14 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 // A direct call drills where the tool is: the cycle block without a position.
                 let mut items = vec![gw(f.retract, span), gw(f.g, span)];
                 items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
+                if let Some(s) = &f.m29 {
+                    out.push(m29_block(s, span));
+                }
                 match meta {
                     Some(m) => out.push(meta_stmt(BlockMeta { span, ..m }, items)),
                     None => out.push(block_stmt(items, span)),
                 }
-                out.push(block_stmt(vec![gw(80.0, span)], span));
+                out.push(block_stmt(cancel_items(&f, span), span));
             }
             // Every hole ends at RTP.
             if !arg(&c, k, "RTP").is_some_and(is_tool_level) {
@@ -329,9 +351,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             b.items.retain(|it| !matches!(it.kind, ItemKind::ModalCallOff));
             match active.take() {
                 Some((f, first, _)) => {
-                    let _ = f;
                     if first {
-                        b.items.insert(0, gw(80.0, span));
+                        let mut items = cancel_items(&f, span);
+                        items.append(&mut b.items);
+                        b.items = items;
                     }
                 }
                 None if std::mem::take(&mut refused_mcall) => {}
@@ -341,15 +364,31 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             continue;
         }
         if let Some((f, first, _)) = &mut active {
+            // `M29 S…` right before the first cycle block.
+            let mut rigid = None;
             match positions(&b, motion) {
                 Err(why) => {
                     refuse(ctx, "NC396", span, why, "under MCALL, position the holes with G0 X… Y…", &mut out);
+                    continue;
+                }
+                _ if f.m29.is_some()
+                    && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'F'))) =>
+                {
+                    refuse(
+                        ctx,
+                        "NC487",
+                        span,
+                        "an F in a hole block of CYCLE84",
+                        "CYCLE84 taps at pitch × SST whatever F is, FANUC's G84 at F: program F after MCALL",
+                        &mut out,
+                    );
                     continue;
                 }
                 Ok(false) => {}
                 Ok(true) => {
                     b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
                     if !*first {
+                        rigid = f.m29.clone();
                         let mut items = vec![gw(f.retract, span), gw(f.g, span)];
                         items.append(&mut b.items);
                         items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
@@ -370,6 +409,9 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     }
                 }
             }
+            if let Some(s) = rigid {
+                out.push(m29_block(&s, span));
+            }
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
@@ -379,6 +421,13 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     ("G", Some(v)) if [0.0, 1.0, 2.0, 3.0].contains(&v) => motion = Some(v),
                     ("G", Some(90.0)) => abs = Some(true),
                     ("G", Some(91.0)) => abs = Some(false),
+                    (l, _) if matches!(l, "M" | "G" | "F") => {
+                        let v = match &w.value {
+                            WordValue::Expr(e) => literal(e),
+                            _ => None,
+                        };
+                        tap.observe(l, v);
+                    }
                     ("Z", _) => {
                         level = match (&w.value, abs) {
                             (WordValue::Expr(e), Some(true)) => literal(e),
@@ -392,6 +441,9 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
             // An assignment, a call …: the tool's level may have changed.
             level = None;
+        }
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
+            tap = super::cycles_tap::SieState::default();
         }
         out.push(Stmt { kind: StmtKind::Block(b), span });
     }
@@ -408,6 +460,20 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         }
     }
     out
+}
+
+/// `M29 S<sst>`: rigid tapping for the cycle block after it.
+fn m29_block(sst: &Expr, span: Span) -> Stmt {
+    block_stmt(vec![word(b'M', Expr::num(29.0, false, span), span), word(b'S', sst.clone(), span)], span)
+}
+
+/// `G80`, and after rigid tapping the feed the program had before (G84's F is modal).
+fn cancel_items(f: &Fanuc, span: Span) -> Vec<Item> {
+    let mut items = vec![gw(80.0, span)];
+    if let Some(prev) = f.restore {
+        items.push(word(b'F', mm(prev, span), span));
+    }
+    items
 }
 
 /// Whether `e` is `$P_EP[Z]`, the programmed end point of the drilling axis.

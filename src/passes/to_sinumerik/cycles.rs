@@ -23,6 +23,10 @@ struct Data {
     q: Option<Expr>,
     p: Option<Expr>,
     g99: bool,
+    /// The F word of the sequence (the pitch of rigid tapping is F/S).
+    f: Option<Expr>,
+    /// The spindle, feed mode and M29 when the cycle began (tapping).
+    tap: tapping::TapState,
 }
 
 /// Lowers the drilling cycles of every block list of the program.
@@ -116,6 +120,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     // blocks write G0, so another mode is written again after the cycle.
     let mut motion: Option<u32> = if top { Some(0) } else { None };
     let mut after_g99_hole = false;
+    let mut tap = tapping::TapState::start(top);
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
@@ -129,6 +134,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 );
             }
             motion = None;
+            tap.forget();
             out.push(s);
             continue;
         };
@@ -139,6 +145,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             if let Some(m) = motion_g {
                 motion = Some(m);
             }
+            tap.observe(&mut b);
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
@@ -160,6 +167,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         // Cancel: G80 or a motion code ends the MCALL before the block's own words.
         let cancel = gs.contains(&800) || motion_g.is_some();
         if cancel && new_cycle.is_none() {
+            // G80 (or G00–G03) also ends rigid tapping mode.
+            tap.rigid = None;
             b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && word_expr(w).and_then(literal) == Some(80.0)));
             if active.take().is_some() {
                 if b.items.is_empty() {
@@ -217,6 +226,18 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         let starting = active.is_none();
         if let Some(g) = new_cycle {
             d.g = g;
+        }
+        if starting {
+            d.tap = tap.clone();
+            if let Some((_, at)) = tap.rigid.as_ref().filter(|_| !matches!(d.g, 840 | 740)).map(|r| (&r.0, r.1)) {
+                refuse(
+                    ctx,
+                    at,
+                    "M29 (rigid tapping) before a cycle that is not G84/G74",
+                    "program M29 S… right before the tapping cycle",
+                    &mut out,
+                );
+            }
         }
         if gs.contains(&910) {
             refuse(ctx, span, "a drilling cycle with incremental data (G91)", "program the cycle in G90", &mut out);
@@ -284,8 +305,16 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 "K" | "L" => count = Some(e.clone()),
                 "F" => {
                     feed = true;
+                    d.f = Some(e.clone());
                     other.push(it.clone());
                 }
+                "M" if literal(e) == Some(29.0) => refuse(
+                    ctx,
+                    it.span,
+                    "M29 in a drilling-cycle block",
+                    "program M29 S… in its own block before the tapping cycle",
+                    &mut out,
+                ),
                 _ => other.push(it.clone()),
             }
         }
@@ -296,7 +325,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             continue;
         }
         // G85 carries the feed in its arguments: a new F is a new MCALL.
-        changed |= feed && d.g == 850;
+        // So does rigid tapping (its pitch is F/S).
+        changed |= feed && matches!(d.g, 850 | 840 | 740);
         let repeats = match &count {
             None => 1,
             Some(e) => match literal(e) {
@@ -375,11 +405,10 @@ fn pending(ctx: &mut Ctx, out: &mut Vec<Stmt>, d: &Option<Data>, span: Span, aft
 /// The cycles without an exact Sinumerik counterpart, and why.
 fn unsupported_kind(g: u32) -> Option<(&'static str, &'static str)> {
     Some(match g {
-        840 | 740 => (
-            "tapping G84/G74",
-            "CYCLE84/CYCLE840 need the spindle state after the cycle and rigid or floating tapping, which the translation does not know yet",
+        760 | 870 => (
+            "fine or back boring G76/G87",
+            "the shift direction is a FANUC machine parameter (6240): write CYCLE86 by hand",
         ),
-        760 | 870 => ("fine or back boring G76/G87", "the shift direction is a FANUC machine parameter (6240): write CYCLE86 by hand"),
         860 => ("boring G86", "every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87)"),
         880 => ("boring G88", "CYCLE88 needs the spindle direction SDIR, which the translation does not know"),
         _ => return None,
@@ -447,6 +476,20 @@ fn call_item(
         890 => {
             args.extend([none(), dtb()]);
             "CYCLE89"
+        }
+        840 | 740 => {
+            let t = tapping::Tap { g: d.g, f: d.f.as_ref(), state: &d.tap };
+            match tapping::call_args(&t, span) {
+                Ok((name, rest)) => {
+                    args.extend([none(), dtb()]);
+                    args.extend(rest);
+                    name
+                }
+                Err((code, what, hint)) => {
+                    out.extend(ctx.refuse(code, span, &format!("{what}: not translated to Sinumerik"), &what, hint));
+                    return None;
+                }
+            }
         }
         _ => return None,
     };
