@@ -107,11 +107,15 @@ fn plan(
         SieCycle::C89 => (89.0, &["DTB"]),
         SieCycle::C84 => (84.0, &["DTB", "SDAC", "MPIT", "PIT", "SST"]),
         SieCycle::C840 => (84.0, &["DTB", "SDR", "SDAC", "ENC", "MPIT", "PIT"]),
+        SieCycle::C85 => (85.0, &["DTB", "FFR", "RFF"]),
+        SieCycle::C87 => (88.0, &["SDIR"]),
+        SieCycle::C88 => (88.0, &["DTB", "SDIR"]),
         other => {
             let why = match other {
-                SieCycle::C85 => "its feeds FFR/RFF would change FANUC's modal F",
-                SieCycle::C86 => "the lift-off direction is a FANUC machine parameter (6240) for G76",
-                _ => "FANUC's G88 needs a spindle direction the translation does not know",
+                SieCycle::C86 => {
+                    "CYCLE86 lifts the tool off by RPA/RPO/RPAP after its oriented stop; FANUC's G76 shifts by Q in a direction set by a machine parameter, not in the program"
+                }
+                _ => "no FANUC cycle makes this motion",
             };
             return bad(
                 "NC390",
@@ -157,15 +161,17 @@ fn plan(
     };
     let mut words = vec![(b'Z', z), (b'R', mm(r, Span::default()))];
     let mut g = g;
-    let (mut m29, mut restore) = (None, None);
-    if matches!(k, SieCycle::C84 | SieCycle::C840) {
-        let t = super::cycles_tap::plan(c, k, st)?;
+    let (mut m29, mut restore, mut feed_word) = (None, None, None);
+    if matches!(k, SieCycle::C84 | SieCycle::C840 | SieCycle::C85 | SieCycle::C87 | SieCycle::C88) {
+        let t = if matches!(k, SieCycle::C84 | SieCycle::C840) {
+            super::cycles_tap::plan(c, k, st)?
+        } else {
+            super::cycles_tap::plan_boring(c, k, st)?
+        };
         g = t.g;
         m29 = t.m29;
         restore = t.restore.filter(|prev| t.f.as_ref().and_then(literal) != Some(*prev));
-        if let Some(f) = t.f {
-            words.push((b'F', f));
-        }
+        feed_word = t.f;
     }
     if k == SieCycle::C83 {
         if sdis != 0.0
@@ -230,6 +236,10 @@ fn plan(
             }
         }
     };
+    // F last, as a programmer writes the cycle block.
+    if let Some(f) = feed_word {
+        words.push((b'F', f));
+    }
     Ok(Fanuc { g, retract, words, approach, m29, restore })
 }
 

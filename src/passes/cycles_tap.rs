@@ -169,3 +169,70 @@ pub fn plan(c: &Call, k: SieCycle, st: &SieState) -> Result<TapPlan, Why> {
     };
     Ok(TapPlan { g, f: None, m29: None, restore: None })
 }
+
+/// The FANUC side of a Sinumerik boring call (CYCLE85, CYCLE87, CYCLE88): the G code, the
+/// F word (CYCLE85 carries its feed, FANUC's G85/G89 take the modal F) and the F to write
+/// back after G80.
+pub fn plan_boring(c: &Call, k: SieCycle, st: &SieState) -> Result<TapPlan, Why> {
+    let span = Span::default();
+    match k {
+        SieCycle::C85 => {
+            let g = if constant(c, k, "DTB").is_some_and(|d| d != 0.0) { 89.0 } else { 85.0 };
+            // FFR = RFF = `$P_F` (the feed in force, as the FANUC → Sinumerik translation
+            // writes G85): FANUC's modal F already is that feed.
+            if arg(c, k, "FFR").is_some_and(is_feed) && arg(c, k, "RFF").is_some_and(is_feed) {
+                return Ok(TapPlan { g, f: None, m29: None, restore: None });
+            }
+            let (Some(ffr), Some(rff)) = (constant(c, k, "FFR"), constant(c, k, "RFF")) else {
+                return Err((
+                    "NC392",
+                    "CYCLE85 with FFR or RFF known only at run time".into(),
+                    "write them as numbers",
+                ));
+            };
+            if ffr <= 0.0 || ffr != rff {
+                return Err((
+                    "NC391",
+                    "CYCLE85 with a retract feed RFF other than its infeed FFR".into(),
+                    "FANUC's G85 and G89 feed out at the feed they fed in at",
+                ));
+            }
+            let Some(feed) = st.feed else {
+                return Err((
+                    "NC392",
+                    "CYCLE85 where the feed before it is not known".into(),
+                    "FANUC's G85 F changes the modal feed, which is written back after G80: program F as a number before the cycle",
+                ));
+            };
+            // With a dwell at the bottom the motion is G89's.
+            Ok(TapPlan { g, f: Some(Expr::num(ffr, true, span)), m29: None, restore: feed.filter(|p| *p != ffr) })
+        }
+        _ => {
+            // CYCLE87/CYCLE88: spindle stop and program stop at the bottom (CYCLE88 after its
+            // dwell), as FANUC's G88. SDIR is the direction the spindle turns in.
+            let Some(sdir) = constant(c, k, "SDIR") else {
+                return Err((
+                    "NC392",
+                    format!("{} with SDIR known only at run time", k.name()),
+                    "write SDIR as 3 or 4",
+                ));
+            };
+            match st.spindle {
+                Some(s) if (s == 3 || s == 4) && (sdir == 0.0 || sdir == f64::from(s)) => {}
+                _ => {
+                    return Err((
+                        "NC391",
+                        format!("{} where the spindle is not known to turn in its direction SDIR", k.name()),
+                        "FANUC's G88 bores with the spindle as it turns: program M3 or M4 (the same as SDIR) before the cycle",
+                    ))
+                }
+            }
+            Ok(TapPlan { g: 88.0, f: None, m29: None, restore: None })
+        }
+    }
+}
+
+/// Whether `e` is `$P_F`, the programmed feed.
+fn is_feed(e: &Expr) -> bool {
+    matches!(&e.kind, ExprKind::Var(v) if matches!(&v.kind, VarKind::System { name, indices } if name.eq_ignore_ascii_case("P_F") && indices.is_empty()))
+}

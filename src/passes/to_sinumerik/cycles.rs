@@ -405,12 +405,18 @@ fn pending(ctx: &mut Ctx, out: &mut Vec<Stmt>, d: &Option<Data>, span: Span, aft
 /// The cycles without an exact Sinumerik counterpart, and why.
 fn unsupported_kind(g: u32) -> Option<(&'static str, &'static str)> {
     Some(match g {
-        760 | 870 => (
-            "fine or back boring G76/G87",
-            "the shift direction is a FANUC machine parameter (6240): write CYCLE86 by hand",
+        760 => (
+            "fine boring G76",
+            "G76 shifts by Q in a direction set by a FANUC machine parameter, CYCLE86 lifts off by RPA/RPO/RPAP given in the program: write CYCLE86 by hand with the machine's shift",
         ),
-        860 => ("boring G86", "every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87)"),
-        880 => ("boring G88", "CYCLE88 needs the spindle direction SDIR, which the translation does not know"),
+        870 => (
+            "back boring G87",
+            "G87 positions below the part and bores upward; no Sinumerik standard cycle does (CYCLE87 bores downward and stops the program)",
+        ),
+        860 => (
+            "boring G86",
+            "G86 stops the spindle and rapids out; every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87/CYCLE88) or orients it and lifts off (CYCLE86)",
+        ),
         _ => return None,
     })
 }
@@ -476,6 +482,25 @@ fn call_item(
         890 => {
             args.extend([none(), dtb()]);
             "CYCLE89"
+        }
+        880 => {
+            // G88: dwell, spindle stop, program stop; CYCLE88 the same, SDIR the spindle's.
+            match d.tap.spindle {
+                Some(sdir @ (3 | 4)) => {
+                    args.extend([none(), dtb(), v(int(i64::from(sdir), span))]);
+                    "CYCLE88"
+                }
+                _ => {
+                    refuse(
+                        ctx,
+                        span,
+                        "boring G88 where the spindle is not known to turn",
+                        "program M3 or M4 before the cycle: CYCLE88 needs its direction (SDIR)",
+                        out,
+                    );
+                    return None;
+                }
+            }
         }
         840 | 740 => {
             let t = tapping::Tap { g: d.g, f: d.f.as_ref(), state: &d.tap };
