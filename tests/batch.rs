@@ -396,7 +396,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
-    ("cycle-g73-chip-break.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g76-fine-bore.nc", "NC428"),
     ("cycle-g81-spot-drill.nc", "NC385"), // G43 H1: tool compensation is not compared
     ("cycle-g83-deep-hole.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
@@ -417,6 +416,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
+    ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999

@@ -1,17 +1,20 @@
 //! Sinumerik drilling cycles → FANUC (runs after `words`, which keeps `CYCLEnn` calls and
-//! `MCALL` for it): `MCALL CYCLE81/82/83/89(…)` and its positioning blocks become a FANUC
-//! cycle block (the first hole, with G98/G99, the cycle code, Z, R, Q, P), hole blocks and
-//! G80; a direct call becomes a cycle block without a position (it drills where the tool is)
-//! and G80. Exact only (the `cycle` events and the moves between the holes must agree):
+//! `MCALL` for it): `MCALL CYCLE81/82/83/84/840/85/87/88/89(…)` and its positioning blocks
+//! become a FANUC cycle block (the first hole, with G98/G99, the cycle code, Z, R, Q, P, F),
+//! hole blocks and G80; a direct call becomes a cycle block without a position (it drills
+//! where the tool is) and G80. Exact only (the `cycle` events and the moves between the holes
+//! must agree):
 //! - R = RFP + SDIS, Z = DP (or RFP − DPR); RTP = R → G99; RTP = the level the tool stands
 //!   at (its last Z in this block list) → G98, an RTP between that level and R first
 //!   positions Z there (`G0 Z<RTP>`, the approach the Sinumerik cycle makes);
 //! - DTB (s) → P (ms); CYCLE83 FDPR → Q with VARI 1 → G83, VARI 0 → G73 (SDIS 0, DAM 0);
+//! - tapping and boring (`cycles_tap.rs`): CYCLE84 → `M29 S` + G84/G74, CYCLE840 → G84/G74,
+//!   CYCLE85 → G85/G89 with F (the feed before written back after G80), CYCLE87/88 → G88;
 //! - the positioning blocks must be G0 moves of the plane axes: FANUC positions by rapid.
 //!
-//! Refused with a reason (NC390–NC396): other cycles, arguments the FANUC cycle has no
-//! place for, an RTP that is neither, positions that are not plain rapids, and a cycle open
-//! across a structure. Rules: docs/translation.md.
+//! Refused with a reason (NC390–NC396, tapping NC486–NC488): CYCLE86, arguments the FANUC
+//! cycle has no place for, an RTP that is neither, positions that are not plain rapids, and a
+//! cycle open across a structure. Rules: docs/translation.md.
 
 use super::*;
 use crate::dialect::sinumerik::cycles::{cycle_of, SieCycle};

@@ -1,16 +1,20 @@
-//! FANUC drilling cycles → Sinumerik: a G81/G82/G83/G73/G85/G89 block and the hole blocks
-//! after it become `MCALL CYCLEnn(…)`, a `G0` positioning block per hole and `MCALL`; a hole
-//! without a position (only Z or R) is a direct `CYCLEnn(…)` call. Exact only:
-//! - RFP = R, SDIS = 0 (so CYCLE83's infeeds count from R as G83's Q does), DP = Z;
+//! FANUC drilling cycles → Sinumerik: a G81/G82/G83/G73/G84/G74/G85/G88/G89 block and the
+//! hole blocks after it become `MCALL CYCLEnn(…)`, a `G0` positioning block per hole and
+//! `MCALL`; a hole without a position (only Z or R) is a direct `CYCLEnn(…)` call. Exact only:
+//! - RFP = R, SDIS = 0 (so CYCLE83's infeeds count from R as G83's Q does), DP = Z; under
+//!   G91 R counts from the initial level and Z from R, so RFP = `$P_EP[Z]` + R and
+//!   DP = RFP + Z (the positions stay incremental moves);
 //! - G99 → RTP = R; G98 → RTP = the Z end point at the MCALL (`$P_EP[Z]`, the initial level);
-//! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`.
+//! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`;
+//! - tapping (`tapping.rs`): `M29 S` + G84/G74 → CYCLE84, G84/G74 alone → CYCLE840;
+//!   G88 → CYCLE88 with SDIR the spindle's direction.
 //!
-//! Everything else in a cycle is refused (NC428) naming what differs: G84/G74 (the spindle
-//! state after tapping and rigid/floating), G76/G87 (the shift direction is a FANUC machine
-//! parameter), G86 (every Sinumerik boring cycle that stops the spindle also stops the
-//! program), G88 (CYCLE88 needs the spindle direction SDIR), incremental cycle data (G91),
-//! another plane, a cycle that spans structures or labels, G98 after a G99 hole, and
-//! repeats K/L that are not a constant. The rules are in docs/translation-fanuc-to-sinumerik.md.
+//! Everything else in a cycle is refused (NC428, tapping NC483–NC485) naming what differs:
+//! G76/G87 (the shift direction is a FANUC machine parameter; G87 bores upward), G86 (every
+//! Sinumerik boring cycle that stops the spindle also stops the program), new G91 R after a
+//! G99 hole, another plane, a cycle that spans structures or labels, G98 after a G99 hole,
+//! and repeats K/L that are not a constant. The rules are in
+//! docs/translation-fanuc-to-sinumerik.md.
 
 use super::*;
 
@@ -27,6 +31,9 @@ struct Data {
     f: Option<Expr>,
     /// The spindle, feed mode and M29 when the cycle began (tapping).
     tap: tapping::TapState,
+    /// R, Z given under G91: R from the initial level, Z from the R plane.
+    r_inc: bool,
+    z_inc: bool,
 }
 
 /// Lowers the drilling cycles of every block list of the program.
@@ -97,6 +104,8 @@ fn length(ctx: &Ctx, e: &Expr, lo: u32) -> Option<Expr> {
 const UNIT_UNKNOWN: &str =
     "a drilling-cycle value without a decimal point where the unit (G20/G21) depends on the path taken or on the caller";
 const UNIT_HINT: &str = "write the value with a decimal point";
+const INC_UNKNOWN: &str = "a drilling-cycle R or Z where G90/G91 depends on the path taken or on the caller";
+const INC_HINT: &str = "program G90 or G91 in the cycle block";
 
 fn word_expr(w: &Word) -> Option<&Expr> {
     match &w.value {
@@ -239,9 +248,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 );
             }
         }
-        if gs.contains(&910) {
-            refuse(ctx, span, "a drilling cycle with incremental data (G91)", "program the cycle in G90", &mut out);
-        }
+        // G90/G91 where the block's R and Z are read (the block's own G91 included).
+        let incremental = ctx.modal.incremental_at(span.lo);
         let mut changed = starting || new_cycle.is_some();
         let (mut pos, mut drill_word, mut other, mut count) = (Vec::new(), false, Vec::new(), None::<Expr>);
         let mut feed = false;
@@ -265,7 +273,6 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         changed = true;
                     }
                     Some(g) if cycle_g(g) => {}
-                    Some(900) => {}
                     _ => other.push(it.clone()),
                 },
                 "X" | "Y" => {
@@ -277,7 +284,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
                         continue;
                     };
+                    let Some(inc) = incremental else {
+                        refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
+                        continue;
+                    };
                     d.z = Some(v);
+                    d.z_inc = inc;
                     drill_word = true;
                     changed = true;
                 }
@@ -286,7 +298,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
                         continue;
                     };
+                    let Some(inc) = incremental else {
+                        refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
+                        continue;
+                    };
                     d.r = Some(v);
+                    d.r_inc = inc;
                     drill_word = true;
                     changed = true;
                 }
@@ -421,6 +438,15 @@ fn unsupported_kind(g: u32) -> Option<(&'static str, &'static str)> {
     })
 }
 
+/// `a + b`, written `a - x` for a negative number `b = -x`.
+fn plus(a: Expr, b: Expr) -> Expr {
+    match literal(&b) {
+        Some(0.0) => a,
+        Some(x) if x < 0.0 => bin(BinOp::Sub, a, num(-x, b.span)),
+        _ => bin(BinOp::Add, a, b),
+    }
+}
+
 /// `CYCLEnn(RTP, RFP, SDIS, DP, …)` for the data `d`.
 fn call_item(
     ctx: &mut Ctx,
@@ -438,7 +464,22 @@ fn call_item(
         refuse(ctx, span, "G98 after a G99 hole in one drilling cycle", "start the cycle again after G80", out);
         return None;
     }
-    let rtp = if d.g99 { r.clone() } else { var_expr(VarKind::Hash(5003), span) };
+    // Under G91 (FANUC canned cycle rules) R is the distance from the initial level, the
+    // drilling-axis position at the MCALL (`$P_EP[Z]`), and Z the distance from the R plane.
+    let initial = || var_expr(VarKind::Hash(5003), span);
+    if d.r_inc && after_g99 {
+        refuse(
+            ctx,
+            span,
+            "new incremental cycle data (G91) after a G99 hole: the initial level they count from is not where the tool stands",
+            "start the cycle again after G80, or program R and Z in G90",
+            out,
+        );
+        return None;
+    }
+    let r = if d.r_inc { plus(initial(), r) } else { r };
+    let z = if d.z_inc { plus(r.clone(), z) } else { z };
+    let rtp = if d.g99 { r.clone() } else { initial() };
     let v = |e: Expr| Arg::Value(e);
     let none = || Arg::Omitted(span);
     let zero = || Arg::Value(int(0, span));
