@@ -286,8 +286,9 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     // it is the rapid after the hole).
     let end = if retract == Retract::R { r } else { m.pos[n] };
     // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
-    let cx =
-        super::expand::Context { start: m.trace_pos(), axis: n, end, rpm: m.speed, spindle: m.spindle, halt: stop };
+    // CYCLE84 turns the spindle at its own speed SST.
+    let rpm = if c == SieCycle::C84 { a.get("SST") } else { m.speed };
+    let cx = super::expand::Context { start: m.trace_pos(), axis: n, end, rpm, spindle: m.spindle, halt: stop };
     super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push(e))?;
     m.pos[n] = rtp;
     m.applied[n] = off;
