@@ -174,3 +174,31 @@ fn a_planted_wrong_pitch_hand_or_holder_is_caught() {
     let (code, out) = check((&rigid, "mpf"), (&floating, "mpf"));
     assert_ne!(code, 0, "{out}");
 }
+
+#[test]
+fn m29_must_arm_the_tapping_cycle_right_after_it() {
+    let to_s = |body: &str| refused(&fanuc(body), "nc", "sinumerik");
+    assert!(to_s("M29 S400\nG0 X5.\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("a move between M29"));
+    assert!(to_s("M29 S400\n").contains("M29 without a tapping cycle"));
+    // G80 ends rigid tapping: the next G84 is floating (CYCLE840), which needs the spindle.
+    let t = translate(
+        &fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\nS400 M3\nG98 G84 X20. Y10. Z-16. R5.\nG80\nM5\n"),
+        "nc",
+        "sinumerik",
+    );
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE84(")), "{t:?}");
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE840(")), "{t:?}");
+}
+
+#[test]
+fn the_feed_before_a_rigid_cycle_is_followed_through_hole_blocks() {
+    // An F in a hole block of another cycle is the feed the rigid cycle's F must give back.
+    let t = translate(
+        &sinumerik(
+            "F100\nMCALL CYCLE81(50, 0, 2, -5)\nX10 Y10 F150\nMCALL\nMCALL CYCLE84(50, 0, 5, -16, , , 5, 8, , , 400)\nX20 Y10\nMCALL\nG1 X0\n",
+        ),
+        "mpf",
+        "fanuc",
+    );
+    assert!(t.iter().any(|l| l == "G80 F150."), "{t:?}");
+}

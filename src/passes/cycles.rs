@@ -305,6 +305,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         let off = b.items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff));
         if let Some((c, k)) = call {
             b.items.retain(|it| cycle_call(it).is_none());
+            observe_words(&mut tap, &b.items);
             let mcall = c.kind == CallKind::Mcall;
             if abs != Some(true) {
                 refuse(
@@ -425,6 +426,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             if let Some(s) = rigid {
                 out.push(m29_block(&s, span));
             }
+            observe_words(&mut tap, &b.items);
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
@@ -473,6 +475,19 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         }
     }
     out
+}
+
+/// The spindle, feed-mode and F words of a block, for the tapping and boring plans.
+fn observe_words(tap: &mut super::cycles_tap::SieState, items: &[Item]) {
+    for it in items {
+        if let ItemKind::Word(w) = &it.kind {
+            let v = match &w.value {
+                WordValue::Expr(e) => literal(e),
+                _ => None,
+            };
+            tap.observe(w.addr.as_str(), v);
+        }
+    }
 }
 
 /// `M29 S<sst>`: rigid tapping for the cycle block after it.

@@ -43,6 +43,8 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
     visit_blocks(&body, &mut |b| {
         let gs = g_codes(&b.items);
         any |= gs.iter().copied().any(cycle_g);
+        // M29 belongs to a tapping cycle: alone it is refused here, not written as an M code.
+        any |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M') && word_expr(w).and_then(literal) == Some(29.0)));
         planes |= gs.iter().any(|g| matches!(g, 180 | 190));
     });
     if !any {
@@ -154,7 +156,24 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             if let Some(m) = motion_g {
                 motion = Some(m);
             }
+            let armed = tap.rigid.is_some();
             tap.observe(&mut b);
+            let moves = b
+                .items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr.as_str(), "X" | "Y" | "Z")));
+            if armed && moves {
+                // FANUC's M29 arms the tapping cycle that follows it; a move between them is
+                // not a form the translation knows.
+                refuse(
+                    ctx,
+                    span,
+                    "a move between M29 and its tapping cycle",
+                    "program M29 S… right before G84/G74",
+                    &mut out,
+                );
+                tap.rigid = None;
+            }
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
@@ -231,6 +250,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
+        tap.observe_modes(&b.items);
         let mut d = active.clone().unwrap_or_default();
         let starting = active.is_none();
         if let Some(g) = new_cycle {
@@ -247,6 +267,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                     &mut out,
                 );
             }
+            // The cycle took the M29 (its data keeps it).
+            tap.rigid = None;
         }
         // G90/G91 where the block's R and Z are read (the block's own G91 included).
         let incremental = ctx.modal.incremental_at(span.lo);
@@ -405,6 +427,9 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     if active.is_some() && !top {
         let span = out.last().map_or(Span::default(), |s| s.span);
         refuse(ctx, span, "a drilling cycle still active at the end of a block list", "cancel it with G80", &mut out);
+    }
+    if let Some((_, at)) = tap.rigid {
+        refuse(ctx, at, "M29 without a tapping cycle after it", "program G84/G74 right after M29 S…", &mut out);
     }
     out
 }

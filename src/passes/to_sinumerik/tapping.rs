@@ -35,6 +35,22 @@ impl TapState {
         *self = TapState::default();
     }
 
+    /// M3/M4/M5 and G94/G95 of a block inside a cycle (M29 there is refused by the caller).
+    pub fn observe_modes(&mut self, items: &[Item]) {
+        for it in items {
+            if let ItemKind::Word(w) = &it.kind {
+                match (w.addr.as_str(), word_literal(w)) {
+                    ("M", Some(3.0)) => self.spindle = Some(3),
+                    ("M", Some(4.0)) => self.spindle = Some(4),
+                    ("M", Some(5.0)) => self.spindle = Some(5),
+                    ("G", Some(94.0)) => self.per_rev = Some(false),
+                    ("G", Some(95.0)) => self.per_rev = Some(true),
+                    _ => {}
+                }
+            }
+        }
+    }
+
     /// Reads a block outside a cycle: M3/M4/M5, G94/G95 and `M29` (taken out of the block:
     /// the Sinumerik tapping cycle is chosen by it, it has no M29). A call makes the spindle
     /// unknown.
