@@ -258,7 +258,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         }
         if starting {
             d.tap = tap.clone();
-            if let Some((_, at)) = tap.rigid.as_ref().filter(|_| !matches!(d.g, 840 | 740)).map(|r| (&r.0, r.1)) {
+            if let Some(&(_, at)) = tap.rigid.as_ref().filter(|_| !matches!(d.g, 840 | 740)) {
                 refuse(
                     ctx,
                     at,
