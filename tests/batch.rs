@@ -417,6 +417,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
+    ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
