@@ -202,3 +202,18 @@ fn the_feed_before_a_rigid_cycle_is_followed_through_hole_blocks() {
     );
     assert!(t.iter().any(|l| l == "G80 F150."), "{t:?}");
 }
+
+#[test]
+fn the_speed_block_before_cycle84_becomes_the_m29_block() {
+    // `S400` just before the cycle is the speed M29 S400 sets; the modal F already is the
+    // tapping feed, so the cycle block needs none (and a round trip does not grow).
+    let t = translate(
+        &sinumerik("F500\nS400\nMCALL CYCLE84(50, 0, 5, -16, , , 5, 8, , , 400)\nX10 Y10\nMCALL\n"),
+        "mpf",
+        "fanuc",
+    );
+    let k = t.iter().position(|l| l == "M29 S400").expect("M29");
+    assert_eq!(t[k - 1], "F500.", "{t:?}");
+    assert_eq!(t[k + 1], "G98 G84 X10. Y10. Z-16. R5.", "{t:?}");
+    assert_eq!(t.iter().filter(|l| l.contains("S400")).count(), 1, "{t:?}");
+}

@@ -347,6 +347,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 let mut items = vec![gw(f.retract, span), gw(f.g, span)];
                 items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
                 if let Some(s) = &f.m29 {
+                    take_speed_block(&mut out, s);
                     out.push(m29_block(s, span));
                 }
                 match meta {
@@ -424,6 +425,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 }
             }
             if let Some(s) = rigid {
+                take_speed_block(&mut out, &s);
                 out.push(m29_block(&s, span));
             }
             observe_words(&mut tap, &b.items);
@@ -486,6 +488,29 @@ fn observe_words(tap: &mut super::cycles_tap::SieState, items: &[Item]) {
                 _ => None,
             };
             tap.observe(w.addr.as_str(), v);
+        }
+    }
+}
+
+/// A Sinumerik `S<sst>` just before rigid tapping (only S and F blocks between) is the
+/// speed `M29 S<sst>` sets in FANUC: its S word goes (and the block, when nothing else is in
+/// it), so a translation translated back does not gain an S block each time.
+fn take_speed_block(out: &mut Vec<Stmt>, sst: &Expr) {
+    let Some(v) = literal(sst) else { return };
+    for k in (0..out.len()).rev() {
+        let StmtKind::Block(b) = &mut out[k].kind else { return };
+        let words_only =
+            b.items.iter().all(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'S') || w.addr.is(b'F')));
+        if !words_only || b.meta.label.is_some() {
+            return;
+        }
+        let at = b.items.iter().position(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'S') && matches!(&w.value, WordValue::Expr(e) if literal(e) == Some(v))));
+        if let Some(i) = at {
+            b.items.remove(i);
+            if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() {
+                out.remove(k);
+            }
+            return;
         }
     }
 }

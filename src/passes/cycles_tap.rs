@@ -136,6 +136,10 @@ pub fn plan(c: &Call, k: SieCycle, st: &SieState) -> Result<TapPlan, Why> {
             }
         };
         let g = if p < 0.0 { 74.0 } else { 84.0 };
+        // FANUC's modal F already is the tapping feed: no F word, nothing to give back.
+        if feed.is_some() && feed == literal(&f) {
+            return Ok(TapPlan { g, f: None, m29: Some(sst), restore: None });
+        }
         return Ok(TapPlan { g, f: Some(f), m29: Some(sst), restore: feed });
     }
     // CYCLE840.

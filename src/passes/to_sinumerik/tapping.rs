@@ -17,6 +17,9 @@ pub struct TapState {
     pub per_rev: Option<bool>,
     /// `M29 S…` seen: the S word's value (`None` inside: M29 without S) and where.
     pub rigid: Option<(Option<Expr>, Span)>,
+    /// The last F programmed, where it is a number (the lead of a rigid cycle without its
+    /// own F is F/S of it).
+    pub feed: Option<f64>,
 }
 
 impl TapState {
@@ -24,7 +27,7 @@ impl TapState {
     /// stopped and in G94 (power-on); elsewhere nothing is known.
     pub fn start(top: bool) -> TapState {
         if top {
-            TapState { spindle: Some(5), per_rev: Some(false), rigid: None }
+            TapState { spindle: Some(5), per_rev: Some(false), rigid: None, feed: None }
         } else {
             TapState::default()
         }
@@ -65,6 +68,7 @@ impl TapState {
                     ("M", Some(29.0)) => m29 = Some(it.span),
                     ("G", Some(94.0)) => self.per_rev = Some(false),
                     ("G", Some(95.0)) => self.per_rev = Some(true),
+                    ("F", f) => self.feed = f,
                     _ => {}
                 },
                 ItemKind::Call(_) => self.forget(),
@@ -137,7 +141,10 @@ pub fn call_args(t: &Tap, span: Span) -> Result<(&'static str, Vec<Arg>), Why> {
                     "program G94 or G95 before the cycle",
                 ));
             };
-            let f = t.f.cloned().unwrap_or_else(|| var_expr(VarKind::Hash(4109), span));
+            let f = t.f.cloned().unwrap_or_else(|| match t.state.feed {
+                Some(x) => num(x, span),
+                None => var_expr(VarKind::Hash(4109), span),
+            });
             // The thread lead: F itself per revolution, F/S per minute (FANUC 0i connection
             // manual, rigid tapping); its sign is the hand.
             let mut pit = if per_rev { f.clone() } else { ratio(&f, &s, span) };
