@@ -302,6 +302,7 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
                 && opt_eq(h1.peck, h2.peck)
                 && opt_eq(h1.dwell, h2.dwell)
                 && num_eq(h1.f, h2.f)
+                && h1.tapping == h2.tapping
         }
         (WorkOffset { n: n1 }, WorkOffset { n: n2 }) => n1 == n2,
         (Home(h1), Home(h2)) => h1.point == h2.point && h1.axes == h2.axes && axes_eq(&h1.via, &h2.via),

@@ -379,12 +379,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
     ("call-repeat-p.mpf", "NC303"),              // LAYER not in the library
     ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
-    ("cycle84-rigid-tap.mpf", "NC390"),          // no exact FANUC cycle
-    ("cycle840-floating-tap.mpf", "NC390"),      // no exact FANUC cycle
-    ("cycle85-ream.mpf", "NC390"),               // no exact FANUC cycle
     ("cycle86-fine-bore.mpf", "NC390"),          // no exact FANUC cycle
-    ("cycle87-bore-stop.mpf", "NC390"),          // no exact FANUC cycle
-    ("cycle88-bore-dwell-stop.mpf", "NC390"),    // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),           // DEF STRING / AXIS
     ("extern-and-call-by-name.mpf", "NC310"),    // DEF STRING: the program name of CALL
     ("frame-instructions.mpf", "NC316"),         // TRANS, ROT, …
@@ -401,15 +396,11 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
-    ("cycle-g73-chip-break.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("cycle-g74-left-tap.nc", "NC428"),   // a drilling cycle without an exact Sinumerik form
     ("cycle-g76-fine-bore.nc", "NC428"),
     ("cycle-g81-spot-drill.nc", "NC385"), // G43 H1: tool compensation is not compared
     ("cycle-g83-deep-hole.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
-    ("cycle-g84-rigid-tap.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
-    ("cycle-g88-bore-manual.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("functions-misc.nc", "NC369"),       // ADP
     ("g52-pockets-g28-tool-changes.nc", "NC385"), // G43 H: tool compensation is not compared
     ("g10-l50-param-write.nc", "NC355"),  // G10 L50
@@ -425,16 +416,17 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
 /// refuses: Siemens forms the FANUC → Sinumerik translation writes that have no way back.
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
-    ("CYCLE_G85_REAM.mpf", "NC390"), // CYCLE85: its FFR/RFF would change FANUC's modal F
-    ("GOTO_FORMS.mpf", "NC310"),     // the computed-GOTO helper STRING
-    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"), // the computed variables' SETAL(64115)
-    ("MACRO_A_H99_ALARM.mpf", "NC315"), // SETAL outside 65000..65999
+    ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
+    ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
+    ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
+    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
+    ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
-    ("P_G65_REPEAT_L.mpf", "NC303"), // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"), // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC303"), // a repeated call with (VAR) parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
+    ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
-    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"), // the computed-GOTO helper STRING
+    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
 ];
 
 /// FANUC translations of the Siemens library that do not come back, and why.

@@ -82,7 +82,7 @@ fn every_cycle_has_its_kind() {
     let c = cycles(
         "CYCLE81(50, 0, 2, -5)\nCYCLE82(50, 0, 2, -5, , 0.3)\nCYCLE83(50, 0, 0, -20, , , 4, 0, 0, 0, 1, 1)\n\
          CYCLE83(50, 0, 0, -20, , -3, , , , , , 0)\nCYCLE84(50, 0, 2, -16, , 0, 3, 8, , 0, 400)\n\
-         CYCLE84(50, 0, 2, -16, , , , , -1.5, , 200)\nCYCLE840(50, 0, 2, -16, , , 0, 3, 1)\n\
+         CYCLE84(50, 0, 2, -16, , , , , -1.5, , 200)\nCYCLE840(50, 0, 2, -16, , , 4, 3, 1)\n\
          CYCLE85(50, 0, 2, -22, , 0, 70, 70)\nCYCLE86(50, 0, 2, -25, , 0.1, 3, 0.2, 0, 0, 0)\n\
          CYCLE87(50, 0, 2, -12, , 3)\nCYCLE88(50, 0, 2, -12, , 1, 3)\nCYCLE89(50, 0, 2, -8, , 0.4)\n",
     );
@@ -92,10 +92,10 @@ fn every_cycle_has_its_kind() {
     assert_eq!(c[2], format!("cycle peck X=0 Y=0 r=0 bottom=-20 peck=4 dwell=- {end} f=100"));
     assert_eq!(c[3], format!("cycle chip_break X=0 Y=0 r=0 bottom=-20 peck=3 dwell=- {end} f=100"));
     // M8 (1.25 mm) at SST 400: 500 mm/min; PIT -1.5: left hand.
-    assert_eq!(c[4], format!("cycle tap X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=500"));
-    assert_eq!(c[5], format!("cycle tap_left X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=300"));
-    // CYCLE840 without encoder: the programmed feed, the hand from M3.
-    assert_eq!(c[6], format!("cycle tap X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=100"));
+    assert_eq!(c[4], format!("cycle tap X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=500 tapping=rigid"));
+    assert_eq!(c[5], format!("cycle tap_left X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=300 tapping=rigid"));
+    // CYCLE840 without encoder: the programmed feed, the hand from M3, SDR 4 out.
+    assert_eq!(c[6], format!("cycle tap X=0 Y=0 r=2 bottom=-16 peck=- dwell=- {end} f=100 tapping=floating"));
     assert_eq!(c[7], format!("cycle bore X=0 Y=0 r=2 bottom=-22 peck=- dwell=- {end} f=70"));
     assert_eq!(c[8], format!("cycle fine_bore X=0 Y=0 r=2 bottom=-25 peck=- dwell=0.1 {end} f=100"));
     assert_eq!(c[9], format!("cycle bore_stop X=0 Y=0 r=2 bottom=-12 peck=- dwell=- {end} f=100"));
@@ -142,6 +142,11 @@ const PAIRS: &[(&str, &str)] = &[
         "M29 S400\nG98 G84 X10. Y10. Z-16. R2. F500.\nG80\n",
         "S400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 3, 8, , , 400)\nF500\n",
     ),
+    (
+        "M29 S400\nG98 G74 X10. Y10. Z-16. R2. F500.\nG80\n",
+        "S400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 3, , -1.25, , 400)\nF500\n",
+    ),
+    ("G98 G84 X10. Y10. Z-16. R2. F500.\nG80\n", "G0 X10 Y10\nF500\nCYCLE840(50, 0, 2, -16, , , 4, 3, 1)\n"),
     ("G98 G85 X10. Y10. Z-22. R2. F70.\nG80\n", "G0 X10 Y10\nCYCLE85(50, 0, 2, -22, , 0, 70, 70)\nF70\n"),
     ("G98 G89 X10. Y10. Z-8. R2. P400\nG80\n", "G0 X10 Y10\nCYCLE89(50, 0, 2, -8, , 0.4)\n"),
     ("G98 G88 X10. Y10. Z-12. R2. P1000\nG80\n", "G0 X10 Y10\nCYCLE88(50, 0, 2, -12, , 1, 3)\n"),

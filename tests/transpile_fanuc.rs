@@ -313,13 +313,8 @@ const REFUSED: &[(&str, &str)] = &[
     ("call-l-number.mpf", "NC303"),
     ("call-repeat-p.mpf", "NC303"),
     ("call-with-args.mpf", "NC303"),
-    ("cycle-unknown-call.mpf", "NC393"),      // CYCLE81 with RTP above the tool
-    ("cycle84-rigid-tap.mpf", "NC390"),       // no exact FANUC cycle
-    ("cycle840-floating-tap.mpf", "NC390"),   // no exact FANUC cycle
-    ("cycle85-ream.mpf", "NC390"),            // no exact FANUC cycle
-    ("cycle86-fine-bore.mpf", "NC390"),       // no exact FANUC cycle
-    ("cycle87-bore-stop.mpf", "NC390"),       // no exact FANUC cycle
-    ("cycle88-bore-dwell-stop.mpf", "NC390"), // no exact FANUC cycle
+    ("cycle-unknown-call.mpf", "NC393"), // CYCLE81 with RTP above the tool
+    ("cycle86-fine-bore.mpf", "NC390"),  // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),
     ("extern-and-call-by-name.mpf", "NC303"),
     ("frame-instructions.mpf", "NC316"),

@@ -72,6 +72,27 @@ impl Retract {
     }
 }
 
+/// How a tapping cycle holds the tap (the trace's `tapping`, written for `tap` and
+/// `tap_left` only): the feed is the same, the machine is not (a rigid holder in a
+/// floating cycle, or the reverse, breaks the tap), so two traces must agree on it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Tapping {
+    /// Spindle and feed axis interpolated (FANUC `M29 S` + G84/G74, Siemens CYCLE84).
+    Rigid,
+    /// A compensating (floating) holder, the spindle reversed at the bottom (FANUC G84/G74
+    /// without M29, Siemens CYCLE840).
+    Floating,
+}
+
+impl Tapping {
+    pub fn name(self) -> &'static str {
+        match self {
+            Tapping::Rigid => "rigid",
+            Tapping::Floating => "floating",
+        }
+    }
+}
+
 /// One hole as the trace reports it. Positions are in the trace's frame (workpiece
 /// position plus the active work offset, like every `to`).
 #[derive(Clone, Debug, PartialEq)]
@@ -91,6 +112,8 @@ pub struct Hole {
     pub retract: Retract,
     /// Feed in mm/min (mm/rev under G95).
     pub f: f64,
+    /// Rigid or floating, for the tapping kinds (`None` for the others).
+    pub tapping: Option<Tapping>,
 }
 
 impl Hole {

@@ -1,17 +1,20 @@
 //! Sinumerik drilling cycles → FANUC (runs after `words`, which keeps `CYCLEnn` calls and
-//! `MCALL` for it): `MCALL CYCLE81/82/83/89(…)` and its positioning blocks become a FANUC
-//! cycle block (the first hole, with G98/G99, the cycle code, Z, R, Q, P), hole blocks and
-//! G80; a direct call becomes a cycle block without a position (it drills where the tool is)
-//! and G80. Exact only (the `cycle` events and the moves between the holes must agree):
+//! `MCALL` for it): `MCALL CYCLE81/82/83/84/840/85/87/88/89(…)` and its positioning blocks
+//! become a FANUC cycle block (the first hole, with G98/G99, the cycle code, Z, R, Q, P, F),
+//! hole blocks and G80; a direct call becomes a cycle block without a position (it drills
+//! where the tool is) and G80. Exact only (the `cycle` events and the moves between the holes
+//! must agree):
 //! - R = RFP + SDIS, Z = DP (or RFP − DPR); RTP = R → G99; RTP = the level the tool stands
 //!   at (its last Z in this block list) → G98, an RTP between that level and R first
 //!   positions Z there (`G0 Z<RTP>`, the approach the Sinumerik cycle makes);
 //! - DTB (s) → P (ms); CYCLE83 FDPR → Q with VARI 1 → G83, VARI 0 → G73 (SDIS 0, DAM 0);
+//! - tapping and boring (`cycles_tap.rs`): CYCLE84 → `M29 S` + G84/G74, CYCLE840 → G84/G74,
+//!   CYCLE85 → G85/G89 with F (the feed before written back after G80), CYCLE87/88 → G88;
 //! - the positioning blocks must be G0 moves of the plane axes: FANUC positions by rapid.
 //!
-//! Refused with a reason (NC390–NC396): other cycles, arguments the FANUC cycle has no
-//! place for, an RTP that is neither, positions that are not plain rapids, and a cycle open
-//! across a structure. Rules: docs/translation.md.
+//! Refused with a reason (NC390–NC396, tapping NC486–NC488): CYCLE86, arguments the FANUC
+//! cycle has no place for, an RTP that is neither, positions that are not plain rapids, and a
+//! cycle open across a structure. Rules: docs/translation.md.
 
 use super::*;
 use crate::dialect::sinumerik::cycles::{cycle_of, SieCycle};
@@ -38,6 +41,9 @@ struct Fanuc {
     words: Vec<(u8, Expr)>,
     /// `G0 Z<RTP>` first.
     approach: Option<f64>,
+    /// Tapping: `M29 S…` before the cycle block, the F written back after G80.
+    m29: Option<Expr>,
+    restore: Option<f64>,
 }
 
 fn word(letter: u8, e: Expr, span: Span) -> Item {
@@ -90,21 +96,29 @@ fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
 }
 
 /// Plans the FANUC cycle of a call made where the tool stands at `level` (its last Z).
-fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static str, String, &'static str)> {
+fn plan(
+    c: &Call,
+    k: SieCycle,
+    level: Option<f64>,
+    st: &super::cycles_tap::SieState,
+) -> Result<Fanuc, (&'static str, String, &'static str)> {
     let bad = |code, what: String, hint| Err((code, what, hint));
     let (g, allowed): (f64, &[&str]) = match k {
         SieCycle::C81 => (81.0, &[]),
         SieCycle::C82 => (82.0, &["DTB"]),
         SieCycle::C83 => (0.0, &["FDEP", "FDPR", "VARI", "DAM", "FRF"]),
         SieCycle::C89 => (89.0, &["DTB"]),
+        SieCycle::C84 => (84.0, &["DTB", "SDAC", "MPIT", "PIT", "SST"]),
+        SieCycle::C840 => (84.0, &["DTB", "SDR", "SDAC", "ENC", "MPIT", "PIT"]),
+        SieCycle::C85 => (85.0, &["DTB", "FFR", "RFF"]),
+        SieCycle::C87 => (88.0, &["SDIR"]),
+        SieCycle::C88 => (88.0, &["DTB", "SDIR"]),
         other => {
             let why = match other {
-                SieCycle::C84 | SieCycle::C840 => {
-                    "tapping needs M29 and the spindle state, which the translation does not know yet"
+                SieCycle::C86 => {
+                    "CYCLE86 lifts the tool off by RPA/RPO/RPAP after its oriented stop; FANUC's G76 shifts by Q in a direction set by a machine parameter, not in the program"
                 }
-                SieCycle::C85 => "its feeds FFR/RFF would change FANUC's modal F",
-                SieCycle::C86 => "the lift-off direction is a FANUC machine parameter (6240) for G76",
-                _ => "FANUC's G88 needs a spindle direction the translation does not know",
+                _ => "no FANUC cycle makes this motion",
             };
             return bad(
                 "NC390",
@@ -150,6 +164,18 @@ fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static st
     };
     let mut words = vec![(b'Z', z), (b'R', mm(r, Span::default()))];
     let mut g = g;
+    let (mut m29, mut restore, mut feed_word) = (None, None, None);
+    if matches!(k, SieCycle::C84 | SieCycle::C840 | SieCycle::C85 | SieCycle::C87 | SieCycle::C88) {
+        let t = if matches!(k, SieCycle::C84 | SieCycle::C840) {
+            super::cycles_tap::plan(c, k, st)?
+        } else {
+            super::cycles_tap::plan_boring(c, k, st)?
+        };
+        g = t.g;
+        m29 = t.m29;
+        restore = t.restore.filter(|prev| t.f.as_ref().and_then(literal) != Some(*prev));
+        feed_word = t.f;
+    }
     if k == SieCycle::C83 {
         if sdis != 0.0
             || constant(c, k, "DAM") != Some(0.0)
@@ -213,7 +239,11 @@ fn plan(c: &Call, k: SieCycle, level: Option<f64>) -> Result<Fanuc, (&'static st
             }
         }
     };
-    Ok(Fanuc { g, retract, words, approach })
+    // F last, as a programmer writes the cycle block.
+    if let Some(f) = feed_word {
+        words.push((b'F', f));
+    }
+    Ok(Fanuc { g, retract, words, approach, m29, restore })
 }
 
 /// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).
@@ -251,6 +281,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
     let mut carry: Option<BlockMeta> = None;
     // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
     let mut refused_mcall = false;
+    let mut tap = super::cycles_tap::SieState::start(top);
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
@@ -266,6 +297,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             }
             level = None;
             motion = None;
+            tap = super::cycles_tap::SieState::default();
             out.push(s);
             continue;
         };
@@ -273,6 +305,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         let off = b.items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff));
         if let Some((c, k)) = call {
             b.items.retain(|it| cycle_call(it).is_none());
+            observe_words(&mut tap, &b.items);
             let mcall = c.kind == CallKind::Mcall;
             if abs != Some(true) {
                 refuse(
@@ -285,7 +318,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 );
                 continue;
             }
-            let f = match plan(&c, k, level) {
+            let f = match plan(&c, k, level, &tap) {
                 Ok(f) => f,
                 Err((code, what, hint)) => {
                     refuse(ctx, code, span, &what, hint, &mut out);
@@ -313,11 +346,15 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 // A direct call drills where the tool is: the cycle block without a position.
                 let mut items = vec![gw(f.retract, span), gw(f.g, span)];
                 items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
+                if let Some(s) = &f.m29 {
+                    take_speed_block(&mut out, s);
+                    out.push(m29_block(s, span));
+                }
                 match meta {
                     Some(m) => out.push(meta_stmt(BlockMeta { span, ..m }, items)),
                     None => out.push(block_stmt(items, span)),
                 }
-                out.push(block_stmt(vec![gw(80.0, span)], span));
+                out.push(block_stmt(cancel_items(&f, span), span));
             }
             // Every hole ends at RTP.
             if !arg(&c, k, "RTP").is_some_and(is_tool_level) {
@@ -329,9 +366,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             b.items.retain(|it| !matches!(it.kind, ItemKind::ModalCallOff));
             match active.take() {
                 Some((f, first, _)) => {
-                    let _ = f;
                     if first {
-                        b.items.insert(0, gw(80.0, span));
+                        let mut items = cancel_items(&f, span);
+                        items.append(&mut b.items);
+                        b.items = items;
                     }
                 }
                 None if std::mem::take(&mut refused_mcall) => {}
@@ -341,15 +379,31 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             continue;
         }
         if let Some((f, first, _)) = &mut active {
+            // `M29 S…` right before the first cycle block.
+            let mut rigid = None;
             match positions(&b, motion) {
                 Err(why) => {
                     refuse(ctx, "NC396", span, why, "under MCALL, position the holes with G0 X… Y…", &mut out);
+                    continue;
+                }
+                _ if f.m29.is_some()
+                    && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'F'))) =>
+                {
+                    refuse(
+                        ctx,
+                        "NC487",
+                        span,
+                        "an F in a hole block of CYCLE84",
+                        "CYCLE84 taps at pitch × SST whatever F is, FANUC's G84 at F: program F after MCALL",
+                        &mut out,
+                    );
                     continue;
                 }
                 Ok(false) => {}
                 Ok(true) => {
                     b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
                     if !*first {
+                        rigid = f.m29.clone();
                         let mut items = vec![gw(f.retract, span), gw(f.g, span)];
                         items.append(&mut b.items);
                         items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
@@ -370,6 +424,11 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     }
                 }
             }
+            if let Some(s) = rigid {
+                take_speed_block(&mut out, &s);
+                out.push(m29_block(&s, span));
+            }
+            observe_words(&mut tap, &b.items);
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
@@ -379,6 +438,13 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     ("G", Some(v)) if [0.0, 1.0, 2.0, 3.0].contains(&v) => motion = Some(v),
                     ("G", Some(90.0)) => abs = Some(true),
                     ("G", Some(91.0)) => abs = Some(false),
+                    (l, _) if matches!(l, "M" | "G" | "F") => {
+                        let v = match &w.value {
+                            WordValue::Expr(e) => literal(e),
+                            _ => None,
+                        };
+                        tap.observe(l, v);
+                    }
                     ("Z", _) => {
                         level = match (&w.value, abs) {
                             (WordValue::Expr(e), Some(true)) => literal(e),
@@ -392,6 +458,9 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
             // An assignment, a call …: the tool's level may have changed.
             level = None;
+        }
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
+            tap = super::cycles_tap::SieState::default();
         }
         out.push(Stmt { kind: StmtKind::Block(b), span });
     }
@@ -408,6 +477,56 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         }
     }
     out
+}
+
+/// The spindle, feed-mode and F words of a block, for the tapping and boring plans.
+fn observe_words(tap: &mut super::cycles_tap::SieState, items: &[Item]) {
+    for it in items {
+        if let ItemKind::Word(w) = &it.kind {
+            let v = match &w.value {
+                WordValue::Expr(e) => literal(e),
+                _ => None,
+            };
+            tap.observe(w.addr.as_str(), v);
+        }
+    }
+}
+
+/// A Sinumerik `S<sst>` just before rigid tapping (only S and F blocks between) is the
+/// speed `M29 S<sst>` sets in FANUC: its S word goes (and the block, when nothing else is in
+/// it), so a translation translated back does not gain an S block each time.
+fn take_speed_block(out: &mut Vec<Stmt>, sst: &Expr) {
+    let Some(v) = literal(sst) else { return };
+    for k in (0..out.len()).rev() {
+        let StmtKind::Block(b) = &mut out[k].kind else { return };
+        let words_only =
+            b.items.iter().all(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'S') || w.addr.is(b'F')));
+        if !words_only || b.meta.label.is_some() {
+            return;
+        }
+        let at = b.items.iter().position(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'S') && matches!(&w.value, WordValue::Expr(e) if literal(e) == Some(v))));
+        if let Some(i) = at {
+            b.items.remove(i);
+            if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() {
+                out.remove(k);
+            }
+            return;
+        }
+    }
+}
+
+/// `M29 S<sst>`: rigid tapping for the cycle block after it.
+fn m29_block(sst: &Expr, span: Span) -> Stmt {
+    block_stmt(vec![word(b'M', Expr::num(29.0, false, span), span), word(b'S', sst.clone(), span)], span)
+}
+
+/// `G80`, and after rigid tapping the feed the program had before (G84's F is modal).
+fn cancel_items(f: &Fanuc, span: Span) -> Vec<Item> {
+    let mut items = vec![gw(80.0, span)];
+    if let Some(prev) = f.restore {
+        items.push(word(b'F', mm(prev, span), span));
+    }
+    items
 }
 
 /// Whether `e` is `$P_EP[Z]`, the programmed end point of the drilling axis.

@@ -11,6 +11,7 @@
 pub mod blocks;
 pub mod compensation;
 pub mod cycles;
+pub mod cycles_tap;
 pub mod exprs;
 pub mod frames;
 pub mod integral;

@@ -102,11 +102,16 @@ pub fn expand(h: &Hole, cx: &Context, rt: &Retracts) -> Result<Option<Vec<Event>
             } else {
                 (SpindleDir::Ccw, SpindleDir::Cw)
             };
+            // Rigid tapping may start with the spindle stopped (the cycle turns it itself)
+            // and leaves it as it found it.
+            if cx.spindle != inward {
+                w.out.push(Event::Spindle { rpm: cx.rpm, dir: inward });
+            }
             w.feed(h.bottom, h.f);
             w.dwell(h.dwell);
             w.out.push(Event::Spindle { rpm: cx.rpm, dir: out });
             w.feed(h.r, h.f);
-            w.out.push(Event::Spindle { rpm: cx.rpm, dir: inward });
+            w.out.push(Event::Spindle { rpm: cx.rpm, dir: cx.spindle });
             w.rapid(cx.end);
         }
         CycleKind::BoreStop => {

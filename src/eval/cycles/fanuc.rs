@@ -9,7 +9,7 @@ use crate::eval::fault::Fault;
 use crate::eval::machine::{clean, Machine, WordVal, WV};
 use crate::eval::trace::{axis_index, Event};
 use crate::eval::value::round_half_away;
-use crate::ir::cycle::{CycleKind, Hole, Retract};
+use crate::ir::cycle::{CycleKind, Hole, Retract, Tapping};
 use crate::span::Span;
 
 /// FANUC alarm PS0045 "ADDRESS Q NOT FOUND (G73/G83)": a peck cycle without Q, or Q0.
@@ -195,7 +195,13 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         };
         m.seen[n] = true;
         m.applied[n] = off;
-        let hole = Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f }.normalised();
+        let tapping = matches!(kind, CycleKind::Tap | CycleKind::TapLeft).then_some(if m.cycle.rigid {
+            Tapping::Rigid
+        } else {
+            Tapping::Floating
+        });
+        let hole =
+            Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f, tapping }.normalised();
         // G88 halts at the bottom for the operator to retract by hand.
         let halt = is_manual_retract(gi);
         let cx = super::expand::Context { start, axis: n, end: m.pos[n], rpm: m.speed, spindle: m.spindle, halt };

@@ -37,7 +37,7 @@ pub struct State {
     pub q: Option<f64>,
     /// P in seconds.
     pub p: Option<f64>,
-    /// `M29 S`: the next tapping cycles are rigid (not visible in the trace).
+    /// `M29 S`: the next tapping cycles are rigid (the event's `tapping`).
     pub rigid: bool,
     /// Sinumerik: the cycle `MCALL` made modal.
     pub mcall: Option<siemens::McallCycle>,
@@ -134,6 +134,10 @@ pub fn text_form(h: &Hole) -> String {
     s.push_str(h.retract.name());
     s.push_str(" f=");
     push_num(&mut s, h.f);
+    if let Some(t) = h.tapping {
+        s.push_str(" tapping=");
+        s.push_str(t.name());
+    }
     s
 }
 
@@ -167,5 +171,10 @@ pub fn json_fields(h: &Hole) -> String {
     s.push_str(h.retract.name());
     s.push_str("\",\"f\":");
     push_num(&mut s, h.f);
+    if let Some(t) = h.tapping {
+        s.push_str(",\"tapping\":\"");
+        s.push_str(t.name());
+        s.push('"');
+    }
     s
 }

@@ -10,7 +10,7 @@ use crate::eval::fault::Fault;
 use crate::eval::machine::{clean, Machine};
 use crate::eval::trace::{Event, SpindleDir};
 use crate::eval::value::Value;
-use crate::ir::cycle::{CycleKind, Hole, Retract};
+use crate::ir::cycle::{CycleKind, Hole, Retract, Tapping};
 use crate::ir::{Call, CallKind};
 use crate::span::Span;
 
@@ -276,13 +276,19 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
         out.push(Event::Move { rapid: true, to: m.trace_pos(), f: None });
     }
     let at = [(u, clean(m.pos[u])), (v, clean(m.pos[v]))];
-    let hole = Hole { kind, at, r: clean(r), bottom: clean(bottom), peck, dwell, retract, f }.normalised();
+    let tapping = match c {
+        SieCycle::C84 => Some(Tapping::Rigid),
+        SieCycle::C840 => Some(Tapping::Floating),
+        _ => None,
+    };
+    let hole = Hole { kind, at, r: clean(r), bottom: clean(bottom), peck, dwell, retract, f, tapping }.normalised();
     // The hole ends at the R plane or at the level the tool stands at now (an RTP beyond
     // it is the rapid after the hole).
     let end = if retract == Retract::R { r } else { m.pos[n] };
     // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
-    let cx =
-        super::expand::Context { start: m.trace_pos(), axis: n, end, rpm: m.speed, spindle: m.spindle, halt: stop };
+    // CYCLE84 turns the spindle at its own speed SST.
+    let rpm = if c == SieCycle::C84 { a.get("SST") } else { m.speed };
+    let cx = super::expand::Context { start: m.trace_pos(), axis: n, end, rpm, spindle: m.spindle, halt: stop };
     super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push(e))?;
     m.pos[n] = rtp;
     m.applied[n] = off;
@@ -332,12 +338,12 @@ fn tapping(m: &Machine, a: &Args, span: Span) -> Result<(CycleKind, Option<f64>)
             ));
         }
         let kind = if pitch < 0.0 { CycleKind::TapLeft } else { CycleKind::Tap };
-        return Ok((kind, Some(pitch.abs() * sst)));
+        return Ok((kind, Some(lead_feed(m, pitch, sst))));
     }
-    require_default(a, &["SDR", "_PTAB", "_TECHNO"], span)?;
-    let kind = match m.spindle {
-        SpindleDir::Cw => CycleKind::Tap,
-        SpindleDir::Ccw => CycleKind::TapLeft,
+    require_default(a, &["_PTAB", "_TECHNO"], span)?;
+    let (kind, inward) = match m.spindle {
+        SpindleDir::Cw => (CycleKind::Tap, 3.0),
+        SpindleDir::Ccw => (CycleKind::TapLeft, 4.0),
         SpindleDir::Stop => {
             return Err(refuse(
                 "NC427",
@@ -347,23 +353,75 @@ fn tapping(m: &Machine, a: &Args, span: Span) -> Result<(CycleKind, Option<f64>)
             ))
         }
     };
-    match a.get("ENC") {
-        1.0 => Ok((kind, None)),
-        0.0 => match pitch {
-            Some(p) => Ok((kind, Some(p.abs() * m.speed))),
-            None => {
-                Err(refuse("NC427", "CYCLE840 with an encoder needs the pitch (MPIT or PIT)".into(), span, "give PIT"))
-            }
-        },
-        x => Err(refuse(
-            "NC423",
-            format!(
-                "CYCLE840 with ENC={}: only 0 (encoder) and 1 (no encoder) are modelled",
-                crate::eval::value::fmt_num(x)
-            ),
+    let encoder = match a.get("ENC") {
+        0.0 => true,
+        1.0 => false,
+        x => {
+            return Err(refuse(
+                "NC423",
+                format!(
+                    "CYCLE840 with ENC={}: only 0 (encoder) and 1 (no encoder) are modelled",
+                    crate::eval::value::fmt_num(x)
+                ),
+                span,
+                "ENC 1 taps at the programmed feed",
+            ))
+        }
+    };
+    // PGZ: SDR 0 (the cycle reverses the spindle itself) exists only with an encoder;
+    // otherwise SDR names the retract direction and SDAC the direction for the next threads.
+    let sdr = a.get("SDR");
+    let reverse = 7.0 - inward;
+    if sdr == 0.0 && !encoder {
+        return Err(refuse(
+            "NC480",
+            "CYCLE840 without an encoder (ENC 1) and without a retract direction SDR".into(),
             span,
-            "ENC 1 taps at the programmed feed",
-        )),
+            &format!("give SDR {} (the reverse of the spindle's M{}): only tapping with an encoder reverses by itself (SDR 0)", reverse, inward),
+        ));
+    }
+    if sdr != 0.0 {
+        if sdr != reverse {
+            return Err(refuse(
+                "NC481",
+                format!(
+                    "CYCLE840 with SDR={} while the spindle turns M{}: the tap would not come out the way it went in",
+                    crate::eval::value::fmt_num(sdr),
+                    inward
+                ),
+                span,
+                &format!("SDR is the retract direction: {reverse} after M{inward}"),
+            ));
+        }
+        if a.get("SDAC") != inward {
+            return Err(refuse(
+                "NC482",
+                format!(
+                    "CYCLE840 with SDR={}: SDAC must be the spindle's direction, {inward}",
+                    crate::eval::value::fmt_num(sdr)
+                ),
+                span,
+                "SDAC is the direction the next threads start in (the one programmed before the first call)",
+            ));
+        }
+    }
+    // Without an encoder the pitch, where given, sets the feed from the speed (PGZ, SW 6.2).
+    match (pitch, encoder) {
+        (Some(p), _) => Ok((kind, Some(lead_feed(m, p, m.speed)))),
+        (None, false) => Ok((kind, None)),
+        (None, true) => {
+            Err(refuse("NC427", "CYCLE840 with an encoder needs the pitch (MPIT or PIT)".into(), span, "give PIT"))
+        }
+    }
+}
+
+/// The feed a thread lead makes at `rpm`: per minute the lead × the speed, per revolution
+/// (G95) the lead itself.
+fn lead_feed(m: &Machine, pitch: f64, rpm: f64) -> f64 {
+    if m.modal.per_rev {
+        pitch.abs()
+    } else {
+        pitch.abs() * rpm
     }
 }
 

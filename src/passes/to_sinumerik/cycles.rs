@@ -1,16 +1,20 @@
-//! FANUC drilling cycles → Sinumerik: a G81/G82/G83/G73/G85/G89 block and the hole blocks
-//! after it become `MCALL CYCLEnn(…)`, a `G0` positioning block per hole and `MCALL`; a hole
-//! without a position (only Z or R) is a direct `CYCLEnn(…)` call. Exact only:
-//! - RFP = R, SDIS = 0 (so CYCLE83's infeeds count from R as G83's Q does), DP = Z;
+//! FANUC drilling cycles → Sinumerik: a G81/G82/G83/G73/G84/G74/G85/G88/G89 block and the
+//! hole blocks after it become `MCALL CYCLEnn(…)`, a `G0` positioning block per hole and
+//! `MCALL`; a hole without a position (only Z or R) is a direct `CYCLEnn(…)` call. Exact only:
+//! - RFP = R, SDIS = 0 (so CYCLE83's infeeds count from R as G83's Q does), DP = Z; under
+//!   G91 R counts from the initial level and Z from R, so RFP = `$P_EP[Z]` + R and
+//!   DP = RFP + Z (the positions stay incremental moves);
 //! - G99 → RTP = R; G98 → RTP = the Z end point at the MCALL (`$P_EP[Z]`, the initial level);
-//! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`.
+//! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`;
+//! - tapping (`tapping.rs`): `M29 S` + G84/G74 → CYCLE84, G84/G74 alone → CYCLE840;
+//!   G88 → CYCLE88 with SDIR the spindle's direction.
 //!
-//! Everything else in a cycle is refused (NC428) naming what differs: G84/G74 (the spindle
-//! state after tapping and rigid/floating), G76/G87 (the shift direction is a FANUC machine
-//! parameter), G86 (every Sinumerik boring cycle that stops the spindle also stops the
-//! program), G88 (CYCLE88 needs the spindle direction SDIR), incremental cycle data (G91),
-//! another plane, a cycle that spans structures or labels, G98 after a G99 hole, and
-//! repeats K/L that are not a constant. The rules are in docs/translation-fanuc-to-sinumerik.md.
+//! Everything else in a cycle is refused (NC428, tapping NC483–NC485) naming what differs:
+//! G76/G87 (the shift direction is a FANUC machine parameter; G87 bores upward), G86 (every
+//! Sinumerik boring cycle that stops the spindle also stops the program), new G91 R after a
+//! G99 hole, another plane, a cycle that spans structures or labels, G98 after a G99 hole,
+//! and repeats K/L that are not a constant. The rules are in
+//! docs/translation-fanuc-to-sinumerik.md.
 
 use super::*;
 
@@ -23,6 +27,13 @@ struct Data {
     q: Option<Expr>,
     p: Option<Expr>,
     g99: bool,
+    /// The F word of the sequence (the pitch of rigid tapping is F/S).
+    f: Option<Expr>,
+    /// The spindle, feed mode and M29 when the cycle began (tapping).
+    tap: tapping::TapState,
+    /// R, Z given under G91: R from the initial level, Z from the R plane.
+    r_inc: bool,
+    z_inc: bool,
 }
 
 /// Lowers the drilling cycles of every block list of the program.
@@ -32,6 +43,8 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
     visit_blocks(&body, &mut |b| {
         let gs = g_codes(&b.items);
         any |= gs.iter().copied().any(cycle_g);
+        // M29 belongs to a tapping cycle: alone it is refused here, not written as an M code.
+        any |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M') && word_expr(w).and_then(literal) == Some(29.0)));
         planes |= gs.iter().any(|g| matches!(g, 180 | 190));
     });
     if !any {
@@ -93,6 +106,8 @@ fn length(ctx: &Ctx, e: &Expr, lo: u32) -> Option<Expr> {
 const UNIT_UNKNOWN: &str =
     "a drilling-cycle value without a decimal point where the unit (G20/G21) depends on the path taken or on the caller";
 const UNIT_HINT: &str = "write the value with a decimal point";
+const INC_UNKNOWN: &str = "a drilling-cycle R or Z where G90/G91 depends on the path taken or on the caller";
+const INC_HINT: &str = "program G90 or G91 in the cycle block";
 
 fn word_expr(w: &Word) -> Option<&Expr> {
     match &w.value {
@@ -116,6 +131,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     // blocks write G0, so another mode is written again after the cycle.
     let mut motion: Option<u32> = if top { Some(0) } else { None };
     let mut after_g99_hole = false;
+    let mut tap = tapping::TapState::start(top);
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
@@ -129,6 +145,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 );
             }
             motion = None;
+            tap.forget();
             out.push(s);
             continue;
         };
@@ -138,6 +155,24 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         if active.is_none() && new_cycle.is_none() {
             if let Some(m) = motion_g {
                 motion = Some(m);
+            }
+            let armed = tap.rigid.is_some();
+            tap.observe(&mut b);
+            let moves = b
+                .items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr.as_str(), "X" | "Y" | "Z")));
+            if armed && moves {
+                // FANUC's M29 arms the tapping cycle that follows it; a move between them is
+                // not a form the translation knows.
+                refuse(
+                    ctx,
+                    span,
+                    "a move between M29 and its tapping cycle",
+                    "program M29 S… right before G84/G74",
+                    &mut out,
+                );
+                tap.rigid = None;
             }
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
@@ -160,6 +195,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         // Cancel: G80 or a motion code ends the MCALL before the block's own words.
         let cancel = gs.contains(&800) || motion_g.is_some();
         if cancel && new_cycle.is_none() {
+            // G80 (or G00–G03) also ends rigid tapping mode.
+            tap.rigid = None;
             b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && word_expr(w).and_then(literal) == Some(80.0)));
             if active.take().is_some() {
                 if b.items.is_empty() {
@@ -213,14 +250,28 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
+        tap.observe_modes(&b.items);
         let mut d = active.clone().unwrap_or_default();
         let starting = active.is_none();
         if let Some(g) = new_cycle {
             d.g = g;
         }
-        if gs.contains(&910) {
-            refuse(ctx, span, "a drilling cycle with incremental data (G91)", "program the cycle in G90", &mut out);
+        if starting {
+            d.tap = tap.clone();
+            if let Some(&(_, at)) = tap.rigid.as_ref().filter(|_| !matches!(d.g, 840 | 740)) {
+                refuse(
+                    ctx,
+                    at,
+                    "M29 (rigid tapping) before a cycle that is not G84/G74",
+                    "program M29 S… right before the tapping cycle",
+                    &mut out,
+                );
+            }
+            // The cycle took the M29 (its data keeps it).
+            tap.rigid = None;
         }
+        // G90/G91 where the block's R and Z are read (the block's own G91 included).
+        let incremental = ctx.modal.incremental_at(span.lo);
         let mut changed = starting || new_cycle.is_some();
         let (mut pos, mut drill_word, mut other, mut count) = (Vec::new(), false, Vec::new(), None::<Expr>);
         let mut feed = false;
@@ -244,7 +295,6 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         changed = true;
                     }
                     Some(g) if cycle_g(g) => {}
-                    Some(900) => {}
                     _ => other.push(it.clone()),
                 },
                 "X" | "Y" => {
@@ -256,7 +306,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
                         continue;
                     };
+                    let Some(inc) = incremental else {
+                        refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
+                        continue;
+                    };
                     d.z = Some(v);
+                    d.z_inc = inc;
                     drill_word = true;
                     changed = true;
                 }
@@ -265,7 +320,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
                         continue;
                     };
+                    let Some(inc) = incremental else {
+                        refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
+                        continue;
+                    };
                     d.r = Some(v);
+                    d.r_inc = inc;
                     drill_word = true;
                     changed = true;
                 }
@@ -284,8 +344,16 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 "K" | "L" => count = Some(e.clone()),
                 "F" => {
                     feed = true;
+                    d.f = Some(e.clone());
                     other.push(it.clone());
                 }
+                "M" if literal(e) == Some(29.0) => refuse(
+                    ctx,
+                    it.span,
+                    "M29 in a drilling-cycle block",
+                    "program M29 S… in its own block before the tapping cycle",
+                    &mut out,
+                ),
                 _ => other.push(it.clone()),
             }
         }
@@ -296,7 +364,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             continue;
         }
         // G85 carries the feed in its arguments: a new F is a new MCALL.
-        changed |= feed && d.g == 850;
+        // So does rigid tapping (its pitch is F/S).
+        changed |= feed && matches!(d.g, 850 | 840 | 740);
         let repeats = match &count {
             None => 1,
             Some(e) => match literal(e) {
@@ -359,6 +428,9 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         let span = out.last().map_or(Span::default(), |s| s.span);
         refuse(ctx, span, "a drilling cycle still active at the end of a block list", "cancel it with G80", &mut out);
     }
+    if let Some((_, at)) = tap.rigid {
+        refuse(ctx, at, "M29 without a tapping cycle after it", "program G84/G74 right after M29 S…", &mut out);
+    }
     out
 }
 
@@ -375,15 +447,29 @@ fn pending(ctx: &mut Ctx, out: &mut Vec<Stmt>, d: &Option<Data>, span: Span, aft
 /// The cycles without an exact Sinumerik counterpart, and why.
 fn unsupported_kind(g: u32) -> Option<(&'static str, &'static str)> {
     Some(match g {
-        840 | 740 => (
-            "tapping G84/G74",
-            "CYCLE84/CYCLE840 need the spindle state after the cycle and rigid or floating tapping, which the translation does not know yet",
+        760 => (
+            "fine boring G76",
+            "G76 shifts by Q in a direction set by a FANUC machine parameter, CYCLE86 lifts off by RPA/RPO/RPAP given in the program: write CYCLE86 by hand with the machine's shift",
         ),
-        760 | 870 => ("fine or back boring G76/G87", "the shift direction is a FANUC machine parameter (6240): write CYCLE86 by hand"),
-        860 => ("boring G86", "every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87)"),
-        880 => ("boring G88", "CYCLE88 needs the spindle direction SDIR, which the translation does not know"),
+        870 => (
+            "back boring G87",
+            "G87 positions below the part and bores upward; no Sinumerik standard cycle does (CYCLE87 bores downward and stops the program)",
+        ),
+        860 => (
+            "boring G86",
+            "G86 stops the spindle and rapids out; every Sinumerik boring cycle that stops the spindle also stops the program (CYCLE87/CYCLE88) or orients it and lifts off (CYCLE86)",
+        ),
         _ => return None,
     })
+}
+
+/// `a + b`, written `a - x` for a negative number `b = -x`.
+fn plus(a: Expr, b: Expr) -> Expr {
+    match literal(&b) {
+        Some(0.0) => a,
+        Some(x) if x < 0.0 => bin(BinOp::Sub, a, num(-x, b.span)),
+        _ => bin(BinOp::Add, a, b),
+    }
 }
 
 /// `CYCLEnn(RTP, RFP, SDIS, DP, …)` for the data `d`.
@@ -403,7 +489,22 @@ fn call_item(
         refuse(ctx, span, "G98 after a G99 hole in one drilling cycle", "start the cycle again after G80", out);
         return None;
     }
-    let rtp = if d.g99 { r.clone() } else { var_expr(VarKind::Hash(5003), span) };
+    // Under G91 (FANUC canned cycle rules) R is the distance from the initial level, the
+    // drilling-axis position at the MCALL (`$P_EP[Z]`), and Z the distance from the R plane.
+    let initial = || var_expr(VarKind::Hash(5003), span);
+    if d.r_inc && after_g99 {
+        refuse(
+            ctx,
+            span,
+            "new incremental cycle data (G91) after a G99 hole: the initial level they count from is not where the tool stands",
+            "start the cycle again after G80, or program R and Z in G90",
+            out,
+        );
+        return None;
+    }
+    let r = if d.r_inc { plus(initial(), r) } else { r };
+    let z = if d.z_inc { plus(r.clone(), z) } else { z };
+    let rtp = if d.g99 { r.clone() } else { initial() };
     let v = |e: Expr| Arg::Value(e);
     let none = || Arg::Omitted(span);
     let zero = || Arg::Value(int(0, span));
@@ -447,6 +548,39 @@ fn call_item(
         890 => {
             args.extend([none(), dtb()]);
             "CYCLE89"
+        }
+        880 => {
+            // G88: dwell, spindle stop, program stop; CYCLE88 the same, SDIR the spindle's.
+            match d.tap.spindle {
+                Some(sdir @ (3 | 4)) => {
+                    args.extend([none(), dtb(), v(int(i64::from(sdir), span))]);
+                    "CYCLE88"
+                }
+                _ => {
+                    refuse(
+                        ctx,
+                        span,
+                        "boring G88 where the spindle is not known to turn",
+                        "program M3 or M4 before the cycle: CYCLE88 needs its direction (SDIR)",
+                        out,
+                    );
+                    return None;
+                }
+            }
+        }
+        840 | 740 => {
+            let t = tapping::Tap { g: d.g, f: d.f.as_ref(), state: &d.tap };
+            match tapping::call_args(&t, span) {
+                Ok((name, rest)) => {
+                    args.extend([none(), dtb()]);
+                    args.extend(rest);
+                    name
+                }
+                Err((code, what, hint)) => {
+                    out.extend(ctx.refuse(code, span, &format!("{what}: not translated to Sinumerik"), &what, hint));
+                    return None;
+                }
+            }
         }
         _ => return None,
     };

@@ -29,6 +29,7 @@ pub mod haas_if;
 pub mod indirect;
 pub mod modal;
 pub mod structures;
+pub mod tapping;
 pub mod vacancy;
 pub mod varmap;
 pub mod words;

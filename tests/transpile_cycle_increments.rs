@@ -1,0 +1,75 @@
+//! FANUC drilling cycles with incremental data (G91) → Sinumerik: R counts from the initial
+//! level and Z from the R plane (FANUC), the Sinumerik cycle takes them absolute, so RFP and
+//! DP become expressions of the level the tool stands at the MCALL (`$P_EP[Z]`); the hole
+//! positions stay incremental moves. Refused where the initial level is no longer where the
+//! tool stands (new G91 R after a G99 hole). Every translation is verified and a planted
+//! wrong depth or R plane is caught.
+
+mod eval_support;
+
+use eval_support::root;
+use std::process::Command;
+
+static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+fn scratch(ext: &str, text: &str) -> String {
+    let k = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = root().join("target/eval-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let p = dir.join(format!("tinc-{k}.{ext}"));
+    std::fs::write(&p, text).expect("write");
+    p.to_string_lossy().to_string()
+}
+
+fn nctrans(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn fanuc(body: &str) -> String {
+    format!("%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nS1000 M3\nG0 Z50.\n{body}M30\n%\n")
+}
+
+/// The verified translation: (source path, output path, output text).
+fn translate(body: &str) -> (String, String, String) {
+    let src = scratch("nc", &fanuc(body));
+    let out = scratch("mpf", "");
+    let (code, _, err) = nctrans(&[&src, "--to", "sinumerik", "-o", &out, "--force"]);
+    assert_eq!(code, 0, "{body}\n{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    let text = std::fs::read_to_string(&out).expect("translation");
+    (src, out, text)
+}
+
+#[test]
+fn g91_r_and_z_become_absolute_parameters_from_the_initial_level() {
+    let (src, _, t) = translate("G91 G98 G81 X10. Y10. Z-7. R-48. F100.\nX15. K3\nG90 G80\n");
+    assert!(t.contains("MCALL CYCLE81($P_EP[Z],$P_EP[Z]-48,0,$P_EP[Z]-48-7)\n"), "{t}");
+    // The holes stay incremental moves, a repeat moves again.
+    assert!(t.contains("G0 G91 X10 Y10\nG0 X15\nG0 X15\nG0 X15\nMCALL\nG90\n"), "{t}");
+    for (what, from, to) in [("depth", "-48-7)", "-48-8)"), ("R plane", "$P_EP[Z]-48,0", "$P_EP[Z]-47,0")] {
+        let bad = scratch("mpf", &t.replacen(from, to, 1));
+        assert_ne!(nctrans(&["check", &src, &bad]).0, 0, "a wrong {what} was not caught");
+    }
+    // G99: the retraction plane is the R plane.
+    let (_, _, t) = translate("G91 G99 G83 X10. Y10. Z-20. R-49. Q4. F100.\nX10.\nG90 G80\n");
+    assert!(t.contains("MCALL CYCLE83($P_EP[Z]-49,$P_EP[Z]-49,0,$P_EP[Z]-49-20,,,4,0,0,0,1,1)\n"), "{t}");
+}
+
+#[test]
+fn an_incremental_depth_after_an_absolute_r_counts_from_r() {
+    let (_, _, t) = translate("G99 G81 X10. Y10. Z-5. R2. F100.\nG91 X10. Z-3.\nG90 G80\n");
+    assert!(t.contains("MCALL CYCLE81(2,2,0,2-3)\n"), "{t}");
+}
+
+#[test]
+fn new_incremental_r_after_a_g99_hole_is_refused() {
+    let src = scratch("nc", &fanuc("G91 G99 G81 X10. Y10. Z-7. R-48. F100.\nX10. R-45.\nG90 G80\n"));
+    let (code, _, err) = nctrans(&[&src, "--to", "sinumerik"]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("NC428") && err.contains("after a G99 hole"), "{err}");
+}

@@ -1,0 +1,219 @@
+//! Tapping both ways: FANUC rigid tapping (`M29 S` + G84/G74) ↔ Sinumerik CYCLE84, floating
+//! G84/G74 ↔ CYCLE840 without an encoder; the hand from the G code / the pitch's sign / the
+//! spindle direction as each control defines it; pitch = F/S per minute, F per revolution.
+//! Every translation is verified by running both; a planted wrong pitch, hand or rigid /
+//! floating choice is caught; CYCLE840's direction parameters are checked as the manual says.
+
+mod eval_support;
+
+use eval_support::*;
+use std::process::Command;
+
+static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+fn scratch(ext: &str, text: &str) -> String {
+    let k = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = root().join("target/eval-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let p = dir.join(format!("ttap-{k}.{ext}"));
+    std::fs::write(&p, text).expect("write");
+    p.to_string_lossy().to_string()
+}
+
+fn nctrans(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Spindle stopped after the tool change (rigid tapping needs it so).
+const F_HEAD: &str = "%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG0 Z50.\n";
+const S_HEAD: &str = "G17 G90 G94 G54\nG0 X0 Y0\nT1 M6\nG0 Z50\n";
+
+fn fanuc(body: &str) -> String {
+    format!("{F_HEAD}{body}M30\n%\n")
+}
+
+fn sinumerik(body: &str) -> String {
+    format!("{S_HEAD}{body}M30\n")
+}
+
+/// Translates and asserts it verified; the output's lines.
+fn translate(src: &str, ext: &str, to: &str) -> Vec<String> {
+    let p = scratch(ext, src);
+    let (code, out, err) = nctrans(&[&p, "--to", to]);
+    assert_eq!(code, 0, "{src}\n{out}\n{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    out.lines().map(str::to_string).collect()
+}
+
+fn refused(src: &str, ext: &str, to: &str) -> String {
+    let p = scratch(ext, src);
+    let (code, _, err) = nctrans(&[&p, "--to", to]);
+    assert_ne!(code, 0, "{src}\n{err}");
+    err
+}
+
+fn check(a: (&str, &str), b: (&str, &str)) -> (i32, String) {
+    let (pa, pb) = (scratch(a.1, a.0), scratch(b.1, b.0));
+    let (code, out, _) = nctrans(&["check", &pa, &pb]);
+    (code, out)
+}
+
+#[test]
+fn rigid_g84_and_g74_become_cycle84_with_the_pitch_and_speed() {
+    let t = translate(&fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nX20.\nG80\n"), "nc", "sinumerik");
+    assert!(t.iter().any(|l| l == "MCALL CYCLE84($P_EP[Z],5,0,-16,,0,5,,1.25,,400)"), "{t:?}");
+    assert!(t.iter().any(|l| l.contains("S400")), "the tapping speed stays the modal S: {t:?}");
+    assert!(!t.iter().any(|l| l.contains("M29")), "{t:?}");
+    // G74: the pitch is negative (left hand); a lead that is not a round quotient stays F/S.
+    let t = translate(&fanuc("M29 S300\nG99 G74 X10. Y10. Z-16. R5. F500.\nG80\n"), "nc", "sinumerik");
+    assert!(t.iter().any(|l| l == "MCALL CYCLE84(5,5,0,-16,,0,5,,-(500/300),,300)"), "{t:?}");
+    // Per revolution the lead is F itself.
+    let t = translate(&fanuc("G95\nM29 S400\nG98 G84 X10. Y10. Z-16. R5. F1.25\nG80\nG94\n"), "nc", "sinumerik");
+    assert!(t.iter().any(|l| l == "MCALL CYCLE84($P_EP[Z],5,0,-16,,0,5,,1.25,,400)"), "{t:?}");
+}
+
+#[test]
+fn floating_g84_and_g74_become_cycle840_without_an_encoder() {
+    let t = translate(&fanuc("S300 M3\nG98 G84 X10. Y10. Z-16. R5. P200 F450.\nG80\n"), "nc", "sinumerik");
+    assert!(t.iter().any(|l| l == "MCALL CYCLE840($P_EP[Z],5,0,-16,,0.2,4,3,1)"), "{t:?}");
+    let t = translate(&fanuc("S300 M4\nG99 G74 X10. Y10. Z-16. R5. F450.\nG80\n"), "nc", "sinumerik");
+    assert!(t.iter().any(|l| l == "MCALL CYCLE840(5,5,0,-16,,0,3,4,1)"), "{t:?}");
+}
+
+#[test]
+fn fanuc_tapping_the_sinumerik_side_cannot_match_is_refused() {
+    let to_s = |body: &str| refused(&fanuc(body), "nc", "sinumerik");
+    assert!(to_s("S300 M4\nG84 X10. Y10. Z-16. R5. F450.\nG80\n").contains("NC484"));
+    assert!(to_s("G84 X10. Y10. Z-16. R5. F450.\nG80\n").contains("spindle stopped"));
+    assert!(to_s("S400 M3\nM29 S400\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("NC484"));
+    assert!(to_s("M29\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("NC483"));
+    assert!(to_s("M29 S400\nG81 X10. Y10. Z-16. R5. F500.\nG80\n").contains("M29"));
+    assert!(to_s("G84 X10. Y10. Z-16. R5. F500. M29\nG80\n").contains("M29 in a drilling-cycle block"));
+}
+
+#[test]
+fn cycle84_and_cycle840_become_fanuc_tapping() {
+    let t =
+        translate(&sinumerik("MCALL CYCLE84(50, 0, 5, -16, , , 5, 8, , , 400)\nX10 Y10\nX20\nMCALL\n"), "mpf", "fanuc");
+    let k = t.iter().position(|l| l == "M29 S400").expect("M29 before the cycle");
+    assert_eq!(t[k + 1], "G98 G84 X10. Y10. Z-16. R5. F500.");
+    let t = translate(
+        &sinumerik("F200\nMCALL CYCLE84(5, 0, 5, -16, , , 5, -10, , , 200)\nX10 Y10\nMCALL\nG1 X0\n"),
+        "mpf",
+        "fanuc",
+    );
+    assert!(t.iter().any(|l| l == "G99 G74 X10. Y10. Z-16. R5. F300."), "{t:?}");
+    // G84's F is modal in FANUC: the feed before the cycle is written again.
+    assert!(t.iter().any(|l| l == "G80 F200."), "{t:?}");
+    let t = translate(
+        &sinumerik("S300 M3\nF450\nMCALL CYCLE840(50, 0, 5, -16, , 0.2, 4, 3, 1)\nX10 Y10\nMCALL\n"),
+        "mpf",
+        "fanuc",
+    );
+    assert!(t.iter().any(|l| l == "G98 G84 X10. Y10. Z-16. R5. P200"), "{t:?}");
+    let t = translate(&sinumerik("S300 M4\nF450\nCYCLE840(50, 0, 5, -16, , , 3, 4, 1)\n"), "mpf", "fanuc");
+    assert!(t.iter().any(|l| l == "G98 G74 Z-16. R5."), "{t:?}");
+}
+
+#[test]
+fn sinumerik_tapping_fanuc_cannot_say_is_refused() {
+    let to_f = |body: &str| refused(&sinumerik(body), "mpf", "fanuc");
+    // With an encoder the feed follows the spindle (G33): no FANUC cycle does that.
+    assert!(to_f("S300 M3\nCYCLE840(50, 0, 5, -16, , , 0, 3, 0, , 1.5)\n").contains("NC488"));
+    // Without an encoder but with a pitch the feed is pitch × S, not FANUC's modal F.
+    assert!(to_f("S300 M3\nF450\nCYCLE840(50, 0, 5, -16, , , 4, 3, 1, , 1.5)\n").contains("NC488"));
+    // Rigid tapping with the spindle turning.
+    assert!(to_f("S300 M3\nCYCLE84(50, 0, 5, -16, , , 3, 8, , , 400)\n").contains("NC487"));
+    // An oriented start (POSS) and a retract speed (SST1) have no FANUC word.
+    assert!(to_f("CYCLE84(50, 0, 5, -16, , , 5, 8, , 90, 400)\n").contains("NC391"));
+}
+
+#[test]
+fn cycle840_direction_parameters_are_checked_as_the_manual_says() {
+    let codes = |body: &str| {
+        let r = run_text("ttap-eval.mpf", &sinumerik(body), &[]);
+        r.outcome.diags.iter().filter(|d| d.is_error()).map(|d| d.code.to_string()).collect::<Vec<_>>()
+    };
+    // Without an encoder the cycle cannot reverse by itself: SDR is needed.
+    assert_eq!(codes("S300 M3\nF450\nCYCLE840(50, 0, 5, -16, , , 0, 3, 1)\n"), ["NC480"]);
+    // SDR the same as the spindle's direction: the tap would not come out.
+    assert_eq!(codes("S300 M3\nF450\nCYCLE840(50, 0, 5, -16, , , 3, 3, 1)\n"), ["NC481"]);
+    assert_eq!(codes("S300 M3\nF450\nCYCLE840(50, 0, 5, -16, , , 4, 4, 1)\n"), ["NC482"]);
+    // Without an encoder a given pitch sets the feed from the speed (pitch × S).
+    let r = run_text("ttap-eval2.mpf", &sinumerik("S300 M3\nF450\nCYCLE840(50, 0, 5, -16, , , 4, 3, 1, , 1.5)\n"), &[]);
+    let t = bare_lines(&r);
+    assert!(t.iter().any(|l| l.starts_with("cycle tap ") && l.ends_with("f=450 tapping=floating")), "{t:?}");
+}
+
+#[test]
+fn a_planted_wrong_pitch_hand_or_holder_is_caught() {
+    let f = fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\n");
+    let good = sinumerik("MCALL CYCLE84(50, 0, 5, -16, , , 5, , 1.25, , 400)\nX10 Y10\nMCALL\n");
+    assert_eq!(check((&f, "nc"), (&good, "mpf")).0, 0);
+    for (what, bad) in [
+        ("pitch", "MCALL CYCLE84(50, 0, 5, -16, , , 5, , 1.5, , 400)\nX10 Y10\nMCALL\n"),
+        ("hand", "MCALL CYCLE84(50, 0, 5, -16, , , 5, , -1.25, , 400)\nX10 Y10\nMCALL\n"),
+    ] {
+        let (code, out) = check((&f, "nc"), (&sinumerik(bad), "mpf"));
+        assert_ne!(code, 0, "a wrong {what} was not caught:\n{out}");
+    }
+    // The same feed, the same spindle, another holder: rigid against floating.
+    let rigid = fanuc("S400 M3\nM29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\n");
+    let floating = fanuc("S400 M3\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\n");
+    let (code, out) = check((&rigid, "nc"), (&floating, "nc"));
+    assert_ne!(code, 0, "{out}");
+    assert!(out.contains("tapping=rigid") && out.contains("tapping=floating"), "{out}");
+    let rigid = sinumerik("S400 M3\nF500\nMCALL CYCLE84(50, 0, 5, -16, , , 3, 8, , , 400)\nX10 Y10\nMCALL\n");
+    let floating = sinumerik("S400 M3\nF500\nMCALL CYCLE840(50, 0, 5, -16, , , 4, 3, 1)\nX10 Y10\nMCALL\n");
+    assert_eq!(check((&floating, "mpf"), (&floating, "mpf")).0, 0);
+    let (code, out) = check((&rigid, "mpf"), (&floating, "mpf"));
+    assert_ne!(code, 0, "{out}");
+}
+
+#[test]
+fn m29_must_arm_the_tapping_cycle_right_after_it() {
+    let to_s = |body: &str| refused(&fanuc(body), "nc", "sinumerik");
+    assert!(to_s("M29 S400\nG0 X5.\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("a move between M29"));
+    assert!(to_s("M29 S400\n").contains("M29 without a tapping cycle"));
+    // G80 ends rigid tapping: the next G84 is floating (CYCLE840), which needs the spindle.
+    let t = translate(
+        &fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\nS400 M3\nG98 G84 X20. Y10. Z-16. R5.\nG80\nM5\n"),
+        "nc",
+        "sinumerik",
+    );
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE84(")), "{t:?}");
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE840(")), "{t:?}");
+}
+
+#[test]
+fn the_feed_before_a_rigid_cycle_is_followed_through_hole_blocks() {
+    // An F in a hole block of another cycle is the feed the rigid cycle's F must give back.
+    let t = translate(
+        &sinumerik(
+            "F100\nMCALL CYCLE81(50, 0, 2, -5)\nX10 Y10 F150\nMCALL\nMCALL CYCLE84(50, 0, 5, -16, , , 5, 8, , , 400)\nX20 Y10\nMCALL\nG1 X0\n",
+        ),
+        "mpf",
+        "fanuc",
+    );
+    assert!(t.iter().any(|l| l == "G80 F150."), "{t:?}");
+}
+
+#[test]
+fn the_speed_block_before_cycle84_becomes_the_m29_block() {
+    // `S400` just before the cycle is the speed M29 S400 sets; the modal F already is the
+    // tapping feed, so the cycle block needs none (and a round trip does not grow).
+    let t = translate(
+        &sinumerik("F500\nS400\nMCALL CYCLE84(50, 0, 5, -16, , , 5, 8, , , 400)\nX10 Y10\nMCALL\n"),
+        "mpf",
+        "fanuc",
+    );
+    let k = t.iter().position(|l| l == "M29 S400").expect("M29");
+    assert_eq!(t[k - 1], "F500.", "{t:?}");
+    assert_eq!(t[k + 1], "G98 G84 X10. Y10. Z-16. R5.", "{t:?}");
+    assert_eq!(t.iter().filter(|l| l.contains("S400")).count(), 1, "{t:?}");
+}
