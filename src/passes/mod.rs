@@ -9,6 +9,8 @@
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
 pub mod blocks;
+pub mod comp_flow;
+pub mod comp_to_fanuc;
 pub mod compensation;
 pub mod cycles;
 pub mod exprs;
@@ -78,6 +80,8 @@ pub struct Ctx {
     pub tools: BTreeMap<String, u32>,
     /// Tool names actually used, with their numbers (for the symbol map).
     pub tools_used: BTreeMap<String, u32>,
+    /// The FANUC registers of each cutting edge (`comp_flow::OffsetMap`).
+    pub offsets: comp_flow::OffsetMap,
     /// Known callees by upper-case name.
     pub callees: BTreeMap<String, Callee>,
     pub diags: Vec<Diagnostic>,
@@ -99,6 +103,7 @@ impl Ctx {
             compound_conditions: false,
             tools: BTreeMap::new(),
             tools_used: BTreeMap::new(),
+            offsets: comp_flow::OffsetMap::default(),
             callees: BTreeMap::new(),
             diags: Vec::new(),
             units_inexact: false,
@@ -172,6 +177,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     blocks::run(ctx, prog, info);
     words::run(ctx, prog, info);
+    comp_to_fanuc::run(ctx, prog, info);
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);
