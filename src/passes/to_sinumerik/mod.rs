@@ -13,6 +13,7 @@
 //! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
 //! 8. `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
+//!    Then `comp::lower` — G43 H / G49, G41 D / G40 → cutting edges `D1` / `D0`, G41/G40.
 //! 9. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
 //! 10. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
@@ -21,6 +22,7 @@
 //! back at the FANUC text.
 
 pub mod calls;
+pub mod comp;
 pub mod cycles;
 pub mod exprs;
 pub mod frames;
@@ -126,6 +128,8 @@ pub struct Options {
     /// Program numbers found after the closing `%` of a file read (not read by the
     /// control): a call of one is told it is there but after the `%` (NC353).
     pub after_end: std::collections::BTreeSet<u32>,
+    /// The FANUC registers of each cutting edge (`passes::comp_flow::OffsetMap`).
+    pub offsets: crate::passes::comp_flow::OffsetMap,
 }
 
 impl Default for Options {
@@ -140,6 +144,7 @@ impl Default for Options {
             flag_places: BTreeMap::new(),
             specialise_callers: false,
             after_end: std::collections::BTreeSet::new(),
+            offsets: Default::default(),
         }
     }
 }
@@ -356,6 +361,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
     body = cycles::lower(ctx, body);
+    body = comp::lower(ctx, body);
     body = words::lower(ctx, body);
     exprs::lower(ctx, body)
 }
