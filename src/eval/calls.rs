@@ -647,7 +647,14 @@ pub struct Saved {
 
 impl Saved {
     fn of(m: &super::machine::Machine) -> Saved {
-        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans, selections: m.wo_selections, side: m.comp.side }
+        Saved {
+            modal: m.modal,
+            wo: m.wo,
+            frame: m.frame,
+            trans: m.trans,
+            selections: m.wo_selections,
+            side: m.comp.side,
+        }
     }
 
     /// Restores the modes; `true` when the subprogram selected a work offset (the restore

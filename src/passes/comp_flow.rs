@@ -104,14 +104,24 @@ pub fn const_expr(e: &Expr) -> Option<f64> {
     }
 }
 
-/// Whether `items` hold a word the compensation translation reads: D, H, T, G40–G49, M6.
+/// Whether a constant letter word is one the compensation translation reads: D, H (FANUC),
+/// T, G40–G49, M6. The streamed translators translate a program with one whole (the
+/// translation carries the tool and the compensation from block to block).
+pub fn relevant_word(letter: u8, value: Option<f64>, fanuc: bool) -> bool {
+    match letter {
+        b'D' | b'T' => true,
+        b'H' => fanuc,
+        b'G' => value.is_none_or(|g| (40.0..50.0).contains(&g)),
+        b'M' => value.is_none_or(|m| m == 6.0),
+        _ => false,
+    }
+}
+
+/// Whether `items` hold a word the compensation translation reads ([`relevant_word`]).
 pub fn relevant_items(items: &[Item], fanuc: bool) -> bool {
     items.iter().any(|it| match &it.kind {
         ItemKind::Word(w) => match w.addr {
-            Addr::Letter(b'D' | b'T') => true,
-            Addr::Letter(b'H') => fanuc,
-            Addr::Letter(b'G') => const_word(w).is_some_and(|g| (40.0..50.0).contains(&g)),
-            Addr::Letter(b'M') => const_word(w) == Some(6.0),
+            Addr::Letter(l) => relevant_word(l, const_word(w), fanuc),
             _ => false,
         },
         ItemKind::IfThen { then, .. } => relevant_items(std::slice::from_ref(then), fanuc),

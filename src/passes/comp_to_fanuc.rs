@@ -236,7 +236,8 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         out.push(block_stmt(add, span));
         return;
     }
-    let at = b.items.iter().rposition(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G'))).map_or(0, |i| i + 1);
+    let at =
+        b.items.iter().rposition(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G'))).map_or(0, |i| i + 1);
     b.items.splice(at..at, add);
     out.push(meta_stmt(b.meta, b.items));
 }
@@ -275,7 +276,14 @@ fn target(ctx: &mut Ctx, st: &St, b: &Block, live: bool) -> Option<Applied> {
         K::Known(Some(t)) => *t,
         _ => {
             let msg = "a cutting edge D without a known tool in the spindle cannot be translated";
-            refuse(ctx, live, CODE, b.meta.span, msg, "change the tool (T… M6) in this program before selecting its edge");
+            refuse(
+                ctx,
+                live,
+                CODE,
+                b.meta.span,
+                msg,
+                "change the tool (T… M6) in this program before selecting its edge",
+            );
             return None;
         }
     };

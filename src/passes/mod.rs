@@ -11,7 +11,6 @@
 pub mod blocks;
 pub mod comp_flow;
 pub mod comp_to_fanuc;
-pub mod compensation;
 pub mod cycles;
 pub mod exprs;
 pub mod frames;

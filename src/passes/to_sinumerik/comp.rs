@@ -180,7 +180,15 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
                 Some(430 | 490) => st.len_g = K::Known((const_expr(e).unwrap_or(0.0) * 10.0).round() as i64),
                 Some(440) => {
                     let msg = "G44 (negative tool length offset) cannot be translated to Sinumerik";
-                    refuse(ctx, live, G44_CODE, w.span, msg, "Sinumerik adds the edge's length; use G43 with a negated offset", out);
+                    refuse(
+                        ctx,
+                        live,
+                        G44_CODE,
+                        w.span,
+                        msg,
+                        "Sinumerik adds the edge's length; use G43 with a negated offset",
+                        out,
+                    );
                     st.len_g = K::Unknown;
                     g44 = true;
                 }
@@ -243,7 +251,15 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
     if prev.map(|p| p.len) != Some(tg.len) {
         if prev.is_some_and(|p| p.rad.is_some()) {
             let msg = "a change of G43 H / G49 under G41/G42 cannot be translated to Sinumerik";
-            refuse(ctx, live, CODE, span, msg, "change the length compensation with G40 in force: a Siemens edge carries length and radius together", out);
+            refuse(
+                ctx,
+                live,
+                CODE,
+                span,
+                msg,
+                "change the length compensation with G40 in force: a Siemens edge carries length and radius together",
+                out,
+            );
         }
         match tg.len {
             None => {
@@ -316,7 +332,10 @@ fn finish(mut b: Block, add: Vec<Item>, live: bool, out: &mut Vec<Stmt>) {
     // The last edge word wins (a tool change's D0, then the G43's edge).
     let last = add.last().cloned();
     if let Some(d) = last {
-        let at = b.items.iter().rposition(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') || w.addr.is(b'T') || w.addr.is(b'M'))).map_or(0, |i| i + 1);
+        // After the tool change (`T6 M6 D0`), else after the G codes (`G0 D1 Z50`).
+        let m6 = b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M') && matches!(&w.value, WordValue::Expr(e) if const_expr(e) == Some(6.0))));
+        let after = |w: &Word| w.addr.is(b'G') || (m6 && (w.addr.is(b'T') || w.addr.is(b'M')));
+        let at = b.items.iter().rposition(|it| matches!(&it.kind, ItemKind::Word(w) if after(w))).map_or(0, |i| i + 1);
         b.items.insert(at.min(b.items.len()), d);
     }
     let span = b.meta.span;
