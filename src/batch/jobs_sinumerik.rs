@@ -59,7 +59,6 @@ impl ToSinumerikJob {
             flag_places,
             after_end: BTreeSet::new(),
             specialise_callers: ctx.options.specialise_callers,
-            offsets: Default::default(),
         })
     }
 }

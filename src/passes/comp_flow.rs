@@ -4,7 +4,7 @@
 //!
 //! The mapping (docs/translation.md, "Tool compensation"): by default FANUC length register
 //! H n and radius register D n belong to cutting edge D1 of tool n; `[offsets]` in
-//! nctrans.toml (or `--offset-map T.D=H,D`) names the registers of any other edge. A
+//! nctrans.toml (`"6.2" = "H26,D46"`) names the registers of any other edge. A
 //! register the mapping does not give is refused, never guessed.
 
 use crate::ir::*;
@@ -33,7 +33,7 @@ impl OffsetMap {
         (1..=99).find(|&e| self.registers(tool, e).is_some_and(|r| r.0 == h))
     }
 
-    /// Parses `6.2=H26,D46` (a `--offset-map` flag, an `[offsets]` line `"6.2" = "H26,D46"`).
+    /// Parses an `[offsets]` line `"6.2" = "H26,D46"` (key and value).
     pub fn parse_entry(key: &str, value: &str) -> Result<((u32, u32), (u32, u32)), String> {
         let bad = || format!("bad offset map entry '{key}={value}' (expected like '6.2=H26,D46')");
         let (t, e) = key.trim().trim_matches('"').split_once('.').ok_or_else(bad)?;
@@ -111,7 +111,9 @@ pub fn relevant_word(letter: u8, value: Option<f64>, fanuc: bool) -> bool {
     match letter {
         b'D' | b'T' => true,
         b'H' => fanuc,
-        b'G' => value.is_none_or(|g| (40.0..50.0).contains(&g)),
+        // A computed G code is no compensation code: the Sinumerik → FANUC words pass writes
+        // `G#…` only to restore G90/G91, and FANUC `G#1` is refused by the words pass.
+        b'G' => value.is_some_and(|g| (40.0..50.0).contains(&g)),
         b'M' => value.is_none_or(|m| m == 6.0),
         _ => false,
     }

@@ -88,7 +88,8 @@ fn refuse_pending(ctx: &mut Ctx, span: Span, live: bool) {
             CODE,
             span,
             "a tool change without D cannot be translated: the edge it selects is machine data (MD20270)",
-            "program the edge in the tool change block (`T6 M6 D1`), or as the next block (`D1`)",
+            "program the edge in the tool change block (`T6 M6 D1`) or as the next block (`D1`), or state the \
+             machine's MD20270 in nctrans.toml (`[sinumerik] cutting_edge_default = 1`)",
         );
         ctx.unsupported += 1;
     }
@@ -113,8 +114,8 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         let has_d = b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'D')));
         if !has_d && has_content {
             refuse_pending(ctx, p, live);
+            // Reported once: FANUC still applies what it did before the tool change.
             st.pending = None;
-            st.fanuc = K::Unknown;
         }
     }
     if !relevant {
@@ -157,18 +158,24 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         None => None,
     };
     let mut pending_now = None;
+    let mut refused = false;
     if let Some(ms) = m6 {
         if !matches!(st.side, K::Known(None)) && !matches!(g, Some((None, _))) {
             let msg = "a tool change during cutter radius compensation (G41/G42) cannot be translated";
             refuse(ctx, live, CHANGE_CODE, ms, msg, "cancel it with G40 before the tool change");
+            refused = true;
         }
         st.tool = st.sel.clone();
         match d_val {
             Some(e) => st.edge = K::Known(e),
-            None if d.is_none() => {
-                st.edge = K::Known(crate::eval::machine::comp::CUTTING_EDGE_DEFAULT);
-                pending_now = Some(ms);
-            }
+            None if d.is_none() => match ctx.edge_default {
+                // The profile states the machine's MD20270.
+                Some(e) => st.edge = K::Known(e),
+                None => {
+                    st.edge = K::Known(crate::eval::machine::comp::CUTTING_EDGE_DEFAULT);
+                    pending_now = Some(ms);
+                }
+            },
             None => {}
         }
     } else if let Some(e) = d_val {
@@ -176,6 +183,11 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
     }
     if let Some((side, _)) = g {
         st.side = K::Known(side);
+    }
+    if m6.is_none() && d.is_none() && g.is_none() {
+        // A tool selection alone changes nothing the trace sees.
+        out.push(meta_stmt(b.meta, b.items));
+        return;
     }
     // The FANUC state the Siemens one stands for.
     let target = target(ctx, st, &b, live);
@@ -192,7 +204,7 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
                 None => add.push(word(b'G', 49.0, span)),
             }
         }
-        if prev.map(|p| p.rad) != Some(tg.rad) {
+        if prev.map(|p| p.rad) != Some(tg.rad) && !refused {
             match (prev.and_then(|p| p.rad), tg.rad) {
                 (_, None) if matches!(g, Some((None, _))) => {}
                 (_, None) if prev.is_some_and(|p| p.rad.is_none()) => {}
@@ -290,7 +302,7 @@ fn target(ctx: &mut Ctx, st: &St, b: &Block, live: bool) -> Option<Applied> {
     let Some((h, d)) = ctx.offsets.registers(tool, *edge) else {
         let msg = format!("edge D{edge} of tool {tool} has no FANUC registers in the offset map");
         let hint = format!(
-            "name them: `\"{tool}.{edge}\" = \"H…,D…\"` under [offsets] in nctrans.toml, or --offset-map {tool}.{edge}=H…,D… \
+            "name them: `\"{tool}.{edge}\" = \"H…,D…\"` under [offsets] in nctrans.toml \
              (by default only edge D1 of tool n has registers: H n, D n)"
         );
         refuse(ctx, live, MAP_CODE, b.meta.span, &msg, &hint);

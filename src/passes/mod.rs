@@ -81,6 +81,8 @@ pub struct Ctx {
     pub tools_used: BTreeMap<String, u32>,
     /// The FANUC registers of each cutting edge (`comp_flow::OffsetMap`).
     pub offsets: comp_flow::OffsetMap,
+    /// The Siemens profile's MD20270, when it states one (`Semantics::cutting_edge_default`).
+    pub edge_default: Option<u32>,
     /// Known callees by upper-case name.
     pub callees: BTreeMap<String, Callee>,
     pub diags: Vec<Diagnostic>,
@@ -103,6 +105,7 @@ impl Ctx {
             tools: BTreeMap::new(),
             tools_used: BTreeMap::new(),
             offsets: comp_flow::OffsetMap::default(),
+            edge_default: None,
             callees: BTreeMap::new(),
             diags: Vec::new(),
             units_inexact: false,

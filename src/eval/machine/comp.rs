@@ -13,8 +13,8 @@
 use crate::eval::trace::{CompEv, CompReg, Side, ToolId};
 use crate::span::Span;
 
-/// MD20270 `$MC_CUTTING_EDGE_DEFAULT` as modelled: the edge a tool change selects when its
-/// block programs none.
+/// MD20270 `$MC_CUTTING_EDGE_DEFAULT`'s factory setting: the edge a tool change selects when
+/// its block programs none (the profile may state another, `Semantics::cutting_edge_default`).
 pub const CUTTING_EDGE_DEFAULT: u32 = 1;
 
 /// The compensation words of one block, gathered by `Machine::apply_words`.
@@ -45,11 +45,13 @@ pub struct Comp {
     pub edge: u32,
     /// What the last `comp` event said (power-on: everything off).
     pub last: CompEv,
+    /// The edge a tool change without D selects (MD20270, [`CUTTING_EDGE_DEFAULT`]).
+    pub edge_default: u32,
 }
 
 impl Default for Comp {
     fn default() -> Self {
-        Comp { length_g: 490, side: None, edge: 0, last: CompEv::default() }
+        Comp { length_g: 490, side: None, edge: 0, last: CompEv::default(), edge_default: CUTTING_EDGE_DEFAULT }
     }
 }
 
@@ -128,7 +130,7 @@ impl super::Machine {
             if let Some((d, _)) = b.d {
                 self.comp.edge = d.max(0.0) as u32;
             } else if changed {
-                self.comp.edge = CUTTING_EDGE_DEFAULT;
+                self.comp.edge = self.comp.edge_default;
             }
             // `$P_TOOL` reads the active edge.
             self.d = f64::from(self.comp.edge);

@@ -209,7 +209,17 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
             _ => {}
         }
     }
+    let touches = b.items.iter().any(|it| {
+        matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'H') || w.addr.is(b'D')
+            || (w.addr.is(b'G') && matches!(&w.value, WordValue::Expr(e) if const_expr(e).is_some_and(|g| (40.0..50.0).contains(&g)))))
+    });
+    if m6.is_none() && !touches {
+        // A tool selection alone changes nothing the trace sees.
+        out.push(Stmt { span, kind: StmtKind::Block(b) });
+        return;
+    }
     let mut add: Vec<Item> = Vec::new();
+    let mut refused = g44;
     if let Some(ms) = m6 {
         let on = |a: &K<Applied>| !matches!(a, K::Known(Applied { len: None, rad: None }));
         if on(&st.applied) {
@@ -217,6 +227,7 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
             let hint = "FANUC keeps the old H and D for the new tool until the next G43 H / G41 D, Sinumerik takes \
                         the new tool's edge at M6; cancel with G49 (and G40) before the tool change";
             refuse(ctx, live, CHANGE_CODE, ms, msg, hint, out);
+            refused = true;
         }
         st.tool = st.sel.clone();
         // No length until the next G43 H, as on FANUC (MD20270 would select an edge).
@@ -247,6 +258,12 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
         finish(b, add, live, out);
         return;
     };
+    if refused {
+        // Reported once for the block.
+        st.applied = K::Known(tg);
+        finish(b, add, live, out);
+        return;
+    }
     let prev = if m6.is_some() { Some(Applied { len: None, rad: None }) } else { st.applied.known().copied() };
     if prev.map(|p| p.len) != Some(tg.len) {
         if prev.is_some_and(|p| p.rad.is_some()) {
@@ -294,7 +311,7 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
                 let ok = match (&st.edge, st.tool.known()) {
                     (K::Known(0), _) => Err("G41/G42 while G49 cannot be translated to Sinumerik: its edge would bring a length".to_string()),
                     (K::Known(e), Some(Some(t))) => match (t, d) {
-                        (Val::Num(t), Val::Num(dv)) => match ctx.opts.offsets.registers(*t as u32, *e) {
+                        (Val::Num(t), Val::Num(dv)) => match ctx.opts.source.offsets.registers(*t as u32, *e) {
                             Some((_, rd)) if f64::from(rd) == dv => Ok(()),
                             _ => Err(format!("radius register D{} is not the one of edge D{e} of tool {t} under the offset map", dv)),
                         },
@@ -351,7 +368,7 @@ fn map_hint(st: &St) -> String {
     };
     format!(
         "by default H n and D n are edge D1 of tool n (here tool {tool}); name other registers under [offsets] in \
-         nctrans.toml (`\"{tool}.2\" = \"H…,D…\"`) or with --offset-map"
+         nctrans.toml (`\"{tool}.2\" = \"H…,D…\"`)"
     )
 }
 
@@ -361,6 +378,7 @@ fn edge_of(ctx: &Ctx, st: &St, h: Val) -> Result<u32, String> {
         Some(Some(Val::Num(t))) => match h {
             Val::Num(hv) if hv.fract() == 0.0 && hv > 0.0 => ctx
                 .opts
+                .source
                 .offsets
                 .edge_of_h(*t as u32, hv as u32)
                 .ok_or_else(|| format!("H{hv} is not a length register of tool {t} under the offset map")),

@@ -128,8 +128,6 @@ pub struct Options {
     /// Program numbers found after the closing `%` of a file read (not read by the
     /// control): a call of one is told it is there but after the `%` (NC353).
     pub after_end: std::collections::BTreeSet<u32>,
-    /// The FANUC registers of each cutting edge (`passes::comp_flow::OffsetMap`).
-    pub offsets: crate::passes::comp_flow::OffsetMap,
 }
 
 impl Default for Options {
@@ -144,7 +142,6 @@ impl Default for Options {
             flag_places: BTreeMap::new(),
             specialise_callers: false,
             after_end: std::collections::BTreeSet::new(),
-            offsets: Default::default(),
         }
     }
 }
