@@ -364,6 +364,9 @@ fn finish(mut b: Block, add: Vec<Item>, live: bool, out: &mut Vec<Stmt>) {
 fn map_hint(st: &St) -> String {
     let tool = match st.tool.known() {
         Some(Some(Val::Num(t))) => format!("{t}"),
+        Some(None) => {
+            return "change the tool (T… M06) in this program before G43 H / G41 D: the register is the tool's".into()
+        }
         _ => "n".into(),
     };
     format!(
