@@ -55,6 +55,9 @@ struct St {
     /// The FANUC trace state as last translated, and the Siemens edge written for it.
     applied: K<Applied>,
     edge: K<u32>,
+    /// A tool change under G43 whose new length the next block selects: the tool change's
+    /// span, the body (its address) and index of its translated block, which takes the edge.
+    pending: Option<(Span, usize, usize, Span)>,
 }
 
 impl FlowState for St {
@@ -68,6 +71,7 @@ impl FlowState for St {
             d: K::Unknown,
             applied: K::Unknown,
             edge: K::Unknown,
+            pending: None,
         }
     }
     fn merge(&self, o: &Self) -> Self {
@@ -80,6 +84,7 @@ impl FlowState for St {
             d: self.d.merge(&o.d),
             applied: self.applied.merge(&o.applied),
             edge: self.edge.merge(&o.edge),
+            pending: self.pending.or(o.pending),
         }
     }
 }
@@ -105,13 +110,48 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
             d: K::Known(zero),
             applied: K::Known(Applied { len: None, rad: None }),
             edge: K::Known(0),
+            pending: None,
         }
     } else {
         St::unknown()
     };
     let jumping = comp_flow::jumps(&body);
     let mut step = |st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>| block(ctx, st, b, live, out);
-    comp_flow::walk(body, &mut st, jumping, true, &mut step, true)
+    let mut body = comp_flow::walk(body, &mut st, jumping, true, &mut step, true);
+    if let Some((span, ..)) = st.pending {
+        refuse_change(ctx, true, span, &mut body);
+    }
+    body
+}
+
+fn refuse_change(ctx: &mut Ctx, live: bool, span: Span, out: &mut Vec<Stmt>) {
+    let msg = "a tool change while G43 H or G41/G42 is in force cannot be translated to Sinumerik";
+    let hint = "FANUC keeps the old H and D for the new tool until the next G43 H / G41 D, Sinumerik takes the new \
+                tool's edge at M6: select the new length (G43 H / G49) in the block right after the tool change, or \
+                cancel with G49 (and G40) before it";
+    refuse(ctx, live, CHANGE_CODE, span, msg, hint, out);
+}
+
+/// Whether a block only selects a length (G43 H / G49 / H, no tool change, no radius words).
+fn length_only(b: &Block) -> bool {
+    let mut length = false;
+    for it in &b.items {
+        if let ItemKind::Word(w) = &it.kind {
+            let g = match &w.value {
+                WordValue::Expr(e) => const_expr(e),
+                _ => None,
+            };
+            match w.addr {
+                Addr::Letter(b'H') => length = true,
+                Addr::Letter(b'G') if matches!(g, Some(v) if v == 43.0 || v == 49.0) => length = true,
+                Addr::Letter(b'G') if matches!(g, Some(v) if (40.0..50.0).contains(&v)) => return false,
+                Addr::Letter(b'D' | b'T') => return false,
+                Addr::Letter(b'M') if g == Some(6.0) => return false,
+                _ => {}
+            }
+        }
+    }
+    length
 }
 
 fn refuse(ctx: &mut Ctx, live: bool, code: &'static str, span: Span, msg: &str, hint: &str, out: &mut Vec<Stmt>) {
@@ -148,6 +188,18 @@ fn forget(st: &mut St, n: u32) {
 
 fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) {
     let span = b.meta.span;
+    if let Some((pspan, addr, idx, bspan)) = st.pending {
+        if b.items.is_empty() {
+            out.push(Stmt { span, kind: StmtKind::Block(b) });
+            return;
+        }
+        st.pending = None;
+        let here = out as *const Vec<Stmt> as usize == addr && out.get(idx).is_some_and(|s| s.span == bspan);
+        if here && length_only(&b) {
+            return after_change(ctx, st, b, live, out, idx, pspan);
+        }
+        refuse_change(ctx, live, pspan, out);
+    }
     for it in &b.items {
         if let ItemKind::Assign { target, .. } = &it.kind {
             match target.kind {
@@ -221,12 +273,20 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
     let mut add: Vec<Item> = Vec::new();
     let mut refused = g44;
     if let Some(ms) = m6 {
+        let length_on = matches!(st.applied, K::Known(Applied { len: Some(_), rad: None }));
+        if length_on && !touches {
+            // FANUC keeps the old H until the next block selects the new one: the edge goes
+            // into this block once that block is seen.
+            st.tool = st.sel.clone();
+            finish(b, add, live, out);
+            if out.last().is_some_and(|s| s.span == span) {
+                st.pending = Some((ms, out as *const Vec<Stmt> as usize, out.len() - 1, span));
+            }
+            return;
+        }
         let on = |a: &K<Applied>| !matches!(a, K::Known(Applied { len: None, rad: None }));
         if on(&st.applied) {
-            let msg = "a tool change while G43 H or G41/G42 is in force cannot be translated to Sinumerik";
-            let hint = "FANUC keeps the old H and D for the new tool until the next G43 H / G41 D, Sinumerik takes \
-                        the new tool's edge at M6; cancel with G49 (and G40) before the tool change";
-            refuse(ctx, live, CHANGE_CODE, ms, msg, hint, out);
+            refuse_change(ctx, live, ms, out);
             refused = true;
         }
         st.tool = st.sel.clone();
@@ -332,6 +392,56 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
     }
     st.applied = K::Known(tg);
     finish(b, add, live, out);
+}
+
+/// The block after a tool change under G43 that selects the new length: the edge goes into
+/// the tool change's block (`out[at]`), where Sinumerik changes it, and nothing in between
+/// made an event.
+fn after_change(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>, at: usize, m6: Span) {
+    for it in &b.items {
+        let ItemKind::Word(w) = &it.kind else { continue };
+        let WordValue::Expr(e) = &w.value else { continue };
+        match w.addr {
+            Addr::Letter(b'H') => st.h = val(e).map_or(K::Unknown, K::Known),
+            Addr::Letter(b'G') if const_expr(e) == Some(43.0) => st.len_g = K::Known(430),
+            Addr::Letter(b'G') if const_expr(e) == Some(49.0) => st.len_g = K::Known(490),
+            _ => {}
+        }
+    }
+    let len = match (&st.len_g, &st.h) {
+        (K::Known(430), K::Known(h)) if *h != Val::Num(0.0) => Some(*h),
+        (K::Known(_), K::Known(_)) => None,
+        _ => {
+            refuse_change(ctx, live, m6, out);
+            st.applied = K::Unknown;
+            return finish(b, vec![], live, out);
+        }
+    };
+    let edge = match len {
+        None => Ok(0),
+        Some(h) => edge_of(ctx, st, h),
+    };
+    match edge {
+        Ok(e) => {
+            if live {
+                if let Some(Stmt { kind: StmtKind::Block(tb), .. }) = out.get_mut(at) {
+                    let pos = tb
+                        .items
+                        .iter()
+                        .rposition(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M') || w.addr.is(b'T')))
+                        .map_or(tb.items.len(), |i| i + 1);
+                    tb.items.insert(pos, word(b'D', f64::from(e), m6));
+                }
+            }
+            st.edge = K::Known(e);
+        }
+        Err(msg) => {
+            refuse(ctx, live, MAP_CODE, b.meta.span, &msg, &map_hint(st), out);
+            st.edge = K::Unknown;
+        }
+    }
+    st.applied = K::Known(Applied { len, rad: None });
+    finish(b, vec![], live, out);
 }
 
 /// The block without its H, D, G43 and G49 words, with the Siemens edge words.
