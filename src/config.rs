@@ -536,6 +536,9 @@ r_parameters = 300
 cycle83_retract = 1.0
 # and the anticipation distance above the last depth for chip removal (VARI 1) in mm.
 cycle83_clearance = 0.6
+# MD20270: the cutting edge a tool change (M6) without D selects; `run` takes the factory 1
+# (D1). Not stated, the Sinumerik -> FANUC translation refuses such a tool change (NC470).
+# cutting_edge_default = 1
 
 [variables]
 # Where variables go, as --var-map rules. Sinumerik -> FANUC defaults: R n -> #(500+n), DEF
@@ -548,6 +551,12 @@ to_sinumerik = []    # e.g. ["#500-#599=R100"]
 # Siemens tool names -> FANUC T numbers (--tool-map NAME=n). A name not listed is refused
 # (NC301): nctrans never chooses a T number. The numbers used are written to nctrans-map.toml.
 # "DRILL_5" = 12
+
+[offsets]
+# The FANUC registers of Siemens cutting edges, "T.D" = "Hh,Dd": edge D of tool T is length
+# register H h and radius register D d. Unlisted: edge D1 of tool n is H n and D n (a tool
+# listed here has only the edges given); any other register is refused (NC472).
+# "6.2" = "H26,D46"
 
 [programs.to_fanuc]
 # Siemens program names -> FANUC O numbers (--program-map NAME=9001). Unlisted: main

@@ -296,3 +296,15 @@ fn planted_wrong_translations_are_caught() {
     let s_side = SIEMENS_PART.replace("G41 X10", "G42 X10");
     assert!(matches!(check_pair(&s_side, &fanuc(&right)).0, Verdict::Diverged { .. }));
 }
+
+#[test]
+fn the_profile_reads_the_offset_map_and_md20270() {
+    use nctrans::config::Config;
+    let c =
+        Config::from_toml("[sinumerik]\ncutting_edge_default = 1\n[offsets]\n\"6.2\" = \"H26,D46\"\n").expect("read");
+    assert_eq!(c.sinumerik_semantics().cutting_edge_default, Some(1));
+    assert_eq!(c.fanuc_semantics().offsets.registers(6, 2), Some((26, 46)));
+    assert_eq!(Config::default().sinumerik_semantics().cutting_edge_default, None);
+    assert!(Config::from_toml("[offsets]\n\"6\" = \"H1,D1\"\n").is_err());
+    assert!(Config::from_toml("[sinumerik]\ncutting_edge_default = 12\n").is_err());
+}
