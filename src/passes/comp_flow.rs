@@ -119,6 +119,45 @@ pub fn relevant_word(letter: u8, value: Option<f64>, fanuc: bool) -> bool {
     }
 }
 
+/// Whether a constant letter word makes a streamed translation read the program whole: a
+/// compensation word (D, FANUC H, G40–G49), and M6 where `m6` (Sinumerik → FANUC, and the
+/// segmented FANUC → Sinumerik path). A T word alone changes nothing the translation writes.
+/// The straight FANUC → Sinumerik stream takes M6 blocks through the passes (`T1 M6 D0`):
+/// without a compensation word in the program the length is off at every tool change.
+pub fn stream_relevant_word(letter: u8, value: Option<f64>, fanuc: bool, m6: bool) -> bool {
+    match letter {
+        b'T' => false,
+        b'M' => m6 && relevant_word(letter, value, fanuc),
+        _ => relevant_word(letter, value, fanuc),
+    }
+}
+
+/// [`stream_relevant_word`] of a block's words.
+pub fn stream_relevant_items(items: &[Item], fanuc: bool, m6: bool) -> bool {
+    items.iter().any(|it| match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(l), value, .. }) => {
+            let v = match value {
+                WordValue::Expr(e) => const_expr(e),
+                _ => None,
+            };
+            stream_relevant_word(*l, v, fanuc, m6)
+        }
+        ItemKind::IfThen { then, .. } => stream_relevant_items(std::slice::from_ref(then), fanuc, m6),
+        _ => false,
+    })
+}
+
+/// Whether a body holds a block with [`stream_relevant_items`].
+pub fn stream_relevant(body: &[Stmt], fanuc: bool, m6: bool) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= stream_relevant_items(&b.items, fanuc, m6);
+        }
+    });
+    any
+}
+
 /// Whether `items` hold a word the compensation translation reads ([`relevant_word`]).
 pub fn relevant_items(items: &[Item], fanuc: bool) -> bool {
     items.iter().any(|it| match &it.kind {

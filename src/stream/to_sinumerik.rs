@@ -106,7 +106,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
-    if crate::passes::comp_flow::relevant_items(&b.items, true) {
+    if crate::passes::comp_flow::stream_relevant_items(&b.items, true, false) {
         return Err(COMP.into());
     }
     for it in &b.items {
@@ -147,10 +147,13 @@ fn plain_g(v: f64) -> bool {
     (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G_SET.contains(g10 as u32)
 }
 
-/// Why a program with a tool change or compensation word is translated whole: the
-/// translation carries the tool and the compensation in force from block to block
-/// (`passes::to_sinumerik::comp`).
-pub const COMP: &str = "a tool change or tool compensation (T, M6, D, H, G40-G49)";
+/// Why a program with a compensation word is translated whole: the translation carries the
+/// tool and the compensation in force from block to block (`passes::to_sinumerik::comp`).
+/// The segmented path reads a program with a tool change whole too ([`COMP_M6`]).
+pub const COMP: &str = "tool compensation (D, H, G40-G49)";
+
+/// [`COMP`] of the segmented path, which also reads a program with a tool change whole.
+pub const COMP_M6: &str = "a tool change or tool compensation (M6, D, H, G40-G49)";
 
 /// A finished streamed translation.
 pub struct Streamed {
@@ -633,7 +636,7 @@ impl super::WordsSink for Sink<'_, '_> {
         if st.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::relevant_word(w.letter, Some(w.value), true)) {
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, false)) {
             st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }

@@ -60,7 +60,7 @@ pub struct Streamed {
 /// Why a program with a tool change or compensation word is translated whole: the
 /// translation carries the tool and the cutting edge from block to block
 /// (`passes::comp_to_fanuc`).
-pub const COMP: &str = "a tool change or tool compensation (T, M6, D, G40/G41/G42)";
+pub const COMP: &str = "a tool change or tool compensation (M6, D, G40/G41/G42)";
 
 /// A block whose translation does not depend on any other block.
 pub fn straight(s: &Stmt) -> Result<(), String> {
@@ -90,7 +90,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
-    if crate::passes::comp_flow::relevant_items(&b.items, false) {
+    if crate::passes::comp_flow::stream_relevant_items(&b.items, false, true) {
         return Err(COMP.into());
     }
     for it in &b.items {
@@ -219,7 +219,7 @@ impl super::WordsSink for Sink<'_, '_> {
         if st.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::relevant_word(w.letter, Some(w.value), false)) {
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
             st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }

@@ -273,7 +273,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::relevant_word(w.letter, Some(w.value), false)) {
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
             self.decline(crate::stream::translate::COMP);
             return true;
         }
@@ -293,7 +293,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return;
         }
-        if crate::passes::comp_flow::relevant(std::slice::from_ref(s), false) {
+        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), false, true) {
             return self.decline(crate::stream::translate::COMP);
         }
         if prog != 0 {

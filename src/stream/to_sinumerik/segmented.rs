@@ -335,8 +335,8 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::relevant_word(w.letter, Some(w.value), true)) {
-            self.decline(super::COMP);
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true)) {
+            self.decline(super::COMP_M6);
             return true;
         }
         if prog != 0 {
@@ -358,8 +358,8 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return;
         }
-        if crate::passes::comp_flow::relevant(std::slice::from_ref(s), true) {
-            return self.decline(super::COMP);
+        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), true, true) {
+            return self.decline(super::COMP_M6);
         }
         if prog != 0 {
             return self.sub_stmt(prog, s);
