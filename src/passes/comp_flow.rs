@@ -10,11 +10,20 @@
 use crate::ir::*;
 use std::collections::BTreeMap;
 
+/// A Siemens edge: (tool number, edge number).
+pub type Edge = (u32, u32);
+/// The FANUC registers of an edge: (H, D).
+pub type Registers = (u32, u32);
+
+/// A block handed to a [`walk`]'s step: the state, the block, whether the step is live, and
+/// where its statements go.
+pub type Step<'a, S> = dyn FnMut(&mut S, Block, bool, &mut Vec<Stmt>) + 'a;
+
 /// The FANUC registers (H, D) of each Siemens edge (tool number, edge), beyond the default
 /// (edge 1 of tool n: H n, D n).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct OffsetMap {
-    pub edges: BTreeMap<(u32, u32), (u32, u32)>,
+    pub edges: BTreeMap<Edge, Registers>,
 }
 
 impl OffsetMap {
@@ -34,7 +43,7 @@ impl OffsetMap {
     }
 
     /// Parses an `[offsets]` line `"6.2" = "H26,D46"` (key and value).
-    pub fn parse_entry(key: &str, value: &str) -> Result<((u32, u32), (u32, u32)), String> {
+    pub fn parse_entry(key: &str, value: &str) -> Result<(Edge, Registers), String> {
         let bad = || format!("bad offset map entry '{key}={value}' (expected like '6.2=H26,D46')");
         let (t, e) = key.trim().trim_matches('"').split_once('.').ok_or_else(bad)?;
         let (t, e): (u32, u32) = (t.trim().parse().map_err(|_| bad())?, e.trim().parse().map_err(|_| bad())?);
@@ -206,7 +215,7 @@ pub fn walk<S: FlowState>(
     st: &mut S,
     jumping: bool,
     fanuc: bool,
-    step: &mut dyn FnMut(&mut S, Block, bool, &mut Vec<Stmt>),
+    step: &mut Step<'_, S>,
     live: bool,
 ) -> Vec<Stmt> {
     let mut out = Vec::with_capacity(body.len());
