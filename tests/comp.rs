@@ -308,3 +308,22 @@ fn the_profile_reads_the_offset_map_and_md20270() {
     assert!(Config::from_toml("[offsets]\n\"6\" = \"H1,D1\"\n").is_err());
     assert!(Config::from_toml("[sinumerik]\ncutting_edge_default = 12\n").is_err());
 }
+
+/// A subprogram starts in its caller's compensation: its safety line (`G40 G49`, `G40`)
+/// is known whatever the registers, so it translates; a register after it still needs a tool.
+#[test]
+fn a_subprograms_safety_line_translates() {
+    let mut db = SourceDb::new();
+    let (file, u) = parse(&mut db, "in.nc", "%\nO20\nG00 G17 G40 G49 G90\nG00 X1.\nM99\n%\n", Dialect::Fanuc);
+    let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
+    assert!(!tr.has_errors(), "{}", nctrans::diag::render(&db, &tr.diags));
+    let text = &tr.main().expect("main").text;
+    assert!(text.contains("G0 G17 G40 G90 D0\n"), "{text}");
+    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &u, &tr, "out", STEPS);
+    assert!(matches!(rep.verdict, Verdict::Equivalent { .. }), "{:?}", rep.verdict);
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "sub.spf", "PROC SUB\nG17 G40 G90\nG0 X1\nRET\n", Dialect::Sinumerik);
+    let opts = TranslateOptions { main_is_sub: true, ..TranslateOptions::default() };
+    let t = translate::to_fanuc(&u, &[], &opts);
+    assert!(t.ok() && t.text.contains("G17 G40 G90"), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
+}

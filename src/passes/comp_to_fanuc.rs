@@ -189,6 +189,15 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         out.push(meta_stmt(b.meta, b.items));
         return;
     }
+    if m6.is_none() && d.is_none() && matches!(g, Some((None, _))) && st.edge == K::Unknown {
+        // G40 where the edge is not known (a subprogram's safety line): FANUC G40 is off
+        // whatever the registers; the length stays as unknown as it was.
+        if let K::Known(a) = &mut st.fanuc {
+            a.rad = None;
+        }
+        out.push(meta_stmt(b.meta, b.items));
+        return;
+    }
     // The FANUC state the Siemens one stands for.
     let target = target(ctx, st, &b, live);
     let before = st.fanuc.clone();

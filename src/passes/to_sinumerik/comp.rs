@@ -295,16 +295,19 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
         st.edge = K::Known(0);
     }
     // What FANUC applies after the block.
-    let target = match (&st.len_g, &st.side, &st.h, &st.d) {
-        (K::Known(g), K::Known(side), K::Known(h), K::Known(d)) => {
-            let zero = |v: &Val| *v == Val::Num(0.0);
-            Some(Applied {
-                len: (*g == 430 && !zero(h)).then_some(*h),
-                rad: side.filter(|_| !zero(d)).map(|s| (s, *d)),
-            })
-        }
+    // G49 and G40 are off whatever H and D are (a subprogram's safety line knows them).
+    let zero = |v: &Val| *v == Val::Num(0.0);
+    let len = match (&st.len_g, &st.h) {
+        (K::Known(490), _) => Some(None),
+        (K::Known(g), K::Known(h)) => Some((*g == 430 && !zero(h)).then_some(*h)),
         _ => None,
     };
+    let rad = match (&st.side, &st.d) {
+        (K::Known(None), _) => Some(None),
+        (K::Known(Some(s)), K::Known(d)) => Some((!zero(d)).then_some((*s, *d))),
+        _ => None,
+    };
+    let target = len.zip(rad).map(|(len, rad)| Applied { len, rad });
     let Some(tg) = target else {
         if g44 {
             st.applied = K::Unknown;
