@@ -327,3 +327,31 @@ fn a_subprograms_safety_line_translates() {
     let t = translate::to_fanuc(&u, &[], &opts);
     assert!(t.ok() && t.text.contains("G17 G40 G90"), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
 }
+
+/// A `PROC … SAVE` restores G40/G41/G42 with the other modal G groups: the return is a
+/// `comp` event when it changes the radius compensation.
+#[test]
+fn a_save_subprogram_restores_the_radius_side() {
+    let dir = std::env::temp_dir().join(format!("nctrans-comp-save-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch");
+    std::fs::write(dir.join("MAIN.MPF"), "T1 M6 D1\nG0 X0 Y0\nSUBG\nG1 X5 F100\nM30\n").expect("write");
+    std::fs::write(dir.join("SUBG.SPF"), "PROC SUBG SAVE\nG41 G1 X1 Y1 F100\nRET\n").expect("write");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["run", "MAIN.MPF"])
+        .current_dir(&dir)
+        .output()
+        .expect("run nctrans");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let comps: Vec<&str> =
+        text.lines().filter(|l| l.starts_with("comp")).map(|l| l.split("  @").next().unwrap_or(l)).collect();
+    assert_eq!(
+        comps,
+        [
+            "comp length=\"1.1\" radius=off",
+            "comp length=\"1.1\" radius=left:\"1.1\"",
+            "comp length=\"1.1\" radius=off", // the return restores G40
+        ],
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
