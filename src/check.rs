@@ -16,6 +16,7 @@ use std::cell::Cell;
 use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
 mod exclude;
+mod regs;
 pub use exclude::{Exclude, Excluded};
 
 /// Absolute tolerance for numbers (trace spec).
@@ -203,6 +204,8 @@ struct CompareSink {
     limit_seen: bool,
     exclude: Exclude,
     excluded: Excluded,
+    /// The compensation registers paired so far.
+    regs: regs::Registers,
 }
 
 fn num_eq(a: f64, b: f64) -> bool {
@@ -306,6 +309,8 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
         }
         (WorkOffset { n: n1 }, WorkOffset { n: n2 }) => n1 == n2,
         (Home(h1), Home(h2)) => h1.point == h2.point && h1.axes == h2.axes && axes_eq(&h1.via, &h2.via),
+        // The registers' names are paired by `regs::Registers` as the check goes.
+        (Comp(c1), Comp(c2)) => regs::same_shape(c1, c2),
         _ => false,
     }
 }
@@ -326,6 +331,7 @@ impl CompareSink {
             after_b: Vec::new(),
             div: None,
             limit_seen: false,
+            regs: regs::Registers::default(),
         }
     }
 
@@ -425,7 +431,10 @@ impl CompareSink {
         if message_left_out {
             self.excluded.messages += 1;
         }
-        if message_left_out || b.is_some_and(|b| same_item(&a, &b.0)) {
+        let agrees = |regs: &mut regs::Registers, b: &Item| {
+            same_item(&a, b) && (matches!(a, Item::Grid(_)) || regs.agree(&a.event(), &b.event()))
+        };
+        if message_left_out || b.is_some_and(|b| agrees(&mut self.regs, &b.0)) {
             self.before_a[self.index as usize % CONTEXT] = Some(Agreed::Own(a));
             self.index += 1;
             return;

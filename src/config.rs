@@ -77,6 +77,10 @@ pub struct Config {
     pub fanuc: FanucProfile,
     /// Siemens MD28050: number of R parameters.
     pub r_parameters: u32,
+    /// Siemens MD20270: the edge a tool change without D selects (`None`: not stated).
+    pub cutting_edge_default: Option<u32>,
+    /// `[offsets]`: the FANUC H and D registers of Siemens cutting edges.
+    pub offsets: crate::passes::comp_flow::OffsetMap,
     /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
@@ -133,6 +137,8 @@ impl Default for Config {
                 g83_clearance: 0.25,
             },
             r_parameters: 300,
+            cutting_edge_default: None,
+            offsets: Default::default(),
             cycle83_retract: 1.0,
             cycle83_clearance: 0.6,
             var_map_to_fanuc: vec![],
@@ -162,7 +168,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 32] = [
+pub const KEYS: [(&str, &str, &str); 34] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -174,6 +180,8 @@ pub const KEYS: [(&str, &str, &str); 32] = [
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
+    ("sinumerik.cutting_edge_default", "-", "the edge a tool change without D selects, 0 to 9 (MD20270)"),
+    ("offsets", "-", "a table of \"T.D\" = \"Hh,Dd\" (FANUC registers of a Siemens cutting edge)"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
@@ -247,7 +255,7 @@ impl Config {
         let mut c = Config::default();
         for (k, v) in &table {
             match (k.as_str(), v) {
-                ("to" | "tools", _) => c.set(k, v)?,
+                ("to" | "tools" | "offsets", _) => c.set(k, v)?,
                 (section, toml::Value::Table(t))
                     if KEYS.iter().any(|key| key.0.split_once('.').is_some_and(|(s, _)| s == section)) =>
                 {
@@ -306,6 +314,16 @@ impl Config {
             "fanuc.nat" => self.fanuc.nat = as_bool(key, v)?,
             "fanuc.compound_conditions" => self.fanuc.compound_conditions = as_bool(key, v)?,
             "sinumerik.r_parameters" => self.r_parameters = as_int(key, v, 1, 32535)? as u32,
+            "sinumerik.cutting_edge_default" => self.cutting_edge_default = Some(as_int(key, v, 0, 9)? as u32),
+            "offsets" => {
+                let t = v.as_table().ok_or_else(|| bad(key, v))?;
+                for (k, val) in t {
+                    let text = as_str(&format!("offsets.{k}"), val)?;
+                    let (edge, regs) = crate::passes::comp_flow::OffsetMap::parse_entry(k, text)
+                        .map_err(|e| format!("offsets.{k}: {e}"))?;
+                    self.offsets.edges.insert(edge, regs);
+                }
+            }
             "fanuc.g73_return" => self.fanuc.g73_return = as_mm(key, v)?,
             "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
             "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
@@ -447,6 +465,7 @@ impl Config {
         s.calculator_input = self.fanuc.calculator_input;
         s.nat = self.fanuc.nat;
         s.haas = self.fanuc.series.starts_with("haas");
+        s.offsets = self.offsets.clone();
         s
     }
 
@@ -454,6 +473,8 @@ impl Config {
     pub fn sinumerik_semantics(&self) -> Semantics {
         let mut s = Semantics::default_for(Dialect::Sinumerik);
         s.r_param_count = self.r_parameters;
+        s.offsets = self.offsets.clone();
+        s.cutting_edge_default = self.cutting_edge_default;
         s
     }
 
@@ -515,6 +536,9 @@ r_parameters = 300
 cycle83_retract = 1.0
 # and the anticipation distance above the last depth for chip removal (VARI 1) in mm.
 cycle83_clearance = 0.6
+# MD20270: the cutting edge a tool change (M6) without D selects; `run` takes the factory 1
+# (D1). Not stated, the Sinumerik -> FANUC translation refuses such a tool change (NC470).
+# cutting_edge_default = 1
 
 [variables]
 # Where variables go, as --var-map rules. Sinumerik -> FANUC defaults: R n -> #(500+n), DEF
@@ -527,6 +551,12 @@ to_sinumerik = []    # e.g. ["#500-#599=R100"]
 # Siemens tool names -> FANUC T numbers (--tool-map NAME=n). A name not listed is refused
 # (NC301): nctrans never chooses a T number. The numbers used are written to nctrans-map.toml.
 # "DRILL_5" = 12
+
+[offsets]
+# The FANUC registers of Siemens cutting edges, "T.D" = "Hh,Dd": edge D of tool T is length
+# register H h and radius register D d. Unlisted: edge D1 of tool n is H n and D n (a tool
+# listed here has only the edges given); any other register is refused (NC472).
+# "6.2" = "H26,D46"
 
 [programs.to_fanuc]
 # Siemens program names -> FANUC O numbers (--program-map NAME=9001). Unlisted: main

@@ -396,14 +396,14 @@ fn cmd_check(
 /// Prints a check's verdict; its exit code.
 fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
     use nctrans::check::Verdict;
-    // The trace holds programmed positions: a program that ran a compensation word (D, H,
-    // G40..G49) may apply another length or radius than the other, unseen (issue 17 item 6).
+    // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
+    // (NC387): a program that ran one may apply another length than the other, unseen.
     let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
     let diff = &report.diff;
     match &report.verdict {
         Verdict::Equivalent { events } if compensates => {
             println!(
-                "inconclusive: {events} trace events agree, but tool compensation (D, H, G40..G49) is not compared"
+                "inconclusive: {events} trace events agree, but tool compensation (G44, ISO-mode G43/G44/G49) is not compared"
             );
             ExitCode::from(4)
         }

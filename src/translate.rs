@@ -311,6 +311,8 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.nat = opts.target.nat;
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
+    ctx.offsets = opts.target.offsets.clone();
+    ctx.edge_default = opts.source.cutting_edge_default;
     ctx
 }
 

@@ -153,9 +153,11 @@ fn library(input: &Path) {
     w(sin.join("seg4.mpf"), format!("\u{feff}{}", sinumerik_macro(8, 3, "\n", "")));
     // A subprogram no file calls (translated as a subprogram: segmented declines).
     w(sin.join("lone.spf"), sinumerik_macro(9, 2, "\n", "").replace("M30", "M17"));
-    // A tool name (the library's tool table numbers it, the segmented stream too).
-    w(sin.join("tools.mpf"), sinumerik_macro(4, 3, "\n", "T=\"MILL_A\" M6\n"));
-    w(sin.join("drill.mpf"), "R1=1\nT=\"ZED_1\" M6\nG1 X=R1 F100\nM30\n".into());
+    // A tool name (the library's tool table numbers it, the segmented stream too). A tool
+    // selection alone: a tool change (M6) makes the stream read the program whole (its
+    // cutting edge, `passes::comp_to_fanuc`).
+    w(sin.join("tools.mpf"), sinumerik_macro(4, 3, "\n", "T=\"MILL_A\"\n"));
+    w(sin.join("drill.mpf"), "R1=1\nT=\"ZED_1\"\nG1 X=R1 F100\nM30\n".into());
     // A MSG left as a comment (a note in the report), and one paired with the M0 after it.
     w(sin.join("msg.mpf"), sinumerik_macro(20, 3, "\n", "MSG(\"ROUGHING\")\nG1 X=R2 F100\n"));
     w(sin.join("msgstop.mpf"), sinumerik_macro(21, 3, "\r\n", "MSG(\"CHECK PART\")\r\nM0\r\n"));

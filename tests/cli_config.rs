@@ -27,7 +27,7 @@ fn translate(dir: &PathBuf, extra: &[&str]) -> (String, String, bool) {
     )
 }
 
-const PART: &str = "; config test\nT=\"BALLNOSE_D8\"\nM6\nR1=30\nG0 X=R1\nM30\n";
+const PART: &str = "; config test\nT=\"BALLNOSE_D8\"\nM6 D1\nR1=30\nG0 X=R1\nM30\n";
 
 #[test]
 fn the_project_config_maps_variables_and_tools_and_flags_win() {

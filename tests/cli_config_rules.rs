@@ -72,7 +72,7 @@ fn encoding_is_one_flag_in_every_command_with_the_old_name_as_alias() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-const TOOLS: &str = "; tools\nT=\"ENDMILL_D6\"\nM6\nR1=30\nMSG(\"ROUGHING\")\nG0 X=R1\nM30\n";
+const TOOLS: &str = "; tools\nT=\"ENDMILL_D6\"\nM6 D1\nR1=30\nMSG(\"ROUGHING\")\nG0 X=R1\nM30\n";
 
 #[test]
 fn a_tool_name_without_a_number_is_refused_in_a_single_file_and_in_a_batch() {

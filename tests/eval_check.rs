@@ -76,43 +76,65 @@ fn run_writes_jsonl_and_takes_inputs() {
     );
 }
 
-/// Issue 17 item 6: the trace holds programmed positions, so two programs that compensate
-/// (here Siemens `T6 D1`, cutting edge 1 of tool 6, and FANUC `T6 D1` without `G43 H6`) are
-/// never called equivalent: `check` says compensation was not compared, exit 4.
+/// Issue 17 item 6 / issue 19: the trace compares compensation (`comp` events), so Siemens
+/// `T6 D1` (cutting edge 1 of tool 6) against FANUC `T6 D1` without `G43 H6` diverges, as
+/// does G41 against G42; G44, whose direction the event does not hold, is never called
+/// equivalent: `check` says compensation was not compared, exit 4.
 #[test]
-fn compensation_is_not_compared_so_check_is_inconclusive() {
-    let a = write("comp-a.mpf", "T6 D1\nM6\nG0 X0 Y0 Z50\nG1 Z-2 F200\nM30\n");
-    let b = write("comp-b.nc", "%\nO1\nT6 D1\nM06\nG00 X0 Y0 Z50.\nG01 Z-2. F200.\nM30\n%\n");
-    let (code, out, err) = nctrans(&["check", &a, &b]);
+fn compensation_is_compared_and_g44_is_inconclusive() {
+    let a = write("comp-a.mpf", "T6 M6 D1\nG0 X0 Y0 Z50\nG1 Z-2 F200\nM30\n");
+    let b = write("comp-b.nc", "%\nO1\nT6 D1 M06\nG00 X0 Y0 Z50.\nG01 Z-2. F200.\nM30\n%\n");
+    let (code, out, _) = nctrans(&["check", &a, &b]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("comp length=\"6.1\""), "{out}");
+    let right = write("comp-b2.nc", "%\nO1\nT6 M06\nG43 H6\nG00 X0 Y0 Z50.\nG01 Z-2. F200.\nM30\n%\n");
+    let (code, out, _) = nctrans(&["check", &a, &right]);
+    assert_eq!(code, 0, "{out}");
+    let c = write("comp-c.nc", "%\nO1\nG00 X0 Y0\nG41 D04 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let d = write("comp-d.nc", "%\nO1\nG00 X0 Y0\nG42 D04 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
+    let (code, out, _) = nctrans(&["check", &c, &d]);
+    assert_eq!(code, 1, "{out}");
+    let e = write("comp-e.nc", "%\nO1\nT1 M06\nG44 H1 Z50.\nM30\n%\n");
+    let (code, out, err) = nctrans(&["check", &e, &e]);
     assert_eq!(code, 4, "{out}\n{err}");
     assert!(out.starts_with("inconclusive:") && out.contains("tool compensation"), "{out}");
     assert!(err.contains("warning[NC387]"), "{err}");
-    let c = write("comp-c.nc", "%\nO1\nG00 X0 Y0\nG41 D04 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
-    let d = write("comp-d.nc", "%\nO1\nG00 X0 Y0\nG42 D01 X10. Y5.\nG01 X20. F100.\nG40 X0 Y0\nM30\n%\n");
-    let (code, out, _) = nctrans(&["check", &c, &d]);
-    assert_eq!(code, 4, "{out}");
 }
 
 /// Issue 17 item 6 on the streamed paths: past the first chunks the straight-line
-/// translators write blocks without the passes; a compensation block far down a CAM program
-/// must still be refused, both ways.
+/// translators write blocks without the passes; a program with compensation far down a CAM
+/// program is translated whole, so it is translated as without --stream (the same bytes),
+/// and a register that cannot be proven is refused, both ways.
 #[test]
-fn compensation_far_down_a_streamed_program_is_refused() {
+fn compensation_far_down_a_streamed_program_is_translated_whole() {
     let mut fanuc = String::from("%\nO1\nG00 X0 Y0\nG01 F100.\n");
     let mut siemens = String::from("G0 X0 Y0\nG1 F100\n");
     for i in 0..6000 {
         fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
         siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
     }
-    fanuc.push_str("G41 D04 X10. Y5.\nX20.\nG40 X0 Y0\nM30\n%\n");
-    siemens.push_str("G41 D4 X10 Y5\nX20\nG40 X0 Y0\nM30\n");
-    let f = write("comp-stream.nc", &fanuc);
-    let s = write("comp-stream.mpf", &siemens);
-    for (input, to) in [(&f, "sinumerik"), (&s, "fanuc")] {
-        let (code, out, err) = nctrans(&["--to", to, "--stream", "--no-verify", input]);
-        assert_eq!(code, 1, "{input}: {out}\n{err}");
-        assert!(err.contains("error[NC385]"), "{input}: {err}");
+    let (bad_f, bad_s) = (
+        format!("{fanuc}G41 D04 X10. Y5.\nX20.\nG40 X0 Y0\nM30\n%\n"),
+        format!("{siemens}G41 D4 X10 Y5\nX20\nG40 X0 Y0\nM30\n"),
+    );
+    let f = write("comp-stream.nc", &bad_f);
+    let s = write("comp-stream.mpf", &bad_s);
+    for (input, to, code) in [(&f, "sinumerik", "NC472"), (&s, "fanuc", "NC470")] {
+        let (exit, out, err) = nctrans(&["--to", to, "--stream", "--no-verify", input]);
+        assert_eq!(exit, 1, "{input}: {out}\n{err}");
+        assert!(err.contains(&format!("error[{code}]")), "{input}: {err}");
         assert!(!out.contains("G41"), "{input}: {out}");
+    }
+    let good_f = format!("{fanuc}T4 M06\nG43 H4 Z5.\nG41 D04 X10. Y5.\nX20.\nG40 X0 Y0\nG49\nM30\n%\n");
+    let good_s = format!("{siemens}T4 M6 D1\nZ5\nG41 X10 Y5\nX20\nG40 X0 Y0\nD0\nM30\n");
+    for (name, text, to) in [("comp-ok.nc", &good_f, "sinumerik"), ("comp-ok.mpf", &good_s, "fanuc")] {
+        let input = write(name, text);
+        let (exit, streamed, err) = nctrans(&["--to", to, "--stream", &input]);
+        assert_eq!(exit, 0, "{input}: {err}");
+        let (exit, whole, err) = nctrans(&["--to", to, &input]);
+        assert_eq!(exit, 0, "{input}: {err}");
+        assert_eq!(streamed, whole, "{input}");
+        assert!(whole.contains("G41"), "{whole}");
     }
 }
 

@@ -141,8 +141,8 @@ const ROWS: &[Row] = &[
     },
     Row {
         what: "string tool names",
-        siemens: "T=\"DRILL\"\nM6\nM30\n",
-        fanuc: "O1\nT1 M06\nM30\n",
+        siemens: "T=\"DRILL\"\nM6 D1\nM30\n",
+        fanuc: "O1\nT1 M06\nG43 H1\nM30\n",
         way: Way::SToF("FANUC has no tool names; the row needs --tool-map DRILL=1 and the trace compares names"),
     },
 ];

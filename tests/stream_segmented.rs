@@ -532,14 +532,15 @@ fn unpaired_msg_with_notes() {
 }
 
 /// Tool names (`T="DRILL"`, with a tool map): the whole path numbers them in the output and
-/// in the source it verifies against; the streamed source does the same (without that the
-/// tool changes would differ and the verdicts with them).
+/// in the source it verifies against; the streamed source does the same. A tool change (M6)
+/// makes the segmented path read the program whole (its cutting edge, `passes::comp_to_fanuc`),
+/// so the selections here stand alone.
 #[test]
 fn tool_names_with_a_tool_map() {
     let tools = [("DRILL", 5), ("MILL_10", 12)];
     for (name, text) in [
-        ("tool.mpf", "R1=1\nT=\"DRILL\"\nM6\nG1 X1 F100\nT=\"MILL_10\" M6\nG1 X2\nM30\n"),
-        ("tool-if.mpf", "R1=1\r\nIF R1>0\r\nT=\"DRILL\"\r\nENDIF\r\nM6\r\nG1 X1 F100\r\nM30\r\n"),
+        ("tool.mpf", "R1=1\nT=\"DRILL\"\nG1 X1 F100\nT=\"MILL_10\"\nG1 X2\nM30\n"),
+        ("tool-if.mpf", "R1=1\r\nIF R1>0\r\nT=\"DRILL\"\r\nENDIF\r\nG1 X1 F100\r\nM30\r\n"),
     ] {
         match compare_tools(name, text, CommentMode::Keep, false, &tools) {
             Outcome::Same(eq) => assert!(eq, "{name} not verified equivalent"),

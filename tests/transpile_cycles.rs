@@ -130,7 +130,7 @@ fn a_translation_planted_wrong_in_any_field_is_caught() {
     }
 }
 
-const S_HEAD: &str = "G17 G90 G54\nT1 M6\nS1000 M3\nG0 X0 Y0 Z50\nF100\n";
+const S_HEAD: &str = "G17 G90 G54\nT1 M6 D1\nS1000 M3\nG0 X0 Y0 Z50\nF100\n";
 
 /// The verified FANUC translation of a Sinumerik program's body.
 fn to_fanuc(body: &str) -> Vec<String> {

@@ -302,6 +302,16 @@ fn injected_bugs_are_caught() {
 
 /// Corpus programs that cannot be translated, with the reason (diagnostic code).
 const REFUSED: &[(&str, &str)] = &[
+    ("cycle81-spot-drill.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("cycle82-counterbore.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("cycle83-chip-break.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("cycle83-deep-hole.mpf", "NC470"),  // T… M6 without D: the edge is machine data (MD20270)
+    ("cycle89-bore-dwell.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("seed-address-values.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("seed-hemisphere-if-gotob.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("seed-sine-curve-while.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
+    ("tool-name-string.mpf", "NC470"),   // T… M6 without D: the edge is machine data (MD20270)
+    ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("address-ac-ic.mpf", "NC313"),
     ("address-numbered.mpf", "NC312"),
     ("arc-radius-angle.mpf", "NC312"),
@@ -569,14 +579,19 @@ fn modes_where_paths_meet_hold_on_every_path() {
     refused("G710 G1 X0 F10\nMARK:\nG1 X1 F100\nG70\nGOTOB MARK\nM30\n", "NC324");
 }
 
-/// Issue 17 item 6: Siemens `T6 D1` applies cutting edge 1 of tool 6 (length and radius);
-/// FANUC `T6 D1` selects radius register 1 and no length. The trace does not compare
-/// compensation, so every block with D, D0 or G40/G41/G42 is refused (NC385).
+/// Issue 17 item 6 / issue 19: Siemens `T6 D1` applies cutting edge 1 of tool 6 (length and
+/// radius); FANUC needs `G43 H6` and `G41 D6` for it (`passes::comp_to_fanuc`, more in
+/// `tests/comp.rs`). What cannot be proven is refused.
 #[test]
-fn tool_compensation_is_refused() {
-    refused("T6 D1\nM6\nM30\n", "NC385");
-    refused("D0\nM30\n", "NC385");
-    refused("G0 X0 Y0\nG41 X10 Y5\nG1 X20 F100\nG40 X0 Y0\nM30\n", "NC385");
+fn tool_compensation_translates_or_is_refused() {
+    pair("T6 M6 D1\nG0 Z50\nD0\nM30\n", &["T6 M06", "G43 H6", "G00 Z50.", "G49", "M30"]);
+    pair(
+        "T6 M6 D1\nG0 X0 Y0\nG41 G1 X10 Y5 F100\nG40 X0 Y0\nM30\n",
+        &["T6 M06", "G43 H6", "G00 X0. Y0.", "G41 G01 D6 X10. Y5. F100.", "G40 X0. Y0.", "M30"],
+    );
+    // An edge before any tool change; G41 without an edge.
+    refused("T6 D1\nM6\nM30\n", "NC470");
+    refused("G0 X0 Y0\nG41 X10 Y5\nG1 X20 F100\nG40 X0 Y0\nM30\n", "NC470");
     // H is an auxiliary function on Sinumerik, not an offset.
     pair("H2\nM30\n", &["H2", "M30"]);
 }

@@ -75,25 +75,30 @@ fn words_decimal_point_dwell_units_arcs_offsets() {
     );
 }
 
-/// Issue 17 item 6: FANUC `G41 D04` takes radius register 4, Siemens `D4` is cutting edge 4;
-/// `G43 H1` has no Siemens word. The trace does not compare compensation, so every block with
-/// one is refused (NC385), never translated and called equivalent.
+/// Issue 17 item 6 / issue 19: FANUC `G41 D04` takes radius register 4, Siemens `D4` is
+/// cutting edge 4; `G43 H1` has no Siemens word. Both become the edge of the tool in the
+/// spindle where the map proves the register (`passes::to_sinumerik::comp`, more in
+/// `tests/comp.rs`); the rest is refused, never translated and called equivalent.
 #[test]
-fn tool_compensation_is_refused() {
-    for src in [
-        "O1\nG43 H1 Z50.\nM30\n",
-        "O1\nG41 D04 X10. Y5.\nM30\n",
-        "O1\nG49\nM30\n",
-        "O1\nG40 X0\nM30\n",
-        "O1\nD1\nM30\n",
+fn tool_compensation_translates_or_is_refused() {
+    pair(
+        "O1\nT4 M6\nG43 H4 Z50.\nG41 D04 X10. Y5.\nG40 X0\nG49\nM30\n",
+        "T4 M6 D0\nD1 Z50\nG41 X10 Y5\nG40 X0\nD0\nM30\n",
+    );
+    // No change: the safety line's G40 G49 at power-on.
+    pair("O1\nG40 G49\nM30\n", "G40\nM30\n");
+    for (src, code) in [
+        ("O1\nG43 H1 Z50.\nM30\n", "NC472"),
+        ("O1\nT1 M6\nG41 D04 X10. Y5.\nM30\n", "NC472"),
+        ("O1\nD1\nT1 M6\nG43 H1 Z1.\nT2 M6\nM30\n", "NC473"),
     ] {
         let tr = run(src, &Options::default());
-        assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC385"], "{src}");
+        assert_eq!(tr.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec![code], "{src}");
         assert!(tr.has_errors(), "{src}");
     }
     // A G65 argument D or H is not compensation.
     let tr = run("O1\nG65 P9000 D5. H2.\nM30\nO9000\n#20=#7+#11\nM99\n", &Options::default());
-    assert!(!tr.diags.iter().any(|d| d.code == "NC385"), "{:?}", tr.diags);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
 }
 
 /// Issue 17 item 7: under `--unsupported warn` a block with a construct Siemens lacks becomes

@@ -40,6 +40,14 @@ pub struct Semantics {
     /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
     /// M97). On a FANUC, M97 is a machine builder's M code.
     pub haas: bool,
+    /// The FANUC length and radius registers of each Siemens cutting edge (the setup's
+    /// offset table; by default edge D1 of tool n is H n and D n): `[offsets]`.
+    pub offsets: crate::passes::comp_flow::OffsetMap,
+    /// Siemens MD20270 `$MC_CUTTING_EDGE_DEFAULT` as the profile states it: the edge a tool
+    /// change without D selects (0: none). `None`: not stated; the evaluator runs with the
+    /// factory setting 1 (D1), and the Sinumerik → FANUC translation refuses a tool change
+    /// whose edge depends on it (840D sl function manual W1, 2.1).
+    pub cutting_edge_default: Option<u32>,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -81,6 +89,8 @@ impl Semantics {
                 max_subprogram_depth: 10,
                 incremental_travels_offset: false,
                 haas: false,
+                offsets: Default::default(),
+                cutting_edge_default: None,
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -96,6 +106,8 @@ impl Semantics {
                 max_subprogram_depth: 15,
                 incremental_travels_offset: true,
                 haas: false,
+                offsets: Default::default(),
+                cutting_edge_default: None,
             },
         }
     }

@@ -593,6 +593,10 @@ impl Interp<'_> {
             // The subprogram selected an offset: the return selects the caller's again.
             self.emit(super::trace::Event::WorkOffset { n: self.m.wo as u32 }, span);
         }
+        if let Some(ev) = self.m.comp_restored() {
+            // G40/G41/G42 is a modal G group: restored too.
+            self.emit(ev, span);
+        }
         let top = self.frames.last_mut().ok_or_else(internal)?;
         if top.repeats_left > 0 {
             top.repeats_left -= 1;
@@ -637,11 +641,20 @@ pub struct Saved {
     trans: [f64; 9],
     /// [`Machine::wo_selections`](super::machine::Machine::wo_selections) at the call.
     selections: u64,
+    /// The cutter radius compensation side (group 07).
+    side: Option<super::trace::Side>,
 }
 
 impl Saved {
     fn of(m: &super::machine::Machine) -> Saved {
-        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans, selections: m.wo_selections }
+        Saved {
+            modal: m.modal,
+            wo: m.wo,
+            frame: m.frame,
+            trans: m.trans,
+            selections: m.wo_selections,
+            side: m.comp.side,
+        }
     }
 
     /// Restores the modes; `true` when the subprogram selected a work offset (the restore
@@ -655,6 +668,7 @@ impl Saved {
             m.frame = self.frame;
         }
         m.trans = self.trans;
+        m.comp.side = self.side;
         selected
     }
 }

@@ -8,11 +8,12 @@ use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal
 use crate::ir::cycle::Retract;
 use crate::span::Span;
 
-/// Warning code for a compensation word (D, FANUC H, G40..G49): the trace holds programmed
-/// positions, so `check` cannot call two programs that compensate equivalent (it reports the
-/// code's presence as "tool compensation not compared").
+/// Warning code for a compensation construct the `comp` event does not carry (FANUC G44's
+/// direction, Siemens ISO-mode G43/G44/G49): `check` does not call two programs equivalent
+/// when a run met it (it reports "tool compensation not compared").
 pub const COMPENSATION_NOTE: &str = "NC387";
 
+pub mod comp;
 mod fast;
 mod grid;
 mod modal;
@@ -128,6 +129,8 @@ pub struct Machine {
     pub cycle: super::cycles::State,
     /// `RunOptions::expand_cycles`: holes are written as their moves.
     pub expand: Option<super::cycles::expand::Retracts>,
+    /// Tool length and cutter radius compensation ([`comp`]).
+    pub comp: comp::Comp,
 }
 
 impl Machine {
@@ -173,6 +176,7 @@ impl Machine {
             ms_buf: Vec::new(),
             grid: grid::Grid::new(inc_mm),
             cycle: super::cycles::State::default(),
+            comp: comp::Comp::default(),
         }
     }
 
@@ -329,6 +333,7 @@ impl Machine {
         let mut q_word = None;
         // Siemens G74/G75: the machine axes named (`Z1=0`) and the fixed point (`FP=`).
         let (mut named, mut fp) = (Vec::new(), None);
+        let mut bc = comp::BlockComp::default();
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -373,15 +378,15 @@ impl Machine {
                         true
                     }
                     b'D' => {
-                        self.d = round_half_away(x);
-                        warns.push((COMPENSATION_NOTE, "D (tool compensation) is not modelled".into(), w.span));
+                        bc.d = Some((x, w.span));
+                        true
+                    }
+                    b'H' if self.fanuc => {
+                        bc.h = Some((x, w.span));
                         true
                     }
                     b'H' => {
                         self.h = round_half_away(x);
-                        if self.fanuc {
-                            warns.push((COMPENSATION_NOTE, "H (tool length offset) is not modelled".into(), w.span));
-                        }
                         true
                     }
                     c => match axis_index(c) {
@@ -420,7 +425,8 @@ impl Machine {
                 ("P", Some(x)) => p = Some((w, x)),
                 ("L", Some(x)) => l = Some(x),
                 ("Q", Some(_)) if self.fanuc => q_word = Some(w.span),
-                ("D", Some(x)) => self.d = round_half_away(x),
+                ("D", Some(x)) => bc.d = Some((x, w.span)),
+                ("H", Some(x)) if self.fanuc => bc.h = Some((x, w.span)),
                 ("H", Some(x)) => self.h = round_half_away(x),
                 (a, Some(x)) if a.len() == 1 && axis_index(a.as_bytes()[0]).is_some() => {
                     if let Some(i) = axis_index(a.as_bytes()[0]) {
@@ -476,6 +482,9 @@ impl Machine {
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
                 }
+                // Compensation (comp.rs): applied after the block's tool change.
+                400 | 410 | 420 => bc.radius_g = Some((gi, span)),
+                430 | 440 | 490 if self.fanuc => bc.length_g = Some((gi, span)),
                 740 if !self.fanuc => home = Some(refs::Home { point: 1, via_words: false }),
                 750 if !self.fanuc => home = Some(refs::Home { point: self.fixed_point(fp, span)?, via_words: false }),
                 // Path control, compensation (the trace holds programmed positions), cycle
@@ -490,10 +499,9 @@ impl Machine {
                     self.cycle.retract = if gi == 980 { Retract::Initial } else { Retract::R };
                     self.set_group_g(10, gi);
                 }
-                90 | 600 | 610 | 620 | 630 | 640 | 400 | 410 | 420 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410
-                | 6420 | 150 | 670 | 690 | 970 | 960 | 980 | 990 => {
+                90 | 600 | 610 | 620 | 630 | 640 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410 | 6420 | 150 | 670
+                | 690 | 970 | 960 | 980 | 990 => {
                     let group = match gi {
-                        400 | 410 | 420 => Some(7),
                         430 | 440 | 490 => Some(8),
                         800 => Some(9),
                         980 | 990 => Some(10),
@@ -503,7 +511,8 @@ impl Machine {
                     if let Some(slot) = self.group_g.iter_mut().find(|s| Some(s.0) == group) {
                         slot.1 = gi;
                     }
-                    let code = if matches!(gi, 400..=490) { COMPENSATION_NOTE } else { "NC405" };
+                    // Siemens G43/G44/G49 (ISO mode): not in the `comp` event.
+                    let code = if matches!(gi, 430..=490) { COMPENSATION_NOTE } else { "NC405" };
                     warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
                 290 | 920 | 520 | 680 | 160 => {
@@ -559,17 +568,21 @@ impl Machine {
         }
 
         // 1. tool change
+        let mut changed = false;
         for &(m, span) in ms.iter() {
             if m == 6.0 {
                 match &self.tool_sel {
                     Some(id) => {
                         self.tool = Some(id.clone());
                         out.push((Event::Tool { tool: id.clone() }, span));
+                        changed = true;
                     }
                     None => warns.push(("NC405", "M6 without a selected tool".into(), span)),
                 }
             }
         }
+        // 1a. compensation, in force from this block's motion on
+        self.apply_comp(&bc, changed, out, warns, block_span);
         // 2. spindle start or S change
         let mut spindle_cmd = false;
         for &(m, span) in ms.iter() {

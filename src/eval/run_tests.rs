@@ -407,6 +407,8 @@ fn event_order_inside_a_block_and_msg_merge() {
         t,
         vec![
             "tool \"Ball\"",
+            // The tool change selects edge D1 (MD20270): in force before the block's motion.
+            "comp length=\"Ball.1\" radius=off",
             "spindle cw 100",
             "coolant on",
             "move linear X=1 f=1",
@@ -624,7 +626,9 @@ fn fanuc_modal_group_variables() {
         ]),
         s(vec![end()]),
     ]);
-    assert_eq!(run_u(&u).0[0], "move rapid X=91 Y=18 Z=41 A=43 B=67 f=-");
+    // G41 without D and G43 with H1: length on, radius off (D0).
+    assert_eq!(run_u(&u).0[0], "comp length=1 radius=off");
+    assert_eq!(run_u(&u).0[1], "move rapid X=91 Y=18 Z=41 A=43 B=67 f=-");
 }
 
 #[test]

@@ -132,6 +132,40 @@ pub enum Event {
     },
     /// A reference-point return (format v2; boxed: rare).
     Home(Box<HomeEv>),
+    /// A change of tool length or cutter radius compensation (format v2; boxed: rare).
+    Comp(Box<CompEv>),
+}
+
+/// A compensation register as each control names it: FANUC the H or D number, Siemens
+/// `"T.D"` (the tool as in `tool` events, then the cutting edge).
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CompReg {
+    Fanuc(i64),
+    Edge(String),
+}
+
+/// The side of cutter radius compensation (G41 left, G42 right).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    Left,
+    Right,
+}
+
+impl Side {
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+}
+
+/// The fields of a `comp` event: the length register in force and the radius side and
+/// register, `None` for off.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CompEv {
+    pub length: Option<CompReg>,
+    pub radius: Option<(Side, CompReg)>,
 }
 
 /// The fields of a `home` event.
@@ -164,6 +198,7 @@ impl Event {
             Event::Cycle(_) => "cycle",
             Event::WorkOffset { .. } => "work_offset",
             Event::Home(_) => "home",
+            Event::Comp(_) => "comp",
         }
     }
 }
@@ -322,6 +357,30 @@ fn text_form(s: &mut TextBuf, ev: &Event) {
             s.push_str(" via");
             axes_text(s, &h.via);
         }
+        Event::Comp(c) => {
+            s.push_str("comp length=");
+            match &c.length {
+                Some(r) => reg_text(s, r),
+                None => s.push_str("off"),
+            }
+            s.push_str(" radius=");
+            match &c.radius {
+                Some((side, r)) => {
+                    s.push_str(side.name());
+                    s.push(':');
+                    reg_text(s, r);
+                }
+                None => s.push_str("off"),
+            }
+        }
+    }
+}
+
+/// A register in the text form (and in JSON): FANUC a number, Siemens a quoted string.
+fn reg_text(s: &mut TextBuf, r: &CompReg) {
+    match r {
+        CompReg::Fanuc(n) => super::numfmt::put_int(s.0, *n),
+        CompReg::Edge(e) => push_quoted(s, e),
     }
 }
 
@@ -438,6 +497,28 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
             s.push_str("],\"via\":");
             axes_json(s, &h.via);
             s.push_str(&format!(",\"point\":{}", h.point));
+        }
+        Event::Comp(c) => {
+            s.push_str(",\"length\":");
+            match &c.length {
+                Some(r) => {
+                    s.push_str("{\"register\":");
+                    reg_text(s, r);
+                    s.push('}');
+                }
+                None => s.push_str("null"),
+            }
+            s.push_str(",\"radius\":");
+            match &c.radius {
+                Some((side, r)) => {
+                    s.push_str("{\"side\":\"");
+                    s.push_str(side.name());
+                    s.push_str("\",\"register\":");
+                    reg_text(s, r);
+                    s.push('}');
+                }
+                None => s.push_str("null"),
+            }
         }
     }
     if let Some(l) = line {

@@ -9,7 +9,8 @@
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
 pub mod blocks;
-pub mod compensation;
+pub mod comp_flow;
+pub mod comp_to_fanuc;
 pub mod cycles;
 pub mod cycles_tap;
 pub mod exprs;
@@ -79,6 +80,10 @@ pub struct Ctx {
     pub tools: BTreeMap<String, u32>,
     /// Tool names actually used, with their numbers (for the symbol map).
     pub tools_used: BTreeMap<String, u32>,
+    /// The FANUC registers of each cutting edge (`comp_flow::OffsetMap`).
+    pub offsets: comp_flow::OffsetMap,
+    /// The Siemens profile's MD20270, when it states one (`Semantics::cutting_edge_default`).
+    pub edge_default: Option<u32>,
     /// Known callees by upper-case name.
     pub callees: BTreeMap<String, Callee>,
     pub diags: Vec<Diagnostic>,
@@ -100,6 +105,8 @@ impl Ctx {
             compound_conditions: false,
             tools: BTreeMap::new(),
             tools_used: BTreeMap::new(),
+            offsets: comp_flow::OffsetMap::default(),
+            edge_default: None,
             callees: BTreeMap::new(),
             diags: Vec::new(),
             units_inexact: false,
@@ -173,6 +180,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     blocks::run(ctx, prog, info);
     words::run(ctx, prog, info);
+    comp_to_fanuc::run(ctx, prog, info);
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);

@@ -254,9 +254,6 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
-    if let Some(c) = super::compensation::in_block(&b.items, crate::dialect::Dialect::Sinumerik) {
-        out.extend(ctx.unsupported(super::compensation::CODE, c.span, &c.what, super::compensation::HINT));
-    }
     // TRANS, SUPA/G153, G505.., G74/G75 (frames.rs).
     if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
         out.extend(stmts);

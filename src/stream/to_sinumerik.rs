@@ -106,6 +106,9 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
+    if crate::passes::comp_flow::stream_relevant_items(&b.items, true, false) {
+        return Err(COMP.into());
+    }
     for it in &b.items {
         let w = match &it.kind {
             ItemKind::Word(w) => w,
@@ -143,6 +146,14 @@ fn plain_g(v: f64) -> bool {
     let g10 = fast::round(v * 10.0);
     (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G_SET.contains(g10 as u32)
 }
+
+/// Why a program with a compensation word is translated whole: the translation carries the
+/// tool and the compensation in force from block to block (`passes::to_sinumerik::comp`).
+/// The segmented path reads a program with a tool change whole too ([`COMP_M6`]).
+pub const COMP: &str = "tool compensation (D, H, G40-G49)";
+
+/// [`COMP`] of the segmented path, which also reads a program with a tool change whole.
+pub const COMP_M6: &str = "a tool change or tool compensation (M6, D, H, G40-G49)";
 
 /// A finished streamed translation.
 pub struct Streamed {
@@ -623,6 +634,10 @@ impl super::WordsSink for Sink<'_, '_> {
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let st = &mut *self.st;
         if st.stop.is_some() {
+            return true;
+        }
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, false)) {
+            st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }
         // The usual CAM line, when nothing waits for the passes (as `State::fast` with an

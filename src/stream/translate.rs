@@ -57,6 +57,11 @@ pub struct Streamed {
     pub unsupported: usize,
 }
 
+/// Why a program with a tool change or compensation word is translated whole: the
+/// translation carries the tool and the cutting edge from block to block
+/// (`passes::comp_to_fanuc`).
+pub const COMP: &str = "a tool change or tool compensation (M6, D, G40/G41/G42)";
+
 /// A block whose translation does not depend on any other block.
 pub fn straight(s: &Stmt) -> Result<(), String> {
     let StmtKind::Block(b) = &s.kind else { return Err("a control structure".into()) };
@@ -84,6 +89,9 @@ fn sets_g(b: &Block, codes: &[f64]) -> bool {
 fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
+    }
+    if crate::passes::comp_flow::stream_relevant_items(&b.items, false, true) {
+        return Err(COMP.into());
     }
     for it in &b.items {
         let w = match &it.kind {
@@ -209,6 +217,10 @@ impl super::WordsSink for Sink<'_, '_> {
     fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let st = &mut *self.st;
         if st.stop.is_some() {
+            return true;
+        }
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
+            st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }
         // A plain block is straight (constant letter words, no label): not checked again.

@@ -13,6 +13,7 @@
 //! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
 //! 8. `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
+//!    Then `comp::lower` — G43 H / G49, G41 D / G40 → cutting edges `D1` / `D0`, G41/G40.
 //! 9. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
 //! 10. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
@@ -21,6 +22,7 @@
 //! back at the FANUC text.
 
 pub mod calls;
+pub mod comp;
 pub mod cycles;
 pub mod exprs;
 pub mod frames;
@@ -358,6 +360,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
     body = cycles::lower(ctx, body);
+    body = comp::lower(ctx, body);
     body = words::lower(ctx, body);
     exprs::lower(ctx, body)
 }

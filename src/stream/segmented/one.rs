@@ -36,7 +36,9 @@ impl WordsSink for One {
 
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let sk = &self.sk;
-        if !self.live() || sk.stop.is_some() || prog != 0 || kept(&sk.keep, meta) || sk.after_msg {
+        let comp =
+            words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true));
+        if !self.live() || sk.stop.is_some() || prog != 0 || kept(&sk.keep, meta) || sk.after_msg || comp {
             return self.sk.plain(prog, meta, words, line);
         }
         // A run block (as `Skel::plain` takes it): translated first, so that a block the fast

@@ -273,6 +273,10 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
+            self.decline(crate::stream::translate::COMP);
+            return true;
+        }
         if prog != 0 {
             self.decline("more than one program");
             return true;
@@ -288,6 +292,9 @@ impl WordsSink for Skel {
     fn stmt(&mut self, prog: usize, s: &Stmt) {
         if self.stop.is_some() {
             return;
+        }
+        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), false, true) {
+            return self.decline(crate::stream::translate::COMP);
         }
         if prog != 0 {
             return self.decline("more than one program");

@@ -117,6 +117,8 @@ pub fn block<'t, I: ItemView>(
                 as_written = false;
             }
             b'P' | b'L' | b'Q' | b'E' | b'O' | b'H' | b'D' => return Err(Declined),
+            // A tool change: the passes write it with D0 (`passes::to_sinumerik::comp`).
+            b'M' if v == 6.0 => return Err(Declined),
             _ => {
                 if scaled_letter(letter) && !point {
                     let rotary = rotary_letter(letter);
@@ -240,6 +242,11 @@ pub fn plain_words(meta: &BlockMeta, words: &[PlainWord], arc: &mut bool, eol: &
         out.push(b' ');
     }
     for w in words {
+        if w.letter == b'M' && w.value == 6.0 {
+            // A tool change: `block` leaves it to the passes (D0).
+            out.truncate(start);
+            return false;
+        }
         if w.letter == b'G' {
             // `map_g` keeps G0..G3 (the arc mode as `push_plain` follows it).
             let g = w.value as u32;

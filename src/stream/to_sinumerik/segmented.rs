@@ -335,6 +335,10 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
+        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true)) {
+            self.decline(super::COMP_M6);
+            return true;
+        }
         if prog != 0 {
             if !self.calls {
                 self.decline("more than one program");
@@ -353,6 +357,9 @@ impl WordsSink for Skel {
     fn stmt(&mut self, prog: usize, s: &Stmt) {
         if self.stop.is_some() {
             return;
+        }
+        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), true, true) {
+            return self.decline(super::COMP_M6);
         }
         if prog != 0 {
             return self.sub_stmt(prog, s);

@@ -58,7 +58,9 @@ impl WordsSink for One<'_> {
 
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let sk = &self.sk;
-        if !self.live() || sk.stop.is_some() || prog != 0 || !sk.class.plain_run(meta, words) {
+        let comp =
+            words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true));
+        if !self.live() || sk.stop.is_some() || prog != 0 || comp || !sk.class.plain_run(meta, words) {
             return self.sk.plain(prog, meta, words, line);
         }
         // A run block (as `Skel::plain` takes it): translated first, so that a block the fast

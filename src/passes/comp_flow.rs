@@ -1,0 +1,308 @@
+//! What both compensation translations share (`comp_to_fanuc`, `to_sinumerik::comp`): the
+//! H ↔ T/D mapping, values known or not on every path, and a walk over a program body that
+//! carries a state through blocks, structures and jump targets.
+//!
+//! The mapping (docs/translation.md, "Tool compensation"): by default FANUC length register
+//! H n and radius register D n belong to cutting edge D1 of tool n; `[offsets]` in
+//! nctrans.toml (`"6.2" = "H26,D46"`) names the registers of any other edge. A
+//! register the mapping does not give is refused, never guessed.
+
+use crate::ir::*;
+use std::collections::BTreeMap;
+
+/// A Siemens edge: (tool number, edge number).
+pub type Edge = (u32, u32);
+/// The FANUC registers of an edge: (H, D).
+pub type Registers = (u32, u32);
+
+/// A block handed to a [`walk`]'s step: the state, the block, whether the step is live, and
+/// where its statements go.
+pub type Step<'a, S> = dyn FnMut(&mut S, Block, bool, &mut Vec<Stmt>) + 'a;
+
+/// The FANUC registers (H, D) of each Siemens edge (tool number, edge), beyond the default
+/// (edge 1 of tool n: H n, D n).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct OffsetMap {
+    pub edges: BTreeMap<Edge, Registers>,
+}
+
+impl OffsetMap {
+    /// The (H, D) registers of edge `edge` of tool `tool`.
+    pub fn registers(&self, tool: u32, edge: u32) -> Option<(u32, u32)> {
+        match self.edges.get(&(tool, edge)) {
+            Some(&r) => Some(r),
+            None if edge == 1 && !self.edges.keys().any(|&(t, _)| t == tool) => Some((tool, tool)),
+            None if edge == 1 => None,
+            None => None,
+        }
+    }
+
+    /// The edge of `tool` whose length register is `h`.
+    pub fn edge_of_h(&self, tool: u32, h: u32) -> Option<u32> {
+        (1..=99).find(|&e| self.registers(tool, e).is_some_and(|r| r.0 == h))
+    }
+
+    /// Parses an `[offsets]` line `"6.2" = "H26,D46"` (key and value).
+    pub fn parse_entry(key: &str, value: &str) -> Result<(Edge, Registers), String> {
+        let bad = || format!("bad offset map entry '{key}={value}' (expected like '6.2=H26,D46')");
+        let (t, e) = key.trim().trim_matches('"').split_once('.').ok_or_else(bad)?;
+        let (t, e): (u32, u32) = (t.trim().parse().map_err(|_| bad())?, e.trim().parse().map_err(|_| bad())?);
+        let mut h = None;
+        let mut d = None;
+        for part in value.trim().trim_matches('"').split(',') {
+            let part = part.trim();
+            let n = |p: &str| p[1..].trim().parse::<u32>().map_err(|_| bad());
+            match part.as_bytes().first() {
+                Some(b'H' | b'h') => h = Some(n(part)?),
+                Some(b'D' | b'd') => d = Some(n(part)?),
+                _ => return Err(bad()),
+            }
+        }
+        if e == 0 {
+            return Err(format!("offset map entry '{key}': edge 0 is D0, no compensation"));
+        }
+        Ok(((t, e), (h.ok_or_else(bad)?, d.ok_or_else(bad)?)))
+    }
+}
+
+/// A value known on every path here, or not.
+#[derive(Clone, Debug, PartialEq)]
+pub enum K<T> {
+    Known(T),
+    Unknown,
+}
+
+impl<T: Clone + PartialEq> K<T> {
+    pub fn merge(&self, other: &K<T>) -> K<T> {
+        if self == other {
+            self.clone()
+        } else {
+            K::Unknown
+        }
+    }
+
+    pub fn known(&self) -> Option<&T> {
+        match self {
+            K::Known(t) => Some(t),
+            K::Unknown => None,
+        }
+    }
+}
+
+/// A state a walk carries through a program.
+pub trait FlowState: Clone + PartialEq {
+    /// Nothing known (a jump target, the start of a subprogram).
+    fn unknown() -> Self;
+    /// What two paths meeting here agree on.
+    fn merge(&self, other: &Self) -> Self;
+}
+
+/// The constant value of a word, if it is one.
+pub fn const_word(w: &Word) -> Option<f64> {
+    match &w.value {
+        WordValue::Expr(e) => const_expr(e),
+        _ => None,
+    }
+}
+
+pub fn const_expr(e: &Expr) -> Option<f64> {
+    match &e.kind {
+        ExprKind::Num(n) => Some(n.value),
+        ExprKind::Unary(UnOp::Neg, x) => const_expr(x).map(|v| -v),
+        _ => None,
+    }
+}
+
+/// Whether a constant letter word is one the compensation translation reads: D, H (FANUC),
+/// T, G40–G49, M6. The streamed translators translate a program with one whole (the
+/// translation carries the tool and the compensation from block to block).
+pub fn relevant_word(letter: u8, value: Option<f64>, fanuc: bool) -> bool {
+    match letter {
+        b'D' | b'T' => true,
+        b'H' => fanuc,
+        // A computed G code is no compensation code: the Sinumerik → FANUC words pass writes
+        // `G#…` only to restore G90/G91, and FANUC `G#1` is refused by the words pass.
+        b'G' => value.is_some_and(|g| (40.0..50.0).contains(&g)),
+        b'M' => value.is_none_or(|m| m == 6.0),
+        _ => false,
+    }
+}
+
+/// Whether a constant letter word makes a streamed translation read the program whole: a
+/// compensation word (D, FANUC H, G40–G49), and M6 where `m6` (Sinumerik → FANUC, and the
+/// segmented FANUC → Sinumerik path). A T word alone changes nothing the translation writes.
+/// The straight FANUC → Sinumerik stream takes M6 blocks through the passes (`T1 M6 D0`):
+/// without a compensation word in the program the length is off at every tool change.
+pub fn stream_relevant_word(letter: u8, value: Option<f64>, fanuc: bool, m6: bool) -> bool {
+    match letter {
+        b'T' => false,
+        b'M' => m6 && relevant_word(letter, value, fanuc),
+        _ => relevant_word(letter, value, fanuc),
+    }
+}
+
+/// [`stream_relevant_word`] of a block's words.
+pub fn stream_relevant_items(items: &[Item], fanuc: bool, m6: bool) -> bool {
+    items.iter().any(|it| match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(l), value, .. }) => {
+            let v = match value {
+                WordValue::Expr(e) => const_expr(e),
+                _ => None,
+            };
+            stream_relevant_word(*l, v, fanuc, m6)
+        }
+        ItemKind::IfThen { then, .. } => stream_relevant_items(std::slice::from_ref(then), fanuc, m6),
+        _ => false,
+    })
+}
+
+/// Whether a body holds a block with [`stream_relevant_items`].
+pub fn stream_relevant(body: &[Stmt], fanuc: bool, m6: bool) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= stream_relevant_items(&b.items, fanuc, m6);
+        }
+    });
+    any
+}
+
+/// Whether `items` hold a word the compensation translation reads ([`relevant_word`]).
+pub fn relevant_items(items: &[Item], fanuc: bool) -> bool {
+    items.iter().any(|it| match &it.kind {
+        ItemKind::Word(w) => match w.addr {
+            Addr::Letter(l) => relevant_word(l, const_word(w), fanuc),
+            _ => false,
+        },
+        ItemKind::IfThen { then, .. } => relevant_items(std::slice::from_ref(then), fanuc),
+        _ => false,
+    })
+}
+
+/// Whether a body holds a block with [`relevant_items`].
+pub fn relevant(body: &[Stmt], fanuc: bool) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= relevant_items(&b.items, fanuc);
+        }
+    });
+    any
+}
+
+/// Whether a body jumps (a GOTO anywhere): its labels and N numbers are then places where
+/// paths meet.
+pub fn jumps(body: &[Stmt]) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= b.items.iter().any(|it| match &it.kind {
+                ItemKind::Goto(_) => true,
+                ItemKind::IfThen { then, .. } => matches!(then.kind, ItemKind::Goto(_)),
+                _ => false,
+            });
+        }
+    });
+    any
+}
+
+/// Walks `body` with the state `st`, handing every block to `step` (`live`: false while a
+/// loop's state is found, when `step` must neither report nor change anything that
+/// stays). Structures without a relevant word are passed over; a loop body starts in what
+/// its entry and its end agree on; a jump target (when the body jumps) knows nothing.
+pub fn walk<S: FlowState>(
+    body: Vec<Stmt>,
+    st: &mut S,
+    jumping: bool,
+    fanuc: bool,
+    step: &mut Step<'_, S>,
+    live: bool,
+) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(body.len());
+    for s in body {
+        if jumping && crate::ir::visit::metas(&s.kind).iter().any(|m| m.label.is_some() || m.number.is_some()) {
+            *st = st.merge(&S::unknown());
+        }
+        let span = s.span;
+        let mut s = match s.kind {
+            StmtKind::Block(b) => {
+                step(st, b, live, &mut out);
+                continue;
+            }
+            kind => Stmt { kind, span },
+        };
+        if !relevant(std::slice::from_ref(&s), fanuc) {
+            out.push(s);
+            continue;
+        }
+        match &mut s.kind {
+            StmtKind::If(i) => {
+                let entry = st.clone();
+                i.then_body = walk(std::mem::take(&mut i.then_body), st, jumping, fanuc, step, live);
+                let then_end = std::mem::replace(st, entry);
+                if let Some(e) = &mut i.else_part {
+                    e.body = walk(std::mem::take(&mut e.body), st, jumping, fanuc, step, live);
+                }
+                *st = st.merge(&then_end);
+            }
+            kind => {
+                if let Some(body) = loop_body(kind) {
+                    // The state at the loop head: what the entry and every pass's end agree on.
+                    let mut head = st.clone();
+                    for _ in 0..3 {
+                        let mut probe = head.clone();
+                        walk(body.clone(), &mut probe, jumping, fanuc, step, false);
+                        let next = head.merge(&probe);
+                        if next == head {
+                            break;
+                        }
+                        head = next;
+                    }
+                    let mut probe = head.clone();
+                    walk(body.clone(), &mut probe, jumping, fanuc, step, false);
+                    if head.merge(&probe) != head {
+                        head = S::unknown();
+                    }
+                    *st = head.clone();
+                    *body = walk(std::mem::take(body), st, jumping, fanuc, step, live);
+                    // A loop may run no pass (WHILE, FOR) or leave at its test.
+                    *st = head.merge(st);
+                }
+            }
+        }
+        out.push(s);
+    }
+    out
+}
+
+fn loop_body(kind: &mut StmtKind) -> Option<&mut Vec<Stmt>> {
+    match kind {
+        StmtKind::While(w) => Some(&mut w.body),
+        StmtKind::Loop(l) => Some(&mut l.body),
+        StmtKind::For(f) => Some(&mut f.body),
+        StmtKind::Repeat(r) => Some(&mut r.body),
+        StmtKind::Do(d) => Some(&mut d.body),
+        StmtKind::If(_) | StmtKind::Block(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_mapping_is_edge_1_of_tool_n_and_a_configured_tool_uses_its_own() {
+        let mut m = OffsetMap::default();
+        assert_eq!(m.registers(6, 1), Some((6, 6)));
+        assert_eq!(m.registers(6, 2), None);
+        assert_eq!(m.edge_of_h(6, 6), Some(1));
+        assert_eq!(m.edge_of_h(6, 7), None);
+        let (k, v) = OffsetMap::parse_entry("6.2", "H26,D46").unwrap();
+        m.edges.insert(k, v);
+        assert_eq!(m.registers(6, 2), Some((26, 46)));
+        assert_eq!(m.registers(6, 1), None, "a tool in the map has only the edges given");
+        assert_eq!(m.edge_of_h(6, 26), Some(2));
+        assert!(OffsetMap::parse_entry("6", "H1,D1").is_err());
+        assert!(OffsetMap::parse_entry("6.0", "H1,D1").is_err());
+    }
+}

@@ -1,0 +1,357 @@
+//! Tool length and cutter radius compensation (issue 19, issue 17 item 6): the `comp`
+//! events both evaluators write, the translation both ways through the H ↔ T/D offset map
+//! (exact output, proven by verify), the refusals where a register cannot be proven, and
+//! planted wrong translations (wrong H, wrong side, a missing G49 / D0) that the check
+//! must catch.
+
+use nctrans::check::{self, Side, Verdict};
+use nctrans::dialect::{Dialect, ParseOptions, Semantics};
+use nctrans::eval::{NoCallees, RunOptions, VecSink};
+use nctrans::ir::Unit;
+use nctrans::read::LineEnding;
+use nctrans::span::SourceDb;
+use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate_sinumerik::{self as ts, Options};
+
+const STEPS: u64 = 100_000;
+
+fn parse(db: &mut SourceDb, name: &str, text: &str, d: Dialect) -> (nctrans::span::FileId, Unit) {
+    let id = db.add(name, text);
+    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
+    assert!(!nctrans::diag::has_errors(&p.diags), "{name}:\n{}", nctrans::diag::render(db, &p.diags));
+    (id, p.unit)
+}
+
+/// The text trace of a program.
+fn trace(text: &str, d: Dialect) -> Vec<String> {
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "t", text, d);
+    let mut sink = VecSink::default();
+    let opts = RunOptions { max_steps: STEPS, ..RunOptions::default() };
+    nctrans::eval::run(&mut db, &u, &mut NoCallees, &opts, &mut sink);
+    sink.events.iter().map(|(e, _)| nctrans::eval::trace::text_line(e)).collect()
+}
+
+fn comp_events(text: &str, d: Dialect) -> Vec<String> {
+    trace(text, d).into_iter().filter(|l| l.starts_with("comp")).collect()
+}
+
+/// The check of a Siemens program against a FANUC one.
+fn check_pair(siemens: &str, fanuc: &str) -> (Verdict, String) {
+    let mut db = SourceDb::new();
+    let (_, s) = parse(&mut db, "a.mpf", siemens, Dialect::Sinumerik);
+    let (_, f) = parse(&mut db, "b.nc", fanuc, Dialect::Fanuc);
+    let side = |u: &Unit| Side {
+        unit: u.clone(),
+        callees: Box::new(NoCallees),
+        run: RunOptions { max_steps: STEPS, ..RunOptions::default() },
+    };
+    let r = check::check(&db, side(&s), side(&f));
+    (r.verdict, r.diff)
+}
+
+/// Siemens → FANUC: the program lines (no `%`, O line, header), after verify proved them.
+fn to_fanuc(src: &str) -> Vec<String> {
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
+    let t = translate::to_fanuc(&u, &[], &TranslateOptions::default());
+    assert!(t.ok(), "not translated:\n{}", nctrans::diag::render(&db, &t.diags));
+    let v = translate::verify(&mut db, &u, &[], &t, "out.nc", STEPS);
+    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+    t.text
+        .lines()
+        .filter(|l| *l != "%" && !l.starts_with('O') && !l.starts_with("(NCTRANS"))
+        .map(str::to_string)
+        .collect()
+}
+
+fn to_fanuc_codes(src: &str, opts: &TranslateOptions) -> Vec<&'static str> {
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
+    let t = translate::to_fanuc(&u, &[], opts);
+    assert!(!t.ok(), "translated:\n{}", t.text);
+    t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect()
+}
+
+/// FANUC → Sinumerik: the program lines (header left out), after verify proved them.
+fn to_sinumerik(src: &str) -> Vec<String> {
+    let mut db = SourceDb::new();
+    let (file, u) = parse(&mut db, "in.nc", src, Dialect::Fanuc);
+    let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
+    assert!(!tr.has_errors(), "not translated:\n{}", nctrans::diag::render(&db, &tr.diags));
+    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &u, &tr, "out", STEPS);
+    assert!(matches!(rep.verdict, Verdict::Equivalent { .. }), "{:?}\n{}", rep.verdict, rep.diff);
+    let main = tr.main().expect("main file");
+    main.text.lines().filter(|l| !l.starts_with("; Translated by")).map(str::to_string).collect()
+}
+
+fn to_sinumerik_codes(src: &str) -> Vec<&'static str> {
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "in.nc", src, Dialect::Fanuc);
+    let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
+    assert!(tr.has_errors(), "translated:\n{}", tr.main().map_or(String::new(), |f| f.text.clone()));
+    tr.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect()
+}
+
+#[test]
+fn fanuc_comp_events_follow_g43_g49_g41_g40_and_the_modal_registers() {
+    let p = "%\nO1\nT1 M6\nG43 H1 Z50.\nG43 H1 Z40.\nH2\nG41 D11 X1. F100.\nG41 X2.\nD0 X3.\nG40 X4.\nG43 H0\nG43 H3\n\
+             G91 G28 Z0.\nG49\nM30\n%\n";
+    assert_eq!(
+        comp_events(p, Dialect::Fanuc),
+        [
+            "comp length=1 radius=off",
+            "comp length=2 radius=off",
+            "comp length=2 radius=left:11",
+            "comp length=2 radius=off", // D0: offset 0
+            "comp length=off radius=off",
+            "comp length=3 radius=off",
+            // G28 keeps G43 modal (the vector is restored with the next Z move).
+            "comp length=off radius=off",
+        ]
+    );
+    // The event stands before the block's motion.
+    let t = trace("%\nO1\nT1 M6\nG43 H1 Z50. M8\nM30\n%\n", Dialect::Fanuc);
+    assert_eq!(t[1..4], ["comp length=1 radius=off", "coolant on", "move rapid Z=50 f=-"]);
+}
+
+#[test]
+fn siemens_edges_carry_length_and_radius_and_a_tool_change_selects_d1() {
+    let p = "T2 M6\nD2 G0 Z50\nG41 G1 X1 F100\nD0 X2\nG40 X3\nT=\"MILL\" M6\nD0\nM6 D3\nM30\n";
+    assert_eq!(
+        comp_events(p, Dialect::Sinumerik),
+        [
+            "comp length=\"2.1\" radius=off", // MD20270 = 1
+            "comp length=\"2.2\" radius=off",
+            "comp length=\"2.2\" radius=left:\"2.2\"",
+            "comp length=off radius=off",
+            "comp length=\"MILL.1\" radius=off",
+            "comp length=off radius=off",
+            "comp length=\"MILL.3\" radius=off",
+        ]
+    );
+}
+
+#[test]
+fn g44_runs_with_a_warning_that_keeps_check_from_calling_it_equivalent() {
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "t.nc", "%\nO1\nT1 M6\nG44 H1 Z50.\nM30\n%\n", Dialect::Fanuc);
+    let mut sink = VecSink::default();
+    let out = nctrans::eval::run(&mut db, &u, &mut NoCallees, &RunOptions::default(), &mut sink);
+    assert!(out.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE), "{:?}", out.diags);
+}
+
+#[test]
+fn registers_pair_by_first_appearance_so_a_reused_register_is_a_divergence() {
+    let siemens = "T1 M6 D1\nG0 Z50\nT2 M6 D1\nG0 Z50\nM30\n";
+    // Renamed consistently: equivalent (the check does not know the setup sheet).
+    let renamed = "%\nO1\nT1 M6\nG43 H11\nG0 Z50.\nT2 M6\nG43 H12\nG0 Z50.\nM30\n%\n";
+    assert!(matches!(check_pair(siemens, renamed).0, Verdict::Equivalent { .. }));
+    // One H for two tools: the second tool would run with the first one's length.
+    let wrong = "%\nO1\nT1 M6\nG43 H1\nG0 Z50.\nT2 M6\nG43 H1\nG0 Z50.\nM30\n%\n";
+    let (v, diff) = check_pair(siemens, wrong);
+    assert!(matches!(v, Verdict::Diverged { .. }), "{v:?}");
+    assert!(diff.contains("comp"), "{diff}");
+}
+
+const SIEMENS_PART: &str = "; two tools, a contour\nG17 G40 G90 G71\nT1 M6\nD1\nG54 G0 X0 Y0 S1000 M3\nZ50\n\
+G1 Z-2 F100\nG41 X10 Y0\nY10\nG2 X20 Y20 CR=10\nG40 G1 X30 Y30\nG0 Z50\nT2 D1 M6\nG0 X5 Y5\nZ20\nD0\nM30\n";
+
+#[test]
+fn sinumerik_edges_translate_to_g43_h_and_g41_d_and_verify() {
+    assert_eq!(
+        to_fanuc(SIEMENS_PART),
+        [
+            "( two tools, a contour)",
+            "G17 G40 G90 G21",
+            "T1 M06",
+            "G43 H1",
+            "G54 G00 X0. Y0. S1000 M03",
+            "Z50.",
+            "G01 Z-2. F100.",
+            "G41 D1 X10. Y0.",
+            "Y10.",
+            "G02 X20. Y20. R10.",
+            "G40 G01 X30. Y30.",
+            "G00 Z50.",
+            "T2 M06",
+            "G43 H2",
+            "G00 X5. Y5.",
+            "Z20.",
+            "G49",
+            "M30",
+        ]
+    );
+    // The edge in the approach block: the G43 goes with the Z move.
+    assert_eq!(to_fanuc("T3 M6\nG0 D1 Z50\nM30\n")[..2], ["T3 M06", "G00 G43 H3 Z50."]);
+}
+
+const FANUC_PART: &str = "%\nO2\nG17 G40 G49 G80 G90\nT1 M06\nG54 G00 X0. Y0. S1000 M03\nG43 H01 Z50. M08\n\
+G01 Z-2. F100.\nG41 D01 X10. Y0.\nY10.\nG40 X0. Y0.\nG00 Z50. M09\nG49\nT#20 M06\nG43 H#20 Z50.\nG49\nM30\n%\n";
+
+#[test]
+fn fanuc_g43_and_g41_translate_to_the_edge_of_the_tool_in_the_spindle_and_verify() {
+    let p = FANUC_PART.replace("T#20", "#20=2\nT#20");
+    assert_eq!(
+        to_sinumerik(&p),
+        [
+            "; FANUC variable map:",
+            ";   #20 = LOC20",
+            "DEF REAL LOC20",
+            "G17 G40 G90",
+            "T1 M6 D0",
+            "G54 G0 X0 Y0 S1000 M3",
+            "D1 Z50 M8",
+            "G1 Z-2 F100",
+            "G41 X10 Y0",
+            "Y10",
+            "G40 X0 Y0",
+            "G0 Z50 M9",
+            "D0",
+            "LOC20=2",
+            "T=LOC20 M6 D0",
+            "D1 Z50",
+            "D0",
+            "M30",
+        ]
+    );
+}
+
+#[test]
+fn registers_that_cannot_be_proven_are_refused_precisely() {
+    let d = TranslateOptions::default();
+    // The edge of a tool change without D is machine data, and a move comes before any D.
+    assert_eq!(to_fanuc_codes("T1 M6\nG0 Z50\nD1\nM30\n", &d), ["NC470"]);
+    // An edge without a tool in the spindle; an edge the map has no registers for.
+    assert_eq!(to_fanuc_codes("D1\nG0 Z50\nM30\n", &d), ["NC470"]);
+    assert_eq!(to_fanuc_codes("T1 M6 D2\nM30\n", &d), ["NC472"]);
+    // A tool change or D0 under G41.
+    assert_eq!(to_fanuc_codes("T1 M6 D1\nG41 G1 X1 F100\nT2 M6 D1\nM30\n", &d), ["NC473"]);
+    assert_eq!(to_fanuc_codes("T1 M6 D1\nG41 G1 X1 F100\nD0 X2\nM30\n", &d), ["NC470"]);
+    // A profile that states MD20270 makes the tool change's edge known.
+    let mut stated = TranslateOptions::default();
+    stated.source.cutting_edge_default = Some(1);
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "in.mpf", "T1 M6\nG0 Z50\nM30\n", Dialect::Sinumerik);
+    let t = translate::to_fanuc(&u, &[], &stated);
+    assert!(t.ok() && t.text.contains("T1 M06\nG43 H1\n"), "{}", t.text);
+
+    // FANUC: an H that is not the tool's, G44, a tool change under G43, G41 under G49.
+    assert_eq!(to_sinumerik_codes("%\nO1\nT1 M6\nG43 H2 Z50.\nM30\n%\n"), ["NC472"]);
+    assert_eq!(to_sinumerik_codes("%\nO1\nT1 M6\nG44 H1 Z50.\nM30\n%\n"), ["NC474"]);
+    assert_eq!(to_sinumerik_codes("%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\nM30\n%\n"), ["NC473"]);
+    assert_eq!(to_sinumerik_codes("%\nO1\nT1 M6\nG41 D1 X1. F100.\nM30\n%\n"), ["NC472"]);
+    assert_eq!(to_sinumerik_codes("%\nO1\nG43 H1 Z50.\nM30\n%\n"), ["NC472"]);
+}
+
+#[test]
+fn an_offset_map_names_the_registers_of_other_edges() {
+    let mut sem = Semantics::default_for(Dialect::Fanuc);
+    let (k, v) = nctrans::passes::comp_flow::OffsetMap::parse_entry("6.2", "H26,D46").expect("entry");
+    sem.offsets.edges.insert(k, v);
+    let opts = TranslateOptions { target: sem, ..TranslateOptions::default() };
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "in.mpf", "T6 M6 D2\nG41 G1 X1 F100\nG40 X2\nM30\n", Dialect::Sinumerik);
+    let t = translate::to_fanuc(&u, &[], &opts);
+    assert!(t.ok(), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
+    assert!(t.text.contains("T6 M06\nG43 H26\nG41 G01 D46 X1. F100.\n"), "{}", t.text);
+    let v = translate::verify(&mut db, &u, &[], &t, "out.nc", STEPS);
+    assert!(v.equivalent, "{}", v.summary);
+}
+
+#[test]
+fn planted_wrong_translations_are_caught() {
+    let right: Vec<String> = to_fanuc(SIEMENS_PART);
+    let fanuc = |lines: &[String]| format!("%\nO1\n{}\n%\n", lines.join("\n"));
+    assert!(matches!(check_pair(SIEMENS_PART, &fanuc(&right)).0, Verdict::Equivalent { .. }));
+    let planted = |from: &str, to: &str| -> Vec<String> {
+        let mut hit = false;
+        let v = right
+            .iter()
+            .filter_map(|l| {
+                if !hit && l == from {
+                    hit = true;
+                    (!to.is_empty()).then(|| to.to_string())
+                } else {
+                    Some(l.clone())
+                }
+            })
+            .collect();
+        assert!(hit, "{from} not in the translation");
+        v
+    };
+    for (what, from, to) in [
+        ("wrong H for the second tool", "G43 H2", "G43 H1"),
+        ("wrong side", "G41 D1 X10. Y0.", "G42 D1 X10. Y0."),
+        ("missing G49", "G49", ""),
+        ("missing G40", "G40 G01 X30. Y30.", "G01 X30. Y30."),
+        ("missing G43 after the tool change", "G43 H2", ""),
+    ] {
+        let (v, _) = check_pair(SIEMENS_PART, &fanuc(&planted(from, to)));
+        assert!(matches!(v, Verdict::Diverged { .. }), "{what}: {v:?}");
+    }
+    // The other way: a Siemens translation without its D0, and with the wrong side.
+    let s_wrong = SIEMENS_PART.replace("D0\nM30", "M30");
+    assert!(matches!(check_pair(&s_wrong, &fanuc(&right)).0, Verdict::Diverged { .. }));
+    let s_side = SIEMENS_PART.replace("G41 X10", "G42 X10");
+    assert!(matches!(check_pair(&s_side, &fanuc(&right)).0, Verdict::Diverged { .. }));
+}
+
+#[test]
+fn the_profile_reads_the_offset_map_and_md20270() {
+    use nctrans::config::Config;
+    let c =
+        Config::from_toml("[sinumerik]\ncutting_edge_default = 1\n[offsets]\n\"6.2\" = \"H26,D46\"\n").expect("read");
+    assert_eq!(c.sinumerik_semantics().cutting_edge_default, Some(1));
+    assert_eq!(c.fanuc_semantics().offsets.registers(6, 2), Some((26, 46)));
+    assert_eq!(Config::default().sinumerik_semantics().cutting_edge_default, None);
+    assert!(Config::from_toml("[offsets]\n\"6\" = \"H1,D1\"\n").is_err());
+    assert!(Config::from_toml("[sinumerik]\ncutting_edge_default = 12\n").is_err());
+}
+
+/// A subprogram starts in its caller's compensation: its safety line (`G40 G49`, `G40`)
+/// is known whatever the registers, so it translates; a register after it still needs a tool.
+#[test]
+fn a_subprograms_safety_line_translates() {
+    let mut db = SourceDb::new();
+    let (file, u) = parse(&mut db, "in.nc", "%\nO20\nG00 G17 G40 G49 G90\nG00 X1.\nM99\n%\n", Dialect::Fanuc);
+    let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
+    assert!(!tr.has_errors(), "{}", nctrans::diag::render(&db, &tr.diags));
+    let text = &tr.main().expect("main").text;
+    assert!(text.contains("G0 G17 G40 G90 D0\n"), "{text}");
+    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &u, &tr, "out", STEPS);
+    assert!(matches!(rep.verdict, Verdict::Equivalent { .. }), "{:?}", rep.verdict);
+    let mut db = SourceDb::new();
+    let (_, u) = parse(&mut db, "sub.spf", "PROC SUB\nG17 G40 G90\nG0 X1\nRET\n", Dialect::Sinumerik);
+    let opts = TranslateOptions { main_is_sub: true, ..TranslateOptions::default() };
+    let t = translate::to_fanuc(&u, &[], &opts);
+    assert!(t.ok() && t.text.contains("G17 G40 G90"), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
+}
+
+/// A `PROC … SAVE` restores G40/G41/G42 with the other modal G groups: the return is a
+/// `comp` event when it changes the radius compensation.
+#[test]
+fn a_save_subprogram_restores_the_radius_side() {
+    let dir = std::env::temp_dir().join(format!("nctrans-comp-save-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch");
+    std::fs::write(dir.join("MAIN.MPF"), "T1 M6 D1\nG0 X0 Y0\nSUBG\nG1 X5 F100\nM30\n").expect("write");
+    std::fs::write(dir.join("SUBG.SPF"), "PROC SUBG SAVE\nG41 G1 X1 Y1 F100\nRET\n").expect("write");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["run", "MAIN.MPF"])
+        .current_dir(&dir)
+        .output()
+        .expect("run nctrans");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let comps: Vec<&str> =
+        text.lines().filter(|l| l.starts_with("comp")).map(|l| l.split("  @").next().unwrap_or(l)).collect();
+    assert_eq!(
+        comps,
+        [
+            "comp length=\"1.1\" radius=off",
+            "comp length=\"1.1\" radius=left:\"1.1\"",
+            "comp length=\"1.1\" radius=off", // the return restores G40
+        ],
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
