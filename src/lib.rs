@@ -13,7 +13,7 @@ pub mod empty;
 pub mod eval;
 pub mod excerpt;
 pub mod ir;
-pub mod passes;
+pub mod lower;
 pub mod read;
 pub mod same_file;
 pub mod span;

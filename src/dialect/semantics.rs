@@ -47,7 +47,7 @@ pub struct Semantics {
 /// for metric lengths, angles (`rotary`) and dwell seconds; a tenth of it in inch for
 /// lengths under G20 (IS-B: 0.001 mm, 0.0001 in; IS-C: 0.0001 mm, 0.00001 in). The one
 /// rule for the evaluator (`eval::machine`, G65 arguments) and the FANUC → Sinumerik
-/// lowering (`passes::to_sinumerik::words::scale`), so both read `Z1000` alike.
+/// lowering (`lower::to_sinumerik::words::scale`), so both read `Z1000` alike.
 #[inline(always)]
 pub fn input_increment(inc_mm: f64, inch: bool, rotary: bool) -> f64 {
     if inch && !rotary {

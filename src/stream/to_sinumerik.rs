@@ -31,7 +31,7 @@ use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
+use crate::lower::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
@@ -502,7 +502,7 @@ impl State<'_> {
     }
 
     /// A block that may be skipped (`/`) and changes the unit leaves it unknown, as where
-    /// paths meet in `passes::to_sinumerik::modal` (a value without a decimal point is then
+    /// paths meet in `lower::to_sinumerik::modal` (a value without a decimal point is then
     /// declined by the fast path and refused by the passes, NC375).
     fn skipped_unit(&mut self, skip: bool, inch_before: Option<bool>) {
         if skip && self.inch != inch_before {
@@ -520,7 +520,7 @@ impl State<'_> {
             if !w.addr.is(b'G') {
                 continue;
             }
-            match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+            match crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
                 Some(20 | 30) => self.arc = true,
                 Some(0 | 10) => self.arc = false,
                 Some(200) => self.inch = Some(true),

@@ -6,7 +6,7 @@ use crate::ir::{
     Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target,
     WordValue,
 };
-use crate::passes::words::units::Units;
+use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::translate::{run_block, Fallback};
@@ -46,7 +46,7 @@ pub(super) fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
 }
 
 /// The two modes of the words pass that reach from block to block outside a structure, in
-/// textual order (`passes::words::words_pass`): the length and feed units (G70, G71, G700,
+/// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
 /// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
 #[derive(Clone, Copy)]
 pub(super) struct Modes {
@@ -199,7 +199,7 @@ impl Skel {
                 comments: vec![Comment { text: format!("{MARK}{}", self.runs), span }],
                 ..BlockMeta::default()
             };
-            self.body.push(crate::passes::meta_stmt(meta, items));
+            self.body.push(crate::lower::meta_stmt(meta, items));
             self.runs += 1;
         }
     }
@@ -294,7 +294,7 @@ impl WordsSink for Skel {
         }
         let after_msg = std::mem::replace(&mut self.after_msg, false);
         if let StmtKind::Block(b) = &s.kind {
-            if after_msg && crate::passes::words::is_lone_m0(b) {
+            if after_msg && crate::lower::to_fanuc::words::is_lone_m0(b) {
                 self.forced.push(b.meta.span.lo);
             } else if run_block(s) && !kept(&self.keep, &b.meta) {
                 self.run_block(&b.meta);
@@ -303,7 +303,7 @@ impl WordsSink for Skel {
                 self.touched = t;
                 return;
             }
-            // Any block with a MSG: its last piece (`passes::blocks`) may be the MSG alone.
+            // Any block with a MSG: its last piece (`lower::to_fanuc::blocks`) may be the MSG alone.
             self.after_msg = b.items.iter().any(|i| matches!(i.kind, ItemKind::Message { .. }));
         }
         self.close_run();

@@ -4,7 +4,7 @@
 use super::skel::{kept, NSet, MARK};
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
-use crate::passes::words::units::Units;
+use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::stream::splice::{Entered, Splice};
 use crate::stream::translate::{fast, run_block, units_block};

@@ -10,7 +10,7 @@
 //! part, not the motion part.
 //!
 //! Why the output is the whole translation's, byte for byte (pass by pass, see
-//! `passes::to_sinumerik::lower`):
+//! `lower::to_sinumerik::lower`):
 //! - a straight block (`to_sinumerik::straight`) has no variable, jump, call or structure:
 //!   `vacancy::rewrite`, `gotos`, `structures`, `calls` and `exprs` leave it as it is, and
 //!   the variable plan (`calls::plan_programs`, `vacancy::analyse`, `varmap::build`) sees
@@ -70,7 +70,7 @@ use super::super::{Index, PlainWord, ProgressFn, WordsSink};
 use super::{fast, first_line_ending, has_bom, plain_g, straight, Planned, Streamed};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
-use crate::passes::to_sinumerik::{self as passes, Options};
+use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
 use crate::translate_sinumerik::{self as ts, OutFile};
@@ -143,7 +143,7 @@ fn solid(s: &Stmt) -> bool {
         || b.items.iter().any(|it| match &it.kind {
             ItemKind::End { .. } => true,
             ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) => {
-                let v = passes::literal(e);
+                let v = crate::lower::literal(e);
                 match l {
                     b'G' => v.is_some_and(|v| {
                         matches!((v * 10.0).round() as u32, 0 | 10 | 20 | 30 | 170 | 180 | 190 | 900 | 910 | 940 | 950)
@@ -177,7 +177,7 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
         },
         ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) if addr.is(b'G') => {
             // A drilling cycle makes the blocks after it holes: read whole.
-            passes::literal(e).and_then(|v| match (v * 10.0).round() as u32 {
+            crate::lower::literal(e).and_then(|v| match (v * 10.0).round() as u32 {
                 100 | 110 => Some("G10"),
                 730 | 740 | 760 | 810..=890 => Some("a drilling cycle"),
                 _ => None,
@@ -224,7 +224,7 @@ impl Class {
         let StmtKind::Block(b) = &s.kind else { return false };
         self.solid
             && straight(s).is_ok()
-            && !crate::passes::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
+            && !crate::lower::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
             && !self.kept(&b.meta)
             && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
     }
@@ -516,7 +516,7 @@ fn segment(
     let mut programs = vec![program];
     programs.append(&mut sk.sub_programs);
     // The runs are written metric: a G20 anywhere (never in a run, `PLAIN_G`) reads whole.
-    if programs.iter().any(|p| crate::passes::to_sinumerik::modal::has_g(&p.body, &[200])) {
+    if programs.iter().any(|p| crate::lower::to_sinumerik::modal::has_g(&p.body, &[200])) {
         return Err(Fallback::NotStraight("G20 (a program with inch values is read whole)".into()));
     }
     let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };

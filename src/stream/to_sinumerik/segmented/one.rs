@@ -9,7 +9,7 @@ use super::super::super::{PlainWord, WordsSink};
 use super::super::fast;
 use super::{follow_words, Skel};
 use crate::ir::{BlockMeta, Stmt, StmtKind};
-use crate::passes::to_sinumerik::Options;
+use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
 
 /// The one scan's sink.

@@ -9,7 +9,7 @@
 
 use super::units::FeedConv;
 use crate::ir::{BinOp, Expr, ExprKind, Item, ItemKind, VarKind};
-use crate::passes::to_sinumerik::item_exprs_mut;
+use crate::lower::item_exprs_mut;
 
 /// The length system variables the translation to FANUC maps.
 const LENGTHS: &[&str] = &["AA_IW", "AA_IM", "P_EP", "P_UIFR"];

@@ -276,14 +276,14 @@ fn word_item(letter: u8, v: Expr, span: Span) -> Item {
 }
 
 fn lower_block(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, arc: &mut bool, out: &mut Vec<Stmt>) {
-    if let Some(c) = crate::passes::compensation::in_block(&b.items, crate::dialect::Dialect::Fanuc) {
+    if let Some(c) = crate::lower::compensation::in_block(&b.items, crate::dialect::Dialect::Fanuc) {
         let msg = format!("{} cannot be translated to Sinumerik", c.what);
         out.extend(ctx.refuse(
-            crate::passes::compensation::CODE,
+            crate::lower::compensation::CODE,
             c.span,
             &msg,
             &c.what,
-            crate::passes::compensation::HINT,
+            crate::lower::compensation::HINT,
         ));
     }
     let gs = g_codes(&b.items);

@@ -167,7 +167,7 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
         plan.defs.push((name.clone(), DataType::Int));
     }
     let t = named(&name, span);
-    marks.push(plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), idx, span)], span));
+    marks.push(plain_block(vec![crate::lower::assign_item(&named_ref(&name, span), idx, span)], span));
     // Ranges on their own R numbers need no assignment: they are tested last, together.
     let (same, moved): (Vec<_>, Vec<_>) = ranges.iter().copied().partition(|(from, _, r)| from == r);
     let mut tail = match same.split_first() {
@@ -183,7 +183,7 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
         } else {
             bin(BinOp::Sub, t.clone(), int(i64::from(from - r), span))
         };
-        let set = plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), shift, span)], span);
+        let set = plain_block(vec![crate::lower::assign_item(&named_ref(&name, span), shift, span)], span);
         tail = vec![if_stmt(inside(&t, range), vec![set], Some(tail), span)];
     }
     marks.extend(tail);
@@ -213,7 +213,7 @@ fn flags(r: &Expr, tracked: &[(u32, u32)], access: Access, span: Span, marks: &m
                 let value = w.clone().unwrap_or_else(|| int(1, span));
                 marks.push(if_stmt(
                     hit,
-                    vec![plain_block(vec![crate::passes::assign_item(&flag, value, span)], span)],
+                    vec![plain_block(vec![crate::lower::assign_item(&flag, value, span)], span)],
                     None,
                     span,
                 ));
