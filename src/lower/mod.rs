@@ -4,9 +4,10 @@
 //! tool compensation ([`compensation`]) and the recognition of nctrans's own headers
 //! ([`own_header`]).
 //!
-//! May use: `ir`, `dialect` (spellings and `Semantics` facts), `diag`, `span`. Not `eval`,
-//! `stream`, `check` or the translation drivers above it: lowering is IR → IR and is driven
-//! from above. A target folder may use this module, never its sibling target.
+//! May use: `ir`, `dialect` (spellings and `Semantics` facts), `eval` (facts the evaluator
+//! owns: refusal reasons, modal tables), `diag`, `span`. Never `stream`, `check` or the
+//! translators above it: lowering is IR → IR and is driven from above. A target folder may
+//! use this module, never its sibling target.
 
 #[cfg(test)]
 pub(crate) mod build;
@@ -299,6 +300,32 @@ fn varref_exprs_mut(v: &mut VarRef, f: &mut dyn FnMut(&mut Expr)) {
         VarKind::Hash(_) | VarKind::R(_) => {}
     }
 }
+/// The direct sub-expressions of `e`, mutably (a variable's indices included).
+pub fn children_mut(e: &mut Expr) -> Vec<&mut Expr> {
+    match &mut e.kind {
+        ExprKind::Num(_) | ExprKind::Vacant | ExprKind::Str(_) | ExprKind::Ident(_) => vec![],
+        ExprKind::Var(v) => match &mut v.kind {
+            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => vec![x.as_mut()],
+            VarKind::Named { indices, .. } | VarKind::System { indices, .. } => indices.iter_mut().collect(),
+            _ => vec![],
+        },
+        ExprKind::Unary(_, a) => vec![a.as_mut()],
+        ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => vec![a.as_mut(), b.as_mut()],
+        ExprKind::Func(_, args) => args.iter_mut().collect(),
+    }
+}
+
+/// Every item of a block, each followed by the item an IF-THEN in it guards.
+pub fn block_items(b: &Block) -> impl Iterator<Item = &Item> {
+    b.items.iter().flat_map(|it| {
+        let then = match &it.kind {
+            ItemKind::IfThen { then, .. } => Some(&**then),
+            _ => None,
+        };
+        std::iter::once(it).chain(then)
+    })
+}
+
 /// The numeric value of a literal.
 pub fn literal(e: &Expr) -> Option<f64> {
     match &e.kind {

@@ -40,7 +40,7 @@ use crate::span::{FileId, Span};
 use std::collections::{BTreeMap, BTreeSet};
 
 // The passes below reach the shared walkers through `super::` (`use super::*`).
-use super::{item_exprs_mut, literal, map_bodies, map_exprs};
+use super::{bin, block_items, func, item_exprs_mut, literal, map_bodies, map_exprs};
 
 /// What to do with a construct Sinumerik cannot express.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -385,18 +385,9 @@ pub fn named_ref(name: &str, span: Span) -> VarRef {
     VarRef { kind: VarKind::Named { name: name.to_string(), indices: vec![] }, span }
 }
 
-pub fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
-    let span = a.span.to(b.span);
-    Expr::new(ExprKind::Binary(op, Box::new(a), Box::new(b)), span)
-}
-
 pub fn not(a: Expr) -> Expr {
     let span = a.span;
     Expr::new(ExprKind::Unary(UnOp::Not, Box::new(a)), span)
-}
-
-pub fn func(f: Func, args: Vec<Expr>, span: Span) -> Expr {
-    Expr::new(ExprKind::Func(f, args), span)
 }
 
 pub fn assign(target: VarRef, value: Expr, span: Span) -> Item {
