@@ -9,7 +9,6 @@ pub mod check;
 pub mod config;
 pub mod diag;
 pub mod dialect;
-pub mod empty;
 pub mod eval;
 pub mod excerpt;
 pub mod ir;

@@ -285,7 +285,7 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
         let fname = format!("{}.{ext}", plan.name);
         // A program of a FANUC file may be empty; its Siemens file would hold no program,
         // which every command refuses (NC145), so the translation says it here.
-        if !crate::empty::has_content(&prog) {
+        if !crate::dialect::empty::has_content(&prog) {
             let name = plan.number.map_or_else(|| "the main program".to_string(), |n| format!("program O{n:04}"));
             diags.push(
                 Diagnostic::error("NC146", format!("{name} holds no block to translate"))
