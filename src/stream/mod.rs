@@ -17,6 +17,7 @@
 mod chunker;
 pub mod index;
 pub mod lines;
+mod nset;
 pub mod paged;
 pub mod segmented;
 mod splice;

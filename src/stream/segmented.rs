@@ -82,8 +82,9 @@ mod skel;
 pub(crate) mod spill;
 mod write;
 
+use super::nset::NSet;
 use one::One;
-use skel::{finish, new_skel, skeleton, NSet, MAX_N};
+use skel::{finish, new_skel, skeleton, MAX_N};
 use spill::{assemble, Spill};
 use write::{placeholders, Writer};
 

@@ -3,10 +3,11 @@
 //! units the text before it leaves, which the skeleton scan follows in textual order: the
 //! units the writing scan (`write`) would set at the run's start (`Skel::run_units`).
 
-use super::skel::{kept, Skel};
+use super::skel::Skel;
 use super::spill::Spill;
 use crate::ir::{BlockMeta, Stmt};
 use crate::read::RawBlock;
+use crate::stream::nset::kept;
 use crate::stream::translate::fast;
 use crate::stream::{PlainWord, WordsSink};
 

@@ -9,6 +9,7 @@ use crate::ir::{
 use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
+use crate::stream::nset::{kept, NSet, MAX_TRACKED_N};
 use crate::stream::translate::{run_block, Fallback};
 use crate::stream::{Index, PlainWord, WordsSink};
 use std::path::Path;
@@ -16,34 +17,8 @@ use std::path::Path;
 /// The text of a placeholder comment (`k`: the run's index); no source comment of the
 /// skeleton may hold it (checked on the translated skeleton).
 pub(super) const MARK: &str = "NCTRANS SEGMENT ";
-/// N values above this are not tracked (a run holding one declines).
-pub(super) const MAX_TRACKED_N: u32 = 1 << 24;
 /// The labels pass's highest N number.
 pub(super) const MAX_N: u32 = 99999;
-/// A set of N values (a bit per value up to [`MAX_TRACKED_N`]).
-#[derive(Default, Clone)]
-pub(super) struct NSet(Vec<u64>);
-
-impl NSet {
-    pub(super) fn insert(&mut self, n: u32) {
-        let w = (n / 64) as usize;
-        if self.0.len() <= w {
-            self.0.resize(w + 1, 0);
-        }
-        self.0[w] |= 1 << (n % 64);
-    }
-    pub(super) fn has(&self, n: u32) -> bool {
-        self.0.get((n / 64) as usize).is_some_and(|w| w & (1 << (n % 64)) != 0)
-    }
-    pub(super) fn meets(&self, o: &NSet) -> bool {
-        self.0.iter().zip(&o.0).any(|(a, b)| a & b != 0)
-    }
-}
-
-/// Whether `meta`'s N value is one a jump names (such a block stays in the skeleton).
-pub(super) fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
-    meta.number.as_ref().is_some_and(|n| keep.has(n.value))
-}
 
 /// The two modes of the words pass that reach from block to block outside a structure, in
 /// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
