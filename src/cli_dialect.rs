@@ -62,7 +62,7 @@ pub fn check_direction(input: &Path, from: Option<Dialect>, to: Dialect) -> Resu
     if d != to {
         return Ok(());
     }
-    if nctrans::empty::may_be_program_less(input) {
+    if nctrans::dialect::empty::may_be_program_less(input) {
         if let Ok(bytes) = std::fs::read(input) {
             let mut db = SourceDb::new();
             let l = nctrans::load(&mut db, &input.display().to_string(), &bytes, None);

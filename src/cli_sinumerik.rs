@@ -520,7 +520,7 @@ fn streamed(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitC
     if !(args.stream || size >= stream_cli::AUTO_BYTES) {
         return None;
     }
-    if nctrans::empty::may_be_program_less(req.file) {
+    if nctrans::dialect::empty::may_be_program_less(req.file) {
         return None;
     }
     let mut src = stream_cli::Source::new(req.file, req.encoding)?;

@@ -80,7 +80,7 @@ pub struct Config {
     /// Siemens MD20270: the edge a tool change without D selects (`None`: not stated).
     pub cutting_edge_default: Option<u32>,
     /// `[offsets]`: the FANUC H and D registers of Siemens cutting edges.
-    pub offsets: crate::passes::comp_flow::OffsetMap,
+    pub offsets: crate::lower::comp_flow::OffsetMap,
     /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
@@ -319,7 +319,7 @@ impl Config {
                 let t = v.as_table().ok_or_else(|| bad(key, v))?;
                 for (k, val) in t {
                     let text = as_str(&format!("offsets.{k}"), val)?;
-                    let (edge, regs) = crate::passes::comp_flow::OffsetMap::parse_entry(k, text)
+                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     self.offsets.edges.insert(edge, regs);
                 }

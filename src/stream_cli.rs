@@ -24,7 +24,7 @@ const PROGRESS_BYTES: u64 = 10 * 1024 * 1024;
 pub fn wanted(path: &Path, input: &super::InputOpts) -> bool {
     (input.stream || std::fs::metadata(path).is_ok_and(|m| m.len() >= AUTO_BYTES))
         // A file that may hold no program is read whole, which reports it (NC145).
-        && !nctrans::empty::may_be_program_less(path)
+        && !nctrans::dialect::empty::may_be_program_less(path)
 }
 
 /// What a stream reads for `path`: the file itself, or (legacy encodings) a decoded UTF-8
@@ -375,7 +375,7 @@ pub fn translate(
     if !(a.stream || size >= AUTO_BYTES) {
         return None;
     }
-    if nctrans::empty::may_be_program_less(input) {
+    if nctrans::dialect::empty::may_be_program_less(input) {
         return None;
     }
     let mut src = Source::new(input, c.input_encoding)?;

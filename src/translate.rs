@@ -9,8 +9,8 @@ use crate::diag::{self, Diagnostic};
 use crate::dialect::fanuc::emit::{self, CommentMode, EmitOptions, KEEP_PREFIX};
 use crate::dialect::{Dialect, Semantics};
 use crate::ir::*;
-use crate::passes::varmap::{self, Mapped, VarRule};
-use crate::passes::{self, Callee, Ctx, ProgInfo, UnsupportedPolicy};
+use crate::lower::to_fanuc::varmap::{self, Mapped, VarRule};
+use crate::lower::to_fanuc::{self as passes, Callee, Ctx, ProgInfo, UnsupportedPolicy};
 use crate::read::LineEnding;
 use crate::span::Span;
 use std::collections::BTreeMap;
@@ -217,7 +217,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
-        passes::own_header::drop_own_header(&mut p);
+        crate::lower::own_header::drop_own_header(&mut p);
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
@@ -253,7 +253,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
         let number = numbers.get(&name).copied().unwrap_or(DEFAULT_MAIN_NUMBER);
         if info.is_sub && !ends_with_return(&p.body) {
             let span = Span::new(p.span.hi, p.span.hi);
-            p.body.push(passes::block_stmt(vec![passes::item(ItemKind::Return { to: None }, span)], span));
+            p.body.push(crate::lower::block_stmt(vec![crate::lower::item(ItemKind::Return { to: None }, span)], span));
         }
         let mut ctx = new_ctx(file, opts);
         let labels = passes::labels::run(&mut ctx, &mut p, opts.number_blocks);
@@ -268,7 +268,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
         let mut body: Vec<Stmt> = header
             .into_iter()
             .map(|text| {
-                passes::meta_stmt(
+                crate::lower::meta_stmt(
                     BlockMeta { span, comments: vec![Comment { text, span }], ..BlockMeta::default() },
                     vec![],
                 )
@@ -545,8 +545,8 @@ impl crate::eval::CalleeSource for MemCallees {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::passes::build::*;
-    use crate::passes::{bin, cmp, func};
+    use crate::lower::build::*;
+    use crate::lower::{bin, cmp, func};
 
     fn unit(body: Vec<Stmt>) -> Unit {
         Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program(body)] }
@@ -569,7 +569,7 @@ mod tests {
         let body = vec![
             block(vec![assign(rv(1), n(0.0))]),
             w,
-            block(vec![crate::passes::item(ItemKind::End { code: EndCode::M30 }, sp())]),
+            block(vec![crate::lower::item(ItemKind::End { code: EndCode::M30 }, sp())]),
         ];
         let t = to_fanuc(&unit(body), &[], &TranslateOptions::default());
         assert!(t.ok(), "{:?}", t.diags);

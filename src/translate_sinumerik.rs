@@ -4,12 +4,12 @@
 //! every diagnostic. Unsupported constructs are NC35x errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a `; NCTRANS UNSUPPORTED: …` line.
 
-pub use crate::passes::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
+pub use crate::lower::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
 
 use crate::diag::Diagnostic;
 use crate::dialect::sinumerik::emit::{emit_program, Frame};
 use crate::ir::*;
-use crate::passes::to_sinumerik::{self as passes, ProgPlan};
+use crate::lower::to_sinumerik::{self as passes, ProgPlan};
 use crate::read::LineEnding;
 use crate::span::{FileId, Span};
 use std::collections::BTreeSet;
@@ -205,7 +205,7 @@ fn take_inputs(prog: &mut Program) -> Vec<String> {
 
 /// Translates FANUC programs to Sinumerik. `units[0]` holds the main program (its first
 /// program); further programs of any unit are the subprograms and macros it may call.
-use crate::passes::own_header as passes_header;
+use crate::lower::own_header as passes_header;
 
 /// Translates FANUC programs to Sinumerik files. Under the warn policy refused blocks become
 /// marked comments whole and the main program alarms on its first line
@@ -285,7 +285,7 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
         let fname = format!("{}.{ext}", plan.name);
         // A program of a FANUC file may be empty; its Siemens file would hold no program,
         // which every command refuses (NC145), so the translation says it here.
-        if !crate::empty::has_content(&prog) {
+        if !crate::dialect::empty::has_content(&prog) {
             let name = plan.number.map_or_else(|| "the main program".to_string(), |n| format!("program O{n:04}"));
             diags.push(
                 Diagnostic::error("NC146", format!("{name} holds no block to translate"))

@@ -140,7 +140,7 @@ fn both_runs(path: &Path, chunk_ops: usize, max_steps: u64) -> Option<(Vec<Strin
     let p2 = Rc::clone(&pager);
     let mut st =
         Lines { out: vec![], line_of: Box::new(move |o| (o.file == 0).then(|| p2.line_of(o.span.lo)).flatten()) };
-    let o2 = eval::run_stream(&mut db2, Rc::clone(&pager), &mut eval::DirCallees { semantics: None }, &opts, &mut st);
+    let o2 = eval::run_stream(&mut db2, pager.clone(), &mut eval::DirCallees { semantics: None }, &opts, &mut st);
     assert_eq!(o1.ending, o2.ending, "{}", path.display());
     assert_eq!(o1.steps, o2.steps, "{}", path.display());
     assert_eq!(codes(&o1.diags), codes(&o2.diags), "{}", path.display());

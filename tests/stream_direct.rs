@@ -10,6 +10,7 @@ mod rng;
 use eval_support::*;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::lit::NO_MILLI;
+use nctrans::eval::paged::PagedSource;
 use nctrans::eval::{self, trace, Origin, RunOptions, TraceSink};
 use nctrans::span::SourceDb;
 use nctrans::stream::{self, lines::Input, paged::Pager};
@@ -425,7 +426,7 @@ fn streamed_trace(path: &Path, chunk_ops: usize, direct: bool) -> Vec<String> {
     let pager = Rc::new(Pager::new(Arc::new(index)));
     pager.set_direct(direct);
     let mut t = Trace { out: vec![], pager: Rc::clone(&pager) };
-    let o = eval::run_stream(&mut db, Rc::clone(&pager), &mut eval::DirCallees { semantics: None }, &opts, &mut t);
+    let o = eval::run_stream(&mut db, pager.clone(), &mut eval::DirCallees { semantics: None }, &opts, &mut t);
     t.out.push(format!("{:?} {} {:?}", o.ending, o.steps, o.diags.iter().map(|d| d.code).collect::<Vec<_>>()));
     t.out
 }

@@ -6,7 +6,7 @@
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
-use nctrans::passes::UnsupportedPolicy;
+use nctrans::lower::to_fanuc::UnsupportedPolicy;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, TranslateOptions, Translation};
 use std::path::{Path, PathBuf};
@@ -601,8 +601,10 @@ fn tool_compensation_translates_or_is_refused() {
 /// alarms on its first line, so it cannot be run as a finished one.
 #[test]
 fn warn_policy_marks_the_whole_block_and_alarms_first() {
-    let opts =
-        TranslateOptions { unsupported: nctrans::passes::UnsupportedPolicy::Warn, ..TranslateOptions::default() };
+    let opts = TranslateOptions {
+        unsupported: nctrans::lower::to_fanuc::UnsupportedPolicy::Warn,
+        ..TranslateOptions::default()
+    };
     let d = translate_src("warn.mpf", "G0 X0 Y0\nN20 G500 X10 Y10\nG1 X5 F100\nM30\n", &opts);
     assert!(!d.t.ok());
     assert!(d.t.diags.iter().all(|x| !x.is_error()), "{:?}", d.t.diags);

@@ -11,7 +11,7 @@ use crate::diag::{self, Diagnostic};
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::{self, CalleeName, CalleeSource, NoCallees, RunOptions};
 use crate::ir::{ProgName, Unit};
-use crate::passes::{varmap, UnsupportedPolicy};
+use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::translate::{self, TranslateOptions, Translation};
@@ -354,7 +354,7 @@ impl ToFanucJob {
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
         let mut fanuc_inputs: Vec<String> = r_homes(&t.symbol_map);
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
-        let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
+        let letters = crate::lower::to_fanuc::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();
         let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
         for (k, v) in vectors.iter().enumerate() {

@@ -98,7 +98,7 @@ pub fn library_scan(
     if std::fs::metadata(&f.abs).ok()?.len() < stream_bytes {
         return None;
     }
-    if crate::empty::may_be_program_less(&f.abs) {
+    if crate::dialect::empty::may_be_program_less(&f.abs) {
         return None;
     }
     let dialect = discover::dialect_of_name(&f.rel)?;

@@ -8,7 +8,7 @@ use super::library;
 use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
 use crate::ir::{CallKind, ItemKind, Program, Stmt, Unit, WordValue};
-use crate::passes::to_sinumerik::Options as SinOptions;
+use crate::lower::to_sinumerik::Options as SinOptions;
 use crate::read::LineEnding;
 use crate::span::Span;
 use crate::stream::segmented::LoadCallees;

@@ -1,9 +1,17 @@
 //! The dialects: what is spelled differently lives here, one module per control with the
 //! same small surface (`parse`, later `emit`), and the [`Semantics`] flags they share.
+//!
+//! Owns: reading (`<name>/parse`, the fast readers) and writing (`<name>/emit`) each dialect,
+//! the [`Semantics`] flags, the block-number runs of an index ([`runs`]), the program-less
+//! file check ([`empty`]). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only,
+//! writing the evaluator's compact blocks) `eval::lit`. Never `lower` (but the writers' unit
+//! tests build IR with `lower::build`), `stream`, `check`.
 
+pub mod empty;
 pub mod fanuc;
 pub mod limits;
 pub mod quick;
+pub mod runs;
 pub mod semantics;
 pub mod sinumerik;
 
@@ -121,8 +129,8 @@ pub fn parse(src: &SourceFile, file: FileId, dialect: Dialect, opts: &ParseOptio
     };
     // A file that read without error but holds nothing to execute (NC145): said here, so
     // every command that reads a program says it the same way.
-    if !crate::diag::has_errors(&parsed.diags) && crate::empty::program_less(&parsed.unit) {
-        parsed.diags.push(crate::empty::diagnostic(file, &src.text));
+    if !crate::diag::has_errors(&parsed.diags) && crate::dialect::empty::program_less(&parsed.unit) {
+        parsed.diags.push(crate::dialect::empty::diagnostic(file, &src.text));
     }
     parsed
 }

@@ -42,7 +42,7 @@ pub struct Semantics {
     pub haas: bool,
     /// The FANUC length and radius registers of each Siemens cutting edge (the setup's
     /// offset table; by default edge D1 of tool n is H n and D n): `[offsets]`.
-    pub offsets: crate::passes::comp_flow::OffsetMap,
+    pub offsets: crate::lower::comp_flow::OffsetMap,
     /// Siemens MD20270 `$MC_CUTTING_EDGE_DEFAULT` as the profile states it: the edge a tool
     /// change without D selects (0: none). `None`: not stated; the evaluator runs with the
     /// factory setting 1 (D1), and the Sinumerik → FANUC translation refuses a tool change
@@ -55,7 +55,7 @@ pub struct Semantics {
 /// for metric lengths, angles (`rotary`) and dwell seconds; a tenth of it in inch for
 /// lengths under G20 (IS-B: 0.001 mm, 0.0001 in; IS-C: 0.0001 mm, 0.00001 in). The one
 /// rule for the evaluator (`eval::machine`, G65 arguments) and the FANUC → Sinumerik
-/// lowering (`passes::to_sinumerik::words::scale`), so both read `Z1000` alike.
+/// lowering (`lower::to_sinumerik::words::scale`), so both read `Z1000` alike.
 #[inline(always)]
 pub fn input_increment(inc_mm: f64, inch: bool, rotary: bool) -> f64 {
     if inch && !rotary {

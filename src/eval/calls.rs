@@ -6,6 +6,7 @@ use super::exec::{internal, Flow, Frame, FrameKind, Interp};
 use super::expr;
 use super::fault::Fault;
 use super::flow::Code;
+use super::paged::PagedSource;
 use super::value::{convert_for, round_half_away, round_to, Value};
 use super::vars::{zero_of, Level, Place, Slot};
 use crate::diag::Diagnostic;
@@ -161,15 +162,15 @@ impl Interp<'_> {
     }
 
     /// Registers every program of a streamed file (paged code) like [`Self::register_unit`].
-    pub fn register_stream(&mut self, pager: &Rc<crate::stream::paged::Pager>) -> Vec<usize> {
-        let ix = pager.index();
+    pub fn register_stream(&mut self, pager: &Rc<dyn PagedSource>) -> Vec<usize> {
         let mut ids = Vec::new();
-        for (i, p) in ix.programs.iter().enumerate() {
+        for i in 0..pager.programs() {
+            let p = pager.program(i);
             let id = self.codes.len();
-            self.codes.push(Rc::new(Code::paged(ix.file, Rc::clone(pager), i)));
-            self.params.push(p.program.params.clone());
-            self.save.push(p.program.save);
-            match &p.program.name {
+            self.codes.push(Rc::new(Code::paged(pager.file(), Rc::clone(pager), i)));
+            self.params.push(p.params.clone());
+            self.save.push(p.save);
+            match &p.name {
                 Some(ProgName::Number(n)) => {
                     self.by_number.entry(*n).or_insert(id);
                 }

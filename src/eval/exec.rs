@@ -12,9 +12,9 @@ use super::vars::Vars;
 use super::{CalleeSource, Ending, Input, RunOptions};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, Semantics};
+use crate::eval::paged::Page;
 use crate::ir::{Block, EndCode, Expr, ExprKind, Goto, Item, ItemKind, Search, Target, VarRef, WordValue};
 use crate::span::{FileId, SourceDb, Span};
-use crate::stream::paged::Page;
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 

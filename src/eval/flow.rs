@@ -3,10 +3,10 @@
 //! label / N tables that the searches of each [`Search`] kind walk.
 
 use super::lit::LitBlock;
+use super::paged::{Page, PagedSource};
 use crate::diag::Diagnostic;
 use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
 use crate::span::{FileId, Span};
-use crate::stream::paged::{Page, Pager};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -71,7 +71,7 @@ pub struct Code {
     memo: RefCell<HashMap<(usize, u8, Key), Option<usize>>>,
     /// A streamed program: its pager and program index. `ops` is empty, `marks` holds the
     /// labels only; block numbers are searched in the index's runs.
-    paged: Option<(Rc<Pager>, usize)>,
+    paged: Option<(Rc<dyn PagedSource>, usize)>,
 }
 
 /// An op borrowed from a program in memory, or held by a page of a streamed one.
@@ -302,15 +302,13 @@ impl Code {
     }
 
     /// A streamed program: ops are read chunk by chunk through `pager` (see `crate::stream`).
-    pub fn paged(file: FileId, pager: Rc<Pager>, prog: usize) -> Code {
+    pub fn paged(file: FileId, pager: Rc<dyn PagedSource>, prog: usize) -> Code {
         let mut labels = HashMap::new();
         let mut marks = Vec::new();
-        if let Some(p) = pager.index().programs.get(prog) {
-            for (at, name) in &p.labels {
-                let next = labels.len() as u32;
-                let id = *labels.entry(name.clone()).or_insert(next);
-                marks.push((*at, None, Some(id)));
-            }
+        for (at, name) in pager.labels(prog) {
+            let next = labels.len() as u32;
+            let id = *labels.entry(name.clone()).or_insert(next);
+            marks.push((*at, None, Some(id)));
         }
         Code { file, ops: Vec::new(), marks, labels, memo: RefCell::new(HashMap::new()), paged: Some((pager, prog)) }
     }
@@ -337,7 +335,7 @@ impl Code {
     pub fn last_span(&self) -> Span {
         match &self.paged {
             None => self.ops.last().map_or(Span::default(), Op::span),
-            Some((pager, prog)) => pager.index().programs.get(*prog).map_or(Span::default(), |p| p.last_span),
+            Some((pager, prog)) => pager.last_span(*prog),
         }
     }
 

@@ -2,6 +2,11 @@
 //! semantics and streams the canonical trace (`docs/trace-format.md`) into a
 //! [`TraceSink`]. The library never prints; it returns an [`Outcome`].
 //!
+//! Owns: running a program (interpreter, machine state, the trace) and the interface it reads
+//! streamed programs through (`paged::PagedSource`). May use: `ir`, `dialect` (spellings,
+//! `Semantics`), `read`, `diag`, `span`. Never `stream`, `lower`, `check` or the translators,
+//! which all use it.
+//!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
 //! control), `flow` (flattening to linear code with jump tables; `lit`: blocks of
 //! constant words in compact form), `exec` (the interpreter loop), `access` + `vars`
@@ -25,6 +30,7 @@ pub mod input;
 pub mod lit;
 pub mod machine;
 pub mod numfmt;
+pub mod paged;
 pub mod refuse;
 pub mod sysvars;
 pub mod trace;
@@ -127,15 +133,15 @@ pub fn run(
 
 /// Runs the first program of a streamed file (see `crate::stream`): its ops are read
 /// page by page through `pager`, so memory does not grow with the file's length. The
-/// file must be in `db` under `pager.index().file` (its text may be empty).
+/// file must be in `db` under `pager.file()` (its text may be empty).
 pub fn run_stream(
     db: &mut SourceDb,
-    pager: std::rc::Rc<crate::stream::paged::Pager>,
+    pager: std::rc::Rc<dyn paged::PagedSource>,
     callees: &mut dyn CalleeSource,
     opts: &RunOptions,
     sink: &mut dyn TraceSink,
 ) -> Outcome {
-    let dialect = pager.index().dialect;
+    let dialect = pager.dialect();
     let mut it = Interp::new(dialect, opts, db, callees, sink);
     let ids = it.register_stream(&pager);
     run_registered(it, dialect, &ids)

@@ -1,5 +1,8 @@
 //! The typed IR shared by both dialects: meaning, not spelling.
 //!
+//! Owns: the IR types and their visitors. May use: `span`, and `dialect::Dialect` (which
+//! dialect a unit was read from); nothing else, since every other module uses the IR.
+//!
 //! A parsed file is a [`Unit`] of one or more [`Program`]s (FANUC files may hold several
 //! `O` programs). A program is a tree of [`Stmt`]s whose leaves are NC [`Block`]s.
 //! Every node carries a [`Span`](crate::span::Span) into the decoded source text.

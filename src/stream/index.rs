@@ -4,7 +4,7 @@
 //! follows the macro part of a program: a straight-line CAM program of ten million blocks
 //! has one chunk per [`CHUNK_OPS`] ops and one run of N numbers.
 
-use super::runs::Runs;
+use crate::dialect::runs::Runs;
 use crate::dialect::{fanuc, sinumerik};
 use crate::ir::{BlockMeta, Program, Stmt, StmtKind};
 use crate::span::Span;

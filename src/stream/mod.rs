@@ -1,5 +1,10 @@
 //! Streaming: reading, running and checking programs of any length in constant memory.
 //!
+//! Owns: the streamed drivers (index scan, pager, segmented and straight translation in
+//! both directions, transcoding). May use everything below it: `read`, `dialect`, `ir`,
+//! `lower`, `eval`, `check`, the whole-file translators. Nothing below imports `stream`: the
+//! evaluator reads pages through `eval::paged::PagedSource`, which [`paged::Pager`] implements.
+//!
 //! The whole-file path (`dialect::parse`) holds the decoded text and the IR tree; for a CAM
 //! program of ten million blocks that is gigabytes. Here the file is read line by line
 //! through a fixed buffer ([`lines`]), each line goes through the dialect's own reader (the
@@ -12,8 +17,8 @@
 mod chunker;
 pub mod index;
 pub mod lines;
+mod nset;
 pub mod paged;
-pub mod runs;
 pub mod segmented;
 mod splice;
 pub mod to_sinumerik;
@@ -692,7 +697,7 @@ fn scan_with(
     }
     // A program-less file is NC145 here as in the whole-file parse. Only a file whose lines
     // all look like comments or headers can be one; that (small) file is parsed whole.
-    if !crate::diag::has_errors(&diags) && crate::empty::may_be_program_less(path) {
+    if !crate::diag::has_errors(&diags) && crate::dialect::empty::may_be_program_less(path) {
         if let Ok(bytes) = std::fs::read(path) {
             let src = crate::span::SourceFile::new(path.display().to_string(), crate::read::decode(&bytes, None).text);
             let whole = crate::dialect::parse(&src, file, dialect, opts);

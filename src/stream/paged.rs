@@ -9,8 +9,9 @@ use super::lines::{Input, Lines, NotStreamable};
 use super::Index;
 use super::RereadSink;
 use crate::diag::Diagnostic;
-use crate::eval::flow::{ChunkOps, Op};
+use crate::eval::flow::ChunkOps;
 use crate::eval::lit::LitBlock;
+use crate::eval::paged::{Page, PagedSource};
 use crate::ir::{Search, Stmt};
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
@@ -19,28 +20,6 @@ use std::sync::Arc;
 
 /// Pages kept (the one running, the loop start it jumps back to, a few more).
 const CACHE: usize = 4;
-
-/// One chunk's ops, and its lines for line numbers.
-pub struct Page {
-    prog: usize,
-    base: usize,
-    ops: Vec<Op>,
-    lo: u64,
-    hi: u64,
-    /// (text offset, line number) of every line of the chunk.
-    lines: Vec<(u32, u32)>,
-}
-
-impl Page {
-    /// The page's ops (from op index `base`).
-    pub fn ops(&self) -> &[Op] {
-        &self.ops
-    }
-
-    pub fn get(&self, pc: usize) -> Option<&Op> {
-        self.ops.get(pc.wrapping_sub(self.base))
-    }
-}
 
 type ProgressBox = Box<dyn FnMut(super::Progress)>;
 
@@ -94,25 +73,6 @@ impl Pager {
         Diagnostic::error("NC103", format!("cannot re-read {}: {e}", self.ix.path.display()))
             .note("a streamed program is read again where a jump or loop needs it")
             .hint("do not change or move the file while it runs")
-    }
-
-    /// The page holding op `pc` of program `prog`, or `None` past its end.
-    pub fn page(&self, prog: usize, pc: usize) -> Result<Option<Rc<Page>>, Diagnostic> {
-        {
-            let cache = self.cache.borrow();
-            if let Some(p) = cache.iter().find(|p| p.prog == prog && pc >= p.base && pc < p.base + p.ops.len()) {
-                return Ok(Some(Rc::clone(p)));
-            }
-        }
-        let Some(pi) = self.ix.programs.get(prog) else { return Ok(None) };
-        let Some(ci) = pi.chunk_of(pc) else { return Ok(None) };
-        let page = Rc::new(self.read(prog, ci)?);
-        let mut cache = self.cache.borrow_mut();
-        if cache.len() >= CACHE {
-            cache.pop_back();
-        }
-        cache.push_front(Rc::clone(&page));
-        Ok(Some(page))
     }
 
     fn read(&self, prog: usize, ci: usize) -> Result<Page, Diagnostic> {
@@ -227,9 +187,54 @@ impl Pager {
         // After a final line end (or an empty file).
         Some(line)
     }
+}
+
+impl PagedSource for Pager {
+    fn dialect(&self) -> crate::dialect::Dialect {
+        self.ix.dialect
+    }
+
+    fn file(&self) -> crate::span::FileId {
+        self.ix.file
+    }
+
+    fn programs(&self) -> usize {
+        self.ix.programs.len()
+    }
+
+    fn program(&self, prog: usize) -> &crate::ir::Program {
+        &self.ix.programs[prog].program
+    }
+
+    fn labels(&self, prog: usize) -> &[(usize, String)] {
+        self.ix.programs.get(prog).map_or(&[], |p| &p.labels)
+    }
+
+    fn last_span(&self, prog: usize) -> crate::span::Span {
+        self.ix.programs.get(prog).map_or(crate::span::Span::default(), |p| p.last_span)
+    }
+
+    /// The page holding op `pc` of program `prog`, or `None` past its end.
+    fn page(&self, prog: usize, pc: usize) -> Result<Option<Rc<Page>>, Diagnostic> {
+        {
+            let cache = self.cache.borrow();
+            if let Some(p) = cache.iter().find(|p| p.prog == prog && pc >= p.base && pc < p.base + p.ops.len()) {
+                return Ok(Some(Rc::clone(p)));
+            }
+        }
+        let Some(pi) = self.ix.programs.get(prog) else { return Ok(None) };
+        let Some(ci) = pi.chunk_of(pc) else { return Ok(None) };
+        let page = Rc::new(self.read(prog, ci)?);
+        let mut cache = self.cache.borrow_mut();
+        if cache.len() >= CACHE {
+            cache.pop_back();
+        }
+        cache.push_front(Rc::clone(&page));
+        Ok(Some(page))
+    }
 
     /// Jump search for block number `n` from op `from` (see `Code::find`).
-    pub fn find_number(&self, prog: usize, from: usize, search: Search, n: u32) -> Option<usize> {
+    fn find_number(&self, prog: usize, from: usize, search: Search, n: u32) -> Option<usize> {
         let runs = &self.ix.programs.get(prog)?.numbers;
         let from = from as u64;
         let fwd = || runs.first_from(n, from + 1);
@@ -245,7 +250,7 @@ impl Pager {
     }
 
     /// The first op with number `n` at or after `from`, then from the top.
-    pub fn find_number_from(&self, prog: usize, from: usize, n: u32) -> Option<usize> {
+    fn find_number_from(&self, prog: usize, from: usize, n: u32) -> Option<usize> {
         let runs = &self.ix.programs.get(prog)?.numbers;
         runs.first_from(n, from as u64).or_else(|| runs.first_from(n, 0)).map(|p| p.0 as usize)
     }

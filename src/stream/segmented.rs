@@ -13,7 +13,7 @@
 //!   statements and every structure's bodies in source order with one `Modal`; it never
 //!   follows jumps or loops). So the mode at any block is a function of the text before
 //!   it, and textual order is all there is to follow: the skeleton scan does it
-//!   (`skel::Modes`, the same rules: `passes::words::units`, G90/G91), through runs and
+//!   (`skel::Modes`, the same rules: `lower::to_fanuc::words::units`, G90/G91), through runs and
 //!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
 //!   - each run's fast path starts in the units the text before it leaves (a block the
 //!     fast path declines is translated alone after a block setting those units when they
@@ -82,8 +82,9 @@ mod skel;
 pub(crate) mod spill;
 mod write;
 
+use super::nset::NSet;
 use one::One;
-use skel::{finish, new_skel, skeleton, NSet, MAX_N};
+use skel::{finish, new_skel, skeleton, MAX_N};
 use spill::{assemble, Spill};
 use write::{placeholders, Writer};
 
@@ -403,7 +404,7 @@ fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
             comments: vec![crate::ir::Comment { text: mark.clone(), span }],
             ..crate::ir::BlockMeta::default()
         };
-        crate::passes::meta_stmt(meta, vec![])
+        crate::lower::meta_stmt(meta, vec![])
     });
     sk.body.splice(at + 1..at + 1, carriers);
     Ok(())

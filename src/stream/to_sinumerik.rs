@@ -31,7 +31,7 @@ use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
+use crate::lower::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::{FileId, SourceDb, SourceFile, Span};
 use crate::translate_sinumerik::{self as ts, SymbolMap};
@@ -106,7 +106,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
-    if crate::passes::comp_flow::stream_relevant_items(&b.items, true, false) {
+    if crate::lower::comp_flow::stream_relevant_items(&b.items, true, false) {
         return Err(COMP.into());
     }
     for it in &b.items {
@@ -513,7 +513,7 @@ impl State<'_> {
     }
 
     /// A block that may be skipped (`/`) and changes the unit leaves it unknown, as where
-    /// paths meet in `passes::to_sinumerik::modal` (a value without a decimal point is then
+    /// paths meet in `lower::to_sinumerik::modal` (a value without a decimal point is then
     /// declined by the fast path and refused by the passes, NC375).
     fn skipped_unit(&mut self, skip: bool, inch_before: Option<bool>) {
         if skip && self.inch != inch_before {
@@ -531,7 +531,7 @@ impl State<'_> {
             if !w.addr.is(b'G') {
                 continue;
             }
-            match passes::literal(e).map(|v| (v * 10.0).round() as u32) {
+            match crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
                 Some(20 | 30) => self.arc = true,
                 Some(0 | 10) => self.arc = false,
                 Some(200) => self.inch = Some(true),
@@ -636,7 +636,7 @@ impl super::WordsSink for Sink<'_, '_> {
         if st.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, false)) {
+        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, false)) {
             st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }

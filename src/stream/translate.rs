@@ -3,7 +3,7 @@
 //! translator writes for it; a block that translator has something to say on goes through
 //! `translate::to_fanuc` alone), so neither the source nor the output is ever held whole.
 //! The only state carried from block to block is the length and feed units (F converted
-//! where they differ, `passes::words::units`). Verification then parses the output back (streamed) and runs both programs
+//! where they differ, `lower::to_fanuc::words::units`). Verification then parses the output back (streamed) and runs both programs
 //! streamed side by side, comparing their traces as they are produced.
 //!
 //! Only programs whose translation is local to each block stream: every block holds plain
@@ -25,7 +25,7 @@ use crate::eval::{DirCallees, NoCallees, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
-use crate::passes::words::units::Units;
+use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::{SourceDb, Span};
 use crate::translate::{self, TranslateOptions};
@@ -90,7 +90,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
-    if crate::passes::comp_flow::stream_relevant_items(&b.items, false, true) {
+    if crate::lower::comp_flow::stream_relevant_items(&b.items, false, true) {
         return Err(COMP.into());
     }
     for it in &b.items {
@@ -111,7 +111,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
             return Err(format!("a computed or named {} word", w.addr.as_str()));
         }
         // Skipped or not, the units differ after it: the translator merges both ways
-        // (`passes::words::modes`), a stream follows the text.
+        // (`lower::to_fanuc::words::modes`), a stream follows the text.
         if b.meta.skip.is_some() && sets_g(b, &[70.0, 71.0, 700.0, 710.0]) {
             return Err("a block that may be skipped (/) with G70/G71/G700/G710".into());
         }
@@ -219,7 +219,7 @@ impl super::WordsSink for Sink<'_, '_> {
         if st.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
+        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
             st.stop = Some(Fallback::NotStraight(COMP.into()));
             return true;
         }
@@ -259,7 +259,7 @@ pub(super) fn units_block(units: Units) -> Option<Stmt> {
             crate::ir::Item { kind: ItemKind::Word(g), span: Span::default() }
         })
         .collect();
-    Some(crate::passes::block_stmt(items, Span::default()))
+    Some(crate::lower::block_stmt(items, Span::default()))
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out`, reading it once. On `Err` nothing

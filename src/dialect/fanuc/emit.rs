@@ -596,8 +596,8 @@ fn translit(c: char) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::passes::build::*;
-    use crate::passes::{bin, cmp, func, item};
+    use crate::lower::build::*;
+    use crate::lower::{bin, cmp, func, item};
 
     fn prog(body: Vec<Stmt>) -> Unit {
         let mut p = program(body);

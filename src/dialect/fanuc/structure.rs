@@ -39,7 +39,7 @@ pub struct ProgramLines {
 #[derive(Default)]
 struct Streamed {
     drained: bool,
-    numbers: crate::stream::runs::Runs,
+    numbers: crate::dialect::runs::Runs,
     count: u64,
     targets: Vec<crate::ir::SeqNo>,
 }

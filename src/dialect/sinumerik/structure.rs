@@ -565,7 +565,7 @@ struct Targets {
     numbers: HashMap<u32, Vec<(usize, Span)>>,
     /// Streaming: `numbers` stays empty and block numbers go here, as runs.
     compact: bool,
-    runs: crate::stream::runs::Runs,
+    runs: crate::dialect::runs::Runs,
     jumps: Vec<(usize, Jump)>,
 }
 

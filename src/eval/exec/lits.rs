@@ -7,9 +7,9 @@ use crate::eval::fault::Fault;
 use crate::eval::flow::{Code, Op};
 use crate::eval::lit::LitBlock;
 use crate::eval::machine::{BlockEffect, WordVal, WV};
+use crate::eval::paged::Page;
 use crate::eval::trace::Origin;
 use crate::eval::Ending;
-use crate::stream::paged::Page;
 use std::rc::Rc;
 
 impl Interp<'_> {

@@ -3,10 +3,11 @@
 //! units the text before it leaves, which the skeleton scan follows in textual order: the
 //! units the writing scan (`write`) would set at the run's start (`Skel::run_units`).
 
-use super::skel::{kept, Skel};
+use super::skel::Skel;
 use super::spill::Spill;
 use crate::ir::{BlockMeta, Stmt};
 use crate::read::RawBlock;
+use crate::stream::nset::kept;
 use crate::stream::translate::fast;
 use crate::stream::{PlainWord, WordsSink};
 
@@ -37,7 +38,7 @@ impl WordsSink for One {
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let sk = &self.sk;
         let comp =
-            words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true));
+            words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true));
         if !self.live() || sk.stop.is_some() || prog != 0 || kept(&sk.keep, meta) || sk.after_msg || comp {
             return self.sk.plain(prog, meta, words, line);
         }

@@ -6,9 +6,10 @@ use crate::ir::{
     Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target,
     WordValue,
 };
-use crate::passes::words::units::Units;
+use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
+use crate::stream::nset::{kept, NSet, MAX_TRACKED_N};
 use crate::stream::translate::{run_block, Fallback};
 use crate::stream::{Index, PlainWord, WordsSink};
 use std::path::Path;
@@ -16,37 +17,11 @@ use std::path::Path;
 /// The text of a placeholder comment (`k`: the run's index); no source comment of the
 /// skeleton may hold it (checked on the translated skeleton).
 pub(super) const MARK: &str = "NCTRANS SEGMENT ";
-/// N values above this are not tracked (a run holding one declines).
-pub(super) const MAX_TRACKED_N: u32 = 1 << 24;
 /// The labels pass's highest N number.
 pub(super) const MAX_N: u32 = 99999;
-/// A set of N values (a bit per value up to [`MAX_TRACKED_N`]).
-#[derive(Default, Clone)]
-pub(super) struct NSet(Vec<u64>);
-
-impl NSet {
-    pub(super) fn insert(&mut self, n: u32) {
-        let w = (n / 64) as usize;
-        if self.0.len() <= w {
-            self.0.resize(w + 1, 0);
-        }
-        self.0[w] |= 1 << (n % 64);
-    }
-    pub(super) fn has(&self, n: u32) -> bool {
-        self.0.get((n / 64) as usize).is_some_and(|w| w & (1 << (n % 64)) != 0)
-    }
-    pub(super) fn meets(&self, o: &NSet) -> bool {
-        self.0.iter().zip(&o.0).any(|(a, b)| a & b != 0)
-    }
-}
-
-/// Whether `meta`'s N value is one a jump names (such a block stays in the skeleton).
-pub(super) fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
-    meta.number.as_ref().is_some_and(|n| keep.has(n.value))
-}
 
 /// The two modes of the words pass that reach from block to block outside a structure, in
-/// textual order (`passes::words::words_pass`): the length and feed units (G70, G71, G700,
+/// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
 /// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
 #[derive(Clone, Copy)]
 pub(super) struct Modes {
@@ -199,7 +174,7 @@ impl Skel {
                 comments: vec![Comment { text: format!("{MARK}{}", self.runs), span }],
                 ..BlockMeta::default()
             };
-            self.body.push(crate::passes::meta_stmt(meta, items));
+            self.body.push(crate::lower::meta_stmt(meta, items));
             self.runs += 1;
         }
     }
@@ -273,7 +248,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
+        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
             self.decline(crate::stream::translate::COMP);
             return true;
         }
@@ -293,7 +268,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return;
         }
-        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), false, true) {
+        if crate::lower::comp_flow::stream_relevant(std::slice::from_ref(s), false, true) {
             return self.decline(crate::stream::translate::COMP);
         }
         if prog != 0 {
@@ -301,7 +276,7 @@ impl WordsSink for Skel {
         }
         let after_msg = std::mem::replace(&mut self.after_msg, false);
         if let StmtKind::Block(b) = &s.kind {
-            if after_msg && crate::passes::words::is_lone_m0(b) {
+            if after_msg && crate::lower::to_fanuc::words::is_lone_m0(b) {
                 self.forced.push(b.meta.span.lo);
             } else if run_block(s) && !kept(&self.keep, &b.meta) {
                 self.run_block(&b.meta);
@@ -310,7 +285,7 @@ impl WordsSink for Skel {
                 self.touched = t;
                 return;
             }
-            // Any block with a MSG: its last piece (`passes::blocks`) may be the MSG alone.
+            // Any block with a MSG: its last piece (`lower::to_fanuc::blocks`) may be the MSG alone.
             self.after_msg = b.items.iter().any(|i| matches!(i.kind, ItemKind::Message { .. }));
         }
         self.close_run();

@@ -1,11 +1,12 @@
 //! The writing scan of a segmented translation: the translated skeleton's text with each
 //! placeholder line replaced by its run, translated as it is read (see `segmented`).
 
-use super::skel::{kept, NSet, MARK};
+use super::skel::MARK;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
-use crate::passes::words::units::Units;
+use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
+use crate::stream::nset::{kept, NSet};
 use crate::stream::splice::{Entered, Splice};
 use crate::stream::translate::{fast, run_block, units_block};
 use crate::stream::{PlainWord, WordsSink};

@@ -1,7 +1,7 @@
 //! The streamed FANUC → Sinumerik translator's fast path: the Sinumerik line of one plain
 //! FANUC block (constant letter words, program ends, N number, skip, comments) written
 //! straight into the output, byte for byte what the passes (`vacancy`, `calls`, `words`,
-//! `exprs` in `passes::to_sinumerik`) and `dialect::sinumerik::emit` write for it, without
+//! `exprs` in `lower::to_sinumerik`) and `dialect::sinumerik::emit` write for it, without
 //! building Sinumerik IR or formatting through `format!`. The general path costs some
 //! 20,000 instructions on a CAM block; this one a few hundred.
 //!
@@ -14,8 +14,8 @@
 //! same bytes.
 
 use crate::ir::{BlockMeta, EndCode};
-use crate::passes::to_sinumerik::words::{rotary_letter, scale, scaled_letter};
-use crate::passes::to_sinumerik::Options;
+use crate::lower::to_sinumerik::words::{rotary_letter, scale, scaled_letter};
+use crate::lower::to_sinumerik::Options;
 use crate::stream::translate::digits::{Form, Src};
 use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
 use crate::stream::{ItemView, PlainWord, View};
@@ -29,7 +29,7 @@ pub struct Declined;
 /// passes (the dwell G4, tool compensation G40..G49, codes without a counterpart).
 fn map_g(g: u32) -> Result<Option<u32>, Declined> {
     Ok(Some(match g {
-        // G40/G41/G42 (and D) are refused by the passes (`passes::compensation`).
+        // G40/G41/G42 (and D) are refused by the passes (`lower::compensation`).
         0 | 10 | 20 | 30 | 90 | 170 | 180 | 190 | 530 | 540 | 550 | 560 | 570 | 640 | 900 | 910 | 940 | 950 => g,
         200 => 7000,
         210 => 7100,
@@ -43,7 +43,7 @@ fn map_g(g: u32) -> Result<Option<u32>, Declined> {
 
 /// Appends the line of `b` (with `eol`), or nothing when the passes drop the block. `arc`
 /// is the arc mode after the block's own G codes (as the words pass sees it), `inch` the
-/// unit (G20, `None`: not known) after them (as `passes::to_sinumerik::modal` finds it). On `Err` what
+/// unit (G20, `None`: not known) after them (as `lower::to_sinumerik::modal` finds it). On `Err` what
 /// was appended is to be discarded. `lit` gives an item's literal, when known: its digits
 /// are written where they are the written form.
 #[allow(clippy::too_many_arguments)]

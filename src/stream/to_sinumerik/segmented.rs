@@ -10,7 +10,7 @@
 //! part, not the motion part.
 //!
 //! Why the output is the whole translation's, byte for byte (pass by pass, see
-//! `passes::to_sinumerik::lower`):
+//! `lower::to_sinumerik::lower`):
 //! - a straight block (`to_sinumerik::straight`) has no variable, jump, call or structure:
 //!   `vacancy::rewrite`, `gotos`, `structures`, `calls` and `exprs` leave it as it is, and
 //!   the variable plan (`calls::plan_programs`, `vacancy::analyse`, `varmap::build`) sees
@@ -63,6 +63,7 @@
 //! blocks are declined or a declined line turns out to be no run block.
 
 use super::super::lines::NotStreamable;
+use super::super::nset::{kept, NSet, MAX_TRACKED_N};
 use super::super::segmented::spill::{assemble, Spill};
 use super::super::splice::Splice;
 use super::super::translate::Fallback;
@@ -70,7 +71,7 @@ use super::super::{Index, PlainWord, ProgressFn, WordsSink};
 use super::{fast, first_line_ending, has_bom, plain_g, straight, Planned, Streamed};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
-use crate::passes::to_sinumerik::{self as passes, Options};
+use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
 use crate::translate_sinumerik::{self as ts, OutFile};
@@ -87,29 +88,6 @@ pub use subs::{to_sinumerik_with_stand_in, to_sinumerik_with_subs, LoadCallees};
 
 /// The text of a placeholder comment (`k`: the run's index).
 const MARK: &str = "NCTRANS SEGMENT ";
-/// N values above this are not tracked (a block holding one declines).
-const MAX_TRACKED_N: u32 = 1 << 24;
-
-/// A set of N values, a bit each.
-#[derive(Default, Clone)]
-struct Bits(Vec<u64>);
-
-impl Bits {
-    fn insert(&mut self, n: u32) {
-        let w = (n / 64) as usize;
-        if self.0.len() <= w {
-            self.0.resize(w + 1, 0);
-        }
-        self.0[w] |= 1 << (n % 64);
-    }
-    fn has(&self, n: u32) -> bool {
-        self.0.get((n / 64) as usize).is_some_and(|w| w >> (n % 64) & 1 == 1)
-    }
-    fn meets(&self, o: &Bits) -> bool {
-        self.0.iter().zip(&o.0).any(|(a, b)| a & b != 0)
-    }
-}
-
 /// The arc mode after G code `g10` (×10) as `words::lower` follows it.
 fn arc_after(arc: bool, g10: u32) -> bool {
     match g10 {
@@ -143,7 +121,7 @@ fn solid(s: &Stmt) -> bool {
         || b.items.iter().any(|it| match &it.kind {
             ItemKind::End { .. } => true,
             ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) => {
-                let v = passes::literal(e);
+                let v = crate::lower::literal(e);
                 match l {
                     b'G' => v.is_some_and(|v| {
                         matches!((v * 10.0).round() as u32, 0 | 10 | 20 | 30 | 170 | 180 | 190 | 900 | 910 | 940 | 950)
@@ -177,7 +155,7 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
         },
         ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) if addr.is(b'G') => {
             // A drilling cycle makes the blocks after it holes: read whole.
-            passes::literal(e).and_then(|v| match (v * 10.0).round() as u32 {
+            crate::lower::literal(e).and_then(|v| match (v * 10.0).round() as u32 {
                 100 | 110 => Some("G10"),
                 730 | 740 | 760 | 810..=890 => Some("a drilling cycle"),
                 _ => None,
@@ -192,21 +170,17 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
 #[derive(Clone, Default)]
 struct Class {
     /// N values jumps name (their blocks stay in the skeleton).
-    keep: Bits,
+    keep: NSet,
     /// A `solid` statement has been seen.
     solid: bool,
 }
 
 impl Class {
-    fn kept(&self, meta: &BlockMeta) -> bool {
-        meta.number.as_ref().is_some_and(|n| self.keep.has(n.value))
-    }
-
     /// Whether a plain line is a run block (else it is to come as a statement).
     fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         self.solid
             && meta.label.is_none()
-            && !self.kept(meta)
+            && !kept(&self.keep, meta)
             && words.iter().all(|w| match w.letter {
                 // G0..G3 (plain) without `plain_g`'s rounding: CAM lines are made of them.
                 // Not G20: the runs are written metric, and a G20 in the skeleton reads the
@@ -224,8 +198,8 @@ impl Class {
         let StmtKind::Block(b) = &s.kind else { return false };
         self.solid
             && straight(s).is_ok()
-            && !crate::passes::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
-            && !self.kept(&b.meta)
+            && !crate::lower::to_sinumerik::modal::has_g(std::slice::from_ref(s), &[200])
+            && !kept(&self.keep, &b.meta)
             && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
     }
 
@@ -247,8 +221,8 @@ struct Skel {
     arc: bool,
     /// … and after the skeleton's statements alone (what it has on the skeleton).
     own_arc: bool,
-    run_ns: Bits,
-    targets: Bits,
+    run_ns: NSet,
+    targets: NSet,
     stop: Option<String>,
     /// Calls by a constant number are kept, and the programs after the main one are
     /// collected whole (`subs`); else both decline.
@@ -335,7 +309,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return true;
         }
-        if words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true)) {
+        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true)) {
             self.decline(super::COMP_M6);
             return true;
         }
@@ -358,7 +332,7 @@ impl WordsSink for Skel {
         if self.stop.is_some() {
             return;
         }
-        if crate::passes::comp_flow::stream_relevant(std::slice::from_ref(s), true, true) {
+        if crate::lower::comp_flow::stream_relevant(std::slice::from_ref(s), true, true) {
             return self.decline(super::COMP_M6);
         }
         if prog != 0 {
@@ -377,7 +351,7 @@ impl WordsSink for Skel {
 }
 
 /// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
-fn new_skel(keep: Bits, calls: bool) -> Skel {
+fn new_skel(keep: NSet, calls: bool) -> Skel {
     Skel {
         class: Class { keep, solid: false },
         body: Vec::new(),
@@ -385,8 +359,8 @@ fn new_skel(keep: Bits, calls: bool) -> Skel {
         arcs: Vec::new(),
         arc: false,
         own_arc: false,
-        run_ns: Bits::default(),
-        targets: Bits::default(),
+        run_ns: NSet::default(),
+        targets: NSet::default(),
         stop: None,
         calls,
         subs: Vec::new(),
@@ -400,7 +374,7 @@ fn skeleton(
     path: &Path,
     popts: &ParseOptions,
     eol: LineEnding,
-    keep: Bits,
+    keep: NSet,
     calls: bool,
 ) -> Result<(Skel, Program), Fallback> {
     let mut sk = new_skel(keep, calls);
@@ -487,7 +461,7 @@ fn segment(
     let mut progress = progress;
     // One scan builds the skeleton and spills the runs' translations (`one`).
     let mut one = One {
-        sk: new_skel(Bits::default(), calls),
+        sk: new_skel(NSet::default(), calls),
         opts,
         eol,
         spill: Spill::new(),
@@ -523,7 +497,7 @@ fn segment(
     let mut programs = vec![program];
     programs.append(&mut sk.sub_programs);
     // The runs are written metric: a G20 anywhere (never in a run, `PLAIN_G`) reads whole.
-    if programs.iter().any(|p| crate::passes::to_sinumerik::modal::has_g(&p.body, &[200])) {
+    if programs.iter().any(|p| crate::lower::to_sinumerik::modal::has_g(&p.body, &[200])) {
         return Err(Fallback::NotStraight("G20 (a program with inch values is read whole)".into()));
     }
     let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };

@@ -1,7 +1,7 @@
 //! The streamed translator's fast path: the FANUC lines of one straight-line Sinumerik block
 //! (constant address words, program ends, comments, block numbers, skips) written straight
 //! into the output, byte for byte what the whole-program translator writes for it
-//! (`passes::blocks`, `words`, `exprs`, `labels`, then `dialect::fanuc::emit`), without
+//! (`lower::to_fanuc::blocks`, `words`, `exprs`, `labels`, then `dialect::fanuc::emit`), without
 //! building FANUC IR or formatting through `format!`. CAM programs are millions of such
 //! blocks, and the general translator costs some 40,000 instructions on each.
 //!
@@ -13,13 +13,13 @@
 pub use super::numwrite::{push_decimal, push_num, push_short, push_skip, push_u64, shortest};
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
 use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
-use crate::passes::words::units::{FeedConv, Units};
-use crate::passes::words::SAME_G;
+use crate::lower::to_fanuc::words::units::{FeedConv, Units};
+use crate::lower::to_fanuc::words::SAME_G;
 use crate::read::RawBlock;
 use crate::stream::translate::digits::{Form, Lit, Src};
 use crate::stream::{ItemView, PlainWord, View};
 
-/// Highest block number FANUC keeps (`passes::labels` drops the others).
+/// Highest block number FANUC keeps (`lower::to_fanuc::labels` drops the others).
 const MAX_N: u32 = 99999;
 /// Letters (as bits, `A` lowest) whose words `Fast::word` writes otherwise than as a
 /// dimension: G and M codes and the integer addresses; anything not a capital letter.
@@ -348,7 +348,7 @@ impl Fast {
             b'G' => {
                 // A G code must be a written constant the target has.
                 let v = num.ok_or(Declined)?;
-                // Tool radius compensation is refused by the passes (`passes::compensation`).
+                // Tool radius compensation is refused by the passes (`lower::compensation`).
                 if (40.0..=42.0).contains(&v) {
                     return Err(Declined);
                 }
@@ -365,7 +365,7 @@ impl Fast {
             }
             b'F' if dwell => letter = b'X',
             b'S' if dwell => return Err(Declined),
-            // A cutting edge: refused by the passes (`passes::compensation`).
+            // A cutting edge: refused by the passes (`lower::compensation`).
             b'D' => return Err(Declined),
             b'F' => match self.units.feed() {
                 FeedConv::Same => {}

@@ -9,7 +9,7 @@ use super::super::super::{PlainWord, WordsSink};
 use super::super::fast;
 use super::{follow_words, Skel};
 use crate::ir::{BlockMeta, Stmt, StmtKind};
-use crate::passes::to_sinumerik::Options;
+use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
 
 /// The one scan's sink.
@@ -59,7 +59,7 @@ impl WordsSink for One<'_> {
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         let sk = &self.sk;
         let comp =
-            words.iter().any(|w| crate::passes::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true));
+            words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true));
         if !self.live() || sk.stop.is_some() || prog != 0 || comp || !sk.class.plain_run(meta, words) {
             return self.sk.plain(prog, meta, words, line);
         }

@@ -26,7 +26,7 @@
 
 use super::Skel;
 use crate::ir::{Call, CallKind, CallTarget, ItemKind, Stmt, StmtKind, Unit};
-use crate::passes::to_sinumerik::Options;
+use crate::lower::to_sinumerik::Options;
 use crate::read::LineEnding;
 use crate::span::FileId;
 use crate::stream::translate::Fallback;

@@ -10,7 +10,7 @@ use super::super::{fast, Planned, KEPT_WARNING};
 use super::{follow_items, follow_words, Class};
 use crate::diag::Diagnostic;
 use crate::ir::{BlockMeta, Stmt, StmtKind};
-use crate::passes::to_sinumerik::Options;
+use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
 
 /// A diagnostic the straight stream keeps (and reports): the dropped G43/G44/G49 warning.

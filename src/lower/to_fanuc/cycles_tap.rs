@@ -8,7 +8,7 @@
 
 use super::*;
 use crate::dialect::sinumerik::cycles::{metric_coarse_pitch, SieCycle};
-use crate::passes::to_sinumerik::literal;
+use crate::lower::literal;
 
 /// What the block list before the call says about the spindle and the feed.
 #[derive(Clone, Copy, Debug, Default)]

@@ -18,7 +18,7 @@
 
 use super::*;
 use crate::dialect::sinumerik::cycles::{cycle_of, SieCycle};
-use crate::passes::to_sinumerik::{literal, map_bodies};
+use crate::lower::{literal, map_bodies};
 
 /// Lowers the drilling cycles of every block list of `prog`.
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {

@@ -403,29 +403,13 @@ fn rewrite(
 
 /// Element `indices` of an array stored row-major from `#base`.
 fn element(base: u32, dims: &[u32], indices: Vec<Expr>, span: Span) -> VarKind {
-    let consts: Option<Vec<f64>> = indices
-        .iter()
-        .map(|i| match &i.kind {
-            ExprKind::Num(n) => Some(n.value),
-            _ => None,
-        })
-        .collect();
-    if let Some(c) = consts {
-        let mut lin = 0.0;
-        for (k, v) in c.iter().enumerate() {
-            lin = lin * dims.get(k).copied().unwrap_or(1) as f64 + v;
+    match byref::linear(dims, &indices, span) {
+        // A constant offset: `linear` folds only whole, non-negative ones.
+        Expr { kind: ExprKind::Num(n), .. } if n.value >= 0.0 && n.value.fract() == 0.0 => {
+            VarKind::Hash(base + n.value as u32)
         }
-        if lin >= 0.0 && lin.fract() == 0.0 {
-            return VarKind::Hash(base + lin as u32);
-        }
+        lin => VarKind::HashIndirect(Box::new(bin(BinOp::Add, lin, num(base as f64, span)))),
     }
-    let mut it = indices.into_iter();
-    let mut lin = it.next().unwrap_or_else(|| num(0.0, span));
-    for (k, i) in it.enumerate() {
-        let d = dims.get(k + 1).copied().unwrap_or(1);
-        lin = bin(BinOp::Add, bin(BinOp::Mul, lin, num(d as f64, span)), i);
-    }
-    VarKind::HashIndirect(Box::new(bin(BinOp::Add, lin, num(base as f64, span))))
 }
 
 /// Calls `f` on every variable reference, inner ones (in subscripts) first.

@@ -57,20 +57,14 @@ fn used_commons(programs: &[(FileId, &Program)]) -> BTreeMap<u32, (FileId, Span)
         }
         crate::ir::visit::walk_stmts(&p.body, &mut |s| match &s.kind {
             StmtKind::Block(b) => {
-                for it in &b.items {
-                    let mut items = vec![it];
-                    if let ItemKind::IfThen { then, .. } = &it.kind {
-                        items.push(then);
+                for it in block_items(b) {
+                    if let ItemKind::Assign { target, .. } = &it.kind {
+                        if let VarKind::Hash(n @ 100..=999) = target.kind {
+                            used.entry(n).or_insert((*file, target.span));
+                        }
                     }
-                    for it in items {
-                        if let ItemKind::Assign { target, .. } = &it.kind {
-                            if let VarKind::Hash(n @ 100..=999) = target.kind {
-                                used.entry(n).or_insert((*file, target.span));
-                            }
-                        }
-                        for e in crate::ir::visit::item_exprs(it) {
-                            visit(e, *file, &mut used);
-                        }
+                    for e in crate::ir::visit::item_exprs(it) {
+                        visit(e, *file, &mut used);
                     }
                 }
             }
@@ -221,26 +215,20 @@ fn index_bases(programs: &[(FileId, &Program)]) -> BTreeSet<u32> {
     for (_, p) in programs {
         crate::ir::visit::walk_stmts(&p.body, &mut |s| {
             let StmtKind::Block(b) = &s.kind else { return };
-            for it in &b.items {
-                let mut items = vec![it];
-                if let ItemKind::IfThen { then, .. } = &it.kind {
-                    items.push(then);
+            for it in block_items(b) {
+                if let ItemKind::Assign { target, .. } = &it.kind {
+                    if let VarKind::HashIndirect(x) = &target.kind {
+                        see(x);
+                    }
                 }
-                for it in items {
-                    if let ItemKind::Assign { target, .. } = &it.kind {
-                        if let VarKind::HashIndirect(x) = &target.kind {
+                let mut stack: Vec<&Expr> = crate::ir::visit::item_exprs(it);
+                while let Some(e) = stack.pop() {
+                    if let ExprKind::Var(v) = &e.kind {
+                        if let VarKind::HashIndirect(x) = &v.kind {
                             see(x);
                         }
                     }
-                    let mut stack: Vec<&Expr> = crate::ir::visit::item_exprs(it);
-                    while let Some(e) = stack.pop() {
-                        if let ExprKind::Var(v) = &e.kind {
-                            if let VarKind::HashIndirect(x) = &v.kind {
-                                see(x);
-                            }
-                        }
-                        stack.extend(e.children());
-                    }
+                    stack.extend(e.children());
                 }
             }
         });

@@ -12,7 +12,7 @@ use super::const_g;
 use super::effects::{Effect, UnitEffect, ABS};
 use super::units::{FeedConv, Units};
 use crate::ir::{Item, ItemKind, Stmt, StmtKind, Target};
-use crate::passes::Callee;
+use crate::lower::to_fanuc::Callee;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// The length and feed units, as far as every path agrees on them.

@@ -1,5 +1,5 @@
-//! Lowering passes: small IR→IR functions chosen per target, listed in order here.
-//! FANUC → Siemens lives in [`to_sinumerik`] (its own order in its `mod.rs`).
+//! Sinumerik → FANUC lowering: small IR→IR passes, listed in order here; the shared builders
+//! and walkers are in [`crate::lower`].
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
 //! [`words`] (address words, calls, messages), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
@@ -9,8 +9,7 @@
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
 
 pub mod blocks;
-pub mod comp_flow;
-pub mod comp_to_fanuc;
+pub mod comp;
 pub mod cycles;
 pub mod cycles_tap;
 pub mod exprs;
@@ -18,11 +17,17 @@ pub mod frames;
 pub mod integral;
 pub mod labels;
 pub mod lower_structures;
-pub mod own_header;
-pub mod to_sinumerik;
 pub mod varmap;
 pub mod words;
 
+// The passes below reach the shared builders and modules through `super::` (`use super::*`).
+#[cfg(test)]
+use super::build;
+use super::comp_flow;
+use super::{
+    assign_item, bin, block_stmt, cmp, func, goto_item, if_then, item, label_stmt, meta_is_marked, meta_stmt, num,
+    take_target, var_expr,
+};
 use crate::diag::Diagnostic;
 use crate::ir::*;
 use crate::span::{FileId, Span};
@@ -180,100 +185,8 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     blocks::run(ctx, prog, info);
     words::run(ctx, prog, info);
-    comp_to_fanuc::run(ctx, prog, info);
+    comp::run(ctx, prog, info);
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);
 }
-
-// ---- small builders shared by the passes ----
-
-pub fn num(v: f64, span: Span) -> Expr {
-    Expr::num(v, v.fract() != 0.0, span)
-}
-
-pub fn var_expr(v: &VarRef) -> Expr {
-    Expr::new(ExprKind::Var(Box::new(v.clone())), v.span)
-}
-
-pub fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
-    let span = a.span.to(b.span);
-    Expr::new(ExprKind::Binary(op, Box::new(a), Box::new(b)), span)
-}
-
-pub fn cmp(op: CmpOp, a: Expr, b: Expr) -> Expr {
-    let span = a.span.to(b.span);
-    Expr::new(ExprKind::Cmp(op, Tolerance::Exact, Box::new(a), Box::new(b)), span)
-}
-
-pub fn func(f: Func, args: Vec<Expr>, span: Span) -> Expr {
-    Expr::new(ExprKind::Func(f, args), span)
-}
-
-pub fn item(kind: ItemKind, span: Span) -> Item {
-    Item { kind, span }
-}
-
-pub fn assign_item(target: &VarRef, value: Expr, span: Span) -> Item {
-    item(ItemKind::Assign { target: Box::new(target.clone()), value }, span)
-}
-
-/// A statement holding one block with the given items and a fresh (empty) meta.
-pub fn block_stmt(items: Vec<Item>, span: Span) -> Stmt {
-    let meta = BlockMeta { span, ..BlockMeta::default() };
-    Stmt { kind: StmtKind::Block(Block { meta, items }), span }
-}
-
-pub fn meta_stmt(meta: BlockMeta, items: Vec<Item>) -> Stmt {
-    let span = meta.span;
-    Stmt { kind: StmtKind::Block(Block { meta, items }), span }
-}
-
-/// An empty block carrying `label` (a jump target).
-pub fn label_stmt(label: Label) -> Stmt {
-    let span = label.span;
-    let meta = BlockMeta { span, label: Some(label), ..BlockMeta::default() };
-    Stmt { kind: StmtKind::Block(Block { meta, items: vec![] }), span }
-}
-
-/// A jump to `label` (unique by construction, so the search direction does not matter).
-pub fn goto_item(label: &Label, cond: Option<Expr>, span: Span) -> Item {
-    item(
-        ItemKind::Goto(Box::new(Goto {
-            search: Search::ForwardThenBackward,
-            target: Target::Label(label.clone()),
-            cond,
-            missing_continues: false,
-        })),
-        span,
-    )
-}
-
-/// `IF [cond] THEN target = value`.
-pub fn if_then(cond: Expr, target: &VarRef, value: Expr, span: Span) -> Item {
-    item(ItemKind::IfThen { cond, then: Box::new(assign_item(target, value, span)) }, span)
-}
-
-/// True when a block meta carries something a jump or a reader could need.
-pub fn meta_is_marked(m: &BlockMeta) -> bool {
-    m.number.is_some() || m.label.is_some() || !m.comments.is_empty() || m.skip.is_some()
-}
-
-/// Splits off what makes a block a jump target (number, label) into an empty block, so that
-/// statements inserted before it still run when a jump lands there.
-pub fn take_target(meta: &mut BlockMeta) -> Option<Stmt> {
-    if meta.number.is_none() && meta.label.is_none() {
-        return None;
-    }
-    let m = BlockMeta {
-        span: meta.span,
-        skip: None,
-        number: meta.number.take(),
-        label: meta.label.take(),
-        comments: vec![],
-    };
-    Some(meta_stmt(m, vec![]))
-}
-
-#[cfg(test)]
-pub(crate) mod build;

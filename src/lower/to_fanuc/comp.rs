@@ -11,7 +11,7 @@
 //! edge the map gives no registers for, a tool change or `D` change while G41/G42 is on,
 //! `D0` under G41/G42, G41/G42 without an edge.
 
-use super::comp_flow::{self, const_word, FlowState, K};
+use crate::lower::comp_flow::{self, const_word, FlowState, K};
 use super::*;
 use crate::eval::trace::Side;
 

@@ -42,6 +42,9 @@ use crate::ir::*;
 use crate::span::{FileId, Span};
 use std::collections::{BTreeMap, BTreeSet};
 
+// The passes below reach the shared walkers through `super::` (`use super::*`).
+use super::{bin, block_items, func, item_exprs_mut, literal, map_bodies, map_exprs};
+
 /// What to do with a construct Sinumerik cannot express.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum UnsupportedPolicy {
@@ -387,18 +390,9 @@ pub fn named_ref(name: &str, span: Span) -> VarRef {
     VarRef { kind: VarKind::Named { name: name.to_string(), indices: vec![] }, span }
 }
 
-pub fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
-    let span = a.span.to(b.span);
-    Expr::new(ExprKind::Binary(op, Box::new(a), Box::new(b)), span)
-}
-
 pub fn not(a: Expr) -> Expr {
     let span = a.span;
     Expr::new(ExprKind::Unary(UnOp::Not, Box::new(a)), span)
-}
-
-pub fn func(f: Func, args: Vec<Expr>, span: Span) -> Expr {
-    Expr::new(ExprKind::Func(f, args), span)
 }
 
 pub fn assign(target: VarRef, value: Expr, span: Span) -> Item {
@@ -439,197 +433,6 @@ pub fn if_stmt(cond: Expr, then_body: Vec<Stmt>, else_body: Option<Vec<Stmt>>, s
     }
 }
 
-/// Applies `f` to every statement list in `body` (children first), letting a pass rewrite
-/// blocks into several statements.
-pub fn map_bodies(body: Vec<Stmt>, f: &mut dyn FnMut(Vec<Stmt>) -> Vec<Stmt>) -> Vec<Stmt> {
-    let inner: Vec<Stmt> = body
-        .into_iter()
-        .map(|mut s| {
-            match &mut s.kind {
-                StmtKind::Block(_) => {}
-                StmtKind::If(i) => {
-                    i.then_body = map_bodies(std::mem::take(&mut i.then_body), f);
-                    if let Some(e) = &mut i.else_part {
-                        e.body = map_bodies(std::mem::take(&mut e.body), f);
-                    }
-                }
-                StmtKind::While(w) => w.body = map_bodies(std::mem::take(&mut w.body), f),
-                StmtKind::Loop(l) => l.body = map_bodies(std::mem::take(&mut l.body), f),
-                StmtKind::For(x) => x.body = map_bodies(std::mem::take(&mut x.body), f),
-                StmtKind::Repeat(r) => r.body = map_bodies(std::mem::take(&mut r.body), f),
-                StmtKind::Do(d) => d.body = map_bodies(std::mem::take(&mut d.body), f),
-            }
-            s
-        })
-        .collect();
-    f(inner)
-}
-
-/// Rewrites every expression of a statement tree in place (conditions, item expressions,
-/// nested IF-THEN items), outermost first is not guaranteed: `f` sees each root expression.
-pub fn map_exprs(body: &mut [Stmt], f: &mut dyn FnMut(&mut Expr)) {
-    for s in body.iter_mut() {
-        match &mut s.kind {
-            StmtKind::Block(b) => {
-                for it in &mut b.items {
-                    item_exprs_mut(it, f);
-                }
-            }
-            StmtKind::If(i) => {
-                f(&mut i.cond);
-                map_exprs(&mut i.then_body, f);
-                if let Some(e) = &mut i.else_part {
-                    map_exprs(&mut e.body, f);
-                }
-            }
-            StmtKind::While(w) => {
-                f(&mut w.cond);
-                map_exprs(&mut w.body, f);
-            }
-            StmtKind::Loop(l) => map_exprs(&mut l.body, f),
-            StmtKind::For(x) => {
-                f(&mut x.from);
-                f(&mut x.to);
-                map_exprs(&mut x.body, f);
-            }
-            StmtKind::Repeat(r) => {
-                f(&mut r.until);
-                map_exprs(&mut r.body, f);
-            }
-            StmtKind::Do(d) => {
-                if let Some(c) = &mut d.cond {
-                    f(c);
-                }
-                map_exprs(&mut d.body, f);
-            }
-        }
-    }
-}
-
-/// The root expressions of one item, mutably (the mirror of `ir::visit::item_exprs`, plus
-/// the indices of assignment targets).
-pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
-    fn word(w: &mut Word, f: &mut dyn FnMut(&mut Expr)) {
-        match &mut w.value {
-            WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => f(e),
-        }
-    }
-    fn goto(g: &mut Goto, f: &mut dyn FnMut(&mut Expr)) {
-        if let Some(c) = &mut g.cond {
-            f(c);
-        }
-        if let Target::Computed(e) = &mut g.target {
-            f(e);
-        }
-    }
-    match &mut it.kind {
-        ItemKind::Assign { target, value } => {
-            varref_exprs_mut(target, f);
-            f(value);
-        }
-        ItemKind::Word(w) => word(w, f),
-        ItemKind::Goto(g) => goto(g, f),
-        ItemKind::IfThen { cond, then } => {
-            f(cond);
-            item_exprs_mut(then, f);
-        }
-        ItemKind::IfBlock { cond, items } => {
-            f(cond);
-            for i in items {
-                item_exprs_mut(i, f);
-            }
-        }
-        ItemKind::SyncAction(a) => {
-            if let Some((_, e)) = &mut a.id {
-                f(e);
-            }
-            if let Some((_, e)) = &mut a.trigger {
-                f(e);
-            }
-            for i in &mut a.actions {
-                item_exprs_mut(i, f);
-            }
-        }
-        ItemKind::Case(c) => {
-            f(&mut c.selector);
-            for a in &mut c.arms {
-                f(&mut a.value);
-                goto(&mut a.goto, f);
-            }
-            if let Some(d) = &mut c.default {
-                goto(d, f);
-            }
-        }
-        ItemKind::Call(c) => {
-            if let CallTarget::Computed(e) = &mut c.target {
-                f(e);
-            }
-            for a in &mut c.args {
-                match a {
-                    Arg::Value(e) | Arg::Letter { value: e, .. } => f(e),
-                    Arg::Omitted(_) => {}
-                }
-            }
-            if let Some(r) = &mut c.repeat {
-                f(r);
-            }
-        }
-        ItemKind::Return { to } => {
-            if let Some(e) = to {
-                f(e);
-            }
-        }
-        ItemKind::Def(d) => {
-            for v in &mut d.vars {
-                if let Some(Init::Value(e)) = &mut v.init {
-                    f(e);
-                }
-            }
-        }
-        ItemKind::Alarm { number, .. } => f(number),
-        ItemKind::Message { text: Some(e) } => f(e),
-        ItemKind::ParamWrite(p) => {
-            f(&mut p.number);
-            if let Some(a) = &mut p.axis {
-                f(a);
-            }
-            if let Some(b) = &mut p.bit {
-                f(b);
-            }
-            f(&mut p.value);
-        }
-        ItemKind::RepeatSection(r) => {
-            if let Some(c) = &mut r.count {
-                f(c);
-            }
-        }
-        ItemKind::Frame { words, .. } => {
-            for w in words {
-                word(w, f);
-            }
-        }
-        ItemKind::Message { text: None }
-        | ItemKind::Extern(_)
-        | ItemKind::ModalCallOff
-        | ItemKind::Instruction { .. }
-        | ItemKind::End { .. }
-        | ItemKind::StopMessage { .. }
-        | ItemKind::Stopre => {}
-    }
-}
-
-fn varref_exprs_mut(v: &mut VarRef, f: &mut dyn FnMut(&mut Expr)) {
-    match &mut v.kind {
-        VarKind::HashIndirect(e) | VarKind::RIndirect(e) => f(e),
-        VarKind::Named { indices, .. } | VarKind::System { indices, .. } => {
-            for e in indices {
-                f(e);
-            }
-        }
-        VarKind::Hash(_) | VarKind::R(_) => {}
-    }
-}
-
 /// The plain variable number of `#n` in `e` (`Some(n)` only for a bare `#n`).
 pub fn bare_hash(e: &Expr) -> Option<u32> {
     match &e.kind {
@@ -656,15 +459,6 @@ pub fn is_vacant_literal(e: &Expr) -> bool {
         ExprKind::Vacant => true,
         ExprKind::Unary(UnOp::Neg, a) => is_vacant_literal(a),
         _ => bare_hash(e) == Some(0),
-    }
-}
-
-/// The numeric value of a literal.
-pub fn literal(e: &Expr) -> Option<f64> {
-    match &e.kind {
-        ExprKind::Num(n) => Some(n.value),
-        ExprKind::Unary(UnOp::Neg, a) => literal(a).map(|v| -v),
-        _ => None,
     }
 }
 

@@ -93,20 +93,14 @@ fn has_indirect(body: &[Stmt]) -> bool {
     let mut found = false;
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            for it in &b.items {
-                let mut items = vec![it];
-                if let ItemKind::IfThen { then, .. } = &it.kind {
-                    items.push(then);
+            for it in block_items(b) {
+                if let ItemKind::Assign { target, .. } = &it.kind {
+                    found |= matches!(target.kind, VarKind::HashIndirect(_));
                 }
-                for it in items {
-                    if let ItemKind::Assign { target, .. } = &it.kind {
-                        found |= matches!(target.kind, VarKind::HashIndirect(_));
-                    }
-                    if let ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) = &it.kind {
-                        found |= addr.is(b'G') && literal(e).is_none();
-                    }
-                    found |= crate::ir::visit::item_exprs(it).into_iter().any(expr);
+                if let ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) = &it.kind {
+                    found |= addr.is(b'G') && literal(e).is_none();
                 }
+                found |= crate::ir::visit::item_exprs(it).into_iter().any(expr);
             }
         }
     });

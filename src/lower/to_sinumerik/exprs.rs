@@ -167,7 +167,7 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
         plan.defs.push((name.clone(), DataType::Int));
     }
     let t = named(&name, span);
-    marks.push(plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), idx, span)], span));
+    marks.push(plain_block(vec![crate::lower::assign_item(&named_ref(&name, span), idx, span)], span));
     // Ranges on their own R numbers need no assignment: they are tested last, together.
     let (same, moved): (Vec<_>, Vec<_>) = ranges.iter().copied().partition(|(from, _, r)| from == r);
     let mut tail = match same.split_first() {
@@ -183,7 +183,7 @@ fn runtime_indirect(ctx: &mut Ctx, x: Expr, span: Span, marks: &mut Vec<Stmt>, a
         } else {
             bin(BinOp::Sub, t.clone(), int(i64::from(from - r), span))
         };
-        let set = plain_block(vec![crate::passes::assign_item(&named_ref(&name, span), shift, span)], span);
+        let set = plain_block(vec![crate::lower::assign_item(&named_ref(&name, span), shift, span)], span);
         tail = vec![if_stmt(inside(&t, range), vec![set], Some(tail), span)];
     }
     marks.extend(tail);
@@ -213,7 +213,7 @@ fn flags(r: &Expr, tracked: &[(u32, u32)], access: Access, span: Span, marks: &m
                 let value = w.clone().unwrap_or_else(|| int(1, span));
                 marks.push(if_stmt(
                     hit,
-                    vec![plain_block(vec![crate::passes::assign_item(&flag, value, span)], span)],
+                    vec![plain_block(vec![crate::lower::assign_item(&flag, value, span)], span)],
                     None,
                     span,
                 ));
@@ -315,11 +315,11 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
 /// result. `LOC1-3<=0` → `LOC1<=3` for a counter stepped by 1.
 pub fn plain_comparisons(programs: &mut [(ProgPlan, Program)]) {
     let names: BTreeSet<String> = programs.iter().map(|(plan, _)| plan.name.to_ascii_uppercase()).collect();
-    let types: Vec<crate::passes::integral::Types> =
+    let types: Vec<crate::lower::to_fanuc::integral::Types> =
         programs.iter().map(|(_, p)| p.params.iter().map(|prm| (prm.name.clone(), prm.ty)).collect()).collect();
-    let with_types: Vec<(&Program, &crate::passes::integral::Types)> =
+    let with_types: Vec<(&Program, &crate::lower::to_fanuc::integral::Types)> =
         programs.iter().zip(&types).map(|((_, p), t)| (p, t)).collect();
-    let exact = crate::passes::integral::exact_differences(&with_types, &names);
+    let exact = crate::lower::to_fanuc::integral::exact_differences(&with_types, &names);
     for ((_, p), spans) in programs.iter_mut().zip(exact) {
         if !spans.is_empty() {
             plain_in(&mut p.body, &spans);

@@ -9,7 +9,7 @@
 
 use super::units::FeedConv;
 use crate::ir::{BinOp, Expr, ExprKind, Item, ItemKind, VarKind};
-use crate::passes::to_sinumerik::item_exprs_mut;
+use crate::lower::{children_mut, item_exprs_mut};
 
 /// The length system variables the translation to FANUC maps.
 const LENGTHS: &[&str] = &["AA_IW", "AA_IM", "P_EP", "P_UIFR"];
@@ -68,21 +68,6 @@ fn scale_reads(e: &mut Expr, op: BinOp) {
     if matches!(&e.kind, ExprKind::Var(v) if is_length(&v.kind)) {
         let var = std::mem::replace(e, Expr::num(0.0, false, e.span));
         *e = by(var, op);
-    }
-}
-
-/// The sub-expressions of `e` (a variable's indices included).
-fn children_mut(e: &mut Expr) -> Vec<&mut Expr> {
-    match &mut e.kind {
-        ExprKind::Var(v) => match &mut v.kind {
-            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => vec![x.as_mut()],
-            VarKind::Named { indices, .. } | VarKind::System { indices, .. } => indices.iter_mut().collect(),
-            _ => vec![],
-        },
-        ExprKind::Unary(_, a) => vec![a.as_mut()],
-        ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => vec![a.as_mut(), b.as_mut()],
-        ExprKind::Func(_, args) => args.iter_mut().collect(),
-        _ => vec![],
     }
 }
 

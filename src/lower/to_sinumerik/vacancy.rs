@@ -15,6 +15,7 @@
 //! stay plain R parameters / DEF variables, so ordinary programs read as before.
 
 use super::*;
+pub(super) use crate::lower::children_mut;
 
 /// A variable in the whole translation: a local of one program, or a common variable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -639,20 +640,6 @@ fn rewrite_cmp(ctx: &Ctx, e: &mut Expr) {
         }
     };
     *e = new;
-}
-
-pub(super) fn children_mut(e: &mut Expr) -> Vec<&mut Expr> {
-    match &mut e.kind {
-        ExprKind::Num(_) | ExprKind::Vacant | ExprKind::Str(_) | ExprKind::Ident(_) => vec![],
-        ExprKind::Var(v) => match &mut v.kind {
-            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => vec![x.as_mut()],
-            VarKind::Named { indices, .. } | VarKind::System { indices, .. } => indices.iter_mut().collect(),
-            _ => vec![],
-        },
-        ExprKind::Unary(_, a) => vec![a.as_mut()],
-        ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => vec![a.as_mut(), b.as_mut()],
-        ExprKind::Func(_, args) => args.iter_mut().collect(),
-    }
 }
 
 /// An assignment plus, for a tracked target, the write of its flag.

@@ -14,7 +14,7 @@
 
 use super::*;
 use crate::eval::trace::Side;
-use crate::passes::comp_flow::{self, const_expr, FlowState, K};
+use crate::lower::comp_flow::{self, const_expr, FlowState, K};
 
 /// A T, H or D value: a constant or a FANUC variable.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -469,7 +469,7 @@ fn finish(mut b: Block, add: Vec<Item>, live: bool, out: &mut Vec<Stmt>) {
         b.items.insert(at.min(b.items.len()), d);
     }
     let span = b.meta.span;
-    if !b.items.is_empty() || crate::passes::meta_is_marked(&b.meta) {
+    if !b.items.is_empty() || crate::lower::meta_is_marked(&b.meta) {
         out.push(Stmt { span, kind: StmtKind::Block(b) });
     }
 }
