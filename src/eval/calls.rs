@@ -635,13 +635,15 @@ pub struct Saved {
     wo: usize,
     frame: [f64; 9],
     trans: [f64; 9],
+    /// The rotation, scaling and mirroring of the programmable frame.
+    xf: super::machine::Xform,
     /// [`Machine::wo_selections`](super::machine::Machine::wo_selections) at the call.
     selections: u64,
 }
 
 impl Saved {
     fn of(m: &super::machine::Machine) -> Saved {
-        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans, selections: m.wo_selections }
+        Saved { modal: m.modal, wo: m.wo, frame: m.frame, trans: m.trans, xf: m.xf, selections: m.wo_selections }
     }
 
     /// Restores the modes; `true` when the subprogram selected a work offset (the restore
@@ -654,7 +656,8 @@ impl Saved {
             m.wo = self.wo;
             m.frame = self.frame;
         }
-        m.trans = self.trans;
+        m.set_trans(self.trans);
+        m.set_xform(self.xf);
         selected
     }
 }

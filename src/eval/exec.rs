@@ -115,6 +115,7 @@ impl<'a> Interp<'a> {
         let scaling = sem.increment_scaling && !sem.calculator_input;
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         m.incr_travels_offset = sem.incremental_travels_offset;
+        m.rotation_angle_incremental = sem.rotation_angle_incremental;
         m.probe_contact = opts.probe_contact;
         m.expand = opts.expand_cycles;
         let r_count = sem.r_param_count as usize;

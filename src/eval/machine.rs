@@ -14,12 +14,14 @@ use crate::span::Span;
 pub const COMPENSATION_NOTE: &str = "NC387";
 
 mod fast;
+mod frames;
 mod grid;
 mod modal;
 mod motion;
 mod offsets;
 mod refs;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
+pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
 
 /// A word after evaluation of its value.
@@ -101,6 +103,18 @@ pub struct Machine {
     pub trans: [f64; 9],
     /// FANUC local coordinate system (`G52`), added to every work offset.
     pub local: [f64; 9],
+    /// The frame's rotation, scaling and mirroring (FANUC G68; Siemens ROT, SCALE, MIRROR):
+    /// programmed → workpiece coordinates before the offsets above ([`frames`]).
+    pub xf: Xform,
+    /// The FANUC G68 rotation in force.
+    pub rot: Option<FanucRot>,
+    /// Axes (bits 0..2) to be positioned absolute before they move incrementally or are
+    /// left out of a move: their frame changed ([`Machine::set_xform`]).
+    pub fresh: u8,
+    /// `fresh != 0` or a frame that turns: moves take [`Machine::framed_motion`].
+    pub framed: bool,
+    /// FANUC parameter 5400#0 RIN: the G68 angle R is incremental under G91.
+    pub rotation_angle_incremental: bool,
     /// Work-offset selections so far (a Siemens SAVE return re-selects after one).
     pub wo_selections: u64,
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
@@ -160,6 +174,11 @@ impl Machine {
             frame: [0.0; 9],
             trans: [0.0; 9],
             local: [0.0; 9],
+            xf: Xform::ID,
+            rot: None,
+            fresh: 0,
+            framed: false,
+            rotation_angle_incremental: false,
             wo_selections: 0,
             last_m: 0.0,
             last_n: 0.0,
@@ -448,12 +467,13 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
-        let (mut g52, mut home) = (false, None);
+        let (mut g52, mut g68, mut home) = (false, false, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
                 motion_g = Some(span);
             }
+            self.check_under_rotation(gi, span)?;
             // `Modal::g` changes nothing for a code it does not take.
             if self.modal.g(self.fanuc, gi) {
                 continue;
@@ -472,6 +492,8 @@ impl Machine {
                     self.select_work_offset((gi / 10 - 500) as usize, out, span)
                 }
                 520 if self.fanuc => g52 = true,
+                680 if self.fanuc => g68 = true,
+                690 if self.fanuc => self.g69(),
                 280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
@@ -531,6 +553,10 @@ impl Machine {
         }
         if g52 {
             self.local_shift(&axes, block_span)?;
+            return Ok(eff);
+        }
+        if g68 {
+            self.g68(&axes, ijk.iter().any(Option::is_some), r, block_span)?;
             return Ok(eff);
         }
         if home.is_none() {
@@ -600,8 +626,12 @@ impl Machine {
         } else if dwell {
             let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
             out.push((Event::Dwell { seconds: secs }, block_span));
+        } else if self.cycle.active.is_some() && !g53 && self.framed {
+            return Err(framed_cycle(block_span));
         } else if self.cycle.active.is_some() && !g53 {
             eff.moved = super::cycles::fanuc::holes(self, words, out, block_span)?;
+        } else if self.framed && !g53 {
+            eff.moved = self.framed_motion(&axes, &ijk, r, ar, probe, out, block_span)?;
         } else {
             eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
         }
