@@ -86,9 +86,13 @@ fn name_word(name: &str, v: Expr, span: Span) -> Item {
 
 /// Splits off what this module translates; `Err(b)` hands the block back untouched.
 pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<Split, Block> {
-    if let Some(&g) = gs.iter().find(|g| matches!(g, 680 | 681 | 510 | 511 | 160 | 290 | 920)) {
+    let b = match super::rotation::split(ctx, b, span, modal, gs) {
+        Ok(split) => return Ok(split),
+        Err(b) => b,
+    };
+    if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 510 | 511 | 160 | 290 | 920)) {
         let what = match g {
-            680 | 681 => "G68 (coordinate rotation)",
+            681 => "G68.1 (three-dimensional coordinate rotation)",
             510 => "G51 (scaling)",
             511 => "G51.1 (mirroring)",
             160 => "G16 (polar coordinates)",

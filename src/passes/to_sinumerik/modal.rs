@@ -21,6 +21,10 @@ pub struct ModalScan {
     /// Some block moves an axis where G91 may be in force (a Sinumerik incremental move
     /// after a frame change also travels the change, a FANUC one does not).
     pub incremental_motion: bool,
+    /// The G68 rotation in force at the start of each block (text order; `rotation.rs`).
+    rot_in: Vec<(u32, Option<u32>)>,
+    /// Each G68 block: its [`State::rot`] key, the block's start and its items.
+    g68s: Vec<(u32, u32, Vec<Item>)>,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -33,10 +37,13 @@ pub struct State {
     pub inch: Option<bool>,
     /// The motion G code ×10 (0, 10, 20, 30).
     pub motion: Option<u32>,
+    /// The G68 rotation in force: `Some(0)` none, `Some(k)` the G68 whose first word
+    /// starts at `k - 1` (`rotation.rs`).
+    pub rot: Option<u32>,
 }
 
 impl State {
-    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None };
+    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None, rot: None };
 
     fn merge(self, o: State) -> State {
         State {
@@ -44,6 +51,7 @@ impl State {
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
             inch: if self.inch == o.inch { self.inch } else { None },
             motion: if self.motion == o.motion { self.motion } else { None },
+            rot: if self.rot == o.rot { self.rot } else { None },
         }
     }
 
@@ -71,6 +79,8 @@ impl State {
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
                 0 | 10 | 20 | 30 => self.motion = Some(g),
+                680 => self.rot = items.first().map(|it| it.span.lo + 1),
+                690 => self.rot = Some(0),
                 // Canned cycles and their cancel: the motion group is not followed here.
                 730..=890 => self.motion = None,
                 _ => {}
@@ -89,7 +99,7 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0) }
+            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0), rot: Some(0) }
         } else {
             State { inch, ..State::UNKNOWN }
         };
@@ -130,10 +140,22 @@ impl ModalScan {
             }
         }
         let mut blocks = Vec::new();
+        let mut rot_in = Vec::new();
+        let mut g68s = Vec::new();
         let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
             let Some((lo, _)) = flat.blocks[i] else { continue };
+            let first = match &flat.nodes[i] {
+                Node::Items(items) => items.first().map_or(lo, |it| it.span.lo),
+                _ => lo,
+            };
+            rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
+            if let Node::Items(items) = &flat.nodes[i] {
+                if g_codes(items).contains(&680) {
+                    g68s.push((first + 1, lo, items.to_vec()));
+                }
+            }
             let st = match (settled, *at) {
                 (true, Some(s)) => out_of(i, s),
                 // Unreachable (after M30, say): nothing runs there, any value is as good;
@@ -153,7 +175,18 @@ impl ModalScan {
             }
             blocks.push((lo, st));
         }
-        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion }
+        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s }
+    }
+
+    /// The G68 rotation in force before the block whose first word starts at `lo`
+    /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
+    pub fn rot_before(&self, lo: u32) -> Option<u32> {
+        self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
+    }
+
+    /// The G68 block of [`State::rot`] key `k`: its start and items.
+    pub fn g68_block(&self, k: u32) -> Option<(u32, &[Item])> {
+        self.g68s.iter().find(|g| g.0 == k).map(|g| (g.1, g.2.as_slice()))
     }
 
     /// The block at or before `lo` in text order.
