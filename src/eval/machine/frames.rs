@@ -137,6 +137,16 @@ impl Machine {
     /// mirrors must be positioned absolute before an incremental move or a move that
     /// leaves one of them out (`fresh`).
     pub(crate) fn set_xform(&mut self, x: Xform) {
+        // A rotation and its inverse (a G69 written as the undoing AROT) leave float noise:
+        // snapped, so that the frame is the identity again.
+        let mut x = x;
+        for v in x.a.iter_mut().flatten().chain(x.b.iter_mut()) {
+            for k in [-1.0, 0.0, 1.0] {
+                if (*v - k).abs() < 1e-12 {
+                    *v = k;
+                }
+            }
+        }
         if x != self.xf {
             self.fresh |= self.xf.rows() | x.rows();
             self.xf = x;
@@ -200,15 +210,8 @@ impl Machine {
                 "write the angle: `G68 X.. Y.. R30.`",
             ));
         };
-        if self.rot.is_some() && !given {
-            return Err(error(
-                "NC490",
-                "G68 in G68 mode without a centre is not modelled".into(),
-                span,
-                "cancel with G69 first, or give the centre again",
-            ));
-        }
-        // The tool position when G68 is commanded, in local coordinates (unrotated).
+        // The tool position when G68 is commanded, in local coordinates (unrotated; in G68
+        // mode too: a new G68 replaces the rotation, about its own centre).
         let here = |i: usize| self.pos[i] - self.active_offset(i);
         let coord = |i: usize| axes[i].map_or(here(i), |(w, x)| self.length(w, x, false));
         let centre = (coord(u), coord(v));
@@ -327,7 +330,7 @@ impl Machine {
                 }
             }
         }
-        self.trans = t;
+        self.trans = t.map(clean);
         self.refresh_framed();
     }
 
@@ -399,13 +402,16 @@ impl Machine {
                 absolute |= 1 << i;
             }
         }
-        if self.fresh & !absolute != 0 {
+        // FANUC keeps the programmed value of an axis left out, which a new rotation then
+        // turns ("the first move command after G69 must be specified as an absolute
+        // command"); Siemens works the workpiece position out again through the new frame.
+        if self.fanuc && self.fresh & !absolute != 0 {
             let missing: String = (0..3).filter(|i| self.fresh & !absolute & (1 << i) != 0).map(|i| GEO[i] as char).collect();
             return Err(error(
                 "NC494",
                 format!("the first move after the frame changed leaves {missing} out (the controls differ there)"),
                 span,
-                "name every axis of the plane absolute in the first move after G68/G69, ROT, SCALE, MIRROR or TRANS",
+                "name both axes of the plane absolute in the first move after G68 and G69",
             ));
         }
         let mut cw = self.modal.motion == Motion::Cw;
