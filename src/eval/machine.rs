@@ -13,6 +13,7 @@ use crate::span::Span;
 /// code's presence as "tool compensation not compared").
 pub const COMPENSATION_NOTE: &str = "NC387";
 
+mod fanuc_frames;
 mod fast;
 mod frames;
 mod grid;
@@ -21,6 +22,7 @@ mod motion;
 mod offsets;
 mod refs;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
+pub use fanuc_frames::FanucScale;
 pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
 
@@ -108,8 +110,13 @@ pub struct Machine {
     pub xf: Xform,
     /// The FANUC G68 rotation in force.
     pub rot: Option<FanucRot>,
-    /// Axes (bits 0..2) to be positioned absolute before they move incrementally or are
-    /// left out of a move: their frame changed ([`Machine::set_xform`]).
+    /// The FANUC G51 scaling in force.
+    pub scale: Option<FanucScale>,
+    /// The FANUC G51.1 axis of symmetry of X, Y, Z (mirrored where set).
+    pub mirror: [Option<f64>; 3],
+    /// Axes (bits 0..2) to be positioned absolute before they move incrementally, and
+    /// (bits 4..6) before a FANUC move leaves them out: their frame changed, turning them
+    /// ([`Machine::set_xform`]).
     pub fresh: u8,
     /// `fresh != 0` or a frame that turns: moves take [`Machine::framed_motion`].
     pub framed: bool,
@@ -176,6 +183,8 @@ impl Machine {
             local: [0.0; 9],
             xf: Xform::ID,
             rot: None,
+            scale: None,
+            mirror: [None; 3],
             fresh: 0,
             framed: false,
             rotation_angle_incremental: false,
@@ -467,13 +476,13 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
-        let (mut g52, mut g68, mut home) = (false, false, None);
+        let (mut g52, mut g68, mut g51, mut home) = (false, false, None, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
                 motion_g = Some(span);
             }
-            self.check_under_rotation(gi, span)?;
+            self.check_fanuc_frames(gi, span)?;
             // `Modal::g` changes nothing for a code it does not take.
             if self.modal.g(self.fanuc, gi) {
                 continue;
@@ -494,6 +503,13 @@ impl Machine {
                 520 if self.fanuc => g52 = true,
                 680 if self.fanuc => g68 = true,
                 690 if self.fanuc => self.g69(),
+                // G51 / G51.1, and their cancels G50 / G50.1.
+                510 | 511 if self.fanuc => g51 = Some(gi),
+                500 if self.fanuc => {
+                    self.scale = None;
+                    self.fanuc_compose();
+                }
+                501 if self.fanuc => g51 = Some(gi),
                 280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
@@ -557,6 +573,14 @@ impl Machine {
         }
         if g68 {
             self.g68(&axes, ijk.iter().any(Option::is_some), r, block_span)?;
+            return Ok(eff);
+        }
+        match g51 {
+            Some(510) => self.g51(&axes, &ijk, p, block_span)?,
+            Some(g) => self.g51_1(g == 511, &axes, block_span)?,
+            None => {}
+        }
+        if g51.is_some() {
             return Ok(eff);
         }
         if home.is_none() {

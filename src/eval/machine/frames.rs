@@ -94,12 +94,22 @@ impl Xform {
         Some([col(*a, 0) / det, col(*a, 1) / det, col(*a, 2) / det])
     }
 
-    /// The axes (bits 0..2) whose row is not the identity's: what the frame changes.
-    pub fn rows(&self) -> u8 {
+    /// The axes (bits 0..2) whose row mixes in another axis: what a rotation turns.
+    pub fn turned(&self) -> u8 {
         let mut bits = 0;
         for i in 0..3 {
-            let unit = (0..3).all(|j| self.a[i][j] == if i == j { 1.0 } else { 0.0 });
-            if !unit || self.b[i] != 0.0 {
+            if (0..3).any(|j| j != i && self.a[i][j] != 0.0) {
+                bits |= 1 << i;
+            }
+        }
+        bits
+    }
+
+    /// The axes (bits 0..2) whose row differs in `other`: what a change of frame moves.
+    pub fn changed(&self, other: &Xform) -> u8 {
+        let mut bits = 0;
+        for i in 0..3 {
+            if self.a[i] != other.a[i] || self.b[i] != other.b[i] {
                 bits |= 1 << i;
             }
         }
@@ -148,7 +158,8 @@ impl Machine {
             }
         }
         if x != self.xf {
-            self.fresh |= self.xf.rows() | x.rows();
+            let changed = self.xf.changed(&x);
+            self.fresh |= changed | ((changed & (self.xf.turned() | x.turned())) << 4);
             self.xf = x;
         }
         self.refresh_framed();
@@ -211,46 +222,24 @@ impl Machine {
             ));
         };
         // The tool position when G68 is commanded, in local coordinates (unrotated; in G68
-        // mode too: a new G68 replaces the rotation, about its own centre).
-        let here = |i: usize| self.pos[i] - self.active_offset(i);
-        let coord = |i: usize| axes[i].map_or(here(i), |(w, x)| self.length(w, x, false));
+        // mode too: a new G68 replaces the rotation, about its own centre); under G51 the
+        // programmed point that scales to it.
+        let here = self.unscaled_position();
+        let coord = |i: usize| axes[i].map_or(here[i], |(w, x)| self.length(w, x, false));
         let centre = (coord(u), coord(v));
         let mut deg = self.length(rw, rx, true);
         if self.rotation_angle_incremental && !self.modal.absolute {
             deg += self.rot.map_or(0.0, |r| r.deg);
         }
         self.rot = Some(FanucRot { plane, centre, deg });
-        self.set_xform(Xform::rotation(plane, deg, centre));
+        self.fanuc_compose();
         Ok(())
     }
 
     /// FANUC `G69`: the rotation ends; the next move names the plane axes absolute.
     pub(super) fn g69(&mut self) {
         self.rot = None;
-        self.set_xform(Xform::ID);
-    }
-
-    /// What a FANUC rotation does not allow in its mode: a plane change (the controls'
-    /// manuals: "G17, G18 or G19 must not be designated in the mode of coordinate system
-    /// rotation") and the codes whose interaction with it is not modelled.
-    pub(super) fn check_under_rotation(&self, gi: i64, span: Span) -> Result<(), Fault> {
-        if !self.fanuc || self.rot.is_none() {
-            return Ok(());
-        }
-        let what = match gi {
-            170 | 180 | 190 => "a plane selection (G17/G18/G19) in G68 mode",
-            520 => "G52 in G68 mode",
-            280 | 300 => "a reference return (G28/G30) in G68 mode",
-            540..=599 => "a work offset selection in G68 mode",
-            100 => "G10 in G68 mode",
-            _ => return Ok(()),
-        };
-        Err(error(
-            "NC491",
-            format!("{what} is not modelled"),
-            span,
-            "cancel the rotation with G69 before it, and give G68 again after it",
-        ))
+        self.fanuc_compose();
     }
 
     /// Siemens `ROT`/`AROT`, `SCALE`/`ASCALE`, `MIRROR`/`AMIRROR` with values, and the
@@ -405,8 +394,9 @@ impl Machine {
         // FANUC keeps the programmed value of an axis left out, which a new rotation then
         // turns ("the first move command after G69 must be specified as an absolute
         // command"); Siemens works the workpiece position out again through the new frame.
-        if self.fanuc && self.fresh & !absolute != 0 {
-            let missing: String = (0..3).filter(|i| self.fresh & !absolute & (1 << i) != 0).map(|i| GEO[i] as char).collect();
+        let left_out = (self.fresh >> 4) & !absolute & 0b111;
+        if self.fanuc && left_out != 0 {
+            let missing: String = (0..3).filter(|i| left_out & (1 << i) != 0).map(|i| GEO[i] as char).collect();
             return Err(error(
                 "NC494",
                 format!("the first move after the frame changed leaves {missing} out (the controls differ there)"),
@@ -493,7 +483,7 @@ impl Machine {
             }
         }
         self.pos = target;
-        self.fresh &= !absolute;
+        self.fresh &= !(absolute | (absolute << 4));
         self.refresh_framed();
         match centre {
             Some(center) => {
