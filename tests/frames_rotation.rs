@@ -255,3 +255,104 @@ mod translation {
         }
     }
 }
+
+#[test]
+fn fanuc_mirror_and_scaling_and_their_order() {
+    let t = trace("O1\nG0 X10. Y10.\nG51.1 X0\nG0 X10. Y10.\nG2 X20. Y10. R5. F100.\nG50.1 X0\nG0 X10. Y10.\nM30\n", Dialect::Fanuc);
+    assert!(
+        t.contains("move rapid X=-10 Y=10 f=-\narc ccw XY X=-20 Y=10 center X=-15 Y=10 f=100\nmove rapid X=10 Y=10 f=-"),
+        "{t}"
+    );
+    // P without a decimal point counts 0.001; only the axes whose centre G51 names scale.
+    let t = trace("O1\nG0 X0 Y0 Z10.\nG51 X5. Y5. P2000\nG0 X10. Y10. Z1.\nG91 G1 X5. F100.\nG90 G50\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
+    assert!(t.contains("move rapid X=15 Y=15 Z=1 f=-\nmove linear X=25 Y=15 Z=1 f=100\nmove rapid X=0 Y=0 Z=1 f=-"), "{t}");
+    // I J: a factor each (unequal factors refuse arcs in their plane).
+    let t = trace("O1\nG0 X0 Y0\nG51 X0 Y0 I2. J3.\nG0 X1. Y1.\nG2 X3. Y1. R1. F100.\nM30\n", Dialect::Fanuc);
+    assert!(t.contains("move rapid X=2 Y=3 f=-") && t.ends_with("error NC495"), "{t}");
+    // Scaling, then a rotation whose centre scales too.
+    let t = trace("O1\nG0 X0 Y0\nG51 X0 Y0 P2.\nG68 X10. Y10. R90.\nG0 X20. Y10.\nG69\nG50\nM30\n", Dialect::Fanuc);
+    assert!(t.contains("move rapid X=20 Y=40 f=-"), "{t}");
+    // Out of the order mirror, scaling, rotation; coordinate codes in the modes.
+    assert!(trace("O1\nG51 X0 Y0 P2.\nG51.1 X0\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+    assert!(trace("O1\nG68 X0 Y0 R9.\nG51 X0 Y0 P2.\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+    assert!(trace("O1\nG51.1 X0\nG52 X5.\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+    assert!(trace("O1\nG51 P2.\nM30\n", Dialect::Fanuc).ends_with("error NC490"), "no centre");
+}
+
+mod scale_and_mirror_translation {
+    use super::*;
+    use nctrans::read::LineEnding;
+    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+
+    fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let id = db.add("p.nc", fanuc);
+        let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
+        if t.has_errors() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", 100_000);
+        let text: String = t.files.iter().map(|x| x.text.clone()).collect();
+        assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
+        Ok(text)
+    }
+
+    fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let s = load(&mut db, siemens, Dialect::Sinumerik);
+        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        if !t.ok() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", 100_000);
+        assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+        Ok(t.text)
+    }
+
+    const F: &str = "O1\nG17 G90 G0 X0 Y0 Z5.\nG0 X10. Y10.\nG2 X20. Y10. R5. F100.\nG51.1 X40.\nG0 X10. Y10.\nG2 X20. Y10. R5.\nG50.1 X0\nG51 X5. Y5. P1500\nG0 X10. Y10.\nG3 X20. Y10. R5.\nG50\nG0 X0 Y0\nM30\n";
+
+    #[test]
+    fn g51_1_and_g51_become_amirror_and_ascale_about_their_centre() {
+        let out = f_to_s(F).unwrap();
+        for line in [
+            "ATRANS X40\nAMIRROR X0\nATRANS X-40\nG0 X10 Y10\n",
+            "ATRANS X40\nAMIRROR X0\nATRANS X-40\nATRANS X5 Y5\nASCALE X1.5 Y1.5\nATRANS X-5 Y-5\n",
+            "ATRANS X5 Y5\nASCALE X=1/1.5 Y=1/1.5\nATRANS X-5 Y-5\nG0 X0 Y0\n",
+        ] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        for (from, to) in [("AMIRROR X0", "AMIRROR Y0"), ("ASCALE X1.5 Y1.5", "ASCALE X2 Y1.5"), ("ATRANS X40\n", "ATRANS X20\n")] {
+            assert!(out.contains(from), "{from:?} not in\n{out}");
+            assert!(!equivalent(F, &out.replacen(from, to, 1)), "planted {from:?} → {to:?} not caught");
+        }
+        let nc497 = vec!["NC497".to_string()];
+        assert_eq!(f_to_s("O1\nG51.1 X0 Y0\nG50.1 X0\nM30\n").unwrap_err(), nc497, "partial cancel");
+        assert_eq!(f_to_s("O1\nG51.1 X0\nG68 X0 Y0 R5.\nM30\n").unwrap_err(), nc497, "two modes");
+        assert_eq!(f_to_s("O1\nG51 X0 Y0 P#1\nM30\n").unwrap_err(), nc497, "not a constant");
+    }
+
+    #[test]
+    fn mirror_and_scale_become_g51_1_and_g51_and_planted_errors_are_caught() {
+        let s = "G17 G90 G0 X0 Y0 Z5\nMIRROR X0\nG0 X10 Y10\nG2 X20 Y10 CR=5 F100\nTRANS X50 Y0\nAMIRROR Y0\nG0 X10 Y10\nTRANS\nSCALE X1.5 Y1.5\nG0 X10 Y10\nG3 X20 Y10 CR=5\nMIRROR\nG0 X0 Y0\nM30\n";
+        let out = s_to_f(s).unwrap();
+        for line in [
+            "G50\nG50.1 X0. Y0. Z0.\nG52 X0. Y0. Z0.\nG51.1 X0.\n",
+            "G52 X50. Y0. Z0.\nG51.1 Y0.\n",
+            "G51 X0. Y0. I1.5 J1.5\n",
+        ] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        for (from, to) in [("G51.1 X0.", "G51.1 Y0."), ("I1.5 J1.5", "I1.5 J2."), ("G51.1 Y0.", "G51.1 Y5.")] {
+            assert!(out.contains(from), "{from:?} not in\n{out}");
+            assert!(!equivalent(&out.replacen(from, to, 1), s), "planted {from:?} → {to:?} not caught");
+        }
+        assert_eq!(s_to_f("SCALE X=R1\nM30\n").unwrap_err(), vec!["NC498".to_string()]);
+        assert_eq!(s_to_f("MIRROR X0\nAROT RPL=5\nM30\n").unwrap_err(), vec!["NC498".to_string()]);
+    }
+}

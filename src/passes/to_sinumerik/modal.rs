@@ -21,9 +21,9 @@ pub struct ModalScan {
     /// Some block moves an axis where G91 may be in force (a Sinumerik incremental move
     /// after a frame change also travels the change, a FANUC one does not).
     pub incremental_motion: bool,
-    /// The G68 rotation in force at the start of each block (text order; `rotation.rs`).
+    /// The G68, G51 or G51.1 in force at the start of each block (text order; `rotation.rs`).
     rot_in: Vec<(u32, Option<u32>)>,
-    /// Each G68 block: its [`State::rot`] key, the block's start and its items.
+    /// Each G68, G51 and G51.1 block: its [`State::rot`] key, the block's start and its items.
     g68s: Vec<(u32, u32, Vec<Item>)>,
 }
 
@@ -37,8 +37,8 @@ pub struct State {
     pub inch: Option<bool>,
     /// The motion G code ×10 (0, 10, 20, 30).
     pub motion: Option<u32>,
-    /// The G68 rotation in force: `Some(0)` none, `Some(k)` the G68 whose first word
-    /// starts at `k - 1` (`rotation.rs`).
+    /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
+    /// `Some(0)` none, `Some(k)` the block whose first word starts at `k - 1` (`rotation.rs`).
     pub rot: Option<u32>,
 }
 
@@ -79,8 +79,8 @@ impl State {
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
                 0 | 10 | 20 | 30 => self.motion = Some(g),
-                680 => self.rot = items.first().map(|it| it.span.lo + 1),
-                690 => self.rot = Some(0),
+                680 | 510 | 511 => self.rot = items.first().map(|it| it.span.lo + 1),
+                690 | 500 | 501 => self.rot = Some(0),
                 // Canned cycles and their cancel: the motion group is not followed here.
                 730..=890 => self.motion = None,
                 _ => {}
@@ -152,7 +152,7 @@ impl ModalScan {
             };
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
             if let Node::Items(items) = &flat.nodes[i] {
-                if g_codes(items).contains(&680) {
+                if g_codes(items).iter().any(|g| matches!(g, 680 | 510 | 511)) {
                     g68s.push((first + 1, lo, items.to_vec()));
                 }
             }
@@ -178,13 +178,13 @@ impl ModalScan {
         ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s }
     }
 
-    /// The G68 rotation in force before the block whose first word starts at `lo`
+    /// The G68, G51 or G51.1 in force before the block whose first word starts at `lo`
     /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
     pub fn rot_before(&self, lo: u32) -> Option<u32> {
         self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
     }
 
-    /// The G68 block of [`State::rot`] key `k`: its start and items.
+    /// The G68, G51 or G51.1 block of [`State::rot`] key `k`: its start and items.
     pub fn g68_block(&self, k: u32) -> Option<(u32, &[Item])> {
         self.g68s.iter().find(|g| g.0 == k).map(|g| (g.1, g.2.as_slice()))
     }
