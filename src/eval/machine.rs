@@ -20,9 +20,11 @@ mod grid;
 mod modal;
 mod motion;
 mod offsets;
+mod polar;
 mod refs;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use fanuc_frames::FanucScale;
+pub use polar::Pole;
 pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
 
@@ -120,6 +122,10 @@ pub struct Machine {
     pub fresh: u8,
     /// `fresh != 0` or a frame that turns: moves take [`Machine::framed_motion`].
     pub framed: bool,
+    /// FANUC G16: polar coordinates in force.
+    pub polar: bool,
+    /// The Siemens pole (G110/G111/G112) and the polar angle and radius stored with it.
+    pub pole: Pole,
     /// FANUC parameter 5400#0 RIN: the G68 angle R is incremental under G91.
     pub rotation_angle_incremental: bool,
     /// Work-offset selections so far (a Siemens SAVE return re-selects after one).
@@ -188,6 +194,8 @@ impl Machine {
             fresh: 0,
             framed: false,
             rotation_angle_incremental: false,
+            polar: false,
+            pole: Pole::default(),
             wo_selections: 0,
             last_m: 0.0,
             last_n: 0.0,
@@ -332,6 +340,15 @@ impl Machine {
         let (mut gs, mut ms) = (std::mem::take(&mut self.gs_buf), std::mem::take(&mut self.ms_buf));
         gs.clear();
         ms.clear();
+        // Polar coordinates become the plane's Cartesian words first (polar.rs).
+        let polar = match self.polar_words(words) {
+            Ok(p) => p,
+            Err(e) => {
+                (self.gs_buf, self.ms_buf) = (gs, ms);
+                return Err(e);
+            }
+        };
+        let words = polar.as_deref().unwrap_or(words);
         let r = self.apply_words(words, stop_message, out, warns, &mut gs, &mut ms);
         (self.gs_buf, self.ms_buf) = (gs, ms);
         r
@@ -510,6 +527,9 @@ impl Machine {
                     self.fanuc_compose();
                 }
                 501 if self.fanuc => g51 = Some(gi),
+                // Polar coordinates and poles: their words were made Cartesian (polar.rs).
+                160 | 150 if self.fanuc => {}
+                1100 | 1110 | 1120 if !self.fanuc => {}
                 280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })

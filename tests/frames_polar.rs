@@ -1,0 +1,78 @@
+//! Polar coordinates (issue #20, trace v2): FANUC G16/G15 and Siemens G110/G111/G112 with
+//! AP=/RP= give the positions the tool really reaches, a bolt circle drilled both ways
+//! agrees, what the controls do differently is refused, and the translations both ways
+//! are proven (a planted wrong angle or pole is caught).
+
+use nctrans::check::{self, Side, Verdict};
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::eval::{self, NoCallees, RunOptions, VecSink};
+use nctrans::ir::Unit;
+use nctrans::span::SourceDb;
+
+fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
+    let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
+    let id = db.add(name, text);
+    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
+    assert!(!nctrans::diag::has_errors(&p.diags), "does not parse:\n{}", nctrans::diag::render(db, &p.diags));
+    p.unit
+}
+
+fn trace(text: &str, d: Dialect) -> String {
+    let mut db = SourceDb::new();
+    let unit = load(&mut db, text, d);
+    let mut sink = VecSink::default();
+    let out = eval::run(&mut db, &unit, &mut NoCallees, &RunOptions::default(), &mut sink);
+    let mut s: Vec<String> = sink.events.iter().map(|(e, _)| eval::trace::text_line(e)).collect();
+    if let Some(e) = out.diags.iter().find(|d| d.severity == nctrans::diag::Severity::Error) {
+        s.push(format!("error {}", e.code));
+    }
+    s.join("\n")
+}
+
+fn equivalent(fanuc: &str, siemens: &str) -> bool {
+    let mut db = SourceDb::new();
+    let f = load(&mut db, fanuc, Dialect::Fanuc);
+    let s = load(&mut db, siemens, Dialect::Sinumerik);
+    let side = |u: Unit| Side { unit: u, callees: Box::new(NoCallees), run: RunOptions::default() };
+    matches!(check::check(&db, side(f), side(s)).verdict, Verdict::Equivalent { .. })
+}
+
+pub const F_BOLTS: &str = "O1\nG17 G90 G54 G0 X0 Y0 Z10.\nG52 X50. Y40.\nG16\nG0 X30. Y0\nG81 X30. Y0 Z-5. R2. F100.\nX30. Y90.\nX30. Y180.\nX30. Y270.\nG80\nG15\nG52 X0 Y0 Z0\nG0 X0 Y0\nM30\n";
+pub const S_BOLTS: &str = "G17 G90 G54 G0 X0 Y0 Z10\nG111 X50 Y40\nG0 AP=0 RP=30 F100\nMCALL CYCLE81(10,0,2,-5)\nG0 AP=0 RP=30\nAP=90\nAP=IC(90)\nAP=270\nMCALL\nG0 X0 Y0\nM30\n";
+
+#[test]
+fn g16_reads_radius_and_angle_about_the_local_zero() {
+    let t = trace("O1\nG0 X0 Y0\nG52 X10.\nG16\nG0 X20. Y90.\nG1 X10. Y180. F100.\nG15\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
+    assert_eq!(t, "move rapid X=0 Y=0 f=-\nmove rapid X=10 Y=20 f=-\nmove linear X=0 Y=0 f=100\nmove rapid X=10 Y=0 f=-\nend M30 steps=8");
+    // The angle without a decimal point counts 0.001°.
+    assert!(trace("O1\nG16\nG0 X10. Y90000\nM30\n", Dialect::Fanuc).contains("move rapid X=0 Y=10 f=-"));
+    // Under G91 the origin is the current position; a block with one of the two words: refused.
+    assert!(trace("O1\nG16\nG91 G0 X10. Y90.\nM30\n", Dialect::Fanuc).ends_with("error NC499"));
+    assert!(trace("O1\nG16\nG0 Y90.\nM30\n", Dialect::Fanuc).ends_with("error NC499"));
+    assert!(trace("O1\nG16\nG91 G28 Z0\nM30\n", Dialect::Fanuc).ends_with("error NC499"));
+}
+
+#[test]
+fn siemens_poles_and_stored_polar_values() {
+    let t = trace(
+        "G0 X10 Y0\nG111 X10 Y10\nG0 AP=90 RP=5\nAP=IC(90)\nG110 X1 Y0\nG0 AP=0 RP=2\nG112 X1 Y1\nG0 AP=0 RP=1\nM30\n",
+        Dialect::Sinumerik,
+    );
+    assert_eq!(
+        t,
+        "move rapid X=10 Y=0 f=-\nmove rapid X=10 Y=15 f=-\nmove rapid X=5 Y=10 f=-\nmove rapid X=8 Y=10 f=-\nmove rapid X=8 Y=11 f=-\nend M30 steps=9"
+    );
+    // A polar arc runs about the pole; without a pole the workpiece zero is one.
+    let t = trace("G0 X10 Y0\nG3 AP=90 RP=10 F100\nM30\n", Dialect::Sinumerik);
+    assert!(t.contains("arc ccw XY X=0 Y=10 center X=0 Y=0 f=100"), "{t}");
+    assert!(trace("G111 X0 Y0\nG0 AP=30\nM30\n", Dialect::Sinumerik).ends_with("error NC499"), "no radius yet");
+    assert!(trace("G91 G0 AP=30 RP=5\nM30\n", Dialect::Sinumerik).ends_with("error NC499"));
+    assert!(trace("G111 AP=30 RP=5\nM30\n", Dialect::Sinumerik).ends_with("error NC499"));
+}
+
+#[test]
+fn a_bolt_circle_agrees_and_a_planted_angle_or_pole_is_caught() {
+    assert!(equivalent(F_BOLTS, S_BOLTS));
+    assert!(!equivalent(F_BOLTS, &S_BOLTS.replace("AP=270", "AP=-270")));
+    assert!(!equivalent(F_BOLTS, &S_BOLTS.replace("G111 X50 Y40", "G111 X40 Y50")));
+}
