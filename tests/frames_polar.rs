@@ -76,3 +76,72 @@ fn a_bolt_circle_agrees_and_a_planted_angle_or_pole_is_caught() {
     assert!(!equivalent(F_BOLTS, &S_BOLTS.replace("AP=270", "AP=-270")));
     assert!(!equivalent(F_BOLTS, &S_BOLTS.replace("G111 X50 Y40", "G111 X40 Y50")));
 }
+
+mod translation {
+    use super::*;
+    use nctrans::read::LineEnding;
+    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+
+    fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let id = db.add("p.nc", fanuc);
+        let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+        let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
+        if t.has_errors() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", 100_000);
+        let text: String = t.files.iter().map(|x| x.text.clone()).collect();
+        assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
+        Ok(text)
+    }
+
+    fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
+        let mut db = SourceDb::new();
+        let s = load(&mut db, siemens, Dialect::Sinumerik);
+        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        if !t.ok() {
+            let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", 100_000);
+        assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+        Ok(t.text)
+    }
+
+    #[test]
+    fn g16_becomes_a_pole_at_the_workpiece_zero_and_rp_ap_words() {
+        let out = f_to_s(F_BOLTS).unwrap();
+        for line in ["TRANS X50 Y40\nG111 X0 Y0\nG0 RP=30 AP=0\n", "G0 RP=30 AP=270\nMCALL\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        for (from, to) in [("AP=90", "AP=-90"), ("RP=30 AP=180", "RP=20 AP=180")] {
+            assert!(!equivalent(F_BOLTS, &out.replacen(from, to, 1)), "planted {from:?} → {to:?} not caught");
+        }
+        let nc497 = vec!["NC497".to_string()];
+        assert_eq!(f_to_s("O1\nG16\nM98 P100\nM30\nO100\nG0 X1. Y1.\nM99\n").unwrap_err(), nc497, "a call in G16");
+        assert_eq!(f_to_s("O1\nG18\nG17 G16\nG0 X1. Y1.\nM30\n").unwrap_err(), nc497, "G18 in the program");
+        assert_eq!(f_to_s("O1\nIF[#1EQ1]GOTO5\nG16\nN5 G0 X1. Y1.\nM30\n").unwrap_err(), nc497, "path-dependent");
+    }
+
+    #[test]
+    fn ap_rp_become_cartesian_points_about_the_pole() {
+        let out = s_to_f(S_BOLTS).unwrap();
+        for line in ["G00 F100. X[50.+30.*COS[0.]] Y[40.+30.*SIN[0.]]\n", "X[50.+30.*COS[180.]] Y[40.+30.*SIN[180.]]\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        for (from, to) in [("SIN[90.]", "SIN[-90.]"), ("50.+30.*COS[270.]", "40.+30.*COS[270.]")] {
+            assert!(out.contains(from), "{from:?} not in\n{out}");
+            assert!(!equivalent(&out.replacen(from, to, 1), S_BOLTS), "planted {from:?} → {to:?} not caught");
+        }
+        let nc498 = vec!["NC498".to_string()];
+        assert_eq!(s_to_f("G111 X1 Y1\nG0 AP=IC(R1) RP=5\nM30\n").unwrap_err(), nc498, "IC on an unknown angle");
+        assert_eq!(s_to_f("G110 X1 Y1\nG0 AP=5 RP=5\nM30\n").unwrap_err(), nc498, "a relative pole");
+        assert_eq!(s_to_f("G0 X0 Y0\nG2 AP=90 RP=5 F100\nM30\n").unwrap_err(), nc498, "a polar arc");
+        assert!(s_to_f("G111 X1 Y1\nR1=0\nWHILE R1<3\nG0 AP=R1*90 RP=5\nR1=R1+1\nENDWHILE\nM30\n").is_err(), "pole in a loop not known");
+    }
+}

@@ -17,6 +17,7 @@ pub mod integral;
 pub mod labels;
 pub mod lower_structures;
 pub mod own_header;
+pub mod polar;
 pub mod rotation;
 pub mod to_sinumerik;
 pub mod varmap;

@@ -74,6 +74,8 @@ struct Modal {
     trans_axes: u16,
     /// What the program's rotations allow (`rotation::plan`).
     rot: super::rotation::Plan,
+    /// The poles of its polar moves (`polar::poles`).
+    poles: super::polar::Poles,
 }
 
 impl Modal {
@@ -98,6 +100,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         resets: Resets::of(&prog.body, &ctx.callees),
         trans_axes: super::frames::trans_axes(&prog.body),
         rot: super::rotation::plan(&prog.body, !info.is_sub),
+        poles: super::polar::poles(&prog.body, !info.is_sub),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -260,7 +263,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
     if let Some(c) = super::compensation::in_block(&b.items, crate::dialect::Dialect::Sinumerik) {
         out.extend(ctx.unsupported(super::compensation::CODE, c.span, &c.what, super::compensation::HINT));
     }
-    // ROT/AROT (rotation.rs); TRANS, SUPA/G153, G505.., G74/G75 (frames.rs).
+    // G111 and AP=/RP= (polar.rs); ROT/AROT (rotation.rs); TRANS, SUPA/G153, G505..,
+    // G74/G75 (frames.rs).
+    if let Some(stmts) = super::polar::block(ctx, &mut b, &m.poles) {
+        out.extend(stmts);
+        return;
+    }
     if let Some(stmts) = super::rotation::block(ctx, &mut b, &m.rot, m.s.abs, m.trans_axes, out) {
         out.extend(stmts);
         return;

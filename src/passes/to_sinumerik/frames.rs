@@ -90,10 +90,13 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         Ok(split) => return Ok(split),
         Err(b) => b,
     };
-    if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 160 | 290 | 920)) {
+    let b = match super::polar::split(ctx, b, span, modal, gs) {
+        Ok(split) => return Ok(split),
+        Err(b) => b,
+    };
+    if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 290 | 920)) {
         let what = match g {
             681 => "G68.1 (three-dimensional coordinate rotation)",
-            160 => "G16 (polar coordinates)",
             290 => "G29 (return from the reference point)",
             _ => "G92 (coordinate system setting)",
         };

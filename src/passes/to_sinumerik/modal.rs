@@ -25,6 +25,8 @@ pub struct ModalScan {
     rot_in: Vec<(u32, Option<u32>)>,
     /// Each G68, G51 and G51.1 block: its [`State::rot`] key, the block's start and its items.
     g68s: Vec<(u32, u32, Vec<Item>)>,
+    /// Some block selects G18/G19.
+    other_plane: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -40,10 +42,13 @@ pub struct State {
     /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
     /// `Some(0)` none, `Some(k)` the block whose first word starts at `k - 1` (`rotation.rs`).
     pub rot: Option<u32>,
+    /// G16 polar coordinates in force (a called program starts without: a call in G16
+    /// mode is refused, `polar.rs`).
+    pub polar: Option<bool>,
 }
 
 impl State {
-    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None, rot: None };
+    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None };
 
     fn merge(self, o: State) -> State {
         State {
@@ -52,6 +57,7 @@ impl State {
             inch: if self.inch == o.inch { self.inch } else { None },
             motion: if self.motion == o.motion { self.motion } else { None },
             rot: if self.rot == o.rot { self.rot } else { None },
+            polar: if self.polar == o.polar { self.polar } else { None },
         }
     }
 
@@ -81,6 +87,8 @@ impl State {
                 0 | 10 | 20 | 30 => self.motion = Some(g),
                 680 | 510 | 511 => self.rot = items.first().map(|it| it.span.lo + 1),
                 690 | 500 | 501 => self.rot = Some(0),
+                160 => self.polar = Some(true),
+                150 => self.polar = Some(false),
                 // Canned cycles and their cancel: the motion group is not followed here.
                 730..=890 => self.motion = None,
                 _ => {}
@@ -99,9 +107,9 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0), rot: Some(0) }
+            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0), rot: Some(0), polar: Some(false) }
         } else {
-            State { inch, ..State::UNKNOWN }
+            State { inch, polar: Some(false), ..State::UNKNOWN }
         };
         let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
             (Node::Items(items), Some((_, skip))) => {
@@ -142,6 +150,7 @@ impl ModalScan {
         let mut blocks = Vec::new();
         let mut rot_in = Vec::new();
         let mut g68s = Vec::new();
+        let mut other_plane = false;
         let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
@@ -152,6 +161,7 @@ impl ModalScan {
             };
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
             if let Node::Items(items) = &flat.nodes[i] {
+                other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
                 if g_codes(items).iter().any(|g| matches!(g, 680 | 510 | 511)) {
                     g68s.push((first + 1, lo, items.to_vec()));
                 }
@@ -175,7 +185,17 @@ impl ModalScan {
             }
             blocks.push((lo, st));
         }
-        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s }
+        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s, other_plane }
+    }
+
+    /// G16 in force after the block at `lo`; `None` where the paths disagree.
+    pub fn polar_at(&self, lo: u32) -> Option<bool> {
+        self.at(lo).and_then(|b| b.1.polar)
+    }
+
+    /// Whether some block of the program selects G18 or G19 (a G16 plane not known here).
+    pub fn other_plane(&self) -> bool {
+        self.other_plane
     }
 
     /// The G68, G51 or G51.1 in force before the block whose first word starts at `lo`
