@@ -239,6 +239,14 @@ mod translation {
     }
 
     #[test]
+    fn exact_stop_contouring_and_feed_modes_translate_both_ways() {
+        let out = f_to_s("O1\nG09 G1 X1. F100.\nG61\nG1 X2.\nG64\nG95 G1 X3. F0.1\nG94\nM30\n").unwrap();
+        assert!(out.contains("G9 G1 X1 F100\nG60\nG1 X2\nG64\nG95 G1 X3 F0.1\nG94\n"), "{out}");
+        let out = s_to_f("G9 G1 X1 F100\nG60\nG1 X2\nG64\nG95 G1 X3 F0.1\nG94\nM30\n").unwrap();
+        assert!(out.contains("G09 G01 X1. F100.\nG61\nG01 X2.\nG64\nG95 G01 X3. F0.1\nG94\n"), "{out}");
+    }
+
+    #[test]
     fn planted_wrong_rotations_are_caught() {
         let good = f_to_s(F_POCKET).unwrap();
         for (from, to) in [("RPL=30", "RPL=-30"), ("ATRANS X40 Y30", "ATRANS X40 Y-30"), ("AROT RPL=-30", "AROT RPL=30")] {
