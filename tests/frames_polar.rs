@@ -145,3 +145,12 @@ mod translation {
         assert!(s_to_f("G111 X1 Y1\nR1=0\nWHILE R1<3\nG0 AP=R1*90 RP=5\nR1=R1+1\nENDWHILE\nM30\n").is_err(), "pole in a loop not known");
     }
 }
+
+#[test]
+fn g10_l20_writes_the_extended_offsets_and_g92_g29_stay_errors_naming_them() {
+    let t = trace("O1\nG10 L20 P2 X100. Y5.\nG54.1 P2\nG0 X0 Y0\nG91 G10 L20 P2 X1.\nG90 G0 X0 Y0\nM30\n", Dialect::Fanuc);
+    assert_eq!(t, "work_offset 8\nmove rapid X=100 Y=5 f=-\nwork_offset 8\nmove rapid X=101 Y=5 f=-\nend M30 steps=6");
+    assert!(trace("O1\nG10 L20 P49 X1.\nM30\n", Dialect::Fanuc).contains("alarm"));
+    assert!(trace("O1\nG92 X0 Y0\nM30\n", Dialect::Fanuc).ends_with("error NC403"));
+    assert!(trace("O1\nG29 X0 Y0\nM30\n", Dialect::Fanuc).ends_with("error NC403"));
+}

@@ -1,4 +1,4 @@
-//! Offsets and frames a program writes: FANUC `G10 L2` work offsets and Siemens
+//! Offsets and frames a program writes: FANUC `G10 L2`/`G10 L20` work offsets and Siemens
 //! `TRANS`/`ATRANS` programmable frames (docs/semantics.md).
 
 use super::{axis_index, round_half_away, unsupported, Fault, Machine, Span, Warn, WordVal, WV};
@@ -27,10 +27,30 @@ impl Machine {
                 }
                 Ok(n as usize == self.wo || n == 0.0)
             }
+            // `G10 L20 Pn`: extended work offset n (G54.1 Pn), table 6 + n.
+            Some(20.0) => {
+                let n = p.map_or(0.0, |(_, x)| round_half_away(x));
+                if !(1.0..=48.0).contains(&n) {
+                    return Err(Fault::alarm(
+                        self.alarms.bad_index,
+                        format!("G10 L20 P{n}: no such extended work offset (P1..P48)"),
+                        span,
+                    ));
+                }
+                let t = 6 + n as usize;
+                for (i, a) in axes.iter().enumerate() {
+                    if let Some((w, x)) = a {
+                        let v = self.length(w, *x, (3..6).contains(&i));
+                        let slot = &mut self.offsets[t][i];
+                        *slot = if self.modal.absolute { v } else { *slot + v };
+                    }
+                }
+                Ok(t == self.wo)
+            }
             _ => {
                 warns.push((
                     "NC405",
-                    "G10 other than L2 (tool or parameter data) has no effect on the trace".into(),
+                    "G10 other than L2/L20 (tool or parameter data) has no effect on the trace".into(),
                     span,
                 ));
                 Ok(false)
