@@ -148,7 +148,14 @@ fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
             let words = axes
                 .iter()
                 .map(|&(l, _, f)| {
-                    let v = if undo { bin(BinOp::Div, num(1.0, span), num(f, span)) } else { num(f, span) };
+                    // The inverse as a number where it has a short decimal form (1/0.5 = 2).
+                    let inv = 1.0 / f;
+                    let short = (inv * 1e6).round() / 1e6 == inv;
+                    let v = match (undo, short) {
+                        (false, _) => num(f, span),
+                        (true, true) => num(inv, span),
+                        (true, false) => bin(BinOp::Div, num(1.0, span), num(f, span)),
+                    };
                     Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }
                 })
                 .collect();
