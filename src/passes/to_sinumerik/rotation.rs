@@ -223,7 +223,16 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             ));
         }
         return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo)) {
-            Err(what) => refused(ctx, span, what, "write the mode with constants, alone in its block: `G68 X.. Y.. R..`"),
+            Err(what) => {
+                // The message names the G code first (a marked line under --unsupported warn).
+                let label = match g {
+                    680 => "G68",
+                    510 => "G51",
+                    _ => "G51.1",
+                };
+                let what = if what.starts_with('G') { what.to_string() } else { format!("{label}: {what}") };
+                refused(ctx, span, &what, "write the mode with constants, alone in its block: `G68 X.. Y.. R..`")
+            }
             Ok(mode) => {
                 let mut meta = b.meta;
                 meta.span = span;
