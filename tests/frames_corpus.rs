@@ -38,7 +38,12 @@ fn equivalent(fanuc: &str, siemens: &str) -> bool {
 /// (FANUC source, Sinumerik source, its FANUC → Sinumerik output, its Sinumerik → FANUC output)
 const PAIRS: &[(&str, &str, &str, &str)] = &[
     ("g68-rotated-pocket.nc", "rot-rotated-pocket.mpf", "g68-rotated-pocket/O_2101.MPF", "rot-rotated-pocket.mpf.nc"),
-    ("g51-1-mirrored-pair.nc", "mirror-mirrored-pair.mpf", "g51-1-mirrored-pair/O_2102.MPF", "mirror-mirrored-pair.mpf.nc"),
+    (
+        "g51-1-mirrored-pair.nc",
+        "mirror-mirrored-pair.mpf",
+        "g51-1-mirrored-pair/O_2102.MPF",
+        "mirror-mirrored-pair.mpf.nc",
+    ),
     ("g16-bolt-circle.nc", "polar-bolt-circle.mpf", "g16-bolt-circle/O_2103.MPF", "polar-bolt-circle.mpf.nc"),
 ];
 

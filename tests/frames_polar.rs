@@ -42,7 +42,8 @@ pub const S_BOLTS: &str = "G17 G90 G54 G0 X0 Y0 Z10\nG111 X50 Y40\nG0 AP=0 RP=30
 
 #[test]
 fn g16_reads_radius_and_angle_about_the_local_zero() {
-    let t = trace("O1\nG0 X0 Y0\nG52 X10.\nG16\nG0 X20. Y90.\nG1 X10. Y180. F100.\nG15\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
+    let t =
+        trace("O1\nG0 X0 Y0\nG52 X10.\nG16\nG0 X20. Y90.\nG1 X10. Y180. F100.\nG15\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
     assert_eq!(t, "move rapid X=0 Y=0 f=-\nmove rapid X=10 Y=20 f=-\nmove linear X=0 Y=0 f=100\nmove rapid X=10 Y=0 f=-\nend M30 steps=8");
     // The angle without a decimal point counts 0.001°.
     assert!(trace("O1\nG16\nG0 X10. Y90000\nM30\n", Dialect::Fanuc).contains("move rapid X=0 Y=10 f=-"));
@@ -131,7 +132,8 @@ mod translation {
     #[test]
     fn ap_rp_become_cartesian_points_about_the_pole() {
         let out = s_to_f(S_BOLTS).unwrap();
-        for line in ["G00 F100. X[50.+30.*COS[0.]] Y[40.+30.*SIN[0.]]\n", "X[50.+30.*COS[180.]] Y[40.+30.*SIN[180.]]\n"] {
+        for line in ["G00 F100. X[50.+30.*COS[0.]] Y[40.+30.*SIN[0.]]\n", "X[50.+30.*COS[180.]] Y[40.+30.*SIN[180.]]\n"]
+        {
             assert!(out.contains(line), "{line:?} missing in\n{out}");
         }
         for (from, to) in [("SIN[90.]", "SIN[-90.]"), ("50.+30.*COS[270.]", "40.+30.*COS[270.]")] {
@@ -142,13 +144,17 @@ mod translation {
         assert_eq!(s_to_f("G111 X1 Y1\nG0 AP=IC(R1) RP=5\nM30\n").unwrap_err(), nc498, "IC on an unknown angle");
         assert_eq!(s_to_f("G110 X1 Y1\nG0 AP=5 RP=5\nM30\n").unwrap_err(), nc498, "a relative pole");
         assert_eq!(s_to_f("G0 X0 Y0\nG2 AP=90 RP=5 F100\nM30\n").unwrap_err(), nc498, "a polar arc");
-        assert!(s_to_f("G111 X1 Y1\nR1=0\nWHILE R1<3\nG0 AP=R1*90 RP=5\nR1=R1+1\nENDWHILE\nM30\n").is_err(), "pole in a loop not known");
+        assert!(
+            s_to_f("G111 X1 Y1\nR1=0\nWHILE R1<3\nG0 AP=R1*90 RP=5\nR1=R1+1\nENDWHILE\nM30\n").is_err(),
+            "pole in a loop not known"
+        );
     }
 }
 
 #[test]
 fn g10_l20_writes_the_extended_offsets_and_g92_g29_stay_errors_naming_them() {
-    let t = trace("O1\nG10 L20 P2 X100. Y5.\nG54.1 P2\nG0 X0 Y0\nG91 G10 L20 P2 X1.\nG90 G0 X0 Y0\nM30\n", Dialect::Fanuc);
+    let t =
+        trace("O1\nG10 L20 P2 X100. Y5.\nG54.1 P2\nG0 X0 Y0\nG91 G10 L20 P2 X1.\nG90 G0 X0 Y0\nM30\n", Dialect::Fanuc);
     assert_eq!(t, "work_offset 8\nmove rapid X=100 Y=5 f=-\nwork_offset 8\nmove rapid X=101 Y=5 f=-\nend M30 steps=6");
     assert!(trace("O1\nG10 L20 P49 X1.\nM30\n", Dialect::Fanuc).contains("alarm"));
     assert!(trace("O1\nG92 X0 Y0\nM30\n", Dialect::Fanuc).ends_with("error NC403"));

@@ -126,8 +126,14 @@ fn siemens_rot_arot_compose_with_trans_in_the_turned_system() {
 fn mirroring_reverses_arcs_and_scaling_scales_radii_and_increments() {
     let t = trace("G0 X0 Y0\nMIRROR X0\nG0 X10 Y0\nG2 X0 Y10 CR=10 F100\nM30\n", Dialect::Sinumerik);
     assert!(t.contains("move rapid X=-10 Y=0 f=-\narc ccw XY X=0 Y=10 center X=-10 Y=10 f=100"), "{t}");
-    let t = trace("G0 X0 Y0\nSCALE X2 Y2\nG0 X10 Y0\nG91 G1 X5 F100\nG90 G3 X0 Y15 I=AC(0) J=AC(0)\nM30\n", Dialect::Sinumerik);
-    assert!(t.contains("move rapid X=20 Y=0 f=-\nmove linear X=30 Y=0 f=100\narc ccw XY X=0 Y=30 center X=0 Y=0 f=100"), "{t}");
+    let t = trace(
+        "G0 X0 Y0\nSCALE X2 Y2\nG0 X10 Y0\nG91 G1 X5 F100\nG90 G3 X0 Y15 I=AC(0) J=AC(0)\nM30\n",
+        Dialect::Sinumerik,
+    );
+    assert!(
+        t.contains("move rapid X=20 Y=0 f=-\nmove linear X=30 Y=0 f=100\narc ccw XY X=0 Y=30 center X=0 Y=0 f=100"),
+        "{t}"
+    );
     // Unequal factors in an arc's plane: the controls differ.
     let t = trace("G0 X0 Y0\nSCALE X2 Y3\nG0 X10 Y0\nG3 X0 Y10 CR=10 F100\nM30\n", Dialect::Sinumerik);
     assert!(t.ends_with("error NC495"), "{t}");
@@ -204,7 +210,8 @@ mod translation {
         let out = f_to_s("O1\nG69\nG0 X0 Y0\nG68 X0 Y0 R45.\nG0 X10. Y0\nG69 G0 X0 Y0\nM30\n").unwrap();
         assert!(out.contains("G0 X0 Y0\nAROT RPL=45\nG0 X10 Y0\nAROT RPL=-45\nG0 X0 Y0\n"), "{out}");
         // In a loop: the G68 of each pass is the one G69 undoes.
-        let out = f_to_s("O1\nG0 X0 Y0\n#1=0\nWHILE[#1LT3]DO1\nG68 X5. Y5. R90.\nG0 X10. Y5.\nG69\n#1=#1+1\nEND1\nM30\n");
+        let out =
+            f_to_s("O1\nG0 X0 Y0\n#1=0\nWHILE[#1LT3]DO1\nG68 X5. Y5. R90.\nG0 X10. Y5.\nG69\n#1=#1+1\nEND1\nM30\n");
         assert!(out.is_ok(), "{out:?}");
     }
 
@@ -249,7 +256,9 @@ mod translation {
     #[test]
     fn planted_wrong_rotations_are_caught() {
         let good = f_to_s(F_POCKET).unwrap();
-        for (from, to) in [("RPL=30", "RPL=-30"), ("ATRANS X40 Y30", "ATRANS X40 Y-30"), ("AROT RPL=-30", "AROT RPL=30")] {
+        for (from, to) in
+            [("RPL=30", "RPL=-30"), ("ATRANS X40 Y30", "ATRANS X40 Y-30"), ("AROT RPL=-30", "AROT RPL=30")]
+        {
             assert!(good.contains(from), "{from:?} not in\n{good}");
             let bad = good.replacen(from, to, 1);
             assert!(!equivalent(F_POCKET, &bad), "planted {from:?} → {to:?} not caught\n{bad}");
@@ -266,14 +275,25 @@ mod translation {
 
 #[test]
 fn fanuc_mirror_and_scaling_and_their_order() {
-    let t = trace("O1\nG0 X10. Y10.\nG51.1 X0\nG0 X10. Y10.\nG2 X20. Y10. R5. F100.\nG50.1 X0\nG0 X10. Y10.\nM30\n", Dialect::Fanuc);
+    let t = trace(
+        "O1\nG0 X10. Y10.\nG51.1 X0\nG0 X10. Y10.\nG2 X20. Y10. R5. F100.\nG50.1 X0\nG0 X10. Y10.\nM30\n",
+        Dialect::Fanuc,
+    );
     assert!(
-        t.contains("move rapid X=-10 Y=10 f=-\narc ccw XY X=-20 Y=10 center X=-15 Y=10 f=100\nmove rapid X=10 Y=10 f=-"),
+        t.contains(
+            "move rapid X=-10 Y=10 f=-\narc ccw XY X=-20 Y=10 center X=-15 Y=10 f=100\nmove rapid X=10 Y=10 f=-"
+        ),
         "{t}"
     );
     // P without a decimal point counts 0.001; only the axes whose centre G51 names scale.
-    let t = trace("O1\nG0 X0 Y0 Z10.\nG51 X5. Y5. P2000\nG0 X10. Y10. Z1.\nG91 G1 X5. F100.\nG90 G50\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
-    assert!(t.contains("move rapid X=15 Y=15 Z=1 f=-\nmove linear X=25 Y=15 Z=1 f=100\nmove rapid X=0 Y=0 Z=1 f=-"), "{t}");
+    let t = trace(
+        "O1\nG0 X0 Y0 Z10.\nG51 X5. Y5. P2000\nG0 X10. Y10. Z1.\nG91 G1 X5. F100.\nG90 G50\nG0 X0 Y0\nM30\n",
+        Dialect::Fanuc,
+    );
+    assert!(
+        t.contains("move rapid X=15 Y=15 Z=1 f=-\nmove linear X=25 Y=15 Z=1 f=100\nmove rapid X=0 Y=0 Z=1 f=-"),
+        "{t}"
+    );
     // I J: a factor each (unequal factors refuse arcs in their plane).
     let t = trace("O1\nG0 X0 Y0\nG51 X0 Y0 I2. J3.\nG0 X1. Y1.\nG2 X3. Y1. R1. F100.\nM30\n", Dialect::Fanuc);
     assert!(t.contains("move rapid X=2 Y=3 f=-") && t.ends_with("error NC495"), "{t}");
@@ -335,7 +355,9 @@ mod scale_and_mirror_translation {
         ] {
             assert!(out.contains(line), "{line:?} missing in\n{out}");
         }
-        for (from, to) in [("AMIRROR X0", "AMIRROR Y0"), ("ASCALE X1.5 Y1.5", "ASCALE X2 Y1.5"), ("ATRANS X40\n", "ATRANS X20\n")] {
+        for (from, to) in
+            [("AMIRROR X0", "AMIRROR Y0"), ("ASCALE X1.5 Y1.5", "ASCALE X2 Y1.5"), ("ATRANS X40\n", "ATRANS X20\n")]
+        {
             assert!(out.contains(from), "{from:?} not in\n{out}");
             assert!(!equivalent(F, &out.replacen(from, to, 1)), "planted {from:?} → {to:?} not caught");
         }

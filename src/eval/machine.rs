@@ -22,11 +22,11 @@ mod motion;
 mod offsets;
 mod polar;
 mod refs;
-pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use fanuc_frames::FanucScale;
-pub use polar::Pole;
+pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
+pub use polar::Pole;
 
 /// A word after evaluation of its value.
 #[derive(Clone, Debug)]

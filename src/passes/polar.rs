@@ -45,9 +45,11 @@ fn polar_value(w: Option<&Word>, stored: &Option<Expr>) -> Option<Expr> {
 
 fn g_const(it: &Item) -> Option<f64> {
     match &it.kind {
-        ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }), .. }) => {
-            Some(n.value)
-        }
+        ItemKind::Word(Word {
+            addr: Addr::Letter(b'G'),
+            value: WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }),
+            ..
+        }) => Some(n.value),
         _ => None,
     }
 }
@@ -93,7 +95,8 @@ fn scan(body: &[Stmt], start: Option<(Expr, Expr)>, poles: &mut Poles) {
             // A new pole: the angle and radius are written again (828D manual: "after
             // changing the pole").
             (ap, rp) = (None, None);
-        } else if gs.contains(&110.0) || gs.contains(&112.0) || gs.iter().any(|&g| g == 18.0 || g == 19.0 || g == 17.0) {
+        } else if gs.contains(&110.0) || gs.contains(&112.0) || gs.iter().any(|&g| g == 18.0 || g == 19.0 || g == 17.0)
+        {
             (pole, ap, rp) = (None, None, None);
         }
         let (apw, rpw) = (named(b, "AP"), named(b, "RP"));
@@ -138,7 +141,8 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, poles: &Poles) -> Option<Vec<Stmt>> {
         return None;
     }
     if pole_block {
-        if gs.contains(&111.0) && ap.is_none() && rp.is_none() && letter(b, b'X').is_some() && letter(b, b'Y').is_some() {
+        if gs.contains(&111.0) && ap.is_none() && rp.is_none() && letter(b, b'X').is_some() && letter(b, b'Y').is_some()
+        {
             // The pole is read by the polar moves after it; the block itself moves nothing.
             b.items.retain(|it| {
                 !matches!(g_const(it), Some(g) if g == 111.0)
@@ -149,7 +153,12 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, poles: &Poles) -> Option<Vec<Stmt>> {
             }
             return None;
         }
-        return Some(refuse(ctx, span, "a pole other than `G111 X.. Y..` (G110/G112, or in polar form)", "set the pole with G111 X.. Y.."));
+        return Some(refuse(
+            ctx,
+            span,
+            "a pole other than `G111 X.. Y..` (G110/G112, or in polar form)",
+            "set the pole with G111 X.. Y..",
+        ));
     }
     let first = b.items.first().map_or(span.lo, |it| it.span.lo);
     let found = poles.at.iter().find(|p| p.0 == first);
@@ -172,7 +181,9 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, poles: &Poles) -> Option<Vec<Stmt>> {
         ));
     };
     let coord = |p: Expr, f: Func| bin(BinOp::Add, p, bin(BinOp::Mul, r.clone(), func(f, vec![a.clone()], span)));
-    b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(Word { addr: Addr::Name(n), .. }) if matches!(n.as_ref(), "AP" | "RP")));
+    b.items.retain(
+        |it| !matches!(&it.kind, ItemKind::Word(Word { addr: Addr::Name(n), .. }) if matches!(n.as_ref(), "AP" | "RP")),
+    );
     for (l, e) in [(b'X', coord(px, Func::Cos)), (b'Y', coord(py, Func::Sin))] {
         b.items.push(item(ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), span }), span));
     }

@@ -74,7 +74,8 @@ fn scan(body: &[Stmt], start: bool, plan: &mut Plan) {
                 if op.starts_with('A') && rotates && after_abs {
                     plan.fresh.push(span.lo);
                 }
-                after_abs = matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR") && !rotates
+                after_abs = matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR")
+                    && !rotates
                     && (op == "TRANS" || words.is_empty());
             }
             None => {
@@ -174,7 +175,14 @@ fn angle(words: &[Word]) -> Option<Expr> {
 
 /// Translates a frame block this module owns (`Some`: the statements it became), and puts a
 /// `G69` into `out` before an absolute frame instruction of a program that rotates.
-pub fn block(ctx: &mut Ctx, b: &mut Block, plan: &Plan, abs: Option<bool>, axes: u16, out: &mut Vec<Stmt>) -> Option<Vec<Stmt>> {
+pub fn block(
+    ctx: &mut Ctx,
+    b: &mut Block,
+    plan: &Plan,
+    abs: Option<bool>,
+    axes: u16,
+    out: &mut Vec<Stmt>,
+) -> Option<Vec<Stmt>> {
     let (op, words, fspan) = frame_of(b)?;
     let absolute = matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR");
     let rotates = kind(op).is_some() && !words.is_empty();

@@ -194,7 +194,8 @@ impl Machine {
         }
         let plane = self.modal.plane;
         let (u, v, _) = plane.axes();
-        if let Some((w, _)) = axes.iter().enumerate().find(|(i, a)| a.is_some() && *i != u && *i != v).and_then(|x| *x.1)
+        if let Some((w, _)) =
+            axes.iter().enumerate().find(|(i, a)| a.is_some() && *i != u && *i != v).and_then(|x| *x.1)
         {
             return Err(error(
                 "NC490",
@@ -287,7 +288,12 @@ impl Machine {
                 let mut d = [1.0; 3];
                 for (i, w, x) in &geo_words {
                     if *x == 0.0 {
-                        return Err(error("NC492", format!("{op} with the factor 0"), w.span, "a scale factor is not 0"));
+                        return Err(error(
+                            "NC492",
+                            format!("{op} with the factor 0"),
+                            w.span,
+                            "a scale factor is not 0",
+                        ));
                     }
                     d[*i] = *x;
                 }
@@ -413,7 +419,8 @@ impl Machine {
             let closed = a[n][u].abs() < tol && a[n][v].abs() < tol && a[u][n].abs() < tol && a[v][n].abs() < tol;
             // The plane's 2×2 part: a similarity (rotation, one factor, mirror) keeps arcs arcs.
             let (m00, m01, m10, m11) = (a[u][u], a[u][v], a[v][u], a[v][v]);
-            let similar = (m00 * m00 + m10 * m10 - (m01 * m01 + m11 * m11)).abs() < 1e-9 && (m00 * m01 + m10 * m11).abs() < 1e-9;
+            let similar =
+                (m00 * m00 + m10 * m10 - (m01 * m01 + m11 * m11)).abs() < 1e-9 && (m00 * m01 + m10 * m11).abs() < 1e-9;
             if !closed || !similar {
                 return Err(error(
                     "NC495",
@@ -470,7 +477,8 @@ impl Machine {
         let w1 = self.xf.apply(p1);
         for i in 0..3 {
             let t = w1[i] + off[i];
-            if axes[i].is_some() || (t - self.pos[i]).abs() > 1e-9 || centre.is_some_and(|c| c.iter().any(|x| x.0 == i)) {
+            if axes[i].is_some() || (t - self.pos[i]).abs() > 1e-9 || centre.is_some_and(|c| c.iter().any(|x| x.0 == i))
+            {
                 self.seen[i] = true;
                 self.applied[i] = off[i];
             }
@@ -489,7 +497,9 @@ impl Machine {
             Some(center) => {
                 out.push((Event::Arc { cw, plane: self.modal.plane, to: self.trace_pos(), center, f: self.feed }, span))
             }
-            None => out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span)),
+            None => {
+                out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span))
+            }
         }
         Ok(true)
     }

@@ -85,7 +85,8 @@ impl Machine {
             }
         }
         // The shift is along the axes of the frame so far (identity unless it turns).
-        let geo = if additive { self.xf.vector([shift[0], shift[1], shift[2]]) } else { [shift[0], shift[1], shift[2]] };
+        let geo =
+            if additive { self.xf.vector([shift[0], shift[1], shift[2]]) } else { [shift[0], shift[1], shift[2]] };
         for (i, slot) in t.iter_mut().enumerate() {
             *slot += if i < 3 { geo[i] } else { shift[i] };
         }

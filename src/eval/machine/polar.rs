@@ -100,15 +100,11 @@ impl Machine {
         if ri.is_none() && ai.is_none() {
             return Ok(None);
         }
-        let span = words.iter().filter(|w| ri.is_some_and(|k| w.span == words[k].span) || ai.is_some_and(|k| w.span == words[k].span)).fold(
-            Span::default(),
-            |s, w| if s == Span::default() { w.span } else { s.to(w.span) },
-        );
-        let absolute = if gs.contains(&910) {
-            false
-        } else {
-            gs.contains(&900) || self.modal.absolute
-        };
+        let span = words
+            .iter()
+            .filter(|w| ri.is_some_and(|k| w.span == words[k].span) || ai.is_some_and(|k| w.span == words[k].span))
+            .fold(Span::default(), |s, w| if s == Span::default() { w.span } else { s.to(w.span) });
+        let absolute = if gs.contains(&910) { false } else { gs.contains(&900) || self.modal.absolute };
         let (Some(ri), Some(ai)) = (ri, ai) else {
             return Err(error(
                 "NC499",
@@ -129,7 +125,8 @@ impl Machine {
         let (Some(rx), Some(ax)) = (num_of(rw), num_of(aw)) else { return Ok(None) };
         let r = self.raw(rw, rx, false);
         let a = self.raw(aw, ax, true).to_radians();
-        let mut out: Vec<WordVal> = words.iter().enumerate().filter(|(k, _)| *k != ri && *k != ai).map(|(_, w)| w.clone()).collect();
+        let mut out: Vec<WordVal> =
+            words.iter().enumerate().filter(|(k, _)| *k != ri && *k != ai).map(|(_, w)| w.clone()).collect();
         out.push(Self::synth(LETTERS[u], r * a.cos(), rw.span));
         out.push(Self::synth(LETTERS[v], r * a.sin(), aw.span));
         Ok(Some(out))
@@ -163,21 +160,41 @@ impl Machine {
                 _ => match self.pole.at {
                     Some((pl, a, b)) if pl == plane => (a, b),
                     Some(_) => {
-                        return Err(error("NC499", "G112 in another plane than its pole".into(), span, "set the pole again with G111"))
+                        return Err(error(
+                            "NC499",
+                            "G112 in another plane than its pole".into(),
+                            span,
+                            "set the pole again with G111",
+                        ))
                     }
                     None => (0.0, 0.0),
                 },
             };
             let coord = |i: usize| {
-                words.iter().rev().find(|w| w.addr.as_bytes() == [LETTERS[i]]).and_then(|w| num_of(w).map(|x| self.length(w, x, false)))
+                words
+                    .iter()
+                    .rev()
+                    .find(|w| w.addr.as_bytes() == [LETTERS[i]])
+                    .and_then(|w| num_of(w).map(|x| self.length(w, x, false)))
             };
-            if words.iter().any(|w| w.addr.len() == 1 && b"ABCUVW".contains(&w.addr.as_bytes()[0])) || coord(3 - u - v).is_some() {
-                return Err(error("NC499", "a pole with a third axis (cylinder coordinates) is not modelled".into(), span, "give the pole in the plane's two axes"));
+            if words.iter().any(|w| w.addr.len() == 1 && b"ABCUVW".contains(&w.addr.as_bytes()[0]))
+                || coord(3 - u - v).is_some()
+            {
+                return Err(error(
+                    "NC499",
+                    "a pole with a third axis (cylinder coordinates) is not modelled".into(),
+                    span,
+                    "give the pole in the plane's two axes",
+                ));
             }
             let pole = (base.0 + coord(u).unwrap_or(0.0), base.1 + coord(v).unwrap_or(0.0));
             self.pole = Pole { at: Some((plane, pole.0, pole.1)), ap: None, rp: None };
             // Nothing else of the block is modelled with a pole: its axis words are spent.
-            let rest: Vec<WordVal> = words.iter().filter(|w| !(w.addr.len() == 1 && b"XYZ".contains(&w.addr.as_bytes()[0]))).cloned().collect();
+            let rest: Vec<WordVal> = words
+                .iter()
+                .filter(|w| !(w.addr.len() == 1 && b"XYZ".contains(&w.addr.as_bytes()[0])))
+                .cloned()
+                .collect();
             return Ok(Some(rest));
         }
         if api.is_none() && rpi.is_none() {
@@ -188,11 +205,21 @@ impl Machine {
             Some((pl, a, b)) if pl == plane => (a, b),
             None => (0.0, 0.0),
             Some(_) => {
-                return Err(error("NC499", "AP=/RP= in another plane than the pole's".into(), span, "set the pole again with G111 after G17/G18/G19"))
+                return Err(error(
+                    "NC499",
+                    "AP=/RP= in another plane than the pole's".into(),
+                    span,
+                    "set the pole again with G111 after G17/G18/G19",
+                ))
             }
         };
         if words.iter().any(|w| w.addr.as_bytes() == [LETTERS[u]] || w.addr.as_bytes() == [LETTERS[v]]) {
-            return Err(error("NC499", "AP=/RP= with an axis of the plane in the same block".into(), span, "write the point either polar or Cartesian"));
+            return Err(error(
+                "NC499",
+                "AP=/RP= with an axis of the plane in the same block".into(),
+                span,
+                "write the point either polar or Cartesian",
+            ));
         }
         let incremental = gs.contains(&910) || (!gs.contains(&900) && !self.modal.absolute);
         let value = |k: Option<usize>, rotary: bool, last: Option<f64>| -> Result<Option<f64>, Fault> {
@@ -225,14 +252,27 @@ impl Machine {
         self.pole.ap = Some(ap);
         self.pole.rp = Some(rp);
         let a = ap.to_radians();
-        let mut out: Vec<WordVal> = words.iter().enumerate().filter(|(k, _)| Some(*k) != api && Some(*k) != rpi).map(|(_, w)| w.clone()).collect();
-        let arc = gs.iter().any(|g| matches!(g, 20 | 30)) || (!gs.iter().any(|g| matches!(g, 0 | 10)) && matches!(self.modal.motion, super::Motion::Cw | super::Motion::Ccw));
+        let mut out: Vec<WordVal> = words
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| Some(*k) != api && Some(*k) != rpi)
+            .map(|(_, w)| w.clone())
+            .collect();
+        let arc = gs.iter().any(|g| matches!(g, 20 | 30))
+            || (!gs.iter().any(|g| matches!(g, 0 | 10))
+                && matches!(self.modal.motion, super::Motion::Cw | super::Motion::Ccw));
         let has_centre = words.iter().any(|w| matches!(w.addr.as_ref(), "I" | "J" | "K" | "CR" | "AR"));
         if arc && !has_centre {
             // A polar arc runs about the pole.
             for (i, c) in [(u, pu), (v, pv)] {
                 let addr: &'static str = ["I", "J", "K"][i];
-                out.push(WordVal { addr: Cow::Borrowed(addr), val: WV::Num(self.in_unit(c)), mode: AbsInc::Ac, bare: false, span });
+                out.push(WordVal {
+                    addr: Cow::Borrowed(addr),
+                    val: WV::Num(self.in_unit(c)),
+                    mode: AbsInc::Ac,
+                    bare: false,
+                    span,
+                });
             }
         }
         out.push(Self::synth(LETTERS[u], self.in_unit(pu + rp * a.cos()), span));

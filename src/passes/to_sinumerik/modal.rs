@@ -40,7 +40,7 @@ pub struct State {
     /// The motion G code ×10 (0, 10, 20, 30).
     pub motion: Option<u32>,
     /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
-    /// `Some(0)` none, `Some(k)` the block whose first word starts at `k - 1` (`rotation.rs`).
+    /// `Some(0)` none, `Some(k)` the mode of [`frame_key`] `k` (`rotation.rs`).
     pub rot: Option<u32>,
     /// G16 polar coordinates in force (a called program starts without: a call in G16
     /// mode is refused, `polar.rs`).
@@ -85,8 +85,13 @@ impl State {
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
                 0 | 10 | 20 | 30 => self.motion = Some(g),
-                680 | 510 | 511 => self.rot = items.first().map(|it| it.span.lo + 1),
-                690 | 500 | 501 => self.rot = Some(0),
+                680 | 510 | 511 => self.rot = items.first().map(|it| frame_key(it.span.lo, g)),
+                // A cancel of another mode than the one in force changes nothing.
+                690 | 500 | 501 => {
+                    if self.rot.is_some_and(|k| k == 0 || k & 3 == frame_kind(g - 10)) {
+                        self.rot = Some(0);
+                    }
+                }
                 160 => self.polar = Some(true),
                 150 => self.polar = Some(false),
                 // Canned cycles and their cancel: the motion group is not followed here.
@@ -98,6 +103,21 @@ impl State {
     }
 }
 
+/// The kind of a frame mode G code (G68, G51, G51.1 ×10): 1, 2, 3.
+fn frame_kind(g: u32) -> u32 {
+    match g {
+        680 => 1,
+        510 => 2,
+        _ => 3,
+    }
+}
+
+/// The [`State::rot`] key of the mode G code `g` in the block whose first word starts at
+/// `lo`: the start and the kind, never 0.
+fn frame_key(lo: u32, g: u32) -> u32 {
+    ((lo + 1) << 2) | frame_kind(g)
+}
+
 impl ModalScan {
     /// `main`: the program starts in G54 and G90 (power-on) and in the unit `inch` (G21 for
     /// a main program, [`call_units`]; a streamed chunk's may differ); a called
@@ -107,7 +127,14 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0), rot: Some(0), polar: Some(false) }
+            State {
+                offset: Some(540),
+                incremental: Some(false),
+                inch,
+                motion: Some(0),
+                rot: Some(0),
+                polar: Some(false),
+            }
         } else {
             State { inch, polar: Some(false), ..State::UNKNOWN }
         };
@@ -162,8 +189,8 @@ impl ModalScan {
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
-                if g_codes(items).iter().any(|g| matches!(g, 680 | 510 | 511)) {
-                    g68s.push((first + 1, lo, items.to_vec()));
+                if let Some(&g) = g_codes(items).iter().find(|g| matches!(g, 680 | 510 | 511)) {
+                    g68s.push((frame_key(first, g), lo, items.to_vec()));
                 }
             }
             let st = match (settled, *at) {

@@ -48,7 +48,13 @@ fn value(ctx: &Ctx, e: &Expr, inch: Option<bool>, rotary: bool) -> Option<Expr> 
 }
 
 /// Translates a block with G16/G15 or in G16 mode; `Err(b)` hands any other block back.
-pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<super::frames::Split, Block> {
+pub fn split(
+    ctx: &mut Ctx,
+    b: Block,
+    span: Span,
+    modal: &ModalScan,
+    gs: &[u32],
+) -> Result<super::frames::Split, Block> {
     let polar = modal.polar_at(span.lo);
     let mentions = gs.contains(&160) || gs.contains(&150);
     if !mentions && polar == Some(false) {
@@ -67,7 +73,11 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         .collect();
     // Blocks whose axis words stay Cartesian in G16 mode.
     let cartesian = gs.iter().any(|g| matches!(g, 100 | 520 | 920 | 530 | 680 | 510 | 511 | 501));
-    if polar != Some(false) && (modal.other_plane() || has_call || polar.is_none()) && (has_call || !xy.is_empty()) && !cartesian {
+    if polar != Some(false)
+        && (modal.other_plane() || has_call || polar.is_none())
+        && (has_call || !xy.is_empty())
+        && !cartesian
+    {
         return Ok(refused(
             ctx,
             span,
@@ -87,17 +97,34 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         };
         before.push(plain_block(vec![super::words::g_word(1110, span), zero(b'X'), zero(b'Y')], span));
     }
-    b.items.retain(|it| !matches!(letter_of(it), Some((b'G', e)) if matches!(literal(e), Some(v) if v == 16.0 || v == 15.0)));
+    b.items.retain(
+        |it| !matches!(letter_of(it), Some((b'G', e)) if matches!(literal(e), Some(v) if v == 16.0 || v == 15.0)),
+    );
     if polar == Some(true) && !xy.is_empty() && !cartesian {
         let (Some(r), Some(a)) = (xy.iter().rev().find(|w| w.0 == b'X'), xy.iter().rev().find(|w| w.0 == b'Y')) else {
-            return Ok(refused(ctx, span, "a G16 block without both the radius and the angle", "write X (radius) and Y (angle)"));
+            return Ok(refused(
+                ctx,
+                span,
+                "a G16 block without both the radius and the angle",
+                "write X (radius) and Y (angle)",
+            ));
         };
         if modal.incremental_at(span.lo) != Some(false) {
-            return Ok(refused(ctx, span, "polar coordinates where G91 may be in force", "program polar coordinates under G90"));
+            return Ok(refused(
+                ctx,
+                span,
+                "polar coordinates where G91 may be in force",
+                "program polar coordinates under G90",
+            ));
         }
         let inch = modal.inch_at(span.lo);
         let (Some(rv), Some(av)) = (value(ctx, &r.1, inch, false), value(ctx, &a.1, inch, true)) else {
-            return Ok(refused(ctx, span, "a radius without a decimal point where the unit depends on the path taken", "write it with a decimal point"));
+            return Ok(refused(
+                ctx,
+                span,
+                "a radius without a decimal point where the unit depends on the path taken",
+                "write it with a decimal point",
+            ));
         };
         let (rs, as_) = (r.2, a.2);
         b.items.retain(|it| !matches!(letter_of(it), Some((b'X' | b'Y', _))));

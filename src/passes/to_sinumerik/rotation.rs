@@ -19,8 +19,9 @@
 //! known from the program's text on every path (the modal scan, `State::rot`), and its
 //! values must be constants; a mode set or cancelled in a called program (the caller's is
 //! not known here), a G68 without a centre (the tool position) or an angle (parameter
-//! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that cancels
-//! other axes than its G51.1 mirrored, and any of them under G91 are refused (NC497).
+//! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that leaves
+//! an axis of its G51.1 mirrored, and any of them under G91 are refused (NC497). A cancel of
+//! a mode not in force (G50 under G51.1) changes nothing, as on FANUC.
 
 use super::modal::ModalScan;
 use super::words::scale;
@@ -163,7 +164,8 @@ fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
         }
         Mode::Mirror(c) => {
             // The value of a mirror word is not read; 0 as the manuals write it.
-            let words = c.iter().map(|&(l, _)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(0.0, span)), span });
+            let words =
+                c.iter().map(|&(l, _)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(0.0, span)), span });
             (c.clone(), frame("AMIRROR", words.collect(), span))
         }
     };
@@ -259,23 +261,16 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             };
             let gs_set = g_codes(items);
             if !gs_set.contains(&set) {
-                return Ok(refused(
-                    ctx,
-                    span,
-                    "a frame cancel of another mode than the one in force (G69 for G68, G50 for G51, G50.1 for G51.1)",
-                    "cancel the mode in force with its own cancel",
-                ));
-            }
-            match mode_of(ctx, items, set, modal.inch_at(lo)) {
+                // A cancel of another mode than the one in force: FANUC changes nothing.
+                Vec::new()
+            } else { match mode_of(ctx, items, set, modal.inch_at(lo)) {
                 Ok(Mode::Mirror(c)) => {
                     // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
                     let named: Vec<u8> =
                         b.items.iter().filter_map(letter_of).map(|(l, _)| l).filter(|l| b"XYZ".contains(l)).collect();
-                    let mut mirrored: Vec<u8> = c.iter().map(|x| x.0).collect();
-                    let mut named = named;
-                    named.sort_unstable();
-                    mirrored.sort_unstable();
-                    if named != mirrored {
+                    // Cancelling an axis that is not mirrored changes nothing; one left
+                    // mirrored would need a mirror of its own.
+                    if c.iter().any(|x| !named.contains(&x.0)) {
                         return Ok(refused(
                             ctx,
                             span,
@@ -287,7 +282,7 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 }
                 Ok(mode) => sequence(&mode, true, span),
                 Err(_) => return Ok(refused(ctx, span, "a cancel of a mode that is not translated", "see the mode's error")),
-            }
+            } }
         }
         None => {
             return Ok(refused(
@@ -307,7 +302,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         let meta = BlockMeta { number: b.meta.number.take(), label: b.meta.label.take(), span, ..BlockMeta::default() };
         undo.insert(0, block_stmt(meta, Vec::new()));
     }
-    let rest = if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none() {
+    let rest = if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none()
+    {
         None
     } else {
         Some(b)
