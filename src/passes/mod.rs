@@ -12,6 +12,7 @@ pub mod blocks;
 pub mod compensation;
 pub mod cycles;
 pub mod exprs;
+pub mod frame_seq;
 pub mod frames;
 pub mod integral;
 pub mod labels;

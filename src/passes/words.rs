@@ -76,6 +76,8 @@ struct Modal {
     rot: super::rotation::Plan,
     /// The poles of its polar moves (`polar::poles`).
     poles: super::polar::Poles,
+    /// Its additive frame sequences (`frame_seq::seqs`).
+    seqs: super::frame_seq::Seqs,
 }
 
 impl Modal {
@@ -101,6 +103,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         trans_axes: super::frames::trans_axes(&prog.body),
         rot: super::rotation::plan(&prog.body, !info.is_sub),
         poles: super::polar::poles(&prog.body, !info.is_sub),
+        seqs: super::frame_seq::seqs(&prog.body, !info.is_sub),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -266,6 +269,10 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
     // G111 and AP=/RP= (polar.rs); ROT/AROT (rotation.rs); TRANS, SUPA/G153, G505..,
     // G74/G75 (frames.rs).
     if let Some(stmts) = super::polar::block(ctx, &mut b, &m.poles) {
+        out.extend(stmts);
+        return;
+    }
+    if let Some(stmts) = super::frame_seq::block(ctx, &mut b, &m.seqs, m.rot.g17) {
         out.extend(stmts);
         return;
     }
