@@ -254,6 +254,14 @@ mod translation {
     }
 
     #[test]
+    fn g74_under_g91_does_not_write_g91_again() {
+        let out = s_to_f("G0 Z5\nG91\nG74 Z1=0\nG90 G0 X0\nM30\n").unwrap();
+        assert!(out.contains("G91\nG28 Z0.\nG90 G00 X0.\n"), "{out}");
+        let out = s_to_f("G0 Z5\nG74 Z1=0\nM30\n").unwrap();
+        assert!(out.contains("G91 G28 Z0.\nG90\n"), "{out}");
+    }
+
+    #[test]
     fn planted_wrong_rotations_are_caught() {
         let good = f_to_s(F_POCKET).unwrap();
         for (from, to) in
