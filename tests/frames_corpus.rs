@@ -59,11 +59,11 @@ fn files(k: usize) -> [String; 4] {
 
 #[test]
 fn each_pair_and_each_committed_translation_is_equivalent() {
-    for k in 0..PAIRS.len() {
+    for (k, (fname, _, fsname, sfname)) in PAIRS.iter().enumerate() {
         let [f, s, f_s, s_f] = files(k);
-        assert!(equivalent(&f, &s), "{}: {:?}", PAIRS[k].0, verdict(&f, &s));
-        assert!(equivalent(&f, &f_s), "{}: {:?}", PAIRS[k].2, verdict(&f, &f_s));
-        assert!(equivalent(&s_f, &s), "{}: {:?}", PAIRS[k].3, verdict(&s_f, &s));
+        assert!(equivalent(&f, &s), "{fname}: {:?}", verdict(&f, &s));
+        assert!(equivalent(&f, &f_s), "{fsname}: {:?}", verdict(&f, &f_s));
+        assert!(equivalent(&s_f, &s), "{sfname}: {:?}", verdict(&s_f, &s));
     }
 }
 

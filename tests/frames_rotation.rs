@@ -369,6 +369,13 @@ mod scale_and_mirror_translation {
             assert!(out.contains(from), "{from:?} not in\n{out}");
             assert!(!equivalent(F, &out.replacen(from, to, 1)), "planted {from:?} → {to:?} not caught");
         }
+        // Modes one after the other, each cancelled by its own code.
+        let seq = "O1\nG0 X0 Y0\nG51 X0 Y0 P2.\nG0 X5. Y0\nG50\nG68 X0 Y0 R90.\nG0 X5. Y0\nG69\nG51.1 Y0\nG0 X5. Y5.\nG50.1 Y0\nG0 X0 Y0\nM30\n";
+        let out = f_to_s(seq).unwrap();
+        assert!(
+            out.contains("ASCALE X=0.5 Y=0.5\nAROT RPL=90\n") || out.contains("ASCALE X0.5 Y0.5\nAROT RPL=90\n"),
+            "{out}"
+        );
         let nc497 = vec!["NC497".to_string()];
         assert_eq!(f_to_s("O1\nG51.1 X0 Y0\nG50.1 X0\nM30\n").unwrap_err(), nc497, "partial cancel");
         assert_eq!(f_to_s("O1\nG51.1 X0\nG68 X0 Y0 R5.\nM30\n").unwrap_err(), nc497, "two modes");

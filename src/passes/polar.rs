@@ -13,11 +13,14 @@
 
 use super::*;
 
+/// A polar block's start, its pole, angle and radius (`None`: not known from the text).
+type PolarAt = (u32, Option<(Expr, Expr)>, Option<Expr>, Option<Expr>);
+
 /// The pole in force at each polar block (the start of its first item), found once.
 #[derive(Clone, Debug, Default)]
 pub struct Poles {
     /// Per polar block: the pole, and the angle and radius it goes to (`None`: not known).
-    at: Vec<(u32, Option<(Expr, Expr)>, Option<Expr>, Option<Expr>)>,
+    at: Vec<PolarAt>,
     g17: bool,
 }
 
@@ -61,7 +64,7 @@ fn named<'a>(b: &'a Block, name: &str) -> Option<&'a Word> {
     })
 }
 
-fn letter<'a>(b: &'a Block, l: u8) -> Option<&'a Expr> {
+fn letter(b: &Block, l: u8) -> Option<&Expr> {
     b.items.iter().rev().find_map(|it| match &it.kind {
         ItemKind::Word(Word { addr: Addr::Letter(c), value: WordValue::Expr(e), .. }) if *c == l => Some(e),
         _ => None,

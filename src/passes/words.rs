@@ -488,7 +488,7 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                 Some(v) if v.fract() == 0.0 && SAME_G.contains(&(v as u32)) => {}
                 // Exact stop mode, modal: Siemens G60 is FANUC G61 (G9, one block, and G64
                 // contouring are spelt alike).
-                Some(v) if v == 60.0 => w.value = WordValue::Expr(num(61.0, wspan)),
+                Some(60.0) => w.value = WordValue::Expr(num(61.0, wspan)),
                 Some(v) => {
                     let what = format!("G{v}");
                     return Err(unsup(ctx, "NC311", wspan, &what, "no FANUC G code has the same meaning"));

@@ -122,8 +122,8 @@ impl Machine {
                 "name the axes to mirror: `G51.1 X50.`; cancel with `G50.1 X0`",
             ));
         }
-        for i in 0..3 {
-            let Some((w, x)) = axes[i] else { continue };
+        for (i, a) in axes.iter().enumerate().take(3) {
+            let Some((w, x)) = *a else { continue };
             if on && (w.mode == AbsInc::Ic || (w.mode == AbsInc::Plain && !self.modal.absolute)) {
                 return Err(error(
                     "NC490",

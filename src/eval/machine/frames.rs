@@ -319,8 +319,8 @@ impl Machine {
     /// shift changes must be positioned absolute again (`fresh`).
     pub(crate) fn set_trans(&mut self, t: [f64; 9]) {
         if self.transforms() {
-            for i in 0..3 {
-                if t[i] != self.trans[i] {
+            for (i, (new, old)) in t.iter().zip(self.trans).enumerate().take(3) {
+                if *new != old {
                     self.fresh |= 1 << i;
                 }
             }

@@ -87,10 +87,8 @@ impl State {
                 0 | 10 | 20 | 30 => self.motion = Some(g),
                 680 | 510 | 511 => self.rot = items.first().map(|it| frame_key(it.span.lo, g)),
                 // A cancel of another mode than the one in force changes nothing.
-                690 | 500 | 501 => {
-                    if self.rot.is_some_and(|k| k == 0 || k & 3 == frame_kind(g - 10)) {
-                        self.rot = Some(0);
-                    }
+                690 | 500 | 501 if self.rot.is_some_and(|k| k == 0 || k & 3 == frame_kind(mode_of_cancel(g))) => {
+                    self.rot = Some(0)
                 }
                 160 => self.polar = Some(true),
                 150 => self.polar = Some(false),
@@ -100,6 +98,15 @@ impl State {
             }
         }
         self
+    }
+}
+
+/// The mode G code a cancel (G69, G50, G50.1 ×10) ends.
+fn mode_of_cancel(g: u32) -> u32 {
+    match g {
+        690 => 680,
+        500 => 510,
+        _ => 511,
     }
 }
 
