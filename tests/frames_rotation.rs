@@ -401,3 +401,42 @@ mod scale_and_mirror_translation {
         assert_eq!(s_to_f("MIRROR X0\nAROT RPL=5\nM30\n").unwrap_err(), vec!["NC498".to_string()]);
     }
 }
+
+/// One called Siemens program, by name.
+struct OneCallee(&'static str, &'static str);
+
+impl eval::CalleeSource for OneCallee {
+    fn find(
+        &mut self,
+        db: &mut SourceDb,
+        _caller: nctrans::span::FileId,
+        d: Dialect,
+        name: &eval::CalleeName,
+    ) -> Result<Option<Unit>, nctrans::diag::Diagnostic> {
+        match name {
+            eval::CalleeName::Name(n) if n == self.0 => {
+                let id = db.add(&format!("{n}.SPF"), self.1);
+                Ok(Some(nctrans::parse(db, id, d, &ParseOptions::for_dialect(d)).unit))
+            }
+            _ => Ok(None),
+        }
+    }
+}
+
+#[test]
+fn the_programmable_frame_survives_a_return_and_proc_save_restores_it() {
+    let run = |sub: &'static str| {
+        let mut db = SourceDb::new();
+        let unit = load(&mut db, "G0 X0 Y0\nTRANS X10\nAROT RPL=90\nPOCK\nG0 X5 Y0\nM30\n", Dialect::Sinumerik);
+        let mut sink = VecSink::default();
+        let mut callees = OneCallee("POCK", sub);
+        let out = eval::run(&mut db, &unit, &mut callees, &RunOptions::default(), &mut sink);
+        assert!(!nctrans::diag::has_errors(&out.diags), "{}", nctrans::diag::render(&db, &out.diags));
+        sink.events.iter().map(|(e, _)| eval::trace::text_line(e)).collect::<Vec<_>>().join("\n")
+    };
+    // The subprogram's ROT RPL=0 deletes the frame; with SAVE the caller's comes back.
+    let kept = run("PROC POCK SAVE\nROT RPL=0\nG0 X5 Y0\nRET\n");
+    assert!(kept.ends_with("move rapid X=5 Y=0 f=-\nmove rapid X=10 Y=5 f=-\nend M30 steps=9"), "{kept}");
+    let lost = run("PROC POCK\nROT RPL=0\nG0 X5 Y0\nRET\n");
+    assert!(lost.ends_with("move rapid X=5 Y=0 f=-\nmove rapid X=5 Y=0 f=-\nend M30 steps=9"), "{lost}");
+}
