@@ -415,7 +415,7 @@ impl eval::CalleeSource for OneCallee {
     ) -> Result<Option<Unit>, nctrans::diag::Diagnostic> {
         match name {
             eval::CalleeName::Name(n) if n == self.0 => {
-                let id = db.add(&format!("{n}.SPF"), self.1);
+                let id = db.add(format!("{n}.SPF"), self.1);
                 Ok(Some(nctrans::parse(db, id, d, &ParseOptions::for_dialect(d)).unit))
             }
             _ => Ok(None),
