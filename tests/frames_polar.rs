@@ -152,11 +152,27 @@ mod translation {
 }
 
 #[test]
-fn g10_l20_writes_the_extended_offsets_and_g92_g29_stay_errors_naming_them() {
+fn g92_sets_the_current_position_and_moves_every_offset_in_parallel() {
+    let t = trace(
+        "O1\nG10 L2 P2 X100.\nG54 G0 X10. Y5.\nG92 X0 Y0\nG0 X1. Y1.\nG55\nG0 X0 Y0\nG91 X1.\nM30\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        t,
+        "work_offset 1\nmove rapid X=10 Y=5 f=-\nmove rapid X=11 Y=6 f=-\nwork_offset 2\nmove rapid X=110 Y=5 f=-\nmove rapid X=111 Y=5 f=-\nend M30 steps=8"
+    );
+    // Only the named axes; under G91, with a G52 shift or under a rotation: refused.
+    assert!(trace("O1\nG0 X10. Y5.\nG92 X0\nG0 X1. Y1.\nM30\n", Dialect::Fanuc).contains("move rapid X=11 Y=1 f=-"));
+    assert!(trace("O1\nG91 G92 X0\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+    assert!(trace("O1\nG52 X5.\nG92 X0\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+    assert!(trace("O1\nG68 X0 Y0 R9.\nG92 X0\nM30\n", Dialect::Fanuc).ends_with("error NC491"));
+}
+
+#[test]
+fn g10_l20_writes_the_extended_offsets_and_g29_stays_an_error_naming_it() {
     let t =
         trace("O1\nG10 L20 P2 X100. Y5.\nG54.1 P2\nG0 X0 Y0\nG91 G10 L20 P2 X1.\nG90 G0 X0 Y0\nM30\n", Dialect::Fanuc);
     assert_eq!(t, "work_offset 8\nmove rapid X=100 Y=5 f=-\nwork_offset 8\nmove rapid X=101 Y=5 f=-\nend M30 steps=6");
     assert!(trace("O1\nG10 L20 P49 X1.\nM30\n", Dialect::Fanuc).contains("alarm"));
-    assert!(trace("O1\nG92 X0 Y0\nM30\n", Dialect::Fanuc).ends_with("error NC403"));
     assert!(trace("O1\nG29 X0 Y0\nM30\n", Dialect::Fanuc).ends_with("error NC403"));
 }

@@ -107,6 +107,8 @@ pub struct Machine {
     pub trans: [f64; 9],
     /// FANUC local coordinate system (`G52`), added to every work offset.
     pub local: [f64; 9],
+    /// FANUC `G92` shift, added to every work offset (it moves them all in parallel).
+    pub g92: [f64; 9],
     /// The frame's rotation, scaling and mirroring (FANUC G68; Siemens ROT, SCALE, MIRROR):
     /// programmed → workpiece coordinates before the offsets above ([`frames`]).
     pub xf: Xform,
@@ -187,6 +189,7 @@ impl Machine {
             frame: [0.0; 9],
             trans: [0.0; 9],
             local: [0.0; 9],
+            g92: [0.0; 9],
             xf: Xform::ID,
             rot: None,
             scale: None,
@@ -217,7 +220,7 @@ impl Machine {
     pub fn active_offset(&self, axis: usize) -> f64 {
         if self.fanuc {
             // FANUC: external + selected table, live (a `#5221=` write acts at once).
-            self.offsets[0][axis] + self.offsets[self.wo][axis] + self.local[axis]
+            self.offsets[0][axis] + self.offsets[self.wo][axis] + self.local[axis] + self.g92[axis]
         } else {
             self.frame[axis] + self.trans[axis]
         }
@@ -493,7 +496,7 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
-        let (mut g52, mut g68, mut g51, mut home) = (false, false, None, None);
+        let (mut g52, mut g68, mut g51, mut g92, mut home) = (false, false, None, false, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
@@ -518,6 +521,7 @@ impl Machine {
                     self.select_work_offset((gi / 10 - 500) as usize, out, span)
                 }
                 520 if self.fanuc => g52 = true,
+                920 if self.fanuc => g92 = true,
                 680 if self.fanuc => g68 = true,
                 690 if self.fanuc => self.g69(),
                 // G51 / G51.1, and their cancels G50 / G50.1.
@@ -589,6 +593,10 @@ impl Machine {
         }
         if g52 {
             self.local_shift(&axes, block_span)?;
+            return Ok(eff);
+        }
+        if g92 {
+            self.g92_shift(&axes, block_span)?;
             return Ok(eff);
         }
         if g68 {

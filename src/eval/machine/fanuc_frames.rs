@@ -138,6 +138,33 @@ impl Machine {
         Ok(())
     }
 
+    /// FANUC `G92 X.. Y..`: the named axes' current position gets the given coordinates;
+    /// every work offset moves by the same amount (Mitsubishi M700V, FANUC-compatible: "the
+    /// other workpiece coordinate systems 2 through 6 (G55 to G59) will move in parallel").
+    /// No motion. Under G91, with a G52 shift, or in the frame and polar modes: NC491.
+    pub(super) fn g92_shift(&mut self, axes: &[Option<(&WordVal, f64)>; 9], span: Span) -> Result<(), Fault> {
+        let incremental = !self.modal.absolute || axes.iter().flatten().any(|(w, _)| w.mode != AbsInc::Plain);
+        let shifted = self.local.iter().any(|v| *v != 0.0);
+        if incremental || shifted || self.framed || self.polar {
+            return Err(error(
+                "NC491",
+                "G92 under G91, with a G52 shift, or under G68, G51, G51.1 or G16 is not modelled".into(),
+                span,
+                "set the coordinate system under G90 with the other modes cancelled (G52 X0 Y0 Z0, G69, G50, G50.1, G15)",
+            ));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if let Some((w, x)) = a {
+                let v = self.length(w, *x, (3..6).contains(&i));
+                let rest = self.active_offset(i) - self.g92[i];
+                self.g92[i] = self.pos[i] - rest - v;
+                // The tool does not move: the increment after it travels only its own.
+                self.applied[i] = self.active_offset(i);
+            }
+        }
+        Ok(())
+    }
+
     /// What the FANUC frame modes do not allow: a plane change in G68 mode ("G17, G18 or
     /// G19 must not be designated in the mode of coordinate system rotation"), modes out
     /// of the order mirror, scaling, rotation (and cancelled the other way round: "Do not
