@@ -45,7 +45,10 @@ fn g16_reads_radius_and_angle_about_the_local_zero() {
     let t =
         trace("O1\nG0 X0 Y0\nG52 X10.\nG16\nG0 X20. Y90.\nG1 X10. Y180. F100.\nG15\nG0 X0 Y0\nM30\n", Dialect::Fanuc);
     assert_eq!(t, "move rapid X=0 Y=0 f=-\nmove rapid X=10 Y=20 f=-\nmove linear X=0 Y=0 f=100\nmove rapid X=10 Y=0 f=-\nend M30 steps=8");
-    // The angle without a decimal point counts 0.001°.
+    // The plane in the block that selects G16; the angle without a decimal point counts 0.001°.
+    assert!(trace("O1\nG17 G16 G0 X10. Y90.\nM30\n", Dialect::Fanuc).contains("move rapid X=0 Y=10 f=-"));
+    assert!(trace("O1\nG16\nG17\nM30\n", Dialect::Fanuc).ends_with("error NC499"));
+    assert!(trace("O1\nG18 G16 G0 Z10. X90.\nM30\n", Dialect::Fanuc).contains("move rapid X=10 Z=0 f=-"));
     assert!(trace("O1\nG16\nG0 X10. Y90000\nM30\n", Dialect::Fanuc).contains("move rapid X=0 Y=10 f=-"));
     // Under G91 the origin is the current position; a block with one of the two words: refused.
     assert!(trace("O1\nG16\nG91 G0 X10. Y90.\nM30\n", Dialect::Fanuc).ends_with("error NC499"));

@@ -26,6 +26,16 @@ fn num_of(w: &WordVal) -> Option<f64> {
     }
 }
 
+/// The plane a block selects (its last G17/G18/G19), which its polar words are read in.
+fn block_plane(gs: &[i64]) -> Option<Plane> {
+    gs.iter().rev().find_map(|g| match g {
+        170 => Some(Plane::XY),
+        180 => Some(Plane::ZX),
+        190 => Some(Plane::YZ),
+        _ => None,
+    })
+}
+
 impl Machine {
     /// A plain value in the unit in force (mm, or inch) of the length `mm`.
     fn in_unit(&self, mm: f64) -> f64 {
@@ -66,6 +76,7 @@ impl Machine {
             }
         }
         if self.fanuc {
+            let was = self.polar;
             if gs.contains(&160) {
                 self.polar = true;
             }
@@ -75,12 +86,16 @@ impl Machine {
             if !self.polar {
                 return Ok(None);
             }
-            return self.fanuc_polar(words, &gs);
+            // The block that selects G16 selects its plane too ("G17 G16").
+            let plane = block_plane(&gs).unwrap_or(self.modal.plane);
+            let gs: Vec<i64> = gs.into_iter().filter(|g| was || !matches!(g, 170 | 180 | 190)).collect();
+            return self.fanuc_polar(words, &gs, plane);
         }
-        self.siemens_polar(words, &gs)
+        let plane = block_plane(&gs).unwrap_or(self.modal.plane);
+        self.siemens_polar(words, &gs, plane)
     }
 
-    fn fanuc_polar(&mut self, words: &[WordVal], gs: &[i64]) -> Result<Option<Vec<WordVal>>, Fault> {
+    fn fanuc_polar(&mut self, words: &[WordVal], gs: &[i64], plane: Plane) -> Result<Option<Vec<WordVal>>, Fault> {
         // These read their axis words as Cartesian in G16 mode (or are not modelled in it).
         if gs.iter().any(|g| matches!(g, 100 | 520 | 920 | 530 | 680 | 510 | 511 | 501 | 280 | 300 | 170 | 180 | 190)) {
             let span = words.iter().find(|w| w.addr.as_ref() == "G").map_or(Span::default(), |w| w.span);
@@ -94,7 +109,7 @@ impl Machine {
             }
             return Ok(None);
         }
-        let (u, v, _) = self.modal.plane.axes();
+        let (u, v, _) = plane.axes();
         let find = |i: usize| words.iter().rposition(|w| w.addr.as_bytes() == [LETTERS[i]]);
         let (ri, ai) = (find(u), find(v));
         if ri.is_none() && ai.is_none() {
@@ -132,8 +147,7 @@ impl Machine {
         Ok(Some(out))
     }
 
-    fn siemens_polar(&mut self, words: &[WordVal], gs: &[i64]) -> Result<Option<Vec<WordVal>>, Fault> {
-        let plane = self.modal.plane;
+    fn siemens_polar(&mut self, words: &[WordVal], gs: &[i64], plane: Plane) -> Result<Option<Vec<WordVal>>, Fault> {
         let (u, v, _) = plane.axes();
         let pole_g = gs.iter().copied().find(|g| matches!(g, 1100 | 1110 | 1120));
         let named = |a: &str| words.iter().rposition(|w| w.addr.as_ref() == a);
