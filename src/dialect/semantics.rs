@@ -36,6 +36,11 @@ pub struct Semantics {
     /// only the increment. Used by the evaluator; the translator must keep it in mind when
     /// it emits G91 after an offset change.
     pub incremental_travels_offset: bool,
+    /// FANUC parameter 5400#0 RIN (0i-A connection manual: "0: Specified by an absolute
+    /// method, 1: Specified by G90 or G91"): the G68 angle R is added to the angle in force
+    /// under G91. Default 0; the evaluator reads it, the translation refuses a G68 under
+    /// G91 either way.
+    pub rotation_angle_incremental: bool,
     /// A Haas control (`[fanuc] series = "haas"` / `"haas-ngc"`): `M97 Pn` calls the local
     /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
     /// M97). On a FANUC, M97 is a machine builder's M code.
@@ -88,6 +93,7 @@ impl Semantics {
                 max_call_depth: 4,
                 max_subprogram_depth: 10,
                 incremental_travels_offset: false,
+                rotation_angle_incremental: false,
                 haas: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,
@@ -105,6 +111,7 @@ impl Semantics {
                 max_call_depth: 15,
                 max_subprogram_depth: 15,
                 incremental_travels_offset: true,
+                rotation_angle_incremental: false,
                 haas: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,

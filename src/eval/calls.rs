@@ -640,6 +640,8 @@ pub struct Saved {
     wo: usize,
     frame: [f64; 9],
     trans: [f64; 9],
+    /// The rotation, scaling and mirroring of the programmable frame.
+    xf: super::machine::Xform,
     /// [`Machine::wo_selections`](super::machine::Machine::wo_selections) at the call.
     selections: u64,
     /// The cutter radius compensation side (group 07).
@@ -653,6 +655,7 @@ impl Saved {
             wo: m.wo,
             frame: m.frame,
             trans: m.trans,
+            xf: m.xf,
             selections: m.wo_selections,
             side: m.comp.side,
         }
@@ -668,7 +671,8 @@ impl Saved {
             m.wo = self.wo;
             m.frame = self.frame;
         }
-        m.trans = self.trans;
+        m.set_trans(self.trans);
+        m.set_xform(self.xf);
         m.comp.side = self.side;
         selected
     }

@@ -116,6 +116,7 @@ impl<'a> Interp<'a> {
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         m.incr_travels_offset = sem.incremental_travels_offset;
         m.comp.edge_default = sem.cutting_edge_default.unwrap_or(super::machine::comp::CUTTING_EDGE_DEFAULT);
+        m.rotation_angle_incremental = sem.rotation_angle_incremental;
         m.probe_contact = opts.probe_contact;
         m.expand = opts.expand_cycles;
         let r_count = sem.r_param_count as usize;

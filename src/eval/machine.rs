@@ -14,14 +14,20 @@ use crate::span::Span;
 pub const COMPENSATION_NOTE: &str = "NC387";
 
 pub mod comp;
+mod fanuc_frames;
 mod fast;
+mod frames;
 mod grid;
 mod modal;
 mod motion;
 mod offsets;
+mod polar;
 mod refs;
+pub use fanuc_frames::FanucScale;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
+pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
+pub use polar::Pole;
 
 /// A word after evaluation of its value.
 #[derive(Clone, Debug)]
@@ -102,6 +108,29 @@ pub struct Machine {
     pub trans: [f64; 9],
     /// FANUC local coordinate system (`G52`), added to every work offset.
     pub local: [f64; 9],
+    /// FANUC `G92` shift, added to every work offset (it moves them all in parallel).
+    pub g92: [f64; 9],
+    /// The frame's rotation, scaling and mirroring (FANUC G68; Siemens ROT, SCALE, MIRROR):
+    /// programmed → workpiece coordinates before the offsets above ([`frames`]).
+    pub xf: Xform,
+    /// The FANUC G68 rotation in force.
+    pub rot: Option<FanucRot>,
+    /// The FANUC G51 scaling in force.
+    pub scale: Option<FanucScale>,
+    /// The FANUC G51.1 axis of symmetry of X, Y, Z (mirrored where set).
+    pub mirror: [Option<f64>; 3],
+    /// Axes (bits 0..2) to be positioned absolute before they move incrementally, and
+    /// (bits 4..6) before a FANUC move leaves them out: their frame changed, turning them
+    /// ([`Machine::set_xform`]).
+    pub fresh: u8,
+    /// `fresh != 0` or a frame that turns: moves take [`Machine::framed_motion`].
+    pub framed: bool,
+    /// FANUC G16: polar coordinates in force.
+    pub polar: bool,
+    /// The Siemens pole (G110/G111/G112) and the polar angle and radius stored with it.
+    pub pole: Pole,
+    /// FANUC parameter 5400#0 RIN: the G68 angle R is incremental under G91.
+    pub rotation_angle_incremental: bool,
     /// Work-offset selections so far (a Siemens SAVE return re-selects after one).
     pub wo_selections: u64,
     /// Last programmed end point (workpiece frame), for `#5001+`/`$P_EP`.
@@ -163,6 +192,16 @@ impl Machine {
             frame: [0.0; 9],
             trans: [0.0; 9],
             local: [0.0; 9],
+            g92: [0.0; 9],
+            xf: Xform::ID,
+            rot: None,
+            scale: None,
+            mirror: [None; 3],
+            fresh: 0,
+            framed: false,
+            rotation_angle_incremental: false,
+            polar: false,
+            pole: Pole::default(),
             wo_selections: 0,
             last_m: 0.0,
             last_n: 0.0,
@@ -185,7 +224,7 @@ impl Machine {
     pub fn active_offset(&self, axis: usize) -> f64 {
         if self.fanuc {
             // FANUC: external + selected table, live (a `#5221=` write acts at once).
-            self.offsets[0][axis] + self.offsets[self.wo][axis] + self.local[axis]
+            self.offsets[0][axis] + self.offsets[self.wo][axis] + self.local[axis] + self.g92[axis]
         } else {
             self.frame[axis] + self.trans[axis]
         }
@@ -308,6 +347,15 @@ impl Machine {
         let (mut gs, mut ms) = (std::mem::take(&mut self.gs_buf), std::mem::take(&mut self.ms_buf));
         gs.clear();
         ms.clear();
+        // Polar coordinates become the plane's Cartesian words first (polar.rs).
+        let polar = match self.polar_words(words) {
+            Ok(p) => p,
+            Err(e) => {
+                (self.gs_buf, self.ms_buf) = (gs, ms);
+                return Err(e);
+            }
+        };
+        let words = polar.as_deref().unwrap_or(words);
         let r = self.apply_words(words, stop_message, out, warns, &mut gs, &mut ms);
         (self.gs_buf, self.ms_buf) = (gs, ms);
         r
@@ -454,12 +502,13 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
-        let (mut g52, mut home) = (false, None);
+        let (mut g52, mut g68, mut g51, mut g92, mut home) = (false, false, None, false, None);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
                 motion_g = Some(span);
             }
+            self.check_fanuc_frames(gi, span)?;
             // `Modal::g` changes nothing for a code it does not take.
             if self.modal.g(self.fanuc, gi) {
                 continue;
@@ -478,6 +527,19 @@ impl Machine {
                     self.select_work_offset((gi / 10 - 500) as usize, out, span)
                 }
                 520 if self.fanuc => g52 = true,
+                920 if self.fanuc => g92 = true,
+                680 if self.fanuc => g68 = true,
+                690 if self.fanuc => self.g69(),
+                // G51 / G51.1, and their cancels G50 / G50.1.
+                510 | 511 if self.fanuc => g51 = Some(gi),
+                500 if self.fanuc => {
+                    self.scale = None;
+                    self.fanuc_compose();
+                }
+                501 if self.fanuc => g51 = Some(gi),
+                // Polar coordinates and poles: their words were made Cartesian (polar.rs).
+                160 | 150 if self.fanuc => {}
+                1100 | 1110 | 1120 if !self.fanuc => {}
                 280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
@@ -540,6 +602,22 @@ impl Machine {
         }
         if g52 {
             self.local_shift(&axes, block_span)?;
+            return Ok(eff);
+        }
+        if g92 {
+            self.g92_shift(&axes, block_span)?;
+            return Ok(eff);
+        }
+        if g68 {
+            self.g68(&axes, ijk.iter().any(Option::is_some), r, block_span)?;
+            return Ok(eff);
+        }
+        match g51 {
+            Some(510) => self.g51(&axes, &ijk, p, block_span)?,
+            Some(g) => self.g51_1(g == 511, &axes, block_span)?,
+            None => {}
+        }
+        if g51.is_some() {
             return Ok(eff);
         }
         if home.is_none() {
@@ -613,8 +691,12 @@ impl Machine {
         } else if dwell {
             let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
             out.push((Event::Dwell { seconds: secs }, block_span));
+        } else if self.cycle.active.is_some() && !g53 && self.framed {
+            return Err(framed_cycle(block_span));
         } else if self.cycle.active.is_some() && !g53 {
             eff.moved = super::cycles::fanuc::holes(self, words, out, block_span)?;
+        } else if self.framed && !g53 {
+            eff.moved = self.framed_motion(&axes, &ijk, r, ar, probe, out, block_span)?;
         } else {
             eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
         }

@@ -110,6 +110,9 @@ impl Interp<'_> {
             },
             5001..=5009 | 5041..=5049 | 5061..=5069 => {
                 let axis = ((n - 1) % 20) as usize;
+                if m.transforms() {
+                    return Err(self.unmodelled(&format!("#{n} under a rotated, scaled or mirrored frame"), span));
+                }
                 self.in_unit(m.work_pos(axis))
             }
             5021..=5029 => {
@@ -209,6 +212,9 @@ impl Interp<'_> {
         let x = match name {
             "AA_IW" | "P_EP" | "AA_MW" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
+                if self.m.transforms() {
+                    return Err(self.unmodelled(&format!("${name} under a rotated, scaled or mirrored frame"), span));
+                }
                 self.in_unit(self.m.work_pos(a))
             }
             "AA_IM" | "AA_MM" => {

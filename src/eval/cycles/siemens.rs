@@ -62,6 +62,9 @@ impl Interp<'_> {
     }
 
     fn siemens_hole(&mut self, cycle: SieCycle, vals: &[Option<f64>], span: Span) -> Result<(), Fault> {
+        if self.m.framed {
+            return Err(self.fix_file(crate::eval::machine::framed_cycle(span)));
+        }
         let mut out = Vec::new();
         let r = hole(&mut self.m, Args { cycle, vals }, span, &mut out);
         for ev in out {

@@ -44,8 +44,9 @@ impl Machine {
     /// [`Modal::g`]: super::Modal::g
     pub fn apply_lit(&mut self, b: &LitBlock) -> Option<LitDone> {
         // Decide first, without touching the machine: every way out below is `None`.
-        // In a drilling cycle mode an axis word is a hole (`eval::cycles`).
-        if self.cycle.active.is_some() || self.cycle.mcall.is_some() {
+        // In a drilling cycle mode an axis word is a hole (`eval::cycles`); under a frame
+        // that turns, a move is [`Machine::framed_motion`]'s.
+        if self.cycle.active.is_some() || self.cycle.mcall.is_some() || self.framed || self.polar {
             return None;
         }
         let mut modal = self.modal;

@@ -1,4 +1,4 @@
-//! Offsets and frames a program writes: FANUC `G10 L2` work offsets and Siemens
+//! Offsets and frames a program writes: FANUC `G10 L2`/`G10 L20` work offsets and Siemens
 //! `TRANS`/`ATRANS` programmable frames (docs/semantics.md).
 
 use super::{axis_index, round_half_away, unsupported, Fault, Machine, Span, Warn, WordVal, WV};
@@ -27,10 +27,30 @@ impl Machine {
                 }
                 Ok(n as usize == self.wo || n == 0.0)
             }
+            // `G10 L20 Pn`: extended work offset n (G54.1 Pn), table 6 + n.
+            Some(20.0) => {
+                let n = p.map_or(0.0, |(_, x)| round_half_away(x));
+                if !(1.0..=48.0).contains(&n) {
+                    return Err(Fault::alarm(
+                        self.alarms.bad_index,
+                        format!("G10 L20 P{n}: no such extended work offset (P1..P48)"),
+                        span,
+                    ));
+                }
+                let t = 6 + n as usize;
+                for (i, a) in axes.iter().enumerate() {
+                    if let Some((w, x)) = a {
+                        let v = self.length(w, *x, (3..6).contains(&i));
+                        let slot = &mut self.offsets[t][i];
+                        *slot = if self.modal.absolute { v } else { *slot + v };
+                    }
+                }
+                Ok(t == self.wo)
+            }
             _ => {
                 warns.push((
                     "NC405",
-                    "G10 other than L2 (tool or parameter data) has no effect on the trace".into(),
+                    "G10 other than L2/L20 (tool or parameter data) has no effect on the trace".into(),
                     span,
                 ));
                 Ok(false)
@@ -38,30 +58,41 @@ impl Machine {
         }
     }
 
-    /// Siemens `TRANS`/`ATRANS` with axis words (values in the current unit).
+    /// Siemens frame instructions: `TRANS`/`ATRANS` with axis words (values in the current
+    /// unit; `ATRANS` in the turned system of the frame so far), the bare absolute ones, and
+    /// `ROT`/`SCALE`/`MIRROR` and their additive forms ([`Machine::siemens_frame`]).
     pub fn frame_op(&mut self, op: &str, words: &[WordVal], span: Span) -> Result<(), Fault> {
         // A bare absolute frame instruction deletes the whole programmable frame.
         if words.is_empty() && matches!(op, "TRANS" | "ROT" | "SCALE" | "MIRROR") {
-            self.trans = [0.0; 9];
+            self.set_trans([0.0; 9]);
+            self.set_xform(super::Xform::ID);
             return Ok(());
         }
         let additive = match op {
             "TRANS" => false,
             "ATRANS" => true,
-            _ => return Err(unsupported(&format!("frame instruction {op} is not modelled"), span)),
+            _ => return self.siemens_frame(op, words, span),
         };
-        if !additive {
-            self.trans = [0.0; 9];
-        }
+        let mut t = if additive { self.trans } else { [0.0; 9] };
+        let mut shift = [0.0; 9];
         for w in words {
             let i = w.addr.as_bytes().first().copied().and_then(axis_index);
             match (i, &w.val) {
                 (Some(i), WV::Num(x)) if w.addr.len() == 1 => {
-                    let v = self.length(w, *x, (3..6).contains(&i));
-                    self.trans[i] += v;
+                    shift[i] += self.length(w, *x, (3..6).contains(&i));
                 }
                 _ => return Err(unsupported(&format!("{op} with {}", w.addr), w.span)),
             }
+        }
+        // The shift is along the axes of the frame so far (identity unless it turns).
+        let geo =
+            if additive { self.xf.vector([shift[0], shift[1], shift[2]]) } else { [shift[0], shift[1], shift[2]] };
+        for (i, slot) in t.iter_mut().enumerate() {
+            *slot += if i < 3 { geo[i] } else { shift[i] };
+        }
+        self.set_trans(t);
+        if !additive {
+            self.set_xform(super::Xform::ID);
         }
         Ok(())
     }

@@ -9,7 +9,8 @@
 //! - `SUPA` and `G153` → `G53` in the same block.
 //! - `G505`/`G506` → `G58`/`G59`, `G507`.. → `G54.1 P1`.. (the trace numbers both alike).
 //! - `G74 Z1=0` → `G91 G28 Z0` (the intermediate point is where the tool stands, as for
-//!   G74), then `G90` again where the program is absolute; `G75 FP=k` → `G91 G30 P(k+1)`.
+//!   G74), then `G90` again where the program is absolute (under G91 only `G28 Z0`);
+//!   `G75 FP=k` → `G91 G30 P(k+1)`.
 
 use super::*;
 
@@ -140,7 +141,12 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
     } else {
         return None;
     };
+    // G91 only where the program is absolute: written again under G91 it would pile up
+    // over round trips (`G91` then `G91 G28 Z0`).
     let mut items = vec![g(91.0, span), g(if home == 74.0 { 28.0 } else { 30.0 }, span)];
+    if abs == Some(false) {
+        items.remove(0);
+    }
     for it in &b.items {
         let ok = match &it.kind {
             ItemKind::Word(w) => match &w.addr {
@@ -153,7 +159,7 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
                     if !(1.0..=4.0).contains(&k) || k.fract() != 0.0 {
                         return Some(refuse(ctx, w.span, "G75 without a constant FP=1..4", "write FP=1 to FP=4"));
                     }
-                    items.insert(2, letter(b'P', num(k + 1.0, w.span), w.span));
+                    items.insert(usize::from(abs != Some(false)) + 1, letter(b'P', num(k + 1.0, w.span), w.span));
                     true
                 }
                 Addr::Name(n) => match n.as_bytes() {

@@ -13,10 +13,13 @@ pub mod comp;
 pub mod cycles;
 pub mod cycles_tap;
 pub mod exprs;
+pub mod frame_seq;
 pub mod frames;
 pub mod integral;
 pub mod labels;
 pub mod lower_structures;
+pub mod polar;
+pub mod rotation;
 pub mod varmap;
 pub mod words;
 

@@ -72,6 +72,12 @@ struct Modal {
     /// In a subprogram: the temporary that holds its caller's feed factor (see
     /// The axes a TRANS becomes a G52 of (`frames::trans_axes`).
     trans_axes: u16,
+    /// What the program's rotations allow (`rotation::plan`).
+    rot: super::rotation::Plan,
+    /// The poles of its polar moves (`polar::poles`).
+    poles: super::polar::Poles,
+    /// Its additive frame sequences (`frame_seq::seqs`).
+    seqs: super::frame_seq::Seqs,
 }
 
 impl Modal {
@@ -95,6 +101,9 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         },
         resets: Resets::of(&prog.body, &ctx.callees),
         trans_axes: super::frames::trans_axes(&prog.body),
+        rot: super::rotation::plan(&prog.body, !info.is_sub),
+        poles: super::polar::poles(&prog.body, !info.is_sub),
+        seqs: super::frame_seq::seqs(&prog.body, !info.is_sub),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -254,7 +263,20 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
-    // TRANS, SUPA/G153, G505.., G74/G75 (frames.rs).
+    // G111 and AP=/RP= (polar.rs); ROT/AROT (rotation.rs); TRANS, SUPA/G153, G505..,
+    // G74/G75 (frames.rs).
+    if let Some(stmts) = super::polar::block(ctx, &mut b, &m.poles) {
+        out.extend(stmts);
+        return;
+    }
+    if let Some(stmts) = super::frame_seq::block(ctx, &mut b, &m.seqs, m.rot.g17) {
+        out.extend(stmts);
+        return;
+    }
+    if let Some(stmts) = super::rotation::block(ctx, &mut b, &m.rot, m.s.abs, m.trans_axes, out) {
+        out.extend(stmts);
+        return;
+    }
     if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
         out.extend(stmts);
         return;
@@ -461,6 +483,9 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                 Some(v) if v == 70.0 || v == 700.0 => w.value = WordValue::Expr(num(20.0, wspan)),
                 Some(v) if v == 71.0 || v == 710.0 => w.value = WordValue::Expr(num(21.0, wspan)),
                 Some(v) if v.fract() == 0.0 && SAME_G.contains(&(v as u32)) => {}
+                // Exact stop mode, modal: Siemens G60 is FANUC G61 (G9, one block, and G64
+                // contouring are spelt alike).
+                Some(60.0) => w.value = WordValue::Expr(num(61.0, wspan)),
                 Some(v) => {
                     let what = format!("G{v}");
                     return Err(unsup(ctx, "NC311", wspan, &what, "no FANUC G code has the same meaning"));

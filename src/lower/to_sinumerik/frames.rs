@@ -4,9 +4,9 @@
 //! - `G52 X.. Y..` → `TRANS X.. Y..`: G52 replaces the shift of the axes it names and keeps
 //!   the others, TRANS replaces the whole programmable frame. The two agree when the block
 //!   names every axis any G52 of the program may have shifted (a called program: X, Y and Z,
-//!   since its caller's shift is not known), so that is required (NC442). FANUC has no other
-//!   programmable frame component nctrans translates (G68/G51/G51.1 are refused), so TRANS
-//!   is exact. `G52 X0 Y0 Z0` → bare `TRANS`.
+//!   since its caller's shift is not known), so that is required (NC442). G52 under G68,
+//!   G51 or G51.1 is refused by the evaluator (so no proven program has one), so TRANS,
+//!   which would delete their frames too, is exact. `G52 X0 Y0 Z0` → bare `TRANS`.
 //! - `G53 ..` stays `G53 ..` (words.rs): Sinumerik G53 suppresses the settable and
 //!   programmable frames for the block, which is all FANUC G53 ignores that translates (the
 //!   external offset `G10 L2 P0` / `#5201+` is refused), and the streamed translators agree.
@@ -86,12 +86,17 @@ fn name_word(name: &str, v: Expr, span: Span) -> Item {
 
 /// Splits off what this module translates; `Err(b)` hands the block back untouched.
 pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<Split, Block> {
-    if let Some(&g) = gs.iter().find(|g| matches!(g, 680 | 681 | 510 | 511 | 160 | 290 | 920)) {
+    let b = match super::rotation::split(ctx, b, span, modal, gs) {
+        Ok(split) => return Ok(split),
+        Err(b) => b,
+    };
+    let b = match super::polar::split(ctx, b, span, modal, gs) {
+        Ok(split) => return Ok(split),
+        Err(b) => b,
+    };
+    if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 290 | 920)) {
         let what = match g {
-            680 | 681 => "G68 (coordinate rotation)",
-            510 => "G51 (scaling)",
-            511 => "G51.1 (mirroring)",
-            160 => "G16 (polar coordinates)",
+            681 => "G68.1 (three-dimensional coordinate rotation)",
             290 => "G29 (return from the reference point)",
             _ => "G92 (coordinate system setting)",
         };

@@ -30,6 +30,8 @@ pub mod gotos;
 pub mod haas_if;
 pub mod indirect;
 pub mod modal;
+pub mod polar;
+pub mod rotation;
 pub mod structures;
 pub mod tapping;
 pub mod vacancy;

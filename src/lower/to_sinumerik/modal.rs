@@ -21,6 +21,12 @@ pub struct ModalScan {
     /// Some block moves an axis where G91 may be in force (a Sinumerik incremental move
     /// after a frame change also travels the change, a FANUC one does not).
     pub incremental_motion: bool,
+    /// The G68, G51 or G51.1 in force at the start of each block (text order; `rotation.rs`).
+    rot_in: Vec<(u32, Option<u32>)>,
+    /// Each G68, G51 and G51.1 block: its [`State::rot`] key, the block's start and its items.
+    g68s: Vec<(u32, u32, Vec<Item>)>,
+    /// Some block selects G18/G19.
+    other_plane: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -33,10 +39,16 @@ pub struct State {
     pub inch: Option<bool>,
     /// The motion G code ×10 (0, 10, 20, 30).
     pub motion: Option<u32>,
+    /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
+    /// `Some(0)` none, `Some(k)` the mode of [`frame_key`] `k` (`rotation.rs`).
+    pub rot: Option<u32>,
+    /// G16 polar coordinates in force (a called program starts without: a call in G16
+    /// mode is refused, `polar.rs`).
+    pub polar: Option<bool>,
 }
 
 impl State {
-    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None };
+    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None };
 
     fn merge(self, o: State) -> State {
         State {
@@ -44,6 +56,8 @@ impl State {
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
             inch: if self.inch == o.inch { self.inch } else { None },
             motion: if self.motion == o.motion { self.motion } else { None },
+            rot: if self.rot == o.rot { self.rot } else { None },
+            polar: if self.polar == o.polar { self.polar } else { None },
         }
     }
 
@@ -71,6 +85,13 @@ impl State {
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
                 0 | 10 | 20 | 30 => self.motion = Some(g),
+                680 | 510 | 511 => self.rot = items.first().map(|it| frame_key(it.span.lo, g)),
+                // A cancel of another mode than the one in force changes nothing.
+                690 | 500 | 501 if self.rot.is_some_and(|k| k == 0 || k & 3 == frame_kind(mode_of_cancel(g))) => {
+                    self.rot = Some(0)
+                }
+                160 => self.polar = Some(true),
+                150 => self.polar = Some(false),
                 // Canned cycles and their cancel: the motion group is not followed here.
                 730..=890 => self.motion = None,
                 _ => {}
@@ -78,6 +99,30 @@ impl State {
         }
         self
     }
+}
+
+/// The mode G code a cancel (G69, G50, G50.1 ×10) ends.
+fn mode_of_cancel(g: u32) -> u32 {
+    match g {
+        690 => 680,
+        500 => 510,
+        _ => 511,
+    }
+}
+
+/// The kind of a frame mode G code (G68, G51, G51.1 ×10): 1, 2, 3.
+fn frame_kind(g: u32) -> u32 {
+    match g {
+        680 => 1,
+        510 => 2,
+        _ => 3,
+    }
+}
+
+/// The [`State::rot`] key of the mode G code `g` in the block whose first word starts at
+/// `lo`: the start and the kind, never 0.
+fn frame_key(lo: u32, g: u32) -> u32 {
+    ((lo + 1) << 2) | frame_kind(g)
 }
 
 impl ModalScan {
@@ -89,9 +134,16 @@ impl ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
-            State { offset: Some(540), incremental: Some(false), inch, motion: Some(0) }
+            State {
+                offset: Some(540),
+                incremental: Some(false),
+                inch,
+                motion: Some(0),
+                rot: Some(0),
+                polar: Some(false),
+            }
         } else {
-            State { inch, ..State::UNKNOWN }
+            State { inch, polar: Some(false), ..State::UNKNOWN }
         };
         let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
             (Node::Items(items), Some((_, skip))) => {
@@ -130,10 +182,24 @@ impl ModalScan {
             }
         }
         let mut blocks = Vec::new();
+        let mut rot_in = Vec::new();
+        let mut g68s = Vec::new();
+        let mut other_plane = false;
         let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
             let Some((lo, _)) = flat.blocks[i] else { continue };
+            let first = match &flat.nodes[i] {
+                Node::Items(items) => items.first().map_or(lo, |it| it.span.lo),
+                _ => lo,
+            };
+            rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
+            if let Node::Items(items) = &flat.nodes[i] {
+                other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
+                if let Some(&g) = g_codes(items).iter().find(|g| matches!(g, 680 | 510 | 511)) {
+                    g68s.push((frame_key(first, g), lo, items.to_vec()));
+                }
+            }
             let st = match (settled, *at) {
                 (true, Some(s)) => out_of(i, s),
                 // Unreachable (after M30, say): nothing runs there, any value is as good;
@@ -153,7 +219,28 @@ impl ModalScan {
             }
             blocks.push((lo, st));
         }
-        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion }
+        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s, other_plane }
+    }
+
+    /// G16 in force after the block at `lo`; `None` where the paths disagree.
+    pub fn polar_at(&self, lo: u32) -> Option<bool> {
+        self.at(lo).and_then(|b| b.1.polar)
+    }
+
+    /// Whether some block of the program selects G18 or G19 (a G16 plane not known here).
+    pub fn other_plane(&self) -> bool {
+        self.other_plane
+    }
+
+    /// The G68, G51 or G51.1 in force before the block whose first word starts at `lo`
+    /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
+    pub fn rot_before(&self, lo: u32) -> Option<u32> {
+        self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
+    }
+
+    /// The G68, G51 or G51.1 block of [`State::rot`] key `k`: its start and items.
+    pub fn g68_block(&self, k: u32) -> Option<(u32, &[Item])> {
+        self.g68s.iter().find(|g| g.0 == k).map(|g| (g.1, g.2.as_slice()))
     }
 
     /// The block at or before `lo` in text order.

@@ -1,0 +1,312 @@
+//! FANUC → Sinumerik: coordinate rotation G68/G69, scaling G51/G50 and programmable mirror
+//! image G51.1/G50.1 (docs/translation-fanuc-to-sinumerik.md, "Coordinate systems").
+//!
+//! Each becomes the additive frame about the same point, added to the frame in force (the
+//! G52 shift, a TRANS), as FANUC applies them in the local coordinate system:
+//! - `G68 X cx Y cy R a` → `ATRANS X=cx Y=cy` / `AROT RPL=a` / `ATRANS X=-cx Y=-cy`
+//!   (about the origin only `AROT RPL=a`). Both rotate in the plane selected at the block
+//!   (RPL= in the active plane), so the plane need not be known here.
+//! - `G51 X cx Y cy P f` (or `I J K`, a factor each) → `ATRANS` to the centre, `ASCALE` of
+//!   the axes whose centre G51 names, `ATRANS` back.
+//! - `G51.1 X a` → `ATRANS X=a` / `AMIRROR X0` / `ATRANS X=-a`: mirrored about X = a.
+//! - `G69`, `G50`, `G50.1` → the same three instructions undoing the mode in force
+//!   (`AROT RPL=-a`, `ASCALE X=1/f`, the mirror again), which keeps any shift exactly;
+//!   where none is in force, nothing.
+//!
+//! One mode at a time: FANUC applies mirror, scaling and rotation in that order whatever
+//! order they are commanded in, Sinumerik's additive frames in the order written, so a
+//! second mode while one is in force is refused. The mode in force at a cancel must be
+//! known from the program's text on every path (the modal scan, `State::rot`), and its
+//! values must be constants; a mode set or cancelled in a called program (the caller's is
+//! not known here), a G68 without a centre (the tool position) or an angle (parameter
+//! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that leaves
+//! an axis of its G51.1 mirrored, and any of them under G91 are refused (NC497). A cancel of
+//! a mode not in force (G50 under G51.1) changes nothing, as on FANUC.
+
+use super::modal::ModalScan;
+use super::words::scale;
+use super::*;
+
+/// What [`split`] makes of a block.
+pub type Out = super::frames::Split;
+
+/// A mode as constants: the centre (axis letter, mm) and what it does there.
+enum Mode {
+    Rotate(Vec<(u8, f64)>, f64),
+    Scale(Vec<(u8, f64, f64)>),
+    Mirror(Vec<(u8, f64)>),
+}
+
+fn letter_of(it: &Item) -> Option<(u8, &Expr)> {
+    match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) => Some((*l, e)),
+        _ => None,
+    }
+}
+
+fn g_of(it: &Item) -> Option<u32> {
+    match letter_of(it) {
+        Some((b'G', e)) => literal(e).map(|v| (v * 10.0).round() as u32),
+        _ => None,
+    }
+}
+
+fn frame(op: &str, words: Vec<Word>, span: Span) -> Stmt {
+    plain_block(vec![Item { kind: ItemKind::Frame { op: op.into(), words }, span }], span)
+}
+
+fn has_point(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Num(n) => n.point,
+        ExprKind::Unary(_, a) => has_point(a),
+        _ => false,
+    }
+}
+
+/// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors.
+fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode, &'static str> {
+    let mut centre: Vec<(u8, f64)> = Vec::new();
+    let mut extra: Vec<(u8, f64)> = Vec::new();
+    for it in items {
+        match letter_of(it) {
+            Some((b'G', _)) if g_of(it) == Some(g) || matches!(g_of(it), Some(900 | 170 | 180 | 190)) => {}
+            Some((l, e)) if b"XYZ".contains(&l) || (g == 680 && l == b'R') || (g == 510 && b"PIJK".contains(&l)) => {
+                let Some(v) = literal(e) else { return Err("a centre, angle or factor that is not a constant") };
+                let v = if has_point(e) {
+                    v
+                } else if l == b'R' {
+                    // An angle counts the metric increment in either unit.
+                    scale(ctx.opts, v, false, true)
+                } else if b"PIJK".contains(&l) {
+                    // Scale factors without a point: 0.001 (parameter 5400#7 SCR = 0).
+                    v * 0.001
+                } else {
+                    let Some(inch) = inch else {
+                        return Err("a centre without a decimal point where the unit depends on the path taken");
+                    };
+                    scale(ctx.opts, v, inch, false)
+                };
+                if b"XYZ".contains(&l) {
+                    centre.push((l, v));
+                } else {
+                    extra.push((l, v));
+                }
+            }
+            _ => return Err("a frame G code with other words than its centre, its value and G90"),
+        }
+    }
+    match g {
+        680 => {
+            let Some(&(_, a)) = extra.iter().find(|e| e.0 == b'R') else {
+                return Err("G68 without R (the angle is then machine parameter 5410)");
+            };
+            if centre.len() != 2 {
+                return Err("G68 without its centre in both axes of the plane (the tool position is then the centre)");
+            }
+            Ok(Mode::Rotate(centre, a))
+        }
+        510 => {
+            let p = extra.iter().find(|e| e.0 == b'P').map(|e| e.1);
+            let mut axes = Vec::new();
+            for &(l, c) in &centre {
+                let own = extra.iter().find(|e| e.0 == b"IJK"[(l - b'X') as usize]).map(|e| e.1);
+                match own.or(p) {
+                    Some(f) if f != 0.0 => axes.push((l, c, f)),
+                    _ => return Err("G51 without a factor (not 0) for an axis it scales"),
+                }
+            }
+            if axes.is_empty() {
+                return Err("G51 without the centre of the axes it scales");
+            }
+            Ok(Mode::Scale(axes))
+        }
+        _ => {
+            if centre.is_empty() {
+                return Err("G51.1 without an axis");
+            }
+            Ok(Mode::Mirror(centre))
+        }
+    }
+}
+
+fn shift(centre: &[(u8, f64)], sign: f64, span: Span) -> Vec<Word> {
+    centre
+        .iter()
+        .filter(|c| c.1 != 0.0)
+        .map(|&(l, v)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(sign * v, span)), span })
+        .collect()
+}
+
+/// The instructions that set `mode` (`undo`: that take it back).
+fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
+    let (centre, inner): (Vec<(u8, f64)>, Stmt) = match mode {
+        Mode::Rotate(c, a) => {
+            let a = if undo { -*a } else { *a };
+            let rpl = Word { addr: Addr::Name("RPL".into()), value: WordValue::Expr(num(a, span)), span };
+            (c.clone(), frame("AROT", vec![rpl], span))
+        }
+        Mode::Scale(axes) => {
+            let words = axes
+                .iter()
+                .map(|&(l, _, f)| {
+                    // The inverse as a number where it has a short decimal form (1/0.5 = 2).
+                    let inv = 1.0 / f;
+                    let short = (inv * 1e6).round() / 1e6 == inv;
+                    let v = match (undo, short) {
+                        (false, _) => num(f, span),
+                        (true, true) => num(inv, span),
+                        (true, false) => bin(BinOp::Div, num(1.0, span), num(f, span)),
+                    };
+                    Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }
+                })
+                .collect();
+            (axes.iter().map(|&(l, c, _)| (l, c)).collect(), frame("ASCALE", words, span))
+        }
+        Mode::Mirror(c) => {
+            // The value of a mirror word is not read; 0 as the manuals write it.
+            let words =
+                c.iter().map(|&(l, _)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(0.0, span)), span });
+            (c.clone(), frame("AMIRROR", words.collect(), span))
+        }
+    };
+    let about_origin = centre.iter().all(|c| c.1 == 0.0);
+    let mut out = Vec::new();
+    if !about_origin {
+        out.push(frame("ATRANS", shift(&centre, 1.0, span), span));
+    }
+    out.push(inner);
+    if !about_origin {
+        out.push(frame("ATRANS", shift(&centre, -1.0, span), span));
+    }
+    out
+}
+
+fn refused(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Out {
+    Out {
+        before: Vec::new(),
+        block: None,
+        after: ctx.refuse("NC497", span, &format!("{what}: not translated"), what, hint).into_iter().collect(),
+    }
+}
+
+const SETS: [u32; 3] = [680, 510, 511];
+const CANCELS: [u32; 3] = [690, 500, 501];
+
+/// Translates a block with G68/G69, G51/G50 or G51.1/G50.1 (`gs`); `Err(b)` hands any
+/// other block back.
+pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<Out, Block> {
+    let codes: Vec<u32> = gs.iter().copied().filter(|g| SETS.contains(g) || CANCELS.contains(g)).collect();
+    let Some(&g) = codes.first() else { return Err(b) };
+    if codes.len() > 1 {
+        return Ok(refused(
+            ctx,
+            span,
+            "two frame G codes (G68/G69, G51/G50, G51.1/G50.1) in one block",
+            "write each in a block of its own",
+        ));
+    }
+    let first = b.items.first().map_or(span.lo, |it| it.span.lo);
+    let in_force = modal.rot_before(first);
+    if SETS.contains(&g) {
+        if in_force != Some(0) {
+            return Ok(refused(
+                ctx,
+                span,
+                "G68, G51 or G51.1 while another of them may be in force, or in a called program",
+                "cancel each mode (G69, G50, G50.1) before the next, in the main program",
+            ));
+        }
+        if modal.incremental_at(span.lo) != Some(false) || gs.contains(&910) {
+            return Ok(refused(
+                ctx,
+                span,
+                "G68, G51 or G51.1 where G91 may be in force (their centre reads incrementally)",
+                "write it under G90: `G90 G68 X.. Y.. R..`",
+            ));
+        }
+        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo)) {
+            Err(what) => {
+                // The message names the G code first (a marked line under --unsupported warn).
+                let label = match g {
+                    680 => "G68",
+                    510 => "G51",
+                    _ => "G51.1",
+                };
+                let what = if what.starts_with('G') { what.to_string() } else { format!("{label}: {what}") };
+                refused(ctx, span, &what, "write the mode with constants, alone in its block: `G68 X.. Y.. R..`")
+            }
+            Ok(mode) => {
+                let mut meta = b.meta;
+                meta.span = span;
+                let mut after = Vec::new();
+                // The block's modal words first (the plane a rotation is in), numbered as
+                // the source block so that a jump to it runs the whole frame.
+                let modes: Vec<Item> =
+                    b.items.iter().filter(|it| matches!(g_of(it), Some(900 | 170 | 180 | 190))).cloned().collect();
+                if !modes.is_empty() || meta.number.is_some() || meta.label.is_some() || !meta.comments.is_empty() {
+                    after.push(block_stmt(meta, modes));
+                }
+                after.extend(sequence(&mode, false, span));
+                Out { before: Vec::new(), block: None, after }
+            }
+        });
+    }
+    // A cancel: undo the mode in force, if any.
+    let set = SETS[CANCELS.iter().position(|&c| c == g).unwrap_or(0)];
+    let undo = match in_force {
+        Some(0) => Vec::new(),
+        Some(k) => {
+            let Some((lo, items)) = modal.g68_block(k) else {
+                return Ok(refused(ctx, span, "a frame cancel where the mode in force is not known", "cancel in the main program"));
+            };
+            let gs_set = g_codes(items);
+            if !gs_set.contains(&set) {
+                // A cancel of another mode than the one in force: FANUC changes nothing.
+                Vec::new()
+            } else { match mode_of(ctx, items, set, modal.inch_at(lo)) {
+                Ok(Mode::Mirror(c)) => {
+                    // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
+                    let named: Vec<u8> =
+                        b.items.iter().filter_map(letter_of).map(|(l, _)| l).filter(|l| b"XYZ".contains(l)).collect();
+                    // Cancelling an axis that is not mirrored changes nothing; one left
+                    // mirrored would need a mirror of its own.
+                    if c.iter().any(|x| !named.contains(&x.0)) {
+                        return Ok(refused(
+                            ctx,
+                            span,
+                            "G50.1 that cancels other axes than its G51.1 mirrored",
+                            "cancel every mirrored axis in one G50.1: `G50.1 X0 Y0`",
+                        ));
+                    }
+                    sequence(&Mode::Mirror(c), true, span)
+                }
+                Ok(mode) => sequence(&mode, true, span),
+                Err(_) => return Ok(refused(ctx, span, "a cancel of a mode that is not translated", "see the mode's error")),
+            } }
+        }
+        None => {
+            return Ok(refused(
+                ctx,
+                span,
+                "G69, G50 or G50.1 in a called program, or where the mode in force depends on the path taken (which one it cancels is not known here)",
+                "cancel the mode in the main program, on a path where one is in force",
+            ))
+        }
+    };
+    let mut b = b;
+    // G50.1's axis words name the axes cancelled: no motion.
+    b.items.retain(|it| g_of(it) != Some(g) && !(g == 501 && letter_of(it).is_some_and(|(l, _)| b"XYZ".contains(&l))));
+    let mut undo = undo;
+    if !undo.is_empty() && (b.meta.number.is_some() || b.meta.label.is_some()) {
+        // A jump to the block runs the cancel too: the number and label go first.
+        let meta = BlockMeta { number: b.meta.number.take(), label: b.meta.label.take(), span, ..BlockMeta::default() };
+        undo.insert(0, block_stmt(meta, Vec::new()));
+    }
+    let rest = if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() && b.meta.label.is_none()
+    {
+        None
+    } else {
+        Some(b)
+    };
+    Ok(Out { before: undo, block: rest, after: Vec::new() })
+}
