@@ -14,7 +14,7 @@ use crate::span::{FileId, SourceDb};
 use crate::translate_sinumerik::{OutFile, Translation};
 
 /// Serves the translation's `.SPF` files to the Siemens run, from memory (also the streamed
-/// verification's, `cli_sinumerik`).
+/// verification's, `cli::translate`).
 pub struct Emitted {
     /// Siemens program name, the path shown, the text.
     pub files: Vec<(String, String, String)>,

@@ -85,7 +85,7 @@ fn files(name: &str, main: &str, subs: &[(&str, &str)]) -> PathBuf {
     p
 }
 
-/// Whole translation and verdict of `path` (as `translate_cli` does it).
+/// Whole translation and verdict of `path` (as `cli::translate` does it).
 fn whole(path: &Path) -> (String, bool, String) {
     let mut db = SourceDb::new();
     let bytes = std::fs::read(path).expect("read");

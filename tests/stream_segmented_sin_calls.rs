@@ -454,7 +454,7 @@ fn corpus_programs_with_calls_and_cam_runs_stream_as_the_whole_translation() {
     assert!(streamed.len() >= 20, "streamed: {streamed:?}");
 }
 
-/// The main program name the command line gives a file stem (`cli_sinumerik::main_name`).
+/// The main program name the command line gives a file stem (`cli::translate::job::main_name`).
 fn nctrans_main_name(file: &str) -> String {
     let stem = file.rsplit_once('.').map_or(file, |(s, _)| s);
     let s: String =

@@ -35,7 +35,7 @@ pub use run::{run_batch, BatchError};
 pub const MAP_FILE: &str = "nctrans-map.toml";
 
 /// Input files this large are read and translated as a stream when they are straight-line
-/// programs (the single-file commands use the same size, `stream_cli::AUTO_BYTES`).
+/// programs (the single-file commands use the same size, `cli::stream::AUTO_BYTES`).
 pub const STREAM_BYTES: u64 = 8 * 1024 * 1024;
 
 /// What happened to one file. (`report::rank` orders them by how bad they are.)
