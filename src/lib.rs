@@ -23,9 +23,7 @@ pub mod stream;
 #[path = "../tests/support/rng.rs"]
 mod test_rng;
 pub mod translate;
-pub mod translate_sinumerik;
 pub mod unfinished;
-pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

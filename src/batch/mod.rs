@@ -250,7 +250,7 @@ pub struct BatchOptions {
     /// verified as a stream, in constant memory ([`STREAM_BYTES`]; 0 with `--stream`).
     pub stream_bytes: u64,
     /// FANUC → Sinumerik `--specialise-callers`: each macro written for the library's calls
-    /// only (see `translate_sinumerik::Options::specialise_callers`).
+    /// only (see `translate::to_sinumerik::Options::specialise_callers`).
     pub specialise_callers: bool,
 }
 

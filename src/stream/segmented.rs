@@ -295,7 +295,7 @@ pub fn calls_plain(unit: &Unit) -> bool {
 
 /// Where the main program's text ends in a translation of several programs: at the line
 /// break before the second program's `O` line (searched after `from`, past every run).
-fn main_text_end(t: &translate::Translation, eol: &str, from: usize) -> usize {
+fn main_text_end(t: &translate::to_fanuc::Output, eol: &str, from: usize) -> usize {
     let Some(crate::ir::ProgName::Number(n)) = t.unit.programs.get(1).and_then(|p| p.name.as_ref()) else {
         return t.text.len();
     };

@@ -11,8 +11,8 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::passes::varmap;
 use nctrans::span::SourceDb;
+use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
 use nctrans::translate::TranslateOptions;
-use nctrans::translate_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
 use nctrans::{diag, read};
 use std::collections::BTreeSet;
 use std::io::Write;
@@ -393,8 +393,11 @@ pub fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, op
         None => "<stdout>".to_string(),
     };
     let main_unit = &job.units[0];
-    let profiles = nctrans::verify_sinumerik::Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
-    let report = nctrans::verify_sinumerik::verify_profiled(
+    let profiles = nctrans::translate::to_sinumerik::verify::Profiles {
+        fanuc: opts.source.clone(),
+        sinumerik: opts.target.clone(),
+    };
+    let report = nctrans::translate::to_sinumerik::verify::verify_profiled(
         &job.db,
         job.loaded.file,
         main_unit,

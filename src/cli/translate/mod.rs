@@ -16,7 +16,7 @@ use nctrans::ir::Unit;
 use nctrans::passes::UnsupportedPolicy;
 use nctrans::span::SourceDb;
 use nctrans::translate;
-use nctrans::translate_sinumerik as ts;
+use nctrans::translate::to_sinumerik as ts;
 use nctrans::{diag, read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -157,13 +157,15 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         Err(e) => return fail(e),
     };
     let sub_refs: Vec<&Unit> = subs.iter().collect();
-    let t = translate::to_fanuc(&parsed.unit, &sub_refs, &opts);
+    let units: Vec<&Unit> = std::iter::once(&parsed.unit).chain(sub_refs.iter().copied()).collect();
+    let policy = opts.unsupported;
+    let t = translate::translate(&units, Dialect::Fanuc, &translate::Options::to_fanuc(opts));
     eprint!("{}", diag::render(&db, &t.diags));
-    if diag::has_errors(&t.diags) && opts.unsupported == UnsupportedPolicy::Error {
+    if diag::has_errors(&t.diags) && policy == UnsupportedPolicy::Error {
         eprintln!("error: not translated ({} construct(s) cannot be expressed on FANUC)", t.unsupported.max(1));
         return ExitCode::from(1);
     }
-    let out_bytes = read::encode(&t.text, c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
+    let out_bytes = read::encode(t.text(), c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
     if let Some(Err(code)) = a.output.as_deref().map(|o| super::out_guard::check(o, &inputs, c.force, "-o")) {
         return code;
     }
@@ -249,7 +251,11 @@ fn to_sinumerik(args: &TranslateArgs, config: &Config) -> ExitCode {
     let mut opts = opts;
     opts.after_end = job.after_end.clone();
     let units: Vec<&Unit> = job.units.iter().collect();
-    let tr = ts::translate(&units, &opts, job.loaded.line_ending);
+    let tr = translate::translate(
+        &units,
+        Dialect::Sinumerik,
+        &translate::Options::to_sinumerik(opts.clone(), job.loaded.line_ending),
+    );
     eprint!("{}", diag::render(&job.db, &tr.diags));
     if tr.has_errors() {
         eprintln!("error: translation failed; nothing written");

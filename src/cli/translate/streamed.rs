@@ -15,7 +15,7 @@ use nctrans::span::SourceDb;
 use nctrans::stream::lines::NotStreamable;
 use nctrans::stream::transcode;
 use nctrans::stream::{self, Index, Progress};
-use nctrans::translate_sinumerik::{self as ts, Options, UnsupportedPolicy};
+use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy};
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -473,7 +473,7 @@ fn to_sinumerik_from(
         let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
         let read_back = utf8.as_ref().map_or(out.as_path(), |u| u.path());
         // The subprograms are served to the Siemens run from memory, under the names the
-        // whole path's verifier shows them (`verify_sinumerik::Emitted`).
+        // whole path's verifier shows them (`translate::to_sinumerik::verify::Emitted`).
         let files = subs
             .iter()
             .map(|f| {
@@ -481,7 +481,7 @@ fn to_sinumerik_from(
                 (f.program.clone(), shown, f.text.clone())
             })
             .collect();
-        let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: opts.target.clone() };
+        let emitted = nctrans::translate::to_sinumerik::verify::Emitted { files, semantics: opts.target.clone() };
         let back = (read_back, shown.as_str(), Box::new(emitted) as _);
         code = verify_to_sinumerik((req.file, path), back, done.index, req.max_steps, opts, size);
     }

@@ -11,7 +11,7 @@ use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
 use crate::eval::{input, Ending, Input, Outcome, RunOptions};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
-use crate::translate_sinumerik::{OutFile, Translation};
+use crate::translate::{OutFile, Translation};
 
 /// Serves the translation's `.SPF` files to the Siemens run, from memory (also the streamed
 /// verification's, `cli::translate`).

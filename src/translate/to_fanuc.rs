@@ -1,9 +1,10 @@
-//! The translation API: a parsed Siemens main program (and the subprograms it calls) →
-//! FANUC Custom Macro B text, the symbol map that relates the two, and diagnostics.
+//! The Sinumerik → FANUC work behind [`crate::translate::translate`]: a parsed Siemens main
+//! program (and the subprograms it calls) → FANUC Custom Macro B text, the symbol map that
+//! relates the two, and diagnostics; and its proof ([`verify`]).
 //!
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
-//! their place (the translation is still not [`Translation::ok`]).
+//! their place (the translation is still not [`Output::ok`]).
 
 use crate::diag::{self, Diagnostic};
 use crate::dialect::fanuc::emit::{self, CommentMode, EmitOptions, KEEP_PREFIX};
@@ -93,8 +94,10 @@ impl SymbolMap {
     }
 }
 
+/// What the FANUC writer gives: the text with the IR it was written from, which the
+/// streaming translators build on (the entry turns it into a [`super::Translation`]).
 #[derive(Clone, Debug)]
-pub struct Translation {
+pub struct Output {
     pub text: String,
     /// The FANUC IR that was written (spans point into the Siemens sources).
     pub unit: Unit,
@@ -108,7 +111,7 @@ pub struct Translation {
     pub units_follow_text: bool,
 }
 
-impl Translation {
+impl Output {
     /// True when the text is a complete translation (no error, nothing unsupported).
     pub fn ok(&self) -> bool {
         !diag::has_errors(&self.diags) && self.unsupported == 0
@@ -126,7 +129,7 @@ fn prog_name(p: &Program, fallback: &str) -> String {
 /// Translates a Siemens main program and the subprograms it calls (each a parsed `.SPF`).
 /// Under the warn policy refused blocks become marked comments whole and the program
 /// alarms on its first line ([`crate::unfinished`]).
-pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
     if opts.unsupported == UnsupportedPolicy::Error {
         return to_fanuc_strict(main, subs, opts);
     }
@@ -156,7 +159,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     t
 }
 
-fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
@@ -288,7 +291,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+    Output { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
 }
 
 /// The declared types of a program's scalar names (DEF and PROC parameters).
@@ -380,8 +383,8 @@ pub struct Verification {
 
 /// Parses the translation back as FANUC (proving it is valid FANUC syntax); the text is
 /// added to `db` under `out_name`.
-pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) -> crate::dialect::Parsed {
-    let file = db.add(out_name, t.text.clone());
+pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name: &str) -> crate::dialect::Parsed {
+    let file = db.add(out_name, t.text().to_string());
     let opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
@@ -397,7 +400,7 @@ pub fn verify(
     db: &mut crate::span::SourceDb,
     main: &Unit,
     subs: &[&Unit],
-    t: &Translation,
+    t: &super::Translation,
     out_name: &str,
     max_steps: u64,
 ) -> Verification {
@@ -413,10 +416,11 @@ pub fn verify(
             reparsed: None,
         };
     }
-    let source = align_source(main, &t.symbol_map);
-    let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
-    let mut inputs = r_param_inputs(&t.symbol_map);
-    inputs.extend(standalone_args(main, &t.symbol_map));
+    let map = t.symbols.fanuc();
+    let source = align_source(main, map);
+    let callees = MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
+    let mut inputs = r_param_inputs(map);
+    inputs.extend(standalone_args(main, map));
     let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
     let b = Side {
         unit: parsed.unit.clone(),
