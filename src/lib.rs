@@ -2,7 +2,9 @@
 //! prove each translation by running both in a bundled evaluator.
 //!
 //! The pipeline (see `docs/architecture.md`): `read` → `dialect::*::parse` (one block at a
-//! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
+//! time, then a structurer) → [`ir`] → passes → emit, behind the one entry
+//! [`translate::translate`] → the proof ([`check`]). The library never prints; the command
+//! line (`src/cli/`, in the binary) renders.
 
 pub mod batch;
 pub mod check;

@@ -7,6 +7,10 @@
 //! ([`maps`]), runs the job over the files in parallel ([`run`]), writes every output
 //! atomically ([`write`]) and summarises ([`report`]). Everything a file's output depends on
 //! is decided before the parallel part, so the output does not depend on thread timing.
+//!
+//! Owns: the engine above and the jobs (`jobs`: what both directions share and Sinumerik →
+//! FANUC; `jobs_sinumerik`; `streamed*`: a large file streamed). May use: `translate` (the
+//! one entry), `stream`, `check`, `eval`, `dialect`, `config`; never the command line.
 
 pub mod discover;
 pub mod jobs;

@@ -3,6 +3,10 @@
 //! programs, `NAME.SPF` per called O program), with the symbol map the checker needs and
 //! every diagnostic. Unsupported constructs are NC35x errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a `; NCTRANS UNSUPPORTED: …` line.
+//!
+//! Owns: the Siemens files of a translation (names, header, variable map lines) and their
+//! proof (`verify`). May use: `passes::to_sinumerik` (lowering), `dialect::sinumerik::emit`,
+//! `unfinished`, `empty`, and `check`/`eval` for the proof.
 
 pub use super::{OutFile, Translation};
 pub use crate::passes::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
