@@ -273,16 +273,6 @@ pub(crate) fn used_names(map: &translate::SymbolMap) -> super::maps::Used {
     used
 }
 
-/// The FANUC inputs that give the R parameters a translation maps their Siemens power-on
-/// value 0 (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-pub(crate) fn r_homes(map: &translate::SymbolMap) -> Vec<String> {
-    map.vars
-        .iter()
-        .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-        .map(|m| format!("#{}=0", m.number))
-        .collect()
-}
-
 /// What verification found.
 pub(crate) struct Verified {
     pub status: Status,
@@ -360,7 +350,7 @@ impl ToFanucJob {
         // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
         let map = t.symbols.fanuc();
-        let mut fanuc_inputs: Vec<String> = r_homes(map);
+        let mut fanuc_inputs: Vec<String> = translate::to_fanuc::r_param_homes(map);
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();

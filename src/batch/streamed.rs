@@ -610,7 +610,7 @@ fn to_fanuc_from(
             return Some(outcome);
         }
     };
-    let mut b_in = jobs::r_homes(&map);
+    let mut b_in = crate::translate::to_fanuc::r_param_homes(&map);
     b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
     // The callees as the whole job's verifier serves them (aligned as it aligns them); the
     // FANUC side finds the output's own O programs in the read-back index, as the whole

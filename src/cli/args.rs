@@ -40,6 +40,12 @@ pub struct InputOpts {
     pub stream: bool,
 }
 
+/// Says why a command cannot go on; exit code 2.
+pub fn fail(msg: impl std::fmt::Display) -> ExitCode {
+    eprintln!("error: {msg}");
+    ExitCode::from(2)
+}
+
 pub fn parse_dialect(s: &str) -> Result<Dialect, String> {
     Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
 }

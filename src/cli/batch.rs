@@ -3,6 +3,7 @@
 //! library's batch engine, renders progress (a live line on a terminal, plain lines
 //! otherwise), the summary table and the report, and stops cleanly on Ctrl-C.
 
+use super::args::fail;
 use super::configure::configure;
 use super::translate::TranslateArgs;
 use clap::ArgMatches;
@@ -34,11 +35,6 @@ pub struct BatchArgs {
     /// The project configuration (default: ./nctrans.toml when present).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-}
-
-fn fail(msg: impl std::fmt::Display) -> ExitCode {
-    eprintln!("error: {msg}");
-    ExitCode::from(2)
 }
 
 /// Runs a batch when the input is a folder; `None` otherwise (single-file translation).

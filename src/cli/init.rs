@@ -1,15 +1,11 @@
 //! `nctrans init [PATH]`: writes the commented project configuration (`nctrans.toml`) with
 //! every key at its default.
 
+use super::args::fail;
 use nctrans::config;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-fn fail(msg: impl std::fmt::Display) -> ExitCode {
-    eprintln!("error: {msg}");
-    ExitCode::from(2)
-}
 
 /// `nctrans init [PATH]`: writes the commented configuration; never overwrites one.
 pub fn init(path: Option<&Path>) -> ExitCode {

@@ -477,10 +477,15 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
 /// compared with the Siemens program, whose R parameters start at 0 (FANUC's would be vacant).
 pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
+    r_param_homes(map).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
+}
+
+/// [`r_param_inputs`] as `--set` texts (`#501=0`).
+pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
     map.vars
         .iter()
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-        .filter_map(|m| crate::eval::parse_input(&format!("#{}=0", m.number)).ok())
+        .map(|m| format!("#{}=0", m.number))
         .collect()
 }
 

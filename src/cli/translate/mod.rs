@@ -9,6 +9,7 @@
 mod job;
 mod streamed;
 
+use super::args::{fail, parse_dialect};
 use job::Request;
 use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
@@ -80,17 +81,8 @@ pub struct TranslateArgs {
     pub stream: bool,
 }
 
-fn parse_dialect(s: &str) -> Result<Dialect, String> {
-    Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
-}
-
 fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
     encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| format!("unknown encoding '{s}'"))
-}
-
-fn fail(msg: String) -> ExitCode {
-    eprintln!("error: {msg}");
-    ExitCode::from(2)
 }
 
 /// Runs the translation mode. `None` when the arguments do not ask for it.
@@ -101,7 +93,7 @@ pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
         return Some(to_sinumerik(a, c));
     }
     let Some(input) = &a.input else {
-        return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
+        return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF"));
     };
     if let Err(code) = super::dialect::check_direction(input, a.from, to) {
         return Some(code);
