@@ -277,7 +277,8 @@ fn library(c: &Case) -> Vec<String> {
             if !t.ok() {
                 return Err(diag::render(&db, &t.diags));
             }
-            let v = translate::verify(&mut db, &unit, &[], &t.clone().into(), "out.nc", eval::DEFAULT_MAX_STEPS);
+            let v =
+                translate::to_fanuc::verify(&mut db, &unit, &[], &t.clone().into(), "out.nc", eval::DEFAULT_MAX_STEPS);
             if v.equivalent {
                 Ok(())
             } else {

@@ -170,7 +170,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let v = translate::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
         assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
         Ok(t.text)
     }

@@ -190,7 +190,7 @@ fn pair_table_rows_are_equivalent_and_translate_both_ways() {
                     t.diags.iter().map(|d| &d.message).collect::<Vec<_>>()
                 ));
             } else {
-                let v = translate::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
+                let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
                 if !v.equivalent {
                     failures
                         .push(format!("{}: S→F does not verify: {}\n{}\n{}", row.what, v.summary, v.rendered, t.text));

@@ -95,7 +95,7 @@ fn whole(path: &Path) -> (String, bool, String) {
     let refs: Vec<&Unit> = subs.iter().collect();
     let t = translate::to_fanuc(&parsed.unit, &refs, &opts(path));
     assert!(t.ok(), "{:?}", t.diags);
-    let v = translate::verify(&mut db, &parsed.unit, &refs, &t.clone().into(), "whole.nc", MAX_STEPS);
+    let v = translate::to_fanuc::verify(&mut db, &parsed.unit, &refs, &t.clone().into(), "whole.nc", MAX_STEPS);
     (t.text, v.equivalent, v.summary)
 }
 

@@ -44,7 +44,7 @@ fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
 }
 
 fn verify(d: &mut Done) -> translate::Verification {
-    translate::verify(&mut d.db, &d.unit, &[], &d.t.clone().into(), "out.nc", STEPS)
+    translate::to_fanuc::verify(&mut d.db, &d.unit, &[], &d.t.clone().into(), "out.nc", STEPS)
 }
 
 /// The program lines of a translation: no `%`, `O` line or NCTRANS header.
@@ -347,7 +347,7 @@ fn corpus_translates_and_verifies() {
             }
             (true, None) => {}
         }
-        let v = translate::verify(
+        let v = translate::to_fanuc::verify(
             &mut db,
             &parsed.unit,
             &[],

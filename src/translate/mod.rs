@@ -15,15 +15,16 @@ pub mod to_sinumerik;
 // The names of the FANUC target that the streaming translators and the tests reach at
 // `translate::` (the streaming code moves onto the entry with issue 18 part B).
 pub use to_fanuc::{
-    align_source, r_param_inputs, reparse, standalone_args, to_fanuc, var_param_inputs, verify, SymbolMap,
-    TranslateOptions, Verification, DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
+    align_source, r_param_inputs, reparse, standalone_args, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
+    DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
 };
 
+use crate::check::{CheckReport, Verdict};
 use crate::diag::{self, Diagnostic};
 use crate::dialect::Dialect;
 use crate::ir::{ProgName, Unit};
 use crate::read::LineEnding;
-use crate::span::{FileId, Span};
+use crate::span::{FileId, SourceDb, Span};
 use std::collections::BTreeMap;
 
 /// One written file.
@@ -141,6 +142,56 @@ impl From<to_fanuc::Output> for Translation {
             symbols: Symbols::Fanuc(o.symbol_map),
             diags: o.diags,
             unsupported: o.unsupported,
+        }
+    }
+}
+
+/// The result of checking a translation.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    /// Both programs ran to the same trace.
+    pub equivalent: bool,
+    /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
+    pub summary: String,
+    /// Rendered diagnostics (parse errors of the output, the divergence).
+    pub rendered: String,
+    /// The output parsed back as FANUC.
+    pub reparsed: Option<Unit>,
+}
+
+impl Verification {
+    /// The verdict of a check, in the words both targets give it; `rendered` holds the
+    /// check's diagnostics (and the trace diff of a divergence).
+    fn of(report: &CheckReport) -> Verification {
+        let mut rendered = diag::render(&report.db, &report.diags);
+        let (equivalent, summary) = match &report.verdict {
+            Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
+            Verdict::Diverged { index } => {
+                rendered.push_str(&report.diff);
+                (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
+            }
+            Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
+            Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
+        };
+        Verification { equivalent, summary, rendered, reparsed: None }
+    }
+}
+
+/// Proves a translation of `inputs` (as given to [`translate`], in `db`): the output is read
+/// back as the target (so it is valid syntax there), both programs run in the evaluator with
+/// at most `max_steps` blocks each, and their traces are compared. `out` names the output in
+/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. The command line's
+/// `--to sinumerik` and the batch jobs run the per-target proofs with their own inputs and
+/// profiles (`to_sinumerik::verify::verify_run`).
+pub fn verify(db: &mut SourceDb, inputs: &[&Unit], t: &Translation, out: &str, max_steps: u64) -> Verification {
+    let Some((main, subs)) = inputs.split_first() else {
+        let summary = "not verified: no program to run".to_string();
+        return Verification { equivalent: false, summary, rendered: String::new(), reparsed: None };
+    };
+    match t.target() {
+        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, max_steps),
+        Dialect::Sinumerik => {
+            Verification::of(&to_sinumerik::verify::verify_with(db, main.file, main, t, out, max_steps))
         }
     }
 }

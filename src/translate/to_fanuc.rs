@@ -6,6 +6,7 @@
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
 //! their place (the translation is still not [`Output::ok`]).
 
+use super::Verification;
 use crate::diag::{self, Diagnostic};
 use crate::dialect::fanuc::emit::{self, CommentMode, EmitOptions, KEEP_PREFIX};
 use crate::dialect::{Dialect, Semantics};
@@ -368,19 +369,6 @@ fn header(name: &str, mapped: &[Mapped], is_sub: bool, opts: &TranslateOptions) 
     v
 }
 
-/// The result of checking a translation.
-#[derive(Clone, Debug)]
-pub struct Verification {
-    /// Both programs ran to the same trace.
-    pub equivalent: bool,
-    /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
-    pub summary: String,
-    /// Rendered diagnostics (parse errors of the output, the divergence).
-    pub rendered: String,
-    /// The output parsed back as FANUC.
-    pub reparsed: Option<Unit>,
-}
-
 /// Parses the translation back as FANUC (proving it is valid FANUC syntax); the text is
 /// added to `db` under `out_name`.
 pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name: &str) -> crate::dialect::Parsed {
@@ -389,7 +377,7 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name:
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
-/// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
+/// Verifies a translation to FANUC (see [`super::verify`]): parses it back as FANUC, then runs the Siemens program and the
 /// translation in the evaluator and compares their traces (`check`). The Siemens side is
 /// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number. A `MSG`
 /// that became a comment (FANUC shows no message without stopping) is left out of the
@@ -404,7 +392,7 @@ pub fn verify(
     out_name: &str,
     max_steps: u64,
 ) -> Verification {
-    use crate::check::{self, Side, Verdict};
+    use crate::check::{self, Side};
     use crate::eval::{NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
     let mut rendered = diag::render(db, &parsed.diags);
@@ -428,17 +416,11 @@ pub fn verify(
         run: RunOptions { max_steps, inputs, ..RunOptions::default() },
     };
     let report = check::check_excluding(db, a, b, EXCLUDE);
-    rendered.push_str(&diag::render(&report.db, &report.diags));
-    let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-        Verdict::Diverged { index } => {
-            rendered.push_str(&report.diff);
-            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
-        }
-        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-    };
-    Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+    let mut v = Verification::of(&report);
+    rendered.push_str(&v.rendered);
+    v.rendered = rendered;
+    v.reparsed = Some(parsed.unit);
+    v
 }
 
 /// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:

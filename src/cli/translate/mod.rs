@@ -173,7 +173,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let out_name = a.output.as_ref().map_or("<translation>.nc".to_string(), |p| p.display().to_string());
-    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, c.max_steps);
+    let v = translate::verify(&mut db, &units, &t, &out_name, c.max_steps);
     eprint!("{}", v.rendered);
     eprintln!("{}", v.summary);
     if v.equivalent {
