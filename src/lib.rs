@@ -2,7 +2,9 @@
 //! prove each translation by running both in a bundled evaluator.
 //!
 //! The pipeline (see `docs/architecture.md`): `read` → `dialect::*::parse` (one block at a
-//! time, then a structurer) → [`ir`] → … The library never prints; `main.rs` renders.
+//! time, then a structurer) → [`ir`] → passes → emit, behind the one entry
+//! [`translate::translate`] → the proof ([`check`]). The library never prints; the command
+//! line (`src/cli/`, in the binary) renders.
 
 pub mod batch;
 pub mod check;
@@ -22,10 +24,7 @@ pub mod stream;
 #[path = "../tests/support/rng.rs"]
 mod test_rng;
 pub mod translate;
-pub mod translate_sinumerik;
 pub mod unfinished;
-pub mod verify_called;
-pub mod verify_sinumerik;
 
 use dialect::{Dialect, ParseOptions, Parsed};
 use span::{FileId, SourceDb};

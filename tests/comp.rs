@@ -11,7 +11,7 @@ use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, TranslateOptions};
-use nctrans::translate_sinumerik::{self as ts, Options};
+use nctrans::translate::to_sinumerik::{self as ts, Options};
 
 const STEPS: u64 = 100_000;
 
@@ -56,7 +56,7 @@ fn to_fanuc(src: &str) -> Vec<String> {
     let (_, u) = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
     let t = translate::to_fanuc(&u, &[], &TranslateOptions::default());
     assert!(t.ok(), "not translated:\n{}", nctrans::diag::render(&db, &t.diags));
-    let v = translate::verify(&mut db, &u, &[], &t, "out.nc", STEPS);
+    let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
     assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
     t.text
         .lines()
@@ -79,7 +79,7 @@ fn to_sinumerik(src: &str) -> Vec<String> {
     let (file, u) = parse(&mut db, "in.nc", src, Dialect::Fanuc);
     let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
     assert!(!tr.has_errors(), "not translated:\n{}", nctrans::diag::render(&db, &tr.diags));
-    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &u, &tr, "out", STEPS);
+    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&db, file, &u, &tr, "out", STEPS);
     assert!(matches!(rep.verdict, Verdict::Equivalent { .. }), "{:?}\n{}", rep.verdict, rep.diff);
     let main = tr.main().expect("main file");
     main.text.lines().filter(|l| !l.starts_with("; Translated by")).map(str::to_string).collect()
@@ -255,7 +255,7 @@ fn an_offset_map_names_the_registers_of_other_edges() {
     let t = translate::to_fanuc(&u, &[], &opts);
     assert!(t.ok(), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
     assert!(t.text.contains("T6 M06\nG43 H26\nG41 G01 D46 X1. F100.\n"), "{}", t.text);
-    let v = translate::verify(&mut db, &u, &[], &t, "out.nc", STEPS);
+    let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
     assert!(v.equivalent, "{}", v.summary);
 }
 
@@ -319,7 +319,7 @@ fn a_subprograms_safety_line_translates() {
     assert!(!tr.has_errors(), "{}", nctrans::diag::render(&db, &tr.diags));
     let text = &tr.main().expect("main").text;
     assert!(text.contains("G0 G17 G40 G90 D0\n"), "{text}");
-    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &u, &tr, "out", STEPS);
+    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&db, file, &u, &tr, "out", STEPS);
     assert!(matches!(rep.verdict, Verdict::Equivalent { .. }), "{:?}", rep.verdict);
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "sub.spf", "PROC SUB\nG17 G40 G90\nG0 X1\nRET\n", Dialect::Sinumerik);

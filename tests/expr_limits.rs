@@ -13,7 +13,8 @@ use nctrans::dialect::limits::{MAX_EXPR_DEPTH, MAX_NESTING, THREAD_STACK};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{self, NoCallees, RunOptions, VecSink};
 use nctrans::span::SourceDb;
-use nctrans::{diag, ir, translate, translate_sinumerik, verify_sinumerik};
+use nctrans::translate::{self, to_sinumerik as translate_sinumerik, to_sinumerik::verify as verify_sinumerik};
+use nctrans::{diag, ir};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -276,7 +277,8 @@ fn library(c: &Case) -> Vec<String> {
             if !t.ok() {
                 return Err(diag::render(&db, &t.diags));
             }
-            let v = translate::verify(&mut db, &unit, &[], &t, "out.nc", eval::DEFAULT_MAX_STEPS);
+            let v =
+                translate::to_fanuc::verify(&mut db, &unit, &[], &t.clone().into(), "out.nc", eval::DEFAULT_MAX_STEPS);
             if v.equivalent {
                 Ok(())
             } else {

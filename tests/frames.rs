@@ -139,8 +139,8 @@ fn planted_differences_are_caught() {
 mod translation {
     use super::*;
     use nctrans::read::LineEnding;
+    use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
     use nctrans::translate::{self, TranslateOptions};
-    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
 
     const STEPS: u64 = 100_000;
 
@@ -155,7 +155,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", STEPS);
+        let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", STEPS);
         let text: String = t.files.iter().map(|x| x.text.clone()).collect();
         assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
         Ok(text)
@@ -170,7 +170,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", STEPS);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
         assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
         Ok(t.text)
     }

@@ -105,7 +105,7 @@ fn the_sinumerik_sequences_come_back_as_the_fanuc_modes() {
         let s = load(&mut db, "back.mpf", &f_s, Dialect::Sinumerik);
         let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
         assert!(t.ok(), "{}", nctrans::diag::render(&db, &t.diags));
-        let v = translate::verify(&mut db, &s, &[], &t, "back.nc", 100_000);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "back.nc", 100_000);
         assert!(v.equivalent, "{}\n{}", v.summary, t.text);
         for line in lines {
             assert!(t.text.contains(line), "{line:?} missing in\n{}", t.text);

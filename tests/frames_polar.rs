@@ -85,7 +85,7 @@ mod translation {
     use super::*;
     use nctrans::read::LineEnding;
     use nctrans::translate::{self, TranslateOptions};
-    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
 
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
@@ -97,7 +97,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", 100_000);
+        let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", 100_000);
         let text: String = t.files.iter().map(|x| x.text.clone()).collect();
         assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
         Ok(text)
@@ -112,7 +112,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", 100_000);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", 100_000);
         assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
         Ok(t.text)
     }

@@ -163,7 +163,7 @@ mod translation {
     use super::*;
     use nctrans::read::LineEnding;
     use nctrans::translate::{self, TranslateOptions};
-    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
 
     const STEPS: u64 = 100_000;
 
@@ -177,7 +177,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", STEPS);
+        let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", STEPS);
         let text: String = t.files.iter().map(|x| x.text.clone()).collect();
         assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
         Ok(text)
@@ -192,7 +192,7 @@ mod translation {
             codes.dedup();
             return Err(codes);
         }
-        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", STEPS);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
         assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
         Ok(t.text)
     }
@@ -319,7 +319,7 @@ mod scale_and_mirror_translation {
     use super::*;
     use nctrans::read::LineEnding;
     use nctrans::translate::{self, TranslateOptions};
-    use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
 
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
@@ -331,7 +331,7 @@ mod scale_and_mirror_translation {
             codes.dedup();
             return Err(codes);
         }
-        let r = nctrans::verify_sinumerik::verify_with(&db, id, &p.unit, &t, "out", 100_000);
+        let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", 100_000);
         let text: String = t.files.iter().map(|x| x.text.clone()).collect();
         assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
         Ok(text)
@@ -346,7 +346,7 @@ mod scale_and_mirror_translation {
             codes.dedup();
             return Err(codes);
         }
-        let v = translate::verify(&mut db, &s, &[], &t, "out.nc", 100_000);
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", 100_000);
         assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
         Ok(t.text)
     }

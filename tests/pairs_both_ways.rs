@@ -10,8 +10,8 @@ use nctrans::eval::{NoCallees, RunOptions};
 use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::{FileId, SourceDb};
+use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
 use nctrans::translate::{self, TranslateOptions};
-use nctrans::translate_sinumerik::{translate as to_sinumerik, Options};
 
 const STEPS: u64 = 200_000;
 
@@ -190,7 +190,7 @@ fn pair_table_rows_are_equivalent_and_translate_both_ways() {
                     t.diags.iter().map(|d| &d.message).collect::<Vec<_>>()
                 ));
             } else {
-                let v = translate::verify(&mut db, &s, &[], &t, "out.nc", STEPS);
+                let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
                 if !v.equivalent {
                     failures
                         .push(format!("{}: S→F does not verify: {}\n{}\n{}", row.what, v.summary, v.rendered, t.text));
@@ -206,7 +206,7 @@ fn pair_table_rows_are_equivalent_and_translate_both_ways() {
                     t.diags.iter().map(|d| &d.message).collect::<Vec<_>>()
                 ));
             } else {
-                let r = nctrans::verify_sinumerik::verify_with(&db, ffile, &f, &t, "out", STEPS);
+                let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, ffile, &f, &t, "out", STEPS);
                 if !matches!(r.verdict, Verdict::Equivalent { .. }) {
                     let out: String = t.files.iter().map(|x| x.text.clone()).collect();
                     failures.push(format!(

@@ -9,7 +9,7 @@ use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate_sinumerik::{translate, Options};
+use nctrans::translate::to_sinumerik::{translate, Options};
 use std::fmt::Write;
 
 #[path = "support/rng.rs"]
@@ -239,7 +239,7 @@ fn check_one(seed: u64) -> Result<(), String> {
     if tr.has_errors() {
         return Err(format!("not translated:\n{}", nctrans::diag::render(&db, &tr.diags)));
     }
-    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &parsed.unit, &tr, "out", 200_000);
+    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&db, file, &parsed.unit, &tr, "out", 200_000);
     match rep.verdict {
         Verdict::Equivalent { .. } => Ok(()),
         v => {

@@ -8,8 +8,8 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{DirCallees, RunOptions};
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
+use nctrans::translate::to_sinumerik::{translate, Options};
 use nctrans::translate::{to_fanuc, TranslateOptions};
-use nctrans::translate_sinumerik::{translate, Options};
 use std::path::PathBuf;
 
 const STEPS: u64 = 1_000_000;

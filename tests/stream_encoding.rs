@@ -439,7 +439,7 @@ fn translations_stream_from_the_copy() {
                     }
                     assert_eq!(straight, name == "t.mpf", "{case}");
                 } else {
-                    let o = nctrans::translate_sinumerik::Options { main_name: "T".into(), ..Default::default() };
+                    let o = nctrans::translate::to_sinumerik::Options { main_name: "T".into(), ..Default::default() };
                     let le = copy.detected.line_ending;
                     let straight = sts::to_sinumerik(c, &o, le, &mut out, None).is_ok();
                     if !straight {

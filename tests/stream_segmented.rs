@@ -101,7 +101,7 @@ fn compare_tools(name: &str, text: &str, comments: CommentMode, noted: bool, too
     let out_path = dir.join(format!("{name}.nc"));
     std::fs::write(&out_path, &out).expect("write");
     let v = nctrans::stream::translate::verify(seg.index, &out_path, MAX_STEPS, seg.inputs, None);
-    let w = translate::verify(&mut db, &parsed.unit, &[], &t, "out.nc", MAX_STEPS);
+    let w = translate::to_fanuc::verify(&mut db, &parsed.unit, &[], &t.clone().into(), "out.nc", MAX_STEPS);
     assert_eq!(v.equivalent, w.equivalent, "{name}: verdicts {} / {}", v.summary, w.summary);
     assert_eq!(v.summary, w.summary, "{name}");
     Outcome::Same(v.equivalent)

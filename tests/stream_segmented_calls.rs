@@ -85,7 +85,7 @@ fn files(name: &str, main: &str, subs: &[(&str, &str)]) -> PathBuf {
     p
 }
 
-/// Whole translation and verdict of `path` (as `translate_cli` does it).
+/// Whole translation and verdict of `path` (as `cli::translate` does it).
 fn whole(path: &Path) -> (String, bool, String) {
     let mut db = SourceDb::new();
     let bytes = std::fs::read(path).expect("read");
@@ -95,7 +95,7 @@ fn whole(path: &Path) -> (String, bool, String) {
     let refs: Vec<&Unit> = subs.iter().collect();
     let t = translate::to_fanuc(&parsed.unit, &refs, &opts(path));
     assert!(t.ok(), "{:?}", t.diags);
-    let v = translate::verify(&mut db, &parsed.unit, &refs, &t, "whole.nc", MAX_STEPS);
+    let v = translate::to_fanuc::verify(&mut db, &parsed.unit, &refs, &t.clone().into(), "whole.nc", MAX_STEPS);
     (t.text, v.equivalent, v.summary)
 }
 

@@ -19,7 +19,7 @@ use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::stream::to_sinumerik::{self as sts, segmented, StreamSide};
 use nctrans::stream::translate::Fallback;
-use nctrans::translate_sinumerik::{self as ts, Options};
+use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -109,11 +109,20 @@ fn compare(path: &Path) -> Outcome {
     }
     assert_eq!(seg.diags, tr.diags, "{name}");
     assert_eq!(seg.file_name, main.name, "{name}");
-    assert_eq!(seg.symbols, tr.symbols, "{name}");
+    assert_eq!(&seg.symbols, tr.symbols.sinumerik(), "{name}");
     let out_path = path.with_extension("seg.mpf");
     std::fs::write(&out_path, &out).expect("write");
-    let profiles = nctrans::verify_sinumerik::Profiles { fanuc: o.source.clone(), sinumerik: o.target.clone() };
-    let w = nctrans::verify_sinumerik::verify_profiled(&db, loaded.file, &parsed.unit, &tr, "", MAX_STEPS, &profiles);
+    let profiles =
+        nctrans::translate::to_sinumerik::verify::Profiles { fanuc: o.source.clone(), sinumerik: o.target.clone() };
+    let w = nctrans::translate::to_sinumerik::verify::verify_profiled(
+        &db,
+        loaded.file,
+        &parsed.unit,
+        &tr,
+        "",
+        MAX_STEPS,
+        &profiles,
+    );
     let v = streamed_check(path, &out_path, &o);
     assert_eq!(v, w.verdict, "{name}: streamed / whole verdicts");
     Outcome::Same(v)

@@ -21,7 +21,7 @@ use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::stream::to_sinumerik::{self as sts, segmented, StreamSide};
 use nctrans::stream::translate::Fallback;
-use nctrans::translate_sinumerik::{Options, OutFile};
+use nctrans::translate::to_sinumerik::{Options, OutFile};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -378,7 +378,7 @@ fn streamed_verdict(main: &Path, o: &Options, edit: &dyn Fn(&str) -> String) -> 
         expand_cycles: None,
     };
     let files = subs.iter().map(|f| (f.program.clone(), f.name.clone(), edit(&f.text))).collect();
-    let emitted = nctrans::verify_sinumerik::Emitted { files, semantics: o.target.clone() };
+    let emitted = nctrans::translate::to_sinumerik::verify::Emitted { files, semantics: o.target.clone() };
     let a = StreamSide {
         run: run(in_a, &o.source),
         index: src,
@@ -454,7 +454,7 @@ fn corpus_programs_with_calls_and_cam_runs_stream_as_the_whole_translation() {
     assert!(streamed.len() >= 20, "streamed: {streamed:?}");
 }
 
-/// The main program name the command line gives a file stem (`cli_sinumerik::main_name`).
+/// The main program name the command line gives a file stem (`cli::translate::job::main_name`).
 fn nctrans_main_name(file: &str) -> String {
     let stem = file.rsplit_once('.').map_or(file, |(s, _)| s);
     let s: String =
@@ -532,7 +532,7 @@ fn cli_streams_a_large_legacy_encoded_main_program_with_calls() {
     let callee = nctrans::load(&mut db, "O9030.nc", &std::fs::read(dir.join("O9030.nc")).expect("read"), None);
     let callee = nctrans::parse(&db, callee.file, Dialect::Fanuc, &popts).unit;
     let o = Options { main_name: "BIG".into(), ..Options::default() };
-    let tr = nctrans::translate_sinumerik::translate(&[&unit, &callee], &o, loaded.line_ending);
+    let tr = nctrans::translate::to_sinumerik::translate(&[&unit, &callee], &o, loaded.line_ending);
     drop(unit);
     let enc = |t: &str| nctrans::read::encode(t, loaded.encoding, loaded.bom);
     let run = cli(&dir, &["--to", "sinumerik", "big.nc", "-o", "out/"]);

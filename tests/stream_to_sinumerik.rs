@@ -18,7 +18,7 @@ use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::stream::to_sinumerik::{self as sts, StreamSide};
 use nctrans::stream::translate::Fallback;
-use nctrans::translate_sinumerik::{self as ts, Options};
+use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -187,7 +187,7 @@ fn generated_programs_stream_to_the_whole_translation_over_many_chunks() {
         assert_eq!(s, w);
         let main = tr.main().expect("main");
         assert_eq!((st.file_name.as_str(), st.program.as_str()), (main.name.as_str(), main.program.as_str()));
-        assert_eq!(st.symbols, tr.symbols);
+        assert_eq!(&st.symbols, tr.symbols.sinumerik());
         // The diagnostics are the whole translation's (none: tool compensation, whose
         // dropped G43/G49 were once warned here, is refused since issue 17 item 6).
         assert_eq!(st.diags, tr.diags);
@@ -322,7 +322,7 @@ fn the_streamed_check_agrees_with_the_whole_check_and_catches_a_wrong_translatio
     let mut db = SourceDb::new();
     let loaded = nctrans::load(&mut db, &path.display().to_string(), &std::fs::read(&path).expect("read"), None);
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let whole_report = nctrans::verify_sinumerik::verify(&db, loaded.file, &parsed.unit, &tr, "");
+    let whole_report = nctrans::translate::to_sinumerik::verify::verify(&db, loaded.file, &parsed.unit, &tr, "");
     let Verdict::Equivalent { events } = whole_report.verdict else { panic!("whole: {:?}", whole_report.verdict) };
     assert!(events > sts::CHUNK_STMTS as u64 * 3 / 2, "the whole program runs: {events} events");
     let report = streamed_check(&path, &out, &o);

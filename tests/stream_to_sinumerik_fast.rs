@@ -14,7 +14,7 @@ use nctrans::dialect::{Dialect, ParseOptions, Semantics};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::stream::to_sinumerik as sts;
-use nctrans::translate_sinumerik::{self as ts, Options};
+use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 

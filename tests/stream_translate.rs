@@ -169,7 +169,7 @@ fn an_output_line_broken_after_its_index_fails_the_check_with_its_diagnostic() {
                 (s.index, Dialect::Fanuc)
             }
             Dialect::Fanuc => {
-                let o = nctrans::translate_sinumerik::Options::default();
+                let o = nctrans::translate::to_sinumerik::Options::default();
                 let mut w = Vec::new();
                 let s = sts::to_sinumerik(&path, &o, nctrans::read::LineEnding::Lf, &mut w, None)
                     .map_err(|e| format!("{e:?}"))

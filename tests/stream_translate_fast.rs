@@ -40,7 +40,11 @@ fn admitted(letter: char, value: &str) -> bool {
 }
 
 /// (whole translation, streamed result) of `text` written to `name`.
-fn both(name: &str, text: &str, comments: CommentMode) -> (nctrans::translate::Translation, Result<Vec<u8>, Fallback>) {
+fn both(
+    name: &str,
+    text: &str,
+    comments: CommentMode,
+) -> (nctrans::translate::to_fanuc::Output, Result<Vec<u8>, Fallback>) {
     let path = dir().join(name);
     std::fs::write(&path, text).expect("write");
     let bytes = std::fs::read(&path).expect("read");

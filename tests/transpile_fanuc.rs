@@ -8,7 +8,7 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::lower::to_fanuc::UnsupportedPolicy;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, TranslateOptions, Translation};
+use nctrans::translate::{self, to_fanuc::Output, TranslateOptions};
 use std::path::{Path, PathBuf};
 
 #[path = "support/rng.rs"]
@@ -27,7 +27,7 @@ fn root() -> PathBuf {
 struct Done {
     db: SourceDb,
     unit: Unit,
-    t: Translation,
+    t: Output,
 }
 
 fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
@@ -44,7 +44,7 @@ fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
 }
 
 fn verify(d: &mut Done) -> translate::Verification {
-    translate::verify(&mut d.db, &d.unit, &[], &d.t, "out.nc", STEPS)
+    translate::to_fanuc::verify(&mut d.db, &d.unit, &[], &d.t.clone().into(), "out.nc", STEPS)
 }
 
 /// The program lines of a translation: no `%`, `O` line or NCTRANS header.
@@ -388,7 +388,14 @@ fn corpus_translates_and_verifies() {
             }
             (true, None) => {}
         }
-        let v = translate::verify(&mut db, &parsed.unit, &[], &t, &format!("corpus/out/fanuc/{name}.nc"), STEPS);
+        let v = translate::to_fanuc::verify(
+            &mut db,
+            &parsed.unit,
+            &[],
+            &t.clone().into(),
+            &format!("corpus/out/fanuc/{name}.nc"),
+            STEPS,
+        );
         if !v.equivalent {
             failures.push(format!("{name}: {}\n{}", v.summary, v.rendered));
         }

@@ -6,7 +6,7 @@
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate_sinumerik::{translate, Options, Translation, UnsupportedPolicy, VarMapRule};
+use nctrans::translate::to_sinumerik::{translate, Options, Translation, UnsupportedPolicy, VarMapRule};
 
 fn run(src: &str, opts: &Options) -> Translation {
     let mut db = SourceDb::new();
@@ -618,10 +618,10 @@ fn job(rel: &str) -> Job {
 /// The verdict of the main program's run and, as `nctrans --to sinumerik` proves them, of
 /// each macro's runs alone (its callers' arguments, then each of them vacant).
 fn verdict(j: &Job, tr: &Translation) -> (nctrans::check::Verdict, String) {
-    use nctrans::verify_called::{called_runs, combine, Combined, RunSettings};
+    use nctrans::translate::called::{called_runs, combine, Combined, RunSettings};
     // A million blocks is far more than any corpus program needs; the endless one stops sooner.
-    let rep = nctrans::verify_sinumerik::verify_with(&j.db, j.file, &j.unit, tr, "out", 1_000_000);
-    let profiles = nctrans::verify_sinumerik::Profiles::default();
+    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&j.db, j.file, &j.unit, tr, "out", 1_000_000);
+    let profiles = nctrans::translate::to_sinumerik::verify::Profiles::default();
     let settings = RunSettings { out_dir: "out", max_steps: 1_000_000, profiles: &profiles, set: &[] };
     let mut runs = vec![(String::new(), rep)];
     runs.extend(called_runs(&j.db, &[&j.unit], tr, &settings, true));
@@ -760,7 +760,7 @@ fn the_guard_of_a_runtime_indirect_variable_verifies_against_fanuc_alarm_115() {
     let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
     let tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
     assert!(tr.main().unwrap().text.contains("SETAL(64115)"), "{}", tr.main().unwrap().text);
-    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    let report = nctrans::translate::to_sinumerik::verify::verify(&db, file, &parsed.unit, &tr, "");
     assert!(
         matches!(report.verdict, nctrans::check::Verdict::Equivalent { .. }),
         "{:?}\n{}",
@@ -776,7 +776,7 @@ fn verifies(src: &str, opts: &Options) -> (String, nctrans::check::Verdict, Stri
     let parsed = nctrans::parse(&db, file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
     let tr = translate(&[&parsed.unit], opts, LineEnding::Lf);
     assert!(!tr.has_errors(), "{:?}", tr.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
-    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    let report = nctrans::translate::to_sinumerik::verify::verify(&db, file, &parsed.unit, &tr, "");
     (tr.main().unwrap().text.clone(), report.verdict, report.diff)
 }
 
@@ -807,7 +807,7 @@ fn computed_variables_reach_the_r_parameter_of_the_direct_access() {
     let mut tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
     let main = tr.files.iter_mut().find(|f| f.main).unwrap();
     main.text = main.text.replacen("NCTRANS_IX1=NCTRANS_IX1-500", "NCTRANS_IX1=NCTRANS_IX1-499", 1);
-    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    let report = nctrans::translate::to_sinumerik::verify::verify(&db, file, &parsed.unit, &tr, "");
     assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
 }
 
@@ -852,6 +852,6 @@ fn comparisons_are_plain_where_exact_and_keep_the_difference_elsewhere() {
     let mut tr = translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
     let main = tr.files.iter_mut().find(|f| f.main).unwrap();
     main.text = main.text.replace("IF R2-0.9<0 GOTOB", "IF R2<0.9 GOTOB");
-    let report = nctrans::verify_sinumerik::verify(&db, file, &parsed.unit, &tr, "");
+    let report = nctrans::translate::to_sinumerik::verify::verify(&db, file, &parsed.unit, &tr, "");
     assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
 }

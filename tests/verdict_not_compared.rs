@@ -50,7 +50,7 @@ fn the_count_comes_from_the_check() {
     let src = nctrans::parse(&db, file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik)).unit;
     let t = translate::to_fanuc(&src, &[], &TranslateOptions::default());
     assert!(t.ok(), "{:?}", t.diags);
-    let out = translate::reparse(&mut db, &t, "out.nc").unit;
+    let out = translate::reparse(&mut db, &t.clone().into(), "out.nc").unit;
     let sides = || {
         let a = Side { unit: src.clone(), callees: Box::new(NoCallees), run: RunOptions::default() };
         let b = Side { unit: out.clone(), callees: Box::new(NoCallees), run: RunOptions::default() };

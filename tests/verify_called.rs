@@ -8,8 +8,8 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate_sinumerik::{Options, OutFile, Translation};
-use nctrans::verify_called::{called_runs, combine, Combined, RunSettings};
+use nctrans::translate::to_sinumerik::{Options, OutFile, Translation};
+use nctrans::translate::called::{called_runs, combine, Combined, RunSettings};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -25,7 +25,7 @@ fn tamper(files: &mut [OutFile]) {
 }
 
 fn verdict(db: &SourceDb, units: &[&Unit], tr: &Translation) -> Combined {
-    let profiles = nctrans::verify_sinumerik::Profiles::default();
+    let profiles = nctrans::translate::to_sinumerik::verify::Profiles::default();
     let settings = RunSettings { out_dir: "", max_steps: 100_000, profiles: &profiles, set: &[] };
     combine(called_runs(db, units, tr, &settings, true))
 }
@@ -36,7 +36,7 @@ fn a_wrong_default_is_caught_in_the_whole_translation() {
     let mut db = SourceDb::new();
     let loaded = nctrans::load(&mut db, "m.nc", &bytes, None);
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let tr = nctrans::translate_sinumerik::translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    let tr = nctrans::translate::to_sinumerik::translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
     assert!(!tr.has_errors());
     match verdict(&db, &[&parsed.unit], &tr) {
         // Two call sites, then H, D, K vacant in turn for each.
@@ -46,7 +46,7 @@ fn a_wrong_default_is_caught_in_the_whole_translation() {
     let mut bad = tr.clone();
     tamper(&mut bad.files);
     // The main program's run alone does not see it: every call gives H.
-    let main = nctrans::verify_sinumerik::verify(&db, loaded.file, &parsed.unit, &bad, "");
+    let main = nctrans::translate::to_sinumerik::verify::verify(&db, loaded.file, &parsed.unit, &bad, "");
     assert!(matches!(main.verdict, nctrans::check::Verdict::Equivalent { .. }), "{:?}", main.verdict);
     match verdict(&db, &[&parsed.unit], &bad) {
         Combined::Not(label, r) => {
@@ -76,7 +76,12 @@ fn a_wrong_default_is_caught_in_the_streamed_translation() {
     db.add(path.display().to_string(), String::new());
     let units: Vec<&Unit> = skeleton.iter().collect();
     let tr =
-        |files: &[OutFile]| Translation { files: files.to_vec(), symbols: done.symbols.clone(), ..Default::default() };
+        |files: &[OutFile]| Translation {
+        files: files.to_vec(),
+        symbols: nctrans::translate::Symbols::Sinumerik(done.symbols.clone()),
+        diags: Vec::new(),
+        unsupported: 0,
+    };
     assert!(matches!(verdict(&db, &units, &tr(&subs)), Combined::Equivalent { runs: 8, .. }));
     tamper(&mut subs);
     assert!(matches!(verdict(&db, &units, &tr(&subs)), Combined::Not(..)), "the wrong default was not caught");

@@ -219,19 +219,22 @@ impl FileJob for ToFanucJob {
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
         let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
-        let mut t = translate::to_fanuc(&main.unit, &sub_units, &opts);
+        let inputs: Vec<&Unit> = std::iter::once(&main.unit).chain(sub_units.iter().copied()).collect();
+        let main_name = opts.main_name.clone();
+        let opts = translate::Options::to_fanuc(opts);
+        let mut t = translate::translate(&inputs, Dialect::Fanuc, &opts);
         let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);
         diagnostics.extend(DiagRecord::from_diags(&db, &t.diags));
-        let used = used_names(&t.symbol_map);
+        let used = used_names(t.symbols.fanuc());
         if !t.ok() {
             let n = t.diags.iter().filter(|d| d.is_error() || d.code.starts_with("NC3")).count().max(t.unsupported);
             return unsupported(n, "FANUC", blocks, diagnostics);
         }
-        if let Some(fault) = &self.fault {
-            fault(file, &mut t.text);
+        if let (Some(fault), Some(f)) = (&self.fault, t.files.first_mut()) {
+            fault(file, &mut f.text);
         }
         let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
-        let bytes = crate::read::encode(&t.text, encoding, main.loaded.bom);
+        let bytes = crate::read::encode(t.text(), encoding, main.loaded.bom);
         let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
         outcome.blocks = blocks;
         outcome.used = used;
@@ -239,7 +242,7 @@ impl FileJob for ToFanucJob {
         if ctx.options.verify {
             let key = main.unit.programs.first().map(|p| match &p.name {
                 Some(ProgName::Name(n)) => ProgKey::Name(n.to_ascii_uppercase()),
-                _ => ProgKey::Name(opts.main_name.clone()),
+                _ => ProgKey::Name(main_name.clone()),
             });
             let vectors = key.map(|k| ctx.library.arg_vectors(&k)).unwrap_or_default();
             let out_name = super::rel_string(&discover::fanuc_output(&file.rel));
@@ -268,16 +271,6 @@ pub(crate) fn used_names(map: &translate::SymbolMap) -> super::maps::Used {
         used.variables.insert(key, format!("#{}", m.number));
     }
     used
-}
-
-/// The FANUC inputs that give the R parameters a translation maps their Siemens power-on
-/// value 0 (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-pub(crate) fn r_homes(map: &translate::SymbolMap) -> Vec<String> {
-    map.vars
-        .iter()
-        .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-        .map(|m| format!("#{}=0", m.number))
-        .collect()
 }
 
 /// What verification found.
@@ -320,7 +313,7 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         Some(w) => w,
         None => Verified {
             status: Status::Verified,
-            summary: crate::verify_called::Combined::summary(events, runs.len(), &excluded),
+            summary: crate::translate::called::Combined::summary(events, runs.len(), &excluded),
             events: Some(events),
             excluded,
             diagnostics: vec![],
@@ -352,7 +345,8 @@ impl ToFanucJob {
         }
         // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-        let mut fanuc_inputs: Vec<String> = r_homes(&t.symbol_map);
+        let map = t.symbols.fanuc();
+        let mut fanuc_inputs: Vec<String> = translate::to_fanuc::r_param_homes(map);
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::lower::to_fanuc::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();
@@ -382,7 +376,7 @@ impl ToFanucJob {
                     a_in.push(s.clone());
                 }
             }
-            b_in.extend(translate::var_param_inputs(&params, &t.symbol_map));
+            b_in.extend(translate::var_param_inputs(&params, map));
             a_in.extend(self.settings.set.iter().cloned());
             b_in.extend(self.settings.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
             let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
@@ -393,8 +387,8 @@ impl ToFanucJob {
                 probe_contact: None,
                 expand_cycles: None,
             };
-            let source = translate::align_source(main, &t.symbol_map);
-            let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());
+            let source = translate::align_source(main, map);
+            let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, map)).collect());
             let a =
                 Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &self.settings.sinumerik) };
             let b = Side {

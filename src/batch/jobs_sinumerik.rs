@@ -20,9 +20,9 @@ use crate::eval::calls::CalleeSource;
 use crate::eval::{self, Input};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
-use crate::translate_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
-use crate::verify_called::{self, RunSettings};
-use crate::verify_sinumerik::Profiles;
+use crate::translate::to_sinumerik::verify::Profiles;
+use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
+use crate::translate::called::{self as verify_called, RunSettings};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The name the stand-in caller program is shown under in diagnostics.
@@ -290,9 +290,9 @@ pub(crate) fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) 
         let entry = match n {
             1..=33 => {
                 let key = format!("#{n}");
-                tr.symbols.vars.iter().find(|v| v.program.as_deref() == Some(program) && v.fanuc == key)
+                tr.symbols.sinumerik().vars.iter().find(|v| v.program.as_deref() == Some(program) && v.fanuc == key)
             }
-            _ => tr.symbols.common(n),
+            _ => tr.symbols.sinumerik().common(n),
         };
         let Some(e) = entry else { continue };
         let vacant = rhs.trim() == "#0";
@@ -338,7 +338,8 @@ impl FileJob for ToSinumerikJob {
             units.push(u);
         }
         let eol = self.settings.line_ending(main.loaded.line_ending);
-        let mut tr = ts::translate(&units, &opts, eol);
+        let opts = crate::translate::Options::to_sinumerik(opts, eol);
+        let mut tr = crate::translate::translate(&units, Dialect::Sinumerik, &opts);
         let stand_in = callers.as_ref().map(|(id, _)| *id);
         // The stand-in's own program is not an output; its warnings are about nothing real.
         tr.files.retain(|f| Some(f.source) != stand_in);
@@ -354,7 +355,7 @@ impl FileJob for ToSinumerikJob {
         let own = main.loaded.file;
         let own_programs: Vec<(Option<u32>, &str)> =
             tr.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
-        let used = used_names(&own_programs, &tr.symbols);
+        let used = used_names(&own_programs, tr.symbols.sinumerik());
         let marked: usize =
             tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
         if tr.has_errors() || marked > 0 {
@@ -506,8 +507,8 @@ mod tests {
             let f = db.add("t.nc", text);
             let parsed = crate::parse(&db, f, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
             let opts = Options { flag_places: places.clone(), ..Options::default() };
-            let t = crate::translate_sinumerik::translate(&[&parsed.unit], &opts, LineEnding::Lf);
-            t.symbols.common(n).and_then(|e| e.flag.clone())
+            let t = crate::translate::to_sinumerik::translate(&[&parsed.unit], &opts, LineEnding::Lf);
+            t.symbols.sinumerik().common(n).and_then(|e| e.flag.clone())
         };
         let none = BTreeMap::new();
         assert_ne!(flag_of(a, &none, 501), flag_of(b, &none, 501), "per file the places differ");

@@ -332,7 +332,7 @@ pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan
         scan.info.programs.push(key.clone());
         scan.info.fingerprints.push(fingerprint(&program_text(&src.text, p)));
         if dialect == Dialect::Fanuc {
-            scan.info.commons.extend(crate::translate_sinumerik::commons_of(p));
+            scan.info.commons.extend(crate::translate::to_sinumerik::commons_of(p));
         }
         scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
         walk_items(&p.body, &mut |item| match &item.kind {

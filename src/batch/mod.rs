@@ -7,6 +7,10 @@
 //! ([`maps`]), runs the job over the files in parallel ([`run`]), writes every output
 //! atomically ([`write`]) and summarises ([`report`]). Everything a file's output depends on
 //! is decided before the parallel part, so the output does not depend on thread timing.
+//!
+//! Owns: the engine above and the jobs (`jobs`: what both directions share and Sinumerik →
+//! FANUC; `jobs_sinumerik`; `streamed*`: a large file streamed). May use: `translate` (the
+//! one entry), `stream`, `check`, `eval`, `dialect`, `config`; never the command line.
 
 pub mod discover;
 pub mod jobs;
@@ -35,7 +39,7 @@ pub use run::{run_batch, BatchError};
 pub const MAP_FILE: &str = "nctrans-map.toml";
 
 /// Input files this large are read and translated as a stream when they are straight-line
-/// programs (the single-file commands use the same size, `stream_cli::AUTO_BYTES`).
+/// programs (the single-file commands use the same size, `cli::stream::AUTO_BYTES`).
 pub const STREAM_BYTES: u64 = 8 * 1024 * 1024;
 
 /// What happened to one file. (`report::rank` orders them by how bad they are.)
@@ -250,7 +254,7 @@ pub struct BatchOptions {
     /// verified as a stream, in constant memory ([`STREAM_BYTES`]; 0 with `--stream`).
     pub stream_bytes: u64,
     /// FANUC → Sinumerik `--specialise-callers`: each macro written for the library's calls
-    /// only (see `translate_sinumerik::Options::specialise_callers`).
+    /// only (see `translate::to_sinumerik::Options::specialise_callers`).
     pub specialise_callers: bool,
 }
 

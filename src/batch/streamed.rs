@@ -448,7 +448,8 @@ fn to_sinumerik_from(
     let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &shown, read_back)];
     let mut fanuc = s.set.clone();
-    let tr = crate::translate_sinumerik::Translation { symbols: done.symbols.clone(), ..Default::default() };
+    let symbols = crate::translate::Symbols::Sinumerik(done.symbols.clone());
+    let tr = crate::translate::Translation { files: vec![], symbols, diags: vec![], unsupported: 0 };
     let siemens = siemens_inputs(&tr, &done.program, &fanuc);
     fanuc.retain(|x| x.trim_start().starts_with('#'));
     let report = match sts::read_back(
@@ -468,7 +469,8 @@ fn to_sinumerik_from(
                 {
                     let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
                     let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
-                    let emitted = crate::verify_sinumerik::Emitted { files, semantics: s.sinumerik.clone() };
+                    let emitted =
+                        crate::translate::to_sinumerik::verify::Emitted { files, semantics: s.sinumerik.clone() };
                     (Box::new(MemCallees(std::mem::take(&mut units))), Box::new(emitted))
                 } else {
                     (Box::new(NoCallees), Box::new(NoCallees))
@@ -608,7 +610,7 @@ fn to_fanuc_from(
             return Some(outcome);
         }
     };
-    let mut b_in = jobs::r_homes(&map);
+    let mut b_in = crate::translate::to_fanuc::r_param_homes(&map);
     b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
     // The callees as the whole job's verifier serves them (aligned as it aligns them); the
     // FANUC side finds the output's own O programs in the read-back index, as the whole

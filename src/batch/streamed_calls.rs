@@ -24,7 +24,7 @@ use crate::dialect::Dialect;
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
 use crate::stream::translate::Fallback;
-use crate::translate_sinumerik::OutFile;
+use crate::translate::to_sinumerik::OutFile;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

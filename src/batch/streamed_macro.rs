@@ -15,8 +15,8 @@ use crate::stream::segmented::LoadCallees;
 use crate::stream::to_sinumerik as sts;
 use crate::stream::translate::Fallback;
 use crate::stream::{self, Index, ProgressFn};
+use crate::translate::to_sinumerik::OutFile;
 use crate::translate::{SymbolMap, TranslateOptions};
-use crate::translate_sinumerik::OutFile;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::Path;
@@ -74,7 +74,7 @@ impl LibItems {
         }
         // A straight FANUC block has constant words only: no variable.
         if dialect == Dialect::Fanuc && sts::straight(s).is_err() {
-            self.commons.extend(crate::translate_sinumerik::commons_of(&program_of(s)));
+            self.commons.extend(crate::translate::to_sinumerik::commons_of(&program_of(s)));
         }
     }
 }

@@ -146,7 +146,7 @@ pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallbac
 
 /// [`to_fanuc_with_notes`] of a program that may call other programs by a constant name
 /// (`L100`, `NAME`, `NAME(…)`; not MCALL): the skeleton keeps the calls, `load` gives the
-/// callees (each loaded as `translate_cli` loads them: file ids from 1 up, the main being
+/// callees (each loaded as `cli::translate` loads them: file ids from 1 up, the main being
 /// file 0), and the skeleton is translated with them as `translate::to_fanuc(main, subs, …)`
 /// translates the whole program: the main program with its runs, then each subprogram.
 /// Notes are declined unless all of them are on the main file.
@@ -296,7 +296,7 @@ pub fn calls_plain(unit: &Unit) -> bool {
 
 /// Where the main program's text ends in a translation of several programs: at the line
 /// break before the second program's `O` line (searched after `from`, past every run).
-fn main_text_end(t: &translate::Translation, eol: &str, from: usize) -> usize {
+fn main_text_end(t: &translate::to_fanuc::Output, eol: &str, from: usize) -> usize {
     let Some(crate::ir::ProgName::Number(n)) = t.unit.programs.get(1).and_then(|p| p.name.as_ref()) else {
         return t.text.len();
     };

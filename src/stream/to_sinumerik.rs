@@ -34,7 +34,7 @@ use crate::ir::{
 use crate::lower::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::{FileId, SourceDb, SourceFile, Span};
-use crate::translate_sinumerik::{self as ts, SymbolMap};
+use crate::translate::to_sinumerik::{self as ts, SymbolMap};
 use std::collections::BTreeMap;
 use std::io::{Read, Write};
 use std::path::Path;
@@ -467,7 +467,7 @@ impl State<'_> {
         self.file_name = f.name.clone();
         self.program = f.program.clone();
         self.fanuc_number = f.fanuc_number;
-        self.symbols = tr.symbols;
+        self.symbols = tr.symbols.sinumerik().clone();
         let text = f.text.clone();
         self.write(&text);
     }

@@ -19,7 +19,7 @@ use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate_sinumerik::{translate, Options, UnsupportedPolicy};
+use nctrans::translate::to_sinumerik::{translate, Options, UnsupportedPolicy};
 
 /// Runs `main` (FANUC text) and its translation; the verdict, or why there is none.
 fn verify_text(name: &str, main: &str, policy: UnsupportedPolicy) -> Result<Verdict, String> {
@@ -37,7 +37,7 @@ fn verify_text(name: &str, main: &str, policy: UnsupportedPolicy) -> Result<Verd
         codes.dedup();
         return Err(format!("translate {}", codes.join(",")));
     }
-    let rep = nctrans::verify_sinumerik::verify_with(&db, file, &parsed.unit, &tr, "out", 1_000_000);
+    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&db, file, &parsed.unit, &tr, "out", 1_000_000);
     if policy == UnsupportedPolicy::Warn {
         // The unfinished program alarms on its first line: never equivalent as written.
         assert!(!matches!(rep.verdict, Verdict::Equivalent { .. }), "{name}: an unfinished output verified");
@@ -46,7 +46,7 @@ fn verify_text(name: &str, main: &str, policy: UnsupportedPolicy) -> Result<Verd
         for f in &mut tr.files {
             f.text = f.text.replace("SETAL(65999) ; UNFINISHED TRANSLATION\n", "");
         }
-        let rep = nctrans::verify_sinumerik::verify_with(&db, file, &parsed.unit, &tr, "out", 1_000_000);
+        let rep = nctrans::translate::to_sinumerik::verify::verify_with(&db, file, &parsed.unit, &tr, "out", 1_000_000);
         return Ok(rep.verdict);
     }
     Ok(rep.verdict)

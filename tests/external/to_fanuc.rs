@@ -33,7 +33,7 @@ fn cead_examples_translate_and_verify() {
             refused += 1;
             continue;
         }
-        let v = translate::verify(&mut db, &parsed.unit, &[], &t, "cead.nc", 200_000);
+        let v = translate::to_fanuc::verify(&mut db, &parsed.unit, &[], &t.clone().into(), "cead.nc", 200_000);
         if v.equivalent || v.summary.starts_with("not verified: a run") {
             ok += usize::from(v.equivalent);
             refused += usize::from(!v.equivalent);

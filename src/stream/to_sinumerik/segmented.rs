@@ -74,7 +74,7 @@ use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target
 use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
-use crate::translate_sinumerik::{self as ts, OutFile};
+use crate::translate::to_sinumerik::{self as ts, OutFile};
 use one::One;
 use std::io::Write;
 use std::path::Path;
@@ -541,7 +541,7 @@ fn segment(
             file_name: f.name.clone(),
             program: f.program.clone(),
             fanuc_number: f.fanuc_number,
-            symbols: tr.symbols.clone(),
+            symbols: tr.symbols.sinumerik().clone(),
         }
     };
     if let Some((spill, starts, deferred, index)) = spilled {

@@ -31,7 +31,7 @@ use crate::read::LineEnding;
 use crate::span::FileId;
 use crate::stream::translate::Fallback;
 use crate::stream::ProgressFn;
-use crate::translate_sinumerik::OutFile;
+use crate::translate::to_sinumerik::OutFile;
 use std::io::Write;
 use std::path::Path;
 

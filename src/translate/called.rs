@@ -11,8 +11,8 @@ use crate::check::{CheckReport, Excluded, Verdict};
 use crate::eval::calls::CalleeSource;
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
-use crate::translate_sinumerik::{OutFile, Translation};
-use crate::verify_sinumerik::{self as vs, Profiles, RunSpec};
+use crate::translate::to_sinumerik::{OutFile, Translation};
+use crate::translate::to_sinumerik::verify::{self as vs, Profiles, RunSpec};
 use std::collections::BTreeSet;
 
 /// The runs that prove a program alone: without inputs, and once per constant argument
@@ -176,14 +176,19 @@ pub fn called_runs(
 pub fn single_file_runs(
     db: &SourceDb,
     units: &[&Unit],
-    (files, symbols): (&[OutFile], &crate::translate_sinumerik::SymbolMap),
-    opts: &crate::translate_sinumerik::Options,
+    (files, symbols): (&[OutFile], &crate::translate::to_sinumerik::SymbolMap),
+    opts: &crate::translate::to_sinumerik::Options,
     out_dir: &str,
     max_steps: u64,
 ) -> Vec<(String, CheckReport)> {
     let profiles = Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
     let settings = RunSettings { out_dir, max_steps, profiles: &profiles, set: &[] };
-    let tr = Translation { files: files.to_vec(), symbols: symbols.clone(), ..Default::default() };
+    let tr = Translation {
+        files: files.to_vec(),
+        symbols: crate::translate::Symbols::Sinumerik(symbols.clone()),
+        diags: Vec::new(),
+        unsupported: 0,
+    };
     called_runs(db, units, &tr, &settings, !opts.specialise_callers)
 }
 

@@ -11,10 +11,10 @@ use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
 use crate::eval::{input, Ending, Input, Outcome, RunOptions};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
-use crate::translate_sinumerik::{OutFile, Translation};
+use crate::translate::{OutFile, Translation};
 
 /// Serves the translation's `.SPF` files to the Siemens run, from memory (also the streamed
-/// verification's, `cli_sinumerik`).
+/// verification's, `cli::translate`).
 pub struct Emitted {
     /// Siemens program name, the path shown, the text.
     pub files: Vec<(String, String, String)>,

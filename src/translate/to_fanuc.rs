@@ -1,10 +1,12 @@
-//! The translation API: a parsed Siemens main program (and the subprograms it calls) →
-//! FANUC Custom Macro B text, the symbol map that relates the two, and diagnostics.
+//! The Sinumerik → FANUC work behind [`crate::translate::translate`]: a parsed Siemens main
+//! program (and the subprograms it calls) → FANUC Custom Macro B text, the symbol map that
+//! relates the two, and diagnostics; and its proof ([`verify`]).
 //!
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
-//! their place (the translation is still not [`Translation::ok`]).
+//! their place (the translation is still not [`Output::ok`]).
 
+use super::Verification;
 use crate::diag::{self, Diagnostic};
 use crate::dialect::fanuc::emit::{self, CommentMode, EmitOptions, KEEP_PREFIX};
 use crate::dialect::{Dialect, Semantics};
@@ -93,8 +95,10 @@ impl SymbolMap {
     }
 }
 
+/// What the FANUC writer gives: the text with the IR it was written from, which the
+/// streaming translators build on (the entry turns it into a [`super::Translation`]).
 #[derive(Clone, Debug)]
-pub struct Translation {
+pub struct Output {
     pub text: String,
     /// The FANUC IR that was written (spans point into the Siemens sources).
     pub unit: Unit,
@@ -108,7 +112,7 @@ pub struct Translation {
     pub units_follow_text: bool,
 }
 
-impl Translation {
+impl Output {
     /// True when the text is a complete translation (no error, nothing unsupported).
     pub fn ok(&self) -> bool {
         !diag::has_errors(&self.diags) && self.unsupported == 0
@@ -126,7 +130,7 @@ fn prog_name(p: &Program, fallback: &str) -> String {
 /// Translates a Siemens main program and the subprograms it calls (each a parsed `.SPF`).
 /// Under the warn policy refused blocks become marked comments whole and the program
 /// alarms on its first line ([`crate::unfinished`]).
-pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
     if opts.unsupported == UnsupportedPolicy::Error {
         return to_fanuc_strict(main, subs, opts);
     }
@@ -156,7 +160,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Transla
     t
 }
 
-fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Translation {
+fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
@@ -288,7 +292,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+    Output { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
 }
 
 /// The declared types of a program's scalar names (DEF and PROC parameters).
@@ -367,28 +371,15 @@ fn header(name: &str, mapped: &[Mapped], is_sub: bool, opts: &TranslateOptions) 
     v
 }
 
-/// The result of checking a translation.
-#[derive(Clone, Debug)]
-pub struct Verification {
-    /// Both programs ran to the same trace.
-    pub equivalent: bool,
-    /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
-    pub summary: String,
-    /// Rendered diagnostics (parse errors of the output, the divergence).
-    pub rendered: String,
-    /// The output parsed back as FANUC.
-    pub reparsed: Option<Unit>,
-}
-
 /// Parses the translation back as FANUC (proving it is valid FANUC syntax); the text is
 /// added to `db` under `out_name`.
-pub fn reparse(db: &mut crate::span::SourceDb, t: &Translation, out_name: &str) -> crate::dialect::Parsed {
-    let file = db.add(out_name, t.text.clone());
+pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name: &str) -> crate::dialect::Parsed {
+    let file = db.add(out_name, t.text().to_string());
     let opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
-/// Verifies a translation: parses it back as FANUC, then runs the Siemens program and the
+/// Verifies a translation to FANUC (see [`super::verify`]): parses it back as FANUC, then runs the Siemens program and the
 /// translation in the evaluator and compares their traces (`check`). The Siemens side is
 /// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number. A `MSG`
 /// that became a comment (FANUC shows no message without stopping) is left out of the
@@ -399,11 +390,11 @@ pub fn verify(
     db: &mut crate::span::SourceDb,
     main: &Unit,
     subs: &[&Unit],
-    t: &Translation,
+    t: &super::Translation,
     out_name: &str,
     max_steps: u64,
 ) -> Verification {
-    use crate::check::{self, Side, Verdict};
+    use crate::check::{self, Side};
     use crate::eval::{NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
     let mut rendered = diag::render(db, &parsed.diags);
@@ -415,10 +406,11 @@ pub fn verify(
             reparsed: None,
         };
     }
-    let source = align_source(main, &t.symbol_map);
-    let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
-    let mut inputs = r_param_inputs(&t.symbol_map);
-    inputs.extend(standalone_args(main, &t.symbol_map));
+    let map = t.symbols.fanuc();
+    let source = align_source(main, map);
+    let callees = MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
+    let mut inputs = r_param_inputs(map);
+    inputs.extend(standalone_args(main, map));
     let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
     let b = Side {
         unit: parsed.unit.clone(),
@@ -426,17 +418,11 @@ pub fn verify(
         run: RunOptions { max_steps, inputs, ..RunOptions::default() },
     };
     let report = check::check_excluding(db, a, b, EXCLUDE);
-    rendered.push_str(&diag::render(&report.db, &report.diags));
-    let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-        Verdict::Diverged { index } => {
-            rendered.push_str(&report.diff);
-            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
-        }
-        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-    };
-    Verification { equivalent, summary, rendered, reparsed: Some(parsed.unit) }
+    let mut v = Verification::of(&report);
+    rendered.push_str(&v.rendered);
+    v.rendered = rendered;
+    v.reparsed = Some(parsed.unit);
+    v
 }
 
 /// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
@@ -475,10 +461,15 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
 /// compared with the Siemens program, whose R parameters start at 0 (FANUC's would be vacant).
 pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
+    r_param_homes(map).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
+}
+
+/// [`r_param_inputs`] as `--set` texts (`#501=0`).
+pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
     map.vars
         .iter()
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
-        .filter_map(|m| crate::eval::parse_input(&format!("#{}=0", m.number)).ok())
+        .map(|m| format!("#{}=0", m.number))
         .collect()
 }
 

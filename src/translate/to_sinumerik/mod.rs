@@ -1,35 +1,25 @@
-//! Library entry of the FANUC → Sinumerik translation: FANUC units in (the main file first,
-//! then the files its callees were found in), Siemens files out (`NAME.MPF` for main
+//! The FANUC → Sinumerik work behind [`crate::translate::translate`]: FANUC units in (the main
+//! file first, then the files its callees were found in), Siemens files out (`NAME.MPF` for main
 //! programs, `NAME.SPF` per called O program), with the symbol map the checker needs and
 //! every diagnostic. Unsupported constructs are NC35x errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a `; NCTRANS UNSUPPORTED: …` line.
+//!
+//! Owns: the Siemens files of a translation (names, header, variable map lines) and their
+//! proof (`verify`). May use: `passes::to_sinumerik` (lowering), `dialect::sinumerik::emit`,
+//! `unfinished`, `empty`, and `check`/`eval` for the proof.
 
+pub use super::{OutFile, Translation};
 pub use crate::lower::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
+
+pub mod verify;
 
 use crate::diag::Diagnostic;
 use crate::dialect::sinumerik::emit::{emit_program, Frame};
 use crate::ir::*;
 use crate::lower::to_sinumerik::{self as passes, ProgPlan};
 use crate::read::LineEnding;
-use crate::span::{FileId, Span};
+use crate::span::FileId;
 use std::collections::BTreeSet;
-
-/// One written Siemens file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OutFile {
-    /// File name: `NAME.MPF` or `NAME.SPF`.
-    pub name: String,
-    /// Siemens program name (what calls use).
-    pub program: String,
-    /// FANUC program number it came from.
-    pub fanuc_number: Option<u32>,
-    pub main: bool,
-    pub text: String,
-    /// The FANUC file the program came from.
-    pub source: FileId,
-    /// Source span of every output line (`None` for generated header lines).
-    pub lines: Vec<Option<Span>>,
-}
 
 /// Where a FANUC variable went.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -58,25 +48,6 @@ impl SymbolMap {
     pub fn common(&self, n: u32) -> Option<&VarEntry> {
         let key = format!("#{n}");
         self.vars.iter().find(|v| v.program.is_none() && v.fanuc == key)
-    }
-}
-
-/// The result of a translation.
-#[derive(Clone, Debug, Default)]
-pub struct Translation {
-    pub files: Vec<OutFile>,
-    pub symbols: SymbolMap,
-    pub diags: Vec<Diagnostic>,
-}
-
-impl Translation {
-    pub fn has_errors(&self) -> bool {
-        crate::diag::has_errors(&self.diags)
-    }
-
-    /// The main program's file (the first `.MPF`).
-    pub fn main(&self) -> Option<&OutFile> {
-        self.files.iter().find(|f| f.main).or_else(|| self.files.first())
     }
 }
 
@@ -234,6 +205,7 @@ pub fn translate(units: &[&Unit], opts: &Options, line_ending: LineEnding) -> Tr
     let mut diags = warnings;
     diags.append(&mut t.diags);
     t.diags = diags;
+    t.unsupported = marked;
     t
 }
 
@@ -351,5 +323,5 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
             lines: emitted.lines,
         });
     }
-    Translation { files, symbols, diags }
+    Translation { files, symbols: super::Symbols::Sinumerik(symbols), diags, unsupported: 0 }
 }

@@ -1,16 +1,23 @@
-//! `nctrans --to fanuc IN [-o OUT] …`: the translation mode of the command line. Loads the
-//! Siemens program and the subprograms it calls (beside it), translates, writes the output,
-//! then verifies it by parsing it back as FANUC and comparing both runs' traces.
+//! `nctrans --to DIALECT IN [-o OUT] …`: the single-file translation of the command line.
+//! Loads the program and the callees found beside it, translates, writes the output, then
+//! verifies it by reading it back and comparing both programs' traces.
+//!
+//! Owns: the translation flags ([`TranslateArgs`]), the choice of the path for a target
+//! (here), what a translation reads and writes (`job`) and the streamed translation of a
+//! large file (`streamed`). May use: the library, and `cli::{dialect, out_guard, stream}`.
 
-use nctrans::batch::library::ProgKey;
-use nctrans::config::{Comments, Config, LineEnds, Unsupported};
-use nctrans::dialect::fanuc::emit::CommentMode;
+pub(crate) mod job;
+mod streamed;
+
+use super::args::{fail, parse_dialect};
+use job::Request;
+use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
-use nctrans::lower::to_fanuc::varmap;
 use nctrans::lower::to_fanuc::UnsupportedPolicy;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate;
+use nctrans::translate::to_sinumerik as ts;
 use nctrans::{diag, read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -74,30 +81,21 @@ pub struct TranslateArgs {
     pub stream: bool,
 }
 
-fn parse_dialect(s: &str) -> Result<Dialect, String> {
-    Dialect::from_name(s).ok_or_else(|| format!("unknown dialect '{s}' (expected sinumerik, siemens or fanuc)"))
-}
-
 fn parse_encoding(s: &str) -> Result<&'static encoding_rs::Encoding, String> {
     encoding_rs::Encoding::for_label(s.as_bytes()).ok_or_else(|| format!("unknown encoding '{s}'"))
-}
-
-fn fail(msg: String) -> ExitCode {
-    eprintln!("error: {msg}");
-    ExitCode::from(2)
 }
 
 /// Runs the translation mode. `None` when the arguments do not ask for it.
 /// `c` is the project configuration with the given flags already applied over it.
 pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
     let to = a.to.or(c.to)?;
-    let Some(input) = &a.input else {
-        return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF".into()));
-    };
-    if to != Dialect::Fanuc {
-        return Some(fail(format!("translation to {} is not available in this build", to.name())));
+    if to == Dialect::Sinumerik {
+        return Some(to_sinumerik(a, c));
     }
-    if let Err(code) = crate::cli_dialect::check_direction(input, a.from, to) {
+    let Some(input) = &a.input else {
+        return Some(fail("--to needs an input file: nctrans --to fanuc IN.MPF"));
+    };
+    if let Err(code) = super::dialect::check_direction(input, a.from, to) {
         return Some(code);
     }
     Some(to_fanuc(a, c, input))
@@ -106,11 +104,11 @@ pub fn run(a: &TranslateArgs, c: &Config) -> Option<ExitCode> {
 fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     // Refused before anything is read: -o onto the input, or onto an existing file without --force.
     if let Some(o) = a.output.as_deref() {
-        if let Err(code) = crate::out_guard::check(o, &[input.to_path_buf()], c.force, "-o") {
+        if let Err(code) = super::out_guard::check(o, &[input.to_path_buf()], c.force, "-o") {
             return code;
         }
     }
-    if let Some(code) = crate::stream_cli::translate(a, c, input) {
+    if let Some(code) = streamed::to_fanuc(a, c, input) {
         return code;
     }
     let bytes = match std::fs::read(input) {
@@ -130,8 +128,8 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     }
     // Subprograms it calls, found beside it (NAME.SPF, any case), transitively.
     let mut inputs = vec![input.to_path_buf()];
-    let subs = callees(&parsed.unit, |callee| {
-        let Some(path) = find_beside(input, callee) else { return Ok(None) };
+    let subs = job::callees(&parsed.unit, |callee| {
+        let Some(path) = job::find_beside(input, callee) else { return Ok(None) };
         let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
         inputs.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
@@ -146,22 +144,24 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let opts = match options(c, input, loaded.line_ending) {
+    let opts = match job::fanuc_options(c, input, loaded.line_ending) {
         Ok(o) => o,
         Err(e) => return fail(e),
     };
     let sub_refs: Vec<&Unit> = subs.iter().collect();
-    let t = translate::to_fanuc(&parsed.unit, &sub_refs, &opts);
+    let units: Vec<&Unit> = std::iter::once(&parsed.unit).chain(sub_refs.iter().copied()).collect();
+    let policy = opts.unsupported;
+    let t = translate::translate(&units, Dialect::Fanuc, &translate::Options::to_fanuc(opts));
     eprint!("{}", diag::render(&db, &t.diags));
-    if diag::has_errors(&t.diags) && opts.unsupported == UnsupportedPolicy::Error {
+    if diag::has_errors(&t.diags) && policy == UnsupportedPolicy::Error {
         eprintln!("error: not translated ({} construct(s) cannot be expressed on FANUC)", t.unsupported.max(1));
         return ExitCode::from(1);
     }
-    let out_bytes = read::encode(&t.text, c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
-    if let Some(Err(code)) = a.output.as_deref().map(|o| crate::out_guard::check(o, &inputs, c.force, "-o")) {
+    let out_bytes = read::encode(t.text(), c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
+    if let Some(Err(code)) = a.output.as_deref().map(|o| super::out_guard::check(o, &inputs, c.force, "-o")) {
         return code;
     }
-    if let Err(e) = write_output(a.output.as_deref(), &out_bytes) {
+    if let Err(e) = job::write_output(a.output.as_deref(), &out_bytes) {
         return fail(e);
     }
     if t.unsupported > 0 || diag::has_errors(&t.diags) {
@@ -173,7 +173,7 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let out_name = a.output.as_ref().map_or("<translation>.nc".to_string(), |p| p.display().to_string());
-    let v = translate::verify(&mut db, &parsed.unit, &sub_refs, &t, &out_name, c.max_steps);
+    let v = translate::verify(&mut db, &units, &t, &out_name, c.max_steps);
     eprint!("{}", v.rendered);
     eprintln!("{}", v.summary);
     if v.equivalent {
@@ -183,97 +183,92 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     }
 }
 
-/// Translation options from the configuration (flags already applied over `nctrans.toml`).
-pub(crate) fn options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
-    let mut var_rules = Vec::new();
-    for s in &c.var_map_to_fanuc {
-        var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);
+/// Runs `nctrans --to sinumerik` (the options are the translation mode's, shared with
+/// `--to fanuc`; `--program-map` reads `9010=PROBE_X` in this direction). `config` is the
+/// project configuration with the flags given applied over it.
+fn to_sinumerik(args: &TranslateArgs, config: &Config) -> ExitCode {
+    let Some(file) = args.input.as_deref() else {
+        eprintln!("error: --to sinumerik needs an input file: nctrans --to sinumerik IN.nc");
+        return ExitCode::from(2);
+    };
+    if let Err(code) = super::dialect::check_direction(file, args.from, Dialect::Sinumerik) {
+        return code;
     }
-    let program_map = c
-        .programs_to_fanuc
-        .iter()
-        .filter_map(|(k, v)| match (k, v) {
-            (ProgKey::Name(s), ProgKey::Number(n)) => Some((s.to_ascii_uppercase(), *n)),
-            _ => None,
-        })
-        .collect();
-    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
-    Ok(TranslateOptions {
-        unsupported: match c.unsupported {
-            Unsupported::Warn => UnsupportedPolicy::Warn,
-            Unsupported::Error => UnsupportedPolicy::Error,
-        },
-        var_rules,
-        tool_map: c.tools.clone(),
-        program_map,
-        program_number: c.program_number,
-        comments: match c.comments {
-            Comments::Ascii => CommentMode::Ascii,
-            Comments::Drop => CommentMode::Drop,
-            Comments::Keep => CommentMode::Keep,
-        },
-        number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
-        line_ending: match c.line_ends {
-            LineEnds::Keep => eol,
-            LineEnds::Lf => read::LineEnding::Lf,
-            LineEnds::CrLf => read::LineEnding::CrLf,
-            LineEnds::Cr => read::LineEnding::Cr,
-        },
-        compound_conditions: c.fanuc.compound_conditions,
-        target: c.fanuc_semantics(),
-        source: c.sinumerik_semantics(),
-        main_name: stem,
-        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
-        source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
-    })
-}
-
-/// Writes through a temporary file and a rename, so a failed run never leaves half a program.
-fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
-    use std::io::Write;
-    match path {
-        None => std::io::stdout().lock().write_all(bytes).map_err(|e| format!("cannot write: {e}")),
-        // A device or FIFO (`-o /dev/null`) is written into: a rename would replace it.
-        Some(p) if crate::stream_cli::is_special(p) => std::fs::OpenOptions::new()
-            .write(true)
-            .open(p)
-            .and_then(|mut f| f.write_all(bytes))
-            .map_err(|e| format!("cannot write {}: {e}", p.display())),
-        Some(p) => {
-            let tmp = p.with_extension(format!("{}.nctrans-tmp", p.extension().and_then(|e| e.to_str()).unwrap_or("")));
-            std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
-            std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
+    let fanuc_only = [
+        ("--tool-map", !args.tool_map.is_empty()),
+        ("--program-number", args.program_number.is_some()),
+        ("--number-blocks", args.number_blocks.is_some()),
+        ("--compound-conditions", args.compound_conditions),
+        ("--comments", args.comments != "keep"),
+    ];
+    if let Some((flag, _)) = fanuc_only.iter().find(|(_, given)| *given) {
+        eprintln!("error: {flag} applies to --to fanuc only");
+        return ExitCode::from(2);
+    }
+    let force = config.force;
+    let req = Request {
+        file,
+        out: args.output.as_deref(),
+        encoding: config.input_encoding,
+        force,
+        verify: config.verify,
+        max_steps: config.max_steps,
+    };
+    let stem = req.file.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+    // -o naming the main file: refused before anything is read when it is the input, or an
+    // existing file without --force (the subprogram files are checked once they are named).
+    if let Some(o) = req.out.filter(|o| !job::out_place(o).0) {
+        if let Err(code) = super::out_guard::check(o, &[file.to_path_buf()], force, "-o") {
+            return code;
         }
     }
-}
-
-/// The programs `unit` calls by name, transitively, each name once: `load` gives a callee's
-/// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops.
-pub(crate) fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>, E>) -> Result<Vec<Unit>, E> {
-    let mut subs = Vec::new();
-    let mut todo = nctrans::ir::visit::called_names(unit);
-    let mut seen: Vec<String> = Vec::new();
-    while let Some(callee) = todo.pop() {
-        if seen.contains(&callee) {
-            continue;
+    let opts = match job::sinumerik_options(args, stem, config) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
         }
-        let sub = load(&callee)?;
-        seen.push(callee);
-        if let Some(u) = sub {
-            todo.extend(nctrans::ir::visit::called_names(&u));
-            subs.push(u);
-        }
+    };
+    if let Some(code) = streamed::to_sinumerik(args, &req, &opts) {
+        return code;
     }
-    Ok(subs)
-}
-
-pub(crate) fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
-    let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    files.sort();
-    files.into_iter().find(|f| {
-        let stem = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-        let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
-        stem.eq_ignore_ascii_case(name) && ext == "spf"
-    })
+    let job = match job::load_job(req.file, req.encoding, &opts.source) {
+        Ok(j) => j,
+        Err((db, diags)) => {
+            eprint!("{}", diag::render(&db, &diags));
+            return ExitCode::from(1);
+        }
+    };
+    eprint!("{}", diag::render(&job.db, &job.warnings));
+    let mut opts = opts;
+    opts.after_end = job.after_end.clone();
+    let units: Vec<&Unit> = job.units.iter().collect();
+    let tr = translate::translate(
+        &units,
+        Dialect::Sinumerik,
+        &translate::Options::to_sinumerik(opts.clone(), job.loaded.line_ending),
+    );
+    eprint!("{}", diag::render(&job.db, &tr.diags));
+    if tr.has_errors() {
+        eprintln!("error: translation failed; nothing written");
+        return ExitCode::from(1);
+    }
+    if let Err(code) = job::write_files(&req, &tr, &job.loaded, &job.read) {
+        return code;
+    }
+    let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
+    if warned && opts.unsupported == ts::UnsupportedPolicy::Warn {
+        // An unfinished program (it alarms on its first line) is never verified, so never
+        // called equivalent.
+        eprintln!(
+            "not verified: the output is unfinished (blocks marked NCTRANS UNSUPPORTED; it alarms on its first line)"
+        );
+        eprintln!("error: unsupported constructs were written as marked comments");
+        return ExitCode::from(1);
+    }
+    let mut code = ExitCode::SUCCESS;
+    if req.verify {
+        code = job::verify(&job, &tr, &req, req.max_steps, &opts);
+    }
+    code
 }

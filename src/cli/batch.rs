@@ -1,13 +1,13 @@
-//! `nctrans --to fanuc -o out/ programs/` (a folder in, batch mode) and `nctrans init`: the
-//! command line of migration batches. Reads `nctrans.toml`, lets the flags win, runs the
+//! `nctrans --to fanuc -o out/ programs/` (a folder in, batch mode): the command line of
+//! migration batches. Reads `nctrans.toml`, lets the flags win, runs the
 //! library's batch engine, renders progress (a live line on a terminal, plain lines
 //! otherwise), the summary table and the report, and stops cleanly on Ctrl-C.
 
-use crate::translate_cli::TranslateArgs;
-use clap::parser::ValueSource;
+use super::args::fail;
+use super::configure::configure;
+use super::translate::TranslateArgs;
 use clap::ArgMatches;
 use nctrans::batch::{self, jobs, BatchOptions, FileJob, Progress, Status};
-use nctrans::config::{self, Config};
 use nctrans::dialect::Dialect;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -35,104 +35,6 @@ pub struct BatchArgs {
     /// The project configuration (default: ./nctrans.toml when present).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-}
-
-fn fail(msg: impl std::fmt::Display) -> ExitCode {
-    eprintln!("error: {msg}");
-    ExitCode::from(2)
-}
-
-/// `nctrans init [PATH]`: writes the commented configuration; never overwrites one.
-pub fn init(path: Option<&Path>) -> ExitCode {
-    let path = path.map_or_else(|| PathBuf::from(config::FILE_NAME), Path::to_path_buf);
-    let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&path);
-    match file.and_then(|mut f| f.write_all(config::TEMPLATE.as_bytes())) {
-        Ok(()) => {
-            eprintln!("wrote {}", path.display());
-            ExitCode::SUCCESS
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-            fail(format!("{} exists already; not overwritten", path.display()))
-        }
-        Err(e) => fail(format!("cannot write {}: {e}", path.display())),
-    }
-}
-
-fn given(m: &ArgMatches, id: &str) -> bool {
-    matches!(m.value_source(id), Some(ValueSource::CommandLine))
-}
-
-/// The configuration: defaults, then `nctrans.toml`, then the flags given.
-pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Config, String> {
-    let mut c = match &b.config {
-        Some(p) => Config::load(p)?,
-        None if Path::new(config::FILE_NAME).is_file() => Config::load(Path::new(config::FILE_NAME))?,
-        None => Config::default(),
-    };
-    let flag =
-        |c: &mut Config, key: &str, text: &str, name: &str| c.set_flag(key, text).map_err(|e| format!("{name}: {e}"));
-    if let Some(d) = t.to {
-        c.to = Some(d);
-    }
-    if let Some(o) = &t.output {
-        c.output = Some(o.clone());
-    }
-    if t.no_verify {
-        c.verify = false;
-    }
-    if given(m, "unsupported") {
-        flag(&mut c, "translate.unsupported", &t.unsupported, "--unsupported")?;
-    }
-    if given(m, "comments") {
-        flag(&mut c, "translate.comments", &t.comments, "--comments")?;
-    }
-    if let Some(n) = t.number_blocks {
-        flag(&mut c, "translate.number_blocks", &n.to_string(), "--number-blocks")?;
-    }
-    if t.compound_conditions {
-        c.fanuc.compound_conditions = true;
-    }
-    if t.specialise_callers {
-        c.specialise_callers = true;
-    }
-    if given(m, "max_steps") {
-        flag(&mut c, "verify.max_steps", &t.max_steps.to_string(), "--max-steps")?;
-    }
-    if let Some(e) = t.input_encoding {
-        c.input_encoding = Some(e);
-    }
-    if let Some(n) = t.program_number {
-        flag(&mut c, "translate.program_number", &n.to_string(), "--program-number")?;
-        c.check_program_number().map_err(|e| format!("--program-number: {e}"))?;
-    }
-    let to = c.to.ok_or("a translation needs a target: --to fanuc or --to sinumerik (or `to` in nctrans.toml)")?;
-    let dir = if to == Dialect::Fanuc { "to_fanuc" } else { "to_sinumerik" };
-    // The first rule that covers a variable places it, so flag rules go before the file's.
-    let before = if to == Dialect::Fanuc { c.var_map_to_fanuc.len() } else { c.var_map_to_sinumerik.len() };
-    for r in &t.var_map {
-        flag(&mut c, &format!("variables.{dir}"), r, "--var-map")?;
-    }
-    let rules = if to == Dialect::Fanuc { &mut c.var_map_to_fanuc } else { &mut c.var_map_to_sinumerik };
-    rules.rotate_left(before);
-    for r in &t.tool_map {
-        flag(&mut c, "tools", r, "--tool-map")?;
-    }
-    for r in &t.program_map {
-        flag(&mut c, &format!("programs.{dir}"), r, "--program-map")?;
-    }
-    if let Some(j) = b.jobs {
-        flag(&mut c, "batch.jobs", &j.to_string(), "-j")?;
-    }
-    if b.force {
-        c.force = true;
-    }
-    if let Some(r) = &b.report {
-        flag(&mut c, "batch.report", &r.display().to_string(), "--report")?;
-    }
-    if let Some(p) = &b.map {
-        c.map = Some(p.clone());
-    }
-    Ok(c)
 }
 
 /// Runs a batch when the input is a folder; `None` otherwise (single-file translation).
@@ -193,7 +95,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     if let Some(rp) = &c.report {
         let found = batch::discover::discover(input, Some(&output)).map(|f| f.files).unwrap_or_default();
         let inputs: Vec<PathBuf> = found.into_iter().map(|f| f.abs).collect();
-        if let Err(code) = crate::out_guard::check(rp, &inputs, true, "--report") {
+        if let Err(code) = super::out_guard::check(rp, &inputs, true, "--report") {
             return code;
         }
     }

@@ -23,7 +23,7 @@ pub fn check(out: &Path, inputs: &[PathBuf], force: bool, flag: &str) -> Result<
             ),
             format!("give {flag} another file"),
         ))
-    } else if !force && std::fs::symlink_metadata(out).is_ok() && !crate::stream_cli::is_special(out) {
+    } else if !force && std::fs::symlink_metadata(out).is_ok() && !super::stream::is_special(out) {
         let e = WriteError::Exists(out.to_path_buf());
         Some((e.code(), e.message(), format!("or give {flag} another file to keep it")))
     } else {

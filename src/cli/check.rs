@@ -1,0 +1,261 @@
+//! `nctrans check A B`: runs two programs (either dialect) and reports whether their traces
+//! agree; each side is streamed when it is large. With `--tool-map NAME=n` or `--map
+//! nctrans-map.toml`, the names a translation used, so a Siemens program and its FANUC
+//! translation can be checked again later exactly as the translation was verified (tool
+//! names read as their T numbers, a `MSG` the translation wrote as a comment left out,
+//! mapped R parameters starting at 0 on FANUC).
+
+use super::args::{load_for_run, EvalOpts, InputOpts};
+use super::stream::{self, Source};
+use nctrans::diag;
+use nctrans::dialect::Dialect;
+use nctrans::ir::Unit;
+use nctrans::span::SourceDb;
+use nctrans::translate::{self, SymbolMap};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+/// The flags of `check` that name a translation's maps.
+#[derive(clap::Args)]
+pub struct MapOpts {
+    /// Compare as the translation to FANUC was verified, with this tool name → T number
+    /// (NAME=n, repeatable; wins over --map and nctrans.toml [tools]).
+    #[arg(long = "tool-map", value_name = "NAME=N")]
+    pub tool_map: Vec<String>,
+    /// Compare as a translation that used this map (nctrans-map.toml of a batch): its tools
+    /// and the variables R parameters went to.
+    #[arg(long, value_name = "FILE")]
+    pub map: Option<PathBuf>,
+}
+
+/// The translation's names, when a map was asked for (`None`: a plain check).
+pub struct Names {
+    tools: BTreeMap<String, u32>,
+    /// FANUC variables R parameters were mapped to (`R1` → 501).
+    r_vars: Vec<u32>,
+}
+
+impl MapOpts {
+    /// Reads the maps: `./nctrans.toml` `[tools]` (as a translation reads it), then `--map`,
+    /// then `--tool-map`. `None` when neither flag is given.
+    pub fn names(&self) -> Result<Option<Names>, String> {
+        if self.tool_map.is_empty() && self.map.is_none() {
+            return Ok(None);
+        }
+        let mut tools = BTreeMap::new();
+        let project = Path::new(nctrans::config::FILE_NAME);
+        if project.is_file() {
+            tools.extend(nctrans::config::Config::load(project)?.tools);
+        }
+        let mut r_vars = Vec::new();
+        if let Some(p) = &self.map {
+            let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+            let (maps, target) = nctrans::batch::maps::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?;
+            if target == Some(Dialect::Sinumerik) {
+                return Err(format!(
+                    "{}: this map is of a translation to Sinumerik; tool names are mapped only to FANUC",
+                    p.display()
+                ));
+            }
+            tools.extend(maps.tools);
+            for (source, target) in &maps.variables {
+                let is_r = source.strip_prefix('R').is_some_and(|n| n.parse::<u32>().is_ok());
+                if let (true, Some(n)) = (is_r, target.strip_prefix('#').and_then(|n| n.parse().ok())) {
+                    r_vars.push(n);
+                }
+            }
+        }
+        for m in &self.tool_map {
+            let (name, n) = m.split_once('=').ok_or_else(|| format!("--tool-map '{m}': expected NAME=N"))?;
+            let n: u32 = n.trim().parse().map_err(|_| format!("--tool-map '{m}': expected a T number after ="))?;
+            tools.insert(name.trim().to_string(), n);
+        }
+        Ok(Some(Names { tools, r_vars }))
+    }
+}
+
+impl Names {
+    /// A Siemens side compared with a FANUC one: aligned as the translation's verification
+    /// aligns it (`translate::align_source`).
+    pub fn align(&self, unit: &Unit) -> Unit {
+        let map = SymbolMap { tools: self.tools.clone(), ..SymbolMap::default() };
+        translate::align_source(unit, &map)
+    }
+
+    /// A FANUC side compared with a Siemens one: the variables mapped R parameters went to
+    /// start at 0, as R parameters do (unless the run's inputs set them).
+    pub fn fanuc_inputs(&self, inputs: &mut Vec<nctrans::eval::Input>) {
+        for n in &self.r_vars {
+            if let Ok(i) = nctrans::eval::parse_input(&format!("#{n}=0")) {
+                if !inputs.iter().any(|h| h.target == i.target) {
+                    inputs.push(i);
+                }
+            }
+        }
+    }
+}
+
+/// Runs `nctrans check`.
+pub fn check(
+    a: &PathBuf,
+    b: &PathBuf,
+    (from_a, from_b): (Option<Dialect>, Option<Dialect>),
+    eval: &EvalOpts,
+    input: &InputOpts,
+    maps: &MapOpts,
+) -> ExitCode {
+    use nctrans::check::{self, Side};
+    let names = match maps.names() {
+        Ok(n) => n,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Some(names) = &names {
+        return check_as_translation(a, b, (from_a, from_b), eval, input, names);
+    }
+    let mut db = SourceDb::new();
+    // Each side is streamed when it is large (or --stream), else read whole. A streamed
+    // side's source (a decoded copy for a legacy encoding) lives until the check has run.
+    let mut streamed: Vec<(usize, Source)> = Vec::new();
+    let mut runners = Vec::new();
+    for (path, from) in [(a, from_a), (b, from_b)] {
+        let id = db.len();
+        let side = stream::wanted(path, input).then(|| side(&mut db, path, from, eval, input.encoding)).flatten();
+        let runner = match side {
+            Some(Ok((r, src))) => {
+                streamed.push((id, src));
+                r
+            }
+            Some(Err(code)) => return code,
+            None => match load_for_run(&mut db, path, from, eval, input) {
+                Ok((unit, run)) => {
+                    Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+                }
+                Err(code) => return code,
+            },
+        };
+        runners.push(runner);
+    }
+    let (Some(rb), Some(ra)) = (runners.pop(), runners.pop()) else {
+        return ExitCode::from(2);
+    };
+    let report = check::check_runners(&db, ra, rb);
+    let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
+    eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
+    check_verdict(&report)
+}
+
+/// Prints a check's verdict; its exit code.
+fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
+    use nctrans::check::Verdict;
+    // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
+    // (NC387): a program that ran one may apply another length than the other, unseen.
+    let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
+    let diff = &report.diff;
+    match &report.verdict {
+        Verdict::Equivalent { events } if compensates => {
+            println!(
+                "inconclusive: {events} trace events agree, but tool compensation (G44, ISO-mode G43/G44/G49) is not compared"
+            );
+            ExitCode::from(4)
+        }
+        Verdict::Equivalent { events } => {
+            println!("{}", report.excluded.equivalent(&format!("{events} trace events agree")));
+            ExitCode::SUCCESS
+        }
+        Verdict::Diverged { index } => {
+            println!("diverged at trace event {}", index + 1);
+            print!("{diff}");
+            ExitCode::from(1)
+        }
+        Verdict::Inconclusive { reason } => {
+            println!("inconclusive: {reason}");
+            ExitCode::from(4)
+        }
+        Verdict::Failed => {
+            println!("failed: a program could not be evaluated");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// `check` with a translation's maps (`--tool-map`, `--map`): both sides read whole, a
+/// Siemens side compared with a FANUC one aligned as the translation's verification aligns
+/// it (see [`Names`]).
+fn check_as_translation(
+    a: &PathBuf,
+    b: &PathBuf,
+    (from_a, from_b): (Option<Dialect>, Option<Dialect>),
+    eval: &EvalOpts,
+    input: &InputOpts,
+    names: &Names,
+) -> ExitCode {
+    use nctrans::check::{self, Side};
+    let mut db = SourceDb::new();
+    let mut sides = Vec::new();
+    for (path, from) in [(a, from_a), (b, from_b)] {
+        match load_for_run(&mut db, path, from, eval, input) {
+            Ok(side) => sides.push(side),
+            Err(code) => return code,
+        }
+    }
+    let dialects: Vec<Dialect> = sides.iter().map(|(u, _)| u.dialect).collect();
+    let cross = dialects[0] != dialects[1];
+    let runners: Vec<_> = sides
+        .into_iter()
+        .map(|(unit, mut run)| {
+            let unit = match unit.dialect {
+                Dialect::Sinumerik if cross => names.align(&unit),
+                Dialect::Fanuc if cross => {
+                    names.fanuc_inputs(&mut run.inputs);
+                    unit
+                }
+                _ => unit,
+            };
+            Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+        })
+        .collect();
+    let mut runners = runners.into_iter();
+    let (Some(ra), Some(rb)) = (runners.next(), runners.next()) else {
+        return ExitCode::from(2);
+    };
+    // Compared as the translation's verification compares: a Siemens first side's messages
+    // shown without a stop are what a FANUC translation keeps as comments.
+    let exclude = if cross && dialects[0] == Dialect::Sinumerik {
+        nctrans::translate::EXCLUDE
+    } else {
+        check::Exclude::default()
+    };
+    let report = check::check_runners_excluding(&db, ra, rb, exclude);
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    check_verdict(&report)
+}
+
+/// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the
+/// file, or a decoded copy of a legacy-encoded one: the caller keeps it until the check has
+/// run, and renders the check's diagnostics from its [`Source::path`]).
+fn side<'a>(
+    db: &mut SourceDb,
+    path: &'a Path,
+    from: Option<Dialect>,
+    eval: &EvalOpts,
+    forced: Option<&'static encoding_rs::Encoding>,
+) -> Option<Result<(nctrans::check::Runner, Source<'a>), ExitCode>> {
+    let file = db.len();
+    let mut src = Source::new(path, forced)?;
+    let ix = match stream::scan(&mut src, from, file)? {
+        Ok(ix) => ix,
+        Err(code) => return Some(Err(code)),
+    };
+    let opts = match stream::run_options(&ix, path, eval) {
+        Ok(o) => o,
+        Err(code) => return Some(Err(code)),
+    };
+    db.add(path.display().to_string(), String::new());
+    let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
+    Some(Ok((nctrans::stream::runner(Arc::new(ix), callees, opts), src)))
+}

@@ -1,0 +1,492 @@
+//! What a single-file translation reads and writes, for both targets and both paths (whole
+//! and streamed): the options from the configuration, the input and the callees found
+//! beside it, the output files under the rules of `-o`, and the verdict of the proof.
+
+use super::TranslateArgs;
+use nctrans::batch::library::ProgKey;
+use nctrans::check::Verdict;
+use nctrans::config::{Comments, Config, LineEnds, Unsupported};
+use nctrans::dialect::fanuc::emit::CommentMode;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
+use nctrans::lower::to_fanuc::varmap;
+use nctrans::span::SourceDb;
+use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
+use nctrans::translate::TranslateOptions;
+use nctrans::{diag, read};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Where the input is and where the output goes.
+pub struct Request<'a> {
+    pub file: &'a Path,
+    pub out: Option<&'a Path>,
+    pub encoding: Option<&'static encoding_rs::Encoding>,
+    /// `--force`: existing output files may be replaced (inputs never).
+    pub force: bool,
+    /// Whether to verify (`--no-verify`, `batch.verify`), and each run's step limit.
+    pub verify: bool,
+    pub max_steps: u64,
+}
+
+/// The options from the configuration: `nctrans.toml` (or `--config`) with the flags given
+/// applied over it (`cli::configure`).
+pub fn sinumerik_options(args: &TranslateArgs, stem: &str, c: &Config) -> Result<Options, String> {
+    let mut o = Options::default();
+    // Flag rules come first in the list: the first rule that covers a variable places it.
+    for r in &c.var_map_to_sinumerik {
+        o.var_map.push(VarMapRule::parse(r)?);
+    }
+    for (k, v) in &c.programs_to_sinumerik {
+        if let (ProgKey::Number(n), ProgKey::Name(name)) = (k, v) {
+            o.program_map.insert(*n, name.to_ascii_uppercase());
+        }
+    }
+    o.specialise_callers = c.specialise_callers || args.specialise_callers;
+    for m in &args.program_map {
+        let (n, name) = m.split_once('=').ok_or_else(|| format!("bad --program-map '{m}' (expected 9010=NAME)"))?;
+        let n: u32 =
+            n.trim().trim_start_matches(['O', 'o']).parse().map_err(|_| format!("bad program number in '{m}'"))?;
+        let name = name.trim().to_ascii_uppercase();
+        if !valid_name(&name) {
+            return Err(format!(
+                "bad Siemens program name '{name}' (letters, digits and _, the first two letters or _)"
+            ));
+        }
+        o.program_map.insert(n, name);
+    }
+    if args.unsupported == "warn" {
+        o.unsupported = UnsupportedPolicy::Warn;
+    }
+    o.main_name = main_name(stem);
+    Ok(o)
+}
+
+/// Translation options from the configuration (flags already applied over `nctrans.toml`).
+pub fn fanuc_options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<TranslateOptions, String> {
+    let mut var_rules = Vec::new();
+    for s in &c.var_map_to_fanuc {
+        var_rules.extend(varmap::parse_rules(s).map_err(|e| format!("--var-map {e}"))?);
+    }
+    let program_map = c
+        .programs_to_fanuc
+        .iter()
+        .filter_map(|(k, v)| match (k, v) {
+            (ProgKey::Name(s), ProgKey::Number(n)) => Some((s.to_ascii_uppercase(), *n)),
+            _ => None,
+        })
+        .collect();
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
+    Ok(TranslateOptions {
+        unsupported: match c.unsupported {
+            Unsupported::Warn => nctrans::lower::to_fanuc::UnsupportedPolicy::Warn,
+            Unsupported::Error => nctrans::lower::to_fanuc::UnsupportedPolicy::Error,
+        },
+        var_rules,
+        tool_map: c.tools.clone(),
+        program_map,
+        program_number: c.program_number,
+        comments: match c.comments {
+            Comments::Ascii => CommentMode::Ascii,
+            Comments::Drop => CommentMode::Drop,
+            Comments::Keep => CommentMode::Keep,
+        },
+        number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
+        line_ending: match c.line_ends {
+            LineEnds::Keep => eol,
+            LineEnds::Lf => read::LineEnding::Lf,
+            LineEnds::CrLf => read::LineEnding::CrLf,
+            LineEnds::Cr => read::LineEnding::Cr,
+        },
+        compound_conditions: c.fanuc.compound_conditions,
+        target: c.fanuc_semantics(),
+        source: c.sinumerik_semantics(),
+        main_name: stem,
+        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
+        source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
+    })
+}
+
+fn valid_name(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2
+        && b.len() <= 31
+        && b[..2].iter().all(|c| c.is_ascii_alphabetic() || *c == b'_')
+        && b.iter().all(|c| c.is_ascii_alphanumeric() || *c == b'_')
+}
+
+/// A Siemens program name from a file stem: upper case, other characters `_`, and `P_` in
+/// front when it would not start with two letters.
+pub fn main_name(stem: &str) -> String {
+    let mut s: String =
+        stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
+    if !valid_name(&s) {
+        s = format!("P_{s}");
+    }
+    s.truncate(31);
+    s
+}
+
+/// Program numbers called in a unit.
+fn called_numbers(unit: &Unit) -> BTreeSet<u32> {
+    let mut set = BTreeSet::new();
+    for p in &unit.programs {
+        nctrans::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                for it in &b.items {
+                    let mut items = vec![it];
+                    if let ItemKind::IfThen { then, .. } = &it.kind {
+                        items.push(then);
+                    }
+                    if let ItemKind::IfBlock { items: inner, .. } = &it.kind {
+                        items.extend(inner);
+                    }
+                    for it in items {
+                        if let ItemKind::Call(c) = &it.kind {
+                            // Haas M97 names a block of this program, not a program.
+                            if let (CallTarget::Number(n), false) = (&c.target, c.kind == nctrans::ir::CallKind::M97) {
+                                set.insert(*n);
+                            }
+                        }
+                    }
+                }
+            }
+        });
+    }
+    set
+}
+
+/// The file beside `dir` that holds FANUC program `n`: `O1234.nc`, `1234.nc`, a name that
+/// starts with it (`O01234_PROBE.nc`), or any FANUC file holding the line `O1234`; any case,
+/// `.nc`/`.tap`/`.txt`/no extension (`eval::callee_files`).
+pub fn find_callee_file(dir: &Path, n: u32) -> Option<PathBuf> {
+    nctrans::eval::callee_files::find(dir, None, n, &nctrans::eval::callee_files::fanuc_ext)
+}
+
+/// The loaded job: the main unit, the callee units found beside it, and the source DB.
+pub struct Job {
+    pub db: SourceDb,
+    pub units: Vec<Unit>,
+    pub loaded: nctrans::Loaded,
+    /// The files read: the input, then the callee files (no output may be one of them).
+    pub read: Vec<PathBuf>,
+    /// The warnings of reading the files (shown before the translation's).
+    pub warnings: Vec<diag::Diagnostic>,
+    /// Program numbers after a closing `%` in the files read (see `Options::after_end`).
+    pub after_end: BTreeSet<u32>,
+}
+
+/// Loads `path` and, transitively, the callees it needs that are not in the file itself.
+pub fn load_job(
+    path: &Path,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    profile: &nctrans::dialect::Semantics,
+) -> Result<Job, (SourceDb, Vec<diag::Diagnostic>)> {
+    let mut db = SourceDb::new();
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            return Err((db, vec![diag::Diagnostic::error("NC102", format!("cannot read {}: {e}", path.display()))]))
+        }
+    };
+    let name = path.display().to_string();
+    let loaded = nctrans::load(&mut db, &name, &bytes, encoding);
+    let opts = ParseOptions { semantics: profile.clone() };
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &opts);
+    let mut diags = parsed.diags;
+    let mut after_end: BTreeSet<u32> = parsed.after_end_programs.into_iter().collect();
+    let mut units = vec![parsed.unit];
+    let dir = beside(path);
+    let mut read = vec![path.to_path_buf()];
+    load_callees(&mut db, &mut units, &dir, encoding, &opts, &mut diags, (&mut read, &mut after_end));
+    if diag::has_errors(&diags) {
+        return Err((db, diags));
+    }
+    // Warnings of reading are shown, not fatal.
+    Ok(Job { db, units, loaded, read, warnings: diags, after_end })
+}
+
+/// The folder a file is in (`.` for a bare file name, whose parent is empty).
+pub fn beside(path: &Path) -> PathBuf {
+    path.parent().filter(|p| !p.as_os_str().is_empty()).map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// Loads, transitively, the callees `units` need that none of them holds, from the files
+/// beside them in `dir` (`find_callee_file`), in the order the whole path takes them (each
+/// round the wanted numbers ascending); their reading diagnostics go to `diags`, their
+/// paths to `read`. Returns the numbers called that were not found.
+pub fn load_callees(
+    db: &mut SourceDb,
+    units: &mut Vec<Unit>,
+    dir: &Path,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    opts: &ParseOptions,
+    diags: &mut Vec<diag::Diagnostic>,
+    (read, after_end): (&mut Vec<PathBuf>, &mut BTreeSet<u32>),
+) -> BTreeSet<u32> {
+    let mut have: BTreeSet<u32> = BTreeSet::new();
+    let mut tried: BTreeSet<u32> = BTreeSet::new();
+    let mut missing = BTreeSet::new();
+    loop {
+        for u in units.iter() {
+            for p in &u.programs {
+                if let Some(nctrans::ir::ProgName::Number(n)) = &p.name {
+                    have.insert(*n);
+                }
+            }
+        }
+        let want: Vec<u32> = units
+            .iter()
+            .flat_map(called_numbers)
+            .filter(|n| !have.contains(n) && !tried.contains(n))
+            .collect::<BTreeSet<u32>>()
+            .into_iter()
+            .collect();
+        if want.is_empty() {
+            break;
+        }
+        for n in want {
+            tried.insert(n);
+            let Some(p) = find_callee_file(dir, n) else {
+                missing.insert(n);
+                continue;
+            };
+            let Ok(bytes) = std::fs::read(&p) else {
+                missing.insert(n);
+                continue;
+            };
+            read.push(p.clone());
+            let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
+            let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
+            diags.extend(parsed.diags);
+            after_end.extend(parsed.after_end_programs);
+            units.push(parsed.unit);
+        }
+    }
+    missing
+}
+
+pub fn encode(text: &str, loaded: &nctrans::Loaded) -> Vec<u8> {
+    read::encode(text, loaded.encoding, loaded.bom)
+}
+
+/// Where `-o` puts the files: whether it names a folder (an existing one, or written with a
+/// trailing slash: every file under its own name), and the folder of the subprograms (a
+/// file path names the main program, subprograms go beside it).
+pub fn out_place(o: &Path) -> (bool, PathBuf) {
+    let is_dir = o.is_dir() || o.to_string_lossy().ends_with('/');
+    let dir = if is_dir { o.to_path_buf() } else { o.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf) };
+    (is_dir, dir)
+}
+
+/// The line standard output shows in front of each file when there are several.
+pub fn separator(name: &str, eol: read::LineEnding) -> String {
+    format!("; ==== {name} ===={}", eol.as_str())
+}
+
+pub fn write_files(
+    req: &Request,
+    tr: &ts::Translation,
+    loaded: &nctrans::Loaded,
+    read: &[PathBuf],
+) -> Result<(), ExitCode> {
+    match req.out {
+        None => {
+            let mut out = std::io::stdout().lock();
+            let several = tr.files.len() > 1;
+            for f in &tr.files {
+                let mut text = String::new();
+                if several {
+                    text.push_str(&separator(&f.name, loaded.line_ending));
+                }
+                text.push_str(&f.text);
+                if out.write_all(&encode(&text, loaded)).is_err() {
+                    return Err(ExitCode::from(2));
+                }
+            }
+        }
+        Some(o) => {
+            let (is_dir, dir) = out_place(o);
+            let paths: Vec<PathBuf> =
+                tr.files.iter().map(|f| if !is_dir && f.main { o.to_path_buf() } else { dir.join(&f.name) }).collect();
+            // Every file checked before the first is written: none is half done.
+            crate::cli::out_guard::check_all(paths.iter().map(PathBuf::as_path), read, req.force)?;
+            if is_dir {
+                if let Err(e) = std::fs::create_dir_all(&dir) {
+                    eprintln!("error: cannot create {}: {e}", dir.display());
+                    return Err(ExitCode::from(2));
+                }
+            }
+            for (f, path) in tr.files.iter().zip(&paths) {
+                write_one(path, &encode(&f.text, loaded))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Writes one file of `-o` and says so.
+pub fn write_one(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
+    if let Err(e) = std::fs::write(path, bytes) {
+        eprintln!("error: cannot write {}: {e}", path.display());
+        return Err(ExitCode::from(2));
+    }
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// How the files of a translation are encoded: the source's encoding and byte-order mark.
+pub type Encoded = (&'static encoding_rs::Encoding, bool);
+
+/// The subprogram files of a streamed translation, after its main file, as [`write_files`]
+/// writes them (each encoded whole, `enc`): on standard output each after its separator
+/// line, else beside the main file (or in the folder).
+pub fn write_subs(req: &Request, subs: &[ts::OutFile], eol: read::LineEnding, enc: Encoded) -> Result<(), ExitCode> {
+    match req.out {
+        None => {
+            let mut out = std::io::stdout().lock();
+            for f in subs {
+                let text = format!("{}{}", separator(&f.name, eol), f.text);
+                if out.write_all(&read::encode(&text, enc.0, enc.1)).is_err() {
+                    return Err(ExitCode::from(2));
+                }
+            }
+        }
+        Some(o) => {
+            let (_, dir) = out_place(o);
+            for f in subs {
+                write_one(&dir.join(&f.name), &read::encode(&f.text, enc.0, enc.1))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The main file of a streamed translation with subprograms on standard output, as
+/// [`write_files`] writes it: `encode(separator + text)`, which is the separator encoded
+/// (with the byte-order mark in front, when there is one) and then the encoded text as
+/// written (its own mark left out). The separator is ASCII, so encoding it apart from the
+/// text gives the same bytes (every encoder starts and ends in its ASCII state).
+pub fn main_to_stdout(out: &Path, name: &str, eol: read::LineEnding, enc: Encoded) -> std::io::Result<()> {
+    let mut so = std::io::stdout().lock();
+    so.write_all(&read::encode(&separator(name, eol), enc.0, enc.1))?;
+    let mut f = std::io::BufReader::new(std::fs::File::open(out)?);
+    if enc.0 == encoding_rs::UTF_8 && enc.1 {
+        let mut mark = [0u8; 3];
+        std::io::Read::read_exact(&mut f, &mut mark)?;
+        if &mark != b"\xEF\xBB\xBF" {
+            so.write_all(&mark)?;
+        }
+    }
+    std::io::copy(&mut f, &mut so)?;
+    so.flush()
+}
+
+/// Runs both programs and reports: "equivalent (N events)" and success, or the first
+/// divergence / inconclusive run and failure.
+pub fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: &Options) -> ExitCode {
+    let out_dir = match req.out {
+        Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
+        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+        None => "<stdout>".to_string(),
+    };
+    let main_unit = &job.units[0];
+    let profiles = nctrans::translate::to_sinumerik::verify::Profiles {
+        fanuc: opts.source.clone(),
+        sinumerik: opts.target.clone(),
+    };
+    let report = nctrans::translate::to_sinumerik::verify::verify_profiled(
+        &job.db,
+        job.loaded.file,
+        main_unit,
+        tr,
+        &out_dir,
+        max_steps,
+        &profiles,
+    );
+    // A program the others call by G65/G66 also runs alone, with its callers' arguments
+    // and with each of them vacant (`translate::called`), as the batch proves it.
+    eprint!("{}", diag::render(&report.db, &report.diags));
+    let mut runs = vec![(String::new(), report)];
+    let units: Vec<&Unit> = job.units.iter().collect();
+    let files = (tr.files.as_slice(), tr.symbols.sinumerik());
+    runs.extend(nctrans::translate::called::single_file_runs(&job.db, &units, files, opts, &out_dir, max_steps));
+    crate::cli::called::combined(nctrans::translate::called::combine(runs), &|db, diags| diag::render(db, diags))
+}
+
+/// Prints a verification's verdict; success only for "equivalent".
+pub fn verdict(v: Verdict, diff: &str) -> ExitCode {
+    match v {
+        Verdict::Equivalent { events } => {
+            eprintln!("equivalent ({events} events)");
+            ExitCode::SUCCESS
+        }
+        Verdict::Diverged { .. } => {
+            if !diff.is_empty() {
+                eprintln!("{diff}");
+            }
+            eprintln!("error: the translation is not equivalent");
+            ExitCode::from(1)
+        }
+        Verdict::Inconclusive { reason } => {
+            eprintln!("inconclusive: {reason}");
+            ExitCode::from(1)
+        }
+        Verdict::Failed => {
+            eprintln!("error: verification could not run");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Writes through a temporary file and a rename, so a failed run never leaves half a program.
+pub fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
+    use std::io::Write;
+    match path {
+        None => std::io::stdout().lock().write_all(bytes).map_err(|e| format!("cannot write: {e}")),
+        // A device or FIFO (`-o /dev/null`) is written into: a rename would replace it.
+        Some(p) if crate::cli::stream::is_special(p) => std::fs::OpenOptions::new()
+            .write(true)
+            .open(p)
+            .and_then(|mut f| f.write_all(bytes))
+            .map_err(|e| format!("cannot write {}: {e}", p.display())),
+        Some(p) => {
+            let tmp = p.with_extension(format!("{}.nctrans-tmp", p.extension().and_then(|e| e.to_str()).unwrap_or("")));
+            std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
+            std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
+        }
+    }
+}
+
+/// The programs `unit` calls by name, transitively, each name once: `load` gives a callee's
+/// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops.
+pub fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>, E>) -> Result<Vec<Unit>, E> {
+    let mut subs = Vec::new();
+    let mut todo = nctrans::ir::visit::called_names(unit);
+    let mut seen: Vec<String> = Vec::new();
+    while let Some(callee) = todo.pop() {
+        if seen.contains(&callee) {
+            continue;
+        }
+        let sub = load(&callee)?;
+        seen.push(callee);
+        if let Some(u) = sub {
+            todo.extend(nctrans::ir::visit::called_names(&u));
+            subs.push(u);
+        }
+    }
+    Ok(subs)
+}
+
+pub fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
+    let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    files.sort();
+    files.into_iter().find(|f| {
+        let stem = f.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+        let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
+        stem.eq_ignore_ascii_case(name) && ext == "spf"
+    })
+}

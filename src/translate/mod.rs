@@ -1,0 +1,248 @@
+//! The library's one translation entry: [`translate`] takes the programs of one dialect and
+//! gives back one [`Translation`] (the files written, the symbol map that relates them to the
+//! source, every diagnostic, and what could not be expressed) for every pair of dialects.
+//!
+//! Owns: the entry, the result type, the options of every target ([`Options`]), and the work
+//! per target behind the entry: `to_fanuc` (Sinumerik → FANUC) and `to_sinumerik/`
+//! (FANUC → Sinumerik, with its proof in `to_sinumerik/verify.rs`). May use: `passes`
+//! (lowering), `dialect` (writing), `check` and `eval` (the proof), `unfinished`, `empty`,
+//! `ir`, `diag`, `read`, `span`. Used by the CLI, `batch` and `stream`; it uses none of them.
+//! A new target adds a module here and an arm in [`translate`].
+
+pub mod called;
+pub mod to_fanuc;
+pub mod to_sinumerik;
+
+// The names of the FANUC target that the streaming translators and the tests reach at
+// `translate::` (the streaming code moves onto the entry with issue 18 part B).
+pub use to_fanuc::{
+    align_source, r_param_inputs, reparse, standalone_args, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
+    DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
+};
+
+use crate::check::{CheckReport, Verdict};
+use crate::diag::{self, Diagnostic};
+use crate::dialect::Dialect;
+use crate::ir::{ProgName, Unit};
+use crate::read::LineEnding;
+use crate::span::{FileId, SourceDb, Span};
+use std::collections::BTreeMap;
+
+/// One written file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutFile {
+    /// File name: `NAME.MPF` or `NAME.SPF` on Sinumerik; `O0001.nc` on FANUC, where the
+    /// command line and the batch name the file after the input instead.
+    pub name: String,
+    /// The program name calls use (`PROBE_X`, `O0001`).
+    pub program: String,
+    /// The FANUC program number it came from (FANUC → Sinumerik).
+    pub fanuc_number: Option<u32>,
+    pub main: bool,
+    pub text: String,
+    /// The source file the (main) program came from.
+    pub source: FileId,
+    /// Source span of every output line (`None` for generated header lines); empty when the
+    /// target's writer does not record them (FANUC).
+    pub lines: Vec<Option<Span>>,
+}
+
+/// How the source's names appear in the output: the target's symbol map.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Symbols {
+    Fanuc(to_fanuc::SymbolMap),
+    Sinumerik(to_sinumerik::SymbolMap),
+}
+
+static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
+    vars: Vec::new(),
+    labels: BTreeMap::new(),
+    tools: BTreeMap::new(),
+    programs: BTreeMap::new(),
+    alarms: BTreeMap::new(),
+};
+static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
+
+impl Symbols {
+    /// The map of a translation to FANUC (empty for another target).
+    pub fn fanuc(&self) -> &to_fanuc::SymbolMap {
+        match self {
+            Symbols::Fanuc(m) => m,
+            Symbols::Sinumerik(_) => &NO_FANUC,
+        }
+    }
+
+    /// The map of a translation to Sinumerik (empty for another target).
+    pub fn sinumerik(&self) -> &to_sinumerik::SymbolMap {
+        match self {
+            Symbols::Sinumerik(m) => m,
+            Symbols::Fanuc(_) => &NO_SINUMERIK,
+        }
+    }
+}
+
+/// The result of a translation, for every pair of dialects.
+#[derive(Clone, Debug)]
+pub struct Translation {
+    /// The files written, the main program's first on FANUC (one file holds every program),
+    /// one per program on Sinumerik.
+    pub files: Vec<OutFile>,
+    pub symbols: Symbols,
+    pub diags: Vec<Diagnostic>,
+    /// Constructs the target cannot express that were written as marked comments (the warn
+    /// policy); the FANUC target also counts those refused under the error policy.
+    pub unsupported: usize,
+}
+
+impl Translation {
+    /// The dialect written.
+    pub fn target(&self) -> Dialect {
+        match self.symbols {
+            Symbols::Fanuc(_) => Dialect::Fanuc,
+            Symbols::Sinumerik(_) => Dialect::Sinumerik,
+        }
+    }
+
+    pub fn has_errors(&self) -> bool {
+        diag::has_errors(&self.diags)
+    }
+
+    /// True when the files are a complete translation (no error, nothing unsupported).
+    pub fn ok(&self) -> bool {
+        !self.has_errors() && self.unsupported == 0
+    }
+
+    /// The main program's file (the first `.MPF`).
+    pub fn main(&self) -> Option<&OutFile> {
+        self.files.iter().find(|f| f.main).or_else(|| self.files.first())
+    }
+
+    /// The main file's text (empty when nothing was written).
+    pub fn text(&self) -> &str {
+        self.main().map_or("", |f| f.text.as_str())
+    }
+}
+
+impl From<to_fanuc::Output> for Translation {
+    fn from(o: to_fanuc::Output) -> Translation {
+        let number = match o.unit.programs.first().and_then(|p| p.name.as_ref()) {
+            Some(ProgName::Number(n)) => *n,
+            _ => DEFAULT_MAIN_NUMBER,
+        };
+        let file = OutFile {
+            name: format!("O{number:04}.nc"),
+            program: format!("O{number:04}"),
+            fanuc_number: None,
+            main: true,
+            text: o.text,
+            source: o.unit.file,
+            lines: vec![],
+        };
+        Translation {
+            files: vec![file],
+            symbols: Symbols::Fanuc(o.symbol_map),
+            diags: o.diags,
+            unsupported: o.unsupported,
+        }
+    }
+}
+
+/// The result of checking a translation.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    /// Both programs ran to the same trace.
+    pub equivalent: bool,
+    /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
+    pub summary: String,
+    /// Rendered diagnostics (parse errors of the output, the divergence).
+    pub rendered: String,
+    /// The output parsed back as FANUC.
+    pub reparsed: Option<Unit>,
+}
+
+impl Verification {
+    /// The verdict of a check, in the words both targets give it; `rendered` holds the
+    /// check's diagnostics (and the trace diff of a divergence).
+    fn of(report: &CheckReport) -> Verification {
+        let mut rendered = diag::render(&report.db, &report.diags);
+        let (equivalent, summary) = match &report.verdict {
+            Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
+            Verdict::Diverged { index } => {
+                rendered.push_str(&report.diff);
+                (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
+            }
+            Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
+            Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
+        };
+        Verification { equivalent, summary, rendered, reparsed: None }
+    }
+}
+
+/// Proves a translation of `inputs` (as given to [`translate`], in `db`): the output is read
+/// back as the target (so it is valid syntax there), both programs run in the evaluator with
+/// at most `max_steps` blocks each, and their traces are compared. `out` names the output in
+/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. The command line's
+/// `--to sinumerik` and the batch jobs run the per-target proofs with their own inputs and
+/// profiles (`to_sinumerik::verify::verify_run`).
+pub fn verify(db: &mut SourceDb, inputs: &[&Unit], t: &Translation, out: &str, max_steps: u64) -> Verification {
+    let Some((main, subs)) = inputs.split_first() else {
+        let summary = "not verified: no program to run".to_string();
+        return Verification { equivalent: false, summary, rendered: String::new(), reparsed: None };
+    };
+    match t.target() {
+        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, max_steps),
+        Dialect::Sinumerik => {
+            Verification::of(&to_sinumerik::verify::verify_with(db, main.file, main, t, out, max_steps))
+        }
+    }
+}
+
+/// The options of a translation: each target's own, and the output's line ending.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// A translation to FANUC (its `line_ending` is [`Options::line_ending`]'s).
+    pub fanuc: TranslateOptions,
+    /// A translation to Sinumerik.
+    pub sinumerik: to_sinumerik::Options,
+    pub line_ending: LineEnding,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { fanuc: TranslateOptions::default(), sinumerik: Default::default(), line_ending: LineEnding::Lf }
+    }
+}
+
+impl Options {
+    /// The options of a translation to FANUC (the output's line ending is `o`'s).
+    pub fn to_fanuc(o: TranslateOptions) -> Options {
+        Options { line_ending: o.line_ending, fanuc: o, ..Options::default() }
+    }
+
+    /// The options of a translation to Sinumerik.
+    pub fn to_sinumerik(o: to_sinumerik::Options, line_ending: LineEnding) -> Options {
+        Options { sinumerik: o, line_ending, ..Options::default() }
+    }
+}
+
+/// Translates `inputs` to `to`: the main file's unit first, then the units of the files
+/// its callees were found in. The source dialect is the units' own ([`Unit::dialect`]);
+/// it must not be `to`. Refused constructs are errors (NC3xx) by default; under the warn
+/// policy they are marked comments and the main program alarms on its first line.
+pub fn translate(inputs: &[&Unit], to: Dialect, opts: &Options) -> Translation {
+    debug_assert!(inputs.iter().all(|u| u.dialect != to), "a translation to the dialect it is in");
+    match to {
+        Dialect::Fanuc => {
+            let Some((main, subs)) = inputs.split_first() else {
+                return to_fanuc::to_fanuc(&empty(), &[], &opts.fanuc).into();
+            };
+            let fanuc = TranslateOptions { line_ending: opts.line_ending, ..opts.fanuc.clone() };
+            to_fanuc::to_fanuc(main, subs, &fanuc).into()
+        }
+        Dialect::Sinumerik => to_sinumerik::translate(inputs, &opts.sinumerik, opts.line_ending),
+    }
+}
+
+fn empty() -> Unit {
+    Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![] }
+}
