@@ -81,6 +81,9 @@ pub struct Config {
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
     pub cycle83_clearance: f64,
+    /// Siemens definition files (`.DEF`, global user data) for every program; empty: the
+    /// `.DEF` files nearest each program (`crate::gud::discover`).
+    pub definitions: Vec<PathBuf>,
     /// `--var-map` rules for Sinumerik → FANUC (`R0-R99=#100`).
     pub var_map_to_fanuc: Vec<String>,
     /// `--var-map` rules for FANUC → Sinumerik (`#500-#599=R100`).
@@ -135,6 +138,7 @@ impl Default for Config {
             r_parameters: 300,
             cycle83_retract: 1.0,
             cycle83_clearance: 0.6,
+            definitions: vec![],
             var_map_to_fanuc: vec![],
             var_map_to_sinumerik: vec![],
             tools: BTreeMap::new(),
@@ -162,7 +166,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 32] = [
+pub const KEYS: [(&str, &str, &str); 33] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -174,6 +178,7 @@ pub const KEYS: [(&str, &str, &str); 32] = [
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
+    ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
@@ -310,6 +315,7 @@ impl Config {
             "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
             "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
             "sinumerik.cycle83_clearance" => self.cycle83_clearance = as_mm(key, v)?,
+            "sinumerik.definitions" => self.definitions.extend(list(key, v)?.into_iter().map(PathBuf::from)),
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
             "tools" => {
@@ -515,6 +521,9 @@ r_parameters = 300
 cycle83_retract = 1.0
 # and the anticipation distance above the last depth for chip removal (VARI 1) in mm.
 cycle83_clearance = 0.6
+# Definition files with global user data (DEF NCK/CHAN ...), for every program. Empty: the
+# .DEF files nearest each program (its folder or a DEF folder there, then the folder above).
+definitions = []
 
 [variables]
 # Where variables go, as --var-map rules. Sinumerik -> FANUC defaults: R n -> #(500+n), DEF

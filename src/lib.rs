@@ -10,6 +10,7 @@ pub mod config;
 pub mod diag;
 pub mod dialect;
 pub mod empty;
+pub mod gud;
 pub mod eval;
 pub mod excerpt;
 pub mod ir;

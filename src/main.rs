@@ -250,7 +250,19 @@ fn load_for_run(
     if diag::has_errors(&parsed.diags) {
         return Err(ExitCode::from(1));
     }
-    let opts = run_options(&db.get(loaded.file).text, &name, eval)?;
+    let mut opts = run_options(&db.get(loaded.file).text, &name, eval)?;
+    if dialect == Dialect::Sinumerik {
+        // Global user data from the library's definition files (`.DEF` beside the program).
+        let mut sem = nctrans::dialect::Semantics::default_for(dialect);
+        let gud = nctrans::gud::apply(&mut sem, db, path, None, &[]);
+        eprint!("{}", diag::render(db, &gud));
+        if diag::has_errors(&gud) {
+            return Err(ExitCode::from(1));
+        }
+        if !sem.globals.is_empty() {
+            opts.semantics = Some(sem);
+        }
+    }
     Ok((parsed.unit, opts))
 }
 

@@ -106,6 +106,12 @@ pub struct Translation {
     /// on them, no call that changes them): what the streamed translators, which convert
     /// F words in text order, need to give the same output.
     pub units_follow_text: bool,
+    /// Global user data mapped to FANUC commons: `(number, start value)` of every element,
+    /// where the FANUC side of a check starts (the Siemens side starts at the definitions').
+    pub gud_seeds: Vec<(u32, f64)>,
+    /// The source profile's global user data (`Semantics::globals`): the Siemens side of a
+    /// check declares it.
+    pub globals: std::sync::Arc<Vec<Def>>,
 }
 
 impl Translation {
@@ -244,6 +250,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     };
     unsupported += vctx.unsupported;
     diags.extend(vctx.diags);
+    let gud_seeds = vctx.gud_seeds;
 
     // Jumps, headers, O numbers.
     let mut symbol_map =
@@ -288,7 +295,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text, gud_seeds, globals: opts.source.globals.clone() }
 }
 
 /// The declared types of a program's scalar names (DEF and PROC parameters).
@@ -311,6 +318,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.nat = opts.target.nat;
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
+    ctx.globals = opts.source.globals.clone();
     ctx
 }
 
@@ -417,7 +425,12 @@ pub fn verify(
     let callees = MemCallees(subs.iter().map(|u| align_source(u, &t.symbol_map)).collect());
     let mut inputs = r_param_inputs(&t.symbol_map);
     inputs.extend(standalone_args(main, &t.symbol_map));
-    let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
+    inputs.extend(gud_inputs(t));
+    let a = Side {
+        unit: source,
+        callees: Box::new(callees),
+        run: RunOptions { max_steps, semantics: source_semantics(t, None), ..RunOptions::default() },
+    };
     let b = Side {
         unit: parsed.unit.clone(),
         callees: Box::new(NoCallees),
@@ -478,6 +491,23 @@ pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
         .filter_map(|m| crate::eval::parse_input(&format!("#{}=0", m.number)).ok())
         .collect()
+}
+
+/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
+/// so it starts where the Siemens side's definitions start.
+pub fn gud_inputs(t: &Translation) -> Vec<crate::eval::Input> {
+    t.gud_seeds.iter().filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok()).collect()
+}
+
+/// The Siemens profile of a check's source side: `base` (or the default) with the
+/// translation's global user data; `None` when there is neither.
+pub fn source_semantics(t: &Translation, base: Option<&crate::dialect::Semantics>) -> Option<crate::dialect::Semantics> {
+    if t.globals.is_empty() {
+        return base.cloned();
+    }
+    let mut s = base.cloned().unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
+    s.globals = t.globals.clone();
+    Some(s)
 }
 
 /// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation

@@ -146,10 +146,16 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let opts = match options(c, input, loaded.line_ending) {
+    let mut opts = match options(c, input, loaded.line_ending) {
         Ok(o) => o,
         Err(e) => return fail(e),
     };
+    // Global user data from the library's definition files.
+    let gud = nctrans::gud::apply(&mut opts.source, &mut db, input, None, &c.definitions);
+    eprint!("{}", diag::render(&db, &gud));
+    if diag::has_errors(&gud) {
+        return ExitCode::from(1);
+    }
     let sub_refs: Vec<&Unit> = subs.iter().collect();
     let t = translate::to_fanuc(&parsed.unit, &sub_refs, &opts);
     eprint!("{}", diag::render(&db, &t.diags));

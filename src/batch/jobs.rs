@@ -34,6 +34,9 @@ pub struct JobSettings {
     pub max_steps: u64,
     /// `--set` inputs for every run.
     pub set: Vec<String>,
+    /// `[sinumerik] definitions`: global user data files for every program (empty: found
+    /// beside each program, `crate::gud`).
+    pub definitions: Vec<std::path::PathBuf>,
 }
 
 impl JobSettings {
@@ -52,6 +55,7 @@ impl JobSettings {
             line_ends: c.line_ends,
             max_steps: c.max_steps,
             set: c.set.clone(),
+            definitions: c.definitions.clone(),
         })
     }
 
@@ -214,10 +218,16 @@ impl FileJob for ToFanucJob {
             Err(o) => return *o,
         };
         let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let opts = match self.options(ctx, file, main.loaded.line_ending) {
+        let mut opts = match self.options(ctx, file, main.loaded.line_ending) {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
+        // Global user data of the library (`.DEF` files nearest the program, up to the batch root).
+        let root = crate::gud::root_of(&file.abs, &file.rel);
+        let gud = crate::gud::apply(&mut opts.source, &mut db, &file.abs, root.as_deref(), &self.settings.definitions);
+        if diag::has_errors(&gud) {
+            return failed(Status::Error, "the definition files do not read".into(), DiagRecord::from_diags(&db, &gud));
+        }
         let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
         let mut t = translate::to_fanuc(&main.unit, &sub_units, &opts);
         let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);
@@ -357,6 +367,8 @@ impl ToFanucJob {
         // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
         let mut fanuc_inputs: Vec<String> = r_homes(&t.symbol_map);
+        fanuc_inputs.extend(t.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
+        let sinumerik = translate::source_semantics(t, Some(&self.settings.sinumerik)).unwrap_or_else(|| self.settings.sinumerik.clone());
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();
@@ -400,7 +412,7 @@ impl ToFanucJob {
             let source = translate::align_source(main, &t.symbol_map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());
             let a =
-                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &self.settings.sinumerik) };
+                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
             let b = Side {
                 unit: parsed.unit.clone(),
                 callees: Box::new(NoCallees),

@@ -40,6 +40,10 @@ pub struct Semantics {
     /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
     /// M97). On a FANUC, M97 is a machine builder's M code.
     pub haas: bool,
+    /// Siemens global user data (GUD): the `DEF NCK …` / `DEF CHAN …` definitions of the
+    /// library's `.DEF` files (`crate::gud`), declared on the control before any program runs,
+    /// so every program and subprogram sees them. Empty when no definition file applies.
+    pub globals: std::sync::Arc<Vec<crate::ir::Def>>,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -81,6 +85,7 @@ impl Semantics {
                 max_subprogram_depth: 10,
                 incremental_travels_offset: false,
                 haas: false,
+                globals: Default::default(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -96,6 +101,7 @@ impl Semantics {
                 max_subprogram_depth: 15,
                 incremental_travels_offset: true,
                 haas: false,
+                globals: Default::default(),
             },
         }
     }
