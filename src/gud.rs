@@ -84,31 +84,77 @@ fn same_dir(a: &Path, b: &Path) -> bool {
     }
 }
 
+/// What the definition files of a program hold.
+#[derive(Debug, Default)]
+pub struct Definitions {
+    /// Global user data, in file order.
+    pub defs: Vec<Def>,
+    /// `DEFINE NAME AS text` macros (names upper case), in file order.
+    pub macros: Vec<(String, String)>,
+    pub diags: Vec<Diagnostic>,
+}
+
 /// The global definitions of `files`, read as Sinumerik into `db`: every `DEF` of a
 /// definition file is global user data (`NCK` or `CHAN`; one channel is modelled, so both
-/// are one value). A name defined twice the same way is one variable; defined two ways it
-/// is an error (NC503). Parse errors of a file are returned as they are.
-pub fn load(db: &mut SourceDb, files: &[PathBuf], encoding: Option<&'static encoding_rs::Encoding>) -> (Vec<Def>, Vec<Diagnostic>) {
-    let mut defs: Vec<Def> = Vec::new();
-    let mut diags = Vec::new();
+/// are one value), every `DEFINE NAME AS text` a macro, which applies to the definition
+/// files too (`DEF NCK REAL DEPTH[MAXSTAGE]`). A name defined twice the same way is one
+/// variable or macro; defined two ways it is an error (NC503), as is a macro whose text
+/// uses another (macros do not nest). Parse errors of a file are returned as they are.
+pub fn load(db: &mut SourceDb, files: &[PathBuf], encoding: Option<&'static encoding_rs::Encoding>) -> Definitions {
+    let mut out = Definitions::default();
     let mut seen: std::collections::HashMap<String, (crate::ir::DataType, Vec<u32>, String)> = Default::default();
+    // The files' texts first: macros apply to every file, wherever they are defined.
+    let mut texts = Vec::new();
     for path in files {
-        let bytes = match std::fs::read(path) {
-            Ok(b) => b,
-            Err(e) => {
-                diags.push(
-                    Diagnostic::error("NC503", format!("cannot read the definition file {}: {e}", path.display()))
-                        .hint("check the [sinumerik] definitions list in nctrans.toml"),
-                );
-                continue;
+        match std::fs::read(path) {
+            Ok(bytes) => {
+                let name = path.display().to_string();
+                let loaded = crate::load(db, &name, &bytes, encoding);
+                texts.push((name, loaded.file));
             }
-        };
-        let name = path.display().to_string();
-        let loaded = crate::load(db, &name, &bytes, encoding);
-        let opts = ParseOptions::for_dialect(Dialect::Sinumerik);
-        let parsed = crate::parse(db, loaded.file, Dialect::Sinumerik, &opts);
+            Err(e) => out.diags.push(
+                Diagnostic::error("NC503", format!("cannot read the definition file {}: {e}", path.display()))
+                    .hint("check the [sinumerik] definitions list in nctrans.toml"),
+            ),
+        }
+    }
+    let mut blanked = Vec::new();
+    for (_, file) in &texts {
+        let mut text = db.get(*file).text.clone();
+        for (name, body, range) in crate::dialect::sinumerik::macros::defines(&text) {
+            let span = crate::span::Span::new(range.start as u32, range.end as u32);
+            match out.macros.iter().find(|(n, _)| *n == name) {
+                Some((_, b)) if *b == body => {}
+                Some((_, b)) => out.diags.push(
+                    Diagnostic::error("NC503", format!("macro {name} is defined twice, differently"))
+                        .primary(*file, span, "defined here")
+                        .note(format!("the other definition is `{b}`"))
+                        .hint("keep one definition of each macro"),
+                ),
+                None => out.macros.push((name, body)),
+            }
+            // The DEFINE line is a definition, not code: blanked, so offsets stay the file's.
+            text.replace_range(range.clone(), &" ".repeat(range.len()));
+        }
+        blanked.push(text);
+    }
+    for (name, body) in &out.macros {
+        let words = body.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'));
+        if let Some(inner) = words.into_iter().find(|w| out.macros.iter().any(|(n, _)| n.eq_ignore_ascii_case(w))) {
+            out.diags.push(
+                Diagnostic::error("NC503", format!("macro {name} uses macro {}: Sinumerik macros do not nest", inner.to_ascii_uppercase()))
+                    .hint(format!("write the text of {} into {name}'s definition", inner.to_ascii_uppercase())),
+            );
+        }
+    }
+    let mut sem = Semantics::default_for(Dialect::Sinumerik);
+    sem.macros = std::sync::Arc::new(out.macros.clone());
+    let opts = ParseOptions { semantics: sem };
+    for ((name, file), text) in texts.iter().zip(blanked) {
+        let src = crate::span::SourceFile::new(name.clone(), text);
+        let parsed = crate::dialect::parse(&src, *file, Dialect::Sinumerik, &opts);
         let errors = crate::diag::has_errors(&parsed.diags);
-        diags.extend(parsed.diags.into_iter().filter(|d| d.is_error()));
+        out.diags.extend(parsed.diags.into_iter().filter(|d| d.is_error()));
         if errors {
             continue;
         }
@@ -127,9 +173,9 @@ pub fn load(db: &mut SourceDb, files: &[PathBuf], encoding: Option<&'static enco
                         Some((ty, dims, _)) if *ty == d.ty && *dims == v.dims => false,
                         Some((ty, dims, other)) => {
                             let was = if dims.is_empty() { format!("{ty}") } else { format!("{ty} {dims:?}") };
-                            diags.push(
+                            out.diags.push(
                                 Diagnostic::error("NC503", format!("global user data {} is defined twice, differently", v.name))
-                                    .primary(loaded.file, v.span, "defined here")
+                                    .primary(*file, v.span, "defined here")
                                     .note(format!("{other} defines it as {was}"))
                                     .hint("keep one definition file per control, or list the right one in [sinumerik] definitions"),
                             );
@@ -137,13 +183,13 @@ pub fn load(db: &mut SourceDb, files: &[PathBuf], encoding: Option<&'static enco
                         }
                     });
                     if !d.vars.is_empty() {
-                        defs.push(d);
+                        out.defs.push(d);
                     }
                 }
             });
         }
     }
-    (defs, diags)
+    out
 }
 
 /// Puts the global definitions that apply to `program` into `sem`: `configured` (the
@@ -160,9 +206,10 @@ pub fn apply(
     if files.is_empty() {
         return Vec::new();
     }
-    let (defs, diags) = load(db, &files, None);
-    sem.globals = std::sync::Arc::new(defs);
-    diags
+    let d = load(db, &files, None);
+    sem.globals = std::sync::Arc::new(d.defs);
+    sem.macros = std::sync::Arc::new(d.macros);
+    d.diags
 }
 
 /// The batch root of a file given by its absolute path and its path relative to the root.

@@ -12,6 +12,7 @@ use std::process::ExitCode;
 mod batch_cli;
 mod check_cli;
 mod cli_dialect;
+mod cli_profile;
 mod cli_sinumerik;
 mod out_guard;
 mod stream_cli;
@@ -202,7 +203,11 @@ fn cmd_parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &Input
     let name = path.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    let sem = match cli_profile::semantics(&mut db, path, dialect) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions { semantics: sem });
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return ExitCode::from(1);
@@ -245,24 +250,15 @@ fn load_for_run(
     let name = path.display().to_string();
     let loaded = nctrans::load(db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    // The project's profile (nctrans.toml) and the library's definition files.
+    let sem = cli_profile::semantics(db, path, dialect)?;
+    let parsed = nctrans::parse(db, loaded.file, dialect, &ParseOptions { semantics: sem.clone() });
     eprint!("{}", diag::render(db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return Err(ExitCode::from(1));
     }
     let mut opts = run_options(&db.get(loaded.file).text, &name, eval)?;
-    if dialect == Dialect::Sinumerik {
-        // Global user data from the library's definition files (`.DEF` beside the program).
-        let mut sem = nctrans::dialect::Semantics::default_for(dialect);
-        let gud = nctrans::gud::apply(&mut sem, db, path, None, &[]);
-        eprint!("{}", diag::render(db, &gud));
-        if diag::has_errors(&gud) {
-            return Err(ExitCode::from(1));
-        }
-        if !sem.globals.is_empty() {
-            opts.semantics = Some(sem);
-        }
-    }
+    opts.semantics = Some(sem);
     Ok((parsed.unit, opts))
 }
 
@@ -329,7 +325,7 @@ fn cmd_run(
     let main_id = unit.file;
     let line_of = move |o: eval::Origin| (o.file == main_id).then(|| main_file.line_col(o.span.lo).0);
     let out = std::io::BufWriter::new(std::io::stdout().lock());
-    let mut callees = eval::DirCallees { semantics: None };
+    let mut callees = eval::DirCallees { semantics: opts.semantics.clone() };
     let (outcome, write_error) = if quiet {
         (eval::run(&mut db, &unit, &mut callees, &opts, &mut eval::NullSink), None)
     } else {

@@ -109,3 +109,34 @@ fn string_data_and_two_definitions_are_refused_precisely() {
     assert!(err.contains("NC503") && err.contains("DEPTH"), "{err}");
     assert!(Path::new(&d.join("DEF/UGUD.DEF")).exists());
 }
+
+const MACROS: &str = "; macro definitions\nDEFINE MAXSTAGE AS 3\nDEFINE LINE AS G1 G94 F300\nDEF NCK REAL STAGE_Z[MAXSTAGE]\nM30\n";
+
+#[test]
+fn define_macros_apply_to_programs_and_dimensions() {
+    let d = workdir("gud", "macros");
+    std::fs::write(d.join("UMAC.DEF"), MACROS).unwrap();
+    std::fs::write(
+        d.join("STAGES.MPF"),
+        "DEF INT KS\nG0 X0 Z5\nFOR KS=0 TO MAXSTAGE-1\nSTAGE_Z[KS]=-KS-1\nLINE Z=STAGE_Z[KS]\nENDFOR\nM30\n",
+    )
+    .unwrap();
+    let (out, err, code) = nctrans(&d, &["run", "STAGES.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("Z=-3 f=300"), "{out}");
+    assert!(!out.contains("Z=-4"), "{out}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "STAGES.MPF", "-o", "s.nc", "--var-map", "STAGE_Z=#700"]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(d.join("s.nc")).unwrap();
+    assert!(text.contains("WHILE [#100 LE 3.-1.] DO1") && text.contains("G01 G94 F300. Z#[#100+700.]"), "{text}");
+    // An error inside a macro's text points at the macro's name in the program.
+    std::fs::write(d.join("BAD.MPF"), "G0 X0\nLINE X=\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["parse", "BAD.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("BAD.MPF:2:"), "{err}");
+    // Macros do not nest.
+    std::fs::write(d.join("UMAC.DEF"), "DEFINE A1 AS 2\nDEFINE B1 AS A1*2\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "STAGES.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC503") && err.contains("do not nest"), "{err}");
+}

@@ -213,7 +213,15 @@ impl FileJob for ToFanucJob {
             return o;
         }
         let mut db = SourceDb::new();
-        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &self.settings.sinumerik) {
+        // Global user data and macros of the library (`.DEF` files nearest the program, up to
+        // the batch root, or the configured ones).
+        let mut sem = self.settings.sinumerik.clone();
+        let root = crate::gud::root_of(&file.abs, &file.rel);
+        let gud = crate::gud::apply(&mut sem, &mut db, &file.abs, root.as_deref(), &self.settings.definitions);
+        if diag::has_errors(&gud) {
+            return failed(Status::Error, "the definition files do not read".into(), DiagRecord::from_diags(&db, &gud));
+        }
+        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &sem) {
             Ok(l) => l,
             Err(o) => return *o,
         };
@@ -222,12 +230,7 @@ impl FileJob for ToFanucJob {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
-        // Global user data of the library (`.DEF` files nearest the program, up to the batch root).
-        let root = crate::gud::root_of(&file.abs, &file.rel);
-        let gud = crate::gud::apply(&mut opts.source, &mut db, &file.abs, root.as_deref(), &self.settings.definitions);
-        if diag::has_errors(&gud) {
-            return failed(Status::Error, "the definition files do not read".into(), DiagRecord::from_diags(&db, &gud));
-        }
+        opts.source = sem;
         let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
         let mut t = translate::to_fanuc(&main.unit, &sub_units, &opts);
         let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);

@@ -44,6 +44,10 @@ pub struct Semantics {
     /// library's `.DEF` files (`crate::gud`), declared on the control before any program runs,
     /// so every program and subprogram sees them. Empty when no definition file applies.
     pub globals: std::sync::Arc<Vec<crate::ir::Def>>,
+    /// Siemens macros (`DEFINE NAME AS text` in the library's `.DEF` files): the reader
+    /// replaces every NAME in program code by its text (`dialect::sinumerik::macros`).
+    /// Names upper case; empty when no definition file applies.
+    pub macros: std::sync::Arc<Vec<(String, String)>>,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -86,6 +90,7 @@ impl Semantics {
                 incremental_travels_offset: false,
                 haas: false,
                 globals: Default::default(),
+                macros: Default::default(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -102,6 +107,7 @@ impl Semantics {
                 incremental_travels_offset: true,
                 haas: false,
                 globals: Default::default(),
+                macros: Default::default(),
             },
         }
     }

@@ -18,6 +18,8 @@ pub struct FileState {
     pub r_count: u32,
     /// Names declared by DEF or PROC so far (upper case), with their type.
     pub declared: HashMap<String, DataType>,
+    /// `DEFINE` macros of the library (`Semantics::macros`), replaced before the grammar.
+    pub macros: std::sync::Arc<Vec<(String, String)>>,
 }
 
 /// Converts the pairs of one block; spans go through `norm` back to the file.
