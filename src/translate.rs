@@ -319,6 +319,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
     ctx.globals = opts.source.globals.clone();
+    ctx.master_spindle = opts.source.master_spindle;
     ctx
 }
 

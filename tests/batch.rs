@@ -393,7 +393,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("mcall-modal.mpf", "NC393"),                // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),         // SD=, BSPLINE, …
     ("operators-bitwise.mpf", "NC330"),          // B_NOT
-    ("operators-concat.mpf", "NC314"),           // MSG with a computed text
     ("repeat-section.mpf", "NC317"),             // REPEAT label P=n
     ("rotary-acp-acn-dc.mpf", "NC630"),          // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"),        // synchronized actions
@@ -449,6 +448,7 @@ const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// target cannot carry back.
 const SIEMENS_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
     ("msg-progress-messages.mpf", "a MSG without a stop is a FANUC comment and does not come back as a message"),
+    ("operators-concat.mpf", "a computed MSG is a FANUC comment of its formula and does not come back as a message"),
     ("seed-hemisphere-if-gotob.mpf", "tool names become FANUC T numbers (the tool map) and stay numbers"),
     ("seed-sine-curve-while.mpf", "tool names become T numbers"),
     // A PROC run alone: its parameters are 0 on Siemens. Through FANUC they come back as

@@ -48,6 +48,11 @@ pub struct Semantics {
     /// replaces every NAME in program code by its text (`dialect::sinumerik::macros`).
     /// Names upper case; empty when no definition file applies.
     pub macros: std::sync::Arc<Vec<(String, String)>>,
+    /// Siemens master spindle (MD20090 `$MC_SPIND_DEF_MASTER_SPIND`, default 1): `M1=3` and
+    /// `S1=1000` address it by number and mean what `M3` and `S1000` mean; the one FANUC
+    /// spindle is it. Words of another spindle (`M2=3`) have no FANUC counterpart. `SETMS`
+    /// is not modelled, so this stays the master spindle. 0 on FANUC (no numbered spindles).
+    pub master_spindle: u32,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -91,6 +96,7 @@ impl Semantics {
                 haas: false,
                 globals: Default::default(),
                 macros: Default::default(),
+                master_spindle: 0,
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -108,6 +114,7 @@ impl Semantics {
                 haas: false,
                 globals: Default::default(),
                 macros: Default::default(),
+                master_spindle: 1,
             },
         }
     }

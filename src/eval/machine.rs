@@ -71,6 +71,8 @@ pub type Warn = (&'static str, String, Span);
 
 pub struct Machine {
     pub fanuc: bool,
+    /// Siemens: the master spindle's number as written after `M`/`S` (`Semantics::master_spindle`).
+    pub master_spindle: Option<String>,
     pub alarms: AlarmNumbers,
     /// FANUC decimal-point rule active (IS-B, not calculator input).
     pub scaling: bool,
@@ -134,6 +136,7 @@ impl Machine {
     pub fn new(fanuc: bool, alarms: AlarmNumbers, scaling: bool, inc_mm: f64) -> Machine {
         Machine {
             fanuc,
+            master_spindle: (!fanuc).then(|| "1".to_string()),
             alarms,
             scaling,
             inc_mm,
@@ -409,6 +412,13 @@ impl Machine {
                 (_, None) => return Err(Fault::alarm(0, format!("address {a} needs a number, not a string"), w.span)),
                 ("G", Some(x)) => gs.push((x, w.span)),
                 ("M", Some(x)) => ms.push((round_half_away(x), w.span)),
+                // `M1=3` / `S1=1000`: the master spindle addressed by its number.
+                (a, Some(x)) if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('M') => {
+                    ms.push((round_half_away(x), w.span))
+                }
+                (a, Some(x)) if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('S') => {
+                    s = Some((w, x))
+                }
                 ("I", Some(x)) => ijk[0] = Some((w, x)),
                 ("J", Some(x)) => ijk[1] = Some((w, x)),
                 ("K", Some(x)) => ijk[2] = Some((w, x)),

@@ -26,6 +26,7 @@ pub mod lit;
 pub mod machine;
 pub mod numfmt;
 pub mod refuse;
+mod strings;
 pub mod sysvars;
 pub mod trace;
 pub mod value;

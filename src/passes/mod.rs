@@ -91,6 +91,8 @@ pub struct Ctx {
     /// Global user data mapped to FANUC commons: each element's number and start value,
     /// where the FANUC side of a check starts (`Translation::gud_seeds`).
     pub gud_seeds: Vec<(u32, f64)>,
+    /// The Siemens master spindle (`Semantics::master_spindle`): `M1=3` is `M3` there.
+    pub master_spindle: u32,
     next_temp: u32,
     next_label: u32,
 }
@@ -109,6 +111,7 @@ impl Ctx {
             units_inexact: false,
             globals: Default::default(),
             gud_seeds: Vec::new(),
+            master_spindle: 1,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

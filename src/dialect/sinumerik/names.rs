@@ -32,6 +32,15 @@ pub fn builtin(name: &str) -> Option<Builtin> {
         "MAXVAL" => (Func::MaxVal, 2),
         "BOUND" => (Func::Bound, 3),
         "AXNAME" => (Func::AxName, 1),
+        "STRLEN" => (Func::StrLen, 1),
+        "TOUPPER" => (Func::ToUpper, 1),
+        "TOLOWER" => (Func::ToLower, 1),
+        "INDEX" => (Func::Index, 2),
+        "RINDEX" => (Func::RIndex, 2),
+        // Also with two arguments (to the end of the string).
+        "SUBSTR" => (Func::Substr, 3),
+        "NUMBER" => (Func::Number, 1),
+        "ISNUMBER" => (Func::IsNumber, 1),
         _ => return None,
     };
     Some(Builtin { func, arity })
