@@ -58,3 +58,33 @@ fn a_computed_message_becomes_a_comment_of_its_formula() {
     let out = std::fs::read_to_string(d.join("p.nc")).unwrap();
     assert!(out.contains("(MSG: \"pass \"<<R1<<\" of 4\")"), "{out}");
 }
+
+#[test]
+fn ret_with_a_target_reads_and_is_refused_by_name() {
+    let d = write("ret", "MAIN.MPF", "BACK_SUB\nG1 X5 F100\nRESUME:\nG1 X9\nM30\n");
+    std::fs::write(d.join("BACK_SUB.SPF"), "PROC BACK_SUB\nG1 X1 F100\nRET(\"RESUME\", 1)\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["parse", "--summary", "BACK_SUB.SPF"]);
+    assert_eq!(code, 0, "{err}");
+    let (_, err, code) = nctrans(&d, &["run", "MAIN.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC507") && err.contains("RET(\"RESUME\", 1)"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "BACK_SUB.SPF", "-o", "b.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC507"), "{err}");
+}
+
+#[test]
+fn extcall_runs_the_named_program_and_gett_is_refused() {
+    let d = write("extcall", "MAIN.MPF", "G0 X0\nEXTCALL \"ROUGH\"\nM30\n");
+    std::fs::write(d.join("ROUGH.SPF"), "PROC ROUGH\nG1 X7 F100\nRET\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["run", "MAIN.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("X=7"), "{out}");
+    std::fs::write(d.join("TOOL.MPF"), "DEF INT TNO\nTNO=GETT(\"DRILL_5\")\nT=TNO\nM6\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "TOOL.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC508"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "TOOL.MPF", "-o", "t.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC508"), "{err}");
+}

@@ -551,6 +551,12 @@ impl<'a> Interp<'a> {
                     .primary(self.file(), item.span, "here")
                     .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
                 )),
+                _ if name.starts_with("RET(") => Err(Fault::error(
+                    Diagnostic::error("NC507", format!("{name}: a return that resumes elsewhere is not modelled"))
+                        .primary(self.file(), item.span, "here")
+                        .note("RET with a jump target resumes at a label or block of a calling program, levels up")
+                        .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
+                )),
                 _ => {
                     self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
                     Ok(())

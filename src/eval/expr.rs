@@ -286,7 +286,8 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
         | Func::RIndex
         | Func::Substr
         | Func::Number
-        | Func::IsNumber => return Err(domain("a string function needs its string arguments")),
+        | Func::IsNumber
+        | Func::GetT => return Err(domain("a string function needs its string arguments")),
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
         Func::Tan => {

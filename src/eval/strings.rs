@@ -59,6 +59,13 @@ pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> 
             None => return Err(domain(format!("NUMBER: \"{}\" is not a number", text(0)))),
         },
         Func::IsNumber => Value::Num(if parse_number(&text(0)).is_some() { 1.0 } else { 0.0 }),
+        Func::GetT => {
+            return Err(Fault::error(
+                crate::diag::Diagnostic::error("NC508", "GETT: the T number tool management gives a tool name is not modelled")
+                    .primary(cx.file, span, "here")
+                    .hint("select the tool by name (T=\"NAME\") or by number"),
+            ))
+        }
         _ => return Err(domain("not a string function".into())),
     })
 }

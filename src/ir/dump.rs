@@ -493,6 +493,7 @@ pub fn func_name(f: Func) -> &'static str {
         Func::Substr => "substr",
         Func::Number => "number",
         Func::IsNumber => "isnumber",
+        Func::GetT => "gett",
         Func::Bin => "bin",
         Func::Bcd => "bcd",
         Func::Adp => "adp",

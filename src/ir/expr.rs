@@ -180,6 +180,9 @@ pub enum Func {
     /// Siemens `NUMBER(s)`: the REAL a string spells; `ISNUMBER(s)`: whether it spells one.
     Number,
     IsNumber,
+    /// Siemens `GETT("name", duplo)`: the T number tool management gives a tool name (read,
+    /// and refused: tool management is not modelled).
+    GetT,
 }
 
 impl Func {
@@ -195,6 +198,7 @@ impl Func {
                 | Func::Substr
                 | Func::Number
                 | Func::IsNumber
+                | Func::GetT
         )
     }
 }

@@ -366,6 +366,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("{name} dropped"),
                 "it changes acceleration or feed control only, not the programmed path",
             ),
+            ItemKind::Instruction { name } if name.starts_with("RET(") => after.extend(ctx.unsupported(
+                "NC507",
+                span,
+                &format!("{name} (a return that resumes at a label or block of a caller)"),
+                "FANUC M99 Pn resumes at Nn of the caller only; rewrite it as RET and a jump in the caller",
+            )),
             ItemKind::Instruction { name } => after.extend(ctx.unsupported(
                 "NC312",
                 span,

@@ -558,6 +558,7 @@ pub fn func_name(f: Func) -> &'static str {
         Func::Substr => "SUBSTR",
         Func::Number => "NUMBER",
         Func::IsNumber => "ISNUMBER",
+        Func::GetT => "GETT",
         // FANUC-only functions have no Siemens spelling; the passes lower them. Should one
         // slip through, a name Siemens does not know makes the re-parse fail loudly.
         Func::FanucAsin => "FANUC_ASIN",

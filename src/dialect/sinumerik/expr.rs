@@ -199,7 +199,7 @@ impl Lower<'_, '_> {
                 _ => omitted = true,
             }
         }
-        let substr_to_end = b.func == Func::Substr && exprs.len() == 2;
+        let substr_to_end = (b.func == Func::Substr && exprs.len() == 2) || (b.func == Func::GetT && exprs.len() == 1);
         if omitted || (exprs.len() != b.arity && !substr_to_end) {
             let want = match b.arity {
                 1 => "one argument".to_string(),

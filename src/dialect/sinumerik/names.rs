@@ -41,6 +41,8 @@ pub fn builtin(name: &str) -> Option<Builtin> {
         "SUBSTR" => (Func::Substr, 3),
         "NUMBER" => (Func::Number, 1),
         "ISNUMBER" => (Func::IsNumber, 1),
+        // Also with one argument (duplo number 1).
+        "GETT" => (Func::GetT, 2),
         _ => return None,
     };
     Some(Builtin { func, arity })

@@ -253,7 +253,11 @@ impl Lower<'_, '_> {
                 Some(ItemKind::Alarm { style: AlarmStyle::Setal, number, text: None })
             }
             Rule::stopre_stmt => Some(ItemKind::Stopre),
-            Rule::ret_stmt => Some(ItemKind::Return { to: None }),
+            Rule::ret_stmt => match p.into_inner().find(|q| q.as_rule() == Rule::ret_args) {
+                None => Some(ItemKind::Return { to: None }),
+                // Kept as written; the evaluator and the translation refuse it by name.
+                Some(a) => Some(ItemKind::Instruction { name: format!("RET({})", a.as_str().trim()) }),
+            },
             Rule::mcall_stmt => match p.into_inner().nth(1) {
                 None => Some(ItemKind::ModalCallOff),
                 Some(c) => match self.item(c)? {
