@@ -453,6 +453,7 @@ impl Config {
         s.calculator_input = self.fanuc.calculator_input;
         s.nat = self.fanuc.nat;
         s.haas = self.fanuc.series.starts_with("haas");
+        s.haas_ngc = self.fanuc.series == "haas-ngc";
         s
     }
 

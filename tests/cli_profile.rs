@@ -31,3 +31,31 @@ fn run_and_parse_take_the_haas_profile_from_the_project_file() {
     assert_eq!(code, 2);
     assert!(err.contains("fanuc.series"), "{err}");
 }
+
+#[test]
+fn haas_ngc_variables_alias_their_legacy_numbers() {
+    let d = workdir("profile", "ngc");
+    std::fs::write(d.join("nctrans.toml"), "[fanuc]\nseries = \"haas-ngc\"\n").unwrap();
+    // #10100 is #100; #10002 is a variable of its own; G103 limits look-ahead only.
+    std::fs::write(
+        d.join("O2000.nc"),
+        "O2000\nG103 P1\n#10100=5.\n#10002=2.\n#1=#100+#10002\nG1 X#1 F100.\nG103 P0\nM30\n",
+    )
+    .unwrap();
+    let (out, err, code) = nctrans(&d, &["run", "O2000.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("move linear X=7"), "{out}");
+    assert!(err.contains("G103 (Haas look-ahead limit)"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O2000.nc", "-o", "o.mpf"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC509") && err.contains("#10002"), "{err}");
+    std::fs::write(d.join("O2001.nc"), "O2001\n#10500=4.\nG1 X#500 F100.\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O2001.nc", "-o", "p.mpf"]);
+    assert_eq!(code, 0, "{err}");
+    let out = std::fs::read_to_string(d.join("p.mpf")).unwrap();
+    assert!(out.contains("R0=4") && out.contains("X=R0"), "{out}");
+    // Without the NGC profile #10500 is not a common variable.
+    std::fs::remove_file(d.join("nctrans.toml")).unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "O2001.nc"]);
+    assert_ne!(code, 0, "{err}");
+}

@@ -40,6 +40,9 @@ pub struct Semantics {
     /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
     /// M97). On a FANUC, M97 is a machine builder's M code.
     pub haas: bool,
+    /// A Haas NGC control (`[fanuc] series = "haas-ngc"`): `#10000..#10999` are the general
+    /// purpose variables, those with a legacy number read as it (`dialect::fanuc::haas_vars`).
+    pub haas_ngc: bool,
     /// Siemens global user data (GUD): the `DEF NCK …` / `DEF CHAN …` definitions of the
     /// library's `.DEF` files (`crate::gud`), declared on the control before any program runs,
     /// so every program and subprogram sees them. Empty when no definition file applies.
@@ -94,6 +97,7 @@ impl Semantics {
                 max_subprogram_depth: 10,
                 incremental_travels_offset: false,
                 haas: false,
+                haas_ngc: false,
                 globals: Default::default(),
                 macros: Default::default(),
                 master_spindle: 0,
@@ -112,6 +116,7 @@ impl Semantics {
                 max_subprogram_depth: 15,
                 incremental_travels_offset: true,
                 haas: false,
+                haas_ngc: false,
                 globals: Default::default(),
                 macros: Default::default(),
                 master_spindle: 1,

@@ -115,6 +115,7 @@ impl<'a> Interp<'a> {
         let scaling = sem.increment_scaling && !sem.calculator_input;
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
         m.master_spindle = (!fanuc && sem.master_spindle > 0).then(|| sem.master_spindle.to_string());
+        m.haas = fanuc && sem.haas;
         m.incr_travels_offset = sem.incremental_travels_offset;
         m.probe_contact = opts.probe_contact;
         m.expand = opts.expand_cycles;

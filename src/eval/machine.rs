@@ -73,6 +73,8 @@ pub struct Machine {
     pub fanuc: bool,
     /// Siemens: the master spindle's number as written after `M`/`S` (`Semantics::master_spindle`).
     pub master_spindle: Option<String>,
+    /// A Haas control (`Semantics::haas`): G103 is its look-ahead limit.
+    pub haas: bool,
     pub alarms: AlarmNumbers,
     /// FANUC decimal-point rule active (IS-B, not calculator input).
     pub scaling: bool,
@@ -137,6 +139,7 @@ impl Machine {
         Machine {
             fanuc,
             master_spindle: (!fanuc).then(|| "1".to_string()),
+            haas: false,
             alarms,
             scaling,
             inc_mm,
@@ -522,6 +525,8 @@ impl Machine {
                         span,
                     ))
                 }
+                // Haas G103 Pn: look ahead at most n blocks (P0 normal); the path is the same.
+                1030 if self.haas => warns.push(("NC405", "G103 (Haas look-ahead limit) does not change the path".into(), span)),
                 _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }
         }

@@ -295,6 +295,8 @@ pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Di
             .hint("FANUC variable numbers have at most 8 digits")
     })?;
     check_var_number(cx.seg, n, span)?;
+    // Haas NGC: `#10100` is the variable `#100` (the text keeps the NGC number).
+    let n = if cx.opts.semantics.haas_ngc { super::haas_vars::legacy(n).unwrap_or(n) } else { n };
     Ok(VarRef { kind: VarKind::Hash(n), span })
 }
 

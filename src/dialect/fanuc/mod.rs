@@ -6,6 +6,7 @@
 //! turns the grammar's parts into IR items (calls, returns, alarms, Macro A lowering), and
 //! `structure.rs` builds `DO`/`END` loops and checks `GOTO` targets per program.
 
+pub mod haas_vars;
 mod args;
 mod block;
 pub mod cycles;
