@@ -88,3 +88,11 @@ fn extcall_runs_the_named_program_and_gett_is_refused() {
     assert_ne!(code, 0);
     assert!(err.contains("NC508"), "{err}");
 }
+
+#[test]
+fn a_variable_may_have_the_name_of_a_string_function() {
+    let d = write("names", "COUNT.MPF", "DEF INT COUNTER, NUMBER=7\nR1=NUMBER(\"2.5\")+NUMBER\nG1 X=R1 F100\nM30\n");
+    let (out, err, code) = nctrans(&d, &["run", "COUNT.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("X=9.5"), "{out}");
+}

@@ -202,7 +202,9 @@ pub fn reserved_name(upper: &str) -> Option<String> {
             _ => format!("{upper} is an address letter"),
         });
     }
-    if builtin(upper).is_some() || axis_indexed(upper) {
+    // The string functions (and GETT) are known by their call form `NAME(`; programs declare
+    // variables of those names (`DEF INT NUMBER`), which the reader keeps apart.
+    if builtin(upper).is_some_and(|b| !b.func.is_string()) || axis_indexed(upper) {
         return Some(format!("{upper} is a built-in function"));
     }
     if ADDRESSES.contains(&upper) {
