@@ -142,8 +142,11 @@ pub fn load(db: &mut SourceDb, files: &[PathBuf], encoding: Option<&'static enco
         let words = body.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'));
         if let Some(inner) = words.into_iter().find(|w| out.macros.iter().any(|(n, _)| n.eq_ignore_ascii_case(w))) {
             out.diags.push(
-                Diagnostic::error("NC503", format!("macro {name} uses macro {}: Sinumerik macros do not nest", inner.to_ascii_uppercase()))
-                    .hint(format!("write the text of {} into {name}'s definition", inner.to_ascii_uppercase())),
+                Diagnostic::error(
+                    "NC503",
+                    format!("macro {name} uses macro {}: Sinumerik macros do not nest", inner.to_ascii_uppercase()),
+                )
+                .hint(format!("write the text of {} into {name}'s definition", inner.to_ascii_uppercase())),
             );
         }
     }

@@ -295,7 +295,16 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Tran
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Translation { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text, gud_seeds, globals: opts.source.globals.clone() }
+    Translation {
+        text: emitted.text,
+        unit,
+        symbol_map,
+        diags,
+        unsupported,
+        units_follow_text,
+        gud_seeds,
+        globals: opts.source.globals.clone(),
+    }
 }
 
 /// The declared types of a program's scalar names (DEF and PROC parameters).
@@ -502,7 +511,10 @@ pub fn gud_inputs(t: &Translation) -> Vec<crate::eval::Input> {
 
 /// The Siemens profile of a check's source side: `base` (or the default) with the
 /// translation's global user data; `None` when there is neither.
-pub fn source_semantics(t: &Translation, base: Option<&crate::dialect::Semantics>) -> Option<crate::dialect::Semantics> {
+pub fn source_semantics(
+    t: &Translation,
+    base: Option<&crate::dialect::Semantics>,
+) -> Option<crate::dialect::Semantics> {
     if t.globals.is_empty() {
         return base.cloned();
     }

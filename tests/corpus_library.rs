@@ -35,7 +35,10 @@ fn programs(dir: &Path) -> Vec<String> {
             let p = e.path();
             if p.is_dir() {
                 stack.push(p);
-            } else if p.extension().is_some_and(|x| ["mpf", "spf", "nc"].contains(&x.to_ascii_lowercase().to_str().unwrap_or(""))) {
+            } else if p
+                .extension()
+                .is_some_and(|x| ["mpf", "spf", "nc"].contains(&x.to_ascii_lowercase().to_str().unwrap_or("")))
+            {
                 v.push(p.strip_prefix(dir).unwrap_or(&p).to_string_lossy().replace('\\', "/"));
             }
         }
@@ -55,7 +58,8 @@ fn golden(out: &str, rel: &str, actual: &str, failures: &mut Vec<String>) {
     match std::fs::read_to_string(&path) {
         Ok(e) if e == actual => {}
         Ok(e) => {
-            let diff = similar::TextDiff::from_lines(e.as_str(), actual).unified_diff().header("committed", "now").to_string();
+            let diff =
+                similar::TextDiff::from_lines(e.as_str(), actual).unified_diff().header("committed", "now").to_string();
             failures.push(format!("{}: differs\n{diff}", path.display()));
         }
         Err(_) => failures.push(format!("{}: missing (run with NCTRANS_BLESS=1 and review)", path.display())),

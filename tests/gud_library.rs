@@ -87,8 +87,11 @@ fn definitions_listed_in_the_configuration_apply() {
 #[test]
 fn a_batch_gives_every_program_the_same_homes() {
     let d = library("batch");
-    std::fs::write(d.join("nctrans.toml"), "[variables]\nto_fanuc = [\"DEPTH=#500\", \"FEEDR=#504\", \"PASSES=#505\"]\n")
-        .unwrap();
+    std::fs::write(
+        d.join("nctrans.toml"),
+        "[variables]\nto_fanuc = [\"DEPTH=#500\", \"FEEDR=#504\", \"PASSES=#505\"]\n",
+    )
+    .unwrap();
     let (_, err, code) = nctrans(&d, &["--to", "fanuc", "-o", "out", "CMA", "--report", "r.json"]);
     assert_eq!(code, 0, "{err}");
     let report = std::fs::read_to_string(d.join("r.json")).unwrap();
@@ -110,7 +113,8 @@ fn string_data_and_two_definitions_are_refused_precisely() {
     assert!(Path::new(&d.join("DEF/UGUD.DEF")).exists());
 }
 
-const MACROS: &str = "; macro definitions\nDEFINE MAXSTAGE AS 3\nDEFINE LINE AS G1 G94 F300\nDEF NCK REAL STAGE_Z[MAXSTAGE]\nM30\n";
+const MACROS: &str =
+    "; macro definitions\nDEFINE MAXSTAGE AS 3\nDEFINE LINE AS G1 G94 F300\nDEF NCK REAL STAGE_Z[MAXSTAGE]\nM30\n";
 
 #[test]
 fn define_macros_apply_to_programs_and_dimensions() {

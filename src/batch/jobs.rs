@@ -371,7 +371,8 @@ impl ToFanucJob {
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
         let mut fanuc_inputs: Vec<String> = r_homes(&t.symbol_map);
         fanuc_inputs.extend(t.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
-        let sinumerik = translate::source_semantics(t, Some(&self.settings.sinumerik)).unwrap_or_else(|| self.settings.sinumerik.clone());
+        let sinumerik = translate::source_semantics(t, Some(&self.settings.sinumerik))
+            .unwrap_or_else(|| self.settings.sinumerik.clone());
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::passes::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();
@@ -414,8 +415,7 @@ impl ToFanucJob {
             };
             let source = translate::align_source(main, &t.symbol_map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, &t.symbol_map)).collect());
-            let a =
-                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
+            let a = Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
             let b = Side {
                 unit: parsed.unit.clone(),
                 callees: Box::new(NoCallees),

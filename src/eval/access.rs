@@ -58,7 +58,9 @@ impl Interp<'_> {
                     }
                 }
             }
-            n if self.sem.haas_ngc && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() => {
+            n if self.sem.haas_ngc
+                && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() =>
+            {
                 // A computed `#[…]` reaching an NGC number with a legacy one.
                 self.read_fanuc(n - 10000, span)
             }
@@ -93,7 +95,9 @@ impl Interp<'_> {
                 };
                 Ok(())
             }
-            n if self.sem.haas_ngc && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() => {
+            n if self.sem.haas_ngc
+                && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() =>
+            {
                 self.write_fanuc(n - 10000, v_of(x), span)
             }
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),

@@ -416,10 +416,14 @@ impl Machine {
                 ("G", Some(x)) => gs.push((x, w.span)),
                 ("M", Some(x)) => ms.push((round_half_away(x), w.span)),
                 // `M1=3` / `S1=1000`: the master spindle addressed by its number.
-                (a, Some(x)) if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('M') => {
+                (a, Some(x))
+                    if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('M') =>
+                {
                     ms.push((round_half_away(x), w.span))
                 }
-                (a, Some(x)) if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('S') => {
+                (a, Some(x))
+                    if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('S') =>
+                {
                     s = Some((w, x))
                 }
                 ("I", Some(x)) => ijk[0] = Some((w, x)),
@@ -526,7 +530,9 @@ impl Machine {
                     ))
                 }
                 // Haas G103 Pn: look ahead at most n blocks (P0 normal); the path is the same.
-                1030 if self.haas => warns.push(("NC405", "G103 (Haas look-ahead limit) does not change the path".into(), span)),
+                1030 if self.haas => {
+                    warns.push(("NC405", "G103 (Haas look-ahead limit) does not change the path".into(), span))
+                }
                 _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }
         }

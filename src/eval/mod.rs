@@ -160,7 +160,9 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         saved: None,
         start: 0,
     });
-    let result = declare_globals(&mut it, dialect).and_then(|_| apply_inputs(&mut it, dialect, main)).and_then(|_| it.run_loop());
+    let result = declare_globals(&mut it, dialect)
+        .and_then(|_| apply_inputs(&mut it, dialect, main))
+        .and_then(|_| it.run_loop());
     let ending = match result {
         Ok(e) => e,
         Err(Fault::Alarm { number, message, span }) => {

@@ -39,11 +39,8 @@ pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> 
             let [c] = want.as_slice() else {
                 return Err(domain("INDEX/RINDEX search for one character".into()));
             };
-            let found = if f == Func::Index {
-                chars.iter().position(|x| x == c)
-            } else {
-                chars.iter().rposition(|x| x == c)
-            };
+            let found =
+                if f == Func::Index { chars.iter().position(|x| x == c) } else { chars.iter().rposition(|x| x == c) };
             Value::Num(found.map_or(-1.0, |p| p as f64))
         }
         Func::Substr => {
@@ -61,9 +58,12 @@ pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> 
         Func::IsNumber => Value::Num(if parse_number(&text(0)).is_some() { 1.0 } else { 0.0 }),
         Func::GetT => {
             return Err(Fault::error(
-                crate::diag::Diagnostic::error("NC508", "GETT: the T number tool management gives a tool name is not modelled")
-                    .primary(cx.file, span, "here")
-                    .hint("select the tool by name (T=\"NAME\") or by number"),
+                crate::diag::Diagnostic::error(
+                    "NC508",
+                    "GETT: the T number tool management gives a tool name is not modelled",
+                )
+                .primary(cx.file, span, "here")
+                .hint("select the tool by name (T=\"NAME\") or by number"),
             ))
         }
         _ => return Err(domain("not a string function".into())),

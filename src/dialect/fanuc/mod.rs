@@ -6,12 +6,12 @@
 //! turns the grammar's parts into IR items (calls, returns, alarms, Macro A lowering), and
 //! `structure.rs` builds `DO`/`END` loops and checks `GOTO` targets per program.
 
-pub mod haas_vars;
 mod args;
 mod block;
 pub mod cycles;
 mod expr;
 pub(crate) mod fast;
+pub mod haas_vars;
 mod macro_a;
 mod names;
 mod parse;

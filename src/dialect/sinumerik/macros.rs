@@ -85,7 +85,9 @@ pub fn defines(text: &str) -> Vec<(String, String, std::ops::Range<usize>)> {
         let (name, after) = rest.split_at(name_len);
         let after = after.trim_start();
         let body = match after.get(..2) {
-            Some(kw) if kw.eq_ignore_ascii_case("AS") && after[2..].starts_with(char::is_whitespace) => after[2..].trim(),
+            Some(kw) if kw.eq_ignore_ascii_case("AS") && after[2..].starts_with(char::is_whitespace) => {
+                after[2..].trim()
+            }
             _ => continue,
         };
         if !name.is_empty() && ident_start(name.as_bytes()[0]) && !body.is_empty() {
@@ -117,7 +119,9 @@ mod tests {
 
     #[test]
     fn define_lines_are_read_with_their_text() {
-        let d = defines("; macros\nDEFINE LINE AS G1 G94 F300 ; feed\r\nDefine MaxStage As 5\nDEFINE BAD\nDEF NCK REAL X\n");
+        let d = defines(
+            "; macros\nDEFINE LINE AS G1 G94 F300 ; feed\r\nDefine MaxStage As 5\nDEFINE BAD\nDEF NCK REAL X\n",
+        );
         let got: Vec<(&str, &str)> = d.iter().map(|(n, t, _)| (n.as_str(), t.as_str())).collect();
         assert_eq!(got, vec![("LINE", "G1 G94 F300"), ("MAXSTAGE", "5")]);
         assert_eq!(d[1].2, 44..64);

@@ -9,8 +9,8 @@ pub mod cycles;
 mod decls;
 mod errors;
 mod expr;
-pub mod macros;
 pub(crate) mod fast;
+pub mod macros;
 mod names;
 mod parse;
 pub mod scan_words;
@@ -437,7 +437,13 @@ fn block_dump(text: &str, fast_path: bool) -> Option<String> {
     let line = if fast_path {
         fast::line(&norm, whole)?
     } else {
-        let mut st = FileState { file: 0, diags: Vec::new(), r_count: 300, declared: Default::default(), macros: Default::default() };
+        let mut st = FileState {
+            file: 0,
+            diags: Vec::new(),
+            r_count: 300,
+            declared: Default::default(),
+            macros: Default::default(),
+        };
         let mut pairs = SinumerikParser::parse(Rule::block, &norm.text).ok()?;
         let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
         let line = lower.block(pairs.next()?, whole)?;

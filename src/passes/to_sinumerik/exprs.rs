@@ -81,7 +81,7 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
                     if let Some(m) = ngc_common(ctx, n, span) {
                         marks.extend(m);
                     } else {
-                    marks.extend(ctx.unsupported(
+                        marks.extend(ctx.unsupported(
                         "NC365",
                         span,
                         &format!("writing the system variable #{n}"),

@@ -52,7 +52,8 @@ pub(super) fn number(ctx: &mut Ctx, g: &Global, name: &str, span: Span, rules: &
         return None;
     };
     if n < 500 || n + size - 1 > 999 {
-        let msg = format!("global user data {name}{shape} would be #{n}..#{}, not retained common variables", n + size - 1);
+        let msg =
+            format!("global user data {name}{shape} would be #{n}..#{}, not retained common variables", n + size - 1);
         ctx.error("NC504", span, &msg, "GUD keeps its value across programs and power-off: map it into #500..#999");
         return None;
     }
