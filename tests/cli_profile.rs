@@ -59,3 +59,22 @@ fn haas_ngc_variables_alias_their_legacy_numbers() {
     let (_, err, code) = nctrans(&d, &["run", "O2001.nc"]);
     assert_ne!(code, 0, "{err}");
 }
+
+#[test]
+fn data_output_reads_runs_without_effect_and_is_refused_for_sinumerik() {
+    let d = workdir("profile", "dprnt");
+    std::fs::write(
+        d.join("O3000.nc"),
+        "O3000\nG0 X10. Y0\nPOPEN\nDPRNT[X*#5041[43]**PART*#3901[30]]\nPCLOS\nG1 X20. F100.\nM30\n",
+    )
+    .unwrap();
+    let (_, err, code) = nctrans(&d, &["parse", "--summary", "O3000.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let (out, err, code) = nctrans(&d, &["run", "O3000.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("X=20"), "{out}");
+    assert!(err.contains("DPRNT[X*#5041[43]**PART*#3901[30]] has no effect on the trace"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O3000.nc", "-o", "o.mpf"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC510") && err.contains("POPEN"), "{err}");
+}
