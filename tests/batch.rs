@@ -394,6 +394,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("named-instructions.mpf", "NC312"),         // SD=, BSPLINE, …
     ("operators-bitwise.mpf", "NC330"),          // B_NOT
     ("repeat-section.mpf", "NC317"),             // REPEAT label P=n
+    ("string-functions.mpf", "NC310"),           // DEF STRING, string functions (NC506)
     ("rotary-acp-acn-dc.mpf", "NC630"),          // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"),        // synchronized actions
     ("system-variables.mpf", "NC321"),           // STOPRE, $AC_TIME
@@ -409,6 +410,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
     ("cycle-g88-bore-manual.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
+    ("data-output-dprnt.nc", "NC510"),    // POPEN / DPRNT / PCLOS
     ("functions-misc.nc", "NC369"),       // ADP
     ("g52-pockets-g28-tool-changes.nc", "NC385"), // G43 H: tool compensation is not compared
     ("g10-l50-param-write.nc", "NC355"),  // G10 L50

@@ -293,6 +293,7 @@ const REFUSED: &[(&str, &str)] = &[
     ("named-instructions.mpf", "NC312"),
     ("operators-bitwise.mpf", "NC330"),
     ("repeat-section.mpf", "NC317"),
+    ("string-functions.mpf", "NC310"),
     ("rotary-acp-acn-dc.mpf", "NC630"),
     ("sync-action-when-do.mpf", "NC631"),
     ("system-variables.mpf", "NC342"),
