@@ -78,3 +78,12 @@ fn data_output_reads_runs_without_effect_and_is_refused_for_sinumerik() {
     assert_ne!(code, 0);
     assert!(err.contains("NC510") && err.contains("POPEN"), "{err}");
 }
+
+#[test]
+fn a_parameter_bit_read_is_named_when_it_is_refused() {
+    let d = workdir("profile", "bits");
+    std::fs::write(d.join("O3001.nc"), "O3001\n#1=#30057.21\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["parse", "O3001.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC511") && err.contains("`#30057.21`"), "{err}");
+}
