@@ -294,7 +294,7 @@ pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Di
     if let Some(bit) = bit {
         let text = format!("#{}{}", inner.as_str(), bit.as_str());
         return Err(cx
-            .err("NC511", &format!("the parameter bit read `{text}` is not read yet"), span, "a bit of a machine parameter")
+            .err("NC511", format!("the parameter bit read `{text}` is not read yet"), span, "a bit of a machine parameter")
             .note("on a Haas NGC #30000+ are the machine parameters and `.n` one bit of one; they are machine data, not the program's")
             .hint("read the bit as a number the program is given: #1=… (value of the bit) set with --set"));
     }
