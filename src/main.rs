@@ -384,7 +384,8 @@ fn cmd_check(
             Some(Err(code)) => return code,
             None => match load_for_run(&mut db, path, from, eval, input) {
                 Ok((unit, run)) => {
-                    Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+                    let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+                    Side { unit, callees, run }.runner()
                 }
                 Err(code) => return code,
             },
@@ -467,7 +468,8 @@ fn check_as_translation(
                 }
                 _ => unit,
             };
-            Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+            let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+            Side { unit, callees, run }.runner()
         })
         .collect();
     let mut runners = runners.into_iter();

@@ -144,3 +144,14 @@ fn define_macros_apply_to_programs_and_dimensions() {
     assert_ne!(code, 0);
     assert!(err.contains("NC503") && err.contains("do not nest"), "{err}");
 }
+
+#[test]
+fn check_reads_both_sides_with_the_library_definitions() {
+    let d = library("check");
+    // The same job written with a plain DEF: equivalent to the GUD program.
+    std::fs::write(d.join("CMA/PLAIN.MPF"), MAIN.replace("ROUGH\n", "G1 Z-5 F250\n").replace("10+PASSES", "11"))
+        .unwrap();
+    let (out, err, code) = nctrans(&d, &["check", "CMA/PART.MPF", "CMA/PLAIN.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(format!("{out}{err}").contains("equivalent"), "{out}{err}");
+}
