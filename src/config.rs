@@ -85,6 +85,9 @@ pub struct Config {
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
     pub cycle83_clearance: f64,
+    /// Siemens definition files (`.DEF`, global user data) for every program; empty: the
+    /// `.DEF` files nearest each program (`crate::gud::discover`).
+    pub definitions: Vec<PathBuf>,
     /// `--var-map` rules for Sinumerik → FANUC (`R0-R99=#100`).
     pub var_map_to_fanuc: Vec<String>,
     /// `--var-map` rules for FANUC → Sinumerik (`#500-#599=R100`).
@@ -141,6 +144,7 @@ impl Default for Config {
             offsets: Default::default(),
             cycle83_retract: 1.0,
             cycle83_clearance: 0.6,
+            definitions: vec![],
             var_map_to_fanuc: vec![],
             var_map_to_sinumerik: vec![],
             tools: BTreeMap::new(),
@@ -168,7 +172,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 34] = [
+pub const KEYS: [(&str, &str, &str); 35] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -182,6 +186,7 @@ pub const KEYS: [(&str, &str, &str); 34] = [
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cutting_edge_default", "-", "the edge a tool change without D selects, 0 to 9 (MD20270)"),
     ("offsets", "-", "a table of \"T.D\" = \"Hh,Dd\" (FANUC registers of a Siemens cutting edge)"),
+    ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
@@ -328,6 +333,7 @@ impl Config {
             "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
             "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
             "sinumerik.cycle83_clearance" => self.cycle83_clearance = as_mm(key, v)?,
+            "sinumerik.definitions" => self.definitions.extend(list(key, v)?.into_iter().map(PathBuf::from)),
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
             "tools" => {
@@ -466,6 +472,7 @@ impl Config {
         s.nat = self.fanuc.nat;
         s.haas = self.fanuc.series.starts_with("haas");
         s.offsets = self.offsets.clone();
+        s.haas_ngc = self.fanuc.series == "haas-ngc";
         s
     }
 
@@ -539,6 +546,9 @@ cycle83_clearance = 0.6
 # MD20270: the cutting edge a tool change (M6) without D selects; `run` takes the factory 1
 # (D1). Not stated, the Sinumerik -> FANUC translation refuses such a tool change (NC470).
 # cutting_edge_default = 1
+# Definition files with global user data (DEF NCK/CHAN ...), for every program. Empty: the
+# .DEF files nearest each program (its folder or a DEF folder there, then the folder above).
+definitions = []
 
 [variables]
 # Where variables go, as --var-map rules. Sinumerik -> FANUC defaults: R n -> #(500+n), DEF

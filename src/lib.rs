@@ -13,6 +13,7 @@ pub mod diag;
 pub mod dialect;
 pub mod eval;
 pub mod excerpt;
+pub mod gud;
 pub mod ir;
 pub mod lower;
 pub mod read;

@@ -484,6 +484,19 @@ impl<'a> Normalised<'a> {
 }
 
 impl Normalised<'_> {
+    /// A block whose text was rewritten after normalising (Siemens macros): `map` gives the
+    /// file offset of every byte of `text` plus one past the end; the warnings stay.
+    pub fn rewritten(&self, text: String, map: Vec<u32>) -> Normalised<'static> {
+        debug_assert_eq!(map.len(), text.len() + 1);
+        Normalised {
+            text: Cow::Owned(text),
+            start: self.start,
+            map: Some(map),
+            full_width: self.full_width.clone(),
+            letter_o: self.letter_o.clone(),
+        }
+    }
+
     /// File offset of byte `pos` of the normalised text.
     #[inline]
     pub fn offset(&self, pos: usize) -> u32 {

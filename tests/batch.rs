@@ -403,8 +403,8 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("mcall-modal.mpf", "NC393"),        // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"), // SD=, BSPLINE, …
     ("operators-bitwise.mpf", "NC330"),  // B_NOT
-    ("operators-concat.mpf", "NC314"),   // MSG with a computed text
     ("repeat-section.mpf", "NC317"),     // REPEAT label P=n
+    ("string-functions.mpf", "NC310"),   // DEF STRING, string functions (NC506)
     ("rotary-acp-acn-dc.mpf", "NC630"),  // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions
     ("system-variables.mpf", "NC321"),   // STOPRE, $AC_TIME
@@ -415,6 +415,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g83-deep-hole.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
+    ("data-output-dprnt.nc", "NC510"),   // POPEN / DPRNT / PCLOS
     ("functions-misc.nc", "NC369"),      // ADP
     ("g10-l50-param-write.nc", "NC355"), // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)
@@ -455,6 +456,9 @@ const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 /// target cannot carry back.
 const SIEMENS_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
     ("msg-progress-messages.mpf", "a MSG without a stop is a FANUC comment and does not come back as a message"),
+    ("operators-concat.mpf", "a computed MSG is a FANUC comment of its formula and does not come back as a message"),
+    ("seed-hemisphere-if-gotob.mpf", "tool names become FANUC T numbers (the tool map) and stay numbers"),
+    ("seed-sine-curve-while.mpf", "tool names become T numbers"),
     // A PROC run alone: its parameters are 0 on Siemens. Through FANUC they come back as
     // macro arguments that were not given (vacant), so the words using them are left out.
     ("subprogram-header.spf", "PROC parameters not passed: 0 on Siemens, vacant through FANUC"),

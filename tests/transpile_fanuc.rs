@@ -333,8 +333,8 @@ const REFUSED: &[(&str, &str)] = &[
     ("mcall-modal.mpf", "NC393"), // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),
     ("operators-bitwise.mpf", "NC330"),
-    ("operators-concat.mpf", "NC314"),
     ("repeat-section.mpf", "NC317"),
+    ("string-functions.mpf", "NC310"),
     ("rotary-acp-acn-dc.mpf", "NC630"),
     ("sync-action-when-do.mpf", "NC631"),
     ("system-variables.mpf", "NC342"),

@@ -34,6 +34,9 @@ pub struct JobSettings {
     pub max_steps: u64,
     /// `--set` inputs for every run.
     pub set: Vec<String>,
+    /// `[sinumerik] definitions`: global user data files for every program (empty: found
+    /// beside each program, `crate::gud`).
+    pub definitions: Vec<std::path::PathBuf>,
 }
 
 impl JobSettings {
@@ -52,6 +55,7 @@ impl JobSettings {
             line_ends: c.line_ends,
             max_steps: c.max_steps,
             set: c.set.clone(),
+            definitions: c.definitions.clone(),
         })
     }
 
@@ -209,15 +213,24 @@ impl FileJob for ToFanucJob {
             return o;
         }
         let mut db = SourceDb::new();
-        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &self.settings.sinumerik) {
+        // Global user data and macros of the library (`.DEF` files nearest the program, up to
+        // the batch root, or the configured ones).
+        let mut sem = self.settings.sinumerik.clone();
+        let root = crate::gud::root_of(&file.abs, &file.rel);
+        let gud = crate::gud::apply(&mut sem, &mut db, &file.abs, root.as_deref(), &self.settings.definitions);
+        if diag::has_errors(&gud) {
+            return failed(Status::Error, "the definition files do not read".into(), DiagRecord::from_diags(&db, &gud));
+        }
+        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &sem) {
             Ok(l) => l,
             Err(o) => return *o,
         };
         let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let opts = match self.options(ctx, file, main.loaded.line_ending) {
+        let mut opts = match self.options(ctx, file, main.loaded.line_ending) {
             Ok(o) => o,
             Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
         };
+        opts.source = sem;
         let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
         let inputs: Vec<&Unit> = std::iter::once(&main.unit).chain(sub_units.iter().copied()).collect();
         let main_name = opts.main_name.clone();
@@ -347,6 +360,9 @@ impl ToFanucJob {
         // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
         let map = t.symbols.fanuc();
         let mut fanuc_inputs: Vec<String> = translate::to_fanuc::r_param_homes(map);
+        fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
+        let sinumerik = translate::to_fanuc::source_semantics(t, Some(&self.settings.sinumerik))
+            .unwrap_or_else(|| self.settings.sinumerik.clone());
         let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
         let letters = crate::lower::to_fanuc::words::param_letters(params.len()).unwrap_or_default();
         let mut runs = Vec::new();
@@ -390,7 +406,7 @@ impl ToFanucJob {
             let source = translate::align_source(main, map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, map)).collect());
             let a =
-                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &self.settings.sinumerik) };
+                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
             let b = Side {
                 unit: parsed.unit.clone(),
                 callees: Box::new(NoCallees),

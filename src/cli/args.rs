@@ -82,12 +82,15 @@ pub fn load_for_run(
     let name = path.display().to_string();
     let loaded = nctrans::load(db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    // The project's profile (nctrans.toml) and the library's definition files.
+    let sem = super::profile::semantics(db, path, dialect)?;
+    let parsed = nctrans::parse(db, loaded.file, dialect, &ParseOptions { semantics: sem.clone() });
     eprint!("{}", diag::render(db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return Err(ExitCode::from(1));
     }
-    let opts = run_options(&db.get(loaded.file).text, &name, eval)?;
+    let mut opts = run_options(&db.get(loaded.file).text, &name, eval)?;
+    opts.semantics = Some(sem);
     Ok((parsed.unit, opts))
 }
 

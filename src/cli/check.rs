@@ -133,7 +133,8 @@ pub fn check(
             Some(Err(code)) => return code,
             None => match load_for_run(&mut db, path, from, eval, input) {
                 Ok((unit, run)) => {
-                    Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+                    let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+                    Side { unit, callees, run }.runner()
                 }
                 Err(code) => return code,
             },
@@ -216,7 +217,8 @@ fn check_as_translation(
                 }
                 _ => unit,
             };
-            Side { unit, callees: Box::new(nctrans::eval::DirCallees { semantics: None }), run }.runner()
+            let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+            Side { unit, callees, run }.runner()
         })
         .collect();
     let mut runners = runners.into_iter();

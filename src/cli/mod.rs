@@ -22,6 +22,7 @@ mod dialect;
 mod init;
 mod out_guard;
 mod parse;
+mod profile;
 mod run;
 mod stream;
 mod translate;

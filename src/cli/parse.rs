@@ -25,7 +25,11 @@ pub fn parse(path: &PathBuf, from: Option<Dialect>, summary: bool, input: &Input
     let name = path.display().to_string();
     let loaded = nctrans::load(&mut db, &name, &bytes, input.encoding);
     let dialect = from.unwrap_or_else(|| nctrans::detect_dialect(&name, &db.get(loaded.file).text));
-    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    let sem = match super::profile::semantics(&mut db, path, dialect) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let parsed = nctrans::parse(&db, loaded.file, dialect, &ParseOptions { semantics: sem });
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
         return ExitCode::from(1);

@@ -52,7 +52,7 @@ pub fn run(
     let main_id = unit.file;
     let line_of = move |o: eval::Origin| (o.file == main_id).then(|| main_file.line_col(o.span.lo).0);
     let out = std::io::BufWriter::new(std::io::stdout().lock());
-    let mut callees = eval::DirCallees { semantics: None };
+    let mut callees = eval::DirCallees { semantics: opts.semantics.clone() };
     let (outcome, write_error) = if quiet {
         (eval::run(&mut db, &unit, &mut callees, &opts, &mut eval::NullSink), None)
     } else {

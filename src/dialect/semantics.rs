@@ -53,6 +53,22 @@ pub struct Semantics {
     /// factory setting 1 (D1), and the Sinumerik → FANUC translation refuses a tool change
     /// whose edge depends on it (840D sl function manual W1, 2.1).
     pub cutting_edge_default: Option<u32>,
+    /// A Haas NGC control (`[fanuc] series = "haas-ngc"`): `#10000..#10999` are the general
+    /// purpose variables, those with a legacy number read as it (`dialect::fanuc::haas_vars`).
+    pub haas_ngc: bool,
+    /// Siemens global user data (GUD): the `DEF NCK …` / `DEF CHAN …` definitions of the
+    /// library's `.DEF` files (`crate::gud`), declared on the control before any program runs,
+    /// so every program and subprogram sees them. Empty when no definition file applies.
+    pub globals: std::sync::Arc<Vec<crate::ir::Def>>,
+    /// Siemens macros (`DEFINE NAME AS text` in the library's `.DEF` files): the reader
+    /// replaces every NAME in program code by its text (`dialect::sinumerik::macros`).
+    /// Names upper case; empty when no definition file applies.
+    pub macros: std::sync::Arc<Vec<(String, String)>>,
+    /// Siemens master spindle (MD20090 `$MC_SPIND_DEF_MASTER_SPIND`, default 1): `M1=3` and
+    /// `S1=1000` address it by number and mean what `M3` and `S1000` mean; the one FANUC
+    /// spindle is it. Words of another spindle (`M2=3`) have no FANUC counterpart. `SETMS`
+    /// is not modelled, so this stays the master spindle. 0 on FANUC (no numbered spindles).
+    pub master_spindle: u32,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -97,6 +113,10 @@ impl Semantics {
                 haas: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,
+                haas_ngc: false,
+                globals: Default::default(),
+                macros: Default::default(),
+                master_spindle: 0,
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -115,6 +135,10 @@ impl Semantics {
                 haas: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,
+                haas_ngc: false,
+                globals: Default::default(),
+                macros: Default::default(),
+                master_spindle: 1,
             },
         }
     }

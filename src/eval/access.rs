@@ -10,6 +10,10 @@ use crate::diag::Diagnostic;
 use crate::ir::{Expr, ExprKind, VarKind, VarRef};
 use crate::span::Span;
 
+fn v_of(x: Option<f64>) -> Value {
+    x.map_or(Value::Vacant, Value::Num)
+}
+
 impl Interp<'_> {
     pub(super) fn cur_level(&self) -> usize {
         self.frames.last().map_or(0, |f| f.level)
@@ -45,6 +49,21 @@ impl Interp<'_> {
                 }
                 Ok(v.map_or(Value::Vacant, Value::Num))
             }
+            n if self.sem.haas_ngc && u32::try_from(n).is_ok_and(crate::dialect::fanuc::haas_vars::ngc_only) => {
+                match self.vars.ngc.get(&(n as u32)) {
+                    Some(x) => Ok(Value::Num(*x)),
+                    None => {
+                        self.warn("NC404", format!("#{n} is read but was never set (it is vacant)"), span);
+                        Ok(Value::Vacant)
+                    }
+                }
+            }
+            n if self.sem.haas_ngc
+                && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() =>
+            {
+                // A computed `#[…]` reaching an NGC number with a legacy one.
+                self.read_fanuc(n - 10000, span)
+            }
             n if n >= 1000 => self.fanuc_sys_read(n, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
@@ -68,6 +87,18 @@ impl Interp<'_> {
                 self.vars.commons[n as usize] = x;
                 self.vars.commons_written[n as usize] = true;
                 Ok(())
+            }
+            n if self.sem.haas_ngc && u32::try_from(n).is_ok_and(crate::dialect::fanuc::haas_vars::ngc_only) => {
+                match x {
+                    Some(x) => self.vars.ngc.insert(n as u32, x),
+                    None => self.vars.ngc.remove(&(n as u32)),
+                };
+                Ok(())
+            }
+            n if self.sem.haas_ngc
+                && u32::try_from(n).ok().and_then(crate::dialect::fanuc::haas_vars::legacy).is_some() =>
+            {
+                self.write_fanuc(n - 10000, v_of(x), span)
             }
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),

@@ -114,6 +114,8 @@ impl<'a> Interp<'a> {
         let alarms = if fanuc { AlarmNumbers::FANUC } else { AlarmNumbers::SINUMERIK };
         let scaling = sem.increment_scaling && !sem.calculator_input;
         let mut m = Machine::new(fanuc, alarms, scaling, sem.least_increment_mm);
+        m.master_spindle = (!fanuc && sem.master_spindle > 0).then(|| sem.master_spindle.to_string());
+        m.haas = fanuc && sem.haas;
         m.incr_travels_offset = sem.incremental_travels_offset;
         m.comp.edge_default = sem.cutting_edge_default.unwrap_or(super::machine::comp::CUTTING_EDGE_DEFAULT);
         m.rotation_angle_incremental = sem.rotation_angle_incremental;
@@ -551,6 +553,12 @@ impl<'a> Interp<'a> {
                     )
                     .primary(self.file(), item.span, "here")
                     .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
+                )),
+                _ if name.starts_with("RET(") => Err(Fault::error(
+                    Diagnostic::error("NC507", format!("{name}: a return that resumes elsewhere is not modelled"))
+                        .primary(self.file(), item.span, "here")
+                        .note("RET with a jump target resumes at a label or block of a calling program, levels up")
+                        .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
                 )),
                 _ => {
                     self.warn("NC405", format!("{name} has no effect on the trace"), item.span);

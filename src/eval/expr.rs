@@ -123,6 +123,13 @@ fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Re
                     .hint("write `AXNAME(\"X\")` or pass a STRING variable"),
             )),
         },
+        ExprKind::Func(f, args) if f.is_string() => {
+            let mut vs = Vec::with_capacity(args.len());
+            for a in args {
+                vs.push(eval_depth(env, a, cx, d)?);
+            }
+            super::strings::call(*f, &vs, e.span, cx)
+        }
         ExprKind::Func(f, args) => {
             let mut xs = [0.0f64; 3];
             if args.len() > 3 {
@@ -139,7 +146,7 @@ fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Re
     }
 }
 
-fn as_text(v: &Value) -> String {
+pub(super) fn as_text(v: &Value) -> String {
     match v {
         Value::Str(s) => s.clone(),
         Value::Num(x) => fmt_num(*x),
@@ -271,6 +278,16 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
     let r = match f {
         // Strings only; reached with a number when the argument count is wrong.
         Func::AxName => return Err(domain("AXNAME needs one string argument")),
+        // Evaluated on values (`eval::strings`) before the numbers are taken.
+        Func::StrLen
+        | Func::ToUpper
+        | Func::ToLower
+        | Func::Index
+        | Func::RIndex
+        | Func::Substr
+        | Func::Number
+        | Func::IsNumber
+        | Func::GetT => return Err(domain("a string function needs its string arguments")),
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
         Func::Tan => {

@@ -78,6 +78,10 @@ pub type Warn = (&'static str, String, Span);
 
 pub struct Machine {
     pub fanuc: bool,
+    /// Siemens: the master spindle's number as written after `M`/`S` (`Semantics::master_spindle`).
+    pub master_spindle: Option<String>,
+    /// A Haas control (`Semantics::haas`): G103 is its look-ahead limit.
+    pub haas: bool,
     pub alarms: AlarmNumbers,
     /// FANUC decimal-point rule active (IS-B, not calculator input).
     pub scaling: bool,
@@ -166,6 +170,8 @@ impl Machine {
     pub fn new(fanuc: bool, alarms: AlarmNumbers, scaling: bool, inc_mm: f64) -> Machine {
         Machine {
             fanuc,
+            master_spindle: (!fanuc).then(|| "1".to_string()),
+            haas: false,
             alarms,
             scaling,
             inc_mm,
@@ -462,6 +468,17 @@ impl Machine {
                 (_, None) => return Err(Fault::alarm(0, format!("address {a} needs a number, not a string"), w.span)),
                 ("G", Some(x)) => gs.push((x, w.span)),
                 ("M", Some(x)) => ms.push((round_half_away(x), w.span)),
+                // `M1=3` / `S1=1000`: the master spindle addressed by its number.
+                (a, Some(x))
+                    if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('M') =>
+                {
+                    ms.push((round_half_away(x), w.span))
+                }
+                (a, Some(x))
+                    if self.master_spindle.as_deref().is_some_and(|n| a.get(1..) == Some(n)) && a.starts_with('S') =>
+                {
+                    s = Some((w, x))
+                }
                 ("I", Some(x)) => ijk[0] = Some((w, x)),
                 ("J", Some(x)) => ijk[1] = Some((w, x)),
                 ("K", Some(x)) => ijk[2] = Some((w, x)),
@@ -582,6 +599,10 @@ impl Machine {
                         &format!("G{} ({}) is not modelled", fmt_g(g), refs::unmodelled_frame(gi)),
                         span,
                     ))
+                }
+                // Haas G103 Pn: look ahead at most n blocks (P0 normal); the path is the same.
+                1030 if self.haas => {
+                    warns.push(("NC405", "G103 (Haas look-ahead limit) does not change the path".into(), span))
                 }
                 _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }

@@ -32,6 +32,7 @@ pub mod machine;
 pub mod numfmt;
 pub mod paged;
 pub mod refuse;
+mod strings;
 pub mod sysvars;
 pub mod trace;
 pub mod value;
@@ -165,7 +166,9 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
         saved: None,
         start: 0,
     });
-    let result = apply_inputs(&mut it, dialect, main).and_then(|_| it.run_loop());
+    let result = declare_globals(&mut it, dialect)
+        .and_then(|_| apply_inputs(&mut it, dialect, main))
+        .and_then(|_| it.run_loop());
     let ending = match result {
         Ok(e) => e,
         Err(Fault::Alarm { number, message, span }) => {
@@ -193,6 +196,20 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
     // The trace is complete: a writer hands over the lines it still holds.
     it.sink.finish();
     Outcome { ending, steps: it.steps.min(it.max_steps), diags: std::mem::take(&mut it.diags) }
+}
+
+/// Siemens global user data (`Semantics::globals`, from the library's `.DEF` files) exists
+/// before the program starts, at its definition's start value (or an input's), in the main
+/// program's frame, so every subprogram sees it.
+fn declare_globals(it: &mut Interp, dialect: Dialect) -> Result<(), Fault> {
+    if dialect != Dialect::Sinumerik {
+        return Ok(());
+    }
+    let globals = it.sem.globals.clone();
+    for def in globals.iter() {
+        it.define(def)?;
+    }
+    Ok(())
 }
 
 fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fault> {

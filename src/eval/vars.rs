@@ -48,6 +48,9 @@ pub struct Vars {
     /// Siemens variable frames; frame 0 belongs to the main program (its DEFs are PUD,
     /// visible to subprograms).
     pub frames: Vec<HashMap<String, Slot>>,
+    /// Haas NGC general-purpose variables without a legacy number (`#10000..#10099`, …),
+    /// vacant until written.
+    pub ngc: HashMap<u32, f64>,
 }
 
 impl Vars {
@@ -59,6 +62,7 @@ impl Vars {
             r: vec![0.0; r_count],
             r_written: vec![false; r_count],
             frames: vec![HashMap::new()],
+            ngc: HashMap::new(),
         }
     }
 

@@ -165,6 +165,42 @@ pub enum Func {
     Adp,
     /// Siemens `AXNAME("X")`: the axis whose name is the string (upper case).
     AxName,
+    /// Siemens string functions (`eval::strings`): `STRLEN(s)`, the number of characters.
+    StrLen,
+    /// Siemens `TOUPPER(s)` / `TOLOWER(s)`: the letters a–z / A–Z changed.
+    ToUpper,
+    ToLower,
+    /// Siemens `INDEX(s, c)` / `RINDEX(s, c)`: position of the first / last character `c`
+    /// (0 = the first character), −1 when it is not there.
+    Index,
+    RIndex,
+    /// Siemens `SUBSTR(s, start[, count])`: `count` characters (all the rest without it)
+    /// from position `start` (0 = the first character).
+    Substr,
+    /// Siemens `NUMBER(s)`: the REAL a string spells; `ISNUMBER(s)`: whether it spells one.
+    Number,
+    IsNumber,
+    /// Siemens `GETT("name", duplo)`: the T number tool management gives a tool name (read,
+    /// and refused: tool management is not modelled).
+    GetT,
+}
+
+impl Func {
+    /// The Siemens string functions: arguments or result are strings.
+    pub fn is_string(self) -> bool {
+        matches!(
+            self,
+            Func::StrLen
+                | Func::ToUpper
+                | Func::ToLower
+                | Func::Index
+                | Func::RIndex
+                | Func::Substr
+                | Func::Number
+                | Func::IsNumber
+                | Func::GetT
+        )
+    }
 }
 
 /// A variable reference.

@@ -60,6 +60,8 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     tools: BTreeMap::new(),
     programs: BTreeMap::new(),
     alarms: BTreeMap::new(),
+    gud_seeds: Vec::new(),
+    globals: Vec::new(),
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
 

@@ -85,6 +85,12 @@ pub struct SymbolMap {
     pub programs: BTreeMap<String, u32>,
     /// Siemens SETAL number → FANUC alarm number (3000 + n).
     pub alarms: BTreeMap<u32, u32>,
+    /// Global user data mapped to FANUC commons: `(number, start value)` of every element,
+    /// where the FANUC side of a check starts (the Siemens side starts at the definitions').
+    pub gud_seeds: Vec<(u32, f64)>,
+    /// The Siemens global user data the source was read with (its `.DEF` files), which the
+    /// Siemens side of a check declares before it runs.
+    pub globals: Vec<crate::ir::Def>,
 }
 
 impl SymbolMap {
@@ -250,8 +256,14 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     diags.extend(vctx.diags);
 
     // Jumps, headers, O numbers.
-    let mut symbol_map =
-        SymbolMap { vars: mapped.clone(), tools: tools_used, programs: numbers.clone(), ..SymbolMap::default() };
+    let mut symbol_map = SymbolMap {
+        vars: mapped.clone(),
+        tools: tools_used,
+        programs: numbers.clone(),
+        gud_seeds: vctx.gud_seeds,
+        globals: opts.source.globals.to_vec(),
+        ..SymbolMap::default()
+    };
     let mut programs = Vec::new();
     for (mut p, info, file, name) in lowered {
         let number = numbers.get(&name).copied().unwrap_or(DEFAULT_MAIN_NUMBER);
@@ -317,6 +329,8 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.tools = opts.tool_map.clone();
     ctx.offsets = opts.target.offsets.clone();
     ctx.edge_default = opts.source.cutting_edge_default;
+    ctx.globals = opts.source.globals.clone();
+    ctx.master_spindle = opts.source.master_spindle;
     ctx
 }
 
@@ -411,7 +425,12 @@ pub fn verify(
     let callees = MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
     let mut inputs = r_param_inputs(map);
     inputs.extend(standalone_args(main, map));
-    let a = Side { unit: source, callees: Box::new(callees), run: RunOptions { max_steps, ..RunOptions::default() } };
+    inputs.extend(gud_inputs(t));
+    let a = Side {
+        unit: source,
+        callees: Box::new(callees),
+        run: RunOptions { max_steps, semantics: source_semantics(t, None), ..RunOptions::default() },
+    };
     let b = Side {
         unit: parsed.unit.clone(),
         callees: Box::new(NoCallees),
@@ -471,6 +490,27 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
         .map(|m| format!("#{}=0", m.number))
         .collect()
+}
+
+/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
+/// so it starts where the Siemens side's definitions start.
+pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
+    t.symbols.fanuc().gud_seeds.iter().filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok()).collect()
+}
+
+/// The Siemens profile of a check's source side: `base` (or the default) with the
+/// translation's global user data; `None` when there is neither.
+pub fn source_semantics(
+    t: &super::Translation,
+    base: Option<&crate::dialect::Semantics>,
+) -> Option<crate::dialect::Semantics> {
+    let globals = &t.symbols.fanuc().globals;
+    if globals.is_empty() {
+        return base.cloned();
+    }
+    let mut s = base.cloned().unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
+    s.globals = std::sync::Arc::new(globals.clone());
+    Some(s)
 }
 
 /// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation

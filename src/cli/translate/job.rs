@@ -34,7 +34,8 @@ pub struct Request<'a> {
 /// The options from the configuration: `nctrans.toml` (or `--config`) with the flags given
 /// applied over it (`cli::configure`).
 pub fn sinumerik_options(args: &TranslateArgs, stem: &str, c: &Config) -> Result<Options, String> {
-    let mut o = Options::default();
+    // The project's profiles (the Haas series, the increment system, R parameters).
+    let mut o = Options { source: c.fanuc_semantics(), target: c.sinumerik_semantics(), ..Options::default() };
     // Flag rules come first in the list: the first rule that covers a variable places it.
     for r in &c.var_map_to_sinumerik {
         o.var_map.push(VarMapRule::parse(r)?);

@@ -120,7 +120,14 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
     let loaded = nctrans::load(&mut db, &name, &bytes, c.input_encoding);
     // `run` has checked the direction: the input is read as Sinumerik.
     let dialect = Dialect::Sinumerik;
-    let popts = ParseOptions { semantics: c.sinumerik_semantics() };
+    // Global user data and macros from the library's definition files.
+    let mut source_sem = c.sinumerik_semantics();
+    let gud = nctrans::gud::apply(&mut source_sem, &mut db, input, None, &c.definitions);
+    eprint!("{}", diag::render(&db, &gud));
+    if diag::has_errors(&gud) {
+        return ExitCode::from(1);
+    }
+    let popts = ParseOptions { semantics: source_sem.clone() };
     let parsed = nctrans::parse(&db, loaded.file, dialect, &popts);
     eprint!("{}", diag::render(&db, &parsed.diags));
     if diag::has_errors(&parsed.diags) {
@@ -144,10 +151,11 @@ fn to_fanuc(a: &TranslateArgs, c: &Config, input: &Path) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let opts = match job::fanuc_options(c, input, loaded.line_ending) {
+    let mut opts = match job::fanuc_options(c, input, loaded.line_ending) {
         Ok(o) => o,
         Err(e) => return fail(e),
     };
+    opts.source = source_sem;
     let sub_refs: Vec<&Unit> = subs.iter().collect();
     let units: Vec<&Unit> = std::iter::once(&parsed.unit).chain(sub_refs.iter().copied()).collect();
     let policy = opts.unsupported;

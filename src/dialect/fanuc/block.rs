@@ -222,6 +222,10 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
                 };
                 items.push(Item { kind, span });
             }
+            Part::DataOut { text, span } => {
+                note_statement(span, false)?;
+                items.push(Item { kind: ItemKind::Instruction { name: text }, span });
+            }
             Part::While { cond, id, id_span, span } => {
                 if !only {
                     return Err(not_alone(cx.file, span, "WHILE"));
@@ -304,7 +308,8 @@ fn part_span(p: &Part) -> Span {
         | Part::If { span, .. }
         | Part::While { span, .. }
         | Part::Do { span, .. }
-        | Part::End { span, .. } => *span,
+        | Part::End { span, .. }
+        | Part::DataOut { span, .. } => *span,
     }
 }
 

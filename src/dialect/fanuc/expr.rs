@@ -280,9 +280,24 @@ fn variable_expr(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Expr, Diagnos
 /// `#n` / `#[e]` as a variable reference (assignment targets keep `#0` for the caller to reject).
 pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Diagnostic> {
     let span = cx.span(&p);
-    let Some(inner) = p.into_inner().next() else {
+    let Some(mut inner) = p.into_inner().next() else {
         return Err(cx.err("NC199", "variable without number", span, "here"));
     };
+    let mut bit = None;
+    if inner.as_rule() == Rule::var_number {
+        let mut parts = inner.clone().into_inner();
+        if let Some(num) = parts.next() {
+            inner = num;
+        }
+        bit = parts.next();
+    }
+    if let Some(bit) = bit {
+        let text = format!("#{}{}", inner.as_str(), bit.as_str());
+        return Err(cx
+            .err("NC511", format!("the parameter bit read `{text}` is not read yet"), span, "a bit of a machine parameter")
+            .note("on a Haas NGC #30000+ are the machine parameters and `.n` one bit of one; they are machine data, not the program's")
+            .hint("read the bit as a number the program is given: #1=… (value of the bit) set with --set"));
+    }
     if inner.as_rule() == Rule::bracket {
         let e = value(cx, inner)?;
         if limits::depth(&e) >= MAX_EXPR_DEPTH {
@@ -295,6 +310,8 @@ pub fn variable_ref(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<VarRef, Di
             .hint("FANUC variable numbers have at most 8 digits")
     })?;
     check_var_number(cx.seg, n, span)?;
+    // Haas NGC: `#10100` is the variable `#100` (the text keeps the NGC number).
+    let n = if cx.opts.semantics.haas_ngc { super::haas_vars::legacy(n).unwrap_or(n) } else { n };
     Ok(VarRef { kind: VarKind::Hash(n), span })
 }
 

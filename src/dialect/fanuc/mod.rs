@@ -11,6 +11,7 @@ mod block;
 pub mod cycles;
 mod expr;
 pub(crate) mod fast;
+pub mod haas_vars;
 mod macro_a;
 mod names;
 mod parse;

@@ -64,7 +64,8 @@ pub fn function_usage(name: &str) -> String {
 /// What a grammar rule means to someone reading an "expected …" message.
 pub fn describe(rule: Rule, after_hash: bool) -> &'static str {
     match rule {
-        Rule::uint if after_hash => "a variable number after `#`",
+        Rule::uint | Rule::var_number if after_hash => "a variable number after `#`",
+        Rule::var_number => "a variable number after `#`",
         Rule::uint => "a number",
         Rule::unsigned | Rule::value => "a value (a number, a `#` variable or `[expression]`)",
         Rule::expr

@@ -112,6 +112,11 @@ pub enum Part {
         id_span: Span,
         span: Span,
     },
+    /// `POPEN`, `DPRNT[…]`, `BPRNT[…]`, `PCLOS`: external data output, kept as written.
+    DataOut {
+        text: String,
+        span: Span,
+    },
 }
 
 /// A parsed block: optional skip and its parts.
@@ -179,6 +184,7 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
             Ok(Part::ColonProg { number, span })
         }
         Rule::word => word(cx, p, span).map(Part::Word),
+        Rule::data_out => Ok(Part::DataOut { text: p.as_str().trim().to_ascii_uppercase(), span }),
         Rule::assign => assign(cx, p, span),
         Rule::goto_stmt => goto(cx, p, span),
         Rule::if_stmt => {

@@ -530,7 +530,7 @@ fn cmpop(op: CmpOp) -> &'static str {
     }
 }
 
-fn func_name(f: Func) -> &'static str {
+pub fn func_name(f: Func) -> &'static str {
     match f {
         Func::Sin => "SIN",
         Func::Cos => "COS",
@@ -550,6 +550,15 @@ fn func_name(f: Func) -> &'static str {
         Func::MaxVal => "MAXVAL",
         Func::Bound => "BOUND",
         Func::AxName => "AXNAME",
+        Func::StrLen => "STRLEN",
+        Func::ToUpper => "TOUPPER",
+        Func::ToLower => "TOLOWER",
+        Func::Index => "INDEX",
+        Func::RIndex => "RINDEX",
+        Func::Substr => "SUBSTR",
+        Func::Number => "NUMBER",
+        Func::IsNumber => "ISNUMBER",
+        Func::GetT => "GETT",
         // FANUC-only functions have no Siemens spelling; the passes lower them. Should one
         // slip through, a name Siemens does not know makes the re-parse fail loudly.
         Func::FanucAsin => "FANUC_ASIN",

@@ -183,7 +183,7 @@ impl Lower<'_, '_> {
             } else {
                 (
                     format!("unknown function {name}"),
-                    "the functions are SIN COS TAN ASIN ACOS ATAN2 SQRT ABS TRUNC ROUND ROUNDUP LN EXP POT MINVAL MAXVAL BOUND; arrays use `[ ]`".to_string(),
+                    "the functions are SIN COS TAN ASIN ACOS ATAN2 SQRT ABS TRUNC ROUND ROUNDUP LN EXP POT MINVAL MAXVAL BOUND, and for strings STRLEN TOUPPER TOLOWER INDEX RINDEX SUBSTR NUMBER ISNUMBER; arrays use `[ ]`".to_string(),
                 )
             };
             self.error(
@@ -199,7 +199,8 @@ impl Lower<'_, '_> {
                 _ => omitted = true,
             }
         }
-        if omitted || exprs.len() != b.arity {
+        let substr_to_end = (b.func == Func::Substr && exprs.len() == 2) || (b.func == Func::GetT && exprs.len() == 1);
+        if omitted || (exprs.len() != b.arity && !substr_to_end) {
             let want = match b.arity {
                 1 => "one argument".to_string(),
                 n => format!("{n} arguments"),

@@ -10,6 +10,7 @@ mod decls;
 mod errors;
 mod expr;
 pub(crate) mod fast;
+pub mod macros;
 mod names;
 mod parse;
 pub mod scan_words;
@@ -92,6 +93,7 @@ impl Reader {
                 diags: Vec::new(),
                 r_count: opts.semantics.r_param_count,
                 declared: Default::default(),
+                macros: opts.semantics.macros.clone(),
             },
             builder: structure::Builder::new(None, len),
             header_seen: false,
@@ -162,7 +164,12 @@ impl Reader {
     pub fn line(&mut self, raw: &read::RawBlock<'_>) {
         let file = self.st.file;
         let (st, builder) = (&mut self.st, &mut self.builder);
-        let norm = read::normalise(raw, CommentStyle::Semicolon);
+        let mut norm = read::normalise(raw, CommentStyle::Semicolon);
+        if !st.macros.is_empty() {
+            if let Some(expanded) = macros::expand(&norm, &st.macros) {
+                norm = expanded;
+            }
+        }
         if !norm.full_width.is_empty() || !norm.letter_o.is_empty() {
             st.diags.extend(norm.warnings(file));
         }
@@ -430,7 +437,13 @@ fn block_dump(text: &str, fast_path: bool) -> Option<String> {
     let line = if fast_path {
         fast::line(&norm, whole)?
     } else {
-        let mut st = FileState { file: 0, diags: Vec::new(), r_count: 300, declared: Default::default() };
+        let mut st = FileState {
+            file: 0,
+            diags: Vec::new(),
+            r_count: 300,
+            declared: Default::default(),
+            macros: Default::default(),
+        };
         let mut pairs = SinumerikParser::parse(Rule::block, &norm.text).ok()?;
         let mut lower = Lower { norm: &norm, st: &mut st, failed: false, whole };
         let line = lower.block(pairs.next()?, whole)?;

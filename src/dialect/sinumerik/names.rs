@@ -32,6 +32,17 @@ pub fn builtin(name: &str) -> Option<Builtin> {
         "MAXVAL" => (Func::MaxVal, 2),
         "BOUND" => (Func::Bound, 3),
         "AXNAME" => (Func::AxName, 1),
+        "STRLEN" => (Func::StrLen, 1),
+        "TOUPPER" => (Func::ToUpper, 1),
+        "TOLOWER" => (Func::ToLower, 1),
+        "INDEX" => (Func::Index, 2),
+        "RINDEX" => (Func::RIndex, 2),
+        // Also with two arguments (to the end of the string).
+        "SUBSTR" => (Func::Substr, 3),
+        "NUMBER" => (Func::Number, 1),
+        "ISNUMBER" => (Func::IsNumber, 1),
+        // Also with one argument (duplo number 1).
+        "GETT" => (Func::GetT, 2),
         _ => return None,
     };
     Some(Builtin { func, arity })
@@ -191,7 +202,9 @@ pub fn reserved_name(upper: &str) -> Option<String> {
             _ => format!("{upper} is an address letter"),
         });
     }
-    if builtin(upper).is_some() || axis_indexed(upper) {
+    // The string functions (and GETT) are known by their call form `NAME(`; programs declare
+    // variables of those names (`DEF INT NUMBER`), which the reader keeps apart.
+    if builtin(upper).is_some_and(|b| !b.func.is_string()) || axis_indexed(upper) {
         return Some(format!("{upper} is a built-in function"));
     }
     if ADDRESSES.contains(&upper) {

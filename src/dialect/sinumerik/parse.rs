@@ -18,6 +18,8 @@ pub struct FileState {
     pub r_count: u32,
     /// Names declared by DEF or PROC so far (upper case), with their type.
     pub declared: HashMap<String, DataType>,
+    /// `DEFINE` macros of the library (`Semantics::macros`), replaced before the grammar.
+    pub macros: std::sync::Arc<Vec<(String, String)>>,
 }
 
 /// Converts the pairs of one block; spans go through `norm` back to the file.
@@ -251,7 +253,11 @@ impl Lower<'_, '_> {
                 Some(ItemKind::Alarm { style: AlarmStyle::Setal, number, text: None })
             }
             Rule::stopre_stmt => Some(ItemKind::Stopre),
-            Rule::ret_stmt => Some(ItemKind::Return { to: None }),
+            Rule::ret_stmt => match p.into_inner().find(|q| q.as_rule() == Rule::ret_args) {
+                None => Some(ItemKind::Return { to: None }),
+                // Kept as written; the evaluator and the translation refuse it by name.
+                Some(a) => Some(ItemKind::Instruction { name: format!("RET({})", a.as_str().trim()) }),
+            },
             Rule::mcall_stmt => match p.into_inner().nth(1) {
                 None => Some(ItemKind::ModalCallOff),
                 Some(c) => match self.item(c)? {

@@ -312,6 +312,16 @@ impl Lower<'_> {
                     op => bin(op, a, b),
                 }
             }
+            ExprKind::Func(Func::GetT, _) => {
+                let why = "tool management (duplo numbers, tool life) is not modelled; select the tool by name with --tool-map";
+                self.ctx.unsupported("NC508", span, "GETT(…) (a T number from tool management)", why);
+                num(0.0, span)
+            }
+            ExprKind::Func(f, _) if f.is_string() => {
+                let what = format!("string function {}(…)", crate::dialect::sinumerik::emit::func_name(f));
+                self.ctx.unsupported("NC506", span, &what, "FANUC variables hold numbers only; it has no strings");
+                num(0.0, span)
+            }
             ExprKind::Func(f, args) => {
                 let args: Vec<Expr> = args.into_iter().map(|a| self.val(a, pre)).collect();
                 self.function(f, args, span, pre)

@@ -100,6 +100,13 @@ pub struct Ctx {
     /// The words pass met paths that disagree on the units, or a call that changes them
     /// (`words::modes`): the units did not simply follow the text.
     pub units_inexact: bool,
+    /// Siemens global user data (the source profile's `Semantics::globals`).
+    pub globals: std::sync::Arc<Vec<crate::ir::Def>>,
+    /// Global user data mapped to FANUC commons: each element's number and start value,
+    /// where the FANUC side of a check starts (`Translation::gud_seeds`).
+    pub gud_seeds: Vec<(u32, f64)>,
+    /// The Siemens master spindle (`Semantics::master_spindle`): `M1=3` is `M3` there.
+    pub master_spindle: u32,
     next_temp: u32,
     next_label: u32,
 }
@@ -118,6 +125,9 @@ impl Ctx {
             callees: BTreeMap::new(),
             diags: Vec::new(),
             units_inexact: false,
+            globals: Default::default(),
+            gud_seeds: Vec::new(),
+            master_spindle: 1,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

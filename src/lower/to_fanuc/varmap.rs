@@ -13,6 +13,7 @@ use super::*;
 use std::collections::{BTreeSet, HashMap};
 
 mod byref;
+mod gud;
 use byref::{RefParam, Scope};
 
 /// One `--var-map` rule.
@@ -243,14 +244,44 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
             let dims = match j.info.types.get(&name) {
                 Some((_, d)) => d.clone(),
                 None if temp => vec![],
+                None if gud::lookup(&ctx.globals, &name).is_some() => {
+                    let globals = ctx.globals.clone();
+                    let Some(g) = gud::lookup(&globals, &name) else { continue };
+                    let Some(n) = gud::number(ctx, &g, &name, span, rules) else { continue };
+                    let dims = g.dims().to_vec();
+                    // One home for the whole translation: a second program using it shares it.
+                    let who = format!("global user data {name}");
+                    let mut ok = true;
+                    for (k, v) in (n..).zip(gud::seeds(&g).unwrap_or_default()) {
+                        if claimed.get(&k) == Some(&who) {
+                            continue;
+                        }
+                        ok &= claim(ctx, k, who.clone(), span, &mut claimed);
+                        ctx.gud_seeds.push((k, v));
+                    }
+                    if !ok {
+                        continue;
+                    }
+                    if !out.iter().any(|m: &Mapped| m.program.is_none() && m.number == n) {
+                        let size: u32 = dims.iter().product::<u32>().max(1);
+                        let source = if dims.is_empty() {
+                            format!("{name} (global user data)")
+                        } else {
+                            format!("{name}[…] ({size} elements, global user data)")
+                        };
+                        out.push(Mapped { program: None, source, number: n });
+                    }
+                    map.insert(name.clone(), (n, dims));
+                    continue;
+                }
                 None => {
                     let msg = format!("variable {name} is not declared");
                     // Machine builders' libraries declare most names in GUD files (`DEF NCK …` in
                     // MGUD.DEF): those keep their values between programs, so a FANUC
                     // translation would need one library-wide map to retained commons.
                     let hint = format!(
-                        "declare it: DEF REAL {name}; global user data (DEF NCK/CHAN in a .DEF file) is not \
-                         applied to the programs that use it yet, so such a program cannot be translated"
+                        "declare it: DEF REAL {name}; or, if it is global user data, put its .DEF file beside the \
+                         programs (or in a DEF folder there) or list it in [sinumerik] definitions in nctrans.toml"
                     );
                     ctx.error("NC341", span, &msg, &hint);
                     continue;

@@ -324,12 +324,16 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 b.meta.comments.push(Comment { text: format!("MSG: {t}"), span });
             }
             ItemKind::Message { text: Some(e) } => {
-                after.extend(ctx.unsupported(
-                    "NC314",
-                    e.span,
-                    "MSG with a computed text",
-                    "FANUC messages are fixed comment text",
-                ));
+                // As a fixed message does: a comment, here the text's formula as written in
+                // Siemens (FANUC cannot build text at run time; the value is not shown).
+                ctx.note(
+                    "NC320",
+                    span,
+                    "MSG with a computed text becomes a comment of its formula",
+                    "FANUC shows no message without stopping and cannot build text; the values are not shown",
+                );
+                let formula = crate::dialect::sinumerik::emit::expr(&e);
+                b.meta.comments.push(Comment { text: format!("MSG: {formula}"), span });
             }
             ItemKind::Alarm { style: AlarmStyle::Setal, number, .. } => match &number.kind {
                 // User alarms: SETAL(65000+k) ↔ #3000=k (alarm 3000+k), as the checker pairs them.
@@ -381,6 +385,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("{name} dropped"),
                 "it changes acceleration or feed control only, not the programmed path",
             ),
+            ItemKind::Instruction { name } if name.starts_with("RET(") => after.extend(ctx.unsupported(
+                "NC507",
+                span,
+                &format!("{name} (a return that resumes at a label or block of a caller)"),
+                "FANUC M99 Pn resumes at Nn of the caller only; rewrite it as RET and a jump in the caller",
+            )),
             ItemKind::Instruction { name } => after.extend(ctx.unsupported(
                 "NC312",
                 span,
@@ -415,6 +425,17 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
 
 type WordsOut = (Vec<Word>, Vec<Stmt>, Vec<Stmt>);
 
+/// `M2` / `S1` as a spindle-addressed word (`M2=3`): its letter and spindle number.
+fn spindle_word(n: &str) -> Option<(u8, u32)> {
+    let (l, k) = n.split_at_checked(1)?;
+    let letter = match l {
+        "M" => b'M',
+        "S" => b'S',
+        _ => return None,
+    };
+    (!k.is_empty() && k.bytes().all(|b| b.is_ascii_digit())).then(|| k.parse().ok().map(|k| (letter, k)))?
+}
+
 /// Translates the NC words of one block. Returns the words, blocks to run before and after
 /// (the G90/G91 switch), or the marker of an unsupported word.
 fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Result<WordsOut, Vec<Stmt>> {
@@ -444,6 +465,15 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
                     what,
                     "FANUC addresses are fixed letters; write the axis letter",
                 ));
+            }
+            Addr::Name(n) if spindle_word(n).is_some_and(|(_, k)| k == ctx.master_spindle) => {
+                // `M1=3`, `S1=1000`: the master spindle by number is the FANUC spindle.
+                w.addr = Addr::Letter(n.as_bytes()[0]);
+            }
+            Addr::Name(n) if spindle_word(n).is_some() => {
+                let what = format!("{n}= (a word of spindle {}, not the master spindle)", &n[1..]);
+                let hint = "the FANUC profile has one spindle, the Siemens master spindle (spindle 1)";
+                return Err(unsup(ctx, "NC505", wspan, &what, hint));
             }
             Addr::Name(n) => {
                 let what = format!("address {n}=");

@@ -350,6 +350,11 @@ fn lower_with(ctx: &mut Ctx, body: Vec<Stmt>, modal: &super::words::ModalScan) -
     })
 }
 
+/// `POPEN`, `PCLOS`, `DPRNT[…]`, `BPRNT[…]` as the FANUC reader keeps them.
+fn is_data_output(name: &str) -> bool {
+    matches!(name, "POPEN" | "PCLOS") || name.starts_with("DPRNT[") || name.starts_with("BPRNT[")
+}
+
 fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::ModalScan, out: &mut Vec<Stmt>) {
     if g_codes(&b.items).contains(&100) {
         lower_g10(ctx, b, span, modal, out);
@@ -367,6 +372,13 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
                     "Siemens calls whole programs only: move the blocks from N<n> to their M99 into a subprogram \
                      and call it with M98",
                 ) {
+                    out.push(st);
+                }
+            }
+            ItemKind::Instruction { name } if is_data_output(&name) => {
+                let what = format!("FANUC external output `{name}`");
+                let hint = "Siemens writes text with WRITE(…) to a file, not a port; write the output by hand";
+                if let Some(st) = ctx.unsupported("NC510", it.span, &what, hint) {
                     out.push(st);
                 }
             }

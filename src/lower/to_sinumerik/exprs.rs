@@ -78,12 +78,16 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
             match super::varmap::map_hash(ctx, n, span).or_else(|| super::words::system_var(n, span)) {
                 Some(k) => target.kind = k,
                 None => {
-                    marks.extend(ctx.unsupported(
+                    if let Some(m) = ngc_common(ctx, n, span) {
+                        marks.extend(m);
+                    } else {
+                        marks.extend(ctx.unsupported(
                         "NC365",
                         span,
                         &format!("writing the system variable #{n}"),
                         "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
                     ));
+                    }
                     target.kind = VarKind::Named { name: format!("NCTRANS_UNSUPPORTED_{n}"), indices: vec![] };
                 }
             }
@@ -255,6 +259,9 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
             VarKind::Hash(n) => {
                 match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
                     Some(k) => var_expr(k, v.span),
+                    None if ngc_common(ctx, n, v.span).map(|m| marks.extend(m)).is_some() => {
+                        Expr::num(0.0, false, span)
+                    }
                     None => {
                         marks.extend(ctx.unsupported(
                             "NC365",
@@ -528,4 +535,15 @@ fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
         Some(v) => bin(BinOp::Div, sum, v),
         None => sum,
     }
+}
+
+/// A Haas NGC general-purpose variable without a legacy number (`#10000..#10099`, …): no
+/// R parameter is set aside for it (NC509); `None` for any other number.
+fn ngc_common(ctx: &mut Ctx, n: u32, span: Span) -> Option<Option<Stmt>> {
+    if !(ctx.opts.source.haas_ngc && crate::dialect::fanuc::haas_vars::ngc_only(n)) {
+        return None;
+    }
+    let what = format!("the Haas NGC variable #{n} (a general-purpose variable without a legacy number)");
+    let hint = "the R parameters take #100..#199 and #500..#999; renumber it into #500..#999 (#10500.. on the NGC)";
+    Some(ctx.unsupported("NC509", span, &what, hint))
 }

@@ -1,0 +1,18 @@
+%
+O01390 (DECORATIVE HEADER LINES)
+G17 G21 G80 G90 G54
+* * * * * * * * * * * * *
+(SHOP TEMPLATE - OUTLINE)
+==========================
+T2 M06
+S3000 M03
+G00 X0 Y0 Z2.
+G01 Z-1. F100.
+G01 X40. F300.
+G01 Y30.
+G01 X0
+G01 Y0
+G00 Z10.
+M05
+M30
+%

@@ -1,0 +1,71 @@
+//! The Siemens string functions (828D/840D Job Planning, "String operations"): `STRLEN`,
+//! `TOUPPER`, `TOLOWER`, `INDEX`, `RINDEX`, `SUBSTR`, `NUMBER`, `ISNUMBER`. Positions count
+//! characters from 0; a search that finds nothing gives −1. Numbers given where a string is
+//! wanted are read as `<<` writes them.
+
+use super::expr::{as_text, Cx};
+use super::fault::Fault;
+use super::value::{round_half_away, Value};
+use crate::ir::Func;
+use crate::span::Span;
+
+/// A number a string spells as Siemens writes one (sign, digits, point, exponent `EX`).
+fn parse_number(s: &str) -> Option<f64> {
+    let t = s.trim();
+    if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit() || b"+-.EeXx".contains(&b)) {
+        return None;
+    }
+    let t = t.to_ascii_uppercase().replacen("EX", "E", 1);
+    t.parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
+/// `f` applied to the values `vs`.
+pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> {
+    let domain = |what: String| Fault::alarm(cx.alarms.domain, what, span);
+    let text = |i: usize| vs.get(i).map(as_text).unwrap_or_default();
+    let int = |i: usize| -> Result<i64, Fault> {
+        match vs.get(i) {
+            Some(Value::Num(x)) => Ok(round_half_away(*x) as i64),
+            _ => Err(domain(format!("argument {} of a string function must be a number", i + 1))),
+        }
+    };
+    let chars: Vec<char> = text(0).chars().collect();
+    Ok(match f {
+        Func::StrLen => Value::Num(chars.len() as f64),
+        Func::ToUpper => Value::Str(text(0).to_ascii_uppercase()),
+        Func::ToLower => Value::Str(text(0).to_ascii_lowercase()),
+        Func::Index | Func::RIndex => {
+            let want: Vec<char> = text(1).chars().collect();
+            let [c] = want.as_slice() else {
+                return Err(domain("INDEX/RINDEX search for one character".into()));
+            };
+            let found =
+                if f == Func::Index { chars.iter().position(|x| x == c) } else { chars.iter().rposition(|x| x == c) };
+            Value::Num(found.map_or(-1.0, |p| p as f64))
+        }
+        Func::Substr => {
+            let start = int(1)?;
+            let count = if vs.len() > 2 { int(2)? } else { chars.len() as i64 - start };
+            if start < 0 || count < 0 || start as usize > chars.len() {
+                return Err(domain(format!("SUBSTR from {start} for {count} is outside the string")));
+            }
+            Value::Str(chars.iter().skip(start as usize).take(count as usize).collect())
+        }
+        Func::Number => match parse_number(&text(0)) {
+            Some(x) => Value::Num(x),
+            None => return Err(domain(format!("NUMBER: \"{}\" is not a number", text(0)))),
+        },
+        Func::IsNumber => Value::Num(if parse_number(&text(0)).is_some() { 1.0 } else { 0.0 }),
+        Func::GetT => {
+            return Err(Fault::error(
+                crate::diag::Diagnostic::error(
+                    "NC508",
+                    "GETT: the T number tool management gives a tool name is not modelled",
+                )
+                .primary(cx.file, span, "here")
+                .hint("select the tool by name (T=\"NAME\") or by number"),
+            ))
+        }
+        _ => return Err(domain("not a string function".into())),
+    })
+}
