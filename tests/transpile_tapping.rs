@@ -29,9 +29,10 @@ fn nctrans(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-/// Spindle stopped after the tool change (rigid tapping needs it so).
-const F_HEAD: &str = "%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG0 Z50.\n";
-const S_HEAD: &str = "G17 G90 G94 G54\nG0 X0 Y0\nT1 M6\nG0 Z50\n";
+/// Spindle stopped after the tool change (rigid tapping needs it so); the tool's length from
+/// its edge on both sides (G43 H1 / D1), so the heads compare equal in `check`.
+const F_HEAD: &str = "%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG43 H1\nG0 Z50.\n";
+const S_HEAD: &str = "G17 G90 G94 G54\nG0 X0 Y0\nT1 D1 M6\nG0 Z50\n";
 
 fn fanuc(body: &str) -> String {
     format!("{F_HEAD}{body}M30\n%\n")
