@@ -218,3 +218,16 @@ fn the_speed_block_before_cycle84_becomes_the_m29_block() {
     assert_eq!(t[k + 1], "G98 G84 X10. Y10. Z-16. R5.", "{t:?}");
     assert_eq!(t.iter().filter(|l| l.contains("S400")).count(), 1, "{t:?}");
 }
+
+#[test]
+fn the_speed_of_m29_stays_right_before_cycle84_so_a_round_trip_comes_back() {
+    // The cycle's F goes before the S of M29 S: the S right before CYCLE84 is the form the
+    // way back takes into `M29 S` again, so the round trip is a fixed point.
+    let t = translate(&fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\n"), "nc", "sinumerik");
+    let k = t.iter().position(|l| l.starts_with("MCALL CYCLE84(")).expect("CYCLE84");
+    assert_eq!((t[k - 2].as_str(), t[k - 1].as_str()), ("F500", "S400"), "{t:?}");
+    let back = translate(&format!("{}\n", t.join("\n")), "mpf", "fanuc");
+    let again = translate(&format!("{}\n", back.join("\n")), "nc", "sinumerik");
+    let body = |x: &[String]| x.iter().filter(|l| !l.starts_with(';')).cloned().collect::<Vec<_>>();
+    assert_eq!(body(&again), body(&t));
+}
