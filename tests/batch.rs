@@ -368,46 +368,36 @@ fn library_to_sinumerik_end_to_end() {
 /// other file must verify in both directions. (A new refusal, or a fixed one, fails the test
 /// until this list says so: nothing is skipped silently.)
 const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
-    ("cycle81-spot-drill.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle82-counterbore.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle83-chip-break.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle83-deep-hole.mpf", "NC470"),  // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle89-bore-dwell.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-address-values.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-hemisphere-if-gotob.mpf", "NC322"), // WORKPIECE dropped, then NC470: T… M6 without D
     ("seed-sine-curve-while.mpf", "NC322"), // WORKPIECE dropped, then NC470: T… M6 without D
-    ("tool-name-string.mpf", "NC470"),   // T… M6 without D: the edge is machine data (MD20270)
+    ("tool-name-string.mpf", "NC470"),    // T… M6 without D: the edge is machine data (MD20270)
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("address-ac-ic.mpf", "NC313"),      // AC/IC mixed in one block
-    ("address-numbered.mpf", "NC312"),   // I1= and CIP
-    ("arc-radius-angle.mpf", "NC312"),   // AR=
+    ("address-ac-ic.mpf", "NC313"),       // AC/IC mixed in one block
+    ("address-numbered.mpf", "NC312"),    // I1= and CIP
+    ("arc-radius-angle.mpf", "NC312"),    // AR=
     ("assign-undeclared-name.mpf", "NC313"), // E=AC() on a non-axis address
-    ("axis-indirect-ax.mpf", "NC310"),   // DEF AXIS, AX[…] with a run-time axis
+    ("axis-indirect-ax.mpf", "NC310"),    // DEF AXIS, AX[…] with a run-time axis
     ("axname-axis-by-name.mpf", "NC310"), // DEF STRING, AXNAME
-    ("call-bare-name.mpf", "NC303"),     // a call of a program not in the library
-    ("call-l-number.mpf", "NC303"),      // L0123 / L123 not in the library
+    ("call-bare-name.mpf", "NC303"),      // a call of a program not in the library
+    ("call-l-number.mpf", "NC303"),       // L0123 / L123 not in the library
     ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
-    ("call-repeat-p.mpf", "NC303"),      // LAYER not in the library
-    ("cycle-unknown-call.mpf", "NC322"), // WORKPIECE, CYCLE81
-    ("cycle84-rigid-tap.mpf", "NC470"),  // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("cycle840-floating-tap.mpf", "NC470"), // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("cycle85-ream.mpf", "NC470"),       // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("cycle86-fine-bore.mpf", "NC470"),  // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("cycle87-bore-stop.mpf", "NC470"),  // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("cycle88-bore-dwell-stop.mpf", "NC470"), // T… M6 without D (then NC390: no exact FANUC cycle)
-    ("def-scalar-types.mpf", "NC310"),   // DEF STRING / AXIS
+    ("call-repeat-p.mpf", "NC303"),       // LAYER not in the library
+    ("cycle-unknown-call.mpf", "NC322"),  // WORKPIECE, CYCLE81
+    ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
+    ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
     ("extern-and-call-by-name.mpf", "NC310"), // DEF STRING: the program name of CALL
     ("frame-instructions.mpf", "NC316"), // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"), // a jump to a computed label
-    ("gud-def-nck-chan.mpf", "NC634"),   // DEF NCK / DEF CHAN global user data
-    ("mcall-modal.mpf", "NC393"),        // MCALL CYCLE81 with RTP above the tool
+    ("gud-def-nck-chan.mpf", "NC634"),  // DEF NCK / DEF CHAN global user data
+    ("mcall-modal.mpf", "NC393"),       // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"), // SD=, BSPLINE, …
-    ("operators-bitwise.mpf", "NC330"),  // B_NOT
-    ("repeat-section.mpf", "NC317"),     // REPEAT label P=n
-    ("string-functions.mpf", "NC310"),   // DEF STRING, string functions (NC506)
-    ("rotary-acp-acn-dc.mpf", "NC630"),  // C=ACP(…), ACN, DC, CAC
+    ("operators-bitwise.mpf", "NC330"), // B_NOT
+    ("repeat-section.mpf", "NC317"),    // REPEAT label P=n
+    ("string-functions.mpf", "NC310"),  // DEF STRING, string functions (NC506)
+    ("rotary-acp-acn-dc.mpf", "NC630"), // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions
-    ("system-variables.mpf", "NC321"),   // STOPRE, $AC_TIME
+    ("system-variables.mpf", "NC321"),  // STOPRE, $AC_TIME
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
@@ -432,16 +422,16 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
-    ("GOTO_FORMS.mpf", "NC310"),     // the computed-GOTO helper STRING
-    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"), // the computed variables' SETAL(64115)
-    ("MACRO_A_H99_ALARM.mpf", "NC315"), // SETAL outside 65000..65999
+    ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
+    ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
+    ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
     ("O_2001.mpf", "NC445"), // g52-pockets-g28-tool-changes.nc, translated since G43 is: its frames (passes::frames)
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
-    ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"), // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"), // MCALL
+    ("P_M98_SUBPROGRAM.mpf", "NC303"), // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
-    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
+    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"), // the computed-GOTO helper STRING
 ];
 
 /// FANUC translations of the Siemens library that do not come back, and why.

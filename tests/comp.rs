@@ -10,8 +10,8 @@ use nctrans::eval::{NoCallees, RunOptions, VecSink};
 use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, TranslateOptions};
 use nctrans::translate::to_sinumerik::{self as ts, Options};
+use nctrans::translate::{self, TranslateOptions};
 
 const STEPS: u64 = 100_000;
 

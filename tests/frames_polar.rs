@@ -84,8 +84,8 @@ fn a_bolt_circle_agrees_and_a_planted_angle_or_pole_is_caught() {
 mod translation {
     use super::*;
     use nctrans::read::LineEnding;
-    use nctrans::translate::{self, TranslateOptions};
     use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::{self, TranslateOptions};
 
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();

@@ -162,8 +162,8 @@ fn a_rotation_about_a_centre_agrees_and_planted_differences_are_caught() {
 mod translation {
     use super::*;
     use nctrans::read::LineEnding;
-    use nctrans::translate::{self, TranslateOptions};
     use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::{self, TranslateOptions};
 
     const STEPS: u64 = 100_000;
 
@@ -318,8 +318,8 @@ fn fanuc_mirror_and_scaling_and_their_order() {
 mod scale_and_mirror_translation {
     use super::*;
     use nctrans::read::LineEnding;
-    use nctrans::translate::{self, TranslateOptions};
     use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
+    use nctrans::translate::{self, TranslateOptions};
 
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();

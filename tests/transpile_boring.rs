@@ -35,7 +35,7 @@ fn fanuc(body: &str) -> String {
 }
 
 fn sinumerik(body: &str) -> String {
-    format!("G17 G90 G94 G54\nG0 X0 Y0\nT1 M6\nG0 Z50\n{body}M30\n")
+    format!("G17 G90 G94 G54\nG0 X0 Y0\nT1 D1 M6\nG0 Z50\n{body}M30\n")
 }
 
 fn translate(src: &str, ext: &str, to: &str) -> (String, Vec<String>) {

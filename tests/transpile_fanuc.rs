@@ -302,15 +302,10 @@ fn injected_bugs_are_caught() {
 
 /// Corpus programs that cannot be translated, with the reason (diagnostic code).
 const REFUSED: &[(&str, &str)] = &[
-    ("cycle81-spot-drill.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle82-counterbore.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle83-chip-break.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle83-deep-hole.mpf", "NC470"),  // T… M6 without D: the edge is machine data (MD20270)
-    ("cycle89-bore-dwell.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-address-values.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-hemisphere-if-gotob.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-sine-curve-while.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("tool-name-string.mpf", "NC470"),   // T… M6 without D: the edge is machine data (MD20270)
+    ("tool-name-string.mpf", "NC470"),    // T… M6 without D: the edge is machine data (MD20270)
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("address-ac-ic.mpf", "NC313"),
     ("address-numbered.mpf", "NC312"),

@@ -29,9 +29,10 @@ fn nctrans(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-/// Spindle stopped after the tool change (rigid tapping needs it so).
-const F_HEAD: &str = "%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG0 Z50.\n";
-const S_HEAD: &str = "G17 G90 G94 G54\nG0 X0 Y0\nT1 M6\nG0 Z50\n";
+/// Spindle stopped after the tool change (rigid tapping needs it so); the tool's length from
+/// its edge on both sides (G43 H1 / D1), so the heads compare equal in `check`.
+const F_HEAD: &str = "%\nO1\nG21 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG43 H1\nG0 Z50.\n";
+const S_HEAD: &str = "G17 G90 G94 G54\nG0 X0 Y0\nT1 D1 M6\nG0 Z50\n";
 
 fn fanuc(body: &str) -> String {
     format!("{F_HEAD}{body}M30\n%\n")
@@ -216,4 +217,17 @@ fn the_speed_block_before_cycle84_becomes_the_m29_block() {
     assert_eq!(t[k - 1], "F500.", "{t:?}");
     assert_eq!(t[k + 1], "G98 G84 X10. Y10. Z-16. R5.", "{t:?}");
     assert_eq!(t.iter().filter(|l| l.contains("S400")).count(), 1, "{t:?}");
+}
+
+#[test]
+fn the_speed_of_m29_stays_right_before_cycle84_so_a_round_trip_comes_back() {
+    // The cycle's F goes before the S of M29 S: the S right before CYCLE84 is the form the
+    // way back takes into `M29 S` again, so the round trip is a fixed point.
+    let t = translate(&fanuc("M29 S400\nG98 G84 X10. Y10. Z-16. R5. F500.\nG80\n"), "nc", "sinumerik");
+    let k = t.iter().position(|l| l.starts_with("MCALL CYCLE84(")).expect("CYCLE84");
+    assert_eq!((t[k - 2].as_str(), t[k - 1].as_str()), ("F500", "S400"), "{t:?}");
+    let back = translate(&format!("{}\n", t.join("\n")), "mpf", "fanuc");
+    let again = translate(&format!("{}\n", back.join("\n")), "nc", "sinumerik");
+    let body = |x: &[String]| x.iter().filter(|l| !l.starts_with(';')).cloned().collect::<Vec<_>>();
+    assert_eq!(body(&again), body(&t));
 }

@@ -8,8 +8,8 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate::to_sinumerik::{Options, OutFile, Translation};
 use nctrans::translate::called::{called_runs, combine, Combined, RunSettings};
+use nctrans::translate::to_sinumerik::{Options, OutFile, Translation};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -75,8 +75,7 @@ fn a_wrong_default_is_caught_in_the_streamed_translation() {
     let mut db = SourceDb::new();
     db.add(path.display().to_string(), String::new());
     let units: Vec<&Unit> = skeleton.iter().collect();
-    let tr =
-        |files: &[OutFile]| Translation {
+    let tr = |files: &[OutFile]| Translation {
         files: files.to_vec(),
         symbols: nctrans::translate::Symbols::Sinumerik(done.symbols.clone()),
         diags: Vec::new(),

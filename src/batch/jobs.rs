@@ -405,8 +405,7 @@ impl ToFanucJob {
             };
             let source = translate::align_source(main, map);
             let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, map)).collect());
-            let a =
-                Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
+            let a = Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
             let b = Side {
                 unit: parsed.unit.clone(),
                 callees: Box::new(NoCallees),

@@ -20,9 +20,9 @@ use crate::eval::calls::CalleeSource;
 use crate::eval::{self, Input};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
+use crate::translate::called::{self as verify_called, RunSettings};
 use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
-use crate::translate::called::{self as verify_called, RunSettings};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The name the stand-in caller program is shown under in diagnostics.

@@ -11,8 +11,8 @@ use crate::check::{CheckReport, Excluded, Verdict};
 use crate::eval::calls::CalleeSource;
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
-use crate::translate::to_sinumerik::{OutFile, Translation};
 use crate::translate::to_sinumerik::verify::{self as vs, Profiles, RunSpec};
+use crate::translate::to_sinumerik::{OutFile, Translation};
 use std::collections::BTreeSet;
 
 /// The runs that prove a program alone: without inputs, and once per constant argument

@@ -495,7 +495,12 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
 /// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
 /// so it starts where the Siemens side's definitions start.
 pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
-    t.symbols.fanuc().gud_seeds.iter().filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok()).collect()
+    t.symbols
+        .fanuc()
+        .gud_seeds
+        .iter()
+        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
+        .collect()
 }
 
 /// The Siemens profile of a check's source side: `base` (or the default) with the

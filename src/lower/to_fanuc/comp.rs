@@ -11,9 +11,9 @@
 //! edge the map gives no registers for, a tool change or `D` change while G41/G42 is on,
 //! `D0` under G41/G42, G41/G42 without an edge.
 
-use crate::lower::comp_flow::{self, const_word, FlowState, K};
 use super::*;
 use crate::eval::trace::Side;
+use crate::lower::comp_flow::{self, const_word, FlowState, K};
 
 /// What the FANUC program applies: the H register (length) and the radius side and D.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -389,7 +389,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             .into_iter()
             .partition(|it| mcall && matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'F') || w.addr.is(b'S')));
         if !lead.is_empty() {
-            out.push(block(lead, span));
+            let at = feed_slot(&out, &d, starting, &lead);
+            out.insert(at, block(lead, span));
         }
         b.items = rest;
         if !drill_word || repeats == 0 {
@@ -432,6 +433,28 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         refuse(ctx, at, "M29 without a tapping cycle after it", "program G84/G74 right after M29 S…", &mut out);
     }
     out
+}
+
+/// Where the F of a starting rigid tapping cycle goes: before the block that held its
+/// `M29 S` when that block is the last one written and sets only S. The speed then stays
+/// right before the CYCLE84, the form the Sinumerik → FANUC translation takes back into
+/// `M29 S`, so translating the translation back and forth gives it again (with the F after
+/// the S, that translation moves the F in front of `M29 S` and the next pass reorders).
+fn feed_slot(out: &[Stmt], d: &Data, starting: bool, lead: &[Item]) -> usize {
+    let end = out.len();
+    let sets_s = |it: &Item| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'S'));
+    let Some((_, at)) = d.tap.rigid.as_ref() else { return end };
+    if !starting || !matches!(d.g, 840 | 740) || lead.iter().any(sets_s) {
+        return end;
+    }
+    match out.last() {
+        Some(Stmt { kind: StmtKind::Block(b), span })
+            if span.contains(*at) && !b.items.is_empty() && b.items.iter().all(sets_s) =>
+        {
+            end - 1
+        }
+        _ => end,
+    }
 }
 
 /// New cycle data in a block without a hole: written as an MCALL at once (the next hole
