@@ -447,8 +447,6 @@ const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 const SIEMENS_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
     ("msg-progress-messages.mpf", "a MSG without a stop is a FANUC comment and does not come back as a message"),
     ("operators-concat.mpf", "a computed MSG is a FANUC comment of its formula and does not come back as a message"),
-    ("seed-hemisphere-if-gotob.mpf", "tool names become FANUC T numbers (the tool map) and stay numbers"),
-    ("seed-sine-curve-while.mpf", "tool names become T numbers"),
     // A PROC run alone: its parameters are 0 on Siemens. Through FANUC they come back as
     // macro arguments that were not given (vacant), so the words using them are left out.
     ("subprogram-header.spf", "PROC parameters not passed: 0 on Siemens, vacant through FANUC"),

@@ -119,10 +119,7 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         }
     }
     if !relevant {
-        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_)))
-            && !is_cycle_call(&b)
-            && !calls_only(&b, ctx)
-        {
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) && !is_cycle_call(&b) && !calls_only(&b, ctx) {
             // A subprogram may change the tool or the compensation.
             *st = St::unknown();
         }
