@@ -2,7 +2,8 @@
 //! `nctrans --to sinumerik`, whole or streamed, runs each macro called by G65/G66 alone with
 //! its callers' arguments and again with each of them vacant (`verify_called`, the rule the
 //! batch uses), so a wrong default or a missing alarm for a vacant argument is caught even
-//! when every call seen gives every argument.
+//! when every call seen gives every argument. A batch does it for a macro in its caller's
+//! file too, whole and streamed, with one verdict.
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
@@ -117,4 +118,81 @@ fn the_verdict_counts_the_runs_whole_and_streamed() {
     assert!(out.contains("IF 0\n  ARG_H=1\nENDIF\n"), "{out}");
     assert!(err.contains("equivalent (16 events in 3 runs)"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A batch whose one file holds the main program and its macro (`pocket.nc`), with
+/// streaming at `stream_bytes` (0: every file the streamed job takes, `u64::MAX`: none) and
+/// the job's `fault` applied to every output: the file's record, and whether the streamed
+/// job took the file.
+fn batch_record(
+    name: &str,
+    stream_bytes: u64,
+    specialise: bool,
+    fault: Option<Box<nctrans::batch::jobs::Fault>>,
+) -> (nctrans::batch::FileRecord, bool) {
+    use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+    use nctrans::batch::{self, BatchOptions, FileJob};
+    struct Watched(ToSinumerikJob, std::sync::atomic::AtomicBool);
+    impl FileJob for Watched {
+        fn run(&self, f: &batch::InputFile, ctx: &batch::BatchContext) -> batch::FileOutcome {
+            match batch::streamed::to_sinumerik(&self.0, f, ctx) {
+                Some(o) => {
+                    self.1.store(true, std::sync::atomic::Ordering::SeqCst);
+                    o
+                }
+                None => self.0.run(f, ctx),
+            }
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("nctrans-verify-called-batch-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("in")).expect("dir");
+    std::fs::copy(corpus_file(), dir.join("in/pocket.nc")).expect("copy");
+    let settings =
+        nctrans::batch::jobs::JobSettings::from_config(&nctrans::config::Config::default()).expect("settings");
+    let mut job = ToSinumerikJob::new(settings);
+    job.fault = fault;
+    let job = Watched(job, Default::default());
+    let mut opts = BatchOptions::new(dir.join("in"), dir.join("out"), Dialect::Sinumerik);
+    opts.stream_bytes = stream_bytes;
+    opts.specialise_callers = specialise;
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let r = batch::run_batch(opts, &job, stop, &mut |_| {}).expect("batch");
+    let _ = std::fs::remove_dir_all(&dir);
+    let rec = r.files.into_iter().find(|f| f.path == "pocket.nc").expect("the file's record");
+    (rec, job.1.load(std::sync::atomic::Ordering::SeqCst))
+}
+
+#[test]
+fn a_batch_runs_a_macro_of_its_callers_file_alone_with_each_argument_vacant() {
+    use nctrans::batch::Status;
+    let (rec, _) = batch_record("whole", u64::MAX, false, None);
+    assert_eq!(rec.status, Status::Verified, "{}", rec.summary);
+    // The main program, then the macro alone: two call sites, each with H, D, K vacant.
+    assert_eq!(rec.summary, "equivalent (34 events in 9 runs)");
+    let (rec, _) = batch_record("specialised", u64::MAX, true, None);
+    assert_eq!(rec.summary, "equivalent (16 events in 3 runs)");
+    // The macro's default for H planted wrong: only a run with H vacant sees it.
+    let fault: Box<nctrans::batch::jobs::Fault> = Box::new(|_: &nctrans::batch::InputFile, text: &mut String| {
+        *text = text.replace("ARG_H=1 ARG_H_SET=1", "ARG_H=2 ARG_H_SET=1");
+    });
+    let (rec, _) = batch_record("tampered", u64::MAX, false, Some(fault));
+    assert_eq!(rec.status, Status::Diverged, "{}", rec.summary);
+    assert!(rec.summary.contains("O_9100 alone") && rec.summary.contains("#11 vacant"), "{}", rec.summary);
+}
+
+#[test]
+fn the_streamed_batch_gives_the_whole_batchs_verdict_for_a_macro_of_its_callers_file() {
+    for specialise in [false, true] {
+        let (whole, streamed_whole) = batch_record("w", u64::MAX, specialise, None);
+        let (streamed, took) = batch_record("s", 0, specialise, None);
+        assert!(!streamed_whole && took, "the streamed job takes the file only when streaming");
+        // The main program and the macro alone (each argument vacant unless specialised).
+        let runs = if specialise { "in 3 runs)" } else { "in 9 runs)" };
+        assert!(streamed.summary.ends_with(runs), "{}", streamed.summary);
+        assert_eq!(streamed.status, whole.status);
+        assert_eq!(streamed.summary, whole.summary);
+        assert_eq!(streamed.events, whole.events);
+        assert_eq!(streamed.outputs, whole.outputs);
+    }
 }

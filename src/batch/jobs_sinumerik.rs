@@ -14,6 +14,7 @@ use super::jobs::{
 };
 use super::library::ProgKey;
 use super::{discover, maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::check::CheckReport;
 use crate::config::Unsupported;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::calls::CalleeSource;
@@ -398,7 +399,8 @@ impl ToSinumerikJob {
     /// Runs the file's first program against its translation (and each other program the
     /// file does not call itself): with the inputs of the header lines and `--set`, and once
     /// per argument vector the library calls it with. The programs the file calls run
-    /// where it calls them (and in their callers' jobs).
+    /// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also
+    /// runs alone (`in_file_macro_runs`).
     fn verify(
         &self,
         db: &SourceDb,
@@ -410,6 +412,14 @@ impl ToSinumerikJob {
     ) -> Verified {
         let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
         let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
+        let settings = RunSettings {
+            out_dir: &out_dir,
+            max_steps: self.settings.max_steps,
+            profiles: &profiles,
+            set: &self.settings.set,
+        };
+        let served =
+            || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
         let mut runs = Vec::new();
         for (i, p) in main.unit.programs.iter().enumerate() {
             let key = number_of(p).map(ProgKey::Number);
@@ -433,14 +443,6 @@ impl ToSinumerikJob {
                 None => vec![(String::new(), vec![])],
             };
             let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
-            let settings = RunSettings {
-                out_dir: &out_dir,
-                max_steps: self.settings.max_steps,
-                profiles: &profiles,
-                set: &self.settings.set,
-            };
-            let served =
-                || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
             runs.extend(verify_called::case_runs(
                 db,
                 main.loaded.file,
@@ -452,6 +454,8 @@ impl ToSinumerikJob {
                 &served,
             ));
         }
+        // The macros the file calls, alone (see `in_file_macro_runs`).
+        runs.extend(in_file_macro_runs(db, ctx, file, &main.unit, tr, &settings, &served));
         if runs.is_empty() {
             return Verified {
                 status: Status::Inconclusive,
@@ -463,6 +467,43 @@ impl ToSinumerikJob {
         }
         combine(runs)
     }
+}
+
+/// The runs of the macros a FANUC file calls by G65/G66 among its own programs after the
+/// first (file `file`, parsed as `unit`, translated in `tr`): each alone, as every path runs
+/// a called macro (`translate::called::macro_runs`: with the arguments of the library's call
+/// sites, then each of them vacant unless `--specialise-callers`, behind its gate). A macro
+/// only other files call runs as a main of its own in `verify`. Shared by the whole job and
+/// the streamed one (`streamed_calls::macro_runs`), so both give the file one verdict.
+pub(crate) fn in_file_macro_runs(
+    db: &SourceDb,
+    ctx: &BatchContext,
+    file: &InputFile,
+    unit: &Unit,
+    tr: &Translation,
+    settings: &RunSettings,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
+    let lib = &ctx.library;
+    let mut runs = Vec::new();
+    for (i, p) in unit.programs.iter().enumerate().skip(1) {
+        let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
+        // A copy of a program an earlier file defines is verified there (see `duplicates`).
+        let mine = lib.programs.get(&key).is_some_and(|d| d.file == file.index);
+        let macro_call = |c: &super::library::CallSite| {
+            c.file == file.index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
+        };
+        if !mine || !lib.calls.iter().any(macro_call) {
+            continue;
+        }
+        let Some(out) = tr.files.iter().find(|f| f.source == unit.file && first_of(f, p)) else { continue };
+        let mut alone = unit.clone();
+        let entry = alone.programs.remove(i);
+        alone.programs.insert(0, entry);
+        let a = verify_called::Alone { db, file: unit.file, unit: &alone, tr, out };
+        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, !ctx.options.specialise_callers, callees));
+    }
+    runs
 }
 
 /// Whether `f` is the translation of the FANUC program `p` (by number, else the unnamed main).

@@ -332,9 +332,9 @@ fn records(diags: &[Diagnostic], files: &[(FileId, &str, &Path)]) -> Vec<DiagRec
 
 /// The verdict of one streamed check, as the whole-file jobs combine it, with the
 /// diagnostics' lines read from the streamed files.
-fn verdict(report: CheckReport, files: &[(FileId, &str, &Path)]) -> Verified {
-    let diags = report.diags.clone();
-    let mut v = combine(vec![(String::new(), report)]);
+fn verdict(runs: Vec<(String, CheckReport)>, files: &[(FileId, &str, &Path)]) -> Verified {
+    let diags = runs.first().map(|(_, r)| r.diags.clone()).unwrap_or_default();
+    let mut v = combine(runs);
     if !v.diagnostics.is_empty() {
         v.diagnostics = records(&diags, files);
     }
@@ -394,6 +394,7 @@ fn to_sinumerik_from(
     // The callees' units, kept for the verifier's source side; the translation's other
     // files (the file's own subprograms, the callees'), for its Siemens side.
     let mut units: Vec<Unit> = Vec::new();
+    let mut skeleton: Option<Unit> = None;
     let (done, subs) = match callees {
         None => (streamed_macro::to_sinumerik_part(path, &opts, eol, target)?, Vec::new()),
         Some(c) => {
@@ -401,6 +402,7 @@ fn to_sinumerik_from(
             // but neither run nor written.
             let mut load = |main: &Unit| {
                 let stand_in;
+                skeleton = Some(main.clone());
                 (units, stand_in) = streamed_calls::load(job, ctx, file, main, c)?;
                 Ok(units.iter().cloned().chain(stand_in).collect())
             };
@@ -448,6 +450,7 @@ fn to_sinumerik_from(
     let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &shown, read_back)];
     let mut fanuc = s.set.clone();
+    let header = done.index.header.clone();
     let symbols = crate::translate::Symbols::Sinumerik(done.symbols.clone());
     let tr = crate::translate::Translation { files: vec![], symbols, diags: vec![], unsupported: 0 };
     let siemens = siemens_inputs(&tr, &done.program, &fanuc);
@@ -471,7 +474,7 @@ fn to_sinumerik_from(
                     let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
                     let emitted =
                         crate::translate::to_sinumerik::verify::Emitted { files, semantics: s.sinumerik.clone() };
-                    (Box::new(MemCallees(std::mem::take(&mut units))), Box::new(emitted))
+                    (Box::new(MemCallees(units.clone())), Box::new(emitted))
                 } else {
                     (Box::new(NoCallees), Box::new(NoCallees))
                 };
@@ -509,7 +512,16 @@ fn to_sinumerik_from(
     if with_calls && !matches!(report.verdict, Verdict::Equivalent { .. }) {
         return decline();
     }
-    apply(&mut outcome, verdict(report, &files));
+    // The file's own macros alone, as the whole job runs them after its main program.
+    let mut runs = vec![(String::new(), report)];
+    if let (true, Some(main)) = (with_calls, &skeleton) {
+        let got = streamed_calls::macro_runs(job, ctx, file, (main, &header), &units, (&subs, &done.symbols), &out_dir);
+        match got {
+            Some(more) => runs.extend(more),
+            None => return decline(),
+        }
+    }
+    apply(&mut outcome, verdict(runs, &files));
     stage_subs(&mut outcome)?;
     Some(outcome)
 }
@@ -641,7 +653,7 @@ fn to_fanuc_from(
         let _ = std::fs::remove_file(&part);
         return None;
     }
-    apply(&mut outcome, verdict(report, &files));
+    apply(&mut outcome, verdict(vec![(String::new(), report)], &files));
     Some(outcome)
 }
 

@@ -14,7 +14,9 @@
 //! file) is the whole job's own (`jobs_sinumerik::stand_in`, same text, same file id after
 //! the callees'), translated with the rest and dropped from the files
 //! (`segmented::to_sinumerik_with_stand_in`; a diagnostic on it declines, where the whole
-//! job drops its warnings); like the whole job, the check runs without it.
+//! job drops its warnings); like the whole job, the check runs without it. After the main's
+//! run, the macros the file calls by G65/G66 run alone as the whole job runs them (`macro_runs`,
+//! the same `jobs_sinumerik::in_file_macro_runs`).
 
 use super::discover::{self, InputFile};
 use super::jobs;
@@ -109,6 +111,44 @@ pub(super) fn load(
         Some((_, unit)) => Ok((units, Some(unit))),
         None => Ok((units, None)),
     }
+}
+
+/// The runs of the macros the file calls by G65/G66 among its own programs, alone, as the
+/// whole job makes them (`jobs_sinumerik::in_file_macro_runs`): the FANUC side from the
+/// streamed skeleton `main` (its macro part and the file's other programs, whole) with the
+/// file's `header` (its `nctrans: set` lines), its callees from `units`, the Siemens side
+/// from the translation's other files `subs` and `symbols`. `None` when one of them is not
+/// an equivalence: the whole job then gives that verdict, with its diagnostics' lines.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn macro_runs(
+    job: &ToSinumerikJob,
+    ctx: &BatchContext,
+    file: &InputFile,
+    (main, header): (&Unit, &str),
+    units: &[Unit],
+    (subs, symbols): (&[OutFile], &crate::translate::to_sinumerik::SymbolMap),
+    out_dir: &str,
+) -> Option<Vec<(String, crate::check::CheckReport)>> {
+    let s = &job.settings;
+    // The whole job's file ids: the main's 0, its callees' from 1 up, the stand-in's next.
+    let mut db = SourceDb::new();
+    db.add(crate::batch::rel_string(&file.rel), header.to_string());
+    for _ in 0..=units.len() {
+        db.add("", String::new());
+    }
+    let tr = crate::translate::Translation {
+        files: subs.to_vec(),
+        symbols: crate::translate::Symbols::Sinumerik(symbols.clone()),
+        diags: Vec::new(),
+        unsupported: 0,
+    };
+    let profiles =
+        crate::translate::to_sinumerik::verify::Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() };
+    let settings =
+        crate::translate::called::RunSettings { out_dir, max_steps: s.max_steps, profiles: &profiles, set: &s.set };
+    let served = || Box::new(jobs::MemCallees(units.to_vec())) as Box<dyn crate::eval::calls::CalleeSource + Send>;
+    let runs = jobs_sinumerik::in_file_macro_runs(&db, ctx, file, main, &tr, &settings, &served);
+    runs.iter().all(|(_, r)| matches!(r.verdict, crate::check::Verdict::Equivalent { .. })).then_some(runs)
 }
 
 /// The file's own subprograms among the translation's other files (the callees' are

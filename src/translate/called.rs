@@ -142,31 +142,58 @@ pub fn called_runs(
         let mut unit = u.clone();
         let entry = unit.programs.remove(i);
         unit.programs.insert(0, entry);
-        let name = format!(" ({} alone,", out.program);
-        let label = |(label, sets): (String, Vec<String>)| {
-            let label = match label.strip_prefix(" (") {
-                Some(l) => format!(" {l}"),
-                None => format!("{label})"),
-            };
-            (label, sets)
-        };
-        let key = ProgKey::Number(n);
-        let mut all_cases = cases(&lib, &key, each_vacant).into_iter().map(label);
-        let given: Vec<_> = all_cases.by_ref().take(cases(&lib, &key, false).len()).collect();
         let served = || Box::new(crate::batch::jobs::MemCallees(all.clone())) as Box<dyn CalleeSource + Send>;
-        // The macro alone with its callers' own arguments: its translation may rest on what
-        // the callers leave (their unit for values without a decimal point, common variables
-        // they set), which a run alone does not have. Then the main program's run is its
-        // proof, as before; only a macro that runs alone as it runs called is also run with
-        // each argument vacant.
-        let base = case_runs(db, u.file, &unit, tr, out, (&name, given), settings, &served);
-        if base.iter().any(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. })) {
-            continue;
-        }
-        runs.extend(base);
-        let vacant: Vec<_> = all_cases.collect();
-        runs.extend(case_runs(db, u.file, &unit, tr, out, (&name, vacant), settings, &served));
+        let alone = Alone { db, file: u.file, unit: &unit, tr, out };
+        runs.extend(macro_runs(&alone, &lib, &ProgKey::Number(n), settings, each_vacant, &served));
     }
+    runs
+}
+
+/// A macro run alone as a main program: the FANUC `unit` (file `file` in `db`) with the
+/// macro as its first program, and the macro's translation `out` in `tr`.
+pub struct Alone<'a> {
+    pub db: &'a SourceDb,
+    pub file: FileId,
+    pub unit: &'a Unit,
+    pub tr: &'a Translation,
+    pub out: &'a OutFile,
+}
+
+/// The runs of one macro (`key` in `lib`) alone (see [`Alone`]), with the cases of
+/// [`cases`], each run's FANUC callees from `callees`; labelled by the program
+/// (` (O_9100 alone, with the arguments of call site 1 but #11 vacant)`). Shared by the
+/// single-file paths ([`called_runs`]) and the batch (a macro its own file calls).
+///
+/// The gate: the macro runs first with its callers' own arguments. Its translation may rest
+/// on what the callers leave (their unit for values without a decimal point, common
+/// variables they set), which a run alone does not have; where one of those runs is not
+/// equivalent, none is kept and the callers' runs are the macro's proof, as before. Only a
+/// macro that runs alone as it runs called is also run with each argument vacant.
+pub fn macro_runs(
+    alone: &Alone,
+    lib: &Library,
+    key: &ProgKey,
+    settings: &RunSettings,
+    each_vacant: bool,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
+    let name = format!(" ({} alone,", alone.out.program);
+    let label = |(label, sets): (String, Vec<String>)| {
+        let label = match label.strip_prefix(" (") {
+            Some(l) => format!(" {l}"),
+            None => format!("{label})"),
+        };
+        (label, sets)
+    };
+    let mut all_cases = cases(lib, key, each_vacant).into_iter().map(label);
+    let given: Vec<_> = all_cases.by_ref().take(cases(lib, key, false).len()).collect();
+    let run =
+        |cases| case_runs(alone.db, alone.file, alone.unit, alone.tr, alone.out, (&name, cases), settings, callees);
+    let mut runs = run(given);
+    if runs.iter().any(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. })) {
+        return Vec::new();
+    }
+    runs.extend(run(all_cases.collect()));
     runs
 }
 
