@@ -430,38 +430,18 @@ impl Machine {
                 ));
             }
             let s = (p0[u], p0[v]);
-            let mut e = (p1[u], p1[v]);
+            let e = (p1[u], p1[v]);
             let ijk_len = |axis: usize| -> Option<(f64, bool)> {
                 ijk.get(axis).copied().flatten().map(|(w, x)| (self.length(w, x, false), w.mode == AbsInc::Ac))
             };
             let cc = |axis: usize, start: f64| ijk_len(axis).map(|(v, ac)| if ac { v } else { start + v });
-            let bad_arc = |why: &str| Fault::alarm(self.alarms.arc, why.to_string(), span);
-            let c = if let Some((w, rv)) = r {
-                let rr = self.length(w, rv, false);
-                arc::centre_from_radius(s, e, rr, cw)
-                    .ok_or_else(|| bad_arc("arc radius too small for the end point, or no end point"))?
-            } else if any_ijk {
-                let c = (cc(u, s.0).unwrap_or(s.0), cc(v, s.1).unwrap_or(s.1));
-                if let Some(ang) = ar {
-                    if axes[u].is_none() && axes[v].is_none() {
-                        e = arc::end_from_angle(s, c, ang, cw);
-                    }
-                }
-                c
-            } else if let Some(ang) = ar {
-                let rr = arc::radius_from_angle(s, e, ang)
-                    .ok_or_else(|| bad_arc("AR= needs an end point different from the start"))?;
-                arc::centre_from_radius(s, e, rr, cw).ok_or_else(|| bad_arc("no arc for AR="))?
-            } else {
-                return Err(bad_arc("arc without I/J/K, radius or opening angle"));
+            let given = arc::Given {
+                radius: r.map(|(w, rv)| self.length(w, rv, false)),
+                centre: any_ijk.then(|| (cc(u, s.0).unwrap_or(s.0), cc(v, s.1).unwrap_or(s.1))),
+                angle: ar,
+                end_named: axes[u].is_some() || axes[v].is_some(),
             };
-            let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
-            let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
-            if (rs - re).abs() > 0.01 {
-                return Err(bad_arc(&format!(
-                    "arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"
-                )));
-            }
+            let (c, e) = arc::resolve(s, e, &given, cw).map_err(|why| Fault::alarm(self.alarms.arc, why, span))?;
             p1[u] = e.0;
             p1[v] = e.1;
             let mut pc = p1;

@@ -97,7 +97,7 @@ impl Machine {
         let cw = self.modal.motion == Motion::Cw;
         let (u, v, _) = self.modal.plane.axes();
         let s = (self.pos[u], self.pos[v]);
-        let mut e = (target[u], target[v]);
+        let e = (target[u], target[v]);
         let ijk_of = |axis: usize| -> Option<(&WordVal, f64)> {
             match axis {
                 0 => ijk[0],
@@ -116,34 +116,13 @@ impl Machine {
                 }
             })
         };
-        let bad_arc = |why: &str| Fault::alarm(self.alarms.arc, why.to_string(), span);
-        let c = if let Some((w, rv)) = r {
-            let rr = self.length(w, rv, false);
-            arc::centre_from_radius(s, e, rr, cw)
-                .ok_or_else(|| bad_arc("arc radius too small for the end point, or no end point"))?
-        } else if any_ijk {
-            let cu = centre_coord(self, u).unwrap_or(s.0);
-            let cv = centre_coord(self, v).unwrap_or(s.1);
-            if let Some(a) = ar {
-                if axes[u].is_none() && axes[v].is_none() {
-                    e = arc::end_from_angle(s, (cu, cv), a, cw);
-                }
-            }
-            (cu, cv)
-        } else if let Some(a) = ar {
-            let rr = arc::radius_from_angle(s, e, a)
-                .ok_or_else(|| bad_arc("AR= needs an end point different from the start"))?;
-            arc::centre_from_radius(s, e, rr, cw).ok_or_else(|| bad_arc("no arc for AR="))?
-        } else {
-            return Err(bad_arc("arc without I/J/K, radius or opening angle"));
+        let given = arc::Given {
+            radius: r.map(|(w, rv)| self.length(w, rv, false)),
+            centre: any_ijk.then(|| (centre_coord(self, u).unwrap_or(s.0), centre_coord(self, v).unwrap_or(s.1))),
+            angle: ar,
+            end_named: axes[u].is_some() || axes[v].is_some(),
         };
-        let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
-        let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
-        if (rs - re).abs() > 0.01 {
-            return Err(bad_arc(&format!(
-                "arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"
-            )));
-        }
+        let (c, e) = arc::resolve(s, e, &given, cw).map_err(|why| Fault::alarm(self.alarms.arc, why, span))?;
         target[u] = e.0;
         target[v] = e.1;
         for (i, a) in axes.iter().enumerate() {
