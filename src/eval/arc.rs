@@ -53,6 +53,45 @@ pub fn end_from_angle(s: (f64, f64), c: (f64, f64), ar: f64, cw: bool) -> (f64, 
     (c.0 + x * cs - y * sn, c.1 + x * sn + y * cs)
 }
 
+/// A point in the plane of an arc.
+pub type Point = (f64, f64);
+
+/// How a block gives its arc: a radius, a centre (I/J/K already made coordinates), and a
+/// Siemens opening angle (AR=), in that order of precedence.
+pub struct Given {
+    pub radius: Option<f64>,
+    pub centre: Option<(f64, f64)>,
+    pub angle: Option<f64>,
+    /// The block names an axis of the plane: a centre with AR= then keeps its end point.
+    pub end_named: bool,
+}
+
+/// The centre and the end point of an arc from `s` towards `e` as `g` gives it, checked to
+/// lie on one circle (within 0.01, the controls' arc tolerance); `Err` is the alarm's text.
+pub fn resolve(s: Point, mut e: Point, g: &Given, cw: bool) -> Result<(Point, Point), String> {
+    let c = if let Some(rr) = g.radius {
+        centre_from_radius(s, e, rr, cw).ok_or("arc radius too small for the end point, or no end point")?
+    } else if let Some(c) = g.centre {
+        if let Some(ang) = g.angle {
+            if !g.end_named {
+                e = end_from_angle(s, c, ang, cw);
+            }
+        }
+        c
+    } else if let Some(ang) = g.angle {
+        let rr = radius_from_angle(s, e, ang).ok_or("AR= needs an end point different from the start")?;
+        centre_from_radius(s, e, rr, cw).ok_or("no arc for AR=")?
+    } else {
+        return Err("arc without I/J/K, radius or opening angle".into());
+    };
+    let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
+    let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
+    if (rs - re).abs() > 0.01 {
+        return Err(format!("arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"));
+    }
+    Ok((c, e))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,40 +123,4 @@ mod tests {
         let e = end_from_angle((10.0, 0.0), (0.0, 0.0), 90.0, false);
         assert!(close(e, (0.0, 10.0)));
     }
-}
-
-/// How a block gives its arc: a radius, a centre (I/J/K already made coordinates), and a
-/// Siemens opening angle (AR=), in that order of precedence.
-pub struct Given {
-    pub radius: Option<f64>,
-    pub centre: Option<(f64, f64)>,
-    pub angle: Option<f64>,
-    /// The block names an axis of the plane: a centre with AR= then keeps its end point.
-    pub end_named: bool,
-}
-
-/// The centre and the end point of an arc from `s` towards `e` as `g` gives it, checked to
-/// lie on one circle (within 0.01, the controls' arc tolerance); `Err` is the alarm's text.
-pub fn resolve(s: (f64, f64), mut e: (f64, f64), g: &Given, cw: bool) -> Result<((f64, f64), (f64, f64)), String> {
-    let c = if let Some(rr) = g.radius {
-        centre_from_radius(s, e, rr, cw).ok_or("arc radius too small for the end point, or no end point")?
-    } else if let Some(c) = g.centre {
-        if let Some(ang) = g.angle {
-            if !g.end_named {
-                e = end_from_angle(s, c, ang, cw);
-            }
-        }
-        c
-    } else if let Some(ang) = g.angle {
-        let rr = radius_from_angle(s, e, ang).ok_or("AR= needs an end point different from the start")?;
-        centre_from_radius(s, e, rr, cw).ok_or("no arc for AR=")?
-    } else {
-        return Err("arc without I/J/K, radius or opening angle".into());
-    };
-    let rs = ((s.0 - c.0).powi(2) + (s.1 - c.1).powi(2)).sqrt();
-    let re = ((e.0 - c.0).powi(2) + (e.1 - c.1).powi(2)).sqrt();
-    if (rs - re).abs() > 0.01 {
-        return Err(format!("arc end point is not on the circle (start radius {rs:.4}, end radius {re:.4})"));
-    }
-    Ok((c, e))
 }

@@ -303,6 +303,24 @@ impl Lines {
     }
 }
 
+/// The line holding text offset `lo` of a file on disk: its number, start offset and text,
+/// read line by line from the start (constant memory; for rendering a few diagnostics of a
+/// streamed file without loading it).
+pub fn line_at(path: &std::path::Path, lo: u32) -> Option<(u32, u64, String)> {
+    let (input, _) = super::open(path).ok()?;
+    let mut lines = Lines::new(input).ok()?;
+    let at = u64::from(lo);
+    let mut last = None;
+    while let Ok(Some(l)) = lines.next_line() {
+        let found = at < l.next || l.next == l.start + l.text.len() as u64;
+        last = Some((l.line, l.start, l.text.to_string()));
+        if found {
+            break;
+        }
+    }
+    last
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,6 +17,7 @@
 mod chunker;
 pub mod index;
 pub mod lines;
+pub use lines::line_at;
 mod nset;
 pub mod paged;
 pub mod segmented;
@@ -781,22 +782,4 @@ pub fn runner(
         let pager = std::rc::Rc::new(paged::Pager::new(ix));
         crate::eval::run_stream(db, pager, callees.as_mut(), &opts, sink)
     })
-}
-
-/// The line holding text offset `lo` of a file on disk: its number, start offset and text,
-/// read line by line from the start (constant memory; for rendering a few diagnostics of a
-/// streamed file without loading it).
-pub fn line_at(path: &Path, lo: u32) -> Option<(u32, u64, String)> {
-    let (input, _) = open(path).ok()?;
-    let mut lines = Lines::new(input).ok()?;
-    let at = u64::from(lo);
-    let mut last = None;
-    while let Ok(Some(l)) = lines.next_line() {
-        let found = at < l.next || l.next == l.start + l.text.len() as u64;
-        last = Some((l.line, l.start, l.text.to_string()));
-        if found {
-            break;
-        }
-    }
-    last
 }
