@@ -301,7 +301,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                     pos.push(it.clone());
                     drill_word = true;
                 }
-                "Z" => {
+                letter @ ("Z" | "R") => {
                     let Some(v) = length(ctx, e, span.lo) else {
                         refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
                         continue;
@@ -310,22 +310,11 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
                         continue;
                     };
-                    d.z = Some(v);
-                    d.z_inc = inc;
-                    drill_word = true;
-                    changed = true;
-                }
-                "R" => {
-                    let Some(v) = length(ctx, e, span.lo) else {
-                        refuse(ctx, it.span, UNIT_UNKNOWN, UNIT_HINT, &mut out);
-                        continue;
-                    };
-                    let Some(inc) = incremental else {
-                        refuse(ctx, it.span, INC_UNKNOWN, INC_HINT, &mut out);
-                        continue;
-                    };
-                    d.r = Some(v);
-                    d.r_inc = inc;
+                    if letter == "Z" {
+                        (d.z, d.z_inc) = (Some(v), inc);
+                    } else {
+                        (d.r, d.r_inc) = (Some(v), inc);
+                    }
                     drill_word = true;
                     changed = true;
                 }
