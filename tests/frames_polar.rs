@@ -3,39 +3,13 @@
 //! agrees, what the controls do differently is refused, and the translations both ways
 //! are proven (a planted wrong angle or pole is caught).
 
-use nctrans::check::{self, Side, Verdict};
+use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
-use nctrans::eval::{self, NoCallees, RunOptions, VecSink};
-use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 
-fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
-    let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
-    let id = db.add(name, text);
-    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
-    assert!(!nctrans::diag::has_errors(&p.diags), "does not parse:\n{}", nctrans::diag::render(db, &p.diags));
-    p.unit
-}
-
-fn trace(text: &str, d: Dialect) -> String {
-    let mut db = SourceDb::new();
-    let unit = load(&mut db, text, d);
-    let mut sink = VecSink::default();
-    let out = eval::run(&mut db, &unit, &mut NoCallees, &RunOptions::default(), &mut sink);
-    let mut s: Vec<String> = sink.events.iter().map(|(e, _)| eval::trace::text_line(e)).collect();
-    if let Some(e) = out.diags.iter().find(|d| d.severity == nctrans::diag::Severity::Error) {
-        s.push(format!("error {}", e.code));
-    }
-    s.join("\n")
-}
-
-fn equivalent(fanuc: &str, siemens: &str) -> bool {
-    let mut db = SourceDb::new();
-    let f = load(&mut db, fanuc, Dialect::Fanuc);
-    let s = load(&mut db, siemens, Dialect::Sinumerik);
-    let side = |u: Unit| Side { unit: u, callees: Box::new(NoCallees), run: RunOptions::default() };
-    matches!(check::check(&db, side(f), side(s)).verdict, Verdict::Equivalent { .. })
-}
+#[path = "support/frame_check.rs"]
+mod frame_check;
+use frame_check::*;
 
 pub const F_BOLTS: &str = "O1\nG17 G90 G54 G0 X0 Y0 Z10.\nG52 X50. Y40.\nG16\nG0 X30. Y0\nG81 X30. Y0 Z-5. R2. F100.\nX30. Y90.\nX30. Y180.\nX30. Y270.\nG80\nG15\nG52 X0 Y0 Z0\nG0 X0 Y0\nM30\n";
 pub const S_BOLTS: &str = "G17 G90 G54 G0 X0 Y0 Z10\nG111 X50 Y40\nG0 AP=0 RP=30 F100\nMCALL CYCLE81(10,0,2,-5)\nG0 AP=0 RP=30\nAP=90\nAP=IC(90)\nAP=270\nMCALL\nG0 X0 Y0\nM30\n";

@@ -3,44 +3,15 @@
 //! what it refuses where the controls differ, the translations both ways, and planted wrong
 //! translations (rotation sign, centre, mirror axis, scale factor) caught.
 
-use nctrans::check::{self, Side, Verdict};
+use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions, Semantics};
-use nctrans::eval::{self, NoCallees, RunOptions, VecSink};
+use nctrans::eval::{self, RunOptions, VecSink};
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 
-fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
-    let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
-    let id = db.add(name, text);
-    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
-    assert!(!nctrans::diag::has_errors(&p.diags), "does not parse:\n{}", nctrans::diag::render(db, &p.diags));
-    p.unit
-}
-
-fn trace_with(text: &str, d: Dialect, opts: &RunOptions) -> String {
-    let mut db = SourceDb::new();
-    let unit = load(&mut db, text, d);
-    let mut sink = VecSink::default();
-    let out = eval::run(&mut db, &unit, &mut NoCallees, opts, &mut sink);
-    let mut s: Vec<String> = sink.events.iter().map(|(e, _)| eval::trace::text_line(e)).collect();
-    if let Some(e) = out.diags.iter().find(|d| d.severity == nctrans::diag::Severity::Error) {
-        s.push(format!("error {}", e.code));
-    }
-    s.join("\n")
-}
-
-/// The trace in its text form, one event a line; an error ends it with `error CODE`.
-fn trace(text: &str, d: Dialect) -> String {
-    trace_with(text, d, &RunOptions::default())
-}
-
-fn equivalent(fanuc: &str, siemens: &str) -> bool {
-    let mut db = SourceDb::new();
-    let f = load(&mut db, fanuc, Dialect::Fanuc);
-    let s = load(&mut db, siemens, Dialect::Sinumerik);
-    let side = |u: Unit| Side { unit: u, callees: Box::new(NoCallees), run: RunOptions::default() };
-    matches!(check::check(&db, side(f), side(s)).verdict, Verdict::Equivalent { .. })
-}
+#[path = "support/frame_check.rs"]
+mod frame_check;
+use frame_check::*;
 
 #[test]
 fn g68_rotates_moves_increments_and_arcs_about_its_centre() {
