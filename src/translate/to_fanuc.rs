@@ -208,7 +208,6 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     // across calls) and, for SAVE ones, restores.
     let named: Vec<(String, &Program)> = progs.iter().skip(1).map(|(p, _, _)| (prog_name(p, ""), p)).collect();
     let effects = passes::words::effects::effects(&named);
-    let comp_free = passes::comp::untouched(&named);
     let mut callees = BTreeMap::new();
     for (name, p) in named {
         let number = numbers.get(&name).copied().unwrap_or(FIRST_SUB_NUMBER);
@@ -232,7 +231,6 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
-        ctx.comp_free = comp_free.clone();
         let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {

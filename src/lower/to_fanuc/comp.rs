@@ -263,61 +263,18 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
     out.push(meta_stmt(b.meta, b.items));
 }
 
-/// Whether every call of `b` is of a program in `ctx.comp_free` (one that leaves the tool
-/// and the compensation as they were), by name or, after the words pass, by its O number.
+/// Whether every call of `b` is of a translated program that changes neither the tool nor
+/// the compensation (`Effect::tools`), by name or, after the words pass, by its O number.
 fn calls_only(b: &Block, ctx: &Ctx) -> bool {
-    let free = |name: &str| ctx.comp_free.contains(&name.to_ascii_uppercase());
+    let keeps = |c: &Callee| !c.effect.tools;
     b.items.iter().all(|it| match &it.kind {
         ItemKind::Call(c) => match &c.target {
-            CallTarget::Name(n) => free(n),
-            CallTarget::Number(o) => ctx.callees.iter().any(|(name, callee)| callee.number == *o && free(name)),
+            CallTarget::Name(n) => ctx.callees.get(&n.to_ascii_uppercase()).is_some_and(keeps),
+            CallTarget::Number(o) => ctx.callees.values().any(|c| c.number == *o && keeps(c)),
             CallTarget::Computed(_) => false,
         },
         _ => true,
     })
-}
-
-/// The programs of a translation (upper-case name, program) that change neither the tool nor
-/// the compensation, nor call one that does or one not in the list: a call of one keeps the
-/// caller's state known (a fixed point over the call graph, at most one round per program).
-pub fn untouched(progs: &[(String, &Program)]) -> std::collections::BTreeSet<String> {
-    let calls = |p: &Program| {
-        let mut names = Vec::new();
-        crate::ir::visit::walk_stmts(&p.body, &mut |s| {
-            if let StmtKind::Block(b) = &s.kind {
-                for it in &b.items {
-                    if let ItemKind::Call(c) = &it.kind {
-                        match &c.target {
-                            CallTarget::Name(n)
-                                if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some() => {}
-                            CallTarget::Name(n) => names.push(Some(n.to_ascii_uppercase())),
-                            _ => names.push(None),
-                        }
-                    }
-                }
-            }
-        });
-        names
-    };
-    let mut free: std::collections::BTreeSet<String> = progs
-        .iter()
-        .filter(|(_, p)| !comp_flow::relevant(&p.body, false))
-        .map(|(n, _)| n.to_ascii_uppercase())
-        .collect();
-    for _ in 0..=progs.len() {
-        let before = free.len();
-        let keep: Vec<String> = progs
-            .iter()
-            .map(|(n, p)| (n.to_ascii_uppercase(), p))
-            .filter(|(n, p)| free.contains(n) && calls(p).iter().all(|c| c.as_ref().is_some_and(|c| free.contains(c))))
-            .map(|(n, _)| n)
-            .collect();
-        free = keep.into_iter().collect();
-        if free.len() == before {
-            break;
-        }
-    }
-    free
 }
 
 fn is_cycle_call(b: &Block) -> bool {

@@ -94,10 +94,6 @@ pub struct Ctx {
     pub edge_default: Option<u32>,
     /// Known callees by upper-case name.
     pub callees: BTreeMap<String, Callee>,
-    /// The callees (upper-case names) that neither change the tool nor the compensation,
-    /// themselves or through their own calls (`comp::untouched`): a call of one leaves the
-    /// caller's tool and edge known.
-    pub comp_free: std::collections::BTreeSet<String>,
     pub diags: Vec<Diagnostic>,
     /// Number of unsupported constructs met (also under the warn policy).
     pub unsupported: usize,
@@ -127,7 +123,6 @@ impl Ctx {
             offsets: comp_flow::OffsetMap::default(),
             edge_default: None,
             callees: BTreeMap::new(),
-            comp_free: Default::default(),
             diags: Vec::new(),
             units_inexact: false,
             globals: Default::default(),

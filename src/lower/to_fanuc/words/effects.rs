@@ -45,6 +45,10 @@ pub struct Effect {
     pub units: UnitEffect,
     /// `PROC … SAVE`: the caller continues in the modes it called in.
     pub save: bool,
+    /// It (or a subprogram it calls, or a call it makes of a program not among those
+    /// translated) may change the tool or the compensation: a T, D, M6 or G40–G42 word
+    /// (`comp_flow::relevant_items`). A call of one leaves the caller's tool and edge unknown.
+    pub tools: bool,
 }
 
 impl Effect {
@@ -95,22 +99,29 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     let mut callee_units = false;
     let mut jumps = false;
     let mut returns = 0usize;
+    let mut tools = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
+            tools |= crate::lower::comp_flow::relevant_items(&b.items, false);
             for it in &b.items {
                 if let Some(g) = g_code(it) {
                     sets |= group_of(g);
                     unit_words += usize::from(Units::default().g(f64::from(g)));
                 }
                 match &it.kind {
-                    ItemKind::Call(c) => {
-                        if let CallTarget::Name(n) = &c.target {
-                            if let Some(e) = known(&n.to_ascii_uppercase()) {
+                    ItemKind::Call(c) => match &c.target {
+                        CallTarget::Name(n) => match known(&n.to_ascii_uppercase()) {
+                            Some(e) => {
                                 sets |= e.leaves();
                                 callee_units |= !e.save && e.units != UnitEffect::None;
+                                tools |= e.tools;
                             }
-                        }
-                    }
+                            None => {
+                                tools |= crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_none()
+                            }
+                        },
+                        _ => tools = true,
+                    },
                     ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::RepeatSection(_) => jumps = true,
                     ItemKind::Return { .. } | ItemKind::End { .. } => returns += 1,
                     _ => {}
@@ -125,7 +136,7 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     } else {
         fold_units(&p.body)
     };
-    Effect { sets, units, save: p.save }
+    Effect { sets, units, save: p.save, tools }
 }
 
 /// Every unit word in a top-level block that cannot be skipped, and the one return (if any)
