@@ -4,8 +4,7 @@
 
 mod eval_support;
 
-use eval_support::root;
-use std::process::Command;
+use eval_support::{nctrans, root};
 
 const FANUC: &str = "%\nO100\n#1=0\nG90 G0 X0 Y0\nWHILE[#1 LT 5]DO1\n#1=#1+1\nG1 X[#1*2.] F200.\nEND1\nM30\n%\n";
 const SIEMENS: &str = "R1=0\nG90 G0 X0 Y0\nWHILE R1<5\nR1=R1+1\nG1 X=R1*2 F200\nENDWHILE\nM30\n";
@@ -19,15 +18,6 @@ fn write(name: &str, text: &str) -> String {
     let p = dir.join(name);
     std::fs::write(&p, text).expect("write");
     p.to_string_lossy().to_string()
-}
-
-fn nctrans(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).to_string(),
-        String::from_utf8_lossy(&out.stderr).to_string(),
-    )
 }
 
 #[test]

@@ -10,12 +10,7 @@ use std::process::Command;
 static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
 fn scratch(ext: &str, text: &str) -> String {
-    let k = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = root().join("target/eval-tests");
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    let p = dir.join(format!("scycle-{k}.{ext}"));
-    std::fs::write(&p, text).expect("write");
-    p.to_string_lossy().to_string()
+    scratch_file("scycle", ext, text)
 }
 
 fn run(src: &str) -> Ran {

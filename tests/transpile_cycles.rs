@@ -5,27 +5,10 @@
 
 mod eval_support;
 
-use eval_support::root;
-use std::process::Command;
-
-static N: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+use eval_support::{nctrans, root, scratch_file};
 
 fn scratch(ext: &str, text: &str) -> String {
-    let k = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = root().join("target/eval-tests");
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    let p = dir.join(format!("tcycle-{k}.{ext}"));
-    std::fs::write(&p, text).expect("write");
-    p.to_string_lossy().to_string()
-}
-
-fn nctrans(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    scratch_file("tcycle", ext, text)
 }
 
 const HEAD: &str = "%\nO1\nG21 G17 G90\nG54 G0 X0 Y0\nT1 M6\nS1000 M3\nG0 Z50.\n";

@@ -130,3 +130,26 @@ pub fn run_text(name: &str, text: &str, extra: &[&str]) -> Ran {
 pub fn bare_lines(ran: &Ran) -> Vec<String> {
     ran.sink.lines.iter().map(|l| l.split("  @").next().unwrap_or("").to_string()).collect()
 }
+
+static SCRATCH: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// A scratch file `target/eval-tests/<prefix>-<k>.<ext>` holding `text` (k counts up in the
+/// test binary, so parallel tests never share one); its path.
+pub fn scratch_file(prefix: &str, ext: &str, text: &str) -> String {
+    let k = SCRATCH.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = root().join("target/eval-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let p = dir.join(format!("{prefix}-{k}.{ext}"));
+    std::fs::write(&p, text).expect("write");
+    p.to_string_lossy().to_string()
+}
+
+/// Runs the nctrans binary: its exit code, stdout and stderr.
+pub fn nctrans(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
