@@ -2,7 +2,8 @@
 //! same small surface (`parse`, later `emit`), and the [`Semantics`] flags they share.
 //!
 //! Owns: reading (`<name>/parse`, the fast readers) and writing (`<name>/emit`) each dialect,
-//! the [`Semantics`] flags, the block-number runs of an index ([`runs`]), the program-less
+//! the [`Semantics`] flags, the description a dialect implements ([`spec::Spec`]; the
+//! built-ins' are `translate::generic::builtin`), the block-number runs of an index ([`runs`]), the program-less
 //! file check ([`empty`]). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only,
 //! writing the evaluator's compact blocks) `eval::lit`. Never `lower` (but the writers' unit
 //! tests build IR with `lower::build`), `stream`, `check`.
@@ -14,8 +15,10 @@ pub mod quick;
 pub mod runs;
 pub mod semantics;
 pub mod sinumerik;
+pub mod spec;
 
 pub use semantics::Semantics;
+pub use spec::{Spec, Written};
 
 use crate::diag::Diagnostic;
 use crate::ir::Unit;
@@ -57,6 +60,16 @@ impl Dialect {
     /// `O` numbers and `[ ]` expressions are FANUC; `R` parameters with `=`, `DEF`, `GOTOF`,
     /// `;` comments are Siemens.
     pub fn sniff(text: &str) -> Dialect {
+        let (fanuc, siemens) = Dialect::sniff_scores(text);
+        if fanuc > siemens {
+            Dialect::Fanuc
+        } else {
+            Dialect::Sinumerik
+        }
+    }
+
+    /// The scores [`Dialect::sniff`] compares: how FANUC and how Siemens `text` looks.
+    pub fn sniff_scores(text: &str) -> (i32, i32) {
         let mut fanuc = 0i32;
         let mut siemens = 0i32;
         for line in text.lines().take(400) {
@@ -81,11 +94,7 @@ impl Dialect {
                 siemens += 1;
             }
         }
-        if fanuc > siemens {
-            Dialect::Fanuc
-        } else {
-            Dialect::Sinumerik
-        }
+        (fanuc, siemens)
     }
 }
 

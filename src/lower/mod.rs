@@ -13,6 +13,7 @@
 pub(crate) mod build;
 pub mod comp_flow;
 pub mod own_header;
+pub mod restate;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 

@@ -10,6 +10,7 @@
 //! A new target adds a module here and an arm in [`translate`].
 
 pub mod called;
+pub mod generic;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 
