@@ -73,6 +73,9 @@ fn iso_to_sinumerik_is_proven() {
     let t = proven(&mut db, &unit, &Iso, builtin(Dialect::Sinumerik));
     assert_eq!(t.target(), Dialect::Sinumerik);
     assert!(t.text().contains("X40"), "{}", t.text());
+    // To itself: the same model and profile, written again as it was read.
+    let t = proven(&mut db, &unit, &Iso, &Iso);
+    assert_eq!(t.text(), ISO);
 }
 
 #[test]

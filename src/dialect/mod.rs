@@ -3,8 +3,8 @@
 //!
 //! Owns: reading (`<name>/parse`, the fast readers) and writing (`<name>/emit`) each dialect,
 //! the [`Semantics`] flags, the description a dialect implements ([`spec::Spec`]; the
-//! built-ins' are `translate::generic::builtin`), the block-number runs of an index ([`runs`]), the program-less
-//! file check ([`empty`]). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only,
+//! built-ins' are `translate::generic::builtin`), the block-number runs of an index
+//! ([`runs`]), the program-less file check ([`empty`]). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only,
 //! writing the evaluator's compact blocks) `eval::lit`. Never `lower` (but the writers' unit
 //! tests build IR with `lower::build`), `stream`, `check`.
 
