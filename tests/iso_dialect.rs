@@ -167,3 +167,27 @@ fn detection_and_the_built_in_pairs() {
     let t = proven(&mut db, &unit, builtin(Dialect::Sinumerik), builtin(Dialect::Fanuc));
     assert_eq!(t.text(), translate::translate(&[&unit], Dialect::Fanuc, &Options::default()).text());
 }
+
+#[test]
+fn cut_and_garbled_iso_input_never_panics() {
+    let variants: Vec<String> = (0..ISO.len())
+        .filter(|&i| ISO.is_char_boundary(i))
+        .flat_map(|i| {
+            [ISO[..i].to_string(), format!("{}é{}", &ISO[..i], &ISO[i..]), format!("{}){}", &ISO[..i], &ISO[i..])]
+        })
+        .collect();
+    for text in variants {
+        let mut db = SourceDb::new();
+        let file = db.add("cut.iso", text.clone());
+        let parsed = Iso.parse(db.get(file), file, &ParseOptions { semantics: Iso.semantics() });
+        let _ = nctrans::diag::render(&db, &parsed.diags);
+        assert!(nctrans::ir::visit::check_spans(&parsed.unit, text.len() as u32).is_empty(), "{text}");
+        if !nctrans::diag::has_errors(&parsed.diags) {
+            let fanuc = builtin(Dialect::Fanuc);
+            let t = translate_between(&[&parsed.unit], &Iso, fanuc, &Options::default());
+            let v = verify_between(&mut db, &[&parsed.unit], &Iso, fanuc, &t, "out", 10_000);
+            // Every prefix that reads is a whole program: its translation is proven.
+            assert!(v.equivalent, "{}\n{}\n{text}", v.summary, v.rendered);
+        }
+    }
+}

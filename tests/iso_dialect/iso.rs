@@ -59,10 +59,11 @@ fn block(file: FileId, line: &str, at: usize) -> Result<Block, Diagnostic> {
         let start = i;
         let letter = c.to_ascii_uppercase();
         if !letter.is_ascii_alphabetic() {
+            let ch = line[i..].chars().next().unwrap_or('?');
             return Err(err(
                 file,
-                sp(at + i, at + i + 1),
-                format!("`{}` where an address letter was expected", c as char),
+                sp(at + i, at + i + ch.len_utf8()),
+                format!("`{ch}` where an address letter was expected"),
                 "here",
                 "plain G-code is letters with numbers, e.g. `G1 X10 F100`",
             ));
@@ -184,12 +185,12 @@ impl Spec for Iso {
         } else {
             vec![Program { name: None, head: None, params: vec![], save: false, body, span }]
         };
-        if programs.is_empty() && diags.is_empty() {
-            diags.push(
-                Diagnostic::error("NC519", "the file holds no block").hint("write at least one block, e.g. `G0 X0 Y0`"),
-            );
+        let unit = Unit { dialect: Dialect::Fanuc, file, programs };
+        // Nothing to run is said as every reader says it (NC145).
+        if diags.is_empty() && nctrans::dialect::empty::program_less(&unit) {
+            diags.push(nctrans::dialect::empty::diagnostic(file, &src.text));
         }
-        Parsed { unit: Unit { dialect: Dialect::Fanuc, file, programs }, diags, after_end_programs: vec![] }
+        Parsed { unit, diags, after_end_programs: vec![] }
     }
 
     fn lower(&self, unit: &Unit, source: &Semantics) -> Result<Unit, Vec<Diagnostic>> {
