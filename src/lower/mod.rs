@@ -1,8 +1,9 @@
 //! Lowering: what the IR must become to be expressible in a target dialect, one folder per
 //! target (`to_fanuc/`, `to_sinumerik/`, each ordering its own passes in its `mod.rs`), and
 //! here, once, what every target shares: the small IR builders and walkers, the refusal of
-//! tool compensation ([`compensation`]) and the recognition of nctrans's own headers
-//! ([`own_header`]).
+//! tool compensation ([`compensation`]), the recognition of nctrans's own headers
+//! ([`own_header`]) and bare literal lengths restated for another profile, with the letters
+//! they are on ([`restate`]).
 //!
 //! May use: `ir`, `dialect` (spellings and `Semantics` facts), `eval` (facts the evaluator
 //! owns: refusal reasons, modal tables), `diag`, `span`. Never `stream`, `check` or the

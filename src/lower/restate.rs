@@ -2,12 +2,22 @@
 //! with one profile (say calculator-type input, `X10` = 10 mm) that is to be written for
 //! another (IS-B, `X10` = 0.010 mm) keeps its meaning only if every length or angle written
 //! without a decimal point is written with one, in units. Used by the generic entry's
-//! lowerings (the built-in FANUC description and any dialect that runs as FANUC).
+//! lowerings (the built-in FANUC description and any dialect that runs as FANUC); the
+//! letters it restates are also the FANUC → Sinumerik lowering's (`to_sinumerik::words`).
 
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, Semantics};
 use crate::ir::*;
-use crate::lower::to_sinumerik::words::{rotary_letter, scaled_letter};
+
+/// Letters whose values are lengths or angles (scaled by the increment without a point).
+pub fn scaled_letter(l: u8) -> bool {
+    matches!(l, b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' | b'Q')
+}
+
+/// Letters whose bare values count the metric increment whatever the unit: angles.
+pub fn rotary_letter(l: u8) -> bool {
+    matches!(l, b'A' | b'B' | b'C')
+}
 
 /// Whether `s` reads a length written without a decimal point in increments.
 fn scales(s: &Semantics) -> bool {

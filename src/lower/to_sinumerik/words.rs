@@ -23,15 +23,7 @@ use super::*;
 /// Siemens alarm number base for FANUC macro alarms: `#3000=n` → `SETAL(65000+n)`.
 pub const MACRO_ALARM_BASE: i64 = 65000;
 
-/// Letters whose values are lengths or angles (scaled by the increment without a point).
-pub fn scaled_letter(l: u8) -> bool {
-    matches!(l, b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' | b'Q')
-}
-
-/// Letters whose bare values count the metric increment whatever the unit: angles.
-pub fn rotary_letter(l: u8) -> bool {
-    matches!(l, b'A' | b'B' | b'C')
-}
+pub use crate::lower::restate::{rotary_letter, scaled_letter};
 
 /// A value written without a decimal point, in the unit it is read in (mm, or inch under
 /// G20 `inch`; degrees when `rotary`; seconds for a dwell `X`, also `rotary`): the
