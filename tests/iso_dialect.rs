@@ -191,3 +191,60 @@ fn cut_and_garbled_iso_input_never_panics() {
         }
     }
 }
+
+/// A described dialect that runs as Siemens: the built-in Sinumerik's reader, writer and
+/// lowering under another name, so the generic path (not the built-in pair's) carries it.
+struct Shadow;
+
+impl Spec for Shadow {
+    fn name(&self) -> &str {
+        "shadow"
+    }
+    fn extensions(&self) -> &[&str] {
+        &["shd"]
+    }
+    fn sniff(&self, text: &str) -> u32 {
+        builtin(Dialect::Sinumerik).sniff(text)
+    }
+    fn runs_as(&self) -> Dialect {
+        Dialect::Sinumerik
+    }
+    fn semantics(&self) -> nctrans::dialect::Semantics {
+        builtin(Dialect::Sinumerik).semantics()
+    }
+    fn parse(
+        &self,
+        src: &nctrans::span::SourceFile,
+        file: nctrans::span::FileId,
+        o: &ParseOptions,
+    ) -> nctrans::dialect::Parsed {
+        builtin(Dialect::Sinumerik).parse(src, file, o)
+    }
+    fn lower(&self, u: &Unit, s: &nctrans::dialect::Semantics) -> Result<Unit, Vec<nctrans::diag::Diagnostic>> {
+        builtin(Dialect::Sinumerik).lower(u, s)
+    }
+    fn emit(&self, u: &Unit, e: nctrans::read::LineEnding) -> nctrans::dialect::Written {
+        builtin(Dialect::Sinumerik).emit(u, e)
+    }
+}
+
+#[test]
+fn a_dialect_that_runs_as_siemens_goes_through_the_generic_path() {
+    let mut db = SourceDb::new();
+    let src = "R1=2\nWHILE R1<4\nG1 X=R1*10 F100\nR1=R1+1\nENDWHILE\nM30\n";
+    let unit = read(&mut db, "w.shd", src, &Shadow);
+    // To the built-in of its own model: lowered and written by the target description.
+    let t = proven(&mut db, &unit, &Shadow, builtin(Dialect::Sinumerik));
+    assert!(t.text().contains("WHILE R1<4"), "{}", t.text());
+    // To FANUC: bridged by the Sinumerik → FANUC translation, proven with its alignment.
+    let t = proven(&mut db, &unit, &Shadow, builtin(Dialect::Fanuc));
+    assert!(t.text().contains("WHILE"), "{}", t.text());
+    // FANUC IR cannot become Siemens IR for a described target: refused, not guessed.
+    let fanuc = read(&mut db, "f.nc", FANUC, builtin(Dialect::Fanuc));
+    let t = translate_between(&[&fanuc], builtin(Dialect::Fanuc), &Shadow, &Options::default());
+    assert!(t.files.is_empty());
+    assert_eq!(t.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC516"]);
+    // Units read by another description are not taken as this one's.
+    let t = translate_between(&[&fanuc], &Shadow, &Iso, &Options::default());
+    assert_eq!(t.diags.iter().map(|d| d.code).collect::<Vec<_>>(), vec!["NC516"]);
+}
