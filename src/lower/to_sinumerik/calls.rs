@@ -353,8 +353,8 @@ fn lower_with(ctx: &mut Ctx, body: Vec<Stmt>, modal: &super::words::ModalScan) -
 }
 
 /// Which numbered programs of the job may change the tool or the compensation (the shared
-/// summary, `comp_flow::tool_effects`). `M97` runs blocks of the calling program itself,
-/// data output touches no tool; a computed `P#1` or a name may run anything.
+/// summary, `comp_flow::tool_effects`). `M97` runs blocks of the calling program itself;
+/// a computed `P#1` may run anything.
 fn tool_effects(programs: &[(FileId, &Program)]) -> BTreeMap<u32, bool> {
     use crate::lower::comp_flow::{self, CallRuns};
     let numbered: Vec<(u32, &Program)> = programs
@@ -367,7 +367,6 @@ fn tool_effects(programs: &[(FileId, &Program)]) -> BTreeMap<u32, bool> {
     let runs = |c: &Call| match (&c.kind, &c.target) {
         (CallKind::M97, _) => CallRuns::Harmless,
         (_, CallTarget::Number(n)) => CallRuns::Program(*n),
-        (_, CallTarget::Name(n)) if is_data_output(n) => CallRuns::Harmless,
         _ => CallRuns::Unknown,
     };
     comp_flow::tool_effects(&numbered, true, &runs)
