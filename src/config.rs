@@ -506,8 +506,26 @@ impl Config {
             tools: self.tools.clone(),
             var_rules: rules.clone(),
             variables: BTreeMap::new(),
+            offsets: self.offsets.clone(),
         }
     }
+}
+
+/// Reads an offset map file (`--offset-map`): a TOML file whose only table is `[offsets]`,
+/// read as the `[offsets]` of nctrans.toml.
+pub fn load_offset_map(path: &std::path::Path) -> Result<crate::lower::comp_flow::OffsetMap, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let at = |e: String| format!("{}: {e}", path.display());
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| at(e.to_string().trim_end().to_string()))?;
+    if let Some(k) = table.keys().find(|k| *k != "offsets") {
+        return Err(at(format!("{k}: unknown key (an offset map holds only an [offsets] table)")));
+    }
+    let v = table
+        .get("offsets")
+        .ok_or_else(|| at("no [offsets] table (expected like [offsets] \"6.2\" = \"H26,D46\")".into()))?;
+    let mut c = Config::default();
+    c.set("offsets", v).map_err(at)?;
+    Ok(c.offsets)
 }
 
 /// What `nctrans init` writes: every key, commented, at its default.

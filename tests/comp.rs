@@ -355,3 +355,66 @@ fn a_save_subprogram_restores_the_radius_side() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A Haas-style program: a G65 macro and an M98 subprogram that only move, then G43 H and
+/// G41 D, and a tool change after them.
+const FANUC_CALLS: &str = "%\nO1\nG17 G40 G49 G80 G90\nT1 M06\nG54 G00 X0. Y0. S1000 M03\nG43 H01 Z50.\n\
+G65 P2001 A5.\nM98 P2002\nG01 Z-2. F100.\nG41 D01 X10. Y0.\nY10.\nG40 X0. Y0.\nM98 P2002\nG49\nT2 M06\n\
+M98 P2002\nG43 H02 Z50.\nG49\nM30\nO2001\nG91 G01 X#1 F300.\nG90\nM99\nO2002\nG00 Z20.\nM99\n%\n";
+
+#[test]
+fn a_call_of_a_program_that_keeps_the_tool_keeps_the_compensation_known() {
+    // The edge after both calls, the radius compensation, the tool change after a call;
+    // proven equivalent by `to_sinumerik`.
+    assert_eq!(
+        to_sinumerik(FANUC_CALLS),
+        [
+            "G17 G40 G90",
+            "T1 M6 D0",
+            "G54 G0 X0 Y0 S1000 M3",
+            "D1 Z50",
+            "O_2001(5,1)",
+            "O_2002",
+            "G1 Z-2 F100",
+            "G41 X10 Y0",
+            "Y10",
+            "G40 X0 Y0",
+            "O_2002",
+            "D0",
+            "T2 M6 D0",
+            "O_2002",
+            "D1 Z50", // H2 is edge D1 of tool 2
+            "D0",
+            "M30",
+        ]
+    );
+}
+
+#[test]
+fn a_call_of_a_program_that_changes_the_tool_or_is_unknown_is_refused_by_name() {
+    // The callee cancels the length (a G49 safety line) or changes the tool.
+    for callee in ["G49\nG00 Z20.", "T3 M06", "M98 P2003"] {
+        let p = FANUC_CALLS.replace("O2002\nG00 Z20.", &format!("O2002\n{callee}"));
+        let mut db = SourceDb::new();
+        let (_, u) = parse(&mut db, "in.nc", &p, Dialect::Fanuc);
+        let tr = ts::translate(&[&u], &Options::default(), LineEnding::Lf);
+        let errors: Vec<_> = tr.diags.iter().filter(|d| d.is_error()).collect();
+        let codes: Vec<&str> = errors.iter().map(|d| d.code).collect();
+        if callee.starts_with("M98") {
+            // O2003 is not in the job: the call itself is refused first.
+            assert!(codes.contains(&"NC353") && codes.contains(&"NC520"), "{callee}: {codes:?}");
+        } else {
+            assert_eq!(codes.first(), Some(&"NC520"), "{callee}: {}", nctrans::diag::render(&db, &tr.diags));
+        }
+        let d = errors.iter().find(|d| d.code == "NC520").expect("NC520");
+        assert!(d.message.contains("after the call of O2002"), "{}", d.message);
+        let text = nctrans::diag::render(&db, &tr.diags);
+        assert!(text.contains("this call may change the tool or the compensation"), "{text}");
+    }
+    // A variable read before the call may be changed by it: `G43 H#20` is no longer the tool's.
+    let p = "%\nO1\n#20=1\nT#20 M06\nM98 P2002\nG43 H#20 Z50.\nM30\nO2002\nG00 Z20.\nM99\n%\n";
+    assert_eq!(to_sinumerik_codes(p), ["NC472"]);
+    // A G66 modal call of a program that changes the tool runs after every move.
+    let p = "%\nO1\nT1 M06\nG43 H1 Z50.\nG66 P2002\nX1.\nG67\nM30\nO2002\nT3 M06\nM99\n%\n";
+    assert!(to_sinumerik_codes(p).contains(&"NC521"));
+}

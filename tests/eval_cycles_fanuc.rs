@@ -111,6 +111,36 @@ fn peck_cycles_without_q_alarm_like_the_control() {
     }
     let t = holes(&prog("G73 X10. Y10. Z-20. R2. Q2.5 F80.\nG80\n"));
     assert_eq!(t[1], "cycle chip_break X=10 Y=10 r=2 bottom=-20 peck=2.5 dwell=- retract=initial f=80");
+    // Beside the alarm a warning says what was missing, at the Q0 (or the block).
+    let ran = run(&prog("G83 X10. Y10. Z-20. R2. Q0 F80.\n"));
+    let d = ran.outcome.diags.iter().find(|d| d.code == "NC524").expect("NC524");
+    assert!(d.message.contains("G83 with Q0") && d.message.contains("alarm PS0045"), "{}", d.message);
+    // The label is on the Q0 word (columns 25–26 of its line).
+    let q0 = prog("G83 X10. Y10. Z-20. R2. Q0 F80.\n").find("Q0").expect("Q0") as u32;
+    assert_eq!(d.labels.first().map(|l| (l.span.lo, l.span.hi)), Some((q0, q0 + 2)), "{d:?}");
+    let ran = run(&prog("G73 X10. Y10. Z-20. R2. F80.\n"));
+    assert!(ran.outcome.diags.iter().any(|d| d.code == "NC524" && d.message.contains("G73 with no Q")));
+}
+
+/// A bottom at or above the R plane (Z above R, G90 or G91, either return level) is refused
+/// with the levels and a hint; G87 starts below the part and is not.
+#[test]
+fn a_bottom_not_below_the_r_plane_is_refused_precisely() {
+    for src in [
+        "G99 G81 X10. Y10. Z5. R2. F80.\n",
+        "G98 G83 X10. Y10. Z2. R2. Q1. F80.\n",
+        "G91 G99 G81 X10. Y10. Z5. R-48. F80.\n",
+    ] {
+        assert_eq!(error_codes(&prog(src)), ["NC522"], "{src}");
+        // No hole and no positioning before the refusal.
+        assert!(!trace(&prog(src)).iter().any(|l| l.contains("X=10")), "{src}");
+    }
+    let ran = run(&prog("G99 G81 X10. Y10. Z5. R2. F80.\n"));
+    let d = ran.outcome.diags.iter().find(|d| d.code == "NC522").expect("NC522");
+    assert!(d.message.contains("(at Z=5) is not below the R plane (at Z=2)"), "{}", d.message);
+    assert!(d.notes.iter().any(|n| n.contains("program Z below R")), "{d:?}");
+    let t = holes(&prog("G87 X10. Y10. Z-5. R-20. Q1. F80.\nG80\n"));
+    assert!(t[1].starts_with("cycle back_bore X=10 Y=10 r=-20 bottom=-5"), "{t:?}");
 }
 
 #[test]

@@ -111,6 +111,8 @@ fn settings_the_event_cannot_show_are_refused() {
     assert_eq!(error_codes("CYCLE83(50, 0, 2, -20, , , 4, 0, 0, 0, 1, 1)\n"), ["NC426"]);
     assert_eq!(error_codes("CYCLE83(50, 0, 0, -20, , , 4, 1, 0, 0, 1, 1)\n"), ["NC423"]); // DAM
     assert_eq!(error_codes("CYCLE83(50, 0, 0, -20, , , , , , , , 1)\n"), ["NC427"]);
+    // FDEP given as 0 and FDPR 0, DAM 0: still no first drilling depth.
+    assert_eq!(error_codes("CYCLE83(50, 0, 0, -20, , 0, 0, 0, 0, 0, 1, 1)\n"), ["NC427"]);
     assert_eq!(error_codes("CYCLE84(50, 0, 2, -16, , 0, 3, , , 0, 400)\n"), ["NC427"]);
     assert_eq!(error_codes("CYCLE85(50, 0, 2, -22, , 0, 70, 200)\n"), ["NC423"]);
     assert_eq!(error_codes("CYCLE86(50, 0, 2, -25, , 0.1, 4)\n"), ["NC423"]);
@@ -183,4 +185,23 @@ fn a_planted_difference_in_any_field_diverges() {
     // Dwell: CYCLE82 against G82.
     let fanuc = format!("{F_HEAD}G98 G82 X10. Y10. Z-5. R2. P300\nG80\nM30\n%\n");
     assert_ne!(check(&fanuc, &prog("G0 X10 Y10\nCYCLE82(50, 0, 2, -5, , 0.4)\n")).0, 0);
+}
+
+/// A cycle without DP and DPR drills to DP=0 (an empty argument is 0), with a warning at the
+/// call; a DP or DPR written, even 0, is no warning.
+#[test]
+fn a_cycle_without_a_depth_runs_to_dp_0_with_a_warning() {
+    let ran = run(&prog("CYCLE81(50, 0, 2)\n"));
+    assert!(matches!(ran.outcome.ending, nctrans::eval::Ending::End { .. }), "{:?}", ran.outcome.ending);
+    let warned: Vec<_> = ran.outcome.diags.iter().filter(|d| d.code == "NC523").collect();
+    assert_eq!(warned.len(), 1, "{:?}", ran.outcome.diags);
+    assert!(warned[0].message.contains("CYCLE81 without a final drilling depth"), "{}", warned[0].message);
+    assert!(bare_lines(&ran).iter().any(|l| l.starts_with("cycle drill X=0 Y=0 r=2 bottom=0 ")));
+    for written in ["CYCLE81(50, 0, 2, 0)\n", "CYCLE81(50, 0, 2, , 5)\n", "MCALL CYCLE81(50, 0, 2, -5)\nX1\nMCALL\n"] {
+        let ran = run(&prog(written));
+        assert!(!ran.outcome.diags.iter().any(|d| d.code == "NC523"), "{written}: {:?}", ran.outcome.diags);
+    }
+    // Under MCALL the warning stands once, at the MCALL.
+    let ran = run(&prog("MCALL CYCLE82(50, 0, 2)\nX1\nX2\nMCALL\n"));
+    assert_eq!(ran.outcome.diags.iter().filter(|d| d.code == "NC523").count(), 1, "{:?}", ran.outcome.diags);
 }

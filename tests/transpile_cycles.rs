@@ -193,3 +193,12 @@ fn a_streamed_translation_reads_a_cycle_program_whole() {
     assert_eq!(streamed.0, 0, "{}", streamed.2);
     assert_eq!(streamed.1, whole.1);
 }
+
+/// `G80` with other words after a cycle entered from G01: the `MCALL` stands alone (a G
+/// code beside it does not read back), the motion mode follows in a block of its own.
+#[test]
+fn g80_with_other_words_writes_mcall_alone_and_the_motion_mode_after_it() {
+    let t = translate("G01 X0. F100.\nG98 G83 X45. Y60. Z-45. R1. Q6. F180.\nG80 M9\n");
+    let at = t.iter().position(|l| l == "MCALL").expect("MCALL alone");
+    assert_eq!(t[at..at + 3], ["MCALL", "G1", "M9"], "{t:?}");
+}

@@ -28,6 +28,9 @@ pub struct BatchMaps {
     /// The variables the translations used (`R1` → `#501`, `PART.CNT` → `#100`); written for
     /// people, and read back only to be written again.
     pub variables: BTreeMap<String, String>,
+    /// The H ↔ T/D offset map the translations used (`[offsets]` of nctrans.toml or
+    /// `--offset-map`), so a rerun with the map translates compensation alike.
+    pub offsets: crate::lower::comp_flow::OffsetMap,
 }
 
 /// What one file's translation used; merged into the written map.
@@ -124,6 +127,7 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
         tools: pinned.tools.clone(),
         var_rules: pinned.var_rules.clone(),
         variables: BTreeMap::new(),
+        offsets: pinned.offsets.clone(),
     };
     let mut problems = Vec::new();
     match target {
@@ -249,6 +253,12 @@ pub fn to_toml(maps: &BatchMaps, target: Dialect) -> String {
     for (k, v) in &maps.tools {
         let _ = writeln!(s, "{} = {v}", quote(k));
     }
+    s.push_str(
+        "\n# Siemens cutting edge \"T.D\" = FANUC registers (the others: edge D1 of tool n is Hn, Dn)\n[offsets]\n",
+    );
+    for ((t, e), (h, d)) in &maps.offsets.edges {
+        let _ = writeln!(s, "\"{t}.{e}\" = \"H{h},D{d}\"");
+    }
     s.push_str("\n[variables]\n# --var-map rules in force, in order\nrules = [");
     let rules: Vec<String> = maps.var_rules.iter().map(|r| quote(r)).collect();
     s.push_str(&rules.join(", "));
@@ -277,6 +287,15 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
             "target" => {}
             "programs" => maps.programs = program_table(value, "programs", target)?,
             "tools" => maps.tools = tool_table(value, "tools")?,
+            "offsets" => {
+                let t = value.as_table().ok_or("offsets: expected a table of \"T.D\" = \"Hh,Dd\"")?;
+                for (k, v) in t {
+                    let text = v.as_str().ok_or_else(|| format!("offsets.{k}: expected a string like \"H26,D46\""))?;
+                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
+                        .map_err(|e| format!("offsets.{k}: {e}"))?;
+                    maps.offsets.edges.insert(edge, regs);
+                }
+            }
             "variables" => {
                 let t = value.as_table().ok_or("variables: expected a table with 'rules' and 'used'")?;
                 for (k, v) in t {
@@ -296,7 +315,9 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
                     }
                 }
             }
-            other => return Err(format!("{other}: unknown key (allowed: target, programs, tools, variables)")),
+            other => {
+                return Err(format!("{other}: unknown key (allowed: target, programs, tools, offsets, variables)"))
+            }
         }
     }
     Ok((maps, target))
@@ -438,6 +459,7 @@ mod tests {
         m.tools.insert("BallNose_D8".into(), 3);
         m.var_rules = vec!["R0-R99=#100".into()];
         m.variables.insert("R1".into(), "#101".into());
+        m.offsets.edges.insert((6, 2), (26, 46));
         let text = to_toml(&m, Dialect::Fanuc);
         let (back, target) = from_toml(&text).unwrap();
         assert_eq!(target, Some(Dialect::Fanuc));

@@ -51,7 +51,7 @@ pub fn run(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Option<ExitCode>
 }
 
 fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> ExitCode {
-    let c = match configure(t, b, m) {
+    let mut c = match configure(t, b, m) {
         Ok(c) => c,
         Err(e) => return fail(e),
     };
@@ -83,6 +83,17 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     if !from_config.var_rules.is_empty() {
         pinned.var_rules = from_config.var_rules;
     }
+    // The offset map: the configuration's (nctrans.toml, --offset-map) when it has one, else
+    // the earlier run's; the jobs translate with it and the map file keeps it.
+    if !from_config.offsets.edges.is_empty() {
+        if let Some(p) = map_path.as_ref().filter(|_| !pinned.offsets.edges.is_empty()) {
+            if pinned.offsets != from_config.offsets {
+                eprintln!("note: the offset map of the configuration replaces the [offsets] of {}", p.display());
+            }
+        }
+        pinned.offsets = from_config.offsets;
+    }
+    c.offsets = pinned.offsets.clone();
     let settings = match jobs::JobSettings::from_config(&c) {
         Ok(s) => s,
         Err(e) => return fail(e),

@@ -71,6 +71,14 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
     for r in &t.program_map {
         flag(&mut c, &format!("programs.{dir}"), r, "--program-map")?;
     }
+    if let Some(p) = &t.offset_map {
+        let m = config::load_offset_map(p).map_err(|e| format!("--offset-map: {e}"))?;
+        if !c.offsets.edges.is_empty() && c.offsets != m {
+            // The map is one whole: a tool named in it has only the edges given there.
+            eprintln!("note: --offset-map {} replaces the [offsets] of the configuration", p.display());
+        }
+        c.offsets = m;
+    }
     if let Some(j) = b.jobs {
         flag(&mut c, "batch.jobs", &j.to_string(), "-j")?;
     }

@@ -715,7 +715,7 @@ impl Machine {
         } else if self.cycle.active.is_some() && !g53 && self.framed {
             return Err(framed_cycle(block_span));
         } else if self.cycle.active.is_some() && !g53 {
-            eff.moved = super::cycles::fanuc::holes(self, words, out, block_span)?;
+            eff.moved = super::cycles::fanuc::holes(self, words, out, warns, block_span)?;
         } else if self.framed && !g53 {
             eff.moved = self.framed_motion(&axes, &ijk, r, ar, probe, out, block_span)?;
         } else {

@@ -190,6 +190,75 @@ pub fn relevant(body: &[Stmt], fanuc: bool) -> bool {
     any
 }
 
+/// What a call runs, as far as the tool and the compensation go: a program among those
+/// translated (looked up in the summary), nothing that touches them (a drilling cycle, a
+/// Haas `M97` local subprogram whose blocks are the caller's own, data output), or a
+/// program not known here.
+pub enum CallRuns<K> {
+    Program(K),
+    Harmless,
+    Unknown,
+}
+
+/// Whether `items` make a call that may change the tool or the compensation, given what
+/// each called program does (`tools(k)`: `None` for a program not in the summary).
+fn calls_touch<K>(items: &[Item], runs: &dyn Fn(&Call) -> CallRuns<K>, tools: &dyn Fn(&K) -> Option<bool>) -> bool {
+    items.iter().any(|it| match &it.kind {
+        ItemKind::Call(c) => match runs(c) {
+            CallRuns::Program(k) => tools(&k) != Some(false),
+            CallRuns::Harmless => false,
+            CallRuns::Unknown => true,
+        },
+        ItemKind::IfThen { then, .. } => calls_touch(std::slice::from_ref(then), runs, tools),
+        ItemKind::IfBlock { items, .. } => calls_touch(items, runs, tools),
+        _ => false,
+    })
+}
+
+/// The one summary of what a subprogram does to the tool and the compensation (both
+/// directions read it: `Effect::tools` Sinumerik → FANUC, `ProgPlan::tools` FANUC →
+/// Sinumerik): whether `p` may change them, by a word the translation reads
+/// ([`relevant_items`]: T, D, FANUC H, G40–G49, M6) or by a call of a program that may or
+/// that is not among those translated.
+pub fn program_tools<K>(
+    p: &Program,
+    fanuc: bool,
+    runs: &dyn Fn(&Call) -> CallRuns<K>,
+    tools: &dyn Fn(&K) -> Option<bool>,
+) -> bool {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= relevant_items(&b.items, fanuc) || calls_touch(&b.items, runs, tools);
+        }
+    });
+    any
+}
+
+/// [`program_tools`] of every program of `progs` (keyed by how calls name them), followed
+/// through calls among them to a fixed point: every program starts as harmless and a pass
+/// only turns programs into tool changers, so at most one pass per program plus one.
+pub fn tool_effects<K: Ord + Clone>(
+    progs: &[(K, &Program)],
+    fanuc: bool,
+    runs: &dyn Fn(&Call) -> CallRuns<K>,
+) -> BTreeMap<K, bool> {
+    let mut map: BTreeMap<K, bool> = progs.iter().map(|(k, _)| (k.clone(), false)).collect();
+    for _ in 0..=progs.len() {
+        // Two programs under one name (reported elsewhere) count as one that does both.
+        let mut next: BTreeMap<K, bool> = BTreeMap::new();
+        for (k, p) in progs {
+            let t = program_tools(p, fanuc, runs, &|c| map.get(c).copied());
+            *next.entry(k.clone()).or_default() |= t;
+        }
+        if next == map {
+            break;
+        }
+        map = next;
+    }
+    map
+}
+
 /// Whether a body jumps (a GOTO anywhere): its labels and N numbers are then places where
 /// paths meet.
 pub fn jumps(body: &[Stmt]) -> bool {

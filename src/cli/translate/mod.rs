@@ -51,6 +51,10 @@ pub struct TranslateArgs {
     /// Program map: to FANUC NAME=9001 (name → O number); to Sinumerik 9010=PROBE_X (repeatable).
     #[arg(long = "program-map", value_name = "NAME=N")]
     pub program_map: Vec<String>,
+    /// H/D registers of cutting edges: a TOML file with an [offsets] table ("6.2" = "H26,D46");
+    /// replaces the [offsets] of nctrans.toml.
+    #[arg(long = "offset-map", value_name = "FILE")]
+    pub offset_map: Option<PathBuf>,
     /// O number of the main program.
     #[arg(long)]
     pub program_number: Option<u32>,

@@ -6,7 +6,7 @@ use super::Level;
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::cycles::{cycle_of, is_manual_retract, takes_dwell};
 use crate::eval::fault::Fault;
-use crate::eval::machine::{clean, Machine, WordVal, WV};
+use crate::eval::machine::{clean, Machine, Warn, WordVal, WV};
 use crate::eval::trace::{axis_index, Event};
 use crate::eval::value::round_half_away;
 use crate::ir::cycle::{CycleKind, Hole, Retract, Tapping};
@@ -14,6 +14,11 @@ use crate::span::Span;
 
 /// FANUC alarm PS0045 "ADDRESS Q NOT FOUND (G73/G83)": a peck cycle without Q, or Q0.
 pub const NO_Q: i64 = 45;
+/// The warning beside alarm 45: what was missing and what to write.
+pub const NO_Q_NOTE: &str = "NC524";
+/// A bottom not below the R plane (outside G87): refused, the control's reaction is not
+/// established by a source (docs/semantics.md, "Drilling cycles").
+pub const BOTTOM_CODE: &str = "NC522";
 
 /// The largest repeat count K (L) the control takes (four digits).
 const MAX_REPEATS: f64 = 9999.0;
@@ -64,7 +69,13 @@ struct CycleWords<'a> {
 /// Runs a block in the cycle mode: stores its cycle data (R, Z, Q, P stay until G80 or
 /// G00–G03) and, when it has an axis word or R, drills its hole K times (`true`). A block
 /// without them (an F, an M) drills nothing.
-pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, span: Span) -> Result<bool, Fault> {
+pub fn holes(
+    m: &mut Machine,
+    words: &[WordVal],
+    out: &mut Vec<(Event, Span)>,
+    warns: &mut Vec<Warn>,
+    span: Span,
+) -> Result<bool, Fault> {
     let Some((kind, gi)) = m.cycle.active else { return Ok(false) };
     let (u, v, n) = m.modal.plane.axes();
     let mut cw = CycleWords::default();
@@ -157,6 +168,17 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
             Some(q) if q > 0.0 => Some(q),
             _ => {
                 let at = cw.q.map_or(span, |q| q.0.span);
+                // The alarm ends the trace; the warning says why and what to write.
+                let given = if cw.q.is_some() { "Q0" } else { "no Q" };
+                warns.push((
+                    NO_Q_NOTE,
+                    format!(
+                        "G{} with {given}: the control stops with alarm PS{NO_Q:04} (a peck drilling cycle needs \
+                         its infeed Q, a positive distance, in the cycle block or before it in the cycle mode)",
+                        gi / 10
+                    ),
+                    at,
+                ));
                 return Err(Fault::alarm(NO_Q, format!("ADDRESS Q NOT FOUND (G{})", gi / 10), at));
             }
         }
@@ -170,6 +192,27 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
     // G87 positions below the part: it can only return to the initial level.
     let retract = if kind == CycleKind::BackBore { Retract::Initial } else { m.cycle.retract };
     let off = m.active_offset(n);
+    // Under G91, R is measured from the initial level and Z from the R plane.
+    let r_abs = if r.incremental { m.cycle.initial + r.mm } else { r.mm + off };
+    let bottom = if z.incremental { r_abs + z.mm } else { z.mm + off };
+    if kind != CycleKind::BackBore && bottom >= r_abs {
+        let ax = crate::eval::trace::AXES[n];
+        let at = cw.depth.or(cw.r).map_or(span, |(w, _)| w.span);
+        return Err(refuse(
+            BOTTOM_CODE,
+            format!(
+                "G{}: the bottom of the hole (at {ax}={}) is not below the R plane (at {ax}={}), which is not modelled",
+                gi / 10,
+                crate::eval::value::fmt_num(clean(bottom - off)),
+                crate::eval::value::fmt_num(clean(r_abs - off))
+            ),
+            at,
+            &format!(
+                "the cycle feeds from R to {ax}: program {ax} below R (under G91 a negative {ax}, counted from R); \
+                 only G87 (back boring) starts below the part"
+            ),
+        ));
+    }
     for _ in 0..count {
         let mut at = [(u, 0.0), (v, 0.0)];
         for (k, axis) in [u, v].into_iter().enumerate() {
@@ -185,9 +228,6 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
             // same move a Sinumerik positioning block makes before its modal cycle).
             out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None }, span));
         }
-        // Under G91, R is measured from the initial level and Z from the R plane.
-        let r_abs = if r.incremental { m.cycle.initial + r.mm } else { r.mm + off };
-        let bottom = if z.incremental { r_abs + z.mm } else { z.mm + off };
         let start = m.trace_pos();
         m.pos[n] = match retract {
             Retract::Initial => m.cycle.initial,

@@ -14,6 +14,9 @@ use crate::ir::cycle::{CycleKind, Hole, Retract, Tapping};
 use crate::ir::{Call, CallKind};
 use crate::span::Span;
 
+/// The warning for a cycle call without DP and DPR.
+pub const NO_DEPTH_NOTE: &str = "NC523";
+
 /// A cycle made modal by `MCALL`, with its arguments as evaluated at the MCALL.
 #[derive(Clone, Debug, PartialEq)]
 pub struct McallCycle {
@@ -45,6 +48,20 @@ impl Interp<'_> {
     pub(crate) fn siemens_cycle_call(&mut self, call: &Call, cycle: SieCycle, span: Span) -> Result<Flow, Fault> {
         let vals = self.sie_args(call)?;
         let args = numeric(cycle, &vals, span).map_err(|f| self.fix_file(f))?;
+        let a = Args { cycle, vals: &args };
+        if cycle.params().contains(&"DP") && a.opt("DP").is_none() && a.opt("DPR").is_none() {
+            // Empty is 0 (the documented default), so the hole ends at DP = 0: run as
+            // written, and said, since a depth left out is rarely meant.
+            self.warn(
+                NO_DEPTH_NOTE,
+                format!(
+                    "{} without a final drilling depth: DP and DPR are empty, so the hole ends at DP=0 (give DP, \
+                     absolute, or DPR, from RFP)",
+                    cycle.name()
+                ),
+                span,
+            );
+        }
         if call.kind == CallKind::Mcall {
             // One modal call at a time: a cycle replaces a modal subprogram and back.
             self.modal_call = None;

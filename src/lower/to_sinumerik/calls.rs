@@ -235,6 +235,7 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             sites.push(CallSite { caller: i, callee: n, kind, span });
         }
     }
+    let tools = tool_effects(programs);
     for (i, (file, p)) in programs.iter().enumerate() {
         let number = match &p.name {
             Some(ProgName::Number(n)) => Some(*n),
@@ -278,6 +279,7 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             defs: Vec::new(),
             start_inch: None,
             sets_units: super::modal::sets_units(&p.body),
+            tools: number.and_then(|n| tools.get(&n).copied()).unwrap_or(true),
         });
         if by_m98 && by_macro {
             ctx.cur = i;
@@ -348,6 +350,26 @@ fn lower_with(ctx: &mut Ctx, body: Vec<Stmt>, modal: &super::words::ModalScan) -
         }
         out
     })
+}
+
+/// Which numbered programs of the job may change the tool or the compensation (the shared
+/// summary, `comp_flow::tool_effects`). `M97` runs blocks of the calling program itself;
+/// a computed `P#1` may run anything.
+fn tool_effects(programs: &[(FileId, &Program)]) -> BTreeMap<u32, bool> {
+    use crate::lower::comp_flow::{self, CallRuns};
+    let numbered: Vec<(u32, &Program)> = programs
+        .iter()
+        .filter_map(|(_, p)| match &p.name {
+            Some(ProgName::Number(n)) => Some((*n, *p)),
+            _ => None,
+        })
+        .collect();
+    let runs = |c: &Call| match (&c.kind, &c.target) {
+        (CallKind::M97, _) => CallRuns::Harmless,
+        (_, CallTarget::Number(n)) => CallRuns::Program(*n),
+        _ => CallRuns::Unknown,
+    };
+    comp_flow::tool_effects(&numbered, true, &runs)
 }
 
 /// `POPEN`, `PCLOS`, `DPRNT[…]`, `BPRNT[…]` as the FANUC reader keeps them.

@@ -10,7 +10,10 @@
 //! change while G43 or G41/G42 is on (FANUC keeps the old register for the new tool,
 //! Sinumerik takes the new tool's edge), an H or D that is not the tool's under the map,
 //! G44, G41/G42 while G49 (a Siemens edge brings its length with its radius), D0 or a
-//! register change under G41/G42.
+//! register change under G41/G42. A call keeps the state where the called program (and
+//! what it calls) has no tool or compensation word (`ProgPlan::tools`, the shared summary);
+//! after any other call the next refusal names it (NC520), a G66 modal call of such a
+//! program is NC521.
 
 use super::*;
 use crate::eval::trace::Side;
@@ -58,6 +61,10 @@ struct St {
     /// A tool change under G43 whose new length the next block selects: the tool change's
     /// span, the body (its address) and index of its translated block, which takes the edge.
     pending: Option<(Span, usize, usize, Span)>,
+    /// The last call that made the state unknown (a program that may change the tool or
+    /// the compensation, or one not in the job): its span and Siemens name, for the
+    /// refusal that follows.
+    call: Option<(Span, String)>,
 }
 
 impl FlowState for St {
@@ -72,6 +79,7 @@ impl FlowState for St {
             applied: K::Unknown,
             edge: K::Unknown,
             pending: None,
+            call: None,
         }
     }
     fn merge(&self, o: &Self) -> Self {
@@ -85,6 +93,7 @@ impl FlowState for St {
             applied: self.applied.merge(&o.applied),
             edge: self.edge.merge(&o.edge),
             pending: self.pending.or(o.pending),
+            call: self.call.clone().or_else(|| o.call.clone()),
         }
     }
 }
@@ -93,6 +102,8 @@ const CODE: &str = "NC471";
 const MAP_CODE: &str = "NC472";
 const CHANGE_CODE: &str = "NC473";
 const G44_CODE: &str = "NC474";
+const CALL_CODE: &str = "NC520";
+const MODAL_CALL_CODE: &str = "NC521";
 
 /// Runs on the body of program `ctx.cur` (after `cycles::lower`, before `words::lower`).
 pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
@@ -111,6 +122,7 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
             applied: K::Known(Applied { len: None, rad: None }),
             edge: K::Known(0),
             pending: None,
+            call: None,
         }
     } else {
         St::unknown()
@@ -186,7 +198,121 @@ fn forget(st: &mut St, n: u32) {
     }
 }
 
+/// What the calls of a block do to the tool and the compensation.
+enum Calls {
+    None,
+    /// Every call is of a program that touches neither, or a drilling cycle.
+    Keep,
+    /// A call (span, name) of a program that may change them or that is not in the job;
+    /// `modal`: a G66 modal call (`MCALL`), run again after every move.
+    Change(Span, String, bool),
+}
+
+fn calls_of(ctx: &Ctx, b: &Block) -> Calls {
+    let mut calls = Calls::None;
+    for it in &b.items {
+        let ItemKind::Call(c) = &it.kind else { continue };
+        let harmless = match &c.target {
+            CallTarget::Name(n) if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some() => {
+                true
+            }
+            CallTarget::Name(n) => ctx.progs.iter().any(|p| p.name.eq_ignore_ascii_case(n) && !p.tools),
+            _ => false,
+        };
+        if harmless {
+            if matches!(calls, Calls::None) {
+                calls = Calls::Keep;
+            }
+        } else {
+            let name = match &c.target {
+                // The FANUC program the Siemens call stands for.
+                CallTarget::Name(n) => match ctx.progs.iter().find(|p| p.name.eq_ignore_ascii_case(n)) {
+                    Some(ProgPlan { number: Some(o), .. }) => format!("O{o}"),
+                    _ => n.clone(),
+                },
+                CallTarget::Number(n) => format!("O{n:04}"),
+                CallTarget::Computed(_) => "a computed program".into(),
+            };
+            return Calls::Change(it.span, name, c.kind == CallKind::Mcall);
+        }
+    }
+    calls
+}
+
+/// A block, and after it what its calls do: a call of a program that keeps the tool and
+/// the compensation keeps the state but for the values read from variables (an M98
+/// subprogram shares the caller's locals, any program the common variables); any other
+/// call leaves nothing known.
 fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) {
+    let calls = calls_of(ctx, &b);
+    if let Calls::Change(span, name, true) = &calls {
+        let msg = format!(
+            "a G66 modal call of {name}, which may change the tool or the compensation, in a program with tool \
+             compensation cannot be translated to Sinumerik"
+        );
+        let hint = "the call runs again after every move, where the translation cannot follow the tool and its \
+                    edge: take the tool and compensation words out of the macro, or call it with G65";
+        refuse(ctx, live, MODAL_CALL_CODE, *span, &msg, hint, out);
+    }
+    block_words(ctx, st, b, live, out);
+    if st.tool.known().is_some() && st.applied.known().is_some() {
+        st.call = None;
+    }
+    match calls {
+        Calls::None => {}
+        Calls::Keep => forget_vars(st),
+        Calls::Change(span, name, _) => {
+            let pending = st.pending.take();
+            *st = St::unknown();
+            st.pending = pending;
+            st.call = Some((span, name));
+        }
+    }
+}
+
+/// Forgets every value read from a variable (a call may write any).
+fn forget_vars(st: &mut St) {
+    let mut vars = Vec::new();
+    let mut note = |v: Option<&Val>| {
+        if let Some(Val::Var(n)) = v {
+            vars.push(*n);
+        }
+    };
+    note(st.sel.known().and_then(Option::as_ref));
+    note(st.tool.known().and_then(Option::as_ref));
+    note(st.h.known());
+    note(st.d.known());
+    if let K::Known(a) = &st.applied {
+        note(a.len.as_ref());
+        note(a.rad.as_ref().map(|r| &r.1));
+    }
+    for n in vars {
+        forget(st, n);
+    }
+}
+
+/// When the state is unknown because of a call (`St::call`): the refusal names the call,
+/// NC520, instead of the general one. Returns whether it reported.
+fn refuse_after_call(ctx: &mut Ctx, st: &St, live: bool, span: Span, what: &str, out: &mut Vec<Stmt>) -> bool {
+    let Some((call, name)) = st.call.clone() else { return false };
+    let msg = format!("{what} after the call of {name} cannot be translated to Sinumerik");
+    let hint = format!(
+        "{name} (or a program it calls) may change the tool or the compensation, or is not in the job: select \
+         the tool and its compensation again after the call (T… M06, G43 H…, G41 D…), or take the tool and \
+         compensation words out of {name}"
+    );
+    let before = ctx.diags.len();
+    refuse(ctx, live, CALL_CODE, span, &msg, &hint, out);
+    if ctx.diags.len() > before {
+        let file = ctx.file();
+        if let Some(d) = ctx.diags.pop() {
+            ctx.diags.push(d.secondary(file, call, "this call may change the tool or the compensation"));
+        }
+    }
+    true
+}
+
+fn block_words(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) {
     let span = b.meta.span;
     if let Some((pspan, addr, idx, bspan)) = st.pending {
         if b.items.is_empty() {
@@ -204,15 +330,14 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
         if let ItemKind::Assign { target, .. } = &it.kind {
             match target.kind {
                 VarKind::Hash(n) => forget(st, n),
-                _ => *st = St::unknown(),
+                // Any FANUC variable. The other targets are the translation's own (is-set
+                // flags, `$P_UIFR` of a G10), which hold no T, H or D.
+                VarKind::HashIndirect(_) => *st = St::unknown(),
+                _ => {}
             }
         }
     }
     if !comp_flow::relevant_items(&b.items, true) {
-        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
-            // A subprogram may change the tool or the compensation.
-            *st = St::unknown();
-        }
         out.push(Stmt { span, kind: StmtKind::Block(b) });
         return;
     }
@@ -286,7 +411,9 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
         }
         let on = |a: &K<Applied>| !matches!(a, K::Known(Applied { len: None, rad: None }));
         if on(&st.applied) {
-            refuse_change(ctx, live, ms, out);
+            if st.applied != K::Unknown || !refuse_after_call(ctx, st, live, ms, "a tool change", out) {
+                refuse_change(ctx, live, ms, out);
+            }
             refused = true;
         }
         st.tool = st.sel.clone();
@@ -314,9 +441,12 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
             finish(b, add, live, out);
             return;
         }
-        let msg = "tool compensation where the G43/G49, G40/G41/G42 or H/D in force depends on the path taken or on \
-                   a call cannot be translated to Sinumerik";
-        refuse(ctx, live, CODE, span, msg, "program G43 H / G49 and G41 D / G40 on every path before this block", out);
+        if !refuse_after_call(ctx, st, live, span, "tool compensation", out) {
+            let msg = "tool compensation where the G43/G49, G40/G41/G42 or H/D in force depends on the path taken or \
+                       on a call cannot be translated to Sinumerik";
+            let hint = "program G43 H / G49 and G41 D / G40 on every path before this block";
+            refuse(ctx, live, CODE, span, msg, hint, out);
+        }
         st.applied = K::Unknown;
         finish(b, add, live, out);
         return;
@@ -352,7 +482,9 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
                     st.edge = K::Known(e);
                 }
                 Err(msg) => {
-                    refuse(ctx, live, MAP_CODE, span, &msg, &map_hint(st), out);
+                    if st.tool != K::Unknown || !refuse_after_call(ctx, st, live, span, "G43 H", out) {
+                        refuse(ctx, live, MAP_CODE, span, &msg, &map_hint(st), out);
+                    }
                     st.edge = K::Unknown;
                 }
             },
@@ -383,8 +515,11 @@ fn block(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>) 
                     },
                     _ => Err("G41/G42 where the tool or its edge is not known cannot be translated to Sinumerik".to_string()),
                 };
+                let unknown = st.edge == K::Unknown || st.tool == K::Unknown;
                 if let Err(msg) = ok {
-                    refuse(ctx, live, MAP_CODE, span, &msg, &map_hint(st), out);
+                    if !unknown || !refuse_after_call(ctx, st, live, span, "G41/G42 D", out) {
+                        refuse(ctx, live, MAP_CODE, span, &msg, &map_hint(st), out);
+                    }
                 }
                 if g_rad.is_none() {
                     let msg = "radius compensation that starts without G41/G42 in the block cannot be translated to Sinumerik";
@@ -415,7 +550,9 @@ fn after_change(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<
         (K::Known(430), K::Known(h)) if *h != Val::Num(0.0) => Some(*h),
         (K::Known(_), K::Known(_)) => None,
         _ => {
-            refuse_change(ctx, live, m6, out);
+            if !refuse_after_call(ctx, st, live, m6, "a tool change", out) {
+                refuse_change(ctx, live, m6, out);
+            }
             st.applied = K::Unknown;
             return finish(b, vec![], live, out);
         }
@@ -439,7 +576,9 @@ fn after_change(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<
             st.edge = K::Known(e);
         }
         Err(msg) => {
-            refuse(ctx, live, MAP_CODE, b.meta.span, &msg, &map_hint(st), out);
+            if st.tool != K::Unknown || !refuse_after_call(ctx, st, live, b.meta.span, "G43 H", out) {
+                refuse(ctx, live, MAP_CODE, b.meta.span, &msg, &map_hint(st), out);
+            }
             st.edge = K::Unknown;
         }
     }

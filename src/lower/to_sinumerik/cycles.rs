@@ -220,11 +220,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                     after_g99_hole = false;
                     continue;
                 }
-                let mut items = vec![Item { kind: ItemKind::ModalCallOff, span }];
+                // `MCALL` stands alone in its block: the motion mode goes in a block of its own.
+                out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
                 if motion_g.is_none() {
                     match motion {
                         Some(0) => {}
-                        Some(m) => items.push(super::words::g_word(m, span)),
+                        Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
                         None => refuse(
                             ctx,
                             span,
@@ -234,7 +235,6 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                         ),
                     }
                 }
-                out.push(block(items, span));
             }
             if let Some(m) = motion_g {
                 motion = Some(m);

@@ -206,6 +206,10 @@ pub struct ProgPlan {
     /// The program (or a call in it) may select G20/G21: its caller's unit after the call
     /// is not known.
     pub sets_units: bool,
+    /// The program (or a program it calls, or a call of a program not in the job) may
+    /// change the tool or the compensation (`comp_flow::tool_effects`): only a call of a
+    /// program without it leaves the caller's compensation known (`comp`).
+    pub tools: bool,
 }
 
 /// The shared state of one translation.

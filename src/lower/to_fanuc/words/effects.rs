@@ -5,7 +5,8 @@
 //! restores the groups it sets, read from the `#4001..` modal variables).
 
 use super::units::Units;
-use crate::ir::{CallTarget, ItemKind, Program, Stmt, StmtKind};
+use crate::ir::{Call, CallTarget, ItemKind, Program, Stmt, StmtKind};
+use crate::lower::comp_flow::{self, CallRuns};
 use std::collections::BTreeMap;
 
 /// The FANUC modal groups a subprogram can set that its translation restores (SAVE), as
@@ -47,7 +48,8 @@ pub struct Effect {
     pub save: bool,
     /// It (or a subprogram it calls, or a call it makes of a program not among those
     /// translated) may change the tool or the compensation: a T, D, M6 or G40–G42 word
-    /// (`comp_flow::relevant_items`). A call of one leaves the caller's tool and edge unknown.
+    /// (`comp_flow::program_tools`, the summary FANUC → Sinumerik reads too). A call of one
+    /// leaves the caller's tool and edge unknown.
     pub tools: bool,
 }
 
@@ -99,29 +101,22 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     let mut callee_units = false;
     let mut jumps = false;
     let mut returns = 0usize;
-    let mut tools = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            tools |= crate::lower::comp_flow::relevant_items(&b.items, false);
             for it in &b.items {
                 if let Some(g) = g_code(it) {
                     sets |= group_of(g);
                     unit_words += usize::from(Units::default().g(f64::from(g)));
                 }
                 match &it.kind {
-                    ItemKind::Call(c) => match &c.target {
-                        CallTarget::Name(n) => match known(&n.to_ascii_uppercase()) {
-                            Some(e) => {
+                    ItemKind::Call(c) => {
+                        if let CallTarget::Name(n) = &c.target {
+                            if let Some(e) = known(&n.to_ascii_uppercase()) {
                                 sets |= e.leaves();
                                 callee_units |= !e.save && e.units != UnitEffect::None;
-                                tools |= e.tools;
                             }
-                            None => {
-                                tools |= crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_none()
-                            }
-                        },
-                        _ => tools = true,
-                    },
+                        }
+                    }
                     ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::RepeatSection(_) => jumps = true,
                     ItemKind::Return { .. } | ItemKind::End { .. } => returns += 1,
                     _ => {}
@@ -136,7 +131,20 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     } else {
         fold_units(&p.body)
     };
+    let tools = comp_flow::program_tools(p, false, &runs, &|n: &String| known(n).map(|e| e.tools));
     Effect { sets, units, save: p.save, tools }
+}
+
+/// What a Siemens call runs: a drilling cycle touches neither tool nor compensation; any
+/// other name is looked up among the programs translated.
+fn runs(c: &Call) -> CallRuns<String> {
+    match &c.target {
+        CallTarget::Name(n) if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some() => {
+            CallRuns::Harmless
+        }
+        CallTarget::Name(n) => CallRuns::Program(n.to_ascii_uppercase()),
+        _ => CallRuns::Unknown,
+    }
 }
 
 /// Every unit word in a top-level block that cannot be skipped, and the one return (if any)
