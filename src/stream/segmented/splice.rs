@@ -1,5 +1,5 @@
-//! The output cursor of both segmented writers (`segmented::write`, FANUC output, and
-//! `to_sinumerik::segmented::writer`, Sinumerik output): a translated skeleton's text
+//! The output cursor of both segmented writers (`segmented::fanuc::write`, FANUC output,
+//! and `segmented::sinumerik::writer`, Sinumerik output): a translated skeleton's text
 //! written with each placeholder line replaced by its run, whose blocks the writer appends
 //! to [`Splice::buf`] as the writing scan reads them.
 
@@ -38,7 +38,7 @@ impl<'a> Splice<'a> {
             pos: 0,
             next: 0,
             in_run: false,
-            buf: Vec::with_capacity(super::WRITE_BYTES + 4096),
+            buf: Vec::with_capacity(crate::stream::WRITE_BYTES + 4096),
             out,
             io: None,
         }
@@ -72,19 +72,19 @@ impl<'a> Splice<'a> {
     /// Writes the buffer out once it holds a write's worth.
     #[inline]
     pub(crate) fn flush_some(&mut self) {
-        if self.buf.len() >= super::WRITE_BYTES {
-            super::spill(self.out, &mut self.buf, &mut self.io);
+        if self.buf.len() >= crate::stream::WRITE_BYTES {
+            crate::stream::spill(self.out, &mut self.buf, &mut self.io);
         }
     }
 
     /// Every placeholder met: the rest of the skeleton is written and the output flushed.
     /// `Err` when a run was not met (the caller discards the output) or writing failed.
-    pub(crate) fn finish(mut self) -> Result<(), super::translate::Fallback> {
+    pub(crate) fn finish(mut self) -> Result<(), crate::stream::Fallback> {
         if self.next != self.places.len() {
-            return Err(super::translate::Fallback::Diagnostics);
+            return Err(crate::stream::Fallback::Diagnostics);
         }
         self.copy_to(self.text.len());
-        super::spill(self.out, &mut self.buf, &mut self.io);
-        super::finish_output(self.out, self.io)
+        crate::stream::spill(self.out, &mut self.buf, &mut self.io);
+        crate::stream::finish_output(self.out, self.io)
     }
 }
