@@ -671,24 +671,45 @@ pub fn file_span(ix: &Index) -> Span {
 /// Output the streamed translators hand to their writer in pieces of about this size.
 pub(crate) const WRITE_BYTES: usize = 1 << 16;
 
-/// Hands a streamed translator's buffered output to `out` and empties the buffer; the
-/// first write error is kept in `io` (later output is then dropped: the caller discards the
-/// file).
-pub(crate) fn spill(out: &mut dyn std::io::Write, buf: &mut Vec<u8>, io: &mut Option<std::io::Error>) {
-    if io.is_none() {
-        if let Err(e) = out.write_all(buf) {
-            *io = Some(e);
-        }
-    }
-    buf.clear();
+/// A streamed translator's output (straight or segmented, every target): gathered in
+/// [`Out::buf`] and handed to the writer in pieces of about [`WRITE_BYTES`]. The first
+/// write error is kept in [`Out::io`] (later output is dropped: the caller discards the file).
+pub(crate) struct Out<'a> {
+    pub(crate) buf: Vec<u8>,
+    out: &'a mut dyn std::io::Write,
+    pub(crate) io: Option<std::io::Error>,
 }
 
-/// Ends a streamed translator's output: flushes `out` unless writing already failed; the
-/// first write error, if any, is the fallback (the caller discards the file).
-pub(crate) fn finish_output(out: &mut dyn std::io::Write, io: Option<std::io::Error>) -> Result<(), Fallback> {
-    match io.map_or_else(|| out.flush(), Err) {
-        Ok(()) => Ok(()),
-        Err(e) => Err(Fallback::NotStreamable(lines::NotStreamable::Io(e))),
+impl<'a> Out<'a> {
+    pub(crate) fn new(out: &'a mut dyn std::io::Write) -> Out<'a> {
+        Out { buf: Vec::with_capacity(WRITE_BYTES + 4096), out, io: None }
+    }
+
+    /// Hands the buffer to the writer once it holds a write's worth.
+    #[inline]
+    pub(crate) fn flush_some(&mut self) {
+        if self.buf.len() >= WRITE_BYTES {
+            self.spill();
+        }
+    }
+
+    /// Hands the buffer to the writer.
+    pub(crate) fn spill(&mut self) {
+        if self.io.is_none() {
+            if let Err(e) = self.out.write_all(&self.buf) {
+                self.io = Some(e);
+            }
+        }
+        self.buf.clear();
+    }
+
+    /// Writes the rest and flushes the writer; the first write error is the fallback.
+    pub(crate) fn finish(mut self) -> Result<(), Fallback> {
+        self.spill();
+        match self.io.map_or_else(|| self.out.flush(), Err) {
+            Ok(()) => Ok(()),
+            Err(e) => Err(Fallback::NotStreamable(lines::NotStreamable::Io(e))),
+        }
     }
 }
 

@@ -1,19 +1,18 @@
 //! The one streamed straight-line translation driver, for every target: the source is read
 //! once (`stream::scan_words`), each finished statement and each plain line's words are
-//! handed to the target as they come, and the target writes its text into an [`Out`]. What
-//! is the same for every target is here: which blocks send the file to the whole path (a
-//! statement that is not straight, a tool change or compensation word, a second program),
-//! the block count, the output buffer and the end of the scan. What differs is the
-//! [`Target`]: its straight-block test, its fast writer (`lower::to_<name>::fast_write`),
-//! what it writes before the first block (its header handling) and after the last
+//! handed to the target as they come, and the target writes its text into a `stream::Out`.
+//! What is the same for every target is here: which blocks send the file to the whole path
+//! (a statement that is not straight, a tool change or compensation word, a second
+//! program), the block count and the end of the scan. What differs is the [`Target`]: its
+//! straight-block test, its fast writer (`lower::to_<name>::fast_write`), what it writes
+//! before the first block (its header handling) and after the last
 //! (`stream::target::<name>`). Verification is `stream::verify` for every target.
 
 use super::lines::NotStreamable;
-use super::{Index, PlainWord, ProgressFn, WordsSink, WRITE_BYTES};
+use super::{Index, PlainWord, ProgressFn, WordsSink};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{BlockMeta, Stmt};
 use crate::read::RawBlock;
-use std::io::Write;
 use std::path::Path;
 
 /// Why a file is not translated as a stream (the caller translates it whole).
@@ -26,40 +25,6 @@ pub enum Fallback {
     Diagnostics,
 }
 
-/// A streamed translator's output: gathered in [`Out::buf`] and handed to the writer in
-/// pieces of about [`WRITE_BYTES`]. The first write error is kept in [`Out::io`] (later
-/// output is then dropped: the caller discards the file).
-pub(crate) struct Out<'a> {
-    pub(crate) buf: Vec<u8>,
-    out: &'a mut dyn Write,
-    pub(crate) io: Option<std::io::Error>,
-}
-
-impl<'a> Out<'a> {
-    pub(crate) fn new(out: &'a mut dyn Write) -> Out<'a> {
-        Out { buf: Vec::with_capacity(WRITE_BYTES + 4096), out, io: None }
-    }
-
-    /// Hands the buffer to the writer once it holds a write's worth.
-    #[inline]
-    pub(crate) fn flush_some(&mut self) {
-        if self.buf.len() >= WRITE_BYTES {
-            self.spill();
-        }
-    }
-
-    /// Hands the buffer to the writer.
-    pub(crate) fn spill(&mut self) {
-        super::spill(self.out, &mut self.buf, &mut self.io);
-    }
-
-    /// Writes the rest and flushes the writer; the first write error is the fallback.
-    pub(crate) fn finish(mut self) -> Result<(), Fallback> {
-        self.spill();
-        super::finish_output(self.out, self.io)
-    }
-}
-
 /// What a target supplies to the straight-line stream (see the module comment). Generic,
 /// so each target's calls are its own code (no dynamic dispatch per block).
 pub(crate) trait Target {
@@ -70,12 +35,9 @@ pub(crate) trait Target {
     /// Whether a statement's translation depends on no other block; `Err` names what it has
     /// instead, for the "read whole" note.
     fn straight(s: &Stmt) -> Result<(), String>;
-    /// Whether the translation has stopped (it is then discarded).
+    /// Whether the translation has stopped (it is then discarded), and why.
     fn stopped(&self) -> bool;
-    /// Stops the translation.
-    fn stop(&mut self, why: Fallback);
-    /// The stop, taken at the end of the scan.
-    fn take_stop(&mut self) -> Option<Fallback>;
+    fn stop(&mut self) -> &mut Option<Fallback>;
     /// A straight statement of the program.
     fn stmt(&mut self, s: &Stmt);
     /// The words of a plain line of the program (constant letter words, no label, no tool
@@ -113,11 +75,11 @@ impl<T: Target> WordsSink for Sink<'_, T> {
             return;
         }
         if prog != 0 {
-            self.t.stop(Fallback::NotStraight("more than one program".into()));
+            *self.t.stop() = Some(Fallback::NotStraight("more than one program".into()));
             return;
         }
         if let Err(why) = T::straight(s) {
-            self.t.stop(Fallback::NotStraight(why));
+            *self.t.stop() = Some(Fallback::NotStraight(why));
             return;
         }
         self.blocks += 1;
@@ -129,7 +91,7 @@ impl<T: Target> WordsSink for Sink<'_, T> {
             return true;
         }
         if words.iter().any(comp_word::<T>) {
-            self.t.stop(Fallback::NotStraight(T::COMP.into()));
+            *self.t.stop() = Some(Fallback::NotStraight(T::COMP.into()));
             return true;
         }
         // A second program's line comes again as a statement, which stops.
@@ -154,7 +116,7 @@ pub(crate) fn run<T: Target>(
     let r = super::scan_words_path(path, 0, T::SOURCE, popts, &mut sink, progress);
     let blocks = sink.blocks;
     let index = r.map_err(Fallback::NotStreamable)?;
-    if let Some(f) = t.take_stop() {
+    if let Some(f) = t.stop().take() {
         return Err(f);
     }
     if !index.diags.is_empty() {

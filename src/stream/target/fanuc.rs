@@ -25,7 +25,8 @@ use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
-use crate::stream::straight::{self, Fallback, Out, Target};
+use crate::stream::straight::{self, Fallback, Target};
+use crate::stream::Out;
 use crate::stream::{Index, PlainWord, ProgressFn};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
@@ -149,12 +150,8 @@ impl Target for ToFanuc<'_> {
         self.stop.is_some()
     }
 
-    fn stop(&mut self, why: Fallback) {
-        self.stop = Some(why);
-    }
-
-    fn take_stop(&mut self) -> Option<Fallback> {
-        self.stop.take()
+    fn stop(&mut self) -> &mut Option<Fallback> {
+        &mut self.stop
     }
 
     /// Translates one straight block: the fast path, else (when the translator has

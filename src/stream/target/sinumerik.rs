@@ -30,7 +30,8 @@ use crate::lower::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::{SourceFile, Span};
 use crate::stream::lines::{first_line_ending, has_bom, Lines};
-use crate::stream::straight::{self, Fallback, Out, Target};
+use crate::stream::straight::{self, Fallback, Target};
+use crate::stream::Out;
 use crate::stream::{Index, ItemView, PlainWord, ProgressFn};
 use crate::translate::to_sinumerik::{self as ts, SymbolMap};
 use std::collections::BTreeMap;
@@ -468,16 +469,23 @@ impl ToSinumerik<'_> {
             if !w.addr.is(b'G') {
                 continue;
             }
-            match crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
-                Some(20 | 30) => self.arc = true,
-                Some(0 | 10) => self.arc = false,
-                Some(200) => self.inch = Some(true),
-                Some(210) => self.inch = Some(false),
-                _ => {}
+            if let Some(g10) = crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
+                self.follow_g(g10);
             }
         }
         self.skipped_unit(b.meta.skip.is_some(), inch_before);
         self.buf_real |= !b.items.is_empty();
+    }
+
+    /// The arc mode and the unit after G code `g10` (×10).
+    fn follow_g(&mut self, g10: u32) {
+        match g10 {
+            20 | 30 => self.arc = true,
+            0 | 10 => self.arc = false,
+            200 => self.inch = Some(true),
+            210 => self.inch = Some(false),
+            _ => {}
+        }
     }
 
     /// [`ToSinumerik::push`] of the words of a plain line when the fast path takes them; else
@@ -488,16 +496,8 @@ impl ToSinumerik<'_> {
         }
         let (arc, inch, buf_real) = (self.arc, self.inch, self.buf_real);
         // `follow` of the block the words are.
-        for w in words {
-            if w.letter == b'G' {
-                match fast::round(w.value * 10.0) as u32 {
-                    20 | 30 => self.arc = true,
-                    0 | 10 => self.arc = false,
-                    200 => self.inch = Some(true),
-                    210 => self.inch = Some(false),
-                    _ => {}
-                }
-            }
+        for w in words.iter().filter(|w| w.letter == b'G') {
+            self.follow_g(fast::round(w.value * 10.0) as u32);
         }
         self.skipped_unit(meta.skip.is_some(), inch);
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
@@ -547,12 +547,8 @@ impl Target for ToSinumerik<'_> {
         self.stop.is_some()
     }
 
-    fn stop(&mut self, why: Fallback) {
-        self.stop = Some(why);
-    }
-
-    fn take_stop(&mut self) -> Option<Fallback> {
-        self.stop.take()
+    fn stop(&mut self) -> &mut Option<Fallback> {
+        &mut self.stop
     }
 
     fn stmt(&mut self, s: &Stmt) {
