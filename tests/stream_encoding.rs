@@ -407,8 +407,8 @@ fn cli_diagnostics_point_into_the_decoded_text() {
 /// straight or segmented translators accept them (the command line cannot be asked).
 #[test]
 fn translations_stream_from_the_copy() {
-    use nctrans::stream::to_sinumerik as sts;
-    use nctrans::stream::{segmented, translate as st};
+    use nctrans::stream::target::sinumerik as sts;
+    use nctrans::stream::{segmented::fanuc as segmented, target::fanuc as st};
     let _lock = TEMP.lock().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("lib");
     for (enc, comment) in legacy() {
@@ -444,7 +444,10 @@ fn translations_stream_from_the_copy() {
                     let straight = sts::to_sinumerik(c, &o, le, &mut out, None).is_ok();
                     if !straight {
                         out.clear();
-                        assert!(sts::segmented::to_sinumerik(c, &o, le, &mut out, None).is_ok(), "{case}");
+                        assert!(
+                            nctrans::stream::segmented::sinumerik::to_sinumerik(c, &o, le, &mut out, None).is_ok(),
+                            "{case}"
+                        );
                     }
                 }
                 let text = String::from_utf8(out).unwrap();

@@ -11,8 +11,8 @@ mod rng;
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use nctrans::stream::segmented;
-use nctrans::stream::translate::Fallback;
+use nctrans::stream::segmented::fanuc as segmented;
+use nctrans::stream::Fallback;
 use nctrans::translate::{self, TranslateOptions};
 use rng::Rng;
 use std::path::{Path, PathBuf};
@@ -100,7 +100,7 @@ fn compare_tools(name: &str, text: &str, comments: CommentMode, noted: bool, too
     }
     let out_path = dir.join(format!("{name}.nc"));
     std::fs::write(&out_path, &out).expect("write");
-    let v = nctrans::stream::translate::verify(seg.index, &out_path, MAX_STEPS, seg.inputs, None);
+    let v = nctrans::stream::verify::verify(seg.index, &out_path, MAX_STEPS, seg.inputs, None);
     let w = translate::to_fanuc::verify(&mut db, &parsed.unit, &[], &t.clone().into(), "out.nc", MAX_STEPS);
     assert_eq!(v.equivalent, w.equivalent, "{name}: verdicts {} / {}", v.summary, w.summary);
     assert_eq!(v.summary, w.summary, "{name}");

@@ -8,8 +8,8 @@
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
-use nctrans::stream::segmented;
-use nctrans::stream::translate::Fallback;
+use nctrans::stream::segmented::fanuc as segmented;
+use nctrans::stream::Fallback;
 use nctrans::translate::{self, TranslateOptions};
 use std::path::{Path, PathBuf};
 
@@ -119,7 +119,7 @@ fn streamed(path: &Path, break_at: Option<(&str, &str)>) -> Result<(String, bool
     }
     let o = path.with_extension("seg.nc");
     std::fs::write(&o, &text).expect("write");
-    let v = nctrans::stream::translate::verify(d.index, &o, MAX_STEPS, d.inputs, None);
+    let v = nctrans::stream::verify::verify(d.index, &o, MAX_STEPS, d.inputs, None);
     Ok((written, v.equivalent, v.summary))
 }
 

@@ -17,8 +17,9 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::stream::to_sinumerik::{self as sts, segmented, StreamSide};
-use nctrans::stream::translate::Fallback;
+use nctrans::stream::segmented::sinumerik as segmented;
+use nctrans::stream::verify::{self as sv, StreamSide};
+use nctrans::stream::Fallback;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
@@ -53,7 +54,7 @@ enum Outcome {
 fn streamed_check(path: &Path, out: &Path, o: &Options) -> Verdict {
     let popts = ParseOptions { semantics: o.source.clone() };
     let src = nctrans::stream::scan_path(path, 0, Dialect::Fanuc, &popts, &mut |_, _| {}, None).expect("scan");
-    let Ok(back) = sts::read_back(out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
+    let Ok(back) = sv::read_back(out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
     else {
         return Verdict::Failed;
     };
@@ -79,7 +80,7 @@ fn streamed_check(path: &Path, out: &Path, o: &Options) -> Verdict {
         name: out.display().to_string(),
         callees: Box::new(NoCallees),
     };
-    sts::compare(a, b).verdict
+    sv::compare(a, b).verdict
 }
 
 /// Translates `path` whole and segmented; when segmented does not decline, asserts the

@@ -19,8 +19,9 @@ use nctrans::eval::{header_inputs, DirCallees, RunOptions};
 use nctrans::ir::{CallTarget, ItemKind, ProgName, StmtKind, Unit};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::stream::to_sinumerik::{self as sts, segmented, StreamSide};
-use nctrans::stream::translate::Fallback;
+use nctrans::stream::segmented::sinumerik as segmented;
+use nctrans::stream::verify::{self as sv, StreamSide};
+use nctrans::stream::Fallback;
 use nctrans::translate::to_sinumerik::{Options, OutFile};
 use rng::Rng;
 use std::path::{Path, PathBuf};
@@ -366,7 +367,7 @@ fn streamed_verdict(main: &Path, o: &Options, edit: &dyn Fn(&str) -> String) -> 
         None,
     )
     .expect("scan");
-    let back = sts::read_back(&out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
+    let back = sv::read_back(&out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
         .ok()
         .expect("back");
     let (in_a, in_b) = (header_inputs(&src.header).expect("a"), header_inputs(&back.header).expect("b"));
@@ -391,7 +392,7 @@ fn streamed_verdict(main: &Path, o: &Options, edit: &dyn Fn(&str) -> String) -> 
         name: out.display().to_string(),
         callees: Box::new(emitted),
     };
-    sts::compare(a, b).verdict
+    sv::compare(a, b).verdict
 }
 
 #[test]

@@ -16,8 +16,9 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{header_inputs, DirCallees, NoCallees, RunOptions};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::stream::to_sinumerik::{self as sts, StreamSide};
-use nctrans::stream::translate::Fallback;
+use nctrans::stream::target::sinumerik as sts;
+use nctrans::stream::verify::{self as sv, StreamSide};
+use nctrans::stream::Fallback;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
@@ -282,7 +283,7 @@ fn programs_needing_the_whole_program_are_refused() {
 fn streamed_check(path: &Path, out: &Path, o: &Options) -> nctrans::check::CheckReport {
     let popts = ParseOptions { semantics: o.source.clone() };
     let src = nctrans::stream::scan_path(path, 0, Dialect::Fanuc, &popts, &mut |_, _| {}, None).expect("scan");
-    let back = sts::read_back(out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
+    let back = sv::read_back(out, 1, Dialect::Sinumerik, &ParseOptions { semantics: o.target.clone() }, None)
         .ok()
         .expect("reads back");
     let run = |ix: &nctrans::stream::Index, sem: &nctrans::dialect::Semantics| RunOptions {
@@ -304,7 +305,7 @@ fn streamed_check(path: &Path, out: &Path, o: &Options) -> nctrans::check::Check
         name: out.display().to_string(),
         callees: Box::new(NoCallees),
     };
-    sts::compare(a, b)
+    sv::compare(a, b)
 }
 
 #[test]

@@ -13,7 +13,7 @@ mod rng;
 use nctrans::dialect::{Dialect, ParseOptions, Semantics};
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::stream::to_sinumerik as sts;
+use nctrans::stream::target::sinumerik as sts;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
 use rng::Rng;
 use std::path::{Path, PathBuf};
@@ -239,7 +239,7 @@ fn corpus_programs_stream_block_by_block_to_the_whole_translation() {
     }
 }
 
-/// A number as the digit writer (`stream::translate::digits`) sees it: 1..15 digits with
+/// A number as the digit writer (`dialect::digits`) sees it: 1..15 digits with
 /// 0..6 decimals, leading and trailing zeros, `-`/`+`, a bare point at either end, blanks
 /// after the address or the sign, big and tiny values, and now and then more digits.
 fn literal(r: &mut Rng) -> String {

@@ -4,7 +4,7 @@
 
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use nctrans::stream::translate::{self as st, Fallback};
+use nctrans::stream::{target::fanuc as st, Fallback};
 use nctrans::translate::{self, TranslateOptions};
 use std::path::{Path, PathBuf};
 
@@ -61,7 +61,7 @@ fn streamed_translation_is_the_whole_translation() {
     std::fs::write(&out, &streamed).expect("write");
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
-    let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
+    let v = nctrans::stream::verify::verify(ix, &out, 1_000_000, Vec::new(), None);
     assert!(v.equivalent && v.summary.contains("(10"), "{}", v.summary);
 
     // A broken translation is caught by the streamed verification.
@@ -69,7 +69,7 @@ fn streamed_translation_is_the_whole_translation() {
     assert_ne!(bad.as_bytes(), &streamed[..]);
     std::fs::write(&out, bad).expect("write");
     let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
-    let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
+    let v = nctrans::stream::verify::verify(ix, &out, 1_000_000, Vec::new(), None);
     assert!(!v.equivalent && v.summary.contains("diverged"), "{}", v.summary);
 }
 
@@ -115,7 +115,7 @@ fn feed_units_stream_identically_and_verify_equivalent() {
         std::fs::write(&out, &streamed).expect("write");
         let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
         let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
-        let v = st::verify(ix, &out, 1_000_000, Vec::new(), None);
+        let v = nctrans::stream::verify::verify(ix, &out, 1_000_000, Vec::new(), None);
         assert!(v.equivalent, "case {case}: {}", v.summary);
     }
 }
@@ -144,7 +144,8 @@ fn corpus_programs_stream_only_when_straight_and_then_identically() {
 #[test]
 fn an_output_line_broken_after_its_index_fails_the_check_with_its_diagnostic() {
     use nctrans::eval::{DirCallees, NoCallees, RunOptions};
-    use nctrans::stream::to_sinumerik::{self as sts, StreamSide};
+    use nctrans::stream::target::sinumerik as sts;
+    use nctrans::stream::verify::{self as sv, StreamSide};
     let dir = root().join("target/stream-tests");
     std::fs::create_dir_all(&dir).expect("dir");
     let mut sin = String::from("%_N_BROKEN_MPF\nG90 G71 G17\n");
@@ -180,7 +181,7 @@ fn an_output_line_broken_after_its_index_fails_the_check_with_its_diagnostic() {
         };
         let popts = ParseOptions::for_dialect(target);
         let check = |source: nctrans::stream::Index| {
-            let read = sts::read_back(&out, 1, target, &popts, None).ok().expect("reads back");
+            let read = sv::read_back(&out, 1, target, &popts, None).ok().expect("reads back");
             (source, read)
         };
         let run = || RunOptions { max_steps: 1_000_000, ..RunOptions::default() };
@@ -191,7 +192,7 @@ fn an_output_line_broken_after_its_index_fails_the_check_with_its_diagnostic() {
             run: run(),
         };
         let (a, b) = check(source.clone());
-        let r = sts::compare(side(a, "source", true), side(b, "output", false));
+        let r = sv::compare(side(a, "source", true), side(b, "output", false));
         assert!(matches!(r.verdict, nctrans::check::Verdict::Equivalent { .. }), "{ext}: {:?}", r.verdict);
 
         // Broken after reading back: a block in the middle gets a character no reader takes
@@ -203,7 +204,7 @@ fn an_output_line_broken_after_its_index_fails_the_check_with_its_diagnostic() {
         let mut broken = written.clone();
         broken[at + 1] = b'$';
         std::fs::write(&out, &broken).expect("write");
-        let r = sts::compare(side(a, "source", true), side(b, "output", false));
+        let r = sv::compare(side(a, "source", true), side(b, "output", false));
         assert!(!matches!(r.verdict, nctrans::check::Verdict::Equivalent { .. }), "{ext}: {:?}", r.verdict);
         let line = 1 + written[..at].iter().filter(|&&c| c == b'\n').count();
         let codes: Vec<String> = r.diags.iter().map(|d| format!("{} {}", d.code, d.message)).collect();

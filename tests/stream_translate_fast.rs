@@ -15,7 +15,7 @@ use fast_same::{opts, same};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use nctrans::stream::translate::{self as st, Fallback};
+use nctrans::stream::{target::fanuc as st, Fallback};
 use nctrans::translate::{self, TranslateOptions};
 use rng::Rng;
 use std::path::PathBuf;
@@ -302,7 +302,7 @@ fn blocks_the_translator_reports_on_are_not_streamed() {
     assert!(matches!(got, Err(Fallback::Diagnostics)));
 }
 
-/// A literal as the digit writer (`stream::translate::digits`) sees it: 1..15 digits with
+/// A literal as the digit writer (`dialect::digits`) sees it: 1..15 digits with
 /// 0..6 decimals, leading and trailing zeros, `-`/`+`, a bare point at either end, big and
 /// tiny values, and now and then more digits than the writers keep.
 fn literal(r: &mut Rng) -> String {

@@ -60,7 +60,7 @@ fn a_wrong_default_is_caught_in_the_whole_translation() {
 
 #[test]
 fn a_wrong_default_is_caught_in_the_streamed_translation() {
-    use nctrans::stream::to_sinumerik::segmented::to_sinumerik_with_subs;
+    use nctrans::stream::segmented::sinumerik::to_sinumerik_with_subs;
     let path = corpus_file();
     let mut skeleton: Vec<Unit> = Vec::new();
     let mut load = |u: &Unit| {

@@ -32,11 +32,11 @@ use crate::ir::{ProgName, Unit};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::stream;
-use crate::stream::lines::{Lines, NotStreamable};
+use crate::stream::lines::{first_line_ending, has_bom, Lines, NotStreamable};
 use crate::stream::segmented::LoadCallees;
-use crate::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
 use crate::stream::transcode::{self, TempCopy, TempFile};
-use crate::stream::translate::Fallback;
+use crate::stream::verify::{self as sv, ReadBack, StreamSide};
+use crate::stream::Fallback;
 use crate::translate;
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -64,7 +64,7 @@ fn with_source<T>(
 fn source_form(abs: &Path, copy: Option<&TempCopy>) -> Option<(&'static encoding_rs::Encoding, bool, LineEnding)> {
     match copy {
         Some(c) => Some((c.detected.encoding, c.detected.bom, c.detected.line_ending)),
-        None => Some((encoding_rs::UTF_8, sts::has_bom(abs).ok()?, sts::first_line_ending(abs).ok()?)),
+        None => Some((encoding_rs::UTF_8, has_bom(abs).ok()?, first_line_ending(abs).ok()?)),
     }
 }
 
@@ -455,57 +455,56 @@ fn to_sinumerik_from(
     let tr = crate::translate::Translation { files: vec![], symbols, diags: vec![], unsupported: 0 };
     let siemens = siemens_inputs(&tr, &done.program, &fanuc);
     fanuc.retain(|x| x.trim_start().starts_with('#'));
-    let report = match sts::read_back(
-        read_back,
-        1,
-        Dialect::Sinumerik,
-        &ParseOptions { semantics: s.sinumerik.clone() },
-        None,
-    ) {
-        Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
-            (Ok(mut a), Ok(mut b)) => {
-                a.extend(parse_all(&fanuc));
-                b.extend(parse_all(&siemens));
-                // The callees as the whole job's verifier serves them: the FANUC units
-                // loaded, the translation's other files under the names it shows them.
-                let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) = if with_calls
-                {
-                    let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
-                    let files = subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
-                    let emitted =
-                        crate::translate::to_sinumerik::verify::Emitted { files, semantics: s.sinumerik.clone() };
-                    (Box::new(MemCallees(units.clone())), Box::new(emitted))
-                } else {
-                    (Box::new(NoCallees), Box::new(NoCallees))
-                };
-                let a = StreamSide {
-                    index: done.index,
-                    name: name.clone(),
-                    callees: a_callees,
-                    run: run_options(a, s.max_steps, &s.fanuc),
-                };
-                let b = StreamSide {
-                    index: back,
-                    name: shown.clone(),
-                    callees: b_callees,
-                    run: run_options(b, s.max_steps, &s.sinumerik),
-                };
-                sts::compare(a, b)
+    let report =
+        match sv::read_back(read_back, 1, Dialect::Sinumerik, &ParseOptions { semantics: s.sinumerik.clone() }, None) {
+            Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
+                (Ok(mut a), Ok(mut b)) => {
+                    a.extend(parse_all(&fanuc));
+                    b.extend(parse_all(&siemens));
+                    // The callees as the whole job's verifier serves them: the FANUC units
+                    // loaded, the translation's other files under the names it shows them.
+                    let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) =
+                        if with_calls {
+                            let shown =
+                                |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
+                            let files =
+                                subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
+                            let emitted = crate::translate::to_sinumerik::verify::Emitted {
+                                files,
+                                semantics: s.sinumerik.clone(),
+                            };
+                            (Box::new(MemCallees(units.clone())), Box::new(emitted))
+                        } else {
+                            (Box::new(NoCallees), Box::new(NoCallees))
+                        };
+                    let a = StreamSide {
+                        index: done.index,
+                        name: name.clone(),
+                        callees: a_callees,
+                        run: run_options(a, s.max_steps, &s.fanuc),
+                    };
+                    let b = StreamSide {
+                        index: back,
+                        name: shown.clone(),
+                        callees: b_callees,
+                        run: run_options(b, s.max_steps, &s.sinumerik),
+                    };
+                    sv::compare(a, b)
+                }
+                (Err(e), _) | (_, Err(e)) => {
+                    failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
+                }
+            },
+            // With calls the whole job gives this verdict (see below).
+            Err(_) if with_calls => return decline(),
+            Err(ReadBack::Diags(mut d)) => {
+                d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
+                failed(d)
             }
-            (Err(e), _) | (_, Err(e)) => {
-                failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
+            Err(ReadBack::Unreadable(e)) => {
+                failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
             }
-        },
-        // With calls the whole job gives this verdict (see below).
-        Err(_) if with_calls => return decline(),
-        Err(ReadBack::Diags(mut d)) => {
-            d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
-            failed(d)
-        }
-        Err(ReadBack::Unreadable(e)) => {
-            failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
-        }
-    };
+        };
     // With calls, only an equivalence is taken: the diagnostics of any other verdict may
     // point into a callee or subprogram file, which the streamed records do not name as
     // the whole job does; the whole job then gives that verdict itself.
@@ -550,7 +549,7 @@ fn load_callees(job: &ToFanucJob, ctx: &BatchContext, callees: &[usize]) -> Resu
         let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
         let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, &job.settings.sinumerik)
             .map_err(|e| no(&e))?;
-        if !l.diags.is_empty() || !stream::segmented::calls_plain(&l.unit) {
+        if !l.diags.is_empty() || !stream::segmented::fanuc::calls_plain(&l.unit) {
             return Err(no("a callee with diagnostics or a call of another kind"));
         }
         units.push(l.unit);
@@ -602,7 +601,7 @@ fn to_fanuc_from(
     // As `ToFanucJob::verify` runs a program no file calls: `--set` on both sides, the
     // mapped R parameters 0 on FANUC.
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &out_name, into)];
-    let back = match sts::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
+    let back = match sv::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
         Ok(b) => b,
         // With callees the whole job gives this verdict (see below).
         Err(_) if !subs.is_empty() => {
@@ -645,7 +644,7 @@ fn to_fanuc_from(
         callees: Box::new(NoCallees),
         run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
     };
-    let report = sts::compare_excluding(a, b, translate::EXCLUDE);
+    let report = sv::compare_excluding(a, b, translate::EXCLUDE);
     // With callees, only an equivalence is taken: the diagnostics of any other verdict may
     // point into a callee file, which the streamed records do not name as the whole job
     // does; the whole job then gives that verdict itself.

@@ -25,7 +25,7 @@ use super::{write, BatchContext};
 use crate::dialect::Dialect;
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
-use crate::stream::translate::Fallback;
+use crate::stream::Fallback;
 use crate::translate::to_sinumerik::OutFile;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -12,8 +12,8 @@ use crate::lower::to_sinumerik::Options as SinOptions;
 use crate::read::LineEnding;
 use crate::span::Span;
 use crate::stream::segmented::LoadCallees;
-use crate::stream::to_sinumerik as sts;
-use crate::stream::translate::Fallback;
+use crate::stream::target::sinumerik as sts;
+use crate::stream::Fallback;
 use crate::stream::{self, Index, ProgressFn};
 use crate::translate::to_sinumerik::OutFile;
 use crate::translate::{SymbolMap, TranslateOptions};
@@ -52,7 +52,7 @@ impl LibItems {
         if !calls.is_empty() {
             let plain = match dialect {
                 Dialect::Sinumerik => {
-                    stream::segmented::calls_plain(&Unit { dialect, file: 0, programs: vec![program_of(s)] })
+                    stream::segmented::fanuc::calls_plain(&Unit { dialect, file: 0, programs: vec![program_of(s)] })
                 }
                 // The calls the FANUC segmented stream keeps (`M98 P`, `G65 P`, `G66 P` by a
                 // constant number); `raw_call` refuses a computed target below.
@@ -114,13 +114,13 @@ pub(super) fn to_fanuc_part(
 ) -> Option<(Index, SymbolMap, Vec<Diagnostic>)> {
     if let Some(load) = load {
         let with_subs = |w: &mut dyn Write| {
-            let (done, notes) = stream::segmented::to_fanuc_with_subs(path, opts, load, w, None)?;
+            let (done, notes) = stream::segmented::fanuc::to_fanuc_with_subs(path, opts, load, w, None)?;
             Ok((done.index, done.symbol_map, notes))
         };
         return route(part, bom, with_subs).ok()?;
     }
     let straight = |w: &mut dyn Write| {
-        let done = stream::translate::to_fanuc(path, opts, w, None)?;
+        let done = stream::target::fanuc::to_fanuc(path, opts, w, None)?;
         // The names a straight-line program's translation uses depend on its name alone.
         let program = Program {
             name: done.index.programs.first().and_then(|p| p.program.name.clone()),
@@ -138,7 +138,7 @@ pub(super) fn to_fanuc_part(
         return Some(done);
     }
     let segmented = |w: &mut dyn Write| {
-        let (done, notes) = stream::segmented::to_fanuc_with_notes(path, opts, w, None)?;
+        let (done, notes) = stream::segmented::fanuc::to_fanuc_with_notes(path, opts, w, None)?;
         Ok((done.index, done.symbol_map, notes))
     };
     route(part, bom, segmented).ok()?
@@ -151,7 +151,7 @@ type ToSinumerik =
 /// The FANUC → Sinumerik streams a batch tries, in order: straight-line, then segmented.
 /// Each `Streamed` carries what the whole-file job reports and verifies with (see
 /// `streamed::to_sinumerik`).
-const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik, sts::segmented::to_sinumerik];
+const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik, crate::stream::segmented::sinumerik::to_sinumerik];
 
 /// FANUC → Sinumerik into `part` by the first of [`TO_SINUMERIK`] that takes the file (the
 /// translator writes the byte-order mark itself).
@@ -173,9 +173,11 @@ pub(super) fn to_sinumerik_subs_part(
     opts: &SinOptions,
     eol: LineEnding,
     part: &Path,
-    load: sts::segmented::LoadCallees<'_>,
+    load: LoadCallees<'_>,
     stand_in: crate::span::FileId,
 ) -> Option<(sts::Streamed, Vec<OutFile>)> {
-    let f = |w: &mut dyn Write| sts::segmented::to_sinumerik_with_stand_in(path, opts, eol, load, stand_in, w, None);
+    let f = |w: &mut dyn Write| {
+        crate::stream::segmented::sinumerik::to_sinumerik_with_stand_in(path, opts, eol, load, stand_in, w, None)
+    };
     route(part, false, f).ok()?
 }

@@ -64,7 +64,7 @@ impl<'a> Source<'a> {
     pub fn encoding(&self) -> Option<(&'static encoding_rs::Encoding, bool)> {
         match &self.copy {
             Some(c) => Some((c.detected.encoding, c.detected.bom)),
-            None => Some((encoding_rs::UTF_8, stream::to_sinumerik::has_bom(self.original).ok()?)),
+            None => Some((encoding_rs::UTF_8, stream::lines::has_bom(self.original).ok()?)),
         }
     }
 
@@ -72,7 +72,7 @@ impl<'a> Source<'a> {
     pub fn line_ending(&self) -> Option<nctrans::read::LineEnding> {
         match &self.copy {
             Some(c) => Some(c.detected.line_ending),
-            None => stream::to_sinumerik::first_line_ending(self.original).ok(),
+            None => stream::lines::first_line_ending(self.original).ok(),
         }
     }
 }
@@ -218,8 +218,8 @@ pub fn encode_output(utf8: &Path, enc: &'static encoding_rs::Encoding, bom: bool
 }
 
 /// Why the segmented route declined, for [`note_read_whole`] (after "it has").
-pub fn segmented_why(f: &stream::translate::Fallback) -> String {
-    use stream::translate::Fallback;
+pub fn segmented_why(f: &stream::Fallback) -> String {
+    use stream::Fallback;
     match f {
         Fallback::NotStraight(w) => w.clone(),
         Fallback::Diagnostics => "warnings or errors to show".into(),

@@ -4,13 +4,19 @@
 //! Owns: reading (`<name>/parse`, the fast readers) and writing (`<name>/emit`) each dialect,
 //! the [`Semantics`] flags, the description a dialect implements ([`spec::Spec`]; the
 //! built-ins' are `translate::generic::builtin`), the block-number runs of an index
-//! ([`runs`]), the program-less file check ([`empty`]). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only,
-//! writing the evaluator's compact blocks) `eval::lit`. Never `lower` (but the writers' unit
+//! ([`runs`]), the program-less file check ([`empty`]), what the streamed fast writers read
+//! of a plain word ([`plain`]) and the numbers they write from its digits (`digits`,
+//! `numwrite`). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only, writing
+//! the evaluator's compact blocks) `eval::lit`, (the number writers only) `eval::numfmt`.
+//! Never `lower` (but the writers' unit
 //! tests build IR with `lower::build`), `stream`, `check`.
 
+pub(crate) mod digits;
 pub mod empty;
 pub mod fanuc;
 pub mod limits;
+pub(crate) mod numwrite;
+pub mod plain;
 pub mod quick;
 pub mod runs;
 pub mod semantics;

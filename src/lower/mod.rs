@@ -6,7 +6,8 @@
 //! they are on ([`restate`]).
 //!
 //! May use: `ir`, `dialect` (spellings and `Semantics` facts), `eval` (facts the evaluator
-//! owns: refusal reasons, modal tables), `diag`, `span`. Never `stream`, `check` or the
+//! owns: refusal reasons, modal tables), `diag`, `span`, `read` (the source line the fast
+//! writers, `to_*/fast_write`, copy digits from). Never `stream`, `check` or the
 //! translators above it: lowering is IR → IR and is driven from above. A target folder may
 //! use this module, never its sibling target.
 

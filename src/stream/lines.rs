@@ -321,6 +321,43 @@ pub fn line_at(path: &std::path::Path, lo: u32) -> Option<(u32, u64, String)> {
     last
 }
 
+/// The line ending used first in the file (LF when none), as `read::detect_line_ending`
+/// finds it in the whole text.
+pub fn first_line_ending(path: &std::path::Path) -> Result<crate::read::LineEnding, NotStreamable> {
+    let mut f = std::fs::File::open(path)?;
+    let mut buf = vec![0u8; 64 * 1024];
+    let mut seen = 0usize;
+    let mut cr = false;
+    loop {
+        let n = f.read(&mut buf)?;
+        if n == 0 {
+            return Ok(if cr { crate::read::LineEnding::Cr } else { crate::read::LineEnding::Lf });
+        }
+        for &b in &buf[..n] {
+            if cr {
+                return Ok(if b == b'\n' { crate::read::LineEnding::CrLf } else { crate::read::LineEnding::Cr });
+            }
+            match b {
+                b'\n' => return Ok(crate::read::LineEnding::Lf),
+                b'\r' => cr = true,
+                _ => {}
+            }
+        }
+        seen += n;
+        if seen > MAX_LINE {
+            return Err(NotStreamable::LongLine { line: 1 });
+        }
+    }
+}
+
+/// Whether the file starts with a UTF-8 byte-order mark (a translation's output then gets
+/// one too).
+pub fn has_bom(path: &std::path::Path) -> io::Result<bool> {
+    let mut head = Vec::with_capacity(3);
+    File::open(path)?.take(3).read_to_end(&mut head)?;
+    Ok(head == b"\xEF\xBB\xBF")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,8 +1,10 @@
 //! Streaming: reading, running and checking programs of any length in constant memory.
 //!
-//! Owns: the streamed drivers (index scan, pager, segmented and straight translation in
-//! both directions, transcoding). May use everything below it: `read`, `dialect`, `ir`,
-//! `lower`, `eval`, `check`, the whole-file translators. Nothing below imports `stream`: the
+//! Owns: the streamed drivers: index scan, pager, transcoding, the one straight-line
+//! translation driver ([`straight`]) with what each target supplies to it ([`target`]), the
+//! segmented translation ([`segmented`]) and the one streamed verification ([`verify`]).
+//! May use everything below it: `read`, `dialect`, `ir`, `lower` (the targets' fast writers
+//! are `lower::to_<name>::fast_write`), `eval`, `check`, the whole-file translators. Nothing below imports `stream`: the
 //! evaluator reads pages through `eval::paged::PagedSource`, which [`paged::Pager`] implements.
 //!
 //! The whole-file path (`dialect::parse`) holds the decoded text and the IR tree; for a CAM
@@ -18,13 +20,13 @@ mod chunker;
 pub mod index;
 pub mod lines;
 pub use lines::line_at;
-mod nset;
 pub mod paged;
 pub mod segmented;
-mod splice;
-pub mod to_sinumerik;
+pub mod straight;
+pub use straight::Fallback;
+pub mod target;
 pub mod transcode;
-pub mod translate;
+pub mod verify;
 pub use reread::{reread, RereadSink};
 mod reread;
 mod words;
@@ -32,7 +34,7 @@ mod words;
 use crate::diag::Diagnostic;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
 use crate::eval::lit::LitBlock;
-use crate::ir::{Addr, Comment, Item, ItemKind, Stmt, WordValue};
+use crate::ir::{Comment, Stmt};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
 use chunker::{close, take_plain_run, Chunker};
@@ -41,6 +43,7 @@ use index::{ProgIndex, Resume};
 use lines::{Input, Lines, NotStreamable};
 use std::path::{Path, PathBuf};
 
+pub use crate::dialect::plain::{ItemView, PlainWord, View};
 pub use crate::dialect::sinumerik::scan_words::Canon;
 
 /// Where a scan is, for a progress line (the library reports, `main.rs` renders).
@@ -70,85 +73,6 @@ enum Want<'a> {
     Each(EachFn<'a>),
     /// Plain top-level lines as their words, the rest as statements (see [`scan_words`]).
     Words(&'a mut dyn WordsSink),
-}
-
-/// One word of a plain line read straight into words ([`scan_words`]): the letter (upper
-/// case), the value (negated when written with `-`), whether it was written with a point,
-/// and the word's span; the item the whole-file reader builds for it is a word of that
-/// letter holding that number.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PlainWord {
-    pub letter: u8,
-    pub value: f64,
-    pub point: bool,
-    pub span: Span,
-    /// The word's text in the writers' form when the quick reader found it so
-    /// (`Canon::NONE` from the general readers: the writers then read the text).
-    pub canon: Canon,
-}
-
-/// What the streamed translators' fast paths look at in an item, the same whether it is an
-/// IR item or a [`PlainWord`] (so both go through one code).
-pub enum View {
-    /// A word: its letter when it has a letter address and an expression value (else
-    /// `None`), whether the address is `G`, the value when it is a number as written
-    /// (value, point), and when it is one after folding a `-n`.
-    Word { letter: Option<u8>, is_g: bool, num: Option<(f64, bool)>, folded: Option<f64> },
-    /// A program end.
-    End(crate::ir::EndCode),
-    /// Anything else.
-    Other,
-}
-
-/// An item as [`View`].
-pub trait ItemView {
-    fn view(&self) -> View;
-}
-
-impl ItemView for Item {
-    #[inline]
-    fn view(&self) -> View {
-        use crate::ir::{ExprKind, UnOp};
-        match &self.kind {
-            ItemKind::Word(w) => {
-                let e = match &w.value {
-                    WordValue::Expr(e) => Some(e),
-                    _ => None,
-                };
-                let num = match e.map(|e| &e.kind) {
-                    Some(ExprKind::Num(n)) => Some((n.value, n.point)),
-                    _ => None,
-                };
-                let folded = match e.map(|e| &e.kind) {
-                    Some(ExprKind::Num(n)) => Some(n.value),
-                    Some(ExprKind::Unary(UnOp::Neg, x)) => match &x.kind {
-                        ExprKind::Num(n) => Some(-n.value),
-                        _ => None,
-                    },
-                    _ => None,
-                };
-                let letter = match (&w.addr, e) {
-                    (Addr::Letter(l), Some(_)) => Some(*l),
-                    _ => None,
-                };
-                View::Word { letter, is_g: w.addr.is(b'G'), num, folded }
-            }
-            ItemKind::End { code } => View::End(*code),
-            _ => View::Other,
-        }
-    }
-}
-
-impl ItemView for PlainWord {
-    #[inline]
-    fn view(&self) -> View {
-        View::Word {
-            letter: Some(self.letter),
-            is_g: self.letter == b'G',
-            num: Some((self.value, self.point)),
-            folded: Some(self.value),
-        }
-    }
 }
 
 /// Where [`scan_words`] puts what it reads (each call with its program's index).
@@ -747,27 +671,45 @@ pub fn file_span(ix: &Index) -> Span {
 /// Output the streamed translators hand to their writer in pieces of about this size.
 pub(crate) const WRITE_BYTES: usize = 1 << 16;
 
-/// Hands a streamed translator's buffered output to `out` and empties the buffer; the
-/// first write error is kept in `io` (later output is then dropped: the caller discards the
-/// file).
-pub(crate) fn spill(out: &mut dyn std::io::Write, buf: &mut Vec<u8>, io: &mut Option<std::io::Error>) {
-    if io.is_none() {
-        if let Err(e) = out.write_all(buf) {
-            *io = Some(e);
-        }
-    }
-    buf.clear();
+/// A streamed translator's output (straight or segmented, every target): gathered in
+/// [`Out::buf`] and handed to the writer in pieces of about [`WRITE_BYTES`]. The first
+/// write error is kept in [`Out::io`] (later output is dropped: the caller discards the file).
+pub(crate) struct Out<'a> {
+    pub(crate) buf: Vec<u8>,
+    out: &'a mut dyn std::io::Write,
+    pub(crate) io: Option<std::io::Error>,
 }
 
-/// Ends a streamed translator's output: flushes `out` unless writing already failed; the
-/// first write error, if any, is the fallback (the caller discards the file).
-pub(crate) fn finish_output(
-    out: &mut dyn std::io::Write,
-    io: Option<std::io::Error>,
-) -> Result<(), translate::Fallback> {
-    match io.map_or_else(|| out.flush(), Err) {
-        Ok(()) => Ok(()),
-        Err(e) => Err(translate::Fallback::NotStreamable(lines::NotStreamable::Io(e))),
+impl<'a> Out<'a> {
+    pub(crate) fn new(out: &'a mut dyn std::io::Write) -> Out<'a> {
+        Out { buf: Vec::with_capacity(WRITE_BYTES + 4096), out, io: None }
+    }
+
+    /// Hands the buffer to the writer once it holds a write's worth.
+    #[inline]
+    pub(crate) fn flush_some(&mut self) {
+        if self.buf.len() >= WRITE_BYTES {
+            self.spill();
+        }
+    }
+
+    /// Hands the buffer to the writer.
+    pub(crate) fn spill(&mut self) {
+        if self.io.is_none() {
+            if let Err(e) = self.out.write_all(&self.buf) {
+                self.io = Some(e);
+            }
+        }
+        self.buf.clear();
+    }
+
+    /// Writes the rest and flushes the writer; the first write error is the fallback.
+    pub(crate) fn finish(mut self) -> Result<(), Fallback> {
+        self.spill();
+        match self.io.map_or_else(|| self.out.flush(), Err) {
+            Ok(()) => Ok(()),
+            Err(e) => Err(Fallback::NotStreamable(lines::NotStreamable::Io(e))),
+        }
     }
 }
 

@@ -8,7 +8,7 @@
 //! from the copy. The copy costs about the file's size on disk (in the system temp folder)
 //! and is removed when its [`TempCopy`] is dropped. UTF-8 files never get here.
 
-use super::lines::NotStreamable;
+use super::lines::{has_bom, NotStreamable};
 use crate::read::LineEnding;
 use encoding_rs::{CoderResult, DecoderResult, EncoderResult, Encoding};
 use std::fs::File;
@@ -153,12 +153,6 @@ pub fn detect_chunked(path: &Path, forced: Option<&'static Encoding>, chunk: usi
         Ok(())
     })?;
     Ok(Detected { encoding: encoding_rs::WINDOWS_1252, bom, line_ending: eol.end() })
-}
-
-fn has_bom(path: &Path) -> io::Result<bool> {
-    let mut head = Vec::with_capacity(3);
-    File::open(path)?.take(3).read_to_end(&mut head)?;
-    Ok(head == BOM)
 }
 
 /// Whether the body decodes in `enc` without replacement and encodes back to the same

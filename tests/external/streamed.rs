@@ -9,7 +9,7 @@ use crate::words_scan::{check, files, same_as_whole_parse};
 use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use nctrans::stream::translate as st;
+use nctrans::stream::target::fanuc as st;
 use nctrans::translate;
 
 #[test]

@@ -51,7 +51,7 @@ fn to_fanuc_from(
     src: &Source,
     size: u64,
 ) -> Result<Option<ExitCode>, NotStreamable> {
-    use stream::translate::{self as st, Fallback};
+    use stream::{target::fanuc as st, Fallback};
     let (input, path) = (src.original, src.path());
     if cs::dialect_of(path, None) != Some(Dialect::Sinumerik) {
         return Ok(None);
@@ -121,9 +121,10 @@ fn to_fanuc_from(
             let r = if !started {
                 Err(None)
             } else if path == input && sem {
-                stream::segmented::to_fanuc_with_subs(path, &opts, &mut load, &mut w, Some(&mut report)).map_err(Some)
+                stream::segmented::fanuc::to_fanuc_with_subs(path, &opts, &mut load, &mut w, Some(&mut report))
+                    .map_err(Some)
             } else {
-                stream::segmented::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
+                stream::segmented::fanuc::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
             };
             line.done();
             drop(w);
@@ -205,10 +206,10 @@ fn to_fanuc_callees(
     c: &nctrans::config::Config,
     unit: &nctrans::ir::Unit,
     read: &mut Vec<std::path::PathBuf>,
-) -> Result<Vec<nctrans::ir::Unit>, stream::translate::Fallback> {
+) -> Result<Vec<nctrans::ir::Unit>, stream::Fallback> {
     use super::job::find_beside;
     use nctrans::ir::ProgName;
-    use stream::translate::Fallback;
+    use stream::Fallback;
     let no = |why: &str| Fallback::NotStraight(why.into());
     let mut db = SourceDb::new();
     db.add(input.display().to_string(), String::new());
@@ -232,7 +233,7 @@ fn to_fanuc_callees(
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         let named = matches!(&p.unit.programs[..], [one] if matches!(&one.name, Some(ProgName::Name(n)) if n.eq_ignore_ascii_case(callee)));
-        if !p.diags.is_empty() || !named || !stream::segmented::calls_plain(&p.unit) {
+        if !p.diags.is_empty() || !named || !stream::segmented::fanuc::calls_plain(&p.unit) {
             return Err(no(
                 "a subprogram with diagnostics, or not one PROC named as its file, or a call of another kind",
             ));
@@ -257,7 +258,7 @@ fn verify_to_fanuc(
     }
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: Progress| line.update(p);
-    let v = stream::translate::verify(index, out.1, c.max_steps, inputs.unwrap_or_default(), Some(&mut report));
+    let v = stream::verify::verify(index, out.1, c.max_steps, inputs.unwrap_or_default(), Some(&mut report));
     line.done();
     if !v.diags.is_empty() {
         let mut db = SourceDb::new();
@@ -317,8 +318,8 @@ fn to_sinumerik_from(
     src: &Source,
     size: u64,
 ) -> Result<Option<ExitCode>, NotStreamable> {
-    use nctrans::stream::to_sinumerik as sts;
-    use nctrans::stream::translate::Fallback;
+    use nctrans::stream::target::sinumerik as sts;
+    use nctrans::stream::Fallback;
     let path = src.path();
     let (Some(eol), Some((enc, bom))) = (src.line_ending(), src.encoding()) else {
         return Ok(None);
@@ -379,14 +380,20 @@ fn to_sinumerik_from(
                     fanuc.1 = std::iter::once(u.clone()).chain(units.iter().cloned()).collect();
                     Ok(units)
                 };
-                sts::segmented::to_sinumerik_with_subs(path, opts, eol, &mut load, &mut w, Some(&mut report)).map(
-                    |(d, s)| {
-                        subs = s;
-                        d
-                    },
+                nctrans::stream::segmented::sinumerik::to_sinumerik_with_subs(
+                    path,
+                    opts,
+                    eol,
+                    &mut load,
+                    &mut w,
+                    Some(&mut report),
                 )
+                .map(|(d, s)| {
+                    subs = s;
+                    d
+                })
             } else {
-                sts::segmented::to_sinumerik(path, opts, eol, &mut w, Some(&mut report))
+                nctrans::stream::segmented::sinumerik::to_sinumerik(path, opts, eol, &mut w, Some(&mut report))
             };
             line.done();
             drop(w);
@@ -521,11 +528,11 @@ fn verify_to_sinumerik(
     called: &dyn Fn() -> Vec<(String, nctrans::check::CheckReport)>,
 ) -> ExitCode {
     use nctrans::eval::{header_inputs, DirCallees, RunOptions};
-    use nctrans::stream::to_sinumerik::{self as sts, ReadBack, StreamSide};
+    use nctrans::stream::verify::{self as sv, ReadBack, StreamSide};
     let mut line = ProgressLine::new("reading back", size);
     let mut report = |p: nctrans::stream::Progress| line.update(p);
     let popts = ParseOptions { semantics: opts.target.clone() };
-    let back = sts::read_back(out, 1, Dialect::Sinumerik, &popts, Some(&mut report));
+    let back = sv::read_back(out, 1, Dialect::Sinumerik, &popts, Some(&mut report));
     line.done();
     let mut db = SourceDb::new();
     db.add(input.display().to_string(), String::new());
@@ -568,7 +575,7 @@ fn verify_to_sinumerik(
         run: run(in_a, &opts.source),
     };
     let b = StreamSide { index: back, name: shown.to_string(), callees: out_callees, run: run(in_b, &opts.target) };
-    let report = sts::compare(a, b);
+    let report = sv::compare(a, b);
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &streamed));
     if !matches!(report.verdict, Verdict::Equivalent { .. }) {
         return job::verdict(report.verdict, &report.diff);
@@ -590,8 +597,8 @@ fn to_sinumerik_callees(
     unit: &Unit,
     read: &mut Vec<PathBuf>,
     db: &mut SourceDb,
-) -> Result<Vec<Unit>, nctrans::stream::translate::Fallback> {
-    use nctrans::stream::translate::Fallback;
+) -> Result<Vec<Unit>, nctrans::stream::Fallback> {
+    use nctrans::stream::Fallback;
     *db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
     let db = &mut *db;

@@ -27,9 +27,9 @@ pub struct QWord {
 /// is whatever followed in the text).
 /// Only for a literal already so written up to its trailing zeros and point: no `+`, at
 /// least one integer digit and no leading zero before another one, not zero. `len == 0`:
-/// not known (the writers then look at the text themselves, `translate::digits`).
+/// not known (the writers then look at the text themselves, `dialect::digits`).
 ///
-/// Why these are the writers' digits: see `translate::digits` (a literal of at most 15
+/// Why these are the writers' digits: see `dialect::digits` (a literal of at most 15
 /// digits is the shortest decimal of its double, up to leading and trailing zeros).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Canon {

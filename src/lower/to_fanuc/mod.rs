@@ -7,12 +7,15 @@
 //! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
 //! [`labels`] (labels and N numbers → unique FANUC N numbers). The result is IR that the FANUC
 //! writer (`dialect::fanuc::emit`) can print; anything it cannot express was reported as NC3xx.
+//! `fast_write` is the same translation of one plain block written straight to bytes, for
+//! the streamed translator (held to these passes' bytes by the differential tests).
 
 pub mod blocks;
 pub mod comp;
 pub mod cycles;
 pub mod cycles_tap;
 pub mod exprs;
+pub(crate) mod fast_write;
 pub mod frame_seq;
 pub mod frames;
 pub mod integral;

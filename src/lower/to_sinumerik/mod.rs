@@ -19,12 +19,15 @@
 //! 10. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
 //!
 //! Every pass keeps source spans on what it builds, so a divergence found later can point
-//! back at the FANUC text.
+//! back at the FANUC text. `fast_write` is these passes' translation of one plain block
+//! written straight to bytes, for the streamed translator (held to the passes' bytes by the
+//! differential tests).
 
 pub mod calls;
 pub mod comp;
 pub mod cycles;
 pub mod exprs;
+pub(crate) mod fast_write;
 pub mod frames;
 pub mod gotos;
 pub mod haas_if;

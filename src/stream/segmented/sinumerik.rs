@@ -11,7 +11,7 @@
 //!
 //! Why the output is the whole translation's, byte for byte (pass by pass, see
 //! `lower::to_sinumerik::lower`):
-//! - a straight block (`to_sinumerik::straight`) has no variable, jump, call or structure:
+//! - a straight block (`stream::target::sinumerik::straight`) has no variable, jump, call or structure:
 //!   `vacancy::rewrite`, `gotos`, `structures`, `calls` and `exprs` leave it as it is, and
 //!   the variable plan (`calls::plan_programs`, `vacancy::analyse`, `varmap::build`) sees
 //!   no use of anything in it. The one exception is a program end (M30/M2): the vacancy
@@ -47,7 +47,7 @@
 //! job is (see `subs`); the subprogram files are returned for the caller to write.
 //!
 //! Any diagnostic of the source, or of the skeleton or a block alone other than the
-//! straight stream's [`KEPT_WARNING`](super::KEPT_WARNING) (kept, in file order as the
+//! straight stream's [`KEPT_WARNING`](crate::stream::target::sinumerik::KEPT_WARNING) (kept, in file order as the
 //! words pass gives them), declines, as do several programs (but through
 //! [`to_sinumerik_with_subs`]), `nctrans: set` lines with CR
 //! line ends and N values above 2^24. The source is read once before verification: ONE
@@ -62,18 +62,19 @@
 //! kept out of runs, and a writing scan (`writer`) fills the runs, as it does when more
 //! blocks are declined or a declined line turns out to be no run block.
 
-use super::super::lines::NotStreamable;
-use super::super::nset::{kept, NSet, MAX_TRACKED_N};
-use super::super::segmented::spill::{assemble, Spill};
-use super::super::splice::Splice;
-use super::super::translate::Fallback;
-use super::super::{Index, PlainWord, ProgressFn, WordsSink};
-use super::{fast, first_line_ending, has_bom, plain_g, straight, Planned, Streamed};
+use super::nset::{kept, NSet, MAX_TRACKED_N};
+use super::spill::{assemble, Spill};
+use super::splice::Splice;
+use super::{LoadCallees, MARK};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
+use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::{LineEnding, RawBlock};
 use crate::span::Span;
+use crate::stream::lines::{first_line_ending, has_bom, NotStreamable};
+use crate::stream::target::sinumerik::{plain_g, straight, Planned, Streamed};
+use crate::stream::{Fallback, Index, PlainWord, ProgressFn, WordsSink};
 use crate::translate::to_sinumerik::{self as ts, OutFile};
 use one::One;
 use std::io::Write;
@@ -84,10 +85,8 @@ mod one;
 mod subs;
 mod writer;
 
-pub use subs::{to_sinumerik_with_stand_in, to_sinumerik_with_subs, LoadCallees};
+pub use subs::{to_sinumerik_with_stand_in, to_sinumerik_with_subs};
 
-/// The text of a placeholder comment (`k`: the run's index).
-const MARK: &str = "NCTRANS SEGMENT ";
 /// The arc mode after G code `g10` (×10) as `words::lower` follows it.
 fn arc_after(arc: bool, g10: u32) -> bool {
     match g10 {
@@ -310,7 +309,7 @@ impl WordsSink for Skel {
             return true;
         }
         if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, true)) {
-            self.decline(super::COMP_M6);
+            self.decline(crate::stream::target::sinumerik::COMP_M6);
             return true;
         }
         if prog != 0 {
@@ -333,7 +332,7 @@ impl WordsSink for Skel {
             return;
         }
         if crate::lower::comp_flow::stream_relevant(std::slice::from_ref(s), true, true) {
-            return self.decline(super::COMP_M6);
+            return self.decline(crate::stream::target::sinumerik::COMP_M6);
         }
         if prog != 0 {
             return self.sub_stmt(prog, s);
@@ -527,7 +526,7 @@ fn segment(
     drop(units);
     drop(callees);
     drop(unit);
-    let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
+    let bom = has_bom(path).map_err(|e| Fallback::NotStreamable(e.into()))?;
     // The words pass warns block by block in text order: the skeleton's warnings and the
     // runs' interleave by their place in the file.
     let finish = |index: super::super::Index, mut run_diags: Vec<crate::diag::Diagnostic>| {

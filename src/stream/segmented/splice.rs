@@ -1,8 +1,9 @@
-//! The output cursor of both segmented writers (`segmented::write`, FANUC output, and
-//! `to_sinumerik::segmented::writer`, Sinumerik output): a translated skeleton's text
+//! The output cursor of both segmented writers (`segmented::fanuc::write`, FANUC output,
+//! and `segmented::sinumerik::writer`, Sinumerik output): a translated skeleton's text
 //! written with each placeholder line replaced by its run, whose blocks the writer appends
-//! to [`Splice::buf`] as the writing scan reads them.
+//! to its [`Out`] as the writing scan reads them.
 
+use crate::stream::Out;
 use std::io::Write;
 
 /// What [`Splice::enter`] found.
@@ -25,23 +26,26 @@ pub(crate) struct Splice<'a> {
     /// The next run.
     next: usize,
     in_run: bool,
-    pub(crate) buf: Vec<u8>,
-    out: &'a mut dyn Write,
-    pub(crate) io: Option<std::io::Error>,
+    out: Out<'a>,
+}
+
+/// The writers write a run's blocks to the output as to any other (`Out::buf`).
+impl<'a> std::ops::Deref for Splice<'a> {
+    type Target = Out<'a>;
+    fn deref(&self) -> &Out<'a> {
+        &self.out
+    }
+}
+
+impl<'a> std::ops::DerefMut for Splice<'a> {
+    fn deref_mut(&mut self) -> &mut Out<'a> {
+        &mut self.out
+    }
 }
 
 impl<'a> Splice<'a> {
     pub(crate) fn new(text: &'a str, places: Vec<(usize, usize)>, out: &'a mut dyn Write) -> Splice<'a> {
-        Splice {
-            text,
-            places,
-            pos: 0,
-            next: 0,
-            in_run: false,
-            buf: Vec::with_capacity(super::WRITE_BYTES + 4096),
-            out,
-            io: None,
-        }
+        Splice { text, places, pos: 0, next: 0, in_run: false, out: Out::new(out) }
     }
 
     /// A run block comes: at a run's first, the skeleton up to its placeholder is written.
@@ -64,27 +68,18 @@ impl<'a> Splice<'a> {
 
     fn copy_to(&mut self, to: usize) {
         if let Some(s) = self.text.get(self.pos..to) {
-            self.buf.extend_from_slice(s.as_bytes());
+            self.out.buf.extend_from_slice(s.as_bytes());
         }
         self.pos = to;
     }
 
-    /// Writes the buffer out once it holds a write's worth.
-    #[inline]
-    pub(crate) fn flush_some(&mut self) {
-        if self.buf.len() >= super::WRITE_BYTES {
-            super::spill(self.out, &mut self.buf, &mut self.io);
-        }
-    }
-
     /// Every placeholder met: the rest of the skeleton is written and the output flushed.
     /// `Err` when a run was not met (the caller discards the output) or writing failed.
-    pub(crate) fn finish(mut self) -> Result<(), super::translate::Fallback> {
+    pub(crate) fn finish(mut self) -> Result<(), crate::stream::Fallback> {
         if self.next != self.places.len() {
-            return Err(super::translate::Fallback::Diagnostics);
+            return Err(crate::stream::Fallback::Diagnostics);
         }
         self.copy_to(self.text.len());
-        super::spill(self.out, &mut self.buf, &mut self.io);
-        super::finish_output(self.out, self.io)
+        self.out.finish()
     }
 }

@@ -29,17 +29,11 @@ use crate::ir::{Call, CallKind, CallTarget, ItemKind, Stmt, StmtKind, Unit};
 use crate::lower::to_sinumerik::Options;
 use crate::read::LineEnding;
 use crate::span::FileId;
-use crate::stream::translate::Fallback;
-use crate::stream::ProgressFn;
+use crate::stream::segmented::LoadCallees;
+use crate::stream::{Fallback, ProgressFn};
 use crate::translate::to_sinumerik::OutFile;
 use std::io::Write;
 use std::path::Path;
-
-/// Gives the callee units of a skeleton unit (the main program's macro part with its calls,
-/// then the other programs of the file, whole): the programs in files beside the input the
-/// whole path would load for the whole file (file ids from 1 up, in its order), or `Err` to
-/// decline.
-pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallback>;
 
 /// A call the skeleton keeps: `M98 P<n>`, `G65 P<n> …` or `G66 P<n> …` (not computed).
 pub(super) fn plain_call(c: &Call) -> bool {

@@ -79,26 +79,25 @@
 
 mod one;
 mod skel;
-pub(crate) mod spill;
 mod write;
 
 use super::nset::NSet;
+use super::spill::{assemble, Spill};
 use one::One;
 use skel::{finish, new_skel, skeleton, MAX_N};
-use spill::{assemble, Spill};
 use write::{placeholders, Writer};
 
-use super::lines::NotStreamable;
 use super::splice::Splice;
-use super::translate::{fast, Fallback};
-use super::{Index, ProgressFn};
+use super::{LoadCallees, SourceAlign};
 use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{Expr, ExprKind, ItemKind, Number, Stmt, StmtKind, Unit, WordValue};
+use crate::ir::{ItemKind, StmtKind, Unit};
+use crate::lower::to_fanuc::fast_write as fast;
+use crate::stream::lines::NotStreamable;
+use crate::stream::{Fallback, Index, ProgressFn};
 use crate::translate::{self, TranslateOptions};
-use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -139,11 +138,6 @@ pub fn to_fanuc_with_notes(
     segment(path, opts, out, progress, true, None)
 }
 
-/// Gives the callee units of a skeleton (a unit holding the main program's macro part: every
-/// call it has, as the whole program has them): the subprograms the whole path would load
-/// for the whole program, or `Err` to decline.
-pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallback>;
-
 /// [`to_fanuc_with_notes`] of a program that may call other programs by a constant name
 /// (`L100`, `NAME`, `NAME(…)`; not MCALL): the skeleton keeps the calls, `load` gives the
 /// callees (each loaded as `cli::translate` loads them: file ids from 1 up, the main being
@@ -183,9 +177,15 @@ fn segment(
         starts: Vec::new(),
         ok: true,
     };
-    let ix =
-        super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut one, progress.as_mut().map(|p| &mut **p as _))
-            .map_err(Fallback::NotStreamable)?;
+    let ix = crate::stream::scan_words_path(
+        path,
+        0,
+        Dialect::Sinumerik,
+        &popts,
+        &mut one,
+        progress.as_mut().map(|p| &mut **p as _),
+    )
+    .map_err(Fallback::NotStreamable)?;
     let (mut sk, mut program, ix) = finish(one.sk, ix)?;
     let mut spilled =
         (one.ok && one.spill.io.is_none() && one.starts.len() == sk.runs).then_some((one.spill, one.starts, ix));
@@ -266,7 +266,7 @@ fn segment(
         out: Splice::new(&t.text, places, out),
         bad: false,
     };
-    let mut index = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
+    let mut index = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     index.align = SourceAlign { tools };
     if w.bad || !index.diags.is_empty() {
@@ -311,53 +311,6 @@ fn main_text_end(t: &translate::to_fanuc::Output, eol: &str, from: usize) -> usi
         at = hi;
     }
     t.text.len()
-}
-
-/// `translate::align_source` for a streamed source: what the whole path's verifier changes
-/// in the source before running it, applied to each statement a run re-reads
-/// (`stream::paged`). A string-valued word is in the macro part only (never in a plain line).
-#[derive(Clone, Debug, Default)]
-pub struct SourceAlign {
-    /// Tool name → T number of the tools the translation maps (string-valued words).
-    tools: BTreeMap<String, u32>,
-}
-
-impl SourceAlign {
-    pub fn is_empty(&self) -> bool {
-        self.tools.is_empty()
-    }
-
-    /// Aligns a re-read top-level statement.
-    pub fn stmt(&self, s: &mut Stmt) {
-        match &mut s.kind {
-            StmtKind::Block(b) => {
-                for it in &mut b.items {
-                    if let ItemKind::Word(w) = &mut it.kind {
-                        if let WordValue::Expr(Expr { kind: kind @ ExprKind::Str(_), .. }) = &mut w.value {
-                            let n = match &*kind {
-                                ExprKind::Str(name) => self.tools.get(name).copied(),
-                                _ => None,
-                            };
-                            if let Some(n) = n {
-                                *kind = ExprKind::Num(Number { value: f64::from(n), point: false });
-                            }
-                        }
-                    }
-                }
-            }
-            StmtKind::If(i) => {
-                i.then_body.iter_mut().for_each(|s| self.stmt(s));
-                if let Some(e) = &mut i.else_part {
-                    e.body.iter_mut().for_each(|s| self.stmt(s));
-                }
-            }
-            StmtKind::While(w) => w.body.iter_mut().for_each(|s| self.stmt(s)),
-            StmtKind::Loop(l) => l.body.iter_mut().for_each(|s| self.stmt(s)),
-            StmtKind::For(f) => f.body.iter_mut().for_each(|s| self.stmt(s)),
-            StmtKind::Repeat(r) => r.body.iter_mut().for_each(|s| self.stmt(s)),
-            StmtKind::Do(d) => d.body.iter_mut().for_each(|s| self.stmt(s)),
-        }
-    }
 }
 
 /// Most carrier blocks (run N numbers) a skeleton takes.

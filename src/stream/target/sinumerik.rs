@@ -1,11 +1,11 @@
-//! Streaming translation of straight-line FANUC programs to Sinumerik, and the streamed
-//! check both directions use: the FANUC file is read once. The first [`FIRST_STMTS`]
-//! statements go through the whole translator (it writes the header); after them each plain
-//! block is written straight from its words ([`fast`]: the passes' exact bytes), and the
-//! blocks the fast path declines go, up to [`CHUNK_STMTS`] at a time, through the ordinary
-//! FANUC → Sinumerik passes and writer. Neither the source nor the output is ever held
-//! whole. Verification reads the output back (streamed) and runs both programs streamed
-//! side by side ([`compare`]).
+//! The Sinumerik target of the straight-line stream (`stream::straight`, FANUC source): the
+//! first [`FIRST_STMTS`] statements go through the whole translator (its header handling:
+//! it writes the header); after them each plain block is written straight from its words
+//! (`lower::to_sinumerik::fast_write`: the passes' exact bytes), and the blocks the fast
+//! path declines go, up to [`CHUNK_STMTS`] at a time, through the ordinary FANUC →
+//! Sinumerik passes and writer with the program's plan made once ([`Planned`], which the
+//! segmented stream shares). Neither the source nor the output is ever held whole.
+//! Verification is `stream::verify` (read back, [`compare`](crate::stream::verify::compare)).
 //!
 //! Only programs whose translation is local to each block stream ([`straight`]): one
 //! program (`%`, `O`/`:` head), blocks of plain words with constant values and G codes that
@@ -18,32 +18,25 @@
 //! (`ProgPlan::start_inch`). Anything else (or any error, or a warning other
 //! than a dropped G43/G44/G49) falls back to the whole-file path, which writes the same.
 
-use super::lines::{Lines, NotStreamable};
-use super::translate::digits::Src;
-use super::translate::Fallback;
-use super::WRITE_BYTES;
-use super::{Index, ItemView, PlainWord, ProgressFn};
-use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
+use crate::dialect::digits::Src;
 use crate::dialect::sinumerik::emit::{emit_program, Frame};
 use crate::dialect::{Dialect, ParseOptions};
-use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, Item, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
+use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::{self as passes, Ctx, Options, ProgPlan};
 use crate::read::{LineEnding, RawBlock};
-use crate::span::{FileId, SourceDb, SourceFile, Span};
+use crate::span::{SourceFile, Span};
+use crate::stream::lines::{first_line_ending, has_bom, Lines};
+use crate::stream::straight::{self, Fallback, Target};
+use crate::stream::Out;
+use crate::stream::{Index, ItemView, PlainWord, ProgressFn};
 use crate::translate::to_sinumerik::{self as ts, SymbolMap};
 use std::collections::BTreeMap;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::Path;
-use std::sync::Arc;
-
-mod fast;
-pub mod segmented;
-mod verify;
-pub use verify::{compare, compare_excluding, read_back, ReadBack, StreamSide};
 
 /// Statements translated at a time.
 pub const CHUNK_STMTS: usize = 4096;
@@ -142,7 +135,7 @@ fn straight_block(b: &Block) -> Result<(), String> {
 }
 
 /// A G code whose translation needs nothing but its own block ([`PLAIN_G`]).
-fn plain_g(v: f64) -> bool {
+pub(crate) fn plain_g(v: f64) -> bool {
     let g10 = fast::round(v * 10.0);
     (0.0..=9990.0).contains(&g10) && (g10 - v * 10.0).abs() <= 1e-9 && PLAIN_G_SET.contains(g10 as u32)
 }
@@ -175,7 +168,7 @@ pub struct Streamed {
 /// FANUC reader: the chunks are translated as parts of a program of this name. The full
 /// scan's head is compared with it at the end.
 fn head(path: &Path, popts: &ParseOptions) -> Result<(Option<ProgName>, Option<BlockMeta>), Fallback> {
-    let (input, _) = super::open(path).map_err(Fallback::NotStreamable)?;
+    let (input, _) = crate::stream::open(path).map_err(Fallback::NotStreamable)?;
     let mut lines = Lines::new(input).map_err(Fallback::NotStreamable)?;
     let mut text = String::new();
     for _ in 0..10_000 {
@@ -197,61 +190,17 @@ fn head(path: &Path, popts: &ParseOptions) -> Result<(Option<ProgName>, Option<B
     Ok(parsed.unit.programs.first().map_or((None, None), |p| (p.name.clone(), p.head.clone())))
 }
 
-/// The line ending used first in the file (LF when none), as `read::detect_line_ending`
-/// finds it in the whole text.
-pub fn first_line_ending(path: &Path) -> Result<LineEnding, NotStreamable> {
-    let mut f = std::fs::File::open(path)?;
-    let mut buf = vec![0u8; 64 * 1024];
-    let mut seen = 0usize;
-    let mut cr = false;
-    loop {
-        let n = f.read(&mut buf)?;
-        if n == 0 {
-            return Ok(if cr { LineEnding::Cr } else { LineEnding::Lf });
-        }
-        for &b in &buf[..n] {
-            if cr {
-                return Ok(if b == b'\n' { LineEnding::CrLf } else { LineEnding::Cr });
-            }
-            match b {
-                b'\n' => return Ok(LineEnding::Lf),
-                b'\r' => cr = true,
-                _ => {}
-            }
-        }
-        seen += n;
-        if seen > super::lines::MAX_LINE {
-            return Err(NotStreamable::LongLine { line: 1 });
-        }
-    }
-}
-
-/// Whether the file starts with a UTF-8 byte-order mark (the output then gets one too).
-pub fn has_bom(path: &Path) -> Result<bool, NotStreamable> {
-    let mut f = std::fs::File::open(path)?;
-    let mut b = [0u8; 3];
-    let mut n = 0;
-    while n < 3 {
-        let k = f.read(&mut b[n..])?;
-        if k == 0 {
-            break;
-        }
-        n += k;
-    }
-    Ok(n == 3 && b == *b"\xEF\xBB\xBF")
-}
-
 /// What the passes decide for the whole program before they rewrite its body: for a
 /// straight-line program it does not depend on the blocks (no variables, no calls). With it
 /// a chunk of blocks (or one block) is lowered alone.
-pub(super) struct Planned {
-    pub(super) plan: ProgPlan,
-    pub(super) commons: BTreeMap<u32, u32>,
-    pub(super) common_flags: BTreeMap<u32, u32>,
+pub(crate) struct Planned {
+    pub(crate) plan: ProgPlan,
+    pub(crate) commons: BTreeMap<u32, u32>,
+    pub(crate) common_flags: BTreeMap<u32, u32>,
 }
 
 /// Why [`Planned::lower`] wrote nothing.
-pub(super) enum LoweredAlone {
+pub(crate) enum LoweredAlone {
     /// The passes changed the stand-in G2 (the arc mode would not run into the blocks).
     ArcChanged,
     /// The writer cannot spell the result.
@@ -260,7 +209,7 @@ pub(super) enum LoweredAlone {
 
 impl Planned {
     /// The first of the programs `programs` are lowered with (the main one).
-    pub(super) fn of_first(programs: &[(crate::span::FileId, &Program)], opts: &Options) -> Option<Planned> {
+    pub(crate) fn of_first(programs: &[(crate::span::FileId, &Program)], opts: &Options) -> Option<Planned> {
         let mut l = passes::lower(programs, opts);
         if l.programs.is_empty() {
             return None;
@@ -276,7 +225,7 @@ impl Planned {
     /// `body` through the passes with this plan, after a stand-in G2 when the arc mode `arc`
     /// runs into it (taken out again), starting in the unit `inch` (G20, G21, not known), written without the
     /// frame (no PROC line, header or DEF lines) with LF line ends; and the passes' diagnostics.
-    pub(super) fn lower(
+    pub(crate) fn lower(
         &self,
         opts: &Options,
         mut body: Vec<Stmt>,
@@ -331,7 +280,8 @@ impl Planned {
     }
 }
 
-struct State<'a> {
+/// The Sinumerik target of the straight-line stream (`stream::straight`).
+struct ToSinumerik<'a> {
     opts: &'a Options,
     planned: Option<Planned>,
     eol: LineEnding,
@@ -356,13 +306,10 @@ struct State<'a> {
     first_stmts: usize,
     /// The line ending as bytes, for the fast path.
     eol_bytes: &'static [u8],
-    /// Output not yet handed to `out`.
-    wbuf: Vec<u8>,
     /// One fast-path line being built.
     line: Vec<u8>,
-    out: &'a mut dyn Write,
+    out: Out<'a>,
     stop: Option<Fallback>,
-    io: Option<std::io::Error>,
     diags: Vec<Diagnostic>,
     file_name: String,
     program: String,
@@ -370,7 +317,7 @@ struct State<'a> {
     symbols: SymbolMap,
 }
 
-impl State<'_> {
+impl ToSinumerik<'_> {
     fn program(&self, body: Vec<Stmt>) -> Program {
         Program {
             name: self.name.clone(),
@@ -393,17 +340,10 @@ impl State<'_> {
 
     fn write(&mut self, text: &str) {
         match self.eol {
-            LineEnding::Lf => self.wbuf.extend_from_slice(text.as_bytes()),
-            other => self.wbuf.extend_from_slice(text.replace('\n', other.as_str()).as_bytes()),
+            LineEnding::Lf => self.out.buf.extend_from_slice(text.as_bytes()),
+            other => self.out.buf.extend_from_slice(text.replace('\n', other.as_str()).as_bytes()),
         }
-        if self.wbuf.len() >= WRITE_BYTES {
-            self.spill();
-        }
-    }
-
-    /// Hands the buffered output to `out`.
-    fn spill(&mut self) {
-        super::spill(self.out, &mut self.wbuf, &mut self.io);
+        self.out.flush_some();
     }
 
     /// A block after the first chunk through the fast path: its line is written (after the
@@ -413,15 +353,15 @@ impl State<'_> {
         if !self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty()) {
             return false;
         }
-        if self.buf.is_empty() && self.stop.is_none() && self.io.is_none() {
+        if self.buf.is_empty() && self.stop.is_none() && self.out.io.is_none() {
             // Nothing waits for the passes: the line goes straight into the output buffer.
-            let at = self.wbuf.len();
-            let ok =
-                fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut self.wbuf).is_ok();
+            let at = self.out.buf.len();
+            let ok = fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut self.out.buf)
+                .is_ok();
             if !ok {
-                self.wbuf.truncate(at);
-            } else if self.wbuf.len() >= WRITE_BYTES {
-                self.spill();
+                self.out.buf.truncate(at);
+            } else {
+                self.out.flush_some();
             }
             return ok;
         }
@@ -430,11 +370,9 @@ impl State<'_> {
         let ok = fast::block(meta, items, lit, self.arc, self.inch, self.opts, self.eol_bytes, &mut line).is_ok();
         if ok {
             self.flush();
-            if self.stop.is_none() && self.io.is_none() {
-                self.wbuf.extend_from_slice(&line);
-                if self.wbuf.len() >= WRITE_BYTES {
-                    self.spill();
-                }
+            if self.stop.is_none() && self.out.io.is_none() {
+                self.out.buf.extend_from_slice(&line);
+                self.out.flush_some();
             }
         }
         self.line = line;
@@ -497,7 +435,7 @@ impl State<'_> {
     }
 
     fn flush(&mut self) {
-        if self.buf.is_empty() || self.stop.is_some() || self.io.is_some() {
+        if self.buf.is_empty() || self.stop.is_some() || self.out.io.is_some() {
             return;
         }
         let body = std::mem::take(&mut self.buf);
@@ -531,19 +469,26 @@ impl State<'_> {
             if !w.addr.is(b'G') {
                 continue;
             }
-            match crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
-                Some(20 | 30) => self.arc = true,
-                Some(0 | 10) => self.arc = false,
-                Some(200) => self.inch = Some(true),
-                Some(210) => self.inch = Some(false),
-                _ => {}
+            if let Some(g10) = crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
+                self.follow_g(g10);
             }
         }
         self.skipped_unit(b.meta.skip.is_some(), inch_before);
         self.buf_real |= !b.items.is_empty();
     }
 
-    /// [`State::push`] of the words of a plain line when the fast path takes them; else
+    /// The arc mode and the unit after G code `g10` (×10).
+    fn follow_g(&mut self, g10: u32) {
+        match g10 {
+            20 | 30 => self.arc = true,
+            0 | 10 => self.arc = false,
+            200 => self.inch = Some(true),
+            210 => self.inch = Some(false),
+            _ => {}
+        }
+    }
+
+    /// [`ToSinumerik::push`] of the words of a plain line when the fast path takes them; else
     /// nothing has changed and the caller pushes its statement.
     fn push_plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
         if self.first {
@@ -551,16 +496,8 @@ impl State<'_> {
         }
         let (arc, inch, buf_real) = (self.arc, self.inch, self.buf_real);
         // `follow` of the block the words are.
-        for w in words {
-            if w.letter == b'G' {
-                match fast::round(w.value * 10.0) as u32 {
-                    20 | 30 => self.arc = true,
-                    0 | 10 => self.arc = false,
-                    200 => self.inch = Some(true),
-                    210 => self.inch = Some(false),
-                    _ => {}
-                }
-            }
+        for w in words.iter().filter(|w| w.letter == b'G') {
+            self.follow_g(fast::round(w.value * 10.0) as u32);
         }
         self.skipped_unit(meta.skip.is_some(), inch);
         self.buf_real |= !words.is_empty() || meta.number.is_some() || meta.label.is_some();
@@ -598,72 +535,43 @@ impl State<'_> {
     }
 }
 
-/// The translator as the first scan's sink: plain lines after the first chunk through
-/// the fast path straight from their words, the rest (and what it declines) as statements.
-struct Sink<'s, 'a> {
-    st: &'s mut State<'a>,
-    blocks: u64,
-}
+impl Target for ToSinumerik<'_> {
+    const SOURCE: Dialect = Dialect::Fanuc;
+    const COMP: &'static str = COMP;
 
-impl super::WordsSink for Sink<'_, '_> {
-    fn active(&self) -> bool {
-        self.st.stop.is_none()
+    fn straight(s: &Stmt) -> Result<(), String> {
+        straight(s)
     }
 
-    /// A stopped translation is discarded: the rest of the file need not be read.
-    fn abandon(&self) -> bool {
-        true
+    fn stopped(&self) -> bool {
+        self.stop.is_some()
     }
 
-    fn stmt(&mut self, prog: usize, s: &Stmt) {
-        if self.st.stop.is_some() {
-            return;
-        }
-        if prog != 0 {
-            self.st.stop = Some(Fallback::NotStraight("more than one program".into()));
-            return;
-        }
-        if let Err(why) = straight(s) {
-            self.st.stop = Some(Fallback::NotStraight(why));
-            return;
-        }
-        self.blocks += 1;
-        self.st.push(s);
+    fn stop(&mut self) -> &mut Option<Fallback> {
+        &mut self.stop
     }
 
-    fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        let st = &mut *self.st;
-        if st.stop.is_some() {
-            return true;
-        }
-        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), true, false)) {
-            st.stop = Some(Fallback::NotStraight(COMP.into()));
-            return true;
-        }
-        // The usual CAM line, when nothing waits for the passes (as `State::fast` with an
-        // empty buffer): written at once (`fast::plain_words`, the same bytes as
+    fn stmt(&mut self, s: &Stmt) {
+        self.push(s);
+    }
+
+    fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
+        // The usual CAM line, when nothing waits for the passes (as `ToSinumerik::fast` with
+        // an empty buffer): written at once (`fast::plain_words`, the same bytes as
         // `push_plain`; its G0..G3 are straight).
-        if prog == 0
-            && !st.first
-            && st.buf.is_empty()
-            && st.io.is_none()
-            && st.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty())
-            && fast::plain_words(meta, words, &mut st.arc, st.eol_bytes, &mut st.wbuf)
+        if !self.first
+            && self.buf.is_empty()
+            && self.out.io.is_none()
+            && self.planned.as_ref().is_some_and(|p| p.plan.defs.is_empty() && p.plan.params.is_empty())
+            && fast::plain_words(meta, words, &mut self.arc, self.eol_bytes, &mut self.out.buf)
         {
-            st.buf_real = true;
-            if st.wbuf.len() >= WRITE_BYTES {
-                st.spill();
-            }
-            self.blocks += 1;
+            self.buf_real = true;
+            self.out.flush_some();
             return true;
         }
         // Constant letter words without a label: straight when their G codes are.
         let straight = words.iter().all(|w| w.letter != b'G' || plain_g(w.value));
-        if prog != 0 || !straight || !self.st.push_plain(meta, words, line) {
-            return false;
-        }
-        self.blocks += 1;
-        true
+        straight && self.push_plain(meta, words, line)
     }
 }
 
@@ -693,8 +601,8 @@ pub fn to_sinumerik_first(
 ) -> Result<Streamed, Fallback> {
     let popts = ParseOptions { semantics: opts.source.clone() };
     let (name, head) = head(path, &popts)?;
-    let bom = has_bom(path).map_err(Fallback::NotStreamable)?;
-    let mut st = State {
+    let bom = has_bom(path).map_err(|e| Fallback::NotStreamable(e.into()))?;
+    let mut st = ToSinumerik {
         opts,
         planned: None,
         eol,
@@ -709,11 +617,9 @@ pub fn to_sinumerik_first(
         inch: Some(false),
         first_stmts: first_stmts.max(1),
         eol_bytes: eol.as_str().as_bytes(),
-        wbuf: Vec::with_capacity(WRITE_BYTES + 4096),
         line: Vec::new(),
-        out,
+        out: Out::new(out),
         stop: None,
-        io: None,
         diags: Vec::new(),
         file_name: String::new(),
         program: String::new(),
@@ -721,18 +627,9 @@ pub fn to_sinumerik_first(
         symbols: SymbolMap::default(),
     };
     if bom {
-        st.wbuf.extend_from_slice(b"\xEF\xBB\xBF");
+        st.out.buf.extend_from_slice(b"\xEF\xBB\xBF");
     }
-    let mut sink = Sink { st: &mut st, blocks: 0 };
-    let r = super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut sink, progress);
-    let blocks = sink.blocks;
-    let index = r.map_err(Fallback::NotStreamable)?;
-    if let Some(f) = st.stop.take() {
-        return Err(f);
-    }
-    if !index.diags.is_empty() {
-        return Err(Fallback::Diagnostics);
-    }
+    let (index, blocks) = straight::run(path, &popts, &mut st, progress)?;
     let [p] = index.programs.as_slice() else {
         return Err(Fallback::NotStraight("more than one program".into()));
     };
@@ -755,8 +652,7 @@ pub fn to_sinumerik_first(
     if let Some(f) = st.stop.take() {
         return Err(f);
     }
-    st.spill();
-    super::finish_output(st.out, st.io)?;
+    st.out.finish()?;
     Ok(Streamed {
         index,
         blocks,

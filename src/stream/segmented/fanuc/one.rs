@@ -4,11 +4,11 @@
 //! units the writing scan (`write`) would set at the run's start (`Skel::run_units`).
 
 use super::skel::Skel;
-use super::spill::Spill;
 use crate::ir::{BlockMeta, Stmt};
+use crate::lower::to_fanuc::fast_write as fast;
 use crate::read::RawBlock;
-use crate::stream::nset::kept;
-use crate::stream::translate::fast;
+use crate::stream::segmented::nset::kept;
+use crate::stream::segmented::spill::Spill;
 use crate::stream::{PlainWord, WordsSink};
 
 /// The one scan's sink.

@@ -3,15 +3,16 @@
 //! by the straight stream's fast path or, when it declines, by the passes on the block
 //! alone (with the skeleton's plan and the arc mode running into it).
 
-use super::super::super::splice::{Entered, Splice};
-use super::super::super::translate::digits::Src;
-use super::super::super::{PlainWord, WordsSink};
-use super::super::{fast, Planned, KEPT_WARNING};
 use super::{follow_items, follow_words, Class};
 use crate::diag::Diagnostic;
+use crate::dialect::digits::Src;
 use crate::ir::{BlockMeta, Stmt, StmtKind};
+use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
+use crate::stream::segmented::splice::{Entered, Splice};
+use crate::stream::target::sinumerik::{Planned, KEPT_WARNING};
+use crate::stream::{PlainWord, WordsSink};
 
 /// A diagnostic the straight stream keeps (and reports): the dropped G43/G44/G49 warning.
 pub(super) fn kept_warning(d: &Diagnostic) -> bool {

@@ -10,14 +10,14 @@
 //! block the general way, which gives the diagnostic. The differential tests
 //! (`tests/stream_translate.rs`, the unit tests below) hold the two paths to the same bytes.
 
-pub use super::numwrite::{push_decimal, push_num, push_short, push_skip, push_u64, shortest};
+use crate::dialect::digits::{Form, Lit, Src};
 use crate::dialect::fanuc::emit::{self, CommentMode, KEEP_PREFIX};
+use crate::dialect::numwrite::{push_num, push_skip, push_u64};
+use crate::dialect::plain::{ItemView, PlainWord, View};
 use crate::ir::{BlockMeta, EndCode, Stmt, StmtKind};
 use crate::lower::to_fanuc::words::units::{FeedConv, Units};
 use crate::lower::to_fanuc::words::SAME_G;
 use crate::read::RawBlock;
-use crate::stream::translate::digits::{Form, Lit, Src};
-use crate::stream::{ItemView, PlainWord, View};
 
 /// Highest block number FANUC keeps (`lower::to_fanuc::labels` drops the others).
 const MAX_N: u32 = 99999;

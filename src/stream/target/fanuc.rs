@@ -1,10 +1,11 @@
-//! Streaming translation of straight-line Sinumerik programs to FANUC: the source is read
-//! once and each block is written as it comes ([`fast`]: the exact text the whole-program
-//! translator writes for it; a block that translator has something to say on goes through
-//! `translate::to_fanuc` alone), so neither the source nor the output is ever held whole.
-//! The only state carried from block to block is the length and feed units (F converted
-//! where they differ, `lower::to_fanuc::words::units`). Verification then parses the output back (streamed) and runs both programs
-//! streamed side by side, comparing their traces as they are produced.
+//! The FANUC target of the straight-line stream (`stream::straight`, Sinumerik source):
+//! each block is written as it comes (`lower::to_fanuc::fast_write`: the exact text the
+//! whole-program translator writes for it; a block that translator has something to say on
+//! goes through `translate::to_fanuc` alone), so neither the source nor the output is ever
+//! held whole. Its header is what the translator writes for an empty program of the name on
+//! the `%_N_` line. The only state carried from block to block is the length and feed units
+//! (F converted where they differ, `lower::to_fanuc::words::units`). Verification is
+//! `stream::verify::verify`.
 //!
 //! Only programs whose translation is local to each block stream: every block holds plain
 //! words with constant values (G1 X.. Y.. F..), program ends (M30, M2), comments, block
@@ -13,39 +14,23 @@
 //! structure lowering, the variable map written in the header) and is translated whole by
 //! the caller.
 
-use super::lines::NotStreamable;
-use super::to_sinumerik::ReadBack;
-use super::WRITE_BYTES;
-use super::{Index, PlainWord, ProgressFn};
-use crate::check::{self, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::dialect::{Dialect, ParseOptions};
-use crate::eval::{DirCallees, NoCallees, RunOptions};
 use crate::ir::{
     Addr, Block, BlockMeta, ExprKind, ItemKind, ProgName, Program, Stmt, StmtKind, UnOp, Unit, Word, WordValue,
 };
+use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
-use crate::span::{SourceDb, Span};
+use crate::span::Span;
+use crate::stream::lines::NotStreamable;
+use crate::stream::straight::{self, Fallback, Target};
+use crate::stream::Out;
+use crate::stream::{Index, PlainWord, ProgressFn};
 use crate::translate::{self, TranslateOptions};
 use std::io::Write;
 use std::path::Path;
-use std::sync::Arc;
-
-pub(super) mod digits;
-pub(super) mod fast;
-pub(super) mod numwrite;
-
-/// Why a file is not translated as a stream (the caller translates it whole).
-#[derive(Debug)]
-pub enum Fallback {
-    NotStreamable(NotStreamable),
-    /// Not a straight-line program (the first block that is not, as a reason).
-    NotStraight(String),
-    /// The source has diagnostics (rendered by the whole-file path).
-    Diagnostics,
-}
 
 /// A finished streamed translation.
 pub struct Streamed {
@@ -119,23 +104,21 @@ fn straight_block(b: &Block) -> Result<(), String> {
     Ok(())
 }
 
-struct State<'a> {
+/// The FANUC target of the straight-line stream (`stream::straight`).
+struct ToFanuc<'a> {
     opts: &'a TranslateOptions,
     eo: EmitOptions,
     name: Option<String>,
     fast: fast::Fast,
-    /// Output not yet written to `out`.
-    buf: Vec<u8>,
     /// Statements the translator puts before a program's body (its header comments).
     header_len: usize,
-    out: &'a mut dyn Write,
+    out: Out<'a>,
     stop: Option<Fallback>,
-    io: Option<std::io::Error>,
     diags: Vec<Diagnostic>,
     unsupported: usize,
 }
 
-impl State<'_> {
+impl ToFanuc<'_> {
     fn unit(&self, body: Vec<Stmt>) -> Unit {
         let program = Program {
             name: self.name.clone().map(ProgName::Name),
@@ -148,17 +131,38 @@ impl State<'_> {
         Unit { dialect: Dialect::Sinumerik, file: self.eo.file, programs: vec![program] }
     }
 
+    /// Whether the output will be discarded (the caller translates whole): only the
+    /// straight-line check still matters.
+    fn discarded(&self) -> bool {
+        self.out.io.is_some() || !self.diags.is_empty() || self.unsupported > 0
+    }
+}
+
+impl Target for ToFanuc<'_> {
+    const SOURCE: Dialect = Dialect::Sinumerik;
+    const COMP: &'static str = COMP;
+
+    fn straight(s: &Stmt) -> Result<(), String> {
+        straight(s)
+    }
+
+    fn stopped(&self) -> bool {
+        self.stop.is_some()
+    }
+
+    fn stop(&mut self) -> &mut Option<Fallback> {
+        &mut self.stop
+    }
+
     /// Translates one straight block: the fast path, else (when the translator has
     /// something to say on it) the whole-program translator on the block alone, in the
     /// units the blocks before it left.
-    fn block(&mut self, s: &Stmt) {
-        if self.io.is_some() || !self.diags.is_empty() || self.unsupported > 0 {
-            // The output will be discarded (the caller translates whole); only the
-            // straight-line check still matters.
+    fn stmt(&mut self, s: &Stmt) {
+        if self.discarded() {
             return;
         }
         let units = self.fast.units;
-        if self.fast.block(s, &mut self.buf).is_err() {
+        if self.fast.block(s, &mut self.out.buf).is_err() {
             let mut body = Vec::with_capacity(2);
             let set = units_block(units);
             let set_units = set.is_some();
@@ -171,79 +175,34 @@ impl State<'_> {
             let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
             let e = emit::emit_body(body, &self.eo);
             self.diags.extend(e.diags);
-            self.buf.extend_from_slice(e.text.as_bytes());
+            self.out.buf.extend_from_slice(e.text.as_bytes());
         }
-        if self.buf.len() >= WRITE_BYTES {
-            self.write();
-        }
+        self.out.flush_some();
     }
 
-    fn write(&mut self) {
-        super::spill(self.out, &mut self.buf, &mut self.io);
-    }
-}
-
-/// The translator as the first scan's sink: plain lines through the fast path straight
-/// from their words, the rest (and what the fast path declines) as statements.
-struct Sink<'s, 'a> {
-    st: &'s mut State<'a>,
-    blocks: u64,
-}
-
-impl super::WordsSink for Sink<'_, '_> {
-    fn active(&self) -> bool {
-        self.st.stop.is_none()
-    }
-
-    /// A stopped translation is discarded: the rest of the file need not be read.
-    fn abandon(&self) -> bool {
-        true
-    }
-
-    fn stmt(&mut self, _: usize, s: &Stmt) {
-        if self.st.stop.is_some() {
-            return;
-        }
-        if let Err(why) = straight(s) {
-            self.st.stop = Some(Fallback::NotStraight(why));
-            return;
-        }
-        self.blocks += 1;
-        self.st.block(s);
-    }
-
-    /// [`Sink::stmt`] of the block when the fast path takes it; else nothing has changed
-    /// (the units are set back) and the statement is asked for.
-    fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        let st = &mut *self.st;
-        if st.stop.is_some() {
+    /// [`Target::stmt`] of the block when the fast path takes it; else nothing has changed
+    /// (the units are set back) and the statement is asked for. A plain block is straight
+    /// (constant letter words, no label): not checked again.
+    fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
+        if self.discarded() {
             return true;
         }
-        if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
-            st.stop = Some(Fallback::NotStraight(COMP.into()));
-            return true;
+        let units = self.fast.units;
+        // The usual CAM line in one loop (it changes no mode), else the words one by one.
+        if !self.fast.plain_words(meta, words, &mut self.out.buf)
+            && self.fast.words(meta, words, line, &mut self.out.buf).is_err()
+        {
+            self.fast.units = units;
+            return false;
         }
-        // A plain block is straight (constant letter words, no label): not checked again.
-        if st.io.is_none() && st.diags.is_empty() && st.unsupported == 0 {
-            let units = st.fast.units;
-            // The usual CAM line in one loop (it changes no mode), else the words one by one.
-            if !st.fast.plain_words(meta, words, &mut st.buf) && st.fast.words(meta, words, line, &mut st.buf).is_err()
-            {
-                st.fast.units = units;
-                return false;
-            }
-            if st.buf.len() >= WRITE_BYTES {
-                st.write();
-            }
-        }
-        self.blocks += 1;
+        self.out.flush_some();
         true
     }
 }
 
 /// A block setting `units` for a block translated on its own (its translation is one block
 /// the caller skips); `None` for the units a program starts in.
-pub(super) fn units_block(units: Units) -> Option<Stmt> {
+pub(crate) fn units_block(units: Units) -> Option<Stmt> {
     if units == Units::default() {
         return None;
     }
@@ -276,16 +235,14 @@ pub fn to_fanuc(
     let name = first_header(path).map_err(Fallback::NotStreamable)?;
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 };
     let eol = opts.line_ending.as_str();
-    let mut st = State {
+    let mut st = ToFanuc {
         opts,
         eo,
         name,
         fast: fast::Fast::new(opts.comments, eol),
-        buf: Vec::with_capacity(WRITE_BYTES + 4096),
         header_len: 0,
-        out,
+        out: Out::new(out),
         stop: None,
-        io: None,
         diags: Vec::new(),
         unsupported: 0,
     };
@@ -296,16 +253,10 @@ pub fn to_fanuc(
     st.unsupported += head.unsupported;
     st.diags.extend(head.diags);
     let closing = format!("%{eol}");
-    st.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
+    st.out.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let mut sink = Sink { st: &mut st, blocks: 0 };
-    let r = super::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sink, progress);
-    let blocks = sink.blocks;
-    let index = r.map_err(Fallback::NotStreamable)?;
-    if let Some(f) = st.stop.take() {
-        return Err(f);
-    }
-    if !index.diags.is_empty() || !st.diags.is_empty() || st.unsupported > 0 {
+    let (index, blocks) = straight::run(path, &popts, &mut st, progress)?;
+    if !st.diags.is_empty() || st.unsupported > 0 {
         return Err(Fallback::Diagnostics);
     }
     // The name was taken from the `%_N_` line before reading; a PROC may rename the program.
@@ -316,16 +267,15 @@ pub fn to_fanuc(
     if index.programs.first().is_some_and(|p| !p.program.params.is_empty()) || read_name != st.name {
         return Err(Fallback::NotStraight("a PROC".into()));
     }
-    st.buf.extend_from_slice(closing.as_bytes());
-    st.write();
-    super::finish_output(st.out, st.io)?;
+    st.out.buf.extend_from_slice(closing.as_bytes());
+    st.out.finish()?;
     Ok(Streamed { index, blocks, diags: st.diags, unsupported: st.unsupported })
 }
 
 /// The program name of a `%_N_NAME_MPF` first line.
 fn first_header(path: &Path) -> Result<Option<String>, NotStreamable> {
-    let (input, _) = super::open(path)?;
-    let mut l = super::lines::Lines::new(input)?;
+    let (input, _) = crate::stream::open(path)?;
+    let mut l = crate::stream::lines::Lines::new(input)?;
     while let Some(x) = l.next_line()? {
         let t = x.text.trim_start_matches([' ', '\t']);
         if t.is_empty() {
@@ -334,64 +284,4 @@ fn first_header(path: &Path) -> Result<Option<String>, NotStreamable> {
         return Ok(if t.starts_with('%') { crate::dialect::sinumerik::header_name(t.trim_end()) } else { None });
     }
     Ok(None)
-}
-
-/// The outcome of verifying a streamed translation.
-pub struct Verified {
-    pub equivalent: bool,
-    pub summary: String,
-    /// Diagnostics of the output's parse or of the check (files: 0 source, 1 output).
-    pub diags: Vec<Diagnostic>,
-    pub diff: String,
-    /// The files the runs loaded after the two (the callees, with their text: ids from 2
-    /// up), for rendering `diags` as the whole path renders them.
-    pub callees: Vec<(String, String)>,
-}
-
-/// Verifies a streamed translation: the output is read back as FANUC (streamed), then both
-/// programs run streamed on two threads and their traces are compared as they come. `inputs`
-/// are set on the output's side before it runs: for a segmented translation the R
-/// parameters its symbol map maps start at 0, as `translate::verify` sets them (a
-/// straight-line translation has none).
-pub fn verify(
-    source: Index,
-    output: &Path,
-    max_steps: u64,
-    inputs: Vec<crate::eval::Input>,
-    progress: Option<ProgressFn<'_>>,
-) -> Verified {
-    let popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
-        equivalent: false,
-        summary: format!("not verified: {summary}"),
-        diags,
-        diff: String::new(),
-        callees: Vec::new(),
-    };
-    let out_ix = match super::to_sinumerik::read_back(output, 1, Dialect::Fanuc, &popts, progress) {
-        Ok(ix) => ix,
-        Err(ReadBack::Unreadable(e)) => return not_verified(format!("the output cannot be read back ({e})"), vec![]),
-        Err(ReadBack::Diags(d)) => {
-            return not_verified("the output does not parse as FANUC (a bug in nctrans)".into(), d);
-        }
-    };
-    let mut db = SourceDb::new();
-    db.add(source.path.display().to_string(), String::new());
-    db.add(output.display().to_string(), String::new());
-    let run = RunOptions { max_steps, ..RunOptions::default() };
-    let out_run = RunOptions { inputs, ..run.clone() };
-    let a = super::runner(Arc::new(source), Box::new(DirCallees { semantics: None }), run);
-    let b = super::runner(Arc::new(out_ix), Box::new(NoCallees), out_run);
-    let report = check::check_runners_excluding(&db, a, b, crate::translate::EXCLUDE);
-    let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-        Verdict::Diverged { index } => {
-            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
-        }
-        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-    };
-    let callees =
-        (2..report.db.len()).map(|id| (report.db.get(id).name.clone(), report.db.get(id).text.clone())).collect();
-    Verified { equivalent, summary, diags: report.diags, diff: report.diff, callees }
 }

@@ -17,9 +17,9 @@
 //! (`tests/stream_translate_fast.rs`, `tests/stream_to_sinumerik_fast.rs`, the unit tests
 //! below) hold both to the general writers' bytes.
 
+use crate::dialect::sinumerik::scan_words::Canon;
 use crate::read::RawBlock;
 use crate::span::Span;
-use crate::stream::Canon;
 
 /// A literal `[+-]digits[.digits]` (at least one digit, at most 15) as offsets into its
 /// bytes `b` (the word without its letter).
@@ -321,7 +321,7 @@ impl<'t> Src<'t> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stream::translate::fast::push_num;
+    use crate::dialect::numwrite::push_num;
     use crate::test_rng::Rng;
 
     /// Literals as CAM systems and people write them: 1..15 digits, 0..8 decimals,

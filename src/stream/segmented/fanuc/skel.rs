@@ -9,14 +9,12 @@ use crate::ir::{
 use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::span::Span;
-use crate::stream::nset::{kept, NSet, MAX_TRACKED_N};
-use crate::stream::translate::{run_block, Fallback};
-use crate::stream::{Index, PlainWord, WordsSink};
+use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
+use crate::stream::target::fanuc::run_block;
+use crate::stream::{Fallback, Index, PlainWord, WordsSink};
 use std::path::Path;
 
-/// The text of a placeholder comment (`k`: the run's index); no source comment of the
-/// skeleton may hold it (checked on the translated skeleton).
-pub(super) const MARK: &str = "NCTRANS SEGMENT ";
+pub(super) use crate::stream::segmented::MARK;
 /// The labels pass's highest N number.
 pub(super) const MAX_N: u32 = 99999;
 
@@ -249,7 +247,7 @@ impl WordsSink for Skel {
             return true;
         }
         if words.iter().any(|w| crate::lower::comp_flow::stream_relevant_word(w.letter, Some(w.value), false, true)) {
-            self.decline(crate::stream::translate::COMP);
+            self.decline(crate::stream::target::fanuc::COMP);
             return true;
         }
         if prog != 0 {
@@ -269,7 +267,7 @@ impl WordsSink for Skel {
             return;
         }
         if crate::lower::comp_flow::stream_relevant(std::slice::from_ref(s), false, true) {
-            return self.decline(crate::stream::translate::COMP);
+            return self.decline(crate::stream::target::fanuc::COMP);
         }
         if prog != 0 {
             return self.decline("more than one program");

@@ -4,11 +4,12 @@
 use super::skel::MARK;
 use crate::dialect::fanuc::emit::{self, EmitOptions};
 use crate::ir::{BlockMeta, Stmt, StmtKind, Unit};
+use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
-use crate::stream::nset::{kept, NSet};
-use crate::stream::splice::{Entered, Splice};
-use crate::stream::translate::{fast, run_block, units_block};
+use crate::stream::segmented::nset::{kept, NSet};
+use crate::stream::segmented::splice::{Entered, Splice};
+use crate::stream::target::fanuc::{run_block, units_block};
 use crate::stream::{PlainWord, WordsSink};
 use crate::translate::{self, TranslateOptions};
 
@@ -94,7 +95,7 @@ impl Writer<'_> {
     }
 
     /// A straight block of a run the fast path declined: translated alone (as
-    /// `stream::translate` does), after a block setting `units` when they are not the
+    /// `stream::target::fanuc` does), after a block setting `units` when they are not the
     /// program's start units.
     fn alone(&mut self, s: &Stmt, units: Units) {
         let mut u = self.lone.clone();

@@ -3,14 +3,14 @@
 //! translation depends on the arc mode only, which the skeleton scan follows in textual
 //! order: at a run's start it is the mode the writing scan (`writer`) would start it in.
 
-use super::super::super::segmented::spill::Spill;
-use super::super::super::translate::digits::Src;
-use super::super::super::{PlainWord, WordsSink};
-use super::super::fast;
 use super::{follow_words, Skel};
+use crate::dialect::digits::Src;
 use crate::ir::{BlockMeta, Stmt, StmtKind};
+use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
+use crate::stream::segmented::spill::Spill;
+use crate::stream::{PlainWord, WordsSink};
 
 /// The one scan's sink.
 pub(super) struct One<'a> {

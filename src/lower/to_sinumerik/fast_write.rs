@@ -13,12 +13,12 @@
 //! the caller keeps. `tests/stream_to_sinumerik_fast.rs` holds the two paths to the
 //! same bytes.
 
+use crate::dialect::digits::{Form, Src};
+use crate::dialect::numwrite::{push_decimal, push_short, push_skip, push_u64, shortest};
+use crate::dialect::plain::{ItemView, PlainWord, View};
 use crate::ir::{BlockMeta, EndCode};
 use crate::lower::to_sinumerik::words::{rotary_letter, scale, scaled_letter};
 use crate::lower::to_sinumerik::Options;
-use crate::stream::translate::digits::{Form, Src};
-use crate::stream::translate::fast::{push_decimal, push_short, push_skip, push_u64, shortest};
-use crate::stream::{ItemView, PlainWord, View};
 
 /// The block needs the general passes.
 #[derive(Debug, PartialEq, Eq)]
