@@ -560,6 +560,16 @@ impl<'a> Interp<'a> {
                         .note("RET with a jump target resumes at a label or block of a calling program, levels up")
                         .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
                 )),
+                // Feed-forward control: a look-ahead setting (machine/lookahead.rs).
+                "FFWON" | "FFWOF" => {
+                    let what = if name == "FFWON" { "on" } else { "off" };
+                    self.warn(
+                        super::machine::lookahead::NOT_COMPARED,
+                        format!("{name} (feed-forward control {what}) changes how the control plans feed and corners, not the programmed positions: not compared"),
+                        item.span,
+                    );
+                    Ok(())
+                }
                 _ => {
                     self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
                     Ok(())

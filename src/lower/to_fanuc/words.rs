@@ -379,6 +379,9 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 "program-section repetition (REPEAT label P=n)",
                 "rewrite the section as a FOR loop",
             )),
+            ItemKind::Instruction { name } if (name == "FFWON" || name == "FFWOF") && !ctx.haas => {
+                before.extend(super::lookahead::feed_forward(ctx, name == "FFWON", span))
+            }
             ItemKind::Instruction { name } if DYNAMICS_ONLY.contains(&name.as_str()) => ctx.note(
                 "NC323",
                 span,
@@ -628,6 +631,12 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
             &format!("modal call MCALL {name}"),
             "call the subprogram after each move",
         );
+    }
+    if name == "CYCLE832" {
+        return match super::lookahead::cycle832(ctx, &c, span) {
+            Ok(s) => Some(s),
+            Err(mark) => mark,
+        };
     }
     if SIMULATION_ONLY.contains(&name.as_str()) {
         ctx.note(

@@ -1,0 +1,112 @@
+//! Forms of real libraries, third part (issue 21): look-ahead and high-speed modes (FANUC
+//! `G05.1 Q1/Q0`, `G05 P10000/P0`, `G08 P1/P0`, Haas `G187`, `G103`; Siemens `FFWON`/`FFWOF`,
+//! `CYCLE832`) run without an event, translate both ways, and every verdict says how many
+//! were not compared; values the controls do not document are refused (NC561–NC563).
+
+#[path = "support/cli_run.rs"]
+mod cli_run;
+
+use cli_run::{nctrans, workdir};
+use std::path::PathBuf;
+
+fn write(name: &str, files: &[(&str, &str)]) -> PathBuf {
+    let d = workdir("breadth3", name);
+    for (f, t) in files {
+        std::fs::write(d.join(f), t).unwrap();
+    }
+    d
+}
+
+const HAAS: &str = "[fanuc]\nseries = \"haas\"\n";
+
+#[test]
+fn fanuc_look_ahead_modes_become_feed_forward_and_are_not_compared() {
+    let prog = "O1000\nG05.1 Q1\nG08 P1\nG05 P10000\nG01 X10. F100.\nN20 G05.1 Q0\nG08 P0\nG05 P0\nM30\n";
+    let d = write("fanuc-modes", &[("a.nc", prog)]);
+    let (out, err, code) = nctrans(&d, &["run", "a.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("X=10"), "{out}");
+    assert_eq!(err.matches("warning[NC560]").count(), 6, "{err}");
+    assert!(
+        err.contains("G05.1 Q1 (AI contour control on)") && err.contains("G08 P0 (advanced preview control off)"),
+        "{err}"
+    );
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "a.nc", "-o", "out/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("; 6 look-ahead settings not compared)"), "{err}");
+    let mpf = std::fs::read_to_string(d.join("out/P_A.MPF")).unwrap();
+    assert_eq!(mpf.matches("FFWON").count(), 3, "{mpf}");
+    assert!(mpf.contains("N20 FFWOF") && mpf.matches("FFWOF").count() == 3, "{mpf}");
+}
+
+#[test]
+fn undocumented_values_and_mixed_blocks_are_refused() {
+    let d = write("fanuc-bad", &[("q2.nc", "O1\nG05.1 Q2\nM30\n"), ("mix.nc", "O2\nG05.1 Q1 G01 X5. F100.\nM30\n")]);
+    let (_, err, code) = nctrans(&d, &["run", "q2.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC561") && err.contains("G05.1 Q2 is not modelled"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "mix.nc", "-o", "out/"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC562") && err.contains("with other words in its block"), "{err}");
+    let d = write("sie-bad", &[("A.MPF", "CYCLE832(0.1,9)\nM30\n"), ("B.MPF", "R1=1\nCYCLE832(0.1,R1)\nM30\n")]);
+    let (_, err, code) = nctrans(&d, &["run", "A.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC561") && err.contains("machining type 9"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "B.MPF", "-o", "b.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC563") && err.contains("computed tolerance or machining type"), "{err}");
+}
+
+#[test]
+fn haas_smoothness_becomes_cycle832_and_back() {
+    let prog = "O1000\nG187 P1 E0.05\nG103 P0\nG01 X10. F100.\nG187 P3 E0.01\nG187\nM30\n";
+    let d = write("haas", &[("h.nc", prog), ("nctrans.toml", HAAS)]);
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "h.nc", "-o", "out/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("NC562") && err.contains("G103 P0 (Haas look-ahead limit off) dropped"), "{err}");
+    assert!(err.contains("; 4 look-ahead settings not compared)"), "{err}");
+    let mpf = std::fs::read_to_string(d.join("out/P_H.MPF")).unwrap();
+    assert!(mpf.contains("CYCLE832(0.05,3,1)") && mpf.contains("CYCLE832(0.01,1,1)"), "{mpf}");
+    assert!(mpf.contains("CYCLE832(0,0,1)") && !mpf.contains("G103"), "{mpf}");
+    // Back to Haas: roughing is P1, finishing P3, deselection a bare G187.
+    std::fs::copy(d.join("out/P_H.MPF"), d.join("BACK.MPF")).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "BACK.MPF", "-o", "back.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("; 3 look-ahead settings not compared)"), "{err}");
+    let nc = std::fs::read_to_string(d.join("back.nc")).unwrap();
+    assert!(nc.contains("G187 P1 E0.05") && nc.contains("G187 P3 E0.01") && nc.contains("\nG187\n"), "{nc}");
+    // A look-ahead limit of n blocks has no Sinumerik counterpart.
+    std::fs::write(d.join("l.nc"), "O1001\nG103 P5\nG01 X1. F100.\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "l.nc", "-o", "out2/"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC562") && err.contains("G103 P5 (Haas look-ahead limit of 5 blocks)"), "{err}");
+    // E without P: the smoothness is Setting 191, not in the program.
+    std::fs::write(d.join("e.nc"), "O1002\nG187 E0.01\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "e.nc", "-o", "out3/"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC562") && err.contains("Setting 191"), "{err}");
+}
+
+#[test]
+fn siemens_high_speed_settings_become_aicc_for_fanuc() {
+    let prog = "FFWON\nCYCLE832(0.01,_FINISH,1)\nG1 X10 F100\nCYCLE832(0,_OFF,1)\nFFWOF\nM30\n";
+    let d = write("sie", &[("HSC.MPF", prog)]);
+    let (_, err, code) = nctrans(&d, &["run", "HSC.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("CYCLE832(0.01, 1) (high-speed settings: finishing)"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "HSC.MPF", "-o", "h.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("; 4 look-ahead settings not compared)"), "{err}");
+    assert!(err.contains("NC563") && err.contains("CYCLE832 becomes G05.1 Q1"), "{err}");
+    let nc = std::fs::read_to_string(d.join("h.nc")).unwrap();
+    // Q is a mode number: no decimal point.
+    assert_eq!(nc.matches("G05.1 Q1\n").count(), 2, "{nc}");
+    assert_eq!(nc.matches("G05.1 Q0\n").count(), 2, "{nc}");
+    // Haas has no feed-forward switch: FFWON is dropped with a note there.
+    std::fs::write(d.join("nctrans.toml"), HAAS).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "HSC.MPF", "-o", "hh.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("NC323") && err.contains("FFWON dropped"), "{err}");
+    let nc = std::fs::read_to_string(d.join("hh.nc")).unwrap();
+    assert!(nc.contains("G187 P3 E0.01") && !nc.contains("G05.1"), "{nc}");
+}
