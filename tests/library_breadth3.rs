@@ -110,3 +110,46 @@ fn siemens_high_speed_settings_become_aicc_for_fanuc() {
     let nc = std::fs::read_to_string(d.join("hh.nc")).unwrap();
     assert!(nc.contains("G187 P3 E0.01") && !nc.contains("G05.1"), "{nc}");
 }
+
+#[test]
+fn a_bracketed_program_number_is_that_program() {
+    let prog = "O1000\nM98 P [ 10 ]\nG65 P[20] A1.\nM30\nO10\nG01 X1. F100.\nM99\nO20\nG01 X#1\nM99\n";
+    let d = write("pconst", &[("c.nc", prog), ("d.nc", "O1000\n#1=10\nM98 P#1\nM30\nO10\nG01 X1. F100.\nM99\n")]);
+    let (out, err, code) = nctrans(&d, &["parse", "c.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!out.contains("Computed"), "{out}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "c.nc", "-o", "out/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    let mpf = std::fs::read_to_string(d.join("out/P_C.MPF")).unwrap();
+    assert!(mpf.contains("O_0010\n") && mpf.contains("O_0020(1"), "{mpf}");
+    // A number computed at run time stays refused, naming why.
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "d.nc", "-o", "out2/"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC356") && err.contains("computed program number"), "{err}");
+}
+
+#[test]
+fn haas_settings_and_parameters_are_the_machine_inputs() {
+    let prog = "O1000\n#1=#20009\n#2=#30057\nG01 X#1 Y#2 F100.\nM30\n";
+    let d = write("haasdata", &[("s.nc", prog), ("w.nc", "O1001\n#20009=1.\nM30\n"), ("nctrans.toml", HAAS)]);
+    let (_, err, code) = nctrans(&d, &["run", "s.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC564") && err.contains("#20009 is Haas Setting 9"), "{err}");
+    let (out, err, code) = nctrans(&d, &["run", "s.nc", "--set", "#20009=1", "--set", "#30057=4"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("X=1 Y=4"), "{out}");
+    let (_, err, code) = nctrans(&d, &["run", "w.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC564") && err.contains("read-only"), "{err}");
+    // Header inputs give the run its values; the translation is refused naming the setting.
+    std::fs::write(d.join("h.nc"), format!("%\n(nctrans: set #20009=1. #30057=4.)\n{prog}%\n")).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "h.nc", "-o", "out/"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC564") && err.contains("Haas parameter 57, the machine's own data"), "{err}");
+    // Without the Haas profile they are plain unmodelled system variables.
+    std::fs::remove_file(d.join("nctrans.toml")).unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "s.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC400"), "{err}");
+}
