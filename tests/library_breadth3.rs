@@ -153,3 +153,30 @@ fn haas_settings_and_parameters_are_the_machine_inputs() {
     assert_ne!(code, 0);
     assert!(err.contains("NC400"), "{err}");
 }
+
+#[test]
+fn siemens_queries_are_read_and_refused_naming_why() {
+    let cases = [
+        ("SP.MPF", "DEF STRING[40] TXT\nTXT=SPRINT(\"X=%F\",R1)\nM30\n", "NC565", "SPRINT", "NC506"),
+        ("IV.MPF", "IF ISVAR(\"R1\")\nG1 X1 F10\nENDIF\nM30\n", "NC565", "ISVAR", "NC506"),
+        ("IF.MPF", "IF ISFILE(\"/_N_WKS_DIR/A_MPF\")\nM0\nENDIF\nM30\n", "NC565", "file system", "NC506"),
+        ("GS.MPF", "DEF INT _LIST[5]\nR1=GETSELT(_LIST,1)\nM30\n", "NC508", "GETSELT", "NC508"),
+    ];
+    for (file, text, run_code, what, fanuc_code) in cases {
+        let d = write(&format!("query-{file}"), &[(file, text)]);
+        let (out, err, code) = nctrans(&d, &["parse", file]);
+        assert_eq!(code, 0, "{file}: {err}");
+        assert!(out.contains(&what.to_ascii_lowercase()) || out.contains("getselt") || out.contains("isfile"), "{out}");
+        let (_, err, code) = nctrans(&d, &["run", file]);
+        assert_ne!(code, 0);
+        assert!(err.contains(run_code) && err.contains(what), "{file}: {err}");
+        let (_, err, code) = nctrans(&d, &["--to", "fanuc", file, "-o", "o.nc"]);
+        assert_ne!(code, 0);
+        assert!(err.contains(fanuc_code), "{file}: {err}");
+    }
+    // The documented STRING limit is 200 characters.
+    let d = write("string255", &[("S.MPF", "DEF STRING[255] TXT\nM30\n")]);
+    let (_, err, code) = nctrans(&d, &["parse", "S.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC134") && err.contains("at most 200 characters"), "{err}");
+}
