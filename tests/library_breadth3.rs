@@ -198,3 +198,15 @@ fn interrupt_instructions_are_read_whole_and_refused_for_fanuc() {
     assert_eq!(err.matches("error[NC566]").count(), 4, "{err}");
     assert!(err.contains("M96"), "{err}");
 }
+
+#[test]
+fn a_batch_reports_the_look_ahead_settings_it_did_not_compare() {
+    let d = write("batch", &[("HSC.MPF", "FFWON\nG1 X10 F100\nFFWOF\nM30\n")]);
+    std::fs::create_dir_all(d.join("in")).unwrap();
+    std::fs::rename(d.join("HSC.MPF"), d.join("in/HSC.MPF")).unwrap();
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "-o", "out/", "in/", "--report", "r.json"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let json = std::fs::read_to_string(d.join("r.json")).unwrap();
+    assert!(json.contains("\"not_compared\": {\"messages\": 0, \"look_ahead\": 2}"), "{json}");
+    assert!(format!("{out}{err}").contains("2 look-ahead settings not compared"), "{out}{err}");
+}
