@@ -210,3 +210,24 @@ fn a_batch_reports_the_look_ahead_settings_it_did_not_compare() {
     assert!(json.contains("\"not_compared\": {\"messages\": 0, \"look_ahead\": 2}"), "{json}");
     assert!(format!("{out}{err}").contains("2 look-ahead settings not compared"), "{out}{err}");
 }
+
+#[test]
+fn a_computed_spindle_speed_is_rounded_as_fanuc_rounds_it() {
+    // From a tapping template: S from the cutting speed, 10 m/min on a 16 mm tap.
+    let prog = "O1000\n#2=10.\n#5=16.\n#10=[[#2*1000.]/3.14159]/#5\nS#10 M03\nG01 X1. F100.\nS1000.6\nM05\nM30\n";
+    let d = write("speed", &[("s.nc", prog)]);
+    let (out, err, code) = nctrans(&d, &["run", "s.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("spindle cw 199") && out.contains("spindle cw 1001"), "{out}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "s.nc", "-o", "out/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    let mpf = std::fs::read_to_string(d.join("out/P_S.MPF")).unwrap();
+    assert!(mpf.contains("S=ROUND(LOC10) M3") && mpf.contains("S1001"), "{mpf}");
+    // And back: FANUC's own rounding is the ROUND.
+    std::fs::copy(d.join("out/P_S.MPF"), d.join("BACK.MPF")).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "BACK.MPF", "-o", "back.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let nc = std::fs::read_to_string(d.join("back.nc")).unwrap();
+    assert!(!nc.contains("ROUND"), "{nc}");
+}

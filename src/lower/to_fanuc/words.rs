@@ -518,6 +518,16 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         if let WordValue::Ac(e) | WordValue::Ic(e) = &w.value {
             w.value = WordValue::Expr(e.clone());
         }
+        // `S=ROUND(x)`: FANUC rounds the spindle speed half away from zero itself, as ROUND
+        // does (the FANUC → Sinumerik translation writes it so).
+        if letter == b'S' {
+            if let WordValue::Expr(Expr { kind: ExprKind::Func(Func::Round, args), .. }) = &mut w.value {
+                if args.len() == 1 {
+                    let x = args.remove(0);
+                    w.value = WordValue::Expr(x);
+                }
+            }
+        }
         match letter {
             b'G' => match const_of(&w.value) {
                 Some(v) if v == 70.0 || v == 700.0 => w.value = WordValue::Expr(num(20.0, wspan)),
