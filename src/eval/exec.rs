@@ -545,48 +545,27 @@ impl<'a> Interp<'a> {
             }
             // Declarations: nothing runs (`EXTERN`).
             ItemKind::Stopre | ItemKind::Extern(_) => Ok(()),
-            ItemKind::Instruction { name } => {
-                match name.as_str() {
-                    "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
-                        Diagnostic::error(
-                            "NC403",
-                            format!("{name} (circle/spline motion) is not modelled by the evaluator"),
-                        )
+            ItemKind::Instruction { name } => match name.as_str() {
+                "CIP" | "CT" | "ASPLINE" | "BSPLINE" | "CSPLINE" | "POLY" | "G2" | "G3" => Err(Fault::error(
+                    Diagnostic::error(
+                        "NC403",
+                        format!("{name} (circle/spline motion) is not modelled by the evaluator"),
+                    )
+                    .primary(self.file(), item.span, "here")
+                    .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
+                )),
+                _ if name.starts_with("RET(") => Err(Fault::error(
+                    Diagnostic::error("NC507", format!("{name}: a return that resumes elsewhere is not modelled"))
                         .primary(self.file(), item.span, "here")
-                        .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
-                    )),
-                    _ if name.starts_with("RET(") => Err(Fault::error(
-                        Diagnostic::error("NC507", format!("{name}: a return that resumes elsewhere is not modelled"))
-                            .primary(self.file(), item.span, "here")
-                            .note("RET with a jump target resumes at a label or block of a calling program, levels up")
-                            .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
-                    )),
-                    // Interrupts (SETINT, ENABLE, DISABLE, CLRINT): a routine runs when an input
-                    // switches; the run has no such input, so it never runs.
-                    _ if is_interrupt(name) => {
-                        self.warn(
-                        "NC566",
-                        format!("{name}: the run assumes the interrupt input never switches, so its routine does not run"),
-                        item.span,
-                    );
-                        Ok(())
-                    }
-                    // Feed-forward control: a look-ahead setting (machine/lookahead.rs).
-                    "FFWON" | "FFWOF" => {
-                        let what = if name == "FFWON" { "on" } else { "off" };
-                        self.warn(
-                        super::machine::lookahead::NOT_COMPARED,
-                        format!("{name} (feed-forward control {what}) changes how the control plans feed and corners, not the programmed positions: not compared"),
-                        item.span,
-                    );
-                        Ok(())
-                    }
-                    _ => {
-                        self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
-                        Ok(())
-                    }
+                        .note("RET with a jump target resumes at a label or block of a calling program, levels up")
+                        .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
+                )),
+                // Interrupts, feed-forward, the rest (instructions.rs).
+                _ => {
+                    self.warn_instruction(name, item.span);
+                    Ok(())
                 }
-            }
+            },
             ItemKind::ModalCallOff => {
                 self.modal_call = None;
                 self.m.cycle.mcall = None;
@@ -804,10 +783,4 @@ const LETTERS: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
 
 pub fn internal() -> Fault {
     Fault::error(Diagnostic::error("NC499", "internal evaluator inconsistency (please report this program)"))
-}
-
-/// A Siemens interrupt instruction as the reader keeps it (`SETINT(3) PRIO=1 NAME`,
-/// `ENABLE(3)`, `DISABLE(3)`, `CLRINT(3)`).
-pub fn is_interrupt(name: &str) -> bool {
-    ["SETINT(", "ENABLE(", "DISABLE(", "CLRINT("].iter().any(|p| name.starts_with(p))
 }

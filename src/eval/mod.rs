@@ -29,6 +29,7 @@ pub mod fault;
 pub mod flow;
 pub mod haas_data;
 pub mod input;
+pub mod instructions;
 pub mod lit;
 pub mod machine;
 pub mod numfmt;

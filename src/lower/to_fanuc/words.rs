@@ -388,7 +388,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("{name} dropped"),
                 "it changes acceleration or feed control only, not the programmed path",
             ),
-            ItemKind::Instruction { name } if crate::eval::exec::is_interrupt(&name) => after.extend(ctx.unsupported(
+            ItemKind::Instruction { name } if crate::eval::instructions::is_interrupt(&name) => after.extend(ctx.unsupported(
                 "NC566",
                 span,
                 &format!("{name} (an interrupt routine for an input)"),
