@@ -559,7 +559,10 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         sink.finish();
     }
     let before_a = sink.before_a_text();
-    let CompareSink { rx, index, before_b, after_a, after_b, div, limit_seen, excluded, .. } = sink;
+    let CompareSink { rx, index, before_b, after_a, after_b, div, limit_seen, mut excluded, .. } = sink;
+    // Look-ahead settings have no event: the first run's are counted as not compared.
+    let lookahead = eval::machine::lookahead::NOT_COMPARED;
+    excluded.modes = outcome_a.diags.iter().filter(|d| d.code == lookahead).count() as u64;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),

@@ -45,7 +45,7 @@ fn haas_ngc_variables_alias_their_legacy_numbers() {
     let (out, err, code) = nctrans(&d, &["run", "O2000.nc"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("move linear X=7"), "{out}");
-    assert!(err.contains("G103 (Haas look-ahead limit)"), "{err}");
+    assert!(err.contains("G103 P1 (Haas look-ahead limit of 1 block)") && err.contains("NC560"), "{err}");
     let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O2000.nc", "-o", "o.mpf"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC509") && err.contains("#10002"), "{err}");

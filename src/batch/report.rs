@@ -112,13 +112,14 @@ pub fn json(r: &BatchResult, target: &str, input: &str, output: &str) -> String 
         let outputs: Vec<String> = f.outputs.iter().map(|o| js(o)).collect();
         let _ = write!(
             s,
-            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"not_compared\": {{\"messages\": {}}}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
+            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"not_compared\": {{\"messages\": {}, \"look_ahead\": {}}}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
             js(&f.path),
             outputs.join(", "),
             js(f.status.as_str()),
             js(&f.summary),
             opt_num(f.events),
             f.excluded.messages,
+            f.excluded.modes,
             f.blocks,
             f.time.as_secs_f64() * 1000.0
         );
@@ -269,7 +270,10 @@ mod tests {
         assert!(j.contains("\"summary\": \"s, \\\"q\\\"\""), "{j}");
         let c = csv(&result());
         let rows: Vec<&str> = c.split("\r\n").collect();
-        assert!(j.contains("\"events\": 3, \"not_compared\": {\"messages\": 2}, \"blocks\": 4"), "{j}");
+        assert!(
+            j.contains("\"events\": 3, \"not_compared\": {\"messages\": 2, \"look_ahead\": 0}, \"blocks\": 4"),
+            "{j}"
+        );
         assert_eq!(rows[0], "path,outputs,status,events,not_compared,blocks,time_ms,summary,diagnostics");
         assert_eq!(rows[1], "a.mpf,a.nc,verified,3,2 messages kept as comments,4,2.000,\"s, \"\"q\"\"\",");
         assert!(rows[2].ends_with(",NC501 7:3 X differs"), "{}", rows[2]);

@@ -64,6 +64,7 @@ impl Interp<'_> {
                 // A computed `#[…]` reaching an NGC number with a legacy one.
                 self.read_fanuc(n - 10000, span)
             }
+            n if self.is_haas_data(n) => self.read_haas_data(n, span),
             n if n >= 1000 => self.fanuc_sys_read(n, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
@@ -100,6 +101,7 @@ impl Interp<'_> {
             {
                 self.write_fanuc(n - 10000, v_of(x), span)
             }
+            n if self.is_haas_data(n) => self.write_haas_data(n, span),
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
         }

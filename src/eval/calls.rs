@@ -443,6 +443,9 @@ impl Interp<'_> {
             if let Some(c) = crate::dialect::sinumerik::cycles::cycle_of(s).filter(|_| !self.fanuc) {
                 return self.siemens_cycle_call(call, c, span);
             }
+            if s == "CYCLE832" && !self.fanuc {
+                return self.cycle832(call, span);
+            }
             if SIMULATION_ONLY.contains(&s.as_str()) {
                 self.warn("NC406", format!("{s}(...) only sets up the HMI simulation: no effect on the trace"), span);
                 return Ok(Flow::Next);

@@ -560,8 +560,9 @@ impl<'a> Interp<'a> {
                         .note("RET with a jump target resumes at a label or block of a calling program, levels up")
                         .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
                 )),
+                // Interrupts, feed-forward, the rest (instructions.rs).
                 _ => {
-                    self.warn("NC405", format!("{name} has no effect on the trace"), item.span);
+                    self.warn_instruction(name, item.span);
                     Ok(())
                 }
             },

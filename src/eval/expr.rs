@@ -123,6 +123,10 @@ fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Re
                     .hint("write `AXNAME(\"X\")` or pass a STRING variable"),
             )),
         },
+        // Refused before their arguments run (GETSELT's first is a whole array).
+        ExprKind::Func(f @ (Func::Sprint | Func::IsVar | Func::IsFile | Func::GetSelT), _) => {
+            Err(super::strings::refused(*f, e.span, cx))
+        }
         ExprKind::Func(f, args) if f.is_string() => {
             let mut vs = Vec::with_capacity(args.len());
             for a in args {
@@ -287,7 +291,11 @@ pub fn func(f: Func, xs: &[f64], span: Span, cx: &Cx) -> Result<f64, Fault> {
         | Func::Substr
         | Func::Number
         | Func::IsNumber
-        | Func::GetT => return Err(domain("a string function needs its string arguments")),
+        | Func::GetT
+        | Func::Sprint
+        | Func::IsVar
+        | Func::IsFile
+        | Func::GetSelT => return Err(domain("a string function needs its string arguments")),
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
         Func::Tan => {

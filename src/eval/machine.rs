@@ -18,6 +18,7 @@ mod fanuc_frames;
 mod fast;
 mod frames;
 mod grid;
+pub mod lookahead;
 mod modal;
 mod motion;
 mod offsets;
@@ -385,6 +386,8 @@ impl Machine {
         let mut measuring = false;
         // FANUC Q is read by the drilling cycles; anywhere else it is ignored (a warning).
         let mut q_word = None;
+        let (mut q_val, mut e_word) = (None, None);
+        let mut lookahead = false;
         // Siemens G74/G75: the machine axes named (`Z1=0`) and the fixed point (`FP=`).
         let (mut named, mut fp) = (Vec::new(), None);
         let mut bc = comp::BlockComp::default();
@@ -489,7 +492,12 @@ impl Machine {
                 ("S", Some(x)) => s = Some((w, x)),
                 ("P", Some(x)) => p = Some((w, x)),
                 ("L", Some(x)) => l = Some(x),
-                ("Q", Some(_)) if self.fanuc => q_word = Some(w.span),
+                ("Q", Some(x)) if self.fanuc => {
+                    q_word = Some(w.span);
+                    q_val = Some(x);
+                }
+                // Haas G187's corner tolerance; anywhere else ignored (a warning, below).
+                ("E", Some(x)) if self.haas => e_word = Some((w.span, x)),
                 ("D", Some(x)) => bc.d = Some((x, w.span)),
                 ("H", Some(x)) if self.fanuc => bc.h = Some((x, w.span)),
                 ("H", Some(x)) => self.h = round_half_away(x),
@@ -600,9 +608,10 @@ impl Machine {
                         span,
                     ))
                 }
-                // Haas G103 Pn: look ahead at most n blocks (P0 normal); the path is the same.
-                1030 if self.haas => {
-                    warns.push(("NC405", "G103 (Haas look-ahead limit) does not change the path".into(), span))
+                // Look-ahead modes (lookahead.rs): the path is the same; not compared.
+                gi if self.fanuc && lookahead::is_mode_g(gi, self.haas) => {
+                    lookahead = true;
+                    self.lookahead_g(gi, p.map(|p| p.1), q_val, e_word.map(|e| e.1), span, warns)?
                 }
                 _ => return Err(unsupported(&format!("G{} is not modelled by the evaluator", fmt_g(g)), span)),
             }
@@ -611,6 +620,10 @@ impl Machine {
         if self.fanuc {
             super::cycles::fanuc::select(self, cycle_g, motion_g)?;
         }
+        if let (Some((span, _)), false) = (e_word, lookahead) {
+            warns.push(("NC405", "address E has no effect on the trace and is ignored".into(), span));
+        }
+        let q_word = q_word.filter(|_| !lookahead);
         if let (Some(span), None) = (q_word, self.cycle.active) {
             warns.push(("NC405", "address Q has no effect on the trace and is ignored".into(), span));
         }

@@ -21,12 +21,15 @@ pub mod axes;
 pub mod callee_files;
 pub mod calls;
 pub mod collapse;
+pub mod cycle832;
 pub mod cycles;
 pub mod exec;
 pub mod expr;
 pub mod fault;
 pub mod flow;
+pub mod haas_data;
 pub mod input;
+pub mod instructions;
 pub mod lit;
 pub mod machine;
 pub mod numfmt;
@@ -232,6 +235,9 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
     let span = Default::default();
     for i in &inputs {
         match (&i.target, dialect) {
+            (InputTarget::Hash(n), Dialect::Fanuc) if it.is_haas_data(i64::from(*n)) => {
+                it.set_haas_data(i64::from(*n), &i.value)?
+            }
             (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
             (InputTarget::R(n), Dialect::Sinumerik) => {
                 let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };

@@ -69,3 +69,31 @@ pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> 
         _ => return Err(domain("not a string function".into())),
     })
 }
+
+/// The refusal of a function the evaluator does not model: `SPRINT` (its format rules are
+/// not documented to the digit here), `ISVAR` (it asks the control's tables of machine,
+/// setting, system and user data), `ISFILE` (the control's file system), `GETSELT` (tool
+/// management, as `GETT`).
+pub fn refused(f: Func, span: Span, cx: &Cx) -> Fault {
+    let (code, msg, hint) = match f {
+        Func::Sprint => (
+            "NC565",
+            "SPRINT: the text a format makes of numbers is not modelled",
+            "build the text with << (its number form is modelled)",
+        ),
+        Func::IsVar => (
+            "NC565",
+            "ISVAR: whether the control knows a name (machine, setting, system or user data) is not modelled",
+            "test the variable's own value, or give the answer as an input",
+        ),
+        Func::IsFile => {
+            ("NC565", "ISFILE: the control's file system is not modelled", "give the answer as an input variable")
+        }
+        _ => (
+            "NC508",
+            "GETSELT: the tools tool management preselected are not modelled",
+            "select the tool by name (T=\"NAME\") or by number",
+        ),
+    };
+    Fault::error(crate::diag::Diagnostic::error(code, msg).primary(cx.file, span, "here").hint(hint))
+}

@@ -183,6 +183,13 @@ pub enum Func {
     /// Siemens `GETT("name", duplo)`: the T number tool management gives a tool name (read,
     /// and refused: tool management is not modelled).
     GetT,
+    /// Siemens `SPRINT(format, …)`, `ISVAR("name")`, `ISFILE("file")`, `GETSELT(list, chan)`:
+    /// read, refused in run and translation (`eval::strings::refused`): the format rules, the
+    /// control's name tables and file system, and tool management are not modelled.
+    Sprint,
+    IsVar,
+    IsFile,
+    GetSelT,
 }
 
 impl Func {
@@ -199,6 +206,10 @@ impl Func {
                 | Func::Number
                 | Func::IsNumber
                 | Func::GetT
+                | Func::Sprint
+                | Func::IsVar
+                | Func::IsFile
+                | Func::GetSelT
         )
     }
 }

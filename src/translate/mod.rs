@@ -63,6 +63,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     alarms: BTreeMap::new(),
     gud_seeds: Vec::new(),
     globals: Vec::new(),
+    haas: false,
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
 

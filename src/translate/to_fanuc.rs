@@ -91,6 +91,9 @@ pub struct SymbolMap {
     /// The Siemens global user data the source was read with (its `.DEF` files), which the
     /// Siemens side of a check declares before it runs.
     pub globals: Vec<crate::ir::Def>,
+    /// The output is for a Haas control (`[fanuc] series`): a check reads it back with the
+    /// Haas semantics (its `G187` and `G103` look-ahead settings).
+    pub haas: bool,
 }
 
 impl SymbolMap {
@@ -262,6 +265,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         programs: numbers.clone(),
         gud_seeds: vctx.gud_seeds,
         globals: opts.source.globals.to_vec(),
+        haas: opts.target.haas,
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -325,6 +329,7 @@ fn declared_types(p: &Program) -> passes::integral::Types {
 fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     let mut ctx = Ctx::new(file, opts.unsupported);
     ctx.nat = opts.target.nat;
+    ctx.haas = opts.target.haas;
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
     ctx.offsets = opts.target.offsets.clone();
@@ -434,7 +439,7 @@ pub fn verify(
     let b = Side {
         unit: parsed.unit.clone(),
         callees: Box::new(NoCallees),
-        run: RunOptions { max_steps, inputs, ..RunOptions::default() },
+        run: RunOptions { max_steps, inputs, semantics: haas_target(map), ..RunOptions::default() },
     };
     let report = check::check_excluding(db, a, b, EXCLUDE);
     let mut v = Verification::of(&report);
@@ -505,6 +510,16 @@ pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
 
 /// The Siemens profile of a check's source side: `base` (or the default) with the
 /// translation's global user data; `None` when there is neither.
+/// The semantics a check reads a Haas translation back with (`SymbolMap::haas`); `None`
+/// (the plain FANUC profile) otherwise.
+pub fn haas_target(map: &SymbolMap) -> Option<crate::dialect::Semantics> {
+    map.haas.then(|| {
+        let mut s = crate::dialect::Semantics::default_for(Dialect::Fanuc);
+        s.haas = true;
+        s
+    })
+}
+
 pub fn source_semantics(
     t: &super::Translation,
     base: Option<&crate::dialect::Semantics>,

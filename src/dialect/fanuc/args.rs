@@ -78,6 +78,12 @@ fn cover(words: &[&RawWord]) -> Span {
 /// A program number written after `P`: a literal (`P9010`) or a variable/expression.
 fn target(seg: &Seg<'_>, p: &RawWord, what: &str) -> Result<CallTarget, Diagnostic> {
     if p.lit.is_none() {
+        // `M98 P[10]`: a bracketed whole number is that program (nothing is computed).
+        if let ExprKind::Num(n) = &p.value.kind {
+            if n.value.fract() == 0.0 && (1.0..=99_999_999.0).contains(&n.value) {
+                return Ok(CallTarget::Number(n.value as u32));
+            }
+        }
         return Ok(CallTarget::Computed(p.value.clone()));
     }
     match p.int() {

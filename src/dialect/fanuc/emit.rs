@@ -51,7 +51,7 @@ const MAX_DIGITS: usize = 8;
 
 /// Writes every program of `unit` as one FANUC file.
 pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
-    let mut w = Writer { opts, lines: vec!["%".to_string()], diags: vec![] };
+    let mut w = Writer { opts, lines: vec!["%".to_string()], diags: vec![], mode_q: false };
     for p in &unit.programs {
         w.program(p);
     }
@@ -65,7 +65,7 @@ pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
 /// Writes statements alone, without `%` and `O` line (a streamed translation writes a
 /// program's body block by block; this is its way for blocks its fast path declines).
 pub fn emit_body(body: &[Stmt], opts: &EmitOptions) -> Emitted {
-    let mut w = Writer { opts, lines: vec![], diags: vec![] };
+    let mut w = Writer { opts, lines: vec![], diags: vec![], mode_q: false };
     w.body(body);
     let eol = opts.line_ending.as_str();
     let mut text = w.lines.join(eol);
@@ -79,6 +79,9 @@ struct Writer<'a> {
     opts: &'a EmitOptions,
     lines: Vec<String>,
     diags: Vec<Diagnostic>,
+    /// The block being written is `G05.1 Q…`: its Q is a mode number, written without a
+    /// decimal point (a point there is alarm PS0007 on the controls that check it).
+    mode_q: bool,
 }
 
 impl Writer<'_> {
@@ -101,7 +104,9 @@ impl Writer<'_> {
         for s in body {
             match &s.kind {
                 StmtKind::Block(b) => {
+                    self.mode_q = b.items.iter().any(is_g5_1);
                     let items: Vec<String> = b.items.iter().map(|i| self.item(i)).collect();
+                    self.mode_q = false;
                     self.line(&b.meta, items.join(" "));
                 }
                 StmtKind::Do(d) => {
@@ -260,14 +265,16 @@ impl Writer<'_> {
             }
         };
         let int_addr =
-            matches!(w.addr, Addr::Letter(b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O'));
+            matches!(w.addr, Addr::Letter(b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O'))
+                || (self.mode_q && w.addr.is(b'Q'));
         if let (Addr::Letter(l @ (b'G' | b'M')), ExprKind::Num(n)) = (&w.addr, &e.kind) {
             if n.value >= 0.0 && n.value < 10.0 && n.value.fract() == 0.0 {
                 return format!("{}0{}", *l as char, n.value as u32);
             }
             if *l == b'G' && n.value >= 0.0 {
-                // G54.1 and the like keep their subcode.
-                return format!("G{}", fmt_num(n.value, false).0);
+                // G54.1 and the like keep their subcode; G05.1 its leading zero.
+                let zero = if n.value < 10.0 { "0" } else { "" };
+                return format!("G{zero}{}", fmt_num(n.value, false).0);
             }
         }
         let v = if int_addr { self.int_value(e) } else { self.dim_value(e) };
@@ -513,6 +520,12 @@ pub fn cond_depth(c: &Expr) -> u32 {
         }
     }
     1 + inner(c)
+}
+
+/// A `G05.1` word (AI contour control).
+fn is_g5_1(it: &Item) -> bool {
+    matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')
+        && matches!(&w.value, WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) if (n.value - 5.1).abs() < 1e-9))
 }
 
 /// A number as FANUC accepts it: shortest form, `point` adds `.` to integers, at most 8 digits

@@ -123,6 +123,7 @@ impl Lower<'_, '_> {
                         self.error(
                             Diagnostic::error("NC134", "STRING length must be 1 to 200")
                                 .primary(self.file(), span, "length out of range")
+                                .note("the 828D/840D programming manuals give a STRING at most 200 characters")
                                 .hint("write e.g. `STRING[32]`"),
                         );
                         return None;

@@ -559,6 +559,10 @@ pub fn func_name(f: Func) -> &'static str {
         Func::Number => "NUMBER",
         Func::IsNumber => "ISNUMBER",
         Func::GetT => "GETT",
+        Func::Sprint => "SPRINT",
+        Func::IsVar => "ISVAR",
+        Func::IsFile => "ISFILE",
+        Func::GetSelT => "GETSELT",
         // FANUC-only functions have no Siemens spelling; the passes lower them. Should one
         // slip through, a name Siemens does not know makes the re-parse fail loudly.
         Func::FanucAsin => "FANUC_ASIN",

@@ -199,7 +199,9 @@ impl Lower<'_, '_> {
                 _ => omitted = true,
             }
         }
-        let substr_to_end = (b.func == Func::Substr && exprs.len() == 2) || (b.func == Func::GetT && exprs.len() == 1);
+        let substr_to_end = (b.func == Func::Substr && exprs.len() == 2)
+            || (b.func == Func::GetT && exprs.len() == 1)
+            || (b.func == Func::Sprint && !exprs.is_empty());
         if omitted || (exprs.len() != b.arity && !substr_to_end) {
             let want = match b.arity {
                 1 => "one argument".to_string(),

@@ -43,6 +43,11 @@ pub fn builtin(name: &str) -> Option<Builtin> {
         "ISNUMBER" => (Func::IsNumber, 1),
         // Also with one argument (duplo number 1).
         "GETT" => (Func::GetT, 2),
+        // A format and its values (any number of them).
+        "SPRINT" => (Func::Sprint, 1),
+        "ISVAR" => (Func::IsVar, 1),
+        "ISFILE" => (Func::IsFile, 1),
+        "GETSELT" => (Func::GetSelT, 2),
         _ => return None,
     };
     Some(Builtin { func, arity })

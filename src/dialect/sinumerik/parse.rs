@@ -207,8 +207,11 @@ impl Lower<'_, '_> {
 
     pub(super) fn items(&mut self, inner: pest::iterators::Pairs<'_, Rule>) -> Vec<Item> {
         let mut out: Vec<Item> = Vec::new();
+        // The text of each item, for the interrupt instructions (`interrupt`).
+        let mut raw: Vec<String> = Vec::new();
         for p in inner {
             let span = self.span(&p);
+            let text = p.as_str().trim().to_string();
             let Some(kind) = self.item(p) else { continue };
             // `NAME P3`, `L123 P=2`: the P word right after a call is its repeat count.
             if let (ItemKind::Word(w), Some(prev)) = (&kind, out.last_mut()) {
@@ -223,8 +226,9 @@ impl Lower<'_, '_> {
                 }
             }
             out.push(Item { kind, span });
+            raw.push(text);
         }
-        out
+        interrupt(out, &raw)
     }
 
     pub(super) fn item(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
@@ -648,4 +652,30 @@ fn special_word(w: Word) -> ItemKind {
         }
     }
     ItemKind::Word(w)
+}
+
+/// `SETINT(n) PRIO=p NAME [LIFTFAST] [BLSYNC]`, `ENABLE(n)`, `DISABLE(n)`, `CLRINT(n)`: the
+/// interrupt instructions, read as one instruction each with their text (the grammar sees a
+/// call, an assignment and a call). The evaluator and the translations name them.
+fn interrupt(items: Vec<Item>, raw: &[String]) -> Vec<Item> {
+    let is_int = |it: &Item| match &it.kind {
+        ItemKind::Call(c) => matches!(&c.target, CallTarget::Name(n)
+            if matches!(n.as_str(), "SETINT" | "ENABLE" | "DISABLE" | "CLRINT") && !c.args.is_empty()),
+        _ => false,
+    };
+    let Some(first) = items.iter().position(is_int) else { return items };
+    let setint = matches!(&items[first].kind, ItemKind::Call(c) if c.target == CallTarget::Name("SETINT".into()));
+    // SETINT takes the rest of the block; the others stand alone.
+    let last = if setint { items.len() - 1 } else { first };
+    let name = raw[first..=last].join(" ").to_ascii_uppercase();
+    let span = items[first].span.to(items[last].span);
+    let mut out = Vec::with_capacity(items.len());
+    for (i, item) in items.into_iter().enumerate() {
+        if i == first {
+            out.push(Item { kind: ItemKind::Instruction { name: name.clone() }, span });
+        } else if i < first || i > last {
+            out.push(item);
+        }
+    }
+    out
 }

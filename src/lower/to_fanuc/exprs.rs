@@ -312,6 +312,11 @@ impl Lower<'_> {
                     op => bin(op, a, b),
                 }
             }
+            ExprKind::Func(Func::GetSelT, _) => {
+                let why = "tool management (preselected tools, duplo numbers) is not modelled; select the tool by name with --tool-map";
+                self.ctx.unsupported("NC508", span, "GETSELT(…) (the tools tool management preselected)", why);
+                num(0.0, span)
+            }
             ExprKind::Func(Func::GetT, _) => {
                 let why = "tool management (duplo numbers, tool life) is not modelled; select the tool by name with --tool-map";
                 self.ctx.unsupported("NC508", span, "GETT(…) (a T number from tool management)", why);

@@ -20,6 +20,7 @@ pub mod frame_seq;
 pub mod frames;
 pub mod integral;
 pub mod labels;
+pub mod lookahead;
 pub mod lower_structures;
 pub mod polar;
 pub mod rotation;
@@ -110,6 +111,8 @@ pub struct Ctx {
     pub gud_seeds: Vec<(u32, f64)>,
     /// The Siemens master spindle (`Semantics::master_spindle`): `M1=3` is `M3` there.
     pub master_spindle: u32,
+    /// The target is a Haas control (`Semantics::haas`): look-ahead settings become G187.
+    pub haas: bool,
     next_temp: u32,
     next_label: u32,
 }
@@ -131,6 +134,7 @@ impl Ctx {
             globals: Default::default(),
             gud_seeds: Vec::new(),
             master_spindle: 1,
+            haas: false,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

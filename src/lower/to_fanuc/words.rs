@@ -379,12 +379,22 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 "program-section repetition (REPEAT label P=n)",
                 "rewrite the section as a FOR loop",
             )),
+            ItemKind::Instruction { name } if (name == "FFWON" || name == "FFWOF") && !ctx.haas => {
+                before.extend(super::lookahead::feed_forward(ctx, name == "FFWON", span))
+            }
             ItemKind::Instruction { name } if DYNAMICS_ONLY.contains(&name.as_str()) => ctx.note(
                 "NC323",
                 span,
                 &format!("{name} dropped"),
                 "it changes acceleration or feed control only, not the programmed path",
             ),
+            ItemKind::Instruction { name } if crate::eval::instructions::is_interrupt(&name) => after.extend(ctx.unsupported(
+                "NC566",
+                span,
+                &format!("{name} (an interrupt routine for an input)"),
+                "FANUC's interrupt-type macro (M96 P… / M97, the UINT signal) is set by parameter 6003 and the machine's \
+                 wiring, which the program does not show; call the routine where the program needs it",
+            )),
             ItemKind::Instruction { name } if name.starts_with("RET(") => after.extend(ctx.unsupported(
                 "NC507",
                 span,
@@ -508,6 +518,16 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
         if let WordValue::Ac(e) | WordValue::Ic(e) = &w.value {
             w.value = WordValue::Expr(e.clone());
         }
+        // `S=ROUND(x)`: FANUC rounds the spindle speed half away from zero itself, as ROUND
+        // does (the FANUC → Sinumerik translation writes it so).
+        if letter == b'S' {
+            if let WordValue::Expr(Expr { kind: ExprKind::Func(Func::Round, args), .. }) = &mut w.value {
+                if args.len() == 1 {
+                    let x = args.remove(0);
+                    w.value = WordValue::Expr(x);
+                }
+            }
+        }
         match letter {
             b'G' => match const_of(&w.value) {
                 Some(v) if v == 70.0 || v == 700.0 => w.value = WordValue::Expr(num(20.0, wspan)),
@@ -628,6 +648,12 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
             &format!("modal call MCALL {name}"),
             "call the subprogram after each move",
         );
+    }
+    if name == "CYCLE832" {
+        return match super::lookahead::cycle832(ctx, &c, span) {
+            Ok(s) => Some(s),
+            Err(mark) => mark,
+        };
     }
     if SIMULATION_ONLY.contains(&name.as_str()) {
         ctx.note(

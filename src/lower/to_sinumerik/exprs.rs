@@ -262,6 +262,10 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                     None if ngc_common(ctx, n, v.span).map(|m| marks.extend(m)).is_some() => {
                         Expr::num(0.0, false, span)
                     }
+                    None if let Some(m) = haas_data(ctx, n, v.span) => {
+                        marks.extend(m);
+                        Expr::num(0.0, false, span)
+                    }
                     None => {
                         marks.extend(ctx.unsupported(
                             "NC365",
@@ -546,4 +550,20 @@ fn ngc_common(ctx: &mut Ctx, n: u32, span: Span) -> Option<Option<Stmt>> {
     let what = format!("the Haas NGC variable #{n} (a general-purpose variable without a legacy number)");
     let hint = "the R parameters take #100..#199 and #500..#999; renumber it into #500..#999 (#10500.. on the NGC)";
     Some(ctx.unsupported("NC509", span, &what, hint))
+}
+
+/// A read of Haas machine data (`#20000+` settings, `#30000+` parameters): the Haas
+/// machine's own values, which Siemens machine and setting data do not number alike; `None`
+/// for any other variable.
+fn haas_data(ctx: &mut Ctx, n: u32, span: Span) -> Option<Option<Stmt>> {
+    if !ctx.opts.source.haas {
+        return None;
+    }
+    let (kind, k) = crate::eval::haas_data::machine_data(i64::from(n))?;
+    Some(ctx.unsupported(
+        crate::eval::haas_data::CODE,
+        span,
+        &format!("#{n} (Haas {kind} {k}, the machine's own data)"),
+        "Sinumerik machine and setting data ($MN_, $MC_, $SC_) are numbered otherwise; give the value the program needs in a variable",
+    ))
 }

@@ -12,7 +12,9 @@
 //! 5. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
 //! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
-//! 8. `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
+//! 8. `lookahead::lower` — look-ahead modes (`G05.1 Q1`, `G08 P1`, Haas `G187`) → `FFWON`,
+//!    `FFWOF`, `CYCLE832(…)`.
+//!    `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
 //!    Then `comp::lower` — G43 H / G49, G41 D / G40 → cutting edges `D1` / `D0`, G41/G40.
 //! 9. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
@@ -32,6 +34,7 @@ pub mod frames;
 pub mod gotos;
 pub mod haas_if;
 pub mod indirect;
+pub mod lookahead;
 pub mod modal;
 pub mod polar;
 pub mod rotation;
@@ -371,6 +374,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = gotos::lower(ctx, body);
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
+    body = lookahead::lower(ctx, body);
     body = cycles::lower(ctx, body);
     body = comp::lower(ctx, body);
     body = words::lower(ctx, body);

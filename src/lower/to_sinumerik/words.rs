@@ -520,6 +520,17 @@ fn lower_word(
             }
         }
     }
+    // FANUC rounds the spindle speed to a whole number (half away from zero); Siemens keeps
+    // the fraction: `S[#10]` → `S=ROUND(…)`, as its ROUND rounds.
+    if l == b'S' {
+        match &mut e.kind {
+            ExprKind::Num(n) => n.value = n.value.round(),
+            _ => {
+                let sp = e.span;
+                *e = func(Func::Round, vec![e.clone()], sp);
+            }
+        }
+    }
     if l == b'R' {
         if arc {
             w.addr = Addr::Name("CR".into());

@@ -1,0 +1,33 @@
+//! Siemens value-less instructions that run without a trace event, each with the warning
+//! that says why: interrupts (`SETINT(n) PRIO=p NAME`, `ENABLE(n)`, `DISABLE(n)`,
+//! `CLRINT(n)`: a routine runs when an input switches; a run has no such input, so it never
+//! runs), feed-forward control (`FFWON`/`FFWOF`: a look-ahead setting, not compared), and the
+//! rest (`SOFT`, `CFC`, …: no effect on the trace).
+
+use super::exec::Interp;
+use crate::span::Span;
+
+/// A Siemens interrupt instruction as the reader keeps it (`SETINT(3) PRIO=1 NAME`,
+/// `ENABLE(3)`, `DISABLE(3)`, `CLRINT(3)`).
+pub fn is_interrupt(name: &str) -> bool {
+    ["SETINT(", "ENABLE(", "DISABLE(", "CLRINT("].iter().any(|p| name.starts_with(p))
+}
+
+impl Interp<'_> {
+    pub(super) fn warn_instruction(&mut self, name: &str, span: Span) {
+        if is_interrupt(name) {
+            let msg =
+                format!("{name}: the run assumes the interrupt input never switches, so its routine does not run");
+            self.warn("NC566", msg, span);
+        } else if name == "FFWON" || name == "FFWOF" {
+            let what = if name == "FFWON" { "on" } else { "off" };
+            let msg = format!(
+                "{name} (feed-forward control {what}) changes how the control plans feed and corners, \
+                 not the programmed positions: not compared"
+            );
+            self.warn(super::machine::lookahead::NOT_COMPARED, msg, span);
+        } else {
+            self.warn("NC405", format!("{name} has no effect on the trace"), span);
+        }
+    }
+}
