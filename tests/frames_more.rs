@@ -1,0 +1,114 @@
+//! Leftovers of issue #20: Siemens blocks mixing absolute and incremental axis words
+//! translated to FANUC through the block-end position `#5001+`, FANUC `G10 L20` and `G92`
+//! translated to Sinumerik, each proven by running both, with planted wrong translations
+//! (sign, axis, offset number, missing shift) caught and the forms without an exact
+//! counterpart refused with their reason.
+
+use nctrans::check::Verdict;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::read::LineEnding;
+use nctrans::span::SourceDb;
+use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
+use nctrans::translate::{self, TranslateOptions};
+
+#[path = "support/frame_check.rs"]
+mod frame_check;
+use frame_check::*;
+
+const STEPS: u64 = 100_000;
+
+/// The FANUC translation of a Siemens program, proven equivalent; `Err`: the codes of
+/// its refusal.
+fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
+    let mut db = SourceDb::new();
+    let s = load(&mut db, siemens, Dialect::Sinumerik);
+    let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+    if !t.ok() {
+        let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+        codes.dedup();
+        return Err(codes);
+    }
+    let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
+    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+    Ok(t.text)
+}
+
+/// The Sinumerik translation of a FANUC program, proven equivalent.
+fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
+    let mut db = SourceDb::new();
+    let id = db.add("p.nc", fanuc);
+    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
+    if t.has_errors() {
+        let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
+        codes.dedup();
+        return Err(codes);
+    }
+    let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", STEPS);
+    let text: String = t.files.iter().map(|x| x.text.clone()).collect();
+    assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
+    Ok(text)
+}
+
+/// Each `(from, to)` replaced once in `good` (which must hold it) gives a program that
+/// `differs` from the source.
+fn planted(good: &str, plants: &[(&str, &str)], differs: impl Fn(&str) -> bool) {
+    for (from, to) in plants {
+        assert!(good.contains(from), "{from:?} not in\n{good}");
+        let bad = good.replacen(from, to, 1);
+        assert!(differs(&bad), "planted {from:?} → {to:?} not caught\n{bad}");
+    }
+}
+
+mod mixed_absolute_incremental {
+    use super::*;
+
+    const SLOTS: &str = "G17 G90 G54 G0 X2 Y3 Z5\nG1 Z-2 F200\nG1 X=IC(40) Y=AC(10)\nG91 X-10 Y=AC(30) Z=IC(1)\nX=AC(5) Y-5\nG90 G2 X=IC(10) Y=AC(25) CR=5\nG0 Z5\nM30\n";
+
+    #[test]
+    fn the_block_keeps_its_mode_and_writes_the_other_words_from_the_block_end_position() {
+        let out = s_to_f(SLOTS).unwrap();
+        for line in [
+            "G01 X[#5001+40.] Y10.\n",
+            "G91 X-10. Y[30.-#5002] Z1.\n",
+            "X[5.-#5001] Y-5.\n",
+            "G90 G02 X[#5001+10.] Y25. R5.\n",
+        ] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        // No switch blocks: the mode in force stays.
+        assert!(!out.contains("G#"), "{out}");
+    }
+
+    #[test]
+    fn where_g90_g91_is_not_known_the_block_is_written_in_g90_and_the_mode_restored() {
+        let s = "R1=1\nG90 G0 X0 Y0\nIF R1==1\nG91\nENDIF\nG1 X=IC(1) Y=AC(2) F100\nG90 X3\nM30\n";
+        let out = s_to_f(s).unwrap();
+        assert!(out.contains("#1=#4003\nG90 G01 X[#5001+1.] Y2. F100.\nG#1\n"), "{out}");
+        // A plain axis word there has no known meaning.
+        let s = "R1=1\nG90 G0 X0 Y0\nIF R1==1\nG91\nENDIF\nG1 X1 Y=AC(2) F100\nM30\n";
+        assert_eq!(s_to_f(s), Err(vec!["NC313".to_string()]));
+    }
+
+    #[test]
+    fn planted_wrong_rewrites_are_caught() {
+        let good = s_to_f(SLOTS).unwrap();
+        let plants = [
+            ("X[#5001+40.]", "X[#5001-40.]"),
+            ("X[#5001+40.]", "X[#5002+40.]"),
+            ("Y[30.-#5002]", "Y[#5002-30.]"),
+            ("X[5.-#5001]", "X5."),
+            ("G90 G02 X[#5001+10.]", "G90 G02 X10."),
+        ];
+        planted(&good, &plants, |bad| !equivalent(bad, SLOTS));
+    }
+
+    #[test]
+    fn where_the_block_end_position_does_not_give_the_rewrite_it_is_refused() {
+        let nc313 = Err(vec!["NC313".to_string()]);
+        assert_eq!(s_to_f("G0 X0 Y0\nROT RPL=10\nG0 X=IC(1) Y=AC(2)\nM30\n"), nc313, "under a rotation");
+        assert_eq!(s_to_f("G0 X0 Y0\nSUPA X=IC(1) Y=AC(2)\nM30\n"), nc313, "machine coordinates");
+        assert_eq!(s_to_f("G0 X0 U0\nG91 U=AC(1) X2\nM30\n"), nc313, "no block-end variable for U");
+        assert_eq!(s_to_f("G0 X0 Y0\nG1 X1 E=IC(2) F100\nM30\n"), nc313, "not an axis");
+    }
+}
