@@ -112,3 +112,81 @@ mod mixed_absolute_incremental {
         assert_eq!(s_to_f("G0 X0 Y0\nG1 X1 E=IC(2) F100\nM30\n"), nc313, "not an axis");
     }
 }
+
+mod extended_offset_writes {
+    use super::*;
+
+    const F: &str = "O1\nG90 G54 G0 X0 Y0\nG10 L20 P1 X10. Y20.\nG91 G10 L20 P1 X5.\nG90 G54.1 P1\nG0 X1. Y1.\nG54\nG10 L20 P2 X3. Y-4.\nG54.1 P2\nG0 X1. Y1.\nM30\n";
+
+    #[test]
+    fn g10_l20_becomes_a_write_of_frame_6_plus_n() {
+        let out = f_to_s(F).unwrap();
+        for line in [
+            "$P_UIFR[7,X,TR]=10\n$P_UIFR[7,Y,TR]=20\n",
+            "G91\n$P_UIFR[7,X,TR]=$P_UIFR[7,X,TR]+5\n",
+            "G507\n",
+            "$P_UIFR[8,X,TR]=3\n$P_UIFR[8,Y,TR]=-4\nG508\n",
+        ] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn planted_wrong_offset_numbers_and_values_are_caught() {
+        let good = f_to_s(F).unwrap();
+        let plants = [
+            ("$P_UIFR[7,X,TR]=10", "$P_UIFR[8,X,TR]=10"),
+            ("$P_UIFR[8,Y,TR]=-4", "$P_UIFR[8,Y,TR]=4"),
+            ("$P_UIFR[7,X,TR]=$P_UIFR[7,X,TR]+5", "$P_UIFR[7,X,TR]=5"),
+            ("G508", "G507"),
+        ];
+        planted(&good, &plants, |bad| !equivalent(F, bad));
+    }
+
+    #[test]
+    fn g10_l20_without_an_exact_form_is_refused() {
+        assert_eq!(f_to_s("O1\nG10 L20 P#1 X1.\nM30\n"), Err(vec!["NC545".to_string()]), "computed P");
+        assert_eq!(f_to_s("O1\nG10 L20 P49 X1.\nM30\n"), Err(vec!["NC545".to_string()]), "no such offset");
+        // Under an extended offset the write may be to the active one, which needs a
+        // re-selection the scan does not follow.
+        let s = "O1\nG54.1 P1\nG10 L20 P1 X1.\nG0 X0\nM30\n";
+        assert_eq!(f_to_s(s), Err(vec!["NC546".to_string()]));
+    }
+}
+
+mod coordinate_system_setting {
+    use super::*;
+
+    const F: &str = "O1\nG90 G54 G0 X10. Y20. Z50.\nG10 L2 P2 X100. Y50.\nG92 X0 Y0\nG0 X5. Y5.\nG55\nG0 X1. Y1.\nG54\nG92 Z5.\nG1 Z-2. F100.\nG28 Z10.\nG53 X0\nG0 X0 Y0\nM30\n";
+
+    #[test]
+    fn g92_becomes_a_shift_of_the_programmable_frame_from_the_end_position() {
+        let out = f_to_s(F).unwrap();
+        for line in ["ATRANS X=$P_EP[X] Y=$P_EP[Y]\nG0 X5 Y5\n", "ATRANS Z=$P_EP[Z]-5\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+    }
+
+    #[test]
+    fn planted_wrong_shifts_are_caught() {
+        let good = f_to_s(F).unwrap();
+        let plants = [
+            ("ATRANS Z=$P_EP[Z]-5", "ATRANS Z=$P_EP[Z]+5"),
+            ("ATRANS X=$P_EP[X] Y=$P_EP[Y]", "ATRANS X=$P_EP[Y] Y=$P_EP[X]"),
+            ("ATRANS X=$P_EP[X] Y=$P_EP[Y]\n", ""),
+            ("ATRANS Z=$P_EP[Z]-5", "TRANS Z=$P_EP[Z]-5"),
+        ];
+        planted(&good, &plants, |bad| !equivalent(F, bad));
+    }
+
+    #[test]
+    fn g92_where_the_frame_would_differ_is_refused() {
+        let nc547 = Err(vec!["NC547".to_string()]);
+        let g92 = |body: &str| f_to_s(&format!("O1\nG0 X10. Y20.\n{body}M30\n"));
+        assert_eq!(g92("G92 X0 Y0\nG91 G0 X1.\n"), nc547, "incremental moves");
+        assert_eq!(g92("G92 X0 Y0\nG52 X5.\nG0 X1.\n"), nc547, "G52 in the program");
+        assert_eq!(g92("G92 X0 Y0\nG68 X0 Y0 R30.\nG0 X1.\nG69\n"), nc547, "G68 in the program");
+        assert_eq!(g92("G92 X0 Y0 F100.\n"), nc547, "other words");
+        assert_eq!(g92("G92 U0\n"), nc547, "axis U");
+    }
+}

@@ -27,6 +27,8 @@ pub struct ModalScan {
     g68s: Vec<(u32, u32, Vec<Item>)>,
     /// Some block selects G18/G19.
     other_plane: bool,
+    /// Some block has G52, G68, G51, G51.1 or G16 (a Sinumerik frame of their own).
+    frames: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -185,6 +187,7 @@ impl ModalScan {
         let mut rot_in = Vec::new();
         let mut g68s = Vec::new();
         let mut other_plane = false;
+        let mut frames = false;
         let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
@@ -196,6 +199,7 @@ impl ModalScan {
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
+                frames |= g_codes(items).iter().any(|g| matches!(g, 520 | 680 | 510 | 511 | 160));
                 if let Some(&g) = g_codes(items).iter().find(|g| matches!(g, 680 | 510 | 511)) {
                     g68s.push((frame_key(first, g), lo, items.to_vec()));
                 }
@@ -219,7 +223,15 @@ impl ModalScan {
             }
             blocks.push((lo, st));
         }
-        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s, other_plane }
+        ModalScan {
+            blocks,
+            g52: (super::frames::g52_axes(body), main),
+            incremental_motion,
+            rot_in,
+            g68s,
+            other_plane,
+            frames,
+        }
     }
 
     /// G16 in force after the block at `lo`; `None` where the paths disagree.
@@ -230,6 +242,11 @@ impl ModalScan {
     /// Whether some block of the program selects G18 or G19 (a G16 plane not known here).
     pub fn other_plane(&self) -> bool {
         self.other_plane
+    }
+
+    /// Whether some block of the program has G52, G68, G51, G51.1 or G16.
+    pub fn frames(&self) -> bool {
+        self.frames
     }
 
     /// The G68, G51 or G51.1 in force before the block whose first word starts at `lo`
