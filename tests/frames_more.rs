@@ -190,3 +190,52 @@ mod coordinate_system_setting {
         assert_eq!(g92("G92 U0\n"), nc547, "axis U");
     }
 }
+
+mod return_from_reference {
+    use super::*;
+
+    #[test]
+    fn g29_goes_through_the_intermediate_point_to_the_point_given() {
+        let t = trace(
+            "O1\nG90 G0 X10. Y20. Z50.\nG1 Z5. F100.\nG28 Z30.\nG29 Z-2.\nG91 G28 X0 Y0\nG29 X5. Y0\nG90 G0 X0\nM30\n",
+            Dialect::Fanuc,
+        );
+        assert_eq!(
+            t,
+            "move rapid X=10 Y=20 Z=50 f=-\nmove linear X=10 Y=20 Z=5 f=100\nmove rapid X=10 Y=20 Z=30 f=-\n\
+             home point=1 axes=Z via Z=30\nmove rapid X=10 Y=20 Z=30 f=-\nmove rapid X=10 Y=20 Z=-2 f=-\n\
+             home point=1 axes=XY via X=10 Y=20\nmove rapid X=10 Y=20 Z=-2 f=-\nmove rapid X=15 Y=20 Z=-2 f=-\n\
+             move rapid X=0 Y=20 Z=-2 f=-\nend M30 steps=8"
+        );
+        // No intermediate point, or an offset changed since the G28: not modelled.
+        assert!(trace("O1\nG0 X1.\nG29 Z5.\nM30\n", Dialect::Fanuc).ends_with("error NC548"));
+        let t = trace("O1\nG0 X1.\nG28 Z10.\nG10 L2 P1 Z5.\nG29 Z5.\nM30\n", Dialect::Fanuc);
+        assert!(t.ends_with("error NC548"), "{t}");
+        // Under a rotation, as G28.
+        let t = trace("O1\nG0 X0 Y0\nG28 Z10.\nG68 X0 Y0 R30.\nG29 Z5.\nM30\n", Dialect::Fanuc);
+        assert!(t.ends_with("error NC491"), "{t}");
+    }
+
+    const F: &str = "O1\nG90 G0 X10. Y20. Z50.\nG1 Z5. F100.\nG28 Z30.\nM6 T2\nN20 G29 Z-2.\nG1 X15.\nG28 X0 Y40.\nG91 G29 X5. Y0\nG90 G0 X0\nM30\n";
+
+    #[test]
+    fn g29_becomes_the_two_rapid_moves_where_the_intermediate_point_is_known() {
+        let out = f_to_s(F).unwrap();
+        for line in ["N20 G0 Z30\nG0 Z-2\nG1\n", "G0 X=AC(0) Y=AC(40)\nG0 G91 X5 Y0\nG1\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let nc548 = Err(vec!["NC548".to_string()]);
+        assert_eq!(f_to_s("O1\nG0 Z5.\nG91 G28 Z0\nG29 Z5.\nM30\n"), nc548, "the point is where the tool stood");
+        assert_eq!(f_to_s("O1\nG0 Z5.\nG28 Z9.\nG20\nG29 Z.5\nM30\n"), nc548, "a unit change since");
+        assert_eq!(f_to_s("O1\nG0 Z5.\nG28 Z9.\nG55\nG29 Z5.\nM30\n"), nc548, "an offset change since");
+        let path = "O1\nG0 Z5.\nIF[#1EQ1]GOTO10\nG28 Z9.\nN10 G29 Z5.\nM30\n";
+        assert_eq!(f_to_s(path), nc548, "the G28 depends on the path");
+    }
+
+    #[test]
+    fn planted_missing_or_wrong_intermediate_points_are_caught() {
+        let good = f_to_s(F).unwrap();
+        let plants = [("N20 G0 Z30\n", "N20\n"), ("N20 G0 Z30\n", "N20 G0 Z31\n"), ("G0 X=AC(0) Y=AC(40)\n", "")];
+        planted(&good, &plants, |bad| !equivalent(F, bad));
+    }
+}

@@ -97,6 +97,9 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
     if gs.contains(&920) && !gs.contains(&681) && !gs.contains(&290) {
         return Ok(g92(ctx, b, span, modal));
     }
+    if gs.contains(&290) && !gs.contains(&681) && !gs.contains(&920) {
+        return Ok(g29(ctx, b, span, modal));
+    }
     if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 290 | 920)) {
         let what = match g {
             681 => "G68.1 (three-dimensional coordinate rotation)",
@@ -384,4 +387,67 @@ fn g92(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split {
         vec![block_stmt(meta, g90), plain_block(vec![frame], span)]
     };
     Split { before: Vec::new(), block: None, after }
+}
+
+/// `G29 Z..` → `G0 Z<intermediate point>` (with `=AC(..)` where G91 may be in force), then
+/// the block's words in `G0`, then the motion G code again if it was not G0. The
+/// intermediate point must be known from the text ([`ModalScan::intermediate_at`]): the
+/// absolute constant of the last G28/G30 on every path, with no offset, G52, G92, unit
+/// change or call since; else NC548.
+fn g29(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split {
+    if !only_words(&b, &[290, 900, 910], &[]) {
+        return refused(
+            ctx,
+            "NC548",
+            span,
+            "G29 with other words in the block",
+            "write the return alone in its block: `G29 Z..`",
+        );
+    }
+    let incremental = modal.incremental_at(span.lo);
+    let inch = modal.inch_at(span.lo);
+    let mut via = vec![super::words::g_word(0, span)];
+    for it in &b.items {
+        let Some((l, _)) = letter_of(it) else { continue };
+        if axis_bit(l).is_none() {
+            continue;
+        }
+        let known = b"XYZABC".iter().position(|&c| c == l).and_then(|i| modal.intermediate_at(span.lo, i));
+        let Some(v) = known.and_then(|(_, e)| axis_value(ctx, e, inch)) else {
+            return refused(
+                ctx,
+                "NC548",
+                it.span,
+                &format!("G29 on {} where the intermediate point is not known from the text (the last G28/G30 on every path, absolute and constant, with no work offset, G52, G92, unit change or call since)", l as char),
+                "move back with G0 to the point itself, or write the G28 intermediate point as a constant under G90",
+            );
+        };
+        let value = if incremental == Some(false) { WordValue::Expr(v) } else { WordValue::Ac(v) };
+        via.push(Item { kind: ItemKind::Word(Word { addr: Addr::Letter(l), value, span: it.span }), span: it.span });
+    }
+    if via.len() == 1 {
+        return refused(ctx, "NC548", span, "G29 without an axis", "name the axes to return: `G29 Z5.`");
+    }
+    let motion = modal.motion_at(span.lo);
+    let Some(motion) = motion else {
+        return refused(
+            ctx,
+            "NC548",
+            span,
+            "G29 where the motion mode (G0/G1/G2/G3) depends on the path taken",
+            "program G0 or G1 before the return on every path",
+        );
+    };
+    // The first block keeps the number and label: a jump to the G29 runs both moves.
+    let mut b = b;
+    let mut meta = std::mem::take(&mut b.meta);
+    meta.span = span;
+    b.meta.span = span;
+    b.items.retain(|it| g_of(it) != Some(290));
+    b.items.insert(0, super::words::g_word(0, span));
+    let mut after = Vec::new();
+    if motion != 0 {
+        after.push(plain_block(vec![super::words::g_word(motion, span)], span));
+    }
+    Split { before: vec![block_stmt(meta, via)], block: Some(b), after }
 }
