@@ -78,7 +78,14 @@ pub(super) fn rewrite(
         };
         let WordValue::Expr(e) = &w.value else { continue };
         let end = var_expr(&VarRef { kind: VarKind::Hash(5001 + i as u32), span: w.span });
-        w.value = WordValue::Expr(if mode { bin(BinOp::Add, end, e.clone()) } else { bin(BinOp::Sub, e.clone(), end) });
+        // A negative increment subtracts, an absolute 0 is the negated position: as a
+        // machinist writes them.
+        w.value = WordValue::Expr(match (mode, crate::lower::literal(e)) {
+            (true, Some(d)) if d < 0.0 => bin(BinOp::Sub, end, Expr::num(-d, true, e.span)),
+            (true, _) => bin(BinOp::Add, end, e.clone()),
+            (false, Some(0.0)) => Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(end)), e.span),
+            (false, _) => bin(BinOp::Sub, e.clone(), end),
+        });
     }
     Ok(mode)
 }
