@@ -209,6 +209,7 @@ mod return_from_reference {
         );
         // No intermediate point, or an offset changed since the G28: not modelled.
         assert!(trace("O1\nG0 X1.\nG29 Z5.\nM30\n", Dialect::Fanuc).ends_with("error NC548"));
+        assert!(trace("O1\nG0 Z1.\nG28 Z10.\nG29\nM30\n", Dialect::Fanuc).ends_with("error NC548"));
         let t = trace("O1\nG0 X1.\nG28 Z10.\nG10 L2 P1 Z5.\nG29 Z5.\nM30\n", Dialect::Fanuc);
         assert!(t.ends_with("error NC548"), "{t}");
         // Under a rotation, as G28.

@@ -199,7 +199,14 @@ impl Machine {
             any = true;
         }
         if !any {
-            return Ok(false);
+            // Alone, some controls return the last G28's axes to its intermediate point,
+            // others not at all (docs/semantics.md, MILL-G29): not modelled.
+            return Err(error(
+                "NC548",
+                "G29 without an axis word is not modelled (which axes it returns is not settled)".into(),
+                span,
+                "name the axes to return: `G29 Z5.`",
+            ));
         }
         for (i, a) in axes.iter().enumerate() {
             if a.is_some() {
