@@ -144,6 +144,14 @@ mod extended_offset_writes {
     }
 
     #[test]
+    fn siemens_frames_5_and_6_are_the_g58_g59_offsets() {
+        let s = "G0 X0 Y0\n$P_UIFR[5,X,TR]=10\n$P_UIFR[6,Y,TR]=-5\nG505\nG0 X1 Y1\nG506\nG0 X1 Y1\nG54\nM30\n";
+        let out = s_to_f(s).unwrap();
+        assert!(out.contains("#5301=10.\n#5322=-5.\nG58\n"), "{out}");
+        planted(&out, &[("#5301=10.", "#5281=10."), ("#5322=-5.", "#5321=-5.")], |bad| !equivalent(bad, s));
+    }
+
+    #[test]
     fn g10_l20_without_an_exact_form_is_refused() {
         assert_eq!(f_to_s("O1\nG10 L20 P#1 X1.\nM30\n"), Err(vec!["NC545".to_string()]), "computed P");
         assert_eq!(f_to_s("O1\nG10 L20 P49 X1.\nM30\n"), Err(vec!["NC545".to_string()]), "no such offset");
