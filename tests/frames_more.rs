@@ -248,3 +248,27 @@ mod return_from_reference {
         planted(&good, &plants, |bad| !equivalent(F, bad));
     }
 }
+
+mod back_to_fanuc {
+    use super::*;
+
+    #[test]
+    fn the_g92_and_g10_l20_forms_come_back() {
+        let s = "G0 X50 Y40 Z100\nATRANS X=$P_EP[X] Y=$P_EP[Y]-5\nG0 X10 Y10\n$P_UIFR[9,X,TR]=200\n$P_UIFR[9,X,TR]=$P_UIFR[9,X,TR]+5\nG509\nG0 X10 Y10\nG54\nG0 X0 Y0\nM30\n";
+        let out = s_to_f(s).unwrap();
+        for line in ["G92 X0. Y5.\n", "G10 L20 P3 X200.\nG91 G10 L20 P3 X5.\nG90\n", "G54.1 P3\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let plants = [
+            ("G92 X0. Y5.", "G92 X0. Y-5."),
+            ("G10 L20 P3 X200.", "G10 L20 P2 X200."),
+            ("G91 G10 L20 P3 X5.", "G10 L20 P3 X5."),
+        ];
+        planted(&out, &plants, |bad| !equivalent(bad, s));
+        // The G92 form only where FANUC keeps the shift as Sinumerik does.
+        let nc445 = Err(vec!["NC445".to_string()]);
+        assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[X]\nTRANS Y5\nM30\n"), nc445, "another frame instruction");
+        assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[X]\nG1 X=IC(1) F100\nM30\n"), nc445, "incremental moves");
+        assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[Y]\nM30\n"), Err(vec!["NC316".to_string()]), "another axis");
+    }
+}

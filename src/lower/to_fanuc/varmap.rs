@@ -351,7 +351,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                 "NC342",
                 span,
                 &msg,
-                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..4,axis,TR] and the part counters have FANUC counterparts",
+                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..6,axis,TR] (and writes of [7..54]) and the part counters have FANUC counterparts",
             );
         }
     }

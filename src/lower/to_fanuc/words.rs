@@ -280,7 +280,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
         out.extend(stmts);
         return;
     }
-    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
+    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, !m.is_sub, out) {
         out.extend(stmts);
         return;
     }
@@ -409,6 +409,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("EXTERN {} dropped", e.name),
                 "it only declares the parameters of a called subprogram; FANUC calls declare nothing",
             ),
+            ItemKind::Assign { target, value } if super::frames::extended_frame(&target).is_some() => {
+                match super::frames::g10_l20(ctx, &target, value, m.s.abs, span) {
+                    Ok(stmts) => after.extend(stmts),
+                    Err(mark) => after.extend(mark),
+                }
+            }
             ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
                 "NC631",
                 span,
