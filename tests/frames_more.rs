@@ -272,3 +272,45 @@ mod back_to_fanuc {
         assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[Y]\nM30\n"), Err(vec!["NC316".to_string()]), "another axis");
     }
 }
+
+/// The corpus programs of these constructs: each committed translation is equivalent to its
+/// source, and wrong translations planted in it are caught.
+mod corpus {
+    use super::*;
+    use std::path::PathBuf;
+
+    fn read(rel: &str) -> String {
+        let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel);
+        std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+    }
+
+    #[test]
+    fn the_fixture_program_and_its_committed_sinumerik_form() {
+        let f = read("corpus/in/fanuc/g92-g29-fixture-zero.nc");
+        let s = read("corpus/out/sinumerik/g92-g29-fixture-zero/O_2104.MPF");
+        assert!(equivalent(&f, &s), "{:?}", verdict(&f, &s));
+        let plants = [
+            ("Z=$P_EP[Z]-50", "Z=$P_EP[Z]+50"),
+            ("ATRANS X=$P_EP[X] Y=$P_EP[Y] Z=$P_EP[Z]-50", "ATRANS Z=$P_EP[Z]-50"),
+            ("G0 Z40 ; BACK OVER THE SLOT\n", ""),
+            ("G0 Z40 ; BACK OVER THE SLOT", "G0 Z45"),
+            ("$P_UIFR[9,X,TR]=200", "$P_UIFR[8,X,TR]=200"),
+            ("G509", "G508"),
+        ];
+        planted(&s, &plants, |bad| !equivalent(&f, bad));
+    }
+
+    #[test]
+    fn the_stepped_slot_and_its_committed_fanuc_form() {
+        let s = read("corpus/in/sinumerik/ac-ic-stepped-slot.mpf");
+        let f = read("corpus/out/fanuc/ac-ic-stepped-slot.mpf.nc");
+        assert!(equivalent(&f, &s), "{:?}", verdict(&f, &s));
+        let plants = [
+            ("G01 X40. Z[#5003-2.]", "G01 X40. Z[#5003+2.]"),
+            ("G01 X40. Z[#5003-2.]", "G01 X40. Z-2."),
+            ("X0. Z[#5003-2.]", "X0. Z[#5001-2.]"),
+            ("G91 X40. Y-#5002", "G91 X40. Y#5002 Z#5003"),
+        ];
+        planted(&f, &plants, |bad| !equivalent(bad, &s));
+    }
+}
