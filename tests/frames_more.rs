@@ -314,3 +314,31 @@ mod corpus {
         planted(&f, &plants, |bad| !equivalent(bad, &s));
     }
 }
+
+mod rotation_in_other_planes {
+    use super::*;
+
+    const S18: &str = "G18 G90 G0 X0 Y0 Z0\nTRANS X10 Z5\nAROT RPL=30\nG1 Z10 X0 F100\nG2 Z10 X10 CR=5\nTRANS\nG0 X0 Z0\nROT Y45\nG0 Z10 X0\nROT\nM30\n";
+
+    #[test]
+    fn a_program_in_one_plane_rotates_in_it_on_fanuc() {
+        let out = s_to_f(S18).unwrap();
+        for line in ["G52 X10. Y0. Z5.\nG68 Z0. X0. R30.\n", "G68 Z0. X0. R45.\nG00 Z10. X0.\n"] {
+            assert!(out.contains(line), "{line:?} missing in\n{out}");
+        }
+        let out = s_to_f("G19 G90 G0 X0 Y0 Z0\nROT RPL=30\nG1 Y10 Z0 F100\nROT\nM30\n").unwrap();
+        assert!(out.contains("G68 Y0. Z0. R30.\nG01 Y10. Z0. F100.\n"), "{out}");
+        let plants = [("G68 Z0. X0. R30.", "G68 Z0. X0. R-30."), ("G68 Z0. X0. R45.", "G68 X0. Y0. R45.")];
+        let good = s_to_f(S18).unwrap();
+        planted(&good, &plants, |bad| !equivalent(bad, S18));
+    }
+
+    #[test]
+    fn where_the_plane_at_the_rotation_is_not_known_it_is_refused() {
+        let nc498 = Err(vec!["NC498".to_string()]);
+        assert_eq!(s_to_f("G17 G0 X0 Y0\nG18\nROT RPL=30\nM30\n"), nc498, "two planes");
+        assert_eq!(s_to_f("G0 X0 Y0\nN10 G18\nROT RPL=30\nM30\n"), nc498, "G18 on a jump target");
+        assert_eq!(s_to_f("ROT RPL=30\nG18\nM30\n"), nc498, "before the G18");
+        assert_eq!(s_to_f("G18\nROT Z30\nM30\n"), nc498, "about an axis of the plane");
+    }
+}
