@@ -112,6 +112,8 @@ mod mixed_absolute_incremental {
         assert_eq!(s_to_f("G0 X0 Y0\nG1 X1 E=IC(2) F100\nM30\n"), nc313, "not an axis");
         // #5001 is read before the block's own G20/G21 acts.
         assert_eq!(s_to_f("G700 G0 X1 Y1\nG710 G0 X=IC(3) Y=AC(4)\nM30\n"), nc313, "a unit word in the block");
+        let s = "G0 X1 Y1\n$P_UIFR[2,Y,TR]=50\nG55 X=IC(2) Y=AC(1)\nM30\n";
+        assert_eq!(s_to_f(s), nc313, "an offset selection in the block");
         // Inch throughout: #5001 reads inches as the words are.
         let out = s_to_f("G700 G90 G0 X1 Y1\nG1 X=IC(0.5) Y=AC(2) F10\nM30\n").unwrap();
         assert!(out.contains("G01 X[#5001+0.5] Y2. F10.\n"), "{out}");

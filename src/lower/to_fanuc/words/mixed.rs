@@ -11,8 +11,8 @@
 //! (NC313) where `#5001` does not read what the rewrite needs or the block is another
 //! thing than a move: in a program that rotates, scales or mirrors (G68, G51, G51.1: the
 //! block-end position there is not modelled), in a called program (the caller's G52 may be
-//! in force), with G53 (machine coordinates), with a unit word (the block's expressions are
-//! read in the unit before it), with a call (a drilling cycle reads the words itself), on an
+//! in force), with G53 (machine coordinates), with a unit word or a work offset selection
+//! (the block's expressions are read in the unit and offset before them), with a call (a drilling cycle reads the words itself), on an
 //! axis other than X Y Z A B C, and a plain axis word where G90/G91 is not known.
 
 use super::*;
@@ -60,12 +60,21 @@ pub(super) fn rewrite(
     if out.iter().any(|w| w.addr.is(b'G') && const_of(&w.value) == Some(53.0)) {
         return refuse(ctx, "in machine coordinates (SUPA, G153, G53)", own);
     }
-    // The block's expressions are read before its own G20/G21 acts: #5001 in the old unit.
-    if out.iter().any(|w| w.addr.is(b'G') && matches!(const_of(&w.value), Some(v) if v == 20.0 || v == 21.0)) {
+    // The block's expressions are read before its own G20/G21 or G54.. acts: #5001 in the
+    // old unit or work offset.
+    let gs = || out.iter().filter(|w| w.addr.is(b'G')).filter_map(|w| const_of(&w.value));
+    if gs().any(|v| v == 20.0 || v == 21.0) {
         return refuse(
             ctx,
             "with a unit word (G70/G71/G700/G710; #5001+ is read in the unit before it)",
             "put the unit word in a block of its own",
+        );
+    }
+    if gs().any(|v| (54.0..=59.0).contains(&v)) {
+        return refuse(
+            ctx,
+            "with a work offset selection (#5001+ is read in the offset before it)",
+            "select the work offset in a block of its own",
         );
     }
     for (w, form) in out.iter_mut().zip(forms) {
