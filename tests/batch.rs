@@ -373,7 +373,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("seed-sine-curve-while.mpf", "NC322"), // WORKPIECE dropped, then NC470: T… M6 without D
     ("tool-name-string.mpf", "NC470"),    // T… M6 without D: the edge is machine data (MD20270)
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("address-ac-ic.mpf", "NC313"),       // AC/IC mixed in one block
     ("address-numbered.mpf", "NC312"),    // I1= and CIP
     ("arc-radius-angle.mpf", "NC312"),    // AR=
     ("assign-undeclared-name.mpf", "NC313"), // E=AC() on a non-axis address

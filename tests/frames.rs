@@ -177,9 +177,11 @@ mod translation {
         assert_eq!(f_to_s("O1\nG91 G52 X10.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
         assert_eq!(f_to_s("O1\nG54.1 P#1\nM30\n").unwrap_err(), vec!["NC443".to_string()]);
         assert_eq!(f_to_s("O1\nG28 Z0 M5\nM30\n").unwrap_err(), vec!["NC444".to_string()]);
-        // G92 is not translated: refused by name; a G69 where no rotation is in force
-        // cancels nothing (tests/frames_rotation.rs has rotation, scaling and mirroring).
-        assert_eq!(f_to_s("O1\nG92 X0 Y0\nG0 X1.\nM30\n").unwrap_err(), vec!["NC446".to_string()]);
+        // G68.1 is not translated: refused by name (G92 and G29: tests/frames_more.rs); a
+        // G69 where no rotation is in force cancels nothing (tests/frames_rotation.rs has
+        // rotation, scaling and mirroring).
+        let g68_1 = "O1\nG68.1 X0 Y0 Z0 I0 J1 K0 R30.\nM30\n";
+        assert_eq!(f_to_s(g68_1).unwrap_err(), vec!["NC446".to_string()]);
         assert!(f_to_s("O1\nG90 G69 G15\nG0 X1.\nM30\n").unwrap().contains("G90\nG0 X1\n"));
         // ATRANS adds to a frame FANUC cannot read; TRANS under G91.
         assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC316".to_string()]);

@@ -211,7 +211,9 @@ mod translation {
         }
         let nc498 = Err(vec!["NC498".to_string()]);
         assert_eq!(s_to_f("ROT RPL=30\nAROT RPL=10\nM30\n"), nc498, "AROT on another rotation");
-        assert_eq!(s_to_f("G18\nROT RPL=30\nM30\n"), nc498, "not G17");
+        assert_eq!(s_to_f("G17\nG18\nROT RPL=30\nM30\n"), nc498, "not one plane");
+        // One plane from the first blocks on: G68 in it (tests/frames_more.rs).
+        assert!(s_to_f("G18\nROT RPL=30\nM30\n").unwrap().contains("G68 Z0. X0. R30."));
         assert_eq!(s_to_f("ROT X30\nM30\n"), nc498, "in space");
         assert_eq!(s_to_f("G0 X0\nAROT RPL=30\nM30\n").map(|_| ()), Ok(()), "at the start of a main program");
     }

@@ -307,7 +307,6 @@ const REFUSED: &[(&str, &str)] = &[
     ("seed-sine-curve-while.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("tool-name-string.mpf", "NC470"),    // T… M6 without D: the edge is machine data (MD20270)
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("address-ac-ic.mpf", "NC313"),
     ("address-numbered.mpf", "NC312"),
     ("arc-radius-angle.mpf", "NC312"),
     ("axis-indirect-ax.mpf", "NC635"),

@@ -115,6 +115,9 @@ pub struct Machine {
     pub local: [f64; 9],
     /// FANUC `G92` shift, added to every work offset (it moves them all in parallel).
     pub g92: [f64; 9],
+    /// FANUC: the intermediate point of the last G28/G30 on each axis it homed (machine
+    /// position, and the active offset then), for G29 (refs.rs).
+    pub inter: [Option<(f64, f64)>; 9],
     /// The frame's rotation, scaling and mirroring (FANUC G68; Siemens ROT, SCALE, MIRROR):
     /// programmed → workpiece coordinates before the offsets above ([`frames`]).
     pub xf: Xform,
@@ -200,6 +203,7 @@ impl Machine {
             trans: [0.0; 9],
             local: [0.0; 9],
             g92: [0.0; 9],
+            inter: [None; 9],
             xf: Xform::ID,
             rot: None,
             scale: None,
@@ -527,7 +531,7 @@ impl Machine {
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
         let (mut cycle_g, mut motion_g) = (None, None);
-        let (mut g52, mut g68, mut g51, mut g92, mut home) = (false, false, None, false, None);
+        let (mut g52, mut g68, mut g51, mut g92, mut home, mut g29) = (false, false, None, false, None, false);
         for &(g, span) in gs.iter() {
             let gi = g_index(g);
             if matches!(gi, 0 | 10 | 20 | 30) {
@@ -566,6 +570,7 @@ impl Machine {
                 160 | 150 if self.fanuc => {}
                 1100 | 1110 | 1120 if !self.fanuc => {}
                 280 if self.fanuc => home = Some(refs::Home { point: 1, via_words: true }),
+                290 if self.fanuc => g29 = true,
                 300 if self.fanuc => {
                     home = Some(refs::Home { point: self.second_reference(p, span)?, via_words: true })
                 }
@@ -602,7 +607,7 @@ impl Machine {
                     let code = if matches!(gi, 430..=490) { COMPENSATION_NOTE } else { "NC405" };
                     warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span))
                 }
-                290 | 920 | 520 | 680 | 160 => {
+                920 | 520 | 680 | 160 => {
                     return Err(unsupported(
                         &format!("G{} ({}) is not modelled", fmt_g(g), refs::unmodelled_frame(gi)),
                         span,
@@ -719,7 +724,9 @@ impl Machine {
             }
         }
         // 4. motion or dwell
-        if let Some(h) = home {
+        if g29 {
+            eff.moved = self.return_from_reference(&axes, out, block_span)?;
+        } else if let Some(h) = home {
             let named: Vec<usize> = named.iter().map(|n| n.0).collect();
             eff.moved = self.reference_return(h, &axes, &named, out, block_span)?;
         } else if dwell {

@@ -181,7 +181,7 @@ impl Machine {
             511 | 501 if rot || self.scale.is_some() => "G51.1/G50.1 in G51 or G68 mode",
             510 | 500 if rot => "G51/G50 in G68 mode",
             520 => "G52 under G68, G51 or G51.1",
-            280 | 300 => "a reference return (G28/G30) under G68, G51 or G51.1",
+            280 | 290 | 300 => "a reference return (G28/G29/G30) under G68, G51 or G51.1",
             540..=599 => "a work offset selection under G68, G51 or G51.1",
             100 => "G10 under G68, G51 or G51.1",
             _ => return Ok(()),

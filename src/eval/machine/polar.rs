@@ -97,9 +97,12 @@ impl Machine {
 
     fn fanuc_polar(&mut self, words: &[WordVal], gs: &[i64], plane: Plane) -> Result<Option<Vec<WordVal>>, Fault> {
         // These read their axis words as Cartesian in G16 mode (or are not modelled in it).
-        if gs.iter().any(|g| matches!(g, 100 | 520 | 920 | 530 | 680 | 510 | 511 | 501 | 280 | 300 | 170 | 180 | 190)) {
+        if gs
+            .iter()
+            .any(|g| matches!(g, 100 | 520 | 920 | 530 | 680 | 510 | 511 | 501 | 280 | 290 | 300 | 170 | 180 | 190))
+        {
             let span = words.iter().find(|w| w.addr.as_ref() == "G").map_or(Span::default(), |w| w.span);
-            if gs.iter().any(|g| matches!(g, 280 | 300 | 170 | 180 | 190)) {
+            if gs.iter().any(|g| matches!(g, 280 | 290 | 300 | 170 | 180 | 190)) {
                 return Err(error(
                     "NC499",
                     "a reference return or plane selection in G16 mode is not modelled".into(),

@@ -1,6 +1,7 @@
 //! Coordinate systems and reference points (trace v2): work-offset selection as
 //! `work_offset` events, the FANUC local coordinate system (G52), and reference-point
-//! returns (FANUC G28/G30, Siemens G74/G75) as `home` events (docs/semantics.md,
+//! returns (FANUC G28/G30, Siemens G74/G75) as `home` events and the FANUC return from
+//! the reference point (G29) as moves (docs/semantics.md,
 //! "Coordinate systems and reference points").
 
 use super::{axis_index, round_half_away, AbsInc, Event, Fault, Machine, Span, WordVal, WV};
@@ -147,12 +148,80 @@ impl Machine {
             if *h {
                 list.push(i as u8);
                 via[i] = Some(super::clean(self.pos[i]));
+                if home.via_words {
+                    self.inter[i] = Some((self.pos[i], self.active_offset(i)));
+                }
                 self.pos[i] = REFERENCE_POSITION;
                 self.seen[i] = true;
                 self.applied[i] = self.active_offset(i);
             }
         }
         out.push((Event::Home(Box::new(crate::eval::trace::HomeEv { axes: list, via, point: home.point })), span));
+        Ok(true)
+    }
+
+    /// FANUC `G29 X.. Z..`: the named axes go at rapid to the intermediate point of the
+    /// last G28/G30 that homed them, then to the point the words give (G90: absolute; G91:
+    /// the increment from the intermediate point). Two `move rapid` events; the other axes
+    /// stay. An axis no G28/G30 has homed, or one whose work offset (G54.., G52, G92, a G10
+    /// write) changed since, is NC548: the sources do not settle what the control does then.
+    pub(super) fn return_from_reference(
+        &mut self,
+        axes: &[Option<(&WordVal, f64)>; 9],
+        out: &mut Vec<(Event, Span)>,
+        span: Span,
+    ) -> Result<bool, Fault> {
+        let mut target = self.pos;
+        let mut via = self.pos;
+        let mut any = false;
+        for (i, a) in axes.iter().enumerate() {
+            let Some((w, x)) = a else { continue };
+            let Some((at, off)) = self.inter[i] else {
+                return Err(error(
+                    "NC548",
+                    format!("G29 on {} with no intermediate point (no G28/G30 has homed it)", w.addr),
+                    w.span,
+                    "return the axis with G28 or G30 before G29",
+                ));
+            };
+            if off != self.active_offset(i) {
+                return Err(error(
+                    "NC548",
+                    format!("G29 on {} after its work offset changed since the G28/G30 (where the intermediate point then lies is not modelled)", w.addr),
+                    w.span,
+                    "return with G29 before changing the offset, or move to the point with G0",
+                ));
+            }
+            let v = self.length(w, *x, (3..6).contains(&i));
+            let inc = w.mode == AbsInc::Ic || (w.mode == AbsInc::Plain && !self.modal.absolute);
+            via[i] = at;
+            target[i] = if inc { at + v } else { v + self.active_offset(i) };
+            any = true;
+        }
+        if !any {
+            // Alone, some controls return the last G28's axes to its intermediate point,
+            // others not at all (docs/semantics.md, MILL-G29): not modelled.
+            return Err(error(
+                "NC548",
+                "G29 without an axis word is not modelled (which axes it returns is not settled)".into(),
+                span,
+                "name the axes to return: `G29 Z5.`",
+            ));
+        }
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.seen[i] = true;
+                self.applied[i] = self.active_offset(i);
+                self.pos[i] = via[i];
+            }
+        }
+        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+        for (i, a) in axes.iter().enumerate() {
+            if a.is_some() {
+                self.pos[i] = target[i];
+            }
+        }
+        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
         Ok(true)
     }
 

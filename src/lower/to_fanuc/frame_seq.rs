@@ -89,9 +89,11 @@ fn mode(op: &str, words: &[Word]) -> Option<Mode> {
     }
 }
 
-/// The sequence at `list[i..]`: the mode found and the blocks it takes.
-fn sequence_at(list: &[Stmt], i: usize) -> Option<(Found, usize)> {
+/// The sequence at `list[i..]`: the mode found and the blocks it takes. `g17`: the program
+/// selects no other plane (else rotations are left to `rotation.rs`, which knows the plane).
+fn sequence_at(list: &[Stmt], i: usize, g17: bool) -> Option<(Found, usize)> {
     let (op, words, _, _) = frame_of(list.get(i)?)?;
+    let mode = |op: &str, words: &[Word]| mode(op, words).filter(|m| g17 || !matches!(m, Mode::Rot(_)));
     if let Some(m) = mode(op, words) {
         return Some((Found { centre: Vec::new(), mode: m }, 1));
     }
@@ -127,7 +129,7 @@ fn inverse(a: &Found, b: &Found) -> bool {
         }
 }
 
-fn scan(list: &[Stmt], start: bool, seqs: &mut Seqs) {
+fn scan(list: &[Stmt], start: bool, g17: bool, seqs: &mut Seqs) {
     let mut plain = start;
     let mut active: Option<Found> = None;
     let mut i = 0;
@@ -135,7 +137,7 @@ fn scan(list: &[Stmt], start: bool, seqs: &mut Seqs) {
         let s = &list[i];
         let StmtKind::Block(b) = &s.kind else {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                scan(child, false, seqs);
+                scan(child, false, g17, seqs);
             }
             (plain, active) = (false, None);
             i += 1;
@@ -144,7 +146,7 @@ fn scan(list: &[Stmt], start: bool, seqs: &mut Seqs) {
         if b.meta.number.is_some() || b.meta.label.is_some() {
             (plain, active) = (false, None);
         }
-        if let Some((found, n)) = sequence_at(list, i) {
+        if let Some((found, n)) = sequence_at(list, i, g17) {
             let first = b.items.first().map_or(b.meta.span.lo, |it| it.span.lo);
             let action = match &active {
                 Some(a) if inverse(a, &found) => {
@@ -186,7 +188,15 @@ fn scan(list: &[Stmt], start: bool, seqs: &mut Seqs) {
 /// The sequences of a program (`main`: not a called one, so no mode is in force at its start).
 pub fn seqs(body: &[Stmt], main: bool) -> Seqs {
     let mut s = Seqs::default();
-    scan(body, main, &mut s);
+    let mut g17 = true;
+    crate::ir::visit::walk_stmts(body, &mut |st| {
+        if let StmtKind::Block(b) = &st.kind {
+            g17 &= !b.items.iter().any(|it| {
+                matches!(&it.kind, ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }), .. }) if n.value == 18.0 || n.value == 19.0)
+            });
+        }
+    });
+    scan(body, main, g17, &mut s);
     s
 }
 

@@ -39,7 +39,8 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 /// The axes any TRANS of `body` names, with X, Y and Z; bit 15: the program has an
-/// incremental word (G91 or IC()), after which TRANS and G52 differ.
+/// incremental word (G91 or IC()), after which TRANS and G52 differ; bit 14: it has a
+/// frame instruction other than the `ATRANS X=$P_EP[X]-v` form of G92 ([`g92_words`]).
 pub fn trans_axes(body: &[Stmt]) -> u16 {
     let mut bits = 0b111;
     crate::ir::visit::walk_stmts(body, &mut |s| {
@@ -49,7 +50,10 @@ pub fn trans_axes(body: &[Stmt]) -> u16 {
                 {
                     bits |= 1 << 15;
                 }
-                if let ItemKind::Frame { words, .. } = &it.kind {
+                if let ItemKind::Frame { op, words } = &it.kind {
+                    if op != "ATRANS" || g92_words(words).is_none() {
+                        bits |= 1 << 14;
+                    }
                     for w in words {
                         if let Addr::Letter(l) = w.addr {
                             bits |= AXES.iter().position(|&c| c == l).map_or(0, |i| 1 << i);
@@ -74,7 +78,14 @@ pub fn supa_as_g53(b: &mut Block) {
 /// Rewrites `G153` in place and moves a `G505..` selection into a block of its own
 /// in `out` (it bypasses the words pass, where G58/G59 are Siemens codes of another
 /// meaning); `Some(stmts)`: the block became these (TRANS, G74, G75, or a refusal).
-pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &mut Vec<Stmt>) -> Option<Vec<Stmt>> {
+pub fn block(
+    ctx: &mut Ctx,
+    b: &mut Block,
+    abs: Option<bool>,
+    axes: u16,
+    main: bool,
+    out: &mut Vec<Stmt>,
+) -> Option<Vec<Stmt>> {
     let (mut k, mut moved) = (0, false);
     while k < b.items.len() {
         let span = b.items[k].span;
@@ -100,6 +111,21 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
     }
     let span = b.meta.span;
     if let [Item { kind: ItemKind::Frame { op, words }, span: fspan }] = b.items.as_slice() {
+        if op == "ATRANS" {
+            let g92 = g92_words(words)?;
+            if !main || axes & (3 << 14) != 0 || abs != Some(true) {
+                return Some(refuse(
+                    ctx,
+                    *fspan,
+                    "ATRANS X=$P_EP[X]-v (FANUC G92) in a called program, under G91, or in a program with other frame instructions or incremental moves (FANUC G52 keeps the G92 shift where TRANS replaces it; after a frame change a Sinumerik incremental move also travels it)",
+                    "set the coordinate system in a main program that has no other frames, in G90",
+                ));
+            }
+            let mut items = vec![g(92.0, span)];
+            items.extend(g92.into_iter().map(|(l, v, s)| letter(l, v, s)));
+            let meta = std::mem::take(&mut b.meta);
+            return Some(vec![meta_stmt(meta, items)]);
+        }
         if op != "TRANS" {
             return None; // the words pass refuses the others (NC316)
         }
@@ -200,4 +226,94 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, abs: Option<bool>, axes: u16, out: &m
 
 fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Vec<Stmt> {
     ctx.unsupported("NC445", span, what, hint).into_iter().collect()
+}
+
+/// The words of `ATRANS X=$P_EP[X]-v Y=$P_EP[Y] ..` (what FANUC → Sinumerik writes for
+/// `G92 X v Y0`): each axis's new coordinate v, or `None` for another ATRANS.
+pub fn g92_words(words: &[Word]) -> Option<Vec<(u8, Expr, Span)>> {
+    let end_of = |e: &Expr, l: u8| match &e.kind {
+        ExprKind::Var(v) => match &v.kind {
+            VarKind::System { name, indices } if name.eq_ignore_ascii_case("P_EP") => match indices.as_slice() {
+                [Expr { kind: ExprKind::Ident(a), .. }] => a.eq_ignore_ascii_case(&(l as char).to_string()),
+                _ => false,
+            },
+            _ => false,
+        },
+        _ => false,
+    };
+    let mut out = Vec::new();
+    for w in words {
+        let Addr::Letter(l) = w.addr else { return None };
+        if !b"XYZABC".contains(&l) {
+            return None;
+        }
+        let WordValue::Expr(e) = &w.value else { return None };
+        let v = match &e.kind {
+            _ if end_of(e, l) => point(0.0, w.span),
+            ExprKind::Binary(BinOp::Sub, a, v) if end_of(a, l) => (**v).clone(),
+            _ => return None,
+        };
+        out.push((l, v, w.span));
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// A write of `$P_UIFR[n,X,TR]` for an extended frame (n 7..54, `G50n`, FANUC G54.1 P(n-6)):
+/// the P number and the axis letter.
+pub fn extended_frame(target: &VarRef) -> Option<(u32, u8)> {
+    let VarKind::System { name, indices } = &target.kind else { return None };
+    if !name.eq_ignore_ascii_case("P_UIFR") {
+        return None;
+    }
+    let [n, a, c] = indices.as_slice() else { return None };
+    let n = match &n.kind {
+        ExprKind::Num(n) if (7.0..=54.0).contains(&n.value) && n.value.fract() == 0.0 => n.value as u32,
+        _ => return None,
+    };
+    let ident = |e: &Expr| match &e.kind {
+        ExprKind::Ident(s) => Some(s.to_ascii_uppercase()),
+        ExprKind::Var(v) => match &v.kind {
+            VarKind::Named { name, indices } if indices.is_empty() => Some(name.to_ascii_uppercase()),
+            _ => None,
+        },
+        _ => None,
+    };
+    let axis = ident(a).filter(|s| s.len() == 1 && b"XYZABC".contains(&s.as_bytes()[0]))?;
+    (ident(c).as_deref() == Some("TR")).then(|| (n - 6, axis.as_bytes()[0]))
+}
+
+/// `$P_UIFR[n,X,TR]=v` (n 7..54) → `G10 L20 P(n-6) X v`, written under G90 (the mode in
+/// force is switched for the block where it is G91). Sinumerik stores the frame until `G50n`
+/// selects it, FANUC applies a write to the active offset at once: where the program writes
+/// the active one and moves before selecting it again, the check finds the difference.
+pub fn g10_l20(
+    ctx: &mut Ctx,
+    target: &VarRef,
+    value: Expr,
+    abs: Option<bool>,
+    span: Span,
+) -> Result<Vec<Stmt>, Vec<Stmt>> {
+    let Some((p, l)) = extended_frame(target) else { return Ok(Vec::new()) };
+    let Some(abs) = abs else {
+        return Err(refuse(
+            ctx,
+            span,
+            "a write of an extended frame ($P_UIFR[7..54]) where G90/G91 depends on the path taken or on the caller (FANUC G10 under G91 adds to the offset)",
+            "select G90 or G91 before the write",
+        ));
+    };
+    // `$P_UIFR[n,X,TR]=$P_UIFR[n,X,TR]+d` (what G91 G10 L20 becomes): the G91 form.
+    let (add, value) = match value.kind {
+        ExprKind::Binary(BinOp::Add, a, d) if matches!(&a.kind, ExprKind::Var(v) if extended_frame(v) == Some((p, l))) => {
+            (true, *d)
+        }
+        kind => (false, Expr { kind, span: value.span }),
+    };
+    let mut items = vec![g(10.0, span), letter(b'L', num(20.0, span), span), letter(b'P', num(p as f64, span), span)];
+    items.push(letter(l, value, span));
+    if abs != add {
+        return Ok(vec![block_stmt(items, span)]);
+    }
+    items.insert(0, g(if add { 91.0 } else { 90.0 }, span));
+    Ok(vec![block_stmt(items, span), block_stmt(vec![g(if abs { 90.0 } else { 91.0 }, span)], span)])
 }

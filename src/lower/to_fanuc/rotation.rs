@@ -16,9 +16,13 @@
 //!   scaling and rotation in that order whatever order they come in.
 //!
 //! "Right after": in the same statement list, with no block between them that a jump could
-//! land on (a number or a label), no call and no structure. A rotation in a program that
-//! selects G18/G19, or in a called program (its plane and frame are the caller's), an
-//! `AROT` after another rotation, and spatial rotations are refused (NC498).
+//! land on (a number or a label), no call and no structure. A main program whose only plane
+//! word is G18 (or G19), written in its leading blocks, rotates in that plane after it:
+//! `G68 Z0 X0 R a` (`G68 Y0 Z0`), the angle `RPL=` or about the plane's normal (`ROT Y a`);
+//! both controls turn counter-clockwise seen from the normal's positive end (Z towards X in
+//! G18). A rotation where the plane is not known so, in a called program (its plane and
+//! frame are the caller's), an `AROT` after another rotation, and spatial rotations are
+//! refused (NC498).
 
 use super::*;
 
@@ -28,10 +32,15 @@ pub struct Plan {
     /// The program has a ROT/AROT (bit 0), SCALE/ASCALE (bit 1), MIRROR/AMIRROR (bit 2)
     /// with values.
     pub any: u8,
-    /// The program never selects G18/G19 and is a main program: G17 at every rotation.
+    /// The program never selects G18/G19 and is a main program: G17 at every rotation
+    /// (also what `frame_seq.rs` needs for its rotation sequences).
     pub g17: bool,
     /// The span starts of the AROT instructions that follow an absolute one.
     fresh: Vec<u32>,
+    /// A main program whose only plane word is G18 (18) or G19 (19), first written in its
+    /// leading blocks (before any label, number, jump, call or structure), so that plane is
+    /// in force at every block after that first word (its span start).
+    plane: Option<(u32, u32)>,
 }
 
 fn frame_of(b: &Block) -> Option<(&str, &[Word], Span)> {
@@ -146,7 +155,42 @@ fn scale_or_mirror(op: &str, words: &[Word], span: Span) -> Result<Vec<Item>, &'
 pub fn plan(body: &[Stmt], main: bool) -> Plan {
     let mut p = Plan { g17: main, ..Plan::default() };
     scan(body, main, &mut p);
+    if main && !p.g17 {
+        p.plane = single_plane(body);
+    }
     p
+}
+
+/// [`Plan::plane`]: the one plane (18 or 19) of every plane word of `body`, and the start of
+/// the first, where that one is in the leading blocks.
+fn single_plane(body: &[Stmt]) -> Option<(u32, u32)> {
+    let mut planes = Vec::new();
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let Some(g) = g_const(it).filter(|g| matches!(g, 17.0 | 18.0 | 19.0)) {
+                    planes.push(g as u32);
+                }
+            }
+        }
+    });
+    let p = *planes.first()?;
+    if p == 17 || planes.iter().any(|&q| q != p) {
+        return None;
+    }
+    for s in body {
+        let StmtKind::Block(b) = &s.kind else { return None };
+        if b.meta.number.is_some() || b.meta.label.is_some() || b.meta.skip.is_some() {
+            return None;
+        }
+        if let Some(it) = b.items.iter().find(|it| g_const(it) == Some(p as f64)) {
+            return Some((p, it.span.lo));
+        }
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::Call(_) | ItemKind::Case(_))) {
+            return None;
+        }
+    }
+    None
 }
 
 fn g(v: f64, span: Span) -> Item {
@@ -161,11 +205,11 @@ fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Vec<Stmt> {
     ctx.unsupported("NC498", span, what, hint).into_iter().collect()
 }
 
-/// The angle of a `ROT`/`AROT` in the plane: `RPL=a`, or `Z a` (about the axis normal to
-/// G17).
-fn angle(words: &[Word]) -> Option<Expr> {
+/// The angle of a `ROT`/`AROT` in the plane: `RPL=a`, or about the axis `normal` to it
+/// (`Z a` in G17).
+fn angle(words: &[Word], normal: u8) -> Option<Expr> {
     match words {
-        [w] if matches!(&w.addr, Addr::Name(n) if n.as_ref() == "RPL") || w.addr.is(b'Z') => match &w.value {
+        [w] if matches!(&w.addr, Addr::Name(n) if n.as_ref() == "RPL") || w.addr.is(normal) => match &w.value {
             WordValue::Expr(e) => Some(e.clone()),
             _ => None,
         },
@@ -198,16 +242,27 @@ pub fn block(
         }
         return None;
     }
-    if !plan.g17 && matches!(op, "ROT" | "AROT") {
-        return Some(refuse(
+    // The plane of the rotation: G17, or the one plane of the program after its first word.
+    // (Scaling and mirroring do not depend on it.)
+    let rot = matches!(op, "ROT" | "AROT");
+    let plane = match plan.plane.filter(|&(_, lo)| fspan.lo > lo) {
+        _ if plan.g17 || !rot => 17,
+        Some((p, _)) => p,
+        None => return Some(refuse(
             ctx,
             fspan,
-            "a rotation in a called program or in one that selects G18/G19 (FANUC G68 rotates in the plane of the block, which is not known here)",
-            "rotate in the main program, in G17",
-        ));
-    }
+            "a rotation in a called program, or in one whose plane (G17/G18/G19) at the rotation is not known from its leading blocks (FANUC G68 rotates in the plane of the block)",
+            "rotate in the main program, in the one plane it selects first (G17, or G18/G19 in its first blocks)",
+        )),
+    };
+    // The plane's two axes (G17 X Y, G18 Z X, G19 Y Z) and its normal.
+    let (u, v, normal) = match plane {
+        18 => (b'Z', b'X', b'Y'),
+        19 => (b'Y', b'Z', b'X'),
+        _ => (b'X', b'Y', b'Z'),
+    };
     let mode = if matches!(op, "ROT" | "AROT") {
-        let Some(a) = angle(words) else {
+        let Some(a) = angle(words, normal) else {
             return Some(refuse(
                 ctx,
                 fspan,
@@ -217,8 +272,8 @@ pub fn block(
         };
         vec![
             g(68.0, fspan),
-            letter(b'X', Expr::num(0.0, true, fspan), fspan),
-            letter(b'Y', Expr::num(0.0, true, fspan), fspan),
+            letter(u, Expr::num(0.0, true, fspan), fspan),
+            letter(v, Expr::num(0.0, true, fspan), fspan),
             letter(b'R', a, fspan),
         ]
     } else {

@@ -351,7 +351,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                 "NC342",
                 span,
                 &msg,
-                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..4,axis,TR] and the part counters have FANUC counterparts",
+                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..6,axis,TR] (and writes of [7..54]) and the part counters have FANUC counterparts",
             );
         }
     }
@@ -379,9 +379,10 @@ fn system(name: &str, idx: &[Expr]) -> Option<u32> {
         ("P_UIFR", [n, a, c]) => {
             let ExprKind::Num(n) = &n.kind else { return None };
             let tr = matches!(&c.kind, ExprKind::Ident(s) if s == "TR");
-            (tr && (1.0..=4.0).contains(&n.value) && n.value.fract() == 0.0)
+            // Frames 1..6: G54..G57 and G505/G506, which are FANUC G58/G59 (#5301+, #5321+).
+            (tr && (1.0..=6.0).contains(&n.value) && n.value.fract() == 0.0)
                 .then(|| 5221 + 20 * (n.value as u32 - 1) + axis_index(a).unwrap_or(99))
-                .filter(|&k| k < 5221 + 20 * 4)
+                .filter(|&k| k < 5221 + 20 * 6)
         }
         _ => None,
     }

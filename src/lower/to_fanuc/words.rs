@@ -13,6 +13,7 @@ use modes::{Feed, Modes, Resets, UnitState};
 use units::{FeedConv, Units};
 
 pub mod effects;
+mod mixed;
 mod modes;
 mod sysunits;
 pub mod units;
@@ -69,7 +70,6 @@ struct Modal {
     s: Modes,
     /// Jump targets where modes are reset.
     resets: Resets,
-    /// In a subprogram: the temporary that holds its caller's feed factor (see
     /// The axes a TRANS becomes a G52 of (`frames::trans_axes`).
     trans_axes: u16,
     /// What the program's rotations allow (`rotation::plan`).
@@ -78,6 +78,8 @@ struct Modal {
     poles: super::polar::Poles,
     /// Its additive frame sequences (`frame_seq::seqs`).
     seqs: super::frame_seq::Seqs,
+    /// A called program (its caller's frame, a G52 among them, is not known here).
+    is_sub: bool,
 }
 
 impl Modal {
@@ -104,6 +106,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         rot: super::rotation::plan(&prog.body, !info.is_sub),
         poles: super::polar::poles(&prog.body, !info.is_sub),
         seqs: super::frame_seq::seqs(&prog.body, !info.is_sub),
+        is_sub: info.is_sub,
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -277,7 +280,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
         out.extend(stmts);
         return;
     }
-    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, out) {
+    if let Some(stmts) = super::frames::block(ctx, &mut b, m.s.abs, m.trans_axes, !m.is_sub, out) {
         out.extend(stmts);
         return;
     }
@@ -294,7 +297,8 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 _ => None,
             })
             .collect();
-        match words_pass(ctx, words, m, b.meta.span) {
+        let has_call = items.iter().any(|i| matches!(i.kind, ItemKind::Call(_)));
+        match words_pass(ctx, words, m, has_call, b.meta.span) {
             Ok((ws, pre, post)) => {
                 before.extend(pre);
                 kept.extend(ws.into_iter().map(|w| {
@@ -415,6 +419,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("EXTERN {} dropped", e.name),
                 "it only declares the parameters of a called subprogram; FANUC calls declare nothing",
             ),
+            ItemKind::Assign { target, value } if super::frames::extended_frame(&target).is_some() => {
+                match super::frames::g10_l20(ctx, &target, value, m.s.abs, span) {
+                    Ok(stmts) => after.extend(stmts),
+                    Err(mark) => after.extend(mark),
+                }
+            }
             ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
                 "NC631",
                 span,
@@ -448,7 +458,13 @@ fn spindle_word(n: &str) -> Option<(u8, u32)> {
 
 /// Translates the NC words of one block. Returns the words, blocks to run before and after
 /// (the G90/G91 switch), or the marker of an unsupported word.
-fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Result<WordsOut, Vec<Stmt>> {
+fn words_pass(
+    ctx: &mut Ctx,
+    words: Vec<Word>,
+    m: &mut Modal,
+    has_call: bool,
+    span: Span,
+) -> Result<WordsOut, Vec<Stmt>> {
     let dwell = words.iter().any(|w| w.addr.is(b'G') && const_of(&w.value) == Some(4.0));
     // Modal G words of this block apply to its own axis words.
     for w in &words {
@@ -462,6 +478,8 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
     let mut explicit: Option<bool> = None;
     let mut mixed = false;
     let mut plain_axis = false;
+    // Per word of `out`: `Some(true)` AC(), `Some(false)` IC(), `None` otherwise.
+    let mut forms: Vec<Option<bool>> = Vec::with_capacity(words.len());
     for mut w in words {
         let wspan = w.span;
         match &w.addr {
@@ -515,6 +533,11 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
             WordValue::Expr(_) if is_axis => plain_axis = true,
             WordValue::Expr(_) => {}
         }
+        let form = match &w.value {
+            WordValue::Ac(_) => Some(true),
+            WordValue::Ic(_) => Some(false),
+            _ => None,
+        };
         if let WordValue::Ac(e) | WordValue::Ic(e) = &w.value {
             w.value = WordValue::Expr(e.clone());
         }
@@ -592,13 +615,13 @@ fn words_pass(ctx: &mut Ctx, words: Vec<Word>, m: &mut Modal, span: Span) -> Res
             }
             _ => {}
         }
+        forms.push(form);
         out.push(w);
     }
     let (mut pre, mut post) = (vec![], vec![]);
-    if let Some(abs) = explicit {
+    if let Some(mut abs) = explicit {
         if mixed || (plain_axis && m.s.abs != Some(abs)) {
-            let hint = "put the AC()/IC() words in a block of their own";
-            return Err(unsup(ctx, "NC313", span, "a block mixing absolute and incremental axis words", hint));
+            abs = mixed::rewrite(ctx, &mut out, &forms, m, plain_axis, has_call, span)?;
         }
         if m.s.abs != Some(abs) {
             // Switch for this block, then back to the mode in force. The block's own G90/G91

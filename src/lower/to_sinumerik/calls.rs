@@ -11,7 +11,8 @@
 //! - `G66` → `MCALL NAME(…)`, `G67` → `MCALL`, `M99` → `RET` (also in a main program, where
 //!   the trace spec ends the run on M99 as on RET).
 //! - `G10 L2 Pp X.. Y..` → `$P_UIFR[p,X,TR]=…` (added to the old value under G91) and a
-//!   re-selection of the work offset active at that point so the new value takes effect.
+//!   re-selection of the work offset active at that point so the new value takes effect;
+//!   `G10 L20 Pn` (extended offset n) → `$P_UIFR[6+n,X,TR]=…` where G54..G59 is in force.
 
 use super::*;
 
@@ -571,7 +572,8 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span, inch: Option<bool>) -> Result<
 }
 
 /// `G10 L2 Pp X.. Y.. Z..` → `$P_UIFR[p,AX,TR]=v` writes plus the re-selection of the active
-/// work offset. Other `G10` forms are unsupported.
+/// work offset; `G10 L20 Pn` → `$P_UIFR[6+n,AX,TR]` (G507.. is G54.1 P1..), where G54..G59 is
+/// known to be in force (so the written offset is not). Other `G10` forms are unsupported.
 fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalScan, out: &mut Vec<Stmt>) {
     let word_val = |a: u8| {
         b.items.iter().find_map(|it| match &it.kind {
@@ -583,13 +585,14 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         })
     };
     let l = word_val(b'L').and_then(|e| literal(&e));
-    if l != Some(2.0) {
+    let extended = l == Some(20.0);
+    if l != Some(2.0) && !extended {
         let what = if l == Some(50.0) { "`G10 L50` parameter write" } else { "this `G10` data setting" };
         if let Some(st) = ctx.unsupported(
             if l == Some(50.0) { "NC355" } else { "NC358" },
             span,
             what,
-            "only `G10 L2 P1..6` (work offsets) translates; set other data on the Siemens control",
+            "only `G10 L2 P1..6` and `G10 L20 P1..48` (work offsets) translate; set other data on the Siemens control",
         ) {
             out.push(st);
         }
@@ -597,6 +600,19 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
     }
     let p = word_val(b'P').and_then(|e| literal(&e)).unwrap_or(-1.0);
     let frame = match p as i64 {
+        // `G10 L20 Pn`: extended offset n (G54.1 Pn), Siemens G50(6+n) ($P_UIFR[6+n]).
+        1..=48 if extended && p.fract() == 0.0 => 6 + p as i64,
+        _ if extended => {
+            if let Some(st) = ctx.unsupported(
+                "NC545",
+                span,
+                "`G10 L20` with a P other than a constant 1..48",
+                "write the extended offset number as a constant: `G10 L20 P3 X..`",
+            ) {
+                out.push(st);
+            }
+            return;
+        }
         1..=4 if p.fract() == 0.0 => p as i64,
         5 | 6 if p.fract() == 0.0 => p as i64, // G58/G59 → G505/G506 ($P_UIFR[5], [6])
         _ => {
@@ -686,6 +702,19 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
     // Writing $P_UIFR does not activate it: re-select the offset active here, if it is
     // the one written (FANUC: a write to another offset acts at its next selection).
     let g = match modal.offset_at(span.lo) {
+        // G54..G59 in force: the extended offset written is not (the scan knows no G54.1 P).
+        Some(_) if extended => return,
+        None if extended => {
+            if let Some(st) = ctx.unsupported(
+                "NC546",
+                span,
+                "`G10 L20` where an extended offset (G54.1 Pn) may be in force (FANUC acts on a write to the active one at once; Sinumerik needs its G50x selected again, and which one is active is not followed here)",
+                "write the extended offsets under G54..G59 (e.g. `G54`, then `G10 L20 P1 X..`), then select `G54.1 P1`",
+            ) {
+                out.push(st);
+            }
+            return;
+        }
         Some(g) if i64::from(g / 10) - 53 != frame => return,
         Some(580) => 5050,
         Some(590) => 5060,

@@ -94,6 +94,12 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
         Ok(split) => return Ok(split),
         Err(b) => b,
     };
+    if gs.contains(&920) && !gs.contains(&681) && !gs.contains(&290) {
+        return Ok(g92(ctx, b, span, modal));
+    }
+    if gs.contains(&290) && !gs.contains(&681) && !gs.contains(&920) {
+        return Ok(g29(ctx, b, span, modal));
+    }
     if let Some(&g) = gs.iter().find(|g| matches!(g, 681 | 290 | 920)) {
         let what = match g {
             681 => "G68.1 (three-dimensional coordinate rotation)",
@@ -301,4 +307,147 @@ fn reference_return(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, g30:
         Some(b)
     };
     Split { before: Vec::new(), block: first, after }
+}
+
+/// `G92 X v ..` → `ATRANS X=$P_EP[X]-v ..`: the current position on each named axis gets
+/// the coordinate v, by a shift added to the programmable frame, which (as the G92 shift
+/// does every work offset) stays through G54..G599 selections and reference returns. Exact
+/// where nothing else writes that frame and no increment would travel its change: refused
+/// (NC547) in a called program, in one with G52, G68, G51, G51.1 or G16 (their TRANS,
+/// AROT, … would replace or turn it), with incremental moves (after ATRANS a Sinumerik
+/// increment also travels the shift, MD42440), under G91, and with other words.
+fn g92(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split {
+    let refuse = |ctx: &mut Ctx, what: &str, hint: &str| refused(ctx, "NC547", span, what, hint);
+    if !only_words(&b, &[920, 900], &[]) || modal.incremental_at(span.lo) != Some(false) {
+        return refuse(
+            ctx,
+            "G92 with other words, or where G91 may be in force",
+            "write G92 alone in its block, under G90: `G90 G92 X.. Y..`",
+        );
+    }
+    if !modal.g52.1 {
+        return refuse(
+            ctx,
+            "G92 in a called program (its Sinumerik shift would add to the caller's frame, which is not known here)",
+            "set the coordinate system in the main program",
+        );
+    }
+    if modal.frames() {
+        return refuse(
+            ctx,
+            "G92 in a program with G52, G68, G51, G51.1 or G16 (their Sinumerik frames would replace or turn the shift G92 becomes)",
+            "use one kind of coordinate shift in the program: G92, or G52/G54..",
+        );
+    }
+    if modal.incremental_motion {
+        return refuse(
+            ctx,
+            "G92 in a program with incremental (G91) moves (after a frame change a Sinumerik incremental move also travels the shift, a FANUC one does not)",
+            "program the moves after G92 in G90",
+        );
+    }
+    let inch = modal.inch_at(span.lo);
+    let mut words = Vec::new();
+    for it in &b.items {
+        let Some((l, e)) = letter_of(it) else { continue };
+        let Some(i) = b"XYZABC".iter().position(|&c| c == l) else {
+            if axis_bit(l).is_some() {
+                return refuse(
+                    ctx,
+                    "G92 on an axis other than X Y Z A B C",
+                    "set the coordinate of X, Y, Z, A, B or C",
+                );
+            }
+            continue;
+        };
+        let Some(v) = axis_value(ctx, e, inch) else {
+            return refused(
+                ctx,
+                "NC375",
+                it.span,
+                "a G92 value without a decimal point where the unit (G20/G21) depends on the path taken or on the caller",
+                "write the value with a decimal point",
+            );
+        };
+        let Some(ep) = super::words::system_var(5001 + i as u32, it.span) else { continue };
+        let at = var_expr(ep, it.span);
+        let shift = if literal(&v) == Some(0.0) { at } else { bin(BinOp::Sub, at, v) };
+        words.push(Word { addr: Addr::Letter(l), value: WordValue::Expr(shift), span: it.span });
+    }
+    if words.is_empty() {
+        return refuse(ctx, "G92 without an axis", "name the axes whose coordinate is set: `G92 X0 Y0`");
+    }
+    let frame = Item { kind: ItemKind::Frame { op: "ATRANS".into(), words }, span };
+    let g90: Vec<Item> = b.items.iter().filter(|it| g_of(it) == Some(900)).cloned().collect();
+    let mut meta = b.meta;
+    meta.span = span;
+    let after = if g90.is_empty() {
+        vec![block_stmt(meta, vec![frame])]
+    } else {
+        vec![block_stmt(meta, g90), plain_block(vec![frame], span)]
+    };
+    Split { before: Vec::new(), block: None, after }
+}
+
+/// `G29 Z..` → `G0 Z<intermediate point>` (with `=AC(..)` where G91 may be in force), then
+/// the block's words in `G0`, then the motion G code again if it was not G0. The
+/// intermediate point must be known from the text ([`ModalScan::intermediate_at`]): the
+/// absolute constant of the last G28/G30 on every path, with no offset, G52, G92, unit
+/// change or call since; else NC548.
+fn g29(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split {
+    if !only_words(&b, &[290, 900, 910], &[]) {
+        return refused(
+            ctx,
+            "NC548",
+            span,
+            "G29 with other words in the block",
+            "write the return alone in its block: `G29 Z..`",
+        );
+    }
+    let incremental = modal.incremental_at(span.lo);
+    let inch = modal.inch_at(span.lo);
+    let mut via = vec![super::words::g_word(0, span)];
+    for it in &b.items {
+        let Some((l, _)) = letter_of(it) else { continue };
+        if axis_bit(l).is_none() {
+            continue;
+        }
+        let known = b"XYZABC".iter().position(|&c| c == l).and_then(|i| modal.intermediate_at(span.lo, i));
+        let Some(v) = known.and_then(|(_, e)| axis_value(ctx, e, inch)) else {
+            return refused(
+                ctx,
+                "NC548",
+                it.span,
+                &format!("G29 on {} where the intermediate point is not known from the text (the last G28/G30 on every path, absolute and constant, with no work offset, G52, G92, unit change or call since)", l as char),
+                "move back with G0 to the point itself, or write the G28 intermediate point as a constant under G90",
+            );
+        };
+        let value = if incremental == Some(false) { WordValue::Expr(v) } else { WordValue::Ac(v) };
+        via.push(Item { kind: ItemKind::Word(Word { addr: Addr::Letter(l), value, span: it.span }), span: it.span });
+    }
+    if via.len() == 1 {
+        return refused(ctx, "NC548", span, "G29 without an axis", "name the axes to return: `G29 Z5.`");
+    }
+    let motion = modal.motion_at(span.lo);
+    let Some(motion) = motion else {
+        return refused(
+            ctx,
+            "NC548",
+            span,
+            "G29 where the motion mode (G0/G1/G2/G3) depends on the path taken",
+            "program G0 or G1 before the return on every path",
+        );
+    };
+    // The first block keeps the number and label: a jump to the G29 runs both moves.
+    let mut b = b;
+    let mut meta = std::mem::take(&mut b.meta);
+    meta.span = span;
+    b.meta.span = span;
+    b.items.retain(|it| g_of(it) != Some(290));
+    b.items.insert(0, super::words::g_word(0, span));
+    let mut after = Vec::new();
+    if motion != 0 {
+        after.push(plain_block(vec![super::words::g_word(motion, span)], span));
+    }
+    Split { before: vec![block_stmt(meta, via)], block: Some(b), after }
 }

@@ -27,6 +27,10 @@ pub struct ModalScan {
     g68s: Vec<(u32, u32, Vec<Item>)>,
     /// Some block selects G18/G19.
     other_plane: bool,
+    /// Some block has G52, G68, G51, G51.1 or G16 (a Sinumerik frame of their own).
+    frames: bool,
+    /// Each G28/G30 block: the start of its first item ([`State::inter`]) and its items.
+    homes: Vec<(u32, Vec<Item>)>,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -45,10 +49,15 @@ pub struct State {
     /// G16 polar coordinates in force (a called program starts without: a call in G16
     /// mode is refused, `polar.rs`).
     pub polar: Option<bool>,
+    /// Per axis X Y Z A B C: the G28/G30 block (the start of its first item) whose
+    /// intermediate point, an absolute constant, is the one a G29 goes through; `None`
+    /// where not known so (or a work offset, G52, G92, unit or call came since).
+    pub inter: [Option<u32>; 6],
 }
 
 impl State {
-    const UNKNOWN: State = State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None };
+    const UNKNOWN: State =
+        State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None, inter: [None; 6] };
 
     fn merge(self, o: State) -> State {
         State {
@@ -58,6 +67,7 @@ impl State {
             motion: if self.motion == o.motion { self.motion } else { None },
             rot: if self.rot == o.rot { self.rot } else { None },
             polar: if self.polar == o.polar { self.polar } else { None },
+            inter: std::array::from_fn(|i| if self.inter[i] == o.inter[i] { self.inter[i] } else { None }),
         }
     }
 
@@ -72,6 +82,12 @@ impl State {
                 };
                 if sets {
                     self.inch = None;
+                }
+                self.inter = [None; 6];
+            }
+            if let ItemKind::Assign { target, .. } = &it.kind {
+                if matches!(target.kind, VarKind::Hash(5201..=5340) | VarKind::HashIndirect(_)) {
+                    self.inter = [None; 6];
                 }
             }
         }
@@ -95,6 +111,20 @@ impl State {
                 // Canned cycles and their cancel: the motion group is not followed here.
                 730..=890 => self.motion = None,
                 _ => {}
+            }
+        }
+        let gs = g_codes(items);
+        if gs.iter().any(|g| matches!(g, 540..=590 | 520 | 920 | 100 | 200 | 210)) {
+            self.inter = [None; 6];
+        }
+        if gs.iter().any(|g| matches!(g, 280 | 300)) {
+            for it in items {
+                if let ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) = &it.kind {
+                    if let Some(i) = b"XYZABC".iter().position(|c| c == l) {
+                        let known = self.incremental == Some(false) && literal(e).is_some();
+                        self.inter[i] = known.then(|| items.first().map_or(0, |f| f.span.lo));
+                    }
+                }
             }
         }
         self
@@ -141,6 +171,7 @@ impl ModalScan {
                 motion: Some(0),
                 rot: Some(0),
                 polar: Some(false),
+                inter: [None; 6],
             }
         } else {
             State { inch, polar: Some(false), ..State::UNKNOWN }
@@ -185,6 +216,8 @@ impl ModalScan {
         let mut rot_in = Vec::new();
         let mut g68s = Vec::new();
         let mut other_plane = false;
+        let mut frames = false;
+        let mut homes = Vec::new();
         let mut incremental_motion = false;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
@@ -196,6 +229,10 @@ impl ModalScan {
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
+                frames |= g_codes(items).iter().any(|g| matches!(g, 520 | 680 | 510 | 511 | 160));
+                if g_codes(items).iter().any(|g| matches!(g, 280 | 300)) {
+                    homes.push((first, items.to_vec()));
+                }
                 if let Some(&g) = g_codes(items).iter().find(|g| matches!(g, 680 | 510 | 511)) {
                     g68s.push((frame_key(first, g), lo, items.to_vec()));
                 }
@@ -219,7 +256,16 @@ impl ModalScan {
             }
             blocks.push((lo, st));
         }
-        ModalScan { blocks, g52: (super::frames::g52_axes(body), main), incremental_motion, rot_in, g68s, other_plane }
+        ModalScan {
+            blocks,
+            g52: (super::frames::g52_axes(body), main),
+            incremental_motion,
+            rot_in,
+            g68s,
+            other_plane,
+            frames,
+            homes,
+        }
     }
 
     /// G16 in force after the block at `lo`; `None` where the paths disagree.
@@ -230,6 +276,24 @@ impl ModalScan {
     /// Whether some block of the program selects G18 or G19 (a G16 plane not known here).
     pub fn other_plane(&self) -> bool {
         self.other_plane
+    }
+
+    /// The intermediate point of axis `i` (X Y Z A B C) a G29 at `lo` goes through: the
+    /// word of the G28/G30 that set it ([`State::inter`]), with that block's start.
+    pub fn intermediate_at(&self, lo: u32, i: usize) -> Option<(u32, &Expr)> {
+        let key = self.at(lo).and_then(|b| b.1.inter[i])?;
+        let (_, items) = self.homes.iter().find(|h| h.0 == key)?;
+        items.iter().rev().find_map(|it| match &it.kind {
+            ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) if *l == b"XYZABC"[i] => {
+                Some((key, e))
+            }
+            _ => None,
+        })
+    }
+
+    /// Whether some block of the program has G52, G68, G51, G51.1 or G16.
+    pub fn frames(&self) -> bool {
+        self.frames
     }
 
     /// The G68, G51 or G51.1 in force before the block whose first word starts at `lo`
