@@ -5,12 +5,12 @@
 //! each of those arguments left vacant, where its vacancy logic (a default, an alarm) must
 //! be right for a caller added later.
 
-use crate::batch::jobs_sinumerik::{parse_all, siemens_inputs};
 use crate::batch::library::{self, Library, ProgKey};
 use crate::check::{CheckReport, Excluded, Verdict};
 use crate::eval::calls::CalleeSource;
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
+use crate::translate::to_sinumerik::job::{parse_all, siemens_inputs};
 use crate::translate::to_sinumerik::verify::{self as vs, Profiles, RunSpec};
 use crate::translate::to_sinumerik::{OutFile, Translation};
 use std::collections::BTreeSet;

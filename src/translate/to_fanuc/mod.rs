@@ -4,7 +4,10 @@
 //!
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
-//! their place (the translation is still not [`Output::ok`]).
+//! their place (the translation is still not [`Output::ok`]). What a batch job to FANUC
+//! does as its own is `job`.
+
+pub mod job;
 
 use super::Verification;
 use crate::diag::{self, Diagnostic};

@@ -1,6 +1,7 @@
-//! The FANUC → Sinumerik batch job: one FANUC file in, one Siemens file per program out
-//! (`NAME.MPF` for main programs, `NAME.SPF` for called ones), named by the batch's program
-//! map, each proved by running it against its FANUC source.
+//! What a batch job to Sinumerik does as its own (`batch::jobs::Target`): one FANUC file
+//! in, one Siemens file per program out (`NAME.MPF` for main programs, `NAME.SPF` for
+//! called ones), named by the batch's program map, each proved by running it against its
+//! FANUC source.
 //!
 //! A FANUC macro's Siemens form (its `PROC` parameters and is-set flags, `VAR` parameters for
 //! M98 subprograms) depends on how the program is called. The translator learns that from
@@ -9,38 +10,32 @@
 //! dropped): the macro's own job and every caller's job then see the same calls and write
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
-use super::jobs::{
-    apply, combine, failed, load_with_callees, unsupported, Fault, JobSettings, LoadedFile, MemCallees, Verified,
-};
-use super::library::ProgKey;
-use super::{discover, maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::batch::jobs::{combine, Input, Job, LoadedFile, MemCallees, Prepared, Target, Verified};
+use crate::batch::library::ProgKey;
+use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile, Status};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
-use crate::dialect::{Dialect, ParseOptions};
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::CalleeSource;
-use crate::eval::{self, Input};
+use crate::eval::{self, Input as RunInput};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
 use crate::translate::called::{self as verify_called, RunSettings};
 use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
 use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 
 /// The name the stand-in caller program is shown under in diagnostics.
 const CALLERS_FILE: &str = "(calls from other files of the library)";
 
-/// FANUC → Sinumerik.
-pub struct ToSinumerikJob {
-    pub settings: JobSettings,
-    /// The tests' injected bug, applied to the text of every output of the file.
-    pub fault: Option<Box<Fault>>,
-}
+/// The Sinumerik target of a batch.
+pub struct Sinumerik;
 
-impl ToSinumerikJob {
-    pub fn new(settings: JobSettings) -> ToSinumerikJob {
-        ToSinumerikJob { settings, fault: None }
-    }
-
+impl Job<Sinumerik> {
+    /// The translation's options for `file`, from the batch (its maps and the library's
+    /// common variables).
     pub(crate) fn options(&self, ctx: &BatchContext, file: &InputFile) -> Result<Options, String> {
         let mut var_map = Vec::new();
         for r in &ctx.maps.var_rules {
@@ -158,7 +153,7 @@ fn duplicates(
             continue;
         }
         let Some(other) = ctx.files.get(first.file) else { continue };
-        let other_name = super::rel_string(&other.rel);
+        let other_name = crate::batch::rel_string(&other.rel);
         if i > 0 && ctx.library.is_canonical(&ProgKey::Number(n), file.index) {
             let mut d = DiagRecord::error(
                 "NC607",
@@ -305,118 +300,64 @@ pub(crate) fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) 
     out
 }
 
-pub(crate) fn parse_all(v: &[String]) -> Vec<Input> {
+pub(crate) fn parse_all(v: &[String]) -> Vec<RunInput> {
     v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
 }
 
-impl FileJob for ToSinumerikJob {
-    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        if let Some(o) = super::streamed::to_sinumerik(self, file, ctx) {
-            return o;
-        }
-        let mut db = SourceDb::new();
-        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Fanuc, &self.settings.fanuc) {
-            Ok(l) => l,
-            Err(o) => return *o,
-        };
-        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let mut opts = match self.options(ctx, file) {
-            Ok(o) => o,
-            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
-        };
-        opts.after_end = std::iter::once(&main).chain(subs.iter()).flat_map(|l| l.after_end.iter().copied()).collect();
-        let (copies, mut diagnostics) = duplicates(ctx, file, &main, &mut opts);
-        diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
+impl Target for Sinumerik {
+    const DIALECT: Dialect = Dialect::Sinumerik;
+    const NAME: &'static str = "Sinumerik";
 
+    fn streamed(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+        crate::batch::streamed::to_sinumerik(job, file, ctx)
+    }
+
+    fn prepare(job: &Job<Sinumerik>, input: &mut Input, _source: Semantics) -> Result<Prepared, String> {
+        let (ctx, file, main, subs) = (input.ctx, input.file, &input.main, &input.subs);
+        let mut opts = job.options(ctx, file)?;
+        opts.after_end = std::iter::once(main).chain(subs.iter()).flat_map(|l| l.after_end.iter().copied()).collect();
+        let (copies, notes) = duplicates(ctx, file, main, &mut opts);
         // The programs of the job and the calls the rest of the library makes to them.
         let mut job_files: Vec<usize> = vec![file.index];
         job_files.extend(ctx.library.callee_files(file.index));
-        let all: Vec<&LoadedFile> = std::iter::once(&main).chain(subs.iter()).collect();
-        let job: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all.iter().map(|l| &l.unit)).collect();
-        let callers = stand_in(&mut db, ctx, &job, &self.settings.fanuc);
-        let mut units: Vec<&Unit> = all.iter().map(|l| &l.unit).collect();
-        if let Some((_, u)) = &callers {
-            units.push(u);
-        }
-        let eol = self.settings.line_ending(main.loaded.line_ending);
+        let all = std::iter::once(main).chain(subs.iter()).map(|l| &l.unit);
+        let units: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all).collect();
+        let stand_in = stand_in(&mut input.db, ctx, &units, &job.settings.fanuc);
+        let eol = job.settings.line_ending(main.loaded.line_ending);
         let opts = crate::translate::Options::to_sinumerik(opts, eol);
-        let mut tr = crate::translate::translate(&units, Dialect::Sinumerik, &opts);
-        let stand_in = callers.as_ref().map(|(id, _)| *id);
-        // The stand-in's own program is not an output; its warnings are about nothing real.
-        tr.files.retain(|f| Some(f.source) != stand_in);
-        let own_diags: Vec<_> = tr
-            .diags
-            .iter()
-            .filter(|d| d.is_error() || d.labels.iter().find(|l| l.primary).is_none_or(|l| Some(l.file) != stand_in))
-            .cloned()
-            .collect();
-        diagnostics.extend(DiagRecord::from_diags(&db, &own_diags));
-
-        // What this file's programs use (not the callees', not the stand-in's).
-        let own = main.loaded.file;
-        let own_programs: Vec<(Option<u32>, &str)> =
-            tr.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
-        let used = used_names(&own_programs, tr.symbols.sinumerik());
-        let marked: usize =
-            tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
-        if tr.has_errors() || marked > 0 {
-            let n = own_diags.iter().filter(|d| d.is_error()).count().max(marked);
-            return unsupported(n, "Sinumerik", blocks, diagnostics);
-        }
-        if let Some(fault) = &self.fault {
-            for f in tr.files.iter_mut().filter(|f| f.source == own) {
-                fault(file, &mut f.text);
-            }
-        }
-        let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
-        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
-        outcome.blocks = blocks;
-        outcome.used = used;
-        outcome.outputs = tr
-            .files
-            .iter()
-            .filter(|f| f.source == own && !f.fanuc_number.is_some_and(|n| copies.contains(&n)))
-            .map(|f| OutputFile {
-                rel: discover::sinumerik_output(&file.rel, &f.program, !f.main),
-                bytes: crate::read::encode(&f.text, encoding, main.loaded.bom),
-            })
-            .collect();
-        outcome.diagnostics = diagnostics;
-        if outcome.outputs.is_empty() {
-            outcome.status = Status::Unsupported;
-            outcome.summary = "not translated: the file holds no program".into();
-            return outcome;
-        }
-        if ctx.options.verify {
-            let v = self.verify(&db, file, ctx, &main, &subs, &tr);
-            apply(&mut outcome, v);
-        }
-        outcome
+        Ok(Prepared { opts, notes, copies, stand_in })
     }
-}
 
-impl ToSinumerikJob {
+    fn used(t: &Translation, own: FileId) -> maps::Used {
+        let own_programs: Vec<(Option<u32>, &str)> =
+            t.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
+        used_names(&own_programs, t.symbols.sinumerik())
+    }
+
+    fn refused(t: &Translation, own_diags: &[Diagnostic], own: FileId) -> Option<usize> {
+        let marked: usize =
+            t.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
+        (t.has_errors() || marked > 0).then(|| own_diags.iter().filter(|d| d.is_error()).count().max(marked))
+    }
+
+    fn output(rel: &Path, f: &OutFile) -> PathBuf {
+        discover::sinumerik_output(rel, &f.program, !f.main)
+    }
+
     /// Runs the file's first program against its translation (and each other program the
     /// file does not call itself): with the inputs of the header lines and `--set`, and once
     /// per argument vector the library calls it with. The programs the file calls run
     /// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also
     /// runs alone (`in_file_macro_runs`).
-    fn verify(
-        &self,
-        db: &SourceDb,
-        file: &InputFile,
-        ctx: &BatchContext,
-        main: &LoadedFile,
-        subs: &[LoadedFile],
-        tr: &Translation,
-    ) -> Verified {
-        let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
-        let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
+    fn verify(job: &Job<Sinumerik>, input: &mut Input, tr: &Translation, _p: &Prepared) -> Verified {
+        let (db, file, ctx, main, subs) = (&input.db, input.file, input.ctx, &input.main, &input.subs);
+        let out_dir = crate::batch::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
+        let profiles = Profiles { fanuc: job.settings.fanuc.clone(), sinumerik: job.settings.sinumerik.clone() };
         let settings = RunSettings {
             out_dir: &out_dir,
-            max_steps: self.settings.max_steps,
+            max_steps: job.settings.max_steps,
             profiles: &profiles,
-            set: &self.settings.set,
+            set: &job.settings.set,
         };
         let served =
             || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
@@ -490,7 +431,7 @@ pub(crate) fn in_file_macro_runs(
         let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
         // A copy of a program an earlier file defines is verified there (see `duplicates`).
         let mine = lib.programs.get(&key).is_some_and(|d| d.file == file.index);
-        let macro_call = |c: &super::library::CallSite| {
+        let macro_call = |c: &crate::batch::library::CallSite| {
             c.file == file.index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
         };
         if !mine || !lib.calls.iter().any(macro_call) {
