@@ -10,8 +10,8 @@ use crate::check::{self, Verdict};
 use crate::config::{Comments, Config, LineEnds, Unsupported};
 use crate::diag::{self, Diagnostic};
 use crate::dialect::{Dialect, ParseOptions, Semantics};
-use crate::eval::{self, CalleeName, CalleeSource};
-use crate::ir::{ProgName, Unit};
+use crate::eval;
+use crate::ir::Unit;
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::translate::{self, OutFile, Translation};
@@ -19,6 +19,7 @@ use std::collections::BTreeSet;
 use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 
+pub use crate::translate::called::MemCallees;
 pub use crate::translate::to_fanuc::job::used_names;
 
 /// Sinumerik → FANUC.
@@ -222,37 +223,6 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
             excluded,
             diagnostics: vec![],
         },
-    }
-}
-
-/// Called programs served from memory: Siemens ones by name, FANUC ones by `O` number.
-pub(crate) struct MemCallees(pub Vec<Unit>);
-
-impl CalleeSource for MemCallees {
-    fn find(
-        &mut self,
-        _db: &mut SourceDb,
-        _caller: FileId,
-        _dialect: Dialect,
-        name: &CalleeName,
-    ) -> Result<Option<Unit>, Diagnostic> {
-        let found = match name {
-            CalleeName::Name(n) => {
-                let want = n.to_ascii_uppercase();
-                self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str()))
-            }
-            CalleeName::Number(n) => {
-                self.0.iter().find(|u| u.programs.iter().any(|p| p.name == Some(ProgName::Number(*n))))
-            }
-        };
-        Ok(found.cloned())
-    }
-}
-
-fn unit_name(u: &Unit) -> Option<String> {
-    match u.programs.first().and_then(|p| p.name.as_ref()) {
-        Some(ProgName::Name(n)) => Some(n.to_ascii_uppercase()),
-        _ => None,
     }
 }
 

@@ -150,9 +150,8 @@ impl From<to_fanuc::Output> for Translation {
 }
 
 /// The result of checking a translation.
-#[derive(Clone, Debug)]
 pub struct Verification {
-    /// Both programs ran to the same trace.
+    /// Both programs ran to the same trace (in every run).
     pub equivalent: bool,
     /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
     pub summary: String,
@@ -160,6 +159,11 @@ pub struct Verification {
     pub rendered: String,
     /// The output parsed back as FANUC.
     pub reparsed: Option<Unit>,
+    /// Every run of the proof with its label (the plain run's is empty), in order: the
+    /// callers' argument vectors, a called macro alone (see [`VerifyOptions`]).
+    pub runs: Vec<(String, CheckReport)>,
+    /// The output's errors when it does not read back as the target (no run was made).
+    pub unreadable: Vec<Diagnostic>,
 }
 
 impl Verification {
@@ -176,26 +180,107 @@ impl Verification {
             Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
             Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
         };
-        Verification { equivalent, summary, rendered, reparsed: None }
+        Verification { equivalent, summary, rendered, reparsed: None, runs: vec![], unreadable: vec![] }
+    }
+
+    /// The verdict of several runs: the first that is not an equivalence (named by its
+    /// label), or the events of all added up.
+    fn of_runs(runs: Vec<(String, CheckReport)>) -> Verification {
+        let mut v = match runs.iter().find(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. })) {
+            Some((label, r)) if !label.is_empty() => {
+                let v = Verification::of(r);
+                Verification { summary: format!("in the run{label}: {}", v.summary), ..v }
+            }
+            Some((_, r)) => Verification::of(r),
+            None if runs.len() == 1 => Verification::of(&runs[0].1),
+            None => {
+                let mut excluded = crate::check::Excluded::default();
+                let mut events = 0;
+                for (_, r) in &runs {
+                    if let Verdict::Equivalent { events: e } = r.verdict {
+                        events += e;
+                    }
+                    excluded.add(r.excluded);
+                }
+                let summary = called::Combined::summary(events, runs.len(), &excluded);
+                Verification { equivalent: true, summary, ..Verification::none("") }
+            }
+        };
+        if runs.is_empty() {
+            v = Verification::none("not verified: no program of the file was found in its translation");
+        }
+        v.runs = runs;
+        v
+    }
+
+    /// No verdict: `summary` says why.
+    fn none(summary: &str) -> Verification {
+        let summary = summary.to_string();
+        Verification {
+            equivalent: false,
+            summary,
+            rendered: String::new(),
+            reparsed: None,
+            runs: vec![],
+            unreadable: vec![],
+        }
+    }
+}
+
+/// What a proof is given beyond the translation. A step limit alone (`max_steps.into()`)
+/// proves a single file as `nctrans --to DIALECT` does.
+#[derive(Clone, Debug)]
+pub struct VerifyOptions<'a> {
+    /// The step limit of each run.
+    pub max_steps: u64,
+    /// The two runs' control profiles (`None`: each dialect's default).
+    pub profiles: Option<to_sinumerik::verify::Profiles>,
+    /// `--set` inputs of every run (FANUC `#n=…` ones are mapped for the Siemens side).
+    pub set: &'a [String],
+    /// The library the file belongs to (a batch): its programs also run with the arguments
+    /// the library's calls pass, and a program only another file calls runs too.
+    pub library: Option<InLibrary<'a>>,
+    /// FANUC → Sinumerik: a macro written for every possible caller (not
+    /// `--specialise-callers`) also runs with each argument vacant (`called::cases`).
+    pub each_vacant: bool,
+}
+
+/// A translated file's place in a library (see [`VerifyOptions::library`]).
+#[derive(Clone, Copy, Debug)]
+pub struct InLibrary<'a> {
+    pub library: &'a crate::batch::library::Library,
+    /// The file's index in the library.
+    pub file: usize,
+    /// The name the library knows the file's main program by when the program names
+    /// itself none (its file stem, upper case).
+    pub main_name: &'a str,
+}
+
+impl From<u64> for VerifyOptions<'static> {
+    fn from(max_steps: u64) -> Self {
+        VerifyOptions { max_steps, profiles: None, set: &[], library: None, each_vacant: true }
     }
 }
 
 /// Proves a translation of `inputs` (as given to [`translate`], in `db`): the output is read
-/// back as the target (so it is valid syntax there), both programs run in the evaluator with
-/// at most `max_steps` blocks each, and their traces are compared. `out` names the output in
-/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. The command line's
-/// `--to sinumerik` and the batch jobs run the per-target proofs with their own inputs and
-/// profiles (`to_sinumerik::verify::verify_run`).
-pub fn verify(db: &mut SourceDb, inputs: &[&Unit], t: &Translation, out: &str, max_steps: u64) -> Verification {
+/// back as the target (so it is valid syntax there), both programs run in the evaluator and
+/// their traces are compared, once per run the options call for. `out` names the output in
+/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. Every path proves
+/// through here: the command line, the batch jobs (with their library, profiles and `--set`).
+pub fn verify<'a>(
+    db: &mut SourceDb,
+    inputs: &[&Unit],
+    t: &Translation,
+    out: &str,
+    opts: impl Into<VerifyOptions<'a>>,
+) -> Verification {
+    let opts = opts.into();
     let Some((main, subs)) = inputs.split_first() else {
-        let summary = "not verified: no program to run".to_string();
-        return Verification { equivalent: false, summary, rendered: String::new(), reparsed: None };
+        return Verification::none("not verified: no program to run");
     };
     match t.target() {
-        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, max_steps),
-        Dialect::Sinumerik => {
-            Verification::of(&to_sinumerik::verify::verify_with(db, main.file, main, t, out, max_steps))
-        }
+        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, opts),
+        Dialect::Sinumerik => Verification::of_runs(to_sinumerik::verify::runs(db, inputs, t, out, &opts)),
     }
 }
 

@@ -395,38 +395,6 @@ pub fn main_to_stdout(out: &Path, name: &str, eol: read::LineEnding, enc: Encode
     so.flush()
 }
 
-/// Runs both programs and reports: "equivalent (N events)" and success, or the first
-/// divergence / inconclusive run and failure.
-fn verify_sinumerik(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: &Options) -> ExitCode {
-    let out_dir = match req.out {
-        Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
-        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
-        None => "<stdout>".to_string(),
-    };
-    let main_unit = &job.units[0];
-    let profiles = nctrans::translate::to_sinumerik::verify::Profiles {
-        fanuc: opts.source.clone(),
-        sinumerik: opts.target.clone(),
-    };
-    let report = nctrans::translate::to_sinumerik::verify::verify_profiled(
-        &job.db,
-        job.loaded.file,
-        main_unit,
-        tr,
-        &out_dir,
-        max_steps,
-        &profiles,
-    );
-    // A program the others call by G65/G66 also runs alone, with its callers' arguments
-    // and with each of them vacant (`translate::called`), as the batch proves it.
-    eprint!("{}", diag::render(&report.db, &report.diags));
-    let mut runs = vec![(String::new(), report)];
-    let units: Vec<&Unit> = job.units.iter().collect();
-    let files = (tr.files.as_slice(), tr.symbols.sinumerik());
-    runs.extend(nctrans::translate::called::single_file_runs(&job.db, &units, files, opts, &out_dir, max_steps));
-    crate::cli::called::combined(nctrans::translate::called::combine(runs), &|db, diags| diag::render(db, diags))
-}
-
 /// Prints a verification's verdict; success only for "equivalent".
 pub fn verdict(v: Verdict, diff: &str) -> ExitCode {
     match v {
@@ -677,6 +645,29 @@ pub fn verify(job: &mut Job, t: &Translation, req: &Request, opts: &translate::O
                 ExitCode::from(1)
             }
         }
-        Dialect::Sinumerik => verify_sinumerik(job, t, req, req.max_steps, &opts.sinumerik),
+        Dialect::Sinumerik => {
+            let out_dir = match req.out {
+                Some(o) if out_place(o).0 => o.display().to_string(),
+                Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+                None => "<stdout>".to_string(),
+            };
+            let o = &opts.sinumerik;
+            let vo = translate::VerifyOptions {
+                max_steps: req.max_steps,
+                profiles: Some(ts::verify::Profiles { fanuc: o.source.clone(), sinumerik: o.target.clone() }),
+                set: &[],
+                library: None,
+                each_vacant: !o.specialise_callers,
+            };
+            let units: Vec<&Unit> = job.units.iter().collect();
+            let v = translate::verify(&mut job.db, &units, t, &out_dir, vo);
+            // The main run's diagnostics, then the verdict of all (a macro called by G65/G66
+            // also runs alone, with its callers' arguments and each of them vacant).
+            if let Some((_, main)) = v.runs.first() {
+                eprint!("{}", diag::render(&main.db, &main.diags));
+            }
+            let render = |db: &SourceDb, diags: &[diag::Diagnostic]| diag::render(db, diags);
+            crate::cli::called::combined(translate::called::combine(v.runs), &render)
+        }
     }
 }

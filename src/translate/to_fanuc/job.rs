@@ -2,20 +2,19 @@
 //! batch's maps, one output file named after the input, the names used, and the proof with
 //! the argument vectors the library's callers pass.
 
-use crate::batch::jobs::{combine, Input, Job, JobSettings, MemCallees, Prepared, Target, Verified};
-use crate::batch::library::{ArgValue, ProgKey};
+use crate::batch::jobs::{combine, Input, Job, Prepared, Target, Verified};
+use crate::batch::library::ProgKey;
 use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile, Status};
-use crate::check::{self, Side};
 use crate::config::{Comments, Unsupported};
-use crate::diag::{self, Diagnostic};
+use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::CommentMode;
 use crate::dialect::{Dialect, Semantics};
-use crate::eval::{self, NoCallees, RunOptions};
-use crate::ir::{ProgName, Unit};
+use crate::ir::Unit;
 use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
-use crate::span::{FileId, SourceDb};
-use crate::translate::{self, OutFile, TranslateOptions, Translation};
+use crate::span::FileId;
+use crate::translate::to_sinumerik::verify::Profiles;
+use crate::translate::{self, InLibrary, OutFile, TranslateOptions, Translation};
 use std::path::{Path, PathBuf};
 
 /// The FANUC target of a batch.
@@ -89,15 +88,27 @@ impl Target for Fanuc {
     }
 
     fn verify(job: &Job<Fanuc>, input: &mut Input, t: &Translation, p: &Prepared) -> Verified {
-        let main = &input.main.unit;
-        let key = main.programs.first().map(|p0| match &p0.name {
-            Some(ProgName::Name(n)) => ProgKey::Name(n.to_ascii_uppercase()),
-            _ => ProgKey::Name(p.opts.fanuc.main_name.clone()),
-        });
-        let vectors = key.map(|k| input.ctx.library.arg_vectors(&k)).unwrap_or_default();
-        let out_name = crate::batch::rel_string(&discover::fanuc_output(&input.file.rel));
-        let subs: Vec<&Unit> = input.subs.iter().map(|l| &l.unit).collect();
-        verify(&job.settings, &mut input.db, main, &subs, t, &out_name, &vectors)
+        let (file, ctx, s) = (input.file, input.ctx, &job.settings);
+        let out_name = crate::batch::rel_string(&discover::fanuc_output(&file.rel));
+        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
+        let opts = translate::VerifyOptions {
+            max_steps: s.max_steps,
+            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
+            set: &s.set,
+            library: Some(InLibrary { library: &ctx.library, file: file.index, main_name: &p.opts.fanuc.main_name }),
+            each_vacant: !ctx.options.specialise_callers,
+        };
+        let v = translate::verify(&mut input.db, &units, t, &out_name, opts);
+        if !v.unreadable.is_empty() {
+            return Verified {
+                status: Status::Diverged,
+                summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
+                events: None,
+                excluded: Default::default(),
+                diagnostics: DiagRecord::from_diags(&input.db, &v.unreadable),
+            };
+        }
+        combine(v.runs)
     }
 }
 
@@ -116,78 +127,4 @@ pub fn used_names(map: &translate::SymbolMap) -> maps::Used {
         used.variables.insert(key, format!("#{}", m.number));
     }
     used
-}
-
-/// Parses the output back as FANUC (it must be valid FANUC), then runs both programs:
-/// once with the program's own inputs, and once per argument vector its callers use.
-fn verify(
-    s: &JobSettings,
-    db: &mut SourceDb,
-    main: &Unit,
-    subs: &[&Unit],
-    t: &Translation,
-    out_name: &str,
-    vectors: &[Vec<ArgValue>],
-) -> Verified {
-    let parsed = translate::reparse(db, t, out_name);
-    if diag::has_errors(&parsed.diags) {
-        return Verified {
-            status: Status::Diverged,
-            summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
-            events: None,
-            excluded: Default::default(),
-            diagnostics: DiagRecord::from_diags(db, &parsed.diags),
-        };
-    }
-    // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
-    // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-    let map = t.symbols.fanuc();
-    let mut fanuc_inputs: Vec<String> = translate::to_fanuc::r_param_homes(map);
-    fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
-    let sinumerik = translate::to_fanuc::source_semantics(t, Some(&s.sinumerik)).unwrap_or_else(|| s.sinumerik.clone());
-    let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
-    let letters = crate::lower::to_fanuc::words::param_letters(params.len()).unwrap_or_default();
-    let mut runs = Vec::new();
-    let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
-    for (k, v) in vectors.iter().enumerate() {
-        let vals = v
-            .iter()
-            .filter_map(|a| params.iter().position(|p| p.name.eq_ignore_ascii_case(&a.var)).map(|i| (i, a.to_set())))
-            .collect();
-        cases.push((format!(" (with the arguments of call site {})", k + 1), vals));
-    }
-    for (label, vals) in cases {
-        let mut a_in = Vec::new();
-        let mut b_in = std::mem::take(&mut fanuc_inputs);
-        fanuc_inputs = b_in.clone();
-        // Parameters not passed are 0 on Siemens; the argument locals get the same value.
-        for (i, (_, var)) in letters.iter().enumerate() {
-            if params.get(i).is_some_and(|p| p.by_ref) {
-                continue;
-            }
-            let given = vals.iter().find(|(j, _)| *j == i);
-            let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
-            b_in.push(format!("#{var}={value}"));
-            if let Some((_, s)) = given {
-                a_in.push(s.clone());
-            }
-        }
-        b_in.extend(translate::var_param_inputs(&params, map));
-        a_in.extend(s.set.iter().cloned());
-        b_in.extend(s.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
-        let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
-        let run = |inputs, sem: &Semantics| RunOptions {
-            max_steps: s.max_steps,
-            inputs,
-            semantics: Some(sem.clone()),
-            probe_contact: None,
-            expand_cycles: None,
-        };
-        let source = translate::align_source(main, map);
-        let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, map)).collect());
-        let a = Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
-        let b = Side { unit: parsed.unit.clone(), callees: Box::new(NoCallees), run: run(parse_all(&b_in), &s.fanuc) };
-        runs.push((label, check::check_excluding(db, a, b, translate::EXCLUDE)));
-    }
-    combine(runs)
 }

@@ -11,7 +11,7 @@
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
 use crate::batch::jobs::{combine, Input, Job, LoadedFile, MemCallees, Prepared, Target, Verified};
-use crate::batch::library::ProgKey;
+use crate::batch::library::{Library, ProgKey};
 use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile, Status};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
@@ -24,6 +24,7 @@ use crate::span::{FileId, SourceDb};
 use crate::translate::called::{self as verify_called, RunSettings};
 use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
+use crate::translate::InLibrary;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -344,70 +345,74 @@ impl Target for Sinumerik {
         discover::sinumerik_output(rel, &f.program, !f.main)
     }
 
-    /// Runs the file's first program against its translation (and each other program the
-    /// file does not call itself): with the inputs of the header lines and `--set`, and once
-    /// per argument vector the library calls it with. The programs the file calls run
-    /// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also
-    /// runs alone (`in_file_macro_runs`).
-    fn verify(job: &Job<Sinumerik>, input: &mut Input, tr: &Translation, _p: &Prepared) -> Verified {
-        let (db, file, ctx, main, subs) = (&input.db, input.file, input.ctx, &input.main, &input.subs);
-        let out_dir = crate::batch::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
-        let profiles = Profiles { fanuc: job.settings.fanuc.clone(), sinumerik: job.settings.sinumerik.clone() };
-        let settings = RunSettings {
-            out_dir: &out_dir,
-            max_steps: job.settings.max_steps,
-            profiles: &profiles,
-            set: &job.settings.set,
+    fn verify(job: &Job<Sinumerik>, input: &mut Input, t: &Translation, _p: &Prepared) -> Verified {
+        let (file, ctx, s) = (input.file, input.ctx, &job.settings);
+        let out_dir = crate::batch::rel_string(file.rel.parent().unwrap_or(Path::new("")));
+        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
+        let opts = crate::translate::VerifyOptions {
+            max_steps: s.max_steps,
+            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
+            set: &s.set,
+            library: Some(InLibrary { library: &ctx.library, file: file.index, main_name: "" }),
+            each_vacant: !ctx.options.specialise_callers,
         };
-        let served =
-            || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
-        let mut runs = Vec::new();
-        for (i, p) in main.unit.programs.iter().enumerate() {
-            let key = number_of(p).map(ProgKey::Number);
-            // The first program, and every other one its own file does not call (a second main
-            // program, a macro only other files call): each runs as the main program.
-            let called_here =
-                key.as_ref().is_some_and(|k| ctx.library.calls.iter().any(|c| c.file == file.index && &c.target == k));
-            if i > 0 && called_here {
-                continue;
-            }
-            let Some(out) = tr.files.iter().find(|f| f.source == main.loaded.file && first_of(f, p)) else {
-                // A copy written by another file (see `duplicates`), verified there.
-                continue;
-            };
-            let mut unit = main.unit.clone();
-            let entry = unit.programs.remove(i);
-            unit.programs.insert(0, entry);
-            let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
-            let cases = match &mine {
-                Some(k) => verify_called::cases(&ctx.library, k, !ctx.options.specialise_callers),
-                None => vec![(String::new(), vec![])],
-            };
-            let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
-            runs.extend(verify_called::case_runs(
-                db,
-                main.loaded.file,
-                &unit,
-                tr,
-                out,
-                (&name, cases),
-                &settings,
-                &served,
-            ));
-        }
-        // The macros the file calls, alone (see `in_file_macro_runs`).
-        runs.extend(in_file_macro_runs(db, ctx, file, &main.unit, tr, &settings, &served));
-        if runs.is_empty() {
+        let v = crate::translate::verify(&mut input.db, &units, t, &out_dir, opts);
+        if v.runs.is_empty() {
+            let summary = v.summary;
             return Verified {
                 status: Status::Inconclusive,
-                summary: "not verified: no program of the file was found in its translation".into(),
+                summary,
                 events: None,
                 excluded: Default::default(),
                 diagnostics: vec![],
             };
         }
-        combine(runs)
+        combine(v.runs)
     }
+}
+
+/// The runs of the proof of a FANUC file of a library (`translate::verify` with
+/// `VerifyOptions::library`): the file's first program against its translation, and each
+/// other program the file does not call itself (a second main program, a macro only other
+/// files call), each as the main program: with the inputs of the header lines and `--set`,
+/// and once per argument vector the library calls it with. The programs the file calls run
+/// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also runs
+/// alone (`in_file_macro_runs`). `inputs` are the file's unit and its callees'.
+pub fn library_runs(
+    db: &SourceDb,
+    inputs: &[&Unit],
+    tr: &Translation,
+    settings: &RunSettings,
+    (lib, each_vacant): (&InLibrary, bool),
+) -> Vec<(String, CheckReport)> {
+    let (library, index, main) = (lib.library, lib.file, inputs[0]);
+    let subs: Vec<Unit> = inputs[1..].iter().map(|u| (*u).clone()).collect();
+    let served = || Box::new(MemCallees(subs.clone())) as Box<dyn CalleeSource + Send>;
+    let mut runs = Vec::new();
+    for (i, p) in main.programs.iter().enumerate() {
+        let key = number_of(p).map(ProgKey::Number);
+        let called_here = key.as_ref().is_some_and(|k| library.calls.iter().any(|c| c.file == index && &c.target == k));
+        if i > 0 && called_here {
+            continue;
+        }
+        let Some(out) = tr.files.iter().find(|f| f.source == main.file && first_of(f, p)) else {
+            // A copy written by another file (see `duplicates`), verified there.
+            continue;
+        };
+        let mut unit = main.clone();
+        let entry = unit.programs.remove(i);
+        unit.programs.insert(0, entry);
+        let mine = key.filter(|k| library.programs.get(k).is_some_and(|d| d.file == index));
+        let cases = match &mine {
+            Some(k) => verify_called::cases(library, k, each_vacant),
+            None => vec![(String::new(), vec![])],
+        };
+        let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
+        runs.extend(verify_called::case_runs(db, main.file, &unit, tr, out, (&name, cases), settings, &served));
+    }
+    // The macros the file calls, alone (see `in_file_macro_runs`).
+    runs.extend(macro_runs_in(db, (library, index, each_vacant), main, tr, settings, &served));
+    runs
 }
 
 /// The runs of the macros a FANUC file calls by G65/G66 among its own programs after the
@@ -425,14 +430,26 @@ pub(crate) fn in_file_macro_runs(
     settings: &RunSettings,
     callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
 ) -> Vec<(String, CheckReport)> {
-    let lib = &ctx.library;
+    let each_vacant = !ctx.options.specialise_callers;
+    macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
+}
+
+/// [`in_file_macro_runs`] of the file `index` of `lib`.
+fn macro_runs_in(
+    db: &SourceDb,
+    (lib, index, each_vacant): (&Library, usize, bool),
+    unit: &Unit,
+    tr: &Translation,
+    settings: &RunSettings,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
     let mut runs = Vec::new();
     for (i, p) in unit.programs.iter().enumerate().skip(1) {
         let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
         // A copy of a program an earlier file defines is verified there (see `duplicates`).
-        let mine = lib.programs.get(&key).is_some_and(|d| d.file == file.index);
+        let mine = lib.programs.get(&key).is_some_and(|d| d.file == index);
         let macro_call = |c: &crate::batch::library::CallSite| {
-            c.file == file.index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
+            c.file == index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
         };
         if !mine || !lib.calls.iter().any(macro_call) {
             continue;
@@ -442,7 +459,7 @@ pub(crate) fn in_file_macro_runs(
         let entry = alone.programs.remove(i);
         alone.programs.insert(0, entry);
         let a = verify_called::Alone { db, file: unit.file, unit: &alone, tr, out };
-        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, !ctx.options.specialise_callers, callees));
+        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, each_vacant, callees));
     }
     runs
 }
