@@ -14,6 +14,7 @@ use crate::eval;
 use crate::ir::Unit;
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
+use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::{self, OutFile, Translation};
 use std::collections::BTreeSet;
 use std::marker::PhantomData;
@@ -63,7 +64,12 @@ impl JobSettings {
         for s in &c.set {
             eval::parse_input(s).map_err(|e| format!("verify.set: {e}"))?;
         }
-        Ok(JobSettings {
+        Ok(JobSettings::of(c))
+    }
+
+    /// The settings of `c`, its `--set` inputs unchecked (the command line's, which runs none).
+    pub fn of(c: &Config) -> JobSettings {
+        JobSettings {
             unsupported: c.unsupported,
             comments: c.comments,
             number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
@@ -75,10 +81,11 @@ impl JobSettings {
             max_steps: c.max_steps,
             set: c.set.clone(),
             definitions: c.definitions.clone(),
-        })
+        }
     }
 
-    pub(crate) fn line_ending(&self, input: LineEnding) -> LineEnding {
+    /// The output's line ending for an input written with `input`.
+    pub fn line_ending(&self, input: LineEnding) -> LineEnding {
         match self.line_ends {
             LineEnds::Keep => input,
             LineEnds::Lf => LineEnding::Lf,
@@ -233,6 +240,9 @@ pub trait Target: Sized + Send + Sync + 'static {
     const DIALECT: Dialect;
     /// The target as messages name it (`… construct(s) FANUC cannot express`).
     const NAME: &'static str;
+    /// Every program goes into one file (FANUC); else one file per program, and the proof
+    /// names the folder of the files.
+    const ONE_FILE: bool;
 
     /// The streamed job for a large file (`batch::streamed`); `None` leaves the file to the
     /// whole-file job.
@@ -252,9 +262,6 @@ pub trait Target: Sized + Send + Sync + 'static {
 
     /// Where an output file of the input `rel` is written, relative to the output folder.
     fn output(rel: &Path, f: &OutFile) -> PathBuf;
-
-    /// Proves the translation `t` of the job's files (see [`Input`]).
-    fn verify(job: &Job<Self>, input: &mut Input, t: &Translation, p: &Prepared) -> Verified;
 }
 
 /// A job's input once read: its file, the batch, and the parsed file and callees in `db`.
@@ -394,9 +401,51 @@ impl<T: Target> FileJob for Job<T> {
             return outcome;
         }
         if ctx.options.verify {
-            let v = T::verify(self, &mut input, &t, &p);
+            let v = self.verify(&mut input, &t);
             apply(&mut outcome, v);
         }
         outcome
+    }
+}
+
+impl<T: Target> Job<T> {
+    /// Proves the translation `t` through `translate::verify`, with the batch's profiles,
+    /// `--set` and library (each program also runs with the arguments its callers pass).
+    fn verify(&self, input: &mut Input, t: &Translation) -> Verified {
+        let (file, ctx, s) = (input.file, input.ctx, &self.settings);
+        let out = match t.main() {
+            Some(f) if T::ONE_FILE => T::output(&file.rel, f),
+            _ => file.rel.parent().unwrap_or(Path::new("")).to_path_buf(),
+        };
+        let main_name = file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
+        let opts = translate::VerifyOptions {
+            max_steps: s.max_steps,
+            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
+            set: &s.set,
+            library: Some(translate::InLibrary { library: &ctx.library, file: file.index, main_name: &main_name }),
+            each_vacant: !ctx.options.specialise_callers,
+        };
+        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
+        let v = translate::verify(&mut input.db, &units, t, &super::rel_string(&out), opts);
+        if !v.unreadable.is_empty() {
+            return Verified {
+                status: Status::Diverged,
+                summary: format!("the output does not parse as {} (a bug in nctrans)", T::NAME),
+                events: None,
+                excluded: Default::default(),
+                diagnostics: DiagRecord::from_diags(&input.db, &v.unreadable),
+            };
+        }
+        if v.runs.is_empty() {
+            let summary = v.summary;
+            return Verified {
+                status: Status::Inconclusive,
+                summary,
+                events: None,
+                excluded: Default::default(),
+                diagnostics: vec![],
+            };
+        }
+        combine(v.runs)
     }
 }

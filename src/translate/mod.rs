@@ -16,7 +16,7 @@ pub mod to_sinumerik;
 // The names of the FANUC target that the streaming translators and the tests reach at
 // `translate::` (the streaming code moves onto the entry with issue 18 part B).
 pub use to_fanuc::{
-    align_source, r_param_inputs, reparse, standalone_args, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
+    align_source, r_param_inputs, reparse, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
     DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
 };
 
@@ -150,6 +150,7 @@ impl From<to_fanuc::Output> for Translation {
 }
 
 /// The result of checking a translation.
+#[derive(Default)]
 pub struct Verification {
     /// Both programs ran to the same trace (in every run).
     pub equivalent: bool,
@@ -180,50 +181,36 @@ impl Verification {
             Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
             Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
         };
-        Verification { equivalent, summary, rendered, reparsed: None, runs: vec![], unreadable: vec![] }
+        Verification { equivalent, summary, rendered, ..Verification::default() }
     }
 
     /// The verdict of several runs: the first that is not an equivalence (named by its
     /// label), or the events of all added up.
     fn of_runs(runs: Vec<(String, CheckReport)>) -> Verification {
-        let mut v = match runs.iter().find(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. })) {
-            Some((label, r)) if !label.is_empty() => {
+        let not = runs.iter().find(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. }));
+        let mut v = match (not, runs.as_slice()) {
+            (_, []) => Verification::none("not verified: no program of the file was found in its translation"),
+            (Some((label, r)), _) if !label.is_empty() => {
                 let v = Verification::of(r);
                 Verification { summary: format!("in the run{label}: {}", v.summary), ..v }
             }
-            Some((_, r)) => Verification::of(r),
-            None if runs.len() == 1 => Verification::of(&runs[0].1),
-            None => {
+            (Some((_, r)), _) | (None, [(_, r)]) => Verification::of(r),
+            (None, _) => {
                 let mut excluded = crate::check::Excluded::default();
-                let mut events = 0;
-                for (_, r) in &runs {
-                    if let Verdict::Equivalent { events: e } = r.verdict {
-                        events += e;
-                    }
-                    excluded.add(r.excluded);
-                }
-                let summary = called::Combined::summary(events, runs.len(), &excluded);
-                Verification { equivalent: true, summary, ..Verification::none("") }
+                runs.iter().for_each(|(_, r)| excluded.add(r.excluded));
+                let events =
+                    runs.iter().map(|(_, r)| if let Verdict::Equivalent { events } = r.verdict { events } else { 0 });
+                let summary = called::Combined::summary(events.sum(), runs.len(), &excluded);
+                Verification { equivalent: true, summary, ..Verification::default() }
             }
         };
-        if runs.is_empty() {
-            v = Verification::none("not verified: no program of the file was found in its translation");
-        }
         v.runs = runs;
         v
     }
 
     /// No verdict: `summary` says why.
     fn none(summary: &str) -> Verification {
-        let summary = summary.to_string();
-        Verification {
-            equivalent: false,
-            summary,
-            rendered: String::new(),
-            reparsed: None,
-            runs: vec![],
-            unreadable: vec![],
-        }
+        Verification { summary: summary.to_string(), ..Verification::default() }
     }
 }
 

@@ -6,10 +6,10 @@
 //! are the ones the compiler lists).
 
 use super::TranslateArgs;
+use nctrans::batch::jobs::JobSettings;
 use nctrans::batch::library::ProgKey;
 use nctrans::check::Verdict;
-use nctrans::config::{Comments, Config, LineEnds, Unsupported};
-use nctrans::dialect::fanuc::emit::CommentMode;
+use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::lower::to_fanuc::varmap;
@@ -82,40 +82,13 @@ pub fn fanuc_options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<
             _ => None,
         })
         .collect();
-    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
     Ok(TranslateOptions {
-        unsupported: match c.unsupported {
-            Unsupported::Warn => nctrans::lower::to_fanuc::UnsupportedPolicy::Warn,
-            Unsupported::Error => nctrans::lower::to_fanuc::UnsupportedPolicy::Error,
-        },
         var_rules,
         tool_map: c.tools.clone(),
         program_map,
         program_number: c.program_number,
-        comments: match c.comments {
-            Comments::Ascii => CommentMode::Ascii,
-            Comments::Drop => CommentMode::Drop,
-            Comments::Keep => CommentMode::Keep,
-        },
-        number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
-        line_ending: line_ends(c, eol),
-        compound_conditions: c.fanuc.compound_conditions,
-        target: c.fanuc_semantics(),
-        source: c.sinumerik_semantics(),
-        main_name: stem,
-        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
-        source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
+        ..nctrans::translate::to_fanuc::job::file_options(&JobSettings::of(c), input, eol)
     })
-}
-
-/// The line ending `line_ends` gives an output whose input has `eol`.
-fn line_ends(c: &Config, eol: read::LineEnding) -> read::LineEnding {
-    match c.line_ends {
-        LineEnds::Keep => eol,
-        LineEnds::Lf => read::LineEnding::Lf,
-        LineEnds::CrLf => read::LineEnding::CrLf,
-        LineEnds::Cr => read::LineEnding::Cr,
-    }
 }
 
 fn valid_name(s: &str) -> bool {
@@ -522,7 +495,7 @@ pub fn complete(opts: &mut translate::Options, c: &Config, job: &Job, to: Dialec
     match to {
         Dialect::Fanuc => {
             opts.fanuc.source = job.profile.clone();
-            opts.fanuc.line_ending = line_ends(c, eol);
+            opts.fanuc.line_ending = JobSettings::of(c).line_ending(eol);
             opts.line_ending = opts.fanuc.line_ending;
         }
         Dialect::Sinumerik => {

@@ -2,19 +2,17 @@
 //! batch's maps, one output file named after the input, the names used, and the proof with
 //! the argument vectors the library's callers pass.
 
-use crate::batch::jobs::{combine, Input, Job, Prepared, Target, Verified};
+use crate::batch::jobs::{Input, Job, JobSettings, Prepared, Target};
 use crate::batch::library::ProgKey;
-use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile, Status};
+use crate::batch::{discover, maps, BatchContext, FileOutcome, InputFile};
 use crate::config::{Comments, Unsupported};
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::CommentMode;
 use crate::dialect::{Dialect, Semantics};
-use crate::ir::Unit;
 use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
 use crate::span::FileId;
-use crate::translate::to_sinumerik::verify::Profiles;
-use crate::translate::{self, InLibrary, OutFile, TranslateOptions, Translation};
+use crate::translate::{self, OutFile, TranslateOptions, Translation};
 use std::path::{Path, PathBuf};
 
 /// The FANUC target of a batch.
@@ -32,36 +30,44 @@ impl Job<Fanuc> {
         for r in &ctx.maps.var_rules {
             var_rules.extend(varmap::parse_rules(r).map_err(|e| format!("variables.to_fanuc: {e}"))?);
         }
-        let s = &self.settings;
         Ok(TranslateOptions {
-            unsupported: match s.unsupported {
-                Unsupported::Error => UnsupportedPolicy::Error,
-                Unsupported::Warn => UnsupportedPolicy::Warn,
-            },
             var_rules,
             tool_map: ctx.maps.tools.clone(),
             program_map: ctx.maps.fanuc_numbers(),
-            program_number: None,
-            comments: match s.comments {
-                Comments::Keep => CommentMode::Keep,
-                Comments::Ascii => CommentMode::Ascii,
-                Comments::Drop => CommentMode::Drop,
-            },
-            number_blocks: s.number_blocks,
-            line_ending: s.line_ending(eol),
-            compound_conditions: s.compound_conditions,
-            target: s.fanuc.clone(),
-            source: s.sinumerik.clone(),
-            main_name: file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase(),
-            source_name: file.rel.file_name().and_then(|x| x.to_str()).unwrap_or("").to_string(),
-            main_is_sub: file.rel.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
+            ..file_options(&self.settings, &file.rel, eol)
         })
+    }
+}
+
+/// The options of a translation of the file `name`, written with line ending `eol`, under
+/// the settings `s`, without maps (the batch's or the command line's).
+pub fn file_options(s: &JobSettings, name: &Path, eol: LineEnding) -> TranslateOptions {
+    TranslateOptions {
+        unsupported: match s.unsupported {
+            Unsupported::Error => UnsupportedPolicy::Error,
+            Unsupported::Warn => UnsupportedPolicy::Warn,
+        },
+        comments: match s.comments {
+            Comments::Keep => CommentMode::Keep,
+            Comments::Ascii => CommentMode::Ascii,
+            Comments::Drop => CommentMode::Drop,
+        },
+        number_blocks: s.number_blocks,
+        line_ending: s.line_ending(eol),
+        compound_conditions: s.compound_conditions,
+        target: s.fanuc.clone(),
+        source: s.sinumerik.clone(),
+        main_name: name.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase(),
+        source_name: name.file_name().and_then(|x| x.to_str()).unwrap_or("").to_string(),
+        main_is_sub: name.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
+        ..TranslateOptions::default()
     }
 }
 
 impl Target for Fanuc {
     const DIALECT: Dialect = Dialect::Fanuc;
     const NAME: &'static str = "FANUC";
+    const ONE_FILE: bool = true;
 
     fn streamed(job: &Job<Fanuc>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
         crate::batch::streamed::to_fanuc(job, file, ctx)
@@ -85,30 +91,6 @@ impl Target for Fanuc {
 
     fn output(rel: &Path, _f: &OutFile) -> PathBuf {
         discover::fanuc_output(rel)
-    }
-
-    fn verify(job: &Job<Fanuc>, input: &mut Input, t: &Translation, p: &Prepared) -> Verified {
-        let (file, ctx, s) = (input.file, input.ctx, &job.settings);
-        let out_name = crate::batch::rel_string(&discover::fanuc_output(&file.rel));
-        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
-        let opts = translate::VerifyOptions {
-            max_steps: s.max_steps,
-            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
-            set: &s.set,
-            library: Some(InLibrary { library: &ctx.library, file: file.index, main_name: &p.opts.fanuc.main_name }),
-            each_vacant: !ctx.options.specialise_callers,
-        };
-        let v = translate::verify(&mut input.db, &units, t, &out_name, opts);
-        if !v.unreadable.is_empty() {
-            return Verified {
-                status: Status::Diverged,
-                summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
-                events: None,
-                excluded: Default::default(),
-                diagnostics: DiagRecord::from_diags(&input.db, &v.unreadable),
-            };
-        }
-        combine(v.runs)
     }
 }
 

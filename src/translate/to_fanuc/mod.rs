@@ -487,18 +487,6 @@ pub fn verify<'a>(
     v
 }
 
-/// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
-/// parameters are 0 (the G65 argument locals would be vacant); VAR parameters as
-/// [`var_param_inputs`] gives them.
-pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> {
-    let Some(p) = main.programs.first() else { return vec![] };
-    let letters = passes::words::param_letters(p.params.len()).unwrap_or_default();
-    let mut texts: Vec<String> =
-        p.params.iter().zip(letters).filter(|(prm, _)| !prm.by_ref).map(|(_, (_, var))| format!("#{var}=0")).collect();
-    texts.extend(var_param_inputs(&p.params, map));
-    texts.iter().filter_map(|t| crate::eval::parse_input(t).ok()).collect()
-}
-
 /// For a subprogram run on its own: each VAR parameter, which holds the number of its
 /// caller's variable, gets a free common variable (from #999 down, past every number the
 /// translation uses) that starts at 0, as the Siemens parameter then does.
@@ -532,17 +520,6 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
         .iter()
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
         .map(|m| format!("#{}=0", m.number))
-        .collect()
-}
-
-/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
-/// so it starts where the Siemens side's definitions start.
-pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
-    t.symbols
-        .fanuc()
-        .gud_seeds
-        .iter()
-        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
         .collect()
 }
 

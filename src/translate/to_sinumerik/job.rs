@@ -10,9 +10,9 @@
 //! dropped): the macro's own job and every caller's job then see the same calls and write
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
-use crate::batch::jobs::{combine, Input, Job, LoadedFile, MemCallees, Prepared, Target, Verified};
+use crate::batch::jobs::{Input, Job, LoadedFile, MemCallees, Prepared, Target};
 use crate::batch::library::{Library, ProgKey};
-use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile, Status};
+use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
 use crate::diag::Diagnostic;
@@ -22,7 +22,6 @@ use crate::eval::{self, Input as RunInput};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
 use crate::translate::called::{self as verify_called, RunSettings};
-use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
 use crate::translate::InLibrary;
 use std::collections::{BTreeMap, BTreeSet};
@@ -68,18 +67,9 @@ impl Job<Sinumerik> {
 /// common variable of the library takes. Commons left without a place (no R free) are placed
 /// per file by the translator, as in single-file translation.
 fn library_flag_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> BTreeMap<u32, u32> {
-    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
-    let mut taken: BTreeSet<u32> = BTreeSet::new();
-    for r in rules {
-        let last = r.r_start.saturating_add(r.to - r.from).min(count);
-        taken.extend(r.r_start..=last);
-    }
-    for &n in commons.iter().filter(|&&n| !covered(n)) {
-        match n {
-            500..=799 => taken.insert(n - 500),
-            100..=199 => taken.insert(n),
-            _ => false,
-        };
+    let mut taken = rule_places(rules, count);
+    for &n in commons.iter().filter(|&&n| !covered(rules, n)) {
+        taken.extend(default_r(n));
     }
     let mut free = (0..count).rev().filter(|r| !taken.contains(r));
     commons.iter().map_while(|&n| free.next().map(|r| (n, r))).collect()
@@ -91,19 +81,9 @@ fn library_flag_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32
 /// share them. Each gets the lowest R parameter no rule and no default place of any common
 /// variable of the library uses.
 fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> Vec<VarMapRule> {
-    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
-    let mut taken: BTreeSet<u32> = BTreeSet::new();
-    for r in rules {
-        let last = r.r_start.saturating_add(r.to - r.from).min(count);
-        taken.extend(r.r_start..=last);
-    }
-    let default_r = |n: u32| match n {
-        500..=799 => Some(n - 500),
-        100..=199 => Some(n),
-        _ => None,
-    };
+    let mut taken = rule_places(rules, count);
     let mut leftovers = Vec::new();
-    for &n in commons.iter().filter(|&&n| !covered(n)) {
+    for &n in commons.iter().filter(|&&n| !covered(rules, n)) {
         match default_r(n) {
             Some(r) if r < count && !taken.contains(&r) => {
                 taken.insert(r);
@@ -119,6 +99,25 @@ fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> 
         out.push(VarMapRule { from: n, to: n, r_start: r });
     }
     out
+}
+
+/// Whether a rule places common variable `n`.
+fn covered(rules: &[VarMapRule], n: u32) -> bool {
+    rules.iter().any(|r| r.from <= n && n <= r.to)
+}
+
+/// The R parameters the rules place variables in (up to `count`).
+fn rule_places(rules: &[VarMapRule], count: u32) -> BTreeSet<u32> {
+    rules.iter().flat_map(|r| r.r_start..=r.r_start.saturating_add(r.to - r.from).min(count)).collect()
+}
+
+/// The default R parameter of common variable `n` (`#500` → R0, `#100` → R100).
+fn default_r(n: u32) -> Option<u32> {
+    match n {
+        500..=799 => Some(n - 500),
+        100..=199 => Some(n),
+        _ => None,
+    }
 }
 
 fn stem(file: &InputFile) -> String {
@@ -308,6 +307,7 @@ pub(crate) fn parse_all(v: &[String]) -> Vec<RunInput> {
 impl Target for Sinumerik {
     const DIALECT: Dialect = Dialect::Sinumerik;
     const NAME: &'static str = "Sinumerik";
+    const ONE_FILE: bool = false;
 
     fn streamed(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
         crate::batch::streamed::to_sinumerik(job, file, ctx)
@@ -343,31 +343,6 @@ impl Target for Sinumerik {
 
     fn output(rel: &Path, f: &OutFile) -> PathBuf {
         discover::sinumerik_output(rel, &f.program, !f.main)
-    }
-
-    fn verify(job: &Job<Sinumerik>, input: &mut Input, t: &Translation, _p: &Prepared) -> Verified {
-        let (file, ctx, s) = (input.file, input.ctx, &job.settings);
-        let out_dir = crate::batch::rel_string(file.rel.parent().unwrap_or(Path::new("")));
-        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
-        let opts = crate::translate::VerifyOptions {
-            max_steps: s.max_steps,
-            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
-            set: &s.set,
-            library: Some(InLibrary { library: &ctx.library, file: file.index, main_name: "" }),
-            each_vacant: !ctx.options.specialise_callers,
-        };
-        let v = crate::translate::verify(&mut input.db, &units, t, &out_dir, opts);
-        if v.runs.is_empty() {
-            let summary = v.summary;
-            return Verified {
-                status: Status::Inconclusive,
-                summary,
-                events: None,
-                excluded: Default::default(),
-                diagnostics: vec![],
-            };
-        }
-        combine(v.runs)
     }
 }
 
