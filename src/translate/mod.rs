@@ -2,12 +2,15 @@
 //! gives back one [`Translation`] (the files written, the symbol map that relates them to the
 //! source, every diagnostic, and what could not be expressed) for every pair of dialects.
 //!
-//! Owns: the entry, the result type, the options of every target ([`Options`]), and the work
-//! per target behind the entry: `to_fanuc` (Sinumerik → FANUC) and `to_sinumerik/`
-//! (FANUC → Sinumerik, with its proof in `to_sinumerik/verify.rs`). May use: `passes`
-//! (lowering), `dialect` (writing), `check` and `eval` (the proof), `unfinished`, `empty`,
-//! `ir`, `diag`, `read`, `span`. Used by the CLI, `batch` and `stream`; it uses none of them.
-//! A new target adds a module here and an arm in [`translate`].
+//! Owns: the entry, the result type, the options of every target ([`Options`]), the one
+//! proof ([`verify`], [`VerifyOptions`]), and the work per target behind them: `to_fanuc/`
+//! (Sinumerik → FANUC) and `to_sinumerik/` (FANUC → Sinumerik, with its proof in
+//! `to_sinumerik/verify.rs`), each with what a batch job to it does as its own (`job.rs`).
+//! May use: `passes` (lowering), `dialect` (writing), `check` and `eval` (the proof),
+//! `unfinished`, `empty`, `ir`, `diag`, `read`, `span`; of `batch` only its library (the
+//! calls a proof runs with) and, in the targets' `job.rs`, the job they describe. Used by
+//! the CLI, `batch` and `stream`. A new target adds a module here and an arm in
+//! [`translate`] and [`verify`].
 
 pub mod called;
 pub mod to_fanuc;
