@@ -1,20 +1,40 @@
-//! The real per-file jobs: translate one file with the batch's maps, verify it by running
-//! both programs, and hand back the output bytes. Sinumerik → FANUC here, with what both
-//! directions share (settings, loading, outcomes, combining verdicts); FANUC → Sinumerik in
-//! `jobs_sinumerik.rs`.
+//! The per-file job of a batch, one for every target: read the file and its callees,
+//! translate them with the batch's maps through `translate::translate`, verify the files
+//! written by running both programs, and hand back the output bytes. What differs per
+//! target (its options from the maps, its output files' names, the names it used, what it
+//! refuses, its proof's runs) is the target's [`Target`], beside its translation
+//! (`translate::to_fanuc::job`, `translate::to_sinumerik::job`).
 
-use super::library::ProgKey;
-use super::{discover, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
-use crate::check::{self, Side, Verdict};
+use super::{maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::check::{self, Verdict};
 use crate::config::{Comments, Config, LineEnds, Unsupported};
 use crate::diag::{self, Diagnostic};
 use crate::dialect::{Dialect, ParseOptions, Semantics};
-use crate::eval::{self, CalleeName, CalleeSource, NoCallees, RunOptions};
-use crate::ir::{ProgName, Unit};
-use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
+use crate::eval;
+use crate::ir::Unit;
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
-use crate::translate::{self, TranslateOptions, Translation};
+use crate::translate::to_sinumerik::verify::Profiles;
+use crate::translate::{self, OutFile, Translation};
+use std::collections::BTreeSet;
+use std::marker::PhantomData;
+use std::path::{Path, PathBuf};
+
+pub use crate::translate::called::MemCallees;
+pub use crate::translate::to_fanuc::job::used_names;
+
+/// Sinumerik → FANUC.
+pub type ToFanucJob = Job<crate::translate::to_fanuc::job::Fanuc>;
+/// FANUC → Sinumerik.
+pub type ToSinumerikJob = Job<crate::translate::to_sinumerik::job::Sinumerik>;
+
+/// The job of a batch to `target`.
+pub fn for_target(target: Dialect, settings: JobSettings) -> Box<dyn FileJob> {
+    match target {
+        Dialect::Fanuc => Box::new(ToFanucJob::new(settings)),
+        Dialect::Sinumerik => Box::new(ToSinumerikJob::new(settings)),
+    }
+}
 
 /// Changes a translation before it is verified: the tests' injected bug, which verification
 /// must catch. Never set outside tests.
@@ -44,7 +64,12 @@ impl JobSettings {
         for s in &c.set {
             eval::parse_input(s).map_err(|e| format!("verify.set: {e}"))?;
         }
-        Ok(JobSettings {
+        Ok(JobSettings::of(c))
+    }
+
+    /// The settings of `c`, its `--set` inputs unchecked (the command line's, which runs none).
+    pub fn of(c: &Config) -> JobSettings {
+        JobSettings {
             unsupported: c.unsupported,
             comments: c.comments,
             number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
@@ -56,10 +81,11 @@ impl JobSettings {
             max_steps: c.max_steps,
             set: c.set.clone(),
             definitions: c.definitions.clone(),
-        })
+        }
     }
 
-    pub(crate) fn line_ending(&self, input: LineEnding) -> LineEnding {
+    /// The output's line ending for an input written with `input`.
+    pub fn line_ending(&self, input: LineEnding) -> LineEnding {
         match self.line_ends {
             LineEnds::Keep => input,
             LineEnds::Lf => LineEnding::Lf,
@@ -70,7 +96,7 @@ impl JobSettings {
 }
 
 /// One file read and parsed into a job's own source database.
-pub(crate) struct LoadedFile {
+pub struct LoadedFile {
     pub unit: Unit,
     pub loaded: crate::Loaded,
     pub diags: Vec<Diagnostic>,
@@ -159,135 +185,8 @@ pub(crate) fn parse_failure(db: &SourceDb, all: &[&LoadedFile]) -> Option<FileOu
     ))
 }
 
-/// Sinumerik → FANUC.
-pub struct ToFanucJob {
-    pub settings: JobSettings,
-    pub fault: Option<Box<Fault>>,
-}
-
-impl ToFanucJob {
-    pub fn new(settings: JobSettings) -> ToFanucJob {
-        ToFanucJob { settings, fault: None }
-    }
-
-    pub(crate) fn options(
-        &self,
-        ctx: &BatchContext,
-        file: &InputFile,
-        eol: LineEnding,
-    ) -> Result<TranslateOptions, String> {
-        let mut var_rules = Vec::new();
-        for r in &ctx.maps.var_rules {
-            var_rules.extend(varmap::parse_rules(r).map_err(|e| format!("variables.to_fanuc: {e}"))?);
-        }
-        let s = &self.settings;
-        Ok(TranslateOptions {
-            unsupported: match s.unsupported {
-                Unsupported::Error => UnsupportedPolicy::Error,
-                Unsupported::Warn => UnsupportedPolicy::Warn,
-            },
-            var_rules,
-            tool_map: ctx.maps.tools.clone(),
-            program_map: ctx.maps.fanuc_numbers(),
-            program_number: None,
-            comments: match s.comments {
-                Comments::Keep => crate::dialect::fanuc::emit::CommentMode::Keep,
-                Comments::Ascii => crate::dialect::fanuc::emit::CommentMode::Ascii,
-                Comments::Drop => crate::dialect::fanuc::emit::CommentMode::Drop,
-            },
-            number_blocks: s.number_blocks,
-            line_ending: s.line_ending(eol),
-            compound_conditions: s.compound_conditions,
-            target: s.fanuc.clone(),
-            source: s.sinumerik.clone(),
-            main_name: file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase(),
-            source_name: file.rel.file_name().and_then(|x| x.to_str()).unwrap_or("").to_string(),
-            main_is_sub: file.rel.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
-        })
-    }
-}
-
-impl FileJob for ToFanucJob {
-    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        if let Some(o) = super::streamed::to_fanuc(self, file, ctx) {
-            return o;
-        }
-        let mut db = SourceDb::new();
-        // Global user data and macros of the library (`.DEF` files nearest the program, up to
-        // the batch root, or the configured ones).
-        let mut sem = self.settings.sinumerik.clone();
-        let root = crate::gud::root_of(&file.abs, &file.rel);
-        let gud = crate::gud::apply(&mut sem, &mut db, &file.abs, root.as_deref(), &self.settings.definitions);
-        if diag::has_errors(&gud) {
-            return failed(Status::Error, "the definition files do not read".into(), DiagRecord::from_diags(&db, &gud));
-        }
-        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Sinumerik, &sem) {
-            Ok(l) => l,
-            Err(o) => return *o,
-        };
-        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let mut opts = match self.options(ctx, file, main.loaded.line_ending) {
-            Ok(o) => o,
-            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
-        };
-        opts.source = sem;
-        let sub_units: Vec<&Unit> = subs.iter().map(|l| &l.unit).collect();
-        let inputs: Vec<&Unit> = std::iter::once(&main.unit).chain(sub_units.iter().copied()).collect();
-        let main_name = opts.main_name.clone();
-        let opts = translate::Options::to_fanuc(opts);
-        let mut t = translate::translate(&inputs, Dialect::Fanuc, &opts);
-        let mut diagnostics = DiagRecord::from_diags(&db, &main.diags);
-        diagnostics.extend(DiagRecord::from_diags(&db, &t.diags));
-        let used = used_names(t.symbols.fanuc());
-        if !t.ok() {
-            let n = t.diags.iter().filter(|d| d.is_error() || d.code.starts_with("NC3")).count().max(t.unsupported);
-            return unsupported(n, "FANUC", blocks, diagnostics);
-        }
-        if let (Some(fault), Some(f)) = (&self.fault, t.files.first_mut()) {
-            fault(file, &mut f.text);
-        }
-        let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
-        let bytes = crate::read::encode(t.text(), encoding, main.loaded.bom);
-        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
-        outcome.blocks = blocks;
-        outcome.used = used;
-        outcome.outputs = vec![OutputFile { rel: discover::fanuc_output(&file.rel), bytes }];
-        if ctx.options.verify {
-            let key = main.unit.programs.first().map(|p| match &p.name {
-                Some(ProgName::Name(n)) => ProgKey::Name(n.to_ascii_uppercase()),
-                _ => ProgKey::Name(main_name.clone()),
-            });
-            let vectors = key.map(|k| ctx.library.arg_vectors(&k)).unwrap_or_default();
-            let out_name = super::rel_string(&discover::fanuc_output(&file.rel));
-            let v = self.verify(&mut db, &main.unit, &sub_units, &t, &out_name, &vectors);
-            outcome.diagnostics = diagnostics;
-            apply(&mut outcome, v);
-        } else {
-            outcome.diagnostics = diagnostics;
-        }
-        outcome
-    }
-}
-
-/// The names a translation to FANUC used: programs, tools, variables.
-pub(crate) fn used_names(map: &translate::SymbolMap) -> super::maps::Used {
-    let mut used = super::maps::Used::default();
-    for (name, n) in &map.programs {
-        used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));
-    }
-    used.tools = map.tools.clone();
-    for m in &map.vars {
-        let key = match &m.program {
-            Some(p) => format!("{p}.{}", m.source),
-            None => m.source.clone(),
-        };
-        used.variables.insert(key, format!("#{}", m.number));
-    }
-    used
-}
-
 /// What verification found.
-pub(crate) struct Verified {
+pub struct Verified {
     pub status: Status,
     pub summary: String,
     pub events: Option<u64>,
@@ -334,116 +233,219 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
     }
 }
 
-impl ToFanucJob {
-    /// Parses the output back as FANUC (it must be valid FANUC), then runs both programs:
-    /// once with the program's own inputs, and once per argument vector its callers use.
-    fn verify(
-        &self,
-        db: &mut SourceDb,
-        main: &Unit,
-        subs: &[&Unit],
-        t: &Translation,
-        out_name: &str,
-        vectors: &[Vec<super::library::ArgValue>],
-    ) -> Verified {
-        let parsed = translate::reparse(db, t, out_name);
-        if diag::has_errors(&parsed.diags) {
+/// What a batch job does differently for its target, beside the target's translation
+/// (`translate::to_<name>::job`); the rest of the job is [`Job`]'s, the same for all.
+pub trait Target: Sized + Send + Sync + 'static {
+    /// The dialect written.
+    const DIALECT: Dialect;
+    /// The target as messages name it (`… construct(s) FANUC cannot express`).
+    const NAME: &'static str;
+    /// Every program goes into one file (FANUC); else one file per program, and the proof
+    /// names the folder of the files.
+    const ONE_FILE: bool;
+
+    /// The streamed job for a large file (`batch::streamed`); `None` leaves the file to the
+    /// whole-file job.
+    fn streamed(job: &Job<Self>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome>;
+
+    /// The options of the translation of `main` (read with profile `source`) and its
+    /// callees `subs`, from the batch's maps; an `Err` is the file's error (NC606).
+    fn prepare(job: &Job<Self>, input: &mut Input, source: Semantics) -> Result<Prepared, String>;
+
+    /// The names the file's own outputs (those from file `own`) used.
+    fn used(t: &Translation, own: FileId) -> maps::Used;
+
+    /// How many constructs the target cannot express, when the translation is refused
+    /// (errors, or marked comments under the warn policy); `own_diags` are the
+    /// translation's diagnostics about the job's own files.
+    fn refused(t: &Translation, own_diags: &[Diagnostic], own: FileId) -> Option<usize>;
+
+    /// Where an output file of the input `rel` is written, relative to the output folder.
+    fn output(rel: &Path, f: &OutFile) -> PathBuf;
+}
+
+/// A job's input once read: its file, the batch, and the parsed file and callees in `db`.
+pub struct Input<'a> {
+    pub file: &'a InputFile,
+    pub ctx: &'a BatchContext,
+    pub db: SourceDb,
+    pub main: LoadedFile,
+    pub subs: Vec<LoadedFile>,
+}
+
+/// What a target makes of a job's input before it translates.
+pub struct Prepared {
+    pub opts: translate::Options,
+    /// Notes for the report, in front of the reading diagnostics.
+    pub notes: Vec<DiagRecord>,
+    /// Program numbers of the file that another file writes (not written here).
+    pub copies: BTreeSet<u32>,
+    /// A program translated with the file's but not written (its file and unit): the calls
+    /// the rest of the library makes (FANUC → Sinumerik, `to_sinumerik::job::stand_in`).
+    pub stand_in: Option<(FileId, Unit)>,
+}
+
+impl Prepared {
+    pub fn new(opts: translate::Options) -> Prepared {
+        Prepared { opts, notes: vec![], copies: BTreeSet::new(), stand_in: None }
+    }
+}
+
+/// The per-file job of a batch to the target `T`.
+pub struct Job<T> {
+    pub settings: JobSettings,
+    /// The tests' injected bug, applied to the text of every output of the file.
+    pub fault: Option<Box<Fault>>,
+    target: PhantomData<T>,
+}
+
+impl<T: Target> Job<T> {
+    pub fn new(settings: JobSettings) -> Job<T> {
+        Job { settings, fault: None, target: PhantomData }
+    }
+}
+
+/// The profile a file of `source` is read with: the settings' own, and for Sinumerik the
+/// global user data and macros of the library (the `.DEF` files nearest the program, up to
+/// the batch root, or the configured ones). A definition file that does not read is the
+/// file's outcome.
+fn source_profile(
+    s: &JobSettings,
+    db: &mut SourceDb,
+    file: &InputFile,
+    source: Dialect,
+) -> Result<Semantics, Box<FileOutcome>> {
+    match source {
+        Dialect::Fanuc => Ok(s.fanuc.clone()),
+        Dialect::Sinumerik => {
+            let mut sem = s.sinumerik.clone();
+            let root = crate::gud::root_of(&file.abs, &file.rel);
+            let gud = crate::gud::apply(&mut sem, db, &file.abs, root.as_deref(), &s.definitions);
+            if diag::has_errors(&gud) {
+                let records = DiagRecord::from_diags(db, &gud);
+                return Err(Box::new(failed(Status::Error, "the definition files do not read".into(), records)));
+            }
+            Ok(sem)
+        }
+    }
+}
+
+impl<T: Target> FileJob for Job<T> {
+    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
+        if let Some(o) = T::streamed(self, file, ctx) {
+            return o;
+        }
+        let mut db = SourceDb::new();
+        let source = ctx.options.source();
+        let sem = match source_profile(&self.settings, &mut db, file, source) {
+            Ok(s) => s,
+            Err(o) => return *o,
+        };
+        let (main, subs) = match load_with_callees(&mut db, file, ctx, source, &sem) {
+            Ok(l) => l,
+            Err(o) => return *o,
+        };
+        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
+        let mut input = Input { file, ctx, db, main, subs };
+        let p = match T::prepare(self, &mut input, sem) {
+            Ok(p) => p,
+            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
+        };
+        let mut diagnostics = p.notes.clone();
+        diagnostics.extend(DiagRecord::from_diags(&input.db, &input.main.diags));
+        let mut units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
+        if let Some((_, u)) = &p.stand_in {
+            units.push(u);
+        }
+        let mut t = translate::translate(&units, T::DIALECT, &p.opts);
+        // The stand-in's own program is not an output; its warnings are about nothing real.
+        let stand_in = p.stand_in.as_ref().map(|(id, _)| *id);
+        t.files.retain(|f| Some(f.source) != stand_in);
+        let own_diags: Vec<_> = t
+            .diags
+            .iter()
+            .filter(|d| d.is_error() || d.labels.iter().find(|l| l.primary).is_none_or(|l| Some(l.file) != stand_in))
+            .cloned()
+            .collect();
+        diagnostics.extend(DiagRecord::from_diags(&input.db, &own_diags));
+
+        // What this file's programs use (not the callees', not the stand-in's).
+        let own = input.main.loaded.file;
+        let used = T::used(&t, own);
+        if let Some(n) = T::refused(&t, &own_diags, own) {
+            return unsupported(n, T::NAME, blocks, diagnostics);
+        }
+        if let Some(fault) = &self.fault {
+            for f in t.files.iter_mut().filter(|f| f.source == own) {
+                fault(file, &mut f.text);
+            }
+        }
+        let loaded = &input.main.loaded;
+        let encoding = self.settings.output_encoding.unwrap_or(loaded.encoding);
+        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
+        outcome.blocks = blocks;
+        outcome.used = used;
+        outcome.outputs = t
+            .files
+            .iter()
+            .filter(|f| f.source == own && !f.fanuc_number.is_some_and(|n| p.copies.contains(&n)))
+            .map(|f| OutputFile {
+                rel: T::output(&file.rel, f),
+                bytes: crate::read::encode(&f.text, encoding, loaded.bom),
+            })
+            .collect();
+        outcome.diagnostics = diagnostics;
+        if outcome.outputs.is_empty() {
+            outcome.status = Status::Unsupported;
+            outcome.summary = "not translated: the file holds no program".into();
+            return outcome;
+        }
+        if ctx.options.verify {
+            let v = self.verify(&mut input, &t);
+            apply(&mut outcome, v);
+        }
+        outcome
+    }
+}
+
+impl<T: Target> Job<T> {
+    /// Proves the translation `t` through `translate::verify`, with the batch's profiles,
+    /// `--set` and library (each program also runs with the arguments its callers pass).
+    fn verify(&self, input: &mut Input, t: &Translation) -> Verified {
+        let (file, ctx, s) = (input.file, input.ctx, &self.settings);
+        let out = match t.main() {
+            Some(f) if T::ONE_FILE => T::output(&file.rel, f),
+            _ => file.rel.parent().unwrap_or(Path::new("")).to_path_buf(),
+        };
+        let main_name = file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
+        let opts = translate::VerifyOptions {
+            max_steps: s.max_steps,
+            profiles: Some(Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() }),
+            set: &s.set,
+            library: Some(translate::InLibrary { library: &ctx.library, file: file.index, main_name: &main_name }),
+            each_vacant: !ctx.options.specialise_callers,
+        };
+        let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
+        let v = translate::verify(&mut input.db, &units, t, &super::rel_string(&out), opts);
+        if !v.unreadable.is_empty() {
             return Verified {
                 status: Status::Diverged,
-                summary: "the output does not parse as FANUC (a bug in nctrans)".into(),
+                summary: format!("the output does not parse as {} (a bug in nctrans)", T::NAME),
                 events: None,
                 excluded: Default::default(),
-                diagnostics: DiagRecord::from_diags(db, &parsed.diags),
+                diagnostics: DiagRecord::from_diags(&input.db, &v.unreadable),
             };
         }
-        // The Siemens side starts with R parameters 0; their FANUC homes are set to 0 too
-        // (FANUC commons may be vacant), like `nctrans --to fanuc` does.
-        let map = t.symbols.fanuc();
-        let mut fanuc_inputs: Vec<String> = translate::to_fanuc::r_param_homes(map);
-        fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
-        let sinumerik = translate::to_fanuc::source_semantics(t, Some(&self.settings.sinumerik))
-            .unwrap_or_else(|| self.settings.sinumerik.clone());
-        let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
-        let letters = crate::lower::to_fanuc::words::param_letters(params.len()).unwrap_or_default();
-        let mut runs = Vec::new();
-        let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
-        for (k, v) in vectors.iter().enumerate() {
-            let vals = v
-                .iter()
-                .filter_map(|a| {
-                    params.iter().position(|p| p.name.eq_ignore_ascii_case(&a.var)).map(|i| (i, a.to_set()))
-                })
-                .collect();
-            cases.push((format!(" (with the arguments of call site {})", k + 1), vals));
-        }
-        for (label, vals) in cases {
-            let mut a_in = Vec::new();
-            let mut b_in = std::mem::take(&mut fanuc_inputs);
-            fanuc_inputs = b_in.clone();
-            // Parameters not passed are 0 on Siemens; the argument locals get the same value.
-            for (i, (_, var)) in letters.iter().enumerate() {
-                if params.get(i).is_some_and(|p| p.by_ref) {
-                    continue;
-                }
-                let given = vals.iter().find(|(j, _)| *j == i);
-                let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
-                b_in.push(format!("#{var}={value}"));
-                if let Some((_, s)) = given {
-                    a_in.push(s.clone());
-                }
-            }
-            b_in.extend(translate::var_param_inputs(&params, map));
-            a_in.extend(self.settings.set.iter().cloned());
-            b_in.extend(self.settings.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
-            let parse_all = |v: &[String]| v.iter().filter_map(|s| eval::parse_input(s).ok()).collect::<Vec<_>>();
-            let run = |inputs, sem: &Semantics| RunOptions {
-                max_steps: self.settings.max_steps,
-                inputs,
-                semantics: Some(sem.clone()),
-                probe_contact: None,
-                expand_cycles: None,
+        if v.runs.is_empty() {
+            let summary = v.summary;
+            return Verified {
+                status: Status::Inconclusive,
+                summary,
+                events: None,
+                excluded: Default::default(),
+                diagnostics: vec![],
             };
-            let source = translate::align_source(main, map);
-            let callees = MemCallees(subs.iter().map(|u| translate::align_source(u, map)).collect());
-            let a = Side { unit: source, callees: Box::new(callees), run: run(parse_all(&a_in), &sinumerik) };
-            let b = Side {
-                unit: parsed.unit.clone(),
-                callees: Box::new(NoCallees),
-                run: run(parse_all(&b_in), &self.settings.fanuc),
-            };
-            runs.push((label, check::check_excluding(db, a, b, translate::EXCLUDE)));
         }
-        combine(runs)
-    }
-}
-
-/// Called programs served from memory: Siemens ones by name, FANUC ones by `O` number.
-pub(crate) struct MemCallees(pub Vec<Unit>);
-
-impl CalleeSource for MemCallees {
-    fn find(
-        &mut self,
-        _db: &mut SourceDb,
-        _caller: FileId,
-        _dialect: Dialect,
-        name: &CalleeName,
-    ) -> Result<Option<Unit>, Diagnostic> {
-        let found = match name {
-            CalleeName::Name(n) => {
-                let want = n.to_ascii_uppercase();
-                self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str()))
-            }
-            CalleeName::Number(n) => {
-                self.0.iter().find(|u| u.programs.iter().any(|p| p.name == Some(ProgName::Number(*n))))
-            }
-        };
-        Ok(found.cloned())
-    }
-}
-
-fn unit_name(u: &Unit) -> Option<String> {
-    match u.programs.first().and_then(|p| p.name.as_ref()) {
-        Some(ProgName::Name(n)) => Some(n.to_ascii_uppercase()),
-        _ => None,
+        combine(v.runs)
     }
 }

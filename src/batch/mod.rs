@@ -8,13 +8,21 @@
 //! atomically ([`write`]) and summarises ([`report`]). Everything a file's output depends on
 //! is decided before the parallel part, so the output does not depend on thread timing.
 //!
-//! Owns: the engine above and the jobs (`jobs`: what both directions share and Sinumerik →
-//! FANUC; `jobs_sinumerik`; `streamed*`: a large file streamed). May use: `translate` (the
-//! one entry), `stream`, `check`, `eval`, `dialect`, `config`; never the command line.
+//! Owns: the engine above and the one per-file job (`jobs`: read, translate through the one
+//! entry, verify, outputs; what a target does as its own is its `jobs::Target`, beside its
+//! translation in `translate::to_<name>::job`), and `streamed*`: a large file streamed.
+//! May use: `translate` (the one entry and the targets' job parts), `stream`, `check`,
+//! `eval`, `dialect`, `config`; never the command line.
 
 pub mod discover;
 pub mod jobs;
-pub mod jobs_sinumerik;
+/// The names the streamed jobs and the tests reach the FANUC → Sinumerik job under.
+pub mod jobs_sinumerik {
+    pub use super::jobs::ToSinumerikJob;
+    pub(crate) use crate::translate::to_sinumerik::job::{
+        in_file_macro_runs, parse_all, siemens_inputs, stand_in, used_names,
+    };
+}
 pub mod library;
 pub mod maps;
 pub mod report;

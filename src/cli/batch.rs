@@ -8,7 +8,6 @@ use super::configure::configure;
 use super::translate::TranslateArgs;
 use clap::ArgMatches;
 use nctrans::batch::{self, jobs, BatchOptions, FileJob, Progress, Status};
-use nctrans::dialect::Dialect;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -98,10 +97,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
         Ok(s) => s,
         Err(e) => return fail(e),
     };
-    let job: Box<dyn FileJob> = match to {
-        Dialect::Fanuc => Box::new(jobs::ToFanucJob::new(settings)),
-        Dialect::Sinumerik => Box::new(nctrans::batch::jobs_sinumerik::ToSinumerikJob::new(settings)),
-    };
+    let job: Box<dyn FileJob> = jobs::for_target(to, settings);
     // The report is never written over a program of the library (another spelling, a link).
     if let Some(rp) = &c.report {
         let found = batch::discover::discover(input, Some(&output)).map(|f| f.files).unwrap_or_default();

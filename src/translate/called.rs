@@ -5,12 +5,14 @@
 //! each of those arguments left vacant, where its vacancy logic (a default, an alarm) must
 //! be right for a caller added later.
 
-use crate::batch::jobs_sinumerik::{parse_all, siemens_inputs};
 use crate::batch::library::{self, Library, ProgKey};
 use crate::check::{CheckReport, Excluded, Verdict};
-use crate::eval::calls::CalleeSource;
+use crate::diag::Diagnostic;
+use crate::dialect::Dialect;
+use crate::eval::calls::{CalleeName, CalleeSource};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
+use crate::translate::to_sinumerik::job::{parse_all, siemens_inputs};
 use crate::translate::to_sinumerik::verify::{self as vs, Profiles, RunSpec};
 use crate::translate::to_sinumerik::{OutFile, Translation};
 use std::collections::BTreeSet;
@@ -142,7 +144,7 @@ pub fn called_runs(
         let mut unit = u.clone();
         let entry = unit.programs.remove(i);
         unit.programs.insert(0, entry);
-        let served = || Box::new(crate::batch::jobs::MemCallees(all.clone())) as Box<dyn CalleeSource + Send>;
+        let served = || Box::new(MemCallees(all.clone())) as Box<dyn CalleeSource + Send>;
         let alone = Alone { db, file: u.file, unit: &unit, tr, out };
         runs.extend(macro_runs(&alone, &lib, &ProgKey::Number(n), settings, each_vacant, &served));
     }
@@ -251,5 +253,36 @@ impl Combined {
         } else {
             excluded.equivalent(&format!("{events} events"))
         }
+    }
+}
+
+/// Called programs served from memory: Siemens ones by name, FANUC ones by `O` number.
+pub struct MemCallees(pub Vec<Unit>);
+
+impl CalleeSource for MemCallees {
+    fn find(
+        &mut self,
+        _db: &mut SourceDb,
+        _caller: FileId,
+        _dialect: Dialect,
+        name: &CalleeName,
+    ) -> Result<Option<Unit>, Diagnostic> {
+        let found = match name {
+            CalleeName::Name(n) => {
+                let want = n.to_ascii_uppercase();
+                self.0.iter().find(|u| unit_name(u).as_deref() == Some(want.as_str()))
+            }
+            CalleeName::Number(n) => {
+                self.0.iter().find(|u| u.programs.iter().any(|p| p.name == Some(ProgName::Number(*n))))
+            }
+        };
+        Ok(found.cloned())
+    }
+}
+
+fn unit_name(u: &Unit) -> Option<String> {
+    match u.programs.first().and_then(|p| p.name.as_ref()) {
+        Some(ProgName::Name(n)) => Some(n.to_ascii_uppercase()),
+        _ => None,
     }
 }

@@ -2,12 +2,15 @@
 //! gives back one [`Translation`] (the files written, the symbol map that relates them to the
 //! source, every diagnostic, and what could not be expressed) for every pair of dialects.
 //!
-//! Owns: the entry, the result type, the options of every target ([`Options`]), and the work
-//! per target behind the entry: `to_fanuc` (Sinumerik → FANUC) and `to_sinumerik/`
-//! (FANUC → Sinumerik, with its proof in `to_sinumerik/verify.rs`). May use: `passes`
-//! (lowering), `dialect` (writing), `check` and `eval` (the proof), `unfinished`, `empty`,
-//! `ir`, `diag`, `read`, `span`. Used by the CLI, `batch` and `stream`; it uses none of them.
-//! A new target adds a module here and an arm in [`translate`].
+//! Owns: the entry, the result type, the options of every target ([`Options`]), the one
+//! proof ([`verify`], [`VerifyOptions`]), and the work per target behind them: `to_fanuc/`
+//! (Sinumerik → FANUC) and `to_sinumerik/` (FANUC → Sinumerik, with its proof in
+//! `to_sinumerik/verify.rs`), each with what a batch job to it does as its own (`job.rs`).
+//! May use: `passes` (lowering), `dialect` (writing), `check` and `eval` (the proof),
+//! `unfinished`, `empty`, `ir`, `diag`, `read`, `span`; of `batch` only its library (the
+//! calls a proof runs with) and, in the targets' `job.rs`, the job they describe. Used by
+//! the CLI, `batch` and `stream`. A new target adds a module here and an arm in
+//! [`translate`] and [`verify`].
 
 pub mod called;
 pub mod generic;
@@ -17,7 +20,7 @@ pub mod to_sinumerik;
 // The names of the FANUC target that the streaming translators and the tests reach at
 // `translate::` (the streaming code moves onto the entry with issue 18 part B).
 pub use to_fanuc::{
-    align_source, r_param_inputs, reparse, standalone_args, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
+    align_source, r_param_inputs, reparse, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
     DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
 };
 
@@ -152,9 +155,9 @@ impl From<to_fanuc::Output> for Translation {
 }
 
 /// The result of checking a translation.
-#[derive(Clone, Debug)]
+#[derive(Default)]
 pub struct Verification {
-    /// Both programs ran to the same trace.
+    /// Both programs ran to the same trace (in every run).
     pub equivalent: bool,
     /// One line for the user: `equivalent (N events)`, `diverged …`, `inconclusive …`.
     pub summary: String,
@@ -162,6 +165,11 @@ pub struct Verification {
     pub rendered: String,
     /// The output parsed back as FANUC.
     pub reparsed: Option<Unit>,
+    /// Every run of the proof with its label (the plain run's is empty), in order: the
+    /// callers' argument vectors, a called macro alone (see [`VerifyOptions`]).
+    pub runs: Vec<(String, CheckReport)>,
+    /// The output's errors when it does not read back as the target (no run was made).
+    pub unreadable: Vec<Diagnostic>,
 }
 
 impl Verification {
@@ -178,26 +186,93 @@ impl Verification {
             Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
             Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
         };
-        Verification { equivalent, summary, rendered, reparsed: None }
+        Verification { equivalent, summary, rendered, ..Verification::default() }
+    }
+
+    /// The verdict of several runs: the first that is not an equivalence (named by its
+    /// label), or the events of all added up.
+    fn of_runs(runs: Vec<(String, CheckReport)>) -> Verification {
+        let not = runs.iter().find(|(_, r)| !matches!(r.verdict, Verdict::Equivalent { .. }));
+        let mut v = match (not, runs.as_slice()) {
+            (_, []) => Verification::none("not verified: no program of the file was found in its translation"),
+            (Some((label, r)), _) if !label.is_empty() => {
+                let v = Verification::of(r);
+                Verification { summary: format!("in the run{label}: {}", v.summary), ..v }
+            }
+            (Some((_, r)), _) | (None, [(_, r)]) => Verification::of(r),
+            (None, _) => {
+                let mut excluded = crate::check::Excluded::default();
+                runs.iter().for_each(|(_, r)| excluded.add(r.excluded));
+                let events =
+                    runs.iter().map(|(_, r)| if let Verdict::Equivalent { events } = r.verdict { events } else { 0 });
+                let summary = called::Combined::summary(events.sum(), runs.len(), &excluded);
+                Verification { equivalent: true, summary, ..Verification::default() }
+            }
+        };
+        v.runs = runs;
+        v
+    }
+
+    /// No verdict: `summary` says why.
+    fn none(summary: &str) -> Verification {
+        Verification { summary: summary.to_string(), ..Verification::default() }
+    }
+}
+
+/// What a proof is given beyond the translation. A step limit alone (`max_steps.into()`)
+/// proves a single file as `nctrans --to DIALECT` does.
+#[derive(Clone, Debug)]
+pub struct VerifyOptions<'a> {
+    /// The step limit of each run.
+    pub max_steps: u64,
+    /// The two runs' control profiles (`None`: each dialect's default).
+    pub profiles: Option<to_sinumerik::verify::Profiles>,
+    /// `--set` inputs of every run (FANUC `#n=…` ones are mapped for the Siemens side).
+    pub set: &'a [String],
+    /// The library the file belongs to (a batch): its programs also run with the arguments
+    /// the library's calls pass, and a program only another file calls runs too.
+    pub library: Option<InLibrary<'a>>,
+    /// FANUC → Sinumerik: a macro written for every possible caller (not
+    /// `--specialise-callers`) also runs with each argument vacant (`called::cases`).
+    pub each_vacant: bool,
+}
+
+/// A translated file's place in a library (see [`VerifyOptions::library`]).
+#[derive(Clone, Copy, Debug)]
+pub struct InLibrary<'a> {
+    pub library: &'a crate::batch::library::Library,
+    /// The file's index in the library.
+    pub file: usize,
+    /// The name the library knows the file's main program by when the program names
+    /// itself none (its file stem, upper case).
+    pub main_name: &'a str,
+}
+
+impl From<u64> for VerifyOptions<'static> {
+    fn from(max_steps: u64) -> Self {
+        VerifyOptions { max_steps, profiles: None, set: &[], library: None, each_vacant: true }
     }
 }
 
 /// Proves a translation of `inputs` (as given to [`translate`], in `db`): the output is read
-/// back as the target (so it is valid syntax there), both programs run in the evaluator with
-/// at most `max_steps` blocks each, and their traces are compared. `out` names the output in
-/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. The command line's
-/// `--to sinumerik` and the batch jobs run the per-target proofs with their own inputs and
-/// profiles (`to_sinumerik::verify::verify_run`).
-pub fn verify(db: &mut SourceDb, inputs: &[&Unit], t: &Translation, out: &str, max_steps: u64) -> Verification {
+/// back as the target (so it is valid syntax there), both programs run in the evaluator and
+/// their traces are compared, once per run the options call for. `out` names the output in
+/// diagnostics: the file on FANUC, the folder of the files on Sinumerik. Every path proves
+/// through here: the command line, the batch jobs (with their library, profiles and `--set`).
+pub fn verify<'a>(
+    db: &mut SourceDb,
+    inputs: &[&Unit],
+    t: &Translation,
+    out: &str,
+    opts: impl Into<VerifyOptions<'a>>,
+) -> Verification {
+    let opts = opts.into();
     let Some((main, subs)) = inputs.split_first() else {
-        let summary = "not verified: no program to run".to_string();
-        return Verification { equivalent: false, summary, rendered: String::new(), reparsed: None };
+        return Verification::none("not verified: no program to run");
     };
     match t.target() {
-        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, max_steps),
-        Dialect::Sinumerik => {
-            Verification::of(&to_sinumerik::verify::verify_with(db, main.file, main, t, out, max_steps))
-        }
+        Dialect::Fanuc => to_fanuc::verify(db, main, subs, t, out, opts),
+        Dialect::Sinumerik => Verification::of_runs(to_sinumerik::verify::runs(db, inputs, t, out, &opts)),
     }
 }
 

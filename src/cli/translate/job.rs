@@ -1,18 +1,21 @@
 //! What a single-file translation reads and writes, for both targets and both paths (whole
 //! and streamed): the options from the configuration, the input and the callees found
-//! beside it, the output files under the rules of `-o`, and the verdict of the proof.
+//! beside it, the output files under the rules of `-o`, and the verdict of the proof. The
+//! driver (`super::translate_file`) is one for every target; each choice a target makes
+//! differently is one function here that decides by the target (so a new target's arms
+//! are the ones the compiler lists).
 
 use super::TranslateArgs;
+use nctrans::batch::jobs::JobSettings;
 use nctrans::batch::library::ProgKey;
 use nctrans::check::Verdict;
-use nctrans::config::{Comments, Config, LineEnds, Unsupported};
-use nctrans::dialect::fanuc::emit::CommentMode;
+use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::lower::to_fanuc::varmap;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
-use nctrans::translate::TranslateOptions;
+use nctrans::translate::{self, TranslateOptions, Translation};
 use nctrans::{diag, read};
 use std::collections::BTreeSet;
 use std::io::Write;
@@ -79,34 +82,12 @@ pub fn fanuc_options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<
             _ => None,
         })
         .collect();
-    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN").to_ascii_uppercase();
     Ok(TranslateOptions {
-        unsupported: match c.unsupported {
-            Unsupported::Warn => nctrans::lower::to_fanuc::UnsupportedPolicy::Warn,
-            Unsupported::Error => nctrans::lower::to_fanuc::UnsupportedPolicy::Error,
-        },
         var_rules,
         tool_map: c.tools.clone(),
         program_map,
         program_number: c.program_number,
-        comments: match c.comments {
-            Comments::Ascii => CommentMode::Ascii,
-            Comments::Drop => CommentMode::Drop,
-            Comments::Keep => CommentMode::Keep,
-        },
-        number_blocks: (c.number_blocks > 0).then_some(c.number_blocks),
-        line_ending: match c.line_ends {
-            LineEnds::Keep => eol,
-            LineEnds::Lf => read::LineEnding::Lf,
-            LineEnds::CrLf => read::LineEnding::CrLf,
-            LineEnds::Cr => read::LineEnding::Cr,
-        },
-        compound_conditions: c.fanuc.compound_conditions,
-        target: c.fanuc_semantics(),
-        source: c.sinumerik_semantics(),
-        main_name: stem,
-        main_is_sub: input.extension().is_some_and(|e| e.eq_ignore_ascii_case("spf")),
-        source_name: input.file_name().and_then(|s| s.to_str()).unwrap_or("").to_string(),
+        ..nctrans::translate::to_fanuc::job::file_options(&JobSettings::of(c), input, eol)
     })
 }
 
@@ -177,6 +158,8 @@ pub struct Job {
     pub warnings: Vec<diag::Diagnostic>,
     /// Program numbers after a closing `%` in the files read (see `Options::after_end`).
     pub after_end: BTreeSet<u32>,
+    /// The profile the files were read with (Sinumerik: with the library's definitions).
+    pub profile: nctrans::dialect::Semantics,
 }
 
 /// Loads `path` and, transitively, the callees it needs that are not in the file itself.
@@ -206,7 +189,7 @@ pub fn load_job(
         return Err((db, diags));
     }
     // Warnings of reading are shown, not fatal.
-    Ok(Job { db, units, loaded, read, warnings: diags, after_end })
+    Ok(Job { db, units, loaded, read, warnings: diags, after_end, profile: profile.clone() })
 }
 
 /// The folder a file is in (`.` for a bare file name, whose parent is empty).
@@ -385,38 +368,6 @@ pub fn main_to_stdout(out: &Path, name: &str, eol: read::LineEnding, enc: Encode
     so.flush()
 }
 
-/// Runs both programs and reports: "equivalent (N events)" and success, or the first
-/// divergence / inconclusive run and failure.
-pub fn verify(job: &Job, tr: &ts::Translation, req: &Request, max_steps: u64, opts: &Options) -> ExitCode {
-    let out_dir = match req.out {
-        Some(o) if o.is_dir() || o.to_string_lossy().ends_with('/') => o.display().to_string(),
-        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
-        None => "<stdout>".to_string(),
-    };
-    let main_unit = &job.units[0];
-    let profiles = nctrans::translate::to_sinumerik::verify::Profiles {
-        fanuc: opts.source.clone(),
-        sinumerik: opts.target.clone(),
-    };
-    let report = nctrans::translate::to_sinumerik::verify::verify_profiled(
-        &job.db,
-        job.loaded.file,
-        main_unit,
-        tr,
-        &out_dir,
-        max_steps,
-        &profiles,
-    );
-    // A program the others call by G65/G66 also runs alone, with its callers' arguments
-    // and with each of them vacant (`translate::called`), as the batch proves it.
-    eprint!("{}", diag::render(&report.db, &report.diags));
-    let mut runs = vec![(String::new(), report)];
-    let units: Vec<&Unit> = job.units.iter().collect();
-    let files = (tr.files.as_slice(), tr.symbols.sinumerik());
-    runs.extend(nctrans::translate::called::single_file_runs(&job.db, &units, files, opts, &out_dir, max_steps));
-    crate::cli::called::combined(nctrans::translate::called::combine(runs), &|db, diags| diag::render(db, diags))
-}
-
 /// Prints a verification's verdict; success only for "equivalent".
 pub fn verdict(v: Verdict, diff: &str) -> ExitCode {
     match v {
@@ -490,4 +441,206 @@ pub fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
         let ext = f.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();
         stem.eq_ignore_ascii_case(name) && ext == "spf"
     })
+}
+
+/// How the command line asks for the input it misses.
+pub fn needs_input(to: Dialect) -> &'static str {
+    match to {
+        Dialect::Fanuc => "--to needs an input file: nctrans --to fanuc IN.MPF",
+        Dialect::Sinumerik => "--to sinumerik needs an input file: nctrans --to sinumerik IN.nc",
+    }
+}
+
+/// A flag given that means nothing to `to` (the FANUC writer's own).
+pub fn foreign_flag(args: &TranslateArgs, to: Dialect) -> Option<&'static str> {
+    if to == Dialect::Fanuc {
+        return None;
+    }
+    let fanuc_only = [
+        ("--tool-map", !args.tool_map.is_empty()),
+        ("--program-number", args.program_number.is_some()),
+        ("--number-blocks", args.number_blocks.is_some()),
+        ("--compound-conditions", args.compound_conditions),
+        ("--comments", args.comments != "keep"),
+    ];
+    fanuc_only.iter().find(|(_, given)| *given).map(|(flag, _)| *flag)
+}
+
+/// Whether `to` writes one file per program (Sinumerik's `.MPF` and `.SPF`), so that `-o`
+/// may name a folder; FANUC writes every program into one file.
+pub fn one_per_program(to: Dialect) -> bool {
+    match to {
+        Dialect::Fanuc => false,
+        Dialect::Sinumerik => true,
+    }
+}
+
+/// The options of a translation of `input` to `to` from the configuration; the parts that
+/// depend on what is read are [`complete`]d once it is.
+pub fn options(args: &TranslateArgs, c: &Config, input: &Path, to: Dialect) -> Result<translate::Options, String> {
+    Ok(match to {
+        Dialect::Fanuc => translate::Options::to_fanuc(fanuc_options(c, input, read::LineEnding::Lf)?),
+        Dialect::Sinumerik => {
+            let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("MAIN");
+            translate::Options::to_sinumerik(sinumerik_options(args, stem, c)?, read::LineEnding::Lf)
+        }
+    })
+}
+
+/// The options' parts that depend on the files read: the profile they were read with, the
+/// output's line ending (to FANUC as `line_ends` says, to Sinumerik the input's), and the
+/// programs after a closing `%`.
+pub fn complete(opts: &mut translate::Options, c: &Config, job: &Job, to: Dialect) {
+    let eol = job.loaded.line_ending;
+    match to {
+        Dialect::Fanuc => {
+            opts.fanuc.source = job.profile.clone();
+            opts.fanuc.line_ending = JobSettings::of(c).line_ending(eol);
+            opts.line_ending = opts.fanuc.line_ending;
+        }
+        Dialect::Sinumerik => {
+            opts.sinumerik.after_end = job.after_end.clone();
+            opts.line_ending = eol;
+        }
+    }
+}
+
+/// Reads the input (as the dialect `to` is translated from) and the callees found beside
+/// it; a failure has been shown, and is the exit code.
+pub fn load(req: &Request, c: &Config, opts: &translate::Options, to: Dialect) -> Result<Job, ExitCode> {
+    match to {
+        Dialect::Fanuc => load_sinumerik(req, c),
+        Dialect::Sinumerik => load_job(req.file, req.encoding, &opts.sinumerik.source).map_err(|(db, diags)| {
+            eprint!("{}", diag::render(&db, &diags));
+            ExitCode::from(1)
+        }),
+    }
+}
+
+/// Loads a Sinumerik `input` with the global user data and macros of the library's
+/// definition files, and the subprograms it calls found beside it (`NAME.SPF`, any case),
+/// transitively; each file's diagnostics are shown as it is read.
+fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
+    let input = req.file;
+    let bytes =
+        std::fs::read(input).map_err(|e| crate::cli::args::fail(format!("cannot read {}: {e}", input.display())))?;
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, &input.display().to_string(), &bytes, c.input_encoding);
+    let mut profile = c.sinumerik_semantics();
+    let gud = nctrans::gud::apply(&mut profile, &mut db, input, None, &c.definitions);
+    let shown = |db: &SourceDb, diags: &[diag::Diagnostic]| {
+        eprint!("{}", diag::render(db, diags));
+        if diag::has_errors(diags) {
+            return Err(ExitCode::from(1));
+        }
+        Ok(())
+    };
+    shown(&db, &gud)?;
+    let popts = ParseOptions { semantics: profile.clone() };
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
+    shown(&db, &parsed.diags)?;
+    let mut read = vec![input.to_path_buf()];
+    let subs = callees::<ExitCode>(&parsed.unit, |callee| {
+        let Some(path) = find_beside(input, callee) else { return Ok(None) };
+        let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
+        read.push(path.clone());
+        let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
+        let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
+        shown(&db, &p.diags)?;
+        Ok(Some(p.unit))
+    })?;
+    let units = std::iter::once(parsed.unit).chain(subs).collect();
+    Ok(Job { db, units, loaded, read, warnings: vec![], after_end: BTreeSet::new(), profile })
+}
+
+/// Why nothing is written, when the translation is refused: to FANUC an error under the
+/// error policy (under the warn policy the marked output is written), to Sinumerik any error.
+pub fn refused(t: &Translation, opts: &translate::Options, to: Dialect) -> Option<String> {
+    match to {
+        Dialect::Fanuc => (t.has_errors()
+            && opts.fanuc.unsupported == nctrans::lower::to_fanuc::UnsupportedPolicy::Error)
+            .then(|| format!("not translated ({} construct(s) cannot be expressed on FANUC)", t.unsupported.max(1))),
+        Dialect::Sinumerik => t.has_errors().then(|| "translation failed; nothing written".to_string()),
+    }
+}
+
+/// Writes the translation: to FANUC the one file (in the output encoding, through a
+/// temporary file), to Sinumerik each program's file ([`write_files`]).
+pub fn write(req: &Request, t: &Translation, job: &Job, c: &Config, to: Dialect) -> Result<(), ExitCode> {
+    match to {
+        Dialect::Fanuc => {
+            let loaded = &job.loaded;
+            let bytes = read::encode(t.text(), c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
+            if let Some(o) = req.out {
+                crate::cli::out_guard::check(o, &job.read, c.force, "-o")?;
+            }
+            write_output(req.out, &bytes).map_err(crate::cli::args::fail)
+        }
+        Dialect::Sinumerik => write_files(req, t, &job.loaded, &job.read),
+    }
+}
+
+/// What is shown when the written output is unfinished (constructs marked UNSUPPORTED under
+/// the warn policy), which is then not verified.
+pub fn unfinished(t: &Translation, opts: &translate::Options, to: Dialect) -> Option<[String; 2]> {
+    match to {
+        Dialect::Fanuc => (t.unsupported > 0 || t.has_errors()).then(|| {
+            [
+                "not verified: the output is unfinished (it alarms on its first line)".to_string(),
+                format!("error: the output is incomplete: {} construct(s) marked UNSUPPORTED", t.unsupported),
+            ]
+        }),
+        Dialect::Sinumerik => {
+            let warned = t.diags.iter().any(|d| d.code.starts_with("NC3"));
+            (warned && opts.sinumerik.unsupported == UnsupportedPolicy::Warn).then(|| {
+                [
+                    "not verified: the output is unfinished (blocks marked NCTRANS UNSUPPORTED; it alarms on its first line)"
+                        .to_string(),
+                    "error: unsupported constructs were written as marked comments".to_string(),
+                ]
+            })
+        }
+    }
+}
+
+/// Proves the translation and shows the verdict; success only for an equivalence.
+pub fn verify(job: &mut Job, t: &Translation, req: &Request, opts: &translate::Options, to: Dialect) -> ExitCode {
+    match to {
+        Dialect::Fanuc => {
+            let out_name = req.out.map_or("<translation>.nc".to_string(), |p| p.display().to_string());
+            let units: Vec<&Unit> = job.units.iter().collect();
+            let v = translate::verify(&mut job.db, &units, t, &out_name, req.max_steps);
+            eprint!("{}", v.rendered);
+            eprintln!("{}", v.summary);
+            if v.equivalent {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            }
+        }
+        Dialect::Sinumerik => {
+            let out_dir = match req.out {
+                Some(o) if out_place(o).0 => o.display().to_string(),
+                Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+                None => "<stdout>".to_string(),
+            };
+            let o = &opts.sinumerik;
+            let vo = translate::VerifyOptions {
+                max_steps: req.max_steps,
+                profiles: Some(ts::verify::Profiles { fanuc: o.source.clone(), sinumerik: o.target.clone() }),
+                set: &[],
+                library: None,
+                each_vacant: !o.specialise_callers,
+            };
+            let units: Vec<&Unit> = job.units.iter().collect();
+            let v = translate::verify(&mut job.db, &units, t, &out_dir, vo);
+            // The main run's diagnostics, then the verdict of all (a macro called by G65/G66
+            // also runs alone, with its callers' arguments and each of them vacant).
+            if let Some((_, main)) = v.runs.first() {
+                eprint!("{}", diag::render(&main.db, &main.diags));
+            }
+            let render = |db: &SourceDb, diags: &[diag::Diagnostic]| diag::render(db, diags);
+            crate::cli::called::combined(translate::called::combine(v.runs), &render)
+        }
+    }
 }

@@ -147,7 +147,7 @@ pub fn verify_between(
             return verify(db, inputs, t, out, max_steps);
         }
     }
-    let not = |summary: String, rendered: String| Verification { equivalent: false, summary, rendered, reparsed: None };
+    let not = |summary: String, rendered: String| Verification { summary, rendered, ..Verification::default() };
     let Some((main, subs)) = inputs.split_first() else {
         return not("not verified: no program to run".into(), String::new());
     };

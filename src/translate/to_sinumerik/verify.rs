@@ -11,7 +11,8 @@ use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
 use crate::eval::{input, Ending, Input, Outcome, RunOptions};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
-use crate::translate::{OutFile, Translation};
+use crate::translate::called::{self, RunSettings};
+use crate::translate::{OutFile, Translation, VerifyOptions};
 
 /// Serves the translation's `.SPF` files to the Siemens run, from memory (also the streamed
 /// verification's, `cli::translate`).
@@ -42,6 +43,28 @@ impl CalleeSource for Emitted {
         }
         Ok(Some(parsed.unit))
     }
+}
+
+/// The runs of the proof of a FANUC → Sinumerik translation (`translate::verify`): in a
+/// library, each program of the file that runs as a main and the macros it calls
+/// (`job::library_runs`); else the first program (its FANUC callees found beside it on
+/// disk), then each macro the programs call by G65/G66 alone (`called::called_runs`).
+pub fn runs(
+    db: &SourceDb,
+    inputs: &[&Unit],
+    tr: &Translation,
+    out: &str,
+    opts: &VerifyOptions,
+) -> Vec<(String, CheckReport)> {
+    let profiles = opts.profiles.clone().unwrap_or_default();
+    let settings = RunSettings { out_dir: out, max_steps: opts.max_steps, profiles: &profiles, set: opts.set };
+    if let Some(lib) = &opts.library {
+        return super::job::library_runs(db, inputs, tr, &settings, (lib, opts.each_vacant));
+    }
+    let main = inputs[0];
+    let mut runs = vec![(String::new(), verify_profiled(db, main.file, main, tr, out, opts.max_steps, &profiles))];
+    runs.extend(called::called_runs(db, inputs, tr, &settings, opts.each_vacant));
+    runs
 }
 
 fn failed(db: SourceDb, diags: Vec<Diagnostic>) -> CheckReport {

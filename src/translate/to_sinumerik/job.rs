@@ -1,6 +1,7 @@
-//! The FANUC → Sinumerik batch job: one FANUC file in, one Siemens file per program out
-//! (`NAME.MPF` for main programs, `NAME.SPF` for called ones), named by the batch's program
-//! map, each proved by running it against its FANUC source.
+//! What a batch job to Sinumerik does as its own (`batch::jobs::Target`): one FANUC file
+//! in, one Siemens file per program out (`NAME.MPF` for main programs, `NAME.SPF` for
+//! called ones), named by the batch's program map, each proved by running it against its
+//! FANUC source.
 //!
 //! A FANUC macro's Siemens form (its `PROC` parameters and is-set flags, `VAR` parameters for
 //! M98 subprograms) depends on how the program is called. The translator learns that from
@@ -9,38 +10,32 @@
 //! dropped): the macro's own job and every caller's job then see the same calls and write
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
-use super::jobs::{
-    apply, combine, failed, load_with_callees, unsupported, Fault, JobSettings, LoadedFile, MemCallees, Verified,
-};
-use super::library::ProgKey;
-use super::{discover, maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
+use crate::batch::jobs::{Input, Job, LoadedFile, MemCallees, Prepared, Target};
+use crate::batch::library::{Library, ProgKey};
+use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
-use crate::dialect::{Dialect, ParseOptions};
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::CalleeSource;
-use crate::eval::{self, Input};
+use crate::eval::{self, Input as RunInput};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
 use crate::translate::called::{self as verify_called, RunSettings};
-use crate::translate::to_sinumerik::verify::Profiles;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
+use crate::translate::InLibrary;
 use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 
 /// The name the stand-in caller program is shown under in diagnostics.
 const CALLERS_FILE: &str = "(calls from other files of the library)";
 
-/// FANUC → Sinumerik.
-pub struct ToSinumerikJob {
-    pub settings: JobSettings,
-    /// The tests' injected bug, applied to the text of every output of the file.
-    pub fault: Option<Box<Fault>>,
-}
+/// The Sinumerik target of a batch.
+pub struct Sinumerik;
 
-impl ToSinumerikJob {
-    pub fn new(settings: JobSettings) -> ToSinumerikJob {
-        ToSinumerikJob { settings, fault: None }
-    }
-
+impl Job<Sinumerik> {
+    /// The translation's options for `file`, from the batch (its maps and the library's
+    /// common variables).
     pub(crate) fn options(&self, ctx: &BatchContext, file: &InputFile) -> Result<Options, String> {
         let mut var_map = Vec::new();
         for r in &ctx.maps.var_rules {
@@ -72,18 +67,9 @@ impl ToSinumerikJob {
 /// common variable of the library takes. Commons left without a place (no R free) are placed
 /// per file by the translator, as in single-file translation.
 fn library_flag_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> BTreeMap<u32, u32> {
-    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
-    let mut taken: BTreeSet<u32> = BTreeSet::new();
-    for r in rules {
-        let last = r.r_start.saturating_add(r.to - r.from).min(count);
-        taken.extend(r.r_start..=last);
-    }
-    for &n in commons.iter().filter(|&&n| !covered(n)) {
-        match n {
-            500..=799 => taken.insert(n - 500),
-            100..=199 => taken.insert(n),
-            _ => false,
-        };
+    let mut taken = rule_places(rules, count);
+    for &n in commons.iter().filter(|&&n| !covered(rules, n)) {
+        taken.extend(default_r(n));
     }
     let mut free = (0..count).rev().filter(|r| !taken.contains(r));
     commons.iter().map_while(|&n| free.next().map(|r| (n, r))).collect()
@@ -95,19 +81,9 @@ fn library_flag_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32
 /// share them. Each gets the lowest R parameter no rule and no default place of any common
 /// variable of the library uses.
 fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> Vec<VarMapRule> {
-    let covered = |n: u32| rules.iter().any(|r| r.from <= n && n <= r.to);
-    let mut taken: BTreeSet<u32> = BTreeSet::new();
-    for r in rules {
-        let last = r.r_start.saturating_add(r.to - r.from).min(count);
-        taken.extend(r.r_start..=last);
-    }
-    let default_r = |n: u32| match n {
-        500..=799 => Some(n - 500),
-        100..=199 => Some(n),
-        _ => None,
-    };
+    let mut taken = rule_places(rules, count);
     let mut leftovers = Vec::new();
-    for &n in commons.iter().filter(|&&n| !covered(n)) {
+    for &n in commons.iter().filter(|&&n| !covered(rules, n)) {
         match default_r(n) {
             Some(r) if r < count && !taken.contains(&r) => {
                 taken.insert(r);
@@ -123,6 +99,25 @@ fn library_places(commons: &BTreeSet<u32>, rules: &[VarMapRule], count: u32) -> 
         out.push(VarMapRule { from: n, to: n, r_start: r });
     }
     out
+}
+
+/// Whether a rule places common variable `n`.
+fn covered(rules: &[VarMapRule], n: u32) -> bool {
+    rules.iter().any(|r| r.from <= n && n <= r.to)
+}
+
+/// The R parameters the rules place variables in (up to `count`).
+fn rule_places(rules: &[VarMapRule], count: u32) -> BTreeSet<u32> {
+    rules.iter().flat_map(|r| r.r_start..=r.r_start.saturating_add(r.to - r.from).min(count)).collect()
+}
+
+/// The default R parameter of common variable `n` (`#500` → R0, `#100` → R100).
+fn default_r(n: u32) -> Option<u32> {
+    match n {
+        500..=799 => Some(n - 500),
+        100..=199 => Some(n),
+        _ => None,
+    }
 }
 
 fn stem(file: &InputFile) -> String {
@@ -158,7 +153,7 @@ fn duplicates(
             continue;
         }
         let Some(other) = ctx.files.get(first.file) else { continue };
-        let other_name = super::rel_string(&other.rel);
+        let other_name = crate::batch::rel_string(&other.rel);
         if i > 0 && ctx.library.is_canonical(&ProgKey::Number(n), file.index) {
             let mut d = DiagRecord::error(
                 "NC607",
@@ -305,168 +300,94 @@ pub(crate) fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) 
     out
 }
 
-pub(crate) fn parse_all(v: &[String]) -> Vec<Input> {
+pub(crate) fn parse_all(v: &[String]) -> Vec<RunInput> {
     v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
 }
 
-impl FileJob for ToSinumerikJob {
-    fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        if let Some(o) = super::streamed::to_sinumerik(self, file, ctx) {
-            return o;
-        }
-        let mut db = SourceDb::new();
-        let (main, subs) = match load_with_callees(&mut db, file, ctx, Dialect::Fanuc, &self.settings.fanuc) {
-            Ok(l) => l,
-            Err(o) => return *o,
-        };
-        let blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
-        let mut opts = match self.options(ctx, file) {
-            Ok(o) => o,
-            Err(e) => return failed(Status::Error, e.clone(), vec![DiagRecord::error("NC606", e)]),
-        };
-        opts.after_end = std::iter::once(&main).chain(subs.iter()).flat_map(|l| l.after_end.iter().copied()).collect();
-        let (copies, mut diagnostics) = duplicates(ctx, file, &main, &mut opts);
-        diagnostics.extend(DiagRecord::from_diags(&db, &main.diags));
+impl Target for Sinumerik {
+    const DIALECT: Dialect = Dialect::Sinumerik;
+    const NAME: &'static str = "Sinumerik";
+    const ONE_FILE: bool = false;
 
+    fn streamed(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+        crate::batch::streamed::to_sinumerik(job, file, ctx)
+    }
+
+    fn prepare(job: &Job<Sinumerik>, input: &mut Input, _source: Semantics) -> Result<Prepared, String> {
+        let (ctx, file, main, subs) = (input.ctx, input.file, &input.main, &input.subs);
+        let mut opts = job.options(ctx, file)?;
+        opts.after_end = std::iter::once(main).chain(subs.iter()).flat_map(|l| l.after_end.iter().copied()).collect();
+        let (copies, notes) = duplicates(ctx, file, main, &mut opts);
         // The programs of the job and the calls the rest of the library makes to them.
         let mut job_files: Vec<usize> = vec![file.index];
         job_files.extend(ctx.library.callee_files(file.index));
-        let all: Vec<&LoadedFile> = std::iter::once(&main).chain(subs.iter()).collect();
-        let job: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all.iter().map(|l| &l.unit)).collect();
-        let callers = stand_in(&mut db, ctx, &job, &self.settings.fanuc);
-        let mut units: Vec<&Unit> = all.iter().map(|l| &l.unit).collect();
-        if let Some((_, u)) = &callers {
-            units.push(u);
-        }
-        let eol = self.settings.line_ending(main.loaded.line_ending);
+        let all = std::iter::once(main).chain(subs.iter()).map(|l| &l.unit);
+        let units: Vec<(usize, &Unit)> = job_files.iter().copied().zip(all).collect();
+        let stand_in = stand_in(&mut input.db, ctx, &units, &job.settings.fanuc);
+        let eol = job.settings.line_ending(main.loaded.line_ending);
         let opts = crate::translate::Options::to_sinumerik(opts, eol);
-        let mut tr = crate::translate::translate(&units, Dialect::Sinumerik, &opts);
-        let stand_in = callers.as_ref().map(|(id, _)| *id);
-        // The stand-in's own program is not an output; its warnings are about nothing real.
-        tr.files.retain(|f| Some(f.source) != stand_in);
-        let own_diags: Vec<_> = tr
-            .diags
-            .iter()
-            .filter(|d| d.is_error() || d.labels.iter().find(|l| l.primary).is_none_or(|l| Some(l.file) != stand_in))
-            .cloned()
-            .collect();
-        diagnostics.extend(DiagRecord::from_diags(&db, &own_diags));
+        Ok(Prepared { opts, notes, copies, stand_in })
+    }
 
-        // What this file's programs use (not the callees', not the stand-in's).
-        let own = main.loaded.file;
+    fn used(t: &Translation, own: FileId) -> maps::Used {
         let own_programs: Vec<(Option<u32>, &str)> =
-            tr.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
-        let used = used_names(&own_programs, tr.symbols.sinumerik());
+            t.files.iter().filter(|f| f.source == own).map(|f| (f.fanuc_number, f.program.as_str())).collect();
+        used_names(&own_programs, t.symbols.sinumerik())
+    }
+
+    fn refused(t: &Translation, own_diags: &[Diagnostic], own: FileId) -> Option<usize> {
         let marked: usize =
-            tr.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
-        if tr.has_errors() || marked > 0 {
-            let n = own_diags.iter().filter(|d| d.is_error()).count().max(marked);
-            return unsupported(n, "Sinumerik", blocks, diagnostics);
-        }
-        if let Some(fault) = &self.fault {
-            for f in tr.files.iter_mut().filter(|f| f.source == own) {
-                fault(file, &mut f.text);
-            }
-        }
-        let encoding = self.settings.output_encoding.unwrap_or(main.loaded.encoding);
-        let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
-        outcome.blocks = blocks;
-        outcome.used = used;
-        outcome.outputs = tr
-            .files
-            .iter()
-            .filter(|f| f.source == own && !f.fanuc_number.is_some_and(|n| copies.contains(&n)))
-            .map(|f| OutputFile {
-                rel: discover::sinumerik_output(&file.rel, &f.program, !f.main),
-                bytes: crate::read::encode(&f.text, encoding, main.loaded.bom),
-            })
-            .collect();
-        outcome.diagnostics = diagnostics;
-        if outcome.outputs.is_empty() {
-            outcome.status = Status::Unsupported;
-            outcome.summary = "not translated: the file holds no program".into();
-            return outcome;
-        }
-        if ctx.options.verify {
-            let v = self.verify(&db, file, ctx, &main, &subs, &tr);
-            apply(&mut outcome, v);
-        }
-        outcome
+            t.files.iter().filter(|f| f.source == own).map(|f| f.text.matches("NCTRANS UNSUPPORTED").count()).sum();
+        (t.has_errors() || marked > 0).then(|| own_diags.iter().filter(|d| d.is_error()).count().max(marked))
+    }
+
+    fn output(rel: &Path, f: &OutFile) -> PathBuf {
+        discover::sinumerik_output(rel, &f.program, !f.main)
     }
 }
 
-impl ToSinumerikJob {
-    /// Runs the file's first program against its translation (and each other program the
-    /// file does not call itself): with the inputs of the header lines and `--set`, and once
-    /// per argument vector the library calls it with. The programs the file calls run
-    /// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also
-    /// runs alone (`in_file_macro_runs`).
-    fn verify(
-        &self,
-        db: &SourceDb,
-        file: &InputFile,
-        ctx: &BatchContext,
-        main: &LoadedFile,
-        subs: &[LoadedFile],
-        tr: &Translation,
-    ) -> Verified {
-        let out_dir = super::rel_string(file.rel.parent().unwrap_or(std::path::Path::new("")));
-        let profiles = Profiles { fanuc: self.settings.fanuc.clone(), sinumerik: self.settings.sinumerik.clone() };
-        let settings = RunSettings {
-            out_dir: &out_dir,
-            max_steps: self.settings.max_steps,
-            profiles: &profiles,
-            set: &self.settings.set,
+/// The runs of the proof of a FANUC file of a library (`translate::verify` with
+/// `VerifyOptions::library`): the file's first program against its translation, and each
+/// other program the file does not call itself (a second main program, a macro only other
+/// files call), each as the main program: with the inputs of the header lines and `--set`,
+/// and once per argument vector the library calls it with. The programs the file calls run
+/// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also runs
+/// alone (`in_file_macro_runs`). `inputs` are the file's unit and its callees'.
+pub fn library_runs(
+    db: &SourceDb,
+    inputs: &[&Unit],
+    tr: &Translation,
+    settings: &RunSettings,
+    (lib, each_vacant): (&InLibrary, bool),
+) -> Vec<(String, CheckReport)> {
+    let (library, index, main) = (lib.library, lib.file, inputs[0]);
+    let subs: Vec<Unit> = inputs[1..].iter().map(|u| (*u).clone()).collect();
+    let served = || Box::new(MemCallees(subs.clone())) as Box<dyn CalleeSource + Send>;
+    let mut runs = Vec::new();
+    for (i, p) in main.programs.iter().enumerate() {
+        let key = number_of(p).map(ProgKey::Number);
+        let called_here = key.as_ref().is_some_and(|k| library.calls.iter().any(|c| c.file == index && &c.target == k));
+        if i > 0 && called_here {
+            continue;
+        }
+        let Some(out) = tr.files.iter().find(|f| f.source == main.file && first_of(f, p)) else {
+            // A copy written by another file (see `duplicates`), verified there.
+            continue;
         };
-        let served =
-            || Box::new(MemCallees(subs.iter().map(|l| l.unit.clone()).collect())) as Box<dyn CalleeSource + Send>;
-        let mut runs = Vec::new();
-        for (i, p) in main.unit.programs.iter().enumerate() {
-            let key = number_of(p).map(ProgKey::Number);
-            // The first program, and every other one its own file does not call (a second main
-            // program, a macro only other files call): each runs as the main program.
-            let called_here =
-                key.as_ref().is_some_and(|k| ctx.library.calls.iter().any(|c| c.file == file.index && &c.target == k));
-            if i > 0 && called_here {
-                continue;
-            }
-            let Some(out) = tr.files.iter().find(|f| f.source == main.loaded.file && first_of(f, p)) else {
-                // A copy written by another file (see `duplicates`), verified there.
-                continue;
-            };
-            let mut unit = main.unit.clone();
-            let entry = unit.programs.remove(i);
-            unit.programs.insert(0, entry);
-            let mine = key.filter(|k| ctx.library.programs.get(k).is_some_and(|d| d.file == file.index));
-            let cases = match &mine {
-                Some(k) => verify_called::cases(&ctx.library, k, !ctx.options.specialise_callers),
-                None => vec![(String::new(), vec![])],
-            };
-            let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
-            runs.extend(verify_called::case_runs(
-                db,
-                main.loaded.file,
-                &unit,
-                tr,
-                out,
-                (&name, cases),
-                &settings,
-                &served,
-            ));
-        }
-        // The macros the file calls, alone (see `in_file_macro_runs`).
-        runs.extend(in_file_macro_runs(db, ctx, file, &main.unit, tr, &settings, &served));
-        if runs.is_empty() {
-            return Verified {
-                status: Status::Inconclusive,
-                summary: "not verified: no program of the file was found in its translation".into(),
-                events: None,
-                excluded: Default::default(),
-                diagnostics: vec![],
-            };
-        }
-        combine(runs)
+        let mut unit = main.clone();
+        let entry = unit.programs.remove(i);
+        unit.programs.insert(0, entry);
+        let mine = key.filter(|k| library.programs.get(k).is_some_and(|d| d.file == index));
+        let cases = match &mine {
+            Some(k) => verify_called::cases(library, k, each_vacant),
+            None => vec![(String::new(), vec![])],
+        };
+        let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
+        runs.extend(verify_called::case_runs(db, main.file, &unit, tr, out, (&name, cases), settings, &served));
     }
+    // The macros the file calls, alone (see `in_file_macro_runs`).
+    runs.extend(macro_runs_in(db, (library, index, each_vacant), main, tr, settings, &served));
+    runs
 }
 
 /// The runs of the macros a FANUC file calls by G65/G66 among its own programs after the
@@ -484,14 +405,26 @@ pub(crate) fn in_file_macro_runs(
     settings: &RunSettings,
     callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
 ) -> Vec<(String, CheckReport)> {
-    let lib = &ctx.library;
+    let each_vacant = !ctx.options.specialise_callers;
+    macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
+}
+
+/// [`in_file_macro_runs`] of the file `index` of `lib`.
+fn macro_runs_in(
+    db: &SourceDb,
+    (lib, index, each_vacant): (&Library, usize, bool),
+    unit: &Unit,
+    tr: &Translation,
+    settings: &RunSettings,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
     let mut runs = Vec::new();
     for (i, p) in unit.programs.iter().enumerate().skip(1) {
         let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
         // A copy of a program an earlier file defines is verified there (see `duplicates`).
-        let mine = lib.programs.get(&key).is_some_and(|d| d.file == file.index);
-        let macro_call = |c: &super::library::CallSite| {
-            c.file == file.index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
+        let mine = lib.programs.get(&key).is_some_and(|d| d.file == index);
+        let macro_call = |c: &crate::batch::library::CallSite| {
+            c.file == index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
         };
         if !mine || !lib.calls.iter().any(macro_call) {
             continue;
@@ -501,7 +434,7 @@ pub(crate) fn in_file_macro_runs(
         let entry = alone.programs.remove(i);
         alone.programs.insert(0, entry);
         let a = verify_called::Alone { db, file: unit.file, unit: &alone, tr, out };
-        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, !ctx.options.specialise_callers, callees));
+        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, each_vacant, callees));
     }
     runs
 }

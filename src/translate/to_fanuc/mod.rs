@@ -4,7 +4,10 @@
 //!
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
-//! their place (the translation is still not [`Output::ok`]).
+//! their place (the translation is still not [`Output::ok`]). What a batch job to FANUC
+//! does as its own is `job`.
+
+pub mod job;
 
 use super::Verification;
 use crate::diag::{self, Diagnostic};
@@ -398,51 +401,100 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name:
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
-/// Verifies a translation to FANUC (see [`super::verify`]): parses it back as FANUC, then runs the Siemens program and the
-/// translation in the evaluator and compares their traces (`check`). The Siemens side is
-/// aligned with the symbol map first: `T="NAME"` reads as the mapped tool number. A `MSG`
-/// that became a comment (FANUC shows no message without stopping) is left out of the
-/// comparison by the check ([`EXCLUDE`]), which counts it for the verdict. The
-/// R parameters the translation maps start at 0 on both sides (Siemens' power-on value);
-/// FANUC's would otherwise be vacant.
-pub fn verify(
+/// Verifies a translation to FANUC (see [`super::verify`]): parses it back as FANUC, then
+/// runs the Siemens program and the translation in the evaluator and compares their traces
+/// (`check`): once with the program's own inputs, and once per argument vector the
+/// library's callers pass it (`opts.library`). The Siemens side is aligned with the symbol
+/// map first: `T="NAME"` reads as the mapped tool number. A `MSG` that became a comment
+/// (FANUC shows no message without stopping) is left out of the comparison by the check
+/// ([`EXCLUDE`]), which counts it for the verdict. The R parameters the translation maps
+/// start at 0 on both sides (Siemens' power-on value); FANUC's would otherwise be vacant.
+/// Parameters not passed are 0 on Siemens; the argument locals get the same value.
+pub fn verify<'a>(
     db: &mut crate::span::SourceDb,
     main: &Unit,
     subs: &[&Unit],
     t: &super::Translation,
     out_name: &str,
-    max_steps: u64,
+    opts: impl Into<super::VerifyOptions<'a>>,
 ) -> Verification {
+    let opts = opts.into();
     use crate::check::{self, Side};
     use crate::eval::{NoCallees, RunOptions};
     let parsed = reparse(db, t, out_name);
     let mut rendered = diag::render(db, &parsed.diags);
     if diag::has_errors(&parsed.diags) {
-        return Verification {
-            equivalent: false,
-            summary: "not verified: the output does not parse as FANUC (a bug in nctrans)".into(),
-            rendered,
-            reparsed: None,
-        };
+        let mut v = Verification::none("not verified: the output does not parse as FANUC (a bug in nctrans)");
+        v.rendered = rendered;
+        v.unreadable = parsed.diags;
+        return v;
     }
     let map = t.symbols.fanuc();
-    let source = align_source(main, map);
-    let callees = MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
-    let mut inputs = r_param_inputs(map);
-    inputs.extend(standalone_args(main, map));
-    inputs.extend(gud_inputs(t));
-    let a = Side {
-        unit: source,
-        callees: Box::new(callees),
-        run: RunOptions { max_steps, semantics: source_semantics(t, None), ..RunOptions::default() },
+    let mut fanuc_inputs: Vec<String> = r_param_homes(map);
+    fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
+    let (sinumerik, fanuc) = match &opts.profiles {
+        Some(p) => (source_semantics(t, Some(&p.sinumerik)).or(Some(p.sinumerik.clone())), Some(p.fanuc.clone())),
+        None => (source_semantics(t, None), None),
     };
-    let b = Side {
-        unit: parsed.unit.clone(),
-        callees: Box::new(NoCallees),
-        run: RunOptions { max_steps, inputs, semantics: haas_target(map), ..RunOptions::default() },
+    // A Haas translation is read back with Haas semantics (its G187, its settings).
+    let fanuc = match fanuc {
+        Some(mut s) if map.haas => {
+            s.haas = true;
+            Some(s)
+        }
+        None => haas_target(map),
+        other => other,
     };
-    let report = check::check_excluding(db, a, b, EXCLUDE);
-    let mut v = Verification::of(&report);
+    let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
+    let letters = passes::words::param_letters(params.len()).unwrap_or_default();
+    let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
+    if let Some(lib) = &opts.library {
+        let key = match main.programs.first().and_then(|p| p.name.as_ref()) {
+            Some(ProgName::Name(n)) => n.to_ascii_uppercase(),
+            _ => lib.main_name.to_string(),
+        };
+        for (k, v) in lib.library.arg_vectors(&crate::batch::library::ProgKey::Name(key)).iter().enumerate() {
+            let vals = v
+                .iter()
+                .filter_map(|a| {
+                    params.iter().position(|p| p.name.eq_ignore_ascii_case(&a.var)).map(|i| (i, a.to_set()))
+                })
+                .collect();
+            cases.push((format!(" (with the arguments of call site {})", k + 1), vals));
+        }
+    }
+    let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();
+    let mut runs = Vec::new();
+    for (label, vals) in cases {
+        let mut a_in = Vec::new();
+        let mut b_in = fanuc_inputs.clone();
+        for (i, (_, var)) in letters.iter().enumerate() {
+            if params.get(i).is_some_and(|p| p.by_ref) {
+                continue;
+            }
+            let given = vals.iter().find(|(j, _)| *j == i);
+            let value = given.map_or("0".to_string(), |(_, s)| s.split_once('=').map_or("0", |x| x.1).to_string());
+            b_in.push(format!("#{var}={value}"));
+            if let Some((_, s)) = given {
+                a_in.push(s.clone());
+            }
+        }
+        b_in.extend(var_param_inputs(&params, map));
+        a_in.extend(opts.set.iter().cloned());
+        b_in.extend(opts.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
+        let run =
+            |inputs, semantics| RunOptions { max_steps: opts.max_steps, inputs, semantics, ..RunOptions::default() };
+        let callees = super::called::MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
+        let a = Side {
+            unit: align_source(main, map),
+            callees: Box::new(callees),
+            run: run(parse_all(&a_in), sinumerik.clone()),
+        };
+        let b =
+            Side { unit: parsed.unit.clone(), callees: Box::new(NoCallees), run: run(parse_all(&b_in), fanuc.clone()) };
+        runs.push((label, check::check_excluding(db, a, b, EXCLUDE)));
+    }
+    let mut v = Verification::of_runs(runs);
     rendered.push_str(&v.rendered);
     v.rendered = rendered;
     v.reparsed = Some(parsed.unit);
@@ -451,7 +503,8 @@ pub fn verify(
 
 /// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
 /// parameters are 0 (the G65 argument locals would be vacant); VAR parameters as
-/// [`var_param_inputs`] gives them.
+/// [`var_param_inputs`] gives them. (The generic proof's inputs; [`verify`] builds the same
+/// per run.)
 pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> {
     let Some(p) = main.programs.first() else { return vec![] };
     let letters = passes::words::param_letters(p.params.len()).unwrap_or_default();
@@ -459,6 +512,17 @@ pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> 
         p.params.iter().zip(letters).filter(|(prm, _)| !prm.by_ref).map(|(_, (_, var))| format!("#{var}=0")).collect();
     texts.extend(var_param_inputs(&p.params, map));
     texts.iter().filter_map(|t| crate::eval::parse_input(t).ok()).collect()
+}
+
+/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
+/// so it starts where the Siemens side's definitions start.
+pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
+    t.symbols
+        .fanuc()
+        .gud_seeds
+        .iter()
+        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
+        .collect()
 }
 
 /// For a subprogram run on its own: each VAR parameter, which holds the number of its
@@ -494,17 +558,6 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
         .iter()
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
         .map(|m| format!("#{}=0", m.number))
-        .collect()
-}
-
-/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
-/// so it starts where the Siemens side's definitions start.
-pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
-    t.symbols
-        .fanuc()
-        .gud_seeds
-        .iter()
-        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
         .collect()
 }
 
@@ -570,26 +623,6 @@ fn align_body(body: &mut [Stmt], map: &SymbolMap) {
                 }
             }
         }
-    }
-}
-
-/// The Siemens subprograms of a translation, served to the evaluator from memory.
-struct MemCallees(Vec<Unit>);
-
-impl crate::eval::CalleeSource for MemCallees {
-    fn find(
-        &mut self,
-        _db: &mut crate::span::SourceDb,
-        _caller: crate::span::FileId,
-        _dialect: Dialect,
-        name: &crate::eval::CalleeName,
-    ) -> Result<Option<Unit>, Diagnostic> {
-        let crate::eval::CalleeName::Name(n) = name else { return Ok(None) };
-        Ok(self
-            .0
-            .iter()
-            .find(|u| u.programs.first().is_some_and(|p| prog_name(p, "") == n.to_ascii_uppercase()))
-            .cloned())
     }
 }
 
