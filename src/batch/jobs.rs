@@ -401,6 +401,7 @@ impl ToFanucJob {
                 inputs,
                 semantics: Some(sem.clone()),
                 probe_contact: None,
+                probes: Vec::new(),
                 expand_cycles: None,
             };
             let source = translate::align_source(main, map);

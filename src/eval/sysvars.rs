@@ -108,7 +108,9 @@ impl Interp<'_> {
                 Some(ToolId::Number(t)) => *t,
                 _ => 0.0,
             },
-            5001..=5009 | 5041..=5049 | 5061..=5069 => {
+            // The skip position kept by the last G31 (`machine::probe`), 0 before any.
+            5061..=5069 => self.in_unit(m.probe.skip[(n - 5061) as usize]),
+            5001..=5009 | 5041..=5049 => {
                 let axis = ((n - 1) % 20) as usize;
                 if m.transforms() {
                     return Err(self.unmodelled(&format!("#{n} under a rotated, scaled or mirrored frame"), span));
@@ -210,14 +212,34 @@ impl Interp<'_> {
 
     pub fn sie_sys_read(&mut self, name: &str, idx: &[Expr], span: Span) -> Result<Value, Fault> {
         let x = match name {
-            "AA_IW" | "P_EP" | "AA_MW" => {
+            // The last measured values (`machine::probe`): written only when the probe
+            // switched, for the axes of the measuring block; 0 before any.
+            "AA_MW" | "AA_MM" => {
+                let a = self.axis_arg(idx.first(), name, span)?;
+                let p = &self.m.probe;
+                self.in_unit(if name == "AA_MW" { p.meas_w[a] } else { p.meas_m[a] })
+            }
+            "AC_MEA" => {
+                let n = match idx.first() {
+                    Some(e) => {
+                        let cx = self.cx(false);
+                        round_half_away(expr::eval_num(self, e, &cx)?)
+                    }
+                    None => return Err(self.unmodelled("$AC_MEA without the probe number", span)),
+                };
+                if n != 1.0 && n != 2.0 {
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("$AC_MEA[{n}] does not exist"), span));
+                }
+                f64::from(u8::from(self.m.probe.mea[n as usize - 1]))
+            }
+            "AA_IW" | "P_EP" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
                 if self.m.transforms() {
                     return Err(self.unmodelled(&format!("${name} under a rotated, scaled or mirrored frame"), span));
                 }
                 self.in_unit(self.m.work_pos(a))
             }
-            "AA_IM" | "AA_MM" => {
+            "AA_IM" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
                 self.in_unit(self.m.pos[a])
             }
@@ -273,9 +295,8 @@ impl Interp<'_> {
                 self.sys_store.insert(name.to_string(), x);
                 Ok(())
             }
-            "AA_IW" | "AA_IM" | "P_EP" | "PI" | "AC_TIME" | "P_F" | "P_S" | "P_TOOLNO" | "P_TOOL" => {
-                Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span))
-            }
+            "AA_IW" | "AA_IM" | "P_EP" | "AA_MW" | "AA_MM" | "AC_MEA" | "PI" | "AC_TIME" | "P_F" | "P_S"
+            | "P_TOOLNO" | "P_TOOL" => Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span)),
             _ => Err(self.unmodelled(&format!("${name}"), span)),
         }
     }

@@ -183,7 +183,7 @@ pub fn holes(m: &mut Machine, words: &[WordVal], out: &mut Vec<(Event, Span)>, s
         if cw.plane.iter().any(Option::is_some) {
             // The positioning to the hole: a rapid at the level the tool stands at (the
             // same move a Sinumerik positioning block makes before its modal cycle).
-            out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None }, span));
+            out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None, probe: false }, span));
         }
         // Under G91, R is measured from the initial level and Z from the R plane.
         let r_abs = if r.incremental { m.cycle.initial + r.mm } else { r.mm + off };

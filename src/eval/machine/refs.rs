@@ -123,7 +123,7 @@ impl Machine {
                         self.pos[i] = target[i];
                     }
                 }
-                out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+                out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None, probe: false }, span));
             }
         } else {
             for &i in named {
