@@ -153,6 +153,8 @@ pub struct Machine {
     pub probe_contact: Option<f64>,
     /// The probe test inputs and what the controls keep of probing moves ([`probe`]).
     pub probe: probe::Probe,
+    /// The block measures with Siemens MEAW (the move does not stop at the trigger).
+    pub meaw: bool,
     /// `(inc, 1.0 / inc, decimal)` of the metric and inch increments, for
     /// [`round_to_scaled`]; `decimal`: [`is_decimal_scale`], so [`round_to_decimal`] does.
     scales: [(f64, f64, bool); 2],
@@ -217,6 +219,7 @@ impl Machine {
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
             probe_contact: None,
             probe: probe::Probe::default(),
+            meaw: false,
             expand: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
@@ -505,7 +508,10 @@ impl Machine {
                 }
                 // A measuring move: runs to its end point unless `probe_contact` says where
                 // the probe touches.
-                ("MEAS" | "MEAW", v) => measuring = Some(self.measuring_probe(v, w.span)?),
+                ("MEAS" | "MEAW", v) => {
+                    measuring = Some(self.measuring_probe(v, w.span)?);
+                    self.meaw = a == "MEAW";
+                }
                 ("FP", Some(x)) if !self.fanuc => fp = Some((w, x)),
                 (a, _) if !self.fanuc && Machine::machine_axis(a).is_some() => {
                     named.extend(Machine::machine_axis(a).map(|i| (i, w.span)))

@@ -426,15 +426,23 @@ pub fn verify(
     let mut inputs = r_param_inputs(map);
     inputs.extend(standalone_args(main, map));
     inputs.extend(gud_inputs(t));
+    // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
+    // reported by `run` on the source, here it gives none.
+    let probes = crate::eval::header_probes(&db.get(main.file).text).unwrap_or_default();
     let a = Side {
         unit: source,
         callees: Box::new(callees),
-        run: RunOptions { max_steps, semantics: source_semantics(t, None), ..RunOptions::default() },
+        run: RunOptions {
+            max_steps,
+            semantics: source_semantics(t, None),
+            probes: probes.clone(),
+            ..RunOptions::default()
+        },
     };
     let b = Side {
         unit: parsed.unit.clone(),
         callees: Box::new(NoCallees),
-        run: RunOptions { max_steps, inputs, ..RunOptions::default() },
+        run: RunOptions { max_steps, inputs, probes, ..RunOptions::default() },
     };
     let report = check::check_excluding(db, a, b, EXCLUDE);
     let mut v = Verification::of(&report);

@@ -62,7 +62,7 @@ impl Machine {
             target[i] = self.axis_target(i, self.length(w, *x, (3..6).contains(&i)), w.mode, g53);
         }
         // The probe input stops the move part way (`probe.rs`).
-        let hit = probe && self.probe_stop(&mut target, span)?;
+        let hit = if probe { self.probe_stop(&mut target, span)? } else { None };
         let rapid = self.modal.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {
             return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));

@@ -66,17 +66,17 @@ impl Machine {
     /// Where the probing move from `self.pos` towards `target` (machine positions) stops,
     /// and whether the probe switched: the next test input, or the old fraction of
     /// `RunOptions::probe_contact`, or no trigger.
-    pub(super) fn probe_stop(&mut self, target: &mut [f64; 9], span: Span) -> Result<bool, Fault> {
+    pub(super) fn probe_stop(&mut self, target: &mut [f64; 9], span: Span) -> Result<Option<[f64; 9]>, Fault> {
         let from = self.pos;
         let input = self.probe.inputs.get(self.probe.moves).cloned();
         self.probe.moves += 1;
         let t = match input {
-            Some(ProbeInput::Miss) => return Ok(false),
+            Some(ProbeInput::Miss) => return Ok(None),
             None if self.probe.inputs.is_empty() => match self.probe_contact {
                 Some(frac) => frac,
-                None => return Ok(false),
+                None => return Ok(None),
             },
-            None => return Ok(false),
+            None => return Ok(None),
             Some(ProbeInput::At(point)) => {
                 let moved: Vec<(usize, f64)> = point.iter().map(|&(a, _)| (a, target[a] - from[a])).collect();
                 // The parameter along the line from the named axis that travels most.
@@ -115,28 +115,34 @@ impl Machine {
                 t.clamp(0.0, 1.0)
             }
         };
-        for (to, from) in target.iter_mut().zip(from) {
+        let mut at = *target;
+        for (to, from) in at.iter_mut().zip(from) {
             *to = from + (*to - from) * t;
         }
-        Ok(true)
+        // Siemens MEAW measures without deleting the distance to go: the move goes on.
+        if !self.meaw {
+            *target = at;
+        }
+        Ok(Some(at))
     }
 
     /// Records what the controls keep of a probing move that has just ended at `self.pos`.
     /// `programmed`: the axes with a word in the block; `probe`: the Siemens probe number
     /// (`None` for FANUC).
-    pub(super) fn probe_record(&mut self, hit: bool, programmed: &[bool; 9], probe: Option<usize>) {
+    pub(super) fn probe_record(&mut self, hit: Option<[f64; 9]>, programmed: &[bool; 9], probe: Option<usize>) {
         if self.fanuc {
-            for i in 0..9 {
-                self.probe.skip[i] = self.work_pos(i);
+            let at = hit.unwrap_or(self.pos);
+            for (i, x) in at.iter().enumerate() {
+                self.probe.skip[i] = x - self.active_offset(i);
             }
             return;
         }
         let n = probe.unwrap_or(1).clamp(1, 2);
-        self.probe.mea[n - 1] = hit;
-        if hit {
+        self.probe.mea[n - 1] = hit.is_some();
+        if let Some(at) = hit {
             for i in (0..9).filter(|&i| programmed[i]) {
-                self.probe.meas_m[i] = self.pos[i];
-                self.probe.meas_w[i] = self.work_pos(i);
+                self.probe.meas_m[i] = at[i];
+                self.probe.meas_w[i] = at[i] - self.active_offset(i);
             }
         }
     }
