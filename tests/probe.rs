@@ -149,8 +149,8 @@ fn a_siemens_surface_probe_translates_to_g31_on_both_paths() {
     let (code, _, err) = nctrans(&[src, "--to", "fanuc", "-o", &out_s]);
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&out).expect("written");
-    assert!(text.contains("G31 Z-15. F150.\nG01\n"), "{text}");
-    for probes in [vec![], vec!["--probe", "miss"], vec!["--probe", "Z=0"]] {
+    assert!(text.contains("G31 Z140. F150.\nG01\n"), "{text}");
+    for probes in [vec![], vec!["--probe", "miss"], vec!["--probe", "Z=160"]] {
         let mut args = vec!["check", src, &out_s];
         args.extend(probes.iter().copied());
         let (code, out, err) = nctrans(&args);
@@ -196,4 +196,28 @@ fn constructs_without_a_counterpart_are_refused_by_name() {
             assert!(err.contains(code), "{name}: {err}");
         }
     }
+}
+
+/// FANUC's current and skip positions include the tool length offset, Siemens machine
+/// positions the tool length; the evaluator keeps programmed positions, so such reads under
+/// compensation are refused by name (and so the translations are never called equivalent
+/// where the real values differ).
+#[test]
+fn position_reads_that_would_hold_a_tool_length_are_refused() {
+    let d = scratch("comp-reads");
+    let cases = [
+        ("a.nc", "G0 X0\nG43 H1 Z10.\n#1=#5043\nM30\n", "#5043 read under G43/G44"),
+        ("b.nc", "G0 X0\nG43 H1 Z10.\n#1=#5023\nM30\n", "#5023 read under G43/G44"),
+        ("c.nc", "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\nG49\n#1=#5063\nM30\n", "#5063 read under G43/G44"),
+        ("d.mpf", "T1 M6 D1\nG0 X0\nR1=$AA_IM[X]\nM30\n", "$AA_IM read under a cutting edge"),
+        ("e.mpf", "G0 X0 Y0\nG41 G1 X10 F100\nR1=$AA_IW[X]\nM30\n", "$AA_IW read under G41/G42"),
+    ];
+    for (name, text, what) in cases {
+        let f = write(&d, name, text);
+        let (_, err) = trace(&f, &[]);
+        assert!(err.contains("NC534") && err.contains(what), "{name}: {err}");
+    }
+    // The programmed end point holds no offset: #5001 and $P_EP read under compensation.
+    let f = write(&d, "f.nc", "G0 X0\nG43 H1 Z10.\n#1=#5003\nG0 X#1\nM30\n");
+    assert!(trace(&f, &[]).0.contains("move rapid X=10 Z=10 f=-"));
 }

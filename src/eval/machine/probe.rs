@@ -26,6 +26,9 @@ pub struct Probe {
     pub meas_w: [f64; 9],
     /// Siemens `$AC_MEA[1]`, `$AC_MEA[2]`: the probe switched in the last measuring block.
     pub mea: [bool; 2],
+    /// The kept position holds a tool length the evaluator does not know (FANUC `#5061+`
+    /// under G43/G44; Siemens `$AA_MM` with a cutting edge active): reading it is refused.
+    pub with_length: bool,
 }
 
 fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
@@ -131,6 +134,7 @@ impl Machine {
     /// (`None` for FANUC).
     pub(super) fn probe_record(&mut self, hit: Option<[f64; 9]>, programmed: &[bool; 9], probe: Option<usize>) {
         if self.fanuc {
+            self.probe.with_length = self.comp.length_g != 490;
             let at = hit.unwrap_or(self.pos);
             for (i, x) in at.iter().enumerate() {
                 self.probe.skip[i] = x - self.active_offset(i);
@@ -140,6 +144,7 @@ impl Machine {
         let n = probe.unwrap_or(1).clamp(1, 2);
         self.probe.mea[n - 1] = hit.is_some();
         if let Some(at) = hit {
+            self.probe.with_length = self.comp.edge != 0;
             for i in (0..9).filter(|&i| programmed[i]) {
                 self.probe.meas_m[i] = at[i];
                 self.probe.meas_w[i] = at[i] - self.active_offset(i);
