@@ -33,7 +33,7 @@ pub struct Probe {
 
 fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
     Fault::Error(Box::new(
-        crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "this probing move").hint(hint.to_string()),
+        crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "this probing move").hint(hint),
     ))
 }
 
