@@ -221,3 +221,37 @@ fn position_reads_that_would_hold_a_tool_length_are_refused() {
     let f = write(&d, "f.nc", "G0 X0\nG43 H1 Z10.\n#1=#5003\nG0 X#1\nM30\n");
     assert!(trace(&f, &[]).0.contains("move rapid X=10 Z=10 f=-"));
 }
+
+/// Back to FANUC: the kept-skip-position form the translation writes (hit: `$AA_MW`, miss:
+/// `$AA_IW`, right after the measuring block) is `#5061+`, so the bore macro comes back and
+/// is proven on both paths; the same form for an axis the block does not move, or with the
+/// branches swapped, is not that meaning and stays refused.
+#[test]
+fn the_kept_skip_position_reads_back_as_5061() {
+    let d = scratch("round-trip");
+    let mpf = "corpus/out/sinumerik/probe-bore-g55/O_1000.MPF";
+    let nc = d.join("back.nc").to_string_lossy().into_owned();
+    let (code, out, err) = nctrans(&[mpf, "--to", "fanuc", "-o", &nc]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(&nc).expect("written");
+    assert!(text.contains("G31 X#610 F100.\nG01\n#100=#5061\n#108=#5042\n"), "{text}");
+    for probes in [vec![], vec!["--probe", "X=-225.01", "--probe", "miss"]] {
+        let mut args = vec!["check", "corpus/in/fanuc/probe-bore-g55.nc", &nc];
+        args.extend(probes.iter().copied());
+        let (code, out, err) = nctrans(&args);
+        assert_eq!(code, 0, "{probes:?}: {out}{err}");
+    }
+    let form = |then: &str, other: &str| {
+        format!("G0 X0 Y0\nMEAS=1 G1 X10 F100\nSTOPRE\nIF $AC_MEA[1]==1\nR1={then}\nELSE\nR1={other}\nENDIF\nG0 Y=R1\nM30\n")
+    };
+    let f = write(&d, "ok.mpf", &form("$AA_MW[X]", "$AA_IW[X]"));
+    let (code, out, err) = nctrans(&[&f, "--to", "fanuc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("G31 X10. F100.\nG01\n#501=#5061\n"), "{out}");
+    for (name, then, other) in [("y.mpf", "$AA_MW[Y]", "$AA_IW[Y]"), ("swap.mpf", "$AA_IW[X]", "$AA_MW[X]")] {
+        let f = write(&d, name, &form(then, other));
+        let (code, _, err) = nctrans(&[&f, "--to", "fanuc"]);
+        assert_eq!(code, 1, "{name}");
+        assert!(err.contains("NC342"), "{name}: {err}");
+    }
+}

@@ -56,7 +56,9 @@ pub fn header_probes(text: &str) -> Result<Vec<ProbeInput>, String> {
             r
         } else if let Some(r) = t.strip_prefix('(') {
             r.trim_end_matches(';').trim_end().trim_end_matches(')')
-        } else if t.starts_with('O') || t.starts_with("PROC") {
+        } else if t.starts_with('O') || t.starts_with("PROC") || t.starts_with("DEF ") {
+            // The name line and Siemens declarations may come before the header comments
+            // (a translation to Sinumerik writes its DEF lines first).
             continue;
         } else {
             break;
@@ -90,6 +92,7 @@ mod tests {
         let t = "O9810\n(nctrans: probe X=20. miss)\n(nctrans: set #1=2.)\nG0 X0\n(nctrans: probe X=1)\n";
         assert_eq!(header_probes(t).unwrap(), vec![ProbeInput::At(vec![(0, 20.0)]), ProbeInput::Miss]);
         assert_eq!(header_probes("; nctrans: probe Y=-3\nG0 X0\n").unwrap().len(), 1);
+        assert_eq!(header_probes("DEF REAL A\n; nctrans: probe Y=-3\nG0 X0\n").unwrap().len(), 1);
         assert!(header_probes("; nctrans: probe Y\n").is_err());
     }
 }

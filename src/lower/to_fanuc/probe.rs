@@ -7,6 +7,11 @@
 //! probe 2 have no G31 form (NC540); a measuring block without G1 in it is refused too
 //! (NC541), since G31 does not say which motion mode holds after it.
 //!
+//! The one form of reading the measurement that FANUC has, right after the measuring block
+//! (STOPRE between allowed): `IF $AC_MEA[1]==1 T=$AA_MW[X] ELSE T=$AA_IW[X] ENDIF` for an axis
+//! of the block is `T=#5061` (the trigger point on a hit, the end point on a miss, on both
+//! controls); it is what the FANUC → Sinumerik translation writes, so a round trip comes back.
+//!
 //! Runs around [`super::words`]: [`take`] removes the `MEAS=` word (words would refuse the
 //! address) and the block's `G1`, remembering the block; [`put`] then writes `G31` into it,
 //! with a `G1` block after it so the motion mode after the block is G1 as on Siemens (after,
@@ -20,7 +25,20 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
     let body = std::mem::take(&mut prog.body);
     prog.body = crate::lower::map_bodies(body, &mut |list: Vec<Stmt>| {
         let mut out = Vec::with_capacity(list.len());
+        // The axes of the measuring block just taken, while only STOPRE blocks follow it.
+        let mut after: Option<Vec<usize>> = None;
         for mut s in list {
+            if let Some(axes) = &after {
+                if is_stopre(&s) {
+                    out.push(s);
+                    continue;
+                }
+                if let Some(kept) = skip_idiom(&s, axes) {
+                    out.extend(kept);
+                    continue;
+                }
+                after = None;
+            }
             if let StmtKind::Block(b) = &mut s.kind {
                 if let Some(at) = b.items.iter().position(measuring_word) {
                     let isp = b.items[at].span;
@@ -56,6 +74,7 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
                         b.items.remove(hi);
                         b.items.remove(lo);
                         found.push(s.span);
+                        after = Some(b.items.iter().filter_map(axis_of).collect());
                     }
                 }
             }
@@ -104,4 +123,86 @@ pub fn put(prog: &mut Program, blocks: &[Span]) {
         }
         out
     });
+}
+
+const AXES: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
+
+/// The axis (X Y Z A B C, index) an address word positions.
+fn axis_of(it: &Item) -> Option<usize> {
+    match &it.kind {
+        ItemKind::Word(Word { addr: Addr::Letter(l), .. }) => AXES.iter().position(|a| a.as_bytes()[0] == *l),
+        _ => None,
+    }
+}
+
+fn is_stopre(s: &Stmt) -> bool {
+    matches!(&s.kind, StmtKind::Block(b) if !b.items.is_empty() && b.items.iter().all(|it| matches!(it.kind, ItemKind::Stopre)))
+}
+
+/// `$NAME[axis]` with one axis index: the axis.
+fn sys_axis(e: &Expr, name: &str) -> Option<usize> {
+    let ExprKind::Var(v) = &e.kind else { return None };
+    let VarKind::System { name: n, indices } = &v.kind else { return None };
+    if !n.eq_ignore_ascii_case(name) || indices.len() != 1 {
+        return None;
+    }
+    let id = match &indices[0].kind {
+        ExprKind::Ident(s) => s.clone(),
+        ExprKind::Var(v) => match &v.kind {
+            VarKind::Named { name, indices } if indices.is_empty() => name.clone(),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    AXES.iter().position(|a| a.eq_ignore_ascii_case(&id))
+}
+
+/// `$AC_MEA[1]==1` (or `$AC_MEA[1]-1==0`, the form the FANUC → Sinumerik translation writes).
+fn probe_switched(c: &Expr) -> bool {
+    let is_mea = |e: &Expr| {
+        matches!(&e.kind, ExprKind::Var(v) if matches!(&v.kind, VarKind::System { name, indices }
+            if name.eq_ignore_ascii_case("AC_MEA") && indices.len() == 1 && crate::lower::literal(&indices[0]) == Some(1.0)))
+    };
+    let ExprKind::Cmp(CmpOp::Eq, _, a, b) = &c.kind else { return false };
+    match (&a.kind, crate::lower::literal(b)) {
+        (_, Some(v)) if v == 1.0 && is_mea(a) => true,
+        (ExprKind::Binary(BinOp::Sub, x, one), Some(v)) if v == 0.0 => {
+            is_mea(x) && crate::lower::literal(one) == Some(1.0)
+        }
+        _ => false,
+    }
+}
+
+/// One assignment `T=$NAME[axis]` in a block of its own: the target and the axis.
+fn kept(s: &Stmt, name: &str) -> Option<(VarRef, usize)> {
+    let StmtKind::Block(b) = &s.kind else { return None };
+    match b.items.as_slice() {
+        [Item { kind: ItemKind::Assign { target, value }, .. }] if !crate::lower::meta_is_marked(&b.meta) => {
+            Some(((**target).clone(), sys_axis(value, name)?))
+        }
+        _ => None,
+    }
+}
+
+/// Right after a measuring block, `IF $AC_MEA[1]==1 T=$AA_MW[a] ELSE T=$AA_IW[a] ENDIF`
+/// keeps in T what FANUC keeps in `#5061+a` (the trigger point on a hit, the end point on a
+/// miss) for an axis `a` of the block: the assignments `T=#5061+a`. `None`: not that form.
+fn skip_idiom(s: &Stmt, axes: &[usize]) -> Option<Vec<Stmt>> {
+    let StmtKind::If(i) = &s.kind else { return None };
+    let else_body = &i.else_part.as_ref()?.body;
+    if !probe_switched(&i.cond) || i.then_body.is_empty() || i.then_body.len() != else_body.len() {
+        return None;
+    }
+    let mut out = Vec::new();
+    for (t, e) in i.then_body.iter().zip(else_body) {
+        let (target, a) = kept(t, "AA_MW")?;
+        let (target2, a2) = kept(e, "AA_IW")?;
+        if target.kind != target2.kind || a != a2 || !axes.contains(&a) {
+            return None;
+        }
+        let span = t.span;
+        let skip = var_expr(&VarRef { kind: VarKind::Hash(5061 + a as u32), span });
+        out.push(block_stmt(vec![assign_item(&target, skip, span)], span));
+    }
+    Some(out)
 }
