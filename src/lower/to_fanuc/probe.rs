@@ -166,9 +166,7 @@ fn probe_switched(c: &Expr) -> bool {
     let ExprKind::Cmp(CmpOp::Eq, _, a, b) = &c.kind else { return false };
     match (&a.kind, crate::lower::literal(b)) {
         (_, Some(v)) if v == 1.0 && is_mea(a) => true,
-        (ExprKind::Binary(BinOp::Sub, x, one), Some(v)) if v == 0.0 => {
-            is_mea(x) && crate::lower::literal(one) == Some(1.0)
-        }
+        (ExprKind::Binary(BinOp::Sub, x, one), Some(0.0)) => is_mea(x) && crate::lower::literal(one) == Some(1.0),
         _ => false,
     }
 }
