@@ -264,7 +264,7 @@ fn to_sinumerik(args: &TranslateArgs, config: &Config) -> ExitCode {
     if let Err(code) = job::write_files(&req, &tr, &job.loaded, &job.read) {
         return code;
     }
-    let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3"));
+    let warned = tr.diags.iter().any(|d| d.code.starts_with("NC3") || nctrans::unfinished::is_marked(d));
     if warned && opts.unsupported == ts::UnsupportedPolicy::Warn {
         // An unfinished program (it alarms on its first line) is never verified, so never
         // called equivalent.
