@@ -234,7 +234,7 @@ fn the_kept_skip_position_reads_back_as_5061() {
     let (code, out, err) = nctrans(&[mpf, "--to", "fanuc", "-o", &nc]);
     assert_eq!(code, 0, "{out}{err}");
     let text = std::fs::read_to_string(&nc).expect("written");
-    assert!(text.contains("G31 X#610 F100.\nG01\n#100=#5061\n#108=#5042\n"), "{text}");
+    assert!(text.contains("G31 X#610 F100.\nG01\n#601=#5061\n"), "{text}");
     for probes in [vec![], vec!["--probe", "X=-225.01", "--probe", "miss"]] {
         let mut args = vec!["check", "corpus/in/fanuc/probe-bore-g55.nc", &nc];
         args.extend(probes.iter().copied());

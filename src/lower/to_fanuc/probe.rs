@@ -18,23 +18,33 @@
 //! not before: a jump to the block's label or N number must meet it too).
 
 use super::*;
+use std::collections::BTreeMap;
 
 /// Removes `MEAS=1` and `G1` from every measuring block; the spans of those blocks.
 pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
     let mut found = Vec::new();
+    let own = own_names(&prog.body);
     let body = std::mem::take(&mut prog.body);
     prog.body = crate::lower::map_bodies(body, &mut |list: Vec<Stmt>| {
         let mut out = Vec::with_capacity(list.len());
         // The axes of the measuring block just taken, while only STOPRE blocks follow it.
         let mut after: Option<Vec<usize>> = None;
         for mut s in list {
+            // The DEF of a translation's own skip variable (its reads become `#5061+`).
+            if own_write(&s, &own).is_some_and(|v| crate::lower::literal(v) == Some(0.0)) {
+                continue;
+            }
             if let Some(axes) = &after {
                 if is_stopre(&s) {
                     out.push(s);
                     continue;
                 }
                 if let Some(kept) = skip_idiom(&s, axes) {
-                    out.extend(kept);
+                    out.extend(kept.into_iter().filter(|k| own_write(k, &own).is_none()));
+                    continue;
+                }
+                // An axis the block does not move: FANUC keeps where it stands, as `$AA_IW`.
+                if own_write(&s, &own).is_some_and(|v| sys_axis(v, "AA_IW").is_some()) {
                     continue;
                 }
                 after = None;
@@ -82,7 +92,90 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
         }
         out
     });
+    if !own.is_empty() {
+        crate::lower::map_exprs(&mut prog.body, &mut |e: &mut Expr| own_reads(e, &own));
+    }
     found
+}
+
+/// The translation's own skip variables (`NCTRANS_SKIP_X`, written by the FANUC → Sinumerik
+/// translation and reserved for it) and their axes, where every write of them is its DEF
+/// (0) or a kept skip position of that axis (`$AA_MW`/`$AA_IW`): their reads are `#5061+`.
+fn own_names(body: &[Stmt]) -> BTreeMap<String, usize> {
+    let mut names = BTreeMap::new();
+    let mut bad = std::collections::BTreeSet::new();
+    let mut stack: Vec<&Stmt> = body.iter().collect();
+    while let Some(s) = stack.pop() {
+        match &s.kind {
+            StmtKind::Block(b) => {
+                for it in &b.items {
+                    let ItemKind::Assign { target, value } = &it.kind else { continue };
+                    let VarKind::Named { name, indices } = &target.kind else { continue };
+                    let Some(axis) = name.strip_prefix("NCTRANS_SKIP_").and_then(|a| AXES.iter().position(|x| *x == a))
+                    else {
+                        continue;
+                    };
+                    let kept = [sys_axis(value, "AA_MW"), sys_axis(value, "AA_IW")].contains(&Some(axis));
+                    if indices.is_empty() && (kept || crate::lower::literal(value) == Some(0.0)) {
+                        names.insert(name.clone(), axis);
+                    } else {
+                        bad.insert(name.clone());
+                    }
+                }
+            }
+            StmtKind::If(i) => {
+                stack.extend(i.then_body.iter());
+                if let Some(e) = &i.else_part {
+                    stack.extend(e.body.iter());
+                }
+            }
+            StmtKind::While(w) => stack.extend(w.body.iter()),
+            StmtKind::Loop(l) => stack.extend(l.body.iter()),
+            StmtKind::For(x) => stack.extend(x.body.iter()),
+            StmtKind::Repeat(r) => stack.extend(r.body.iter()),
+            StmtKind::Do(d) => stack.extend(d.body.iter()),
+        }
+    }
+    names.retain(|n, _| !bad.contains(n));
+    names
+}
+
+/// The value `s` writes to one of `own`, when it is a block of that one assignment.
+fn own_write<'a>(s: &'a Stmt, own: &BTreeMap<String, usize>) -> Option<&'a Expr> {
+    let StmtKind::Block(b) = &s.kind else { return None };
+    match b.items.as_slice() {
+        [Item { kind: ItemKind::Assign { target, value }, .. }] if !crate::lower::meta_is_marked(&b.meta) => {
+            matches!(&target.kind, VarKind::Named { name, .. } if own.contains_key(name)).then_some(value)
+        }
+        _ => None,
+    }
+}
+
+fn own_reads(e: &mut Expr, own: &BTreeMap<String, usize>) {
+    if let ExprKind::Var(v) = &mut e.kind {
+        if let VarKind::Named { name, indices } = &v.kind {
+            if let (Some(&a), true) = (own.get(name), indices.is_empty()) {
+                v.kind = VarKind::Hash(5061 + a as u32);
+            }
+            return;
+        }
+    }
+    match &mut e.kind {
+        ExprKind::Var(v) => match &mut v.kind {
+            VarKind::System { indices, .. } | VarKind::Named { indices, .. } => {
+                indices.iter_mut().for_each(|x| own_reads(x, own))
+            }
+            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => own_reads(x, own),
+            _ => {}
+        },
+        ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => {
+            own_reads(a, own);
+            own_reads(b, own);
+        }
+        ExprKind::Unary(_, a) => own_reads(a, own),
+        ExprKind::Func(_, args) => args.iter_mut().for_each(|x| own_reads(x, own)),
+        _ => {}
+    }
 }
 
 fn measuring_word(it: &Item) -> bool {
@@ -109,13 +202,18 @@ pub fn put(prog: &mut Program, blocks: &[Span]) {
     let body = std::mem::take(&mut prog.body);
     prog.body = crate::lower::map_bodies(body, &mut |list: Vec<Stmt>| {
         let mut out = Vec::with_capacity(list.len());
-        for mut s in list {
+        let mut list = list.into_iter().peekable();
+        while let Some(mut s) = list.next() {
             if let StmtKind::Block(b) = &mut s.kind {
                 if blocks.contains(&s.span) {
                     b.items.insert(0, g_word(31.0, s.span));
                     let span = s.span;
                     out.push(s);
-                    out.push(block_stmt(vec![g_word(1.0, span)], span));
+                    // Not where the next block selects the motion mode itself (a round
+                    // trip would add a block each time).
+                    if !list.peek().is_some_and(selects_motion) {
+                        out.push(block_stmt(vec![g_word(1.0, span)], span));
+                    }
                     continue;
                 }
             }
@@ -126,6 +224,11 @@ pub fn put(prog: &mut Program, blocks: &[Span]) {
 }
 
 const AXES: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
+
+/// A block that selects G0, G1, G2 or G3 itself.
+pub(crate) fn selects_motion(s: &Stmt) -> bool {
+    matches!(&s.kind, StmtKind::Block(b) if b.meta.skip.is_none() && b.items.iter().any(|it| matches!(g_of(it), Some(g) if [0.0, 1.0, 2.0, 3.0].contains(&g))))
+}
 
 /// The axis (X Y Z A B C, index) an address word positions.
 fn axis_of(it: &Item) -> Option<usize> {

@@ -146,9 +146,14 @@ pub fn lower(ctx: &mut Ctx, mut body: Vec<Stmt>, axes: u16) -> Vec<Stmt> {
     }
     map_bodies(body, &mut |list: Vec<Stmt>| {
         let mut out = Vec::with_capacity(list.len());
-        for s in list {
+        let mut list = list.into_iter().peekable();
+        while let Some(s) = list.next() {
             match s.kind {
-                StmtKind::Block(b) if b.items.iter().any(is_g31) => measuring_block(ctx, b, s.span, axes, &mut out),
+                StmtKind::Block(b) if b.items.iter().any(is_g31) => {
+                    // The next block selecting the motion mode itself needs no restore.
+                    let next_selects = list.peek().is_some_and(crate::lower::to_fanuc::probe::selects_motion);
+                    measuring_block(ctx, b, s.span, axes, next_selects, &mut out)
+                }
                 kind => out.push(Stmt { kind, span: s.span }),
             }
         }
@@ -192,7 +197,7 @@ fn keep(axis: usize, value: Expr, span: Span) -> Stmt {
     plain_block(vec![crate::lower::assign_item(&named_ref(&skip_name(axis), span), value, span)], span)
 }
 
-fn measuring_block(ctx: &mut Ctx, mut b: Block, span: Span, axes: u16, out: &mut Vec<Stmt>) {
+fn measuring_block(ctx: &mut Ctx, mut b: Block, span: Span, axes: u16, next_selects: bool, out: &mut Vec<Stmt>) {
     if let Some(p) = b.items.iter().find(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr == Addr::Letter(b'P'))) {
         if let Some(st) = ctx.unsupported(
             "NC538",
@@ -206,6 +211,7 @@ fn measuring_block(ctx: &mut Ctx, mut b: Block, span: Span, axes: u16, out: &mut
     }
     let motion = ctx.modal.motion_at(span.lo);
     let restore = match motion {
+        _ if next_selects => None,
         Some(10) => None,
         Some(g @ (0 | 20 | 30)) => Some(g),
         _ => {
