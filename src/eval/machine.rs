@@ -506,12 +506,8 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
-                // A measuring move: runs to its end point unless `probe_contact` says where
-                // the probe touches.
-                ("MEAS" | "MEAW", v) => {
-                    measuring = Some(self.measuring_probe(v, w.span)?);
-                    self.meaw = a == "MEAW";
-                }
+                // A measuring move (`probe.rs`): where it stops is a test input.
+                ("MEAS" | "MEAW", v) => (measuring, self.meaw) = (Some(self.measuring_probe(v, w.span)?), a == "MEAW"),
                 ("FP", Some(x)) if !self.fanuc => fp = Some((w, x)),
                 (a, _) if !self.fanuc && Machine::machine_axis(a).is_some() => {
                     named.extend(Machine::machine_axis(a).map(|i| (i, w.span)))
