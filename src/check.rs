@@ -262,8 +262,8 @@ fn alarm_class(n: i64) -> Option<String> {
 pub fn same_event(a: &Event, b: &Event) -> bool {
     use Event::*;
     match (a, b) {
-        (Move { rapid: r1, to: t1, f: f1 }, Move { rapid: r2, to: t2, f: f2 }) => {
-            r1 == r2 && axes_eq(t1, t2) && opt_eq(*f1, *f2)
+        (Move { rapid: r1, to: t1, f: f1, probe: p1 }, Move { rapid: r2, to: t2, f: f2, probe: p2 }) => {
+            r1 == r2 && axes_eq(t1, t2) && opt_eq(*f1, *f2) && p1 == p2
         }
         (
             Arc { cw: c1, plane: p1, to: t1, center: k1, f: f1 },

@@ -87,12 +87,22 @@ pub fn place(d: &Diagnostic) -> Option<(FileId, Span)> {
     d.labels.iter().find(|l| l.primary).map(|l| (l.file, l.span))
 }
 
+/// The note [`as_warning`] adds.
+const MARKED_NOTE: &str =
+    "--unsupported warn: the whole block is a marked comment, the program alarms on its first line, and the run fails";
+
 /// The error as the warning the warn policy reports.
 pub fn as_warning(d: &Diagnostic) -> Diagnostic {
     let mut w = d.clone();
     w.severity = Severity::Warning;
-    w.notes.push("--unsupported warn: the whole block is a marked comment, the program alarms on its first line, and the run fails".into());
+    w.notes.push(MARKED_NOTE.into());
     w
+}
+
+/// Whether `d` is the warning of a block written as a marked comment ([`as_warning`]),
+/// whatever its code: the output it belongs to is unfinished.
+pub fn is_marked(d: &Diagnostic) -> bool {
+    d.notes.iter().any(|n| n == MARKED_NOTE)
 }
 
 /// Runs `translate` on copies of `units`, marking refused blocks until it succeeds. Returns

@@ -128,8 +128,8 @@ fn compensation_far_down_a_streamed_program_is_translated_whole() {
     }
 }
 
-/// Issue 17 item 7 on the streamed paths: under `--unsupported warn` a skip move (G31, no
-/// Sinumerik form yet) far down a streamed CAM program becomes one marked comment as a
+/// Issue 17 item 7 on the streamed paths: under `--unsupported warn` a multi-step skip move
+/// (G31 P, no Sinumerik form) far down a streamed CAM program becomes one marked comment as a
 /// whole, and the file alarms first.
 #[test]
 fn warn_far_down_a_streamed_program_marks_the_whole_block() {
@@ -139,7 +139,7 @@ fn warn_far_down_a_streamed_program_marks_the_whole_block() {
         fanuc.push_str(&format!("X{}.{}\n", i % 50, i % 7));
         siemens.push_str(&format!("X{}.{}\n", i % 50, i % 7));
     }
-    fanuc.push_str("G31 X77. Y77. F150.\nG00 Z50.\nM30\n%\n");
+    fanuc.push_str("G31 P2 X77. Y77. F150.\nG00 Z50.\nM30\n%\n");
     siemens.push_str("ROT Z=45 X77\nG0 Z50\nM30\n");
     let f = write("warn-stream.nc", &fanuc);
     let s = write("warn-stream.mpf", &siemens);

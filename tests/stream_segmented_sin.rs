@@ -66,6 +66,7 @@ fn streamed_check(path: &Path, out: &Path, o: &Options) -> Verdict {
         max_steps: MAX_STEPS,
         semantics: Some(sem.clone()),
         probe_contact: None,
+        probes: Vec::new(),
         expand_cycles: None,
     };
     let a = StreamSide {

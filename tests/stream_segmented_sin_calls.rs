@@ -376,6 +376,7 @@ fn streamed_verdict(main: &Path, o: &Options, edit: &dyn Fn(&str) -> String) -> 
         max_steps: 1_000_000,
         semantics: Some(sem.clone()),
         probe_contact: None,
+        probes: Vec::new(),
         expand_cycles: None,
     };
     let files = subs.iter().map(|f| (f.program.clone(), f.name.clone(), edit(&f.text))).collect();

@@ -291,6 +291,7 @@ fn streamed_check(path: &Path, out: &Path, o: &Options) -> nctrans::check::Check
         max_steps: 10_000_000,
         semantics: Some(sem.clone()),
         probe_contact: None,
+        probes: Vec::new(),
         expand_cycles: None,
     };
     let a = StreamSide {

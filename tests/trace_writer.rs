@@ -33,7 +33,7 @@ struct Reference {
 
 /// A move as the trace spec writes it, numbers by `push_num_std`.
 fn move_line(ev: &Event, json: bool, line: Option<usize>) -> Option<String> {
-    let Event::Move { rapid, to, f } = ev else { return None };
+    let Event::Move { rapid, to, f, probe } = ev else { return None };
     let mode = if *rapid { "rapid" } else { "linear" };
     let axes = to.iter().enumerate().filter_map(|(i, x)| x.map(|x| (AXES[i], x)));
     let mut s = String::new();
@@ -47,6 +47,9 @@ fn move_line(ev: &Event, json: bool, line: Option<usize>) -> Option<String> {
         match f {
             Some(f) => push_num_std(&mut s, *f),
             None => s.push_str("null"),
+        }
+        if *probe {
+            s.push_str(",\"probe\":true");
         }
         if let Some(l) = line {
             let _ = write!(s, ",\"line\":{l}");
@@ -62,6 +65,9 @@ fn move_line(ev: &Event, json: bool, line: Option<usize>) -> Option<String> {
         match f {
             Some(f) => push_num_std(&mut s, *f),
             None => s.push('-'),
+        }
+        if *probe {
+            s.push_str(" probe");
         }
     }
     Some(s)

@@ -102,12 +102,12 @@ fn tool_compensation_translates_or_is_refused() {
 }
 
 /// Issue 17 item 7: under `--unsupported warn` a block with a construct Siemens lacks becomes
-/// one marked comment as a whole (the skip move's `X10. Y10. Z-2.` would be a rapid plunge
-/// under G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
+/// one marked comment as a whole (the multi-step skip move's `X10. Y10. Z-2.` would be a rapid
+/// plunge under G0, G68's `X0 Y0` a rapid move), and the program alarms on its first line.
 #[test]
 fn warn_policy_marks_the_whole_block_and_alarms_first() {
     let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
-    let src = "O1\nG00 X0 Y0 Z5.\nN20 G31 X10. Y10. Z-2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
+    let src = "O1\nG00 X0 Y0 Z5.\nN20 G31 P2 X10. Y10. Z-2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
     let tr = run(src, &o);
     assert!(!tr.has_errors(), "{:?}", tr.diags);
     assert!(tr.diags.iter().all(|d| !d.is_error()));
@@ -115,11 +115,11 @@ fn warn_policy_marks_the_whole_block_and_alarms_first() {
     let code: Vec<&str> = text.lines().filter(|l| !l.starts_with(';')).collect();
     assert_eq!(code.first(), Some(&"SETAL(65999) ; UNFINISHED TRANSLATION"), "{text}");
     assert!(!text.contains("X10") && !text.contains("Z-2") && !text.contains("ROT"), "{text}");
-    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G31"), "{text}");
+    assert!(text.contains("N20 ; NCTRANS UNSUPPORTED: G31 P"), "{text}");
     assert!(text.contains("\n; NCTRANS UNSUPPORTED: G68"), "{text}");
     assert_eq!(
         code[1..],
-        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G31 has no Sinumerik counterpart", "G0 Z50", "M30"],
+        ["G0 X0 Y0 Z5", "N20 ; NCTRANS UNSUPPORTED: G31 P (multi-step skip: the skip signal chosen by P) has no Sinumerik counterpart", "G0 Z50", "M30"],
         "{text}"
     );
 }
@@ -731,10 +731,10 @@ fn seed_o9050_translates_its_supported_parts_under_warn() {
     assert!(!tr.has_errors());
     let mut codes: Vec<&str> = tr.diags.iter().map(|d| d.code).collect();
     codes.sort();
-    assert_eq!(codes, vec!["NC355", "NC355", "NC355", "NC355", "NC355", "NC355", "NC362", "NC363"]);
+    assert_eq!(codes, vec!["NC355", "NC355", "NC355", "NC355", "NC355", "NC355", "NC538"]);
     let marked: usize = tr.files.iter().map(|f| f.text.matches("; NCTRANS UNSUPPORTED:").count()).sum();
-    // One marked line per refused block: one block holds both the NC362 and the NC363 (the
-    // G28 blocks translate now).
+    // One marked line per refused block (the G31 P block is one NC538; the G28 blocks
+    // translate now).
     assert_eq!(marked, 7, "one marked line per refused block");
     let text = &tr.files[0].text;
     assert!(text.contains("N100 IF (TRUNC(R13) B_AND 8)-8==0 GOTOF LBL_110"), "{text}");

@@ -7,7 +7,7 @@ use nctrans::{diag, ir};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 pub struct EvalOpts {
     /// Set a variable before the run: R1=5, '#24=10.', NAME=3 (repeatable; overrides the
     /// file's `nctrans: set` header lines).
@@ -20,6 +20,15 @@ pub struct EvalOpts {
     /// in (0, 1]; without it every probe move reaches its end point.
     #[arg(long, value_name = "FRACTION", value_parser = parse_fraction)]
     pub probe_contact: Option<f64>,
+    /// Where the probe triggers on the next probing move, in run order: X=12.5 (or
+    /// X=3,Y=4; trace coordinates, on the programmed line) or `miss` (repeatable; overrides
+    /// the file's `nctrans: probe` header lines). Moves beyond the list do not trigger.
+    #[arg(long = "probe", value_name = "POINT|miss", value_parser = parse_probe)]
+    pub probe: Vec<nctrans::eval::ProbeInput>,
+}
+
+fn parse_probe(s: &str) -> Result<nctrans::eval::ProbeInput, String> {
+    nctrans::eval::parse_probe(s)
 }
 
 fn parse_fraction(s: &str) -> Result<f64, String> {
@@ -108,11 +117,47 @@ pub fn run_options(header: &str, name: &str, eval: &EvalOpts) -> Result<nctrans:
         inputs.retain(|h| h.target != i.target);
         inputs.push(i);
     }
+    let probes = if eval.probe.is_empty() {
+        nctrans::eval::header_probes(header).map_err(|e| {
+            eprintln!("error: {name}: bad `nctrans: probe` header: {e}");
+            ExitCode::from(2)
+        })?
+    } else {
+        eval.probe.clone()
+    };
     Ok(nctrans::eval::RunOptions {
         max_steps: eval.max_steps,
         inputs,
         semantics: None,
         probe_contact: eval.probe_contact,
+        probes,
         expand_cycles: None,
     })
+}
+
+/// `check`: both programs meet the same probe inputs, `--probe` or else the first file's
+/// `nctrans: probe` header lines (else the second's), so a translation whose header moved
+/// is run as its source is.
+pub fn shared_probes(eval: &EvalOpts, paths: [&PathBuf; 2]) -> Result<EvalOpts, ExitCode> {
+    let mut out = eval.clone();
+    if !eval.probe.is_empty() {
+        return Ok(out);
+    }
+    for path in paths {
+        // Header lines come first: the start of the file is enough (a large file is streamed).
+        let mut head = Vec::new();
+        if let Ok(f) = std::fs::File::open(path) {
+            use std::io::Read;
+            let _ = f.take(1 << 16).read_to_end(&mut head);
+        }
+        let probes = nctrans::eval::header_probes(&String::from_utf8_lossy(&head)).map_err(|e| {
+            eprintln!("error: {}: bad `nctrans: probe` header: {e}", path.display());
+            ExitCode::from(2)
+        })?;
+        if !probes.is_empty() {
+            out.probe = probes;
+            return Ok(out);
+        }
+    }
+    Ok(out)
 }

@@ -107,6 +107,11 @@ pub fn check(
     maps: &MapOpts,
 ) -> ExitCode {
     use nctrans::check::{self, Side};
+    let shared = match super::args::shared_probes(eval, [a, b]) {
+        Ok(e) => e,
+        Err(code) => return code,
+    };
+    let eval = &shared;
     let names = match maps.names() {
         Ok(n) => n,
         Err(e) => {

@@ -120,6 +120,7 @@ impl<'a> Interp<'a> {
         m.comp.edge_default = sem.cutting_edge_default.unwrap_or(super::machine::comp::CUTTING_EDGE_DEFAULT);
         m.rotation_angle_incremental = sem.rotation_angle_incremental;
         m.probe_contact = opts.probe_contact;
+        m.probe.inputs = opts.probes.clone();
         m.expand = opts.expand_cycles;
         let r_count = sem.r_param_count as usize;
         Interp {

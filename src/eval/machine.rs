@@ -23,6 +23,7 @@ mod modal;
 mod motion;
 mod offsets;
 mod polar;
+pub mod probe;
 mod refs;
 pub use fanuc_frames::FanucScale;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
@@ -154,6 +155,10 @@ pub struct Machine {
     pub applied: [f64; 9],
     /// `RunOptions::probe_contact`: where along a probe move the skip signal arrives.
     pub probe_contact: Option<f64>,
+    /// The probe test inputs and what the controls keep of probing moves ([`probe`]).
+    pub probe: probe::Probe,
+    /// The block measures with Siemens MEAW (the move does not stop at the trigger).
+    pub meaw: bool,
     /// `(inc, 1.0 / inc, decimal)` of the metric and inch increments, for
     /// [`round_to_scaled`]; `decimal`: [`is_decimal_scale`], so [`round_to_decimal`] does.
     scales: [(f64, f64, bool); 2],
@@ -218,6 +223,8 @@ impl Machine {
             last_n: 0.0,
             group_g: [(7, 400), (8, 490), (9, 800), (10, 980), (15, 640)],
             probe_contact: None,
+            probe: probe::Probe::default(),
+            meaw: false,
             expand: None,
             incr_travels_offset: !fanuc,
             applied: [0.0; 9],
@@ -387,7 +394,8 @@ impl Machine {
         let (mut r, mut ar, mut f, mut s, mut p, mut l) = (None, None, None, None, None, None);
         let mut t: Option<(ToolId, Span)> = None;
         let mut block_span = Span::default();
-        let mut measuring = false;
+        // Siemens MEAS=/MEAW=: the probe number.
+        let mut measuring: Option<usize> = None;
         // FANUC Q is read by the drilling cycles; anywhere else it is ignored (a warning).
         let mut q_word = None;
         let (mut q_val, mut e_word) = (None, None);
@@ -510,9 +518,8 @@ impl Machine {
                         axes[i] = Some((w, x));
                     }
                 }
-                // A measuring move: runs to its end point unless `probe_contact` says where
-                // the probe touches.
-                ("MEAS" | "MEAW", _) => measuring = true,
+                // A measuring move (`probe.rs`): where it stops is a test input.
+                ("MEAS" | "MEAW", v) => (measuring, self.meaw) = (Some(self.measuring_probe(v, w.span)?), a == "MEAW"),
                 ("FP", Some(x)) if !self.fanuc => fp = Some((w, x)),
                 (a, _) if !self.fanuc && Machine::machine_axis(a).is_some() => {
                     named.extend(Machine::machine_axis(a).map(|i| (i, w.span)))
@@ -530,6 +537,7 @@ impl Machine {
 
         // G codes: modal state first; one-shot meanings remembered.
         let (mut dwell, mut g53, mut g10, mut probe) = (false, false, false, measuring);
+        let mut g31 = None;
         let (mut cycle_g, mut motion_g) = (None, None);
         let (mut g52, mut g68, mut g51, mut g92, mut home, mut g29) = (false, false, None, false, None, false);
         for &(g, span) in gs.iter() {
@@ -545,7 +553,10 @@ impl Machine {
             match gi {
                 40 => dwell = true,
                 100 => g10 = true,
-                310 if self.fanuc => probe = true,
+                310 if self.fanuc => {
+                    probe = Some(1);
+                    g31 = Some(span);
+                }
                 530 | 1530 => g53 = true,
                 // FANUC `G54 Pn` is `G54.1 Pn` (extended offsets).
                 540 | 541 if self.fanuc && (gi == 541 || p.is_some()) => self.extended_offset(p, out, span)?,
@@ -724,6 +735,9 @@ impl Machine {
             }
         }
         // 4. motion or dwell
+        if probe.is_some() {
+            self.probe_allowed(g31, p.map(|w| w.0.span), home.is_some() || dwell || g53 || g29, block_span)?;
+        }
         if g29 {
             eff.moved = self.return_from_reference(&axes, out, block_span)?;
         } else if let Some(h) = home {
@@ -737,7 +751,7 @@ impl Machine {
         } else if self.cycle.active.is_some() && !g53 {
             eff.moved = super::cycles::fanuc::holes(self, words, out, warns, block_span)?;
         } else if self.framed && !g53 {
-            eff.moved = self.framed_motion(&axes, &ijk, r, ar, probe, out, block_span)?;
+            eff.moved = self.framed_motion(&axes, &ijk, r, ar, probe.is_some(), out, block_span)?;
         } else {
             eff.moved = self.motion_block(&axes, &ijk, r, ar, g53, probe, out, block_span)?;
         }

@@ -34,6 +34,7 @@ pub mod lit;
 pub mod machine;
 pub mod numfmt;
 pub mod paged;
+pub mod probe;
 pub mod refuse;
 mod strings;
 pub mod sysvars;
@@ -52,6 +53,7 @@ pub(crate) mod test_ir;
 
 pub use calls::{CalleeName, CalleeSource, DirCallees, NoCallees};
 pub use input::{header_inputs, parse_input, Input, InputTarget};
+pub use probe::{header_probes, parse_probe, ProbeInput};
 pub use trace::{Event, Format, NullSink, Origin, TraceSink, VecSink, WriterSink};
 
 use crate::diag::Diagnostic;
@@ -75,6 +77,10 @@ pub struct RunOptions {
     /// touches, as a fraction of the move in (0, 1]; `None`: no contact, the move reaches
     /// its end point (FANUC then reports the end point in `#5061+`).
     pub probe_contact: Option<f64>,
+    /// `--probe`: for each probing move in run order, where the probe triggers or that it
+    /// misses (`probe`); moves beyond the list do not trigger. Given, it replaces
+    /// `probe_contact`.
+    pub probes: Vec<ProbeInput>,
     /// `--expand-cycles`: every drilling hole is written as the moves, dwells and spindle
     /// events the control makes (`cycles::expand`), with these retract amounts, instead of
     /// its `cycle` event. For viewing: `check` never sets it.
@@ -88,6 +94,7 @@ impl Default for RunOptions {
             inputs: Vec::new(),
             semantics: None,
             probe_contact: None,
+            probes: Vec::new(),
             expand_cycles: None,
         }
     }

@@ -641,12 +641,12 @@ fn probe_moves_reach_the_end_point_unless_a_contact_is_given() {
         s(vec![end()]),
     ]);
     let (t, _) = run_u(&f);
-    assert_eq!(t[0], "move linear X=10 f=100");
+    assert_eq!(t[0], "move linear X=10 f=100 probe");
     assert_eq!(t[1], "move linear X=10 Y=10 f=100");
     let (t, _) = run_opts(&f, &RunOptions { probe_contact: Some(0.25), ..Default::default() });
-    assert_eq!(t[0], "move linear X=2.5 f=100");
+    assert_eq!(t[0], "move linear X=2.5 f=100 probe");
     assert_eq!(t[1], "move linear X=2.5 Y=2.5 f=100");
-    // Siemens MEAS=1: the same rule; $AA_MW reads the stopping point.
+    // Siemens MEAS=1: $AA_MW is written only when the probe switches (0 before).
     let aa_mw =
         var(VarKind::System { name: "AA_MW".into(), indices: vec![Expr::new(ExprKind::Ident("X".into()), sp())] });
     let u = siemens(vec![
@@ -655,9 +655,9 @@ fn probe_moves_reach_the_end_point_unless_a_contact_is_given() {
         s(vec![end()]),
     ]);
     let (t, _) = run_u(&u);
-    assert_eq!(t[0], "move linear X=10 f=100");
-    assert_eq!(t[1], "move linear X=10 Y=10 f=100");
+    assert_eq!(t[0], "move linear X=10 f=100 probe");
+    assert_eq!(t[1], "move linear X=10 Y=0 f=100");
     let (t, _) = run_opts(&u, &RunOptions { probe_contact: Some(0.5), ..Default::default() });
-    assert_eq!(t[0], "move linear X=5 f=100");
+    assert_eq!(t[0], "move linear X=5 f=100 probe");
     assert_eq!(t[1], "move linear X=5 Y=5 f=100");
 }

@@ -20,6 +20,34 @@ impl Interp<'_> {
         )
     }
 
+    /// Refuses a position read whose value holds what the evaluator does not model (the
+    /// trace keeps the programmed contour, compensation by register only): the tool length
+    /// (FANUC `#5021+`, `#5041+`, `#5061+` under G43/G44 include the offset; Siemens
+    /// machine positions `$AA_IM`, `$AA_MM` with a cutting edge active) or the radius offset
+    /// path (current positions under G41/G42). docs/semantics.md, Probing and position reads.
+    fn comp_guard(&self, name: &str, length: bool, radius: bool, span: Span) -> Result<(), Fault> {
+        let why = if length {
+            Some(if self.m.fanuc {
+                "G43/G44 (the value includes the tool length offset)"
+            } else {
+                "a cutting edge D active (machine coordinates include the tool length)"
+            })
+        } else if radius && self.m.comp.side.is_some() {
+            Some("G41/G42 (the tool centre stands off the programmed contour)")
+        } else {
+            None
+        };
+        match why {
+            None => Ok(()),
+            Some(why) => Err(Fault::error(
+                Diagnostic::error("NC534", format!("{name} read under {why} is not modelled"))
+                    .primary(self.file(), span, "read here")
+                    .note("the evaluator keeps programmed positions; tool lengths and radii are machine data")
+                    .hint("read the position with the compensation cancelled (G49 / D0, G40), or the programmed end point (#5001+, $P_EP)"),
+            )),
+        }
+    }
+
     /// A position in the current input unit.
     fn in_unit(&self, mm: f64) -> f64 {
         if self.m.modal.sys_inch() {
@@ -108,7 +136,15 @@ impl Interp<'_> {
                 Some(ToolId::Number(t)) => *t,
                 _ => 0.0,
             },
-            5001..=5009 | 5041..=5049 | 5061..=5069 => {
+            // The skip position kept by the last G31 (`machine::probe`), 0 before any.
+            5061..=5069 => {
+                self.comp_guard(&format!("#{n}"), m.probe.with_length, false, span)?;
+                self.in_unit(m.probe.skip[(n - 5061) as usize])
+            }
+            5001..=5009 | 5041..=5049 => {
+                if n >= 5041 {
+                    self.comp_guard(&format!("#{n}"), m.comp.length_g != 490, true, span)?;
+                }
                 let axis = ((n - 1) % 20) as usize;
                 if m.transforms() {
                     return Err(self.unmodelled(&format!("#{n} under a rotated, scaled or mirrored frame"), span));
@@ -116,6 +152,7 @@ impl Interp<'_> {
                 self.in_unit(m.work_pos(axis))
             }
             5021..=5029 => {
+                self.comp_guard(&format!("#{n}"), m.comp.length_g != 490, true, span)?;
                 let axis = ((n - 1) % 20) as usize;
                 self.in_unit(m.pos[axis])
             }
@@ -210,15 +247,42 @@ impl Interp<'_> {
 
     pub fn sie_sys_read(&mut self, name: &str, idx: &[Expr], span: Span) -> Result<Value, Fault> {
         let x = match name {
-            "AA_IW" | "P_EP" | "AA_MW" => {
+            // The last measured values (`machine::probe`): written only when the probe
+            // switched, for the axes of the measuring block; 0 before any.
+            "AA_MW" | "AA_MM" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
+                if name == "AA_MM" {
+                    self.comp_guard("$AA_MM", self.m.probe.with_length, false, span)?;
+                }
+                let p = &self.m.probe;
+                self.in_unit(if name == "AA_MW" { p.meas_w[a] } else { p.meas_m[a] })
+            }
+            "AC_MEA" => {
+                let n = match idx.first() {
+                    Some(e) => {
+                        let cx = self.cx(false);
+                        round_half_away(expr::eval_num(self, e, &cx)?)
+                    }
+                    None => return Err(self.unmodelled("$AC_MEA without the probe number", span)),
+                };
+                if n != 1.0 && n != 2.0 {
+                    return Err(Fault::alarm(self.alarms.bad_index, format!("$AC_MEA[{n}] does not exist"), span));
+                }
+                f64::from(u8::from(self.m.probe.mea[n as usize - 1]))
+            }
+            "AA_IW" | "P_EP" => {
+                let a = self.axis_arg(idx.first(), name, span)?;
+                if name == "AA_IW" {
+                    self.comp_guard("$AA_IW", false, true, span)?;
+                }
                 if self.m.transforms() {
                     return Err(self.unmodelled(&format!("${name} under a rotated, scaled or mirrored frame"), span));
                 }
                 self.in_unit(self.m.work_pos(a))
             }
-            "AA_IM" | "AA_MM" => {
+            "AA_IM" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
+                self.comp_guard("$AA_IM", self.m.comp.edge != 0, true, span)?;
                 self.in_unit(self.m.pos[a])
             }
             "P_UIFR" => {
@@ -273,9 +337,8 @@ impl Interp<'_> {
                 self.sys_store.insert(name.to_string(), x);
                 Ok(())
             }
-            "AA_IW" | "AA_IM" | "P_EP" | "PI" | "AC_TIME" | "P_F" | "P_S" | "P_TOOLNO" | "P_TOOL" => {
-                Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span))
-            }
+            "AA_IW" | "AA_IM" | "P_EP" | "AA_MW" | "AA_MM" | "AC_MEA" | "PI" | "AC_TIME" | "P_F" | "P_S"
+            | "P_TOOLNO" | "P_TOOL" => Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span)),
             _ => Err(self.unmodelled(&format!("${name}"), span)),
         }
     }

@@ -83,6 +83,9 @@ pub enum Event {
         rapid: bool,
         to: Axes,
         f: Option<f64>,
+        /// A probing move (FANUC G31, Siemens MEAS=/MEAW=): `probe` in the text form,
+        /// `"probe": true` in jsonl (trace format v2).
+        probe: bool,
     },
     Arc {
         cw: bool,
@@ -296,11 +299,14 @@ pub fn write_text_bytes(v: &mut Vec<u8>, ev: &Event) {
 
 fn text_form(s: &mut TextBuf, ev: &Event) {
     match ev {
-        Event::Move { rapid, to, f } => {
+        Event::Move { rapid, to, f, probe } => {
             s.push_str(if *rapid { "move rapid" } else { "move linear" });
             axes_text(s, to);
             s.push_str(" f=");
             push_opt(s, *f, "-");
+            if *probe {
+                s.push_str(" probe");
+            }
         }
         Event::Arc { cw, plane, to, center, f } => {
             s.push_str(if *cw { "arc cw " } else { "arc ccw " });

@@ -43,11 +43,14 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
     s.push_str(ev.kind());
     s.push('"');
     match ev {
-        Event::Move { rapid, to, f } => {
+        Event::Move { rapid, to, f, probe } => {
             s.push_str(if *rapid { ",\"mode\":\"rapid\",\"to\":" } else { ",\"mode\":\"linear\",\"to\":" });
             axes_json(s, to);
             s.push_str(",\"f\":");
             push_opt(s, *f, "null");
+            if *probe {
+                s.push_str(",\"probe\":true");
+            }
         }
         Event::Arc { cw, plane, to, center, f } => {
             s.push_str(if *cw { ",\"dir\":\"cw\",\"plane\":\"" } else { ",\"dir\":\"ccw\",\"plane\":\"" });

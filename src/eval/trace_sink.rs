@@ -37,7 +37,7 @@ impl GridMove {
                 *slot = Some(self.to[i] as f64 / 1000.0);
             }
         }
-        Event::Move { rapid: self.rapid, to, f: self.f.map(|f| f.0) }
+        Event::Move { rapid: self.rapid, to, f: self.f.map(|f| f.0), probe: false }
     }
 }
 

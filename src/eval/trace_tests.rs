@@ -7,7 +7,7 @@ fn json_of_a_move_follows_the_spec() {
     let mut to = [None; 9];
     to[0] = Some(10.0);
     to[2] = Some(-0.5);
-    let ev = Event::Move { rapid: false, to, f: Some(300.0) };
+    let ev = Event::Move { rapid: false, to, f: Some(300.0), probe: false };
     assert_eq!(json_line(&ev, Some(3)), r#"{"ev":"move","mode":"linear","to":{"X":10,"Z":-0.5},"f":300,"line":3}"#);
     assert_eq!(text_line(&ev), "move linear X=10 Z=-0.5 f=300");
 }

@@ -93,7 +93,9 @@ pub fn run_file_expanding(path: &Path, extra: &[&str], max_steps: u64, expand: b
         inputs.push(eval::parse_input(e).expect("valid input"));
     }
     let expand_cycles = expand.then(|| nctrans::config::Config::default().cycle_retracts(dialect));
-    let opts = RunOptions { max_steps, inputs, expand_cycles, ..Default::default() };
+    // The header's probe inputs (`nctrans: probe`) too, as `nctrans run` reads them.
+    let probes = eval::header_probes(&text).expect("valid header probe inputs");
+    let opts = RunOptions { max_steps, inputs, expand_cycles, probes, ..Default::default() };
     let mut callees = eval::DirCallees { semantics: None };
     let outcome = eval::run(&mut db, &parsed.unit, &mut callees, &opts, &mut sink);
     Ran { sink, outcome, db, parse_errors: None }

@@ -591,7 +591,7 @@ pub fn unfinished(t: &Translation, opts: &translate::Options, to: Dialect) -> Op
             ]
         }),
         Dialect::Sinumerik => {
-            let warned = t.diags.iter().any(|d| d.code.starts_with("NC3"));
+            let warned = t.diags.iter().any(|d| d.code.starts_with("NC3") || nctrans::unfinished::is_marked(d));
             (warned && opts.sinumerik.unsupported == UnsupportedPolicy::Warn).then(|| {
                 [
                     "not verified: the output is unfinished (blocks marked NCTRANS UNSUPPORTED; it alarms on its first line)"

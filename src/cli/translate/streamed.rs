@@ -474,7 +474,7 @@ fn to_sinumerik_from(
             return Ok(Some(code));
         }
     }
-    let warned = done.diags.iter().any(|d| d.code.starts_with("NC3"));
+    let warned = done.diags.iter().any(|d| d.code.starts_with("NC3") || nctrans::unfinished::is_marked(d));
     let mut code = ExitCode::SUCCESS;
     if req.verify {
         // Shown under the name the whole path gives the translation.

@@ -147,7 +147,7 @@ impl Writer {
             return;
         }
         self.pos[self.axis] = Some(level);
-        self.out.push(Event::Move { rapid: f.is_none(), to: self.pos, f });
+        self.out.push(Event::Move { rapid: f.is_none(), to: self.pos, f, probe: false });
     }
     fn rapid(&mut self, level: f64) {
         self.go(level, None);

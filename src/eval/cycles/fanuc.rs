@@ -226,7 +226,7 @@ pub fn holes(
         if cw.plane.iter().any(Option::is_some) {
             // The positioning to the hole: a rapid at the level the tool stands at (the
             // same move a Sinumerik positioning block makes before its modal cycle).
-            out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None }, span));
+            out.push((Event::Move { rapid: true, to: m.trace_pos(), f: None, probe: false }, span));
         }
         let start = m.trace_pos();
         m.pos[n] = match retract {

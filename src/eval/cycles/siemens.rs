@@ -293,7 +293,7 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     if before {
         m.pos[n] = rtp;
         m.applied[n] = off;
-        out.push(Event::Move { rapid: true, to: m.trace_pos(), f: None });
+        out.push(Event::Move { rapid: true, to: m.trace_pos(), f: None, probe: false });
     }
     let at = [(u, clean(m.pos[u])), (v, clean(m.pos[v]))];
     let tapping = match c {
@@ -313,7 +313,7 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     m.pos[n] = rtp;
     m.applied[n] = off;
     if after {
-        out.push(Event::Move { rapid: true, to: m.trace_pos(), f: None });
+        out.push(Event::Move { rapid: true, to: m.trace_pos(), f: None, probe: false });
     }
     Ok(())
 }

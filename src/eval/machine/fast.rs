@@ -158,6 +158,6 @@ impl Machine {
     #[inline]
     pub fn move_event(&self) -> Event {
         let rapid = self.modal.motion == Motion::Rapid;
-        Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }
+        Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe: false }
     }
 }

@@ -477,9 +477,10 @@ impl Machine {
             Some(center) => {
                 out.push((Event::Arc { cw, plane: self.modal.plane, to: self.trace_pos(), center, f: self.feed }, span))
             }
-            None => {
-                out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span))
-            }
+            None => out.push((
+                Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe: false },
+                span,
+            )),
         }
         Ok(true)
     }

@@ -45,10 +45,11 @@ impl Machine {
         r: Option<(&WordVal, f64)>,
         ar: Option<f64>,
         g53: bool,
-        probe: bool,
+        probe_n: Option<usize>,
         out: &mut Vec<(Event, Span)>,
         span: Span,
     ) -> Result<bool, Fault> {
+        let probe = probe_n.is_some();
         let any_axis = axes.iter().any(Option::is_some);
         let arc_mode = matches!(self.modal.motion, Motion::Cw | Motion::Ccw) && !g53 && !probe;
         let any_ijk = ijk.iter().any(Option::is_some);
@@ -60,15 +61,8 @@ impl Machine {
             let Some((w, x)) = a else { continue };
             target[i] = self.axis_target(i, self.length(w, *x, (3..6).contains(&i)), w.mode, g53);
         }
-        if probe {
-            if let Some(frac) = self.probe_contact {
-                // The skip signal stops the move part way; the skip position variables
-                // (#5061+, $AA_MW) read the stopping point, which is the new position.
-                for (t, from) in target.iter_mut().zip(self.pos) {
-                    *t = from + (*t - from) * frac;
-                }
-            }
-        }
+        // The probe input stops the move part way (`probe.rs`).
+        let hit = if probe { self.probe_stop(&mut target, span)? } else { None };
         let rapid = self.modal.motion == Motion::Rapid && !probe;
         if !rapid && self.feed.is_none() {
             return Err(Fault::alarm(self.alarms.no_feed, "feed motion without any feed programmed", span));
@@ -90,8 +84,13 @@ impl Machine {
             }
             if probe {
                 self.pos = target;
+                let programmed = axes.map(|a| a.is_some());
+                self.probe_record(hit, &programmed, probe_n);
             }
-            out.push((Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed } }, span));
+            out.push((
+                Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe },
+                span,
+            ));
             return Ok(any_axis);
         }
         let cw = self.modal.motion == Motion::Cw;

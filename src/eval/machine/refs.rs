@@ -124,7 +124,7 @@ impl Machine {
                         self.pos[i] = target[i];
                     }
                 }
-                out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+                out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None, probe: false }, span));
             }
         } else {
             for &i in named {
@@ -215,13 +215,13 @@ impl Machine {
                 self.pos[i] = via[i];
             }
         }
-        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None, probe: false }, span));
         for (i, a) in axes.iter().enumerate() {
             if a.is_some() {
                 self.pos[i] = target[i];
             }
         }
-        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None }, span));
+        out.push((Event::Move { rapid: true, to: self.trace_pos(), f: None, probe: false }, span));
         Ok(true)
     }
 

@@ -2,7 +2,7 @@
 //! and walkers are in [`crate::lower`].
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
-//! [`words`] (address words, calls, messages), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
+//! [`words`] (address words, calls, messages; around it [`probe`]: MEAS=1 → G31), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
 //! relative-equality rule, bracket depth), [`lower_structures`] (IF/WHILE/LOOP/FOR/REPEAT/CASE
 //! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
 //! [`labels`] (labels and N numbers → unique FANUC N numbers). The result is IR that the FANUC
@@ -23,6 +23,7 @@ pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
 pub mod polar;
+pub mod probe;
 pub mod rotation;
 pub mod varmap;
 pub mod words;
@@ -204,7 +205,9 @@ impl Ctx {
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     blocks::run(ctx, prog, info);
+    let measuring = probe::take(ctx, prog);
     words::run(ctx, prog, info);
+    probe::put(prog, &measuring);
     comp::run(ctx, prog, info);
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);

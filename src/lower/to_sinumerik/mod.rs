@@ -16,6 +16,7 @@
 //!    `FFWOF`, `CYCLE832(…)`.
 //!    `cycles::lower` — drilling cycles → `MCALL CYCLEnn(…)`, positions, `MCALL`.
 //!    Then `comp::lower` — G43 H / G49, G41 D / G40 → cutting edges `D1` / `D0`, G41/G40.
+//!    Then `probe::lower` — G31 → `MEAS=1 G1`, the skip position `#5061+` kept in DEF variables.
 //! 9. `words::lower` — decimal-point rule, G-code spellings, dwell, arcs, alarms, messages,
 //!    system variables.
 //! 10. `exprs::lower` — functions, bitwise operators, exact comparisons, variables by the map.
@@ -37,6 +38,7 @@ pub mod indirect;
 pub mod lookahead;
 pub mod modal;
 pub mod polar;
+pub mod probe;
 pub mod rotation;
 pub mod structures;
 pub mod tapping;
@@ -368,6 +370,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = haas_if::refuse(ctx, body);
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main, ctx.plan().start_inch, &setters);
+    let skip_axes = probe::scan(ctx, &body);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
     body = haas_if::restructure(body);
@@ -377,6 +380,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = lookahead::lower(ctx, body);
     body = cycles::lower(ctx, body);
     body = comp::lower(ctx, body);
+    body = probe::lower(ctx, body, skip_axes);
     body = words::lower(ctx, body);
     exprs::lower(ctx, body)
 }

@@ -445,6 +445,9 @@ pub fn verify<'a>(
         None => haas_target(map),
         other => other,
     };
+    // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
+    // reported by `run` on the source, here it gives none.
+    let probes = crate::eval::header_probes(&db.get(main.file).text).unwrap_or_default();
     let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
     let letters = passes::words::param_letters(params.len()).unwrap_or_default();
     let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
@@ -482,8 +485,13 @@ pub fn verify<'a>(
         b_in.extend(var_param_inputs(&params, map));
         a_in.extend(opts.set.iter().cloned());
         b_in.extend(opts.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
-        let run =
-            |inputs, semantics| RunOptions { max_steps: opts.max_steps, inputs, semantics, ..RunOptions::default() };
+        let run = |inputs, semantics| RunOptions {
+            max_steps: opts.max_steps,
+            inputs,
+            semantics,
+            probes: probes.clone(),
+            ..RunOptions::default()
+        };
         let callees = super::called::MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
         let a = Side {
             unit: align_source(main, map),

@@ -182,6 +182,13 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             return failed(db, vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
         }
     };
+    // Both programs meet the same probe inputs: the source's (`nctrans: probe`).
+    let probes = match crate::eval::header_probes(&db.get(fanuc_file).text) {
+        Ok(p) => p,
+        Err(e) => {
+            return failed(db, vec![Diagnostic::error("NC539", format!("bad `nctrans: probe` header line: {e}"))])
+        }
+    };
     in_a.extend(spec.extra_fanuc);
     in_b.extend(spec.extra_siemens);
     let files = tr
@@ -194,7 +201,13 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
     let a = Side {
         unit: fanuc.clone(),
         callees: spec.fanuc_callees,
-        run: RunOptions { inputs: in_a, max_steps, semantics: Some(profiles.fanuc.clone()), ..RunOptions::default() },
+        run: RunOptions {
+            inputs: in_a,
+            max_steps,
+            semantics: Some(profiles.fanuc.clone()),
+            probes: probes.clone(),
+            ..RunOptions::default()
+        },
     };
     let b = Side {
         unit: parsed.unit,
@@ -203,6 +216,7 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             inputs: in_b,
             max_steps,
             semantics: Some(profiles.sinumerik.clone()),
+            probes,
             ..RunOptions::default()
         },
     };
