@@ -148,6 +148,26 @@ fn mcall_cycles_become_a_fanuc_cycle_block_holes_and_g80() {
 }
 
 #[test]
+fn an_mcall_cycle_with_rtp_below_the_tool_positions_the_first_hole_then_approaches() {
+    // The Sinumerik cycle goes to the hole at the tool's level, then down to RTP; FANUC's
+    // initial level must be RTP, so the first hole is positioned, Z goes to RTP, and the
+    // cycle block drills there (it once approached RTP at the previous position: caught).
+    let body = "MCALL CYCLE81(10, 0, 2, -15)\nX10 Y10\nX30 Y10\nX30 Y30\nMCALL\n";
+    let t = to_fanuc(body);
+    let k = t.iter().position(|l| l == "X10. Y10.").expect("first hole positioned");
+    assert_eq!(t[k..k + 6], ["X10. Y10.", "G00 Z10.", "G98 G81 Z-15. R2.", "X30. Y10.", "X30. Y30.", "G80"]);
+    let src = scratch("mpf", &format!("{S_HEAD}{body}M30\n"));
+    let good = scratch("nc", "");
+    let (code, _, err) = nctrans(&[&src, "--to", "fanuc", "-o", &good, "--force"]);
+    assert_eq!(code, 0, "{err}");
+    let good = std::fs::read_to_string(&good).expect("translation");
+    let early = good.replacen("X10. Y10.\nG00 Z10.\n", "G00 Z10.\nX10. Y10.\n", 1);
+    assert_ne!(early, good);
+    let (code, report, _) = nctrans(&["check", &src, &scratch("nc", &early)]);
+    assert_ne!(code, 0, "an approach before the first hole was not caught:\n{report}");
+}
+
+#[test]
 fn sinumerik_cycles_without_an_exact_fanuc_form_are_refused() {
     // Rigid tapping with the spindle turning (S_HEAD has M3): tests/transpile_tapping.rs.
     assert!(refused_to_fanuc("CYCLE84(50, 0, 2, -16, , , 3, 8, , , 400)\n").contains("NC487"));

@@ -6,7 +6,8 @@
 //! must agree):
 //! - R = RFP + SDIS, Z = DP (or RFP − DPR); RTP = R → G99; RTP = the level the tool stands
 //!   at (its last Z in this block list) → G98, an RTP between that level and R first
-//!   positions Z there (`G0 Z<RTP>`, the approach the Sinumerik cycle makes);
+//!   positions Z there (`G0 Z<RTP>`, the approach the Sinumerik cycle makes: a direct call
+//!   where the tool is, under MCALL after the first hole's plane position);
 //! - DTB (s) → P (ms); CYCLE83 FDPR → Q with VARI 1 → G83, VARI 0 → G73 (SDIS 0, DAM 0);
 //! - tapping and boring (`cycles_tap.rs`): CYCLE84 → `M29 S` + G84/G74, CYCLE840 → G84/G74,
 //!   CYCLE85 → G85/G89 with F (the feed before written back after G80), CYCLE87/88 → G88;
@@ -336,7 +337,9 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                 out.push(block_stmt(vec![gw(0.0, span)], span));
                 motion = Some(0.0);
             }
-            if let Some(z) = f.approach {
+            // A direct call approaches RTP where the tool is; under MCALL the Sinumerik cycle
+            // positions the plane axes first and then approaches, so the first hole does.
+            if let (Some(z), false) = (f.approach, mcall) {
                 out.push(block_stmt(vec![gw(0.0, span), word(b'Z', mm(z, span), span)], span));
             }
             if mcall {
@@ -420,6 +423,16 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                                 // name it).
                                 out.push(meta_stmt(m, vec![]));
                             }
+                        }
+                        if let Some(z) = f.approach {
+                            // The first hole: positioned at the tool's level, then Z to RTP
+                            // (FANUC's initial level), then the cycle block drills there.
+                            let meta = std::mem::take(&mut b.meta);
+                            let (pos, rest): (Vec<Item>, Vec<Item>) =
+                                std::mem::take(&mut b.items).into_iter().partition(is_plane_position);
+                            out.push(meta_stmt(BlockMeta { span, ..meta }, pos));
+                            out.push(block_stmt(vec![gw(0.0, span), word(b'Z', mm(z, span), span)], span));
+                            b.items = rest;
                         }
                     }
                 }
@@ -541,4 +554,9 @@ fn is_tool_level(e: &Expr) -> bool {
         },
         _ => false,
     }
+}
+
+/// An X or Y word of a hole block: where the hole is in the plane.
+fn is_plane_position(it: &Item) -> bool {
+    matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'X') || w.addr.is(b'Y'))
 }
