@@ -17,8 +17,12 @@
 //! order they are commanded in, Sinumerik's additive frames in the order written, so a
 //! second mode while one is in force is refused. The mode in force at a cancel must be
 //! known from the program's text on every path (the modal scan, `State::rot`), and its
-//! values must be constants; a mode set or cancelled in a called program (the caller's is
-//! not known here), a G68 without a centre (the tool position) or an angle (parameter
+//! values must be constants. A called program starts with no mode in force where every
+//! call of it in the job is made so (`modal::frame_calls`); the programmable frame it
+//! writes stays in force after its return as FANUC's modes survive M99 (no `SAVE` on the
+//! PROC), and a caller knows its modes after the call only where the callee cancels what
+//! it set on every path to its ends. A mode set or cancelled in a called program
+//! otherwise (the caller's is not known here), a G68 without a centre (the tool position) or an angle (parameter
 //! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that leaves
 //! an axis of its G51.1 mirrored, and any of them under G91 are refused (NC497). A cancel of
 //! a mode not in force (G50 under G51.1) changes nothing, as on FANUC.
@@ -212,8 +216,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             return Ok(refused(
                 ctx,
                 span,
-                "G68, G51 or G51.1 while another of them may be in force, or in a called program",
-                "cancel each mode (G69, G50, G50.1) before the next, in the main program",
+                "G68, G51 or G51.1 while another of them may be in force (in a called program: at a call of it, or it is not called in the job)",
+                "cancel each mode (G69, G50, G50.1) before the next, and before each call of a program that sets one",
             ));
         }
         if modal.incremental_at(span.lo) != Some(false) || gs.contains(&910) {
@@ -288,8 +292,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             return Ok(refused(
                 ctx,
                 span,
-                "G69, G50 or G50.1 in a called program, or where the mode in force depends on the path taken (which one it cancels is not known here)",
-                "cancel the mode in the main program, on a path where one is in force",
+                "G69, G50 or G50.1 where the mode in force depends on the path taken, or follows a call of a program that may leave one in force, or in a called program some call of which is made in a mode (which one it cancels is not known here)",
+                "cancel a mode in the program that set it, on a path where it is in force",
             ))
         }
     };

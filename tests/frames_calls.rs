@@ -1,0 +1,129 @@
+//! Leftovers of issue #20: FANUC G68/G51/G51.1/G16 in called programs translated to
+//! Sinumerik where every call of the program is made without a mode in force
+//! (`modal::frame_calls`): a G65 macro that rotates a pocket about a centre and cancels
+//! the rotation before M99 runs alike on both controls, a planted wrong rotation sign or
+//! centre is caught, and the calls whose modes are not known are refused with NC497.
+
+use nctrans::check::Verdict;
+use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::read::LineEnding;
+use nctrans::span::SourceDb;
+use nctrans::translate::to_sinumerik::{translate as to_sinumerik, verify::verify_with, Options};
+
+const STEPS: u64 = 100_000;
+
+/// A machinist's job: the main program mills a pocket rotated by 30° about X60 Y40 through
+/// a G65 macro, a second one by 120°, then rotates a move of its own.
+const JOB: &str = "%\nO2110 (POCKETS ROTATED BY A MACRO)\nG17 G21 G40 G49 G80 G90\nG54 G00 X0. Y0. Z50.\n\
+G65 P9110 A20. B10.\nG65 P9111 A15. B8.\nG00 X0. Y0.\nG68 X10. Y10. R45.\nG01 X30. Y10. F200.\nG69\n\
+G00 X0. Y0. Z50.\nM30\n\
+O9110 (POCKET ROTATED 30 DEG ABOUT X60 Y40)\nG90 G68 X60. Y40. R30.\nG00 X[60.+#1] Y40.\nZ2.\n\
+G01 Z-3. F100.\nY[40.+#2]\nX[60.-#1]\nY[40.-#2]\nX[60.+#1]\nY40.\nG00 Z50.\nG69\nG00 X60. Y40.\nM99\n\
+O9111 (POCKET ROTATED 120 DEG ABOUT X60 Y40)\nG90 G68 X60. Y40. R120.\nG00 X[60.+#1] Y40.\nZ2.\n\
+G01 Z-3. F100.\nY[40.+#2]\nX[60.-#1]\nY40.\nG00 Z50.\nG69\nG00 X60. Y40.\nM99\n%\n";
+
+struct Job {
+    db: SourceDb,
+    id: nctrans::span::FileId,
+    unit: nctrans::ir::Unit,
+}
+
+fn parse(fanuc: &str) -> Job {
+    let mut db = SourceDb::new();
+    let id = db.add("job.nc", fanuc);
+    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    assert!(!nctrans::diag::has_errors(&p.diags), "{}", nctrans::diag::render(&db, &p.diags));
+    Job { db, id, unit: p.unit }
+}
+
+/// The translation's files and whether it is proven equivalent; `Err`: the error codes.
+fn translate(fanuc: &str) -> Result<Vec<(String, String)>, Vec<&'static str>> {
+    let j = parse(fanuc);
+    let t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
+    if t.has_errors() {
+        let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
+        codes.dedup();
+        return Err(codes);
+    }
+    let r = verify_with(&j.db, j.id, &j.unit, &t, "out", STEPS);
+    let files: Vec<(String, String)> = t.files.iter().map(|f| (f.name.clone(), f.text.clone())).collect();
+    assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{files:?}", r.verdict, r.diff);
+    Ok(files)
+}
+
+/// Whether the translation of `fanuc` with `from` replaced by `to` in its file `name`
+/// still runs like the source.
+fn planted_equivalent(fanuc: &str, name: &str, from: &str, to: &str) -> bool {
+    let j = parse(fanuc);
+    let mut t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
+    let f = t.files.iter_mut().find(|f| f.name == name).unwrap_or_else(|| panic!("no file {name}"));
+    assert!(f.text.contains(from), "{from:?} not in\n{}", f.text);
+    f.text = f.text.replacen(from, to, 1);
+    let r = verify_with(&j.db, j.id, &j.unit, &t, "out", STEPS);
+    matches!(r.verdict, Verdict::Equivalent { .. })
+}
+
+fn file<'a>(files: &'a [(String, String)], name: &str) -> &'a str {
+    &files.iter().find(|f| f.0 == name).unwrap_or_else(|| panic!("no {name} in {files:?}")).1
+}
+
+#[test]
+fn a_macro_that_rotates_a_pocket_and_cancels_translates_and_runs_alike() {
+    let files = translate(JOB).expect("translated");
+    let m = file(&files, "O_9110.SPF");
+    for line in ["ATRANS X60 Y40\nAROT RPL=30\nATRANS X-60 Y-40\n", "ATRANS X60 Y40\nAROT RPL=-30\nATRANS X-60 Y-40\n"]
+    {
+        assert!(m.contains(line), "{line:?} missing in\n{m}");
+    }
+    // The caller knows its modes after both calls: its own G68/G69 translate.
+    let main = &files[0].1;
+    assert!(main.contains("AROT RPL=45") && main.contains("AROT RPL=-45"), "{main}");
+}
+
+#[test]
+fn a_wrong_rotation_sign_or_centre_in_the_macro_is_caught() {
+    for (from, to) in
+        [("AROT RPL=30", "AROT RPL=-30"), ("ATRANS X60 Y40", "ATRANS X40 Y60"), ("AROT RPL=-30", "AROT RPL=30")]
+    {
+        assert!(!planted_equivalent(JOB, "O_9110.SPF", from, to), "planted {from:?} → {to:?} not caught");
+    }
+}
+
+#[test]
+fn a_rotation_left_in_force_at_m99_stays_in_force_in_the_caller_on_both() {
+    // O9110 leaves G68 on: the caller's moves after the call run rotated on FANUC, and the
+    // frame the PROC wrote stays on Sinumerik (no SAVE).
+    let job = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\nG65 P9110\nG01 X80. Y40. F100.\nG00 X0. Y0.\nM30\n\
+O9110\nG90 G68 X60. Y40. R30.\nG00 X70. Y40.\nM99\n%\n";
+    translate(job).expect("translated");
+    // The caller cannot cancel what it does not know is in force.
+    let cancel = job.replace("G00 X0. Y0.\nM30", "G69\nG00 X0. Y0.\nM30");
+    assert_eq!(translate(&cancel).unwrap_err(), ["NC497"]);
+}
+
+#[test]
+fn calls_whose_modes_are_not_known_are_refused() {
+    // A call made while G68 is in force: the macro's G68 would replace it on FANUC.
+    let in_mode = JOB.replace("G65 P9110 A20. B10.", "G68 X0. Y0. R10.\nG65 P9110 A20. B10.\nG69");
+    assert_eq!(translate(&in_mode).unwrap_err(), ["NC497"]);
+    // A macro no call in the job reaches (translated alone) does not know its caller's mode.
+    let alone = "%\nO9110\nG90 G68 X60. Y40. R30.\nG00 X70. Y40.\nG69\nG00 X0. Y0.\nM99\n%\n";
+    assert_eq!(translate(alone).unwrap_err(), ["NC497"]);
+    // A centre from the macro's arguments is not a constant (the cancel needs the values).
+    let args = JOB.replace("G90 G68 X60. Y40. R30.", "G90 G68 X#24 Y#25 R30.");
+    assert!(translate(&args).unwrap_err().contains(&"NC497"));
+}
+
+#[test]
+fn mirror_scaling_and_polar_coordinates_in_a_subprogram_follow_the_same_rule() {
+    let job = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\nM98 P9120\nG00 X0. Y0.\nM98 P9121\nG00 X0. Y0.\nM30\n\
+O9120\nG90 G51.1 X50.\nG00 X70. Y10.\nG01 X80. Y20. F100.\nG50.1 X0.\nG00 X0. Y0.\nM99\n\
+O9121\nG90 G51 X50. Y50. P500\nG00 X70. Y10.\nG01 X80. Y20. F100.\nG50\nG00 X0. Y0.\nM99\n%\n";
+    let files = translate(job).expect("translated");
+    assert!(file(&files, "O_9120.SPF").contains("AMIRROR X0"), "{files:?}");
+    assert!(file(&files, "O_9121.SPF").contains("ASCALE X0.5 Y0.5"), "{files:?}");
+    // A subprogram that leaves G16 on: the caller's next move is not known to be polar.
+    let polar = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\nM98 P9122\nG00 X40. Y30.\nM30\n\
+O9122\nG90 G16\nG00 X40. Y30.\nM99\n%\n";
+    assert_eq!(translate(polar).unwrap_err(), ["NC497"]);
+}
