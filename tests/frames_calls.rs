@@ -38,8 +38,12 @@ fn parse(fanuc: &str) -> Job {
 
 /// The translation's files and whether it is proven equivalent; `Err`: the error codes.
 fn translate(fanuc: &str) -> Result<Vec<(String, String)>, Vec<&'static str>> {
+    translate_with(fanuc, &Options::default())
+}
+
+fn translate_with(fanuc: &str, opts: &Options) -> Result<Vec<(String, String)>, Vec<&'static str>> {
     let j = parse(fanuc);
-    let t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
+    let t = to_sinumerik(&[&j.unit], opts, LineEnding::Lf);
     if t.has_errors() {
         let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
         codes.dedup();
@@ -54,8 +58,12 @@ fn translate(fanuc: &str) -> Result<Vec<(String, String)>, Vec<&'static str>> {
 /// Whether the translation of `fanuc` with `from` replaced by `to` in its file `name`
 /// still runs like the source.
 fn planted_equivalent(fanuc: &str, name: &str, from: &str, to: &str) -> bool {
+    planted_with(fanuc, &Options::default(), name, from, to)
+}
+
+fn planted_with(fanuc: &str, opts: &Options, name: &str, from: &str, to: &str) -> bool {
     let j = parse(fanuc);
-    let mut t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
+    let mut t = to_sinumerik(&[&j.unit], opts, LineEnding::Lf);
     let f = t.files.iter_mut().find(|f| f.name == name).unwrap_or_else(|| panic!("no file {name}"));
     assert!(f.text.contains(from), "{from:?} not in\n{}", f.text);
     f.text = f.text.replacen(from, to, 1);
@@ -109,9 +117,13 @@ fn calls_whose_modes_are_not_known_are_refused() {
     // A macro no call in the job reaches (translated alone) does not know its caller's mode.
     let alone = "%\nO9110\nG90 G68 X60. Y40. R30.\nG00 X70. Y40.\nG69\nG00 X0. Y0.\nM99\n%\n";
     assert_eq!(translate(alone).unwrap_err(), ["NC497"]);
-    // A centre from the macro's arguments is not a constant (the cancel needs the values).
+    // A centre from the macro's arguments, which may be vacant for a caller not in the job
+    // (the word is then left out: the tool position is the centre).
     let args = JOB.replace("G90 G68 X60. Y40. R30.", "G90 G68 X#24 Y#25 R30.");
     assert!(translate(&args).unwrap_err().contains(&"NC497"));
+    // A system variable read by the G68 is refused.
+    let sys = JOB.replace("G90 G68 X60. Y40. R30.", "G90 G68 X#5001 Y40. R30.");
+    assert!(translate(&sys).unwrap_err().contains(&"NC497"));
 }
 
 #[test]
@@ -126,4 +138,53 @@ O9121\nG90 G51 X50. Y50. P500\nG00 X70. Y10.\nG01 X80. Y20. F100.\nG50\nG00 X0. 
     let polar = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\nM98 P9122\nG00 X40. Y30.\nM30\n\
 O9122\nG90 G16\nG00 X40. Y30.\nM99\n%\n";
     assert_eq!(translate(polar).unwrap_err(), ["NC497"]);
+}
+
+/// The machinist's macro: a pocket rotated by R about X Y, all given by the G65 call.
+const ARGS_JOB: &str = "%\nO2111\nG17 G21 G40 G49 G80 G90\nG54 G00 X0. Y0. Z50.\n\
+G65 P9112 X60. Y40. R30. A20. B10.\nG65 P9112 X60. Y40. R120. A20. B10.\nG00 X0. Y0.\nM30\n\
+O9112\nG90 G68 X#24 Y#25 R#18\nG00 X[#24+#1] Y#25\nZ2.\nG01 Z-3. F100.\nY[#25+#2]\nX[#24-#1]\n\
+Y[#25-#2]\nX[#24+#1]\nY#25\nG00 Z50.\nG69\nG00 X#24 Y#25\nM99\n%\n";
+
+#[test]
+fn a_macro_rotating_by_its_arguments_translates_for_the_calls_seen() {
+    // With the macro written for the calls of the job, the arguments are surely given: the
+    // G68 words are saved at the G68 and its G69 turns back by the saved values.
+    let opts = Options { specialise_callers: true, ..Options::default() };
+    let files = translate_with(ARGS_JOB, &opts).expect("translated");
+    let m = file(&files, "O_9112.SPF");
+    for line in [
+        "NCTRANS_G68_R=ARG_R\n",
+        "AROT RPL=NCTRANS_G68_R\n",
+        "ATRANS X=NCTRANS_G68_X Y=NCTRANS_G68_Y\n",
+        "AROT RPL=-NCTRANS_G68_R\n",
+    ] {
+        assert!(m.contains(line), "{line:?} missing in\n{m}");
+    }
+    for (from, to) in [
+        ("AROT RPL=NCTRANS_G68_R", "AROT RPL=-NCTRANS_G68_R"),
+        ("NCTRANS_G68_X=ARG_X", "NCTRANS_G68_X=ARG_Y"),
+        ("AROT RPL=-NCTRANS_G68_R", "AROT RPL=NCTRANS_G68_R"),
+    ] {
+        assert!(!planted_with(ARGS_JOB, &opts, "O_9112.SPF", from, to), "planted {from:?} → {to:?} not caught");
+    }
+}
+
+#[test]
+fn a_rotation_by_variables_is_undone_by_the_values_it_was_set_with() {
+    // #1 changes between G68 and G69: FANUC's G69 cancels the rotation in force whatever
+    // #1 holds then; the translation turns back by the saved angle.
+    let p = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\n#1=30.\n#2=60.\nG68 X#2 Y40. R[#1*2]\n\
+G01 X80. Y40. F100.\n#1=50.\n#2=0.\nG69\nG00 X0. Y0.\nG68 X#2 Y0. R#1\nG01 X20. Y0.\nG69\nG00 X0. Y0.\nM30\n%\n";
+    let files = translate(p).expect("translated");
+    let main = &files[0].1;
+    assert!(main.contains("NCTRANS_G68_R=LOC1*2\n"), "{main}");
+    for (from, to) in [
+        ("AROT RPL=-NCTRANS_G68_R", "AROT RPL=-LOC1*2"),
+        // The shift back of the first G69 (the first ATRANS back is at the G68, where #2
+        // still holds the centre).
+        ("AROT RPL=-NCTRANS_G68_R\nATRANS X=-NCTRANS_G68_X", "AROT RPL=-NCTRANS_G68_R\nATRANS X=-LOC2"),
+    ] {
+        assert!(!planted_equivalent(p, &files[0].0, from, to), "planted {from:?} → {to:?} not caught");
+    }
 }

@@ -36,7 +36,9 @@ pub type Out = super::frames::Split;
 
 /// A mode as constants: the centre (axis letter, mm) and what it does there.
 enum Mode {
-    Rotate(Vec<(u8, f64)>, f64),
+    /// The centre and the angle: constants, or the variables ([`saved`]) that hold the
+    /// value of an expression at the G68.
+    Rotate(Vec<(u8, Expr)>, Expr),
     Scale(Vec<(u8, f64, f64)>),
     Mirror(Vec<(u8, f64)>),
 }
@@ -67,15 +69,48 @@ fn has_point(e: &Expr) -> bool {
     }
 }
 
-/// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors.
-fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode, &'static str> {
+/// The Siemens variable that holds a G68 word `l` of an expression: the value at the G68,
+/// which its cancel turns back by whatever the FANUC variables hold then.
+fn saved(l: u8) -> String {
+    format!("NCTRANS_G68_{}", l as char)
+}
+
+/// Whether `e` reads only user variables and numbers (a system variable read at the G68
+/// may have another value where the translation saves it).
+fn plain(e: &Expr) -> bool {
+    let own = match &e.kind {
+        ExprKind::Var(v) => matches!(v.kind, VarKind::Hash(n) if (1..=33).contains(&n) || (100..=199).contains(&n) || (500..=999).contains(&n)),
+        ExprKind::Num(_) | ExprKind::Unary(..) | ExprKind::Binary(..) | ExprKind::Func(..) => true,
+        _ => false,
+    };
+    own && e.children().into_iter().all(plain)
+}
+
+/// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors
+/// (a G68 also by expressions, as the variables that save them; `exprs` gets each with its
+/// variable's name).
+fn mode_of(
+    ctx: &Ctx,
+    items: &[Item],
+    g: u32,
+    inch: Option<bool>,
+    saves: &mut Vec<(String, Expr)>,
+) -> Result<Mode, &'static str> {
     let mut centre: Vec<(u8, f64)> = Vec::new();
     let mut extra: Vec<(u8, f64)> = Vec::new();
+    let mut exprs: Vec<(u8, Expr)> = Vec::new();
     for it in items {
         match letter_of(it) {
             Some((b'G', _)) if g_of(it) == Some(g) || matches!(g_of(it), Some(900 | 170 | 180 | 190)) => {}
+            Some((l, e)) if g == 680 && b"XYZR".contains(&l) && literal(e).is_none() => {
+                if !plain(e) {
+                    return Err("a centre or angle that reads a system variable");
+                }
+                saves.push((saved(l), e.clone()));
+                exprs.push((l, named(&saved(l), e.span)));
+            }
             Some((l, e)) if b"XYZ".contains(&l) || (g == 680 && l == b'R') || (g == 510 && b"PIJK".contains(&l)) => {
-                let Some(v) = literal(e) else { return Err("a centre, angle or factor that is not a constant") };
+                let Some(v) = literal(e) else { return Err("a centre or factor that is not a constant") };
                 let v = if has_point(e) {
                     v
                 } else if l == b'R' {
@@ -101,9 +136,15 @@ fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode
     }
     match g {
         680 => {
-            let Some(&(_, a)) = extra.iter().find(|e| e.0 == b'R') else {
+            let span = items.first().map_or(Span::default(), |it| it.span);
+            let mut all: Vec<(u8, Expr)> = centre.iter().map(|&(l, v)| (l, num(v, span))).collect();
+            all.extend(extra.iter().filter(|e| e.0 == b'R').map(|&(l, v)| (l, num(v, span))));
+            all.extend(exprs);
+            let Some(a) = all.iter().find(|e| e.0 == b'R').map(|e| e.1.clone()) else {
                 return Err("G68 without R (the angle is then machine parameter 5410)");
             };
+            let mut centre: Vec<(u8, Expr)> = all.into_iter().filter(|e| e.0 != b'R').collect();
+            centre.sort_by_key(|e| e.0);
             if centre.len() != 2 {
                 return Err("G68 without its centre in both axes of the plane (the tool position is then the centre)");
             }
@@ -133,20 +174,33 @@ fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode
     }
 }
 
-fn shift(centre: &[(u8, f64)], sign: f64, span: Span) -> Vec<Word> {
+fn is_zero(e: &Expr) -> bool {
+    literal(e) == Some(0.0)
+}
+
+/// `e`, or its negation (a number negated, an expression as `-(e)`).
+fn signed(e: &Expr, sign: f64) -> Expr {
+    match literal(e) {
+        Some(v) => num(sign * v, e.span),
+        None if sign < 0.0 => Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e.clone())), e.span),
+        None => e.clone(),
+    }
+}
+
+fn shift(centre: &[(u8, Expr)], sign: f64, span: Span) -> Vec<Word> {
     centre
         .iter()
-        .filter(|c| c.1 != 0.0)
-        .map(|&(l, v)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(sign * v, span)), span })
+        .filter(|c| !is_zero(&c.1))
+        .map(|(l, v)| Word { addr: Addr::Letter(*l), value: WordValue::Expr(signed(v, sign)), span })
         .collect()
 }
 
 /// The instructions that set `mode` (`undo`: that take it back).
 fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
-    let (centre, inner): (Vec<(u8, f64)>, Stmt) = match mode {
+    let (centre, inner): (Vec<(u8, Expr)>, Stmt) = match mode {
         Mode::Rotate(c, a) => {
-            let a = if undo { -*a } else { *a };
-            let rpl = Word { addr: Addr::Name("RPL".into()), value: WordValue::Expr(num(a, span)), span };
+            let a = signed(a, if undo { -1.0 } else { 1.0 });
+            let rpl = Word { addr: Addr::Name("RPL".into()), value: WordValue::Expr(a), span };
             (c.clone(), frame("AROT", vec![rpl], span))
         }
         Mode::Scale(axes) => {
@@ -164,16 +218,16 @@ fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
                     Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }
                 })
                 .collect();
-            (axes.iter().map(|&(l, c, _)| (l, c)).collect(), frame("ASCALE", words, span))
+            (axes.iter().map(|&(l, c, _)| (l, num(c, span))).collect(), frame("ASCALE", words, span))
         }
         Mode::Mirror(c) => {
             // The value of a mirror word is not read; 0 as the manuals write it.
             let words =
                 c.iter().map(|&(l, _)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(0.0, span)), span });
-            (c.clone(), frame("AMIRROR", words.collect(), span))
+            (c.iter().map(|&(l, v)| (l, num(v, span))).collect(), frame("AMIRROR", words.collect(), span))
         }
     };
-    let about_origin = centre.iter().all(|c| c.1 == 0.0);
+    let about_origin = centre.iter().all(|c| is_zero(&c.1));
     let mut out = Vec::new();
     if !about_origin {
         out.push(frame("ATRANS", shift(&centre, 1.0, span), span));
@@ -228,7 +282,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 "write it under G90: `G90 G68 X.. Y.. R..`",
             ));
         }
-        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo)) {
+        let mut saves = Vec::new();
+        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo), &mut saves) {
             Err(what) => {
                 // The message names the G code first (a marked line under --unsupported warn).
                 let label = match g {
@@ -250,6 +305,13 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 if !modes.is_empty() || meta.number.is_some() || meta.label.is_some() || !meta.comments.is_empty() {
                     after.push(block_stmt(meta, modes));
                 }
+                for (name, e) in saves {
+                    let plan = &mut ctx.progs[ctx.cur];
+                    if !plan.defs.iter().any(|d| d.0 == name) {
+                        plan.defs.push((name.clone(), DataType::Real));
+                    }
+                    after.push(plain_block(vec![assign(named_ref(&name, e.span), e, span)], span));
+                }
                 after.extend(sequence(&mode, false, span));
                 Out { before: Vec::new(), block: None, after }
             }
@@ -267,7 +329,7 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             if !gs_set.contains(&set) {
                 // A cancel of another mode than the one in force: FANUC changes nothing.
                 Vec::new()
-            } else { match mode_of(ctx, items, set, modal.inch_at(lo)) {
+            } else { match mode_of(ctx, items, set, modal.inch_at(lo), &mut Vec::new()) {
                 Ok(Mode::Mirror(c)) => {
                     // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
                     let named: Vec<u8> =
