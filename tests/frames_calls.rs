@@ -188,3 +188,25 @@ G01 X80. Y40. F100.\n#1=50.\n#2=0.\nG69\nG00 X0. Y0.\nG68 X#2 Y0. R#1\nG01 X20. 
         assert!(!planted_equivalent(p, &files[0].0, from, to), "planted {from:?} → {to:?} not caught");
     }
 }
+
+#[test]
+fn the_corpus_job_matches_its_committed_translation_and_plants_are_caught() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let src = std::fs::read_to_string(root.join("corpus/in/fanuc/g68-macro-rotated-pockets.nc")).expect("source");
+    let files = translate(&src).expect("translated");
+    for (name, text) in &files {
+        let committed = root.join("corpus/out/sinumerik/g68-macro-rotated-pockets").join(name);
+        let committed = std::fs::read_to_string(&committed).unwrap_or_else(|e| panic!("{}: {e}", committed.display()));
+        // The committed file's header names the input path; the programs follow it.
+        let body = |t: &str| t.lines().filter(|l| !l.starts_with("; Translated by")).collect::<Vec<_>>().join("\n");
+        assert_eq!(body(&committed), body(text), "{name}");
+    }
+    for (name, from, to) in [
+        ("O_9120.SPF", "AROT RPL=30", "AROT RPL=-30"),
+        ("O_9120.SPF", "ATRANS X-60 Y-40", "ATRANS X-40 Y-60"),
+        ("O_2120.MPF", "AROT RPL=NCTRANS_G68_R", "AROT RPL=-NCTRANS_G68_R"),
+        ("O_2120.MPF", "NCTRANS_G68_R=LOC10", "NCTRANS_G68_R=LOC10+120"),
+    ] {
+        assert!(!planted_equivalent(&src, name, from, to), "planted {from:?} → {to:?} in {name} not caught");
+    }
+}

@@ -79,7 +79,9 @@ fn saved(l: u8) -> String {
 /// may have another value where the translation saves it).
 fn plain(e: &Expr) -> bool {
     let own = match &e.kind {
-        ExprKind::Var(v) => matches!(v.kind, VarKind::Hash(n) if (1..=33).contains(&n) || (100..=199).contains(&n) || (500..=999).contains(&n)),
+        ExprKind::Var(v) => {
+            matches!(v.kind, VarKind::Hash(n) if (1..=33).contains(&n) || (100..=199).contains(&n) || (500..=999).contains(&n))
+        }
         ExprKind::Num(_) | ExprKind::Unary(..) | ExprKind::Binary(..) | ExprKind::Func(..) => true,
         _ => false,
     };
