@@ -17,7 +17,9 @@
 //! order they are commanded in, Sinumerik's additive frames in the order written, so a
 //! second mode while one is in force is refused. The mode in force at a cancel must be
 //! known from the program's text on every path (the modal scan, `State::rot`), and its
-//! values must be constants. A called program starts with no mode in force where every
+//! values must be constants, except a G68's: a word of user variables is saved at the G68
+//! in `NCTRANS_G68_<axis>` (DEF REAL), which the cancel reads, so the G69 turns back by the
+//! values the rotation was set with, as FANUC's. A called program starts with no mode in force where every
 //! call of it in the job is made so (`modal::frame_calls`); the programmable frame it
 //! writes stays in force after its return as FANUC's modes survive M99 (no `SAVE` on the
 //! PROC), and a caller knows its modes after the call only where the callee cancels what
