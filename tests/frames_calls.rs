@@ -10,6 +10,9 @@ use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, verify::verify_with, Options};
 
+#[path = "support/frame_check.rs"]
+mod frame_check;
+
 const STEPS: u64 = 100_000;
 
 /// A machinist's job: the main program mills a pocket rotated by 30° about X60 Y40 through
@@ -208,5 +211,58 @@ fn the_corpus_job_matches_its_committed_translation_and_plants_are_caught() {
         ("O_2120.MPF", "NCTRANS_G68_R=LOC10", "NCTRANS_G68_R=LOC10+120"),
     ] {
         assert!(!planted_equivalent(&src, name, from, to), "planted {from:?} → {to:?} in {name} not caught");
+    }
+}
+
+/// Sinumerik → FANUC: the ATRANS / AROT / ATRANS rotation about a centre in the one plane
+/// G18 or G19 a main program selects first.
+mod sequences_in_other_planes {
+    use super::*;
+    use nctrans::translate::{self, TranslateOptions};
+
+    use super::frame_check;
+
+    fn s_to_f(siemens: &str) -> Result<String, Vec<&'static str>> {
+        let mut db = SourceDb::new();
+        let s = frame_check::load(&mut db, siemens, Dialect::Sinumerik);
+        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        if !t.ok() {
+            let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
+            codes.dedup();
+            return Err(codes);
+        }
+        let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
+        assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
+        Ok(t.text)
+    }
+
+    const G18: &str = "G18 G90 G54 G0 X0 Y0 Z0\nATRANS X20 Z10\nAROT RPL=30\nATRANS X-20 Z-10\n\
+G1 X40 Z10 F100\nG2 X20 Z30 CR=20\nATRANS X20 Z10\nAROT RPL=-30\nATRANS X-20 Z-10\nG0 X0 Z0\nM30\n";
+    const G19: &str = "G19 G90 G54 G0 X0 Y0 Z0\nATRANS Y15 Z5\nAROT RPL=45\nATRANS Y-15 Z-5\n\
+G1 Y40 Z5 F100\nATRANS Y15 Z5\nAROT RPL=-45\nATRANS Y-15 Z-5\nG0 Y0 Z0\nM30\n";
+
+    #[test]
+    fn a_rotation_about_a_centre_in_g18_or_g19_becomes_g68_in_that_plane() {
+        for (src, g68) in [(G18, "G68 Z10. X20. R30.\n"), (G19, "G68 Y15. Z5. R45.\n")] {
+            let out = s_to_f(src).expect("translated");
+            assert!(out.contains(g68) && out.contains("G69\n"), "{g68:?} missing in\n{out}");
+            for (from, to) in [
+                (g68.to_string(), g68.replace("R", "R-")),
+                (g68.to_string(), g68.replace("Z10. X20.", "Z20. X10.").replace("Y15. Z5.", "Y5. Z15.")),
+            ] {
+                let bad = out.replacen(&from, &to, 1);
+                assert!(!frame_check::equivalent(&bad, src), "planted {from:?} → {to:?} not caught\n{bad}");
+            }
+        }
+    }
+
+    #[test]
+    fn where_the_plane_is_not_known_the_sequence_stays_refused() {
+        // Two planes in the program: the plane of the block is not known from its text.
+        let mixed = G18.replace("G0 X0 Z0\nM30", "G17\nG0 X0 Y0\nM30");
+        assert!(s_to_f(&mixed).is_err());
+        // Before the plane word (the program starts in G17 there).
+        let before = "G90 G54 G0 X0 Y0 Z0\nATRANS X20 Z10\nAROT RPL=30\nATRANS X-20 Z-10\nG18\nG1 X40 Z10 F100\nM30\n";
+        assert!(s_to_f(before).is_err());
     }
 }
