@@ -266,3 +266,12 @@ G1 Y40 Z5 F100\nATRANS Y15 Z5\nAROT RPL=-45\nATRANS Y-15 Z-5\nG0 Y0 Z0\nM30\n";
         assert!(s_to_f(before).is_err());
     }
 }
+
+#[test]
+fn a_constant_expression_in_g68_is_written_as_it_stands() {
+    let p = "%\nO1\nG17 G21 G90 G54 G00 X0. Y0. Z50.\nG68 X10. Y0. R[90./3.]\nG01 X80. Y40. F100.\nG69\nG00 X0. Y0.\nM30\n%\n";
+    let files = translate(p).expect("translated");
+    let main = &files[0].1;
+    assert!(main.contains("AROT RPL=90/3\n") && main.contains("AROT RPL=-(90/3)\n"), "{main}");
+    assert!(!main.contains("NCTRANS_G68"), "{main}");
+}

@@ -77,6 +77,11 @@ fn saved(l: u8) -> String {
     format!("NCTRANS_G68_{}", l as char)
 }
 
+/// Whether `e` reads a variable.
+fn reads_var(e: &Expr) -> bool {
+    matches!(e.kind, ExprKind::Var(_)) || e.children().into_iter().any(reads_var)
+}
+
 /// Whether `e` reads only user variables and numbers (a system variable read at the G68
 /// may have another value where the translation saves it).
 fn plain(e: &Expr) -> bool {
@@ -110,8 +115,13 @@ fn mode_of(
                 if !plain(e) {
                     return Err("a centre or angle that reads a system variable");
                 }
-                saves.push((saved(l), e.clone()));
-                exprs.push((l, named(&saved(l), e.span)));
+                if reads_var(e) {
+                    saves.push((saved(l), e.clone()));
+                    exprs.push((l, named(&saved(l), e.span)));
+                } else {
+                    // A constant expression (`R[90./3]`) is the same at the cancel.
+                    exprs.push((l, e.clone()));
+                }
             }
             Some((l, e)) if b"XYZ".contains(&l) || (g == 680 && l == b'R') || (g == 510 && b"PIJK".contains(&l)) => {
                 let Some(v) = literal(e) else { return Err("a centre or factor that is not a constant") };
