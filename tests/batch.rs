@@ -426,12 +426,16 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
     ("O_2001.mpf", "NC445"), // g52-pockets-g28-tool-changes.nc, translated since G43 is: its frames (passes::frames)
+    // g68-macro-rotated-pockets.nc: the frame sequence of a called program (to FANUC in main
+    // programs only) and one whose angle is a variable (NCTRANS_G68_R; constants only).
+    ("O_9120.spf", "NC316"),
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
-    ("P_G65_REPEAT_L.mpf", "NC303"), // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"), // MCALL
-    ("P_M98_SUBPROGRAM.mpf", "NC303"), // a repeated call with (VAR) parameters
+    ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
+    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
+    ("P_G68_MACRO_ROTATED_POCK.mpf", "NC316"), // see O_9120.spf
+    ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
-    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"), // the computed-GOTO helper STRING
+    ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING
 ];
 
 /// FANUC translations of the Siemens library that do not come back, and why.

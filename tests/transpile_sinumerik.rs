@@ -107,7 +107,7 @@ fn tool_compensation_translates_or_is_refused() {
 #[test]
 fn warn_policy_marks_the_whole_block_and_alarms_first() {
     let o = Options { unsupported: UnsupportedPolicy::Warn, ..Options::default() };
-    let src = "O1\nG00 X0 Y0 Z5.\nN20 G31 P2 X10. Y10. Z-2. F150.\nG80\nG68 X0 Y0 R[#1*90.]\nG00 Z50.\nM30\n";
+    let src = "O1\nG00 X0 Y0 Z5.\nN20 G31 P2 X10. Y10. Z-2. F150.\nG80\nG68 X0 Y0\nG00 Z50.\nM30\n";
     let tr = run(src, &o);
     assert!(!tr.has_errors(), "{:?}", tr.diags);
     assert!(tr.diags.iter().all(|d| !d.is_error()));

@@ -226,10 +226,23 @@ pub fn program_tools<K>(
     runs: &dyn Fn(&Call) -> CallRuns<K>,
     tools: &dyn Fn(&K) -> Option<bool>,
 ) -> bool {
+    program_touches(p, &|items| relevant_items(items, fanuc), runs, tools)
+}
+
+/// Whether `p` has a block `touches` (or a call of a program that may touch, by
+/// `effects(k)`, or that is not known): the walk behind [`program_tools`], for any mode a
+/// translation follows through calls (the tool here, the frame modes in
+/// `to_sinumerik::modal::frame_calls`).
+pub fn program_touches<K>(
+    p: &Program,
+    touches: &dyn Fn(&[Item]) -> bool,
+    runs: &dyn Fn(&Call) -> CallRuns<K>,
+    effects: &dyn Fn(&K) -> Option<bool>,
+) -> bool {
     let mut any = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            any |= relevant_items(&b.items, fanuc) || calls_touch(&b.items, runs, tools);
+            any |= touches(&b.items) || calls_touch(&b.items, runs, effects);
         }
     });
     any
@@ -243,12 +256,22 @@ pub fn tool_effects<K: Ord + Clone>(
     fanuc: bool,
     runs: &dyn Fn(&Call) -> CallRuns<K>,
 ) -> BTreeMap<K, bool> {
+    touch_effects(progs, &|items| relevant_items(items, fanuc), runs)
+}
+
+/// [`program_touches`] of every program of `progs`, followed through calls to a fixed
+/// point as [`tool_effects`] does.
+pub fn touch_effects<K: Ord + Clone>(
+    progs: &[(K, &Program)],
+    touches: &dyn Fn(&[Item]) -> bool,
+    runs: &dyn Fn(&Call) -> CallRuns<K>,
+) -> BTreeMap<K, bool> {
     let mut map: BTreeMap<K, bool> = progs.iter().map(|(k, _)| (k.clone(), false)).collect();
     for _ in 0..=progs.len() {
         // Two programs under one name (reported elsewhere) count as one that does both.
         let mut next: BTreeMap<K, bool> = BTreeMap::new();
         for (k, p) in progs {
-            let t = program_tools(p, fanuc, runs, &|c| map.get(c).copied());
+            let t = program_touches(p, touches, runs, &|c| map.get(c).copied());
             *next.entry(k.clone()).or_default() |= t;
         }
         if next == map {

@@ -9,13 +9,16 @@
 //! angle negated, the factors inverted, the same mirror) right after it becomes G69 (G50,
 //! G50.1). Also without the ATRANS pair, about the origin. Found in a statement list from
 //! the start of a main program or an absolute frame instruction on, with constants, in
-//! consecutive blocks no jump can land in; anything else is left to `rotation.rs`.
+//! consecutive blocks no jump can land in; a rotation in G17, or in the one plane G18/G19 a
+//! main program selects in its leading blocks, after that word (the centre in the plane's
+//! two axes: `G68 Z c X c R a`); anything else is left to `rotation.rs`.
 
 use super::*;
 
 #[derive(Clone, Debug, PartialEq)]
 enum Mode {
-    Rot(f64),
+    /// The angle and the plane (17, 18, 19) it turns in.
+    Rot(f64, u32),
     Scale(Vec<(u8, f64)>),
     Mirror(Vec<u8>),
 }
@@ -73,11 +76,21 @@ fn shift(words: &[Word]) -> Option<Vec<(u8, f64)>> {
     words.iter().map(|w| Some((axis(w)?, word_value(w)?))).collect()
 }
 
-fn mode(op: &str, words: &[Word]) -> Option<Mode> {
+/// The plane's two axes (G17 X Y, G18 Z X, G19 Y Z) and its normal.
+fn plane_axes(plane: u32) -> (u8, u8, u8) {
+    match plane {
+        18 => (b'Z', b'X', b'Y'),
+        19 => (b'Y', b'Z', b'X'),
+        _ => (b'X', b'Y', b'Z'),
+    }
+}
+
+/// The mode of an additive frame block; a rotation only where the plane is known (`plane`).
+fn mode(op: &str, words: &[Word], plane: Option<u32>) -> Option<Mode> {
     match op {
         "AROT" => match words {
-            [w] if matches!(&w.addr, Addr::Name(n) if n.as_ref() == "RPL") || w.addr.is(b'Z') => {
-                Some(Mode::Rot(word_value(w)?))
+            [w] if matches!(&w.addr, Addr::Name(n) if n.as_ref() == "RPL") || w.addr.is(plane_axes(plane?).2) => {
+                Some(Mode::Rot(word_value(w)?, plane?))
             }
             _ => None,
         },
@@ -89,11 +102,13 @@ fn mode(op: &str, words: &[Word]) -> Option<Mode> {
     }
 }
 
-/// The sequence at `list[i..]`: the mode found and the blocks it takes. `g17`: the program
-/// selects no other plane (else rotations are left to `rotation.rs`, which knows the plane).
-fn sequence_at(list: &[Stmt], i: usize, g17: bool) -> Option<(Found, usize)> {
-    let (op, words, _, _) = frame_of(list.get(i)?)?;
-    let mode = |op: &str, words: &[Word]| mode(op, words).filter(|m| g17 || !matches!(m, Mode::Rot(_)));
+/// The sequence at `list[i..]`: the mode found and the blocks it takes. `plane`: the one
+/// plane of the program (17 where it selects no other) and the start of its first word
+/// ([`Plane`]); where it is not known so, rotations are left to `rotation.rs`.
+fn sequence_at(list: &[Stmt], i: usize, plane: Plane) -> Option<(Found, usize)> {
+    let (op, words, span, _) = frame_of(list.get(i)?)?;
+    let at = plane.filter(|&(p, lo)| p == 17 || span.lo > lo).map(|p| p.0);
+    let mode = |op: &str, words: &[Word]| mode(op, words, at);
     if let Some(m) = mode(op, words) {
         return Some((Found { centre: Vec::new(), mode: m }, 1));
     }
@@ -109,7 +124,10 @@ fn sequence_at(list: &[Stmt], i: usize, g17: bool) -> Option<(Found, usize)> {
         op3 == "ATRANS" && back.len() == c.len() && c.iter().zip(&back).all(|(a, b)| a.0 == b.0 && a.1 == -b.1);
     // The centre moves only the axes the mode acts on.
     let acts: Vec<u8> = match &m {
-        Mode::Rot(_) => b"XY".to_vec(),
+        Mode::Rot(_, p) => {
+            let (u, v, _) = plane_axes(*p);
+            vec![u, v]
+        }
         Mode::Scale(f) => f.iter().map(|x| x.0).collect(),
         Mode::Mirror(a) => a.clone(),
     };
@@ -120,7 +138,7 @@ fn inverse(a: &Found, b: &Found) -> bool {
     let same_centre = a.centre.iter().filter(|c| c.1 != 0.0).eq(b.centre.iter().filter(|c| c.1 != 0.0));
     same_centre
         && match (&a.mode, &b.mode) {
-            (Mode::Rot(x), Mode::Rot(y)) => (x + y).abs() < 1e-9,
+            (Mode::Rot(x, p), Mode::Rot(y, q)) => p == q && (x + y).abs() < 1e-9,
             (Mode::Scale(x), Mode::Scale(y)) => {
                 x.len() == y.len() && x.iter().zip(y).all(|(p, q)| p.0 == q.0 && (p.1 * q.1 - 1.0).abs() < 1e-9)
             }
@@ -129,7 +147,10 @@ fn inverse(a: &Found, b: &Found) -> bool {
         }
 }
 
-fn scan(list: &[Stmt], start: bool, g17: bool, seqs: &mut Seqs) {
+/// The plane rotations turn in ([`sequence_at`]).
+type Plane = Option<(u32, u32)>;
+
+fn scan(list: &[Stmt], start: bool, plane: Plane, seqs: &mut Seqs) {
     let mut plain = start;
     let mut active: Option<Found> = None;
     let mut i = 0;
@@ -137,7 +158,7 @@ fn scan(list: &[Stmt], start: bool, g17: bool, seqs: &mut Seqs) {
         let s = &list[i];
         let StmtKind::Block(b) = &s.kind else {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                scan(child, false, g17, seqs);
+                scan(child, false, plane, seqs);
             }
             (plain, active) = (false, None);
             i += 1;
@@ -146,7 +167,7 @@ fn scan(list: &[Stmt], start: bool, g17: bool, seqs: &mut Seqs) {
         if b.meta.number.is_some() || b.meta.label.is_some() {
             (plain, active) = (false, None);
         }
-        if let Some((found, n)) = sequence_at(list, i, g17) {
+        if let Some((found, n)) = sequence_at(list, i, plane) {
             let first = b.items.first().map_or(b.meta.span.lo, |it| it.span.lo);
             let action = match &active {
                 Some(a) if inverse(a, &found) => {
@@ -186,6 +207,8 @@ fn scan(list: &[Stmt], start: bool, g17: bool, seqs: &mut Seqs) {
 }
 
 /// The sequences of a program (`main`: not a called one, so no mode is in force at its start).
+/// A rotation turns in G17 where the program selects no other plane, or in the one plane a
+/// main program selects in its leading blocks (`rotation::single_plane`), after its word.
 pub fn seqs(body: &[Stmt], main: bool) -> Seqs {
     let mut s = Seqs::default();
     let mut g17 = true;
@@ -196,7 +219,14 @@ pub fn seqs(body: &[Stmt], main: bool) -> Seqs {
             });
         }
     });
-    scan(body, main, g17, &mut s);
+    let plane = if g17 {
+        Some((17, 0))
+    } else if main {
+        super::rotation::single_plane(body)
+    } else {
+        None
+    };
+    scan(body, main, plane, &mut s);
     s
 }
 
@@ -209,8 +239,8 @@ fn letter(l: u8, v: f64, span: Span) -> Item {
 }
 
 /// The FANUC block of a frame block a sequence takes (`Some(vec![])`: it went into the
-/// first); `None`: not one. `g17`: the program rotates in G17 only.
-pub fn block(ctx: &mut Ctx, b: &mut Block, seqs: &Seqs, g17: bool) -> Option<Vec<Stmt>> {
+/// first); `None`: not one.
+pub fn block(b: &mut Block, seqs: &Seqs) -> Option<Vec<Stmt>> {
     let first = b.items.first().map_or(b.meta.span.lo, |it| it.span.lo);
     let action = seqs.at.iter().find(|a| a.0 == first)?.1.clone();
     let span = b.items.first().map_or(b.meta.span, |it| it.span);
@@ -218,23 +248,12 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, seqs: &Seqs, g17: bool) -> Option<Vec
     let items = match action {
         Action::Skip => return Some(Vec::new()),
         Action::Set(f) => match &f.mode {
-            Mode::Rot(a) => {
-                if !g17 {
-                    return Some(
-                        ctx.unsupported(
-                            "NC498",
-                            span,
-                            "a rotation in a program that selects G18/G19 (FANUC G68 rotates in the plane of the block, which is not known here)",
-                            "rotate in G17",
-                        )
-                        .into_iter()
-                        .collect(),
-                    );
-                }
+            Mode::Rot(a, p) => {
+                let (u, v, _) = plane_axes(*p);
                 vec![
                     g(68.0, span),
-                    letter(b'X', centre(&f, b'X'), span),
-                    letter(b'Y', centre(&f, b'Y'), span),
+                    letter(u, centre(&f, u), span),
+                    letter(v, centre(&f, v), span),
                     letter(b'R', *a, span),
                 ]
             }
@@ -251,7 +270,7 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, seqs: &Seqs, g17: bool) -> Option<Vec
             }
         },
         Action::Undo(f) => match &f.mode {
-            Mode::Rot(_) => vec![g(69.0, span)],
+            Mode::Rot(..) => vec![g(69.0, span)],
             Mode::Scale(_) => vec![g(50.0, span)],
             Mode::Mirror(axes) => {
                 let mut v = vec![g(50.1, span)];

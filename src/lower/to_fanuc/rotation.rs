@@ -163,7 +163,7 @@ pub fn plan(body: &[Stmt], main: bool) -> Plan {
 
 /// [`Plan::plane`]: the one plane (18 or 19) of every plane word of `body`, and the start of
 /// the first, where that one is in the leading blocks.
-fn single_plane(body: &[Stmt]) -> Option<(u32, u32)> {
+pub(super) fn single_plane(body: &[Stmt]) -> Option<(u32, u32)> {
     let mut planes = Vec::new();
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {

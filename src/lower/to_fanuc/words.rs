@@ -272,7 +272,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
         out.extend(stmts);
         return;
     }
-    if let Some(stmts) = super::frame_seq::block(ctx, &mut b, &m.seqs, m.rot.g17) {
+    if let Some(stmts) = super::frame_seq::block(&mut b, &m.seqs) {
         out.extend(stmts);
         return;
     }

@@ -281,6 +281,10 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             start_inch: None,
             sets_units: super::modal::sets_units(&p.body),
             tools: number.and_then(|n| tools.get(&n).copied()).unwrap_or(true),
+            // Set once the units are known (`modal::frame_calls`).
+            start_clear: false,
+            leaves_frames: false,
+            leaves_polar: false,
         });
         if by_m98 && by_macro {
             ctx.cur = i;

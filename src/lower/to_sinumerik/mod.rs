@@ -218,6 +218,15 @@ pub struct ProgPlan {
     /// change the tool or the compensation (`comp_flow::tool_effects`): only a call of a
     /// program without it leaves the caller's compensation known (`comp`).
     pub tools: bool,
+    /// No G68, G51 or G51.1 is in force at any call of the program in the job (a main
+    /// program: at its start), so its frame codes know the mode in force
+    /// (`modal::frame_calls`).
+    pub start_clear: bool,
+    /// A call of the program may leave a G68, G51 or G51.1 in force (or one not known):
+    /// the caller's mode after it is not known (`modal::frame_calls`).
+    pub leaves_frames: bool,
+    /// Likewise G16 polar coordinates.
+    pub leaves_polar: bool,
 }
 
 /// The shared state of one translation.
@@ -332,6 +341,12 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     for (p, u) in ctx.progs.iter_mut().zip(units) {
         p.start_inch = u;
     }
+    let frames = modal::frame_calls(&ctx.progs, programs);
+    for (p, (clear, leaves, polar)) in ctx.progs.iter_mut().zip(frames) {
+        p.start_clear = clear;
+        p.leaves_frames = leaves;
+        p.leaves_polar = polar;
+    }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
     let mut out = Vec::new();
@@ -369,7 +384,12 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = haas_if::refuse(ctx, body);
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
-    ctx.modal = modal::ModalScan::new(&body, ctx.plan().role == Role::Main, ctx.plan().start_inch, &setters);
+    let framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_frames).filter_map(|p| p.number).collect();
+    let polar_framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_polar).filter_map(|p| p.number).collect();
+    let calls =
+        modal::CallModes { setters: &setters, framers: &framers, polar_framers: &polar_framers, local_frames: false };
+    let plan = ctx.plan();
+    ctx.modal = modal::ModalScan::new(&body, plan.role == Role::Main, plan.start_inch, plan.start_clear, calls);
     let skip_axes = probe::scan(ctx, &body);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);

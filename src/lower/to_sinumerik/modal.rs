@@ -31,6 +31,23 @@ pub struct ModalScan {
     frames: bool,
     /// Each G28/G30 block: the start of its first item ([`State::inter`]) and its items.
     homes: Vec<(u32, Vec<Item>)>,
+    /// What the paths to the program's ends (M99, M30, M2, the last block) agree on;
+    /// `None` where no end is reached (or the scan did not settle: [`State::UNKNOWN`]).
+    exit: Option<State>,
+}
+
+/// What a call does to the modes [`State::apply`] follows beyond the unit.
+#[derive(Clone, Copy)]
+pub struct CallModes<'a> {
+    /// The programs of the job that may select G20/G21.
+    pub setters: &'a [u32],
+    /// The programs of the job whose call may leave a G68, G51 or G51.1 in force
+    /// (or one not known; [`frame_calls`]).
+    pub framers: &'a [u32],
+    /// Those whose call may leave G16 in force.
+    pub polar_framers: &'a [u32],
+    /// The program itself has a frame G code (an `M97` runs its own blocks).
+    pub local_frames: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
@@ -71,17 +88,28 @@ impl State {
         }
     }
 
-    /// `setters`: the programs of the job that may select G20/G21 (after a call of one, or
-    /// of a computed target, the unit is not known).
-    fn apply(mut self, items: &[Item], setters: &[u32]) -> State {
+    /// After a call of a program of `calls.setters` (or of a computed target) the unit is
+    /// not known, after one of `calls.framers` the frame modes.
+    fn apply(mut self, items: &[Item], calls: CallModes) -> State {
         for it in items {
             if let ItemKind::Call(c) = &it.kind {
                 let sets = match &c.target {
-                    CallTarget::Number(n) => setters.contains(n),
+                    CallTarget::Number(n) => calls.setters.contains(n),
                     _ => true,
                 };
                 if sets {
                     self.inch = None;
+                }
+                let leaves = |list: &[u32]| match (&c.kind, &c.target) {
+                    (CallKind::M97, _) => calls.local_frames,
+                    (_, CallTarget::Number(n)) => list.contains(n),
+                    _ => true,
+                };
+                if leaves(calls.framers) {
+                    self.rot = None;
+                }
+                if leaves(calls.polar_framers) {
+                    self.polar = None;
                 }
                 self.inter = [None; 6];
             }
@@ -160,7 +188,9 @@ impl ModalScan {
     /// a main program, [`call_units`]; a streamed chunk's may differ); a called
     /// program starts in its caller's modes, which are not known here, except the unit
     /// when every call in the job is made in the same one (`inch`, [`call_units`]).
-    pub fn new(body: &[Stmt], main: bool, inch: Option<bool>, setters: &[u32]) -> ModalScan {
+    /// `clear`: no G68, G51, G51.1 is in force at any call of it ([`frame_calls`]).
+    pub fn new(body: &[Stmt], main: bool, inch: Option<bool>, clear: bool, calls: CallModes) -> ModalScan {
+        let calls = CallModes { local_frames: has_g(body, &FRAME_CODES), ..calls };
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
@@ -174,11 +204,11 @@ impl ModalScan {
                 inter: [None; 6],
             }
         } else {
-            State { inch, polar: Some(false), ..State::UNKNOWN }
+            State { inch, polar: Some(false), rot: clear.then_some(0), ..State::UNKNOWN }
         };
         let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
             (Node::Items(items), Some((_, skip))) => {
-                let after = s.apply(items, setters);
+                let after = s.apply(items, calls);
                 if skip {
                     after.merge(s)
                 } else {
@@ -219,8 +249,20 @@ impl ModalScan {
         let mut frames = false;
         let mut homes = Vec::new();
         let mut incremental_motion = false;
+        let mut exit: Option<State> = None;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
+            if let (true, Some(s)) = (settled, *at) {
+                let ends = match &flat.nodes[i] {
+                    Node::Items(items) => i + 1 == len || items.iter().any(ends_program),
+                    Node::Head { exit, .. } => i + 1 == len || *exit >= len,
+                    Node::End { .. } => i + 1 == len,
+                };
+                if ends {
+                    let o = out_of(i, s);
+                    exit = Some(exit.map_or(o, |e| e.merge(o)));
+                }
+            }
             let Some((lo, _)) = flat.blocks[i] else { continue };
             let first = match &flat.nodes[i] {
                 Node::Items(items) => items.first().map_or(lo, |it| it.span.lo),
@@ -265,7 +307,14 @@ impl ModalScan {
             other_plane,
             frames,
             homes,
+            exit: if settled { exit } else { Some(State::UNKNOWN) },
         }
+    }
+
+    /// Whether every path to the program's ends leaves no G68, G51, G51.1 in force, and
+    /// whether no G16.
+    pub fn ends_clear(&self) -> (bool, bool) {
+        (self.exit.is_none_or(|e| e.rot == Some(0)), self.exit.is_none_or(|e| e.polar == Some(false)))
     }
 
     /// G16 in force after the block at `lo`; `None` where the paths disagree.
@@ -381,7 +430,8 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
         };
         for i in 0..n {
             let main = progs[i].role == Role::Main;
-            let scan = ModalScan::new(bodies[i], main, start(&seen, i), &setters);
+            let calls = CallModes { setters: &setters, framers: &[], polar_framers: &[], local_frames: false };
+            let scan = ModalScan::new(bodies[i], main, start(&seen, i), false, calls);
             let all: Vec<Option<bool>> = scan.all().map(|b| b.1).collect();
             crate::ir::visit::walk_stmts(bodies[i], &mut |s| {
                 let StmtKind::Block(b) = &s.kind else { return };
@@ -413,6 +463,103 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
     }
     let known = settled && !computed;
     (0..n).map(|i| if known || progs[i].role == Role::Main { start(&seen, i) } else { None }).collect()
+}
+
+/// The frame mode G codes (×10): G68/G69, G51/G50, G51.1/G50.1, G16/G15.
+pub const FRAME_CODES: [u32; 8] = [680, 690, 510, 500, 511, 501, 160, 150];
+
+/// Whether an item ends the program (M99, M30, M2), also as an `IF` block's action.
+fn ends_program(it: &Item) -> bool {
+    match &it.kind {
+        ItemKind::Return { .. } | ItemKind::End { .. } => true,
+        ItemKind::IfThen { then, .. } => ends_program(then),
+        _ => false,
+    }
+}
+
+/// For each program of a job: whether no G68, G51 or G51.1 is in force at any call of it
+/// (its frame codes then know the mode in force: none at the start), and whether a call
+/// of it may leave one (or G16) in force or not known ("framers": after their call the
+/// caller's modes are not known). A program without frame G codes, in it or in what it
+/// calls (`comp_flow::touch_effects`, the summary the tools use), leaves the caller's
+/// modes as they were; one with them leaves none only where it starts clear and every
+/// path to its ends cancels what it set. Calls of a G66 modal macro, computed calls and a
+/// program no call in the job reaches count as not clear. Fixed point over the call graph
+/// from the optimistic start (all clear, no framers): each pass can only turn programs
+/// unclear or into framers, so it settles within a pass per program; where it does not,
+/// nothing is clear.
+pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(bool, bool, bool)> {
+    use crate::lower::comp_flow::{touch_effects, CallRuns};
+    let n = progs.len();
+    let numbered: Vec<(u32, &Program)> =
+        progs.iter().zip(programs).filter_map(|(pl, (_, p))| pl.number.map(|k| (k, *p))).collect();
+    let runs = |c: &Call| match (&c.kind, &c.target) {
+        (CallKind::M97, _) => CallRuns::Harmless,
+        (_, CallTarget::Number(k)) => CallRuns::Program(*k),
+        _ => CallRuns::Unknown,
+    };
+    let touching = touch_effects(&numbered, &|items| g_codes(items).iter().any(|g| FRAME_CODES.contains(g)), &runs);
+    let touches = |i: usize| progs[i].number.is_none_or(|k| touching.get(&k) != Some(&false));
+    let main = |i: usize| progs[i].role == Role::Main;
+    if !(0..n).any(touches) {
+        return (0..n).map(|i| (main(i), false, false)).collect();
+    }
+    let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    let by_number = |k: u32| progs.iter().position(|p| p.number == Some(k));
+    let mut clear: Vec<bool> = vec![true; n];
+    let mut framers: (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
+    for _ in 0..(2 * n + 2) {
+        let mut called = vec![false; n];
+        let mut next_clear = vec![true; n];
+        let mut next_framers = (Vec::new(), Vec::new());
+        for i in 0..n {
+            let calls =
+                CallModes { setters: &setters, framers: &framers.0, polar_framers: &framers.1, local_frames: false };
+            let scan = ModalScan::new(&programs[i].1.body, main(i), progs[i].start_inch, clear[i] || main(i), calls);
+            crate::ir::visit::walk_stmts(&programs[i].1.body, &mut |s| {
+                let StmtKind::Block(b) = &s.kind else { return };
+                for it in &b.items {
+                    let ItemKind::Call(c) = &it.kind else { continue };
+                    let j = match (&c.kind, &c.target) {
+                        (CallKind::M97, _) => continue,
+                        (_, CallTarget::Number(k)) => by_number(*k),
+                        // A computed call may run any program of the job.
+                        _ => {
+                            next_clear = vec![false; n];
+                            None
+                        }
+                    };
+                    let Some(j) = j else { continue };
+                    called[j] = true;
+                    let first = b.items.first().map_or(b.meta.span.lo, |f| f.span.lo);
+                    let in_block = g_codes(&b.items).iter().any(|g| FRAME_CODES.contains(g));
+                    if c.kind == CallKind::G66 || in_block || scan.rot_before(first) != Some(0) {
+                        next_clear[j] = false;
+                    }
+                }
+            });
+            let (rot, polar) = scan.ends_clear();
+            if touches(i) && !main(i) && !(clear[i] && rot) {
+                next_framers.0.extend(progs[i].number);
+            }
+            // A called program starts without G16 (a call in G16 mode is refused).
+            if touches(i) && !main(i) && !polar {
+                next_framers.1.extend(progs[i].number);
+            }
+        }
+        for (c, k) in next_clear.iter_mut().zip(&called) {
+            *c &= *k;
+        }
+        next_framers.0.sort_unstable();
+        next_framers.1.sort_unstable();
+        if next_clear == clear && next_framers == framers {
+            let has = |list: &[u32], i: usize| list.iter().any(|&k| Some(k) == progs[i].number);
+            return (0..n).map(|i| (main(i) || clear[i], has(&framers.0, i), has(&framers.1, i))).collect();
+        }
+        clear = next_clear;
+        framers = next_framers;
+    }
+    (0..n).map(|i| (main(i), touches(i) && !main(i), touches(i) && !main(i))).collect()
 }
 
 /// Whether `body` has a G20 or G21 word (a constant one; a computed G code is refused).

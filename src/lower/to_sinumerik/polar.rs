@@ -7,7 +7,8 @@
 //!   `G15` → nothing (Sinumerik polar words act in their block only).
 //!
 //! In G17 programs only (the plane G16 reads its words in must be known). The mode must be
-//! known on every path (`State::polar`); a call in G16 mode is refused (a called program
+//! known on every path (`State::polar`; after a call of a program that may leave G16 on, it
+//! is not: `modal::frame_calls`); a call in G16 mode is refused (a called program
 //! is translated as starting without polar coordinates), as is a polar block without both
 //! words or under G91, which the evaluator refuses too (NC497).
 

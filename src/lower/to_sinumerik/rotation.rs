@@ -17,8 +17,14 @@
 //! order they are commanded in, Sinumerik's additive frames in the order written, so a
 //! second mode while one is in force is refused. The mode in force at a cancel must be
 //! known from the program's text on every path (the modal scan, `State::rot`), and its
-//! values must be constants; a mode set or cancelled in a called program (the caller's is
-//! not known here), a G68 without a centre (the tool position) or an angle (parameter
+//! values must be constants, except a G68's: a word of user variables is saved at the G68
+//! in `NCTRANS_G68_<axis>` (DEF REAL), which the cancel reads, so the G69 turns back by the
+//! values the rotation was set with, as FANUC's. A called program starts with no mode in force where every
+//! call of it in the job is made so (`modal::frame_calls`); the programmable frame it
+//! writes stays in force after its return as FANUC's modes survive M99 (no `SAVE` on the
+//! PROC), and a caller knows its modes after the call only where the callee cancels what
+//! it set on every path to its ends. A mode set or cancelled in a called program
+//! otherwise (the caller's is not known here), a G68 without a centre (the tool position) or an angle (parameter
 //! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that leaves
 //! an axis of its G51.1 mirrored, and any of them under G91 are refused (NC497). A cancel of
 //! a mode not in force (G50 under G51.1) changes nothing, as on FANUC.
@@ -32,7 +38,9 @@ pub type Out = super::frames::Split;
 
 /// A mode as constants: the centre (axis letter, mm) and what it does there.
 enum Mode {
-    Rotate(Vec<(u8, f64)>, f64),
+    /// The centre and the angle: constants, or the variables ([`saved`]) that hold the
+    /// value of an expression at the G68.
+    Rotate(Vec<(u8, Expr)>, Expr),
     Scale(Vec<(u8, f64, f64)>),
     Mirror(Vec<(u8, f64)>),
 }
@@ -63,15 +71,60 @@ fn has_point(e: &Expr) -> bool {
     }
 }
 
-/// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors.
-fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode, &'static str> {
+/// The Siemens variable that holds a G68 word `l` of an expression: the value at the G68,
+/// which its cancel turns back by whatever the FANUC variables hold then.
+fn saved(l: u8) -> String {
+    format!("NCTRANS_G68_{}", l as char)
+}
+
+/// Whether `e` reads a variable.
+fn reads_var(e: &Expr) -> bool {
+    matches!(e.kind, ExprKind::Var(_)) || e.children().into_iter().any(reads_var)
+}
+
+/// Whether `e` reads only user variables and numbers (a system variable read at the G68
+/// may have another value where the translation saves it).
+fn plain(e: &Expr) -> bool {
+    let own = match &e.kind {
+        ExprKind::Var(v) => {
+            matches!(v.kind, VarKind::Hash(n) if (1..=33).contains(&n) || (100..=199).contains(&n) || (500..=999).contains(&n))
+        }
+        ExprKind::Num(_) | ExprKind::Unary(..) | ExprKind::Binary(..) | ExprKind::Func(..) => true,
+        _ => false,
+    };
+    own && e.children().into_iter().all(plain)
+}
+
+/// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors
+/// (a G68 also by expressions, as the variables that save them; `exprs` gets each with its
+/// variable's name).
+fn mode_of(
+    ctx: &Ctx,
+    items: &[Item],
+    g: u32,
+    inch: Option<bool>,
+    saves: &mut Vec<(String, Expr)>,
+) -> Result<Mode, &'static str> {
     let mut centre: Vec<(u8, f64)> = Vec::new();
     let mut extra: Vec<(u8, f64)> = Vec::new();
+    let mut exprs: Vec<(u8, Expr)> = Vec::new();
     for it in items {
         match letter_of(it) {
             Some((b'G', _)) if g_of(it) == Some(g) || matches!(g_of(it), Some(900 | 170 | 180 | 190)) => {}
+            Some((l, e)) if g == 680 && b"XYZR".contains(&l) && literal(e).is_none() => {
+                if !plain(e) {
+                    return Err("a centre or angle that reads a system variable");
+                }
+                if reads_var(e) {
+                    saves.push((saved(l), e.clone()));
+                    exprs.push((l, named(&saved(l), e.span)));
+                } else {
+                    // A constant expression (`R[90./3]`) is the same at the cancel.
+                    exprs.push((l, e.clone()));
+                }
+            }
             Some((l, e)) if b"XYZ".contains(&l) || (g == 680 && l == b'R') || (g == 510 && b"PIJK".contains(&l)) => {
-                let Some(v) = literal(e) else { return Err("a centre, angle or factor that is not a constant") };
+                let Some(v) = literal(e) else { return Err("a centre or factor that is not a constant") };
                 let v = if has_point(e) {
                     v
                 } else if l == b'R' {
@@ -97,9 +150,15 @@ fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode
     }
     match g {
         680 => {
-            let Some(&(_, a)) = extra.iter().find(|e| e.0 == b'R') else {
+            let span = items.first().map_or(Span::default(), |it| it.span);
+            let mut all: Vec<(u8, Expr)> = centre.iter().map(|&(l, v)| (l, num(v, span))).collect();
+            all.extend(extra.iter().filter(|e| e.0 == b'R').map(|&(l, v)| (l, num(v, span))));
+            all.extend(exprs);
+            let Some(a) = all.iter().find(|e| e.0 == b'R').map(|e| e.1.clone()) else {
                 return Err("G68 without R (the angle is then machine parameter 5410)");
             };
+            let mut centre: Vec<(u8, Expr)> = all.into_iter().filter(|e| e.0 != b'R').collect();
+            centre.sort_by_key(|e| e.0);
             if centre.len() != 2 {
                 return Err("G68 without its centre in both axes of the plane (the tool position is then the centre)");
             }
@@ -129,20 +188,33 @@ fn mode_of(ctx: &Ctx, items: &[Item], g: u32, inch: Option<bool>) -> Result<Mode
     }
 }
 
-fn shift(centre: &[(u8, f64)], sign: f64, span: Span) -> Vec<Word> {
+fn is_zero(e: &Expr) -> bool {
+    literal(e) == Some(0.0)
+}
+
+/// `e`, or its negation (a number negated, an expression as `-(e)`).
+fn signed(e: &Expr, sign: f64) -> Expr {
+    match literal(e) {
+        Some(v) => num(sign * v, e.span),
+        None if sign < 0.0 => Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e.clone())), e.span),
+        None => e.clone(),
+    }
+}
+
+fn shift(centre: &[(u8, Expr)], sign: f64, span: Span) -> Vec<Word> {
     centre
         .iter()
-        .filter(|c| c.1 != 0.0)
-        .map(|&(l, v)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(sign * v, span)), span })
+        .filter(|c| !is_zero(&c.1))
+        .map(|(l, v)| Word { addr: Addr::Letter(*l), value: WordValue::Expr(signed(v, sign)), span })
         .collect()
 }
 
 /// The instructions that set `mode` (`undo`: that take it back).
 fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
-    let (centre, inner): (Vec<(u8, f64)>, Stmt) = match mode {
+    let (centre, inner): (Vec<(u8, Expr)>, Stmt) = match mode {
         Mode::Rotate(c, a) => {
-            let a = if undo { -*a } else { *a };
-            let rpl = Word { addr: Addr::Name("RPL".into()), value: WordValue::Expr(num(a, span)), span };
+            let a = signed(a, if undo { -1.0 } else { 1.0 });
+            let rpl = Word { addr: Addr::Name("RPL".into()), value: WordValue::Expr(a), span };
             (c.clone(), frame("AROT", vec![rpl], span))
         }
         Mode::Scale(axes) => {
@@ -160,16 +232,16 @@ fn sequence(mode: &Mode, undo: bool, span: Span) -> Vec<Stmt> {
                     Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }
                 })
                 .collect();
-            (axes.iter().map(|&(l, c, _)| (l, c)).collect(), frame("ASCALE", words, span))
+            (axes.iter().map(|&(l, c, _)| (l, num(c, span))).collect(), frame("ASCALE", words, span))
         }
         Mode::Mirror(c) => {
             // The value of a mirror word is not read; 0 as the manuals write it.
             let words =
                 c.iter().map(|&(l, _)| Word { addr: Addr::Letter(l), value: WordValue::Expr(num(0.0, span)), span });
-            (c.clone(), frame("AMIRROR", words.collect(), span))
+            (c.iter().map(|&(l, v)| (l, num(v, span))).collect(), frame("AMIRROR", words.collect(), span))
         }
     };
-    let about_origin = centre.iter().all(|c| c.1 == 0.0);
+    let about_origin = centre.iter().all(|c| is_zero(&c.1));
     let mut out = Vec::new();
     if !about_origin {
         out.push(frame("ATRANS", shift(&centre, 1.0, span), span));
@@ -212,8 +284,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             return Ok(refused(
                 ctx,
                 span,
-                "G68, G51 or G51.1 while another of them may be in force, or in a called program",
-                "cancel each mode (G69, G50, G50.1) before the next, in the main program",
+                "G68, G51 or G51.1 while another of them may be in force (in a called program: at a call of it, or it is not called in the job)",
+                "cancel each mode (G69, G50, G50.1) before the next, and before each call of a program that sets one",
             ));
         }
         if modal.incremental_at(span.lo) != Some(false) || gs.contains(&910) {
@@ -224,7 +296,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 "write it under G90: `G90 G68 X.. Y.. R..`",
             ));
         }
-        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo)) {
+        let mut saves = Vec::new();
+        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo), &mut saves) {
             Err(what) => {
                 // The message names the G code first (a marked line under --unsupported warn).
                 let label = match g {
@@ -246,6 +319,13 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 if !modes.is_empty() || meta.number.is_some() || meta.label.is_some() || !meta.comments.is_empty() {
                     after.push(block_stmt(meta, modes));
                 }
+                for (name, e) in saves {
+                    let plan = &mut ctx.progs[ctx.cur];
+                    if !plan.defs.iter().any(|d| d.0 == name) {
+                        plan.defs.push((name.clone(), DataType::Real));
+                    }
+                    after.push(plain_block(vec![assign(named_ref(&name, e.span), e, span)], span));
+                }
                 after.extend(sequence(&mode, false, span));
                 Out { before: Vec::new(), block: None, after }
             }
@@ -263,7 +343,7 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             if !gs_set.contains(&set) {
                 // A cancel of another mode than the one in force: FANUC changes nothing.
                 Vec::new()
-            } else { match mode_of(ctx, items, set, modal.inch_at(lo)) {
+            } else { match mode_of(ctx, items, set, modal.inch_at(lo), &mut Vec::new()) {
                 Ok(Mode::Mirror(c)) => {
                     // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
                     let named: Vec<u8> =
@@ -288,8 +368,8 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             return Ok(refused(
                 ctx,
                 span,
-                "G69, G50 or G50.1 in a called program, or where the mode in force depends on the path taken (which one it cancels is not known here)",
-                "cancel the mode in the main program, on a path where one is in force",
+                "G69, G50 or G50.1 where the mode in force depends on the path taken, or follows a call of a program that may leave one in force, or in a called program some call of which is made in a mode (which one it cancels is not known here)",
+                "cancel a mode in the program that set it, on a path where it is in force",
             ))
         }
     };
