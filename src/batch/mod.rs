@@ -16,20 +16,13 @@
 
 pub mod discover;
 pub mod jobs;
-/// The names the streamed jobs and the tests reach the FANUC → Sinumerik job under.
-pub mod jobs_sinumerik {
-    pub use super::jobs::ToSinumerikJob;
-    pub(crate) use crate::translate::to_sinumerik::job::{
-        in_file_macro_runs, parse_all, siemens_inputs, stand_in, used_names,
-    };
-}
-pub mod library;
 pub mod maps;
 pub mod report;
 pub mod run;
 pub mod streamed;
 mod streamed_calls;
 mod streamed_macro;
+pub mod target;
 pub mod write;
 
 use crate::dialect::Dialect;
@@ -39,7 +32,6 @@ use std::sync::Arc;
 use std::time::Duration;
 
 pub use discover::InputFile;
-pub use library::Library;
 pub use maps::BatchMaps;
 pub use run::{run_batch, BatchError};
 
@@ -220,7 +212,7 @@ pub struct BatchContext {
     /// Every input file of the batch, in batch order (`InputFile::index`).
     pub files: Vec<InputFile>,
     /// Every program in the library: who defines it, who calls it and how.
-    pub library: Library,
+    pub library: crate::translate::library::Library,
     /// The program, tool and variable maps of the whole batch, fixed before any file runs.
     pub maps: BatchMaps,
     /// Set by Ctrl-C: a long job may stop early and report `Error` ("stopped").
