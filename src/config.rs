@@ -80,7 +80,7 @@ pub struct Config {
     /// Siemens MD20270: the edge a tool change without D selects (`None`: not stated).
     pub cutting_edge_default: Option<u32>,
     /// `[offsets]`: the FANUC H and D registers of Siemens cutting edges.
-    pub offsets: crate::lower::comp_flow::OffsetMap,
+    pub offsets: crate::dialect::offsets::OffsetMap,
     /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
@@ -324,7 +324,7 @@ impl Config {
                 let t = v.as_table().ok_or_else(|| bad(key, v))?;
                 for (k, val) in t {
                     let text = as_str(&format!("offsets.{k}"), val)?;
-                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
+                    let (edge, regs) = crate::dialect::offsets::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     self.offsets.edges.insert(edge, regs);
                 }
@@ -497,7 +497,7 @@ impl Config {
 
 /// Reads an offset map file (`--offset-map`): a TOML file whose only table is `[offsets]`,
 /// read as the `[offsets]` of nctrans.toml.
-pub fn load_offset_map(path: &std::path::Path) -> Result<crate::lower::comp_flow::OffsetMap, String> {
+pub fn load_offset_map(path: &std::path::Path) -> Result<crate::dialect::offsets::OffsetMap, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let at = |e: String| format!("{}: {e}", path.display());
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| at(e.to_string().trim_end().to_string()))?;

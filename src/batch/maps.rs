@@ -31,7 +31,7 @@ pub struct BatchMaps {
     pub variables: BTreeMap<String, String>,
     /// The H ↔ T/D offset map the translations used (`[offsets]` of nctrans.toml or
     /// `--offset-map`), so a rerun with the map translates compensation alike.
-    pub offsets: crate::lower::comp_flow::OffsetMap,
+    pub offsets: crate::dialect::offsets::OffsetMap,
 }
 
 /// What one file's translation used; merged into the written map.
@@ -292,7 +292,7 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
                 let t = value.as_table().ok_or("offsets: expected a table of \"T.D\" = \"Hh,Dd\"")?;
                 for (k, v) in t {
                     let text = v.as_str().ok_or_else(|| format!("offsets.{k}: expected a string like \"H26,D46\""))?;
-                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
+                    let (edge, regs) = crate::dialect::offsets::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     maps.offsets.edges.insert(edge, regs);
                 }

@@ -16,6 +16,7 @@ pub mod empty;
 pub mod fanuc;
 pub mod limits;
 pub(crate) mod numwrite;
+pub mod offsets;
 pub mod plain;
 pub mod quick;
 pub mod runs;
@@ -23,6 +24,7 @@ pub mod semantics;
 pub mod sinumerik;
 pub mod spec;
 
+pub use crate::ir::Dialect;
 pub use semantics::Semantics;
 pub use spec::{Spec, Written};
 
@@ -30,12 +32,8 @@ use crate::diag::Diagnostic;
 use crate::ir::Unit;
 use crate::span::{FileId, SourceFile};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Dialect {
-    Sinumerik,
-    Fanuc,
-}
-
+/// The dialect's names, its file extensions and the sniffing of a text are spelling, so they
+/// are here; the type is the IR's (a unit records the dialect it was read from).
 impl Dialect {
     pub fn name(self) -> &'static str {
         match self {
