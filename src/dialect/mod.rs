@@ -6,15 +6,16 @@
 //! built-ins' are `translate::generic::builtin`), the block-number runs of an index
 //! ([`runs`]), the program-less file check ([`empty`]), what the streamed fast writers read
 //! of a plain word ([`plain`]) and the numbers they write from its digits (`digits`,
-//! `numwrite`). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only, writing
-//! the evaluator's compact blocks) `eval::lit`, (the number writers only) `eval::numfmt`.
-//! Never `lower` (but the writers' unit
-//! tests build IR with `lower::build`), `stream`, `check`.
+//! `numwrite`), the compact op of a constant-word block the fast readers write and the
+//! evaluator runs (`lit`), and the tool offset map of a set-up (`offsets`). May use: `ir`,
+//! `read`, `diag`, `span`; never `eval`, `lower`, `stream`, `check` (but the unit tests
+//! build IR with `lower::build` and compare with `eval::value`; `tests/layering.rs`).
 
 pub(crate) mod digits;
 pub mod empty;
 pub mod fanuc;
 pub mod limits;
+pub mod lit;
 pub(crate) mod numwrite;
 pub mod offsets;
 pub mod plain;

@@ -2,9 +2,9 @@
 //! into and out of structures behaves like the controls' interpretive search, and the
 //! label / N tables that the searches of each [`Search`] kind walk.
 
-use super::lit::LitBlock;
 use super::paged::{Page, PagedSource};
 use crate::diag::Diagnostic;
+use crate::dialect::lit::LitBlock;
 use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
 use crate::span::{FileId, Span};
 use std::cell::RefCell;

@@ -30,7 +30,7 @@ pub mod flow;
 pub mod haas_data;
 pub mod input;
 pub mod instructions;
-pub mod lit;
+
 pub mod machine;
 pub mod numfmt;
 pub mod paged;

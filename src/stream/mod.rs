@@ -32,8 +32,8 @@ mod reread;
 mod words;
 
 use crate::diag::Diagnostic;
+use crate::dialect::lit::LitBlock;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
-use crate::eval::lit::LitBlock;
 use crate::ir::{Comment, Stmt};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};

@@ -322,7 +322,7 @@ impl<'o> Reader<'o> {
         &mut self,
         raw: &read::RawBlock<'_>,
         ascii: bool,
-        b: &mut crate::eval::lit::LitBlock,
+        b: &mut crate::dialect::lit::LitBlock,
     ) -> Option<(Span, Option<u32>)> {
         let file = self.file;
         self.reread_plain(raw, ascii, |raw| fast::lit_block(raw, file, b))

@@ -329,7 +329,7 @@ impl Reader {
         &mut self,
         raw: &read::RawBlock<'_>,
         ascii: bool,
-        b: &mut crate::eval::lit::LitBlock,
+        b: &mut crate::dialect::lit::LitBlock,
     ) -> Option<(Span, Option<u32>)> {
         self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, b))
     }
