@@ -3,16 +3,17 @@
 //!
 //! The engine does not know how one file is translated: the work per file is a
 //! [`FileJob`]. The engine finds the files ([`discover`]), reads what every program defines
-//! and calls ([`library`]), fixes one program, tool and variable map for the whole batch
+//! and calls (`discover::scan` into `translate::library`), fixes one program, tool and variable map for the whole batch
 //! ([`maps`]), runs the job over the files in parallel ([`run`]), writes every output
 //! atomically ([`write`]) and summarises ([`report`]). Everything a file's output depends on
 //! is decided before the parallel part, so the output does not depend on thread timing.
 //!
 //! Owns: the engine above and the one per-file job (`jobs`: read, translate through the one
-//! entry, verify, outputs; what a target does as its own is its `jobs::Target`, beside its
-//! translation in `translate::to_<name>::job`), and `streamed*`: a large file streamed.
-//! May use: `translate` (the one entry and the targets' job parts), `stream`, `check`,
-//! `eval`, `dialect`, `config`; never the command line.
+//! entry, verify, outputs; what a target does as its own is its `jobs::Target`, in
+//! [`target`]), and `streamed*`: a large file streamed.
+//! May use: `config`, `stream`, `translate` (the entry, the proof, the library index),
+//! `check`, `gud`, `same_file`, `lower`, `eval`, `dialect`, `ir`, base; never the command
+//! line (`tests/layering.rs`).
 
 pub mod discover;
 pub mod jobs;

@@ -150,12 +150,6 @@ impl Reader {
         self.builder.drain_into(out)
     }
 
-    /// Name, head, parameters of the program as read so far (PROC and the `%_N_` header
-    /// come first, so they are known before the first statement).
-    pub fn program_head(&self) -> &crate::ir::Program {
-        self.builder.program()
-    }
-
     pub fn diags(&self) -> &[Diagnostic] {
         &self.st.diags
     }
