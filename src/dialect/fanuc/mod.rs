@@ -5,6 +5,7 @@
 //! (`parse.rs`, or the byte-level fast path in `fast.rs` for plain motion blocks). `block.rs`
 //! turns the grammar's parts into IR items (calls, returns, alarms, Macro A lowering), and
 //! `structure.rs` builds `DO`/`END` loops and checks `GOTO` targets per program.
+//! Owns: FANUC reading, writing (`emit`), cycle spellings. May use: `dialect`, `ir`, base.
 
 mod args;
 mod block;

@@ -4,6 +4,7 @@
 //! fast path for plain motion blocks, else parsed by `grammar/sinumerik.pest` (rule `block`)
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
+//! Owns: Sinumerik reading, writing (`emit`), cycle spellings. May use: `dialect`, `ir`, base.
 
 pub mod cycles;
 mod decls;

@@ -5,6 +5,8 @@
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
 //! their place (the translation is still not [`Output::ok`]).
+//! Owns: the FANUC text, symbol map and proof of a translation. May use: `lower`, `dialect`,
+//! `unfinished`, `check`, `eval`; never `batch`, `stream` or the CLI (`tests/layering.rs`).
 
 use super::Verification;
 use crate::diag::{self, Diagnostic};
