@@ -4,8 +4,8 @@
 //! ([`Config::set`]), so flags win and a wrong value reads the same from either place: the
 //! error names the key and the allowed values. `nctrans init` writes [`TEMPLATE`].
 
-use crate::batch::library::ProgKey;
 use crate::dialect::{Dialect, Semantics};
+use crate::translate::library::ProgKey;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -80,7 +80,7 @@ pub struct Config {
     /// Siemens MD20270: the edge a tool change without D selects (`None`: not stated).
     pub cutting_edge_default: Option<u32>,
     /// `[offsets]`: the FANUC H and D registers of Siemens cutting edges.
-    pub offsets: crate::lower::comp_flow::OffsetMap,
+    pub offsets: crate::dialect::offsets::OffsetMap,
     /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
@@ -250,7 +250,7 @@ fn encoding(key: &str, v: &toml::Value, auto: &str) -> Result<Option<&'static en
 }
 
 fn list(key: &str, v: &toml::Value) -> Result<Vec<String>, String> {
-    crate::batch::maps::string_list(v, key).map_err(|_| bad(key, v))
+    string_list(v, key).map_err(|_| bad(key, v))
 }
 
 impl Config {
@@ -324,7 +324,7 @@ impl Config {
                 let t = v.as_table().ok_or_else(|| bad(key, v))?;
                 for (k, val) in t {
                     let text = as_str(&format!("offsets.{k}"), val)?;
-                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
+                    let (edge, regs) = crate::dialect::offsets::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     self.offsets.edges.insert(edge, regs);
                 }
@@ -337,13 +337,12 @@ impl Config {
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
             "tools" => {
-                let t =
-                    crate::batch::maps::tool_table(v, key).map_err(|e| format!("{e} (allowed: {})", allowed(key)))?;
+                let t = tool_table(v, key).map_err(|e| format!("{e} (allowed: {})", allowed(key)))?;
                 self.tools.extend(t);
             }
             "programs.to_fanuc" | "programs.to_sinumerik" => {
                 let d = if key == "programs.to_fanuc" { Dialect::Fanuc } else { Dialect::Sinumerik };
-                let t = crate::batch::maps::program_table(v, key, Some(d))?;
+                let t = program_table(v, key, Some(d))?;
                 for (k, target) in &t {
                     match (d, target) {
                         (Dialect::Fanuc, ProgKey::Number(n)) if *n <= self.fanuc.max_program_number() => {}
@@ -494,26 +493,11 @@ impl Config {
             Dialect::Sinumerik => Retracts { chip_break: self.cycle83_retract, peck_clearance: self.cycle83_clearance },
         }
     }
-
-    /// The pinned batch maps for a direction: programs, tools and variable rules.
-    pub fn batch_maps(&self, target: Dialect) -> crate::batch::BatchMaps {
-        let (programs, rules) = match target {
-            Dialect::Fanuc => (&self.programs_to_fanuc, &self.var_map_to_fanuc),
-            Dialect::Sinumerik => (&self.programs_to_sinumerik, &self.var_map_to_sinumerik),
-        };
-        crate::batch::BatchMaps {
-            programs: programs.clone(),
-            tools: self.tools.clone(),
-            var_rules: rules.clone(),
-            variables: BTreeMap::new(),
-            offsets: self.offsets.clone(),
-        }
-    }
 }
 
 /// Reads an offset map file (`--offset-map`): a TOML file whose only table is `[offsets]`,
 /// read as the `[offsets]` of nctrans.toml.
-pub fn load_offset_map(path: &std::path::Path) -> Result<crate::lower::comp_flow::OffsetMap, String> {
+pub fn load_offset_map(path: &std::path::Path) -> Result<crate::dialect::offsets::OffsetMap, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let at = |e: String| format!("{}: {e}", path.display());
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| at(e.to_string().trim_end().to_string()))?;
@@ -643,6 +627,70 @@ max_steps = 10000000
 set = []
 "##;
 
+/// `[programs]`: `"CONTOUR" = "O9000"` or `= 9000` (to FANUC), `"O9010" = "PROBE_X"` (to
+/// Sinumerik). With a known target the keys are read as that direction's source names.
+pub fn program_table(
+    value: &toml::Value,
+    what: &str,
+    dialect: Option<Dialect>,
+) -> Result<BTreeMap<ProgKey, ProgKey>, String> {
+    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"NAME\" = \"O9000\""))?;
+    let mut out = BTreeMap::new();
+    for (k, v) in t {
+        let target = match v {
+            toml::Value::Integer(n) if (1..=99_999_999).contains(n) => ProgKey::Number(*n as u32),
+            toml::Value::String(s) if !s.trim().is_empty() => ProgKey::parse(s),
+            _ => {
+                return Err(format!(
+                    "{what}.{k}: expected an O number (9000 or \"O9000\") or a Siemens program name (\"PROBE_X\")"
+                ))
+            }
+        };
+        if let ProgKey::Name(n) = &target {
+            if !n.starts_with(|c: char| c.is_ascii_alphabetic())
+                || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            {
+                return Err(format!(
+                    "{what}.{k}: '{n}' is not a Siemens program name (letters, digits and _, starting with a letter)"
+                ));
+            }
+        }
+        let key = match (dialect, ProgKey::parse(k)) {
+            (Some(Dialect::Fanuc), _) => ProgKey::Name(k.trim().to_ascii_uppercase()),
+            (Some(Dialect::Sinumerik), key @ ProgKey::Number(_)) => key,
+            (Some(Dialect::Sinumerik), _) => {
+                return Err(format!("{what}.{k}: a FANUC program is named by its O number (\"O9010\" or \"9010\")"))
+            }
+            (None, key) => key,
+        };
+        out.insert(key, target);
+    }
+    Ok(out)
+}
+
+/// `[tools]`: `"DRILL_5" = 12`.
+pub fn tool_table(value: &toml::Value, what: &str) -> Result<BTreeMap<String, u32>, String> {
+    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"TOOL NAME\" = T number"))?;
+    let mut out = BTreeMap::new();
+    for (k, v) in t {
+        match v.as_integer() {
+            Some(n) if (0..=99_999_999).contains(&n) => {
+                out.insert(k.clone(), n as u32);
+            }
+            _ => return Err(format!("{what}.{k}: expected a T number from 0 to 99999999")),
+        }
+    }
+    Ok(out)
+}
+
+/// A list of strings.
+pub fn string_list(value: &toml::Value, what: &str) -> Result<Vec<String>, String> {
+    let a = value.as_array().ok_or_else(|| format!("{what}: expected a list of strings like [\"R0-R99=#100\"]"))?;
+    a.iter()
+        .map(|v| v.as_str().map(str::to_string).ok_or_else(|| format!("{what}: every entry must be a string")))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -672,10 +720,8 @@ mod tests {
         assert_eq!(c.jobs, 1);
         assert_eq!(c.tools.get("MILL"), Some(&7));
         assert_eq!(c.tools.get("DRILL"), Some(&4));
-        let m = c.batch_maps(Dialect::Fanuc);
-        assert_eq!(m.fanuc_numbers().get("CONTOUR"), Some(&9001));
-        let m = c.batch_maps(Dialect::Sinumerik);
-        assert_eq!(m.siemens_names().get(&9010).map(String::as_str), Some("PROBE_X"));
+        assert_eq!(c.programs_to_fanuc.get(&ProgKey::Name("CONTOUR".into())), Some(&ProgKey::Number(9001)));
+        assert_eq!(c.programs_to_sinumerik.get(&ProgKey::Number(9010)), Some(&ProgKey::Name("PROBE_X".into())));
     }
 
     #[test]

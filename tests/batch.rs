@@ -3,8 +3,8 @@
 //! the map file, the report, the exit code, untouched inputs, byte-identical reruns, and runs
 //! stopped or killed midway. The engine itself is also tested with fake jobs.
 
-use nctrans::batch::jobs::{JobSettings, ToFanucJob};
-use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+use nctrans::batch::jobs::{Job, JobSettings};
+use nctrans::batch::target::{fanuc::Fanuc, sinumerik::Sinumerik};
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile, OutputFile, Status};
 use nctrans::config::Config;
 use nctrans::dialect::Dialect;
@@ -112,8 +112,8 @@ fn test_settings() -> JobSettings {
     s
 }
 
-fn sinumerik_job(fault: bool) -> ToSinumerikJob {
-    let mut job = ToSinumerikJob::new(test_settings());
+fn sinumerik_job(fault: bool) -> Job<Sinumerik> {
+    let mut job = Job::<Sinumerik>::new(test_settings());
     if fault {
         job.fault = Some(Box::new(|f: &InputFile, text: &mut String| {
             if batch::rel_string(&f.rel) == FAULTY_FANUC {
@@ -124,8 +124,8 @@ fn sinumerik_job(fault: bool) -> ToSinumerikJob {
     job
 }
 
-fn fanuc_job(fault: bool) -> ToFanucJob {
-    let mut job = ToFanucJob::new(JobSettings::from_config(&Config::default()).unwrap());
+fn fanuc_job(fault: bool) -> Job<Fanuc> {
+    let mut job = Job::<Fanuc>::new(JobSettings::from_config(&Config::default()).unwrap());
     if fault {
         // The injected bug: one extra move before the end. Verification must catch it.
         job.fault = Some(Box::new(|f: &InputFile, text: &mut String| {
@@ -471,7 +471,7 @@ fn leg(input: &Path, out: &Path, target: Dialect, refused: &[(&str, &str)]) -> b
     opts.pinned.tools = tool_table(input);
     let r = match target {
         Dialect::Fanuc => {
-            let mut job = ToFanucJob::new(test_settings());
+            let mut job = Job::<Fanuc>::new(test_settings());
             job.fault = None;
             run(opts, &job)
         }

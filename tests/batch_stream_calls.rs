@@ -13,8 +13,8 @@ mod batch_out;
 mod rng;
 
 use batch_out::{snapshot, untimed};
-use nctrans::batch::jobs::JobSettings;
-use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+use nctrans::batch::jobs::{Job, JobSettings};
+use nctrans::batch::target::sinumerik::Sinumerik;
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
 use nctrans::dialect::Dialect;
 use rng::Rng;
@@ -114,7 +114,7 @@ fn library(input: &Path) {
 
 /// A job that notes which files its streamed path translated.
 struct Watched {
-    job: ToSinumerikJob,
+    job: Job<Sinumerik>,
     streamed: Mutex<Vec<String>>,
 }
 
@@ -147,7 +147,7 @@ fn both_ways(input: &Path, dir: &Path, max_steps: u64) -> (Vec<String>, batch::B
         let mut opts = BatchOptions::new(input, &out, Dialect::Sinumerik);
         opts.stream_bytes = bytes;
         opts.jobs = 2;
-        let job = Watched { job: ToSinumerikJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
+        let job = Watched { job: Job::<Sinumerik>::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
         let r = batch::run_batch(opts, &job, Arc::new(AtomicBool::new(false)), &mut |_| {}).expect("batch");
         streamed = job.streamed.into_inner().expect("lock");
         assert!(!out.join(batch::write::STAGING).exists(), "the staging folder is gone");
@@ -207,7 +207,7 @@ fn streamed_scans_of_mains_with_calls_report_what_whole_scans_do() {
     let mut with_subs = 0;
     for (index, e) in names.into_iter().enumerate() {
         let f = InputFile { index, rel: Path::new("fan").join(e.file_name()), abs: e.path() };
-        let whole = batch::library::scan(&f, None);
+        let whole = batch::discover::scan(&f, None);
         let mut s =
             batch::streamed::library_scan(&f, None, 0).unwrap_or_else(|| panic!("{} not streamed", f.rel.display()));
         assert!(s.info.streamed);

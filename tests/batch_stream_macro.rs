@@ -14,8 +14,8 @@ mod batch_out;
 mod rng;
 
 use batch_out::{snapshot, untimed};
-use nctrans::batch::jobs::{JobSettings, ToFanucJob};
-use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+use nctrans::batch::jobs::{Job, JobSettings};
+use nctrans::batch::target::{fanuc::Fanuc, sinumerik::Sinumerik};
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
 use nctrans::dialect::Dialect;
 use rng::Rng;
@@ -210,13 +210,13 @@ impl<J> Watched<J> {
     }
 }
 
-impl FileJob for Watched<ToSinumerikJob> {
+impl FileJob for Watched<Job<Sinumerik>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
         self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
 }
 
-impl FileJob for Watched<ToFanucJob> {
+impl FileJob for Watched<Job<Fanuc>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
         self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
@@ -243,12 +243,12 @@ fn both_ways(input: &Path, dir: &Path, target: Dialect) -> (Vec<String>, batch::
         let cancel = Arc::new(AtomicBool::new(false));
         let (r, s) = match target {
             Dialect::Sinumerik => {
-                let job = Watched { job: ToSinumerikJob::new(settings()), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Sinumerik>::new(settings()), streamed: Mutex::new(vec![]) };
                 let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
                 (r, job.streamed.into_inner().expect("lock"))
             }
             Dialect::Fanuc => {
-                let job = Watched { job: ToFanucJob::new(settings()), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Fanuc>::new(settings()), streamed: Mutex::new(vec![]) };
                 let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
                 (r, job.streamed.into_inner().expect("lock"))
             }
@@ -327,7 +327,7 @@ fn streamed_library_scans_report_what_whole_scans_do() {
         names.sort_by_key(|e| e.file_name());
         for (index, e) in names.into_iter().enumerate() {
             let f = InputFile { index, rel: Path::new(sub).join(e.file_name()), abs: e.path() };
-            let whole = batch::library::scan(&f, None);
+            let whole = batch::discover::scan(&f, None);
             let Some(mut s) = batch::streamed::library_scan(&f, None, 0) else {
                 let rel = batch::rel_string(&f.rel);
                 assert!(

@@ -247,7 +247,7 @@ fn registers_that_cannot_be_proven_are_refused_precisely() {
 #[test]
 fn an_offset_map_names_the_registers_of_other_edges() {
     let mut sem = Semantics::default_for(Dialect::Fanuc);
-    let (k, v) = nctrans::lower::comp_flow::OffsetMap::parse_entry("6.2", "H26,D46").expect("entry");
+    let (k, v) = nctrans::dialect::offsets::OffsetMap::parse_entry("6.2", "H26,D46").expect("entry");
     sem.offsets.edges.insert(k, v);
     let opts = TranslateOptions { target: sem, ..TranslateOptions::default() };
     let mut db = SourceDb::new();

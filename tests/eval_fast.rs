@@ -146,7 +146,7 @@ fn num(r: &mut Rng, fanuc: bool) -> String {
     let int = r.next() % [1, 10, 100, 1000, 100_000][r.below(5) as usize];
     match r.below(10) {
         // 0..=15 digits (1 at least), 0..=6 of them after the point: the compact words'
-        // thousandths worked out from the digits (`value::thousandths`), up to where they
+        // thousandths worked out from the digits (`dialect::lit::thousandths`), up to where they
         // are not and the value is rounded instead.
         7 | 8 => {
             let digits = 1 + r.below(15) as usize;

@@ -8,8 +8,8 @@ mod eval_support;
 mod rng;
 
 use eval_support::*;
+use nctrans::dialect::lit::NO_MILLI;
 use nctrans::dialect::{Dialect, ParseOptions};
-use nctrans::eval::lit::NO_MILLI;
 use nctrans::eval::paged::PagedSource;
 use nctrans::eval::{self, trace, Origin, RunOptions, TraceSink};
 use nctrans::span::SourceDb;

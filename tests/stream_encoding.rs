@@ -494,8 +494,8 @@ fn my_temp_files() -> Vec<PathBuf> {
 }
 
 mod batch_jobs {
-    use nctrans::batch::jobs::{JobSettings, ToFanucJob};
-    use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+    use nctrans::batch::jobs::{Job, JobSettings};
+    use nctrans::batch::target::{fanuc::Fanuc, sinumerik::Sinumerik};
     use nctrans::batch::{self, BatchContext, FileJob, FileOutcome, InputFile};
     use std::sync::Mutex;
 
@@ -514,13 +514,13 @@ mod batch_jobs {
         }
     }
 
-    impl FileJob for Watched<ToSinumerikJob> {
+    impl FileJob for Watched<Job<Sinumerik>> {
         fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
             self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
         }
     }
 
-    impl FileJob for Watched<ToFanucJob> {
+    impl FileJob for Watched<Job<Fanuc>> {
         fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
             self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
         }
@@ -543,7 +543,9 @@ fn batch_both_ways(
     out_enc: Option<&'static Encoding>,
 ) -> Vec<String> {
     use batch_jobs::{settings, Watched};
-    use nctrans::batch::{self, jobs::ToFanucJob, jobs_sinumerik::ToSinumerikJob, BatchOptions};
+    use nctrans::batch::jobs::Job;
+    use nctrans::batch::target::{fanuc::Fanuc, sinumerik::Sinumerik};
+    use nctrans::batch::{self, BatchOptions};
     use nctrans::dialect::Dialect;
     use std::sync::atomic::AtomicBool;
     use std::sync::{Arc, Mutex};
@@ -559,11 +561,11 @@ fn batch_both_ways(
         let cancel = Arc::new(AtomicBool::new(false));
         let (r, s) = match target {
             Dialect::Sinumerik => {
-                let job = Watched { job: ToSinumerikJob::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Sinumerik>::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
                 (batch::run_batch(opts, &job, cancel, &mut |_| {}).unwrap(), job.streamed.into_inner().unwrap())
             }
             Dialect::Fanuc => {
-                let job = Watched { job: ToFanucJob::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Fanuc>::new(settings(out_enc)), streamed: Mutex::new(vec![]) };
                 (batch::run_batch(opts, &job, cancel, &mut |_| {}).unwrap(), job.streamed.into_inner().unwrap())
             }
         };

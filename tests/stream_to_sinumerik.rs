@@ -414,8 +414,8 @@ fn cli_streams_with_the_same_output_and_verdict() {
 
 // ---- batches ----
 
-use nctrans::batch::jobs::{JobSettings, ToFanucJob};
-use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+use nctrans::batch::jobs::{Job, JobSettings};
+use nctrans::batch::target::{fanuc::Fanuc, sinumerik::Sinumerik};
 use nctrans::batch::{self, BatchContext, BatchOptions, FileJob, FileOutcome, InputFile};
 use std::collections::BTreeMap;
 use std::sync::atomic::AtomicBool;
@@ -496,13 +496,13 @@ impl<J> Watched<J> {
     }
 }
 
-impl FileJob for Watched<ToSinumerikJob> {
+impl FileJob for Watched<Job<Sinumerik>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
         self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
 }
 
-impl FileJob for Watched<ToFanucJob> {
+impl FileJob for Watched<Job<Fanuc>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
         self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
@@ -528,12 +528,12 @@ fn both_ways(input: &Path, dir: &Path, target: Dialect, max_steps: u64) -> (Vec<
         let cancel = Arc::new(AtomicBool::new(false));
         let (r, s) = match target {
             Dialect::Sinumerik => {
-                let job = Watched { job: ToSinumerikJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Sinumerik>::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
                 let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
                 (r, job.streamed.into_inner().expect("lock"))
             }
             Dialect::Fanuc => {
-                let job = Watched { job: ToFanucJob::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
+                let job = Watched { job: Job::<Fanuc>::new(settings(max_steps)), streamed: Mutex::new(vec![]) };
                 let r = batch::run_batch(opts, &job, cancel, &mut |_| {}).expect("batch");
                 (r, job.streamed.into_inner().expect("lock"))
             }

@@ -130,9 +130,10 @@ fn batch_record(
     specialise: bool,
     fault: Option<Box<nctrans::batch::jobs::Fault>>,
 ) -> (nctrans::batch::FileRecord, bool) {
-    use nctrans::batch::jobs_sinumerik::ToSinumerikJob;
+    use nctrans::batch::jobs::Job;
+    use nctrans::batch::target::sinumerik::Sinumerik;
     use nctrans::batch::{self, BatchOptions, FileJob};
-    struct Watched(ToSinumerikJob, std::sync::atomic::AtomicBool);
+    struct Watched(Job<Sinumerik>, std::sync::atomic::AtomicBool);
     impl FileJob for Watched {
         fn run(&self, f: &batch::InputFile, ctx: &batch::BatchContext) -> batch::FileOutcome {
             match batch::streamed::to_sinumerik(&self.0, f, ctx) {
@@ -150,7 +151,7 @@ fn batch_record(
     std::fs::copy(corpus_file(), dir.join("in/pocket.nc")).expect("copy");
     let settings =
         nctrans::batch::jobs::JobSettings::from_config(&nctrans::config::Config::default()).expect("settings");
-    let mut job = ToSinumerikJob::new(settings);
+    let mut job = Job::<Sinumerik>::new(settings);
     job.fault = fault;
     let job = Watched(job, Default::default());
     let mut opts = BatchOptions::new(dir.join("in"), dir.join("out"), Dialect::Sinumerik);

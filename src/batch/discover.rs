@@ -1,7 +1,9 @@
 //! Finding the programs of a library (recursively, in a stable order) and naming their
 //! outputs: `.mpf/.spf` → `.nc`; `.nc/.tap` → `.mpf`, or `.spf` for called programs.
 
-use crate::dialect::Dialect;
+use crate::dialect::{Dialect, ParseOptions};
+use crate::span::SourceDb;
+use crate::translate::library::{scan_unit, FileInfo, Scan};
 use std::path::{Path, PathBuf};
 
 /// One input program file.
@@ -118,6 +120,33 @@ pub fn sinumerik_output(rel: &Path, name: &str, called: bool) -> PathBuf {
     let ext = ext_like(if called { "spf" } else { "mpf" }, like);
     let dir = rel.parent().unwrap_or(Path::new(""));
     dir.join(format!("{name}.{ext}"))
+}
+
+/// The dialect of a file: its name, else its content.
+pub fn dialect_of(rel: &Path, text: &str) -> Dialect {
+    dialect_of_name(rel).unwrap_or_else(|| Dialect::sniff(text))
+}
+
+/// Reads and parses one file for the index.
+pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) -> Scan {
+    let bytes = match std::fs::read(&file.abs) {
+        Ok(b) => b,
+        Err(e) => {
+            return Scan {
+                info: FileInfo { read_error: Some(format!("cannot read: {e}")), ..FileInfo::default() },
+                ..Scan::default()
+            }
+        }
+    };
+    let mut db = SourceDb::new();
+    let name = super::rel_string(&file.rel);
+    let loaded = crate::load(&mut db, &name, &bytes, encoding);
+    let dialect = dialect_of(&file.rel, &db.get(loaded.file).text);
+    let parsed = crate::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
+    let stem = file.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+    let mut scan = scan_unit(&parsed.unit, db.get(loaded.file), &stem);
+    scan.info.parse_errors = parsed.diags.iter().filter(|d| d.is_error()).count();
+    scan
 }
 
 #[cfg(test)]

@@ -2,8 +2,8 @@
 //! translate them with the batch's maps through `translate::translate`, verify the files
 //! written by running both programs, and hand back the output bytes. What differs per
 //! target (its options from the maps, its output files' names, the names it used, what it
-//! refuses, its proof's runs) is the target's [`Target`], beside its translation
-//! (`translate::to_fanuc::job`, `translate::to_sinumerik::job`).
+//! refuses, its proof's runs) is the target's [`Target`] (`batch::target::fanuc`,
+//! `batch::target::sinumerik`).
 
 use super::{maps, BatchContext, DiagRecord, FileJob, FileOutcome, InputFile, OutputFile, Status};
 use crate::check::{self, Verdict};
@@ -20,19 +20,13 @@ use std::collections::BTreeSet;
 use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 
-pub use crate::translate::called::MemCallees;
-pub use crate::translate::to_fanuc::job::used_names;
-
-/// Sinumerik → FANUC.
-pub type ToFanucJob = Job<crate::translate::to_fanuc::job::Fanuc>;
-/// FANUC → Sinumerik.
-pub type ToSinumerikJob = Job<crate::translate::to_sinumerik::job::Sinumerik>;
+use super::target::{fanuc::Fanuc, sinumerik::Sinumerik};
 
 /// The job of a batch to `target`.
 pub fn for_target(target: Dialect, settings: JobSettings) -> Box<dyn FileJob> {
     match target {
-        Dialect::Fanuc => Box::new(ToFanucJob::new(settings)),
-        Dialect::Sinumerik => Box::new(ToSinumerikJob::new(settings)),
+        Dialect::Fanuc => Box::new(Job::<Fanuc>::new(settings)),
+        Dialect::Sinumerik => Box::new(Job::<Sinumerik>::new(settings)),
     }
 }
 

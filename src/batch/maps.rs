@@ -3,8 +3,9 @@
 //! translated so that every call in every output points at the right program. They are
 //! written to `OUT/nctrans-map.toml` and read back (`--map`) so a rerun is byte-identical.
 
-use super::library::{Library, ProgKey};
+use crate::config::{program_table, string_list, tool_table, Config};
 use crate::dialect::Dialect;
+use crate::translate::library::{Library, ProgKey};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 
@@ -30,7 +31,7 @@ pub struct BatchMaps {
     pub variables: BTreeMap<String, String>,
     /// The H ↔ T/D offset map the translations used (`[offsets]` of nctrans.toml or
     /// `--offset-map`), so a rerun with the map translates compensation alike.
-    pub offsets: crate::lower::comp_flow::OffsetMap,
+    pub offsets: crate::dialect::offsets::OffsetMap,
 }
 
 /// What one file's translation used; merged into the written map.
@@ -291,7 +292,7 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
                 let t = value.as_table().ok_or("offsets: expected a table of \"T.D\" = \"Hh,Dd\"")?;
                 for (k, v) in t {
                     let text = v.as_str().ok_or_else(|| format!("offsets.{k}: expected a string like \"H26,D46\""))?;
-                    let (edge, regs) = crate::lower::comp_flow::OffsetMap::parse_entry(k, text)
+                    let (edge, regs) = crate::dialect::offsets::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     maps.offsets.edges.insert(edge, regs);
                 }
@@ -323,74 +324,28 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
     Ok((maps, target))
 }
 
-/// `[programs]`: `"CONTOUR" = "O9000"` or `= 9000` (to FANUC), `"O9010" = "PROBE_X"` (to
-/// Sinumerik). With a known target the keys are read as that direction's source names.
-pub fn program_table(
-    value: &toml::Value,
-    what: &str,
-    dialect: Option<Dialect>,
-) -> Result<BTreeMap<ProgKey, ProgKey>, String> {
-    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"NAME\" = \"O9000\""))?;
-    let mut out = BTreeMap::new();
-    for (k, v) in t {
-        let target = match v {
-            toml::Value::Integer(n) if (1..=99_999_999).contains(n) => ProgKey::Number(*n as u32),
-            toml::Value::String(s) if !s.trim().is_empty() => ProgKey::parse(s),
-            _ => {
-                return Err(format!(
-                    "{what}.{k}: expected an O number (9000 or \"O9000\") or a Siemens program name (\"PROBE_X\")"
-                ))
-            }
+impl BatchMaps {
+    /// The pinned maps of `nctrans.toml` and the flags (`c`) for a direction: programs,
+    /// tools, variable rules and offsets.
+    pub fn from_config(c: &Config, target: Dialect) -> BatchMaps {
+        let (programs, rules) = match target {
+            Dialect::Fanuc => (&c.programs_to_fanuc, &c.var_map_to_fanuc),
+            Dialect::Sinumerik => (&c.programs_to_sinumerik, &c.var_map_to_sinumerik),
         };
-        if let ProgKey::Name(n) = &target {
-            if !n.starts_with(|c: char| c.is_ascii_alphabetic())
-                || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-            {
-                return Err(format!(
-                    "{what}.{k}: '{n}' is not a Siemens program name (letters, digits and _, starting with a letter)"
-                ));
-            }
-        }
-        let key = match (dialect, ProgKey::parse(k)) {
-            (Some(Dialect::Fanuc), _) => ProgKey::Name(k.trim().to_ascii_uppercase()),
-            (Some(Dialect::Sinumerik), key @ ProgKey::Number(_)) => key,
-            (Some(Dialect::Sinumerik), _) => {
-                return Err(format!("{what}.{k}: a FANUC program is named by its O number (\"O9010\" or \"9010\")"))
-            }
-            (None, key) => key,
-        };
-        out.insert(key, target);
-    }
-    Ok(out)
-}
-
-/// `[tools]`: `"DRILL_5" = 12`.
-pub fn tool_table(value: &toml::Value, what: &str) -> Result<BTreeMap<String, u32>, String> {
-    let t = value.as_table().ok_or_else(|| format!("{what}: expected a table of \"TOOL NAME\" = T number"))?;
-    let mut out = BTreeMap::new();
-    for (k, v) in t {
-        match v.as_integer() {
-            Some(n) if (0..=99_999_999).contains(&n) => {
-                out.insert(k.clone(), n as u32);
-            }
-            _ => return Err(format!("{what}.{k}: expected a T number from 0 to 99999999")),
+        BatchMaps {
+            programs: programs.clone(),
+            tools: c.tools.clone(),
+            var_rules: rules.clone(),
+            variables: BTreeMap::new(),
+            offsets: c.offsets.clone(),
         }
     }
-    Ok(out)
-}
-
-/// A list of strings.
-pub fn string_list(value: &toml::Value, what: &str) -> Result<Vec<String>, String> {
-    let a = value.as_array().ok_or_else(|| format!("{what}: expected a list of strings like [\"R0-R99=#100\"]"))?;
-    a.iter()
-        .map(|v| v.as_str().map(str::to_string).ok_or_else(|| format!("{what}: every entry must be a string")))
-        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::batch::library::{FileInfo, ProgramInfo};
+    use crate::translate::library::{FileInfo, ProgramInfo};
 
     fn lib_with(progs: &[(ProgKey, usize, Dialect)], called: &[ProgKey], files: usize) -> Library {
         let mut lib = Library::default();
@@ -403,7 +358,7 @@ mod tests {
             lib.programs.insert(k.clone(), ProgramInfo { key: k.clone(), file: *f, position: 0, params: vec![] });
         }
         for c in called {
-            lib.calls.push(crate::batch::library::CallSite {
+            lib.calls.push(crate::translate::library::CallSite {
                 file: 0,
                 line: 1,
                 target: c.clone(),
@@ -491,5 +446,20 @@ mod tests {
         assert!(e.contains("colour: unknown key") && e.contains("programs"), "{e}");
         let e = from_toml("[programs]\n\"O9010\" = \"9 BAD\"\n").unwrap_err();
         assert!(e.contains("programs.O9010"), "{e}");
+    }
+
+    #[test]
+    fn the_pinned_maps_of_the_configuration_are_per_direction() {
+        let mut c = Config::default();
+        c.set_flag("programs.to_fanuc", "CONTOUR=9001").unwrap();
+        c.set_flag("programs.to_sinumerik", "9010=PROBE_X").unwrap();
+        c.set_flag("tools", "MILL=7").unwrap();
+        let m = BatchMaps::from_config(&c, Dialect::Fanuc);
+        assert_eq!(m.fanuc_numbers().get("CONTOUR"), Some(&9001));
+        assert!(m.siemens_names().is_empty());
+        assert_eq!(m.tools.get("MILL"), Some(&7));
+        let m = BatchMaps::from_config(&c, Dialect::Sinumerik);
+        assert_eq!(m.siemens_names().get(&9010).map(String::as_str), Some("PROBE_X"));
+        assert!(m.fanuc_numbers().is_empty());
     }
 }

@@ -3,33 +3,27 @@
 //!
 //! The engine does not know how one file is translated: the work per file is a
 //! [`FileJob`]. The engine finds the files ([`discover`]), reads what every program defines
-//! and calls ([`library`]), fixes one program, tool and variable map for the whole batch
+//! and calls (`discover::scan` into `translate::library`), fixes one program, tool and variable map for the whole batch
 //! ([`maps`]), runs the job over the files in parallel ([`run`]), writes every output
 //! atomically ([`write`]) and summarises ([`report`]). Everything a file's output depends on
 //! is decided before the parallel part, so the output does not depend on thread timing.
 //!
 //! Owns: the engine above and the one per-file job (`jobs`: read, translate through the one
-//! entry, verify, outputs; what a target does as its own is its `jobs::Target`, beside its
-//! translation in `translate::to_<name>::job`), and `streamed*`: a large file streamed.
-//! May use: `translate` (the one entry and the targets' job parts), `stream`, `check`,
-//! `eval`, `dialect`, `config`; never the command line.
+//! entry, verify, outputs; what a target does as its own is its `jobs::Target`, in
+//! [`target`]), and `streamed*`: a large file streamed.
+//! May use: `config`, `stream`, `translate` (the entry, the proof, the library index),
+//! `check`, `gud`, `same_file`, `lower`, `eval`, `dialect`, `ir`, base; never the command
+//! line (`tests/layering.rs`).
 
 pub mod discover;
 pub mod jobs;
-/// The names the streamed jobs and the tests reach the FANUC → Sinumerik job under.
-pub mod jobs_sinumerik {
-    pub use super::jobs::ToSinumerikJob;
-    pub(crate) use crate::translate::to_sinumerik::job::{
-        in_file_macro_runs, parse_all, siemens_inputs, stand_in, used_names,
-    };
-}
-pub mod library;
 pub mod maps;
 pub mod report;
 pub mod run;
 pub mod streamed;
 mod streamed_calls;
 mod streamed_macro;
+pub mod target;
 pub mod write;
 
 use crate::dialect::Dialect;
@@ -39,7 +33,6 @@ use std::sync::Arc;
 use std::time::Duration;
 
 pub use discover::InputFile;
-pub use library::Library;
 pub use maps::BatchMaps;
 pub use run::{run_batch, BatchError};
 
@@ -220,7 +213,7 @@ pub struct BatchContext {
     /// Every input file of the batch, in batch order (`InputFile::index`).
     pub files: Vec<InputFile>,
     /// Every program in the library: who defines it, who calls it and how.
-    pub library: Library,
+    pub library: crate::translate::library::Library,
     /// The program, tool and variable maps of the whole batch, fixed before any file runs.
     pub maps: BatchMaps,
     /// Set by Ctrl-C: a long job may stop early and report `Error` ("stopped").

@@ -5,10 +5,10 @@
 //! is committed and reported.
 
 use super::discover::{self, InputFile};
-use super::library::{self, Library};
 use super::maps;
 use super::write::{WriteError, Writer};
 use super::*;
+use crate::translate::library::{self, Library};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
@@ -167,8 +167,9 @@ pub fn run_batch(
     let enc = opts.encoding;
     // A large straight-line program is read as a stream (see `streamed::library_scan`).
     let stream_bytes = opts.stream_bytes;
-    let read =
-        |f: &InputFile| super::streamed::library_scan(f, enc, stream_bytes).unwrap_or_else(|| library::scan(f, enc));
+    let read = |f: &InputFile| {
+        super::streamed::library_scan(f, enc, stream_bytes).unwrap_or_else(|| super::discover::scan(f, enc))
+    };
     parallel(&files, jobs, &cancel, &read, &mut |i, s| scans[i] = s);
     let scans: Vec<library::Scan> = scans
         .into_iter()

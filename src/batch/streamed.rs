@@ -18,11 +18,11 @@
 //! file every streamed translator declines, is left to the whole-file job.
 
 use super::discover::{self, InputFile};
-use super::jobs::{self, apply, combine, MemCallees, ToFanucJob, Verified};
-use super::jobs_sinumerik::{self, parse_all, siemens_inputs, ToSinumerikJob};
-use super::library::{self, FileInfo, ProgKey, Scan};
+use super::jobs::{self, apply, combine, Job, Verified};
 use super::streamed_calls;
 use super::streamed_macro::{self, LibItems};
+use super::target::fanuc::{self as target_fanuc, Fanuc};
+use super::target::sinumerik::{self as target_sinumerik, Sinumerik};
 use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
 use crate::diag::Diagnostic;
@@ -38,6 +38,8 @@ use crate::stream::transcode::{self, TempCopy, TempFile};
 use crate::stream::verify::{self as sv, ReadBack, StreamSide};
 use crate::stream::Fallback;
 use crate::translate;
+use crate::translate::called::{parse_all, siemens_inputs, MemCallees};
+use crate::translate::library::{self, FileInfo, ProgKey, Scan};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
@@ -193,7 +195,7 @@ pub fn without_shared_streamed(
         .collect();
     for i in shared {
         if let Some(f) = files.get(i) {
-            scans[i] = library::scan(f, encoding);
+            scans[i] = super::discover::scan(f, encoding);
         }
     }
     scans
@@ -361,7 +363,7 @@ fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics)
 
 /// FANUC → Sinumerik for a streamable file (see the module documentation); `None` leaves
 /// the file to the whole-file job.
-pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+pub fn to_sinumerik(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
     if job.fault.is_some() {
         return None;
     }
@@ -374,7 +376,7 @@ pub fn to_sinumerik(job: &ToSinumerikJob, file: &InputFile, ctx: &BatchContext) 
 /// [`to_sinumerik`] reading `path` (the file, or its decoded `copy`), with the `callees`
 /// files of a main that calls subprograms (`streamed_calls`).
 fn to_sinumerik_from(
-    job: &ToSinumerikJob,
+    job: &Job<Sinumerik>,
     file: &InputFile,
     ctx: &BatchContext,
     path: &Path,
@@ -427,7 +429,7 @@ fn to_sinumerik_from(
     let programs: Vec<(Option<u32>, &str)> = std::iter::once((done.fanuc_number, done.program.as_str()))
         .chain(streamed_calls::own(&subs).map(|f| (f.fanuc_number, f.program.as_str())))
         .collect();
-    outcome.used = jobs_sinumerik::used_names(&programs, &done.symbols);
+    outcome.used = target_sinumerik::used_names(&programs, &done.symbols);
     outcome.diagnostics = records(&done.diags, &[(0, &name, path)]);
     outcome.staged = vec![(rel_out, part.clone())];
     // The main file first, then its subprograms, as the whole job lists its outputs.
@@ -445,7 +447,7 @@ fn to_sinumerik_from(
         stage_subs(&mut outcome)?;
         return Some(outcome);
     }
-    // As `ToSinumerikJob::verify` runs a file's only program: its header inputs and `--set`.
+    // As `Job<Sinumerik>::verify` runs a file's only program: its header inputs and `--set`.
     let out_dir = rel_string(file.rel.parent().unwrap_or(Path::new("")));
     let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &shown, read_back)];
@@ -527,7 +529,7 @@ fn to_sinumerik_from(
 
 /// Sinumerik → FANUC for a streamable file (see the module documentation); `None` leaves
 /// the file to the whole-file job.
-pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+pub fn to_fanuc(job: &Job<Fanuc>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
     let s = &job.settings;
     // The stream reads the Siemens file with the default profile.
     if job.fault.is_some() || s.sinumerik != Semantics::default_for(Dialect::Sinumerik) {
@@ -540,7 +542,7 @@ pub fn to_fanuc(job: &ToFanucJob, file: &InputFile, ctx: &BatchContext) -> Optio
 /// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
 /// whole job (file ids from 1 up after the main's 0, the job's encoding and profile);
 /// declines one with any diagnostic or a call `segmented::to_fanuc_with_subs` cannot take.
-fn load_callees(job: &ToFanucJob, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
+fn load_callees(job: &Job<Fanuc>, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
     let no = |why: &str| Fallback::NotStraight(why.into());
     let mut db = SourceDb::new();
     db.add("", String::new());
@@ -559,7 +561,7 @@ fn load_callees(job: &ToFanucJob, ctx: &BatchContext, callees: &[usize]) -> Resu
 
 /// [`to_fanuc`] reading `path` (the file, or its decoded `copy`).
 fn to_fanuc_from(
-    job: &ToFanucJob,
+    job: &Job<Fanuc>,
     file: &InputFile,
     ctx: &BatchContext,
     path: &Path,
@@ -591,14 +593,14 @@ fn to_fanuc_from(
     let out_name = rel_string(&rel_out);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
     outcome.blocks = index.blocks;
-    outcome.used = jobs::used_names(&map);
+    outcome.used = target_fanuc::used_names(&map);
     outcome.staged = vec![(rel_out, part.clone())];
     // The translation's notes, as the whole-file job lists them before the check's.
     outcome.diagnostics = records(&notes, &[(0, &name, path)]);
     if !ctx.options.verify {
         return Some(outcome);
     }
-    // As `ToFanucJob::verify` runs a program no file calls: `--set` on both sides, the
+    // As `Job<Fanuc>::verify` runs a program no file calls: `--set` on both sides, the
     // mapped R parameters 0 on FANUC.
     let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &out_name, into)];
     let back = match sv::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {

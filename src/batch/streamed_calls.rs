@@ -4,23 +4,24 @@
 //! files may stream so, the callee units the whole-file job would translate with them, and
 //! the subprogram outputs of the file (`streamed.rs` does the rest).
 //!
-//! The whole job (`jobs_sinumerik`) translates the file with its callee files and a
+//! The whole job (`batch::target::sinumerik`) translates the file with its callee files and a
 //! stand-in for the calls other files make to any of those programs, renames programs
 //! whose number an earlier file defines, and verifies the first program and every other
 //! one its own file does not call. A file streams only where that comes down to the
 //! streamed job's one translation and one run: no program of the file defined twice or
 //! called from elsewhere, and each program after the first called by the file itself. The
 //! stand-in (the shop's common case: many CAM mains calling the macros of one library
-//! file) is the whole job's own (`jobs_sinumerik::stand_in`, same text, same file id after
+//! file) is the whole job's own (`target::sinumerik::stand_in`, same text, same file id after
 //! the callees'), translated with the rest and dropped from the files
 //! (`segmented::to_sinumerik_with_stand_in`; a diagnostic on it declines, where the whole
 //! job drops its warnings); like the whole job, the check runs without it. After the main's
 //! run, the macros the file calls by G65/G66 run alone as the whole job runs them (`macro_runs`,
-//! the same `jobs_sinumerik::in_file_macro_runs`).
+//! the same `target::sinumerik::in_file_macro_runs`).
 
 use super::discover::{self, InputFile};
 use super::jobs;
-use super::jobs_sinumerik::{self, ToSinumerikJob};
+use super::jobs::Job;
+use super::target::sinumerik::{self as target_sinumerik, Sinumerik};
 use super::{write, BatchContext};
 use crate::dialect::Dialect;
 use crate::ir::Unit;
@@ -79,12 +80,12 @@ pub(super) fn stand_in_id(callees: &[usize]) -> FileId {
 
 /// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
 /// whole job (file ids from 1 up after the main's 0, the job's encoding and FANUC profile),
-/// and the job's stand-in caller (`jobs_sinumerik::stand_in`, from the calls other files
+/// and the job's stand-in caller (`target::sinumerik::stand_in`, from the calls other files
 /// make to the programs of the main `file`, whose skeleton unit is `main`, and of the
 /// callees; file [`stand_in_id`]) when there is one; declines a file that does not read or
 /// has any diagnostic.
 pub(super) fn load(
-    job: &ToSinumerikJob,
+    job: &Job<Sinumerik>,
     ctx: &BatchContext,
     file: &InputFile,
     main: &Unit,
@@ -105,7 +106,7 @@ pub(super) fn load(
     }
     let files = std::iter::once(file.index).chain(callees.iter().copied());
     let all: Vec<(usize, &Unit)> = files.zip(std::iter::once(main).chain(&units)).collect();
-    let stand_in = jobs_sinumerik::stand_in(&mut db, ctx, &all, &job.settings.fanuc);
+    let stand_in = target_sinumerik::stand_in(&mut db, ctx, &all, &job.settings.fanuc);
     match stand_in {
         Some((id, _)) if id != stand_in_id(callees) => Err(no("the stand-in caller's file id")),
         Some((_, unit)) => Ok((units, Some(unit))),
@@ -114,14 +115,14 @@ pub(super) fn load(
 }
 
 /// The runs of the macros the file calls by G65/G66 among its own programs, alone, as the
-/// whole job makes them (`jobs_sinumerik::in_file_macro_runs`): the FANUC side from the
+/// whole job makes them (`target::sinumerik::in_file_macro_runs`): the FANUC side from the
 /// streamed skeleton `main` (its macro part and the file's other programs, whole) with the
 /// file's `header` (its `nctrans: set` lines), its callees from `units`, the Siemens side
 /// from the translation's other files `subs` and `symbols`. `None` when one of them is not
 /// an equivalence: the whole job then gives that verdict, with its diagnostics' lines.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn macro_runs(
-    job: &ToSinumerikJob,
+    job: &Job<Sinumerik>,
     ctx: &BatchContext,
     file: &InputFile,
     (main, header): (&Unit, &str),
@@ -146,8 +147,11 @@ pub(super) fn macro_runs(
         crate::translate::to_sinumerik::verify::Profiles { fanuc: s.fanuc.clone(), sinumerik: s.sinumerik.clone() };
     let settings =
         crate::translate::called::RunSettings { out_dir, max_steps: s.max_steps, profiles: &profiles, set: &s.set };
-    let served = || Box::new(jobs::MemCallees(units.to_vec())) as Box<dyn crate::eval::calls::CalleeSource + Send>;
-    let runs = jobs_sinumerik::in_file_macro_runs(&db, ctx, file, main, &tr, &settings, &served);
+    let served = || {
+        Box::new(crate::translate::called::MemCallees(units.to_vec()))
+            as Box<dyn crate::eval::calls::CalleeSource + Send>
+    };
+    let runs = target_sinumerik::in_file_macro_runs(&db, ctx, file, main, &tr, &settings, &served);
     runs.iter().all(|(_, r)| matches!(r.verdict, crate::check::Verdict::Equivalent { .. })).then_some(runs)
 }
 

@@ -4,7 +4,6 @@
 //! straight-line stream, then the segmented one (the macro part translated whole, its runs
 //! of straight blocks streamed).
 
-use super::library;
 use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
 use crate::ir::{CallKind, ItemKind, Program, Stmt, Unit, WordValue};
@@ -15,6 +14,7 @@ use crate::stream::segmented::LoadCallees;
 use crate::stream::target::sinumerik as sts;
 use crate::stream::Fallback;
 use crate::stream::{self, Index, ProgressFn};
+use crate::translate::library;
 use crate::translate::to_sinumerik::OutFile;
 use crate::translate::{SymbolMap, TranslateOptions};
 use std::collections::BTreeSet;

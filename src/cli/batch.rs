@@ -76,7 +76,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
         }
         eprintln!("using the names in {}", p.display());
     }
-    let from_config = c.batch_maps(to);
+    let from_config = nctrans::batch::BatchMaps::from_config(&c, to);
     pinned.programs.extend(from_config.programs);
     pinned.tools.extend(from_config.tools);
     if !from_config.var_rules.is_empty() {

@@ -6,16 +6,18 @@
 //! built-ins' are `translate::generic::builtin`), the block-number runs of an index
 //! ([`runs`]), the program-less file check ([`empty`]), what the streamed fast writers read
 //! of a plain word ([`plain`]) and the numbers they write from its digits (`digits`,
-//! `numwrite`). May use: `ir`, `read`, `diag`, `span`, and (the fast readers only, writing
-//! the evaluator's compact blocks) `eval::lit`, (the number writers only) `eval::numfmt`.
-//! Never `lower` (but the writers' unit
-//! tests build IR with `lower::build`), `stream`, `check`.
+//! `numwrite`), the compact op of a constant-word block the fast readers write and the
+//! evaluator runs (`lit`), and the tool offset map of a set-up (`offsets`). May use: `ir`,
+//! `read`, `diag`, `span`; never `eval`, `lower`, `stream`, `check` (but the unit tests
+//! build IR with `lower::build` and compare with `eval::value`; `tests/layering.rs`).
 
 pub(crate) mod digits;
 pub mod empty;
 pub mod fanuc;
 pub mod limits;
+pub mod lit;
 pub(crate) mod numwrite;
+pub mod offsets;
 pub mod plain;
 pub mod quick;
 pub mod runs;
@@ -23,6 +25,7 @@ pub mod semantics;
 pub mod sinumerik;
 pub mod spec;
 
+pub use crate::ir::Dialect;
 pub use semantics::Semantics;
 pub use spec::{Spec, Written};
 
@@ -30,12 +33,8 @@ use crate::diag::Diagnostic;
 use crate::ir::Unit;
 use crate::span::{FileId, SourceFile};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Dialect {
-    Sinumerik,
-    Fanuc,
-}
-
+/// The dialect's names, its file extensions and the sniffing of a text are spelling, so they
+/// are here; the type is the IR's (a unit records the dialect it was read from).
 impl Dialect {
     pub fn name(self) -> &'static str {
         match self {

@@ -3,7 +3,17 @@
 //! (shared by both directions' fast paths; split from `fast.rs` for size).
 
 use crate::dialect::fanuc::emit;
-use crate::eval::numfmt::POW10;
+
+/// 10⁰ to 10¹⁹ (these writers' and the evaluator's number formatter's, `eval::numfmt`).
+pub(crate) const POW10: [u64; 20] = {
+    let mut t = [1u64; 20];
+    let mut i = 1;
+    while i < 20 {
+        t[i] = t[i - 1] * 10;
+        i += 1;
+    }
+    t
+};
 
 /// Digits FANUC accepts in a number (`emit::fmt_num`).
 const MAX_DIGITS: usize = 8;

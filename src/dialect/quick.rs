@@ -10,7 +10,7 @@
 //! this reader takes, the full reader would give exactly these words (tests: the dialects'
 //! `quick_*` tests compare both on generated lines, tests/stream_direct.rs the pages).
 
-use crate::eval::lit::{milli, LitBlock, NO_MILLI};
+use crate::dialect::lit::{milli, LitBlock, NO_MILLI};
 use crate::span::Span;
 
 /// Which words a dialect's full reader reads alike (the others, the quick reader leaves to
@@ -303,7 +303,7 @@ fn digits8(w: u64) -> (usize, u64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::eval::lit::{LitWord, MAX_WORDS};
+    use crate::dialect::lit::{LitWord, MAX_WORDS};
     use crate::read::RawBlock;
 
     struct Rng(u64);

@@ -47,7 +47,7 @@ pub struct Semantics {
     pub haas: bool,
     /// The FANUC length and radius registers of each Siemens cutting edge (the setup's
     /// offset table; by default edge D1 of tool n is H n and D n): `[offsets]`.
-    pub offsets: crate::lower::comp_flow::OffsetMap,
+    pub offsets: crate::dialect::offsets::OffsetMap,
     /// Siemens MD20270 `$MC_CUTTING_EDGE_DEFAULT` as the profile states it: the edge a tool
     /// change without D selects (0: none). `None`: not stated; the evaluator runs with the
     /// factory setting 1 (D1), and the Sinumerik → FANUC translation refuses a tool change

@@ -2,9 +2,9 @@
 //! into and out of structures behaves like the controls' interpretive search, and the
 //! label / N tables that the searches of each [`Search`] kind walk.
 
-use super::lit::LitBlock;
 use super::paged::{Page, PagedSource};
 use crate::diag::Diagnostic;
+use crate::dialect::lit::LitBlock;
 use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
 use crate::span::{FileId, Span};
 use std::cell::RefCell;
@@ -209,7 +209,7 @@ impl Builder {
 }
 
 /// The ops of one chunk of a streamed program, built statement by statement as the chunk
-/// is re-read (see [`Code::flatten_chunk`]); jump targets are absolute op indices.
+/// is re-read (see [`ChunkOps`]); jump targets are absolute op indices.
 pub struct ChunkOps(Builder);
 
 impl ChunkOps {
@@ -289,16 +289,6 @@ impl Code {
         let mut b = Builder { base: 0, file, ops: Vec::new(), marks: Vec::new(), labels: HashMap::new() };
         b.stmts(&prog.body, 0)?;
         Ok(Code { file, ops: b.ops, marks: b.marks, labels: b.labels, memo: RefCell::new(HashMap::new()), paged: None })
-    }
-
-    /// Flattens the top-level statements of one chunk of a streamed program whose first op
-    /// has index `base` (jump targets are absolute op indices).
-    pub fn flatten_chunk(file: FileId, base: usize, body: Vec<Stmt>) -> Result<Vec<Op>, Diagnostic> {
-        let mut b = ChunkOps::new(file, base, body.len());
-        for s in body {
-            b.stmt(s)?;
-        }
-        Ok(b.finish())
     }
 
     /// A streamed program: ops are read chunk by chunk through `pager` (see `crate::stream`).

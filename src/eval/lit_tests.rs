@@ -2,10 +2,10 @@
 //! program and many generated ones run both ways and must give the same trace, event
 //! origins, per-block positions, ending, steps and diagnostics.
 
-use super::lit;
 use super::numfmt::tests::Rng;
 use super::trace::{text_line, Axes, Event, Origin, TraceSink};
 use super::{header_inputs, run, DirCallees, RunOptions};
+use crate::dialect::lit;
 use crate::dialect::ParseOptions;
 use crate::span::SourceDb;
 use std::fmt::Write;

@@ -5,6 +5,7 @@ use super::arc;
 use super::fault::{AlarmNumbers, Fault};
 use super::trace::{axis_index, Axes, Event, Plane, SpindleDir, ToolId};
 use super::value::{is_decimal_scale, round_half_away, round_to, round_to_decimal, round_to_scaled};
+use crate::dialect::lit::AbsInc;
 use crate::ir::cycle::Retract;
 use crate::span::Span;
 
@@ -48,13 +49,6 @@ pub struct WordVal {
 pub enum WV {
     Num(f64),
     Str(String),
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AbsInc {
-    Plain,
-    Ac,
-    Ic,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

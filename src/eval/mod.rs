@@ -4,7 +4,7 @@
 //!
 //! Owns: running a program (interpreter, machine state, the trace) and the interface it reads
 //! streamed programs through (`paged::PagedSource`). May use: `ir`, `dialect` (spellings,
-//! `Semantics`), `read`, `diag`, `span`. Never `stream`, `lower`, `check` or the translators,
+//! `Semantics`, the compact blocks of `dialect::lit`), `read`, `diag`, `span` (`tests/layering.rs`). Never `stream`, `lower`, `check` or the translators,
 //! which all use it.
 //!
 //! Layout: `value` (values and typed conversion), `expr` (operators and functions per
@@ -30,7 +30,7 @@ pub mod flow;
 pub mod haas_data;
 pub mod input;
 pub mod instructions;
-pub mod lit;
+
 pub mod machine;
 pub mod numfmt;
 pub mod paged;

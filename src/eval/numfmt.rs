@@ -349,17 +349,6 @@ fn int_digits(buf: &mut [u8; BUF], n: i64) -> usize {
     }
 }
 
-/// 10⁰ to 10¹⁹ (also the streamed translators' number writers').
-pub(crate) const POW10: [u64; 20] = {
-    let mut t = [1u64; 20];
-    let mut i = 1;
-    while i < 20 {
-        t[i] = t[i - 1] * 10;
-        i += 1;
-    }
-    t
-};
-
 /// "00" to "99".
 const PAIRS: &[u8; 200] = b"\
 0001020304050607080910111213141516171819\
@@ -396,7 +385,7 @@ fn put_digits(buf: &mut [u8; BUF], at: usize, mut n: u64) -> usize {
     // or one more than it, which one comparison settles.
     let bits = 64 - (n | 1).leading_zeros() as usize;
     let guess = (bits * 1233) >> 12;
-    let digits = guess + 1 - usize::from(n < POW10[guess]);
+    let digits = guess + 1 - usize::from(n < crate::dialect::numwrite::POW10[guess]);
     let end = at + digits;
     let mut i = end;
     while n >= 100 {

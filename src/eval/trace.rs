@@ -287,11 +287,6 @@ pub fn text_line(ev: &Event) -> String {
     String::from_utf8(v).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
-/// Appends the text form of `ev` to `s`.
-pub fn write_text(s: &mut String, ev: &Event) {
-    to_string_buf(s, |b| text_form(b, ev));
-}
-
 /// Appends the text form of `ev` to `v` (UTF-8).
 pub fn write_text_bytes(v: &mut Vec<u8>, ev: &Event) {
     text_form(&mut TextBuf(v), ev);

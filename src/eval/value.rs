@@ -146,51 +146,6 @@ pub fn decimal_count(x: f64, scale: f64) -> Option<i64> {
     }
 }
 
-/// [`decimal_count`]`(x, 1000.0)` for the literal `x` whose digits, read as one whole
-/// number, are `mant` with `frac` of them after the point (no sign: the count of `-x` is
-/// minus this one), worked out from the digits; `None` where that is not shown to be the
-/// same (then round the double).
-///
-/// Why it is the same: `x` is the double nearest `mant / 10^frac` (`read::exact`), and
-/// `decimal_count` first rounds `raw = (x × 1000) × 10⁶` to an integer `k`. Here
-/// `R = mant × 10^(9-frac)` is an integer below 10¹⁵ (`frac <= 9`, `mant < 10^(6+frac)`),
-/// and `raw` is `R` with three roundings, each of relative error at most 2⁻⁵³, so within
-/// `R × 3.4·10⁻¹⁶ < 0.34` of it: `k` is `R` exactly (ties of the thousandth included, the
-/// point of that pre-rounding), and its count is `R / 10⁶` rounded half away from zero,
-/// which is what this works out, each `frac` with its own constant divisor. Every such
-/// count is at most 10⁹ (so fits an `i32`).
-#[inline(always)]
-pub fn thousandths(mant: u64, frac: usize) -> Option<i64> {
-    const LIMIT: [u64; 10] = [
-        1_000_000,
-        10_000_000,
-        100_000_000,
-        1_000_000_000,
-        10_000_000_000,
-        100_000_000_000,
-        1_000_000_000_000,
-        10_000_000_000_000,
-        100_000_000_000_000,
-        1_000_000_000_000_000,
-    ];
-    if mant >= *LIMIT.get(frac)? {
-        return None;
-    }
-    let q = match frac {
-        0 => mant * 1000,
-        1 => mant * 100,
-        2 => mant * 10,
-        3 => mant,
-        4 => (mant + 5) / 10,
-        5 => (mant + 50) / 100,
-        6 => (mant + 500) / 1000,
-        7 => (mant + 5000) / 10_000,
-        8 => (mant + 50_000) / 100_000,
-        _ => (mant + 500_000) / 1_000_000,
-    };
-    Some(q as i64)
-}
-
 /// [`decimal_count`] from `k`, the pre-rounded count of millionths of an increment (the
 /// definition, which [`decimal_count`] works out in integers).
 fn decimal_count_of(k: f64) -> Option<i64> {
@@ -327,6 +282,7 @@ mod tests {
     /// and the largest digit strings it takes and the smallest it declines.
     #[test]
     fn thousandths_of_the_digits_are_the_rounded_literal() {
+        use crate::dialect::lit::thousandths;
         let mut seed = 0x0bad_cafe_1234_5678u64;
         let mut next = move || {
             seed = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);

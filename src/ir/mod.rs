@@ -1,7 +1,8 @@
 //! The typed IR shared by both dialects: meaning, not spelling.
 //!
-//! Owns: the IR types and their visitors. May use: `span`, and `dialect::Dialect` (which
-//! dialect a unit was read from); nothing else, since every other module uses the IR.
+//! Owns: the IR types and their visitors, and [`Dialect`] (which dialect a unit was read
+//! from; its names and sniffing are `dialect`'s). May use: `span`; nothing else, since
+//! every other module uses the IR (`tests/layering.rs`).
 //!
 //! A parsed file is a [`Unit`] of one or more [`Program`]s (FANUC files may hold several
 //! `O` programs). A program is a tree of [`Stmt`]s whose leaves are NC [`Block`]s.
@@ -16,8 +17,14 @@ pub mod visit;
 pub use expr::*;
 pub use stmt::*;
 
-use crate::dialect::Dialect;
 use crate::span::{FileId, Span};
+
+/// The dialect a unit was read from (named, recognised and read in `dialect`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Dialect {
+    Sinumerik,
+    Fanuc,
+}
 
 /// Everything parsed from one file.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 //! translation driver ([`straight`]) with what each target supplies to it ([`target`]), the
 //! segmented translation ([`segmented`]) and the one streamed verification ([`verify`]).
 //! May use everything below it: `read`, `dialect`, `ir`, `lower` (the targets' fast writers
-//! are `lower::to_<name>::fast_write`), `eval`, `check`, the whole-file translators. Nothing below imports `stream`: the
+//! are `lower::to_<name>::fast_write`), `eval`, `check`, `translate`; never `batch`, `config` or the CLI (`tests/layering.rs`). Nothing below imports `stream`: the
 //! evaluator reads pages through `eval::paged::PagedSource`, which [`paged::Pager`] implements.
 //!
 //! The whole-file path (`dialect::parse`) holds the decoded text and the IR tree; for a CAM
@@ -32,8 +32,8 @@ mod reread;
 mod words;
 
 use crate::diag::Diagnostic;
+use crate::dialect::lit::LitBlock;
 use crate::dialect::{fanuc, sinumerik, Dialect, ParseOptions};
-use crate::eval::lit::LitBlock;
 use crate::ir::{Comment, Stmt};
 use crate::read::RawBlock;
 use crate::span::{FileId, Span};
@@ -661,11 +661,6 @@ fn header_line(text: &str, header: &mut String) -> bool {
         header.push('\n');
     }
     comment
-}
-
-/// A span that marks "somewhere in this file" for diagnostics without text.
-pub fn file_span(ix: &Index) -> Span {
-    Span::new(0, ix.text_len.min(u64::from(u32::MAX)) as u32)
 }
 
 /// Output the streamed translators hand to their writer in pieces of about this size.

@@ -5,16 +5,17 @@
 //! each of those arguments left vacant, where its vacancy logic (a default, an alarm) must
 //! be right for a caller added later.
 
-use crate::batch::library::{self, Library, ProgKey};
 use crate::check::{CheckReport, Excluded, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
 use crate::eval::calls::{CalleeName, CalleeSource};
+use crate::eval::{self, Input as RunInput};
 use crate::ir::{CallKind, ProgName, Unit};
 use crate::span::{FileId, SourceDb};
-use crate::translate::to_sinumerik::job::{parse_all, siemens_inputs};
+use crate::translate::library::{self, Library, ProgKey};
 use crate::translate::to_sinumerik::verify::{self as vs, Profiles, RunSpec};
 use crate::translate::to_sinumerik::{OutFile, Translation};
+use crate::translate::InLibrary;
 use std::collections::BTreeSet;
 
 /// The runs that prove a program alone: without inputs, and once per constant argument
@@ -284,5 +285,128 @@ fn unit_name(u: &Unit) -> Option<String> {
     match u.programs.first().and_then(|p| p.name.as_ref()) {
         Some(ProgName::Name(n)) => Some(n.to_ascii_uppercase()),
         _ => None,
+    }
+}
+
+/// The Siemens inputs for FANUC inputs `#n=value` of a run of `program`: each variable by
+/// the symbol map, with its is-set flag (`#0` is value 0, flag 0). Variables the
+/// translation does not use are left out.
+pub fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    for s in fanuc {
+        let Some((lhs, rhs)) = s.split_once('=') else { continue };
+        let Some(n) = lhs.trim().strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) else {
+            // Not a FANUC variable: meant for the Siemens side as written.
+            out.push(s.clone());
+            continue;
+        };
+        let entry = match n {
+            1..=33 => {
+                let key = format!("#{n}");
+                tr.symbols.sinumerik().vars.iter().find(|v| v.program.as_deref() == Some(program) && v.fanuc == key)
+            }
+            _ => tr.symbols.sinumerik().common(n),
+        };
+        let Some(e) = entry else { continue };
+        let vacant = rhs.trim() == "#0";
+        out.push(format!("{}={}", e.siemens, if vacant { "0" } else { rhs.trim() }));
+        if let Some(f) = &e.flag {
+            out.push(format!("{f}={}", u8::from(!vacant)));
+        }
+    }
+    out
+}
+
+pub fn parse_all(v: &[String]) -> Vec<RunInput> {
+    v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
+}
+
+/// The runs of the proof of a FANUC file of a library (`translate::verify` with
+/// `VerifyOptions::library`): the file's first program against its translation, and each
+/// other program the file does not call itself (a second main program, a macro only other
+/// files call), each as the main program: with the inputs of the header lines and `--set`,
+/// and once per argument vector the library calls it with. The programs the file calls run
+/// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also runs
+/// alone (`in_file_macro_runs`). `inputs` are the file's unit and its callees'.
+pub fn library_runs(
+    db: &SourceDb,
+    inputs: &[&Unit],
+    tr: &Translation,
+    settings: &RunSettings,
+    (lib, each_vacant): (&InLibrary, bool),
+) -> Vec<(String, CheckReport)> {
+    let (library, index, main) = (lib.library, lib.file, inputs[0]);
+    let subs: Vec<Unit> = inputs[1..].iter().map(|u| (*u).clone()).collect();
+    let served = || Box::new(MemCallees(subs.clone())) as Box<dyn CalleeSource + Send>;
+    let mut runs = Vec::new();
+    for (i, p) in main.programs.iter().enumerate() {
+        let key = number_of(p).map(ProgKey::Number);
+        let called_here = key.as_ref().is_some_and(|k| library.calls.iter().any(|c| c.file == index && &c.target == k));
+        if i > 0 && called_here {
+            continue;
+        }
+        let Some(out) = tr.files.iter().find(|f| f.source == main.file && first_of(f, p)) else {
+            // A copy written by another file (see `duplicates`), verified there.
+            continue;
+        };
+        let mut unit = main.clone();
+        let entry = unit.programs.remove(i);
+        unit.programs.insert(0, entry);
+        let mine = key.filter(|k| library.programs.get(k).is_some_and(|d| d.file == index));
+        let cases = match &mine {
+            Some(k) => cases(library, k, each_vacant),
+            None => vec![(String::new(), vec![])],
+        };
+        let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
+        runs.extend(case_runs(db, main.file, &unit, tr, out, (&name, cases), settings, &served));
+    }
+    // The macros the file calls, alone (see `in_file_macro_runs`).
+    runs.extend(macro_runs_in(db, (library, index, each_vacant), main, tr, settings, &served));
+    runs
+}
+
+/// [`in_file_macro_runs`] of the file `index` of `lib`.
+pub fn macro_runs_in(
+    db: &SourceDb,
+    (lib, index, each_vacant): (&Library, usize, bool),
+    unit: &Unit,
+    tr: &Translation,
+    settings: &RunSettings,
+    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
+) -> Vec<(String, CheckReport)> {
+    let mut runs = Vec::new();
+    for (i, p) in unit.programs.iter().enumerate().skip(1) {
+        let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
+        // A copy of a program an earlier file defines is verified there (see `duplicates`).
+        let mine = lib.programs.get(&key).is_some_and(|d| d.file == index);
+        let macro_call = |c: &crate::translate::library::CallSite| {
+            c.file == index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
+        };
+        if !mine || !lib.calls.iter().any(macro_call) {
+            continue;
+        }
+        let Some(out) = tr.files.iter().find(|f| f.source == unit.file && first_of(f, p)) else { continue };
+        let mut alone = unit.clone();
+        let entry = alone.programs.remove(i);
+        alone.programs.insert(0, entry);
+        let a = Alone { db, file: unit.file, unit: &alone, tr, out };
+        runs.extend(macro_runs(&a, lib, &key, settings, each_vacant, callees));
+    }
+    runs
+}
+
+/// The `O` number of a FANUC program, if it has one.
+pub fn number_of(p: &crate::ir::Program) -> Option<u32> {
+    match p.name {
+        Some(ProgName::Number(n)) => Some(n),
+        _ => None,
+    }
+}
+
+/// Whether `f` is the translation of the FANUC program `p` (by number, else the unnamed main).
+fn first_of(f: &OutFile, p: &crate::ir::Program) -> bool {
+    match number_of(p) {
+        Some(n) => f.fanuc_number == Some(n),
+        None => f.fanuc_number.is_none(),
     }
 }

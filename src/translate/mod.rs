@@ -5,15 +5,16 @@
 //! Owns: the entry, the result type, the options of every target ([`Options`]), the one
 //! proof ([`verify`], [`VerifyOptions`]), and the work per target behind them: `to_fanuc/`
 //! (Sinumerik → FANUC) and `to_sinumerik/` (FANUC → Sinumerik, with its proof in
-//! `to_sinumerik/verify.rs`), each with what a batch job to it does as its own (`job.rs`).
-//! May use: `passes` (lowering), `dialect` (writing), `check` and `eval` (the proof),
-//! `unfinished`, `empty`, `ir`, `diag`, `read`, `span`; of `batch` only its library (the
-//! calls a proof runs with) and, in the targets' `job.rs`, the job they describe. Used by
-//! the CLI, `batch` and `stream`. A new target adds a module here and an arm in
-//! [`translate`] and [`verify`].
+//! `to_sinumerik/verify.rs`), the library index a proof runs called programs with
+//! (`library`: which programs call which with which arguments) and those runs (`called`).
+//! May use: `lower` (lowering), `dialect` (writing), `check` and `eval` (the proof),
+//! `unfinished`, `ir`, `diag`, `read`, `span`; never `batch`, `stream`, `config` or the
+//! CLI (`tests/layering.rs`). Used by the CLI, `batch` and `stream`. A new target adds a
+//! module here and an arm in [`translate`] and [`verify`].
 
 pub mod called;
 pub mod generic;
+pub mod library;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 
@@ -240,7 +241,7 @@ pub struct VerifyOptions<'a> {
 /// A translated file's place in a library (see [`VerifyOptions::library`]).
 #[derive(Clone, Copy, Debug)]
 pub struct InLibrary<'a> {
-    pub library: &'a crate::batch::library::Library,
+    pub library: &'a crate::translate::library::Library,
     /// The file's index in the library.
     pub file: usize,
     /// The name the library knows the file's main program by when the program names

@@ -7,13 +7,13 @@
 
 use super::TranslateArgs;
 use nctrans::batch::jobs::JobSettings;
-use nctrans::batch::library::ProgKey;
 use nctrans::check::Verdict;
 use nctrans::config::Config;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::lower::to_fanuc::varmap;
 use nctrans::span::SourceDb;
+use nctrans::translate::library::ProgKey;
 use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
 use nctrans::translate::{self, TranslateOptions, Translation};
 use nctrans::{diag, read};
@@ -87,7 +87,7 @@ pub fn fanuc_options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<
         tool_map: c.tools.clone(),
         program_map,
         program_number: c.program_number,
-        ..nctrans::translate::to_fanuc::job::file_options(&JobSettings::of(c), input, eol)
+        ..nctrans::batch::target::fanuc::file_options(&JobSettings::of(c), input, eol)
     })
 }
 

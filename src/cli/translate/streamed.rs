@@ -27,16 +27,32 @@ use std::process::ExitCode;
 /// streams from a decoded copy; an output in another encoding than UTF-8 is written as
 /// UTF-8 first, verified from there (as the whole path verifies its text), then encoded.
 pub fn to_fanuc(a: &TranslateArgs, c: &nctrans::config::Config, input: &Path) -> Option<ExitCode> {
+    streamed(input, a.stream, c.input_encoding, &|src, size| to_fanuc_from(a, c, src, size))
+}
+
+/// A streamed translation from one source: its exit code (`None`: translate it whole), or
+/// `Err` when the source is found not to be UTF-8.
+type Attempt = Result<Option<ExitCode>, NotStreamable>;
+
+/// The one way into a streamed translation, either target: `input` is streamed when it is
+/// large (or `forced`) and not possibly program-less; `from` translates from the file, and
+/// again from a decoded copy when it finds the file not UTF-8. `None`: translate it whole.
+fn streamed(
+    input: &Path,
+    forced: bool,
+    encoding: Option<&'static encoding_rs::Encoding>,
+    from: &dyn Fn(&Source, u64) -> Attempt,
+) -> Option<ExitCode> {
     let size = std::fs::metadata(input).ok()?.len();
-    if !(a.stream || size >= cs::AUTO_BYTES) {
+    if !(forced || size >= cs::AUTO_BYTES) {
         return None;
     }
     if nctrans::dialect::empty::may_be_program_less(input) {
         return None;
     }
-    let mut src = Source::new(input, c.input_encoding)?;
+    let mut src = Source::new(input, encoding)?;
     loop {
-        match to_fanuc_from(a, c, &src, size) {
+        match from(&src, size) {
             Ok(code) => return code,
             Err(why) => src.transcoded(&why)?,
         }
@@ -45,12 +61,7 @@ pub fn to_fanuc(a: &TranslateArgs, c: &nctrans::config::Config, input: &Path) ->
 
 /// [`to_fanuc`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
-fn to_fanuc_from(
-    a: &TranslateArgs,
-    c: &nctrans::config::Config,
-    src: &Source,
-    size: u64,
-) -> Result<Option<ExitCode>, NotStreamable> {
+fn to_fanuc_from(a: &TranslateArgs, c: &nctrans::config::Config, src: &Source, size: u64) -> Attempt {
     use stream::{target::fanuc as st, Fallback};
     let (input, path) = (src.original, src.path());
     if cs::dialect_of(path, None) != Some(Dialect::Sinumerik) {
@@ -287,23 +298,10 @@ fn verify_to_fanuc(
 /// A source in a legacy encoding streams from a decoded UTF-8 copy, and its translation is
 /// written as UTF-8 first, verified from there, then encoded (as the whole path encodes).
 pub fn to_sinumerik(args: &TranslateArgs, req: &Request, opts: &Options) -> Option<ExitCode> {
-    let size = std::fs::metadata(req.file).ok()?.len();
-    if !(args.stream || size >= cs::AUTO_BYTES) {
-        return None;
-    }
-    if nctrans::dialect::empty::may_be_program_less(req.file) {
-        return None;
-    }
-    let mut src = cs::Source::new(req.file, req.encoding)?;
     // An output folder the stream creates is removed again when the whole path takes over
     // (which creates it only for a translation it writes).
     let made = req.out.filter(|o| o.to_string_lossy().ends_with('/') && !o.exists());
-    let code = (|| loop {
-        match to_sinumerik_from(req, opts, &src, size) {
-            Ok(code) => return code,
-            Err(why) => src.transcoded(&why)?,
-        }
-    })();
+    let code = streamed(req.file, args.stream, req.encoding, &|src, size| to_sinumerik_from(req, opts, src, size));
     if let (None, Some(dir)) = (&code, made) {
         let _ = std::fs::remove_dir(dir);
     }
@@ -312,12 +310,7 @@ pub fn to_sinumerik(args: &TranslateArgs, req: &Request, opts: &Options) -> Opti
 
 /// [`to_sinumerik`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
-fn to_sinumerik_from(
-    req: &Request,
-    opts: &Options,
-    src: &Source,
-    size: u64,
-) -> Result<Option<ExitCode>, NotStreamable> {
+fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> Attempt {
     use nctrans::stream::target::sinumerik as sts;
     use nctrans::stream::Fallback;
     let path = src.path();

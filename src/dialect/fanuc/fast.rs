@@ -126,11 +126,11 @@ pub fn lit_raw(
 /// callback between; the line is declined where `b.push` declines a word (`b` is then to
 /// be dropped). The block's span and number.
 ///
-/// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+/// [`LitWord::milli`]: crate::dialect::lit::LitWord::milli
 pub fn lit_block(
     raw: &crate::read::RawBlock<'_>,
     file: crate::span::FileId,
-    b: &mut crate::eval::lit::LitBlock,
+    b: &mut crate::dialect::lit::LitBlock,
 ) -> Option<(Span, Option<SeqNo>)> {
     // Most lines are taken by `quick::lit_words`: the words it takes are ones
     // [`plain_words`] takes alike (see [`QUICK`]), in a line without a skip, blanks
@@ -143,7 +143,7 @@ pub fn lit_block(
     let seg = Seg { norm: &norm, base: 0, text: raw.text, file };
     let (_, number, stop) = plain_words::<true>(&seg, |letter, value, point, span, _, digits| {
         let neg = value.is_sign_negative();
-        b.push(letter, value, point, crate::eval::lit::milli(neg, digits), span)
+        b.push(letter, value, point, crate::dialect::lit::milli(neg, digits), span)
     })?;
     let (lo, _, end) = cut(seg.text.as_bytes(), stop)?;
     Some((norm.span(lo, end), number))
@@ -158,7 +158,7 @@ pub const QUICK: crate::dialect::quick::Rule =
 /// `quick::lit_words_buf`): the line's length when it takes the line, as [`lit_block`]
 /// would with the line's whole span and no number.
 #[inline(always)]
-pub fn lit_buf(ahead: &[u8], start: u32, b: &mut crate::eval::lit::LitBlock) -> Option<usize> {
+pub fn lit_buf(ahead: &[u8], start: u32, b: &mut crate::dialect::lit::LitBlock) -> Option<usize> {
     crate::dialect::quick::lit_words_buf(ahead, start, b, QUICK)
 }
 

@@ -5,6 +5,7 @@
 //! (`parse.rs`, or the byte-level fast path in `fast.rs` for plain motion blocks). `block.rs`
 //! turns the grammar's parts into IR items (calls, returns, alarms, Macro A lowering), and
 //! `structure.rs` builds `DO`/`END` loops and checks `GOTO` targets per program.
+//! Owns: FANUC reading, writing (`emit`), cycle spellings. May use: `dialect`, `ir`, base.
 
 mod args;
 mod block;
@@ -322,7 +323,7 @@ impl<'o> Reader<'o> {
         &mut self,
         raw: &read::RawBlock<'_>,
         ascii: bool,
-        b: &mut crate::eval::lit::LitBlock,
+        b: &mut crate::dialect::lit::LitBlock,
     ) -> Option<(Span, Option<u32>)> {
         let file = self.file;
         self.reread_plain(raw, ascii, |raw| fast::lit_block(raw, file, b))

@@ -6,7 +6,7 @@
 
 use super::parse::word_item;
 use super::structure::{Line, LineKind};
-use crate::eval::lit::LitBlock;
+use crate::dialect::lit::LitBlock;
 use crate::ir::*;
 use crate::read::Normalised;
 use crate::span::Span;
@@ -68,7 +68,7 @@ pub fn words_raw(
 /// without a callback between; the line is declined where `b.push` declines a word (`b`
 /// is then to be dropped). Gives the line's span, its number and whether it has words.
 ///
-/// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+/// [`LitWord::milli`]: crate::dialect::lit::LitWord::milli
 ///
 /// Most lines are taken by `quick::lit_words` (the words it takes are ones [`read`] reads
 /// alike: no M, which `item` judges, no letter [`read`] leaves to the grammar, and those
@@ -219,7 +219,7 @@ impl Sink for Lit<'_> {
     fn word(&mut self, w: Found<'_>, norm: &Normalised<'_>) -> Option<()> {
         let value = w.value();
         // At most 15 digits (`read` declines more): `mant` is the digits' number.
-        let mut milli = crate::eval::lit::milli(w.neg, Some((w.mant, w.frac)));
+        let mut milli = crate::dialect::lit::milli(w.neg, Some((w.mant, w.frac)));
         if w.letter == b'M' {
             // Exactly the item `Items` builds: a plain word, or the block is declined.
             let (kind, span) = item(&w, norm);
@@ -228,7 +228,7 @@ impl Sink for Lit<'_> {
             };
             let ExprKind::Num(n) = e.kind else { return None };
             if n.value.to_bits() != value.to_bits() {
-                milli = crate::eval::lit::NO_MILLI;
+                milli = crate::dialect::lit::NO_MILLI;
             }
             return self.0.push(letter, n.value, n.point, milli, span).then_some(());
         }

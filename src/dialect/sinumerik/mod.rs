@@ -4,6 +4,7 @@
 //! fast path for plain motion blocks, else parsed by `grammar/sinumerik.pest` (rule `block`)
 //! and converted (`parse.rs`, `expr.rs`). A bad block gives one diagnostic (`errors.rs`) and
 //! reading goes on. The structurer (`structure.rs`) then builds the program tree.
+//! Owns: Sinumerik reading, writing (`emit`), cycle spellings. May use: `dialect`, `ir`, base.
 
 pub mod cycles;
 mod decls;
@@ -148,12 +149,6 @@ impl Reader {
     /// [`Reader::drain`] into `out` (appended; an empty `out` lends its capacity).
     pub fn drain_into(&mut self, out: &mut Vec<crate::ir::Stmt>) {
         self.builder.drain_into(out)
-    }
-
-    /// Name, head, parameters of the program as read so far (PROC and the `%_N_` header
-    /// come first, so they are known before the first statement).
-    pub fn program_head(&self) -> &crate::ir::Program {
-        self.builder.program()
     }
 
     pub fn diags(&self) -> &[Diagnostic] {
@@ -329,7 +324,7 @@ impl Reader {
         &mut self,
         raw: &read::RawBlock<'_>,
         ascii: bool,
-        b: &mut crate::eval::lit::LitBlock,
+        b: &mut crate::dialect::lit::LitBlock,
     ) -> Option<(Span, Option<u32>)> {
         self.reread_plain(raw, ascii, |raw| fast::lit_raw(raw, b))
     }

@@ -269,10 +269,6 @@ impl Builder {
         }
     }
 
-    pub fn program(&self) -> &Program {
-        &self.program
-    }
-
     /// Sets the `%_N_…` header (it is read before any block).
     pub fn header(&mut self, h: Header) {
         self.program.name = h.name.map(ProgName::Name);

@@ -1,11 +1,11 @@
-//! The interpreter's route for compact literal blocks (`eval/lit.rs`, nearly every block of
+//! The interpreter's route for compact literal blocks (`dialect/lit.rs`, nearly every block of
 //! CAM output): one block through `Machine::apply_lit` or the general words, and a stretch of
 //! them run without going back to the main loop for each.
 
 use super::{internal, Flow, Interp, LETTERS};
+use crate::dialect::lit::LitBlock;
 use crate::eval::fault::Fault;
 use crate::eval::flow::{Code, Op};
-use crate::eval::lit::LitBlock;
 use crate::eval::machine::{BlockEffect, WordVal, WV};
 use crate::eval::paged::Page;
 use crate::eval::trace::Origin;

@@ -8,7 +8,7 @@
 //! run programs both ways and compare the traces byte for byte.
 
 use super::{AbsInc, Machine, Motion};
-use crate::eval::lit::{LitBlock, NO_MILLI};
+use crate::dialect::lit::{LitBlock, NO_MILLI};
 use crate::eval::numfmt::GRID_LIMIT;
 use crate::eval::trace::{axis_index, Event};
 use crate::span::Span;

@@ -80,12 +80,12 @@ impl Machine {
     /// `known`: the word's [`LitWord::milli`], `decimal_count(x, 1000.0)` when its reader
     /// worked it out from the digits, which then is not worked out again.
     ///
-    /// [`LitWord::milli`]: crate::eval::lit::LitWord::milli
+    /// [`LitWord::milli`]: crate::dialect::lit::LitWord::milli
     #[inline(always)]
     pub(super) fn length_grid(&self, milli: bool, bare: bool, x: f64, known: i32, rotary: bool) -> (f64, Option<i64>) {
         // The count the reader worked out (nearly every CAM word): `length_of`'s way for
         // the word, `round_to_decimal(x, 1000.0)`, is `known / 1000` then.
-        if milli && known != crate::eval::lit::NO_MILLI && !(bare && self.scaling) {
+        if milli && known != crate::dialect::lit::NO_MILLI && !(bare && self.scaling) {
             return milli_length(i64::from(known));
         }
         self.length_grid_rest(milli, bare, x, rotary)

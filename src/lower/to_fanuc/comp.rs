@@ -1,6 +1,6 @@
 //! Sinumerik → FANUC tool compensation: cutting edges (`D`, a tool change's edge) and
 //! `G40/G41/G42` become `G43 H` / `G49` and `G41/G42 D` with the registers of the offset
-//! map ([`comp_flow::OffsetMap`]; by default edge D1 of tool n is H n and D n).
+//! map ([`crate::dialect::offsets::OffsetMap`]; by default edge D1 of tool n is H n and D n).
 //!
 //! The FANUC words go into the block where the Siemens state changes, so both traces make
 //! their `comp` event at the same place (after a tool change, before the block's motion):

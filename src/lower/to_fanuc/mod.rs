@@ -31,7 +31,6 @@ pub mod words;
 // The passes below reach the shared builders and modules through `super::` (`use super::*`).
 #[cfg(test)]
 use super::build;
-use super::comp_flow;
 use super::{
     assign_item, bin, block_stmt, cmp, func, goto_item, if_then, item, label_stmt, meta_is_marked, meta_stmt, num,
     take_target, var_expr,
@@ -93,8 +92,8 @@ pub struct Ctx {
     pub tools: BTreeMap<String, u32>,
     /// Tool names actually used, with their numbers (for the symbol map).
     pub tools_used: BTreeMap<String, u32>,
-    /// The FANUC registers of each cutting edge (`comp_flow::OffsetMap`).
-    pub offsets: comp_flow::OffsetMap,
+    /// The FANUC registers of each cutting edge (`crate::dialect::offsets::OffsetMap`).
+    pub offsets: crate::dialect::offsets::OffsetMap,
     /// The Siemens profile's MD20270, when it states one (`Semantics::cutting_edge_default`).
     pub edge_default: Option<u32>,
     /// Known callees by upper-case name.
@@ -127,7 +126,7 @@ impl Ctx {
             compound_conditions: false,
             tools: BTreeMap::new(),
             tools_used: BTreeMap::new(),
-            offsets: comp_flow::OffsetMap::default(),
+            offsets: crate::dialect::offsets::OffsetMap::default(),
             edge_default: None,
             callees: BTreeMap::new(),
             diags: Vec::new(),

@@ -1,6 +1,6 @@
 //! FANUC → Sinumerik tool compensation: `G43 H` / `G49` and `G41/G42 D` / `G40` become the
 //! cutting edge of the tool in the spindle (`D1`, `D0`) and `G41/G42/G40`, through the
-//! offset map (`passes::comp_flow::OffsetMap`; by default H n and D n are edge D1 of tool
+//! offset map (`passes::crate::dialect::offsets::OffsetMap`; by default H n and D n are edge D1 of tool
 //! n). A register is accepted where it provably belongs to the tool in the spindle: the
 //! same number, or the same variable unchanged since the tool change (`T#33 M06` …
 //! `G43 H#33`).

@@ -4,10 +4,9 @@
 //!
 //! Constructs FANUC cannot express are NC3xx errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a visibly marked comment line stands in
-//! their place (the translation is still not [`Output::ok`]). What a batch job to FANUC
-//! does as its own is `job`.
-
-pub mod job;
+//! their place (the translation is still not [`Output::ok`]).
+//! Owns: the FANUC text, symbol map and proof of a translation. May use: `lower`, `dialect`,
+//! `unfinished`, `check`, `eval`; never `batch`, `stream` or the CLI (`tests/layering.rs`).
 
 use super::Verification;
 use crate::diag::{self, Diagnostic};
@@ -456,7 +455,7 @@ pub fn verify<'a>(
             Some(ProgName::Name(n)) => n.to_ascii_uppercase(),
             _ => lib.main_name.to_string(),
         };
-        for (k, v) in lib.library.arg_vectors(&crate::batch::library::ProgKey::Name(key)).iter().enumerate() {
+        for (k, v) in lib.library.arg_vectors(&crate::translate::library::ProgKey::Name(key)).iter().enumerate() {
             let vals = v
                 .iter()
                 .filter_map(|a| {

@@ -4,15 +4,13 @@
 //! every diagnostic. Unsupported constructs are NC35x errors by default; with
 //! [`UnsupportedPolicy::Warn`] they are warnings and a `; NCTRANS UNSUPPORTED: …` line.
 //!
-//! Owns: the Siemens files of a translation (names, header, variable map lines), their
-//! proof (`verify`) and what a batch job to Sinumerik does as its own (`job`). May use:
-//! `passes::to_sinumerik` (lowering), `dialect::sinumerik::emit`, `unfinished`, `empty`,
-//! `check`/`eval` for the proof, and `batch` (its job and library) in `job`.
+//! Owns: the Siemens files of a translation (names, header, variable map lines) and their
+//! proof (`verify`). May use: `lower::to_sinumerik` (lowering), `dialect::sinumerik::emit`,
+//! `unfinished`, `empty`, `check`/`eval` for the proof; never `batch`, `stream` or the CLI.
 
 pub use super::{OutFile, Translation};
 pub use crate::lower::to_sinumerik::{Options, Role, UnsupportedPolicy, VarMapRule};
 
-pub mod job;
 pub mod verify;
 
 use crate::diag::Diagnostic;

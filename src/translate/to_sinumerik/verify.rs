@@ -47,7 +47,7 @@ impl CalleeSource for Emitted {
 
 /// The runs of the proof of a FANUC → Sinumerik translation (`translate::verify`): in a
 /// library, each program of the file that runs as a main and the macros it calls
-/// (`job::library_runs`); else the first program (its FANUC callees found beside it on
+/// (`called::library_runs`); else the first program (its FANUC callees found beside it on
 /// disk), then each macro the programs call by G65/G66 alone (`called::called_runs`).
 pub fn runs(
     db: &SourceDb,
@@ -59,7 +59,7 @@ pub fn runs(
     let profiles = opts.profiles.clone().unwrap_or_default();
     let settings = RunSettings { out_dir: out, max_steps: opts.max_steps, profiles: &profiles, set: opts.set };
     if let Some(lib) = &opts.library {
-        return super::job::library_runs(db, inputs, tr, &settings, (lib, opts.each_vacant));
+        return crate::translate::called::library_runs(db, inputs, tr, &settings, (lib, opts.each_vacant));
     }
     let main = inputs[0];
     let mut runs = vec![(String::new(), verify_profiled(db, main.file, main, tr, out, opts.max_steps, &profiles))];

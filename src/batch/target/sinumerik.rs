@@ -1,4 +1,4 @@
-//! What a batch job to Sinumerik does as its own (`batch::jobs::Target`): one FANUC file
+//! What a batch job to Sinumerik does as its own (`jobs::Target`): one FANUC file
 //! in, one Siemens file per program out (`NAME.MPF` for main programs, `NAME.SPF` for
 //! called ones), named by the batch's program map, each proved by running it against its
 //! FANUC source.
@@ -10,20 +10,18 @@
 //! dropped): the macro's own job and every caller's job then see the same calls and write
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
-use crate::batch::jobs::{Input, Job, LoadedFile, MemCallees, Prepared, Target};
-use crate::batch::library::{Library, ProgKey};
+use crate::batch::jobs::{Input, Job, LoadedFile, Prepared, Target};
 use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::CalleeSource;
-use crate::eval::{self, Input as RunInput};
-use crate::ir::{CallKind, ProgName, Unit};
+use crate::ir::{CallKind, Unit};
 use crate::span::{FileId, SourceDb};
-use crate::translate::called::{self as verify_called, RunSettings};
+use crate::translate::called::{self as verify_called, number_of, RunSettings};
+use crate::translate::library::ProgKey;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
-use crate::translate::InLibrary;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -122,13 +120,6 @@ fn default_r(n: u32) -> Option<u32> {
 
 fn stem(file: &InputFile) -> String {
     file.rel.file_stem().and_then(|x| x.to_str()).unwrap_or("MAIN").to_string()
-}
-
-fn number_of(p: &crate::ir::Program) -> Option<u32> {
-    match p.name {
-        Some(ProgName::Number(n)) => Some(n),
-        _ => None,
-    }
 }
 
 /// The programs of this file whose number the library gives to an earlier file. A copy of
@@ -271,39 +262,6 @@ pub(crate) fn used_names(programs: &[(Option<u32>, &str)], symbols: &ts::SymbolM
     used
 }
 
-/// The Siemens inputs for FANUC inputs `#n=value` of a run of `program`: each variable by
-/// the symbol map, with its is-set flag (`#0` is value 0, flag 0). Variables the
-/// translation does not use are left out.
-pub(crate) fn siemens_inputs(tr: &Translation, program: &str, fanuc: &[String]) -> Vec<String> {
-    let mut out = Vec::new();
-    for s in fanuc {
-        let Some((lhs, rhs)) = s.split_once('=') else { continue };
-        let Some(n) = lhs.trim().strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) else {
-            // Not a FANUC variable: meant for the Siemens side as written.
-            out.push(s.clone());
-            continue;
-        };
-        let entry = match n {
-            1..=33 => {
-                let key = format!("#{n}");
-                tr.symbols.sinumerik().vars.iter().find(|v| v.program.as_deref() == Some(program) && v.fanuc == key)
-            }
-            _ => tr.symbols.sinumerik().common(n),
-        };
-        let Some(e) = entry else { continue };
-        let vacant = rhs.trim() == "#0";
-        out.push(format!("{}={}", e.siemens, if vacant { "0" } else { rhs.trim() }));
-        if let Some(f) = &e.flag {
-            out.push(format!("{f}={}", u8::from(!vacant)));
-        }
-    }
-    out
-}
-
-pub(crate) fn parse_all(v: &[String]) -> Vec<RunInput> {
-    v.iter().filter_map(|s| eval::parse_input(s).ok()).collect()
-}
-
 impl Target for Sinumerik {
     const DIALECT: Dialect = Dialect::Sinumerik;
     const NAME: &'static str = "Sinumerik";
@@ -346,50 +304,6 @@ impl Target for Sinumerik {
     }
 }
 
-/// The runs of the proof of a FANUC file of a library (`translate::verify` with
-/// `VerifyOptions::library`): the file's first program against its translation, and each
-/// other program the file does not call itself (a second main program, a macro only other
-/// files call), each as the main program: with the inputs of the header lines and `--set`,
-/// and once per argument vector the library calls it with. The programs the file calls run
-/// where it calls them (and in their callers' jobs); a macro it calls by G65/G66 also runs
-/// alone (`in_file_macro_runs`). `inputs` are the file's unit and its callees'.
-pub fn library_runs(
-    db: &SourceDb,
-    inputs: &[&Unit],
-    tr: &Translation,
-    settings: &RunSettings,
-    (lib, each_vacant): (&InLibrary, bool),
-) -> Vec<(String, CheckReport)> {
-    let (library, index, main) = (lib.library, lib.file, inputs[0]);
-    let subs: Vec<Unit> = inputs[1..].iter().map(|u| (*u).clone()).collect();
-    let served = || Box::new(MemCallees(subs.clone())) as Box<dyn CalleeSource + Send>;
-    let mut runs = Vec::new();
-    for (i, p) in main.programs.iter().enumerate() {
-        let key = number_of(p).map(ProgKey::Number);
-        let called_here = key.as_ref().is_some_and(|k| library.calls.iter().any(|c| c.file == index && &c.target == k));
-        if i > 0 && called_here {
-            continue;
-        }
-        let Some(out) = tr.files.iter().find(|f| f.source == main.file && first_of(f, p)) else {
-            // A copy written by another file (see `duplicates`), verified there.
-            continue;
-        };
-        let mut unit = main.clone();
-        let entry = unit.programs.remove(i);
-        unit.programs.insert(0, entry);
-        let mine = key.filter(|k| library.programs.get(k).is_some_and(|d| d.file == index));
-        let cases = match &mine {
-            Some(k) => verify_called::cases(library, k, each_vacant),
-            None => vec![(String::new(), vec![])],
-        };
-        let name = if i > 0 { format!(" ({})", out.program) } else { String::new() };
-        runs.extend(verify_called::case_runs(db, main.file, &unit, tr, out, (&name, cases), settings, &served));
-    }
-    // The macros the file calls, alone (see `in_file_macro_runs`).
-    runs.extend(macro_runs_in(db, (library, index, each_vacant), main, tr, settings, &served));
-    runs
-}
-
 /// The runs of the macros a FANUC file calls by G65/G66 among its own programs after the
 /// first (file `file`, parsed as `unit`, translated in `tr`): each alone, as every path runs
 /// a called macro (`translate::called::macro_runs`: with the arguments of the library's call
@@ -406,45 +320,7 @@ pub(crate) fn in_file_macro_runs(
     callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
 ) -> Vec<(String, CheckReport)> {
     let each_vacant = !ctx.options.specialise_callers;
-    macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
-}
-
-/// [`in_file_macro_runs`] of the file `index` of `lib`.
-fn macro_runs_in(
-    db: &SourceDb,
-    (lib, index, each_vacant): (&Library, usize, bool),
-    unit: &Unit,
-    tr: &Translation,
-    settings: &RunSettings,
-    callees: &dyn Fn() -> Box<dyn CalleeSource + Send>,
-) -> Vec<(String, CheckReport)> {
-    let mut runs = Vec::new();
-    for (i, p) in unit.programs.iter().enumerate().skip(1) {
-        let Some(key) = number_of(p).map(ProgKey::Number) else { continue };
-        // A copy of a program an earlier file defines is verified there (see `duplicates`).
-        let mine = lib.programs.get(&key).is_some_and(|d| d.file == index);
-        let macro_call = |c: &crate::batch::library::CallSite| {
-            c.file == index && c.target == key && matches!(c.kind, CallKind::G65 | CallKind::G66)
-        };
-        if !mine || !lib.calls.iter().any(macro_call) {
-            continue;
-        }
-        let Some(out) = tr.files.iter().find(|f| f.source == unit.file && first_of(f, p)) else { continue };
-        let mut alone = unit.clone();
-        let entry = alone.programs.remove(i);
-        alone.programs.insert(0, entry);
-        let a = verify_called::Alone { db, file: unit.file, unit: &alone, tr, out };
-        runs.extend(verify_called::macro_runs(&a, lib, &key, settings, each_vacant, callees));
-    }
-    runs
-}
-
-/// Whether `f` is the translation of the FANUC program `p` (by number, else the unnamed main).
-fn first_of(f: &OutFile, p: &crate::ir::Program) -> bool {
-    match number_of(p) {
-        Some(n) => f.fanuc_number == Some(n),
-        None => f.fanuc_number.is_none(),
-    }
+    verify_called::macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
 }
 
 #[cfg(test)]

@@ -1,9 +1,8 @@
-//! What a batch job to FANUC does as its own (`batch::jobs::Target`): the options from the
+//! What a batch job to FANUC does as its own (`jobs::Target`): the options from the
 //! batch's maps, one output file named after the input, the names used, and the proof with
 //! the argument vectors the library's callers pass.
 
 use crate::batch::jobs::{Input, Job, JobSettings, Prepared, Target};
-use crate::batch::library::ProgKey;
 use crate::batch::{discover, maps, BatchContext, FileOutcome, InputFile};
 use crate::config::{Comments, Unsupported};
 use crate::diag::Diagnostic;
@@ -12,6 +11,7 @@ use crate::dialect::{Dialect, Semantics};
 use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
 use crate::span::FileId;
+use crate::translate::library::ProgKey;
 use crate::translate::{self, OutFile, TranslateOptions, Translation};
 use std::path::{Path, PathBuf};
 

@@ -4,9 +4,17 @@
 //! exactly what running the IR block does (`exec::exec_block` with literal words); the
 //! tests run every corpus program and generated ones both ways.
 
-use super::machine::AbsInc;
 use crate::ir::{Addr, Block, ExprKind, ItemKind, WordValue};
 use crate::span::Span;
+
+/// How a word's value is given: plain, or Siemens `=AC(…)` / `=IC(…)` (absolute or
+/// incremental for this word alone).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AbsInc {
+    Plain,
+    Ac,
+    Ic,
+}
 
 /// Words kept in place (a CAM block has up to six or so: `G1 X Y Z A F`); blocks with
 /// more stay IR. In place, not boxed: an allocation per block would cost more than the
@@ -31,7 +39,7 @@ pub struct LitBlock {
 /// One word: upper-case letter, the literal's value and whether it had a decimal point
 /// (the FANUC decimal-point rule), its `AC`/`IC` form, its span, and when its reader
 /// worked it out from the digits, the count of thousandths `decimal_count(value, 1000.0)`
-/// gives ([`crate::eval::value::thousandths`] with the sign; [`NO_MILLI`]: not known).
+/// gives ([`thousandths`] with the sign; [`NO_MILLI`]: not known).
 /// 24 bytes, as without the count (it fills what was padding).
 #[derive(Clone, Copy, Debug)]
 pub struct LitWord {
@@ -50,7 +58,7 @@ pub const NO_MILLI: i32 = i32::MIN;
 /// point (`None`: not read so, e.g. more than 15 digits), negated with `neg`.
 #[inline(always)]
 pub fn milli(neg: bool, digits: Option<(u64, usize)>) -> i32 {
-    match digits.and_then(|(mant, frac)| crate::eval::value::thousandths(mant, frac)) {
+    match digits.and_then(|(mant, frac)| thousandths(mant, frac)) {
         // At most 10⁹ (see `thousandths`).
         Some(q) => {
             let q = q as i32;
@@ -152,6 +160,51 @@ impl LitBlock {
     pub fn words(&self) -> &[LitWord] {
         &self.words[..usize::from(self.len)]
     }
+}
+
+/// [`decimal_count`]`(x, 1000.0)` for the literal `x` whose digits, read as one whole
+/// number, are `mant` with `frac` of them after the point (no sign: the count of `-x` is
+/// minus this one), worked out from the digits; `None` where that is not shown to be the
+/// same (then round the double).
+///
+/// Why it is the same: `x` is the double nearest `mant / 10^frac` (`read::exact`), and
+/// `decimal_count` first rounds `raw = (x × 1000) × 10⁶` to an integer `k`. Here
+/// `R = mant × 10^(9-frac)` is an integer below 10¹⁵ (`frac <= 9`, `mant < 10^(6+frac)`),
+/// and `raw` is `R` with three roundings, each of relative error at most 2⁻⁵³, so within
+/// `R × 3.4·10⁻¹⁶ < 0.34` of it: `k` is `R` exactly (ties of the thousandth included, the
+/// point of that pre-rounding), and its count is `R / 10⁶` rounded half away from zero,
+/// which is what this works out, each `frac` with its own constant divisor. Every such
+/// count is at most 10⁹ (so fits an `i32`).
+#[inline(always)]
+pub fn thousandths(mant: u64, frac: usize) -> Option<i64> {
+    const LIMIT: [u64; 10] = [
+        1_000_000,
+        10_000_000,
+        100_000_000,
+        1_000_000_000,
+        10_000_000_000,
+        100_000_000_000,
+        1_000_000_000_000,
+        10_000_000_000_000,
+        100_000_000_000_000,
+        1_000_000_000_000_000,
+    ];
+    if mant >= *LIMIT.get(frac)? {
+        return None;
+    }
+    let q = match frac {
+        0 => mant * 1000,
+        1 => mant * 100,
+        2 => mant * 10,
+        3 => mant,
+        4 => (mant + 5) / 10,
+        5 => (mant + 50) / 100,
+        6 => (mant + 500) / 1000,
+        7 => (mant + 5000) / 10_000,
+        8 => (mant + 50_000) / 100_000,
+        _ => (mant + 500_000) / 1_000_000,
+    };
+    Some(q as i64)
 }
 
 #[cfg(test)]

@@ -1,14 +1,14 @@
-//! The library index: every file read once before translation, to learn which programs it
-//! defines, which programs it calls (and with which constant arguments), and which tool
-//! names it uses. Calls between files are resolved here for the whole batch.
+//! The library index: what every program of a set of files defines and calls (and with which
+//! constant arguments), and which tool names it uses. A batch builds it over every file
+//! before translation (reading the files: `batch::discover::scan`) and resolves calls
+//! between files with it; the proof runs a called program with the argument vectors its
+//! callers pass (`translate::called`), and a single file's translation builds one over the
+//! file and its callees.
 
-use super::discover::{dialect_of_name, InputFile};
-use crate::dialect::{Dialect, ParseOptions};
+use crate::dialect::Dialect;
 use crate::ir::*;
-use crate::span::SourceDb;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
-use std::path::Path;
 
 /// How programs are named across the library: a FANUC `O` number or a Siemens name.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -278,33 +278,6 @@ pub struct Scan {
     pub calls: Vec<RawCall>,
 }
 
-/// The dialect of a file: its name, else its content.
-pub fn dialect_of(rel: &Path, text: &str) -> Dialect {
-    dialect_of_name(rel).unwrap_or_else(|| Dialect::sniff(text))
-}
-
-/// Reads and parses one file for the index.
-pub fn scan(file: &InputFile, encoding: Option<&'static encoding_rs::Encoding>) -> Scan {
-    let bytes = match std::fs::read(&file.abs) {
-        Ok(b) => b,
-        Err(e) => {
-            return Scan {
-                info: FileInfo { read_error: Some(format!("cannot read: {e}")), ..FileInfo::default() },
-                ..Scan::default()
-            }
-        }
-    };
-    let mut db = SourceDb::new();
-    let name = super::rel_string(&file.rel);
-    let loaded = crate::load(&mut db, &name, &bytes, encoding);
-    let dialect = dialect_of(&file.rel, &db.get(loaded.file).text);
-    let parsed = crate::parse(&db, loaded.file, dialect, &ParseOptions::for_dialect(dialect));
-    let stem = file.rel.file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
-    let mut scan = scan_unit(&parsed.unit, db.get(loaded.file), &stem);
-    scan.info.parse_errors = parsed.diags.iter().filter(|d| d.is_error()).count();
-    scan
-}
-
 /// What the index records of a parsed `unit` (its source `src`, a Siemens file's program
 /// named by `stem` when it has one program without a name): also how a single file's
 /// translation learns the calls among the programs it translates together
@@ -352,7 +325,7 @@ pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan
 }
 
 /// What the index records of a call on `line` (1-based): `None` for a computed target.
-pub(super) fn raw_call(c: &Call, line: usize) -> Option<RawCall> {
+pub fn raw_call(c: &Call, line: usize) -> Option<RawCall> {
     // Haas M97 runs a block of the same program: no program of the library is called.
     if c.kind == crate::ir::CallKind::M97 {
         return None;
@@ -423,7 +396,7 @@ fn constant(e: &Expr) -> Option<(f64, bool)> {
 }
 
 /// Calls `f` on every item of every block (and the statement of a FANUC `IF..THEN`).
-pub(super) fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
+pub fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
@@ -443,14 +416,14 @@ pub(super) fn walk_items(body: &[Stmt], f: &mut dyn FnMut(&Item)) {
 mod tests {
     use super::*;
 
+    /// What `batch::discover::scan` gives for a file `name` holding `text`, without the file.
     fn scan_text(name: &str, text: &str) -> Scan {
-        let dir = std::env::temp_dir().join(format!("nctrans-lib-{}-{name}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let abs = dir.join(name);
-        std::fs::write(&abs, text).unwrap();
-        let s = scan(&InputFile { index: 0, rel: name.into(), abs }, None);
-        std::fs::remove_dir_all(&dir).unwrap();
-        s
+        let mut db = crate::span::SourceDb::new();
+        let loaded = crate::load(&mut db, name, text.as_bytes(), None);
+        let dialect = crate::detect_dialect(name, text);
+        let parsed = crate::parse(&db, loaded.file, dialect, &crate::dialect::ParseOptions::for_dialect(dialect));
+        let stem = std::path::Path::new(name).file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase();
+        scan_unit(&parsed.unit, db.get(loaded.file), &stem)
     }
 
     #[test]
