@@ -118,6 +118,33 @@ fn sinumerik_tapping_fanuc_cannot_say_is_refused() {
 }
 
 #[test]
+fn floating_tapping_from_the_r_plane_with_a_computed_speed_is_verified() {
+    // A shop template's shape: the speed computed from a cutting speed and a diameter, the
+    // tool put at the R plane, then G98 (back to the initial level, which is R).
+    let src = fanuc(
+        "#2=6.\n#3=3.\n#4=1.5\n#5=12.\n#10=#2*1000./3.14159/#5\nS#10 M3\nG0 Z#3\n\
+         G84 G98 Z-20. F[#10*#4] R#3\nG80 Z#3\n",
+    );
+    let t = translate(&src, "nc", "sinumerik");
+    let k = t.iter().position(|l| l.starts_with("MCALL CYCLE840(")).expect("a CYCLE840");
+    assert_eq!(t[k], "MCALL CYCLE840($P_EP[Z],LOC3,0,-20,,0,4,3,1)", "{t:?}");
+    // The trace names the level the tool returns to: R, on both sides.
+    let r = run_text("ttap-rplane.nc", &src, &[]);
+    let holes: Vec<String> = bare_lines(&r).into_iter().filter(|l| l.starts_with("cycle tap ")).collect();
+    assert_eq!(holes.len(), 1);
+    assert!(holes[0].contains(" r=3 ") && holes[0].contains("retract=r "), "{holes:?}");
+    // Planted: from a tool standing above R, G98 goes back up; a translation that stops at
+    // R (RTP = RFP + SDIS) is caught at the retract level.
+    let high = fanuc("S300 M3\nG0 Z10.\nG98 G84 X10. Y10. Z-16. R5. F450.\nG80\n");
+    let good = sinumerik("S300 M3\nG0 Z10\nF450\nMCALL CYCLE840(10, 5, 0, -16, , , 4, 3, 1)\nX10 Y10\nMCALL\n");
+    assert_eq!(check((&high, "nc"), (&good, "mpf")).0, 0);
+    let bad = sinumerik("S300 M3\nG0 Z10\nF450\nMCALL CYCLE840(5, 5, 0, -16, , , 4, 3, 1)\nX10 Y10\nMCALL\n");
+    let (code, out) = check((&high, "nc"), (&bad, "mpf"));
+    assert_ne!(code, 0, "a wrong retract level was not caught:\n{out}");
+    assert!(out.contains("retract=initial") && out.contains("retract=r"), "{out}");
+}
+
+#[test]
 fn cycle840_direction_parameters_are_checked_as_the_manual_says() {
     let codes = |body: &str| {
         let r = run_text("ttap-eval.mpf", &sinumerik(body), &[]);
