@@ -171,6 +171,33 @@ fn a_haas_m97_tapping_body_is_analysed_from_its_callers() {
 }
 
 #[test]
+fn a_jump_target_forgets_the_spindle_and_lands_before_the_cycle() {
+    // Reached by the jump with M4, by the text above it with M3: the direction is not known
+    // at N10 (before, CYCLE840 was written for M3 and its MCALL stood before the label, so
+    // the jump skipped it).
+    let err =
+        refused(&fanuc("S300 M4\nGOTO10\nN5 S300 M3\nN10 G98 G84 X10. Y10. Z-16. R5. F450.\nG80\n"), "nc", "sinumerik");
+    assert!(err.contains("NC484") && err.contains("not known"), "{err}");
+    // Set again at the target: known, and the label comes before the cycle's F and MCALL.
+    let t = translate(
+        &fanuc("S300 M4\nGOTO10\nN5 S300 M4\nN10 G0 M3\nG98 G84 X10. Y10. Z-16. R5. F450.\nG80\n"),
+        "nc",
+        "sinumerik",
+    );
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE840(") && l.ends_with(",4,3,1)")), "{t:?}");
+    let t = translate(
+        &fanuc("S300 M3\nGOTO10\nN5 S300 M3\nN10 G98 G81 X10. Y10. Z-16. R5. F450.\nG80 G0\n"),
+        "nc",
+        "sinumerik",
+    );
+    let (l, m) = (t.iter().position(|l| l == "N10 LBL_10:"), t.iter().position(|l| l.starts_with("MCALL CYCLE81(")));
+    assert!(l.is_some() && l < m && t[l.unwrap() + 1] == "F450", "{t:?}");
+    // M29 armed above a jump target: what the jump brings is not rigid tapping.
+    let err = refused(&fanuc("GOTO10\nM29 S400\nN10 G98 G84 X10. Y10. Z-16. R5. F500.\nG80\n"), "nc", "sinumerik");
+    assert!(err.contains("NC590"), "{err}");
+}
+
+#[test]
 fn cycle840_direction_parameters_are_checked_as_the_manual_says() {
     let codes = |body: &str| {
         let r = run_text("ttap-eval.mpf", &sinumerik(body), &[]);
