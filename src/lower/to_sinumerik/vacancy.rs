@@ -317,11 +317,9 @@ impl Analysis {
                 }
             }
         }
-        for s in succs(flat, i) {
-            // A target that is also the next node stays only as the fall-through.
-            out.retain(|&j| j != s);
-            out.push(s);
-        }
+        // A local subprogram that starts at the next node meets it there as a jump does
+        // (without the fall-through's refinement); the base edges stay as they are.
+        out.extend(succs(flat, i));
         out
     }
 
