@@ -63,6 +63,19 @@ fn g98_returns_to_the_initial_level_and_g99_to_r() {
 }
 
 #[test]
+fn g98_from_an_initial_level_at_the_r_plane_returns_to_r() {
+    // The tool stands at R when the cycle mode begins: G98 and G99 end every hole there,
+    // and the event names the level as the Sinumerik reader does (RTP = RFP + SDIS: `r`).
+    let t = holes(&prog("G0 Z2.\nG98 G81 X10. Y10. Z-5. R2. F100.\nX20.\nG80\nG0 X0\n"));
+    assert_eq!(t[2], "cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=- retract=r f=100");
+    assert_eq!(t[3], "cycle drill X=20 Y=10 r=2 bottom=-5 peck=- dwell=- retract=r f=100");
+    assert_eq!(t[4], "move rapid X=0 Y=10 Z=2 f=-");
+    // A hair above R is another level: still the initial one.
+    let t = holes(&prog("G0 Z2.001\nG98 G81 X10. Y10. Z-5. R2. F100.\nG80\n"));
+    assert_eq!(t[2], "cycle drill X=10 Y=10 r=2 bottom=-5 peck=- dwell=- retract=initial f=100");
+}
+
+#[test]
 fn cycle_data_is_modal_and_a_block_without_axis_words_drills_nothing() {
     let t = holes(&prog("G99 G83 X10. Y10. Z-20. R2. Q5. F80.\nF120.\nM8\nY20.\nZ-25.\nG80\n"));
     assert_eq!(t[1], "cycle peck X=10 Y=10 r=2 bottom=-20 peck=5 dwell=- retract=r f=80");

@@ -145,6 +145,9 @@ fn mcall_cycles_become_a_fanuc_cycle_block_holes_and_g80() {
     let t = to_fanuc("G0 X5 Y5\nCYCLE89(10, 0, 2, -8, , 0.4)\n");
     let k = t.iter().position(|l| l == "G00 Z10.").expect("approach");
     assert_eq!(t[k + 1], "G98 G89 Z-8. R2. P400");
+    // RTP the tool's level, which is the R plane: G98 from the R plane, the same holes.
+    let t = to_fanuc("G0 Z2\nMCALL CYCLE81($P_EP[Z], 0, 2, -5)\nG0 X10 Y10\nX20\nMCALL\n");
+    assert!(t.iter().any(|l| l == "G98 G81 X10. Y10. Z-5. R2."), "{t:?}");
 }
 
 #[test]

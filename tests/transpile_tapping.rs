@@ -118,6 +118,86 @@ fn sinumerik_tapping_fanuc_cannot_say_is_refused() {
 }
 
 #[test]
+fn floating_tapping_from_the_r_plane_with_a_computed_speed_is_verified() {
+    // A shop template's shape: the speed computed from a cutting speed and a diameter, the
+    // tool put at the R plane, then G98 (back to the initial level, which is R).
+    let src = fanuc(
+        "#2=6.\n#3=3.\n#4=1.5\n#5=12.\n#10=#2*1000./3.14159/#5\nS#10 M3\nG0 Z#3\n\
+         G84 G98 Z-20. F[#10*#4] R#3\nG80 Z#3\n",
+    );
+    let t = translate(&src, "nc", "sinumerik");
+    let k = t.iter().position(|l| l.starts_with("MCALL CYCLE840(")).expect("a CYCLE840");
+    assert_eq!(t[k], "MCALL CYCLE840($P_EP[Z],LOC3,0,-20,,0,4,3,1)", "{t:?}");
+    // The trace names the level the tool returns to: R, on both sides.
+    let r = run_text("ttap-rplane.nc", &src, &[]);
+    let holes: Vec<String> = bare_lines(&r).into_iter().filter(|l| l.starts_with("cycle tap ")).collect();
+    assert_eq!(holes.len(), 1);
+    assert!(holes[0].contains(" r=3 ") && holes[0].contains("retract=r "), "{holes:?}");
+    // Planted: from a tool standing above R, G98 goes back up; a translation that stops at
+    // R (RTP = RFP + SDIS) is caught at the retract level.
+    let high = fanuc("S300 M3\nG0 Z10.\nG98 G84 X10. Y10. Z-16. R5. F450.\nG80\n");
+    let good = sinumerik("S300 M3\nG0 Z10\nF450\nMCALL CYCLE840(10, 5, 0, -16, , , 4, 3, 1)\nX10 Y10\nMCALL\n");
+    assert_eq!(check((&high, "nc"), (&good, "mpf")).0, 0);
+    let bad = sinumerik("S300 M3\nG0 Z10\nF450\nMCALL CYCLE840(5, 5, 0, -16, , , 4, 3, 1)\nX10 Y10\nMCALL\n");
+    let (code, out) = check((&high, "nc"), (&bad, "mpf"));
+    assert_ne!(code, 0, "a wrong retract level was not caught:\n{out}");
+    assert!(out.contains("retract=initial") && out.contains("retract=r"), "{out}");
+}
+
+/// The errors of a Haas NGC translation to Sinumerik (it fails: `M97` is refused, NC636).
+fn haas_errors(src: &str) -> Vec<String> {
+    let cfg = scratch("toml", "[fanuc]\nseries = \"haas-ngc\"\n");
+    let p = scratch("nc", src);
+    let (code, _, err) = nctrans(&[&p, "--to", "sinumerik", "--config", &cfg]);
+    assert_ne!(code, 0, "{err}");
+    err.lines().filter_map(|l| l.strip_prefix("error[")).map(|l| l[..5].to_string()).collect()
+}
+
+#[test]
+fn a_haas_m97_tapping_body_is_analysed_from_its_callers() {
+    // The tapping of a Haas template's local subprogram (after M30, reached by M97 only):
+    // its speed and planes are set in the body before the cycle, so the spindle turns M3
+    // there and no word needs a vacancy test; the call itself is what stays refused.
+    let body = "#1=-25.\n#2=500.\n#3=5.\n#4=1.\nS[#2] M03\nG00 Z[#3] M08\n\
+                G84 G98 Z[#1] F[#2*#4] R[#3]\nG80 Z[#3] M09\nM99\n";
+    let src = format!("{F_HEAD}M97 P15\nM30\nN15\n{body}%\n");
+    assert_eq!(haas_errors(&src), ["NC636"]);
+    // A body that may leave #3 vacant: after the call the caller's R#3 is not known to be
+    // set, and its cycle is refused (the vacant R would drop the word on the control).
+    let src =
+        format!("{F_HEAD}#3=5.\nS300 M3\nM97 P15\nG0 Z#3\nG84 G98 Z-16. F450. R#3\nG80\nM30\nN15\n#3=#0\nM99\n%\n");
+    let errs = haas_errors(&src);
+    assert!(errs.contains(&"NC636".to_string()) && errs.contains(&"NC428".to_string()), "{errs:?}");
+}
+
+#[test]
+fn a_jump_target_forgets_the_spindle_and_lands_before_the_cycle() {
+    // Reached by the jump with M4, by the text above it with M3: the direction is not known
+    // at N10 (before, CYCLE840 was written for M3 and its MCALL stood before the label, so
+    // the jump skipped it).
+    let err =
+        refused(&fanuc("S300 M4\nGOTO10\nN5 S300 M3\nN10 G98 G84 X10. Y10. Z-16. R5. F450.\nG80\n"), "nc", "sinumerik");
+    assert!(err.contains("NC484") && err.contains("not known"), "{err}");
+    // Set again at the target: known, and the label comes before the cycle's F and MCALL.
+    let t = translate(
+        &fanuc("S300 M4\nGOTO10\nN5 S300 M4\nN10 G0 M3\nG98 G84 X10. Y10. Z-16. R5. F450.\nG80\n"),
+        "nc",
+        "sinumerik",
+    );
+    assert!(t.iter().any(|l| l.starts_with("MCALL CYCLE840(") && l.ends_with(",4,3,1)")), "{t:?}");
+    let t = translate(
+        &fanuc("S300 M3\nGOTO10\nN5 S300 M3\nN10 G98 G81 X10. Y10. Z-16. R5. F450.\nG80 G0\n"),
+        "nc",
+        "sinumerik",
+    );
+    let (l, m) = (t.iter().position(|l| l == "N10 LBL_10:"), t.iter().position(|l| l.starts_with("MCALL CYCLE81(")));
+    assert!(l.is_some() && l < m && t[l.unwrap() + 1] == "F450", "{t:?}");
+    // M29 armed above a jump target: what the jump brings is not rigid tapping.
+    let err = refused(&fanuc("GOTO10\nM29 S400\nN10 G98 G84 X10. Y10. Z-16. R5. F500.\nG80\n"), "nc", "sinumerik");
+    assert!(err.contains("NC590"), "{err}");
+}
+
+#[test]
 fn cycle840_direction_parameters_are_checked_as_the_manual_says() {
     let codes = |body: &str| {
         let r = run_text("ttap-eval.mpf", &sinumerik(body), &[]);

@@ -235,6 +235,15 @@ pub fn holes(
         };
         m.seen[n] = true;
         m.applied[n] = off;
+        // G98 from an initial level that is the R plane returns to the R plane: the event
+        // names that level `r`, as the Sinumerik reader does for RTP = RFP + SDIS (G87 keeps
+        // `initial`: its R plane is under the part).
+        let retract =
+            if retract == Retract::Initial && kind != CycleKind::BackBore && same_level(m.cycle.initial, r_abs) {
+                Retract::R
+            } else {
+                retract
+            };
         let tapping = matches!(kind, CycleKind::Tap | CycleKind::TapLeft).then_some(if m.cycle.rigid {
             Tapping::Rigid
         } else {
@@ -248,6 +257,12 @@ pub fn holes(
         super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push((e, span)))?;
     }
     Ok(count > 0)
+}
+
+/// Two levels of the drilling axis that are the same place (the tolerance the Sinumerik
+/// reader compares RTP with RFP + SDIS at).
+fn same_level(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
 }
 
 fn refuse(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {

@@ -152,6 +152,21 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         let gs = g_codes(&b.items);
         let new_cycle = gs.iter().copied().find(|g| cycle_g(*g));
         let motion_g = gs.iter().copied().find(|g| matches!(g, 0 | 10 | 20 | 30));
+        if b.meta.label.is_some() && active.is_none() {
+            // A jump target: the blocks above it in the text are not the only way here, so
+            // the spindle, feed mode and motion mode they set are not known at it.
+            if tap.rigid.is_some() {
+                out.extend(ctx.refuse(
+                    "NC590",
+                    span,
+                    "a jump target between M29 and its tapping cycle: not translated to Sinumerik",
+                    "a jump target between M29 and its tapping cycle",
+                    "program M29 S… right before G84/G74, after the label",
+                ));
+            }
+            tap.forget();
+            motion = None;
+        }
         if active.is_none() && new_cycle.is_none() {
             if let Some(m) = motion_g {
                 motion = Some(m);
@@ -253,6 +268,14 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         tap.observe_modes(&b.items);
         let mut d = active.clone().unwrap_or_default();
         let starting = active.is_none();
+        if starting && b.meta.label.is_some() {
+            // The jump lands before the cycle's F/S and MCALL, not on its first hole.
+            let mut at = Block::default();
+            at.meta.label = b.meta.label.take();
+            at.meta.number = b.meta.number.take();
+            at.meta.span = b.meta.span;
+            out.push(Stmt { kind: StmtKind::Block(at), span });
+        }
         if let Some(g) = new_cycle {
             d.g = g;
         }

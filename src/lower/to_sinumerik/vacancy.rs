@@ -234,6 +234,8 @@ struct Analysis {
     /// Address words whose variable is definitely set there: (program, span lo, hi).
     sure: BTreeSet<(usize, u32, u32)>,
     edges: Vec<(Key, Key)>,
+    /// The program being analysed (a Haas `M97` runs blocks of this one).
+    current: usize,
 }
 
 impl Analysis {
@@ -242,6 +244,17 @@ impl Analysis {
     }
 
     fn kill_call(&self, c: &Call, d: &mut BTreeSet<u32>) {
+        if c.kind == CallKind::M97 {
+            // A local subprogram runs this program's own blocks on its locals: after it,
+            // only what the whole program (and what it calls) never leaves vacant stays set.
+            let s = &self.summaries[self.current];
+            if s.clobbers {
+                d.clear();
+            } else {
+                d.retain(|v| !s.commons.contains(v) && !s.locals.contains(v));
+            }
+            return;
+        }
         let CallTarget::Number(n) = c.target else {
             d.clear();
             return;
@@ -286,8 +299,28 @@ impl Analysis {
         }
     }
 
+    /// [`succs`] and, for a Haas `M97 P<n>`, every block numbered n: the local subprogram
+    /// starts there with the caller's state (each `M97` call site is a predecessor, so the
+    /// body's blocks are analysed, not left unreachable). The fall-through stays last.
     fn succs(&self, flat: &Flat, i: usize) -> Vec<usize> {
-        succs(flat, i)
+        let mut out = Vec::new();
+        if let Node::Items(items) = &flat.nodes[i] {
+            for it in items.iter() {
+                if let ItemKind::Call(c) = &it.kind {
+                    if let (CallKind::M97, CallTarget::Number(n)) = (c.kind, &c.target) {
+                        for j in (0..flat.numbers.len()).filter(|&j| flat.numbers[j] == Some(*n)) {
+                            if !out.contains(&j) {
+                                out.push(j);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // A local subprogram that starts at the next node meets it there as a jump does
+        // (without the fall-through's refinement); the base edges stay as they are.
+        out.extend(succs(flat, i));
+        out
     }
 
     /// Definitely-set variables at the entry of every node (`None`: unreachable).
@@ -480,8 +513,10 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
             break;
         }
     }
-    let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new() };
+    let mut an =
+        Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new(), current: 0 };
     for (i, (_, p)) in programs.iter().enumerate() {
+        an.current = i;
         let flat = flatten(&p.body);
         let entry = if ctx.progs[i].role == Role::Macro && ctx.opts.specialise_callers {
             macro_entry(programs, an.numbers[i])
