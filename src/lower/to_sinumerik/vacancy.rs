@@ -52,10 +52,12 @@ pub(super) struct Flat<'a> {
     /// Each block node's span start and whether it may be skipped (`/`); `None` for loop
     /// heads and ends.
     pub blocks: Vec<Option<(u32, bool)>>,
+    /// Haas `M97 Pn` nodes with their n: the local subprogram is part of this graph.
+    pub m97: Vec<(usize, u32)>,
 }
 
 pub(super) fn flatten(body: &[Stmt]) -> Flat<'_> {
-    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new(), blocks: Vec::new() };
+    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new(), blocks: Vec::new(), m97: Vec::new() };
     flatten_into(body, &mut f);
     f
 }
@@ -64,6 +66,13 @@ fn flatten_into<'a>(body: &'a [Stmt], f: &mut Flat<'a>) {
     for s in body {
         match &s.kind {
             StmtKind::Block(b) => {
+                for it in &b.items {
+                    if let ItemKind::Call(c) = &it.kind {
+                        if let (CallKind::M97, CallTarget::Number(n)) = (c.kind, &c.target) {
+                            f.m97.push((f.nodes.len(), *n));
+                        }
+                    }
+                }
                 f.nodes.push(Node::Items(&b.items));
                 f.numbers.push(b.meta.number.as_ref().map(|n| n.value));
                 f.blocks.push(Some((b.meta.span.lo, b.meta.skip.is_some())));
@@ -121,10 +130,25 @@ pub(super) fn succs(flat: &Flat, i: usize) -> Vec<usize> {
                             break;
                         }
                     }
+                    // Haas `M97 Pn`: the local subprogram runs from block n (its M99
+                    // comes back below).
+                    ItemKind::Call(c) if c.kind == CallKind::M97 => {
+                        if let CallTarget::Number(n) = c.target {
+                            out.extend(resolve(&flat.numbers, i, n));
+                        }
+                    }
                     ItemKind::Return { to } => {
                         // `M99 P<n>` in a main program continues at its block n. For a
                         // called program the edge is not real, but an extra edge only makes
                         // this must-analysis more careful.
+                        // An M99 may end a local subprogram: it continues after every M97
+                        // (or runs the section again, L times).
+                        if to.is_none() {
+                            for &(j, n) in &flat.m97 {
+                                out.extend((j + 1 < len).then_some(j + 1));
+                                out.extend(resolve(&flat.numbers, j, n));
+                            }
+                        }
                         if let Some(to) = to {
                             match literal(to) {
                                 Some(v) if v >= 0.0 && v.fract() == 0.0 => {
@@ -242,6 +266,10 @@ impl Analysis {
     }
 
     fn kill_call(&self, c: &Call, d: &mut BTreeSet<u32>) {
+        // M97 names a block of this program, whose writes the graph follows itself.
+        if c.kind == CallKind::M97 {
+            return;
+        }
         let CallTarget::Number(n) = c.target else {
             d.clear();
             return;
