@@ -10,6 +10,8 @@
 //! 4. `calls::lower_return_jumps` — after a call of a program that ends with `M99 P<n>`,
 //!    a computed jump on the return code it passes back.
 //! 5. `gotos::lower` — `GOTO n` → `GOTOF`/`GOTOB` to generated labels, computed GOTO → `CASE`.
+//!    Then `m97::lower` — Haas `M97 Pn Lm` → a jump to `REPEAT <start> <end> P=m` and back
+//!    (checked, and its sections' M99 dropped, by `m97::prepare` before step 3).
 //! 6. `structures::lower` — `WHILE[..]DOm` → `WHILE`, bare `DOm` → `LOOP`, `IF..THEN` → `IF`.
 //! 7. `calls::lower` — G65/G66/G67/M98/M99/G10 → Siemens calls, `MCALL`, `RET`, `$P_UIFR`.
 //! 8. `lookahead::lower` — look-ahead modes (`G05.1 Q1`, `G08 P1`, Haas `G187`) → `FFWON`,
@@ -36,6 +38,7 @@ pub mod gotos;
 pub mod haas_if;
 pub mod indirect;
 pub mod lookahead;
+pub mod m97;
 pub mod modal;
 pub mod polar;
 pub mod probe;
@@ -383,6 +386,8 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = haas_if::refuse(ctx, body);
+    let (b, local_subs) = m97::prepare(ctx, body);
+    body = b;
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     let framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_frames).filter_map(|p| p.number).collect();
     let polar_framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_polar).filter_map(|p| p.number).collect();
@@ -395,6 +400,9 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = calls::lower_return_jumps(ctx, body);
     body = haas_if::restructure(body);
     body = gotos::lower(ctx, body);
+    if let Some(plan) = &local_subs {
+        body = m97::lower(body, plan);
+    }
     body = structures::lower(ctx, body);
     body = calls::lower(ctx, body);
     body = lookahead::lower(ctx, body);

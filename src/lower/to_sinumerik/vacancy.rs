@@ -52,10 +52,12 @@ pub(super) struct Flat<'a> {
     /// Each block node's span start and whether it may be skipped (`/`); `None` for loop
     /// heads and ends.
     pub blocks: Vec<Option<(u32, bool)>>,
+    /// Haas `M97 Pn` nodes with their n: the local subprogram is part of this graph.
+    pub m97: Vec<(usize, u32)>,
 }
 
 pub(super) fn flatten(body: &[Stmt]) -> Flat<'_> {
-    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new(), blocks: Vec::new() };
+    let mut f = Flat { nodes: Vec::new(), numbers: Vec::new(), blocks: Vec::new(), m97: Vec::new() };
     flatten_into(body, &mut f);
     f
 }
@@ -64,6 +66,13 @@ fn flatten_into<'a>(body: &'a [Stmt], f: &mut Flat<'a>) {
     for s in body {
         match &s.kind {
             StmtKind::Block(b) => {
+                for it in &b.items {
+                    if let ItemKind::Call(c) = &it.kind {
+                        if let (CallKind::M97, CallTarget::Number(n)) = (c.kind, &c.target) {
+                            f.m97.push((f.nodes.len(), *n));
+                        }
+                    }
+                }
                 f.nodes.push(Node::Items(&b.items));
                 f.numbers.push(b.meta.number.as_ref().map(|n| n.value));
                 f.blocks.push(Some((b.meta.span.lo, b.meta.skip.is_some())));
@@ -121,10 +130,25 @@ pub(super) fn succs(flat: &Flat, i: usize) -> Vec<usize> {
                             break;
                         }
                     }
+                    // Haas `M97 Pn`: the local subprogram runs from block n (its M99
+                    // comes back below).
+                    ItemKind::Call(c) if c.kind == CallKind::M97 => {
+                        if let CallTarget::Number(n) = c.target {
+                            out.extend(resolve(&flat.numbers, i, n));
+                        }
+                    }
                     ItemKind::Return { to } => {
                         // `M99 P<n>` in a main program continues at its block n. For a
                         // called program the edge is not real, but an extra edge only makes
                         // this must-analysis more careful.
+                        // An M99 may end a local subprogram: it continues after every M97
+                        // (or runs the section again, L times).
+                        if to.is_none() {
+                            for &(j, n) in &flat.m97 {
+                                out.extend((j + 1 < len).then_some(j + 1));
+                                out.extend(resolve(&flat.numbers, j, n));
+                            }
+                        }
                         if let Some(to) = to {
                             match literal(to) {
                                 Some(v) if v >= 0.0 && v.fract() == 0.0 => {
@@ -234,8 +258,6 @@ struct Analysis {
     /// Address words whose variable is definitely set there: (program, span lo, hi).
     sure: BTreeSet<(usize, u32, u32)>,
     edges: Vec<(Key, Key)>,
-    /// The program being analysed (a Haas `M97` runs blocks of this one).
-    current: usize,
 }
 
 impl Analysis {
@@ -244,15 +266,8 @@ impl Analysis {
     }
 
     fn kill_call(&self, c: &Call, d: &mut BTreeSet<u32>) {
+        // M97 names a block of this program, whose writes the graph follows itself.
         if c.kind == CallKind::M97 {
-            // A local subprogram runs this program's own blocks on its locals: after it,
-            // only what the whole program (and what it calls) never leaves vacant stays set.
-            let s = &self.summaries[self.current];
-            if s.clobbers {
-                d.clear();
-            } else {
-                d.retain(|v| !s.commons.contains(v) && !s.locals.contains(v));
-            }
             return;
         }
         let CallTarget::Number(n) = c.target else {
@@ -299,30 +314,6 @@ impl Analysis {
         }
     }
 
-    /// [`succs`] and, for a Haas `M97 P<n>`, every block numbered n: the local subprogram
-    /// starts there with the caller's state (each `M97` call site is a predecessor, so the
-    /// body's blocks are analysed, not left unreachable). The fall-through stays last.
-    fn succs(&self, flat: &Flat, i: usize) -> Vec<usize> {
-        let mut out = Vec::new();
-        if let Node::Items(items) = &flat.nodes[i] {
-            for it in items.iter() {
-                if let ItemKind::Call(c) = &it.kind {
-                    if let (CallKind::M97, CallTarget::Number(n)) = (c.kind, &c.target) {
-                        for j in (0..flat.numbers.len()).filter(|&j| flat.numbers[j] == Some(*n)) {
-                            if !out.contains(&j) {
-                                out.push(j);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        // A local subprogram that starts at the next node meets it there as a jump does
-        // (without the fall-through's refinement); the base edges stay as they are.
-        out.extend(succs(flat, i));
-        out
-    }
-
     /// Definitely-set variables at the entry of every node (`None`: unreachable).
     fn dataflow(&self, flat: &Flat, entry: BTreeSet<u32>) -> Vec<Option<BTreeSet<u32>>> {
         let len = flat.nodes.len();
@@ -331,7 +322,7 @@ impl Analysis {
             return ins;
         }
         ins[0] = Some(entry);
-        let succs: Vec<Vec<usize>> = (0..len).map(|i| self.succs(flat, i)).collect();
+        let succs: Vec<Vec<usize>> = (0..len).map(|i| succs(flat, i)).collect();
         // `IF [#n EQ #0] GOTO …` ending a node: #n is not vacant where it falls through.
         let fall_set: Vec<Option<u32>> = (0..len)
             .map(|i| match &flat.nodes[i] {
@@ -513,10 +504,8 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
             break;
         }
     }
-    let mut an =
-        Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new(), current: 0 };
+    let mut an = Analysis { numbers, summaries, seeds: BTreeSet::new(), sure: BTreeSet::new(), edges: Vec::new() };
     for (i, (_, p)) in programs.iter().enumerate() {
-        an.current = i;
         let flat = flatten(&p.body);
         let entry = if ctx.progs[i].role == Role::Macro && ctx.opts.specialise_callers {
             macro_entry(programs, an.numbers[i])
