@@ -4,51 +4,11 @@
 //! (sign, axis, offset number, missing shift) caught and the forms without an exact
 //! counterpart refused with their reason.
 
-use nctrans::check::Verdict;
-use nctrans::dialect::{Dialect, ParseOptions};
-use nctrans::read::LineEnding;
-use nctrans::span::SourceDb;
-use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::dialect::Dialect;
 
 #[path = "support/frame_check.rs"]
 mod frame_check;
 use frame_check::*;
-
-const STEPS: u64 = 100_000;
-
-/// The FANUC translation of a Siemens program, proven equivalent; `Err`: the codes of
-/// its refusal.
-fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
-    let mut db = SourceDb::new();
-    let s = load(&mut db, siemens, Dialect::Sinumerik);
-    let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
-    if !t.ok() {
-        let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
-        codes.dedup();
-        return Err(codes);
-    }
-    let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "out.nc", STEPS);
-    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
-    Ok(t.text)
-}
-
-/// The Sinumerik translation of a FANUC program, proven equivalent.
-fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
-    let mut db = SourceDb::new();
-    let id = db.add("p.nc", fanuc);
-    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let t = to_sinumerik(&[&p.unit], &Options::default(), LineEnding::Lf);
-    if t.has_errors() {
-        let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
-        codes.dedup();
-        return Err(codes);
-    }
-    let r = nctrans::translate::to_sinumerik::verify::verify_with(&db, id, &p.unit, &t, "out", STEPS);
-    let text: String = t.files.iter().map(|x| x.text.clone()).collect();
-    assert!(matches!(r.verdict, Verdict::Equivalent { .. }), "{:?}\n{}\n{text}", r.verdict, r.diff);
-    Ok(text)
-}
 
 /// Each `(from, to)` replaced once in `good` (which must hold it) gives a program that
 /// `differs` from the source.
