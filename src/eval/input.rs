@@ -52,30 +52,27 @@ pub fn parse_input(s: &str) -> Result<Input, String> {
 /// Inputs written in a file's header comments: lines `; nctrans: set A=1 B=2` or
 /// `(nctrans: set #24=10.)`. Only comment lines before the first other line count.
 pub fn header_inputs(text: &str) -> Result<Vec<Input>, String> {
-    let mut out = Vec::new();
-    for line in text.lines() {
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('%') {
-            continue;
-        }
-        let body = if let Some(r) = t.strip_prefix(';') {
-            r
-        } else if let Some(r) = t.strip_prefix('(') {
-            r.trim_end_matches(';').trim_end().trim_end_matches(')')
-        } else if t.starts_with('O') || t.starts_with("PROC") {
-            // The program's name line may come before its header comments.
-            continue;
-        } else {
-            break;
-        };
-        let body = body.trim();
-        if let Some(rest) = body.strip_prefix("nctrans: set") {
-            for part in rest.split_whitespace() {
-                out.push(parse_input(part)?);
+    header_words(text, "nctrans: set", false).map(parse_input).collect()
+}
+
+/// The space-separated words after `key` in a file's header comments (`; key …` or
+/// `(key …)`), the lines before its first block: blank lines, `%`, the program's name line
+/// (`O…`, `PROC …`) and, with `skip_defs`, Siemens `DEF` lines (a translation to Sinumerik
+/// writes them first) may come between them.
+pub(crate) fn header_words<'a>(text: &'a str, key: &'a str, skip_defs: bool) -> impl Iterator<Item = &'a str> + 'a {
+    text.lines()
+        .map(str::trim)
+        .filter(|t| !t.is_empty() && !t.starts_with('%'))
+        .filter(move |t| !(t.starts_with('O') || t.starts_with("PROC") || (skip_defs && t.starts_with("DEF "))))
+        .map_while(|t| {
+            if let Some(r) = t.strip_prefix(';') {
+                Some(r)
+            } else {
+                t.strip_prefix('(').map(|r| r.trim_end_matches(';').trim_end().trim_end_matches(')'))
             }
-        }
-    }
-    Ok(out)
+        })
+        .filter_map(move |body| body.trim().strip_prefix(key))
+        .flat_map(str::split_whitespace)
 }
 
 #[cfg(test)]

@@ -46,30 +46,7 @@ pub fn parse_probe(s: &str) -> Result<ProbeInput, String> {
 /// `; nctrans: probe X=12.5 miss` (Siemens) or `(nctrans: probe X=12.5 miss)` (FANUC), one
 /// input per probing move, separated by spaces, in order.
 pub fn header_probes(text: &str) -> Result<Vec<ProbeInput>, String> {
-    let mut out = Vec::new();
-    for line in text.lines() {
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('%') {
-            continue;
-        }
-        let body = if let Some(r) = t.strip_prefix(';') {
-            r
-        } else if let Some(r) = t.strip_prefix('(') {
-            r.trim_end_matches(';').trim_end().trim_end_matches(')')
-        } else if t.starts_with('O') || t.starts_with("PROC") || t.starts_with("DEF ") {
-            // The name line and Siemens declarations may come before the header comments
-            // (a translation to Sinumerik writes its DEF lines first).
-            continue;
-        } else {
-            break;
-        };
-        if let Some(rest) = body.trim().strip_prefix("nctrans: probe") {
-            for part in rest.split_whitespace() {
-                out.push(parse_probe(part)?);
-            }
-        }
-    }
-    Ok(out)
+    super::input::header_words(text, "nctrans: probe", true).map(parse_probe).collect()
 }
 
 #[cfg(test)]
