@@ -38,6 +38,17 @@ pub struct Diagnostic {
     pub notes: Vec<String>,
 }
 
+/// Drops repeats of a diagnostic already in the list (same severity, code, message and
+/// labels), keeping the first: a lowering that meets one refused construct once per use
+/// (a modal cycle at each hole) reports it once.
+pub fn dedup(diags: &mut Vec<Diagnostic>) {
+    let mut seen = std::collections::HashSet::new();
+    diags.retain(|d| {
+        let labels: Vec<_> = d.labels.iter().map(|l| (l.file, l.span, l.message.clone(), l.primary)).collect();
+        seen.insert((d.severity, d.code, d.message.clone(), labels))
+    });
+}
+
 impl Diagnostic {
     pub fn new(severity: Severity, code: &'static str, message: impl Into<String>) -> Self {
         Diagnostic { severity, code, message: message.into(), labels: Vec::new(), notes: Vec::new() }

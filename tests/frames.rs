@@ -169,6 +169,15 @@ mod translation {
     }
 
     #[test]
+    fn spindle_stop_and_coolant_off_beside_a_reference_return_follow_it() {
+        // M5 and M9 act after the block's motion: a block of their own after G74 does the same.
+        let out = f_to_s("O1\nG0 Z5. S800 M3\nM8\nG28 G91 Z0 M05 M09\nG90\nM30\n").unwrap();
+        assert!(out.contains("G74 Z1=0\nM5 M9\n"), "{out}");
+        let out = f_to_s("O1\nG0 Z5. S800 M3\nG28 Z10. M5\nM30\n").unwrap();
+        assert!(out.contains("G74 Z1=0\nM5\n"), "{out}");
+    }
+
+    #[test]
     fn what_has_no_exact_counterpart_is_refused() {
         // G52 that keeps another axis's shift: TRANS would drop it.
         assert_eq!(f_to_s("O1\nG52 X10.\nG52 Y5.\nM30\n"), Err(vec!["NC442".into()]));
@@ -176,7 +185,7 @@ mod translation {
         // G52 under G91 (the evaluator refuses it too).
         assert_eq!(f_to_s("O1\nG91 G52 X10.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
         assert_eq!(f_to_s("O1\nG54.1 P#1\nM30\n").unwrap_err(), vec!["NC443".to_string()]);
-        assert_eq!(f_to_s("O1\nG28 Z0 M5\nM30\n").unwrap_err(), vec!["NC444".to_string()]);
+        assert_eq!(f_to_s("O1\nG28 Z0 S100\nM30\n").unwrap_err(), vec!["NC444".to_string()]);
         // G68.1 is not translated: refused by name (G92 and G29: tests/frames_more.rs); a
         // G69 where no rotation is in force cancels nothing (tests/frames_rotation.rs has
         // rotation, scaling and mirroring).

@@ -75,6 +75,9 @@ fn fanuc_tapping_the_sinumerik_side_cannot_match_is_refused() {
     assert!(to_s("S300 M4\nG84 X10. Y10. Z-16. R5. F450.\nG80\n").contains("NC484"));
     assert!(to_s("G84 X10. Y10. Z-16. R5. F450.\nG80\n").contains("spindle stopped"));
     assert!(to_s("S400 M3\nM29 S400\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("NC484"));
+    // One refused cycle, however many holes it drills: one diagnostic.
+    let err = to_s("S400 M3\nM29 S400\nG84 X10. Y10. Z-16. R5. F500.\nX20.\nX30.\nG80\n");
+    assert_eq!(err.matches("error[NC484]").count(), 1, "{err}");
     assert!(to_s("M29\nG84 X10. Y10. Z-16. R5. F500.\nG80\n").contains("NC483"));
     assert!(to_s("M29 S400\nG81 X10. Y10. Z-16. R5. F500.\nG80\n").contains("M29"));
     assert!(to_s("G84 X10. Y10. Z-16. R5. F500. M29\nG80\n").contains("M29 in a drilling-cycle block"));

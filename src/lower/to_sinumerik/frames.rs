@@ -229,8 +229,14 @@ fn extended_offset(ctx: &mut Ctx, mut b: Block, span: Span) -> Split {
     Split { before: vec![sel], block: if b.items.is_empty() { None } else { Some(b) }, after: Vec::new() }
 }
 
-fn reference_return(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, g30: bool) -> Split {
+fn reference_return(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, g30: bool) -> Split {
     let letters: &[u8] = if g30 { b"P" } else { b"" };
+    // M5 and M9 act after a block's motion (trace order), and G74/G75 must stand alone on
+    // Sinumerik: they move to a block of their own after the return, where they act the same.
+    let (stops, rest): (Vec<Item>, Vec<Item>) = b.items.into_iter().partition(
+        |it| matches!(letter_of(it), Some((b'M', e)) if matches!(literal(e), Some(v) if v == 5.0 || v == 9.0)),
+    );
+    b.items = rest;
     if !only_words(&b, &[280, 300, 900, 910], letters) || b.items.iter().any(|it| g_of(it) == Some(280)) == g30 {
         return refused(
             ctx,
@@ -306,6 +312,9 @@ fn reference_return(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, g30:
         }
         Some(b)
     };
+    if !stops.is_empty() {
+        after.push(plain_block(stops, span));
+    }
     Split { before: Vec::new(), block: first, after }
 }
 

@@ -378,6 +378,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         out.push((plan, prog));
     }
     exprs::plain_comparisons(&mut out);
+    crate::diag::dedup(&mut ctx.diags);
     Lowered { programs: out, commons: ctx.commons, common_flags: ctx.common_flags, diags: ctx.diags }
 }
 
