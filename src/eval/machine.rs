@@ -453,6 +453,15 @@ impl Machine {
                     | "K1",
                     _,
                 ) => return Err(unsupported(&format!("{a} (circle/spline/polar motion) is not modelled"), w.span)),
+                // Contour geometry the trace would otherwise show as a sharp corner or the
+                // plain end point: refused, never ignored. `RNDM=0` / `OFFN=0` (off) change nothing.
+                ("RNDM" | "OFFN", Some(x)) if x == 0.0 => {}
+                ("CHF" | "CHR" | "RND" | "RNDM" | "ANG" | "OFFN", _) => {
+                    return Err(unsupported(
+                        &format!("{a} (chamfer, rounding, contour angle or contour offset) is not modelled"),
+                        w.span,
+                    ))
+                }
                 (a, _) => {
                     warns.push(("NC405", format!("address {a} has no effect on the trace and is ignored"), w.span))
                 }
