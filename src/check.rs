@@ -15,8 +15,10 @@ use std::borrow::Cow;
 use std::cell::Cell;
 use std::sync::mpsc::{channel, sync_channel, Receiver, Sender, SyncSender};
 
+mod defer;
 mod exclude;
 mod regs;
+pub use defer::DeferLength;
 pub use exclude::{Exclude, Excluded};
 
 /// Absolute tolerance for numbers (trace spec).
@@ -535,7 +537,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         let (tx, rx) = channel::<Msg>();
         let mut db_b = db_b;
         let mut sink = ChannelSink::new(Tx::Buffered(tx));
-        let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
+        let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut DeferLength::new(&mut sink)));
         sink.send();
         drop(sink);
         (rx, Err((out, db_b)))
@@ -544,7 +546,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         let run = move || {
             let mut db_b = db_b;
             let mut sink = ChannelSink::new(Tx::Bounded(tx));
-            let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
+            let out = b(&mut db_b, &mut eval::collapse::CollapseWorkOffsets::new(&mut DeferLength::new(&mut sink)));
             sink.send();
             (out, db_b)
         };
@@ -554,7 +556,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     };
     let mut db_a = db.clone();
     let mut sink = CompareSink::new(rx, exclude);
-    let outcome_a = a(&mut db_a, &mut eval::collapse::CollapseWorkOffsets::new(&mut sink));
+    let outcome_a = a(&mut db_a, &mut eval::collapse::CollapseWorkOffsets::new(&mut DeferLength::new(&mut sink)));
     if !matches!(outcome_a.ending, Ending::Stopped) {
         sink.finish();
     }

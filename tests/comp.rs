@@ -418,3 +418,48 @@ fn a_call_of_a_program_that_changes_the_tool_or_is_unknown_is_refused_by_name() 
     let p = "%\nO1\nT1 M06\nG43 H1 Z50.\nG66 P2002\nX1.\nG67\nM30\nO2002\nT3 M06\nM99\n%\n";
     assert!(to_sinumerik_codes(p).contains(&"NC521"));
 }
+
+/// A CAM post's tool change: the new tool is positioned in XY (spindle, work offset,
+/// coolant) before its `G43 Z.. H..`.
+const CAM_TOOL_CHANGE: &str =
+    "%\nO1\nG90 G17 G94\nT1 M6\nS6000 M3\nG54\nM8\nG0 X-40. Y-10.\nG43 Z15. H1\nG1 Z-1. F500.\n\
+X40.\nG0 Z15.\nM9\nG53 G0 Z0.\nT2 M6\nS2500 M3\nG54\nM8\nG0 X10. Y10.\nG43 Z15. H2\nG1 Z-3. F200.\nG0 Z15.\n\
+G91 G28 Z0.\nT3 M6\nG90 G0 X5. Y5. S900 M3\nG43 Z20. H3\nG1 Z0. F100.\nM30\n%\n";
+
+#[test]
+fn a_tool_positioned_in_xy_before_its_g43_translates_and_verifies() {
+    let out = to_sinumerik(CAM_TOOL_CHANGE);
+    for (i, line) in ["T2 M6 D1", "S2500 M3", "G54", "M8", "G0 X10 Y10", "Z15"].iter().enumerate() {
+        let at = out.iter().position(|l| l == "T2 M6 D1").expect("the second tool change") + i;
+        assert_eq!(out[at], *line, "{out:#?}");
+    }
+    assert!(out.contains(&"T3 M6 D1".to_string()), "{out:#?}");
+    // A move along Z under the old H, a position read or a call before the G43: refused.
+    for between in ["G0 X10. Y10. Z50.", "G91 Z0.", "#1=#5003", "G0 X#5001", "G28 Z0.", "G81 Z-1. R1."] {
+        let src = format!("%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\n{between}\nG43 Z15. H2\nM30\n%\n");
+        assert!(to_sinumerik_codes(&src).contains(&"NC473"), "{between}");
+    }
+    // A call there (here of a program not in the job) is refused too.
+    to_sinumerik_codes("%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\nM98 P100\nG43 Z15. H2\nM30\n%\n");
+}
+
+#[test]
+fn the_check_compares_a_deferred_length_where_z_first_moves() {
+    // The same tool change, FANUC and Siemens: equivalent.
+    let fanuc = "%\nO1\nT1 M6\nG43 H1 Z50.\nG53 Z0.\nT2 M6\nM8\nG0 X10. Y10.\nG43 Z15. H2\nM30\n%\n";
+    let siemens = "T1 M6 D1\nZ50\nG53 Z0\nT2 M6 D1\nM8\nG0 X10 Y10\nZ15\nM30\n";
+    let (v, diff) = check_pair(siemens, fanuc);
+    assert!(matches!(v, Verdict::Equivalent { .. }), "{v:?}\n{diff}");
+    // The Siemens program moves Z under the new edge where FANUC still has H1 (the same
+    // programmed positions): a divergence, not an equivalence.
+    let fanuc_z = "%\nO1\nT1 M6\nG43 H1 Z50.\nG53 Z0.\nT2 M6\nG0 X10. Y10. Z40.\nG43 Z15. H2\nM30\n%\n";
+    let siemens_z = "T1 M6 D1\nZ50\nG53 Z0\nT2 M6 D1\nG0 X10 Y10 Z40\nZ15\nM30\n";
+    let (v, diff) = check_pair(siemens_z, fanuc_z);
+    assert!(matches!(v, Verdict::Diverged { .. }), "{v:?}\n{diff}");
+    // A radius change is never deferred; nor is a length change that is not at a tool change.
+    let (v, _) = check_pair(
+        "T1 M6 D1\nG0 X10 Y10\nD2\nG0 X20\nM30\n",
+        "%\nO1\nT1 M6\nG43 H1\nG0 X10. Y10.\nG0 X20.\nG43 H2\nM30\n%\n",
+    );
+    assert!(!matches!(v, Verdict::Equivalent { .. }), "{v:?}");
+}

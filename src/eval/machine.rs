@@ -455,7 +455,7 @@ impl Machine {
                 ) => return Err(unsupported(&format!("{a} (circle/spline/polar motion) is not modelled"), w.span)),
                 // Contour geometry the trace would otherwise show as a sharp corner or the
                 // plain end point: refused, never ignored. `RNDM=0` / `OFFN=0` (off) change nothing.
-                ("RNDM" | "OFFN", Some(x)) if x == 0.0 => {}
+                ("RNDM" | "OFFN", Some(0.0)) => {}
                 ("CHF" | "CHR" | "RND" | "RNDM" | "ANG" | "OFFN", _) => {
                     return Err(unsupported(
                         &format!("{a} (chamfer, rounding, contour angle or contour offset) is not modelled"),

@@ -181,6 +181,9 @@ pub struct HomeEv {
     pub via: Axes,
     /// 1: reference point; 2..4: second to fourth reference point (G30 Pn, G75 FP=n-1).
     pub point: u8,
+    /// Where the tool stands after the return, as the next move's positions show it: not
+    /// written or compared (the checker's `DeferLength` follows Z through it).
+    pub at: Axes,
 }
 
 impl Event {

@@ -156,7 +156,8 @@ impl Machine {
                 self.applied[i] = self.active_offset(i);
             }
         }
-        out.push((Event::Home(Box::new(crate::eval::trace::HomeEv { axes: list, via, point: home.point })), span));
+        let at = self.trace_pos();
+        out.push((Event::Home(Box::new(crate::eval::trace::HomeEv { axes: list, via, point: home.point, at })), span));
         Ok(true)
     }
 

@@ -144,6 +144,38 @@ fn refuse_change(ctx: &mut Ctx, live: bool, span: Span, out: &mut Vec<Stmt>) {
     refuse(ctx, live, CHANGE_CODE, span, msg, hint, out);
 }
 
+/// Whether a block only positions in the plane or sets the spindle, coolant, feed or the
+/// work offset, with nothing that moves Z, reads a position, calls or touches the tool and
+/// its compensation: between a tool change and its `G43 H` such blocks act alike whichever
+/// length is selected.
+fn keeps_z(b: &Block) -> bool {
+    b.items.iter().all(|it| {
+        let ItemKind::Word(w) = &it.kind else { return false };
+        let WordValue::Expr(e) = &w.value else { return false };
+        let Addr::Letter(l) = w.addr else { return false };
+        match l {
+            b'G' => const_expr(e).is_some_and(|g| {
+                [0.0, 1.0, 17.0, 54.0, 55.0, 56.0, 57.0, 58.0, 59.0, 80.0, 90.0, 91.0, 94.0].contains(&g)
+            }),
+            b'M' => const_expr(e).is_some_and(|m| [3.0, 4.0, 5.0, 7.0, 8.0, 9.0].contains(&m)),
+            b'X' | b'Y' | b'F' | b'S' => !reads_system(e),
+            _ => false,
+        }
+    })
+}
+
+/// Whether an expression reads a system variable (`#1000` and up: positions among them).
+fn reads_system(e: &Expr) -> bool {
+    let mut stack = vec![e];
+    while let Some(x) = stack.pop() {
+        if matches!(&x.kind, ExprKind::Var(v) if !matches!(v.kind, VarKind::Hash(n) if n < 1000)) {
+            return true;
+        }
+        stack.extend(x.children());
+    }
+    false
+}
+
 /// Whether a block only selects a length (G43 H / G49 / H, no tool change, no radius words).
 fn length_only(b: &Block) -> bool {
     let mut length = false;
@@ -319,8 +351,15 @@ fn block_words(ctx: &mut Ctx, st: &mut St, b: Block, live: bool, out: &mut Vec<S
             out.push(Stmt { span, kind: StmtKind::Block(b) });
             return;
         }
-        st.pending = None;
         let here = out as *const Vec<Stmt> as usize == addr && out.get(idx).is_some_and(|s| s.span == bspan);
+        if here && keeps_z(&b) {
+            // Positioning in XY before the new length (`G54`, `M8`, `G0 X.. Y..`): the old
+            // H on FANUC, the new edge on Sinumerik, and Z does not move under either. The
+            // check compares the length where Z first moves (`check::DeferLength`).
+            out.push(Stmt { span, kind: StmtKind::Block(b) });
+            return;
+        }
+        st.pending = None;
         if here && length_only(&b) {
             return after_change(ctx, st, b, live, out, idx, pspan);
         }
