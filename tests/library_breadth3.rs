@@ -85,6 +85,12 @@ fn haas_smoothness_becomes_cycle832_and_back() {
     let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "e.nc", "-o", "out3/"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC562") && err.contains("Setting 191"), "{err}");
+    // CYCLE832 keeps the tool and its edge: a tool change and G43 after a G187 translate.
+    let prog = "O1003\nT1 M6\nG43 H1 Z50.\nG187 P3 E0.01\nG01 X10. F100.\nG187\nG53 G0 Z0.\nT2 M6\nG0 X5. Y5.\nG43 Z20. H2\nM30\n";
+    std::fs::write(d.join("t.nc"), prog).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "t.nc", "-o", "out4/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
 }
 
 #[test]

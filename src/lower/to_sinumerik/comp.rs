@@ -248,6 +248,9 @@ fn calls_of(ctx: &Ctx, b: &Block) -> Calls {
             CallTarget::Name(n) if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some() => {
                 true
             }
+            // The high-speed settings a Haas G187 or a FANUC G05.1 became (lookahead.rs):
+            // CYCLE832 sets the path dynamics, never the tool or its edge.
+            CallTarget::Name(n) if n.eq_ignore_ascii_case("CYCLE832") => true,
             CallTarget::Name(n) => ctx.progs.iter().any(|p| p.name.eq_ignore_ascii_case(n) && !p.tools),
             _ => false,
         };
