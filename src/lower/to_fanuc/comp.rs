@@ -218,7 +218,14 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
                 (_, None) if matches!(g, Some((None, _))) => {}
                 (_, None) if prev.is_some_and(|p| p.rad.is_none()) => {}
                 (_, None) => {
-                    let msg = "switching the cutting edge off (D0, a tool change) under G41/G42 cannot be translated";
+                    // Unknown before (an edge that was refused, a path or call that decides
+                    // it): say so rather than claim G41/G42 is on.
+                    let msg = if prev.is_some() {
+                        "switching the cutting edge off (D0, a tool change) under G41/G42 cannot be translated"
+                    } else {
+                        "switching the cutting edge off (D0, a tool change) where G41/G42 may be in force (the \
+                         compensation before is not known) cannot be translated"
+                    };
                     refuse(ctx, live, CODE, d.map_or(span, |x| x.1), msg, "cancel radius compensation with G40 first");
                 }
                 (Some((_, d1)), Some((_, d2))) if d1 != d2 => {
