@@ -409,7 +409,6 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("functions-misc.nc", "NC369"),      // ADP
     ("g10-l50-param-write.nc", "NC355"), // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)
-    ("jump-target-after-tape-end.nc", "NC254"), // a jump past the closing % (then NC366)
     ("m98-packed-p.nc", "NC355"),        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
     ("multi-word-block.nc", "NC472"),    // G43 H1 without a tool change: whose length?
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50

@@ -124,12 +124,16 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
                     }
                     targets.insert(t);
                 }
-                None => ctx.error(
+                // The control runs the program until the jump is taken (a block after the
+                // closing `%` is not read): the jump becomes Siemens' own jump alarm.
+                None => ctx.warn(
                     "NC366",
                     *span,
-                    format!("GOTO {n}: the program has no block N{n}"),
+                    format!(
+                        "GOTO {n}: the program has no block N{n} (FANUC alarm 128 when it is taken): written as a \
+                         jump to a label that does not exist (Siemens alarm 14080)"
+                    ),
                     "target not found",
-                    "FANUC raises alarm 128 here; add the block or correct the number",
                 ),
             },
             GotoKind::Computed => {
@@ -248,14 +252,21 @@ fn lower_goto(
     extra: &mut Vec<Stmt>,
 ) {
     match g.target {
-        Target::Number(n) => {
-            // Unresolved targets were reported; the jump is dropped.
-            if let Some(t) = resolve(&plan.numbers, node, n.value) {
+        Target::Number(n) => match resolve(&plan.numbers, node, n.value) {
+            Some(t) => {
                 let mut j = jump_to(plan, node, t, n.span);
                 j.cond = g.cond;
                 items.push(Item { kind: ItemKind::Goto(Box::new(j)), span });
             }
-        }
+            // No such block (reported): the jump alarms where FANUC's would.
+            None => {
+                let alarm = plain_block(no_target_jump(ctx, span), span);
+                extra.push(match g.cond {
+                    None => alarm,
+                    Some(c) => if_stmt(c, vec![alarm], None, span),
+                });
+            }
+        },
         Target::Computed(e) => {
             let mut distinct: BTreeSet<u32> = BTreeSet::new();
             distinct.extend(plan.numbers.iter().flatten().copied());
@@ -270,25 +281,7 @@ fn lower_goto(
             // A program without N numbers has no arm: only the missing-target jump remains.
             let case = (!arms.is_empty())
                 .then(|| Item { kind: ItemKind::Case(Box::new(Case { selector, arms, default: None })), span });
-            // No block with that number: jump to a label that does not exist, held in a
-            // STRING variable, so Siemens raises its own "jump target not found" (14080),
-            // the counterpart of FANUC's alarm 128.
-            let plan = &mut ctx.progs[ctx.cur];
-            if !plan.defs.iter().any(|(n, _)| n == NO_TARGET) {
-                plan.defs.push((NO_TARGET.to_string(), DataType::String(16)));
-            }
-            let alarm_items = vec![
-                assign(named_ref(NO_TARGET, span), Expr::new(ExprKind::Str("NO_SUCH_BLOCK".into()), span), span),
-                Item {
-                    kind: ItemKind::Goto(Box::new(Goto {
-                        search: Search::Forward,
-                        target: Target::Label(Label { name: NO_TARGET.into(), span }),
-                        cond: None,
-                        missing_continues: false,
-                    })),
-                    span,
-                },
-            ];
+            let alarm_items = no_target_jump(ctx, span);
             match g.cond {
                 None => {
                     // CASE stands in a block of its own (the FANUC block may hold NC words).
@@ -304,4 +297,26 @@ fn lower_goto(
         }
         Target::Label(_) => items.push(Item { kind: ItemKind::Goto(Box::new(g)), span }),
     }
+}
+
+/// A jump to a label that does not exist, held in a STRING variable, so that Siemens
+/// raises its own "jump target not found" (14080), the counterpart of FANUC's alarm 128
+/// for a GOTO to a number no block has.
+fn no_target_jump(ctx: &mut Ctx, span: Span) -> Vec<Item> {
+    let plan = &mut ctx.progs[ctx.cur];
+    if !plan.defs.iter().any(|(n, _)| n == NO_TARGET) {
+        plan.defs.push((NO_TARGET.to_string(), DataType::String(16)));
+    }
+    vec![
+        assign(named_ref(NO_TARGET, span), Expr::new(ExprKind::Str("NO_SUCH_BLOCK".into()), span), span),
+        Item {
+            kind: ItemKind::Goto(Box::new(Goto {
+                search: Search::Forward,
+                target: Target::Label(Label { name: NO_TARGET.into(), span }),
+                cond: None,
+                missing_continues: false,
+            })),
+            span,
+        },
+    ]
 }
