@@ -444,7 +444,70 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     if let Some((_, at)) = tap.rigid {
         refuse(ctx, at, "M29 without a tapping cycle after it", "program G84/G74 right after M29 S…", &mut out);
     }
+    drop_unused_mcalls(&mut out);
     out
+}
+
+/// `MCALL CYCLEnn(a)`, direct `CYCLEnn(a)` calls only, `MCALL`: a cycle that drilled only
+/// where the tool stood (`G84 G98 Z.. R..` then `G80`). The modal call fires after motion
+/// blocks alone, and there are none before it is cancelled, so it is left out: the direct
+/// calls drill the same holes, as a programmer would write them.
+fn drop_unused_mcalls(out: &mut Vec<Stmt>) {
+    fn only(s: &Stmt) -> Option<&[Item]> {
+        match &s.kind {
+            StmtKind::Block(b) if b.meta.label.is_none() && b.meta.number.is_none() && b.meta.comments.is_empty() => {
+                Some(&b.items)
+            }
+            _ => None,
+        }
+    }
+    fn call(it: &Item) -> Option<&Call> {
+        match &it.kind {
+            ItemKind::Call(c) => Some(c),
+            _ => None,
+        }
+    }
+    let mut i = 0;
+    while i < out.len() {
+        let define = only(&out[i]).and_then(|items| match items {
+            [it] => call(it).filter(|c| c.kind == CallKind::Mcall).cloned(),
+            _ => None,
+        });
+        let Some(define) = define else {
+            i += 1;
+            continue;
+        };
+        // The direct calls of the same cycle, each in a block without axis words.
+        let direct = |s: &Stmt| match &s.kind {
+            StmtKind::Block(b) => {
+                b.meta.label.is_none()
+                    && b.items.iter().any(|it| {
+                        call(it).is_some_and(|c| {
+                            c.kind == CallKind::Named && c.target == define.target && c.args == define.args
+                        })
+                    })
+                    && b.items.iter().all(|it| match &it.kind {
+                        ItemKind::Call(_) => true,
+                        ItemKind::Word(w) => !matches!(w.addr, Addr::Letter(l) if b"XYZABCUVWIJK".contains(&l)),
+                        _ => false,
+                    })
+            }
+            _ => false,
+        };
+        let mut j = i + 1;
+        while j < out.len() && direct(&out[j]) {
+            j += 1;
+        }
+        let cancel = j > i + 1
+            && j < out.len()
+            && only(&out[j]).is_some_and(|items| matches!(items, [it] if matches!(it.kind, ItemKind::ModalCallOff)));
+        if cancel {
+            out.remove(j);
+            out.remove(i);
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// Where the F of a starting rigid tapping cycle goes: before the block that held its
