@@ -306,3 +306,19 @@ fn the_speed_of_m29_stays_right_before_cycle84_so_a_round_trip_comes_back() {
     let body = |x: &[String]| x.iter().filter(|l| !l.starts_with(';')).cloned().collect::<Vec<_>>();
     assert_eq!(body(&again), body(&t));
 }
+
+#[test]
+fn rigid_tapping_in_inch_is_refused_until_the_unit_of_pit_is_settled() {
+    // FANUC G20 rigid tapping: F/S is a lead in inch, which CYCLE84 would take as PIT.
+    let inch = "%\nO1\nG20 G17 G90 G94\nG54 G0 X0 Y0\nT1 M6\nG43 H1\nG0 Z2.\nM29 S500\nG84 X1. Y1. Z-0.5 R0.2 F25.\nG80\nM30\n%\n";
+    let err = refused(inch, "nc", "sinumerik");
+    assert!(err.contains("NC591") && err.contains("inch"), "{err}");
+    // The Sinumerik run refuses a PIT under G700 (and G70), not a metric MPIT.
+    let pit = "G700 G17 G90 G94 G54\nG0 X0 Y0\nT1 D1 M6\nG0 Z2\nCYCLE84(2, 0.2, 0, -0.5, , , , , 0.05, , 500)\nM30\n";
+    let r = run_text("ttap-inch.mpf", pit, &[]);
+    let why: Vec<String> = r.outcome.diags.iter().map(|d| format!("{} {}", d.code, d.message)).collect();
+    assert!(why.iter().any(|d| d.starts_with("NC423") && d.contains("PIT under G70/G700")), "{why:?}");
+    let mpit = "G700 G17 G90 G94 G54\nG0 X0 Y0\nT1 D1 M6\nG0 Z2\nCYCLE84(2, 0.2, 0, -0.5, , , , 6, , , 500)\nM30\n";
+    let r = run_text("ttap-mpit.mpf", mpit, &[]);
+    assert!(!r.outcome.diags.iter().any(|d| d.code == "NC423"), "{:?}", r.outcome.diags);
+}

@@ -330,6 +330,16 @@ fn tapping(m: &Machine, a: &Args, span: Span) -> Result<(CycleKind, Option<f64>)
         })?),
         (false, false) => None,
     };
+    // Under G70/G700 the sources at hand do not say whether PIT is read in inch (the
+    // programmed unit) or in mm: the feed would be off by 25.4 either way, so it is refused.
+    if pit != 0.0 && m.modal.inch {
+        return Err(refuse(
+            "NC423",
+            format!("{} with a pitch PIT under G70/G700 (inch) is not modelled", a.cycle.name()),
+            span,
+            "program the tapping in G71/G710, or give the thread as MPIT (metric)",
+        ));
+    }
     if a.cycle == SieCycle::C84 {
         require_default(a, &["_PTAB", "_TECHNO", "_VARI", "_DAM"], span)?;
         let sst = a.get("SST");

@@ -666,6 +666,19 @@ fn call_item(
                 }
             }
         }
+        840 | 740 if d.tap.rigid.is_some() && ctx.modal.inch_at(span.lo) != Some(false) => {
+            // CYCLE84 takes the lead as PIT, whose unit under G70/G700 the sources at hand
+            // do not settle (the Sinumerik run refuses it likewise).
+            let what = "rigid tapping in inch (G20), or where G20/G21 is not known";
+            out.extend(ctx.refuse(
+                "NC591",
+                span,
+                &format!("{what}: not translated to Sinumerik"),
+                what,
+                "CYCLE84's pitch PIT under G70/G700 is not modelled: tap in G21, or translate this cycle by hand",
+            ));
+            return None;
+        }
         840 | 740 => {
             let t = tapping::Tap { g: d.g, f: d.f.as_ref(), state: &d.tap };
             match tapping::call_args(&t, span) {
