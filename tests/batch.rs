@@ -422,6 +422,7 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
+    ("JUMP_TARGET_AFTER_TAPE_E.mpf", "NC310"), // the same STRING: the jump alarm of a missing N
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)
     ("MACRO_A_H99_ALARM.mpf", "NC315"),        // SETAL outside 65000..65999
     ("O_2001.mpf", "NC445"), // g52-pockets-g28-tool-changes.nc, translated since G43 is: its frames (passes::frames)
