@@ -216,6 +216,10 @@ fn grammar_errors_say_what_was_expected() {
     assert!(r.contains("comparison `EQ` outside brackets"), "{r}");
     let (_, r) = parse("IF[#1 = 2]GOTO5\nN5\n");
     assert!(r.contains("compare with EQ"), "{r}");
+    // Chamfering and corner R: named, not a bare "found `,`".
+    let (_, r) = parse("G01 X100. ,R5. F100.\nY80. , C2.\n");
+    assert_eq!(r.matches("chamfering and corner R").count(), 2, "{r}");
+    assert_eq!(codes("G01 X100. ,R5. F100.\n"), ["NC160"]);
 }
 
 #[test]

@@ -385,6 +385,15 @@ fn grammar_error(seg: &Seg<'_>, e: &pest::error::Error<Rule>) -> Diagnostic {
         Some(op) => format!("comparison `{op}` outside brackets"),
         None => format!("expected {what}, found {found_text}"),
     };
+    // `X100. ,R5.` / `,C2.`: the optional chamfering and corner R function.
+    let corner = found == Some(',')
+        && seg.text[pos + 1..].trim_start().chars().next().is_some_and(|c| matches!(c.to_ascii_uppercase(), 'R' | 'C'));
+    if corner && outside.is_none() {
+        return Diagnostic::error("NC160", "chamfering and corner R (`,C` / `,R`) are not read".to_string())
+            .primary(seg.file, seg.span(pos, pos + width), "corner R or chamfer")
+            .note("the rounding or chamfer between two moves is not modelled, so it could not be run or proven")
+            .hint("write the corner as its own G02/G03 or G01 move");
+    }
     let (label, hint) = match outside {
         Some(op) => (
             format!("`{op}` outside brackets"),
