@@ -439,6 +439,11 @@ fn a_tool_positioned_in_xy_before_its_g43_translates_and_verifies() {
         let src = format!("%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\n{between}\nG43 Z15. H2\nM30\n%\n");
         assert!(to_sinumerik_codes(&src).contains(&"NC473"), "{between}");
     }
+    // So is a structure there, even one without compensation words (its blocks run in
+    // between; a loop that moves only X would still be refused rather than followed).
+    let looped =
+        "%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\nWHILE[#1 LT 2]DO1\n#1=#1+1\nG0 Z[40.+#1]\nEND1\nG43 Z15. H2\nM30\n%\n";
+    assert!(to_sinumerik_codes(looped).contains(&"NC473"), "{looped}");
     // A call there (here of a program not in the job) is refused too.
     to_sinumerik_codes("%\nO1\nT1 M6\nG43 H1 Z50.\nT2 M6\nM98 P100\nG43 Z15. H2\nM30\n%\n");
 }

@@ -44,6 +44,11 @@ pub trait FlowState: Clone + PartialEq {
     fn unknown() -> Self;
     /// What two paths meeting here agree on.
     fn merge(&self, other: &Self) -> Self;
+    /// Whether every block must be seen now, also inside structures without compensation
+    /// words (a tool change waiting for its length: any block in between matters).
+    fn watches_every_block(&self) -> bool {
+        false
+    }
 }
 
 /// The constant value of a word, if it is one.
@@ -272,7 +277,7 @@ pub fn walk<S: FlowState>(
             }
             kind => Stmt { kind, span },
         };
-        if !relevant(std::slice::from_ref(&s), fanuc) {
+        if !relevant(std::slice::from_ref(&s), fanuc) && !st.watches_every_block() {
             out.push(s);
             continue;
         }

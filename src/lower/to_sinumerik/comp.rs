@@ -96,6 +96,9 @@ impl FlowState for St {
             call: self.call.clone().or_else(|| o.call.clone()),
         }
     }
+    fn watches_every_block(&self) -> bool {
+        self.pending.is_some()
+    }
 }
 
 const CODE: &str = "NC471";
