@@ -426,7 +426,7 @@ fn translations_stream_from_the_copy() {
                 let mut out = Vec::new();
                 let case = format!("{} {name} {eol:?}", enc.name());
                 if name.ends_with(".mpf") {
-                    let o = nctrans::translate::TranslateOptions {
+                    let o = nctrans::translate::to_fanuc::TranslateOptions {
                         main_name: "T".into(),
                         source_name: name.into(),
                         line_ending: copy.detected.line_ending,

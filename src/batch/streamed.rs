@@ -630,7 +630,7 @@ fn to_fanuc_from(
     // job's finds them in the parsed output.
     let with_subs = !subs.is_empty();
     let source_callees: Box<dyn CalleeSource + Send> = if with_subs {
-        Box::new(MemCallees(subs.iter().map(|u| translate::align_source(u, &map)).collect()))
+        Box::new(MemCallees(subs.iter().map(|u| translate::to_fanuc::align_source(u, &map)).collect()))
     } else {
         Box::new(NoCallees)
     };
@@ -646,7 +646,7 @@ fn to_fanuc_from(
         callees: Box::new(NoCallees),
         run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
     };
-    let report = sv::compare_excluding(a, b, translate::EXCLUDE);
+    let report = sv::compare_excluding(a, b, translate::to_fanuc::EXCLUDE);
     // With callees, only an equivalence is taken: the diagnostics of any other verdict may
     // point into a callee file, which the streamed records do not name as the whole job
     // does; the whole job then gives that verdict itself.

@@ -16,7 +16,7 @@ use crate::stream::Fallback;
 use crate::stream::{self, Index, ProgressFn};
 use crate::translate::library;
 use crate::translate::to_sinumerik::OutFile;
-use crate::translate::{SymbolMap, TranslateOptions};
+use crate::translate::{to_fanuc::SymbolMap, to_fanuc::TranslateOptions};
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::Path;
@@ -131,7 +131,7 @@ pub(super) fn to_fanuc_part(
             span: Span::default(),
         };
         let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-        let map = crate::translate::to_fanuc(&unit, &[], opts).symbol_map;
+        let map = crate::translate::to_fanuc::to_fanuc(&unit, &[], opts).symbol_map;
         Ok((done.index, map, Vec::new()))
     };
     if let Some(done) = route(part, bom, straight).ok()? {

@@ -12,7 +12,7 @@ use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
 use crate::span::FileId;
 use crate::translate::library::ProgKey;
-use crate::translate::{self, OutFile, TranslateOptions, Translation};
+use crate::translate::{self, to_fanuc::TranslateOptions, OutFile, Translation};
 use std::path::{Path, PathBuf};
 
 /// The FANUC target of a batch.
@@ -95,7 +95,7 @@ impl Target for Fanuc {
 }
 
 /// The names a translation to FANUC used: programs, tools, variables.
-pub fn used_names(map: &translate::SymbolMap) -> maps::Used {
+pub fn used_names(map: &translate::to_fanuc::SymbolMap) -> maps::Used {
     let mut used = maps::Used::default();
     for (name, n) in &map.programs {
         used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));

@@ -11,7 +11,7 @@ use crate::stream::segmented::nset::{kept, NSet};
 use crate::stream::segmented::splice::{Entered, Splice};
 use crate::stream::target::fanuc::{run_block, units_block};
 use crate::stream::{PlainWord, WordsSink};
-use crate::translate::{self, TranslateOptions};
+use crate::translate::{self, to_fanuc::TranslateOptions};
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
 /// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
@@ -104,7 +104,7 @@ impl Writer<'_> {
         if let Some(p) = u.programs.first_mut() {
             p.body = set.into_iter().chain([s.clone()]).collect();
         }
-        let t = translate::to_fanuc(&u, &[], self.opts);
+        let t = translate::to_fanuc::to_fanuc(&u, &[], self.opts);
         if !t.diags.is_empty() || t.unsupported > 0 {
             self.bad = true;
             return;
