@@ -333,9 +333,8 @@ fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> 
     let is_dir = |o: &Path| o.is_dir() || o.to_string_lossy().ends_with('/');
     // A special target (`-o /dev/null`, see `cs::is_special`) is copied into at the end.
     let special = req.out.filter(|o| cs::is_special(o));
-    let tmp = match req.out {
+    let tmp = match req.out.filter(|_| special.is_none()) {
         None => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
-        Some(_) if special.is_some() => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
         Some(o) if is_dir(o) => {
             if let Err(e) = std::fs::create_dir_all(o) {
                 eprintln!("error: cannot create {}: {e}", o.display());
@@ -383,9 +382,8 @@ fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> 
     let mut db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
     eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, path)]));
-    let out = match req.out {
+    let out = match req.out.filter(|_| special.is_none()) {
         None => tmp.clone(),
-        Some(_) if special.is_some() => tmp.clone(),
         Some(o) if is_dir(o) => o.join(&done.file_name),
         Some(o) => o.to_path_buf(),
     };

@@ -264,12 +264,11 @@ fn segment(
         lone: lone_unit,
         header_len,
         out: Splice::new(&t.text, places, out),
-        bad: false,
     };
     let mut index = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     index.align = SourceAlign { tools };
-    if w.bad || !index.diags.is_empty() {
+    if w.out.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
     w.out.finish()?;

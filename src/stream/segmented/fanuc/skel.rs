@@ -115,9 +115,7 @@ pub(crate) fn plain_call(c: &crate::ir::Call) -> bool {
 
 impl Skel {
     fn decline(&mut self, why: impl Into<String>) {
-        if self.stop.is_none() {
-            self.stop = Some(why.into());
-        }
+        self.stop.get_or_insert_with(|| why.into());
     }
 
     fn run_block(&mut self, meta: &BlockMeta) {
