@@ -84,7 +84,7 @@ mod write;
 use super::nset::NSet;
 use super::spill::{assemble, Spill};
 use one::One;
-use skel::{finish, new_skel, skeleton, MAX_N};
+use skel::{finish, new_skel, MAX_N};
 use write::{placeholders, Writer};
 
 use super::splice::Splice;
@@ -193,8 +193,10 @@ fn segment(
         // Jumps name N values of run blocks: scan again keeping those blocks real, and
         // write the runs in a writing scan.
         spilled = None;
-        let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, keep, calls_ok)?;
+        let mut again = new_skel(sk.targets.clone(), calls_ok);
+        let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut again, None)
+            .map_err(Fallback::NotStreamable)?;
+        (sk, program, _) = finish(again, ix)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }

@@ -365,21 +365,6 @@ fn new_skel(keep: NSet, calls: bool) -> Skel {
     }
 }
 
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-fn skeleton(
-    path: &Path,
-    popts: &ParseOptions,
-    eol: LineEnding,
-    keep: NSet,
-    calls: bool,
-) -> Result<(Skel, Program), Fallback> {
-    let mut sk = new_skel(keep, calls);
-    let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, popts, &mut sk, None)
-        .map_err(Fallback::NotStreamable)?;
-    finish(path, eol, sk, ix).map(|(sk, p, _)| (sk, p))
-}
-
 /// A skeleton after its scan of `path` (whose index is `ix`): the skeleton, the program it
 /// is the body of, and the index.
 fn finish(path: &Path, eol: LineEnding, mut sk: Skel, ix: Index) -> Result<(Skel, Program, Index), Fallback> {
@@ -459,8 +444,10 @@ fn segment(
         // Jumps name N values of run blocks: scan again keeping those blocks real, and
         // write the runs in a writing scan.
         spilled = None;
-        let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, &popts, eol, keep, calls)?;
+        let mut again = new_skel(sk.targets.clone(), calls);
+        let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut again, None)
+            .map_err(Fallback::NotStreamable)?;
+        (sk, program, _) = finish(path, eol, again, ix)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
