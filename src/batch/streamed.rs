@@ -396,7 +396,7 @@ pub trait Streams: jobs::Target {
         kept: &Self::Kept,
         headers: (&str, &str),
         out_dir: &str,
-    ) -> Result<[Side; 2], CheckReport>;
+    ) -> Result<[Side; 2], Box<CheckReport>>;
     /// The runs after the main program's of a translation with calls, as the whole job
     /// makes them; `None` declines.
     fn more_runs(
@@ -515,7 +515,7 @@ fn from<T: Streams>(h: Here<'_, T>, path: &Path, copy: Option<&TempCopy>, with: 
             let b = StreamSide { index: back, name: done.shown.clone(), callees: b_callees, run: run_b };
             sv::compare_excluding(a, b, T::EXCLUDE)
         }
-        Err(report) => report,
+        Err(report) => *report,
     };
     if done.with_calls && !matches!(report.verdict, Verdict::Equivalent { .. }) {
         return decline();

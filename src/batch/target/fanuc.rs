@@ -181,7 +181,12 @@ impl Streams for Fanuc {
     /// mapped R parameters 0 on FANUC; the callees as the whole job's verifier serves them
     /// (aligned as it aligns them). The FANUC side finds the output's own O programs in the
     /// read-back index, as the whole job's finds them in the parsed output.
-    fn sides(job: &Job<Fanuc>, (map, subs): &Self::Kept, _: (&str, &str), _: &str) -> Result<[Side; 2], CheckReport> {
+    fn sides(
+        job: &Job<Fanuc>,
+        (map, subs): &Self::Kept,
+        _: (&str, &str),
+        _: &str,
+    ) -> Result<[Side; 2], Box<CheckReport>> {
         let s = &job.settings;
         let mut b_in = translate::to_fanuc::r_param_homes(map);
         b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());

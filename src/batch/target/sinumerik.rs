@@ -325,58 +325,6 @@ pub(crate) fn in_file_macro_runs(
     verify_called::macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn commons_without_a_default_place_get_one_place_for_the_library() {
-        let commons: BTreeSet<u32> = [100, 500, 501, 801, 802, 950].into_iter().collect();
-        let rules = vec![VarMapRule::parse("#950=R2").unwrap()];
-        let places = library_places(&commons, &rules, 300);
-        // R0 and R1 are the default places of #500 and #501, R2 is the rule's.
-        assert_eq!(
-            places,
-            [VarMapRule { from: 801, to: 801, r_start: 3 }, VarMapRule { from: 802, to: 802, r_start: 4 }]
-        );
-        // Placed per file, #802 would take R0 in a file without #500: not what the library
-        // gives it, so the two files would not share R0.
-        let only: BTreeSet<u32> = [802].into_iter().collect();
-        assert_eq!(library_places(&only, &[], 300), [VarMapRule { from: 802, to: 802, r_start: 0 }]);
-        assert!(library_places(&commons, &rules, 2).len() < 2, "no R left past the count");
-    }
-
-    #[test]
-    fn is_set_flags_get_one_place_for_the_library() {
-        use crate::dialect::{Dialect, ParseOptions};
-        use crate::read::LineEnding;
-        // Program A tests only #501's vacancy; B tests #500's and #501's. Placed per file,
-        // #501's flag would be R299 in A and R298 in B.
-        let a = "%\nO1\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
-        let b = "%\nO2\nIF[#500EQ#0]GOTO10\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
-        let flag_of = |text: &str, places: &BTreeMap<u32, u32>, n: u32| {
-            let mut db = crate::span::SourceDb::new();
-            let f = db.add("t.nc", text);
-            let parsed = crate::parse(&db, f, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-            let opts = Options { flag_places: places.clone(), ..Options::default() };
-            let t = crate::translate::to_sinumerik::translate(&[&parsed.unit], &opts, LineEnding::Lf);
-            t.symbols.sinumerik().common(n).and_then(|e| e.flag.clone())
-        };
-        let none = BTreeMap::new();
-        assert_ne!(flag_of(a, &none, 501), flag_of(b, &none, 501), "per file the places differ");
-        let commons: BTreeSet<u32> = [500, 501].into_iter().collect();
-        let places = library_flag_places(&commons, &[], 300);
-        assert_eq!(places, [(500, 299), (501, 298)].into_iter().collect::<BTreeMap<_, _>>());
-        assert_eq!(flag_of(a, &places, 501).as_deref(), Some("R298"));
-        assert_eq!(flag_of(b, &places, 501).as_deref(), Some("R298"));
-        assert_eq!(flag_of(b, &places, 500).as_deref(), Some("R299"));
-        // Default places of the library's commons are never flag places.
-        let low: BTreeSet<u32> = [798, 799].into_iter().collect();
-        let p = library_flag_places(&low, &[], 300);
-        assert!(p.values().all(|r| *r < 298), "{p:?}");
-    }
-}
-
 /// What a streamed translation to Sinumerik keeps for its proof and its other outputs.
 pub struct Kept {
     /// The main program's name and the translation's symbol map.
@@ -486,7 +434,12 @@ impl Streams for Sinumerik {
     /// As `Job<Sinumerik>::verify` runs a file's only program: its header inputs and
     /// `--set`; the callees as the whole job's verifier serves them: the FANUC units
     /// loaded, the translation's other files under the names it shows them.
-    fn sides(job: &Job<Sinumerik>, k: &Kept, (a, b): (&str, &str), out_dir: &str) -> Result<[Side; 2], CheckReport> {
+    fn sides(
+        job: &Job<Sinumerik>,
+        k: &Kept,
+        (a, b): (&str, &str),
+        out_dir: &str,
+    ) -> Result<[Side; 2], Box<CheckReport>> {
         let s = &job.settings;
         let mut fanuc = s.set.clone();
         let symbols = crate::translate::Symbols::Sinumerik(k.symbols.clone());
@@ -497,7 +450,7 @@ impl Streams for Sinumerik {
             (Ok(a), Ok(b)) => (a, b),
             (Err(e), _) | (_, Err(e)) => {
                 let d = Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"));
-                return Err(streamed::failed(vec![d]));
+                return Err(Box::new(streamed::failed(vec![d])));
             }
         };
         a.extend(parse_all(&fanuc));
@@ -523,5 +476,57 @@ impl Streams for Sinumerik {
 
     fn stage_more(h: Here<'_, Sinumerik>, k: &Kept, out: &'static encoding_rs::Encoding, bom: bool) -> Option<Staged> {
         streamed_calls::stage_own(h.2, h.1, &k.subs, out, bom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commons_without_a_default_place_get_one_place_for_the_library() {
+        let commons: BTreeSet<u32> = [100, 500, 501, 801, 802, 950].into_iter().collect();
+        let rules = vec![VarMapRule::parse("#950=R2").unwrap()];
+        let places = library_places(&commons, &rules, 300);
+        // R0 and R1 are the default places of #500 and #501, R2 is the rule's.
+        assert_eq!(
+            places,
+            [VarMapRule { from: 801, to: 801, r_start: 3 }, VarMapRule { from: 802, to: 802, r_start: 4 }]
+        );
+        // Placed per file, #802 would take R0 in a file without #500: not what the library
+        // gives it, so the two files would not share R0.
+        let only: BTreeSet<u32> = [802].into_iter().collect();
+        assert_eq!(library_places(&only, &[], 300), [VarMapRule { from: 802, to: 802, r_start: 0 }]);
+        assert!(library_places(&commons, &rules, 2).len() < 2, "no R left past the count");
+    }
+
+    #[test]
+    fn is_set_flags_get_one_place_for_the_library() {
+        use crate::dialect::{Dialect, ParseOptions};
+        use crate::read::LineEnding;
+        // Program A tests only #501's vacancy; B tests #500's and #501's. Placed per file,
+        // #501's flag would be R299 in A and R298 in B.
+        let a = "%\nO1\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
+        let b = "%\nO2\nIF[#500EQ#0]GOTO10\nIF[#501EQ#0]GOTO10\nG0X1.\nN10M30\n%\n";
+        let flag_of = |text: &str, places: &BTreeMap<u32, u32>, n: u32| {
+            let mut db = crate::span::SourceDb::new();
+            let f = db.add("t.nc", text);
+            let parsed = crate::parse(&db, f, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+            let opts = Options { flag_places: places.clone(), ..Options::default() };
+            let t = crate::translate::to_sinumerik::translate(&[&parsed.unit], &opts, LineEnding::Lf);
+            t.symbols.sinumerik().common(n).and_then(|e| e.flag.clone())
+        };
+        let none = BTreeMap::new();
+        assert_ne!(flag_of(a, &none, 501), flag_of(b, &none, 501), "per file the places differ");
+        let commons: BTreeSet<u32> = [500, 501].into_iter().collect();
+        let places = library_flag_places(&commons, &[], 300);
+        assert_eq!(places, [(500, 299), (501, 298)].into_iter().collect::<BTreeMap<_, _>>());
+        assert_eq!(flag_of(a, &places, 501).as_deref(), Some("R298"));
+        assert_eq!(flag_of(b, &places, 501).as_deref(), Some("R298"));
+        assert_eq!(flag_of(b, &places, 500).as_deref(), Some("R299"));
+        // Default places of the library's commons are never flag places.
+        let low: BTreeSet<u32> = [798, 799].into_iter().collect();
+        let p = library_flag_places(&low, &[], 300);
+        assert!(p.values().all(|r| *r < 298), "{p:?}");
     }
 }
