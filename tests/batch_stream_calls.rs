@@ -120,7 +120,7 @@ struct Watched {
 
 impl FileJob for Watched {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        match batch::streamed::to_sinumerik(&self.job, f, ctx) {
+        match batch::streamed::run(&self.job, f, ctx) {
             Some(o) => {
                 self.streamed.lock().expect("lock").push(batch::rel_string(&f.rel));
                 o

@@ -212,13 +212,13 @@ impl<J> Watched<J> {
 
 impl FileJob for Watched<Job<Sinumerik>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+        self.note(f, batch::streamed::run(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
 }
 
 impl FileJob for Watched<Job<Fanuc>> {
     fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+        self.note(f, batch::streamed::run(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
     }
 }
 

@@ -11,7 +11,7 @@ use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
 const STEPS: u64 = 100_000;
 
@@ -54,7 +54,7 @@ fn check_pair(siemens: &str, fanuc: &str) -> (Verdict, String) {
 fn to_fanuc(src: &str) -> Vec<String> {
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
-    let t = translate::to_fanuc(&u, &[], &TranslateOptions::default());
+    let t = translate::to_fanuc::to_fanuc(&u, &[], &TranslateOptions::default());
     assert!(t.ok(), "not translated:\n{}", nctrans::diag::render(&db, &t.diags));
     let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
     assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
@@ -68,7 +68,7 @@ fn to_fanuc(src: &str) -> Vec<String> {
 fn to_fanuc_codes(src: &str, opts: &TranslateOptions) -> Vec<&'static str> {
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
-    let t = translate::to_fanuc(&u, &[], opts);
+    let t = translate::to_fanuc::to_fanuc(&u, &[], opts);
     assert!(!t.ok(), "translated:\n{}", t.text);
     t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect()
 }
@@ -233,7 +233,7 @@ fn registers_that_cannot_be_proven_are_refused_precisely() {
     stated.source.cutting_edge_default = Some(1);
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "in.mpf", "T1 M6\nG0 Z50\nM30\n", Dialect::Sinumerik);
-    let t = translate::to_fanuc(&u, &[], &stated);
+    let t = translate::to_fanuc::to_fanuc(&u, &[], &stated);
     assert!(t.ok() && t.text.contains("T1 M06\nG43 H1\n"), "{}", t.text);
 
     // FANUC: an H that is not the tool's, G44, a tool change under G43, G41 under G49.
@@ -252,7 +252,7 @@ fn an_offset_map_names_the_registers_of_other_edges() {
     let opts = TranslateOptions { target: sem, ..TranslateOptions::default() };
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "in.mpf", "T6 M6 D2\nG41 G1 X1 F100\nG40 X2\nM30\n", Dialect::Sinumerik);
-    let t = translate::to_fanuc(&u, &[], &opts);
+    let t = translate::to_fanuc::to_fanuc(&u, &[], &opts);
     assert!(t.ok(), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
     assert!(t.text.contains("T6 M06\nG43 H26\nG41 G01 D46 X1. F100.\n"), "{}", t.text);
     let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
@@ -324,7 +324,7 @@ fn a_subprograms_safety_line_translates() {
     let mut db = SourceDb::new();
     let (_, u) = parse(&mut db, "sub.spf", "PROC SUB\nG17 G40 G90\nG0 X1\nRET\n", Dialect::Sinumerik);
     let opts = TranslateOptions { main_is_sub: true, ..TranslateOptions::default() };
-    let t = translate::to_fanuc(&u, &[], &opts);
+    let t = translate::to_fanuc::to_fanuc(&u, &[], &opts);
     assert!(t.ok() && t.text.contains("G17 G40 G90"), "{:?}", t.diags.iter().map(|d| &d.message).collect::<Vec<_>>());
 }
 

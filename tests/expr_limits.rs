@@ -273,7 +273,7 @@ fn library(c: &Case) -> Vec<String> {
     }
     let verdict = check::in_one_thread(|| match c.dialect {
         Dialect::Sinumerik => {
-            let t = translate::to_fanuc(&unit, &[], &translate::TranslateOptions::default());
+            let t = translate::to_fanuc::to_fanuc(&unit, &[], &translate::to_fanuc::TranslateOptions::default());
             if !t.ok() {
                 return Err(diag::render(&db, &t.diags));
             }

@@ -109,7 +109,7 @@ mod translation {
     use super::*;
     use nctrans::read::LineEnding;
     use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
-    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
     const STEPS: u64 = 100_000;
 
@@ -133,7 +133,7 @@ mod translation {
     fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
         let s = load(&mut db, siemens, Dialect::Sinumerik);
-        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        let t = translate::to_fanuc::to_fanuc(&s, &[], &TranslateOptions::default());
         if !t.ok() {
             let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
             codes.dedup();

@@ -218,14 +218,14 @@ fn the_corpus_job_matches_its_committed_translation_and_plants_are_caught() {
 /// G18 or G19 a main program selects first.
 mod sequences_in_other_planes {
     use super::*;
-    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
     use super::frame_check;
 
     fn s_to_f(siemens: &str) -> Result<String, Vec<&'static str>> {
         let mut db = SourceDb::new();
         let s = frame_check::load(&mut db, siemens, Dialect::Sinumerik);
-        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        let t = translate::to_fanuc::to_fanuc(&s, &[], &TranslateOptions::default());
         if !t.ok() {
             let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
             codes.dedup();

@@ -95,7 +95,7 @@ fn wrong_translations_planted_in_the_committed_outputs_are_caught() {
 
 #[test]
 fn the_sinumerik_sequences_come_back_as_the_fanuc_modes() {
-    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate::{self, to_fanuc::TranslateOptions};
     for (k, lines) in [
         (0, &["G68 X60. Y40. R30.\n", "G00 Z50.\nG69\n"][..]),
         (1, &["G51.1 X100.\n", "G50.1 X0.\n", "G51 X100. Y80. I0.5 J0.5\n", "G00 Z5.\nG50\n"][..]),
@@ -103,7 +103,7 @@ fn the_sinumerik_sequences_come_back_as_the_fanuc_modes() {
         let [_, _, f_s, _] = files(k);
         let mut db = SourceDb::new();
         let s = load(&mut db, "back.mpf", &f_s, Dialect::Sinumerik);
-        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        let t = translate::to_fanuc::to_fanuc(&s, &[], &TranslateOptions::default());
         assert!(t.ok(), "{}", nctrans::diag::render(&db, &t.diags));
         let v = translate::to_fanuc::verify(&mut db, &s, &[], &t.clone().into(), "back.nc", 100_000);
         assert!(v.equivalent, "{}\n{}", v.summary, t.text);

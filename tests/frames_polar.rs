@@ -59,7 +59,7 @@ mod translation {
     use super::*;
     use nctrans::read::LineEnding;
     use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
-    use nctrans::translate::{self, TranslateOptions};
+    use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
     fn f_to_s(fanuc: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
@@ -80,7 +80,7 @@ mod translation {
     fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
         let mut db = SourceDb::new();
         let s = load(&mut db, siemens, Dialect::Sinumerik);
-        let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+        let t = translate::to_fanuc::to_fanuc(&s, &[], &TranslateOptions::default());
         if !t.ok() {
             let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
             codes.dedup();

@@ -11,7 +11,7 @@ use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::{FileId, SourceDb};
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
 const STEPS: u64 = 200_000;
 
@@ -182,7 +182,7 @@ fn pair_table_rows_are_equivalent_and_translate_both_ways() {
         if matches!(row.way, Way::Both | Way::SToF(_)) {
             let mut opts = TranslateOptions::default();
             opts.tool_map.insert("DRILL".into(), 1);
-            let t = translate::to_fanuc(&s, &[], &opts);
+            let t = translate::to_fanuc::to_fanuc(&s, &[], &opts);
             if !t.ok() {
                 failures.push(format!(
                     "{}: S→F not translated: {:?}",

@@ -8,8 +8,8 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{DirCallees, RunOptions};
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
+use nctrans::translate::to_fanuc::{to_fanuc, TranslateOptions};
 use nctrans::translate::to_sinumerik::{translate, Options};
-use nctrans::translate::{to_fanuc, TranslateOptions};
 use std::path::PathBuf;
 
 const STEPS: u64 = 1_000_000;
@@ -131,7 +131,7 @@ fn sinumerik_round_trip(path: &PathBuf) -> Result<Verdict, String> {
     }
     let main = s.files.iter().position(|o| o.main).unwrap_or(0);
     let b = units.remove(main);
-    Ok(compare(&db, p.unit, b, units, nctrans::translate::EXCLUDE))
+    Ok(compare(&db, p.unit, b, units, nctrans::translate::to_fanuc::EXCLUDE))
 }
 
 fn run_all(dir: &str, f: fn(&PathBuf) -> Result<Verdict, String>) -> (usize, Vec<String>, Vec<String>) {

@@ -426,7 +426,7 @@ fn translations_stream_from_the_copy() {
                 let mut out = Vec::new();
                 let case = format!("{} {name} {eol:?}", enc.name());
                 if name.ends_with(".mpf") {
-                    let o = nctrans::translate::TranslateOptions {
+                    let o = nctrans::translate::to_fanuc::TranslateOptions {
                         main_name: "T".into(),
                         source_name: name.into(),
                         line_ending: copy.detected.line_ending,
@@ -516,13 +516,13 @@ mod batch_jobs {
 
     impl FileJob for Watched<Job<Sinumerik>> {
         fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
-            self.note(f, batch::streamed::to_sinumerik(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+            self.note(f, batch::streamed::run(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
         }
     }
 
     impl FileJob for Watched<Job<Fanuc>> {
         fn run(&self, f: &InputFile, ctx: &BatchContext) -> FileOutcome {
-            self.note(f, batch::streamed::to_fanuc(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
+            self.note(f, batch::streamed::run(&self.job, f, ctx)).unwrap_or_else(|| self.job.run(f, ctx))
         }
     }
 

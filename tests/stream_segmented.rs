@@ -13,7 +13,7 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::stream::segmented::fanuc as segmented;
 use nctrans::stream::Fallback;
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use rng::Rng;
 use std::path::{Path, PathBuf};
 
@@ -73,7 +73,7 @@ fn compare_tools(name: &str, text: &str, comments: CommentMode, noted: bool, too
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
     let mut o = TranslateOptions { comments, ..opts(&path, text) };
     o.tool_map.extend(tools.iter().map(|(k, v)| (k.to_string(), *v)));
-    let t = translate::to_fanuc(&parsed.unit, &[], &o);
+    let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &o);
     let mut out = Vec::new();
     let r = if noted {
         segmented::to_fanuc_with_notes(&path, &o, &mut out, None)
@@ -570,7 +570,7 @@ fn cli_stream_matches_whole(name: &str, text: &str) {
     let mut db = SourceDb::new();
     let loaded = nctrans::load(&mut db, &path.display().to_string(), text.as_bytes(), None);
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
-    let whole = translate::to_fanuc(&parsed.unit, &[], &opts(&path, text));
+    let whole = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts(&path, text));
     if whole.unsupported == 0 {
         assert!(std::fs::read(&out).expect("output") == whole.text.as_bytes(), "{name}: {stderr}");
     }
@@ -681,7 +681,7 @@ fn cli_stream_writes_the_whole_translation() {
         let loaded = nctrans::load(&mut db, &path.display().to_string(), text.as_bytes(), None);
         let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
         let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
-        let whole = translate::to_fanuc(&parsed.unit, &[], &opts(&path, &text));
+        let whole = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts(&path, &text));
         assert!(std::fs::read(&out).expect("output") == whole.text.as_bytes());
         // The library takes it segmented (so the command line did too, or it would have
         // said nothing different: the bytes are the same either way).

@@ -10,7 +10,7 @@ use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 use nctrans::stream::segmented::fanuc as segmented;
 use nctrans::stream::Fallback;
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use std::path::{Path, PathBuf};
 
 const MAX_STEPS: u64 = 2_000_000;
@@ -93,7 +93,7 @@ fn whole(path: &Path) -> (String, bool, String) {
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
     let subs = load_subs(&mut db, path, &parsed.unit).expect("subs");
     let refs: Vec<&Unit> = subs.iter().collect();
-    let t = translate::to_fanuc(&parsed.unit, &refs, &opts(path));
+    let t = translate::to_fanuc::to_fanuc(&parsed.unit, &refs, &opts(path));
     assert!(t.ok(), "{:?}", t.diags);
     let v = translate::to_fanuc::verify(&mut db, &parsed.unit, &refs, &t.clone().into(), "whole.nc", MAX_STEPS);
     (t.text, v.equivalent, v.summary)

@@ -5,7 +5,7 @@
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::stream::{target::fanuc as st, Fallback};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use std::path::{Path, PathBuf};
 
 fn root() -> PathBuf {
@@ -29,7 +29,7 @@ fn both(path: &Path) -> (String, Result<Vec<u8>, Fallback>) {
     let text = db.get(loaded.file).text.clone();
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
     let o = opts(path, &text);
-    let whole = translate::to_fanuc(&parsed.unit, &[], &o).text;
+    let whole = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &o).text;
     let mut out = Vec::new();
     let r = st::to_fanuc(path, &o, &mut out, None).map(|_| out);
     (whole, r)

@@ -16,7 +16,7 @@ use nctrans::dialect::fanuc::emit::CommentMode;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
 use nctrans::stream::{target::fanuc as st, Fallback};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use rng::Rng;
 use std::path::PathBuf;
 
@@ -53,7 +53,7 @@ fn both(
     let decoded = db.get(loaded.file).text.clone();
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
     let o = opts(&path, &decoded, comments);
-    let whole = translate::to_fanuc(&parsed.unit, &[], &o);
+    let whole = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &o);
     let mut out = Vec::new();
     let r = st::to_fanuc(&path, &o, &mut out, None).map(|_| out);
     (whole, r)
@@ -340,7 +340,7 @@ fn literal(r: &mut Rng) -> String {
 fn translates_clean(block: &str) -> bool {
     let p = parse(&format!("{block}\nM30\n"));
     let o = TranslateOptions::default();
-    let t = translate::to_fanuc(&p.unit, &[], &o);
+    let t = translate::to_fanuc::to_fanuc(&p.unit, &[], &o);
     p.diags.is_empty() && t.diags.is_empty() && t.unsupported == 0
 }
 

@@ -5,7 +5,7 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, to_sinumerik, Options, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions, to_sinumerik, Options};
 
 fn load(db: &mut SourceDb, name: &str, text: &str, d: Dialect) -> Unit {
     let file = db.add(name, text.to_string());
@@ -20,7 +20,7 @@ fn to_fanuc_through_the_entry() {
     let src = "R1=2\nWHILE R1<5\nG1 X=R1*2 F100\nR1=R1+1\nENDWHILE\nM30\n";
     let unit = load(&mut db, "w.mpf", src, Dialect::Sinumerik);
     let fanuc = TranslateOptions { line_ending: LineEnding::CrLf, ..TranslateOptions::default() };
-    let stage = translate::to_fanuc(&unit, &[], &fanuc);
+    let stage = translate::to_fanuc::to_fanuc(&unit, &[], &fanuc);
     // The entry's line ending is the output's, whatever the FANUC options say.
     let opts = Options { line_ending: LineEnding::CrLf, ..Options::default() };
     let t = translate::translate(&[&unit], Dialect::Fanuc, &opts);

@@ -8,7 +8,7 @@ use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::ir::Unit;
 use nctrans::lower::to_fanuc::UnsupportedPolicy;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, to_fanuc::Output, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::Output, to_fanuc::TranslateOptions};
 use std::path::{Path, PathBuf};
 
 #[path = "support/rng.rs"]
@@ -39,7 +39,7 @@ fn translate_src(name: &str, src: &str, opts: &TranslateOptions) -> Done {
         "{name} does not parse:\n{}",
         nctrans::diag::render(&db, &parsed.diags)
     );
-    let t = translate::to_fanuc(&parsed.unit, &[], opts);
+    let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], opts);
     Done { db, unit: parsed.unit, t }
 }
 
@@ -364,7 +364,7 @@ fn corpus_translates_and_verifies() {
             main_is_sub: name.ends_with(".spf"),
             ..TranslateOptions::default()
         };
-        let t = translate::to_fanuc(&parsed.unit, &[], &opts);
+        let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts);
         let refused = REFUSED.iter().find(|(f, _)| *f == name);
         match (t.ok(), refused) {
             (false, Some((_, code))) => {

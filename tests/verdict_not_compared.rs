@@ -7,7 +7,7 @@ use nctrans::check::{self, Exclude, Side, Verdict};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{NoCallees, RunOptions};
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -48,9 +48,9 @@ fn the_count_comes_from_the_check() {
     let text = std::fs::read_to_string(root().join(PROGRAM)).expect("read");
     let file = db.add(PROGRAM, text);
     let src = nctrans::parse(&db, file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik)).unit;
-    let t = translate::to_fanuc(&src, &[], &TranslateOptions::default());
+    let t = translate::to_fanuc::to_fanuc(&src, &[], &TranslateOptions::default());
     assert!(t.ok(), "{:?}", t.diags);
-    let out = translate::reparse(&mut db, &t.clone().into(), "out.nc").unit;
+    let out = translate::to_fanuc::reparse(&mut db, &t.clone().into(), "out.nc").unit;
     let sides = || {
         let a = Side { unit: src.clone(), callees: Box::new(NoCallees), run: RunOptions::default() };
         let b = Side { unit: out.clone(), callees: Box::new(NoCallees), run: RunOptions::default() };

@@ -136,7 +136,7 @@ fn batch_record(
     struct Watched(Job<Sinumerik>, std::sync::atomic::AtomicBool);
     impl FileJob for Watched {
         fn run(&self, f: &batch::InputFile, ctx: &batch::BatchContext) -> batch::FileOutcome {
-            match batch::streamed::to_sinumerik(&self.0, f, ctx) {
+            match batch::streamed::run(&self.0, f, ctx) {
                 Some(o) => {
                     self.1.store(true, std::sync::atomic::Ordering::SeqCst);
                     o

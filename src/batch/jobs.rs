@@ -238,10 +238,6 @@ pub trait Target: Sized + Send + Sync + 'static {
     /// names the folder of the files.
     const ONE_FILE: bool;
 
-    /// The streamed job for a large file (`batch::streamed`); `None` leaves the file to the
-    /// whole-file job.
-    fn streamed(job: &Job<Self>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome>;
-
     /// The options of the translation of `main` (read with profile `source`) and its
     /// callees `subs`, from the batch's maps; an `Err` is the file's error (NC606).
     fn prepare(job: &Job<Self>, input: &mut Input, source: Semantics) -> Result<Prepared, String>;
@@ -324,9 +320,10 @@ fn source_profile(
     }
 }
 
-impl<T: Target> FileJob for Job<T> {
+/// A large file is streamed (`batch::streamed`, the target's `Streams`) when it can be.
+impl<T: super::streamed::Streams> FileJob for Job<T> {
     fn run(&self, file: &InputFile, ctx: &BatchContext) -> FileOutcome {
-        if let Some(o) = T::streamed(self, file, ctx) {
+        if let Some(o) = super::streamed::run(self, file, ctx) {
             return o;
         }
         let mut db = SourceDb::new();

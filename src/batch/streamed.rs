@@ -16,33 +16,31 @@
 //! constant number (its own after `M30`, other files') streams to Sinumerik with them
 //! likewise (`streamed_calls.rs`, `segmented::to_sinumerik_with_subs`). Anything else, or a
 //! file every streamed translator declines, is left to the whole-file job.
+//!
+//! One path for every target ([`run`]): staging, encoding, the report entry, the read-back
+//! and the streamed proof are here; what a target does as its own (which files stream, its
+//! translators, each side's inputs and callees, its further runs and outputs) is its
+//! [`Streams`] in `batch::target::<name>`.
 
 use super::discover::{self, InputFile};
 use super::jobs::{self, apply, combine, Job, Verified};
-use super::streamed_calls;
-use super::streamed_macro::{self, LibItems};
-use super::target::fanuc::{self as target_fanuc, Fanuc};
-use super::target::sinumerik::{self as target_sinumerik, Sinumerik};
+use super::streamed_macro::LibItems;
 use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
-use crate::eval::{header_inputs, CalleeSource, Ending, NoCallees, Outcome, RunOptions};
-use crate::ir::{ProgName, Unit};
+use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
+use crate::ir::ProgName;
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
 use crate::stream;
 use crate::stream::lines::{first_line_ending, has_bom, Lines, NotStreamable};
-use crate::stream::segmented::LoadCallees;
 use crate::stream::transcode::{self, TempCopy, TempFile};
 use crate::stream::verify::{self as sv, ReadBack, StreamSide};
-use crate::stream::Fallback;
-use crate::translate;
-use crate::translate::called::{parse_all, siemens_inputs, MemCallees};
 use crate::translate::library::{self, FileInfo, ProgKey, Scan};
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Runs `attempt` on the file itself, or on a decoded copy when `--encoding` names a legacy
 /// encoding or (only then, so a UTF-8 file costs nothing extra) when the attempt on the file
@@ -203,7 +201,7 @@ pub fn without_shared_streamed(
 
 /// Whether the job may stream `file`: the library scan streamed it, and no other file calls
 /// its program, is called by it or defines it too.
-fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
+pub(crate) fn streamable(file: &InputFile, ctx: &BatchContext) -> bool {
     ctx.library.callee_files(file.index).is_empty() && streamed_alone(file, ctx)
 }
 
@@ -224,7 +222,7 @@ fn streamed_alone(file: &InputFile, ctx: &BatchContext) -> bool {
 /// streamed it (its calls are plain), no file calls its program or defines it too, each
 /// call names a program of another file, and every callee file is a Sinumerik subprogram
 /// file (`.spf`, read whole by the loader) defining one program no other file defines.
-fn streamable_with_callees(file: &InputFile, ctx: &BatchContext) -> Option<Vec<usize>> {
+pub(crate) fn streamable_with_callees(file: &InputFile, ctx: &BatchContext) -> Option<Vec<usize>> {
     let lib = &ctx.library;
     if !streamed_alone(file, ctx) {
         return None;
@@ -304,7 +302,7 @@ fn positions(path: &Path, offsets: &[u32]) -> Vec<(usize, usize)> {
 }
 
 /// Report records of diagnostics that point into streamed files (id, name, path).
-fn records(diags: &[Diagnostic], files: &[(FileId, &str, &Path)]) -> Vec<DiagRecord> {
+pub(crate) fn records(diags: &[Diagnostic], files: &[(FileId, &str, &Path)]) -> Vec<DiagRecord> {
     let mut db = SourceDb::new();
     for (id, name, _) in files {
         while db.len() < *id {
@@ -334,7 +332,7 @@ fn records(diags: &[Diagnostic], files: &[(FileId, &str, &Path)]) -> Vec<DiagRec
 
 /// The verdict of one streamed check, as the whole-file jobs combine it, with the
 /// diagnostics' lines read from the streamed files.
-fn verdict(runs: Vec<(String, CheckReport)>, files: &[(FileId, &str, &Path)]) -> Verified {
+pub(crate) fn verdict(runs: Vec<(String, CheckReport)>, files: &[(FileId, &str, &Path)]) -> Verified {
     let diags = runs.first().map(|(_, r)| r.diags.clone()).unwrap_or_default();
     let mut v = combine(runs);
     if !v.diagnostics.is_empty() {
@@ -344,7 +342,7 @@ fn verdict(runs: Vec<(String, CheckReport)>, files: &[(FileId, &str, &Path)]) ->
 }
 
 /// A check that could not run (the output does not read back, a bad header line).
-fn failed(diags: Vec<Diagnostic>) -> CheckReport {
+pub(crate) fn failed(diags: Vec<Diagnostic>) -> CheckReport {
     let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
     CheckReport {
         verdict: Verdict::Failed,
@@ -357,304 +355,181 @@ fn failed(diags: Vec<Diagnostic>) -> CheckReport {
     }
 }
 
-fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics) -> RunOptions {
+pub(crate) fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics) -> RunOptions {
     RunOptions { inputs, max_steps, semantics: Some(sem.clone()), ..RunOptions::default() }
 }
 
-/// FANUC → Sinumerik for a streamable file (see the module documentation); `None` leaves
-/// the file to the whole-file job.
-pub fn to_sinumerik(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
+/// What a target's streamed job does as its own (`batch::target::<name>`); the rest is
+/// [`run`]'s, the same for every target.
+pub trait Streams: jobs::Target {
+    /// The scratch file a translation is written to in UTF-8 when its output is encoded.
+    const SCRATCH: &'static str;
+    /// What the trace comparison leaves out (as the whole job's proof does).
+    const EXCLUDE: crate::check::Exclude;
+    /// What a file streams with (the callee files of a main that calls).
+    type With;
+    /// What a translation keeps for its proof and its other outputs.
+    type Kept;
+    /// A source read from a decoded copy is translated into UTF-8 first too.
+    const SCRATCH_DECODED: bool;
+    /// Whether the job may stream the file, and with what; `None` leaves it to the whole job.
+    fn with(h: Here<'_, Self>) -> Option<Self::With>;
+    /// Translates `path` (the file, or its decoded copy; `eol` its first line ending) into
+    /// `into`, which gets a byte-order mark first when `bom` says so; `None` declines
+    /// (nothing is left at `into`).
+    fn translate(
+        h: Here<'_, Self>,
+        with: &Self::With,
+        path: &Path,
+        eol: LineEnding,
+        into: &Path,
+        bom: bool,
+    ) -> Option<Translated<Self::Kept>>;
+    /// The parse options the output is read back with.
+    fn read_back(job: &Job<Self>) -> ParseOptions;
+    /// The proof of an output that does not read back (of a translation without calls).
+    fn unreadable(e: ReadBack, files: &[(FileId, &str, &Path)]) -> Verified;
+    /// Each side's run options and callees (source first), from the `nctrans: set` headers
+    /// of the source and the output read back; `Err` is the check that could not run.
+    fn sides(
+        job: &Job<Self>,
+        kept: &Self::Kept,
+        headers: (&str, &str),
+        out_dir: &str,
+    ) -> Result<[Side; 2], Box<CheckReport>>;
+    /// The runs after the main program's of a translation with calls, as the whole job
+    /// makes them; `None` declines.
+    fn more_runs(
+        _: Here<'_, Self>,
+        _: &Self::Kept,
+        _header: &str,
+        _out_dir: &str,
+    ) -> Option<Vec<(String, CheckReport)>> {
+        Some(Vec::new())
+    }
+    /// The outputs staged after the main one (the file's own subprograms) in the output
+    /// encoding `out`; `None` declines.
+    fn stage_more(
+        _: Here<'_, Self>,
+        _: &Self::Kept,
+        _out: &'static encoding_rs::Encoding,
+        _bom: bool,
+    ) -> Option<Staged> {
+        Some(Vec::new())
+    }
+}
+
+/// The file a streamed job translates, with its job and batch.
+pub type Here<'a, T> = (&'a Job<T>, &'a BatchContext, &'a InputFile);
+
+/// Staged outputs: where each goes (relative to the output folder) and its staged file.
+pub type Staged = Vec<(PathBuf, PathBuf)>;
+
+/// One side of a streamed proof: its run options and the callees it is served.
+pub type Side = (RunOptions, Box<dyn CalleeSource + Send>);
+
+/// A streamed translation, as [`run`] reports and proves it.
+pub struct Translated<K> {
+    /// The source's first-scan index.
+    pub index: stream::Index,
+    /// The translation's diagnostics on the file (spans into it), listed as the whole job
+    /// lists them.
+    pub diags: Vec<Diagnostic>,
+    pub used: crate::batch::maps::Used,
+    /// The main output, relative to the output folder, and its name in the proof.
+    pub rel_out: PathBuf,
+    pub shown: String,
+    /// Callees came in: the proof then takes only an equivalence (the diagnostics of any
+    /// other verdict may point into a callee or subprogram file, which the streamed records
+    /// do not name as the whole job does; the whole job then gives that verdict itself).
+    pub with_calls: bool,
+    pub kept: K,
+}
+
+/// The streamed job of a large file (see the module documentation); `None` leaves the file
+/// to the whole-file job.
+pub fn run<T: Streams>(job: &Job<T>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
     if job.fault.is_some() {
         return None;
     }
-    // A main that calls subprograms (its own after M30, other files'): with its callees.
-    let callees = if streamable(file, ctx) { None } else { Some(streamed_calls::callees(file, ctx)?) };
-    let callees = callees.as_deref();
-    with_source(&file.abs, ctx.options.encoding, |path, copy| to_sinumerik_from(job, file, ctx, path, copy, callees))
+    let h = (job, ctx, file);
+    let with = T::with(h)?;
+    with_source(&file.abs, ctx.options.encoding, |path, copy| from(h, path, copy, &with))
 }
 
-/// [`to_sinumerik`] reading `path` (the file, or its decoded `copy`), with the `callees`
-/// files of a main that calls subprograms (`streamed_calls`).
-fn to_sinumerik_from(
-    job: &Job<Sinumerik>,
-    file: &InputFile,
-    ctx: &BatchContext,
-    path: &Path,
-    copy: Option<&TempCopy>,
-    callees: Option<&[usize]>,
-) -> Option<FileOutcome> {
+/// [`run`] reading `path` (the file, or its decoded `copy`).
+fn from<T: Streams>(h: Here<'_, T>, path: &Path, copy: Option<&TempCopy>, with: &T::With) -> Option<FileOutcome> {
+    let (job, ctx, file) = h;
     let s = &job.settings;
-    let opts = job.options(ctx, file).ok()?;
-    let (enc, bom, first_eol) = source_form(&file.abs, copy)?;
+    let (enc, bom, eol) = source_form(&file.abs, copy)?;
     let out_enc = s.output_encoding.unwrap_or(enc);
-    let eol = s.line_ending(first_eol);
     let part = write::staged_path(&ctx.options.output, file.index);
-    // Not UTF-8 in or out: the stream writes UTF-8 (with the UTF-8 source's mark, which
-    // `encode_to` drops) into a temporary file, encoded into `part` and read back from there.
-    let utf8 = (copy.is_some() || out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.mpf"));
-    let target = utf8.as_ref().map_or(part.as_path(), |u| u.path());
-    // The callees' units, kept for the verifier's source side; the translation's other
-    // files (the file's own subprograms, the callees'), for its Siemens side.
-    let mut units: Vec<Unit> = Vec::new();
-    let mut skeleton: Option<Unit> = None;
-    let (done, subs) = match callees {
-        None => (streamed_macro::to_sinumerik_part(path, &opts, eol, target)?, Vec::new()),
-        Some(c) => {
-            // The stand-in caller (if any) is translated with them, as the whole job does,
-            // but neither run nor written.
-            let mut load = |main: &Unit| {
-                let stand_in;
-                skeleton = Some(main.clone());
-                (units, stand_in) = streamed_calls::load(job, ctx, file, main, c)?;
-                Ok(units.iter().cloned().chain(stand_in).collect())
-            };
-            let stand_in = streamed_calls::stand_in_id(c);
-            streamed_macro::to_sinumerik_subs_part(path, &opts, eol, target, &mut load, stand_in)?
-        }
-    };
-    let with_calls = callees.is_some();
+    // Not UTF-8 in or out: the stream writes UTF-8 into a temporary file, encoded into
+    // `part` and read back from there; in UTF-8 the mark is written as the whole path does.
+    let utf8 =
+        (T::SCRATCH_DECODED && copy.is_some() || out_enc != encoding_rs::UTF_8).then(|| TempFile::new(T::SCRATCH));
+    let into = utf8.as_ref().map_or(part.as_path(), |u| u.path());
+    let done = T::translate(h, with, path, eol, into, bom && utf8.is_none())?;
     if let Some(u) = &utf8 {
         encode_part(u.path(), out_enc, bom, &part)?;
     }
     // Declined after the main's output is staged: nothing of the file is left staged.
-    let decline = || {
+    let decline = || -> Option<FileOutcome> {
         let _ = std::fs::remove_file(&part);
         None
     };
-    let read_back = utf8.as_ref().map_or(part.as_path(), |u| u.path());
     let name = rel_string(&file.rel);
-    let rel_out = discover::sinumerik_output(&file.rel, &done.program, false);
     let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
     outcome.blocks = done.index.blocks;
-    let programs: Vec<(Option<u32>, &str)> = std::iter::once((done.fanuc_number, done.program.as_str()))
-        .chain(streamed_calls::own(&subs).map(|f| (f.fanuc_number, f.program.as_str())))
-        .collect();
-    outcome.used = target_sinumerik::used_names(&programs, &done.symbols);
+    outcome.used = done.used;
     outcome.diagnostics = records(&done.diags, &[(0, &name, path)]);
-    outcome.staged = vec![(rel_out, part.clone())];
+    outcome.staged = vec![(done.rel_out, part.clone())];
     // The main file first, then its subprograms, as the whole job lists its outputs.
-    let stage_subs = |outcome: &mut FileOutcome| match streamed_calls::stage_own(file, ctx, &subs, out_enc, bom) {
+    let stage_more = |outcome: &mut FileOutcome| match T::stage_more(h, &done.kept, out_enc, bom) {
         Some(more) => {
             outcome.staged.extend(more);
             Some(())
         }
-        None => {
-            let _ = std::fs::remove_file(&part);
-            None
-        }
+        None => decline().map(drop),
     };
     if !ctx.options.verify {
-        stage_subs(&mut outcome)?;
+        stage_more(&mut outcome)?;
         return Some(outcome);
     }
-    // As `Job<Sinumerik>::verify` runs a file's only program: its header inputs and `--set`.
+    // As the whole job runs the file's (first) program: its header inputs and `--set`.
     let out_dir = rel_string(file.rel.parent().unwrap_or(Path::new("")));
-    let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
-    let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &shown, read_back)];
-    let mut fanuc = s.set.clone();
-    let header = done.index.header.clone();
-    let symbols = crate::translate::Symbols::Sinumerik(done.symbols.clone());
-    let tr = crate::translate::Translation { files: vec![], symbols, diags: vec![], unsupported: 0 };
-    let siemens = siemens_inputs(&tr, &done.program, &fanuc);
-    fanuc.retain(|x| x.trim_start().starts_with('#'));
-    let report =
-        match sv::read_back(read_back, 1, Dialect::Sinumerik, &ParseOptions { semantics: s.sinumerik.clone() }, None) {
-            Ok(back) => match (header_inputs(&done.index.header), header_inputs(&back.header)) {
-                (Ok(mut a), Ok(mut b)) => {
-                    a.extend(parse_all(&fanuc));
-                    b.extend(parse_all(&siemens));
-                    // The callees as the whole job's verifier serves them: the FANUC units
-                    // loaded, the translation's other files under the names it shows them.
-                    let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) =
-                        if with_calls {
-                            let shown =
-                                |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
-                            let files =
-                                subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
-                            let emitted = crate::translate::to_sinumerik::verify::Emitted {
-                                files,
-                                semantics: s.sinumerik.clone(),
-                            };
-                            (Box::new(MemCallees(units.clone())), Box::new(emitted))
-                        } else {
-                            (Box::new(NoCallees), Box::new(NoCallees))
-                        };
-                    let a = StreamSide {
-                        index: done.index,
-                        name: name.clone(),
-                        callees: a_callees,
-                        run: run_options(a, s.max_steps, &s.fanuc),
-                    };
-                    let b = StreamSide {
-                        index: back,
-                        name: shown.clone(),
-                        callees: b_callees,
-                        run: run_options(b, s.max_steps, &s.sinumerik),
-                    };
-                    sv::compare(a, b)
-                }
-                (Err(e), _) | (_, Err(e)) => {
-                    failed(vec![Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"))])
-                }
-            },
-            // With calls the whole job gives this verdict (see below).
-            Err(_) if with_calls => return decline(),
-            Err(ReadBack::Diags(mut d)) => {
-                d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
-                failed(d)
-            }
-            Err(ReadBack::Unreadable(e)) => {
-                failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
-            }
-        };
-    // With calls, only an equivalence is taken: the diagnostics of any other verdict may
-    // point into a callee or subprogram file, which the streamed records do not name as
-    // the whole job does; the whole job then gives that verdict itself.
-    if with_calls && !matches!(report.verdict, Verdict::Equivalent { .. }) {
+    let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &done.shown, into)];
+    let back = match sv::read_back(into, 1, T::DIALECT, &T::read_back(job), None) {
+        Ok(back) => back,
+        Err(_) if done.with_calls => return decline(),
+        Err(e) => {
+            apply(&mut outcome, T::unreadable(e, &files));
+            stage_more(&mut outcome)?;
+            return Some(outcome);
+        }
+    };
+    let header = if done.with_calls { done.index.header.clone() } else { String::new() };
+    let report = match T::sides(job, &done.kept, (&done.index.header, &back.header), &out_dir) {
+        Ok([(run_a, a_callees), (run_b, b_callees)]) => {
+            let a = StreamSide { index: done.index, name: name.clone(), callees: a_callees, run: run_a };
+            let b = StreamSide { index: back, name: done.shown.clone(), callees: b_callees, run: run_b };
+            sv::compare_excluding(a, b, T::EXCLUDE)
+        }
+        Err(report) => *report,
+    };
+    if done.with_calls && !matches!(report.verdict, Verdict::Equivalent { .. }) {
         return decline();
     }
     // The file's own macros alone, as the whole job runs them after its main program.
     let mut runs = vec![(String::new(), report)];
-    if let (true, Some(main)) = (with_calls, &skeleton) {
-        let got = streamed_calls::macro_runs(job, ctx, file, (main, &header), &units, (&subs, &done.symbols), &out_dir);
-        match got {
+    if done.with_calls {
+        match T::more_runs(h, &done.kept, &header, &out_dir) {
             Some(more) => runs.extend(more),
             None => return decline(),
         }
     }
     apply(&mut outcome, verdict(runs, &files));
-    stage_subs(&mut outcome)?;
-    Some(outcome)
-}
-
-/// Sinumerik → FANUC for a streamable file (see the module documentation); `None` leaves
-/// the file to the whole-file job.
-pub fn to_fanuc(job: &Job<Fanuc>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
-    let s = &job.settings;
-    // The stream reads the Siemens file with the default profile.
-    if job.fault.is_some() || s.sinumerik != Semantics::default_for(Dialect::Sinumerik) {
-        return None;
-    }
-    let callees = streamable_with_callees(file, ctx)?;
-    with_source(&file.abs, ctx.options.encoding, |path, copy| to_fanuc_from(job, file, ctx, path, copy, &callees))
-}
-
-/// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
-/// whole job (file ids from 1 up after the main's 0, the job's encoding and profile);
-/// declines one with any diagnostic or a call `segmented::to_fanuc_with_subs` cannot take.
-fn load_callees(job: &Job<Fanuc>, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
-    let no = |why: &str| Fallback::NotStraight(why.into());
-    let mut db = SourceDb::new();
-    db.add("", String::new());
-    let mut units = Vec::new();
-    for &i in callees {
-        let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
-        let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, &job.settings.sinumerik)
-            .map_err(|e| no(&e))?;
-        if !l.diags.is_empty() || !stream::segmented::fanuc::calls_plain(&l.unit) {
-            return Err(no("a callee with diagnostics or a call of another kind"));
-        }
-        units.push(l.unit);
-    }
-    Ok(units)
-}
-
-/// [`to_fanuc`] reading `path` (the file, or its decoded `copy`).
-fn to_fanuc_from(
-    job: &Job<Fanuc>,
-    file: &InputFile,
-    ctx: &BatchContext,
-    path: &Path,
-    copy: Option<&TempCopy>,
-    callees: &[usize],
-) -> Option<FileOutcome> {
-    let s = &job.settings;
-    let (enc, bom, eol) = source_form(&file.abs, copy)?;
-    let out_enc = s.output_encoding.unwrap_or(enc);
-    let opts = job.options(ctx, file, eol).ok()?;
-    let part = write::staged_path(&ctx.options.output, file.index);
-    // Output not in UTF-8: the stream writes UTF-8 into a temporary file, encoded into
-    // `part` and read back from there; in UTF-8 the mark is written as the whole path does.
-    let utf8 = (out_enc != encoding_rs::UTF_8).then(|| TempFile::new("batch.utf8.nc"));
-    let into = utf8.as_ref().map_or(part.as_path(), |u| u.path());
-    // The callees' units, kept for the verifier's source side.
-    let mut subs: Vec<Unit> = Vec::new();
-    let mut load = |_: &Unit| {
-        subs = load_callees(job, ctx, callees)?;
-        Ok(subs.clone())
-    };
-    let load: Option<LoadCallees<'_>> = if callees.is_empty() { None } else { Some(&mut load) };
-    let (index, map, notes) = streamed_macro::to_fanuc_part(path, &opts, into, bom && utf8.is_none(), load)?;
-    if let Some(u) = &utf8 {
-        encode_part(u.path(), out_enc, bom, &part)?;
-    }
-    let name = rel_string(&file.rel);
-    let rel_out = discover::fanuc_output(&file.rel);
-    let out_name = rel_string(&rel_out);
-    let mut outcome = FileOutcome::new(Status::TranslatedUnverified, "translated, not verified (--no-verify)");
-    outcome.blocks = index.blocks;
-    outcome.used = target_fanuc::used_names(&map);
-    outcome.staged = vec![(rel_out, part.clone())];
-    // The translation's notes, as the whole-file job lists them before the check's.
-    outcome.diagnostics = records(&notes, &[(0, &name, path)]);
-    if !ctx.options.verify {
-        return Some(outcome);
-    }
-    // As `Job<Fanuc>::verify` runs a program no file calls: `--set` on both sides, the
-    // mapped R parameters 0 on FANUC.
-    let files: [(FileId, &str, &Path); 2] = [(0, &name, path), (1, &out_name, into)];
-    let back = match sv::read_back(into, 1, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc), None) {
-        Ok(b) => b,
-        // With callees the whole job gives this verdict (see below).
-        Err(_) if !subs.is_empty() => {
-            let _ = std::fs::remove_file(&part);
-            return None;
-        }
-        Err(e) => {
-            let diagnostics = match e {
-                ReadBack::Diags(d) => records(&d, &files),
-                ReadBack::Unreadable(m) => vec![DiagRecord::error("NC603", format!("cannot read {out_name}: {m}"))],
-            };
-            let summary = "the output does not parse as FANUC (a bug in nctrans)".to_string();
-            apply(
-                &mut outcome,
-                Verified { status: Status::Diverged, summary, events: None, excluded: Default::default(), diagnostics },
-            );
-            return Some(outcome);
-        }
-    };
-    let mut b_in = crate::translate::to_fanuc::r_param_homes(&map);
-    b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
-    // The callees as the whole job's verifier serves them (aligned as it aligns them); the
-    // FANUC side finds the output's own O programs in the read-back index, as the whole
-    // job's finds them in the parsed output.
-    let with_subs = !subs.is_empty();
-    let source_callees: Box<dyn CalleeSource + Send> = if with_subs {
-        Box::new(MemCallees(subs.iter().map(|u| translate::align_source(u, &map)).collect()))
-    } else {
-        Box::new(NoCallees)
-    };
-    let a = StreamSide {
-        index,
-        name: name.clone(),
-        callees: source_callees,
-        run: run_options(parse_all(&s.set), s.max_steps, &s.sinumerik),
-    };
-    let b = StreamSide {
-        index: back,
-        name: out_name.clone(),
-        callees: Box::new(NoCallees),
-        run: run_options(parse_all(&b_in), s.max_steps, &s.fanuc),
-    };
-    let report = sv::compare_excluding(a, b, translate::EXCLUDE);
-    // With callees, only an equivalence is taken: the diagnostics of any other verdict may
-    // point into a callee file, which the streamed records do not name as the whole job
-    // does; the whole job then gives that verdict itself.
-    if with_subs && !matches!(report.verdict, Verdict::Equivalent { .. }) {
-        let _ = std::fs::remove_file(&part);
-        return None;
-    }
-    apply(&mut outcome, verdict(vec![(String::new(), report)], &files));
+    stage_more(&mut outcome)?;
     Some(outcome)
 }
 

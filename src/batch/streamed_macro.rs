@@ -7,16 +7,12 @@
 use crate::diag::Diagnostic;
 use crate::dialect::Dialect;
 use crate::ir::{CallKind, ItemKind, Program, Stmt, Unit, WordValue};
-use crate::lower::to_sinumerik::Options as SinOptions;
-use crate::read::LineEnding;
 use crate::span::Span;
 use crate::stream::segmented::LoadCallees;
-use crate::stream::target::sinumerik as sts;
 use crate::stream::Fallback;
-use crate::stream::{self, Index, ProgressFn};
+use crate::stream::{self, target::sinumerik as sts, Index};
 use crate::translate::library;
-use crate::translate::to_sinumerik::OutFile;
-use crate::translate::{SymbolMap, TranslateOptions};
+use crate::translate::{to_fanuc::SymbolMap, to_fanuc::TranslateOptions};
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::Path;
@@ -87,7 +83,7 @@ fn program_of(s: &Stmt) -> Program {
 /// One streamed translator into the staged output `part` (a fresh file): `Ok(None)` when
 /// it declines because the program is not straight-line (the next translator may take it),
 /// `Err(())` when it fails otherwise; nothing is left at `part` unless it is `Ok(Some)`.
-fn route<T>(
+pub(super) fn route<T>(
     part: &Path,
     bom: bool,
     translate: impl FnOnce(&mut dyn Write) -> Result<T, Fallback>,
@@ -131,7 +127,7 @@ pub(super) fn to_fanuc_part(
             span: Span::default(),
         };
         let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-        let map = crate::translate::to_fanuc(&unit, &[], opts).symbol_map;
+        let map = crate::translate::to_fanuc::to_fanuc(&unit, &[], opts).symbol_map;
         Ok((done.index, map, Vec::new()))
     };
     if let Some(done) = route(part, bom, straight).ok()? {
@@ -142,42 +138,4 @@ pub(super) fn to_fanuc_part(
         Ok((done.index, done.symbol_map, notes))
     };
     route(part, bom, segmented).ok()?
-}
-
-/// A streamed FANUC → Sinumerik translator (the signature of `sts::to_sinumerik`).
-type ToSinumerik =
-    fn(&Path, &SinOptions, LineEnding, &mut dyn Write, Option<ProgressFn<'_>>) -> Result<sts::Streamed, Fallback>;
-
-/// The FANUC → Sinumerik streams a batch tries, in order: straight-line, then segmented.
-/// Each `Streamed` carries what the whole-file job reports and verifies with (see
-/// `streamed::to_sinumerik`).
-const TO_SINUMERIK: &[ToSinumerik] = &[sts::to_sinumerik, crate::stream::segmented::sinumerik::to_sinumerik];
-
-/// FANUC → Sinumerik into `part` by the first of [`TO_SINUMERIK`] that takes the file (the
-/// translator writes the byte-order mark itself).
-pub(super) fn to_sinumerik_part(path: &Path, opts: &SinOptions, eol: LineEnding, part: &Path) -> Option<sts::Streamed> {
-    for f in TO_SINUMERIK {
-        if let Some(done) = route(part, false, |w| f(path, opts, eol, w, None)).ok()? {
-            return Some(done);
-        }
-    }
-    None
-}
-
-/// FANUC → Sinumerik into `part` of a main program with calls, its callees given by `load`
-/// and maybe a stand-in caller of file `stand_in` (`segmented::to_sinumerik_with_stand_in`):
-/// the main file's translation, and the others of the whole translation (the main file's
-/// subprograms and its callees', not the stand-in's).
-pub(super) fn to_sinumerik_subs_part(
-    path: &Path,
-    opts: &SinOptions,
-    eol: LineEnding,
-    part: &Path,
-    load: LoadCallees<'_>,
-    stand_in: crate::span::FileId,
-) -> Option<(sts::Streamed, Vec<OutFile>)> {
-    let f = |w: &mut dyn Write| {
-        crate::stream::segmented::sinumerik::to_sinumerik_with_stand_in(path, opts, eol, load, stand_in, w, None)
-    };
-    route(part, false, f).ok()?
 }

@@ -11,7 +11,7 @@ use nctrans::diag;
 use nctrans::dialect::Dialect;
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, SymbolMap};
+use nctrans::translate::{self, to_fanuc::SymbolMap};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -78,10 +78,10 @@ impl MapOpts {
 
 impl Names {
     /// A Siemens side compared with a FANUC one: aligned as the translation's verification
-    /// aligns it (`translate::align_source`).
+    /// aligns it (`translate::to_fanuc::align_source`).
     pub fn align(&self, unit: &Unit) -> Unit {
         let map = SymbolMap { tools: self.tools.clone(), ..SymbolMap::default() };
-        translate::align_source(unit, &map)
+        translate::to_fanuc::align_source(unit, &map)
     }
 
     /// A FANUC side compared with a Siemens one: the variables mapped R parameters went to
@@ -233,7 +233,7 @@ fn check_as_translation(
     // Compared as the translation's verification compares: a Siemens first side's messages
     // shown without a stop are what a FANUC translation keeps as comments.
     let exclude = if cross && dialects[0] == Dialect::Sinumerik {
-        nctrans::translate::EXCLUDE
+        nctrans::translate::to_fanuc::EXCLUDE
     } else {
         check::Exclude::default()
     };

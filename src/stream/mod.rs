@@ -122,7 +122,7 @@ pub struct Index {
     /// `; nctrans: set …` header comment lines (evaluator inputs), as text.
     pub header: String,
     /// What a run of the program changes in the statements it re-reads, as
-    /// `translate::align_source` does for the whole path: set for verifying a segmented
+    /// `translate::to_fanuc::align_source` does for the whole path: set for verifying a segmented
     /// translation (`segmented::SourceAlign`), empty elsewhere.
     pub align: segmented::SourceAlign,
 }

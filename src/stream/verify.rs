@@ -142,7 +142,7 @@ pub fn verify(
     let a = StreamSide { index: source, name, callees: Box::new(DirCallees { semantics: None }), run };
     let b =
         StreamSide { index: out_ix, name: output.display().to_string(), callees: Box::new(NoCallees), run: out_run };
-    let report = compare_excluding(a, b, crate::translate::EXCLUDE);
+    let report = compare_excluding(a, b, crate::translate::to_fanuc::EXCLUDE);
     let (equivalent, summary) = match report.verdict {
         Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
         Verdict::Diverged { index } => {

@@ -18,13 +18,6 @@ pub mod library;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 
-// The names of the FANUC target that the streaming translators and the tests reach at
-// `translate::` (the streaming code moves onto the entry with issue 18 part B).
-pub use to_fanuc::{
-    align_source, r_param_inputs, reparse, to_fanuc, var_param_inputs, SymbolMap, TranslateOptions,
-    DEFAULT_MAIN_NUMBER, EXCLUDE, FIRST_SUB_NUMBER,
-};
-
 use crate::check::{CheckReport, Verdict};
 use crate::diag::{self, Diagnostic};
 use crate::dialect::Dialect;
@@ -32,6 +25,7 @@ use crate::ir::{ProgName, Unit};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb, Span};
 use std::collections::BTreeMap;
+use to_fanuc::{TranslateOptions, DEFAULT_MAIN_NUMBER};
 
 /// One written file.
 #[derive(Clone, Debug, PartialEq)]

@@ -51,7 +51,7 @@ fn external_siemens_programs_stream_only_to_their_whole_translation() {
         let loaded = nctrans::load(&mut db, &f.display().to_string(), &bytes, None);
         let parsed =
             nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &ParseOptions::for_dialect(Dialect::Sinumerik));
-        let whole = translate::to_fanuc(&parsed.unit, &[], &o);
+        let whole = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &o);
         same(&f.display().to_string(), &out, &whole.text, &db.get(loaded.file).text);
         streamed += 1;
     }

@@ -4,7 +4,7 @@
 use crate::tool_names::tool_map;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::span::SourceDb;
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 use std::path::PathBuf;
 
 /// Every CEAD example that uses only translatable constructs translates and verifies.
@@ -28,7 +28,7 @@ fn cead_examples_translate_and_verify() {
             continue;
         }
         let opts = TranslateOptions { tool_map: tool_map(&text), ..TranslateOptions::default() };
-        let t = translate::to_fanuc(&parsed.unit, &[], &opts);
+        let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts);
         if !t.ok() {
             refused += 1;
             continue;

@@ -4,7 +4,7 @@
 //! that differs.
 
 use nctrans::dialect::fanuc::emit::CommentMode;
-use nctrans::translate::TranslateOptions;
+use nctrans::translate::to_fanuc::TranslateOptions;
 use std::path::Path;
 
 /// The options `nctrans --to fanuc` translates `path` (decoded to `text`) with.

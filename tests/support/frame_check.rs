@@ -9,7 +9,7 @@ use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
-use nctrans::translate::{self, TranslateOptions};
+use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
 pub fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
     let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
@@ -57,7 +57,7 @@ pub const STEPS: u64 = 100_000;
 pub fn s_to_f(siemens: &str) -> Result<String, Vec<String>> {
     let mut db = SourceDb::new();
     let s = load(&mut db, siemens, Dialect::Sinumerik);
-    let t = translate::to_fanuc(&s, &[], &TranslateOptions::default());
+    let t = translate::to_fanuc::to_fanuc(&s, &[], &TranslateOptions::default());
     if !t.ok() {
         let mut codes: Vec<String> = t.diags.iter().map(|d| d.code.to_string()).collect();
         codes.dedup();

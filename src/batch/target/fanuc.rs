@@ -2,17 +2,23 @@
 //! batch's maps, one output file named after the input, the names used, and the proof with
 //! the argument vectors the library's callers pass.
 
-use crate::batch::jobs::{Input, Job, JobSettings, Prepared, Target};
-use crate::batch::{discover, maps, BatchContext, FileOutcome, InputFile};
+use crate::batch::jobs::{self, Input, Job, JobSettings, Prepared, Target, Verified};
+use crate::batch::streamed::{self, Here, Side, Streams, Translated};
+use crate::batch::{discover, maps, streamed_macro, BatchContext, InputFile, Status};
+use crate::check::CheckReport;
 use crate::config::{Comments, Unsupported};
 use crate::diag::Diagnostic;
 use crate::dialect::fanuc::emit::CommentMode;
-use crate::dialect::{Dialect, Semantics};
+use crate::dialect::{Dialect, ParseOptions, Semantics};
+use crate::eval::{CalleeSource, NoCallees};
+use crate::ir::Unit;
 use crate::lower::to_fanuc::{varmap, UnsupportedPolicy};
 use crate::read::LineEnding;
-use crate::span::FileId;
+use crate::span::{FileId, SourceDb};
+use crate::stream::{segmented::LoadCallees, verify::ReadBack, Fallback};
+use crate::translate::called::{parse_all, MemCallees};
 use crate::translate::library::ProgKey;
-use crate::translate::{self, OutFile, TranslateOptions, Translation};
+use crate::translate::{self, to_fanuc::TranslateOptions, OutFile, Translation};
 use std::path::{Path, PathBuf};
 
 /// The FANUC target of a batch.
@@ -69,10 +75,6 @@ impl Target for Fanuc {
     const NAME: &'static str = "FANUC";
     const ONE_FILE: bool = true;
 
-    fn streamed(job: &Job<Fanuc>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
-        crate::batch::streamed::to_fanuc(job, file, ctx)
-    }
-
     fn prepare(job: &Job<Fanuc>, input: &mut Input, source: Semantics) -> Result<Prepared, String> {
         let mut opts = job.options(input.ctx, input.file, input.main.loaded.line_ending)?;
         opts.source = source;
@@ -95,7 +97,7 @@ impl Target for Fanuc {
 }
 
 /// The names a translation to FANUC used: programs, tools, variables.
-pub fn used_names(map: &translate::SymbolMap) -> maps::Used {
+pub fn used_names(map: &translate::to_fanuc::SymbolMap) -> maps::Used {
     let mut used = maps::Used::default();
     for (name, n) in &map.programs {
         used.programs.insert(ProgKey::Name(name.clone()), ProgKey::Number(*n));
@@ -109,4 +111,113 @@ pub fn used_names(map: &translate::SymbolMap) -> maps::Used {
         used.variables.insert(key, format!("#{}", m.number));
     }
     used
+}
+
+impl Streams for Fanuc {
+    const SCRATCH: &'static str = "batch.utf8.nc";
+    const EXCLUDE: crate::check::Exclude = translate::to_fanuc::EXCLUDE;
+    /// The callee files of a Sinumerik main (none: it calls nothing).
+    type With = Vec<usize>;
+    /// The translation's symbol map and the callees' units (for the source side's runs).
+    type Kept = (translate::to_fanuc::SymbolMap, Vec<Unit>);
+
+    const SCRATCH_DECODED: bool = false;
+
+    fn with(h: Here<'_, Fanuc>) -> Option<Vec<usize>> {
+        // The stream reads the Siemens file with the default profile.
+        if h.0.settings.sinumerik != Semantics::default_for(Dialect::Sinumerik) {
+            return None;
+        }
+        streamed::streamable_with_callees(h.2, h.1)
+    }
+
+    fn translate(
+        h: Here<'_, Fanuc>,
+        callees: &Vec<usize>,
+        path: &Path,
+        eol: LineEnding,
+        into: &Path,
+        bom: bool,
+    ) -> Option<Translated<Self::Kept>> {
+        let (job, ctx, file) = h;
+        let opts = job.options(ctx, file, eol).ok()?;
+        // The callees' units, kept for the verifier's source side.
+        let mut subs: Vec<Unit> = Vec::new();
+        let mut load = |_: &Unit| {
+            subs = load_callees(job, ctx, callees)?;
+            Ok(subs.clone())
+        };
+        let load: Option<LoadCallees<'_>> = if callees.is_empty() { None } else { Some(&mut load) };
+        let (index, map, notes) = streamed_macro::to_fanuc_part(path, &opts, into, bom, load)?;
+        let rel_out = discover::fanuc_output(&file.rel);
+        Some(Translated {
+            index,
+            diags: notes,
+            used: used_names(&map),
+            shown: crate::batch::rel_string(&rel_out),
+            rel_out,
+            with_calls: !subs.is_empty(),
+            kept: (map, subs),
+        })
+    }
+
+    fn read_back(_: &Job<Fanuc>) -> ParseOptions {
+        ParseOptions::for_dialect(Dialect::Fanuc)
+    }
+
+    fn unreadable(e: ReadBack, files: &[(FileId, &str, &Path)]) -> Verified {
+        let diagnostics = match e {
+            ReadBack::Diags(d) => streamed::records(&d, files),
+            ReadBack::Unreadable(m) => {
+                let out = files.get(1).map_or("", |f| f.1);
+                vec![crate::batch::DiagRecord::error("NC603", format!("cannot read {out}: {m}"))]
+            }
+        };
+        let summary = "the output does not parse as FANUC (a bug in nctrans)".to_string();
+        Verified { status: Status::Diverged, summary, events: None, excluded: Default::default(), diagnostics }
+    }
+
+    /// As `Job<Fanuc>::verify` runs a program no file calls: `--set` on both sides, the
+    /// mapped R parameters 0 on FANUC; the callees as the whole job's verifier serves them
+    /// (aligned as it aligns them). The FANUC side finds the output's own O programs in the
+    /// read-back index, as the whole job's finds them in the parsed output.
+    fn sides(
+        job: &Job<Fanuc>,
+        (map, subs): &Self::Kept,
+        _: (&str, &str),
+        _: &str,
+    ) -> Result<[Side; 2], Box<CheckReport>> {
+        let s = &job.settings;
+        let mut b_in = translate::to_fanuc::r_param_homes(map);
+        b_in.extend(s.set.iter().filter(|x| x.trim_start().starts_with('#')).cloned());
+        let source_callees: Box<dyn CalleeSource + Send> = if subs.is_empty() {
+            Box::new(NoCallees)
+        } else {
+            Box::new(MemCallees(subs.iter().map(|u| translate::to_fanuc::align_source(u, map)).collect()))
+        };
+        Ok([
+            (streamed::run_options(parse_all(&s.set), s.max_steps, &s.sinumerik), source_callees),
+            (streamed::run_options(parse_all(&b_in), s.max_steps, &s.fanuc), Box::new(NoCallees)),
+        ])
+    }
+}
+
+/// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
+/// whole job (file ids from 1 up after the main's 0, the job's encoding and profile);
+/// declines one with any diagnostic or a call `segmented::to_fanuc_with_subs` cannot take.
+fn load_callees(job: &Job<Fanuc>, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
+    let no = |why: &str| Fallback::NotStraight(why.into());
+    let mut db = SourceDb::new();
+    db.add("", String::new());
+    let mut units = Vec::new();
+    for &i in callees {
+        let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
+        let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, &job.settings.sinumerik)
+            .map_err(|e| no(&e))?;
+        if !l.diags.is_empty() || !crate::stream::segmented::fanuc::calls_plain(&l.unit) {
+            return Err(no("a callee with diagnostics or a call of another kind"));
+        }
+        units.push(l.unit);
+    }
+    Ok(units)
 }

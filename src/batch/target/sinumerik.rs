@@ -10,16 +10,22 @@
 //! dropped): the macro's own job and every caller's job then see the same calls and write
 //! the same `PROC` line, so each call in one output file fits the program in another.
 
-use crate::batch::jobs::{Input, Job, LoadedFile, Prepared, Target};
-use crate::batch::{discover, maps, BatchContext, DiagRecord, FileOutcome, InputFile};
+use crate::batch::jobs::{Input, Job, LoadedFile, Prepared, Target, Verified};
+use crate::batch::streamed::{self, Here, Side, Staged, Streams, Translated};
+use crate::batch::{discover, maps, BatchContext, DiagRecord, InputFile};
+use crate::batch::{streamed_calls, streamed_macro::route};
 use crate::check::CheckReport;
 use crate::config::Unsupported;
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::CalleeSource;
+use crate::eval::{header_inputs, NoCallees};
 use crate::ir::{CallKind, Unit};
+use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
+use crate::stream::verify::ReadBack;
 use crate::translate::called::{self as verify_called, number_of, RunSettings};
+use crate::translate::called::{parse_all, siemens_inputs, MemCallees};
 use crate::translate::library::ProgKey;
 use crate::translate::to_sinumerik::{self as ts, Options, OutFile, Translation, UnsupportedPolicy, VarMapRule};
 use std::collections::{BTreeMap, BTreeSet};
@@ -267,10 +273,6 @@ impl Target for Sinumerik {
     const NAME: &'static str = "Sinumerik";
     const ONE_FILE: bool = false;
 
-    fn streamed(job: &Job<Sinumerik>, file: &InputFile, ctx: &BatchContext) -> Option<FileOutcome> {
-        crate::batch::streamed::to_sinumerik(job, file, ctx)
-    }
-
     fn prepare(job: &Job<Sinumerik>, input: &mut Input, _source: Semantics) -> Result<Prepared, String> {
         let (ctx, file, main, subs) = (input.ctx, input.file, &input.main, &input.subs);
         let mut opts = job.options(ctx, file)?;
@@ -321,6 +323,160 @@ pub(crate) fn in_file_macro_runs(
 ) -> Vec<(String, CheckReport)> {
     let each_vacant = !ctx.options.specialise_callers;
     verify_called::macro_runs_in(db, (&ctx.library, file.index, each_vacant), unit, tr, settings, callees)
+}
+
+/// What a streamed translation to Sinumerik keeps for its proof and its other outputs.
+pub struct Kept {
+    /// The main program's name and the translation's symbol map.
+    program: String,
+    symbols: ts::SymbolMap,
+    /// The callees' units (the FANUC side's), the skeleton they were loaded for, and the
+    /// translation's other files (the file's own subprograms, the callees').
+    units: Vec<Unit>,
+    skeleton: Option<Unit>,
+    subs: Vec<OutFile>,
+    /// Translated with callees (then served to both sides).
+    calls: bool,
+}
+
+impl Streams for Sinumerik {
+    const SCRATCH: &'static str = "batch.utf8.mpf";
+    const EXCLUDE: crate::check::Exclude = crate::check::Exclude { messages: false };
+    /// The callee files of a main that calls subprograms (its own after M30, other files').
+    type With = Option<Vec<usize>>;
+    type Kept = Kept;
+
+    const SCRATCH_DECODED: bool = true;
+
+    fn with((_, ctx, file): Here<'_, Sinumerik>) -> Option<Option<Vec<usize>>> {
+        Some(if streamed::streamable(file, ctx) { None } else { Some(streamed_calls::callees(file, ctx)?) })
+    }
+
+    /// The translator writes the byte-order mark itself.
+    fn translate(
+        h: Here<'_, Sinumerik>,
+        callees: &Option<Vec<usize>>,
+        path: &Path,
+        first_eol: LineEnding,
+        into: &Path,
+        _bom: bool,
+    ) -> Option<Translated<Kept>> {
+        let (job, ctx, file) = h;
+        let opts = job.options(ctx, file).ok()?;
+        let eol = job.settings.line_ending(first_eol);
+        let mut units: Vec<Unit> = Vec::new();
+        let mut skeleton: Option<Unit> = None;
+        use crate::stream::{segmented::sinumerik as seg, target::sinumerik as sts};
+        // The straight-line stream, then the segmented one (each writes the mark itself);
+        // with calls only the segmented one with the callees.
+        let (done, subs) = match callees {
+            None => match route(into, false, |w| sts::to_sinumerik(path, &opts, eol, w, None)).ok()? {
+                Some(done) => (done, Vec::new()),
+                None => (route(into, false, |w| seg::to_sinumerik(path, &opts, eol, w, None)).ok()??, Vec::new()),
+            },
+            Some(c) => {
+                // The stand-in caller (if any) is translated with them, as the whole job does,
+                // but neither run nor written.
+                let mut load = |main: &Unit| {
+                    let stand_in;
+                    skeleton = Some(main.clone());
+                    (units, stand_in) = streamed_calls::load(job, ctx, file, main, c)?;
+                    Ok(units.iter().cloned().chain(stand_in).collect())
+                };
+                let stand_in = streamed_calls::stand_in_id(c);
+                let f = |w: &mut dyn std::io::Write| {
+                    seg::to_sinumerik_with_stand_in(path, &opts, eol, &mut load, stand_in, w, None)
+                };
+                route(into, false, f).ok()??
+            }
+        };
+        let programs: Vec<(Option<u32>, &str)> = std::iter::once((done.fanuc_number, done.program.as_str()))
+            .chain(streamed_calls::own(&subs).map(|f| (f.fanuc_number, f.program.as_str())))
+            .collect();
+        let used = used_names(&programs, &done.symbols);
+        let out_dir = crate::batch::rel_string(file.rel.parent().unwrap_or(Path::new("")));
+        let shown = if out_dir.is_empty() { done.file_name.clone() } else { format!("{out_dir}/{}", done.file_name) };
+        Some(Translated {
+            index: done.index,
+            diags: done.diags,
+            used,
+            rel_out: discover::sinumerik_output(&file.rel, &done.program, false),
+            shown,
+            with_calls: callees.is_some(),
+            kept: Kept {
+                program: done.program,
+                symbols: done.symbols,
+                units,
+                skeleton,
+                subs,
+                calls: callees.is_some(),
+            },
+        })
+    }
+
+    fn read_back(job: &Job<Sinumerik>) -> ParseOptions {
+        ParseOptions { semantics: job.settings.sinumerik.clone() }
+    }
+
+    fn unreadable(e: ReadBack, files: &[(FileId, &str, &Path)]) -> Verified {
+        let report = match e {
+            ReadBack::Diags(mut d) => {
+                d.push(Diagnostic::error("NC372", "the translation does not read back as Sinumerik"));
+                streamed::failed(d)
+            }
+            ReadBack::Unreadable(e) => {
+                streamed::failed(vec![Diagnostic::error("NC372", format!("the translation cannot be read back: {e}"))])
+            }
+        };
+        streamed::verdict(vec![(String::new(), report)], files)
+    }
+
+    /// As `Job<Sinumerik>::verify` runs a file's only program: its header inputs and
+    /// `--set`; the callees as the whole job's verifier serves them: the FANUC units
+    /// loaded, the translation's other files under the names it shows them.
+    fn sides(
+        job: &Job<Sinumerik>,
+        k: &Kept,
+        (a, b): (&str, &str),
+        out_dir: &str,
+    ) -> Result<[Side; 2], Box<CheckReport>> {
+        let s = &job.settings;
+        let mut fanuc = s.set.clone();
+        let symbols = crate::translate::Symbols::Sinumerik(k.symbols.clone());
+        let tr = Translation { files: vec![], symbols, diags: vec![], unsupported: 0 };
+        let siemens = siemens_inputs(&tr, &k.program, &fanuc);
+        fanuc.retain(|x| x.trim_start().starts_with('#'));
+        let (mut a, mut b) = match (header_inputs(a), header_inputs(b)) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                let d = Diagnostic::error("NC407", format!("bad `nctrans: set` header line: {e}"));
+                return Err(Box::new(streamed::failed(vec![d])));
+            }
+        };
+        a.extend(parse_all(&fanuc));
+        b.extend(parse_all(&siemens));
+        let (a_callees, b_callees): (Box<dyn CalleeSource + Send>, Box<dyn CalleeSource + Send>) = if k.calls {
+            let shown = |n: &str| if out_dir.is_empty() { n.to_string() } else { format!("{out_dir}/{n}") };
+            let files = k.subs.iter().map(|f| (f.program.clone(), shown(&f.name), f.text.clone())).collect();
+            let emitted = ts::verify::Emitted { files, semantics: s.sinumerik.clone() };
+            (Box::new(MemCallees(k.units.clone())), Box::new(emitted))
+        } else {
+            (Box::new(NoCallees), Box::new(NoCallees))
+        };
+        Ok([
+            (streamed::run_options(a, s.max_steps, &s.fanuc), a_callees),
+            (streamed::run_options(b, s.max_steps, &s.sinumerik), b_callees),
+        ])
+    }
+
+    fn more_runs(h: Here<'_, Sinumerik>, k: &Kept, header: &str, out_dir: &str) -> Option<Vec<(String, CheckReport)>> {
+        let Some(main) = &k.skeleton else { return Some(Vec::new()) };
+        streamed_calls::macro_runs(h.0, h.1, h.2, (main, header), &k.units, (&k.subs, &k.symbols), out_dir)
+    }
+
+    fn stage_more(h: Here<'_, Sinumerik>, k: &Kept, out: &'static encoding_rs::Encoding, bom: bool) -> Option<Staged> {
+        streamed_calls::stage_own(h.2, h.1, &k.subs, out, bom)
+    }
 }
 
 #[cfg(test)]

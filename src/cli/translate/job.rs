@@ -15,7 +15,7 @@ use nctrans::lower::to_fanuc::varmap;
 use nctrans::span::SourceDb;
 use nctrans::translate::library::ProgKey;
 use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy, VarMapRule};
-use nctrans::translate::{self, TranslateOptions, Translation};
+use nctrans::translate::{self, to_fanuc::TranslateOptions, Translation};
 use nctrans::{diag, read};
 use std::collections::BTreeSet;
 use std::io::Write;

@@ -14,8 +14,8 @@ use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 use nctrans::stream::lines::NotStreamable;
 use nctrans::stream::transcode;
-use nctrans::stream::{self, Index, Progress};
-use nctrans::translate::to_sinumerik::{self as ts, Options, UnsupportedPolicy};
+use nctrans::stream::{self, Fallback, Index, Progress, ProgressFn};
+use nctrans::translate::to_sinumerik::{Options, UnsupportedPolicy};
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -59,10 +59,65 @@ fn streamed(
     }
 }
 
+/// Translates `input` (of `size` bytes) into a fresh `write_to` by the straight-line stream,
+/// then, when the program is not straight-line, by the segmented one (the macro part whole,
+/// its runs of straight blocks streamed), each with a progress line and (`bom`) a byte-order
+/// mark first. `Err` is what the caller returns: declined (`Ok(None)`: nothing is left
+/// written; a note says why when the segmented stream declines too), a temporary file that
+/// cannot be made, or a source found not to be UTF-8.
+fn straight_else_segmented<T>(
+    (input, size): (&Path, u64),
+    write_to: &Path,
+    bom: bool,
+    straight: impl FnOnce(&mut dyn Write, ProgressFn<'_>) -> Result<T, Fallback>,
+    segmented: impl FnOnce(&mut dyn Write, ProgressFn<'_>) -> Result<T, Fallback>,
+) -> Result<T, Attempt> {
+    let gone = |a: Attempt| {
+        let _ = std::fs::remove_file(write_to);
+        Err(a)
+    };
+    let why = match into_file(write_to, size, bom, straight) {
+        Err(code) => return Err(Ok(Some(code))),
+        Ok(Some(Ok(t))) => return Ok(t),
+        Ok(Some(Err(Fallback::NotStraight(why)))) => why,
+        Ok(Some(Err(Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. })))) => return gone(Err(e)),
+        Ok(None | Some(Err(_))) => return gone(Ok(None)),
+    };
+    let why = match into_file(write_to, size, bom, segmented) {
+        Err(code) => return Err(Ok(Some(code))),
+        Ok(Some(Ok(t))) => return Ok(t),
+        Ok(Some(Err(Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. })))) => return gone(Err(e)),
+        Ok(Some(Err(f))) => cs::segmented_why(&f),
+        Ok(None) => why,
+    };
+    cs::note_read_whole(input, size, &why);
+    gone(Ok(None))
+}
+
+/// One streamed translator `f` into a fresh `write_to` (`bom`: a byte-order mark first) with
+/// a progress line; `Ok(None)` when the mark cannot be written.
+fn into_file<T>(
+    write_to: &Path,
+    size: u64,
+    bom: bool,
+    f: impl FnOnce(&mut dyn Write, ProgressFn<'_>) -> Result<T, Fallback>,
+) -> Result<Option<Result<T, Fallback>>, ExitCode> {
+    let mut w = cs::create_temp(write_to)?;
+    if bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
+        return Ok(None);
+    }
+    let mut line = ProgressLine::new("translating", size);
+    let mut report = |p: Progress| line.update(p);
+    let r = f(&mut w, &mut report);
+    line.done();
+    drop(w);
+    Ok(Some(r))
+}
+
 /// [`to_fanuc`] from `src`; `Err` when the source is found not to be UTF-8 (nothing is
 /// left written: the caller streams again from a decoded copy).
 fn to_fanuc_from(a: &TranslateArgs, c: &nctrans::config::Config, src: &Source, size: u64) -> Attempt {
-    use stream::{target::fanuc as st, Fallback};
+    use stream::target::fanuc as st;
     let (input, path) = (src.original, src.path());
     if cs::dialect_of(path, None) != Some(Dialect::Sinumerik) {
         return Ok(None);
@@ -97,80 +152,36 @@ fn to_fanuc_from(a: &TranslateArgs, c: &nctrans::config::Config, src: &Source, s
     let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
     // A byte-order mark is kept, as the whole-file path keeps it (only in UTF-8).
     let direct_bom = bom && utf8.is_none();
-    let mut w = match cs::create_temp(write_to) {
-        Ok(w) => w,
-        Err(code) => return Ok(Some(code)),
-    };
-    if direct_bom && w.write_all(b"\xEF\xBB\xBF").is_err() {
-        let _ = std::fs::remove_file(write_to);
-        return Ok(None);
-    }
-    let mut line = ProgressLine::new("translating", size);
-    let mut report = |p: Progress| line.update(p);
-    let r = st::to_fanuc(path, &opts, &mut w, Some(&mut report));
-    line.done();
-    drop(w);
     // The files read, which the output must not be (the callees beside the input, too).
     let mut read = vec![input.to_path_buf()];
-    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
-    // streamed), else the whole-file path.
-    let (index, inputs) = match r {
-        Ok(d) => (d.index, None),
-        Err(Fallback::NotStraight(why)) => {
-            let mut w = match cs::create_temp(write_to) {
-                Ok(w) => w,
-                Err(code) => return Ok(Some(code)),
-            };
-            let started = !direct_bom || w.write_all(b"\xEF\xBB\xBF").is_ok();
-            let mut line = ProgressLine::new("translating", size);
-            let mut report = |p: Progress| line.update(p);
-            // Calls of subprograms beside the input are taken when the verifier's callees
-            // (`DirCallees`: beside the file it reads, default semantics) are the ones the
-            // whole path loads.
-            let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
-            let mut load = |u: &nctrans::ir::Unit| to_fanuc_callees(input, c, u, &mut read);
-            let r = if !started {
-                Err(None)
-            } else if path == input && sem {
-                stream::segmented::fanuc::to_fanuc_with_subs(path, &opts, &mut load, &mut w, Some(&mut report))
-                    .map_err(Some)
-            } else {
-                stream::segmented::fanuc::to_fanuc_with_notes(path, &opts, &mut w, Some(&mut report)).map_err(Some)
-            };
-            line.done();
-            drop(w);
-            match r {
-                Ok((d, notes)) => {
-                    // The translation's notes, as the whole path renders them (lines read
-                    // from the file, or its decoded copy).
-                    if !notes.is_empty() {
-                        let mut db = SourceDb::new();
-                        db.add(input.display().to_string(), String::new());
-                        eprint!("{}", nctrans::excerpt::render(&db, &notes, &[(0, path)]));
-                    }
-                    (d.index, Some(d.inputs))
-                }
-                Err(f) => {
-                    let _ = std::fs::remove_file(write_to);
-                    let seg_why = match f {
-                        Some(Fallback::NotStraight(w)) => w,
-                        Some(Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. })) => return Err(e),
-                        Some(f) => cs::segmented_why(&f),
-                        None => why,
-                    };
-                    cs::note_read_whole(input, size, &seg_why);
-                    return Ok(None);
-                }
-            }
-        }
-        Err(f) => {
-            let _ = std::fs::remove_file(write_to);
-            return match f {
-                Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. }) => Err(e),
-                _ => Ok(None),
-            };
-        }
+    // Calls of subprograms beside the input are taken when the verifier's callees
+    // (`DirCallees`: beside the file it reads, default semantics) are the ones the whole
+    // path loads.
+    let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
+    let straight = |w: &mut dyn Write, p: ProgressFn<'_>| {
+        st::to_fanuc(path, &opts, w, Some(p)).map(|d| (d.index, None, Vec::new()))
     };
+    let segmented = |w: &mut dyn Write, p: ProgressFn<'_>| {
+        let mut load = |u: &nctrans::ir::Unit| to_fanuc_callees(input, c, u, &mut read);
+        let r = if path == input && sem {
+            stream::segmented::fanuc::to_fanuc_with_subs(path, &opts, &mut load, w, Some(p))
+        } else {
+            stream::segmented::fanuc::to_fanuc_with_notes(path, &opts, w, Some(p))
+        };
+        r.map(|(d, notes)| (d.index, Some(d.inputs), notes))
+    };
+    let r = straight_else_segmented((input, size), write_to, direct_bom, straight, segmented);
+    let (index, inputs, notes) = match r {
+        Ok(done) => done,
+        Err(attempt) => return attempt,
+    };
+    // The translation's notes, as the whole path renders them (lines read from the file,
+    // or its decoded copy).
+    if !notes.is_empty() {
+        let mut db = SourceDb::new();
+        db.add(input.display().to_string(), String::new());
+        eprint!("{}", nctrans::excerpt::render(&db, &notes, &[(0, path)]));
+    }
     if let Some(u) = &utf8 {
         if let Err(code) = cs::encode_output(u.path(), out_enc, bom, &tmp) {
             return Ok(Some(code));
@@ -312,7 +323,6 @@ pub fn to_sinumerik(args: &TranslateArgs, req: &Request, opts: &Options) -> Opti
 /// left written: the caller streams again from a decoded copy).
 fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> Attempt {
     use nctrans::stream::target::sinumerik as sts;
-    use nctrans::stream::Fallback;
     let path = src.path();
     let (Some(eol), Some((enc, bom))) = (src.line_ending(), src.encoding()) else {
         return Ok(None);
@@ -323,9 +333,8 @@ fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> 
     let is_dir = |o: &Path| o.is_dir() || o.to_string_lossy().ends_with('/');
     // A special target (`-o /dev/null`, see `cs::is_special`) is copied into at the end.
     let special = req.out.filter(|o| cs::is_special(o));
-    let tmp = match req.out {
+    let tmp = match req.out.filter(|_| special.is_none()) {
         None => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
-        Some(_) if special.is_some() => std::env::temp_dir().join(format!("nctrans-{}-{stem}.mpf", std::process::id())),
         Some(o) if is_dir(o) => {
             if let Err(e) = std::fs::create_dir_all(o) {
                 eprintln!("error: cannot create {}: {e}", o.display());
@@ -339,78 +348,31 @@ fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> 
     // scratch file, encoded into `tmp` when finished and read back from there.
     let utf8 = (enc != encoding_rs::UTF_8).then(|| transcode::TempFile::new(&format!("{stem}.utf8.mpf")));
     let write_to: &Path = utf8.as_ref().map_or(&tmp, |u| u.path());
-    let mut w = match cs::create_temp(write_to) {
-        Ok(w) => w,
-        Err(code) => return Ok(Some(code)),
-    };
     let with_subs = special.is_none();
-    let mut subs: Vec<ts::OutFile> = Vec::new();
     // The FANUC units translated whole (the skeleton, the callees) and their files.
     let mut fanuc: (SourceDb, Vec<Unit>) = (SourceDb::new(), Vec::new());
     // The files read (the input, the callees beside it): no output may be one of them.
     let mut read = vec![req.file.to_path_buf()];
-    let mut line = ProgressLine::new("translating", size);
-    let mut report = |p: nctrans::stream::Progress| line.update(p);
-    let r = sts::to_sinumerik(path, opts, eol, &mut w, Some(&mut report));
-    line.done();
-    drop(w);
-    // Not straight-line: segmented (the macro part whole, its runs of straight blocks
-    // streamed), else the whole-file path (with a note only when segmented declines too).
-    let r = match r {
-        Err(Fallback::NotStraight(_)) => {
-            let mut w = match cs::create_temp(write_to) {
-                Ok(w) => w,
-                Err(code) => return Ok(Some(code)),
-            };
-            let mut line = ProgressLine::new("translating", size);
-            let mut report = |p: nctrans::stream::Progress| line.update(p);
-            // Calls of subprograms (after the main program, or beside the file as the whole
-            // path finds them) are taken when the files are written as `write_files` writes
-            // them: to a file, a folder or stdout (not a special target).
-            let r = if with_subs {
-                let mut load = |u: &Unit| {
-                    let units = to_sinumerik_callees(req, opts, u, &mut read, &mut fanuc.0)?;
-                    fanuc.1 = std::iter::once(u.clone()).chain(units.iter().cloned()).collect();
-                    Ok(units)
-                };
-                nctrans::stream::segmented::sinumerik::to_sinumerik_with_subs(
-                    path,
-                    opts,
-                    eol,
-                    &mut load,
-                    &mut w,
-                    Some(&mut report),
-                )
-                .map(|(d, s)| {
-                    subs = s;
-                    d
-                })
-            } else {
-                nctrans::stream::segmented::sinumerik::to_sinumerik(path, opts, eol, &mut w, Some(&mut report))
-            };
-            line.done();
-            drop(w);
-            if let Err(Fallback::NotStreamable(NotStreamable::NotUtf8 { .. })) = &r {
-                let _ = std::fs::remove_file(write_to);
-                if let Err(Fallback::NotStreamable(e)) = r {
-                    return Err(e);
-                }
-            }
-            r.map_err(|f| Fallback::NotStraight(cs::segmented_why(&f)))
+    let straight =
+        |w: &mut dyn Write, p: ProgressFn<'_>| sts::to_sinumerik(path, opts, eol, w, Some(p)).map(|d| (d, Vec::new()));
+    // Calls of subprograms (after the main program, or beside the file as the whole path
+    // finds them) are taken when the files are written as `write_files` writes them: to a
+    // file, a folder or stdout (not a special target).
+    let segmented = |w: &mut dyn Write, p: ProgressFn<'_>| {
+        use nctrans::stream::segmented::sinumerik as seg;
+        if !with_subs {
+            return seg::to_sinumerik(path, opts, eol, w, Some(p)).map(|d| (d, Vec::new()));
         }
-        r => r,
+        let mut load = |u: &Unit| {
+            let units = to_sinumerik_callees(req, opts, u, &mut read, &mut fanuc.0)?;
+            fanuc.1 = std::iter::once(u.clone()).chain(units.iter().cloned()).collect();
+            Ok(units)
+        };
+        seg::to_sinumerik_with_subs(path, opts, eol, &mut load, w, Some(p))
     };
-    let done = match r {
-        Ok(d) => d,
-        Err(f) => {
-            let _ = std::fs::remove_file(write_to);
-            match f {
-                Fallback::NotStraight(why) => cs::note_read_whole(req.file, size, &why),
-                Fallback::NotStreamable(e @ NotStreamable::NotUtf8 { .. }) => return Err(e),
-                _ => {}
-            }
-            return Ok(None);
-        }
+    let (done, subs) = match straight_else_segmented((req.file, size), write_to, false, straight, segmented) {
+        Ok(done) => done,
+        Err(attempt) => return attempt,
     };
     if let Some(u) = &utf8 {
         if let Err(code) = cs::encode_output(u.path(), enc, bom, &tmp) {
@@ -420,9 +382,8 @@ fn to_sinumerik_from(req: &Request, opts: &Options, src: &Source, size: u64) -> 
     let mut db = SourceDb::new();
     db.add(req.file.display().to_string(), String::new());
     eprint!("{}", nctrans::excerpt::render(&db, &done.diags, &[(0, path)]));
-    let out = match req.out {
+    let out = match req.out.filter(|_| special.is_none()) {
         None => tmp.clone(),
-        Some(_) if special.is_some() => tmp.clone(),
         Some(o) if is_dir(o) => o.join(&done.file_name),
         Some(o) => o.to_path_buf(),
     };

@@ -47,7 +47,7 @@
 //! Why verification gives the whole path's verdict: the whole path runs `align_source` of
 //! the source, which differs from it only in string-valued words (a tool name the
 //! translation maps becomes its number), and its check leaves the messages kept as
-//! comments out of the comparison (`translate::EXCLUDE`), as the streamed check does. The
+//! comments out of the comparison (`translate::to_fanuc::EXCLUDE`), as the streamed check does. The
 //! streamed source numbers the tool names in the statements it re-reads alike
 //! (`stream::paged`, [`SourceAlign`]).
 //!
@@ -84,7 +84,7 @@ mod write;
 use super::nset::NSet;
 use super::spill::{assemble, Spill};
 use one::One;
-use skel::{finish, new_skel, skeleton, MAX_N};
+use skel::{finish, new_skel, MAX_N};
 use write::{placeholders, Writer};
 
 use super::splice::Splice;
@@ -97,7 +97,7 @@ use crate::ir::{ItemKind, StmtKind, Unit};
 use crate::lower::to_fanuc::fast_write as fast;
 use crate::stream::lines::NotStreamable;
 use crate::stream::{Fallback, Index, ProgressFn};
-use crate::translate::{self, TranslateOptions};
+use crate::translate::{self, to_fanuc::TranslateOptions};
 use std::io::Write;
 use std::path::Path;
 
@@ -110,7 +110,7 @@ pub struct Segmented {
     /// verifying (as `translate::verify` sets them).
     pub inputs: Vec<Input>,
     /// The skeleton's translation's symbol map: the names the whole translation uses.
-    pub symbol_map: translate::SymbolMap,
+    pub symbol_map: translate::to_fanuc::SymbolMap,
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out` as a skeleton translated whole with its
@@ -141,7 +141,7 @@ pub fn to_fanuc_with_notes(
 /// [`to_fanuc_with_notes`] of a program that may call other programs by a constant name
 /// (`L100`, `NAME`, `NAME(…)`; not MCALL): the skeleton keeps the calls, `load` gives the
 /// callees (each loaded as `cli::translate` loads them: file ids from 1 up, the main being
-/// file 0), and the skeleton is translated with them as `translate::to_fanuc(main, subs, …)`
+/// file 0), and the skeleton is translated with them as `translate::to_fanuc::to_fanuc(main, subs, …)`
 /// translates the whole program: the main program with its runs, then each subprogram.
 /// Notes are declined unless all of them are on the main file.
 pub fn to_fanuc_with_subs(
@@ -193,8 +193,10 @@ fn segment(
         // Jumps name N values of run blocks: scan again keeping those blocks real, and
         // write the runs in a writing scan.
         spilled = None;
-        let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, keep, calls_ok)?;
+        let mut again = new_skel(sk.targets.clone(), calls_ok);
+        let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut again, None)
+            .map_err(Fallback::NotStreamable)?;
+        (sk, program, _) = finish(again, ix)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
@@ -215,7 +217,7 @@ fn segment(
         None => Vec::new(),
     };
     let sub_refs: Vec<&Unit> = subs.iter().collect();
-    let t = translate::to_fanuc(&unit, &sub_refs, opts);
+    let t = translate::to_fanuc::to_fanuc(&unit, &sub_refs, opts);
     drop(unit);
     // The runs take the units the scan follows in text order. (G90/G91 merged where paths
     // meet is read by the skeleton's own AC()/IC() words only: the placeholders carry each
@@ -225,7 +227,7 @@ fn segment(
     }
     // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
     // as read from their files: only callees alignment leaves alone stream.
-    if subs.iter().any(|u| translate::align_source(u, &t.symbol_map) != *u) {
+    if subs.iter().any(|u| translate::to_fanuc::align_source(u, &t.symbol_map) != *u) {
         return Err(Fallback::NotStraight("a subprogram with a tool name".into()));
     }
     drop(subs);
@@ -239,13 +241,13 @@ fn segment(
     // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
     let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
     fresh_numbers_ok(&t.text[..main_end], eol, &places, &sk)?;
-    let inputs = crate::translate::r_param_inputs(&t.symbol_map);
+    let inputs = crate::translate::to_fanuc::r_param_inputs(&t.symbol_map);
     let tools = t.symbol_map.tools.clone();
     // A block the fast path declines is translated alone, as the straight stream does: the
     // header of an empty program comes first, then the block.
     lone.body = vec![];
     let lone_unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
-    let head = translate::to_fanuc(&lone_unit, &[], opts);
+    let head = translate::to_fanuc::to_fanuc(&lone_unit, &[], opts);
     let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
     let notes = t.diags;
     if let Some((spill, starts, mut index)) = spilled {
@@ -264,12 +266,11 @@ fn segment(
         lone: lone_unit,
         header_len,
         out: Splice::new(&t.text, places, out),
-        bad: false,
     };
     let mut index = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     index.align = SourceAlign { tools };
-    if w.bad || !index.diags.is_empty() {
+    if w.out.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
     w.out.finish()?;

@@ -34,7 +34,7 @@ pub(crate) const MARK: &str = "NCTRANS SEGMENT ";
 /// file (file ids from 1 up, in its order), or `Err` to decline.
 pub type LoadCallees<'a> = &'a mut dyn FnMut(&Unit) -> Result<Vec<Unit>, Fallback>;
 
-/// `translate::align_source` for a streamed source: what the whole path's verifier changes
+/// `translate::to_fanuc::align_source` for a streamed source: what the whole path's verifier changes
 /// in the source before running it, applied to each statement a run re-reads
 /// (`stream::paged`). A string-valued word is in the macro part only (never in a plain line).
 #[derive(Clone, Debug, Default)]

@@ -64,7 +64,7 @@
 
 use super::nset::{kept, NSet, MAX_TRACKED_N};
 use super::spill::{assemble, Spill};
-use super::splice::Splice;
+use super::splice::{self, Splice};
 use super::{LoadCallees, MARK};
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Addr, BlockMeta, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit, VarKind, Word, WordValue};
@@ -234,9 +234,7 @@ struct Skel {
 
 impl Skel {
     fn decline(&mut self, why: impl Into<String>) {
-        if self.stop.is_none() {
-            self.stop = Some(why.into());
-        }
+        self.stop.get_or_insert_with(|| why.into());
     }
 
     fn run_block(&mut self, meta: &BlockMeta) {
@@ -367,21 +365,6 @@ fn new_skel(keep: NSet, calls: bool) -> Skel {
     }
 }
 
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-fn skeleton(
-    path: &Path,
-    popts: &ParseOptions,
-    eol: LineEnding,
-    keep: NSet,
-    calls: bool,
-) -> Result<(Skel, Program), Fallback> {
-    let mut sk = new_skel(keep, calls);
-    let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, popts, &mut sk, None)
-        .map_err(Fallback::NotStreamable)?;
-    finish(path, eol, sk, ix).map(|(sk, p, _)| (sk, p))
-}
-
 /// A skeleton after its scan of `path` (whose index is `ix`): the skeleton, the program it
 /// is the body of, and the index.
 fn finish(path: &Path, eol: LineEnding, mut sk: Skel, ix: Index) -> Result<(Skel, Program, Index), Fallback> {
@@ -407,30 +390,6 @@ fn finish(path: &Path, eol: LineEnding, mut sk: Skel, ix: Index) -> Result<(Skel
         .collect();
     let program = ix.programs[0].program.clone();
     Ok((sk, program, ix))
-}
-
-/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
-/// order: each `; NCTRANS SEGMENT k` alone on its line; `None` when the text holds the
-/// marker anywhere else.
-fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
-    let mut v = Vec::with_capacity(runs);
-    let mut from = 0;
-    while let Some(at) = text[from..].find(MARK).map(|k| k + from) {
-        let lo = at.checked_sub(2)?;
-        let line_start = |p: &str| p.is_empty() || p.ends_with('\n') || p.ends_with('\r');
-        if !(text.get(lo..at) == Some("; ") && text.get(..lo).is_some_and(line_start)) {
-            return None;
-        }
-        let tail = format!("{}{eol}", v.len());
-        let after = at + MARK.len();
-        if !text[after..].starts_with(&tail) {
-            return None;
-        }
-        let hi = after + tail.len();
-        v.push((lo, hi));
-        from = hi;
-    }
-    (v.len() == runs).then_some(v)
 }
 
 /// Translates `path` (FANUC) to Sinumerik into `out` as a skeleton translated whole with its
@@ -485,8 +444,10 @@ fn segment(
         // Jumps name N values of run blocks: scan again keeping those blocks real, and
         // write the runs in a writing scan.
         spilled = None;
-        let keep = sk.targets.clone();
-        (sk, program) = skeleton(path, &popts, eol, keep, calls)?;
+        let mut again = new_skel(sk.targets.clone(), calls);
+        let ix = super::super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut again, None)
+            .map_err(Fallback::NotStreamable)?;
+        (sk, program, _) = finish(path, eol, again, ix)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
@@ -515,7 +476,7 @@ fn segment(
     // result; a diagnostic on it has declined above (its file is not 0).
     let files: Vec<OutFile> = tr.files.iter().filter(|f| Some(f.source) != stand_in).cloned().collect();
     let (f, subs) = subs::split_files(&files, calls)?;
-    let places = placeholders(&f.text, sk.arcs.len(), eol.as_str())
+    let places = splice::placeholders(&f.text, (sk.arcs.len(), eol.as_str()), (MARK, ""), |h| h == "; ", false)
         .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
     // The main program's plan, made with every program as the whole translation makes it.
     let alone = {
@@ -570,7 +531,6 @@ fn segment(
         pending: false,
         arc: false,
         out: Splice::new(&f.text, places, out),
-        bad: false,
         diags: Vec::new(),
     };
     if bom {
@@ -578,7 +538,7 @@ fn segment(
     }
     let index = super::super::scan_words_path(path, 0, Dialect::Fanuc, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
-    if w.bad || !index.diags.is_empty() {
+    if w.out.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
     w.out.finish()?;

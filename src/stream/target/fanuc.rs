@@ -28,7 +28,7 @@ use crate::stream::lines::NotStreamable;
 use crate::stream::straight::{self, Fallback, Target};
 use crate::stream::Out;
 use crate::stream::{Index, PlainWord, ProgressFn};
-use crate::translate::{self, TranslateOptions};
+use crate::translate::{self, to_fanuc::TranslateOptions};
 use std::io::Write;
 use std::path::Path;
 
@@ -168,7 +168,7 @@ impl Target for ToFanuc<'_> {
             let set_units = set.is_some();
             body.extend(set);
             body.push(s.clone());
-            let t = translate::to_fanuc(&self.unit(body), &[], self.opts);
+            let t = translate::to_fanuc::to_fanuc(&self.unit(body), &[], self.opts);
             self.unsupported += t.unsupported;
             self.diags.extend(t.diags);
             let skip = self.header_len + usize::from(set_units);
@@ -248,7 +248,7 @@ pub fn to_fanuc(
     };
     // The program's head (`%`, the `O` line, the header comments) is what the translator
     // writes for an empty program, without its closing `%`.
-    let head = translate::to_fanuc(&st.unit(vec![]), &[], opts);
+    let head = translate::to_fanuc::to_fanuc(&st.unit(vec![]), &[], opts);
     st.header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
     st.unsupported += head.unsupported;
     st.diags.extend(head.diags);

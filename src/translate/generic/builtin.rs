@@ -10,7 +10,7 @@ use crate::dialect::{Dialect, ParseOptions, Parsed, Semantics, Spec, Written};
 use crate::ir::{ProgName, Unit};
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceFile, Span};
-use crate::translate::{DEFAULT_MAIN_NUMBER, FIRST_SUB_NUMBER};
+use crate::translate::{to_fanuc::DEFAULT_MAIN_NUMBER, to_fanuc::FIRST_SUB_NUMBER};
 
 /// FANUC Custom Macro B (and Haas) as a description.
 pub struct Fanuc;

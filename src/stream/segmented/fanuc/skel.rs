@@ -1,7 +1,6 @@
 //! The skeleton scan of a segmented translation: the macro part kept as IR, each run of
 //! straight blocks one placeholder, the modes followed in textual order (see `segmented`).
 
-use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{
     Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, Program, SeqNo, Stmt, StmtKind, Target,
     WordValue,
@@ -12,7 +11,6 @@ use crate::span::Span;
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
 use crate::stream::target::fanuc::run_block;
 use crate::stream::{Fallback, Index, PlainWord, WordsSink};
-use std::path::Path;
 
 pub(super) use crate::stream::segmented::MARK;
 /// The labels pass's highest N number.
@@ -115,9 +113,7 @@ pub(crate) fn plain_call(c: &crate::ir::Call) -> bool {
 
 impl Skel {
     fn decline(&mut self, why: impl Into<String>) {
-        if self.stop.is_none() {
-            self.stop = Some(why.into());
-        }
+        self.stop.get_or_insert_with(|| why.into());
     }
 
     fn run_block(&mut self, meta: &BlockMeta) {
@@ -310,16 +306,6 @@ pub(super) fn new_skel(keep: NSet, calls_ok: bool) -> Skel {
         stop: None,
         calls_ok,
     }
-}
-
-/// One skeleton scan of `path` with the N values `keep` kept out of runs; the skeleton and
-/// the program (name, head, span) it is the body of.
-pub(super) fn skeleton(path: &Path, keep: NSet, calls_ok: bool) -> Result<(Skel, Program), Fallback> {
-    let mut sk = new_skel(keep, calls_ok);
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut sk, None)
-        .map_err(Fallback::NotStreamable)?;
-    finish(sk, ix).map(|(sk, p, _)| (sk, p))
 }
 
 /// A skeleton after its scan (whose index is `ix`): the skeleton, the program it is the

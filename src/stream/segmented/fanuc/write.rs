@@ -8,54 +8,28 @@ use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
 use crate::read::RawBlock;
 use crate::stream::segmented::nset::{kept, NSet};
-use crate::stream::segmented::splice::{Entered, Splice};
+use crate::stream::segmented::splice::{self, Splice};
 use crate::stream::target::fanuc::{run_block, units_block};
 use crate::stream::{PlainWord, WordsSink};
-use crate::translate::{self, TranslateOptions};
+use crate::translate::{self, to_fanuc::TranslateOptions};
 
 /// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
 /// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
 /// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`), with the carrier lines right
-/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None`
-/// when the text holds the marker anywhere else.
+/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None` when the text holds the marker
+/// anywhere else.
 pub(super) fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
-    let open = format!("({MARK}");
-    let mut v: Vec<(usize, usize)> = Vec::with_capacity(runs);
-    let mut from = 0;
-    while let Some(at) = text[from..].find(&open).map(|k| k + from) {
-        // The line start: after the last LF, or CR (a file with CR line ends).
-        let lo = text[..at].rfind(['\n', '\r']).map_or(0, |k| k + 1);
-        let head = &text[lo..at];
-        // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
-        let words = head.strip_suffix(' ').is_some_and(|h| {
-            h.split(' ').enumerate().all(|(k, t)| {
-                let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
-                d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+    // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
+    let head = |head: &str| {
+        head.is_empty()
+            || head.strip_suffix(' ').is_some_and(|h| {
+                h.split(' ').enumerate().all(|(k, t)| {
+                    let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
+                    d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+                })
             })
-        });
-        if !(head.is_empty() || words) {
-            return None;
-        }
-        let after = at + open.len();
-        // A line of the run before, right after its placeholder: a carrier of N numbers
-        // (see `segmented::carry_numbers`), replaced with it.
-        if let Some(last) = v.len().checked_sub(1) {
-            let tail = format!("{last}){eol}");
-            if v[last].1 == lo && text[after..].starts_with(&tail) {
-                v[last].1 = after + tail.len();
-                from = after + tail.len();
-                continue;
-            }
-        }
-        let tail = format!("{}){eol}", v.len());
-        if !text[after..].starts_with(&tail) {
-            return None;
-        }
-        let hi = after + tail.len();
-        v.push((lo, hi));
-        from = hi;
-    }
-    (v.len() == runs).then_some(v)
+    };
+    splice::placeholders(text, (runs, eol), (&format!("({MARK}"), ")"), head, true)
 }
 
 /// The writing scan's sink: the skeleton's text with each placeholder line replaced by its
@@ -74,18 +48,13 @@ pub(super) struct Writer<'a> {
     pub(super) header_len: usize,
     /// The translated skeleton, written with the runs in their places.
     pub(super) out: Splice<'a>,
-    /// The scan does not match the skeleton's (the file changed), or a block alone has
-    /// diagnostics: the output is discarded.
-    pub(super) bad: bool,
 }
 
 impl Writer<'_> {
     /// A run block comes: at a run's first, the units it starts in.
     fn enter(&mut self) {
-        match self.out.enter() {
-            Entered::InRun => {}
-            Entered::Run(k) => self.fast.units = self.run_units.get(k).copied().unwrap_or_default(),
-            Entered::NoPlace => self.bad = true,
+        if let Some(k) = self.out.enter() {
+            self.fast.units = self.run_units.get(k).copied().unwrap_or_default();
         }
     }
 
@@ -104,32 +73,28 @@ impl Writer<'_> {
         if let Some(p) = u.programs.first_mut() {
             p.body = set.into_iter().chain([s.clone()]).collect();
         }
-        let t = translate::to_fanuc(&u, &[], self.opts);
+        let t = translate::to_fanuc::to_fanuc(&u, &[], self.opts);
         if !t.diags.is_empty() || t.unsupported > 0 {
-            self.bad = true;
+            self.out.bad = true;
             return;
         }
         let skip = self.header_len + usize::from(set_units);
         let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
         let e = emit::emit_body(body, &self.eo);
         if !e.diags.is_empty() {
-            self.bad = true;
+            self.out.bad = true;
         }
         self.out.buf.extend_from_slice(e.text.as_bytes());
-    }
-
-    fn live(&self) -> bool {
-        !self.bad && self.out.io.is_none()
     }
 }
 
 impl WordsSink for Writer<'_> {
     fn active(&self) -> bool {
-        self.live()
+        self.out.live()
     }
 
     fn plain(&mut self, _: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        if !self.live() {
+        if !self.out.live() {
             return true;
         }
         if kept(self.keep, meta) || self.forced(meta.span.lo) {
@@ -152,7 +117,7 @@ impl WordsSink for Writer<'_> {
     }
 
     fn stmt(&mut self, _: usize, s: &Stmt) {
-        if !self.live() {
+        if !self.out.live() {
             return;
         }
         let run = match &s.kind {

@@ -10,7 +10,7 @@ use crate::ir::{BlockMeta, Stmt, StmtKind};
 use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::Options;
 use crate::read::{LineEnding, RawBlock};
-use crate::stream::segmented::splice::{Entered, Splice};
+use crate::stream::segmented::splice::Splice;
 use crate::stream::target::sinumerik::{Planned, KEPT_WARNING};
 use crate::stream::{PlainWord, WordsSink};
 
@@ -53,9 +53,6 @@ pub(super) struct Writer<'a> {
     pub(super) arc: bool,
     /// The translated skeleton, written with the runs in their places.
     pub(super) out: Splice<'a>,
-    /// The scan does not match the skeleton's (the file changed), or a block alone has
-    /// diagnostics: the output is discarded.
-    pub(super) bad: bool,
     /// Kept warnings of run blocks.
     pub(super) diags: Vec<Diagnostic>,
 }
@@ -63,13 +60,11 @@ pub(super) struct Writer<'a> {
 impl Writer<'_> {
     /// A run block comes: at a run's first, the arc mode it starts in.
     fn enter(&mut self) {
-        match self.out.enter() {
-            Entered::InRun => {}
-            Entered::Run(k) => match self.arcs.get(k) {
+        if let Some(k) = self.out.enter() {
+            match self.arcs.get(k) {
                 Some(&arc) => self.arc = arc,
-                None => self.bad = true,
-            },
-            Entered::NoPlace => self.bad = true,
+                None => self.out.bad = true,
+            }
         }
     }
 
@@ -80,22 +75,18 @@ impl Writer<'_> {
                 self.diags.extend(diags);
                 self.out.buf.extend_from_slice(text.as_bytes());
             }
-            None => self.bad = true,
+            None => self.out.bad = true,
         }
-    }
-
-    fn live(&self) -> bool {
-        !self.bad && self.out.io.is_none()
     }
 }
 
 impl WordsSink for Writer<'_> {
     fn active(&self) -> bool {
-        self.live()
+        self.out.live()
     }
 
     fn plain(&mut self, prog: usize, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
-        if !self.live() {
+        if !self.out.live() {
             return true;
         }
         if prog != 0 {
@@ -127,24 +118,24 @@ impl WordsSink for Writer<'_> {
     }
 
     fn stmt(&mut self, prog: usize, s: &Stmt) {
-        if !self.live() {
+        if !self.out.live() {
             return;
         }
         if prog != 0 {
-            self.bad |= std::mem::take(&mut self.pending);
+            self.out.bad |= std::mem::take(&mut self.pending);
             self.out.leave();
             return;
         }
         let pending = std::mem::take(&mut self.pending);
         let StmtKind::Block(b) = &s.kind else {
-            self.bad |= pending;
+            self.out.bad |= pending;
             self.out.leave();
             self.class.observe(s);
             return;
         };
         if !self.class.stmt_run(s) {
             // The skeleton scan took the line as a run block.
-            self.bad |= pending;
+            self.out.bad |= pending;
             self.out.leave();
             self.class.observe(s);
             return;
