@@ -271,3 +271,92 @@ impl Engine<'_, '_, '_> {
         exit
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::vacancy::flatten;
+    use super::*;
+    use crate::dialect::{Dialect, ParseOptions};
+    use crate::ir::{Program, Stmt, StmtKind};
+    use crate::span::SourceDb;
+
+    fn program(text: &str) -> Program {
+        let mut db = SourceDb::new();
+        let id = db.add("t.nc", text);
+        let mut opts = ParseOptions::for_dialect(Dialect::Fanuc);
+        opts.semantics.haas = true;
+        let p = crate::parse(&db, id, Dialect::Fanuc, &opts);
+        assert!(!crate::diag::has_errors(&p.diags));
+        p.unit.programs.into_iter().next().expect("a program")
+    }
+
+    fn block_lo(body: &[Stmt], n: u32) -> u32 {
+        body.iter()
+            .find_map(|s| match &s.kind {
+                StmtKind::Block(b) if b.meta.number.as_ref().is_some_and(|m| m.value == n) => Some(b.meta.span.lo),
+                _ => None,
+            })
+            .expect("the block")
+    }
+
+    fn call_lo(body: &[Stmt], n: u32) -> u32 {
+        body.iter()
+            .find_map(|s| match &s.kind {
+                StmtKind::Block(b) if b.meta.number.as_ref().is_some_and(|m| m.value == n) => {
+                    b.items.iter().find(|it| matches!(it.kind, ItemKind::Call(_))).map(|it| it.span.lo)
+                }
+                _ => None,
+            })
+            .expect("the call")
+    }
+
+    const START: State = State {
+        offset: Some(540),
+        incremental: Some(false),
+        inch: Some(false),
+        motion: Some(0),
+        rot: Some(0),
+        polar: Some(false),
+        inter: [None; 6],
+    };
+
+    /// The G90/G91 mode before block `at` after the section N100 (ending at N199) is
+    /// called from N1 with the count `count`.
+    fn incremental_after(count: Option<u64>, text: &str) -> (Option<bool>, bool) {
+        let p = program(text);
+        let flat = flatten(&p.body);
+        let locals =
+            [Local { call: call_lo(&p.body, 1), start: block_lo(&p.body, 100), end: block_lo(&p.body, 199), count }];
+        let calls = CallModes { setters: &[], framers: &[], polar_framers: &[] };
+        let flow = run(&flat, START, calls, &locals);
+        let at = (0..flat.nodes.len()).find(|&i| flat.numbers[i] == Some(2)).expect("N2");
+        (flow.ins[at].and_then(|s| s.incremental), flow.settled)
+    }
+
+    const G91_SECTION: &str = "O1\nG90\nN1 M97 P100\nN2 G00 X0\nM30\nN100 G91 G00 X1.\nN199 M99\n";
+
+    #[test]
+    fn the_modes_of_the_section_come_back_to_its_call() {
+        assert_eq!(incremental_after(Some(1), G91_SECTION), (Some(true), true));
+        assert_eq!(incremental_after(Some(9999), G91_SECTION), (Some(true), true));
+        // A computed count may run no pass: G90 or G91.
+        assert_eq!(incremental_after(None, G91_SECTION), (None, true));
+    }
+
+    #[test]
+    fn a_section_that_runs_itself_again_is_not_followed() {
+        // The inner M97 (N150) named as a call of its own section: recursion, not settled.
+        let text = "O1\nG90\nN1 M97 P100\nN2 G00 X0\nM30\nN100 G91 G00 X1.\nN150 M97 P100\nN199 M99\n";
+        let p = program(text);
+        let flat = flatten(&p.body);
+        let (start, end) = (block_lo(&p.body, 100), block_lo(&p.body, 199));
+        let locals = [
+            Local { call: call_lo(&p.body, 1), start, end, count: Some(1) },
+            Local { call: call_lo(&p.body, 150), start, end, count: Some(1) },
+        ];
+        let calls = CallModes { setters: &[], framers: &[], polar_framers: &[] };
+        assert!(!run(&flat, START, calls, &locals).settled);
+        // Without the inner call followed (refused by m97.rs), it settles.
+        assert!(run(&flat, START, calls, &locals[..1]).settled);
+    }
+}
