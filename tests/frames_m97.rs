@@ -242,3 +242,24 @@ fn a_section_that_does_not_read_the_mode_may_be_called_in_different_ones() {
          N100 G00 X10. Y5.\nG01 Z-1. F100.\nG00 Z50.\nM99\n",
     );
 }
+
+/// `G52 Z0.` before any XY shift keeps an XY shift of 0, which TRANS (the whole shift) keeps
+/// too; after a section shifted XY it would delete that shift, and is refused (NC442).
+#[test]
+fn a_g52_that_keeps_only_unshifted_axes_translates() {
+    let src = "O1000\nG00 G90 G17 X0. Y0. Z50.\nG52 Z0.\n#1=0.\nM97 P100 L3\nG52 X0. Y0. Z0.\nG00 X0. Y0.\nM30\n\
+               N100 G52 X[20.*COS[#1]] Y[20.*SIN[#1]] Z0.\nG00 X0. Y0.\nG01 Z-1. F100.\nG00 Z5.\n#1=#1+120.\nM99\n";
+    let (d, text) = proven("g52-z", src);
+    assert!(has_line(&text, "TRANS"), "{text}");
+    // The section's shift planted without its Y word is caught.
+    let wrong = text.replacen(" Y=20*SIN(LOC1)", "", 1);
+    assert_ne!(wrong, text);
+    let (out, code) = check(&d, &wrong);
+    assert_ne!(code, 0, "a shift without its Y must diverge: {out}");
+    refused(
+        "g52-z-after-xy",
+        "O1000\nG00 G90 G17 X0. Y0. Z50.\nM97 P100\nG52 Z0.\nG00 X0. Y0.\nM30\nN100 G52 X5. Y5. Z0.\nG00 X0. Y0.\nM99\n",
+        "NC442",
+        "G52 Z0.",
+    );
+}

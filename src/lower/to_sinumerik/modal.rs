@@ -24,6 +24,8 @@ pub struct ModalScan {
     pub incremental_motion: bool,
     /// The G68, G51 or G51.1 in force at the start of each block (text order; `rotation.rs`).
     rot_in: Vec<(u32, Option<u32>)>,
+    /// [`State::g52`] before each block (block start, text order).
+    shift_in: Vec<(u32, u16)>,
     /// Each G68, G51 and G51.1 block: its [`State::rot`] key, the block's start and its items.
     g68s: Vec<(u32, u32, Vec<Item>)>,
     /// Some block selects G18/G19.
@@ -69,11 +71,23 @@ pub struct State {
     /// intermediate point, an absolute constant, is the one a G29 goes through; `None`
     /// where not known so (or a work offset, G52, G92, unit or call came since).
     pub inter: [Option<u32>; 6],
+    /// The axes (bit per `frames` axis letter, X Y Z A B C U V W) whose G52 shift may not
+    /// be 0: a G52 word sets or clears its axis, a call of another program may set any;
+    /// paths join by union.
+    pub g52: u16,
 }
 
 impl State {
-    pub(super) const UNKNOWN: State =
-        State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None, inter: [None; 6] };
+    pub(super) const UNKNOWN: State = State {
+        offset: None,
+        incremental: None,
+        inch: None,
+        motion: None,
+        rot: None,
+        polar: None,
+        inter: [None; 6],
+        g52: ALL_AXES,
+    };
 
     pub(super) fn merge(self, o: State) -> State {
         State {
@@ -84,6 +98,7 @@ impl State {
             rot: if self.rot == o.rot { self.rot } else { None },
             polar: if self.polar == o.polar { self.polar } else { None },
             inter: std::array::from_fn(|i| if self.inter[i] == o.inter[i] { self.inter[i] } else { None }),
+            g52: self.g52 | o.g52,
         }
     }
 
@@ -111,6 +126,9 @@ impl State {
                 }
                 if leaves(calls.polar_framers) {
                     self.polar = None;
+                }
+                if c.kind != CallKind::M97 {
+                    self.g52 = ALL_AXES;
                 }
                 self.inter = [None; 6];
             }
@@ -143,6 +161,19 @@ impl State {
             }
         }
         let gs = g_codes(items);
+        if gs.contains(&520) {
+            for it in items {
+                if let ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) = &it.kind {
+                    if let Some(i) = b"XYZABCUVW".iter().position(|c| c == l) {
+                        if literal(e) == Some(0.0) {
+                            self.g52 &= !(1 << i);
+                        } else {
+                            self.g52 |= 1 << i;
+                        }
+                    }
+                }
+            }
+        }
         if gs.iter().any(|g| matches!(g, 540..=590 | 520 | 920 | 100 | 200 | 210)) {
             self.inter = [None; 6];
         }
@@ -159,6 +190,9 @@ impl State {
         self
     }
 }
+
+/// Every axis bit of [`State::g52`].
+const ALL_AXES: u16 = 0x1ff;
 
 /// The mode G code a cancel (G69, G50, G50.1 ×10) ends.
 fn mode_of_cancel(g: u32) -> u32 {
@@ -211,6 +245,7 @@ impl ModalScan {
                 rot: Some(0),
                 polar: Some(false),
                 inter: [None; 6],
+                g52: 0,
             }
         } else {
             State { inch, polar: Some(false), rot: clear.then_some(0), ..State::UNKNOWN }
@@ -221,6 +256,7 @@ impl ModalScan {
         let ins = flow.ins;
         let mut blocks = Vec::new();
         let mut rot_in = Vec::new();
+        let mut shift_in = Vec::new();
         let mut g68s = Vec::new();
         let mut other_plane = false;
         let mut frames = false;
@@ -247,6 +283,7 @@ impl ModalScan {
                 _ => lo,
             };
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
+            shift_in.push((lo, if settled { at.map_or(ALL_AXES, |s| s.g52) } else { ALL_AXES }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
                 frames |= g_codes(items).iter().any(|g| matches!(g, 520 | 680 | 510 | 511 | 160));
@@ -281,6 +318,7 @@ impl ModalScan {
             g52: (super::frames::g52_axes(body), main),
             incremental_motion,
             rot_in,
+            shift_in,
             g68s,
             other_plane,
             frames,
@@ -327,6 +365,13 @@ impl ModalScan {
     /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
     pub fn rot_before(&self, lo: u32) -> Option<u32> {
         self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
+    }
+
+    /// The axes whose G52 shift may not be 0 before the block at `lo` ([`State::g52`]; all
+    /// where not known).
+    pub fn g52_before(&self, lo: u32) -> u16 {
+        let i = self.shift_in.partition_point(|b| b.0 <= lo);
+        i.checked_sub(1).and_then(|i| self.shift_in.get(i)).map_or(ALL_AXES, |b| b.1)
     }
 
     /// The G68, G51 or G51.1 block of [`State::rot`] key `k`: its start and items.

@@ -318,6 +318,7 @@ mod tests {
         rot: Some(0),
         polar: Some(false),
         inter: [None; 6],
+        g52: 0,
     };
 
     /// The G90/G91 mode before block `at` after the section N100 (ending at N199) is
