@@ -257,6 +257,12 @@ impl ModalScan {
         let mut blocks = Vec::new();
         let mut rot_in = Vec::new();
         let mut shift_in = Vec::new();
+        let mut modal_call = false;
+        crate::ir::visit::walk_stmts(body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
+            }
+        });
         let mut g68s = Vec::new();
         let mut other_plane = false;
         let mut frames = false;
@@ -283,7 +289,9 @@ impl ModalScan {
                 _ => lo,
             };
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
-            shift_in.push((lo, if settled { at.map_or(ALL_AXES, |s| s.g52) } else { ALL_AXES }));
+            // A G66 macro runs after each later move, where it may shift any axis.
+            let known = settled && !modal_call;
+            shift_in.push((lo, if known { at.map_or(ALL_AXES, |s| s.g52) } else { ALL_AXES }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
                 frames |= g_codes(items).iter().any(|g| matches!(g, 520 | 680 | 510 | 511 | 160));
