@@ -4,7 +4,8 @@
 //! - `G52 X.. Y..` → `TRANS X.. Y..`: G52 replaces the shift of the axes it names and keeps
 //!   the others, TRANS replaces the whole programmable frame. The two agree when the block
 //!   names every axis any G52 of the program may have shifted (a called program: X, Y and Z,
-//!   since its caller's shift is not known), so that is required (NC442). G52 under G68,
+//!   since its caller's shift is not known) and that a path to the block may leave shifted
+//!   (`ModalScan::g52_before`), so that is required (NC442). G52 under G68,
 //!   G51 or G51.1 is refused by the evaluator (so no proven program has one), so TRANS,
 //!   which would delete their frames too, is exact. `G52 X0 Y0 Z0` → bare `TRANS`.
 //! - `G53 ..` stays `G53 ..` (words.rs): Sinumerik G53 suppresses the settable and
@@ -162,7 +163,8 @@ fn local_shift(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split 
         );
     }
     let (shifted, main) = modal.g52;
-    let need = if main { shifted } else { shifted | 0b111 };
+    // An axis no path to the block leaves shifted keeps 0 under TRANS too.
+    let need = (if main { shifted } else { shifted | 0b111 }) & modal.g52_before(span.lo);
     let named: u16 = b.items.iter().filter_map(letter_of).filter_map(|(l, _)| axis_bit(l)).fold(0, |a, x| a | x);
     if need & !named != 0 {
         let missing: String =

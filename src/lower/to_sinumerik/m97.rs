@@ -15,6 +15,7 @@
 //! only through M97 (the block before Nn ends the program or a section; no GOTO into it), so
 //! dropping its M99 changes nothing else. Every other form is refused with NC580–NC584.
 
+use super::modal_flow::Local;
 use super::*;
 
 /// What [`prepare`] found: the spans the rewrite after the jump pass places labels at.
@@ -26,6 +27,31 @@ pub struct Plan {
     ends: Vec<(Span, String)>,
     /// M97 item span → (call number, start label, end label, count).
     calls: Vec<(Span, String, String, Count)>,
+    /// The same calls for the modal scan, which follows them into their sections.
+    pub locals: Vec<Local>,
+}
+
+/// What the checks of [`prepare`] found, before anything is reported or rewritten.
+struct Checked {
+    plan: Plan,
+    /// Top-level indices of the M99 blocks whose M99 is dropped.
+    drop_m99: BTreeSet<usize>,
+    /// (code, M97 span, what, hint) of each call refused.
+    refused: Vec<(&'static str, Span, String, &'static str)>,
+}
+
+/// The `M97` calls of `body` that [`prepare`] translates, as the modal scan follows them
+/// (for the analyses of a job made on the programs as read).
+pub fn locals(body: &[Stmt]) -> Vec<Local> {
+    check(body).map(|c| c.plan.locals).unwrap_or_default()
+}
+
+/// The start of a top-level block's span (as the modal scan numbers blocks).
+fn block_lo(s: &Stmt) -> u32 {
+    match &s.kind {
+        StmtKind::Block(b) => b.meta.span.lo,
+        _ => s.span.lo,
+    }
 }
 
 #[derive(Clone)]
@@ -147,14 +173,49 @@ fn section_end(body: &[Stmt], start: usize) -> Result<usize, (&'static str, Span
 /// Checks every M97 of the program and drops the M99 of each section it can translate;
 /// `None` when the program has no M97. Refused calls are reported and taken out.
 pub fn prepare(ctx: &mut Ctx, mut body: Vec<Stmt>) -> (Vec<Stmt>, Option<Plan>) {
+    let Some(Checked { plan, drop_m99, refused }) = check(&body) else { return (body, None) };
+    for (k, s) in body.iter_mut().enumerate() {
+        if let (true, StmtKind::Block(b)) = (drop_m99.contains(&k), &mut s.kind) {
+            b.items.retain(|it| !matches!(it.kind, ItemKind::Return { to: None }));
+        }
+    }
+    // Refused calls: the diagnostic, and the call taken out (a marked line under `warn`).
+    let spans: Vec<Span> = refused.iter().map(|r| r.1).collect();
+    let mut marks = Vec::new();
+    for (code, span, what, hint) in refused {
+        marks.push((span, ctx.unsupported(code, span, &what, hint)));
+    }
+    body = map_bodies(body, &mut |list| {
+        let mut out = Vec::with_capacity(list.len());
+        for mut s in list {
+            if let StmtKind::Block(b) = &mut s.kind {
+                let before = b.items.len();
+                b.items.retain(|it| !spans.contains(&it.span));
+                if b.items.len() != before {
+                    for (sp, m) in &mut marks {
+                        if s.span.lo <= sp.lo && sp.hi <= s.span.hi {
+                            out.extend(m.take());
+                        }
+                    }
+                }
+            }
+            out.push(s);
+        }
+        out
+    });
+    (body, Some(plan))
+}
+
+/// The checks of every M97 of the program; `None` when it has none.
+fn check(body: &[Stmt]) -> Option<Checked> {
     let mut items = Vec::new();
-    all_items(&body, true, &mut items);
+    all_items(body, true, &mut items);
     let m97: Vec<Span> = items.iter().filter(|(it, _)| is_m97(it)).map(|(it, _)| it.span).collect();
     if m97.is_empty() {
-        return (body, None);
+        return None;
     }
     let mut numbers = Vec::new();
-    all_numbers(&body, &mut numbers);
+    all_numbers(body, &mut numbers);
     // Jumps that could land inside a section: by number (checked per section), or computed.
     let computed_jump = items.iter().find_map(|(it, _)| match &it.kind {
         ItemKind::Goto(g) if matches!(g.target, Target::Computed(_)) => Some(it.span),
@@ -253,7 +314,7 @@ pub fn prepare(ctx: &mut Ctx, mut body: Vec<Stmt>) -> (Vec<Stmt>, Option<Plan>) 
                     body[start].span,
                 ));
             }
-            let end = section_end(&body, start).map_err(|(why, sp)| ("NC582", why, sp))?;
+            let end = section_end(body, start).map_err(|(why, sp)| ("NC582", why, sp))?;
             let inside: BTreeSet<u32> = body[start..=end].iter().filter_map(number_of).collect();
             if let Some((_, sp)) = jump_targets.iter().find(|(m, _)| inside.contains(m)) {
                 return Err(("NC583", "a jump elsewhere in the program lands inside it", *sp));
@@ -305,6 +366,16 @@ pub fn prepare(ctx: &mut Ctx, mut body: Vec<Stmt>) -> (Vec<Stmt>, Option<Plan>) 
             }
         };
         drop_m99.insert(end);
+        let passes = match &count {
+            Count::Fixed(m) => Some(*m),
+            Count::Computed(_) => None,
+        };
+        plan.locals.push(Local {
+            call: span.lo,
+            start: block_lo(&body[start]),
+            end: block_lo(&body[end]),
+            count: passes,
+        });
         plan.calls.push((span, start_label, end_label, count));
     }
     // A section checked after a call inside it was accepted: refuse that call now.
@@ -320,39 +391,11 @@ pub fn prepare(ctx: &mut Ctx, mut body: Vec<Stmt>) -> (Vec<Stmt>, Option<Plan>) 
                     "call the inner local subprogram from the main program or make it an M98 subprogram",
                 ));
                 plan.calls.retain(|c| c.0 != span);
+                plan.locals.retain(|l| l.call != span.lo);
             }
         }
     }
-    for (k, s) in body.iter_mut().enumerate() {
-        if let (true, StmtKind::Block(b)) = (drop_m99.contains(&k), &mut s.kind) {
-            b.items.retain(|it| !matches!(it.kind, ItemKind::Return { to: None }));
-        }
-    }
-    // Refused calls: the diagnostic, and the call taken out (a marked line under `warn`).
-    let spans: Vec<Span> = refused.iter().map(|r| r.1).collect();
-    let mut marks = Vec::new();
-    for (code, span, what, hint) in refused {
-        marks.push((span, ctx.unsupported(code, span, &what, hint)));
-    }
-    body = map_bodies(body, &mut |list| {
-        let mut out = Vec::with_capacity(list.len());
-        for mut s in list {
-            if let StmtKind::Block(b) = &mut s.kind {
-                let before = b.items.len();
-                b.items.retain(|it| !spans.contains(&it.span));
-                if b.items.len() != before {
-                    for (sp, m) in &mut marks {
-                        if s.span.lo <= sp.lo && sp.hi <= s.span.hi {
-                            out.extend(m.take());
-                        }
-                    }
-                }
-            }
-            out.push(s);
-        }
-        out
-    });
-    (body, Some(plan))
+    Some(Checked { plan, drop_m99, refused })
 }
 
 fn e_text(e: &Expr) -> String {

@@ -40,6 +40,7 @@ pub mod indirect;
 pub mod lookahead;
 pub mod m97;
 pub mod modal;
+pub mod modal_flow;
 pub mod polar;
 pub mod probe;
 pub mod rotation;
@@ -392,10 +393,10 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     let framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_frames).filter_map(|p| p.number).collect();
     let polar_framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_polar).filter_map(|p| p.number).collect();
-    let calls =
-        modal::CallModes { setters: &setters, framers: &framers, polar_framers: &polar_framers, local_frames: false };
+    let calls = modal::CallModes { setters: &setters, framers: &framers, polar_framers: &polar_framers };
     let plan = ctx.plan();
-    ctx.modal = modal::ModalScan::new(&body, plan.role == Role::Main, plan.start_inch, plan.start_clear, calls);
+    let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
+    ctx.modal = modal::ModalScan::new(&body, plan.role == Role::Main, plan.start_inch, plan.start_clear, calls, locals);
     let skip_axes = probe::scan(ctx, &body);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);

@@ -7,7 +7,8 @@
 //! block that may be skipped (`/`) passes both ways. Computed on the program as read, before
 //! the passes restructure it, and looked up by block position.
 
-use super::vacancy::{flatten, succs, Node};
+use super::modal_flow::{out_of, Local};
+use super::vacancy::{flatten, Node};
 use super::*;
 
 /// The two modes at the exit of each block (text order), `None` where paths disagree.
@@ -23,6 +24,8 @@ pub struct ModalScan {
     pub incremental_motion: bool,
     /// The G68, G51 or G51.1 in force at the start of each block (text order; `rotation.rs`).
     rot_in: Vec<(u32, Option<u32>)>,
+    /// [`State::g52`] before each block (block start, text order).
+    shift_in: Vec<(u32, u16)>,
     /// Each G68, G51 and G51.1 block: its [`State::rot`] key, the block's start and its items.
     g68s: Vec<(u32, u32, Vec<Item>)>,
     /// Some block selects G18/G19.
@@ -46,12 +49,10 @@ pub struct CallModes<'a> {
     pub framers: &'a [u32],
     /// Those whose call may leave G16 in force.
     pub polar_framers: &'a [u32],
-    /// The program itself has a frame G code (an `M97` runs its own blocks).
-    pub local_frames: bool,
 }
 
 /// The modes after a block, each `None` where the paths to it disagree.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct State {
     /// The work offset G code ×10.
     pub offset: Option<u32>,
@@ -70,13 +71,25 @@ pub struct State {
     /// intermediate point, an absolute constant, is the one a G29 goes through; `None`
     /// where not known so (or a work offset, G52, G92, unit or call came since).
     pub inter: [Option<u32>; 6],
+    /// The axes (bit per `frames` axis letter, X Y Z A B C U V W) whose G52 shift may not
+    /// be 0: a G52 word sets or clears its axis, a call of another program may set any;
+    /// paths join by union.
+    pub g52: u16,
 }
 
 impl State {
-    const UNKNOWN: State =
-        State { offset: None, incremental: None, inch: None, motion: None, rot: None, polar: None, inter: [None; 6] };
+    pub(super) const UNKNOWN: State = State {
+        offset: None,
+        incremental: None,
+        inch: None,
+        motion: None,
+        rot: None,
+        polar: None,
+        inter: [None; 6],
+        g52: ALL_AXES,
+    };
 
-    fn merge(self, o: State) -> State {
+    pub(super) fn merge(self, o: State) -> State {
         State {
             offset: if self.offset == o.offset { self.offset } else { None },
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
@@ -85,23 +98,26 @@ impl State {
             rot: if self.rot == o.rot { self.rot } else { None },
             polar: if self.polar == o.polar { self.polar } else { None },
             inter: std::array::from_fn(|i| if self.inter[i] == o.inter[i] { self.inter[i] } else { None }),
+            g52: self.g52 | o.g52,
         }
     }
 
     /// After a call of a program of `calls.setters` (or of a computed target) the unit is
-    /// not known, after one of `calls.framers` the frame modes.
-    fn apply(mut self, items: &[Item], calls: CallModes) -> State {
+    /// not known, after one of `calls.framers` the frame modes. An `M97` runs blocks of this
+    /// program, which the flow follows (`modal_flow`): the call itself changes none of them.
+    pub(super) fn apply(mut self, items: &[Item], calls: CallModes) -> State {
         for it in items {
             if let ItemKind::Call(c) = &it.kind {
-                let sets = match &c.target {
-                    CallTarget::Number(n) => calls.setters.contains(n),
+                let sets = match (&c.kind, &c.target) {
+                    (CallKind::M97, _) => false,
+                    (_, CallTarget::Number(n)) => calls.setters.contains(n),
                     _ => true,
                 };
                 if sets {
                     self.inch = None;
                 }
                 let leaves = |list: &[u32]| match (&c.kind, &c.target) {
-                    (CallKind::M97, _) => calls.local_frames,
+                    (CallKind::M97, _) => false,
                     (_, CallTarget::Number(n)) => list.contains(n),
                     _ => true,
                 };
@@ -110,6 +126,9 @@ impl State {
                 }
                 if leaves(calls.polar_framers) {
                     self.polar = None;
+                }
+                if c.kind != CallKind::M97 {
+                    self.g52 = ALL_AXES;
                 }
                 self.inter = [None; 6];
             }
@@ -142,6 +161,19 @@ impl State {
             }
         }
         let gs = g_codes(items);
+        if gs.contains(&520) {
+            for it in items {
+                if let ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) = &it.kind {
+                    if let Some(i) = b"XYZABCUVW".iter().position(|c| c == l) {
+                        if literal(e) == Some(0.0) {
+                            self.g52 &= !(1 << i);
+                        } else {
+                            self.g52 |= 1 << i;
+                        }
+                    }
+                }
+            }
+        }
         if gs.iter().any(|g| matches!(g, 540..=590 | 520 | 920 | 100 | 200 | 210)) {
             self.inter = [None; 6];
         }
@@ -158,6 +190,9 @@ impl State {
         self
     }
 }
+
+/// Every axis bit of [`State::g52`].
+const ALL_AXES: u16 = 0x1ff;
 
 /// The mode G code a cancel (G69, G50, G50.1 ×10) ends.
 fn mode_of_cancel(g: u32) -> u32 {
@@ -189,8 +224,16 @@ impl ModalScan {
     /// program starts in its caller's modes, which are not known here, except the unit
     /// when every call in the job is made in the same one (`inch`, [`call_units`]).
     /// `clear`: no G68, G51, G51.1 is in force at any call of it ([`frame_calls`]).
-    pub fn new(body: &[Stmt], main: bool, inch: Option<bool>, clear: bool, calls: CallModes) -> ModalScan {
-        let calls = CallModes { local_frames: has_g(body, &FRAME_CODES), ..calls };
+    /// `locals`: the `M97` calls translated as section repetitions, followed as calls
+    /// (`modal_flow`).
+    pub fn new(
+        body: &[Stmt],
+        main: bool,
+        inch: Option<bool>,
+        clear: bool,
+        calls: CallModes,
+        locals: &[Local],
+    ) -> ModalScan {
         let flat = flatten(body);
         let len = flat.nodes.len();
         let start = if main {
@@ -202,48 +245,24 @@ impl ModalScan {
                 rot: Some(0),
                 polar: Some(false),
                 inter: [None; 6],
+                g52: 0,
             }
         } else {
             State { inch, polar: Some(false), rot: clear.then_some(0), ..State::UNKNOWN }
         };
-        let out_of = |i: usize, s: State| match (&flat.nodes[i], flat.blocks[i]) {
-            (Node::Items(items), Some((_, skip))) => {
-                let after = s.apply(items, calls);
-                if skip {
-                    after.merge(s)
-                } else {
-                    after
-                }
-            }
-            _ => s,
-        };
-        let mut ins: Vec<Option<State>> = vec![None; len];
-        if len > 0 {
-            ins[0] = Some(start);
-        }
-        let edges: Vec<Vec<usize>> = (0..len).map(|i| succs(&flat, i)).collect();
-        // Each value can only turn unknown (twice per node at most): this settles.
-        let mut settled = false;
-        for _ in 0..(2 * len + 2) {
-            let mut changed = false;
-            for i in 0..len {
-                let Some(s) = ins[i] else { continue };
-                let o = out_of(i, s);
-                for &j in &edges[i] {
-                    let new = ins[j].map_or(o, |old| old.merge(o));
-                    if ins[j] != Some(new) {
-                        ins[j] = Some(new);
-                        changed = true;
-                    }
-                }
-            }
-            if !changed {
-                settled = true;
-                break;
-            }
-        }
+        let out_of = |i: usize, s: State| out_of(&flat, i, s, calls);
+        let flow = super::modal_flow::run(&flat, start, calls, locals);
+        let settled = flow.settled;
+        let ins = flow.ins;
         let mut blocks = Vec::new();
         let mut rot_in = Vec::new();
+        let mut shift_in = Vec::new();
+        let mut modal_call = false;
+        crate::ir::visit::walk_stmts(body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
+            }
+        });
         let mut g68s = Vec::new();
         let mut other_plane = false;
         let mut frames = false;
@@ -252,9 +271,10 @@ impl ModalScan {
         let mut exit: Option<State> = None;
         let mut prev = start;
         for (i, at) in ins.iter().enumerate() {
-            if let (true, Some(s)) = (settled, *at) {
+            // The program's ends on its own paths (a section's are its calls').
+            if let (true, Some(s)) = (settled, flow.top[i]) {
                 let ends = match &flat.nodes[i] {
-                    Node::Items(items) => i + 1 == len || items.iter().any(ends_program),
+                    Node::Items(items) => i + 1 == len || flow.end[i] || items.iter().any(ends_program),
                     Node::Head { exit, .. } => i + 1 == len || *exit >= len,
                     Node::End { .. } => i + 1 == len,
                 };
@@ -269,6 +289,9 @@ impl ModalScan {
                 _ => lo,
             };
             rot_in.push((first, if settled { at.map_or(Some(0), |s| s.rot) } else { None }));
+            // A G66 macro runs after each later move, where it may shift any axis.
+            let known = settled && !modal_call;
+            shift_in.push((lo, if known { at.map_or(ALL_AXES, |s| s.g52) } else { ALL_AXES }));
             if let Node::Items(items) = &flat.nodes[i] {
                 other_plane |= g_codes(items).iter().any(|g| matches!(g, 180 | 190));
                 frames |= g_codes(items).iter().any(|g| matches!(g, 520 | 680 | 510 | 511 | 160));
@@ -303,6 +326,7 @@ impl ModalScan {
             g52: (super::frames::g52_axes(body), main),
             incremental_motion,
             rot_in,
+            shift_in,
             g68s,
             other_plane,
             frames,
@@ -349,6 +373,13 @@ impl ModalScan {
     /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
     pub fn rot_before(&self, lo: u32) -> Option<u32> {
         self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
+    }
+
+    /// The axes whose G52 shift may not be 0 before the block at `lo` ([`State::g52`]; all
+    /// where not known).
+    pub fn g52_before(&self, lo: u32) -> u16 {
+        let i = self.shift_in.partition_point(|b| b.0 <= lo);
+        i.checked_sub(1).and_then(|i| self.shift_in.get(i)).map_or(ALL_AXES, |b| b.1)
     }
 
     /// The G68, G51 or G51.1 block of [`State::rot`] key `k`: its start and items.
@@ -408,6 +439,7 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
     let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     let by_number = |num: u32| progs.iter().position(|p| p.number == Some(num));
     let mut seen = vec![Seen::None; n];
+    let locals: Vec<Vec<Local>> = bodies.iter().map(|b| super::m97::locals(b)).collect();
     let start = |seen: &[Seen], i: usize| -> Option<bool> {
         if progs[i].role == Role::Main {
             return Some(false);
@@ -430,15 +462,17 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
         };
         for i in 0..n {
             let main = progs[i].role == Role::Main;
-            let calls = CallModes { setters: &setters, framers: &[], polar_framers: &[], local_frames: false };
-            let scan = ModalScan::new(bodies[i], main, start(&seen, i), false, calls);
+            let calls = CallModes { setters: &setters, framers: &[], polar_framers: &[] };
+            let scan = ModalScan::new(bodies[i], main, start(&seen, i), false, calls, &locals[i]);
             let all: Vec<Option<bool>> = scan.all().map(|b| b.1).collect();
             crate::ir::visit::walk_stmts(bodies[i], &mut |s| {
                 let StmtKind::Block(b) = &s.kind else { return };
                 for it in &b.items {
                     let ItemKind::Call(c) = &it.kind else { continue };
-                    let j = match &c.target {
-                        CallTarget::Number(num) => by_number(*num),
+                    let j = match (&c.kind, &c.target) {
+                        // A local subprogram (its blocks are this program's).
+                        (CallKind::M97, _) => continue,
+                        (_, CallTarget::Number(num)) => by_number(*num),
                         _ => {
                             computed = true;
                             None
@@ -506,6 +540,7 @@ pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(
     }
     let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
     let by_number = |k: u32| progs.iter().position(|p| p.number == Some(k));
+    let locals: Vec<Vec<Local>> = programs.iter().map(|(_, p)| super::m97::locals(&p.body)).collect();
     let mut clear: Vec<bool> = vec![true; n];
     let mut framers: (Vec<u32>, Vec<u32>) = (Vec::new(), Vec::new());
     for _ in 0..(2 * n + 2) {
@@ -513,9 +548,9 @@ pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(
         let mut next_clear = vec![true; n];
         let mut next_framers = (Vec::new(), Vec::new());
         for i in 0..n {
-            let calls =
-                CallModes { setters: &setters, framers: &framers.0, polar_framers: &framers.1, local_frames: false };
-            let scan = ModalScan::new(&programs[i].1.body, main(i), progs[i].start_inch, clear[i] || main(i), calls);
+            let calls = CallModes { setters: &setters, framers: &framers.0, polar_framers: &framers.1 };
+            let body = &programs[i].1.body;
+            let scan = ModalScan::new(body, main(i), progs[i].start_inch, clear[i] || main(i), calls, &locals[i]);
             crate::ir::visit::walk_stmts(&programs[i].1.body, &mut |s| {
                 let StmtKind::Block(b) = &s.kind else { return };
                 for it in &b.items {
@@ -592,8 +627,9 @@ pub fn close_setters(progs: &mut [ProgPlan], bodies: &[&[Stmt]]) {
             crate::ir::visit::walk_stmts(body, &mut |s| {
                 if let StmtKind::Block(b) = &s.kind {
                     calls |= b.items.iter().any(|it| match &it.kind {
-                        ItemKind::Call(c) => match &c.target {
-                            CallTarget::Number(n) => setters.contains(n),
+                        ItemKind::Call(c) => match (&c.kind, &c.target) {
+                            (CallKind::M97, _) => false,
+                            (_, CallTarget::Number(n)) => setters.contains(n),
                             _ => !setters.is_empty(),
                         },
                         _ => false,
