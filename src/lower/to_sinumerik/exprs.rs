@@ -541,14 +541,15 @@ fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
     }
 }
 
-/// A Haas NGC general-purpose variable without a legacy number (`#10000..#10099`, …): no
-/// R parameter is set aside for it (NC509); `None` for any other number.
+/// A Haas NGC general-purpose variable without a legacy number (`#10000..#10099`, …) that
+/// got no R parameter (`varmap::build` placed every one the job uses, or said NC350 when the
+/// R parameters ran out); `None` for any other number.
 fn ngc_common(ctx: &mut Ctx, n: u32, span: Span) -> Option<Option<Stmt>> {
     if !(ctx.opts.source.haas_ngc && crate::dialect::fanuc::haas_vars::ngc_only(n)) {
         return None;
     }
-    let what = format!("the Haas NGC variable #{n} (a general-purpose variable without a legacy number)");
-    let hint = "the R parameters take #100..#199 and #500..#999; renumber it into #500..#999 (#10500.. on the NGC)";
+    let what = format!("the Haas NGC variable #{n} without an R parameter (none was left for it)");
+    let hint = "raise the R parameter count of the target profile, or map fewer variables (--var-map)";
     Some(ctx.unsupported("NC509", span, &what, hint))
 }
 
