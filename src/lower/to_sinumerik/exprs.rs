@@ -81,12 +81,11 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
                     if let Some(m) = ngc_common(ctx, n, span) {
                         marks.extend(m);
                     } else {
-                        marks.extend(ctx.unsupported(
-                        "NC365",
-                        span,
-                        &format!("writing the system variable #{n}"),
-                        "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
-                    ));
+                        let (what, hint) = super::haas_sys::refusal(ctx, n, true).unwrap_or_else(|| {
+                            (format!("writing the system variable #{n}"), GENERIC_HINT)
+                        });
+                        let what = if what.starts_with("writing") { what } else { format!("writing {what}") };
+                        marks.extend(ctx.unsupported("NC365", span, &what, hint));
                     }
                     target.kind = VarKind::Named { name: format!("NCTRANS_UNSUPPORTED_{n}"), indices: vec![] };
                 }
@@ -95,6 +94,11 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
         VarKind::HashIndirect(x) => {
             let mut x = (**x).clone();
             lower_expr(ctx, &mut x, marks);
+            if let Some(m) = super::haas_sys::computed(ctx, &x, span) {
+                marks.extend(m);
+                target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
+                return;
+            }
             match runtime_indirect(ctx, x, span, marks, Access::Write(write_flag)) {
                 Some(k) => target.kind = k,
                 None => {
@@ -111,6 +115,10 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
         _ => {}
     }
 }
+
+/// The hint of a system variable refusal without a description of its own.
+const GENERIC_HINT: &str =
+    "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart";
 
 /// FANUC alarm 115 (variable number out of range), as the translation raises it.
 const ALARM_INDEX: i64 = super::gotos::RUNTIME_ALARM_BASE + 115;
@@ -257,7 +265,10 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => Expr::num(0.0, false, span),
             VarKind::Hash(n) => {
-                match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
+                match super::varmap::map_hash(ctx, n, v.span)
+                    .or_else(|| super::words::system_var(n, v.span))
+                    .or_else(|| super::haas_sys::counterpart(ctx, n))
+                {
                     Some(k) => var_expr(k, v.span),
                     None if ngc_common(ctx, n, v.span).map(|m| marks.extend(m)).is_some() => {
                         Expr::num(0.0, false, span)
@@ -267,15 +278,16 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                         Expr::num(0.0, false, span)
                     }
                     None => {
-                        marks.extend(ctx.unsupported(
-                            "NC365",
-                            v.span,
-                            &format!("the system variable #{n}"),
-                            "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
-                        ));
+                        let (what, hint) = super::haas_sys::refusal(ctx, n, false)
+                            .unwrap_or_else(|| (format!("the system variable #{n}"), GENERIC_HINT));
+                        marks.extend(ctx.unsupported("NC365", v.span, &what, hint));
                         Expr::num(0.0, false, span)
                     }
                 }
+            }
+            VarKind::HashIndirect(x) if let Some(m) = super::haas_sys::computed(ctx, &x, v.span) => {
+                marks.extend(m);
+                Expr::num(0.0, false, span)
             }
             VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks, Access::Read) {
                 Some(k) => var_expr(k, v.span),

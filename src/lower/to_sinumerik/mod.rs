@@ -36,6 +36,7 @@ pub(crate) mod fast_write;
 pub mod frames;
 pub mod gotos;
 pub mod haas_if;
+pub mod haas_sys;
 pub mod indirect;
 pub mod lookahead;
 pub mod m97;

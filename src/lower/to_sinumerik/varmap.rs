@@ -220,7 +220,7 @@ fn default_r(n: u32) -> Option<u32> {
 }
 
 /// The constant term of an index (`550` of `#[550+#1*2]`), when it has one.
-fn constant_term(e: &Expr) -> Option<f64> {
+pub(super) fn constant_term(e: &Expr) -> Option<f64> {
     match &e.kind {
         ExprKind::Num(n) => Some(n.value),
         ExprKind::Binary(BinOp::Add, a, b) => match (constant_term(a), constant_term(b)) {
@@ -330,7 +330,15 @@ pub fn dispatch_ranges(ctx: &Ctx) -> Vec<(u32, u32, u32)> {
         }
     }
     out.sort_unstable();
-    out
+    // Such variables placed side by side (`#10200`, `#10201` on R2, R3) are one run.
+    let mut merged: Vec<(u32, u32, u32)> = Vec::with_capacity(out.len());
+    for (from, to, r) in out {
+        match merged.last_mut() {
+            Some(last) if last.1 + 1 == from && last.2 + (from - last.0) == r => last.1 = to,
+            _ => merged.push((from, to, r)),
+        }
+    }
+    merged
 }
 
 fn plan_locals(plan: &mut ProgPlan) {

@@ -1,0 +1,109 @@
+//! FANUC and Haas system variables beyond `words::system_var`: the Haas tool in the spindle
+//! `#3026` (Siemens `$P_TOOLNO`), and for every other one a real library uses, what it is and
+//! why Sinumerik has nothing the translation could prove equal (docs/semantics.md, "Haas
+//! system variables"), so that a refusal tells the user what to do instead of "no counterpart".
+
+use super::*;
+
+/// A computed `#[…]` whose constant part lies in a system variable table (NC514).
+pub const COMPUTED_SYSTEM: &str = "NC514";
+
+/// The Siemens variable a FANUC system variable `n` is read as, on the source control of the
+/// job, beyond `words::system_var`. Haas `#3026` is the number of the tool in the spindle
+/// (HAAS-NGC table: read-only), the tool an `M6` put there; Siemens `$P_TOOLNO` is the active
+/// tool's number, the one the last tool change made active (the evaluator models both as
+/// that tool, 0 before the first change of the run). The translation keeps T numbers (`T6
+/// M6` stays `T6 M6`), so both read the same number.
+pub fn counterpart(ctx: &Ctx, n: u32) -> Option<VarKind> {
+    match n {
+        3026 if ctx.opts.source.haas => Some(VarKind::System { name: "P_TOOLNO".into(), indices: vec![] }),
+        _ => None,
+    }
+}
+
+/// What system variable `n` is and why it has no Siemens counterpart here: `(what, hint)`
+/// for the NC365 refusal; `None` for the numbers without a description (the generic text).
+pub fn refusal(ctx: &Ctx, n: u32, write: bool) -> Option<(String, &'static str)> {
+    let haas = ctx.opts.source.haas;
+    let clock = "the run models no time, so a translation of it could not be proven: remove the timing, or write it by hand for the Siemens control";
+    let (what, hint): (String, &'static str) = match n {
+        3026 if haas && write => (
+            "writing #3026 (the Haas tool in the spindle, read-only)".into(),
+            "change tools with T… M6; the program cannot set which tool is in the spindle",
+        ),
+        3001 | 3002 => (
+            format!(
+                "#{n} (the {} timer, which a program sets and reads)",
+                if n == 3001 { "millisecond" } else { "hour" }
+            ),
+            "Siemens timers ($AC_CYCLE_TIME, $AN_POWERON_TIME) are read-only and count other intervals; measure the time by hand on the Siemens control",
+        ),
+        3011 => ("#3011 (the date of the machine's clock, YYYYMMDD)".into(), clock),
+        3012 => ("#3012 (the time of day of the machine's clock, HHMMSS)".into(), clock),
+        3020 if haas => (
+            "#3020 (the Haas power-on timer, read-only: the machine's clock since it was switched on; the Haas table \
+             gives no unit)"
+                .into(),
+            "Siemens $AN_POWERON_TIME counts minutes since the control's last warm start; the run models no time, \
+             so the two could not be proven equal: remove the timing, or write it by hand",
+        ),
+        3021..=3025 if haas => (
+            format!(
+                "#{n} (a Haas {} timer, the machine's clock)",
+                ["cycle start", "feed", "present part", "last complete part", "previous part"][(n - 3021) as usize]
+            ),
+            clock,
+        ),
+        3027 if haas => (
+            "#3027 (the Haas actual spindle speed, a measurement)".into(),
+            "read the programmed speed instead (#4119, to Siemens $P_S); the measured speed is not in the trace",
+        ),
+        2001..=2800 if haas => (format!("#{n} ({})", offset_table(n)), OFFSET_HINT),
+        _ => return None,
+    };
+    Some((what, hint))
+}
+
+const OFFSET_HINT: &str = "Sinumerik keeps tool data per cutting edge ($TC_DP…), which the translation does not map \
+                           and the run does not model: pass the value the program needs as a macro argument or a variable";
+
+/// The Haas tool offset table holding `#n` (HAAS-NGC table, #2001–#2800).
+fn offset_kind(n: u32) -> &'static str {
+    match n {
+        ..=2200 => "length geometry",
+        2201..=2400 => "length wear",
+        2401..=2600 => "diameter/radius geometry",
+        _ => "diameter/radius wear",
+    }
+}
+
+fn offset_table(n: u32) -> String {
+    format!("the Haas tool {} offset of tool {}", offset_kind(n), (n - 2001) % 200 + 1)
+}
+
+/// Refuses a computed `#[c + …]` (index `x`, lowered) whose constant part `c` lies in a system
+/// variable table the dispatch of common variables cannot reach (`#[2400+#3026]`: the tool
+/// offsets): the refusal names the table instead of an alarm at run time. `None`: an index
+/// for the common variables' dispatch.
+pub fn computed(ctx: &mut Ctx, x: &Expr, span: Span) -> Option<Option<Stmt>> {
+    let c = super::varmap::constant_term(x)?.round();
+    if !(1000.0..=99_999.0).contains(&c) {
+        return None;
+    }
+    let c = c as u32;
+    if crate::dialect::fanuc::haas_vars::common(c, ctx.opts.source.haas_ngc) {
+        return None;
+    }
+    let table = match c {
+        // `#[2400+t]` is tool t's entry of the table after #2400.
+        2000..=2799 if ctx.opts.source.haas => format!("the Haas tool {} offsets", offset_kind(c + 1)),
+        2000..=2999 => "the tool offset memory".into(),
+        _ => format!("the system variables from #{c}"),
+    };
+    Some(ctx.unsupported(
+        COMPUTED_SYSTEM,
+        span,
+        &format!("a computed variable number into {table} (`#[{c}+…]`)"),
+        OFFSET_HINT,
+    ))
+}
