@@ -81,9 +81,8 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
                     if let Some(m) = ngc_common(ctx, n, span) {
                         marks.extend(m);
                     } else {
-                        let (what, hint) = super::haas_sys::refusal(ctx, n, true).unwrap_or_else(|| {
-                            (format!("writing the system variable #{n}"), GENERIC_HINT)
-                        });
+                        let (what, hint) = super::haas_sys::refusal(ctx, n, true)
+                            .unwrap_or_else(|| (format!("writing the system variable #{n}"), GENERIC_HINT));
                         let what = if what.starts_with("writing") { what } else { format!("writing {what}") };
                         marks.extend(ctx.unsupported("NC365", span, &what, hint));
                     }

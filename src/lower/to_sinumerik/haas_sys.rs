@@ -7,6 +7,8 @@ use super::*;
 
 /// A computed `#[…]` whose constant part lies in a system variable table (NC514).
 pub const COMPUTED_SYSTEM: &str = "NC514";
+/// A computed `#[…]` into NGC-only variables that nothing places (warning NC515).
+pub const COMPUTED_UNPLACED: &str = "NC515";
 
 /// The Siemens variable a FANUC system variable `n` is read as, on the source control of the
 /// job, beyond `words::system_var`. Haas `#3026` is the number of the tool in the spindle
@@ -92,6 +94,7 @@ pub fn computed(ctx: &mut Ctx, x: &Expr, span: Span) -> Option<Option<Stmt>> {
     }
     let c = c as u32;
     if crate::dialect::fanuc::haas_vars::common(c, ctx.opts.source.haas_ngc) {
+        unplaced_ngc(ctx, c, span);
         return None;
     }
     let table = match c {
@@ -106,4 +109,26 @@ pub fn computed(ctx: &mut Ctx, x: &Expr, span: Span) -> Option<Option<Stmt>> {
         &format!("a computed variable number into {table} (`#[{c}+…]`)"),
         OFFSET_HINT,
     ))
+}
+
+/// Warns where a computed `#[c+…]` starts at an NGC-only number that neither a `--var-map`
+/// rule nor a direct use of it gives an R parameter: these numbers have no default place, so
+/// the translation reaches them only through a rule, and raises `SETAL(64115)` there (as for
+/// `#800..#999`), which the proof then reports as a divergence.
+fn unplaced_ngc(ctx: &mut Ctx, c: u32, span: Span) {
+    if !crate::dialect::fanuc::haas_vars::ngc_only(c)
+        || super::varmap::dispatch_ranges(ctx).iter().any(|&(from, to, _)| from <= c && c <= to)
+    {
+        return;
+    }
+    let file = ctx.file();
+    ctx.diags.push(
+        crate::diag::Diagnostic::warning(
+            COMPUTED_UNPLACED,
+            format!("the computed `#[{c}+…]` reaches Haas NGC variables that have no R parameter"),
+        )
+        .primary(file, span, "raises SETAL(64115) on Siemens where FANUC reads the variable")
+        .note("NGC-only variables get an R parameter where the job names them, or by a rule")
+        .hint(format!("give the range a rule: --var-map '#{c}-#{}=R<k>'", (c / 100) * 100 + 99)),
+    );
 }
