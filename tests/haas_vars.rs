@@ -1,9 +1,9 @@
 //! Haas programs to Sinumerik (issue 21, real Haas libraries): the NGC-only general-purpose
 //! variables (`#10000+` without a legacy number) live on R parameters like other commons,
-//! `G04 P` dwells what the Haas control dwells (a decimal point means seconds), and `#3026`
-//! (the tool in the spindle) reads as `$P_TOOLNO`; each translation is proven by its own
-//! verification and by `nctrans check`, planted wrong translations are caught, and what has
-//! no counterpart is refused saying what it is.
+//! `G04 P` dwells what the Haas control dwells (a decimal point means seconds); each
+//! translation is proven by its own verification and by `nctrans check`, planted wrong
+//! translations are caught, and the Haas system variables without a counterpart (clocks,
+//! the tool in the spindle, offset tables) are refused saying what they are.
 
 #[path = "support/cli_run.rs"]
 mod cli_run;
@@ -15,13 +15,13 @@ const NGC: &str = "[fanuc]\nseries = \"haas-ngc\"\n";
 
 /// A fixture plate: the pitch kept in an NGC variable with a default when the setter left
 /// it vacant, three hole positions stored by a computed index into #10200.., a counter in
-/// #10010 that survives the run, the tool in the spindle logged, and a half-second dwell.
+/// #10010 that survives the run, the tool number logged, and a half-second dwell.
 const PLATE: &str = "%
 O2100 (FIXTURE PLATE - NGC VARIABLES)
 G00 G17 G40 G49 G80 G90
 T4 M06
 S2500 M03
-#10012=#3026 (TOOL IN SPINDLE)
+#10012=4. (TOOL NUMBER LOGGED)
 IF [#10020 EQ #0] THEN #10020=12.5 (PITCH DEFAULT)
 #1=0
 WHILE [#1 LT 3] DO1
@@ -78,7 +78,7 @@ fn ngc_variables_get_r_parameters_and_the_translation_is_proven() {
     assert!(err.contains("equivalent"), "{err}");
     // Placed as #200..#499 are: the lowest free R with NC360, flags from the top.
     assert!(err.contains("#10020 has no default R parameter"), "{err}");
-    for line in [";   #10020 = R2 (is-set flag R298)", ";   #10200 = R3", "R1=$P_TOOLNO", "G4 F0.5", "G4 F0.25"] {
+    for line in [";   #10020 = R2 (is-set flag R298)", ";   #10200 = R3", "R1=4", "G4 F0.5", "G4 F0.25"] {
         assert!(text.contains(line), "missing `{line}` in\n{text}");
     }
     assert!(!err.contains("NC509") && !err.contains("NC365"), "{err}");
@@ -101,8 +101,8 @@ fn planted_wrong_translations_of_the_plate_are_caught() {
         ("NCTRANS_IX1-10197", "NCTRANS_IX1-10196"),
         // Another default pitch.
         ("R2=12.5", "R2=12"),
-        // A fixed tool number instead of the tool in the spindle.
-        ("R1=$P_TOOLNO", "R1=3"),
+        // Another logged tool number (it is a Y position below).
+        ("R1=4", "R1=3"),
     ];
     for (from, to) in plants {
         assert!(text.contains(from), "`{from}` not in\n{text}");
@@ -191,7 +191,8 @@ fn haas_clock_and_offset_variables_are_refused_saying_what_they_are() {
     let cases = [
         ("O2700\n#10000=#3020\nM30\n", "NC365", "power-on timer"),
         ("O2700\n#10001=#3012\nM30\n", "NC365", "time of day"),
-        ("O2700\n#3026=5.\nM30\n", "NC365", "tool in the spindle, read-only"),
+        ("O2700\nT2 M06\n#1=#3026\nG00 X#1\nM30\n", "NC365", "the tool in the spindle"),
+        ("O2700\n#3026=5.\nM30\n", "NC365", "writing #3026"),
         ("O2700\nT2 M06\n#4=#[2400+#3026]\nM30\n", "NC514", "tool diameter/radius geometry offsets"),
         ("O2700\n#4=#2405\nM30\n", "NC365", "diameter/radius geometry offset of tool 5"),
     ];

@@ -132,11 +132,6 @@ impl Interp<'_> {
             4113 => m.last_m,
             4114 => m.last_n,
             4119 => m.speed,
-            // Haas: the tool in the spindle (HAAS-NGC table), the one the last M6 put there.
-            3026 if m.haas => match &m.tool {
-                Some(ToolId::Number(t)) => *t,
-                _ => 0.0,
-            },
             4120 => match &m.tool_sel {
                 Some(ToolId::Number(t)) => *t,
                 _ => 0.0,

@@ -264,10 +264,7 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => Expr::num(0.0, false, span),
             VarKind::Hash(n) => {
-                match super::varmap::map_hash(ctx, n, v.span)
-                    .or_else(|| super::words::system_var(n, v.span))
-                    .or_else(|| super::haas_sys::counterpart(ctx, n))
-                {
+                match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
                     Some(k) => var_expr(k, v.span),
                     None if ngc_common(ctx, n, v.span).map(|m| marks.extend(m)).is_some() => {
                         Expr::num(0.0, false, span)

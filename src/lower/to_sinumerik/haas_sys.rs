@@ -1,7 +1,7 @@
-//! FANUC and Haas system variables beyond `words::system_var`: the Haas tool in the spindle
-//! `#3026` (Siemens `$P_TOOLNO`), and for every other one a real library uses, what it is and
-//! why Sinumerik has nothing the translation could prove equal (docs/semantics.md, "Haas
-//! system variables"), so that a refusal tells the user what to do instead of "no counterpart".
+//! FANUC and Haas system variables beyond `words::system_var`: for each one real Haas
+//! libraries use, what it is and why the translation has nothing it could prove equal
+//! (docs/semantics.md, "Haas system variables"), so that a refusal tells the user what to do
+//! instead of only "no counterpart"; and computed numbers into the tool offset tables.
 
 use super::*;
 
@@ -10,28 +10,22 @@ pub const COMPUTED_SYSTEM: &str = "NC514";
 /// A computed `#[…]` into NGC-only variables that nothing places (warning NC515).
 pub const COMPUTED_UNPLACED: &str = "NC515";
 
-/// The Siemens variable a FANUC system variable `n` is read as, on the source control of the
-/// job, beyond `words::system_var`. Haas `#3026` is the number of the tool in the spindle
-/// (HAAS-NGC table: read-only), the tool an `M6` put there; Siemens `$P_TOOLNO` is the active
-/// tool's number, the one the last tool change made active (the evaluator models both as
-/// that tool, 0 before the first change of the run). The translation keeps T numbers (`T6
-/// M6` stays `T6 M6`), so both read the same number.
-pub fn counterpart(ctx: &Ctx, n: u32) -> Option<VarKind> {
-    match n {
-        3026 if ctx.opts.source.haas => Some(VarKind::System { name: "P_TOOLNO".into(), indices: vec![] }),
-        _ => None,
-    }
-}
-
 /// What system variable `n` is and why it has no Siemens counterpart here: `(what, hint)`
 /// for the NC365 refusal; `None` for the numbers without a description (the generic text).
 pub fn refusal(ctx: &Ctx, n: u32, write: bool) -> Option<(String, &'static str)> {
     let haas = ctx.opts.source.haas;
     let clock = "the run models no time, so a translation of it could not be proven: remove the timing, or write it by hand for the Siemens control";
     let (what, hint): (String, &'static str) = match n {
-        3026 if haas && write => (
-            "writing #3026 (the Haas tool in the spindle, read-only)".into(),
-            "change tools with T… M6; the program cannot set which tool is in the spindle",
+        // The manual pages read here stop at #3023; the libraries read #3026 as the tool
+        // in the spindle (`#[2400+#3026]`, "the tool's diameter from the table").
+        3026 if haas => (
+            format!(
+                "{}#3026 (on a Haas the tool in the spindle, as programs use it; no manual page read here \
+                 lists it)",
+                if write { "writing " } else { "" }
+            ),
+            "Siemens $P_TOOLNO is the active tool's number; until a source settles what #3026 is, set the tool \
+             number in a variable where the program changes tools (#10040=5. beside T5 M06)",
         ),
         3001 | 3002 => (
             format!(
@@ -40,8 +34,8 @@ pub fn refusal(ctx: &Ctx, n: u32, write: bool) -> Option<(String, &'static str)>
             ),
             "Siemens timers ($AC_CYCLE_TIME, $AN_POWERON_TIME) are read-only and count other intervals; measure the time by hand on the Siemens control",
         ),
-        3011 => ("#3011 (the date of the machine's clock, YYYYMMDD)".into(), clock),
-        3012 => ("#3012 (the time of day of the machine's clock, HHMMSS)".into(), clock),
+        3011 => ("#3011 (the date of the machine's clock: year, month, day)".into(), clock),
+        3012 => ("#3012 (the time of day of the machine's clock: hour, minute, second)".into(), clock),
         3020 if haas => (
             "#3020 (the Haas power-on timer, read-only: the machine's clock since it was switched on; the Haas table \
              gives no unit)"
@@ -49,16 +43,9 @@ pub fn refusal(ctx: &Ctx, n: u32, write: bool) -> Option<(String, &'static str)>
             "Siemens $AN_POWERON_TIME counts minutes since the control's last warm start; the run models no time, \
              so the two could not be proven equal: remove the timing, or write it by hand",
         ),
-        3021..=3025 if haas => (
-            format!(
-                "#{n} (a Haas {} timer, the machine's clock)",
-                ["cycle start", "feed", "present part", "last complete part", "previous part"][(n - 3021) as usize]
-            ),
+        3021..=3023 if haas => (
+            format!("#{n} (the Haas {} timer, the machine's clock)", ["cycle start", "feed", "present part"][(n - 3021) as usize]),
             clock,
-        ),
-        3027 if haas => (
-            "#3027 (the Haas actual spindle speed, a measurement)".into(),
-            "read the programmed speed instead (#4119, to Siemens $P_S); the measured speed is not in the trace",
         ),
         2001..=2800 if haas => (format!("#{n} ({})", offset_table(n)), OFFSET_HINT),
         _ => return None,
