@@ -26,7 +26,7 @@ impl Machine {
                 return Ok(round_to(v, inc));
             }
             if let Some((w, x)) = p {
-                return self.dwell_p(w, x, span);
+                return self.dwell_p(w, x);
             }
         } else {
             if let Some((_, x)) = f {
@@ -48,15 +48,14 @@ impl Machine {
     /// decimal point is seconds, one without milliseconds (Haas mill operator's manual, G04:
     /// "if the P has no fractional part, the delay is in milliseconds"); a computed P has no
     /// written point, and the manual does not say which unit it takes, so it is refused.
-    fn dwell_p(&self, w: &WordVal, x: f64, span: Span) -> Result<f64, Fault> {
+    fn dwell_p(&self, w: &WordVal, x: f64) -> Result<f64, Fault> {
         let refuse = |code: &'static str, msg: &str, hint: &str| {
             Fault::error(
                 crate::diag::Diagnostic::error(code, msg.to_string())
                     .primary(usize::MAX, w.span, "dwell time")
-                    .hint(hint.to_string()),
+                    .hint(hint),
             )
         };
-        let _ = span;
         match (self.haas, w.literal, w.bare) {
             (true, true, false) => Ok(x),
             (true, false, _) => Err(refuse(
