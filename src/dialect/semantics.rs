@@ -43,7 +43,10 @@ pub struct Semantics {
     pub rotation_angle_incremental: bool,
     /// A Haas control (`[fanuc] series = "haas"` / `"haas-ngc"`): `M97 Pn` calls the local
     /// subprogram at block Nn of the same program (Haas mill operator's manual 96-8000,
-    /// M97). On a FANUC, M97 is a machine builder's M code.
+    /// M97). On a FANUC, M97 is a machine builder's M code. Also the dwell: a Haas `G04 P`
+    /// written with a decimal point is seconds, without one milliseconds (`G04 P0.5` is
+    /// 0.5 s, `G04 P500` 0.5 s); a FANUC `G04 P` is whole milliseconds (the evaluator refuses
+    /// a written point there, NC513, and a computed P on a Haas, NC512: not settled).
     pub haas: bool,
     /// The FANUC length and radius registers of each Siemens cutting edge (the setup's
     /// offset table; by default edge D1 of tool n is H n and D n): `[offsets]`.

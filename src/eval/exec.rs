@@ -384,6 +384,7 @@ impl<'a> Interp<'a> {
                     val: WV::Num(53.0),
                     mode: AbsInc::Plain,
                     bare: false,
+                    literal: false,
                     span: item.span,
                 }),
                 ItemKind::Goto(_)
@@ -755,7 +756,7 @@ impl<'a> Interp<'a> {
             crate::ir::Addr::Axis(e) => std::borrow::Cow::Owned(self.axis_name(e)?),
             a => std::borrow::Cow::Owned(a.as_str().to_ascii_uppercase()),
         };
-        Ok(Some(WordVal { addr, val, mode, bare, span: w.span }))
+        Ok(Some(WordVal { addr, val, mode, bare, literal: lit.is_some(), span: w.span }))
     }
 
     pub fn note_callee(&mut self, name: &CalleeName) -> String {

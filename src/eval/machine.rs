@@ -31,6 +31,7 @@ pub use fanuc_frames::FanucScale;
 pub use fast::{fast_path_on, set_fast_path, LitDone};
 pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
+pub use motion::{DWELL_FANUC_POINT, DWELL_HAAS_COMPUTED};
 pub use polar::Pole;
 
 /// A word after evaluation of its value.
@@ -42,6 +43,9 @@ pub struct WordVal {
     pub mode: AbsInc,
     /// FANUC: a literal written without a decimal point (the decimal-point rule applies).
     pub bare: bool,
+    /// The value was written as a number (`P0.5`, `P500`), not computed (`P#1`, `P[#1/2]`):
+    /// a Haas G04 P takes its unit from the written decimal point.
+    pub literal: bool,
     pub span: Span,
 }
 

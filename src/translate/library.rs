@@ -116,7 +116,7 @@ pub struct FileInfo {
     pub blocks: u64,
     /// Siemens tool names (`T="DRILL_5"`), as written.
     pub tools: BTreeSet<String>,
-    /// FANUC common variables (`#100`..`#999`) used by number.
+    /// FANUC common variables (`#100`..`#999`, the Haas NGC-only numbers) used by number.
     pub commons: BTreeSet<u32>,
     /// Read as a stream: a large program that calls nothing, or only by a constant name or
     /// number (FANUC: with subprograms after it; see `streamed::library_scan`),
@@ -381,7 +381,11 @@ fn surely_set(e: &Expr) -> bool {
     match &e.kind {
         ExprKind::Vacant => false,
         ExprKind::Unary(UnOp::Neg, a) => surely_set(a),
-        ExprKind::Var(v) => !matches!(v.kind, VarKind::Hash(0 | 1..=33 | 100..=999) | VarKind::HashIndirect(_)),
+        ExprKind::Var(v) => match v.kind {
+            VarKind::Hash(n) => !(n <= 33 || crate::dialect::fanuc::haas_vars::maybe_common(n)),
+            VarKind::HashIndirect(_) => false,
+            _ => true,
+        },
         _ => true,
     }
 }

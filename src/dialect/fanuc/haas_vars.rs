@@ -19,6 +19,23 @@ pub fn ngc_only(n: u32) -> bool {
     matches!(n, 10000..=10099 | 10200..=10499 | 10700..=10799)
 }
 
+/// A number the FANUC → Sinumerik translation treats as a common variable (one R
+/// parameter, an is-set flag where its vacancy shows): `#100..#999`, and with `ngc` (the
+/// `haas-ngc` profile) the NGC-only general-purpose numbers, which behave as `#500` does
+/// (global, kept on power off, vacant until written).
+pub fn common(n: u32, ngc: bool) -> bool {
+    matches!(n, 100..=999) || (ngc && ngc_only(n))
+}
+
+/// [`common`] for the analyses that run without a profile (vacancy, the library scan): an
+/// NGC-only number counts wherever it appears. On another control that number is a system
+/// variable the translation refuses (NC365) before it is placed, so counting it there only
+/// adds a variable no rule or place is ever used for; they sort after `#999`, so no other
+/// variable's place moves.
+pub fn maybe_common(n: u32) -> bool {
+    common(n, true)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -32,5 +49,6 @@ mod tests {
         assert_eq!(legacy(10700), None);
         assert!(ngc_only(10000) && ngc_only(10002) && ngc_only(10450) && ngc_only(10799));
         assert!(!ngc_only(10100) && !ngc_only(11000) && !ngc_only(9999));
+        assert!(common(500, false) && common(10002, true) && !common(10002, false) && !common(10100, true));
     }
 }

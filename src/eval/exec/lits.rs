@@ -99,6 +99,7 @@ impl Interp<'_> {
                 val: WV::Num(w.value),
                 mode: w.mode,
                 bare: fanuc && !w.point,
+                literal: true,
                 span: w.span,
             }
         }));

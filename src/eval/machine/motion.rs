@@ -3,6 +3,11 @@
 
 use super::*;
 
+/// A Haas `G04 P` whose value is computed: its unit is not settled (docs/semantics.md).
+pub const DWELL_HAAS_COMPUTED: &str = "NC512";
+/// A FANUC `G04 P` literal with a decimal point: not settled (docs/semantics.md).
+pub const DWELL_FANUC_POINT: &str = "NC513";
+
 impl Machine {
     pub(super) fn dwell_seconds(
         &self,
@@ -20,8 +25,8 @@ impl Machine {
                 let v = if w.bare && self.scaling { x * inc } else { x };
                 return Ok(round_to(v, inc));
             }
-            if let Some((_, x)) = p {
-                return Ok(round_half_away(x) / 1000.0);
+            if let Some((w, x)) = p {
+                return self.dwell_p(w, x);
             }
         } else {
             if let Some((_, x)) = f {
@@ -35,6 +40,38 @@ impl Machine {
             }
         }
         Err(Fault::alarm(self.alarms.no_feed, "dwell without a time", span))
+    }
+
+    /// `G04 P`: FANUC milliseconds (an integer address: a value from a variable is rounded
+    /// to whole milliseconds); a literal with a decimal point is refused, the manuals read
+    /// here do not say what a FANUC makes of it. Haas (`Semantics::haas`): a literal with a
+    /// decimal point is seconds, one without milliseconds (Haas mill operator's manual, G04:
+    /// "if the P has no fractional part, the delay is in milliseconds"); a computed P has no
+    /// written point, and the manual does not say which unit it takes, so it is refused.
+    fn dwell_p(&self, w: &WordVal, x: f64) -> Result<f64, Fault> {
+        let refuse = |code: &'static str, msg: &str, hint: &str| {
+            Fault::error(
+                crate::diag::Diagnostic::error(code, msg.to_string())
+                    .primary(usize::MAX, w.span, "dwell time")
+                    .hint(hint),
+            )
+        };
+        match (self.haas, w.literal, w.bare) {
+            (true, true, false) => Ok(x),
+            (true, false, _) => Err(refuse(
+                DWELL_HAAS_COMPUTED,
+                "a Haas G04 P from a variable or expression: the unit (seconds with a decimal point, milliseconds \
+                 without) is the written one's, and a computed value has none",
+                "write the time as a literal (P0.5 is 0.5 s, P500 is 500 ms) or as G04 X<seconds>",
+            )),
+            (false, true, false) => Err(refuse(
+                DWELL_FANUC_POINT,
+                "a FANUC G04 P with a decimal point: P is whole milliseconds and what the control makes of a point \
+                 there is not settled",
+                "write the milliseconds without a point (G04 P500) or the seconds as G04 X0.5",
+            )),
+            _ => Ok(round_half_away(x) / 1000.0),
+        }
     }
 
     #[allow(clippy::too_many_arguments)]

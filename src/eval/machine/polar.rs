@@ -62,7 +62,7 @@ impl Machine {
             b'Y' => "Y",
             _ => "Z",
         };
-        WordVal { addr: Cow::Borrowed(addr), val: WV::Num(v), mode: AbsInc::Ac, bare: false, span }
+        WordVal { addr: Cow::Borrowed(addr), val: WV::Num(v), mode: AbsInc::Ac, bare: false, literal: false, span }
     }
 
     /// The block's words with its polar coordinates made Cartesian (`None`: nothing polar).
@@ -288,6 +288,7 @@ impl Machine {
                     val: WV::Num(self.in_unit(c)),
                     mode: AbsInc::Ac,
                     bare: false,
+                    literal: false,
                     span,
                 });
             }

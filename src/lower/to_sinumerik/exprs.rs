@@ -81,12 +81,10 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
                     if let Some(m) = ngc_common(ctx, n, span) {
                         marks.extend(m);
                     } else {
-                        marks.extend(ctx.unsupported(
-                        "NC365",
-                        span,
-                        &format!("writing the system variable #{n}"),
-                        "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
-                    ));
+                        let (what, hint) = super::haas_sys::refusal(ctx, n, true)
+                            .unwrap_or_else(|| (format!("writing the system variable #{n}"), GENERIC_HINT));
+                        let what = if what.starts_with("writing") { what } else { format!("writing {what}") };
+                        marks.extend(ctx.unsupported("NC365", span, &what, hint));
                     }
                     target.kind = VarKind::Named { name: format!("NCTRANS_UNSUPPORTED_{n}"), indices: vec![] };
                 }
@@ -95,6 +93,11 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
         VarKind::HashIndirect(x) => {
             let mut x = (**x).clone();
             lower_expr(ctx, &mut x, marks);
+            if let Some(m) = super::haas_sys::computed(ctx, &x, span) {
+                marks.extend(m);
+                target.kind = VarKind::Named { name: "NCTRANS_UNSUPPORTED_INDIRECT".into(), indices: vec![] };
+                return;
+            }
             match runtime_indirect(ctx, x, span, marks, Access::Write(write_flag)) {
                 Some(k) => target.kind = k,
                 None => {
@@ -111,6 +114,10 @@ fn map_target(ctx: &mut Ctx, target: &mut VarRef, marks: &mut Vec<Stmt>, write_f
         _ => {}
     }
 }
+
+/// The hint of a system variable refusal without a description of its own.
+const GENERIC_HINT: &str =
+    "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart";
 
 /// FANUC alarm 115 (variable number out of range), as the translation raises it.
 const ALARM_INDEX: i64 = super::gotos::RUNTIME_ALARM_BASE + 115;
@@ -267,15 +274,16 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                         Expr::num(0.0, false, span)
                     }
                     None => {
-                        marks.extend(ctx.unsupported(
-                            "NC365",
-                            v.span,
-                            &format!("the system variable #{n}"),
-                            "docs/translation-fanuc-to-sinumerik.md (Variables) lists the system variables that have a Siemens counterpart",
-                        ));
+                        let (what, hint) = super::haas_sys::refusal(ctx, n, false)
+                            .unwrap_or_else(|| (format!("the system variable #{n}"), GENERIC_HINT));
+                        marks.extend(ctx.unsupported("NC365", v.span, &what, hint));
                         Expr::num(0.0, false, span)
                     }
                 }
+            }
+            VarKind::HashIndirect(x) if let Some(m) = super::haas_sys::computed(ctx, &x, v.span) => {
+                marks.extend(m);
+                Expr::num(0.0, false, span)
             }
             VarKind::HashIndirect(x) => match runtime_indirect(ctx, *x, v.span, marks, Access::Read) {
                 Some(k) => var_expr(k, v.span),
@@ -541,14 +549,15 @@ fn digit_sum(x: Expr, from: f64, to: f64, span: Span) -> Expr {
     }
 }
 
-/// A Haas NGC general-purpose variable without a legacy number (`#10000..#10099`, …): no
-/// R parameter is set aside for it (NC509); `None` for any other number.
+/// A Haas NGC general-purpose variable without a legacy number (`#10000..#10099`, …) that
+/// got no R parameter (`varmap::build` placed every one the job uses, or said NC350 when the
+/// R parameters ran out); `None` for any other number.
 fn ngc_common(ctx: &mut Ctx, n: u32, span: Span) -> Option<Option<Stmt>> {
     if !(ctx.opts.source.haas_ngc && crate::dialect::fanuc::haas_vars::ngc_only(n)) {
         return None;
     }
-    let what = format!("the Haas NGC variable #{n} (a general-purpose variable without a legacy number)");
-    let hint = "the R parameters take #100..#199 and #500..#999; renumber it into #500..#999 (#10500.. on the NGC)";
+    let what = format!("the Haas NGC variable #{n} without an R parameter (none was left for it)");
+    let hint = "raise the R parameter count of the target profile, or map fewer variables (--var-map)";
     Some(ctx.unsupported("NC509", span, &what, hint))
 }
 

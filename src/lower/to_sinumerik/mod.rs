@@ -36,6 +36,7 @@ pub(crate) mod fast_write;
 pub mod frames;
 pub mod gotos;
 pub mod haas_if;
+pub mod haas_sys;
 pub mod indirect;
 pub mod lookahead;
 pub mod m97;
@@ -111,10 +112,14 @@ impl VarMapRule {
                  variables of each Siemens program), not placed by a rule; a rule maps common variables #100–#999"
             ));
         }
-        if to > 999 {
+        // The Haas NGC-only general-purpose ranges are commons too (under `haas-ngc`).
+        let ngc = |n: u32| crate::dialect::fanuc::haas_vars::ngc_only(n);
+        let ngc_range = ngc(from) && ngc(to) && (from..=to).all(ngc);
+        if to > 999 && !ngc_range {
             return Err(format!(
                 "--var-map '{s}': #{to} is a system variable (#1000 and up, translated by meaning), not placed by \
-                 a rule; a rule maps common variables #100–#999"
+                 a rule; a rule maps common variables #100–#999 (and, for a Haas NGC, the general-purpose \
+                 #10000–#10099, #10200–#10499, #10700–#10799)"
             ));
         }
         Ok(VarMapRule { from, to, r_start })

@@ -27,9 +27,14 @@ enum Key {
 fn key(prog: usize, n: u32) -> Option<Key> {
     match n {
         1..=33 => Some(Key::Local(prog, n)),
-        100..=999 => Some(Key::Common(n)),
+        _ if maybe_common(n) => Some(Key::Common(n)),
         _ => None,
     }
+}
+
+/// A common variable number (NGC-only ones included: `haas_vars::maybe_common`).
+fn maybe_common(n: u32) -> bool {
+    crate::dialect::fanuc::haas_vars::maybe_common(n)
 }
 
 /// One node of a program's control-flow graph.
@@ -191,7 +196,7 @@ fn nonvacant(e: &Expr, d: &BTreeSet<u32>) -> bool {
         ExprKind::Unary(UnOp::Neg, a) => nonvacant(a, d),
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => false,
-            VarKind::Hash(n @ (1..=33 | 100..=999)) => d.contains(&n),
+            VarKind::Hash(n) if (1..=33).contains(&n) || maybe_common(n) => d.contains(&n),
             VarKind::HashIndirect(_) => false,
             _ => true,
         },
@@ -231,7 +236,7 @@ fn vacant_writes(body: &[Stmt]) -> Summary {
                 VarKind::Hash(n @ 1..=33) => {
                     s.locals.insert(n);
                 }
-                VarKind::Hash(n @ 100..=999) => {
+                VarKind::Hash(n) if maybe_common(n) => {
                     s.commons.insert(n);
                 }
                 VarKind::HashIndirect(_) => s.clobbers = true,
@@ -582,7 +587,7 @@ pub fn analyse(ctx: &mut Ctx, programs: &[(FileId, &Program)]) -> Info {
 fn flag_ref(ctx: &Ctx, n: u32, span: Span) -> Option<VarRef> {
     match n {
         1..=33 if ctx.plan().tracked.contains(&n) => Some(named_ref(&super::varmap::flag_name(ctx.plan(), n), span)),
-        100..=999 => ctx.common_flags.get(&n).map(|r| VarRef { kind: VarKind::R(*r), span }),
+        _ if maybe_common(n) => ctx.common_flags.get(&n).map(|r| VarRef { kind: VarKind::R(*r), span }),
         _ => None,
     }
 }

@@ -4,7 +4,10 @@
 //! - `#500..#799` → `R0..R299` (the inverse of the Siemens→FANUC default `Rn` → `#(500+n)`,
 //!   so round trips keep their R numbers), `#100..#199` → `R100..R199` ([`DEFAULT_RULES`]).
 //! - Any other common variable the program uses (and any default that would land on an R
-//!   number already taken) gets the lowest free R number, with a warning naming it.
+//!   number already taken) gets the lowest free R number, with a warning naming it. Under
+//!   `[fanuc] series = "haas-ngc"` that includes the NGC-only general-purpose variables
+//!   (`#10000..#10099`, `#10200..#10499`, `#10700..#10799`): global, kept on power off and
+//!   vacant until written, as `#500` is, so they live on R parameters the same way.
 //! - A computed `#[…]` goes through the same rules at run time ([`dispatch_ranges`]): every
 //!   number of a rule's range whose R number is its own (a direct access of it goes there,
 //!   or nothing else is there) is reached as `R[i-from+Rn]`, so `#[550+#1*2]` with #1 = 2
@@ -41,26 +44,32 @@ pub fn flag_name(plan: &ProgPlan, n: u32) -> String {
     }
 }
 
-fn used_commons(programs: &[(FileId, &Program)]) -> BTreeMap<u32, (FileId, Span)> {
+/// The common variables the job names (`common`: which numbers are commons on the source
+/// control), each with where it is first used.
+fn used_commons(programs: &[(FileId, &Program)], common: fn(u32) -> bool) -> BTreeMap<u32, (FileId, Span)> {
     let mut used = BTreeMap::new();
     for (file, p) in programs {
-        fn visit(e: &Expr, file: FileId, used: &mut BTreeMap<u32, (FileId, Span)>) {
+        let visit = |e: &Expr, file: FileId, used: &mut BTreeMap<u32, (FileId, Span)>| {
             let mut stack = vec![e];
             while let Some(x) = stack.pop() {
                 if let ExprKind::Var(v) = &x.kind {
-                    if let VarKind::Hash(n @ 100..=999) = v.kind {
-                        used.entry(n).or_insert((file, v.span));
+                    if let VarKind::Hash(n) = v.kind {
+                        if common(n) {
+                            used.entry(n).or_insert((file, v.span));
+                        }
                     }
                 }
                 stack.extend(x.children());
             }
-        }
+        };
         crate::ir::visit::walk_stmts(&p.body, &mut |s| match &s.kind {
             StmtKind::Block(b) => {
                 for it in block_items(b) {
                     if let ItemKind::Assign { target, .. } = &it.kind {
-                        if let VarKind::Hash(n @ 100..=999) = target.kind {
-                            used.entry(n).or_insert((*file, target.span));
+                        if let VarKind::Hash(n) = target.kind {
+                            if common(n) {
+                                used.entry(n).or_insert((*file, target.span));
+                            }
                         }
                     }
                     for e in crate::ir::visit::item_exprs(it) {
@@ -79,10 +88,19 @@ fn used_commons(programs: &[(FileId, &Program)]) -> BTreeMap<u32, (FileId, Span)
     used
 }
 
+/// Which numbers are common variables on the job's source control.
+fn common_test(ctx: &Ctx) -> fn(u32) -> bool {
+    if ctx.opts.source.haas_ngc {
+        |n| crate::dialect::fanuc::haas_vars::common(n, true)
+    } else {
+        |n| crate::dialect::fanuc::haas_vars::common(n, false)
+    }
+}
+
 /// Builds the variable map and completes every program's parameters and DEFs.
 pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
     let count = ctx.opts.target.r_param_count;
-    let used = used_commons(programs);
+    let used = used_commons(programs, common_test(ctx));
     let mut taken: BTreeMap<u32, u32> = BTreeMap::new(); // R → FANUC variable
     let mut pending: Vec<u32> = Vec::new();
     for (&n, &(file, span)) in &used {
@@ -138,7 +156,12 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
                 ctx.diags.push(
                     Diagnostic::warning("NC360", format!("#{n} has no default R parameter; it is R{r}"))
                         .primary(file, span, "used here")
-                        .note("#100..#199 map to R100..R199 and #500..#799 to R0..R299 by default")
+                        .note(if n >= 10000 {
+                            "a Haas NGC general-purpose variable without a legacy number (kept on power off, as #500..#999 are): \
+                             only #100..#199 and #500..#799 have default R parameters"
+                        } else {
+                            "#100..#199 map to R100..R199 and #500..#799 to R0..R299 by default"
+                        })
                         .hint(format!("choose the place with --var-map '#{n}=R<k>'")),
                 );
             }
@@ -174,7 +197,18 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
     for plan in &mut ctx.progs {
         plan_locals(plan);
     }
-    ctx.index_bases = index_bases(programs);
+    ctx.index_bases = index_bases(programs, common_test(ctx));
+}
+
+/// The first numbers of the Haas NGC general-purpose ranges without a legacy number
+/// (`dialect::fanuc::haas_vars::ngc_only`).
+const NGC_ONLY: [u32; 3] = [10000, 10200, 10700];
+
+fn ngc_end(lo: u32) -> u32 {
+    match lo {
+        10200 => 10499,
+        _ => lo + 99,
+    }
 }
 
 /// The default rules `(from, to, R start)`, in the order they are applied.
@@ -186,7 +220,7 @@ fn default_r(n: u32) -> Option<u32> {
 }
 
 /// The constant term of an index (`550` of `#[550+#1*2]`), when it has one.
-fn constant_term(e: &Expr) -> Option<f64> {
+pub(super) fn constant_term(e: &Expr) -> Option<f64> {
     match &e.kind {
         ExprKind::Num(n) => Some(n.value),
         ExprKind::Binary(BinOp::Add, a, b) => match (constant_term(a), constant_term(b)) {
@@ -202,12 +236,12 @@ fn constant_term(e: &Expr) -> Option<f64> {
 }
 
 /// [`Ctx::index_bases`] of the job.
-fn index_bases(programs: &[(FileId, &Program)]) -> BTreeSet<u32> {
+fn index_bases(programs: &[(FileId, &Program)], common: fn(u32) -> bool) -> BTreeSet<u32> {
     let mut bases = BTreeSet::new();
     let mut see = |x: &Expr| {
         if let Some(c) = constant_term(x) {
             let c = c.round();
-            if (100.0..=999.0).contains(&c) {
+            if (0.0..=f64::from(u32::MAX)).contains(&c) && common(c as u32) {
                 bases.insert(c as u32);
             }
         }
@@ -256,7 +290,11 @@ pub fn dispatch_ranges(ctx: &Ctx) -> Vec<(u32, u32, u32)> {
     let flag_r: BTreeSet<u32> = ctx.common_flags.values().chain(ctx.opts.flag_places.values()).copied().collect();
     // R number → (preference, number): the candidate that gets it (lowest preference).
     let mut best: BTreeMap<u32, ((u8, u8, usize), u32)> = BTreeMap::new();
-    for n in 100..=999u32 {
+    // The NGC-only numbers have no default rule: only a `--var-map` rule over them (or a
+    // place of the job's own variable, below) makes them reachable.
+    let ngc: &[u32] = if ctx.opts.source.haas_ngc { &NGC_ONLY } else { &[] };
+    let numbers = (100..=999u32).chain(ngc.iter().flat_map(|&lo| lo..=ngc_end(lo)));
+    for n in numbers {
         let Some(k) = rules.iter().position(|r| r.0 <= n && n <= r.1) else { continue };
         let (from, _, r0) = rules[k];
         let Some(r) = r0.checked_add(n - from) else { continue };
@@ -292,7 +330,15 @@ pub fn dispatch_ranges(ctx: &Ctx) -> Vec<(u32, u32, u32)> {
         }
     }
     out.sort_unstable();
-    out
+    // Such variables placed side by side (`#10200`, `#10201` on R2, R3) are one run.
+    let mut merged: Vec<(u32, u32, u32)> = Vec::with_capacity(out.len());
+    for (from, to, r) in out {
+        match merged.last_mut() {
+            Some(last) if last.1 + 1 == from && last.2 + (from - last.0) == r => last.1 = to,
+            _ => merged.push((from, to, r)),
+        }
+    }
+    merged
 }
 
 fn plan_locals(plan: &mut ProgPlan) {
@@ -355,6 +401,10 @@ pub fn map_hash(ctx: &Ctx, n: u32, span: Span) -> Option<VarKind> {
     match n {
         1..=33 => Some(VarKind::Named { name: local_name(ctx.plan(), n), indices: vec![] }),
         100..=999 => Some(ctx.commons.get(&n).map_or(VarKind::R(n), |r| VarKind::R(*r))),
+        // An NGC-only variable is placed when the job uses it (`build`).
+        _ if ctx.opts.source.haas_ngc && crate::dialect::fanuc::haas_vars::ngc_only(n) => {
+            ctx.commons.get(&n).map(|r| VarKind::R(*r))
+        }
         _ => {
             let _ = span;
             None

@@ -474,9 +474,39 @@ fn lower_word(
         return None;
     }
     if dwell && matches!(l, b'P' | b'X') {
+        // G04 P as the evaluator reads it (`eval::machine::motion`, dwell_p): milliseconds,
+        // a Haas literal with a decimal point seconds; the forms it refuses are refused here.
+        let haas = ctx.opts.source.haas;
         let secs = match (l, &e.kind) {
-            (b'P', ExprKind::Num(n)) => num(n.value / 1000.0, e.span),
-            (b'P', _) => bin(BinOp::Div, e.clone(), int(1000, e.span)),
+            (b'P', ExprKind::Num(n)) if n.point && haas => num(n.value, e.span),
+            (b'P', ExprKind::Num(n)) if n.point => {
+                if let Some(st) = ctx.unsupported(
+                    crate::eval::machine::DWELL_FANUC_POINT,
+                    w.span,
+                    "a FANUC G04 P with a decimal point (P is whole milliseconds; a point there is not settled)",
+                    "write the milliseconds without a point (G04 P500) or the seconds as G04 X0.5",
+                ) {
+                    after.push(st);
+                }
+                // Refused: no second diagnostic for a G04 "without a time".
+                *dwell_value = Some(num(0.0, e.span));
+                return None;
+            }
+            (b'P', ExprKind::Num(n)) => num(n.value.round() / 1000.0, e.span),
+            (b'P', _) if haas => {
+                if let Some(st) = ctx.unsupported(
+                    crate::eval::machine::DWELL_HAAS_COMPUTED,
+                    w.span,
+                    "a Haas G04 P from a variable or expression (its unit is the written decimal point's, which a computed value has not)",
+                    "write the time as a literal (P0.5 is 0.5 s, P500 is 500 ms) or as G04 X<seconds>",
+                ) {
+                    after.push(st);
+                }
+                *dwell_value = Some(num(0.0, e.span));
+                return None;
+            }
+            // An integer address: FANUC rounds the value to whole milliseconds.
+            (b'P', _) => bin(BinOp::Div, func(Func::Round, vec![e.clone()], e.span), int(1000, e.span)),
             (_, ExprKind::Num(n)) if !n.point => num(scale(ctx.opts, n.value, false, true), e.span),
             _ => e.clone(),
         };

@@ -51,13 +51,16 @@ impl SymbolMap {
     }
 }
 
-/// The common variables (`#100`..`#999`) a program reads or writes by number.
+/// The common variables (`#100`..`#999`, and the Haas NGC-only numbers:
+/// `haas_vars::maybe_common`) a program reads or writes by number.
 pub fn commons_of(p: &Program) -> BTreeSet<u32> {
     let mut set = BTreeSet::new();
     fn expr(e: &Expr, set: &mut BTreeSet<u32>) {
         if let ExprKind::Var(v) = &e.kind {
-            if let VarKind::Hash(n @ 100..=999) = v.kind {
-                set.insert(n);
+            if let VarKind::Hash(n) = v.kind {
+                if crate::dialect::fanuc::haas_vars::maybe_common(n) {
+                    set.insert(n);
+                }
             }
         }
         for c in e.children() {
@@ -66,8 +69,10 @@ pub fn commons_of(p: &Program) -> BTreeSet<u32> {
     }
     fn item(it: &Item, set: &mut BTreeSet<u32>) {
         if let ItemKind::Assign { target, .. } = &it.kind {
-            if let VarKind::Hash(n @ 100..=999) = target.kind {
-                set.insert(n);
+            if let VarKind::Hash(n) = target.kind {
+                if crate::dialect::fanuc::haas_vars::maybe_common(n) {
+                    set.insert(n);
+                }
             }
         }
         if let ItemKind::IfThen { then, .. } = &it.kind {
@@ -131,7 +136,7 @@ fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered) -> String 
                 passes::varmap::local_name(plan, n),
                 plan.tracked.contains(&n).then(|| passes::varmap::flag_name(plan, n)),
             ),
-            100..=999 => match lowered.commons.get(&n) {
+            _ if crate::dialect::fanuc::haas_vars::maybe_common(n) => match lowered.commons.get(&n) {
                 Some(r) => (format!("R{r}"), lowered.common_flags.get(&n).map(|f| format!("R{f}"))),
                 None => continue, // not used by the program: nothing to set
             },
