@@ -1,0 +1,106 @@
+//! Tool management and tool offset data (issue 21): `GETT("NAME")` from the tool map, and
+//! Siemens cutting edge data `$TC_DP3/6/12/15[t,d]` ↔ FANUC memory C `#11001+`/`#10001+`/
+//! `#13001+`/`#12001+` through the offset map, proven by verify; planted wrong translations
+//! (another register, geometry for wear) caught by the check; every refusal names its code.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("nctrans-tool-data-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn nctrans(cwd: &Path, args: &[&str]) -> (bool, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_nctrans")).current_dir(cwd).args(args).output().unwrap();
+    (o.status.success(), format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr)))
+}
+
+/// A tool-setting routine a setter would write: the measured length goes into the edge,
+/// the wear is cleared, the radius of the cutter sets the stepover, and the probe's T
+/// number comes from tool management.
+const SETTER: &str = "\
+; set T12 after measuring it on the presetter, then face with 60 % stepover
+DEF REAL MEASURED, STEPOVER
+R30=6
+MEASURED=142.118
+$TC_DP3[12,1]=MEASURED
+$TC_DP12[12,1]=0
+$TC_DP6[12,1]=R30
+STEPOVER=$TC_DP6[12,1]*2*0.6
+T12 D1 M6
+S2400 M3
+G0 X-10 Y0 Z5
+G1 Z=-0.5-$TC_DP12[12,1] F250
+G1 X80
+G1 Y=STEPOVER
+G1 X-10
+R40=GETT(\"PROBE_3D\")
+G0 Z50 M5
+G0 X=R40
+M30
+";
+
+#[test]
+fn the_setter_translates_to_memory_c_and_verifies() {
+    let d = dir("setter");
+    std::fs::write(d.join("setter.mpf"), SETTER).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "setter.mpf", "--tool-map", "PROBE_3D=31", "-o", "setter.nc"]);
+    assert!(ok, "{out}");
+    assert!(out.contains("equivalent"), "{out}");
+    let nc = std::fs::read_to_string(d.join("setter.nc")).unwrap();
+    for want in ["#11012=#100", "#10012=0.", "#13012=#530", "#101=#13012*2.*0.6", "Z[-0.5-#10012]", "#540=31."] {
+        assert!(nc.contains(want), "missing {want}:\n{nc}");
+    }
+    // Planted: the length into another register, or into the wear instead of the geometry.
+    for (from, to) in [("#11012=", "#11013="), ("#11012=", "#10012="), ("#13012=#530", "#12012=#530")] {
+        std::fs::write(d.join("bad.nc"), nc.replacen(from, to, 1)).unwrap();
+        let (ok, out) = nctrans(&d, &["check", "setter.mpf", "bad.nc", "--tool-map", "PROBE_3D=31"]);
+        // Caught as a divergence, or as the read of a register the bad program never wrote.
+        assert!(!ok && (out.contains("diverge") || out.contains("NC571")), "{from} -> {to} not caught:\n{out}");
+    }
+}
+
+#[test]
+fn an_edge_of_the_offset_map_uses_its_own_registers() {
+    let d = dir("map");
+    std::fs::write(d.join("nctrans.toml"), "[offsets]\n\"6.2\" = \"H26,D46\"\n").unwrap();
+    let src = "T6 M6 D2\n$TC_DP15[6,2]=-0.02\n$TC_DP12[6,2]=0.015\nG0 X0 Y0 Z10\nM30\n";
+    std::fs::write(d.join("edge.mpf"), src).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "edge.mpf", "-o", "edge.nc"]);
+    assert!(ok, "{out}");
+    let nc = std::fs::read_to_string(d.join("edge.nc")).unwrap();
+    assert!(nc.contains("#12046=-0.02") && nc.contains("#10026=0.015"), "{nc}");
+}
+
+#[test]
+fn what_has_no_counterpart_is_refused_by_name() {
+    let d = dir("refuse");
+    let cases: &[(&str, &str, &str)] = &[
+        ("R1=GETT(\"NOT_THERE\")\nG0 X=R1\nM30\n", "NC525", "NOT_THERE"),
+        ("R1=GETT(\"PROBE_3D\", 2)\nG0 X=R1\nM30\n", "NC526", "duplo"),
+        ("R1=$TC_DP1[3,1]\nG0 X=R1\nM30\n", "NC526", "tool type"),
+        ("$TC_DP3[3,2]=100\nM30\n", "NC527", "3.2"),
+    ];
+    for (i, (src, code, word)) in cases.iter().enumerate() {
+        let f = format!("c{i}.mpf");
+        std::fs::write(d.join(&f), src).unwrap();
+        let (ok, out) = nctrans(&d, &["--to", "fanuc", &f, "--tool-map", "PROBE_3D=31"]);
+        assert!(!ok && out.contains(code) && out.contains(word), "{src}: {out}");
+    }
+}
+
+#[test]
+fn a_read_of_data_the_run_was_not_given_is_an_error_and_an_input_gives_it() {
+    let d = dir("input");
+    std::fs::write(d.join("r.mpf"), "R1=$TC_DP6[4,1]*2\nG0 X=R1\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["run", "r.mpf"]);
+    assert!(!ok && out.contains("NC571"), "{out}");
+    let (ok, out) = nctrans(&d, &["run", "r.mpf", "--set", "$TC_DP6[4,1]=5"]);
+    assert!(ok && out.contains("X=10"), "{out}");
+    std::fs::write(d.join("r.nc"), "#1=#13004*2\nG0 X#1\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["run", "r.nc", "--set", "#13004=5."]);
+    assert!(ok && out.contains("X=10"), "{out}");
+}
