@@ -104,3 +104,56 @@ fn a_read_of_data_the_run_was_not_given_is_an_error_and_an_input_gives_it() {
     let (ok, out) = nctrans(&d, &["run", "r.nc", "--set", "#13004=5."]);
     assert!(ok && out.contains("X=10"), "{out}");
 }
+
+/// A wear update after probing, as a FANUC macro writes it: memory C registers become the
+/// cutting edge data of edge 1 of the tool, and a planted wrong edge is caught.
+const WEAR: &str = "\
+%
+O1200 (WEAR UPDATE AFTER PROBING)
+(nctrans: set #10012=0.01 #13012=4.)
+#1=142.118
+#11012=#1
+#10012=#10012-0.012
+#2=#13012*2*0.6
+T12 M06
+G43 H12
+G00 X0 Y0 Z50.
+G01 Z[-1-#10012] F300.
+G01 X#2
+#3=#[11000+12]
+G01 Y#3
+M30
+%
+";
+
+#[test]
+fn memory_c_translates_to_cutting_edge_data_and_verifies() {
+    let d = dir("wear");
+    std::fs::write(d.join("wear.nc"), WEAR).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "sinumerik", "wear.nc", "-o", "WEAR.MPF"]);
+    assert!(ok && out.contains("equivalent"), "{out}");
+    let s = std::fs::read_to_string(d.join("WEAR.MPF")).unwrap();
+    for want in [
+        "nctrans: set $TC_DP12[12,1]=0.01 $TC_DP6[12,1]=4.",
+        "$TC_DP3[12,1]=LOC1",
+        "$TC_DP12[12,1]=$TC_DP12[12,1]-0.012",
+        "LOC3=$TC_DP3[12,1]",
+    ] {
+        assert!(s.contains(want), "missing {want}:\n{s}");
+    }
+    std::fs::write(d.join("BAD.MPF"), s.replacen("$TC_DP3[12,1]=LOC1", "$TC_DP3[12,2]=LOC1", 1)).unwrap();
+    let (ok, out) = nctrans(&d, &["check", "wear.nc", "BAD.MPF"]);
+    assert!(!ok && (out.contains("diverge") || out.contains("NC571")), "{out}");
+}
+
+#[test]
+fn tool_management_data_and_a_haas_target_are_refused() {
+    let d = dir("tp");
+    std::fs::write(d.join("tp.mpf"), "R1=$TC_TP8[3]\nG0 X=R1\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "tp.mpf"]);
+    assert!(!ok && out.contains("NC526") && out.contains("$TC_TP8"), "{out}");
+    std::fs::write(d.join("nctrans.toml"), "[fanuc]\nseries = \"haas-ngc\"\n").unwrap();
+    std::fs::write(d.join("h.mpf"), "$TC_DP3[3,1]=100\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "h.mpf"]);
+    assert!(!ok && out.contains("NC528"), "{out}");
+}

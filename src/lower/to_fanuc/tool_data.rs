@@ -17,6 +17,13 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     let (haas, offsets) = (ctx.haas, ctx.offsets.clone());
     visit_vars(&mut prog.body, &mut |v| {
         let VarKind::System { name, indices } = &v.kind else { return };
+        if let Some(k) = name.strip_prefix("TC_TP") {
+            // Tool data (name, duplo, size, holder …): the tool map knows names and numbers only.
+            let what = format!("$TC_TP{k} (tool data of tool management: name, duplo number, size, …)");
+            let hint = "FANUC has no tool management data; the tool map gives names their T numbers: use T=\"NAME\" or GETT(\"NAME\")";
+            errs.push(("NC526", v.span, what, hint.into()));
+            return;
+        }
         let Some(n) = tc_dp(name) else { return };
         let span = v.span;
         let Some(field) = siemens_field(n) else {
