@@ -157,3 +157,27 @@ fn tool_management_data_and_a_haas_target_are_refused() {
     let (ok, out) = nctrans(&d, &["--to", "fanuc", "h.mpf"]);
     assert!(!ok && out.contains("NC528"), "{out}");
 }
+
+#[test]
+fn g10_l10_to_l13_write_the_edge_data_and_g91_adds() {
+    let d = dir("g10");
+    let src = "%\nO1300 (SET T7)\n(nctrans: set #10007=0.02)\nG90 G10 L10 P7 R98.765\nG91 G10 L11 P7 R-0.005\nG90\n\
+               G10 L12 P7 R5.\n#1=#10007\nG0 X#1 Y#11007 Z#13007\nM30\n%\n";
+    std::fs::write(d.join("g10.nc"), src).unwrap();
+    let (ok, out) = nctrans(&d, &["run", "g10.nc"]);
+    assert!(ok && out.contains("tool_data register=7 field=length_wear value=0.015"), "{out}");
+    let (ok, out) = nctrans(&d, &["--to", "sinumerik", "g10.nc", "-o", "G10.MPF"]);
+    assert!(ok && out.contains("equivalent"), "{out}");
+    let s = std::fs::read_to_string(d.join("G10.MPF")).unwrap();
+    for want in ["$TC_DP3[7,1]=98.765", "G91\n$TC_DP12[7,1]=$TC_DP12[7,1]+(-0.005)", "$TC_DP6[7,1]=5"] {
+        assert!(s.contains(want), "missing {want}:\n{s}");
+    }
+    // Planted: the radius into the wear.
+    std::fs::write(d.join("BAD.MPF"), s.replacen("$TC_DP6[7,1]=5", "$TC_DP15[7,1]=5", 1)).unwrap();
+    let (ok, out) = nctrans(&d, &["check", "g10.nc", "BAD.MPF"]);
+    assert!(!ok && (out.contains("diverge") || out.contains("NC571")), "{out}");
+    // Without a decimal point R depends on the increment system: refused.
+    std::fs::write(d.join("bare.nc"), "G90 G10 L10 P7 R98765\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "sinumerik", "bare.nc"]);
+    assert!(!ok && out.contains("NC529"), "{out}");
+}

@@ -90,7 +90,7 @@ impl Interp<'_> {
     pub fn set_tool_data(&mut self, key: String, v: &Value) -> Result<(), Fault> {
         match v {
             Value::Num(x) => {
-                self.sys_store.insert(key, *x);
+                self.m.tool_data.insert(key, *x);
                 Ok(())
             }
             _ => Err(Fault::error(Diagnostic::error("NC571", format!("input {key}: tool offset data is a number")))),
@@ -108,7 +108,7 @@ impl Interp<'_> {
 
     pub fn read_fanuc_tool_data(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
         let key = format!("#{n}");
-        match self.sys_store.get(&key) {
+        match self.m.tool_data.get(&key) {
             Some(x) => Ok(Value::Num(*x)),
             None => {
                 let (f, r) = fanuc_field(n).unwrap_or((ToolField::LengthGeometry, 0));
@@ -120,7 +120,7 @@ impl Interp<'_> {
     pub fn write_fanuc_tool_data(&mut self, n: i64, x: Option<f64>, span: Span) -> Result<(), Fault> {
         let (field, reg) = fanuc_field(n).unwrap_or((ToolField::LengthGeometry, 0));
         let value = x.unwrap_or(0.0);
-        self.sys_store.insert(format!("#{n}"), value);
+        self.m.tool_data.insert(format!("#{n}"), value);
         self.emit(Event::ToolData(Box::new(ToolDataEv { register: CompReg::Fanuc(reg), field, value })), span);
         Ok(())
     }
@@ -158,7 +158,7 @@ impl Interp<'_> {
         let field = self.siemens_modelled(n, span)?;
         let (t, d) = self.edge_of(n, idx, span)?;
         let key = edge_key(n, t, d);
-        match self.sys_store.get(&key) {
+        match self.m.tool_data.get(&key) {
             Some(x) => Ok(Value::Num(*x)),
             None => Err(self.not_given(&key, field.name(), span)),
         }
@@ -167,7 +167,7 @@ impl Interp<'_> {
     pub fn write_siemens_tool_data(&mut self, n: u32, idx: &[Expr], x: f64, span: Span) -> Result<(), Fault> {
         let field = self.siemens_modelled(n, span)?;
         let (t, d) = self.edge_of(n, idx, span)?;
-        self.sys_store.insert(edge_key(n, t, d), x);
+        self.m.tool_data.insert(edge_key(n, t, d), x);
         let register = CompReg::Edge(format!("{t}.{d}"));
         self.emit(Event::ToolData(Box::new(ToolDataEv { register, field, value: x })), span);
         Ok(())

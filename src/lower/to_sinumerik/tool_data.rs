@@ -102,3 +102,57 @@ pub fn lower(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     }
     body
 }
+
+/// `G10 L10..L13 Pp Rv` (memory C: H geometry, H wear, D geometry, D wear) → the write of the
+/// cutting edge data of the register's edge; `incremental` (G91, `None`: not known here)
+/// adds to it. The block's G90/G91 stays in force for later blocks (G10's own G code not).
+pub fn g10(
+    ctx: &mut Ctx,
+    l: u32,
+    p: Option<Expr>,
+    r: Option<Expr>,
+    incremental: Option<bool>,
+    meta: BlockMeta,
+    span: Span,
+) -> Vec<Stmt> {
+    let field = [ToolField::LengthGeometry, ToolField::LengthWear, ToolField::RadiusGeometry, ToolField::RadiusWear]
+        [(l - 10) as usize];
+    let bare = matches!(&r.as_ref().map(|e| &e.kind), Some(ExprKind::Num(x)) if !x.point)
+        && super::words::scales_bare(ctx.opts);
+    let offsets = ctx.opts.source.offsets.clone();
+    let mut refuse = |what: String, hint: &str| ctx.unsupported("NC529", span, &what, hint).into_iter().collect();
+    let reg = match p.as_ref().map(|e| &e.kind) {
+        Some(ExprKind::Num(x)) if x.value.fract() == 0.0 && x.value >= 1.0 => x.value as u32,
+        _ => return refuse(format!("`G10 L{l}` with a P other than a constant offset number"), "write P as a number"),
+    };
+    let Some(r) = r else { return refuse(format!("`G10 L{l} P{reg}` without R"), "give the value with R") };
+    if bare {
+        return refuse(
+            format!("`G10 L{l} P{reg} R` written without a decimal point (its value depends on the increment system)"),
+            "write R with a decimal point",
+        );
+    }
+    let Some(inc) = incremental else {
+        return refuse(
+            format!("`G10 L{l}` where G90/G91 depends on the path taken"),
+            "write G90 or G91 in the G10 block",
+        );
+    };
+    let Some((t, d)) = edge_of(&offsets, field, reg) else {
+        return refuse(
+            format!("`G10 L{l} P{reg}` (no cutting edge has register {reg})"),
+            "name the edge under [offsets] (\"T.D\" = \"H..,D..\")",
+        );
+    };
+    let target = VarRef {
+        kind: VarKind::System { name: format!("TC_DP{}", dp(field)), indices: vec![int(t, span), int(d, span)] },
+        span,
+    };
+    let value = if inc {
+        crate::lower::bin(BinOp::Add, Expr::new(ExprKind::Var(Box::new(target.clone())), span), r)
+    } else {
+        r
+    };
+    let item = Item { kind: ItemKind::Assign { target: Box::new(target), value }, span };
+    vec![Stmt { kind: StmtKind::Block(Block { meta, items: vec![item] }), span }]
+}
