@@ -313,6 +313,7 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
         (Home(h1), Home(h2)) => h1.point == h2.point && h1.axes == h2.axes && axes_eq(&h1.via, &h2.via),
         // The registers' names are paired by `regs::Registers` as the check goes.
         (Comp(c1), Comp(c2)) => regs::same_shape(c1, c2),
+        (ToolData(t1), ToolData(t2)) => t1.field == t2.field && num_eq(t1.value, t2.value),
         _ => false,
     }
 }

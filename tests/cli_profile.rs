@@ -56,10 +56,13 @@ fn haas_ngc_variables_alias_their_legacy_numbers() {
     assert_eq!(code, 0, "{err}");
     let out = std::fs::read_to_string(d.join("p.mpf")).unwrap();
     assert!(out.contains("R0=4") && out.contains("X=R0"), "{out}");
-    // Without the NGC profile #10500 is not a common variable.
+    // Without the NGC profile #10500 is not a common variable: on a FANUC it is the length
+    // wear of offset 500 (tool compensation memory C), and #500 stays vacant.
     std::fs::remove_file(d.join("nctrans.toml")).unwrap();
-    let (_, err, code) = nctrans(&d, &["run", "O2001.nc"]);
-    assert_ne!(code, 0, "{err}");
+    let (out, err, code) = nctrans(&d, &["run", "O2001.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("tool_data register=500 field=length_wear value=4") && !out.contains("X=4"), "{out}");
+    assert!(err.contains("#500 is read but was never set"), "{err}");
 }
 
 #[test]

@@ -84,9 +84,10 @@ fn extcall_runs_the_named_program_and_gett_is_refused() {
     let (_, err, code) = nctrans(&d, &["run", "TOOL.MPF"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC508"), "{err}");
+    // To FANUC the name needs the tool map's number (NC525 names the missing entry).
     let (_, err, code) = nctrans(&d, &["--to", "fanuc", "TOOL.MPF", "-o", "t.nc"]);
     assert_ne!(code, 0);
-    assert!(err.contains("NC508"), "{err}");
+    assert!(err.contains("NC525") && err.contains("DRILL_5"), "{err}");
 }
 
 #[test]

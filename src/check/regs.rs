@@ -48,6 +48,12 @@ impl Registers {
     /// For two events that agree otherwise: whether their registers pair consistently
     /// with every earlier pair (recording new ones). Other events always do.
     pub fn agree(&mut self, a: &Event, b: &Event) -> bool {
+        // A tool data write names its register as `comp` does: one pairing for both, so a
+        // write to another register than the one a move uses is caught.
+        if let (Event::ToolData(a), Event::ToolData(b)) = (a, b) {
+            let pairs = if a.field.is_length() { &mut self.length } else { &mut self.radius };
+            return pairs.pair(&a.register, &b.register);
+        }
         let (Event::Comp(a), Event::Comp(b)) = (a, b) else { return true };
         // Checked before recording: a failed radius pair must not leave a length pair.
         let mut next = self.clone();

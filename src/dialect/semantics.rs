@@ -72,6 +72,10 @@ pub struct Semantics {
     /// spindle is it. Words of another spindle (`M2=3`) have no FANUC counterpart. `SETMS`
     /// is not modelled, so this stays the master spindle. 0 on FANUC (no numbered spindles).
     pub master_spindle: u32,
+    /// Siemens tool management as the set-up's tool map knows it (`[tools]`, `--tool-map`):
+    /// the T number of each tool name, which `GETT("NAME")` returns. Empty: not known, and
+    /// `GETT` is refused (NC508). Names as written.
+    pub tools: std::sync::Arc<std::collections::BTreeMap<String, u32>>,
 }
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
@@ -120,6 +124,7 @@ impl Semantics {
                 globals: Default::default(),
                 macros: Default::default(),
                 master_spindle: 0,
+                tools: Default::default(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -142,6 +147,7 @@ impl Semantics {
                 globals: Default::default(),
                 macros: Default::default(),
                 master_spindle: 1,
+                tools: Default::default(),
             },
         }
     }

@@ -65,6 +65,7 @@ impl Interp<'_> {
                 self.read_fanuc(n - 10000, span)
             }
             n if self.is_haas_data(n) => self.read_haas_data(n, span),
+            n if self.is_tool_data(n) => self.read_fanuc_tool_data(n, span),
             n if n >= 1000 => self.fanuc_sys_read(n, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
@@ -102,6 +103,7 @@ impl Interp<'_> {
                 self.write_fanuc(n - 10000, v_of(x), span)
             }
             n if self.is_haas_data(n) => self.write_haas_data(n, span),
+            n if self.is_tool_data(n) => self.write_fanuc_tool_data(n, x, span),
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
         }
@@ -227,7 +229,15 @@ impl Interp<'_> {
                 let p = self.place_of(name, indices, v.span)?;
                 self.write_place(&p, val, v.span)
             }
-            VarKind::System { name, indices } => self.sie_sys_write(name, indices, val, v.span),
+            VarKind::System { name, indices } => match super::tool_data::tc_dp(name) {
+                Some(n) => {
+                    let x = val
+                        .num()
+                        .ok_or_else(|| Fault::alarm(self.alarms.domain, format!("${name} needs a number"), v.span))?;
+                    self.write_siemens_tool_data(n, indices, x, v.span)
+                }
+                None => self.sie_sys_write(name, indices, val, v.span),
+            },
         }
     }
 
@@ -323,6 +333,9 @@ impl Interp<'_> {
 }
 
 impl Env for Interp<'_> {
+    fn tool_number(&self, name: &str) -> Option<Option<u32>> {
+        (!self.sem.tools.is_empty()).then(|| self.sem.tools.get(name).copied())
+    }
     fn read(&mut self, var: &VarRef, _cx: &Cx) -> Result<Value, Fault> {
         match &var.kind {
             VarKind::Hash(n) => self.read_fanuc(i64::from(*n), var.span),
@@ -339,7 +352,10 @@ impl Env for Interp<'_> {
                 let p = self.place_of(name, indices, var.span)?;
                 self.read_place(&p, var.span)
             }
-            VarKind::System { name, indices } => self.sie_sys_read(name, indices, var.span),
+            VarKind::System { name, indices } => match super::tool_data::tc_dp(name) {
+                Some(n) => self.read_siemens_tool_data(n, indices, var.span),
+                None => self.sie_sys_read(name, indices, var.span),
+            },
         }
     }
 }

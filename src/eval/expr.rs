@@ -46,6 +46,11 @@ pub trait Env {
                 .hint("declare it with DEF or use an R parameter"),
         ))
     }
+    /// The T number tool management gives the tool `name` (`GETT`): the set-up's tool map;
+    /// `None` when the run knows no tool map.
+    fn tool_number(&self, _name: &str) -> Option<Option<u32>> {
+        None
+    }
 }
 
 /// Evaluates `e`.
@@ -123,6 +128,13 @@ fn eval_depth<E: Env + ?Sized>(env: &mut E, e: &Expr, cx: &Cx, depth: u32) -> Re
                     .hint("write `AXNAME(\"X\")` or pass a STRING variable"),
             )),
         },
+        ExprKind::Func(Func::GetT, args) => {
+            let name = match args.first().map(|a| eval_depth(env, a, cx, d)).transpose()? {
+                Some(Value::Str(s)) => s,
+                _ => return super::strings::call(Func::GetT, &[], e.span, cx),
+            };
+            super::strings::gett(env.tool_number(&name), &name, args.len() > 1, e.span, cx)
+        }
         // Refused before their arguments run (GETSELT's first is a whole array).
         ExprKind::Func(f @ (Func::Sprint | Func::IsVar | Func::IsFile | Func::GetSelT), _) => {
             Err(super::strings::refused(*f, e.span, cx))

@@ -12,6 +12,9 @@ pub enum InputTarget {
     R(u32),
     /// A Siemens DEF variable or PROC parameter (upper case).
     Name(String),
+    /// Siemens cutting edge data `$TC_DPn[t,d]` (the machine's tool offsets), as the key
+    /// `$TC_DP3[5,1]` (`eval::tool_data`).
+    ToolData(String),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -27,7 +30,17 @@ pub fn parse_input(s: &str) -> Result<Input, String> {
     let (lhs, rhs) = s.split_once('=').ok_or_else(|| format!("'{s}': expected TARGET=VALUE, e.g. R1=5 or #24=10."))?;
     let (lhs, rhs) = (lhs.trim(), rhs.trim());
     let up = lhs.to_ascii_uppercase();
-    let target = if let Some(n) = up.strip_prefix('#') {
+    let target = if let Some(rest) = up.strip_prefix("$TC_DP") {
+        let bad = || format!("'{lhs}': expected $TC_DPn[tool,edge], e.g. $TC_DP3[5,1]");
+        let (n, idx) = rest.split_once('[').ok_or_else(bad)?;
+        let (t, d) = idx.strip_suffix(']').and_then(|x| x.split_once(',')).ok_or_else(bad)?;
+        let (n, t, d): (u32, u32, u32) = (
+            n.trim().parse().map_err(|_| bad())?,
+            t.trim().parse().map_err(|_| bad())?,
+            d.trim().parse().map_err(|_| bad())?,
+        );
+        InputTarget::ToolData(format!("$TC_DP{n}[{t},{d}]"))
+    } else if let Some(n) = up.strip_prefix('#') {
         InputTarget::Hash(n.parse().map_err(|_| format!("'{lhs}': bad variable number"))?)
     } else if up.len() > 1 && up.starts_with('R') && up[1..].bytes().all(|b| b.is_ascii_digit()) {
         InputTarget::R(up[1..].parse().map_err(|_| format!("'{lhs}': bad R number"))?)

@@ -83,6 +83,9 @@ pub struct Machine {
     pub master_spindle: Option<String>,
     /// A Haas control (`Semantics::haas`): G103 is its look-ahead limit.
     pub haas: bool,
+    /// Tool offset data the run was given or the program wrote (`eval::tool_data`): keyed
+    /// `#11005` (FANUC memory C) or `$TC_DP3[5,1]` (Siemens), the value as written.
+    pub tool_data: std::collections::HashMap<String, f64>,
     pub alarms: AlarmNumbers,
     /// FANUC decimal-point rule active (IS-B, not calculator input).
     pub scaling: bool,
@@ -180,6 +183,7 @@ impl Machine {
             fanuc,
             master_spindle: (!fanuc).then(|| "1".to_string()),
             haas: false,
+            tool_data: Default::default(),
             alarms,
             scaling,
             inc_mm,
@@ -581,7 +585,7 @@ impl Machine {
             warns.push(("NC405", "address Q has no effect on the trace and is ignored".into(), span));
         }
         if g10 {
-            if self.g10(l, p, &axes, warns, block_span)? {
+            if self.g10(l, [p, r], &axes, out, warns, block_span)? {
                 // A write to the active (or the external) offset acts at once: as a re-selection.
                 out.push((Event::WorkOffset { n: self.wo as u32 }, block_span));
             }

@@ -38,6 +38,7 @@ pub mod probe;
 pub mod refuse;
 mod strings;
 pub mod sysvars;
+pub mod tool_data;
 pub mod trace;
 pub mod value;
 pub mod vars;
@@ -245,6 +246,10 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
             (InputTarget::Hash(n), Dialect::Fanuc) if it.is_haas_data(i64::from(*n)) => {
                 it.set_haas_data(i64::from(*n), &i.value)?
             }
+            (InputTarget::Hash(n), Dialect::Fanuc) if it.is_tool_data(i64::from(*n)) => {
+                it.set_tool_data(format!("#{n}"), &i.value)?
+            }
+            (InputTarget::ToolData(key), Dialect::Sinumerik) => it.set_tool_data(key.clone(), &i.value)?,
             (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
             (InputTarget::R(n), Dialect::Sinumerik) => {
                 let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };

@@ -63,11 +63,36 @@ pub fn call(f: Func, vs: &[Value], span: Span, cx: &Cx) -> Result<Value, Fault> 
                     "GETT: the T number tool management gives a tool name is not modelled",
                 )
                 .primary(cx.file, span, "here")
-                .hint("select the tool by name (T=\"NAME\") or by number"),
+                .hint("give the set-up's tool map (--tool-map NAME=n, [tools] in nctrans.toml), or select the tool by name (T=\"NAME\") or by number"),
             ))
         }
         _ => return Err(domain("not a string function".into())),
     })
+}
+
+/// `GETT("NAME")`: the T number the set-up's tool map gives `name` (`known`: `None` when
+/// the run has no tool map, `Some(None)` when the map lacks the name). A duplo number
+/// (`GETT("NAME", 2)`, the n-th replacement tool of that name) is refused: the map holds one
+/// T number per name.
+pub fn gett(known: Option<Option<u32>>, name: &str, duplo: bool, span: Span, cx: &Cx) -> Result<Value, Fault> {
+    let err = |code: &'static str, msg: String, hint: String| {
+        Err(Fault::error(crate::diag::Diagnostic::error(code, msg).primary(cx.file, span, "here").hint(hint)))
+    };
+    match known {
+        _ if duplo => err(
+            "NC526",
+            format!("GETT(\"{name}\", duplo): a duplo number (which replacement tool of that name) is not modelled"),
+            "the tool map holds one T number per name: write GETT(\"NAME\") or give each replacement tool its own name"
+                .into(),
+        ),
+        None => call(Func::GetT, &[], span, cx),
+        Some(None) => err(
+            "NC525",
+            format!("GETT(\"{name}\"): the tool map has no tool \"{name}\""),
+            format!("give its T number: --tool-map {name}=<number>, or `\"{name}\" = <number>` under [tools]"),
+        ),
+        Some(Some(n)) => Ok(Value::Num(f64::from(n))),
+    }
 }
 
 /// The refusal of a function the evaluator does not model: `SPRINT` (its format rules are

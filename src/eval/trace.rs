@@ -137,6 +137,11 @@ pub enum Event {
     Home(Box<HomeEv>),
     /// A change of tool length or cutter radius compensation (format v2; boxed: rare).
     Comp(Box<CompEv>),
+    /// A program's write of tool offset data (Siemens `$TC_DP3/6/12/15[t,d]`, FANUC memory C
+    /// `#10001+`..`#13001+`): the register, which value, the value as written. An extension
+    /// of format v2 (docs/trace-format.md): the `comp` event names a register, so what a
+    /// program writes into one must be in the trace for a translation to be proven.
+    ToolData(Box<ToolDataEv>),
 }
 
 /// A compensation register as each control names it: FANUC the H or D number, Siemens
@@ -169,6 +174,39 @@ impl Side {
 pub struct CompEv {
     pub length: Option<CompReg>,
     pub radius: Option<(Side, CompReg)>,
+}
+
+/// Which value of a compensation register a `tool_data` event writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ToolField {
+    LengthGeometry,
+    LengthWear,
+    RadiusGeometry,
+    RadiusWear,
+}
+
+impl ToolField {
+    pub fn name(self) -> &'static str {
+        match self {
+            ToolField::LengthGeometry => "length",
+            ToolField::LengthWear => "length_wear",
+            ToolField::RadiusGeometry => "radius",
+            ToolField::RadiusWear => "radius_wear",
+        }
+    }
+
+    /// A length value (paired with `comp` length registers), else a radius one.
+    pub fn is_length(self) -> bool {
+        matches!(self, ToolField::LengthGeometry | ToolField::LengthWear)
+    }
+}
+
+/// The fields of a `tool_data` event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ToolDataEv {
+    pub register: CompReg,
+    pub field: ToolField,
+    pub value: f64,
 }
 
 /// The fields of a `home` event.
@@ -205,6 +243,7 @@ impl Event {
             Event::WorkOffset { .. } => "work_offset",
             Event::Home(_) => "home",
             Event::Comp(_) => "comp",
+            Event::ToolData(_) => "tool_data",
         }
     }
 }
@@ -380,6 +419,14 @@ fn text_form(s: &mut TextBuf, ev: &Event) {
                 }
                 None => s.push_str("off"),
             }
+        }
+        Event::ToolData(t) => {
+            s.push_str("tool_data register=");
+            reg_text(s, &t.register);
+            s.push_str(" field=");
+            s.push_str(t.field.name());
+            s.push_str(" value=");
+            push_num_b(s, t.value);
         }
     }
 }

@@ -142,6 +142,14 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
                 None => s.push_str("null"),
             }
         }
+        Event::ToolData(t) => {
+            s.push_str(",\"register\":");
+            reg_text(s, &t.register);
+            s.push_str(",\"field\":\"");
+            s.push_str(t.field.name());
+            s.push_str("\",\"value\":");
+            push_num_b(s, t.value);
+        }
     }
     if let Some(l) = line {
         s.push_str(",\"line\":");

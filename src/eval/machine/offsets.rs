@@ -7,8 +7,9 @@ impl Machine {
     pub(super) fn g10(
         &mut self,
         l: Option<f64>,
-        p: Option<(&WordVal, f64)>,
+        [p, r]: [Option<(&WordVal, f64)>; 2],
         axes: &[Option<(&WordVal, f64)>; 9],
+        out: &mut Vec<(crate::eval::trace::Event, Span)>,
         warns: &mut Vec<Warn>,
         span: Span,
     ) -> Result<bool, Fault> {
@@ -47,6 +48,12 @@ impl Machine {
                 }
                 Ok(t == self.wo)
             }
+            // Tool compensation memory C: L10 H geometry, L11 H wear, L12 D geometry, L13 D
+            // wear; R the value, added under G91 (docs/semantics.md, Tool offset data).
+            Some(l @ 10.0..=13.0) if !self.haas => {
+                self.g10_tool(l as u32, p, r, out, span)?;
+                Ok(false)
+            }
             _ => {
                 warns.push((
                     "NC405",
@@ -56,6 +63,53 @@ impl Machine {
                 Ok(false)
             }
         }
+    }
+
+    fn g10_tool(
+        &mut self,
+        l: u32,
+        p: Option<(&WordVal, f64)>,
+        r: Option<(&WordVal, f64)>,
+        out: &mut Vec<(crate::eval::trace::Event, Span)>,
+        span: Span,
+    ) -> Result<(), Fault> {
+        use crate::eval::trace::{CompReg, Event, ToolDataEv, ToolField};
+        let field =
+            [ToolField::LengthGeometry, ToolField::LengthWear, ToolField::RadiusGeometry, ToolField::RadiusWear]
+                [(l - 10) as usize];
+        let n = p.map_or(0.0, |(_, x)| round_half_away(x));
+        if !(1.0..=999.0).contains(&n) {
+            return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L{l} P{n}: no such tool offset"), span));
+        }
+        let Some((w, x)) = r else {
+            return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L{l} P{n} without the value R"), span));
+        };
+        // In the input unit, as a macro variable holds it: the decimal-point rule applies.
+        let v = self.length(w, x, false) / if self.modal.inch { 25.4 } else { 1.0 };
+        let key = format!("#{}", crate::eval::tool_data::fanuc_var(field, n as u32));
+        let value = if self.modal.absolute {
+            v
+        } else {
+            match self.tool_data.get(&key) {
+                Some(old) => old + v,
+                None => {
+                    return Err(Fault::Error(Box::new(
+                        crate::diag::Diagnostic::error(
+                            "NC571",
+                            format!("G91 G10 L{l} P{n} adds to {key}, which the run was not given"),
+                        )
+                        .primary(usize::MAX, span, "here")
+                        .hint(format!(
+                            "give the machine's value: --set '{key}=…' or a header line `nctrans: set {key}=…`"
+                        )),
+                    )))
+                }
+            }
+        };
+        self.tool_data.insert(key, value);
+        let ev = ToolDataEv { register: CompReg::Fanuc(n as i64), field, value };
+        out.push((Event::ToolData(Box::new(ev)), span));
+        Ok(())
     }
 
     /// Siemens frame instructions: `TRANS`/`ATRANS` with axis words (values in the current

@@ -317,11 +317,7 @@ impl Lower<'_> {
                 self.ctx.unsupported("NC508", span, "GETSELT(…) (the tools tool management preselected)", why);
                 num(0.0, span)
             }
-            ExprKind::Func(Func::GetT, _) => {
-                let why = "tool management (duplo numbers, tool life) is not modelled; select the tool by name with --tool-map";
-                self.ctx.unsupported("NC508", span, "GETT(…) (a T number from tool management)", why);
-                num(0.0, span)
-            }
+            ExprKind::Func(Func::GetT, args) => self.gett(&args, span),
             ExprKind::Func(f, _) if f.is_string() => {
                 let what = format!("string function {}(…)", crate::dialect::sinumerik::emit::func_name(f));
                 self.ctx.unsupported("NC506", span, &what, "FANUC variables hold numbers only; it has no strings");
@@ -332,6 +328,41 @@ impl Lower<'_> {
                 self.function(f, args, span, pre)
             }
             ExprKind::Cmp(..) => self.logical_value(e, pre),
+        }
+    }
+
+    /// `GETT("NAME")`: the T number the tool map gives the name, as a constant (the map is the
+    /// set-up's, as for `T="NAME"`); a duplo number or a computed name has no constant.
+    fn gett(&mut self, args: &[Expr], span: Span) -> Expr {
+        let name = match args {
+            [Expr { kind: ExprKind::Str(n), .. }] => n.clone(),
+            [Expr { kind: ExprKind::Str(n), .. }, _] => {
+                let what = format!("GETT(\"{n}\", duplo) (which replacement tool of that name)");
+                let hint = "the tool map holds one T number per name: write GETT(\"NAME\") or give each replacement tool its own name";
+                self.ctx.unsupported("NC526", span, &what, hint);
+                return num(0.0, span);
+            }
+            _ => {
+                let hint = "write the tool name as a string constant: GETT(\"NAME\")";
+                self.ctx.unsupported("NC525", span, "GETT(…) of a computed name", hint);
+                return num(0.0, span);
+            }
+        };
+        match self.ctx.tools.get(&name) {
+            Some(&n) => {
+                self.ctx.tools_used.insert(name, n);
+                num(f64::from(n), span)
+            }
+            None => {
+                let msg = format!("GETT(\"{name}\"): tool \"{name}\" has no FANUC tool number");
+                let hint = format!(
+                    "give the T number the machine has this tool under: --tool-map {name}=<number>, \
+                     or `\"{name}\" = <number>` under [tools] in nctrans.toml (nctrans never chooses one)"
+                );
+                self.ctx.error("NC525", span, &msg, &hint);
+                self.ctx.unsupported += 1;
+                num(0.0, span)
+            }
         }
     }
 

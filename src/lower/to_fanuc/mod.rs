@@ -25,6 +25,7 @@ pub mod lower_structures;
 pub mod polar;
 pub mod probe;
 pub mod rotation;
+pub mod tool_data;
 pub mod varmap;
 pub mod words;
 
@@ -203,6 +204,7 @@ impl Ctx {
 
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
+    tool_data::run(ctx, prog);
     blocks::run(ctx, prog, info);
     let measuring = probe::take(ctx, prog);
     words::run(ctx, prog, info);

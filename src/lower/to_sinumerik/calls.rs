@@ -589,6 +589,27 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         })
     };
     let l = word_val(b'L').and_then(|e| literal(&e));
+    if let Some(l @ 10.0..=13.0) = l.filter(|_| !ctx.opts.source.haas) {
+        let (p, r) = (word_val(b'P'), word_val(b'R'));
+        let inc = match g_codes(&b.items) {
+            gs if gs.contains(&910) => Some(true),
+            gs if gs.contains(&900) => Some(false),
+            _ => modal.incremental_at(span.lo),
+        };
+        // Modal G codes written in the G10 block (G90/G91 …) stay in force for later blocks.
+        let modal_words: Vec<Item> = b
+            .items
+            .iter()
+            .filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')))
+            .filter(|it| !g_codes(std::slice::from_ref(it)).contains(&100))
+            .cloned()
+            .collect();
+        if !modal_words.is_empty() {
+            out.push(plain_block(modal_words, span));
+        }
+        out.extend(super::tool_data::g10(ctx, l as u32, p, r, inc, b.meta.clone(), span));
+        return;
+    }
     let extended = l == Some(20.0);
     if l != Some(2.0) && !extended {
         let what = if l == Some(50.0) { "`G10 L50` parameter write" } else { "this `G10` data setting" };

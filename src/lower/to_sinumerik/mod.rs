@@ -47,6 +47,7 @@ pub mod probe;
 pub mod rotation;
 pub mod structures;
 pub mod tapping;
+pub mod tool_data;
 pub mod vacancy;
 pub mod varmap;
 pub mod words;
@@ -392,6 +393,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// 9 of [`lower`]). A streamed translation runs them on each chunk of a straight-line
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
+    body = tool_data::lower(ctx, body);
     body = haas_if::refuse(ctx, body);
     let (b, local_subs) = m97::prepare(ctx, body);
     body = b;

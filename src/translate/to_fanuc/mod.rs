@@ -435,6 +435,15 @@ pub fn verify<'a>(
         Some(p) => (source_semantics(t, Some(&p.sinumerik)).or(Some(p.sinumerik.clone())), Some(p.fanuc.clone())),
         None => (source_semantics(t, None), None),
     };
+    // GETT("NAME") on the Siemens side returns what the tool map says, as T="NAME" is aligned.
+    let sinumerik = match sinumerik {
+        _ if map.tools.is_empty() => sinumerik,
+        s => {
+            let mut s = s.unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
+            s.tools = std::sync::Arc::new(map.tools.clone());
+            Some(s)
+        }
+    };
     // A Haas translation is read back with Haas semantics (its G187, its settings).
     let fanuc = match fanuc {
         Some(mut s) if map.haas => {

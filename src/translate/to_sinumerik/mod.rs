@@ -118,7 +118,7 @@ fn entry_text(e: &VarEntry) -> String {
 
 /// The Siemens form of a FANUC input line `nctrans: set #24=10. #500=#0`: each variable by
 /// the map, with its is-set flag when it has one (a vacant input is value 0, flag 0).
-fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered) -> String {
+fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered, source: &crate::dialect::Semantics) -> String {
     let mut parts = Vec::new();
     for part in rest.split_whitespace() {
         let Some((lhs, rhs)) = part.split_once('=') else {
@@ -136,6 +136,16 @@ fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered) -> String 
                 passes::varmap::local_name(plan, n),
                 plan.tracked.contains(&n).then(|| passes::varmap::flag_name(plan, n)),
             ),
+            // Tool compensation memory C: the cutting edge data of the register's edge.
+            n if !source.haas && crate::eval::tool_data::fanuc_field(i64::from(n)).is_some() => {
+                match crate::lower::to_sinumerik::tool_data::edge_var(n, &source.offsets) {
+                    Some(name) => (name, None),
+                    None => {
+                        parts.push(part.to_string());
+                        continue;
+                    }
+                }
+            }
             _ if crate::dialect::fanuc::haas_vars::maybe_common(n) => match lowered.commons.get(&n) {
                 Some(r) => (format!("R{r}"), lowered.common_flags.get(&n).map(|f| format!("R{f}"))),
                 None => continue, // not used by the program: nothing to set
@@ -256,7 +266,8 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
     let mut names: BTreeSet<String> = BTreeSet::new();
     for ((plan, prog), (file, src)) in lowered.programs.iter().zip(&programs) {
         let mut prog = prog.clone();
-        let inputs: Vec<String> = take_inputs(&mut prog).iter().map(|rest| map_inputs(rest, plan, &lowered)).collect();
+        let inputs: Vec<String> =
+            take_inputs(&mut prog).iter().map(|rest| map_inputs(rest, plan, &lowered, &opts.source)).collect();
         let main = plan.role == Role::Main;
         let ext = if main { "MPF" } else { "SPF" };
         let fname = format!("{}.{ext}", plan.name);
