@@ -404,9 +404,6 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let plan = ctx.plan();
     let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
     ctx.modal = modal::ModalScan::new(&body, plan.role == Role::Main, plan.start_inch, plan.start_clear, calls, locals);
-    if ctx.plan().role != Role::Main {
-        refuse_ends_in_called(ctx, &body);
-    }
     let skip_axes = probe::scan(ctx, &body);
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
@@ -423,38 +420,6 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = probe::lower(ctx, body, skip_axes);
     body = words::lower(ctx, body);
     exprs::lower(ctx, body)
-}
-
-/// FANUC `M30`/`M2` in a program called by `M98`/`G65` ends the whole run; on Sinumerik the
-/// same word in a subprogram returns to the caller, as `M17` does (docs/semantics.md): no
-/// Siemens word ends the run from a subprogram, so it is refused (NC592).
-fn refuse_ends_in_called(ctx: &mut Ctx, body: &[Stmt]) {
-    let mut ends = Vec::new();
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            for it in &b.items {
-                let inner = match &it.kind {
-                    ItemKind::IfThen { then, .. } => &then.kind,
-                    k => k,
-                };
-                if matches!(inner, ItemKind::End { .. }) {
-                    ends.push(it.span);
-                }
-            }
-        }
-    });
-    for span in ends {
-        let what =
-            "M30/M2 in a called program (FANUC ends the whole run there; in a Sinumerik subprogram it returns to \
-                    the caller, as M17)";
-        ctx.refuse(
-            "NC592",
-            span,
-            &format!("{what}: not translated to Sinumerik"),
-            what,
-            "end the run in the main program: return with M99 and let the caller end with M30",
-        );
-    }
 }
 
 // ---- small IR builders shared by the passes ----
