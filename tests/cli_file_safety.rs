@@ -207,3 +207,22 @@ fn a_batch_report_never_lands_on_a_program() {
     assert!(stderr(&o).contains("give --report another file"), "{}", stderr(&o));
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn a_streamed_output_that_cannot_be_put_in_place_leaves_no_temporary_file() {
+    // `-o` naming a folder, to FANUC (one output file): the stream writes its temporary
+    // file beside it and cannot rename it onto the folder; the temporary file goes too.
+    let d = scratch("rename");
+    let src = d.join("same.MPF");
+    std::fs::write(&src, SIEMENS).unwrap();
+    std::fs::create_dir_all(d.join("taken.nc")).unwrap();
+    let o = nctrans(&d, &["--to", "fanuc", "same.MPF", "-o", "taken.nc", "--force", "--stream"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with("error: cannot write taken.nc: "), "{}", stderr(&o));
+    let mut left: Vec<String> =
+        std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    left.sort();
+    assert_eq!(left, ["same.MPF", "taken.nc"]);
+    assert_eq!(std::fs::read(&src).unwrap(), SIEMENS);
+    assert_eq!(std::fs::read_dir(d.join("taken.nc")).unwrap().count(), 0);
+}

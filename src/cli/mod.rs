@@ -15,7 +15,6 @@ use std::process::ExitCode;
 
 mod args;
 mod batch;
-mod called;
 mod check;
 mod configure;
 mod dialect;

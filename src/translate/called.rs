@@ -200,28 +200,6 @@ pub fn macro_runs(
     runs
 }
 
-/// [`called_runs`] as `nctrans --to sinumerik` makes them, whole and streamed: the
-/// translation's `files` and `symbols`, its options' profiles, no `--set`, each argument
-/// vacant unless `--specialise-callers`.
-pub fn single_file_runs(
-    db: &SourceDb,
-    units: &[&Unit],
-    (files, symbols): (&[OutFile], &crate::translate::to_sinumerik::SymbolMap),
-    opts: &crate::translate::to_sinumerik::Options,
-    out_dir: &str,
-    max_steps: u64,
-) -> Vec<(String, CheckReport)> {
-    let profiles = Profiles { fanuc: opts.source.clone(), sinumerik: opts.target.clone() };
-    let settings = RunSettings { out_dir, max_steps, profiles: &profiles, set: &[] };
-    let tr = Translation {
-        files: files.to_vec(),
-        symbols: crate::translate::Symbols::Sinumerik(symbols.clone()),
-        diags: Vec::new(),
-        unsupported: 0,
-    };
-    called_runs(db, units, &tr, &settings, !opts.specialise_callers)
-}
-
 /// Several runs' verdicts as one: the first that is not an equivalence (with its label), or
 /// the events and exclusions added up.
 pub enum Combined {

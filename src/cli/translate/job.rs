@@ -393,6 +393,36 @@ pub fn verdict(v: Verdict, diff: &str) -> ExitCode {
     }
 }
 
+/// The folder a proof to Sinumerik shows the files in (as `-o` puts them, or `<stdout>`).
+pub fn shown_dir(out: Option<&Path>) -> String {
+    match out {
+        Some(o) if out_place(o).0 => o.display().to_string(),
+        Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
+        None => "<stdout>".to_string(),
+    }
+}
+
+/// Prints the combined verdict of a FANUC → Sinumerik proof made of several runs (the main
+/// program's, each called macro's alone: `translate::called`): the first one not
+/// equivalent as [`verdict`] does, named; `render` shows its diagnostics.
+pub fn combined(c: translate::called::Combined, render: &dyn Fn(&SourceDb, &[diag::Diagnostic]) -> String) -> ExitCode {
+    use translate::called::Combined;
+    match c {
+        Combined::Equivalent { events, runs, excluded } => {
+            eprintln!("{}", Combined::summary(events, runs, &excluded));
+            ExitCode::SUCCESS
+        }
+        Combined::Not(label, report) => {
+            if !label.is_empty() {
+                // (The main run's are shown.)
+                eprint!("{}", render(&report.db, &report.diags));
+                eprintln!("in the run{label}:");
+            }
+            verdict(report.verdict, &report.diff)
+        }
+    }
+}
+
 /// Writes through a temporary file and a rename, so a failed run never leaves half a program.
 pub fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
     use std::io::Write;
@@ -619,11 +649,7 @@ pub fn verify(job: &mut Job, t: &Translation, req: &Request, opts: &translate::O
             }
         }
         Dialect::Sinumerik => {
-            let out_dir = match req.out {
-                Some(o) if out_place(o).0 => o.display().to_string(),
-                Some(o) => o.parent().map_or_else(String::new, |p| p.display().to_string()),
-                None => "<stdout>".to_string(),
-            };
+            let out_dir = shown_dir(req.out);
             let o = &opts.sinumerik;
             let vo = translate::VerifyOptions {
                 max_steps: req.max_steps,
@@ -640,7 +666,7 @@ pub fn verify(job: &mut Job, t: &Translation, req: &Request, opts: &translate::O
                 eprint!("{}", diag::render(&main.db, &main.diags));
             }
             let render = |db: &SourceDb, diags: &[diag::Diagnostic]| diag::render(db, diags);
-            crate::cli::called::combined(translate::called::combine(v.runs), &render)
+            combined(translate::called::combine(v.runs), &render)
         }
     }
 }

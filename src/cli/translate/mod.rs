@@ -127,11 +127,7 @@ fn translate_file(a: &TranslateArgs, c: &Config, to: Dialect) -> ExitCode {
         Ok(o) => o,
         Err(e) => return fail(e),
     };
-    let streamed = match to {
-        Dialect::Fanuc => streamed::to_fanuc(a, c, input),
-        Dialect::Sinumerik => streamed::to_sinumerik(a, &req, &opts.sinumerik),
-    };
-    if let Some(code) = streamed {
+    if let Some(code) = streamed::translate(to, &req, a.stream, c, &opts.sinumerik) {
         return code;
     }
     let mut job = match job::load(&req, c, &opts, to) {
