@@ -596,17 +596,7 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
             gs if gs.contains(&900) => Some(false),
             _ => modal.incremental_at(span.lo),
         };
-        // Modal G codes written in the G10 block (G90/G91 …) stay in force for later blocks.
-        let modal_words: Vec<Item> = b
-            .items
-            .iter()
-            .filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')))
-            .filter(|it| !g_codes(std::slice::from_ref(it)).contains(&100))
-            .cloned()
-            .collect();
-        if !modal_words.is_empty() {
-            out.push(plain_block(modal_words, span));
-        }
+        g10_modal_words(&b, span, out);
         out.extend(super::tool_data::g10(ctx, l as u32, p, r, inc, b.meta.clone(), span));
         return;
     }
@@ -673,17 +663,7 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
             }
         }
     };
-    // Modal G codes written in the G10 block (G90/G91 …) stay in force for later blocks.
-    let modal_words: Vec<Item> = b
-        .items
-        .iter()
-        .filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')))
-        .filter(|it| !g_codes(std::slice::from_ref(it)).contains(&100))
-        .cloned()
-        .collect();
-    if !modal_words.is_empty() {
-        out.push(plain_block(modal_words, span));
-    }
+    g10_modal_words(&b, span, out);
     let mut first = true;
     for it in &b.items {
         let ItemKind::Word(w) = &it.kind else { continue };
@@ -761,4 +741,19 @@ fn bare_in_unknown_unit(ctx: &mut Ctx, span: Span) -> Option<Stmt> {
         "a value without a decimal point",
         "write the value with a decimal point, or select G20/G21 before it (in a subprogram: in the subprogram)",
     )
+}
+
+/// The modal G codes written in a G10 block (G90/G91 …), which stay in force for later
+/// blocks: a block of their own before what the G10 becomes.
+fn g10_modal_words(b: &Block, span: Span, out: &mut Vec<Stmt>) {
+    let modal_words: Vec<Item> = b
+        .items
+        .iter()
+        .filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')))
+        .filter(|it| !g_codes(std::slice::from_ref(it)).contains(&100))
+        .cloned()
+        .collect();
+    if !modal_words.is_empty() {
+        out.push(plain_block(modal_words, span));
+    }
 }
