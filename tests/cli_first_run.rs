@@ -162,3 +162,22 @@ fn a_batch_names_the_files_it_leaves_alone_and_how_their_dialect_was_decided() {
     assert!(err.contains("--from sinumerik applies to a single file"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The README's first command, word for word as its set-up section gives it (after
+/// `cargo run --release --`): it must keep translating and proving.
+#[test]
+fn the_readme_first_command_translates_and_proves() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
+    let line = readme.lines().find(|l| l.starts_with("cargo run --release -- ")).expect("the README's first command");
+    let args: Vec<&str> = line.trim_start_matches("cargo run --release -- ").split_whitespace().collect();
+    let (out, err, code) = nctrans(&root, &args);
+    assert_eq!(code, 0, "{line}\n{err}");
+    assert!(out.contains("WHILE") || out.contains("GOTO"), "{out}");
+    let said = readme.lines().skip_while(|l| !l.starts_with("The first translates")).take(4).collect::<String>();
+    let events = err.lines().find(|l| l.starts_with("equivalent")).unwrap_or_default().to_string();
+    assert!(
+        !events.is_empty() && said.contains(&format!("`{events}`")),
+        "README says {said:?}, the run says {events:?}"
+    );
+}
