@@ -180,4 +180,8 @@ fn g10_l10_to_l13_write_the_edge_data_and_g91_adds() {
     std::fs::write(d.join("bare.nc"), "G90 G10 L10 P7 R98765\nM30\n").unwrap();
     let (ok, out) = nctrans(&d, &["--to", "sinumerik", "bare.nc"]);
     assert!(!ok && out.contains("NC529"), "{out}");
+    // A fractional L is not translated as the L below it (the run rounds every G10 L).
+    std::fs::write(d.join("frac.nc"), "G90 G10 L10.5 P7 R98.765\nM30\n").unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "sinumerik", "frac.nc"]);
+    assert!(!ok && !out.contains("$TC_DP3"), "{out}");
 }

@@ -64,6 +64,28 @@ pub fn fanuc_field(n: i64) -> Option<(ToolField, i64)> {
     Some((f, n - base))
 }
 
+/// The data a `G10 L10..L13` writes (memory C: H geometry, H wear, D geometry, D wear);
+/// `None` for any other L, a fractional one among them.
+pub fn g10_field(l: f64) -> Option<ToolField> {
+    Some(match l {
+        10.0 => ToolField::LengthGeometry,
+        11.0 => ToolField::LengthWear,
+        12.0 => ToolField::RadiusGeometry,
+        13.0 => ToolField::RadiusWear,
+        _ => return None,
+    })
+}
+
+/// The L of the `G10` that writes `field` (the inverse of [`g10_field`]).
+pub fn g10_l(field: ToolField) -> u32 {
+    match field {
+        ToolField::LengthGeometry => 10,
+        ToolField::LengthWear => 11,
+        ToolField::RadiusGeometry => 12,
+        ToolField::RadiusWear => 13,
+    }
+}
+
 /// The FANUC memory C variable of `field` for register `reg` (the inverse of [`fanuc_field`]).
 pub fn fanuc_var(field: ToolField, reg: u32) -> u32 {
     let base = match field {

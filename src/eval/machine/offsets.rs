@@ -50,7 +50,7 @@ impl Machine {
             }
             // Tool compensation memory C: L10 H geometry, L11 H wear, L12 D geometry, L13 D
             // wear; R the value, added under G91 (docs/semantics.md, Tool offset data).
-            Some(l @ 10.0..=13.0) if !self.haas => {
+            Some(l) if !self.haas && crate::eval::tool_data::g10_field(l).is_some() => {
                 self.g10_tool(l as u32, p, r, out, span)?;
                 Ok(false)
             }
@@ -73,10 +73,10 @@ impl Machine {
         out: &mut Vec<(crate::eval::trace::Event, Span)>,
         span: Span,
     ) -> Result<(), Fault> {
-        use crate::eval::trace::{CompReg, Event, ToolDataEv, ToolField};
-        let field =
-            [ToolField::LengthGeometry, ToolField::LengthWear, ToolField::RadiusGeometry, ToolField::RadiusWear]
-                [(l - 10) as usize];
+        use crate::eval::trace::{CompReg, Event, ToolDataEv};
+        let Some(field) = crate::eval::tool_data::g10_field(f64::from(l)) else {
+            return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L{l}: not a tool offset write"), span));
+        };
         let n = p.map_or(0.0, |(_, x)| round_half_away(x));
         if !(1.0..=999.0).contains(&n) {
             return Err(Fault::alarm(self.alarms.bad_index, format!("G10 L{l} P{n}: no such tool offset"), span));

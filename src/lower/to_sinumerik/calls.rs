@@ -589,7 +589,7 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
         })
     };
     let l = word_val(b'L').and_then(|e| literal(&e));
-    if let Some(l @ 10.0..=13.0) = l.filter(|_| !ctx.opts.source.haas) {
+    if let Some(field) = l.filter(|_| !ctx.opts.source.haas).and_then(crate::eval::tool_data::g10_field) {
         let (p, r) = (word_val(b'P'), word_val(b'R'));
         let inc = match g_codes(&b.items) {
             gs if gs.contains(&910) => Some(true),
@@ -597,7 +597,7 @@ fn lower_g10(ctx: &mut Ctx, b: Block, span: Span, modal: &super::words::ModalSca
             _ => modal.incremental_at(span.lo),
         };
         g10_modal_words(&b, span, out);
-        out.extend(super::tool_data::g10(ctx, l as u32, p, r, inc, b.meta.clone(), span));
+        out.extend(super::tool_data::g10(ctx, field, p, r, inc, b.meta.clone(), span));
         return;
     }
     let extended = l == Some(20.0);

@@ -108,15 +108,14 @@ pub fn lower(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
 /// adds to it. The block's G90/G91 stays in force for later blocks (G10's own G code not).
 pub fn g10(
     ctx: &mut Ctx,
-    l: u32,
+    field: ToolField,
     p: Option<Expr>,
     r: Option<Expr>,
     incremental: Option<bool>,
     meta: BlockMeta,
     span: Span,
 ) -> Vec<Stmt> {
-    let field = [ToolField::LengthGeometry, ToolField::LengthWear, ToolField::RadiusGeometry, ToolField::RadiusWear]
-        [(l - 10) as usize];
+    let l = crate::eval::tool_data::g10_l(field);
     let bare = matches!(&r.as_ref().map(|e| &e.kind), Some(ExprKind::Num(x)) if !x.point)
         && super::words::scales_bare(ctx.opts);
     let offsets = ctx.opts.source.offsets.clone();
