@@ -461,6 +461,20 @@ fn the_check_compares_a_deferred_length_where_z_first_moves() {
     let siemens_z = "T1 M6 D1\nZ50\nG53 Z0\nT2 M6 D1\nG0 X10 Y10 Z40\nZ15\nM30\n";
     let (v, diff) = check_pair(siemens_z, fanuc_z);
     assert!(matches!(v, Verdict::Diverged { .. }), "{v:?}\n{diff}");
+    // The FANUC length selected blocks after the tool change (a spindle start between, the
+    // G43 block's Z where Z already is) is held to the same event as the Siemens one.
+    let fanuc_later = "%\nO1\nT2 M6\nG43 H2 Z25.\nG0 X50. Y30.\nT3 M6\nS800 M3\nG43 H3 Z25.\n\
+G0 X10. Y10.\nG1 Z-5. F90.\nM30\n%\n";
+    let siemens_at_m6 = "T2 M6 D1\nZ25\nG0 X50 Y30\nT3 M6 D1\nS800 M3\nZ25\nG0 X10 Y10\nG1 Z-5 F90\nM30\n";
+    let (v, diff) = check_pair(siemens_at_m6, fanuc_later);
+    assert!(matches!(v, Verdict::Equivalent { .. }), "{v:?}\n{diff}");
+    // A Z move between the tool change and the G43 runs under H2 on FANUC and under the
+    // new edge on Siemens, at the same programmed positions: a divergence.
+    let fanuc_z_first = "%\nO1\nT2 M6\nG43 H2 Z25.\nG0 X50. Y30.\nT3 M6\nS800 M3\nG0 Z40.\nG43 H3 Z25.\n\
+G0 X10. Y10.\nG1 Z-5. F90.\nM30\n%\n";
+    let siemens_z_first = "T2 M6 D1\nZ25\nG0 X50 Y30\nT3 M6 D1\nS800 M3\nG0 Z40\nZ25\nG0 X10 Y10\nG1 Z-5 F90\nM30\n";
+    let (v, diff) = check_pair(siemens_z_first, fanuc_z_first);
+    assert!(matches!(v, Verdict::Diverged { .. }), "{v:?}\n{diff}");
     // A radius change is never deferred; nor is a length change that is not at a tool change.
     let (v, _) = check_pair(
         "T1 M6 D1\nG0 X10 Y10\nD2\nG0 X20\nM30\n",

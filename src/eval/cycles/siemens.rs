@@ -275,6 +275,11 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
         (Retract::R, false, false)
     } else if same(rtp, p) {
         (Retract::Initial, false, false)
+    } else if same(p, r) && (rtp - r) * dir > 0.0 {
+        // The tool stands at RFP + SDIS (a FANUC G98 hole after G99 ones, translated): no
+        // approach, and the retraction plane is the level the hole returns to, as G98's
+        // initial level is.
+        (Retract::Initial, false, false)
     } else if between(rtp, p, r) {
         (Retract::Initial, true, false)
     } else if between(p, rtp, r) {
@@ -304,7 +309,13 @@ fn hole(m: &mut Machine, a: Args, span: Span, out: &mut Vec<Event>) -> Result<()
     let hole = Hole { kind, at, r: clean(r), bottom: clean(bottom), peck, dwell, retract, f, tapping }.normalised();
     // The hole ends at the R plane or at the level the tool stands at now (an RTP beyond
     // it is the rapid after the hole).
-    let end = if retract == Retract::R { r } else { m.pos[n] };
+    let end = if retract == Retract::R {
+        r
+    } else if same(p, r) {
+        rtp
+    } else {
+        m.pos[n]
+    };
     // CYCLE87/CYCLE88: M5 and M0 at the bottom; NC start retracts.
     // CYCLE84 turns the spindle at its own speed SST.
     let rpm = if c == SieCycle::C84 { a.get("SST") } else { m.speed };

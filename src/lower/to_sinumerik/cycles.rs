@@ -5,15 +5,16 @@
 //!   G91 R counts from the initial level and Z from R, so RFP = `$P_EP[Z]` + R and
 //!   DP = RFP + Z (the positions stay incremental moves);
 //! - G99 → RTP = R; G98 → RTP = the Z end point at the MCALL (`$P_EP[Z]`, the initial level);
+//!   a G98 (or new G91 R) after a G99 hole, where the tool stands at R, reads the initial
+//!   level from `NCTRANS_CYC_Z`, set to `$P_EP[Z]` where the cycle began;
 //! - P (ms) → DTB (s); Q → FDPR; G85's feed → FFR = RFF = `$P_F`;
 //! - tapping (`tapping.rs`): `M29 S` + G84/G74 → CYCLE84, G84/G74 alone → CYCLE840;
 //!   G88 → CYCLE88 with SDIR the spindle's direction.
 //!
 //! Everything else in a cycle is refused (NC428, tapping NC483–NC485) naming what differs:
 //! G76/G87 (the shift direction is a FANUC machine parameter; G87 bores upward), G86 (every
-//! Sinumerik boring cycle that stops the spindle also stops the program), new G91 R after a
-//! G99 hole, another plane, a cycle that spans structures or labels, G98 after a G99 hole,
-//! and repeats K/L that are not a constant. The rules are in
+//! Sinumerik boring cycle that stops the spindle also stops the program), another plane, a
+//! cycle that spans structures or labels, and repeats K/L that are not a constant. The rules are in
 //! docs/translation-fanuc-to-sinumerik.md.
 
 use super::*;
@@ -34,7 +35,12 @@ struct Data {
     /// R, Z given under G91: R from the initial level, Z from the R plane.
     r_inc: bool,
     z_inc: bool,
+    /// The variable holding the initial level, once a G98 after a G99 hole needed it.
+    initial: Option<String>,
 }
+
+/// Where the initial level is kept when the tool no longer stands at it.
+const INITIAL: &str = "NCTRANS_CYC_Z";
 
 /// Lowers the drilling cycles of every block list of the program.
 pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
@@ -131,6 +137,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     // blocks write G0, so another mode is written again after the cycle.
     let mut motion: Option<u32> = if top { Some(0) } else { None };
     let mut after_g99_hole = false;
+    // Where the running cycle's output begins (the tool still at the initial level).
+    let mut start_at = 0;
     let mut tap = tapping::TapState::start(top);
     for s in body {
         let span = s.span;
@@ -280,6 +288,8 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             d.g = g;
         }
         if starting {
+            start_at = out.len();
+            after_g99_hole = false;
             d.tap = tap.clone();
             if let Some(&(_, at)) = tap.rigid.as_ref().filter(|_| !matches!(d.g, 840 | 740)) {
                 refuse(
@@ -378,6 +388,18 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
         // G85 carries the feed in its arguments: a new F is a new MCALL.
         // So does rigid tapping (its pitch is F/S).
         changed |= feed && matches!(d.g, 850 | 840 | 740);
+        if changed && after_g99_hole && (!d.g99 || d.r_inc) && d.initial.is_none() {
+            // The new call counts from the initial level, but the tool stands at R: keep
+            // the level where the cycle began, before its first hole.
+            let plan = &mut ctx.progs[ctx.cur];
+            if !plan.defs.iter().any(|def| def.0 == INITIAL) {
+                plan.defs.push((INITIAL.into(), DataType::Real));
+            }
+            let save = assign(named_ref(INITIAL, span), var_expr(VarKind::Hash(5003), span), span);
+            out.insert(start_at.min(out.len()), block(vec![save], span));
+            d.initial = Some(INITIAL.into());
+            active = Some(d.clone());
+        }
         let repeats = match &count {
             None => 1,
             Some(e) => match literal(e) {
@@ -583,13 +605,17 @@ fn call_item(
         refuse(ctx, span, "a drilling cycle without R or Z", "program R and Z in the cycle block", out);
         return None;
     };
+    // Under G91 (FANUC canned cycle rules) R is the distance from the initial level, the
+    // drilling-axis position at the MCALL (`$P_EP[Z]`), and Z the distance from the R plane.
+    let initial = || match &d.initial {
+        Some(name) => named(name, span),
+        None => var_expr(VarKind::Hash(5003), span),
+    };
+    let after_g99 = after_g99 && d.initial.is_none();
     if !d.g99 && after_g99 {
         refuse(ctx, span, "G98 after a G99 hole in one drilling cycle", "start the cycle again after G80", out);
         return None;
     }
-    // Under G91 (FANUC canned cycle rules) R is the distance from the initial level, the
-    // drilling-axis position at the MCALL (`$P_EP[Z]`), and Z the distance from the R plane.
-    let initial = || var_expr(VarKind::Hash(5003), span);
     if d.r_inc && after_g99 {
         refuse(
             ctx,
