@@ -181,6 +181,7 @@ impl<'a> Interp<'a> {
 
     /// Sends an event, merging a Siemens MSG with the M0/M1 right after it.
     pub fn emit(&mut self, ev: Event, span: Span) {
+        self.release_held(&ev);
         let origin = Origin { file: self.file(), span };
         if let Some((text, o)) = self.pending_msg.take() {
             if let Event::Stop { optional, message: None } = ev {
@@ -199,11 +200,22 @@ impl<'a> Interp<'a> {
     /// [`Interp::emit`] of a borrowed event: passed on as it is unless a message waits
     /// to be merged, or it is one.
     fn emit_ref(&mut self, ev: &Event, span: Span) {
+        self.release_held(ev);
         if self.pending_msg.is_none() && !matches!(ev, Event::Message { .. }) {
             let origin = Origin { file: self.file(), span };
             self.sink.event(ev, origin);
         } else {
             self.emit(ev.clone(), span);
+        }
+    }
+
+    /// A Siemens edge selected before the M6 of a preselected tool goes out before the
+    /// first event that could show its length (`Machine::release_held`).
+    fn release_held(&mut self, ev: &Event) {
+        if self.m.comp.held.is_some() {
+            if let Some((h, s)) = self.m.release_held(ev) {
+                self.emit(Event::Comp(Box::new(h)), s);
+            }
         }
     }
 
