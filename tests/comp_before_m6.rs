@@ -111,8 +111,13 @@ fn the_tool_change_sequence_translates_to_g43_after_the_m6_and_verifies() {
 
 #[test]
 fn what_cannot_be_proven_is_refused_with_the_rule() {
-    // The machine data not stated: the edge the M6 selects is not known.
+    // The machine data not stated: the edge the M6 selects is not known, whatever the D
+    // before it (the message says so).
     assert_eq!(codes("T1 D1\nM6\nG0 Z50\nM30\n", &TranslateOptions::default()), ["NC470"]);
+    let mut db = SourceDb::new();
+    let u = parse(&mut db, "in.mpf", "T1 D1\nM6\nG0 Z50\nM30\n", Dialect::Sinumerik);
+    let t = translate::to_fanuc::to_fanuc(&u, &[], &TranslateOptions::default());
+    assert!(t.diags.iter().any(|d| d.message.contains("D1 before it") && d.message.contains("MD20270")));
     // A move between the D and the M6 carries the old tool's edge (none in the spindle).
     assert_eq!(codes("T1 D1\nG0 Z50\nM6\nM30\n", &factory_d1()), ["NC567"]);
     // The edge before the M6 is not the one the tool change selects (MD20270 = 1).

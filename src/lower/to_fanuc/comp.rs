@@ -39,8 +39,9 @@ struct St {
     side: K<Option<Side>>,
     /// What the FANUC translation applies so far.
     fanuc: K<Applied>,
-    /// A tool change without D whose edge the next block must select (its span).
-    pending: Option<Span>,
+    /// A tool change without D whose edge the next block must select (its span, and the
+    /// edge of a D programmed before it).
+    pending: Option<(Span, Option<u32>)>,
     /// A D programmed after a preselection T and before its M6: its edge and span.
     held: Option<(u32, Span)>,
 }
@@ -98,17 +99,26 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
     let body = std::mem::take(&mut prog.body);
     let mut step = |st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>| block(ctx, st, b, live, out);
     prog.body = comp_flow::walk(body, &mut st, jumping, false, &mut step, true);
-    if let Some(span) = st.pending {
-        refuse_pending(ctx, span, true);
+    if let Some((span, before)) = st.pending {
+        refuse_pending(ctx, span, before, true);
     }
 }
 
-fn refuse_pending(ctx: &mut Ctx, span: Span, live: bool) {
+fn refuse_pending(ctx: &mut Ctx, span: Span, before: Option<u32>, live: bool) {
     if live {
+        let msg = match before {
+            Some(e) => format!(
+                "a tool change without D cannot be translated: the edge it selects is machine data (MD20270); the \
+                 D{e} before it is an edge of the tool still in the spindle (840D sl W1 §2.1), not of the new tool"
+            ),
+            None => {
+                "a tool change without D cannot be translated: the edge it selects is machine data (MD20270)".into()
+            }
+        };
         ctx.error(
             CODE,
             span,
-            "a tool change without D cannot be translated: the edge it selects is machine data (MD20270)",
+            &msg,
             "program the edge in the tool change block (`T6 M6 D1`) or as the next block (`D1`), or state the \
              machine's MD20270 in nctrans.toml (`[sinumerik] cutting_edge_default = 1`)",
         );
@@ -145,10 +155,10 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
             st.edge = K::Unknown;
         }
     }
-    if let Some(p) = st.pending {
+    if let Some((p, before)) = st.pending {
         let has_d = b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'D')));
         if !has_d && has_content {
-            refuse_pending(ctx, p, live);
+            refuse_pending(ctx, p, before, live);
             // Reported once: FANUC still applies what it did before the tool change.
             st.pending = None;
         }
@@ -214,7 +224,8 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
             refused = true;
         }
         st.tool = st.sel.clone();
-        if let (Some((he, hs)), None, Some(e)) = (st.held.take(), d, ctx.edge_default) {
+        let held = st.held.take();
+        if let (Some((he, hs)), None, Some(e)) = (held, d, ctx.edge_default) {
             if he != e {
                 let msg = format!(
                     "the edge D{he} programmed before the tool change is not the edge the tool change selects (D{e}, \
@@ -237,7 +248,7 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
                 Some(e) => st.edge = K::Known(e),
                 None => {
                     st.edge = K::Known(crate::eval::machine::comp::CUTTING_EDGE_DEFAULT);
-                    pending_now = Some(ms);
+                    pending_now = Some((ms, held.map(|h| h.0)));
                 }
             },
             None => {}
