@@ -373,16 +373,19 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("seed-sine-curve-while.mpf", "NC322"), // WORKPIECE dropped, then NC470: T… M6 without D
     ("tool-name-string.mpf", "NC470"),    // T… M6 without D: the edge is machine data (MD20270)
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
-    ("address-numbered.mpf", "NC312"),    // I1= and CIP
-    ("arc-radius-angle.mpf", "NC312"),    // AR=
-    ("assign-undeclared-name.mpf", "NC313"), // E=AC() on a non-axis address
-    ("axis-indirect-ax.mpf", "NC310"),    // DEF AXIS, AX[…] with a run-time axis
-    ("axname-axis-by-name.mpf", "NC310"), // DEF STRING, AXNAME
-    ("call-bare-name.mpf", "NC303"),      // a call of a program not in the library
-    ("call-l-number.mpf", "NC303"),       // L0123 / L123 not in the library
+    // T… D1 then M6 without D (the 840D order): translated with the factory profile's MD20270
+    // (tests/transpile_fanuc.rs), machine data here.
+    ("tc19_tool_change_d_before_m6.mpf", "NC470"),
+    ("address-numbered.mpf", "NC312"),           // I1= and CIP
+    ("arc-radius-angle.mpf", "NC312"),           // AR=
+    ("assign-undeclared-name.mpf", "NC313"),     // E=AC() on a non-axis address
+    ("axis-indirect-ax.mpf", "NC310"),           // DEF AXIS, AX[…] with a run-time axis
+    ("axname-axis-by-name.mpf", "NC310"),        // DEF STRING, AXNAME
+    ("call-bare-name.mpf", "NC303"),             // a call of a program not in the library
+    ("call-l-number.mpf", "NC303"),              // L0123 / L123 not in the library
     ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
-    ("call-repeat-p.mpf", "NC303"),       // LAYER not in the library
-    ("cycle-unknown-call.mpf", "NC322"),  // WORKPIECE, CYCLE81
+    ("call-repeat-p.mpf", "NC303"),              // LAYER not in the library
+    ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
     ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
     ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
     ("extern-and-call-by-name.mpf", "NC310"), // DEF STRING: the program name of CALL

@@ -335,6 +335,16 @@ const REFUSED: &[(&str, &str)] = &[
     ("system-variables.mpf", "NC342"),
 ];
 
+/// Corpus programs translated with the machine data of
+/// `corpus/profiles/sinumerik-factory-d1.toml` (MD20270 = 1: a tool change selects D1),
+/// which their tool changes need (an edge programmed before the M6 is the old tool's).
+const FACTORY_D1: &[&str] = &["tc19_tool_change_d_before_m6.mpf"];
+
+fn factory_d1() -> nctrans::dialect::semantics::Semantics {
+    let text = std::fs::read_to_string(root().join("corpus/profiles/sinumerik-factory-d1.toml")).unwrap_or_default();
+    nctrans::config::Config::from_toml(&text).expect("the factory profile reads").sinumerik_semantics()
+}
+
 #[test]
 fn corpus_translates_and_verifies() {
     let dir = root().join("corpus/in/sinumerik");
@@ -356,7 +366,7 @@ fn corpus_translates_and_verifies() {
             failures.push(format!("{name}: does not parse"));
             continue;
         }
-        let opts = TranslateOptions {
+        let mut opts = TranslateOptions {
             tool_map: tool_map(&text),
             line_ending: loaded.line_ending,
             main_name: Path::new(&name).file_stem().and_then(|s| s.to_str()).unwrap_or("").to_ascii_uppercase(),
@@ -364,6 +374,9 @@ fn corpus_translates_and_verifies() {
             main_is_sub: name.ends_with(".spf"),
             ..TranslateOptions::default()
         };
+        if FACTORY_D1.contains(&name.as_str()) {
+            opts.source = factory_d1();
+        }
         let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts);
         let refused = REFUSED.iter().find(|(f, _)| *f == name);
         match (t.ok(), refused) {

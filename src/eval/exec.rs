@@ -19,6 +19,7 @@ use crate::span::{FileId, SourceDb, Span};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
+mod held;
 mod lits;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -92,6 +93,8 @@ pub struct Interp<'a> {
     pub diags: Vec<Diagnostic>,
     warned: HashSet<(&'static str, FileId, Span)>,
     pending_msg: Option<(String, Origin)>,
+    /// The file of the block whose Siemens edge is held (`held.rs`).
+    held_file: Option<(Span, FileId)>,
     pub modal_call: Option<ModalCall>,
     pub inputs: Vec<Input>,
     out_buf: Vec<(Event, Span)>,
@@ -144,6 +147,7 @@ impl<'a> Interp<'a> {
             diags: Vec::new(),
             warned: HashSet::new(),
             pending_msg: None,
+            held_file: None,
             modal_call: None,
             inputs: opts.inputs.clone(),
             out_buf: Vec::new(),
@@ -181,7 +185,13 @@ impl<'a> Interp<'a> {
 
     /// Sends an event, merging a Siemens MSG with the M0/M1 right after it.
     pub fn emit(&mut self, ev: Event, span: Span) {
+        self.release_held(&ev);
         let origin = Origin { file: self.file(), span };
+        self.emit_at(ev, origin);
+    }
+
+    /// [`Interp::emit`] from a given place.
+    pub(super) fn emit_at(&mut self, ev: Event, origin: Origin) {
         if let Some((text, o)) = self.pending_msg.take() {
             if let Event::Stop { optional, message: None } = ev {
                 self.sink.event(&Event::Stop { optional, message: Some(text) }, origin);
@@ -199,6 +209,7 @@ impl<'a> Interp<'a> {
     /// [`Interp::emit`] of a borrowed event: passed on as it is unless a message waits
     /// to be merged, or it is one.
     fn emit_ref(&mut self, ev: &Event, span: Span) {
+        self.release_held(ev);
         if self.pending_msg.is_none() && !matches!(ev, Event::Message { .. }) {
             let origin = Origin { file: self.file(), span };
             self.sink.event(ev, origin);
@@ -444,6 +455,7 @@ impl<'a> Interp<'a> {
             let mut out = std::mem::take(&mut self.out_buf);
             let mut warns = std::mem::take(&mut self.warn_buf);
             let r = self.m.apply(&words, stop_message, &mut out, &mut warns);
+            self.note_held();
             for (code_, msg, span) in warns.drain(..) {
                 self.warn(code_, msg, span);
             }

@@ -529,8 +529,14 @@ impl Machine {
                 // Compensation (comp.rs): applied after the block's tool change.
                 400 | 410 | 420 => bc.radius_g = Some((gi, span)),
                 430 | 440 | 490 if self.fanuc => bc.length_g = Some((gi, span)),
-                740 if !self.fanuc => home = Some(refs::Home { point: 1, via_words: false }),
-                750 if !self.fanuc => home = Some(refs::Home { point: self.fixed_point(fp, span)?, via_words: false }),
+                740 if !self.fanuc => {
+                    self.approach_alone(words, 74.0)?;
+                    home = Some(refs::Home { point: 1, via_words: false })
+                }
+                750 if !self.fanuc => {
+                    self.approach_alone(words, 75.0)?;
+                    home = Some(refs::Home { point: self.fixed_point(fp, span)?, via_words: false })
+                }
                 // Path control, compensation (the trace holds programmed positions), cycle
                 // cancel, exact stop: no effect on the trace.
                 // Drilling cycles (eval::cycles): select, cancel, return level.

@@ -66,8 +66,10 @@ impl Interp<'_> {
             if let Some(done) = self.m.apply_lit(b) {
                 let Some(span) = done else { return Ok(Flow::Next) };
                 // The machine's own move, written in place.
+                // A held Siemens edge goes out before the move (`Interp::emit_ref`).
+                let direct = self.pending_msg.is_none() && self.m.comp.held.is_none();
                 match self.m.grid_move() {
-                    Some(g) if self.pending_msg.is_none() => {
+                    Some(g) if direct => {
                         g.line = b.line;
                         // `code` is the running frame's: its file is `self.file()`.
                         let origin = Origin { file: code.file, span };

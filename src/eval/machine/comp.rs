@@ -9,6 +9,12 @@
 //! D1) unless the M6 block programs a D (840D sl function manual W1 §2.1). G41/G42/G40 set
 //! the side; the radius applies while an edge is active. Positions stay the programmed
 //! contour: the trace holds which register is in force, not the offset path.
+//!
+//! A D programmed while a tool is preselected (T before its M6, MD22550 = 1) selects an
+//! edge of the tool still in the spindle (W1 §2.1: "on the active tool"), whose length acts
+//! at the first traversing motion; its `comp` event is held until an event that could
+//! show it (a move, a cycle, …) and dropped when the M6 changes the tool first: a length
+//! the control never applies is not in the trace (docs/semantics.md, "Edge before M6").
 
 use crate::eval::trace::{CompEv, CompReg, Side, ToolId};
 use crate::span::Span;
@@ -47,11 +53,21 @@ pub struct Comp {
     pub last: CompEv,
     /// The edge a tool change without D selects (MD20270, [`CUTTING_EDGE_DEFAULT`]).
     pub edge_default: u32,
+    /// Siemens: the event of an edge selected before the M6 of a preselected tool, not yet
+    /// applied by any motion (see the module comment); `last` is still the one before it.
+    pub held: Option<(CompEv, Span)>,
 }
 
 impl Default for Comp {
     fn default() -> Self {
-        Comp { length_g: 490, side: None, edge: 0, last: CompEv::default(), edge_default: CUTTING_EDGE_DEFAULT }
+        Comp {
+            length_g: 490,
+            side: None,
+            edge: 0,
+            last: CompEv::default(),
+            edge_default: CUTTING_EDGE_DEFAULT,
+            held: None,
+        }
     }
 }
 
@@ -136,19 +152,51 @@ impl super::Machine {
             self.d = f64::from(self.comp.edge);
         }
         let now = self.comp.event(self.fanuc, self.tool.as_ref(), self.h, self.d);
+        let span = [b.length_g.map(|x| x.1), b.radius_g.map(|x| x.1), b.d.map(|x| x.1), b.h.map(|x| x.1)]
+            .into_iter()
+            .flatten()
+            .reduce(|a, s| a.to(s))
+            .unwrap_or(block_span);
+        // An edge of the tool still in the spindle, selected while another is preselected:
+        // held (its length acts at the first traverse, the M6 may replace it first).
+        let preselected = self.tool_sel.is_some() && self.tool_sel != self.tool;
+        if !self.fanuc && !changed && b.d.is_some() && b.radius_g.is_none() && preselected {
+            self.comp.held = (now != self.comp.last).then_some((now, span));
+            return;
+        }
+        match self.comp.held.take() {
+            // The tool change comes before any motion: the held edge never acted.
+            Some(_) if changed => {}
+            Some((h, hs)) => {
+                self.comp.last = h.clone();
+                out.push((crate::eval::trace::Event::Comp(Box::new(h)), hs));
+            }
+            None => {}
+        }
         if now != self.comp.last {
-            let span = [b.length_g.map(|x| x.1), b.radius_g.map(|x| x.1), b.d.map(|x| x.1), b.h.map(|x| x.1)]
-                .into_iter()
-                .flatten()
-                .reduce(|a, s| a.to(s))
-                .unwrap_or(block_span);
             self.comp.last = now.clone();
             out.push((crate::eval::trace::Event::Comp(Box::new(now)), span));
         }
     }
 
+    /// The held `comp` event (see [`Comp::held`]) if `ev` is one it must come before: any
+    /// event but those that cannot show a tool length (spindle, coolant, a dwell, a work
+    /// offset selection) or that come with the tool change replacing it.
+    pub(crate) fn release_held(&mut self, ev: &crate::eval::trace::Event) -> Option<(CompEv, Span)> {
+        use crate::eval::trace::Event as E;
+        if matches!(ev, E::Spindle { .. } | E::Coolant { .. } | E::Dwell { .. } | E::WorkOffset { .. } | E::Tool { .. })
+        {
+            return None;
+        }
+        let (h, s) = self.comp.held.take()?;
+        self.comp.last = h.clone();
+        Some((h, s))
+    }
+
     /// After a Siemens SAVE subprogram restored group 07: the `comp` event of the change.
     pub(crate) fn comp_restored(&mut self) -> Option<crate::eval::trace::Event> {
+        // A held edge is in force when the return restores the side: the event says it.
+        self.comp.held = None;
         let now = self.comp.event(self.fanuc, self.tool.as_ref(), self.h, self.d);
         (now != self.comp.last).then(|| {
             self.comp.last = now.clone();

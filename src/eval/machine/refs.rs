@@ -82,6 +82,39 @@ impl Machine {
         Ok(())
     }
 
+    /// A Siemens G74/G75 stands alone in its block: only the G code, the axes to approach
+    /// and FP= (geometry-axis words are left to NC441). "G75 requires a separate block"
+    /// (802D programming manual 07/2009 §10.3.6); no source says G74 may share its block,
+    /// so it is refused alike rather than run in a guessed order (docs/semantics.md).
+    pub(super) fn approach_alone(&self, words: &[WordVal], g: f64) -> Result<(), Fault> {
+        for w in words {
+            let a: &str = &w.addr;
+            let own = match (a, &w.val) {
+                ("G", WV::Num(x)) => *x == g,
+                ("FP", _) => g == 75.0,
+                (a, _) => Self::machine_axis(a).is_some() || (a.len() == 1 && axis_index(a.as_bytes()[0]).is_some()),
+            };
+            if !own {
+                let name = if g == 75.0 { "G75" } else { "G74" };
+                let a = match &w.val {
+                    WV::Num(x) if a.len() == 1 => format!("{a}{}", crate::eval::value::fmt_num(*x)),
+                    _ => a.to_string(),
+                };
+                return Err(error(
+                    "NC569",
+                    format!(
+                        "{name} with `{a}` in its block: the approach must stand alone (\"G75 requires a separate \
+                         block\", Siemens 802D programming manual §10.3.6; G74 is held to the same rule, no source \
+                         allows other words with it)"
+                    ),
+                    w.span,
+                    &format!("write `{a}` in a block of its own before or after the `{name}` block"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The homed axes of a Siemens G74/G75 block: machine-axis words `X1=0` (or `X=0`),
     /// whose values are ignored.
     pub(super) fn machine_axis(addr: &str) -> Option<usize> {

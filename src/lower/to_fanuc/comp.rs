@@ -10,6 +10,13 @@
 //! machine data does not matter. Refused (NC470–NC473): an edge without a known tool, an
 //! edge the map gives no registers for, a tool change or `D` change while G41/G42 is on,
 //! `D0` under G41/G42, G41/G42 without an edge.
+//!
+//! A D between a tool's preselection `T1` and its `M6` selects an edge of the tool still in
+//! the spindle, which the tool change then replaces with the edge MD20270 chooses (W1
+//! §2.1): `T1 D1` / `M6` is translated `T1` / `M06` / `G43 H1` where the profile states
+//! MD20270 and it chooses that same edge, and only blocks that cannot show a length
+//! (S, F, T, M3/M4/M5, coolant) stand between; otherwise NC567 (a block that may move the
+//! old tool's edge) or NC568 (the tool change selects another edge).
 
 use super::*;
 use crate::eval::trace::Side;
@@ -32,13 +39,24 @@ struct St {
     side: K<Option<Side>>,
     /// What the FANUC translation applies so far.
     fanuc: K<Applied>,
-    /// A tool change without D whose edge the next block must select (its span).
-    pending: Option<Span>,
+    /// A tool change without D whose edge the next block must select (its span, and the
+    /// edge of a D programmed before it).
+    pending: Option<(Span, Option<u32>)>,
+    /// A D programmed after a preselection T and before its M6: its edge and span.
+    held: Option<(u32, Span)>,
 }
 
 impl FlowState for St {
     fn unknown() -> Self {
-        St { sel: K::Unknown, tool: K::Unknown, edge: K::Unknown, side: K::Unknown, fanuc: K::Unknown, pending: None }
+        St {
+            sel: K::Unknown,
+            tool: K::Unknown,
+            edge: K::Unknown,
+            side: K::Unknown,
+            fanuc: K::Unknown,
+            pending: None,
+            held: None,
+        }
     }
     fn merge(&self, o: &Self) -> Self {
         St {
@@ -48,6 +66,7 @@ impl FlowState for St {
             side: self.side.merge(&o.side),
             fanuc: self.fanuc.merge(&o.fanuc),
             pending: self.pending.or(o.pending),
+            held: self.held.or(o.held),
         }
     }
 }
@@ -55,6 +74,8 @@ impl FlowState for St {
 const CODE: &str = "NC470";
 const MAP_CODE: &str = "NC472";
 const CHANGE_CODE: &str = "NC473";
+const HELD_CODE: &str = "NC567";
+const HELD_EDGE_CODE: &str = "NC568";
 
 /// Runs on one program after the words pass (T numbers are FANUC numbers by then).
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
@@ -71,23 +92,33 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
             side: K::Known(None),
             fanuc: K::Known(Applied { len: None, rad: None }),
             pending: None,
+            held: None,
         }
     };
     let jumping = comp_flow::jumps(&prog.body);
     let body = std::mem::take(&mut prog.body);
     let mut step = |st: &mut St, b: Block, live: bool, out: &mut Vec<Stmt>| block(ctx, st, b, live, out);
     prog.body = comp_flow::walk(body, &mut st, jumping, false, &mut step, true);
-    if let Some(span) = st.pending {
-        refuse_pending(ctx, span, true);
+    if let Some((span, before)) = st.pending {
+        refuse_pending(ctx, span, before, true);
     }
 }
 
-fn refuse_pending(ctx: &mut Ctx, span: Span, live: bool) {
+fn refuse_pending(ctx: &mut Ctx, span: Span, before: Option<u32>, live: bool) {
     if live {
+        let msg = match before {
+            Some(e) => format!(
+                "a tool change without D cannot be translated: the edge it selects is machine data (MD20270); the \
+                 D{e} before it is an edge of the tool still in the spindle (840D sl W1 §2.1), not of the new tool"
+            ),
+            None => {
+                "a tool change without D cannot be translated: the edge it selects is machine data (MD20270)".into()
+            }
+        };
         ctx.error(
             CODE,
             span,
-            "a tool change without D cannot be translated: the edge it selects is machine data (MD20270)",
+            &msg,
             "program the edge in the tool change block (`T6 M6 D1`) or as the next block (`D1`), or state the \
              machine's MD20270 in nctrans.toml (`[sinumerik] cutting_edge_default = 1`)",
         );
@@ -110,10 +141,24 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
     let span = b.meta.span;
     let relevant = comp_flow::relevant_items(&b.items, false);
     let has_content = !b.items.is_empty();
-    if let Some(p) = st.pending {
+    if let Some((_, hs)) = st.held {
+        let m6_here = b
+            .items
+            .iter()
+            .any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M') && const_word(w) == Some(6.0)));
+        if !m6_here && !cannot_show_length(&b) {
+            let msg = "a cutting edge D programmed before the tool change (M6) selects an edge of the tool still in \
+                       the spindle (840D sl W1 §2.1: D activates an edge \"on the active tool\"), and a block that may \
+                       move it comes before the M6";
+            refuse(ctx, live, HELD_CODE, hs, msg, "program the D after the M6 (`M6` / `D1`) or in its block (`M6 D1`)");
+            st.held = None;
+            st.edge = K::Unknown;
+        }
+    }
+    if let Some((p, before)) = st.pending {
         let has_d = b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'D')));
         if !has_d && has_content {
-            refuse_pending(ctx, p, live);
+            refuse_pending(ctx, p, before, live);
             // Reported once: FANUC still applies what it did before the tool change.
             st.pending = None;
         }
@@ -157,6 +202,19 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         }
         None => None,
     };
+    let preselected = matches!((&st.sel, &st.tool), (K::Known(a), K::Known(b)) if a != b);
+    if let (true, None, None, Some(e), Some((_, ds)), true) = (preselected, m6, g, d_val, d, cannot_show_length(&b)) {
+        // The edge of the tool in the spindle, replaced by the M6 before anything shows it
+        // (checked in the blocks up to the M6): FANUC has nothing to write for it.
+        st.held = Some((e, ds));
+        if live {
+            b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'D')));
+            if !b.items.is_empty() || meta_is_marked(&b.meta) {
+                out.push(meta_stmt(b.meta, b.items));
+            }
+        }
+        return;
+    }
     let mut pending_now = None;
     let mut refused = false;
     if let Some(ms) = m6 {
@@ -166,6 +224,23 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
             refused = true;
         }
         st.tool = st.sel.clone();
+        let held = st.held.take();
+        if let (Some((he, hs)), None, Some(e)) = (held, d, ctx.edge_default) {
+            if he != e {
+                let msg = format!(
+                    "the edge D{he} programmed before the tool change is not the edge the tool change selects (D{e}, \
+                     the profile's MD20270): D before M6 is an edge of the tool still in the spindle (840D sl W1 §2.1)"
+                );
+                refuse(
+                    ctx,
+                    live,
+                    HELD_EDGE_CODE,
+                    hs,
+                    &msg,
+                    &format!("program D{he} after the M6 or in its block (`M6 D{he}`)"),
+                );
+            }
+        }
         match d_val {
             Some(e) => st.edge = K::Known(e),
             None if d.is_none() => match ctx.edge_default {
@@ -173,7 +248,7 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
                 Some(e) => st.edge = K::Known(e),
                 None => {
                     st.edge = K::Known(crate::eval::machine::comp::CUTTING_EDGE_DEFAULT);
-                    pending_now = Some(ms);
+                    pending_now = Some((ms, held.map(|h| h.0)));
                 }
             },
             None => {}
@@ -268,6 +343,20 @@ fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stm
         b.items.iter().rposition(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G'))).map_or(0, |i| i + 1);
     b.items.splice(at..at, add);
     out.push(meta_stmt(b.meta, b.items));
+}
+
+/// Whether `b` holds only words that change no tool length the trace could show: S, F,
+/// T, D, M3/M4/M5 and coolant (they make `spindle` and `coolant` events, which the Siemens
+/// run lets a held edge pass, `Machine::release_held`; a D there is held in its turn).
+fn cannot_show_length(b: &Block) -> bool {
+    b.items.iter().all(|it| match &it.kind {
+        ItemKind::Word(w) => match w.addr {
+            Addr::Letter(b'S' | b'F' | b'T' | b'D') => true,
+            Addr::Letter(b'M') => matches!(const_word(w), Some(x) if [3.0, 4.0, 5.0, 7.0, 8.0, 9.0].contains(&x)),
+            _ => false,
+        },
+        _ => false,
+    })
 }
 
 /// Whether every call of `b` is of a translated program that changes neither the tool nor

@@ -203,8 +203,10 @@ pub fn block(
             return Some(refuse(
                 ctx,
                 it.span,
-                "G74/G75 with other words than the machine axes (and FP=)",
-                "write the approach alone in its block: `G74 Z1=0`",
+                "G74/G75 with other words than the machine axes (and FP=): the approach stands alone in its block \
+                 (\"G75 requires a separate block\", Siemens 802D programming manual §10.3.6; G74 is held to the same \
+                 rule, which no source relaxes)",
+                "write the approach alone in its block (`G74 Z1=0`) and the other words in a block of their own",
             ));
         }
     }
