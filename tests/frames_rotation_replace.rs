@@ -86,3 +86,55 @@ fn after_a_g52_no_rotation_is_in_force() {
     let out = f_to_s(f).unwrap();
     assert!(out.contains("TRANS X-45 Y15\nG0 X0 Y0\nG0 X10 Y0\n"), "{out}");
 }
+
+/// The committed library translations (corpus/in/library-fanuc/O01640, O01641) against their
+/// sources under the library's Haas profile: each agrees, and a planted wrong rotation
+/// (sign, centre, a reset left out) does not.
+#[test]
+fn the_library_translations_agree_and_planted_rotations_are_caught() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let lib = root.join("corpus/in/library-fanuc");
+    let tmp = std::env::temp_dir().join(format!("nctrans-frames-replace-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let check = |src: &str, text: &str| {
+        let planted = tmp.join(format!("{src}.mpf"));
+        std::fs::write(&planted, text).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+            .args(["check", &format!("{src}.nc")])
+            .arg(&planted)
+            .current_dir(&lib)
+            .output()
+            .expect("run nctrans");
+        out.status.success()
+    };
+    let cases: [(&str, &[(&str, &str)]); 2] = [
+        (
+            "O01640",
+            &[
+                ("AROT RPL=225", "AROT RPL=-225"),
+                ("AROT RPL=NCTRANS_G68_R", "AROT RPL=-NCTRANS_G68_R"),
+                ("N200 ; ONE SPOT OF THE CIRCLE, THE FRAME TURNED BY #1\nTRANS\n", "N200\n"),
+                ("G0 Z2\nTRANS\nG0 X0 Y0\n", "G0 Z2\nG0 X0 Y0\n"),
+            ],
+        ),
+        (
+            "O01641",
+            &[
+                ("ATRANS X20 Y10\n", "ATRANS X10 Y20\n"),
+                ("AROT RPL=-10\nATRANS X5 Y5\n", "ATRANS X5 Y5\n"),
+                ("ATRANS X5 Y5\nAROT RPL=-20", "ATRANS X5 Y0\nAROT RPL=-20"),
+            ],
+        ),
+    ];
+    for (src, plants) in cases {
+        let text = std::fs::read_to_string(root.join(format!("corpus/out/library-sinumerik-from-fanuc/files/P_{src}.mpf")))
+            .expect("committed output");
+        assert!(check(src, &text), "{src}: the committed output does not agree");
+        for (from, to) in plants {
+            let planted = text.replacen(from, to, 1);
+            assert_ne!(planted, text, "{src}: {from:?} not in\n{text}");
+            assert!(!check(src, &planted), "{src}: planted {from:?} → {to:?} not caught");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+}
