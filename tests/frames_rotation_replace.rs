@@ -61,7 +61,9 @@ fn a_known_g68_under_a_shift_is_turned_back_before_the_next() {
     let out = f_to_s(SHIFTED).unwrap();
     let replace = "AROT RPL=-10\nATRANS X5 Y5\nAROT RPL=-20\nATRANS X-5 Y-5\nG0 X20 Y0\n";
     assert!(out.contains(replace), "{out}");
-    for (from, to) in [("AROT RPL=-10\n", "AROT RPL=10\n"), ("AROT RPL=-10\n", ""), ("ATRANS X5 Y5\n", "ATRANS X5 Y0\n")] {
+    for (from, to) in
+        [("AROT RPL=-10\n", "AROT RPL=10\n"), ("AROT RPL=-10\n", ""), ("ATRANS X5 Y5\n", "ATRANS X5 Y0\n")]
+    {
         let planted = out.replacen(from, to, 1);
         assert_ne!(planted, out, "{from:?} not in\n{out}");
         assert!(!equivalent(SHIFTED, &planted), "planted {from:?} → {to:?} not caught");
@@ -72,7 +74,8 @@ fn a_known_g68_under_a_shift_is_turned_back_before_the_next() {
 fn where_the_rotation_in_force_is_not_known_and_the_frame_holds_more_it_is_refused() {
     let nc497 = Err(vec!["NC497".to_string()]);
     // The loop's G68 over a G52 shift: which rotation to turn back is not known.
-    let shifted = FAN.replacen("#1=-30.\n", "G52 X5. Y0 Z0\n#1=-30.\n", 1).replacen("G0 X0 Y0\nM30", "G52 X0 Y0 Z0\nM30", 1);
+    let shifted =
+        FAN.replacen("#1=-30.\n", "G52 X5. Y0 Z0\n#1=-30.\n", 1).replacen("G0 X0 Y0\nM30", "G52 X0 Y0 Z0\nM30", 1);
     assert_eq!(f_to_s(&shifted), nc497, "loop over a shift");
     // A G68 or G69 in a program no call reaches, before any G52: the caller's mode.
     assert_eq!(f_to_s("O2\nG0 X0. Y0.\nG69\nG0 X1. Y1.\nM99\n"), nc497, "a cancel of the caller's mode");
@@ -127,8 +130,9 @@ fn the_library_translations_agree_and_planted_rotations_are_caught() {
         ),
     ];
     for (src, plants) in cases {
-        let text = std::fs::read_to_string(root.join(format!("corpus/out/library-sinumerik-from-fanuc/files/P_{src}.mpf")))
-            .expect("committed output");
+        let text =
+            std::fs::read_to_string(root.join(format!("corpus/out/library-sinumerik-from-fanuc/files/P_{src}.mpf")))
+                .expect("committed output");
         assert!(check(src, &text), "{src}: the committed output does not agree");
         for (from, to) in plants {
             let planted = text.replacen(from, to, 1);
