@@ -207,11 +207,12 @@ fn refused(name: &str, text: &str, code: &str, line: &str) {
 
 #[test]
 fn a_section_whose_mode_differs_between_its_calls_is_refused() {
-    // The section cancels whichever rotation its call is made in: two different ones.
+    // The section cancels whichever rotation its call is made in, over a G52 shift: the
+    // frame cannot be written anew without it, nor turned back by one angle.
     refused(
-        "two-rotations",
-        "O1000\nG00 G90 G17 X0. Y0.\nG68 X0. Y0. R30.\nM97 P100\nG68 X0. Y0. R60.\nM97 P100\nM30\n\
-         N100 G00 X10. Y0.\nG69\nM99\n",
+        "two-rotations-shifted",
+        "O1000\nG00 G90 G17 X0. Y0.\nG52 X10. Y0. Z0.\nG68 X0. Y0. R30.\nM97 P100\nG68 X0. Y0. R60.\nM97 P100\n\
+         G52 X0. Y0. Z0.\nM30\nN100 G00 X10. Y0.\nG69\nM99\n",
         "NC497",
         "G69",
     );
@@ -223,13 +224,41 @@ fn a_section_whose_mode_differs_between_its_calls_is_refused() {
         "G01 X20. Y45.",
     );
     // A section that leaves a rotation in force, called with a computed count (none or
-    // some passes): the cancel after the call is not known.
+    // some passes), in a called program (whose frame under the rotation is its caller's).
     refused(
-        "computed-count",
-        "O1000\nG00 G90 G17 X0. Y0.\n#5=2.\nM97 P100 L#5\nG69\nM30\nN100 G68 X0. Y0. R10.\nG00 X10. Y0.\nM99\n",
+        "computed-count-called",
+        "O1000\nG00 G90 G17 X0. Y0.\n#5=2.\nM97 P100 L#5\nG69\nM99\nN100 G68 X0. Y0. R10.\nG00 X10. Y0.\nM99\n",
         "NC497",
         "G69",
     );
+}
+
+/// A G69 in a section called under two rotations, and one after a computed count of a
+/// section that sets one (no pass or some): over an empty programmable frame the cancel
+/// writes the frame anew (bare TRANS), whichever rotation was in force.
+#[test]
+fn a_g69_undoing_whichever_rotation_writes_the_frame_anew() {
+    let (d, text) = proven(
+        "two-rotations",
+        "O1000\nG00 G90 G17 X0. Y0.\nG68 X0. Y0. R30.\nM97 P100\nG68 X5. Y0. R60.\nM97 P100\nG00 X0. Y0.\nM30\n\
+         N100 G00 X10. Y0.\nG69\nG00 X20. Y0.\nM99\n",
+    );
+    assert!(has_line(&text, "TRANS"), "{text}");
+    // Without the reset the second call leaves its rotation: caught.
+    let kept = text.replacen("\nTRANS\n", "\n", 1);
+    assert_ne!(kept, text);
+    let (out, code) = check(&d, &kept);
+    assert_ne!(code, 0, "a rotation left in force must diverge: {out}");
+    let (d, text) = proven(
+        "computed-count",
+        "O1000\nG00 G90 G17 X0. Y0.\n#5=2.\nM97 P100 L#5\nG69\nG00 X5. Y0.\nM30\n\
+         N100 G68 X0. Y0. R10.\nG00 X10. Y0.\nM99\n",
+    );
+    assert!(has_line(&text, "TRANS"), "{text}");
+    let kept = text.replacen("\nTRANS\n", "\n", 1);
+    assert_ne!(kept, text);
+    let (out, code) = check(&d, &kept);
+    assert_ne!(code, 0, "a rotation left in force must diverge: {out}");
 }
 
 /// A section that does not read the mode may be called in different ones: each call comes

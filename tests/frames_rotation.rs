@@ -158,9 +158,16 @@ mod translation {
         assert_eq!(f_to_s("O1\nG68 X0 Y0\nM30\n"), nc497, "no angle");
         assert_eq!(f_to_s("O1\nG91 G68 X0 Y0 R30.\nM30\n"), nc497, "under G91");
         assert_eq!(f_to_s("O1\nG68 X0 Y0 R#1\nM30\n"), nc497, "not a constant");
-        assert_eq!(f_to_s("O1\nG68 X0 Y0 R30.\nG68 X0 Y0 R60.\nM30\n"), nc497, "G68 in G68 mode");
+        // G68 in G68 mode replaces the rotation: the frame written anew (frames_rotation_replace).
+        let out = f_to_s("O1\nG68 X0 Y0 R30.\nG68 X0 Y0 R60.\nM30\n").unwrap();
+        assert!(out.contains("AROT RPL=30\nTRANS\nAROT RPL=60\n"), "{out}");
+        // A G69 whose rotation depends on the path: bare TRANS over an empty frame; over a
+        // G52 shift, which the frame holds too, refused.
         let path = "O1\nIF[#1EQ1]GOTO10\nG68 X0 Y0 R30.\nN10 G69\nM30\n";
-        assert_eq!(f_to_s(path), nc497, "the rotation at G69 depends on the path");
+        let out = f_to_s(path).unwrap();
+        assert!(out.contains("AROT RPL=30\nN10 LBL_10:\nTRANS\nM30"), "{out}");
+        let shifted = "O1\nG52 X5. Y0 Z0\nIF[#1EQ1]GOTO10\nG68 X0 Y0 R30.\nN10 G69\nG52 X0 Y0 Z0\nM30\n";
+        assert_eq!(f_to_s(shifted), nc497, "the rotation at G69 depends on the path, over a shift");
     }
 
     #[test]

@@ -62,7 +62,9 @@ pub struct State {
     /// The motion G code ×10 (0, 10, 20, 30).
     pub motion: Option<u32>,
     /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
-    /// `Some(0)` none, `Some(k)` the mode of [`frame_key`] `k` (`rotation.rs`).
+    /// `Some(0)` none, `Some(k)` the mode of [`frame_key`] `k` (`rotation.rs`),
+    /// `Some(`[`ROT_ANY`]`)` none or one of this program's G68s (paths or calls of a
+    /// section that disagree only on which rotation).
     pub rot: Option<u32>,
     /// G16 polar coordinates in force (a called program starts without: a call in G16
     /// mode is refused, `polar.rs`).
@@ -95,7 +97,7 @@ impl State {
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
             inch: if self.inch == o.inch { self.inch } else { None },
             motion: if self.motion == o.motion { self.motion } else { None },
-            rot: if self.rot == o.rot { self.rot } else { None },
+            rot: merge_rot(self.rot, o.rot),
             polar: if self.polar == o.polar { self.polar } else { None },
             inter: std::array::from_fn(|i| if self.inter[i] == o.inter[i] { self.inter[i] } else { None }),
             g52: self.g52 | o.g52,
@@ -161,6 +163,12 @@ impl State {
             }
         }
         let gs = g_codes(items);
+        // G52 becomes TRANS, which deletes any rotation of the programmable frame; on FANUC
+        // G52 under G68, G51 or G51.1 is refused by the evaluator, so in every run that
+        // proves a translation none is in force after it either (docs/semantics.md).
+        if gs.contains(&520) && !gs.iter().any(|g| FRAME_CODES[..6].contains(g)) {
+            self.rot = Some(0);
+        }
         if gs.contains(&520) {
             for it in items {
                 if let ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) = &it.kind {
@@ -188,6 +196,23 @@ impl State {
             }
         }
         self
+    }
+}
+
+/// [`State::rot`] where paths agree only that no G51 or G51.1 is in force: a G68 of the
+/// program (which one not known) or none. A key of the rotation kind that no block has
+/// ([`frame_key`] starts at 4).
+pub const ROT_ANY: u32 = 1;
+
+/// Paths joined: the same mode, or a rotation of either or none ([`ROT_ANY`]), else not known.
+fn merge_rot(a: Option<u32>, b: Option<u32>) -> Option<u32> {
+    let rotation_or_none = |k: Option<u32>| k.is_some_and(|k| k == 0 || k & 3 == 1);
+    if a == b {
+        a
+    } else if rotation_or_none(a) && rotation_or_none(b) {
+        Some(ROT_ANY)
+    } else {
+        None
     }
 }
 
@@ -373,6 +398,13 @@ impl ModalScan {
     /// ([`State::rot`]; `None` where the paths disagree or the caller's is in force).
     pub fn rot_before(&self, lo: u32) -> Option<u32> {
         self.rot_in.iter().find(|b| b.0 == lo).and_then(|b| b.1)
+    }
+
+    /// Whether the Sinumerik programmable frame under the G68, G51 or G51.1 in force before
+    /// the block at `lo` is empty: a main program (its frame starts empty) whose G52 shift is
+    /// 0 on every axis on every path (every G52 became a bare `TRANS`, or there was none).
+    pub fn frame_base_empty(&self, lo: u32) -> bool {
+        self.g52.1 && self.g52_before(lo) == 0
     }
 
     /// The axes whose G52 shift may not be 0 before the block at `lo` ([`State::g52`]; all

@@ -12,24 +12,30 @@
 //! - `G69`, `G50`, `G50.1` → the same three instructions undoing the mode in force
 //!   (`AROT RPL=-a`, `ASCALE X=1/f`, the mirror again), which keeps any shift exactly;
 //!   where none is in force, nothing.
+//! - A G68 in G68 mode replaces angle and centre (FANUC, Haas): where the programmable
+//!   frame holds nothing but the rotation (`ModalScan::frame_base_empty`), a bare `TRANS`
+//!   empties it first, whichever G68 was in force; otherwise the known one is undone first.
+//!   A G69 where paths or section calls disagree only on which of the program's G68s (or
+//!   none) is in force ([`ROT_ANY`]) is the bare `TRANS` over an empty frame, else NC497.
 //!
 //! One mode at a time: FANUC applies mirror, scaling and rotation in that order whatever
 //! order they are commanded in, Sinumerik's additive frames in the order written, so a
-//! second mode while one is in force is refused. The mode in force at a cancel must be
-//! known from the program's text on every path (the modal scan, `State::rot`), and its
-//! values must be constants, except a G68's: a word of user variables is saved at the G68
-//! in `NCTRANS_G68_<axis>` (DEF REAL), which the cancel reads, so the G69 turns back by the
-//! values the rotation was set with, as FANUC's. A called program starts with no mode in force where every
-//! call of it in the job is made so (`modal::frame_calls`); the programmable frame it
-//! writes stays in force after its return as FANUC's modes survive M99 (no `SAVE` on the
-//! PROC), and a caller knows its modes after the call only where the callee cancels what
-//! it set on every path to its ends. A mode set or cancelled in a called program
-//! otherwise (the caller's is not known here), a G68 without a centre (the tool position) or an angle (parameter
-//! 5410), a G51 without the centre of each axis it scales or a factor, a G50.1 that leaves
-//! an axis of its G51.1 mirrored, and any of them under G91 are refused (NC497). A cancel of
-//! a mode not in force (G50 under G51.1) changes nothing, as on FANUC.
+//! second mode while one is in force is refused (a G68 over a G68 aside, above). The mode
+//! in force at a cancel must be known from the program's text on every path (the modal
+//! scan, `State::rot`), and its values must be constants, except a G68's: a word of user
+//! variables is saved at the G68 in `NCTRANS_G68_<axis>` (DEF REAL), which the cancel
+//! reads, so the G69 turns back by the values the rotation was set with, as FANUC's. A
+//! called program starts with no mode in force where every call of it in the job is made so
+//! (`modal::frame_calls`); the programmable frame it writes stays in force after its return
+//! as FANUC's modes survive M99 (no `SAVE` on the PROC), and a caller knows its modes after
+//! the call only where the callee cancels what it set on every path to its ends. A mode set
+//! or cancelled in a called program otherwise (the caller's is not known here), a G68
+//! without a centre (the tool position) or an angle (parameter 5410), a G51 without the
+//! centre of each axis it scales or a factor, a G50.1 that leaves an axis of its G51.1
+//! mirrored, and any of them under G91 are refused (NC497). A cancel of a mode not in force
+//! (G50 under G51.1) changes nothing, as on FANUC.
 
-use super::modal::ModalScan;
+use super::modal::{ModalScan, ROT_ANY};
 use super::words::scale;
 use super::*;
 
@@ -261,6 +267,52 @@ fn refused(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Out {
     }
 }
 
+/// The instructions that undo the mode of key `k` in force (none where it is not the mode
+/// `set` a cancel ends: FANUC then changes nothing), for the block `b`.
+fn undo_known(
+    ctx: &mut Ctx,
+    modal: &ModalScan,
+    k: u32,
+    set: u32,
+    b: &Block,
+    span: Span,
+) -> Result<Vec<Stmt>, Box<Out>> {
+    let Some((lo, items)) = modal.g68_block(k) else {
+        return Err(Box::new(refused(
+            ctx,
+            span,
+            "a frame cancel where the mode in force is not known",
+            "cancel in the main program",
+        )));
+    };
+    if !g_codes(items).contains(&set) {
+        // A cancel of another mode than the one in force: FANUC changes nothing.
+        return Ok(Vec::new());
+    }
+    match mode_of(ctx, items, set, modal.inch_at(lo), &mut Vec::new()) {
+        Ok(Mode::Mirror(c)) => {
+            // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
+            let named: Vec<u8> =
+                b.items.iter().filter_map(letter_of).map(|(l, _)| l).filter(|l| b"XYZ".contains(l)).collect();
+            // Cancelling an axis that is not mirrored changes nothing; one left
+            // mirrored would need a mirror of its own.
+            if c.iter().any(|x| !named.contains(&x.0)) {
+                return Err(Box::new(refused(
+                    ctx,
+                    span,
+                    "G50.1 that cancels other axes than its G51.1 mirrored",
+                    "cancel every mirrored axis in one G50.1: `G50.1 X0 Y0`",
+                )));
+            }
+            Ok(sequence(&Mode::Mirror(c), true, span))
+        }
+        Ok(mode) => Ok(sequence(&mode, true, span)),
+        Err(_) => {
+            Err(Box::new(refused(ctx, span, "a cancel of a mode that is not translated", "see the mode's error")))
+        }
+    }
+}
+
 const SETS: [u32; 3] = [680, 510, 511];
 const CANCELS: [u32; 3] = [690, 500, 501];
 
@@ -279,15 +331,33 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
     }
     let first = b.items.first().map_or(span.lo, |it| it.span.lo);
     let in_force = modal.rot_before(first);
+    let empty_base = modal.frame_base_empty(span.lo);
     if SETS.contains(&g) {
-        if in_force != Some(0) {
-            return Ok(refused(
-                ctx,
-                span,
-                "G68, G51 or G51.1 while another of them may be in force (in a called program: at a call of it, or it is not called in the job)",
-                "cancel each mode (G69, G50, G50.1) before the next, and before each call of a program that sets one",
-            ));
-        }
+        // A G68 in G68 mode replaces the rotation: the one in force goes first.
+        let replaced = match in_force {
+            Some(0) => Vec::new(),
+            Some(k) if g == 680 && k & 3 == 1 && empty_base => vec![frame("TRANS", Vec::new(), span)],
+            Some(k) if g == 680 && k != ROT_ANY && k & 3 == 1 => match undo_known(ctx, modal, k, g, &b, span) {
+                Ok(undo) => undo,
+                Err(out) => return Ok(*out),
+            },
+            Some(ROT_ANY) if g == 680 => {
+                return Ok(refused(
+                    ctx,
+                    span,
+                    "G68 where a G68 may be in force, which one depends on the path taken or on the call of the section, over a G52 shift or a caller's frame (Sinumerik can neither turn it back nor write the frame anew)",
+                    "cancel the rotation (G69) before each G68, or clear the G52 shift (G52 X0 Y0 Z0) in the main program",
+                ))
+            }
+            _ => {
+                return Ok(refused(
+                    ctx,
+                    span,
+                    "G68, G51 or G51.1 while another of them may be in force (in a called program: at a call of it, or it is not called in the job)",
+                    "cancel each mode (G69, G50, G50.1) before the next, and before each call of a program that sets one",
+                ))
+            }
+        };
         if modal.incremental_at(span.lo) != Some(false) || gs.contains(&910) {
             return Ok(refused(
                 ctx,
@@ -319,6 +389,9 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
                 if !modes.is_empty() || meta.number.is_some() || meta.label.is_some() || !meta.comments.is_empty() {
                     after.push(block_stmt(meta, modes));
                 }
+                // The old rotation undone before the new one's values are saved (its
+                // cancel may read the saved values of the G68 it replaces).
+                after.extend(replaced);
                 for (name, e) in saves {
                     let plan = &mut ctx.progs[ctx.cur];
                     if !plan.defs.iter().any(|d| d.0 == name) {
@@ -335,35 +408,22 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
     let set = SETS[CANCELS.iter().position(|&c| c == g).unwrap_or(0)];
     let undo = match in_force {
         Some(0) => Vec::new(),
-        Some(k) => {
-            let Some((lo, items)) = modal.g68_block(k) else {
-                return Ok(refused(ctx, span, "a frame cancel where the mode in force is not known", "cancel in the main program"));
-            };
-            let gs_set = g_codes(items);
-            if !gs_set.contains(&set) {
-                // A cancel of another mode than the one in force: FANUC changes nothing.
-                Vec::new()
-            } else { match mode_of(ctx, items, set, modal.inch_at(lo), &mut Vec::new()) {
-                Ok(Mode::Mirror(c)) => {
-                    // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
-                    let named: Vec<u8> =
-                        b.items.iter().filter_map(letter_of).map(|(l, _)| l).filter(|l| b"XYZ".contains(l)).collect();
-                    // Cancelling an axis that is not mirrored changes nothing; one left
-                    // mirrored would need a mirror of its own.
-                    if c.iter().any(|x| !named.contains(&x.0)) {
-                        return Ok(refused(
-                            ctx,
-                            span,
-                            "G50.1 that cancels other axes than its G51.1 mirrored",
-                            "cancel every mirrored axis in one G50.1: `G50.1 X0 Y0`",
-                        ));
-                    }
-                    sequence(&Mode::Mirror(c), true, span)
-                }
-                Ok(mode) => sequence(&mode, true, span),
-                Err(_) => return Ok(refused(ctx, span, "a cancel of a mode that is not translated", "see the mode's error")),
-            } }
+        // Some rotation of the program or none; G50 and G50.1 cancel neither.
+        Some(ROT_ANY) if g != 690 => Vec::new(),
+        // The frame written anew: empty, which is what it was under the rotation.
+        Some(ROT_ANY) if empty_base => vec![frame("TRANS", Vec::new(), span)],
+        Some(ROT_ANY) => {
+            return Ok(refused(
+                ctx,
+                span,
+                "G69 where a G68 may be in force, which one depends on the path taken or on the call of the section, over a G52 shift or a caller's frame (Sinumerik can neither turn it back nor write the frame anew)",
+                "cancel the rotation on each path in the block that follows its G68, or clear the G52 shift (G52 X0 Y0 Z0) in the main program",
+            ))
         }
+        Some(k) => match undo_known(ctx, modal, k, set, &b, span) {
+            Ok(undo) => undo,
+            Err(out) => return Ok(*out),
+        },
         None => {
             return Ok(refused(
                 ctx,
