@@ -1,40 +1,54 @@
-//! The one segmented driver, for every target: the one scan (skeleton and spilled runs,
-//! `one`), the second skeleton scan when a jump names a run block's N, the skeleton's
-//! translation, then either the splice of the spilled runs into its text or the writing
-//! scan (`write`). What differs between targets is a [`SegTarget`]: what a skeleton keeps
-//! and which modes it follows (`skel`), the fast writer of run blocks ([`RunWriter`]), the
+//! The one segmented driver, for every target: the one scan (skeleton and spilled runs),
+//! the second skeleton scan when a jump names a run block's N, the skeleton's translation,
+//! then either the splice of the spilled runs into its text or the writing scan (the sinks
+//! are `sinks`). What differs between targets is a [`SegTarget`]: what a skeleton keeps
+//! and which modes it follows ([`SkelPart`]), the fast writer of run blocks ([`RunWriter`]), the
 //! whole translation of the skeleton and the translation of a block alone. Generic, so
 //! each target's calls are its own code (no dynamic dispatch per block).
 
 use super::nset::NSet;
-use super::one::One;
-use super::skel::Skel;
-use super::spill::assemble;
+use super::sinks::{One, Skel, Writer};
+use super::spill::{assemble, Spill};
 use super::splice::Splice;
-use super::write::Writer;
 use super::LoadCallees;
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{BlockMeta, Item, Program, Stmt};
-use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
+use crate::stream::target::RunWriter;
 use crate::stream::{Fallback, Index, PlainWord, ProgressFn};
 use std::io::Write;
 use std::path::Path;
 
-/// A target's fast writer of run blocks, with the one mode it carries from block to block
-/// (FANUC: the length and feed units; Sinumerik: the arc mode).
-pub(crate) trait RunWriter {
+/// A target's part of the skeleton scan: which blocks are run blocks, the modes
+/// it follows in textual order, its placeholder and what declines a macro statement.
+pub(crate) trait SkelPart {
     type Mode: Copy;
-    /// A run starts in `m`.
-    fn start(&mut self, m: Self::Mode);
-    /// Appends a plain line's translation; `false`: nothing appended, the mode unchanged
-    /// (the line comes again as a statement).
-    fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>, out: &mut Vec<u8>) -> bool;
-    /// Appends a run block's translation; `Err` (the mode running into it): nothing
-    /// appended, the mode is the one after the block (it is translated alone).
-    fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Self::Mode>;
+    /// Whether a plain top-level line of the main program is a run block, with the N
+    /// values `keep` kept out of runs.
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    /// Whether a top-level statement of the main program is a run block (noting what the
+    /// target follows of the statements that are not).
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool;
+    /// The mode a run starting here starts in.
+    fn mode(&self) -> Self::Mode;
+    /// A run block (its N already checked and recorded), `starting` a run.
+    fn run_block(&mut self, _meta: &BlockMeta, _starting: bool) {}
+    /// The modes after a plain run block's words, and after a run statement's items.
+    fn follow_plain(&mut self, words: &[PlainWord]);
+    fn follow_stmt(&mut self, items: &[Item]);
+    /// The placeholder of run `k` (whose first block is at `span`).
+    fn placeholder(&mut self, k: usize, span: Span) -> Stmt;
+    /// A statement of the skeleton: why it declines, or `None` with its modes followed and
+    /// the N values its jumps name in `targets`.
+    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str>;
+}
+
+/// The writing scan's run-block tests (the skeleton scan's, with what it found).
+pub(crate) trait RunTests {
+    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    fn stmt_run(&mut self, s: &Stmt) -> bool;
 }
 
 /// What a target supplies to the segmented driver (see the module comment).
@@ -53,11 +67,9 @@ pub(crate) trait SegTarget: Sized {
     /// statement (else the one scan gives up and the writing scan discards the output).
     const STRICT_DECLINED: bool;
     type Mode: Copy;
-    /// The target's part of the skeleton scan.
-    type Track;
+    type Track: SkelPart<Mode = Self::Mode> + Default;
     type Fast: RunWriter<Mode = Self::Mode>;
-    /// The writing scan's run-block tests.
-    type Class;
+    type Class: RunTests;
     /// What translating a block alone needs (known after the skeleton's translation).
     type Alone;
     /// What the result needs from the skeleton's translation.
@@ -65,36 +77,20 @@ pub(crate) trait SegTarget: Sized {
     type Output;
 
     /// Options that send the file to the whole path before any scan.
-    fn check(&self) -> Result<(), Fallback>;
+    fn check(&self) -> Result<(), Fallback> {
+        Ok(())
+    }
     fn parse_options(&self) -> ParseOptions;
-    fn track(&self) -> Self::Track;
     fn fast(&self) -> Self::Fast;
-
-    /// Whether a plain top-level line of the main program is a run block.
-    fn plain_run(t: &Self::Track, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
-    /// Whether a top-level statement of the main program is a run block (noting what the
-    /// target follows of the statements that are not).
-    fn stmt_run(t: &mut Self::Track, keep: &NSet, s: &Stmt) -> bool;
-    /// The mode a run starting here starts in.
-    fn mode(t: &Self::Track) -> Self::Mode;
-    /// A run block (its N already checked and recorded), `starting` a run.
-    fn run_block(t: &mut Self::Track, meta: &BlockMeta, starting: bool);
-    /// The modes after a plain run block's words.
-    fn follow_plain(t: &mut Self::Track, words: &[PlainWord]);
-    /// [`SegTarget::follow_plain`] after the fast writer took the line (it may know them).
+    /// `SkelPart::follow_plain` after the fast writer took the line (it may know them).
     #[inline]
     fn plain_taken(t: &mut Self::Track, _fast: &Self::Fast, words: &[PlainWord]) {
-        Self::follow_plain(t, words)
+        t.follow_plain(words)
     }
-    /// The modes after a run block statement's items.
-    fn follow_stmt(t: &mut Self::Track, items: &[Item]);
-    /// The placeholder of run `k` (whose first block is at `span`).
-    fn placeholder(t: &mut Self::Track, k: usize, span: Span) -> Stmt;
-    /// A statement of the skeleton: why it declines, or `None` with its modes followed and
-    /// the N values its jumps name in `targets`.
-    fn macro_stmt(t: &mut Self::Track, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str>;
-    /// Why a statement of a program after the main one declines.
-    fn sub_declines(s: &Stmt) -> Option<&'static str>;
+    /// Why a statement of a program after the main one declines (`SUBS_IN_FILE`).
+    fn sub_declines(_: &Stmt) -> Option<&'static str> {
+        None
+    }
 
     /// After a skeleton scan of `path` without a decline: the programs to translate (the
     /// main one first, its body still to be the skeleton's), or why not.
@@ -110,11 +106,9 @@ pub(crate) trait SegTarget: Sized {
     ) -> Result<Translated<Self>, Fallback>;
     /// Lowers a run block alone, with the mode running into it: its text and the
     /// diagnostics kept with it (`None`: they decline).
-    fn alone(a: &Self::Alone, s: &Stmt, m: Self::Mode) -> Option<(String, Vec<Diagnostic>)>;
+    fn alone(&self, a: &Self::Alone, s: &Stmt, m: Self::Mode) -> Option<(String, Vec<Diagnostic>)>;
     /// The writing scan's tests, from the skeleton.
     fn class(sk: &mut Skel<Self>) -> Self::Class;
-    fn write_plain_run(c: &Self::Class, meta: &BlockMeta, words: &[PlainWord]) -> bool;
-    fn write_stmt_run(c: &mut Self::Class, s: &Stmt) -> bool;
     /// The result, with the source's index and the kept diagnostics of run blocks.
     fn done(&self, d: Self::Done, index: Index, run_diags: Vec<Diagnostic>) -> Self::Output;
 }
@@ -172,28 +166,21 @@ pub(crate) fn segment<T: SegTarget>(
     t.check()?;
     let calls = load.is_some();
     let popts = t.parse_options();
-    // One scan builds the skeleton and spills the runs' translations (`one`).
-    let mut one = One::new(Skel::new(t.track(), NSet::default(), calls), t.fast());
-    let ix = crate::stream::scan_words_path(
-        path,
-        0,
-        T::SOURCE,
-        &popts,
-        &mut one,
-        progress.as_mut().map(|p| &mut **p as _),
-    )
-    .map_err(Fallback::NotStreamable)?;
+    // One scan builds the skeleton and spills the runs' translations.
+    let sk = Skel::new(NSet::default(), calls);
+    let mut one =
+        One { sk, fast: t.fast(), spill: Spill::new(), starts: vec![], pending: false, deferred: vec![], ok: true };
+    let ix =
+        crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut one, progress.as_mut().map(|p| &mut **p as _))
+            .map_err(Fallback::NotStreamable)?;
     let (mut sk, mut programs, ix) = finish(t, path, one.sk, ix)?;
-    let live = one.ok
-        && !(T::STRICT_DECLINED && one.pending)
-        && one.spill.io.is_none()
-        && one.starts.len() == sk.runs;
+    let live = one.ok && !(T::STRICT_DECLINED && one.pending) && one.spill.io.is_none() && one.starts.len() == sk.runs;
     let mut spilled = live.then_some((one.spill, one.starts, one.deferred, ix));
     if sk.targets.meets(&sk.run_ns) {
         // Jumps name N values of run blocks: scan again keeping those blocks real, and
         // write the runs in a writing scan.
         spilled = None;
-        let mut again = Skel::new(t.track(), sk.targets.clone(), calls);
+        let mut again = Skel::new(sk.targets.clone(), calls);
         let ix = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut again, None)
             .map_err(Fallback::NotStreamable)?;
         (sk, programs, _) = finish(t, path, again, ix)?;
@@ -207,7 +194,7 @@ pub(crate) fn segment<T: SegTarget>(
         let mut inserts = Vec::with_capacity(deferred.len());
         let mut run_diags = Vec::new();
         for d in deferred {
-            let Some((text, diags)) = T::alone(&alone, &d.stmt, d.mode) else {
+            let Some((text, diags)) = t.alone(&alone, &d.stmt, d.mode) else {
                 return Err(Fallback::Diagnostics);
             };
             run_diags.extend(diags);
@@ -221,14 +208,15 @@ pub(crate) fn segment<T: SegTarget>(
         return Ok(t.done(done, index, run_diags));
     }
     let modes = std::mem::take(&mut sk.modes);
-    let mut w = Writer::<T>::new(T::class(&mut sk), t.fast(), modes, alone, Splice::new(&text, places, out));
+    let out = Splice::new(&text, places, out);
+    let mut w =
+        Writer { t, class: T::class(&mut sk), fast: t.fast(), modes, alone, pending: false, out, diags: vec![] };
     w.out.buf.extend_from_slice(prefix);
     let index = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;
     if w.out.bad || !index.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
-    let (out, diags) = w.finish();
-    out.finish()?;
-    Ok(t.done(done, index, diags))
+    w.out.finish()?;
+    Ok(t.done(done, index, w.diags))
 }

@@ -1,11 +1,6 @@
-//! Segmented streaming translation (Sinumerik → FANUC) of programs with a macro part: the
-//! top-level statements that are not straight-line blocks (R assignments, IF/WHILE/LOOP,
-//! jumps, labels) are kept as IR, each maximal run of top-level straight blocks between
-//! them stands in that IR as ONE placeholder block, and the whole-program translator
-//! translates that skeleton (labels, structures, the variable map header come out as for
-//! the whole file). The skeleton's text is then written with each placeholder line
-//! replaced by its run, re-read from the source and translated block by block with the
-//! straight-line stream's fast path. Memory follows the macro part, not the motion part.
+//! The FANUC target of the segmented stream (Sinumerik source, see `segmented`): R
+//! assignments, IF/WHILE/LOOP, jumps and labels stay in the skeleton, whose translation
+//! gives the labels, structures and the variable map header as for the whole file.
 //!
 //! Why the output is the whole translation's, byte for byte:
 //! - a straight block's translation depends on no other block but through the words
@@ -66,28 +61,25 @@
 //! the translation has a warning or an error on (notes only through
 //! [`to_fanuc_with_notes`]).
 //!
-//! The flow is `segmented::driver`'s, the same for both targets; this target's part is
-//! [`ToFanuc`] (what the skeleton keeps and follows is `track`). A run block the fast path
-//! declines is translated alone in the program's frame, known after the scan: the one scan
-//! holds none (`MAX_DEFERRED` is 0) and the writing scan fills the runs.
-
+//! The flow is `segmented::driver`'s; this target's part is [`ToFanuc`] (what the skeleton
+//! keeps and follows is `track`). A run block the fast path declines is translated alone in
+//! the program's frame, known after the scan: the one scan holds none (`MAX_DEFERRED` is 0)
+//! and the writing scan fills the runs.
 
 mod track;
 
-use super::driver::{segment, RunWriter, SegTarget, Translated};
+use super::driver::{segment, RunTests, SegTarget, Translated};
 use super::nset::{kept, NSet};
-use super::skel::Skel;
+use super::sinks::Skel;
 use super::{LoadCallees, SourceAlign};
 use crate::diag::{Diagnostic, Severity};
-use crate::dialect::fanuc::emit::{self, EmitOptions};
+use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
 use crate::ir::{BlockMeta, ItemKind, Program, Stmt, StmtKind, Unit};
 use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
-use crate::read::RawBlock;
-use crate::span::Span;
-use crate::stream::target::fanuc::{run_block, units_block};
+use crate::stream::target::fanuc::{alone, run_block};
 use crate::stream::{Fallback, Index, PlainWord, ProgressFn};
 use crate::translate::{self, to_fanuc::TranslateOptions};
 use std::io::Write;
@@ -172,62 +164,20 @@ struct ToFanuc<'a> {
     notes_ok: bool,
 }
 
-/// A block translated alone: the program with an empty body, its header's length.
-struct Alone<'a> {
-    lone: Unit,
-    header_len: usize,
-    opts: &'a TranslateOptions,
-    eo: EmitOptions,
-}
-
 /// The writing scan's tests: the N values jumps name, the lone M0 blocks kept for a MSG.
 struct Class {
     keep: NSet,
     forced: Vec<u32>,
 }
 
-impl Class {
-    /// Whether a block starting at `lo` was kept in the skeleton for a MSG before it.
-    fn forced(&self, lo: u32) -> bool {
-        self.forced.binary_search(&lo).is_ok()
-    }
-}
-
-/// What the result takes from the skeleton's translation.
-struct Done {
-    inputs: Vec<Input>,
-    symbol_map: translate::to_fanuc::SymbolMap,
-    tools: std::collections::BTreeMap<String, u32>,
-    notes: Vec<Diagnostic>,
-}
-
-/// The fast path carries the length and feed units from block to block.
-impl RunWriter for fast::Fast {
-    type Mode = Units;
-
+impl RunTests for Class {
     #[inline]
-    fn start(&mut self, m: Units) {
-        self.units = m;
+    fn plain_run(&self, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+        !kept(&self.keep, meta) && self.forced.binary_search(&meta.span.lo).is_err()
     }
 
-    #[inline]
-    fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>, out: &mut Vec<u8>) -> bool {
-        // The usual CAM line in one loop (it changes no mode), as the straight stream does.
-        if self.plain_words(meta, words, out) {
-            return true;
-        }
-        let units = self.units;
-        if self.words(meta, words, line, out).is_err() {
-            self.units = units;
-            return false;
-        }
-        true
-    }
-
-    fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Units> {
-        let units = self.units;
-        // The units are the ones after the block already on `Err` (`Fast::block`).
-        fast::Fast::block(self, s, out).map_err(|_| units)
+    fn stmt_run(&mut self, s: &Stmt) -> bool {
+        matches!(&s.kind, StmtKind::Block(b) if run_block(s) && self.plain_run(&b.meta, &[]))
     }
 }
 
@@ -241,8 +191,10 @@ impl<'a> SegTarget for ToFanuc<'a> {
     type Track = Track;
     type Fast = fast::Fast;
     type Class = Class;
-    type Alone = Alone<'a>;
-    type Done = Done;
+    /// For a block translated alone: the program with an empty body, its header's length.
+    type Alone = (Unit, usize);
+    /// The skeleton's translation's symbol map and notes.
+    type Done = (translate::to_fanuc::SymbolMap, Vec<Diagnostic>);
     type Output = (Segmented, Vec<Diagnostic>);
 
     fn check(&self) -> Result<(), Fallback> {
@@ -256,52 +208,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
         ParseOptions::for_dialect(Dialect::Sinumerik)
     }
 
-    fn track(&self) -> Track {
-        Track::new()
-    }
-
     fn fast(&self) -> fast::Fast {
         fast::Fast::new(self.opts.comments, self.opts.line_ending.as_str())
-    }
-
-    #[inline]
-    fn plain_run(t: &Track, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
-        t.plain_run(keep, meta)
-    }
-
-    fn stmt_run(t: &mut Track, keep: &NSet, s: &Stmt) -> bool {
-        t.stmt_run(keep, s)
-    }
-
-    #[inline]
-    fn mode(t: &Track) -> Units {
-        t.modes.units()
-    }
-
-    #[inline]
-    fn run_block(t: &mut Track, meta: &BlockMeta, starting: bool) {
-        t.run_block(meta, starting)
-    }
-
-    #[inline]
-    fn follow_plain(t: &mut Track, words: &[PlainWord]) {
-        t.follow_plain(words)
-    }
-
-    fn follow_stmt(t: &mut Track, items: &[crate::ir::Item]) {
-        t.follow_stmt(items)
-    }
-
-    fn placeholder(t: &mut Track, k: usize, span: Span) -> Stmt {
-        t.placeholder(k, span)
-    }
-
-    fn macro_stmt(t: &mut Track, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
-        t.macro_stmt(s, calls, targets)
-    }
-
-    fn sub_declines(_: &Stmt) -> Option<&'static str> {
-        Some("more than one program")
     }
 
     fn programs(&self, _: &Path, _: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback> {
@@ -366,63 +274,31 @@ impl<'a> SegTarget for ToFanuc<'a> {
         // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
         let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
         fresh_numbers_ok(&t.text[..main_end], eol, &places, sk)?;
-        let inputs = crate::translate::to_fanuc::r_param_inputs(&t.symbol_map);
-        let tools = t.symbol_map.tools.clone();
         // A block the fast path declines is translated alone, as the straight stream does: the
         // header of an empty program comes first, then the block.
         lone.body = vec![];
         let lone = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
         let head = translate::to_fanuc::to_fanuc(&lone, &[], opts);
         let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
-        let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 };
-        Ok(Translated {
-            text: t.text,
-            places,
-            alone: Alone { lone, header_len, opts, eo },
-            prefix: b"",
-            done: Done { inputs, symbol_map: t.symbol_map, tools, notes: t.diags },
-        })
+        Ok(Translated { text: t.text, places, alone: (lone, header_len), prefix: b"", done: (t.symbol_map, t.diags) })
     }
 
-    /// A straight block of a run the fast path declined: translated alone (as
-    /// `stream::target::fanuc` does), after a block setting `units` when they are not the
-    /// program's start units.
-    fn alone(a: &Alone<'a>, s: &Stmt, units: Units) -> Option<(String, Vec<Diagnostic>)> {
-        let mut u = a.lone.clone();
-        let set = units_block(units);
-        let set_units = set.is_some();
-        if let Some(p) = u.programs.first_mut() {
-            p.body = set.into_iter().chain([s.clone()]).collect();
-        }
-        let t = translate::to_fanuc::to_fanuc(&u, &[], a.opts);
-        if !t.diags.is_empty() || t.unsupported > 0 {
-            return None;
-        }
-        let skip = a.header_len + usize::from(set_units);
-        let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
-        let e = emit::emit_body(body, &a.eo);
-        e.diags.is_empty().then_some((e.text, Vec::new()))
+    /// A straight block of a run the fast path declined: translated alone, as the straight
+    /// stream does (`stream::target::fanuc::alone`).
+    fn alone(&self, (lone, header_len): &(Unit, usize), s: &Stmt, units: Units) -> Option<(String, Vec<Diagnostic>)> {
+        let eo = EmitOptions { comments: self.opts.comments, line_ending: self.opts.line_ending, file: 0 };
+        let (text, diags, unsupported) = alone(lone.clone(), *header_len, units, s, self.opts, &eo);
+        (diags.is_empty() && unsupported == 0).then_some((text, diags))
     }
 
     fn class(sk: &mut Skel<Self>) -> Class {
         Class { keep: std::mem::take(&mut sk.keep), forced: std::mem::take(&mut sk.t.forced) }
     }
 
-    #[inline]
-    fn write_plain_run(c: &Class, meta: &BlockMeta, _: &[PlainWord]) -> bool {
-        !kept(&c.keep, meta) && !c.forced(meta.span.lo)
-    }
-
-    fn write_stmt_run(c: &mut Class, s: &Stmt) -> bool {
-        match &s.kind {
-            StmtKind::Block(b) => run_block(s) && !kept(&c.keep, &b.meta) && !c.forced(b.meta.span.lo),
-            _ => false,
-        }
-    }
-
-    fn done(&self, d: Done, mut index: Index, _: Vec<Diagnostic>) -> (Segmented, Vec<Diagnostic>) {
-        index.align = SourceAlign { tools: d.tools };
-        (Segmented { blocks: index.blocks, index, inputs: d.inputs, symbol_map: d.symbol_map }, d.notes)
+    fn done(&self, (symbol_map, notes): Self::Done, mut index: Index, _: Vec<Diagnostic>) -> Self::Output {
+        index.align = SourceAlign { tools: symbol_map.tools.clone() };
+        let inputs = crate::translate::to_fanuc::r_param_inputs(&symbol_map);
+        (Segmented { blocks: index.blocks, index, inputs, symbol_map }, notes)
     }
 }
 

@@ -6,8 +6,8 @@
 //! target's fast writer. Memory follows the macro part, not the motion part.
 //!
 //! Owns the one driver both targets run on (`driver`: the flow and the target's hooks,
-//! `SegTarget`), written once with its three sinks: the skeleton scan (`skel`), the one
-//! scan that also spills the runs' translations (`one`) and the writing scan (`write`);
+//! `SegTarget`), written once with its three sinks (`sinks`): the skeleton scan, the one
+//! scan that also spills the runs' translations and the writing scan;
 //! what they share: the spill ([`spill`]), the output cursor that splices runs into the
 //! skeleton's text ([`splice`]), the N-number sets of jump targets ([`nset`]), how callees
 //! are given ([`LoadCallees`]) and what the verifier aligns in a streamed source
@@ -21,12 +21,10 @@
 pub(crate) mod driver;
 pub mod fanuc;
 pub(crate) mod nset;
-mod one;
+mod sinks;
 pub mod sinumerik;
-mod skel;
 pub(crate) mod spill;
 pub(crate) mod splice;
-mod write;
 
 use crate::ir::{Expr, ExprKind, ItemKind, Number, Stmt, StmtKind, Unit, WordValue};
 use crate::stream::Fallback;

@@ -1,13 +1,7 @@
-//! Segmented streaming translation (FANUC → Sinumerik) of programs with a macro part: the
-//! top-level statements that are not straight blocks (macro statements, IF/GOTO,
-//! WHILE/DO loops, program ends, jump targets) are kept as IR, each maximal run of
-//! top-level straight blocks between them stands in that IR as ONE placeholder block (a
-//! comment `NCTRANS SEGMENT k`), and the whole-program translator translates that skeleton
-//! (variable map, DEF lines, labels, structures come out as for the whole file). The
-//! skeleton's text is then written with each placeholder line replaced by its run, re-read
-//! from the source and translated block by block by the straight stream's fast path (or,
-//! for a block it declines, by the passes on that block alone). Memory follows the macro
-//! part, not the motion part.
+//! The Sinumerik target of the segmented stream (FANUC source, see `segmented`): macro
+//! statements, IF/GOTO, WHILE/DO loops, program ends and jump targets stay in the skeleton,
+//! whose translation gives the variable map, DEF lines, labels and structures as for the
+//! whole file; each run's placeholder is a comment `NCTRANS SEGMENT k`.
 //!
 //! Why the output is the whole translation's, byte for byte (pass by pass, see
 //! `lower::to_sinumerik::lower`):
@@ -50,8 +44,9 @@
 //! straight stream's [`KEPT_WARNING`](crate::stream::target::sinumerik::KEPT_WARNING) (kept, in file order as the
 //! words pass gives them), declines, as do several programs (but through
 //! [`to_sinumerik_with_subs`]), `nctrans: set` lines with CR
-//! line ends and N values above 2^24. The flow is
-//! `segmented::driver`'s, the same for both targets; this target's part is [`ToSinumerik`]
+//! line ends and N values above 2^24.
+//!
+//! The flow is `segmented::driver`'s; this target's part is [`ToSinumerik`]
 //! (what the skeleton keeps and follows and the fast writer of run blocks are `track`). The
 //! arc mode a run depends on is followed in textual order; a run block the fast path
 //! declines is held (up to a few thousand, `MAX_DEFERRED`) and translated alone with the
@@ -59,23 +54,22 @@
 //! turns out to be no run block (`STRICT_DECLINED`), take the writing scan.
 
 use super::driver::{segment, SegTarget, Translated};
-use super::nset::NSet;
-use super::skel::Skel;
+use super::sinks::Skel;
 use super::splice;
 use super::{LoadCallees, MARK};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
-use crate::ir::{BlockMeta, Item, Program, Stmt, Unit};
-use crate::lower::to_sinumerik::{self as passes, Options};
+use crate::ir::{Program, Stmt, Unit};
+use crate::lower::to_sinumerik::Options;
 use crate::read::LineEnding;
-use crate::span::{FileId, Span};
+use crate::span::FileId;
 use crate::stream::lines::{first_line_ending, has_bom};
 use crate::stream::target::sinumerik::{Planned, Streamed, KEPT_WARNING};
 use crate::stream::{Fallback, Index, PlainWord, ProgressFn};
 use crate::translate::to_sinumerik::{self as ts, OutFile};
 use std::io::Write;
 use std::path::Path;
-use track::{follow_items, follow_words, Class, Fast, Track};
+use track::{Class, Fast, Track};
 
 mod subs;
 mod track;
@@ -111,14 +105,6 @@ struct ToSinumerik<'a> {
     stand_in: Option<FileId>,
 }
 
-/// A run block translated alone: the main program's plan, made with every program as the
-/// whole translation makes it.
-struct Alone<'a> {
-    plan: Planned,
-    opts: &'a Options,
-    eol: LineEnding,
-}
-
 /// What the result takes from the skeleton's translation.
 struct Done {
     diags: Vec<Diagnostic>,
@@ -137,45 +123,18 @@ impl<'a> SegTarget for ToSinumerik<'a> {
     type Track = Track;
     type Fast = Fast<'a>;
     type Class = Class;
-    type Alone = Alone<'a>;
+    /// For a run block translated alone: the main program's plan, made with every program
+    /// as the whole translation makes it.
+    type Alone = Planned;
     type Done = Done;
     type Output = (Streamed, Vec<OutFile>);
-
-    fn check(&self) -> Result<(), Fallback> {
-        Ok(())
-    }
 
     fn parse_options(&self) -> ParseOptions {
         ParseOptions { semantics: self.opts.source.clone() }
     }
 
-    fn track(&self) -> Track {
-        Track::default()
-    }
-
     fn fast(&self) -> Fast<'a> {
         Fast { opts: self.opts, eol: self.eol.as_str().as_bytes(), arc: false }
-    }
-
-    #[inline]
-    fn plain_run(t: &Track, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
-        track::plain_run(t.solid, keep, meta, words)
-    }
-
-    fn stmt_run(t: &mut Track, keep: &NSet, s: &Stmt) -> bool {
-        track::stmt_run(t.solid, keep, s)
-    }
-
-    #[inline]
-    fn mode(t: &Track) -> bool {
-        t.arc
-    }
-
-    #[inline]
-    fn run_block(_: &mut Track, _: &BlockMeta, _: bool) {}
-
-    fn follow_plain(t: &mut Track, words: &[PlainWord]) {
-        t.arc = follow_words(t.arc, words);
     }
 
     /// The fast path followed the arc mode as `follow_words` does.
@@ -184,26 +143,14 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         t.arc = fast.arc;
     }
 
-    fn follow_stmt(t: &mut Track, items: &[Item]) {
-        t.arc = follow_items(t.arc, items);
-    }
-
-    fn placeholder(_: &mut Track, k: usize, span: Span) -> Stmt {
-        passes::comment_stmt(format!("{MARK}{k}"), span)
-    }
-
-    fn macro_stmt(t: &mut Track, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
-        t.macro_stmt(s, calls, targets)
-    }
-
     fn sub_declines(s: &Stmt) -> Option<&'static str> {
         subs::declines(std::slice::from_ref(s))
     }
 
     fn programs(&self, path: &Path, sk: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback> {
         // `header_inputs` reads a whole text by LF lines, an index's header by any line end.
-        let cr = self.eol == LineEnding::Cr
-            || first_line_ending(path).map_err(Fallback::NotStreamable)? == LineEnding::Cr;
+        let cr =
+            self.eol == LineEnding::Cr || first_line_ending(path).map_err(Fallback::NotStreamable)? == LineEnding::Cr;
         if cr && ix.header.contains("nctrans:") {
             return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
         }
@@ -211,7 +158,8 @@ impl<'a> SegTarget for ToSinumerik<'a> {
             return Err(Fallback::NotStraight("more than one program".into()));
         }
         let mut subs = std::mem::take(&mut sk.subs).into_iter();
-        let rest = ix.programs[1..].iter().map(|p| Program { body: subs.next().unwrap_or_default(), ..p.program.clone() });
+        let rest =
+            ix.programs[1..].iter().map(|p| Program { body: subs.next().unwrap_or_default(), ..p.program.clone() });
         Ok(std::iter::once(ix.programs[0].program.clone()).chain(rest).collect())
     }
 
@@ -261,7 +209,7 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         Ok(Translated {
             text: std::mem::take(&mut file.text),
             places,
-            alone: Alone { plan, opts, eol },
+            alone: plan,
             prefix: if bom { b"\xEF\xBB\xBF" } else { b"" },
             done: Done { diags: tr.diags, file, symbols: tr.symbols.sinumerik().clone(), subs },
         })
@@ -269,10 +217,10 @@ impl<'a> SegTarget for ToSinumerik<'a> {
 
     /// A run block the fast path declines, lowered alone with the skeleton's plan and the
     /// arc mode running into it: its text and diagnostics, when those are all kept warnings.
-    fn alone(a: &Alone<'a>, s: &Stmt, arc: bool) -> Option<(String, Vec<Diagnostic>)> {
+    fn alone(&self, plan: &Planned, s: &Stmt, arc: bool) -> Option<(String, Vec<Diagnostic>)> {
         // Metric: a program with G20 is not segmented.
-        match a.plan.lower(a.opts, vec![s.clone()], arc, Some(false)) {
-            (diags, Ok(text)) if diags.iter().all(kept_warning) => match a.eol {
+        match plan.lower(self.opts, vec![s.clone()], arc, Some(false)) {
+            (diags, Ok(text)) if diags.iter().all(kept_warning) => match self.eol {
                 LineEnding::Lf => Some((text, diags)),
                 other => Some((text.replace('\n', other.as_str()), diags)),
             },
@@ -282,15 +230,6 @@ impl<'a> SegTarget for ToSinumerik<'a> {
 
     fn class(sk: &mut Skel<Self>) -> Class {
         Class { keep: sk.keep.clone(), solid: false }
-    }
-
-    #[inline]
-    fn write_plain_run(c: &Class, meta: &BlockMeta, words: &[PlainWord]) -> bool {
-        track::plain_run(c.solid, &c.keep, meta, words)
-    }
-
-    fn write_stmt_run(c: &mut Class, s: &Stmt) -> bool {
-        c.stmt(s)
     }
 
     /// The words pass warns block by block in text order: the skeleton's warnings and the

@@ -4,14 +4,14 @@
 //! in the skeleton (see `segmented::fanuc`).
 
 use crate::ir::{
-    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, Target,
-    WordValue,
+    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, Target, WordValue,
 };
 use crate::lower::to_fanuc::words::units::Units;
 use crate::span::Span;
+use crate::stream::segmented::driver::SkelPart;
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
 use crate::stream::segmented::MARK;
-use crate::stream::target::fanuc::run_block;
+use crate::stream::target::fanuc::{g_item, run_block};
 use crate::stream::PlainWord;
 
 /// The labels pass's highest N number.
@@ -20,10 +20,11 @@ pub(super) const MAX_N: u32 = 99999;
 /// The two modes of the words pass that reach from block to block outside a structure, in
 /// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
 /// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 pub(super) struct Modes {
     units: Units,
-    abs: bool,
+    /// G91 in force.
+    inc: bool,
 }
 
 /// Which of the two modes a block's words touched.
@@ -34,11 +35,6 @@ pub(super) struct Touched {
 }
 
 impl Modes {
-    /// The length and feed units in force.
-    pub(super) fn units(&self) -> Units {
-        self.units
-    }
-
     /// A constant G word, as the words pass takes it.
     fn g(&mut self, v: f64, t: &mut Touched) {
         if self.units.g(v) {
@@ -46,7 +42,7 @@ impl Modes {
             return;
         }
         if v == 90.0 || v == 91.0 {
-            self.abs = v == 90.0;
+            self.inc = v == 91.0;
             t.abs = true;
         }
     }
@@ -65,17 +61,8 @@ impl Modes {
     }
 }
 
-/// A constant G word (for a placeholder).
-pub(super) fn g_item(v: f64, span: Span) -> crate::ir::Item {
-    let w = crate::ir::Word {
-        addr: Addr::Letter(b'G'),
-        value: WordValue::Expr(crate::ir::Expr::num(v, false, span)),
-        span,
-    };
-    crate::ir::Item { kind: ItemKind::Word(w), span }
-}
-
 /// The FANUC target's part of the skeleton scan.
+#[derive(Default)]
 pub(crate) struct Track {
     /// The highest valid N value of the run being collected (its placeholder's N).
     hi: Option<u32>,
@@ -93,28 +80,18 @@ pub(crate) struct Track {
     pub(super) forced: Vec<u32>,
 }
 
-impl Track {
-    pub(super) fn new() -> Track {
-        Track {
-            hi: None,
-            max_n: 0,
-            skel_ns: NSet::default(),
-            modes: Modes { units: Units::default(), abs: true },
-            touched: Touched::default(),
-            after_msg: false,
-            forced: Vec::new(),
-        }
-    }
+impl SkelPart for Track {
+    type Mode = Units;
 
     /// A plain line is a run block unless a jump names its N or it may pair with a MSG.
     #[inline]
-    pub(super) fn plain_run(&self, keep: &NSet, meta: &BlockMeta) -> bool {
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
         !kept(keep, meta) && !self.after_msg
     }
 
     /// A statement is a run block when `run_block` and no jump names its N, but for a lone
     /// M0 right after a block with a MSG.
-    pub(super) fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
         let after_msg = std::mem::replace(&mut self.after_msg, false);
         if let StmtKind::Block(b) = &s.kind {
             if after_msg && crate::lower::to_fanuc::words::is_lone_m0(b) {
@@ -129,7 +106,12 @@ impl Track {
     }
 
     #[inline]
-    pub(super) fn run_block(&mut self, meta: &BlockMeta, starting: bool) {
+    fn mode(&self) -> Units {
+        self.modes.units
+    }
+
+    #[inline]
+    fn run_block(&mut self, meta: &BlockMeta, starting: bool) {
         let n = meta.number.as_ref().map(|n| n.value);
         if let Some(n) = n {
             self.max_n = self.max_n.max(if n <= MAX_N { n } else { 0 });
@@ -139,7 +121,7 @@ impl Track {
     }
 
     #[inline]
-    pub(super) fn follow_plain(&mut self, words: &[PlainWord]) {
+    fn follow_plain(&mut self, words: &[PlainWord]) {
         let mut t = self.touched;
         for w in words {
             if w.letter == b'G' {
@@ -149,7 +131,7 @@ impl Track {
         self.touched = t;
     }
 
-    pub(super) fn follow_stmt(&mut self, items: &[crate::ir::Item]) {
+    fn follow_stmt(&mut self, items: &[crate::ir::Item]) {
         let mut t = self.touched;
         self.modes.items(items, &mut t);
         self.touched = t;
@@ -158,14 +140,14 @@ impl Track {
     /// The placeholder of run `k`: it carries the modes the run leaves (as unit words,
     /// `Units::words`, and G90/G91 words, where it changes them) for the words pass to
     /// follow into the skeleton after it, and the run's highest N; its line is replaced whole.
-    pub(super) fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
+    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
         let t = std::mem::take(&mut self.touched);
         let mut items = Vec::new();
         if t.inch {
             items.extend(self.modes.units.words().iter().map(|&v| g_item(v, span)));
         }
         if t.abs {
-            items.push(g_item(if self.modes.abs { 90.0 } else { 91.0 }, span));
+            items.push(g_item(if self.modes.inc { 91.0 } else { 90.0 }, span));
         }
         let meta = BlockMeta {
             span,
@@ -177,7 +159,7 @@ impl Track {
     }
 
     /// Checks a statement of the macro part, follows its modes and collects its jump targets.
-    pub(super) fn macro_stmt(&mut self, s: &Stmt, calls_ok: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
+    fn macro_stmt(&mut self, s: &Stmt, calls_ok: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
         let mut why: Option<&'static str> = None;
         let mut max_n = 0;
         let mut own = Vec::new();

@@ -8,13 +8,16 @@ use crate::ir::{Addr, BlockMeta, Item, ItemKind, Stmt, StmtKind, Target, VarKind
 use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::RawBlock;
-use crate::stream::segmented::driver::RunWriter;
+use crate::span::Span;
+use crate::stream::segmented::driver::{RunTests, SkelPart};
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
+use crate::stream::segmented::MARK;
 use crate::stream::target::sinumerik::{plain_g, straight};
+use crate::stream::target::RunWriter;
 use crate::stream::PlainWord;
 
 /// The arc mode after G code `g10` (×10) as `words::lower` follows it.
-pub(super) fn arc_after(arc: bool, g10: u32) -> bool {
+fn arc_after(arc: bool, g10: u32) -> bool {
     match g10 {
         20 | 30 => true,
         0 | 10 => false,
@@ -23,12 +26,12 @@ pub(super) fn arc_after(arc: bool, g10: u32) -> bool {
 }
 
 /// The arc mode after a block's own G codes.
-pub(super) fn follow_items(arc: bool, items: &[Item]) -> bool {
+fn follow_items(arc: bool, items: &[Item]) -> bool {
     passes::g_codes(items).into_iter().fold(arc, arc_after)
 }
 
 /// The arc mode after a plain line's G words.
-pub(super) fn follow_words(arc: bool, words: &[PlainWord]) -> bool {
+fn follow_words(arc: bool, words: &[PlainWord]) -> bool {
     words.iter().filter(|w| w.letter == b'G').fold(arc, |a, w| arc_after(a, fast::round(w.value * 10.0) as u32))
 }
 
@@ -94,7 +97,7 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
 /// `solid` statement or not, with the N values `keep` kept out of runs; the same in every
 /// scan (it changes only on statements that are not run blocks).
 #[inline]
-pub(super) fn plain_run(solid: bool, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+fn plain_run(solid: bool, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
     solid
         && meta.label.is_none()
         && !kept(keep, meta)
@@ -112,7 +115,7 @@ pub(super) fn plain_run(solid: bool, keep: &NSet, meta: &BlockMeta, words: &[Pla
 }
 
 /// [`plain_run`] of a statement.
-pub(super) fn stmt_run(solid: bool, keep: &NSet, s: &Stmt) -> bool {
+fn stmt_run(solid: bool, keep: &NSet, s: &Stmt) -> bool {
     let StmtKind::Block(b) = &s.kind else { return false };
     solid
         && straight(s).is_ok()
@@ -127,9 +130,14 @@ pub(super) struct Class {
     pub(super) solid: bool,
 }
 
-impl Class {
-    /// A statement of the writing scan: whether it is a run block (else `solid` follows it).
-    pub(super) fn stmt(&mut self, s: &Stmt) -> bool {
+impl RunTests for Class {
+    #[inline]
+    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        plain_run(self.solid, &self.keep, meta, words)
+    }
+
+    /// Whether a statement is a run block (else `solid` follows it).
+    fn stmt_run(&mut self, s: &Stmt) -> bool {
         if stmt_run(self.solid, &self.keep, s) {
             return true;
         }
@@ -143,14 +151,42 @@ impl Class {
 /// (what it has on the skeleton), and whether a `solid` statement has been seen.
 #[derive(Default)]
 pub(crate) struct Track {
-    pub(super) solid: bool,
+    solid: bool,
     pub(super) arc: bool,
     own_arc: bool,
 }
 
-impl Track {
+impl SkelPart for Track {
+    type Mode = bool;
+
+    #[inline]
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        plain_run(self.solid, keep, meta, words)
+    }
+
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+        stmt_run(self.solid, keep, s)
+    }
+
+    #[inline]
+    fn mode(&self) -> bool {
+        self.arc
+    }
+
+    fn follow_plain(&mut self, words: &[PlainWord]) {
+        self.arc = follow_words(self.arc, words);
+    }
+
+    fn follow_stmt(&mut self, items: &[Item]) {
+        self.arc = follow_items(self.arc, items);
+    }
+
+    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
+        passes::comment_stmt(format!("{MARK}{k}"), span)
+    }
+
     /// Checks a statement of the skeleton, collects its jump targets, follows its arc mode.
-    pub(super) fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
+    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
         let mut why: Option<&'static str> = None;
         let (mut arc, mut own) = (self.arc, self.own_arc);
         crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
