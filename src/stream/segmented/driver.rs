@@ -95,15 +95,8 @@ pub(crate) trait SegTarget: Sized {
     /// After a skeleton scan of `path` without a decline: the programs to translate (the
     /// main one first, its body still to be the skeleton's), or why not.
     fn programs(&self, path: &Path, sk: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback>;
-    /// Translates the skeleton of `path` (`load` gives the callees) into its text and
-    /// placeholders.
-    fn translate(
-        &self,
-        path: &Path,
-        sk: &mut Skel<Self>,
-        programs: Vec<Program>,
-        load: Option<LoadCallees<'_>>,
-    ) -> Result<Translated<Self>, Fallback>;
+    /// Translates the skeleton into its text and placeholders.
+    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback>;
     /// Lowers a run block alone, with the mode running into it: its text and the
     /// diagnostics kept with it (`None`: they decline).
     fn alone(&self, a: &Self::Alone, s: &Stmt, m: Self::Mode) -> Option<(String, Vec<Diagnostic>)>;
@@ -111,6 +104,15 @@ pub(crate) trait SegTarget: Sized {
     fn class(sk: &mut Skel<Self>) -> Self::Class;
     /// The result, with the source's index and the kept diagnostics of run blocks.
     fn done(&self, d: Self::Done, index: Index, run_diags: Vec<Diagnostic>) -> Self::Output;
+}
+
+/// A skeleton to translate: the source, its scan, its programs (the main one first, its
+/// body still the scan's) and what gives the callees.
+pub(crate) struct Skeleton<'s, 'l, T: SegTarget> {
+    pub(crate) path: &'s Path,
+    pub(crate) sk: &'s mut Skel<T>,
+    pub(crate) programs: Vec<Program>,
+    pub(crate) load: Option<LoadCallees<'l>>,
 }
 
 /// A translated skeleton.
@@ -188,7 +190,8 @@ pub(crate) fn segment<T: SegTarget>(
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
     }
-    let Translated { text, places, alone, prefix, done } = t.translate(path, &mut sk, programs, load)?;
+    let Translated { text, places, alone, prefix, done } =
+        t.translate(Skeleton { path, sk: &mut sk, programs, load })?;
     if let Some((spill, starts, deferred, index)) = spilled {
         // The blocks the fast writer declined, as the writing scan translates them.
         let mut inserts = Vec::with_capacity(deferred.len());

@@ -68,7 +68,7 @@
 
 mod track;
 
-use super::driver::{segment, RunTests, SegTarget, Translated};
+use super::driver::{segment, RunTests, SegTarget, Skeleton, Translated};
 use super::nset::{kept, NSet};
 use super::sinks::Skel;
 use super::{LoadCallees, SourceAlign};
@@ -222,13 +222,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
         Ok(vec![ix.programs[0].program.clone()])
     }
 
-    fn translate(
-        &self,
-        _: &Path,
-        sk: &mut Skel<Self>,
-        programs: Vec<Program>,
-        load: Option<LoadCallees<'_>>,
-    ) -> Result<Translated<Self>, Fallback> {
+    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
+        let Skeleton { sk, programs, load, .. } = s;
         let opts = self.opts;
         let eol = opts.line_ending.as_str();
         // The labels pass numbers jump targets from the next thousand above the highest N, and

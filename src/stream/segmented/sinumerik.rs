@@ -53,10 +53,10 @@
 //! skeleton's plan after the one scan, put in at its place; more, or a declined line that
 //! turns out to be no run block (`STRICT_DECLINED`), take the writing scan.
 
-use super::driver::{segment, SegTarget, Translated};
+use super::driver::{segment, SegTarget, Skeleton, Translated};
 use super::sinks::Skel;
 use super::splice;
-use super::{LoadCallees, MARK};
+use super::MARK;
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Program, Stmt, Unit};
@@ -163,13 +163,8 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         Ok(std::iter::once(ix.programs[0].program.clone()).chain(rest).collect())
     }
 
-    fn translate(
-        &self,
-        path: &Path,
-        sk: &mut Skel<Self>,
-        mut programs: Vec<Program>,
-        load: Option<LoadCallees<'_>>,
-    ) -> Result<Translated<Self>, Fallback> {
+    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
+        let Skeleton { path, sk, mut programs, load } = s;
         let (opts, eol) = (self.opts, self.eol);
         if let Some(main) = programs.first_mut() {
             main.body = std::mem::take(&mut sk.body);
