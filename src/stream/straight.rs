@@ -34,7 +34,7 @@ pub(crate) trait Target {
     const COMP: &'static str;
     /// Whether a statement's translation depends on no other block; `Err` names what it has
     /// instead, for the "read whole" note.
-    fn straight(s: &Stmt) -> Result<(), String>;
+    const STRAIGHT: fn(&Stmt) -> Result<(), String>;
     /// Whether the translation has stopped (it is then discarded), and why.
     fn stopped(&self) -> bool;
     fn stop(&mut self) -> &mut Option<Fallback>;
@@ -78,7 +78,7 @@ impl<T: Target> WordsSink for Sink<'_, T> {
             *self.t.stop() = Some(Fallback::NotStraight("more than one program".into()));
             return;
         }
-        if let Err(why) = T::straight(s) {
+        if let Err(why) = (T::STRAIGHT)(s) {
             *self.t.stop() = Some(Fallback::NotStraight(why));
             return;
         }

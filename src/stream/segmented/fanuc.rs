@@ -1,11 +1,6 @@
-//! Segmented streaming translation (Sinumerik → FANUC) of programs with a macro part: the
-//! top-level statements that are not straight-line blocks (R assignments, IF/WHILE/LOOP,
-//! jumps, labels) are kept as IR, each maximal run of top-level straight blocks between
-//! them stands in that IR as ONE placeholder block, and the whole-program translator
-//! translates that skeleton (labels, structures, the variable map header come out as for
-//! the whole file). The skeleton's text is then written with each placeholder line
-//! replaced by its run, re-read from the source and translated block by block with the
-//! straight-line stream's fast path. Memory follows the macro part, not the motion part.
+//! The FANUC target of the segmented stream (Sinumerik source, see `segmented`): R
+//! assignments, IF/WHILE/LOOP, jumps and labels stay in the skeleton, whose translation
+//! gives the labels, structures and the variable map header as for the whole file.
 //!
 //! Why the output is the whole translation's, byte for byte:
 //! - a straight block's translation depends on no other block but through the words
@@ -13,7 +8,7 @@
 //!   statements and every structure's bodies in source order with one `Modal`; it never
 //!   follows jumps or loops). So the mode at any block is a function of the text before
 //!   it, and textual order is all there is to follow: the skeleton scan does it
-//!   (`skel::Modes`, the same rules: `lower::to_fanuc::words::units`, G90/G91), through runs and
+//!   (`track::Modes`, the same rules: `lower::to_fanuc::words::units`, G90/G91), through runs and
 //!   through the macro statements' blocks (`walk_stmts` is that same pre-order), and
 //!   - each run's fast path starts in the units the text before it leaves (a block the
 //!     fast path declines is translated alone after a block setting those units when they
@@ -66,40 +61,30 @@
 //! the translation has a warning or an error on (notes only through
 //! [`to_fanuc_with_notes`]).
 //!
-//! The source is read once before verification: ONE scan (`one`) builds the skeleton (and
-//! collects the N values jumps name) and translates each run as it reaches it into a spill
-//! (`spill`: memory, then a temporary file about the output's size), since the units a
-//! run's translation depends on are followed in textual order and known there; then the
-//! skeleton is translated and written with each placeholder line replaced by a byte copy
-//! of its run's spilled translation. Two cases take the older route of two or three
-//! scans: when a jump names the N of a run block, a second scan builds the skeleton again
-//! with those blocks kept out of runs; when a run block is one the fast path declines (it
-//! is translated alone, in the program's frame, known after the scan). Then a writing
-//! scan (`write`) fills the runs.
+//! The flow is `segmented::driver`'s; this target's part is [`ToFanuc`] (what the skeleton
+//! keeps and follows is `track`). A run block the fast path declines is translated alone in
+//! the program's frame, known after the scan: the one scan holds none (`MAX_DEFERRED` is 0)
+//! and the writing scan fills the runs.
 
-mod one;
-mod skel;
-mod write;
+mod track;
 
-use super::nset::NSet;
-use super::spill::{assemble, Spill};
-use one::One;
-use skel::{finish, new_skel, MAX_N};
-use write::{placeholders, Writer};
-
-use super::splice::Splice;
+use super::driver::{segment, RunTests, SegTarget, Skeleton, Translated};
+use super::nset::{kept, NSet};
+use super::sinks::Skel;
 use super::{LoadCallees, SourceAlign};
 use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{ItemKind, StmtKind, Unit};
+use crate::ir::{BlockMeta, ItemKind, Program, Stmt, StmtKind, Unit};
 use crate::lower::to_fanuc::fast_write as fast;
-use crate::stream::lines::NotStreamable;
-use crate::stream::{Fallback, Index, ProgressFn};
+use crate::lower::to_fanuc::words::units::Units;
+use crate::stream::target::fanuc::{alone, run_block};
+use crate::stream::{Fallback, Index, PlainWord, ProgressFn};
 use crate::translate::{self, to_fanuc::TranslateOptions};
 use std::io::Write;
 use std::path::Path;
+use track::{Track, MAX_N};
 
 /// A finished segmented translation.
 pub struct Segmented {
@@ -123,7 +108,7 @@ pub fn to_fanuc(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<Segmented, Fallback> {
-    segment(path, opts, out, progress, false, None).map(|(s, _)| s)
+    segment(&ToFanuc { opts, notes_ok: false }, path, out, progress, None).map(|(s, _)| s)
 }
 
 /// [`to_fanuc`] of a program whose translation may have notes (remarks, no warning or
@@ -135,7 +120,7 @@ pub fn to_fanuc_with_notes(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
-    segment(path, opts, out, progress, true, None)
+    segment(&ToFanuc { opts, notes_ok: true }, path, out, progress, None)
 }
 
 /// [`to_fanuc_with_notes`] of a program that may call other programs by a constant name
@@ -151,130 +136,7 @@ pub fn to_fanuc_with_subs(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
-    segment(path, opts, out, progress, true, Some(load))
-}
-
-fn segment(
-    path: &Path,
-    opts: &TranslateOptions,
-    out: &mut dyn Write,
-    progress: Option<ProgressFn<'_>>,
-    notes_ok: bool,
-    mut load: Option<LoadCallees<'_>>,
-) -> Result<(Segmented, Vec<Diagnostic>), Fallback> {
-    let calls_ok = load.is_some();
-    if opts.number_blocks.is_some() || opts.main_is_sub {
-        return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
-    }
-    let eol = opts.line_ending.as_str();
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
-    let mut progress = progress;
-    // One scan builds the skeleton and spills the runs' translations (`one`).
-    let mut one = One {
-        sk: new_skel(NSet::default(), calls_ok),
-        fast: fast::Fast::new(opts.comments, eol),
-        spill: Spill::new(),
-        starts: Vec::new(),
-        ok: true,
-    };
-    let ix = crate::stream::scan_words_path(
-        path,
-        0,
-        Dialect::Sinumerik,
-        &popts,
-        &mut one,
-        progress.as_mut().map(|p| &mut **p as _),
-    )
-    .map_err(Fallback::NotStreamable)?;
-    let (mut sk, mut program, ix) = finish(one.sk, ix)?;
-    let mut spilled =
-        (one.ok && one.spill.io.is_none() && one.starts.len() == sk.runs).then_some((one.spill, one.starts, ix));
-    if sk.targets.meets(&sk.run_ns) {
-        // Jumps name N values of run blocks: scan again keeping those blocks real, and
-        // write the runs in a writing scan.
-        spilled = None;
-        let mut again = new_skel(sk.targets.clone(), calls_ok);
-        let ix = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut again, None)
-            .map_err(Fallback::NotStreamable)?;
-        (sk, program, _) = finish(again, ix)?;
-        if sk.targets.meets(&sk.run_ns) {
-            return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
-        }
-    }
-    // The labels pass numbers jump targets from the next thousand above the highest N, and
-    // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
-    let mut nodes = 0usize;
-    crate::ir::visit::walk_stmts(&sk.body, &mut |_| nodes += 1);
-    let fresh = 4 * nodes as u64 + 16;
-    if u64::from((sk.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
-        carry_numbers(&mut sk, fresh)?;
-    }
-    let mut lone = program.clone();
-    program.body = std::mem::take(&mut sk.body);
-    let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-    let subs = match load.as_mut() {
-        Some(load) => load(&unit)?,
-        None => Vec::new(),
-    };
-    let sub_refs: Vec<&Unit> = subs.iter().collect();
-    let t = translate::to_fanuc::to_fanuc(&unit, &sub_refs, opts);
-    drop(unit);
-    // The runs take the units the scan follows in text order. (G90/G91 merged where paths
-    // meet is read by the skeleton's own AC()/IC() words only: the placeholders carry each
-    // run's last G90/G91, jump targets and skippable G90/G91 blocks are never in a run.)
-    if !t.units_follow_text {
-        return Err(Fallback::NotStraight("units that depend on the path taken or on a call".into()));
-    }
-    // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
-    // as read from their files: only callees alignment leaves alone stream.
-    if subs.iter().any(|u| translate::to_fanuc::align_source(u, &t.symbol_map) != *u) {
-        return Err(Fallback::NotStraight("a subprogram with a tool name".into()));
-    }
-    drop(subs);
-    let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note && d.labels.iter().all(|l| l.file == 0));
-    if !(t.diags.is_empty() || notes_ok && notes_only) || t.unsupported > 0 {
-        return Err(Fallback::Diagnostics);
-    }
-    let places = placeholders(&t.text, sk.runs, eol)
-        .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
-    // The labels pass numbers each program on its own: only the main program's text is
-    // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
-    let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
-    fresh_numbers_ok(&t.text[..main_end], eol, &places, &sk)?;
-    let inputs = crate::translate::to_fanuc::r_param_inputs(&t.symbol_map);
-    let tools = t.symbol_map.tools.clone();
-    // A block the fast path declines is translated alone, as the straight stream does: the
-    // header of an empty program comes first, then the block.
-    lone.body = vec![];
-    let lone_unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
-    let head = translate::to_fanuc::to_fanuc(&lone_unit, &[], opts);
-    let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
-    let notes = t.diags;
-    if let Some((spill, starts, mut index)) = spilled {
-        index.align = SourceAlign { tools };
-        assemble(&t.text, &places, spill, &starts, &[], out)
-            .map_err(|e| Fallback::NotStreamable(NotStreamable::Io(e)))?;
-        return Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes));
-    }
-    let mut w = Writer {
-        keep: &sk.keep,
-        run_units: &sk.run_units,
-        forced: &sk.forced,
-        fast: fast::Fast::new(opts.comments, eol),
-        opts,
-        eo: EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: 0 },
-        lone: lone_unit,
-        header_len,
-        out: Splice::new(&t.text, places, out),
-    };
-    let mut index = crate::stream::scan_words_path(path, 0, Dialect::Sinumerik, &popts, &mut w, progress)
-        .map_err(Fallback::NotStreamable)?;
-    index.align = SourceAlign { tools };
-    if w.out.bad || !index.diags.is_empty() {
-        return Err(Fallback::Diagnostics);
-    }
-    w.out.finish()?;
-    Ok((Segmented { blocks: index.blocks, index, inputs, symbol_map: t.symbol_map }, notes))
+    segment(&ToFanuc { opts, notes_ok: true }, path, out, progress, Some(load))
 }
 
 /// Whether every call in `unit` is one a skeleton keeps with its callees (by a constant
@@ -286,13 +148,172 @@ pub fn calls_plain(unit: &Unit) -> bool {
             if let StmtKind::Block(b) = &s.kind {
                 for it in &b.items {
                     if let ItemKind::Call(c) = &it.kind {
-                        ok &= skel::plain_call(c);
+                        ok &= track::plain_call(c);
                     }
                 }
             }
         });
     }
     ok
+}
+
+/// The FANUC target of the segmented driver.
+struct ToFanuc<'a> {
+    opts: &'a TranslateOptions,
+    /// Notes (no warning or error) of the main file are returned, not declined.
+    notes_ok: bool,
+}
+
+/// The writing scan's tests: the N values jumps name, the lone M0 blocks kept for a MSG.
+struct Class {
+    keep: NSet,
+    forced: Vec<u32>,
+}
+
+impl RunTests for Class {
+    #[inline]
+    fn plain_run(&self, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+        !kept(&self.keep, meta) && self.forced.binary_search(&meta.span.lo).is_err()
+    }
+
+    fn stmt_run(&mut self, s: &Stmt) -> bool {
+        matches!(&s.kind, StmtKind::Block(b) if run_block(s) && self.plain_run(&b.meta, &[]))
+    }
+}
+
+impl<'a> SegTarget for ToFanuc<'a> {
+    const SOURCE: Dialect = Dialect::Sinumerik;
+    const COMP: &'static str = crate::stream::target::fanuc::COMP;
+    const SUBS_IN_FILE: bool = false;
+    const MAX_DEFERRED: usize = 0;
+    const STRICT_DECLINED: bool = false;
+    type Mode = Units;
+    type Track = Track;
+    type Fast = fast::Fast;
+    type Class = Class;
+    /// For a block translated alone: the program with an empty body, its header's length.
+    type Alone = (Unit, usize);
+    /// The skeleton's translation's symbol map and notes.
+    type Done = (translate::to_fanuc::SymbolMap, Vec<Diagnostic>);
+    type Output = (Segmented, Vec<Diagnostic>);
+
+    fn check(&self) -> Result<(), Fallback> {
+        if self.opts.number_blocks.is_some() || self.opts.main_is_sub {
+            return Err(Fallback::NotStraight("--number-blocks or a subprogram as main".into()));
+        }
+        Ok(())
+    }
+
+    fn parse_options(&self) -> ParseOptions {
+        ParseOptions::for_dialect(Dialect::Sinumerik)
+    }
+
+    fn fast(&self) -> fast::Fast {
+        fast::Fast::new(self.opts.comments, self.opts.line_ending.as_str())
+    }
+
+    fn programs(&self, _: &Path, _: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback> {
+        if ix.programs.len() != 1 {
+            return Err(Fallback::NotStraight("more than one program".into()));
+        }
+        if !ix.programs[0].program.params.is_empty() {
+            return Err(Fallback::NotStraight("a PROC with parameters".into()));
+        }
+        Ok(vec![ix.programs[0].program.clone()])
+    }
+
+    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
+        let Skeleton { sk, programs, load, .. } = s;
+        let opts = self.opts;
+        let eol = opts.line_ending.as_str();
+        // The labels pass numbers jump targets from the next thousand above the highest N, and
+        // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
+        let mut nodes = 0usize;
+        crate::ir::visit::walk_stmts(&sk.body, &mut |_| nodes += 1);
+        let fresh = 4 * nodes as u64 + 16;
+        if u64::from((sk.t.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
+            carry_numbers(sk, fresh)?;
+        }
+        let Some(mut program) = programs.into_iter().next() else {
+            return Err(Fallback::NotStraight("no program".into()));
+        };
+        let mut lone = program.clone();
+        program.body = std::mem::take(&mut sk.body);
+        let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
+        let subs = match load {
+            Some(load) => load(&unit)?,
+            None => Vec::new(),
+        };
+        let sub_refs: Vec<&Unit> = subs.iter().collect();
+        let t = translate::to_fanuc::to_fanuc(&unit, &sub_refs, opts);
+        drop(unit);
+        // The runs take the units the scan follows in text order. (G90/G91 merged where paths
+        // meet is read by the skeleton's own AC()/IC() words only: the placeholders carry each
+        // run's last G90/G91, jump targets and skippable G90/G91 blocks are never in a run.)
+        if !t.units_follow_text {
+            return Err(Fallback::NotStraight("units that depend on the path taken or on a call".into()));
+        }
+        // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
+        // as read from their files: only callees alignment leaves alone stream.
+        if subs.iter().any(|u| translate::to_fanuc::align_source(u, &t.symbol_map) != *u) {
+            return Err(Fallback::NotStraight("a subprogram with a tool name".into()));
+        }
+        drop(subs);
+        let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note && d.labels.iter().all(|l| l.file == 0));
+        if !(t.diags.is_empty() || self.notes_ok && notes_only) || t.unsupported > 0 {
+            return Err(Fallback::Diagnostics);
+        }
+        let places = placeholders(&t.text, sk.runs, eol)
+            .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+        // The labels pass numbers each program on its own: only the main program's text is
+        // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
+        let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
+        fresh_numbers_ok(&t.text[..main_end], eol, &places, sk)?;
+        // A block the fast path declines is translated alone, as the straight stream does: the
+        // header of an empty program comes first, then the block.
+        lone.body = vec![];
+        let lone = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
+        let head = translate::to_fanuc::to_fanuc(&lone, &[], opts);
+        let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
+        Ok(Translated { text: t.text, places, alone: (lone, header_len), prefix: b"", done: (t.symbol_map, t.diags) })
+    }
+
+    /// A straight block of a run the fast path declined: translated alone, as the straight
+    /// stream does (`stream::target::fanuc::alone`).
+    fn alone(&self, (lone, header_len): &(Unit, usize), s: &Stmt, units: Units) -> Option<(String, Vec<Diagnostic>)> {
+        let eo = EmitOptions { comments: self.opts.comments, line_ending: self.opts.line_ending, file: 0 };
+        let (text, diags, unsupported) = alone(lone.clone(), *header_len, units, s, self.opts, &eo);
+        (diags.is_empty() && unsupported == 0).then_some((text, diags))
+    }
+
+    fn class(sk: &mut Skel<Self>) -> Class {
+        Class { keep: std::mem::take(&mut sk.keep), forced: std::mem::take(&mut sk.t.forced) }
+    }
+
+    fn done(&self, (symbol_map, notes): Self::Done, mut index: Index, _: Vec<Diagnostic>) -> Self::Output {
+        index.align = SourceAlign { tools: symbol_map.tools.clone() };
+        let inputs = crate::translate::to_fanuc::r_param_inputs(&symbol_map);
+        (Segmented { blocks: index.blocks, index, inputs, symbol_map }, notes)
+    }
+}
+
+/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
+/// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
+/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`), with the carrier lines right
+/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None` when the text holds the marker
+/// anywhere else.
+fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
+    // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
+    let head = |head: &str| {
+        head.is_empty()
+            || head.strip_suffix(' ').is_some_and(|h| {
+                h.split(' ').enumerate().all(|(k, t)| {
+                    let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
+                    d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+                })
+            })
+    };
+    super::splice::placeholders(text, (runs, eol), (&format!("({}", super::MARK), ")"), head, true)
 }
 
 /// Where the main program's text ends in a translation of several programs: at the line
@@ -325,14 +346,14 @@ const MAX_CARRIED: usize = 20_000;
 /// whole program has; they are not jump targets (a target N in a run was kept out of the
 /// runs) and hold no label, so they change nothing else. `fresh_numbers_ok` checks the
 /// result. Declines when the numbers run out.
-fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
+fn carry_numbers(sk: &mut Skel<ToFanuc<'_>>, fresh: u64) -> Result<(), Fallback> {
     let (mut free, mut v, mut carried) = (0u64, 0u32, Vec::new());
     while free < fresh {
         v += 1;
         if v > MAX_N || carried.len() > MAX_CARRIED {
             return Err(Fallback::NotStraight("N numbers close to N99999, most of them in use".into()));
         }
-        if sk.skel_ns.has(v) {
+        if sk.t.skel_ns.has(v) {
             continue;
         }
         if sk.run_ns.has(v) {
@@ -342,7 +363,7 @@ fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
         }
     }
     let Some(last) = sk.runs.checked_sub(1) else { return Ok(()) };
-    let mark = format!("{}{last}", skel::MARK);
+    let mark = format!("{}{last}", super::MARK);
     let is_last = |s: &crate::ir::Stmt| match &s.kind {
         crate::ir::StmtKind::Block(b) => b.meta.comments.first().is_some_and(|c| c.text == mark),
         _ => false,
@@ -367,7 +388,7 @@ fn carry_numbers(sk: &mut skel::Skel, fresh: u64) -> Result<(), Fallback> {
 /// Checks that no N number the labels pass gave a jump target in the translated skeleton
 /// `text` (an N at a line start, outside the placeholders, that no skeleton block has in
 /// the source) is one a run block has: the whole translation would have skipped it.
-fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &skel::Skel) -> Result<(), Fallback> {
+fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &Skel<ToFanuc<'_>>) -> Result<(), Fallback> {
     let mut at = 0;
     let mut places = places.iter().peekable();
     for line in text.split_inclusive(eol) {
@@ -382,7 +403,7 @@ fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &skel:
         let Some(d) = l.strip_prefix('N') else { continue };
         let digits = d.bytes().take_while(u8::is_ascii_digit).count();
         let Ok(n) = d[..digits].parse::<u32>() else { continue };
-        if n <= MAX_N && !sk.skel_ns.has(n) && sk.run_ns.has(n) {
+        if n <= MAX_N && !sk.t.skel_ns.has(n) && sk.run_ns.has(n) {
             return Err(Fallback::NotStraight("N numbers close to N99999, too many jump targets".into()));
         }
     }

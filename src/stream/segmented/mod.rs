@@ -5,17 +5,23 @@
 //! written with each placeholder line replaced by its run, translated block by block by the
 //! target's fast writer. Memory follows the macro part, not the motion part.
 //!
-//! Owns what both targets share: the spill a run's translation goes to during the one scan
-//! ([`spill`]), the output cursor that splices runs into the skeleton's text ([`splice`]),
-//! the N-number sets of jump targets ([`nset`]), how callees are given ([`LoadCallees`]) and
-//! what the verifier aligns in a streamed source ([`SourceAlign`]); and each target's part:
-//! what a skeleton keeps, which modes a run starts in, which diagnostics decline
-//! ([`fanuc`]: Sinumerik source; [`sinumerik`]: FANUC source, with the straight stream's
-//! plan from `stream::target::sinumerik`). May use what `stream` may use, and the straight
-//! stream's targets (`stream::target`).
+//! Owns the one driver both targets run on (`driver`: the flow and the target's hooks,
+//! `SegTarget`), written once with its three sinks (`sinks`): the skeleton scan, the one
+//! scan that also spills the runs' translations and the writing scan;
+//! what they share: the spill ([`spill`]), the output cursor that splices runs into the
+//! skeleton's text ([`splice`]), the N-number sets of jump targets ([`nset`]), how callees
+//! are given ([`LoadCallees`]) and what the verifier aligns in a streamed source
+//! ([`SourceAlign`]). Each target's part is its hooks and public entry points: what a
+//! skeleton keeps, which modes a run starts in, its fast writer of run blocks, how the
+//! skeleton is translated and which diagnostics decline ([`fanuc`]: Sinumerik source;
+//! [`sinumerik`]: FANUC source, with the straight stream's plan from
+//! `stream::target::sinumerik`). May use what `stream` may use, and the straight stream's
+//! targets (`stream::target`).
 
+pub(crate) mod driver;
 pub mod fanuc;
 pub(crate) mod nset;
+mod sinks;
 pub mod sinumerik;
 pub(crate) mod spill;
 pub(crate) mod splice;

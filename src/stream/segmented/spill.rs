@@ -74,11 +74,6 @@ impl Spill {
         Spill { buf: Vec::with_capacity(WRITE_BYTES + 4096), ..Spill::default() }
     }
 
-    /// Bytes in the file (the buffer holds the rest).
-    pub(crate) fn flushed(&self) -> u64 {
-        self.flushed
-    }
-
     /// Bytes spilled so far.
     pub(crate) fn len(&self) -> u64 {
         self.flushed + self.buf.len() as u64

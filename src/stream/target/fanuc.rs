@@ -26,6 +26,7 @@ use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
 use crate::stream::straight::{self, Fallback, Target};
+use crate::stream::target::RunWriter;
 use crate::stream::Out;
 use crate::stream::{Index, PlainWord, ProgressFn};
 use crate::translate::{self, to_fanuc::TranslateOptions};
@@ -141,10 +142,7 @@ impl ToFanuc<'_> {
 impl Target for ToFanuc<'_> {
     const SOURCE: Dialect = Dialect::Sinumerik;
     const COMP: &'static str = COMP;
-
-    fn straight(s: &Stmt) -> Result<(), String> {
-        straight(s)
-    }
+    const STRAIGHT: fn(&Stmt) -> Result<(), String> = straight;
 
     fn stopped(&self) -> bool {
         self.stop.is_some()
@@ -161,21 +159,11 @@ impl Target for ToFanuc<'_> {
         if self.discarded() {
             return;
         }
-        let units = self.fast.units;
-        if self.fast.block(s, &mut self.out.buf).is_err() {
-            let mut body = Vec::with_capacity(2);
-            let set = units_block(units);
-            let set_units = set.is_some();
-            body.extend(set);
-            body.push(s.clone());
-            let t = translate::to_fanuc::to_fanuc(&self.unit(body), &[], self.opts);
-            self.unsupported += t.unsupported;
-            self.diags.extend(t.diags);
-            let skip = self.header_len + usize::from(set_units);
-            let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
-            let e = emit::emit_body(body, &self.eo);
-            self.diags.extend(e.diags);
-            self.out.buf.extend_from_slice(e.text.as_bytes());
+        if let Err(units) = RunWriter::block(&mut self.fast, s, &mut self.out.buf) {
+            let (text, diags, unsupported) = alone(self.unit(vec![]), self.header_len, units, s, self.opts, &self.eo);
+            self.unsupported += unsupported;
+            self.diags.extend(diags);
+            self.out.buf.extend_from_slice(text.as_bytes());
         }
         self.out.flush_some();
     }
@@ -187,12 +175,7 @@ impl Target for ToFanuc<'_> {
         if self.discarded() {
             return true;
         }
-        let units = self.fast.units;
-        // The usual CAM line in one loop (it changes no mode), else the words one by one.
-        if !self.fast.plain_words(meta, words, &mut self.out.buf)
-            && self.fast.words(meta, words, line, &mut self.out.buf).is_err()
-        {
-            self.fast.units = units;
+        if !RunWriter::plain(&mut self.fast, meta, words, line, &mut self.out.buf) {
             return false;
         }
         self.out.flush_some();
@@ -200,25 +183,67 @@ impl Target for ToFanuc<'_> {
     }
 }
 
-/// A block setting `units` for a block translated on its own (its translation is one block
-/// the caller skips); `None` for the units a program starts in.
-pub(crate) fn units_block(units: Units) -> Option<Stmt> {
-    if units == Units::default() {
-        return None;
+/// The fast path carries the length and feed units from block to block.
+impl RunWriter for fast::Fast {
+    type Mode = Units;
+
+    #[inline]
+    fn start(&mut self, m: Units) {
+        self.units = m;
     }
-    let items = units
-        .words()
-        .iter()
-        .map(|&v| {
-            let g = Word {
-                addr: Addr::Letter(b'G'),
-                value: WordValue::Expr(crate::ir::Expr::num(v, false, Span::default())),
-                span: Span::default(),
-            };
-            crate::ir::Item { kind: ItemKind::Word(g), span: Span::default() }
-        })
-        .collect();
-    Some(crate::lower::block_stmt(items, Span::default()))
+
+    #[inline]
+    fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>, out: &mut Vec<u8>) -> bool {
+        // The usual CAM line in one loop (it changes no mode), as the straight stream does.
+        if self.plain_words(meta, words, out) {
+            return true;
+        }
+        let units = self.units;
+        if self.words(meta, words, line, out).is_err() {
+            self.units = units;
+            return false;
+        }
+        true
+    }
+
+    fn block(&mut self, s: &Stmt, out: &mut Vec<u8>) -> Result<(), Units> {
+        let units = self.units;
+        // The units are the ones after the block already on `Err` (`Fast::block`).
+        fast::Fast::block(self, s, out).map_err(|_| units)
+    }
+}
+
+/// A straight block translated alone by the whole-program translator, as the program
+/// `unit` (its body replaced) with a header of `header_len` statements, after a block setting
+/// `units` when they are not the units a program starts in (the translation of that block
+/// is skipped too): its text, diagnostics and unsupported count.
+pub(crate) fn alone(
+    mut unit: Unit,
+    header_len: usize,
+    units: Units,
+    s: &Stmt,
+    opts: &TranslateOptions,
+    eo: &EmitOptions,
+) -> (String, Vec<Diagnostic>, usize) {
+    let set = (units != Units::default()).then(|| {
+        let items = units.words().iter().map(|&v| g_item(v, Span::default())).collect();
+        crate::lower::block_stmt(items, Span::default())
+    });
+    let skip = header_len + usize::from(set.is_some());
+    if let Some(p) = unit.programs.first_mut() {
+        p.body = set.into_iter().chain([s.clone()]).collect();
+    }
+    let mut t = translate::to_fanuc::to_fanuc(&unit, &[], opts);
+    let body = t.unit.programs.first().map_or(&[][..], |p| &p.body[skip.min(p.body.len())..]);
+    let e = emit::emit_body(body, eo);
+    t.diags.extend(e.diags);
+    (e.text, t.diags, t.unsupported)
+}
+
+/// A constant G word.
+pub(crate) fn g_item(v: f64, span: Span) -> crate::ir::Item {
+    let w = Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(crate::ir::Expr::num(v, false, span)), span };
+    crate::ir::Item { kind: ItemKind::Word(w), span }
 }
 
 /// Translates `path` (Sinumerik) to FANUC into `out`, reading it once. On `Err` nothing

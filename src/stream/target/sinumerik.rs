@@ -538,10 +538,7 @@ impl ToSinumerik<'_> {
 impl Target for ToSinumerik<'_> {
     const SOURCE: Dialect = Dialect::Fanuc;
     const COMP: &'static str = COMP;
-
-    fn straight(s: &Stmt) -> Result<(), String> {
-        straight(s)
-    }
+    const STRAIGHT: fn(&Stmt) -> Result<(), String> = straight;
 
     fn stopped(&self) -> bool {
         self.stop.is_some()

@@ -24,11 +24,12 @@
 //! diagnostic (the caller's `LoadCallees`), a diagnostic of the translation on a callee
 //! file, and a marker comment in a subprogram's translation.
 
-use super::Skel;
+use super::ToSinumerik;
 use crate::ir::{Call, CallKind, CallTarget, ItemKind, Stmt, StmtKind, Unit};
 use crate::lower::to_sinumerik::Options;
 use crate::read::LineEnding;
 use crate::span::FileId;
+use crate::stream::segmented::driver::segment;
 use crate::stream::segmented::LoadCallees;
 use crate::stream::{Fallback, ProgressFn};
 use crate::translate::to_sinumerik::OutFile;
@@ -52,7 +53,7 @@ pub fn to_sinumerik_with_subs(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(super::Streamed, Vec<OutFile>), Fallback> {
-    super::segment(path, opts, eol, out, progress, Some(load), None)
+    segment(&ToSinumerik { opts, eol, stand_in: None }, path, out, progress, Some(load))
 }
 
 /// [`to_sinumerik_with_subs`] where `load` may also give a stand-in caller unit (file
@@ -68,15 +69,19 @@ pub fn to_sinumerik_with_stand_in(
     out: &mut dyn Write,
     progress: Option<ProgressFn<'_>>,
 ) -> Result<(super::Streamed, Vec<OutFile>), Fallback> {
-    super::segment(path, opts, eol, out, progress, Some(load), Some(stand_in))
+    segment(&ToSinumerik { opts, eol, stand_in: Some(stand_in) }, path, out, progress, Some(load))
 }
 
 /// The translation's main file (the first, the only main) and the others; with `calls`
 /// off, the main must be the only file. A subprogram's text holding the marker declines
 /// (only the main file's placeholders are replaced, but a reader could not tell).
-pub(super) fn split_files(files: &[OutFile], calls: bool) -> Result<(&OutFile, Vec<OutFile>), Fallback> {
+pub(super) fn split_files(mut files: Vec<OutFile>, calls: bool) -> Result<(OutFile, Vec<OutFile>), Fallback> {
     let no = |why: &str| Err(Fallback::NotStraight(why.into()));
-    let Some((f, rest)) = files.split_first() else { return no("no program") };
+    if files.is_empty() {
+        return no("no program");
+    }
+    let rest = files.split_off(1);
+    let Some(f) = files.pop() else { return no("no program") };
     if !f.main || rest.iter().any(|r| r.main) {
         return no("a program that is not a main program");
     }
@@ -86,13 +91,13 @@ pub(super) fn split_files(files: &[OutFile], calls: bool) -> Result<(&OutFile, V
     if rest.iter().any(|r| r.text.contains(super::MARK)) {
         return no("a comment that reads as a segment marker");
     }
-    Ok((f, rest.to_vec()))
+    Ok((f, rest))
 }
 
 /// Why a subprogram's statements decline (`None`: they do not): a call the skeleton would
 /// not keep, and `M99 P<n>`. A caller of a program with `M99 P<n>` gets a CASE over every N
 /// number it has (`calls::lower`), run blocks' included, which the skeleton does not have.
-fn declines(body: &[Stmt]) -> Option<&'static str> {
+pub(super) fn declines(body: &[Stmt]) -> Option<&'static str> {
     let mut why = None;
     crate::ir::visit::walk_stmts(body, &mut |s| {
         let StmtKind::Block(b) = &s.kind else { return };
@@ -113,30 +118,11 @@ fn declines(body: &[Stmt]) -> Option<&'static str> {
     why
 }
 
-/// Declines callees (loaded beside the file) as [`Skel::sub_stmt`] declines the file's own
-/// subprograms.
+/// Declines callees (loaded beside the file) as the skeleton scan declines the file's own
+/// subprograms (`SegTarget::sub_declines`).
 pub(super) fn callees_ok(units: &[Unit]) -> Result<(), Fallback> {
     match units.iter().flat_map(|u| &u.programs).find_map(|p| declines(&p.body)) {
         Some(why) => Err(Fallback::NotStraight(why.into())),
         None => Ok(()),
-    }
-}
-
-impl Skel {
-    /// A statement of a program after the main one: kept whole (the runs are the main
-    /// program's only), declined as [`declines`] says.
-    pub(super) fn sub_stmt(&mut self, prog: usize, s: &Stmt) {
-        if !self.calls {
-            return self.decline("more than one program");
-        }
-        self.close_run();
-        if let Some(w) = declines(std::slice::from_ref(s)) {
-            return self.decline(w);
-        }
-        let k = prog - 1;
-        if self.subs.len() <= k {
-            self.subs.resize_with(k + 1, Vec::new);
-        }
-        self.subs[k].push(s.clone());
     }
 }

@@ -1,0 +1,225 @@
+//! The one segmented driver, for every target: the one scan (skeleton and spilled runs),
+//! the second skeleton scan when a jump names a run block's N, the skeleton's translation,
+//! then either the splice of the spilled runs into its text or the writing scan (the sinks
+//! are `sinks`). What differs between targets is a [`SegTarget`]: what a skeleton keeps
+//! and which modes it follows ([`SkelPart`]), the fast writer of run blocks ([`RunWriter`]), the
+//! whole translation of the skeleton and the translation of a block alone. Generic, so
+//! each target's calls are its own code (no dynamic dispatch per block).
+
+use super::nset::NSet;
+use super::sinks::{One, Skel, Writer};
+use super::spill::{assemble, Spill};
+use super::splice::Splice;
+use super::LoadCallees;
+use crate::diag::Diagnostic;
+use crate::dialect::{Dialect, ParseOptions};
+use crate::ir::{BlockMeta, Item, Program, Stmt};
+use crate::span::Span;
+use crate::stream::lines::NotStreamable;
+use crate::stream::target::RunWriter;
+use crate::stream::{Fallback, Index, PlainWord, ProgressFn};
+use std::io::Write;
+use std::path::Path;
+
+/// A target's part of the skeleton scan: which blocks are run blocks, the modes
+/// it follows in textual order, its placeholder and what declines a macro statement.
+pub(crate) trait SkelPart {
+    type Mode: Copy;
+    /// Whether a plain top-level line of the main program is a run block, with the N
+    /// values `keep` kept out of runs.
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    /// Whether a top-level statement of the main program is a run block (noting what the
+    /// target follows of the statements that are not).
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool;
+    /// The mode a run starting here starts in.
+    fn mode(&self) -> Self::Mode;
+    /// A run block (its N already checked and recorded), `starting` a run.
+    fn run_block(&mut self, _meta: &BlockMeta, _starting: bool) {}
+    /// The modes after a plain run block's words, and after a run statement's items.
+    fn follow_plain(&mut self, words: &[PlainWord]);
+    fn follow_stmt(&mut self, items: &[Item]);
+    /// The placeholder of run `k` (whose first block is at `span`).
+    fn placeholder(&mut self, k: usize, span: Span) -> Stmt;
+    /// A statement of the skeleton: why it declines, or `None` with its modes followed and
+    /// the N values its jumps name in `targets`.
+    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str>;
+}
+
+/// The writing scan's run-block tests (the skeleton scan's, with what it found).
+pub(crate) trait RunTests {
+    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    fn stmt_run(&mut self, s: &Stmt) -> bool;
+}
+
+/// What a target supplies to the segmented driver (see the module comment).
+pub(crate) trait SegTarget: Sized {
+    /// The dialect of the source read.
+    const SOURCE: Dialect;
+    /// Why a program with a tool change or compensation word is read whole.
+    const COMP: &'static str;
+    /// With calls, the other programs of the source file are kept whole beside the main
+    /// one (else a second program declines).
+    const SUBS_IN_FILE: bool;
+    /// Most run blocks the fast writer declines that the one scan holds for translating
+    /// alone after it (more take the writing scan).
+    const MAX_DEFERRED: usize;
+    /// A plain run line the fast writer declined must come back as a run block's
+    /// statement (else the one scan gives up and the writing scan discards the output).
+    const STRICT_DECLINED: bool;
+    type Mode: Copy;
+    type Track: SkelPart<Mode = Self::Mode> + Default;
+    type Fast: RunWriter<Mode = Self::Mode>;
+    type Class: RunTests;
+    /// What translating a block alone needs (known after the skeleton's translation).
+    type Alone;
+    /// What the result needs from the skeleton's translation.
+    type Done;
+    type Output;
+
+    /// Options that send the file to the whole path before any scan.
+    fn check(&self) -> Result<(), Fallback> {
+        Ok(())
+    }
+    fn parse_options(&self) -> ParseOptions;
+    fn fast(&self) -> Self::Fast;
+    /// `SkelPart::follow_plain` after the fast writer took the line (it may know them).
+    #[inline]
+    fn plain_taken(t: &mut Self::Track, _fast: &Self::Fast, words: &[PlainWord]) {
+        t.follow_plain(words)
+    }
+    /// Why a statement of a program after the main one declines (`SUBS_IN_FILE`).
+    fn sub_declines(_: &Stmt) -> Option<&'static str> {
+        None
+    }
+
+    /// After a skeleton scan of `path` without a decline: the programs to translate (the
+    /// main one first, its body still to be the skeleton's), or why not.
+    fn programs(&self, path: &Path, sk: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback>;
+    /// Translates the skeleton into its text and placeholders.
+    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback>;
+    /// Lowers a run block alone, with the mode running into it: its text and the
+    /// diagnostics kept with it (`None`: they decline).
+    fn alone(&self, a: &Self::Alone, s: &Stmt, m: Self::Mode) -> Option<(String, Vec<Diagnostic>)>;
+    /// The writing scan's tests, from the skeleton.
+    fn class(sk: &mut Skel<Self>) -> Self::Class;
+    /// The result, with the source's index and the kept diagnostics of run blocks.
+    fn done(&self, d: Self::Done, index: Index, run_diags: Vec<Diagnostic>) -> Self::Output;
+}
+
+/// A skeleton to translate: the source, its scan, its programs (the main one first, its
+/// body still the scan's) and what gives the callees.
+pub(crate) struct Skeleton<'s, 'l, T: SegTarget> {
+    pub(crate) path: &'s Path,
+    pub(crate) sk: &'s mut Skel<T>,
+    pub(crate) programs: Vec<Program>,
+    pub(crate) load: Option<LoadCallees<'l>>,
+}
+
+/// A translated skeleton.
+pub(crate) struct Translated<T: SegTarget> {
+    pub(crate) text: String,
+    /// Its placeholder lines (`splice::placeholders`).
+    pub(crate) places: Vec<(usize, usize)>,
+    pub(crate) alone: T::Alone,
+    /// Written before everything (a BOM).
+    pub(crate) prefix: &'static [u8],
+    pub(crate) done: T::Done,
+}
+
+/// A run block the fast writer declined in the one scan, translated alone after it.
+pub(crate) struct Deferred<M> {
+    /// Its run.
+    pub(crate) run: usize,
+    /// Where its translation goes in the spill (between the blocks around it).
+    pub(crate) at: u64,
+    pub(crate) stmt: Stmt,
+    /// The mode running into it.
+    pub(crate) mode: M,
+}
+
+/// A skeleton after its scan (whose index is `ix`): the skeleton, the programs and the index.
+fn finish<T: SegTarget>(
+    t: &T,
+    path: &Path,
+    mut sk: Skel<T>,
+    ix: Index,
+) -> Result<(Skel<T>, Vec<Program>, Index), Fallback> {
+    sk.close_run();
+    if let Some(why) = sk.stop.take() {
+        return Err(Fallback::NotStraight(why));
+    }
+    if !ix.diags.is_empty() {
+        return Err(Fallback::Diagnostics);
+    }
+    let programs = t.programs(path, &mut sk, &ix)?;
+    Ok((sk, programs, ix))
+}
+
+/// Translates `path` into `out` as a skeleton translated whole with its runs of straight
+/// blocks streamed (see `segmented`). On `Err` nothing useful was written (the caller
+/// discards `out` and translates whole).
+pub(crate) fn segment<T: SegTarget>(
+    t: &T,
+    path: &Path,
+    out: &mut dyn Write,
+    mut progress: Option<ProgressFn<'_>>,
+    load: Option<LoadCallees<'_>>,
+) -> Result<T::Output, Fallback> {
+    t.check()?;
+    let calls = load.is_some();
+    let popts = t.parse_options();
+    // One scan builds the skeleton and spills the runs' translations.
+    let sk = Skel::new(NSet::default(), calls);
+    let mut one =
+        One { sk, fast: t.fast(), spill: Spill::new(), starts: vec![], pending: false, deferred: vec![], ok: true };
+    let ix =
+        crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut one, progress.as_mut().map(|p| &mut **p as _))
+            .map_err(Fallback::NotStreamable)?;
+    let (mut sk, mut programs, ix) = finish(t, path, one.sk, ix)?;
+    let live = one.ok && !(T::STRICT_DECLINED && one.pending) && one.spill.io.is_none() && one.starts.len() == sk.runs;
+    let mut spilled = live.then_some((one.spill, one.starts, one.deferred, ix));
+    if sk.targets.meets(&sk.run_ns) {
+        // Jumps name N values of run blocks: scan again keeping those blocks real, and
+        // write the runs in a writing scan.
+        spilled = None;
+        let mut again = Skel::new(sk.targets.clone(), calls);
+        let ix = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut again, None)
+            .map_err(Fallback::NotStreamable)?;
+        (sk, programs, _) = finish(t, path, again, ix)?;
+        if sk.targets.meets(&sk.run_ns) {
+            return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
+        }
+    }
+    let Translated { text, places, alone, prefix, done } =
+        t.translate(Skeleton { path, sk: &mut sk, programs, load })?;
+    if let Some((spill, starts, deferred, index)) = spilled {
+        // The blocks the fast writer declined, as the writing scan translates them.
+        let mut inserts = Vec::with_capacity(deferred.len());
+        let mut run_diags = Vec::new();
+        for d in deferred {
+            let Some((text, diags)) = t.alone(&alone, &d.stmt, d.mode) else {
+                return Err(Fallback::Diagnostics);
+            };
+            run_diags.extend(diags);
+            inserts.push((d.run, d.at, text));
+        }
+        let io = |e| Fallback::NotStreamable(NotStreamable::Io(e));
+        if !prefix.is_empty() {
+            out.write_all(prefix).map_err(io)?;
+        }
+        assemble(&text, &places, spill, &starts, &inserts, out).map_err(io)?;
+        return Ok(t.done(done, index, run_diags));
+    }
+    let modes = std::mem::take(&mut sk.modes);
+    let out = Splice::new(&text, places, out);
+    let mut w =
+        Writer { t, class: T::class(&mut sk), fast: t.fast(), modes, alone, pending: false, out, diags: vec![] };
+    w.out.buf.extend_from_slice(prefix);
+    let index = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut w, progress)
+        .map_err(Fallback::NotStreamable)?;
+    if w.out.bad || !index.diags.is_empty() {
+        return Err(Fallback::Diagnostics);
+    }
+    w.out.finish()?;
+    Ok(t.done(done, index, w.diags))
+}

@@ -1,0 +1,217 @@
+//! The FANUC target's part of a segmented skeleton scan (Sinumerik source): the words
+//! pass's modes followed in textual order, the placeholder carrying them and the run's
+//! highest N, the N numbers of the skeleton's own blocks, and the lone M0 after a MSG kept
+//! in the skeleton (see `segmented::fanuc`).
+
+use crate::ir::{
+    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, Target, WordValue,
+};
+use crate::lower::to_fanuc::words::units::Units;
+use crate::span::Span;
+use crate::stream::segmented::driver::SkelPart;
+use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
+use crate::stream::segmented::MARK;
+use crate::stream::target::fanuc::{g_item, run_block};
+use crate::stream::PlainWord;
+
+/// The labels pass's highest N number.
+pub(super) const MAX_N: u32 = 99999;
+
+/// The two modes of the words pass that reach from block to block outside a structure, in
+/// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
+/// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
+#[derive(Clone, Copy, Default)]
+pub(super) struct Modes {
+    units: Units,
+    /// G91 in force.
+    inc: bool,
+}
+
+/// Which of the two modes a block's words touched.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Touched {
+    inch: bool,
+    abs: bool,
+}
+
+impl Modes {
+    /// A constant G word, as the words pass takes it.
+    fn g(&mut self, v: f64, t: &mut Touched) {
+        if self.units.g(v) {
+            t.inch = true;
+            return;
+        }
+        if v == 90.0 || v == 91.0 {
+            self.inc = v == 91.0;
+            t.abs = true;
+        }
+    }
+
+    /// The G words of a block's items.
+    fn items(&mut self, items: &[crate::ir::Item], t: &mut Touched) {
+        for it in items {
+            if let ItemKind::Word(w) = &it.kind {
+                if let (Addr::Letter(b'G'), WordValue::Expr(e)) = (&w.addr, &w.value) {
+                    if let ExprKind::Num(x) = &e.kind {
+                        self.g(x.value, t);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The FANUC target's part of the skeleton scan.
+#[derive(Default)]
+pub(crate) struct Track {
+    /// The highest valid N value of the run being collected (its placeholder's N).
+    hi: Option<u32>,
+    pub(super) max_n: u32,
+    /// N values of the skeleton's own blocks (up to [`MAX_TRACKED_N`]).
+    pub(super) skel_ns: NSet,
+    /// The modes in textual order up to here.
+    pub(super) modes: Modes,
+    /// Which modes the run being collected changes.
+    touched: Touched,
+    /// The last statement was a block holding a MSG.
+    after_msg: bool,
+    /// Where the lone M0 blocks right after such a block start: kept in the skeleton (the
+    /// words pass may pair the two).
+    pub(super) forced: Vec<u32>,
+}
+
+impl SkelPart for Track {
+    type Mode = Units;
+
+    /// A plain line is a run block unless a jump names its N or it may pair with a MSG.
+    #[inline]
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+        !kept(keep, meta) && !self.after_msg
+    }
+
+    /// A statement is a run block when `run_block` and no jump names its N, but for a lone
+    /// M0 right after a block with a MSG.
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+        let after_msg = std::mem::replace(&mut self.after_msg, false);
+        if let StmtKind::Block(b) = &s.kind {
+            if after_msg && crate::lower::to_fanuc::words::is_lone_m0(b) {
+                self.forced.push(b.meta.span.lo);
+            } else if run_block(s) && !kept(keep, &b.meta) {
+                return true;
+            }
+            // Any block with a MSG: its last piece (`lower::to_fanuc::blocks`) may be the MSG alone.
+            self.after_msg = b.items.iter().any(|i| matches!(i.kind, ItemKind::Message { .. }));
+        }
+        false
+    }
+
+    #[inline]
+    fn mode(&self) -> Units {
+        self.modes.units
+    }
+
+    #[inline]
+    fn run_block(&mut self, meta: &BlockMeta, starting: bool) {
+        let n = meta.number.as_ref().map(|n| n.value);
+        if let Some(n) = n {
+            self.max_n = self.max_n.max(if n <= MAX_N { n } else { 0 });
+        }
+        let valid = n.filter(|n| *n <= MAX_N);
+        self.hi = if starting { valid } else { self.hi.max(valid) };
+    }
+
+    #[inline]
+    fn follow_plain(&mut self, words: &[PlainWord]) {
+        let mut t = self.touched;
+        for w in words {
+            if w.letter == b'G' {
+                self.modes.g(w.value, &mut t);
+            }
+        }
+        self.touched = t;
+    }
+
+    fn follow_stmt(&mut self, items: &[crate::ir::Item]) {
+        let mut t = self.touched;
+        self.modes.items(items, &mut t);
+        self.touched = t;
+    }
+
+    /// The placeholder of run `k`: it carries the modes the run leaves (as unit words,
+    /// `Units::words`, and G90/G91 words, where it changes them) for the words pass to
+    /// follow into the skeleton after it, and the run's highest N; its line is replaced whole.
+    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
+        let t = std::mem::take(&mut self.touched);
+        let mut items = Vec::new();
+        if t.inch {
+            items.extend(self.modes.units.words().iter().map(|&v| g_item(v, span)));
+        }
+        if t.abs {
+            items.push(g_item(if self.modes.inc { 91.0 } else { 90.0 }, span));
+        }
+        let meta = BlockMeta {
+            span,
+            number: self.hi.take().map(|value| SeqNo { value, span }),
+            comments: vec![Comment { text: format!("{MARK}{k}"), span }],
+            ..BlockMeta::default()
+        };
+        crate::lower::meta_stmt(meta, items)
+    }
+
+    /// Checks a statement of the macro part, follows its modes and collects its jump targets.
+    fn macro_stmt(&mut self, s: &Stmt, calls_ok: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
+        let mut why: Option<&'static str> = None;
+        let mut max_n = 0;
+        let mut own = Vec::new();
+        let mut modes = self.modes;
+        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
+            let StmtKind::Block(b) = &s.kind else { return };
+            if let Some(n) = &b.meta.number {
+                if n.value <= MAX_N {
+                    max_n = max_n.max(n.value);
+                }
+                if n.value <= MAX_TRACKED_N {
+                    own.push(n.value);
+                }
+            }
+            modes.items(&b.items, &mut Touched::default());
+            for it in &b.items {
+                match &it.kind {
+                    ItemKind::Call(c) if calls_ok && plain_call(c) => {}
+                    ItemKind::Call(_) => why = why.or(Some("a call of another program")),
+                    ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
+                    ItemKind::Goto(g) => match &g.target {
+                        Target::Number(n) => targets.push(n.value),
+                        Target::Label(_) => {}
+                        Target::Computed(_) => why = why.or(Some("a computed jump")),
+                    },
+                    ItemKind::Word(w) => match &w.value {
+                        WordValue::Expr(e) => match &e.kind {
+                            _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
+                                why = why.or(Some("a computed G word"));
+                            }
+                            _ => {}
+                        },
+                        WordValue::Ac(_) | WordValue::Ic(_) | WordValue::Rotary(..) => {}
+                    },
+                    _ => {}
+                }
+            }
+        });
+        if why.is_some() {
+            return why;
+        }
+        self.modes = modes;
+        self.max_n = self.max_n.max(max_n);
+        for n in own {
+            self.skel_ns.insert(n);
+        }
+        None
+    }
+}
+
+/// Whether a call may stay in a skeleton translated with its callees: by a constant name,
+/// not modal (the whole path loads exactly these callees, `called_names`).
+pub(crate) fn plain_call(c: &crate::ir::Call) -> bool {
+    matches!(c.kind, CallKind::Named | CallKind::LNumber) && matches!(c.target, CallTarget::Name(_))
+}
