@@ -413,7 +413,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("multi-word-block.nc", "NC472"),    // G43 H1 without a tool change: whose length?
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
-    ("system-variables.nc", "NC365"),    // #4003
+    ("system-variables.nc", "NC549"),    // #4003 before the program selects G90/G91
 ];
 
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator

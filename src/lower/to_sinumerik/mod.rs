@@ -42,6 +42,7 @@ pub mod lookahead;
 pub mod m97;
 pub mod modal;
 pub mod modal_flow;
+pub mod modal_reads;
 pub mod polar;
 pub mod probe;
 pub mod rotation;
