@@ -65,6 +65,16 @@ impl Interp<'_> {
         }
     }
 
+    /// A `#5061+` read whose tool length offset (G43/G44 at the G31) the run does not know.
+    fn length_unknown(&self, n: i64, why: &str, span: Span) -> Fault {
+        Fault::error(
+            Diagnostic::error("NC534", format!("#{n} read under G43/G44 (the value includes the tool length offset) {why}"))
+                .primary(self.file(), span, "read here")
+                .note("FANUC keeps the skip position with the tool length offset in force at the G31 (docs/semantics.md, Probing)")
+                .hint("give the H register's geometry and wear (--set '#11001=…' --set '#10001=…'), or probe under G49"),
+        )
+    }
+
     /// A position in the current input unit.
     fn in_unit(&self, mm: f64) -> f64 {
         if self.m.modal.sys_inch() {
@@ -157,9 +167,15 @@ impl Interp<'_> {
                 _ => 0.0,
             },
             // The skip position kept by the last G31 (`machine::probe`), 0 before any.
+            // Under G43/G44 they include the offset in force at the G31 (F-POS), on Z: the
+            // value where the run knows it.
             5061..=5069 => {
-                self.comp_guard(&format!("#{n}"), m.probe.with_length, false, span)?;
-                self.in_unit(m.probe.skip[(n - 5061) as usize])
+                let length = match &m.probe.length {
+                    Ok(l) => *l,
+                    Err(why) => return Err(self.length_unknown(n, why, span)),
+                };
+                let i = (n - 5061) as usize;
+                self.in_unit(m.probe.skip[i]) + if i == 2 { length } else { 0.0 }
             }
             5001..=5009 | 5041..=5049 => {
                 if n >= 5041 {
