@@ -48,7 +48,11 @@ const SET: [&str; 4] = ["--set", "#11001=100.", "--set", "#10001=-0.5"];
 fn the_skip_position_includes_the_length_offset_at_the_g31() {
     let d = scratch("eval");
     // G43: Z holds the trigger point plus geometry and wear; X and Y are not offset.
-    let f = write(&d, "a.nc", "G0 X3. Y4.\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\n#2=#5061\n#3=#5062\nG49\nG0 X#1 Y[#2+#3]\nM30\n");
+    let f = write(
+        &d,
+        "a.nc",
+        "G0 X3. Y4.\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\n#2=#5061\n#3=#5062\nG49\nG0 X#1 Y[#2+#3]\nM30\n",
+    );
     let mut args = SET.to_vec();
     args.extend(["--probe", "Z=2.5"]);
     let (t, err) = run(&f, &args);
@@ -64,7 +68,11 @@ fn the_skip_position_includes_the_length_offset_at_the_g31() {
     let h = write(&d, "c.nc", "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\nG10 L10 P1 R50.\n#1=#5063\nG49\nG0 X#1\nM30\n");
     assert!(run(&h, &SET).0.contains("move rapid X=99.5 Z=0 f=-"), "{}", run(&h, &SET).0);
     // H0 is offset 0; a G31 under G49 holds none.
-    let k = write(&d, "d.nc", "G0 X0\nG43 H0 Z10.\nG31 Z0 F100.\n#1=#5063\nG49\nG31 Z1. F100.\n#2=#5063\nG0 X[#1+#2]\nM30\n");
+    let k = write(
+        &d,
+        "d.nc",
+        "G0 X0\nG43 H0 Z10.\nG31 Z0 F100.\n#1=#5063\nG49\nG31 Z1. F100.\n#2=#5063\nG0 X[#1+#2]\nM30\n",
+    );
     assert!(run(&k, &[]).0.contains("move rapid X=1 Z=1 f=-"), "{}", run(&k, &[]).0);
 }
 
@@ -72,8 +80,18 @@ fn the_skip_position_includes_the_length_offset_at_the_g31() {
 fn what_the_run_does_not_know_is_refused_by_name() {
     let d = scratch("refused");
     let cases = [
-        ("a.nc", "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\nM30\n", &[][..], "with the length of H1 not given (--set '#11001=…')"),
-        ("b.nc", "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\nM30\n", &["--set", "#11001=100."][..], "(--set '#10001=…')"),
+        (
+            "a.nc",
+            "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\nM30\n",
+            &[][..],
+            "with the length of H1 not given (--set '#11001=…')",
+        ),
+        (
+            "b.nc",
+            "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5063\nM30\n",
+            &["--set", "#11001=100."][..],
+            "(--set '#10001=…')",
+        ),
         ("c.nc", "G18 G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\n#1=#5061\nM30\n", &SET[..], "outside G17"),
         ("d.nc", "G20 G0 X0\nG43 H1 Z1.\nG31 Z0 F10.\n#1=#5063\nM30\n", &SET[..], "under G20"),
     ];
