@@ -72,7 +72,7 @@ fn the_mode_checking_probe_macro_translates_and_is_proven_on_its_paths() {
     assert_eq!(code, 0, "{err}");
     let mpf = out.join("PROBE_WEB_MODES.MPF");
     let text = std::fs::read_to_string(&mpf).expect("translation written");
-    for line in ["IF 90<>90 GOTOF LBL_910", "IF 21<>21 GOTOF LBL_910", "R120=56", "R121=1"] {
+    for line in ["IF 90<>90 GOTOF LBL_910", "IF 21<>21 GOTOF LBL_910", "R120=56", "R121=1", "R122=21"] {
         assert!(text.contains(line), "`{line}` not in:\n{text}");
     }
     let mpf = mpf.to_string_lossy().into_owned();
@@ -91,6 +91,7 @@ fn the_mode_checking_probe_macro_translates_and_is_proven_on_its_paths() {
         ("G90/G91", "IF 90<>90 GOTOF", "IF 91<>90 GOTOF"),
         ("the units", "IF 21<>21 GOTOF", "IF 20<>21 GOTOF"),
         ("the motion mode", "R121=1", "R121=0"),
+        ("the tool", "R122=21", "R122=20"),
     ] {
         let bad = write(&d, "BAD.MPF", &text.replacen(from, to, 1));
         let (code, out, _) = nctrans(&["check", src, &bad]);
@@ -108,10 +109,10 @@ fn reads_whose_mode_is_not_known_before_the_run_are_refused_by_name() {
         (
             "a.nc",
             "O1\n#1=#4003\nM30\n",
-            "#4003 (G90/G91 of the preceding block) read where the program has not selected",
+            "#4003 (G90/G91 of the preceding block) read where the program has not set it itself",
         ),
         ("b.nc", "O1\nG90 G0 X0\nIF [#1 GT 0] GOTO 10\nG91\nN10 #2=#4003\nM30\n", "#4003"),
-        ("c.nc", "O1\nG90 G0 X0\nG91 X#4003\nM30\n", "in a block that selects a G code of the same group"),
+        ("c.nc", "O1\nG90 G0 X0\nG91 X#4003\nM30\n", "read in a block that sets it"),
         ("d.nc", "O1\nG90 G54 G0 X0\nM98 P2\n#1=#4014\nM30\nO2\nG55\nM99\n", "#4014 (the work offset"),
         ("e.nc", "O1\nG21 G0 X0\n#1=#4006\nG#1\nM30\n", ""),
     ];
@@ -126,4 +127,35 @@ fn reads_whose_mode_is_not_known_before_the_run_are_refused_by_name() {
             assert!(err.contains("NC549") && err.contains(what), "{name}: {err}");
         }
     }
+}
+
+/// D, H and T read back as FANUC's numbers (`#4107` is the register D5, where the Siemens
+/// edge is D1 of tool 5), so a tool's length read through `#[11000+#4120]` is its edge
+/// data; proven, and the value `$P_TOOL` would give (1) is caught.
+#[test]
+fn d_h_and_t_reads_become_the_numbers_the_program_wrote() {
+    let d = scratch("dht");
+    let src = write(
+        &d,
+        "t.nc",
+        "O1\n(nctrans: set #11005=100.)\nT5 M6\nG0 X0 Y0\nG43 H5 Z50.\nG41 D5 G1 X10. F100.\n#1=#4107\n\
+         #2=#[11000+#4120]+#4111\nG40 G1 X20.\nG0 Y#1 Z#2\nG49\nM30\n",
+    );
+    let out = d.join("out");
+    let (code, _, err) = nctrans(&[&src, "--to", "sinumerik", "-o", &format!("{}/", out.display())]);
+    assert_eq!(code, 0, "{err}");
+    let mpf = out.join("P_T.MPF");
+    let text = std::fs::read_to_string(&mpf).expect("translation written");
+    assert!(text.contains("LOC1=5\n") && text.contains("LOC2=$TC_DP3[5,1]+5\n"), "{text}");
+    let bad = write(&d, "BAD.MPF", &text.replacen("LOC1=5\n", "LOC1=$P_TOOL\n", 1));
+    let (code, out, _) = nctrans(&["check", &src, &bad]);
+    assert_eq!(code, 1, "the edge number passed for the register: {out}");
+    // A loop condition sees every pass: G91 inside the loop leaves G90/G91 unknown there.
+    let w = write(&d, "w.nc", "O1\nG90 G0 X0\n#1=0\nWHILE [#4003 EQ 90] DO1\n#1=#1+1\nG91\nEND1\nG90 X#1\nM30\n");
+    let (_, _, err) = nctrans(&[&w, "--to", "sinumerik", "-o", &format!("{}/", d.join("w").display())]);
+    assert!(err.contains("NC549") && err.contains("#4003"), "{err}");
+    // A tool selected on one path only.
+    let t = write(&d, "u.nc", "O1\nIF [#1 GT 0] GOTO 10\nT5 M6\nN10 #2=#4120\nM30\n");
+    let (_, _, err) = nctrans(&[&t, "--to", "sinumerik", "-o", &format!("{}/", d.join("u").display())]);
+    assert!(err.contains("NC549") && err.contains("#4120 (the T number"), "{err}");
 }

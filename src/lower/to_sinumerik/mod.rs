@@ -407,6 +407,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let main = plan.role == Role::Main;
     let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
     ctx.modal = modal::ModalScan::new(&body, main, plan.start_inch, plan.start_clear, calls, locals);
+    ctx.modal.reads = modal_reads::Reads::new(&body);
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);

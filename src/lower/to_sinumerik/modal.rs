@@ -34,11 +34,9 @@ pub struct ModalScan {
     frames: bool,
     /// Each G28/G30 block: the start of its first item ([`State::inter`]) and its items.
     homes: Vec<(u32, Vec<Item>)>,
-    /// Per block (start, text order): the modes the program itself has selected on every
-    /// path into it (no power-on or caller assumption: [`ModalScan::selected_before`]), and
-    /// the groups the block's own G words set (bit 0 motion, 1 G90/G91, 2 G20/G21, 3 work
-    /// offset), for the `#4001`.. reads (`modal_reads`).
-    selected_in: Vec<(u32, State, u8)>,
+    /// The modal information values (`#4001`.., D, H, T) the program itself has set at
+    /// each block, for the reads that become constants (`modal_reads`; set beside `new`).
+    pub reads: super::modal_reads::Reads,
     /// What the paths to the program's ends (M99, M30, M2, the last block) agree on;
     /// `None` where no end is reached (or the scan did not settle: [`State::UNKNOWN`]).
     exit: Option<State>,
@@ -196,26 +194,6 @@ impl State {
     }
 }
 
-/// The groups a block's G words set ([`ModalScan::selected_in`] bits); a computed G word
-/// may set any.
-fn own_groups(items: &[Item]) -> u8 {
-    let computed = items.iter().any(|it| {
-        matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && !matches!(&w.value, WordValue::Expr(e) if literal(e).is_some()))
-    });
-    if computed {
-        return 0xff;
-    }
-    g_codes(items).iter().fold(0, |m, g| {
-        m | match g {
-            0 | 10 | 20 | 30 | 730..=890 => 1,
-            900 | 910 => 2,
-            200 | 210 => 4,
-            540..=599 => 8,
-            _ => 0,
-        }
-    })
-}
-
 /// Every axis bit of [`State::g52`].
 const ALL_AXES: u16 = 0x1ff;
 
@@ -279,20 +257,13 @@ impl ModalScan {
         let flow = super::modal_flow::run(&flat, start, calls, locals);
         let settled = flow.settled;
         let ins = flow.ins;
-        // The same flow from a start that assumes nothing of the four modes a `#4001`..
-        // read may be folded from: what every path selects in the program itself.
-        let bare = State { offset: None, incremental: None, inch: None, motion: None, ..start };
-        let selected = super::modal_flow::run(&flat, bare, calls, locals);
-        let mut selected_in = Vec::new();
         let mut blocks = Vec::new();
         let mut rot_in = Vec::new();
         let mut shift_in = Vec::new();
         let mut modal_call = false;
-        let mut calls_out = false;
         crate::ir::visit::walk_stmts(body, &mut |s| {
             if let StmtKind::Block(b) = &s.kind {
                 modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
-                calls_out |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind != CallKind::M97));
             }
         });
         let mut g68s = Vec::new();
@@ -316,15 +287,6 @@ impl ModalScan {
                 }
             }
             let Some((lo, _)) = flat.blocks[i] else { continue };
-            let own = match &flat.nodes[i] {
-                Node::Items(items) => own_groups(items),
-                _ => 0,
-            };
-            // A called program may leave any of the modes changed (the flow follows only
-            // the unit across calls), so a program that calls one folds nothing.
-            let sel =
-                if selected.settled && !calls_out { selected.ins[i].unwrap_or(State::UNKNOWN) } else { State::UNKNOWN };
-            selected_in.push((lo, sel, own));
             let first = match &flat.nodes[i] {
                 Node::Items(items) => items.first().map_or(lo, |it| it.span.lo),
                 _ => lo,
@@ -372,7 +334,7 @@ impl ModalScan {
             other_plane,
             frames,
             homes,
-            selected_in,
+            reads: Default::default(),
             exit: if settled { exit } else { Some(State::UNKNOWN) },
         }
     }
@@ -456,14 +418,6 @@ impl ModalScan {
     /// where the paths disagree or a called program runs in its caller's unveiled unit.
     pub fn inch_at(&self, lo: u32) -> Option<bool> {
         self.at(lo).and_then(|b| b.1.inch)
-    }
-
-    /// The modes selected by the program itself on every path into the block at or before
-    /// `lo` (an expression's start finds its block), and the groups (bits, see
-    /// [`ModalScan::selected_in`]) the block's own G words set.
-    pub fn selected_before(&self, lo: u32) -> (State, u8) {
-        let i = self.selected_in.partition_point(|b| b.0 <= lo);
-        i.checked_sub(1).and_then(|i| self.selected_in.get(i)).map_or((State::UNKNOWN, 0xff), |b| (b.1, b.2))
     }
 
     /// The unit in force after each block (text order), for [`call_units`].
