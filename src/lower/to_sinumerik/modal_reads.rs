@@ -54,13 +54,19 @@ fn g_field(g: u32, p_word: bool) -> Option<Result<(usize, f64), usize>> {
     let v = f64::from(g) / 10.0;
     Some(match g {
         0 | 10 | 20 | 30 => Ok((0, v)),
-        730..=890 => Err(0),
+        // Other codes of the groups followed (G02.x, G33 threading, G60, the cycles; G93,
+        // G17.1, G41.2, G43.4 …): the value is not followed, so not known after them.
+        1..=39 | 330..=350 | 600 | 730..=890 => Err(0),
         170 | 180 | 190 => Ok((1, v)),
+        171..=199 => Err(1),
         900 | 910 => Ok((2, v)),
         940 | 950 => Ok((3, v)),
+        930 => Err(3),
         200 | 210 => Ok((4, v)),
         400 | 410 | 420 => Ok((5, v)),
+        401..=429 => Err(5),
         430 | 440 | 490 => Ok((6, v)),
+        431..=499 => Err(6),
         980 | 990 => Ok((7, v)),
         // `G54 Pn` is `G54.1 Pn` (an extended offset).
         540 | 550 | 560 | 570 | 580 | 590 if !p_word => Ok((8, v)),
