@@ -115,6 +115,8 @@ fn reads_whose_mode_is_not_known_before_the_run_are_refused_by_name() {
         ("c.nc", "O1\nG90 G0 X0\nG91 X#4003\nM30\n", "read in a block that sets it"),
         ("d.nc", "O1\nG90 G54 G0 X0\nM98 P2\n#1=#4014\nM30\nO2\nG55\nM99\n", "#4014 (the work offset"),
         ("e.nc", "O1\nG21 G0 X0\n#1=#4006\nG#1\nM30\n", ""),
+        // Under G66 the macro runs after each move: G90 of a later block does not hold.
+        ("f.nc", "O1\nG90 G0 X0\nG66 P9000\nG90 X10.\nG67\n#1=#4003\nM30\nO9000\nG91\nM99\n", "#4003"),
     ];
     for (name, text, what) in cases {
         let f = write(&d, name, text);

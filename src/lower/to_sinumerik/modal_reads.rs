@@ -80,7 +80,13 @@ fn g_field(g: u32, p_word: bool) -> Option<Result<(usize, f64), usize>> {
 /// The state after a block entered with `s`, and the fields the block's words set.
 fn apply(items: &[Item], mut s: State) -> (State, u16) {
     let mut own = 0u16;
-    if items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
+    // A call may change anything; so may the words of a Haas `IF [c] <words>` (run or not).
+    let opaque = |it: &Item| match &it.kind {
+        ItemKind::Call(_) | ItemKind::IfBlock { .. } => true,
+        ItemKind::IfThen { then, .. } => !matches!(then.kind, ItemKind::Assign { .. }),
+        _ => false,
+    };
+    if items.iter().any(opaque) {
         return ([None; 13], u16::MAX);
     }
     let p_word = items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'P')));
@@ -138,7 +144,14 @@ impl Reads {
             return Reads::default();
         }
         ins[0] = Some([None; 13]);
-        let mut work = vec![0usize];
+        // Under G66 the macro runs after every later move, where it may change anything.
+        let mut modal_call = false;
+        crate::ir::visit::walk_stmts(body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
+            }
+        });
+        let mut work = if modal_call { Vec::new() } else { vec![0usize] };
         while let Some(i) = work.pop() {
             let Some(s) = ins[i] else { continue };
             let out = match &flat.nodes[i] {

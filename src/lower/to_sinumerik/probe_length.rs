@@ -22,7 +22,10 @@ fn after(items: &[Item], may: bool) -> bool {
     let computed_g = items.iter().any(|it| {
         matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && !matches!(&w.value, WordValue::Expr(e) if literal(e).is_some()))
     });
-    let calls = items.iter().any(|it| matches!(it.kind, ItemKind::Call(_)));
+    let calls = items.iter().any(|it| {
+        matches!(it.kind, ItemKind::Call(_) | ItemKind::IfBlock { .. })
+            || matches!(&it.kind, ItemKind::IfThen { then, .. } if !matches!(then.kind, ItemKind::Assign { .. }))
+    });
     let gs = g_codes(items);
     if computed_g || calls || gs.iter().any(|g| matches!(g, 430 | 440)) {
         true
@@ -42,8 +45,15 @@ pub fn check(ctx: &mut Ctx, body: &[Stmt], main: bool) {
     if len == 0 {
         return;
     }
+    // Under G66 the macro runs after every later move, where it may select G43.
+    let mut modal_call = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
+        }
+    });
     // `may[i]`: G43/G44 may be in force entering node i.
-    let mut may = vec![false; len];
+    let mut may = vec![modal_call; len];
     let mut seen = vec![false; len];
     let mut stack = vec![(0usize, !main)];
     while let Some((i, m)) = stack.pop() {
@@ -53,7 +63,7 @@ pub fn check(ctx: &mut Ctx, body: &[Stmt], main: bool) {
         seen[i] = true;
         may[i] |= m;
         let out = match &flat.nodes[i] {
-            Node::Items(items) => after(items, may[i]),
+            Node::Items(items) => modal_call || after(items, may[i]),
             _ => may[i],
         };
         // A block that may be skipped (`/`) passes its entry state on as well.
