@@ -161,3 +161,29 @@ fn d_h_and_t_reads_become_the_numbers_the_program_wrote() {
     let (_, _, err) = nctrans(&[&t, "--to", "sinumerik", "-o", &format!("{}/", d.join("u").display())]);
     assert!(err.contains("NC549") && err.contains("#4120 (the T number"), "{err}");
 }
+
+/// Siemens → FANUC: `$P_TOOLNO` and `$P_TOOL` become the tool changed to and the edge
+/// selected where the program did so on every path (FANUC's `#4120`/`#4107` hold other
+/// things); proven, a wrong constant is caught, and a read where paths disagree stays NC342.
+#[test]
+fn the_active_tool_and_edge_read_back_on_fanuc_as_the_numbers_written() {
+    let d = scratch("to-fanuc");
+    let src = write(&d, "PT.MPF", "G90 G710\nT5 M6 D1\nR1=$P_TOOLNO\nR2=$P_TOOL\nG0 X=R1 Y=R2\nM30\n");
+    let nc = d.join("pt.nc");
+    let (code, out, err) = nctrans(&[&src, "--to", "fanuc", "-o", &nc.to_string_lossy()]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(&nc).expect("translation written");
+    assert!(text.contains("#501=5.\n#502=1.\n"), "{text}");
+    let bad = write(&d, "bad.nc", &text.replacen("#501=5.", "#501=6.", 1));
+    let (code, out, _) = nctrans(&["check", &src, &bad]);
+    assert_eq!(code, 1, "a wrong tool passed: {out}");
+    // Another tool on one path (a jump over the tool change), or in a loop's later passes.
+    for (name, text) in [
+        ("PU.MPF", "G90 G710\nIF R9>0 GOTOF SKIP1\nT5 M6 D1\nSKIP1:\nR1=$P_TOOLNO\nM30\n"),
+        ("PW.MPF", "G90 G710\nT5 M6 D1\nWHILE R9<2\nR1=$P_TOOLNO\nT6 M6 D1\nR9=R9+1\nENDWHILE\nM30\n"),
+    ] {
+        let f = write(&d, name, text);
+        let (_, _, err) = nctrans(&[&f, "--to", "fanuc", "-o", &d.join(format!("{name}.nc")).to_string_lossy()]);
+        assert!(err.contains("NC342") && err.contains("$P_TOOLNO"), "{name}: {err}");
+    }
+}

@@ -27,6 +27,7 @@ pub mod probe;
 pub mod probe_length;
 pub mod rotation;
 pub mod tool_data;
+pub mod tool_reads;
 pub mod varmap;
 pub mod words;
 
@@ -206,6 +207,7 @@ impl Ctx {
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
+    tool_reads::run(prog);
     blocks::run(ctx, prog, info);
     let measuring = probe::take(ctx, prog);
     if !measuring.is_empty() {
