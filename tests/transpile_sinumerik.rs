@@ -712,11 +712,12 @@ fn pitfall_cases_catch_the_naive_translation() {
 
 #[test]
 fn modal_feed_speed_and_d_read_as_siemens_modal_variables() {
-    pair(
-        "O1\nG1 X1. F250. S800 M3\n#1=#4109+#4119+#4107\nM30\n",
-        "DEF REAL LOC1\nG1 X1 F250 S800 M3\nLOC1=$P_F+$P_S+$P_TOOL\nM30\n",
-    );
-    assert_eq!(codes("O1\n#1=#4001\nM30\n", &Options::default()), vec!["NC365"]);
+    pair("O1\nG1 X1. F250. S800 M3\n#1=#4109+#4119\nM30\n", "DEF REAL LOC1\nG1 X1 F250 S800 M3\nLOC1=$P_F+$P_S\nM30\n");
+    // D: `$P_TOOL` is the edge the translation writes (D1 for D5), not FANUC's register
+    // number; the constant where the program wrote it, else refused.
+    assert_eq!(codes("O1\n#1=#4107\nM30\n", &Options::default()), vec!["NC549"]);
+    // A modal G group read where the program has not selected the mode: no counterpart.
+    assert_eq!(codes("O1\n#1=#4001\nM30\n", &Options::default()), vec!["NC549"]);
 }
 
 /// The seed brake test O9050: under the default policy only precise diagnostics (committed

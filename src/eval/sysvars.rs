@@ -20,6 +20,23 @@ impl Interp<'_> {
         )
     }
 
+    /// `#4014` under an extended work offset and `#4130` (the P of G54.1): the values a
+    /// FANUC returns there (54.1, the P number) are in no source read for this work
+    /// (docs/semantics.md, Modal information), so they are refused, not guessed.
+    fn modal_unsourced(&self, n: i64, wo: usize, span: Span) -> Fault {
+        let what = if n == 4014 {
+            format!("#4014 read under the extended work offset G54.1 P{}", wo.saturating_sub(6))
+        } else {
+            "#4130 (the P number of the additional work offset G54.1)".to_string()
+        };
+        Fault::error(
+            Diagnostic::error("NC549", format!("{what} is not modelled: no source read here gives its value"))
+                .primary(self.file(), span, "read here")
+                .note("modelled: #4014 under G54..G59 (54..59); docs/semantics.md, Modal information")
+                .hint("keep the offset number in a variable where the program selects it"),
+        )
+    }
+
     /// Refuses a position read whose value holds what the evaluator does not model (the
     /// trace keeps the programmed contour, compensation by register only): the tool length
     /// (FANUC `#5021+`, `#5041+`, `#5061+` under G43/G44 include the offset; Siemens
@@ -46,6 +63,16 @@ impl Interp<'_> {
                     .hint("read the position with the compensation cancelled (G49 / D0, G40), or the programmed end point (#5001+, $P_EP)"),
             )),
         }
+    }
+
+    /// A `#5061+` read whose tool length offset (G43/G44 at the G31) the run does not know.
+    fn length_unknown(&self, n: i64, why: &str, span: Span) -> Fault {
+        Fault::error(
+            Diagnostic::error("NC534", format!("#{n} read under G43/G44 (the value includes the tool length offset) {why}"))
+                .primary(self.file(), span, "read here")
+                .note("FANUC keeps the skip position with the tool length offset in force at the G31 (docs/semantics.md, Probing)")
+                .hint("give the H register's geometry and wear (--set '#11001=…' --set '#10001=…'), or probe under G49"),
+        )
     }
 
     /// A position in the current input unit.
@@ -104,7 +131,10 @@ impl Interp<'_> {
                     21.0
                 }
             }
-            4014 => 53.0 + m.wo as f64,
+            // G54..G59 are tables 1..6; an extended offset (G54.1 Pn, table 6 + n) reads a
+            // value (and #4130 its P) that no source read here settles.
+            4014 if m.wo <= 6 => 53.0 + m.wo as f64,
+            4014 | 4130 => return Err(self.modal_unsourced(n, m.wo, span)),
             4007..=4010 | 4015 => {
                 let group = (n - 4000) as u8;
                 match m.group_g.iter().find(|s| s.0 == group) {
@@ -137,9 +167,15 @@ impl Interp<'_> {
                 _ => 0.0,
             },
             // The skip position kept by the last G31 (`machine::probe`), 0 before any.
+            // Under G43/G44 they include the offset in force at the G31 (F-POS), on Z: the
+            // value where the run knows it.
             5061..=5069 => {
-                self.comp_guard(&format!("#{n}"), m.probe.with_length, false, span)?;
-                self.in_unit(m.probe.skip[(n - 5061) as usize])
+                let length = match &m.probe.length {
+                    Ok(l) => *l,
+                    Err(why) => return Err(self.length_unknown(n, why, span)),
+                };
+                let i = (n - 5061) as usize;
+                self.in_unit(m.probe.skip[i]) + if i == 2 { length } else { 0.0 }
             }
             5001..=5009 | 5041..=5049 => {
                 if n >= 5041 {

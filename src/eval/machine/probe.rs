@@ -12,7 +12,7 @@ use crate::eval::probe::ProbeInput;
 /// How far a trigger point may lie from the programmed line (the trace tolerance).
 const ON_LINE: f64 = 1e-6;
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Probe {
     /// The test inputs, one per probing move in run order.
     pub inputs: Vec<ProbeInput>,
@@ -26,9 +26,28 @@ pub struct Probe {
     pub meas_w: [f64; 9],
     /// Siemens `$AC_MEA[1]`, `$AC_MEA[2]`: the probe switched in the last measuring block.
     pub mea: [bool; 2],
-    /// The kept position holds a tool length the evaluator does not know (FANUC `#5061+`
-    /// under G43/G44; Siemens `$AA_MM` with a cutting edge active): reading it is refused.
+    /// Siemens: the kept machine position holds a tool length the evaluator does not know
+    /// (`$AA_MM` with a cutting edge active): reading it is refused.
     pub with_length: bool,
+    /// FANUC: the tool length offset `#5063` includes (G43 +, G44 −, the H register's
+    /// geometry plus wear at the G31, on Z), or why it is not known (then `#5061+` reads are
+    /// refused, NC534). docs/semantics.md, Probing and position reads.
+    pub length: Result<f64, String>,
+}
+
+impl Default for Probe {
+    fn default() -> Probe {
+        Probe {
+            inputs: Vec::new(),
+            moves: 0,
+            skip: [0.0; 9],
+            meas_m: [0.0; 9],
+            meas_w: [0.0; 9],
+            mea: [false; 2],
+            with_length: false,
+            length: Ok(0.0),
+        }
+    }
 }
 
 fn error(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
@@ -134,7 +153,7 @@ impl Machine {
     /// (`None` for FANUC).
     pub(super) fn probe_record(&mut self, hit: Option<[f64; 9]>, programmed: &[bool; 9], probe: Option<usize>) {
         if self.fanuc {
-            self.probe.with_length = self.comp.length_g != 490;
+            self.probe.length = self.length_offset();
             let at = hit.unwrap_or(self.pos);
             for (i, x) in at.iter().enumerate() {
                 self.probe.skip[i] = x - self.active_offset(i);
@@ -149,6 +168,35 @@ impl Machine {
                 self.probe.meas_m[i] = at[i];
                 self.probe.meas_w[i] = at[i] - self.active_offset(i);
             }
+        }
+    }
+}
+
+impl Machine {
+    /// The FANUC tool length offset in force on Z (G43 adds, G44 subtracts the H register,
+    /// memory C: geometry `#11000+H` plus wear `#10000+H`, F-MEMC), for the position reads
+    /// that include it; `Err` says why the run does not know it.
+    pub fn length_offset(&self) -> Result<f64, String> {
+        if self.comp.length_g == 490 || self.h == 0.0 {
+            return Ok(0.0);
+        }
+        if self.haas {
+            return Err("on a Haas profile, whose offset tables (#2001+) the run does not take as tool data".into());
+        }
+        if self.modal.plane != crate::eval::trace::Plane::XY {
+            return Err("outside G17 (the axis G43 offsets then depends on the length compensation type)".into());
+        }
+        if self.modal.sys_inch() {
+            return Err("under G20 (the offset values are kept in the machine's unit)".into());
+        }
+        let h = self.h as i64;
+        let value = |n: i64| self.tool_data.get(&format!("#{n}")).copied();
+        match (value(11000 + h), value(10000 + h)) {
+            (Some(g), Some(w)) => Ok(if self.comp.length_g == 440 { -(g + w) } else { g + w }),
+            (g, _) => Err(format!(
+                "with the length of H{h} not given (--set '#{}=…')",
+                if g.is_none() { 11000 + h } else { 10000 + h }
+            )),
         }
     }
 }

@@ -24,8 +24,10 @@ pub mod lookahead;
 pub mod lower_structures;
 pub mod polar;
 pub mod probe;
+pub mod probe_length;
 pub mod rotation;
 pub mod tool_data;
+pub mod tool_reads;
 pub mod varmap;
 pub mod words;
 
@@ -205,8 +207,12 @@ impl Ctx {
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
+    tool_reads::run(prog);
     blocks::run(ctx, prog, info);
     let measuring = probe::take(ctx, prog);
+    if !measuring.is_empty() {
+        probe_length::check(ctx, prog);
+    }
     words::run(ctx, prog, info);
     probe::put(prog, &measuring);
     comp::run(ctx, prog, info);

@@ -273,6 +273,10 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
                         marks.extend(m);
                         Expr::num(0.0, false, span)
                     }
+                    None if let Some(r) = super::modal_reads::read(ctx, n, v.span) => r.unwrap_or_else(|m| {
+                        marks.extend(m);
+                        Expr::num(0.0, false, span)
+                    }),
                     None => {
                         let (what, hint) = super::haas_sys::refusal(ctx, n, false)
                             .unwrap_or_else(|| (format!("the system variable #{n}"), GENERIC_HINT));

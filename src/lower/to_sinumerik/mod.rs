@@ -42,8 +42,10 @@ pub mod lookahead;
 pub mod m97;
 pub mod modal;
 pub mod modal_flow;
+pub mod modal_reads;
 pub mod polar;
 pub mod probe;
+pub mod probe_length;
 pub mod rotation;
 pub mod structures;
 pub mod tapping;
@@ -402,9 +404,14 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let polar_framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_polar).filter_map(|p| p.number).collect();
     let calls = modal::CallModes { setters: &setters, framers: &framers, polar_framers: &polar_framers };
     let plan = ctx.plan();
+    let main = plan.role == Role::Main;
     let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
-    ctx.modal = modal::ModalScan::new(&body, plan.role == Role::Main, plan.start_inch, plan.start_clear, calls, locals);
+    ctx.modal = modal::ModalScan::new(&body, main, plan.start_inch, plan.start_clear, calls, locals);
+    ctx.modal.reads = modal_reads::Reads::new(&body);
     let skip_axes = probe::scan(ctx, &body);
+    if skip_axes != 0 {
+        probe_length::check(ctx, &body, main);
+    }
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
     body = haas_if::restructure(body);

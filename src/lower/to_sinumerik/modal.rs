@@ -34,6 +34,9 @@ pub struct ModalScan {
     frames: bool,
     /// Each G28/G30 block: the start of its first item ([`State::inter`]) and its items.
     homes: Vec<(u32, Vec<Item>)>,
+    /// The modal information values (`#4001`.., D, H, T) the program itself has set at
+    /// each block, for the reads that become constants (`modal_reads`; set beside `new`).
+    pub reads: super::modal_reads::Reads,
     /// What the paths to the program's ends (M99, M30, M2, the last block) agree on;
     /// `None` where no end is reached (or the scan did not settle: [`State::UNKNOWN`]).
     exit: Option<State>,
@@ -356,6 +359,7 @@ impl ModalScan {
             other_plane,
             frames,
             homes,
+            reads: Default::default(),
             exit: if settled { exit } else { Some(State::UNKNOWN) },
         }
     }

@@ -109,8 +109,9 @@ pub fn system_var(n: u32, span: Span) -> Option<VarKind> {
                 ],
             )
         }
-        // Modal words: D, F, S (the G groups need $P_GG indices, not G numbers: unsupported).
-        4107 => sys("P_TOOL", vec![]),
+        // Modal words F and S. The G groups (`$P_GG` gives group indices, not G numbers) and
+        // D (`$P_TOOL` is the edge the translation writes, not FANUC's register number)
+        // become constants where known (`modal_reads`).
         4109 => sys("P_F", vec![]),
         4119 => sys("P_S", vec![]),
         3901 => sys("AC_ACTUAL_PARTS", vec![]),
