@@ -21,6 +21,7 @@ pub mod axes;
 pub mod callee_files;
 pub mod calls;
 pub mod collapse;
+pub mod corner;
 pub mod cycle832;
 pub mod cycles;
 pub mod exec;
