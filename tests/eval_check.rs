@@ -163,7 +163,7 @@ fn corner_rounding_and_chamfers_run_and_contour_words_are_refused_not_ignored() 
     assert_ne!(code, 0, "{out}\n{err}");
     assert!(!out.contains("equivalent") && err.contains("NC500"), "{out}\n{err}");
     for word in ["CHF=2", "CHR=2", "RNDM=3"] {
-        let p = write("rnd-c.mpf", &format!("G17 G90 G0 X0 Y0\nG1 X100 {word} F300\nY80\nM30\n"));
+        let p = write("rnd-c.mpf", &format!("G17 G90 G0 X0 Y0\nG1 X100 {word} F300\nY80 RNDM=0\nM30\n"));
         let (code, _, err) = nctrans(&["run", &p]);
         assert_eq!(code, 0, "{word}: {err}");
     }
