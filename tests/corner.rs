@@ -194,8 +194,10 @@ fn corners_that_cannot_be_made_are_refused_with_their_reason() {
         ("G01 X40. Z-2. ,C5. F500.\nY40.\n", "NC574"),
         ("G01 X40. ,C5. F500.\nY40. Z-2.\n", "NC574"),
         ("G01 X40. ,C5. F500.\nY40. F400.\n", "NC575"),
-        // A corner word without a move.
+        // A corner word without a move, two in one block, a work offset selected with it.
         ("G01 F500. ,C5.\nX40.\n", "NC574"),
+        ("G01 X40. ,C5. ,R2. F500.\nY40.\n", "NC574"),
+        ("G55 G01 X40. ,C5. F500.\nY40.\n", "NC574"),
     ];
     for (body, code) in cases {
         let (t, errs) = run(&fanuc(body), Dialect::Fanuc);

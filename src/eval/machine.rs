@@ -481,7 +481,12 @@ impl Machine {
                 // Contour geometry the trace would otherwise show as a sharp corner or the
                 // plain end point: refused, never ignored. `RNDM=0` / `OFFN=0` (off) change nothing.
                 ("OFFN", Some(0.0)) => {}
-                ("CHF" | "CHR" | "RND", Some(x)) => corner = Some((w, x)),
+                ("CHF" | "CHR" | "RND", Some(x)) => {
+                    if corner.is_some() {
+                        return Err(corners::two_in_one_block(w.span));
+                    }
+                    corner = Some((w, x))
+                }
                 ("RNDM", Some(x)) if !self.fanuc => rndm = Some((w, x)),
                 ("FRC" | "FRCM", _) if !self.fanuc => {
                     return Err(Fault::error(

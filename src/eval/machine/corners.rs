@@ -62,6 +62,17 @@ fn refuse(code: &'static str, msg: String, span: Span, hint: &str) -> Fault {
     Fault::error(crate::diag::Diagnostic::error(code, msg).primary(usize::MAX, span, "corner").hint(hint))
 }
 
+/// `,C` and `,R` (or two of CHR, CHF, RND) in one block: an error on FANUC-compatible
+/// controls (docs/semantics.md, F-CR1), which one a Siemens makes is not stated.
+pub(super) fn two_in_one_block(span: Span) -> Fault {
+    refuse(
+        BAD_CORNER,
+        "two corner words in one block: a block ends in one corner".into(),
+        span,
+        "keep either the chamfer or the rounding",
+    )
+}
+
 fn describe(ev: &Event) -> &'static str {
     match ev {
         Event::Move { rapid: true, .. } => "a rapid move (G0)",
@@ -141,6 +152,14 @@ impl Machine {
                 format!("{} in a block without a move: the corner ends a move", w.kind.name()),
                 w.span,
                 "write the corner word in the block of the move that leads to the corner",
+            ));
+        }
+        if out[start..].iter().any(|(e, _)| matches!(e, Event::WorkOffset { .. } | Event::Home(_))) {
+            return Err(refuse(
+                BAD_CORNER,
+                "a corner in a block that changes the work offset: the move before it is not one line".into(),
+                w.span,
+                "select the work offset in a block before the contour",
             ));
         }
         let (u, v, _) = self.modal.plane.axes();
