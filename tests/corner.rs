@@ -251,5 +251,20 @@ fn a_streamed_run_and_translation_keep_the_corners() {
     assert!(ok && err.contains("equivalent"), "{err}");
     let text = std::fs::read_to_string(&o).unwrap_or_default();
     assert!(text.contains("X80 CHR=6") && text.contains("Y50 RND=10"), "{text}");
+    // Modal rounding over a long stretch: the streamed translation writes plain blocks one
+    // by one, so it hands the file to the whole-file path, which spreads the `,R`.
+    let mut big = String::from("G17 G71 G90\nG0 X0 Y0\nG1 X10 Y0 RNDM=1 F500\n");
+    for i in 1..5000 {
+        big += &format!("X{} Y{}\n", 10 + 10 * i, if i % 2 == 1 { 10 } else { 0 });
+    }
+    big += "X50010 Y-20 RNDM=0\nM30\n";
+    let input = dir.join("big.mpf");
+    std::fs::write(&input, big).expect("write");
+    let o = dir.join("big.nc");
+    let (ok, _, err) =
+        out(&["--to", "fanuc", "--stream", input.to_str().unwrap_or_default(), "-o", o.to_str().unwrap_or_default()]);
+    assert!(ok && err.contains("equivalent"), "{err}");
+    let text = std::fs::read_to_string(&o).unwrap_or_default();
+    assert_eq!(text.matches(",R1.").count(), 5000);
     let _ = std::fs::remove_dir_all(&dir);
 }

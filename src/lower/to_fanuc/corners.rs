@@ -10,6 +10,9 @@ use crate::eval::corner::{MODAL_ROUND, NOT_TRANSLATABLE};
 use crate::ir::*;
 use crate::span::Span;
 
+/// The text of `stream::segmented::MARK` (the lowering may not name the streaming layer).
+const SEGMENT_MARK: &str = "NCTRANS SEGMENT ";
+
 /// Runs the pass on one program (after `blocks`, before `words`).
 pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     let jumps = has_jumps(&prog.body);
@@ -54,6 +57,17 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
             out.push(s);
             continue;
         };
+        // A streamed translation's stand-in for a stretch of plain blocks (`stream::segmented`
+        // writes them one by one, without this pass): modal rounding cannot reach them.
+        let stand_in = b.items.is_empty() && b.meta.comments.iter().any(|c| c.text.starts_with(SEGMENT_MARK));
+        if let (Some((_, span)), true) = (&on, stand_in) {
+            refuse_modal(
+                ctx,
+                *span,
+                "a streamed translation writes the blocks after it one by one: translate the file whole",
+            );
+            on = None;
+        }
         let mut rndm = None;
         let mut own = None;
         let mut control = None;
