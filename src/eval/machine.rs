@@ -706,9 +706,14 @@ impl Machine {
                 out.push((Event::Coolant { on: true }, span));
             }
         }
-        let plain = !(g29 || home.is_some() || dwell || g53 || probe.is_some() || self.cycle.active.is_some())
-            && !self.framed
-            && !self.polar
+        let plain = !(g29
+            || home.is_some()
+            || dwell
+            || g53
+            || probe.is_some()
+            || self.cycle.active.is_some()
+            || self.framed
+            || self.polar)
             && self.xf == Xform::ID;
         self.corner_words(corner, rndm, plain)?;
         // 4. motion or dwell

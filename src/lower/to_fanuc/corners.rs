@@ -96,8 +96,8 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
                 WordValue::Expr(e) => Some(e.clone()),
                 _ => None,
             };
-            match value.as_ref().and_then(|e| literal(e)) {
-                Some(v) if v == 0.0 => on = None,
+            match value.as_ref().and_then(literal) {
+                Some(0.0) => on = None,
                 Some(_) if jumps => {
                     refuse_modal(ctx, w.span, "the program jumps (GOTO, CASE): which blocks it reaches is not fixed");
                     on = None;
