@@ -189,6 +189,7 @@ fn corners_that_cannot_be_made_are_refused_with_their_reason() {
         // The next block is not the move: a function alone, a macro statement, the end.
         ("G01 X40. ,C5. F500.\nM08\nY40.\n", "NC573"),
         ("G01 X40. ,C5. F500.\n#1=2.\nY40.\n", "NC573"),
+        ("G01 X40. ,C5. F500. M09\nY40.\n", "NC574"),
         ("G01 X40. ,C5. F500.\n", "NC573"),
         // Out of the plane, another feed.
         ("G01 X40. Z-2. ,C5. F500.\nY40.\n", "NC574"),
@@ -203,6 +204,9 @@ fn corners_that_cannot_be_made_are_refused_with_their_reason() {
         let (t, errs) = run(&fanuc(body), Dialect::Fanuc);
         assert_eq!(errs, [*code], "{body}: {t:?}");
     }
+    // A line with nothing but a comment or a sequence number commands nothing: passed over.
+    let (t, errs) = run(&fanuc("G01 X40. ,C5. F500.\n(FINISH)\nN100\nY40.\n"), Dialect::Fanuc);
+    assert!(errs.is_empty() && t.contains(&"move linear X=40 Y=5 f=500".to_string()), "{errs:?} {t:?}");
     // Siemens: the same rules, and a corner feed of its own is not modelled.
     let (_, errs) = run(&siemens("G1 X4 CHR=5 F500\nY40\n"), Dialect::Sinumerik);
     assert_eq!(errs, ["NC574"]);

@@ -142,8 +142,21 @@ impl Machine {
             from = Some(self.join(h, out, start, block_span)?);
         }
         let Some(w) = word else { return Ok(()) };
-        let last_move = matches!(out.last(), Some((Event::Move { .. } | Event::Arc { .. }, _))) && out.len() > start;
+        let is_move = |e: &Event| matches!(e, Event::Move { .. } | Event::Arc { .. });
+        let last_move = out.len() > start && out.last().is_some_and(|(e, _)| is_move(e));
         if !last_move {
+            let moved = out[start..].iter().any(|(e, _)| is_move(e));
+            if moved {
+                return Err(refuse(
+                    BAD_CORNER,
+                    format!(
+                        "{} in a block with functions after its move (M5, M9, M0, M1): not modelled",
+                        w.kind.name()
+                    ),
+                    w.span,
+                    "put those functions in a block of their own after the contour",
+                ));
+            }
             if w.modal {
                 return Ok(());
             }
