@@ -401,23 +401,23 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("rotary-acp-acn-dc.mpf", "NC630"), // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions
     ("system-variables.mpf", "NC321"),  // STOPRE, $AC_TIME
+    ("corner-chf-rnd-plate.mpf", "NC572"), // CHF=: its FANUC leg depends on the corner's angle
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g76-fine-bore.nc", "NC428"),
-    ("cycle-g83-deep-hole.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("cycle-g87-back-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("data-output-dprnt.nc", "NC510"),   // POPEN / DPRNT / PCLOS
-    ("functions-misc.nc", "NC369"),      // ADP
-    ("g10-l50-param-write.nc", "NC355"), // G10 L50
+    ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
+    ("data-output-dprnt.nc", "NC510"),    // POPEN / DPRNT / PCLOS
+    ("functions-misc.nc", "NC369"),       // ADP
+    ("g10-l50-param-write.nc", "NC355"),  // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)
-    ("m98-packed-p.nc", "NC355"),        // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
-    ("multi-word-block.nc", "NC472"),    // G43 H1 without a tool change: whose length?
-    ("probe-face-z-g43.nc", "NC550"),    // G31 under G43: #5063 holds the length offset, $AA_MW the tip
+    ("m98-packed-p.nc", "NC355"),         // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
+    ("multi-word-block.nc", "NC472"),     // G43 H1 without a tool change: whose length?
+    ("probe-face-z-g43.nc", "NC550"),     // G31 under G43: #5063 holds the length offset, $AA_MW the tip
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
-    ("system-variables.nc", "NC549"),    // #4003 before the program selects G90/G91
+    ("system-variables.nc", "NC549"),     // #4003 before the program selects G90/G91
 ];
 
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator
@@ -425,6 +425,10 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
 const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
+    // Since 9de4eda: a G98 hole after G99 holes returns to RTP=NCTRANS_CYC_Z, a variable
+    // the Sinumerik → FANUC cycle translation does not take as RTP.
+    ("CYCLE_G83_DEEP_HOLE.mpf", "NC392"),
+    ("DRILL_G98_LAST_HOLE_CLEA.mpf", "NC392"),
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("JUMP_TARGET_AFTER_TAPE_E.mpf", "NC310"), // the same STRING: the jump alarm of a missing N
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)

@@ -154,16 +154,20 @@ fn warn_far_down_a_streamed_program_marks_the_whole_block() {
 }
 
 #[test]
-fn corner_rounding_and_chamfers_are_refused_not_ignored() {
-    // The trace would show the sharp corner: a program with RND and one without must not
-    // be called equivalent.
+fn corner_rounding_and_chamfers_run_and_contour_words_are_refused_not_ignored() {
+    // A rounded corner is not the sharp one: the two programs differ at the corner.
     let round = "G17 G90 G0 X0 Y0\nG1 X100 RND=5 F300\nY80\nM30\n";
     let sharp = "G17 G90 G0 X0 Y0\nG1 X100 F300\nY80\nM30\n";
     let (a, b) = (write("rnd-a.mpf", round), write("rnd-b.mpf", sharp));
     let (code, out, err) = nctrans(&["check", &a, &b]);
     assert_ne!(code, 0, "{out}\n{err}");
-    assert!(!out.contains("equivalent") && err.contains("NC403") && err.contains("RND"), "{out}\n{err}");
-    for word in ["CHF=2", "CHR=2", "ANG=30", "RNDM=3", "OFFN=0.5"] {
+    assert!(!out.contains("equivalent") && err.contains("NC500"), "{out}\n{err}");
+    for word in ["CHF=2", "CHR=2", "RNDM=3"] {
+        let p = write("rnd-c.mpf", &format!("G17 G90 G0 X0 Y0\nG1 X100 {word} F300\nY80 RNDM=0\nM30\n"));
+        let (code, _, err) = nctrans(&["run", &p]);
+        assert_eq!(code, 0, "{word}: {err}");
+    }
+    for word in ["ANG=30", "OFFN=0.5"] {
         let p = write("rnd-c.mpf", &format!("G17 G90 G0 X0 Y0\nG1 X100 {word} F300\nY80\nM30\n"));
         let (code, _, err) = nctrans(&["run", &p]);
         assert_ne!(code, 0, "{word}: {err}");

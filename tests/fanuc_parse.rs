@@ -216,10 +216,17 @@ fn grammar_errors_say_what_was_expected() {
     assert!(r.contains("comparison `EQ` outside brackets"), "{r}");
     let (_, r) = parse("IF[#1 = 2]GOTO5\nN5\n");
     assert!(r.contains("compare with EQ"), "{r}");
-    // Chamfering and corner R: named, not a bare "found `,`".
-    let (_, r) = parse("G01 X100. ,R5. F100.\nY80. , C2.\n");
-    assert_eq!(r.matches("chamfering and corner R").count(), 2, "{r}");
-    assert_eq!(codes("G01 X100. ,R5. F100.\n"), ["NC160"]);
+}
+
+#[test]
+fn chamfering_and_corner_r_read_as_the_words_of_their_meaning() {
+    // `,R` is the corner radius, `,C` the chamfer's leg (Siemens RND=, CHR=); a blank may
+    // follow the comma.
+    let a = ir("G01 X100. ,R5. F100.\nY80. , C2.\nX0 ,C#1\n");
+    assert!(a.contains("word RND 5.\n") && a.contains("word CHR 2.\n"), "{a}");
+    assert!(a.contains("word CHR #1\n"), "{a}");
+    // A comma before any other letter is still an error.
+    assert_eq!(codes("G01 X100. ,A5.\n"), ["NC160"]);
 }
 
 #[test]

@@ -332,6 +332,8 @@ const REFUSED: &[(&str, &str)] = &[
     ("string-functions.mpf", "NC310"),
     ("rotary-acp-acn-dc.mpf", "NC630"),
     ("sync-action-when-do.mpf", "NC631"),
+    // CHF= (the chamfer's own length): its FANUC leg depends on the corner's angle.
+    ("corner-chf-rnd-plate.mpf", "NC572"),
     ("system-variables.mpf", "NC342"),
 ];
 

@@ -100,6 +100,8 @@ pub struct Interp<'a> {
     out_buf: Vec<(Event, Span)>,
     warn_buf: Vec<super::machine::Warn>,
     words_buf: Vec<WordVal>,
+    /// The call depth of the block whose corner the machine holds (`machine::corners`).
+    corner_depth: usize,
     pub sys_store: HashMap<String, f64>,
     /// [`super::machine::fast_path_on`] when the run began (asked once, not per block).
     fast_path: bool,
@@ -153,6 +155,7 @@ impl<'a> Interp<'a> {
             out_buf: Vec::new(),
             warn_buf: Vec::new(),
             words_buf: Vec::new(),
+            corner_depth: 0,
             sys_store: HashMap::new(),
             fast_path: super::machine::fast_path_on(),
             sem,
@@ -253,6 +256,9 @@ impl<'a> Interp<'a> {
                     None => None,
                 }
             };
+            if self.m.corners.held.is_some() {
+                self.corner_gate(op)?;
+            }
             let Some(op) = op else {
                 // Past the last block.
                 if self.frames.len() == 1 {
@@ -318,6 +324,31 @@ impl<'a> Interp<'a> {
                 Flow::Stop(e) => return Ok(e),
             }
         }
+    }
+
+    /// With a corner held (`machine::corners`), the next thing run must be a block of NC
+    /// words at the same call level: the manuals read say the block after a corner is its
+    /// next move, and nothing about macro statements or calls between (docs/semantics.md).
+    fn corner_gate(&self, op: Option<&Op>) -> Result<(), Fault> {
+        let Some(corner) = self.m.corners.held_span() else { return Ok(()) };
+        let words_only = |b: &Block| b.items.iter().all(|i| matches!(i.kind, ItemKind::Word(_)));
+        let (why, at) = match op {
+            None => ("the end of the program", None),
+            Some(op) if self.frames.len() != self.corner_depth => ("a call or a return", Some(op.span())),
+            Some(Op::Lit(_)) => return Ok(()),
+            Some(Op::Block(b)) if words_only(b) => return Ok(()),
+            Some(op @ Op::Block(_)) => ("a block with a macro statement, a call or an end", Some(op.span())),
+            Some(op) => ("a macro or control statement", Some(op.span())),
+        };
+        let mut d = Diagnostic::error(
+            crate::eval::corner::NO_NEXT_MOVE,
+            format!("the corner needs the next block to be its next move in the plane; what follows is {why}"),
+        )
+        .primary(self.file(), corner, "corner");
+        if let Some(at) = at {
+            d = d.secondary(self.file(), at, "runs next");
+        }
+        Err(Fault::error(d.hint("put the next move of the contour right after the block with the corner")))
     }
 
     /// The fault of the step limit, reached at `op`.
@@ -456,6 +487,9 @@ impl<'a> Interp<'a> {
             let mut warns = std::mem::take(&mut self.warn_buf);
             let r = self.m.apply(&words, stop_message, &mut out, &mut warns);
             self.note_held();
+            if self.m.corners.held.is_some() {
+                self.corner_depth = self.frames.len();
+            }
             for (code_, msg, span) in warns.drain(..) {
                 self.warn(code_, msg, span);
             }

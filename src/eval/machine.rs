@@ -15,6 +15,7 @@ use crate::span::Span;
 pub const COMPENSATION_NOTE: &str = "NC387";
 
 pub mod comp;
+pub mod corners;
 mod fanuc_frames;
 mod fast;
 mod frames;
@@ -175,6 +176,8 @@ pub struct Machine {
     pub expand: Option<super::cycles::expand::Retracts>,
     /// Tool length and cutter radius compensation ([`comp`]).
     pub comp: comp::Comp,
+    /// Chamfers and roundings: a held move, Siemens modal rounding ([`corners`]).
+    pub corners: corners::Corners,
 }
 
 impl Machine {
@@ -237,6 +240,7 @@ impl Machine {
             grid: grid::Grid::new(inc_mm),
             cycle: super::cycles::State::default(),
             comp: comp::Comp::default(),
+            corners: corners::Corners::default(),
         }
     }
 
@@ -306,9 +310,21 @@ impl Machine {
             }
         };
         let words = polar.as_deref().unwrap_or(words);
+        let (before, start) = (self.pos, out.len());
         let r = self.apply_words(words, stop_message, out, warns, &mut gs, &mut ms);
         (self.gs_buf, self.ms_buf) = (gs, ms);
-        r
+        let eff = match r {
+            Ok(eff) => eff,
+            Err(e) => {
+                self.corners.word = None;
+                return Err(e);
+            }
+        };
+        if self.corners.word.is_some() || self.corners.held.is_some() {
+            let span = words.iter().map(|w| w.span).reduce(Span::to).unwrap_or_default();
+            self.corner_after_block(before, out, start, eff.end.is_some() || eff.ret, span)?;
+        }
+        Ok(eff)
     }
 
     fn apply_words(
@@ -335,6 +351,7 @@ impl Machine {
         // Siemens G74/G75: the machine axes named (`Z1=0`) and the fixed point (`FP=`).
         let (mut named, mut fp) = (Vec::new(), None);
         let mut bc = comp::BlockComp::default();
+        let (mut corner, mut rndm) = (None, None);
         for w in words {
             block_span = if block_span == Span::default() { w.span } else { block_span.to(w.span) };
             let num = match &w.val {
@@ -463,12 +480,26 @@ impl Machine {
                 ) => return Err(unsupported(&format!("{a} (circle/spline/polar motion) is not modelled"), w.span)),
                 // Contour geometry the trace would otherwise show as a sharp corner or the
                 // plain end point: refused, never ignored. `RNDM=0` / `OFFN=0` (off) change nothing.
-                ("RNDM" | "OFFN", Some(0.0)) => {}
-                ("CHF" | "CHR" | "RND" | "RNDM" | "ANG" | "OFFN", _) => {
-                    return Err(unsupported(
-                        &format!("{a} (chamfer, rounding, contour angle or contour offset) is not modelled"),
-                        w.span,
+                ("OFFN", Some(0.0)) => {}
+                ("CHF" | "CHR" | "RND", Some(x)) => {
+                    if corner.is_some() {
+                        return Err(corners::two_in_one_block(w.span));
+                    }
+                    corner = Some((w, x))
+                }
+                ("RNDM", Some(x)) if !self.fanuc => rndm = Some((w, x)),
+                ("FRC" | "FRCM", _) if !self.fanuc => {
+                    return Err(Fault::error(
+                        crate::diag::Diagnostic::error(
+                            crate::eval::corner::CORNER_FEED,
+                            format!("{a} (a feed of its own for chamfers and roundings) is not modelled"),
+                        )
+                        .primary(usize::MAX, w.span, "here")
+                        .hint("leave the corner at the path feed F"),
                     ))
+                }
+                ("ANG" | "OFFN", _) => {
+                    return Err(unsupported(&format!("{a} (contour angle or contour offset) is not modelled"), w.span))
                 }
                 (a, _) => {
                     warns.push(("NC405", format!("address {a} has no effect on the trace and is ignored"), w.span))
@@ -681,6 +712,16 @@ impl Machine {
                 out.push((Event::Coolant { on: true }, span));
             }
         }
+        let plain = !(g29
+            || home.is_some()
+            || dwell
+            || g53
+            || probe.is_some()
+            || self.cycle.active.is_some()
+            || self.framed
+            || self.polar)
+            && self.xf == Xform::ID;
+        self.corner_words(corner, rndm, plain)?;
         // 4. motion or dwell
         if probe.is_some() {
             self.probe_allowed(g31, p.map(|w| w.0.span), home.is_some() || dwell || g53 || g29, block_span)?;

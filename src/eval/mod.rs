@@ -11,7 +11,8 @@
 //! control), `flow` (flattening to linear code with jump tables; `lit`: blocks of
 //! constant words in compact form), `exec` (the interpreter loop), `access` + `vars`
 //! (variables), `calls` (calls, returns, callee lookup), `machine` + `arc` (modal state
-//! and motion; `cycles`: drilling cycles), `sysvars`, `trace` (events and writers; `numfmt`: the trace's number
+//! and motion; `cycles`: drilling cycles; `corner`: the geometry of chamfers and roundings,
+//! which `machine::corners` inserts and the FANUC translation shares), `sysvars`, `trace` (events and writers; `numfmt`: the trace's number
 //! form), `input` (`--set` and header inputs), `fault` (alarms, errors, limits).
 //! Choices are in docs/semantics.md.
 
@@ -21,6 +22,7 @@ pub mod axes;
 pub mod callee_files;
 pub mod calls;
 pub mod collapse;
+pub mod corner;
 pub mod cycle832;
 pub mod cycles;
 pub mod exec;

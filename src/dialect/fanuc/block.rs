@@ -7,8 +7,8 @@ use super::{args, macro_a};
 use crate::diag::Diagnostic;
 use crate::dialect::ParseOptions;
 use crate::ir::{
-    AlarmStyle, Block, BlockMeta, CallKind, Comment, EndCode, Expr, ExprKind, Goto, Item, ItemKind, ParamWrite, Search,
-    SeqNo, VarKind, VarRef,
+    Addr, AlarmStyle, Block, BlockMeta, CallKind, Comment, EndCode, Expr, ExprKind, Goto, Item, ItemKind, ParamWrite,
+    Search, SeqNo, VarKind, VarRef, Word, WordValue,
 };
 use crate::span::{FileId, Span};
 
@@ -184,6 +184,11 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
     for p in rest {
         match p {
             Part::Word(w) => words.push(w),
+            Part::Corner { chamfer, value, span } => {
+                let name = if chamfer { "CHR" } else { "RND" };
+                let w = Word { addr: Addr::Name(name.into()), value: WordValue::Expr(value), span };
+                items.push(Item { kind: ItemKind::Word(w), span });
+            }
             Part::ColonProg { span, .. } => return Err(misplaced_program(cx.file, span)),
             Part::Comment(_) => {}
             Part::Assign { target, value, span } => {
@@ -303,6 +308,7 @@ fn part_span(p: &Part) -> Span {
         Part::Comment(c) => c.span,
         Part::Word(w) => w.span,
         Part::ColonProg { span, .. }
+        | Part::Corner { span, .. }
         | Part::Assign { span, .. }
         | Part::Goto { span, .. }
         | Part::If { span, .. }

@@ -256,7 +256,12 @@ impl Writer<'_> {
     }
 
     fn word(&mut self, w: &Word) -> String {
-        let letter = w.addr.as_str().to_string();
+        // Chamfering and corner R: the IR's names of the two meanings (`dialect::fanuc::parse`).
+        let letter = match w.addr.as_str() {
+            "CHR" => ",C".to_string(),
+            "RND" => ",R".to_string(),
+            a => a.to_string(),
+        };
         let e = match &w.value {
             WordValue::Expr(e) => e,
             WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => {

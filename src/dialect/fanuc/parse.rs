@@ -80,6 +80,12 @@ pub enum Part {
         span: Span,
     },
     Word(RawWord),
+    /// `,C` (chamfer, `chamfer`) or `,R` (corner R) and its value.
+    Corner {
+        chamfer: bool,
+        value: Expr,
+        span: Span,
+    },
     Assign {
         target: VarRef,
         value: Expr,
@@ -184,6 +190,7 @@ fn part(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>) -> Result<Part, Diagnostic> {
             Ok(Part::ColonProg { number, span })
         }
         Rule::word => word(cx, p, span).map(Part::Word),
+        Rule::corner => corner(cx, p, span),
         Rule::data_out => Ok(Part::DataOut { text: p.as_str().trim().to_ascii_uppercase(), span }),
         Rule::assign => assign(cx, p, span),
         Rule::goto_stmt => goto(cx, p, span),
@@ -297,8 +304,26 @@ fn goto(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<Part, Diag
 }
 
 fn word(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<RawWord, Diagnostic> {
-    let seg = cx.seg;
     let mut it = p.into_inner();
+    addressed(cx, &mut it, span)
+}
+
+/// `,C5.` / `,R8.`: the chamfer's leg or the corner radius, as the word the IR gives every
+/// dialect (`CHR`, `RND`: the Siemens names of the same two meanings).
+fn corner(cx: &ExprCx<'_, '_>, p: Pair<'_, Rule>, span: Span) -> Result<Part, Diagnostic> {
+    let mut it = p.into_inner();
+    let _comma = it.next();
+    let w = addressed(cx, &mut it, span)?;
+    Ok(Part::Corner { chamfer: w.letter == b'C', value: w.value, span })
+}
+
+/// The letter and value pairs of a word, from `it`.
+fn addressed<'i>(
+    cx: &ExprCx<'_, '_>,
+    it: &mut impl Iterator<Item = Pair<'i, Rule>>,
+    span: Span,
+) -> Result<RawWord, Diagnostic> {
+    let seg = cx.seg;
     let letter = it
         .next()
         .and_then(|l| l.as_str().bytes().next())
@@ -385,15 +410,6 @@ fn grammar_error(seg: &Seg<'_>, e: &pest::error::Error<Rule>) -> Diagnostic {
         Some(op) => format!("comparison `{op}` outside brackets"),
         None => format!("expected {what}, found {found_text}"),
     };
-    // `X100. ,R5.` / `,C2.`: the optional chamfering and corner R function.
-    let corner = found == Some(',')
-        && seg.text[pos + 1..].trim_start().chars().next().is_some_and(|c| matches!(c.to_ascii_uppercase(), 'R' | 'C'));
-    if corner && outside.is_none() {
-        return Diagnostic::error("NC160", "chamfering and corner R (`,C` / `,R`) are not read".to_string())
-            .primary(seg.file, seg.span(pos, pos + width), "corner R or chamfer")
-            .note("the rounding or chamfer between two moves is not modelled, so it could not be run or proven")
-            .hint("write the corner as its own G02/G03 or G01 move");
-    }
     let (label, hint) = match outside {
         Some(op) => (
             format!("`{op}` outside brackets"),

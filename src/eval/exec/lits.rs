@@ -42,7 +42,8 @@ impl Interp<'_> {
                 return Ok((Flow::Stop(Ending::Stopped), pc));
             }
             let flow = self.exec_lit(code, l, pc)?;
-            if !matches!(flow, Flow::Next) || self.frames.len() != depth {
+            // A held corner: `run_loop` checks what follows it.
+            if !matches!(flow, Flow::Next) || self.frames.len() != depth || self.m.corners.held.is_some() {
                 return Ok((flow, pc));
             }
             let next = match page {

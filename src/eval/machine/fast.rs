@@ -46,7 +46,12 @@ impl Machine {
         // Decide first, without touching the machine: every way out below is `None`.
         // In a drilling cycle mode an axis word is a hole (`eval::cycles`); under a frame
         // that turns, a move is [`Machine::framed_motion`]'s.
-        if self.cycle.active.is_some() || self.cycle.mcall.is_some() || self.framed || self.polar {
+        if self.cycle.active.is_some()
+            || self.cycle.mcall.is_some()
+            || self.framed
+            || self.polar
+            || self.corners.active()
+        {
             return None;
         }
         let mut modal = self.modal;

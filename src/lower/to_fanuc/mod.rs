@@ -2,6 +2,7 @@
 //! and walkers are in [`crate::lower`].
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
+//! [`corners`] (CHR/RND kept, RNDM spread over its blocks, CHF refused),
 //! [`words`] (address words, calls, messages; around it [`probe`]: MEAS=1 → G31), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
 //! relative-equality rule, bracket depth), [`lower_structures`] (IF/WHILE/LOOP/FOR/REPEAT/CASE
 //! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
@@ -12,6 +13,7 @@
 
 pub mod blocks;
 pub mod comp;
+pub mod corners;
 pub mod cycles;
 pub mod cycles_tap;
 pub mod exprs;
@@ -209,6 +211,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
     blocks::run(ctx, prog, info);
+    corners::run(ctx, prog);
     let measuring = probe::take(ctx, prog);
     if !measuring.is_empty() {
         probe_length::check(ctx, prog);

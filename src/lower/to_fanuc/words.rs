@@ -484,6 +484,8 @@ fn words_pass(
         let wspan = w.span;
         match &w.addr {
             Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
+            // `,C` / `,R`: the same meaning, spelt by the writer (`corners`).
+            Addr::Name(n) if matches!(n.as_ref(), "CHR" | "RND") => {}
             Addr::Axis(_) => {
                 let what = "AX[…] (an axis chosen by name at run time)";
                 return Err(unsup(

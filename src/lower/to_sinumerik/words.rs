@@ -424,6 +424,26 @@ fn lower_word(
         return None; // a vacant value drops the word
     }
     let Addr::Letter(l) = w.addr else {
+        // `,C5` / `,R8`: lengths, so without a decimal point in increments like X (the
+        // evaluator's rule, `eval::machine::corners`); `CHR=`/`RND=` are the same words.
+        let corner = matches!(w.addr.as_str(), "CHR" | "RND");
+        if let (true, ExprKind::Num(n)) = (corner, &mut e.kind) {
+            if !n.point && scales_bare(ctx.opts) {
+                let Some(inch) = inch else {
+                    if let Some(st) = ctx.unsupported(
+                        crate::eval::corner::NOT_TRANSLATABLE,
+                        w.span,
+                        "a chamfer or corner R without a decimal point where the unit (G20/G21) is not known",
+                        "write the value with a decimal point (`,C5.`)",
+                    ) {
+                        after.push(st);
+                    }
+                    return None;
+                };
+                n.value = scale(ctx.opts, n.value, inch, false);
+                n.point = true;
+            }
+        }
         return Some(Item { kind: ItemKind::Word(w), span: isp });
     };
     if l == b'G' {
