@@ -161,8 +161,14 @@ fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
     // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
     // (NC387): a program that ran one may apply another length than the other, unseen.
     let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
+    // Output whose text is not modelled (NC554: a DPRNT number field, BPRNT) is not compared.
+    let unprinted = report.diags.iter().any(|d| d.code == nctrans::eval::print::PRINT_NOT_MODELLED);
     let diff = &report.diff;
     match &report.verdict {
+        Verdict::Equivalent { events } if unprinted && !compensates => {
+            println!("inconclusive: {events} trace events agree, but output whose text is not modelled (NC554) is not compared");
+            ExitCode::from(4)
+        }
         Verdict::Equivalent { events } if compensates => {
             println!(
                 "inconclusive: {events} trace events agree, but tool compensation (G44, ISO-mode G43/G44/G49) is not compared"

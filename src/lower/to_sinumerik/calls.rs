@@ -402,9 +402,14 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
                     out.push(st);
                 }
             }
+            ItemKind::Print(p) => items.extend(super::print::lower(ctx, *p, it.span, out)),
+            ItemKind::Instruction { name } if name == "POPEN" || name == "PCLOS" => {
+                out.push(super::print::channel_comment(&name, it.span));
+            }
             ItemKind::Instruction { name } if is_data_output(&name) => {
                 let what = format!("FANUC external output `{name}`");
-                let hint = "Siemens writes text with WRITE(…) to a file, not a port; write the output by hand";
+                let hint = "BPRNT is binary; a DPRNT is translated (to WRITE) when it holds letters, digits, \
+                            + - / and * alone: write the output by hand";
                 if let Some(st) = ctx.unsupported("NC510", it.span, &what, hint) {
                     out.push(st);
                 }

@@ -43,6 +43,7 @@ pub mod m97;
 pub mod modal;
 pub mod modal_flow;
 pub mod polar;
+pub mod print;
 pub mod probe;
 pub mod rotation;
 pub mod structures;
