@@ -187,7 +187,11 @@ pub const KEYS: [(&str, &str, &str); 36] = [
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
-    ("sinumerik.write_file", "-", "the file name FANUC DPRNT lines are written to by Siemens WRITE (letters, digits, _)"),
+    (
+        "sinumerik.write_file",
+        "-",
+        "the file name FANUC DPRNT lines are written to by Siemens WRITE (letters, digits, _)",
+    ),
     ("sinumerik.cutting_edge_default", "-", "the edge a tool change without D selects, 0 to 9 (MD20270)"),
     ("offsets", "-", "a table of \"T.D\" = \"Hh,Dd\" (FANUC registers of a Siemens cutting edge)"),
     ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),

@@ -30,8 +30,7 @@ pub fn dprnt(text: &str, span: Span) -> Option<ItemKind> {
             let digits = b[i..].iter().take_while(|x| x.is_ascii_digit()).count();
             // `#n[wf]`: the number, then exactly two digits in brackets.
             let fmt = b.get(i + digits..i + digits + 4)?;
-            if digits == 0 || fmt[0] != b'[' || fmt[3] != b']' || !fmt[1].is_ascii_digit() || !fmt[2].is_ascii_digit()
-            {
+            if digits == 0 || fmt[0] != b'[' || fmt[3] != b']' || !fmt[1].is_ascii_digit() || !fmt[2].is_ascii_digit() {
                 return None;
             }
             let n: u32 = body[i..i + digits].parse().ok()?;

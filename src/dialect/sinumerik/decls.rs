@@ -245,9 +245,14 @@ impl Lower<'_, '_> {
             _ => return self.bad_write(span, "WRITE takes three arguments: (error variable, file, text)"),
         };
         let ExprKind::Var(status) = status.kind else {
-            return self.bad_write(span, "the first argument of WRITE is the variable the control sets to its error code");
+            return self
+                .bad_write(span, "the first argument of WRITE is the variable the control sets to its error code");
         };
-        Some(ItemKind::Print(Box::new(Print { parts: vec![PrintPart::Str(text)], file: Some(file), status: Some(status) })))
+        Some(ItemKind::Print(Box::new(Print {
+            parts: vec![PrintPart::Str(text)],
+            file: Some(file),
+            status: Some(status),
+        })))
     }
 
     fn bad_write(&mut self, span: Span, what: &str) -> Option<ItemKind> {

@@ -23,6 +23,7 @@ pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
 pub mod polar;
+pub mod print;
 pub mod probe;
 pub mod rotation;
 pub mod tool_data;
