@@ -478,8 +478,9 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span, inch: Option<bool>) -> Result<
             return Err(ctx.unsupported(
                 "NC356",
                 span,
-                "a call with a computed program number (`P#1`)",
-                "call each possible program by its number behind IF/GOTO",
+                "a call with a computed program number (`P#1`) that is not one number on every path to it",
+                "set the number once before the call (`#1=9010`), or call each possible program by its number \
+                 behind IF/GOTO",
             ))
         }
         CallTarget::Name(_) => return Ok(Item { kind: ItemKind::Call(Box::new(c)), span }),
