@@ -220,6 +220,16 @@ fn check_as_translation(
     let runners: Vec<_> = sides
         .into_iter()
         .map(|(unit, mut run)| {
+            // GETT("NAME") returns the mapped number, as in the translation's verification
+            // (`translate::to_fanuc`), where `T="NAME"` is aligned to it.
+            if unit.dialect == Dialect::Sinumerik && !names.tools.is_empty() {
+                let mut s = run
+                    .semantics
+                    .take()
+                    .unwrap_or_else(|| nctrans::dialect::Semantics::default_for(Dialect::Sinumerik));
+                s.tools = std::sync::Arc::new(names.tools.clone());
+                run.semantics = Some(s);
+            }
             let unit = match unit.dialect {
                 Dialect::Sinumerik if cross => names.align(&unit),
                 Dialect::Fanuc if cross => {
