@@ -405,7 +405,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g83-deep-hole.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
-    ("data-output-dprnt.nc", "NC510"),   // POPEN / DPRNT / PCLOS
+    ("data-output-dprnt.nc", "NC556"),   // a DPRNT number field
     ("functions-misc.nc", "NC369"),      // ADP
     ("g10-l50-param-write.nc", "NC355"), // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)

@@ -37,3 +37,29 @@ fn a_number_that_depends_on_the_path_is_refused() {
     assert_ne!(code, 0);
     assert!(err.contains("NC356") && err.contains("not one number on every path"), "{err}");
 }
+
+const SELECT: &str = "DEF STRING[24] OP=\"DEBUR\"\nG0 X0 Y0\nCALL OP\nM30\n";
+
+/// Siemens `CALL PROG_VAR` whose STRING holds one program name is that call to FANUC.
+#[test]
+fn a_string_variable_naming_one_program_calls_it_on_fanuc() {
+    let d = workdir("computed", "string");
+    std::fs::write(d.join("MAIN.MPF"), SELECT).unwrap();
+    std::fs::write(d.join("DEBUR.SPF"), "PROC DEBUR\nG1 X5 F300\nM17\n").unwrap();
+    std::fs::write(d.join("CHAMFER.SPF"), "PROC CHAMFER\nG1 Y5 F300\nM17\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "MAIN.MPF", "-o", "main.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(d.join("main.nc")).unwrap();
+    assert!(text.contains("G65 P9000") && text.contains("O9000 (DEBUR)") && !text.contains("OP"), "{text}");
+    // A planted wrong callee is caught.
+    let wrong = text.replace("G01 X5.", "G01 Y5.");
+    std::fs::write(d.join("wrong.nc"), wrong).unwrap();
+    let (out, _, code) = nctrans(&d, &["check", "MAIN.MPF", "wrong.nc"]);
+    assert_ne!(code, 0, "{out}");
+    // Two names on the way: not one program, refused as before.
+    let two = SELECT.replace("M30\n", "OP=\"CHAMFER\"\nCALL OP\nM30\n");
+    std::fs::write(d.join("TWO.MPF"), two).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "TWO.MPF", "-o", "two.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC303") && err.contains("computed call target"), "{err}");
+}

@@ -26,6 +26,7 @@ pub mod polar;
 pub mod print;
 pub mod probe;
 pub mod rotation;
+pub mod string_calls;
 pub mod tool_data;
 pub mod varmap;
 pub mod words;

@@ -180,10 +180,10 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     // Programs: the main one first, then the subprograms by name.
     let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
     if let Some(p) = main.programs.first() {
-        progs.push((p.clone(), main.file, opts.main_is_sub));
+        progs.push((resolved(p), main.file, opts.main_is_sub));
     }
     let mut sub_progs: Vec<(Program, crate::span::FileId)> =
-        subs.iter().flat_map(|u| u.programs.iter().map(|p| (p.clone(), u.file))).collect();
+        subs.iter().flat_map(|u| u.programs.iter().map(|p| (resolved(p), u.file))).collect();
     sub_progs.sort_by_key(|(p, _)| prog_name(p, ""));
     sub_progs.dedup_by_key(|(p, _)| prog_name(p, ""));
     progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
@@ -564,6 +564,12 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
         next = base.saturating_sub(1);
     }
     texts
+}
+
+/// `p` with its calls through a STRING variable that names one program made calls by name
+/// (`lower::to_fanuc::string_calls`).
+fn resolved(p: &Program) -> Program {
+    crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone())
 }
 
 /// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
