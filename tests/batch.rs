@@ -385,7 +385,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("cycle-unknown-call.mpf", "NC322"),  // WORKPIECE, CYCLE81
     ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
     ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
-    ("extern-and-call-by-name.mpf", "NC310"), // DEF STRING: the program name of CALL
+    ("extern-and-call-by-name.mpf", "NC637"), // PCALL by a bare name (its CALL through a STRING translates)
     ("frame-instructions.mpf", "NC316"), // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"), // a jump to a computed label
     ("gud-def-nck-chan.mpf", "NC634"),  // DEF NCK / DEF CHAN global user data

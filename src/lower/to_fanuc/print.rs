@@ -45,3 +45,92 @@ pub fn lower(ctx: &mut Ctx, p: Print, span: Span) -> Vec<Stmt> {
     out.push(block_stmt(vec![item(ItemKind::Instruction { name: "PCLOS".into() }, span)], span));
     out
 }
+
+/// `p` without the comments a FANUC → Sinumerik translation wrote about POPEN, PCLOS and
+/// the WRITE file, and without the error variable of its WRITEs where nothing reads it (the
+/// `NCTRANS_WERR` a FANUC → Sinumerik translation declares is such a one): FANUC needs no
+/// variable for it, so none is written and a round trip comes back to the same text. `None`
+/// when there is none.
+pub fn drop_unread_status(p: &Program) -> Option<Program> {
+    let mut statuses: Vec<String> = Vec::new();
+    let mut read: Vec<String> = Vec::new();
+    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+        let StmtKind::Block(b) = &s.kind else { return };
+        for it in &b.items {
+            if let ItemKind::Print(pr) = &it.kind {
+                if let Some(VarRef { kind: VarKind::Named { name, indices }, .. }) = pr.status.as_deref() {
+                    if indices.is_empty() {
+                        statuses.push(name.clone());
+                    }
+                }
+            }
+            if let ItemKind::Assign { target, .. } = &it.kind {
+                if let VarKind::Named { name, .. } = &target.kind {
+                    read.push(name.clone());
+                }
+            }
+        }
+    });
+    // Every expression, structure conditions included (a WRITE's error variable is not one).
+    let mut body = p.body.clone();
+    crate::lower::map_exprs(&mut body, &mut |e| names(e, &mut read));
+    statuses.retain(|n| !read.contains(n));
+    let notes = p.body.iter().any(|s| matches!(&s.kind, StmtKind::Block(b) if own_note_block(b)));
+    if statuses.is_empty() && !notes {
+        return None;
+    }
+    let mut p = p.clone();
+    p.body = crate::lower::map_bodies(std::mem::take(&mut p.body), &mut |list| {
+        list.into_iter()
+            .filter_map(|mut s| {
+                if let StmtKind::Block(b) = &mut s.kind {
+                    if own_note_block(b) {
+                        return None;
+                    }
+                    let had = b.items.len();
+                    b.items.retain_mut(|it| match &mut it.kind {
+                        ItemKind::Print(pr) => {
+                            if matches!(pr.status.as_deref(), Some(VarRef { kind: VarKind::Named { name, .. }, .. }) if statuses.contains(name))
+                            {
+                                pr.status = None;
+                            }
+                            true
+                        }
+                        ItemKind::Def(d) if d.scope.is_none() => {
+                            d.vars.retain(|v| !statuses.contains(&v.name));
+                            !d.vars.is_empty()
+                        }
+                        _ => true,
+                    });
+                    let m = &b.meta;
+                    if had > 0 && b.items.is_empty() && m.label.is_none() && m.number.is_none() && m.comments.is_empty() {
+                        return None;
+                    }
+                }
+                Some(s)
+            })
+            .collect()
+    });
+    Some(p)
+}
+
+/// A comment-only block a FANUC → Sinumerik translation wrote for POPEN, PCLOS or the
+/// WRITE file (`lower::to_sinumerik::print::is_own_note`).
+fn own_note_block(b: &Block) -> bool {
+    let m = &b.meta;
+    b.items.is_empty()
+        && m.label.is_none()
+        && m.number.is_none()
+        && matches!(&m.comments[..], [c] if crate::lower::to_sinumerik::print::is_own_note(&c.text))
+}
+
+fn names(e: &Expr, out: &mut Vec<String>) {
+    if let ExprKind::Var(v) = &e.kind {
+        if let VarKind::Named { name, .. } = &v.kind {
+            out.push(name.clone());
+        }
+    }
+    for c in e.children() {
+        names(c, out);
+    }
+}

@@ -405,6 +405,8 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
             ItemKind::Print(p) => items.extend(super::print::lower(ctx, *p, it.span, out)),
             ItemKind::Instruction { name } if name == "POPEN" || name == "PCLOS" => {
                 out.push(super::print::channel_comment(&name, it.span));
+                // The note a Sinumerik → FANUC translation put on its POPEN says nothing here.
+                b.meta.comments.retain(|c| !super::print::is_write_note(&c.text));
             }
             ItemKind::Instruction { name } if is_data_output(&name) => {
                 let what = format!("FANUC external output `{name}`");

@@ -47,6 +47,21 @@ pub fn lower(ctx: &mut Ctx, p: Print, span: Span, out: &mut Vec<Stmt>) -> Option
     Some(Item { kind: ItemKind::Print(Box::new(print)), span })
 }
 
+/// The comment `lower::to_fanuc::print` puts on the POPEN of a translated WRITE.
+pub fn is_write_note(text: &str) -> bool {
+    let t = text.trim();
+    t.starts_with("WRITE TO ") && t.ends_with(": DPRNT PRINTS TO THE I/O CHANNEL")
+}
+
+/// The comments this module writes (dropped when the output is translated back to FANUC,
+/// so a round trip does not pile them up).
+pub fn is_own_note(text: &str) -> bool {
+    let t = text.trim();
+    t == "POPEN: WRITE opens and closes its file itself"
+        || t == "PCLOS: WRITE opens and closes its file itself"
+        || t.starts_with("DPRNT lines are written to file ") && t.ends_with("([sinumerik] write_file in nctrans.toml)")
+}
+
 /// `POPEN` / `PCLOS`: the comment that says why nothing stands for it.
 pub fn channel_comment(name: &str, span: Span) -> Stmt {
     comment_stmt(format!("{name}: WRITE opens and closes its file itself"), span)

@@ -567,9 +567,11 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
 }
 
 /// `p` with its calls through a STRING variable that names one program made calls by name
-/// (`lower::to_fanuc::string_calls`).
+/// (`lower::to_fanuc::string_calls`), and its WRITEs' unread error variables gone
+/// (`lower::to_fanuc::print::drop_unread_status`).
 fn resolved(p: &Program) -> Program {
-    crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone())
+    let p = crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone());
+    crate::lower::to_fanuc::print::drop_unread_status(&p).unwrap_or(p)
 }
 
 /// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
