@@ -287,6 +287,7 @@ pub fn same_event(a: &Event, b: &Event) -> bool {
         (Coolant { on: o1 }, Coolant { on: o2 }) => o1 == o2,
         (Stop { optional: o1, message: m1 }, Stop { optional: o2, message: m2 }) => o1 == o2 && m1 == m2,
         (Message { text: t1 }, Message { text: t2 }) => t1 == t2,
+        (Print { text: t1 }, Print { text: t2 }) => t1 == t2,
         (Alarm { number: n1, .. }, Alarm { number: n2, .. }) => {
             n1 == n2
                 || fanuc_alarm_of(*n1) == Some(*n2)

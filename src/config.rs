@@ -85,6 +85,8 @@ pub struct Config {
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
     pub cycle83_clearance: f64,
+    /// The file FANUC DPRNT lines go to as Siemens `WRITE` (`[sinumerik] write_file`).
+    pub write_file: String,
     /// Siemens definition files (`.DEF`, global user data) for every program; empty: the
     /// `.DEF` files nearest each program (`crate::gud::discover`).
     pub definitions: Vec<PathBuf>,
@@ -144,6 +146,7 @@ impl Default for Config {
             offsets: Default::default(),
             cycle83_retract: 1.0,
             cycle83_clearance: 0.6,
+            write_file: crate::dialect::semantics::DEFAULT_WRITE_FILE.into(),
             definitions: vec![],
             var_map_to_fanuc: vec![],
             var_map_to_sinumerik: vec![],
@@ -172,7 +175,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 35] = [
+pub const KEYS: [(&str, &str, &str); 36] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -184,6 +187,11 @@ pub const KEYS: [(&str, &str, &str); 35] = [
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
+    (
+        "sinumerik.write_file",
+        "-",
+        "the file name FANUC DPRNT lines are written to by Siemens WRITE (letters, digits, _)",
+    ),
     ("sinumerik.cutting_edge_default", "-", "the edge a tool change without D selects, 0 to 9 (MD20270)"),
     ("offsets", "-", "a table of \"T.D\" = \"Hh,Dd\" (FANUC registers of a Siemens cutting edge)"),
     ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),
@@ -333,6 +341,16 @@ impl Config {
             "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
             "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
             "sinumerik.cycle83_clearance" => self.cycle83_clearance = as_mm(key, v)?,
+            "sinumerik.write_file" => {
+                let name = as_str(key, v)?;
+                let ok = !name.is_empty()
+                    && name.len() <= 24
+                    && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'.');
+                if !ok {
+                    return Err(bad(key, v));
+                }
+                self.write_file = name.to_string();
+            }
             "sinumerik.definitions" => self.definitions.extend(list(key, v)?.into_iter().map(PathBuf::from)),
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
@@ -481,6 +499,7 @@ impl Config {
         s.r_param_count = self.r_parameters;
         s.offsets = self.offsets.clone();
         s.cutting_edge_default = self.cutting_edge_default;
+        s.write_file = self.write_file.clone();
         s
     }
 
@@ -545,6 +564,9 @@ r_parameters = 300
 cycle83_retract = 1.0
 # and the anticipation distance above the last depth for chip removal (VARI 1) in mm.
 cycle83_clearance = 0.6
+# The file a FANUC DPRNT line goes to when translated to WRITE (FANUC prints to the I/O
+# channel; WRITE appends the line to a file in the program's directory).
+write_file = "NCTRANS_PRINT"
 # MD20270: the cutting edge a tool change (M6) without D selects; `run` takes the factory 1
 # (D1). Not stated, the Sinumerik -> FANUC translation refuses such a tool change (NC470).
 # cutting_edge_default = 1

@@ -388,7 +388,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
     ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
     ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
-    ("extern-and-call-by-name.mpf", "NC310"), // DEF STRING: the program name of CALL
+    ("extern-and-call-by-name.mpf", "NC637"), // PCALL by a bare name (its CALL through a STRING translates)
     ("frame-instructions.mpf", "NC316"), // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"), // a jump to a computed label
     ("gud-def-nck-chan.mpf", "NC634"),  // DEF NCK / DEF CHAN global user data
@@ -408,7 +408,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("cycle-g76-fine-bore.nc", "NC428"),
     ("cycle-g86-rough-bore.nc", "NC428"), // a drilling cycle without an exact Sinumerik form
     ("cycle-g87-back-bore.nc", "NC428"),  // a drilling cycle without an exact Sinumerik form
-    ("data-output-dprnt.nc", "NC510"),    // POPEN / DPRNT / PCLOS
+    ("data-output-dprnt.nc", "NC556"),    // a DPRNT number field
     ("functions-misc.nc", "NC369"),       // ADP
     ("g10-l50-param-write.nc", "NC355"),  // G10 L50
     ("haas-m97-local-subprogram.nc", "NC253"), // M97 P without the Haas profile (then NC362)

@@ -49,13 +49,13 @@ fn a_library_macro_keeps_its_defaults_and_is_verified_with_each_argument_vacant(
 fn specialise_callers_writes_the_macro_for_the_calls_seen() {
     let dir = library("flag");
     let (spf, record) = batch(&dir, &["--specialise-callers"]);
-    assert!(spf.contains("IF 0\n  ARG_H=1\nENDIF\n"), "{spf}");
+    assert!(!spf.contains("ARG_H=1") && !spf.contains("IF 0"), "{spf}");
     assert!(record.contains("equivalent (4 events in 2 runs)"), "{record}");
     let _ = std::fs::remove_dir_all(&dir);
     // The same from the project configuration.
     let dir = library("config");
     std::fs::write(dir.join("nctrans.toml"), "[translate]\nspecialise_callers = true\n").expect("write");
     let (spf, _) = batch(&dir, &[]);
-    assert!(spf.contains("IF 0\n  ARG_H=1\nENDIF\n"), "{spf}");
+    assert!(!spf.contains("ARG_H=1") && !spf.contains("IF 0"), "{spf}");
     let _ = std::fs::remove_dir_all(&dir);
 }

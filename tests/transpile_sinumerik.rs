@@ -246,10 +246,7 @@ N10 LBL_10:\nIF LOC2_SET\n  G0 X=LOC1 Z=LOC2\nELSE\n  G0 X=LOC1\nENDIF\nM30\n",
 
 #[test]
 fn definitely_set_variables_need_no_flag() {
-    pair(
-        "O1\n#1=5\nIF[#1 EQ #0]GOTO 9\nG0 X#1\nN9 M30\n",
-        "DEF REAL LOC1\nLOC1=5\nIF 0 GOTOF LBL_9\nG0 X=LOC1\nN9 LBL_9: M30\n",
-    );
+    pair("O1\n#1=5\nIF[#1 EQ #0]GOTO 9\nG0 X#1\nN9 M30\n", "DEF REAL LOC1\nLOC1=5\nG0 X=LOC1\nN9 LBL_9: M30\n");
 }
 
 #[test]
@@ -284,7 +281,8 @@ fn a_macro_keeps_its_defaults_unless_specialised() {
     let spec = Options { specialise_callers: true, ..Options::default() };
     assert_eq!(
         out_with(src, "O_9100.SPF", &spec),
-        "PROC O_9100(REAL ARG_H)\nIF 0\n  ARG_H=1\nENDIF\nG1 X=ARG_H F100\nRET\n"
+        // The default is decided (the argument is set): folded away, not written as `IF 0`.
+        "PROC O_9100(REAL ARG_H)\nG1 X=ARG_H F100\nRET\n"
     );
 }
 
@@ -855,4 +853,15 @@ fn comparisons_are_plain_where_exact_and_keep_the_difference_elsewhere() {
     main.text = main.text.replace("IF R2-0.9<0 GOTOB", "IF R2<0.9 GOTOB");
     let report = nctrans::translate::to_sinumerik::verify::verify(&db, file, &parsed.unit, &tr, "");
     assert!(matches!(report.verdict, nctrans::check::Verdict::Diverged { .. }), "{:?}", report.verdict);
+}
+
+/// A condition the vacancy analysis decides is folded: `IF 1 GOTOF` is the jump, `IF 0 …`
+/// is gone; a decided IF whose body holds a jump target stays as written.
+#[test]
+fn decided_conditions_leave_no_if_0_in_the_output() {
+    pair(
+        "O1\n#24=10.\nIF[#24 NE #0]GOTO10\nG0 Y5.\nN10 G0 X#24\nM30\n",
+        "DEF REAL LOC24\nLOC24=10\nGOTOF LBL_10\nG0 Y5\nN10 LBL_10: G0 X=LOC24\nM30\n",
+    );
+    pair("O1\n#26=-1.\nIF[#26 EQ #0]THEN #3000=1(Z)\nG0 Z#26\nM30\n", "DEF REAL LOC26\nLOC26=-1\nG0 Z=LOC26\nM30\n");
 }

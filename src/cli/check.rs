@@ -161,8 +161,14 @@ fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
     // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
     // (NC387): a program that ran one may apply another length than the other, unseen.
     let compensates = report.diags.iter().any(|d| d.code == nctrans::eval::machine::COMPENSATION_NOTE);
+    // Output whose text is not modelled (NC554: a DPRNT number field, BPRNT) is not compared.
+    let unprinted = report.diags.iter().any(|d| d.code == nctrans::eval::print::PRINT_NOT_MODELLED);
     let diff = &report.diff;
     match &report.verdict {
+        Verdict::Equivalent { events } if unprinted && !compensates => {
+            println!("inconclusive: {events} trace events agree, but output whose text is not modelled (NC554) is not compared");
+            ExitCode::from(4)
+        }
         Verdict::Equivalent { events } if compensates => {
             println!(
                 "inconclusive: {events} trace events agree, but tool compensation (G44, ISO-mode G43/G44/G49) is not compared"
@@ -214,6 +220,16 @@ fn check_as_translation(
     let runners: Vec<_> = sides
         .into_iter()
         .map(|(unit, mut run)| {
+            // GETT("NAME") returns the mapped number, as in the translation's verification
+            // (`translate::to_fanuc`), where `T="NAME"` is aligned to it.
+            if unit.dialect == Dialect::Sinumerik && !names.tools.is_empty() {
+                let mut s = run
+                    .semantics
+                    .take()
+                    .unwrap_or_else(|| nctrans::dialect::Semantics::default_for(Dialect::Sinumerik));
+                s.tools = std::sync::Arc::new(names.tools.clone());
+                run.semantics = Some(s);
+            }
             let unit = match unit.dialect {
                 Dialect::Sinumerik if cross => names.align(&unit),
                 Dialect::Fanuc if cross => {

@@ -76,7 +76,13 @@ pub struct Semantics {
     /// the T number of each tool name, which `GETT("NAME")` returns. Empty: not known, and
     /// `GETT` is refused (NC508). Names as written.
     pub tools: std::sync::Arc<std::collections::BTreeMap<String, u32>>,
+    /// The file a FANUC `DPRNT` line is written to when translated to Siemens `WRITE`
+    /// (`[sinumerik] write_file`): FANUC prints to the I/O channel, `WRITE` needs a file.
+    pub write_file: String,
 }
+
+/// The default of [`Semantics::write_file`].
+pub const DEFAULT_WRITE_FILE: &str = "NCTRANS_PRINT";
 
 /// The FANUC least input increment of a word written without a decimal point, in the unit
 /// it is read in: `inc_mm` (the profile's metric increment, [`Semantics::least_increment_mm`])
@@ -125,6 +131,7 @@ impl Semantics {
                 macros: Default::default(),
                 master_spindle: 0,
                 tools: Default::default(),
+                write_file: DEFAULT_WRITE_FILE.into(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -148,6 +155,7 @@ impl Semantics {
                 macros: Default::default(),
                 master_spindle: 1,
                 tools: Default::default(),
+                write_file: DEFAULT_WRITE_FILE.into(),
             },
         }
     }

@@ -592,6 +592,7 @@ impl<'a> Interp<'a> {
                 }
                 Ok(())
             }
+            ItemKind::Print(p) => self.print(p, item.span),
             // Declarations: nothing runs (`EXTERN`).
             ItemKind::Stopre | ItemKind::Extern(_) => Ok(()),
             ItemKind::Instruction { name } => match name.as_str() {

@@ -2,7 +2,8 @@
 //! that says why: interrupts (`SETINT(n) PRIO=p NAME`, `ENABLE(n)`, `DISABLE(n)`,
 //! `CLRINT(n)`: a routine runs when an input switches; a run has no such input, so it never
 //! runs), feed-forward control (`FFWON`/`FFWOF`: a look-ahead setting, not compared), and the
-//! rest (`SOFT`, `CFC`, …: no effect on the trace).
+//! rest (`SOFT`, `CFC`, …: no effect on the trace). FANUC output the reader keeps as written
+//! (`BPRNT`, a DPRNT it does not read) warns NC554: its text is not compared.
 
 use super::exec::Interp;
 use crate::span::Span;
@@ -19,6 +20,14 @@ impl Interp<'_> {
             let msg =
                 format!("{name}: the run assumes the interrupt input never switches, so its routine does not run");
             self.warn("NC566", msg, span);
+        } else if name.starts_with("DPRNT[") || name.starts_with("BPRNT[") {
+            let why = if name.starts_with("BPRNT[") {
+                "binary output is not text"
+            } else {
+                "it holds a character the sources do not list for DPRNT (letters, digits, + - /, * for a space)"
+            };
+            let msg = format!("{name}: the output is not modelled ({why}), so it is not compared");
+            self.warn(super::print::PRINT_NOT_MODELLED, msg, span);
         } else if name == "FFWON" || name == "FFWOF" {
             let what = if name == "FFWON" { "on" } else { "off" };
             let msg = format!(

@@ -36,6 +36,7 @@ pub mod instructions;
 pub mod machine;
 pub mod numfmt;
 pub mod paged;
+pub mod print;
 pub mod probe;
 pub mod refuse;
 mod strings;

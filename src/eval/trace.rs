@@ -115,6 +115,11 @@ pub enum Event {
     Message {
         text: String,
     },
+    /// One line of text output (an nctrans extension of v2): FANUC `DPRNT[…]`, Siemens
+    /// `WRITE(err, "file", text)`; `text` is the line as produced, without its line end.
+    Print {
+        text: String,
+    },
     Alarm {
         number: i64,
         message: String,
@@ -236,6 +241,7 @@ impl Event {
             Event::Coolant { .. } => "coolant",
             Event::Stop { .. } => "stop",
             Event::Message { .. } => "message",
+            Event::Print { .. } => "print",
             Event::Alarm { .. } => "alarm",
             Event::End { .. } => "end",
             Event::Limit { .. } => "limit",
@@ -386,6 +392,10 @@ fn text_form(s: &mut TextBuf, ev: &Event) {
         }
         Event::Message { text } => {
             s.push_str("message ");
+            push_quoted(s, text);
+        }
+        Event::Print { text } => {
+            s.push_str("print ");
             push_quoted(s, text);
         }
         Event::Alarm { number, message } => {

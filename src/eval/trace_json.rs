@@ -94,7 +94,7 @@ fn json_form(s: &mut TextBuf, ev: &Event, line: Option<usize>) {
                 None => s.push_str("null"),
             }
         }
-        Event::Message { text } => {
+        Event::Message { text } | Event::Print { text } => {
             s.push_str(",\"text\":");
             push_quoted(s, text);
         }

@@ -204,6 +204,7 @@ impl Dumper {
                 None => "message clear".into(),
             },
             ItemKind::Stopre => "stopre".into(),
+            ItemKind::Print(p) => print(p),
             ItemKind::ParamWrite(p) => {
                 let mut s = format!("param-write n={}", expr(&p.number));
                 if let Some(a) = &p.axis {
@@ -234,6 +235,31 @@ impl Dumper {
         };
         self.line(format!("{text} {at}"));
     }
+}
+
+/// `print "X" #100[53] (concat …) file="F" status=ERR`.
+fn print(p: &Print) -> String {
+    let mut s = String::from("print");
+    for part in &p.parts {
+        match part {
+            PrintPart::Text(t) => {
+                let _ = write!(s, " {}", quote(t));
+            }
+            PrintPart::Field { value, int, frac } => {
+                let _ = write!(s, " {}[{int}{frac}]", expr(value));
+            }
+            PrintPart::Str(e) => {
+                let _ = write!(s, " {}", expr(e));
+            }
+        }
+    }
+    if let Some(f) = &p.file {
+        let _ = write!(s, " file={}", expr(f));
+    }
+    if let Some(v) = &p.status {
+        let _ = write!(s, " status={}", var(v));
+    }
+    s
 }
 
 fn opt_text(t: &Option<String>) -> String {

@@ -103,6 +103,30 @@ pub enum ItemKind {
     /// Siemens `EXTERN NAME(REAL, VAR INT)`: the parameters of a subprogram this program
     /// calls. A declaration only: nothing runs.
     Extern(Box<ExternDecl>),
+    /// One line of text output: FANUC `DPRNT[…]` (to the I/O channel), Siemens
+    /// `WRITE(err, "file", text)` (appended to a file). The trace's `print` event.
+    Print(Box<Print>),
+}
+
+/// A line of text output (see [`ItemKind::Print`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Print {
+    pub parts: Vec<PrintPart>,
+    /// Siemens `WRITE`: the file (its second argument) and the error variable the control
+    /// sets (its first). `None` for FANUC, whose output goes to the channel POPEN opened.
+    pub file: Option<Expr>,
+    pub status: Option<Box<VarRef>>,
+}
+
+/// A piece of a [`Print`] line, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PrintPart {
+    /// Characters output as they are (FANUC's `*` already made a space).
+    Text(String),
+    /// FANUC `#n[wf]`: the value with `int` places before the point and `frac` after it.
+    Field { value: Expr, int: u8, frac: u8 },
+    /// Siemens: a STRING expression, output as the control builds it (`"X"<<R1`).
+    Str(Expr),
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -148,6 +148,18 @@ pub fn item_exprs(item: &Item) -> Vec<&Expr> {
         }
         ItemKind::RepeatSection(r) => v.extend(r.count.iter()),
         ItemKind::Frame { words, .. } => v.extend(words.iter().map(word)),
+        ItemKind::Print(p) => {
+            if let Some(s) = &p.status {
+                v.extend(s.children());
+            }
+            v.extend(p.file.iter());
+            for part in &p.parts {
+                match part {
+                    PrintPart::Field { value: e, .. } | PrintPart::Str(e) => v.push(e),
+                    PrintPart::Text(_) => {}
+                }
+            }
+        }
         ItemKind::ModalCallOff
         | ItemKind::Extern(_)
         | ItemKind::Instruction { .. }

@@ -282,6 +282,20 @@ pub fn item_exprs_mut(it: &mut Item, f: &mut dyn FnMut(&mut Expr)) {
                 word(w, f);
             }
         }
+        ItemKind::Print(p) => {
+            if let Some(s) = &mut p.status {
+                varref_exprs_mut(s, f);
+            }
+            if let Some(e) = &mut p.file {
+                f(e);
+            }
+            for part in &mut p.parts {
+                match part {
+                    PrintPart::Field { value: e, .. } | PrintPart::Str(e) => f(e),
+                    PrintPart::Text(_) => {}
+                }
+            }
+        }
         ItemKind::Message { text: None }
         | ItemKind::Extern(_)
         | ItemKind::ModalCallOff

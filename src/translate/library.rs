@@ -308,6 +308,13 @@ pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan
             scan.info.commons.extend(crate::translate::to_sinumerik::commons_of(p));
         }
         scan.defined.push((key, p.params.iter().map(|q| q.name.to_ascii_uppercase()).collect()));
+        // A computed call whose target the translation knows (`#1=9004 … G65 P#1`, a STRING
+        // holding one program name) calls that program: the library must load it.
+        let resolved = match dialect {
+            Dialect::Fanuc => crate::lower::to_sinumerik::indirect::resolve(p),
+            Dialect::Sinumerik => crate::lower::to_fanuc::string_calls::resolve(p),
+        };
+        let p = resolved.as_ref().unwrap_or(p);
         walk_items(&p.body, &mut |item| match &item.kind {
             ItemKind::Call(c) => {
                 let (line, _) = src.line_col(item.span.lo);

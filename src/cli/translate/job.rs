@@ -446,7 +446,7 @@ pub fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
 /// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops.
 pub fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>, E>) -> Result<Vec<Unit>, E> {
     let mut subs = Vec::new();
-    let mut todo = nctrans::ir::visit::called_names(unit);
+    let mut todo = nctrans::lower::to_fanuc::string_calls::called_names(unit);
     let mut seen: Vec<String> = Vec::new();
     while let Some(callee) = todo.pop() {
         if seen.contains(&callee) {
@@ -455,7 +455,7 @@ pub fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>
         let sub = load(&callee)?;
         seen.push(callee);
         if let Some(u) = sub {
-            todo.extend(nctrans::ir::visit::called_names(&u));
+            todo.extend(nctrans::lower::to_fanuc::string_calls::called_names(&u));
             subs.push(u);
         }
     }

@@ -229,7 +229,8 @@ fn build_general(cx: &mut BlockCx<'_, '_>, parts: Parts) -> Result<Line, Diagnos
             }
             Part::DataOut { text, span } => {
                 note_statement(span, false)?;
-                items.push(Item { kind: ItemKind::Instruction { name: text }, span });
+                let kind = super::print::dprnt(&text, span).unwrap_or(ItemKind::Instruction { name: text });
+                items.push(Item { kind, span });
             }
             Part::While { cond, id, id_span, span } => {
                 if !only {

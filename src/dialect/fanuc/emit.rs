@@ -238,6 +238,19 @@ impl Writer<'_> {
                 s.push_str(&format!(" R{}", self.int_value(&p.value)));
                 s
             }
+            ItemKind::Print(p) if p.file.is_none() => {
+                let mut s = String::from("DPRNT[");
+                for part in &p.parts {
+                    match part {
+                        PrintPart::Text(t) => s.extend(t.chars().map(|c| if c == ' ' { '*' } else { c })),
+                        _ => self.bug(it.span, "a DPRNT of text alone"),
+                    }
+                }
+                s.push(']');
+                s
+            }
+            // `POPEN` / `PCLOS` around a translated WRITE.
+            ItemKind::Instruction { name } if name == "POPEN" || name == "PCLOS" => name.clone(),
             _ => {
                 self.bug(it.span, "a Siemens-only statement");
                 String::new()

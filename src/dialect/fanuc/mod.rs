@@ -16,6 +16,7 @@ pub mod haas_vars;
 mod macro_a;
 mod names;
 mod parse;
+pub mod print;
 mod scan;
 pub mod scan_words;
 mod skeleton;

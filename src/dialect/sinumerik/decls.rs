@@ -230,3 +230,37 @@ impl Lower<'_, '_> {
         head
     }
 }
+
+impl Lower<'_, '_> {
+    /// `WRITE(err, "file", text)` (Job Planning, "Write file (WRITE)": the error variable
+    /// `VAR INT`, the file name and the line, both STRING; the control appends the line and
+    /// its LF): the IR's [`Print`], so both evaluators and translations see text output.
+    pub(super) fn write_stmt(&mut self, args: Vec<Arg>, span: Span) -> Option<ItemKind> {
+        let mut vals = args.into_iter().map(|a| match a {
+            Arg::Value(e) => Some(e),
+            _ => None,
+        });
+        let (status, file, text) = match (vals.next(), vals.next(), vals.next(), vals.next()) {
+            (Some(Some(s)), Some(Some(f)), Some(Some(t)), None) => (s, f, t),
+            _ => return self.bad_write(span, "WRITE takes three arguments: (error variable, file, text)"),
+        };
+        let ExprKind::Var(status) = status.kind else {
+            return self
+                .bad_write(span, "the first argument of WRITE is the variable the control sets to its error code");
+        };
+        Some(ItemKind::Print(Box::new(Print {
+            parts: vec![PrintPart::Str(text)],
+            file: Some(file),
+            status: Some(status),
+        })))
+    }
+
+    fn bad_write(&mut self, span: Span, what: &str) -> Option<ItemKind> {
+        self.error(
+            Diagnostic::error("NC555", format!("malformed WRITE: {what}"))
+                .primary(self.file(), span, "here")
+                .hint("write `WRITE(ERR, \"FILE\", \"TEXT\")` with `DEF INT ERR` declared"),
+        );
+        None
+    }
+}

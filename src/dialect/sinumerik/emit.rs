@@ -299,6 +299,10 @@ impl Writer {
             ItemKind::Message { text: Some(e) } => format!("MSG({})", expr(e)),
             ItemKind::Message { text: None } => "MSG()".into(),
             ItemKind::Stopre => "STOPRE".into(),
+            ItemKind::Print(p) => match (&p.status, &p.file, &p.parts[..]) {
+                (Some(v), Some(f), [PrintPart::Str(e)]) => format!("WRITE({},{},{})", var(v), expr(f), expr(e)),
+                _ => self.problem(it.span, "a FANUC DPRNT"),
+            },
             ItemKind::IfThen { .. } => self.problem(it.span, "a FANUC IF-THEN"),
             ItemKind::IfBlock { .. } => self.problem(it.span, "a Haas IF with NC words"),
             ItemKind::Extern(e) => {

@@ -308,6 +308,9 @@ impl Lower<'_, '_> {
                     Some(a) => self.args(a),
                     None => Vec::new(),
                 };
+                if name == "WRITE" {
+                    return self.write_stmt(args, span);
+                }
                 if names::builtin(&name).is_some() {
                     self.error(
                         Diagnostic::error("NC139", format!("{name} is a function; its value must be used"))

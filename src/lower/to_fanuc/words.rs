@@ -425,6 +425,7 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                     Err(mark) => after.extend(mark),
                 }
             }
+            ItemKind::Print(p) => after.extend(super::print::lower(ctx, *p, span)),
             ItemKind::SyncAction(a) => after.extend(ctx.unsupported(
                 "NC631",
                 span,

@@ -402,9 +402,16 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
                     out.push(st);
                 }
             }
+            ItemKind::Print(p) => items.extend(super::print::lower(ctx, *p, it.span, out)),
+            ItemKind::Instruction { name } if name == "POPEN" || name == "PCLOS" => {
+                out.push(super::print::channel_comment(&name, it.span));
+                // The note a Sinumerik → FANUC translation put on its POPEN says nothing here.
+                b.meta.comments.retain(|c| !super::print::is_write_note(&c.text));
+            }
             ItemKind::Instruction { name } if is_data_output(&name) => {
                 let what = format!("FANUC external output `{name}`");
-                let hint = "Siemens writes text with WRITE(…) to a file, not a port; write the output by hand";
+                let hint = "BPRNT is binary; a DPRNT is translated (to WRITE) when it holds letters, digits, \
+                            + - / and * alone: write the output by hand";
                 if let Some(st) = ctx.unsupported("NC510", it.span, &what, hint) {
                     out.push(st);
                 }
@@ -473,8 +480,9 @@ fn lower_call(ctx: &mut Ctx, c: Call, span: Span, inch: Option<bool>) -> Result<
             return Err(ctx.unsupported(
                 "NC356",
                 span,
-                "a call with a computed program number (`P#1`)",
-                "call each possible program by its number behind IF/GOTO",
+                "a call with a computed program number (`P#1`) that is not one number on every path to it",
+                "set the number once before the call (`#1=9010`), or call each possible program by its number \
+                 behind IF/GOTO",
             ))
         }
         CallTarget::Name(_) => return Ok(Item { kind: ItemKind::Call(Box::new(c)), span }),

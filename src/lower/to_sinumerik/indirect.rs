@@ -7,7 +7,10 @@
 //! the indices that have one value on every path — `#1=100 … #[#1+1]=7.` is `#101=7.` —
 //! and rewrites them to plain variables (FANUC rounds the computed number). Indices that
 //! stay unknown are left for `exprs`, which reports them as unsupported (NC361). A G code
-//! taken from a variable (`G#4`) is folded the same way.
+//! taken from a variable (`G#4`) is folded the same way, and so is a computed program number
+//! (`#1=9010 … M98 P#1`, `G65 P#1`): with one value on every path it is the call of that
+//! program, which every later pass (roles, parameters, names) sees as written so; one that
+//! stays unknown is refused by `calls` (NC356).
 
 use super::vacancy::{flatten, succs, Node};
 use super::*;
@@ -100,6 +103,7 @@ fn has_indirect(body: &[Stmt]) -> bool {
                 if let ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) = &it.kind {
                     found |= addr.is(b'G') && literal(e).is_none();
                 }
+                found |= matches!(&it.kind, ItemKind::Call(c) if matches!(c.target, CallTarget::Computed(_)));
                 found |= crate::ir::visit::item_exprs(it).into_iter().any(expr);
             }
         }
@@ -217,6 +221,16 @@ fn fix_item(it: &mut Item, env: &Env) {
         return;
     }
     item_exprs_mut(it, &mut |e| fix_expr(e, env));
+    // `M98 P#1` with a known #1: the call of that program (FANUC rounds the number).
+    if let ItemKind::Call(c) = &mut it.kind {
+        if let CallTarget::Computed(e) = &c.target {
+            if let Some(v) = eval(e, env).map(crate::eval::value::round_half_away) {
+                if (1.0..=99_999_999.0).contains(&v) {
+                    c.target = CallTarget::Number(v as u32);
+                }
+            }
+        }
+    }
     // `G#1` with a known #1: Siemens cannot take a G code from a variable.
     if let ItemKind::Word(Word { addr, value: WordValue::Expr(e), .. }) = &mut it.kind {
         if addr.is(b'G') && literal(e).is_none() {

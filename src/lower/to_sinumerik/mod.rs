@@ -31,6 +31,7 @@
 pub mod calls;
 pub mod comp;
 pub mod cycles;
+pub mod dead;
 pub mod exprs;
 pub(crate) mod fast_write;
 pub mod frames;
@@ -44,6 +45,7 @@ pub mod modal;
 pub mod modal_flow;
 pub mod modal_reads;
 pub mod polar;
+pub mod print;
 pub mod probe;
 pub mod probe_length;
 pub mod rotation;
@@ -426,7 +428,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = comp::lower(ctx, body);
     body = probe::lower(ctx, body, skip_axes);
     body = words::lower(ctx, body);
-    exprs::lower(ctx, body)
+    dead::fold(exprs::lower(ctx, body))
 }
 
 // ---- small IR builders shared by the passes ----

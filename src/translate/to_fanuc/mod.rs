@@ -96,6 +96,9 @@ pub struct SymbolMap {
     /// The output is for a Haas control (`[fanuc] series`): a check reads it back with the
     /// Haas semantics (its `G187` and `G103` look-ahead settings).
     pub haas: bool,
+    /// The H and D registers of each Siemens cutting edge the translation used
+    /// (`[offsets]`), so that a check's `$TC_DP` inputs reach the same FANUC registers.
+    pub offsets: crate::dialect::offsets::OffsetMap,
 }
 
 impl SymbolMap {
@@ -177,10 +180,10 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     // Programs: the main one first, then the subprograms by name.
     let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
     if let Some(p) = main.programs.first() {
-        progs.push((p.clone(), main.file, opts.main_is_sub));
+        progs.push((resolved(p), main.file, opts.main_is_sub));
     }
     let mut sub_progs: Vec<(Program, crate::span::FileId)> =
-        subs.iter().flat_map(|u| u.programs.iter().map(|p| (p.clone(), u.file))).collect();
+        subs.iter().flat_map(|u| u.programs.iter().map(|p| (resolved(p), u.file))).collect();
     sub_progs.sort_by_key(|(p, _)| prog_name(p, ""));
     sub_progs.dedup_by_key(|(p, _)| prog_name(p, ""));
     progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
@@ -268,6 +271,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         gud_seeds: vctx.gud_seeds,
         globals: opts.source.globals.to_vec(),
         haas: opts.target.haas,
+        offsets: opts.target.offsets.clone(),
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -492,7 +496,7 @@ pub fn verify<'a>(
         }
         b_in.extend(var_param_inputs(&params, map));
         a_in.extend(opts.set.iter().cloned());
-        b_in.extend(opts.set.iter().filter(|s| s.trim_start().starts_with('#')).cloned());
+        b_in.extend(fanuc_set_inputs(opts.set, map));
         let run = |inputs, semantics| RunOptions {
             max_steps: opts.max_steps,
             inputs,
@@ -560,6 +564,43 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
         next = base.saturating_sub(1);
     }
     texts
+}
+
+/// `p` with its calls through a STRING variable that names one program made calls by name
+/// (`lower::to_fanuc::string_calls`), and its WRITEs' unread error variables gone
+/// (`lower::to_fanuc::print::drop_unread_status`).
+fn resolved(p: &Program) -> Program {
+    let p = crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone());
+    crate::lower::to_fanuc::print::drop_unread_status(&p).unwrap_or(p)
+}
+
+/// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
+/// `Rn=…` (and a main program's DEF variable) into the variable the translation put it in;
+/// `$TC_DP3/6/12/15[t,d]=…` into the tool compensation memory C register the translation
+/// reads for that edge (`#11000+H`, `#10000+H`, `#13000+D`, `#12000+D` through the offset map,
+/// as `lower::to_fanuc::tool_data`). Others (no counterpart) stay on the Siemens side only.
+pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
+    use crate::eval::tool_data::{fanuc_var, siemens_field, tc_dp};
+    let mut out = Vec::new();
+    for s in set {
+        let Some((lhs, rhs)) = s.split_once('=') else { continue };
+        let (lhs, rhs) = (lhs.trim(), rhs.trim());
+        if lhs.starts_with('#') {
+            out.push(s.clone());
+        } else if let Some(sys) = lhs.strip_prefix('$') {
+            let Some((name, idx)) = sys.split_once('[') else { continue };
+            let Some(field) = tc_dp(&name.to_ascii_uppercase()).and_then(siemens_field) else { continue };
+            let idx: Vec<Option<u32>> =
+                idx.trim_end_matches(']').split(',').map(|x| x.trim().parse::<u32>().ok()).collect();
+            let [Some(t), Some(d)] = idx.as_slice() else { continue };
+            let Some((h, dr)) = map.offsets.registers(*t, *d).filter(|_| !map.haas) else { continue };
+            let reg = if field.is_length() { h } else { dr };
+            out.push(format!("#{}={rhs}", fanuc_var(field, reg)));
+        } else if let Some(n) = map.fanuc_var(lhs) {
+            out.push(format!("#{n}={rhs}"));
+        }
+    }
+    out
 }
 
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
