@@ -19,6 +19,8 @@ use crate::span::{FileId, SourceDb, Span};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
+mod corner_gate;
+mod goto;
 mod held;
 mod lits;
 
@@ -324,31 +326,6 @@ impl<'a> Interp<'a> {
                 Flow::Stop(e) => return Ok(e),
             }
         }
-    }
-
-    /// With a corner held (`machine::corners`), the next thing run must be a block of NC
-    /// words at the same call level: the manuals read say the block after a corner is its
-    /// next move, and nothing about macro statements or calls between (docs/semantics.md).
-    fn corner_gate(&self, op: Option<&Op>) -> Result<(), Fault> {
-        let Some(corner) = self.m.corners.held_span() else { return Ok(()) };
-        let words_only = |b: &Block| b.items.iter().all(|i| matches!(i.kind, ItemKind::Word(_)));
-        let (why, at) = match op {
-            None => ("the end of the program", None),
-            Some(op) if self.frames.len() != self.corner_depth => ("a call or a return", Some(op.span())),
-            Some(Op::Lit(_)) => return Ok(()),
-            Some(Op::Block(b)) if words_only(b) => return Ok(()),
-            Some(op @ Op::Block(_)) => ("a block with a macro statement, a call or an end", Some(op.span())),
-            Some(op) => ("a macro or control statement", Some(op.span())),
-        };
-        let mut d = Diagnostic::error(
-            crate::eval::corner::NO_NEXT_MOVE,
-            format!("the corner needs the next block to be its next move in the plane; what follows is {why}"),
-        )
-        .primary(self.file(), corner, "corner");
-        if let Some(at) = at {
-            d = d.secondary(self.file(), at, "runs next");
-        }
-        Err(Fault::error(d.hint("put the next move of the contour right after the block with the corner")))
     }
 
     /// The fault of the step limit, reached at `op`.
@@ -714,54 +691,6 @@ impl<'a> Interp<'a> {
                 Ok(Flow::Goto(s))
             }
             _ => Ok(Flow::Next),
-        }
-    }
-
-    fn goto(&mut self, code: &Rc<Code>, g: &Goto, pc: usize, span: Span) -> Result<Flow, Fault> {
-        if let Some(c) = &g.cond {
-            let cx = self.cx(false);
-            if !expr::eval(self, c, &cx)?.truthy() {
-                return Ok(Flow::Next);
-            }
-        }
-        let (key, shown) = match &g.target {
-            Target::Number(n) => (Some(Key::Number(n.value)), format!("N{}", n.value)),
-            Target::Label(l) => (code.label_id(&l.name).map(Key::Label), l.name.clone()),
-            Target::Computed(e) => {
-                let cx = self.cx(true);
-                match expr::eval(self, e, &cx)? {
-                    Value::Str(s) => {
-                        let up = s.to_ascii_uppercase();
-                        (code.label_id(&up).map(Key::Label), up)
-                    }
-                    v => {
-                        let n = round_half_away(v.num().unwrap_or(0.0));
-                        if !(0.0..=99999.0).contains(&n) {
-                            (None, format!("N{n}"))
-                        } else {
-                            (Some(Key::Number(n as u32)), format!("N{n}"))
-                        }
-                    }
-                }
-            }
-        };
-        let dest = key.and_then(|k| code.find(pc, g.search, k));
-        match dest {
-            Some(d) => Ok(Flow::Goto(d)),
-            None if g.missing_continues => Ok(Flow::Next),
-            None => Err(Fault::alarm(
-                self.alarms.no_target,
-                format!(
-                    "jump target {shown} not found ({})",
-                    match g.search {
-                        Search::Forward => "searched forward",
-                        Search::Backward => "searched backward",
-                        Search::ForwardThenBackward => "searched forward, then backward",
-                        Search::ForwardThenWrap => "searched to the end, then from the top",
-                    }
-                ),
-                span,
-            )),
         }
     }
 

@@ -488,16 +488,7 @@ impl Machine {
                     corner = Some((w, x))
                 }
                 ("RNDM", Some(x)) if !self.fanuc => rndm = Some((w, x)),
-                ("FRC" | "FRCM", _) if !self.fanuc => {
-                    return Err(Fault::error(
-                        crate::diag::Diagnostic::error(
-                            crate::eval::corner::CORNER_FEED,
-                            format!("{a} (a feed of its own for chamfers and roundings) is not modelled"),
-                        )
-                        .primary(usize::MAX, w.span, "here")
-                        .hint("leave the corner at the path feed F"),
-                    ))
-                }
+                ("FRC" | "FRCM", _) if !self.fanuc => return Err(corners::own_feed(a, w.span)),
                 ("ANG" | "OFFN", _) => {
                     return Err(unsupported(&format!("{a} (contour angle or contour offset) is not modelled"), w.span))
                 }

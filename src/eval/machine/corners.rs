@@ -73,6 +73,18 @@ pub(super) fn two_in_one_block(span: Span) -> Fault {
     )
 }
 
+/// FRC/FRCM: a corner feed of its own, which the trace's moves do not carry.
+pub(super) fn own_feed(word: &str, span: Span) -> Fault {
+    Fault::error(
+        crate::diag::Diagnostic::error(
+            crate::eval::corner::CORNER_FEED,
+            format!("{word} (a feed of its own for chamfers and roundings) is not modelled"),
+        )
+        .primary(usize::MAX, span, "here")
+        .hint("leave the corner at the path feed F"),
+    )
+}
+
 fn describe(ev: &Event) -> &'static str {
     match ev {
         Event::Move { rapid: true, .. } => "a rapid move (G0)",
