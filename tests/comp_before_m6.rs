@@ -6,21 +6,15 @@
 //! refuses what it cannot prove (NC470, NC567, NC568); planted wrong translations are
 //! caught by the check.
 
+#[path = "support/proven.rs"]
+mod proven;
 use nctrans::check::{self, Side, Verdict};
-use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::dialect::Dialect;
 use nctrans::eval::{NoCallees, RunOptions, VecSink};
 use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, to_fanuc::TranslateOptions};
-
-const STEPS: u64 = 100_000;
-
-fn parse(db: &mut SourceDb, name: &str, text: &str, d: Dialect) -> Unit {
-    let id = db.add(name, text);
-    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
-    assert!(!nctrans::diag::has_errors(&p.diags), "{name}:\n{}", nctrans::diag::render(db, &p.diags));
-    p.unit
-}
+use proven::{parse, proven_to_fanuc, STEPS};
 
 /// The text trace of a Siemens program, places left out.
 fn trace(text: &str) -> Vec<String> {
@@ -37,21 +31,6 @@ fn factory_d1() -> TranslateOptions {
     let mut o = TranslateOptions::default();
     o.source.cutting_edge_default = Some(1);
     o
-}
-
-/// Siemens → FANUC with `opts`: the program lines after verify proved them.
-fn to_fanuc(src: &str, opts: &TranslateOptions) -> Vec<String> {
-    let mut db = SourceDb::new();
-    let u = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
-    let t = translate::to_fanuc::to_fanuc(&u, &[], opts);
-    assert!(t.ok(), "not translated:\n{}", nctrans::diag::render(&db, &t.diags));
-    let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
-    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
-    t.text
-        .lines()
-        .filter(|l| *l != "%" && !l.starts_with('O') && !l.starts_with("(NCTRANS"))
-        .map(str::to_string)
-        .collect()
 }
 
 fn codes(src: &str, opts: &TranslateOptions) -> Vec<&'static str> {
@@ -100,7 +79,7 @@ fn an_edge_before_the_m6_acts_only_if_something_moves_before_it() {
 
 #[test]
 fn the_tool_change_sequence_translates_to_g43_after_the_m6_and_verifies() {
-    let out = to_fanuc(TWO_TOOLS, &factory_d1());
+    let out = proven_to_fanuc(TWO_TOOLS, &factory_d1());
     let at = |l: &str| out.iter().position(|x| x == l).unwrap_or_else(|| panic!("{l} not in {out:?}"));
     // The D before the M6 goes (it is the old tool's, never applied); the length of the
     // edge the tool change selects follows the M06 in a line of its own.
@@ -123,12 +102,12 @@ fn what_cannot_be_proven_is_refused_with_the_rule() {
     // The edge before the M6 is not the one the tool change selects (MD20270 = 1).
     assert_eq!(codes("T1 D2\nM6\nG0 Z50\nM30\n", &factory_d1()), ["NC568"]);
     // In the M6 block, or after it, any edge translates.
-    assert!(to_fanuc("T1 M6 D1\nG0 Z50\nM30\n", &factory_d1()).contains(&"G43 H1".to_string()));
+    assert!(proven_to_fanuc("T1 M6 D1\nG0 Z50\nM30\n", &factory_d1()).contains(&"G43 H1".to_string()));
 }
 
 #[test]
 fn planted_wrong_translations_of_the_tool_change_are_caught() {
-    let right = to_fanuc(TWO_TOOLS, &factory_d1());
+    let right = proven_to_fanuc(TWO_TOOLS, &factory_d1());
     let fanuc = |lines: &[String]| format!("%\nO1\n{}\n%\n", lines.join("\n"));
     assert!(matches!(check_pair(TWO_TOOLS, &fanuc(&right)), Verdict::Equivalent { .. }));
     let edit = |f: &dyn Fn(&mut Vec<String>)| {

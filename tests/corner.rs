@@ -3,6 +3,8 @@
 //! the tangent arc; the translation respells them both ways (proven); planted wrong corners
 //! are caught by the check; corners that cannot be made are refused with their diagnostic.
 
+#[path = "support/proven.rs"]
+mod proven;
 use nctrans::check::{self, Side, Verdict};
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{NoCallees, RunOptions, VecSink};
@@ -11,15 +13,7 @@ use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
 use nctrans::translate::{self, to_fanuc::TranslateOptions};
-
-const STEPS: u64 = 100_000;
-
-fn parse(db: &mut SourceDb, name: &str, text: &str, d: Dialect) -> Unit {
-    let id = db.add(name, text);
-    let p = nctrans::parse(db, id, d, &ParseOptions::for_dialect(d));
-    assert!(!nctrans::diag::has_errors(&p.diags), "{name}:\n{}", nctrans::diag::render(db, &p.diags));
-    p.unit
-}
+use proven::{parse, proven_to_fanuc, STEPS};
 
 /// The text trace of a program and the codes of its run's errors.
 fn run(text: &str, d: Dialect) -> (Vec<String>, Vec<&'static str>) {
@@ -60,17 +54,7 @@ fn check_pair(s: &str, f: &str) -> Verdict {
 
 /// Siemens → FANUC, proven: the program's lines.
 fn to_fanuc(src: &str) -> Vec<String> {
-    let mut db = SourceDb::new();
-    let u = parse(&mut db, "in.mpf", src, Dialect::Sinumerik);
-    let t = translate::to_fanuc::to_fanuc(&u, &[], &TranslateOptions::default());
-    assert!(t.ok(), "not translated:\n{}", nctrans::diag::render(&db, &t.diags));
-    let v = translate::to_fanuc::verify(&mut db, &u, &[], &t.clone().into(), "out.nc", STEPS);
-    assert!(v.equivalent, "{}\n{}\n{}", v.summary, v.rendered, t.text);
-    t.text
-        .lines()
-        .filter(|l| *l != "%" && !l.starts_with('O') && !l.starts_with("(NCTRANS"))
-        .map(str::to_string)
-        .collect()
+    proven_to_fanuc(src, &TranslateOptions::default())
 }
 
 fn to_fanuc_codes(src: &str) -> Vec<&'static str> {

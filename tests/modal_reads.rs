@@ -4,34 +4,13 @@
 //! probing macro's paths; planted wrong constants are caught, and reads whose value is only
 //! known at run time are refused by name.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod eval_support;
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_nctrans")
-}
+use eval_support::{nctrans, scratch_dir, write};
+use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/modal-reads-tests").join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("scratch dir");
-    d
-}
-
-/// `nctrans ARGS`: (exit code, stdout, stderr).
-fn nctrans(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(bin()).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().expect("runs");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into(),
-        String::from_utf8_lossy(&o.stderr).into(),
-    )
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).expect("write");
-    p.to_string_lossy().into_owned()
+    scratch_dir("modal-reads-tests", name)
 }
 
 fn run(file: &str) -> (String, String) {

@@ -146,6 +146,21 @@ pub fn scratch_file(prefix: &str, ext: &str, text: &str) -> String {
     p.to_string_lossy().to_string()
 }
 
+/// An emptied folder `target/<area>/<name>` for one test's files.
+pub fn scratch_dir(area: &str, name: &str) -> PathBuf {
+    let d = root().join("target").join(area).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("scratch dir");
+    d
+}
+
+/// Writes `text` to `dir/name`; its path.
+pub fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).expect("write");
+    p.to_string_lossy().into_owned()
+}
+
 /// Runs the nctrans binary: its exit code, stdout and stderr.
 pub fn nctrans(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).output().expect("run nctrans");
