@@ -19,6 +19,10 @@ use crate::read::LineEnding;
 use crate::span::Span;
 use std::collections::BTreeMap;
 
+mod inputs;
+pub use inputs::fanuc_set_inputs;
+use inputs::map_set_lines;
+
 /// First O number given to subprograms without a `--program-map` entry.
 pub const FIRST_SUB_NUMBER: u32 = 9000;
 /// O number of the main program without `--program-number` or a map entry.
@@ -288,6 +292,9 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         symbol_map.labels.insert(number, labels);
         collect_alarms(&p.body, &mut symbol_map.alarms);
         diags.extend(crate::dialect::limits::deepened(&p.body, file, Dialect::Fanuc));
+        if programs.is_empty() {
+            map_set_lines(&mut p.body, &symbol_map);
+        }
         let header = header(&name, &mapped, !programs.is_empty(), opts);
         let span = p.span;
         let head_comments = vec![Comment { text: name.clone(), span }];
@@ -460,6 +467,11 @@ pub fn verify<'a>(
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
     let probes = crate::eval::header_probes(&db.get(main.file).text).unwrap_or_default();
+    // The source's `nctrans: set` lines, then `--set` (which overrides them), as `run` takes them.
+    let sets: Vec<String> = crate::eval::input::header_words(&db.get(main.file).text, "nctrans: set", false)
+        .map(str::to_string)
+        .chain(opts.set.iter().cloned())
+        .collect();
     let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
     let letters = passes::words::param_letters(params.len()).unwrap_or_default();
     let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
@@ -495,8 +507,8 @@ pub fn verify<'a>(
             }
         }
         b_in.extend(var_param_inputs(&params, map));
-        a_in.extend(opts.set.iter().cloned());
-        b_in.extend(fanuc_set_inputs(opts.set, map));
+        a_in.extend(sets.iter().cloned());
+        b_in.extend(fanuc_set_inputs(&sets, map));
         let run = |inputs, semantics| RunOptions {
             max_steps: opts.max_steps,
             inputs,
@@ -572,35 +584,6 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
 fn resolved(p: &Program) -> Program {
     let p = crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone());
     crate::lower::to_fanuc::print::drop_unread_status(&p).unwrap_or(p)
-}
-
-/// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
-/// `Rn=…` (and a main program's DEF variable) into the variable the translation put it in;
-/// `$TC_DP3/6/12/15[t,d]=…` into the tool compensation memory C register the translation
-/// reads for that edge (`#11000+H`, `#10000+H`, `#13000+D`, `#12000+D` through the offset map,
-/// as `lower::to_fanuc::tool_data`). Others (no counterpart) stay on the Siemens side only.
-pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
-    use crate::eval::tool_data::{fanuc_var, siemens_field, tc_dp};
-    let mut out = Vec::new();
-    for s in set {
-        let Some((lhs, rhs)) = s.split_once('=') else { continue };
-        let (lhs, rhs) = (lhs.trim(), rhs.trim());
-        if lhs.starts_with('#') {
-            out.push(s.clone());
-        } else if let Some(sys) = lhs.strip_prefix('$') {
-            let Some((name, idx)) = sys.split_once('[') else { continue };
-            let Some(field) = tc_dp(&name.to_ascii_uppercase()).and_then(siemens_field) else { continue };
-            let idx: Vec<Option<u32>> =
-                idx.trim_end_matches(']').split(',').map(|x| x.trim().parse::<u32>().ok()).collect();
-            let [Some(t), Some(d)] = idx.as_slice() else { continue };
-            let Some((h, dr)) = map.offsets.registers(*t, *d).filter(|_| !map.haas) else { continue };
-            let reg = if field.is_length() { h } else { dr };
-            out.push(format!("#{}={rhs}", fanuc_var(field, reg)));
-        } else if let Some(n) = map.fanuc_var(lhs) {
-            out.push(format!("#{n}={rhs}"));
-        }
-    }
-    out
 }
 
 /// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is

@@ -1,0 +1,62 @@
+//! The inputs of a translation to FANUC's proof in FANUC names: a check's `--set` and the
+//! source's `nctrans: set` header lines, which the written program carries as its own.
+
+use super::SymbolMap;
+use crate::ir::{Stmt, StmtKind};
+
+/// The main program's `nctrans: set` header lines in the FANUC names the translation gave
+/// the variables (`R1=5` → `#501=5`), so `run` and `check` of the output start where the
+/// source's do; a line left with nothing the output can take is dropped.
+pub(super) fn map_set_lines(body: &mut Vec<Stmt>, map: &SymbolMap) {
+    let mut i = 0;
+    while let Some(StmtKind::Block(b)) = body.get_mut(i).map(|s| &mut s.kind) {
+        if !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some() {
+            break;
+        }
+        let mut emptied = false;
+        for c in &mut b.meta.comments {
+            let Some(rest) = c.text.trim().strip_prefix("nctrans: set") else { continue };
+            let words: Vec<String> = rest.split_whitespace().map(str::to_string).collect();
+            let mapped = fanuc_set_inputs(&words, map);
+            emptied |= mapped.is_empty();
+            c.text = format!("nctrans: set {}", mapped.join(" "));
+        }
+        if emptied {
+            b.meta.comments.retain(|c| c.text.trim() != "nctrans: set");
+            if b.meta.comments.is_empty() {
+                body.remove(i);
+                continue;
+            }
+        }
+        i += 1;
+    }
+}
+
+/// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
+/// `Rn=…` (and a main program's DEF variable) into the variable the translation put it in;
+/// `$TC_DP3/6/12/15[t,d]=…` into the tool compensation memory C register the translation
+/// reads for that edge (`#11000+H`, `#10000+H`, `#13000+D`, `#12000+D` through the offset map,
+/// as `lower::to_fanuc::tool_data`). Others (no counterpart) stay on the Siemens side only.
+pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
+    use crate::eval::tool_data::{fanuc_var, siemens_field, tc_dp};
+    let mut out = Vec::new();
+    for s in set {
+        let Some((lhs, rhs)) = s.split_once('=') else { continue };
+        let (lhs, rhs) = (lhs.trim(), rhs.trim());
+        if lhs.starts_with('#') {
+            out.push(s.clone());
+        } else if let Some(sys) = lhs.strip_prefix('$') {
+            let Some((name, idx)) = sys.split_once('[') else { continue };
+            let Some(field) = tc_dp(&name.to_ascii_uppercase()).and_then(siemens_field) else { continue };
+            let idx: Vec<Option<u32>> =
+                idx.trim_end_matches(']').split(',').map(|x| x.trim().parse::<u32>().ok()).collect();
+            let [Some(t), Some(d)] = idx.as_slice() else { continue };
+            let Some((h, dr)) = map.offsets.registers(*t, *d).filter(|_| !map.haas) else { continue };
+            let reg = if field.is_length() { h } else { dr };
+            out.push(format!("#{}={rhs}", fanuc_var(field, reg)));
+        } else if let Some(n) = map.fanuc_var(lhs) {
+            out.push(format!("#{n}={rhs}"));
+        }
+    }
+    out
+}
