@@ -178,6 +178,18 @@ mod translation {
     }
 
     #[test]
+    fn a_reference_return_after_a_drilling_cycle_knows_the_motion_mode_g80_gives_back() {
+        // FANUC's cycles are group 09: after G80 the G01 from before the cycle is in force
+        // again, so the G28's intermediate point is a G0 move and G1 follows it.
+        let prog = "O1\nG0 X0 Y0 Z10. S1000 M3\nG1 Z5. F100.\nG98 G81 X10. Z-5. R2. F80.\nG80\nX20.\nG90 G28 X0. Y0.\nX5.\nM30\n";
+        let out = f_to_s(prog).unwrap();
+        assert!(out.contains("G0 G90 X0 Y0\nG74 X1=0 Y1=0\nG1\n"), "{out}");
+        // A cycle still in force at the G28 (no G80): the mode it holds is not followed.
+        let held = "O1\nG0 X0 Y0 Z10.\nG98 G81 X10. Z-5. R2. F80.\nG90 G28 X0. Y0.\nM30\n";
+        assert!(f_to_s(held).is_err());
+    }
+
+    #[test]
     fn what_has_no_exact_counterpart_is_refused() {
         // G52 that keeps another axis's shift: TRANS would drop it.
         assert_eq!(f_to_s("O1\nG52 X10.\nG52 Y5.\nM30\n"), Err(vec!["NC442".into()]));

@@ -62,8 +62,12 @@ pub struct State {
     pub incremental: Option<bool>,
     /// G20 (`true`) or G21.
     pub inch: Option<bool>,
-    /// The motion G code ×10 (0, 10, 20, 30).
+    /// The motion G code ×10 (0, 10, 20, 30); `None` while a drilling cycle is in force.
     pub motion: Option<u32>,
+    /// A drilling cycle in force: `Some(m)` with the group 01 code `m` it leaves in force
+    /// when G80 cancels it (FANUC's cycles are group 09; the translation writes that code
+    /// again after `MCALL`, `cycles.rs`); `None` when no cycle is in force.
+    pub cycle: Option<Option<u32>>,
     /// The G68 rotation, G51 scaling or G51.1 mirror image in force (one at a time):
     /// `Some(0)` none, `Some(k)` the mode of [`frame_key`] `k` (`rotation.rs`),
     /// `Some(`[`ROT_ANY`]`)` none or one of this program's G68s (paths or calls of a
@@ -88,6 +92,7 @@ impl State {
         incremental: None,
         inch: None,
         motion: None,
+        cycle: Some(None),
         rot: None,
         polar: None,
         inter: [None; 6],
@@ -100,6 +105,7 @@ impl State {
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
             inch: if self.inch == o.inch { self.inch } else { None },
             motion: if self.motion == o.motion { self.motion } else { None },
+            cycle: if self.cycle == o.cycle { self.cycle } else { Some(None) },
             rot: merge_rot(self.rot, o.rot),
             polar: if self.polar == o.polar { self.polar } else { None },
             inter: std::array::from_fn(|i| if self.inter[i] == o.inter[i] { self.inter[i] } else { None }),
@@ -152,7 +158,10 @@ impl State {
                 910 => self.incremental = Some(true),
                 200 => self.inch = Some(true),
                 210 => self.inch = Some(false),
-                0 | 10 | 20 | 30 => self.motion = Some(g),
+                0 | 10 | 20 | 30 => {
+                    self.motion = Some(g);
+                    self.cycle = None;
+                }
                 680 | 510 | 511 => self.rot = items.first().map(|it| frame_key(it.span.lo, g)),
                 // A cancel of another mode than the one in force changes nothing.
                 690 | 500 | 501 if self.rot.is_some_and(|k| k == 0 || k & 3 == frame_kind(mode_of_cancel(g))) => {
@@ -160,8 +169,18 @@ impl State {
                 }
                 160 => self.polar = Some(true),
                 150 => self.polar = Some(false),
-                // Canned cycles and their cancel: the motion group is not followed here.
-                730..=890 => self.motion = None,
+                // G80 gives back the group 01 code the cycle held (unknown where paths disagree).
+                800 => {
+                    if let Some(held) = self.cycle.take() {
+                        self.motion = held;
+                    }
+                }
+                730..=890 => {
+                    if self.cycle.is_none() {
+                        self.cycle = Some(self.motion);
+                    }
+                    self.motion = None;
+                }
                 _ => {}
             }
         }
@@ -270,6 +289,7 @@ impl ModalScan {
                 incremental: Some(false),
                 inch,
                 motion: Some(0),
+                cycle: None,
                 rot: Some(0),
                 polar: Some(false),
                 inter: [None; 6],

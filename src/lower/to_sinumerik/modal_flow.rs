@@ -315,6 +315,7 @@ mod tests {
         incremental: Some(false),
         inch: Some(false),
         motion: Some(0),
+        cycle: None,
         rot: Some(0),
         polar: Some(false),
         inter: [None; 6],
