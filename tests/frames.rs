@@ -184,6 +184,13 @@ mod translation {
         let prog = "O1\nG0 X0 Y0 Z10. S1000 M3\nG1 Z5. F100.\nG98 G81 X10. Z-5. R2. F80.\nG80\nX20.\nG90 G28 X0. Y0.\nX5.\nM30\n";
         let out = f_to_s(prog).unwrap();
         assert!(out.contains("G0 G90 X0 Y0\nG74 X1=0 Y1=0\nG1\n"), "{out}");
+        // A G00/G01 beside G28 sets the motion mode only.
+        let out = f_to_s("O1\nG0 X5. Z10.\nG1 Z5. F100.\nG00 G91 G28 Z0.\nX3.\nM30\n").unwrap();
+        assert!(out.contains("G0 G91\nG74 Z1=0\nX3\n"), "{out}");
+        let out = f_to_s("O1\nG0 X5. Z10.\nG01 G90 G28 X0. Y0. F100.\nX3.\nM30\n");
+        assert!(out.is_err(), "an F beside G28 stays refused: {out:?}");
+        let out = f_to_s("O1\nG0 X5. Z10.\nG01 G90 G28 X0. Y0.\nX3.\nM30\n").unwrap();
+        assert!(out.contains("G0 G90 X0 Y0\nG74 X1=0 Y1=0\nG1\nX3\n"), "{out}");
         // A cycle still in force at the G28 (no G80): the mode it holds is not followed.
         let held = "O1\nG0 X0 Y0 Z10.\nG98 G81 X10. Z-5. R2. F80.\nG90 G28 X0. Y0.\nM30\n";
         assert!(f_to_s(held).is_err());

@@ -239,7 +239,9 @@ fn reference_return(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, 
         |it| matches!(letter_of(it), Some((b'M', e)) if matches!(literal(e), Some(v) if v == 5.0 || v == 9.0)),
     );
     b.items = rest;
-    if !only_words(&b, &[280, 300, 900, 910], letters) || b.items.iter().any(|it| g_of(it) == Some(280)) == g30 {
+    // A G00/G01 beside it only sets the motion mode (the return itself is at rapid), which
+    // `motion` below holds.
+    if !only_words(&b, &[280, 300, 900, 910, 0, 10], letters) || b.items.iter().any(|it| g_of(it) == Some(280)) == g30 {
         return refused(
             ctx,
             "NC444",
@@ -297,9 +299,9 @@ fn reference_return(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, 
     }
     let mut after = vec![plain_block(home, span)];
     let first = if stays {
-        // The intermediate point is where the tool stands: only the G90/G91 words remain.
+        // The intermediate point is where the tool stands: only the G90/G91 and G0/G1 words remain.
         let mut b = b;
-        b.items.retain(|it| matches!(g_of(it), Some(900 | 910)));
+        b.items.retain(|it| matches!(g_of(it), Some(900 | 910 | 0 | 10)));
         if b.items.is_empty() && b.meta.number.is_none() && b.meta.comments.is_empty() {
             None
         } else {
@@ -307,7 +309,7 @@ fn reference_return(ctx: &mut Ctx, mut b: Block, span: Span, modal: &ModalScan, 
         }
     } else {
         let mut b = b;
-        b.items.retain(|it| !matches!(g_of(it), Some(280 | 300)) && !matches!(letter_of(it), Some((b'P', _))));
+        b.items.retain(|it| !matches!(g_of(it), Some(280 | 300 | 0 | 10)) && !matches!(letter_of(it), Some((b'P', _))));
         b.items.insert(0, super::words::g_word(0, span));
         if let Some(m) = motion.filter(|m| *m != 0) {
             after.push(plain_block(vec![super::words::g_word(m, span)], span));
