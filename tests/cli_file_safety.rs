@@ -226,3 +226,19 @@ fn a_streamed_output_that_cannot_be_put_in_place_leaves_no_temporary_file() {
     assert_eq!(std::fs::read(&src).unwrap(), SIEMENS);
     assert_eq!(std::fs::read_dir(d.join("taken.nc")).unwrap().count(), 0);
 }
+
+#[test]
+fn output_into_a_folder_to_fanuc_names_the_file_and_leaves_nothing_behind() {
+    let d = scratch("to-dir");
+    std::fs::write(d.join("PART.MPF"), SIEMENS).unwrap();
+    // `-o out/` (a folder not there yet) takes the input's name.
+    let o = nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "out/"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let written = std::fs::read(d.join("out/PART.NC")).expect("out/PART.NC written");
+    // Again: the named file exists, so it is refused without --force and kept.
+    let o = nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "out"]);
+    refused(&o, "NC601", &[(&d.join("out/PART.NC"), &written)]);
+    assert!(stderr(&o).contains("PART.NC"), "{}", stderr(&o));
+    let left: Vec<_> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left.len(), 2, "no temporary file is left beside them: {left:?}");
+}

@@ -437,7 +437,11 @@ pub fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
         Some(p) => {
             let tmp = p.with_extension(format!("{}.nctrans-tmp", p.extension().and_then(|e| e.to_str()).unwrap_or("")));
             std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
-            std::fs::rename(&tmp, p).map_err(|e| format!("cannot write {}: {e}", p.display()))
+            std::fs::rename(&tmp, p).map_err(|e| {
+                // Nothing of a failed write stays behind.
+                let _ = std::fs::remove_file(&tmp);
+                format!("cannot write {}: {e}", p.display())
+            })
         }
     }
 }
@@ -494,15 +498,6 @@ pub fn foreign_flag(args: &TranslateArgs, to: Dialect) -> Option<&'static str> {
         ("--comments", args.comments != "keep"),
     ];
     fanuc_only.iter().find(|(_, given)| *given).map(|(flag, _)| *flag)
-}
-
-/// Whether `to` writes one file per program (Sinumerik's `.MPF` and `.SPF`), so that `-o`
-/// may name a folder; FANUC writes every program into one file.
-pub fn one_per_program(to: Dialect) -> bool {
-    match to {
-        Dialect::Fanuc => false,
-        Dialect::Sinumerik => true,
-    }
 }
 
 /// The options of a translation of `input` to `to` from the configuration; the parts that
@@ -601,10 +596,19 @@ pub fn write(req: &Request, t: &Translation, job: &Job, c: &Config, to: Dialect)
         Dialect::Fanuc => {
             let loaded = &job.loaded;
             let bytes = read::encode(t.text(), c.output_encoding.unwrap_or(loaded.encoding), loaded.bom);
-            if let Some(o) = req.out {
+            // `-o DIR/` (or an existing folder) takes the file under the input's name, `.nc`.
+            let target = req.out.map(|o| match (out_place(o), job.read.first().and_then(|i| i.file_name())) {
+                ((true, dir), Some(name)) => dir.join(nctrans::batch::discover::fanuc_output(Path::new(name))),
+                _ => o.to_path_buf(),
+            });
+            if let Some(o) = &target {
                 crate::cli::out_guard::check(o, &job.read, c.force, "-o")?;
+                if let Some(dir) = o.parent().filter(|d| !d.as_os_str().is_empty() && !d.exists()) {
+                    std::fs::create_dir_all(dir)
+                        .map_err(|e| crate::cli::args::fail(format!("cannot create {}: {e}", dir.display())))?;
+                }
             }
-            write_output(req.out, &bytes).map_err(crate::cli::args::fail)
+            write_output(target.as_deref(), &bytes).map_err(crate::cli::args::fail)
         }
         Dialect::Sinumerik => write_files(req, t, &job.loaded, &job.read),
     }

@@ -118,7 +118,7 @@ fn translate_file(a: &TranslateArgs, c: &Config, to: Dialect) -> ExitCode {
     };
     // -o naming the main file: refused before anything is read when it is the input, or an
     // existing file without --force (files written into a folder are checked once named).
-    if let Some(o) = req.out.filter(|o| !(job::one_per_program(to) && job::out_place(o).0)) {
+    if let Some(o) = req.out.filter(|o| !job::out_place(o).0) {
         if let Err(code) = super::out_guard::check(o, &[input.to_path_buf()], c.force, "-o") {
             return code;
         }
