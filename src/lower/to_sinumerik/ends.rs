@@ -100,7 +100,9 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
                             }
                             items.push(it);
                         }
-                        ItemKind::IfThen { then, .. } if matches!(then.kind, ItemKind::Call(_) | ItemKind::End { .. }) => {
+                        ItemKind::IfThen { then, .. }
+                            if matches!(then.kind, ItemKind::Call(_) | ItemKind::End { .. }) =>
+                        {
                             if !main || matches!(then.kind, ItemKind::Call(_)) {
                                 refused.push((it.span, "a conditional call or end (IF … THEN)"));
                             }
@@ -126,7 +128,13 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
     });
     for (span, what) in refused {
         let msg = format!("{what} of a program that can end the run (M30/M2 in a called program)");
-        ctx.error("NC596", span, msg, "calls a program that may end the run", "call it with a plain M98 or G65 without L");
+        ctx.error(
+            "NC596",
+            span,
+            msg,
+            "calls a program that may end the run",
+            "call it with a plain M98 or G65 without L",
+        );
     }
     if main {
         let span = body.first().map_or(Span::default(), |s| s.span);

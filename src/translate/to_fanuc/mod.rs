@@ -352,14 +352,9 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
 /// where it would end the whole run, it is M99.
 fn ends_return(body: Vec<Stmt>) -> Vec<Stmt> {
     crate::lower::map_bodies(body, &mut |mut list| {
-        for s in &mut list {
-            if let StmtKind::Block(b) = &mut s.kind {
-                for it in &mut b.items {
-                    if matches!(it.kind, ItemKind::End { .. }) {
-                        it.kind = ItemKind::Return { to: None };
-                    }
-                }
-            }
+        let blocks = list.iter_mut().filter_map(|s| if let StmtKind::Block(b) = &mut s.kind { Some(b) } else { None });
+        for it in blocks.flat_map(|b| b.items.iter_mut()).filter(|it| matches!(it.kind, ItemKind::End { .. })) {
+            it.kind = ItemKind::Return { to: None };
         }
         list
     })
