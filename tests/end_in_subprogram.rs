@@ -79,3 +79,14 @@ fn sinumerik_end_in_a_subprogram_returns_on_fanuc() {
     let v = nctrans::translate::to_fanuc::verify(&mut db, &main, &[&sub], &bad.into(), "bad.nc", proven::STEPS);
     assert!(!v.equivalent, "the planted M30 was not caught:\n{}", t.text);
 }
+
+#[test]
+fn a_repeated_call_of_a_program_that_ends_the_run_is_refused() {
+    let src = "%\nO0001\nG0 G90 X0 Y0\nM98 P10 L2\nM30\nO0010\nG1 X10 F100\nM30\n%\n";
+    let mut db = SourceDb::new();
+    let loaded = nctrans::load(&mut db, "m.nc", src.as_bytes(), None);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let tr = nctrans::translate::to_sinumerik::translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
+    assert!(tr.has_errors());
+    assert!(tr.diags.iter().any(|d| d.code == "NC596"), "{}", nctrans::diag::render(&db, &tr.diags));
+}
