@@ -32,6 +32,7 @@ pub mod calls;
 pub mod comp;
 pub mod cycles;
 pub mod dead;
+pub mod ends;
 pub mod exprs;
 pub(crate) mod fast_write;
 pub mod frames;
@@ -262,6 +263,10 @@ pub struct Ctx<'a> {
     /// Common variable numbers the computed `#[…]` indices of the job start from (their
     /// constant term): which variable ranges they are meant for (`varmap::dispatch_ranges`).
     pub index_bases: BTreeSet<u32>,
+    /// The R parameter of the end flag (`ends`), when a called program can end the run.
+    pub end_flag: Option<u32>,
+    /// FANUC programs whose call can end the run, with their end codes (`ends::ending`).
+    pub end_codes: BTreeMap<u32, BTreeSet<u8>>,
 }
 
 impl<'a> Ctx<'a> {
@@ -347,6 +352,8 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         guard_ok: false,
         modal: modal::ModalScan::default(),
         index_bases: BTreeSet::new(),
+        end_flag: None,
+        end_codes: BTreeMap::new(),
     };
     calls::plan_programs(&mut ctx, programs);
     let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
@@ -363,6 +370,10 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
+    ctx.end_codes = ends::ending(programs, &ctx.progs);
+    if !ctx.end_codes.is_empty() {
+        ctx.end_flag = varmap::free_r(&ctx);
+    }
     let mut out = Vec::new();
     for (i, (_, p)) in programs.iter().enumerate() {
         ctx.cur = i;
@@ -416,6 +427,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     }
     body = vacancy::rewrite(ctx, body);
     body = calls::lower_return_jumps(ctx, body);
+    body = ends::lower(ctx, body);
     body = haas_if::restructure(body);
     body = gotos::lower(ctx, body);
     if let Some(plan) = &local_subs {

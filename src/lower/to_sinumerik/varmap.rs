@@ -200,6 +200,17 @@ pub fn build(ctx: &mut Ctx, programs: &[(FileId, &Program)], info: &Info) {
     ctx.index_bases = index_bases(programs, common_test(ctx));
 }
 
+/// The highest R parameter nothing of the job is placed on (the end flag of `ends`), below
+/// the is-set flags, which are placed from the top down.
+pub fn free_r(ctx: &Ctx) -> Option<u32> {
+    let taken = |r: u32| {
+        ctx.commons.values().any(|&x| x == r)
+            || ctx.common_flags.values().any(|&x| x == r)
+            || ctx.opts.flag_places.values().any(|&x| x == r)
+    };
+    (0..ctx.opts.target.r_param_count).rev().find(|&r| !taken(r))
+}
+
 /// The first numbers of the Haas NGC general-purpose ranges without a legacy number
 /// (`dialect::fanuc::haas_vars::ngc_only`).
 const NGC_ONLY: [u32; 3] = [10000, 10200, 10700];

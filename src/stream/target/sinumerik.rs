@@ -254,6 +254,8 @@ impl Planned {
             guard_ok: false,
             modal: Default::default(),
             index_bases: Default::default(),
+            end_flag: None,
+            end_codes: Default::default(),
         };
         // `passes::lower` without its first step (`indirect::resolve`: nothing to resolve
         // without variables) and with the plan made once.

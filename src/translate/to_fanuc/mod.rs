@@ -240,6 +240,9 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let mut tools_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
         crate::lower::own_header::drop_own_header(&mut p);
+        if is_sub {
+            p.body = ends_return(std::mem::take(&mut p.body));
+        }
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
@@ -350,6 +353,18 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.globals = opts.source.globals.clone();
     ctx.master_spindle = opts.source.master_spindle;
     ctx
+}
+
+/// A Siemens M30/M2 in a subprogram returns to the caller (docs/semantics.md): on FANUC,
+/// where it would end the whole run, it is M99.
+fn ends_return(body: Vec<Stmt>) -> Vec<Stmt> {
+    crate::lower::map_bodies(body, &mut |mut list| {
+        let blocks = list.iter_mut().filter_map(|s| if let StmtKind::Block(b) = &mut s.kind { Some(b) } else { None });
+        for it in blocks.flat_map(|b| b.items.iter_mut()).filter(|it| matches!(it.kind, ItemKind::End { .. })) {
+            it.kind = ItemKind::Return { to: None };
+        }
+        list
+    })
 }
 
 fn ends_with_return(body: &[Stmt]) -> bool {
