@@ -385,10 +385,10 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("call-l-number.mpf", "NC303"),              // L0123 / L123 not in the library
     ("call-numbered-program-name.mpf", "NC303"), // SH602 not in the library
     ("call-repeat-p.mpf", "NC303"),              // LAYER not in the library
+    ("calls-built-name.mpf", "NC585"),           // CALL "L"<<R1: no M98 P#n is the same call
     ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
     ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
     ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
-    ("extern-and-call-by-name.mpf", "NC637"), // PCALL by a bare name (its CALL through a STRING translates)
     ("frame-instructions.mpf", "NC316"), // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"), // a jump to a computed label
     ("gud-def-nck-chan.mpf", "NC634"),  // DEF NCK / DEF CHAN global user data

@@ -317,6 +317,7 @@ const REFUSED: &[(&str, &str)] = &[
     ("call-bare-name.mpf", "NC303"),
     ("call-l-number.mpf", "NC303"),
     ("call-repeat-p.mpf", "NC303"),
+    ("calls-built-name.mpf", "NC585"), // CALL "L"<<R1: no M98 P#n is the same call
     ("call-with-args.mpf", "NC303"),
     ("cycle-unknown-call.mpf", "NC393"), // CYCLE81 with RTP above the tool
     ("cycle86-fine-bore.mpf", "NC390"),  // no exact FANUC cycle

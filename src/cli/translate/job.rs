@@ -570,8 +570,12 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
         let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
         read.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
-        let p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
+        let mut p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         shown(&db, &p.diags)?;
+        // Siemens finds a program by its file name: `L100.SPF` without a PROC line is L100.
+        if let [one] = &mut p.unit.programs[..] {
+            one.name.get_or_insert_with(|| nctrans::ir::ProgName::Name(callee.to_ascii_uppercase()));
+        }
         Ok(Some(p.unit))
     })?;
     let units = std::iter::once(parsed.unit).chain(subs).collect();

@@ -1,4 +1,4 @@
-//! Declarations (`DEF`, the PROC line, `EXTERN`) and the explicit call forms `CALL "NAME"`, `CALL PROG_VAR`,
+//! Declarations (`DEF`, the PROC line, `EXTERN`) and the explicit call forms `CALL "NAME"`, `CALL PROG_VAR`, `CALL "L"<<R1`,
 //! `PCALL NAME(args)`: from the pest pairs to IR.
 
 use super::parse::Lower;
@@ -34,32 +34,31 @@ impl Lower<'_, '_> {
         Some(Item { kind: ItemKind::Extern(Box::new(decl)), span })
     }
 
-    /// `CALL "NAME"` / `CALL VAR` / `PCALL NAME(args)`: a call by name, the name written as a
-    /// string or held in a STRING variable (found when the call runs).
+    /// `CALL "NAME"` / `CALL VAR` / `CALL "L"<<R1` / `PCALL NAME(args)`: a call by name, the
+    /// name written as a string, held in a STRING variable or built by a STRING expression
+    /// (the last two found when the call runs). `PCALL NAME` names the program itself unless
+    /// NAME is a declared variable: PCALL takes a program name, a path or a variable.
     pub(super) fn call_stmt(&mut self, p: Pair<'_, Rule>) -> Option<ItemKind> {
-        let target = p.into_inner().nth(1)?;
-        match target.as_rule() {
-            Rule::call => self.item(target),
-            Rule::string => {
-                let name = target.into_inner().next().map(|t| t.as_str().trim().to_ascii_uppercase())?;
-                Some(ItemKind::Call(Box::new(Call {
-                    kind: CallKind::Named,
-                    target: CallTarget::Name(name),
-                    args: Vec::new(),
-                    repeat: None,
-                })))
-            }
-            _ => {
-                let span = self.span(&target);
-                let v = self.var(target);
-                Some(ItemKind::Call(Box::new(Call {
-                    kind: CallKind::Named,
-                    target: CallTarget::Computed(Expr::new(ExprKind::Var(Box::new(v)), span)),
-                    args: Vec::new(),
-                    repeat: None,
-                })))
-            }
+        let mut inner = p.into_inner();
+        let pcall = inner.next()?.as_str().eq_ignore_ascii_case("PCALL");
+        let target = inner.next()?;
+        if target.as_rule() == Rule::call {
+            return self.item(target);
         }
+        let e = self.expr(target);
+        let target = match e.kind {
+            ExprKind::Str(s) => CallTarget::Name(s.trim().to_ascii_uppercase()),
+            ExprKind::Var(v) => match &v.kind {
+                VarKind::Named { name, indices }
+                    if pcall && indices.is_empty() && !self.st.declared.contains_key(name) =>
+                {
+                    CallTarget::Name(name.clone())
+                }
+                _ => CallTarget::Computed(Expr::new(ExprKind::Var(v), e.span)),
+            },
+            kind => CallTarget::Computed(Expr { kind, span: e.span }),
+        };
+        Some(ItemKind::Call(Box::new(Call { kind: CallKind::Named, target, args: Vec::new(), repeat: None })))
     }
 }
 
