@@ -37,7 +37,7 @@ fn fanuc_end_in_a_nested_subprogram_ends_the_run_on_sinumerik() {
     let v = verify(&db, file, &unit, &tr, "");
     assert!(matches!(v.verdict, Verdict::Equivalent { .. }), "{:?}", v.verdict);
     let inner = file_text(&tr, "O_0020.SPF");
-    assert!(inner.contains("=2 RET") && !inner.contains("M2"), "{inner}");
+    assert!(inner.lines().any(|l| l.ends_with("=2 M2")), "{inner}");
     // With #1 = 0 the inner program returns, the flag stays clear and the run goes on.
     let (db0, file0, unit0, tr0) = to_sinumerik(&FANUC.replace("#1=1", "#1=0"));
     let v0 = verify(&db0, file0, &unit0, &tr0, "");
@@ -48,7 +48,7 @@ fn fanuc_end_in_a_nested_subprogram_ends_the_run_on_sinumerik() {
 fn a_bare_return_or_a_siemens_m2_in_the_subprogram_is_caught() {
     let (db, file, unit, tr) = to_sinumerik(FANUC);
     let inner = file_text(&tr, "O_0020.SPF").to_string();
-    let flag = inner.lines().find(|l| l.ends_with("=2 RET")).expect("the flag block").to_string();
+    let flag = inner.lines().find(|l| l.ends_with("=2 M2")).expect("the flag block").to_string();
     for planted in ["RET", "M2"] {
         let mut bad = tr.clone();
         let f = bad.files.iter_mut().find(|f| f.name == "O_0020.SPF").expect("inner");
@@ -89,4 +89,35 @@ fn a_repeated_call_of_a_program_that_ends_the_run_is_refused() {
     let tr = nctrans::translate::to_sinumerik::translate(&[&parsed.unit], &Options::default(), LineEnding::Lf);
     assert!(tr.has_errors());
     assert!(tr.diags.iter().any(|d| d.code == "NC596"), "{}", nctrans::diag::render(&db, &tr.diags));
+}
+
+/// In a batch a program may be both called (by another file) and run on its own: each
+/// file's proof runs it as a main program. Its `M30` must end that run as `M30` too, not
+/// as the bare return a called program would make (`end RET` against `end M30`).
+#[test]
+fn a_called_program_that_ends_the_run_also_verifies_as_a_main_program_in_a_batch() {
+    use std::process::Command;
+    let dir = std::env::temp_dir().join(format!("nctrans-end-batch-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("in")).expect("scratch");
+    std::fs::write(dir.join("in/O0010.nc"), "%\nO0010\nG0 G90 X0 Y0\nM98 P20\nG0 X50.\nM30\n%\n").unwrap();
+    std::fs::write(dir.join("in/O0020.nc"), "%\nO0020\nG1 X10. Y5. F100.\nM30\n%\n").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["--to", "sinumerik", "-o"])
+        .arg(dir.join("out"))
+        .arg(dir.join("in"))
+        .output()
+        .expect("batch");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("every file verified") && !stderr.contains("NC500"), "{stdout}\n{stderr}");
+    let sub = std::fs::read_dir(dir.join("out"))
+        .expect("out")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .find(|p| p.to_string_lossy().contains("0020"))
+        .expect("the called program's output");
+    let text = std::fs::read_to_string(&sub).unwrap();
+    assert!(text.lines().any(|l| l.ends_with("=30 M30")), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

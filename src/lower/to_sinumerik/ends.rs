@@ -1,8 +1,9 @@
 //! M30/M2 in a called FANUC program: FANUC ends the whole run there, Siemens returns to the
 //! caller (docs/semantics.md, "M2/M30 in a subprogram"). The called program sets a global
-//! end flag (an R parameter the variable map leaves free) to the end code and returns; after
-//! each call of a program that can end the run, the caller tests the flag and ends (a main
-//! program, with the same code) or returns again (a called one), so the end reaches the main
+//! end flag (an R parameter the variable map leaves free) to the end code before its end, which
+//! stays (returning when called, ending the run when the file runs as a main program); after
+//! each call of a program that can end the run, the caller tests the flag and ends with the
+//! same code (which in a called program returns again), so the end reaches the main
 //! program. The main program clears the flag at its start (R parameters outlive a run).
 
 use super::*;
@@ -87,7 +88,10 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
                         ItemKind::End { code } if !main => {
                             let v = int(code_number(*code).into(), it.span);
                             items.push(assign(VarRef { kind: VarKind::R(r), span: it.span }, v, it.span));
-                            items.push(Item { kind: ItemKind::Return { to: None }, span: it.span });
+                            // The end itself stays: called, a Siemens M30/M2 returns (like
+                            // M17); run as a main program (a batch proves each file alone),
+                            // it ends the run as the FANUC one does.
+                            items.push(it);
                         }
                         ItemKind::Call(c) => {
                             if let Some(more) = called(c).and_then(|m| ends.get(&m)) {
@@ -115,12 +119,9 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
             }
             out.push(s);
             for code in codes {
-                let then = if main {
-                    let end = if code == 2 { EndCode::M2 } else { EndCode::M30 };
-                    Item { kind: ItemKind::End { code: end }, span }
-                } else {
-                    Item { kind: ItemKind::Return { to: None }, span }
-                };
+                // The same end in a main or a called program: called, it returns again.
+                let end = if code == 2 { EndCode::M2 } else { EndCode::M30 };
+                let then = Item { kind: ItemKind::End { code: end }, span };
                 out.push(if_stmt(flag_is(r, code, span), vec![plain_block(vec![then], span)], None, span));
             }
         }
