@@ -5,11 +5,18 @@
 
 use crate::ir::*;
 
+/// Whether a comment is a test input line (`nctrans: set R1=5`). A translation writes it in
+/// the output's variable names, which needs the whole program's variable map: the streamed
+/// writers leave blocks holding one to the whole translation.
+pub fn is_test_input(text: &str) -> bool {
+    text.trim().get(..12).is_some_and(|h| h.eq_ignore_ascii_case("nctrans: set"))
+}
+
 /// Whether `text` is a header line nctrans wrote (`after_map`: a `FANUC variable map:`
 /// line came before it in the same header, so `#500 = R0` lines are its entries).
 fn is_own(text: &str, after_map: bool) -> bool {
     let t = text.trim();
-    if t.get(..12).is_some_and(|h| h.eq_ignore_ascii_case("nctrans: set")) {
+    if is_test_input(t) {
         return false;
     }
     t.starts_with("NCTRANS: ")

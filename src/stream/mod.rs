@@ -513,7 +513,10 @@ fn scan_with(
                     let span = Span::new(raw.start + i as u32, raw.start + l.text.len() as u32);
                     meta.comments.push(Comment { text: l.text[i + 1..].to_string(), span });
                 }
-                if !sink.plain(prog, &meta, &plain, &raw) {
+                // A test input line goes as a statement: the target's straight test
+                // leaves it to the whole translation (`own_header::is_test_input`).
+                let input = meta.comments.iter().any(|c| crate::lower::own_header::is_test_input(&c.text));
+                if input || !sink.plain(prog, &meta, &plain, &raw) {
                     if let Some(f) = full.as_mut() {
                         f.line(&raw);
                         full_stmts.clear();

@@ -76,6 +76,11 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
+    // The whole translation writes the main program's test inputs in its own variable
+    // names (`R1=5` → `#501=5`), which needs the variable map of the whole program.
+    if b.meta.comments.iter().any(|c| crate::lower::own_header::is_test_input(&c.text)) {
+        return Err("a test input line (nctrans: set)".into());
+    }
     if crate::lower::comp_flow::stream_relevant_items(&b.items, false, true) {
         return Err(COMP.into());
     }

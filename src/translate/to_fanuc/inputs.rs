@@ -1,7 +1,36 @@
 //! The inputs of a translation to FANUC's proof in FANUC names: a check's `--set` and the
-//! source's `nctrans: set` header lines.
+//! source's `nctrans: set` header lines, which the written program carries as its own.
 
 use super::SymbolMap;
+use crate::ir::{Stmt, StmtKind};
+
+/// The main program's `nctrans: set` header lines in the FANUC names the translation gave
+/// the variables (`R1=5` → `#501=5`), so `run` and `check` of the output start where the
+/// source's do; a line left with nothing the output can take is dropped.
+pub(super) fn map_set_lines(body: &mut Vec<Stmt>, map: &SymbolMap) {
+    let mut i = 0;
+    while let Some(StmtKind::Block(b)) = body.get_mut(i).map(|s| &mut s.kind) {
+        if !b.items.is_empty() || b.meta.number.is_some() || b.meta.label.is_some() {
+            break;
+        }
+        let mut emptied = false;
+        for c in &mut b.meta.comments {
+            let Some(rest) = c.text.trim().strip_prefix("nctrans: set") else { continue };
+            let words: Vec<String> = rest.split_whitespace().map(str::to_string).collect();
+            let mapped = fanuc_set_inputs(&words, map);
+            emptied |= mapped.is_empty();
+            c.text = format!("nctrans: set {}", mapped.join(" "));
+        }
+        if emptied {
+            b.meta.comments.retain(|c| c.text.trim() != "nctrans: set");
+            if b.meta.comments.is_empty() {
+                body.remove(i);
+                continue;
+            }
+        }
+        i += 1;
+    }
+}
 
 /// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
 /// `Rn=…` (and a main program's DEF variable) into the variable the translation put it in;

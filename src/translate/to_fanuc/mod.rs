@@ -21,6 +21,7 @@ use std::collections::BTreeMap;
 
 mod inputs;
 pub use inputs::fanuc_set_inputs;
+use inputs::map_set_lines;
 
 /// First O number given to subprograms without a `--program-map` entry.
 pub const FIRST_SUB_NUMBER: u32 = 9000;
@@ -294,6 +295,9 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         symbol_map.labels.insert(number, labels);
         collect_alarms(&p.body, &mut symbol_map.alarms);
         diags.extend(crate::dialect::limits::deepened(&p.body, file, Dialect::Fanuc));
+        if programs.is_empty() {
+            map_set_lines(&mut p.body, &symbol_map);
+        }
         let header = header(&name, &mapped, !programs.is_empty(), opts);
         let span = p.span;
         let head_comments = vec![Comment { text: name.clone(), span }];
