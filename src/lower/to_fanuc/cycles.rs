@@ -25,14 +25,39 @@ use crate::lower::{literal, map_bodies};
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
     let body = std::mem::take(&mut prog.body);
     let top = !info.is_sub;
+    // A main program that never selects G91 (nor calls a program that could) is in G90
+    // everywhere, inside its loops and IFs too (G90 is the start-up mode, as for `top`).
+    let abs_everywhere = top && !may_select_incremental(&body);
     let mut nested = Vec::with_capacity(body.len());
     for s in body {
         match s.kind {
             StmtKind::Block(_) => nested.push(s),
-            _ => nested.extend(map_bodies(vec![s], &mut |b| list(ctx, b, false))),
+            _ => nested.extend(map_bodies(vec![s], &mut |b| list(ctx, b, false, abs_everywhere))),
         }
     }
-    prog.body = list(ctx, nested, top);
+    prog.body = list(ctx, nested, top, abs_everywhere);
+}
+
+/// Whether a block of `body` may select G91: a G91 word, a G word computed at run time, or
+/// a call of a program (its G91 outlives the return) other than a drilling cycle.
+fn may_select_incremental(body: &[Stmt]) -> bool {
+    fn item(it: &Item) -> bool {
+        match &it.kind {
+            ItemKind::Word(w) if w.addr.as_str() == "G" => !matches!(g_of(w), Some(g) if g != 91.0),
+            ItemKind::Call(_) => cycle_call(it).is_none(),
+            ItemKind::IfThen { then, .. } => item(then),
+            ItemKind::Word(_) => false,
+            ItemKind::Instruction { name } => name.to_ascii_uppercase().starts_with("EXECSTRING"),
+            _ => false,
+        }
+    }
+    let mut found = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            found |= b.items.iter().any(item);
+        }
+    });
+    found
 }
 
 /// The FANUC cycle a Sinumerik call makes: its G code and words after the position.
@@ -271,11 +296,11 @@ fn positions(b: &Block, motion: Option<f64>) -> Result<bool, &'static str> {
     Ok(moved)
 }
 
-fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
+fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<Stmt> {
     let mut out = Vec::with_capacity(body.len());
     let mut level: Option<f64> = None;
     let mut motion: Option<f64> = if top { Some(0.0) } else { None };
-    let mut abs: Option<bool> = if top { Some(true) } else { None };
+    let mut abs: Option<bool> = if top || abs_everywhere { Some(true) } else { None };
     // The MCALL in force and whether its first hole was written.
     let mut active: Option<(Fanuc, bool, Span)> = None;
     // The block number and comments of an MCALL block, written on its first hole.
@@ -298,6 +323,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             }
             level = None;
             motion = None;
+            // A G91 (or a call) inside the structure may outlive it.
+            if !abs_everywhere && may_select_incremental(std::slice::from_ref(&s)) {
+                abs = None;
+            }
             tap = super::cycles_tap::SieState::default();
             out.push(s);
             continue;
