@@ -99,10 +99,6 @@ fn straight_block(b: &Block) -> Result<(), String> {
     if b.meta.label.is_some() {
         return Err("a label".into());
     }
-    // Written in the output's variable names (`#1=5` → `LOC1=5`): the whole translation's.
-    if b.meta.comments.iter().any(|c| crate::lower::own_header::is_test_input(&c.text)) {
-        return Err("a test input line (nctrans: set)".into());
-    }
     if crate::lower::comp_flow::stream_relevant_items(&b.items, true, false) {
         return Err(COMP.into());
     }
