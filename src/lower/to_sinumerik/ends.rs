@@ -64,7 +64,9 @@ fn flag(r: u32, span: Span) -> Expr {
 
 fn flag_is(r: u32, code: u8, span: Span) -> Expr {
     Expr::new(
-        ExprKind::Cmp(CmpOp::Eq, Tolerance::Exact, Box::new(flag(r, span)), Box::new(int(code.into(), span))),
+        // The flag only ever holds 0, 2 or 30: Siemens' relative equality is exact on them,
+        // so the test reads as written (`IF R299==30`), not in the exact difference form.
+        ExprKind::Cmp(CmpOp::Eq, Tolerance::Relative, Box::new(flag(r, span)), Box::new(int(code.into(), span))),
         span,
     )
 }

@@ -314,6 +314,10 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
             }
             _ => Expr::new(ExprKind::Binary(op, a, b), span),
         },
+        // A FANUC comparison is exact; a relative one here was written by a pass for values
+        // on which the relative equality is exact (the end flag's 0, 2, 30; `$AC_MEA`'s 0
+        // and 1): as written.
+        ExprKind::Cmp(op, Tolerance::Relative, a, b) => Expr::new(ExprKind::Cmp(op, Tolerance::Relative, a, b), span),
         ExprKind::Cmp(op, _, a, b) => {
             let zero = |x: &Expr| literal(x) == Some(0.0);
             let (l, r) = if zero(&b) || zero(&a) {
