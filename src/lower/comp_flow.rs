@@ -253,9 +253,12 @@ pub fn jumps(body: &[Stmt]) -> bool {
 }
 
 /// Walks `body` with the state `st`, handing every block to `step` (`live`: false while a
-/// loop's state is found, when `step` must neither report nor change anything that
-/// stays). Structures without a relevant word are passed over; a loop body starts in what
-/// its entry and its end agree on; a jump target (when the body jumps) knows nothing.
+/// loop's or a jump target's state is found, when `step` must neither report nor change
+/// anything that stays). Structures without a relevant word are passed over; a loop body
+/// starts in what its entry and its end agree on; a jump target (when the body jumps)
+/// starts in what the blocks before it and every jump to it agree on, found by walking the
+/// body again until the targets' states hold (a jump whose target is computed, or states
+/// that do not settle, make every target know nothing).
 pub fn walk<S: FlowState>(
     body: Vec<Stmt>,
     st: &mut S,
@@ -264,30 +267,184 @@ pub fn walk<S: FlowState>(
     step: &mut Step<'_, S>,
     live: bool,
 ) -> Vec<Stmt> {
+    if !jumping {
+        return walk_in(body, st, &mut Jumps::None, fanuc, step, live);
+    }
+    let mut jumps = Jumps::Blind;
+    if resolvable(&body) {
+        let mut at: BTreeMap<String, S> = BTreeMap::new();
+        for _ in 0..4 {
+            let mut probe = st.clone();
+            let mut pass = Jumps::Known { at: at.clone(), seen: BTreeMap::new() };
+            walk_in(body.clone(), &mut probe, &mut pass, fanuc, step, false);
+            let Jumps::Known { seen, .. } = pass else { break };
+            let mut next = at.clone();
+            for (k, v) in seen {
+                let m = next.get(&k).map_or_else(|| v.clone(), |old| old.merge(&v));
+                next.insert(k, m);
+            }
+            if next == at {
+                jumps = Jumps::Known { at, seen: BTreeMap::new() };
+                break;
+            }
+            at = next;
+        }
+    }
+    walk_in(body, st, &mut jumps, fanuc, step, live)
+}
+
+/// How a walk treats jump targets.
+enum Jumps<S> {
+    /// The body does not jump.
+    None,
+    /// Every labelled or numbered block may be a target from anywhere: it knows nothing.
+    Blind,
+    /// The states at the targets (by [`target_keys`]) and those this walk's jumps carry.
+    Known { at: BTreeMap<String, S>, seen: BTreeMap<String, S> },
+}
+
+impl<S: FlowState> Jumps<S> {
+    /// The state at a statement whose lines carry `metas`, arriving with `st`.
+    fn arrive(&self, metas: &[&BlockMeta], st: &mut S) {
+        match self {
+            Jumps::None => {}
+            Jumps::Blind => {
+                if metas.iter().any(|m| m.label.is_some() || m.number.is_some()) {
+                    *st = st.merge(&S::unknown());
+                }
+            }
+            Jumps::Known { at, .. } => {
+                for m in metas {
+                    for k in meta_keys(m) {
+                        if let Some(s) = at.get(&k) {
+                            *st = st.merge(s);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A jump to each of `keys` leaves with `st`.
+    fn leave(&mut self, keys: &[String], st: &S) {
+        if let Jumps::Known { seen, .. } = self {
+            for k in keys {
+                let m = seen.get(k).map_or_else(|| st.clone(), |old| old.merge(st));
+                seen.insert(k.clone(), m);
+            }
+        }
+    }
+}
+
+/// The keys a block is found by as a jump target: its label and its N number.
+fn meta_keys(m: &BlockMeta) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(l) = &m.label {
+        out.push(format!("L:{}", l.name.to_ascii_uppercase()));
+    }
+    if let Some(n) = &m.number {
+        out.push(format!("N:{}", n.value));
+    }
+    out
+}
+
+fn goto_key(g: &Goto) -> Option<String> {
+    match &g.target {
+        Target::Label(l) => Some(format!("L:{}", l.name.to_ascii_uppercase())),
+        Target::Number(n) => Some(format!("N:{}", n.value)),
+        Target::Computed(_) => None,
+    }
+}
+
+/// The jumps of one item (`None` in the list for a target not known before the run).
+fn item_gotos(it: &Item, out: &mut Vec<Option<String>>) {
+    match &it.kind {
+        ItemKind::Goto(g) => out.push(goto_key(g)),
+        ItemKind::IfThen { then, .. } => item_gotos(then, out),
+        ItemKind::IfBlock { items, .. } => items.iter().for_each(|i| item_gotos(i, out)),
+        ItemKind::Case(c) => {
+            out.extend(c.arms.iter().map(|a| goto_key(&a.goto)));
+            out.extend(c.default.iter().map(goto_key));
+        }
+        _ => {}
+    }
+}
+
+/// The jump targets of every block of `body` (its structures too).
+fn body_gotos(body: &[Stmt]) -> Vec<Option<String>> {
+    let mut out = Vec::new();
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                item_gotos(it, &mut out);
+            }
+        }
+    });
+    out
+}
+
+/// Whether every way into a labelled block of `body` is a jump of `body` naming its target:
+/// no computed target, no `REPEAT` of a section (it jumps back to its label), no return to a
+/// label (`M99 P…`, `RET("…")`) and no call of a program, which may return to one of this
+/// body's blocks (drilling cycles return where they were called).
+fn resolvable(body: &[Stmt]) -> bool {
+    fn other_entry(it: &Item) -> bool {
+        match &it.kind {
+            ItemKind::RepeatSection(_) | ItemKind::Return { to: Some(_) } => true,
+            ItemKind::Call(c) => !matches!(&c.target, CallTarget::Name(n)
+                if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some()),
+            ItemKind::IfThen { then, .. } => other_entry(then),
+            ItemKind::IfBlock { items, .. } => items.iter().any(other_entry),
+            _ => false,
+        }
+    }
+    let mut other = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            other |= b.items.iter().any(other_entry);
+        }
+    });
+    !other && body_gotos(body).iter().all(Option::is_some)
+}
+
+fn walk_in<S: FlowState>(
+    body: Vec<Stmt>,
+    st: &mut S,
+    jumps: &mut Jumps<S>,
+    fanuc: bool,
+    step: &mut Step<'_, S>,
+    live: bool,
+) -> Vec<Stmt> {
     let mut out = Vec::with_capacity(body.len());
     for s in body {
-        if jumping && crate::ir::visit::metas(&s.kind).iter().any(|m| m.label.is_some() || m.number.is_some()) {
-            *st = st.merge(&S::unknown());
-        }
+        jumps.arrive(&crate::ir::visit::metas(&s.kind), st);
         let span = s.span;
         let mut s = match s.kind {
             StmtKind::Block(b) => {
+                let mut gotos = Vec::new();
+                for it in &b.items {
+                    item_gotos(it, &mut gotos);
+                }
                 step(st, b, live, &mut out);
+                jumps.leave(&gotos.into_iter().flatten().collect::<Vec<_>>(), st);
                 continue;
             }
             kind => Stmt { kind, span },
         };
         if !relevant(std::slice::from_ref(&s), fanuc) && !st.watches_every_block() {
+            // Nothing in it changes the state: its jumps leave with the state here.
+            let gotos: Vec<String> = body_gotos(std::slice::from_ref(&s)).into_iter().flatten().collect();
+            jumps.leave(&gotos, st);
             out.push(s);
             continue;
         }
         match &mut s.kind {
             StmtKind::If(i) => {
                 let entry = st.clone();
-                i.then_body = walk(std::mem::take(&mut i.then_body), st, jumping, fanuc, step, live);
+                i.then_body = walk_in(std::mem::take(&mut i.then_body), st, jumps, fanuc, step, live);
                 let then_end = std::mem::replace(st, entry);
                 if let Some(e) = &mut i.else_part {
-                    e.body = walk(std::mem::take(&mut e.body), st, jumping, fanuc, step, live);
+                    e.body = walk_in(std::mem::take(&mut e.body), st, jumps, fanuc, step, live);
                 }
                 *st = st.merge(&then_end);
             }
@@ -297,7 +454,7 @@ pub fn walk<S: FlowState>(
                     let mut head = st.clone();
                     for _ in 0..3 {
                         let mut probe = head.clone();
-                        walk(body.clone(), &mut probe, jumping, fanuc, step, false);
+                        walk_in(body.clone(), &mut probe, jumps, fanuc, step, false);
                         let next = head.merge(&probe);
                         if next == head {
                             break;
@@ -305,12 +462,12 @@ pub fn walk<S: FlowState>(
                         head = next;
                     }
                     let mut probe = head.clone();
-                    walk(body.clone(), &mut probe, jumping, fanuc, step, false);
+                    walk_in(body.clone(), &mut probe, jumps, fanuc, step, false);
                     if head.merge(&probe) != head {
                         head = S::unknown();
                     }
                     *st = head.clone();
-                    *body = walk(std::mem::take(body), st, jumping, fanuc, step, live);
+                    *body = walk_in(std::mem::take(body), st, jumps, fanuc, step, live);
                     // A loop may run no pass (WHILE, FOR) or leave at its test.
                     *st = head.merge(st);
                 }
