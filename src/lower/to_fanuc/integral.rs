@@ -409,10 +409,15 @@ impl Walk {
             }
             ItemKind::Call(c) => {
                 let known = match &c.target {
-                    // WORKPIECE and the like only set up the simulation (dropped, NC322).
+                    // WORKPIECE and the like only set up the simulation (dropped, NC322); the
+                    // standard cycles the translation writes as FANUC words (drilling cycles,
+                    // CYCLE832) keep their data in their own variables, not in R parameters.
                     CallTarget::Name(n) => {
                         let n = n.to_ascii_uppercase();
-                        names.contains(&n) || super::words::SIMULATION_ONLY.contains(&n.as_str())
+                        names.contains(&n)
+                            || super::words::SIMULATION_ONLY.contains(&n.as_str())
+                            || n == "CYCLE832"
+                            || crate::dialect::sinumerik::cycles::cycle_of(&n).is_some()
                     }
                     _ => false,
                 };
