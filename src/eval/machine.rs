@@ -703,15 +703,9 @@ impl Machine {
                 out.push((Event::Coolant { on: true }, span));
             }
         }
-        let plain = !(g29
-            || home.is_some()
-            || dwell
-            || g53
-            || probe.is_some()
-            || self.cycle.active.is_some()
-            || self.framed
-            || self.polar)
-            && self.xf == Xform::ID;
+        let plain =
+            !(g29 || home.is_some() || dwell || g53 || probe.is_some() || self.cycle.active.is_some() || self.polar)
+                && corners::rigid(&self.xf);
         self.corner_words(corner, rndm, plain)?;
         // 4. motion or dwell
         if probe.is_some() {

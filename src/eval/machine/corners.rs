@@ -7,6 +7,20 @@ use super::{clean, Event, Fault, Machine, Span, WordVal};
 use crate::eval::corner::{self, Kind, BAD_CORNER, CORNER_FEED, NO_NEXT_MOVE};
 use crate::eval::trace::{Axes, Plane};
 
+/// Whether `x` only turns and shifts (an orthonormal map keeping orientation): chamfers and
+/// roundings are then the same figures in the workpiece coordinates the run keeps as in the
+/// programmed ones, whose contour the frame carries, so the corner is made there. Scaling (a
+/// corner's size, scaled or not) and mirroring are not settled in the sources read.
+pub(super) fn rigid(x: &super::Xform) -> bool {
+    let a = &x.a;
+    let dot = |i: usize, j: usize| (0..3).map(|k| a[k][i] * a[k][j]).sum::<f64>();
+    let unit = (0..3).all(|i| (dot(i, i) - 1.0).abs() < 1e-12);
+    let normal = (0..3).all(|i| (0..3).all(|j| i == j || dot(i, j).abs() < 1e-12));
+    let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    unit && normal && det > 0.0
+}
+
 /// A corner word of the block being run (or the modal rounding in force).
 #[derive(Clone, Copy, Debug)]
 pub struct CornerWord {
@@ -17,7 +31,7 @@ pub struct CornerWord {
     /// From `RNDM=` (a block without a move then simply has no corner).
     pub modal: bool,
     /// The block's motion is a plain G0–G3 move (no cycle, dwell, reference return, G53,
-    /// probe or turning frame).
+    /// probe, polar coordinates, or frame that scales or mirrors).
     pub plain: bool,
 }
 
@@ -190,7 +204,10 @@ impl Machine {
         let (u, v, _) = self.modal.plane.axes();
         let (ev, span) = out.pop().unwrap_or((Event::Dwell { seconds: 0.0 }, block_span));
         let why = match &ev {
-            _ if !w.plain => Some("a move of a cycle, a reference return, G53, a probe or a turning frame".to_string()),
+            _ if !w.plain => Some(
+                "a move of a cycle, a reference return, G53, a probe, polar coordinates or a frame that scales or mirrors"
+                    .to_string(),
+            ),
             Event::Move { rapid: false, probe: false, .. } => None,
             other => Some(describe(other).to_string()),
         };
