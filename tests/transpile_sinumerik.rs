@@ -393,7 +393,7 @@ fn g10_l2_writes_the_frame_and_reselects_the_active_offset() {
 
 /// The offset a `G10 L2` re-selects, and whether it adds (G91), hold where every path to it
 /// agrees: after a jump past a G55, a loop or a skippable block that changes them, or at the
-/// start of a subprogram (its caller's), the write is refused rather than re-selecting a
+/// start of a subprogram whose callers differ, the write is refused rather than re-selecting a
 /// guess (the check runs one path only: the other would be wrong on the machine).
 #[test]
 fn g10_l2_needs_the_offset_and_mode_every_path_agrees_on() {
@@ -404,8 +404,10 @@ fn g10_l2_needs_the_offset_and_mode_every_path_agrees_on() {
     assert!(codes(skip, &o).contains(&"NC373"));
     let inc = "O1\nG54 G90\n#1=0\nIF [#1 EQ 1] GOTO 10\nG91\nN10 G10 L2 P1 X5.\nG90 G0 X0\nM30\n";
     assert!(codes(inc, &o).contains(&"NC374"), "{:?}", codes(inc, &o));
-    let sub = "O1\nG55\nM98 P100\nM30\nO100\nG10 L2 P2 X5.\nM99\n";
-    assert!(codes(sub, &o).contains(&"NC374"));
+    // G90/G91 at the start of a subprogram is its callers' where they agree (here G90 and
+    // G91): unknown, refused.
+    let sub = "O1\nG55\nM98 P100\nG91\nM98 P100\nG90\nM30\nO100\nG10 L2 P2 X5.\nM99\n";
+    assert!(codes(sub, &o).contains(&"NC374"), "{:?}", codes(sub, &o));
     let sub = "O1\nG55\nM98 P100\nM30\nO100\nG90 G10 L2 P2 X5.\nM99\n";
     assert!(codes(sub, &o).contains(&"NC373"));
     // The same offset on both paths, and a loop that keeps it: translated.

@@ -280,6 +280,10 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             defs: Vec::new(),
             start_inch: None,
             sets_units: super::modal::sets_units(&p.body),
+            start_incremental: None,
+            start_motion: None,
+            sets_distance: super::modal::sets_distance(&p.body),
+            sets_g90: super::modal::has_g(&p.body, &[900]),
             tools: number.and_then(|n| tools.get(&n).copied()).unwrap_or(true),
             // Set once the units are known (`modal::frame_calls`).
             start_clear: false,

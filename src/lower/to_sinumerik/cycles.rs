@@ -57,14 +57,57 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
         return body;
     }
     let top = ctx.plan().role == Role::Main;
+    let mut closable = BTreeMap::new();
+    closable_bodies(ctx, &body, &mut closable);
     let mut nested = Vec::with_capacity(body.len());
     for s in body {
         match s.kind {
             StmtKind::Block(_) => nested.push(s),
-            _ => nested.extend(map_bodies(vec![s], &mut |b| lower_list(ctx, b, planes, false))),
+            _ => nested.extend(map_bodies(vec![s], &mut |b| {
+                let open = b.first().and_then(|f| closable.get(&f.span).copied());
+                lower_list(ctx, b, planes, false, open)
+            })),
         }
     }
-    lower_list(ctx, nested, planes, top)
+    lower_list(ctx, nested, planes, top, None)
+}
+
+/// The loop bodies (by the span of their first statement) whose every pass may end with the
+/// cycle still active on FANUC, with the motion mode in force before the loop: the body has
+/// a cycle G code and no jump, and the loop is followed (comment lines apart) by a block that
+/// cancels the cycle (G80, G00–G03, the end).
+/// A pass that starts its cycle before any move is then one cycle: the Siemens pass ends its
+/// MCALL, as FANUC, whose cycle stays in force over the loop's test, makes no hole before
+/// the next pass's cycle block defines it again or the block after the loop cancels it.
+fn closable_bodies(ctx: &Ctx, body: &[Stmt], out: &mut BTreeMap<Span, Option<u32>>) {
+    for (i, s) in body.iter().enumerate() {
+        let inner = crate::ir::visit::child_bodies(&s.kind);
+        for b in &inner {
+            closable_bodies(ctx, b, out);
+        }
+        if !matches!(s.kind, StmtKind::While(_) | StmtKind::Do(_) | StmtKind::Loop(_) | StmtKind::For(_)) {
+            continue;
+        }
+        let Some(first) = inner.first().and_then(|b| b.first()) else { continue };
+        let mut cycle = false;
+        let mut jumps = false;
+        visit_blocks(inner[0], &mut |b| {
+            cycle |= g_codes(&b.items).iter().copied().any(cycle_g);
+            jumps |= b.items.iter().any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::IfThen { .. }));
+        });
+        let next = body[i + 1..].iter().find(|n| !matches!(&n.kind, StmtKind::Block(b) if b.items.is_empty()));
+        let cancels = match next.map(|n| &n.kind) {
+            Some(StmtKind::Block(b)) => {
+                g_codes(&b.items).iter().any(|g| matches!(g, 800 | 0 | 10 | 20 | 30))
+                    || b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
+            }
+            _ => false,
+        };
+        if cycle && !jumps && cancels {
+            let before = body[..i].iter().rev().find(|p| matches!(p.kind, StmtKind::Block(_)));
+            out.insert(first.span, before.and_then(|p| ctx.modal.motion_at(p.span.lo)));
+        }
+    }
 }
 
 fn cycle_g(g: u32) -> bool {
@@ -130,9 +173,16 @@ fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str, out: &mut Vec<Stmt>
     out.extend(ctx.refuse("NC428", span, &format!("{what}: not translated to Sinumerik"), what, hint));
 }
 
-fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<Stmt> {
+/// `open`: the list is a loop body whose pass may end with the cycle active, with the motion
+/// mode before the loop ([`closable_bodies`]).
+fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool, open: Option<Option<u32>>) -> Vec<Stmt> {
     let mut out = Vec::with_capacity(body.len());
     let mut active: Option<Data> = None;
+    // Before the list's first cycle: whether a block moved or a structure ran (a pass's
+    // cycle from the pass before would drill there on FANUC), and the mode G80 gives back.
+    let mut cycle_seen = false;
+    let mut moved_before = false;
+    let mut held: Option<u32> = None;
     // The motion mode before the cycle (G0 at the top of a main program): the positioning
     // blocks write G0, so another mode is written again after the cycle.
     let mut motion: Option<u32> = if top { Some(0) } else { None };
@@ -143,6 +193,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
+            moved_before |= !cycle_seen;
             if active.take().is_some() {
                 refuse(
                     ctx,
@@ -185,6 +236,12 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 .items
                 .iter()
                 .any(|it| matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr.as_str(), "X" | "Y" | "Z")));
+            moved_before |= !cycle_seen
+                && (b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_) | ItemKind::Return { .. }))
+                    || b.items.iter().any(|it| {
+                        matches!(&it.kind, ItemKind::Word(w)
+                        if matches!(w.addr.as_str(), "X" | "Y" | "Z" | "A" | "B" | "C" | "U" | "V" | "W"))
+                    }));
             if armed && moves {
                 // FANUC's M29 arms the tapping cycle that follows it; a move between them is
                 // not a form the translation knows.
@@ -221,16 +278,19 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             // G80 (or G00–G03) also ends rigid tapping mode.
             tap.rigid = None;
             b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && word_expr(w).and_then(literal) == Some(80.0)));
+            // The mode G80 gives back: the one before the cycle in this list, else what the
+            // program's flow knows there (a called program: its callers' one mode).
+            let back = motion.or_else(|| ctx.modal.motion_at(span.lo));
             if active.take().is_some() {
                 if b.items.is_empty() {
                     // `G80` alone: the block becomes the `MCALL` (which stands alone).
                     b.items.push(Item { kind: ItemKind::ModalCallOff, span });
-                    if let Some(m) = motion.filter(|m| *m != 0) {
+                    if let Some(m) = back.filter(|m| *m != 0) {
                         out.push(Stmt { kind: StmtKind::Block(b), span });
                         out.push(block(vec![super::words::g_word(m, span)], span));
                         continue;
                     }
-                    if motion.is_none() {
+                    if back.is_none() {
                         refuse(
                             ctx,
                             span,
@@ -246,7 +306,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
                 // `MCALL` stands alone in its block: the motion mode goes in a block of its own.
                 out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
                 if motion_g.is_none() {
-                    match motion {
+                    match back {
                         Some(0) => {}
                         Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
                         None => refuse(
@@ -288,6 +348,10 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
             d.g = g;
         }
         if starting {
+            if !cycle_seen {
+                held = motion.or_else(|| ctx.modal.held_at(span.lo)).or(open.flatten());
+            }
+            cycle_seen = true;
             start_at = out.len();
             after_g99_hole = false;
             d.tap = tap.clone();
@@ -461,7 +525,28 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool) -> Vec<St
     }
     if active.is_some() && !top {
         let span = out.last().map_or(Span::default(), |s| s.span);
-        refuse(ctx, span, "a drilling cycle still active at the end of a block list", "cancel it with G80", &mut out);
+        if open.is_some() && !moved_before {
+            // The pass ends its cycle as the block after the loop would (see `closable_bodies`).
+            out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
+            match held {
+                Some(0) => {}
+                Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
+                None => refuse(
+                    ctx,
+                    span,
+                    "the motion mode after a drilling cycle",
+                    "program G00 or G01 before the loop",
+                    &mut out,
+                ),
+            }
+        } else {
+            let hint = if open.is_some() {
+                "cancel it with G80, or start the pass with its cycle block (no move before it)"
+            } else {
+                "cancel it with G80"
+            };
+            refuse(ctx, span, "a drilling cycle still active at the end of a block list", hint, &mut out);
+        }
     }
     if let Some((_, at)) = tap.rigid {
         refuse(ctx, at, "M29 without a tapping cycle after it", "program G84/G74 right after M29 S…", &mut out);

@@ -229,6 +229,15 @@ pub struct ProgPlan {
     /// The program (or a call in it) may select G20/G21: its caller's unit after the call
     /// is not known.
     pub sets_units: bool,
+    /// G90 (`false`) or G91 the program starts in, where every call of it in the job is
+    /// made in the same one (G90 for the main program; `modal::call_units`).
+    pub start_incremental: Option<bool>,
+    /// The motion mode (G code ×10) the program starts in, likewise (G00 for the main
+    /// program).
+    pub start_motion: Option<u32>,
+    /// The program (or a call in it) may select G91, which outlives its return; G90.
+    pub sets_distance: bool,
+    pub sets_g90: bool,
     /// The program (or a program it calls, or a call of a program not in the job) may
     /// change the tool or the compensation (`comp_flow::tool_effects`): only a call of a
     /// program without it leaves the caller's compensation known (`comp`).
@@ -359,8 +368,10 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
     modal::close_setters(&mut ctx.progs, &bodies);
     let units = modal::call_units(&ctx.progs, &bodies);
-    for (p, u) in ctx.progs.iter_mut().zip(units) {
+    for (p, (u, d, m)) in ctx.progs.iter_mut().zip(units) {
         p.start_inch = u;
+        p.start_incremental = d;
+        p.start_motion = m;
     }
     let frames = modal::frame_calls(&ctx.progs, programs);
     for (p, (clear, leaves, polar)) in ctx.progs.iter_mut().zip(frames) {
@@ -413,13 +424,22 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let (b, local_subs) = m97::prepare(ctx, body);
     body = b;
     let setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    let distance: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_distance).filter_map(|p| p.number).collect();
+    let g90: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_g90).filter_map(|p| p.number).collect();
     let framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_frames).filter_map(|p| p.number).collect();
     let polar_framers: Vec<u32> = ctx.progs.iter().filter(|p| p.leaves_polar).filter_map(|p| p.number).collect();
-    let calls = modal::CallModes { setters: &setters, framers: &framers, polar_framers: &polar_framers };
+    let calls = modal::CallModes {
+        setters: &setters,
+        distance_setters: &distance,
+        g90_setters: &g90,
+        framers: &framers,
+        polar_framers: &polar_framers,
+    };
     let plan = ctx.plan();
     let main = plan.role == Role::Main;
     let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
-    ctx.modal = modal::ModalScan::new(&body, main, plan.start_inch, plan.start_clear, calls, locals);
+    let start = (plan.start_inch, plan.start_incremental, plan.start_motion);
+    ctx.modal = modal::ModalScan::new(&body, main, start, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {

@@ -47,6 +47,10 @@ pub struct ModalScan {
 pub struct CallModes<'a> {
     /// The programs of the job that may select G20/G21.
     pub setters: &'a [u32],
+    /// The programs of the job that may select G91 (it outlives the return), and those
+    /// that may select G90 (after their call G90 is known only where it was before).
+    pub distance_setters: &'a [u32],
+    pub g90_setters: &'a [u32],
     /// The programs of the job whose call may leave a G68, G51 or G51.1 in force
     /// (or one not known; [`frame_calls`]).
     pub framers: &'a [u32],
@@ -126,6 +130,16 @@ impl State {
                 };
                 if sets {
                     self.inch = None;
+                }
+                let distance = match (&c.kind, &c.target) {
+                    (CallKind::M97, _) => false,
+                    (_, CallTarget::Number(n)) => calls.distance_setters.contains(n),
+                    _ => true,
+                };
+                let g90 = matches!((&c.kind, &c.target), (CallKind::M98 | CallKind::G65 | CallKind::G66, CallTarget::Number(n))
+                    if calls.g90_setters.contains(n));
+                if distance || (g90 && self.incremental != Some(false)) {
+                    self.incremental = None;
                 }
                 let leaves = |list: &[u32]| match (&c.kind, &c.target) {
                     (CallKind::M97, _) => false,
@@ -268,15 +282,16 @@ fn frame_key(lo: u32, g: u32) -> u32 {
 impl ModalScan {
     /// `main`: the program starts in G54 and G90 (power-on) and in the unit `inch` (G21 for
     /// a main program, [`call_units`]; a streamed chunk's may differ); a called
-    /// program starts in its caller's modes, which are not known here, except the unit
-    /// when every call in the job is made in the same one (`inch`, [`call_units`]).
+    /// program starts in its caller's modes, which are not known here, except the unit,
+    /// G90/G91 and the motion mode when every call in the job is made in the same one
+    /// (`inch`, `incremental`, `motion`, [`call_units`]).
     /// `clear`: no G68, G51, G51.1 is in force at any call of it ([`frame_calls`]).
     /// `locals`: the `M97` calls translated as section repetitions, followed as calls
     /// (`modal_flow`).
     pub fn new(
         body: &[Stmt],
         main: bool,
-        inch: Option<bool>,
+        (inch, incremental, motion): (Option<bool>, Option<bool>, Option<u32>),
         clear: bool,
         calls: CallModes,
         locals: &[Local],
@@ -296,7 +311,9 @@ impl ModalScan {
                 g52: 0,
             }
         } else {
-            State { inch, polar: Some(false), rot: clear.then_some(0), ..State::UNKNOWN }
+            // A motion mode known at every call: no drilling cycle is in force there.
+            let cycle = if motion.is_some() { None } else { State::UNKNOWN.cycle };
+            State { inch, incremental, motion, cycle, polar: Some(false), rot: clear.then_some(0), ..State::UNKNOWN }
         };
         let out_of = |i: usize, s: State| out_of(&flat, i, s, calls);
         let flow = super::modal_flow::run(&flat, start, calls, locals);
@@ -466,15 +483,16 @@ impl ModalScan {
         self.at(lo).and_then(|b| b.1.motion)
     }
 
+    /// The motion G code (×10) a drilling cycle in force after the block at `lo` holds (G80
+    /// gives it back); `None` where no cycle is in force or the paths disagree.
+    pub fn held_at(&self, lo: u32) -> Option<u32> {
+        self.at(lo).and_then(|b| b.1.cycle.flatten())
+    }
+
     /// G20 in force after the block at `lo` (a value of the block is read in it); `None`
     /// where the paths disagree or a called program runs in its caller's unveiled unit.
     pub fn inch_at(&self, lo: u32) -> Option<bool> {
         self.at(lo).and_then(|b| b.1.inch)
-    }
-
-    /// The unit in force after each block (text order), for [`call_units`].
-    fn all(&self) -> impl Iterator<Item = (u32, Option<bool>)> + '_ {
-        self.blocks.iter().map(|b| (b.0, b.1.inch))
     }
 }
 
@@ -484,43 +502,59 @@ impl ModalScan {
 /// caller, since the macro runs after each move); `None` where they differ, where no call
 /// of it is in the job, or where a call is computed (`P#1`). Fixed point over the call
 /// graph: a callee's start can only go from unseen to a unit to unknown.
-pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
+/// What a program starts in: the unit (G20 `true`), G91 (`true`) and the motion mode (G code
+/// ×10), each `None` where not known.
+pub type Starts = (Option<bool>, Option<bool>, Option<u32>);
+
+pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Starts> {
     #[derive(Clone, Copy, PartialEq)]
-    enum Seen {
+    enum Seen<T> {
         None,
-        Unit(bool),
+        Unit(T),
         Mixed,
+    }
+    fn see<T: PartialEq + Copy>(slot: &mut Seen<T>, u: Option<T>) {
+        *slot = match (*slot, u) {
+            (Seen::None, Some(u)) => Seen::Unit(u),
+            (Seen::Unit(a), Some(b)) if a == b => Seen::Unit(a),
+            _ => Seen::Mixed,
+        };
     }
     let n = progs.len();
     let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    let distance: Vec<u32> = progs.iter().filter(|p| p.sets_distance).filter_map(|p| p.number).collect();
+    let g90: Vec<u32> = progs.iter().filter(|p| p.sets_g90).filter_map(|p| p.number).collect();
     let by_number = |num: u32| progs.iter().position(|p| p.number == Some(num));
-    let mut seen = vec![Seen::None; n];
+    // Per program: the unit and G90/G91 at its calls.
+    let mut seen = vec![(Seen::None, Seen::None, Seen::None); n];
     let locals: Vec<Vec<Local>> = bodies.iter().map(|b| super::m97::locals(b)).collect();
-    let start = |seen: &[Seen], i: usize| -> Option<bool> {
-        if progs[i].role == Role::Main {
-            return Some(false);
-        }
-        match seen[i] {
+    fn get<T>(s: Seen<T>) -> Option<T> {
+        match s {
             Seen::Unit(u) => Some(u),
             _ => None,
         }
+    }
+    let start = |seen: &[(Seen<bool>, Seen<bool>, Seen<u32>)], i: usize| -> Starts {
+        if progs[i].role == Role::Main {
+            return (Some(false), Some(false), Some(0));
+        }
+        (get(seen[i].0), get(seen[i].1), get(seen[i].2))
     };
     let mut computed = false;
     let mut settled = false;
     for _ in 0..(2 * n + 2) {
-        let mut next = vec![Seen::None; n];
-        let see = |next: &mut Vec<Seen>, j: usize, u: Option<bool>| {
-            next[j] = match (next[j], u) {
-                (Seen::None, Some(u)) => Seen::Unit(u),
-                (Seen::Unit(a), Some(b)) if a == b => Seen::Unit(a),
-                _ => Seen::Mixed,
-            };
-        };
+        let mut next = vec![(Seen::None, Seen::None, Seen::None); n];
         for i in 0..n {
             let main = progs[i].role == Role::Main;
-            let calls = CallModes { setters: &setters, framers: &[], polar_framers: &[] };
+            let calls = CallModes {
+                setters: &setters,
+                distance_setters: &distance,
+                g90_setters: &g90,
+                framers: &[],
+                polar_framers: &[],
+            };
             let scan = ModalScan::new(bodies[i], main, start(&seen, i), false, calls, &locals[i]);
-            let all: Vec<Option<bool>> = scan.all().map(|b| b.1).collect();
+            let all: Vec<Starts> = scan.blocks.iter().map(|b| (b.1.inch, b.1.incremental, b.1.motion)).collect();
             crate::ir::visit::walk_stmts(bodies[i], &mut |s| {
                 let StmtKind::Block(b) = &s.kind else { return };
                 for it in &b.items {
@@ -536,11 +570,16 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
                     };
                     let Some(j) = j else { continue };
                     if c.kind == CallKind::G66 {
-                        for &u in &all {
-                            see(&mut next, j, u);
+                        for &(u, d, m) in &all {
+                            see(&mut next[j].0, u);
+                            see(&mut next[j].1, d);
+                            see(&mut next[j].2, m);
                         }
                     } else {
-                        see(&mut next, j, scan.inch_at(b.meta.span.lo));
+                        let lo = b.meta.span.lo;
+                        see(&mut next[j].0, scan.inch_at(lo));
+                        see(&mut next[j].1, scan.incremental_at(lo));
+                        see(&mut next[j].2, scan.motion_at(lo));
                     }
                 }
             });
@@ -552,7 +591,7 @@ pub fn call_units(progs: &[ProgPlan], bodies: &[&[Stmt]]) -> Vec<Option<bool>> {
         seen = next;
     }
     let known = settled && !computed;
-    (0..n).map(|i| if known || progs[i].role == Role::Main { start(&seen, i) } else { None }).collect()
+    (0..n).map(|i| if known || progs[i].role == Role::Main { start(&seen, i) } else { (None, None, None) }).collect()
 }
 
 /// The frame mode G codes (×10): G68/G69, G51/G50, G51.1/G50.1, G16/G15.
@@ -595,6 +634,8 @@ pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(
         return (0..n).map(|i| (main(i), false, false)).collect();
     }
     let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+    let distance: Vec<u32> = progs.iter().filter(|p| p.sets_distance).filter_map(|p| p.number).collect();
+    let g90: Vec<u32> = progs.iter().filter(|p| p.sets_g90).filter_map(|p| p.number).collect();
     let by_number = |k: u32| progs.iter().position(|p| p.number == Some(k));
     let locals: Vec<Vec<Local>> = programs.iter().map(|(_, p)| super::m97::locals(&p.body)).collect();
     let mut clear: Vec<bool> = vec![true; n];
@@ -604,9 +645,16 @@ pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(
         let mut next_clear = vec![true; n];
         let mut next_framers = (Vec::new(), Vec::new());
         for i in 0..n {
-            let calls = CallModes { setters: &setters, framers: &framers.0, polar_framers: &framers.1 };
+            let calls = CallModes {
+                setters: &setters,
+                distance_setters: &distance,
+                g90_setters: &g90,
+                framers: &framers.0,
+                polar_framers: &framers.1,
+            };
             let body = &programs[i].1.body;
-            let scan = ModalScan::new(body, main(i), progs[i].start_inch, clear[i] || main(i), calls, &locals[i]);
+            let start = (progs[i].start_inch, progs[i].start_incremental, progs[i].start_motion);
+            let scan = ModalScan::new(body, main(i), start, clear[i] || main(i), calls, &locals[i]);
             crate::ir::visit::walk_stmts(&programs[i].1.body, &mut |s| {
                 let StmtKind::Block(b) = &s.kind else { return };
                 for it in &b.items {
@@ -658,6 +706,11 @@ pub fn sets_units(body: &[Stmt]) -> bool {
     has_g(body, &[200, 210])
 }
 
+/// Whether `body` has a G91 word.
+pub fn sets_distance(body: &[Stmt]) -> bool {
+    has_g(body, &[910])
+}
+
 /// Whether `body` has one of the G codes `codes` (×10).
 pub fn has_g(body: &[Stmt], codes: &[u32]) -> bool {
     let mut any = false;
@@ -670,13 +723,19 @@ pub fn has_g(body: &[Stmt], codes: &[u32]) -> bool {
 }
 
 /// Marks the programs that call (directly or through others) a program that may select
-/// G20/G21: after their call, too, the caller's unit is not known.
+/// G20/G21 (G90/G91): after their call, too, the caller's unit (distance mode) is not known.
 pub fn close_setters(progs: &mut [ProgPlan], bodies: &[&[Stmt]]) {
+    close(progs, bodies, |p| &mut p.sets_units);
+    close(progs, bodies, |p| &mut p.sets_distance);
+    close(progs, bodies, |p| &mut p.sets_g90);
+}
+
+fn close(progs: &mut [ProgPlan], bodies: &[&[Stmt]], flag: fn(&mut ProgPlan) -> &mut bool) {
     for _ in 0..progs.len() {
-        let setters: Vec<u32> = progs.iter().filter(|p| p.sets_units).filter_map(|p| p.number).collect();
+        let setters: Vec<u32> = progs.iter_mut().filter_map(|p| if *flag(p) { p.number } else { None }).collect();
         let mut changed = false;
         for (p, body) in progs.iter_mut().zip(bodies) {
-            if p.sets_units {
+            if *flag(p) {
                 continue;
             }
             let mut calls = false;
@@ -693,7 +752,7 @@ pub fn close_setters(progs: &mut [ProgPlan], bodies: &[&[Stmt]]) {
                 }
             });
             if calls {
-                p.sets_units = true;
+                *flag(p) = true;
                 changed = true;
             }
         }

@@ -329,7 +329,8 @@ mod tests {
         let flat = flatten(&p.body);
         let locals =
             [Local { call: call_lo(&p.body, 1), start: block_lo(&p.body, 100), end: block_lo(&p.body, 199), count }];
-        let calls = CallModes { setters: &[], framers: &[], polar_framers: &[] };
+        let calls =
+            CallModes { setters: &[], distance_setters: &[], g90_setters: &[], framers: &[], polar_framers: &[] };
         let flow = run(&flat, START, calls, &locals);
         let at = (0..flat.nodes.len()).find(|&i| flat.numbers[i] == Some(2)).expect("N2");
         (flow.ins[at].and_then(|s| s.incremental), flow.settled)
@@ -356,7 +357,8 @@ mod tests {
             Local { call: call_lo(&p.body, 1), start, end, count: Some(1) },
             Local { call: call_lo(&p.body, 150), start, end, count: Some(1) },
         ];
-        let calls = CallModes { setters: &[], framers: &[], polar_framers: &[] };
+        let calls =
+            CallModes { setters: &[], distance_setters: &[], g90_setters: &[], framers: &[], polar_framers: &[] };
         assert!(!run(&flat, START, calls, &locals).settled);
         // Without the inner call followed (refused by m97.rs), it settles.
         assert!(run(&flat, START, calls, &locals[..1]).settled);
