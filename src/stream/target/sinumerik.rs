@@ -274,9 +274,15 @@ impl Planned {
     }
 
     fn same(&self, other: &Planned) -> bool {
-        // Whether the program selects G20/G21 or changes the tool matters only to its
-        // callers (a straight program has none, and a streamed one never holds G20).
-        let plan = |p: &ProgPlan| ProgPlan { sets_units: false, tools: false, ..p.clone() };
+        // Whether the program selects G20/G21, G90/G91 or changes the tool matters only to
+        // its callers (a straight program has none, and a streamed one never holds G20).
+        let plan = |p: &ProgPlan| ProgPlan {
+            sets_units: false,
+            sets_distance: false,
+            sets_g90: false,
+            tools: false,
+            ..p.clone()
+        };
         format!("{:?}", (plan(&self.plan), &self.commons, &self.common_flags))
             == format!("{:?}", (plan(&other.plan), &other.commons, &other.common_flags))
     }
