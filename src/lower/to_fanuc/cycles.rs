@@ -283,8 +283,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
     // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
     let mut refused_mcall = false;
     let mut tap = super::cycles_tap::SieState::start(top);
+    let mut zshift = super::cycles_frames::Shift::start(top);
     for s in body {
         let span = s.span;
+        zshift.pass(&s);
         let StmtKind::Block(mut b) = s.kind else {
             if active.take().is_some() {
                 refuse(
@@ -382,6 +384,13 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             continue;
         }
         if let Some((f, first, _)) = &mut active {
+            // A rotation between the holes (cycles_frames.rs): the next hole opens the cycle again.
+            if let Some(keeps) = zshift.frame_block(&b) {
+                super::cycles_frames::across(ctx, keeps, first, cancel_items(f, span), span, &mut out);
+                f.approach = None;
+                out.push(Stmt { kind: StmtKind::Block(b), span });
+                continue;
+            }
             // `M29 S…` right before the first cycle block.
             let mut rigid = None;
             match positions(&b, motion) {
@@ -445,6 +454,8 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
+        // A frame block's Z is no position (cycles_frames.rs).
+        let kept = zshift.frame_block(&b).map(|keeps| level.filter(|_| keeps));
         for it in &b.items {
             if let ItemKind::Word(w) = &it.kind {
                 match (w.addr.as_str(), g_of(w)) {
@@ -467,6 +478,9 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     _ => {}
                 }
             }
+        }
+        if let Some(l) = kept {
+            level = l;
         }
         if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
             // An assignment, a call …: the tool's level may have changed.
