@@ -95,6 +95,20 @@ fn the_same_bolt_circle_in_both_dialects_agrees_and_planted_errors_diverge() {
     ] {
         assert!(!equivalent(&f, &siemens(wrong)), "{wrong}");
     }
+    // The same plants in the committed form of the translation: its verified text, then
+    // the rotation's sign flipped, the rotation left out, the rotation after the hole.
+    let out = f_to_s(&f).unwrap();
+    assert!(equivalent(&f, &out));
+    let (on, off) = ("AROT RPL=60\n", "AROT RPL=-60\n");
+    assert!(out.contains(on) && out.contains(off), "{out}");
+    let flipped = out.replace(on, "@\n").replace(off, on).replace("@\n", off);
+    let left_out = out.replace(on, "").replace(off, "");
+    // The hole not rotated: the rotation switched on only after the MCALL's hole.
+    let late = out.replacen(on, "", 1).replacen("MCALL\n", &format!("MCALL\n{on}"), 1);
+    for wrong in [flipped, left_out, late] {
+        assert_ne!(wrong, out);
+        assert!(!equivalent(&f, &wrong), "{wrong}");
+    }
 }
 
 #[test]
@@ -117,6 +131,24 @@ fn translations_both_ways_are_proven() {
     ))
     .unwrap();
     assert!(out.contains("G80\nG68 X0. Y0. R60.\nG98 G83 X40. Y0. Z-20. R0. Q5."), "{out}");
+    // FANUC G91 holes along the turned axes, translated and proven.
+    f_to_s(&fanuc("G68 X0 Y0 R30.\nG98 G81 X10. Y0 Z-2. R2. F100.\nG91 X10. K2\nG90 G80\nG69\nG0 X0 Y0\n")).unwrap();
+}
+
+#[test]
+fn translations_that_would_differ_are_refused_precisely() {
+    // A cycle right after a ROT where the tool stands, or an MCALL hole naming one axis:
+    // FANUC keeps the programmed value of the axis left out, which the new G68 turns.
+    for body in [
+        "F100\nG0 X40 Y0 Z10\nROT RPL=60\nCYCLE81(10,0,2,-2)\nROT\nG0 X0 Y0\n",
+        "F100\nG0 X40 Y0 Z10\nMCALL CYCLE81(10,0,2,-2)\nG0 X40 Y0\nROT RPL=60\nG0 X30\nMCALL\nROT\nG0 X0 Y0\n",
+    ] {
+        assert_eq!(s_to_f(&siemens(body)), Err(vec!["NC653".to_string()]), "{body}");
+    }
+    // A frame change that may move Z while an MCALL is open.
+    let body =
+        "F100\nG0 X40 Y0 Z10\nMCALL CYCLE81(10,0,2,-2)\nG0 X40 Y0\nTRANS Z5\nG0 X30 Y0\nMCALL\nTRANS\nG0 X0 Y0\n";
+    assert_eq!(s_to_f(&siemens(body)), Err(vec!["NC652".to_string()]));
 }
 
 #[test]

@@ -310,6 +310,11 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
             b.items.retain(|it| cycle_call(it).is_none());
             observe_words(&mut tap, &b.items);
             let mcall = c.kind == CallKind::Mcall;
+            zshift.positioned(&b.items);
+            if !mcall && zshift.turned() {
+                super::cycles_frames::first_hole(ctx, span, &mut out);
+                continue;
+            }
             if abs != Some(true) {
                 refuse(
                     ctx,
@@ -412,6 +417,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
                     continue;
                 }
                 Ok(false) => {}
+                Ok(true) if !zshift.positioned(&b.items) => {
+                    super::cycles_frames::first_hole(ctx, span, &mut out);
+                    continue;
+                }
                 Ok(true) => {
                     b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
                     if !*first {
@@ -482,6 +491,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool) -> Vec<Stmt> {
         if let Some(l) = kept {
             level = l;
         }
+        zshift.positioned(&b.items);
         if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
             // An assignment, a call …: the tool's level may have changed.
             level = None;

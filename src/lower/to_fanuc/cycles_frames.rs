@@ -7,18 +7,53 @@
 
 use super::*;
 
-/// Whether the Z shift of G52 is known to be 0 (a main program starts without one).
-pub(super) struct Shift(bool);
+/// Whether the Z shift of G52 is known to be 0 (a main program starts without one), and
+/// whether a G68/G69 came since the last block that named X and Y (`turned`).
+pub(super) struct Shift(bool, bool);
+
+/// The G codes (×10) of frame blocks, whose X Y Z are no positions.
+const FRAME_G: [i64; 9] = [680, 690, 520, 500, 510, 501, 511, 920, 100];
 
 impl Shift {
     pub(super) fn start(top: bool) -> Shift {
-        Shift(top)
+        Shift(top, false)
     }
 
     /// A structure may hold a G52 of its own: the shift after it is not known here.
     pub(super) fn pass(&mut self, s: &Stmt) {
         if !matches!(s.kind, StmtKind::Block(_)) {
             self.0 = false;
+        }
+    }
+
+    /// Whether a rotation changed (G68/G69) since the last block naming both X and Y: FANUC
+    /// keeps the programmed value of a plane axis left out, which the new rotation turns;
+    /// Sinumerik drills where the tool stands (the FANUC run refuses that hole, NC496).
+    pub(super) fn turned(&self) -> bool {
+        self.1
+    }
+
+    /// Notes the block's positioning: `false` when the frame turned since the last X Y and
+    /// this block names only one of them.
+    pub(super) fn positioned(&mut self, items: &[Item]) -> bool {
+        let g = |it: &Item| match &it.kind {
+            ItemKind::Word(w) if w.addr.is(b'G') => match &w.value {
+                WordValue::Expr(e) => crate::lower::literal(e).map(|v| (v * 10.0).round() as i64),
+                _ => None,
+            },
+            _ => None,
+        };
+        if items.iter().filter_map(g).any(|v| FRAME_G.contains(&v)) {
+            return true;
+        }
+        let has = |l: u8| items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(l)));
+        match (has(b'X'), has(b'Y')) {
+            (true, true) => {
+                self.1 = false;
+                true
+            }
+            (false, false) => true,
+            _ => !self.1,
         }
     }
 
@@ -48,6 +83,9 @@ impl Shift {
         if !frame {
             return None;
         }
+        self.1 |= b.items.iter().any(|it| {
+            matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && matches!(&w.value, WordValue::Expr(e) if matches!(crate::lower::literal(e), Some(g) if g == 68.0 || g == 69.0)))
+        });
         let g52 = b.items.iter().any(|it| {
             matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && matches!(&w.value, WordValue::Expr(e) if crate::lower::literal(e) == Some(52.0)))
         });
@@ -81,4 +119,15 @@ pub(super) fn across(ctx: &mut Ctx, keeps: bool, first: &mut bool, cancel: Vec<I
     if std::mem::take(first) {
         out.push(block_stmt(cancel, span));
     }
+}
+
+/// The refusal of a hole that would be FANUC's first move after a G68/G69 with a plane
+/// axis left out.
+pub(super) fn first_hole(ctx: &mut Ctx, span: Span, out: &mut Vec<Stmt>) {
+    out.extend(ctx.unsupported(
+        "NC653",
+        span,
+        "a drilling cycle as the first move after a rotation changed, without both X and Y",
+        "position the hole with G0 X.. Y.. (both axes) after ROT/AROT, before the cycle",
+    ));
 }
