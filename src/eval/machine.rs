@@ -719,8 +719,6 @@ impl Machine {
         } else if dwell {
             let secs = self.dwell_seconds(&axes, p, f, s, block_span)?;
             out.push((Event::Dwell { seconds: secs }, block_span));
-        } else if self.cycle.active.is_some() && !g53 && self.framed {
-            return Err(framed_cycle(block_span));
         } else if self.cycle.active.is_some() && !g53 {
             eff.moved = super::cycles::fanuc::holes(self, words, out, warns, block_span)?;
         } else if self.framed && !g53 {

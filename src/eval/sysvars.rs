@@ -311,7 +311,7 @@ impl Interp<'_> {
                 if name == "AA_IW" {
                     self.comp_guard("$AA_IW", false, true, span)?;
                 }
-                if self.m.transforms() {
+                if self.m.turns_axis(a) {
                     return Err(self.unmodelled(&format!("${name} under a rotated, scaled or mirrored frame"), span));
                 }
                 self.in_unit(self.m.work_pos(a))

@@ -215,8 +215,13 @@ pub fn holes(
     }
     for _ in 0..count {
         let mut at = [(u, 0.0), (v, 0.0)];
+        let framed = m.framed;
+        if framed {
+            // A rotation in the cycle's plane: the hole goes through it as a move would.
+            m.framed_hole(cw.plane, span)?;
+        }
         for (k, axis) in [u, v].into_iter().enumerate() {
-            if let Some((w, x)) = cw.plane[k] {
+            if let (Some((w, x)), false) = (cw.plane[k], framed) {
                 m.pos[axis] = m.axis_target(axis, m.length(w, x, false), w.mode, false);
                 m.applied[axis] = m.active_offset(axis);
             }
@@ -255,6 +260,7 @@ pub fn holes(
         let halt = is_manual_retract(gi);
         let cx = super::expand::Context { start, axis: n, end: m.pos[n], rpm: m.speed, spindle: m.spindle, halt };
         super::push_hole(m.expand.as_ref(), hole, &cx, span, &mut |e| out.push((e, span)))?;
+        m.cycle_positioned();
     }
     Ok(count > 0)
 }

@@ -79,11 +79,14 @@ impl Interp<'_> {
     }
 
     fn siemens_hole(&mut self, cycle: SieCycle, vals: &[Option<f64>], span: Span) -> Result<(), Fault> {
+        // Under a rotation in the cycle's plane the hole is where the tool stands (the frame
+        // took its positioning through) and the levels along the drilling axis are the frame's.
         if self.m.framed {
-            return Err(self.fix_file(crate::eval::machine::framed_cycle(span)));
+            self.m.cycle_frame(span).map_err(|f| self.fix_file(f))?;
         }
         let mut out = Vec::new();
         let r = hole(&mut self.m, Args { cycle, vals }, span, &mut out);
+        self.m.cycle_positioned();
         for ev in out {
             self.emit(ev, span);
         }

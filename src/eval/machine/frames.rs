@@ -131,18 +131,102 @@ pub(super) fn error(code: &'static str, msg: String, span: Span, hint: &str) -> 
 
 const GEO: &[u8; 3] = b"XYZ";
 
-/// The error for a drilling cycle under a frame that turns, scales or mirrors (or right
-/// after one changed): the holes' positions through it are not modelled.
-pub fn framed_cycle(span: Span) -> Fault {
+/// The error for a drilling cycle under a frame the model does not take it through: `why`
+/// names what the frame does (it scales, mirrors, tilts the drilling axis) or which position
+/// the controls would read differently right after the frame changed.
+pub fn framed_cycle(span: Span, why: &str) -> Fault {
     error(
         "NC496",
-        "a drilling cycle under a rotated, scaled or mirrored frame (or as the first move after one changed) is not modelled".into(),
+        format!("a drilling cycle {why} is not modelled (only a rotation in the plane of the cycle, about its drilling axis)"),
         span,
-        "drill with the frame cancelled (G69, G50, G50.1; Siemens TRANS), after a positioning move",
+        "drill under a rotation in the cycle's plane (G17: G68 / ROT RPL=), or with the frame cancelled (G69, G50, G50.1; Siemens TRANS), after a positioning move naming both plane axes absolute",
     )
 }
 
 impl Machine {
+    /// Whether the frame in force takes a drilling cycle in `plane` through as a move: it
+    /// turns only within the plane (a rotation about the drilling axis, which keeps that
+    /// axis and its levels), so the hole is the plane position through the frame and R,
+    /// bottom and initial level stay where the drilling axis is. `Err`: what it does besides.
+    pub(crate) fn cycle_frame(&self, span: Span) -> Result<(), Fault> {
+        let (u, v, n) = self.modal.plane.axes();
+        let a = &self.xf.a;
+        let tiny = |x: f64| x.abs() < 1e-12;
+        let why = if !(tiny(a[n][u]) && tiny(a[n][v]) && tiny(a[u][n]) && tiny(a[v][n]) && tiny(self.xf.b[n])) {
+            Some("under a frame that turns the drilling axis out of its direction or moves its levels")
+        } else if (a[n][n] - 1.0).abs() > 1e-12 {
+            Some("under a frame that scales or mirrors the drilling axis")
+        } else {
+            let (m00, m01, m10, m11) = (a[u][u], a[u][v], a[v][u], a[v][v]);
+            let det = m00 * m11 - m01 * m10;
+            let orthonormal = (m00 * m00 + m10 * m10 - 1.0).abs() < 1e-9
+                && (m01 * m01 + m11 * m11 - 1.0).abs() < 1e-9
+                && (m00 * m01 + m10 * m11).abs() < 1e-9;
+            if det < 0.0 {
+                Some("under a mirrored frame")
+            } else if !orthonormal {
+                Some("under a scaled frame")
+            } else {
+                None
+            }
+        };
+        match why {
+            None => Ok(()),
+            Some(why) => Err(framed_cycle(span, why)),
+        }
+    }
+
+    /// A FANUC hole's plane position under a frame that rotates in the cycle's plane (or
+    /// right after one changed): the block's plane words are programmed coordinates mapped
+    /// through the frame as a move's end point is, by the same rules (an increment along
+    /// the turned axes once they were positioned absolute; right after the frame changed
+    /// an incremental position, or a plane axis left out, is refused: FANUC keeps or turns
+    /// the programmed value there, the controls differ).
+    pub(crate) fn framed_hole(&mut self, plane: [Option<(&WordVal, f64)>; 2], span: Span) -> Result<(), Fault> {
+        self.cycle_frame(span)?;
+        let (u, v, _) = self.modal.plane.axes();
+        let off = [self.active_offset(0), self.active_offset(1), self.active_offset(2)];
+        let wnow = [self.pos[0] - off[0], self.pos[1] - off[1], self.pos[2] - off[2]];
+        let p0 = self.xf.invert(wnow).unwrap_or(wnow);
+        let mut p1 = p0;
+        let mut absolute = 0u8;
+        for (k, axis) in [u, v].into_iter().enumerate() {
+            let Some((w, x)) = plane[k] else { continue };
+            let val = self.length(w, x, false);
+            if w.mode == AbsInc::Ic || (w.mode == AbsInc::Plain && !self.modal.absolute) {
+                if self.fresh & (1 << axis) != 0 {
+                    let why = format!("with an incremental {} right after the frame changed", GEO[axis] as char);
+                    return Err(framed_cycle(w.span, &why));
+                }
+                p1[axis] = p0[axis] + val;
+            } else {
+                p1[axis] = val;
+                absolute |= 1 << axis;
+            }
+        }
+        let left_out = (self.fresh >> 4) & !absolute & ((1 << u) | (1 << v));
+        if left_out != 0 {
+            let missing: String = (0..3).filter(|i| left_out & (1 << i) != 0).map(|i| GEO[i] as char).collect();
+            let why = format!("as the first move after the frame changed, leaving {missing} out");
+            return Err(framed_cycle(span, &why));
+        }
+        let w1 = self.xf.apply(p1);
+        for axis in [u, v] {
+            self.pos[axis] = w1[axis] + off[axis];
+            self.applied[axis] = off[axis];
+        }
+        self.fresh &= !(absolute | (absolute << 4));
+        self.refresh_framed();
+        Ok(())
+    }
+
+    /// After a hole the drilling axis stands at an absolute level of the frame in force.
+    pub(crate) fn cycle_positioned(&mut self) {
+        let n = self.modal.plane.axes().2;
+        self.fresh &= !((1 << n) | (1 << (n + 4)));
+        self.refresh_framed();
+    }
+
     /// Installs `x` as the frame's map; the axes it (or the one before) turns, scales or
     /// mirrors must be positioned absolute before an incremental move or a move that
     /// leaves one of them out (`fresh`).
@@ -172,6 +256,17 @@ impl Machine {
     /// Whether the frame turns, scales or mirrors (position read-backs are refused then).
     pub fn transforms(&self) -> bool {
         self.xf.a != Xform::ID.a
+    }
+
+    /// Whether the frame moves axis `axis` with the others (a rotation about another axis
+    /// than it, a scale or mirror of it): a programmed position of an axis it leaves alone
+    /// (Z under a rotation in the XY plane) is its workpiece position.
+    pub fn turns_axis(&self, axis: usize) -> bool {
+        axis < 3
+            && ((0..3).any(|k| {
+                self.xf.a[axis][k] != f64::from(u8::from(k == axis))
+                    || self.xf.a[k][axis] != f64::from(u8::from(k == axis))
+            }) || self.xf.b[axis] != 0.0)
     }
 
     /// FANUC `G68 X.. Y.. R..` (the centre in the plane's two axes, absolute; none: where

@@ -308,8 +308,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
     // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
     let mut refused_mcall = false;
     let mut tap = super::cycles_tap::SieState::start(top);
+    let mut zshift = super::cycles_frames::Shift::start(top);
     for s in body {
         let span = s.span;
+        zshift.pass(&s);
         let StmtKind::Block(mut b) = s.kind else {
             if active.take().is_some() {
                 refuse(
@@ -337,6 +339,11 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
             b.items.retain(|it| cycle_call(it).is_none());
             observe_words(&mut tap, &b.items);
             let mcall = c.kind == CallKind::Mcall;
+            zshift.positioned(&b.items);
+            if !mcall && zshift.turned() {
+                super::cycles_frames::first_hole(ctx, span, &mut out);
+                continue;
+            }
             if abs != Some(true) {
                 refuse(
                     ctx,
@@ -411,6 +418,13 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
             continue;
         }
         if let Some((f, first, _)) = &mut active {
+            // A rotation between the holes (cycles_frames.rs): the next hole opens the cycle again.
+            if let Some(keeps) = zshift.frame_block(&b) {
+                super::cycles_frames::across(ctx, keeps, first, cancel_items(f, span), span, &mut out);
+                f.approach = None;
+                out.push(Stmt { kind: StmtKind::Block(b), span });
+                continue;
+            }
             // `M29 S…` right before the first cycle block.
             let mut rigid = None;
             match positions(&b, motion) {
@@ -432,6 +446,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
                     continue;
                 }
                 Ok(false) => {}
+                Ok(true) if !zshift.positioned(&b.items) => {
+                    super::cycles_frames::first_hole(ctx, span, &mut out);
+                    continue;
+                }
                 Ok(true) => {
                     b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
                     if !*first {
@@ -474,6 +492,8 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;
         }
+        // A frame block's Z is no position (cycles_frames.rs).
+        let kept = zshift.frame_block(&b).map(|keeps| level.filter(|_| keeps));
         for it in &b.items {
             if let ItemKind::Word(w) = &it.kind {
                 match (w.addr.as_str(), g_of(w)) {
@@ -497,6 +517,10 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
                 }
             }
         }
+        if let Some(l) = kept {
+            level = l;
+        }
+        zshift.positioned(&b.items);
         if b.items.iter().any(|it| !matches!(it.kind, ItemKind::Word(_))) {
             // An assignment, a call …: the tool's level may have changed.
             level = None;

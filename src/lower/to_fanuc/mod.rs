@@ -15,6 +15,7 @@ pub mod blocks;
 pub mod comp;
 pub mod corners;
 pub mod cycles;
+mod cycles_frames;
 pub mod cycles_tap;
 pub mod exprs;
 pub(crate) mod fast_write;

@@ -88,7 +88,13 @@ fn scan(body: &[Stmt], start: bool, plan: &mut Plan) {
                     && (op == "TRANS" || words.is_empty());
             }
             None => {
-                if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
+                // A standard drilling cycle (a direct call or MCALL) leaves the frame as it is.
+                let frame_call = |it: &Item| match &it.kind {
+                    ItemKind::Call(c) => !matches!(&c.target, CallTarget::Name(n)
+                        if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some()),
+                    _ => false,
+                };
+                if b.items.iter().any(frame_call) {
                     after_abs = false;
                 }
             }
