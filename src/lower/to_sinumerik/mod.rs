@@ -46,6 +46,7 @@ pub mod modal;
 pub mod modal_flow;
 pub mod modal_reads;
 pub mod polar;
+pub mod position_length;
 pub mod print;
 pub mod probe;
 pub mod probe_length;
@@ -421,6 +422,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let locals = local_subs.as_ref().map_or(&[][..], |p| &p.locals[..]);
     ctx.modal = modal::ModalScan::new(&body, main, plan.start_inch, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
+    ctx.modal.lengths = position_length::Lengths::new(&body, main);
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);

@@ -192,6 +192,17 @@ impl Reads {
         Reads { at }
     }
 
+    /// The length compensation code (43, 44, 49) every path to the block of the expression at
+    /// `lo` has set, `None` where not known or where that block sets it itself.
+    pub fn length_mode(&self, lo: u32) -> Option<f64> {
+        let (_, s, own) = self.entry(lo)?;
+        const LENGTH: usize = 6;
+        if own & (1 << LENGTH) != 0 {
+            return None;
+        }
+        s.and_then(|s| s[LENGTH])
+    }
+
     /// The entry of the block (or loop condition) an expression starting at `lo` lies in.
     fn entry(&self, lo: u32) -> Option<&(u32, Option<State>, u16)> {
         let i = self.at.partition_point(|a| a.0 <= lo);
