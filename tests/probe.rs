@@ -178,9 +178,9 @@ fn constructs_without_a_counterpart_are_refused_by_name() {
 }
 
 /// FANUC's current and skip positions include the tool length offset, Siemens machine
-/// positions the tool length; the evaluator keeps programmed positions, so such reads under
+/// positions the tool length; where the run is not given the length, such reads under
 /// compensation are refused by name (and so the translations are never called equivalent
-/// where the real values differ).
+/// where the real values differ); with it, tests/position_reads_length.rs.
 #[test]
 fn position_reads_that_would_hold_a_tool_length_are_refused() {
     let d = scratch("comp-reads");
