@@ -119,9 +119,9 @@ fn fanuc_to_sinumerik_adds_the_edge_length_where_g43_is_set_on_every_path() {
     assert!(err.contains("equivalent") || o.contains("equivalent"), "{o}{err}");
     let mpf = out.join("P_C.MPF");
     let text = std::fs::read_to_string(&mpf).expect("written");
-    let form = "LOC1=$AA_IW[Z]+($TC_DP3[$P_TOOLNO,$P_TOOL]+$TC_DP12[$P_TOOLNO,$P_TOOL])";
-    assert!(text.contains(form) && text.contains("LOC2=$AA_IM[Z]"), "{text}");
     let mpf = mpf.to_string_lossy().into_owned();
+    let form = "LOC1=$AA_IW[Z]+($TC_DP3[1,1]+$TC_DP12[1,1])";
+    assert!(text.contains(form) && text.contains("LOC2=$AA_IM[Z]"), "{text}");
     assert_eq!(check(&f, &mpf).0, 0, "{}", check(&f, &mpf).1);
     // Planted: the length subtracted, the length missing, the machine position less the length.
     for (name, bad) in [
@@ -134,6 +134,24 @@ fn fanuc_to_sinumerik_adds_the_edge_length_where_g43_is_set_on_every_path() {
         assert_eq!(code, 1, "{name}: {msg}");
         assert!(msg.contains("NC500"), "{name}: {msg}");
     }
+    // Back to FANUC: the tip and H1's length, the same value as #5043 under G43 H1.
+    let back = d.join("back.nc").to_string_lossy().into_owned();
+    let (code, o, err) = nctrans(&[&mpf, "--to", "fanuc", "-o", &back]);
+    assert_eq!(code, 0, "{o}{err}");
+    let text = std::fs::read_to_string(&back).expect("written");
+    assert!(text.contains("=#5003+[#11001+#10001]"), "{text}");
+    // An H the flow does not know (the tool's variable): the active edge's length.
+    let h = FANUC.replace("T1 M6", "#33=1\nT#33 M6").replace("H1", "H#33");
+    let f = write(&d, "h.nc", &h);
+    let out = d.join("h");
+    let (code, o, err) = nctrans(&[&f, "--to", "sinumerik", "-o", &format!("{}/", out.display())]);
+    assert_eq!(code, 0, "{o}{err}");
+    let text = std::fs::read_to_string(out.join("P_H.MPF")).expect("written");
+    let active = "$AA_IW[Z]+($TC_DP3[$P_TOOLNO,$P_TOOL]+$TC_DP12[$P_TOOLNO,$P_TOOL])";
+    assert!(text.contains(active), "{text}");
+    let w = write(&d, "W4.MPF", &text.replace(active, "$AA_IW[Z]+$TC_DP3[$P_TOOLNO,$P_TOOL]"));
+    let (code, msg) = check(&f, &w);
+    assert_eq!(code, 1, "{msg}");
     // G43 on one path only: refused by name.
     let one = "O1\nT1 M6\nG0 G90 G54 X0 Y0\nIF [#5 GT 0] GOTO 10\nG43 H1 Z50.\nN10 #1=#5043\nG0 X#1\nM30\n";
     let f = write(&d, "e.nc", one);

@@ -3,8 +3,9 @@
 //! the H register on Z), Siemens `$AA_IW[Z]` is the tool tip (docs/semantics.md, Probing and
 //! position reads). Where every path to the read has set G43 (`modal_reads`), the G43 H the
 //! translation wrote is the active edge of the tool in the spindle (`comp`), whose length is
-//! `$TC_DP3` plus its wear `$TC_DP12`: the read becomes
-//! `$AA_IW[Z]+($TC_DP3[$P_TOOLNO,$P_TOOL]+$TC_DP12[$P_TOOLNO,$P_TOOL])`. Where G43/G44 may be
+//! `$TC_DP3` plus its wear `$TC_DP12`: the read becomes `$AA_IW[Z]+($TC_DP3[t,d]+$TC_DP12[t,d])`
+//! for the edge of the H every path set (the tool data map's), else of the active edge
+//! `[$P_TOOLNO,$P_TOOL]`. Where G43/G44 may be
 //! in force but is not known on every path (or the read's block selects it), refused
 //! (NC643). `#5023` (machine coordinates) needs nothing: Siemens `$AA_IM` holds the edge's
 //! length as FANUC holds the offset; the other axes carry no length. G44 itself is refused
@@ -64,10 +65,19 @@ pub fn read(ctx: &mut Ctx, span: Span) -> Option<Result<Expr, Vec<Stmt>>> {
     if !ctx.modal.lengths.may(span.lo) {
         return None;
     }
-    match ctx.modal.reads.length_mode(span.lo) {
+    match ctx.modal.reads.known(4008, span.lo) {
         Some(49.0) => None,
         Some(43.0) => {
-            let edge = || vec![sys("P_TOOLNO", vec![], span), sys("P_TOOL", vec![], span)];
+            // The H every path set names the edge (so the form reads back to FANUC as
+            // `#5003+[#11000+h+#10000+h]`); else the active edge.
+            let h = ctx.modal.reads.known(4111, span.lo).filter(|h| *h >= 1.0 && h.fract() == 0.0);
+            let named = h
+                .filter(|_| !ctx.opts.source.haas)
+                .and_then(|h| super::tool_data::length_edge(&ctx.opts.source.offsets, h as u32));
+            let edge = || match named {
+                Some((t, d)) => vec![Expr::num(f64::from(t), false, span), Expr::num(f64::from(d), false, span)],
+                None => vec![sys("P_TOOLNO", vec![], span), sys("P_TOOL", vec![], span)],
+            };
             let length = bin(BinOp::Add, sys("TC_DP3", edge(), span), sys("TC_DP12", edge(), span));
             let tip = sys("AA_IW", vec![Expr::new(ExprKind::Ident("Z".into()), span)], span);
             Some(Ok(bin(BinOp::Add, tip, length)))
