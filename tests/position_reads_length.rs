@@ -74,6 +74,9 @@ fn a_length_the_run_is_not_given_is_refused_naming_the_inputs() {
     assert!(err.contains("--set '#11001=…' --set '#10001=…'"), "{err}");
     let (_, err) = run(&f, &["--set", "#11001=100."]);
     assert!(err.contains("NC534") && err.contains("(--set '#10001=…')"), "{err}");
+    // X under G17 carries no length: read without the register.
+    let x = write(&d, "x.nc", "G0 X3. Y4. Z50.\nG43 H1 Z10.\n#1=#5041\n#2=#5021\nG49\nG0 X[#1+#2]\nM30\n");
+    assert!(run(&x, &[]).0.contains("move rapid X=6 Y=4 Z=10 f=-"), "{}", run(&x, &[]).1);
     let g18 = write(&d, "b.nc", "G18 G0 X0 Z50.\nG43 H1 Z10.\n#1=#5023\nM30\n");
     let (_, err) = run(&g18, &["--set", "#11001=100.", "--set", "#10001=0"]);
     assert!(err.contains("NC534") && err.contains("outside G17"), "{err}");

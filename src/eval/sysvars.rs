@@ -76,6 +76,11 @@ impl Interp<'_> {
     /// The length a current position read includes on Z, or the refusal naming why the run
     /// does not know it.
     fn current_length(&self, name: &str, axis: usize, span: Span) -> Result<f64, Fault> {
+        // Under G17 the length lies on Z only: the other axes need no register (not on a
+        // Haas, whose offset tables the run does not take).
+        if axis != 2 && self.m.modal.plane == super::trace::Plane::XY && !self.m.haas {
+            return Ok(0.0);
+        }
         let length = if self.m.fanuc { self.m.length_offset() } else { self.m.edge_length() };
         match length {
             Ok(l) => Ok(if axis == 2 { l } else { 0.0 }),
