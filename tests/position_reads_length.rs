@@ -207,3 +207,20 @@ fn sinumerik_to_fanuc_reads_the_tip_as_the_block_end_position_under_an_edge() {
     assert_eq!(code, 0, "{o}{err}");
     assert!(o.contains("#100=#5043\n"), "{o}");
 }
+
+/// On a Haas profile the offset tables are not the tool data: `#5043` under G43 is refused
+/// by name (NC644) instead of a translation the check could not prove.
+#[test]
+fn a_haas_current_z_under_g43_is_refused() {
+    let d = scratch("haas");
+    std::fs::write(d.join("nctrans.toml"), "[fanuc]\nseries = \"haas\"\n").expect("write");
+    write(&d, "O1.nc", "O1\nT1 M6\nG0 G90 G54 X0 Y0\nG43 H1 Z50.\n#1=#5043\nG0 X#1\nG49\nM30\n");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .current_dir(&d)
+        .args(["O1.nc", "--to", "sinumerik", "-o", "out/"])
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("NC644") && err.contains("Haas"), "{err}");
+}

@@ -9,7 +9,7 @@
 //! in force but is not known on every path (or the read's block selects it), refused
 //! (NC643). `#5023` (machine coordinates) needs nothing: Siemens `$AA_IM` holds the edge's
 //! length as FANUC holds the offset; the other axes carry no length. G44 itself is refused
-//! by `comp` (NC474).
+//! by `comp` (NC474); on a Haas profile, whose offset tables are not the tool data, NC644.
 
 use super::probe_length::{may_flow, selects_length};
 use super::vacancy::{flatten, Node};
@@ -17,6 +17,9 @@ use super::*;
 
 /// The diagnostic of a `#5043` read where the length compensation is not settled.
 pub const UNSETTLED: &str = "NC643";
+
+/// The diagnostic of a `#5043` read under G43/G44 on a Haas profile.
+pub const HAAS: &str = "NC644";
 
 /// Per block (and loop condition) of a program, in text order: its start and whether
 /// G43/G44 may be in force there (on entry, or from the block's own words).
@@ -64,6 +67,14 @@ fn sys(name: &str, indices: Vec<Expr>, span: Span) -> Expr {
 pub fn read(ctx: &mut Ctx, span: Span) -> Option<Result<Expr, Vec<Stmt>>> {
     if !ctx.modal.lengths.may(span.lo) {
         return None;
+    }
+    if ctx.opts.source.haas && ctx.modal.reads.known(4008, span.lo) != Some(49.0) {
+        let message = "#5043 (the current Z position, which includes the tool length offset) read where G43/G44 may \
+                       be in force on a Haas profile cannot be translated: the Haas offset tables (#2001+) are not \
+                       the tool data the edge's $TC_DP3/$TC_DP12 are written from, so the length cannot be proven";
+        let hint = "read the block end position #5003 (the tip, no offset), or cancel the offset (G49) before the read";
+        let what = "#5043 under G43/G44 on a Haas profile";
+        return Some(Err(ctx.refuse(HAAS, span, message, what, hint).into_iter().collect()));
     }
     match ctx.modal.reads.known(4008, span.lo) {
         Some(49.0) => None,
