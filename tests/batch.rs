@@ -451,9 +451,6 @@ const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     // PROC … SAVE: the FANUC macro reads its caller's modal G codes (#4001..) on entry and
     // selects them again with G#t words before M99; Sinumerik has no computed G code.
     ("subprogram-proc-var.nc", "NC363"),
-    // The FANUC output keeps the source's `nctrans: set $TC_DP3[7,1]=…` lines as written
-    // (translate::to_fanuc::inputs): run alone, the FANUC file cannot take Siemens names.
-    ("edge-position-read.nc", "NC407"),
 ];
 
 /// Files that verify in each leg but, run alone, do not come back the same, and why: each leg
@@ -472,10 +469,6 @@ const FANUC_ROUND_TRIP_DIFFERS: &[(&str, &str)] = &[
     // them): its Siemens form relies on them, and the is-set flag of Z becomes a parameter of
     // its own on the way back.
     ("macros/o9200.nc", "a macro run alone without the arguments its callers pass"),
-    // Each leg verifies it (with the H5 length of its header lines); back on FANUC the header
-    // keeps the Siemens names `$TC_DP3[5,1]` (translate::to_fanuc::inputs), which a FANUC run
-    // alone cannot take (NC407).
-    ("probe-bore-g43-position.nc", "its header inputs come back in Siemens names"),
 ];
 
 /// Runs one direction over `input` and checks that exactly the `refused` files (path under
