@@ -178,9 +178,9 @@ fn constructs_without_a_counterpart_are_refused_by_name() {
 }
 
 /// FANUC's current and skip positions include the tool length offset, Siemens machine
-/// positions the tool length; the evaluator keeps programmed positions, so such reads under
+/// positions the tool length; where the run is not given the length, such reads under
 /// compensation are refused by name (and so the translations are never called equivalent
-/// where the real values differ).
+/// where the real values differ); with it, tests/position_reads_length.rs.
 #[test]
 fn position_reads_that_would_hold_a_tool_length_are_refused() {
     let d = scratch("comp-reads");
@@ -188,7 +188,7 @@ fn position_reads_that_would_hold_a_tool_length_are_refused() {
         ("a.nc", "G0 X0\nG43 H1 Z10.\n#1=#5043\nM30\n", "#5043 read under G43/G44"),
         ("b.nc", "G0 X0\nG43 H1 Z10.\n#1=#5023\nM30\n", "#5023 read under G43/G44"),
         ("c.nc", "G0 X0\nG43 H1 Z10.\nG31 Z0 F100.\nG49\n#1=#5063\nM30\n", "#5063 read under G43/G44"),
-        ("d.mpf", "T1 M6 D1\nG0 X0\nR1=$AA_IM[X]\nM30\n", "$AA_IM read under a cutting edge"),
+        ("d.mpf", "T1 M6 D1\nG0 X0\nR1=$AA_IM[Z]\nM30\n", "$AA_IM read under a cutting edge"),
         ("e.mpf", "G0 X0 Y0\nG41 G1 X10 F100\nR1=$AA_IW[X]\nM30\n", "$AA_IW read under G41/G42"),
     ];
     for (name, text, what) in cases {

@@ -37,31 +37,54 @@ impl Interp<'_> {
         )
     }
 
-    /// Refuses a position read whose value holds what the evaluator does not model (the
-    /// trace keeps the programmed contour, compensation by register only): the tool length
-    /// (FANUC `#5021+`, `#5041+`, `#5061+` under G43/G44 include the offset; Siemens
-    /// machine positions `$AA_IM`, `$AA_MM` with a cutting edge active) or the radius offset
-    /// path (current positions under G41/G42). docs/semantics.md, Probing and position reads.
-    fn comp_guard(&self, name: &str, length: bool, radius: bool, span: Span) -> Result<(), Fault> {
-        let why = if length {
-            Some(if self.m.fanuc {
-                "G43/G44 (the value includes the tool length offset)"
-            } else {
-                "a cutting edge D active (machine coordinates include the tool length)"
-            })
-        } else if radius && self.m.comp.side.is_some() {
-            Some("G41/G42 (the tool centre stands off the programmed contour)")
-        } else {
-            None
-        };
-        match why {
+    /// Refuses a current position read under G41/G42, whose tool centre stands off the
+    /// programmed contour the trace keeps (docs/semantics.md, Probing and position reads).
+    fn radius_guard(&self, name: &str, span: Span) -> Result<(), Fault> {
+        match self.m.comp.side {
             None => Ok(()),
-            Some(why) => Err(Fault::error(
-                Diagnostic::error("NC534", format!("{name} read under {why} is not modelled"))
-                    .primary(self.file(), span, "read here")
-                    .note("the evaluator keeps programmed positions; tool lengths and radii are machine data")
-                    .hint("read the position with the compensation cancelled (G49 / D0, G40), or the programmed end point (#5001+, $P_EP)"),
+            Some(_) => Err(Fault::error(
+                Diagnostic::error(
+                    "NC534",
+                    format!("{name} read under G41/G42 (the tool centre stands off the programmed contour) is not modelled"),
+                )
+                .primary(self.file(), span, "read here")
+                .note("the evaluator keeps programmed positions; the tool centre path of radius compensation is not modelled")
+                .hint("read the position with the radius compensation cancelled (G40), or the programmed end point (#5001+, $P_EP)"),
             )),
+        }
+    }
+
+    /// A current position read under a tool length (FANUC G43/G44, a Siemens edge) whose
+    /// value the run does not know: `why` from `Machine::length_offset`/`edge_length`.
+    fn current_length_unknown(&self, name: &str, why: &str, span: Span) -> Fault {
+        let (under, holds) = if self.m.fanuc {
+            ("G43/G44", "FANUC's current positions include the tool length offset")
+        } else {
+            (
+                "a cutting edge D active",
+                "Siemens machine positions are the tool carrier's, the tip plus the edge's length",
+            )
+        };
+        Fault::error(
+            Diagnostic::error("NC534", format!("{name} read under {under} (the value includes the tool length) {why}"))
+                .primary(self.file(), span, "read here")
+                .note(format!("{holds} (docs/semantics.md, Probing and position reads)"))
+                .hint(format!("give the length: {}", self.m.length_inputs())),
+        )
+    }
+
+    /// The length a current position read includes on Z, or the refusal naming why the run
+    /// does not know it.
+    fn current_length(&self, name: &str, axis: usize, span: Span) -> Result<f64, Fault> {
+        // Under G17 the length lies on Z only: the other axes need no register (not on a
+        // Haas, whose offset tables the run does not take).
+        if axis != 2 && self.m.modal.plane == super::trace::Plane::XY && !self.m.haas {
+            return Ok(0.0);
+        }
+        let length = if self.m.fanuc { self.m.length_offset() } else { self.m.edge_length() };
+        match length {
+            Ok(l) => Ok(if axis == 2 { l } else { 0.0 }),
+            Err(why) => Err(self.current_length_unknown(name, &why, span)),
         }
     }
 
@@ -71,7 +94,7 @@ impl Interp<'_> {
             Diagnostic::error("NC534", format!("#{n} read under G43/G44 (the value includes the tool length offset) {why}"))
                 .primary(self.file(), span, "read here")
                 .note("FANUC keeps the skip position with the tool length offset in force at the G31 (docs/semantics.md, Probing)")
-                .hint("give the H register's geometry and wear (--set '#11001=…' --set '#10001=…'), or probe under G49"),
+                .hint(format!("give the length: {}; or probe under G49", self.m.length_inputs())),
         )
     }
 
@@ -177,20 +200,26 @@ impl Interp<'_> {
                 let i = (n - 5061) as usize;
                 self.in_unit(m.probe.skip[i]) + if i == 2 { length } else { 0.0 }
             }
+            // The current positions include the tool length offset (F-POS): G43 adds the H
+            // register on Z, G44 subtracts it, where the run knows it.
             5001..=5009 | 5041..=5049 => {
-                if n >= 5041 {
-                    self.comp_guard(&format!("#{n}"), m.comp.length_g != 490, true, span)?;
-                }
                 let axis = ((n - 1) % 20) as usize;
+                let length = if n >= 5041 {
+                    self.radius_guard(&format!("#{n}"), span)?;
+                    self.current_length(&format!("#{n}"), axis, span)?
+                } else {
+                    0.0
+                };
                 if m.transforms() {
                     return Err(self.unmodelled(&format!("#{n} under a rotated, scaled or mirrored frame"), span));
                 }
-                self.in_unit(m.work_pos(axis))
+                self.in_unit(m.work_pos(axis) + length)
             }
             5021..=5029 => {
-                self.comp_guard(&format!("#{n}"), m.comp.length_g != 490, true, span)?;
+                self.radius_guard(&format!("#{n}"), span)?;
                 let axis = ((n - 1) % 20) as usize;
-                self.in_unit(m.pos[axis])
+                let length = self.current_length(&format!("#{n}"), axis, span)?;
+                self.in_unit(m.pos[axis] + length)
             }
             n => match Self::offset_var(n) {
                 Some((t, a)) => self.in_unit(m.offsets[t][a]),
@@ -288,7 +317,9 @@ impl Interp<'_> {
             "AA_MW" | "AA_MM" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
                 if name == "AA_MM" {
-                    self.comp_guard("$AA_MM", self.m.probe.with_length, false, span)?;
+                    if let Err(why) = &self.m.probe.edge_length {
+                        return Err(self.current_length_unknown("$AA_MM", why, span));
+                    }
                 }
                 let p = &self.m.probe;
                 self.in_unit(if name == "AA_MW" { p.meas_w[a] } else { p.meas_m[a] })
@@ -309,7 +340,7 @@ impl Interp<'_> {
             "AA_IW" | "P_EP" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
                 if name == "AA_IW" {
-                    self.comp_guard("$AA_IW", false, true, span)?;
+                    self.radius_guard("$AA_IW", span)?;
                 }
                 if self.m.turns_axis(a) {
                     return Err(self.unmodelled(&format!("${name} under a rotated, scaled or mirrored frame"), span));
@@ -318,8 +349,10 @@ impl Interp<'_> {
             }
             "AA_IM" => {
                 let a = self.axis_arg(idx.first(), name, span)?;
-                self.comp_guard("$AA_IM", self.m.comp.edge != 0, true, span)?;
-                self.in_unit(self.m.pos[a])
+                // The tool carrier reference point: the tip plus the edge's length on Z (S-MEAS).
+                self.radius_guard("$AA_IM", span)?;
+                let length = self.current_length("$AA_IM", a, span)?;
+                self.in_unit(self.m.pos[a] + length)
             }
             "P_UIFR" => {
                 let f = self.frame_index(idx.first(), span)?;

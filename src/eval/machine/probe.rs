@@ -26,9 +26,10 @@ pub struct Probe {
     pub meas_w: [f64; 9],
     /// Siemens `$AC_MEA[1]`, `$AC_MEA[2]`: the probe switched in the last measuring block.
     pub mea: [bool; 2],
-    /// Siemens: the kept machine position holds a tool length the evaluator does not know
-    /// (`$AA_MM` with a cutting edge active): reading it is refused.
-    pub with_length: bool,
+    /// Siemens: the length of the cutting edge active at the last hit, which the kept
+    /// machine position `$AA_MM[Z]` holds, or why the run does not know it (then `$AA_MM`
+    /// reads are refused, NC534).
+    pub edge_length: Result<f64, String>,
     /// FANUC: the tool length offset `#5063` includes (G43 +, G44 −, the H register's
     /// geometry plus wear at the G31, on Z), or why it is not known (then `#5061+` reads are
     /// refused, NC534). docs/semantics.md, Probing and position reads.
@@ -44,7 +45,7 @@ impl Default for Probe {
             meas_m: [0.0; 9],
             meas_w: [0.0; 9],
             mea: [false; 2],
-            with_length: false,
+            edge_length: Ok(0.0),
             length: Ok(0.0),
         }
     }
@@ -163,11 +164,13 @@ impl Machine {
         let n = probe.unwrap_or(1).clamp(1, 2);
         self.probe.mea[n - 1] = hit.is_some();
         if let Some(at) = hit {
-            self.probe.with_length = self.comp.edge != 0;
+            let length = self.edge_length();
             for i in (0..9).filter(|&i| programmed[i]) {
-                self.probe.meas_m[i] = at[i];
+                // The machine position is the tool carrier's: the tip plus the edge's length on Z.
+                self.probe.meas_m[i] = at[i] + if i == 2 { *length.as_ref().unwrap_or(&0.0) } else { 0.0 };
                 self.probe.meas_w[i] = at[i] - self.active_offset(i);
             }
+            self.probe.edge_length = length;
         }
     }
 }
@@ -196,6 +199,54 @@ impl Machine {
             (g, _) => Err(format!(
                 "with the length of H{h} not given (--set '#{}=…')",
                 if g.is_none() { 11000 + h } else { 10000 + h }
+            )),
+        }
+    }
+
+    /// The inputs that give the run the length a position read includes: the H register's
+    /// geometry and wear (FANUC), the active edge's length 1 and its wear (Siemens).
+    pub fn length_inputs(&self) -> String {
+        let (a, b) = if self.fanuc {
+            let h = self.h as i64;
+            (format!("#{}", 11000 + h), format!("#{}", 10000 + h))
+        } else {
+            let t = match &self.tool {
+                Some(ToolId::Number(t)) => crate::eval::value::fmt_num(*t),
+                _ => "t".into(),
+            };
+            let d = self.comp.edge;
+            (format!("$TC_DP3[{t},{d}]"), format!("$TC_DP12[{t},{d}]"))
+        };
+        format!("--set '{a}=…' --set '{b}=…', or header lines `nctrans: set {a}=…` and `nctrans: set {b}=…`")
+    }
+
+    /// The length of the Siemens cutting edge active (length 1 `$TC_DP3` plus its wear
+    /// `$TC_DP12` of the tool in the spindle, S-DP), which machine positions (`$AA_IM`,
+    /// `$AA_MM`) hold on Z under G17: the tool carrier reference point stands the length
+    /// above the tip. `Err` says why the run does not know it.
+    pub fn edge_length(&self) -> Result<f64, String> {
+        let d = self.comp.edge;
+        if d == 0 {
+            return Ok(0.0);
+        }
+        if self.modal.plane != crate::eval::trace::Plane::XY {
+            return Err("outside G17 (length 1 of a milling tool lies on the axis normal to the plane)".into());
+        }
+        if self.modal.sys_inch() {
+            return Err("under G700 (the edge data are kept in the basic system)".into());
+        }
+        let t = match &self.tool {
+            Some(ToolId::Number(t)) => *t,
+            Some(ToolId::Name(n)) => return Err(format!("with the tool {n:?} named (its edge data are numbered)")),
+            None => return Err(format!("with edge D{d} active and no tool in the spindle")),
+        };
+        let tn = crate::eval::value::fmt_num(t);
+        let value = |k: u32| self.tool_data.get(&format!("$TC_DP{k}[{tn},{d}]")).copied();
+        match (value(3), value(12)) {
+            (Some(g), Some(w)) => Ok(g + w),
+            (g, _) => Err(format!(
+                "with the length of edge D{d} of tool {tn} not given (--set '$TC_DP{}[{tn},{d}]=…')",
+                if g.is_none() { 3 } else { 12 }
             )),
         }
     }

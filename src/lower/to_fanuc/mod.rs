@@ -26,6 +26,7 @@ pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
 pub mod polar;
+pub mod position_length;
 pub mod print;
 pub mod probe;
 pub mod probe_length;
@@ -219,6 +220,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     if !measuring.is_empty() {
         probe_length::check(ctx, prog);
     }
+    position_length::run(prog);
     words::run(ctx, prog, info);
     probe::put(prog, &measuring);
     comp::run(ctx, prog, info);

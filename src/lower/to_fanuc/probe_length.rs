@@ -38,13 +38,24 @@ fn reads_z_skip(e: &Expr, out: &mut Vec<Span>) {
     }
 }
 
+/// Whether a cutting edge may be active somewhere in `prog`: a block selects one (a D other
+/// than `D0`, a tool change without `D0`), or it is a `PROC` (run under its caller's edge).
+pub fn may_select_edge(prog: &Program) -> bool {
+    let mut edge = prog.head.is_some() && matches!(prog.name, Some(ProgName::Name(_)));
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            edge |= selects_edge(&b.items);
+        }
+    });
+    edge
+}
+
 /// Refuses the `#5063` reads of `prog` (after `probe::take`) where an edge may be active.
 pub fn check(ctx: &mut Ctx, prog: &Program) {
     let mut reads = Vec::new();
-    let mut edge = prog.head.is_some() && matches!(prog.name, Some(ProgName::Name(_)));
+    let edge = may_select_edge(prog);
     crate::ir::visit::walk_stmts(&prog.body, &mut |s| match &s.kind {
         StmtKind::Block(b) => {
-            edge |= selects_edge(&b.items);
             for it in &b.items {
                 for e in crate::ir::visit::item_exprs(it) {
                     reads_z_skip(e, &mut reads);

@@ -263,6 +263,10 @@ fn lower_expr(ctx: &mut Ctx, e: &mut Expr, marks: &mut Vec<Stmt>) {
         ExprKind::Vacant => Expr::num(0.0, false, span),
         ExprKind::Var(v) => match v.kind {
             VarKind::Hash(0) => Expr::num(0.0, false, span),
+            VarKind::Hash(5043) if let Some(r) = super::position_length::read(ctx, v.span) => r.unwrap_or_else(|m| {
+                marks.extend(m);
+                Expr::num(0.0, false, span)
+            }),
             VarKind::Hash(n) => {
                 match super::varmap::map_hash(ctx, n, v.span).or_else(|| super::words::system_var(n, v.span)) {
                     Some(k) => var_expr(k, v.span),

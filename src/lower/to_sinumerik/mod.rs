@@ -46,6 +46,7 @@ pub mod modal;
 pub mod modal_flow;
 pub mod modal_reads;
 pub mod polar;
+pub mod position_length;
 pub mod print;
 pub mod probe;
 pub mod probe_length;
@@ -441,6 +442,7 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     let start = (plan.start_inch, plan.start_incremental, plan.start_motion);
     ctx.modal = modal::ModalScan::new(&body, main, start, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
+    ctx.modal.lengths = position_length::Lengths::new(&body, main);
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);

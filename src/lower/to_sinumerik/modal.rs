@@ -37,6 +37,8 @@ pub struct ModalScan {
     /// The modal information values (`#4001`.., D, H, T) the program itself has set at
     /// each block, for the reads that become constants (`modal_reads`; set beside `new`).
     pub reads: super::modal_reads::Reads,
+    /// Where G43/G44 may be in force, for the `#5043` reads (`position_length`).
+    pub lengths: super::position_length::Lengths,
     /// What the paths to the program's ends (M99, M30, M2, the last block) agree on;
     /// `None` where no end is reached (or the scan did not settle: [`State::UNKNOWN`]).
     exit: Option<State>,
@@ -397,6 +399,7 @@ impl ModalScan {
             frames,
             homes,
             reads: Default::default(),
+            lengths: Default::default(),
             exit: if settled { exit } else { Some(State::UNKNOWN) },
         }
     }

@@ -192,6 +192,18 @@ impl Reads {
         Reads { at }
     }
 
+    /// The value of `#n` (one of [`VARS`]: a G group's code, D, H or T) every path to the
+    /// block of the expression at `lo` has set, `None` where not known or where that block
+    /// sets it itself.
+    pub fn known(&self, n: u32, lo: u32) -> Option<f64> {
+        let field = VARS.iter().position(|v| v.0 == n)?;
+        let (_, s, own) = self.entry(lo)?;
+        if own & (1 << field) != 0 {
+            return None;
+        }
+        s.and_then(|s| s[field])
+    }
+
     /// The entry of the block (or loop condition) an expression starting at `lo` lies in.
     fn entry(&self, lo: u32) -> Option<&(u32, Option<State>, u16)> {
         let i = self.at.partition_point(|a| a.0 <= lo);

@@ -6,7 +6,7 @@
 //! read: G43/G44 may be in force where some path reaches the G31 through one (or through a
 //! call, or from the caller's modes in a called program) without a G49 after it.
 
-use super::vacancy::{flatten, succs, Node};
+use super::vacancy::{flatten, succs, Flat, Node};
 use super::*;
 
 /// The diagnostic of a skip position read under tool length compensation.
@@ -36,25 +36,15 @@ fn after(items: &[Item], may: bool) -> bool {
     }
 }
 
-/// Refuses each G31 of `body` that G43/G44 may be in force at (`main`: the program starts
-/// in G49, power-on; a called one in its caller's mode). Called only when the program reads
-/// `#5061+`.
-pub fn check(ctx: &mut Ctx, body: &[Stmt], main: bool) {
-    let flat = flatten(body);
+/// Whether G43/G44 may be in force entering each node of `flat` (`main`: the program starts
+/// in G49, power-on; a called one in its caller's mode), and whether the node is reached.
+pub(super) fn may_flow(flat: &Flat, main: bool) -> (Vec<bool>, Vec<bool>) {
     let len = flat.nodes.len();
-    if len == 0 {
-        return;
-    }
-    // Under G66 the macro runs after every later move, where it may select G43.
-    let mut modal_call = false;
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            modal_call |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66));
-        }
-    });
-    // `may[i]`: G43/G44 may be in force entering node i.
-    let mut may = vec![modal_call; len];
+    let mut may = vec![false; len];
     let mut seen = vec![false; len];
+    if len == 0 {
+        return (may, seen);
+    }
     let mut stack = vec![(0usize, !main)];
     while let Some((i, m)) = stack.pop() {
         if seen[i] && (may[i] || !m) {
@@ -63,22 +53,35 @@ pub fn check(ctx: &mut Ctx, body: &[Stmt], main: bool) {
         seen[i] = true;
         may[i] |= m;
         let out = match &flat.nodes[i] {
-            Node::Items(items) => modal_call || after(items, may[i]),
+            Node::Items(items) => after(items, may[i]),
             _ => may[i],
         };
         // A block that may be skipped (`/`) passes its entry state on as well.
         let skip = flat.blocks[i].is_some_and(|b| b.1);
-        for j in succs(&flat, i) {
+        for j in succs(flat, i) {
             if j < len {
                 stack.push((j, out || (skip && may[i])));
             }
         }
     }
-    for i in (0..len).filter(|&i| seen[i]) {
+    (may, seen)
+}
+
+/// Whether a block's own words select G43/G44.
+pub(super) fn selects_length(items: &[Item]) -> bool {
+    g_codes(items).iter().any(|g| matches!(g, 430 | 440))
+}
+
+/// Refuses each G31 of `body` that G43/G44 may be in force at (`main`: the program starts
+/// in G49, power-on; a called one in its caller's mode). Called only when the program reads
+/// `#5061+`.
+pub fn check(ctx: &mut Ctx, body: &[Stmt], main: bool) {
+    let flat = flatten(body);
+    let (may, seen) = may_flow(&flat, main);
+    for i in (0..flat.nodes.len()).filter(|&i| seen[i]) {
         let Node::Items(items) = &flat.nodes[i] else { continue };
         let Some(g31) = items.iter().find(|it| is_g31(it)) else { continue };
-        let own = g_codes(items).iter().any(|g| matches!(g, 430 | 440));
-        if may[i] || own {
+        if may[i] || selects_length(items) {
             ctx.refuse(
                 UNDER_LENGTH,
                 g31.span,

@@ -37,6 +37,12 @@ fn edge_of(offsets: &OffsetMap, field: ToolField, reg: u32) -> Option<(u32, u32)
     }
 }
 
+/// The edge (tool, edge number) whose length registers are H `reg`, `None` when no edge has
+/// them (for the length a `#5043` read includes, `position_length`).
+pub fn length_edge(offsets: &OffsetMap, reg: u32) -> Option<(u32, u32)> {
+    edge_of(offsets, ToolField::LengthGeometry, reg)
+}
+
 /// `$TC_DP3[12,1]` for `#11012` (an input line's variable), `None` when no edge has it.
 pub fn edge_var(n: u32, offsets: &OffsetMap) -> Option<String> {
     let (field, reg) = fanuc_field(i64::from(n))?;
