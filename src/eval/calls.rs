@@ -550,6 +550,22 @@ impl Interp<'_> {
         }
     }
 
+    /// The frame of an interrupt routine (`interrupt.rs`): one pass, not modal.
+    pub(super) fn push_call_frame(&mut self, code: usize, kind: FrameKind, span: Span) -> Result<(), Fault> {
+        self.push_frame(code, kind, 1, span, false)
+    }
+
+    /// An interrupt routine takes no arguments: its parameters start as a call without
+    /// arguments gives them.
+    pub(super) fn bind_no_args(&mut self, code: usize, span: Span) -> Result<(), Fault> {
+        self.bind_params(code, &[], &[], span)
+    }
+
+    /// The fault of a routine not found.
+    pub(super) fn missing_callee(&mut self, name: &CalleeName, span: Span) -> Fault {
+        self.missing(name, span)
+    }
+
     /// A G66/MCALL modal call after a block that moved.
     pub fn modal_trigger(&mut self, mc: &ModalCall, pc: usize, span: Span) -> Result<Flow, Fault> {
         if mc.repeat == 0 {

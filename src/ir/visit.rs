@@ -288,6 +288,16 @@ pub fn called_names(unit: &Unit) -> Vec<String> {
                             v.push(n.to_ascii_uppercase());
                         }
                     }
+                    // An interrupt routine is a subprogram the program names (`SETINT`).
+                    if let ItemKind::Instruction { name } = &it.kind {
+                        if let Some(Ok(crate::eval::interrupt::IntOp::Assign {
+                            routine: crate::eval::calls::CalleeName::Name(r),
+                            ..
+                        })) = crate::eval::interrupt::op_of(name)
+                        {
+                            v.push(r);
+                        }
+                    }
                 }
             }
         });
