@@ -144,6 +144,10 @@ pub struct State {
     slots: std::collections::BTreeMap<u32, Slot>,
     /// Every assigning instruction met: its text, place and whether its routine ran.
     places: Vec<(String, FileId, Span, bool)>,
+    /// The routine each of `places` assigns.
+    place_routines: Vec<CalleeName>,
+    /// The routines that ran (from any of their assignments).
+    ran: Vec<CalleeName>,
     /// The frame depth of a routine running (its frame and those it calls).
     running: Option<usize>,
 }
@@ -203,6 +207,7 @@ impl Interp<'_> {
                     Some(i) => i,
                     None => {
                         self.ints.places.push((name.to_string(), file, span, false));
+                        self.ints.place_routines.push(routine.clone());
                         self.ints.places.len() - 1
                     }
                 };
@@ -287,6 +292,7 @@ impl Interp<'_> {
         if let Some(pl) = self.ints.places.get_mut(slot.place) {
             pl.3 = true;
         }
+        self.ints.ran.push(slot.routine.clone());
         self.frames.last_mut().ok_or_else(super::exec::internal)?.pc = pc + 1;
         // FANUC: the interrupt program has its own local variables, like a G65 macro.
         let kind = if self.fanuc { FrameKind::Macro } else { FrameKind::Proc };
@@ -298,11 +304,13 @@ impl Interp<'_> {
         Ok(Flow::Switched)
     }
 
-    /// The end of the run: every assignment whose routine never ran is a warning (NC566),
-    /// which a check counts as not compared.
+    /// The end of the run: every assignment whose routine never ran (from it or another
+    /// assignment of the same routine) is a warning (NC566), which a check counts as not
+    /// compared.
     pub(super) fn interrupt_finish(&mut self) {
-        for (name, file, span, ran) in std::mem::take(&mut self.ints.places) {
-            if !ran {
+        let routines = std::mem::take(&mut self.ints.place_routines);
+        for (i, (name, file, span, ran)) in std::mem::take(&mut self.ints.places).into_iter().enumerate() {
+            if !ran && !routines.get(i).is_some_and(|r| self.ints.ran.contains(r)) {
                 let msg = format!(
                     "{name}: the run assumes the interrupt input never switches while the routine is enabled, so \
                      its routine does not run (give --interrupt N@K to run it)"
