@@ -155,3 +155,12 @@ fn fanuc_to_siemens_is_proven_with_the_interrupt_fired() {
     let (out, err, _) = nctrans(&dir, &["run", "part.nc"]);
     assert!(!out.contains("Z=50") && err.contains("M96 is machine-specific"), "{out}{err}");
 }
+
+#[test]
+fn reposa_in_a_routine_is_refused() {
+    let dir = workdir("reposa");
+    std::fs::write(dir.join("part.mpf"), MAIN).expect("write main");
+    std::fs::write(dir.join("RETRACT.SPF"), "PROC RETRACT\nG0 Z50\nREPOSA\nM17\n").expect("write routine");
+    let (_, err, ok) = nctrans(&dir, &["run", "part.mpf", "--interrupt", "1@2"]);
+    assert!(!ok && err.contains("NC639") && err.contains("REPOS"), "{err}");
+}

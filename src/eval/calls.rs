@@ -211,6 +211,18 @@ impl Interp<'_> {
     }
 
     fn missing(&mut self, name: &CalleeName, span: Span) -> Fault {
+        if matches!(name, CalleeName::Name(s) if ["REPOSA", "REPOSL", "REPOSQ", "REPOSQA", "REPOSH", "REPOSHA"].contains(&s.as_str()))
+        {
+            // Read as a bare name; it is the return to the interruption point of a routine.
+            let d = Diagnostic::error(
+                "NC639",
+                "REPOS (back to the point where an interrupt stopped the axes) is not modelled",
+            )
+            .primary(self.file(), span, "here")
+            .note("the evaluator runs an interrupt routine at the end of a block, where no move was cut short")
+            .hint("end the routine with M17: the program goes on with the block after the interrupted one");
+            return Fault::error(d);
+        }
         let shown = self.note_callee(name);
         let cycle = matches!(name, CalleeName::Name(s) if s.starts_with("CYCLE")
             || s.starts_with("POCKET") || s.starts_with("SLOT") || s.starts_with("HOLES")

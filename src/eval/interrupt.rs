@@ -10,6 +10,7 @@ use super::calls::CalleeName;
 use super::exec::{Flow, FrameKind, Interp};
 use super::fault::Fault;
 use crate::diag::Diagnostic;
+use crate::ir::ProgName;
 use crate::span::{FileId, Span};
 
 /// One switch of an interrupt input: input `input` switches on right after the `after`-th
@@ -48,82 +49,7 @@ pub fn header_interrupts(text: &str) -> Result<Vec<InterruptInput>, String> {
     super::input::header_words(text, "nctrans: interrupt", true).map(parse_interrupt).collect()
 }
 
-/// What an interrupt instruction does.
-#[derive(Clone, Debug, PartialEq)]
-pub enum IntOp {
-    /// `SETINT(n) PRIO=p NAME` (assigned and enabled), FANUC `M96 Pp` (input 1, priority 1).
-    /// `extra`: `LIFTFAST`, `BLSYNC` as written.
-    Assign { input: u32, prio: u32, routine: CalleeName, extra: Vec<String> },
-    /// `ENABLE(n)`.
-    Enable(u32),
-    /// `DISABLE(n)`, FANUC `M97`: the assignment stays.
-    Disable(u32),
-    /// `CLRINT(n)`: the assignment is deleted.
-    Clear(u32),
-}
-
-/// Reads an interrupt instruction as the readers keep it (`SETINT(3) PRIO=1 NAME`,
-/// `ENABLE(3)`, `M96 P9000`, `M97`). `None`: not an interrupt; `Err`: one whose input,
-/// priority or routine is not a constant the run can use.
-pub fn op_of(name: &str) -> Option<Result<IntOp, String>> {
-    if let Some(p) = name.strip_prefix("M96 P") {
-        return Some(match p.trim().parse::<u32>() {
-            Ok(n) => Ok(IntOp::Assign { input: 1, prio: 1, routine: CalleeName::Number(n), extra: vec![] }),
-            Err(_) => Err(format!("{name}: the interrupt program number must be a constant")),
-        });
-    }
-    if name == "M97" {
-        return Some(Ok(IntOp::Disable(1)));
-    }
-    // The readers keep the Siemens text as written (upper case): close the spaces around
-    // `(`, `)` and `=` so that each part is one word.
-    let mut t = name.to_string();
-    for (a, b) in [(" (", "("), ("( ", "("), (" )", ")"), (" =", "="), ("= ", "=")] {
-        while t.contains(a) {
-            t = t.replace(a, b);
-        }
-    }
-    let (head, rest) = t.split_once(')')?;
-    let (kw, n) = head.split_once('(')?;
-    if !matches!(kw, "SETINT" | "ENABLE" | "DISABLE" | "CLRINT") {
-        return None;
-    }
-    let Ok(input) = n.trim().parse::<u32>() else {
-        return Some(Err(format!("{name}: the input number must be a constant from 1 to 8")));
-    };
-    if !(1..=8).contains(&input) {
-        return Some(Err(format!("{name}: the input number must be a constant from 1 to 8")));
-    }
-    Some(match kw {
-        "ENABLE" => Ok(IntOp::Enable(input)),
-        "DISABLE" => Ok(IntOp::Disable(input)),
-        "CLRINT" => Ok(IntOp::Clear(input)),
-        _ => {
-            let (mut prio, mut routine, mut extra) = (None, None, Vec::new());
-            for w in rest.split_whitespace() {
-                if let Some(p) = w.strip_prefix("PRIO=") {
-                    prio = p.parse::<u32>().ok().filter(|p| (1..=128).contains(p));
-                    if prio.is_none() {
-                        return Some(Err(format!("{name}: PRIO must be a constant from 1 to 128")));
-                    }
-                } else if w == "LIFTFAST" || w == "BLSYNC" {
-                    extra.push(w.to_string());
-                } else if routine.is_none() && w.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_') {
-                    routine = Some(w.to_string());
-                } else {
-                    return Some(Err(format!(
-                        "{name}: '{w}' is neither PRIO=, the routine's name, LIFTFAST nor BLSYNC"
-                    )));
-                }
-            }
-            match (prio, routine) {
-                (Some(prio), Some(r)) => Ok(IntOp::Assign { input, prio, routine: CalleeName::Name(r), extra }),
-                (None, _) => Err(format!("{name}: SETINT needs PRIO=p")),
-                (_, None) => Err(format!("{name}: SETINT needs the name of the routine")),
-            }
-        }
-    })
-}
+pub use crate::ir::interrupt::{op_of, IntOp};
 
 /// One input's assignment.
 #[derive(Clone, Debug)]
@@ -190,6 +116,10 @@ impl Interp<'_> {
         };
         match op {
             IntOp::Assign { input, routine, extra, .. } => {
+                let routine = match routine {
+                    ProgName::Number(n) => CalleeName::Number(n),
+                    ProgName::Name(s) => CalleeName::Name(s.to_ascii_uppercase()),
+                };
                 if let Some(w) = extra.first() {
                     let d = Diagnostic::error("NC639", format!("{name}: {w} is not modelled"))
                         .primary(self.file(), span, "here")
@@ -318,5 +248,25 @@ impl Interp<'_> {
                 self.diags.push(Diagnostic::warning("NC566", msg).primary(file, span, "here"));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_switches_and_headers() {
+        assert_eq!(parse_interrupt("1@3").unwrap(), InterruptInput { input: 1, after: 3 });
+        assert_eq!(parse_interrupt(" 8 @ 12 ").unwrap(), InterruptInput { input: 8, after: 12 });
+        for bad in ["1", "0@1", "9@1", "1@0", "1@-2", "a@1", "1@x"] {
+            assert!(parse_interrupt(bad).is_err(), "{bad}");
+        }
+        let t = "O1\n(nctrans: interrupt 1@2 1@5)\nG0 X0\n(nctrans: interrupt 1@9)\n";
+        assert_eq!(header_interrupts(t).unwrap().len(), 2);
+        assert!(header_interrupts("; nctrans: interrupt 1\nG0 X0\n").is_err());
+        let s = State::new(vec![InterruptInput { input: 1, after: 5 }, InterruptInput { input: 2, after: 2 }]);
+        assert_eq!(s.pending[0].after, 2);
+        assert!(!s.due() && s.active());
     }
 }

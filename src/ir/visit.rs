@@ -290,10 +290,8 @@ pub fn called_names(unit: &Unit) -> Vec<String> {
                     }
                     // An interrupt routine is a subprogram the program names (`SETINT`).
                     if let ItemKind::Instruction { name } = &it.kind {
-                        if let Some(Ok(crate::eval::interrupt::IntOp::Assign {
-                            routine: crate::eval::calls::CalleeName::Name(r),
-                            ..
-                        })) = crate::eval::interrupt::op_of(name)
+                        if let Some(Ok(super::interrupt::IntOp::Assign { routine: ProgName::Name(r), .. })) =
+                            super::interrupt::op_of(name)
                         {
                             v.push(r);
                         }

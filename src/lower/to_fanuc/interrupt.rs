@@ -4,9 +4,8 @@
 //! FANUC has one interrupt signal, so only input 1 maps (docs/translation.md, "Interrupts").
 
 use super::Ctx;
-use crate::eval::calls::CalleeName;
-use crate::eval::interrupt::{op_of, IntOp};
-use crate::ir::{Addr, Expr, Item, ItemKind, Stmt, Word, WordValue};
+use crate::ir::interrupt::{op_of, IntOp};
+use crate::ir::{Addr, Expr, Item, ItemKind, ProgName, Stmt, Word, WordValue};
 use crate::span::Span;
 
 /// The FANUC words of one Siemens interrupt instruction, or the refusal (a marked line under
@@ -51,7 +50,7 @@ pub fn lower(ctx: &mut Ctx, name: &str, span: Span) -> Result<Vec<Item>, Option<
                  program the retract inside the routine",
             ))
         }
-        IntOp::Assign { routine: CalleeName::Name(r), .. } => match ctx.callees.get(&r) {
+        IntOp::Assign { routine: ProgName::Name(r), .. } => match ctx.callees.get(&r) {
             Some(c) => {
                 if ctx.int_routine.is_some_and(|n| n != c.number) {
                     ctx.int_routine_changes = true;
@@ -68,7 +67,7 @@ pub fn lower(ctx: &mut Ctx, name: &str, span: Span) -> Result<Vec<Item>, Option<
                 ))
             }
         },
-        IntOp::Assign { routine: CalleeName::Number(n), .. } => n,
+        IntOp::Assign { routine: ProgName::Number(n), .. } => n,
         IntOp::Enable(_) => match ctx.int_routine {
             Some(n) if !ctx.int_routine_changes => n,
             _ => {

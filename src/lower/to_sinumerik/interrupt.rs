@@ -4,15 +4,14 @@
 //! interrupts only where the source profile has `[fanuc] macro_interrupt = true`.
 
 use super::Ctx;
-use crate::eval::calls::CalleeName;
-use crate::eval::interrupt::{op_of, IntOp};
-use crate::ir::{Item, ItemKind, Stmt};
+use crate::ir::interrupt::{op_of, IntOp};
+use crate::ir::{Item, ItemKind, ProgName, Stmt};
 use crate::span::Span;
 
 /// The Siemens instruction of one FANUC interrupt instruction, or the refusal.
 pub fn lower(ctx: &mut Ctx, name: &str, span: Span) -> Result<Item, Option<Stmt>> {
     let text = match op_of(name) {
-        Some(Ok(IntOp::Assign { routine: CalleeName::Number(n), .. })) => match ctx.program_by_number(n) {
+        Some(Ok(IntOp::Assign { routine: ProgName::Number(n), .. })) => match ctx.program_by_number(n) {
             Some(i) => format!("SETINT(1) PRIO=1 {}", ctx.progs[i].name),
             None => {
                 return Err(ctx.refuse(
