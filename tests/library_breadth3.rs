@@ -224,7 +224,7 @@ fn a_batch_reports_the_look_ahead_settings_it_did_not_compare() {
     let (out, err, code) = nctrans(&d, &["--to", "fanuc", "-o", "out/", "in/", "--report", "r.json"]);
     assert_eq!(code, 0, "{out}{err}");
     let json = std::fs::read_to_string(d.join("r.json")).unwrap();
-    assert!(json.contains("\"not_compared\": {\"messages\": 0, \"look_ahead\": 2}"), "{json}");
+    assert!(json.contains("\"not_compared\": {\"messages\": 0, \"look_ahead\": 2, \"interrupts\": 0}"), "{json}");
     assert!(format!("{out}{err}").contains("2 look-ahead settings not compared"), "{out}{err}");
 }
 
