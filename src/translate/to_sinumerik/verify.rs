@@ -193,7 +193,7 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
     let interrupts = match crate::eval::header_interrupts(&db.get(fanuc_file).text) {
         Ok(p) => p,
         Err(e) => {
-            return failed(db, vec![Diagnostic::error("NC539", format!("bad `nctrans: interrupt` header line: {e}"))])
+            return failed(db, vec![Diagnostic::error("NC638", format!("bad `nctrans: interrupt` header line: {e}"))])
         }
     };
     in_a.extend(spec.extra_fanuc);
