@@ -567,6 +567,8 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     // Look-ahead settings have no event: the first run's are counted as not compared.
     let lookahead = eval::machine::lookahead::NOT_COMPARED;
     excluded.modes = outcome_a.diags.iter().filter(|d| d.code == lookahead).count() as u64;
+    // Interrupt routines that did not run (no switch given for them) were not compared either.
+    excluded.interrupts = outcome_a.diags.iter().filter(|d| d.code == "NC566").count() as u64;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),

@@ -56,6 +56,8 @@ pub struct FanucProfile {
     pub g73_return: f64,
     /// Parameter 5115: the clearance d of G83 (mm), for `run --expand-cycles`.
     pub g83_clearance: f64,
+    /// The machine has the custom macro interrupt (M96/M97, `Semantics::macro_interrupt`).
+    pub macro_interrupt: bool,
 }
 
 impl FanucProfile {
@@ -140,6 +142,7 @@ impl Default for Config {
                 compound_conditions: false,
                 g73_return: 0.6,
                 g83_clearance: 0.25,
+                macro_interrupt: false,
             },
             r_parameters: 300,
             cutting_edge_default: None,
@@ -175,7 +178,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 36] = [
+pub const KEYS: [(&str, &str, &str); 37] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -184,6 +187,7 @@ pub const KEYS: [(&str, &str, &str); 36] = [
     ("fanuc.compound_conditions", "--compound-conditions", "true or false"),
     ("fanuc.g73_return", "-", "a length in mm from 0 to 100 (parameter 5114)"),
     ("fanuc.g83_clearance", "-", "a length in mm from 0 to 100 (parameter 5115)"),
+    ("fanuc.macro_interrupt", "-", "true or false (the custom macro interrupt M96/M97 is set up)"),
     ("sinumerik.r_parameters", "-", "a number from 1 to 32535"),
     ("sinumerik.cycle83_retract", "-", "a length in mm from 0 to 100"),
     ("sinumerik.cycle83_clearance", "-", "a length in mm from 0 to 100"),
@@ -339,6 +343,7 @@ impl Config {
             }
             "fanuc.g73_return" => self.fanuc.g73_return = as_mm(key, v)?,
             "fanuc.g83_clearance" => self.fanuc.g83_clearance = as_mm(key, v)?,
+            "fanuc.macro_interrupt" => self.fanuc.macro_interrupt = as_bool(key, v)?,
             "sinumerik.cycle83_retract" => self.cycle83_retract = as_mm(key, v)?,
             "sinumerik.cycle83_clearance" => self.cycle83_clearance = as_mm(key, v)?,
             "sinumerik.write_file" => {
@@ -490,6 +495,7 @@ impl Config {
         s.haas = self.fanuc.series.starts_with("haas");
         s.offsets = self.offsets.clone();
         s.haas_ngc = self.fanuc.series == "haas-ngc";
+        s.macro_interrupt = self.fanuc.macro_interrupt && !s.haas;
         s
     }
 
@@ -556,6 +562,9 @@ compound_conditions = false
 g73_return = 0.6
 # parameter 5115, the clearance d of G83 (peck) in mm: where the rapid back into the hole stops.
 g83_clearance = 0.25
+# The custom macro interrupt (M96 P… enables the interrupt program for the UINT signal,
+# M97 disables it): true only where parameter 6003 and the wiring set it up on this machine.
+macro_interrupt = false
 
 [sinumerik]
 # MD28050: the number of R parameters (828D: 300).

@@ -67,6 +67,7 @@ fn streamed_check(path: &Path, out: &Path, o: &Options) -> Verdict {
         semantics: Some(sem.clone()),
         probe_contact: None,
         probes: Vec::new(),
+        interrupts: Vec::new(),
         expand_cycles: None,
     };
     let a = StreamSide {

@@ -377,6 +377,7 @@ fn streamed_verdict(main: &Path, o: &Options, edit: &dyn Fn(&str) -> String) -> 
         semantics: Some(sem.clone()),
         probe_contact: None,
         probes: Vec::new(),
+        interrupts: Vec::new(),
         expand_cycles: None,
     };
     let files = subs.iter().map(|f| (f.program.clone(), f.name.clone(), edit(&f.text))).collect();

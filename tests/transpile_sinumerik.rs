@@ -506,17 +506,29 @@ fn bless() -> bool {
     std::env::var_os("NCTRANS_BLESS").is_some_and(|v| v != "0")
 }
 
+/// Corpus programs for a machine with the custom macro interrupt (`[fanuc] macro_interrupt`).
+const MACRO_INTERRUPT: &[&str] = &["macro-interrupt.nc"];
+
+/// The profiles a corpus case is read, translated and proven with.
+fn corpus_profiles(rel: &str) -> nctrans::translate::to_sinumerik::verify::Profiles {
+    let mut p = nctrans::translate::to_sinumerik::verify::Profiles::default();
+    p.fanuc.macro_interrupt = MACRO_INTERRUPT.iter().any(|n| rel.ends_with(n));
+    p
+}
+
 /// What the corpus case translates to: file name → bytes (in the input's encoding and line
 /// ends), plus the rendered diagnostics.
 fn corpus_outputs(rel: &str) -> Vec<(String, Vec<u8>)> {
     let bytes = std::fs::read(root().join(rel)).expect("corpus file readable");
     let mut db = SourceDb::new();
     let loaded = nctrans::load(&mut db, rel, &bytes, None);
-    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    let profiles = corpus_profiles(rel);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions { semantics: profiles.fanuc.clone() });
     let mut files = Vec::new();
     let mut diags = parsed.diags.clone();
     if !nctrans::diag::has_errors(&parsed.diags) {
-        let tr = translate(&[&parsed.unit], &Options::default(), loaded.line_ending);
+        let opts = Options { source: profiles.fanuc, ..Options::default() };
+        let tr = translate(&[&parsed.unit], &opts, loaded.line_ending);
         diags.extend(tr.diags.iter().cloned());
         if !tr.has_errors() {
             for f in &tr.files {
@@ -603,6 +615,7 @@ struct Job {
     file: nctrans::span::FileId,
     unit: nctrans::ir::Unit,
     tr: Translation,
+    profiles: nctrans::translate::to_sinumerik::verify::Profiles,
 }
 
 fn job(rel: &str) -> Job {
@@ -610,9 +623,11 @@ fn job(rel: &str) -> Job {
     let mut db = SourceDb::new();
     let path = root().join(rel).display().to_string();
     let loaded = nctrans::load(&mut db, &path, &bytes, None);
-    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    let tr = translate(&[&parsed.unit], &Options::default(), loaded.line_ending);
-    Job { db, file: loaded.file, unit: parsed.unit, tr }
+    let profiles = corpus_profiles(rel);
+    let parsed = nctrans::parse(&db, loaded.file, Dialect::Fanuc, &ParseOptions { semantics: profiles.fanuc.clone() });
+    let opts = Options { source: profiles.fanuc.clone(), ..Options::default() };
+    let tr = translate(&[&parsed.unit], &opts, loaded.line_ending);
+    Job { db, file: loaded.file, unit: parsed.unit, tr, profiles }
 }
 
 /// The verdict of the main program's run and, as `nctrans --to sinumerik` proves them, of
@@ -620,9 +635,16 @@ fn job(rel: &str) -> Job {
 fn verdict(j: &Job, tr: &Translation) -> (nctrans::check::Verdict, String) {
     use nctrans::translate::called::{called_runs, combine, Combined, RunSettings};
     // A million blocks is far more than any corpus program needs; the endless one stops sooner.
-    let rep = nctrans::translate::to_sinumerik::verify::verify_with(&j.db, j.file, &j.unit, tr, "out", 1_000_000);
-    let profiles = nctrans::translate::to_sinumerik::verify::Profiles::default();
-    let settings = RunSettings { out_dir: "out", max_steps: 1_000_000, profiles: &profiles, set: &[] };
+    let rep = nctrans::translate::to_sinumerik::verify::verify_profiled(
+        &j.db,
+        j.file,
+        &j.unit,
+        tr,
+        "out",
+        1_000_000,
+        &j.profiles,
+    );
+    let settings = RunSettings { out_dir: "out", max_steps: 1_000_000, profiles: &j.profiles, set: &[] };
     let mut runs = vec![(String::new(), rep)];
     runs.extend(called_runs(&j.db, &[&j.unit], tr, &settings, true));
     match combine(runs) {

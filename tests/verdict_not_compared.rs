@@ -97,7 +97,10 @@ fn the_batch_summary_and_report_carry_the_count() {
         assert!(all.contains("not compared: 5 messages kept as comments (in 1 verified file(s))"), "{all}");
         let text = std::fs::read_to_string(&rep).expect("report");
         if report.ends_with("json") {
-            assert!(text.contains("\"not_compared\": {\"messages\": 5, \"look_ahead\": 0}"), "{text}");
+            assert!(
+                text.contains("\"not_compared\": {\"messages\": 5, \"look_ahead\": 0, \"interrupts\": 0}"),
+                "{text}"
+            );
             assert!(text.contains(VERDICT), "{text}");
         } else {
             assert!(text.contains(",5 messages kept as comments,"), "{text}");

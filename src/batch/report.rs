@@ -112,7 +112,7 @@ pub fn json(r: &BatchResult, target: &str, input: &str, output: &str) -> String 
         let outputs: Vec<String> = f.outputs.iter().map(|o| js(o)).collect();
         let _ = write!(
             s,
-            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"not_compared\": {{\"messages\": {}, \"look_ahead\": {}}}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
+            "    {{\"path\": {}, \"outputs\": [{}], \"status\": {}, \"summary\": {}, \"events\": {}, \"not_compared\": {{\"messages\": {}, \"look_ahead\": {}, \"interrupts\": {}}}, \"blocks\": {}, \"time_ms\": {:.3}, \"diagnostics\": [",
             js(&f.path),
             outputs.join(", "),
             js(f.status.as_str()),
@@ -120,6 +120,7 @@ pub fn json(r: &BatchResult, target: &str, input: &str, output: &str) -> String 
             opt_num(f.events),
             f.excluded.messages,
             f.excluded.modes,
+            f.excluded.interrupts,
             f.blocks,
             f.time.as_secs_f64() * 1000.0
         );
@@ -271,7 +272,7 @@ mod tests {
         let c = csv(&result());
         let rows: Vec<&str> = c.split("\r\n").collect();
         assert!(
-            j.contains("\"events\": 3, \"not_compared\": {\"messages\": 2, \"look_ahead\": 0}, \"blocks\": 4"),
+            j.contains("\"events\": 3, \"not_compared\": {\"messages\": 2, \"look_ahead\": 0, \"interrupts\": 0}, \"blocks\": 4"),
             "{j}"
         );
         assert_eq!(rows[0], "path,outputs,status,events,not_compared,blocks,time_ms,summary,diagnostics");

@@ -19,16 +19,21 @@ pub struct Excluded {
     /// `CYCLE832`, …: warning NC560, once per place): they have no trace event, so the two
     /// programs' settings were not compared.
     pub modes: u64,
+    /// Interrupt routines of the first run whose input never switched while they were
+    /// enabled (warning NC566, once per assigning instruction): they did not run, so
+    /// what they do was not compared.
+    pub interrupts: u64,
 }
 
 impl Excluded {
     pub fn is_empty(&self) -> bool {
-        self.messages == 0 && self.modes == 0
+        self.messages == 0 && self.modes == 0 && self.interrupts == 0
     }
 
     pub fn add(&mut self, other: Excluded) {
         self.messages += other.messages;
         self.modes += other.modes;
+        self.interrupts += other.interrupts;
     }
 
     /// What was not compared, for people: `2 messages kept as comments`, `1 look-ahead
@@ -44,6 +49,11 @@ impl Excluded {
             0 => {}
             1 => parts.push("1 look-ahead setting not compared".to_string()),
             n => parts.push(format!("{n} look-ahead settings not compared")),
+        }
+        match self.interrupts {
+            0 => {}
+            1 => parts.push("1 interrupt routine not compared (its input never switched)".to_string()),
+            n => parts.push(format!("{n} interrupt routines not compared (their inputs never switched)")),
         }
         (!parts.is_empty()).then(|| parts.join(", "))
     }

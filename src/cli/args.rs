@@ -25,6 +25,15 @@ pub struct EvalOpts {
     /// the file's `nctrans: probe` header lines). Moves beyond the list do not trigger.
     #[arg(long = "probe", value_name = "POINT|miss", value_parser = parse_probe)]
     pub probe: Vec<nctrans::eval::ProbeInput>,
+    /// Interrupt input N switches on right after the K-th motion event (move, arc, cycle,
+    /// home) of the run: 1@3 (repeatable; overrides the file's `nctrans: interrupt` header
+    /// lines). FANUC's one interrupt signal is input 1. Without it no input ever switches.
+    #[arg(long = "interrupt", value_name = "N@K", value_parser = parse_interrupt)]
+    pub interrupt: Vec<nctrans::eval::InterruptInput>,
+}
+
+fn parse_interrupt(s: &str) -> Result<nctrans::eval::InterruptInput, String> {
+    nctrans::eval::parse_interrupt(s)
 }
 
 fn parse_probe(s: &str) -> Result<nctrans::eval::ProbeInput, String> {
@@ -125,12 +134,21 @@ pub fn run_options(header: &str, name: &str, eval: &EvalOpts) -> Result<nctrans:
     } else {
         eval.probe.clone()
     };
+    let interrupts = if eval.interrupt.is_empty() {
+        nctrans::eval::header_interrupts(header).map_err(|e| {
+            eprintln!("error: {name}: bad `nctrans: interrupt` header: {e}");
+            ExitCode::from(2)
+        })?
+    } else {
+        eval.interrupt.clone()
+    };
     Ok(nctrans::eval::RunOptions {
         max_steps: eval.max_steps,
         inputs,
         semantics: None,
         probe_contact: eval.probe_contact,
         probes,
+        interrupts,
         expand_cycles: None,
     })
 }
@@ -140,6 +158,20 @@ pub fn run_options(header: &str, name: &str, eval: &EvalOpts) -> Result<nctrans:
 /// is run as its source is.
 pub fn shared_probes(eval: &EvalOpts, paths: [&PathBuf; 2]) -> Result<EvalOpts, ExitCode> {
     let mut out = eval.clone();
+    // Interrupt inputs the same way: `--interrupt`, else the first file's header lines
+    // (else the second's).
+    if eval.interrupt.is_empty() {
+        for path in paths {
+            let ints = nctrans::eval::header_interrupts(&String::from_utf8_lossy(&head_of(path))).map_err(|e| {
+                eprintln!("error: {}: bad `nctrans: interrupt` header: {e}", path.display());
+                ExitCode::from(2)
+            })?;
+            if !ints.is_empty() {
+                out.interrupt = ints;
+                break;
+            }
+        }
+    }
     if !eval.probe.is_empty() {
         return Ok(out);
     }
@@ -160,4 +192,14 @@ pub fn shared_probes(eval: &EvalOpts, paths: [&PathBuf; 2]) -> Result<EvalOpts, 
         }
     }
     Ok(out)
+}
+
+/// The start of a file, where its header lines are (a large file is streamed).
+fn head_of(path: &PathBuf) -> Vec<u8> {
+    let mut head = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        use std::io::Read;
+        let _ = f.take(1 << 16).read_to_end(&mut head);
+    }
+    head
 }

@@ -48,6 +48,14 @@ pub struct Semantics {
     /// 0.5 s, `G04 P500` 0.5 s); a FANUC `G04 P` is whole milliseconds (the evaluator refuses
     /// a written point there, NC513, and a computed P on a Haas, NC512: not settled).
     pub haas: bool,
+    /// FANUC: the machine has the custom macro interrupt (`[fanuc] macro_interrupt`): `M96
+    /// P…` enables the interrupt program P for the one interrupt signal (UINT), `M97`
+    /// disables it, the program returns with M99 to the block after the interrupted one and
+    /// runs with its own local variables. The signal's wiring and parameter 6003 (which type,
+    /// local variables) are machine data the program does not show, so it is off unless the
+    /// profile states it; off, M96/M97 are machine-specific M codes (docs/semantics.md,
+    /// "Interrupts"). Not on a Haas, where M97 calls a local subprogram.
+    pub macro_interrupt: bool,
     /// The FANUC length and radius registers of each Siemens cutting edge (the setup's
     /// offset table; by default edge D1 of tool n is H n and D n): `[offsets]`.
     pub offsets: crate::dialect::offsets::OffsetMap,
@@ -124,6 +132,7 @@ impl Semantics {
                 incremental_travels_offset: false,
                 rotation_angle_incremental: false,
                 haas: false,
+                macro_interrupt: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,
                 haas_ngc: false,
@@ -148,6 +157,7 @@ impl Semantics {
                 incremental_travels_offset: true,
                 rotation_angle_incremental: false,
                 haas: false,
+                macro_interrupt: false,
                 offsets: Default::default(),
                 cutting_edge_default: None,
                 haas_ngc: false,

@@ -211,6 +211,18 @@ impl Interp<'_> {
     }
 
     fn missing(&mut self, name: &CalleeName, span: Span) -> Fault {
+        if matches!(name, CalleeName::Name(s) if ["REPOSA", "REPOSL", "REPOSQ", "REPOSQA", "REPOSH", "REPOSHA"].contains(&s.as_str()))
+        {
+            // Read as a bare name; it is the return to the interruption point of a routine.
+            let d = Diagnostic::error(
+                "NC639",
+                "REPOS (back to the point where an interrupt stopped the axes) is not modelled",
+            )
+            .primary(self.file(), span, "here")
+            .note("the evaluator runs an interrupt routine at the end of a block, where no move was cut short")
+            .hint("end the routine with M17: the program goes on with the block after the interrupted one");
+            return Fault::error(d);
+        }
         let shown = self.note_callee(name);
         let cycle = matches!(name, CalleeName::Name(s) if s.starts_with("CYCLE")
             || s.starts_with("POCKET") || s.starts_with("SLOT") || s.starts_with("HOLES")
@@ -548,6 +560,22 @@ impl Interp<'_> {
                 level.written |= 1u64 << var;
             }
         }
+    }
+
+    /// The frame of an interrupt routine (`interrupt.rs`): one pass, not modal.
+    pub(super) fn push_call_frame(&mut self, code: usize, kind: FrameKind, span: Span) -> Result<(), Fault> {
+        self.push_frame(code, kind, 1, span, false)
+    }
+
+    /// An interrupt routine takes no arguments: its parameters start as a call without
+    /// arguments gives them.
+    pub(super) fn bind_no_args(&mut self, code: usize, span: Span) -> Result<(), Fault> {
+        self.bind_params(code, &[], &[], span)
+    }
+
+    /// The fault of a routine not found.
+    pub(super) fn missing_callee(&mut self, name: &CalleeName, span: Span) -> Fault {
+        self.missing(name, span)
     }
 
     /// A G66/MCALL modal call after a block that moved.

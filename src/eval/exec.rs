@@ -107,6 +107,8 @@ pub struct Interp<'a> {
     pub sys_store: HashMap<String, f64>,
     /// [`super::machine::fast_path_on`] when the run began (asked once, not per block).
     fast_path: bool,
+    /// Interrupt assignments and the test inputs that switch them (`interrupt.rs`).
+    pub ints: super::interrupt::State,
 }
 
 impl<'a> Interp<'a> {
@@ -160,6 +162,7 @@ impl<'a> Interp<'a> {
             corner_depth: 0,
             sys_store: HashMap::new(),
             fast_path: super::machine::fast_path_on(),
+            ints: super::interrupt::State::new(opts.interrupts.clone()),
             sem,
         }
     }
@@ -197,6 +200,7 @@ impl<'a> Interp<'a> {
 
     /// [`Interp::emit`] from a given place.
     pub(super) fn emit_at(&mut self, ev: Event, origin: Origin) {
+        self.ints.motions += u64::from(super::interrupt::is_motion(&ev));
         if let Some((text, o)) = self.pending_msg.take() {
             if let Event::Stop { optional, message: None } = ev {
                 self.sink.event(&Event::Stop { optional, message: Some(text) }, origin);
@@ -216,6 +220,7 @@ impl<'a> Interp<'a> {
     fn emit_ref(&mut self, ev: &Event, span: Span) {
         self.release_held(ev);
         if self.pending_msg.is_none() && !matches!(ev, Event::Message { .. }) {
+            self.ints.motions += u64::from(super::interrupt::is_motion(ev));
             let origin = Origin { file: self.file(), span };
             self.sink.event(ev, origin);
         } else {
@@ -480,6 +485,9 @@ impl<'a> Interp<'a> {
         }
         words.clear();
         self.words_buf = words;
+        if !control.is_empty() {
+            self.interrupt_clash("jumps, calls, returns or ends", span)?;
+        }
         for item in control {
             let flow = self.exec_control(code, item, pc)?;
             if !matches!(flow, Flow::Next) {
@@ -492,13 +500,21 @@ impl<'a> Interp<'a> {
     /// What a block's words ask once its control items ran: end, return, modal call.
     fn block_end(&mut self, eff: super::machine::BlockEffect, span: Span, pc: usize) -> Result<Flow, Fault> {
         if let Some(code_) = eff.end {
+            self.interrupt_clash("ends the program", span)?;
             return Ok(Flow::Stop(self.end(code_, span)));
         }
         if eff.ret {
+            self.interrupt_clash("returns", span)?;
             return self.do_return(None, span);
         }
         if eff.moved && self.m.cycle.mcall.is_some() {
             self.mcall_hole(span)?;
+        }
+        if self.ints.due() {
+            if eff.moved && self.modal_call.is_some() && !self.frames.iter().any(|f| f.modal) {
+                self.interrupt_clash("triggers a modal call", span)?;
+            }
+            return self.interrupt_fire(pc, span);
         }
         if eff.moved {
             if let Some(mc) = self.modal_call.clone() {
@@ -588,10 +604,7 @@ impl<'a> Interp<'a> {
                         .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
                 )),
                 // Interrupts, feed-forward, the rest (instructions.rs).
-                _ => {
-                    self.warn_instruction(name, item.span);
-                    Ok(())
-                }
+                _ => self.warn_instruction(name, item.span),
             },
             ItemKind::ModalCallOff => {
                 self.modal_call = None;

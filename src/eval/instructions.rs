@@ -1,25 +1,25 @@
 //! Siemens value-less instructions that run without a trace event, each with the warning
 //! that says why: interrupts (`SETINT(n) PRIO=p NAME`, `ENABLE(n)`, `DISABLE(n)`,
-//! `CLRINT(n)`: a routine runs when an input switches; a run has no such input, so it never
-//! runs), feed-forward control (`FFWON`/`FFWOF`: a look-ahead setting, not compared), and the
+//! `CLRINT(n)`, FANUC `M96 P…`/`M97`: run by `interrupt.rs`, the routine only where a test
+//! input switches), feed-forward control (`FFWON`/`FFWOF`: a look-ahead setting, not compared), and the
 //! rest (`SOFT`, `CFC`, …: no effect on the trace). FANUC output the reader keeps as written
 //! (`BPRNT`, a DPRNT it does not read) warns NC554: its text is not compared.
 
 use super::exec::Interp;
 use crate::span::Span;
 
-/// A Siemens interrupt instruction as the reader keeps it (`SETINT(3) PRIO=1 NAME`,
-/// `ENABLE(3)`, `DISABLE(3)`, `CLRINT(3)`).
+/// An interrupt instruction as the readers keep it (`SETINT(3) PRIO=1 NAME`, `ENABLE(3)`,
+/// `DISABLE(3)`, `CLRINT(3)`; FANUC `M96 P9000`, `M97` where the profile has the custom
+/// macro interrupt).
 pub fn is_interrupt(name: &str) -> bool {
-    ["SETINT(", "ENABLE(", "DISABLE(", "CLRINT("].iter().any(|p| name.starts_with(p))
+    ["SETINT(", "ENABLE(", "DISABLE(", "CLRINT(", "M96 P"].iter().any(|p| name.starts_with(p)) || name == "M97"
 }
 
 impl Interp<'_> {
-    pub(super) fn warn_instruction(&mut self, name: &str, span: Span) {
+    pub(super) fn warn_instruction(&mut self, name: &str, span: Span) -> Result<(), super::fault::Fault> {
         if is_interrupt(name) {
-            let msg =
-                format!("{name}: the run assumes the interrupt input never switches, so its routine does not run");
-            self.warn("NC566", msg, span);
+            // Run by `interrupt.rs`; a routine that never runs is warned of at the run's end.
+            return self.interrupt_op(name, span);
         } else if name.starts_with("DPRNT[") || name.starts_with("BPRNT[") {
             let why = if name.starts_with("BPRNT[") {
                 "binary output is not text"
@@ -38,5 +38,6 @@ impl Interp<'_> {
         } else {
             self.warn("NC405", format!("{name} has no effect on the trace"), span);
         }
+        Ok(())
     }
 }

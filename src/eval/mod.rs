@@ -32,6 +32,7 @@ pub mod flow;
 pub mod haas_data;
 pub mod input;
 pub mod instructions;
+pub mod interrupt;
 
 pub mod machine;
 pub mod numfmt;
@@ -57,6 +58,7 @@ pub(crate) mod test_ir;
 
 pub use calls::{CalleeName, CalleeSource, DirCallees, NoCallees};
 pub use input::{header_inputs, parse_input, Input, InputTarget};
+pub use interrupt::{header_interrupts, parse_interrupt, InterruptInput};
 pub use probe::{header_probes, parse_probe, ProbeInput};
 pub use trace::{Event, Format, NullSink, Origin, TraceSink, VecSink, WriterSink};
 
@@ -85,6 +87,9 @@ pub struct RunOptions {
     /// misses (`probe`); moves beyond the list do not trigger. Given, it replaces
     /// `probe_contact`.
     pub probes: Vec<ProbeInput>,
+    /// `--interrupt N@K`: interrupt input N switches on right after the K-th motion event
+    /// of the run (`interrupt::InterruptInput`); without any, no input ever switches.
+    pub interrupts: Vec<InterruptInput>,
     /// `--expand-cycles`: every drilling hole is written as the moves, dwells and spindle
     /// events the control makes (`cycles::expand`), with these retract amounts, instead of
     /// its `cycle` event. For viewing: `check` never sets it.
@@ -99,6 +104,7 @@ impl Default for RunOptions {
             semantics: None,
             probe_contact: None,
             probes: Vec::new(),
+            interrupts: Vec::new(),
             expand_cycles: None,
         }
     }
@@ -206,6 +212,7 @@ fn run_registered(mut it: Interp<'_>, dialect: Dialect, ids: &[usize]) -> Outcom
             Ending::Error
         }
     };
+    it.interrupt_finish();
     it.flush();
     // The trace is complete: a writer hands over the lines it still holds.
     it.sink.finish();

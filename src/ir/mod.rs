@@ -11,6 +11,7 @@
 pub mod cycle;
 pub mod dump;
 pub mod expr;
+pub mod interrupt;
 pub mod stmt;
 pub mod visit;
 

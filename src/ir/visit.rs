@@ -288,6 +288,14 @@ pub fn called_names(unit: &Unit) -> Vec<String> {
                             v.push(n.to_ascii_uppercase());
                         }
                     }
+                    // An interrupt routine is a subprogram the program names (`SETINT`).
+                    if let ItemKind::Instruction { name } = &it.kind {
+                        if let Some(Ok(super::interrupt::IntOp::Assign { routine: ProgName::Name(r), .. })) =
+                            super::interrupt::op_of(name)
+                        {
+                            v.push(r);
+                        }
+                    }
                 }
             }
         });

@@ -121,7 +121,22 @@ pub fn verify(
     inputs: Vec<crate::eval::Input>,
     progress: Option<ProgressFn<'_>>,
 ) -> Verified {
-    let popts = ParseOptions::for_dialect(Dialect::Fanuc);
+    verify_for(source, output, max_steps, inputs, false, progress)
+}
+
+/// [`verify`] of a translation for a target with the custom macro interrupt
+/// (`Semantics::macro_interrupt`): its `M96`/`M97` are read back as interrupts. Both runs
+/// meet the source's interrupt inputs (`nctrans: interrupt`), as the whole path's proof does.
+pub fn verify_for(
+    source: Index,
+    output: &Path,
+    max_steps: u64,
+    inputs: Vec<crate::eval::Input>,
+    macro_interrupt: bool,
+    progress: Option<ProgressFn<'_>>,
+) -> Verified {
+    let mut popts = ParseOptions::for_dialect(Dialect::Fanuc);
+    popts.semantics.macro_interrupt = macro_interrupt;
     let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
         equivalent: false,
         summary: format!("not verified: {summary}"),
@@ -136,7 +151,8 @@ pub fn verify(
             return not_verified("the output does not parse as FANUC (a bug in nctrans)".into(), d);
         }
     };
-    let run = RunOptions { max_steps, ..RunOptions::default() };
+    let interrupts = crate::eval::header_interrupts(&source.header).unwrap_or_default();
+    let run = RunOptions { max_steps, interrupts, ..RunOptions::default() };
     let out_run = RunOptions { inputs, ..run.clone() };
     let name = source.path.display().to_string();
     let a = StreamSide { index: source, name, callees: Box::new(DirCallees { semantics: None }), run };

@@ -62,6 +62,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     gud_seeds: Vec::new(),
     globals: Vec::new(),
     haas: false,
+    macro_interrupt: false,
     offsets: crate::dialect::offsets::OffsetMap { edges: BTreeMap::new() },
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };

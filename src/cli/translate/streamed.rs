@@ -336,8 +336,10 @@ impl Target for ToFanuc<'_> {
     fn verify(&self, done: FanucDone, input: (&Path, &Path), out: (&Path, &Path), size: u64) -> ExitCode {
         let mut line = ProgressLine::new("reading back", size);
         let mut report = |p: Progress| line.update(p);
+        let macro_interrupt = self.c.fanuc_semantics().macro_interrupt;
+        let inputs = done.1.unwrap_or_default();
         let v =
-            stream::verify::verify(done.0, out.1, self.req.max_steps, done.1.unwrap_or_default(), Some(&mut report));
+            stream::verify::verify_for(done.0, out.1, self.req.max_steps, inputs, macro_interrupt, Some(&mut report));
         line.done();
         let mut db = SourceDb::new();
         db.add(input.0.display().to_string(), String::new());
@@ -513,10 +515,13 @@ impl Target for ToSinumerik<'_> {
                 return job::verdict(Verdict::Failed, "");
             }
         };
+        // Both runs meet the source's interrupt inputs, as the whole path's proof does.
+        let interrupts = nctrans::eval::header_interrupts(&done.main.index.header).unwrap_or_default();
         let run = |inputs, sem: &nctrans::dialect::Semantics| RunOptions {
             inputs,
             max_steps,
             semantics: Some(sem.clone()),
+            interrupts: interrupts.clone(),
             ..RunOptions::default()
         };
         // The subprograms are served to the Siemens run from memory, under the names the

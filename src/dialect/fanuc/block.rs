@@ -87,7 +87,7 @@ fn plain(cx: &BlockCx<'_, '_>, parts: Parts) -> Result<Line, Parts> {
             b'N' => i == 0 && w.int().is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
             b'G' => !matches!(w.int(), Some(10 | 65 | 66 | 67)),
-            b'M' => !matches!(w.int(), Some(2 | 30 | 97 | 98 | 99)),
+            b'M' => !matches!(w.int(), Some(2 | 30 | 96 | 97 | 98 | 99)),
             _ => true,
         };
         if !ok {
@@ -436,7 +436,7 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
     // Without M98/M99 no word is read after its own turn, so a plain word's value can be
     // moved into its item instead of cloned.
     let haas = cx.opts.semantics.haas;
-    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99) || (haas && is_m(w, 97)));
+    let movable = !words.iter().any(|w| is_m(w, 98) || is_m(w, 99) || is_m(w, 96) || (haas && is_m(w, 97)));
     for i in 0..words.len() {
         if (used_p && Some(i) == first_p) || (used_l && Some(i) == first_l) {
             continue;
@@ -448,6 +448,31 @@ fn nc_words(cx: &BlockCx<'_, '_>, words: &mut [RawWord]) -> Result<(Vec<Item>, b
                 used_p |= p.is_some();
                 used_l |= l.is_some();
                 items.push(args::m98(seg, w, p.map(|k| &words[k]), l.map(|k| &words[k]))?);
+                continue;
+            }
+            // The custom macro interrupt, where the profile says the machine has it.
+            let interrupt = cx.opts.semantics.macro_interrupt && !haas;
+            if interrupt && is_m(w, 96) {
+                let Some(k) = first_p.filter(|_| !used_p) else {
+                    return Err(Diagnostic::error("NC638", "M96 without the interrupt program's number")
+                        .primary(seg.file, w.span, "M96 enables the interrupt program P")
+                        .hint("write the program number: `M96 P9000`"));
+                };
+                used_p = true;
+                let n = match &words[k].value.kind {
+                    ExprKind::Num(n) if !n.point && n.value >= 1.0 && n.value.fract() == 0.0 => n.value as u32,
+                    _ => {
+                        return Err(Diagnostic::error("NC638", "M96 P takes a constant program number")
+                            .primary(seg.file, words[k].span, "not a whole constant")
+                            .hint("write the program number: `M96 P9000`"))
+                    }
+                };
+                let span = w.span.to(words[k].span);
+                items.push(Item { kind: ItemKind::Instruction { name: format!("M96 P{n}") }, span });
+                continue;
+            }
+            if interrupt && is_m(w, 97) {
+                items.push(Item { kind: ItemKind::Instruction { name: "M97".into() }, span: w.span });
                 continue;
             }
             if haas && is_m(w, 97) {

@@ -237,7 +237,7 @@ fn plain_words<const VALUES: bool>(
             b'N' => first && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'O' => false,
             b'G' => !matches!(int, Some(10 | 65 | 66 | 67)),
-            b'M' => !matches!(int, Some(2 | 30 | 97 | 98 | 99)),
+            b'M' => !matches!(int, Some(2 | 30 | 96 | 97 | 98 | 99)),
             _ => true,
         };
         if !ok {

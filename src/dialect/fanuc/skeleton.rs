@@ -76,7 +76,7 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<SkelLine> {
                 let ok = if letter == b'G' {
                     !matches!(value, 10 | 65 | 66 | 67)
                 } else {
-                    !matches!(value, 2 | 30 | 97 | 98 | 99)
+                    !matches!(value, 2 | 30 | 96 | 97 | 98 | 99)
                 };
                 if !ok {
                     return None;
@@ -126,7 +126,7 @@ pub fn skeleton_bytes(b: &[u8]) -> Option<SkelLine> {
         let ok = match letter {
             b'N' => start == lo && int.is_some_and(|n| (1..=99_999).contains(&n)),
             b'G' => !matches!(int, Some(10 | 65 | 66 | 67)),
-            _ => !matches!(int, Some(2 | 30 | 97 | 98 | 99)),
+            _ => !matches!(int, Some(2 | 30 | 96 | 97 | 98 | 99)),
         };
         if !ok {
             return None;

@@ -74,6 +74,7 @@ impl Interp<'_> {
                         g.line = b.line;
                         // `code` is the running frame's: its file is `self.file()`.
                         let origin = Origin { file: code.file, span };
+                        self.ints.motions += 1;
                         self.sink.grid_move(g, origin);
                     }
                     _ => {
@@ -83,7 +84,7 @@ impl Interp<'_> {
                 }
                 // `block_end` of a block that moved and neither ends nor returns: only a
                 // modal call can follow.
-                if self.modal_call.is_none() {
+                if self.modal_call.is_none() && !self.ints.active() {
                     return Ok(Flow::Next);
                 }
                 let eff = BlockEffect { moved: true, ..Default::default() };

@@ -22,6 +22,7 @@ pub(crate) mod fast_write;
 pub mod frame_seq;
 pub mod frames;
 pub mod integral;
+pub mod interrupt;
 pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
@@ -122,6 +123,12 @@ pub struct Ctx {
     pub master_spindle: u32,
     /// The target is a Haas control (`Semantics::haas`): look-ahead settings become G187.
     pub haas: bool,
+    /// The target has the custom macro interrupt (`Semantics::macro_interrupt`).
+    pub macro_interrupt: bool,
+    /// The O number the last `SETINT(1)` of this program assigned (what `ENABLE(1)`
+    /// enables again), and whether two different ones were met.
+    pub int_routine: Option<u32>,
+    pub int_routine_changes: bool,
     next_temp: u32,
     next_label: u32,
 }
@@ -144,6 +151,9 @@ impl Ctx {
             gud_seeds: Vec::new(),
             master_spindle: 1,
             haas: false,
+            macro_interrupt: false,
+            int_routine: None,
+            int_routine_changes: false,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

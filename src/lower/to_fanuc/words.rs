@@ -392,13 +392,12 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                 &format!("{name} dropped"),
                 "it changes acceleration or feed control only, not the programmed path",
             ),
-            ItemKind::Instruction { name } if crate::eval::instructions::is_interrupt(&name) => after.extend(ctx.unsupported(
-                "NC566",
-                span,
-                &format!("{name} (an interrupt routine for an input)"),
-                "FANUC's interrupt-type macro (M96 P… / M97, the UINT signal) is set by parameter 6003 and the machine's \
-                 wiring, which the program does not show; call the routine where the program needs it",
-            )),
+            ItemKind::Instruction { name } if crate::eval::instructions::is_interrupt(&name) => {
+                match super::interrupt::lower(ctx, &name, span) {
+                    Ok(items) => kept.extend(items),
+                    Err(mark) => after.extend(mark),
+                }
+            }
             ItemKind::Instruction { name } if name.starts_with("RET(") => after.extend(ctx.unsupported(
                 "NC507",
                 span,

@@ -412,6 +412,13 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
                 // The note a Sinumerik → FANUC translation put on its POPEN says nothing here.
                 b.meta.comments.retain(|c| !super::print::is_write_note(&c.text));
             }
+            ItemKind::Instruction { name } if crate::eval::instructions::is_interrupt(&name) => {
+                match super::interrupt::lower(ctx, &name, it.span) {
+                    Ok(item) => items.push(item),
+                    Err(Some(st)) => out.push(st),
+                    Err(None) => {}
+                }
+            }
             ItemKind::Instruction { name } if is_data_output(&name) => {
                 let what = format!("FANUC external output `{name}`");
                 let hint = "BPRNT is binary; a DPRNT is translated (to WRITE) when it holds letters, digits, \

@@ -40,6 +40,7 @@ pub mod gotos;
 pub mod haas_if;
 pub mod haas_sys;
 pub mod indirect;
+pub mod interrupt;
 pub mod lookahead;
 pub mod m97;
 pub mod modal;

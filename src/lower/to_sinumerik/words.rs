@@ -488,7 +488,13 @@ fn lower_word(
             "NC362",
             w.span,
             &format!("the address {} in this block", l as char),
-            "FANUC gives it a meaning only in calls, dwells, cycles and G10; remove it or translate the block by hand",
+            if l == b'P' {
+                "FANUC gives it a meaning only in calls, dwells, cycles and G10 (and `M96 P…`, the custom macro \
+                 interrupt, where nctrans.toml says `[fanuc] macro_interrupt = true`); remove it or translate the \
+                 block by hand"
+            } else {
+                "FANUC gives it a meaning only in calls, dwells, cycles and G10; remove it or translate the block by hand"
+            },
         ) {
             after.push(st);
         }

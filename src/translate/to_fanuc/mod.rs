@@ -100,6 +100,9 @@ pub struct SymbolMap {
     /// The output is for a Haas control (`[fanuc] series`): a check reads it back with the
     /// Haas semantics (its `G187` and `G103` look-ahead settings).
     pub haas: bool,
+    /// The output is for a machine with the custom macro interrupt
+    /// (`Semantics::macro_interrupt`): a check reads its `M96 P…`/`M97` back as interrupts.
+    pub macro_interrupt: bool,
     /// The H and D registers of each Siemens cutting edge the translation used
     /// (`[offsets]`), so that a check's `$TC_DP` inputs reach the same FANUC registers.
     pub offsets: crate::dialect::offsets::OffsetMap,
@@ -278,6 +281,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         gud_seeds: vctx.gud_seeds,
         globals: opts.source.globals.to_vec(),
         haas: opts.target.haas,
+        macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
         ..SymbolMap::default()
     };
@@ -346,6 +350,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     let mut ctx = Ctx::new(file, opts.unsupported);
     ctx.nat = opts.target.nat;
     ctx.haas = opts.target.haas;
+    ctx.macro_interrupt = opts.target.macro_interrupt;
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
     ctx.offsets = opts.target.offsets.clone();
@@ -422,7 +427,8 @@ fn header(name: &str, mapped: &[Mapped], is_sub: bool, opts: &TranslateOptions) 
 /// added to `db` under `out_name`.
 pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name: &str) -> crate::dialect::Parsed {
     let file = db.add(out_name, t.text().to_string());
-    let opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
+    let mut opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
+    opts.semantics.macro_interrupt = t.symbols.fanuc().macro_interrupt;
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
@@ -479,9 +485,24 @@ pub fn verify<'a>(
         None => haas_target(map),
         other => other,
     };
+    // The interrupts the translation wrote run as the source's did.
+    let fanuc = match fanuc {
+        Some(mut s) if map.macro_interrupt => {
+            s.macro_interrupt = true;
+            Some(s)
+        }
+        None if map.macro_interrupt => {
+            let mut s = crate::dialect::Semantics::default_for(Dialect::Fanuc);
+            s.macro_interrupt = true;
+            Some(s)
+        }
+        other => other,
+    };
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
     let probes = crate::eval::header_probes(&db.get(main.file).text).unwrap_or_default();
+    // And its interrupt inputs (`nctrans: interrupt`): the proof covers those switches.
+    let interrupts = crate::eval::header_interrupts(&db.get(main.file).text).unwrap_or_default();
     // The source's `nctrans: set` lines, then `--set` (which overrides them), as `run` takes them.
     let sets: Vec<String> = crate::eval::input::header_words(&db.get(main.file).text, "nctrans: set", false)
         .map(str::to_string)
@@ -529,6 +550,7 @@ pub fn verify<'a>(
             inputs,
             semantics,
             probes: probes.clone(),
+            interrupts: interrupts.clone(),
             ..RunOptions::default()
         };
         let callees = super::called::MemCallees(subs.iter().map(|u| align_source(u, map)).collect());

@@ -189,6 +189,13 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             return failed(db, vec![Diagnostic::error("NC539", format!("bad `nctrans: probe` header line: {e}"))])
         }
     };
+    // And the same interrupt inputs (`nctrans: interrupt`).
+    let interrupts = match crate::eval::header_interrupts(&db.get(fanuc_file).text) {
+        Ok(p) => p,
+        Err(e) => {
+            return failed(db, vec![Diagnostic::error("NC638", format!("bad `nctrans: interrupt` header line: {e}"))])
+        }
+    };
     in_a.extend(spec.extra_fanuc);
     in_b.extend(spec.extra_siemens);
     let files = tr
@@ -206,6 +213,7 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             max_steps,
             semantics: Some(profiles.fanuc.clone()),
             probes: probes.clone(),
+            interrupts: interrupts.clone(),
             ..RunOptions::default()
         },
     };
@@ -217,6 +225,7 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             max_steps,
             semantics: Some(profiles.sinumerik.clone()),
             probes,
+            interrupts,
             ..RunOptions::default()
         },
     };
