@@ -86,6 +86,15 @@ pub struct Callee {
     pub effect: words::effects::Effect,
 }
 
+/// Why an `L<k>` program has no `O<k>` under `--l-numbers`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LFault {
+    /// `O<k>` is another program's (the main program's, a `--program-map` entry's).
+    Clash { other: String },
+    /// `k` is 0 or beyond the series' largest O number.
+    Beyond { max: u32 },
+}
+
 /// State shared by the passes of one translation.
 #[derive(Debug)]
 pub struct Ctx {
@@ -120,6 +129,12 @@ pub struct Ctx {
     pub master_spindle: u32,
     /// The target is a Haas control (`Semantics::haas`): look-ahead settings become G187.
     pub haas: bool,
+    /// `--l-numbers`: every `L<k>` program of the translation with its `O<k>`, or why it has
+    /// none; `None` without the option (a call of `"L"<<n` is then refused).
+    pub l_programs: Option<BTreeMap<String, Result<u32, LFault>>>,
+    /// Spans of the numbers of `"L"<<n` calls that are provably integers where the call
+    /// stands ([`integral::integral_call_numbers`]).
+    pub integral_calls: std::collections::BTreeSet<Span>,
     next_temp: u32,
     next_label: u32,
 }
@@ -142,6 +157,8 @@ impl Ctx {
             gud_seeds: Vec::new(),
             master_spindle: 1,
             haas: false,
+            l_programs: None,
+            integral_calls: Default::default(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,
