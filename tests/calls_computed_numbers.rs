@@ -95,6 +95,15 @@ fn another_prefix_or_a_name_built_otherwise_stays_refused() {
     let (_, err, code) = to_fanuc(&d, &["--l-numbers"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC585"), "{err}");
+    // The name kept in a STRING variable: FANUC has no strings to keep it in.
+    let main =
+        format!("DEF STRING[8] PRG_NAME\n{}", MAIN.replace("CALL \"L\"<<R1", "PRG_NAME=\"L\"<<R1\nCALL PRG_NAME"));
+    let d = folder("string", &main);
+    let (run, _, _) = nctrans(&d, &["run", "MAIN.MPF"]);
+    assert!(run.contains("X=10"), "{run}");
+    let (_, err, code) = to_fanuc(&d, &["--l-numbers"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC303") && err.contains("--l-numbers"), "{err}");
 }
 
 #[test]

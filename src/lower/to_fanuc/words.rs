@@ -663,7 +663,13 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
         CallTarget::Computed(Expr { kind: ExprKind::Binary(BinOp::Concat, ..), .. }) => {
             return built::built_call(ctx, c, span, m, kept)
         }
-        _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
+        // A STRING variable holding a name known only at run time: FANUC has no strings.
+        _ => {
+            let hint = "FANUC has no strings to hold a program name: write the name in the call, \
+                        `CALL \"L\"<<n` (with --l-numbers, `[programs] l_numbers = true`, a program L<k> is O<k> \
+                        and that call is `G65 P<n>`), or call each program by its name";
+            return ctx.unsupported("NC303", span, "a computed call target", hint);
+        }
     };
     if crate::dialect::sinumerik::cycles::cycle_of(&name).is_some() {
         // A drilling cycle: `passes::cycles` writes it.
