@@ -147,6 +147,11 @@ fn an_l_program_whose_number_is_taken_is_refused() {
     let (_, err, code) = to_fanuc(&d, &["--l-numbers", "--program-map", "CONTOUR=20"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC648") && err.contains("L20") && err.contains("CONTOUR"), "{err}");
+    // A map entry that numbers L20 otherwise: the built call would miss it.
+    let d = folder("mapped", MAIN);
+    let (_, err, code) = to_fanuc(&d, &["--l-numbers", "--program-map", "L20=9100"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC648") && err.contains("O9100"), "{err}");
     // Without the built call, the programs translate: L1 is numbered from O9000 up.
     let d = folder("clash-named", "L1\nM30\n");
     std::fs::write(d.join("L1.SPF"), "G1 Z1 F300\nM17\n").unwrap();

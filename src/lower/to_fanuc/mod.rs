@@ -93,6 +93,8 @@ pub enum LFault {
     Clash { other: String },
     /// `k` is 0 or beyond the series' largest O number.
     Beyond { max: u32 },
+    /// A program map (`--program-map`, `[programs.to_fanuc]`, a batch's map) gives it `O<to>`.
+    Mapped { to: u32 },
 }
 
 /// State shared by the passes of one translation.

@@ -44,9 +44,14 @@ pub fn assign(main_name: &str, subs: &[String], opts: &TranslateOptions) -> Numb
     };
     let mut l_programs = opts.l_numbers.then(BTreeMap::new);
     if let Some(l) = &mut l_programs {
-        for name in subs.iter().filter(|n| !opts.program_map.contains_key(*n)) {
+        for name in subs {
             let Some(k) = l_number(name) else { continue };
-            let fault = if k == 0 || k > u64::from(opts.max_program_number) {
+            let mapped = opts.program_map.get(name).copied();
+            let fault = if let Some(n) = mapped.filter(|&n| u64::from(n) != k) {
+                Some(LFault::Mapped { to: n })
+            } else if mapped.is_some() {
+                None
+            } else if k == 0 || k > u64::from(opts.max_program_number) {
                 Some(LFault::Beyond { max: opts.max_program_number })
             } else {
                 owner(k as u32, &numbers).map(|other| LFault::Clash { other })
@@ -54,6 +59,9 @@ pub fn assign(main_name: &str, subs: &[String], opts: &TranslateOptions) -> Numb
             match fault {
                 Some(f) => {
                     l.insert(name.clone(), Err(f));
+                }
+                None if mapped.is_some() => {
+                    l.insert(name.clone(), Ok(k as u32));
                 }
                 None => {
                     let k = k as u32;
@@ -107,6 +115,13 @@ mod tests {
         let l = n.l_programs.unwrap();
         assert_eq!(l["L1"], Err(LFault::Clash { other: "MAIN".into() }));
         assert_eq!(l["L12345"], Err(LFault::Beyond { max: 9999 }));
+        // A map entry wins; one that is not O<k> is no L number.
+        let mut opts = opts;
+        opts.program_map.insert("L20".into(), 9100);
+        opts.program_map.insert("L1".into(), 1);
+        opts.program_number = Some(5);
+        let l = assign("MAIN", &subs, &opts).l_programs.unwrap();
+        assert_eq!((&l["L20"], &l["L1"]), (&Err(LFault::Mapped { to: 9100 }), &Ok(1)));
         // Off: numbered by name as before.
         let n = assign("MAIN", &subs, &TranslateOptions::default());
         assert_eq!((n.numbers["A_SUB"], n.numbers["L1"], n.numbers["L20"]), (9000, 9001, 9002));

@@ -54,6 +54,11 @@ pub(super) fn built_call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept
                     "rename the program within the series' O numbers ([fanuc] series: 4 digits, 8 on the 30i class)";
                 return ctx.unsupported("NC649", span, &what, hint);
             }
+            Err(LFault::Mapped { to }) => {
+                let what = format!("a call of \"L\"<<… that can reach {name}, which the program map numbers O{to}");
+                let hint = format!("map {name} to its own number ({name}={}) or leave it out of the map", &name[1..]);
+                return ctx.unsupported("NC648", span, &what, &hint);
+            }
             Ok(_) => {}
         }
         let Some(callee) = ctx.callees.get(name).cloned() else { continue };
