@@ -164,9 +164,9 @@ fn call_values(body: &[Stmt]) -> BTreeMap<(u32, u32), Option<BTreeSet<u32>>> {
         }
     }
     let mut out: BTreeMap<(u32, u32), Option<BTreeSet<u32>>> = BTreeMap::new();
-    for i in 0..len {
-        let Node::Items(items) = &flat.nodes[i] else { continue };
-        let Some(mut env) = ins[i].clone().filter(|_| settled) else {
+    for (node, env) in flat.nodes.iter().zip(&ins) {
+        let Node::Items(items) = node else { continue };
+        let Some(mut env) = env.clone().filter(|_| settled) else {
             // Not reached (or not settled): nothing is known there.
             for it in items.iter() {
                 if let ItemKind::Call(c) = &it.kind {
