@@ -1,8 +1,10 @@
-//! Calls of a program chosen at run time (issue 21), Siemens → FANUC: with `--l-numbers`
-//! (`[programs] l_numbers = true`) a program named `L<k>` is `O<k>`, so `CALL "L"<<R1` is
-//! `G65 P#<R1>`, proven on each path the inputs take; the refusals where it would not be the
-//! same program (option off, another prefix, a number not provably an integer, a clash, a
-//! number beyond the series, parameters).
+//! Calls of a program chosen at run time (issue 21), both ways. Siemens → FANUC: with
+//! `--l-numbers` (`[programs] l_numbers = true`) a program named `L<k>` is `O<k>`, so
+//! `CALL "L"<<R1` is `G65 P#<R1>`, proven on each path the inputs take; the refusals where it
+//! would not be the same program (option off, another prefix, a number not provably an
+//! integer, a clash, a number beyond the series, parameters). FANUC → Sinumerik: `M98 P#1`
+//! whose number is one of a few known values is a dispatch over the programs they name, each
+//! path proven, a wrong branch caught; a number that may be any stays NC356.
 
 #[path = "support/cli_run.rs"]
 mod cli_run;
@@ -191,4 +193,86 @@ fn a_leading_zero_name_is_not_reached() {
     let (out, err, code) = to_fanuc(&d, &["--l-numbers"]);
     assert_eq!(code, 0, "{err}");
     assert!(!out.contains("L010") && !out.contains("Z9"), "{out}");
+}
+
+// ---- FANUC → Sinumerik ----
+
+/// #2 picks O0176 or, by default, O0177; #3 a packed count (`P20176`: O0176 twice).
+const JOB: &str = "O0100\n#1=177\nIF [#2 GT 0] THEN #1=176\nIF [#3 GT 0] THEN #1=20176\nIF [#4 GT 0] THEN #1=175.6\n\
+                   G0 X0 Y0\nM98 P#1\nG0 X0 Y0\nM30\nO0176\nG91 G1 X20. F300.\nG90\nM99\nO0177\nG1 Y20. F300.\nM99\n";
+
+fn fanuc_job(name: &str, set: &str) -> std::path::PathBuf {
+    let d = workdir("dispatch", name);
+    std::fs::write(d.join("O0100.nc"), format!("{set}{JOB}")).unwrap();
+    d
+}
+
+#[test]
+fn a_number_of_a_few_values_calls_each_program_it_names_on_each_path() {
+    for (name, set, events) in [
+        ("default", "", "Y=20"),
+        ("o176", "(nctrans: set #2=1.)\n", "X=20"),
+        ("packed", "(nctrans: set #3=1.)\n", "X=40"),
+        ("rounded", "(nctrans: set #4=1.)\n", "X=20"),
+    ] {
+        let d = fanuc_job(name, set);
+        let (out, err, code) = nctrans(&d, &["--to", "sinumerik", "O0100.nc", "-o", "m.mpf"]);
+        assert_eq!(code, 0, "{name}: {out}{err}");
+        assert!(err.contains("equivalent"), "{name}: {err}");
+        let main = std::fs::read_to_string(d.join("m.mpf")).unwrap();
+        assert!(main.contains("IF ROUND(LOC1)-176<>0 GOTOF") && main.contains("\nO_0176\n"), "{main}");
+        assert!(main.contains("O_0176 P=TRUNC(ROUND(LOC1)/10000)"), "{main}");
+        assert!(!main.contains("NCTRANS_NO_PROG"), "every value names a program: {main}");
+        let (run, _, _) = nctrans(&d, &["run", "O0100.nc"]);
+        assert!(run.contains(events), "{name}: {run}");
+    }
+}
+
+#[test]
+fn a_planted_wrong_branch_is_caught() {
+    let d = fanuc_job("planted", "");
+    let (out, err, code) = nctrans(&d, &["--to", "sinumerik", "O0100.nc", "-o", "m.mpf"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let main = std::fs::read_to_string(d.join("m.mpf")).unwrap();
+    // The default path (#1=177) calls O_0176 in place of O_0177.
+    let wrong = main.replace("O_0177\n", "O_0176\n");
+    assert_ne!(wrong, main);
+    std::fs::write(d.join("WRONG.MPF"), wrong).unwrap();
+    let (out, err, code) = nctrans(&d, &["check", "O0100.nc", "WRONG.MPF"]);
+    assert_ne!(code, 0, "{out}{err}");
+    let (_, err, code) = nctrans(&d, &["check", "O0100.nc", "m.mpf"]);
+    assert_eq!(code, 0, "{err}");
+}
+
+/// A value that names no program of the file: Siemens' own "program not found", as FANUC
+/// stops there.
+#[test]
+fn a_value_naming_no_program_is_the_not_found_call() {
+    let d = workdir("dispatch", "missing");
+    let job = JOB.replace("IF [#3 GT 0] THEN #1=20176\n", "IF [#3 GT 0] THEN #1=500\n");
+    std::fs::write(d.join("O0100.nc"), format!("(nctrans: set #2=1.)\n{job}")).unwrap();
+    let (out, err, code) = nctrans(&d, &["--to", "sinumerik", "O0100.nc", "-o", "m.mpf"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let main = std::fs::read_to_string(d.join("m.mpf")).unwrap();
+    assert!(main.contains("NCTRANS_NO_PROG"), "{main}");
+    // That path fails on both controls.
+    std::fs::write(d.join("O0101.nc"), job.replace("O0100", "O0101").replace("#1=177\n", "#1=177\n#3=1.\n")).unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "O0101.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("O500"), "{err}");
+}
+
+#[test]
+fn a_number_that_may_be_any_or_a_call_with_words_stays_refused() {
+    for (name, job) in [
+        ("input", JOB.replace("#1=177\n", "#1=#5041\n")),
+        ("words", JOB.replace("G0 X0 Y0\nM98 P#1", "G0 X0 Y0 M98 P#1")),
+        ("main", JOB.replace("#1=20176", "#1=100")),
+    ] {
+        let d = fanuc_job(name, "");
+        std::fs::write(d.join("O0100.nc"), job).unwrap();
+        let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O0100.nc", "-o", "m.mpf"]);
+        assert_ne!(code, 0, "{name}");
+        assert!(err.contains("NC356"), "{name}: {err}");
+    }
 }

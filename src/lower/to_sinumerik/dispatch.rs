@@ -337,21 +337,30 @@ fn dispatch(
         .collect::<BTreeSet<u32>>()
         .into_iter()
         .collect();
-    let complete = direct.len() == values.len();
-    out.chain(&c, &v, &c.repeat, (&direct, complete), end, fresh);
-    let numbers = &packed[..];
-    if !complete && !numbers.is_empty() {
+    // Every value names a program (directly or packed): no test for the last, no not-found.
+    let covered =
+        values.iter().all(|k| numbers.contains(k) || (packed_ok && *k > 9999 && numbers.contains(&(k % 10000))));
+    out.chain(&c, &v, &c.repeat, (&direct, covered && packed.is_empty()), end, fresh);
+    if !packed.is_empty() {
         // Where no program has the number: the count packed in front of four digits.
         let not_found = fresh();
-        out.push(vec![goto(not_found, Some(cmp(CmpOp::Le, v.clone(), Expr::num(9999.0, false, span), span)), span)]);
+        if !covered {
+            out.push(vec![goto(
+                not_found,
+                Some(cmp(CmpOp::Le, v.clone(), Expr::num(9999.0, false, span), span)),
+                span,
+            )]);
+        }
         let ten_k = || Expr::num(10000.0, false, span);
         let count = func(Func::Trunc, vec![bin(BinOp::Div, v.clone(), ten_k(), span)], span);
         let low = bin(BinOp::Sub, v.clone(), bin(BinOp::Mul, count.clone(), ten_k(), span), span);
-        out.chain(&c, &low, &Some(count), (numbers, false), end, fresh);
-        out.push(vec![]);
-        out.here = Some(not_found);
+        out.chain(&c, &low, &Some(count), (&packed, covered), end, fresh);
+        if !covered {
+            out.push(vec![]);
+            out.here = Some(not_found);
+        }
     }
-    if !complete {
+    if !covered {
         let none =
             Call { kind: CallKind::Named, target: CallTarget::Name(NO_PROGRAM.into()), args: vec![], repeat: None };
         out.push(vec![Item { kind: ItemKind::Call(Box::new(none)), span: cspan }]);
