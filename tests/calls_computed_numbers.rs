@@ -122,6 +122,21 @@ fn a_number_not_provably_an_integer_is_refused() {
     }
 }
 
+/// The batch numbers every program in its map before translating: the option is for a
+/// single-file translation, and the batch says so.
+#[test]
+fn a_batch_keeps_the_built_call_refused_and_says_why() {
+    let d = folder("batch", MAIN);
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    for f in ["MAIN.MPF", "l10.spf", "L20.SPF"] {
+        std::fs::copy(d.join(f), lib.join(f)).unwrap();
+    }
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "--l-numbers", "-o", "out", "lib"]);
+    assert!(err.contains("single-file translation"), "{out}{err}");
+    assert_ne!(code, 0, "{out}{err}");
+}
+
 /// An INT variable is an integer wherever it is read (Siemens rounds on assignment), so an
 /// input may choose the program.
 #[test]
