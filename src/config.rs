@@ -102,6 +102,9 @@ pub struct Config {
     pub programs_to_fanuc: BTreeMap<ProgKey, ProgKey>,
     /// `--program-map 9010=PROBE_X` (FANUC → Sinumerik).
     pub programs_to_sinumerik: BTreeMap<ProgKey, ProgKey>,
+    /// `--l-numbers` (Sinumerik → FANUC): a program named `L<k>` is FANUC `O<k>`, so a call
+    /// of a name built at run time (`CALL "L"<<R1`) is `G65 P#n`.
+    pub l_numbers: bool,
     pub unsupported: Unsupported,
     pub comments: Comments,
     /// `--number-blocks k` (0: off).
@@ -156,6 +159,7 @@ impl Default for Config {
             tools: BTreeMap::new(),
             programs_to_fanuc: BTreeMap::new(),
             programs_to_sinumerik: BTreeMap::new(),
+            l_numbers: false,
             unsupported: Unsupported::Error,
             comments: Comments::Keep,
             number_blocks: 0,
@@ -178,7 +182,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 37] = [
+pub const KEYS: [(&str, &str, &str); 38] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -202,6 +206,7 @@ pub const KEYS: [(&str, &str, &str); 37] = [
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
+    ("programs.l_numbers", "--l-numbers", "true or false"),
     ("programs.to_fanuc", "--program-map", "a table of \"SIEMENS_NAME\" = O number"),
     ("programs.to_sinumerik", "--program-map", "a table of \"O9010\" = \"SIEMENS_NAME\""),
     ("translate.unsupported", "--unsupported", "\"error\" or \"warn\""),
@@ -386,6 +391,7 @@ impl Config {
                     if d == Dialect::Fanuc { &mut self.programs_to_fanuc } else { &mut self.programs_to_sinumerik };
                 map.extend(t);
             }
+            "programs.l_numbers" => self.l_numbers = as_bool(key, v)?,
             "translate.unsupported" => {
                 self.unsupported = one_of(key, v, &[("error", Unsupported::Error), ("warn", Unsupported::Warn)])?;
             }
@@ -600,6 +606,12 @@ to_sinumerik = []    # e.g. ["#500-#599=R100"]
 # register H h and radius register D d. Unlisted: edge D1 of tool n is H n and D n (a tool
 # listed here has only the edges given); any other register is refused (NC472).
 # "6.2" = "H26,D46"
+
+[programs]
+# Sinumerik -> FANUC: a program named L<k> (the DIN name: L and digits, no leading zero) is
+# O<k>, so a call of a name built at run time, CALL "L"<<R1, is G65 P#n (--l-numbers).
+# Off: such a call is refused (NC585).
+l_numbers = false
 
 [programs.to_fanuc]
 # Siemens program names -> FANUC O numbers (--program-map NAME=9001). Unlisted: main

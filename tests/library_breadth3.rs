@@ -132,9 +132,15 @@ fn a_bracketed_program_number_is_that_program() {
     assert!(err.contains("equivalent"), "{err}");
     let mpf = std::fs::read_to_string(d.join("out/P_C.MPF")).unwrap();
     assert!(mpf.contains("O_0010\n") && mpf.contains("O_0020(1"), "{mpf}");
-    // A number that depends on the path stays refused, naming why (one number on every
-    // path is the call of that program: tests/computed_calls.rs).
+    // A number that depends on the path is a dispatch over the programs its values name
+    // (O10 here; 20 names none: Siemens' own "program not found"), tests/calls_computed_numbers.rs.
     let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "d.nc", "-o", "out2/"]);
+    assert_eq!(code, 0, "{err}");
+    let mpf = std::fs::read_to_string(d.join("out2/P_D.MPF")).unwrap();
+    assert!(mpf.contains("ROUND(LOC1)-10<>0") && mpf.contains("NCTRANS_NO_PROG"), "{mpf}");
+    // One that may be any value stays refused, naming why.
+    std::fs::write(d.join("e.nc"), "O1000\n#1=#5041\nM98 P#1\nM30\nO10\nG01 X1. F100.\nM99\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "e.nc", "-o", "out3/"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC356") && err.contains("computed program number"), "{err}");
 }

@@ -46,6 +46,9 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
     if t.specialise_callers {
         c.specialise_callers = true;
     }
+    if t.l_numbers {
+        c.l_numbers = true;
+    }
     if given(m, "max_steps") {
         flag(&mut c, "verify.max_steps", &t.max_steps.to_string(), "--max-steps")?;
     }

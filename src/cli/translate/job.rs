@@ -87,6 +87,8 @@ pub fn fanuc_options(c: &Config, input: &Path, eol: read::LineEnding) -> Result<
         tool_map: c.tools.clone(),
         program_map,
         program_number: c.program_number,
+        l_numbers: c.l_numbers,
+        max_program_number: c.fanuc.max_program_number(),
         ..nctrans::batch::target::fanuc::file_options(&JobSettings::of(c), input, eol)
     })
 }
@@ -447,10 +449,21 @@ pub fn write_output(path: Option<&Path>, bytes: &[u8]) -> Result<(), String> {
 }
 
 /// The programs `unit` calls by name, transitively, each name once: `load` gives a callee's
-/// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops.
-pub fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>, E>) -> Result<Vec<Unit>, E> {
+/// unit (`None`: skipped), whose calls are followed in turn; its first `Err` stops. A unit
+/// that calls `"L"<<n` also calls every name of `l_names` (the `L<k>` programs beside it,
+/// under `--l-numbers`; [`l_names_beside`]).
+pub fn callees<E>(
+    unit: &Unit,
+    l_names: &[String],
+    mut load: impl FnMut(&str) -> Result<Option<Unit>, E>,
+) -> Result<Vec<Unit>, E> {
+    use nctrans::lower::to_fanuc::string_calls::{called_names, calls_built_l};
     let mut subs = Vec::new();
-    let mut todo = nctrans::lower::to_fanuc::string_calls::called_names(unit);
+    let mut todo = called_names(unit);
+    let mut l_added = calls_built_l(unit);
+    if l_added {
+        todo.extend(l_names.iter().rev().cloned());
+    }
     let mut seen: Vec<String> = Vec::new();
     while let Some(callee) = todo.pop() {
         if seen.contains(&callee) {
@@ -459,11 +472,39 @@ pub fn callees<E>(unit: &Unit, mut load: impl FnMut(&str) -> Result<Option<Unit>
         let sub = load(&callee)?;
         seen.push(callee);
         if let Some(u) = sub {
-            todo.extend(nctrans::lower::to_fanuc::string_calls::called_names(&u));
+            todo.extend(called_names(&u));
+            if !l_added && calls_built_l(&u) {
+                l_added = true;
+                todo.extend(l_names.iter().rev().cloned());
+            }
             subs.push(u);
         }
     }
     Ok(subs)
+}
+
+/// With `on` (`--l-numbers`), the names of the `L<k>` subprograms beside `input` (`L10.SPF`,
+/// any case; DIN names without a leading zero), in number order: the programs a call of
+/// `"L"<<n` can reach.
+pub fn l_names_beside(input: &Path, on: bool) -> Vec<String> {
+    if !on {
+        return Vec::new();
+    }
+    let dir = beside(input);
+    let mut found: Vec<(u64, String)> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| f.extension().and_then(|x| x.to_str()).is_some_and(|x| x.eq_ignore_ascii_case("spf")))
+                .filter_map(|f| {
+                    let stem = f.file_stem()?.to_str()?.to_ascii_uppercase();
+                    Some((nctrans::translate::to_fanuc::numbers::l_number(&stem)?, stem))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    found.sort();
+    found.dedup();
+    found.into_iter().map(|(_, s)| s).collect()
 }
 
 pub fn find_beside(input: &Path, name: &str) -> Option<PathBuf> {
@@ -565,7 +606,8 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
     shown(&db, &parsed.diags)?;
     let mut read = vec![input.to_path_buf()];
-    let subs = callees::<ExitCode>(&parsed.unit, |callee| {
+    let l_names = l_names_beside(input, c.l_numbers);
+    let subs = callees::<ExitCode>(&parsed.unit, &l_names, |callee| {
         let Some(path) = find_beside(input, callee) else { return Ok(None) };
         let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
         read.push(path.clone());

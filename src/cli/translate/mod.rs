@@ -49,6 +49,10 @@ pub struct TranslateArgs {
     /// Program map: to FANUC NAME=9001 (name → O number); to Sinumerik 9010=PROBE_X (repeatable).
     #[arg(long = "program-map", value_name = "NAME=N")]
     pub program_map: Vec<String>,
+    /// To FANUC: a program named L<k> is O<k>, so `CALL "L"<<R1` is `G65 P#n` (key
+    /// programs.l_numbers).
+    #[arg(long = "l-numbers")]
+    pub l_numbers: bool,
     /// H/D registers of cutting edges: a TOML file with an [offsets] table ("6.2" = "H26,D46");
     /// replaces the [offsets] of nctrans.toml.
     #[arg(long = "offset-map", value_name = "FILE")]

@@ -372,7 +372,7 @@ fn fanuc_callees(input: &Path, c: &Config, unit: &Unit, read: &mut Vec<PathBuf>)
         .map_err(|_| no("a folder that cannot be listed"))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .collect();
-    job::callees(unit, |callee| {
+    job::callees(unit, &job::l_names_beside(input, c.l_numbers), |callee| {
         let path = job::find_beside(input, callee).ok_or_else(|| no("a call of a program not found beside it"))?;
         let mpf = files.iter().any(|f| {
             f.file_stem().and_then(|s| s.to_str()).is_some_and(|s| s.eq_ignore_ascii_case(callee))

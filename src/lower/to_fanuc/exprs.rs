@@ -194,6 +194,11 @@ impl Lower<'_> {
                     let r = self.value(r, MAX_DEPTH, pre);
                     c.repeat = Some(self.fit(r, MAX_DEPTH - 1, pre));
                 }
+                // `G65 P<n>` of `CALL "L"<<n` (`words::built`).
+                if let CallTarget::Computed(e) = &mut c.target {
+                    let v = self.value(std::mem::replace(e, num(0.0, span)), MAX_DEPTH, pre);
+                    *e = self.fit(v, MAX_DEPTH - 1, pre);
+                }
                 ItemKind::Call(c)
             }
             k => k,

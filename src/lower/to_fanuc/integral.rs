@@ -72,6 +72,8 @@ struct Assign {
 struct Walk {
     assigns: Vec<Assign>,
     cmps: Vec<Seen>,
+    /// The numbers of `"L"<<n` calls, as `n == 0` seen where the call stands.
+    calls: Vec<Seen>,
     /// Keys that can never be counters (passed as arguments, arrays, indirect targets).
     spoiled: BTreeSet<Key>,
     /// An indirect R write or a call out of the set: no R parameter is a counter.
@@ -191,6 +193,31 @@ pub fn exact_differences(progs: &[(&Program, &Types)], names: &BTreeSet<String>)
             .zip(&counters)
             .any(|(g, k)| integral(x, k, &c.set, types, g) && integral(y, k, &c.set, types, g))
     })
+}
+
+/// The number `n` of a call of the program named `"L"<<n` (the prefix in any case).
+pub fn built_l_number(t: &CallTarget) -> Option<&Expr> {
+    match t {
+        CallTarget::Computed(Expr { kind: ExprKind::Binary(BinOp::Concat, a, n), .. }) => {
+            matches!(&a.kind, ExprKind::Str(s) if s.eq_ignore_ascii_case("L")).then_some(&**n)
+        }
+        _ => None,
+    }
+}
+
+/// For every program (in order), the spans of the numbers `n` of its `CALL "L"<<n` that are
+/// provably integers below 1e12 where the call stands (the integer grid of
+/// [`exact_comparisons`]): `<<` writes them as digits alone, the `k` of program `L<k>`.
+pub fn integral_call_numbers(progs: &[(&Program, &Types)], names: &BTreeSet<String>) -> Vec<BTreeSet<Span>> {
+    let (w, counters) = counters(progs, names, false);
+    let mut out = vec![BTreeSet::new(); progs.len()];
+    let integers = Grid { g: 1.0 };
+    for c in &w.calls {
+        if integral(&c.a, &counters[0], &c.set, progs[c.prog].1, integers) {
+            out[c.prog].insert(c.span);
+        }
+    }
+    out
 }
 
 /// The spans of the comparisons `ok` proves, per program; two comparisons with one span (a
@@ -408,19 +435,27 @@ impl Walk {
                 }
             }
             ItemKind::Call(c) => {
-                let known = match &c.target {
-                    // WORKPIECE and the like only set up the simulation (dropped, NC322); the
-                    // standard cycles the translation writes as FANUC words (drilling cycles,
-                    // CYCLE832) keep their data in their own variables, not in R parameters.
-                    CallTarget::Name(n) => {
-                        let n = n.to_ascii_uppercase();
-                        names.contains(&n)
-                            || super::words::SIMULATION_ONLY.contains(&n.as_str())
-                            || n == "CYCLE832"
-                            || crate::dialect::sinumerik::cycles::cycle_of(&n).is_some()
-                    }
-                    _ => false,
-                };
+                // `CALL "L"<<n` reaches an `L<k>` program of the translation (the callers load
+                // every one beside them) or none, which stops the run.
+                if let Some(n) = built_l_number(&c.target) {
+                    let zero = Expr::num(0.0, false, n.span);
+                    self.calls.push(Seen { span: n.span, a: n.clone(), b: zero, set: set.clone(), prog });
+                }
+                let known = built_l_number(&c.target).is_some()
+                    || match &c.target {
+                        // WORKPIECE and the like only set up the simulation (dropped, NC322);
+                        // the standard cycles the translation writes as FANUC words
+                        // (drilling cycles, CYCLE832) keep their data in their own
+                        // variables, not in R parameters.
+                        CallTarget::Name(n) => {
+                            let n = n.to_ascii_uppercase();
+                            names.contains(&n)
+                                || super::words::SIMULATION_ONLY.contains(&n.as_str())
+                                || n == "CYCLE832"
+                                || crate::dialect::sinumerik::cycles::cycle_of(&n).is_some()
+                        }
+                        _ => false,
+                    };
                 if !known {
                     self.all_r_spoiled = true;
                 }

@@ -89,6 +89,17 @@ pub struct Callee {
     pub effect: words::effects::Effect,
 }
 
+/// Why an `L<k>` program has no `O<k>` under `--l-numbers`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LFault {
+    /// `O<k>` is another program's (the main program's, a `--program-map` entry's).
+    Clash { other: String },
+    /// `k` is 0 or beyond the series' largest O number.
+    Beyond { max: u32 },
+    /// A program map (`--program-map`, `[programs.to_fanuc]`, a batch's map) gives it `O<to>`.
+    Mapped { to: u32 },
+}
+
 /// State shared by the passes of one translation.
 #[derive(Debug)]
 pub struct Ctx {
@@ -129,6 +140,12 @@ pub struct Ctx {
     /// enables again), and whether two different ones were met.
     pub int_routine: Option<u32>,
     pub int_routine_changes: bool,
+    /// `--l-numbers`: every `L<k>` program of the translation with its `O<k>`, or why it has
+    /// none; `None` without the option (a call of `"L"<<n` is then refused).
+    pub l_programs: Option<BTreeMap<String, Result<u32, LFault>>>,
+    /// Spans of the numbers of `"L"<<n` calls that are provably integers where the call
+    /// stands ([`integral::integral_call_numbers`]).
+    pub integral_calls: std::collections::BTreeSet<Span>,
     next_temp: u32,
     next_label: u32,
 }
@@ -154,6 +171,8 @@ impl Ctx {
             macro_interrupt: false,
             int_routine: None,
             int_routine_changes: false,
+            l_programs: None,
+            integral_calls: Default::default(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

@@ -192,3 +192,22 @@ pub fn called_names(unit: &Unit) -> Vec<String> {
     let u = Unit { programs: resolved, ..unit.clone() };
     crate::ir::visit::called_names(&u)
 }
+
+/// Whether `unit` calls a program named `"L"<<n` (built at run time).
+pub fn calls_built_l(unit: &Unit) -> bool {
+    let mut found = false;
+    for p in &unit.programs {
+        crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                found |= b.items.iter().any(|it| match &it.kind {
+                    ItemKind::Call(c) => super::integral::built_l_number(&c.target).is_some(),
+                    ItemKind::IfThen { then, .. } => {
+                        matches!(&then.kind, ItemKind::Call(c) if super::integral::built_l_number(&c.target).is_some())
+                    }
+                    _ => false,
+                });
+            }
+        });
+    }
+    found
+}

@@ -518,6 +518,9 @@ fn visit_item(it: &mut Item, f: &mut dyn FnMut(&mut VarRef)) {
             if let Some(r) = &mut c.repeat {
                 visit_expr(r, f);
             }
+            if let CallTarget::Computed(e) = &mut c.target {
+                visit_expr(e, f);
+            }
         }
         ItemKind::Alarm { number, .. } => visit_expr(number, f),
         ItemKind::Message { text: Some(e) } => visit_expr(e, f),

@@ -657,20 +657,19 @@ fn unsup(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str) 
 /// A subprogram assumes it starts with lengths and feeds in one unit: declined where they
 /// differ. The modes `m` continue in what the callee leaves of them ([`Effect`]).
 fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>) -> Option<Stmt> {
-    let name =
-        match &c.target {
-            CallTarget::Name(n) => n.to_ascii_uppercase(),
-            // `CALL "L"<<R1`: `M98 P#n` would be exact only if every `L<k>` were O<k>, but the
-            // subprograms are numbered from the subprogram range by name.
-            CallTarget::Computed(Expr { kind: ExprKind::Binary(BinOp::Concat, ..), .. }) => return ctx.unsupported(
-                "NC585",
-                span,
-                "a call of a program whose name is built at run time (`<<`)",
-                "FANUC numbers the translated subprograms from O9000 up by name, not L<k> as O<k>, so no `M98 P#n` \
-                 calls the same program; call each program by its name (`CASE … OF` over the names)",
-            ),
-            _ => return ctx.unsupported("NC303", span, "a computed call target", ""),
-        };
+    let name = match &c.target {
+        CallTarget::Name(n) => n.to_ascii_uppercase(),
+        CallTarget::Computed(Expr { kind: ExprKind::Binary(BinOp::Concat, ..), .. }) => {
+            return built::built_call(ctx, c, span, m, kept)
+        }
+        // A STRING variable holding a name known only at run time: FANUC has no strings.
+        _ => {
+            let hint = "FANUC has no strings to hold a program name: write the name in the call, \
+                        `CALL \"L\"<<n` (with --l-numbers, `[programs] l_numbers = true`, a program L<k> is O<k> \
+                        and that call is `G65 P<n>`), or call each program by its name";
+            return ctx.unsupported("NC303", span, "a computed call target", hint);
+        }
+    };
     if crate::dialect::sinumerik::cycles::cycle_of(&name).is_some() {
         // A drilling cycle: `passes::cycles` writes it.
         kept.push(Item { kind: ItemKind::Call(Box::new(c)), span });
@@ -764,6 +763,7 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
     None
 }
 
+mod built;
 mod save;
 #[cfg(test)]
 mod tests;

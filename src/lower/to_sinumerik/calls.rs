@@ -375,6 +375,7 @@ fn tool_effects(programs: &[(FileId, &Program)]) -> BTreeMap<u32, bool> {
         .collect();
     let runs = |c: &Call| match (&c.kind, &c.target) {
         (CallKind::M97, _) => CallRuns::Harmless,
+        _ if super::dispatch::stops(c) => CallRuns::Harmless,
         (_, CallTarget::Number(n)) => CallRuns::Program(*n),
         _ => CallRuns::Unknown,
     };
@@ -485,19 +486,19 @@ fn lower_block(ctx: &mut Ctx, mut b: Block, span: Span, modal: &super::words::Mo
 
 /// `inch`: the unit (G20/G21) of the call block, for arguments written without a decimal point.
 fn lower_call(ctx: &mut Ctx, c: Call, span: Span, inch: Option<bool>) -> Result<Item, Option<Stmt>> {
-    let n = match &c.target {
-        CallTarget::Number(n) => *n,
-        CallTarget::Computed(_) => {
-            return Err(ctx.unsupported(
+    let n =
+        match &c.target {
+            CallTarget::Number(n) => *n,
+            CallTarget::Computed(_) => return Err(ctx.unsupported(
                 "NC356",
                 span,
-                "a call with a computed program number (`P#1`) that is not one number on every path to it",
-                "set the number once before the call (`#1=9010`), or call each possible program by its number \
-                 behind IF/GOTO",
-            ))
-        }
-        CallTarget::Name(_) => return Ok(Item { kind: ItemKind::Call(Box::new(c)), span }),
-    };
+                "a call with a computed program number (`P#1`) that is not one number on every path to it, nor one \
+                 of a few known ones (an input, a value a call may change, the main program's number)",
+                "set the number from constants before the call (`#1=9010`, `IF [..] THEN #1=9020`), the call alone \
+                 in its block, its arguments with a decimal point; or call each program by its number behind IF/GOTO",
+            )),
+            CallTarget::Name(_) => return Ok(Item { kind: ItemKind::Call(Box::new(c)), span }),
+        };
     let Some(callee) = ctx.program_by_number(n) else {
         // Under the warn policy the call becomes a marked line: the run then reaches the
         // same point as FANUC does before it would miss the program.

@@ -32,6 +32,7 @@ pub mod calls;
 pub mod comp;
 pub mod cycles;
 pub mod dead;
+pub mod dispatch;
 pub mod ends;
 pub mod exprs;
 pub(crate) mod fast_write;
@@ -352,6 +353,25 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let resolved: Vec<Option<Program>> = programs.iter().map(|(_, p)| indirect::resolve(p)).collect();
     let programs: Vec<(FileId, &Program)> =
         programs.iter().zip(&resolved).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
+    // A computed call the constants did not fix: a dispatch over the job's other programs.
+    let reachable: Vec<u32> = programs
+        .iter()
+        .skip(1)
+        .filter_map(|(_, p)| match p.name {
+            Some(ProgName::Number(n)) => Some(n),
+            _ => None,
+        })
+        .collect::<BTreeSet<u32>>()
+        .into_iter()
+        .collect();
+    let main_no = programs.first().and_then(|(_, p)| match p.name {
+        Some(ProgName::Number(n)) => Some(n),
+        _ => None,
+    });
+    let dispatched: Vec<Option<Program>> =
+        programs.iter().map(|(_, p)| dispatch::expand(p, &reachable, main_no)).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&dispatched).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
     let programs = programs.as_slice();
     let mut ctx = Ctx {
         opts,

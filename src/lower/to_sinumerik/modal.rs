@@ -125,6 +125,10 @@ impl State {
     pub(super) fn apply(mut self, items: &[Item], calls: CallModes) -> State {
         for it in items {
             if let ItemKind::Call(c) = &it.kind {
+                // The not-found call of a dispatch stops the run: nothing follows it.
+                if super::dispatch::stops(c) {
+                    continue;
+                }
                 let sets = match (&c.kind, &c.target) {
                     (CallKind::M97, _) => false,
                     (_, CallTarget::Number(n)) => calls.setters.contains(n),
@@ -627,6 +631,7 @@ pub fn frame_calls(progs: &[ProgPlan], programs: &[(FileId, &Program)]) -> Vec<(
         progs.iter().zip(programs).filter_map(|(pl, (_, p))| pl.number.map(|k| (k, *p))).collect();
     let runs = |c: &Call| match (&c.kind, &c.target) {
         (CallKind::M97, _) => CallRuns::Harmless,
+        _ if super::dispatch::stops(c) => CallRuns::Harmless,
         (_, CallTarget::Number(k)) => CallRuns::Program(*k),
         _ => CallRuns::Unknown,
     };

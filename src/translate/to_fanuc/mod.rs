@@ -20,6 +20,7 @@ use crate::span::Span;
 use std::collections::BTreeMap;
 
 mod inputs;
+pub mod numbers;
 pub use inputs::fanuc_set_inputs;
 use inputs::map_set_lines;
 
@@ -37,6 +38,11 @@ pub struct TranslateOptions {
     pub tool_map: BTreeMap<String, u32>,
     /// `--program-map NAME=9001` (names upper case).
     pub program_map: BTreeMap<String, u32>,
+    /// `--l-numbers`: a program named `L<k>` (no leading zero) is `O<k>`, and a call of
+    /// `"L"<<n` is `G65 P<n>` ([`crate::lower::to_fanuc::words`]).
+    pub l_numbers: bool,
+    /// Largest O number of the target series (9999; 99999999 on the 30i class).
+    pub max_program_number: u32,
     /// `--program-number`: O number of the main program.
     pub program_number: Option<u32>,
     pub comments: CommentMode,
@@ -65,6 +71,8 @@ impl Default for TranslateOptions {
             tool_map: BTreeMap::new(),
             program_map: BTreeMap::new(),
             program_number: None,
+            l_numbers: false,
+            max_program_number: 9999,
             comments: CommentMode::Keep,
             number_blocks: None,
             line_ending: LineEnding::Lf,
@@ -196,29 +204,10 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
 
     // O numbers.
-    let mut numbers: BTreeMap<String, u32> = BTreeMap::new();
     let main_name =
         main.programs.first().map_or(opts.main_name.to_ascii_uppercase(), |p| prog_name(p, &opts.main_name));
-    let mut taken: Vec<u32> = opts.program_map.values().copied().collect();
-    let main_no =
-        opts.program_number.or_else(|| opts.program_map.get(&main_name).copied()).unwrap_or(DEFAULT_MAIN_NUMBER);
-    taken.push(main_no);
-    numbers.insert(main_name.clone(), main_no);
-    let mut next = FIRST_SUB_NUMBER;
-    for (p, _, _) in progs.iter().skip(1) {
-        let name = prog_name(p, "");
-        let n = match opts.program_map.get(&name) {
-            Some(&n) => n,
-            None => {
-                while taken.contains(&next) {
-                    next += 1;
-                }
-                taken.push(next);
-                next
-            }
-        };
-        numbers.insert(name, n);
-    }
+    let sub_names: Vec<String> = progs.iter().skip(1).map(|(p, _, _)| prog_name(p, "")).collect();
+    let numbers::Numbers { numbers, l_programs } = numbers::assign(&main_name, &sub_names, opts);
     // What each subprogram leaves changed for its caller (the words pass follows modes
     // across calls) and, for SAVE ones, restores.
     let named: Vec<(String, &Program)> = progs.iter().skip(1).map(|(p, _, _)| (prog_name(p, ""), p)).collect();
@@ -236,6 +225,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let with_types: Vec<(&Program, &passes::integral::Types)> =
         progs.iter().zip(&types).map(|((p, _, _), t)| (p, t)).collect();
     let mut exact_cmps = passes::integral::exact_comparisons(&with_types, &names).into_iter();
+    let mut integral_calls = passes::integral::integral_call_numbers(&with_types, &names).into_iter();
 
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
@@ -249,6 +239,8 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
+        ctx.l_programs = l_programs.clone();
+        ctx.integral_calls = integral_calls.next().unwrap_or_default();
         let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {
