@@ -15,6 +15,10 @@ pub fn is_interrupt(name: &str) -> bool {
     ["SETINT(", "ENABLE(", "DISABLE(", "CLRINT(", "M96 P"].iter().any(|p| name.starts_with(p)) || name == "M97"
 }
 
+/// Instructions that switch the facing axis to diameter values (Siemens DIAMON, DIAM90,
+/// and their axis-wise forms).
+const DIAMETER_ON: [&str; 4] = ["DIAMON", "DIAM90", "DIAMONA", "DIAM90A"];
+
 impl Interp<'_> {
     pub(super) fn warn_instruction(&mut self, name: &str, span: Span) -> Result<(), super::fault::Fault> {
         if is_interrupt(name) {
@@ -28,6 +32,17 @@ impl Interp<'_> {
             };
             let msg = format!("{name}: the output is not modelled ({why}), so it is not compared");
             self.warn(super::print::PRINT_NOT_MODELLED, msg, span);
+        } else if DIAMETER_ON.contains(&name) {
+            // X in diameter: the machine goes to half of every X the trace would show.
+            return Err(super::fault::Fault::error(
+                crate::diag::Diagnostic::error(
+                    "NC403",
+                    format!("{name} (diameter programming of the facing axis) is not modelled by the evaluator"),
+                )
+                .primary(self.file(), span, "here")
+                .note("under it every X value is a diameter, so the tool goes to half of it; the trace would show the programmed value and call a radius program equivalent")
+                .hint("program the facing axis in radius (DIAMOF) for a proof"),
+            ));
         } else if name == "FFWON" || name == "FFWOF" {
             let what = if name == "FFWON" { "on" } else { "off" };
             let msg = format!(
