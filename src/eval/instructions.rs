@@ -19,6 +19,21 @@ pub fn is_interrupt(name: &str) -> bool {
 /// and their axis-wise forms).
 const DIAMETER_ON: [&str; 4] = ["DIAMON", "DIAM90", "DIAMONA", "DIAM90A"];
 
+/// Instructions that change where the programmed positions take the tool (a kinematic
+/// transformation, a frame aligned to the tool or the holder, the approach path under
+/// cutter compensation), with what they do. Their off forms (TRAFOOF, PAROTOF, TOROTOF) and
+/// the default NORM change nothing the run does not model.
+const MOVES_OTHERWISE: [(&str, &str); 8] = [
+    ("TRANSMIT", "the face-end transformation: X, Y become polar motion of X and the C axis"),
+    ("TRACYL", "the peripheral-surface transformation: Y becomes a rotation of the cylinder"),
+    ("TOFRAME", "a frame aligned to the tool's orientation"),
+    ("PAROT", "a frame rotated to the workpiece holder"),
+    ("TOROT", "a frame rotated to the tool's orientation"),
+    ("KONT", "approach and retract around the contour's end point under G41/G42"),
+    ("KONTC", "approach and retract on a curvature-continuous path under G41/G42"),
+    ("KONTT", "approach and retract on a tangent-continuous path under G41/G42"),
+];
+
 impl Interp<'_> {
     pub(super) fn warn_instruction(&mut self, name: &str, span: Span) -> Result<(), super::fault::Fault> {
         if is_interrupt(name) {
@@ -42,6 +57,13 @@ impl Interp<'_> {
                 .primary(self.file(), span, "here")
                 .note("under it every X value is a diameter, so the tool goes to half of it; the trace would show the programmed value and call a radius program equivalent")
                 .hint("program the facing axis in radius (DIAMOF) for a proof"),
+            ));
+        } else if let Some(why) = MOVES_OTHERWISE.iter().find(|(n, _)| *n == name).map(|(_, w)| w) {
+            return Err(super::fault::Fault::error(
+                crate::diag::Diagnostic::error("NC403", format!("{name} ({why}) is not modelled by the evaluator"))
+                    .primary(self.file(), span, "here")
+                    .note("the trace would show the programmed values as if it were not there, and call a program without it equivalent")
+                    .hint("prove the program without it; its motion has no counterpart the run models"),
             ));
         } else if name == "FFWON" || name == "FFWOF" {
             let what = if name == "FFWON" { "on" } else { "off" };
