@@ -389,7 +389,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("cycle-unknown-call.mpf", "NC322"),         // WORKPIECE, CYCLE81
     ("cycle86-fine-bore.mpf", "NC390"), // CYCLE86 lifts off by RPA/RPO in the program; G76 shifts by machine parameter
     ("def-scalar-types.mpf", "NC310"),  // DEF STRING / AXIS
-    ("frame-instructions.mpf", "NC316"), // TRANS, ROT, …
+    ("frame-instructions.mpf", "NC577"), // TRANS, ROT, …
     ("goto-string-target.mpf", "NC310"), // a jump to a computed label
     ("gud-def-nck-chan.mpf", "NC634"),  // DEF NCK / DEF CHAN global user data
     ("mcall-modal.mpf", "NC393"),       // MCALL CYCLE81 with RTP above the tool
@@ -440,11 +440,11 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("O_2001.mpf", "NC445"), // g52-pockets-g28-tool-changes.nc, translated since G43 is: its frames (passes::frames)
     // g68-macro-rotated-pockets.nc: the frame sequence of a called program (to FANUC in main
     // programs only) and one whose angle is a variable (NCTRANS_G68_R; constants only).
-    ("O_9120.spf", "NC316"),
+    ("O_9120.spf", "NC577"),
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
     ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
     ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
-    ("P_G68_MACRO_ROTATED_POCK.mpf", "NC316"), // see O_9120.spf
+    ("P_G68_MACRO_ROTATED_POCK.mpf", "NC577"), // see O_9120.spf
     ("P_M98_SUBPROGRAM.mpf", "NC303"),         // a repeated call with (VAR) parameters
     ("P_M99_RETURN_TO_SEQUENCE.mpf", "NC310"), // the computed-GOTO helper STRING
     ("SEED_MACRO_B_Q_AND_A.mpf", "NC310"),     // the computed-GOTO helper STRING

@@ -323,7 +323,7 @@ const REFUSED: &[(&str, &str)] = &[
     ("cycle86-fine-bore.mpf", "NC390"),  // no exact FANUC cycle
     ("def-scalar-types.mpf", "NC310"),
     ("extern-and-call-by-name.mpf", "NC303"),
-    ("frame-instructions.mpf", "NC316"),
+    ("frame-instructions.mpf", "NC577"),
     ("goto-string-target.mpf", "NC305"),
     ("gud-def-nck-chan.mpf", "NC634"),
     ("mcall-modal.mpf", "NC393"), // MCALL CYCLE81 with RTP above the tool

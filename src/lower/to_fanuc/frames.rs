@@ -4,8 +4,11 @@
 //! - `TRANS X.. Y..` → `G52` naming X, Y, Z and every other axis any TRANS of the program
 //!   names, the unnamed ones 0: TRANS replaces the whole programmable frame, G52 only the
 //!   axes it names. Bare `TRANS` → `G52 X0 Y0 Z0`. Under G91 (or where it may be in force)
-//!   refused: FANUC reads G52 under G91 as incremental. `ATRANS` (adds to the frame, whose
-//!   value FANUC cannot read back) is refused.
+//!   refused: FANUC reads G52 under G91 as incremental. `ATRANS` adds to the frame, whose
+//!   value FANUC cannot read back: the translation keeps the shift of each axis in a
+//!   variable (set by the TRANS before, raised by each ATRANS) and writes `G52` from them,
+//!   where every ATRANS follows a TRANS on every path ([`ATRANS_READY`]), in a main program
+//!   with no rotation, scale or mirror and no incremental move; elsewhere refused (NC577).
 //! - `SUPA` and `G153` → `G53` in the same block.
 //! - `G505`/`G506` → `G58`/`G59`, `G507`.. → `G54.1 P1`.. (the trace numbers both alike).
 //! - `G74 Z1=0` → `G91 G28 Z0` (the intermediate point is where the tool stands, as for
@@ -38,6 +41,57 @@ fn const_g(it: &Item) -> Option<f64> {
     }
 }
 
+/// [`trans_axes`] bit: the program adds to its frame (`ATRANS`, not the G92 form) and may:
+/// its frame instructions are TRANS and ATRANS only, and the first of them in the text is a
+/// TRANS in a top-level block that no jump, label or structure comes before, so every
+/// ATRANS finds the shifts that TRANS set.
+pub const ATRANS_READY: u16 = 1 << 13;
+
+/// The temporary holding the programmable shift of axis `l` (a local of the main program).
+fn shift_var(l: u8, span: Span) -> VarRef {
+    VarRef { kind: VarKind::Named { name: format!("{TEMP_PREFIX}SHIFT_{}", l as char), indices: vec![] }, span }
+}
+
+/// Whether `body` has an additive ATRANS and every one finds the shifts of a TRANS before it
+/// ([`ATRANS_READY`]).
+fn atrans_ready(body: &[Stmt]) -> bool {
+    let mut additive = false;
+    let mut others = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            for it in &b.items {
+                if let ItemKind::Frame { op, words } = &it.kind {
+                    match op.as_str() {
+                        "TRANS" => {}
+                        "ATRANS" if g92_words(words).is_none() => additive = true,
+                        _ => others = true,
+                    }
+                }
+            }
+        }
+    });
+    if !additive || others {
+        return false;
+    }
+    for s in body {
+        let StmtKind::Block(b) = &s.kind else { return false };
+        if b.meta.label.is_some()
+            || b.items
+                .iter()
+                .any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::IfThen { .. } | ItemKind::Call(_)))
+        {
+            return false;
+        }
+        if let Some(op) = b.items.iter().find_map(|it| match &it.kind {
+            ItemKind::Frame { op, .. } => Some(op.as_str()),
+            _ => None,
+        }) {
+            return op == "TRANS";
+        }
+    }
+    false
+}
+
 /// The axes any TRANS of `body` names, with X, Y and Z; bit 15: the program has an
 /// incremental word (G91 or IC()), after which TRANS and G52 differ; bit 14: it has a
 /// frame instruction other than the `ATRANS X=$P_EP[X]-v` form of G92 ([`g92_words`]).
@@ -63,6 +117,9 @@ pub fn trans_axes(body: &[Stmt]) -> u16 {
             }
         }
     });
+    if atrans_ready(body) {
+        bits |= ATRANS_READY;
+    }
     bits
 }
 
@@ -111,6 +168,9 @@ pub fn block(
     }
     let span = b.meta.span;
     if let [Item { kind: ItemKind::Frame { op, words }, span: fspan }] = b.items.as_slice() {
+        if op == "ATRANS" && g92_words(words).is_none() {
+            return Some(atrans(ctx, &mut b.meta, words, *fspan, abs, axes, main));
+        }
         if op == "ATRANS" {
             let g92 = g92_words(words)?;
             if !main || axes & (3 << 14) != 0 || abs != Some(true) {
@@ -146,6 +206,7 @@ pub fn block(
             ));
         }
         let mut items = vec![g(52.0, span)];
+        let mut shifts = Vec::new();
         for (i, &l) in AXES.iter().enumerate() {
             if axes & (1 << i) == 0 {
                 continue;
@@ -154,10 +215,16 @@ pub fn block(
                 // Refused above: a rotary positioning form is no shift value.
                 WordValue::Expr(e) | WordValue::Ac(e) | WordValue::Ic(e) | WordValue::Rotary(_, e) => e.clone(),
             });
-            items.push(letter(l, v.unwrap_or_else(|| point(0.0, *fspan)), *fspan));
+            let v = v.unwrap_or_else(|| point(0.0, *fspan));
+            if axes & ATRANS_READY != 0 {
+                // The shifts an ATRANS after it adds to.
+                shifts.push(block_stmt(vec![assign_item(&shift_var(l, *fspan), v.clone(), *fspan)], *fspan));
+            }
+            items.push(letter(l, v, *fspan));
         }
         let meta = std::mem::take(&mut b.meta);
-        return Some(vec![meta_stmt(meta, items)]);
+        shifts.push(meta_stmt(meta, items));
+        return Some(shifts);
     }
     let gs: Vec<f64> = b.items.iter().filter_map(const_g).collect();
     let home = if gs.contains(&74.0) {
@@ -224,6 +291,53 @@ pub fn block(
         out.push(block_stmt(vec![g(90.0, span)], span));
     }
     Some(out)
+}
+
+/// `ATRANS X.. Y..` (adds to the frame): each named axis's shift variable raised by its
+/// value, then `G52` of every axis from the variables (`#1=#1+50.`, `G52 X#1 Y#2 Z#3`).
+fn atrans(
+    ctx: &mut Ctx,
+    meta: &mut BlockMeta,
+    words: &[Word],
+    fspan: Span,
+    abs: Option<bool>,
+    axes: u16,
+    main: bool,
+) -> Vec<Stmt> {
+    let why = if !main {
+        Some("in a called program (the shifts its caller set are not known there)")
+    } else if axes & (1 << 15) != 0 || abs != Some(true) {
+        Some("in a program with incremental moves (after a frame change a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not)")
+    } else if axes & ATRANS_READY == 0 {
+        Some("where a TRANS does not come first on every path, or with ROT, SCALE or MIRROR in the program (FANUC's G52 shifts the unrotated coordinates)")
+    } else if words
+        .iter()
+        .any(|w| !matches!(w.value, WordValue::Expr(_)) || !matches!(w.addr, Addr::Letter(l) if AXES.contains(&l)))
+    {
+        Some("with a word that is not an axis shift value")
+    } else {
+        None
+    };
+    if let Some(why) = why {
+        let what = format!("ATRANS (adds to the programmable frame) {why}");
+        let hint = "program a TRANS first, in the main program's leading blocks, and keep the program in G90 without ROT, SCALE or MIRROR";
+        return ctx.unsupported("NC577", fspan, &what, hint).into_iter().collect();
+    }
+    let mut out = Vec::new();
+    for w in words {
+        let (Addr::Letter(l), WordValue::Expr(e)) = (&w.addr, &w.value) else { continue };
+        let var = shift_var(*l, w.span);
+        let sum = crate::lower::bin(BinOp::Add, crate::lower::var_expr(&var), e.clone());
+        out.push(block_stmt(vec![assign_item(&var, sum, w.span)], w.span));
+    }
+    let mut items = vec![g(52.0, meta.span)];
+    for (i, &l) in AXES.iter().enumerate() {
+        if axes & (1 << i) != 0 {
+            items.push(letter(l, crate::lower::var_expr(&shift_var(l, fspan)), fspan));
+        }
+    }
+    out.push(meta_stmt(std::mem::take(meta), items));
+    out
 }
 
 fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str) -> Vec<Stmt> {

@@ -332,7 +332,10 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                 }
             }
             map.insert(name.clone(), (n, dims.clone()));
-            let source = if temp {
+            let source = if let Some(axis) = name.strip_prefix(TEMP_PREFIX).and_then(|t| t.strip_prefix("SHIFT_")) {
+                // The programmable shift ATRANS adds to (`frames::atrans`).
+                format!("TRANS/ATRANS SHIFT {axis}")
+            } else if temp {
                 "temporary".to_string()
             } else if dims.is_empty() {
                 name.clone()
