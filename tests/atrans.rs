@@ -42,7 +42,7 @@ fn atrans_without_a_leading_trans_or_with_rotation_is_refused() {
         let src = write(&d, name, &text);
         let (code, _, err) = nctrans(&["--to", "fanuc", &src]);
         assert_ne!(code, 0, "{name}: {err}");
-        assert!(err.contains("NC577") || err.contains("NC445") || err.contains("NC316"), "{name}: {err}");
+        assert!(err.contains("NC577") || err.contains("NC445") || err.contains("NC498"), "{name}: {err}");
     }
     // In a called program the shifts its caller set are not known.
     let main = write(&d, "CALLER.MPF", "G17 G90 G54\nTRANS X10\nSTEP\nM30\n");

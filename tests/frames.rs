@@ -212,7 +212,7 @@ mod translation {
         assert_eq!(f_to_s(g68_1).unwrap_err(), vec!["NC446".to_string()]);
         assert!(f_to_s("O1\nG90 G69 G15\nG0 X1.\nM30\n").unwrap().contains("G90\nG0 X1\n"));
         // ATRANS adds to a frame FANUC cannot read; TRANS under G91.
-        assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC316".to_string()]);
+        assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC577".to_string()]);
         assert_eq!(s_to_f("G91\nTRANS X5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
         assert_eq!(s_to_f("G74 Z1=0 M5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
         // After a frame change a Sinumerik incremental move also travels the change, a

@@ -236,7 +236,7 @@ mod back_to_fanuc {
         let nc445 = Err(vec!["NC445".to_string()]);
         assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[X]\nTRANS Y5\nM30\n"), nc445, "another frame instruction");
         assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[X]\nG1 X=IC(1) F100\nM30\n"), nc445, "incremental moves");
-        assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[Y]\nM30\n"), Err(vec!["NC316".to_string()]), "another axis");
+        assert_eq!(s_to_f("G0 X5\nATRANS X=$P_EP[Y]\nM30\n"), Err(vec!["NC577".to_string()]), "another axis");
     }
 }
 

@@ -251,7 +251,7 @@ fn pair_ic_switches_to_incremental_and_back() {
 
 #[test]
 fn unsupported_constructs_are_refused() {
-    refused("ATRANS X5\nM30\n", "NC316");
+    refused("ATRANS X5\nM30\n", "NC577");
     refused("DEF STRING[8] S_NAME\nM30\n", "NC310");
     refused("G1 X1 F100 AR=90\nM30\n", "NC312");
     refused("CYCLE81(10,0,2,-5)\nM30\n", "NC393");
@@ -265,7 +265,7 @@ fn warn_policy_marks_the_line() {
     let opts = TranslateOptions { unsupported: UnsupportedPolicy::Warn, ..TranslateOptions::default() };
     let d = translate_src("w.mpf", "G1 X1 F100\nATRANS X5\nM30\n", &opts);
     assert!(!d.t.ok());
-    assert!(d.t.text.contains("(*** NCTRANS UNSUPPORTED: frame instruction ATRANS"), "{}", d.t.text);
+    assert!(d.t.text.contains("(*** NCTRANS UNSUPPORTED: ATRANS [adds to the programmable frame]"), "{}", d.t.text);
 }
 
 #[test]
