@@ -272,25 +272,32 @@ pub fn walk<S: FlowState>(
     }
     let mut jumps = Jumps::Blind;
     if resolvable(&body) {
-        let mut at: BTreeMap<String, S> = BTreeMap::new();
-        for _ in 0..4 {
+        let (mut at, mut ends): (BTreeMap<String, S>, BTreeMap<String, S>) = Default::default();
+        for _ in 0..5 {
             let mut probe = st.clone();
-            let mut pass = Jumps::Known { at: at.clone(), seen: BTreeMap::new() };
+            let mut pass =
+                Jumps::Known { at: at.clone(), seen: BTreeMap::new(), ends: ends.clone(), ends_seen: BTreeMap::new() };
             walk_in(body.clone(), &mut probe, &mut pass, fanuc, step, false);
-            let Jumps::Known { seen, .. } = pass else { break };
-            let mut next = at.clone();
-            for (k, v) in seen {
-                let m = next.get(&k).map_or_else(|| v.clone(), |old| old.merge(&v));
-                next.insert(k, m);
-            }
-            if next == at {
-                jumps = Jumps::Known { at, seen: BTreeMap::new() };
+            let Jumps::Known { seen, ends_seen, .. } = pass else { break };
+            let (next_at, next_ends) = (joined(&at, seen), joined(&ends, ends_seen));
+            if next_at == at && next_ends == ends {
+                jumps = Jumps::Known { at, seen: BTreeMap::new(), ends, ends_seen: BTreeMap::new() };
                 break;
             }
-            at = next;
+            (at, ends) = (next_at, next_ends);
         }
     }
     walk_in(body, st, &mut jumps, fanuc, step, live)
+}
+
+/// `old` with the states of `new` merged in, key by key.
+fn joined<S: FlowState>(old: &BTreeMap<String, S>, new: BTreeMap<String, S>) -> BTreeMap<String, S> {
+    let mut out = old.clone();
+    for (k, v) in new {
+        let m = out.get(&k).map_or_else(|| v.clone(), |o| o.merge(&v));
+        out.insert(k, m);
+    }
+    out
 }
 
 /// How a walk treats jump targets.
@@ -299,8 +306,15 @@ enum Jumps<S> {
     None,
     /// Every labelled or numbered block may be a target from anywhere: it knows nothing.
     Blind,
-    /// The states at the targets (by [`target_keys`]) and those this walk's jumps carry.
-    Known { at: BTreeMap<String, S>, seen: BTreeMap<String, S> },
+    /// The states at the targets (by [`meta_keys`]) and those this walk's jumps carry; the
+    /// states after each labelled block (where a `REPEAT` section ends and the run goes on
+    /// after the REPEAT) and those this walk leaves there.
+    Known {
+        at: BTreeMap<String, S>,
+        seen: BTreeMap<String, S>,
+        ends: BTreeMap<String, S>,
+        ends_seen: BTreeMap<String, S>,
+    },
 }
 
 impl<S: FlowState> Jumps<S> {
@@ -332,6 +346,31 @@ impl<S: FlowState> Jumps<S> {
                 let m = seen.get(k).map_or_else(|| st.clone(), |old| old.merge(st));
                 seen.insert(k.clone(), m);
             }
+        }
+    }
+
+    /// The block with `meta` ran, leaving `st`; then its `REPEAT` (if any) runs its section
+    /// (from the start label, or the one labelled block) and goes on after it with what the
+    /// section's end leaves (merged with `st` where the count may be 0).
+    fn after_block(&mut self, meta: &BlockMeta, repeat: Option<&RepeatSection>, st: &mut S) {
+        let Jumps::Known { ends, ends_seen, .. } = self else { return };
+        for k in meta_keys(meta) {
+            let m = ends_seen.get(&k).map_or_else(|| st.clone(), |old| old.merge(st));
+            ends_seen.insert(k, m);
+        }
+        let Some(r) = repeat else { return };
+        let start = format!("L:{}", r.start.name.to_ascii_uppercase());
+        let end = if r.single {
+            Some(start.clone())
+        } else {
+            r.end.as_ref().map(|l| format!("L:{}", l.name.to_ascii_uppercase()))
+        };
+        let once = r.count.as_ref().is_none_or(|c| matches!(crate::lower::literal(c), Some(n) if n >= 1.0));
+        let ends = ends.clone();
+        self.leave(&[start], st);
+        // No end label: the section ends right before the REPEAT, where `st` stands.
+        if let Some(after) = end.and_then(|e| ends.get(&e).cloned()) {
+            *st = if once { after } else { after.merge(st) };
         }
     }
 }
@@ -383,16 +422,18 @@ fn body_gotos(body: &[Stmt]) -> Vec<Option<String>> {
     out
 }
 
-/// Whether every way into a labelled block of `body` is a jump of `body` naming its target:
-/// no computed target, no `REPEAT` of a section (it jumps back to its label), no return to a
-/// label (`M99 P…`, `RET("…")`) and no call of a program, which may return to one of this
-/// body's blocks (drilling cycles return where they were called).
+/// Whether every way into a labelled block of `body` is a jump of `body` naming its target
+/// (a `REPEAT` jumps to its section's start and on from its end, [`Jumps::after_block`]): no
+/// computed target, no return to a label (`M99 P…`, `RET("…")`) and no call of a program,
+/// which may return to one of this body's blocks (drilling cycles and CYCLE832 return where
+/// they were called).
 fn resolvable(body: &[Stmt]) -> bool {
     fn other_entry(it: &Item) -> bool {
         match &it.kind {
-            ItemKind::RepeatSection(_) | ItemKind::Return { to: Some(_) } => true,
+            ItemKind::Return { to: Some(_) } => true,
             ItemKind::Call(c) => !matches!(&c.target, CallTarget::Name(n)
-                if crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some()),
+                if n.eq_ignore_ascii_case("CYCLE832")
+                    || crate::dialect::sinumerik::cycles::cycle_of(&n.to_ascii_uppercase()).is_some()),
             ItemKind::IfThen { then, .. } => other_entry(then),
             ItemKind::IfBlock { items, .. } => items.iter().any(other_entry),
             _ => false,
@@ -425,8 +466,14 @@ fn walk_in<S: FlowState>(
                 for it in &b.items {
                     item_gotos(it, &mut gotos);
                 }
+                let meta = b.meta.clone();
+                let repeat = b.items.iter().find_map(|it| match &it.kind {
+                    ItemKind::RepeatSection(r) => Some((**r).clone()),
+                    _ => None,
+                });
                 step(st, b, live, &mut out);
                 jumps.leave(&gotos.into_iter().flatten().collect::<Vec<_>>(), st);
+                jumps.after_block(&meta, repeat.as_ref(), st);
                 continue;
             }
             kind => Stmt { kind, span },
