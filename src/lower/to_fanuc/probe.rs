@@ -40,6 +40,12 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
                     continue;
                 }
                 if let Some(kept) = skip_idiom(&s, axes) {
+                    // The Z keeps, for the length the G43 H at the G31 adds (`probe_length`).
+                    if let Some(&meas) = found.last() {
+                        for k in kept.iter().filter(|k| is_z_keep(k)) {
+                            ctx.z_keeps.push((meas, k.span));
+                        }
+                    }
                     out.extend(kept.into_iter().filter(|k| own_write(k, &own).is_none()));
                     continue;
                 }
@@ -272,6 +278,13 @@ fn probe_switched(c: &Expr) -> bool {
         (ExprKind::Binary(BinOp::Sub, x, one), Some(0.0)) => is_mea(x) && crate::lower::literal(one) == Some(1.0),
         _ => false,
     }
+}
+
+/// A keep `T=#5063` that [`skip_idiom`] wrote.
+fn is_z_keep(s: &Stmt) -> bool {
+    matches!(&s.kind, StmtKind::Block(b) if matches!(b.items.as_slice(),
+        [Item { kind: ItemKind::Assign { value, .. }, .. }]
+            if matches!(&value.kind, ExprKind::Var(v) if v.kind == VarKind::Hash(5063))))
 }
 
 /// One assignment `T=$NAME[axis]` in a block of its own: the target and the axis.
