@@ -20,7 +20,7 @@ fn check(a: &str, b: &str) -> (i32, String) {
     (code, format!("{out}{err}"))
 }
 
-fn to_sinumerik(d: &PathBuf, name: &str, text: &str) -> (i32, String, String, String) {
+fn to_sinumerik(d: &std::path::Path, name: &str, text: &str) -> (i32, String, String, String) {
     let f = write(d, &format!("{name}.nc"), text);
     let out = d.join(name);
     let (code, o, err) = nctrans(&[&f, "--to", "sinumerik", "-o", &format!("{}/", out.display())]);
@@ -55,6 +55,12 @@ fn fanuc_to_sinumerik_adds_the_edge_length_at_the_g31() {
         // X carries no length.
         assert!(text.contains("NCTRANS_SKIP_X=$AA_IW[X]\n"), "{text}");
         assert_eq!(check(&f, &mpf).0, 0, "{}", check(&f, &mpf).1);
+        // Back to FANUC: the keep with H20's length under G43 H20 is #5063 itself.
+        let back = d.join(format!("back{}.nc", probe.len())).to_string_lossy().into_owned();
+        let (code, o, err) = nctrans(&[&mpf, "--to", "fanuc", "-o", &back]);
+        assert_eq!(code, 0, "{o}{err}");
+        let again = std::fs::read_to_string(&back).expect("written");
+        assert!(again.contains("G31 Z-20. F200.\nG00\n#1=#5063\n"), "{again}");
         // Planted: the sign, the length missing, the wear missing, another tool's length.
         for (name, bad) in [
             ("W1.MPF", text.replace("[Z]+(", "[Z]-(")),
@@ -68,6 +74,12 @@ fn fanuc_to_sinumerik_adds_the_edge_length_at_the_g31() {
             assert_eq!(code, 1, "{name} {probe}: {msg}");
             assert!(msg.contains("NC500"), "{name}: {msg}");
         }
+        // Another edge's length in the translation's own variable under H20: refused by name.
+        let other = text.replace("[Z]+($TC_DP3[20,1]+$TC_DP12[20,1])", "[Z]+($TC_DP3[21,1]+$TC_DP12[21,1])");
+        let o_mpf = write(&d, &format!("OTHER{}.MPF", probe.len()), &other);
+        let (code, _, err) = nctrans(&[&o_mpf, "--to", "fanuc"]);
+        assert_ne!(code, 0);
+        assert!(err.contains("NC551") && err.contains("NCTRANS_SKIP_Z"), "{err}");
     }
 }
 
@@ -85,10 +97,9 @@ fn the_length_is_the_one_in_force_at_the_g31_not_at_the_read() {
     assert!(keep < write_at, "{out}");
     assert_eq!(check(&f, &mpf).0, 0, "{}", check(&f, &mpf).1);
     // Planted: the length taken at the read (after the write).
-    let moved = out.replace("+($TC_DP3[20,1]+$TC_DP12[20,1])", "").replace(
-        "LOC1=NCTRANS_SKIP_Z",
-        "LOC1=NCTRANS_SKIP_Z+($TC_DP3[20,1]+$TC_DP12[20,1])",
-    );
+    let moved = out
+        .replace("+($TC_DP3[20,1]+$TC_DP12[20,1])", "")
+        .replace("LOC1=NCTRANS_SKIP_Z", "LOC1=NCTRANS_SKIP_Z+($TC_DP3[20,1]+$TC_DP12[20,1])");
     assert_ne!(moved, out);
     let w = write(&d, "W6.MPF", &moved);
     assert_eq!(check(&f, &w).0, 1, "{}", check(&f, &w).1);
@@ -112,10 +123,9 @@ fn an_h_the_flow_does_not_know_takes_the_active_edge() {
 fn fanuc_refusals_name_what_is_not_settled() {
     let d = scratch("refused");
     // G43 on one path only.
-    let one = fanuc("G43 H20", "Z=2.5").replace("T20 M6\n", "T20 M6\nIF [#5 GT 0] GOTO 10\n").replace(
-        "G43 H20 Z50.\n",
-        "G43 H20 Z50.\nN10 G0 Z50.\n",
-    );
+    let one = fanuc("G43 H20", "Z=2.5")
+        .replace("T20 M6\n", "T20 M6\nIF [#5 GT 0] GOTO 10\n")
+        .replace("G43 H20 Z50.\n", "G43 H20 Z50.\nN10 G0 Z50.\n");
     let (code, msg, _, _) = to_sinumerik(&d, "e", &one);
     assert_ne!(code, 0);
     assert!(msg.contains("NC550") && msg.contains("not set on every path"), "{msg}");
@@ -168,6 +178,19 @@ fn sinumerik_to_fanuc_takes_the_h_length_off_the_skip_position() {
             assert!(msg.contains("NC500") || msg.contains("not equivalent"), "{name}: {msg}");
         }
     }
+    // A keep that adds another edge's length: H20's taken off, that one added, proven.
+    let other = SIEMENS
+        .replace("ZS=$AA_MW[Z]", "ZS=$AA_MW[Z]+($TC_DP3[21,1]+$TC_DP12[21,1])")
+        .replace("ZS=$AA_IW[Z]", "ZS=$AA_IW[Z]+($TC_DP3[21,1]+$TC_DP12[21,1])");
+    let f = write(&d, "SO.MPF", &format!("; nctrans: probe Z=2.5\n{other}"));
+    let nc = d.join("so.nc").to_string_lossy().into_owned();
+    let (code, o, err) = nctrans(&[&f, "--to", "fanuc", "-o", &nc]);
+    assert_eq!(code, 0, "{o}{err}");
+    assert!(err.contains("equivalent") || o.contains("equivalent"), "{o}{err}");
+    let text = std::fs::read_to_string(&nc).expect("written");
+    assert!(text.contains("#100=#5063-[#11020+#10020]+[#11021+#10021]\n"), "{text}");
+    let w = write(&d, "w5.nc", &text.replace("-[#11020+#10020]+[#11021+#10021]", "+[#11021+#10021]"));
+    assert_ne!(check(&f, &w).0, 0, "{}", check(&f, &w).1);
     // D0 at the measuring block: #5063 as it is.
     let f = write(&d, "S0.MPF", &SIEMENS.replace("T20 M6 D1", "T20 M6 D0"));
     let (code, o, err) = nctrans(&[&f, "--to", "fanuc"]);

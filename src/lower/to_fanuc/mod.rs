@@ -152,6 +152,10 @@ pub struct Ctx {
     /// The H register FANUC applies at each G31 block (`comp`, by the block's span):
     /// `Some(None)` under G49, `None` where the flow does not know it.
     pub skip_lengths: Vec<(Span, Option<Option<u32>>)>,
+    /// The dropped keeps of the translation's own Z skip variable (`probe::take`): the
+    /// measuring block and the `+R` each added, and the spans of its reads (now `#5063`).
+    pub own_z_keeps: Vec<(Span, Option<Expr>)>,
+    pub own_z_reads: Vec<Span>,
     next_temp: u32,
     next_label: u32,
 }
@@ -181,6 +185,8 @@ impl Ctx {
             integral_calls: Default::default(),
             z_keeps: Vec::new(),
             skip_lengths: Vec::new(),
+            own_z_keeps: Vec::new(),
+            own_z_reads: Vec::new(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,
@@ -255,6 +261,8 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     corners::run(ctx, prog);
     ctx.z_keeps.clear();
     ctx.skip_lengths.clear();
+    ctx.own_z_keeps.clear();
+    ctx.own_z_reads.clear();
     let measuring = probe::take(ctx, prog);
     let edge = !measuring.is_empty() && probe_length::check(ctx, prog);
     position_length::run(prog);

@@ -79,8 +79,11 @@ pub fn check(ctx: &mut Ctx, prog: &Program) -> bool {
     if !edge {
         return false;
     }
+    // The own skip variable's reads where every keep of it added a length: `apply` proves
+    // that length is the H's.
+    let own_lengths = !ctx.own_z_keeps.is_empty() && ctx.own_z_keeps.iter().all(|k| k.1.is_some());
     for sp in reads {
-        let keep = ctx.z_keeps.iter().any(|k| k.1 == sp);
+        let keep = ctx.z_keeps.iter().any(|k| k.1 == sp) || (own_lengths && ctx.own_z_reads.contains(&sp));
         if ctx.haas {
             ctx.unsupported(
                 HAAS,
@@ -109,6 +112,17 @@ fn hash(n: u32, span: Span) -> Expr {
     var_expr(&VarRef { kind: VarKind::Hash(n), span })
 }
 
+/// `[#11000+h+#10000+h]`: the length of H register `h` (memory C geometry plus wear).
+fn h_length(h: u32, span: Span) -> Expr {
+    use crate::eval::tool_data::fanuc_var;
+    use crate::eval::trace::ToolField;
+    bin(
+        BinOp::Add,
+        hash(fanuc_var(ToolField::LengthGeometry, h), span),
+        hash(fanuc_var(ToolField::LengthWear, h), span),
+    )
+}
+
 /// Takes the length of the H FANUC applies at each G31 off the keep after it (runs after
 /// `comp`, which records that H); refuses the keeps where it is not known.
 pub fn apply(ctx: &mut Ctx, prog: &mut Program) {
@@ -120,27 +134,51 @@ pub fn apply(ctx: &mut Ctx, prog: &mut Program) {
     }
     let mut unknown = Vec::new();
     crate::lower::map_exprs(&mut prog.body, &mut |e: &mut Expr| {
-        let ExprKind::Var(v) = &e.kind else { return };
-        if v.kind != VarKind::Hash(5063) {
-            return;
-        }
-        let span = v.span;
+        let is_skip = |e: &Expr| matches!(&e.kind, ExprKind::Var(v) if v.kind == VarKind::Hash(5063));
+        // The keep `T=#5063`, or `T=#5063+R` (R read at the keep on both controls).
+        let (span, rest) = match &e.kind {
+            ExprKind::Var(v) if is_skip(e) => (v.span, None),
+            ExprKind::Binary(BinOp::Add, x, r) if is_skip(x) => (x.span, Some((**r).clone())),
+            _ => return,
+        };
         match h_of.get(&span) {
             Some(Some(Some(h))) if *h > 0 => {
-                use crate::eval::tool_data::fanuc_var;
-                use crate::eval::trace::ToolField;
-                let length = bin(
-                    BinOp::Add,
-                    hash(fanuc_var(ToolField::LengthGeometry, *h), span),
-                    hash(fanuc_var(ToolField::LengthWear, *h), span),
-                );
-                *e = bin(BinOp::Sub, hash(5063, span), length);
+                let length = h_length(*h, span);
+                *e = match rest {
+                    // `$AA_MW[Z]+($TC_DP3+$TC_DP12)` of the edge that is this H: #5063 itself.
+                    Some(r) if crate::ir::dump::expr(&r) == crate::ir::dump::expr(&length) => hash(5063, span),
+                    Some(r) => bin(BinOp::Add, bin(BinOp::Sub, hash(5063, span), length), r),
+                    None => bin(BinOp::Sub, hash(5063, span), length),
+                };
             }
             Some(Some(_)) => {}
             Some(None) => unknown.push(span),
             None => {}
         }
     });
+    // The own skip variable (read as `#5063`) holds the tip plus each keep's R: exact where
+    // every R is the length of the H at its G31.
+    let own = std::mem::take(&mut ctx.own_z_keeps);
+    let own_lengths = !own.is_empty() && own.iter().all(|k| k.1.is_some());
+    let own_ok = own.iter().all(|(meas, r)| {
+        let h = ctx.skip_lengths.iter().find(|l| l.0 == *meas).and_then(|l| l.1).flatten();
+        match (h, r) {
+            (Some(h), Some(r)) if h > 0 => crate::ir::dump::expr(r) == crate::ir::dump::expr(&h_length(h, r.span)),
+            _ => false,
+        }
+    });
+    if own_lengths && !own_ok {
+        for sp in ctx.own_z_reads.clone() {
+            ctx.unsupported(
+                UNDER_EDGE,
+                sp,
+                "the translation's own Z skip variable (NCTRANS_SKIP_Z, read as #5063) where a keep of it adds a \
+                 length that is not the one of the H register FANUC applies at its G31, or that H is not known",
+                "keep the measurement with the length of the edge active at the measuring block, or keep it in a \
+                 variable of the program's own (`IF $AC_MEA[1]==1 R1=$AA_MW[Z]+… ELSE R1=$AA_IW[Z]+… ENDIF`)",
+            );
+        }
+    }
     for sp in unknown {
         ctx.unsupported(
             UNDER_EDGE,
