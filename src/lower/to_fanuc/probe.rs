@@ -11,6 +11,8 @@
 //! (STOPRE between allowed): `IF $AC_MEA[1]==1 T=$AA_MW[X] ELSE T=$AA_IW[X] ENDIF` for an axis
 //! of the block is `T=#5061` (the trigger point on a hit, the end point on a miss, on both
 //! controls); it is what the FANUC → Sinumerik translation writes, so a round trip comes back.
+//! The same `+R` in both branches (the FANUC → Sinumerik keep of Z under G43 adds the edge's
+//! length) is `T=#5061+R`, which `probe_length` settles against the G43 H at the G31.
 //!
 //! Runs around [`super::words`]: [`take`] removes the `MEAS=` word (words would refuse the
 //! address) and the block's `G1`, remembering the block; [`put`] then writes `G31` into it,
