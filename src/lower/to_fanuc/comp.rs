@@ -140,6 +140,17 @@ fn word(letter: u8, v: f64, span: Span) -> Item {
 fn block(ctx: &mut Ctx, st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stmt>) {
     let span = b.meta.span;
     let relevant = comp_flow::relevant_items(&b.items, false);
+    if live
+        && b.items
+            .iter()
+            .any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G') && const_word(w) == Some(31.0)))
+    {
+        // The length a kept Z measurement takes off (`probe_length`): what FANUC applies in
+        // the G31 block, known only where the block changes nothing of it.
+        let applied =
+            if relevant || st.held.is_some() || st.pending.is_some() { None } else { st.fanuc.known().map(|a| a.len) };
+        ctx.skip_lengths.push((span, applied));
+    }
     let has_content = !b.items.is_empty();
     if let Some((_, hs)) = st.held {
         let m6_here = b

@@ -146,6 +146,16 @@ pub struct Ctx {
     /// Spans of the numbers of `"L"<<n` calls that are provably integers where the call
     /// stands ([`integral::integral_call_numbers`]).
     pub integral_calls: std::collections::BTreeSet<Span>,
+    /// The kept Z measurements of the program being lowered (`probe::take`): the measuring
+    /// block's span and the span of the `T=#5063` it became, for `probe_length`.
+    pub z_keeps: Vec<(Span, Span)>,
+    /// The H register FANUC applies at each G31 block (`comp`, by the block's span):
+    /// `Some(None)` under G49, `None` where the flow does not know it.
+    pub skip_lengths: Vec<(Span, Option<Option<u32>>)>,
+    /// The dropped keeps of the translation's own Z skip variable (`probe::take`): the
+    /// measuring block and the `+R` each added, and the spans of its reads (now `#5063`).
+    pub own_z_keeps: Vec<(Span, Option<Expr>)>,
+    pub own_z_reads: Vec<Span>,
     next_temp: u32,
     next_label: u32,
 }
@@ -173,6 +183,10 @@ impl Ctx {
             int_routine_changes: false,
             l_programs: None,
             integral_calls: Default::default(),
+            z_keeps: Vec::new(),
+            skip_lengths: Vec::new(),
+            own_z_keeps: Vec::new(),
+            own_z_reads: Vec::new(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,
@@ -245,14 +259,19 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_reads::run(prog);
     blocks::run(ctx, prog, info);
     corners::run(ctx, prog);
+    ctx.z_keeps.clear();
+    ctx.skip_lengths.clear();
+    ctx.own_z_keeps.clear();
+    ctx.own_z_reads.clear();
     let measuring = probe::take(ctx, prog);
-    if !measuring.is_empty() {
-        probe_length::check(ctx, prog);
-    }
+    let edge = !measuring.is_empty() && probe_length::check(ctx, prog);
     position_length::run(prog);
     words::run(ctx, prog, info);
     probe::put(prog, &measuring);
     comp::run(ctx, prog, info);
+    if edge {
+        probe_length::apply(ctx, prog);
+    }
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);

@@ -11,6 +11,8 @@
 //! (STOPRE between allowed): `IF $AC_MEA[1]==1 T=$AA_MW[X] ELSE T=$AA_IW[X] ENDIF` for an axis
 //! of the block is `T=#5061` (the trigger point on a hit, the end point on a miss, on both
 //! controls); it is what the FANUC → Sinumerik translation writes, so a round trip comes back.
+//! The same `+R` in both branches (the FANUC → Sinumerik keep of Z under G43 adds the edge's
+//! length) is `T=#5061+R`, which `probe_length` settles against the G43 H at the G31.
 //!
 //! Runs around [`super::words`]: [`take`] removes the `MEAS=` word (words would refuse the
 //! address) and the block's `G1`, remembering the block; [`put`] then writes `G31` into it,
@@ -40,11 +42,25 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
                     continue;
                 }
                 if let Some(kept) = skip_idiom(&s, axes) {
+                    // The Z keeps, for the length the G43 H at the G31 adds (`probe_length`).
+                    if let Some(&meas) = found.last() {
+                        for k in kept.iter().filter(|k| is_z_keep(k)) {
+                            ctx.z_keeps.push((meas, k.span));
+                        }
+                    }
+                    for k in &kept {
+                        if let (Some(v), Some(&meas)) = (own_write(k, &own), found.last()) {
+                            own_keep(ctx, meas, v, "#5063");
+                        }
+                    }
                     out.extend(kept.into_iter().filter(|k| own_write(k, &own).is_none()));
                     continue;
                 }
                 // An axis the block does not move: FANUC keeps where it stands, as `$AA_IW`.
-                if own_write(&s, &own).is_some_and(|v| sys_axis(v, "AA_IW").is_some()) {
+                if let Some(v) = own_write(&s, &own).filter(|v| kept_axis(v, "AA_IW").is_some()) {
+                    if let Some(&meas) = found.last() {
+                        own_keep(ctx, meas, v, "AA_IW");
+                    }
                     continue;
                 }
                 after = None;
@@ -93,7 +109,9 @@ pub fn take(ctx: &mut Ctx, prog: &mut Program) -> Vec<Span> {
         out
     });
     if !own.is_empty() {
-        crate::lower::map_exprs(&mut prog.body, &mut |e: &mut Expr| own_reads(e, &own));
+        let mut z_reads = Vec::new();
+        crate::lower::map_exprs(&mut prog.body, &mut |e: &mut Expr| own_reads(e, &own, &mut z_reads));
+        ctx.own_z_reads = z_reads;
     }
     found
 }
@@ -115,7 +133,7 @@ fn own_names(body: &[Stmt]) -> BTreeMap<String, usize> {
                     else {
                         continue;
                     };
-                    let kept = [sys_axis(value, "AA_MW"), sys_axis(value, "AA_IW")].contains(&Some(axis));
+                    let kept = [kept_axis(value, "AA_MW"), kept_axis(value, "AA_IW")].contains(&Some(axis));
                     if indices.is_empty() && (kept || crate::lower::literal(value) == Some(0.0)) {
                         names.insert(name.clone(), axis);
                     } else {
@@ -140,6 +158,27 @@ fn own_names(body: &[Stmt]) -> BTreeMap<String, usize> {
     names
 }
 
+/// `$NAME[axis]` or `$NAME[axis]+R` (the keep of Z under G43 adds the edge's length): the axis.
+fn kept_axis(e: &Expr, name: &str) -> Option<usize> {
+    match &e.kind {
+        ExprKind::Binary(BinOp::Add, x, _) => sys_axis(x, name),
+        _ => sys_axis(e, name),
+    }
+}
+
+/// Records a dropped keep of the translation's own Z skip variable (`value`, written after the
+/// measuring block `meas`; `skip`: its `#5063` form or its Siemens one): its `+R`, which
+/// `probe_length` proves is the length FANUC's `#5063` holds.
+fn own_keep(ctx: &mut Ctx, meas: Span, value: &Expr, skip: &str) {
+    let z =
+        |e: &Expr| sys_axis(e, skip) == Some(2) || matches!(&e.kind, ExprKind::Var(v) if v.kind == VarKind::Hash(5063));
+    match &value.kind {
+        ExprKind::Binary(BinOp::Add, x, r) if z(x) => ctx.own_z_keeps.push((meas, Some((**r).clone()))),
+        _ if z(value) => ctx.own_z_keeps.push((meas, None)),
+        _ => {}
+    }
+}
+
 /// The value `s` writes to one of `own`, when it is a block of that one assignment.
 fn own_write<'a>(s: &'a Stmt, own: &BTreeMap<String, usize>) -> Option<&'a Expr> {
     let StmtKind::Block(b) = &s.kind else { return None };
@@ -151,11 +190,14 @@ fn own_write<'a>(s: &'a Stmt, own: &BTreeMap<String, usize>) -> Option<&'a Expr>
     }
 }
 
-fn own_reads(e: &mut Expr, own: &BTreeMap<String, usize>) {
+fn own_reads(e: &mut Expr, own: &BTreeMap<String, usize>, z: &mut Vec<Span>) {
     if let ExprKind::Var(v) = &mut e.kind {
         if let VarKind::Named { name, indices } = &v.kind {
             if let (Some(&a), true) = (own.get(name), indices.is_empty()) {
                 v.kind = VarKind::Hash(5061 + a as u32);
+                if a == 2 {
+                    z.push(v.span);
+                }
             }
             return;
         }
@@ -163,17 +205,17 @@ fn own_reads(e: &mut Expr, own: &BTreeMap<String, usize>) {
     match &mut e.kind {
         ExprKind::Var(v) => match &mut v.kind {
             VarKind::System { indices, .. } | VarKind::Named { indices, .. } => {
-                indices.iter_mut().for_each(|x| own_reads(x, own))
+                indices.iter_mut().for_each(|x| own_reads(x, own, z))
             }
-            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => own_reads(x, own),
+            VarKind::HashIndirect(x) | VarKind::RIndirect(x) => own_reads(x, own, z),
             _ => {}
         },
         ExprKind::Binary(_, a, b) | ExprKind::Cmp(_, _, a, b) => {
-            own_reads(a, own);
-            own_reads(b, own);
+            own_reads(a, own, z);
+            own_reads(b, own, z);
         }
-        ExprKind::Unary(_, a) => own_reads(a, own),
-        ExprKind::Func(_, args) => args.iter_mut().for_each(|x| own_reads(x, own)),
+        ExprKind::Unary(_, a) => own_reads(a, own, z),
+        ExprKind::Func(_, args) => args.iter_mut().for_each(|x| own_reads(x, own, z)),
         _ => {}
     }
 }
@@ -274,12 +316,26 @@ fn probe_switched(c: &Expr) -> bool {
     }
 }
 
-/// One assignment `T=$NAME[axis]` in a block of its own: the target and the axis.
-fn kept(s: &Stmt, name: &str) -> Option<(VarRef, usize)> {
+/// A keep `T=#5063` (or `T=#5063+R`) that [`skip_idiom`] wrote.
+fn is_z_keep(s: &Stmt) -> bool {
+    let z = |e: &Expr| matches!(&e.kind, ExprKind::Var(v) if v.kind == VarKind::Hash(5063));
+    matches!(&s.kind, StmtKind::Block(b) if matches!(b.items.as_slice(),
+        [Item { kind: ItemKind::Assign { value, .. }, .. }]
+            if z(value) || matches!(&value.kind, ExprKind::Binary(BinOp::Add, x, _) if z(x))))
+}
+
+/// One assignment `T=$NAME[axis]` (or `T=$NAME[axis]+R`) in a block of its own: the
+/// target, the axis and R.
+fn kept(s: &Stmt, name: &str) -> Option<(VarRef, usize, Option<Expr>)> {
     let StmtKind::Block(b) = &s.kind else { return None };
     match b.items.as_slice() {
         [Item { kind: ItemKind::Assign { target, value }, .. }] if !crate::lower::meta_is_marked(&b.meta) => {
-            Some(((**target).clone(), sys_axis(value, name)?))
+            if let Some(a) = sys_axis(value, name) {
+                return Some(((**target).clone(), a, None));
+            }
+            // The FANUC → Sinumerik translation's keep of Z under G43 adds the edge's length.
+            let ExprKind::Binary(BinOp::Add, x, r) = &value.kind else { return None };
+            Some(((**target).clone(), sys_axis(x, name)?, Some((**r).clone())))
         }
         _ => None,
     }
@@ -287,7 +343,9 @@ fn kept(s: &Stmt, name: &str) -> Option<(VarRef, usize)> {
 
 /// Right after a measuring block, `IF $AC_MEA[1]==1 T=$AA_MW[a] ELSE T=$AA_IW[a] ENDIF`
 /// keeps in T what FANUC keeps in `#5061+a` (the trigger point on a hit, the end point on a
-/// miss) for an axis `a` of the block: the assignments `T=#5061+a`. `None`: not that form.
+/// miss) for an axis `a` of the block: the assignments `T=#5061+a`; with the same `+R` in
+/// both branches (read once, at the keep, on both controls), `T=#5061+a+R`. `None`: not
+/// that form.
 fn skip_idiom(s: &Stmt, axes: &[usize]) -> Option<Vec<Stmt>> {
     let StmtKind::If(i) = &s.kind else { return None };
     let else_body = &i.else_part.as_ref()?.body;
@@ -296,13 +354,22 @@ fn skip_idiom(s: &Stmt, axes: &[usize]) -> Option<Vec<Stmt>> {
     }
     let mut out = Vec::new();
     for (t, e) in i.then_body.iter().zip(else_body) {
-        let (target, a) = kept(t, "AA_MW")?;
-        let (target2, a2) = kept(e, "AA_IW")?;
-        if target.kind != target2.kind || a != a2 || !axes.contains(&a) {
+        let (target, a, r) = kept(t, "AA_MW")?;
+        let (target2, a2, r2) = kept(e, "AA_IW")?;
+        let same = |x: &Option<Expr>, y: &Option<Expr>| match (x, y) {
+            (None, None) => true,
+            (Some(x), Some(y)) => crate::ir::dump::expr(x) == crate::ir::dump::expr(y),
+            _ => false,
+        };
+        if target.kind != target2.kind || a != a2 || !axes.contains(&a) || !same(&r, &r2) {
             return None;
         }
         let span = t.span;
         let skip = var_expr(&VarRef { kind: VarKind::Hash(5061 + a as u32), span });
+        let skip = match r {
+            Some(r) => bin(BinOp::Add, skip, r),
+            None => skip,
+        };
         out.push(block_stmt(vec![assign_item(&target, skip, span)], span));
     }
     Some(out)

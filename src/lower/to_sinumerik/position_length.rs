@@ -51,7 +51,7 @@ impl Lengths {
         Lengths { at }
     }
 
-    fn may(&self, lo: u32) -> bool {
+    pub(super) fn may(&self, lo: u32) -> bool {
         let i = self.at.partition_point(|a| a.0 <= lo);
         // An expression outside any block (none is): take the safe side.
         i.checked_sub(1).and_then(|i| self.at.get(i)).is_none_or(|a| a.1)

@@ -193,7 +193,9 @@ fn sys(name: &str, axis: usize, span: Span) -> Expr {
     )
 }
 
-fn keep(axis: usize, value: Expr, span: Span) -> Stmt {
+/// `NCTRANS_SKIP_<axis>=value`, Z with the length offset FANUC's `#5063` holds.
+fn keep(ctx: &Ctx, axis: usize, value: Expr, span: Span) -> Stmt {
+    let value = if axis == 2 { super::probe_length::with_length(ctx, span, value) } else { value };
     plain_block(vec![crate::lower::assign_item(&named_ref(&skip_name(axis), span), value, span)], span)
 }
 
@@ -263,10 +265,10 @@ fn measuring_block(ctx: &mut Ctx, mut b: Block, span: Span, axes: u16, next_sele
                 kind: StmtKind::If(Box::new(IfStmt {
                     head: meta.clone(),
                     cond,
-                    then_body: moved.iter().map(|&a| keep(a, sys("AA_MW", a, span), span)).collect(),
+                    then_body: moved.iter().map(|&a| keep(ctx, a, sys("AA_MW", a, span), span)).collect(),
                     else_part: Some(ElsePart {
                         head: meta.clone(),
-                        body: moved.iter().map(|&a| keep(a, sys("AA_IW", a, span), span)).collect(),
+                        body: moved.iter().map(|&a| keep(ctx, a, sys("AA_IW", a, span), span)).collect(),
                     }),
                     end: meta,
                 })),
@@ -274,7 +276,7 @@ fn measuring_block(ctx: &mut Ctx, mut b: Block, span: Span, axes: u16, next_sele
             });
         }
         for &a in read.iter().filter(|a| !programmed.contains(a)) {
-            out.push(keep(a, sys("AA_IW", a, span), span));
+            out.push(keep(ctx, a, sys("AA_IW", a, span), span));
         }
     }
     if let Some(g) = restore {
