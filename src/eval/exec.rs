@@ -597,10 +597,14 @@ impl<'a> Interp<'a> {
                     .primary(self.file(), item.span, "here")
                     .hint("this motion cannot be proven equivalent; rewrite it with G1/G2/G3 moves"),
                 )),
-                _ if name.starts_with("RET(") => Err(Fault::error(
+                // No stored Siemens manual page gives RET's parameter list, where the control
+                // searches the target in the caller or how many levels it leaves, so the run
+                // stops here instead of guessing where the machine goes on.
+                _ if crate::dialect::sinumerik::is_ret_with_target(name) => Err(Fault::error(
                     Diagnostic::error("NC507", format!("{name}: a return that resumes elsewhere is not modelled"))
-                        .primary(self.file(), item.span, "here")
+                        .primary(self.file(), item.span, "a return with a jump target")
                         .note("RET with a jump target resumes at a label or block of a calling program, levels up")
+                        .note(crate::dialect::sinumerik::RET_TARGET_UNSOURCED)
                         .hint("return with RET and jump in the caller (GOTOF/GOTOB) where it resumes"),
                 )),
                 // Interrupts, feed-forward, the rest (instructions.rs).

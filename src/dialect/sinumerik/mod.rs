@@ -390,6 +390,20 @@ pub(crate) fn header_name(line: &str) -> Option<String> {
 
 /// The IR of one block by the grammar alone (no fast path), for tests that compare the two.
 #[doc(hidden)]
+/// Whether an instruction the reader kept as written is a `RET` with a jump target
+/// (`RET("L")`, `RET(N100)`, `RET("L", n)`): the reader spells it `RET(<arguments>)` and
+/// the evaluator and the FANUC translation both refuse it (NC507), for the reason in
+/// [`RET_TARGET_UNSOURCED`].
+pub fn is_ret_with_target(instruction: &str) -> bool {
+    instruction.starts_with("RET(")
+}
+
+/// Why a `RET` with a jump target is refused rather than run: the stored manuals searched
+/// for issue 21 (docs/semantics.md, calls) have no page with its parameters.
+pub const RET_TARGET_UNSOURCED: &str = "no Siemens manual page at hand gives RET's parameters: which argument is the \
+     target, where the control searches it in the caller, whether the target block itself runs, \
+     and how many levels it returns; nctrans does not guess where the machine goes on";
+
 pub fn block_via_grammar(text: &str) -> Option<String> {
     block_dump(text, false)
 }

@@ -398,12 +398,19 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                     Err(mark) => after.extend(mark),
                 }
             }
-            ItemKind::Instruction { name } if name.starts_with("RET(") => after.extend(ctx.unsupported(
-                "NC507",
-                span,
-                &format!("{name} (a return that resumes at a label or block of a caller)"),
-                "FANUC M99 Pn resumes at Nn of the caller only; rewrite it as RET and a jump in the caller",
-            )),
+            // M99 P<n> would be the counterpart for one level, but what RET's arguments mean
+            // and where the control finds the target are unsourced (the note says so).
+            ItemKind::Instruction { name } if crate::dialect::sinumerik::is_ret_with_target(&name) => {
+                after.extend(ctx.unsupported(
+                    "NC507",
+                    span,
+                    &format!("{name} (a return that resumes at a label or block of a caller)"),
+                    "FANUC M99 Pn resumes at Nn of the caller only; rewrite it as RET and a jump in the caller",
+                ));
+                if let Some(d) = ctx.diags.pop() {
+                    ctx.diags.push(d.note(crate::dialect::sinumerik::RET_TARGET_UNSOURCED));
+                }
+            }
             ItemKind::Instruction { name } => after.extend(ctx.unsupported(
                 "NC312",
                 span,
