@@ -321,6 +321,23 @@ const CANCELS: [u32; 3] = [690, 500, 501];
 pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32]) -> Result<Out, Block> {
     let codes: Vec<u32> = gs.iter().copied().filter(|g| SETS.contains(g) || CANCELS.contains(g)).collect();
     let Some(&g) = codes.first() else { return Err(b) };
+    let first = b.items.first().map_or(span.lo, |it| it.span.lo);
+    if codes.len() > 1 && codes.iter().all(|c| CANCELS.contains(c)) && modal.rot_before(first) == Some(0) {
+        // The safety line `G00 G17 G40 G49 G50 G69 G80 G90` where no mode is in force: each
+        // cancel changes nothing, so the block is what it is with its first cancel alone.
+        let mut b = b;
+        let mut kept = false;
+        b.items.retain(|it| match g_of(it) {
+            Some(c) if CANCELS.contains(&c) => {
+                let keep = c == g && !kept;
+                kept |= keep;
+                keep
+            }
+            _ => true,
+        });
+        let rest: Vec<u32> = gs.iter().copied().filter(|c| !CANCELS.contains(c) || *c == g).collect();
+        return split(ctx, b, span, modal, &rest);
+    }
     if codes.len() > 1 {
         return Ok(refused(
             ctx,
@@ -329,7 +346,6 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             "write each in a block of its own",
         ));
     }
-    let first = b.items.first().map_or(span.lo, |it| it.span.lo);
     let in_force = modal.rot_before(first);
     let empty_base = modal.frame_base_empty(span.lo);
     if SETS.contains(&g) {

@@ -1,0 +1,21 @@
+//! The safety line real FANUC programs start with cancels several frame modes in one block
+//! (`G00 G17 G40 G49 G50 G69 G80 G90`): where none is in force each cancel changes nothing,
+//! so it translates to Sinumerik; where one is, two frame codes in a block stay refused
+//! (NC497).
+
+mod eval_support;
+
+use eval_support::{nctrans, scratch_dir, write};
+
+#[test]
+fn a_safety_line_with_several_cancels_translates_where_no_mode_is_in_force() {
+    let d = scratch_dir("frame-cancels", "safety");
+    let src = write(&d, "O1.nc", "%\nO0001\nG00 G17 G40 G49 G50 G69 G80 G90\nG0 X10. Y5.\nM30\n%\n");
+    let (code, out, err) = nctrans(&["--to", "sinumerik", &src]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent") && out.contains("G0 G17 G40 G90"), "{out}{err}");
+    let inforce = write(&d, "O2.nc", "%\nO0002\nG90 G68 X0 Y0 R30.\nG0 X1. Y1.\nG00 G50 G69\nG0 X1. Y1.\nM30\n%\n");
+    let (code, _, err) = nctrans(&["--to", "sinumerik", &inforce]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("NC497"), "{err}");
+}
