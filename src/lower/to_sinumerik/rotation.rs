@@ -104,13 +104,16 @@ fn plain(e: &Expr) -> bool {
 /// The mode a G68, G51 or G51.1 block (`g`) sets, as constants in mm, degrees and factors
 /// (a G68 also by expressions, as the variables that save them; `exprs` gets each with its
 /// variable's name).
+/// `at`: the program's modes and where the block starts (a G68 without a centre takes the
+/// tool position there).
 fn mode_of(
     ctx: &Ctx,
     items: &[Item],
     g: u32,
-    inch: Option<bool>,
+    (modal, lo): (&ModalScan, u32),
     saves: &mut Vec<(String, Expr)>,
 ) -> Result<Mode, &'static str> {
+    let inch = modal.inch_at(lo);
     let mut centre: Vec<(u8, f64)> = Vec::new();
     let mut extra: Vec<(u8, f64)> = Vec::new();
     let mut exprs: Vec<(u8, Expr)> = Vec::new();
@@ -164,6 +167,20 @@ fn mode_of(
                 return Err("G68 without R (the angle is then machine parameter 5410)");
             };
             let mut centre: Vec<(u8, Expr)> = all.into_iter().filter(|e| e.0 != b'R').collect();
+            // No centre for an axis of the plane: the tool position at the G68 is the centre
+            // (F-ROT1), FANUC's block end position `#5001`/`#5002`, saved for the sequence and
+            // its cancel, in a program that stays in G17 and has no G52 shift or caller's
+            // frame under it (where the local shift would stand between the two).
+            let g17 = !modal.other_plane() && !items.iter().any(|it| matches!(g_of(it), Some(180 | 190)));
+            if centre.len() < 2 && g17 && modal.frame_base_empty(lo) && centre.iter().all(|e| b"XY".contains(&e.0)) {
+                for (l, n) in [(b'X', 5001), (b'Y', 5002)] {
+                    if centre.iter().all(|e| e.0 != l) {
+                        let at = Expr::new(ExprKind::Var(Box::new(VarRef { kind: VarKind::Hash(n), span })), span);
+                        saves.push((saved(l), at));
+                        centre.push((l, named(&saved(l), span)));
+                    }
+                }
+            }
             centre.sort_by_key(|e| e.0);
             if centre.len() != 2 {
                 return Err("G68 without its centre in both axes of the plane (the tool position is then the centre)");
@@ -289,7 +306,7 @@ fn undo_known(
         // A cancel of another mode than the one in force: FANUC changes nothing.
         return Ok(Vec::new());
     }
-    match mode_of(ctx, items, set, modal.inch_at(lo), &mut Vec::new()) {
+    match mode_of(ctx, items, set, (modal, lo), &mut Vec::new()) {
         Ok(Mode::Mirror(c)) => {
             // G50.1 cancels the axes it names: exactly those G51.1 mirrored.
             let named: Vec<u8> =
@@ -383,7 +400,7 @@ pub fn split(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan, gs: &[u32])
             ));
         }
         let mut saves = Vec::new();
-        return Ok(match mode_of(ctx, &b.items, g, modal.inch_at(span.lo), &mut saves) {
+        return Ok(match mode_of(ctx, &b.items, g, (modal, span.lo), &mut saves) {
             Err(what) => {
                 // The message names the G code first (a marked line under --unsupported warn).
                 let label = match g {
