@@ -1,7 +1,7 @@
-//! The safety line real FANUC programs start with cancels several frame modes in one block
-//! (`G00 G17 G40 G49 G50 G69 G80 G90`): where none is in force each cancel changes nothing,
-//! so it translates to Sinumerik; where one is, two frame codes in a block stay refused
-//! (NC497).
+//! FANUC frame codes real programs write that the Sinumerik translation takes as FANUC runs
+//! them: the safety line that cancels several frame modes in one block (`G00 G17 G40 G49 G50
+//! G69 G80 G90`; where none is in force each cancel changes nothing, where one is, two frame
+//! codes in a block stay refused, NC497), and `G68 R a` without a centre (the tool position).
 
 mod eval_support;
 
