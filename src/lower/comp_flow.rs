@@ -349,12 +349,12 @@ impl<S: FlowState> Jumps<S> {
         }
     }
 
-    /// The block with `meta` ran, leaving `st`; then its `REPEAT` (if any) runs its section
+    /// The block found by `keys` ran, leaving `st`; then its `REPEAT` (if any) runs its section
     /// (from the start label, or the one labelled block) and goes on after it with what the
     /// section's end leaves (merged with `st` where the count may be 0).
-    fn after_block(&mut self, meta: &BlockMeta, repeat: Option<&RepeatSection>, st: &mut S) {
+    fn after_block(&mut self, keys: Vec<String>, repeat: Option<&RepeatSection>, st: &mut S) {
         let Jumps::Known { ends, ends_seen, .. } = self else { return };
-        for k in meta_keys(meta) {
+        for k in keys {
             let m = ends_seen.get(&k).map_or_else(|| st.clone(), |old| old.merge(st));
             ends_seen.insert(k, m);
         }
@@ -366,10 +366,10 @@ impl<S: FlowState> Jumps<S> {
             r.end.as_ref().map(|l| format!("L:{}", l.name.to_ascii_uppercase()))
         };
         let once = r.count.as_ref().is_none_or(|c| matches!(crate::lower::literal(c), Some(n) if n >= 1.0));
-        let ends = ends.clone();
-        self.leave(&[start], st);
         // No end label: the section ends right before the REPEAT, where `st` stands.
-        if let Some(after) = end.and_then(|e| ends.get(&e).cloned()) {
+        let after = end.and_then(|e| ends.get(&e).cloned());
+        self.leave(&[start], st);
+        if let Some(after) = after {
             *st = if once { after } else { after.merge(st) };
         }
     }
@@ -466,14 +466,20 @@ fn walk_in<S: FlowState>(
                 for it in &b.items {
                     item_gotos(it, &mut gotos);
                 }
-                let meta = b.meta.clone();
-                let repeat = b.items.iter().find_map(|it| match &it.kind {
-                    ItemKind::RepeatSection(r) => Some((**r).clone()),
-                    _ => None,
-                });
+                // Only a walk that knows its targets needs the block's keys and REPEAT.
+                let (keys, repeat) = match jumps {
+                    Jumps::Known { .. } => (
+                        meta_keys(&b.meta),
+                        b.items.iter().find_map(|it| match &it.kind {
+                            ItemKind::RepeatSection(r) => Some((**r).clone()),
+                            _ => None,
+                        }),
+                    ),
+                    _ => (Vec::new(), None),
+                };
                 step(st, b, live, &mut out);
                 jumps.leave(&gotos.into_iter().flatten().collect::<Vec<_>>(), st);
-                jumps.after_block(&meta, repeat.as_ref(), st);
+                jumps.after_block(keys, repeat.as_ref(), st);
                 continue;
             }
             kind => Stmt { kind, span },

@@ -19,6 +19,8 @@
 
 use super::*;
 
+mod loops;
+
 /// The cycle data of the sequence, as FANUC expressions in millimetres.
 #[derive(Clone, Default)]
 struct Data {
@@ -58,7 +60,7 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
     }
     let top = ctx.plan().role == Role::Main;
     let mut closable = BTreeMap::new();
-    closable_bodies(ctx, &body, &mut closable);
+    loops::closable_bodies(ctx, &body, &mut closable);
     let mut nested = Vec::with_capacity(body.len());
     for s in body {
         match s.kind {
@@ -70,44 +72,6 @@ pub fn lower(ctx: &mut Ctx, body: Vec<Stmt>) -> Vec<Stmt> {
         }
     }
     lower_list(ctx, nested, planes, top, None)
-}
-
-/// The loop bodies (by the span of their first statement) whose every pass may end with the
-/// cycle still active on FANUC, with the motion mode in force before the loop: the body has
-/// a cycle G code and no jump, and the loop is followed (comment lines apart) by a block that
-/// cancels the cycle (G80, G00–G03, the end).
-/// A pass that starts its cycle before any move is then one cycle: the Siemens pass ends its
-/// MCALL, as FANUC, whose cycle stays in force over the loop's test, makes no hole before
-/// the next pass's cycle block defines it again or the block after the loop cancels it.
-fn closable_bodies(ctx: &Ctx, body: &[Stmt], out: &mut BTreeMap<Span, Option<u32>>) {
-    for (i, s) in body.iter().enumerate() {
-        let inner = crate::ir::visit::child_bodies(&s.kind);
-        for b in &inner {
-            closable_bodies(ctx, b, out);
-        }
-        if !matches!(s.kind, StmtKind::While(_) | StmtKind::Do(_) | StmtKind::Loop(_) | StmtKind::For(_)) {
-            continue;
-        }
-        let Some(first) = inner.first().and_then(|b| b.first()) else { continue };
-        let mut cycle = false;
-        let mut jumps = false;
-        visit_blocks(inner[0], &mut |b| {
-            cycle |= g_codes(&b.items).iter().copied().any(cycle_g);
-            jumps |= b.items.iter().any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::IfThen { .. }));
-        });
-        let next = body[i + 1..].iter().find(|n| !matches!(&n.kind, StmtKind::Block(b) if b.items.is_empty()));
-        let cancels = match next.map(|n| &n.kind) {
-            Some(StmtKind::Block(b)) => {
-                g_codes(&b.items).iter().any(|g| matches!(g, 800 | 0 | 10 | 20 | 30))
-                    || b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
-            }
-            _ => false,
-        };
-        if cycle && !jumps && cancels {
-            let before = body[..i].iter().rev().find(|p| matches!(p.kind, StmtKind::Block(_)));
-            out.insert(first.span, before.and_then(|p| ctx.modal.motion_at(p.span.lo)));
-        }
-    }
 }
 
 fn cycle_g(g: u32) -> bool {
@@ -167,6 +131,16 @@ fn word_expr(w: &Word) -> Option<&Expr> {
 
 fn block(items: Vec<Item>, span: Span) -> Stmt {
     plain_block(items, span)
+}
+
+/// After `MCALL`: the motion mode the cycle held (`back`) written again where it is not G0,
+/// the one the positioning blocks leave; not known: refused.
+fn motion_back(ctx: &mut Ctx, back: Option<u32>, span: Span, hint: &str, out: &mut Vec<Stmt>) {
+    match back {
+        Some(0) => {}
+        Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
+        None => refuse(ctx, span, "the motion mode after a drilling cycle", hint, out),
+    }
 }
 
 fn refuse(ctx: &mut Ctx, span: Span, what: &str, hint: &str, out: &mut Vec<Stmt>) {
@@ -306,17 +280,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool, open: Opt
                 // `MCALL` stands alone in its block: the motion mode goes in a block of its own.
                 out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
                 if motion_g.is_none() {
-                    match back {
-                        Some(0) => {}
-                        Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
-                        None => refuse(
-                            ctx,
-                            span,
-                            "the motion mode after a drilling cycle",
-                            "program G00 or G01 after G80",
-                            &mut out,
-                        ),
-                    }
+                    motion_back(ctx, back, span, "program G00 or G01 after G80", &mut out);
                 }
             }
             if let Some(m) = motion_g {
@@ -528,17 +492,7 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool, open: Opt
         if open.is_some() && !moved_before {
             // The pass ends its cycle as the block after the loop would (see `closable_bodies`).
             out.push(block(vec![Item { kind: ItemKind::ModalCallOff, span }], span));
-            match held {
-                Some(0) => {}
-                Some(m) => out.push(block(vec![super::words::g_word(m, span)], span)),
-                None => refuse(
-                    ctx,
-                    span,
-                    "the motion mode after a drilling cycle",
-                    "program G00 or G01 before the loop",
-                    &mut out,
-                ),
-            }
+            motion_back(ctx, held, span, "program G00 or G01 before the loop", &mut out);
         } else {
             let hint = if open.is_some() {
                 "cancel it with G80, or start the pass with its cycle block (no move before it)"

@@ -129,40 +129,9 @@ fn meet(a: &Sets, b: &Sets) -> Sets {
 /// The program numbers each computed call of `body` may take (by the call's span), FANUC's
 /// rounding applied; `None` where the number may be any.
 fn call_values(body: &[Stmt]) -> BTreeMap<(u32, u32), Option<BTreeSet<u32>>> {
-    use super::vacancy::{flatten, succs, Node};
+    use super::vacancy::{flatten, Node};
     let flat = flatten(body);
-    let len = flat.nodes.len();
-    let mut ins: Vec<Option<Sets>> = vec![None; len];
-    if len > 0 {
-        ins[0] = Some(Sets::new());
-    }
-    let next: Vec<Vec<usize>> = (0..len).map(|i| succs(&flat, i)).collect();
-    let mut settled = false;
-    for _round in 0..(len + 2).min(200) {
-        let mut changed = false;
-        for i in 0..len {
-            let Some(mut env) = ins[i].clone() else { continue };
-            if let Node::Items(items) = &flat.nodes[i] {
-                for it in items.iter() {
-                    transfer(it, &mut env);
-                }
-            }
-            for &s in &next[i] {
-                let new = match &ins[s] {
-                    None => env.clone(),
-                    Some(old) => meet(old, &env),
-                };
-                if ins[s].as_ref() != Some(&new) {
-                    ins[s] = Some(new);
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            settled = true;
-            break;
-        }
-    }
+    let (ins, settled) = super::forward::run(&flat, Sets::new(), transfer, meet);
     let mut out: BTreeMap<(u32, u32), Option<BTreeSet<u32>>> = BTreeMap::new();
     for (node, env) in flat.nodes.iter().zip(&ins) {
         let Node::Items(items) = node else { continue };

@@ -12,7 +12,7 @@
 //! program, which every later pass (roles, parameters, names) sees as written so; one that
 //! stays unknown is refused by `calls` (NC356).
 
-use super::vacancy::{flatten, succs, Node};
+use super::vacancy::flatten;
 use super::*;
 
 type Env = BTreeMap<u32, f64>;
@@ -120,38 +120,7 @@ pub fn resolve(p: &Program) -> Option<Program> {
     let mut p = p.clone();
     let ins: Vec<Env> = {
         let flat = flatten(&p.body);
-        let len = flat.nodes.len();
-        let mut ins: Vec<Option<Env>> = vec![None; len];
-        if len > 0 {
-            ins[0] = Some(Env::new());
-        }
-        let next: Vec<Vec<usize>> = (0..len).map(|i| succs(&flat, i)).collect();
-        let mut settled = false;
-        for _round in 0..(len + 2).min(200) {
-            let mut changed = false;
-            for i in 0..len {
-                let Some(mut env) = ins[i].clone() else { continue };
-                if let Node::Items(items) = &flat.nodes[i] {
-                    for it in items.iter() {
-                        transfer(it, &mut env);
-                    }
-                }
-                for &s in &next[i] {
-                    let new = match &ins[s] {
-                        None => env.clone(),
-                        Some(old) => meet(old, &env),
-                    };
-                    if ins[s].as_ref() != Some(&new) {
-                        ins[s] = Some(new);
-                        changed = true;
-                    }
-                }
-            }
-            if !changed {
-                settled = true;
-                break;
-            }
-        }
+        let (ins, settled) = super::forward::run(&flat, Env::new(), transfer, meet);
         if !settled {
             return Some(p);
         }

@@ -36,6 +36,7 @@ pub mod dispatch;
 pub mod ends;
 pub mod exprs;
 pub(crate) mod fast_write;
+pub mod forward;
 pub mod frames;
 pub mod gotos;
 pub mod haas_if;
