@@ -5,18 +5,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, write};
-
-/// `nctrans` run from `dir` (its `nctrans.toml` applies).
-fn nctrans_in(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
-    let out =
-        std::process::Command::new(env!("CARGO_BIN_EXE_nctrans")).current_dir(dir).args(args).output().expect("run");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use eval_support::{nctrans, nctrans_in, scratch_dir, write};
 
 /// A roughing loop with a label and a backward jump, the edge selected before it, D0 after.
 const SIE: &str = "G17 G90 G54 G71\nT4 M6\nD1\nS3000 M3\nG0 X0 Y0 Z5\nR1=0\nLOOP1:\nR1=R1-2\nG1 Z=R1 F150\n\

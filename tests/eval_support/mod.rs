@@ -170,3 +170,17 @@ pub fn nctrans(args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// [`nctrans`] run from `dir` (its `nctrans.toml` applies).
+pub fn nctrans_in(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run nctrans");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
