@@ -38,6 +38,7 @@ use structure::ProgramLines;
 pub use block::both_ways_for_test as build_both_ways_for_test;
 pub use block::skeleton_both_ways_for_test;
 pub use fast::parse_fast_for_test;
+pub use names::haas_g_meaning;
 pub(crate) use scan::decorative;
 pub use skeleton::skeleton_bytes;
 

@@ -151,3 +151,25 @@ pub fn hint_for(found: Option<char>, expected: &[&str], in_brackets: bool) -> (S
         ),
     }
 }
+
+/// What a Haas-only G code does, for the refusals of the codes neither the evaluator nor a
+/// translation carries (`g10` is ten times the code: 130 for G13). Haas documents these
+/// cycles by a list of addresses and a drawing of the tool path, not by the moves, so they
+/// cannot be run or written as moves exactly (docs/semantics.md, "Haas-only cycles").
+pub fn haas_g_meaning(g10: u32) -> Option<&'static str> {
+    Some(match g10 {
+        120 => "Haas circular pocket milling, clockwise",
+        130 => "Haas circular pocket milling, counterclockwise",
+        470 => "Haas text engraving",
+        700 => "Haas bolt hole circle",
+        710 => "Haas bolt hole arc",
+        720 => "Haas bolt holes along an angle",
+        1000 => "Haas mirror image off",
+        1010 => "Haas mirror image on",
+        1020 => "Haas programmable output of the position to RS-232",
+        1070 => "Haas cylindrical mapping",
+        1410 => "Haas 3D+ cutter compensation",
+        1500 => "Haas general purpose pocket milling",
+        _ => return None,
+    })
+}

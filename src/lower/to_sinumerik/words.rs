@@ -470,7 +470,10 @@ fn lower_word(
                 if let Some(st) = ctx.unsupported(
                     "NC363",
                     w.span,
-                    &format!("G{}{}", g / 10, if g % 10 != 0 { format!(".{}", g % 10) } else { String::new() }),
+                    &match crate::dialect::fanuc::haas_g_meaning(g) {
+                        Some(m) if ctx.opts.source.haas => format!("G{} ({m})", g / 10),
+                        _ => format!("G{}{}", g / 10, if g % 10 != 0 { format!(".{}", g % 10) } else { String::new() }),
+                    },
                     "rewrite the block with G0/G1/G2/G3 moves, or translate the cycle by hand",
                 ) {
                     after.push(st);
