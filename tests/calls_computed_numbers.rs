@@ -122,10 +122,12 @@ fn a_number_not_provably_an_integer_is_refused() {
     }
 }
 
-/// The batch numbers every program in its map before translating: the option is for a
-/// single-file translation, and the batch says so.
+/// A batch under `--l-numbers` numbers each `L<k>` of the library `O<k>` in its map before
+/// the mains (which take the next free numbers), loads every `L` program for a file with a
+/// built call, and proves it on the path its inputs take; a rerun with the map written
+/// gives the same output.
 #[test]
-fn a_batch_keeps_the_built_call_refused_and_says_why() {
+fn a_batch_numbers_l_programs_by_their_number_and_proves_the_built_call() {
     let d = folder("batch", MAIN);
     let lib = d.join("lib");
     std::fs::create_dir_all(&lib).unwrap();
@@ -133,8 +135,52 @@ fn a_batch_keeps_the_built_call_refused_and_says_why() {
         std::fs::copy(d.join(f), lib.join(f)).unwrap();
     }
     let (out, err, code) = nctrans(&d, &["--to", "fanuc", "--l-numbers", "-o", "out", "lib"]);
-    assert!(err.contains("single-file translation"), "{out}{err}");
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(format!("{out}{err}").contains("every file verified"), "{out}{err}");
+    let main = std::fs::read_to_string(d.join("out/MAIN.NC")).unwrap();
+    assert!(main.contains("\nG65 P#501\n") && main.contains("\nO0010 (L10)\n"), "{main}");
+    assert!(main.starts_with("%\nO0001 (MAIN)"), "the main takes the first free number: {main}");
+    let map = std::fs::read_to_string(d.join("out/nctrans-map.toml")).unwrap();
+    assert!(map.contains("\"L10\" = \"O0010\"") && map.contains("\"L20\" = \"O0020\""), "{map}");
+    // Without the option the same batch refuses the call, naming the option.
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "-o", "out2", "lib"]);
     assert_ne!(code, 0, "{out}{err}");
+    assert!(format!("{out}{err}").contains("NC585"), "{out}{err}");
+}
+
+/// The batch's proof runs the path the source's inputs choose: R2=1 calls L20 there.
+#[test]
+fn a_batch_proves_the_other_path_and_catches_a_planted_wrong_number() {
+    let d = folder("batch-path", &format!("; nctrans: set R2=1\n{MAIN}"));
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    for f in ["MAIN.MPF", "l10.spf", "L20.SPF"] {
+        std::fs::copy(d.join(f), lib.join(f)).unwrap();
+    }
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "--l-numbers", "-o", "out", "lib"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let main = std::fs::read_to_string(d.join("out/MAIN.NC")).unwrap();
+    // Plant the wrong program: the check of the source against it diverges.
+    std::fs::write(d.join("bad.nc"), main.replace("G65 P#501", "G65 P10")).unwrap();
+    let (out, err, code) = nctrans(&d, &["check", "lib/MAIN.MPF", "bad.nc"]);
+    assert_ne!(code, 0, "{out}{err}");
+    assert!(format!("{out}{err}").contains("diverge"), "{out}{err}");
+}
+
+/// A DIN subprogram file without a PROC line is called by its file name in a batch as in a
+/// single-file translation (`L20` on a line of its own).
+#[test]
+fn a_batch_finds_a_din_subprogram_by_its_file_name() {
+    let d = workdir("lnum", "batch-din");
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("MAIN.MPF"), "G0 X0 Y0\nL20\nM30\n").unwrap();
+    std::fs::write(lib.join("L20.SPF"), "G1 Y20 F300\nM17\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "-o", "out", "lib"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(format!("{out}{err}").contains("every file verified"), "{out}{err}");
+    let main = std::fs::read_to_string(d.join("out/MAIN.NC")).unwrap();
+    assert!(main.contains("\nM98 P9000\n") || main.contains("\nG65 P9000\n"), "{main}");
 }
 
 /// An INT variable is an integer wherever it is read (Siemens rounds on assignment), so an

@@ -134,8 +134,27 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
     match target {
         Dialect::Fanuc => {
             let mut taken: BTreeSet<u32> = pinned.fanuc_numbers().values().copied().collect();
+            // Under --l-numbers a program L<k> is O<k> (a `CALL "L"<<n` is `G65 P<n>`), so
+            // those numbers go first; one already pinned elsewhere stays a clash its
+            // callers' translation names (NC648).
+            if lib.l_numbers {
+                for (key, info) in &lib.programs {
+                    let Some(k) = key.l_number().and_then(|k| u32::try_from(k).ok()) else { continue };
+                    let sinumerik = lib.files[info.file].dialect == Some(Dialect::Sinumerik);
+                    if sinumerik
+                        && !pinned.programs.contains_key(key)
+                        && (1..=MAX_O_NUMBER).contains(&k)
+                        && taken.insert(k)
+                    {
+                        maps.programs.insert(key.clone(), ProgKey::Number(k));
+                    }
+                }
+            }
             // Mains from 1 up, called programs (and PROCs) from 9000 up, in name order.
             for (key, info) in &lib.programs {
+                if maps.programs.contains_key(key) {
+                    continue;
+                }
                 let ProgKey::Name(name) = key else { continue };
                 if lib.files[info.file].dialect != Some(Dialect::Sinumerik) {
                     continue;

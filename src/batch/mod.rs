@@ -257,6 +257,9 @@ pub struct BatchOptions {
     /// FANUC → Sinumerik `--specialise-callers`: each macro written for the library's calls
     /// only (see `translate::to_sinumerik::Options::specialise_callers`).
     pub specialise_callers: bool,
+    /// Sinumerik → FANUC `--l-numbers` (`[programs] l_numbers`): every program `L<k>` of the
+    /// library is `O<k>`, so a `CALL "L"<<n` is `G65 P<n>` (`lower::to_fanuc::words::built`).
+    pub l_numbers: bool,
 }
 
 impl BatchOptions {
@@ -272,6 +275,7 @@ impl BatchOptions {
             encoding: None,
             stream_bytes: STREAM_BYTES,
             specialise_callers: false,
+            l_numbers: false,
         }
     }
 

@@ -184,7 +184,8 @@ pub fn run_batch(
         })
         .collect();
     let scans = super::streamed::without_shared_streamed(scans, &files, enc);
-    let library = Library::build(scans);
+    let mut library = Library::build(scans);
+    library.l_numbers = opts.l_numbers && opts.target == Dialect::Fanuc;
 
     // 2. One set of maps for the batch.
     let stems: Vec<String> =

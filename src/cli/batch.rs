@@ -55,13 +55,6 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
         Err(e) => return fail(e),
     };
     let Some(to) = c.to else { return fail("a batch needs --to") };
-    if c.l_numbers && to == nctrans::dialect::Dialect::Fanuc {
-        // The batch's map numbers every program before any file is translated.
-        eprintln!(
-            "note: --l-numbers ([programs] l_numbers) is for a single-file translation (nctrans --to fanuc FILE); \
-             in a batch a CALL \"L\"<<n stays refused (NC585)"
-        );
-    }
     let Some(output) = c.output.clone() else {
         return fail("a folder is translated into a folder: give -o OUT (or batch.output in nctrans.toml)");
     };
@@ -120,6 +113,7 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
     opts.pinned = pinned;
     opts.encoding = c.input_encoding;
     opts.specialise_callers = c.specialise_callers;
+    opts.l_numbers = c.l_numbers;
     if t.stream {
         opts.stream_bytes = 0;
     }

@@ -37,6 +37,14 @@ impl ProgKey {
             _ => ProgKey::Name(t.to_ascii_uppercase()),
         }
     }
+
+    /// The k of a Siemens DIN subprogram name `L<k>` (what `--l-numbers` numbers it).
+    pub fn l_number(&self) -> Option<u64> {
+        match self {
+            ProgKey::Name(n) => crate::translate::to_fanuc::numbers::l_number(n),
+            ProgKey::Number(_) => None,
+        }
+    }
 }
 
 /// A constant argument of a call, as written: FANUC `A1.` (`#1`, point) or a Siemens
@@ -123,6 +131,8 @@ pub struct FileInfo {
     /// which its job then tries to translate as a stream too. Its `fingerprints` are not computed (0): a
     /// file whose program another file also defines is read whole instead.
     pub streamed: bool,
+    /// A Siemens program of the file calls `"L"<<n` (a DIN subprogram named at run time).
+    pub calls_built_l: bool,
 }
 
 /// The library: what every file defines and calls.
@@ -136,6 +146,9 @@ pub struct Library {
     pub calls: Vec<CallSite>,
     /// Every FANUC common variable used anywhere, sorted.
     pub commons: BTreeSet<u32>,
+    /// `--l-numbers` (`[programs] l_numbers`): a `CALL "L"<<n` may call every program `L<k>`
+    /// of the library, so a file with one loads them all ([`Library::callee_files`]).
+    pub l_numbers: bool,
 }
 
 /// The most argument vectors drawn from call sites for verifying one program alone.
@@ -208,6 +221,13 @@ impl Library {
         let mut seen = BTreeSet::new();
         let mut todo = vec![file];
         while let Some(f) = todo.pop() {
+            if self.l_numbers && self.files.get(f).is_some_and(|i| i.calls_built_l) {
+                for p in self.programs.values().filter(|p| p.key.l_number().is_some()) {
+                    if p.file != file && seen.insert(p.file) {
+                        todo.push(p.file);
+                    }
+                }
+            }
             for c in self.calls.iter().filter(|c| c.file == f) {
                 // A program of the calling file itself is found first (FANUC looks in the
                 // file before the memory), even when the library holds another copy.
@@ -294,6 +314,8 @@ pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan
         ..Scan::default()
     };
     let single = unit.programs.len() == 1;
+    scan.info.calls_built_l =
+        dialect == Dialect::Sinumerik && crate::lower::to_fanuc::string_calls::calls_built_l(unit);
     for p in &unit.programs {
         let key = match (&p.name, dialect) {
             (Some(ProgName::Number(n)), _) => Some(ProgKey::Number(*n)),

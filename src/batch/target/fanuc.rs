@@ -40,6 +40,7 @@ impl Job<Fanuc> {
             var_rules,
             tool_map: ctx.maps.tools.clone(),
             program_map: ctx.maps.fanuc_numbers(),
+            l_numbers: ctx.library.l_numbers,
             ..file_options(&self.settings, &file.rel, eol)
         })
     }
