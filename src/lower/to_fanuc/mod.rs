@@ -13,6 +13,7 @@
 
 pub mod blocks;
 pub mod comp;
+pub mod constants;
 pub mod corners;
 pub mod cycles;
 mod cycles_frames;
@@ -257,6 +258,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
+    constants::run(prog);
     blocks::run(ctx, prog, info);
     corners::run(ctx, prog);
     ctx.z_keeps.clear();
