@@ -26,6 +26,7 @@ pub mod interrupt;
 pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
+pub mod modal_reads;
 pub mod polar;
 pub mod position_length;
 pub mod print;
@@ -257,6 +258,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
+    modal_reads::run(prog);
     blocks::run(ctx, prog, info);
     corners::run(ctx, prog);
     ctx.z_keeps.clear();
