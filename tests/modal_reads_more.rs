@@ -85,6 +85,10 @@ fn p_gg_reads_without_an_exact_fanuc_value_are_refused() {
         ("E.MPF", "G90 G71\nG1 X0 F100\nIF $P_GG[1]==2\nG0 X1\nENDIF\nM30\n", g1),
         ("F.MPF", "G90 G71\nG1 X0 F100\nR1=$P_GG[14]\nM30\n", "$P_GG[14] (group 14: G90/G91) (no source"),
         ("G.MPF", "G90 G71\nG1 X0 F100\nR2=1\nR1=$P_GG[R2]\nM30\n", "computed group number"),
+        // A skippable block, a thread (group 1 numbers G33 otherwise), a loop's later passes.
+        ("H.MPF", "G90 G71\nG1 X0 F100\n/G0 X1\nR1=$P_GG[1]\nM30\n", g1),
+        ("I.MPF", "G90 G71\nG1 X0 F100\nG33 Z-5 K1\nR1=$P_GG[1]\nM30\n", g1),
+        ("K.MPF", "G90 G71\nG1 X0 F100\nWHILE R9<2\nR1=$P_GG[1]\nG0 X1\nR9=R9+1\nENDWHILE\nM30\n", g1),
     ];
     for (name, text, what) in cases {
         let f = write(&d, name, text);
@@ -128,6 +132,8 @@ fn m_n_b_o_reads_without_a_settled_value_are_refused_by_name() {
         ("b.nc", "O1\nM3 M8 S100\n#1=#4113\nM30\n", "#4113 (the M code"),
         ("c.nc", "O1\nN10 G0 X0\nN20 #1=#4114\nM30\n", "#4114 (the sequence number N"),
         ("d.nc", "O1\nM8\nM98 P2\n#1=#4113\nM30\nO2\nM9\nM99\n", "#4113"),
+        ("h.nc", "O1\nM8\n/M9\n#1=#4113\nM30\n", "#4113"),
+        ("i.nc", "O1\nM8\nG0 X#4113 M9\nM30\n", "read in a block that sets it"),
         ("e.nc", "O1\nG0 X0\n#1=#4102\nM30\n", "#4102 (the B code"),
         ("f.nc", "O1\nG0 X0\n#1=#4115\nM30\n", "#4115 (the program number"),
         ("g.nc", "O1\nG55\n#1=#4130\nM30\n", "#4130 (the P number"),
