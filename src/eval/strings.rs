@@ -116,8 +116,10 @@ pub fn refused(f: Func, span: Span, cx: &Cx) -> Fault {
         }
         _ => (
             "NC508",
-            "GETSELT: the tools tool management preselected are not modelled",
-            "select the tool by name (T=\"NAME\") or by number",
+            "GETSELT: the tool tool management preselected for the spindle is not modelled (no source read here says \
+             what it returns, or whether it is the last T word)",
+            "keep the T number in a variable where the program selects the tool (T=R10), or select it by name \
+             (T=\"NAME\")",
         ),
     };
     Fault::error(crate::diag::Diagnostic::error(code, msg).primary(cx.file, span, "here").hint(hint))

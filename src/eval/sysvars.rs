@@ -20,14 +20,17 @@ impl Interp<'_> {
         )
     }
 
-    /// `#4014` under an extended work offset and `#4130` (the P of G54.1): the values a
-    /// FANUC returns there (54.1, the P number) are in no source read for this work
+    /// `#4014` under an extended work offset, `#4130` (the P of G54.1), `#4102` (B) and
+    /// `#4115` (O): the values a FANUC returns there (54.1, the P number …) are in no source read for this work
     /// (docs/semantics.md, Modal information), so they are refused, not guessed.
     fn modal_unsourced(&self, n: i64, wo: usize, span: Span) -> Fault {
-        let what = if n == 4014 {
-            format!("#4014 read under the extended work offset G54.1 P{}", wo.saturating_sub(6))
-        } else {
-            "#4130 (the P number of the additional work offset G54.1)".to_string()
+        let what = match n {
+            4014 => format!("#4014 read under the extended work offset G54.1 P{}", wo.saturating_sub(6)),
+            // B is the second auxiliary function only on a machine without a B axis; which
+            // program's number #4115 holds in a subprogram is in no source read here.
+            4102 => "#4102 (the B code of the preceding block, where B is no axis)".to_string(),
+            4115 => "#4115 (the program number of the preceding block)".to_string(),
+            _ => "#4130 (the P number of the additional work offset G54.1)".to_string(),
         };
         Fault::error(
             Diagnostic::error("NC549", format!("{what} is not modelled: no source read here gives its value"))
@@ -35,6 +38,33 @@ impl Interp<'_> {
                 .note("modelled: #4014 under G54..G59 (54..59); docs/semantics.md, Modal information")
                 .hint("keep the offset number in a variable where the program selects it"),
         )
+    }
+
+    /// `$P_GG[n]`, the active G function of group n as its internal number in the group's
+    /// list: group 1 only, G0..G3 being 1..4 (Siemens programming manual, list of G
+    /// functions, group 1; docs/semantics.md, Modal information). The evaluator models no
+    /// other group 1 function (CIP, G33, splines … are NC403), so the match is exhaustive;
+    /// the numbering of the other groups has no source read here and is refused (NC656).
+    fn p_gg(&mut self, idx: &[Expr], span: Span) -> Result<f64, Fault> {
+        let [e] = idx else {
+            return Err(self.unmodelled("$P_GG without one group number", span));
+        };
+        let cx = self.cx(false);
+        let n = round_half_away(expr::eval_num(self, e, &cx)?);
+        if n != 1.0 {
+            return Err(Fault::error(
+                Diagnostic::error("NC656", format!("{} is not modelled", p_gg_group(n)))
+                    .primary(self.file(), span, "read here")
+                    .note("no source read here gives the internal numbers of that group's G functions; group 1 is G0..G3 = 1..4 (docs/semantics.md, Modal information)")
+                    .hint("keep the mode in a variable where the program selects it"),
+            ));
+        }
+        Ok(match self.m.modal.motion {
+            super::machine::Motion::Rapid => 1.0,
+            super::machine::Motion::Linear => 2.0,
+            super::machine::Motion::Cw => 3.0,
+            super::machine::Motion::Ccw => 4.0,
+        })
     }
 
     /// Refuses a current position read under G41/G42, whose tool centre stands off the
@@ -157,7 +187,7 @@ impl Interp<'_> {
             // G54..G59 are tables 1..6; an extended offset (G54.1 Pn, table 6 + n) reads a
             // value (and #4130 its P) that no source read here settles.
             4014 if m.wo <= 6 => 53.0 + m.wo as f64,
-            4014 | 4130 => return Err(self.modal_unsourced(n, m.wo, span)),
+            4014 | 4102 | 4115 | 4130 => return Err(self.modal_unsourced(n, m.wo, span)),
             4007..=4010 | 4015 => {
                 let group = (n - 4000) as u8;
                 match m.group_g.iter().find(|s| s.0 == group) {
@@ -383,6 +413,7 @@ impl Interp<'_> {
                 _ => 0.0,
             },
             "P_TOOL" => self.m.d,
+            "P_GG" => self.p_gg(idx, span)?,
             _ => return Err(self.unmodelled(&format!("${name}"), span)),
         };
         Ok(Value::Num(x))
@@ -407,8 +438,25 @@ impl Interp<'_> {
                 Ok(())
             }
             "AA_IW" | "AA_IM" | "P_EP" | "AA_MW" | "AA_MM" | "AC_MEA" | "PI" | "AC_TIME" | "P_F" | "P_S"
-            | "P_TOOLNO" | "P_TOOL" => Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span)),
+            | "P_TOOLNO" | "P_TOOL" | "P_GG" => {
+                Err(Fault::alarm(self.alarms.read_only, format!("${name} is read-only"), span))
+            }
             _ => Err(self.unmodelled(&format!("${name}"), span)),
         }
     }
+}
+
+/// `$P_GG[n]` named with what group n holds, for the groups programs test most often.
+pub fn p_gg_group(n: f64) -> String {
+    let what = match n as i64 {
+        1 => " (group 1: G0, G1, G2, G3, CIP …)",
+        6 => " (group 6: the plane G17/G18/G19)",
+        7 => " (group 7: the radius compensation G40/G41/G42)",
+        8 => " (group 8: the work offset G500/G54..G599)",
+        13 => " (group 13: the units G70/G71/G700/G710)",
+        14 => " (group 14: G90/G91)",
+        15 => " (group 15: the feed type G93/G94/G95 …)",
+        _ => "",
+    };
+    format!("$P_GG[{n}]{what}")
 }

@@ -318,8 +318,13 @@ impl Lower<'_> {
                 }
             }
             ExprKind::Func(Func::GetSelT, _) => {
-                let why = "tool management (preselected tools, duplo numbers) is not modelled; select the tool by name with --tool-map";
-                self.ctx.unsupported("NC508", span, "GETSELT(…) (the tools tool management preselected)", why);
+                // FANUC #4120 is the last T word; whether GETSELT returns it (the T number,
+                // not the name or duplo tool management chose) is in no source read here.
+                let why = "no source read here says what tool management returns for the preselected tool, so FANUC's \
+                           #4120 (the last T word) is not proven its counterpart; keep the T number in a variable where \
+                           the program selects the tool, or select it by name with --tool-map";
+                let what = "GETSELT(…) (the tool tool management preselected for the spindle)";
+                self.ctx.unsupported("NC508", span, what, why);
                 num(0.0, span)
             }
             ExprKind::Func(Func::GetT, args) => self.gett(&args, span),

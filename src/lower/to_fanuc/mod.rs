@@ -27,6 +27,7 @@ pub mod interrupt;
 pub mod labels;
 pub mod lookahead;
 pub mod lower_structures;
+pub mod modal_reads;
 pub mod polar;
 pub mod position_length;
 pub mod print;
@@ -259,6 +260,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
     constants::run(prog);
+    modal_reads::run(prog);
     blocks::run(ctx, prog, info);
     corners::run(ctx, prog);
     ctx.z_keeps.clear();

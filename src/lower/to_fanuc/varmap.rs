@@ -427,6 +427,10 @@ fn rewrite(
         },
         VarKind::System { name, indices } => match system(&name, &indices) {
             Some(n) => VarKind::Hash(n),
+            None if name.eq_ignore_ascii_case("P_GG") => {
+                errs.push((span, super::modal_reads::refusal(&indices)));
+                VarKind::Hash(0)
+            }
             None => {
                 errs.push((span, format!("system variable ${name}")));
                 VarKind::Hash(0)

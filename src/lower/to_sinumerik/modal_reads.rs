@@ -1,15 +1,20 @@
 //! FANUC modal information reads on Siemens (docs/semantics.md, Modal information): `#4001`
 //! (G00..G03), `#4002` (G17..G19), `#4003` (G90/G91), `#4005` (G94/G95), `#4006` (G20/G21),
 //! `#4007` (G40..G42), `#4008` (G43/G44/G49), `#4010` (G98/G99), `#4014` (G54..G59), `#4015`
-//! (G61..G64), `#4107` (D), `#4111` (H), `#4120` (T). Each holds the value of the preceding
-//! block (SEED3: "the modal information of the blocks before the one being processed").
-//! Siemens `$P_GG[n]` returns a group's internal index, for whose numbering no source was
-//! found, and the translation writes cutting edges (`D1` of tool n) where FANUC numbers
-//! registers (`D5`), so none of them has a Siemens variable with FANUC's value. What is
+//! (G61..G64), `#4107` (D), `#4111` (H), `#4113` (M), `#4114` (N), `#4120` (T). Each holds
+//! the value of the preceding block (SEED3: "the modal information of the blocks before the
+//! one being processed"; M-MODAL). Siemens `$P_GG[n]` returns a group's internal number
+//! (group 1: G0..G3 are 1..4; no source numbers the others here), group 1 holds other codes
+//! (G33, and a cycle's own moves) where FANUC's group 01 does not, and the translation writes
+//! cutting edges (`D1` of tool n) where FANUC numbers registers (`D5`); Siemens has no M or
+//! sequence number variable; so none of them has a Siemens variable with FANUC's value
+//! everywhere. What is
 //! exact is the constant, where the program itself has written that mode or word on every
 //! path to the read: a forward flow over the program as read (`vacancy::flatten`, FANUC
 //! jump order), starting from nothing known (no power-on or caller assumption), where a call
-//! may change anything. Elsewhere the read is refused by name (NC549).
+//! may change anything. Elsewhere the read is refused by name (NC549), as are `#4102` (B),
+//! `#4115` (the program number) and `#4130` (the P of G54.1), whose values no source read
+//! here settles.
 
 use super::vacancy::{flatten, succs, Node};
 use super::*;
@@ -18,7 +23,7 @@ use super::*;
 pub const MODAL_READ: &str = "NC549";
 
 /// The variables followed, in [`State`] order, and what each holds.
-const VARS: [(u32, &str); 13] = [
+const VARS: [(u32, &str); 15] = [
     (4001, "#4001 (the motion G code G00..G03 of the preceding block)"),
     (4002, "#4002 (the plane G17..G19 of the preceding block)"),
     (4003, "#4003 (G90/G91 of the preceding block)"),
@@ -32,14 +37,18 @@ const VARS: [(u32, &str); 13] = [
     (4107, "#4107 (the D number of the preceding block)"),
     (4111, "#4111 (the H number of the preceding block)"),
     (4120, "#4120 (the T number of the preceding block)"),
+    (4113, "#4113 (the M code of the preceding block)"),
+    (4114, "#4114 (the sequence number N of the preceding block)"),
 ];
 const G_FIELDS: u16 = (1 << 10) - 1;
 const D: usize = 10;
 const H: usize = 11;
 const T: usize = 12;
+const M: usize = 13;
+const N: usize = 14;
 
 /// The value of each of [`VARS`], `None` where not known.
-type State = [Option<f64>; 13];
+type State = [Option<f64>; 15];
 
 /// Per block (and loop condition) of a program, in text order: its start, the values on
 /// entry, and the fields its own words set (bit per [`VARS`] index).
@@ -77,8 +86,9 @@ fn g_field(g: u32, p_word: bool) -> Option<Result<(usize, f64), usize>> {
     })
 }
 
-/// The state after a block entered with `s`, and the fields the block's words set.
-fn apply(items: &[Item], mut s: State) -> (State, u16) {
+/// The state after a block (sequence number `number`) entered with `s`, and the fields the
+/// block's words set.
+fn apply(items: &[Item], number: Option<u32>, mut s: State) -> (State, u16) {
     let mut own = 0u16;
     // A call may change anything; so may the words of a Haas `IF [c] <words>` (run or not).
     let opaque = |it: &Item| match &it.kind {
@@ -87,8 +97,14 @@ fn apply(items: &[Item], mut s: State) -> (State, u16) {
         _ => false,
     };
     if items.iter().any(opaque) {
-        return ([None; 13], u16::MAX);
+        return ([None; 15], u16::MAX);
     }
+    if let Some(n) = number {
+        s[N] = Some(f64::from(n));
+        own |= 1 << N;
+    }
+    // Which of two M codes of one block FANUC keeps is not settled here: neither.
+    let m_words = items.iter().filter(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'M'))).count();
     let p_word = items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'P')));
     for it in items {
         let ItemKind::Word(w) = &it.kind else { continue };
@@ -119,10 +135,15 @@ fn apply(items: &[Item], mut s: State) -> (State, u16) {
             Addr::Letter(b'D') => D,
             Addr::Letter(b'H') => H,
             Addr::Letter(b'T') => T,
+            Addr::Letter(b'M') => M,
             _ => continue,
         };
         own |= 1 << field;
-        s[field] = if matches!(field, D | H | T) { value } else { None };
+        s[field] = match field {
+            D | H | T => value,
+            M if m_words == 1 => value,
+            _ => None,
+        };
     }
     (s, own)
 }
@@ -143,7 +164,7 @@ impl Reads {
         if len == 0 {
             return Reads::default();
         }
-        ins[0] = Some([None; 13]);
+        ins[0] = Some([None; 15]);
         // Under G66 the macro runs after every later move, where it may change anything.
         let mut modal_call = false;
         crate::ir::visit::walk_stmts(body, &mut |s| {
@@ -156,13 +177,19 @@ impl Reads {
             let Some(s) = ins[i] else { continue };
             let out = match &flat.nodes[i] {
                 Node::Items(items) => {
-                    let after = apply(items, s).0;
+                    let after = apply(items, flat.numbers[i], s).0;
                     // A block that may be skipped (`/`) passes its entry on as well.
                     if flat.blocks[i].is_some_and(|b| b.1) {
                         merge(Some(after), s)
                     } else {
                         after
                     }
+                }
+                // A DO or END block's own sequence number.
+                _ if flat.numbers[i].is_some() => {
+                    let mut s = s;
+                    s[N] = None;
+                    s
                 }
                 _ => s,
             };
@@ -181,7 +208,7 @@ impl Reads {
             match node {
                 Node::Items(items) => {
                     if let Some((lo, _)) = flat.blocks[i] {
-                        at.push((lo, ins[i], apply(items, [None; 13]).1));
+                        at.push((lo, ins[i], apply(items, flat.numbers[i], [None; 15]).1));
                     }
                 }
                 Node::Head { cond: Some(c), .. } => at.push((c.span.lo, ins[i], 0)),
@@ -214,6 +241,11 @@ impl Reads {
 /// `#n` as the constant it holds at `span`, `None` when `n` is not one of [`VARS`]; a
 /// refusal (NC549) when it is and the value is not known there.
 pub fn read(ctx: &mut Ctx, n: u32, span: Span) -> Option<Result<Expr, Vec<Stmt>>> {
+    if let Some((what, why)) = unsettled(n) {
+        let message = format!("{what} cannot be translated: {why}");
+        let hint = "keep the value in a variable where the program writes it";
+        return Some(Err(ctx.refuse(MODAL_READ, span, &message, what, hint).into_iter().collect()));
+    }
     let field = VARS.iter().position(|v| v.0 == n)?;
     let what = VARS[field].1;
     let (state, own) = match ctx.modal.reads.entry(span.lo) {
@@ -232,9 +264,31 @@ pub fn read(ctx: &mut Ctx, n: u32, span: Span) -> Option<Result<Expr, Vec<Stmt>>
                  program or the power-on state decides it)"
             };
             let message = format!("{what} read {why} cannot be translated");
-            let hint = "set the mode (or the D, H, T word) in the program before the read, on every path, in a block \
-                        of its own; Siemens $P_GG gives group indices and $P_TOOL edge numbers, not FANUC's values";
+            let hint = "set the mode (or the D, H, M, T word, the N number) in the program before the read, on every \
+                        path, in a block of its own; Siemens $P_GG numbers group 1 otherwise and the other groups by no \
+                        source read here, $P_TOOL gives edge numbers, and Siemens has no M or N variable";
             Some(Err(ctx.refuse(MODAL_READ, span, &message, what, hint).into_iter().collect()))
         }
     }
+}
+
+/// The modal information reads whose value no source read here settles, with why.
+fn unsettled(n: u32) -> Option<(&'static str, &'static str)> {
+    Some(match n {
+        4102 => (
+            "#4102 (the B code of the preceding block)",
+            "B is the second auxiliary function only where the machine has no B axis, and Siemens has no variable \
+             holding the last auxiliary value",
+        ),
+        4115 => (
+            "#4115 (the program number of the preceding block)",
+            "which number it holds in a subprogram and at a call's first block is in no source read here, and the \
+             Siemens program names are not FANUC's numbers",
+        ),
+        4130 => (
+            "#4130 (the P number of the additional work offset G54.1)",
+            "its value is in no source read here (the evaluator refuses it too)",
+        ),
+        _ => return None,
+    })
 }
