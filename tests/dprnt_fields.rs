@@ -2,8 +2,9 @@
 //! field `#v[ab]` prints (docs/semantics.md, "External output"), so a run warns NC554 and prints
 //! nothing for that line, a check with one is never "equivalent" (a different field format is
 //! inconclusive, a Siemens WRITE of any digits diverges), the translation to Sinumerik refuses it
-//! (NC556), BPRNT stays NC554 / NC510, and Siemens EXTOPEN / EXTCLOSE are refused by name (NC586)
-//! instead of being looked up as programs.
+//! (NC556), BPRNT stays NC554 / NC510, a format the Haas manual calls illegal is an error on the
+//! Haas profile (NC587), and Siemens EXTOPEN / EXTCLOSE are refused by name (NC586) instead of
+//! being looked up as programs.
 
 #[path = "support/cli_run.rs"]
 mod cli_run;
@@ -110,4 +111,28 @@ fn extopen_and_extclose_are_refused_by_name_not_looked_up_as_programs() {
     let (_, err, code) = nctrans(&d, &["run", "--stream", "LOG.MPF"]);
     assert_ne!(code, 0);
     assert!(err.contains("NC586"), "{err}");
+}
+
+#[test]
+fn a_field_haas_calls_illegal_is_an_error_on_the_haas_profile_only() {
+    let d = workdir("dprnt-fields", "haas");
+    std::fs::write(d.join("O0173.nc"), "O0173\n#1=1.5\nDPRNT[X#1[54]]\nM30\n").unwrap();
+    // FANUC: the sources give no limit; the field warns as any other.
+    let (_, err, code) = nctrans(&d, &["run", "O0173.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("NC554") && !err.contains("NC587"), "{err}");
+    std::fs::write(d.join("nctrans.toml"), "[fanuc]\nseries = \"haas\"\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "O0173.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC587") && err.contains("`#1[54]`") && err.contains("1..8"), "{err}");
+    for ok in ["44", "80", "08"] {
+        std::fs::write(d.join("O0174.nc"), format!("O0174\n#1=1.5\nDPRNT[X#1[{ok}]]\nM30\n")).unwrap();
+        let (_, err, code) = nctrans(&d, &["run", "O0174.nc"]);
+        assert_eq!(code, 0, "[{ok}] {err}");
+        assert!(err.contains("NC554") && !err.contains("NC587"), "{err}");
+    }
+    std::fs::write(d.join("O0175.nc"), "O0175\nDPRNT[X#1[00]]\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "O0175.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC587") && err.contains("`#1[00]`"), "{err}");
 }

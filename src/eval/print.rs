@@ -5,8 +5,9 @@
 //! fraction rounded, no point with no fraction places) disagree with its own example, and
 //! FANUC's leading-zero setting (parameter PRT), the sign's place and a vacant variable's
 //! text are in none of them. So such a DPRNT warns (NC554) and a run with it is never called
-//! equivalent. Siemens `EXTOPEN`/`EXTCLOSE` (an external device of the control's set-up) are
-//! refused by name (NC586).
+//! equivalent. On the Haas profile a field whose places add up to 0 or more than 8 is an error
+//! (NC587: the Haas manual calls it illegal). Siemens `EXTOPEN`/`EXTCLOSE` (an external device
+//! of the control's set-up) are refused by name (NC586).
 
 use super::exec::Interp;
 use super::expr::{self, as_text};
@@ -36,8 +37,30 @@ pub fn field_format(p: &PrintPart) -> Option<String> {
     }
 }
 
+/// The `#v[wf]` of a field Haas does not accept: its places `w + f` are 0 or more than 8
+/// (HAAS-DPRNT: "cannot be equal to zero or greater than eight").
+fn haas_illegal(p: &PrintPart) -> Option<String> {
+    match p {
+        PrintPart::Field { int, frac, .. } if *int + *frac == 0 || *int + *frac > 8 => field_format(p),
+        _ => None,
+    }
+}
+
 impl Interp<'_> {
     pub(super) fn print(&mut self, p: &Print, span: Span) -> Result<(), Fault> {
+        if self.sem.haas {
+            if let Some(f) = p.parts.iter().find_map(haas_illegal) {
+                return Err(Fault::error(
+                    crate::diag::Diagnostic::error(
+                        "NC587",
+                        format!("DPRNT field `{f}`: not a legal format on Haas (the places reserved add up to 1..8)"),
+                    )
+                    .primary(self.file(), span, "illegal field format")
+                    .note("Haas mill operator's manual 96-8000, \"Formatted Output\": [00], [54], [45] and [36] are illegal")
+                    .hint("reserve at most 8 places in all, at least one: e.g. [44] or [53]"),
+                ));
+            }
+        }
         if let Some(f) = p.parts.iter().find_map(field_format) {
             let msg = format!(
                 "DPRNT field `{f}`: the text a number field prints is not modelled (no source settles its \
