@@ -415,6 +415,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("m98-packed-p.nc", "NC355"),         // calls O0003 of seed-o9050-brake-test.nc (G10 L50)
     ("macro-interrupt.nc", "NC362"),      // M96 P: the default profile has no custom macro interrupt
     ("multi-word-block.nc", "NC472"),     // G43 H1 without a tool change: whose length?
+    ("probe-bore-report-dprnt.nc", "NC556"), // DPRNT number fields of a probe report
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
     ("system-variables.nc", "NC549"),     // #4003 before the program selects G90/G91

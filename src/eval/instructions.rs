@@ -39,6 +39,8 @@ impl Interp<'_> {
         if is_interrupt(name) {
             // Run by `interrupt.rs`; a routine that never runs is warned of at the run's end.
             return self.interrupt_op(name, span);
+        } else if super::print::is_external_device(name) {
+            return Err(super::print::external_device(name, span, self.file()));
         } else if name.starts_with("DPRNT[") || name.starts_with("BPRNT[") {
             let why = if name.starts_with("BPRNT[") {
                 "binary output is not text"

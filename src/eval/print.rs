@@ -1,8 +1,13 @@
 //! Text output as the trace's `print` event: a FANUC `DPRNT[…]` of text alone, and a Siemens
 //! `WRITE(err, "file", text)` with the STRING as built. The text a DPRNT number field
-//! (`#100[53]`) produces is not modelled: the sources found disagree on its spacing (leading
-//! spaces or zeros, the sign's place) and FANUC's parameter for leading zeros is not among
-//! them, so such a DPRNT warns (NC554) and a run with it is never called equivalent.
+//! (`#100[53]`) produces is not modelled: no stored source settles it (docs/semantics.md,
+//! "External output", lists the searches): the Haas manual's rules (leading spaces, the
+//! fraction rounded, no point with no fraction places) disagree with its own example, and
+//! FANUC's leading-zero setting (parameter PRT), the sign's place and a vacant variable's
+//! text are in none of them. So such a DPRNT warns (NC554) and a run with it is never called
+//! equivalent. On the Haas profile a field whose places add up to 0 or more than 8 is an error
+//! (NC587: the Haas manual calls it illegal). Siemens `EXTOPEN`/`EXTCLOSE` (an external device
+//! of the control's set-up) are refused by name (NC586).
 
 use super::exec::Interp;
 use super::expr::{self, as_text};
@@ -32,12 +37,35 @@ pub fn field_format(p: &PrintPart) -> Option<String> {
     }
 }
 
+/// The `#v[wf]` of a field Haas does not accept: its places `w + f` are 0 or more than 8
+/// (HAAS-DPRNT: "cannot be equal to zero or greater than eight").
+fn haas_illegal(p: &PrintPart) -> Option<String> {
+    match p {
+        PrintPart::Field { int, frac, .. } if *int + *frac == 0 || *int + *frac > 8 => field_format(p),
+        _ => None,
+    }
+}
+
 impl Interp<'_> {
     pub(super) fn print(&mut self, p: &Print, span: Span) -> Result<(), Fault> {
+        if self.sem.haas {
+            if let Some(f) = p.parts.iter().find_map(haas_illegal) {
+                return Err(Fault::error(
+                    crate::diag::Diagnostic::error(
+                        "NC587",
+                        format!("DPRNT field `{f}`: not a legal format on Haas (the places reserved add up to 1..8)"),
+                    )
+                    .primary(self.file(), span, "illegal field format")
+                    .note("Haas mill operator's manual 96-8000, \"Formatted Output\": [00], [54], [45] and [36] are illegal")
+                    .hint("reserve at most 8 places in all, at least one: e.g. [44] or [53]"),
+                ));
+            }
+        }
         if let Some(f) = p.parts.iter().find_map(field_format) {
             let msg = format!(
-                "DPRNT field `{f}`: the text a number field prints is not modelled (its spacing, sign and \
-                 leading zeros are machine parameters without a source here), so this output is not compared"
+                "DPRNT field `{f}`: the text a number field prints is not modelled (no source settles its \
+                 leading spaces or zeros, the sign's place, the rounding or a vacant variable's text), so this \
+                 output is not compared"
             );
             self.warn(PRINT_NOT_MODELLED, msg, span);
             return Ok(());
@@ -63,4 +91,28 @@ impl Interp<'_> {
         self.emit(Event::Print { text }, span);
         Ok(())
     }
+}
+
+/// `EXTOPEN(…)` / `EXTCLOSE(…)` as the Sinumerik reader keeps them.
+pub fn is_external_device(name: &str) -> bool {
+    name.starts_with("EXTOPEN(") || name.starts_with("EXTCLOSE(")
+}
+
+/// The refusal of `EXTOPEN`/`EXTCLOSE`: they open and close an external device
+/// (`/dev/ext/1`…`/dev/ext/9`, a file or share the machine's extdev.ini names) for the WRITEs
+/// between them (Siemens cnc4you, "Output on an external device"). Which device that is and the
+/// error codes they set are the set-up's, so the run does not go on as if they had succeeded.
+pub fn external_device(name: &str, span: Span, file: crate::span::FileId) -> Fault {
+    let what = if name.starts_with("EXTOPEN(") { "opens" } else { "closes" };
+    Fault::error(
+        crate::diag::Diagnostic::error(
+            "NC586",
+            format!(
+                "{name}: {what} an external device of the control's set-up (extdev.ini); the device and the \
+                 error code it sets are not modelled"
+            ),
+        )
+        .primary(file, span, "external device")
+        .hint("WRITE to a file of the program memory needs no EXTOPEN: write WRITE(ERR,\"FILE\",\"TEXT\") alone"),
+    )
 }

@@ -311,6 +311,15 @@ impl Lower<'_, '_> {
                 if name == "WRITE" {
                     return self.write_stmt(args, span);
                 }
+                // EXTOPEN / EXTCLOSE open and close an external device of the control's set-up
+                // (`/dev/ext/n`, extdev.ini), not a program: kept as written for the evaluator
+                // and the translation to name (`eval::print::external_device`).
+                if matches!(name.as_str(), "EXTOPEN" | "EXTCLOSE") {
+                    let text = p_text(&span, self.norm);
+                    let text = text.trim();
+                    let args = text.get(name.len()..).unwrap_or("");
+                    return Some(ItemKind::Instruction { name: format!("{name}{args}") });
+                }
                 if names::builtin(&name).is_some() {
                     self.error(
                         Diagnostic::error("NC139", format!("{name} is a function; its value must be used"))

@@ -2,7 +2,9 @@
 //! FANUC prints to the I/O channel POPEN opened; `WRITE` appends the line to a file, which
 //! the profile names (`[sinumerik] write_file`), and sets an INT error variable the output
 //! declares. Only text is carried: the text of a number field (`#100[53]`) is not modelled
-//! (NC554) and Siemens `<<` writes a REAL in its own form, so a field is refused (NC556).
+//! (NC554: no stored source settles its spaces, zeros, sign or rounding), and neither `<<`
+//! (a REAL in its own form) nor SPRINT (whose `%F` rules no stored page gives) is proven to
+//! write it, so a field is refused (NC556).
 //! `POPEN` / `PCLOS` become comments: WRITE needs no channel opened or closed.
 
 use super::*;
@@ -14,10 +16,11 @@ pub const WRITE_STATUS: &str = "NCTRANS_WERR";
 pub fn lower(ctx: &mut Ctx, p: Print, span: Span, out: &mut Vec<Stmt>) -> Option<Item> {
     if let Some(f) = p.parts.iter().find_map(crate::eval::print::field_format) {
         let what = format!("the DPRNT number field `{f}`");
-        let hint = "Siemens `<<` writes a REAL in its own form, not in fixed places; print the text alone, or \
-                    build the number's text by hand";
+        let hint = "Siemens `<<` writes a REAL in its own form, not in fixed places, and SPRINT's `%F` rules are \
+                    not sourced; print the text alone, or build the number's text by hand";
         let msg = format!(
-            "{what}: its text is not modelled (NC554) and Siemens cannot be proven to write the same, so it is not translated"
+            "{what}: its text is not modelled (NC554: no source settles its leading spaces or zeros, the sign's \
+             place or the rounding) and Siemens cannot be proven to write the same, so it is not translated"
         );
         if let Some(st) = ctx.refuse("NC556", span, &msg, &what, hint) {
             out.push(st);
