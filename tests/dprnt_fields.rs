@@ -106,6 +106,7 @@ fn extopen_and_extclose_are_refused_by_name_not_looked_up_as_programs() {
     let (_, err, code) = nctrans(&d, &["--to", "fanuc", "LOG.MPF", "-o", "log.nc"]);
     assert_ne!(code, 0);
     assert!(err.contains("EXTOPEN(") && err.contains("EXTCLOSE("), "{err}");
+    assert!(err.contains("NC586") && err.contains("POPEN"), "refused naming the device and FANUC's POPEN: {err}");
     assert!(!err.contains("NC303"), "{err}");
     // Streamed, the same refusal.
     let (_, err, code) = nctrans(&d, &["run", "--stream", "LOG.MPF"]);

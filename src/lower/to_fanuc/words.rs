@@ -411,6 +411,16 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
                     ctx.diags.push(d.note(crate::dialect::sinumerik::RET_TARGET_UNSOURCED));
                 }
             }
+            // The device is the set-up's (extdev.ini), and the run stops at it (NC586) so no
+            // WRITE to it is ever proven; FANUC's POPEN opens the device its parameters name.
+            ItemKind::Instruction { name } if crate::eval::print::is_external_device(&name) => {
+                after.extend(ctx.unsupported(
+                    "NC586",
+                    span,
+                    &format!("{name} (opens or closes an external device for WRITE)"),
+                    "FANUC POPEN/PCLOS open the output device set by the control's parameters, not a named one:                      set up the device on the FANUC control and write the output with POPEN, DPRNT and PCLOS by hand",
+                ))
+            }
             ItemKind::Instruction { name } => after.extend(ctx.unsupported(
                 "NC312",
                 span,
