@@ -246,3 +246,50 @@ fn corners_under_scaling_stay_refused_and_say_what_is_unknown() {
         assert!(err.contains(want), "{name}: {err}");
     }
 }
+
+/// The corpus pair of pockets, the left one mirrored, in each dialect: the committed
+/// translations verify against their sources, and planted faults in them are caught (a
+/// rounding of another size, the mirror dropped or about the other axis).
+#[test]
+fn the_mirrored_pocket_pair_of_the_corpus_and_its_planted_faults() {
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let read = |rel: &str| std::fs::read_to_string(root.join(rel)).expect(rel);
+    // FANUC → Sinumerik: the main and its subprogram side by side.
+    let d = scratch_dir("corners-scaled", "corpus-fanuc");
+    let src = write(&d, "PAIR.nc", &read("corpus/in/fanuc/corner-mirrored-chamfer-pockets.nc"));
+    let main = read("corpus/out/sinumerik/corner-mirrored-chamfer-pockets/O_2130.MPF");
+    let sub = read("corpus/out/sinumerik/corner-mirrored-chamfer-pockets/O_2131.SPF");
+    assert!(main.contains("AMIRROR X0") && sub.contains("RND=3") && sub.contains("CHR=2"), "{main}{sub}");
+    let faults = [
+        (main.clone(), sub.clone(), true),
+        (main.clone(), sub.replace("RND=3", "RND=1.5"), false),
+        (main.clone(), sub.replace("CHR=2", "CHR=4"), false),
+        (main.replacen("AMIRROR X0", "AMIRROR Y0", 1).replacen("AMIRROR X0", "AMIRROR Y0", 1), sub.clone(), false),
+        (main.replace("AMIRROR X0\n", ""), sub.clone(), false),
+    ];
+    for (i, (m, s, good)) in faults.iter().enumerate() {
+        write(&d, "O_2130.MPF", m);
+        write(&d, "O_2131.SPF", s);
+        let (code, verdict, err) = eval_support::nctrans_in(&d, &["check", &src, "O_2130.MPF"]);
+        assert_eq!(code == 0 && verdict.contains("equivalent"), *good, "case {i}:\n{m}{s}\n{verdict}{err}");
+    }
+    // Sinumerik → FANUC: one file with the subprogram as O9000.
+    let d = scratch_dir("corners-scaled", "corpus-siemens");
+    let dir = root.join("corpus/in/sinumerik-calls/mirrored-chamfer-pockets");
+    for f in ["MAIN.MPF", "POCKET.SPF"] {
+        write(&d, f, &std::fs::read_to_string(dir.join(f)).expect(f));
+    }
+    let out = read("corpus/out/fanuc-calls/mirrored-chamfer-pockets/MAIN.MPF.nc");
+    assert!(out.contains("G51.1 X0.") && out.contains(",R3.") && out.contains(",C2."), "{out}");
+    let faults = [
+        (out.clone(), true),
+        (out.replace(",R3.", ",R6."), false),
+        (out.replace("G51.1 X0.", "G51.1 Y0."), false),
+        (out.replace("G51.1 X0.\n", ""), false),
+    ];
+    for (i, (p, good)) in faults.iter().enumerate() {
+        write(&d, "OUT.nc", p);
+        let (code, verdict, err) = eval_support::nctrans_in(&d, &["check", "MAIN.MPF", "OUT.nc"]);
+        assert_eq!(code == 0 && verdict.contains("equivalent"), *good, "case {i}:\n{p}\n{verdict}{err}");
+    }
+}
