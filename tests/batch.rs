@@ -427,6 +427,9 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     // bolt-circle-g68-drill.nc: `AROT RPL=NCTRANS_G68_R` in a WHILE loop (its G68 R of a
     // variable), an AROT the rotation translation cannot show to follow no other rotation.
     ("BOLT_CIRCLE_G68_DRILL.mpf", "NC498"),
+    // corner-mirrored-chamfer-pockets.nc: G51.1 X0. between two calls of O2131 comes out as
+    // `AMIRROR X0` after a call, which may add to a mirror the called program set.
+    ("CORNER_MIRRORED_CHAMFER_.mpf", "NC498"),
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
     // Since 9de4eda: a G98 hole after G99 holes returns to RTP=NCTRANS_CYC_Z, a variable

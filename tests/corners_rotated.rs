@@ -1,7 +1,7 @@
 //! Chamfers and roundings under a frame that only turns and shifts (Siemens ROT/AROT with
 //! TRANS, FANUC G68 with G52): the corner is the same figure in the workpiece coordinates
 //! as in the programmed ones, so both runs make it and translations prove equivalent. A
-//! frame that scales or mirrors keeps the corner refused (NC574).
+//! frame that scales keeps the corner refused (NC574); mirrors: tests/corners_scaled.rs.
 
 mod eval_support;
 
@@ -45,9 +45,9 @@ fn another_corner_size_under_the_rotation_is_caught() {
 }
 
 #[test]
-fn a_corner_under_scaling_or_mirroring_stays_refused() {
+fn a_corner_under_scaling_stays_refused() {
     let d = scratch_dir("corners-rotated", "scaled");
-    for (name, frame) in [("SCALED.MPF", "ASCALE X2 Y2"), ("MIRRORED.MPF", "AMIRROR X0")] {
+    for (name, frame) in [("SCALED.MPF", "ASCALE X2 Y2"), ("ROTATED_SCALED.MPF", "AROT RPL=30\nASCALE X2 Y2")] {
         let src = write(&d, name, &SIE.replace("AROT RPL=30", frame));
         let (code, _, err) = nctrans(&["run", &src]);
         assert_ne!(code, 0, "{name}: {err}");

@@ -709,9 +709,9 @@ impl Machine {
                 out.push((Event::Coolant { on: true }, span));
             }
         }
+        // The frame is judged where the corner is made (`corners`: in the plane of the corner).
         let plain =
-            !(g29 || home.is_some() || dwell || g53 || probe.is_some() || self.cycle.active.is_some() || self.polar)
-                && corners::rigid(&self.xf);
+            !(g29 || home.is_some() || dwell || g53 || probe.is_some() || self.cycle.active.is_some() || self.polar);
         self.corner_words(corner, rndm, plain)?;
         // 4. motion or dwell
         if probe.is_some() {

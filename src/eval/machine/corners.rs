@@ -7,18 +7,41 @@ use super::{clean, Event, Fault, Machine, Span, WordVal};
 use crate::eval::corner::{self, Kind, BAD_CORNER, CORNER_FEED, NO_NEXT_MOVE};
 use crate::eval::trace::{Axes, Plane};
 
-/// Whether `x` only turns and shifts (an orthonormal map keeping orientation): chamfers and
-/// roundings are then the same figures in the workpiece coordinates the run keeps as in the
-/// programmed ones, whose contour the frame carries, so the corner is made there. Scaling (a
-/// corner's size, scaled or not) and mirroring are not settled in the sources read.
-pub(super) fn rigid(x: &super::Xform) -> bool {
+/// How the frame `x` maps the corner's plane (axes `u`, `v`): `None` where it keeps lengths
+/// and angles there (turns, shifts and mirrors, in either orientation; a scale of the third
+/// axis alone leaves the plane as it is), else `Some(uniform)`, whether it scales the plane
+/// by one factor. Where it keeps them, chamfers and roundings are the same figures in the
+/// workpiece coordinates the run keeps as in the programmed ones, whose contour the frame
+/// carries, so the corner is made there: its legs and radius are lengths the map keeps, and
+/// a mirror turns the rounding arc the other way by itself, as the controls swap G02/G03.
+/// Whether the corner's size scales with a scaled plane is not settled ([`scaled`]).
+fn plane_scaling(x: &super::Xform, u: usize, v: usize) -> Option<bool> {
     let a = &x.a;
     let dot = |i: usize, j: usize| (0..3).map(|k| a[k][i] * a[k][j]).sum::<f64>();
-    let unit = (0..3).all(|i| (dot(i, i) - 1.0).abs() < 1e-12);
-    let normal = (0..3).all(|i| (0..3).all(|j| i == j || dot(i, j).abs() < 1e-12));
-    let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
-        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    unit && normal && det > 0.0
+    let orthogonal = dot(u, v).abs() < 1e-12;
+    if orthogonal && (dot(u, u) - 1.0).abs() < 1e-12 && (dot(v, v) - 1.0).abs() < 1e-12 {
+        return None;
+    }
+    // Equal lengths at a right angle: a similarity (a uniform factor), else the plane is distorted.
+    Some(orthogonal && (dot(u, u) - dot(v, v)).abs() < 1e-12)
+}
+
+/// The refusal of a corner under a frame that scales (SCALE/ASCALE, G51 with a factor other
+/// than ±1): whether the chamfer's leg or the radius is scaled with the contour or kept in
+/// workpiece units is not stated by any source read (docs/semantics.md, "Chamfers and
+/// roundings"), and under unequal factors a scaled rounding would not be a circle at all.
+fn scaled(kind: Kind, uniform: bool, span: Span) -> Fault {
+    let what = if uniform {
+        "whether the control scales its size with the contour or keeps it in workpiece units is not stated in the sources read"
+    } else {
+        "the factors differ in the plane, where a scaled rounding is no circle, and what the control makes (an alarm, or the size in workpiece units) is not stated in the sources read"
+    };
+    refuse(
+        BAD_CORNER,
+        format!("a corner ({}) under a frame that scales is not modelled: {what}", kind.name()),
+        span,
+        "write the corner as its own G1 or G2/G3 move, or cancel the scaling (G50, SCALE) around the contour",
+    )
 }
 
 /// A corner word of the block being run (or the modal rounding in force).
@@ -31,7 +54,7 @@ pub struct CornerWord {
     /// From `RNDM=` (a block without a move then simply has no corner).
     pub modal: bool,
     /// The block's motion is a plain G0–G3 move (no cycle, dwell, reference return, G53,
-    /// probe, polar coordinates, or frame that scales or mirrors).
+    /// probe or polar coordinates; the frame is judged where the corner is made).
     pub plain: bool,
 }
 
@@ -203,11 +226,13 @@ impl Machine {
         }
         let (u, v, _) = self.modal.plane.axes();
         let (ev, span) = out.pop().unwrap_or((Event::Dwell { seconds: 0.0 }, block_span));
+        if let Some(uniform) = plane_scaling(&self.xf, u, v) {
+            return Err(scaled(w.kind, uniform, w.span));
+        }
         let why = match &ev {
-            _ if !w.plain => Some(
-                "a move of a cycle, a reference return, G53, a probe, polar coordinates or a frame that scales or mirrors"
-                    .to_string(),
-            ),
+            _ if !w.plain => {
+                Some("a move of a cycle, a reference return, G53, a probe or polar coordinates".to_string())
+            }
             Event::Move { rapid: false, probe: false, .. } => None,
             other => Some(describe(other).to_string()),
         };
