@@ -541,3 +541,40 @@ fn loop_body(kind: &mut StmtKind) -> Option<&mut Vec<Stmt>> {
         StmtKind::If(_) | StmtKind::Block(_) => None,
     }
 }
+
+/// Folds the reads of a value the program itself settled (a system variable FANUC has no
+/// counterpart of, `$P_TOOLNO`, `$P_GG[1]`): walks `prog` from nothing known with `apply`
+/// (the state after a block's items, and whether they touch what is read), and in each live
+/// block that does not touch it lets `fold` replace the reads it knows. Nothing is walked
+/// unless `reads` finds a read in some block.
+pub fn fold_reads<S: FlowState>(
+    prog: &mut Program,
+    reads: fn(&Expr) -> bool,
+    apply: fn(&[Item], S) -> (S, bool),
+    fold: fn(&mut Expr, &S),
+) {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            any |= b.items.iter().any(|it| crate::ir::visit::item_exprs(it).into_iter().any(reads));
+        }
+    });
+    if !any {
+        return;
+    }
+    let jumping = jumps(&prog.body);
+    let body = std::mem::take(&mut prog.body);
+    let mut st = S::unknown();
+    let mut step = |st: &mut S, mut b: Block, live: bool, out: &mut Vec<Stmt>| {
+        let (after, touches) = apply(&b.items, st.clone());
+        // In a block that sets the value itself, which one the read sees is not settled.
+        if live && !touches {
+            for it in &mut b.items {
+                crate::lower::item_exprs_mut(it, &mut |e: &mut Expr| fold(e, st));
+            }
+        }
+        *st = if b.meta.skip.is_some() { after.merge(st) } else { after };
+        out.push(crate::lower::meta_stmt(b.meta, b.items));
+    };
+    prog.body = walk(body, &mut st, jumping, false, &mut step, true);
+}

@@ -95,33 +95,7 @@ fn fold(e: &mut Expr, st: &St) {
 }
 
 pub fn run(prog: &mut Program) {
-    let mut any = false;
-    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            for it in &b.items {
-                for e in crate::ir::visit::item_exprs(it) {
-                    any |= reads(e);
-                }
-            }
-        }
-    });
-    if !any {
-        return;
-    }
-    let jumping = comp_flow::jumps(&prog.body);
-    let body = std::mem::take(&mut prog.body);
-    let mut st = St::unknown();
-    let mut step = |st: &mut St, mut b: Block, live: bool, out: &mut Vec<Stmt>| {
-        let (after, touches) = apply(&b.items, st.clone());
-        if live && !touches {
-            for it in &mut b.items {
-                crate::lower::item_exprs_mut(it, &mut |e: &mut Expr| fold(e, st));
-            }
-        }
-        *st = if b.meta.skip.is_some() { after.merge(st) } else { after };
-        out.push(crate::lower::meta_stmt(b.meta, b.items));
-    };
-    prog.body = comp_flow::walk(body, &mut st, jumping, false, &mut step, true);
+    comp_flow::fold_reads(prog, reads, apply, fold);
 }
 
 /// Whether `e` reads `$P_TOOLNO` or `$P_TOOL`.
