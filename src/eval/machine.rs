@@ -20,6 +20,7 @@ mod fanuc_frames;
 mod fast;
 mod frames;
 mod grid;
+mod haas_mirror;
 mod lengths;
 pub mod lookahead;
 mod modal;
@@ -540,6 +541,8 @@ impl Machine {
                     self.fanuc_compose();
                 }
                 501 if self.fanuc => g51 = Some(gi),
+                // Haas mirror image: G51.1/G50.1 about the work zero (haas_mirror.rs).
+                1010 | 1000 if self.fanuc && self.haas => g51 = Some(gi),
                 // Polar coordinates and poles: their words were made Cartesian (polar.rs).
                 160 | 150 if self.fanuc => {}
                 1100 | 1110 | 1120 if !self.fanuc => {}
@@ -639,6 +642,7 @@ impl Machine {
         }
         match g51 {
             Some(510) => self.g51(&axes, &ijk, p, block_span)?,
+            Some(g @ (1010 | 1000)) => self.haas_mirror(g == 1010, &axes, block_span)?,
             Some(g) => self.g51_1(g == 511, &axes, block_span)?,
             None => {}
         }

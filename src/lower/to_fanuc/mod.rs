@@ -22,6 +22,7 @@ pub mod exprs;
 pub(crate) mod fast_write;
 pub mod frame_seq;
 pub mod frames;
+pub mod haas_mirror;
 pub mod integral;
 pub mod interrupt;
 pub mod labels;
@@ -279,4 +280,5 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     cycles::run(ctx, prog, info);
     exprs::run(ctx, prog, info);
     lower_structures::run(ctx, prog);
+    haas_mirror::run(ctx, prog);
 }

@@ -40,6 +40,7 @@ pub mod forward;
 pub mod frames;
 pub mod gotos;
 pub mod haas_if;
+pub mod haas_mirror;
 pub mod haas_sys;
 pub mod indirect;
 pub mod interrupt;
@@ -347,6 +348,11 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
+    let shifted = opts.source.haas && programs.iter().any(|(_, p)| haas_mirror::shifts(p));
+    let mirrored: Vec<Option<Program>> =
+        programs.iter().map(|(_, p)| opts.source.haas.then(|| haas_mirror::spell(p, shifted)).flatten()).collect();
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&mirrored).map(|((f, p), s)| (*f, s.as_ref().unwrap_or(p))).collect();
     let split: Vec<Option<Program>> = programs.iter().map(|(_, p)| haas_if::split(p)).collect();
     let programs: Vec<(FileId, &Program)> =
         programs.iter().zip(&split).map(|((f, p), s)| (*f, s.as_ref().unwrap_or(p))).collect();

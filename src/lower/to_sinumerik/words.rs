@@ -474,7 +474,12 @@ fn lower_word(
                         Some(m) if ctx.opts.source.haas => format!("G{} ({m})", g / 10),
                         _ => format!("G{}{}", g / 10, if g % 10 != 0 { format!(".{}", g % 10) } else { String::new() }),
                     },
-                    "rewrite the block with G0/G1/G2/G3 moves, or translate the cycle by hand",
+                    if ctx.opts.source.haas && matches!(g, 1000 | 1010) {
+                        "G101/G100 translate (AMIRROR) where every axis is written 0 and no program of the job \
+                         shifts with G52: the Haas mirror is about the work zero, which its manual does not relate to G52"
+                    } else {
+                        "rewrite the block with G0/G1/G2/G3 moves, or translate the cycle by hand"
+                    },
                 ) {
                     after.push(st);
                 }
