@@ -181,9 +181,9 @@ fn spindle_settled(spindle: Option<u8>, sdac: Option<f64>) -> Result<(), Why> {
             return Err((
                 "NC487",
                 format!(
-                    "CYCLE84 with the spindle turning M{c} before it: FANUC's rigid tapping starts at M29, and what \
-                     M29 does with a turning spindle (stop it or alarm) and the state it leaves after the cycle \
-                     are not settled by a source"
+                    "CYCLE84 with the spindle turning M{c} before it (FANUC's rigid tapping starts at M29, and \
+                     what M29 does with a turning spindle, stop it or alarm, and the state it leaves after the \
+                     cycle are not settled by a source)"
                 ),
                 HINT,
             ))
@@ -192,7 +192,7 @@ fn spindle_settled(spindle: Option<u8>, sdac: Option<f64>) -> Result<(), Why> {
             return Err((
                 "NC487",
                 "CYCLE84 where the spindle's state before the cycle is not known here (a called program, a \
-                 jump target or a call above it): FANUC's rigid tapping is settled only from a stopped spindle"
+                 jump target or a call above it; FANUC's rigid tapping is settled only from a stopped spindle)"
                     .into(),
                 HINT,
             ))
@@ -203,8 +203,8 @@ fn spindle_settled(spindle: Option<u8>, sdac: Option<f64>) -> Result<(), Why> {
         Some(x) => Err((
             "NC487",
             format!(
-                "CYCLE84 with SDAC {x}: the spindle is to turn M{x} after each hole, and FANUC's spindle after \
-                 rigid tapping is settled only for one that stays stopped (SDAC 5)"
+                "CYCLE84 with SDAC {x} (the spindle's state after each hole; FANUC's spindle after rigid \
+                 tapping is settled only for one that stays stopped, SDAC 5)"
             ),
             HINT,
         )),
