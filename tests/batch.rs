@@ -402,6 +402,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions
     ("system-variables.mpf", "NC321"),  // STOPRE, $AC_TIME
     ("corner-chf-rnd-plate.mpf", "NC572"), // CHF=: its FANUC leg depends on the corner's angle
+    ("tap-row-spindle-turning.mpf", "NC487"), // CYCLE84 after M3: FANUC's M29 with the spindle turning is not settled
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
@@ -419,6 +420,7 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
     ("system-variables.nc", "NC549"),     // #4003 before the program selects G90/G91
+    ("tap-row-spindle-turning.nc", "NC484"), // M29 after M3: FANUC's M29 with the spindle turning is not settled
 ];
 
 /// The translations of the FANUC library back to FANUC that the Sinumerik → FANUC translator

@@ -302,6 +302,7 @@ fn injected_bugs_are_caught() {
 
 /// Corpus programs that cannot be translated, with the reason (diagnostic code).
 const REFUSED: &[(&str, &str)] = &[
+    ("tap-row-spindle-turning.mpf", "NC487"), // CYCLE84 after M3: FANUC's M29 with the spindle turning is not settled
     ("probe-bore-measured.mpf", "NC342"), // $AA_MW / $AC_MEA: Siemens keeps the last switched value, FANUC #5061 the end point of a miss
     ("seed-address-values.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("seed-hemisphere-if-gotob.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)

@@ -7,7 +7,7 @@ use crate::diag::Diagnostic;
 use crate::dialect::fanuc::cycles::{cycle_of, is_manual_retract, takes_dwell};
 use crate::eval::fault::Fault;
 use crate::eval::machine::{clean, Machine, Warn, WordVal, WV};
-use crate::eval::trace::{axis_index, Event};
+use crate::eval::trace::{axis_index, Event, SpindleDir};
 use crate::eval::value::round_half_away;
 use crate::ir::cycle::{CycleKind, Hole, Retract, Tapping};
 use crate::span::Span;
@@ -19,6 +19,10 @@ pub const NO_Q_NOTE: &str = "NC524";
 /// A bottom not below the R plane (outside G87): refused, the control's reaction is not
 /// established by a source (docs/semantics.md, "Drilling cycles").
 pub const BOTTOM_CODE: &str = "NC522";
+
+/// The warning on rigid tapping from a turning spindle (docs/semantics.md, "Drilling
+/// cycles", rigid tapping).
+pub const RIGID_TURNING: &str = "NC592";
 
 /// The largest repeat count K (L) the control takes (four digits).
 const MAX_REPEATS: f64 = 9999.0;
@@ -254,6 +258,22 @@ pub fn holes(
         } else {
             Tapping::Floating
         });
+        // Rigid tapping from a turning spindle: what the control does with it at M29 and
+        // after the cycle is settled by no source at hand; the trace keeps the spindle as it
+        // was, which nothing proves. Said once per cycle.
+        if tapping == Some(Tapping::Rigid) && m.spindle != SpindleDir::Stop && !m.cycle.rigid_noted {
+            m.cycle.rigid_noted = true;
+            warns.push((
+                RIGID_TURNING,
+                format!(
+                    "rigid tapping (M29) with the spindle turning {}: what FANUC does with a turning spindle at M29 \
+                     and the state it leaves after the cycle are not settled by a source; the trace keeps it \
+                     turning, unproven (M5 before M29 is the settled form)",
+                    if m.spindle == SpindleDir::Cw { "M3" } else { "M4" }
+                ),
+                span,
+            ));
+        }
         let hole =
             Hole { kind, at, r: clean(r_abs), bottom: clean(bottom), peck, dwell, retract, f, tapping }.normalised();
         // G88 halts at the bottom for the operator to retract by hand.

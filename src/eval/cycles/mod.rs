@@ -39,6 +39,8 @@ pub struct State {
     pub p: Option<f64>,
     /// `M29 S`: the next tapping cycles are rigid (the event's `tapping`).
     pub rigid: bool,
+    /// Rigid tapping from a turning spindle was warned about in this cycle (NC592).
+    pub rigid_noted: bool,
     /// Sinumerik: the cycle `MCALL` made modal.
     pub mcall: Option<siemens::McallCycle>,
 }
@@ -54,6 +56,7 @@ impl Default for State {
             q: None,
             p: None,
             rigid: false,
+            rigid_noted: false,
             mcall: None,
         }
     }

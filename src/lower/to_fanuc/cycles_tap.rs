@@ -109,13 +109,7 @@ pub fn plan(c: &Call, k: SieCycle, st: &SieState) -> Result<TapPlan, Why> {
         let Some(sst) = arg(c, k, "SST").filter(|e| literal(e) != Some(0.0)).cloned() else {
             return Err(("NC486", "CYCLE84 without a tapping speed SST".into(), "give SST: it becomes M29 S…"));
         };
-        if st.spindle != Some(5) || !matches!(sdac, Some(x) if x == 0.0 || x == 5.0) {
-            return Err((
-                "NC487",
-                "CYCLE84 with the spindle not known to be stopped before and after (M5, SDAC 5)".into(),
-                "what FANUC's spindle does after rigid tapping with it turning is not modelled: stop it (M5) before the cycle and give SDAC 5",
-            ));
-        }
+        spindle_settled(st.spindle, sdac)?;
         let Some(per_rev) = st.per_rev else {
             return Err(("NC487", "CYCLE84 where G94/G95 is not known".into(), "program G94 or G95 before the cycle"));
         };
@@ -172,6 +166,52 @@ pub fn plan(c: &Call, k: SieCycle, st: &SieState) -> Result<TapPlan, Why> {
         }
     };
     Ok(TapPlan { g, f: None, m29: None, restore: None })
+}
+
+/// Rigid tapping is settled on FANUC only from a stopped spindle that stays stopped (M5
+/// before, SDAC 5 or empty after): what M29 does with a turning spindle and the state FANUC
+/// leaves after the cycle are settled by no source at hand (docs/semantics.md, "Drilling
+/// cycles", rigid tapping). The refusal names which side differs.
+fn spindle_settled(spindle: Option<u8>, sdac: Option<f64>) -> Result<(), Why> {
+    const HINT: &str = "stop the spindle (M5) before the cycle and give SDAC 5 (or leave it empty); start it \
+                        again after the cycle if it is needed";
+    match spindle {
+        Some(5) => {}
+        Some(c) => {
+            return Err((
+                "NC487",
+                format!(
+                    "CYCLE84 with the spindle turning M{c} before it (FANUC's rigid tapping starts at M29, and \
+                     what M29 does with a turning spindle, stop it or alarm, and the state it leaves after the \
+                     cycle are not settled by a source)"
+                ),
+                HINT,
+            ))
+        }
+        None => {
+            return Err((
+                "NC487",
+                "CYCLE84 where the spindle's state before the cycle is not known here (a called program, a \
+                 jump target or a call above it; FANUC's rigid tapping is settled only from a stopped spindle)"
+                    .into(),
+                HINT,
+            ))
+        }
+    }
+    match sdac {
+        Some(x) if x == 0.0 || x == 5.0 => Ok(()),
+        Some(x) => Err((
+            "NC487",
+            format!(
+                "CYCLE84 with SDAC {x} (the spindle's state after each hole; FANUC's spindle after rigid \
+                 tapping is settled only for one that stays stopped, SDAC 5)"
+            ),
+            HINT,
+        )),
+        None => {
+            Err(("NC487", "CYCLE84 with SDAC known only at run time".into(), "write SDAC as 5 (or leave it empty)"))
+        }
+    }
 }
 
 /// The FANUC side of a Sinumerik boring call (CYCLE85, CYCLE87, CYCLE88): the G code, the

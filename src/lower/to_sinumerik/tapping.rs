@@ -125,14 +125,13 @@ pub fn call_args(t: &Tap, span: Span) -> Result<(&'static str, Vec<Arg>), Why> {
                     "write the tapping speed in the M29 block: M29 S…",
                 ));
             };
-            // FANUC's spindle after rigid tapping (speed mode again, its direction) is not
-            // modelled; with it stopped before, both controls leave it stopped.
-            if t.state.spindle != Some(5) {
-                return Err((
-                    "NC484",
-                    format!("rigid tapping {name} with the spindle not known to be stopped (M5)"),
-                    "stop the spindle (M5) before M29: what FANUC's spindle does after rigid tapping with it turning is not modelled",
-                ));
+            // What FANUC does with a spindle that turns at M29 (stops it, alarms) and in
+            // which state it leaves it after the rigid cycle and G80 is settled by no source
+            // at hand (docs/semantics.md, "Drilling cycles", rigid tapping), so no SDAC of
+            // CYCLE84 can be shown to match; from a stopped spindle both controls tap at the
+            // M29 speed and leave it stopped (SDAC 5).
+            if let Some(why) = not_stopped(t.state.spindle, name) {
+                return Err(why);
             }
             let Some(per_rev) = t.state.per_rev else {
                 return Err((
@@ -193,6 +192,34 @@ pub fn call_args(t: &Tap, span: Span) -> Result<(&'static str, Vec<Arg>), Why> {
             // ENC 1: no encoder, the programmed feed (FANUC's F).
             Ok(("CYCLE840", vec![v(int(sdr, span)), v(int(code as i64, span)), v(int(1, span))]))
         }
+    }
+}
+
+/// The refusal of rigid tapping from a spindle not known to be stopped: what differs is
+/// named for a spindle turning M3/M4 and for one not known here.
+fn not_stopped(spindle: Option<u8>, name: &str) -> Option<Why> {
+    const HINT: &str = "program M5 before M29 S…: from a stopped spindle both controls tap at the M29 speed and \
+                        leave it stopped (CYCLE84 SDAC 5); start it again after G80 if it is needed";
+    match spindle {
+        Some(5) => None,
+        Some(c) => Some((
+            "NC484",
+            format!(
+                "rigid tapping {name} with the spindle turning M{c} before M29: what FANUC does with a turning \
+                 spindle at M29 (stop it or alarm) and the state it leaves after the cycle and G80 are not \
+                 settled by a source, so no CYCLE84 SDAC (3, 4, 5) can be shown to match"
+            ),
+            HINT,
+        )),
+        None => Some((
+            "NC484",
+            format!(
+                "rigid tapping {name} where the spindle's state before M29 is not known here (a called \
+                 program, a jump target or a call above it): FANUC's rigid tapping is settled only from a \
+                 stopped spindle (M5)"
+            ),
+            HINT,
+        )),
     }
 }
 
