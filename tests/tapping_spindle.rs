@@ -137,3 +137,16 @@ fn the_fanuc_run_warns_where_its_trace_rests_on_an_unsettled_spindle() {
     assert_eq!(warned(F_ROW), 0);
     assert_eq!(warned("S500 M3\nG98 G84 X10. Y10. Z-16. R5. F625.\nG80\n"), 0);
 }
+
+/// `check` of programs whose traces rest on that assumption is never "equivalent".
+#[test]
+fn a_check_resting_on_a_rigid_tap_from_a_turning_spindle_is_inconclusive() {
+    let a = scratch("nc", &fanuc("S500 M3\nM29 S500\nG98 G84 X10. Y10. Z-16. R5. F625.\nX20.\nG80\n"));
+    let (code, out, err) = nctrans(&["check", &a, &a]);
+    assert_eq!(code, 4, "{out}{err}");
+    assert!(out.contains("inconclusive") && out.contains("NC592"), "{out}{err}");
+    // From a stopped spindle the same check is equivalent.
+    let b = scratch("nc", &fanuc(F_ROW));
+    let (code, out, err) = nctrans(&["check", &b, &b]);
+    assert_eq!(code, 0, "{out}{err}");
+}
