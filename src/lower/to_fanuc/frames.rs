@@ -48,7 +48,7 @@ fn const_g(it: &Item) -> Option<f64> {
 pub const ATRANS_READY: u16 = 1 << 13;
 
 /// The temporary holding the programmable shift of axis `l` (a local of the main program).
-fn shift_var(l: u8, span: Span) -> VarRef {
+pub(super) fn shift_var(l: u8, span: Span) -> VarRef {
     VarRef { kind: VarKind::Named { name: format!("{TEMP_PREFIX}SHIFT_{}", l as char), indices: vec![] }, span }
 }
 
@@ -304,8 +304,8 @@ fn atrans(
     axes: u16,
     main: bool,
 ) -> Vec<Stmt> {
-    let why = if !main {
-        Some("in a called program (the shifts its caller set are not known there)")
+    let why = if !main && axes & ATRANS_READY == 0 {
+        Some("in a called program that does not set its own frame first (a TRANS in its leading blocks): it adds to the frame its caller left, which the translation does not follow into called programs")
     } else if axes & (1 << 15) != 0 || abs != Some(true) {
         Some("in a program with incremental moves (after a frame change a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not)")
     } else if axes & ATRANS_READY == 0 {
