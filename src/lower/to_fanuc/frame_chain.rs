@@ -152,9 +152,16 @@ pub fn plan(
     for s in body {
         let StmtKind::Block(b) = &s.kind else { break };
         if b.meta.label.is_some()
-            || b.items
-                .iter()
-                .any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::IfThen { .. } | ItemKind::Call(_)))
+            || b.items.iter().any(|it| {
+                matches!(
+                    it.kind,
+                    ItemKind::Goto(_)
+                        | ItemKind::IfThen { .. }
+                        | ItemKind::Call(_)
+                        | ItemKind::Case(_)
+                        | ItemKind::RepeatSection(_)
+                )
+            })
         {
             break;
         }
@@ -180,7 +187,12 @@ pub fn plan(
     let mut jumps = false;
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            jumps |= b.items.iter().any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::IfThen { .. }));
+            jumps |= b.items.iter().any(|it| {
+                matches!(
+                    it.kind,
+                    ItemKind::Goto(_) | ItemKind::IfThen { .. } | ItemKind::Case(_) | ItemKind::RepeatSection(_)
+                )
+            });
         }
     });
     let mut chain = Chain { on: true, ..Chain::default() };
@@ -342,7 +354,7 @@ fn set(var: &VarRef, v: Expr, span: Span) -> Stmt {
 
 fn refuse(ctx: &mut Ctx, span: Span, why: &str) -> Vec<Stmt> {
     let what = format!("ATRANS (adds to the programmable frame) {why}");
-    let hint = "in a G17 main program in G90: set the frame with TRANS or ROT first, then AROT RPL= and ATRANS (no SCALE, MIRROR, or frames in its subprograms)";
+    let hint = "in G17 and G90, set the frame with TRANS or ROT first in the program's leading blocks, then AROT RPL= by constants and ATRANS (under a turn other than a quarter one only shifts FANUC's G52 holds); no SCALE or MIRROR, no frames in the subprograms it calls";
     ctx.unsupported("NC577", span, &what, hint).into_iter().collect()
 }
 
@@ -358,11 +370,12 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, chain: &Chain, abs: Option<bool>, axe
         return None;
     }
     if abs != Some(true) {
-        return Some(refuse(
-            ctx,
-            fspan,
-            "where G90 is not known to be in force (FANUC reads G52 under G91 as incremental)",
-        ));
+        let what = format!(
+            "{op} of a chained frame (TRANS, ROT, AROT, ATRANS followed in variables) where G90 is not known to be in force (FANUC reads G52 under G91 as incremental)"
+        );
+        return Some(
+            ctx.unsupported("NC577", fspan, &what, "select G90 before the frame instructions").into_iter().collect(),
+        );
     }
     if let Some(w) = words.iter().find(|w| {
         !matches!(w.value, WordValue::Expr(_))
@@ -421,7 +434,19 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, chain: &Chain, abs: Option<bool>, axe
         }
         "AROT" => {
             let r = angle(words)?.clone();
-            out.push(set(&a, add(var_expr(&a), r), span));
+            // A sum known here is written as its value, within G68's -360..360 (the same
+            // rotation); else the variable adds at run time.
+            let known = st.angle.zip(crate::lower::literal(&r)).map(|(x, r)| {
+                let mut v = x + r;
+                while v > 360.0 {
+                    v -= 360.0;
+                }
+                while v < -360.0 {
+                    v += 360.0;
+                }
+                v
+            });
+            out.push(set(&a, known.map_or_else(|| add(var_expr(&a), r), |v| point(v, span)), span));
             items.push(g68(span));
         }
         _ => {
