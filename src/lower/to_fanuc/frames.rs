@@ -8,7 +8,9 @@
 //!   value FANUC cannot read back: the translation keeps the shift of each axis in a
 //!   variable (set by the TRANS before, raised by each ATRANS) and writes `G52` from them,
 //!   where every ATRANS follows a TRANS on every path ([`ATRANS_READY`]), in a main program
+//!   (or a called one whose own leading TRANS sets the frame: its caller's does not matter)
 //!   with no rotation, scale or mirror and no incremental move; elsewhere refused (NC577).
+//!   Under a rotation `frame_chain.rs` follows the frame (and refuses where it cannot).
 //! - `SUPA` and `G153` → `G53` in the same block.
 //! - `G505`/`G506` → `G58`/`G59`, `G507`.. → `G54.1 P1`.. (the trace numbers both alike).
 //! - `G74 Z1=0` → `G91 G28 Z0` (the intermediate point is where the tool stands, as for
