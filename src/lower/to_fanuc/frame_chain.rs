@@ -81,6 +81,7 @@ pub fn plan(
 ) -> Chain {
     let mut additive = false;
     let mut rotation = false;
+    let mut calls_frames = false;
     let mut why: Option<&'static str> = None;
     let mut note = |w: &'static str| {
         why.get_or_insert(w);
@@ -102,7 +103,8 @@ pub fn plan(
                         }
                         "ATRANS" => note("with the G92 form ATRANS X=$P_EP[X]-v in the program"),
                         "TRANS" => {}
-                        "ROT" | "AROT" if words.is_empty() => {}
+                        "ROT" if words.is_empty() => {}
+                        "AROT" if words.is_empty() => note("with an AROT without an angle"),
                         "ROT" | "AROT" => {
                             rotation = true;
                             if angle(words).is_none() {
@@ -127,6 +129,7 @@ pub fn plan(
                         _ => true,
                     };
                     if frames {
+                        calls_frames = true;
                         note("in a program calling a subprogram that has frame instructions (or is not among those translated): the frame it leaves is not followed");
                     }
                 }
@@ -135,8 +138,8 @@ pub fn plan(
         }
     });
     // Without a rotation the plain ATRANS of `frames.rs` does (it needs no angle), except in
-    // a SAVE subprogram, refused below.
-    if !additive || !(rotation || save) {
+    // a SAVE subprogram or beside a call that may change the frame, refused below.
+    if !additive || !(rotation || save || calls_frames) {
         return Chain::default();
     }
     if save {
@@ -196,7 +199,9 @@ pub fn plan(
         }
     });
     let mut chain = Chain { on: true, ..Chain::default() };
-    walk(body, St { angle: Some(0.0), g68: false }, jumps, &mut chain.at);
+    // A called program may start under its caller's G68 (its first TRANS or ROT cancels it).
+    let start = if main { St { angle: Some(0.0), g68: false } } else { St::UNKNOWN };
+    walk(body, start, jumps, &mut chain.at);
     chain
 }
 
@@ -229,7 +234,7 @@ fn walk(body: &[Stmt], mut s: St, jumps: bool, at: &mut BTreeMap<u32, St>) -> St
                 let r = angle(words).and_then(crate::lower::literal);
                 s = match op {
                     "TRANS" => St { angle: Some(0.0), g68: false },
-                    "ROT" | "AROT" if words.is_empty() => St { angle: Some(0.0), g68: false },
+                    "ROT" if words.is_empty() => St { angle: Some(0.0), g68: false },
                     "ROT" => St { angle: r, g68: true },
                     "AROT" => St { angle: s.angle.zip(r).map(|(a, r)| a + r), g68: true },
                     _ => s,
