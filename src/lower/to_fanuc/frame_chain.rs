@@ -13,19 +13,22 @@
 //!   `G68 X0 Y0 R#a`; bare `TRANS`/`ROT` → the shifts and the angle 0, `G69`, `G52` of 0.
 //! - `AROT RPL=r` → the angle raised by r, `G68 X0 Y0 R#a` (about the origin of the shifted
 //!   system: G52 moves the centre of G68; a G68 in G68 mode replaces the rotation).
-//! - `ATRANS X dx Y dy Z dz` → the shift of X raised by `dx·COS[a] − dy·SIN[a]`, of Y by
-//!   `dx·SIN[a] + dy·COS[a]`, of Z by dz (a rotation in G17 leaves Z), then `G69`, `G52`
-//!   from the variables, `G68 X0 Y0 R#a` (FANUC's G52 under G68 is not modelled: the
-//!   rotation is cancelled around it).
+//! - `ATRANS X dx Y dy Z dz` → the shift of X raised by `dx·cos a − dy·sin a`, of Y by
+//!   `dx·sin a + dy·cos a`, of Z by dz (a rotation in G17 leaves Z), then `G69`, `G52` from
+//!   the variables, `G68 X0 Y0 R#a` (FANUC's G52 under G68 is not modelled: the rotation is
+//!   cancelled around it). The increments are worked out here from the angle in force,
+//!   which must be one constant on every path (`walk`): at a quarter turn they are ±dx,
+//!   ±dy (any expressions); at another angle only constants whose turned value G52 holds
+//!   (it rounds its words to the 0.001 input increment, the Siemens frame does not).
 //!
-//! Where no rotation can be in force yet (top-level blocks before the first ROT/AROT after
-//! the last TRANS, no jump target between) the G69/G68 are left out and the ATRANS adds
-//! plainly. Only where the program's frame instructions are these four, in G17 (a called
-//! program writes G17 itself in its leading blocks), the first of them an absolute TRANS or
-//! ROT in the leading blocks (so the caller's frame does not matter: every instruction
-//! after it builds on one the program set), without incremental moves, and every
-//! subprogram it calls leaves the frame alone; elsewhere an ATRANS is refused (NC577) with
-//! the reason.
+//! Where no rotation can be in force (a main program's blocks before its first ROT/AROT
+//! after the last TRANS, no jump target between) the G69/G68 are left out and the ATRANS
+//! adds plainly. Only where the program's frame instructions are these four, in G17 (a
+//! called program writes G17 itself in its leading blocks), the first of them an absolute
+//! TRANS or ROT in the leading blocks (so the caller's frame does not matter: every
+//! instruction after it builds on one the program set), without incremental moves, not in
+//! a SAVE subprogram, and every subprogram it calls leaves the frame alone; elsewhere an
+//! ATRANS is refused (NC577) with the reason.
 
 use super::*;
 
