@@ -168,6 +168,11 @@ fn atrans_under_a_rotation_that_cannot_be_exact_is_refused_with_its_reason() {
         ("THIRTY.MPF", turned("30"), "rounds to its 0.001 input increment"),
         ("LOOPROT.MPF", loop_arot.into(), "angle is not known at translation"),
         ("VARANGLE.MPF", turned("R1"), "angle is not known at translation"),
+        (
+            "PATHS.MPF",
+            turned("90").replace("AROT RPL=90\n", "IF R1>0\nAROT RPL=90\nELSE\nAROT RPL=180\nENDIF\n"),
+            "angle is not known at translation",
+        ),
         ("SCALED.MPF", turned("90").replace("G0 X0 Y0\nM30", "SCALE X2\nG0 X0 Y0\nM30"), "SCALE, MIRROR"),
         ("G18.MPF", turned("90").replace("G0 X0 Y0\nM30", "G18\nG0 X0 Y0\nM30"), "G18 or G19"),
         ("NOTFIRST.MPF", turned("90").replace("TRANS X10 Y10\nAROT", "AROT"), "first frame instruction"),
