@@ -43,6 +43,13 @@ pub struct Seqs {
     at: Vec<(u32, Action)>,
 }
 
+impl Seqs {
+    /// Whether a sequence takes the frame block whose instruction starts at `lo`.
+    pub fn takes(&self, lo: u32) -> bool {
+        self.at.iter().any(|a| a.0 == lo)
+    }
+}
+
 fn constant(e: &Expr) -> Option<f64> {
     match &e.kind {
         ExprKind::Num(n) => Some(n.value),

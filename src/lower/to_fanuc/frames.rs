@@ -8,7 +8,9 @@
 //!   value FANUC cannot read back: the translation keeps the shift of each axis in a
 //!   variable (set by the TRANS before, raised by each ATRANS) and writes `G52` from them,
 //!   where every ATRANS follows a TRANS on every path ([`ATRANS_READY`]), in a main program
+//!   (or a called one whose own leading TRANS sets the frame: its caller's does not matter)
 //!   with no rotation, scale or mirror and no incremental move; elsewhere refused (NC577).
+//!   Under a rotation `frame_chain.rs` follows the frame (and refuses where it cannot).
 //! - `SUPA` and `G153` → `G53` in the same block.
 //! - `G505`/`G506` → `G58`/`G59`, `G507`.. → `G54.1 P1`.. (the trace numbers both alike).
 //! - `G74 Z1=0` → `G91 G28 Z0` (the intermediate point is where the tool stands, as for
@@ -48,7 +50,7 @@ fn const_g(it: &Item) -> Option<f64> {
 pub const ATRANS_READY: u16 = 1 << 13;
 
 /// The temporary holding the programmable shift of axis `l` (a local of the main program).
-fn shift_var(l: u8, span: Span) -> VarRef {
+pub(super) fn shift_var(l: u8, span: Span) -> VarRef {
     VarRef { kind: VarKind::Named { name: format!("{TEMP_PREFIX}SHIFT_{}", l as char), indices: vec![] }, span }
 }
 
@@ -304,8 +306,8 @@ fn atrans(
     axes: u16,
     main: bool,
 ) -> Vec<Stmt> {
-    let why = if !main {
-        Some("in a called program (the shifts its caller set are not known there)")
+    let why = if !main && axes & ATRANS_READY == 0 {
+        Some("in a called program that does not set its own frame first (a TRANS in its leading blocks): it adds to the frame its caller left, which the translation does not follow into called programs")
     } else if axes & (1 << 15) != 0 || abs != Some(true) {
         Some("in a program with incremental moves (after a frame change a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not)")
     } else if axes & ATRANS_READY == 0 {

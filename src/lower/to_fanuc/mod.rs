@@ -20,6 +20,7 @@ mod cycles_frames;
 pub mod cycles_tap;
 pub mod exprs;
 pub(crate) mod fast_write;
+pub mod frame_chain;
 pub mod frame_seq;
 pub mod frames;
 pub mod haas_mirror;

@@ -335,6 +335,9 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
             let source = if let Some(axis) = name.strip_prefix(TEMP_PREFIX).and_then(|t| t.strip_prefix("SHIFT_")) {
                 // The programmable shift ATRANS adds to (`frames::atrans`).
                 format!("TRANS/ATRANS SHIFT {axis}")
+            } else if name == format!("{TEMP_PREFIX}ROT_ANGLE") {
+                // The angle of the chained rotation (`frame_chain`).
+                "ROT/AROT ANGLE".to_string()
             } else if temp {
                 "temporary".to_string()
             } else if dims.is_empty() {

@@ -78,6 +78,8 @@ struct Modal {
     poles: super::polar::Poles,
     /// Its additive frame sequences (`frame_seq::seqs`).
     seqs: super::frame_seq::Seqs,
+    /// Its frame chained from TRANS, ATRANS, ROT, AROT (`frame_chain::plan`).
+    chain: super::frame_chain::Chain,
     /// A called program (its caller's frame, a G52 among them, is not known here).
     is_sub: bool,
 }
@@ -96,16 +98,22 @@ impl Modal {
 }
 
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
+    let trans_axes = super::frames::trans_axes(&prog.body);
+    let seqs = super::frame_seq::seqs(&prog.body, !info.is_sub);
+    let chain =
+        super::frame_chain::plan(&prog.body, !info.is_sub, trans_axes, &ctx.callees, &seqs, info.is_sub && prog.save);
     let mut m = Modal {
         s: Modes {
             abs: if info.is_sub { None } else { Some(true) },
             units: if info.is_sub { UnitState::Caller } else { UnitState::Known(Units::default()) },
         },
         resets: Resets::of(&prog.body, &ctx.callees),
-        trans_axes: super::frames::trans_axes(&prog.body),
+        trans_axes,
         rot: super::rotation::plan(&prog.body, !info.is_sub),
         poles: super::polar::poles(&prog.body, !info.is_sub),
-        seqs: super::frame_seq::seqs(&prog.body, !info.is_sub),
+        // A followed chain writes every frame block itself.
+        seqs: if chain.on { Default::default() } else { seqs },
+        chain,
         is_sub: info.is_sub,
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
@@ -272,7 +280,13 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
         out.extend(stmts);
         return;
     }
+    // A followed chain writes every frame block (it has no sequences then); else the
+    // sequences take theirs and the chain refuses the other ATRANS where it says why.
     if let Some(stmts) = super::frame_seq::block(&mut b, &m.seqs) {
+        out.extend(stmts);
+        return;
+    }
+    if let Some(stmts) = super::frame_chain::block(ctx, &mut b, &m.chain, m.s.abs, m.trans_axes) {
         out.extend(stmts);
         return;
     }

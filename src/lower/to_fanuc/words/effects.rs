@@ -51,6 +51,10 @@ pub struct Effect {
     /// (`comp_flow::program_tools`, the summary FANUC → Sinumerik reads too). A call of one
     /// leaves the caller's tool and edge unknown.
     pub tools: bool,
+    /// It (or a subprogram it calls, or a call it makes of a program not among those
+    /// translated) has a frame instruction (TRANS, ROT, …): the caller's programmable frame
+    /// may differ after the call (`frame_chain`, which follows the frame in variables).
+    pub frames: bool,
 }
 
 impl Effect {
@@ -101,6 +105,7 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     let mut callee_units = false;
     let mut jumps = false;
     let mut returns = 0usize;
+    let mut frames = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
@@ -109,12 +114,19 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
                     unit_words += usize::from(Units::default().g(f64::from(g)));
                 }
                 match &it.kind {
+                    ItemKind::Frame { .. } => frames = true,
                     ItemKind::Call(c) => {
                         if let CallTarget::Name(n) = &c.target {
-                            if let Some(e) = known(&n.to_ascii_uppercase()) {
+                            let name = n.to_ascii_uppercase();
+                            if let Some(e) = known(&name) {
                                 sets |= e.leaves();
                                 callee_units |= !e.save && e.units != UnitEffect::None;
+                                frames |= e.frames;
+                            } else if crate::dialect::sinumerik::cycles::cycle_of(&name).is_none() {
+                                frames = true;
                             }
+                        } else {
+                            frames = true;
                         }
                     }
                     ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::RepeatSection(_) => jumps = true,
@@ -132,7 +144,7 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
         fold_units(&p.body)
     };
     let tools = comp_flow::program_tools(p, false, &runs, &|n: &String| known(n).map(|e| e.tools));
-    Effect { sets, units, save: p.save, tools }
+    Effect { sets, units, save: p.save, tools, frames }
 }
 
 /// What a Siemens call runs: a drilling cycle touches neither tool nor compensation; any
