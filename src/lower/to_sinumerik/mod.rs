@@ -48,6 +48,7 @@ pub mod m97;
 pub mod modal;
 pub mod modal_flow;
 pub mod modal_reads;
+pub mod planes;
 pub mod polar;
 pub mod position_length;
 pub mod print;
@@ -255,6 +256,13 @@ pub struct ProgPlan {
     pub leaves_frames: bool,
     /// Likewise G16 polar coordinates.
     pub leaves_polar: bool,
+    /// The plane (G code ×10) and the axes on the grid the program starts with, where known:
+    /// G17 and all for the main program, what every call agrees on for a called one
+    /// (`planes::start_planes`).
+    pub start_plane: planes::At,
+    /// The program (or a call in it) may select a plane; may move the tool off the grid
+    /// (`planes::setters`).
+    pub sets_plane: (bool, bool),
 }
 
 /// The shared state of one translation.
@@ -402,6 +410,25 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         p.leaves_frames = leaves;
         p.leaves_polar = polar;
     }
+    let plane_setters = (planes::setters(&ctx.progs, &bodies, false), planes::setters(&ctx.progs, &bodies, true));
+    let known: Vec<u32> = ctx.progs.iter().filter_map(|p| p.number).collect();
+    let framers: Vec<u32> =
+        ctx.progs.iter().filter(|p| p.leaves_frames || p.leaves_polar).filter_map(|p| p.number).collect();
+    let distance: Vec<u32> =
+        ctx.progs.iter().filter(|p| p.sets_distance || p.sets_g90).filter_map(|p| p.number).collect();
+    let calls = planes::Calls {
+        planes: &plane_setters.0,
+        grid: &plane_setters.1,
+        framers: &framers,
+        distance: &distance,
+        known: &known,
+    };
+    let starts = planes::start_planes(&ctx.progs, &bodies, calls);
+    for (p, start) in ctx.progs.iter_mut().zip(starts) {
+        let sets = |list: &[u32]| p.number.is_some_and(|k| list.contains(&k));
+        p.sets_plane = (sets(&plane_setters.0), sets(&plane_setters.1));
+        p.start_plane = start;
+    }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
     ctx.end_codes = ends::ending(programs, &ctx.progs);
@@ -465,6 +492,21 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     ctx.modal = modal::ModalScan::new(&body, main, start, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
     ctx.modal.lengths = position_length::Lengths::new(&body, main);
+    let plane_setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_plane.0).filter_map(|p| p.number).collect();
+    let grid_setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_plane.1).filter_map(|p| p.number).collect();
+    let known: Vec<u32> = ctx.progs.iter().filter_map(|p| p.number).collect();
+    let framers: Vec<u32> =
+        ctx.progs.iter().filter(|p| p.leaves_frames || p.leaves_polar).filter_map(|p| p.number).collect();
+    let distance: Vec<u32> =
+        ctx.progs.iter().filter(|p| p.sets_distance || p.sets_g90).filter_map(|p| p.number).collect();
+    let calls = planes::Calls {
+        planes: &plane_setters,
+        grid: &grid_setters,
+        framers: &framers,
+        distance: &distance,
+        known: &known,
+    };
+    ctx.modal.planes = planes::Planes::new(&body, ctx.plan().start_plane, calls);
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);
