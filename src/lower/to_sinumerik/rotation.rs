@@ -5,7 +5,7 @@
 //! G52 shift, a TRANS), as FANUC applies them in the local coordinate system:
 //! - `G68 X cx Y cy R a` → `ATRANS X=cx Y=cy` / `AROT RPL=a` / `ATRANS X=-cx Y=-cy`
 //!   (about the origin only `AROT RPL=a`). Both rotate in the plane selected at the block
-//!   (RPL= in the active plane), so the plane need not be known here.
+//!   (RPL= in the active plane), so the plane need not be known here (but for a G68 without a centre).
 //! - `G51 X cx Y cy P f` (or `I J K`, a factor each) → `ATRANS` to the centre, `ASCALE` of
 //!   the axes whose centre G51 names, `ATRANS` back.
 //! - `G51.1 X a` → `ATRANS X=a` / `AMIRROR X0` / `ATRANS X=-a`: mirrored about X = a.
@@ -28,9 +28,11 @@
 //! called program starts with no mode in force where every call of it in the job is made so
 //! (`modal::frame_calls`); the programmable frame it writes stays in force after its return
 //! as FANUC's modes survive M99 (no `SAVE` on the PROC), and a caller knows its modes after
-//! the call only where the callee cancels what it set on every path to its ends. A mode set
+//! the call only where the callee cancels what it set on every path to its ends. A G68
+//! without a centre turns about the tool position (`$P_EP` of the plane's axes, saved) where
+//! the plane is known (`planes`) and the tool surely stands on the increment grid. A mode set
 //! or cancelled in a called program otherwise (the caller's is not known here), a G68
-//! without a centre (the tool position) or an angle (parameter 5410), a G51 without the
+//! without a centre elsewhere or without an angle (parameter 5410), a G51 without the
 //! centre of each axis it scales or a factor, a G50.1 that leaves an axis of its G51.1
 //! mirrored, and any of them under G91 are refused (NC497). A cancel of a mode not in force
 //! (G50 under G51.1) changes nothing, as on FANUC.
