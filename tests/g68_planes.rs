@@ -110,7 +110,10 @@ fn parse(fanuc: &str) -> Job {
 
 /// The job's translation, verified, with one planted change (`from` → `to` in file `name`,
 /// none when `from` is empty): `Ok(equivalent, files)`, or the error codes.
-fn job(fanuc: &str, name: &str, from: &str, to: &str) -> Result<(bool, Vec<(String, String)>), Vec<&'static str>> {
+/// Whether the job verifies, and its files (name, text).
+type Verified = (bool, Vec<(String, String)>);
+
+fn job(fanuc: &str, name: &str, from: &str, to: &str) -> Result<Verified, Vec<&'static str>> {
     let j = parse(fanuc);
     let mut t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
     if t.has_errors() {

@@ -94,7 +94,12 @@ fn marks(items: &[Item], grid: bool) -> bool {
 
 /// An assignment that may change a work offset (or any variable by number).
 fn offset_write(it: &Item) -> bool {
-    matches!(&it.kind, ItemKind::Assign { target, .. } if matches!(target.kind, VarKind::Hash(5201..=5340) | VarKind::HashIndirect(_)))
+    match &it.kind {
+        ItemKind::Assign { target, .. } => matches!(target.kind, VarKind::Hash(5201..=5340) | VarKind::HashIndirect(_)),
+        // A Haas `IF [c] #5221=..` writes it or not.
+        ItemKind::IfThen { then, .. } => offset_write(then),
+        _ => false,
+    }
 }
 
 /// Whether `body` has a block that [`marks`].
