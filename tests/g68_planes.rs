@@ -182,6 +182,10 @@ G1 X30. Y5. Z10. F100.\nG69\nM30\n%\n";
     let replaced = G18.replace("G1 Z20.\n", "G1 Z20.\nG68 R45.\nG1 X25. Z12.\n");
     let why = refusal(&replaced);
     assert!(why.contains("NC497") && why.contains("off the 0.001 grid"), "{why}");
+    // A unit change: a position on the millimetre grid is off the inch grid.
+    let unit = "%\nO0196\nG21 G17 G90 G54\nG0 X20. Y10.\nG20\nG68 R30.\nG1 X3. Y1.5 F10.\nG69\nM30\n%\n";
+    let why = refusal(unit);
+    assert!(why.contains("NC497") && why.contains("off the 0.001 grid"), "{why}");
     // A subprogram that may leave the tool off the grid (it turns a move and returns
     // without one of the caller's after it).
     let off = CALLED.replace("G0 Y0 Z0\nM98 P9192", "M98 P9192");

@@ -411,22 +411,13 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         p.leaves_polar = polar;
     }
     let plane_setters = (planes::setters(&ctx.progs, &bodies, false), planes::setters(&ctx.progs, &bodies, true));
-    let known: Vec<u32> = ctx.progs.iter().filter_map(|p| p.number).collect();
-    let framers: Vec<u32> =
-        ctx.progs.iter().filter(|p| p.leaves_frames || p.leaves_polar).filter_map(|p| p.number).collect();
-    let distance: Vec<u32> =
-        ctx.progs.iter().filter(|p| p.sets_distance || p.sets_g90).filter_map(|p| p.number).collect();
-    let calls = planes::Calls {
-        planes: &plane_setters.0,
-        grid: &plane_setters.1,
-        framers: &framers,
-        distance: &distance,
-        known: &known,
-    };
-    let starts = planes::start_planes(&ctx.progs, &bodies, calls);
-    for (p, start) in ctx.progs.iter_mut().zip(starts) {
+    for p in ctx.progs.iter_mut() {
         let sets = |list: &[u32]| p.number.is_some_and(|k| list.contains(&k));
         p.sets_plane = (sets(&plane_setters.0), sets(&plane_setters.1));
+    }
+    let lists = planes::Lists::of(&ctx.progs);
+    let starts = planes::start_planes(&ctx.progs, &bodies, lists.calls());
+    for (p, start) in ctx.progs.iter_mut().zip(starts) {
         p.start_plane = start;
     }
     let info = vacancy::analyse(&mut ctx, programs);
@@ -492,21 +483,8 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     ctx.modal = modal::ModalScan::new(&body, main, start, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
     ctx.modal.lengths = position_length::Lengths::new(&body, main);
-    let plane_setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_plane.0).filter_map(|p| p.number).collect();
-    let grid_setters: Vec<u32> = ctx.progs.iter().filter(|p| p.sets_plane.1).filter_map(|p| p.number).collect();
-    let known: Vec<u32> = ctx.progs.iter().filter_map(|p| p.number).collect();
-    let framers: Vec<u32> =
-        ctx.progs.iter().filter(|p| p.leaves_frames || p.leaves_polar).filter_map(|p| p.number).collect();
-    let distance: Vec<u32> =
-        ctx.progs.iter().filter(|p| p.sets_distance || p.sets_g90).filter_map(|p| p.number).collect();
-    let calls = planes::Calls {
-        planes: &plane_setters,
-        grid: &grid_setters,
-        framers: &framers,
-        distance: &distance,
-        known: &known,
-    };
-    ctx.modal.planes = planes::Planes::new(&body, ctx.plan().start_plane, calls);
+    let lists = planes::Lists::of(&ctx.progs);
+    ctx.modal.planes = planes::Planes::new(&body, ctx.plan().start_plane, lists.calls());
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);

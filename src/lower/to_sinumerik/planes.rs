@@ -20,7 +20,8 @@ pub struct At {
     /// The axes X, Y, Z (bits 0..2) whose workpiece position is surely on the grid of the
     /// input increment (0.001 mm): each was last positioned by an absolute word (or an
     /// increment from such a position) with no frame mode in force. A rotated, scaled or
-    /// polar move, a reference return, G53, a probe move, an offset write or a call that may
+    /// polar move, a reference return, G53, a probe move, an offset write, a unit change
+    /// ([`At::inch`]) or a call that may
     /// do any of these leaves it off: the Sinumerik frame value the tool position becomes
     /// (`ATRANS X=..`) is rounded to the increment as a word, FANUC's centre is not.
     pub grid: u8,
@@ -28,10 +29,13 @@ pub struct At {
     pub modes: u8,
     /// G91 (`Some(true)`), G90, or not known.
     pub incremental: Option<bool>,
+    /// G20 (`Some(true)`), G21, or not known: a position on one unit's grid is not on the
+    /// other's, so a unit change leaves every axis off the grid.
+    pub inch: Option<bool>,
 }
 
 impl At {
-    pub const UNKNOWN: At = At { plane: None, grid: 0, modes: 0xf, incremental: None };
+    pub const UNKNOWN: At = At { plane: None, grid: 0, modes: 0xf, incremental: None, inch: None };
 
     fn meet(self, o: At) -> At {
         At {
@@ -39,6 +43,7 @@ impl At {
             grid: self.grid & o.grid,
             modes: self.modes | o.modes,
             incremental: if self.incremental == o.incremental { self.incremental } else { None },
+            inch: if self.inch == o.inch { self.inch } else { None },
         }
     }
 }
@@ -167,7 +172,44 @@ pub struct Calls<'a> {
     pub framers: &'a [u32],
     /// The programs that may select G90 or G91 (`ProgPlan::sets_distance`, `sets_g90`).
     pub distance: &'a [u32],
+    /// The programs that may select G20 or G21 (`ProgPlan::sets_units`).
+    pub units: &'a [u32],
     pub known: &'a [u32],
+}
+
+/// The lists a [`Calls`] borrows, from the job's plans.
+pub struct Lists {
+    planes: Vec<u32>,
+    grid: Vec<u32>,
+    framers: Vec<u32>,
+    distance: Vec<u32>,
+    units: Vec<u32>,
+    known: Vec<u32>,
+}
+
+impl Lists {
+    pub fn of(progs: &[ProgPlan]) -> Lists {
+        let numbers = |f: &dyn Fn(&ProgPlan) -> bool| progs.iter().filter(|p| f(p)).filter_map(|p| p.number).collect();
+        Lists {
+            planes: numbers(&|p| p.sets_plane.0),
+            grid: numbers(&|p| p.sets_plane.1),
+            framers: numbers(&|p| p.leaves_frames || p.leaves_polar),
+            distance: numbers(&|p| p.sets_distance || p.sets_g90),
+            units: numbers(&|p| p.sets_units),
+            known: numbers(&|_| true),
+        }
+    }
+
+    pub fn calls(&self) -> Calls<'_> {
+        Calls {
+            planes: &self.planes,
+            grid: &self.grid,
+            framers: &self.framers,
+            distance: &self.distance,
+            units: &self.units,
+            known: &self.known,
+        }
+    }
 }
 
 fn axis_bit(l: u8) -> u8 {
@@ -209,6 +251,10 @@ fn apply(items: &[Item], mut s: At, calls: Calls) -> At {
                 if call_sets(c, calls.distance, calls.known) {
                     s.incremental = None;
                 }
+                if call_sets(c, calls.units, calls.known) {
+                    s.inch = None;
+                    s.grid = 0;
+                }
             }
             ItemKind::IfThen { then, .. } if own_plane(std::slice::from_ref(then)).is_some() => s.plane = None,
             ItemKind::IfBlock { .. } => return At::UNKNOWN,
@@ -217,6 +263,13 @@ fn apply(items: &[Item], mut s: At, calls: Calls) -> At {
     }
     for g in &gs {
         match g {
+            200 | 210 => {
+                let inch = Some(*g == 200);
+                if s.inch != inch {
+                    s.grid = 0;
+                }
+                s.inch = inch;
+            }
             900 => s.incremental = Some(false),
             910 => s.incremental = Some(true),
             680 => s.modes |= 1,
@@ -348,12 +401,12 @@ impl Planes {
 pub fn start_planes(progs: &[ProgPlan], bodies: &[&[Stmt]], calls: Calls) -> Vec<At> {
     let n = progs.len();
     let main = |i: usize| progs[i].role == Role::Main;
-    let power_on = At { plane: Some(170), grid: 7, modes: 0, incremental: Some(false) };
+    let power_on = At { plane: Some(170), grid: 7, modes: 0, incremental: Some(false), inch: Some(false) };
     let start = |seen: &[Option<At>], i: usize| {
         if main(i) {
             power_on
         } else {
-            seen[i].map_or(At::UNKNOWN, |s| At { modes: 0, incremental: None, ..s })
+            seen[i].map_or(At::UNKNOWN, |s| At { modes: 0, incremental: None, inch: None, ..s })
         }
     };
     let unknown = || (0..n).map(|i| if main(i) { power_on } else { At::UNKNOWN }).collect();

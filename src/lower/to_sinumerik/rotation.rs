@@ -187,7 +187,7 @@ fn mode_of(
                 // is rounded to the input increment: exact only for a position on that grid.
                 let off = axes.iter().any(|a| !centre.iter().any(|e| e.0 == a.0) && at.grid & plane_bit(a.0) == 0);
                 if off {
-                    return Err("G68 without its centre where the tool may stand off the 0.001 grid (after a rotated, scaled or polar move, a reference return, G53, a probe move, an offset write, or a call that may make one; FANUC turns about that exact position, a Sinumerik frame value is rounded to the increment)");
+                    return Err("G68 without its centre where the tool may stand off the 0.001 grid (after a rotated, scaled or polar move, a reference return, G53, a probe move, an offset write, a change of G20/G21, or a call that may make one; FANUC turns about that exact position, a Sinumerik frame value is rounded to the increment)");
                 }
                 for (l, n) in axes {
                     if centre.iter().all(|e| e.0 != l) {
