@@ -21,9 +21,9 @@ pub struct At {
     /// input increment (0.001 mm): each was last positioned by an absolute word (or an
     /// increment from such a position) with no frame mode in force. A rotated, scaled or
     /// polar move, a reference return, G53, a probe move, an offset write, a unit change
-    /// ([`At::inch`]) or a call that may
-    /// do any of these leaves it off: the Sinumerik frame value the tool position becomes
-    /// (`ATRANS X=..`) is rounded to the increment as a word, FANUC's centre is not.
+    /// ([`At::inch`]) or a call that may do any of these leaves it off: the Sinumerik frame
+    /// value the tool position becomes (`ATRANS X=..`) is rounded to the increment as a
+    /// word, FANUC's centre is not.
     pub grid: u8,
     /// The frame modes (bits: G68, G51, G51.1, G16) that may be in force.
     pub modes: u8,
@@ -459,18 +459,22 @@ pub fn start_planes(progs: &[ProgPlan], bodies: &[&[Stmt]], calls: Calls) -> Vec
     unknown()
 }
 
-/// Whether `body` has a G68 that names fewer than two centre axes: its translation needs
-/// the plane at the block, so every plane word of the program (the segmented stream reads
-/// such a program whole: its runs may hold them).
+/// Whether `body` has a G68 that names fewer than two centre axes by constants: its
+/// translation needs the plane at the block, so every plane word of the program (the
+/// segmented stream reads such a program whole: its runs may hold them).
 pub fn needs_plane(body: &[Stmt]) -> bool {
     let mut any = false;
     crate::ir::visit::walk_stmts(body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             if g_codes(&b.items).contains(&680) {
+                // A word of a variable may be vacant (then left out: the tool position).
                 let axes = b
                     .items
                     .iter()
-                    .filter(|it| matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z'))))
+                    .filter(|it| {
+                        matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z'))
+                            && matches!(&w.value, WordValue::Expr(e) if literal(e).is_some()))
+                    })
                     .count();
                 any |= axes < 2;
             }
