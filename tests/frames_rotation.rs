@@ -155,10 +155,14 @@ mod translation {
     #[test]
     fn g68_and_g69_without_an_exact_counterpart_are_refused() {
         let nc497 = Err(vec!["NC497".to_string()]);
-        // No centre: the tool position, where a G52 shift does not stand between (a G17
-        // main program without G52: tests/frame_cancels.rs).
-        assert_eq!(f_to_s("O1\nG52 X5. Y0 Z0\nG68 R30.\nM30\n"), nc497, "no centre over a G52 shift");
-        assert_eq!(f_to_s("O1\nG18\nG68 R30.\nM30\n"), nc497, "no centre in G18");
+        // No centre: the tool position, over a G52 shift and in G18 too (tests/g68_planes.rs);
+        // refused where the plane depends on the path taken.
+        let out = f_to_s("O1\nG52 X5. Y0 Z0\nG68 R30.\nM30\n").unwrap();
+        assert!(out.contains("TRANS X5\nNCTRANS_G68_X=$P_EP[X]"), "{out}");
+        let out = f_to_s("O1\nG18\nG68 R30.\nM30\n").unwrap();
+        assert!(out.contains("NCTRANS_G68_Z=$P_EP[Z]\nNCTRANS_G68_X=$P_EP[X]"), "{out}");
+        let by_path = "O1\nIF[#1EQ1]GOTO10\nG18\nN10 G68 R30.\nM30\n";
+        assert_eq!(f_to_s(by_path), nc497, "no centre where the plane depends on the path");
         assert_eq!(f_to_s("O1\nG68 X0 Y0\nM30\n"), nc497, "no angle");
         assert_eq!(f_to_s("O1\nG91 G68 X0 Y0 R30.\nM30\n"), nc497, "under G91");
         assert_eq!(f_to_s("O1\nG68 X0 Y0 R#1\nM30\n"), nc497, "not a constant");

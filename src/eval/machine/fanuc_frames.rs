@@ -145,10 +145,21 @@ impl Machine {
     pub(super) fn g92_shift(&mut self, axes: &[Option<(&WordVal, f64)>; 9], span: Span) -> Result<(), Fault> {
         let incremental = !self.modal.absolute || axes.iter().flatten().any(|(w, _)| w.mode != AbsInc::Plain);
         let shifted = self.local.iter().any(|v| *v != 0.0);
+        let framed = self.rot.is_some() || self.scale.is_some() || self.mirror.iter().any(Option::is_some);
         if incremental || shifted || self.framed || self.polar {
+            // Under a frame mode: which coordinates G92 gives the tool (the programmed,
+            // rotated ones or the unrotated local ones) and whether the rotation centre moves
+            // with the new system is in no FANUC manual read (docs/semantics.md, "Rotation").
+            let msg = if framed {
+                "G92 under G68, G51 or G51.1 is not modelled: no FANUC source read says whether the coordinates it sets are the rotated (scaled, mirrored) programmed ones or the local ones, nor whether the centre of the mode moves with the new system"
+            } else if shifted {
+                "G92 with a G52 shift is not modelled: no FANUC source read says whether G92 keeps or clears the local shift"
+            } else {
+                "G92 under G91 or G16 is not modelled"
+            };
             return Err(error(
                 "NC491",
-                "G92 under G91, with a G52 shift, or under G68, G51, G51.1 or G16 is not modelled".into(),
+                msg.into(),
                 span,
                 "set the coordinate system under G90 with the other modes cancelled (G52 X0 Y0 Z0, G69, G50, G50.1, G15)",
             ));
@@ -180,7 +191,15 @@ impl Machine {
             170 | 180 | 190 if rot => "a plane selection (G17/G18/G19) in G68 mode",
             511 | 501 if rot || self.scale.is_some() => "G51.1/G50.1 in G51 or G68 mode",
             510 | 500 if rot => "G51/G50 in G68 mode",
-            520 => "G52 under G68, G51 or G51.1",
+            520 if rot => {
+                return Err(error(
+                    "NC491",
+                    "G52 under G68 is not modelled: no FANUC source read says whether the new local origin is measured along the rotated or the unrotated axes, nor whether the rotation's centre moves with the local system".into(),
+                    span,
+                    "cancel the rotation first and give it again after the shift: `G69` / `G52 X.. Y..` / `G68 X.. Y.. R..`",
+                ))
+            }
+            520 => "G52 under G51 or G51.1 (whether the new origin is scaled or mirrored is in no FANUC source read)",
             280 | 290 | 300 => "a reference return (G28/G29/G30) under G68, G51 or G51.1",
             540..=599 => "a work offset selection under G68, G51 or G51.1",
             100 => "G10 under G68, G51 or G51.1",

@@ -289,6 +289,9 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             start_clear: false,
             leaves_frames: false,
             leaves_polar: false,
+            // Set with the job's planes (`planes::start_planes`).
+            start_plane: super::planes::At::UNKNOWN,
+            sets_plane: (false, false),
         });
         if by_m98 && by_macro {
             ctx.cur = i;

@@ -49,6 +49,7 @@ pub mod m97;
 pub mod modal;
 pub mod modal_flow;
 pub mod modal_reads;
+pub mod planes;
 pub mod polar;
 pub mod position_length;
 pub mod print;
@@ -256,6 +257,13 @@ pub struct ProgPlan {
     pub leaves_frames: bool,
     /// Likewise G16 polar coordinates.
     pub leaves_polar: bool,
+    /// The plane (G code ×10) and the axes on the grid the program starts with, where known:
+    /// G17 and all for the main program, what every call agrees on for a called one
+    /// (`planes::start_planes`).
+    pub start_plane: planes::At,
+    /// The program (or a call in it) may select a plane; may move the tool off the grid
+    /// (`planes::setters`).
+    pub sets_plane: (bool, bool),
 }
 
 /// The shared state of one translation.
@@ -408,6 +416,16 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         p.leaves_frames = leaves;
         p.leaves_polar = polar;
     }
+    let plane_setters = (planes::setters(&ctx.progs, &bodies, false), planes::setters(&ctx.progs, &bodies, true));
+    for p in ctx.progs.iter_mut() {
+        let sets = |list: &[u32]| p.number.is_some_and(|k| list.contains(&k));
+        p.sets_plane = (sets(&plane_setters.0), sets(&plane_setters.1));
+    }
+    let lists = planes::Lists::of(&ctx.progs);
+    let starts = planes::start_planes(&ctx.progs, &bodies, lists.calls());
+    for (p, start) in ctx.progs.iter_mut().zip(starts) {
+        p.start_plane = start;
+    }
     let info = vacancy::analyse(&mut ctx, programs);
     varmap::build(&mut ctx, programs, &info);
     ctx.end_codes = ends::ending(programs, &ctx.progs);
@@ -471,6 +489,8 @@ pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     ctx.modal = modal::ModalScan::new(&body, main, start, plan.start_clear, calls, locals);
     ctx.modal.reads = modal_reads::Reads::new(&body);
     ctx.modal.lengths = position_length::Lengths::new(&body, main);
+    let lists = planes::Lists::of(&ctx.progs);
+    ctx.modal.planes = planes::Planes::new(&body, ctx.plan().start_plane, lists.calls());
     let skip_axes = probe::scan(ctx, &body);
     if skip_axes != 0 {
         probe_length::check(ctx, &body, main);

@@ -39,6 +39,8 @@ pub struct ModalScan {
     pub reads: super::modal_reads::Reads,
     /// Where G43/G44 may be in force, for the `#5043` reads (`position_length`).
     pub lengths: super::position_length::Lengths,
+    /// The plane in force at each block (`planes`; set beside `new`).
+    pub planes: super::planes::Planes,
     /// What the paths to the program's ends (M99, M30, M2, the last block) agree on;
     /// `None` where no end is reached (or the scan did not settle: [`State::UNKNOWN`]).
     exit: Option<State>,
@@ -404,6 +406,7 @@ impl ModalScan {
             homes,
             reads: Default::default(),
             lengths: Default::default(),
+            planes: Default::default(),
             exit: if settled { exit } else { Some(State::UNKNOWN) },
         }
     }

@@ -5,7 +5,7 @@
 //! G52 shift, a TRANS), as FANUC applies them in the local coordinate system:
 //! - `G68 X cx Y cy R a` → `ATRANS X=cx Y=cy` / `AROT RPL=a` / `ATRANS X=-cx Y=-cy`
 //!   (about the origin only `AROT RPL=a`). Both rotate in the plane selected at the block
-//!   (RPL= in the active plane), so the plane need not be known here.
+//!   (RPL= in the active plane), so the plane need not be known here (but for a G68 without a centre).
 //! - `G51 X cx Y cy P f` (or `I J K`, a factor each) → `ATRANS` to the centre, `ASCALE` of
 //!   the axes whose centre G51 names, `ATRANS` back.
 //! - `G51.1 X a` → `ATRANS X=a` / `AMIRROR X0` / `ATRANS X=-a`: mirrored about X = a.
@@ -28,9 +28,11 @@
 //! called program starts with no mode in force where every call of it in the job is made so
 //! (`modal::frame_calls`); the programmable frame it writes stays in force after its return
 //! as FANUC's modes survive M99 (no `SAVE` on the PROC), and a caller knows its modes after
-//! the call only where the callee cancels what it set on every path to its ends. A mode set
+//! the call only where the callee cancels what it set on every path to its ends. A G68
+//! without a centre turns about the tool position (`$P_EP` of the plane's axes, saved) where
+//! the plane is known (`planes`) and the tool surely stands on the increment grid. A mode set
 //! or cancelled in a called program otherwise (the caller's is not known here), a G68
-//! without a centre (the tool position) or an angle (parameter 5410), a G51 without the
+//! without a centre elsewhere or without an angle (parameter 5410), a G51 without the
 //! centre of each axis it scales or a factor, a G50.1 that leaves an axis of its G51.1
 //! mirrored, and any of them under G91 are refused (NC497). A cancel of a mode not in force
 //! (G50 under G51.1) changes nothing, as on FANUC.
@@ -168,12 +170,26 @@ fn mode_of(
             };
             let mut centre: Vec<(u8, Expr)> = all.into_iter().filter(|e| e.0 != b'R').collect();
             // No centre for an axis of the plane: the tool position at the G68 is the centre
-            // (F-ROT1), FANUC's block end position `#5001`/`#5002`, saved for the sequence and
-            // its cancel, in a program that stays in G17 and has no G52 shift or caller's
-            // frame under it (where the local shift would stand between the two).
-            let g17 = !modal.other_plane() && !items.iter().any(|it| matches!(g_of(it), Some(180 | 190)));
-            if centre.len() < 2 && g17 && modal.frame_base_empty(lo) && centre.iter().all(|e| b"XY".contains(&e.0)) {
-                for (l, n) in [(b'X', 5001), (b'Y', 5002)] {
+            // (F-ROT1), FANUC's block end position (`#5001`.., `$P_EP`), saved for the
+            // sequence and its cancel. Both read it in the local system the rotation turns
+            // in: the G52 shift (its TRANS) or a caller's frame under it moves it as it moves
+            // the tool (docs/semantics.md, "Rotation"). The plane must be known at the block
+            // on every path (`planes`): its two axes are the centre's.
+            if centre.len() < 2 {
+                let at = modal.planes.before(lo);
+                let Some(axes) = modal.planes.of_block(lo, items).and_then(plane_axes) else {
+                    return Err("G68 without its centre where the plane (G17/G18/G19) depends on the path taken or on the caller (the tool position in the plane's two axes is then the centre)");
+                };
+                if centre.iter().any(|e| !axes.iter().any(|a| a.0 == e.0)) {
+                    return Err("G68 with a centre word outside the plane's two axes");
+                }
+                // FANUC turns about the tool position as it is; the Sinumerik frame value
+                // is rounded to the input increment: exact only for a position on that grid.
+                let off = axes.iter().any(|a| !centre.iter().any(|e| e.0 == a.0) && at.grid & plane_bit(a.0) == 0);
+                if off {
+                    return Err("G68 without its centre where the tool may stand off the 0.001 grid (after a rotated, scaled or polar move, a reference return, G53, a probe move, an offset write, a change of G20/G21, or a call that may make one; FANUC turns about that exact position, a Sinumerik frame value is rounded to the increment)");
+                }
+                for (l, n) in axes {
                     if centre.iter().all(|e| e.0 != l) {
                         let at = Expr::new(ExprKind::Var(Box::new(VarRef { kind: VarKind::Hash(n), span })), span);
                         saves.push((saved(l), at));
@@ -208,6 +224,24 @@ fn mode_of(
             }
             Ok(Mode::Mirror(centre))
         }
+    }
+}
+
+/// The two axes of plane `g` (×10) with the FANUC variable of each one's block end position.
+fn plane_axes(g: u32) -> Option<[(u8, u32); 2]> {
+    match g {
+        170 => Some([(b'X', 5001), (b'Y', 5002)]),
+        180 => Some([(b'Z', 5003), (b'X', 5001)]),
+        190 => Some([(b'Y', 5002), (b'Z', 5003)]),
+        _ => None,
+    }
+}
+
+fn plane_bit(l: u8) -> u8 {
+    match l {
+        b'X' => 1,
+        b'Y' => 2,
+        _ => 4,
     }
 }
 

@@ -180,6 +180,12 @@ impl<'a> SegTarget for ToSinumerik<'a> {
             None => Vec::new(),
         };
         subs::callees_ok(&callees)?;
+        // A G68 without a centre turns about the tool position in the plane in force, which
+        // a plane word in a run (`G18` is a run block) decides: such a job is read whole.
+        let centreless = |u: &Unit| u.programs.iter().any(|p| crate::lower::to_sinumerik::planes::needs_plane(&p.body));
+        if centreless(&unit) || callees.iter().any(centreless) {
+            return Err(Fallback::NotStraight("G68 without a centre (its plane may be set in any block)".into()));
+        }
         let units: Vec<&Unit> = std::iter::once(&unit).chain(&callees).collect();
         let tr = ts::translate(&units, opts, eol);
         if !tr.diags.iter().all(|d| kept_warning(d) && d.labels.iter().all(|l| l.file == 0)) {

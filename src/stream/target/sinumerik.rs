@@ -274,10 +274,11 @@ impl Planned {
     }
 
     fn same(&self, other: &Planned) -> bool {
-        // Whether the program selects G20/G21, G90/G91 or changes the tool matters only to
-        // its callers (a straight program has none, and a streamed one never holds G20).
+        // Whether the program selects G20/G21, G90/G91, a plane or changes the tool matters
+        // only to its callers (a straight program has none, and a streamed one never holds G20).
         let plan = |p: &ProgPlan| ProgPlan {
             sets_units: false,
+            sets_plane: (false, false),
             sets_distance: false,
             sets_g90: false,
             tools: false,
