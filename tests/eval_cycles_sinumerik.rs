@@ -137,12 +137,13 @@ const PAIRS: &[(&str, &str)] = &[
     ("G98 G83 X10. Y10. Z-20. R0 Q4.\nG80\n", "G0 X10 Y10\nCYCLE83(50, 0, 0, -20, , , 4, 0, 0, 0, 1, 1)\n"),
     ("G98 G73 X10. Y10. Z-20. R0 Q3.\nG80\n", "G0 X10 Y10\nCYCLE83(50, 0, 0, -20, , , 3, , , , , 0)\n"),
     (
-        "M29 S400\nG98 G84 X10. Y10. Z-16. R2. F500.\nG80\n",
-        "S400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 3, 8, , , 400)\nF500\n",
+        // Rigid tapping from a stopped spindle (from a turning one FANUC's is not settled, NC592).
+        "M05\nM29 S400\nG98 G84 X10. Y10. Z-16. R2. F500.\nG80\n",
+        "M5\nS400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 5, 8, , , 400)\nF500\n",
     ),
     (
-        "M29 S400\nG98 G74 X10. Y10. Z-16. R2. F500.\nG80\n",
-        "S400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 3, , -1.25, , 400)\nF500\n",
+        "M05\nM29 S400\nG98 G74 X10. Y10. Z-16. R2. F500.\nG80\n",
+        "M5\nS400\nG0 X10 Y10\nCYCLE84(50, 0, 2, -16, , , 5, , -1.25, , 400)\nF500\n",
     ),
     ("G98 G84 X10. Y10. Z-16. R2. F500.\nG80\n", "G0 X10 Y10\nF500\nCYCLE840(50, 0, 2, -16, , , 4, 3, 1)\n"),
     ("G98 G85 X10. Y10. Z-22. R2. F70.\nG80\n", "G0 X10 Y10\nCYCLE85(50, 0, 2, -22, , 0, 70, 70)\nF70\n"),

@@ -43,6 +43,7 @@ pub fn may_be_program_less(path: &Path) -> bool {
     let Ok(f) = std::fs::File::open(path) else { return true };
     let mut r = std::io::BufReader::with_capacity(1 << 16, f);
     let mut line = Vec::new();
+    let mut marks = 0;
     loop {
         line.clear();
         match r.read_until(b'\n', &mut line) {
@@ -52,6 +53,14 @@ pub fn may_be_program_less(path: &Path) -> bool {
         // Lone CR line ends: each piece is a line.
         for piece in line.split(|&b| b == b'\r' || b == b'\n') {
             let text = String::from_utf8_lossy(piece);
+            // A second `%` line closes the tape (whatever follows it on the line): the
+            // FANUC reader reads nothing after it, so content there does not count.
+            if text.trim_start_matches('\u{feff}').trim_start().starts_with('%') {
+                marks += 1;
+                if marks >= 2 {
+                    return true;
+                }
+            }
             if looks_like_content(&text) {
                 return false;
             }
@@ -141,5 +150,18 @@ mod tests {
         for l in ["G0 X1", "M30", "R1=2", "#1=2", "N10 G1", "ORIGIN=1", "(C) G1 X1", "/2 M0", "LBL: G0 X1"] {
             assert!(looks_like_content(l), "{l:?}");
         }
+    }
+
+    #[test]
+    fn content_after_the_closing_percent_does_not_count() {
+        let dir = std::env::temp_dir().join(format!("nctrans-empty-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let closed = dir.join("closed.nc");
+        std::fs::write(&closed, "%\nO1 (T)\n%21 G17\nT2 M06\nG0 X1\n").unwrap();
+        assert!(may_be_program_less(&closed));
+        let open = dir.join("open.nc");
+        std::fs::write(&open, "%\nO1 (T)\nG0 X1\n%\n").unwrap();
+        assert!(!may_be_program_less(&open));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }
