@@ -127,3 +127,34 @@ fn a_siemens_mirror_over_a_shift_has_no_haas_form() {
     assert!(err.contains("NC552") && err.contains("MAIN.MPF:3:1"), "{err}");
     assert!(!d.join("o.nc").exists());
 }
+
+/// A `G52 X0. Y0. Z0.` while mirrored, with no shift in force, changes nothing: it runs, and
+/// the translation writes no bare TRANS (which would delete the mirror on Sinumerik). A G52
+/// that shifts stays refused there (NC491).
+#[test]
+fn a_g52_of_zeros_while_mirrored_changes_nothing_and_a_shift_stays_refused() {
+    let text = "%\nO1002\nG00 G17 G40 G80 G90\nG54 X0. Y0.\nG52 X0. Y0. Z0.\nG101 Y0.\nG00 X10. Y10.\n\
+                G52 X0. Y0. Z0.\nG00 X20. Y20.\nG01 X30. F100.\nG02 X40. Y10. R10.\nG100 Y0.\nM30\n%\n";
+    let d = setup("g52-zero", "O1002.nc", text);
+    let (out, err, code) = nctrans(&d, &["run", "O1002.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("move rapid X=20 Y=-20"), "still mirrored after the G52: {out}");
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O1002.nc", "-o", "o.mpf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    let out = read(&d, "o.mpf");
+    assert_eq!(out.matches("\nTRANS\n").count(), 1, "only the G52 before the mirror: {out}");
+    // The same on a plain FANUC with G51.1.
+    let plain = text.replace("G101 Y0.", "G51.1 Y0.").replace("G100 Y0.", "G50.1 Y0.");
+    let d = workdir("haas-mirror", "g52-zero-plain");
+    std::fs::write(d.join("O1002.nc"), &plain).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "sinumerik", "O1002.nc", "-o", "o.mpf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    // A G52 that shifts under the mirror is not settled.
+    std::fs::write(d.join("O1003.nc"), plain.replacen("G52 X0. Y0. Z0.\nG00 X20.", "G52 X5. Y0. Z0.\nG00 X20.", 1))
+        .unwrap();
+    let (_, err, code) = nctrans(&d, &["run", "O1003.nc"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC491"), "{err}");
+}

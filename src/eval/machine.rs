@@ -509,7 +509,9 @@ impl Machine {
             if matches!(gi, 0 | 10 | 20 | 30) {
                 motion_g = Some(span);
             }
-            self.check_fanuc_frames(gi, span)?;
+            if !(gi == 520 && self.fanuc && self.g52_keeps_shift(&axes)) {
+                self.check_fanuc_frames(gi, span)?;
+            }
             // `Modal::g` changes nothing for a code it does not take.
             if self.modal.g(self.fanuc, gi) {
                 continue;

@@ -82,6 +82,18 @@ impl Machine {
         Ok(())
     }
 
+    /// A G52 that names axes and gives each the shift it already has (`G52 X0 Y0 Z0` with
+    /// none in force): it changes nothing whatever order the frame modes apply in, so it
+    /// may stand under G68/G51/G51.1 (Haas templates end so while still mirrored).
+    pub(super) fn g52_keeps_shift(&self, axes: &[Option<(&WordVal, f64)>; 9]) -> bool {
+        self.modal.absolute
+            && axes.iter().any(Option::is_some)
+            && axes.iter().enumerate().all(|(i, a)| match a {
+                Some((w, x)) => w.mode == AbsInc::Plain && self.length(w, *x, (3..6).contains(&i)) == self.local[i],
+                None => true,
+            })
+    }
+
     /// A Siemens G74/G75 stands alone in its block: only the G code, the axes to approach
     /// and FP= (geometry-axis words are left to NC441). "G75 requires a separate block"
     /// (802D programming manual 07/2009 §10.3.6); no source says G74 may share its block,

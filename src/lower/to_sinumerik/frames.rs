@@ -177,6 +177,18 @@ fn local_shift(ctx: &mut Ctx, b: Block, span: Span, modal: &ModalScan) -> Split 
             &format!("name every shifted axis in each G52, e.g. `G52 {}0`", missing.chars().next().unwrap_or('X')),
         );
     }
+    // Under G68/G51/G51.1 a bare TRANS would also delete the rotation, scaling or mirror the
+    // programmable frame holds; a G52 of zeros with no shift to cancel changes nothing (the
+    // FANUC run takes it so), so only its G90 is written.
+    let zeros = b.items.iter().filter_map(letter_of).all(|(l, e)| axis_bit(l).is_none() || literal(e) == Some(0.0));
+    if zeros && need == 0 && modal.rot_before(span.lo) != Some(0) {
+        let g90: Vec<Item> = b.items.iter().filter(|it| g_of(it) == Some(900)).cloned().collect();
+        let mut meta = b.meta;
+        meta.span = span;
+        let keep = !g90.is_empty() || meta.number.is_some() || meta.label.is_some() || !meta.comments.is_empty();
+        let after = if keep { vec![block_stmt(meta, g90)] } else { Vec::new() };
+        return Split { before: Vec::new(), block: None, after };
+    }
     let mut words = Vec::new();
     let inch = modal.inch_at(span.lo);
     for it in &b.items {
