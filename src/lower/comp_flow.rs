@@ -542,6 +542,18 @@ fn loop_body(kind: &mut StmtKind) -> Option<&mut Vec<Stmt>> {
     }
 }
 
+/// Whether `e` reads one of the system variables `names` (`$P_GG`, any indices).
+pub fn reads_system(e: &Expr, names: &[&str]) -> bool {
+    if let ExprKind::Var(v) = &e.kind {
+        if let VarKind::System { name, .. } = &v.kind {
+            if names.iter().any(|n| name.eq_ignore_ascii_case(n)) {
+                return true;
+            }
+        }
+    }
+    e.children().into_iter().any(|c| reads_system(c, names))
+}
+
 /// Folds the reads of a value the program itself settled (a system variable FANUC has no
 /// counterpart of, `$P_TOOLNO`, `$P_GG[1]`): walks `prog` from nothing known with `apply`
 /// (the state after a block's items, and whether they touch what is read), and in each live

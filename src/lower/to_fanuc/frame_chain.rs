@@ -30,6 +30,7 @@
 //! a SAVE subprogram, and every subprogram it calls leaves the frame alone; elsewhere an
 //! ATRANS is refused (NC577) with the reason.
 
+use super::frames::{g, letter, point};
 use super::*;
 
 /// What the chain analysis found for one program.
@@ -342,18 +343,6 @@ fn add(v: Expr, d: Expr) -> Expr {
 
 fn neg(e: Expr, span: Span) -> Expr {
     Expr::new(ExprKind::Unary(UnOp::Neg, Box::new(e)), span)
-}
-
-fn g(v: f64, span: Span) -> Item {
-    item(ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span }), span)
-}
-
-fn letter(l: u8, v: Expr, span: Span) -> Item {
-    item(ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }), span)
-}
-
-fn point(v: f64, span: Span) -> Expr {
-    Expr::num(v, true, span)
 }
 
 fn set(var: &VarRef, v: Expr, span: Span) -> Stmt {

@@ -21,15 +21,18 @@ use super::*;
 
 const AXES: &[u8; 9] = b"XYZABCUVW";
 
-fn g(v: f64, span: Span) -> Item {
+/// A `G` word (`G52`, `G68`) of the FANUC blocks the frame translation writes.
+pub(super) fn g(v: f64, span: Span) -> Item {
     item(ItemKind::Word(Word { addr: Addr::Letter(b'G'), value: WordValue::Expr(num(v, span)), span }), span)
 }
 
-fn letter(l: u8, v: Expr, span: Span) -> Item {
+/// An address word `l` with value `v`.
+pub(super) fn letter(l: u8, v: Expr, span: Span) -> Item {
     item(ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(v), span }), span)
 }
 
-fn point(v: f64, span: Span) -> Expr {
+/// A number written with its decimal point (a length, an angle).
+pub(super) fn point(v: f64, span: Span) -> Expr {
     Expr::num(v, true, span)
 }
 

@@ -108,14 +108,7 @@ pub fn run(prog: &mut Program) {
 
 /// Whether `e` reads `$P_GG`.
 pub fn reads(e: &Expr) -> bool {
-    if let ExprKind::Var(v) = &e.kind {
-        if let VarKind::System { name, .. } = &v.kind {
-            if name.eq_ignore_ascii_case("P_GG") {
-                return true;
-            }
-        }
-    }
-    e.children().into_iter().any(reads)
+    comp_flow::reads_system(e, &["P_GG"])
 }
 
 /// The refusal text of a `$P_GG` read left after [`run`] (`varmap` adds "cannot be

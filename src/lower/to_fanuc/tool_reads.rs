@@ -100,12 +100,5 @@ pub fn run(prog: &mut Program) {
 
 /// Whether `e` reads `$P_TOOLNO` or `$P_TOOL`.
 pub fn reads(e: &Expr) -> bool {
-    if let ExprKind::Var(v) = &e.kind {
-        if let VarKind::System { name, .. } = &v.kind {
-            if name.eq_ignore_ascii_case("P_TOOLNO") || name.eq_ignore_ascii_case("P_TOOL") {
-                return true;
-            }
-        }
-    }
-    e.children().into_iter().any(reads)
+    comp_flow::reads_system(e, &["P_TOOLNO", "P_TOOL"])
 }
