@@ -603,13 +603,7 @@ impl Machine {
                     lookahead = true;
                     self.lookahead_g(gi, p.map(|p| p.1), q_val, e_word.map(|e| e.1), span, warns)?
                 }
-                _ => {
-                    let what = match crate::dialect::fanuc::haas_g_meaning(gi as u32) {
-                        Some(m) if self.haas => format!("G{} ({m}) is not modelled by the evaluator", fmt_g(g)),
-                        _ => format!("G{} is not modelled by the evaluator", fmt_g(g)),
-                    };
-                    return Err(unsupported(&what, span));
-                }
+                _ => return Err(unsupported(&refs::unmodelled_g(&fmt_g(g), gi, self.haas), span)),
             }
         }
 

@@ -34,6 +34,15 @@ pub fn unmodelled_frame(gi: i64) -> &'static str {
     }
 }
 
+/// The refusal of a G code the evaluator does not run (`shown` as written), with its Haas
+/// name under a Haas profile (`G13 (Haas circular pocket milling, …)`).
+pub fn unmodelled_g(shown: &str, gi: i64, haas: bool) -> String {
+    match crate::dialect::fanuc::haas_g_meaning(gi as u32) {
+        Some(m) if haas => format!("G{shown} ({m}) is not modelled by the evaluator"),
+        _ => format!("G{shown} is not modelled by the evaluator"),
+    }
+}
+
 impl Machine {
     /// Selects work offset `n` (the trace's `work_offset` number, also the table index) and
     /// emits its event, also when it is the one already active.
