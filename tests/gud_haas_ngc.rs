@@ -195,3 +195,18 @@ fn off_the_ngc_profile_the_library_api_refuses_as_before() {
     let text = nctrans::diag::render(&db, &t.diags);
     assert!(text.contains("NC504") && text.contains("not retained common variables"), "{text}");
 }
+
+#[test]
+fn global_user_data_passed_for_a_var_parameter_passes_its_number() {
+    // On a plain FANUC at #500.., on a Haas NGC at #10200..: the callee writes through it.
+    for (series, rule, arg) in [(None, "DRESS_A=#600", "B602."), (Some("haas-ngc"), "DRESS_A=#10200", "B10202.")] {
+        let d = library("byref", series, &format!("\"{rule}\""));
+        std::fs::write(d.join("BUMP.SPF"), "PROC BUMP(REAL STEP, VAR REAL VAL)\nVAL=VAL+STEP\nRET\n").unwrap();
+        std::fs::write(d.join("P.MPF"), "DRESS_A[2]=1\nBUMP(0.5, DRESS_A[2])\nG0 X=DRESS_A[2]\nM30\n").unwrap();
+        let (_, err, code) = nctrans(&d, &["--to", "fanuc", "P.MPF", "-o", "p.nc"]);
+        assert_eq!(code, 0, "{series:?}: {err}");
+        assert!(err.contains("equivalent"), "{err}");
+        let text = std::fs::read_to_string(d.join("p.nc")).unwrap();
+        assert!(text.contains(&format!("A0.5 {arg}")), "{series:?}: `{arg}` not in\n{text}");
+    }
+}
