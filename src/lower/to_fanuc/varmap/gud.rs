@@ -153,3 +153,24 @@ pub(super) fn seeds(g: &Global) -> Option<Vec<f64>> {
     }
     Some(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::fits;
+
+    #[test]
+    fn a_table_fits_wholly_inside_one_range_and_never_on_an_ngc_alias() {
+        assert!(fits(500, 999, true, false).is_ok() && fits(10200, 10499, true, true).is_ok());
+        assert!(fits(10000, 10099, true, true).is_ok() && fits(10700, 10799, true, true).is_ok());
+        // Off the NGC profile the NGC numbers are something else.
+        assert_eq!(fits(10200, 10279, true, false).unwrap_err(), "not retained common variables");
+        // #100..#199 is a common, not retained: for names only.
+        assert!(fits(100, 120, true, false).is_err() && fits(100, 120, false, false).is_ok());
+        assert!(fits(10450, 10529, true, true)
+            .unwrap_err()
+            .contains("#10500 on a Haas NGC is the same variable as #500"));
+        assert!(fits(10099, 10099, true, true).is_ok() && fits(10099, 10100, true, true).is_err());
+        assert!(fits(980, 1000, true, true).unwrap_err().contains("wholly inside #500..#999"));
+        assert_eq!(fits(11000, 11000, true, true).unwrap_err(), "not a retained common variable");
+    }
+}
