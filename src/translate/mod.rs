@@ -62,6 +62,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     gud_seeds: Vec::new(),
     globals: Vec::new(),
     haas: false,
+    haas_ngc: false,
     macro_interrupt: false,
     offsets: crate::dialect::offsets::OffsetMap { edges: BTreeMap::new() },
 };

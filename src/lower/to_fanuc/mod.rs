@@ -138,6 +138,10 @@ pub struct Ctx {
     pub master_spindle: u32,
     /// The target is a Haas control (`Semantics::haas`): look-ahead settings become G187.
     pub haas: bool,
+    /// The target is a Haas NGC (`Semantics::haas_ngc`): the NGC-only general-purpose
+    /// variables (`#10000..#10099`, `#10200..#10499`, `#10700..#10799`) are retained
+    /// commons a `--var-map` rule may place a variable or global user data in.
+    pub haas_ngc: bool,
     /// The target has the custom macro interrupt (`Semantics::macro_interrupt`).
     pub macro_interrupt: bool,
     /// The O number the last `SETINT(1)` of this program assigned (what `ENABLE(1)`
@@ -182,6 +186,7 @@ impl Ctx {
             gud_seeds: Vec::new(),
             master_spindle: 1,
             haas: false,
+            haas_ngc: false,
             macro_interrupt: false,
             int_routine: None,
             int_routine_changes: false,

@@ -149,8 +149,13 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
     for n in r_all {
         let t = r_target(n);
         let used = r_used.contains(&n);
-        if !common(t) {
-            let why = if t > 999 { "past #999 (system variables)" } else { "not a common variable" };
+        if !(common(t) || (ctx.haas_ngc && crate::dialect::fanuc::haas_vars::ngc_only(t))) {
+            let why = match crate::dialect::fanuc::haas_vars::legacy(t) {
+                // A Haas NGC reads it as the legacy number: R{n} would share it.
+                Some(l) if ctx.haas_ngc => format!("on a Haas NGC the same variable as #{l} (its NGC spelling)"),
+                _ if t > 999 => "past #999 (system variables)".to_string(),
+                _ => "not a common variable".to_string(),
+            };
             let msg = format!("R{n} would be #{t}, {why}");
             ctx.error(
                 "NC302",
@@ -294,10 +299,19 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
             });
             let local_ok = temp || j.info.is_sub;
             let number = if let Some(n) = rule {
-                let ok = (common(n) && common(n + size - 1)) || (j.info.is_sub && n >= 1 && n + size - 1 <= 33);
-                if !ok {
-                    let msg = format!("{name} would be #{n}, not a common variable");
-                    ctx.error("NC302", span, &msg, "map it to #100..#199 or #500..#999");
+                let last = n.saturating_add(size - 1);
+                // Off a Haas NGC the rule's ends are checked, as before; on one the whole
+                // table must lie in one range (`gud::fits`: not across the NGC aliases).
+                let fits = match ctx.haas_ngc {
+                    true => gud::fits(n, last, false, true),
+                    false if common(n) && common(last) => Ok(()),
+                    false => Err("not a common variable".to_string()),
+                };
+                let local = j.info.is_sub && n >= 1 && last <= 33;
+                if let (Err(why), false) = (fits, local) {
+                    let at = if size > 1 && ctx.haas_ngc { format!("#{n}..#{last}") } else { format!("#{n}") };
+                    let msg = format!("{name} would be {at}, {why}");
+                    ctx.error("NC302", span, &msg, &format!("map it to {}", gud::homes(false, ctx.haas_ngc)));
                     continue;
                 }
                 Some(n)

@@ -108,6 +108,10 @@ pub struct SymbolMap {
     /// The output is for a Haas control (`[fanuc] series`): a check reads it back with the
     /// Haas semantics (its `G187` and `G103` look-ahead settings).
     pub haas: bool,
+    /// The output is for a Haas NGC (`[fanuc] series = "haas-ngc"`): a check reads it back
+    /// with the NGC variables (`#10200` is a retained common there, a tool offset on a 0i),
+    /// where the translation may have placed global user data.
+    pub haas_ngc: bool,
     /// The output is for a machine with the custom macro interrupt
     /// (`Semantics::macro_interrupt`): a check reads its `M96 P…`/`M97` back as interrupts.
     pub macro_interrupt: bool,
@@ -273,6 +277,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         gud_seeds: vctx.gud_seeds,
         globals: opts.source.globals.to_vec(),
         haas: opts.target.haas,
+        haas_ngc: opts.target.haas_ngc,
         macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
         ..SymbolMap::default()
@@ -342,6 +347,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     let mut ctx = Ctx::new(file, opts.unsupported);
     ctx.nat = opts.target.nat;
     ctx.haas = opts.target.haas;
+    ctx.haas_ngc = opts.target.haas_ngc;
     ctx.macro_interrupt = opts.target.macro_interrupt;
     ctx.compound_conditions = opts.compound_conditions;
     ctx.tools = opts.tool_map.clone();
@@ -421,6 +427,7 @@ pub fn reparse(db: &mut crate::span::SourceDb, t: &super::Translation, out_name:
     let file = db.add(out_name, t.text().to_string());
     let mut opts = crate::dialect::ParseOptions::for_dialect(Dialect::Fanuc);
     opts.semantics.macro_interrupt = t.symbols.fanuc().macro_interrupt;
+    opts.semantics.haas_ngc = t.symbols.fanuc().haas_ngc;
     crate::parse(db, file, Dialect::Fanuc, &opts)
 }
 
@@ -472,6 +479,7 @@ pub fn verify<'a>(
     let fanuc = match fanuc {
         Some(mut s) if map.haas => {
             s.haas = true;
+            s.haas_ngc |= map.haas_ngc;
             Some(s)
         }
         None => haas_target(map),
@@ -638,6 +646,7 @@ pub fn haas_target(map: &SymbolMap) -> Option<crate::dialect::Semantics> {
     map.haas.then(|| {
         let mut s = crate::dialect::Semantics::default_for(Dialect::Fanuc);
         s.haas = true;
+        s.haas_ngc = map.haas_ngc;
         s
     })
 }

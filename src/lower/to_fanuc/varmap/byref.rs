@@ -3,8 +3,8 @@
 //!
 //! This is exact only where the caller's variable has a number every call level shares: a
 //! common variable (`#100`..`#199`, `#500`..`#999`: R parameters, the main program's DEF
-//! variables, an element of an array stored there, or the caller's own VAR parameter, which
-//! already is such a number). FANUC locals `#1`..`#33` are one set per call level, so a
+//! variables, an element of an array stored there, global user data at its retained home,
+//! or the caller's own VAR parameter, which already is such a number). FANUC locals `#1`..`#33` are one set per call level, so a
 //! subprogram's own DEF variable or value parameter (a local) has no number its callee could
 //! reach: such an argument is refused (NC381). Aliasing needs no care: the same variable
 //! passed twice, or a VAR parameter and a direct use of the same R parameter, are the same
@@ -83,7 +83,12 @@ fn address_of(ctx: &mut Ctx, v: &VarRef, p: &Param, scope: &Scope) -> Option<Exp
         VarKind::R(_) | VarKind::RIndirect(_) => (DataType::Real, vec![], false),
         VarKind::Named { name, indices } => match scope.info.types.get(name) {
             Some((ty, dims)) => (*ty, dims.clone(), !indices.is_empty()),
-            None => return None, // reported as undeclared by the mapping
+            // Global user data lives in retained commons every call level shares: its
+            // number is passed like a main program's variable's (its home is in `map`).
+            None => match super::gud::lookup(&ctx.globals, name) {
+                Some(g) => (g.def.ty, g.dims().to_vec(), !indices.is_empty()),
+                None => return None, // reported as undeclared by the mapping
+            },
         },
         _ => {
             let what = format!("this variable for VAR parameter {}", p.name);

@@ -3,6 +3,8 @@
 //! write it), so its FANUC home must be the same number in every program of the library
 //! and a retained common (`#500..#999`): nctrans never picks one, a `--var-map NAME=#n`
 //! rule (or `[variables] to_fanuc`) places it, and without a rule the use is refused (NC504).
+//! On a Haas NGC (`[fanuc] series = "haas-ngc"`) the NGC-only general-purpose ranges are
+//! retained too (`dialect::fanuc::haas_vars`), so a rule may place a table in one of them.
 
 use super::VarRule;
 use crate::ir::{DataType, Def, ExprKind, Init, UnOp};
@@ -45,16 +47,18 @@ pub(super) fn number(ctx: &mut Ctx, g: &Global, name: &str, span: Span, rules: &
         let msg = format!("global user data {name}{shape} (DEF NCK/CHAN in a .DEF file) has no FANUC variable");
         let hint = format!(
             "it keeps its value between programs, so it needs the same retained common variables in every \
-             program of the library: map it with --var-map {name}=#n (#500..#{}), or [variables] to_fanuc in nctrans.toml",
-            1000 - size
+             program of the library: map it with --var-map {name}=#n ({}), or [variables] to_fanuc in nctrans.toml",
+            if ctx.haas_ngc { homes(true, true) } else { format!("#500..#{}", 1000 - size) }
         );
         ctx.error("NC504", span, &msg, &hint);
         return None;
     };
-    if n < 500 || n + size - 1 > 999 {
-        let msg =
-            format!("global user data {name}{shape} would be #{n}..#{}, not retained common variables", n + size - 1);
-        ctx.error("NC504", span, &msg, "GUD keeps its value across programs and power-off: map it into #500..#999");
+    let last = n.saturating_add(size - 1);
+    if let Err(why) = fits(n, last, true, ctx.haas_ngc) {
+        let msg = format!("global user data {name}{shape} would be #{n}..#{last}, {why}");
+        let hint =
+            format!("GUD keeps its value across programs and power-off: map it into {}", homes(true, ctx.haas_ngc));
+        ctx.error("NC504", span, &msg, &hint);
         return None;
     }
     if seeds(g).is_none() {
@@ -63,6 +67,56 @@ pub(super) fn number(ctx: &mut Ctx, g: &Global, name: &str, span: Span, rules: &
         return None;
     }
     Some(n)
+}
+
+/// The FANUC common-variable ranges a rule may place a variable in: the retained
+/// `#500..#999` (with `#100..#199` unless `retained`), and on a Haas NGC (`ngc`) the
+/// NGC-only general-purpose ranges, kept on power off as `#500..#999` are (Haas NGC
+/// operator's manual, "Macros"; docs/semantics.md, HAAS-NGC).
+pub(in crate::lower::to_fanuc) fn ranges(retained: bool, ngc: bool) -> Vec<(u32, u32)> {
+    let mut out = if retained { vec![(500, 999)] } else { vec![(100, 199), (500, 999)] };
+    if ngc {
+        out.extend([(10000, 10099), (10200, 10499), (10700, 10799)]);
+    }
+    out
+}
+
+/// The ranges of [`ranges`], written out for a hint.
+pub(in crate::lower::to_fanuc) fn homes(retained: bool, ngc: bool) -> String {
+    let list: Vec<String> = ranges(retained, ngc).iter().map(|(a, b)| format!("#{a}..#{b}")).collect();
+    match list.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => list.join(""),
+    }
+}
+
+/// Whether `#lo..#hi` lies wholly inside one of [`ranges`]; the error says why not. The
+/// NGC numbers with a legacy number (`#10100..#10199`, `#10500..#10699`, `#10800..#10999`)
+/// are the same variables as it, so a table there would silently share `#100`/`#500`/`#800`
+/// with what lives at the legacy number: refused, naming the alias. A table across two
+/// ranges is refused too (the numbers between are other variables or absent).
+pub(in crate::lower::to_fanuc) fn fits(lo: u32, hi: u32, retained: bool, ngc: bool) -> Result<(), String> {
+    let all = ranges(retained, ngc);
+    if all.iter().any(|&(a, b)| a <= lo && hi <= b) {
+        return Ok(());
+    }
+    if ngc {
+        let alias = (lo..=hi.min(lo.saturating_add(1000)))
+            .find_map(|k| crate::dialect::fanuc::haas_vars::legacy(k).map(|l| (k, l)));
+        if let Some((k, l)) = alias {
+            return Err(format!("but #{k} on a Haas NGC is the same variable as #{l} (its NGC spelling)"));
+        }
+    }
+    if let Some((a, b)) = all.iter().find(|&&(a, b)| ngc && a <= hi && lo <= b) {
+        return Err(format!("which does not lie wholly inside #{a}..#{b}"));
+    }
+    Err(match (retained, lo == hi) {
+        (true, true) => "not a retained common variable",
+        (true, false) => "not retained common variables",
+        (false, true) => "not a common variable",
+        (false, false) => "not common variables",
+    }
+    .to_string())
 }
 
 fn constant(e: &crate::ir::Expr) -> Option<f64> {
@@ -98,4 +152,25 @@ pub(super) fn seeds(g: &Global) -> Option<Vec<f64>> {
         }
     }
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fits;
+
+    #[test]
+    fn a_table_fits_wholly_inside_one_range_and_never_on_an_ngc_alias() {
+        assert!(fits(500, 999, true, false).is_ok() && fits(10200, 10499, true, true).is_ok());
+        assert!(fits(10000, 10099, true, true).is_ok() && fits(10700, 10799, true, true).is_ok());
+        // Off the NGC profile the NGC numbers are something else.
+        assert_eq!(fits(10200, 10279, true, false).unwrap_err(), "not retained common variables");
+        // #100..#199 is a common, not retained: for names only.
+        assert!(fits(100, 120, true, false).is_err() && fits(100, 120, false, false).is_ok());
+        assert!(fits(10450, 10529, true, true)
+            .unwrap_err()
+            .contains("#10500 on a Haas NGC is the same variable as #500"));
+        assert!(fits(10099, 10099, true, true).is_ok() && fits(10099, 10100, true, true).is_err());
+        assert!(fits(980, 1000, true, true).unwrap_err().contains("wholly inside #500..#999"));
+        assert_eq!(fits(11000, 11000, true, true).unwrap_err(), "not a retained common variable");
+    }
 }
