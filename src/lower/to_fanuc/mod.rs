@@ -20,6 +20,7 @@ mod cycles_frames;
 pub mod cycles_tap;
 pub mod exprs;
 pub(crate) mod fast_write;
+pub mod feed_reads;
 pub mod frame_chain;
 pub mod frame_seq;
 pub mod frames;
@@ -268,6 +269,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     tool_reads::run(prog);
     constants::run(prog);
     modal_reads::run(prog);
+    feed_reads::run(ctx, prog, info.is_sub);
     blocks::run(ctx, prog, info);
     corners::run(ctx, prog);
     ctx.z_keeps.clear();

@@ -371,7 +371,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                 "NC342",
                 span,
                 &msg,
-                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..6,axis,TR] (and writes of [7..54]) and the part counters have FANUC counterparts",
+                "only $AA_IW, $AA_IM, $P_EP, $P_UIFR[1..6,axis,TR] (and writes of [7..54]), $P_F, $P_S and the part counters have FANUC counterparts",
             );
         }
     }
@@ -394,6 +394,10 @@ fn system(name: &str, idx: &[Expr]) -> Option<u32> {
         ("AA_IW", [a]) => Some(5041 + axis_index(a)?),
         ("AA_IM", [a]) => Some(5021 + axis_index(a)?),
         ("P_EP", [a]) => Some(5001 + axis_index(a)?),
+        // The F and S last programmed (`feed_reads` refuses the reads where they differ;
+        // `words::sysunits` scales `$P_F` under G70).
+        ("P_F", []) => Some(4109),
+        ("P_S", []) => Some(4119),
         ("AC_ACTUAL_PARTS", []) => Some(3901),
         ("AC_REQUIRED_PARTS", []) => Some(3902),
         ("P_UIFR", [n, a, c]) => {

@@ -240,7 +240,7 @@ fn sys_units_expr(ctx: &mut Ctx, m: &Modal, e: &mut Expr) -> Vec<Stmt> {
 }
 
 fn unknown_sys_units(ctx: &mut Ctx, span: Span) -> Vec<Stmt> {
-    let what = "a length system variable ($AA_IW, $AA_IM, $P_EP, $P_UIFR) where the units (G70/G71/G700/G710) depend on the path taken or on a call";
+    let what = "a length system variable ($AA_IW, $AA_IM, $P_EP, $P_UIFR) or $P_F where the units (G70/G71/G700/G710) depend on the path taken or on a call";
     unsup(ctx, "NC376", span, what, "write G700 or G710 before it, after the IF, loop, jump target or call")
 }
 

@@ -5,17 +5,29 @@
 //! lengths'. Where the two differ (G70: FANUC inch, Siemens mm) a read is scaled to the
 //! Siemens unit (`$AA_IW[X]` → `$AA_IW[X]*25.4`, the variable map then makes it
 //! `#5041*25.4`) and a value written is scaled to the FANUC one, as the evaluator converts
-//! (reads on every axis, `$P_UIFR` writes on X Y Z only).
+//! (reads on every axis, `$P_UIFR` writes on X Y Z only). `$P_F` follows the same rule
+//! (Siemens: mm/min under G70, FANUC `#4109`: inch/min under G20), so it is scaled alike
+//! (`$P_F` → `#4109*25.4` under G70).
 
 use super::units::FeedConv;
 use crate::ir::{BinOp, Expr, ExprKind, Item, ItemKind, VarKind};
 use crate::lower::{children_mut, item_exprs_mut};
 
-/// The length system variables the translation to FANUC maps.
-const LENGTHS: &[&str] = &["AA_IW", "AA_IM", "P_EP", "P_UIFR"];
+/// The system variables with a length (and the feed `$P_F`) the translation to FANUC maps.
+const LENGTHS: &[&str] = &["AA_IW", "AA_IM", "P_EP", "P_UIFR", "P_F"];
 
 fn is_length(kind: &VarKind) -> bool {
     matches!(kind, VarKind::System { name, .. } if LENGTHS.contains(&name.as_str()))
+}
+
+/// A cycle's `FFR=$P_F` is the feed in force, which its translation keeps (`cycles_tap`):
+/// no factor there (a call of a subprogram under G70 is refused by the words pass).
+fn in_call(it: &Item) -> bool {
+    matches!(it.kind, ItemKind::Call(_))
+}
+
+fn is_feed(e: &Expr) -> bool {
+    matches!(&e.kind, ExprKind::Var(v) if matches!(&v.kind, VarKind::System { name, .. } if name == "P_F"))
 }
 
 fn by(e: Expr, op: BinOp) -> Expr {
@@ -31,9 +43,22 @@ pub(super) fn uses_lengths(it: &Item) -> bool {
         any |= is_length(&target.kind);
     }
     for e in crate::ir::visit::item_exprs(it) {
-        any |= reads(e);
+        any |= if in_call(it) { reads_but_feed(e) } else { reads(e) };
     }
     any
+}
+
+fn reads_but_feed(e: &Expr) -> bool {
+    let mut stack = vec![e];
+    while let Some(x) = stack.pop() {
+        if let ExprKind::Var(v) = &x.kind {
+            if is_length(&v.kind) && !is_feed(x) {
+                return true;
+            }
+        }
+        stack.extend(x.children());
+    }
+    false
 }
 
 /// Whether `e` reads a length system variable.
@@ -58,14 +83,14 @@ pub(super) fn expr(e: &mut Expr, conv: FeedConv) {
         FeedConv::PerInch => BinOp::Mul,
         FeedConv::PerMm => BinOp::Div,
     };
-    scale_reads(e, op);
+    scale_reads(e, op, true);
 }
 
-fn scale_reads(e: &mut Expr, op: BinOp) {
+fn scale_reads(e: &mut Expr, op: BinOp, feed: bool) {
     for c in children_mut(e) {
-        scale_reads(c, op);
+        scale_reads(c, op, feed);
     }
-    if matches!(&e.kind, ExprKind::Var(v) if is_length(&v.kind)) {
+    if matches!(&e.kind, ExprKind::Var(v) if is_length(&v.kind)) && (feed || !is_feed(e)) {
         let var = std::mem::replace(e, Expr::num(0.0, false, e.span));
         *e = by(var, op);
     }
@@ -86,6 +111,11 @@ pub(super) fn item(it: &mut Item, conv: FeedConv) {
             *value = by(v, op);
             // The value's own reads, and the target's indices, are scaled below.
         }
+    }
+    if in_call(it) {
+        let op = if conv == FeedConv::PerInch { BinOp::Mul } else { BinOp::Div };
+        item_exprs_mut(it, &mut |e| scale_reads(e, op, false));
+        return;
     }
     item_exprs_mut(it, &mut |e| expr(e, conv));
 }
