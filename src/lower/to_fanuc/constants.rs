@@ -4,46 +4,11 @@
 //! two 8-digit literals whose double-precision value is exactly the one Siemens `$PI` has,
 //! and the rest of the program computes what the Siemens one does (docs/translation.md).
 
-use crate::ir::{BinOp, Expr, ExprKind, Program, Stmt, StmtKind, VarKind};
+use crate::ir::{BinOp, Expr, ExprKind, Program, VarKind};
 
 /// Replaces every `$PI` read of `prog` by its FANUC expression.
 pub fn run(prog: &mut Program) {
-    body(&mut prog.body);
-}
-
-fn body(stmts: &mut [Stmt]) {
-    for s in stmts {
-        match &mut s.kind {
-            StmtKind::Block(b) => b.items.iter_mut().for_each(|it| crate::lower::item_exprs_mut(it, &mut fold)),
-            StmtKind::If(i) => {
-                fold(&mut i.cond);
-                body(&mut i.then_body);
-                if let Some(e) = &mut i.else_part {
-                    body(&mut e.body);
-                }
-            }
-            StmtKind::While(w) => {
-                fold(&mut w.cond);
-                body(&mut w.body);
-            }
-            StmtKind::Loop(l) => body(&mut l.body),
-            StmtKind::For(x) => {
-                fold(&mut x.from);
-                fold(&mut x.to);
-                body(&mut x.body);
-            }
-            StmtKind::Repeat(r) => {
-                body(&mut r.body);
-                fold(&mut r.until);
-            }
-            StmtKind::Do(d) => {
-                if let Some(c) = &mut d.cond {
-                    fold(c);
-                }
-                body(&mut d.body);
-            }
-        }
-    }
+    crate::lower::map_exprs(&mut prog.body, &mut fold);
 }
 
 fn is_pi(e: &Expr) -> bool {
