@@ -351,3 +351,63 @@ pub fn literal(e: &Expr) -> Option<f64> {
         _ => None,
     }
 }
+
+/// The G code numbers (×10 to keep `G54.1` as 541) written in a block.
+pub fn g_codes(items: &[Item]) -> Vec<u32> {
+    items
+        .iter()
+        .filter_map(|it| match &it.kind {
+            ItemKind::Word(w) if w.addr.is(b'G') => match &w.value {
+                WordValue::Expr(e) => literal(e).map(|v| (v * 10.0).round() as u32),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
+/// The axes (bit i: `XYZABCUVW`\[i\]) any `G52` of `body` may leave shifted: a word other
+/// than a literal 0.
+pub fn g52_axes(body: &[Stmt]) -> u16 {
+    let mut bits = 0;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            if g_codes(&b.items).contains(&520) {
+                for it in &b.items {
+                    if let ItemKind::Word(Word { addr: Addr::Letter(l), value: WordValue::Expr(e), .. }) = &it.kind {
+                        if literal(e) != Some(0.0) {
+                            bits |= b"XYZABCUVW".iter().position(|c| c == l).map_or(0, |i| 1 << i);
+                        }
+                    }
+                }
+            }
+        }
+    });
+    bits
+}
+
+/// Whether every X, Y, Z word of a block is a literal 0 (`G101 X0.`, `G51.1 X0`).
+pub fn xyz_words_zero(items: &[Item]) -> bool {
+    items.iter().all(|it| match &it.kind {
+        ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z')) => match &w.value {
+            WordValue::Expr(e) => literal(e) == Some(0.0),
+            _ => false,
+        },
+        _ => true,
+    })
+}
+
+/// Rewrites the G words of a block by `map` (the G code ×10, as [`g_codes`] gives it → the
+/// code to write), keeping their spans: one control's spelling of a meaning into another's.
+pub fn respell_g(items: &mut [Item], map: &[(u32, f64)]) {
+    for it in items {
+        if let ItemKind::Word(w) = &mut it.kind {
+            if let (true, WordValue::Expr(e)) = (w.addr.is(b'G'), &mut w.value) {
+                let g = literal(e).map(|v| (v * 10.0).round() as u32);
+                if let Some(&(_, to)) = map.iter().find(|(from, _)| Some(*from) == g) {
+                    *e = Expr::num(to, to.fract() != 0.0, e.span);
+                }
+            }
+        }
+    }
+}

@@ -15,7 +15,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     if !ctx.haas {
         return;
     }
-    let shifted = crate::lower::to_sinumerik::haas_mirror::shifts(prog);
+    let shifted = crate::lower::g52_axes(&prog.body) & 0b111 != 0;
     prog.body = crate::lower::map_bodies(std::mem::take(&mut prog.body), &mut |list| {
         let mut out = Vec::with_capacity(list.len());
         for mut st in list {
@@ -41,19 +41,13 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
 
 /// G51.1 → G101 and G50.1 → G100 in block `b`; `Err` says why a G51.1 has no Haas form.
 fn respell(b: &mut Block, shifted: bool) -> Result<(), &'static str> {
-    let gs = crate::lower::to_sinumerik::g_codes(&b.items);
+    let gs = crate::lower::g_codes(&b.items);
     let on = gs.contains(&511);
     if !on && !gs.contains(&501) {
         return Ok(());
     }
     if on {
-        let zero = b.items.iter().all(|it| match &it.kind {
-            ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z')) => match &w.value {
-                WordValue::Expr(e) => crate::lower::literal(e) == Some(0.0),
-                _ => false,
-            },
-            _ => true,
-        });
+        let zero = crate::lower::xyz_words_zero(&b.items);
         if !zero {
             return Err("a mirror about a position other than the work zero (Haas G101 mirrors about zero)");
         }
@@ -61,16 +55,6 @@ fn respell(b: &mut Block, shifted: bool) -> Result<(), &'static str> {
             return Err("a mirror in a program that shifts the zero with G52 (Haas G101 is about the work zero)");
         }
     }
-    for it in &mut b.items {
-        if let ItemKind::Word(w) = &mut it.kind {
-            if let (true, WordValue::Expr(e)) = (w.addr.is(b'G'), &mut w.value) {
-                match crate::lower::literal(e).map(|v| (v * 10.0).round() as u32) {
-                    Some(511) => *e = Expr::num(101.0, false, e.span),
-                    Some(501) => *e = Expr::num(100.0, false, e.span),
-                    _ => {}
-                }
-            }
-        }
-    }
+    crate::lower::respell_g(&mut b.items, &[(511, 101.0), (501, 100.0)]);
     Ok(())
 }

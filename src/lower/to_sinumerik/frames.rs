@@ -50,22 +50,7 @@ fn letter_of(it: &Item) -> Option<(u8, &Expr)> {
     }
 }
 
-/// The axes any `G52` of `body` may leave shifted (a word other than a literal 0).
-pub fn g52_axes(body: &[Stmt]) -> u16 {
-    let mut bits = 0;
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            if b.items.iter().any(|it| g_of(it) == Some(520)) {
-                for (l, e) in b.items.iter().filter_map(letter_of) {
-                    if literal(e) != Some(0.0) {
-                        bits |= axis_bit(l).unwrap_or(0);
-                    }
-                }
-            }
-        }
-    });
-    bits
-}
+pub use crate::lower::g52_axes;
 
 /// A literal axis value in the unit in force (the decimal-point rule: `inch` is G20 at the
 /// block), other values as written; `None` for a value without a decimal point where the

@@ -6,26 +6,6 @@
 //! (`AMIRROR`). Elsewhere they stay, and the words pass refuses them naming why (NC363).
 
 use crate::ir::*;
-use crate::lower::literal;
-
-/// Whether `p` has a G52 word that may shift (not every axis a literal 0).
-pub fn shifts(p: &Program) -> bool {
-    let mut any = false;
-    crate::ir::visit::walk_stmts(&p.body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            if super::g_codes(&b.items).contains(&520) {
-                any |= b.items.iter().any(|it| match &it.kind {
-                    ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z')) => match &w.value {
-                        WordValue::Expr(e) => literal(e) != Some(0.0),
-                        _ => true,
-                    },
-                    _ => false,
-                });
-            }
-        }
-    });
-    any
-}
 
 /// `p` with its G101/G100 spelt G51.1/G50.1 where exact, or `None` when nothing changes.
 /// `shifted`: a program of the job has a G52 that may shift.
@@ -33,52 +13,33 @@ pub fn spell(p: &Program, shifted: bool) -> Option<Program> {
     let mut any = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            any |= exact(&b.items, shifted).is_some();
+            any |= exact(&b.items, shifted);
         }
     });
     if !any {
         return None;
     }
     let mut p = p.clone();
-    p.body = crate::lower::map_bodies(std::mem::take(&mut p.body), &mut |list| {
-        list.into_iter()
-            .map(|mut st| {
-                if let StmtKind::Block(b) = &mut st.kind {
-                    if let Some(to) = exact(&b.items, shifted) {
-                        for it in &mut b.items {
-                            if let ItemKind::Word(w) = &mut it.kind {
-                                if let (true, WordValue::Expr(e)) = (w.addr.is(b'G'), &mut w.value) {
-                                    if matches!(literal(e), Some(v) if v == 101.0 || v == 100.0) {
-                                        *e = Expr::num(to(literal(e) == Some(101.0)), true, e.span);
-                                    }
-                                }
-                            }
-                        }
-                    }
+    p.body = crate::lower::map_bodies(std::mem::take(&mut p.body), &mut |mut list| {
+        for st in &mut list {
+            if let StmtKind::Block(b) = &mut st.kind {
+                if exact(&b.items, shifted) {
+                    crate::lower::respell_g(&mut b.items, &[(1010, 51.1), (1000, 50.1)]);
                 }
-                st
-            })
-            .collect()
+            }
+        }
+        list
     });
     Some(p)
 }
 
-/// The new G value (of whether it is G101) when the block's G101/G100 is exact as G51.1/G50.1.
-fn exact(items: &[Item], shifted: bool) -> Option<fn(bool) -> f64> {
-    let gs = super::g_codes(items);
-    let on = gs.contains(&1010);
-    if !on && !gs.contains(&1000) {
-        return None;
+/// Whether the block has a G101 or G100 (not both) that is exact as G51.1/G50.1: a G100
+/// always, a G101 with every axis 0 where no G52 may shift.
+fn exact(items: &[Item], shifted: bool) -> bool {
+    let gs = crate::lower::g_codes(items);
+    match (gs.contains(&1010), gs.contains(&1000)) {
+        (true, false) => !shifted && crate::lower::xyz_words_zero(items),
+        (false, true) => true,
+        _ => false,
     }
-    if on && gs.contains(&1000) {
-        return None;
-    }
-    let zero = items.iter().all(|it| match &it.kind {
-        ItemKind::Word(w) if matches!(w.addr, Addr::Letter(b'X' | b'Y' | b'Z')) => match &w.value {
-            WordValue::Expr(e) => literal(e) == Some(0.0),
-            _ => false,
-        },
-        _ => true,
-    });
-    (!on || (zero && !shifted)).then_some(|on: bool| if on { 51.1 } else { 50.1 })
 }

@@ -356,7 +356,7 @@ pub struct Lowered {
 /// Runs every pass on the programs of a FANUC translation job (the main file first, then
 /// the callees found beside it).
 pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
-    let shifted = opts.source.haas && programs.iter().any(|(_, p)| haas_mirror::shifts(p));
+    let shifted = opts.source.haas && programs.iter().any(|(_, p)| crate::lower::g52_axes(&p.body) & 0b111 != 0);
     let mirrored: Vec<Option<Program>> =
         programs.iter().map(|(_, p)| opts.source.haas.then(|| haas_mirror::spell(p, shifted)).flatten()).collect();
     let programs: Vec<(FileId, &Program)> =
@@ -607,16 +607,4 @@ pub fn is_vacant_literal(e: &Expr) -> bool {
     }
 }
 
-/// The G code numbers (×10 to keep `G54.1` as 541) written in a block.
-pub fn g_codes(items: &[Item]) -> Vec<u32> {
-    items
-        .iter()
-        .filter_map(|it| match &it.kind {
-            ItemKind::Word(w) if w.addr.is(b'G') => match &w.value {
-                WordValue::Expr(e) => literal(e).map(|v| (v * 10.0).round() as u32),
-                _ => None,
-            },
-            _ => None,
-        })
-        .collect()
-}
+pub use crate::lower::g_codes;
