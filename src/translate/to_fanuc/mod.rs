@@ -475,29 +475,7 @@ pub fn verify<'a>(
             Some(s)
         }
     };
-    // A Haas translation is read back with Haas semantics (its G187, its settings).
-    let fanuc = match fanuc {
-        Some(mut s) if map.haas => {
-            s.haas = true;
-            s.haas_ngc |= map.haas_ngc;
-            Some(s)
-        }
-        None => haas_target(map),
-        other => other,
-    };
-    // The interrupts the translation wrote run as the source's did.
-    let fanuc = match fanuc {
-        Some(mut s) if map.macro_interrupt => {
-            s.macro_interrupt = true;
-            Some(s)
-        }
-        None if map.macro_interrupt => {
-            let mut s = crate::dialect::Semantics::default_for(Dialect::Fanuc);
-            s.macro_interrupt = true;
-            Some(s)
-        }
-        other => other,
-    };
+    let fanuc = target_semantics(fanuc, map);
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
     let probes = crate::eval::header_probes(&db.get(main.file).text).unwrap_or_default();
@@ -638,19 +616,23 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
         .collect()
 }
 
-/// The Siemens profile of a check's source side: `base` (or the default) with the
-/// translation's global user data; `None` when there is neither.
-/// The semantics a check reads a Haas translation back with (`SymbolMap::haas`); `None`
-/// (the plain FANUC profile) otherwise.
-pub fn haas_target(map: &SymbolMap) -> Option<crate::dialect::Semantics> {
-    map.haas.then(|| {
-        let mut s = crate::dialect::Semantics::default_for(Dialect::Fanuc);
-        s.haas = true;
-        s.haas_ngc = map.haas_ngc;
-        s
-    })
+/// The semantics a check reads the translation back with: `base` (the profile's) with what
+/// the output was written for — a Haas control (its G187, G103 and settings; on an NGC its
+/// variables) and the custom macro interrupt (the interrupts run as the source's did); `None`
+/// (the plain FANUC profile) where there is neither a base nor any of these.
+pub fn target_semantics(base: Option<crate::dialect::Semantics>, map: &SymbolMap) -> Option<crate::dialect::Semantics> {
+    if base.is_none() && !map.haas && !map.macro_interrupt {
+        return None;
+    }
+    let mut s = base.unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Fanuc));
+    s.haas |= map.haas;
+    s.haas_ngc |= map.haas && map.haas_ngc;
+    s.macro_interrupt |= map.macro_interrupt;
+    Some(s)
 }
 
+/// The Siemens profile of a check's source side: `base` (or the default) with the
+/// translation's global user data; `None` when there is neither.
 pub fn source_semantics(
     t: &super::Translation,
     base: Option<&crate::dialect::Semantics>,
