@@ -557,22 +557,40 @@ pub fn reads_system(e: &Expr, names: &[&str]) -> bool {
 /// Folds the reads of a value the program itself settled (a system variable FANUC has no
 /// counterpart of, `$P_TOOLNO`, `$P_GG[1]`): walks `prog` from nothing known with `apply`
 /// (the state after a block's items, and whether they touch what is read), and in each live
-/// block that does not touch it lets `fold` replace the reads it knows. Nothing is walked
-/// unless `reads` finds a read in some block.
+/// block that does not touch it replaces each read of one of `names` whose `value` (from its
+/// name, upper case, its indices and the state) is known by that number. Nothing is walked
+/// unless the program reads one of `names`.
 pub fn fold_reads<S: FlowState>(
     prog: &mut Program,
-    reads: fn(&Expr) -> bool,
+    names: &[&str],
     apply: fn(&[Item], S) -> (S, bool),
-    fold: fn(&mut Expr, &S),
+    value: fn(&str, &[Expr], &S) -> Option<f64>,
 ) {
     let mut any = false;
     crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
-            any |= b.items.iter().any(|it| crate::ir::visit::item_exprs(it).into_iter().any(reads));
+            any |=
+                b.items.iter().any(|it| crate::ir::visit::item_exprs(it).into_iter().any(|e| reads_system(e, names)));
         }
     });
     if !any {
         return;
+    }
+    fn fold<S>(e: &mut Expr, names: &[&str], value: fn(&str, &[Expr], &S) -> Option<f64>, st: &S) {
+        if let ExprKind::Var(v) = &e.kind {
+            if let VarKind::System { name, indices } = &v.kind {
+                let upper = name.to_ascii_uppercase();
+                if names.contains(&upper.as_str()) {
+                    if let Some(x) = value(&upper, indices, st) {
+                        *e = crate::lower::num(x, e.span);
+                    }
+                }
+                return;
+            }
+        }
+        for c in crate::lower::children_mut(e) {
+            fold(c, names, value, st);
+        }
     }
     let jumping = jumps(&prog.body);
     let body = std::mem::take(&mut prog.body);
@@ -582,7 +600,7 @@ pub fn fold_reads<S: FlowState>(
         // In a block that sets the value itself, which one the read sees is not settled.
         if live && !touches {
             for it in &mut b.items {
-                crate::lower::item_exprs_mut(it, &mut |e: &mut Expr| fold(e, st));
+                crate::lower::item_exprs_mut(it, &mut |e: &mut Expr| fold(e, names, value, st));
             }
         }
         *st = if b.meta.skip.is_some() { after.merge(st) } else { after };

@@ -86,29 +86,13 @@ pub fn group(indices: &[Expr]) -> Option<f64> {
     }
 }
 
-fn fold(e: &mut Expr, st: &St) {
-    if let ExprKind::Var(v) = &e.kind {
-        if let VarKind::System { name, indices } = &v.kind {
-            if name.eq_ignore_ascii_case("P_GG") && group(indices) == Some(1.0) {
-                if let Some(x) = st.motion.known() {
-                    *e = num(*x, e.span);
-                }
-            }
-            return;
-        }
-    }
-    for c in crate::lower::children_mut(e) {
-        fold(c, st);
-    }
+/// The value a read of `$P_GG[1]` has in state `st`, where known.
+fn value(_: &str, indices: &[Expr], st: &St) -> Option<f64> {
+    (group(indices) == Some(1.0)).then(|| st.motion.known().copied()).flatten()
 }
 
 pub fn run(prog: &mut Program) {
-    comp_flow::fold_reads(prog, reads, apply, fold);
-}
-
-/// Whether `e` reads `$P_GG`.
-pub fn reads(e: &Expr) -> bool {
-    comp_flow::reads_system(e, &["P_GG"])
+    comp_flow::fold_reads(prog, &["P_GG"], apply, value);
 }
 
 /// The refusal text of a `$P_GG` read left after [`run`] (`varmap` adds "cannot be

@@ -75,30 +75,15 @@ fn apply(items: &[Item], mut st: St) -> (St, bool) {
     (st, touches)
 }
 
-fn fold(e: &mut Expr, st: &St) {
-    if let ExprKind::Var(v) = &e.kind {
-        if let VarKind::System { name, indices } = &v.kind {
-            let value = match name.to_ascii_uppercase().as_str() {
-                "P_TOOLNO" if indices.is_empty() => st.tool.known().copied(),
-                "P_TOOL" if indices.is_empty() => st.edge.known().copied(),
-                _ => None,
-            };
-            if let Some(x) = value {
-                *e = num(x, e.span);
-            }
-            return;
-        }
-    }
-    for c in crate::lower::children_mut(e) {
-        fold(c, st);
+/// The value a read of `$P_TOOLNO` / `$P_TOOL` has in state `st`, where known.
+fn value(name: &str, indices: &[Expr], st: &St) -> Option<f64> {
+    match name {
+        "P_TOOLNO" if indices.is_empty() => st.tool.known().copied(),
+        "P_TOOL" if indices.is_empty() => st.edge.known().copied(),
+        _ => None,
     }
 }
 
 pub fn run(prog: &mut Program) {
-    comp_flow::fold_reads(prog, reads, apply, fold);
-}
-
-/// Whether `e` reads `$P_TOOLNO` or `$P_TOOL`.
-pub fn reads(e: &Expr) -> bool {
-    comp_flow::reads_system(e, &["P_TOOLNO", "P_TOOL"])
+    comp_flow::fold_reads(prog, &["P_TOOLNO", "P_TOOL"], apply, value);
 }
