@@ -64,8 +64,20 @@ fn speed_unsettled(prog: &Program, is_sub: bool) -> Option<&'static str> {
     why
 }
 
+const OWN_BLOCK: &str = "read it into a variable in a block of its own before";
+const IN_VARIABLE: &str = "program the value in a variable (`R1=…`, `F=R1`) and read that";
+
 pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
-    let mut refusals: Vec<(&'static str, Span, String)> = Vec::new();
+    // Most programs read neither: one walk over them and nothing else.
+    let mut any = false;
+    visit_vars(&mut prog.body, &mut |v| {
+        any |= matches!(&v.kind, VarKind::System { name, .. }
+            if name.eq_ignore_ascii_case("P_F") || name.eq_ignore_ascii_case("P_S"));
+    });
+    if !any {
+        return;
+    }
+    let mut refusals: Vec<(&'static str, Span, String, &'static str)> = Vec::new();
     // Reads in IF/WHILE conditions are no block reads: only the program-wide rule of $P_S.
     let speed = speed_unsettled(prog, is_sub);
     visit_vars(&mut prog.body, &mut |v| {
@@ -75,11 +87,16 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
             return;
         }
         if !indices.is_empty() {
-            refusals.push(("NC589", span, "$P_S[…] with a spindle number (FANUC's #4119 is the one S code)".into()));
+            refusals.push((
+                "NC589",
+                span,
+                "$P_S[…] with a spindle number (FANUC's #4119 is the one S code)".into(),
+                IN_VARIABLE,
+            ));
             // Refused here: the variable map is not to refuse it again.
             indices.clear();
         } else if let Some(why) = speed {
-            refusals.push(("NC589", span, format!("$P_S {why}")));
+            refusals.push(("NC589", span, format!("$P_S {why}"), IN_VARIABLE));
         }
     });
     crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
@@ -97,7 +114,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
                                 letter as char,
                                 if letter == b'F' { 4109 } else { 4119 }
                             );
-                            refusals.push((code, span, what));
+                            refusals.push((code, span, what, OWN_BLOCK));
                         }
                     });
                 }
@@ -105,12 +122,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
         }
     });
     refusals.sort_by_key(|r| (r.1.lo, r.0));
-    for (code, span, what) in refusals {
-        let hint = if what.contains("block that writes") {
-            "read it into a variable in a block of its own before"
-        } else {
-            "program the value in a variable (`R1=…`, `F=R1`) and read that"
-        };
+    for (code, span, what, hint) in refusals {
         ctx.unsupported(code, span, &what, hint);
     }
 }
