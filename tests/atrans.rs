@@ -202,3 +202,20 @@ fn atrans_under_a_rotation_that_cannot_be_exact_is_refused_with_its_reason() {
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("NC577") && err.contains("subprogram that has frame instructions"), "{err}");
 }
+
+/// Angle sums are brought into G68's range by remainder: a huge literal angle (where a step
+/// of 360 changes nothing) ends in a refusal, not a hang; a sum past 360 still turns the same.
+#[test]
+fn a_huge_rotation_angle_is_refused_without_hanging_and_a_sum_past_360_is_reduced() {
+    let d = scratch_dir("atrans", "huge-angle");
+    let src = write(
+        &d,
+        "HUGE.MPF",
+        "G17 G90 G54\nTRANS X10 Y10\nAROT RPL=90\nAROT RPL=100000000000000000000000\nATRANS X5\nG0 X0 Y0\nTRANS\nM30\n",
+    );
+    let (code, _, err) = nctrans(&["--to", "fanuc", &src]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("NC577"), "{err}");
+    let (_, out, _) = translate(&d, "SUM.MPF", &turned("270\nAROT RPL=180"));
+    assert!(out.contains("R90.") || out.contains("=90."), "450 is written as 90: {out}");
+}

@@ -433,16 +433,15 @@ pub fn block(ctx: &mut Ctx, b: &mut Block, chain: &Chain, abs: Option<bool>, axe
             let r = angle(words)?.clone();
             // A sum known here is written as its value, within G68's -360..360 (the same
             // rotation); else the variable adds at run time.
-            let known = st.angle.zip(crate::lower::literal(&r)).map(|(x, r)| {
-                let mut v = x + r;
-                while v > 360.0 {
-                    v -= 360.0;
-                }
-                while v < -360.0 {
-                    v += 360.0;
-                }
-                v
-            });
+            // (By remainder, not by steps of 360: a huge literal angle would never end.)
+            let known =
+                st.angle.zip(crate::lower::literal(&r)).map(|(x, r)| x + r).filter(|v| v.is_finite()).map(|v| {
+                    match v % 360.0 {
+                        _ if v.abs() <= 360.0 => v,
+                        0.0 => 360.0 * v.signum(),
+                        rest => rest,
+                    }
+                });
             out.push(set(&a, known.map_or_else(|| add(var_expr(&a), r), |v| point(v, span)), span));
             items.push(g68(span));
         }
