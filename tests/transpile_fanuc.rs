@@ -645,3 +645,21 @@ fn warn_policy_marks_the_whole_block_and_alarms_first() {
     ];
     assert_eq!(body(&d.t.text)[..], want, "{}", d.t.text);
 }
+
+/// An array too large to count in 32 bits reaches the refusal (it overflowed before).
+#[test]
+fn a_huge_array_is_refused_not_a_panic() {
+    let src = "DEF REAL AA[70000,70000]\nAA[1,1]=2\nG1 X=AA[1,1] F100\nM30\n";
+    let d = std::env::temp_dir().join(format!("nctrans-huge-array-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let f = d.join("HUGE.MPF");
+    std::fs::write(&f, src).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["--to", "fanuc", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("NC310") && err.contains("more than 4294967294 elements"), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}

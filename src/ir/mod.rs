@@ -57,6 +57,12 @@ pub struct Program {
     pub span: Span,
 }
 
+/// The element count of an array of `dims` (1 for a scalar), saturating: a declaration
+/// like `DEF REAL A[70000,70000]` must reach the diagnostic that refuses it, not overflow.
+pub fn elements(dims: &[u32]) -> u32 {
+    dims.iter().fold(1u32, |a, &d| a.saturating_mul(d)).max(1)
+}
+
 /// A Siemens `PROC` formal parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Param {

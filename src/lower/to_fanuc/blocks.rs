@@ -274,9 +274,12 @@ fn def_items(ctx: &mut Ctx, d: Def, span: Span, info: &mut ProgInfo, out: &mut V
             marks.extend(ctx.unsupported("NC310", v.span, &what, hint));
             continue;
         }
-        let total: u32 = v.dims.iter().product::<u32>().max(1);
+        let total: u32 = crate::ir::elements(&v.dims);
         if total > MAX_ARRAY {
-            let what = format!("array {} with {total} elements", v.name);
+            let what = match total {
+                u32::MAX => format!("array {} with more than {} elements", v.name, u32::MAX - 1),
+                _ => format!("array {} with {total} elements", v.name),
+            };
             marks.extend(ctx.unsupported("NC310", v.span, &what, "FANUC has at most a few hundred common variables"));
             continue;
         }

@@ -176,7 +176,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
     let mut next_common = 100u32;
     let mut alloc_common = |claimed: &HashMap<u32, String>, size: u32| -> Option<u32> {
         let mut n = next_common;
-        while n + size - 1 <= 999 {
+        while n.saturating_add(size - 1) <= 999 {
             // #100..#199 only where the R parameter of the same number is not used: the
             // FANUC → Sinumerik translation brings both #k and #(500+k) back as Rk, so a
             // round trip would have to move one of them (issue 17 item 10).
@@ -268,7 +268,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                         continue;
                     }
                     if !out.iter().any(|m: &Mapped| m.program.is_none() && m.number == n) {
-                        let size: u32 = dims.iter().product::<u32>().max(1);
+                        let size: u32 = crate::ir::elements(&dims);
                         let source = if dims.is_empty() {
                             format!("{name} (global user data)")
                         } else {
@@ -292,7 +292,7 @@ pub fn run(ctx: &mut Ctx, jobs: &mut [Job], rules: &[VarRule], r_count: u32) -> 
                     continue;
                 }
             };
-            let size: u32 = dims.iter().product::<u32>().max(1);
+            let size: u32 = crate::ir::elements(&dims);
             let rule = rules.iter().find_map(|r| match r {
                 VarRule::Name { name: n, number } if *n == name => Some(*number),
                 _ => None,

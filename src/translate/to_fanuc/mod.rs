@@ -581,7 +581,12 @@ pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
     let mut next = 999u32;
     let mut texts = Vec::new();
     for (prm, (_, var)) in params.iter().zip(letters).filter(|(p, _)| p.by_ref) {
-        let size = prm.dims.iter().product::<u32>().max(1);
+        let size = crate::ir::elements(&prm.dims);
+        // An array larger than the commons below `next` has no home to give: no inputs (the
+        // run then reads past them and says so).
+        if size > next {
+            break;
+        }
         while next >= 500 + size && (next + 1 - size..=next).any(|k| used.contains(&k)) {
             next -= 1;
         }

@@ -31,7 +31,7 @@ pub(super) fn lookup<'a>(globals: &'a [Def], name: &str) -> Option<Global<'a>> {
 /// The first common variable of `name` (row-major for arrays), from its rule; the
 /// refusals say precisely why. `None` when refused (the diagnostic is in `ctx`).
 pub(super) fn number(ctx: &mut Ctx, g: &Global, name: &str, span: Span, rules: &[VarRule]) -> Option<u32> {
-    let size: u32 = g.dims().iter().product::<u32>().max(1);
+    let size: u32 = crate::ir::elements(g.dims());
     if matches!(g.def.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
         let what = format!("global user data {} {name}", g.def.ty);
         let hint = "FANUC variables hold numbers only; a STRING/AXIS/FRAME GUD variable has no counterpart";
@@ -130,7 +130,7 @@ fn constant(e: &crate::ir::Expr) -> Option<f64> {
 /// The start value of every element (the definition's, else 0), as the evaluator gives
 /// them (`eval::access::define`): the FANUC side of a check starts its commons there.
 pub(super) fn seeds(g: &Global) -> Option<Vec<f64>> {
-    let len = g.dims().iter().product::<u32>().max(1) as usize;
+    let len = crate::ir::elements(g.dims()) as usize;
     let mut out = vec![0.0; len];
     match &g.def.vars[g.index].init {
         None => {}
