@@ -122,6 +122,15 @@ fn a_number_not_provably_an_integer_is_refused() {
     }
 }
 
+/// The folder's programs copied into `lib/`, the folder a batch reads.
+fn library(d: &Path) {
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    for f in ["MAIN.MPF", "l10.spf", "L20.SPF"] {
+        std::fs::copy(d.join(f), lib.join(f)).unwrap();
+    }
+}
+
 /// A batch under `--l-numbers` numbers each `L<k>` of the library `O<k>` in its map before
 /// the mains (which take the next free numbers), loads every `L` program for a file with a
 /// built call, and proves it on the path its inputs take; a rerun with the map written
@@ -129,11 +138,7 @@ fn a_number_not_provably_an_integer_is_refused() {
 #[test]
 fn a_batch_numbers_l_programs_by_their_number_and_proves_the_built_call() {
     let d = folder("batch", MAIN);
-    let lib = d.join("lib");
-    std::fs::create_dir_all(&lib).unwrap();
-    for f in ["MAIN.MPF", "l10.spf", "L20.SPF"] {
-        std::fs::copy(d.join(f), lib.join(f)).unwrap();
-    }
+    library(&d);
     let (out, err, code) = nctrans(&d, &["--to", "fanuc", "--l-numbers", "-o", "out", "lib"]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(format!("{out}{err}").contains("every file verified"), "{out}{err}");
@@ -152,11 +157,7 @@ fn a_batch_numbers_l_programs_by_their_number_and_proves_the_built_call() {
 #[test]
 fn a_batch_proves_the_other_path_and_catches_a_planted_wrong_number() {
     let d = folder("batch-path", &format!("; nctrans: set R2=1\n{MAIN}"));
-    let lib = d.join("lib");
-    std::fs::create_dir_all(&lib).unwrap();
-    for f in ["MAIN.MPF", "l10.spf", "L20.SPF"] {
-        std::fs::copy(d.join(f), lib.join(f)).unwrap();
-    }
+    library(&d);
     let (out, err, code) = nctrans(&d, &["--to", "fanuc", "--l-numbers", "-o", "out", "lib"]);
     assert_eq!(code, 0, "{out}{err}");
     let main = std::fs::read_to_string(d.join("out/MAIN.NC")).unwrap();
