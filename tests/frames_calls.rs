@@ -5,7 +5,7 @@
 //! centre is caught, and the calls whose modes are not known are refused with NC497.
 
 use nctrans::check::Verdict;
-use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::dialect::Dialect;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, verify::verify_with, Options};
@@ -25,27 +25,13 @@ G01 Z-3. F100.\nY[40.+#2]\nX[60.-#1]\nY[40.-#2]\nX[60.+#1]\nY40.\nG00 Z50.\nG69\
 O9111 (POCKET ROTATED 120 DEG ABOUT X60 Y40)\nG90 G68 X60. Y40. R120.\nG00 X[60.+#1] Y40.\nZ2.\n\
 G01 Z-3. F100.\nY[40.+#2]\nX[60.-#1]\nY40.\nG00 Z50.\nG69\nG00 X60. Y40.\nM99\n%\n";
 
-struct Job {
-    db: SourceDb,
-    id: nctrans::span::FileId,
-    unit: nctrans::ir::Unit,
-}
-
-fn parse(fanuc: &str) -> Job {
-    let mut db = SourceDb::new();
-    let id = db.add("job.nc", fanuc);
-    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    assert!(!nctrans::diag::has_errors(&p.diags), "{}", nctrans::diag::render(&db, &p.diags));
-    Job { db, id, unit: p.unit }
-}
-
 /// The translation's files and whether it is proven equivalent; `Err`: the error codes.
 fn translate(fanuc: &str) -> Result<Vec<(String, String)>, Vec<&'static str>> {
     translate_with(fanuc, &Options::default())
 }
 
 fn translate_with(fanuc: &str, opts: &Options) -> Result<Vec<(String, String)>, Vec<&'static str>> {
-    let j = parse(fanuc);
+    let j = frame_check::parse_job(fanuc);
     let t = to_sinumerik(&[&j.unit], opts, LineEnding::Lf);
     if t.has_errors() {
         let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
@@ -65,7 +51,7 @@ fn planted_equivalent(fanuc: &str, name: &str, from: &str, to: &str) -> bool {
 }
 
 fn planted_with(fanuc: &str, opts: &Options, name: &str, from: &str, to: &str) -> bool {
-    let j = parse(fanuc);
+    let j = frame_check::parse_job(fanuc);
     let mut t = to_sinumerik(&[&j.unit], opts, LineEnding::Lf);
     let f = t.files.iter_mut().find(|f| f.name == name).unwrap_or_else(|| panic!("no file {name}"));
     assert!(f.text.contains(from), "{from:?} not in\n{}", f.text);

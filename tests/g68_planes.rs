@@ -9,12 +9,12 @@
 //! off the increment grid, and (in the FANUC run) G52 or G92 given under G68 (NC491).
 
 mod eval_support;
+#[path = "support/frame_check.rs"]
+mod frame_check;
 
 use eval_support::{nctrans, run_text, scratch_dir, write};
 use nctrans::check::Verdict;
-use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::read::LineEnding;
-use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, verify::verify_with, Options};
 
 /// A groove on the front face (G18, the XZ plane) turned 30° about where the tool stands.
@@ -94,27 +94,13 @@ fn wrong_centre_sign_or_plane_is_caught() {
     }
 }
 
-struct Job {
-    db: SourceDb,
-    id: nctrans::span::FileId,
-    unit: nctrans::ir::Unit,
-}
-
-fn parse(fanuc: &str) -> Job {
-    let mut db = SourceDb::new();
-    let id = db.add("job.nc", fanuc);
-    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
-    assert!(!nctrans::diag::has_errors(&p.diags), "{}", nctrans::diag::render(&db, &p.diags));
-    Job { db, id, unit: p.unit }
-}
-
 /// The job's translation, verified, with one planted change (`from` → `to` in file `name`,
 /// none when `from` is empty): `Ok(equivalent, files)`, or the error codes.
 /// Whether the job verifies, and its files (name, text).
 type Verified = (bool, Vec<(String, String)>);
 
 fn job(fanuc: &str, name: &str, from: &str, to: &str) -> Result<Verified, Vec<&'static str>> {
-    let j = parse(fanuc);
+    let j = frame_check::parse_job(fanuc);
     let mut t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
     if t.has_errors() {
         let mut codes: Vec<&'static str> = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
@@ -132,7 +118,7 @@ fn job(fanuc: &str, name: &str, from: &str, to: &str) -> Result<Verified, Vec<&'
 }
 
 fn refusal(fanuc: &str) -> String {
-    let j = parse(fanuc);
+    let j = frame_check::parse_job(fanuc);
     let t = to_sinumerik(&[&j.unit], &Options::default(), LineEnding::Lf);
     assert!(t.has_errors(), "translated:\n{:?}", t.files.iter().map(|f| &f.text).collect::<Vec<_>>());
     t.diags.iter().filter(|d| d.is_error()).map(|d| format!("{} {}\n", d.code, d.message)).collect()

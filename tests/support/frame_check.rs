@@ -11,6 +11,22 @@ use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{translate as to_sinumerik, Options};
 use nctrans::translate::{self, to_fanuc::TranslateOptions};
 
+/// A FANUC job read for a translation test: its sources, the file and the unit.
+pub struct Job {
+    pub db: SourceDb,
+    pub id: nctrans::span::FileId,
+    pub unit: Unit,
+}
+
+/// Reads `fanuc` as file `job.nc`, which must parse without errors.
+pub fn parse_job(fanuc: &str) -> Job {
+    let mut db = SourceDb::new();
+    let id = db.add("job.nc", fanuc);
+    let p = nctrans::parse(&db, id, Dialect::Fanuc, &ParseOptions::for_dialect(Dialect::Fanuc));
+    assert!(!nctrans::diag::has_errors(&p.diags), "{}", nctrans::diag::render(&db, &p.diags));
+    Job { db, id, unit: p.unit }
+}
+
 pub fn load(db: &mut SourceDb, text: &str, d: Dialect) -> Unit {
     let name = if d == Dialect::Fanuc { "t.nc" } else { "t.mpf" };
     let id = db.add(name, text);
