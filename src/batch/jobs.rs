@@ -129,14 +129,11 @@ pub(crate) fn load_with_callees(
     for i in ctx.library.callee_files(file.index) {
         let Some(f) = ctx.files.get(i) else { continue };
         let mut sub = load(db, f, dialect, enc, sem).map_err(read_error)?;
-        // Siemens finds a program by its file name: `L100.SPF` without a PROC line is L100,
-        // as the library named it (and as a single-file translation names its callees).
-        if let ([one], Some([Some(crate::translate::library::ProgKey::Name(n))])) =
-            (&mut sub.unit.programs[..], ctx.library.files.get(i).map(|x| &x.programs[..]))
+        // The name the library gave the file's program (a Siemens file without PROC: its stem).
+        if let (Dialect::Sinumerik, Some([Some(crate::translate::library::ProgKey::Name(n))])) =
+            (dialect, ctx.library.files.get(i).map(|x| &x.programs[..]))
         {
-            if dialect == Dialect::Sinumerik {
-                one.name.get_or_insert_with(|| crate::ir::ProgName::Name(n.clone()));
-            }
+            crate::dialect::sinumerik::name_after_file(&mut sub.unit, n);
         }
         subs.push(sub);
     }

@@ -614,10 +614,7 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let mut p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
         shown(&db, &p.diags)?;
-        // Siemens finds a program by its file name: `L100.SPF` without a PROC line is L100.
-        if let [one] = &mut p.unit.programs[..] {
-            one.name.get_or_insert_with(|| nctrans::ir::ProgName::Name(callee.to_ascii_uppercase()));
-        }
+        nctrans::dialect::sinumerik::name_after_file(&mut p.unit, callee);
         Ok(Some(p.unit))
     })?;
     let units = std::iter::once(parsed.unit).chain(subs).collect();

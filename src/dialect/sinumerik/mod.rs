@@ -388,8 +388,14 @@ pub(crate) fn header_name(line: &str) -> Option<String> {
     (!name.is_empty()).then(|| name.to_string())
 }
 
-/// The IR of one block by the grammar alone (no fast path), for tests that compare the two.
-#[doc(hidden)]
+/// Siemens finds a program by its file name: a file of one program without a PROC line
+/// (`L100.SPF`) is the program `name` (upper case), as its callers name it.
+pub fn name_after_file(unit: &mut crate::ir::Unit, name: &str) {
+    if let [one] = &mut unit.programs[..] {
+        one.name.get_or_insert_with(|| crate::ir::ProgName::Name(name.to_ascii_uppercase()));
+    }
+}
+
 /// Whether an instruction the reader kept as written is a `RET` with a jump target
 /// (`RET("L")`, `RET(N100)`, `RET("L", n)`): the reader spells it `RET(<arguments>)` and
 /// the evaluator and the FANUC translation both refuse it (NC507), for the reason in
@@ -404,6 +410,8 @@ pub const RET_TARGET_UNSOURCED: &str = "no Siemens manual page at hand gives RET
      target, where the control searches it in the caller, whether the target block itself runs, \
      and how many levels it returns; nctrans does not guess where the machine goes on";
 
+/// The IR of one block by the grammar alone (no fast path), for tests that compare the two.
+#[doc(hidden)]
 pub fn block_via_grammar(text: &str) -> Option<String> {
     block_dump(text, false)
 }
