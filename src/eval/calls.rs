@@ -449,6 +449,10 @@ impl Interp<'_> {
         if call.kind == CallKind::M97 {
             return self.local_call(call, pc, span);
         }
+        if !self.fanuc && call.kind == CallKind::Named && call.target == CallTarget::Name("EXECSTRING".into()) {
+            let as_call = self.execstring(call, span)?;
+            return self.call(&as_call, pc, span);
+        }
         let name = self.target_name(call)?;
         if let CalleeName::Name(s) = &name {
             // The standard drilling cycles are the control's own (eval::cycles::siemens).
@@ -523,6 +527,43 @@ impl Interp<'_> {
                 Ok(Flow::Switched)
             }
         }
+    }
+
+    /// Siemens `EXECSTRING(text)` runs `text` as a part program line. Only the line that is
+    /// a program name alone is modelled: that line calls the program without arguments (a
+    /// name written alone in a block is a call), so `EXECSTRING(SHAPE)` with SHAPE =
+    /// "D_TRIANGLE" is the call `D_TRIANGLE`. Any other line (empty, a move, a call with
+    /// arguments) stops the run (NC553): what the control makes of it is not modelled.
+    fn execstring(&mut self, call: &Call, span: Span) -> Result<Call, Fault> {
+        let text = match call.args.as_slice() {
+            [Arg::Value(e)] => {
+                let cx = self.cx(false);
+                match expr::eval(self, e, &cx)? {
+                    Value::Str(s) => Some(s),
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        let name = text.as_deref().map(str::trim).filter(|t| crate::dialect::sinumerik::is_program_name_line(t));
+        let Some(name) = name else {
+            let what = match &text {
+                Some(t) if t.trim().is_empty() => "EXECSTRING of an empty line".to_string(),
+                Some(t) => format!("EXECSTRING of the line \"{t}\""),
+                None => "EXECSTRING without one STRING argument".to_string(),
+            };
+            let d = Diagnostic::error("NC553", format!("{what}: only a line that is a program name is run"))
+                .primary(self.file(), span, "here")
+                .note("EXECSTRING runs its text as a part program line; the evaluator models the line that is a program name alone (the call of that program)")
+                .hint("call the program by name (`CALL \"NAME\"`), or write the line into the program");
+            return Err(Fault::error(d));
+        };
+        Ok(Call {
+            kind: CallKind::Named,
+            target: CallTarget::Name(name.to_ascii_uppercase()),
+            args: Vec::new(),
+            repeat: None,
+        })
     }
 
     /// Haas `M97 Pn Lm`: the blocks from Nn of this program, up to their M99, m times; like

@@ -350,6 +350,15 @@ pub fn scan_unit(unit: &Unit, src: &crate::span::SourceFile, stem: &str) -> Scan
             _ => {}
         });
     }
+    // A program name written into a STRING variable is a call target where the variable is
+    // called through (`lower::to_fanuc::prog_vars`): its program belongs to the callees.
+    if dialect == Dialect::Sinumerik {
+        for name in crate::lower::to_fanuc::prog_vars::written_names(unit) {
+            let c =
+                Call { kind: crate::ir::CallKind::Named, target: CallTarget::Name(name), args: vec![], repeat: None };
+            scan.calls.extend(raw_call(&c, 0));
+        }
+    }
     scan
 }
 

@@ -396,6 +396,23 @@ pub fn name_after_file(unit: &mut crate::ir::Unit, name: &str) {
     }
 }
 
+/// Whether `text` is a program name the reader takes, written alone in a block, as the call
+/// of that program (`D_TRIANGLE`, `SH602`): letters, digits and `_`, starting with a letter
+/// or `_`, not one letter with digits (`X10` is an address) and not an instruction or a
+/// function. The line `EXECSTRING` can run as a call (`eval::calls`).
+pub fn is_program_name_line(text: &str) -> bool {
+    let upper = text.to_ascii_uppercase();
+    let b = upper.as_bytes();
+    let letters = b.iter().take_while(|c| c.is_ascii_alphabetic()).count();
+    let address = letters == 1 && b[1..].iter().all(u8::is_ascii_digit);
+    b.len() >= 2
+        && (b[0].is_ascii_alphabetic() || b[0] == b'_')
+        && b.iter().all(|c| c.is_ascii_alphanumeric() || *c == b'_')
+        && !address
+        && !names::is_instruction(&upper)
+        && names::builtin(&upper).is_none()
+}
+
 /// Whether an instruction the reader kept as written is a `RET` with a jump target
 /// (`RET("L")`, `RET(N100)`, `RET("L", n)`): the reader spells it `RET(<arguments>)` and
 /// the evaluator and the FANUC translation both refuse it (NC507), for the reason in

@@ -36,6 +36,7 @@ pub mod position_length;
 pub mod print;
 pub mod probe;
 pub mod probe_length;
+pub mod prog_vars;
 pub mod rotation;
 pub mod string_calls;
 pub mod tool_data;
@@ -165,6 +166,10 @@ pub struct Ctx {
     /// measuring block and the `+R` each added, and the spans of its reads (now `#5063`).
     pub own_z_keeps: Vec<(Span, Option<Expr>)>,
     pub own_z_reads: Vec<Span>,
+    /// The STRING variables of this program that hold program names, with the names they can
+    /// hold (`prog_vars`), and those called through that cannot, with why.
+    pub prog_vars: BTreeMap<String, Vec<String>>,
+    pub prog_var_why: BTreeMap<String, String>,
     next_temp: u32,
     next_label: u32,
 }
@@ -197,6 +202,8 @@ impl Ctx {
             skip_lengths: Vec::new(),
             own_z_keeps: Vec::new(),
             own_z_reads: Vec::new(),
+            prog_vars: BTreeMap::new(),
+            prog_var_why: BTreeMap::new(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

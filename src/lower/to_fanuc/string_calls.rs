@@ -142,9 +142,11 @@ fn before_uses(p: &Program, name: &str, by_init: bool) -> bool {
 /// `p` with every call through a known STRING variable made a call by name, and the variable
 /// (its DEF and its assignment) gone; `None` when there is none.
 pub fn resolve(p: &Program) -> Option<Program> {
+    let normal = super::prog_vars::execstring_as_call(p);
+    let p = normal.as_ref().unwrap_or(p);
     let known = known(p);
     if known.is_empty() {
-        return None;
+        return normal;
     }
     let mut p = p.clone();
     let name_of = |n: &str| known.iter().find(|(k, _)| k == n).map(|(_, v)| v.clone());
@@ -190,7 +192,13 @@ pub fn resolve(p: &Program) -> Option<Program> {
 pub fn called_names(unit: &Unit) -> Vec<String> {
     let resolved: Vec<Program> = unit.programs.iter().map(|p| resolve(p).unwrap_or_else(|| p.clone())).collect();
     let u = Unit { programs: resolved, ..unit.clone() };
-    crate::ir::visit::called_names(&u)
+    let mut names = crate::ir::visit::called_names(&u);
+    for n in super::prog_vars::written_names(unit) {
+        if !names.contains(&n) {
+            names.push(n);
+        }
+    }
+    names
 }
 
 /// Whether `unit` calls a program named `"L"<<n` (built at run time).

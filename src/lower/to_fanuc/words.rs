@@ -693,6 +693,9 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
         CallTarget::Computed(Expr { kind: ExprKind::Binary(BinOp::Concat, ..), .. }) => {
             return built::built_call(ctx, c, span, m, kept)
         }
+        // A STRING variable that holds program names only (`prog_vars`): their O numbers.
+        CallTarget::Computed(e) if prog_call::holds_names(ctx, e) => return prog_call::call(ctx, c, span, m, kept),
+        CallTarget::Computed(e) if prog_call::why_not(ctx, e).is_some() => return prog_call::refuse(ctx, e, span),
         // A STRING variable holding a name known only at run time: FANUC has no strings.
         _ => {
             let hint = "FANUC has no strings to hold a program name: write the name in the call, \
@@ -795,6 +798,7 @@ fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut Vec<Item>)
 }
 
 mod built;
+mod prog_call;
 mod save;
 #[cfg(test)]
 mod tests;

@@ -223,6 +223,16 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         callees.insert(name, Callee { number, params: p.params.clone(), effect });
     }
 
+    // STRING variables that hold program names become their O numbers.
+    let prog_vars = {
+        let translated: std::collections::BTreeSet<String> = callees.keys().cloned().collect();
+        let list: Vec<&Program> = progs.iter().map(|(p, _, _)| p).collect();
+        crate::lower::to_fanuc::prog_vars::find(&list, &opts.source.globals, &translated)
+    };
+    for (k, (p, _, _)) in progs.iter_mut().enumerate() {
+        crate::lower::to_fanuc::prog_vars::rewrite(p, &prog_vars.per_prog[k], &|n| callees.get(n).map(|c| c.number));
+    }
+
     // Comparisons of integers (counters included) need no tolerance form.
     let types: Vec<passes::integral::Types> = progs.iter().map(|(p, _, _)| declared_types(p)).collect();
     let names: std::collections::BTreeSet<String> = progs.iter().skip(1).map(|(p, _, _)| prog_name(p, "")).collect();
@@ -243,6 +253,8 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         let name = if lowered.is_empty() { main_name.clone() } else { prog_name(&p, "") };
         let mut ctx = new_ctx(file, opts);
         ctx.callees = callees.clone();
+        ctx.prog_vars = prog_vars.per_prog.get(lowered.len()).cloned().unwrap_or_default();
+        ctx.prog_var_why = prog_vars.refused.get(lowered.len()).cloned().unwrap_or_default();
         ctx.l_programs = l_programs.clone();
         ctx.integral_calls = integral_calls.next().unwrap_or_default();
         let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
@@ -259,6 +271,10 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     // Variables, across programs (R parameters and commons are shared).
     let mut vctx = new_ctx(main.file, opts);
     vctx.callees = callees.clone();
+    if !prog_vars.guds.is_empty() {
+        vctx.globals =
+            std::sync::Arc::new(crate::lower::to_fanuc::prog_vars::globals_as_numbers(&vctx.globals, &prog_vars.guds));
+    }
     let mapped = {
         let mut jobs: Vec<varmap::Job> = lowered
             .iter_mut()
