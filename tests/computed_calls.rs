@@ -68,10 +68,17 @@ fn a_string_variable_naming_one_program_calls_it_on_fanuc() {
     std::fs::write(d.join("wrong.nc"), wrong).unwrap();
     let (out, _, code) = nctrans(&d, &["check", "MAIN.MPF", "wrong.nc"]);
     assert_ne!(code, 0, "{out}");
-    // Two names on the way: not one program, refused as before.
+    // Two names on the way: the variable holds the O number of each (tests/program_vars.rs).
     let two = SELECT.replace("M30\n", "OP=\"CHAMFER\"\nCALL OP\nM30\n");
     std::fs::write(d.join("TWO.MPF"), two).unwrap();
-    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "TWO.MPF", "-o", "two.nc"]);
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "TWO.MPF", "-o", "two.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(d.join("two.nc")).unwrap();
+    assert!(err.contains("equivalent") && text.matches("G65 P#").count() == 2, "{text}");
+    // A name no translated program has: refused, saying why.
+    let lost = SELECT.replace("M30\n", "OP=\"LOST\"\nCALL OP\nM30\n");
+    std::fs::write(d.join("LOST.MPF"), lost).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "LOST.MPF", "-o", "lost.nc"]);
     assert_ne!(code, 0);
-    assert!(err.contains("NC303") && err.contains("computed call target"), "{err}");
+    assert!(err.contains("NC559") && err.contains("\"LOST\" names no program"), "{err}");
 }

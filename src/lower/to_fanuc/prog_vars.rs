@@ -26,6 +26,8 @@ struct Uses {
     names: BTreeSet<String>,
     calls: usize,
     why_not: Option<String>,
+    /// The variables copied into this one (`SHAPE=WORM_SHAPE`).
+    copied_from: BTreeSet<Key>,
 }
 
 /// What the analysis found: per program, the variables it sees that hold program names (with
@@ -36,6 +38,12 @@ pub struct Found {
     pub refused: Vec<BTreeMap<String, String>>,
     /// The GUD names that become numbers.
     pub guds: BTreeSet<String>,
+}
+
+fn key_name(k: &Key) -> &str {
+    match k {
+        Key::Local(_, n) | Key::Gud(n) => n,
+    }
 }
 
 fn var_name(v: &VarRef) -> Option<&str> {
@@ -149,8 +157,41 @@ pub fn find(progs: &[&Program], globals: &[Def], translated: &BTreeSet<String>) 
         refused: vec![BTreeMap::new(); progs.len()],
         guds: BTreeSet::new(),
     };
+    // Names flow along copies (`SHAPE=WORM_SHAPE`), and so do the reasons not to.
+    for _ in 0..=uses.len() {
+        let mut changed = false;
+        let keys: Vec<Key> = uses.keys().cloned().collect();
+        for k in &keys {
+            for src in uses[k].copied_from.clone() {
+                let (names, why) = uses.get(&src).map(|u| (u.names.clone(), u.why_not.clone())).unwrap_or_default();
+                let Some(u) = uses.get_mut(k) else { continue };
+                let before = (u.names.len(), u.why_not.is_some());
+                u.names.extend(names);
+                if u.why_not.is_none() {
+                    u.why_not = why.map(|w| format!("it is copied from {}, for which {w}", key_name(&src)));
+                }
+                changed |= before != (u.names.len(), u.why_not.is_some());
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    // Called through, or copied into one that is.
+    let mut relevant: BTreeSet<Key> = uses.iter().filter(|(_, u)| u.calls > 0).map(|(k, _)| k.clone()).collect();
+    loop {
+        let more: Vec<Key> = relevant
+            .iter()
+            .flat_map(|k| uses.get(k).map(|u| u.copied_from.iter().cloned().collect::<Vec<_>>()).unwrap_or_default())
+            .filter(|s| !relevant.contains(s))
+            .collect();
+        if more.is_empty() {
+            break;
+        }
+        relevant.extend(more);
+    }
     for (key, u) in uses {
-        if u.calls == 0 {
+        if !relevant.contains(&key) {
             continue;
         }
         let names: Vec<String> = u.names.iter().filter(|n| !n.is_empty()).cloned().collect();
@@ -164,8 +205,7 @@ pub fn find(progs: &[&Program], globals: &[Def], translated: &BTreeSet<String>) 
             Key::Local(_, n) | Key::Gud(n) => n.clone(),
         };
         let why = u.why_not.clone().or_else(|| {
-            names
-                .is_empty()
+            (names.is_empty() && u.calls > 0)
                 .then(|| format!("{name} is never given a program name in the programs translated together"))
         });
         for i in targets {
@@ -217,6 +257,13 @@ fn scan_item(it: &Item, key_of: &dyn Fn(&str) -> Option<Key>, translated: &BTree
             return;
         }
         ItemKind::Assign { target, value } => {
+            if let (Some(k), Some(src)) = (var_name(target).and_then(key_of), expr_var(value).and_then(key_of)) {
+                note(k, &mut |u| {
+                    u.copied_from.insert(src.clone());
+                });
+                note(src, &mut |_| {});
+                return;
+            }
             if let Some(k) = var_name(target).and_then(key_of) {
                 let r = literal(value, translated);
                 note(k, &mut |u| record(u, &r));
@@ -339,11 +386,14 @@ pub fn rewrite(p: &mut Program, vars: &BTreeMap<String, Vec<String>>, number: &d
     let is_ours = |e: &Expr| expr_var(e).is_some_and(|n| vars.contains_key(n));
     let mut cmp = |root: &mut Expr| {
         fn walk(e: &mut Expr, is_ours: &dyn Fn(&Expr) -> bool, value: &dyn Fn(&mut Expr)) {
-            if let ExprKind::Cmp(CmpOp::Eq | CmpOp::Ne, _, a, b) = &mut e.kind {
+            // Whole O numbers (or 0) apart by 1 at least: the Siemens tolerance cannot join two.
+            if let ExprKind::Cmp(CmpOp::Eq | CmpOp::Ne, tol, a, b) = &mut e.kind {
                 if is_ours(a) {
                     value(b);
+                    *tol = Tolerance::Exact;
                 } else if is_ours(b) {
                     value(a);
+                    *tol = Tolerance::Exact;
                 }
             }
             match &mut e.kind {

@@ -34,7 +34,13 @@ pub(super) fn number(ctx: &mut Ctx, g: &Global, name: &str, span: Span, rules: &
     let size: u32 = crate::ir::elements(g.dims());
     if matches!(g.def.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
         let what = format!("global user data {} {name}", g.def.ty);
-        let hint = "FANUC variables hold numbers only; a STRING/AXIS/FRAME GUD variable has no counterpart";
+        let hint = if matches!(g.def.ty, DataType::String(_)) {
+            "FANUC variables hold numbers only; a STRING GUD becomes the O number of the program it names when \
+             the programs calling through it (CALL v, EXECSTRING(v)) are translated with those writing it, every \
+             write being a literal program name of the translation"
+        } else {
+            "FANUC variables hold numbers only; an AXIS/FRAME GUD variable has no counterpart"
+        };
         ctx.unsupported("NC504", span, &what, hint);
         return None;
     }
