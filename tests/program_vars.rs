@@ -119,3 +119,14 @@ fn the_evaluator_runs_execstring_of_a_name_and_refuses_other_lines() {
         assert!(err.contains("NC553") && err.contains(why), "{err}");
     }
 }
+
+/// A PROC parameter named as the GUD is the caller's value, not the GUD: its call stays refused.
+#[test]
+fn a_parameter_named_as_the_gud_is_not_the_gud() {
+    let d = workdir("progvars", "param");
+    let dress = "PROC DRESS(STRING[20] SHAPE)\nEXECSTRING(SHAPE)\nRET\n";
+    library(&d, &MAIN.replace("DRESS\n", "DRESS(\"D_TRAPEZ\")\n"), PAR_INI, dress);
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "GRIND.MPF"]);
+    assert_ne!(code, 0, "{out}{err}");
+    assert!(err.contains("NC303") && !err.contains("G65 P#600"), "{err}");
+}

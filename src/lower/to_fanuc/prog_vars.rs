@@ -116,7 +116,8 @@ pub fn find(progs: &[&Program], globals: &[Def], translated: &BTreeSet<String>) 
     let mut uses: BTreeMap<Key, Uses> = BTreeMap::new();
     let mut locals: Vec<BTreeSet<String>> = Vec::new();
     for (i, p) in progs.iter().enumerate() {
-        let mut own = BTreeSet::new();
+        // A PROC parameter hides a GUD of its name and holds what its caller passes: never one of these.
+        let mut own: BTreeSet<String> = p.params.iter().map(|q| format!("\u{0}{}", q.name)).collect();
         crate::ir::visit::walk_stmts(&p.body, &mut |s| {
             if let StmtKind::Block(b) = &s.kind {
                 for it in &b.items {
@@ -428,6 +429,50 @@ pub fn rewrite(p: &mut Program, vars: &BTreeMap<String, Vec<String>>, number: &d
     });
 }
 
+/// `p` with every call through one of its program-name variables `vars` made the calls of
+/// every program the variable can name, one after the other: what the effects of `p` on its
+/// callers (`words::effects`, which does not follow a computed target) are made of. The groups
+/// and tools these set add up, as where the paths of the one call taken meet; the G90/G91 and
+/// units a candidate leaves changed are refused at the call (`words::prog_call`, NC558).
+pub fn calls_by_name(p: &Program, vars: &BTreeMap<String, Vec<String>>) -> Program {
+    let mut p = p.clone();
+    if vars.is_empty() {
+        return p;
+    }
+    p.body = crate::lower::map_bodies(std::mem::take(&mut p.body), &mut |list| {
+        list.into_iter()
+            .map(|mut s| {
+                if let StmtKind::Block(b) = &mut s.kind {
+                    let items = std::mem::take(&mut b.items);
+                    for it in items {
+                        let names = match &it.kind {
+                            ItemKind::Call(c) => match &c.target {
+                                CallTarget::Computed(e) => expr_var(e).and_then(|n| vars.get(n)),
+                                _ => None,
+                            },
+                            _ => None,
+                        };
+                        match names {
+                            Some(names) => b.items.extend(names.iter().map(|n| Item {
+                                kind: ItemKind::Call(Box::new(Call {
+                                    kind: CallKind::Named,
+                                    target: CallTarget::Name(n.clone()),
+                                    args: vec![],
+                                    repeat: None,
+                                })),
+                                span: it.span,
+                            })),
+                            None => b.items.push(it),
+                        }
+                    }
+                }
+                s
+            })
+            .collect()
+    });
+    p
+}
+
 /// The global user data as the FANUC side sees it: the program-name STRINGs are INT.
 pub fn globals_as_numbers(globals: &[Def], guds: &BTreeSet<String>) -> Vec<Def> {
     let mut out = Vec::new();
@@ -446,18 +491,36 @@ pub fn globals_as_numbers(globals: &[Def], guds: &BTreeSet<String>) -> Vec<Def> 
 }
 
 /// The program names written into STRING variables of `unit` as literals: the programs a
-/// call through such a variable can reach, which a translation loads beside its input. A
-/// name alone is kept only where a program of it may exist (`is_program_name_line`).
+/// call through such a variable can reach, which a translation loads beside its input. Only
+/// writes of variables that may be called through count: a program's own STRING called
+/// through in that program (`CALL v`, `EXECSTRING(v)`), or a name the program does not declare
+/// (global user data, called through in another program); a name is kept only where a program
+/// of it may exist (`is_program_name_line`).
 pub fn written_names(unit: &Unit) -> Vec<String> {
     let mut out = Vec::new();
     for p in &unit.programs {
-        let mut p = p.clone();
-        items_mut(&mut p.body, &mut |it| {
+        let p = execstring_as_call(p).unwrap_or_else(|| p.clone());
+        let mut declared = BTreeSet::new();
+        let mut called = BTreeSet::new();
+        declared.extend(p.params.iter().map(|q| q.name.clone()));
+        let mut q = p.clone();
+        items_mut(&mut q.body, &mut |it| match &it.kind {
+            ItemKind::Def(d) => declared.extend(d.vars.iter().map(|v| v.name.clone())),
+            ItemKind::Call(c) => {
+                if let CallTarget::Computed(e) = &c.target {
+                    called.extend(expr_var(e).map(str::to_string));
+                }
+            }
+            _ => {}
+        });
+        let counts = |n: &str| !declared.contains(n) || called.contains(n);
+        items_mut(&mut q.body, &mut |it| {
             let lits: Vec<&Expr> = match &it.kind {
-                ItemKind::Assign { value, .. } => vec![value],
+                ItemKind::Assign { target, value } if var_name(target).is_some_and(counts) => vec![value],
                 ItemKind::Def(d) if matches!(d.ty, DataType::String(_)) => d
                     .vars
                     .iter()
+                    .filter(|v| counts(&v.name))
                     .filter_map(|v| match &v.init {
                         Some(Init::Value(e)) => Some(e),
                         _ => None,

@@ -214,7 +214,19 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let numbers::Numbers { numbers, l_programs } = numbers::assign(&main_name, &sub_names, opts);
     // What each subprogram leaves changed for its caller (the words pass follows modes
     // across calls) and, for SAVE ones, restores.
-    let named: Vec<(String, &Program)> = progs.iter().skip(1).map(|(p, _, _)| (prog_name(p, ""), p)).collect();
+    // STRING variables that hold program names (`prog_vars`): found before the effects, which
+    // see a call through one as a call of every program it can name.
+    let prog_vars = {
+        let translated: std::collections::BTreeSet<String> = sub_names.iter().cloned().collect();
+        let list: Vec<&Program> = progs.iter().map(|(p, _, _)| p).collect();
+        crate::lower::to_fanuc::prog_vars::find(&list, &opts.source.globals, &translated)
+    };
+    let for_effects: Vec<Program> = progs
+        .iter()
+        .enumerate()
+        .map(|(k, (p, _, _))| crate::lower::to_fanuc::prog_vars::calls_by_name(p, &prog_vars.per_prog[k]))
+        .collect();
+    let named: Vec<(String, &Program)> = for_effects.iter().skip(1).map(|p| (prog_name(p, ""), p)).collect();
     let effects = passes::words::effects::effects(&named);
     let mut callees = BTreeMap::new();
     for (name, p) in named {
@@ -223,12 +235,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         callees.insert(name, Callee { number, params: p.params.clone(), effect });
     }
 
-    // STRING variables that hold program names become their O numbers.
-    let prog_vars = {
-        let translated: std::collections::BTreeSet<String> = callees.keys().cloned().collect();
-        let list: Vec<&Program> = progs.iter().map(|(p, _, _)| p).collect();
-        crate::lower::to_fanuc::prog_vars::find(&list, &opts.source.globals, &translated)
-    };
+    // Those variables become the O numbers of the programs they name.
     for (k, (p, _, _)) in progs.iter_mut().enumerate() {
         crate::lower::to_fanuc::prog_vars::rewrite(p, &prog_vars.per_prog[k], &|n| callees.get(n).map(|c| c.number));
     }
