@@ -21,8 +21,8 @@ use std::collections::BTreeMap;
 
 mod inputs;
 pub mod numbers;
-pub use inputs::fanuc_set_inputs;
 use inputs::map_set_lines;
+pub use inputs::{fanuc_set_inputs, gud_homes_in, gud_seed_inputs};
 
 /// First O number given to subprograms without a `--program-map` entry.
 pub const FIRST_SUB_NUMBER: u32 = 9000;
@@ -461,7 +461,7 @@ pub fn verify<'a>(
     }
     let map = t.symbols.fanuc();
     let mut fanuc_inputs: Vec<String> = r_param_homes(map);
-    fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
+    fanuc_inputs.extend(gud_seed_inputs(map));
     let (sinumerik, fanuc) = match &opts.profiles {
         Some(p) => (source_semantics(t, Some(&p.sinumerik)).or(Some(p.sinumerik.clone())), Some(p.fanuc.clone())),
         None => (source_semantics(t, None), None),
@@ -564,12 +564,7 @@ pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> 
 /// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
 /// so it starts where the Siemens side's definitions start.
 pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
-    t.symbols
-        .fanuc()
-        .gud_seeds
-        .iter()
-        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
-        .collect()
+    gud_seed_inputs(t.symbols.fanuc()).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
 }
 
 /// For a subprogram run on its own: each VAR parameter, which holds the number of its
