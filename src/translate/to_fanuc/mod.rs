@@ -532,14 +532,17 @@ pub fn verify<'a>(
             ..RunOptions::default()
         };
         let callees = super::called::MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
+        let reached = super::called::Reached::default();
         let a = Side {
             unit: align_source(main, map),
-            callees: Box::new(callees),
+            callees: reached.wrap(Box::new(callees)),
             run: run(parse_all(&a_in), sinumerik.clone()),
         };
         let b =
             Side { unit: parsed.unit.clone(), callees: Box::new(NoCallees), run: run(parse_all(&b_in), fanuc.clone()) };
-        runs.push((label, check::check_excluding(db, a, b, EXCLUDE)));
+        let mut report = check::check_excluding(db, a, b, EXCLUDE);
+        report.called = reached.names();
+        runs.push((label, report));
     }
     let mut v = Verification::of_runs(runs);
     rendered.push_str(&v.rendered);
