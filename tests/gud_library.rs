@@ -233,4 +233,5 @@ fn a_set_line_for_global_user_data_reaches_the_fanuc_side() {
     assert!(text.contains("(nctrans: set #600=7)"), "{text}");
     let (out, err, code) = nctrans(&d, &["check", "PART.MPF", "part.nc"]);
     assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DEPTH #600=5") && out.contains("own inputs set #600=7"), "{out}");
 }

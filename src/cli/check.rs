@@ -183,7 +183,7 @@ fn seed(
         _ => return None,
     };
     let sem = siemens.1.semantics.as_ref()?;
-    let seeded = gud::seeding(&siemens.0, path, sem, &db.get(fanuc.0.file).text, map_rules)?;
+    let mut seeded = gud::seeding(&siemens.0, path, sem, &db.get(fanuc.0.file).text, map_rules)?;
     seeded.give(&mut fanuc.1.inputs);
     Some(seeded)
 }

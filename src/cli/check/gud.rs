@@ -21,12 +21,18 @@ pub struct Seeded {
 
 impl Seeded {
     /// Adds the seeds to a FANUC run's inputs; an input the run sets itself (its `nctrans:
-    /// set` header, `--set`) wins, as the run's own inputs win in the proof.
-    pub fn give(&self, inputs: &mut Vec<Input>) {
+    /// set` header, `--set`) wins, as the run's own inputs win in the proof, and the verdict
+    /// names it.
+    pub fn give(&mut self, inputs: &mut Vec<Input>) {
+        let mut own = Vec::new();
         for i in &self.inputs {
-            if !inputs.iter().any(|h| h.target == i.target) {
-                inputs.push(i.clone());
+            match inputs.iter().find(|h| h.target == i.target) {
+                Some(h) => own.push(h.text.clone()),
+                None => inputs.push(i.clone()),
             }
+        }
+        if !own.is_empty() {
+            self.said.push_str(&format!(" (but the FANUC run's own inputs set {})", own.join(" ")));
         }
     }
 }
