@@ -135,7 +135,7 @@ fn an_axis_the_fanuc_profile_lacks_is_refused() {
 #[test]
 fn a_program_writing_a_fixed_value_is_refused_in_translation_and_run() {
     let p = "PROC SETS\nAXIS_HORI=\"X\"\nG1 AX[AXNAME(AXIS_HORI)]=10 F100\nM17\n";
-    let d = refused("SETS", p, &["NC544"], "a write to AXIS_HORI, which [variables] fixed says the set-up fixes");
+    let d = refused("SETS", p, &["NC544"], "a write to AXIS_HORI (a value [variables] fixed says the set-up fixes)");
     let (_, err, code) = nctrans(&d, &["run", "SETS.SPF"]);
     assert_ne!(code, 0);
     assert!(err.contains("error[NC544]") && err.contains("the program writes AXIS_HORI"), "{err}");

@@ -380,7 +380,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("arc-radius-angle.mpf", "NC312"),           // AR=
     ("assign-undeclared-name.mpf", "NC313"),     // E=AC() on a non-axis address
     ("axis-indirect-ax.mpf", "NC445"),           // TRANS after an IC() move (its AX[…] axes are known)
-    ("axis-vars-dressing-trans.spf", "NC310"),   // AXIS_HORI declared nowhere here (no .DEF, no [variables] fixed)
     ("axname-axis-by-name.mpf", "NC310"),        // DEF STRING, AXNAME
     ("call-bare-name.mpf", "NC303"),             // a call of a program not in the library
     ("call-l-number.mpf", "NC303"),              // L0123 / L123 not in the library

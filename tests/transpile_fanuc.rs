@@ -314,9 +314,6 @@ const REFUSED: &[(&str, &str)] = &[
     // AXNAME("X") and the AXIS variables holding it are X and Z (tests/axis_vars.rs); the
     // TRANS after the IC() move is what stays refused.
     ("axis-indirect-ax.mpf", "NC445"),
-    // AXIS_HORI is declared nowhere here: corpus/in/sinumerik-calls/axis-vars has the grinder's
-    // DEF file and [variables] fixed, and translates the same shape.
-    ("axis-vars-dressing-trans.spf", "NC310"),
     ("assign-undeclared-name.mpf", "NC341"),
     ("axname-axis-by-name.mpf", "NC632"),
     ("call-numbered-program-name.mpf", "NC303"),

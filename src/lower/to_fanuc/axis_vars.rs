@@ -386,7 +386,7 @@ fn item(ctx: &mut Ctx, f: &Facts, it: &mut Item) {
         ItemKind::Assign { target, .. } => {
             if let VarKind::Named { name, indices } = &mut target.kind {
                 if f.fixed.contains_key(name.as_str()) && f.gud_strings.contains(name) {
-                    let what = format!("a write to {name}, which [variables] fixed says the set-up fixes");
+                    let what = format!("a write to {name} (a value [variables] fixed says the set-up fixes)");
                     let hint = "no program may write a value the set-up fixes: take it out of [variables] fixed, or the write out of the program";
                     ctx.unsupported(crate::dialect::fixed::WRITTEN, it.span, &what, hint);
                 } else if AXIS_INDEXED.contains(&name.as_str()) && indices.len() == 1 {
