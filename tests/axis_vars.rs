@@ -169,3 +169,15 @@ fn a_batch_names_the_set_up_values_in_each_verdict() {
     let report = std::fs::read_to_string(d.join("r.json")).unwrap();
     assert_eq!(report.matches("assumed from the set-up (variables.fixed): AXIS_HORI").count(), 2, "{report}");
 }
+
+#[test]
+fn an_unread_copy_of_a_set_up_letter_goes_and_a_read_one_stays_refused() {
+    let copy = "PROC COPY\nDEF STRING[1] HOR_NAME\nDEF AXIS AX_H\nHOR_NAME=AXIS_HORI ;name of the horizontal axis\nAX_H=AXNAME(AXIS_HORI)\nG1 AX[AX_H]=10 F100\nM17\n";
+    let d = library("copy", &[("COPY.SPF", copy)]);
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "COPY.SPF", "-o", "copy.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let out = std::fs::read_to_string(d.join("copy.nc")).unwrap();
+    assert!(out.contains("G01 Z10. F100.") && out.contains("(name of the horizontal axis)"), "{out}");
+    let read = copy.replace("G1 AX[AX_H]=10 F100", "G1 AX[AXNAME(HOR_NAME)]=10 F100");
+    let _ = refused("READ", &read, &["NC310"], "DEF STRING[1] HOR_NAME");
+}

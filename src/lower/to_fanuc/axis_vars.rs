@@ -5,7 +5,8 @@
 //! initial value, every assignment anywhere) is that same known axis, a write comes before
 //! every read on every path, and it is read only as an axis (`AX[v]`, `POS[v]`, `FGROUP(v)`,
 //! another AXIS variable's value). `G1 AX[v]=10` is then the word `Z10` the words pass writes
-//! as any Z word; the DEF and the assignments go. Where the axis is not known the reason is
+//! as any Z word; the DEF and the assignments go (so do a local STRING that only copies
+//! set-up values and is never read, and an AXIS variable nothing uses). Where the axis is not known the reason is
 //! said (NC542: two axes, a parameter, a read before any write; NC543: a global STRING no
 //! `[variables] fixed` entry gives, an axis the FANUC profile lacks; NC544: a program writes a
 //! fixed value); anything else keeps the general refusal (NC310 for the DEF, NC635 for AX[…]).
@@ -41,6 +42,9 @@ struct Facts<'a> {
     /// Local AXIS variables without initial value that the program neither reads nor
     /// writes: they change nothing the machine does, and go.
     unused: Vec<String>,
+    /// Local scalar STRING variables the program never reads, written only with set-up
+    /// values (`HORIZONTAL_AX=AXIS_HORI`): copies of axis names nothing uses, gone.
+    dead_strings: Vec<String>,
 }
 
 fn named(e: &Expr) -> Option<&str> {
@@ -306,6 +310,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
         known: BTreeMap::new(),
         refused: BTreeMap::new(),
         unused: Vec::new(),
+        dead_strings: Vec::new(),
     };
     let mut defs: Vec<DefVar> = Vec::new();
     each_item(&prog.body, &mut |it| {
@@ -315,6 +320,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
             }
         }
     });
+    f.dead_strings = dead_strings(&f, prog);
     let axis_vars: Vec<String> = defs.iter().map(|v| v.name.clone()).collect();
     for v in &defs {
         let mut written = false;
@@ -348,11 +354,43 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     rewrite(ctx, &f, &mut prog.body);
 }
 
+/// The local STRING variables that only copy set-up values (at least once) and are never read.
+fn dead_strings(f: &Facts, p: &Program) -> Vec<String> {
+    let mut strings: Vec<DefVar> = Vec::new();
+    each_item(&p.body, &mut |it| {
+        if let ItemKind::Def(d) = &it.kind {
+            if matches!(d.ty, DataType::String(_)) && d.scope.is_none() {
+                strings.extend(d.vars.iter().filter(|v| v.dims.is_empty()).cloned());
+            }
+        }
+    });
+    let copied = |e: &Expr| named(e).is_some_and(|n| f.fixed.contains_key(n) && f.gud_strings.iter().any(|g| g == n));
+    strings
+        .into_iter()
+        .filter(|v| {
+            let mut ok = v.init.as_ref().is_none_or(|i| matches!(i, Init::Value(e) if copied(e)));
+            let mut writes = usize::from(v.init.is_some());
+            each_item(&p.body, &mut |it| {
+                if let ItemKind::Assign { target, value } = &it.kind {
+                    if matches!(&target.kind, VarKind::Named { name, .. } if *name == v.name) {
+                        ok &= is_write_of(it, &v.name) && copied(value);
+                        writes += 1;
+                    }
+                }
+            });
+            crate::ir::visit::walk_stmts(&p.body, &mut |s| {
+                ok &= !matches!(&s.kind, StmtKind::For(x) if matches!(&x.var.kind, VarKind::Named { name, .. } if *name == v.name));
+            });
+            ok && writes > 0 && p.body.iter().all(|s| stmt_uses(s, &v.name) == 0)
+        })
+        .map(|v| v.name)
+        .collect()
+}
+
 fn rewrite(ctx: &mut Ctx, f: &Facts, body: &mut Vec<Stmt>) {
     let gone = |it: &Item| match &it.kind {
-        ItemKind::Assign { target, .. } => {
-            matches!(&target.kind, VarKind::Named { name, indices } if indices.is_empty() && f.known.contains_key(name))
-        }
+        ItemKind::Assign { target, .. } => matches!(&target.kind, VarKind::Named { name, indices }
+            if indices.is_empty() && (f.known.contains_key(name) || f.dead_strings.contains(name))),
         ItemKind::Def(d) => d.vars.is_empty(),
         _ => false,
     };
@@ -382,6 +420,9 @@ fn item(ctx: &mut Ctx, f: &Facts, it: &mut Item) {
         ItemKind::Frame { words, .. } => words.iter_mut().for_each(|w| word(ctx, f, w)),
         ItemKind::Def(d) if d.ty == DataType::Axis && d.scope.is_none() => {
             d.vars.retain(|v| !f.known.contains_key(&v.name) && !f.unused.contains(&v.name));
+        }
+        ItemKind::Def(d) if matches!(d.ty, DataType::String(_)) && d.scope.is_none() => {
+            d.vars.retain(|v| !f.dead_strings.contains(&v.name));
         }
         ItemKind::Assign { target, .. } => {
             if let VarKind::Named { name, indices } = &mut target.kind {
