@@ -676,6 +676,8 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     } else {
         Verdict::Equivalent { events: index }
     };
+    // The set-up values either run read (`[variables] fixed`): the verdict names them.
+    excluded.assumed = crate::dialect::fixed::assumed_in(outcome_a.diags.iter().chain(&outcome_b.diags));
     CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b, called: vec![] }
 }
 

@@ -98,3 +98,16 @@ fn gud_var(map: &SymbolMap, lhs: &str) -> Option<u32> {
     let home = map.vars.iter().find(|m| m.program.is_none() && m.source == format!("{name} (global user data)"));
     home.filter(|_| scalar).map(|m| m.number)
 }
+
+/// The Siemens side's profile with the set-up values the translation assumed
+/// (`[variables] fixed`), so its run rests on them as the output does.
+pub(super) fn with_fixed(s: Option<crate::dialect::Semantics>, map: &SymbolMap) -> Option<crate::dialect::Semantics> {
+    if map.fixed.is_empty() {
+        return s;
+    }
+    let mut s = s.unwrap_or_else(|| crate::dialect::Semantics::default_for(crate::dialect::Dialect::Sinumerik));
+    let mut fixed = (*s.fixed).clone();
+    fixed.extend(map.fixed.clone());
+    s.fixed = std::sync::Arc::new(fixed);
+    Some(s)
+}

@@ -118,6 +118,10 @@ pub struct SymbolMap {
     /// The H and D registers of each Siemens cutting edge the translation used
     /// (`[offsets]`), so that a check's `$TC_DP` inputs reach the same FANUC registers.
     pub offsets: crate::dialect::offsets::OffsetMap,
+    /// The values of `[variables] fixed` the translation rests on (an axis letter it wrote
+    /// for `AXNAME(AXIS_HORI)`): the Siemens side of a check starts with them, and every
+    /// verdict names them.
+    pub fixed: BTreeMap<String, String>,
 }
 
 impl SymbolMap {
@@ -235,6 +239,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
+    let mut fixed_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
         crate::lower::own_header::drop_own_header(&mut p);
         if is_sub {
@@ -251,6 +256,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
             units_follow_text = !ctx.units_inexact;
         }
         tools_used.extend(ctx.tools_used);
+        fixed_used.extend(ctx.fixed_used);
         unsupported += ctx.unsupported;
         diags.extend(ctx.diags);
         lowered.push((p, info, file, name));
@@ -280,6 +286,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         haas_ngc: opts.target.haas_ngc,
         macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
+        fixed: fixed_used,
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -355,6 +362,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.edge_default = opts.source.cutting_edge_default;
     ctx.globals = opts.source.globals.clone();
     ctx.master_spindle = opts.source.master_spindle;
+    ctx.fixed = opts.source.fixed.clone();
     ctx
 }
 
@@ -475,6 +483,7 @@ pub fn verify<'a>(
             Some(s)
         }
     };
+    let sinumerik = inputs::with_fixed(sinumerik, map);
     let fanuc = target_semantics(fanuc, map);
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
