@@ -60,6 +60,10 @@ pub struct CheckReport {
     pub diff: String,
     pub outcome_a: Outcome,
     pub outcome_b: Outcome,
+    /// The programs the first run found outside its own file (`O9100`, `DRILL`), when the
+    /// proof recorded them (`translate::called::Reached`): what a caller's proof ran of the
+    /// library.
+    pub called: Vec<String>,
 }
 
 /// One event as a check carries it: a move on the grid as its integers (copied without
@@ -672,7 +676,9 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     } else {
         Verdict::Equivalent { events: index }
     };
-    CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b }
+    // The set-up values either run read (`[variables] fixed`): the verdict names them.
+    excluded.assumed = crate::dialect::fixed::assumed_in(outcome_a.diags.iter().chain(&outcome_b.diags));
+    CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b, called: vec![] }
 }
 
 #[cfg(test)]

@@ -96,6 +96,9 @@ pub struct Config {
     pub var_map_to_fanuc: Vec<String>,
     /// `--var-map` rules for FANUC → Sinumerik (`#500-#599=R100`).
     pub var_map_to_sinumerik: Vec<String>,
+    /// `[variables] fixed`, `--fixed NAME=VALUE`: Siemens STRING global user data the
+    /// machine's set-up fixes (`AXIS_HORI = "Z"`), upper-case names (`Semantics::fixed`).
+    pub fixed: BTreeMap<String, String>,
     /// `--tool-map NAME=n`.
     pub tools: BTreeMap<String, u32>,
     /// `--program-map NAME=9001` (Sinumerik → FANUC).
@@ -156,6 +159,7 @@ impl Default for Config {
             definitions: vec![],
             var_map_to_fanuc: vec![],
             var_map_to_sinumerik: vec![],
+            fixed: BTreeMap::new(),
             tools: BTreeMap::new(),
             programs_to_fanuc: BTreeMap::new(),
             programs_to_sinumerik: BTreeMap::new(),
@@ -182,7 +186,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 38] = [
+pub const KEYS: [(&str, &str, &str); 39] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -205,6 +209,11 @@ pub const KEYS: [(&str, &str, &str); 38] = [
     ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
+    (
+        "variables.fixed",
+        "--fixed",
+        "a table of NAME = \"text\" (STRING global user data the set-up fixes, like AXIS_HORI = \"Z\")",
+    ),
     ("tools", "--tool-map", "a table of \"TOOL NAME\" = T number"),
     ("programs.l_numbers", "--l-numbers", "true or false"),
     ("programs.to_fanuc", "--program-map", "a table of \"SIEMENS_NAME\" = O number"),
@@ -364,6 +373,7 @@ impl Config {
             "sinumerik.definitions" => self.definitions.extend(list(key, v)?.into_iter().map(PathBuf::from)),
             "variables.to_fanuc" => self.var_map_to_fanuc.extend(list(key, v)?),
             "variables.to_sinumerik" => self.var_map_to_sinumerik.extend(list(key, v)?),
+            "variables.fixed" => self.fixed.extend(crate::dialect::fixed::table(key, v)?),
             "tools" => {
                 let t = tool_table(v, key).map_err(|e| format!("{e} (allowed: {})", allowed(key)))?;
                 self.tools.extend(t);
@@ -455,13 +465,13 @@ impl Config {
     /// `NAME=VALUE` pairs fill tables, everything else is a string.
     pub fn set_flag(&mut self, key: &str, text: &str) -> Result<(), String> {
         let v = match key {
-            "tools" | "programs.to_fanuc" | "programs.to_sinumerik" => {
+            "tools" | "programs.to_fanuc" | "programs.to_sinumerik" | "variables.fixed" => {
                 let (k, val) = text
                     .split_once('=')
                     .ok_or_else(|| format!("{key}: '{text}': expected NAME=VALUE ({})", allowed(key)))?;
                 let val = val.trim();
                 let val = match val.parse::<i64>() {
-                    Ok(n) if key != "programs.to_sinumerik" => toml::Value::Integer(n),
+                    Ok(n) if !matches!(key, "programs.to_sinumerik" | "variables.fixed") => toml::Value::Integer(n),
                     _ => toml::Value::String(val.to_string()),
                 };
                 let mut t = toml::Table::new();
@@ -512,6 +522,7 @@ impl Config {
         s.offsets = self.offsets.clone();
         s.cutting_edge_default = self.cutting_edge_default;
         s.write_file = self.write_file.clone();
+        s.fixed = std::sync::Arc::new(self.fixed.clone());
         s
     }
 
@@ -595,6 +606,10 @@ definitions = []
 # -> R parameters. Every rule is checked for collisions and range.
 to_fanuc = []        # e.g. ["R0-R99=#100", "COUNT=#150"]
 to_sinumerik = []    # e.g. ["#500-#599=R100"]
+# STRING global user data the set-up fixes and no program writes (the axis letters of a .DEF
+# file): runs start with them, a write is refused (NC544), to FANUC AXNAME(AXIS_HORI) is that
+# letter, and every verdict names the values it assumed. (--fixed NAME=VALUE)
+fixed = {}           # e.g. { AXIS_HORI = "Z", AXIS_VER = "X" }
 
 [tools]
 # Siemens tool names -> FANUC T numbers (--tool-map NAME=n). A name not listed is refused

@@ -379,7 +379,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("address-numbered.mpf", "NC312"),           // I1= and CIP
     ("arc-radius-angle.mpf", "NC312"),           // AR=
     ("assign-undeclared-name.mpf", "NC313"),     // E=AC() on a non-axis address
-    ("axis-indirect-ax.mpf", "NC310"),           // DEF AXIS, AX[…] with a run-time axis
+    ("axis-indirect-ax.mpf", "NC445"),           // TRANS after an IC() move (its AX[…] axes are known)
     ("axname-axis-by-name.mpf", "NC310"),        // DEF STRING, AXNAME
     ("call-bare-name.mpf", "NC303"),             // a call of a program not in the library
     ("call-l-number.mpf", "NC303"),              // L0123 / L123 not in the library

@@ -155,3 +155,83 @@ fn check_reads_both_sides_with_the_library_definitions() {
     assert_eq!(code, 0, "{err}");
     assert!(format!("{out}{err}").contains("equivalent"), "{out}{err}");
 }
+
+/// A part that reads global user data with a `.DEF` start value (DEPTH) and without one (OFS).
+const SEEDED_DEF: &str = "DEF NCK REAL DEPTH=5\nDEF NCK REAL OFS\nM30\n";
+const SEEDED: &str = "G54 G90 G17\nG0 X0 Y0 Z50\nG1 Z=-DEPTH F100\nG1 X=OFS\nG0 Z50\nM30\n";
+
+/// `nctrans check` of a Siemens program against its FANUC translation starts the commons
+/// holding the global user data as the translation's proof does, and says so.
+#[test]
+fn check_seeds_the_fanuc_commons_of_global_user_data_as_the_proof_does() {
+    let d = workdir("gud", "check_seeds");
+    std::fs::write(d.join("MGUD.DEF"), SEEDED_DEF).unwrap();
+    std::fs::write(d.join("PART.MPF"), SEEDED).unwrap();
+    let (_, err, code) =
+        nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "part.nc", "--var-map", "DEPTH=#600,OFS=#601"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    // The proof's verdict is check's: the homes come from the output's own header.
+    let (out, err, code) = nctrans(&d, &["check", "PART.MPF", "part.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.starts_with("equivalent ("), "{out}");
+    assert!(out.contains("global user data started on FANUC") && out.contains("DEPTH #600=5, OFS #601=0"), "{out}");
+    // Either order.
+    let (out, _, code) = nctrans(&d, &["check", "part.nc", "PART.MPF"]);
+    assert_eq!(code, 0, "{out}");
+    // A planted wrong translation (DEPTH read where OFS lives) is still caught.
+    let text = std::fs::read_to_string(d.join("part.nc")).unwrap();
+    std::fs::write(d.join("wrong.nc"), text.replace("G01 X#601", "G01 X#600")).unwrap();
+    let (out, _, code) = nctrans(&d, &["check", "PART.MPF", "wrong.nc"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.starts_with("diverged at trace event 4") && out.contains("assumed: global user data"), "{out}");
+}
+
+/// The same two programs, differing only in whether the FANUC side's commons are seeded:
+/// without any rule placing DEPTH the commons start vacant (divergent); with the project's
+/// `[variables] to_fanuc` rule, or a `--map` file's, they start at the definition's value.
+#[test]
+fn check_seeds_only_where_a_rule_places_the_global_user_data() {
+    let d = workdir("gud", "check_rules");
+    std::fs::write(d.join("MGUD.DEF"), SEEDED_DEF).unwrap();
+    std::fs::write(d.join("PART.MPF"), SEEDED).unwrap();
+    let (_, err, code) =
+        nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "part.nc", "--var-map", "DEPTH=#600,OFS=#601"]);
+    assert_eq!(code, 0, "{err}");
+    // A hand-kept copy without the translation's header lines.
+    let text = std::fs::read_to_string(d.join("part.nc")).unwrap();
+    let bare: String = text.lines().filter(|l| !l.contains("global user data")).map(|l| format!("{l}\n")).collect();
+    std::fs::write(d.join("bare.nc"), &bare).unwrap();
+    let (out, _, code) = nctrans(&d, &["check", "PART.MPF", "bare.nc"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(!out.contains("assumed"), "{out}");
+    // The project's rule places them.
+    std::fs::write(d.join("nctrans.toml"), "[variables]\nto_fanuc = [\"DEPTH=#600\", \"OFS=#601\"]\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["check", "PART.MPF", "bare.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DEPTH #600=5"), "{out}");
+    // So do a map file's rules.
+    std::fs::remove_file(d.join("nctrans.toml")).unwrap();
+    std::fs::write(d.join("map.toml"), "[variables]\nrules = [\"DEPTH=#600\", \"OFS=#601\"]\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["check", "PART.MPF", "bare.nc", "--map", "map.toml"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DEPTH #600=5"), "{out}");
+}
+
+/// A program's `nctrans: set` line for global user data reaches the FANUC side of the proof
+/// (and the output's own header), so the proof does not call a right translation wrong.
+#[test]
+fn a_set_line_for_global_user_data_reaches_the_fanuc_side() {
+    let d = workdir("gud", "set_line");
+    std::fs::write(d.join("MGUD.DEF"), SEEDED_DEF).unwrap();
+    std::fs::write(d.join("PART.MPF"), format!("; nctrans: set DEPTH=7\n{SEEDED}")).unwrap();
+    let (_, err, code) =
+        nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "part.nc", "--var-map", "DEPTH=#600,OFS=#601"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent"), "{err}");
+    let text = std::fs::read_to_string(d.join("part.nc")).unwrap();
+    assert!(text.contains("(nctrans: set #600=7)"), "{text}");
+    let (out, err, code) = nctrans(&d, &["check", "PART.MPF", "part.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DEPTH #600=5") && out.contains("own inputs set #600=7"), "{out}");
+}

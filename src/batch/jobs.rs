@@ -399,8 +399,9 @@ impl<T: super::streamed::Streams> FileJob for Job<T> {
             return outcome;
         }
         if ctx.options.verify {
-            let v = self.verify(&mut input, &t);
+            let (v, reached) = self.verify(&mut input, &t);
             apply(&mut outcome, v);
+            outcome.calls = call_proof::<T>(&t, own, reached, outcome.status, (file.index, &ctx.library));
         }
         outcome
     }
@@ -409,7 +410,7 @@ impl<T: super::streamed::Streams> FileJob for Job<T> {
 impl<T: Target> Job<T> {
     /// Proves the translation `t` through `translate::verify`, with the batch's profiles,
     /// `--set` and library (each program also runs with the arguments its callers pass).
-    fn verify(&self, input: &mut Input, t: &Translation) -> Verified {
+    fn verify(&self, input: &mut Input, t: &Translation) -> (Verified, BTreeSet<String>) {
         let (file, ctx, s) = (input.file, input.ctx, &self.settings);
         let out = match t.main() {
             Some(f) if T::ONE_FILE => T::output(&file.rel, f),
@@ -425,6 +426,16 @@ impl<T: Target> Job<T> {
         };
         let units: Vec<&Unit> = std::iter::once(&input.main).chain(&input.subs).map(|l| &l.unit).collect();
         let v = translate::verify(&mut input.db, &units, t, &super::rel_string(&out), opts);
+        let reached = v
+            .runs
+            .iter()
+            .filter(|(_, r)| matches!(r.verdict, Verdict::Equivalent { .. }))
+            .flat_map(|(_, r)| r.called.iter().cloned())
+            .collect();
+        (self.verified(input, v), reached)
+    }
+
+    fn verified(&self, input: &Input, v: translate::Verification) -> Verified {
         if !v.unreadable.is_empty() {
             return Verified {
                 status: Status::Diverged,
@@ -446,4 +457,62 @@ impl<T: Target> Job<T> {
         }
         combine(v.runs)
     }
+}
+
+/// What a file's proof ran of the library (see [`super::CallProof`]): the programs of other
+/// files its equivalent runs called, the fingerprints of every program its translation held
+/// and of its own, and whether it waits for its callers: its runs alone were inconclusive
+/// (not divergent) and every program of the file is called by another file.
+fn call_proof<T: Target>(
+    t: &Translation,
+    own: FileId,
+    reached: BTreeSet<String>,
+    status: super::Status,
+    (index, lib): (usize, &crate::translate::library::Library),
+) -> super::CallProof {
+    let fanuc = T::DIALECT == Dialect::Fanuc;
+    let programs = lib.files.get(index).map_or(&[][..], |f| &f.programs[..]);
+    let called_elsewhere = |k: &Option<crate::translate::library::ProgKey>| {
+        k.as_ref().is_some_and(|k| lib.calls.iter().any(|c| c.file != index && &c.target == k))
+    };
+    let waits = status == Status::Inconclusive && !programs.is_empty() && programs.iter().all(called_elsewhere);
+    super::CallProof {
+        reached: if status == Status::Verified { reached } else { BTreeSet::new() },
+        ran: fingerprints(t.files.iter(), fanuc),
+        waits,
+        own: fingerprints(t.files.iter().filter(|f| f.source == own), fanuc),
+    }
+}
+
+/// Each translated program of `files` by its target name, with a fingerprint of its text
+/// without comment lines (a program's header says which file it was translated for). A
+/// FANUC file holds several programs, each from its `O` line.
+fn fingerprints<'a>(files: impl Iterator<Item = &'a OutFile>, fanuc: bool) -> Vec<(String, u64)> {
+    use std::hash::{Hash, Hasher};
+    let print = |body: &str| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        body.hash(&mut h);
+        h.finish()
+    };
+    let mut out = Vec::new();
+    for f in files {
+        let (mut key, mut body) = (f.program.clone(), String::new());
+        for line in f.text.lines().map(str::trim) {
+            let o_line = line.strip_prefix('O').map(|r| r.split(|c: char| !c.is_ascii_digit()).next().unwrap_or(""));
+            if let Some(n) = o_line.filter(|n| fanuc && !n.is_empty()).and_then(|n| n.parse::<u32>().ok()) {
+                if !body.is_empty() {
+                    out.push((key, print(&body)));
+                }
+                (key, body) = (crate::translate::library::ProgKey::Number(n).to_string(), String::new());
+                continue;
+            }
+            let comment = (line.starts_with('(') && line.ends_with(')')) || line.starts_with(';');
+            if !(line.is_empty() || line == "%" || comment) {
+                body.push_str(line);
+                body.push('\n');
+            }
+        }
+        out.push((key, print(&body)));
+    }
+    out
 }

@@ -15,6 +15,7 @@
 //! `check`, `gud`, `same_file`, `lower`, `eval`, `dialect`, `ir`, base; never the command
 //! line (`tests/layering.rs`).
 
+mod callers;
 pub mod discover;
 pub mod jobs;
 pub mod maps;
@@ -188,6 +189,24 @@ pub struct FileOutcome {
     /// as it was made, too large to hold): the path relative to the output folder and the
     /// staged file ([`write::staged_path`]). Committed like `outputs`, or removed.
     pub staged: Vec<(PathBuf, PathBuf)>,
+    /// What the file's proof ran of the library, and whether it waits for its callers'
+    /// (`run`: a program that cannot run alone, proven in its callers' runs).
+    pub calls: CallProof,
+}
+
+/// A file's proof as its callers' proofs see it (see [`FileOutcome::calls`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CallProof {
+    /// The programs of other files its equivalent runs called (`O9100`, `DRILL`).
+    pub reached: std::collections::BTreeSet<String>,
+    /// Every translated program its translation held, by target name, with a fingerprint
+    /// of its text (comment lines left out): what those runs ran.
+    pub ran: Vec<(String, u64)>,
+    /// The file's runs alone were not conclusive (no divergence) and every program of it
+    /// is called by another file: its outputs wait for its callers' verdicts.
+    pub waits: bool,
+    /// The fingerprints of the file's own translated programs (as in `ran`).
+    pub own: Vec<(String, u64)>,
 }
 
 impl FileOutcome {
@@ -202,6 +221,7 @@ impl FileOutcome {
             summary: summary.into(),
             used: maps::Used::default(),
             staged: vec![],
+            calls: CallProof::default(),
         }
     }
 }

@@ -270,7 +270,9 @@ pub fn run_batch(
         let outcome = crate::check::in_one_thread(|| job.run(f, &ctx));
         let mut staged = Vec::new();
         let mut stage_error = None;
-        if outcome.status.writes_output() {
+        // A file waiting for its callers' verdicts (`callers`) is staged as one to write.
+        let writes = outcome.status.writes_output() || outcome.calls.waits;
+        if writes {
             for o in &outcome.outputs {
                 match writer.stage(&o.bytes) {
                     Ok(s) => staged.push((o.rel.clone(), s)),
@@ -283,7 +285,7 @@ pub fn run_batch(
         }
         // Outputs the job wrote itself (streamed): staged already; removed when not kept.
         for (rel, path) in &outcome.staged {
-            if !outcome.status.writes_output() || stage_error.is_some() {
+            if !writes || stage_error.is_some() {
                 let _ = std::fs::remove_file(path);
                 continue;
             }
@@ -304,8 +306,19 @@ pub fn run_batch(
     let mut done = 0usize;
     let mut failures = 0usize;
     let mut used_in_order: Vec<(usize, maps::Used)> = Vec::new();
-    let mut commit = |k: usize, result: Option<_>, records: &mut Vec<Option<FileRecord>>| {
+    // Each committed file's status and proof, for the files that wait for their callers.
+    let mut proofs: HashMap<usize, (Status, CallProof)> = HashMap::new();
+    let mut waiting = Vec::new();
+    let mut commit = |k: usize,
+                      result: Option<(FileOutcome, _, _, _)>,
+                      records: &mut Vec<Option<FileRecord>>,
+                      (proofs, waiting): (&mut HashMap<usize, (Status, CallProof)>, &mut Vec<_>)| {
         let f = &runnable[k];
+        if result.as_ref().is_some_and(|r| r.0.calls.waits) {
+            waiting.push((k, result));
+            return;
+        }
+        let proof = result.as_ref().map(|r| r.0.calls.clone()).unwrap_or_default();
         let rec = match result {
             None => error_record(
                 f,
@@ -318,6 +331,7 @@ pub fn run_batch(
                 rec
             }
         };
+        proofs.insert(f.index, (rec.status, proof));
         done += 1;
         if rec.status.is_failure() {
             failures += 1;
@@ -328,14 +342,34 @@ pub fn run_batch(
     parallel(&runnable, jobs, &cancel, &work, &mut |k, r| {
         pending.insert(k, r);
         while let Some(r) = pending.remove(&next_commit) {
-            commit(next_commit, r, &mut records);
+            commit(next_commit, r, &mut records, (&mut proofs, &mut waiting));
             next_commit += 1;
         }
     });
     // Stopped: commit what finished after a hole, still in order.
     let cancelled = cancel.load(Ordering::SeqCst) && (next_commit < total || !pending.is_empty());
     for (k, r) in std::mem::take(&mut pending) {
-        commit(k, r, &mut records);
+        commit(k, r, &mut records, (&mut proofs, &mut waiting));
+    }
+    // The files that wait for their callers, now that those are committed.
+    let names = |i: usize| files.get(i).map_or_else(String::new, |f| rel_string(&f.rel));
+    for (k, r) in std::mem::take(&mut waiting) {
+        let Some(mut r) = r else { continue };
+        let f = &runnable[k];
+        r.0.calls.waits = false;
+        match callers::proven_by_callers(f.index, &r.0.calls, &ctx.library, &proofs, &names) {
+            Some(summary) => {
+                r.0.summary = format!("{summary} (alone: {})", r.0.summary);
+                r.0.status = Status::Verified;
+                // The run alone's findings stay, as notes: they say why it is not its proof.
+                for d in &mut r.0.diagnostics {
+                    d.severity = "note";
+                    d.message = format!("alone: {}", d.message);
+                }
+            }
+            None => r.0.outputs.clear(),
+        }
+        commit(k, Some(r), &mut records, (&mut proofs, &mut waiting));
     }
 
     // 5. The map file: the batch's maps plus what the translations used.

@@ -352,6 +352,7 @@ pub(crate) fn failed(diags: Vec<Diagnostic>) -> CheckReport {
         diff: String::new(),
         outcome_a: none(),
         outcome_b: none(),
+        called: vec![],
     }
 }
 

@@ -23,6 +23,10 @@ pub struct Excluded {
     /// enabled (warning NC566, once per assigning instruction): they did not run, so
     /// what they do was not compared.
     pub interrupts: u64,
+    /// The set-up values the runs read (`[variables] fixed`: `AXIS_HORI = "Z"`, from the
+    /// runs' NC543 notes): compared, but true only on a machine set up so. Not "left out",
+    /// so not in [`Excluded::describe`]; every verdict line ([`Excluded::equivalent`]) names them.
+    pub assumed: Option<&'static str>,
 }
 
 impl Excluded {
@@ -34,6 +38,7 @@ impl Excluded {
         self.messages += other.messages;
         self.modes += other.modes;
         self.interrupts += other.interrupts;
+        self.assumed = crate::dialect::fixed::joined(self.assumed, other.assumed);
     }
 
     /// What was not compared, for people: `2 messages kept as comments`, `1 look-ahead
@@ -61,9 +66,9 @@ impl Excluded {
     /// The verdict line of an equivalence: `equivalent (12 events)`,
     /// `equivalent (12 events; 2 messages kept as comments)`; `detail` is what was compared.
     pub fn equivalent(&self, detail: &str) -> String {
-        match self.describe() {
-            Some(d) => format!("equivalent ({detail}; {d})"),
-            None => format!("equivalent ({detail})"),
-        }
+        let mut parts: Vec<String> = vec![detail.to_string()];
+        parts.extend(self.describe());
+        parts.extend(self.assumed.map(|a| format!("assumed from the set-up (variables.fixed): {a}")));
+        format!("equivalent ({})", parts.join("; "))
     }
 }

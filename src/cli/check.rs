@@ -3,7 +3,11 @@
 //! nctrans-map.toml`, the names a translation used, so a Siemens program and its FANUC
 //! translation can be checked again later exactly as the translation was verified (tool
 //! names read as their T numbers, a `MSG` the translation wrote as a comment left out,
-//! mapped R parameters starting at 0 on FANUC).
+//! mapped R parameters starting at 0 on FANUC). A Siemens program checked against a FANUC
+//! one starts the commons holding its global user data as the translation's proof does
+//! (`gud`), and the verdict says so.
+
+mod gud;
 
 use super::args::{load_for_run, EvalOpts, InputOpts};
 use super::stream::{self, Source};
@@ -35,6 +39,8 @@ pub struct Names {
     tools: BTreeMap<String, u32>,
     /// FANUC variables R parameters were mapped to (`R1` → 501).
     r_vars: Vec<u32>,
+    /// The map's `--var-map` rules (where global user data went).
+    rules: Vec<String>,
 }
 
 impl MapOpts {
@@ -50,6 +56,7 @@ impl MapOpts {
             tools.extend(nctrans::config::Config::load(project)?.tools);
         }
         let mut r_vars = Vec::new();
+        let mut rules = Vec::new();
         if let Some(p) = &self.map {
             let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
             let (maps, target) = nctrans::batch::maps::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?;
@@ -60,6 +67,7 @@ impl MapOpts {
                 ));
             }
             tools.extend(maps.tools);
+            rules = maps.var_rules;
             for (source, target) in &maps.variables {
                 let is_r = source.strip_prefix('R').is_some_and(|n| n.parse::<u32>().is_ok());
                 if let (true, Some(n)) = (is_r, target.strip_prefix('#').and_then(|n| n.parse().ok())) {
@@ -72,7 +80,7 @@ impl MapOpts {
             let n: u32 = n.trim().parse().map_err(|_| format!("--tool-map '{m}': expected a T number after ="))?;
             tools.insert(name.trim().to_string(), n);
         }
-        Ok(Some(Names { tools, r_vars }))
+        Ok(Some(Names { tools, r_vars, rules }))
     }
 }
 
@@ -126,37 +134,62 @@ pub fn check(
     // Each side is streamed when it is large (or --stream), else read whole. A streamed
     // side's source (a decoded copy for a legacy encoding) lives until the check has run.
     let mut streamed: Vec<(usize, Source)> = Vec::new();
-    let mut runners = Vec::new();
+    let mut sides: Vec<Result<check::Runner, (nctrans::ir::Unit, nctrans::eval::RunOptions)>> = Vec::new();
     for (path, from) in [(a, from_a), (b, from_b)] {
         let id = db.len();
         let side = stream::wanted(path, input).then(|| side(&mut db, path, from, eval, input.encoding)).flatten();
-        let runner = match side {
+        sides.push(match side {
             Some(Ok((r, src))) => {
                 streamed.push((id, src));
-                r
+                Ok(r)
             }
             Some(Err(code)) => return code,
             None => match load_for_run(&mut db, path, from, eval, input) {
-                Ok((unit, run)) => {
-                    let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
-                    Side { unit, callees, run }.runner()
-                }
+                Ok(whole) => Err(whole),
                 Err(code) => return code,
             },
-        };
-        runners.push(runner);
+        });
     }
-    let (Some(rb), Some(ra)) = (runners.pop(), runners.pop()) else {
+    let seeded = match (&mut sides[..], [a, b]) {
+        ([Err(x), Err(y)], paths) => seed(&db, [x, y], paths, &[]),
+        _ => None,
+    };
+    let mut runners = sides.into_iter().map(|s| {
+        s.unwrap_or_else(|(unit, run)| {
+            let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+            Side { unit, callees, run }.runner()
+        })
+    });
+    let (Some(ra), Some(rb)) = (runners.next(), runners.next()) else {
         return ExitCode::from(2);
     };
     let report = check::check_runners(&db, ra, rb);
     let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
-    check_verdict(&report)
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
 }
 
-/// Prints a check's verdict; its exit code.
-fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
+/// A Siemens side against a FANUC one, both read whole: the FANUC side's commons of global
+/// user data get their start values (`gud::seeding`); what was assumed, for the verdict.
+fn seed(
+    db: &SourceDb,
+    [x, y]: [&mut (nctrans::ir::Unit, nctrans::eval::RunOptions); 2],
+    [px, py]: [&PathBuf; 2],
+    map_rules: &[String],
+) -> Option<gud::Seeded> {
+    let ((siemens, path), fanuc) = match (x.0.dialect, y.0.dialect) {
+        (Dialect::Sinumerik, Dialect::Fanuc) => ((&*x, px), y),
+        (Dialect::Fanuc, Dialect::Sinumerik) => ((&*y, py), x),
+        _ => return None,
+    };
+    let sem = siemens.1.semantics.as_ref()?;
+    let mut seeded = gud::seeding(&siemens.0, path, sem, &db.get(fanuc.0.file).text, map_rules)?;
+    seeded.give(&mut fanuc.1.inputs);
+    Some(seeded)
+}
+
+/// Prints a check's verdict, with what the runs assumed (`assumed`); its exit code.
+fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>) -> ExitCode {
     use nctrans::check::Verdict;
     // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
     // (NC387): a program that ran one may apply another length than the other, unseen.
@@ -167,38 +200,50 @@ fn check_verdict(report: &nctrans::check::CheckReport) -> ExitCode {
     // the run's assumption, not a sourced fact, so a trace resting on it proves nothing.
     let tapped_turning = report.diags.iter().any(|d| d.code == nctrans::eval::cycles::fanuc::RIGID_TURNING);
     let diff = &report.diff;
+    // What the runs assumed goes with every verdict: inside an equivalence's parentheses,
+    // else on a line of its own after the verdict.
+    let println = |line: String| {
+        println!("{line}");
+        if let Some(a) = assumed {
+            println!("assumed: {a}");
+        }
+    };
     match &report.verdict {
         Verdict::Equivalent { events } if tapped_turning => {
-            println!(
+            println(format!(
                 "inconclusive: {events} trace events agree, but the spindle after rigid tapping from a turning spindle (NC592) is not settled"
-            );
+            ));
             ExitCode::from(4)
         }
         Verdict::Equivalent { events } if unprinted && !compensates => {
-            println!("inconclusive: {events} trace events agree, but output whose text is not modelled (NC554) is not compared");
+            println(format!("inconclusive: {events} trace events agree, but output whose text is not modelled (NC554) is not compared"));
             ExitCode::from(4)
         }
         Verdict::Equivalent { events } if compensates => {
-            println!(
+            println(format!(
                 "inconclusive: {events} trace events agree, but tool compensation (G44, ISO-mode G43/G44/G49) is not compared"
-            );
+            ));
             ExitCode::from(4)
         }
         Verdict::Equivalent { events } => {
-            println!("{}", report.excluded.equivalent(&format!("{events} trace events agree")));
+            let detail = match assumed {
+                Some(a) => format!("{events} trace events agree; {a}"),
+                None => format!("{events} trace events agree"),
+            };
+            println!("{}", report.excluded.equivalent(&detail));
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
-            println!("diverged at trace event {}", index + 1);
+            println(format!("diverged at trace event {}", index + 1));
             print!("{diff}");
             ExitCode::from(1)
         }
         Verdict::Inconclusive { reason } => {
-            println!("inconclusive: {reason}");
+            println(format!("inconclusive: {reason}"));
             ExitCode::from(4)
         }
         Verdict::Failed => {
-            println!("failed: a program could not be evaluated");
+            println("failed: a program could not be evaluated".to_string());
             ExitCode::from(1)
         }
     }
@@ -224,6 +269,10 @@ fn check_as_translation(
             Err(code) => return code,
         }
     }
+    let seeded = match &mut sides[..] {
+        [x, y] => seed(&db, [x, y], [a, b], &names.rules),
+        _ => None,
+    };
     let dialects: Vec<Dialect> = sides.iter().map(|(u, _)| u.dialect).collect();
     let cross = dialects[0] != dialects[1];
     let runners: Vec<_> = sides
@@ -264,7 +313,7 @@ fn check_as_translation(
     };
     let report = check::check_runners_excluding(&db, ra, rb, exclude);
     eprint!("{}", diag::render(&report.db, &report.diags));
-    check_verdict(&report)
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
 }
 
 /// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the

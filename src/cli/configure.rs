@@ -71,6 +71,9 @@ pub fn configure(t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> Result<Con
     for r in &t.tool_map {
         flag(&mut c, "tools", r, "--tool-map")?;
     }
+    for r in &t.fixed {
+        flag(&mut c, "variables.fixed", r, "--fixed")?;
+    }
     for r in &t.program_map {
         flag(&mut c, &format!("programs.{dir}"), r, "--program-map")?;
     }

@@ -14,6 +14,7 @@
 pub(crate) mod digits;
 pub mod empty;
 pub mod fanuc;
+pub mod fixed;
 pub mod limits;
 pub mod lit;
 pub(crate) mod numwrite;

@@ -87,6 +87,12 @@ pub struct Semantics {
     /// The file a FANUC `DPRNT` line is written to when translated to Siemens `WRITE`
     /// (`[sinumerik] write_file`): FANUC prints to the I/O channel, `WRITE` needs a file.
     pub write_file: String,
+    /// Siemens values the machine's set-up fixes and no program writes (`[variables] fixed`):
+    /// STRING global user data such as the axis letters a library's `.DEF` file declares
+    /// (`AXIS_HORI = "Z"`), upper-case names. The evaluator starts them at these values and
+    /// refuses a write to one (NC544); the translation to FANUC folds `AXNAME(AXIS_HORI)`
+    /// to that axis (`lower::to_fanuc::axis_vars`). Empty: nothing is assumed.
+    pub fixed: std::sync::Arc<std::collections::BTreeMap<String, String>>,
 }
 
 /// The default of [`Semantics::write_file`].
@@ -141,6 +147,7 @@ impl Semantics {
                 master_spindle: 0,
                 tools: Default::default(),
                 write_file: DEFAULT_WRITE_FILE.into(),
+                fixed: Default::default(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -166,6 +173,7 @@ impl Semantics {
                 master_spindle: 1,
                 tools: Default::default(),
                 write_file: DEFAULT_WRITE_FILE.into(),
+                fixed: Default::default(),
             },
         }
     }

@@ -227,6 +227,7 @@ impl Interp<'_> {
             }
             VarKind::Named { name, indices } => {
                 let p = self.place_of(name, indices, v.span)?;
+                self.refuse_fixed_write(&p, v.span)?;
                 self.write_place(&p, val, v.span)
             }
             VarKind::System { name, indices } => match super::tool_data::tc_dp(name) {
@@ -239,6 +240,45 @@ impl Interp<'_> {
                 None => self.sie_sys_write(name, indices, val, v.span),
             },
         }
+    }
+
+    /// A read of global user data the set-up fixes: the run rests on that value, and says so
+    /// once per name (a check's verdict names it, `check::Excluded::assumed`).
+    fn note_fixed_read(&mut self, p: &Place, span: Span) {
+        let Place::Named { frame: 0, name, .. } = p else { return };
+        let Some(value) = self.sem.fixed.get(name) else { return };
+        if !self.sem.globals.iter().any(|d| d.vars.iter().any(|v| v.name == *name)) {
+            return;
+        }
+        let msg = crate::dialect::fixed::note_message(name, value);
+        if !self.diags.iter().any(|d| d.message == msg) {
+            let file = self.file();
+            let d = Diagnostic::new(crate::diag::Severity::Note, crate::dialect::fixed::ASSUMED, msg).primary(
+                file,
+                span,
+                "read here",
+            );
+            self.diags.push(d);
+        }
+    }
+
+    /// A write to global user data the set-up fixes (`Semantics::fixed`): the run's
+    /// assumption that no program writes it would be false.
+    fn refuse_fixed_write(&self, p: &Place, span: Span) -> Result<(), Fault> {
+        let Place::Named { frame: 0, name, .. } = p else { return Ok(()) };
+        let global = || self.sem.globals.iter().any(|d| d.vars.iter().any(|v| v.name == *name));
+        if !self.sem.fixed.contains_key(name) || !global() {
+            return Ok(());
+        }
+        Err(Fault::error(
+            Diagnostic::error(
+                crate::dialect::fixed::WRITTEN,
+                format!("the program writes {name}, which the set-up fixes (variables.fixed)"),
+            )
+            .primary(self.file(), span, "written here")
+            .note("[variables] fixed says no program writes it; this run and the translation rest on that")
+            .hint(format!("take {name} out of [variables] fixed, or the write out of the program")),
+        ))
     }
 
     pub(super) fn define(&mut self, def: &crate::ir::Def) -> Result<(), Fault> {
@@ -257,6 +297,9 @@ impl Interp<'_> {
             } else {
                 None
             };
+            // Global user data the set-up fixes starts at that value (an input still wins).
+            let input =
+                input.or_else(|| def.scope.and_then(|_| self.sem.fixed.get(&dv.name)).map(|t| Value::Str(t.clone())));
             let conv = |v: Value, s: &Self| {
                 super::value::convert_for(def.ty, v)
                     .map_err(|_| Fault::alarm(s.alarms.domain, format!("bad start value for {}", dv.name), dv.span))
@@ -350,6 +393,7 @@ impl Env for Interp<'_> {
             }
             VarKind::Named { name, indices } => {
                 let p = self.place_of(name, indices, var.span)?;
+                self.note_fixed_read(&p, var.span);
                 self.read_place(&p, var.span)
             }
             VarKind::System { name, indices } => match super::tool_data::tc_dp(name) {

@@ -93,6 +93,7 @@ pub fn compare_excluding(a: StreamSide, b: StreamSide, exclude: check::Exclude) 
             diff: String::new(),
             outcome_a: none(),
             outcome_b: none(),
+            called: vec![],
         }
     })
 }

@@ -388,3 +388,48 @@ fn first_of(f: &OutFile, p: &crate::ir::Program) -> bool {
         None => f.fanuc_number.is_none(),
     }
 }
+
+/// The programs a run found through its callee source, recorded as it runs: what a caller's
+/// proof ran of the library (`CheckReport::called`), so that a program that cannot run alone
+/// may be proven in its callers' runs (`batch::run`).
+#[derive(Clone, Default)]
+pub struct Reached(std::sync::Arc<std::sync::Mutex<BTreeSet<ProgKey>>>);
+
+impl Reached {
+    /// `inner`, recording every program it finds.
+    pub fn wrap(&self, inner: Box<dyn CalleeSource + Send>) -> Box<dyn CalleeSource + Send> {
+        Box::new(Recording { inner, seen: self.clone() })
+    }
+
+    /// The programs found so far, as the library names them (`O9100`, `DRILL`).
+    pub fn names(&self) -> Vec<String> {
+        self.0.lock().map(|s| s.iter().map(ProgKey::to_string).collect()).unwrap_or_default()
+    }
+}
+
+struct Recording {
+    inner: Box<dyn CalleeSource + Send>,
+    seen: Reached,
+}
+
+impl CalleeSource for Recording {
+    fn find(
+        &mut self,
+        db: &mut SourceDb,
+        caller: FileId,
+        dialect: Dialect,
+        name: &CalleeName,
+    ) -> Result<Option<Unit>, Diagnostic> {
+        let found = self.inner.find(db, caller, dialect, name)?;
+        if found.is_some() {
+            let key = match name {
+                CalleeName::Number(n) => ProgKey::Number(*n),
+                CalleeName::Name(n) => ProgKey::Name(n.to_ascii_uppercase()),
+            };
+            if let Ok(mut s) = self.seen.0.lock() {
+                s.insert(key);
+            }
+        }
+        Ok(found)
+    }
+}

@@ -65,6 +65,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     haas_ngc: false,
     macro_interrupt: false,
     offsets: crate::dialect::offsets::OffsetMap { edges: BTreeMap::new() },
+    fixed: BTreeMap::new(),
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
 

@@ -22,6 +22,7 @@ mod fanuc_to_sinumerik;
 mod sinumerik_parse;
 mod streamed;
 mod to_fanuc;
+mod to_fanuc_axes;
 
 use std::path::PathBuf;
 

@@ -190,6 +190,7 @@ impl Streams for Fanuc {
     ) -> Result<[Side; 2], Box<CheckReport>> {
         let s = &job.settings;
         let mut b_in = translate::to_fanuc::r_param_homes(map);
+        b_in.extend(translate::to_fanuc::gud_seed_inputs(map));
         b_in.extend(translate::to_fanuc::fanuc_set_inputs(&s.set, map));
         let source_callees: Box<dyn CalleeSource + Send> = if subs.is_empty() {
             Box::new(NoCallees)

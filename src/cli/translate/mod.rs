@@ -46,6 +46,10 @@ pub struct TranslateArgs {
     /// Tool name → FANUC tool number: NAME=n (repeatable).
     #[arg(long = "tool-map", value_name = "NAME=N")]
     pub tool_map: Vec<String>,
+    /// A STRING global user datum the machine's set-up fixes: NAME=VALUE, e.g. AXIS_HORI=Z
+    /// (repeatable; `[variables] fixed`). Runs assume it, AXNAME(NAME) translates to that axis.
+    #[arg(long = "fixed", value_name = "NAME=VALUE")]
+    pub fixed: Vec<String>,
     /// Program map: to FANUC NAME=9001 (name → O number); to Sinumerik 9010=PROBE_X (repeatable).
     #[arg(long = "program-map", value_name = "NAME=N")]
     pub program_map: Vec<String>,

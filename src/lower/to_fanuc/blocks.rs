@@ -269,9 +269,12 @@ fn def_items(ctx: &mut Ctx, d: Def, span: Span, info: &mut ProgInfo, out: &mut V
     for v in d.vars {
         info.types.insert(v.name.clone(), (d.ty, v.dims.clone()));
         if matches!(d.ty, DataType::String(_) | DataType::Axis | DataType::Frame) {
-            let what = format!("DEF {} {}", d.ty, v.name);
-            let hint = "FANUC variables hold numbers only; rewrite the program without STRING/AXIS/FRAME variables";
-            marks.extend(ctx.unsupported("NC310", v.span, &what, hint));
+            // `axis_vars` has said why this AXIS variable is not one known axis.
+            if !ctx.axis_reported.contains(&v.span) {
+                let what = format!("DEF {} {}", d.ty, v.name);
+                let hint = "FANUC variables hold numbers only; rewrite the program without STRING/AXIS/FRAME variables";
+                marks.extend(ctx.unsupported("NC310", v.span, &what, hint));
+            }
             continue;
         }
         let total: u32 = crate::ir::elements(&v.dims);

@@ -11,6 +11,7 @@
 //! `fast_write` is the same translation of one plain block written straight to bytes, for
 //! the streamed translator (held to these passes' bytes by the differential tests).
 
+pub mod axis_vars;
 pub mod blocks;
 pub mod comp;
 pub mod constants;
@@ -170,6 +171,13 @@ pub struct Ctx {
     /// hold (`prog_vars`), and those called through that cannot, with why.
     pub prog_vars: BTreeMap<String, Vec<String>>,
     pub prog_var_why: BTreeMap<String, String>,
+    /// Values the machine's set-up fixes (`Semantics::fixed`), and those the translation
+    /// folded into axis letters ([`axis_vars`]): what its verdict says it assumed.
+    pub fixed: std::sync::Arc<BTreeMap<String, String>>,
+    pub fixed_used: BTreeMap<String, String>,
+    /// Spans of the axis words and AXIS DEFs [`axis_vars`] refused, saying why: the general
+    /// refusals (NC310, NC635) are not repeated for them.
+    pub axis_reported: std::collections::BTreeSet<Span>,
     next_temp: u32,
     next_label: u32,
 }
@@ -204,6 +212,9 @@ impl Ctx {
             own_z_reads: Vec::new(),
             prog_vars: BTreeMap::new(),
             prog_var_why: BTreeMap::new(),
+            fixed: Default::default(),
+            fixed_used: BTreeMap::new(),
+            axis_reported: Default::default(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,
@@ -272,6 +283,7 @@ impl Ctx {
 
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
+    axis_vars::run(ctx, prog);
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
     constants::run(prog);

@@ -517,6 +517,7 @@ fn words_pass(
             Addr::Name(n) if n.as_ref() == "CR" => w.addr = Addr::Letter(b'R'),
             // `,C` / `,R`: the same meaning, spelt by the writer (`corners`).
             Addr::Name(n) if matches!(n.as_ref(), "CHR" | "RND") => {}
+            Addr::Axis(_) if ctx.axis_reported.contains(&wspan) => return Err(vec![]), // `axis_vars` said why
             Addr::Axis(_) => {
                 let what = "AX[…] (an axis chosen by name at run time)";
                 return Err(unsup(

@@ -33,7 +33,8 @@ pub(super) fn map_set_lines(body: &mut Vec<Stmt>, map: &SymbolMap) {
 }
 
 /// The FANUC side's inputs for a check's `--set` inputs of the Siemens side: `#n=…` as given;
-/// `Rn=…` (and a main program's DEF variable) into the variable the translation put it in;
+/// `Rn=…` (and a main program's DEF variable, and scalar global user data: `DEPTH=…`)
+/// into the variable the translation put it in;
 /// `$TC_DP3/6/12/15[t,d]=…` into the tool compensation memory C register the translation
 /// reads for that edge (`#11000+H`, `#10000+H`, `#13000+D`, `#12000+D` through the offset map,
 /// as `lower::to_fanuc::tool_data`). Others (no counterpart) stay on the Siemens side only.
@@ -54,9 +55,59 @@ pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
             let Some((h, dr)) = map.offsets.registers(*t, *d).filter(|_| !map.haas) else { continue };
             let reg = if field.is_length() { h } else { dr };
             out.push(format!("#{}={rhs}", fanuc_var(field, reg)));
-        } else if let Some(n) = map.fanuc_var(lhs) {
+        } else if let Some(n) = map.fanuc_var(lhs).or_else(|| gud_var(map, lhs)) {
             out.push(format!("#{n}={rhs}"));
         }
     }
     out
+}
+
+/// `#n=v` for every common variable global user data went to, at its definition's start
+/// value: where the FANUC side of a run against the Siemens source starts them (the Siemens
+/// side declares them at those values). The one rule of the translation's proof, the batch's
+/// and `nctrans check` ([`gud_homes_in`]).
+pub fn gud_seed_inputs(map: &SymbolMap) -> Vec<String> {
+    map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")).collect()
+}
+
+/// The homes a FANUC translation's header gives global user data (`(NCTRANS: DEPTH [global
+/// user data] = #600)`, `(NCTRANS: TAB[…] [4 elements, global user data] = #700)`, as
+/// `header` writes them): each name with its first common variable.
+pub fn gud_homes_in(fanuc_text: &str) -> Vec<(String, u32)> {
+    let mut out = Vec::new();
+    for line in fanuc_text.lines() {
+        let Some(rest) = line.trim().strip_prefix('(').and_then(|l| l.strip_suffix(')')) else { continue };
+        let Some(rest) = rest.strip_prefix(super::KEEP_PREFIX).and_then(|r| r.strip_prefix(": ")) else { continue };
+        let Some((source, number)) = rest.rsplit_once(" = #") else { continue };
+        if !source.ends_with("global user data]") {
+            continue;
+        }
+        let name: String = source.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+        if let (false, Ok(n)) = (name.is_empty(), number.trim().parse()) {
+            out.push((name, n));
+        }
+    }
+    out
+}
+
+/// The common variable scalar global user data `lhs` (`DEPTH`) went to (a run's inputs set
+/// no array element).
+fn gud_var(map: &SymbolMap, lhs: &str) -> Option<u32> {
+    let name = lhs.trim().to_ascii_uppercase();
+    let scalar = map.globals.iter().flat_map(|d| &d.vars).any(|v| v.name == name && v.dims.is_empty());
+    let home = map.vars.iter().find(|m| m.program.is_none() && m.source == format!("{name} (global user data)"));
+    home.filter(|_| scalar).map(|m| m.number)
+}
+
+/// The Siemens side's profile with the set-up values the translation assumed
+/// (`[variables] fixed`), so its run rests on them as the output does.
+pub(super) fn with_fixed(s: Option<crate::dialect::Semantics>, map: &SymbolMap) -> Option<crate::dialect::Semantics> {
+    if map.fixed.is_empty() {
+        return s;
+    }
+    let mut s = s.unwrap_or_else(|| crate::dialect::Semantics::default_for(crate::dialect::Dialect::Sinumerik));
+    let mut fixed = (*s.fixed).clone();
+    fixed.extend(map.fixed.clone());
+    s.fixed = std::sync::Arc::new(fixed);
+    Some(s)
 }

@@ -21,8 +21,8 @@ use std::collections::BTreeMap;
 
 mod inputs;
 pub mod numbers;
-pub use inputs::fanuc_set_inputs;
 use inputs::map_set_lines;
+pub use inputs::{fanuc_set_inputs, gud_homes_in, gud_seed_inputs};
 
 /// First O number given to subprograms without a `--program-map` entry.
 pub const FIRST_SUB_NUMBER: u32 = 9000;
@@ -118,6 +118,10 @@ pub struct SymbolMap {
     /// The H and D registers of each Siemens cutting edge the translation used
     /// (`[offsets]`), so that a check's `$TC_DP` inputs reach the same FANUC registers.
     pub offsets: crate::dialect::offsets::OffsetMap,
+    /// The values of `[variables] fixed` the translation rests on (an axis letter it wrote
+    /// for `AXNAME(AXIS_HORI)`): the Siemens side of a check starts with them, and every
+    /// verdict names them.
+    pub fixed: BTreeMap<String, String>,
 }
 
 impl SymbolMap {
@@ -252,6 +256,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut units_follow_text = true;
     let mut tools_used = BTreeMap::new();
+    let mut fixed_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
         crate::lower::own_header::drop_own_header(&mut p);
         if is_sub {
@@ -270,6 +275,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
             units_follow_text = !ctx.units_inexact;
         }
         tools_used.extend(ctx.tools_used);
+        fixed_used.extend(ctx.fixed_used);
         unsupported += ctx.unsupported;
         diags.extend(ctx.diags);
         lowered.push((p, info, file, name));
@@ -303,6 +309,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         haas_ngc: opts.target.haas_ngc,
         macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
+        fixed: fixed_used,
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -378,6 +385,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.edge_default = opts.source.cutting_edge_default;
     ctx.globals = opts.source.globals.clone();
     ctx.master_spindle = opts.source.master_spindle;
+    ctx.fixed = opts.source.fixed.clone();
     ctx
 }
 
@@ -484,7 +492,7 @@ pub fn verify<'a>(
     }
     let map = t.symbols.fanuc();
     let mut fanuc_inputs: Vec<String> = r_param_homes(map);
-    fanuc_inputs.extend(map.gud_seeds.iter().map(|(n, v)| format!("#{n}={v}")));
+    fanuc_inputs.extend(gud_seed_inputs(map));
     let (sinumerik, fanuc) = match &opts.profiles {
         Some(p) => (source_semantics(t, Some(&p.sinumerik)).or(Some(p.sinumerik.clone())), Some(p.fanuc.clone())),
         None => (source_semantics(t, None), None),
@@ -498,6 +506,7 @@ pub fn verify<'a>(
             Some(s)
         }
     };
+    let sinumerik = inputs::with_fixed(sinumerik, map);
     let fanuc = target_semantics(fanuc, map);
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
@@ -555,14 +564,17 @@ pub fn verify<'a>(
             ..RunOptions::default()
         };
         let callees = super::called::MemCallees(subs.iter().map(|u| align_source(u, map)).collect());
+        let reached = super::called::Reached::default();
         let a = Side {
             unit: align_source(main, map),
-            callees: Box::new(callees),
+            callees: reached.wrap(Box::new(callees)),
             run: run(parse_all(&a_in), sinumerik.clone()),
         };
         let b =
             Side { unit: parsed.unit.clone(), callees: Box::new(NoCallees), run: run(parse_all(&b_in), fanuc.clone()) };
-        runs.push((label, check::check_excluding(db, a, b, EXCLUDE)));
+        let mut report = check::check_excluding(db, a, b, EXCLUDE);
+        report.called = reached.names();
+        runs.push((label, report));
     }
     let mut v = Verification::of_runs(runs);
     rendered.push_str(&v.rendered);
@@ -587,12 +599,7 @@ pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> 
 /// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
 /// so it starts where the Siemens side's definitions start.
 pub fn gud_inputs(t: &super::Translation) -> Vec<crate::eval::Input> {
-    t.symbols
-        .fanuc()
-        .gud_seeds
-        .iter()
-        .filter_map(|(n, v)| crate::eval::parse_input(&format!("#{n}={v}")).ok())
-        .collect()
+    gud_seed_inputs(t.symbols.fanuc()).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
 }
 
 /// For a subprogram run on its own: each VAR parameter, which holds the number of its

@@ -77,6 +77,7 @@ fn failed(db: SourceDb, diags: Vec<Diagnostic>) -> CheckReport {
         diff: String::new(),
         outcome_a: none(),
         outcome_b: none(),
+        called: vec![],
     }
 }
 
@@ -205,9 +206,10 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
         .map(|f| (f.program.clone(), path(&f.name), f.text.clone()))
         .collect();
     let emitted = Emitted { files, semantics: profiles.sinumerik.clone() };
+    let reached = called::Reached::default();
     let a = Side {
         unit: fanuc.clone(),
-        callees: spec.fanuc_callees,
+        callees: reached.wrap(spec.fanuc_callees),
         run: RunOptions {
             inputs: in_a,
             max_steps,
@@ -229,5 +231,7 @@ pub fn verify_run(db: &SourceDb, fanuc_file: FileId, fanuc: &Unit, tr: &Translat
             ..RunOptions::default()
         },
     };
-    check::check(&db, a, b)
+    let mut report = check::check(&db, a, b);
+    report.called = reached.names();
+    report
 }
