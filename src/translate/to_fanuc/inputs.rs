@@ -2,7 +2,8 @@
 //! source's `nctrans: set` header lines, which the written program carries as its own.
 
 use super::SymbolMap;
-use crate::ir::{Stmt, StmtKind};
+use crate::ir::{Param, Stmt, StmtKind, Unit};
+use crate::lower::to_fanuc as passes;
 
 /// The main program's `nctrans: set` header lines in the FANUC names the translation gave
 /// the variables (`R1=5` → `#501=5`), so `run` and `check` of the output start where the
@@ -110,4 +111,64 @@ pub(super) fn with_fixed(s: Option<crate::dialect::Semantics>, map: &SymbolMap) 
     fixed.extend(map.fixed.clone());
     s.fixed = std::sync::Arc::new(fixed);
     Some(s)
+}
+
+/// The FANUC inputs of a subprogram run on its own, as the evaluator runs the Siemens one:
+/// parameters are 0 (the G65 argument locals would be vacant); VAR parameters as
+/// [`var_param_inputs`] gives them. (The generic proof's inputs; [`verify`] builds the same
+/// per run.)
+pub fn standalone_args(main: &Unit, map: &SymbolMap) -> Vec<crate::eval::Input> {
+    let Some(p) = main.programs.first() else { return vec![] };
+    let letters = passes::words::param_letters(p.params.len()).unwrap_or_default();
+    let mut texts: Vec<String> =
+        p.params.iter().zip(letters).filter(|(prm, _)| !prm.by_ref).map(|(_, (_, var))| format!("#{var}=0")).collect();
+    texts.extend(var_param_inputs(&p.params, map));
+    texts.iter().filter_map(|t| crate::eval::parse_input(t).ok()).collect()
+}
+
+/// `#n=v` for every common variable global user data went to: the FANUC side's inputs,
+/// so it starts where the Siemens side's definitions start.
+pub fn gud_inputs(t: &crate::translate::Translation) -> Vec<crate::eval::Input> {
+    gud_seed_inputs(t.symbols.fanuc()).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
+}
+
+/// For a subprogram run on its own: each VAR parameter, which holds the number of its
+/// caller's variable, gets a free common variable (from #999 down, past every number the
+/// translation uses) that starts at 0, as the Siemens parameter then does.
+pub fn var_param_inputs(params: &[Param], map: &SymbolMap) -> Vec<String> {
+    let letters = passes::words::param_letters(params.len()).unwrap_or_default();
+    let used: std::collections::BTreeSet<u32> = map.vars.iter().map(|m| m.number).collect();
+    let mut next = 999u32;
+    let mut texts = Vec::new();
+    for (prm, (_, var)) in params.iter().zip(letters).filter(|(p, _)| p.by_ref) {
+        let size = crate::ir::elements(&prm.dims);
+        // An array larger than the commons below `next` has no home to give: no inputs (the
+        // run then reads past them and says so).
+        if size > next {
+            break;
+        }
+        while next >= 500 + size && (next + 1 - size..=next).any(|k| used.contains(&k)) {
+            next -= 1;
+        }
+        let base = next + 1 - size;
+        texts.push(format!("#{var}={base}"));
+        texts.extend((base..=next).map(|k| format!("#{k}=0")));
+        next = base.saturating_sub(1);
+    }
+    texts
+}
+
+/// `#n=0` for each R parameter the translation maps: the FANUC side's inputs when it is
+/// compared with the Siemens program, whose R parameters start at 0 (FANUC's would be vacant).
+pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
+    r_param_homes(map).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
+}
+
+/// [`r_param_inputs`] as `--set` texts (`#501=0`).
+pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
+    map.vars
+        .iter()
+        .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
+        .map(|m| format!("#{}=0", m.number))
+        .collect()
 }
