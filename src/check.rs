@@ -64,6 +64,44 @@ pub struct CheckReport {
     /// proof recorded them (`translate::called::Reached`): what a caller's proof ran of the
     /// library.
     pub called: Vec<String>,
+    /// The first program's event where the traces part is its alarm: the source stops with
+    /// an error on this path, which its translation does not reproduce ([`diverged_summary`]).
+    pub diverged_on_alarm: bool,
+}
+
+impl CheckReport {
+    /// A check that could not run (an output that does not read back, a bad header line, a
+    /// checker that stopped): `Failed`, with why in `diags`.
+    pub fn failed(db: SourceDb, diags: Vec<Diagnostic>) -> CheckReport {
+        let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
+        CheckReport {
+            verdict: Verdict::Failed,
+            excluded: Default::default(),
+            db,
+            diags,
+            diff: String::new(),
+            outcome_a: none(),
+            outcome_b: none(),
+            called: vec![],
+            diverged_on_alarm: false,
+        }
+    }
+}
+
+/// The verdict line of a divergence at trace event `index` (0-based) of the run `label`
+/// (empty for the plain run); `on_alarm` as [`CheckReport::diverged_on_alarm`]. One wording
+/// for every path that translates (whole file, stream, batch).
+pub fn diverged_summary(index: u64, label: &str, on_alarm: bool) -> String {
+    if on_alarm {
+        format!(
+            "diverged at trace event {}{label}: the source stops with an alarm there and the translation \
+             does not stop the same way (the source is in error on this path; correct it, or give inputs \
+             that avoid it)",
+            index + 1
+        )
+    } else {
+        format!("diverged at trace event {}{label}: the translation is wrong (a bug in nctrans)", index + 1)
+    }
 }
 
 /// One event as a check carries it: a move on the grid as its integers (copied without
@@ -613,6 +651,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         || matches!(outcome_a.ending, Ending::Limit { .. })
         || matches!(outcome_b.ending, Ending::Limit { .. });
     let mut diff = String::new();
+    let diverged_on_alarm = matches!(&div, Some(dv) if matches!(&dv.a, Some((Event::Alarm { .. }, _))));
     let verdict = if failed {
         Verdict::Failed
     } else if let (Some(dv), false) = (&div, limited) {
@@ -678,7 +717,7 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     };
     // The set-up values either run read (`[variables] fixed`): the verdict names them.
     excluded.assumed = crate::dialect::fixed::assumed_in(outcome_a.diags.iter().chain(&outcome_b.diags));
-    CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b, called: vec![] }
+    CheckReport { verdict, excluded, db: merged, diags, diff, outcome_a, outcome_b, called: vec![], diverged_on_alarm }
 }
 
 #[cfg(test)]

@@ -210,10 +210,9 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
                 excluded.add(r.excluded);
                 continue;
             }
-            Verdict::Diverged { index } => (
-                Status::Diverged,
-                format!("diverged at trace event {}{label}: the translation is wrong (a bug in nctrans)", index + 1),
-            ),
+            Verdict::Diverged { index } => {
+                (Status::Diverged, crate::check::diverged_summary(*index, label, r.diverged_on_alarm))
+            }
             Verdict::Inconclusive { reason } => (Status::Inconclusive, format!("inconclusive{label}: {reason}")),
             Verdict::Failed => (Status::Inconclusive, format!("not verified{label}: a run could not be evaluated")),
         };

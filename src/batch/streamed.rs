@@ -29,7 +29,7 @@ use super::{rel_string, write, BatchContext, DiagRecord, FileOutcome, Status};
 use crate::check::{CheckReport, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
-use crate::eval::{CalleeSource, Ending, Outcome, RunOptions};
+use crate::eval::{CalleeSource, RunOptions};
 use crate::ir::ProgName;
 use crate::read::LineEnding;
 use crate::span::{FileId, SourceDb};
@@ -343,17 +343,7 @@ pub(crate) fn verdict(runs: Vec<(String, CheckReport)>, files: &[(FileId, &str, 
 
 /// A check that could not run (the output does not read back, a bad header line).
 pub(crate) fn failed(diags: Vec<Diagnostic>) -> CheckReport {
-    let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
-    CheckReport {
-        verdict: Verdict::Failed,
-        excluded: Default::default(),
-        db: SourceDb::new(),
-        diags,
-        diff: String::new(),
-        outcome_a: none(),
-        outcome_b: none(),
-        called: vec![],
-    }
+    CheckReport::failed(SourceDb::new(), diags)
 }
 
 pub(crate) fn run_options(inputs: Vec<crate::eval::Input>, max_steps: u64, sem: &Semantics) -> RunOptions {

@@ -6,7 +6,7 @@ use super::{Index, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
-use crate::eval::{CalleeSource, DirCallees, Ending, NoCallees, Outcome, RunOptions};
+use crate::eval::{CalleeSource, DirCallees, NoCallees, RunOptions};
 use crate::span::{FileId, SourceDb};
 use std::path::Path;
 use std::sync::Arc;
@@ -81,20 +81,9 @@ pub fn compare_excluding(a: StreamSide, b: StreamSide, exclude: check::Exclude) 
         thread.spawn_scoped(s, check).expect("start the checker's thread").join()
     });
     joined.unwrap_or_else(|_| {
-        let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
-        CheckReport {
-            verdict: Verdict::Failed,
-            excluded: Default::default(),
-            db: fail_db,
-            diags: vec![Diagnostic::error(
-                "NC499",
-                "the streamed check stopped unexpectedly (please report this program)",
-            )],
-            diff: String::new(),
-            outcome_a: none(),
-            outcome_b: none(),
-            called: vec![],
-        }
+        let stopped =
+            Diagnostic::error("NC499", "the streamed check stopped unexpectedly (please report this program)");
+        CheckReport::failed(fail_db, vec![stopped])
     })
 }
 
@@ -162,9 +151,7 @@ pub fn verify_for(
     let report = compare_excluding(a, b, crate::translate::to_fanuc::EXCLUDE);
     let (equivalent, summary) = match report.verdict {
         Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-        Verdict::Diverged { index } => {
-            (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
-        }
+        Verdict::Diverged { index } => (false, check::diverged_summary(index, "", report.diverged_on_alarm)),
         Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
         Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
     };

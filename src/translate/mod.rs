@@ -180,7 +180,7 @@ impl Verification {
             Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
             Verdict::Diverged { index } => {
                 rendered.push_str(&report.diff);
-                (false, format!("diverged at trace event {}: the translation is wrong (a bug in nctrans)", index + 1))
+                (false, crate::check::diverged_summary(*index, "", report.diverged_on_alarm))
             }
             Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
             Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),

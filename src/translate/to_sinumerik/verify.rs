@@ -4,11 +4,11 @@
 //! the traces. Inputs come from each program's `nctrans: set` header lines (the translation
 //! writes the FANUC ones in Siemens names), so both runs start from the same state.
 
-use crate::check::{self, CheckReport, Side, Verdict};
+use crate::check::{self, CheckReport, Side};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::calls::{CalleeName, CalleeSource, DirCallees};
-use crate::eval::{input, Ending, Input, Outcome, RunOptions};
+use crate::eval::{input, Input, RunOptions};
 use crate::ir::Unit;
 use crate::span::{FileId, SourceDb};
 use crate::translate::called::{self, RunSettings};
@@ -68,17 +68,7 @@ pub fn runs(
 }
 
 fn failed(db: SourceDb, diags: Vec<Diagnostic>) -> CheckReport {
-    let none = || Outcome { ending: Ending::Error, steps: 0, diags: vec![] };
-    CheckReport {
-        verdict: Verdict::Failed,
-        excluded: Default::default(),
-        db,
-        diags,
-        diff: String::new(),
-        outcome_a: none(),
-        outcome_b: none(),
-        called: vec![],
-    }
+    CheckReport::failed(db, diags)
 }
 
 /// Runs the FANUC program (`fanuc`, file `fanuc_file` in `db`; its callees are found beside
