@@ -158,10 +158,11 @@ fn scaling_mirroring_tilting_and_left_out_axes_keep_nc496() {
     // FANUC G51 scaling and G51.1 mirroring.
     assert!(f("G51 X0 Y0 P2000\nG0 X0 Y0\nG81 X10. Y0 Z-2. R2. F100.\n").ends_with("error NC496"));
     assert!(f("G51.1 X0\nG0 X0 Y0\nG81 X10. Y0 Z-2. R2. F100.\n").ends_with("error NC496"));
-    // The first hole after G68 (or G69) leaving a plane axis out, or incremental.
-    assert!(f("G68 X0 Y0 R30.\nG81 X10. Z-2. R2. F100.\n").ends_with("error NC496"));
+    // The first hole after G68 (or G69) leaving a plane axis out off the rotation's centre
+    // (at the centre both readings agree: frames_left_out.rs), or incremental.
+    assert!(f("G0 X5. Y5.\nG68 X0 Y0 R30.\nG81 X10. Z-2. R2. F100.\n").ends_with("error NC496"));
     assert!(f("G68 X0 Y0 R30.\nG91 G81 X10. Y0 Z-2. R-48. F100.\n").ends_with("error NC496"));
-    assert!(f("G68 X0 Y0 R30.\nG0 X0 Y0\nG69\nG81 Y5. Z-2. R2. F100.\n").ends_with("error NC496"));
+    assert!(f("G68 X0 Y0 R30.\nG0 X5. Y5.\nG69\nG81 Y5. Z-2. R2. F100.\n").ends_with("error NC496"));
     // Siemens SCALE, MIRROR, and a rotation that tilts the drilling axis (a ROT about Z,
     // then drilling along Y in G18).
     assert!(s("F100\nSCALE X2 Y2\nG0 X10 Y0\nCYCLE81(10,0,2,-2)\n").ends_with("error NC496"));

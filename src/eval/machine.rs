@@ -136,6 +136,8 @@ pub struct Machine {
     /// (bits 4..6) before a FANUC move leaves them out: their frame changed, turning them
     /// ([`Machine::set_xform`]).
     pub fresh: u8,
+    /// Per axis, its programmed value and offset when its frame last turned ([`Machine::kept_bits`]).
+    pub kept: [(f64, f64); 3],
     /// `fresh != 0` or a frame that turns: moves take [`Machine::framed_motion`].
     pub framed: bool,
     /// FANUC G16: polar coordinates in force.
@@ -221,6 +223,7 @@ impl Machine {
             scale: None,
             mirror: [None; 3],
             fresh: 0,
+            kept: [(0.0, 0.0); 3],
             framed: false,
             rotation_angle_incremental: false,
             polar: false,

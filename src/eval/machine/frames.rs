@@ -205,6 +205,8 @@ impl Machine {
             }
         }
         let left_out = (self.fresh >> 4) & !absolute & ((1 << u) | (1 << v));
+        let same = self.kept_bits(left_out, p0, off);
+        let left_out = left_out & !same;
         if left_out != 0 {
             let missing: String = (0..3).filter(|i| left_out & (1 << i) != 0).map(|i| GEO[i] as char).collect();
             let why = format!("as the first move after the frame changed, leaving {missing} out");
@@ -215,7 +217,7 @@ impl Machine {
             self.pos[axis] = w1[axis] + off[axis];
             self.applied[axis] = off[axis];
         }
-        self.fresh &= !(absolute | (absolute << 4));
+        self.fresh &= !(absolute | ((absolute | same) << 4));
         self.refresh_framed();
         Ok(())
     }
@@ -243,10 +245,32 @@ impl Machine {
         }
         if x != self.xf {
             let changed = self.xf.changed(&x);
-            self.fresh |= changed | ((changed & (self.xf.turned() | x.turned())) << 4);
+            let turned = changed & (self.xf.turned() | x.turned());
+            // The value a FANUC move leaving the axis out would keep: its programmed value in
+            // the frame it was last positioned in (an axis already waiting keeps the older one).
+            let newly = turned & !(self.fresh >> 4);
+            let off = [self.active_offset(0), self.active_offset(1), self.active_offset(2)];
+            let wnow = [self.pos[0] - off[0], self.pos[1] - off[1], self.pos[2] - off[2]];
+            let p = self.xf.invert(wnow).unwrap_or(wnow);
+            for i in (0..3).filter(|i| newly & (1 << i) != 0) {
+                self.kept[i] = (p[i], off[i]);
+            }
+            self.fresh |= changed | (turned << 4);
             self.xf = x;
         }
         self.refresh_framed();
+    }
+
+    /// The axes of `left_out` where the two readings of a move leaving them out right after
+    /// the frame turned agree: the programmed value kept (FANUC's, as far as read) is the
+    /// position worked out again through the new frame (`p0`, Siemens') under the same offset,
+    /// as at the centre of a rotation. Where they agree the target is known whichever the
+    /// control does, so the move is not refused.
+    pub(super) fn kept_bits(&self, left_out: u8, p0: [f64; 3], off: [f64; 3]) -> u8 {
+        (0..3)
+            .filter(|&i| left_out & (1 << i) != 0)
+            .filter(|&i| (self.kept[i].0 - p0[i]).abs() < 1e-9 && self.kept[i].1 == off[i])
+            .fold(0, |bits, i| bits | (1 << i))
     }
 
     pub(super) fn refresh_framed(&mut self) {
@@ -496,6 +520,8 @@ impl Machine {
         // turns ("the first move command after G69 must be specified as an absolute
         // command"); Siemens works the workpiece position out again through the new frame.
         let left_out = (self.fresh >> 4) & !absolute & 0b111;
+        let same = self.kept_bits(left_out, p0, off);
+        let left_out = left_out & !same;
         if self.fanuc && left_out != 0 {
             let missing: String = (0..3).filter(|i| left_out & (1 << i) != 0).map(|i| GEO[i] as char).collect();
             return Err(error(
@@ -566,7 +592,7 @@ impl Machine {
             }
         }
         self.pos = target;
-        self.fresh &= !(absolute | (absolute << 4));
+        self.fresh &= !(absolute | ((absolute | same) << 4));
         self.refresh_framed();
         match centre {
             Some(center) => {
