@@ -224,6 +224,11 @@ impl<'a> SegTarget for ToFanuc<'a> {
 
     fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
         let Skeleton { sk, programs, load, .. } = s;
+        // Axis variables are folded into letters over the whole program (`lower::to_fanuc::
+        // axis_vars`), which a skeleton with its runs cut out does not give the same way.
+        if declares_axis(&sk.body) {
+            return Err(Fallback::NotStraight("axis variables (DEF AXIS)".into()));
+        }
         let opts = self.opts;
         let eol = opts.line_ending.as_str();
         // The labels pass numbers jump targets from the next thousand above the highest N, and
@@ -408,4 +413,18 @@ fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &Skel<
         }
     }
     Ok(())
+}
+
+/// Whether `body` declares an AXIS variable.
+fn declares_axis(body: &[crate::ir::Stmt]) -> bool {
+    let mut found = false;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        if let crate::ir::StmtKind::Block(b) = &s.kind {
+            found |= b
+                .items
+                .iter()
+                .any(|it| matches!(&it.kind, crate::ir::ItemKind::Def(d) if matches!(d.ty, crate::ir::DataType::Axis)));
+        }
+    });
+    found
 }
