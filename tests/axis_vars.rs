@@ -87,14 +87,19 @@ fn a_wrong_letter_in_the_fanuc_program_is_caught_by_check() {
     assert!(out.contains("diverged at trace event"), "{out}");
 }
 
+/// The codes of the errors `err` reports, in order.
+fn error_codes(err: &str) -> Vec<&str> {
+    err.lines().filter_map(|l| l.strip_prefix("error[")?.split(']').next()).collect()
+}
+
+/// Translates `program` and expects it refused with exactly the errors `codes` (one per
+/// construct, in order: no general refusal beside the specific one), one saying `words`.
 fn refused(name: &str, program: &str, codes: &[&str], words: &str) -> std::path::PathBuf {
     let file = format!("{name}.SPF");
     let d = library(name, &[(&file, program)]);
     let (_, err, code) = nctrans(&d, &["--to", "fanuc", &file, "-o", "out.nc"]);
     assert_ne!(code, 0, "{err}");
-    for c in codes {
-        assert!(err.contains(&format!("error[{c}]")), "{c}: {err}");
-    }
+    assert_eq!(error_codes(&err), codes, "{err}");
     assert!(err.contains(words), "{words}: {err}");
     assert!(!d.join("out.nc").exists());
     d
@@ -103,21 +108,21 @@ fn refused(name: &str, program: &str, codes: &[&str], words: &str) -> std::path:
 #[test]
 fn an_axis_variable_with_two_axes_is_refused() {
     let p = "PROC TWO\nDEF AXIS AX_H\nAX_H=AXNAME(AXIS_HORI)\nG1 AX[AX_H]=10 F100\nAX_H=AXNAME(AXIS_VER)\nG1 AX[AX_H]=5\nM17\n";
-    let _ = refused("TWO", p, &["NC542"], "AX_H holds two different axes (Z and X)");
+    let _ = refused("TWO", p, &["NC542"; 3], "AX_H holds two different axes (Z and X)");
 }
 
 #[test]
 fn an_axis_from_a_parameter_is_refused() {
     let p = "PROC PAR(STRING[1] WHICH)\nDEF AXIS AX_H\nAX_H=AXNAME(WHICH)\nG1 AX[AX_H]=10 F100\nM17\n";
-    let _ = refused("PAR", p, &["NC542"], "WHICH is a parameter: each caller chooses the axis");
+    let _ = refused("PAR", p, &["NC542"; 2], "WHICH is a parameter: each caller chooses the axis");
 }
 
 #[test]
 fn an_axis_read_before_any_assignment_on_a_path_is_refused() {
     let p = "PROC UNSET\nDEF AXIS AX_H\nIF $AA_IW[X]>0\n  AX_H=AXNAME(AXIS_HORI)\nENDIF\nG1 AX[AX_H]=10 F100\nM17\n";
-    let _ = refused("UNSET", p, &["NC542"], "AX_H may be read unset");
+    let _ = refused("UNSET", p, &["NC542"; 2], "AX_H may be read unset");
     let p = "PROC JUMP\nDEF AXIS AX_H\nGOTOF SKIP\nAX_H=AXNAME(AXIS_HORI)\nSKIP:\nG1 AX[AX_H]=10 F100\nM17\n";
-    let _ = refused("JUMP", p, &["NC542"], "a jump before its first assignment can pass it");
+    let _ = refused("JUMP", p, &["NC542"; 2], "a jump before its first assignment can pass it");
 }
 
 #[test]
@@ -129,7 +134,7 @@ fn a_global_string_the_set_up_does_not_give_is_refused() {
 #[test]
 fn an_axis_the_fanuc_profile_lacks_is_refused() {
     let p = "PROC SPND\nDEF AXIS AX_S\nAX_S=AXNAME(\"SP1\")\nG1 AX[AX_S]=10 F100\nM17\n";
-    let _ = refused("SPND", p, &["NC543"], "axis \"SP1\" is not an axis of the FANUC profile");
+    let _ = refused("SPND", p, &["NC543"; 2], "axis \"SP1\" is not an axis of the FANUC profile");
 }
 
 #[test]
@@ -139,6 +144,26 @@ fn a_program_writing_a_fixed_value_is_refused_in_translation_and_run() {
     let (_, err, code) = nctrans(&d, &["run", "SETS.SPF"]);
     assert_ne!(code, 0);
     assert!(err.contains("error[NC544]") && err.contains("the program writes AXIS_HORI"), "{err}");
+    assert_eq!(error_codes(&err), ["NC544"], "{err}");
+}
+
+#[test]
+fn each_refused_write_is_said_once_with_its_reason() {
+    // Each write of a fixed value is NC544 alone: not also a string value (NC314), a
+    // concatenation (NC314) or a STRING GUD without a FANUC variable (NC504).
+    let p =
+        "PROC SETS2\nDEF REAL RR\nAXIS_HORI=AXIS_VER\nIF RR>0\n  AXIS_VER=\"Y\"<<\"Z\" RR=2\nENDIF\nG1 X10 F100\nM17\n";
+    let _ = refused("SETS2", p, &["NC544"; 2], "a write to AXIS_VER");
+    // The assignments of a refused AXIS variable are not AXNAME refusals (NC632) or string
+    // values (NC314) besides: the DEF and each AX[…] say why.
+    let p = "PROC LOOPS\nDEF AXIS AX_H\nDEF REAL RR\nRR=1\nWHILE RR<3\n  AX_H=AXNAME(AXIS_HORI)\n  AX_H=AXNAME(\"X\")\n  RR=RR+1\nENDWHILE\nG1 AX[AX_H]=4 F10\nM17\n";
+    let _ = refused("LOOPS", p, &["NC542"; 2], "AX_H holds two different axes (Z and X)");
+    let p = "PROC EWV\nDEF AXIS AX_E\nAX_E=AXNAME(AXIS_EW)\nG1 AX[AX_E]=4 F10\nM17\n";
+    let _ = refused("EWV", p, &["NC543"; 2], "AXIS_EW is global user data that no [variables] fixed entry gives");
+    // Where the variable is refused without a reason of its own, the general refusals
+    // stay: they are the only explanation (NC310 for the DEF, NC632 for AXNAME).
+    let p = "PROC FORS\nDEF AXIS AX_H\nDEF INT II\nAX_H=AXNAME(AXIS_HORI)\nFOR II=1 TO 2\n  G1 AX[AX_H]=II F10\nENDFOR\nR1=AX_H\nM17\n";
+    let _ = refused("FORS", p, &["NC310", "NC635", "NC632"], "DEF AXIS AX_H");
 }
 
 #[test]
@@ -179,5 +204,5 @@ fn an_unread_copy_of_a_set_up_letter_goes_and_a_read_one_stays_refused() {
     let out = std::fs::read_to_string(d.join("copy.nc")).unwrap();
     assert!(out.contains("G01 Z10. F100.") && out.contains("(name of the horizontal axis)"), "{out}");
     let read = copy.replace("G1 AX[AX_H]=10 F100", "G1 AX[AXNAME(HOR_NAME)]=10 F100");
-    let _ = refused("READ", &read, &["NC310"], "DEF STRING[1] HOR_NAME");
+    let _ = refused("READ", &read, &["NC310", "NC635", "NC504"], "DEF STRING[1] HOR_NAME");
 }

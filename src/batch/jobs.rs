@@ -207,7 +207,7 @@ pub(crate) fn combine(runs: Vec<(String, check::CheckReport)>) -> Verified {
         let (status, summary) = match &r.verdict {
             Verdict::Equivalent { events: n } => {
                 events += n;
-                excluded.add(r.excluded);
+                excluded.add(r.excluded.clone());
                 continue;
             }
             Verdict::Diverged { index } => {

@@ -59,7 +59,7 @@ pub fn summary(r: &BatchResult, target: &str) -> String {
     let mut excluded = crate::check::Excluded::default();
     let mut with = 0;
     for f in r.files.iter().filter(|f| f.status == Status::Verified && !f.excluded.is_empty()) {
-        excluded.add(f.excluded);
+        excluded.add(f.excluded.clone());
         with += 1;
     }
     if let Some(d) = excluded.describe() {

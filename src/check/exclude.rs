@@ -12,7 +12,7 @@ pub struct Exclude {
 }
 
 /// What a check left out of the comparison ([`Exclude`]), counted as the first run made it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Excluded {
     pub messages: u64,
     /// Look-ahead and high-speed settings of the first run (`G05.1 Q1`, `FFWON`,
@@ -26,7 +26,7 @@ pub struct Excluded {
     /// The set-up values the runs read (`[variables] fixed`: `AXIS_HORI = "Z"`, from the
     /// runs' NC543 notes): compared, but true only on a machine set up so. Not "left out",
     /// so not in [`Excluded::describe`]; every verdict line ([`Excluded::equivalent`]) names them.
-    pub assumed: Option<&'static str>,
+    pub assumed: Option<String>,
 }
 
 impl Excluded {
@@ -38,7 +38,7 @@ impl Excluded {
         self.messages += other.messages;
         self.modes += other.modes;
         self.interrupts += other.interrupts;
-        self.assumed = crate::dialect::fixed::joined(self.assumed, other.assumed);
+        self.assumed = crate::dialect::fixed::joined(self.assumed.take(), other.assumed);
     }
 
     /// What was not compared, for people: `2 messages kept as comments`, `1 look-ahead
@@ -68,7 +68,7 @@ impl Excluded {
     pub fn equivalent(&self, detail: &str) -> String {
         let mut parts: Vec<String> = vec![detail.to_string()];
         parts.extend(self.describe());
-        parts.extend(self.assumed.map(|a| format!("assumed from the set-up (variables.fixed): {a}")));
+        parts.extend(self.assumed.as_ref().map(|a| format!("assumed from the set-up (variables.fixed): {a}")));
         format!("equivalent ({})", parts.join("; "))
     }
 }

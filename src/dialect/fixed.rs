@@ -19,41 +19,28 @@ pub fn note_message(name: &str, value: &str) -> String {
 }
 
 /// The set-up values the notes among `diags` name (`AXIS_HORI = "Z"`), sorted, once each,
-/// as one text that lives for the program's run (verdicts are `Copy`); `None` for none.
-pub fn assumed_in<'a>(diags: impl Iterator<Item = &'a crate::diag::Diagnostic>) -> Option<&'static str> {
+/// as one text; `None` for none.
+pub fn assumed_in<'a>(diags: impl Iterator<Item = &'a crate::diag::Diagnostic>) -> Option<String> {
     let mut parts: Vec<&str> = diags
         .filter(|d| d.code == ASSUMED && d.severity == crate::diag::Severity::Note)
         .filter_map(|d| d.message.strip_prefix(NOTE_HEAD)?.strip_suffix(NOTE_TAIL))
         .collect();
     parts.sort_unstable();
     parts.dedup();
-    (!parts.is_empty()).then(|| intern(parts.join(", ")))
+    (!parts.is_empty()).then(|| parts.join(", "))
 }
 
 /// Both lists of assumed values as one (`Excluded::add`).
-pub fn joined(a: Option<&'static str>, b: Option<&'static str>) -> Option<&'static str> {
+pub fn joined(a: Option<String>, b: Option<String>) -> Option<String> {
     match (a, b) {
         (Some(x), Some(y)) if x != y => {
             let mut parts: Vec<&str> = x.split(", ").chain(y.split(", ")).collect();
             parts.sort_unstable();
             parts.dedup();
-            Some(intern(parts.join(", ")))
+            Some(parts.join(", "))
         }
         (x, y) => x.or(y),
     }
-}
-
-/// One leaked copy per distinct text: a process meets a few sets of set-up values.
-fn intern(text: String) -> &'static str {
-    static SEEN: std::sync::Mutex<std::collections::BTreeSet<&'static str>> =
-        std::sync::Mutex::new(std::collections::BTreeSet::new());
-    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(s) = seen.get(text.as_str()) {
-        return s;
-    }
-    let s: &'static str = Box::leak(text.into_boxed_str());
-    seen.insert(s);
-    s
 }
 
 /// `{ AXIS_HORI = "Z" }`: Siemens names (letters, digits, `_`, not starting with a digit)
@@ -102,8 +89,9 @@ mod tests {
         let note =
             |n: &str, v: &str| crate::diag::Diagnostic::new(crate::diag::Severity::Note, ASSUMED, note_message(n, v));
         let d = [note("AXIS_VER", "X"), note("AXIS_HORI", "Z"), note("AXIS_VER", "X")];
-        assert_eq!(assumed_in(d.iter()), Some("AXIS_HORI = \"Z\", AXIS_VER = \"X\""));
+        assert_eq!(assumed_in(d.iter()).as_deref(), Some("AXIS_HORI = \"Z\", AXIS_VER = \"X\""));
         assert_eq!(assumed_in(d[..0].iter()), None);
-        assert_eq!(joined(Some("A = \"X\""), Some("B = \"Z\"")), Some("A = \"X\", B = \"Z\""));
+        let (a, b) = (Some("A = \"X\"".to_string()), Some("B = \"Z\"".to_string()));
+        assert_eq!(joined(a, b).as_deref(), Some("A = \"X\", B = \"Z\""));
     }
 }

@@ -201,7 +201,7 @@ impl Verification {
             (Some((_, r)), _) | (None, [(_, r)]) => Verification::of(r),
             (None, _) => {
                 let mut excluded = crate::check::Excluded::default();
-                runs.iter().for_each(|(_, r)| excluded.add(r.excluded));
+                runs.iter().for_each(|(_, r)| excluded.add(r.excluded.clone()));
                 let events =
                     runs.iter().map(|(_, r)| if let Verdict::Equivalent { events } = r.verdict { events } else { 0 });
                 let summary = called::Combined::summary(events.sum(), runs.len(), &excluded);

@@ -58,6 +58,11 @@ fn named(e: &Expr) -> Option<&str> {
 }
 
 impl Facts<'_> {
+    /// Whether a write of `name` writes a value the set-up fixes (NC544).
+    fn writes_fixed(&self, name: &str) -> bool {
+        self.fixed.contains_key(name) && self.gud_strings.iter().any(|g| g == name)
+    }
+
     fn axis_of(&self, e: &Expr) -> Axis {
         match &e.kind {
             ExprKind::Str(t) => Axis::Known(t.trim().to_ascii_uppercase(), vec![]),
@@ -387,10 +392,15 @@ fn dead_strings(f: &Facts, p: &Program) -> Vec<String> {
         .collect()
 }
 
+/// Besides the assignments that are now axis letters, the writes this pass refused saying
+/// why go too (of an AXIS variable refused NC542/NC543, of a fixed value NC544): the
+/// translation fails on that refusal, and the general refusals of their values (NC632
+/// `AXNAME`, NC314 a string, NC504 a STRING GUD) would only say it again.
 fn rewrite(ctx: &mut Ctx, f: &Facts, body: &mut Vec<Stmt>) {
     let gone = |it: &Item| match &it.kind {
         ItemKind::Assign { target, .. } => matches!(&target.kind, VarKind::Named { name, indices }
-            if indices.is_empty() && (f.known.contains_key(name) || f.dead_strings.contains(name))),
+            if indices.is_empty() && (f.known.contains_key(name) || f.dead_strings.contains(name)
+                || f.refused.get(name).is_some_and(Option::is_some) || f.writes_fixed(name))),
         ItemKind::Def(d) => d.vars.is_empty(),
         _ => false,
     };
@@ -426,7 +436,7 @@ fn item(ctx: &mut Ctx, f: &Facts, it: &mut Item) {
         }
         ItemKind::Assign { target, .. } => {
             if let VarKind::Named { name, indices } = &mut target.kind {
-                if f.fixed.contains_key(name.as_str()) && f.gud_strings.contains(name) {
+                if f.writes_fixed(name) {
                     let what = format!("a write to {name} (a value [variables] fixed says the set-up fixes)");
                     let hint = "no program may write a value the set-up fixes: take it out of [variables] fixed, or the write out of the program";
                     ctx.unsupported(crate::dialect::fixed::WRITTEN, it.span, &what, hint);
