@@ -531,11 +531,29 @@ impl TraceSink for CompareSink {
 
 /// One side of a check as a run: given its copy of the file database and the sink, it runs
 /// its program (a unit in memory, or a streamed file: `crate::stream::runner`).
-pub type Runner = Box<dyn FnOnce(&mut SourceDb, &mut dyn TraceSink) -> Outcome + Send>;
+pub struct Runner {
+    /// The side's own file, which the diff's header names. Not always file 1 for the second
+    /// side: a Siemens first side's definition files (`MGUD.DEF`) are loaded before it.
+    pub file: FileId,
+    run: Run,
+}
+
+type Run = Box<dyn FnOnce(&mut SourceDb, &mut dyn TraceSink) -> Outcome + Send>;
+
+impl Runner {
+    pub fn new(file: FileId, run: impl FnOnce(&mut SourceDb, &mut dyn TraceSink) -> Outcome + Send + 'static) -> Self {
+        Runner { file, run: Box::new(run) }
+    }
+
+    /// Runs the side alone, its trace into `sink`.
+    pub fn run(self, db: &mut SourceDb, sink: &mut dyn TraceSink) -> Outcome {
+        (self.run)(db, sink)
+    }
+}
 
 impl Side {
     pub fn runner(self) -> Runner {
-        Box::new(move |db, sink| {
+        Runner::new(self.unit.file, move |db, sink| {
             let mut callees = self.callees;
             eval::run(db, &self.unit, callees.as_mut(), &self.run, sink)
         })
@@ -576,6 +594,8 @@ pub fn check_runners(db: &SourceDb, a: Runner, b: Runner) -> CheckReport {
 /// [`check_runners`] leaving out (and counting) what `exclude` names.
 pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exclude) -> CheckReport {
     let n0 = db.len();
+    let (file_a, file_b) = (a.file, b.file);
+    let (a, b) = (a.run, b.run);
     let db_b = db.clone();
     let (rx, handle) = if ONE_THREAD.with(Cell::get) {
         let (tx, rx) = channel::<Msg>();
@@ -693,8 +713,9 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
         new.extend(after_b);
         let old = old.join("\n") + "\n";
         let new = new.join("\n") + "\n";
-        let name_a = merged.get(0).name.clone();
-        let name_b = if merged.len() > 1 { merged.get(1).name.clone() } else { "b".into() };
+        // Each side's own file: with definition files loaded, file 1 is not the second side.
+        let name = |id: FileId, or: &str| if id < merged.len() { merged.get(id).name.clone() } else { or.into() };
+        let (name_a, name_b) = (name(file_a, "a"), name(map_b(file_b), "b"));
         diff = similar::TextDiff::from_lines(&old, &new)
             .unified_diff()
             .context_radius(CONTEXT)

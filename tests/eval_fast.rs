@@ -104,7 +104,7 @@ fn run_streamed(path: &Path, dialect: Dialect) -> Option<String> {
     let run = RunOptions { max_steps: 200_000, ..Default::default() };
     let runner = nctrans::stream::runner(std::sync::Arc::new(ix), Box::new(eval::DirCallees { semantics: None }), run);
     let mut sink = Both::new();
-    let out = runner(&mut db, &mut sink);
+    let out = runner.run(&mut db, &mut sink);
     Some(report(sink, &out))
 }
 
@@ -287,7 +287,7 @@ fn streamed_text(path: &Path, dialect: Dialect, block_lines: bool) -> Option<Vec
     if block_lines {
         sink.block_lines = Some(file);
     }
-    runner(&mut db, &mut sink);
+    runner.run(&mut db, &mut sink);
     Some(sink.out)
 }
 

@@ -235,3 +235,41 @@ fn a_set_line_for_global_user_data_reaches_the_fanuc_side() {
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("DEPTH #600=5") && out.contains("own inputs set #600=7"), "{out}");
 }
+
+/// A divergence of a Siemens program reading global user data from its translation: the
+/// diff's header and the labels name the two compared files, not the definition file
+/// loaded between them (file 1 of the check was `MGUD.DEF`, and the `+++` line named it).
+#[test]
+fn a_divergence_names_the_two_compared_files_not_the_definitions() {
+    let d = workdir("gud", "diff_names");
+    std::fs::create_dir_all(d.join("DEF")).unwrap();
+    std::fs::write(d.join("DEF/MGUD.DEF"), "DEF NCK REAL X_A\nM30\n").unwrap();
+    std::fs::write(d.join("PART.MPF"), "G0 X0 Z10\nX_A=5\nG1 X=X_A F100\nM30\n").unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "PART.MPF", "-o", "part.nc", "--var-map", "X_A=#500"]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(d.join("part.nc")).unwrap();
+    assert!(text.contains("#500=5."), "{text}");
+    std::fs::write(d.join("wrong.nc"), text.replace("#500=5.", "#500=6.")).unwrap();
+    // The planted value is caught, with and without the rule that seeds the commons, and
+    // with a tool map (the check that aligns both sides as a translation's proof does).
+    for extra in [&[][..], &["--tool-map", "DRILL=1"][..]] {
+        for toml in [None, Some("[variables]\nto_fanuc = [\"X_A=#500\"]\n")] {
+            match toml {
+                Some(t) => std::fs::write(d.join("nctrans.toml"), t).unwrap(),
+                None => drop(std::fs::remove_file(d.join("nctrans.toml"))),
+            }
+            let args: Vec<&str> = ["check", "PART.MPF", "wrong.nc"].iter().chain(extra).copied().collect();
+            let (out, err, code) = nctrans(&d, &args);
+            assert_eq!(code, 1, "{args:?}\n{out}{err}");
+            assert!(out.contains("\n--- PART.MPF\n+++ wrong.nc\n"), "{args:?}\n{out}");
+            assert!(!out.contains("MGUD"), "{out}");
+            assert!(err.contains("┌─ PART.MPF:3:1") && err.contains("┌─ wrong.nc:7:1"), "{err}");
+            assert!(err.contains("X=5") && err.contains("X=6"), "{err}");
+        }
+    }
+    // Either order.
+    let (out, err, code) = nctrans(&d, &["check", "wrong.nc", "PART.MPF"]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(out.contains("\n--- wrong.nc\n+++ PART.MPF\n"), "{out}");
+    assert!(err.contains("┌─ wrong.nc:7:1") && err.contains("┌─ PART.MPF:3:1"), "{err}");
+}

@@ -207,7 +207,7 @@ fn run_streamed(path: &Path, dialect: Dialect) -> Option<(usize, usize)> {
     let runner = nctrans::stream::runner(std::sync::Arc::new(ix), Box::new(eval::DirCallees { semantics: None }), run);
     let mut sink = tee(Format::Text, Some(&text), file);
     sink.new.block_lines = Some(file);
-    runner(&mut db, &mut sink);
+    runner.run(&mut db, &mut sink);
     Some(compare(&format!("{} streamed", path.display()), &sink))
 }
 

@@ -126,8 +126,10 @@ pub(crate) fn load_with_callees(
     let read_error = |e: String| Box::new(failed(Status::Error, e.clone(), vec![DiagRecord::error("NC600", e)]));
     let main = load(db, file, dialect, enc, sem).map_err(read_error)?;
     let mut subs = Vec::new();
+    let mut indexes = Vec::new();
     for i in ctx.library.callee_files(file.index) {
         let Some(f) = ctx.files.get(i) else { continue };
+        indexes.push(i);
         let mut sub = load(db, f, dialect, enc, sem).map_err(read_error)?;
         // The name the library gave the file's program (a Siemens file without PROC: its stem).
         if let (Dialect::Sinumerik, Some([Some(crate::translate::library::ProgKey::Name(n))])) =
@@ -137,6 +139,10 @@ pub(crate) fn load_with_callees(
         }
         subs.push(sub);
     }
+    if let Some(mut o) = empty_callees(db, ctx, &main, (&subs, &indexes), sem) {
+        o.blocks = crate::ir::visit::count_blocks(&main.unit) as u64;
+        return Err(Box::new(o));
+    }
     let mut all: Vec<&LoadedFile> = vec![&main];
     all.extend(subs.iter());
     if let Some(mut o) = parse_failure(db, &all) {
@@ -144,6 +150,70 @@ pub(crate) fn load_with_callees(
         return Err(Box::new(o));
     }
     Ok((main, subs))
+}
+
+/// The outcome of a file that calls a program whose file holds no program (NC593 at each
+/// call, in place of the empty file's NC145, which that file's own outcome reports): an
+/// `error`, not a parse error, when nothing else fails to parse.
+fn empty_callees(
+    db: &mut SourceDb,
+    ctx: &BatchContext,
+    main: &LoadedFile,
+    (subs, indexes): (&[LoadedFile], &[usize]),
+    sem: &Semantics,
+) -> Option<FileOutcome> {
+    use crate::dialect::empty_call;
+    use crate::translate::library::ProgKey;
+    let mut empties = Vec::new();
+    for (sub, &index) in subs.iter().zip(indexes).filter(|(s, _)| empty_call::is_program_less(&s.diags)) {
+        for p in ctx.library.programs.values().filter(|p| p.file == index) {
+            let key = match &p.key {
+                ProgKey::Number(n) => crate::ir::ProgName::Number(*n),
+                ProgKey::Name(s) => crate::ir::ProgName::Name(s.clone()),
+            };
+            empties.push((sub.unit.file, key));
+        }
+    }
+    // An empty FANUC file holds no `O` line: the library cannot know its number, its name
+    // says it (`O0060.nc`), as beside a single file (`eval::callee_files`). Only the job's
+    // own calls of numbers the library lacks are looked up.
+    let mut unknown = std::collections::BTreeSet::new();
+    for l in std::iter::once(main).chain(subs) {
+        unknown.extend(empty_call::numbers_called(&l.unit));
+    }
+    unknown.retain(|n| !ctx.library.programs.contains_key(&ProgKey::Number(*n)));
+    for n in unknown {
+        let named = |f: &&super::InputFile| {
+            let info = ctx.library.files.get(f.index);
+            info.is_some_and(|i| i.programs.is_empty() && i.parse_errors > 0 && i.dialect == Some(Dialect::Fanuc))
+                && f.rel.file_stem().and_then(|s| s.to_str()).is_some_and(|s| eval::callee_files::names_number(s, n))
+        };
+        let Some(f) = ctx.files.iter().find(named) else { continue };
+        let Ok(l) = load(db, f, Dialect::Fanuc, ctx.options.encoding, sem) else { continue };
+        if empty_call::is_program_less(&l.diags) {
+            empties.push((l.unit.file, crate::ir::ProgName::Number(n)));
+        }
+    }
+    if empties.is_empty() {
+        return None;
+    }
+    let mut errors: Vec<Diagnostic> =
+        std::iter::once(main).chain(subs).flat_map(|l| l.diags.iter().filter(|d| d.is_error()).cloned()).collect();
+    let callers: Vec<&crate::ir::Unit> = std::iter::once(main).chain(subs).map(|l| &l.unit).collect();
+    empty_call::at_call_sites(db, &callers, &empties, &mut errors);
+    let first = errors.first()?;
+    if first.code != empty_call::CODE {
+        return None;
+    }
+    let calls = errors.iter().filter(|d| d.code == empty_call::CODE).count();
+    let (status, summary) = if errors.len() > calls {
+        (Status::ParseError, format!("{} parse error(s); {}", errors.len() - calls, first.message))
+    } else if calls > 1 {
+        (Status::Error, format!("{} (and {} more such call(s))", first.message, calls - 1))
+    } else {
+        (Status::Error, first.message.clone())
+    };
+    Some(failed(status, summary, DiagRecord::from_diags(db, &errors)))
 }
 
 /// The outcome of a file whose translation was refused: `n` constructs the target cannot

@@ -13,6 +13,7 @@
 
 pub(crate) mod digits;
 pub mod empty;
+pub mod empty_call;
 pub mod fanuc;
 pub mod fixed;
 pub mod limits;

@@ -13,6 +13,12 @@ fn stems(n: u32) -> [String; 4] {
     [format!("O{n}"), format!("O{n:04}"), format!("{n}"), format!("{n:04}")]
 }
 
+/// Whether a file named `stem` goes by program number `n` (`O0060`, `O60`, `60`, `0060`): how
+/// a file that holds no program is still known as the one a call meant.
+pub fn names_number(stem: &str, n: u32) -> bool {
+    stems(n).iter().any(|s| s.eq_ignore_ascii_case(stem))
+}
+
 /// Whether a file extension is one a FANUC program is kept in.
 pub fn fanuc_ext(p: &Path) -> bool {
     let ext = p.extension().and_then(|s| s.to_str()).unwrap_or("").to_ascii_lowercase();

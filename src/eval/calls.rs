@@ -198,12 +198,23 @@ impl Interp<'_> {
             return Ok(Some(id));
         }
         let caller = self.file();
-        let found = self.callees.find(self.db, caller, self.dialect, name).map_err(Fault::error)?;
+        let found = self.callees.find(self.db, caller, self.dialect, name).map_err(|d| {
+            // The callee's file holds no program: said at this call, which is what stops.
+            match d.labels.first().filter(|_| d.code == "NC145") {
+                Some(l) => {
+                    let key = match name {
+                        CalleeName::Number(n) => ProgName::Number(*n),
+                        CalleeName::Name(s) => ProgName::Name(s.clone()),
+                    };
+                    Fault::error(crate::dialect::empty_call::diagnostic(self.db, (caller, span), &key, l.file))
+                }
+                None => Fault::error(d),
+            }
+        })?;
         let Some(unit) = found else {
             return Ok(None);
         };
         self.register_unit(&unit, Some(name)).map_err(Fault::error)?;
-        let _ = span;
         Ok(self.lookup(name).or_else(|| {
             // A file found by name whose program carries another number: use its first.
             self.codes.len().checked_sub(unit.programs.len())

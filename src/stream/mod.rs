@@ -718,7 +718,7 @@ pub fn runner(
     mut callees: Box<dyn crate::eval::CalleeSource + Send>,
     opts: crate::eval::RunOptions,
 ) -> crate::check::Runner {
-    Box::new(move |db, sink| {
+    crate::check::Runner::new(ix.file, move |db, sink| {
         let pager = std::rc::Rc::new(paged::Pager::new(ix));
         crate::eval::run_stream(db, pager, callees.as_mut(), &opts, sink)
     })

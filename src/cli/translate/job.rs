@@ -9,7 +9,7 @@ use super::TranslateArgs;
 use nctrans::batch::jobs::JobSettings;
 use nctrans::check::Verdict;
 use nctrans::config::Config;
-use nctrans::dialect::{Dialect, ParseOptions};
+use nctrans::dialect::{empty_call, Dialect, ParseOptions};
 use nctrans::ir::{CallTarget, ItemKind, StmtKind, Unit};
 use nctrans::lower::to_fanuc::varmap;
 use nctrans::span::SourceDb;
@@ -202,7 +202,8 @@ pub fn beside(path: &Path) -> PathBuf {
 /// Loads, transitively, the callees `units` need that none of them holds, from the files
 /// beside them in `dir` (`find_callee_file`), in the order the whole path takes them (each
 /// round the wanted numbers ascending); their reading diagnostics go to `diags`, their
-/// paths to `read`. Returns the numbers called that were not found.
+/// paths to `read`; a program-less callee file is NC593 at each call of it instead of its
+/// NC145. Returns the numbers called that were not found.
 pub fn load_callees(
     db: &mut SourceDb,
     units: &mut Vec<Unit>,
@@ -215,6 +216,7 @@ pub fn load_callees(
     let mut have: BTreeSet<u32> = BTreeSet::new();
     let mut tried: BTreeSet<u32> = BTreeSet::new();
     let mut missing = BTreeSet::new();
+    let mut empties = Vec::new();
     loop {
         for u in units.iter() {
             for p in &u.programs {
@@ -246,11 +248,17 @@ pub fn load_callees(
             read.push(p.clone());
             let l = nctrans::load(db, &p.display().to_string(), &bytes, encoding);
             let parsed = nctrans::parse(db, l.file, Dialect::Fanuc, opts);
+            if empty_call::is_program_less(&parsed.diags) {
+                empties.push((l.file, nctrans::ir::ProgName::Number(n)));
+            }
             diags.extend(parsed.diags);
             after_end.extend(parsed.after_end_programs);
             units.push(parsed.unit);
         }
     }
+    // A callee file without a program: said at each call of it (NC593).
+    let callers: Vec<&Unit> = units.iter().collect();
+    empty_call::at_call_sites(db, &callers, &empties, diags);
     missing
 }
 
@@ -607,17 +615,28 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
     shown(&db, &parsed.diags)?;
     let mut read = vec![input.to_path_buf()];
     let l_names = l_names_beside(input, c.l_numbers);
+    let mut empties = Vec::new();
     let subs = callees::<ExitCode>(&parsed.unit, &l_names, |callee| {
         let Some(path) = find_beside(input, callee) else { return Ok(None) };
         let Ok(bytes) = std::fs::read(&path) else { return Ok(None) };
         read.push(path.clone());
         let l = nctrans::load(&mut db, &path.display().to_string(), &bytes, None);
         let mut p = nctrans::parse(&db, l.file, Dialect::Sinumerik, &popts);
+        // A file without a program is said at the calls of it, once all are read (NC593).
+        if empty_call::is_program_less(&p.diags) && !p.diags.iter().any(|d| d.is_error() && d.code != "NC145") {
+            empties.push((l.file, nctrans::ir::ProgName::Name(callee.to_string())));
+            return Ok(Some(p.unit));
+        }
         shown(&db, &p.diags)?;
         nctrans::dialect::sinumerik::name_after_file(&mut p.unit, callee);
         Ok(Some(p.unit))
     })?;
-    let units = std::iter::once(parsed.unit).chain(subs).collect();
+    let units: Vec<Unit> = std::iter::once(parsed.unit).chain(subs).collect();
+    if !empties.is_empty() {
+        let mut diags = Vec::new();
+        empty_call::at_call_sites(&db, &units.iter().collect::<Vec<_>>(), &empties, &mut diags);
+        shown(&db, &diags)?;
+    }
     Ok(Job { db, units, loaded, read, warnings: vec![], after_end: BTreeSet::new(), profile })
 }
 
