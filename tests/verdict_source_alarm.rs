@@ -48,11 +48,16 @@ fn a_source_that_alarms_is_not_called_a_bug_in_nctrans() {
     for extra in [None, Some("--stream")] {
         let mut args = vec!["--to", "fanuc", "SPOT.MPF"];
         args.extend(extra);
-        let (code, _, err) = nctrans(&d, &args);
+        let (code, out, err) = nctrans(&d, &args);
         assert_ne!(code, 0, "{extra:?}: {err}");
         let last = err.lines().last().unwrap_or_default();
         assert!(last.contains(SOURCE_ALARMS) && !last.contains("bug in nctrans"), "{extra:?}: {err}");
+        std::fs::write(d.join("SPOT.nc"), out).unwrap();
     }
+    // `check` of the two says the same of its first program.
+    let (code, out, err) = nctrans(&d, &["check", "SPOT.MPF", "SPOT.nc"]);
+    assert_ne!(code, 0, "{out}{err}");
+    assert!(out.contains("the first program stops with an alarm there"), "{out}{err}");
 }
 
 #[test]

@@ -234,7 +234,14 @@ fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>) ->
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
-            println(format!("diverged at trace event {}", index + 1));
+            // Where the first program stops with its own alarm, say so: the two differ on a
+            // path where the first is in error, not necessarily in what they would machine.
+            let alarm = if report.diverged_on_alarm {
+                ": the first program stops with an alarm there and the second does not stop the same way"
+            } else {
+                ""
+            };
+            println(format!("diverged at trace event {}{alarm}", index + 1));
             print!("{diff}");
             ExitCode::from(1)
         }
