@@ -37,6 +37,7 @@ pub mod position_length;
 pub mod print;
 pub mod probe;
 pub mod probe_length;
+pub mod repeat_sections;
 pub mod rotation;
 pub mod string_calls;
 pub mod tool_data;

@@ -201,12 +201,25 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
+    // Section repetitions become copies first, so every analysis and pass sees them.
+    let mut expanded = |p: &Program, file| {
+        let mut p = p.clone();
+        let mut ctx = new_ctx(file, opts);
+        passes::repeat_sections::run(&mut ctx, &mut p);
+        unsupported += ctx.unsupported;
+        diags.extend(ctx.diags);
+        resolved(&p)
+    };
     let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
     if let Some(p) = main.programs.first() {
-        progs.push((resolved(p), main.file, opts.main_is_sub));
+        progs.push((expanded(p, main.file), main.file, opts.main_is_sub));
     }
-    let mut sub_progs: Vec<(Program, crate::span::FileId)> =
-        subs.iter().flat_map(|u| u.programs.iter().map(|p| (resolved(p), u.file))).collect();
+    let mut sub_progs: Vec<(Program, crate::span::FileId)> = Vec::new();
+    for u in subs {
+        for p in &u.programs {
+            sub_progs.push((expanded(p, u.file), u.file));
+        }
+    }
     sub_progs.sort_by_key(|(p, _)| prog_name(p, ""));
     sub_progs.dedup_by_key(|(p, _)| prog_name(p, ""));
     progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
