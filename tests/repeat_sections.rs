@@ -149,3 +149,24 @@ fn copies_beyond_the_bound_are_refused() {
     src.push_str("G90\nM30\n");
     refused("bound", &src, "NC659");
 }
+
+#[test]
+fn a_streamed_translation_takes_the_whole_path_for_a_repeat() {
+    // The segmented stream would copy a section holding a placeholder of straight blocks:
+    // it declines, and `--stream` gives the whole translation's bytes.
+    let d = workdir("repeat-sections", "stream");
+    let mut src = String::from("G90 G1 F100\nLA: X1\n");
+    for k in 0..300 {
+        src.push_str(&format!("X{} Y{}\n", k % 7, k % 5));
+    }
+    src.push_str("LB: X2\nREPEAT LA LB P=2\nM30\n");
+    write(&d, "cam.mpf", &src);
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "cam.mpf", "-o", "whole.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "--stream", "cam.mpf", "-o", "streamed.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let whole = std::fs::read_to_string(d.join("whole.nc")).unwrap();
+    assert_eq!(whole, std::fs::read_to_string(d.join("streamed.nc")).unwrap());
+    // The section once in the text and once in the loop: k = 34, 69, … 279 give X6 Y4.
+    assert_eq!(whole.matches("X6. Y4.").count(), 2 * 8, "{whole}");
+}
