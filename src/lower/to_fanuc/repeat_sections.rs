@@ -113,6 +113,20 @@ impl<'a> Index<'a> {
 /// Why a section cannot be copied: code, what, hint.
 type Refusal = (&'static str, String, String);
 
+/// `prog` with its program-section repetitions copied ([`run`]), `None` when it has none.
+pub fn copied(ctx: &mut Ctx, prog: &Program) -> Option<Program> {
+    let mut any = false;
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+        any |= matches!(&s.kind, StmtKind::Block(b)
+            if b.items.iter().any(|it| matches!(it.kind, ItemKind::RepeatSection(_))));
+    });
+    any.then(|| {
+        let mut p = prog.clone();
+        run(ctx, &mut p);
+        p
+    })
+}
+
 /// Copies every program-section repetition of `prog` where it stands (see the module doc);
 /// reports what it refuses in `ctx`.
 pub fn run(ctx: &mut Ctx, prog: &mut Program) {
