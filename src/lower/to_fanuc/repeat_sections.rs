@@ -165,7 +165,8 @@ fn resolve(ix: &Index<'_>, site: &Site) -> Result<Section, Refusal> {
         // REPEATB searches toward the program end too.
         rs.single.then(|| (r + 1..ix.lines.len()).find(|&k| ix.lines[k].label.as_deref() == Some(&rs.start.name)))?
     }) else {
-        return Err(shape(format!("REPEAT of label {}, which is not above it", rs.start.name), ""));
+        let hint = format!("put `{}:` on the first block of the section, above the REPEAT", rs.start.name);
+        return Err(shape(format!("REPEAT of label {}, which is not above it", rs.start.name), &hint));
     };
     let recursion = || {
         (
@@ -190,7 +191,10 @@ fn resolve(ix: &Index<'_>, site: &Site) -> Result<Section, Refusal> {
     let end = match &rs.end {
         Some(l) => match back(&l.name) {
             Some(le) => Some(le),
-            None => return Err(shape(format!("REPEAT to label {}, which is not above it", l.name), "")),
+            None => {
+                let hint = format!("put `{}:` on the last block of the section, above the REPEAT", l.name);
+                return Err(shape(format!("REPEAT to label {}, which is not above it", l.name), &hint));
+            }
         },
         None => (ls + 1..r).find(|&k| ix.lines[k].label.as_deref() == Some(ENDLABEL)),
     };
