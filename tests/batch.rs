@@ -396,7 +396,6 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("named-instructions.mpf", "NC312"), // SD=, BSPLINE, …
     ("operators-bitwise.mpf", "NC330"), // B_NOT
     ("probe-bore-measured.mpf", "NC321"), // $AA_MW / $AC_MEA: no FANUC counterpart (NC342 after the STOPRE note)
-    ("repeat-section.mpf", "NC317"),    // REPEAT label P=n
     ("string-functions.mpf", "NC310"),  // DEF STRING, string functions (NC506)
     ("rotary-acp-acn-dc.mpf", "NC630"), // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions

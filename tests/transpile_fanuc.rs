@@ -332,7 +332,6 @@ const REFUSED: &[(&str, &str)] = &[
     ("mcall-modal.mpf", "NC393"), // MCALL CYCLE81 with RTP above the tool
     ("named-instructions.mpf", "NC312"),
     ("operators-bitwise.mpf", "NC330"),
-    ("repeat-section.mpf", "NC317"),
     ("string-functions.mpf", "NC310"),
     ("rotary-acp-acn-dc.mpf", "NC630"),
     ("sync-action-when-do.mpf", "NC631"),

@@ -671,7 +671,7 @@ impl<'a> Interp<'a> {
                 Ok(Flow::Stop(self.end(name, item.span)))
             }
             ItemKind::RepeatSection(rs) => {
-                let crate::ir::RepeatSection { start, end, count, single } = &**rs;
+                let crate::ir::RepeatSection { count, single, .. } = &**rs;
                 let n = match count {
                     Some(e) => {
                         let cx = self.cx(false);
@@ -679,27 +679,14 @@ impl<'a> Interp<'a> {
                     }
                     None => 1,
                 };
-                let not_found = |name: &str| {
-                    Fault::alarm(
-                        self.alarms.no_target,
-                        format!("REPEAT: label {name} not found before this block"),
-                        item.span,
-                    )
+                let Some((s, e)) = code.section(pc, rs).map_err(|name| {
+                    let place = if *single { "" } else { " before this block" };
+                    Fault::alarm(self.alarms.no_target, format!("REPEAT: label {name} not found{place}"), item.span)
+                })?
+                else {
+                    return Ok(Flow::Next);
                 };
-                let s = code.find_label_back(pc, &start.name).ok_or_else(|| not_found(&start.name))?;
-                let e = if *single {
-                    s
-                } else if let Some(l) = end {
-                    code.find_label_back(pc, &l.name).ok_or_else(|| not_found(&l.name))?
-                } else {
-                    // The section from the label to the block before REPEAT, which has
-                    // just run once: repeat it `n` more times.
-                    if pc == 0 || s >= pc {
-                        return Ok(Flow::Next);
-                    }
-                    pc - 1
-                };
-                if n == 0 || e < s {
+                if n == 0 {
                     return Ok(Flow::Next);
                 }
                 let left = n - 1;

@@ -5,7 +5,7 @@
 use super::paged::{Page, PagedSource};
 use crate::diag::Diagnostic;
 use crate::dialect::lit::LitBlock;
-use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef};
+use crate::ir::{Block, BlockMeta, Expr, Program, Search, Stmt, StmtKind, VarRef, ENDLABEL};
 use crate::span::{FileId, Span};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -386,5 +386,33 @@ impl Code {
     pub fn find_label_back(&self, from: usize, label: &str) -> Option<usize> {
         let id = self.label_id(label)?;
         self.find(from, Search::Backward, Key::Label(id))
+    }
+
+    /// The first and last op a section repetition at `pc` runs (Siemens `REPEAT`, see
+    /// docs/semantics.md, Section repetition), `None` when it runs nothing; `Err` names a
+    /// label that is not found. The labels are searched toward the program start from the
+    /// REPEAT block; `REPEATB` then also toward the end. `REPEAT L` alone ends at the first
+    /// `ENDLABEL` after L that comes before the REPEAT, else at the block before it.
+    pub fn section(&self, pc: usize, rs: &crate::ir::RepeatSection) -> Result<Option<(usize, usize)>, String> {
+        let label = |name: &str, from: usize, search: Search| {
+            self.label_id(name).and_then(|id| self.find(from, search, Key::Label(id)))
+        };
+        let start = rs.start.name.as_str();
+        let s = match self.find_label_back(pc, start) {
+            Some(s) => s,
+            None if rs.single => label(start, pc, Search::Forward).ok_or_else(|| start.to_string())?,
+            None => return Err(start.to_string()),
+        };
+        let e = if rs.single {
+            s
+        } else if let Some(l) = &rs.end {
+            self.find_label_back(pc, &l.name).ok_or_else(|| l.name.clone())?
+        } else {
+            if pc == 0 || s >= pc {
+                return Ok(None);
+            }
+            label(ENDLABEL, s, Search::Forward).filter(|&e| e < pc).unwrap_or(pc - 1)
+        };
+        Ok((e >= s).then_some((s, e)))
     }
 }

@@ -188,6 +188,10 @@ pub struct ParamWrite {
     pub value: Expr,
 }
 
+/// The Siemens label that ends the section of a `REPEAT start` without an end label: the
+/// first block so labelled after `start` (it may stand on several blocks of a program).
+pub const ENDLABEL: &str = "ENDLABEL";
+
 /// Siemens `REPEAT start [end] P=count` (`single`: `REPEATB`, the one labelled block).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RepeatSection {

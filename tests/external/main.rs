@@ -23,6 +23,7 @@ mod sinumerik_parse;
 mod streamed;
 mod to_fanuc;
 mod to_fanuc_axes;
+mod to_fanuc_repeat;
 
 use std::path::PathBuf;
 

@@ -567,7 +567,8 @@ struct Targets {
 
 enum Jump {
     Goto(Goto),
-    Section(Label),
+    /// A REPEAT label; `true`: REPEATB's, which may also stand below it.
+    Section(Label, bool),
 }
 
 impl Targets {
@@ -589,7 +590,9 @@ impl Targets {
         self.count += 1;
         if let Some(lb) = &l.meta.label {
             let v = self.labels.entry(lb.name.clone()).or_default();
-            if let Some(&(_, first)) = v.first() {
+            // ENDLABEL may end several sections of one program (docs/semantics.md).
+            let first = v.first().filter(|_| lb.name != crate::ir::ENDLABEL);
+            if let Some(&(_, first)) = first {
                 st.diags.push(
                     Diagnostic::error("NC207", format!("label {} is defined twice", lb.name))
                         .primary(st.file, lb.span, "second definition")
@@ -617,7 +620,7 @@ impl Targets {
                 }
                 ItemKind::RepeatSection(r) => {
                     for lb in std::iter::once(&r.start).chain(r.end.iter()) {
-                        self.jumps.push((i, Jump::Section(lb.clone())));
+                        self.jumps.push((i, Jump::Section(lb.clone(), r.single)));
                     }
                 }
                 _ => {}
@@ -642,9 +645,15 @@ impl Targets {
                     check_goto(g, *i, &self.labels, &numbers, st)
                 }
                 Jump::Goto(g) => check_goto(g, *i, &self.labels, &self.numbers, st),
-                Jump::Section(lb) => {
-                    let before = self.labels.get(&lb.name).is_some_and(|v| v.iter().any(|&(j, _)| j <= *i));
-                    if !before {
+                Jump::Section(lb, single) => {
+                    let before = self.labels.get(&lb.name).is_some_and(|v| v.iter().any(|&(j, _)| j <= *i || *single));
+                    if !before && *single {
+                        st.diags.push(
+                            Diagnostic::error("NC205", format!("label {} of this REPEATB does not exist", lb.name))
+                                .primary(file, lb.span, "no such label in this program")
+                                .hint(format!("REPEATB repeats one block; put `{}:` on it", lb.name)),
+                        );
+                    } else if !before {
                         st.diags.push(
                             Diagnostic::error("NC205", format!("label {} is not defined before this REPEAT", lb.name))
                                 .primary(file, lb.span, "no such label above")

@@ -38,6 +38,7 @@ pub mod print;
 pub mod probe;
 pub mod probe_length;
 pub mod prog_vars;
+pub mod repeat_sections;
 pub mod rotation;
 pub mod string_calls;
 pub mod tool_data;

@@ -56,8 +56,9 @@
 //!
 //! Still declined (the whole path takes them): other calls (modal, computed, without the
 //! callees), PROC parameters,
-//! more than one program, computed jumps and G words, N numbers above 16777216 or near
-//! N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
+//! more than one program, computed jumps and G words, program-section repetitions (REPEAT:
+//! the copy of a section would hold its runs' placeholders again), N numbers above
+//! 16777216 or near N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
 //! the translation has a warning or an error on (notes only through
 //! [`to_fanuc_with_notes`]).
 //!
@@ -234,7 +235,16 @@ impl<'a> SegTarget for ToFanuc<'a> {
         // The labels pass numbers jump targets from the next thousand above the highest N, and
         // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
         let mut nodes = 0usize;
-        crate::ir::visit::walk_stmts(&sk.body, &mut |_| nodes += 1);
+        let mut repeats = false;
+        crate::ir::visit::walk_stmts(&sk.body, &mut |s| {
+            nodes += 1;
+            repeats |= matches!(&s.kind, crate::ir::StmtKind::Block(b)
+                if b.items.iter().any(|it| matches!(it.kind, crate::ir::ItemKind::RepeatSection(_))));
+        });
+        if repeats {
+            // Its copy would hold a placeholder twice (`lower::to_fanuc::repeat_sections`).
+            return Err(Fallback::NotStraight("a program-section repetition (REPEAT)".into()));
+        }
         let fresh = 4 * nodes as u64 + 16;
         if u64::from((sk.t.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
             carry_numbers(sk, fresh)?;

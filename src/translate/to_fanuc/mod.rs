@@ -204,12 +204,19 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
+    // Section repetitions become copies first (reported in `copies`), so every pass sees them.
+    let mut copies = new_ctx(main.file, opts);
     let mut progs: Vec<(Program, crate::span::FileId, bool)> = Vec::new();
     if let Some(p) = main.programs.first() {
-        progs.push((resolved(p), main.file, opts.main_is_sub));
+        progs.push((resolved(&mut copies, p), main.file, opts.main_is_sub));
     }
-    let mut sub_progs: Vec<(Program, crate::span::FileId)> =
-        subs.iter().flat_map(|u| u.programs.iter().map(|p| (resolved(p), u.file))).collect();
+    let mut sub_progs: Vec<(Program, crate::span::FileId)> = Vec::new();
+    for u in subs {
+        copies.file = u.file;
+        sub_progs.extend(u.programs.iter().map(|p| (resolved(&mut copies, p), u.file)));
+    }
+    unsupported += copies.unsupported;
+    diags.append(&mut copies.diags);
     sub_progs.sort_by_key(|(p, _)| prog_name(p, ""));
     sub_progs.dedup_by_key(|(p, _)| prog_name(p, ""));
     progs.extend(sub_progs.into_iter().map(|(p, f)| (p, f, true)));
@@ -589,7 +596,9 @@ pub fn verify<'a>(
 /// `p` with its calls through a STRING variable that names one program made calls by name
 /// (`lower::to_fanuc::string_calls`), and its WRITEs' unread error variables gone
 /// (`lower::to_fanuc::print::drop_unread_status`).
-fn resolved(p: &Program) -> Program {
+fn resolved(ctx: &mut Ctx, p: &Program) -> Program {
+    let copied = passes::repeat_sections::copied(ctx, p);
+    let p = copied.as_ref().unwrap_or(p);
     let p = crate::lower::to_fanuc::string_calls::resolve(p).unwrap_or_else(|| p.clone());
     crate::lower::to_fanuc::print::drop_unread_status(&p).unwrap_or(p)
 }

@@ -1,0 +1,24 @@
+%
+O0001 (REPEAT-SECTION-REPEATB)
+(NCTRANS: SINUMERIK repeat-section-repeatb.mpf TO FANUC MACRO B)
+(NCTRANS: TEMPORARIES #1)
+( FACE A BOSS IN 0.5 MM STEPS: ONE INFEED BLOCK, RUN AGAIN WITH REPEATB)
+G17 G90 G54 G21
+T2 M06
+G43 H2
+G00 X-5. Y0. Z5. S3000 M03
+G01 Z0. F200.
+( one step down)
+G91 G01 Z-0.5 F100. (INFEED:)
+G90 G01 X40. F400. ( across the face)
+G00 X-5.
+(REPEAT BLOCK INFEED, 3 TIMES: three more steps down: block INFEED only)
+#1=1.
+WHILE [#1 LE 3.] DO1
+G91 G01 Z-0.5 F100.
+#1=#1+1.
+END1
+G01 X40. F400. ( last pass at the full depth)
+G00 Z50. M05
+M30
+%
