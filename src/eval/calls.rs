@@ -235,9 +235,7 @@ impl Interp<'_> {
             return Fault::error(d);
         }
         let shown = self.note_callee(name);
-        let cycle = matches!(name, CalleeName::Name(s) if s.starts_with("CYCLE")
-            || s.starts_with("POCKET") || s.starts_with("SLOT") || s.starts_with("HOLES")
-            || s.starts_with("LONGHOLE") || s.starts_with("CONTPR"));
+        let cycle = matches!(name, CalleeName::Name(s) if crate::dialect::sinumerik::cycles::is_package_name(s));
         let d = if cycle {
             Diagnostic::error("NC402", format!("unknown cycle {shown}: the evaluator does not model it"))
                 .primary(self.file(), span, "cycle called here")

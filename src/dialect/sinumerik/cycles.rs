@@ -27,6 +27,13 @@ pub enum SieCycle {
     C89,
 }
 
+/// Whether `name` (upper case) is spelled as a cycle of the control's cycle package
+/// (`CYCLE…`, `POCKET…`, `SLOT…`, `HOLES…`, `LONGHOLE`, `CONTPR…`): a program of the control,
+/// not of the library, which only the drilling cycles above are modelled of.
+pub fn is_package_name(name: &str) -> bool {
+    ["CYCLE", "POCKET", "SLOT", "HOLES", "LONGHOLE", "CONTPR"].iter().any(|p| name.starts_with(p))
+}
+
 /// The cycle a called name is (upper case, as the parser gives it).
 pub fn cycle_of(name: &str) -> Option<SieCycle> {
     Some(match name {

@@ -94,6 +94,16 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         return None;
     }
     let Some(callee) = ctx.callees.get(&name).cloned() else {
+        if crate::dialect::sinumerik::cycles::is_package_name(&name) {
+            // A cycle of the control's package other than the drilling ones: its motion is
+            // the control's program, which nctrans neither has nor models.
+            let what = format!("cycle {name} (of the control's cycle package; only the drilling cycles are modelled)");
+            let hint = format!(
+                "replace {name} by explicit moves (CAM or the control can write them out), or put its \
+                 program {name}.SPF beside the main program to translate it as a subprogram"
+            );
+            return ctx.unsupported("NC303", span, &what, &hint);
+        }
         let hint = format!("translate {name} too: put {name}.SPF beside the main program");
         return ctx.unsupported("NC303", span, &format!("call of {name}"), &hint);
     };

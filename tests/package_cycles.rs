@@ -1,0 +1,67 @@
+//! A cycle of the Siemens control's own package other than the drilling cycles (`POCKET3`,
+//! `CYCLE61`, `SLOT1` …) is named as such, in `run` and in translation, with what to do;
+//! the same name given as a program beside the main program is read and translated as a
+//! subprogram, as the control would run it.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const MAIN: &str = "\
+; POCKET AND FACE
+N10 G17 G90 G71 G54
+N20 T1 D1 M6
+N30 S3000 M3 F300
+N40 G0 X0 Y0 Z10
+N50 POCKET3(10,0,1,-5,40,30,5,50,25,0,2,0.1,0.1,300,150,0,11,8)
+N60 G0 Z100
+N70 M30
+";
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("nctrans-package-cycles-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+fn nctrans(cwd: &Path, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(cwd).output().expect("run");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_package_cycle_is_named_as_one() {
+    let d = dir("named");
+    std::fs::write(d.join("PART.MPF"), MAIN).unwrap();
+    let (code, out, err) = nctrans(&d, &["run", "PART.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC402") && err.contains("unknown cycle POCKET3"), "{out}{err}");
+    let (code, _, err) = nctrans(&d, &["--to", "fanuc", "PART.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC303") && err.contains("cycle POCKET3 (of the control's cycle package"), "{err}");
+    assert!(err.contains("replace POCKET3 by explicit moves") && !err.contains("translate POCKET3 too"), "{err}");
+    // An ordinary subprogram name keeps its own hint.
+    std::fs::write(d.join("OTHER.MPF"), MAIN.replace("POCKET3(", "ROUGH_A(")).unwrap();
+    let (_, _, err) = nctrans(&d, &["--to", "fanuc", "OTHER.MPF"]);
+    assert!(err.contains("translate ROUGH_A too"), "{err}");
+}
+
+#[test]
+fn its_program_beside_the_main_is_a_subprogram() {
+    let d = dir("beside");
+    std::fs::write(d.join("PART.MPF"), MAIN).unwrap();
+    // A shop's own stand-in with the cycle's name (as a cycles folder copied beside would be).
+    let sub = "PROC POCKET3(REAL RTP,REAL RFP,REAL SDIS,REAL DP,REAL LENG,REAL WID,REAL CRAD,REAL PA,REAL PO,REAL STA,REAL MID,REAL FAL,REAL FALD,REAL FFP1,REAL FFD,INT CDIR,INT VARI,REAL MIDA)\n\
+G0 X=PA Y=PO\nG0 Z=RFP+SDIS\nG1 Z=DP F=FFD\nG1 X=PA+LENG/2 F=FFP1\nG0 Z=RTP\nM17\n";
+    std::fs::write(d.join("POCKET3.SPF"), sub).unwrap();
+    let (code, out, err) = nctrans(&d, &["run", "PART.MPF"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("X=70 Y=25"), "{out}");
+    let (code, out, err) = nctrans(&d, &["--to", "fanuc", "PART.MPF"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("G65 P") && err.lines().last().unwrap_or_default().starts_with("equivalent"), "{out}{err}");
+}
