@@ -234,6 +234,18 @@ impl Interp<'_> {
             .hint("end the routine with M17: the program goes on with the block after the interrupted one");
             return Fault::error(d);
         }
+        if let CalleeName::Name(s) = name {
+            if crate::dialect::sinumerik::is_predefined_procedure(s) {
+                let d = Diagnostic::error(
+                    "NC651",
+                    format!("{s} is a predefined procedure of the control that the evaluator does not model"),
+                )
+                .primary(self.file(), span, "called here")
+                .note("it is the control's own function, not a program of the library: no file of that name is looked for")
+                .hint("nctrans cannot run or check a program through it; docs/semantics.md lists what is modelled");
+                return Fault::error(d);
+            }
+        }
         let shown = self.note_callee(name);
         let cycle = matches!(name, CalleeName::Name(s) if crate::dialect::sinumerik::cycles::is_package_name(s));
         let d = if cycle {

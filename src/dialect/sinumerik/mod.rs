@@ -21,6 +21,7 @@ mod sync;
 
 pub mod emit;
 
+pub use names::is_predefined_procedure;
 pub use skeleton::skeleton_bytes;
 
 use crate::diag::Diagnostic;

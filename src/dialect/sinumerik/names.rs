@@ -166,6 +166,48 @@ const INSTRUCTIONS: &[&str] = &[
     "FGROUP",
 ];
 
+/// Predefined procedures of the control (called as `NAME(…)` or bare) that no program of a
+/// library provides and nctrans does not model: feed axes (`FGROUP`), handwheel and preset
+/// offsets, axis and channel coordination, waiting, transformations, couplings. A call of
+/// one is named as such rather than looked for as a subprogram.
+const PREDEFINED_PROCEDURES: &[&str] = &[
+    "FGROUP",
+    "DRFOF",
+    "PRESETON",
+    "SETPIECE",
+    "DELDTG",
+    "WAITP",
+    "WAITM",
+    "WAITMC",
+    "WAITE",
+    "SETM",
+    "CLEARM",
+    "TRAORI",
+    "TRAFOOF",
+    "TRANSMIT",
+    "TRACYL",
+    "TRAANG",
+    "COUPON",
+    "COUPOF",
+    "LEADON",
+    "LEADOF",
+    "EGON",
+    "EGOF",
+    "GEOAX",
+    "RELEASE",
+    "GET",
+    "GETD",
+    "AXTOCHAN",
+    "STARTFIFO",
+    "STOPFIFO",
+    "DZERO",
+];
+
+/// Whether `upper` is one of the control's predefined procedures nctrans does not model.
+pub fn is_predefined_procedure(upper: &str) -> bool {
+    PREDEFINED_PROCEDURES.contains(&upper)
+}
+
 /// Whether a bare name is a named NC instruction rather than a subprogram call.
 pub fn is_instruction(upper: &str) -> bool {
     INSTRUCTIONS.contains(&upper)

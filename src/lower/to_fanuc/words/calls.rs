@@ -94,6 +94,11 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         return None;
     }
     let Some(callee) = ctx.callees.get(&name).cloned() else {
+        if crate::dialect::sinumerik::is_predefined_procedure(&name) {
+            let what = format!("{name} (a predefined procedure of the control, not modelled)");
+            let hint = "FANUC Macro B has no counterpart nctrans knows of: the program must do without it";
+            return ctx.unsupported("NC303", span, &what, hint);
+        }
         if crate::dialect::sinumerik::cycles::is_package_name(&name) {
             // A cycle of the control's package other than the drilling ones: its motion is
             // the control's program, which nctrans neither has nor models.

@@ -1,7 +1,8 @@
-//! A cycle of the Siemens control's own package other than the drilling cycles (`POCKET3`,
-//! `CYCLE61`, `SLOT1` …) is named as such, in `run` and in translation, with what to do;
-//! the same name given as a program beside the main program is read and translated as a
-//! subprogram, as the control would run it.
+//! Calls of what the Siemens control itself provides: a cycle of its package other than the
+//! drilling cycles (`POCKET3`, `CYCLE61`, `SLOT1` …) and a predefined procedure nctrans does
+//! not model (`FGROUP`, `DRFOF` …) are named as such, in `run` and in translation, with what
+//! to do, instead of being looked for as subprograms; a cycle's name given as a program
+//! beside the main program is read and translated as that subprogram.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -64,4 +65,21 @@ G0 X=PA Y=PO\nG0 Z=RFP+SDIS\nG1 Z=DP F=FFD\nG1 X=PA+LENG/2 F=FFP1\nG0 Z=RTP\nM17
     let (code, out, err) = nctrans(&d, &["--to", "fanuc", "PART.MPF"]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("G65 P") && err.lines().last().unwrap_or_default().starts_with("equivalent"), "{out}{err}");
+}
+
+#[test]
+fn a_predefined_procedure_is_named_as_one() {
+    let d = dir("procedure");
+    let main = "; THREAD GRIND\nN10 G18 G90 G0 X10 Z10\nN20 FGROUP(Z)\nN30 G1 Z30 F100\nN40 DRFOF\nN50 M30\n";
+    std::fs::write(d.join("GRIND.MPF"), main).unwrap();
+    let (code, out, err) = nctrans(&d, &["run", "GRIND.MPF"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC651") && err.contains("FGROUP is a predefined procedure"), "{out}{err}");
+    assert!(!err.contains("FGROUP.SPF"), "{err}");
+    let (code, _, err) = nctrans(&d, &["--to", "fanuc", "GRIND.MPF"]);
+    assert_ne!(code, 0);
+    for name in ["FGROUP", "DRFOF"] {
+        assert!(err.contains(&format!("{name} (a predefined procedure of the control, not modelled)")), "{err}");
+    }
+    assert!(!err.contains("translate FGROUP too"), "{err}");
 }
