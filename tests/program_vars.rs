@@ -130,3 +130,26 @@ fn a_parameter_named_as_the_gud_is_not_the_gud() {
     assert_ne!(code, 0, "{out}{err}");
     assert!(err.contains("NC303") && !err.contains("G65 P#600"), "{err}");
 }
+
+/// A shape program that leaves G91 in force: after the call G90/G91 depends on the name, as
+/// where paths meet; the caller's next moves are translated with it and proven for each name.
+/// One that changes the units stays refused (NC558).
+#[test]
+fn a_callee_that_leaves_g91_is_merged_one_that_changes_units_is_refused() {
+    let main = "DEF STRING[20] SH\nR1=1\nG90 G0 X0 Y0\nIF R1==1\nSH=\"D_TRIANGLE\"\nELSE\nSH=\"D_TRAPEZ\"\nENDIF\n\
+CALL SH\nG1 X5 F100\nG1 X=IC(2) Y=AC(1)\nG90 G1 X0\nM30\n";
+    for r1 in ["1", "2"] {
+        let d = workdir("progvars", &format!("g91-{r1}"));
+        library(&d, &main.replace("R1=1", &format!("R1={r1}")), PAR_INI, DRESS);
+        std::fs::write(d.join("D_TRAPEZ.SPF"), "PROC D_TRAPEZ\nG91 G1 X20 Y8 F200\nRET\n").unwrap();
+        let (out, err, code) = nctrans(&d, &["--to", "fanuc", "GRIND.MPF"]);
+        assert_eq!(code, 0, "{r1}: {out}{err}");
+        assert!(err.lines().last().unwrap_or_default().starts_with("equivalent"), "{r1}: {err}");
+    }
+    let d = workdir("progvars", "g70");
+    library(&d, main, PAR_INI, DRESS);
+    std::fs::write(d.join("D_TRAPEZ.SPF"), "PROC D_TRAPEZ\nG70\nG1 X2 Y1 F20\nRET\n").unwrap();
+    let (out, err, code) = nctrans(&d, &["--to", "fanuc", "GRIND.MPF"]);
+    assert_ne!(code, 0, "{out}{err}");
+    assert!(err.contains("NC558") && err.contains("leaves the units"), "{err}");
+}

@@ -2,9 +2,11 @@
 //! `EXECSTRING(SHAPE)`; `lower::to_fanuc::prog_vars` made the variable the O number of the
 //! program it names) to FANUC: `G65 P#n`, the same program for every name the variable can
 //! hold. Exact when every program it can name takes no parameters (the Siemens call passes
-//! none, so they are 0; `G65` without letters would leave them vacant) and leaves G90/G91 and
-//! the units as they were (the words pass follows modes across calls and cannot through a
-//! callee known only at run time). Anything else is refused (NC558).
+//! none, so they are 0; `G65` without letters would leave them vacant) and leaves the units
+//! as they were (the words pass follows the units across calls, which a callee known only at
+//! run time would make depend on the path). G90/G91 a candidate leaves changed is merged over
+//! the candidates, as where paths meet (an AC()/IC() word then reads `#4003`), and as a
+//! direct call of one that changes it leaves it. Anything else is refused (NC558).
 
 use super::*;
 
@@ -53,10 +55,10 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
             let what = format!("a call through {var}, which can name {name}, a program not translated with it");
             return ctx.unsupported("NC558", span, &what, &format!("translate {name} too: put {name}.SPF beside"));
         };
-        let modes = callee.effect.leaves() & effects::ABS != 0 || callee.effect.units != effects::UnitEffect::None;
-        if !callee.params.is_empty() || modes {
+        let units = callee.effect.units != effects::UnitEffect::None;
+        if !callee.params.is_empty() || units {
             let why = if callee.params.is_empty() {
-                "leaves G90/G91 or the units changed"
+                "leaves the units (G70/G71/G700/G710) changed"
             } else {
                 "has parameters (the call passes none: Siemens gives them 0, G65 would leave them vacant)"
             };
