@@ -120,3 +120,24 @@ fn a_planted_wrong_r_plane_is_caught_by_check() {
         assert!(report.contains("diverged"), "{to}: {report}");
     }
 }
+
+#[test]
+fn a_subprograms_parameter_is_known_only_once_it_sets_it() {
+    let d = scratch_dir("cycknown", "params");
+    let main = "G17 G90 G71 G54\nT1 D1 M6\nS2000 M3 F150\nR1=10\nDRILL(-12, R1)\nG0 Z100\nM30\n";
+    let sub = |set: &str| {
+        format!(
+            "PROC DRILL(REAL DEPTH, REAL RTPV)\nDEF REAL _RFP=0, _SDIS=2\n{set}G90 G0 X0 Y0 Z=RTPV\nMCALL CYCLE81(RTPV,_RFP,_SDIS,DEPTH)\nX20 Y20\nMCALL\nM17\n"
+        )
+    };
+    write(&d, "DRILL.SPF", &sub(""));
+    let m = write(&d, "MAIN.MPF", main);
+    let (code, _, err) = nctrans(&[&m, "--to", "fanuc"]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("RTPV is not set in this program on every path to the call"), "{err}");
+    write(&d, "DRILL.SPF", &sub("RTPV=10\n"));
+    let (code, out, err) = nctrans(&[&m, "--to", "fanuc"]);
+    assert_eq!(code, 0, "{err}");
+    // The depth stays the parameter (a word's value), the R plane its variables.
+    assert!(out.contains("G98 G81 X20. Y20. Z#1 R[#3+#4]") && err.contains("equivalent"), "{out}\n{err}");
+}
