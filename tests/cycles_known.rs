@@ -7,7 +7,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, scratch_file, write};
+use eval_support::{nctrans, nctrans_in, scratch_dir, scratch_file, write};
 
 const HEAD: &str = "G17 G90 G71 G54\nT1 D1 M6\nS2000 M3 F150\n";
 const HOLES: &str = "X20 Y20\nX-20 Y20\nMCALL\nG0 Z100\nM30\n";
@@ -140,4 +140,19 @@ fn a_subprograms_parameter_is_known_only_once_it_sets_it() {
     assert_eq!(code, 0, "{err}");
     // The depth stays the parameter (a word's value), the R plane its variables.
     assert!(out.contains("G98 G81 X20. Y20. Z#1 R[#3+#4]") && err.contains("equivalent"), "{out}\n{err}");
+}
+
+#[test]
+fn r_parameters_are_never_known_where_an_interrupt_routine_may_run() {
+    let d = scratch_dir("cycknown", "interrupt");
+    write(&d, "nctrans.toml", "[fanuc]\nmacro_interrupt = true\n");
+    write(&d, "LIFT.SPF", "PROC LIFT SAVE\nR1=50\nM17\n");
+    write(&d, "ARM.SPF", "PROC ARM\nSETINT(1) PRIO=1 LIFT\nM17\n");
+    // Set up here, or by a called program (it stays armed after the return).
+    for (name, setup) in [("OWN.MPF", "SETINT(1) PRIO=1 LIFT\n"), ("CALLED.MPF", "ARM\n")] {
+        write(&d, name, &program(&format!("{setup}R1=10 R2=0 R3=2\n"), "CYCLE81(R1,R2,R3,-15)"));
+        let (code, _, err) = nctrans_in(&d, &[name, "--to", "fanuc"]);
+        assert_ne!(code, 0, "{name}: {err}");
+        assert!(err.contains("NC660") && err.contains("interrupt routine"), "{name}: {err}");
+    }
 }

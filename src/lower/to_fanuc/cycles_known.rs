@@ -4,7 +4,9 @@
 //! FANUC cycle must be decided from a number (G98/G99, the R plane, G73/G83, the dwell, the
 //! pitch, …), found by the shared forward walk of [`crate::lower::known`]. The rules of this
 //! direction: an R parameter is global (a call of a program that may write one, an
-//! interrupt routine, a synchronized action makes it unknown), a variable passed to a VAR
+//! interrupt routine this program or a program it calls sets up, in a subprogram on a
+//! machine with the macro interrupt one its caller may have set up, a synchronized action
+//! makes it unknown), a variable passed to a VAR
 //! parameter may come back changed, global user data and a name the program's own
 //! `nctrans: set` header line sets (an input) are never known, nor a FOR loop's variable.
 //! A variable the cycle needs that is not known is refused (NC660) naming the place that
@@ -74,8 +76,24 @@ pub fn vals(ctx: &Ctx, prog: &Program, info: &ProgInfo) -> Vals {
             "set by the program's `nctrans: set` header line (an input, which replaces its DEF start value)".into(),
         );
     }
-    let r_never = if interrupt {
+    // A called program that sets up an interrupt leaves it armed in this one.
+    let armed_by_callee = {
+        let armers: Vec<u32> = ctx.callees.values().filter(|c| c.effect.interrupts).map(|c| c.number).collect();
+        let mut any = false;
+        crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                any |= b.items.iter().any(|it| {
+                    matches!(&it.kind, ItemKind::Call(c)
+                    if matches!(c.target, CallTarget::Number(n) if armers.contains(&n)))
+                });
+            }
+        });
+        any
+    };
+    let r_never = if interrupt || armed_by_callee {
         Some("an R parameter: the program sets up an interrupt routine, which may write R parameters at any block")
+    } else if info.is_sub && ctx.macro_interrupt {
+        Some("an R parameter: in a subprogram on a machine with the custom macro interrupt, its caller may have set up an interrupt routine, which may write R parameters at any block")
     } else if sync {
         Some("an R parameter: the program has a synchronized action, which may write R parameters at any time")
     } else {

@@ -60,6 +60,9 @@ pub struct Effect {
     /// interrupt routine it sets up, EXECSTRING (`lower::known`, the values the drilling
     /// cycles need at translation).
     pub r_params: bool,
+    /// It (or a subprogram it calls) sets up an interrupt routine, which stays armed after
+    /// the return and may write R parameters at any later block of the caller.
+    pub interrupts: bool,
 }
 
 impl Effect {
@@ -112,10 +115,13 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     let mut returns = 0usize;
     let mut frames = false;
     let mut r_params = false;
+    let mut interrupts = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
                 r_params |= writes_r(it);
+                interrupts |= matches!(&it.kind, ItemKind::Instruction { name }
+                    if crate::ir::interrupt::op_of(&name.to_ascii_uppercase()).is_some());
                 if let Some(g) = g_code(it) {
                     sets |= group_of(g);
                     unit_words += usize::from(Units::default().g(f64::from(g)));
@@ -130,6 +136,7 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
                                 callee_units |= !e.save && e.units != UnitEffect::None;
                                 frames |= e.frames;
                                 r_params |= e.r_params;
+                                interrupts |= e.interrupts;
                             } else if crate::dialect::sinumerik::cycles::cycle_of(&name).is_none() {
                                 frames = true;
                                 r_params = true;
@@ -154,7 +161,7 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
         fold_units(&p.body)
     };
     let tools = comp_flow::program_tools(p, false, &runs, &|n: &String| known(n).map(|e| e.tools));
-    Effect { sets, units, save: p.save, tools, frames, r_params }
+    Effect { sets, units, save: p.save, tools, frames, r_params, interrupts }
 }
 
 /// Whether an item may write an R parameter itself (its calls are the caller's to look up).
