@@ -199,8 +199,10 @@ pub fn analyse(body: &[Stmt], rules: &Rules, want: &dyn Fn(&Item) -> bool) -> BT
     let mut st = Known::default();
     let mut step = |st: &mut Known, b: Block, live: bool, out: &mut Vec<Stmt>| {
         if live {
+            // Two items with one span (a macro's text used twice) get what both agree on.
             for it in b.items.iter().filter(|it| want(it)) {
-                at.insert(it.span, st.clone());
+                let k = at.get(&it.span).map_or_else(|| st.clone(), |old: &Known| old.merge(st));
+                at.insert(it.span, k);
             }
         }
         let before = st.clone();
