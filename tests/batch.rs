@@ -434,9 +434,10 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("CYCLE_G73_CHIP_BREAK.mpf", "NC396"),     // MCALL holes positioned under G91
     ("CYCLE_G91_INCREMENTAL_RO.mpf", "NC392"), // RFP/DP as expressions of the tool's level ($P_EP[Z])
     // Since 9de4eda: a G98 hole after G99 holes returns to RTP=NCTRANS_CYC_Z, a variable
-    // the Sinumerik → FANUC cycle translation does not take as RTP.
-    ("CYCLE_G83_DEEP_HOLE.mpf", "NC392"),
-    ("DRILL_G98_LAST_HOLE_CLEA.mpf", "NC392"),
+    // set from the tool's level ($P_EP[Z]): not a value known at translation (NC660 names
+    // the assignment).
+    ("CYCLE_G83_DEEP_HOLE.mpf", "NC660"),
+    ("DRILL_G98_LAST_HOLE_CLEA.mpf", "NC660"),
     ("GOTO_FORMS.mpf", "NC310"),               // the computed-GOTO helper STRING
     ("JUMP_TARGET_AFTER_TAPE_E.mpf", "NC310"), // the same STRING: the jump alarm of a missing N
     ("INDIRECT_RETAINED_RANGE.mpf", "NC315"),  // the computed variables' SETAL(64115)

@@ -2,8 +2,8 @@
 //! target (`to_fanuc/`, `to_sinumerik/`, each ordering its own passes in its `mod.rs`), and
 //! here, once, what every target shares: the small IR builders and walkers, the refusal of
 //! tool compensation ([`compensation`]), the recognition of nctrans's own headers
-//! ([`own_header`]) and bare literal lengths restated for another profile, with the letters
-//! they are on ([`restate`]).
+//! ([`own_header`]), bare literal lengths restated for another profile, with the letters
+//! they are on ([`restate`]), and the variables known at translation ([`known`]).
 //!
 //! May use: `ir`, `dialect` (spellings and `Semantics` facts), `eval` (facts the evaluator
 //! owns: refusal reasons, modal tables), `diag`, `span`, `read` (the source line the fast
@@ -14,6 +14,7 @@
 #[cfg(test)]
 pub(crate) mod build;
 pub mod comp_flow;
+pub mod known;
 pub mod own_header;
 pub mod restate;
 pub mod to_fanuc;

@@ -11,11 +11,14 @@
 //! - DTB (s) → P (ms); CYCLE83 FDPR → Q with VARI 1 → G83, VARI 0 → G73 (SDIS 0, DAM 0);
 //! - tapping and boring (`cycles_tap.rs`): CYCLE84 → `M29 S` + G84/G74, CYCLE840 → G84/G74,
 //!   CYCLE85 → G85/G89 with F (the feed before written back after G80), CYCLE87/88 → G88;
-//! - the positioning blocks must be G0 moves of the plane axes: FANUC positions by rapid.
+//! - the positioning blocks must be G0 moves of the plane axes: FANUC positions by rapid;
+//! - an argument that is a variable known at translation (`cycles_known.rs`) decides the
+//!   cycle as its value; the words keep the variable where FANUC takes it as it is.
 //!
 //! Refused with a reason (NC390–NC396, tapping NC486–NC488): CYCLE86, arguments the FANUC
 //! cycle has no place for, an RTP that is neither, positions that are not plain rapids, and a
-//! cycle open across a structure. Rules: docs/translation.md.
+//! cycle open across a structure; NC660 an argument reading a variable not known at the call.
+//! Rules: docs/translation.md.
 
 use super::*;
 use crate::dialect::sinumerik::cycles::{cycle_of, SieCycle};
@@ -23,6 +26,7 @@ use crate::lower::{literal, map_bodies};
 
 /// Lowers the drilling cycles of every block list of `prog`.
 pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
+    let vals = super::cycles_known::vals(ctx, prog, info);
     let body = std::mem::take(&mut prog.body);
     let top = !info.is_sub;
     // A main program that never selects G91 (nor calls a program that could) is in G90
@@ -32,10 +36,10 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
     for s in body {
         match s.kind {
             StmtKind::Block(_) => nested.push(s),
-            _ => nested.extend(map_bodies(vec![s], &mut |b| list(ctx, b, false, abs_everywhere))),
+            _ => nested.extend(map_bodies(vec![s], &mut |b| list(ctx, b, false, abs_everywhere, &vals))),
         }
     }
-    prog.body = list(ctx, nested, top, abs_everywhere);
+    prog.body = list(ctx, nested, top, abs_everywhere, &vals);
 }
 
 /// Whether a block of `body` may select G91: a G91 word, a G word computed at run time, or
@@ -106,7 +110,7 @@ fn refuse(ctx: &mut Ctx, code: &'static str, span: Span, what: &str, hint: &str,
 }
 
 /// The argument `name` of the call: `Some(expr)`, or `None` when empty or missing.
-fn arg<'a>(c: &'a Call, k: SieCycle, name: &str) -> Option<&'a Expr> {
+pub(super) fn arg<'a>(c: &'a Call, k: SieCycle, name: &str) -> Option<&'a Expr> {
     let i = k.params().iter().position(|p| *p == name)?;
     match c.args.get(i)? {
         Arg::Value(e) => Some(e),
@@ -114,16 +118,21 @@ fn arg<'a>(c: &'a Call, k: SieCycle, name: &str) -> Option<&'a Expr> {
     }
 }
 
-fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
+/// The argument `name` as a number: 0 when empty, `None` when not a number (the call has
+/// its arguments known at translation written as numbers, `cycles_known`).
+pub(super) fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
     match arg(c, k, name) {
         None => Some(0.0),
         Some(e) => literal(e),
     }
 }
 
-/// Plans the FANUC cycle of a call made where the tool stands at `level` (its last Z).
+/// Plans the FANUC cycle of a call made where the tool stands at `level` (its last Z):
+/// `c` with its arguments known at translation as numbers (what decides the cycle), `orig`
+/// as written (the words keep its variables: `R[R2+R3]` where RFP and SDIS are variables).
 fn plan(
     c: &Call,
+    orig: &Call,
     k: SieCycle,
     level: Option<f64>,
     st: &super::cycles_tap::SieState,
@@ -178,17 +187,20 @@ fn plan(
         return bad("NC392", format!("{} drilling upwards (RTP below RFP)", k.name()), "");
     }
     let r = rfp + sdis.abs();
+    // RFP as the words write it: the variable where the program gave one.
+    let rfp_w = |span: Span| kept(orig, k, "RFP").unwrap_or_else(|| mm(rfp, span));
     let z = match arg(c, k, "DPR").filter(|e| literal(e) != Some(0.0)) {
-        Some(dpr) => match literal(dpr) {
-            Some(d) => mm(rfp - d.abs(), dpr.span),
-            None => bin(BinOp::Sub, mm(rfp, dpr.span), func(Func::Abs, vec![dpr.clone()], dpr.span)),
+        Some(dpr) => match (literal(dpr), kept(orig, k, "RFP")) {
+            (Some(d), None) => mm(rfp - d.abs(), dpr.span),
+            (Some(d), Some(v)) => bin(BinOp::Sub, v, mm(d.abs(), dpr.span)),
+            (None, _) => bin(BinOp::Sub, rfp_w(dpr.span), func(Func::Abs, vec![dpr.clone()], dpr.span)),
         },
-        None => match arg(c, k, "DP") {
-            Some(e) => literal(e).map_or_else(|| e.clone(), |v| mm(v, e.span)),
+        None => match kept(orig, k, "DP").or_else(|| arg(c, k, "DP").cloned()) {
+            Some(e) => literal(&e).map_or_else(|| e.clone(), |v| mm(v, e.span)),
             None => mm(0.0, Span::default()),
         },
     };
-    let mut words = vec![(b'Z', z), (b'R', mm(r, Span::default()))];
+    let mut words = vec![(b'Z', z), (b'R', r_word(orig, k, rfp, sdis, r))];
     let mut g = g;
     let (mut m29, mut restore, mut feed_word) = (None, None, None);
     if matches!(k, SieCycle::C84 | SieCycle::C840 | SieCycle::C85 | SieCycle::C87 | SieCycle::C88) {
@@ -214,11 +226,19 @@ fn plan(
             );
         }
         let q = match (arg(c, k, "FDPR").filter(|e| literal(e) != Some(0.0)), arg(c, k, "FDEP")) {
-            (Some(e), _) => literal(e).map_or_else(|| e.clone(), |v| mm(v.abs(), e.span)),
-            (None, Some(e)) => match literal(e) {
-                Some(v) => mm(rfp - v, e.span),
-                None => bin(BinOp::Sub, mm(rfp, e.span), e.clone()),
+            (Some(e), _) => match (literal(e), kept(orig, k, "FDPR")) {
+                // The program's variable where its value is the infeed as it is.
+                (Some(v), Some(w)) if v > 0.0 => w,
+                (Some(v), _) => mm(v.abs(), e.span),
+                (None, _) => e.clone(),
             },
+            (None, Some(e)) => {
+                let e = kept(orig, k, "FDEP").unwrap_or_else(|| e.clone());
+                match (literal(&e), kept(orig, k, "RFP")) {
+                    (Some(v), None) => mm(rfp - v, e.span),
+                    (_, _) => bin(BinOp::Sub, rfp_w(e.span), e.clone()),
+                }
+            }
             (None, None) => return bad("NC391", "CYCLE83 without FDEP or FDPR".into(), "give the infeed"),
         };
         words.push((b'Q', q));
@@ -272,6 +292,32 @@ fn plan(
     Ok(Fanuc { g, retract, words, approach, m29, restore })
 }
 
+/// The argument `name` as written where it is not a number (a variable the words keep).
+fn kept(orig: &Call, k: SieCycle, name: &str) -> Option<Expr> {
+    arg(orig, k, name).filter(|e| literal(e).is_none()).cloned()
+}
+
+/// The R word: RFP + |SDIS| as a number, or with the program's variables where it gave
+/// them (`R[R2+R3]`; `R3` alone where RFP is 0), their values known to give `r`.
+fn r_word(orig: &Call, k: SieCycle, rfp: f64, sdis: f64, r: f64) -> Expr {
+    let span = Span::default();
+    let (rv, sv) = (kept(orig, k, "RFP"), kept(orig, k, "SDIS"));
+    if rv.is_none() && sv.is_none() {
+        return mm(r, span);
+    }
+    let rfp_e = rv.unwrap_or_else(|| mm(rfp, span));
+    let sdis_e = match sv {
+        Some(e) if sdis < 0.0 => func(Func::Abs, vec![e.clone()], e.span),
+        Some(e) => e,
+        None => mm(sdis.abs(), span),
+    };
+    match (literal(&rfp_e) == Some(0.0), literal(&sdis_e) == Some(0.0)) {
+        (true, _) => sdis_e,
+        (_, true) => rfp_e,
+        _ => bin(BinOp::Add, rfp_e, sdis_e),
+    }
+}
+
 /// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).
 fn positions(b: &Block, motion: Option<f64>) -> Result<bool, &'static str> {
     let mut moved = false;
@@ -296,7 +342,13 @@ fn positions(b: &Block, motion: Option<f64>) -> Result<bool, &'static str> {
     Ok(moved)
 }
 
-fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<Stmt> {
+fn list(
+    ctx: &mut Ctx,
+    body: Vec<Stmt>,
+    top: bool,
+    abs_everywhere: bool,
+    vals: &super::cycles_known::Vals,
+) -> Vec<Stmt> {
     let mut out = Vec::with_capacity(body.len());
     let mut level: Option<f64> = None;
     let mut motion: Option<f64> = if top { Some(0.0) } else { None };
@@ -333,12 +385,12 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
             out.push(s);
             continue;
         };
-        let call = b.items.iter().find_map(cycle_call).map(|(c, k)| (c.clone(), k));
+        let call = b.items.iter().find_map(|it| cycle_call(it).map(|(c, k)| (c.clone(), k, it.span)));
         let off = b.items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff));
-        if let Some((c, k)) = call {
+        if let Some((orig, k, cspan)) = call {
             b.items.retain(|it| cycle_call(it).is_none());
             observe_words(&mut tap, &b.items);
-            let mcall = c.kind == CallKind::Mcall;
+            let mcall = orig.kind == CallKind::Mcall;
             zshift.positioned(&b.items);
             if !mcall && zshift.turned() {
                 super::cycles_frames::first_hole(ctx, span, &mut out);
@@ -355,10 +407,21 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
                 );
                 continue;
             }
-            let f = match plan(&c, k, level, &tap) {
+            let f = match vals.resolve(&orig, k, cspan) {
+                Ok(c) => plan(&c, &orig, k, level, &tap).map(|f| (f, c)).map_err(|(a, b, h)| (a, b, h, None)),
+                Err(r) => Err(r),
+            };
+            let (f, c) = match f {
                 Ok(f) => f,
-                Err((code, what, hint)) => {
+                Err((code, what, hint, at)) => {
                     refuse(ctx, code, span, &what, hint, &mut out);
+                    // The place that makes the variable unknown, beside the call.
+                    if let Some((at, label)) = at {
+                        if let Some(d) = ctx.diags.pop() {
+                            let file = ctx.file;
+                            ctx.diags.push(d.secondary(file, at, label));
+                        }
+                    }
                     refused_mcall |= mcall;
                     continue;
                 }
@@ -509,7 +572,7 @@ fn list(ctx: &mut Ctx, body: Vec<Stmt>, top: bool, abs_everywhere: bool) -> Vec<
                     }
                     ("Z", _) => {
                         level = match (&w.value, abs) {
-                            (WordValue::Expr(e), Some(true)) => literal(e),
+                            (WordValue::Expr(e), Some(true)) => vals.z(w, e),
                             _ => None,
                         }
                     }

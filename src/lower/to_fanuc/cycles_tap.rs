@@ -6,6 +6,7 @@
 //! spindle, G33), a pitch under ENC 1, a retract speed SST1, an oriented start POSS, rigid
 //! tapping with the spindle turning. Sources: docs/semantics.md ("Tapping").
 
+use super::cycles::{arg, constant};
 use super::*;
 use crate::dialect::sinumerik::cycles::{metric_coarse_pitch, SieCycle};
 use crate::lower::literal;
@@ -56,21 +57,6 @@ pub struct TapPlan {
 }
 
 pub type Why = (&'static str, String, &'static str);
-
-fn arg<'a>(c: &'a Call, k: SieCycle, name: &str) -> Option<&'a Expr> {
-    let i = k.params().iter().position(|p| *p == name)?;
-    match c.args.get(i)? {
-        Arg::Value(e) => Some(e),
-        _ => None,
-    }
-}
-
-fn constant(c: &Call, k: SieCycle, name: &str) -> Option<f64> {
-    match arg(c, k, name) {
-        None => Some(0.0),
-        Some(e) => literal(e),
-    }
-}
 
 /// The pitch (signed: negative is left hand) from MPIT or PIT, as a number.
 fn pitch(c: &Call, k: SieCycle) -> Result<Option<f64>, Why> {

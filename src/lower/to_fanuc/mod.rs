@@ -18,6 +18,7 @@ pub mod constants;
 pub mod corners;
 pub mod cycles;
 mod cycles_frames;
+pub mod cycles_known;
 pub mod cycles_tap;
 pub mod exprs;
 pub(crate) mod fast_write;

@@ -55,6 +55,14 @@ pub struct Effect {
     /// translated) has a frame instruction (TRANS, ROT, …): the caller's programmable frame
     /// may differ after the call (`frame_chain`, which follows the frame in variables).
     pub frames: bool,
+    /// It (or a subprogram it calls, or a call it makes of a program not among those
+    /// translated) may write an R parameter (they are global): an assignment, an
+    /// interrupt routine it sets up, EXECSTRING (`lower::known`, the values the drilling
+    /// cycles need at translation).
+    pub r_params: bool,
+    /// It (or a subprogram it calls) sets up an interrupt routine, which stays armed after
+    /// the return and may write R parameters at any later block of the caller.
+    pub interrupts: bool,
 }
 
 impl Effect {
@@ -106,9 +114,14 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
     let mut jumps = false;
     let mut returns = 0usize;
     let mut frames = false;
+    let mut r_params = false;
+    let mut interrupts = false;
     crate::ir::visit::walk_stmts(&p.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
+                r_params |= writes_r(it);
+                interrupts |= matches!(&it.kind, ItemKind::Instruction { name }
+                    if crate::ir::interrupt::op_of(&name.to_ascii_uppercase()).is_some());
                 if let Some(g) = g_code(it) {
                     sets |= group_of(g);
                     unit_words += usize::from(Units::default().g(f64::from(g)));
@@ -122,11 +135,15 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
                                 sets |= e.leaves();
                                 callee_units |= !e.save && e.units != UnitEffect::None;
                                 frames |= e.frames;
+                                r_params |= e.r_params;
+                                interrupts |= e.interrupts;
                             } else if crate::dialect::sinumerik::cycles::cycle_of(&name).is_none() {
                                 frames = true;
+                                r_params = true;
                             }
                         } else {
                             frames = true;
+                            r_params = true;
                         }
                     }
                     ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::RepeatSection(_) => jumps = true,
@@ -144,7 +161,28 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
         fold_units(&p.body)
     };
     let tools = comp_flow::program_tools(p, false, &runs, &|n: &String| known(n).map(|e| e.tools));
-    Effect { sets, units, save: p.save, tools, frames }
+    Effect { sets, units, save: p.save, tools, frames, r_params, interrupts }
+}
+
+/// Whether an item may write an R parameter itself (its calls are the caller's to look up).
+fn writes_r(it: &crate::ir::Item) -> bool {
+    use crate::ir::VarKind;
+    match &it.kind {
+        ItemKind::Assign { target, .. } => {
+            matches!(target.kind, VarKind::R(_) | VarKind::RIndirect(_) | VarKind::HashIndirect(_))
+        }
+        ItemKind::Print(p) => {
+            p.status.as_deref().is_some_and(|v| matches!(v.kind, VarKind::R(_) | VarKind::RIndirect(_)))
+        }
+        ItemKind::Instruction { name } => {
+            let up = name.to_ascii_uppercase();
+            up.starts_with("EXEC") || crate::ir::interrupt::op_of(&up).is_some()
+        }
+        ItemKind::SyncAction(_) => true,
+        ItemKind::IfThen { then, .. } => writes_r(then),
+        ItemKind::IfBlock { items, .. } => items.iter().any(writes_r),
+        _ => false,
+    }
 }
 
 /// What a Siemens call runs: a drilling cycle touches neither tool nor compensation; any
