@@ -4,8 +4,10 @@
 //! to do, instead of being looked for as subprograms; a cycle's name given as a program
 //! beside the main program is read and translated as that subprogram.
 
+#[path = "support/cli_run.rs"]
+mod cli_run;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const MAIN: &str = "\
 ; POCKET AND FACE
@@ -19,19 +21,12 @@ N70 M30
 ";
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("nctrans-package-cycles-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+    cli_run::workdir("control-calls", name)
 }
 
 fn nctrans(cwd: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(cwd).output().expect("run");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let (out, err, code) = cli_run::nctrans(cwd, args);
+    (code, out, err)
 }
 
 #[test]

@@ -3,8 +3,10 @@
 //! says the source is in error on that path, in the whole-file, streamed and batch paths;
 //! a divergence on motion keeps the plain verdict.
 
+#[path = "support/cli_run.rs"]
+mod cli_run;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// Spot-drilling four holes; no F word anywhere, so CYCLE81 alarms at its first hole.
 const NO_FEED: &str = "\
@@ -22,19 +24,12 @@ N100 M30
 ";
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("nctrans-verdict-alarm-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+    cli_run::workdir("verdict-alarm", name)
 }
 
 fn nctrans(cwd: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_nctrans")).args(args).current_dir(cwd).output().expect("run");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let (out, err, code) = cli_run::nctrans(cwd, args);
+    (code, out, err)
 }
 
 const SOURCE_ALARMS: &str = "the source stops with an alarm there";
