@@ -94,7 +94,7 @@ impl<T: SegTarget> Skel<T> {
     /// Ends the run being collected with its placeholder.
     pub(crate) fn close_run(&mut self) {
         if let Some(span) = self.run.take() {
-            let p = self.t.placeholder(self.runs, span);
+            let p = self.t.placeholder(super::mark(self.runs), span);
             self.body.push(p);
             self.runs += 1;
         }
@@ -282,6 +282,8 @@ impl<T: SegTarget> WordsSink for One<T> {
 pub(crate) struct Writer<'a, T: SegTarget> {
     pub(crate) t: &'a T,
     pub(crate) class: T::Class,
+    /// The N values kept out of runs (the skeleton scan's).
+    pub(crate) keep: NSet,
     pub(crate) fast: T::Fast,
     /// The mode at each run's start (the skeleton scan's).
     pub(crate) modes: Vec<T::Mode>,
@@ -321,7 +323,7 @@ impl<T: SegTarget> WordsSink for Writer<'_, T> {
             self.out.leave();
             return true;
         }
-        if !self.class.plain_run(meta, words) {
+        if !self.class.plain_run(&self.keep, meta, words) {
             return false;
         }
         self.enter();
@@ -339,7 +341,7 @@ impl<T: SegTarget> WordsSink for Writer<'_, T> {
             return;
         }
         let pending = std::mem::take(&mut self.pending);
-        if prog != 0 || !self.class.stmt_run(s) {
+        if prog != 0 || !self.class.stmt_run(&self.keep, s) {
             // With `STRICT_DECLINED`, the skeleton scan took a declined line as a run block.
             self.out.bad |= T::STRICT_DECLINED && pending;
             self.out.leave();

@@ -3,14 +3,11 @@
 //! highest N, the N numbers of the skeleton's own blocks, and the lone M0 after a MSG kept
 //! in the skeleton (see `segmented::fanuc`).
 
-use crate::ir::{
-    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, Target, WordValue,
-};
+use crate::ir::{Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, WordValue};
 use crate::lower::to_fanuc::words::units::Units;
 use crate::span::Span;
-use crate::stream::segmented::driver::SkelPart;
+use crate::stream::segmented::driver::{jump_or_call, SkelPart};
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
-use crate::stream::segmented::MARK;
 use crate::stream::target::fanuc::{g_item, run_block};
 use crate::stream::PlainWord;
 
@@ -137,10 +134,10 @@ impl SkelPart for Track {
         self.touched = t;
     }
 
-    /// The placeholder of run `k`: it carries the modes the run leaves (as unit words,
+    /// A run's placeholder: it carries the modes the run leaves (as unit words,
     /// `Units::words`, and G90/G91 words, where it changes them) for the words pass to
     /// follow into the skeleton after it, and the run's highest N; its line is replaced whole.
-    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
+    fn placeholder(&mut self, mark: String, span: Span) -> Stmt {
         let t = std::mem::take(&mut self.touched);
         let mut items = Vec::new();
         if t.inch {
@@ -152,7 +149,7 @@ impl SkelPart for Track {
         let meta = BlockMeta {
             span,
             number: self.hi.take().map(|value| SeqNo { value, span }),
-            comments: vec![Comment { text: format!("{MARK}{k}"), span }],
+            comments: vec![Comment { text: mark, span }],
             ..BlockMeta::default()
         };
         crate::lower::meta_stmt(meta, items)
@@ -176,24 +173,18 @@ impl SkelPart for Track {
             }
             modes.items(&b.items, &mut Touched::default());
             for it in &b.items {
+                if let Some(w) = jump_or_call(it, calls_ok, plain_call, targets) {
+                    why = why.or(w);
+                    continue;
+                }
                 match &it.kind {
-                    ItemKind::Call(c) if calls_ok && plain_call(c) => {}
-                    ItemKind::Call(_) => why = why.or(Some("a call of another program")),
                     ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
-                    ItemKind::Goto(g) => match &g.target {
-                        Target::Number(n) => targets.push(n.value),
-                        Target::Label(_) => {}
-                        Target::Computed(_) => why = why.or(Some("a computed jump")),
-                    },
-                    ItemKind::Word(w) => match &w.value {
-                        WordValue::Expr(e) => match &e.kind {
-                            _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
-                                why = why.or(Some("a computed G word"));
-                            }
-                            _ => {}
-                        },
-                        WordValue::Ac(_) | WordValue::Ic(_) | WordValue::Rotary(..) => {}
-                    },
+                    ItemKind::Word(w)
+                        if w.addr.is(b'G')
+                            && matches!(&w.value, WordValue::Expr(e) if !matches!(e.kind, ExprKind::Num(_))) =>
+                    {
+                        why = why.or(Some("a computed G word"))
+                    }
                     _ => {}
                 }
             }
