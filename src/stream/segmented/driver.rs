@@ -13,7 +13,7 @@ use super::splice::{self, Splice};
 use super::{LoadCallees, MARK};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
-use crate::ir::{BlockMeta, Call, Item, ItemKind, Program, Stmt, Target, Unit};
+use crate::ir::{Block, BlockMeta, Call, Item, ItemKind, Program, Stmt, Target, Unit};
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
 use crate::stream::target::RunWriter;
@@ -41,19 +41,22 @@ pub(crate) trait SkelPart {
     /// The placeholder of a run (whose first block is at `span`): a block with the comment
     /// `mark` (its run's [`mark`](super::mark)).
     fn placeholder(&mut self, mark: String, span: Span) -> Stmt;
-    /// A statement of the skeleton: why it declines, or `None` with its modes followed and
-    /// the N values its jumps name in `targets`.
-    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str>;
+    /// What following a statement of the skeleton changes (taken only if none of its blocks
+    /// declines, `walked`), from here.
+    type Walk;
+    fn walk(&self) -> Self::Walk;
+    /// Each block of a statement of the skeleton in textual order: why it declines, with
+    /// what it follows in `w` and the N values its jumps name in `targets`.
+    fn macro_block(w: &mut Self::Walk, b: &Block, calls: bool, targets: &mut Vec<u32>) -> Why;
+    fn walked(&mut self, w: Self::Walk, s: &Stmt);
 }
 
-/// For `SkelPart::macro_stmt`, every target's rule for a jump or a call (`None`: neither): a jump's
+/// Why a statement declines (`None`: it does not).
+pub(crate) type Why = Option<&'static str>;
+
+/// For `SkelPart::macro_block`, every target's rule for a jump or a call (`None`: neither): a jump's
 /// N goes into `targets`, a computed one declines; a call declines unless `calls` and `plain`.
-pub(crate) fn jump_or_call(
-    it: &Item,
-    calls: bool,
-    plain: fn(&Call) -> bool,
-    targets: &mut Vec<u32>,
-) -> Option<Option<&'static str>> {
+pub(crate) fn jump_or_call(it: &Item, calls: bool, plain: fn(&Call) -> bool, targets: &mut Vec<u32>) -> Option<Why> {
     match &it.kind {
         ItemKind::Goto(g) => {
             if let Target::Number(n) = &g.target {

@@ -147,11 +147,7 @@ pub fn calls_plain(unit: &Unit) -> bool {
     for p in &unit.programs {
         crate::ir::visit::walk_stmts(&p.body, &mut |s| {
             if let StmtKind::Block(b) = &s.kind {
-                for it in &b.items {
-                    if let ItemKind::Call(c) = &it.kind {
-                        ok &= track::plain_call(c);
-                    }
-                }
+                ok &= b.items.iter().all(|it| !matches!(&it.kind, ItemKind::Call(c) if !track::plain_call(c)));
             }
         });
     }

@@ -102,10 +102,16 @@ impl<T: SegTarget> Skel<T> {
 
     /// Checks a statement of the macro part, follows its modes and collects its jump targets.
     fn macro_stmt(&mut self, s: &Stmt) {
-        let mut targets = Vec::new();
-        if let Some(w) = self.t.macro_stmt(s, self.calls, &mut targets) {
+        let (mut walk, mut targets, mut why, calls) = (self.t.walk(), Vec::new(), None, self.calls);
+        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                why = why.or(T::Track::macro_block(&mut walk, b, calls, &mut targets));
+            }
+        });
+        if let Some(w) = why {
             return self.decline(w);
         }
+        self.t.walked(walk, s);
         for n in targets {
             if n > MAX_TRACKED_N {
                 return self.decline("a jump to an N number above 16777216");

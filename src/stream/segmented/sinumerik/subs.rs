@@ -98,10 +98,7 @@ pub(super) fn declines(body: &[Stmt]) -> Option<&'static str> {
     crate::ir::visit::walk_stmts(body, &mut |s| {
         let StmtKind::Block(b) = &s.kind else { return };
         for it in &b.items {
-            let then = match &it.kind {
-                ItemKind::IfThen { then, .. } => Some(&**then),
-                _ => None,
-            };
+            let then = if let ItemKind::IfThen { then, .. } = &it.kind { Some(&**then) } else { None };
             for it in std::iter::once(it).chain(then) {
                 why = why.or(match &it.kind {
                     ItemKind::Call(c) if !plain_call(c) => Some("a modal or computed call"),

@@ -4,12 +4,12 @@
 //! blocks (see `segmented::sinumerik`).
 
 use crate::dialect::digits::Src;
-use crate::ir::{Addr, BlockMeta, Item, ItemKind, Stmt, StmtKind, VarKind, Word, WordValue};
+use crate::ir::{Addr, Block, BlockMeta, Item, ItemKind, Stmt, StmtKind, VarKind, Word, WordValue};
 use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::RawBlock;
 use crate::span::Span;
-use crate::stream::segmented::driver::{jump_or_call, RunTests, SkelPart};
+use crate::stream::segmented::driver::{jump_or_call, RunTests, SkelPart, Why};
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
 use crate::stream::target::sinumerik::{plain_g, straight};
 use crate::stream::target::RunWriter;
@@ -177,36 +177,35 @@ impl SkelPart for Track {
         passes::comment_stmt(mark, span)
     }
 
-    /// Checks a statement of the skeleton, collects its jump targets, follows its arc mode.
-    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
-        let mut why: Option<&'static str> = None;
-        let (mut arc, mut own) = (self.arc, self.own_arc);
-        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-            let StmtKind::Block(b) = &s.kind else { return };
-            if b.meta.number.as_ref().is_some_and(|n| n.value > MAX_TRACKED_N) {
-                why = why.or(Some("an N number above 16777216"));
-            }
-            arc = follow_items(arc, &b.items);
-            own = follow_items(own, &b.items);
-            if arc != own && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'R'))) {
-                why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
-            }
-            for it in &b.items {
-                why = why.or(check_item(it, calls, targets));
-                if let ItemKind::IfThen { then, .. } = &it.kind {
-                    if matches!(then.kind, ItemKind::Word(_)) {
-                        why = why.or(Some("IF..THEN with an address word"));
-                    }
-                    why = why.or(check_item(then, calls, targets));
-                }
-            }
-        });
-        if why.is_some() {
-            return why;
+    /// The arc mode with the runs and without.
+    type Walk = (bool, bool);
+
+    fn walk(&self) -> (bool, bool) {
+        (self.arc, self.own_arc)
+    }
+
+    fn macro_block((arc, own): &mut (bool, bool), b: &Block, calls: bool, targets: &mut Vec<u32>) -> Why {
+        let big = b.meta.number.as_ref().is_some_and(|n| n.value > MAX_TRACKED_N);
+        let mut why = big.then_some("an N number above 16777216");
+        (*arc, *own) = (follow_items(*arc, &b.items), follow_items(*own, &b.items));
+        if arc != own && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'R'))) {
+            why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
         }
+        for it in &b.items {
+            why = why.or(check_item(it, calls, targets));
+            if let ItemKind::IfThen { then, .. } = &it.kind {
+                if matches!(then.kind, ItemKind::Word(_)) {
+                    why = why.or(Some("IF..THEN with an address word"));
+                }
+                why = why.or(check_item(then, calls, targets));
+            }
+        }
+        why
+    }
+
+    fn walked(&mut self, (arc, own): (bool, bool), s: &Stmt) {
         (self.arc, self.own_arc) = (arc, own);
         self.solid |= solid(s);
-        None
     }
 }
 
