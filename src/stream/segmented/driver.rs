@@ -1,6 +1,6 @@
 //! The one segmented driver, for every target: the one scan (skeleton and spilled runs),
-//! the second skeleton scan when a jump names a run block's N, the skeleton's translation,
-//! then either the splice of the spilled runs into its text or the writing scan (the sinks
+//! the second skeleton scan when a jump names a run block's N, the skeleton's programs,
+//! callees, translation and placeholder lines, then either the splice of the spilled runs into its text or the writing scan (the sinks
 //! are `sinks`). What differs between targets is a [`SegTarget`]: what a skeleton keeps
 //! and which modes it follows ([`SkelPart`]), the fast writer of run blocks ([`RunWriter`]), the
 //! whole translation of the skeleton and the translation of a block alone. Generic, so
@@ -9,11 +9,11 @@
 use super::nset::NSet;
 use super::sinks::{One, Skel, Writer};
 use super::spill::{assemble, Spill};
-use super::splice::Splice;
-use super::LoadCallees;
+use super::splice::{self, Splice};
+use super::{LoadCallees, MARK};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
-use crate::ir::{BlockMeta, Item, Program, Stmt};
+use crate::ir::{Block, BlockMeta, Call, Item, ItemKind, Program, Stmt, Target, Unit};
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
 use crate::stream::target::RunWriter;
@@ -38,17 +38,41 @@ pub(crate) trait SkelPart {
     /// The modes after a plain run block's words, and after a run statement's items.
     fn follow_plain(&mut self, words: &[PlainWord]);
     fn follow_stmt(&mut self, items: &[Item]);
-    /// The placeholder of run `k` (whose first block is at `span`).
-    fn placeholder(&mut self, k: usize, span: Span) -> Stmt;
-    /// A statement of the skeleton: why it declines, or `None` with its modes followed and
-    /// the N values its jumps name in `targets`.
-    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str>;
+    /// The placeholder of a run (whose first block is at `span`): a block with the comment
+    /// `mark` (its run's [`mark`](super::mark)).
+    fn placeholder(&mut self, mark: String, span: Span) -> Stmt;
+    /// What following a statement of the skeleton changes (taken only if none of its blocks
+    /// declines, `walked`), from here.
+    type Walk;
+    fn walk(&self) -> Self::Walk;
+    /// Each block of a statement of the skeleton in textual order: why it declines, with
+    /// what it follows in `w` and the N values its jumps name in `targets`.
+    fn macro_block(w: &mut Self::Walk, b: &Block, calls: bool, targets: &mut Vec<u32>) -> Why;
+    fn walked(&mut self, w: Self::Walk, s: &Stmt);
+}
+
+/// Why a statement declines (`None`: it does not).
+pub(crate) type Why = Option<&'static str>;
+
+/// For `SkelPart::macro_block`, every target's rule for a jump or a call (`None`: neither): a jump's
+/// N goes into `targets`, a computed one declines; a call declines unless `calls` and `plain`.
+pub(crate) fn jump_or_call(it: &Item, calls: bool, plain: fn(&Call) -> bool, targets: &mut Vec<u32>) -> Option<Why> {
+    match &it.kind {
+        ItemKind::Goto(g) => {
+            if let Target::Number(n) = &g.target {
+                targets.push(n.value);
+            }
+            Some(matches!(g.target, Target::Computed(_)).then_some("a computed jump"))
+        }
+        ItemKind::Call(c) => Some((!(calls && plain(c))).then_some("a call of another program")),
+        _ => None,
+    }
 }
 
 /// The writing scan's run-block tests (the skeleton scan's, with what it found).
 pub(crate) trait RunTests {
-    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool;
-    fn stmt_run(&mut self, s: &Stmt) -> bool;
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool;
 }
 
 /// What a target supplies to the segmented driver (see the module comment).
@@ -75,6 +99,8 @@ pub(crate) trait SegTarget: Sized {
     /// What the result needs from the skeleton's translation.
     type Done;
     type Output;
+    /// How its placeholder lines read in the translated skeleton ([`places`]).
+    const PLACE: Place;
 
     /// Options that send the file to the whole path before any scan.
     fn check(&self) -> Result<(), Fallback> {
@@ -92,27 +118,49 @@ pub(crate) trait SegTarget: Sized {
         None
     }
 
-    /// After a skeleton scan of `path` without a decline: the programs to translate (the
-    /// main one first, its body still to be the skeleton's), or why not.
-    fn programs(&self, path: &Path, sk: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback>;
-    /// Translates the skeleton into its text and placeholders.
-    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback>;
+    /// Why the source declines, after a skeleton scan of `path` without a decline.
+    fn source_ok(&self, _path: &Path, _ix: &Index) -> Result<(), Fallback> {
+        Ok(())
+    }
+    /// Why the main program (its body still the scan's) declines, once counted.
+    fn main_ok(&self, _main: &Program) -> Result<(), Fallback> {
+        Ok(())
+    }
+    /// Why the skeleton's programs (the main one's body the skeleton) decline, before the
+    /// callees are loaded (the target may change them).
+    fn skeleton_ok(&self, _sk: &mut Skel<Self>, _programs: &mut [Program]) -> Result<(), Fallback> {
+        Ok(())
+    }
+    /// Translates the skeleton into its text and placeholders ([`places`]).
+    fn translate(&self, s: Skeleton<'_, Self>) -> Result<Translated<Self>, Fallback>;
     /// Lowers a run block alone, with the mode running into it: its text and the
     /// diagnostics kept with it (`None`: they decline).
     fn alone(&self, a: &Self::Alone, s: &Stmt, m: Self::Mode) -> Option<(String, Vec<Diagnostic>)>;
-    /// The writing scan's tests, from the skeleton.
-    fn class(sk: &mut Skel<Self>) -> Self::Class;
+    /// The writing scan's tests, from the skeleton (its `keep` is the driver's).
+    fn class(t: &mut Self::Track) -> Self::Class;
     /// The result, with the source's index and the kept diagnostics of run blocks.
     fn done(&self, d: Self::Done, index: Index, run_diags: Vec<Diagnostic>) -> Self::Output;
 }
 
-/// A skeleton to translate: the source, its scan, its programs (the main one first, its
-/// body still the scan's) and what gives the callees.
-pub(crate) struct Skeleton<'s, 'l, T: SegTarget> {
+/// A skeleton to translate: the source, its scan, the unit of its programs (file 0, the
+/// main one first with the skeleton as its body) and the callees loaded for it.
+pub(crate) struct Skeleton<'s, T: SegTarget> {
     pub(crate) path: &'s Path,
     pub(crate) sk: &'s mut Skel<T>,
-    pub(crate) programs: Vec<Program>,
-    pub(crate) load: Option<LoadCallees<'l>>,
+    pub(crate) unit: Unit,
+    pub(crate) callees: Vec<Unit>,
+}
+
+/// How a target writes a placeholder line (`splice::placeholders`): the text before the marker
+/// and after its run's index, the line heads it takes, whether carrier lines follow it.
+pub(crate) type Place = (&'static str, &'static str, fn(&str) -> bool, bool);
+
+/// The placeholder lines of a translated skeleton `text` of `runs` runs written with
+/// `eol` line ends, in order, as `T` writes them; declines when the marker is anywhere else.
+pub(crate) fn places<T: SegTarget>(text: &str, runs: usize, eol: &str) -> Result<Vec<(usize, usize)>, Fallback> {
+    let (open, close, head, carriers) = T::PLACE;
+    splice::placeholders(text, (runs, eol), (&format!("{open}{MARK}"), close), head, carriers)
+        .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))
 }
 
 /// A translated skeleton.
@@ -151,7 +199,16 @@ fn finish<T: SegTarget>(
     if !ix.diags.is_empty() {
         return Err(Fallback::Diagnostics);
     }
-    let programs = t.programs(path, &mut sk, &ix)?;
+    t.source_ok(path, &ix)?;
+    // The programs after the main one are the ones the scan kept whole (`SUBS_IN_FILE`).
+    let n = ix.programs.len();
+    if n != 1 && !(T::SUBS_IN_FILE && sk.calls) || n == 0 || sk.subs.len() >= n {
+        return Err(Fallback::NotStraight("more than one program".into()));
+    }
+    t.main_ok(&ix.programs[0].program)?;
+    let mut subs = std::mem::take(&mut sk.subs).into_iter();
+    let rest = ix.programs[1..].iter().map(|p| Program { body: subs.next().unwrap_or_default(), ..p.program.clone() });
+    let programs = std::iter::once(ix.programs[0].program.clone()).chain(rest).collect();
     Ok((sk, programs, ix))
 }
 
@@ -190,8 +247,12 @@ pub(crate) fn segment<T: SegTarget>(
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
         }
     }
+    programs[0].body = std::mem::take(&mut sk.body);
+    t.skeleton_ok(&mut sk, &mut programs)?;
+    let unit = Unit { dialect: T::SOURCE, file: 0, programs };
+    let callees = load.map_or(Ok(Vec::new()), |load| load(&unit))?;
     let Translated { text, places, alone, prefix, done } =
-        t.translate(Skeleton { path, sk: &mut sk, programs, load })?;
+        t.translate(Skeleton { path, sk: &mut sk, unit, callees })?;
     if let Some((spill, starts, deferred, index)) = spilled {
         // The blocks the fast writer declined, as the writing scan translates them.
         let mut inserts = Vec::with_capacity(deferred.len());
@@ -212,8 +273,8 @@ pub(crate) fn segment<T: SegTarget>(
     }
     let modes = std::mem::take(&mut sk.modes);
     let out = Splice::new(&text, places, out);
-    let mut w =
-        Writer { t, class: T::class(&mut sk), fast: t.fast(), modes, alone, pending: false, out, diags: vec![] };
+    let (class, keep) = (T::class(&mut sk.t), std::mem::take(&mut sk.keep));
+    let mut w = Writer { t, class, keep, fast: t.fast(), modes, alone, pending: false, out, diags: vec![] };
     w.out.buf.extend_from_slice(prefix);
     let index = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut w, progress)
         .map_err(Fallback::NotStreamable)?;

@@ -1,6 +1,6 @@
-//! The FANUC target of the segmented stream (Sinumerik source, see `segmented`): R
-//! assignments, IF/WHILE/LOOP, jumps and labels stay in the skeleton, whose translation
-//! gives the labels, structures and the variable map header as for the whole file.
+//! The FANUC target's rules and spelling for the one segmented driver (Sinumerik source, see
+//! `segmented`): R assignments, IF/WHILE/LOOP, jumps and labels stay in the skeleton, whose
+//! translation gives the labels, structures and the variable map header as for the whole file.
 //!
 //! Why the output is the whole translation's, byte for byte:
 //! - a straight block's translation depends on no other block but through the words
@@ -69,7 +69,7 @@
 
 mod track;
 
-use super::driver::{segment, RunTests, SegTarget, Skeleton, Translated};
+use super::driver::{places, segment, Place, RunTests, SegTarget, Skeleton, Translated};
 use super::nset::{kept, NSet};
 use super::sinks::Skel;
 use super::{LoadCallees, SourceAlign};
@@ -77,7 +77,7 @@ use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{BlockMeta, ItemKind, Program, Stmt, StmtKind, Unit};
+use crate::ir::{BlockMeta, DataType, ItemKind, Program, Stmt, StmtKind, Unit};
 use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
 use crate::stream::target::fanuc::{alone, run_block};
@@ -147,11 +147,7 @@ pub fn calls_plain(unit: &Unit) -> bool {
     for p in &unit.programs {
         crate::ir::visit::walk_stmts(&p.body, &mut |s| {
             if let StmtKind::Block(b) = &s.kind {
-                for it in &b.items {
-                    if let ItemKind::Call(c) = &it.kind {
-                        ok &= track::plain_call(c);
-                    }
-                }
+                ok &= b.items.iter().all(|it| !matches!(&it.kind, ItemKind::Call(c) if !track::plain_call(c)));
             }
         });
     }
@@ -165,20 +161,19 @@ struct ToFanuc<'a> {
     notes_ok: bool,
 }
 
-/// The writing scan's tests: the N values jumps name, the lone M0 blocks kept for a MSG.
+/// The writing scan's tests: the lone M0 blocks kept for a MSG.
 struct Class {
-    keep: NSet,
     forced: Vec<u32>,
 }
 
 impl RunTests for Class {
     #[inline]
-    fn plain_run(&self, meta: &BlockMeta, _: &[PlainWord]) -> bool {
-        !kept(&self.keep, meta) && self.forced.binary_search(&meta.span.lo).is_err()
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+        !kept(keep, meta) && self.forced.binary_search(&meta.span.lo).is_err()
     }
 
-    fn stmt_run(&mut self, s: &Stmt) -> bool {
-        matches!(&s.kind, StmtKind::Block(b) if run_block(s) && self.plain_run(&b.meta, &[]))
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+        matches!(&s.kind, StmtKind::Block(b) if run_block(s) && self.plain_run(keep, &b.meta, &[]))
     }
 }
 
@@ -197,6 +192,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
     /// The skeleton's translation's symbol map and notes.
     type Done = (translate::to_fanuc::SymbolMap, Vec<Diagnostic>);
     type Output = (Segmented, Vec<Diagnostic>);
+    /// `Nn G20 G91 (NCTRANS SEGMENT k)`, with carrier lines `Nn (NCTRANS SEGMENT k)`.
+    const PLACE: Place = ("(", ")", place_head, true);
 
     fn check(&self) -> Result<(), Fallback> {
         if self.opts.number_blocks.is_some() || self.opts.main_is_sub {
@@ -213,52 +210,47 @@ impl<'a> SegTarget for ToFanuc<'a> {
         fast::Fast::new(self.opts.comments, self.opts.line_ending.as_str())
     }
 
-    fn programs(&self, _: &Path, _: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback> {
-        if ix.programs.len() != 1 {
-            return Err(Fallback::NotStraight("more than one program".into()));
-        }
-        if !ix.programs[0].program.params.is_empty() {
+    fn main_ok(&self, main: &Program) -> Result<(), Fallback> {
+        if !main.params.is_empty() {
             return Err(Fallback::NotStraight("a PROC with parameters".into()));
         }
-        Ok(vec![ix.programs[0].program.clone()])
+        Ok(())
     }
 
-    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
-        let Skeleton { sk, programs, load, .. } = s;
+    fn skeleton_ok(&self, sk: &mut Skel<Self>, programs: &mut [Program]) -> Result<(), Fallback> {
+        let main = &mut programs[0];
+        let (mut nodes, mut axis, mut repeats) = (0usize, false, false);
+        crate::ir::visit::walk_stmts(&main.body, &mut |s| {
+            nodes += 1;
+            let StmtKind::Block(b) = &s.kind else { return };
+            axis |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Def(d) if matches!(d.ty, DataType::Axis)));
+            repeats |= b.items.iter().any(|it| matches!(it.kind, ItemKind::RepeatSection(_)));
+        });
         // Axis variables are folded into letters over the whole program (`lower::to_fanuc::
         // axis_vars`), which a skeleton with its runs cut out does not give the same way.
-        if declares_axis(&sk.body) {
+        if axis {
             return Err(Fallback::NotStraight("axis variables (DEF AXIS)".into()));
         }
-        let opts = self.opts;
-        let eol = opts.line_ending.as_str();
-        // The labels pass numbers jump targets from the next thousand above the highest N, and
-        // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
-        let mut nodes = 0usize;
-        let mut repeats = false;
-        crate::ir::visit::walk_stmts(&sk.body, &mut |s| {
-            nodes += 1;
-            repeats |= matches!(&s.kind, crate::ir::StmtKind::Block(b)
-                if b.items.iter().any(|it| matches!(it.kind, crate::ir::ItemKind::RepeatSection(_))));
-        });
         if repeats {
             // Its copy would hold a placeholder twice (`lower::to_fanuc::repeat_sections`).
             return Err(Fallback::NotStraight("a program-section repetition (REPEAT)".into()));
         }
+        // The labels pass numbers jump targets from the next thousand above the highest N, and
+        // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
         let fresh = 4 * nodes as u64 + 16;
         if u64::from((sk.t.max_n / 1000 + 1) * 1000) + fresh > u64::from(MAX_N) {
-            carry_numbers(sk, fresh)?;
+            carry_numbers(sk, &mut main.body, fresh)?;
         }
-        let Some(mut program) = programs.into_iter().next() else {
-            return Err(Fallback::NotStraight("no program".into()));
-        };
-        let mut lone = program.clone();
-        program.body = std::mem::take(&mut sk.body);
-        let unit = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![program] };
-        let subs = match load {
-            Some(load) => load(&unit)?,
-            None => Vec::new(),
-        };
+        Ok(())
+    }
+
+    fn translate(&self, s: Skeleton<'_, Self>) -> Result<Translated<Self>, Fallback> {
+        let Skeleton { sk, mut unit, callees: subs, .. } = s;
+        let (opts, eol) = (self.opts, self.opts.line_ending.as_str());
+        // The main program's header alone, for a block translated alone.
+        let body = std::mem::take(&mut unit.programs[0].body);
+        let lone = unit.programs[0].clone();
+        unit.programs[0].body = body;
         let sub_refs: Vec<&Unit> = subs.iter().collect();
         let t = translate::to_fanuc::to_fanuc(&unit, &sub_refs, opts);
         drop(unit);
@@ -278,15 +270,13 @@ impl<'a> SegTarget for ToFanuc<'a> {
         if !(t.diags.is_empty() || self.notes_ok && notes_only) || t.unsupported > 0 {
             return Err(Fallback::Diagnostics);
         }
-        let places = placeholders(&t.text, sk.runs, eol)
-            .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+        let places = places::<Self>(&t.text, sk.runs, eol)?;
         // The labels pass numbers each program on its own: only the main program's text is
         // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
         let main_end = main_text_end(&t, eol, places.last().map_or(0, |p| p.1));
         fresh_numbers_ok(&t.text[..main_end], eol, &places, sk)?;
         // A block the fast path declines is translated alone, as the straight stream does: the
         // header of an empty program comes first, then the block.
-        lone.body = vec![];
         let lone = Unit { dialect: Dialect::Sinumerik, file: 0, programs: vec![lone] };
         let head = translate::to_fanuc::to_fanuc(&lone, &[], opts);
         let header_len = head.unit.programs.first().map_or(0, |p| p.body.len());
@@ -301,8 +291,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
         (diags.is_empty() && unsupported == 0).then_some((text, diags))
     }
 
-    fn class(sk: &mut Skel<Self>) -> Class {
-        Class { keep: std::mem::take(&mut sk.keep), forced: std::mem::take(&mut sk.t.forced) }
+    fn class(t: &mut Track) -> Class {
+        Class { forced: std::mem::take(&mut t.forced) }
     }
 
     fn done(&self, (symbol_map, notes): Self::Done, mut index: Index, _: Vec<Diagnostic>) -> Self::Output {
@@ -312,23 +302,16 @@ impl<'a> SegTarget for ToFanuc<'a> {
     }
 }
 
-/// The byte ranges of the placeholder lines of a translated skeleton with `runs` runs, in
-/// order: each `(NCTRANS SEGMENT k)` alone on its line, after the placeholder's N number
-/// and G words if any (`Nn G20 G91 (NCTRANS SEGMENT k)`), with the carrier lines right
-/// after it (`Nn (NCTRANS SEGMENT k)`, same `k`); `None` when the text holds the marker
-/// anywhere else.
-fn placeholders(text: &str, runs: usize, eol: &str) -> Option<Vec<(usize, usize)>> {
-    // The placeholder's N number and mode words (`Nn G20 G90 `), or nothing.
-    let head = |head: &str| {
-        head.is_empty()
-            || head.strip_suffix(' ').is_some_and(|h| {
-                h.split(' ').enumerate().all(|(k, t)| {
-                    let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
-                    d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
-                })
+/// What precedes a placeholder's marker on its line: its N number and mode words
+/// (`Nn G20 G90 `), or nothing.
+fn place_head(head: &str) -> bool {
+    head.is_empty()
+        || head.strip_suffix(' ').is_some_and(|h| {
+            h.split(' ').enumerate().all(|(k, t)| {
+                let d = t.strip_prefix('G').or_else(|| t.strip_prefix('N').filter(|_| k == 0));
+                d.is_some_and(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
             })
-    };
-    super::splice::placeholders(text, (runs, eol), (&format!("({}", super::MARK), ")"), head, true)
+        })
 }
 
 /// Where the main program's text ends in a translation of several programs: at the line
@@ -361,7 +344,7 @@ const MAX_CARRIED: usize = 20_000;
 /// whole program has; they are not jump targets (a target N in a run was kept out of the
 /// runs) and hold no label, so they change nothing else. `fresh_numbers_ok` checks the
 /// result. Declines when the numbers run out.
-fn carry_numbers(sk: &mut Skel<ToFanuc<'_>>, fresh: u64) -> Result<(), Fallback> {
+fn carry_numbers(sk: &Skel<ToFanuc<'_>>, body: &mut Vec<Stmt>, fresh: u64) -> Result<(), Fallback> {
     let (mut free, mut v, mut carried) = (0u64, 0u32, Vec::new());
     while free < fresh {
         v += 1;
@@ -378,15 +361,13 @@ fn carry_numbers(sk: &mut Skel<ToFanuc<'_>>, fresh: u64) -> Result<(), Fallback>
         }
     }
     let Some(last) = sk.runs.checked_sub(1) else { return Ok(()) };
-    let mark = format!("{}{last}", super::MARK);
-    let is_last = |s: &crate::ir::Stmt| match &s.kind {
-        crate::ir::StmtKind::Block(b) => b.meta.comments.first().is_some_and(|c| c.text == mark),
-        _ => false,
-    };
-    let Some(at) = sk.body.iter().rposition(is_last) else {
+    let mark = super::mark(last);
+    let is_last =
+        |s: &Stmt| matches!(&s.kind, StmtKind::Block(b) if b.meta.comments.first().is_some_and(|c| c.text == mark));
+    let Some(at) = body.iter().rposition(is_last) else {
         return Err(Fallback::NotStraight("a lost placeholder (a bug in nctrans)".into()));
     };
-    let span = sk.body[at].span;
+    let span = body[at].span;
     let carriers = carried.into_iter().map(|value| {
         let meta = crate::ir::BlockMeta {
             span,
@@ -396,7 +377,7 @@ fn carry_numbers(sk: &mut Skel<ToFanuc<'_>>, fresh: u64) -> Result<(), Fallback>
         };
         crate::lower::meta_stmt(meta, vec![])
     });
-    sk.body.splice(at + 1..at + 1, carriers);
+    body.splice(at + 1..at + 1, carriers);
     Ok(())
 }
 
@@ -423,18 +404,4 @@ fn fresh_numbers_ok(text: &str, eol: &str, places: &[(usize, usize)], sk: &Skel<
         }
     }
     Ok(())
-}
-
-/// Whether `body` declares an AXIS variable.
-fn declares_axis(body: &[crate::ir::Stmt]) -> bool {
-    let mut found = false;
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let crate::ir::StmtKind::Block(b) = &s.kind {
-            found |= b
-                .items
-                .iter()
-                .any(|it| matches!(&it.kind, crate::ir::ItemKind::Def(d) if matches!(d.ty, crate::ir::DataType::Axis)));
-        }
-    });
-    found
 }

@@ -34,6 +34,11 @@ use std::collections::BTreeMap;
 /// comment of the skeleton may hold it (checked on the translated skeleton).
 pub(crate) const MARK: &str = "NCTRANS SEGMENT ";
 
+/// The placeholder comment of run `k`.
+pub(crate) fn mark(k: usize) -> String {
+    format!("{MARK}{k}")
+}
+
 /// Gives the callee units of a skeleton (a unit holding the main program's macro part with
 /// every call it has, as the whole program has them; for a FANUC source followed by the
 /// other programs of the file, whole): the programs the whole path would load for the whole

@@ -94,7 +94,7 @@ impl<T: SegTarget> Skel<T> {
     /// Ends the run being collected with its placeholder.
     pub(crate) fn close_run(&mut self) {
         if let Some(span) = self.run.take() {
-            let p = self.t.placeholder(self.runs, span);
+            let p = self.t.placeholder(super::mark(self.runs), span);
             self.body.push(p);
             self.runs += 1;
         }
@@ -102,10 +102,16 @@ impl<T: SegTarget> Skel<T> {
 
     /// Checks a statement of the macro part, follows its modes and collects its jump targets.
     fn macro_stmt(&mut self, s: &Stmt) {
-        let mut targets = Vec::new();
-        if let Some(w) = self.t.macro_stmt(s, self.calls, &mut targets) {
+        let (mut walk, mut targets, mut why, calls) = (self.t.walk(), Vec::new(), None, self.calls);
+        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
+            if let StmtKind::Block(b) = &s.kind {
+                why = why.or(T::Track::macro_block(&mut walk, b, calls, &mut targets));
+            }
+        });
+        if let Some(w) = why {
             return self.decline(w);
         }
+        self.t.walked(walk, s);
         for n in targets {
             if n > MAX_TRACKED_N {
                 return self.decline("a jump to an N number above 16777216");
@@ -282,6 +288,8 @@ impl<T: SegTarget> WordsSink for One<T> {
 pub(crate) struct Writer<'a, T: SegTarget> {
     pub(crate) t: &'a T,
     pub(crate) class: T::Class,
+    /// The N values kept out of runs (the skeleton scan's).
+    pub(crate) keep: NSet,
     pub(crate) fast: T::Fast,
     /// The mode at each run's start (the skeleton scan's).
     pub(crate) modes: Vec<T::Mode>,
@@ -321,7 +329,7 @@ impl<T: SegTarget> WordsSink for Writer<'_, T> {
             self.out.leave();
             return true;
         }
-        if !self.class.plain_run(meta, words) {
+        if !self.class.plain_run(&self.keep, meta, words) {
             return false;
         }
         self.enter();
@@ -339,7 +347,7 @@ impl<T: SegTarget> WordsSink for Writer<'_, T> {
             return;
         }
         let pending = std::mem::take(&mut self.pending);
-        if prog != 0 || !self.class.stmt_run(s) {
+        if prog != 0 || !self.class.stmt_run(&self.keep, s) {
             // With `STRICT_DECLINED`, the skeleton scan took a declined line as a run block.
             self.out.bad |= T::STRICT_DECLINED && pending;
             self.out.leave();

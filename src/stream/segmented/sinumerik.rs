@@ -1,7 +1,7 @@
-//! The Sinumerik target of the segmented stream (FANUC source, see `segmented`): macro
-//! statements, IF/GOTO, WHILE/DO loops, program ends and jump targets stay in the skeleton,
-//! whose translation gives the variable map, DEF lines, labels and structures as for the
-//! whole file; each run's placeholder is a comment `NCTRANS SEGMENT k`.
+//! The Sinumerik target's rules and spelling for the one segmented driver (FANUC source, see
+//! `segmented`): macro statements, IF/GOTO, WHILE/DO loops, program ends and jump targets
+//! stay in the skeleton, whose translation gives the variable map, DEF lines, labels and
+//! structures as for the whole file; each run's placeholder is a comment `NCTRANS SEGMENT k`.
 //!
 //! Why the output is the whole translation's, byte for byte (pass by pass, see
 //! `lower::to_sinumerik::lower`):
@@ -53,10 +53,8 @@
 //! skeleton's plan after the one scan, put in at its place; more, or a declined line that
 //! turns out to be no run block (`STRICT_DECLINED`), take the writing scan.
 
-use super::driver::{segment, SegTarget, Skeleton, Translated};
+use super::driver::{places, segment, Place, SegTarget, Skeleton, Translated};
 use super::sinks::Skel;
-use super::splice;
-use super::MARK;
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::ir::{Program, Stmt, Unit};
@@ -75,9 +73,6 @@ mod subs;
 mod track;
 
 pub use subs::{to_sinumerik_with_stand_in, to_sinumerik_with_subs};
-
-/// Most run blocks kept for translating alone after the one scan (their statements are held).
-const MAX_DEFERRED: usize = 4096;
 
 /// Translates `path` (FANUC) to Sinumerik into `out` as a skeleton translated whole with its
 /// runs of straight blocks streamed (see the module comment), with `eol` line ends. On
@@ -117,7 +112,8 @@ impl<'a> SegTarget for ToSinumerik<'a> {
     const SOURCE: Dialect = Dialect::Fanuc;
     const COMP: &'static str = crate::stream::target::sinumerik::COMP_M6;
     const SUBS_IN_FILE: bool = true;
-    const MAX_DEFERRED: usize = MAX_DEFERRED;
+    /// A few thousand (their statements are held).
+    const MAX_DEFERRED: usize = 4096;
     const STRICT_DECLINED: bool = true;
     type Mode = bool;
     type Track = Track;
@@ -128,6 +124,8 @@ impl<'a> SegTarget for ToSinumerik<'a> {
     type Alone = Planned;
     type Done = Done;
     type Output = (Streamed, Vec<OutFile>);
+    /// `; NCTRANS SEGMENT k` alone on its line.
+    const PLACE: Place = ("", "", |h| h == "; ", false);
 
     fn parse_options(&self) -> ParseOptions {
         ParseOptions { semantics: self.opts.source.clone() }
@@ -147,38 +145,28 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         subs::declines(std::slice::from_ref(s))
     }
 
-    fn programs(&self, path: &Path, sk: &mut Skel<Self>, ix: &Index) -> Result<Vec<Program>, Fallback> {
+    fn source_ok(&self, path: &Path, ix: &Index) -> Result<(), Fallback> {
         // `header_inputs` reads a whole text by LF lines, an index's header by any line end.
         let cr =
             self.eol == LineEnding::Cr || first_line_ending(path).map_err(Fallback::NotStreamable)? == LineEnding::Cr;
         if cr && ix.header.contains("nctrans:") {
             return Err(Fallback::NotStraight("`nctrans: set` lines with CR line ends".into()));
         }
-        if ix.programs.len() != 1 && !sk.calls || ix.programs.is_empty() || sk.subs.len() >= ix.programs.len() {
-            return Err(Fallback::NotStraight("more than one program".into()));
-        }
-        let mut subs = std::mem::take(&mut sk.subs).into_iter();
-        let rest =
-            ix.programs[1..].iter().map(|p| Program { body: subs.next().unwrap_or_default(), ..p.program.clone() });
-        Ok(std::iter::once(ix.programs[0].program.clone()).chain(rest).collect())
+        Ok(())
     }
 
-    fn translate(&self, s: Skeleton<'_, '_, Self>) -> Result<Translated<Self>, Fallback> {
-        let Skeleton { path, sk, mut programs, load } = s;
-        let (opts, eol) = (self.opts, self.eol);
-        if let Some(main) = programs.first_mut() {
-            main.body = std::mem::take(&mut sk.body);
-        }
+    fn skeleton_ok(&self, _: &mut Skel<Self>, programs: &mut [Program]) -> Result<(), Fallback> {
         // The runs are written metric: a G20 anywhere (never in a run, `PLAIN_G`) reads whole.
         if programs.iter().any(|p| crate::lower::to_sinumerik::modal::has_g(&p.body, &[200])) {
             return Err(Fallback::NotStraight("G20 (a program with inch values is read whole)".into()));
         }
-        let unit = Unit { dialect: Dialect::Fanuc, file: 0, programs };
-        // The callees beside the file, as the whole path loads them (`subs`).
-        let callees = match load {
-            Some(load) => load(&unit)?,
-            None => Vec::new(),
-        };
+        Ok(())
+    }
+
+    fn translate(&self, s: Skeleton<'_, Self>) -> Result<Translated<Self>, Fallback> {
+        let Skeleton { path, sk, unit, callees } = s;
+        let (opts, eol) = (self.opts, self.eol);
+        // The callees beside the file decline as its own subprograms do (`subs`).
         subs::callees_ok(&callees)?;
         // A G68 without a centre turns about the tool position in the plane in force, which
         // a plane word in a run (`G18` is a run block) decides: such a job is read whole.
@@ -195,17 +183,13 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         // result; a diagnostic on it has declined above (its file is not 0).
         let files: Vec<OutFile> = tr.files.iter().filter(|f| Some(f.source) != self.stand_in).cloned().collect();
         let (mut file, subs) = subs::split_files(files, sk.calls)?;
-        let places = splice::placeholders(&file.text, (sk.runs, eol.as_str()), (MARK, ""), |h| h == "; ", false)
-            .ok_or_else(|| Fallback::NotStraight("a comment that reads as a segment marker".into()))?;
+        let places = places::<Self>(&file.text, sk.runs, eol.as_str())?;
         // The main program's plan, made with every program as the whole translation makes it.
         let plan = {
             let all: Vec<(FileId, &Program)> =
                 units.iter().flat_map(|u| u.programs.iter().map(move |p| (u.file, p))).collect();
             Planned::of_first(&all, opts).ok_or_else(|| Fallback::NotStraight("no plan".into()))?
         };
-        drop(units);
-        drop(callees);
-        drop(unit);
         let bom = has_bom(path).map_err(|e| Fallback::NotStreamable(e.into()))?;
         Ok(Translated {
             text: std::mem::take(&mut file.text),
@@ -229,8 +213,8 @@ impl<'a> SegTarget for ToSinumerik<'a> {
         }
     }
 
-    fn class(sk: &mut Skel<Self>) -> Class {
-        Class { keep: sk.keep.clone(), solid: false }
+    fn class(_: &mut Track) -> Class {
+        Class { solid: false }
     }
 
     /// The words pass warns block by block in text order: the skeleton's warnings and the

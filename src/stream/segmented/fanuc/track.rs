@@ -3,14 +3,11 @@
 //! highest N, the N numbers of the skeleton's own blocks, and the lone M0 after a MSG kept
 //! in the skeleton (see `segmented::fanuc`).
 
-use crate::ir::{
-    Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, Target, WordValue,
-};
+use crate::ir::{Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, WordValue};
 use crate::lower::to_fanuc::words::units::Units;
 use crate::span::Span;
-use crate::stream::segmented::driver::SkelPart;
+use crate::stream::segmented::driver::{jump_or_call, SkelPart, Why};
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
-use crate::stream::segmented::MARK;
 use crate::stream::target::fanuc::{g_item, run_block};
 use crate::stream::PlainWord;
 
@@ -21,7 +18,7 @@ pub(super) const MAX_N: u32 = 99999;
 /// textual order (`lower::to_fanuc::words::words_pass`): the length and feed units (G70, G71, G700,
 /// G710: the fast path's `units`) and G90/G91 (read by AC()/IC() words).
 #[derive(Clone, Copy, Default)]
-pub(super) struct Modes {
+pub(crate) struct Modes {
     units: Units,
     /// G91 in force.
     inc: bool,
@@ -137,10 +134,10 @@ impl SkelPart for Track {
         self.touched = t;
     }
 
-    /// The placeholder of run `k`: it carries the modes the run leaves (as unit words,
+    /// A run's placeholder: it carries the modes the run leaves (as unit words,
     /// `Units::words`, and G90/G91 words, where it changes them) for the words pass to
     /// follow into the skeleton after it, and the run's highest N; its line is replaced whole.
-    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
+    fn placeholder(&mut self, mark: String, span: Span) -> Stmt {
         let t = std::mem::take(&mut self.touched);
         let mut items = Vec::new();
         if t.inch {
@@ -152,61 +149,54 @@ impl SkelPart for Track {
         let meta = BlockMeta {
             span,
             number: self.hi.take().map(|value| SeqNo { value, span }),
-            comments: vec![Comment { text: format!("{MARK}{k}"), span }],
+            comments: vec![Comment { text: mark, span }],
             ..BlockMeta::default()
         };
         crate::lower::meta_stmt(meta, items)
     }
 
-    /// Checks a statement of the macro part, follows its modes and collects its jump targets.
-    fn macro_stmt(&mut self, s: &Stmt, calls_ok: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
-        let mut why: Option<&'static str> = None;
-        let mut max_n = 0;
-        let mut own = Vec::new();
-        let mut modes = self.modes;
-        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-            let StmtKind::Block(b) = &s.kind else { return };
-            if let Some(n) = &b.meta.number {
-                if n.value <= MAX_N {
-                    max_n = max_n.max(n.value);
-                }
-                if n.value <= MAX_TRACKED_N {
-                    own.push(n.value);
-                }
-            }
-            modes.items(&b.items, &mut Touched::default());
-            for it in &b.items {
-                match &it.kind {
-                    ItemKind::Call(c) if calls_ok && plain_call(c) => {}
-                    ItemKind::Call(_) => why = why.or(Some("a call of another program")),
-                    ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
-                    ItemKind::Goto(g) => match &g.target {
-                        Target::Number(n) => targets.push(n.value),
-                        Target::Label(_) => {}
-                        Target::Computed(_) => why = why.or(Some("a computed jump")),
-                    },
-                    ItemKind::Word(w) => match &w.value {
-                        WordValue::Expr(e) => match &e.kind {
-                            _ if w.addr.is(b'G') && !matches!(e.kind, ExprKind::Num(_)) => {
-                                why = why.or(Some("a computed G word"));
-                            }
-                            _ => {}
-                        },
-                        WordValue::Ac(_) | WordValue::Ic(_) | WordValue::Rotary(..) => {}
-                    },
-                    _ => {}
-                }
-            }
-        });
-        if why.is_some() {
-            return why;
+    /// The modes, the highest N and the N values of the statement's blocks.
+    type Walk = (Modes, u32, Vec<u32>);
+
+    fn walk(&self) -> Self::Walk {
+        (self.modes, 0, Vec::new())
+    }
+
+    fn macro_block(
+        (modes, max_n, own): &mut Self::Walk,
+        b: &crate::ir::Block,
+        calls_ok: bool,
+        targets: &mut Vec<u32>,
+    ) -> Why {
+        if let Some(n) = b.meta.number.as_ref().map(|n| n.value) {
+            *max_n = (*max_n).max(if n <= MAX_N { n } else { 0 });
+            own.extend((n <= MAX_TRACKED_N).then_some(n));
         }
+        modes.items(&b.items, &mut Touched::default());
+        let mut why = None;
+        for it in &b.items {
+            if let Some(w) = jump_or_call(it, calls_ok, plain_call, targets) {
+                why = why.or(w);
+                continue;
+            }
+            match &it.kind {
+                ItemKind::StopMessage { .. } => why = why.or(Some("a stop with a message")),
+                ItemKind::Word(w)
+                    if w.addr.is(b'G')
+                        && matches!(&w.value, WordValue::Expr(e) if !matches!(e.kind, ExprKind::Num(_))) =>
+                {
+                    why = why.or(Some("a computed G word"))
+                }
+                _ => {}
+            }
+        }
+        why
+    }
+
+    fn walked(&mut self, (modes, max_n, own): Self::Walk, _: &Stmt) {
         self.modes = modes;
         self.max_n = self.max_n.max(max_n);
-        for n in own {
-            self.skel_ns.insert(n);
-        }
-        None
+        own.into_iter().for_each(|n| self.skel_ns.insert(n));
     }
 }
 

@@ -1,4 +1,4 @@
-//! Segmented FANUC → Sinumerik translation of a main program that calls subprograms
+//! The Sinumerik target's rules for a segmented main program that calls subprograms
 //! (`M98 P9010`, `G65 P9020 A1.`, `G66 P9050 R2.`): the calls stay in the skeleton, the
 //! programs after the main one in the same file are read whole (statement by statement
 //! from the same scan),
@@ -75,20 +75,16 @@ pub fn to_sinumerik_with_stand_in(
 /// The translation's main file (the first, the only main) and the others; with `calls`
 /// off, the main must be the only file. A subprogram's text holding the marker declines
 /// (only the main file's placeholders are replaced, but a reader could not tell).
-pub(super) fn split_files(mut files: Vec<OutFile>, calls: bool) -> Result<(OutFile, Vec<OutFile>), Fallback> {
+pub(super) fn split_files(mut rest: Vec<OutFile>, calls: bool) -> Result<(OutFile, Vec<OutFile>), Fallback> {
     let no = |why: &str| Err(Fallback::NotStraight(why.into()));
-    if files.is_empty() {
-        return no("no program");
-    }
-    let rest = files.split_off(1);
-    let Some(f) = files.pop() else { return no("no program") };
+    let Some(f) = (!rest.is_empty()).then(|| rest.remove(0)) else { return no("no program") };
     if !f.main || rest.iter().any(|r| r.main) {
         return no("a program that is not a main program");
     }
     if !calls && !rest.is_empty() {
         return no("more than one program");
     }
-    if rest.iter().any(|r| r.text.contains(super::MARK)) {
+    if rest.iter().any(|r| r.text.contains(crate::stream::segmented::MARK)) {
         return no("a comment that reads as a segment marker");
     }
     Ok((f, rest))
@@ -102,10 +98,7 @@ pub(super) fn declines(body: &[Stmt]) -> Option<&'static str> {
     crate::ir::visit::walk_stmts(body, &mut |s| {
         let StmtKind::Block(b) = &s.kind else { return };
         for it in &b.items {
-            let then = match &it.kind {
-                ItemKind::IfThen { then, .. } => Some(&**then),
-                _ => None,
-            };
+            let then = if let ItemKind::IfThen { then, .. } = &it.kind { Some(&**then) } else { None };
             for it in std::iter::once(it).chain(then) {
                 why = why.or(match &it.kind {
                     ItemKind::Call(c) if !plain_call(c) => Some("a modal or computed call"),

@@ -4,14 +4,13 @@
 //! blocks (see `segmented::sinumerik`).
 
 use crate::dialect::digits::Src;
-use crate::ir::{Addr, BlockMeta, Item, ItemKind, Stmt, StmtKind, Target, VarKind, Word, WordValue};
+use crate::ir::{Addr, Block, BlockMeta, Item, ItemKind, Stmt, StmtKind, VarKind, Word, WordValue};
 use crate::lower::to_sinumerik::fast_write as fast;
 use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::RawBlock;
 use crate::span::Span;
-use crate::stream::segmented::driver::{RunTests, SkelPart};
+use crate::stream::segmented::driver::{jump_or_call, RunTests, SkelPart, Why};
 use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
-use crate::stream::segmented::MARK;
 use crate::stream::target::sinumerik::{plain_g, straight};
 use crate::stream::target::RunWriter;
 use crate::stream::PlainWord;
@@ -64,19 +63,13 @@ fn solid(s: &Stmt) -> bool {
 
 /// What declines an item of the skeleton (see the module comment); its jump target.
 fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
+    if let Some(why) = jump_or_call(it, calls, super::subs::plain_call, targets) {
+        return why;
+    }
     match &it.kind {
-        ItemKind::Call(c) if calls && super::subs::plain_call(c) => None,
-        ItemKind::ModalCallOff if calls => None,
-        ItemKind::Call(_) | ItemKind::ModalCallOff => Some("a call of another program"),
+        ItemKind::ModalCallOff if !calls => Some("a call of another program"),
         ItemKind::Return { .. } => Some("M99"),
         ItemKind::ParamWrite(_) => Some("G10"),
-        ItemKind::Goto(g) => match &g.target {
-            Target::Number(n) => {
-                targets.push(n.value);
-                None
-            }
-            _ => Some("a computed jump"),
-        },
         ItemKind::Assign { target, .. } => match target.kind {
             VarKind::Hash(5221..=5340) | VarKind::HashIndirect(_) => Some("a work offset or indirect write"),
             _ => None,
@@ -124,21 +117,20 @@ fn stmt_run(solid: bool, keep: &NSet, s: &Stmt) -> bool {
         && !b.items.iter().any(|it| matches!(it.kind, ItemKind::End { .. }))
 }
 
-/// The writing scan's tests: [`plain_run`] and [`stmt_run`], with the skeleton's `keep`.
+/// The writing scan's tests: [`plain_run`] and [`stmt_run`], following `solid` again.
 pub(super) struct Class {
-    pub(super) keep: NSet,
     pub(super) solid: bool,
 }
 
 impl RunTests for Class {
     #[inline]
-    fn plain_run(&self, meta: &BlockMeta, words: &[PlainWord]) -> bool {
-        plain_run(self.solid, &self.keep, meta, words)
+    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+        plain_run(self.solid, keep, meta, words)
     }
 
     /// Whether a statement is a run block (else `solid` follows it).
-    fn stmt_run(&mut self, s: &Stmt) -> bool {
-        if stmt_run(self.solid, &self.keep, s) {
+    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+        if stmt_run(self.solid, keep, s) {
             return true;
         }
         self.solid |= solid(s);
@@ -181,40 +173,39 @@ impl SkelPart for Track {
         self.arc = follow_items(self.arc, items);
     }
 
-    fn placeholder(&mut self, k: usize, span: Span) -> Stmt {
-        passes::comment_stmt(format!("{MARK}{k}"), span)
+    fn placeholder(&mut self, mark: String, span: Span) -> Stmt {
+        passes::comment_stmt(mark, span)
     }
 
-    /// Checks a statement of the skeleton, collects its jump targets, follows its arc mode.
-    fn macro_stmt(&mut self, s: &Stmt, calls: bool, targets: &mut Vec<u32>) -> Option<&'static str> {
-        let mut why: Option<&'static str> = None;
-        let (mut arc, mut own) = (self.arc, self.own_arc);
-        crate::ir::visit::walk_stmts(std::slice::from_ref(s), &mut |s| {
-            let StmtKind::Block(b) = &s.kind else { return };
-            if b.meta.number.as_ref().is_some_and(|n| n.value > MAX_TRACKED_N) {
-                why = why.or(Some("an N number above 16777216"));
-            }
-            arc = follow_items(arc, &b.items);
-            own = follow_items(own, &b.items);
-            if arc != own && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'R'))) {
-                why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
-            }
-            for it in &b.items {
-                why = why.or(check_item(it, calls, targets));
-                if let ItemKind::IfThen { then, .. } = &it.kind {
-                    if matches!(then.kind, ItemKind::Word(_)) {
-                        why = why.or(Some("IF..THEN with an address word"));
-                    }
-                    why = why.or(check_item(then, calls, targets));
-                }
-            }
-        });
-        if why.is_some() {
-            return why;
+    /// The arc mode with the runs and without.
+    type Walk = (bool, bool);
+
+    fn walk(&self) -> (bool, bool) {
+        (self.arc, self.own_arc)
+    }
+
+    fn macro_block((arc, own): &mut (bool, bool), b: &Block, calls: bool, targets: &mut Vec<u32>) -> Why {
+        let big = b.meta.number.as_ref().is_some_and(|n| n.value > MAX_TRACKED_N);
+        let mut why = big.then_some("an N number above 16777216");
+        (*arc, *own) = (follow_items(*arc, &b.items), follow_items(*own, &b.items));
+        if arc != own && b.items.iter().any(|it| matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'R'))) {
+            why = why.or(Some("an R word in the macro part after an arc mode set in a run"));
         }
+        for it in &b.items {
+            why = why.or(check_item(it, calls, targets));
+            if let ItemKind::IfThen { then, .. } = &it.kind {
+                if matches!(then.kind, ItemKind::Word(_)) {
+                    why = why.or(Some("IF..THEN with an address word"));
+                }
+                why = why.or(check_item(then, calls, targets));
+            }
+        }
+        why
+    }
+
+    fn walked(&mut self, (arc, own): (bool, bool), s: &Stmt) {
         (self.arc, self.own_arc) = (arc, own);
         self.solid |= solid(s);
-        None
     }
 }
 
