@@ -112,3 +112,20 @@ fn callees(main: &Unit, path: &Path, sem: &Semantics, l_numbers: bool) -> Vec<Un
     });
     found.unwrap_or_default()
 }
+
+/// The lines of a streamed FANUC file that can name homes of global user data (those
+/// [`to_fanuc::gud_homes_in`] reads: it reads each line alone), read line by line: for
+/// [`seeding`], which then sees what it sees in the whole text.
+pub fn home_lines(path: &Path) -> Result<String, String> {
+    use nctrans::stream::lines::Lines;
+    let (input, _) = nctrans::stream::open(path).map_err(|e| e.to_string())?;
+    let mut lines = Lines::new(input).map_err(|e| e.to_string())?;
+    let mut out = String::new();
+    while let Some(l) = lines.next_line().map_err(|e| e.to_string())? {
+        if l.text.contains("global user data]") {
+            out.push_str(l.text);
+            out.push('\n');
+        }
+    }
+    Ok(out)
+}

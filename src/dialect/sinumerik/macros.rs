@@ -67,6 +67,19 @@ pub fn expand(norm: &Normalised<'_>, macros: &[(String, String)]) -> Option<Norm
     Some(norm.rewritten(s, map))
 }
 
+/// Whether no macro of `macros` can stand in a line the fast reader takes (`fast::read`):
+/// there every letter is followed by a sign, a digit or a point, so a whole word (`expand`'s)
+/// never holds two letters in a row nor `_`. A name that does (`LINE`, `MAX_STAGE`) is
+/// never met in such a line; one that does not (`M6`, `X`) may be, and then every line must
+/// go through the reader's `line`, which expands it (the quick readers of a stream read
+/// lines raw).
+pub fn raw_safe(macros: &[(String, String)]) -> bool {
+    macros.iter().all(|(name, _)| {
+        let b = name.as_bytes();
+        b.contains(&b'_') || b.windows(2).any(|w| w[0].is_ascii_alphabetic() && w[1].is_ascii_alphabetic())
+    })
+}
+
 /// The `DEFINE NAME AS text` lines of a definition file's text, in order: the name upper
 /// case, the text without its comment and outer blanks, and the byte range of the line.
 pub fn defines(text: &str) -> Vec<(String, String, std::ops::Range<usize>)> {

@@ -315,3 +315,20 @@ fn first_header(path: &Path) -> Result<Option<String>, NotStreamable> {
     }
     Ok(None)
 }
+
+/// The program of the streamed Siemens file `ix` (read from `path`) without its straight
+/// blocks ([`straight`]: constant letter words, which name no variable nor call): what a
+/// translation's symbol map makes of the variables it uses, global user data first, is
+/// that of the whole program (`nctrans check` seeds a FANUC side's commons from it). Held
+/// whole is only the rest, as the segmented stream holds its skeleton.
+pub fn without_straight(path: &Path, ix: &Index) -> Result<Unit, NotStreamable> {
+    let mut body = Vec::new();
+    let mut keep = |_: usize, s: &Stmt| {
+        if straight(s).is_err() {
+            body.push(s.clone());
+        }
+    };
+    crate::stream::scan_path(path, ix.file, Dialect::Sinumerik, &ix.opts, &mut keep, None)?;
+    let program = ix.programs.first().map(|p| Program { body, ..p.program.clone() });
+    Ok(Unit { dialect: Dialect::Sinumerik, file: ix.file, programs: program.into_iter().collect() })
+}
