@@ -284,7 +284,8 @@ pub fn to_fanuc(
     st.diags.extend(head.diags);
     let closing = format!("%{eol}");
     st.out.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+    // The source's profile (its library's macros), as the whole translation reads it.
+    let popts = ParseOptions { semantics: opts.source.clone() };
     let (index, blocks) = straight::run(path, &popts, &mut st, progress)?;
     if !st.diags.is_empty() || st.unsupported > 0 {
         return Err(Fallback::Diagnostics);

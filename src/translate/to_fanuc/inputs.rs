@@ -164,6 +164,15 @@ pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
     r_param_homes(map).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
 }
 
+/// What every FANUC side of a proof against the Siemens source starts with before its own
+/// inputs: the mapped R parameters at 0 ([`r_param_homes`]), the commons of global user data
+/// at their definitions' values ([`gud_seed_inputs`]).
+pub fn proof_homes(map: &SymbolMap) -> Vec<String> {
+    let mut out = r_param_homes(map);
+    out.extend(gud_seed_inputs(map));
+    out
+}
+
 /// [`r_param_inputs`] as `--set` texts (`#501=0`).
 pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
     map.vars
