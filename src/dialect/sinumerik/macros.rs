@@ -130,6 +130,26 @@ mod tests {
         assert!(expand(&normalise(&plain, CommentStyle::Semicolon), &macros).is_none());
     }
 
+    /// A name with two letters in a row or `_` never is a whole word of a line the fast
+    /// reader takes; `M6` or `X` may be (`M6`, `X-5`): then the raw readers stand down.
+    #[test]
+    fn raw_reading_stands_down_for_names_a_plain_line_can_hold() {
+        let m = |names: &[&str]| names.iter().map(|n| (n.to_string(), "G1".to_string())).collect::<Vec<_>>();
+        assert!(raw_safe(&m(&[])));
+        assert!(raw_safe(&m(&["LINE", "MAX_STAGE", "_A", "GX1"])));
+        for bad in ["M6", "X", "G1X", "N10"] {
+            assert!(!raw_safe(&m(&["LINE", bad])), "{bad}");
+        }
+        // What the reader would expand there.
+        for text in ["M6 X1", "G1 X-5", "G1X-1 Y2", "N10 G1"] {
+            let raw = RawBlock { text, start: 0, line: 1 };
+            let norm = normalise(&raw, CommentStyle::Semicolon);
+            assert!(crate::dialect::sinumerik::fast::skeleton_raw(&raw).is_some(), "{text}");
+            let all = m(&["M6", "X", "G1X", "N10"]);
+            assert!(expand(&norm, &all).is_some(), "{text}");
+        }
+    }
+
     #[test]
     fn define_lines_are_read_with_their_text() {
         let d = defines(

@@ -605,12 +605,17 @@ pub fn source_semantics(
     t: &super::Translation,
     base: Option<&crate::dialect::Semantics>,
 ) -> Option<crate::dialect::Semantics> {
-    let globals = &t.symbols.fanuc().globals;
-    if globals.is_empty() {
+    with_globals(base, t.symbols.fanuc())
+}
+
+/// [`source_semantics`] of a translation's symbol map (a streamed translation has no
+/// `Translation`).
+pub fn with_globals(base: Option<&Semantics>, map: &SymbolMap) -> Option<Semantics> {
+    if map.globals.is_empty() {
         return base.cloned();
     }
-    let mut s = base.cloned().unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
-    s.globals = std::sync::Arc::new(globals.clone());
+    let mut s = base.cloned().unwrap_or_else(|| Semantics::default_for(Dialect::Sinumerik));
+    s.globals = std::sync::Arc::new(map.globals.clone());
     Some(s)
 }
 
@@ -644,12 +649,7 @@ pub fn main_proof(
     let mut b_in = proof_homes(map);
     b_in.extend(fanuc_set_inputs(&sets, map));
     let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();
-    let base = (!map.globals.is_empty()).then(|| {
-        let mut s = crate::dialect::Semantics::default_for(Dialect::Sinumerik);
-        s.globals = std::sync::Arc::new(map.globals.clone());
-        s
-    });
-    (proof_source(base, map), parse_all(&sets), parse_all(&b_in))
+    (proof_source(with_globals(None, map), map), parse_all(&sets), parse_all(&b_in))
 }
 
 /// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation
