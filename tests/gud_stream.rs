@@ -266,3 +266,27 @@ fn a_batch_streams_members_with_global_user_data_alike() {
     assert_eq!(entries("r1.json"), entries("r2.json"));
     assert_eq!(read(&d.join("r2.json")).matches("\"status\": \"verified\"").count(), 3);
 }
+
+/// A jump to a numbered block of motion keeps it in what a streamed check reads for the
+/// data the program uses (seeded alike); a program whose translation has other errors is
+/// refused streamed (NC595), never checked with commons that might be seeded otherwise.
+#[test]
+fn a_streamed_check_keeps_jump_targets_and_refuses_what_it_cannot_settle() {
+    let d = library("jumps", 0);
+    let jumps =
+        "G54 G90 G17\nG0 X0 Y0 Z50\nG1 Z=-DEPTH F100\nIF DEPTH>3 GOTOF N100\nG1 X5\nN100 G1 X=OFS\nG0 Z50\nM30\n";
+    std::fs::write(d.join("CMA/JUMP.MPF"), with_lines(jumps, 40)).unwrap();
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "CMA/JUMP.MPF", "-o", "jump.nc", "--var-map", RULES]);
+    assert_eq!(code, 0, "{err}");
+    let (out, err, code) = both(&d, &["check", "CMA/JUMP.MPF", "jump.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DEPTH #600=5, OFS #601=0"), "{out}");
+    // `$P_S[1]` does not translate (NC589): the whole check seeds from the marked translation,
+    // the streamed one refuses.
+    std::fs::write(d.join("CMA/REF.MPF"), with_lines(&jumps.replace("G0 Z50\n", "R10=$P_S[1]\nG0 Z50\n"), 40)).unwrap();
+    let (out, _, _) = nctrans(&d, &["check", "CMA/REF.MPF", "jump.nc"]);
+    assert!(out.contains("global user data started on FANUC"), "{out}");
+    let (out, err, code) = nctrans(&d, &["check", "--stream", "CMA/REF.MPF", "jump.nc"]);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(out.is_empty() && err.contains("NC595") && err.contains("CMA/REF.MPF"), "{out}{err}");
+}

@@ -201,10 +201,11 @@ impl Read<'_> {
 
 /// A Siemens side against a FANUC one, each read whole or streamed: the FANUC side's
 /// commons of global user data get their start values (`gud::seeding`, the same for both
-/// ways of reading: a streamed Siemens side gives it its program without the straight
-/// blocks, which name no variable, and a streamed FANUC side the lines of its text that
-/// name homes of global user data); what was assumed, for the verdict. `Err`: a streamed
-/// side that cannot be read again (said, NC594).
+/// ways of reading: a streamed Siemens side gives it its program without the motion blocks,
+/// which name no variable (`stream::target::fanuc::without_straight`), and a streamed FANUC
+/// side the lines of its text that name homes of global user data); what was assumed, for
+/// the verdict. `Err` (said): a streamed side that cannot be read again (NC594), or whose
+/// translation has errors that might mark other blocks than the whole program's (NC595).
 fn seed(db: &SourceDb, [x, y]: [&mut Read; 2], map_rules: &[String]) -> Result<Option<gud::Seeded>, ExitCode> {
     let (siemens, fanuc) = match (x.dialect(), y.dialect()) {
         (Dialect::Sinumerik, Dialect::Fanuc) => (&*x, y),
@@ -215,11 +216,15 @@ fn seed(db: &SourceDb, [x, y]: [&mut Read; 2], map_rules: &[String]) -> Result<O
         Read::Whole { run, .. } | Read::Streamed { run, .. } => run.semantics.clone(),
     };
     let Some(sem) = sem.filter(|s| !s.globals.is_empty()) else { return Ok(None) };
+    // Never checked unseeded: the verdict would rest on commons the whole check starts.
     let again = |path: &Path, e: String| {
-        eprintln!(
-            "error[NC594]: {} cannot be read again to find the global user data it uses ({e}): the FANUC side's commons cannot be seeded as a whole-file check seeds them",
-            path.display()
-        );
+        let d = diag::Diagnostic::error(
+            "NC594",
+            format!("{} cannot be read again for the global user data it uses: {e}", path.display()),
+        )
+        .note("the FANUC side's commons are seeded from the programs' use of it, as a whole-file check seeds them")
+        .hint("check the files again once they can be read");
+        eprint!("{}", diag::render(&SourceDb::new(), &[d]));
         ExitCode::from(1)
     };
     let (unit, path) = match siemens {
@@ -235,6 +240,16 @@ fn seed(db: &SourceDb, [x, y]: [&mut Read; 2], map_rules: &[String]) -> Result<O
         Read::Streamed { src, .. } => gud::home_lines(src.path()).map_err(|e| again(src.original, e))?,
     };
     let Some(mut seeded) = gud::seeding(&unit, path, &sem, &text, map_rules) else { return Ok(None) };
+    if seeded.doubtful && matches!(siemens, Read::Streamed { .. }) {
+        let d = diag::Diagnostic::error(
+            "NC595",
+            format!("{}: where a translation puts the global user data it uses is not settled for a streamed program", path.display()),
+        )
+        .note("its translation has errors, and which blocks they take out may depend on the motion blocks a streamed check leaves out")
+        .hint("check the translation's source as it translates (nctrans --to fanuc), or a smaller program");
+        eprint!("{}", diag::render(&SourceDb::new(), &[d]));
+        return Err(ExitCode::from(1));
+    }
     seeded.give(&mut fanuc.run().inputs);
     Ok(Some(seeded))
 }

@@ -23,8 +23,8 @@ mod inputs;
 pub mod numbers;
 use inputs::map_set_lines;
 pub use inputs::{
-    fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, proof_homes, r_param_homes, r_param_inputs,
-    standalone_args, var_param_inputs,
+    fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, main_proof, proof_homes, proof_source, r_param_homes,
+    r_param_inputs, standalone_args, var_param_inputs,
 };
 
 /// First O number given to subprograms without a `--program-map` entry.
@@ -617,39 +617,6 @@ pub fn with_globals(base: Option<&Semantics>, map: &SymbolMap) -> Option<Semanti
     let mut s = base.cloned().unwrap_or_else(|| Semantics::default_for(Dialect::Sinumerik));
     s.globals = std::sync::Arc::new(map.globals.clone());
     Some(s)
-}
-
-/// The Siemens side's profile of a proof against the translation (`base`: its profile with
-/// the global user data): GETT("NAME") returns what the tool map says, as T="NAME" is
-/// aligned, and the set-up values the translation assumed hold. The whole path's proof and
-/// the streamed one ([`main_proof`]) alike.
-pub fn proof_source(base: Option<crate::dialect::Semantics>, map: &SymbolMap) -> Option<crate::dialect::Semantics> {
-    let sinumerik = match base {
-        _ if map.tools.is_empty() => base,
-        s => {
-            let mut s = s.unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
-            s.tools = std::sync::Arc::new(map.tools.clone());
-            Some(s)
-        }
-    };
-    inputs::with_fixed(sinumerik, map)
-}
-
-/// What the proof of a main program without parameters runs with, for a streamed
-/// translation as [`verify`] has it for the whole one: the Siemens side's profile (the
-/// default one with the global user data the map holds, [`proof_source`]) and inputs (the
-/// source's `nctrans: set` header lines, `header`), and the FANUC side's inputs
-/// ([`proof_homes`], then those lines in the output's names).
-pub fn main_proof(
-    map: &SymbolMap,
-    header: &str,
-) -> (Option<Semantics>, Vec<crate::eval::Input>, Vec<crate::eval::Input>) {
-    let sets: Vec<String> =
-        crate::eval::input::header_words(header, "nctrans: set", false).map(str::to_string).collect();
-    let mut b_in = proof_homes(map);
-    b_in.extend(fanuc_set_inputs(&sets, map));
-    let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();
-    (proof_source(with_globals(None, map), map), parse_all(&sets), parse_all(&b_in))
 }
 
 /// What a Sinumerik → FANUC check leaves out of the comparison: the messages the translation
