@@ -290,3 +290,33 @@ fn a_streamed_check_keeps_jump_targets_and_refuses_what_it_cannot_settle() {
     assert_eq!(code, 1, "{out}{err}");
     assert!(out.is_empty() && err.contains("NC595") && err.contains("CMA/REF.MPF"), "{out}{err}");
 }
+
+/// On a Haas NGC the tables live in the NGC-only commons: the streamed translation is read
+/// back and run with the NGC variables as the whole proof is (not as tool data), and a
+/// streamed check seeds them alike.
+#[test]
+fn haas_ngc_tables_stream_alike() {
+    let d = workdir("gudstream", "ngc");
+    std::fs::create_dir_all(d.join("DEF")).unwrap();
+    std::fs::write(
+        d.join("DEF/MGUD.DEF"),
+        "DEF NCK REAL DRESS_A[80]\nDEF NCK REAL DRESS_B[80]=SET(1.5,2.5)\nDEF NCK INT DRESSINGS=3\nM30\n",
+    )
+    .unwrap();
+    let main = "DEF INT KS\nG0 X0 Y0 Z10\nFOR KS=0 TO 3\nDRESS_A[KS]=KS*0.25+DRESS_B[1]\nENDFOR\n\
+G1 Z=-DRESS_A[2] F=100*DRESS_B[0]\nG0 X1 Y=DRESSINGS\nDRESSINGS=DRESSINGS+1\nM30\n";
+    std::fs::write(d.join("DRESS.MPF"), with_lines(main, 30)).unwrap();
+    std::fs::write(
+        d.join("nctrans.toml"),
+        "[fanuc]\nseries = \"haas-ngc\"\n[variables]\nto_fanuc = [\"DRESS_A=#10200\", \"DRESS_B=#10280\", \"DRESSINGS=#500\"]\n",
+    )
+    .unwrap();
+    let whole = nctrans(&d, &["--to", "fanuc", "DRESS.MPF", "-o", "w.nc"]);
+    let streamed = nctrans(&d, &["--to", "fanuc", "--stream", "DRESS.MPF", "-o", "s.nc"]);
+    assert_eq!(whole.2, 0, "{}", whole.1);
+    assert_eq!((whole.2, &whole.1), (streamed.2, &streamed.1));
+    assert_eq!(read(&d.join("w.nc")), read(&d.join("s.nc")));
+    let (out, err, code) = both(&d, &["check", "DRESS.MPF", "w.nc"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("DRESS_B #10280..#10359") && !err.contains("tool_data"), "{out}{err}");
+}

@@ -123,6 +123,8 @@ pub struct SourceRun {
     /// The profile the subprograms it calls are read with (the one the source was read with).
     pub callees: Option<Semantics>,
     pub inputs: Vec<crate::eval::Input>,
+    /// The output's profile, read back and run (`None`: FANUC's default).
+    pub output: Option<Semantics>,
 }
 
 /// [`verify`] of a translation for a target with the custom macro interrupt
@@ -138,7 +140,10 @@ pub fn verify_for(
     progress: Option<ProgressFn<'_>>,
 ) -> Verified {
     let mut popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    popts.semantics.macro_interrupt = macro_interrupt;
+    if let Some(s) = &src.output {
+        popts.semantics = s.clone();
+    }
+    popts.semantics.macro_interrupt |= macro_interrupt;
     let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
         equivalent: false,
         summary: format!("not verified: {summary}"),
@@ -155,7 +160,8 @@ pub fn verify_for(
     };
     let interrupts = crate::eval::header_interrupts(&source.header).unwrap_or_default();
     let run = RunOptions { max_steps, interrupts, ..RunOptions::default() };
-    let out_run = RunOptions { inputs, ..run.clone() };
+    let out_semantics = src.output.is_some().then(|| popts.semantics.clone());
+    let out_run = RunOptions { inputs, semantics: out_semantics, ..run.clone() };
     let run = RunOptions { semantics: src.semantics, inputs: src.inputs, ..run };
     let name = source.path.display().to_string();
     let a = StreamSide { index: source, name, callees: Box::new(DirCallees { semantics: src.callees }), run };

@@ -344,12 +344,22 @@ impl Target for ToFanuc<'_> {
         let mut line = ProgressLine::new("reading back", size);
         let mut report = |p: Progress| line.update(p);
         let macro_interrupt = self.c.fanuc_semantics().macro_interrupt;
-        // Both runs start as the whole path's proof starts them (a straight-line program
-        // has no variables, no inputs: `main_proof` of its empty map).
-        let map = done.1.unwrap_or_default();
-        let (semantics, a_in, b_in) = nctrans::translate::to_fanuc::main_proof(&map, &done.0.header);
-        let src = stream::verify::SourceRun { semantics, callees: Some(done.3), inputs: a_in };
-        let max_steps = self.req.max_steps;
+        // Both runs start, and the output is read back, as the whole path's proof does (a
+        // straight-line program has no variables, no inputs: `main_proof` of a map without).
+        let map = done.1.unwrap_or_else(|| {
+            // What any translation's map holds of the target it was written for.
+            let t = self.c.fanuc_semantics();
+            let (haas, haas_ngc, macro_interrupt) = (t.haas, t.haas_ngc, t.macro_interrupt);
+            nctrans::translate::to_fanuc::SymbolMap { haas, haas_ngc, macro_interrupt, ..Default::default() }
+        });
+        let p = nctrans::translate::to_fanuc::main_proof(&map, &done.0.header);
+        let src = stream::verify::SourceRun {
+            semantics: p.source,
+            callees: Some(done.3),
+            inputs: p.source_inputs,
+            output: p.target,
+        };
+        let (max_steps, b_in) = (self.req.max_steps, p.target_inputs);
         let v = stream::verify::verify_for((done.0, src), out.1, max_steps, b_in, macro_interrupt, Some(&mut report));
         line.done();
         let mut db = SourceDb::new();

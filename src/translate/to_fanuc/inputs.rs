@@ -200,18 +200,32 @@ pub fn proof_source(base: Option<Semantics>, map: &SymbolMap) -> Option<Semantic
 }
 
 /// What the proof of a main program without parameters runs with, for a streamed
-/// translation as [`super::verify`] has it for the whole one: the Siemens side's profile (the
-/// default one with the global user data the map holds, [`proof_source`]) and inputs (the
-/// source's `nctrans: set` header lines, `header`), and the FANUC side's inputs
-/// ([`proof_homes`], then those lines in the output's names).
-pub fn main_proof(
-    map: &SymbolMap,
-    header: &str,
-) -> (Option<Semantics>, Vec<crate::eval::Input>, Vec<crate::eval::Input>) {
+/// translation as [`super::verify`] has it for the whole one.
+pub struct MainProof {
+    /// The Siemens side's profile: the default one with the global user data the map holds
+    /// ([`proof_source`]).
+    pub source: Option<Semantics>,
+    /// The FANUC side's (read back and run): what the output was written for, a Haas NGC's
+    /// variables among it ([`super::target_semantics`]).
+    pub target: Option<Semantics>,
+    /// The source's `nctrans: set` header lines.
+    pub source_inputs: Vec<crate::eval::Input>,
+    /// [`proof_homes`], then those lines in the output's names.
+    pub target_inputs: Vec<crate::eval::Input>,
+}
+
+/// The [`MainProof`] of a translation with the symbol map `map` of a source whose header
+/// lines are `header`.
+pub fn main_proof(map: &SymbolMap, header: &str) -> MainProof {
     let sets: Vec<String> =
         crate::eval::input::header_words(header, "nctrans: set", false).map(str::to_string).collect();
     let mut b_in = proof_homes(map);
     b_in.extend(fanuc_set_inputs(&sets, map));
     let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();
-    (proof_source(super::with_globals(None, map), map), parse_all(&sets), parse_all(&b_in))
+    MainProof {
+        source: proof_source(super::with_globals(None, map), map),
+        target: super::target_semantics(None, map),
+        source_inputs: parse_all(&sets),
+        target_inputs: parse_all(&b_in),
+    }
 }

@@ -24,7 +24,7 @@ pub mod numbers;
 use inputs::map_set_lines;
 pub use inputs::{
     fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, main_proof, proof_homes, proof_source, r_param_homes,
-    r_param_inputs, standalone_args, var_param_inputs,
+    r_param_inputs, standalone_args, var_param_inputs, MainProof,
 };
 
 /// First O number given to subprograms without a `--program-map` entry.
