@@ -375,7 +375,7 @@ impl<T: Target> Job<T> {
 /// global user data and macros of the library (the `.DEF` files nearest the program, up to
 /// the batch root, or the configured ones). A definition file that does not read is the
 /// file's outcome.
-fn source_profile(
+pub(crate) fn source_profile(
     s: &JobSettings,
     db: &mut SourceDb,
     file: &InputFile,

@@ -133,59 +133,125 @@ pub fn check(
     let mut db = SourceDb::new();
     // Each side is streamed when it is large (or --stream), else read whole. A streamed
     // side's source (a decoded copy for a legacy encoding) lives until the check has run.
-    let mut streamed: Vec<(usize, Source)> = Vec::new();
-    let mut sides: Vec<Result<check::Runner, (nctrans::ir::Unit, nctrans::eval::RunOptions)>> = Vec::new();
+    let mut sides: Vec<Read> = Vec::new();
     for (path, from) in [(a, from_a), (b, from_b)] {
         let id = db.len();
         let side = stream::wanted(path, input).then(|| side(&mut db, path, from, eval, input.encoding)).flatten();
         sides.push(match side {
-            Some(Ok((r, src))) => {
-                streamed.push((id, src));
-                Ok(r)
-            }
+            Some(Ok((ix, run, src))) => Read::Streamed { id, ix, run, src },
             Some(Err(code)) => return code,
             None => match load_for_run(&mut db, path, from, eval, input) {
-                Ok(whole) => Err(whole),
+                Ok((unit, run)) => Read::Whole { unit, run },
                 Err(code) => return code,
             },
         });
     }
-    let seeded = match (&mut sides[..], [a, b]) {
-        ([Err(x), Err(y)], paths) => seed(&db, [x, y], paths, &[]),
+    let seeded = match &mut sides[..] {
+        [x, y] => match seed(&db, [x, y], &[]) {
+            Ok(s) => s,
+            Err(code) => return code,
+        },
         _ => None,
     };
-    let mut runners = sides.into_iter().map(|s| {
-        s.unwrap_or_else(|(unit, run)| {
-            let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
-            Side { unit, callees, run }.runner()
-        })
-    });
+    let mut render: Vec<(usize, &std::path::Path)> = Vec::new();
+    let mut runners = Vec::new();
+    for s in &sides {
+        runners.push(match s {
+            Read::Whole { unit, run } => {
+                let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+                Side { unit: unit.clone(), callees, run: run.clone() }.runner()
+            }
+            Read::Streamed { id, ix, run, src } => {
+                render.push((*id, src.path()));
+                let callees = Box::new(nctrans::eval::DirCallees { semantics: run.semantics.clone() });
+                nctrans::stream::runner(Arc::clone(ix), callees, run.clone())
+            }
+        });
+    }
+    let mut runners = runners.into_iter();
     let (Some(ra), Some(rb)) = (runners.next(), runners.next()) else {
         return ExitCode::from(2);
     };
     let report = check::check_runners(&db, ra, rb);
-    let render: Vec<(usize, &std::path::Path)> = streamed.iter().map(|(id, src)| (*id, src.path())).collect();
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
     check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
 }
 
-/// A Siemens side against a FANUC one, both read whole: the FANUC side's commons of global
-/// user data get their start values (`gud::seeding`); what was assumed, for the verdict.
-fn seed(
-    db: &SourceDb,
-    [x, y]: [&mut (nctrans::ir::Unit, nctrans::eval::RunOptions); 2],
-    [px, py]: [&PathBuf; 2],
-    map_rules: &[String],
-) -> Option<gud::Seeded> {
-    let ((siemens, path), fanuc) = match (x.0.dialect, y.0.dialect) {
-        (Dialect::Sinumerik, Dialect::Fanuc) => ((&*x, px), y),
-        (Dialect::Fanuc, Dialect::Sinumerik) => ((&*y, py), x),
-        _ => return None,
+/// One side of a plain `check`: read whole, or streamed (its index, with the source it
+/// reads: the file, or a decoded copy kept until the check has run).
+enum Read<'a> {
+    Whole { unit: Unit, run: nctrans::eval::RunOptions },
+    Streamed { id: usize, ix: Arc<nctrans::stream::Index>, run: nctrans::eval::RunOptions, src: Source<'a> },
+}
+
+impl Read<'_> {
+    fn dialect(&self) -> Dialect {
+        match self {
+            Read::Whole { unit, .. } => unit.dialect,
+            Read::Streamed { ix, .. } => ix.dialect,
+        }
+    }
+
+    fn run(&mut self) -> &mut nctrans::eval::RunOptions {
+        match self {
+            Read::Whole { run, .. } | Read::Streamed { run, .. } => run,
+        }
+    }
+}
+
+/// A Siemens side against a FANUC one, each read whole or streamed: the FANUC side's
+/// commons of global user data get their start values (`gud::seeding`, the same for both
+/// ways of reading: a streamed Siemens side gives it its program without the motion blocks,
+/// which name no variable (`stream::target::fanuc::without_straight`), and a streamed FANUC
+/// side the lines of its text that name homes of global user data); what was assumed, for
+/// the verdict. `Err` (said): a streamed side that cannot be read again (NC594), or whose
+/// translation has errors that might mark other blocks than the whole program's (NC595).
+fn seed(db: &SourceDb, [x, y]: [&mut Read; 2], map_rules: &[String]) -> Result<Option<gud::Seeded>, ExitCode> {
+    let (siemens, fanuc) = match (x.dialect(), y.dialect()) {
+        (Dialect::Sinumerik, Dialect::Fanuc) => (&*x, y),
+        (Dialect::Fanuc, Dialect::Sinumerik) => (&*y, x),
+        _ => return Ok(None),
     };
-    let sem = siemens.1.semantics.as_ref()?;
-    let mut seeded = gud::seeding(&siemens.0, path, sem, &db.get(fanuc.0.file).text, map_rules)?;
-    seeded.give(&mut fanuc.1.inputs);
-    Some(seeded)
+    let sem = match siemens {
+        Read::Whole { run, .. } | Read::Streamed { run, .. } => run.semantics.clone(),
+    };
+    let Some(sem) = sem.filter(|s| !s.globals.is_empty()) else { return Ok(None) };
+    // Never checked unseeded: the verdict would rest on commons the whole check starts.
+    let again = |path: &Path, e: String| {
+        let d = diag::Diagnostic::error(
+            "NC594",
+            format!("{} cannot be read again for the global user data it uses: {e}", path.display()),
+        )
+        .note("the FANUC side's commons are seeded from the programs' use of it, as a whole-file check seeds them")
+        .hint("check the files again once they can be read");
+        eprint!("{}", diag::render(&SourceDb::new(), &[d]));
+        ExitCode::from(1)
+    };
+    let (unit, path) = match siemens {
+        Read::Whole { unit, .. } => (std::borrow::Cow::Borrowed(unit), Path::new(&db.get(unit.file).name)),
+        Read::Streamed { ix, src, .. } => {
+            let u = nctrans::stream::target::fanuc::without_straight(src.path(), ix)
+                .map_err(|e| again(src.original, e.to_string()))?;
+            (std::borrow::Cow::Owned(u), src.original)
+        }
+    };
+    let text = match &*fanuc {
+        Read::Whole { unit, .. } => db.get(unit.file).text.clone(),
+        Read::Streamed { src, .. } => gud::home_lines(src.path()).map_err(|e| again(src.original, e))?,
+    };
+    let Some(mut seeded) = gud::seeding(&unit, path, &sem, &text, map_rules) else { return Ok(None) };
+    if seeded.doubtful && matches!(siemens, Read::Streamed { .. }) {
+        let d = diag::Diagnostic::error(
+            "NC595",
+            format!("{}: where a translation puts the global user data it uses is not settled for a streamed program", path.display()),
+        )
+        .note("its translation has errors, and which blocks they take out may depend on the motion blocks a streamed check leaves out")
+        .hint("check the translation's source as it translates (nctrans --to fanuc), or a smaller program");
+        eprint!("{}", diag::render(&SourceDb::new(), &[d]));
+        return Err(ExitCode::from(1));
+    }
+    seeded.give(&mut fanuc.run().inputs);
+    Ok(Some(seeded))
 }
 
 /// Prints a check's verdict, with what the runs assumed (`assumed`); its exit code.
@@ -276,10 +342,21 @@ fn check_as_translation(
             Err(code) => return code,
         }
     }
-    let seeded = match &mut sides[..] {
-        [x, y] => seed(&db, [x, y], [a, b], &names.rules),
+    let mut read: Vec<Read> = sides.into_iter().map(|(unit, run)| Read::Whole { unit, run }).collect();
+    let seeded = match &mut read[..] {
+        [x, y] => match seed(&db, [x, y], &names.rules) {
+            Ok(s) => s,
+            Err(code) => return code,
+        },
         _ => None,
     };
+    let sides: Vec<(Unit, nctrans::eval::RunOptions)> = read
+        .into_iter()
+        .filter_map(|r| match r {
+            Read::Whole { unit, run } => Some((unit, run)),
+            Read::Streamed { .. } => None,
+        })
+        .collect();
     let dialects: Vec<Dialect> = sides.iter().map(|(u, _)| u.dialect).collect();
     let cross = dialects[0] != dialects[1];
     let runners: Vec<_> = sides
@@ -325,25 +402,27 @@ fn check_as_translation(
 
 /// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the
 /// file, or a decoded copy of a legacy-encoded one: the caller keeps it until the check has
-/// run, and renders the check's diagnostics from its [`Source::path`]).
+/// run, and renders the check's diagnostics from its [`Source::path`]). The run has the
+/// profile the file was read with, as a side read whole has (`args::load_for_run`).
+#[allow(clippy::type_complexity)]
 fn side<'a>(
     db: &mut SourceDb,
     path: &'a Path,
     from: Option<Dialect>,
     eval: &EvalOpts,
     forced: Option<&'static encoding_rs::Encoding>,
-) -> Option<Result<(nctrans::check::Runner, Source<'a>), ExitCode>> {
+) -> Option<Result<(Arc<nctrans::stream::Index>, nctrans::eval::RunOptions, Source<'a>), ExitCode>> {
     let file = db.len();
     let mut src = Source::new(path, forced)?;
     let ix = match stream::scan(&mut src, from, file)? {
         Ok(ix) => ix,
         Err(code) => return Some(Err(code)),
     };
-    let opts = match stream::run_options(&ix, path, eval) {
+    let mut opts = match stream::run_options(&ix, path, eval) {
         Ok(o) => o,
         Err(code) => return Some(Err(code)),
     };
+    opts.semantics = Some(ix.opts.semantics.clone());
     db.add(path.display().to_string(), String::new());
-    let callees = Box::new(nctrans::eval::DirCallees { semantics: None });
-    Some(Ok((nctrans::stream::runner(Arc::new(ix), callees, opts), src)))
+    Some(Ok((Arc::new(ix), opts, src)))
 }

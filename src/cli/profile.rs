@@ -28,14 +28,26 @@ pub fn semantics(db: &mut SourceDb, path: &Path, dialect: Dialect) -> Result<Sem
     let config = project()?;
     match dialect {
         Dialect::Fanuc => Ok(config.fanuc_semantics()),
-        Dialect::Sinumerik => {
-            let mut sem = config.sinumerik_semantics();
-            let gud = nctrans::gud::apply(&mut sem, db, path, None, &config.definitions);
-            eprint!("{}", diag::render(db, &gud));
-            if diag::has_errors(&gud) {
-                return Err(ExitCode::from(1));
-            }
-            Ok(sem)
-        }
+        Dialect::Sinumerik => sinumerik(&config, db, path),
     }
+}
+
+/// The Siemens profile of `config` for the program `path`, with the global user data and
+/// `DEFINE` macros of its library's definition files (read into `db`): the one way every
+/// command, whole or streamed, finds and loads them. Their errors are printed and stop the
+/// command.
+pub fn sinumerik(config: &Config, db: &mut SourceDb, path: &Path) -> Result<Semantics, ExitCode> {
+    let mut sem = config.sinumerik_semantics();
+    let gud = nctrans::gud::apply(&mut sem, db, path, None, &config.definitions);
+    eprint!("{}", diag::render(db, &gud));
+    if diag::has_errors(&gud) {
+        return Err(ExitCode::from(1));
+    }
+    Ok(sem)
+}
+
+/// [`semantics`] for a streamed command: the definition files are read into a database of
+/// their own (a streamed file's ids are its index's), so only the profile comes back.
+pub fn streamed(path: &Path, dialect: Dialect) -> Result<Semantics, ExitCode> {
+    semantics(&mut SourceDb::new(), path, dialect)
 }

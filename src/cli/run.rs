@@ -89,10 +89,13 @@ fn run_streamed(
         Ok(ix) => ix,
         Err(code) => return Some(code),
     };
-    let opts = match stream::run_options(&ix, path, eval) {
+    let mut opts = match stream::run_options(&ix, path, eval) {
         Ok(o) => o,
         Err(code) => return Some(code),
     };
+    // The profile the file was read with (the library's global user data with it), as the
+    // whole-file run has it (`args::load_for_run`).
+    opts.semantics = Some(ix.opts.semantics.clone());
     let mut db = SourceDb::new();
     let main_id = db.add(path.display().to_string(), String::new());
     let size = ix.size;
@@ -104,7 +107,7 @@ fn run_streamed(
     }
     let p2 = std::rc::Rc::clone(&pager);
     let line_of = move |o: eval::Origin| (o.file == main_id).then(|| p2.line_of(o.span.lo)).flatten();
-    let mut callees = eval::DirCallees { semantics: None };
+    let mut callees = eval::DirCallees { semantics: opts.semantics.clone() };
     let (outcome, write_error) = if quiet {
         (eval::run_stream(&mut db, pager, &mut callees, &opts, &mut eval::NullSink), None)
     } else {

@@ -147,17 +147,30 @@ pub fn dialect_of(path: &Path, from: Option<Dialect>) -> Option<Dialect> {
 
 /// First scan (for the index only) with a progress line; `None` when the file cannot be
 /// streamed exactly (the caller then reads it whole). A file found not to be UTF-8 is
-/// scanned again from a decoded copy (in `src`). The scan's diagnostics are rendered from
-/// excerpts of the file (it is not loaded); `Err` when they hold an error, as for a file
-/// read whole.
+/// scanned again from a decoded copy (in `src`). The file is read with the profile the
+/// whole-file path reads it with (`profile::semantics`: the project's, for a Siemens
+/// program with its library's global user data and macros, found beside the original
+/// file), which the index keeps (`Index::opts`) for its runs. The scan's diagnostics are
+/// rendered from excerpts of the file (it is not loaded); `Err` when they hold an error, as
+/// for a file read whole (so do the definition files').
 pub fn scan(src: &mut Source, from: Option<Dialect>, file: usize) -> Option<Result<Index, ExitCode>> {
+    let mut profile: Option<(Dialect, ParseOptions)> = None;
     let ix = loop {
         let path = src.path();
         let dialect = dialect_of(path, from)?;
+        let opts = match &profile {
+            Some((d, o)) if *d == dialect => o.clone(),
+            _ => match super::profile::streamed(src.original, dialect) {
+                Ok(semantics) => {
+                    profile = Some((dialect, ParseOptions { semantics }));
+                    profile.as_ref().map(|p| p.1.clone())?
+                }
+                Err(code) => return Some(Err(code)),
+            },
+        };
         let (input, size) = stream::open(path).ok()?;
         let mut line = ProgressLine::new("reading", size);
         let mut report = |p: Progress| line.update(p);
-        let opts = ParseOptions::for_dialect(dialect);
         let r = stream::scan_index(input, size, path, file, dialect, &opts, stream::CHUNK_OPS, Some(&mut report));
         line.done();
         match r {

@@ -5,7 +5,7 @@
 use super::{Index, ProgressFn};
 use crate::check::{self, CheckReport, Runner, Verdict};
 use crate::diag::Diagnostic;
-use crate::dialect::{Dialect, ParseOptions};
+use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::{CalleeSource, DirCallees, NoCallees, RunOptions};
 use crate::span::{FileId, SourceDb};
 use std::path::Path;
@@ -111,14 +111,28 @@ pub fn verify(
     inputs: Vec<crate::eval::Input>,
     progress: Option<ProgressFn<'_>>,
 ) -> Verified {
-    verify_for(source, output, max_steps, inputs, false, progress)
+    verify_for((source, SourceRun::default()), output, max_steps, inputs, false, progress)
+}
+
+/// How the source side of a streamed proof to FANUC runs (default: the default profile,
+/// no inputs), as `translate::to_fanuc::main_proof` gives it.
+#[derive(Default)]
+pub struct SourceRun {
+    /// The run's profile (with the global user data the translation mapped).
+    pub semantics: Option<Semantics>,
+    /// The profile the subprograms it calls are read with (the one the source was read with).
+    pub callees: Option<Semantics>,
+    pub inputs: Vec<crate::eval::Input>,
+    /// The output's profile, read back and run (`None`: FANUC's default).
+    pub output: Option<Semantics>,
 }
 
 /// [`verify`] of a translation for a target with the custom macro interrupt
-/// (`Semantics::macro_interrupt`): its `M96`/`M97` are read back as interrupts. Both runs
-/// meet the source's interrupt inputs (`nctrans: interrupt`), as the whole path's proof does.
+/// (`Semantics::macro_interrupt`): its `M96`/`M97` are read back as interrupts; the source
+/// runs as `src` says. Both runs meet the source's interrupt inputs (`nctrans: interrupt`),
+/// as the whole path's proof does.
 pub fn verify_for(
-    source: Index,
+    (source, src): (Index, SourceRun),
     output: &Path,
     max_steps: u64,
     inputs: Vec<crate::eval::Input>,
@@ -126,7 +140,10 @@ pub fn verify_for(
     progress: Option<ProgressFn<'_>>,
 ) -> Verified {
     let mut popts = ParseOptions::for_dialect(Dialect::Fanuc);
-    popts.semantics.macro_interrupt = macro_interrupt;
+    if let Some(s) = &src.output {
+        popts.semantics = s.clone();
+    }
+    popts.semantics.macro_interrupt |= macro_interrupt;
     let not_verified = |summary: String, diags: Vec<Diagnostic>| Verified {
         equivalent: false,
         summary: format!("not verified: {summary}"),
@@ -143,9 +160,11 @@ pub fn verify_for(
     };
     let interrupts = crate::eval::header_interrupts(&source.header).unwrap_or_default();
     let run = RunOptions { max_steps, interrupts, ..RunOptions::default() };
-    let out_run = RunOptions { inputs, ..run.clone() };
+    let out_semantics = src.output.is_some().then(|| popts.semantics.clone());
+    let out_run = RunOptions { inputs, semantics: out_semantics, ..run.clone() };
+    let run = RunOptions { semantics: src.semantics, inputs: src.inputs, ..run };
     let name = source.path.display().to_string();
-    let a = StreamSide { index: source, name, callees: Box::new(DirCallees { semantics: None }), run };
+    let a = StreamSide { index: source, name, callees: Box::new(DirCallees { semantics: src.callees }), run };
     let b =
         StreamSide { index: out_ix, name: output.display().to_string(), callees: Box::new(NoCallees), run: out_run };
     let report = compare_excluding(a, b, crate::translate::to_fanuc::EXCLUDE);

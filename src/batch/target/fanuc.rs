@@ -141,11 +141,14 @@ impl Streams for Fanuc {
         bom: bool,
     ) -> Option<Translated<Self::Kept>> {
         let (job, ctx, file) = h;
-        let opts = job.options(ctx, file, eol).ok()?;
+        let mut opts = job.options(ctx, file, eol).ok()?;
+        // Read with the profile the whole job reads the file with: its library's global
+        // user data and macros (definition files that do not read are the whole job's to say).
+        opts.source = jobs::source_profile(&job.settings, &mut SourceDb::new(), file, Dialect::Sinumerik).ok()?;
         // The callees' units, kept for the verifier's source side.
         let mut subs: Vec<Unit> = Vec::new();
         let mut load = |_: &Unit| {
-            subs = load_callees(job, ctx, callees)?;
+            subs = load_callees(ctx, callees, &opts.source)?;
             Ok(subs.clone())
         };
         let load: Option<LoadCallees<'_>> = if callees.is_empty() { None } else { Some(&mut load) };
@@ -179,7 +182,9 @@ impl Streams for Fanuc {
     }
 
     /// As `Job<Fanuc>::verify` runs a program no file calls: `--set` on both sides, the
-    /// mapped R parameters 0 on FANUC; the callees as the whole job's verifier serves them
+    /// mapped R parameters 0 on FANUC and the commons of global user data at their start
+    /// values, the Siemens side with that data (`translate::to_fanuc::with_globals`,
+    /// `proof_source`); the callees as the whole job's verifier serves them
     /// (aligned as it aligns them). The FANUC side finds the output's own O programs in the
     /// read-back index, as the whole job's finds them in the parsed output.
     fn sides(
@@ -189,33 +194,34 @@ impl Streams for Fanuc {
         _: &str,
     ) -> Result<[Side; 2], Box<CheckReport>> {
         let s = &job.settings;
-        let mut b_in = translate::to_fanuc::r_param_homes(map);
-        b_in.extend(translate::to_fanuc::gud_seed_inputs(map));
+        let mut b_in = translate::to_fanuc::proof_homes(map);
         b_in.extend(translate::to_fanuc::fanuc_set_inputs(&s.set, map));
         let source_callees: Box<dyn CalleeSource + Send> = if subs.is_empty() {
             Box::new(NoCallees)
         } else {
             Box::new(MemCallees(subs.iter().map(|u| translate::to_fanuc::align_source(u, map)).collect()))
         };
+        let source = translate::to_fanuc::with_globals(Some(&s.sinumerik), map);
+        let source = translate::to_fanuc::proof_source(source, map).unwrap_or_else(|| s.sinumerik.clone());
         Ok([
-            (streamed::run_options(parse_all(&s.set), s.max_steps, &s.sinumerik), source_callees),
+            (streamed::run_options(parse_all(&s.set), s.max_steps, &source), source_callees),
             (streamed::run_options(parse_all(&b_in), s.max_steps, &s.fanuc), Box::new(NoCallees)),
         ])
     }
 }
 
 /// The units of the `callees` files, loaded as `jobs::load_with_callees` loads them for the
-/// whole job (file ids from 1 up after the main's 0, the job's encoding and profile);
+/// whole job (file ids from 1 up after the main's 0, the job's encoding and the main's
+/// profile);
 /// declines one with any diagnostic or a call `segmented::to_fanuc_with_subs` cannot take.
-fn load_callees(job: &Job<Fanuc>, ctx: &BatchContext, callees: &[usize]) -> Result<Vec<Unit>, Fallback> {
+fn load_callees(ctx: &BatchContext, callees: &[usize], profile: &Semantics) -> Result<Vec<Unit>, Fallback> {
     let no = |why: &str| Fallback::NotStraight(why.into());
     let mut db = SourceDb::new();
     db.add("", String::new());
     let mut units = Vec::new();
     for &i in callees {
         let f = ctx.files.get(i).ok_or_else(|| no("a callee not in the batch"))?;
-        let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, &job.settings.sinumerik)
-            .map_err(|e| no(&e))?;
+        let l = jobs::load(&mut db, f, Dialect::Sinumerik, ctx.options.encoding, profile).map_err(|e| no(&e))?;
         if !l.diags.is_empty() || !crate::stream::segmented::fanuc::calls_plain(&l.unit) {
             return Err(no("a callee with diagnostics or a call of another kind"));
         }

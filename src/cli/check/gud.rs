@@ -17,6 +17,9 @@ use std::path::Path;
 pub struct Seeded {
     pub inputs: Vec<Input>,
     pub said: String,
+    /// The translation the homes were read from has errors other than NC504 (data without
+    /// a home): what it marked may hang on blocks a streamed side leaves out.
+    pub doubtful: bool,
 }
 
 impl Seeded {
@@ -59,13 +62,16 @@ pub fn seeding(siemens: &Unit, path: &Path, sem: &Semantics, fanuc_text: &str, m
     let refs: Vec<&Unit> = subs.iter().collect();
     // The translation is made for its symbol map alone: where it put the global user data
     // and with which start values (its other refusals do not matter here).
-    let map = to_fanuc::to_fanuc(siemens, &refs, &opts).symbol_map;
+    let t = to_fanuc::to_fanuc(siemens, &refs, &opts);
+    // (Refused constructs are marked and translated again: their errors come back as warnings.)
+    let doubtful = t.diags.iter().any(|d| (d.is_error() || nctrans::unfinished::is_marked(d)) && d.code != "NC504");
+    let map = t.symbol_map;
     let seeds = to_fanuc::gud_seed_inputs(&map);
     if seeds.is_empty() {
         return None;
     }
     let inputs = seeds.iter().filter_map(|s| nctrans::eval::parse_input(s).ok()).collect();
-    Some(Seeded { inputs, said: said(&map) })
+    Some(Seeded { inputs, said: said(&map), doubtful })
 }
 
 /// `global user data started on FANUC as a translation's proof starts it: DEPTH #600=5, TAB
@@ -111,4 +117,21 @@ fn callees(main: &Unit, path: &Path, sem: &Semantics, l_numbers: bool) -> Vec<Un
         Ok(Some(p.unit))
     });
     found.unwrap_or_default()
+}
+
+/// The lines of a streamed FANUC file that can name homes of global user data (those
+/// [`to_fanuc::gud_homes_in`] reads: it reads each line alone), read line by line: for
+/// [`seeding`], which then sees what it sees in the whole text.
+pub fn home_lines(path: &Path) -> Result<String, String> {
+    use nctrans::stream::lines::Lines;
+    let (input, _) = nctrans::stream::open(path).map_err(|e| e.to_string())?;
+    let mut lines = Lines::new(input).map_err(|e| e.to_string())?;
+    let mut out = String::new();
+    while let Some(l) = lines.next_line().map_err(|e| e.to_string())? {
+        if l.text.contains("global user data]") {
+            out.push_str(l.text);
+            out.push('\n');
+        }
+    }
+    Ok(out)
 }

@@ -600,8 +600,7 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
         std::fs::read(input).map_err(|e| crate::cli::args::fail(format!("cannot read {}: {e}", input.display())))?;
     let mut db = SourceDb::new();
     let loaded = nctrans::load(&mut db, &input.display().to_string(), &bytes, c.input_encoding);
-    let mut profile = c.sinumerik_semantics();
-    let gud = nctrans::gud::apply(&mut profile, &mut db, input, None, &c.definitions);
+    let profile = crate::cli::profile::sinumerik(c, &mut db, input)?;
     let shown = |db: &SourceDb, diags: &[diag::Diagnostic]| {
         eprint!("{}", diag::render(db, diags));
         if diag::has_errors(diags) {
@@ -609,7 +608,6 @@ fn load_sinumerik(req: &Request, c: &Config) -> Result<Job, ExitCode> {
         }
         Ok(())
     };
-    shown(&db, &gud)?;
     let popts = ParseOptions { semantics: profile.clone() };
     let parsed = nctrans::parse(&db, loaded.file, Dialect::Sinumerik, &popts);
     shown(&db, &parsed.diags)?;

@@ -268,9 +268,10 @@ struct ToFanuc<'a> {
     c: &'a Config,
 }
 
-/// What the streams to FANUC made: the source's index, the inputs its proof's FANUC run
-/// gets (from the source's header, segmented only) and the translation's notes.
-type FanucDone = (Index, Option<Vec<nctrans::eval::Input>>, Vec<Diagnostic>);
+/// What the streams to FANUC made: the source's index, the segmented translation's symbol
+/// map (what its proof's runs start with, `translate::to_fanuc::main_proof`), the
+/// translation's notes, and the profile the source was read with.
+type FanucDone = (Index, Option<nctrans::translate::to_fanuc::SymbolMap>, Vec<Diagnostic>, nctrans::dialect::Semantics);
 
 impl Target for ToFanuc<'_> {
     type Done = FanucDone;
@@ -293,28 +294,34 @@ impl Target for ToFanuc<'_> {
         if cs::dialect_of(path, None) != Some(Dialect::Sinumerik) {
             return Err(Ok(None));
         }
-        let opts = match job::fanuc_options(c, input, eol) {
+        let mut opts = match job::fanuc_options(c, input, eol) {
             Ok(o) => o,
             Err(e) => {
                 eprintln!("error: {e}");
                 return Err(Ok(Some(ExitCode::from(2))));
             }
         };
+        // The source is read with the profile the whole path reads it with: its library's
+        // global user data and macros (`job::load_sinumerik`), found beside the input.
+        opts.source = match crate::cli::profile::sinumerik(c, &mut SourceDb::new(), input) {
+            Ok(s) => s,
+            Err(code) => return Err(Ok(Some(code))),
+        };
+        let profile = opts.source.clone();
         // Calls of subprograms beside the input are taken when the verifier's callees
-        // (`DirCallees`: beside the file it reads, default semantics) are the ones the whole
+        // (`DirCallees`: beside the file it reads, with that profile) are the ones the whole
         // path loads.
-        let sem = c.sinumerik_semantics() == nctrans::dialect::Semantics::default_for(Dialect::Sinumerik);
         let straight = |w: &mut dyn Write, p: ProgressFn<'_>| {
-            st::to_fanuc(path, &opts, w, Some(p)).map(|d| (d.index, None, Vec::new()))
+            st::to_fanuc(path, &opts, w, Some(p)).map(|d| (d.index, None, Vec::new(), profile.clone()))
         };
         let segmented = |w: &mut dyn Write, p: ProgressFn<'_>| {
-            let mut load = |u: &Unit| fanuc_callees(input, c, u, read);
-            let r = if path == input && sem {
+            let mut load = |u: &Unit| fanuc_callees(input, &opts.source, c, u, read);
+            let r = if path == input {
                 stream::segmented::fanuc::to_fanuc_with_subs(path, &opts, &mut load, w, Some(p))
             } else {
                 stream::segmented::fanuc::to_fanuc_with_notes(path, &opts, w, Some(p))
             };
-            r.map(|(d, notes)| (d.index, Some(d.inputs), notes))
+            r.map(|(d, notes)| (d.index, Some(d.symbol_map), notes, profile.clone()))
         };
         straight_else_segmented((input, size), write_to, bom, straight, segmented)
     }
@@ -337,9 +344,23 @@ impl Target for ToFanuc<'_> {
         let mut line = ProgressLine::new("reading back", size);
         let mut report = |p: Progress| line.update(p);
         let macro_interrupt = self.c.fanuc_semantics().macro_interrupt;
-        let inputs = done.1.unwrap_or_default();
-        let v =
-            stream::verify::verify_for(done.0, out.1, self.req.max_steps, inputs, macro_interrupt, Some(&mut report));
+        // Both runs start, and the output is read back, as the whole path's proof does (a
+        // straight-line program has no variables, no inputs: `main_proof` of a map without).
+        let map = done.1.unwrap_or_else(|| {
+            // What any translation's map holds of the target it was written for.
+            let t = self.c.fanuc_semantics();
+            let (haas, haas_ngc, macro_interrupt) = (t.haas, t.haas_ngc, t.macro_interrupt);
+            nctrans::translate::to_fanuc::SymbolMap { haas, haas_ngc, macro_interrupt, ..Default::default() }
+        });
+        let p = nctrans::translate::to_fanuc::main_proof(&map, &done.0.header);
+        let src = stream::verify::SourceRun {
+            semantics: p.source,
+            callees: Some(done.3),
+            inputs: p.source_inputs,
+            output: p.target,
+        };
+        let (max_steps, b_in) = (self.req.max_steps, p.target_inputs);
+        let v = stream::verify::verify_for((done.0, src), out.1, max_steps, b_in, macro_interrupt, Some(&mut report));
         line.done();
         let mut db = SourceDb::new();
         db.add(input.0.display().to_string(), String::new());
@@ -361,12 +382,18 @@ impl Target for ToFanuc<'_> {
 /// not found, one with any diagnostic, one that is not one program named as its file, one
 /// beside a main program file of the same name (the verifier's `DirCallees` could take
 /// that), and callees calling other than by a constant name.
-fn fanuc_callees(input: &Path, c: &Config, unit: &Unit, read: &mut Vec<PathBuf>) -> Result<Vec<Unit>, Fallback> {
+fn fanuc_callees(
+    input: &Path,
+    profile: &nctrans::dialect::Semantics,
+    c: &Config,
+    unit: &Unit,
+    read: &mut Vec<PathBuf>,
+) -> Result<Vec<Unit>, Fallback> {
     use nctrans::ir::ProgName;
     let no = |why: &str| Fallback::NotStraight(why.into());
     let mut db = SourceDb::new();
     db.add(input.display().to_string(), String::new());
-    let popts = ParseOptions { semantics: c.sinumerik_semantics() };
+    let popts = ParseOptions { semantics: profile.clone() };
     let dir = input.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or_else(|| Path::new("."));
     let files: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|_| no("a folder that cannot be listed"))?

@@ -67,6 +67,19 @@ pub fn expand(norm: &Normalised<'_>, macros: &[(String, String)]) -> Option<Norm
     Some(norm.rewritten(s, map))
 }
 
+/// Whether no macro of `macros` can stand in a line the fast reader takes (`fast::read`):
+/// there every letter is followed by a sign, a digit or a point, so a whole word (`expand`'s)
+/// never holds two letters in a row nor `_`. A name that does (`LINE`, `MAX_STAGE`) is
+/// never met in such a line; one that does not (`M6`, `X`) may be, and then every line must
+/// go through the reader's `line`, which expands it (the quick readers of a stream read
+/// lines raw).
+pub fn raw_safe(macros: &[(String, String)]) -> bool {
+    macros.iter().all(|(name, _)| {
+        let b = name.as_bytes();
+        b.contains(&b'_') || b.windows(2).any(|w| w[0].is_ascii_alphabetic() && w[1].is_ascii_alphabetic())
+    })
+}
+
 /// The `DEFINE NAME AS text` lines of a definition file's text, in order: the name upper
 /// case, the text without its comment and outer blanks, and the byte range of the line.
 pub fn defines(text: &str) -> Vec<(String, String, std::ops::Range<usize>)> {
@@ -115,6 +128,26 @@ mod tests {
         assert_eq!(e.span(14, 15), crate::span::Span::new(17, 23));
         let plain = RawBlock { text: "G1 X10", start: 0, line: 1 };
         assert!(expand(&normalise(&plain, CommentStyle::Semicolon), &macros).is_none());
+    }
+
+    /// A name with two letters in a row or `_` never is a whole word of a line the fast
+    /// reader takes; `M6` or `X` may be (`M6`, `X-5`): then the raw readers stand down.
+    #[test]
+    fn raw_reading_stands_down_for_names_a_plain_line_can_hold() {
+        let m = |names: &[&str]| names.iter().map(|n| (n.to_string(), "G1".to_string())).collect::<Vec<_>>();
+        assert!(raw_safe(&m(&[])));
+        assert!(raw_safe(&m(&["LINE", "MAX_STAGE", "_A", "GX1"])));
+        for bad in ["M6", "X", "G1X", "N10"] {
+            assert!(!raw_safe(&m(&["LINE", bad])), "{bad}");
+        }
+        // What the reader would expand there.
+        for text in ["M6 X1", "G1 X-5", "G1X-1 Y2", "N10 G1"] {
+            let raw = RawBlock { text, start: 0, line: 1 };
+            let norm = normalise(&raw, CommentStyle::Semicolon);
+            assert!(crate::dialect::sinumerik::fast::skeleton_raw(&raw).is_some(), "{text}");
+            let all = m(&["M6", "X", "G1X", "N10"]);
+            assert!(expand(&norm, &all).is_some(), "{text}");
+        }
     }
 
     #[test]

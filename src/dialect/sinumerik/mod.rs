@@ -61,6 +61,10 @@ pub struct Reader {
     any: bool,
     /// Plain blocks are read for an index only: their items are not built.
     index_only: bool,
+    /// Whether a line may be read raw, not through [`Reader::line`] (the quick readers):
+    /// not where a library macro could stand in a plain line (`macros::raw_safe`), which
+    /// only `line` expands.
+    raw: bool,
 }
 
 /// What a streaming reader needs to resume at a block boundary (see `crate::stream`).
@@ -101,6 +105,7 @@ impl Reader {
             header_seen: false,
             any: false,
             index_only: false,
+            raw: macros::raw_safe(&opts.semantics.macros),
         }
     }
 
@@ -243,7 +248,7 @@ impl Reader {
     /// next drain hands out (nothing else waits: the program body is empty).
     /// `ascii`: the caller knows the line is ASCII (else it is checked).
     pub fn scan_plain(&mut self, raw: &read::RawBlock<'_>, ascii: bool) -> Option<(Span, Option<crate::ir::SeqNo>)> {
-        if !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
+        if !self.raw || !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let (number, words) = fast::skeleton_raw(raw)?;
@@ -255,7 +260,7 @@ impl Reader {
     /// then changes the reader only by [`Reader::take_plain`]).
     #[inline]
     pub fn plain_ready(&self) -> bool {
-        self.index_only && self.builder.plain_at_top()
+        self.raw && self.index_only && self.builder.plain_at_top()
     }
 
     /// What [`Reader::scan_plain`] does to the reader with a line it reads: for a caller
@@ -283,7 +288,7 @@ impl Reader {
         ascii: bool,
         each: impl FnMut(u8, f64, bool, Span) -> bool,
     ) -> Option<(Span, Option<crate::ir::SeqNo>, Option<usize>)> {
-        if !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
+        if !self.raw || !self.index_only || !self.builder.plain_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         let (number, words, comment) = fast::scan_words_raw(raw, each)?;
@@ -340,7 +345,7 @@ impl Reader {
     /// one check holds for the run.
     #[inline(always)]
     pub fn lit_ready(&self) -> bool {
-        !self.index_only && self.builder.resumed_at_top()
+        self.raw && !self.index_only && self.builder.resumed_at_top()
     }
 
     /// What [`Reader::lit`] does to the reader with a line the quick reader took where [`Reader::lit_ready`] held.
@@ -360,7 +365,7 @@ impl Reader {
         ascii: bool,
         take: impl FnOnce(&read::RawBlock<'_>) -> Option<(Span, Option<u32>, bool)>,
     ) -> Option<(Span, Option<u32>)> {
-        if self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
+        if !self.raw || self.index_only || !self.builder.resumed_at_top() || !(ascii || raw.text.is_ascii()) {
             return None;
         }
         // An ASCII line the fast reader takes is one normalising leaves alone (see

@@ -92,8 +92,9 @@ pub struct Segmented {
     /// The source's first-scan index (of the writing scan).
     pub index: Index,
     pub blocks: u64,
-    /// `#n=0` for the R parameters the translation maps: the output side's inputs when
-    /// verifying (as `translate::verify` sets them).
+    /// `#n=0` for the R parameters the translation maps and the commons of global user
+    /// data at their start values: the output side's inputs when verifying before its own
+    /// (as `translate::verify` sets them, `translate::to_fanuc::proof_homes`).
     pub inputs: Vec<Input>,
     /// The skeleton's translation's symbol map: the names the whole translation uses.
     pub symbol_map: translate::to_fanuc::SymbolMap,
@@ -202,8 +203,10 @@ impl<'a> SegTarget for ToFanuc<'a> {
         Ok(())
     }
 
+    /// The source's profile (its library's macros and global user data), as the whole
+    /// translation reads it.
     fn parse_options(&self) -> ParseOptions {
-        ParseOptions::for_dialect(Dialect::Sinumerik)
+        ParseOptions { semantics: self.opts.source.clone() }
     }
 
     fn fast(&self) -> fast::Fast {
@@ -297,7 +300,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
 
     fn done(&self, (symbol_map, notes): Self::Done, mut index: Index, _: Vec<Diagnostic>) -> Self::Output {
         index.align = SourceAlign { tools: symbol_map.tools.clone() };
-        let inputs = crate::translate::to_fanuc::r_param_inputs(&symbol_map);
+        let homes = crate::translate::to_fanuc::proof_homes(&symbol_map);
+        let inputs = homes.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect();
         (Segmented { blocks: index.blocks, index, inputs, symbol_map }, notes)
     }
 }

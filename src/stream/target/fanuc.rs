@@ -284,7 +284,8 @@ pub fn to_fanuc(
     st.diags.extend(head.diags);
     let closing = format!("%{eol}");
     st.out.buf.extend_from_slice(head.text.strip_suffix(&closing).unwrap_or(&head.text).as_bytes());
-    let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
+    // The source's profile (its library's macros), as the whole translation reads it.
+    let popts = ParseOptions { semantics: opts.source.clone() };
     let (index, blocks) = straight::run(path, &popts, &mut st, progress)?;
     if !st.diags.is_empty() || st.unsupported > 0 {
         return Err(Fallback::Diagnostics);
@@ -314,4 +315,47 @@ fn first_header(path: &Path) -> Result<Option<String>, NotStreamable> {
         return Ok(if t.starts_with('%') { crate::dialect::sinumerik::header_name(t.trim_end()) } else { None });
     }
     Ok(None)
+}
+
+/// The program of the streamed Siemens file `ix` (read from `path`) without its motion
+/// blocks: straight blocks ([`straight`]) without a block number, an end or any word but
+/// axis, arc, radius and feed words and G0..G3. Those name no variable nor call, set no
+/// mode the translation follows and are no jump target, so what a translation's symbol map
+/// makes of the variables the program uses, global user data first, is that of the whole
+/// program (`nctrans check` seeds a FANUC side's commons from it; its caller refuses a
+/// translation with other errors, which the context of a dropped block might decide).
+/// Held whole is only the rest (as the segmented stream holds its skeleton).
+pub fn without_straight(path: &Path, ix: &Index) -> Result<Unit, NotStreamable> {
+    let mut body = Vec::new();
+    let mut keep = |_: usize, s: &Stmt| {
+        if straight(s).is_err() || !motion_only(s) {
+            body.push(s.clone());
+        }
+    };
+    crate::stream::scan_path(path, ix.file, Dialect::Sinumerik, &ix.opts, &mut keep, None)?;
+    let program = ix.programs.first().map(|p| Program { body, ..p.program.clone() });
+    Ok(Unit { dialect: Dialect::Sinumerik, file: ix.file, programs: program.into_iter().collect() })
+}
+
+/// A straight block of motion alone (see [`without_straight`]).
+fn motion_only(s: &Stmt) -> bool {
+    let StmtKind::Block(b) = &s.kind else { return false };
+    b.meta.number.is_none()
+        && b.items.iter().all(|it| match &it.kind {
+            ItemKind::Word(w) => match w.addr {
+                Addr::Letter(b'G') => sets_g(b, &[0.0, 1.0, 2.0, 3.0]) && !sets_other_g(b),
+                Addr::Letter(l) => b"XYZABCUVWIJKRF".contains(&l),
+                _ => false,
+            },
+            _ => false,
+        })
+}
+
+/// Whether `b` holds a G word other than G0..G3.
+fn sets_other_g(b: &Block) -> bool {
+    b.items.iter().any(|it| match &it.kind {
+        ItemKind::Word(w) if w.addr.is(b'G') => !matches!(&w.value, WordValue::Expr(e)
+            if matches!(&e.kind, ExprKind::Num(n) if [0.0, 1.0, 2.0, 3.0].contains(&n.value))),
+        _ => false,
+    })
 }

@@ -2,6 +2,7 @@
 //! source's `nctrans: set` header lines, which the written program carries as its own.
 
 use super::SymbolMap;
+use crate::dialect::{Dialect, Semantics};
 use crate::ir::{Param, Stmt, StmtKind, Unit};
 use crate::lower::to_fanuc as passes;
 
@@ -164,6 +165,15 @@ pub fn r_param_inputs(map: &SymbolMap) -> Vec<crate::eval::Input> {
     r_param_homes(map).iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect()
 }
 
+/// What every FANUC side of a proof against the Siemens source starts with before its own
+/// inputs: the mapped R parameters at 0 ([`r_param_homes`]), the commons of global user data
+/// at their definitions' values ([`gud_seed_inputs`]).
+pub fn proof_homes(map: &SymbolMap) -> Vec<String> {
+    let mut out = r_param_homes(map);
+    out.extend(gud_seed_inputs(map));
+    out
+}
+
 /// [`r_param_inputs`] as `--set` texts (`#501=0`).
 pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
     map.vars
@@ -171,4 +181,51 @@ pub fn r_param_homes(map: &SymbolMap) -> Vec<String> {
         .filter(|m| m.program.is_none() && m.source.starts_with('R') && !m.source.contains('['))
         .map(|m| format!("#{}=0", m.number))
         .collect()
+}
+
+/// The Siemens side's profile of a proof against the translation (`base`: its profile with
+/// the global user data): GETT("NAME") returns what the tool map says, as T="NAME" is
+/// aligned, and the set-up values the translation assumed hold. The whole path's proof and
+/// the streamed one ([`main_proof`]) alike.
+pub fn proof_source(base: Option<Semantics>, map: &SymbolMap) -> Option<Semantics> {
+    let sinumerik = match base {
+        _ if map.tools.is_empty() => base,
+        s => {
+            let mut s = s.unwrap_or_else(|| Semantics::default_for(Dialect::Sinumerik));
+            s.tools = std::sync::Arc::new(map.tools.clone());
+            Some(s)
+        }
+    };
+    with_fixed(sinumerik, map)
+}
+
+/// What the proof of a main program without parameters runs with, for a streamed
+/// translation as [`super::verify`] has it for the whole one.
+pub struct MainProof {
+    /// The Siemens side's profile: the default one with the global user data the map holds
+    /// ([`proof_source`]).
+    pub source: Option<Semantics>,
+    /// The FANUC side's (read back and run): what the output was written for, a Haas NGC's
+    /// variables among it ([`super::target_semantics`]).
+    pub target: Option<Semantics>,
+    /// The source's `nctrans: set` header lines.
+    pub source_inputs: Vec<crate::eval::Input>,
+    /// [`proof_homes`], then those lines in the output's names.
+    pub target_inputs: Vec<crate::eval::Input>,
+}
+
+/// The [`MainProof`] of a translation with the symbol map `map` of a source whose header
+/// lines are `header`.
+pub fn main_proof(map: &SymbolMap, header: &str) -> MainProof {
+    let sets: Vec<String> =
+        crate::eval::input::header_words(header, "nctrans: set", false).map(str::to_string).collect();
+    let mut b_in = proof_homes(map);
+    b_in.extend(fanuc_set_inputs(&sets, map));
+    let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();
+    MainProof {
+        source: proof_source(super::with_globals(None, map), map),
+        target: super::target_semantics(None, map),
+        source_inputs: parse_all(&sets),
+        target_inputs: parse_all(&b_in),
+    }
 }

@@ -23,8 +23,8 @@ mod inputs;
 pub mod numbers;
 use inputs::map_set_lines;
 pub use inputs::{
-    fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, r_param_homes, r_param_inputs, standalone_args,
-    var_param_inputs,
+    fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, main_proof, proof_homes, proof_source, r_param_homes,
+    r_param_inputs, standalone_args, var_param_inputs, MainProof,
 };
 
 /// First O number given to subprograms without a `--program-map` entry.
@@ -501,22 +501,12 @@ pub fn verify<'a>(
         return v;
     }
     let map = t.symbols.fanuc();
-    let mut fanuc_inputs: Vec<String> = r_param_homes(map);
-    fanuc_inputs.extend(gud_seed_inputs(map));
+    let fanuc_inputs: Vec<String> = proof_homes(map);
     let (sinumerik, fanuc) = match &opts.profiles {
         Some(p) => (source_semantics(t, Some(&p.sinumerik)).or(Some(p.sinumerik.clone())), Some(p.fanuc.clone())),
         None => (source_semantics(t, None), None),
     };
-    // GETT("NAME") on the Siemens side returns what the tool map says, as T="NAME" is aligned.
-    let sinumerik = match sinumerik {
-        _ if map.tools.is_empty() => sinumerik,
-        s => {
-            let mut s = s.unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
-            s.tools = std::sync::Arc::new(map.tools.clone());
-            Some(s)
-        }
-    };
-    let sinumerik = inputs::with_fixed(sinumerik, map);
+    let sinumerik = proof_source(sinumerik, map);
     let fanuc = target_semantics(fanuc, map);
     // Both programs meet the source's probe inputs (`nctrans: probe`); a bad line is
     // reported by `run` on the source, here it gives none.
@@ -624,12 +614,17 @@ pub fn source_semantics(
     t: &super::Translation,
     base: Option<&crate::dialect::Semantics>,
 ) -> Option<crate::dialect::Semantics> {
-    let globals = &t.symbols.fanuc().globals;
-    if globals.is_empty() {
+    with_globals(base, t.symbols.fanuc())
+}
+
+/// [`source_semantics`] of a translation's symbol map (a streamed translation has no
+/// `Translation`).
+pub fn with_globals(base: Option<&Semantics>, map: &SymbolMap) -> Option<Semantics> {
+    if map.globals.is_empty() {
         return base.cloned();
     }
-    let mut s = base.cloned().unwrap_or_else(|| crate::dialect::Semantics::default_for(Dialect::Sinumerik));
-    s.globals = std::sync::Arc::new(globals.clone());
+    let mut s = base.cloned().unwrap_or_else(|| Semantics::default_for(Dialect::Sinumerik));
+    s.globals = std::sync::Arc::new(map.globals.clone());
     Some(s)
 }
 
