@@ -19,8 +19,8 @@ fn run(file: &str) -> (String, String) {
     (lines.join("\n"), err)
 }
 
-/// `$P_GG[1]` reads the internal number of the active G0..G3; the other groups, whose
-/// numbering no source gives, are refused naming the group.
+/// `$P_GG[1]` reads the internal number of the active G0..G3; the groups whose numbering
+/// no source gives are refused naming the group (6 and 7: tests/modal_reads_groups.rs).
 #[test]
 fn p_gg_of_group_1_runs_and_the_other_groups_are_refused_by_name() {
     let d = scratch("eval");
@@ -32,7 +32,8 @@ fn p_gg_of_group_1_runs_and_the_other_groups_are_refused_by_name() {
     );
     let (out, err) = run(&f);
     assert!(out.contains("move rapid X=1 Y=2 Z=3 f=-") && out.contains("move rapid X=4 "), "{out}{err}");
-    for (n, what) in [(14, "group 14: G90/G91"), (6, "group 6: the plane"), (8, "group 8: the work offset"), (2, "")] {
+    for (n, what) in [(14, "group 14: G90/G91"), (13, "group 13: the units"), (8, "group 8: the work offset"), (2, "")]
+    {
         let f = write(&d, "B.MPF", &format!("G90 G71\nG0 X0\nR1=$P_GG[{n}]\nM30\n"));
         let (_, err) = run(&f);
         assert!(err.contains("NC656") && err.contains(&format!("$P_GG[{n}]")) && err.contains(what), "{n}: {err}");

@@ -41,29 +41,42 @@ impl Interp<'_> {
     }
 
     /// `$P_GG[n]`, the active G function of group n as its internal number in the group's
-    /// list: group 1 only, G0..G3 being 1..4 (Siemens programming manual, list of G
-    /// functions, group 1; docs/semantics.md, Modal information). The evaluator models no
-    /// other group 1 function (CIP, G33, splines … are NC403), so the match is exhaustive;
-    /// the numbering of the other groups has no source read here and is refused (NC656).
+    /// list (Siemens programming manual, list of G functions; docs/semantics.md, Modal
+    /// information): group 1 G0..G3 = 1..4, group 6 G17/G18/G19 = 1..3, group 7
+    /// G40/G41/G42 = 1..3. The evaluator models no other function of those groups (CIP, G33,
+    /// splines … are NC403), so each match is exhaustive; the groups whose list no source
+    /// read here gives are refused (NC656).
     fn p_gg(&mut self, idx: &[Expr], span: Span) -> Result<f64, Fault> {
         let [e] = idx else {
             return Err(self.unmodelled("$P_GG without one group number", span));
         };
         let cx = self.cx(false);
         let n = round_half_away(expr::eval_num(self, e, &cx)?);
-        if n != 1.0 {
-            return Err(Fault::error(
-                Diagnostic::error("NC656", format!("{} is not modelled", p_gg_group(n)))
-                    .primary(self.file(), span, "read here")
-                    .note("no source read here gives the internal numbers of that group's G functions; group 1 is G0..G3 = 1..4 (docs/semantics.md, Modal information)")
-                    .hint("keep the mode in a variable where the program selects it"),
-            ));
-        }
-        Ok(match self.m.modal.motion {
-            super::machine::Motion::Rapid => 1.0,
-            super::machine::Motion::Linear => 2.0,
-            super::machine::Motion::Cw => 3.0,
-            super::machine::Motion::Ccw => 4.0,
+        Ok(match n as i64 {
+            1 => match self.m.modal.motion {
+                super::machine::Motion::Rapid => 1.0,
+                super::machine::Motion::Linear => 2.0,
+                super::machine::Motion::Cw => 3.0,
+                super::machine::Motion::Ccw => 4.0,
+            },
+            6 => match self.m.modal.plane {
+                super::trace::Plane::XY => 1.0,
+                super::trace::Plane::ZX => 2.0,
+                super::trace::Plane::YZ => 3.0,
+            },
+            7 => match self.m.comp.side {
+                None => 1.0,
+                Some(super::trace::Side::Left) => 2.0,
+                Some(super::trace::Side::Right) => 3.0,
+            },
+            _ => {
+                return Err(Fault::error(
+                    Diagnostic::error("NC656", format!("{} is not modelled", p_gg_group(n)))
+                        .primary(self.file(), span, "read here")
+                        .note(P_GG_SOURCED)
+                        .hint("keep the mode in a variable where the program selects it"),
+                ))
+            }
         })
     }
 
@@ -445,6 +458,11 @@ impl Interp<'_> {
         }
     }
 }
+
+/// The groups `$P_GG` reads, with the numbers the sources give (docs/semantics.md, Modal
+/// information).
+pub const P_GG_SOURCED: &str = "no source read here gives the internal numbers of that group's G functions; modelled: \
+     group 1 G0..G3 = 1..4, group 6 G17/G18/G19 = 1..3, group 7 G40/G41/G42 = 1..3 (docs/semantics.md, Modal information)";
 
 /// `$P_GG[n]` named with what group n holds, for the groups programs test most often.
 pub fn p_gg_group(n: f64) -> String {
