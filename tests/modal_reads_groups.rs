@@ -42,3 +42,55 @@ fn plane_and_radius_compensation_groups_run_with_their_list_numbers() {
         assert!(err.contains("group 6 G17/G18/G19 = 1..3"), "{n}: {err}");
     }
 }
+
+/// To FANUC, `$P_GG[6]`/`[7]` become the number of the function the program selected on
+/// every path, proven by the check; planted wrong numbers are caught.
+#[test]
+fn plane_and_compensation_reads_translate_to_fanuc_as_the_constants_selected() {
+    let d = scratch("to-fanuc");
+    let f = write(
+        &d,
+        "B.MPF",
+        "G90 G71\nT1 M6\nD1\nG18 G1 X0 Z0 F100\nR1=$P_GG[6]\nG42 X10\nR2=$P_GG[7]\nG17 G40 X20\nR3=$P_GG[6]\n\
+         R4=$P_GG[7]\nG0 X=R1 Y=R2 Z=R3\nG0 X=R4\nM30\n",
+    );
+    let nc = d.join("b.nc");
+    let (code, out, err) = nctrans(&[&f, "--to", "fanuc", "-o", &nc.to_string_lossy()]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(&nc).expect("translation written");
+    for want in ["#501=2.", "#502=3.", "#503=1.", "#504=1."] {
+        assert!(text.contains(want), "{want}: {text}");
+    }
+    let (code, out, _) = nctrans(&["check", &f, &nc.to_string_lossy()]);
+    assert_eq!(code, 0, "{out}");
+    for (from, to) in [("#501=2.", "#501=1."), ("#502=3.", "#502=2."), ("#503=1.", "#503=3."), ("#504=1.", "#504=2.")] {
+        let bad = write(&d, "bad.nc", &text.replacen(from, to, 1));
+        let (code, out, _) = nctrans(&["check", &f, &bad]);
+        assert_eq!(code, 1, "{to} passed: {out}");
+        assert!(out.starts_with("diverged"), "{to}: {out}");
+    }
+}
+
+/// Where the plane or side is not selected on every path, or the read's block sets it, or
+/// the group has no source: NC342 naming it.
+#[test]
+fn plane_and_compensation_reads_without_an_exact_fanuc_value_are_refused() {
+    let d = scratch("refused");
+    let g6 = "$P_GG[6] (G17/G18/G19 as 1..3) read where the program has not selected";
+    let g7 = "$P_GG[7] (G40/G41/G42 as 1..3) read where the program has not selected";
+    let cases = [
+        ("A.MPF", "G90 G71\nR1=$P_GG[6]\nM30\n", g6),
+        ("B.MPF", "G90 G71\nG17\nIF R9>0 GOTOF SK1\nG18\nSK1:\nR1=$P_GG[6]\nM30\n", g6),
+        ("C.MPF", "G90 G71\nG17\nG18 R1=$P_GG[6]\nM30\n", g6),
+        ("D.MPF", "G90 G71\nG40\nR1=$P_GG[7]\nCYCLE81(10,0,2,-5)\nR1=$P_GG[6]\nM30\n", g6),
+        ("E.MPF", "G90 G71\nR1=$P_GG[7]\nM30\n", g7),
+        ("F.MPF", "G90 G71\nG40\nIF $P_GG[7]==1\nG0 X1\nENDIF\nM30\n", g7),
+        ("G.MPF", "G90 G71\nG90\nR1=$P_GG[14]\nM30\n", "$P_GG[14] (group 14: G90/G91) (no source"),
+    ];
+    for (name, text, what) in cases {
+        let f = write(&d, name, text);
+        let (code, out, err) = nctrans(&[&f, "--to", "fanuc", "-o", &d.join(format!("{name}.nc")).to_string_lossy()]);
+        assert_ne!(code, 0, "{name} translated: {out}");
+        assert!(err.contains("NC342") && err.contains(what), "{name}: {err}");
+    }
+}
