@@ -94,3 +94,59 @@ fn plane_and_compensation_reads_without_an_exact_fanuc_value_are_refused() {
         assert!(err.contains("NC342") && err.contains(what), "{name}: {err}");
     }
 }
+
+/// To Sinumerik, `#4002` and `#4007` read where the program has not set the mode on every
+/// path become `$P_GG[6]+16` and `$P_GG[7]+39`, proven on both paths; planted wrong forms
+/// are caught. `#4003` (group 14, no source for its numbering) stays NC549, so the probe
+/// macro's opening `#3=#4003` does not translate yet.
+#[test]
+fn fanuc_plane_and_compensation_reads_become_p_gg_where_the_path_decides() {
+    let d = scratch("to-sinumerik");
+    // The plane depends on the path taken; the subprogram's compensation on its caller.
+    for first in ["1", "0"] {
+        let src = write(
+            &d,
+            &format!("c{first}.nc"),
+            &format!(
+                "O1\nG90 G21 G17 G40 G49\nT1 M6\nG43 H1 Z10\nG41 D1 G1 X5 Y0 F100\nM98 P100\nG40 G0 X0\n#1={first}\n\
+                 IF [#1 GT 0] GOTO 10\nG18\nN10 #3=#4002\nG0 X#3 Y#4\nM30\nO100\n#4=#4007\nM99\n"
+            ),
+        );
+        let out = d.join(format!("out{first}"));
+        let (code, o, err) = nctrans(&[&src, "--to", "sinumerik", "-o", &format!("{}/", out.display())]);
+        assert_eq!(code, 0, "{o}{err}");
+        let main = out.join(format!("P_C{first}.MPF"));
+        let sub = out.join("O_0100.SPF");
+        let text = std::fs::read_to_string(&main).expect("translation written");
+        let subtext = std::fs::read_to_string(&sub).expect("translation written");
+        assert!(text.contains("=$P_GG[6]+16") && subtext.contains("=$P_GG[7]+39"), "{text}{subtext}");
+        let (code, o, _) = nctrans(&["check", &src, &main.to_string_lossy()]);
+        assert_eq!(code, 0, "{first}: {o}");
+        let planted = [
+            (&main, &text, "$P_GG[6]+16", "$P_GG[6]+17"),
+            (&main, &text, "$P_GG[6]+16", "17"),
+            (&sub, &subtext, "$P_GG[7]+39", "$P_GG[6]+39"),
+            (&sub, &subtext, "$P_GG[7]+39", "$P_GG[7]+40"),
+        ];
+        for (file, good, from, to) in planted {
+            std::fs::write(file, good.replacen(from, to, 1)).unwrap();
+            let (code, o, _) = nctrans(&["check", &src, &main.to_string_lossy()]);
+            std::fs::write(file, good).unwrap();
+            // The planted plane is wrong on one path only: where `first` takes the other, it agrees.
+            if to == "17" && first == "1" {
+                assert_eq!(code, 0, "{first}: {to}: {o}");
+                continue;
+            }
+            assert_eq!(code, 1, "{first}: {to} passed: {o}");
+            assert!(o.starts_with("diverged"), "{first} {to}: {o}");
+        }
+    }
+    let probe = write(
+        &d,
+        "probe.nc",
+        "O1\nG90 G21 G17 G40 G94\nG65 P9000\nM30\nO9000\n#3=#4003\nG91 G31 Z-10. F500\n#10=#5063\nG#3\nM99\n",
+    );
+    let (code, _, err) = nctrans(&[&probe, "--to", "sinumerik", "-o", &format!("{}/", d.join("probe").display())]);
+    assert_ne!(code, 0);
+    assert!(err.contains("NC549") && err.contains("#4003"), "{err}");
+}

@@ -4,7 +4,7 @@
 //! (G61..G64), `#4107` (D), `#4111` (H), `#4113` (M), `#4114` (N), `#4120` (T). Each holds
 //! the value of the preceding block (SEED3: "the modal information of the blocks before the
 //! one being processed"; M-MODAL). Siemens `$P_GG[n]` returns a group's internal number
-//! (group 1: G0..G3 are 1..4; no source numbers the others here), group 1 holds other codes
+//! (group 1: G0..G3 are 1..4, groups 6 and 7 below; no source numbers the others here), group 1 holds other codes
 //! (G33, and a cycle's own moves) where FANUC's group 01 does not, and the translation writes
 //! cutting edges (`D1` of tool n) where FANUC numbers registers (`D5`); Siemens has no M or
 //! sequence number variable; so none of them has a Siemens variable with FANUC's value
@@ -12,7 +12,9 @@
 //! exact is the constant, where the program itself has written that mode or word on every
 //! path to the read: a forward flow over the program as read (`vacancy::flatten`, FANUC
 //! jump order), starting from nothing known (no power-on or caller assumption), where a call
-//! may change anything. Elsewhere the read is refused by name (NC549), as are `#4102` (B),
+//! may change anything. Elsewhere `#4002` and `#4007` become `$P_GG[6]+16` and `$P_GG[7]+39`
+//! (groups 6 and 7 number G17..G19 and G40..G42 1..3), the others are refused by name
+//! (NC549), as are `#4102` (B),
 //! `#4115` (the program number) and `#4130` (the P of G54.1), whose values no source read
 //! here settles.
 
@@ -256,6 +258,7 @@ pub fn read(ctx: &mut Ctx, n: u32, span: Span) -> Option<Result<Expr, Vec<Stmt>>
     match value {
         // The block's own word of the same group: which value a FANUC read sees is not settled.
         Some(v) if own & (1 << field) == 0 => Some(Ok(Expr::num(v, v.fract() != 0.0, span))),
+        _ if own & (1 << field) == 0 && p_gg_form(n).is_some() => p_gg_form(n).map(|(g, base)| Ok(p_gg(g, base, span))),
         _ => {
             let why = if own & (1 << field) != 0 {
                 "in a block that sets it"
@@ -265,11 +268,31 @@ pub fn read(ctx: &mut Ctx, n: u32, span: Span) -> Option<Result<Expr, Vec<Stmt>>
             };
             let message = format!("{what} read {why} cannot be translated");
             let hint = "set the mode (or the D, H, M, T word, the N number) in the program before the read, on every \
-                        path, in a block of its own; Siemens $P_GG numbers group 1 otherwise and the other groups by no \
-                        source read here, $P_TOOL gives edge numbers, and Siemens has no M or N variable";
+                        path, in a block of its own; Siemens $P_GG numbers group 1 otherwise and the groups other than 1, 6 \
+                        and 7 by no source read here, $P_TOOL gives edge numbers, and Siemens has no M or N variable";
             Some(Err(ctx.refuse(MODAL_READ, span, &message, what, hint).into_iter().collect()))
         }
     }
+}
+
+/// The Siemens group and the FANUC code of its function number 0 for the modal reads that
+/// have an exact run-time form: `#4002` is `$P_GG[6]+16` (G17/G18/G19 are 1..3 in both
+/// numberings' order) and `#4007` `$P_GG[7]+39` (G40/G41/G42 are 1..3). Neither Siemens
+/// group holds another function the translation writes, and the translation selects the
+/// plane and the side where the FANUC program does, so the two agree wherever the program has
+/// not set the mode itself (the caller's, a path's, the power-on mode alike).
+fn p_gg_form(n: u32) -> Option<(f64, f64)> {
+    match n {
+        4002 => Some((6.0, 16.0)),
+        4007 => Some((7.0, 39.0)),
+        _ => None,
+    }
+}
+
+/// `$P_GG[group]+base` at `span`.
+fn p_gg(group: f64, base: f64, span: Span) -> Expr {
+    let read = var_expr(VarKind::System { name: "P_GG".into(), indices: vec![Expr::num(group, false, span)] }, span);
+    Expr::new(ExprKind::Binary(BinOp::Add, Box::new(read), Box::new(Expr::num(base, false, span))), span)
 }
 
 /// The modal information reads whose value no source read here settles, with why.
