@@ -268,8 +268,9 @@ pub fn read(ctx: &mut Ctx, n: u32, span: Span) -> Option<Result<Expr, Vec<Stmt>>
             };
             let message = format!("{what} read {why} cannot be translated");
             let hint = "set the mode (or the D, H, M, T word, the N number) in the program before the read, on every \
-                        path, in a block of its own; Siemens $P_GG numbers group 1 otherwise and the groups other than 1, 6 \
-                        and 7 by no source read here, $P_TOOL gives edge numbers, and Siemens has no M or N variable";
+                        path, in a block of its own; Siemens $P_GG numbers group 1 otherwise and no source read here numbers \
+                        its groups other than 1, 6 and 7 (#4002 and #4007 are read as $P_GG[6]+16, $P_GG[7]+39), \
+                        $P_TOOL gives edge numbers, and Siemens has no M or N variable";
             Some(Err(ctx.refuse(MODAL_READ, span, &message, what, hint).into_iter().collect()))
         }
     }
