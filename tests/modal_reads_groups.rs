@@ -5,7 +5,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, write};
+use eval_support::{nctrans, run_bare, scratch_dir, write};
 use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
@@ -13,9 +13,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn run(file: &str) -> (String, String) {
-    let (_, out, err) = nctrans(&["run", file]);
-    let lines: Vec<&str> = out.lines().map(|l| l.split("  @").next().unwrap_or("")).collect();
-    (lines.join("\n"), err)
+    run_bare(file, &[])
 }
 
 /// Each value of groups 6 and 7, and the read in `G19 R3=$P_GG[6]` / `G42 … R7=$P_GG[7]`

@@ -6,7 +6,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, write};
+use eval_support::{nctrans, run_bare, scratch_dir, write};
 use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
@@ -14,9 +14,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn run(file: &str) -> (String, String) {
-    let (_, out, err) = nctrans(&["run", file]);
-    let lines: Vec<&str> = out.lines().map(|l| l.split("  @").next().unwrap_or("")).collect();
-    (lines.join("\n"), err)
+    run_bare(file, &[])
 }
 
 /// `$P_GG[1]` reads the internal number of the active G0..G3; the groups whose numbering

@@ -7,7 +7,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, write};
+use eval_support::{nctrans, run_bare, scratch_dir, write};
 use std::path::PathBuf;
 
 fn scratch(name: &str) -> PathBuf {
@@ -15,11 +15,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn run(file: &str, extra: &[&str]) -> (String, String) {
-    let mut args = vec!["run", file];
-    args.extend_from_slice(extra);
-    let (_, out, err) = nctrans(&args);
-    let lines: Vec<&str> = out.lines().map(|l| l.split("  @").next().unwrap_or("")).collect();
-    (lines.join("\n"), err)
+    run_bare(file, extra)
 }
 
 /// `#1` Z in workpiece, `#2` Z in machine coordinates, `#3` X in workpiece coordinates, under

@@ -171,6 +171,15 @@ pub fn nctrans(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// `nctrans run FILE EXTRA…`: the trace with each line's `  @…` place cut off, and stderr.
+pub fn run_bare(file: &str, extra: &[&str]) -> (String, String) {
+    let mut args = vec!["run", file];
+    args.extend_from_slice(extra);
+    let (_, out, err) = nctrans(&args);
+    let lines: Vec<&str> = out.lines().map(|l| l.split("  @").next().unwrap_or("")).collect();
+    (lines.join("\n"), err)
+}
+
 /// [`nctrans`] run from `dir` (its `nctrans.toml` applies).
 pub fn nctrans_in(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
