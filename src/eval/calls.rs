@@ -470,7 +470,10 @@ impl Interp<'_> {
         if call.kind == CallKind::M97 {
             return self.local_call(call, pc, span);
         }
-        if !self.fanuc && call.kind == CallKind::Named && call.target == CallTarget::Name("EXECSTRING".into()) {
+        if !self.fanuc
+            && call.kind == CallKind::Named
+            && matches!(&call.target, CallTarget::Name(n) if n == "EXECSTRING")
+        {
             let as_call = self.execstring(call, span)?;
             return self.call(&as_call, pc, span);
         }

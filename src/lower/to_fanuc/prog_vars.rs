@@ -67,7 +67,10 @@ pub fn execstring_as_call(p: &Program) -> Option<Program> {
     let mut p = p.clone();
     items_mut(&mut p.body, &mut |it| {
         if let ItemKind::Call(c) = &mut it.kind {
-            if c.kind == CallKind::Named && c.target == CallTarget::Name("EXECSTRING".into()) && c.args.len() == 1 {
+            if c.kind == CallKind::Named
+                && matches!(&c.target, CallTarget::Name(n) if n == "EXECSTRING")
+                && c.args.len() == 1
+            {
                 if let Some(Arg::Value(e)) = c.args.pop() {
                     c.target = match &e.kind {
                         ExprKind::Str(t) if crate::dialect::sinumerik::is_program_name_line(t.trim()) => {
