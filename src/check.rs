@@ -86,6 +86,17 @@ impl CheckReport {
             diverged_on_alarm: false,
         }
     }
+
+    /// Whether the check proved equivalence, and its verdict line as a translation reports
+    /// it (whole file and stream alike; the batch adds its run labels).
+    pub fn verdict_line(&self) -> (bool, String) {
+        match &self.verdict {
+            Verdict::Equivalent { events } => (true, self.excluded.equivalent(&format!("{events} events"))),
+            Verdict::Diverged { index } => (false, diverged_summary(*index, "", self.diverged_on_alarm)),
+            Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
+            Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
+        }
+    }
 }
 
 /// The verdict line of a divergence at trace event `index` (0-based) of the run `label`

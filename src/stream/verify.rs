@@ -3,7 +3,7 @@
 //! compared as they come ([`compare`]); [`verify`] is both for a translation to FANUC.
 
 use super::{Index, ProgressFn};
-use crate::check::{self, CheckReport, Runner, Verdict};
+use crate::check::{self, CheckReport, Runner};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions, Semantics};
 use crate::eval::{CalleeSource, DirCallees, NoCallees, RunOptions};
@@ -168,12 +168,7 @@ pub fn verify_for(
     let b =
         StreamSide { index: out_ix, name: output.display().to_string(), callees: Box::new(NoCallees), run: out_run };
     let report = compare_excluding(a, b, crate::translate::to_fanuc::EXCLUDE);
-    let (equivalent, summary) = match report.verdict {
-        Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-        Verdict::Diverged { index } => (false, check::diverged_summary(index, "", report.diverged_on_alarm)),
-        Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-        Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-    };
+    let (equivalent, summary) = report.verdict_line();
     let callees =
         (2..report.db.len()).map(|id| (report.db.get(id).name.clone(), report.db.get(id).text.clone())).collect();
     Verified { equivalent, summary, diags: report.diags, diff: report.diff, callees }

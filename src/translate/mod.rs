@@ -176,15 +176,10 @@ impl Verification {
     /// check's diagnostics (and the trace diff of a divergence).
     fn of(report: &CheckReport) -> Verification {
         let mut rendered = diag::render(&report.db, &report.diags);
-        let (equivalent, summary) = match &report.verdict {
-            Verdict::Equivalent { events } => (true, report.excluded.equivalent(&format!("{events} events"))),
-            Verdict::Diverged { index } => {
-                rendered.push_str(&report.diff);
-                (false, crate::check::diverged_summary(*index, "", report.diverged_on_alarm))
-            }
-            Verdict::Inconclusive { reason } => (false, format!("inconclusive: {reason}")),
-            Verdict::Failed => (false, "not verified: a run could not be evaluated (see above)".into()),
-        };
+        if matches!(report.verdict, Verdict::Diverged { .. }) {
+            rendered.push_str(&report.diff);
+        }
+        let (equivalent, summary) = report.verdict_line();
         Verification { equivalent, summary, rendered, ..Verification::default() }
     }
 
