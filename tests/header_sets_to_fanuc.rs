@@ -53,3 +53,45 @@ fn the_streamed_output_carries_the_header_in_fanuc_names_too() {
         assert!(w.contains(expected) && !set_line.contains('R'), "{name}: {w}");
     }
 }
+
+/// A main program whose header sets one of its own DEF variables (with a start value and
+/// without one) beside an R parameter.
+const DEF_SRC: &str = "; nctrans: set DEPTH=5 STEP=4 R1=3\nDEF REAL DEPTH=2\nDEF REAL STEP\nG90 G1 X0 Y0 Z0 F100\nG1 X=R1 Z=-DEPTH\nG1 Z=-STEP\nM30\n";
+
+#[test]
+fn an_input_naming_a_def_is_left_out_of_the_proof_and_said_so() {
+    // `run` gives the DEF the input; the FANUC program assigns the start value in its body,
+    // so the proof runs both with the start value (was: "diverged … a bug in nctrans").
+    let d = scratch_dir("header-sets-tests", "def");
+    let src = write(&d, "DEFSET.MPF", DEF_SRC);
+    let out = d.join("defset.nc").to_string_lossy().into_owned();
+    let (code, _, err) = nctrans(&["--to", "fanuc", &src, "-o", &out]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning[NC661]") && err.contains("the input DEPTH=5 is not used"), "{err}");
+    assert!(err.contains("DEF REAL DEPTH=2"), "the warning points at the DEF: {err}");
+    assert!(err.contains("equivalent (") && err.contains("not used: the inputs DEPTH=5 STEP=4"), "{err}");
+    // STEP, a DEF without a start value (0), likewise. The R parameter's input is still
+    // proven and carried; the DEFs' are not written.
+    let text = std::fs::read_to_string(&out).unwrap();
+    let line = text.lines().find(|l| l.contains("nctrans: set")).expect("header line kept");
+    assert!(line.contains("#501=3") && !line.contains("=5") && !line.contains("=4"), "{line}");
+    let (code, verdict, err) = nctrans(&["check", &src, &out]);
+    assert_eq!(code, 0, "{verdict}{err}");
+    assert!(
+        verdict.contains("equivalent (") && verdict.contains("not used: the inputs DEPTH=5 STEP=4"),
+        "{verdict}{err}"
+    );
+}
+
+#[test]
+fn a_planted_wrong_start_value_is_still_caught() {
+    let d = scratch_dir("header-sets-tests", "def-planted");
+    let src = write(&d, "DEFSET.MPF", DEF_SRC);
+    let (code, good, err) = nctrans(&["--to", "fanuc", &src]);
+    assert_eq!(code, 0, "{err}");
+    assert!(good.contains("=2.\n"), "{good}");
+    let bad = write(&d, "bad.nc", &good.replacen("=2.\n", "=5.\n", 1));
+    let (code, verdict, err) = nctrans(&["check", &src, &bad]);
+    assert_ne!(code, 0, "a wrong start value was not caught: {verdict}{err}");
+    assert!(verdict.contains("diverged"), "{verdict}");
+}

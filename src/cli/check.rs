@@ -153,6 +153,10 @@ pub fn check(
         },
         _ => None,
     };
+    let unused = match &mut sides[..] {
+        [x, y] => unused_def_inputs(&db, [x, y]),
+        _ => Vec::new(),
+    };
     let mut render: Vec<(usize, &std::path::Path)> = Vec::new();
     let mut runners = Vec::new();
     for s in &sides {
@@ -174,7 +178,7 @@ pub fn check(
     };
     let report = check::check_runners(&db, ra, rb);
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
-    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()), &unused)
 }
 
 /// One side of a plain `check`: read whole, or streamed (its index, with the source it
@@ -255,7 +259,31 @@ fn seed(db: &SourceDb, [x, y]: [&mut Read; 2], map_rules: &[String]) -> Result<O
 }
 
 /// Prints a check's verdict, with what the runs assumed (`assumed`); its exit code.
-fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>) -> ExitCode {
+/// A Siemens side checked against a FANUC one leaves out the inputs that name a DEF
+/// variable of its main program, as a translation's proof does
+/// (`translate::to_fanuc::proof_sets`): the FANUC side assigns that start value itself.
+/// Warns NC661 for each; returns them for the verdict.
+fn unused_def_inputs(db: &SourceDb, [x, y]: [&mut Read; 2]) -> Vec<String> {
+    let siemens = match (x.dialect(), y.dialect()) {
+        (Dialect::Sinumerik, Dialect::Fanuc) => x,
+        (Dialect::Fanuc, Dialect::Sinumerik) => y,
+        _ => return Vec::new(),
+    };
+    let Read::Whole { unit, run } = siemens else { return Vec::new() };
+    let Some(main) = unit.programs.first() else { return Vec::new() };
+    let names = translate::to_fanuc::main_def_names(main);
+    let (unused, kept): (Vec<_>, Vec<_>) = std::mem::take(&mut run.inputs)
+        .into_iter()
+        .partition(|i| matches!(&i.target, nctrans::eval::InputTarget::Name(n) if names.contains(n)));
+    run.inputs = kept;
+    let texts: Vec<String> = unused.into_iter().map(|i| i.text).collect();
+    let warnings: Vec<_> =
+        texts.iter().filter_map(|t| translate::to_fanuc::unused_input_warning(t, main, unit.file)).collect();
+    eprint!("{}", diag::render(db, &warnings));
+    texts
+}
+
+fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>, unused: &[String]) -> ExitCode {
     use nctrans::check::Verdict;
     // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
     // (NC387): a program that ran one may apply another length than the other, unseen.
@@ -296,7 +324,7 @@ fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>) ->
                 Some(a) => format!("{events} trace events agree; {a}"),
                 None => format!("{events} trace events agree"),
             };
-            println!("{}", report.excluded.equivalent(&detail));
+            println!("{}", translate::to_fanuc::noted_unused_inputs(report.excluded.equivalent(&detail), unused));
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
@@ -350,6 +378,10 @@ fn check_as_translation(
         },
         _ => None,
     };
+    let unused = match &mut read[..] {
+        [x, y] => unused_def_inputs(&db, [x, y]),
+        _ => Vec::new(),
+    };
     let sides: Vec<(Unit, nctrans::eval::RunOptions)> = read
         .into_iter()
         .filter_map(|r| match r {
@@ -397,7 +429,7 @@ fn check_as_translation(
     };
     let report = check::check_runners_excluding(&db, ra, rb, exclude);
     eprint!("{}", diag::render(&report.db, &report.diags));
-    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()), &unused)
 }
 
 /// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the

@@ -194,8 +194,9 @@ impl Streams for Fanuc {
         _: &str,
     ) -> Result<[Side; 2], Box<CheckReport>> {
         let s = &job.settings;
+        let set = translate::to_fanuc::proof_sets(&s.set, map).0;
         let mut b_in = translate::to_fanuc::proof_homes(map);
-        b_in.extend(translate::to_fanuc::fanuc_set_inputs(&s.set, map));
+        b_in.extend(translate::to_fanuc::fanuc_set_inputs(&set, map));
         let source_callees: Box<dyn CalleeSource + Send> = if subs.is_empty() {
             Box::new(NoCallees)
         } else {
@@ -204,7 +205,7 @@ impl Streams for Fanuc {
         let source = translate::to_fanuc::with_globals(Some(&s.sinumerik), map);
         let source = translate::to_fanuc::proof_source(source, map).unwrap_or_else(|| s.sinumerik.clone());
         Ok([
-            (streamed::run_options(parse_all(&s.set), s.max_steps, &source), source_callees),
+            (streamed::run_options(parse_all(&set), s.max_steps, &source), source_callees),
             (streamed::run_options(parse_all(&b_in), s.max_steps, &s.fanuc), Box::new(NoCallees)),
         ])
     }

@@ -19,7 +19,7 @@ pub(super) fn map_set_lines(body: &mut Vec<Stmt>, map: &SymbolMap) {
         for c in &mut b.meta.comments {
             let Some(rest) = c.text.trim().strip_prefix("nctrans: set") else { continue };
             let words: Vec<String> = rest.split_whitespace().map(str::to_string).collect();
-            let mapped = fanuc_set_inputs(&words, map);
+            let mapped = fanuc_set_inputs(&super::proof_sets(&words, map).0, map);
             emptied |= mapped.is_empty();
             c.text = format!("nctrans: set {}", mapped.join(" "));
         }
@@ -219,6 +219,7 @@ pub struct MainProof {
 pub fn main_proof(map: &SymbolMap, header: &str) -> MainProof {
     let sets: Vec<String> =
         crate::eval::input::header_words(header, "nctrans: set", false).map(str::to_string).collect();
+    let sets = super::proof_sets(&sets, map).0;
     let mut b_in = proof_homes(map);
     b_in.extend(fanuc_set_inputs(&sets, map));
     let parse_all = |v: &[String]| v.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect::<Vec<_>>();

@@ -21,10 +21,14 @@ use std::collections::BTreeMap;
 
 mod inputs;
 pub mod numbers;
+mod start_values;
 use inputs::map_set_lines;
 pub use inputs::{
     fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, main_proof, proof_homes, proof_source, r_param_homes,
     r_param_inputs, standalone_args, var_param_inputs, MainProof,
+};
+pub use start_values::{
+    def_names as main_def_names, noted as noted_unused_inputs, proof_sets, warning as unused_input_warning,
 };
 
 /// First O number given to subprograms without a `--program-map` entry.
@@ -125,6 +129,10 @@ pub struct SymbolMap {
     /// for `AXNAME(AXIS_HORI)`): the Siemens side of a check starts with them, and every
     /// verdict names them.
     pub fixed: BTreeMap<String, String>,
+    /// The main program's own DEF variables (upper case): an input naming one replaces its
+    /// start value in `run`, but not in the FANUC program, so a proof leaves it out
+    /// ([`proof_sets`]).
+    pub def_inputs: std::collections::BTreeSet<String>,
 }
 
 impl SymbolMap {
@@ -320,6 +328,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
         fixed: fixed_used,
+        def_inputs: main.programs.first().map(start_values::def_names).unwrap_or_default(),
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -337,6 +346,10 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         collect_alarms(&p.body, &mut symbol_map.alarms);
         diags.extend(crate::dialect::limits::deepened(&p.body, file, Dialect::Fanuc));
         if programs.is_empty() {
+            if let Some(src) = main.programs.first() {
+                let (_, dropped) = proof_sets(&start_values::header_sets(&p.body), &symbol_map);
+                diags.extend(dropped.iter().filter_map(|d| start_values::warning(d, src, main.file)));
+            }
             map_set_lines(&mut p.body, &symbol_map);
         }
         let header = header(&name, &mapped, !programs.is_empty(), opts);
@@ -518,6 +531,8 @@ pub fn verify<'a>(
         .map(str::to_string)
         .chain(opts.set.iter().cloned())
         .collect();
+    // Less those that name a main-program DEF, which the FANUC program starts itself.
+    let (sets, unused) = proof_sets(&sets, map);
     let params = main.programs.first().map(|p| p.params.clone()).unwrap_or_default();
     let letters = passes::words::param_letters(params.len()).unwrap_or_default();
     let mut cases: Vec<(String, Vec<(usize, String)>)> = vec![(String::new(), vec![])];
@@ -577,6 +592,7 @@ pub fn verify<'a>(
         runs.push((label, report));
     }
     let mut v = Verification::of_runs(runs);
+    v.summary = noted_unused_inputs(v.summary, &unused);
     rendered.push_str(&v.rendered);
     v.rendered = rendered;
     v.reparsed = Some(parsed.unit);
