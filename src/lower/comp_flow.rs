@@ -239,17 +239,7 @@ pub fn touch_effects<K: Ord + Clone>(
 /// Whether a body jumps (a GOTO anywhere): its labels and N numbers are then places where
 /// paths meet.
 pub fn jumps(body: &[Stmt]) -> bool {
-    let mut any = false;
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            any |= b.items.iter().any(|it| match &it.kind {
-                ItemKind::Goto(_) => true,
-                ItemKind::IfThen { then, .. } => matches!(then.kind, ItemKind::Goto(_)),
-                _ => false,
-            });
-        }
-    });
-    any
+    crate::lower::landings::Landings::of(body).any()
 }
 
 /// Walks `body` with the state `st`, handing every block to `step` (`live`: false while a

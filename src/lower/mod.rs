@@ -15,6 +15,7 @@
 pub(crate) mod build;
 pub mod comp_flow;
 pub mod known;
+pub mod landings;
 pub mod own_header;
 pub mod restate;
 pub mod to_fanuc;

@@ -15,19 +15,9 @@ const SEGMENT_MARK: &str = "NCTRANS SEGMENT ";
 
 /// Runs the pass on one program (after `blocks`, before `words`).
 pub fn run(ctx: &mut Ctx, prog: &mut Program) {
-    let jumps = has_jumps(&prog.body);
+    let jumps = crate::lower::landings::Landings::of(&prog.body).any();
     let body = std::mem::take(&mut prog.body);
     prog.body = body_pass(ctx, body, jumps, true);
-}
-
-fn has_jumps(body: &[Stmt]) -> bool {
-    let mut any = false;
-    crate::ir::visit::walk_stmts(body, &mut |s: &Stmt| {
-        if let StmtKind::Block(b) = &s.kind {
-            any |= b.items.iter().any(|it| matches!(it.kind, ItemKind::Goto(_) | ItemKind::Case(_)));
-        }
-    });
-    any
 }
 
 fn is_addr(w: &Word, n: &str) -> bool {

@@ -191,21 +191,11 @@ pub fn plan(
     if let Some(w) = why {
         return Chain { refuse: Some(w), ..Chain::default() };
     }
-    let mut jumps = false;
-    crate::ir::visit::walk_stmts(body, &mut |s| {
-        if let StmtKind::Block(b) = &s.kind {
-            jumps |= b.items.iter().any(|it| {
-                matches!(
-                    it.kind,
-                    ItemKind::Goto(_) | ItemKind::IfThen { .. } | ItemKind::Case(_) | ItemKind::RepeatSection(_)
-                )
-            });
-        }
-    });
+    let jumps = crate::lower::landings::Landings::of(body);
     let mut chain = Chain { on: true, ..Chain::default() };
     // A called program may start under its caller's G68 (its first TRANS or ROT cancels it).
     let start = if main { St { angle: Some(0.0), g68: false } } else { St::UNKNOWN };
-    walk(body, start, jumps, &mut chain.at);
+    walk(body, start, &jumps, &mut chain.at);
     chain
 }
 
@@ -226,11 +216,11 @@ impl St {
 }
 
 /// The state after `body` from `s`, noting the state before each frame block in `at`.
-fn walk(body: &[Stmt], mut s: St, jumps: bool, at: &mut BTreeMap<u32, St>) -> St {
+fn walk(body: &[Stmt], mut s: St, jumps: &crate::lower::landings::Landings, at: &mut BTreeMap<u32, St>) -> St {
     for st in body {
         match &st.kind {
             StmtKind::Block(b) => {
-                if jumps && (b.meta.label.is_some() || b.meta.number.is_some()) {
+                if jumps.at(&b.meta) {
                     s = St::UNKNOWN; // a jump may land here from anywhere
                 }
                 let Some((op, words, span)) = frame_of(b) else { continue };

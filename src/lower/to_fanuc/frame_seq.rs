@@ -59,9 +59,9 @@ fn constant(e: &Expr) -> Option<f64> {
     }
 }
 
-fn frame_of(s: &Stmt) -> Option<(&str, &[Word], Span, bool)> {
+fn frame_of<'a>(s: &'a Stmt, jumps: &crate::lower::landings::Landings) -> Option<(&'a str, &'a [Word], Span, bool)> {
     let StmtKind::Block(b) = &s.kind else { return None };
-    let target = b.meta.number.is_some() || b.meta.label.is_some();
+    let target = jumps.at(&b.meta);
     match b.items.as_slice() {
         [Item { kind: ItemKind::Frame { op, words }, span }] => Some((op.as_str(), words.as_slice(), *span, target)),
         _ => None,
@@ -112,8 +112,13 @@ fn mode(op: &str, words: &[Word], plane: Option<u32>) -> Option<Mode> {
 /// The sequence at `list[i..]`: the mode found and the blocks it takes. `plane`: the one
 /// plane of the program (17 where it selects no other) and the start of its first word
 /// ([`Plane`]); where it is not known so, rotations are left to `rotation.rs`.
-fn sequence_at(list: &[Stmt], i: usize, plane: Plane) -> Option<(Found, usize)> {
-    let (op, words, span, _) = frame_of(list.get(i)?)?;
+fn sequence_at(
+    list: &[Stmt],
+    i: usize,
+    plane: Plane,
+    jumps: &crate::lower::landings::Landings,
+) -> Option<(Found, usize)> {
+    let (op, words, span, _) = frame_of(list.get(i)?, jumps)?;
     let at = plane.filter(|&(p, lo)| p == 17 || span.lo > lo).map(|p| p.0);
     let mode = |op: &str, words: &[Word]| mode(op, words, at);
     if let Some(m) = mode(op, words) {
@@ -123,8 +128,8 @@ fn sequence_at(list: &[Stmt], i: usize, plane: Plane) -> Option<(Found, usize)> 
         return None;
     }
     let c = shift(words)?;
-    let (op2, w2, _, t2) = frame_of(list.get(i + 1)?)?;
-    let (op3, w3, _, t3) = frame_of(list.get(i + 2)?)?;
+    let (op2, w2, _, t2) = frame_of(list.get(i + 1)?, jumps)?;
+    let (op3, w3, _, t3) = frame_of(list.get(i + 2)?, jumps)?;
     let m = mode(op2, w2)?;
     let back = shift(w3)?;
     let opposite =
@@ -157,7 +162,7 @@ fn inverse(a: &Found, b: &Found) -> bool {
 /// The plane rotations turn in ([`sequence_at`]).
 type Plane = Option<(u32, u32)>;
 
-fn scan(list: &[Stmt], start: bool, plane: Plane, seqs: &mut Seqs) {
+fn scan(list: &[Stmt], start: bool, plane: Plane, jumps: &crate::lower::landings::Landings, seqs: &mut Seqs) {
     let mut plain = start;
     let mut active: Option<Found> = None;
     let mut i = 0;
@@ -165,16 +170,16 @@ fn scan(list: &[Stmt], start: bool, plane: Plane, seqs: &mut Seqs) {
         let s = &list[i];
         let StmtKind::Block(b) = &s.kind else {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                scan(child, false, plane, seqs);
+                scan(child, false, plane, jumps, seqs);
             }
             (plain, active) = (false, None);
             i += 1;
             continue;
         };
-        if b.meta.number.is_some() || b.meta.label.is_some() {
+        if jumps.at(&b.meta) {
             (plain, active) = (false, None);
         }
-        if let Some((found, n)) = sequence_at(list, i, plane) {
+        if let Some((found, n)) = sequence_at(list, i, plane, jumps) {
             let first = b.items.first().map_or(b.meta.span.lo, |it| it.span.lo);
             let action = match &active {
                 Some(a) if inverse(a, &found) => {
@@ -201,7 +206,7 @@ fn scan(list: &[Stmt], start: bool, plane: Plane, seqs: &mut Seqs) {
             i += 1;
             continue;
         }
-        match frame_of(s) {
+        match frame_of(s, jumps) {
             Some((op, words, _, _)) => {
                 let absolute = op == "TRANS" || (matches!(op, "ROT" | "SCALE" | "MIRROR") && words.is_empty());
                 (plain, active) = (absolute, None);
@@ -233,7 +238,7 @@ pub fn seqs(body: &[Stmt], main: bool) -> Seqs {
     } else {
         None
     };
-    scan(body, main, plane, &mut s);
+    scan(body, main, plane, &crate::lower::landings::Landings::of(body), &mut s);
     s
 }
 

@@ -71,18 +71,18 @@ fn letter(b: &Block, l: u8) -> Option<&Expr> {
     })
 }
 
-fn scan(body: &[Stmt], start: Option<(Expr, Expr)>, poles: &mut Poles) {
+fn scan(body: &[Stmt], start: Option<(Expr, Expr)>, jumps: &crate::lower::landings::Landings, poles: &mut Poles) {
     let mut pole = start;
     let (mut ap, mut rp): (Option<Expr>, Option<Expr>) = (None, None);
     for s in body {
         let StmtKind::Block(b) = &s.kind else {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                scan(child, None, poles);
+                scan(child, None, jumps, poles);
             }
             (pole, ap, rp) = (None, None, None);
             continue;
         };
-        if b.meta.number.is_some() || b.meta.label.is_some() {
+        if jumps.at(&b.meta) {
             (pole, ap, rp) = (None, None, None);
         }
         let gs: Vec<f64> = b.items.iter().filter_map(g_const).collect();
@@ -125,7 +125,7 @@ pub fn poles(body: &[Stmt], main: bool) -> Poles {
     let zero = |span| Expr::num(0.0, true, span);
     let start = main.then(|| (zero(Span::default()), zero(Span::default())));
     let mut p = Poles { at: Vec::new(), g17: main };
-    scan(body, start, &mut p);
+    scan(body, start, &crate::lower::landings::Landings::of(body), &mut p);
     p
 }
 

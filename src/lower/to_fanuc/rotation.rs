@@ -16,7 +16,8 @@
 //!   scaling and rotation in that order whatever order they come in.
 //!
 //! "Right after": in the same statement list, with no block between them that a jump could
-//! land on (a number or a label), no call and no structure. A main program whose only plane
+//! land on (a label or number one of the program's jumps names: `lower::landings`), no call
+//! and no structure. A main program whose only plane
 //! word is G18 (or G19), written in its leading blocks, rotates in that plane after it:
 //! `G68 Z0 X0 R a` (`G68 Y0 Z0`), the angle `RPL=` or about the plane's normal (`ROT Y a`);
 //! both controls turn counter-clockwise seen from the normal's positive end (Z towards X in
@@ -60,12 +61,12 @@ fn g_const(it: &Item) -> Option<f64> {
     }
 }
 
-fn scan(body: &[Stmt], start: bool, plan: &mut Plan) {
+fn scan(body: &[Stmt], start: bool, jumps: &crate::lower::landings::Landings, plan: &mut Plan) {
     let mut after_abs = start;
     for s in body {
         let StmtKind::Block(b) = &s.kind else {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                scan(child, false, plan);
+                scan(child, false, jumps, plan);
             }
             after_abs = false;
             continue;
@@ -73,7 +74,7 @@ fn scan(body: &[Stmt], start: bool, plan: &mut Plan) {
         if b.items.iter().any(|it| matches!(g_const(it), Some(v) if v == 18.0 || v == 19.0)) {
             plan.g17 = false;
         }
-        if b.meta.number.is_some() || b.meta.label.is_some() {
+        if jumps.at(&b.meta) {
             after_abs = false;
         }
         match frame_of(b) {
@@ -160,7 +161,7 @@ fn scale_or_mirror(op: &str, words: &[Word], span: Span) -> Result<Vec<Item>, &'
 /// The plan of a program (`main`: not a called one).
 pub fn plan(body: &[Stmt], main: bool) -> Plan {
     let mut p = Plan { g17: main, ..Plan::default() };
-    scan(body, main, &mut p);
+    scan(body, main, &crate::lower::landings::Landings::of(body), &mut p);
     if main && !p.g17 {
         p.plane = single_plane(body);
     }
