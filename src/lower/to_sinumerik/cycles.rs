@@ -167,6 +167,18 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool, open: Opt
     for s in body {
         let span = s.span;
         let StmtKind::Block(mut b) = s.kind else {
+            // A loop of hole positions under the cycle (a bolt circle): the MCALL in force
+            // drills each, as FANUC's cycle does (`loops::holes_only`).
+            if let Some(d) = active.as_ref().filter(|d| unsupported_kind(d.g).is_none()) {
+                if let Some(kept) = loops::holes_only(&s, (b'X', b'Y')) {
+                    // Under G99 the tool stands at R after a pass's hole, or at the initial
+                    // level if no pass ran: new data after it takes the level where the cycle
+                    // began (see `call_item`), right either way.
+                    after_g99_hole |= d.g99;
+                    out.push(kept);
+                    continue;
+                }
+            }
             moved_before |= !cycle_seen;
             if active.take().is_some() {
                 refuse(
@@ -459,7 +471,11 @@ fn lower_list(ctx: &mut Ctx, body: Vec<Stmt>, planes: bool, top: bool, open: Opt
             if !b.items.is_empty() || b.meta.number.is_some() || !b.meta.comments.is_empty() {
                 out.push(Stmt { kind: StmtKind::Block(b), span });
             }
-            if !drill_word && changed && !starting {
+            if drill_word && mcall {
+                // `K0`/`L0`: the data is stored and no hole drilled here; the MCALL defines
+                // the call the next position makes, and drills nothing itself.
+                pending(ctx, &mut out, &active, span, after_g99_hole);
+            } else if !drill_word && changed && !starting {
                 // New data without a hole: the next hole drills with it.
                 pending(ctx, &mut out, &active, span, after_g99_hole);
             }

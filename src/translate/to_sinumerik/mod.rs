@@ -289,10 +289,15 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
                     .hint("give them distinct names with --program-map N=NAME"),
             );
         }
+        // The program's title (`O2010 (FLANGE)`) stays with it: the name a FANUC directory
+        // shows, which the Siemens file name cannot carry.
+        let title: Vec<&str> =
+            src.head.iter().flat_map(|h| &h.comments).map(|c| c.text.trim()).filter(|t| !t.is_empty()).collect();
+        let title = if title.is_empty() { String::new() } else { format!(" ({})", title.join(") (")) };
         let mut header = vec![
             match plan.number {
-                Some(n) => format!("Translated by nctrans from FANUC O{n:04}"),
-                None => "Translated by nctrans from FANUC".to_string(),
+                Some(n) => format!("Translated by nctrans from FANUC O{n:04}{title}"),
+                None => format!("Translated by nctrans from FANUC{title}"),
             },
             "FANUC variable map:".to_string(),
         ];
