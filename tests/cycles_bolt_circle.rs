@@ -7,7 +7,7 @@
 
 mod eval_support;
 
-use eval_support::{nctrans, scratch_dir, write};
+use eval_support::{nctrans, nctrans_in, scratch_dir, write};
 
 fn bolt_circle(mode: &str, body: &str) -> String {
     format!(
@@ -80,4 +80,60 @@ fn a_stored_cycle_before_plain_positions_defines_its_mcall() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("equivalent (6 events)"), "{err}");
     assert!(out.contains("MCALL CYCLE81($P_EP[Z],2,0,-10)\nG0 X10 Y10\nG0 X20\nMCALL\n"), "{out}");
+}
+
+/// Sinumerik → FANUC, the same bolt circle: an MCALL over a FOR loop of `G0 X=… Y=…`.
+fn mcall_circle(level: &str, body: &str) -> String {
+    format!(
+        "DEF INT HOLE\nDEF REAL PCD_R=45\nG17 G90 G54 G71 G40\nT1 D1 M6\nS2200 M3 F180\nG0 X0 Y0 Z{level}\n\
+MCALL CYCLE81(20,0,2,-12)\nFOR HOLE=0 TO 5\n{body}ENDFOR\nMCALL\nG0 Z100 M5\nM30\n"
+    )
+}
+
+const SIE_HOLE: &str = "  G0 X=PCD_R*COS(30+HOLE*60) Y=PCD_R*SIN(30+HOLE*60)\n";
+
+#[test]
+fn an_mcall_over_a_loop_of_positions_is_a_stored_fanuc_cycle() {
+    let d = scratch_dir("cycles-bolt-circle", "mcall");
+    let src = write(&d, "FLANGE.MPF", &mcall_circle("20", SIE_HOLE));
+    let (code, out, err) = nctrans(&["--to", "fanuc", &src]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("equivalent ("), "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    let stored = lines.iter().position(|l| *l == "G98 G81 Z-12. R2. K0").expect("the stored cycle");
+    let looped = lines.iter().position(|l| l.starts_with("WHILE")).expect("WHILE");
+    assert!(stored < looped && lines.contains(&"G80"), "{out}");
+    // The holes stay positions: a G00 in them would end FANUC's cycle.
+    assert!(!lines.iter().any(|l| l.starts_with("G00 X[")), "{out}");
+    let nc = write(&d, "flange.nc", &out);
+    let (code, trace, err) = nctrans(&["run", &nc]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(trace.matches("cycle drill").count(), 6, "{trace}");
+    // A planted wrong depth is caught.
+    let bad = write(&d, "bad.nc", &out.replacen("Z-12. R2. K0", "Z-13. R2. K0", 1));
+    let (code, verdict, _) = nctrans(&["check", &src, &bad]);
+    assert_ne!(code, 0, "{verdict}");
+    assert!(verdict.contains("diverged"), "{verdict}");
+    // A Haas stores it with L0.
+    std::fs::write(d.join("nctrans.toml"), "[fanuc]\nseries = \"haas\"\n").unwrap();
+    let (code, out, err) = nctrans_in(&d, &["--to", "fanuc", "FLANGE.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.lines().any(|l| l == "G98 G81 Z-12. R2. L0"), "{out}");
+}
+
+#[test]
+fn an_mcall_loop_that_does_more_or_starts_above_rtp_is_refused() {
+    let d = scratch_dir("cycles-bolt-circle", "mcall-refused");
+    for (name, level, body) in [
+        ("Z", "20", "  G0 X=PCD_R*COS(HOLE*60) Y=PCD_R*SIN(HOLE*60) Z30\n"),
+        ("F", "20", "  G1 X=PCD_R*COS(HOLE*60) Y=PCD_R*SIN(HOLE*60)\n"),
+        // Above RTP the first hole positions X/Y there and then lowers to RTP: a stored
+        // FANUC cycle would start at the tool's level.
+        ("ABOVE", "50", SIE_HOLE),
+    ] {
+        let src = write(&d, &format!("{name}.MPF"), &mcall_circle(level, body));
+        let (code, _, err) = nctrans(&["--to", "fanuc", &src]);
+        assert_ne!(code, 0, "{name}: {err}");
+        assert!(err.contains("NC394") && err.contains("open into a structure"), "{name}: {err}");
+    }
 }

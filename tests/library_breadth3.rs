@@ -118,6 +118,21 @@ fn siemens_high_speed_settings_become_aicc_for_fanuc() {
 }
 
 #[test]
+fn a_numbered_high_speed_block_keeps_its_number_on_its_fanuc_words() {
+    // `N60 CYCLE832(…)` is `N60 G05.1 Q1`, not an empty `N60` above or below a `G05.1 Q1`
+    // block (a jump to N80 landed below FFWON's); a skipped block's words are skipped with it.
+    let prog = "N50 G1 X0 F100\nN60 CYCLE832(0.01,_FINISH,1)\nN70 G1 X10\nN80 FFWON\n/N90 CYCLE832(0,_OFF,1)\nM30\n";
+    let d = write("sie-numbered", &[("HSN.MPF", prog)]);
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "HSN.MPF", "-o", "h.nc"]);
+    assert_eq!(code, 0, "{err}");
+    let nc = std::fs::read_to_string(d.join("h.nc")).unwrap();
+    let lines: Vec<&str> = nc.lines().collect();
+    assert!(lines.contains(&"N60 G05.1 Q1") && lines.contains(&"N80 G05.1 Q1"), "{nc}");
+    assert!(!lines.contains(&"N60") && !lines.contains(&"N80"), "{nc}");
+    assert!(lines.contains(&"/ N90 G05.1 Q0"), "{nc}");
+}
+
+#[test]
 fn a_bracketed_program_number_is_that_program() {
     let prog = "O1000\nM98 P [ 10 ]\nG65 P[20] A1.\nM30\nO10\nG01 X1. F100.\nM99\nO20\nG01 X#1\nM99\n";
     let d = write(

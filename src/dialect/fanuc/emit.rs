@@ -51,7 +51,7 @@ const MAX_DIGITS: usize = 8;
 
 /// Writes every program of `unit` as one FANUC file.
 pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
-    let mut w = Writer { opts, lines: vec!["%".to_string()], diags: vec![], mode_q: false };
+    let mut w = Writer { opts, lines: vec!["%".to_string()], diags: vec![], mode_q: false, cycle_k: false };
     for p in &unit.programs {
         w.program(p);
     }
@@ -65,7 +65,7 @@ pub fn emit(unit: &Unit, opts: &EmitOptions) -> Emitted {
 /// Writes statements alone, without `%` and `O` line (a streamed translation writes a
 /// program's body block by block; this is its way for blocks its fast path declines).
 pub fn emit_body(body: &[Stmt], opts: &EmitOptions) -> Emitted {
-    let mut w = Writer { opts, lines: vec![], diags: vec![], mode_q: false };
+    let mut w = Writer { opts, lines: vec![], diags: vec![], mode_q: false, cycle_k: false };
     w.body(body);
     let eol = opts.line_ending.as_str();
     let mut text = w.lines.join(eol);
@@ -82,6 +82,8 @@ struct Writer<'a> {
     /// The block being written is `G05.1 Q…`: its Q is a mode number, written without a
     /// decimal point (a point there is alarm PS0007 on the controls that check it).
     mode_q: bool,
+    /// The block being written is a canned cycle's (G73–G89): its K is the repeat count.
+    cycle_k: bool,
 }
 
 impl Writer<'_> {
@@ -105,8 +107,9 @@ impl Writer<'_> {
             match &s.kind {
                 StmtKind::Block(b) => {
                     self.mode_q = b.items.iter().any(is_g5_1);
+                    self.cycle_k = b.items.iter().any(is_cycle_g);
                     let items: Vec<String> = b.items.iter().map(|i| self.item(i)).collect();
-                    self.mode_q = false;
+                    (self.mode_q, self.cycle_k) = (false, false);
                     self.line(&b.meta, items.join(" "));
                 }
                 StmtKind::Do(d) => {
@@ -284,7 +287,8 @@ impl Writer<'_> {
         };
         let int_addr =
             matches!(w.addr, Addr::Letter(b'G' | b'M' | b'S' | b'T' | b'H' | b'D' | b'P' | b'L' | b'N' | b'O'))
-                || (self.mode_q && w.addr.is(b'Q'));
+                || (self.mode_q && w.addr.is(b'Q'))
+                || (self.cycle_k && w.addr.is(b'K'));
         if let (Addr::Letter(l @ (b'G' | b'M')), ExprKind::Num(n)) = (&w.addr, &e.kind) {
             if n.value >= 0.0 && n.value < 10.0 && n.value.fract() == 0.0 {
                 return format!("{}0{}", *l as char, n.value as u32);
@@ -541,6 +545,13 @@ pub fn cond_depth(c: &Expr) -> u32 {
 }
 
 /// A `G05.1` word (AI contour control).
+/// A drilling-cycle G code (G73, G74, G76, G81–G89).
+fn is_cycle_g(it: &Item) -> bool {
+    matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')
+        && matches!(&w.value, WordValue::Expr(Expr { kind: ExprKind::Num(n), .. })
+            if n.value.fract() == 0.0 && matches!(n.value as u32, 73 | 74 | 76 | 81..=89)))
+}
+
 fn is_g5_1(it: &Item) -> bool {
     matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')
         && matches!(&w.value, WordValue::Expr(Expr { kind: ExprKind::Num(n), .. }) if (n.value - 5.1).abs() < 1e-9))

@@ -318,6 +318,44 @@ fn r_word(orig: &Call, k: SieCycle, rfp: f64, sdis: f64, r: f64) -> Expr {
     }
 }
 
+/// A structure whose blocks are only rapid X/Y positions (`G0 X=… Y=…`, or X/Y under G0)
+/// and assignments, with no label, number or skip: its hole blocks without their G0 (which
+/// would end FANUC's cycle); `None` for any other statement.
+fn holes_in(s: &Stmt, motion: Option<f64>) -> Option<Stmt> {
+    fn fits(body: &[Stmt], motion: Option<f64>) -> bool {
+        body.iter().all(|s| match &s.kind {
+            StmtKind::Block(b) => {
+                let assigns = b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. }));
+                let words = b.items.iter().all(|it| match &it.kind {
+                    ItemKind::Word(w) => {
+                        w.addr.is(b'X') || w.addr.is(b'Y') || (w.addr.is(b'G') && g_of(w) == Some(0.0))
+                    }
+                    _ => false,
+                });
+                b.meta.label.is_none()
+                    && b.meta.number.is_none()
+                    && b.meta.skip.is_none()
+                    && (assigns || (words && positions(b, motion) == Ok(true)))
+            }
+            k => crate::ir::visit::child_bodies(k).into_iter().all(|c| fits(c, motion)),
+        })
+    }
+    fn strip(body: &mut Vec<Stmt>) {
+        for s in body {
+            match &mut s.kind {
+                StmtKind::Block(b) => b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G'))),
+                k => crate::ir::visit::child_bodies_mut(k).into_iter().for_each(strip),
+            }
+        }
+    }
+    if matches!(s.kind, StmtKind::Block(_)) || !fits(std::slice::from_ref(s), motion) {
+        return None;
+    }
+    let mut v = vec![s.clone()];
+    strip(&mut v);
+    v.pop()
+}
+
 /// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).
 fn positions(b: &Block, motion: Option<f64>) -> Result<bool, &'static str> {
     let mut moved = false;
@@ -365,6 +403,28 @@ fn list(
         let span = s.span;
         zshift.pass(&s);
         let StmtKind::Block(mut b) = s.kind else {
+            // A loop of hole positions under the MCALL (a bolt circle): FANUC's cycle in force
+            // drills at each of them (`holes_in`); a cycle not yet opened is stored first with
+            // K0 (L0 on a Haas), which positions and drills nothing, where the tool already
+            // stands at RTP (else the first hole's approach would move Z before X/Y).
+            if let Some((f, first, _)) =
+                active.as_mut().filter(|a| a.0.m29.is_none() && (a.1 || a.0.approach.is_none()))
+            {
+                if let Some(kept) = holes_in(&s, motion) {
+                    if !*first {
+                        let mut items = vec![gw(f.retract, span), gw(f.g, span)];
+                        items.extend(f.words.iter().map(|(l, e)| word(*l, e.clone(), span)));
+                        items.push(word(if ctx.haas { b'L' } else { b'K' }, Expr::num(0.0, false, span), span));
+                        match carry.take() {
+                            Some(m) => out.push(meta_stmt(BlockMeta { span, ..m }, items)),
+                            None => out.push(block_stmt(items, span)),
+                        }
+                        *first = true;
+                    }
+                    out.push(kept);
+                    continue;
+                }
+            }
             if active.take().is_some() {
                 refuse(
                     ctx,

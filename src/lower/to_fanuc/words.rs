@@ -427,6 +427,26 @@ fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
             kind => kept.push(Item { kind, span }),
         }
     }
+    // A numbered block whose words all became a block of their own (`N60 CYCLE832(…)` →
+    // `G05.1 Q1`, `N80 FFWON`) carries them, as a programmer writes it: a jump to N80 then
+    // runs them (it landed below a block written before it), a `/` skips them with it.
+    if kept.is_empty() && meta_is_marked(&b.meta) {
+        let side = match (before.len(), after.is_empty()) {
+            (1, true) => Some(&mut before),
+            (0, false) => Some(&mut after),
+            _ => None,
+        };
+        if let Some(side) = side {
+            if let Some(Stmt { kind: StmtKind::Block(first), .. }) = side.first() {
+                let plain = first.meta.number.is_none() && first.meta.label.is_none() && first.meta.skip.is_none();
+                if plain && first.meta.comments.is_empty() && !first.items.is_empty() {
+                    if let StmtKind::Block(first) = side.remove(0).kind {
+                        kept = first.items;
+                    }
+                }
+            }
+        }
+    }
     let drop_empty = kept.is_empty() && !meta_is_marked(&b.meta);
     out.extend(before);
     if !drop_empty {
