@@ -10,9 +10,6 @@ use crate::eval::corner::{MODAL_ROUND, NOT_TRANSLATABLE};
 use crate::ir::*;
 use crate::span::Span;
 
-/// The text of `stream::segmented::MARK` (the lowering may not name the streaming layer).
-const SEGMENT_MARK: &str = "NCTRANS SEGMENT ";
-
 /// Runs the pass on one program (after `blocks`, before `words`).
 pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     let jumps = has_jumps(&prog.body);
@@ -59,7 +56,7 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
         };
         // A streamed translation's stand-in for a stretch of plain blocks (`stream::segmented`
         // writes them one by one, without this pass): modal rounding cannot reach them.
-        let stand_in = b.items.is_empty() && b.meta.comments.iter().any(|c| c.text.starts_with(SEGMENT_MARK));
+        let stand_in = b.items.is_empty() && super::stand_in(&b.meta).is_some();
         if let (Some((_, span)), true) = (&on, stand_in) {
             refuse_modal(
                 ctx,
