@@ -345,3 +345,42 @@ fn runs_in_repeated_sections_stay_in_the_skeleton() {
         cli_matches_whole(name, text);
     }
 }
+
+/// The corpus job whose subprogram names its axes (`DEF AXIS`) and whose main program moves
+/// an axis the set-up fixes (`AX[AXNAME(AXIS_VER)]`, `[variables] fixed` in nctrans.toml),
+/// with runs put into the main program: `--stream` writes the whole job's bytes, with the
+/// same verdict line, as the whole translation on the command line.
+#[test]
+fn cli_job_with_axis_variables_in_a_subprogram() {
+    let src = root().join("corpus/in/sinumerik-calls/axis-vars");
+    let mut r = Rng(0xA815_0002);
+    for (k, eol) in ["\n", "\r\n"].into_iter().enumerate() {
+        let dir = scratch().join(format!("job{k}"));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("dir");
+        std::fs::create_dir_all(dir.join("DEF")).expect("dir");
+        for f in ["D_DRESS.SPF", "nctrans.toml", "DEF/MGUD.DEF"] {
+            std::fs::copy(src.join(f), dir.join(f)).expect("copy");
+        }
+        let main = std::fs::read_to_string(src.join("MAIN.MPF")).expect("main");
+        let main: String = main.lines().map(|l| format!("{l}{eol}")).collect();
+        std::fs::write(dir.join("MAIN.MPF"), with_runs(&main, &mut r, 8, false)).expect("write");
+        let run = |args: &[&str], out: &str| {
+            let _ = std::fs::remove_file(dir.join(out));
+            let o = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+                .current_dir(&dir)
+                .args(args)
+                .args(["--to", "fanuc", "MAIN.MPF", "-o", out])
+                .output()
+                .expect("run nctrans");
+            let stderr = String::from_utf8_lossy(&o.stderr).to_string();
+            assert!(o.status.success(), "{stderr}");
+            (std::fs::read(dir.join(out)).expect("output"), stderr)
+        };
+        let (whole, w_err) = run(&[], "whole.nc");
+        let (streamed, s_err) = run(&["--stream"], "streamed.nc");
+        assert!(whole == streamed, "job{k}: the outputs differ");
+        let verdict = |e: &str| e.lines().filter(|l| l.contains("equivalent")).map(str::to_string).collect::<Vec<_>>();
+        assert!(!verdict(&w_err).is_empty() && verdict(&w_err) == verdict(&s_err), "{w_err}\n---\n{s_err}");
+    }
+}
