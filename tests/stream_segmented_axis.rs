@@ -384,3 +384,26 @@ fn cli_job_with_axis_variables_in_a_subprogram() {
         assert!(!verdict(&w_err).is_empty() && verdict(&w_err) == verdict(&s_err), "{w_err}\n---\n{s_err}");
     }
 }
+
+/// Modal rounding (RNDM) over a run whose placeholder carries the G91 the run leaves: the
+/// placeholder is a stand-in all the same (the corners pass refuses the stretch there), so
+/// the segmented stream declines and the command line writes the whole translation (it
+/// wrote the run without its `,R` words before).
+#[test]
+fn modal_rounding_over_a_run_that_changes_g90_g91_declines() {
+    let text = "R1=1\nRNDM=1\nG1 X1 Y0 F100\nG91 G1 X2 Y2\nG1 X3 Y0\nRNDM=0\nR2=2\nM30\n";
+    assert!(matches!(compare("rndm-g91.mpf", text), Outcome::Declined(_)));
+    let path = scratch().join("rndm-g91-cli.mpf");
+    std::fs::write(&path, text).expect("write");
+    let out = scratch().join("rndm-g91-cli.nc");
+    let _ = std::fs::remove_file(&out);
+    std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+        .args(["--stream", "--to", "fanuc"])
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .expect("run nctrans");
+    let written = std::fs::read_to_string(&out).expect("output");
+    assert!(written.contains("G91 G01 X2. Y2. ,R1."), "{written}");
+}

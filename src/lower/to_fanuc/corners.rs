@@ -55,8 +55,9 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
             continue;
         };
         // A streamed translation's stand-in for a stretch of plain blocks (`stream::segmented`
-        // writes them one by one, without this pass): modal rounding cannot reach them.
-        let stand_in = b.items.is_empty() && super::stand_in(&b.meta).is_some();
+        // writes them one by one, without this pass): modal rounding cannot reach them. (The
+        // FANUC one carries the G70/G90… words its run leaves: items or not, it stands in.)
+        let stand_in = super::stand_in(&b.meta).is_some();
         if let (Some((_, span)), true) = (&on, stand_in) {
             refuse_modal(
                 ctx,
