@@ -20,7 +20,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     }
     let body = std::mem::take(&mut prog.body);
     prog.body = split_body(ctx, body, info);
-    drop_dead_zero_stores(&mut prog.body);
+    drop_dead_zero_stores(ctx, &mut prog.body);
 }
 
 /// Whether `e` reads the named variable `name` (also in subscripts).
@@ -51,15 +51,19 @@ fn mentions(e: &Expr, name: &str) -> bool {
     false
 }
 
-/// How far a dead `v=0` looks ahead for the store that replaces it.
-const DEAD_STORE_WINDOW: usize = 64;
+/// How far a dead `v=0` looks ahead for the store that replaces it (statements).
+pub const DEAD_STORE_WINDOW: usize = 64;
 
 /// Removes a top-level `v=0` (a DEF's start value, typically) that a later top-level
 /// assignment to `v` replaces before anything can read it: only plain blocks without a
 /// jump, call, end or skip between, none of which reads `v`. A DEF variable the program
 /// sets at once then reads as one assignment, and a round trip (whose other direction
 /// writes the DEF's start value out as `LOC1=0`) does not add one each time.
-fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
+///
+/// A segmented stream's stand-in for a run of straight blocks counts as the run's blocks
+/// (`ctx.stand_in_runs`: as many statements of the window, or one that stops the search),
+/// so the skeleton keeps the start values the whole program keeps.
+fn drop_dead_zero_stores(ctx: &mut Ctx, body: &mut Vec<Stmt>) {
     let zero_store = |s: &Stmt| -> Option<String> {
         let StmtKind::Block(b) = &s.kind else { return None };
         let m = &b.meta;
@@ -99,7 +103,13 @@ fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
         // store W that replaces it (it then skips only blocks that do not read `v`), never
         // one past W.
         let mut jumps: Vec<&Target> = Vec::new();
-        for (k, s) in body.iter().enumerate().skip(i + 1).take(DEAD_STORE_WINDOW) {
+        // Statements of the window used so far (a stand-in uses its run's blocks).
+        let (mut used, mut last_run) = (0, None);
+        for (k, s) in body.iter().enumerate().skip(i + 1) {
+            if used == DEAD_STORE_WINDOW {
+                break;
+            }
+            used += 1;
             let StmtKind::Block(b) = &s.kind else {
                 // An IF or WHILE that never reads `v` and only assigns and moves (no jump,
                 // call or end) lets the search go on past it (`DEF REAL A, B` then
@@ -109,6 +119,21 @@ fn drop_dead_zero_stores(body: &mut Vec<Stmt>) {
                 }
                 break;
             };
+            if let Some(run) = super::stand_in(&b.meta) {
+                // A segmented stream's stand-in: the search goes through its run's blocks as
+                // it does in the whole program (none of which reads or sets anything). A
+                // carrier line after it, with the same run's mark, stands for no block.
+                match ctx.stand_in_runs.get(run) {
+                    _ if last_run == Some(run) => used -= 1,
+                    Some(&n) if n != RUN_STOPS_SEARCH => used = used - 1 + usize::from(n),
+                    _ => break,
+                }
+                last_run = Some(run);
+                if used > DEAD_STORE_WINDOW {
+                    break;
+                }
+                continue;
+            }
             let plain = b.meta.skip.is_none()
                 && b.items
                     .iter()

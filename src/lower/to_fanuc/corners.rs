@@ -10,9 +10,6 @@ use crate::eval::corner::{MODAL_ROUND, NOT_TRANSLATABLE};
 use crate::ir::*;
 use crate::span::Span;
 
-/// The text of `stream::segmented::MARK` (the lowering may not name the streaming layer).
-const SEGMENT_MARK: &str = "NCTRANS SEGMENT ";
-
 /// Runs the pass on one program (after `blocks`, before `words`).
 pub fn run(ctx: &mut Ctx, prog: &mut Program) {
     let jumps = crate::lower::landings::Landings::of(&prog.body).any();
@@ -48,8 +45,9 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
             continue;
         };
         // A streamed translation's stand-in for a stretch of plain blocks (`stream::segmented`
-        // writes them one by one, without this pass): modal rounding cannot reach them.
-        let stand_in = b.items.is_empty() && b.meta.comments.iter().any(|c| c.text.starts_with(SEGMENT_MARK));
+        // writes them one by one, without this pass): modal rounding cannot reach them. (The
+        // FANUC one carries the G70/G90… words its run leaves: items or not, it stands in.)
+        let stand_in = super::stand_in(&b.meta).is_some();
         if let (Some((_, span)), true) = (&on, stand_in) {
             refuse_modal(
                 ctx,

@@ -77,6 +77,20 @@ pub const LABEL_PREFIX: &str = "__NCT_L";
 /// The comment text that marks a line standing for an unsupported construct.
 pub const UNSUPPORTED_MARK: &str = "*** NCTRANS UNSUPPORTED:";
 
+/// The text a streamed translation's stand-in for a run of straight blocks begins its only
+/// comment with (`stream::segmented::MARK`: the lowering may not name the streaming layer).
+pub const SEGMENT_MARK: &str = "NCTRANS SEGMENT ";
+
+/// The run a block stands in for, when it is a segmented stream's stand-in (its comment is
+/// `SEGMENT_MARK` and the run's index).
+pub fn stand_in(m: &BlockMeta) -> Option<usize> {
+    m.comments.iter().find_map(|c| c.text.strip_prefix(SEGMENT_MARK)?.parse().ok())
+}
+
+/// In [`Ctx::stand_in_runs`], a run with a block that stops a dead start value's search
+/// (`blocks::drop_dead_zero_stores`): one that may be skipped (`/`) or ends the program.
+pub const RUN_STOPS_SEARCH: u8 = u8::MAX;
+
 /// Facts about one source program the passes share.
 #[derive(Clone, Debug, Default)]
 pub struct ProgInfo {
@@ -180,6 +194,15 @@ pub struct Ctx {
     /// Spans of the axis words and AXIS DEFs [`axis_vars`] refused, saying why: the general
     /// refusals (NC310, NC635) are not repeated for them.
     pub axis_reported: std::collections::BTreeSet<Span>,
+    /// For a segmented stream's skeleton, what the run each stand-in stands for ([`stand_in`],
+    /// by its index) is to a dead start value's search: its number of blocks (up to
+    /// [`blocks::DEAD_STORE_WINDOW`]), all of which let the search go on, or
+    /// [`RUN_STOPS_SEARCH`]. A stand-in of no run given (the whole program has none) stops it.
+    pub stand_in_runs: Vec<u8>,
+    /// The units the words pass had going into each stand-in, by the run's index (`None`: not
+    /// known there), in text order of the lowered program: the stream compares them with the
+    /// units it translated each run in.
+    pub stand_in_units: Vec<(usize, Option<words::units::Units>)>,
     next_temp: u32,
     next_label: u32,
 }
@@ -217,6 +240,8 @@ impl Ctx {
             fixed: Default::default(),
             fixed_used: BTreeMap::new(),
             axis_reported: Default::default(),
+            stand_in_runs: Vec::new(),
+            stand_in_units: Vec::new(),
             unsupported: 0,
             next_temp: 0,
             next_label: 0,

@@ -101,6 +101,14 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, m: &mut Modal) -> Vec<Stmt> {
         m.meet(ctx, at);
         match &mut s.kind {
             StmtKind::Block(b) => {
+                if let Some(run) = super::stand_in(&b.meta) {
+                    // The units its run's blocks start in, in the whole program.
+                    let units = match m.s.units {
+                        UnitState::Known(u) => Some(u),
+                        _ => None,
+                    };
+                    ctx.stand_in_units.push((run, units));
+                }
                 // MSG("…") directly followed by a block holding only M0: one stop with a message.
                 if let Some(text) = msg_text(b) {
                     if let Some(StmtKind::Block(next)) = it.peek().map(|n| &n.kind) {

@@ -6,14 +6,14 @@
 //! whole translation of the skeleton and the translation of a block alone. Generic, so
 //! each target's calls are its own code (no dynamic dispatch per block).
 
-use super::nset::NSet;
+use super::nset::Keep;
 use super::sinks::{One, Skel, Writer};
 use super::spill::{assemble, Spill};
 use super::splice::{self, Splice};
 use super::{LoadCallees, MARK};
 use crate::diag::Diagnostic;
 use crate::dialect::{Dialect, ParseOptions};
-use crate::ir::{Block, BlockMeta, Call, Item, ItemKind, Program, Stmt, Target, Unit};
+use crate::ir::{Block, BlockMeta, Call, Item, ItemKind, Program, Stmt, StmtKind, Target, Unit};
 use crate::span::Span;
 use crate::stream::lines::NotStreamable;
 use crate::stream::target::RunWriter;
@@ -27,10 +27,10 @@ pub(crate) trait SkelPart {
     type Mode: Copy;
     /// Whether a plain top-level line of the main program is a run block, with the N
     /// values `keep` kept out of runs.
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, words: &[PlainWord]) -> bool;
     /// Whether a top-level statement of the main program is a run block (noting what the
     /// target follows of the statements that are not).
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool;
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool;
     /// The mode a run starting here starts in.
     fn mode(&self) -> Self::Mode;
     /// A run block (its N already checked and recorded), `starting` a run.
@@ -71,8 +71,8 @@ pub(crate) fn jump_or_call(it: &Item, calls: bool, plain: fn(&Call) -> bool, tar
 
 /// The writing scan's run-block tests (the skeleton scan's, with what it found).
 pub(crate) trait RunTests {
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool;
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool;
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, words: &[PlainWord]) -> bool;
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool;
 }
 
 /// What a target supplies to the segmented driver (see the module comment).
@@ -212,6 +212,43 @@ fn finish<T: SegTarget>(
     Ok((sk, programs, ix))
 }
 
+/// Where the sections a program-section repetition (`REPEAT`, `REPEATB`) may copy lie in a
+/// skeleton: from the first block with a label a repetition names up to the last
+/// repetition (source offsets). The copy of a run's placeholder would be a second line
+/// of it, and the copy's blocks are written where the REPEAT stands, without N numbers
+/// (`lower::to_fanuc::repeat_sections`), not as the run's bytes: the blocks there stay in
+/// the skeleton, translated whole with their copies.
+fn repeated(body: &[Stmt]) -> Option<(u32, u32)> {
+    let (mut names, mut hi) = (Vec::new(), None);
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        let StmtKind::Block(b) = &s.kind else { return };
+        for it in &b.items {
+            if let ItemKind::RepeatSection(r) = &it.kind {
+                names.push(r.start.name.clone());
+                hi = hi.max(Some(s.span.lo));
+            }
+        }
+    });
+    let hi = hi?;
+    let mut lo = hi;
+    crate::ir::visit::walk_stmts(body, &mut |s| {
+        // Any line of a statement (a structure's head or end may be labelled).
+        if crate::ir::visit::metas(&s.kind).iter().any(|m| m.label.as_ref().is_some_and(|l| names.contains(&l.name))) {
+            lo = lo.min(s.span.lo);
+        }
+    });
+    Some((lo, hi))
+}
+
+/// Whether a run's placeholder of `body` lies in `sections`.
+fn runs_in(body: &[Stmt], sections: Option<(u32, u32)>) -> bool {
+    let Some((lo, hi)) = sections else { return false };
+    body.iter().any(|s| {
+        matches!(&s.kind, StmtKind::Block(b) if b.meta.comments.first().is_some_and(|c| c.text.starts_with(MARK)))
+            && (lo..hi).contains(&s.span.lo)
+    })
+}
+
 /// Translates `path` into `out` as a skeleton translated whole with its runs of straight
 /// blocks streamed (see `segmented`). On `Err` nothing useful was written (the caller
 /// discards `out` and translates whole).
@@ -226,7 +263,7 @@ pub(crate) fn segment<T: SegTarget>(
     let calls = load.is_some();
     let popts = t.parse_options();
     // One scan builds the skeleton and spills the runs' translations.
-    let sk = Skel::new(NSet::default(), calls);
+    let sk = Skel::new(Keep::default(), calls);
     let mut one =
         One { sk, fast: t.fast(), spill: Spill::new(), starts: vec![], pending: false, deferred: vec![], ok: true };
     let ix =
@@ -235,16 +272,20 @@ pub(crate) fn segment<T: SegTarget>(
     let (mut sk, mut programs, ix) = finish(t, path, one.sk, ix)?;
     let live = one.ok && !(T::STRICT_DECLINED && one.pending) && one.spill.io.is_none() && one.starts.len() == sk.runs;
     let mut spilled = live.then_some((one.spill, one.starts, one.deferred, ix));
-    if sk.targets.meets(&sk.run_ns) {
-        // Jumps name N values of run blocks: scan again keeping those blocks real, and
-        // write the runs in a writing scan.
+    let sections = repeated(&sk.body);
+    if sk.targets.meets(&sk.run_ns) || runs_in(&sk.body, sections) {
+        // Jumps name N values of run blocks, or a section repetition may copy runs: scan
+        // again keeping those blocks real, and write the runs in a writing scan.
         spilled = None;
-        let mut again = Skel::new(sk.targets.clone(), calls);
+        let mut again = Skel::new(Keep { ns: sk.targets.clone(), spans: sections }, calls);
         let ix = crate::stream::scan_words_path(path, 0, T::SOURCE, &popts, &mut again, None)
             .map_err(Fallback::NotStreamable)?;
         (sk, programs, _) = finish(t, path, again, ix)?;
         if sk.targets.meets(&sk.run_ns) {
             return Err(Fallback::NotStraight("a jump into a run of straight blocks".into()));
+        }
+        if runs_in(&sk.body, sections) || repeated(&sk.body) != sections {
+            return Err(Fallback::NotStraight("a run in a repeated section (a bug in nctrans)".into()));
         }
     }
     programs[0].body = std::mem::take(&mut sk.body);

@@ -29,6 +29,22 @@
 //!   up to where enough free numbers are passed go into the skeleton as carrier blocks
 //!   (`carry_numbers`), and the translated skeleton is checked for a fresh number a run
 //!   block has (`fresh_numbers_ok`: declined);
+//! - a DEF's start value (`v=0`) that a later assignment replaces is dropped when nothing
+//!   between can read it (`lower::to_fanuc::blocks::drop_dead_zero_stores`, a search of at
+//!   most 64 statements that stops at a skipped block or a program end): the search would
+//!   see a placeholder as one plain block, so the skeleton's translation is told what each
+//!   run is to it (`to_fanuc_runs`, `Track::search`: its number of blocks, or that one of
+//!   them stops it) and counts a placeholder as its run's blocks. (Without it, a start value
+//!   the whole translation keeps, with a skipped block or more than 64 blocks before the
+//!   assignment, was dropped: the difference once seen on `axis-vars-dressing-trans.spf`,
+//!   which `DEF AXIS` was declined for, but it never was about axis variables.)
+//! - a section repeated (`REPEAT`, `REPEATB`, `ENDLABEL`) is copied where its REPEAT stands
+//!   (`lower::to_fanuc::repeat_sections`), its blocks without N numbers and in the modes
+//!   there, so a run's spilled bytes cannot stand for a copy: every block from the first
+//!   label a repetition names to the last repetition stays in the skeleton (a second scan,
+//!   `driver::repeated`). The units the copy leaves reach the runs after it in the whole
+//!   translation, not in text order: the words pass gives the units it has at each
+//!   placeholder and a run translated in others declines (`units_ok`).
 //! - nothing else in the passes looks from one block at another one outside a structure
 //!   but MSG: a block holding only `MSG("…")` and a lone M0 block right after it become
 //!   one stop with the message. Such an M0 stays a real block of the skeleton (never a
@@ -56,8 +72,8 @@
 //!
 //! Still declined (the whole path takes them): other calls (modal, computed, without the
 //! callees), PROC parameters,
-//! more than one program, computed jumps and G words, program-section repetitions (REPEAT:
-//! the copy of a section would hold its runs' placeholders again), N numbers above
+//! more than one program, computed jumps and G words, a repeated section that changes the
+//! units of the runs after its REPEAT, N numbers above
 //! 16777216 or near N99999 with most numbers in use, `--number-blocks`, a subprogram as main, and anything
 //! the translation has a warning or an error on (notes only through
 //! [`to_fanuc_with_notes`]).
@@ -70,14 +86,14 @@
 mod track;
 
 use super::driver::{places, segment, Place, RunTests, SegTarget, Skeleton, Translated};
-use super::nset::{kept, NSet};
+use super::nset::{kept, Keep};
 use super::sinks::Skel;
 use super::{LoadCallees, SourceAlign};
 use crate::diag::{Diagnostic, Severity};
 use crate::dialect::fanuc::emit::EmitOptions;
 use crate::dialect::{Dialect, ParseOptions};
 use crate::eval::Input;
-use crate::ir::{BlockMeta, DataType, ItemKind, Program, Stmt, StmtKind, Unit};
+use crate::ir::{BlockMeta, ItemKind, Program, Stmt, StmtKind, Unit};
 use crate::lower::to_fanuc::fast_write as fast;
 use crate::lower::to_fanuc::words::units::Units;
 use crate::stream::target::fanuc::{alone, run_block};
@@ -169,11 +185,11 @@ struct Class {
 
 impl RunTests for Class {
     #[inline]
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, _: &[PlainWord]) -> bool {
         !kept(keep, meta) && self.forced.binary_search(&meta.span.lo).is_err()
     }
 
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool {
         matches!(&s.kind, StmtKind::Block(b) if run_block(s) && self.plain_run(keep, &b.meta, &[]))
     }
 }
@@ -222,22 +238,8 @@ impl<'a> SegTarget for ToFanuc<'a> {
 
     fn skeleton_ok(&self, sk: &mut Skel<Self>, programs: &mut [Program]) -> Result<(), Fallback> {
         let main = &mut programs[0];
-        let (mut nodes, mut axis, mut repeats) = (0usize, false, false);
-        crate::ir::visit::walk_stmts(&main.body, &mut |s| {
-            nodes += 1;
-            let StmtKind::Block(b) = &s.kind else { return };
-            axis |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Def(d) if matches!(d.ty, DataType::Axis)));
-            repeats |= b.items.iter().any(|it| matches!(it.kind, ItemKind::RepeatSection(_)));
-        });
-        // Axis variables are folded into letters over the whole program (`lower::to_fanuc::
-        // axis_vars`), which a skeleton with its runs cut out does not give the same way.
-        if axis {
-            return Err(Fallback::NotStraight("axis variables (DEF AXIS)".into()));
-        }
-        if repeats {
-            // Its copy would hold a placeholder twice (`lower::to_fanuc::repeat_sections`).
-            return Err(Fallback::NotStraight("a program-section repetition (REPEAT)".into()));
-        }
+        let mut nodes = 0usize;
+        crate::ir::visit::walk_stmts(&main.body, &mut |_| nodes += 1);
         // The labels pass numbers jump targets from the next thousand above the highest N, and
         // from 1 when those would pass N99999: then it skips every N in use, the runs' too.
         let fresh = 4 * nodes as u64 + 16;
@@ -250,12 +252,14 @@ impl<'a> SegTarget for ToFanuc<'a> {
     fn translate(&self, s: Skeleton<'_, Self>) -> Result<Translated<Self>, Fallback> {
         let Skeleton { sk, mut unit, callees: subs, .. } = s;
         let (opts, eol) = (self.opts, self.opts.line_ending.as_str());
+
         // The main program's header alone, for a block translated alone.
         let body = std::mem::take(&mut unit.programs[0].body);
         let lone = unit.programs[0].clone();
         unit.programs[0].body = body;
         let sub_refs: Vec<&Unit> = subs.iter().collect();
-        let t = translate::to_fanuc::to_fanuc(&unit, &sub_refs, opts);
+        // The passes count each placeholder as its run's blocks (`Ctx::stand_in_runs`).
+        let t = translate::to_fanuc::to_fanuc_runs(&unit, &sub_refs, opts, &sk.t.search);
         drop(unit);
         // The runs take the units the scan follows in text order. (G90/G91 merged where paths
         // meet is read by the skeleton's own AC()/IC() words only: the placeholders carry each
@@ -263,6 +267,7 @@ impl<'a> SegTarget for ToFanuc<'a> {
         if !t.units_follow_text {
             return Err(Fallback::NotStraight("units that depend on the path taken or on a call".into()));
         }
+        units_ok(&t.stand_in_units, sk)?;
         // The whole path's verifier runs the callees aligned (`align_source`), the streamed one
         // as read from their files: only callees alignment leaves alone stream.
         if subs.iter().any(|u| translate::to_fanuc::align_source(u, &t.symbol_map) != *u) {
@@ -273,6 +278,7 @@ impl<'a> SegTarget for ToFanuc<'a> {
         if !(t.diags.is_empty() || self.notes_ok && notes_only) || t.unsupported > 0 {
             return Err(Fallback::Diagnostics);
         }
+        // (No run is in a section a REPEAT copies: `driver::repeated` keeps those blocks.)
         let places = places::<Self>(&t.text, sk.runs, eol)?;
         // The labels pass numbers each program on its own: only the main program's text is
         // checked for fresh numbers (the subprograms' follow it, each from its `O` line).
@@ -304,6 +310,26 @@ impl<'a> SegTarget for ToFanuc<'a> {
         let inputs = homes.iter().filter_map(|s| crate::eval::parse_input(s).ok()).collect();
         (Segmented { blocks: index.blocks, index, inputs, symbol_map }, notes)
     }
+}
+
+/// Checks the units the skeleton's words pass had going into each placeholder (the first line
+/// of its run's; carrier lines follow) against the ones its run was translated in, as text
+/// order gives them: a section repeated (REPEAT) is written again where the REPEAT stands,
+/// so units it changes reach the runs after it in the whole translation.
+fn units_ok(met: &[(usize, Option<Units>)], sk: &Skel<ToFanuc<'_>>) -> Result<(), Fallback> {
+    let mut last = None;
+    for &(k, units) in met {
+        // Runs come in order; a run met again is a carrier line (or a repeated section's copy,
+        // which `places` declines).
+        if last.is_some_and(|l| k <= l) {
+            continue;
+        }
+        last = Some(k);
+        if units.is_none() || units != sk.modes.get(k).copied() {
+            return Err(Fallback::NotStraight("units that differ from the text's at a run".into()));
+        }
+    }
+    Ok(())
 }
 
 /// What precedes a placeholder's marker on its line: its N number and mode words

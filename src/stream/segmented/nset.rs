@@ -28,7 +28,17 @@ impl NSet {
     }
 }
 
-/// Whether `meta`'s N value is one a jump names (such a block stays in the skeleton).
-pub(crate) fn kept(keep: &NSet, meta: &BlockMeta) -> bool {
-    meta.number.as_ref().is_some_and(|n| keep.has(n.value))
+/// The blocks a skeleton scan keeps out of runs: those whose N value a jump names, and those
+/// in a stretch of the source that a section repetition may copy.
+#[derive(Default, Clone)]
+pub(crate) struct Keep {
+    pub(crate) ns: NSet,
+    /// Blocks starting in `lo..hi` (source offsets).
+    pub(crate) spans: Option<(u32, u32)>,
+}
+
+/// Whether the block of `meta` stays in the skeleton (`keep`).
+pub(crate) fn kept(keep: &Keep, meta: &BlockMeta) -> bool {
+    meta.number.as_ref().is_some_and(|n| keep.ns.has(n.value))
+        || keep.spans.is_some_and(|(lo, hi)| (lo..hi).contains(&meta.span.lo))
 }

@@ -9,7 +9,7 @@
 //! translated alone). See `segmented`.
 
 use super::driver::{Deferred, RunTests, SegTarget, SkelPart};
-use super::nset::{NSet, MAX_TRACKED_N};
+use super::nset::{Keep, NSet, MAX_TRACKED_N};
 use super::spill::Spill;
 use super::splice::Splice;
 use crate::diag::Diagnostic;
@@ -32,7 +32,7 @@ pub(crate) struct Skel<T: SegTarget> {
     /// The target's part.
     pub(crate) t: T::Track,
     /// N values kept out of runs (the second scan's: those jumps name).
-    pub(crate) keep: NSet,
+    pub(crate) keep: Keep,
     pub(crate) body: Vec<Stmt>,
     /// The run being collected (the span of its first block).
     pub(crate) run: Option<Span>,
@@ -54,7 +54,7 @@ pub(crate) struct Skel<T: SegTarget> {
 
 impl<T: SegTarget> Skel<T> {
     /// A skeleton scan's sink before the scan, with the N values `keep` kept out of runs.
-    pub(crate) fn new(keep: NSet, calls: bool) -> Skel<T> {
+    pub(crate) fn new(keep: Keep, calls: bool) -> Skel<T> {
         Skel {
             t: T::Track::default(),
             keep,
@@ -289,7 +289,7 @@ pub(crate) struct Writer<'a, T: SegTarget> {
     pub(crate) t: &'a T,
     pub(crate) class: T::Class,
     /// The N values kept out of runs (the skeleton scan's).
-    pub(crate) keep: NSet,
+    pub(crate) keep: Keep,
     pub(crate) fast: T::Fast,
     /// The mode at each run's start (the skeleton scan's).
     pub(crate) modes: Vec<T::Mode>,

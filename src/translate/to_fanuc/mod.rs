@@ -158,6 +158,10 @@ pub struct Output {
     /// on them, no call that changes them): what the streamed translators, which convert
     /// F words in text order, need to give the same output.
     pub units_follow_text: bool,
+    /// The units the main program's words pass had going into each stand-in of a segmented
+    /// stream's skeleton (`lower::to_fanuc::Ctx::stand_in_units`; none elsewhere), for the
+    /// stream to check against the units its runs were translated in.
+    pub stand_in_units: Vec<(usize, Option<passes::words::units::Units>)>,
 }
 
 impl Output {
@@ -179,15 +183,22 @@ fn prog_name(p: &Program, fallback: &str) -> String {
 /// Under the warn policy refused blocks become marked comments whole and the program
 /// alarms on its first line ([`crate::unfinished`]).
 pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
+    to_fanuc_runs(main, subs, opts, &[])
+}
+
+/// [`to_fanuc`] of a segmented stream's skeleton: `runs` tells the passes what each run its
+/// stand-ins stand for is to them (`lower::to_fanuc::Ctx::stand_in_runs`), as they would
+/// see its blocks in the whole program.
+pub fn to_fanuc_runs(main: &Unit, subs: &[&Unit], opts: &TranslateOptions, runs: &[u8]) -> Output {
     if opts.unsupported == UnsupportedPolicy::Error {
-        return to_fanuc_strict(main, subs, opts);
+        return to_fanuc_strict(main, subs, opts, runs);
     }
     let strict = TranslateOptions { unsupported: UnsupportedPolicy::Error, ..opts.clone() };
     let mut all = vec![main];
     all.extend(subs.iter().copied());
     let style = |m: &str| format!("{} {m} ***", passes::UNSUPPORTED_MARK);
     let (mut t, warnings, marked, _) = crate::unfinished::translate_marking(&all, style, |us| {
-        let t = to_fanuc_strict(us[0], &us[1..], &strict);
+        let t = to_fanuc_strict(us[0], &us[1..], &strict, runs);
         let d = t.diags.clone();
         (t, d)
     });
@@ -208,7 +219,7 @@ pub fn to_fanuc(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output 
     t
 }
 
-fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Output {
+fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions, runs: &[u8]) -> Output {
     let mut diags = Vec::new();
     let mut unsupported = 0;
     // Programs: the main one first, then the subprograms by name.
@@ -273,6 +284,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     // Structural passes, per program.
     let mut lowered: Vec<(Program, ProgInfo, crate::span::FileId, String)> = Vec::new();
     let mut units_follow_text = true;
+    let mut stand_in_units = Vec::new();
     let mut tools_used = BTreeMap::new();
     let mut fixed_used = BTreeMap::new();
     for (mut p, file, is_sub) in progs {
@@ -288,9 +300,13 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         ctx.l_programs = l_programs.clone();
         ctx.integral_calls = integral_calls.next().unwrap_or_default();
         let mut info = ProgInfo { is_sub, exact_cmps: exact_cmps.next().unwrap_or_default(), ..ProgInfo::default() };
+        if lowered.is_empty() {
+            ctx.stand_in_runs = runs.to_vec();
+        }
         passes::lower_program(&mut ctx, &mut p, &mut info);
         if lowered.is_empty() {
             units_follow_text = !ctx.units_inexact;
+            stand_in_units = std::mem::take(&mut ctx.stand_in_units);
         }
         tools_used.extend(ctx.tools_used);
         fixed_used.extend(ctx.fixed_used);
@@ -378,7 +394,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
     let eo = EmitOptions { comments: opts.comments, line_ending: opts.line_ending, file: main.file };
     let emitted = emit::emit(&unit, &eo);
     diags.extend(emitted.diags);
-    Output { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text }
+    Output { text: emitted.text, unit, symbol_map, diags, unsupported, units_follow_text, stand_in_units }
 }
 
 /// The declared types of a program's scalar names (DEF and PROC parameters).

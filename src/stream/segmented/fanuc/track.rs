@@ -5,9 +5,10 @@
 
 use crate::ir::{Addr, BlockMeta, CallKind, CallTarget, Comment, ExprKind, ItemKind, SeqNo, Stmt, StmtKind, WordValue};
 use crate::lower::to_fanuc::words::units::Units;
+use crate::lower::to_fanuc::RUN_STOPS_SEARCH as STOPS;
 use crate::span::Span;
 use crate::stream::segmented::driver::{jump_or_call, SkelPart, Why};
-use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
+use crate::stream::segmented::nset::{kept, Keep, NSet, MAX_TRACKED_N};
 use crate::stream::target::fanuc::{g_item, run_block};
 use crate::stream::PlainWord;
 
@@ -75,6 +76,19 @@ pub(crate) struct Track {
     /// Where the lone M0 blocks right after such a block start: kept in the skeleton (the
     /// words pass may pair the two).
     pub(super) forced: Vec<u32>,
+    /// Per run, what a dead start value's search (`lower::to_fanuc::blocks`) does in it
+    /// (`Ctx::stand_in_runs`): its block count (up to the search's window) when every block
+    /// lets the search go on (no `/`, no program end), else [`STOPS`].
+    pub(super) search: Vec<u8>,
+}
+
+impl Track {
+    /// The run being collected has a block that stops a dead start value's search.
+    fn stops(&mut self) {
+        if let Some(c) = self.search.last_mut() {
+            *c = STOPS;
+        }
+    }
 }
 
 impl SkelPart for Track {
@@ -82,13 +96,13 @@ impl SkelPart for Track {
 
     /// A plain line is a run block unless a jump names its N or it may pair with a MSG.
     #[inline]
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, _: &[PlainWord]) -> bool {
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, _: &[PlainWord]) -> bool {
         !kept(keep, meta) && !self.after_msg
     }
 
     /// A statement is a run block when `run_block` and no jump names its N, but for a lone
     /// M0 right after a block with a MSG.
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool {
         let after_msg = std::mem::replace(&mut self.after_msg, false);
         if let StmtKind::Block(b) = &s.kind {
             if after_msg && crate::lower::to_fanuc::words::is_lone_m0(b) {
@@ -115,6 +129,15 @@ impl SkelPart for Track {
         }
         let valid = n.filter(|n| *n <= MAX_N);
         self.hi = if starting { valid } else { self.hi.max(valid) };
+        if starting {
+            self.search.push(0);
+        }
+        if let Some(c) = self.search.last_mut() {
+            // A straight block is one statement of the lowered program (its words), or,
+            // with a program end, two (the end a statement of its own, which stops it).
+            let cap = crate::lower::to_fanuc::blocks::DEAD_STORE_WINDOW as u8;
+            *c = if meta.skip.is_some() || *c == STOPS { STOPS } else { (*c + 1).min(cap) };
+        }
     }
 
     #[inline]
@@ -123,12 +146,17 @@ impl SkelPart for Track {
         for w in words {
             if w.letter == b'G' {
                 self.modes.g(w.value, &mut t);
+            } else if w.letter == b'M' && (w.value == 2.0 || w.value == 30.0) {
+                self.stops();
             }
         }
         self.touched = t;
     }
 
     fn follow_stmt(&mut self, items: &[crate::ir::Item]) {
+        if items.iter().any(|it| matches!(it.kind, ItemKind::End { .. })) {
+            self.stops();
+        }
         let mut t = self.touched;
         self.modes.items(items, &mut t);
         self.touched = t;

@@ -10,7 +10,7 @@ use crate::lower::to_sinumerik::{self as passes, Options};
 use crate::read::RawBlock;
 use crate::span::Span;
 use crate::stream::segmented::driver::{jump_or_call, RunTests, SkelPart, Why};
-use crate::stream::segmented::nset::{kept, NSet, MAX_TRACKED_N};
+use crate::stream::segmented::nset::{kept, Keep, MAX_TRACKED_N};
 use crate::stream::target::sinumerik::{plain_g, straight};
 use crate::stream::target::RunWriter;
 use crate::stream::PlainWord;
@@ -90,7 +90,7 @@ fn check_item(it: &Item, calls: bool, targets: &mut Vec<u32>) -> Option<&'static
 /// `solid` statement or not, with the N values `keep` kept out of runs; the same in every
 /// scan (it changes only on statements that are not run blocks).
 #[inline]
-fn plain_run(solid: bool, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+fn plain_run(solid: bool, keep: &Keep, meta: &BlockMeta, words: &[PlainWord]) -> bool {
     solid
         && meta.label.is_none()
         && !kept(keep, meta)
@@ -108,7 +108,7 @@ fn plain_run(solid: bool, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) ->
 }
 
 /// [`plain_run`] of a statement.
-fn stmt_run(solid: bool, keep: &NSet, s: &Stmt) -> bool {
+fn stmt_run(solid: bool, keep: &Keep, s: &Stmt) -> bool {
     let StmtKind::Block(b) = &s.kind else { return false };
     solid
         && straight(s).is_ok()
@@ -124,12 +124,12 @@ pub(super) struct Class {
 
 impl RunTests for Class {
     #[inline]
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         plain_run(self.solid, keep, meta, words)
     }
 
     /// Whether a statement is a run block (else `solid` follows it).
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool {
         if stmt_run(self.solid, keep, s) {
             return true;
         }
@@ -152,11 +152,11 @@ impl SkelPart for Track {
     type Mode = bool;
 
     #[inline]
-    fn plain_run(&self, keep: &NSet, meta: &BlockMeta, words: &[PlainWord]) -> bool {
+    fn plain_run(&self, keep: &Keep, meta: &BlockMeta, words: &[PlainWord]) -> bool {
         plain_run(self.solid, keep, meta, words)
     }
 
-    fn stmt_run(&mut self, keep: &NSet, s: &Stmt) -> bool {
+    fn stmt_run(&mut self, keep: &Keep, s: &Stmt) -> bool {
         stmt_run(self.solid, keep, s)
     }
 
