@@ -448,7 +448,6 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("O_9120.spf", "NC577"),
     ("PITFALL_M98_SHARED_LOCAL.mpf", "NC303"), // M98 L3's shared locals: a repeated call with (VAR) parameters
     ("P_G65_REPEAT_L.mpf", "NC303"),           // a repeated call with parameters
-    ("P_G66_MODAL_CALL.mpf", "NC318"),         // MCALL
     // g68-g19-side-slot-over-g52.nc: the rotation about the saved tool position over the
     // TRANS of its G52 (ATRANS with ROT in the program) and its plane G19 set after the
     // leading blocks (NC498): the way back is the to-FANUC frames' (not this translation's).

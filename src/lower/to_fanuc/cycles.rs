@@ -397,6 +397,8 @@ fn list(
     let mut carry: Option<BlockMeta> = None;
     // An MCALL of a cycle that was refused: its MCALL cancel is not a second error.
     let mut refused_mcall = false;
+    // A subprogram's modal call (G66) is in force.
+    let mut g66 = false;
     let mut tap = super::cycles_tap::SieState::start(top);
     let mut zshift = super::cycles_frames::Shift::start(top);
     for s in body {
@@ -445,7 +447,34 @@ fn list(
             out.push(s);
             continue;
         };
+        // A subprogram's modal call (`MCALL NAME(…)`, now G66): Siemens' next MCALL replaces
+        // it, where FANUC would nest a second one (or call it at each hole of a cycle).
+        if b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if c.kind == CallKind::G66)) {
+            if g66 || active.is_some() {
+                refuse(
+                    ctx,
+                    "NC318",
+                    span,
+                    "an MCALL while another modal call is in force",
+                    "end the first with MCALL",
+                    &mut out,
+                );
+                continue;
+            }
+            g66 = true;
+        }
         let call = b.items.iter().find_map(|it| cycle_call(it).map(|(c, k)| (c.clone(), k, it.span)));
+        if g66 && call.as_ref().is_some_and(|c| c.0.kind == CallKind::Mcall) {
+            refuse(
+                ctx,
+                "NC318",
+                span,
+                "a drilling cycle's MCALL while a subprogram's modal call is in force",
+                "end it with MCALL first",
+                &mut out,
+            );
+            continue;
+        }
         let off = b.items.iter().any(|it| matches!(it.kind, ItemKind::ModalCallOff));
         if let Some((orig, k, cspan)) = call {
             b.items.retain(|it| cycle_call(it).is_none());
@@ -535,7 +564,16 @@ fn list(
                     }
                 }
                 None if std::mem::take(&mut refused_mcall) => {}
-                None => refuse(ctx, "NC318", span, "MCALL cancel", "modal calls are not translated", &mut out),
+                // The end of a subprogram's modal call (`words` wrote it as G66): G67.
+                None if std::mem::take(&mut g66) => b.items.push(Item { kind: ItemKind::ModalCallOff, span }),
+                None => refuse(
+                    ctx,
+                    "NC318",
+                    span,
+                    "MCALL cancel",
+                    "the MCALL it ends is not in this block list: end a modal call where it began",
+                    &mut out,
+                ),
             }
             out.push(Stmt { kind: StmtKind::Block(b), span });
             continue;

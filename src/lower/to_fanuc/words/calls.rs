@@ -70,14 +70,6 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         kept.push(Item { kind: ItemKind::Call(Box::new(c)), span });
         return None;
     }
-    if c.kind == CallKind::Mcall {
-        return ctx.unsupported(
-            "NC318",
-            span,
-            &format!("modal call MCALL {name}"),
-            "call the subprogram after each move",
-        );
-    }
     if name == "CYCLE832" {
         return match super::super::lookahead::cycle832(ctx, &c, span) {
             Ok(s) => Some(s),
@@ -147,6 +139,35 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         let hint = "set both units with G700 or G710 before the call (a subprogram starts in its caller's units)";
         return ctx.unsupported("NC324", span, &what, hint);
     }
+    let modal = c.kind == CallKind::Mcall;
+    // The motion mode (G0–G3) a modal call's program leaves is the next block's on both
+    // controls alike (neither restores it), and the words this pass writes do not read it.
+    const MOTION: u16 = 1;
+    if modal {
+        // `MCALL NAME(…)` is `G66 P… A…`: both call the program after every later block that
+        // moves, with the values the arguments had at the MCALL. Those later calls are not at
+        // the MCALL's place, so what follows it (modes, tool, frames, the values the cycles
+        // read) must not depend on the program having run.
+        let e = &callee.effect;
+        let why = if callee.params.iter().any(|p| p.by_ref) {
+            Some("a VAR parameter (G66 passes values)")
+        } else if e.leaves() & !MOTION != 0 || e.units != super::effects::UnitEffect::None {
+            Some("modes (G90/G91, the units, …) that it leaves changed")
+        } else if e.tools || e.frames {
+            Some("a tool, compensation or frame that it changes")
+        } else if e.r_params || e.interrupts {
+            Some("R parameters or interrupts that it sets")
+        } else if c.repeat.is_some() {
+            Some("a repeat count")
+        } else {
+            None
+        };
+        if let Some(why) = why {
+            let what = format!("modal call MCALL {name} with {why}");
+            let hint = "call the subprogram after each move instead";
+            return ctx.unsupported("NC318", span, &what, hint);
+        }
+    }
     let repeat = c.repeat.clone();
     if repeat.is_some() && !callee.params.is_empty() {
         let what = format!("repeated call of {name} with parameters");
@@ -163,8 +184,12 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         };
         args.push(Arg::Letter { letter, var, value });
     }
-    let g65 = Call { kind: CallKind::G65, target: CallTarget::Number(callee.number), args, repeat };
+    let kind = if modal { CallKind::G66 } else { CallKind::G65 };
+    let g65 = Call { kind, target: CallTarget::Number(callee.number), args, repeat };
     kept.push(item(ItemKind::Call(Box::new(g65)), span));
+    if modal {
+        return None;
+    }
     // The modes as the callee leaves them (G90/G91 read from #4003 by an AC()/IC() word
     // until the caller's next G90/G91).
     let before = m.s;
