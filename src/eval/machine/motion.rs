@@ -110,6 +110,7 @@ impl Machine {
             }
         }
         if !arc_mode {
+            let f = if rapid { None } else { self.path_feed(&self.pos, &target, false, span)? };
             for (i, a) in axes.iter().enumerate() {
                 if a.is_some() {
                     self.seen[i] = true;
@@ -124,10 +125,7 @@ impl Machine {
                 let programmed = axes.map(|a| a.is_some());
                 self.probe_record(hit, &programmed, probe_n);
             }
-            out.push((
-                Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe },
-                span,
-            ));
+            out.push((Event::Move { rapid, to: self.trace_pos(), f, probe }, span));
             return Ok(any_axis);
         }
         let cw = self.modal.motion == Motion::Cw;
@@ -170,6 +168,7 @@ impl Machine {
         self.seen[v] = true;
         self.applied[u] = self.active_offset(u);
         self.applied[v] = self.active_offset(v);
+        let f = self.path_feed(&self.pos, &target, true, span)?;
         self.pos = target;
         out.push((
             Event::Arc {
@@ -177,7 +176,7 @@ impl Machine {
                 plane: self.modal.plane,
                 to: self.trace_pos(),
                 center: [(u, clean(c.0)), (v, clean(c.1))],
-                f: self.feed,
+                f,
             },
             span,
         ));
