@@ -3,7 +3,7 @@
 //! feed group only, the geometry axes X, Y, Z until `FGROUP(…)` names others
 //! (docs/semantics.md, "Feed of moves with rotary axes and FGROUP"). A program that has a
 //! word of such an axis gets `FGROUP(X,Y,Z,<those axes>)` once at its start (after its
-//! DEFs), so that every move's feed refers to every axis it moves, as on FANUC; the proof
+//! DEFs and opening comments), so that every move's feed refers to every axis it moves, as on FANUC; the proof
 //! runs both and compares each move's `f`.
 
 use super::*;
@@ -43,7 +43,10 @@ pub fn insert(source: &[Stmt], mut body: Vec<Stmt>) -> Vec<Stmt> {
     let stmt = crate::lower::block_stmt(vec![Item { kind: ItemKind::Call(Box::new(call)), span }], span);
     let at = body
         .iter()
-        .position(|s| !matches!(&s.kind, StmtKind::Block(b) if !b.items.is_empty() && b.items.iter().all(|i| matches!(i.kind, ItemKind::Def(_)))))
+        .position(|s| {
+            // After the DEFs (they must lead) and the comment lines that open the program.
+            !matches!(&s.kind, StmtKind::Block(b) if b.meta.label.is_none() && b.items.iter().all(|i| matches!(i.kind, ItemKind::Def(_))))
+        })
         .unwrap_or(body.len());
     body.insert(at, stmt);
     body
