@@ -43,6 +43,7 @@ struct State {
 }
 
 impl State {
+    /// After a label, a structure or a call: neither positions nor modes are known.
     fn forget_positions(&mut self) {
         self.pos = [None; 9];
         self.absolute = None;
@@ -115,6 +116,35 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
 
 /// Follows one block; a refusal to stand in its place (`--unsupported warn`), if any.
 fn block(ctx: &mut Ctx, st: &mut State, b: &Block) -> Option<Stmt> {
+    if b.meta.skip.is_some() {
+        // Block skip: the operator's switch decides whether it runs.
+        if b.items.iter().any(|it| matches!(it.kind, ItemKind::Call(_))) {
+            st.group = None;
+        }
+        // G codes the block would not change anything with (`/G1 Z-0.5` in G1).
+        let same = |g: &u32| match g {
+            0 | 10 | 20 | 30 => st.motion == Some(*g),
+            900 => st.absolute == Some(true),
+            910 => st.absolute == Some(false),
+            _ => false,
+        };
+        let plain = g_codes(&b.items).iter().all(same)
+            && b.items
+                .iter()
+                .all(|it| matches!(&it.kind, ItemKind::Word(w) if matches!(w.addr, Addr::Letter(l) if l != b'F')));
+        if !plain {
+            st.forget_positions();
+            return None;
+        }
+        for it in &b.items {
+            if let ItemKind::Word(Word { addr: Addr::Letter(l), .. }) = &it.kind {
+                if let Some(i) = LETTERS.iter().position(|c| c == l) {
+                    st.pos[i] = None;
+                }
+            }
+        }
+        return None;
+    }
     let mut words: Vec<(usize, Option<f64>, Option<bool>)> = Vec::new();
     for it in &b.items {
         match &it.kind {
@@ -164,7 +194,7 @@ fn block(ctx: &mut Ctx, st: &mut State, b: &Block) -> Option<Stmt> {
             170 | 180 | 190 | 940 | 640 | 600 | 90 => {}
             // Units, frames, machine coordinates, reference returns …: positions start over.
             _ => {
-                st.forget_positions();
+                st.pos = [None; 9];
                 return None;
             }
         }
@@ -172,6 +202,7 @@ fn block(ctx: &mut Ctx, st: &mut State, b: &Block) -> Option<Stmt> {
     if words.is_empty() {
         return None;
     }
+
     let mut moved = 0u16;
     let mut known = true;
     for &(i, v, mode) in &words {
