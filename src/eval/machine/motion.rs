@@ -110,7 +110,15 @@ impl Machine {
             }
         }
         if !arc_mode {
-            let f = if rapid { None } else { self.path_feed(&self.pos, &target, false, span)? };
+            // Only an axis of `watch` (a rotary one, or outside FGROUP) makes `f` other than F.
+            let named = axes.iter().enumerate().fold(0u16, |m, (i, a)| m | (u16::from(a.is_some()) << i));
+            let f = if rapid {
+                None
+            } else if named & self.fgroup.watch == 0 {
+                self.feed
+            } else {
+                self.path_feed(&self.pos, &target, false, span)?
+            };
             for (i, a) in axes.iter().enumerate() {
                 if a.is_some() {
                     self.seen[i] = true;
@@ -168,7 +176,9 @@ impl Machine {
         self.seen[v] = true;
         self.applied[u] = self.active_offset(u);
         self.applied[v] = self.active_offset(v);
-        let f = self.path_feed(&self.pos, &target, true, span)?;
+        let named = axes.iter().enumerate().fold((1u16 << u) | (1 << v), |m, (i, a)| m | (u16::from(a.is_some()) << i));
+        let f =
+            if named & self.fgroup.watch == 0 { self.feed } else { self.path_feed(&self.pos, &target, true, span)? };
         self.pos = target;
         out.push((
             Event::Arc {
