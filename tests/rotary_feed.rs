@@ -110,6 +110,11 @@ fn fgroup_takes_axnames_and_axis_variables() {
     let (_, err, code) = nctrans(&d, &["run", "b.mpf"]);
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("error[NC663]") && err.contains("X1"), "{err}");
+    // The bare word: not said to be FGROUP().
+    let d = dir("bare", &[("b.mpf", "FGROUP(X)\nFGROUP\nG1 X1 Y1 F100\nM30\n")]);
+    let (_, err, code) = nctrans(&d, &["run", "b.mpf"]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("error[NC663]: FGROUP without parentheses"), "{err}");
 }
 
 #[test]
