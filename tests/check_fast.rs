@@ -39,9 +39,11 @@ fn blocks(r: &mut Rng, fanuc: bool, n: usize) -> Vec<String> {
             3 => b.push_str("G10 L2 P1 X1.5 Y-2.25\n"),
             _ => {}
         }
-        b.push_str(if r.below(5) == 0 { "G0" } else { "G1" });
+        let rapid = r.below(5) == 0;
+        b.push_str(if rapid { "G0" } else { "G1" });
         for axis in ["X", "Y", "Z", "A"] {
-            if r.below(3) != 0 {
+            // A in rapids only: a feed move with A under G20 has no settled feed (NC662).
+            if r.below(3) != 0 && (rapid || axis != "A") {
                 let _ = write!(b, " {axis}{}", num(r));
             }
         }

@@ -208,9 +208,18 @@ fn block(r: &mut Rng, fanuc: bool) -> String {
         b.push_str(r.pick(&rare));
         b.push(' ');
     }
-    let letters = ["X", "Y", "Z", "X", "Y", "Z", "X", "Y", "Z", "A", "B", "C", "U", "V", "W", "F"];
+    // Rotary and U, V, W axes mostly in rapids: a feed move of them has a feed of its own
+    // (`machine::path_feed`, always the general path) and is refused in many modes.
+    let letters = if r.below(5) == 0 {
+        b.push_str("G0 ");
+        &["X", "Y", "Z", "A", "B", "C", "U", "V", "W"][..]
+    } else if r.below(20) == 0 {
+        &["X", "Y", "Z", "A", "B", "C", "U", "V", "W", "F"][..]
+    } else {
+        &["X", "Y", "Z", "X", "Y", "Z", "F"][..]
+    };
     for _ in 0..r.below(6) {
-        let l = r.pick(&letters);
+        let l = r.pick(letters);
         if !fanuc && l != "F" && r.below(10) == 0 {
             let f = if r.below(2) == 0 { "AC" } else { "IC" };
             let _ = write!(b, "{l}={f}({}) ", num(r, fanuc));

@@ -44,7 +44,9 @@ fn streamed_translation_is_the_whole_translation() {
         match i % 5 {
             0 => text.push_str(&format!("N{} G1 X{}.5 Y-{} F{}\n", 10 + i, i % 97, i % 13, 500 + i % 7)),
             1 => text.push_str(&format!("X{}.25 ; step {i}\n", i % 50)),
-            2 => text.push_str(&format!("G1 Z-{}.5 A{}\n", i % 3, i % 360)),
+            // A turns alone: Z with it would be dragged along on Siemens (docs/semantics.md,
+            // "Feed of moves with rotary axes and FGROUP"), and FGROUP does not stream.
+            2 => text.push_str(&format!("G1 Z-{}.5\nA{}\n", i % 3, i % 360)),
             3 => text.push_str("/G1 Z-0.5\n"),
             _ => text.push_str(&format!("G0 Z{}.\n", i % 4)),
         }
@@ -62,7 +64,7 @@ fn streamed_translation_is_the_whole_translation() {
     let popts = ParseOptions::for_dialect(Dialect::Sinumerik);
     let ix = nctrans::stream::scan_path(&path, 0, Dialect::Sinumerik, &popts, &mut |_, _| {}, None).expect("scan");
     let v = nctrans::stream::verify::verify(ix, &out, 1_000_000, Vec::new(), None);
-    assert!(v.equivalent && v.summary.contains("(10"), "{}", v.summary);
+    assert!(v.equivalent && v.summary.contains("(12002 events"), "{}", v.summary);
 
     // A broken translation is caught by the streamed verification.
     let bad = String::from_utf8_lossy(&streamed).replacen("X1.25", "X1.26", 1);

@@ -528,6 +528,8 @@ impl Gen {
     fn program(&mut self) -> String {
         let mut lines: Vec<String> = (1..=4).map(|k| format!("R{k}={}", num(&mut self.rng))).collect();
         self.stmts(0, 5, &mut lines);
+        // F along every axis, the rotary A too, as FANUC's F is (docs/semantics.md).
+        lines.push("FGROUP(X,Y,Z,A)".into());
         lines.push("G1 X=R1 Y=R2 Z=R3 A=R4 F100".into());
         lines.push("M30".into());
         lines.join("\n") + "\n"

@@ -300,7 +300,7 @@ fn g65_arguments_without_point_follow_the_letter_increment() {
 fn inch_values_without_decimal_point_count_the_inch_increment() {
     pair(
         "O1\nG20 G17 G90\nG0 Z1000\nG1 X20000 Y-5 A90000 F20\nG2 X30000 Y10000 R10000\nG04 X1500\nG21 X1000\nM30\n",
-        "G700 G17 G90\nG0 Z0.1\nG1 X2 Y-0.0005 A90 F20\nG2 X3 Y1 CR=1\nG4 F1.5\nG710 X1\nM30\n",
+        "FGROUP(X,Y,Z,A)\nG700 G17 G90\nG0 Z0.1\nG1 X2 Y-0.0005 A90 F20\nG2 X3 Y1 CR=1\nG4 F1.5\nG710 X1\nM30\n",
     );
     // IS-C: 0.00001 in.
     let mut opts = Options::default();

@@ -486,6 +486,9 @@ impl Interp<'_> {
             if s == "CYCLE832" && !self.fanuc {
                 return self.cycle832(call, span);
             }
+            if s == "FGROUP" && !self.fanuc {
+                return self.fgroup(call, span);
+            }
             if SIMULATION_ONLY.contains(&s.as_str()) {
                 self.warn("NC406", format!("{s}(...) only sets up the HMI simulation: no effect on the trace"), span);
                 return Ok(Flow::Next);

@@ -67,6 +67,16 @@ impl Interp<'_> {
                     .note("the trace would show the programmed values as if it were not there, and call a program without it equivalent")
                     .hint("prove the program without it; its motion has no counterpart the run models"),
             ));
+        } else if name == "FGROUP" {
+            // `FGROUP()` is the default group; no source says the bare word is the same.
+            return Err(super::fault::Fault::error(
+                crate::diag::Diagnostic::error(
+                    super::machine::path_feed::FGROUP_AXIS,
+                    "FGROUP without parentheses: whether it selects the default feed group as FGROUP() does is not stated",
+                )
+                .primary(self.file(), span, "here")
+                .hint("write FGROUP() for the default group (X, Y, Z), or FGROUP(X,Y,Z,A) naming the axes"),
+            ));
         } else if name == "FFWON" || name == "FFWOF" {
             let what = if name == "FFWON" { "on" } else { "off" };
             let msg = format!(

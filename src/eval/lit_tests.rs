@@ -119,8 +119,10 @@ fn block(r: &mut Rng, fanuc: bool) -> String {
         b.push_str(&if r.next().is_multiple_of(3) { pick(r, g_dialect) } else { pick(r, &g_common) });
         b.push(' ');
     }
+    // One rotary letter: a feed move of a rotary axis is refused in several modes (NC662),
+    // which would end too many runs early; B and C come in the read-backs below.
     let letters =
-        ["X", "Y", "Z", "X", "Y", "Z", "A", "B", "C", "F", "F", "I", "J", "K", "R", "S", "P", "D", "H", "E", "Q"];
+        ["X", "Y", "Z", "X", "Y", "Z", "A", "X", "Y", "F", "F", "I", "J", "K", "R", "S", "P", "D", "H", "E", "Q"];
     for _ in 0..(r.next() % 6) {
         let l = pick(r, &letters);
         if !fanuc && r.next().is_multiple_of(12) && matches!(l.as_str(), "X" | "Y" | "Z") {

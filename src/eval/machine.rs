@@ -26,6 +26,7 @@ pub mod lookahead;
 mod modal;
 mod motion;
 mod offsets;
+pub mod path_feed;
 mod polar;
 pub mod probe;
 mod refs;
@@ -181,6 +182,8 @@ pub struct Machine {
     pub comp: comp::Comp,
     /// Chamfers and roundings: a held move, Siemens modal rounding ([`corners`]).
     pub corners: corners::Corners,
+    /// The Siemens feed group (`FGROUP`) and which moves' feeds [`path_feed`] works out.
+    pub fgroup: path_feed::Group,
 }
 
 impl Machine {
@@ -245,6 +248,7 @@ impl Machine {
             cycle: super::cycles::State::default(),
             comp: comp::Comp::default(),
             corners: corners::Corners::default(),
+            fgroup: path_feed::Group::new(fanuc),
         }
     }
 
@@ -659,6 +663,7 @@ impl Machine {
         if let Some((_, x)) = f {
             if !dwell {
                 self.feed = Some(self.feed_value(x));
+                self.fgroup.feed_inch = self.modal.inch_feed;
             }
         }
         let mut speed_changed = false;

@@ -28,6 +28,7 @@ pub mod cycles;
 pub mod exec;
 pub mod expr;
 pub mod fault;
+mod fgroup;
 pub mod flow;
 pub mod haas_data;
 pub mod input;

@@ -6,6 +6,7 @@ O0001 (PITFALL-DEEP-NESTING)
 (NCTRANS: R3 = #503)
 (NCTRANS: R4 = #504)
 ( Pitfall 16: FANUC allows 3 nested DO loops  the fourth becomes an IF/GOTO loop)
+( F along every axis that moves [the rotary A too], as on FANUC)
 #501=0.
 WHILE [#501 LT 2.] DO1
 #502=0.

@@ -167,11 +167,10 @@ const INSTRUCTIONS: &[&str] = &[
 ];
 
 /// Predefined procedures of the control (called as `NAME(…)` or bare) that no program of a
-/// library provides and nctrans does not model: feed axes (`FGROUP`), handwheel and preset
+/// library provides and nctrans does not model: handwheel and preset
 /// offsets, axis and channel coordination, waiting, transformations, couplings. A call of
 /// one is named as such rather than looked for as a subprogram.
 const PREDEFINED_PROCEDURES: &[&str] = &[
-    "FGROUP",
     "DRFOF",
     "PRESETON",
     "SETPIECE",

@@ -94,6 +94,8 @@ impl Machine {
             match modal.motion {
                 Motion::Rapid => {}
                 // The alarm of a feed move without any feed is the general path's.
+                // A rotary axis or (Siemens) an axis outside FGROUP: `path_feed`'s, there.
+                Motion::Linear if seen_axes & self.fgroup.watch != 0 => return None,
                 Motion::Linear if feed_word.is_some() || self.feed.is_some() => {}
                 _ => return None,
             }
@@ -105,6 +107,7 @@ impl Machine {
         if let Some((x, q)) = feed_word {
             let f = self.feed_value(x);
             self.feed = Some(f);
+            self.fgroup.feed_inch = self.modal.inch_feed;
             // The feed's grid value from its digits when it is the word's own value on
             // the grid: `grid_of(f)` is `q` exactly when `f` is the double nearest to
             // `q / 1000` (see `numfmt::grid_of`), which the division tests.

@@ -591,17 +591,15 @@ impl Machine {
                 self.applied[i] = self.active_offset(i);
             }
         }
+        let f = if rapid { None } else { self.path_feed(&self.pos, &target, centre.is_some(), span)? };
         self.pos = target;
         self.fresh &= !(absolute | ((absolute | same) << 4));
         self.refresh_framed();
         match centre {
             Some(center) => {
-                out.push((Event::Arc { cw, plane: self.modal.plane, to: self.trace_pos(), center, f: self.feed }, span))
+                out.push((Event::Arc { cw, plane: self.modal.plane, to: self.trace_pos(), center, f }, span))
             }
-            None => out.push((
-                Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe: false },
-                span,
-            )),
+            None => out.push((Event::Move { rapid, to: self.trace_pos(), f, probe: false }, span)),
         }
         Ok(true)
     }

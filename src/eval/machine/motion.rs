@@ -110,6 +110,15 @@ impl Machine {
             }
         }
         if !arc_mode {
+            // Only an axis of `watch` (a rotary one, or outside FGROUP) makes `f` other than F.
+            let named = axes.iter().enumerate().fold(0u16, |m, (i, a)| m | (u16::from(a.is_some()) << i));
+            let f = if rapid {
+                None
+            } else if named & self.fgroup.watch == 0 {
+                self.feed
+            } else {
+                self.path_feed(&self.pos, &target, false, span)?
+            };
             for (i, a) in axes.iter().enumerate() {
                 if a.is_some() {
                     self.seen[i] = true;
@@ -124,10 +133,7 @@ impl Machine {
                 let programmed = axes.map(|a| a.is_some());
                 self.probe_record(hit, &programmed, probe_n);
             }
-            out.push((
-                Event::Move { rapid, to: self.trace_pos(), f: if rapid { None } else { self.feed }, probe },
-                span,
-            ));
+            out.push((Event::Move { rapid, to: self.trace_pos(), f, probe }, span));
             return Ok(any_axis);
         }
         let cw = self.modal.motion == Motion::Cw;
@@ -170,6 +176,9 @@ impl Machine {
         self.seen[v] = true;
         self.applied[u] = self.active_offset(u);
         self.applied[v] = self.active_offset(v);
+        let named = axes.iter().enumerate().fold((1u16 << u) | (1 << v), |m, (i, a)| m | (u16::from(a.is_some()) << i));
+        let f =
+            if named & self.fgroup.watch == 0 { self.feed } else { self.path_feed(&self.pos, &target, true, span)? };
         self.pos = target;
         out.push((
             Event::Arc {
@@ -177,7 +186,7 @@ impl Machine {
                 plane: self.modal.plane,
                 to: self.trace_pos(),
                 center: [(u, clean(c.0)), (v, clean(c.1))],
-                f: self.feed,
+                f,
             },
             span,
         ));

@@ -452,6 +452,8 @@ impl Walk {
                             names.contains(&n)
                                 || super::words::SIMULATION_ONLY.contains(&n.as_str())
                                 || n == "CYCLE832"
+                                // FGROUP only names the feed's axes.
+                                || n == "FGROUP"
                                 || crate::dialect::sinumerik::cycles::cycle_of(&n).is_some()
                         }
                         _ => false,

@@ -22,6 +22,7 @@ pub mod cycles_known;
 pub mod cycles_tap;
 pub mod exprs;
 pub(crate) mod fast_write;
+pub mod feed_group;
 pub mod feed_reads;
 pub mod frame_chain;
 pub mod frame_seq;
@@ -311,6 +312,7 @@ impl Ctx {
 /// Runs the structural passes (everything before variable mapping) on one program.
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     axis_vars::run(ctx, prog);
+    feed_group::run(ctx, prog, info.is_sub);
     tool_data::run(ctx, prog);
     tool_reads::run(prog);
     constants::run(prog);

@@ -36,6 +36,7 @@ pub mod dispatch;
 pub mod ends;
 pub mod exprs;
 pub(crate) mod fast_write;
+pub mod feed_group;
 pub mod forward;
 pub mod frames;
 pub mod gotos;
@@ -435,7 +436,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let mut out = Vec::new();
     for (i, (_, p)) in programs.iter().enumerate() {
         ctx.cur = i;
-        let body = lower_body(&mut ctx, p.body.clone());
+        let body = feed_group::insert(&p.body, lower_body(&mut ctx, p.body.clone()));
         let plan = ctx.progs[i].clone();
         let prog = Program {
             name: Some(ProgName::Name(plan.name.clone())),

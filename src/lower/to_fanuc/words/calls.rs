@@ -70,6 +70,12 @@ pub(super) fn call(ctx: &mut Ctx, c: Call, span: Span, m: &mut Modal, kept: &mut
         kept.push(Item { kind: ItemKind::Call(Box::new(c)), span });
         return None;
     }
+    if name == "FGROUP" {
+        // FANUC's F already runs along every axis that moves; the proof compares each
+        // move's feed, so a move the group gives another feed diverges there (and a known
+        // one is refused first, `feed_group`).
+        return None;
+    }
     if name == "CYCLE832" {
         return match super::super::lookahead::cycle832(ctx, &c, span) {
             Ok(s) => Some(s),
