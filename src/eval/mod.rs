@@ -40,6 +40,7 @@ pub mod paged;
 pub mod print;
 pub mod probe;
 pub mod refuse;
+pub mod signals;
 mod strings;
 pub mod sysvars;
 pub mod tool_data;
@@ -260,6 +261,12 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
                 it.set_tool_data(format!("#{n}"), &i.value)?
             }
             (InputTarget::ToolData(key), Dialect::Sinumerik) => it.set_tool_data(key.clone(), &i.value)?,
+            (InputTarget::Hash(n), Dialect::Fanuc) if it.is_signal(i64::from(*n)) => {
+                let s = crate::dialect::signals::Signal::fanuc(*n)
+                    .ok_or_else(|| Fault::error(Diagnostic::error("NC407", "")))?;
+                it.set_signal(s, &i.value)?
+            }
+            (InputTarget::Signal(s), Dialect::Sinumerik) => it.set_signal(*s, &i.value)?,
             (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
             (InputTarget::R(n), Dialect::Sinumerik) => {
                 let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };

@@ -17,6 +17,7 @@ pub mod comp_flow;
 pub mod known;
 pub mod own_header;
 pub mod restate;
+pub mod signals;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 

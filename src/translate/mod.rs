@@ -66,6 +66,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     macro_interrupt: false,
     offsets: crate::dialect::offsets::OffsetMap { edges: BTreeMap::new() },
     fixed: BTreeMap::new(),
+    signals: crate::dialect::signals::SignalMap { pairs: BTreeMap::new() },
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
 

@@ -41,6 +41,7 @@ pub mod probe_length;
 pub mod prog_vars;
 pub mod repeat_sections;
 pub mod rotation;
+pub mod signals;
 pub mod string_calls;
 pub mod tool_data;
 pub mod tool_reads;
@@ -177,6 +178,8 @@ pub struct Ctx {
     /// folded into axis letters ([`axis_vars`]): what its verdict says it assumed.
     pub fixed: std::sync::Arc<BTreeMap<String, String>>,
     pub fixed_used: BTreeMap<String, String>,
+    /// The machine's signal wiring (`Semantics::signals`, [`signals`]).
+    pub signals: std::sync::Arc<crate::dialect::signals::SignalMap>,
     /// Spans of the axis words and AXIS DEFs [`axis_vars`] refused, saying why: the general
     /// refusals (NC310, NC635) are not repeated for them.
     pub axis_reported: std::collections::BTreeSet<Span>,
@@ -215,6 +218,7 @@ impl Ctx {
             prog_vars: BTreeMap::new(),
             prog_var_why: BTreeMap::new(),
             fixed: Default::default(),
+            signals: Default::default(),
             fixed_used: BTreeMap::new(),
             axis_reported: Default::default(),
             unsupported: 0,
@@ -287,6 +291,7 @@ impl Ctx {
 pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     axis_vars::run(ctx, prog);
     tool_data::run(ctx, prog);
+    signals::run(ctx, prog);
     tool_reads::run(prog);
     constants::run(prog);
     modal_reads::run(prog);

@@ -125,6 +125,9 @@ pub struct SymbolMap {
     /// for `AXNAME(AXIS_HORI)`): the Siemens side of a check starts with them, and every
     /// verdict names them.
     pub fixed: BTreeMap<String, String>,
+    /// The signal wiring the translation used (`[signals]`), so that a check's `$A_DBB[2]=…`
+    /// inputs reach the FANUC variable the output reads.
+    pub signals: crate::dialect::signals::SignalMap,
 }
 
 impl SymbolMap {
@@ -320,6 +323,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions) -> Outp
         macro_interrupt: opts.target.macro_interrupt,
         offsets: opts.target.offsets.clone(),
         fixed: fixed_used,
+        signals: (*opts.source.signals).clone(),
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -396,6 +400,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.globals = opts.source.globals.clone();
     ctx.master_spindle = opts.source.master_spindle;
     ctx.fixed = opts.source.fixed.clone();
+    ctx.signals = opts.source.signals.clone();
     ctx
 }
 
