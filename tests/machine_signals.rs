@@ -139,13 +139,13 @@ fn without_a_wiring_the_refusal_names_the_key() {
 #[test]
 fn a_value_the_other_side_cannot_carry_is_refused() {
     let d = dir("range");
-    std::fs::write(d.join("nctrans.toml"), "[signals]\n\"$A_DBB[0]\" = \"#1000\"\n\"$A_DBW[4]\" = \"#1032\"\n")
-        .unwrap();
+    std::fs::write(d.join("nctrans.toml"), "[signals]\n\"$A_DBB[0]\" = \"#1000\"\n").unwrap();
     // A byte copied on a bit: only its comparisons with 0 or 1 carry over.
     std::fs::write(d.join("c.mpf"), "; nctrans: set $A_DBB[0]=1\nR1=$A_DBB[0]\nM30\n").unwrap();
     let (ok, out) = nctrans(&d, &["--to", "fanuc", "c.mpf", "-o", "c.nc"]);
     assert!(!ok && out.contains("NC597") && out.contains("$A_DBB[0]") && out.contains("0 or 1"), "{out}");
     // A signed word on the 16 unsigned inputs.
+    std::fs::write(d.join("nctrans.toml"), "[signals]\n\"$A_DBW[4]\" = \"#1032\"\n").unwrap();
     std::fs::write(d.join("w.mpf"), "; nctrans: set $A_DBW[4]=3\nIF $A_DBW[4]>2 GOTOF SKIP\nG0 X1\nSKIP:\nM30\n")
         .unwrap();
     let (ok, out) = nctrans(&d, &["--to", "fanuc", "w.mpf", "-o", "w.nc"]);
@@ -157,4 +157,27 @@ fn a_value_the_other_side_cannot_carry_is_refused() {
     std::fs::write(d.join("nctrans.toml"), "[signals]\n\"$A_IN[1]\" = \"#1101\"\n").unwrap();
     let (ok, out) = nctrans(&d, &["--to", "fanuc", "c.mpf", "-o", "c.nc"]);
     assert!(!ok && out.contains("interface input"), "{out}");
+    // Two entries over the same bits: the word and one of its bits.
+    let both = "[signals]\n\"$A_DBB[0]\" = \"#1032\"\n\"$A_IN[1]\" = \"#1000\"\n";
+    std::fs::write(d.join("nctrans.toml"), both).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "c.mpf", "-o", "c.nc"]);
+    assert!(!ok && out.contains("16 bits"), "{out}");
+}
+
+#[test]
+fn a_batch_translates_with_the_wiring_and_its_map_keeps_it() {
+    let d = dir("batch");
+    std::fs::create_dir_all(d.join("lib")).unwrap();
+    std::fs::write(d.join("lib/chuck.mpf"), CHUCK).unwrap();
+    std::fs::write(d.join("nctrans.toml"), WIRING).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "-o", "out", "lib"]);
+    assert!(ok && out.contains("every file verified"), "{out}");
+    let map = std::fs::read_to_string(d.join("out/nctrans-map.toml")).unwrap();
+    assert!(map.contains("[signals]\n\"$A_DBB[17]\" = \"#1001\""), "{map}");
+    let first = std::fs::read_to_string(d.join("out/chuck.nc")).unwrap();
+    // A rerun with the map alone (no nctrans.toml) reads the same signals.
+    std::fs::remove_file(d.join("nctrans.toml")).unwrap();
+    let (ok, out) = nctrans(&d, &["--to", "fanuc", "-o", "out", "lib", "--force"]);
+    assert!(ok && out.contains("every file verified"), "{out}");
+    assert_eq!(std::fs::read_to_string(d.join("out/chuck.nc")).unwrap(), first);
 }

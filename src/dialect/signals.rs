@@ -244,6 +244,14 @@ impl SignalMap {
                 s.key()
             ));
         }
+        // Two entries over the same bits or bytes would let one run's inputs disagree with
+        // the other's (the word and its bits are one store on FANUC; how PLC bytes make a
+        // word is machine data on Siemens).
+        for (k, v) in self.pairs.iter().filter(|(k, _)| **k != s) {
+            if let Some(why) = overlap(*v, f).or_else(|| overlap(*k, s)) {
+                return Err(format!("{} = {} and {} = {}: {why}", s.key(), f.key(), k.key(), v.key()));
+            }
+        }
         self.pairs.insert(s, f);
         Ok(())
     }
@@ -257,6 +265,30 @@ impl SignalMap {
             m.add(k, text).map_err(|e| format!("{key}: {e}"))?;
         }
         Ok(m)
+    }
+}
+
+/// Why two signals of one control share bits (`None` when they do not).
+fn overlap(a: Signal, b: Signal) -> Option<String> {
+    let word_of = |x: Signal| match x.kind {
+        Kind::UiBit | Kind::UiWord => Some(1000),
+        Kind::UoBit | Kind::UoWord => Some(1100),
+        _ => None,
+    };
+    let is_word = |x: Signal| matches!(x.kind, Kind::UiWord | Kind::UoWord);
+    if a != b && word_of(a).is_some() && word_of(a) == word_of(b) && (is_word(a) || is_word(b)) {
+        return Some(format!(
+            "#{} holds the 16 bits of #{}..#{} (one wiring each)",
+            word_of(a)? + 32,
+            word_of(a)?,
+            word_of(a)? + 15
+        ));
+    }
+    match (a.plc_bytes(), b.plc_bytes()) {
+        (Some((x, y)), Some((u, w))) if a != b && x <= w && u <= y => {
+            Some("the two PLC data cover the same bytes, whose order is machine data (MD10399)".into())
+        }
+        _ => None,
     }
 }
 
@@ -287,6 +319,8 @@ mod tests {
         assert!(m.add("$A_IN[1]", "#1002").unwrap_err().contains("mapped twice"));
         assert!(m.add("$A_IN[1]", "#1101").is_err());
         assert!(m.add("$A_DBR[4]", "#1003").is_err());
+        assert!(m.add("$A_DBW[4]", "#1032").unwrap_err().contains("16 bits"));
+        assert!(m.add("$A_DBW[2]", "#1004").unwrap_err().contains("same bytes"));
         assert_eq!(m.siemens_of(Signal::parse("#1002").unwrap()), Signal::parse("$A_DBB[2]").ok());
         assert!(Range::Bit.within(Signal::parse("$A_DBB[0]").unwrap().range()));
         assert!(!Signal::parse("$A_DBB[0]").unwrap().range().within(Range::Bit));

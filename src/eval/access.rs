@@ -66,7 +66,7 @@ impl Interp<'_> {
             }
             n if self.is_haas_data(n) => self.read_haas_data(n, span),
             n if self.is_tool_data(n) => self.read_fanuc_tool_data(n, span),
-            n if self.is_signal(n) => self.read_fanuc_signal(n, span),
+            n if let Some(s) = self.signal_at(n) => self.read_fanuc_signal(s, span),
             n if n >= 1000 => self.fanuc_sys_read(n, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
@@ -105,7 +105,7 @@ impl Interp<'_> {
             }
             n if self.is_haas_data(n) => self.write_haas_data(n, span),
             n if self.is_tool_data(n) => self.write_fanuc_tool_data(n, x, span),
-            n if self.is_signal(n) => self.write_fanuc_signal(n, x, span),
+            n if let Some(s) = self.signal_at(n) => self.write_fanuc_signal(s, x, span),
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
         }

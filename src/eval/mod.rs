@@ -261,9 +261,7 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
                 it.set_tool_data(format!("#{n}"), &i.value)?
             }
             (InputTarget::ToolData(key), Dialect::Sinumerik) => it.set_tool_data(key.clone(), &i.value)?,
-            (InputTarget::Hash(n), Dialect::Fanuc) if it.is_signal(i64::from(*n)) => {
-                let s = crate::dialect::signals::Signal::fanuc(*n)
-                    .ok_or_else(|| Fault::error(Diagnostic::error("NC407", "")))?;
+            (InputTarget::Hash(n), Dialect::Fanuc) if let Some(s) = it.signal_at(i64::from(*n)) => {
                 it.set_signal(s, &i.value)?
             }
             (InputTarget::Signal(s), Dialect::Sinumerik) => it.set_signal(*s, &i.value)?,

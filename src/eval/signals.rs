@@ -24,9 +24,10 @@ pub const WRITE: &str = "NC579";
 pub const RANGE: &str = "NC597";
 
 impl Interp<'_> {
-    /// `#n` is a FANUC interface signal on this control (a Haas numbers its inputs otherwise).
-    pub fn is_signal(&self, n: i64) -> bool {
-        !self.sem.haas && u32::try_from(n).ok().and_then(Signal::fanuc).is_some()
+    /// The FANUC interface signal `#n` is on this control (none on a Haas, which numbers
+    /// its inputs otherwise).
+    pub fn signal_at(&self, n: i64) -> Option<Signal> {
+        u32::try_from(n).ok().and_then(Signal::fanuc).filter(|_| !self.sem.haas)
     }
 
     fn range_fault(&self, s: Signal, x: f64, span: Span) -> Fault {
@@ -142,17 +143,11 @@ impl Interp<'_> {
         Ok(())
     }
 
-    pub fn read_fanuc_signal(&mut self, n: i64, span: Span) -> Result<Value, Fault> {
-        let s = u32::try_from(n)
-            .ok()
-            .and_then(Signal::fanuc)
-            .ok_or_else(|| Fault::error(Diagnostic::error(NOT_GIVEN, "")))?;
+    pub fn read_fanuc_signal(&mut self, s: Signal, span: Span) -> Result<Value, Fault> {
         self.read_signal(s, span)
     }
 
-    pub fn write_fanuc_signal(&mut self, n: i64, x: Option<f64>, span: Span) -> Result<(), Fault> {
-        let s =
-            u32::try_from(n).ok().and_then(Signal::fanuc).ok_or_else(|| Fault::error(Diagnostic::error(WRITE, "")))?;
+    pub fn write_fanuc_signal(&mut self, s: Signal, x: Option<f64>, span: Span) -> Result<(), Fault> {
         let Some(x) = x else {
             return Err(Fault::error(Diagnostic::error(RANGE, format!("{} cannot be vacant", s.named())).primary(
                 self.file(),
