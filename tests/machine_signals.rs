@@ -111,6 +111,11 @@ fn the_chuck_check_translates_both_ways_and_a_wrong_variable_is_caught() {
     std::fs::write(d.join("bad2.nc"), nc.replace("#1001 NE 1.", "#1005 NE 1.")).unwrap();
     let (ok, out) = nctrans(&d, &["check", "chuck.mpf", "bad2.nc"]);
     assert!(!ok && out.contains("NC578") && out.contains("#1005"), "{out}");
+    // `--set` in either dialect's names reaches both sides through the wiring.
+    for set in ["$A_DBB[17]=0", "#1001=0"] {
+        let (ok, out) = nctrans(&d, &["check", "chuck.mpf", "chuck.nc", "--set", set]);
+        assert!(ok && out.contains("equivalent (8 trace events agree)"), "{set}: {out}");
+    }
     // And back: the FANUC program to Siemens, the signals the wiring names.
     let (ok, out) = nctrans(&d, &["--to", "sinumerik", "chuck.nc", "-o", "back.mpf"]);
     assert!(ok && out.contains("equivalent"), "{out}");
