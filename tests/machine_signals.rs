@@ -130,7 +130,7 @@ fn without_a_wiring_the_refusal_names_the_key() {
     let d = dir("none");
     std::fs::write(d.join("a.mpf"), "IF $A_DBB[2]==1 GOTOF SKIP\nG0 X1\nSKIP:\nM30\n").unwrap();
     let (ok, out) = nctrans(&d, &["--to", "fanuc", "a.mpf", "-o", "a.nc"]);
-    assert!(!ok && out.contains("NC342") && out.contains("[signals] \"$A_DBB[2]\" = \"#1002\""), "{out}");
+    assert!(!ok && out.contains("NC342") && out.contains("[signals] \"$A_DBB[2]\" = \"#1000\""), "{out}");
     std::fs::write(d.join("b.nc"), "%\nO1000\nIF [#1004 EQ 1] GOTO 10\nG0 X1.\nN10 M30\n%\n").unwrap();
     let (ok, out) = nctrans(&d, &["--to", "sinumerik", "b.nc", "-o", "b.mpf"]);
     assert!(!ok && out.contains("NC365") && out.contains("[signals]") && out.contains("\"#1004\""), "{out}");

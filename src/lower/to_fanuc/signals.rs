@@ -46,9 +46,10 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program) {
         let Some(f) = map.fanuc_of(sig) else {
             let what = format!("system variable {}", sig.named());
             let hint = format!(
-                "give the FANUC interface signal the machine wires it to in nctrans.toml: {KEY} \"{}\" = \"#1002\" \
-                 (docs/translation.md, Machine signals)",
-                sig.key()
+                "give the FANUC interface signal the machine wires it to in nctrans.toml: {KEY} \"{}\" = \"{}\" \
+                 (inputs #1000..#1015, #1032; outputs #1100..#1115, #1132; docs/translation.md, Machine signals)",
+                sig.key(),
+                if sig.kind == crate::dialect::signals::Kind::Out { "#1100" } else { "#1000" }
             );
             errs.push(("NC342", span, what, hint));
             return;
