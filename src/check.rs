@@ -642,6 +642,11 @@ pub fn check_runners_excluding(db: &SourceDb, a: Runner, b: Runner, exclude: Exc
     excluded.modes = outcome_a.diags.iter().filter(|d| d.code == lookahead).count() as u64;
     // Interrupt routines that did not run (no switch given for them) were not compared either.
     excluded.interrupts = outcome_a.diags.iter().filter(|d| d.code == "NC566").count() as u64;
+    // Signal writes have no event either (`eval::signals`).
+    let write = eval::signals::WRITE;
+    excluded.signals =
+        outcome_a.diags.iter().filter(|d| d.code == write && d.severity == crate::diag::Severity::Warning).count()
+            as u64;
     drop(rx);
     let joined = match handle {
         Ok(h) => h.join().map_err(|_| ()),

@@ -86,6 +86,8 @@ pub struct Config {
     pub cutting_edge_default: Option<u32>,
     /// `[offsets]`: the FANUC H and D registers of Siemens cutting edges.
     pub offsets: crate::dialect::offsets::OffsetMap,
+    /// `[signals]`: the FANUC interface signal of each Siemens PLC datum or NCK input/output.
+    pub signals: crate::dialect::signals::SignalMap,
     /// CYCLE83 chip breaking (VARI 0): the retract after each infeed (`_VRT`'s default), mm.
     pub cycle83_retract: f64,
     /// CYCLE83 chip removal (VARI 1): the anticipation distance above the last depth, mm.
@@ -156,6 +158,7 @@ impl Default for Config {
             r_parameters: 300,
             cutting_edge_default: None,
             offsets: Default::default(),
+            signals: Default::default(),
             cycle83_retract: 1.0,
             cycle83_clearance: 0.6,
             write_file: crate::dialect::semantics::DEFAULT_WRITE_FILE.into(),
@@ -189,7 +192,7 @@ impl Default for Config {
 
 /// The keys, the flag each one stands for (`-` where the key has no flag yet: profile keys,
 /// output encoding and line ends, `verify.set` outside `run`/`check`), and what it takes.
-pub const KEYS: [(&str, &str, &str); 39] = [
+pub const KEYS: [(&str, &str, &str); 40] = [
     ("to", "--to", "\"fanuc\" or \"sinumerik\" (alias \"siemens\")"),
     ("fanuc.series", "-", "one of 0i, 0i-F, 0i-F Plus, 15i, 16i, 18i, 21i, 30i, 31i, 32i, haas, haas-ngc"),
     ("fanuc.increment", "-", "\"IS-A\", \"IS-B\" or \"IS-C\""),
@@ -209,6 +212,11 @@ pub const KEYS: [(&str, &str, &str); 39] = [
     ),
     ("sinumerik.cutting_edge_default", "-", "the edge a tool change without D selects, 0 to 9 (MD20270)"),
     ("offsets", "-", "a table of \"T.D\" = \"Hh,Dd\" (FANUC registers of a Siemens cutting edge)"),
+    (
+        "signals",
+        "-",
+        "a table of \"$A_DBB[2]\" = \"#1002\" (the FANUC interface signal of a Siemens PLC datum or NCK input/output)",
+    ),
     ("sinumerik.definitions", "-", "a list of definition file paths like [\"DEF/MGUD.DEF\"]"),
     ("variables.to_fanuc", "--var-map", "a list of rules like [\"R0-R99=#100\", \"COUNT=#150\"]"),
     ("variables.to_sinumerik", "--var-map", "a list of rules like [\"#500-#599=R100\"]"),
@@ -289,7 +297,7 @@ impl Config {
         let mut c = Config::default();
         for (k, v) in &table {
             match (k.as_str(), v) {
-                ("to" | "tools" | "offsets", _) => c.set(k, v)?,
+                ("to" | "tools" | "offsets" | "signals", _) => c.set(k, v)?,
                 (section, toml::Value::Table(t))
                     if KEYS.iter().any(|key| key.0.split_once('.').is_some_and(|(s, _)| s == section)) =>
                 {
@@ -356,6 +364,12 @@ impl Config {
                     let (edge, regs) = crate::dialect::offsets::OffsetMap::parse_entry(k, text)
                         .map_err(|e| format!("offsets.{k}: {e}"))?;
                     self.offsets.edges.insert(edge, regs);
+                }
+            }
+            "signals" => {
+                let m = crate::dialect::signals::SignalMap::table(key, v)?;
+                for (k, f) in m.pairs {
+                    self.signals.add(&k.key(), &f.key()).map_err(|e| format!("{key}: {e}"))?;
                 }
             }
             "fanuc.g73_return" => self.fanuc.g73_return = as_mm(key, v)?,
@@ -515,6 +529,7 @@ impl Config {
         s.offsets = self.offsets.clone();
         s.haas_ngc = self.fanuc.series == "haas-ngc";
         s.macro_interrupt = self.fanuc.macro_interrupt && !s.haas;
+        s.signals = std::sync::Arc::new(self.signals.clone());
         s
     }
 
@@ -526,6 +541,7 @@ impl Config {
         s.cutting_edge_default = self.cutting_edge_default;
         s.write_file = self.write_file.clone();
         s.fixed = std::sync::Arc::new(self.fixed.clone());
+        s.signals = std::sync::Arc::new(self.signals.clone());
         s
     }
 
@@ -624,6 +640,14 @@ fixed = {}           # e.g. { AXIS_HORI = "Z", AXIS_VER = "X" }
 # register H h and radius register D d. Unlisted: edge D1 of tool n is H n and D n (a tool
 # listed here has only the edges given); any other register is refused (NC472).
 # "6.2" = "H26,D46"
+
+[signals]
+# The machine's signal wiring: the FANUC custom macro interface signal the PMC connects to
+# each Siemens PLC datum or NCK input/output the programs read. Inputs #1000..#1015 (one bit,
+# read-only) and #1032 (all 16), outputs #1100..#1115 and #1132. A byte mapped to a bit is
+# translated only where the program compares it with 0 or 1 (NC597). Unlisted: refused.
+# "$A_DBB[2]" = "#1002"
+# "$A_IN[1]" = "#1000"
 
 [programs]
 # Sinumerik -> FANUC: a program named L<k> (the DIN name: L and digits, no leading zero) is

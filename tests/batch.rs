@@ -402,6 +402,9 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("system-variables.mpf", "NC321"),  // STOPRE, $AC_TIME
     ("corner-chf-rnd-plate.mpf", "NC572"), // CHF=: its FANUC leg depends on the corner's angle
     ("tap-row-spindle-turning.mpf", "NC487"), // CYCLE84 after M3: FANUC's M29 with the spindle turning is not settled
+    // $A_IN / $A_DBB: the signal wiring is the machine's ([signals]); translated with
+    // corpus/profiles/signals-door-vice.toml in tests/transpile_fanuc.rs.
+    ("signals-door-vice-check.mpf", "NC342"),
 ];
 
 const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
@@ -418,7 +421,10 @@ const FANUC_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     ("probe-bore-report-dprnt.nc", "NC556"), // DPRNT number fields of a probe report
     ("seed-o9050-brake-test.nc", "NC355"), // G10 L50
     ("seed-o9050-system-variable-examples.nc", "NC408"), // waits for a signal: step limit
-    ("system-variables.nc", "NC549"),     // #4003 before the program selects G90/G91
+    // #1000 / #1001: the signal wiring is the machine's ([signals]); translated with
+    // corpus/profiles/signals-door-vice.toml in tests/transpile_sinumerik.rs.
+    ("signals-door-vice-check.nc", "NC365"),
+    ("system-variables.nc", "NC549"),        // #4003 before the program selects G90/G91
     ("tap-row-spindle-turning.nc", "NC484"), // M29 after M3: FANUC's M29 with the spindle turning is not settled
 ];
 

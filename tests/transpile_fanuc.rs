@@ -350,6 +350,16 @@ fn factory_d1() -> nctrans::dialect::semantics::Semantics {
     nctrans::config::Config::from_toml(&text).expect("the factory profile reads").sinumerik_semantics()
 }
 
+/// Corpus programs reading machine signals, translated with the wiring of
+/// `corpus/profiles/signals-door-vice.toml` (`[signals]`), which their reads need.
+const SIGNALS: &[&str] = &["signals-door-vice-check.mpf"];
+
+fn signal_wiring() -> std::sync::Arc<nctrans::dialect::signals::SignalMap> {
+    let text = std::fs::read_to_string(root().join("corpus/profiles/signals-door-vice.toml")).unwrap_or_default();
+    let c = nctrans::config::Config::from_toml(&text).expect("the signal profile reads");
+    std::sync::Arc::new(c.signals)
+}
+
 #[test]
 fn corpus_translates_and_verifies() {
     let dir = root().join("corpus/in/sinumerik");
@@ -381,6 +391,9 @@ fn corpus_translates_and_verifies() {
         };
         if FACTORY_D1.contains(&name.as_str()) {
             opts.source = factory_d1();
+        }
+        if SIGNALS.contains(&name.as_str()) {
+            opts.source.signals = signal_wiring();
         }
         let t = translate::to_fanuc::to_fanuc(&parsed.unit, &[], &opts);
         let refused = REFUSED.iter().find(|(f, _)| *f == name);

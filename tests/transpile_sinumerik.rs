@@ -513,6 +513,12 @@ const MACRO_INTERRUPT: &[&str] = &["macro-interrupt.nc"];
 fn corpus_profiles(rel: &str) -> nctrans::translate::to_sinumerik::verify::Profiles {
     let mut p = nctrans::translate::to_sinumerik::verify::Profiles::default();
     p.fanuc.macro_interrupt = MACRO_INTERRUPT.iter().any(|n| rel.ends_with(n));
+    // Machine signals: the wiring of `corpus/profiles/signals-door-vice.toml` (`[signals]`).
+    if rel.ends_with("signals-door-vice-check.nc") {
+        let text = std::fs::read_to_string(root().join("corpus/profiles/signals-door-vice.toml")).unwrap_or_default();
+        let c = nctrans::config::Config::from_toml(&text).expect("the signal profile reads");
+        p.fanuc.signals = std::sync::Arc::new(c.signals);
+    }
     p
 }
 

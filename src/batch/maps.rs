@@ -32,6 +32,9 @@ pub struct BatchMaps {
     /// The H ↔ T/D offset map the translations used (`[offsets]` of nctrans.toml or
     /// `--offset-map`), so a rerun with the map translates compensation alike.
     pub offsets: crate::dialect::offsets::OffsetMap,
+    /// The machine's signal wiring the translations used (`[signals]` of nctrans.toml),
+    /// so a rerun with the map reads the same signals; written only when there is one.
+    pub signals: crate::dialect::signals::SignalMap,
 }
 
 /// What one file's translation used; merged into the written map.
@@ -129,6 +132,7 @@ pub fn allocate(lib: &Library, pinned: &BatchMaps, target: Dialect, stems: &[Str
         var_rules: pinned.var_rules.clone(),
         variables: BTreeMap::new(),
         offsets: pinned.offsets.clone(),
+        signals: pinned.signals.clone(),
     };
     let mut problems = Vec::new();
     match target {
@@ -279,6 +283,12 @@ pub fn to_toml(maps: &BatchMaps, target: Dialect) -> String {
     for ((t, e), (h, d)) in &maps.offsets.edges {
         let _ = writeln!(s, "\"{t}.{e}\" = \"H{h},D{d}\"");
     }
+    if !maps.signals.is_empty() {
+        s.push_str("\n# The machine's signal wiring: Siemens signal = FANUC interface signal\n[signals]\n");
+        for (k, v) in &maps.signals.pairs {
+            let _ = writeln!(s, "{} = {}", quote(&k.key()), quote(&v.key()));
+        }
+    }
     s.push_str("\n[variables]\n# --var-map rules in force, in order\nrules = [");
     let rules: Vec<String> = maps.var_rules.iter().map(|r| quote(r)).collect();
     s.push_str(&rules.join(", "));
@@ -316,6 +326,7 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
                     maps.offsets.edges.insert(edge, regs);
                 }
             }
+            "signals" => maps.signals = crate::dialect::signals::SignalMap::table("signals", value)?,
             "variables" => {
                 let t = value.as_table().ok_or("variables: expected a table with 'rules' and 'used'")?;
                 for (k, v) in t {
@@ -336,7 +347,9 @@ pub fn from_toml(text: &str) -> Result<(BatchMaps, Option<Dialect>), String> {
                 }
             }
             other => {
-                return Err(format!("{other}: unknown key (allowed: target, programs, tools, offsets, variables)"))
+                return Err(format!(
+                    "{other}: unknown key (allowed: target, programs, tools, offsets, signals, variables)"
+                ))
             }
         }
     }
@@ -357,6 +370,7 @@ impl BatchMaps {
             var_rules: rules.clone(),
             variables: BTreeMap::new(),
             offsets: c.offsets.clone(),
+            signals: c.signals.clone(),
         }
     }
 }
@@ -434,6 +448,7 @@ mod tests {
         m.var_rules = vec!["R0-R99=#100".into()];
         m.variables.insert("R1".into(), "#101".into());
         m.offsets.edges.insert((6, 2), (26, 46));
+        m.signals.add("$A_DBB[17]", "#1001").unwrap();
         let text = to_toml(&m, Dialect::Fanuc);
         let (back, target) = from_toml(&text).unwrap();
         assert_eq!(target, Some(Dialect::Fanuc));

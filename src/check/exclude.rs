@@ -23,6 +23,10 @@ pub struct Excluded {
     /// enabled (warning NC566, once per assigning instruction): they did not run, so
     /// what they do was not compared.
     pub interrupts: u64,
+    /// Machine signal writes of the first run (`$A_OUT[n]=…`, `#1100=…`: warning NC579, once
+    /// per place): the trace has no event for signals, so the two programs' writes were not
+    /// compared.
+    pub signals: u64,
     /// The set-up values the runs read (`[variables] fixed`: `AXIS_HORI = "Z"`, from the
     /// runs' NC543 notes): compared, but true only on a machine set up so. Not "left out",
     /// so not in [`Excluded::describe`]; every verdict line ([`Excluded::equivalent`]) names them.
@@ -31,13 +35,14 @@ pub struct Excluded {
 
 impl Excluded {
     pub fn is_empty(&self) -> bool {
-        self.messages == 0 && self.modes == 0 && self.interrupts == 0
+        self.messages == 0 && self.modes == 0 && self.interrupts == 0 && self.signals == 0
     }
 
     pub fn add(&mut self, other: Excluded) {
         self.messages += other.messages;
         self.modes += other.modes;
         self.interrupts += other.interrupts;
+        self.signals += other.signals;
         self.assumed = crate::dialect::fixed::joined(self.assumed.take(), other.assumed);
     }
 
@@ -59,6 +64,11 @@ impl Excluded {
             0 => {}
             1 => parts.push("1 interrupt routine not compared (its input never switched)".to_string()),
             n => parts.push(format!("{n} interrupt routines not compared (their inputs never switched)")),
+        }
+        match self.signals {
+            0 => {}
+            1 => parts.push("1 signal write not compared".to_string()),
+            n => parts.push(format!("{n} signal writes not compared")),
         }
         (!parts.is_empty()).then(|| parts.join(", "))
     }

@@ -93,6 +93,11 @@ fn run_batch(input: &Path, t: &TranslateArgs, b: &BatchArgs, m: &ArgMatches) -> 
         pinned.offsets = from_config.offsets;
     }
     c.offsets = pinned.offsets.clone();
+    // The signal wiring likewise: the configuration's, else the earlier run's.
+    if !from_config.signals.is_empty() {
+        pinned.signals = from_config.signals;
+    }
+    c.signals = pinned.signals.clone();
     let settings = match jobs::JobSettings::from_config(&c) {
         Ok(s) => s,
         Err(e) => return fail(e),

@@ -8,6 +8,7 @@
 //! (`gud`), and the verdict says so.
 
 mod gud;
+mod signals;
 
 use super::args::{load_for_run, EvalOpts, InputOpts};
 use super::stream::{self, Source};
@@ -41,6 +42,8 @@ pub struct Names {
     r_vars: Vec<u32>,
     /// The map's `--var-map` rules (where global user data went).
     rules: Vec<String>,
+    /// The map's signal wiring (`[signals]` of nctrans-map.toml).
+    signals: nctrans::dialect::signals::SignalMap,
 }
 
 impl MapOpts {
@@ -57,6 +60,7 @@ impl MapOpts {
         }
         let mut r_vars = Vec::new();
         let mut rules = Vec::new();
+        let mut signals = nctrans::dialect::signals::SignalMap::default();
         if let Some(p) = &self.map {
             let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
             let (maps, target) = nctrans::batch::maps::from_toml(&text).map_err(|e| format!("{}: {e}", p.display()))?;
@@ -67,6 +71,7 @@ impl MapOpts {
                 ));
             }
             tools.extend(maps.tools);
+            signals = maps.signals;
             rules = maps.var_rules;
             for (source, target) in &maps.variables {
                 let is_r = source.strip_prefix('R').is_some_and(|n| n.parse::<u32>().is_ok());
@@ -80,7 +85,7 @@ impl MapOpts {
             let n: u32 = n.trim().parse().map_err(|_| format!("--tool-map '{m}': expected a T number after ="))?;
             tools.insert(name.trim().to_string(), n);
         }
-        Ok(Some(Names { tools, r_vars, rules }))
+        Ok(Some(Names { tools, r_vars, rules, signals }))
     }
 }
 
@@ -146,6 +151,7 @@ pub fn check(
             },
         });
     }
+    wire_signal_inputs(&mut sides, &signals::project_wiring());
     let seeded = match &mut sides[..] {
         [x, y] => match seed(&db, [x, y], &[]) {
             Ok(s) => s,
@@ -186,6 +192,17 @@ pub fn check(
 enum Read<'a> {
     Whole { unit: Unit, run: nctrans::eval::RunOptions },
     Streamed { id: usize, ix: Arc<nctrans::stream::Index>, run: nctrans::eval::RunOptions, src: Source<'a> },
+}
+
+/// A Siemens side against a FANUC one: each side's signal inputs in its own names.
+fn wire_signal_inputs(sides: &mut [Read], wiring: &nctrans::dialect::signals::SignalMap) {
+    let dialects: Vec<Dialect> = sides.iter().map(Read::dialect).collect();
+    if wiring.is_empty() || dialects.windows(2).all(|w| w[0] == w[1]) {
+        return;
+    }
+    for (side, d) in sides.iter_mut().zip(dialects) {
+        signals::wire(&mut side.run().inputs, d, wiring);
+    }
 }
 
 impl Read<'_> {
@@ -371,6 +388,11 @@ fn check_as_translation(
         }
     }
     let mut read: Vec<Read> = sides.into_iter().map(|(unit, run)| Read::Whole { unit, run }).collect();
+    let mut wiring = signals::project_wiring();
+    for (k, v) in &names.signals.pairs {
+        let _ = wiring.add(&k.key(), &v.key());
+    }
+    wire_signal_inputs(&mut read, &wiring);
     let seeded = match &mut read[..] {
         [x, y] => match seed(&db, [x, y], &names.rules) {
             Ok(s) => s,

@@ -24,6 +24,7 @@ pub mod plain;
 pub mod quick;
 pub mod runs;
 pub mod semantics;
+pub mod signals;
 pub mod sinumerik;
 pub mod spec;
 

@@ -93,6 +93,10 @@ pub struct Semantics {
     /// refuses a write to one (NC544); the translation to FANUC folds `AXNAME(AXIS_HORI)`
     /// to that axis (`lower::to_fanuc::axis_vars`). Empty: nothing is assumed.
     pub fixed: std::sync::Arc<std::collections::BTreeMap<String, String>>,
+    /// The machine's signal wiring (`[signals]`): which FANUC interface signal each Siemens
+    /// PLC datum or NCK input/output is (`dialect::signals`). Empty: none is known, and a
+    /// translation refuses signals naming the key.
+    pub signals: std::sync::Arc<crate::dialect::signals::SignalMap>,
 }
 
 /// The default of [`Semantics::write_file`].
@@ -148,6 +152,7 @@ impl Semantics {
                 tools: Default::default(),
                 write_file: DEFAULT_WRITE_FILE.into(),
                 fixed: Default::default(),
+                signals: Default::default(),
             },
             Dialect::Sinumerik => Semantics {
                 has_vacant: false,
@@ -174,6 +179,7 @@ impl Semantics {
                 tools: Default::default(),
                 write_file: DEFAULT_WRITE_FILE.into(),
                 fixed: Default::default(),
+                signals: Default::default(),
             },
         }
     }

@@ -66,6 +66,7 @@ impl Interp<'_> {
             }
             n if self.is_haas_data(n) => self.read_haas_data(n, span),
             n if self.is_tool_data(n) => self.read_fanuc_tool_data(n, span),
+            n if let Some(s) = self.signal_at(n) => self.read_fanuc_signal(s, span),
             n if n >= 1000 => self.fanuc_sys_read(n, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} does not exist"), span)),
         }
@@ -104,6 +105,7 @@ impl Interp<'_> {
             }
             n if self.is_haas_data(n) => self.write_haas_data(n, span),
             n if self.is_tool_data(n) => self.write_fanuc_tool_data(n, x, span),
+            n if let Some(s) = self.signal_at(n) => self.write_fanuc_signal(s, x, span),
             n if n >= 1000 => self.fanuc_sys_write(n, x, span),
             _ => Err(Fault::alarm(self.alarms.bad_index, format!("variable #{n} cannot be written"), span)),
         }
@@ -236,6 +238,12 @@ impl Interp<'_> {
                         .num()
                         .ok_or_else(|| Fault::alarm(self.alarms.domain, format!("${name} needs a number"), v.span))?;
                     self.write_siemens_tool_data(n, indices, x, v.span)
+                }
+                None if crate::dialect::signals::is_siemens_signal(name) => {
+                    let x = val
+                        .num()
+                        .ok_or_else(|| Fault::alarm(self.alarms.domain, format!("${name} needs a number"), v.span))?;
+                    self.write_siemens_signal(name, indices, x, v.span)
                 }
                 None => self.sie_sys_write(name, indices, val, v.span),
             },
@@ -398,6 +406,9 @@ impl Env for Interp<'_> {
             }
             VarKind::System { name, indices } => match super::tool_data::tc_dp(name) {
                 Some(n) => self.read_siemens_tool_data(n, indices, var.span),
+                None if crate::dialect::signals::is_siemens_signal(name) => {
+                    self.read_siemens_signal(name, indices, var.span)
+                }
                 None => self.sie_sys_read(name, indices, var.span),
             },
         }

@@ -15,6 +15,8 @@ pub enum InputTarget {
     /// Siemens cutting edge data `$TC_DPn[t,d]` (the machine's tool offsets), as the key
     /// `$TC_DP3[5,1]` (`eval::tool_data`).
     ToolData(String),
+    /// A Siemens machine signal `$A_DBB[2]`, `$A_IN[1]` … (`eval::signals`).
+    Signal(crate::dialect::signals::Signal),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -40,6 +42,8 @@ pub fn parse_input(s: &str) -> Result<Input, String> {
             d.trim().parse().map_err(|_| bad())?,
         );
         InputTarget::ToolData(format!("$TC_DP{n}[{t},{d}]"))
+    } else if up.starts_with("$A_") {
+        InputTarget::Signal(crate::dialect::signals::Signal::parse(lhs)?)
     } else if let Some(n) = up.strip_prefix('#') {
         InputTarget::Hash(n.parse().map_err(|_| format!("'{lhs}': bad variable number"))?)
     } else if up.len() > 1 && up.starts_with('R') && up[1..].bytes().all(|b| b.is_ascii_digit()) {
@@ -100,6 +104,7 @@ mod tests {
         assert_eq!(parse_input("#1=#0").unwrap().value, Value::Vacant);
         assert!(parse_input("R1").is_err());
         assert!(parse_input("R1=x").is_err());
+        assert!(matches!(parse_input("$A_DBB[2]=1").unwrap().target, InputTarget::Signal(_)));
     }
 
     #[test]

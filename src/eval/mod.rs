@@ -41,6 +41,7 @@ pub mod paged;
 pub mod print;
 pub mod probe;
 pub mod refuse;
+pub mod signals;
 mod strings;
 pub mod sysvars;
 pub mod tool_data;
@@ -261,6 +262,10 @@ fn apply_inputs(it: &mut Interp, dialect: Dialect, main: usize) -> Result<(), Fa
                 it.set_tool_data(format!("#{n}"), &i.value)?
             }
             (InputTarget::ToolData(key), Dialect::Sinumerik) => it.set_tool_data(key.clone(), &i.value)?,
+            (InputTarget::Hash(n), Dialect::Fanuc) if let Some(s) = it.signal_at(i64::from(*n)) => {
+                it.set_signal(s, &i.value)?
+            }
+            (InputTarget::Signal(s), Dialect::Sinumerik) => it.set_signal(*s, &i.value)?,
             (InputTarget::Hash(n), Dialect::Fanuc) => it.write_fanuc(i64::from(*n), i.value.clone(), span)?,
             (InputTarget::R(n), Dialect::Sinumerik) => {
                 let r = crate::ir::VarRef { kind: crate::ir::VarKind::R(*n), span };

@@ -18,6 +18,7 @@ pub mod known;
 pub mod landings;
 pub mod own_header;
 pub mod restate;
+pub mod signals;
 pub mod to_fanuc;
 pub mod to_sinumerik;
 

@@ -67,6 +67,7 @@ static NO_FANUC: to_fanuc::SymbolMap = to_fanuc::SymbolMap {
     offsets: crate::dialect::offsets::OffsetMap { edges: BTreeMap::new() },
     fixed: BTreeMap::new(),
     def_inputs: std::collections::BTreeSet::new(),
+    signals: crate::dialect::signals::SignalMap { pairs: BTreeMap::new() },
 };
 static NO_SINUMERIK: to_sinumerik::SymbolMap = to_sinumerik::SymbolMap { vars: Vec::new(), programs: Vec::new() };
 

@@ -24,6 +24,7 @@ mod streamed;
 mod to_fanuc;
 mod to_fanuc_axes;
 mod to_fanuc_repeat;
+mod to_fanuc_signals;
 
 use std::path::PathBuf;
 

@@ -259,6 +259,11 @@ fn counter_value(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>, grid: 
 fn integral(e: &Expr, counters: &BTreeSet<Key>, set: &BTreeSet<Key>, types: &Types, grid: Grid) -> bool {
     match &e.kind {
         ExprKind::Num(n) => grid.value(n.value),
+        // A machine signal other than a PLC real holds whole numbers below 2^31 (the run
+        // refuses any other value: `eval::signals`).
+        ExprKind::Var(v) if matches!(&v.kind, VarKind::System { name, .. } if name != "A_DBR" && crate::dialect::signals::is_siemens_signal(name)) => {
+            grid.on(1.0) && grid.value(2_147_483_648.0)
+        }
         ExprKind::Var(v) => match key(v) {
             Some(k) => {
                 // INT is 32 bits: below 2^31, under 1e12·g for every grid tried.

@@ -42,6 +42,7 @@ pub mod probe_length;
 pub mod prog_vars;
 pub mod repeat_sections;
 pub mod rotation;
+pub mod signals;
 pub mod string_calls;
 pub mod tool_data;
 pub mod tool_reads;
@@ -192,6 +193,8 @@ pub struct Ctx {
     /// folded into axis letters ([`axis_vars`]): what its verdict says it assumed.
     pub fixed: std::sync::Arc<BTreeMap<String, String>>,
     pub fixed_used: BTreeMap<String, String>,
+    /// The machine's signal wiring (`Semantics::signals`, [`signals`]).
+    pub signals: std::sync::Arc<crate::dialect::signals::SignalMap>,
     /// Spans of the axis words and AXIS DEFs [`axis_vars`] refused, saying why: the general
     /// refusals (NC310, NC635) are not repeated for them.
     pub axis_reported: std::collections::BTreeSet<Span>,
@@ -239,6 +242,7 @@ impl Ctx {
             prog_vars: BTreeMap::new(),
             prog_var_why: BTreeMap::new(),
             fixed: Default::default(),
+            signals: Default::default(),
             fixed_used: BTreeMap::new(),
             axis_reported: Default::default(),
             stand_in_runs: Vec::new(),
@@ -314,6 +318,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     axis_vars::run(ctx, prog);
     feed_group::run(ctx, prog, info.is_sub);
     tool_data::run(ctx, prog);
+    signals::run(ctx, prog);
     tool_reads::run(prog);
     constants::run(prog);
     modal_reads::run(prog);

@@ -57,6 +57,7 @@ pub mod print;
 pub mod probe;
 pub mod probe_length;
 pub mod rotation;
+pub mod signals;
 pub mod structures;
 pub mod tapping;
 pub mod tool_data;
@@ -468,6 +469,7 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
 /// program with the plan made once.
 pub fn lower_body(ctx: &mut Ctx, mut body: Vec<Stmt>) -> Vec<Stmt> {
     body = tool_data::lower(ctx, body);
+    body = signals::lower(ctx, body);
     body = haas_if::refuse(ctx, body);
     let (b, local_subs) = m97::prepare(ctx, body);
     body = b;

@@ -39,7 +39,8 @@ pub(super) fn map_set_lines(body: &mut Vec<Stmt>, map: &SymbolMap) {
 /// into the variable the translation put it in;
 /// `$TC_DP3/6/12/15[t,d]=…` into the tool compensation memory C register the translation
 /// reads for that edge (`#11000+H`, `#10000+H`, `#13000+D`, `#12000+D` through the offset map,
-/// as `lower::to_fanuc::tool_data`). Others (no counterpart) stay on the Siemens side only.
+/// as `lower::to_fanuc::tool_data`); a machine signal `$A_DBB[2]=…` into the FANUC interface
+/// signal `[signals]` wires it to. Others (no counterpart) stay on the Siemens side only.
 pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
     use crate::eval::tool_data::{fanuc_var, siemens_field, tc_dp};
     let mut out = Vec::new();
@@ -48,6 +49,11 @@ pub fn fanuc_set_inputs(set: &[String], map: &SymbolMap) -> Vec<String> {
         let (lhs, rhs) = (lhs.trim(), rhs.trim());
         if lhs.starts_with('#') {
             out.push(s.clone());
+        } else if let Ok(sig) = crate::dialect::signals::Signal::parse(lhs) {
+            // The variable the wiring gives it; a value it cannot hold is refused by the run.
+            if let Some(f) = map.signals.fanuc_of(sig) {
+                out.push(format!("{}={rhs}", f.key()));
+            }
         } else if let Some(sys) = lhs.strip_prefix('$') {
             let Some((name, idx)) = sys.split_once('[') else { continue };
             let Some(field) = tc_dp(&name.to_ascii_uppercase()).and_then(siemens_field) else { continue };

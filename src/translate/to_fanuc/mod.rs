@@ -133,6 +133,9 @@ pub struct SymbolMap {
     /// start value in `run`, but not in the FANUC program, so a proof leaves it out
     /// ([`proof_sets`]).
     pub def_inputs: std::collections::BTreeSet<String>,
+    /// The signal wiring the translation used (`[signals]`), so that a check's `$A_DBB[2]=…`
+    /// inputs reach the FANUC variable the output reads.
+    pub signals: crate::dialect::signals::SignalMap,
 }
 
 impl SymbolMap {
@@ -345,6 +348,7 @@ fn to_fanuc_strict(main: &Unit, subs: &[&Unit], opts: &TranslateOptions, runs: &
         offsets: opts.target.offsets.clone(),
         fixed: fixed_used,
         def_inputs: main.programs.first().map(start_values::def_names).unwrap_or_default(),
+        signals: (*opts.source.signals).clone(),
         ..SymbolMap::default()
     };
     let mut programs = Vec::new();
@@ -425,6 +429,7 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.globals = opts.source.globals.clone();
     ctx.master_spindle = opts.source.master_spindle;
     ctx.fixed = opts.source.fixed.clone();
+    ctx.signals = opts.source.signals.clone();
     ctx
 }
 

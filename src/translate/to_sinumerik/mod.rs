@@ -146,6 +146,16 @@ fn map_inputs(rest: &str, plan: &ProgPlan, lowered: &passes::Lowered, source: &c
                     }
                 }
             }
+            // An interface signal: the Siemens signal the wiring gives it.
+            n if !source.haas && crate::dialect::signals::Signal::fanuc(n).is_some() => {
+                match crate::dialect::signals::Signal::fanuc(n).and_then(|f| source.signals.siemens_of(f)) {
+                    Some(s) => (s.key(), None),
+                    None => {
+                        parts.push(part.to_string());
+                        continue;
+                    }
+                }
+            }
             _ if crate::dialect::fanuc::haas_vars::maybe_common(n) => match lowered.commons.get(&n) {
                 Some(r) => (format!("R{r}"), lowered.common_flags.get(&n).map(|f| format!("R{f}"))),
                 None => continue, // not used by the program: nothing to set
