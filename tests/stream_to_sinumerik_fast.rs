@@ -135,7 +135,9 @@ fn block(r: &mut Rng, arc: &mut bool) -> String {
 }
 
 fn program(r: &mut Rng, blocks: usize, eol: &str) -> String {
-    let mut t = format!("%{eol}O{} (GENERATED){eol}", 1 + r.below(9999));
+    // Every axis outside X, Y, Z in the first block: the whole translation writes one
+    // FGROUP for all of them, so a stream whose first chunk lacks one reads whole.
+    let mut t = format!("%{eol}O{} (GENERATED){eol}G00 A0 B0 C0 U0 V0 W0{eol}", 1 + r.below(9999));
     let mut arc = false;
     for _ in 0..blocks {
         t.push_str(&block(r, &mut arc));
@@ -277,7 +279,7 @@ fn literal_digits_take_the_fast_path_to_the_whole_translation() {
     let letters = ["X", "Y", "Z", "I", "J", "K", "A", "B", "C", "F", "U", "W", "X "];
     let mut streamed = 0;
     for case in 0..16 {
-        let mut t = String::from("%\nO1234 (LITERALS)\n");
+        let mut t = String::from("%\nO1234 (LITERALS)\nG00 A0 B0 C0 U0 V0 W0\n");
         let mut arc = false;
         for _ in 0..1500 {
             let mut b = String::new();
@@ -364,4 +366,23 @@ fn programs_across_read_buffer_ends_take_the_fast_path_to_the_whole_translation(
         }
     }
     assert!(streamed >= 3, "only {streamed} of 5 streamed");
+}
+
+#[test]
+fn an_axis_the_first_chunk_does_not_name_reads_whole() {
+    // The whole translation's one FGROUP names A and B; the stream wrote its start from
+    // the first chunk (A only), so it declines and the caller translates whole.
+    let dir = scratch("late-axis");
+    let path = dir.join("late.nc");
+    std::fs::write(&path, "%\nO1\nG00 X0 Y0 A0\nG01 X10. A90. F100.\nX20.\nX30.\nG01 X40. B45.\nM30\n%\n")
+        .expect("write");
+    let o = Options::default();
+    let (w, le, tr) = whole(&path, &o);
+    assert!(!tr.has_errors(), "{:?}", tr.diags);
+    assert!(String::from_utf8_lossy(&w).contains("FGROUP(X,Y,Z,A,B)"), "{}", String::from_utf8_lossy(&w));
+    let mut out = Vec::new();
+    match sts::to_sinumerik_first(&path, &o, le, &mut out, None, 1) {
+        Err(nctrans::stream::Fallback::NotStraight(why)) => assert!(why.contains("FGROUP"), "{why}"),
+        other => panic!("streamed: {:?}", other.map(|_| ())),
+    }
 }

@@ -254,7 +254,13 @@ fn cam(r: &mut Rng, fanuc: bool, blocks: usize) -> String {
 /// [`cam`]; `held`: as 2D passes are, X and Y nearly every block and Z and F seldom
 /// (the writer copies a value repeated from the line before instead of formatting it).
 fn cam_with(r: &mut Rng, fanuc: bool, blocks: usize, held: bool) -> String {
-    let mut t = String::from(if fanuc { "%\nO1000\nG21 G17 G90 G94 F500.\n" } else { "G71 G17 G90 G94 F500\n" });
+    // Siemens: every axis in the feed group, so that a block moving U, V or W alone has a
+    // feed (under the default group it is NC662), as FANUC's F runs along every axis.
+    let mut t = String::from(if fanuc {
+        "%\nO1000\nG21 G17 G90 G94 F500.\n"
+    } else {
+        "G71 G17 G90 G94 F500\nFGROUP(X,Y,Z,A,B,C,U,V,W)\n"
+    });
     let mut n = 0;
     for _ in 0..blocks {
         if r.chance(20) {

@@ -12,6 +12,19 @@ pub fn is_test_input(text: &str) -> bool {
     text.trim().get(..12).is_some_and(|h| h.eq_ignore_ascii_case("nctrans: set"))
 }
 
+/// Whether `body` starts with the header of a Sinumerik → FANUC translation
+/// (`(NCTRANS: SINUMERIK … TO FANUC MACRO B)`): its `O` line's title is then the name
+/// nctrans gave it, not the programmer's, and a translation back leaves it out.
+pub fn translated_by_nctrans(body: &[Stmt]) -> bool {
+    body.iter()
+        .map_while(|s| match &s.kind {
+            StmtKind::Block(b) if b.items.is_empty() => Some(&b.meta.comments),
+            _ => None,
+        })
+        .flatten()
+        .any(|c| c.text.trim().starts_with("NCTRANS: SINUMERIK "))
+}
+
 /// Whether `text` is a header line nctrans wrote (`after_map`: a `FANUC variable map:`
 /// line came before it in the same header, so `#500 = R0` lines are its entries).
 fn is_own(text: &str, after_map: bool) -> bool {

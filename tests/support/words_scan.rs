@@ -133,7 +133,9 @@ fn plain_lines_two_readers(path: &Path, dialect: Dialect) -> Option<Vec<Got>> {
             let mut w = sinumerik::Reader::resume(0, &opts, &r.checkpoint());
             for raw in nctrans::read::blocks(text) {
                 words.clear();
-                if w.plain_words(&raw, false, push(&mut words)).is_some() {
+                // A test input line goes as a statement (`stream::scan_words`).
+                let input = raw.text.split_once(';').is_some_and(|(_, c)| nctrans::lower::own_header::is_test_input(c));
+                if !input && w.plain_words(&raw, false, push(&mut words)).is_some() {
                     if let Some((span, number)) = r.scan_plain(&raw, false) {
                         out.push(got(0, &raw, span, number.map(|n| n.value), &words));
                         continue;

@@ -324,9 +324,31 @@ struct ToSinumerik<'a> {
     program: String,
     fanuc_number: Option<u32>,
     symbols: SymbolMap,
+    /// The axes outside X, Y, Z (bits of `ABCUVW`) the first chunk names: the whole
+    /// translation writes one `FGROUP(X,Y,Z,…)` for every such axis of the program
+    /// (`lower::to_sinumerik::feed_group`), so a later block naming another reads whole.
+    extra_axes: u8,
+}
+
+/// The bit of an axis letter outside X, Y, Z (`ABCUVW`), 0 for any other letter.
+fn extra_axis(letter: u8) -> u8 {
+    b"ABCUVW".iter().position(|&c| c == letter).map_or(0, |i| 1 << i)
 }
 
 impl ToSinumerik<'_> {
+    /// Notes the extra axes of a block's letters: the first chunk's, or a stop where a later
+    /// block names one the first chunk did not (the FGROUP at the start would lack it).
+    fn axes(&mut self, letters: impl Iterator<Item = u8>) {
+        let bits = letters.fold(0, |b, l| b | extra_axis(l));
+        if self.first {
+            self.extra_axes |= bits;
+        } else if bits & !self.extra_axes != 0 && self.stop.is_none() {
+            self.stop = Some(Fallback::NotStraight(
+                "an axis after the first blocks that the feed group written at the start (FGROUP) must name".into(),
+            ));
+        }
+    }
+
     fn program(&self, body: Vec<Stmt>) -> Program {
         Program {
             name: self.name.clone(),
@@ -503,6 +525,7 @@ impl ToSinumerik<'_> {
         if self.first {
             return false;
         }
+        self.axes(words.iter().map(|w| w.letter));
         let (arc, inch, buf_real) = (self.arc, self.inch, self.buf_real);
         // `follow` of the block the words are.
         for w in words.iter().filter(|w| w.letter == b'G') {
@@ -521,6 +544,10 @@ impl ToSinumerik<'_> {
         let (arc_before, inch_before) = (self.arc, self.inch);
         if let StmtKind::Block(b) = &s.kind {
             self.follow(b);
+            self.axes(b.items.iter().filter_map(|it| match &it.kind {
+                ItemKind::Word(Word { addr: Addr::Letter(l), .. }) => Some(*l),
+                _ => None,
+            }));
         }
         if !self.first {
             if let StmtKind::Block(b) = &s.kind {
@@ -562,6 +589,9 @@ impl Target for ToSinumerik<'_> {
     }
 
     fn plain(&mut self, meta: &BlockMeta, words: &[PlainWord], line: &RawBlock<'_>) -> bool {
+        if !self.first {
+            self.axes(words.iter().map(|w| w.letter));
+        }
         // The usual CAM line, when nothing waits for the passes (as `ToSinumerik::fast` with
         // an empty buffer): written at once (`fast::plain_words`, the same bytes as
         // `push_plain`; its G0..G3 are straight).
@@ -631,6 +661,7 @@ pub fn to_sinumerik_first(
         program: String::new(),
         fanuc_number: None,
         symbols: SymbolMap::default(),
+        extra_axes: 0,
     };
     if bom {
         st.out.buf.extend_from_slice(b"\xEF\xBB\xBF");

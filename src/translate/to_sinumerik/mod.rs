@@ -243,6 +243,10 @@ fn translate_strict(units: &[&Unit], opts: &Options, line_ending: LineEnding) ->
         .filter(|(_, p)| passes_header::has_own_header(p))
         .map(|(_, p)| {
             let mut p = (*p).clone();
+            // Its `O` line's title is the name nctrans gave it, not a programmer's.
+            if passes_header::translated_by_nctrans(&p.body) {
+                p.head.iter_mut().for_each(|h| h.comments.clear());
+            }
             passes_header::drop_own_header(&mut p);
             p
         })
