@@ -49,7 +49,8 @@ pub struct OutFile {
 /// How the source's names appear in the output: the target's symbol map.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Symbols {
-    Fanuc(to_fanuc::SymbolMap),
+    /// Boxed: the FANUC map is many times the Sinumerik one.
+    Fanuc(Box<to_fanuc::SymbolMap>),
     Sinumerik(to_sinumerik::SymbolMap),
 }
 
@@ -148,7 +149,7 @@ impl From<to_fanuc::Output> for Translation {
         };
         Translation {
             files: vec![file],
-            symbols: Symbols::Fanuc(o.symbol_map),
+            symbols: Symbols::Fanuc(Box::new(o.symbol_map)),
             diags: o.diags,
             unsupported: o.unsupported,
         }

@@ -40,53 +40,56 @@ pub fn translate_between(inputs: &[&Unit], from: &dyn Spec, to: &dyn Spec, opts:
             .hint("read every input with the source dialect's description")]);
     }
     // The units in the target's model, the profile they were read with, their symbol map.
-    let (units, source, symbols, mut diags): (Vec<Unit>, Semantics, Symbols, Vec<Diagnostic>) = if from.runs_as()
-        == model
-    {
-        (inputs.iter().map(|u| (*u).clone()).collect(), from.semantics(), no_symbols(model), vec![])
-    } else if to.builtin() == Some(model) {
-        // A built-in target's own translation writes the files; it reads the source
-        // with the source's profile.
-        let mut o = opts.clone();
-        match model {
-            Dialect::Sinumerik => o.sinumerik.source = from.semantics(),
-            Dialect::Fanuc => o.fanuc.source = from.semantics(),
-        }
-        return translate(inputs, model, &o);
-    } else {
-        match model {
-            Dialect::Fanuc => {
-                let Some((main, subs)) = inputs.split_first() else { return empty(vec![]) };
-                let fanuc = to_fanuc::TranslateOptions {
-                    line_ending: opts.line_ending,
-                    unsupported: crate::lower::to_fanuc::UnsupportedPolicy::Error,
-                    source: from.semantics(),
-                    ..opts.fanuc.clone()
-                };
-                let mut out = to_fanuc::to_fanuc(main, subs, &fanuc);
-                // Its header names FANUC as the target; the target writes its own.
-                out.unit.programs.iter_mut().for_each(crate::lower::own_header::drop_own_header);
-                if diag::has_errors(&out.diags) {
-                    return Translation { files: vec![], symbols: Symbols::Fanuc(out.symbol_map), ..empty(out.diags) };
+    let (units, source, symbols, mut diags): (Vec<Unit>, Semantics, Symbols, Vec<Diagnostic>) =
+        if from.runs_as() == model {
+            (inputs.iter().map(|u| (*u).clone()).collect(), from.semantics(), no_symbols(model), vec![])
+        } else if to.builtin() == Some(model) {
+            // A built-in target's own translation writes the files; it reads the source
+            // with the source's profile.
+            let mut o = opts.clone();
+            match model {
+                Dialect::Sinumerik => o.sinumerik.source = from.semantics(),
+                Dialect::Fanuc => o.fanuc.source = from.semantics(),
+            }
+            return translate(inputs, model, &o);
+        } else {
+            match model {
+                Dialect::Fanuc => {
+                    let Some((main, subs)) = inputs.split_first() else { return empty(vec![]) };
+                    let fanuc = to_fanuc::TranslateOptions {
+                        line_ending: opts.line_ending,
+                        unsupported: crate::lower::to_fanuc::UnsupportedPolicy::Error,
+                        source: from.semantics(),
+                        ..opts.fanuc.clone()
+                    };
+                    let mut out = to_fanuc::to_fanuc(main, subs, &fanuc);
+                    // Its header names FANUC as the target; the target writes its own.
+                    out.unit.programs.iter_mut().for_each(crate::lower::own_header::drop_own_header);
+                    if diag::has_errors(&out.diags) {
+                        return Translation {
+                            files: vec![],
+                            symbols: Symbols::Fanuc(Box::new(out.symbol_map)),
+                            ..empty(out.diags)
+                        };
+                    }
+                    // The written IR's lengths are in units whatever their `point` (the
+                    // FANUC writer gives each one a decimal point): read as calculator input.
+                    let written = Semantics { calculator_input: true, ..fanuc.target };
+                    (vec![out.unit], written, Symbols::Fanuc(Box::new(out.symbol_map)), out.diags)
                 }
-                // The written IR's lengths are in units whatever their `point` (the
-                // FANUC writer gives each one a decimal point): read as calculator input.
-                let written = Semantics { calculator_input: true, ..fanuc.target };
-                (vec![out.unit], written, Symbols::Fanuc(out.symbol_map), out.diags)
+                Dialect::Sinumerik => {
+                    let span = inputs.first().and_then(|u| u.programs.first()).map_or(Span::default(), |p| p.span);
+                    let file = inputs.first().map_or(0, |u| u.file);
+                    return empty(vec![Diagnostic::error(
+                        "NC516",
+                        format!("no translation from {} to {}, which runs as Sinumerik", from.name(), to.name()),
+                    )
+                    .primary(file, span, "this program")
+                    .note("the FANUC → Sinumerik translation writes Sinumerik text, not IR a description can lower")
+                    .hint("translate to sinumerik itself, or describe the target as running as FANUC")]);
+                }
             }
-            Dialect::Sinumerik => {
-                let span = inputs.first().and_then(|u| u.programs.first()).map_or(Span::default(), |p| p.span);
-                let file = inputs.first().map_or(0, |u| u.file);
-                return empty(vec![Diagnostic::error(
-                    "NC516",
-                    format!("no translation from {} to {}, which runs as Sinumerik", from.name(), to.name()),
-                )
-                .primary(file, span, "this program")
-                .note("the FANUC → Sinumerik translation writes Sinumerik text, not IR a description can lower")
-                .hint("translate to sinumerik itself, or describe the target as running as FANUC")]);
-            }
-        }
-    };
+        };
     let mut files = Vec::new();
     for (i, unit) in units.iter().enumerate() {
         let lowered = match to.lower(unit, &source) {
