@@ -412,7 +412,6 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         end_codes: BTreeMap::new(),
     };
     calls::plan_programs(&mut ctx, programs);
-    ctx.diags.extend(idiom.diags);
     for (p, stripped) in ctx.progs.iter_mut().zip(&idiom.programs) {
         if stripped.is_some() {
             // SAVE gives the caller back every mode the macro selects.
@@ -478,6 +477,8 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         out.push((plan, prog));
     }
     exprs::plain_comparisons(&mut out);
+    // After the refusals they explain (the NC549, NC363 a near miss keeps).
+    ctx.diags.extend(idiom.diags);
     crate::diag::dedup(&mut ctx.diags);
     Lowered { programs: out, commons: ctx.commons, common_flags: ctx.common_flags, diags: ctx.diags }
 }

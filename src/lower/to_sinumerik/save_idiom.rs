@@ -251,7 +251,11 @@ impl Macro<'_> {
             return Err(Some(b));
         }
         match body.last().map(|s| &s.kind) {
-            Some(StmtKind::Block(b)) if b.items.iter().any(|it| matches!(it.kind, ItemKind::Return { to: None })) => {}
+            // An alarm stops the run: nothing after it needs the caller's modes.
+            Some(StmtKind::Block(b))
+                if b.items
+                    .iter()
+                    .any(|it| matches!(it.kind, ItemKind::Return { to: None } | ItemKind::Alarm { .. })) => {}
             _ => {
                 let span = body.last().map_or(first, |s| s.span);
                 return miss("NC618", span, "the macro does not end with M99".into());
