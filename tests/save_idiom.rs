@@ -84,7 +84,7 @@ fn a_macro_with_two_returns_restoring_before_each_is_proven() {
 #[test]
 fn near_misses_are_refused_with_a_note_naming_why() {
     let d = scratch("near");
-    let cases: [(&str, String, &str, &str); 8] = [
+    let cases: [(&str, String, &str, &str); 9] = [
         ("plane", MACRO.replace("G90 G01 X#24", "G18 G90 G01 X#24"), "NC617", "G17..G19 (group 02)"),
         ("side", MACRO.replace("G90 G01 X#24", "G41 D1 G90 G01 X#24"), "NC617", "cutter radius side"),
         (
@@ -103,6 +103,12 @@ fn near_misses_are_refused_with_a_note_naming_why() {
         ("used", MACRO.replace("G90 G01", "IF [#3 EQ 91.] GOTO 8\nN8 G90 G01"), "NC618", "#3 is used for more"),
         ("late", MACRO.replace("#3=#4003 (SAVE G90/G91)\n", "G17\n#3=#4003\n"), "NC618", "leading blocks"),
         ("m98", MACRO.to_string(), "NC618", "called by M98"),
+        (
+            "midway",
+            MACRO.replace("G90 G01 X#24 Y#25 F#9\n", "G90 G01 X#24 F#9\nG#3\nY#25\n"),
+            "NC618",
+            "before the blocks that end",
+        ),
     ];
     for (name, body, code, why) in cases {
         let mut text = job(&body);

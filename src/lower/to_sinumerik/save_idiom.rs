@@ -246,9 +246,18 @@ impl Macro<'_> {
         // Every end is an M99 whose blocks before it restore, with no way around them.
         let mut bad: Miss = None;
         let mut returns = Vec::new();
-        self.ends(body, &landings, &saved, &mut returns, &mut bad);
+        let mut placed = BTreeSet::new();
+        self.ends(body, &landings, &saved, &mut returns, &mut placed, &mut bad);
         if let Some(b) = bad {
             return Err(Some(b));
+        }
+        // A G#k elsewhere selects the caller's mode in the middle: dropping it would change that.
+        if let Some((k, span)) = restores.iter().find(|(_, sp)| !placed.contains(&(sp.lo, sp.hi))) {
+            return miss(
+                "NC618",
+                *span,
+                format!("G#{k} selects the caller's mode before the blocks that end the macro"),
+            );
         }
         match body.last().map(|s| &s.kind) {
             // An alarm stops the run: nothing after it needs the caller's modes.
@@ -289,13 +298,15 @@ impl Macro<'_> {
 
     /// Checks every return in `list` (and nested lists): an `M99` as a block's own item whose
     /// block and the blocks right before it hold only restoring words, none of them after
-    /// the first a jump target; the set restored before each one in `returns`.
+    /// the first a jump target; the set restored before each one in `returns`, the restoring
+    /// words of those blocks in `placed`.
     fn ends(
         &self,
         list: &[Stmt],
         landings: &Landings,
         saved: &[Saved],
         returns: &mut Vec<(Span, BTreeSet<u32>)>,
+        placed: &mut BTreeSet<(u32, u32)>,
         bad: &mut Miss,
     ) {
         let restore_local = |it: &Item| match &it.kind {
@@ -307,7 +318,7 @@ impl Macro<'_> {
         };
         for (j, s) in list.iter().enumerate() {
             for child in crate::ir::visit::child_bodies(&s.kind) {
-                self.ends(child, landings, saved, returns, bad);
+                self.ends(child, landings, saved, returns, placed, bad);
             }
             let StmtKind::Block(b) = &s.kind else { continue };
             let mut nested = false;
@@ -359,6 +370,13 @@ impl Macro<'_> {
             if skipped {
                 *bad = why("a jump reaches the M99 past the blocks that restore the modes");
                 return;
+            }
+            for r in &list[start..=j] {
+                if let StmtKind::Block(b) = &r.kind {
+                    placed.extend(
+                        b.items.iter().filter(|it| restore_local(it).is_some()).map(|it| (it.span.lo, it.span.hi)),
+                    );
+                }
             }
             returns.push((s.span, set));
         }
