@@ -26,10 +26,13 @@ const GROUPS: [(u32, &[u32], &str); 5] = [
 
 /// G codes (×10) whose effect a Siemens SAVE would undo at the return where FANUC keeps it
 /// (or that the idiom cannot restore): cutter radius side, work offsets, the frame modes,
-/// offset writes, drilling cycles (group 09), polar coordinates, the Haas mirror.
+/// offset writes, drilling cycles (group 09), polar coordinates, the Haas mirror, and the
+/// modes the trace does not see but whose Siemens forms are G functions SAVE would restore
+/// (exact stop G61..G64 → G60/G64, look-ahead G05/G05.1/G08 and Haas G187 → FFWON and
+/// CYCLE832, constant surface speed G96/G97): a difference there would not be caught.
 fn unrestorable(g: u32) -> bool {
     matches!(g, 400 | 410 | 420 | 520 | 540..=591 | 680 | 690 | 510 | 500 | 511 | 501 | 920 | 160 | 150 | 100)
-        || matches!(g, 730..=890 | 1000 | 1010)
+        || matches!(g, 730..=890 | 1000 | 1010 | 610 | 620 | 630 | 640 | 50 | 51 | 80 | 1870 | 960 | 970)
 }
 
 /// What [`recognise`] found for a job.
@@ -275,7 +278,8 @@ impl Macro<'_> {
                 "NC617",
                 first,
                 "the macro (or a program it calls) also changes the cutter radius side, a work offset, a frame \
-                 mode, a drilling cycle or polar coordinates, which PROC … SAVE would restore at its return"
+                 mode, a drilling cycle, polar coordinates, the exact-stop or look-ahead mode or G96/G97, which \
+                 PROC … SAVE would restore at its return"
                     .into(),
             );
         }
