@@ -126,3 +126,27 @@ fn near_misses_are_refused_with_a_note_naming_why() {
         assert!(msg.contains("NC549") || msg.contains("NC363"), "{name}: today's refusal kept: {msg}");
     }
 }
+
+/// In a batch the macro in a file of its own is the idiom in its own job (a standalone macro)
+/// and in its caller's: both files verified, the macro written with SAVE.
+#[test]
+fn a_batch_with_the_macro_in_its_own_file_writes_save_and_verifies_both() {
+    let d = scratch("batch");
+    let input = d.join("in");
+    std::fs::create_dir_all(&input).expect("input folder");
+    let text = job(MACRO);
+    let (main, mac) = text.split_once("O9810 (").expect("two programs");
+    write(&input, "O0001.nc", &format!("{main}%\n"));
+    write(&input, "O9810.nc", &format!("%\nO9810 ({mac}"));
+    let out = d.join("out");
+    let (code, so, se) = nctrans(&["--to", "sinumerik", "-o", &out.to_string_lossy(), &input.to_string_lossy()]);
+    assert_eq!(code, 0, "{so}{se}");
+    assert!(format!("{so}{se}").contains("every file verified"), "{so}{se}");
+    let spf = std::fs::read_dir(&out)
+        .expect("output folder")
+        .filter_map(|e| e.ok())
+        .find(|e| e.file_name().to_string_lossy().to_ascii_uppercase() == "O_9810.SPF")
+        .expect("the macro's file");
+    let text = std::fs::read_to_string(spf.path()).expect("macro written");
+    assert!(text.lines().any(|l| l.starts_with("PROC") && l.ends_with(" SAVE")), "{text}");
+}
