@@ -43,7 +43,7 @@ pub struct Found {
     pub diags: Vec<Diagnostic>,
 }
 
-/// A saved local: its number, the modal information variable read into it, the read's span.
+/// A saved local: its number and the modal information variable read into it.
 struct Saved {
     local: u32,
     var: u32,
@@ -296,7 +296,6 @@ impl Macro<'_> {
                 );
             }
         }
-        // A computed G code other than a restore (G#5 of a local no read set).
         Ok(saved)
     }
 
