@@ -467,7 +467,9 @@ const BACK_TO_FANUC_REFUSED: &[(&str, &str)] = &[
 /// FANUC translations of the Siemens library that do not come back, and why.
 const BACK_TO_SINUMERIK_REFUSED: &[(&str, &str)] = &[
     // PROC … SAVE: the FANUC macro reads its caller's modal G codes (#4001..) on entry and
-    // selects them again with G#t words before M99; Sinumerik has no computed G code.
+    // selects them again with G#t words before M99; Sinumerik has no computed G code, and
+    // the way back does not take the idiom as PROC … SAVE here: its #[#2]= (a VAR
+    // parameter) may write the saved locals (note NC618 after the NC363).
     ("subprogram-proc-var.nc", "NC363"),
     // The G69, G52 from variables, G68 written around each ATRANS under a rotation (in a
     // loop): FANUC → Sinumerik does not cancel a G68 over a G52 shift where the path decides

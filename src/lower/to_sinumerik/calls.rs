@@ -292,6 +292,8 @@ pub fn plan_programs(ctx: &mut Ctx, programs: &[(FileId, &Program)]) {
             // Set with the job's planes (`planes::start_planes`).
             start_plane: super::planes::At::UNKNOWN,
             sets_plane: (false, false),
+            // Set when the idiom is found (`save_idiom`).
+            save: false,
         });
         if by_m98 && by_macro {
             ctx.cur = i;

@@ -57,6 +57,7 @@ pub mod print;
 pub mod probe;
 pub mod probe_length;
 pub mod rotation;
+pub mod save_idiom;
 pub mod signals;
 pub mod structures;
 pub mod tapping;
@@ -266,6 +267,9 @@ pub struct ProgPlan {
     /// The program (or a call in it) may select a plane; may move the tool off the grid
     /// (`planes::setters`).
     pub sets_plane: (bool, bool),
+    /// The macro is the save/restore idiom (`save_idiom`): written as `PROC … SAVE`, its
+    /// return gives the caller its modes back, so it sets none of them for its callers.
+    pub save: bool,
 }
 
 /// The shared state of one translation.
@@ -390,6 +394,10 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
     let programs: Vec<(FileId, &Program)> =
         programs.iter().zip(&dispatched).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
     let programs = programs.as_slice();
+    let idiom = save_idiom::recognise(programs);
+    let programs: Vec<(FileId, &Program)> =
+        programs.iter().zip(&idiom.programs).map(|((f, p), r)| (*f, r.as_ref().unwrap_or(p))).collect();
+    let programs = programs.as_slice();
     let mut ctx = Ctx {
         opts,
         progs: Vec::new(),
@@ -404,6 +412,15 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
         end_codes: BTreeMap::new(),
     };
     calls::plan_programs(&mut ctx, programs);
+    for (p, stripped) in ctx.progs.iter_mut().zip(&idiom.programs) {
+        if stripped.is_some() {
+            // SAVE gives the caller back every mode the macro selects.
+            p.save = true;
+            p.sets_units = false;
+            p.sets_distance = false;
+            p.sets_g90 = false;
+        }
+    }
     let bodies: Vec<&[Stmt]> = programs.iter().map(|(_, p)| p.body.as_slice()).collect();
     modal::close_setters(&mut ctx.progs, &bodies);
     let units = modal::call_units(&ctx.progs, &bodies);
@@ -453,13 +470,15 @@ pub fn lower(programs: &[(FileId, &Program)], opts: &Options) -> Lowered {
                     span: p.head.as_ref().map_or(p.span, |h| h.span),
                 })
                 .collect(),
-            save: false,
+            save: plan.save,
             body,
             span: p.span,
         };
         out.push((plan, prog));
     }
     exprs::plain_comparisons(&mut out);
+    // After the refusals they explain (the NC549, NC363 a near miss keeps).
+    ctx.diags.extend(idiom.diags);
     crate::diag::dedup(&mut ctx.diags);
     Lowered { programs: out, commons: ctx.commons, common_flags: ctx.common_flags, diags: ctx.diags }
 }

@@ -746,7 +746,8 @@ fn close(progs: &mut [ProgPlan], bodies: &[&[Stmt]], flag: fn(&mut ProgPlan) -> 
         let setters: Vec<u32> = progs.iter_mut().filter_map(|p| if *flag(p) { p.number } else { None }).collect();
         let mut changed = false;
         for (p, body) in progs.iter_mut().zip(bodies) {
-            if *flag(p) {
+            // A SAVE subprogram's return restores the modes whatever it calls.
+            if *flag(p) || p.save {
                 continue;
             }
             let mut calls = false;

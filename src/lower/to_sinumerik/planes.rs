@@ -122,13 +122,14 @@ fn selects(body: &[Stmt], grid: bool) -> bool {
 /// off the grid), by their own blocks or through a call (of one of them, of a computed
 /// target, or of a number not in the job).
 pub fn setters(progs: &[ProgPlan], bodies: &[&[Stmt]], grid: bool) -> Vec<u32> {
-    let mut set: Vec<bool> = bodies.iter().map(|b| selects(b, grid)).collect();
+    // A SAVE subprogram gives its caller the plane back (its moves may still leave the grid).
+    let mut set: Vec<bool> = bodies.iter().zip(progs).map(|(b, p)| selects(b, grid) && (grid || !p.save)).collect();
     let known: Vec<u32> = progs.iter().filter_map(|p| p.number).collect();
     for _ in 0..=progs.len() {
         let list: Vec<u32> = progs.iter().zip(&set).filter(|(_, s)| **s).filter_map(|(p, _)| p.number).collect();
         let mut changed = false;
         for (i, body) in bodies.iter().enumerate() {
-            if !set[i] && calls_setter(body, &list, &known) {
+            if !set[i] && (grid || !progs[i].save) && calls_setter(body, &list, &known) {
                 set[i] = true;
                 changed = true;
             }
