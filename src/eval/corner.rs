@@ -121,6 +121,17 @@ pub fn trim(kind: Kind, size: f64, theta: f64) -> f64 {
     }
 }
 
+/// For a chamfer of own length `chord` at `corner` between the line from `start` and the line
+/// to `end`: its leg (what each move is cut by) and the angle the path turns there, or why
+/// [`line_line`] makes no such corner (the translation's leg is the run's, to the bit).
+pub fn chord_leg(start: Point, corner: Point, end: Point, chord: f64) -> Result<(f64, f64), Bad> {
+    line_line(start, corner, end, Kind::Chord, chord)?;
+    let (d1, _) = unit(start, corner).ok_or(Bad::Empty)?;
+    let (d2, _) = unit(corner, end).ok_or(Bad::Empty)?;
+    let theta = turn(d1, d2);
+    Ok((trim(Kind::Chord, chord, theta), theta))
+}
+
 /// The corner at `corner` between the line from `start` and the line to `end`. Either move
 /// must keep some length (a trim equal to a move's whole length, within 1 µm, is allowed:
 /// the move then vanishes, as a tangent rounding of a short leg does).
