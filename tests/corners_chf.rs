@@ -109,6 +109,16 @@ fn a_move_to_a_variable_end_point_is_refused_saying_so() {
 }
 
 #[test]
+fn a_frame_change_or_a_jump_target_between_is_named() {
+    let (codes, text) = refused(&siemens("G1 X10 F500\nTRANS X5\nX60 CHF=8.119\nY40\n"));
+    assert_eq!(codes, ["NC572"]);
+    assert!(text.contains("positions are not followed across TRANS"), "{text}");
+    let (codes, text) = refused(&siemens("G1 X10 F500\nBACK:\nX60 CHF=8.119\nY40\nX10 Y0\nGOTOB BACK\n"));
+    assert_eq!(codes, ["NC572"]);
+    assert!(text.contains("jump target"), "{text}");
+}
+
+#[test]
 fn a_contour_in_a_depth_loop_is_known_from_its_own_moves() {
     // Z comes from the loop's variable; the chamfer's three points are the body's literals.
     let src = "G17 G71 G90\nG0 X0 Y0 Z5\nR1=-1\nWHILE R1>=-3\nG1 Z=R1 F500\nG1 X0 Y0\nG1 X60 CHF=8.119\nY40\nX0\n\
@@ -154,4 +164,33 @@ fn a_planted_wrong_leg_is_caught_by_the_check() {
         let planted = t.text.replace(",C5.741", wrong);
         assert!(matches!(check_pair(&src, &planted), Verdict::Diverged { .. }), "{wrong}");
     }
+}
+
+/// A streamed translation writes a run of plain blocks next to the chamfer one by one (a
+/// stand-in in the skeleton, whose positions the pass does not see): the corner is not
+/// taken as known there, the stream falls back to the whole translation, and both write
+/// the same `,C`.
+#[test]
+fn a_streamed_translation_writes_the_same_leg() {
+    let dir = std::env::temp_dir().join(format!("nctrans-corners-chf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch");
+    let src = dir.join("seg.mpf");
+    let text = "G17 G71 G90\nG0 X0 Y0\nR1=2\nG1 X10 F500\nX20\nX30\nX60 CHF=8.119\nY40\nY50\nY60\nIF R1>1\nG0 Z5\nENDIF\nM30\n";
+    std::fs::write(&src, text).expect("write");
+    let run = |extra: &[&str], out: &str| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_nctrans"))
+            .args(extra)
+            .args(["--to", "fanuc", "--force"])
+            .arg(&src)
+            .arg("-o")
+            .arg(dir.join(out))
+            .output()
+            .expect("run nctrans");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(dir.join(out)).expect("output")
+    };
+    let whole = run(&[], "whole.nc");
+    assert!(whole.contains("X60. ,C5.741"), "{whole}");
+    assert_eq!(run(&["--stream"], "streamed.nc"), whole);
+    let _ = std::fs::remove_dir_all(&dir);
 }

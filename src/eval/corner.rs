@@ -182,6 +182,15 @@ mod tests {
     }
 
     #[test]
+    fn chord_leg_is_the_trim_of_the_chord_corner() {
+        let (leg, theta) = chord_leg((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), 3.0).unwrap();
+        assert!((theta - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let c = line_line((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), Kind::Chord, 3.0).unwrap();
+        assert!(near(c.end1, (60.0 - leg, 0.0)) && (leg - 3.0 / 2f64.sqrt()).abs() < 1e-12);
+        assert_eq!(chord_leg((0.0, 0.0), (4.0, 0.0), (8.0, 0.0), 1.0), Err(Bad::NoCorner));
+    }
+
+    #[test]
     fn rounding_is_tangent_with_its_centre_inside_the_turn() {
         // A left turn: counter-clockwise, centre to the left of the first move.
         let c = line_line((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), Kind::Radius, 8.0).unwrap();

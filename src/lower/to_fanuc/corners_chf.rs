@@ -24,6 +24,10 @@ const LETTERS: &[u8; 9] = b"XYZABCUVW";
 /// most this, half the trace tolerance (1e-6), so the proof passes with room to spare.
 const SLACK_MM: f64 = 5e-7;
 
+/// Why a streamed translation's stand-in for a stretch of plain blocks ends what is known.
+const STREAMED: &str =
+    "a streamed translation writes the blocks next to it one by one, without following positions: translate the file whole";
+
 /// Name words that neither move an axis nor change what the positions mean.
 const QUIET_NAMES: &[&str] = &["CHF", "CHR", "RND", "RNDM", "CR", "AR", "TURN"];
 
@@ -77,15 +81,13 @@ impl St {
                 170 | 180 | 190 => self.plane = Some(g),
                 700 | 7000 | 710 | 7100 => {
                     self.inch = Some(g == 700 || g == 7000);
-                    self.forget_positions("a block before it changes the units (G70/G71/G700/G710)");
+                    self.forget_positions("positions are not followed across a change of units (G70/G71/G700/G710)");
                 }
                 // Compensation, feed type, exact stop and continuous path, dwell: the programmed
                 // positions keep their meaning.
                 40 | 90 | 400 | 410 | 420 | 600 | 640 | 6410 | 6420 | 930 | 940 | 950 => {}
-                _ => self.forget_positions(&format!(
-                    "G{} in a block before it (positions are not followed across it)",
-                    fmt_num(f64::from(g) / 10.0)
-                )),
+                _ => self
+                    .forget_positions(&format!("positions are not followed across G{}", fmt_num(f64::from(g) / 10.0))),
             }
         }
         let inc = input_increment(ctx.source_increment_mm, self.inch == Some(true), false);
@@ -96,20 +98,29 @@ impl St {
                         if let Some(i) = LETTERS.iter().position(|c| c == l) {
                             self.pos[i] = self.axis(i, w, vals, inc);
                         } else if !QUIET_LETTERS.contains(l) && *l != b'G' {
-                            self.forget_positions(&format!("the word {} in a block before it", *l as char));
+                            self.forget_positions(&format!(
+                                "positions are not followed across the word {}",
+                                *l as char
+                            ));
                         }
                     }
                     Addr::Name(n) if QUIET_NAMES.contains(&n.as_ref()) => {}
-                    Addr::Name(n) => self.forget_positions(&format!("{n}= in a block before it")),
-                    Addr::Axis(_) => self.forget_positions("a word of an axis chosen at run time (AX[…])"),
+                    Addr::Name(n) => self.forget_positions(&format!("positions are not followed across {n}=")),
+                    Addr::Axis(_) => {
+                        self.forget_positions("positions are not followed across an axis chosen at run time (AX[…])")
+                    }
                 },
                 ItemKind::Assign { target, .. } if !matches!(target.kind, VarKind::System { .. }) => {}
                 ItemKind::Message { .. } | ItemKind::Def(_) | ItemKind::Stopre => {}
-                ItemKind::Call(_) => self.forget_positions("a call before it (it may move the axes)"),
-                ItemKind::Frame { op, .. } => {
-                    self.forget_positions(&format!("{op} before it changes the frame the positions are in"))
+                ItemKind::Call(_) => {
+                    self.forget_positions("positions are not followed across a call (it may move the axes)")
                 }
-                _ => self.forget_positions("a block before it that jumps, writes a system variable or ends"),
+                ItemKind::Frame { op, .. } => {
+                    self.forget_positions(&format!("positions are not followed across {op} (it changes their frame)"))
+                }
+                _ => self.forget_positions(
+                    "positions are not followed across a jump, a write of a system variable or an end",
+                ),
             }
         }
     }
@@ -216,17 +227,25 @@ impl Walk<'_> {
         for j in 0..list.len() {
             if !matches!(list[j].kind, StmtKind::Block(_)) {
                 self.nested(ctx, &mut list[j]);
-                st =
-                    St::forgotten("an IF, loop or CASE lies before it (the positions depend on the path)", self.steady);
+                st = St::forgotten(
+                    "positions are not followed across an IF, loop or CASE (they depend on the path)",
+                    self.steady,
+                );
                 continue;
             }
             let StmtKind::Block(b) = &list[j].kind else { continue };
             if self.landings.at(&b.meta) {
-                st = St::forgotten("the block is a jump target (a GOTO may come from elsewhere)", self.steady);
+                st = St::forgotten(
+                    "positions are not followed across a jump target (a GOTO may come from elsewhere)",
+                    self.steady,
+                );
             }
             let before = st.clone();
-            if b.meta.skip.is_some() {
-                st.forget_positions("a block before it may be skipped (/)");
+            if super::stand_in(&b.meta).is_some() {
+                st = St::forgotten(STREAMED, self.steady);
+            } else if b.meta.skip.is_some() {
+                // Whether it runs is the operator's switch: its positions and modes both.
+                st = St::forgotten("positions are not followed across a block that may be skipped (/)", self.steady);
             } else {
                 st.apply(b, self.vals, ctx);
             }
@@ -235,7 +254,11 @@ impl Walk<'_> {
             else {
                 continue;
             };
-            let next = list[j + 1..].iter().find(|s| !matches!(&s.kind, StmtKind::Block(b) if b.items.is_empty()));
+            // A line with nothing but a comment or a number commands nothing (the run passes
+            // over it); a streamed translation's stand-in has blocks behind it.
+            let next = list[j + 1..].iter().find(
+                |s| !matches!(&s.kind, StmtKind::Block(b) if b.items.is_empty() && super::stand_in(&b.meta).is_none()),
+            );
             let outcome = self.corner(ctx, &before, &st, b, &b.items[k], next);
             let StmtKind::Block(b) = &mut list[j].kind else { continue };
             let ItemKind::Word(w) = &mut b.items[k].kind else { continue };
@@ -307,19 +330,22 @@ impl Walk<'_> {
             180 => (2, 0),
             _ => (1, 2),
         };
-        motion(after.motion, "the move to the corner").map_err(plain)?;
         let point = |st: &St, what: &str| match (&st.pos[u], &st.pos[v]) {
             (Ok(a), Ok(b)) => Ok((*a, *b)),
             (Err(why), _) | (_, Err(why)) => Err(plain(format!("{what} is not known at translation: {why}"))),
         };
         let p0 = point(before, "where the move to the corner starts")?;
         let p1 = point(after, "the corner")?;
+        motion(after.motion, "the move to the corner").map_err(plain)?;
         let nb = match next.map(|s| &s.kind) {
             Some(StmtKind::Block(nb)) if nb.meta.skip.is_none() => nb,
             Some(StmtKind::Block(_)) => return Err(plain("the block after it may be skipped (/)".into())),
             Some(_) => return Err(plain("the block after it begins an IF, loop or CASE, not a move".into())),
             None => return Err(plain("no block follows it in its body".into())),
         };
+        if super::stand_in(&nb.meta).is_some() {
+            return Err(plain(STREAMED.into()));
+        }
         let mut st2 = after.clone();
         st2.apply(nb, self.vals, ctx);
         motion(st2.motion, "the move after the corner").map_err(plain)?;
