@@ -194,3 +194,15 @@ fn a_streamed_translation_writes_the_same_leg() {
     assert_eq!(run(&["--stream"], "streamed.nc"), whole);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn def_variables_inch_and_the_zx_plane_are_followed() {
+    let out = to_fanuc("DEF REAL LEN=8.119, WID=60\nG17 G71 G90\nG0 X0 Y0\nG1 X=WID CHF=LEN F500\nY40\nX0\nM30\n");
+    assert_eq!(the_c(&out).len(), 1, "{out:#?}");
+    assert!(the_c(&out)[0].contains(",C5.741"), "{out:#?}");
+    // Inch: the leg 0.5741 in lies on FANUC's 0.0001 in grid.
+    let out = to_fanuc("G17 G70 G90\nG0 X0 Y0\nG1 X2 CHF=0.8119 F20\nY4\nX0\nM30\n");
+    assert!(the_c(&out).iter().any(|l| l.contains(",C0.5741")), "{out:#?}");
+    let out = to_fanuc("G18 G71 G90\nG0 X0 Z0\nG1 Z60 CHF=8.119 F500\nX40\nZ0\nM30\n");
+    assert_eq!(the_c(&out), ["G01 Z60. ,C5.741 F500."], "{out:#?}");
+}
