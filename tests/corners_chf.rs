@@ -5,13 +5,11 @@
 
 #[path = "support/proven.rs"]
 mod proven;
-use nctrans::check::{self, Side, Verdict};
+use nctrans::check::Verdict;
 use nctrans::dialect::Dialect;
-use nctrans::eval::{NoCallees, RunOptions};
-use nctrans::ir::Unit;
 use nctrans::span::SourceDb;
 use nctrans::translate::{self, to_fanuc::TranslateOptions};
-use proven::{parse, proven_to_fanuc, STEPS};
+use proven::{check_pair, parse, proven_to_fanuc};
 
 /// The brief's plate corner: a rounding at (0,40), the chamfer at (60,40) turning 90°.
 fn plate(chamfer: &str) -> String {
@@ -37,17 +35,6 @@ fn refused(src: &str) -> (Vec<&'static str>, String) {
     assert!(!t.ok(), "translated:\n{}", t.text);
     let codes = t.diags.iter().filter(|d| d.is_error()).map(|d| d.code).collect();
     (codes, nctrans::diag::render(&db, &t.diags))
-}
-
-fn check_pair(s: &str, f: &str) -> Verdict {
-    let mut db = SourceDb::new();
-    let (s, f) = (parse(&mut db, "a.mpf", s, Dialect::Sinumerik), parse(&mut db, "b.nc", f, Dialect::Fanuc));
-    let side = |u: &Unit| Side {
-        unit: u.clone(),
-        callees: Box::new(NoCallees),
-        run: RunOptions { max_steps: STEPS, ..RunOptions::default() },
-    };
-    check::check(&db, side(&s), side(&f)).verdict
 }
 
 fn the_c(lines: &[String]) -> Vec<String> {
