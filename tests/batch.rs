@@ -400,7 +400,7 @@ const SIEMENS_TO_FANUC_REFUSED: &[(&str, &str)] = &[
     ("rotary-acp-acn-dc.mpf", "NC630"), // C=ACP(…), ACN, DC, CAC
     ("sync-action-when-do.mpf", "NC631"), // synchronized actions
     ("system-variables.mpf", "NC321"),  // STOPRE, $AC_TIME
-    ("corner-chf-rnd-plate.mpf", "NC572"), // CHF=: its FANUC leg depends on the corner's angle
+    ("corner-chf-rnd-plate.mpf", "NC572"), // CHF=4 at a 45° turn: its leg 2.1647… is off the FANUC grid
     ("tap-row-spindle-turning.mpf", "NC487"), // CYCLE84 after M3: FANUC's M29 with the spindle turning is not settled
     // $A_IN / $A_DBB: the signal wiring is the machine's ([signals]); translated with
     // corpus/profiles/signals-door-vice.toml in tests/transpile_fanuc.rs.

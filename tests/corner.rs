@@ -5,15 +5,14 @@
 
 #[path = "support/proven.rs"]
 mod proven;
-use nctrans::check::{self, Side, Verdict};
+use nctrans::check::Verdict;
 use nctrans::dialect::{Dialect, ParseOptions};
 use nctrans::eval::{NoCallees, RunOptions, VecSink};
-use nctrans::ir::Unit;
 use nctrans::read::LineEnding;
 use nctrans::span::SourceDb;
 use nctrans::translate::to_sinumerik::{self as ts, Options};
 use nctrans::translate::{self, to_fanuc::TranslateOptions};
-use proven::{parse, proven_to_fanuc, STEPS};
+use proven::{check_pair, parse, proven_to_fanuc, STEPS};
 
 /// The text trace of a program and the codes of its run's errors.
 fn run(text: &str, d: Dialect) -> (Vec<String>, Vec<&'static str>) {
@@ -38,18 +37,6 @@ fn fanuc(body: &str) -> String {
 
 fn siemens(body: &str) -> String {
     format!("G17 G71 G90\nG0 X0 Y0\n{body}M30\n")
-}
-
-/// The check of a Siemens program against a FANUC one.
-fn check_pair(s: &str, f: &str) -> Verdict {
-    let mut db = SourceDb::new();
-    let (s, f) = (parse(&mut db, "a.mpf", s, Dialect::Sinumerik), parse(&mut db, "b.nc", f, Dialect::Fanuc));
-    let side = |u: &Unit| Side {
-        unit: u.clone(),
-        callees: Box::new(NoCallees),
-        run: RunOptions { max_steps: STEPS, ..RunOptions::default() },
-    };
-    check::check(&db, side(&s), side(&f)).verdict
 }
 
 /// Siemens → FANUC, proven: the program's lines.

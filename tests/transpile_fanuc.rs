@@ -335,7 +335,7 @@ const REFUSED: &[(&str, &str)] = &[
     ("string-functions.mpf", "NC310"),
     ("rotary-acp-acn-dc.mpf", "NC630"),
     ("sync-action-when-do.mpf", "NC631"),
-    // CHF= (the chamfer's own length): its FANUC leg depends on the corner's angle.
+    // CHF=4 at a 45° turn: its leg 4/(2·cos 22.5°) = 2.1647… is off FANUC's 0.001 mm grid.
     ("corner-chf-rnd-plate.mpf", "NC572"),
     ("system-variables.mpf", "NC342"),
 ];

@@ -121,6 +121,17 @@ pub fn trim(kind: Kind, size: f64, theta: f64) -> f64 {
     }
 }
 
+/// For a chamfer of own length `chord` at `corner` between the line from `start` and the line
+/// to `end`: its leg (what each move is cut by) and the angle the path turns there, or why
+/// [`line_line`] makes no such corner (the translation's leg is the run's, to the bit).
+pub fn chord_leg(start: Point, corner: Point, end: Point, chord: f64) -> Result<(f64, f64), Bad> {
+    line_line(start, corner, end, Kind::Chord, chord)?;
+    let (d1, _) = unit(start, corner).ok_or(Bad::Empty)?;
+    let (d2, _) = unit(corner, end).ok_or(Bad::Empty)?;
+    let theta = turn(d1, d2);
+    Ok((trim(Kind::Chord, chord, theta), theta))
+}
+
 /// The corner at `corner` between the line from `start` and the line to `end`. Either move
 /// must keep some length (a trim equal to a move's whole length, within 1 µm, is allowed:
 /// the move then vanishes, as a tangent rounding of a short leg does).
@@ -168,6 +179,15 @@ mod tests {
     fn chord_chamfer_of_a_right_angle_is_leg_times_root_two() {
         let c = line_line((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), Kind::Chord, 5.0 * 2f64.sqrt()).unwrap();
         assert!(near(c.end1, (55.0, 0.0)) && near(c.start2, (60.0, 5.0)));
+    }
+
+    #[test]
+    fn chord_leg_is_the_trim_of_the_chord_corner() {
+        let (leg, theta) = chord_leg((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), 3.0).unwrap();
+        assert!((theta - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let c = line_line((0.0, 0.0), (60.0, 0.0), (60.0, 40.0), Kind::Chord, 3.0).unwrap();
+        assert!(near(c.end1, (60.0 - leg, 0.0)) && (leg - 3.0 / 2f64.sqrt()).abs() < 1e-12);
+        assert_eq!(chord_leg((0.0, 0.0), (4.0, 0.0), (8.0, 0.0), 1.0), Err(Bad::NoCorner));
     }
 
     #[test]

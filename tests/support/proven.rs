@@ -34,3 +34,15 @@ pub fn proven_to_fanuc(src: &str, opts: &TranslateOptions) -> Vec<String> {
         .map(str::to_string)
         .collect()
 }
+
+/// The check of a Siemens program `s` against a FANUC one `f`, each run alone.
+pub fn check_pair(s: &str, f: &str) -> nctrans::check::Verdict {
+    let mut db = SourceDb::new();
+    let (s, f) = (parse(&mut db, "a.mpf", s, Dialect::Sinumerik), parse(&mut db, "b.nc", f, Dialect::Fanuc));
+    let side = |u: &Unit| nctrans::check::Side {
+        unit: u.clone(),
+        callees: Box::new(nctrans::eval::NoCallees),
+        run: nctrans::eval::RunOptions { max_steps: STEPS, ..nctrans::eval::RunOptions::default() },
+    };
+    nctrans::check::check(&db, side(&s), side(&f)).verdict
+}

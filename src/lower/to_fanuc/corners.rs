@@ -2,16 +2,17 @@
 //! the meaning of `,C` and `,R` (the leg from the virtual corner, the radius) and stay words
 //! of that name for the writer; modal rounding `RNDM=r` … `RNDM=0` becomes a `,R` on every
 //! block that moves in its stretch where the program runs straight through it; `CHF=` (the
-//! chamfer's own length) is refused, since its leg depends on the corner's angle, which the
-//! translation does not know (docs/semantics.md, "Chamfers and roundings").
+//! chamfer's own length) is first made the CHR of its leg where the corner's angle is known
+//! at translation, else refused (`corners_chf`; docs/semantics.md, "Chamfers and roundings").
 
 use super::Ctx;
-use crate::eval::corner::{MODAL_ROUND, NOT_TRANSLATABLE};
+use crate::eval::corner::MODAL_ROUND;
 use crate::ir::*;
 use crate::span::Span;
 
 /// Runs the pass on one program (after `blocks`, before `words`).
-pub fn run(ctx: &mut Ctx, prog: &mut Program) {
+pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &super::ProgInfo) {
+    super::corners_chf::run(ctx, prog, info);
     let jumps = crate::lower::landings::Landings::of(&prog.body).any();
     let body = std::mem::take(&mut prog.body);
     prog.body = body_pass(ctx, body, jumps, true);
@@ -62,15 +63,6 @@ fn body_pass(ctx: &mut Ctx, body: Vec<Stmt>, jumps: bool, top: bool) -> Vec<Stmt
         for it in &b.items {
             match &it.kind {
                 ItemKind::Word(w) if is_addr(w, "RNDM") => rndm = Some(w.clone()),
-                ItemKind::Word(w) if is_addr(w, "CHF") => {
-                    let _ = ctx.unsupported(
-                        NOT_TRANSLATABLE,
-                        w.span,
-                        "CHF= (a chamfer given by its own length)",
-                        "FANUC `,C` is the leg from the virtual corner, which depends on the corner's angle, known only \
-                         when the program runs: write CHR=<leg> (CHR = CHF / (2·cos(turn/2)))",
-                    );
-                }
                 ItemKind::Word(w) if is_addr(w, "CHR") || is_addr(w, "RND") => own = Some(w.span),
                 ItemKind::Goto(_) | ItemKind::Case(_) | ItemKind::Call(_) | ItemKind::Return { .. } => {
                     control = Some(it.span)

@@ -38,18 +38,30 @@ fn is_cycle(c: &Call) -> bool {
 /// The analysis of `prog`, where it has a drilling cycle (else nothing is walked).
 pub fn vals(ctx: &Ctx, prog: &Program, info: &ProgInfo) -> Vals {
     let mut cycles = false;
-    let (mut interrupt, mut sync) = (false, false);
-    let mut never: BTreeMap<Key, String> = BTreeMap::new();
     crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
-        if let StmtKind::For(f) = &s.kind {
-            if let Some(k) = Key::of(&f.var) {
-                never.insert(k, "the variable of a FOR loop".into());
-            }
+        if let StmtKind::Block(b) = &s.kind {
+            cycles |= b.items.iter().any(|it| matches!(&it.kind, ItemKind::Call(c) if is_cycle(c)));
         }
+    });
+    if !cycles {
+        return Vals::default();
+    }
+    let want = |it: &Item| match &it.kind {
+        ItemKind::Call(c) => is_cycle(c),
+        ItemKind::Word(w) if w.addr.is(b'Z') => matches!(&w.value, WordValue::Expr(e) if literal(e).is_none()),
+        _ => false,
+    };
+    vals_where(ctx, prog, info, interrupt_and_sync(prog), &want)
+}
+
+/// Whether `prog` sets up an interrupt routine and has a synchronized action (each makes R
+/// parameters unknown everywhere).
+pub fn interrupt_and_sync(prog: &Program) -> (bool, bool) {
+    let (mut interrupt, mut sync) = (false, false);
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
         if let StmtKind::Block(b) = &s.kind {
             for it in &b.items {
                 match &it.kind {
-                    ItemKind::Call(c) => cycles |= is_cycle(c),
                     ItemKind::Instruction { name } => {
                         interrupt |= crate::ir::interrupt::op_of(&name.to_ascii_uppercase()).is_some()
                     }
@@ -62,9 +74,26 @@ pub fn vals(ctx: &Ctx, prog: &Program, info: &ProgInfo) -> Vals {
             }
         }
     });
-    if !cycles {
-        return Vals::default();
-    }
+    (interrupt, sync)
+}
+
+/// The analysis of `prog` at the items `want` picks, under this direction's rules (the
+/// module's head); `(interrupt, sync)`: [`interrupt_and_sync`] of `prog`.
+pub fn vals_where(
+    ctx: &Ctx,
+    prog: &Program,
+    info: &ProgInfo,
+    (interrupt, sync): (bool, bool),
+    want: &dyn Fn(&Item) -> bool,
+) -> Vals {
+    let mut never: BTreeMap<Key, String> = BTreeMap::new();
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+        if let StmtKind::For(f) = &s.kind {
+            if let Some(k) = Key::of(&f.var) {
+                never.insert(k, "the variable of a FOR loop".into());
+            }
+        }
+    });
     for g in ctx.globals.iter() {
         for v in &g.vars {
             never.insert(Key::Named(v.name.clone()), "global user data, which may be set outside the program".into());
@@ -133,12 +162,7 @@ pub fn vals(ctx: &Ctx, prog: &Program, info: &ProgInfo) -> Vals {
         })
     };
     let rules = Rules { tracked: &tracked, global: &global, call: &call };
-    let want = |it: &Item| match &it.kind {
-        ItemKind::Call(c) => is_cycle(c),
-        ItemKind::Word(w) if w.addr.is(b'Z') => matches!(&w.value, WordValue::Expr(e) if literal(e).is_none()),
-        _ => false,
-    };
-    let at = known::analyse(&prog.body, &rules, &want);
+    let at = known::analyse(&prog.body, &rules, want);
     Vals { at, never, r_never }
 }
 
@@ -197,7 +221,19 @@ impl Vals {
 
     fn refusal(&self, k: SieCycle, p: &str, key: &Key, why: Option<known::Why>) -> Refusal {
         let var = key.name();
-        let (reason, at) = match why {
+        let (reason, at) = self.unknown_reason(key, why, "the call");
+        (
+            "NC660",
+            format!("{} with {p} = {var}, which is not one value known at translation: {reason}", k.name()),
+            "give the variable one value on every path to the call (a DEF start value or an assignment before it, no other value in an IF, loop or jump between, no call that may write it), or write the number in the call",
+            at,
+        )
+    }
+
+    /// Why `key` is not known at `place` (`"the call"`), and the place that made it so.
+    pub fn unknown_reason(&self, key: &Key, why: Option<known::Why>, place: &str) -> (String, Option<(Span, String)>) {
+        let var = key.name();
+        match why {
             Some(w) => (format!("{var} {}", w.what), Some((w.span, format!("{var} {}", w.what)))),
             None => {
                 let never = self.never.get(key).cloned().or_else(|| match key {
@@ -207,21 +243,28 @@ impl Vals {
                 let r = match (never, key) {
                     (Some(n), _) => format!("{var} is {n}"),
                     (None, Key::R(_)) => format!(
-                        "{var} is not set in this program on every path to the call (R parameters are global: it holds what was there before, or what a jump brings)"
+                        "{var} is not set in this program on every path to {place} (R parameters are global: it holds what was there before, or what a jump brings)"
                     ),
                     (None, Key::Named(_)) => format!(
-                        "{var} is not set in this program on every path to the call (a parameter holds what the caller passed, a jump brings what was there)"
+                        "{var} is not set in this program on every path to {place} (a parameter holds what the caller passed, a jump brings what was there)"
                     ),
                 };
                 (r, None)
             }
-        };
-        (
-            "NC660",
-            format!("{} with {p} = {var}, which is not one value known at translation: {reason}", k.name()),
-            "give the variable one value on every path to the call (a DEF start value or an assignment before it, no other value in an IF, loop or jump between, no call that may write it), or write the number in the call",
-            at,
-        )
+        }
+    }
+
+    /// The value of `e` at the item of span `at` (a word), or why it is not known there.
+    pub fn value_at(&self, at: Span, e: &Expr, place: &str) -> Result<f64, String> {
+        if let Some(v) = literal(e) {
+            return Ok(v);
+        }
+        let Some(kn) = self.at.get(&at) else { return Err("it is not one value known at translation".into()) };
+        match kn.eval(e) {
+            Ok(v) => Ok(v),
+            Err(Miss::Var(key, why)) => Err(self.unknown_reason(&key, why, place).0),
+            Err(Miss::Expr) => Err("it is computed by a function or reads a system variable".into()),
+        }
     }
 }
 

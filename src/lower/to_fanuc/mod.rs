@@ -2,7 +2,8 @@
 //! and walkers are in [`crate::lower`].
 //!
 //! Siemens → FANUC runs, per program: [`blocks`] (one statement per block, DEF → assignments),
-//! [`corners`] (CHR/RND kept, RNDM spread over its blocks, CHF refused),
+//! [`corners`] (CHR/RND kept, RNDM spread over its blocks, CHF at a corner known at translation
+//! made its leg CHR by [`corners_chf`], else refused),
 //! [`words`] (address words, calls, messages; around it [`probe`]: MEAS=1 → G31), [`cycles`] (drilling cycles), [`exprs`] (exact function rewrites, the
 //! relative-equality rule, bracket depth), [`lower_structures`] (IF/WHILE/LOOP/FOR/REPEAT/CASE
 //! → IF-GOTO and WHILE-DOm), [`varmap`] (R, DEF, PROC parameters and temporaries → `#n`) and
@@ -16,6 +17,7 @@ pub mod blocks;
 pub mod comp;
 pub mod constants;
 pub mod corners;
+pub mod corners_chf;
 pub mod cycles;
 mod cycles_frames;
 pub mod cycles_known;
@@ -207,6 +209,11 @@ pub struct Ctx {
     /// known there), in text order of the lowered program: the stream compares them with the
     /// units it translated each run in.
     pub stand_in_units: Vec<(usize, Option<words::units::Units>)>,
+    /// The least input increment in mm of the source and of the target profile
+    /// (`Semantics::least_increment_mm`): what lengths are rounded to on each side
+    /// ([`corners_chf`], where a chamfer's leg must land on the target's grid).
+    pub source_increment_mm: f64,
+    pub target_increment_mm: f64,
     next_temp: u32,
     next_label: u32,
 }
@@ -247,6 +254,8 @@ impl Ctx {
             axis_reported: Default::default(),
             stand_in_runs: Vec::new(),
             stand_in_units: Vec::new(),
+            source_increment_mm: 0.001,
+            target_increment_mm: 0.001,
             unsupported: 0,
             next_temp: 0,
             next_label: 0,
@@ -324,7 +333,7 @@ pub fn lower_program(ctx: &mut Ctx, prog: &mut Program, info: &mut ProgInfo) {
     modal_reads::run(prog);
     feed_reads::run(ctx, prog, info.is_sub);
     blocks::run(ctx, prog, info);
-    corners::run(ctx, prog);
+    corners::run(ctx, prog, info);
     ctx.z_keeps.clear();
     ctx.skip_lengths.clear();
     ctx.own_z_keeps.clear();

@@ -430,6 +430,8 @@ fn new_ctx(file: crate::span::FileId, opts: &TranslateOptions) -> Ctx {
     ctx.master_spindle = opts.source.master_spindle;
     ctx.fixed = opts.source.fixed.clone();
     ctx.signals = opts.source.signals.clone();
+    ctx.source_increment_mm = opts.source.least_increment_mm;
+    ctx.target_increment_mm = opts.target.least_increment_mm;
     ctx
 }
 
