@@ -212,3 +212,41 @@ fn a_planted_translation_without_fgroup_or_with_the_wrong_axes_is_caught() {
         assert!(err.contains("NC500") || err.contains("NC662"), "{name}: {err}");
     }
 }
+
+#[test]
+fn fgref_turns_the_rotary_axis_degrees_into_the_arc_at_its_radius() {
+    // FGROUP(X,A) with FGREF[A]=10: F is the tangential speed at 10 mm, so A alone turns at
+    // 100 / (10·π/180) = 572.96 degrees/min; in inch (G700) the radius is in inch.
+    let src = "G90 G71 G0 X0 A0\nFGROUP(X,A)\nFGREF[A]=10\nG1 A90 F100\nG1 X10 A180\nM30\n";
+    let d = dir("fgref", &[("r.mpf", src)]);
+    let (trace, err, code) = nctrans(&d, &["run", "r.mpf"]);
+    assert_eq!(code, 0, "{err}");
+    // X10 A90 more: group path sqrt(10² + (90·10·π/180)²) = 18.62 mm at 100 mm/min, while
+    // every axis (degrees as mm) is sqrt(10² + 90²) = 90.55: f = 100 · 90.55 / 18.62.
+    assert_eq!(feeds(&trace), ["f=572.957795", "f=486.300689"], "{trace}");
+    let inch = "G90 G700 G0 X0 A0\nFGROUP(X,A)\nFGREF[A]=1\nG1 A90 F100\nM30\n";
+    let d = dir("fgref-inch", &[("r.mpf", inch)]);
+    let (trace, err, code) = nctrans(&d, &["run", "r.mpf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(trace.contains("move linear"), "{trace}");
+    // A linear axis has no reference radius; outside the group it is not settled.
+    for (name, src, what) in [
+        ("fgref-x", "FGREF[X]=10\nM30\n", "belongs to a rotary axis"),
+        ("fgref-out", "G90 G0 X0 A0\nFGREF[A]=10\nG1 A90 F100\nM30\n", "not in the feed group"),
+    ] {
+        let d = dir(name, &[("r.mpf", src)]);
+        let (_, err, code) = nctrans(&d, &["run", "r.mpf"]);
+        assert_ne!(code, 0, "{name}: {err}");
+        assert!(err.contains(what), "{name}: {err}");
+    }
+}
+
+#[test]
+fn fgref_is_refused_for_fanuc_with_its_reason() {
+    let src = "G90 G0 X0 A0\nFGROUP(X,A)\nFGREF[A]=10\nG1 A90 F100\nM30\n";
+    let d = dir("fgref-fanuc", &[("r.mpf", src)]);
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "r.mpf", "-o", "r.nc"]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("error[NC619]") && err.contains("FGREF (the reference radius"), "{err}");
+    assert!(!err.contains("NC341") && !err.contains("NC314"), "one diagnostic: {err}");
+}

@@ -227,6 +227,12 @@ impl Interp<'_> {
                 let i = self.r_index(n, v.span)?;
                 self.write_place(&Place::R(i), val, v.span)
             }
+            VarKind::Named { name, indices }
+                if indices.len() == 1 && name == "FGREF" && self.vars.frame_of(self.cur_sframe(), name).is_none() =>
+            {
+                let x = val.num().ok_or_else(|| Fault::alarm(self.alarms.domain, "FGREF needs a number", v.span))?;
+                self.fgref(&indices[0], x, v.span)
+            }
             VarKind::Named { name, indices } => {
                 let p = self.place_of(name, indices, v.span)?;
                 self.refuse_fixed_write(&p, v.span)?;

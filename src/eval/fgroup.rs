@@ -52,6 +52,44 @@ impl Interp<'_> {
         Ok(Flow::Next)
     }
 
+    /// `FGREF[A]=r`: the reference radius of rotary axis A in the feed group (K2: the
+    /// degrees of a rotary axis in FGROUP count as the arc at that radius; the default is
+    /// 360/2π mm, 1 degree as 1 mm; the radius in the length unit in force, P-FB). A linear
+    /// axis, or a radius not above 0, is refused.
+    pub(super) fn fgref(&mut self, index: &crate::ir::Expr, value: f64, span: Span) -> Result<(), Fault> {
+        let bare = match &index.kind {
+            ExprKind::Var(v) => match &v.kind {
+                VarKind::Named { name, indices } if indices.is_empty() => Some(name.to_ascii_uppercase()),
+                _ => None,
+            },
+            _ => None,
+        };
+        let name = match bare {
+            Some(n) => n,
+            None => self.axis_name(index)?,
+        };
+        let slot = match name.as_str() {
+            "A" => 0,
+            "B" => 1,
+            "C" => 2,
+            _ => {
+                return Err(self.fgroup_refusal(
+                    &format!("FGREF[{name}]: a reference radius belongs to a rotary axis (A, B, C)"),
+                    index.span,
+                ))
+            }
+        };
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(
+                self.fgroup_refusal(&format!("FGREF[{name}]={value}: the reference radius must be above 0"), span)
+            );
+        }
+        // The radius is a length in the unit in force (G70/G700: inch; P-FB).
+        let mm = if self.m.modal.inch { value * 25.4 } else { value };
+        self.m.fgroup.fgref[slot] = Some(mm);
+        Ok(())
+    }
+
     fn fgroup_refusal(&self, what: &str, span: Span) -> Fault {
         Fault::error(
             Diagnostic::error(FGROUP_AXIS, what.to_string())

@@ -40,11 +40,15 @@ pub struct Group {
     pub watch: u16,
     /// The feed in force was programmed under inch feeds (`Modal::inch_feed`).
     pub feed_inch: bool,
+    /// `FGREF[A]=r` (A, B, C): the reference radius that turns the rotary axis's degrees into
+    /// the millimetres of the group's path (`None`: the default, 1 degree counts as 1 mm,
+    /// a radius of 360/2π mm).
+    pub fgref: [Option<f64>; 3],
 }
 
 impl Group {
     pub fn new(fanuc: bool) -> Group {
-        let mut g = Group { axes: GEOMETRY, set_at: None, watch: 0, feed_inch: false };
+        let mut g = Group { axes: GEOMETRY, set_at: None, watch: 0, feed_inch: false, fgref: [None; 3] };
         g.refresh(fanuc);
         g
     }
@@ -68,6 +72,20 @@ pub fn names(bits: u16) -> String {
 
 fn length(d: &[f64; 9], bits: u16) -> f64 {
     (0..9).filter(|i| bits & (1 << i) != 0).map(|i| d[i] * d[i]).sum::<f64>().sqrt()
+}
+
+/// The Siemens path length of the group's axes `bits`: a rotary axis with a reference radius
+/// (`FGREF`) travels its arc at that radius, `degrees · π · r / 180` mm.
+fn group_length(d: &[f64; 9], bits: u16, fgref: &[Option<f64>; 3]) -> f64 {
+    (0..9)
+        .filter(|i| bits & (1 << i) != 0)
+        .map(|i| match (3..6).contains(&i).then(|| fgref[i - 3]).flatten() {
+            Some(r) => d[i] * r * std::f64::consts::PI / 180.0,
+            None => d[i],
+        })
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt()
 }
 
 impl Machine {
@@ -138,12 +156,22 @@ impl Machine {
             }
             return Ok(f);
         }
-        let l_group = length(d, moved & group);
+        let l_group = group_length(d, moved & group, &self.fgroup.fgref);
         if l_group > 0.0 {
             return Ok(f * length(d, moved) / l_group);
         }
-        // None of the group's axes moves: a rotary axis alone has F in degrees/min (V1).
+        // None of the group's axes moves: a rotary axis alone has F in degrees/min (V1),
+        // unless it has a reference radius, which P-FB applies to rotary axes alone too but
+        // reads inside FGROUP only.
         if moved & !ROTARY == 0 && moved.count_ones() == 1 {
+            let has_radius = (3..6).any(|i| moved & (1 << i) != 0 && self.fgroup.fgref[i - 3].is_some());
+            if has_radius {
+                return Err(refuse(
+                    &which,
+                    "it has a reference radius (FGREF) but is not in the feed group: no stored source says whether F is then degrees/min or mm/min at the radius",
+                    span,
+                ));
+            }
             return Ok(f);
         }
         Err(refuse(

@@ -19,6 +19,45 @@ use crate::span::Span;
 
 /// A Siemens move whose feed differs on FANUC (the run's own refusal is NC662).
 pub const MOVE_FEED_DIFFERS: &str = "NC664";
+/// `FGREF[A]=r`: FANUC has no reference radius (its F counts a degree as a millimetre).
+pub const REFERENCE_RADIUS: &str = "NC619";
+
+/// Whether `b` assigns the reference radius of a rotary axis (`FGREF[A]=r`).
+fn is_fgref(b: &Block) -> bool {
+    b.items.iter().any(|it| {
+        matches!(&it.kind, ItemKind::Assign { target, .. }
+            if matches!(&target.kind, VarKind::Named { name, indices } if name == "FGREF" && indices.len() == 1))
+    })
+}
+
+/// Refuses every `FGREF[…]=…` of `body` in its place: FANUC's feed along a rotary axis
+/// counts each degree as a millimetre whatever the radius, so a program that sets one
+/// moves its rotary axes at other speeds there (the run models it, `eval::fgroup`).
+fn refuse_fgref(ctx: &mut Ctx, body: &mut Vec<Stmt>, declared: bool) {
+    let mut i = 0;
+    while i < body.len() {
+        match &mut body[i].kind {
+            StmtKind::Block(b) if !declared && is_fgref(b) => {
+                let span = b.meta.span;
+                let what = "FGREF (the reference radius of a rotary axis in the feed group)";
+                let hint = "FANUC runs F along every axis with a degree counted as a millimetre, whatever the radius: \
+                            program the rotary moves' F as FANUC reads it, without FGREF";
+                match ctx.unsupported(REFERENCE_RADIUS, span, what, hint) {
+                    Some(mark) => {
+                        body[i] = mark;
+                        i += 1;
+                    }
+                    None => {
+                        body.remove(i);
+                    }
+                }
+                continue;
+            }
+            k => crate::ir::visit::child_bodies_mut(k).into_iter().for_each(|c| refuse_fgref(ctx, c, declared)),
+        }
+        i += 1;
+    }
+}
 
 const LETTERS: &[u8; 9] = b"XYZABCUVW";
 /// The Siemens default feed group: the geometry axes X, Y, Z.
@@ -86,6 +125,17 @@ fn may_set_group(stmts: &[Stmt]) -> bool {
 }
 
 pub fn run(ctx: &mut Ctx, prog: &mut Program, is_sub: bool) {
+    // A program's own variable named FGREF is that variable.
+    let mut declared = false;
+    crate::ir::visit::walk_stmts(&prog.body, &mut |s| {
+        if let StmtKind::Block(b) = &s.kind {
+            declared |= b
+                .items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::Def(d) if d.vars.iter().any(|v| v.name == "FGREF")));
+        }
+    });
+    refuse_fgref(ctx, &mut prog.body, declared);
     let any_group = may_set_group(&prog.body);
     let mut st = State {
         group: (!is_sub).then_some((GEOMETRY, None)),
