@@ -118,6 +118,26 @@ fn siemens_high_speed_settings_become_aicc_for_fanuc() {
 }
 
 #[test]
+fn siemens_smoothing_is_not_compared_and_g642_becomes_g64() {
+    // G641/G642 round the corners the trace records as programmed: the run says they are not
+    // compared (they were "no effect on the trace"); G642 (within the machine's tolerances) is
+    // FANUC's cutting mode G64 with a note, G641 (a programmed distance ADIS) has no FANUC form.
+    let prog = "G90 G1 X0 Y0 F100\nG642\nG1 X10\nY10\nG60\nM30\n";
+    let d = write("sie-smooth", &[("S.MPF", prog), ("A.MPF", &prog.replace("G642", "G641 ADIS=0.5"))]);
+    let (_, err, code) = nctrans(&d, &["run", "S.MPF"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning[NC560]: G642 (smoothing"), "{err}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "S.MPF", "-o", "s.nc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("NC620") && err.contains("(4 events; 1 look-ahead setting not compared)"), "{err}");
+    let nc = std::fs::read_to_string(d.join("s.nc")).unwrap();
+    assert!(nc.lines().any(|l| l == "G64") && !nc.contains("G642"), "{nc}");
+    let (_, err, code) = nctrans(&d, &["--to", "fanuc", "A.MPF", "-o", "a.nc"]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("NC311") && err.contains("G641"), "{err}");
+}
+
+#[test]
 fn a_numbered_high_speed_block_keeps_its_number_on_its_fanuc_words() {
     // `N60 CYCLE832(…)` is `N60 G05.1 Q1`, not an empty `N60` above or below a `G05.1 Q1`
     // block (a jump to N80 landed below FFWON's); a skipped block's words are skipped with it.

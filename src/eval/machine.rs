@@ -597,7 +597,10 @@ impl Machine {
                     }
                     // Siemens G43/G44/G49 (ISO mode): not in the `comp` event.
                     let code = if matches!(gi, 430..=490) { COMPENSATION_NOTE } else { "NC405" };
-                    warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span))
+                    match lookahead::smoothing(gi, self.fanuc) {
+                        Some(what) => warns.push((lookahead::NOT_COMPARED, what, span)),
+                        None => warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span)),
+                    }
                 }
                 920 | 520 | 680 | 160 => {
                     return Err(unsupported(

@@ -100,6 +100,19 @@ pub fn cycle832_type(m: i64) -> Option<&'static str> {
     })
 }
 
+/// Siemens G641 (smoothing by the distance `ADIS`) and G642 (by the axis tolerances of the
+/// machine data): the control inserts transitions at the corners, so the path near them is
+/// the control's, not the programmed corner the trace records; a check counts it as not
+/// compared. `None` for another G code (`gi` ×10) or on FANUC.
+pub fn smoothing(gi: i64, fanuc: bool) -> Option<String> {
+    let what = match gi {
+        6410 if !fanuc => "G641 (smoothing by the distance ADIS)",
+        6420 if !fanuc => "G642 (smoothing within the axis tolerances of the machine data)",
+        _ => return None,
+    };
+    Some(format!("{what} rounds the corners the trace records as programmed: not compared"))
+}
+
 /// What a `CYCLE832(tol, tolm, …)` with these values sets, for messages; `Err` for a type
 /// it does not take. Only the units digit of `_TOLM` selects the type (the higher digits
 /// choose orientation tolerance and surface functions, none of which moves the path).

@@ -583,6 +583,19 @@ fn words_pass(
                 // Exact stop mode, modal: Siemens G60 is FANUC G61 (G9, one block, and G64
                 // contouring are spelt alike).
                 Some(60.0) => w.value = WordValue::Expr(num(61.0, wspan)),
+                // Smoothing within the machine's axis tolerances: FANUC's cutting mode G64
+                // keeps the path through the corners; the run counts the corners as not
+                // compared (`eval::machine::lookahead::smoothing`). G641's rounding by a
+                // programmed distance ADIS has no FANUC form.
+                Some(642.0) => {
+                    w.value = WordValue::Expr(num(64.0, wspan));
+                    ctx.note(
+                        "NC620",
+                        wspan,
+                        "G642 becomes G64",
+                        "FANUC's cutting mode does not smooth the corners within axis tolerances as G642 does; the corners are not compared",
+                    );
+                }
                 Some(v) => {
                     let what = format!("G{v}");
                     return Err(unsup(ctx, "NC311", wspan, &what, "no FANUC G code has the same meaning"));
