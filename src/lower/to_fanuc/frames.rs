@@ -194,12 +194,14 @@ pub fn block(
         if op != "TRANS" {
             return None; // the words pass refuses the others (NC316)
         }
-        if abs != Some(true) || axes & (1 << 15) != 0 {
+        // An incremental move after it is refused where the controls travel it differently
+        // (`frames_incr`: an axis not programmed absolutely since its shift changed).
+        if abs != Some(true) {
             return Some(refuse(
                 ctx,
                 *fspan,
-                "TRANS in a program with incremental moves (G91, IC()): after a TRANS a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not",
-                "program the moves in G90 (or AC()); select G90 before the TRANS",
+                "TRANS where G91 may be in force (FANUC reads the words of G52 under G91 as incremental)",
+                "select G90 before the TRANS",
             ));
         }
         if words.iter().any(|w| matches!(w.value, WordValue::Rotary(..))) {
