@@ -133,3 +133,20 @@ fn a_streamed_translation_proves_it_too() {
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("error[NC445]"), "{err}");
 }
+
+#[test]
+fn a_trans_under_g91_is_written_under_g90_and_the_mode_selected_again() {
+    let d = scratch_dir("frames_incremental", "under_g91");
+    let text = "G17 G90 G54 G71\nT1 D1 M6\nG0 X0 Y0 Z5\nG91\nTRANS X50\nG90 G0 X0\nG91 G1 X10 F300\nG90\nTRANS\nM30\n";
+    let (src, out) = translated(&d, "G91.MPF", text);
+    assert!(out.contains("G90 G52 X50. Y0. Z0.\nG91\n"), "{out}");
+    // G52 read under G91 (an incremental local shift): not what TRANS does.
+    let bad = out.replace("G90 G52 X50. Y0. Z0.\nG91\n", "G52 X50. Y0. Z0.\n");
+    let b = write(&d, "BAD.nc", &bad);
+    let (code, verdict, err) = nctrans(&["check", &src, &b]);
+    assert_ne!(code, 0, "{verdict}{err}");
+    // In a called program the caller's mode is read and selected again.
+    write(&d, "SUBT.SPF", "PROC SUBT\nTRANS X50\nG90 G0 X0 Y0\nG91 G1 X5 F100\nTRANS\nRET\n");
+    let (_, out) = translated(&d, "CALLT.MPF", "G17 G90 G54 G71\nT1 D1 M6\nG91\nSUBT\nG90 G0 X0\nM30\n");
+    assert!(out.contains("=#4003\nG90 G52 X50. Y0. Z0.\nG#"), "{out}");
+}
