@@ -211,13 +211,15 @@ mod translation {
         let g68_1 = "O1\nG68.1 X0 Y0 Z0 I0 J1 K0 R30.\nM30\n";
         assert_eq!(f_to_s(g68_1).unwrap_err(), vec!["NC446".to_string()]);
         assert!(f_to_s("O1\nG90 G69 G15\nG0 X1.\nM30\n").unwrap().contains("G90\nG0 X1\n"));
-        // ATRANS adds to a frame FANUC cannot read; TRANS under G91.
+        // ATRANS adds to a frame FANUC cannot read; TRANS under G91 is G52 under G90.
         assert_eq!(s_to_f("ATRANS X5\nM30\n").unwrap_err(), vec!["NC577".to_string()]);
-        assert_eq!(s_to_f("G91\nTRANS X5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert!(s_to_f("G91\nTRANS X5\nM30\n").unwrap().contains("G90 G52 X5. Y0. Z0.\nG91\n"));
         assert_eq!(s_to_f("G74 Z1=0 M5\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
         // After a frame change a Sinumerik incremental move also travels the change, a
-        // FANUC one does not: a frame in a program with incremental moves is refused.
+        // FANUC one does not: an incremental move before the axis is programmed again is
+        // refused (tests/frames_incremental.rs).
         assert_eq!(s_to_f("X1\nTRANS X100\nX=IC(1)\nM30\n").unwrap_err(), vec!["NC445".to_string()]);
+        assert!(s_to_f("X1\nTRANS X100\nX0\nX=IC(1)\nM30\n").is_ok());
         assert_eq!(f_to_s("O1\nG52 X100. Y0\nG91 X1.\nM30\n").unwrap_err(), vec!["NC442".to_string()]);
     }
 

@@ -311,9 +311,6 @@ const REFUSED: &[(&str, &str)] = &[
     ("trans-features-g74-tool-changes.mpf", "NC470"), // T… M6 without D: the edge is machine data (MD20270)
     ("address-numbered.mpf", "NC312"),
     ("arc-radius-angle.mpf", "NC312"),
-    // AXNAME("X") and the AXIS variables holding it are X and Z (tests/axis_vars.rs); the
-    // TRANS after the IC() move is what stays refused.
-    ("axis-indirect-ax.mpf", "NC445"),
     ("assign-undeclared-name.mpf", "NC341"),
     ("axname-axis-by-name.mpf", "NC632"),
     ("call-numbered-program-name.mpf", "NC303"),

@@ -4,7 +4,8 @@
 //! - `TRANS X.. Y..` → `G52` naming X, Y, Z and every other axis any TRANS of the program
 //!   names, the unnamed ones 0: TRANS replaces the whole programmable frame, G52 only the
 //!   axes it names. Bare `TRANS` → `G52 X0 Y0 Z0`. Under G91 (or where it may be in force)
-//!   refused: FANUC reads G52 under G91 as incremental. `ATRANS` adds to the frame, whose
+//!   written `G90 G52 ..` and the mode selected again after it: FANUC reads G52 under G91 as
+//!   incremental. Incremental moves after it: `frames_incr.rs`. `ATRANS` adds to the frame, whose
 //!   value FANUC cannot read back: the translation keeps the shift of each axis in a
 //!   variable (set by the TRANS before, raised by each ATRANS) and writes `G52` from them,
 //!   where every ATRANS follows a TRANS on every path ([`ATRANS_READY`]), in a main program
@@ -194,14 +195,11 @@ pub fn block(
         if op != "TRANS" {
             return None; // the words pass refuses the others (NC316)
         }
-        if abs != Some(true) || axes & (1 << 15) != 0 {
-            return Some(refuse(
-                ctx,
-                *fspan,
-                "TRANS in a program with incremental moves (G91, IC()): after a TRANS a Sinumerik incremental move also travels the shift, a FANUC one after G52 does not",
-                "program the moves in G90 (or AC()); select G90 before the TRANS",
-            ));
-        }
+        // An incremental move after it is refused where the controls travel it differently
+        // (`frames_incr`: an axis not programmed absolutely since its shift changed). The
+        // TRANS values are the shift whatever G90/G91 (the Siemens run agrees); FANUC reads
+        // G52's words under G91 incrementally, so where G91 may be in force the G52 is
+        // written under G90 and the mode in force selected again after it.
         if words.iter().any(|w| matches!(w.value, WordValue::Rotary(..))) {
             return Some(refuse(
                 ctx,
@@ -212,6 +210,19 @@ pub fn block(
         }
         let mut items = vec![g(52.0, span)];
         let mut shifts = Vec::new();
+        let restore = match abs {
+            Some(true) => None,
+            Some(false) => Some(num(91.0, span)),
+            None => {
+                let t = ctx.temp(span);
+                let sys = VarRef { kind: VarKind::Hash(4003), span };
+                shifts.push(block_stmt(vec![assign_item(&t, crate::lower::var_expr(&sys), span)], span));
+                Some(crate::lower::var_expr(&t))
+            }
+        };
+        if restore.is_some() {
+            items.insert(0, g(90.0, span));
+        }
         for (i, &l) in AXES.iter().enumerate() {
             if axes & (1 << i) == 0 {
                 continue;
@@ -229,6 +240,9 @@ pub fn block(
         }
         let meta = std::mem::take(&mut b.meta);
         shifts.push(meta_stmt(meta, items));
+        if let Some(mode) = restore {
+            shifts.push(block_stmt(vec![letter(b'G', mode, span)], span));
+        }
         return Some(shifts);
     }
     let gs: Vec<f64> = b.items.iter().filter_map(const_g).collect();

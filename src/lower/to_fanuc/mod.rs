@@ -29,6 +29,7 @@ pub mod feed_reads;
 pub mod frame_chain;
 pub mod frame_seq;
 pub mod frames;
+pub mod frames_incr;
 pub mod haas_mirror;
 pub mod integral;
 pub mod interrupt;

@@ -44,6 +44,9 @@ struct Modal {
     chain: super::frame_chain::Chain,
     /// A called program (its caller's frame, a G52 among them, is not known here).
     is_sub: bool,
+    /// The incremental moves after a frame change the controls travel differently
+    /// (`frames_incr::plan`).
+    incr: super::frames_incr::Plan,
 }
 
 impl Modal {
@@ -77,6 +80,7 @@ pub fn run(ctx: &mut Ctx, prog: &mut Program, info: &ProgInfo) {
         seqs: if chain.on { Default::default() } else { seqs },
         chain,
         is_sub: info.is_sub,
+        incr: super::frames_incr::plan(&prog.body, !info.is_sub, &ctx.callees),
     };
     // The groups a SAVE subprogram sets (its callees' included), read before its G codes
     // become FANUC ones.
@@ -244,6 +248,11 @@ fn const_g(it: &Item) -> Option<f64> {
 }
 
 fn block_pass(ctx: &mut Ctx, mut b: Block, m: &mut Modal, out: &mut Vec<Stmt>) {
+    // An incremental move (or call) the controls travel differently after a TRANS.
+    if let Some(mark) = super::frames_incr::refuse(ctx, &b, &m.incr) {
+        out.extend(mark);
+        return;
+    }
     // G111 and AP=/RP= (polar.rs); ROT/AROT (rotation.rs); TRANS, SUPA/G153, G505..,
     // G74/G75 (frames.rs).
     if let Some(stmts) = super::polar::block(ctx, &mut b, &m.poles) {

@@ -1,13 +1,11 @@
 %
 O0001 (MAIN)
 (NCTRANS: SINUMERIK MAIN.MPF TO FANUC MACRO B)
-(NCTRANS: TEMPORARIES #1)
 ( The subprogram returns in G91 [no SAVE]: AC[] after the call must switch back to G91)
 G90 G00 X0. Y0.
 G65 P9000
-#1=#4003
 G90 X10.
-G#1
+G91
 X2.
 G91 X3.
 G90

@@ -23,6 +23,8 @@ pub const GROUPS: &[(u16, u32, &[u32])] = &[
 ];
 /// The bit of G90/G91.
 pub const ABS: u16 = 1 << 2;
+/// The axes X Y Z A B C U V W, as the bits of `Effect::incr_first` and `stale_exit`.
+const ALL_AXES: u16 = (1 << 9) - 1;
 
 /// What the units are after a call, given the caller's (one unit: calls are declined
 /// where lengths and feeds differ).
@@ -63,6 +65,35 @@ pub struct Effect {
     /// It (or a subprogram it calls) sets up an interrupt routine, which stays armed after
     /// the return and may write R parameters at any later block of the caller.
     pub interrupts: bool,
+    /// The axes it (or a program it calls) may move incrementally before programming them
+    /// absolutely, called in G90 and in G91: where the caller's frame changed and they are
+    /// not programmed again, the Siemens move travels the change (`frames_incr`).
+    pub incr_first: [u16; 2],
+    /// The axes its own frame instructions (or those of a program it calls) may leave with
+    /// a changed shift, not programmed again, at its end (`frames_incr`).
+    pub stale_exit: u16,
+    /// G90 (`Some(true)`) or G91 in force at its end, called in G90 and in G91; `None`:
+    /// not known (`frames_incr`, which follows the mode through its flow and calls).
+    pub abs_exit: [Option<bool>; 2],
+}
+
+impl Effect {
+    /// G90/G91 after the call made in G90 (`k` 0) or G91 (1).
+    pub fn abs_after_call(&self, k: usize) -> Option<bool> {
+        self.abs_after(Some(k == 0))
+    }
+
+    /// G90/G91 after the call, given the caller's.
+    pub fn abs_after(&self, abs: Option<bool>) -> Option<bool> {
+        if self.leaves() & ABS == 0 {
+            return abs;
+        }
+        match abs {
+            Some(true) => self.abs_exit[0],
+            Some(false) => self.abs_exit[1],
+            None => self.abs_exit[0].filter(|a| self.abs_exit[1] == Some(*a)),
+        }
+    }
 }
 
 impl Effect {
@@ -83,15 +114,29 @@ pub fn effects(progs: &[(String, &Program)]) -> BTreeMap<String, Effect> {
     for _ in 0..=progs.len() {
         let mut changed = false;
         for (name, p) in progs {
-            let e = effect_of(p, &|n| map.get(n).copied());
+            let any = crate::lower::to_fanuc::frames_incr::any_callee(map.values());
+            let e = effect_of(p, &|n| {
+                if n == crate::lower::to_fanuc::frames_incr::ANY_CALLEE {
+                    any
+                } else {
+                    map.get(n).copied()
+                }
+            });
             if map.get(name) != Some(&e) {
                 map.insert(name.clone(), e);
                 changed = true;
             }
         }
         if !changed {
-            break;
+            return map;
         }
+    }
+    // Not settled (calls among many programs): every program may move any axis first and
+    // leave any stale, which refuses rather than misses a frame change.
+    for e in map.values_mut() {
+        e.incr_first = [ALL_AXES; 2];
+        e.stale_exit = ALL_AXES;
+        e.abs_exit = [None; 2];
     }
     map
 }
@@ -161,7 +206,19 @@ pub fn effect_of(p: &Program, known: &dyn Fn(&str) -> Option<Effect>) -> Effect 
         fold_units(&p.body)
     };
     let tools = comp_flow::program_tools(p, false, &runs, &|n: &String| known(n).map(|e| e.tools));
-    Effect { sets, units, save: p.save, tools, frames, r_params, interrupts }
+    let s = crate::lower::to_fanuc::frames_incr::summary(&p.body, p.save, known);
+    Effect {
+        sets,
+        units,
+        save: p.save,
+        tools,
+        frames,
+        r_params,
+        interrupts,
+        incr_first: s.incr_first,
+        stale_exit: s.stale_exit,
+        abs_exit: s.abs_exit,
+    }
 }
 
 /// Whether an item may write an R parameter itself (its calls are the caller's to look up).
@@ -268,8 +325,14 @@ mod tests {
             ("SKIP", "PROC SKIP\n/G70\nM17\n"),
             ("OUTER", "PROC OUTER\nLEN\nM17\n"),
             ("SAVED", "PROC SAVED SAVE\nG91 G70 G18\nLEN\nM17\n"),
+            ("SHIFT", "PROC SHIFT\nG90\nTRANS X5\nG0 Y1\nM17\n"),
         ]);
-        assert_eq!(e["PLAIN"], Effect { sets: 1, ..Effect::default() });
+        // Called in G91 its X word is an incremental move of an axis it has not programmed.
+        let plain = Effect { sets: 1, incr_first: [0, 1], abs_exit: [Some(true), Some(false)], ..Effect::default() };
+        assert_eq!(e["PLAIN"], plain);
+        // Its TRANS changes every shift (the caller's are not known); Y is programmed again.
+        assert_eq!(e["SHIFT"].incr_first, [0, 0]);
+        assert_eq!(e["SHIFT"].stale_exit, ALL_AXES & !(1 << 1));
         assert_eq!(e["LEN"].units, UnitEffect::Both(Units { inch: true, inch_feed: false }));
         // G71 after G700 reads F metric again.
         assert_eq!(e["BOTH"].units, UnitEffect::Both(Units::default()));

@@ -96,9 +96,7 @@ impl Modes {
 
     /// After a call of a subprogram with `effect`.
     pub(super) fn call(&mut self, effect: &Effect) {
-        if effect.leaves() & ABS != 0 {
-            self.abs = None;
-        }
+        self.abs = effect.abs_after(self.abs);
         self.units.after_call(effect);
     }
 }
