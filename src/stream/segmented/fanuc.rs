@@ -274,6 +274,16 @@ impl<'a> SegTarget for ToFanuc<'a> {
             return Err(Fallback::NotStraight("a subprogram with a tool name".into()));
         }
         drop(subs);
+        // A run after a frame change, before its axes are programmed absolutely again: the
+        // whole translation looks into the run's blocks (`frames_incr`).
+        if t.diags
+            .iter()
+            .any(|d| d.code == "NC445" && d.message.starts_with(crate::lower::to_fanuc::frames_incr::STAND_IN))
+        {
+            return Err(Fallback::NotStraight(
+                "a run where a frame change leaves an axis to be programmed again".into(),
+            ));
+        }
         let notes_only = t.diags.iter().all(|d| d.severity == Severity::Note && d.labels.iter().all(|l| l.file == 0));
         if !(t.diags.is_empty() || self.notes_ok && notes_only) || t.unsupported > 0 {
             return Err(Fallback::Diagnostics);
