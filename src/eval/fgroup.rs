@@ -21,21 +21,7 @@ impl Interp<'_> {
                 Arg::Omitted(s) => return Err(self.fgroup_refusal("an empty FGROUP argument", *s)),
                 Arg::Letter { value, .. } => (value, value.span),
             };
-            // A bare letter no variable shadows is the axis itself (`FGROUP(Z)`).
-            let bare = match &e.kind {
-                ExprKind::Var(v) => match &v.kind {
-                    VarKind::Named { name, indices } if indices.is_empty() => {
-                        let cur = self.cur_sframe();
-                        self.vars.frame_of(cur, name).is_none().then(|| name.to_ascii_uppercase())
-                    }
-                    _ => None,
-                },
-                _ => None,
-            };
-            let name = match bare {
-                Some(n) => n,
-                None => self.axis_name(e)?,
-            };
+            let name = self.named_axis(e)?;
             let i = match name.as_bytes() {
                 [c] => axis_index(*c),
                 _ => None,
@@ -57,17 +43,7 @@ impl Interp<'_> {
     /// 360/2π mm, 1 degree as 1 mm; the radius in the length unit in force, P-FB). A linear
     /// axis, or a radius not above 0, is refused.
     pub(super) fn fgref(&mut self, index: &crate::ir::Expr, value: f64, span: Span) -> Result<(), Fault> {
-        let bare = match &index.kind {
-            ExprKind::Var(v) => match &v.kind {
-                VarKind::Named { name, indices } if indices.is_empty() => Some(name.to_ascii_uppercase()),
-                _ => None,
-            },
-            _ => None,
-        };
-        let name = match bare {
-            Some(n) => n,
-            None => self.axis_name(index)?,
-        };
+        let name = self.named_axis(index)?;
         let slot = match name.as_str() {
             "A" => 0,
             "B" => 1,
@@ -88,6 +64,25 @@ impl Interp<'_> {
         let mm = if self.m.modal.inch { value * 25.4 } else { value };
         self.m.fgroup.fgref[slot] = Some(mm);
         Ok(())
+    }
+
+    /// The axis an FGROUP argument or FGREF index names: a bare letter no variable shadows is
+    /// the axis itself (`FGROUP(Z)`, `FGREF[A]`), anything else is resolved as `AX[…]` is.
+    fn named_axis(&mut self, e: &crate::ir::Expr) -> Result<String, Fault> {
+        let bare = match &e.kind {
+            ExprKind::Var(v) => match &v.kind {
+                VarKind::Named { name, indices } if indices.is_empty() => {
+                    let cur = self.cur_sframe();
+                    self.vars.frame_of(cur, name).is_none().then(|| name.to_ascii_uppercase())
+                }
+                _ => None,
+            },
+            _ => None,
+        };
+        match bare {
+            Some(n) => Ok(n),
+            None => self.axis_name(e),
+        }
     }
 
     fn fgroup_refusal(&self, what: &str, span: Span) -> Fault {

@@ -14,6 +14,7 @@
 #[cfg(test)]
 pub(crate) mod build;
 pub mod comp_flow;
+pub mod hole_loops;
 pub mod known;
 pub mod landings;
 pub mod own_header;

@@ -322,38 +322,15 @@ fn r_word(orig: &Call, k: SieCycle, rfp: f64, sdis: f64, r: f64) -> Expr {
 /// and assignments, with no label, number or skip: its hole blocks without their G0 (which
 /// would end FANUC's cycle); `None` for any other statement.
 fn holes_in(s: &Stmt, motion: Option<f64>) -> Option<Stmt> {
-    fn fits(body: &[Stmt], motion: Option<f64>) -> bool {
-        body.iter().all(|s| match &s.kind {
-            StmtKind::Block(b) => {
-                let assigns = b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. }));
-                let words = b.items.iter().all(|it| match &it.kind {
-                    ItemKind::Word(w) => {
-                        w.addr.is(b'X') || w.addr.is(b'Y') || (w.addr.is(b'G') && g_of(w) == Some(0.0))
-                    }
-                    _ => false,
-                });
-                b.meta.label.is_none()
-                    && b.meta.number.is_none()
-                    && b.meta.skip.is_none()
-                    && (assigns || (words && positions(b, motion) == Ok(true)))
-            }
-            k => crate::ir::visit::child_bodies(k).into_iter().all(|c| fits(c, motion)),
-        })
-    }
-    fn strip(body: &mut Vec<Stmt>) {
-        for s in body {
-            match &mut s.kind {
-                StmtKind::Block(b) => b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G'))),
-                k => crate::ir::visit::child_bodies_mut(k).into_iter().for_each(strip),
-            }
-        }
-    }
-    if matches!(s.kind, StmtKind::Block(_)) || !fits(std::slice::from_ref(s), motion) {
-        return None;
-    }
-    let mut v = vec![s.clone()];
-    strip(&mut v);
-    v.pop()
+    let is_hole = |b: &Block| {
+        let words = b.items.iter().all(|it| match &it.kind {
+            ItemKind::Word(w) => w.addr.is(b'X') || w.addr.is(b'Y') || (w.addr.is(b'G') && g_of(w) == Some(0.0)),
+            _ => false,
+        });
+        words && positions(b, motion) == Ok(true)
+    };
+    let strip = |b: &mut Block| b.items.retain(|it| !matches!(&it.kind, ItemKind::Word(w) if w.addr.is(b'G')));
+    crate::lower::hole_loops::rewritten(s, &is_hole, &strip)
 }
 
 /// The block's plane positions if it is a plain rapid of X/Y (and M, F, S, comments).

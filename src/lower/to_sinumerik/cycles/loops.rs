@@ -50,41 +50,13 @@ pub(super) fn closable_bodies(ctx: &Ctx, body: &[Stmt], out: &mut BTreeMap<Span,
 /// nothing, so it calls nothing. `Some` (the structure with `G0` in its hole blocks) only
 /// then; `None` otherwise (the caller refuses as before).
 pub(super) fn holes_only(s: &Stmt, plane: (u8, u8)) -> Option<Stmt> {
-    fn fits(body: &[Stmt], plane: (u8, u8)) -> bool {
-        body.iter().all(|s| match &s.kind {
-            StmtKind::Block(b) => {
-                b.meta.label.is_none()
-                    && b.meta.number.is_none()
-                    && b.meta.skip.is_none()
-                    && b.items.iter().all(|it| match &it.kind {
-                        ItemKind::Assign { .. } => true,
-                        ItemKind::Word(w) => {
-                            (w.addr.is(plane.0) || w.addr.is(plane.1)) && matches!(w.value, WordValue::Expr(_))
-                        }
-                        _ => false,
-                    })
-                    && (b.items.iter().all(|it| matches!(it.kind, ItemKind::Assign { .. }))
-                        || b.items.iter().all(|it| matches!(it.kind, ItemKind::Word(_))))
-            }
-            k => crate::ir::visit::child_bodies(k).into_iter().all(|c| fits(c, plane)),
-        })
-    }
-    fn rapid(body: &mut Vec<Stmt>) {
-        for s in body {
-            match &mut s.kind {
-                StmtKind::Block(b) => {
-                    if b.items.iter().any(|it| matches!(it.kind, ItemKind::Word(_))) {
-                        b.items.insert(0, crate::lower::to_sinumerik::words::g_word(0, b.meta.span));
-                    }
-                }
-                k => crate::ir::visit::child_bodies_mut(k).into_iter().for_each(rapid),
-            }
-        }
-    }
-    if matches!(s.kind, StmtKind::Block(_)) || !fits(std::slice::from_ref(s), plane) {
-        return None;
-    }
-    let mut v = vec![s.clone()];
-    rapid(&mut v);
-    v.pop()
+    let is_hole = |b: &Block| {
+        !b.items.is_empty()
+            && b.items.iter().all(|it| {
+                matches!(&it.kind, ItemKind::Word(w)
+                    if (w.addr.is(plane.0) || w.addr.is(plane.1)) && matches!(w.value, WordValue::Expr(_)))
+            })
+    };
+    let rapid = |b: &mut Block| b.items.insert(0, crate::lower::to_sinumerik::words::g_word(0, b.meta.span));
+    crate::lower::hole_loops::rewritten(s, &is_hole, &rapid)
 }
