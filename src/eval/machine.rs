@@ -36,6 +36,7 @@ pub use frames::{framed_cycle, FanucRot, Xform};
 pub use modal::{g_index, Modal};
 pub use motion::{DWELL_FANUC_POINT, DWELL_HAAS_COMPUTED};
 pub use polar::Pole;
+use refs::{fmt_g, unsupported};
 
 /// A word after evaluation of its value.
 #[derive(Clone, Debug)]
@@ -586,21 +587,20 @@ impl Machine {
                 90 | 600 | 610 | 620 | 630 | 640 | 430 | 440 | 490 | 800 | 6010 | 6020 | 6410 | 6420 | 150 | 670
                 | 690 | 970 | 960 | 980 | 990 => {
                     let group = match gi {
-                        430 | 440 | 490 => Some(8),
-                        800 => Some(9),
-                        980 | 990 => Some(10),
-                        610..=640 => Some(15),
-                        _ => None,
+                        430 | 440 | 490 => 8,
+                        800 => 9,
+                        980 | 990 => 10,
+                        610..=640 => 15,
+                        _ => 0,
                     };
-                    if let Some(slot) = self.group_g.iter_mut().find(|s| Some(s.0) == group) {
-                        slot.1 = gi;
-                    }
-                    // Siemens G43/G44/G49 (ISO mode): not in the `comp` event.
-                    let code = if matches!(gi, 430..=490) { COMPENSATION_NOTE } else { "NC405" };
-                    match lookahead::smoothing(gi, self.fanuc) {
-                        Some(what) => warns.push((lookahead::NOT_COMPARED, what, span)),
-                        None => warns.push((code, format!("G{} has no effect on the trace", fmt_g(g)), span)),
-                    }
+                    self.set_group_g(group, gi);
+                    let inert = || format!("G{} has no effect on the trace", fmt_g(g));
+                    warns.push(match lookahead::smoothing(gi, self.fanuc) {
+                        Some(what) => (lookahead::NOT_COMPARED, what, span),
+                        // Siemens G43/G44/G49 (ISO mode): not in the `comp` event.
+                        None if matches!(gi, 430..=490) => (COMPENSATION_NOTE, inert(), span),
+                        None => ("NC405", inert(), span),
+                    });
                 }
                 920 | 520 | 680 | 160 => {
                     return Err(unsupported(
@@ -785,10 +785,6 @@ impl Machine {
     }
 }
 
-fn fmt_g(g: f64) -> String {
-    super::value::fmt_num(g)
-}
-
 /// Removes float noise below the trace precision and negative zero.
 pub(crate) fn clean(x: f64) -> f64 {
     let r = super::value::round(x * 1e9) / 1e9;
@@ -797,12 +793,4 @@ pub(crate) fn clean(x: f64) -> f64 {
     } else {
         r
     }
-}
-
-fn unsupported(msg: &str, span: Span) -> Fault {
-    Fault::Error(Box::new(
-        crate::diag::Diagnostic::error("NC403", msg.to_string())
-            .primary(usize::MAX, span, "here")
-            .hint("this construct cannot be proven equivalent; rewrite it with G0/G1/G2/G3 moves"),
-    ))
 }

@@ -313,3 +313,17 @@ impl Machine {
         Ok(n as u8)
     }
 }
+
+/// A G value as messages write it (`G05.1`, `G54`).
+pub(super) fn fmt_g(g: f64) -> String {
+    crate::eval::value::fmt_num(g)
+}
+
+/// A construct the evaluator does not model (NC403): never a silently wrong position.
+pub(super) fn unsupported(msg: &str, span: Span) -> Fault {
+    Fault::Error(Box::new(
+        crate::diag::Diagnostic::error("NC403", msg.to_string())
+            .primary(usize::MAX, span, "here")
+            .hint("this construct cannot be proven equivalent; rewrite it with G0/G1/G2/G3 moves"),
+    ))
+}
