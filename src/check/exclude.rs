@@ -27,6 +27,10 @@ pub struct Excluded {
     /// per place): the trace has no event for signals, so the two programs' writes were not
     /// compared.
     pub signals: u64,
+    /// Inputs of the Siemens side that name a main-program DEF variable, left out because
+    /// the FANUC program assigns the DEF's start value itself (warning NC661,
+    /// `translate::to_fanuc::proof_sets`).
+    pub unused_inputs: Vec<String>,
     /// The set-up values the runs read (`[variables] fixed`: `AXIS_HORI = "Z"`, from the
     /// runs' NC543 notes): compared, but true only on a machine set up so. Not "left out",
     /// so not in [`Excluded::describe`]; every verdict line ([`Excluded::equivalent`]) names them.
@@ -35,7 +39,11 @@ pub struct Excluded {
 
 impl Excluded {
     pub fn is_empty(&self) -> bool {
-        self.messages == 0 && self.modes == 0 && self.interrupts == 0 && self.signals == 0
+        self.messages == 0
+            && self.modes == 0
+            && self.interrupts == 0
+            && self.signals == 0
+            && self.unused_inputs.is_empty()
     }
 
     pub fn add(&mut self, other: Excluded) {
@@ -43,6 +51,11 @@ impl Excluded {
         self.modes += other.modes;
         self.interrupts += other.interrupts;
         self.signals += other.signals;
+        for i in other.unused_inputs {
+            if !self.unused_inputs.contains(&i) {
+                self.unused_inputs.push(i);
+            }
+        }
         self.assumed = crate::dialect::fixed::joined(self.assumed.take(), other.assumed);
     }
 
@@ -69,6 +82,13 @@ impl Excluded {
             0 => {}
             1 => parts.push("1 signal write not compared".to_string()),
             n => parts.push(format!("{n} signal writes not compared")),
+        }
+        if !self.unused_inputs.is_empty() {
+            let what = if self.unused_inputs.len() == 1 { "input" } else { "inputs" };
+            parts.push(format!(
+                "not used: the {what} {}, as the FANUC program assigns the DEF's start value (NC661)",
+                self.unused_inputs.join(" ")
+            ));
         }
         (!parts.is_empty()).then(|| parts.join(", "))
     }

@@ -182,9 +182,10 @@ pub fn check(
     let (Some(ra), Some(rb)) = (runners.next(), runners.next()) else {
         return ExitCode::from(2);
     };
-    let report = check::check_runners(&db, ra, rb);
+    let mut report = check::check_runners(&db, ra, rb);
+    report.excluded.unused_inputs = unused;
     eprint!("{}", nctrans::excerpt::render(&report.db, &report.diags, &render));
-    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()), &unused)
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
 }
 
 /// One side of a plain `check`: read whole, or streamed (its index, with the source it
@@ -300,7 +301,7 @@ fn unused_def_inputs(db: &SourceDb, [x, y]: [&mut Read; 2]) -> Vec<String> {
     texts
 }
 
-fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>, unused: &[String]) -> ExitCode {
+fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>) -> ExitCode {
     use nctrans::check::Verdict;
     // The `comp` event names registers, not G44's direction nor Siemens ISO-mode G43/G44/G49
     // (NC387): a program that ran one may apply another length than the other, unseen.
@@ -341,7 +342,7 @@ fn check_verdict(report: &nctrans::check::CheckReport, assumed: Option<&str>, un
                 Some(a) => format!("{events} trace events agree; {a}"),
                 None => format!("{events} trace events agree"),
             };
-            println!("{}", translate::to_fanuc::noted_unused_inputs(report.excluded.equivalent(&detail), unused));
+            println!("{}", report.excluded.equivalent(&detail));
             ExitCode::SUCCESS
         }
         Verdict::Diverged { index } => {
@@ -449,9 +450,10 @@ fn check_as_translation(
     } else {
         check::Exclude::default()
     };
-    let report = check::check_runners_excluding(&db, ra, rb, exclude);
+    let mut report = check::check_runners_excluding(&db, ra, rb, exclude);
+    report.excluded.unused_inputs = unused;
     eprint!("{}", diag::render(&report.db, &report.diags));
-    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()), &unused)
+    check_verdict(&report, seeded.as_ref().map(|s| s.said.as_str()))
 }
 
 /// One side of `nctrans check`: streamed when wanted and possible, with what it reads (the

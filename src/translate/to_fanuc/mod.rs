@@ -29,9 +29,7 @@ pub use inputs::{
     fanuc_set_inputs, gud_homes_in, gud_inputs, gud_seed_inputs, main_proof, proof_homes, proof_source, r_param_homes,
     r_param_inputs, standalone_args, var_param_inputs, MainProof,
 };
-pub use start_values::{
-    def_names as main_def_names, noted as noted_unused_inputs, proof_sets, warning as unused_input_warning,
-};
+pub use start_values::{def_names as main_def_names, proof_sets, warning as unused_input_warning};
 
 /// First O number given to subprograms without a `--program-map` entry.
 pub const FIRST_SUB_NUMBER: u32 = 9000;

@@ -122,10 +122,10 @@ pub fn verify<'a>(
             Side { unit: parsed.unit.clone(), callees: Box::new(NoCallees), run: run(parse_all(&b_in), fanuc.clone()) };
         let mut report = check::check_excluding(db, a, b, EXCLUDE);
         report.called = reached.names();
+        report.excluded.unused_inputs = unused.clone();
         runs.push((label, report));
     }
     let mut v = Verification::of_runs(runs);
-    v.summary = noted_unused_inputs(v.summary, &unused);
     rendered.push_str(&v.rendered);
     v.rendered = rendered;
     v.reparsed = Some(parsed.unit);

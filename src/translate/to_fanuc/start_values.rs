@@ -3,7 +3,7 @@
 //! FANUC translation writes that start value as an assignment in the program body, which no
 //! input of the FANUC side replaces: the two runs would start differently and the proof
 //! would blame the translation. So the proof runs both with the start value, and says which
-//! inputs it left out (warning NC661, and the verdict line).
+//! inputs it left out (warning NC661, and the verdict line through `check::Excluded`).
 
 use super::SymbolMap;
 use crate::diag::Diagnostic;
@@ -58,19 +58,6 @@ fn input_name(set: &str) -> Option<String> {
 /// `sets` without those naming a main-program DEF variable of the translation, and those.
 pub fn proof_sets(sets: &[String], map: &SymbolMap) -> (Vec<String>, Vec<String>) {
     sets.iter().cloned().partition(|s| input_name(s).is_none_or(|n| !map.def_inputs.contains(&n)))
-}
-
-/// The verdict line of an equivalence that left `dropped` out, saying so.
-pub fn noted(summary: String, dropped: &[String]) -> String {
-    if dropped.is_empty() || !summary.starts_with("equivalent (") || !summary.ends_with(')') {
-        return summary;
-    }
-    let what = if dropped.len() == 1 { "input" } else { "inputs" };
-    let list = dropped.join(" ");
-    format!(
-        "{}; not used: the {what} {list}, as the FANUC program assigns the DEF's start value (NC661))",
-        &summary[..summary.len() - 1]
-    )
 }
 
 /// The warning for the input `set` of the header line in `file`, pointing at the DEF.
